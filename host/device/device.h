@@ -1,0 +1,81 @@
+// device.h — OpenCL platform/device choice, one context and one in-order profiling queue, and a
+// program cache keyed by (kernel file, defines, device) with on-disk binaries.
+#pragma once
+#include <CL/opencl.hpp>
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace seasim {
+
+struct DeviceInfo {
+  int platform_index = 0;
+  int device_index = 0;          // within the platform
+  std::string platform_name;     // "Portable Computing Language", "NVIDIA CUDA", ...
+  std::string name;              // device name
+  std::string vendor;
+  std::string version;           // CL_DEVICE_VERSION
+  std::string driver;            // CL_DRIVER_VERSION
+  bool is_gpu = false;
+  bool is_pocl = false;
+  bool has_fp64 = false;
+  unsigned compute_units = 0;
+  unsigned long long global_mem_bytes = 0;
+  std::string label() const;     // "pocl:0 pthread-AMD EPYC ... (CPU, 2 CU, fp64)"
+};
+
+// Every OpenCL device on the machine, platform by platform. Empty when there is no ICD.
+std::vector<DeviceInfo> listDevices();
+
+// Picks a device by selector: "" or "auto" (first GPU, else PoCL, else first), "cpu", "gpu",
+// "pocl:N", "nvidia:N" (N-th device of the platform whose name contains "pocl"/"nvidia"),
+// or a case-insensitive substring of the device name. Throws DeviceError listing the devices.
+DeviceInfo chooseDevice(const std::string& selector);
+
+// A compiled program and how long the build took (0 when it came from a cache).
+struct BuiltProgram {
+  cl::Program program;
+  double build_ms = 0.0;
+  bool from_cache = false;
+};
+
+// The one context per run: device, context, in-order queue with profiling, program cache.
+class Device {
+ public:
+  explicit Device(const DeviceInfo& info);
+  const DeviceInfo& info() const { return info_; }
+  cl::Context& context() { return context_; }
+  cl::CommandQueue& queue() { return queue_; }
+  cl::Device& device() { return device_; }
+
+  // Builds (or fetches) kernels/<kernel_file> with `-D` defines (NAME or NAME=VALUE). Includes of
+  // "common/x.h" are inlined with #line markers. Sources come from the binary, or from
+  // $SEASIM_KERNEL_DIR when set. Binaries are cached in memory and on disk
+  // ($SEASIM_CACHE_DIR, else $XDG_CACHE_HOME/seasim, else ~/.cache/seasim).
+  // A failed build throws DeviceError with the kernel file and the compiler log.
+  const BuiltProgram& program(const std::string& kernel_file, const std::vector<std::string>& defines);
+
+  // Total build milliseconds spent by program() so far (for report.json).
+  double totalBuildMs() const { return total_build_ms_; }
+
+ private:
+  DeviceInfo info_;
+  cl::Device device_;
+  cl::Context context_;
+  cl::CommandQueue queue_;
+  std::map<std::string, BuiltProgram> programs_;
+  double total_build_ms_ = 0.0;
+};
+
+// Milliseconds between an event's start and end (profiling queue).
+double eventMs(const cl::Event& event);
+
+// Throws DeviceError "what: <CL error name> (code)" when err != CL_SUCCESS.
+void checkCl(cl_int err, const std::string& what);
+
+// Human name of an OpenCL error code ("CL_OUT_OF_RESOURCES").
+const char* clErrorName(cl_int err);
+
+}  // namespace seasim

@@ -1,0 +1,35 @@
+// job.h — job files: a list of renders (and sweeps expanded into renders) for the farm.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "scene/scene_parser.h"
+
+namespace seasim {
+
+struct RenderItem {
+  std::string name;                  // unique within the job; names the output files
+  std::string scene_file;            // absolute
+  std::vector<Override> overrides;   // applied in order (job-level first, then the item's)
+  std::vector<std::string> outputs;  // of "exr", "png", "spectral_exr", "npy"; default exr+png
+  std::string reference;             // optional reference EXR (absolute) to report error against
+  SourceLoc loc;                     // the [[render]] / [[sweep]] table
+};
+
+struct Job {
+  std::string file;        // absolute
+  std::string name;
+  std::string output_dir;  // absolute; default <repo-or-cwd>/results/<name>
+  std::string device;      // default "" = automatic choice
+  std::vector<RenderItem> items;
+};
+
+// Parses and validates a job file, and validates every scene it names with its overrides, so a
+// bad job fails before anything renders. Throws InputError.
+Job loadJob(const std::string& path);
+Job parseJob(const std::string& toml_text, const std::string& path);
+
+// True when the file looks like a job (has [job], [[render]] or [[sweep]]), for `seasim validate`.
+bool isJobFile(const std::string& path);
+
+}  // namespace seasim

@@ -1,0 +1,18 @@
+// kernel_math.h — the kernels' shared math (kernels/common/*.h) compiled for the host twice:
+// seasim::kmath_f with real = float and seasim::kmath_d with real = double (compat.h explains why).
+// Add a new common header here, in dependency order, when you add it to kernels/common/.
+#pragma once
+#include "common/compat.h"
+
+
+namespace seasim::kmath_f {
+typedef float real;
+#include "common/real3_host.h"
+#include "common/optics.h"
+}  // namespace seasim::kmath_f
+
+namespace seasim::kmath_d {
+typedef double real;
+#include "common/real3_host.h"
+#include "common/optics.h"
+}  // namespace seasim::kmath_d

@@ -1,0 +1,158 @@
+// scene.h — a parsed, validated scene: plain structs in SI units (metres, radians inside code,
+// nm for wavelengths). Files say degrees and nm; the parser (scene_parser.cpp) converts.
+// scenes/README.md documents every key, its unit and its default; keep the two in step.
+#pragma once
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "math/vec3.h"
+#include "spectral/spectrum.h"
+
+namespace seasim {
+
+// Where a value came from, for error messages and reports ("scenes/a.toml:12").
+struct SourceLoc {
+  std::string file;
+  int line = 0;
+};
+
+struct CameraDesc {
+  Vec3 position{0, 10, 0};   // m
+  Vec3 look_at{0, 0, -100};  // m
+  Vec3 up{0, 1, 0};
+  double fov_y = 0.0;        // radians (file: fov_deg, default 60)
+  int width = 640;           // pixels
+  int height = 360;
+  double exposure_ev = 0.0;  // image scale 2^exposure_ev
+};
+
+struct SunDesc {
+  bool enabled = true;
+  double zenith = 0.0;         // radians (file: zenith_deg, default 45)
+  double azimuth = 0.0;        // radians from +x towards +z (file: azimuth_deg, default 0)
+  double irradiance = 1.0;     // scale on the D65 spectral irradiance (W m^-2 nm^-1 at 560 nm = scale)
+  double angular_radius = 0.004654;  // radians (file: angular_radius_deg, default 0.2667)
+};
+
+struct SkyDesc {
+  enum class Model { Uniform, Analytic, Image };
+  Model model = Model::Uniform;
+  double radiance = 0.05;      // scale on D65 radiance (W m^-2 sr^-1 nm^-1 at 560 nm) for uniform
+  std::string image;           // environment image (lat-long), resolved absolute path, for Image
+};
+
+// Water inherent optical properties. Either a Jerlov type (a, b, Kd from data/) or explicit spectra.
+struct WaterDesc {
+  bool present = false;
+  std::string jerlov;          // "I", "IA", "IB", "II", "III", "1C", "3C", "5C", "7C", "9C" or empty
+  Spectrum a;                  // absorption, 1/m
+  Spectrum b;                  // scattering, 1/m
+  Spectrum kd;                 // diffuse downwelling attenuation, 1/m (optional when explicit)
+  double g = 0.9;              // Henyey–Greenstein asymmetry for single scattering, |g| < 1
+  double ior = 1.333;          // refractive index of water relative to air
+};
+
+struct AirDesc {
+  enum class Phase { Shafts, HenyeyGreenstein };  // 001 eq. 4, or HG
+  bool present = false;
+  double density = 1.0;        // rho, particle density (001 eq. 1), dimensionless scale
+  double extinction = 0.05;    // kappa, extinction cross-section, 1/m per unit density
+  Phase phase = Phase::Shafts;
+  double g = 0.0;              // HG asymmetry when phase = "hg"
+};
+
+struct SurfaceDesc {
+  enum class Type { Flat, Fft };
+  Type type = Type::Flat;
+  double wind_speed = 10.0;           // m/s
+  double wind_direction = 0.0;        // radians (file: wind_direction_deg)
+  double patch_size = 100.0;          // L, m
+  int grid = 256;                     // N, power of two 16..2048
+  double choppiness = 0.0;            // lambda (004 eq. 29)
+  double directional_exponent = 2.0;  // p in |k.w|^p (004 eq. 23)
+  double small_wave = 0.0;            // l, m (004 eq. 24)
+  double depth = 0.0;                 // D for finite-depth dispersion, m; 0 = deep water
+  double loop_period = 0.0;           // T, s (004 eq. 18); 0 = no loop
+  double time = 0.0;                  // s
+  unsigned seed = 1;
+};
+
+struct BottomDesc {
+  enum class Type { None, Flat, HeightField };
+  Type type = Type::None;   // None: deep water, no bottom terms
+  double depth = 10.0;      // m (flat)
+  Spectrum albedo = Spectrum::constant(0.3);  // Lambertian reflectance
+  std::string heightfield;  // image path (resolved); grey 0..1 maps to max_depth..min_depth
+  double min_depth = 1.0;   // m
+  double max_depth = 40.0;  // m
+  double extent = 100.0;    // m, side of the square the height field covers, centred at x=z=0
+};
+
+struct ObjectDesc {
+  enum class Type { Sphere, Box, Plane, HeightField };
+  Type type = Type::Sphere;
+  Vec3 center{};       // sphere
+  double radius = 1.0;
+  Vec3 box_min{}, box_max{};  // box (axis aligned)
+  Vec3 point{}, normal{0, 1, 0};  // plane
+  std::string heightfield;     // height-field image (resolved)
+  double extent = 10.0;        // height field: side length, m
+  double height = 1.0;         // height field: grey 1 -> height m above `point`
+  Spectrum albedo = Spectrum::constant(0.5);
+  SourceLoc loc;
+};
+
+struct SpotlightDesc {
+  Vec3 position{0, 5, 0};
+  Vec3 direction{0, -1, 0};   // normalised by the parser
+  double cone = 0.0;          // half angle, radians (file: cone_deg, default 20)
+  double falloff = 0.0;       // penumbra width, radians (file: falloff_deg, default 5)
+  double intensity = 100.0;   // W/sr on the axis
+  Vec3 color{1, 1, 1};        // linear RGB tint
+  std::string light_map;      // image path (resolved), optional: the lamp's intensity distribution
+  SourceLoc loc;
+};
+
+struct SpectralDesc {
+  int count = 3;              // wavelength bands, 1..1000
+  double min_nm = 400.0;
+  double max_nm = 700.0;
+  std::string sensor = "cie1931";  // "cie1931" or a camera name from data/cameras (file stem)
+  bool white_balance = true;
+  bool spectral_exr = false;  // also write one channel per band
+};
+
+// A quality knob: a number, or "auto" (the method picks the cheapest setting under its error budget).
+struct Knob {
+  bool automatic = false;
+  double value = 0.0;
+};
+
+struct SeaDesc {
+  bool single_scattering = true;
+  bool second_order = false;
+  bool reflection = true;
+};
+
+struct Scene {
+  std::string file;  // absolute path of the scene file
+  std::string name;
+  CameraDesc camera;
+  SunDesc sun;
+  SkyDesc sky;
+  WaterDesc water;
+  AirDesc air;
+  SurfaceDesc surface;
+  BottomDesc bottom;
+  SeaDesc sea;
+  std::vector<ObjectDesc> objects;
+  std::vector<SpotlightDesc> spotlights;
+  SpectralDesc spectral;
+  // Every known knob with its value or "auto"; defaults filled in by the parser. Keys are documented
+  // in scenes/README.md ([quality]).
+  std::map<std::string, Knob> quality;
+};
+
+}  // namespace seasim

@@ -1,0 +1,37 @@
+#include "util/paths.h"
+
+#include <cstdlib>
+#include <filesystem>
+
+#include "util/error.h"
+
+namespace fs = std::filesystem;
+
+namespace seasim {
+
+std::string dataDir() {
+  std::vector<std::string> candidates;
+  if (const char* env = std::getenv("SEASIM_DATA_DIR")) candidates.emplace_back(env);
+  candidates.emplace_back(std::string(SEASIM_SOURCE_DIR) + "/data");
+  candidates.emplace_back("data");
+  for (const auto& dir : candidates) {
+    if (fs::exists(fs::path(dir) / "cie1931_2deg_cmf.csv")) return fs::absolute(dir).lexically_normal();
+  }
+  throw RuntimeError("cannot find the data folder (looked in $SEASIM_DATA_DIR, " +
+                     std::string(SEASIM_SOURCE_DIR) + "/data and ./data); set SEASIM_DATA_DIR");
+}
+
+std::string cameraFile(const std::string& name) {
+  if (name.empty() || name.find('/') != std::string::npos) return "";
+  fs::path p = fs::path(dataDir()) / "cameras" / (name + ".csv");
+  return fs::exists(p) ? p.string() : "";
+}
+
+std::string resolveRelativeTo(const std::string& anchor_file, const std::string& path) {
+  fs::path p(path);
+  if (p.is_absolute()) return p.lexically_normal();
+  fs::path base = fs::absolute(anchor_file).parent_path();
+  return (base / p).lexically_normal();
+}
+
+}  // namespace seasim

@@ -1,0 +1,17 @@
+// paths.h — where the project's data lives at run time.
+#pragma once
+#include <string>
+
+namespace seasim {
+
+// The data/ folder (spectra, cameras): $SEASIM_DATA_DIR, else <source>/data when it exists,
+// else ./data. Throws RuntimeError when none has cie1931_2deg_cmf.csv.
+std::string dataDir();
+
+// data/cameras/<name>.csv for a camera sensor name (the file stem); "" when absent.
+std::string cameraFile(const std::string& name);
+
+// Absolute, lexically normal form of `path` relative to the folder of `anchor_file`.
+std::string resolveRelativeTo(const std::string& anchor_file, const std::string& path);
+
+}  // namespace seasim
