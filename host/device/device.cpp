@@ -1,0 +1,284 @@
+#include "device/device.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <unistd.h>
+
+#include "device/kernel_source.h"
+#include "util/error.h"
+
+namespace fs = std::filesystem;
+
+namespace seasim {
+
+namespace {
+
+std::string lower(std::string s) {
+  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+  return s;
+}
+
+std::string trim(std::string s) {
+  while (!s.empty() && (s.back() == '\0' || std::isspace(static_cast<unsigned char>(s.back())))) s.pop_back();
+  size_t i = 0;
+  while (i < s.size() && std::isspace(static_cast<unsigned char>(s[i]))) ++i;
+  return s.substr(i);
+}
+
+// FNV-1a 64: a hash that is the same in every build, for on-disk cache names.
+uint64_t fnv1a(const std::string& s, uint64_t h = 1469598103934665603ull) {
+  for (unsigned char c : s) {
+    h ^= c;
+    h *= 1099511628211ull;
+  }
+  return h;
+}
+
+std::string cacheDir() {
+  if (const char* d = std::getenv("SEASIM_CACHE_DIR"); d && *d) return d;
+  if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x) return std::string(x) + "/seasim";
+  if (const char* h = std::getenv("HOME"); h && *h) return std::string(h) + "/.cache/seasim";
+  return "";
+}
+
+std::vector<unsigned char> readBinaryFile(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  if (!in) return {};
+  return std::vector<unsigned char>(std::istreambuf_iterator<char>(in), {});
+}
+
+// Best effort: a cache that cannot be written only costs build time.
+void writeBinaryFileAtomic(const fs::path& p, const std::vector<unsigned char>& bytes) {
+  std::error_code ec;
+  fs::create_directories(p.parent_path(), ec);
+  fs::path tmp = p;
+  tmp += ".tmp-" + std::to_string(::getpid());
+  {
+    std::ofstream out(tmp, std::ios::binary);
+    if (!out) return;
+    out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+    if (!out) {
+      fs::remove(tmp, ec);
+      return;
+    }
+  }
+  fs::rename(tmp, p, ec);
+  if (ec) fs::remove(tmp, ec);
+}
+
+double msSince(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+std::string DeviceInfo::label() const {
+  std::string plat = is_pocl ? "pocl" : lower(platform_name.substr(0, platform_name.find(' ')));
+  std::ostringstream s;
+  s << plat << ":" << device_index << " " << name << " (" << (is_gpu ? "GPU" : "CPU") << ", "
+    << compute_units << " CU, " << (global_mem_bytes >> 20) << " MiB" << (has_fp64 ? ", fp64" : "")
+    << ", " << trim(version) << ")";
+  return s.str();
+}
+
+std::vector<DeviceInfo> listDevices() {
+  std::vector<DeviceInfo> result;
+  std::vector<cl::Platform> platforms;
+  cl_int err = cl::Platform::get(&platforms);
+  if (err != CL_SUCCESS && err != CL_PLATFORM_NOT_FOUND_KHR) checkCl(err, "clGetPlatformIDs");
+  for (size_t p = 0; p < platforms.size(); ++p) {
+    std::vector<cl::Device> devices;
+    try {
+      platforms[p].getDevices(CL_DEVICE_TYPE_ALL, &devices);
+    } catch (const cl::Error&) {
+      continue;  // a platform with no devices
+    }
+    std::string pname = trim(platforms[p].getInfo<CL_PLATFORM_NAME>());
+    for (size_t d = 0; d < devices.size(); ++d) {
+      DeviceInfo info;
+      info.platform_index = static_cast<int>(p);
+      info.device_index = static_cast<int>(d);
+      info.platform_name = pname;
+      info.name = trim(devices[d].getInfo<CL_DEVICE_NAME>());
+      info.vendor = trim(devices[d].getInfo<CL_DEVICE_VENDOR>());
+      info.version = trim(devices[d].getInfo<CL_DEVICE_VERSION>());
+      info.driver = trim(devices[d].getInfo<CL_DRIVER_VERSION>());
+      info.is_gpu = (devices[d].getInfo<CL_DEVICE_TYPE>() & CL_DEVICE_TYPE_GPU) != 0;
+      info.is_pocl = lower(pname).find("portable computing") != std::string::npos ||
+                     lower(pname).find("pocl") != std::string::npos;
+      info.has_fp64 = devices[d].getInfo<CL_DEVICE_EXTENSIONS>().find("cl_khr_fp64") != std::string::npos;
+      info.compute_units = devices[d].getInfo<CL_DEVICE_MAX_COMPUTE_UNITS>();
+      info.global_mem_bytes = devices[d].getInfo<CL_DEVICE_GLOBAL_MEM_SIZE>();
+      result.push_back(info);
+    }
+  }
+  return result;
+}
+
+DeviceInfo chooseDevice(const std::string& selector_in) {
+  const std::vector<DeviceInfo> all = listDevices();
+  if (all.empty()) {
+    throw DeviceError("no OpenCL device found: install an OpenCL driver (e.g. apt-get install "
+                      "pocl-opencl-icd) and check `clinfo -l`");
+  }
+  const std::string sel = lower(selector_in);
+  auto listing = [&] {
+    std::string s;
+    for (const auto& d : all) s += "\n  " + d.label();
+    return s;
+  };
+  if (sel.empty() || sel == "auto") {
+    for (const auto& d : all)
+      if (d.is_gpu) return d;
+    for (const auto& d : all)
+      if (d.is_pocl) return d;
+    return all.front();
+  }
+  if (sel == "gpu" || sel == "cpu") {
+    for (const auto& d : all)
+      if (d.is_gpu == (sel == "gpu")) return d;
+    throw DeviceError("no " + sel + " OpenCL device; devices here:" + listing());
+  }
+  if (auto colon = sel.find(':'); colon != std::string::npos) {
+    std::string plat = sel.substr(0, colon);
+    std::string index_text = sel.substr(colon + 1);
+    bool numeric = !index_text.empty() && index_text.find_first_not_of("0123456789") == std::string::npos;
+    if (numeric) {
+      int want = std::stoi(index_text);
+      int seen = 0;
+      for (const auto& d : all) {
+        bool match = (plat == "pocl") ? d.is_pocl : lower(d.platform_name).find(plat) != std::string::npos;
+        if (match && seen++ == want) return d;
+      }
+      throw DeviceError("no device '" + selector_in + "'; devices here:" + listing());
+    }
+  }
+  for (const auto& d : all) {
+    if (lower(d.name).find(sel) != std::string::npos || lower(d.platform_name).find(sel) != std::string::npos ||
+        (sel == "pocl" && d.is_pocl))
+      return d;
+  }
+  throw DeviceError("no OpenCL device matches '" + selector_in + "'; devices here:" + listing());
+}
+
+Device::Device(const DeviceInfo& info) : info_(info) {
+  try {
+    std::vector<cl::Platform> platforms;
+    cl::Platform::get(&platforms);
+    std::vector<cl::Device> devices;
+    platforms.at(static_cast<size_t>(info.platform_index)).getDevices(CL_DEVICE_TYPE_ALL, &devices);
+    device_ = devices.at(static_cast<size_t>(info.device_index));
+    context_ = cl::Context(device_);
+    queue_ = cl::CommandQueue(context_, device_, CL_QUEUE_PROFILING_ENABLE);
+  } catch (const cl::Error& e) {
+    throw DeviceError("cannot open OpenCL device " + info.label() + ": " + e.what() + " " +
+                      clErrorName(e.err()));
+  } catch (const std::out_of_range&) {
+    throw DeviceError("OpenCL device " + info.label() + " disappeared");
+  }
+}
+
+const BuiltProgram& Device::program(const std::string& kernel_file, const std::vector<std::string>& defines) {
+  std::string options = "-cl-std=CL1.2";
+  if (info_.has_fp64) options += " -DSEASIM_HAS_FP64=1";
+  for (const auto& d : defines) options += " -D" + d;
+  const std::string key = kernel_file + "|" + options;
+  if (auto it = programs_.find(key); it != programs_.end()) return it->second;
+
+  const auto t0 = std::chrono::steady_clock::now();
+  KernelSource source = assembleKernelSource(kernel_file);
+  const uint64_t hash = fnv1a(info_.platform_name + "|" + info_.name + "|" + info_.driver + "|" + options,
+                              fnv1a(source.text));
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(hash));
+  const std::string dir = cacheDir();
+  const fs::path cache_file = dir.empty() ? fs::path() : fs::path(dir) / (std::string(hex) + ".bin");
+
+  BuiltProgram built;
+  if (!cache_file.empty()) {
+    std::vector<unsigned char> bytes = readBinaryFile(cache_file);
+    if (!bytes.empty()) {
+      try {
+        cl::Program::Binaries bins{bytes};
+        cl::Program p(context_, {device_}, bins);
+        p.build({device_}, options.c_str());
+        built.program = p;
+        built.from_cache = true;
+      } catch (const cl::Error&) {
+        built.from_cache = false;  // stale or foreign binary: rebuild from source below
+      }
+    }
+  }
+  if (!built.from_cache) {
+    cl::Program p(context_, source.text);
+    try {
+      p.build({device_}, options.c_str());
+    } catch (const cl::BuildError& e) {
+      std::string log;
+      for (const auto& [dev, text] : e.getBuildLog()) log += text;
+      throw DeviceError("kernel build failed: kernels/" + kernel_file + " on " + info_.name +
+                        " with options '" + options + "'\n" + log);
+    } catch (const cl::Error& e) {
+      std::string log = p.getBuildInfo<CL_PROGRAM_BUILD_LOG>(device_);
+      throw DeviceError("kernel build failed: kernels/" + kernel_file + " (" + clErrorName(e.err()) + ")\n" + log);
+    }
+    built.program = p;
+    if (!cache_file.empty()) {
+      std::vector<std::vector<unsigned char>> bins = p.getInfo<CL_PROGRAM_BINARIES>();
+      if (!bins.empty() && !bins[0].empty()) writeBinaryFileAtomic(cache_file, bins[0]);
+    }
+  }
+  built.build_ms = msSince(t0);
+  total_build_ms_ += built.build_ms;
+  return programs_.emplace(key, std::move(built)).first->second;
+}
+
+double eventMs(const cl::Event& event) {
+  cl_ulong start = event.getProfilingInfo<CL_PROFILING_COMMAND_START>();
+  cl_ulong end = event.getProfilingInfo<CL_PROFILING_COMMAND_END>();
+  return static_cast<double>(end - start) * 1e-6;
+}
+
+void checkCl(cl_int err, const std::string& what) {
+  if (err != CL_SUCCESS) {
+    throw DeviceError(what + ": " + clErrorName(err) + " (" + std::to_string(err) + ")");
+  }
+}
+
+const char* clErrorName(cl_int err) {
+  switch (err) {
+    case CL_SUCCESS: return "CL_SUCCESS";
+    case CL_DEVICE_NOT_FOUND: return "CL_DEVICE_NOT_FOUND";
+    case CL_DEVICE_NOT_AVAILABLE: return "CL_DEVICE_NOT_AVAILABLE";
+    case CL_COMPILER_NOT_AVAILABLE: return "CL_COMPILER_NOT_AVAILABLE";
+    case CL_MEM_OBJECT_ALLOCATION_FAILURE: return "CL_MEM_OBJECT_ALLOCATION_FAILURE";
+    case CL_OUT_OF_RESOURCES: return "CL_OUT_OF_RESOURCES";
+    case CL_OUT_OF_HOST_MEMORY: return "CL_OUT_OF_HOST_MEMORY";
+    case CL_BUILD_PROGRAM_FAILURE: return "CL_BUILD_PROGRAM_FAILURE";
+    case CL_INVALID_VALUE: return "CL_INVALID_VALUE";
+    case CL_INVALID_DEVICE: return "CL_INVALID_DEVICE";
+    case CL_INVALID_BINARY: return "CL_INVALID_BINARY";
+    case CL_INVALID_BUILD_OPTIONS: return "CL_INVALID_BUILD_OPTIONS";
+    case CL_INVALID_PROGRAM: return "CL_INVALID_PROGRAM";
+    case CL_INVALID_KERNEL_NAME: return "CL_INVALID_KERNEL_NAME";
+    case CL_INVALID_KERNEL_ARGS: return "CL_INVALID_KERNEL_ARGS";
+    case CL_INVALID_ARG_INDEX: return "CL_INVALID_ARG_INDEX";
+    case CL_INVALID_ARG_VALUE: return "CL_INVALID_ARG_VALUE";
+    case CL_INVALID_ARG_SIZE: return "CL_INVALID_ARG_SIZE";
+    case CL_INVALID_WORK_GROUP_SIZE: return "CL_INVALID_WORK_GROUP_SIZE";
+    case CL_INVALID_WORK_ITEM_SIZE: return "CL_INVALID_WORK_ITEM_SIZE";
+    case CL_INVALID_GLOBAL_WORK_SIZE: return "CL_INVALID_GLOBAL_WORK_SIZE";
+    case CL_INVALID_BUFFER_SIZE: return "CL_INVALID_BUFFER_SIZE";
+    case CL_INVALID_MEM_OBJECT: return "CL_INVALID_MEM_OBJECT";
+    case CL_INVALID_COMMAND_QUEUE: return "CL_INVALID_COMMAND_QUEUE";
+    case CL_INVALID_CONTEXT: return "CL_INVALID_CONTEXT";
+    case CL_PLATFORM_NOT_FOUND_KHR: return "CL_PLATFORM_NOT_FOUND_KHR";
+    default: return "CL_ERROR";
+  }
+}
+
+}  // namespace seasim

@@ -1,0 +1,65 @@
+#include "passes/render_frame.h"
+
+#include <chrono>
+
+#include "passes/nonfinite_check.h"
+#include "passes/sea_single_pass.h"
+#include "spectral/sensor.h"
+#include "spectral/wavelength_grid.h"
+#include "util/error.h"
+
+namespace seasim {
+
+FrameResult renderFrame(Device& device, const Scene& scene, const Plan& plan) {
+  for (const auto& pass : plan.passes) {
+    if (!pass.implemented) {
+      throw RuntimeError("scene '" + scene.name + "' needs pass '" + pass.name + "' (" + pass.why +
+                         "), which is not implemented yet: " + pass.missing + ". `seasim plan` shows the plan.");
+    }
+  }
+  const auto t0 = std::chrono::steady_clock::now();
+  const double build_before = device.totalBuildMs();
+  FrameResult result;
+  const WavelengthGrid grid = makeGrid(scene.spectral.count, scene.spectral.min_nm, scene.spectral.max_nm);
+  const Sensor sensor = makeSensor(scene.spectral.sensor, grid, scene.spectral.white_balance);
+  result.wavelengths_nm = grid.centers_nm;
+
+  const int w = scene.camera.width, h = scene.camera.height;
+  const size_t pixels = static_cast<size_t>(w) * static_cast<size_t>(h);
+  result.rgb.width = w;
+  result.rgb.height = h;
+  result.rgb.channels = 3;
+  result.rgb.channel_names = {"R", "G", "B"};
+  result.rgb.pixels.resize(3 * pixels);
+
+  const PassPlan* sea = plan.find("sea_single");
+  if (!sea) throw RuntimeError("scene '" + scene.name + "' has nothing to render (no water in view)");
+  SeaSinglePass pass(device, scene, *sea, grid, sensor);
+  result.timings.push_back({"sea_single", pass.run()});
+
+  NonfiniteCheck check(device);
+  double check_ms = 0;
+  result.nonfinite = check.count(pass.rgb(), 3 * pixels, &check_ms);
+  if (scene.spectral.spectral_exr) {
+    double ms = 0;
+    result.nonfinite += check.count(pass.spectral(), pixels * grid.centers_nm.size(), &ms);
+    check_ms += ms;
+  }
+  result.timings.push_back({"nonfinite_check", check_ms});
+
+  try {
+    device.queue().enqueueReadBuffer(pass.rgb(), CL_TRUE, 0, sizeof(float) * 3 * pixels, result.rgb.pixels.data());
+    if (scene.spectral.spectral_exr) {
+      result.spectral.resize(pixels * grid.centers_nm.size());
+      device.queue().enqueueReadBuffer(pass.spectral(), CL_TRUE, 0, sizeof(float) * result.spectral.size(),
+                                       result.spectral.data());
+    }
+  } catch (const cl::Error& e) {
+    throw DeviceError(std::string("reading the frame back: ") + e.what() + " " + clErrorName(e.err()));
+  }
+  result.build_ms = device.totalBuildMs() - build_before;
+  result.wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  return result;
+}
+
+}  // namespace seasim

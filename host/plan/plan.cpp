@@ -1,0 +1,120 @@
+#include "plan/plan.h"
+
+#include <algorithm>
+#include <sstream>
+
+namespace seasim {
+
+bool Plan::hasPass(const std::string& name) const { return find(name) != nullptr; }
+
+const PassPlan* Plan::find(const std::string& name) const {
+  for (const auto& p : passes)
+    if (p.name == name) return &p;
+  return nullptr;
+}
+
+std::vector<std::string> Plan::kernelFiles() const {
+  std::vector<std::string> files;
+  for (const auto& p : passes)
+    if (std::find(files.begin(), files.end(), p.kernel_file) == files.end()) files.push_back(p.kernel_file);
+  return files;
+}
+
+std::string Plan::toText() const {
+  std::ostringstream s;
+  int i = 1;
+  for (const auto& p : passes) {
+    s << i++ << ". " << p.name << "  kernels/" << p.kernel_file << " ";
+    if (p.defines.empty()) s << " (no defines)";
+    for (const auto& d : p.defines) s << " -D" << d;
+    s << "  | reads:";
+    for (const auto& r : p.reads) s << " " << r;
+    s << "  writes:";
+    for (const auto& w : p.writes) s << " " << w;
+    s << "  | " << p.why;
+    if (!p.implemented) s << "  [not implemented yet: " << p.missing << "]";
+    s << "\n";
+  }
+  return s.str();
+}
+
+namespace {
+
+std::string flag(const char* name, bool on) { return std::string(name) + "=" + (on ? "1" : "0"); }
+
+}  // namespace
+
+Plan makePlan(const Scene& scene) {
+  Plan plan;
+  const bool underwater = scene.water.present && scene.camera.position.y < 0.0;
+  const bool sea_view = scene.water.present && !underwater;
+  const bool waves = scene.surface.type == SurfaceDesc::Type::Fft && scene.water.present;
+  const bool lights = !scene.spotlights.empty() && scene.air.present;
+  const bool objects = !scene.objects.empty();
+  const bool spectral_out = scene.spectral.spectral_exr;
+
+  if (objects && (underwater || lights)) {
+    plan.passes.push_back({"raycast", "raycast.cl", {}, {"scene"}, {"gbuffer"},
+                           "scene has objects", false, "issue 4/5 (G-buffer ray casting)"});
+  }
+  if (waves) {
+    plan.passes.push_back({"ocean_fft", "ocean.cl", {flag("SEASIM_HAS_CHOPPY", scene.surface.choppiness > 0)},
+                           {"scene"}, {"ocean_maps"}, "surface.type = \"fft\"", false, "issue 3 (ocean waves)"});
+  }
+  if (lights && objects) {
+    plan.passes.push_back({"shadow_maps", "shafts.cl", {}, {"scene"}, {"shadow_maps"},
+                           "spotlights and objects that cast shadows", false, "issue 4 (shafts)"});
+  }
+  if (underwater && waves) {
+    plan.passes.push_back({"caustics", "caustics.cl", {}, {"ocean_maps"}, {"caustic_map"},
+                           "camera below a wavy surface", false, "issue 3 (caustics)"});
+  }
+  if (underwater) {
+    plan.passes.push_back({"froxel", "froxel.cl", {}, {"scene", "gbuffer"}, {"froxel_volume"},
+                           "camera below the surface (y < 0)", false, "issue 5 (froxel single scattering)"});
+  }
+  if (sea_view) {
+    const bool sun = scene.sun.enabled && scene.sun.irradiance > 0;
+    const bool bottom = scene.bottom.type == BottomDesc::Type::Flat;
+    std::vector<std::string> defines = {
+        flag("SEASIM_HAS_REFLECTION", scene.sea.reflection),
+        flag("SEASIM_HAS_SINGLE_SCATTERING", scene.sea.single_scattering && sun),
+        flag("SEASIM_HAS_BOTTOM", bottom),
+        flag("SEASIM_HAS_SUN", sun),
+        flag("SEASIM_SPECTRAL_OUTPUT", spectral_out)};
+    std::vector<std::string> reads = {"scene"};
+    if (waves) reads.push_back("ocean_maps");
+    PassPlan pass{"sea_single", "sea_single.cl", defines, reads, {"rgb"},
+                  "camera above water (reflection, single scattering, bottom)", true, ""};
+    if (scene.bottom.type == BottomDesc::Type::HeightField) {
+      pass.implemented = false;
+      pass.missing = "issue 6 (height-field bottom, 000 §5.4)";
+    }
+    if (scene.sky.model != SkyDesc::Model::Uniform) {
+      pass.implemented = false;
+      pass.missing = "issue 6 (analytic and image skies)";
+    }
+    if (waves) {
+      pass.implemented = false;
+      pass.missing = "issue 3 (wave normals)";
+    }
+    plan.passes.push_back(pass);
+    if (scene.sea.second_order) {
+      plan.passes.push_back({"sea_second", "sea_second.cl", {}, {"scene"}, {"rgb"},
+                             "sea.second_order = true", false, "issue 6 (scattering maps)"});
+    }
+  }
+  if (lights) {
+    plan.passes.push_back({"shafts", "shafts.cl", {}, {"scene", "shadow_maps"}, {"rgb"},
+                           "spotlights in air", false, "issue 4 (shafts)"});
+  }
+  if (underwater) {
+    plan.passes.push_back({"kd_multiple", "kd_multiple.cl", {}, {"gbuffer", "froxel_volume"}, {"rgb"},
+                           "camera below the surface", false, "issue 5 (K_d multiple scattering)"});
+  }
+  plan.passes.push_back({"nonfinite_check", "check.cl", {}, {"rgb"}, {"status"},
+                         "always: kernels must never emit NaN/Inf", true, ""});
+  return plan;
+}
+
+}  // namespace seasim

@@ -1,0 +1,36 @@
+/* sea_params.h — the parameter blocks of kernels/sea_single.cl, shared with host/passes/sea_single_pass.cpp
+ * (which static_asserts their layout). No float3 inside (16 bytes in OpenCL C): vectors are float[4]. */
+typedef struct {
+  float cam_pos[4];      /* m, world */
+  float cam_right[4];    /* worldFromCamera basis, unit */
+  float cam_up[4];
+  float cam_forward[4];
+  float sun_dir[4];      /* unit, towards the sun */
+  float tan_half_fov_y;
+  float aspect;          /* width / height */
+  float ior;             /* water relative to air */
+  float g;               /* HG asymmetry of the water's volume scattering function */
+  float bottom_depth;    /* m, flat bottom (SEASIM_HAS_BOTTOM) */
+  float cos_sun_radius;  /* cosine of the sun's angular radius: the reflected sun disk */
+  float sun_solid_angle; /* sr, converts sun irradiance to disk radiance */
+  float pad0;
+  int width;
+  int height;
+  int band_count;
+  int pad1;
+} SeaParams;
+
+/* One wavelength band: radiometry and water IOPs at the band centre, and the sensor weights that
+ * turn this band's radiance into linear RGB by the rectangle rule (002 eq. 4.8). */
+typedef struct {
+  float sun_irradiance;  /* W m^-2 nm^-1, normal to the sun */
+  float sky_radiance;    /* W m^-2 sr^-1 nm^-1, uniform sky */
+  float a;               /* absorption, 1/m */
+  float b;               /* scattering, 1/m */
+  float c;               /* attenuation a + b, 1/m */
+  float bottom_albedo;   /* Lambertian bottom reflectance */
+  float w_r;             /* sensor weights (include the band width) */
+  float w_g;
+  float w_b;
+  float pad[3];
+} SeaBand;

@@ -1,0 +1,34 @@
+/* sea_surface.h — flat-sea terms of paper 000, per wavelength band. Needs compat.h and optics.h.
+ * Stiff cases: sun at or below the horizon (no transmitted sun), grazing view (cos -> 0 terms are
+ * clamped), no bottom (z_d -> infinity), c -> 0 (1 - exp(-x))/c form through expm1. */
+
+/* Forward-scattering fraction of Henyey–Greenstein: 2*pi * int_0^{pi/2} p(alpha) sin(alpha) dalpha,
+ * the c_f of 000 eq. 5 divided by b. Closed form (1 - g^2)/(2g) * (1/(1 - g) - 1/sqrt(1 + g^2)),
+ * with its g -> 0 limit 1/2 + 3g/4 (series) to avoid 0/0. */
+SEASIM_FN real hg_forward_fraction(real g) {
+  if (fabs(g) < R(1e-3)) return R(0.5) + R(0.75) * g;
+  return (R(1.0) - g * g) / (R(2.0) * g) * (R(1.0) / (R(1.0) - g) - R(1.0) / sqrt(R(1.0) + g * g));
+}
+
+/* Single scattering of sunlight along the refracted view ray down to depth z_d (000 eq. 5):
+ *   L_s = E T_i T_o beta / ((cos_io + cos_ji) c (1 - w0 c_f)) * (1 - exp(-z_d c (1 - w0 c_f)(sec_ji + sec_io)))
+ * cos_io: refracted sun angle to the downward vertical, cos_ji: refracted view angle, both > 0.
+ * z_d < 0 means no bottom (infinite depth). */
+SEASIM_FN real sea_single_scattering(real sun_irradiance, real t_in, real t_out, real beta, real c,
+                                     real albedo, real c_f, real cos_io, real cos_ji, real z_d) {
+  real k = c * (R(1.0) - albedo * c_f);          /* effective attenuation */
+  real sec_sum = R(1.0) / cos_ji + R(1.0) / cos_io;
+  /* (1 - exp(-k X)) / k with X = z_d sec_sum, written X * expm1_over_x(-k X): finite as k -> 0. */
+  real path = (z_d < R(0.0)) ? R(1.0) / fmax(k, R(1e-30)) : z_d * sec_sum * expm1_over_x(-k * z_d * sec_sum);
+  return sun_irradiance * t_in * t_out * beta * path / (cos_io + cos_ji);
+}
+
+/* Sunlight reflected by a flat Lambertian bottom at depth z_d back along the refracted view ray
+ * (000 eq. 9): L_r = T_o L'_sun K_d cos(gamma) exp(-c z_d sec(theta_ji)), with the sun's irradiance
+ * at the bottom L'_sun = E T_i exp(-c z_d sec(theta_io)) and the paper's reflectance K_d taken as a
+ * Lambertian BRDF albedo/pi. For a flat bottom cos(gamma) = cos_io. */
+SEASIM_FN real sea_bottom_reflection(real sun_irradiance, real t_in, real t_out, real bottom_albedo,
+                                     real c, real z_d, real cos_io, real cos_ji) {
+  real sun_at_bottom = sun_irradiance * t_in * exp(-c * z_d / cos_io);
+  return t_out * sun_at_bottom * (bottom_albedo / SEASIM_PI) * cos_io * exp(-c * z_d / cos_ji);
+}
