@@ -63,10 +63,11 @@ __kernel void sea_single(__constant SeaParams* p, __global const SeaBand* bands,
     const float cos_ji = fmax(-view_in_water.y, 1e-4f);
 
     const float3 sun = (float3)(p->sun_dir[0], p->sun_dir[1], p->sun_dir[2]);
-    float t_in = 0.0f, cos_io = 1.0f, cos_alpha = 1.0f;
+    float t_in = 0.0f, cos_io = 1.0f, cos_alpha = 1.0f, sun_horizontal = 0.0f;
 #if SEASIM_HAS_SUN
     if (sun.y > 0.0f) {
       t_in = 1.0f - fresnel_reflectance(sun.y, 1.0f, p->ior);
+      sun_horizontal = sun.y;                                 /* E on the horizontal surface / E normal */
       float3 sun_in_water;                                    /* travel direction of sunlight */
       refract_dir(-sun, n, 1.0f / p->ior, &sun_in_water);
       cos_io = fmax(-sun_in_water.y, 1e-4f);
@@ -89,11 +90,11 @@ __kernel void sea_single(__constant SeaParams* p, __global const SeaBand* bands,
 #endif
 #if SEASIM_HAS_SINGLE_SCATTERING
       const float albedo = band->c > 0.0f ? band->b / band->c : 0.0f;
-      L += sea_single_scattering(band->sun_irradiance, t_in, t_out, band->b * phase, band->c, albedo, c_f,
+      L += sea_single_scattering(band->sun_irradiance * sun_horizontal, t_in, t_out, band->b * phase, band->c, albedo, c_f,
                                  cos_io, cos_ji, z_d);
 #endif
 #if SEASIM_HAS_BOTTOM
-      L += sea_bottom_reflection(band->sun_irradiance, t_in, t_out, band->bottom_albedo, band->c, z_d,
+      L += sea_bottom_reflection(band->sun_irradiance * sun_horizontal, t_in, t_out, band->bottom_albedo, band->c, z_d,
                                  cos_io, cos_ji);
 #endif
       r += L * band->w_r; g += L * band->w_g; b += L * band->w_b;

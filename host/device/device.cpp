@@ -10,6 +10,7 @@
 
 #include "device/kernel_source.h"
 #include "util/error.h"
+#include "util/hash.h"
 
 namespace fs = std::filesystem;
 
@@ -27,15 +28,6 @@ std::string trim(std::string s) {
   size_t i = 0;
   while (i < s.size() && std::isspace(static_cast<unsigned char>(s[i]))) ++i;
   return s.substr(i);
-}
-
-// FNV-1a 64: a hash that is the same in every build, for on-disk cache names.
-uint64_t fnv1a(const std::string& s, uint64_t h = 1469598103934665603ull) {
-  for (unsigned char c : s) {
-    h ^= c;
-    h *= 1099511628211ull;
-  }
-  return h;
 }
 
 std::string cacheDir() {
@@ -191,12 +183,10 @@ const BuiltProgram& Device::program(const std::string& kernel_file, const std::v
 
   const auto t0 = std::chrono::steady_clock::now();
   KernelSource source = assembleKernelSource(kernel_file);
-  const uint64_t hash = fnv1a(info_.platform_name + "|" + info_.name + "|" + info_.driver + "|" + options,
-                              fnv1a(source.text));
-  char hex[17];
-  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(hash));
+  const uint64_t hash = fnv1a64(info_.platform_name + "|" + info_.name + "|" + info_.driver + "|" + options,
+                                fnv1a64(source.text));
   const std::string dir = cacheDir();
-  const fs::path cache_file = dir.empty() ? fs::path() : fs::path(dir) / (std::string(hex) + ".bin");
+  const fs::path cache_file = dir.empty() ? fs::path() : fs::path(dir) / (hex64(hash) + ".bin");
 
   BuiltProgram built;
   if (!cache_file.empty()) {

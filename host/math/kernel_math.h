@@ -9,10 +9,12 @@ namespace seasim::kmath_f {
 typedef float real;
 #include "common/real3_host.h"
 #include "common/optics.h"
+#include "common/sea_surface.h"
 }  // namespace seasim::kmath_f
 
 namespace seasim::kmath_d {
 typedef double real;
 #include "common/real3_host.h"
 #include "common/optics.h"
+#include "common/sea_surface.h"
 }  // namespace seasim::kmath_d

@@ -4,7 +4,6 @@
 #include <cstddef>
 
 #include "spectral/jerlov.h"
-#include "spectral/sun_sky.h"
 #include "util/error.h"
 
 extern "C" {
@@ -59,7 +58,7 @@ SeaSinglePass::SeaSinglePass(Device& device, const Scene& scene, const PassPlan&
 
   const BandOptics water = resolveWater(scene.water, grid);
   const std::vector<double> sun_e = sunIrradianceBands(grid, scene.sun.irradiance);
-  const std::vector<double> sky_l = skyRadianceBands(grid, scene.sky.radiance);
+  const std::vector<double> sky_l = sunIrradianceBands(grid, scene.sky.radiance);  // uniform sky: D65 shape
   std::vector<SeaBand> bands(grid.centers_nm.size());
   for (size_t i = 0; i < bands.size(); ++i) {
     SeaBand& b = bands[i];

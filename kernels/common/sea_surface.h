@@ -10,7 +10,10 @@ SEASIM_FN real hg_forward_fraction(real g) {
   return (R(1.0) - g * g) / (R(2.0) * g) * (R(1.0) / (R(1.0) - g) - R(1.0) / sqrt(R(1.0) + g * g));
 }
 
-/* Single scattering of sunlight along the refracted view ray down to depth z_d (000 eq. 5):
+/* Single scattering of sunlight along the refracted view ray down to depth z_d (000 eq. 5).
+ * sun_irradiance is the sun's irradiance on the horizontal surface (L_sun of eq. 5): the refracted
+ * beam then carries E T_i / cos_io, and integrating beta * beam * exp(-k z (sec_io + sec_ji)) dz/cos_ji
+ * over depth gives exactly eq. 5 (host/reference/sea_reference.cpp does that integral numerically):
  *   L_s = E T_i T_o beta / ((cos_io + cos_ji) c (1 - w0 c_f)) * (1 - exp(-z_d c (1 - w0 c_f)(sec_ji + sec_io)))
  * cos_io: refracted sun angle to the downward vertical, cos_ji: refracted view angle, both > 0.
  * z_d < 0 means no bottom (infinite depth). */
@@ -24,11 +27,12 @@ SEASIM_FN real sea_single_scattering(real sun_irradiance, real t_in, real t_out,
 }
 
 /* Sunlight reflected by a flat Lambertian bottom at depth z_d back along the refracted view ray
- * (000 eq. 9): L_r = T_o L'_sun K_d cos(gamma) exp(-c z_d sec(theta_ji)), with the sun's irradiance
- * at the bottom L'_sun = E T_i exp(-c z_d sec(theta_io)) and the paper's reflectance K_d taken as a
- * Lambertian BRDF albedo/pi. For a flat bottom cos(gamma) = cos_io. */
+ * (000 eq. 9): L_r = T_o L'_sun K_d cos(gamma) exp(-c z_d sec(theta_ji)). With sun_irradiance the
+ * irradiance on the horizontal sea surface (as in eq. 5), the beam in the water carries
+ * E T_i / cos_io, so L'_sun cos(gamma) = E T_i exp(-c z_d sec(theta_io)) on a flat bottom
+ * (cos(gamma) = cos_io); the paper's reflectance K_d is taken as a Lambertian BRDF albedo/pi. */
 SEASIM_FN real sea_bottom_reflection(real sun_irradiance, real t_in, real t_out, real bottom_albedo,
                                      real c, real z_d, real cos_io, real cos_ji) {
-  real sun_at_bottom = sun_irradiance * t_in * exp(-c * z_d / cos_io);
-  return t_out * sun_at_bottom * (bottom_albedo / SEASIM_PI) * cos_io * exp(-c * z_d / cos_ji);
+  real horizontal_at_bottom = sun_irradiance * t_in * exp(-c * z_d / cos_io);
+  return t_out * horizontal_at_bottom * (bottom_albedo / SEASIM_PI) * exp(-c * z_d / cos_ji);
 }

@@ -1,0 +1,40 @@
+# The two commands (README): `make demo` and `make test`. Both install missing Debian packages,
+# configure and build into build/; demo then runs the quickstart job on PoCL, test runs ctest.
+BUILD ?= build
+JOBS ?= $(shell nproc)
+CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=RelWithDebInfo
+DEPS = build-essential cmake pkgconf pocl-opencl-icd ocl-icd-opencl-dev opencl-c-headers \
+       opencl-clhpp-headers clinfo libfftw3-dev libvkfft-dev libopenimageio-dev libtbb-dev \
+       libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libgtest-dev
+# Kernel build caches live in the build folder so tests and demo reuse them.
+export POCL_CACHE_DIR ?= $(CURDIR)/$(BUILD)/pocl-cache
+export SEASIM_CACHE_DIR ?= $(CURDIR)/$(BUILD)/seasim-cache
+
+.PHONY: demo test deps configure build clean
+
+demo: build
+	$(BUILD)/seasim run jobs/quickstart.toml --device pocl
+	@echo "images and reports: results/quickstart/"
+
+test: build
+	cd $(BUILD) && ctest --output-on-failure -j 2
+
+build: configure
+	cmake --build $(BUILD) -j $(JOBS)
+
+configure: deps
+	@test -f $(BUILD)/CMakeCache.txt || cmake -S . -B $(BUILD) $(CMAKE_FLAGS)
+
+# Installs only what is missing (apt-get needs root: sudo is used when not root).
+deps:
+	@missing=""; for p in $(DEPS); do \
+	  dpkg-query -W -f='$${Status}' $$p 2>/dev/null | grep -q "install ok installed" || missing="$$missing $$p"; \
+	done; \
+	if [ -n "$$missing" ]; then \
+	  echo "installing missing packages:$$missing"; \
+	  if [ "$$(id -u)" = 0 ]; then SUDO=; else SUDO=sudo; fi; \
+	  $$SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y -qq --no-install-recommends $$missing; \
+	fi
+
+clean:
+	rm -rf $(BUILD)

@@ -1,0 +1,324 @@
+#include "cli/commands.h"
+
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <sstream>
+
+#include "device/device.h"
+#include "io/csv.h"
+#include "io/image_io.h"
+#include "io/svg_plot.h"
+#include "jobs/job.h"
+#include "jobs/render_item.h"
+#include "jobs/runner.h"
+#include "passes/render_frame.h"
+#include "plan/plan.h"
+#include "reference/compare.h"
+#include "reference/sea_reference.h"
+#include "util/error.h"
+
+namespace fs = std::filesystem;
+
+namespace seasim {
+
+Override parseSetOption(const std::string& text) {
+  const size_t eq = text.find('=');
+  if (eq == std::string::npos || eq == 0) {
+    throw InputError("<command line>", 0, text, "--set expects key=value, e.g. --set sun.zenith_deg=40");
+  }
+  std::string key = text.substr(0, eq);
+  std::string value = text.substr(eq + 1);
+  try {
+    (void)toml::parse("v = " + value);
+  } catch (const toml::parse_error&) {
+    std::string quoted = "\"";  // not TOML: take it as a string (--set water.jerlov=IB)
+    for (char c : value) quoted += (c == '"' || c == '\\') ? std::string("\\") + c : std::string(1, c);
+    value = quoted + "\"";
+  }
+  return Override{key, value, SourceLoc{"<command line --set " + text + ">", 0}};
+}
+
+namespace {
+
+std::vector<Override> parseSets(const std::vector<std::string>& sets) {
+  std::vector<Override> out;
+  for (const auto& s : sets) out.push_back(parseSetOption(s));
+  return out;
+}
+
+std::vector<std::string> split(const std::string& text, char sep) {
+  std::vector<std::string> parts;
+  std::string part;
+  std::istringstream in(text);
+  while (std::getline(in, part, sep)) parts.push_back(part);
+  return parts;
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v.empty() ? 0.0 : v[v.size() / 2];
+}
+
+double kernelMs(const FrameResult& frame) {
+  double total = 0;
+  for (const auto& t : frame.timings) total += t.ms;
+  return total;
+}
+
+}  // namespace
+
+int cmdDevices() {
+  const auto devices = listDevices();
+  if (devices.empty()) {
+    std::printf("no OpenCL devices (install pocl-opencl-icd, or a GPU driver's OpenCL ICD)\n");
+    return 1;
+  }
+  const DeviceInfo chosen = chooseDevice("");
+  for (const auto& d : devices) {
+    const bool is_default = d.platform_index == chosen.platform_index && d.device_index == chosen.device_index;
+    std::printf("%s %s\n    platform: %s | driver %s\n", is_default ? "*" : " ", d.label().c_str(),
+                d.platform_name.c_str(), d.driver.c_str());
+  }
+  std::printf("(* = default choice: first GPU, else PoCL)\n");
+  return 0;
+}
+
+int cmdValidate(const std::vector<std::string>& files) {
+  int failures = 0;
+  for (const auto& f : files) {
+    try {
+      if (isJobFile(f)) {
+        const Job job = loadJob(f);
+        std::printf("%s: ok (job '%s', %zu renders)\n", f.c_str(), job.name.c_str(), job.items.size());
+      } else {
+        const Scene scene = loadScene(f);
+        std::printf("%s: ok (scene '%s')\n", f.c_str(), scene.name.c_str());
+      }
+    } catch (const InputError& e) {
+      std::fprintf(stderr, "%s\n", e.what());
+      ++failures;
+    }
+  }
+  return failures == 0 ? 0 : 1;
+}
+
+int cmdPlan(const std::string& scene_file, const std::vector<std::string>& sets) {
+  const Scene scene = loadScene(scene_file, parseSets(sets));
+  std::printf("%s", makePlan(scene).toText().c_str());
+  return 0;
+}
+
+int cmdRender(const RenderCmd& cmd) {
+  const Scene scene = loadScene(cmd.scene, parseSets(cmd.sets));
+  Device device(chooseDevice(cmd.device));
+  ItemOutputs outputs;
+  outputs.formats = cmd.formats;
+  outputs.reference = cmd.reference;
+  const auto report = renderItem(device, scene, outputs, cmd.out_dir);
+  std::printf("%s: %s kernels %.2f ms (build %.1f ms) on %s\n", scene.name.c_str(), cmd.out_dir.c_str(),
+              report["kernel_ms_total"].get<double>(), report["kernel_build_ms"].get<double>(),
+              device.info().label().c_str());
+  if (report.contains("error")) std::printf("error vs reference: %s\n", report["error"].dump().c_str());
+  return 0;
+}
+
+int cmdRun(const std::string& job, const std::string& device, const std::string& shard, bool resume) {
+  RunOptions options;
+  options.device = device;
+  options.resume = resume;
+  if (!shard.empty()) {
+    const auto parts = split(shard, '/');
+    try {
+      if (parts.size() != 2) throw std::invalid_argument("shard");
+      options.shard_index = std::stoi(parts[0]);
+      options.shard_count = std::stoi(parts[1]);
+    } catch (const std::exception&) {
+      throw RuntimeError("--shard expects i/N, e.g. --shard 0/4; got '" + shard + "'");
+    }
+  }
+  const RunSummary s = runJob(job, options);
+  std::printf("job done: %d rendered, %d finished earlier, %d left to other shards -> %s\n", s.rendered, s.skipped,
+              s.other_shards, s.output_dir.c_str());
+  return 0;
+}
+
+int cmdCompare(const std::string& test, const std::string& reference, double exposure_ev) {
+  const CompareResult c = compareImages(readImage(test), readImage(reference), exposure_ev);
+  std::printf("rmse_8bit %.4f\nmax_abs_8bit %.4f\nrel_l2 %.6g\nhue_sat_distance %.6g\n", c.rmse_8bit,
+              c.max_abs_8bit, c.rel_l2, c.hue_sat_distance);
+  return c.nonfinite == 0 ? 0 : 1;
+}
+
+int cmdSweep(const SweepCmd& cmd) {
+  // The grid of all combinations of the --param values.
+  struct Axis {
+    std::string key;
+    std::vector<std::string> values;
+  };
+  std::vector<Axis> axes;
+  for (const auto& p : cmd.params) {
+    const size_t eq = p.find('=');
+    if (eq == std::string::npos) throw RuntimeError("--param expects KEY=v1,v2,...; got '" + p + "'");
+    axes.push_back({p.substr(0, eq), split(p.substr(eq + 1), ',')});
+    if (axes.back().values.empty()) throw RuntimeError("--param '" + p + "' has no values");
+  }
+  std::vector<std::vector<std::string>> grid = {{}};
+  for (const auto& axis : axes) {
+    std::vector<std::vector<std::string>> next;
+    for (const auto& row : grid)
+      for (const auto& v : axis.values) {
+        auto r = row;
+        r.push_back(v);
+        next.push_back(r);
+      }
+    grid = next;
+  }
+
+  const Image reference = readImage(cmd.reference);
+  const std::vector<Override> base = parseSets(cmd.sets);
+  // Validate every setting before rendering any, so a typo fails fast.
+  std::vector<Scene> scenes;
+  for (const auto& row : grid) {
+    std::vector<Override> overrides = base;
+    for (size_t i = 0; i < axes.size(); ++i) overrides.push_back(parseSetOption(axes[i].key + "=" + row[i]));
+    scenes.push_back(loadScene(cmd.scene, overrides));
+  }
+
+  Device device(chooseDevice(cmd.device));
+  std::vector<std::string> header;
+  for (const auto& a : axes) header.push_back(a.key);
+  for (const char* h : {"kernel_ms", "wall_ms", "rmse_8bit", "max_abs_8bit", "rel_l2", "hue_sat_distance"})
+    header.emplace_back(h);
+  CsvTable table(header);
+  PlotSeries series{"rmse (8-bit levels)", {}, {}};
+  for (size_t k = 0; k < scenes.size(); ++k) {
+    (void)renderFrame(device, scenes[k], makePlan(scenes[k]));  // warm-up: PoCL compiles lazily
+    const FrameResult frame = renderFrame(device, scenes[k], makePlan(scenes[k]));
+    if (frame.nonfinite) throw RuntimeError("sweep setting produced NaN/Inf values");
+    const CompareResult c = compareImages(frame.rgb, reference, scenes[k].camera.exposure_ev);
+    std::vector<CsvCell> row(grid[k].begin(), grid[k].end());
+    for (double v : {kernelMs(frame), frame.wall_ms, c.rmse_8bit, c.max_abs_8bit, c.rel_l2, c.hue_sat_distance})
+      row.emplace_back(v);
+    std::string label;
+    for (size_t i = 0; i < axes.size(); ++i) label += (i ? " " : "") + axes[i].key + "=" + grid[k][i];
+    std::printf("%-40s kernel %9.3f ms  rmse %8.4f  max %8.3f  relL2 %.3g\n", label.c_str(), kernelMs(frame),
+                c.rmse_8bit, c.max_abs_8bit, c.rel_l2);
+    table.addRow(row);
+    series.x.push_back(kernelMs(frame));
+    series.y.push_back(c.rmse_8bit);
+  }
+  table.write(cmd.csv);
+  if (!cmd.plot.empty()) {
+    PlotSpec spec;
+    spec.title = "Error vs time: " + fs::path(cmd.scene).stem().string();
+    spec.x_label = "kernel time (ms)";
+    spec.y_label = "RMSE (8-bit levels)";
+    spec.series.push_back(series);
+    writeSvgPlot(cmd.plot, spec);
+  }
+  return 0;
+}
+
+// exp evaluations per second on the device (kernels/limits.cl), median of `repeat` runs.
+double measureExpThroughput(Device& device, int repeat) {
+  const size_t items = size_t(1) << 20;
+  const int exp_per_item = 256;
+  cl::Kernel kernel(device.program("limits.cl", {"EXP_PER_ITEM=" + std::to_string(exp_per_item)}).program,
+                    "exp_throughput");
+  cl::Buffer out(device.context(), CL_MEM_WRITE_ONLY, sizeof(float) * items);
+  kernel.setArg(0, out);
+  kernel.setArg(1, 0.5f);
+  std::vector<double> ms;
+  for (int r = 0; r < repeat + 1; ++r) {  // the first run is a warm-up (PoCL compiles lazily)
+    cl::Event done;
+    device.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(items), cl::NullRange, nullptr, &done);
+    done.wait();
+    if (r > 0) ms.push_back(eventMs(done));
+  }
+  return double(items) * exp_per_item / (median(ms) * 1e-3);
+}
+
+int cmdBench(const BenchCmd& cmd) {
+  Device device(chooseDevice(cmd.device));
+  std::printf("device: %s\n", device.info().label().c_str());
+  double exp_rate = 0;
+  if (cmd.limits) {
+    exp_rate = measureExpThroughput(device, std::max(1, cmd.repeat));
+    std::printf("limit: %.3e exp/s (float, default math)\n", exp_rate);
+  }
+  if (cmd.scene.empty()) {
+    if (!cmd.limits) throw RuntimeError("bench needs --scene or --limits");
+    return 0;
+  }
+  CsvTable table({"wavelengths", "kernel_ms_median", "pixel_wavelengths_per_s"});
+  PlotSeries series{"sea_single kernel", {}, {}};
+  std::vector<double> ns, ts;
+  for (int n : cmd.wavelengths) {
+    const Scene scene = loadScene(cmd.scene, {parseSetOption("spectral.count=" + std::to_string(n))});
+    const Plan plan = makePlan(scene);
+    (void)renderFrame(device, scene, plan);  // warm-up
+    std::vector<double> samples;
+    for (int r = 0; r < std::max(1, cmd.repeat); ++r) {
+      const FrameResult frame = renderFrame(device, scene, plan);
+      for (const auto& t : frame.timings)
+        if (t.name != "nonfinite_check") samples.push_back(t.ms);
+    }
+    const double ms = median(samples);
+    const double pixels = static_cast<double>(scene.camera.width) * scene.camera.height;
+    const double rate = pixels * n / (ms * 1e-3);
+    std::printf("n = %5d  %10.3f ms  %.3e pixel*wavelength/s", n, ms, rate);
+    if (exp_rate > 0) std::printf("  = %.3g x the exp/s bound", rate / exp_rate);
+    std::printf("\n");
+    table.addRow({n, ms, rate});
+    series.x.push_back(n);
+    series.y.push_back(ms);
+    ns.push_back(n);
+    ts.push_back(ms);
+  }
+  if (ns.size() >= 2) {  // least-squares t(n) = a + b n (002 §6.3 reports the same fit)
+    double mn = 0, mt = 0;
+    for (size_t i = 0; i < ns.size(); ++i) mn += ns[i], mt += ts[i];
+    mn /= ns.size(), mt /= ns.size();
+    double sxy = 0, sxx = 0;
+    for (size_t i = 0; i < ns.size(); ++i) sxy += (ns[i] - mn) * (ts[i] - mt), sxx += (ns[i] - mn) * (ns[i] - mn);
+    const double b = sxx > 0 ? sxy / sxx : 0, a = mt - b * mn;
+    std::printf("fit: t(n) = %.4g + %.4g n ms\n", a, b);
+  }
+  if (!cmd.csv.empty()) table.write(cmd.csv);
+  if (!cmd.plot.empty()) {
+    PlotSpec spec;
+    spec.title = "Kernel time vs wavelength count (" + device.info().name + ")";
+    spec.x_label = "wavelength bands";
+    spec.y_label = "ms per frame";
+    spec.log_x = true;
+    spec.series.push_back(series);
+    writeSvgPlot(cmd.plot, spec);
+  }
+  return 0;
+}
+
+int cmdReference(const ReferenceCmd& cmd) {
+  const Scene scene = loadScene(cmd.scene, parseSets(cmd.sets));
+  const auto t0 = std::chrono::steady_clock::now();
+  const Image image = renderSeaReference(scene, cmd.steps);
+  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  writeExr(cmd.out, image);
+  std::printf("reference %s: %d quadrature steps, %.1f ms (CPU, double, TBB)\n", cmd.out.c_str(), cmd.steps, ms);
+  return 0;
+}
+
+int cmdPreview(const std::string& scene, const std::string& device) {
+#if SEASIM_PREVIEW
+  throw RuntimeError("preview: not built yet");
+#else
+  std::fprintf(stderr, "seasim preview: not built (configure with -DSEASIM_PREVIEW=ON; the preview is a later issue)\n");
+  return 2;
+#endif
+}
+
+}  // namespace seasim

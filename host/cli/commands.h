@@ -1,0 +1,53 @@
+// commands.h — the subcommands behind `seasim`, as plain functions over plain option structs, so
+// main() only wires CLI11 to them and tests can call them. Each returns the process exit code.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "scene/scene_parser.h"
+
+namespace seasim {
+
+// "key=value" from --set; a value that is not valid TOML is taken as a string.
+Override parseSetOption(const std::string& text);
+
+int cmdDevices();
+int cmdValidate(const std::vector<std::string>& files);
+int cmdPlan(const std::string& scene, const std::vector<std::string>& sets);
+
+struct RenderCmd {
+  std::string scene, out_dir, device, reference;
+  std::vector<std::string> sets;
+  std::vector<std::string> formats = {"exr", "png"};
+};
+int cmdRender(const RenderCmd& cmd);
+
+int cmdRun(const std::string& job, const std::string& device, const std::string& shard, bool resume);
+
+int cmdCompare(const std::string& test, const std::string& reference, double exposure_ev);
+
+struct SweepCmd {
+  std::string scene, reference, csv, plot, device;
+  std::vector<std::string> params;  // "KEY=v1,v2,..." (several: the grid of all combinations)
+  std::vector<std::string> sets;
+};
+int cmdSweep(const SweepCmd& cmd);
+
+struct BenchCmd {
+  std::string scene, csv, plot, device;
+  std::vector<int> wavelengths = {3, 8, 16, 32, 64};
+  int repeat = 5;
+  bool limits = false;
+};
+int cmdBench(const BenchCmd& cmd);
+
+struct ReferenceCmd {
+  std::string scene, out, device;
+  std::vector<std::string> sets;
+  int steps = 256;
+};
+int cmdReference(const ReferenceCmd& cmd);
+
+int cmdPreview(const std::string& scene, const std::string& device);
+
+}  // namespace seasim

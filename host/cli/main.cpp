@@ -1,0 +1,99 @@
+// main.cpp — wires CLI11 subcommands to host/cli/commands.h; nothing else.
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <exception>
+
+#include "cli/commands.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"seasim — OpenCL simulator of light in water and air"};
+  app.require_subcommand(1);
+
+  auto* devices = app.add_subcommand("devices", "List OpenCL platforms and devices");
+
+  std::vector<std::string> validate_files;
+  auto* validate = app.add_subcommand("validate", "Check scene and job files (errors name file:line and key)");
+  validate->add_option("files", validate_files, "Scene or job TOML files")->required()->check(CLI::ExistingFile);
+
+  std::string plan_scene;
+  std::vector<std::string> plan_sets;
+  auto* plan = app.add_subcommand("plan", "Print the passes a scene needs, with kernel files and defines");
+  plan->add_option("scene", plan_scene, "Scene file")->required()->check(CLI::ExistingFile);
+  plan->add_option("--set", plan_sets, "Override a scene key: key=value (repeatable)");
+
+  seasim::RenderCmd render_cmd;
+  auto* render = app.add_subcommand("render", "Render one scene into a folder (EXR, PNG, report.json)");
+  render->add_option("scene", render_cmd.scene, "Scene file")->required()->check(CLI::ExistingFile);
+  render->add_option("-o,--out", render_cmd.out_dir, "Output folder")->required();
+  render->add_option("--device", render_cmd.device, "cpu, gpu, pocl:0, nvidia:0 or a name substring");
+  render->add_option("--set", render_cmd.sets, "Override a scene key: key=value (repeatable)");
+  render->add_option("--output", render_cmd.formats, "Formats: exr png spectral_exr npy")->delimiter(',');
+  render->add_option("--reference", render_cmd.reference, "Reference EXR: report error against it")
+      ->check(CLI::ExistingFile);
+
+  std::string run_job, run_device, run_shard;
+  bool run_resume = false;
+  auto* run = app.add_subcommand("run", "Run a job file (renders, sweeps) with manifest and resume");
+  run->add_option("job", run_job, "Job file")->required()->check(CLI::ExistingFile);
+  run->add_option("--device", run_device, "Device selector (overrides the job's)");
+  run->add_option("--shard", run_shard, "i/N: render items with index % N == i");
+  run->add_flag("--resume", run_resume, "Skip items the manifest records as finished");
+
+  std::string cmp_a, cmp_b;
+  double cmp_exposure = 0;
+  auto* compare = app.add_subcommand("compare", "Error of an image against a reference (8-bit levels, rel. L2, hue/sat)");
+  compare->add_option("image", cmp_a, "Image under test")->required()->check(CLI::ExistingFile);
+  compare->add_option("reference", cmp_b, "Reference image")->required()->check(CLI::ExistingFile);
+  compare->add_option("--exposure", cmp_exposure, "Exposure (EV) of the shared tone map");
+
+  seasim::SweepCmd sweep_cmd;
+  auto* sweep = app.add_subcommand("sweep", "Render over a grid of settings; error vs time to CSV and SVG");
+  sweep->add_option("scene", sweep_cmd.scene, "Scene file")->required()->check(CLI::ExistingFile);
+  sweep->add_option("--param", sweep_cmd.params, "KEY=v1,v2,... (repeat for a grid)")->required();
+  sweep->add_option("--reference", sweep_cmd.reference, "Reference EXR")->required()->check(CLI::ExistingFile);
+  sweep->add_option("--csv", sweep_cmd.csv, "CSV output")->required();
+  sweep->add_option("--plot", sweep_cmd.plot, "SVG plot output (error vs time)");
+  sweep->add_option("--set", sweep_cmd.sets, "Override a scene key: key=value (repeatable)");
+  sweep->add_option("--device", sweep_cmd.device, "Device selector");
+
+  seasim::BenchCmd bench_cmd;
+  auto* bench = app.add_subcommand("bench", "Throughput by wavelength count; device limits");
+  bench->add_option("--scene", bench_cmd.scene, "Scene file")->check(CLI::ExistingFile);
+  bench->add_option("--wavelengths", bench_cmd.wavelengths, "Band counts, e.g. 3,8,16")->delimiter(',');
+  bench->add_option("--repeat", bench_cmd.repeat, "Timed repetitions per setting (median reported)");
+  bench->add_option("--csv", bench_cmd.csv, "CSV output");
+  bench->add_option("--plot", bench_cmd.plot, "SVG plot output");
+  bench->add_option("--device", bench_cmd.device, "Device selector");
+  bench->add_flag("--limits", bench_cmd.limits, "Measure the device's exp throughput bound");
+
+  seasim::ReferenceCmd ref_cmd;
+  auto* reference = app.add_subcommand("reference", "Brute-force reference render (double precision, CPU)");
+  reference->add_option("scene", ref_cmd.scene, "Scene file")->required()->check(CLI::ExistingFile);
+  reference->add_option("-o,--out", ref_cmd.out, "Output EXR")->required();
+  reference->add_option("--steps", ref_cmd.steps, "Quadrature steps along each ray");
+  reference->add_option("--set", ref_cmd.sets, "Override a scene key: key=value (repeatable)");
+
+  std::string preview_scene, preview_device;
+  auto* preview = app.add_subcommand("preview", "Live GLFW preview window");
+  preview->add_option("scene", preview_scene, "Scene file");
+  preview->add_option("--device", preview_device, "Device selector");
+
+  CLI11_PARSE(app, argc, argv);
+  try {
+    if (*devices) return seasim::cmdDevices();
+    if (*validate) return seasim::cmdValidate(validate_files);
+    if (*plan) return seasim::cmdPlan(plan_scene, plan_sets);
+    if (*render) return seasim::cmdRender(render_cmd);
+    if (*run) return seasim::cmdRun(run_job, run_device, run_shard, run_resume);
+    if (*compare) return seasim::cmdCompare(cmp_a, cmp_b, cmp_exposure);
+    if (*sweep) return seasim::cmdSweep(sweep_cmd);
+    if (*bench) return seasim::cmdBench(bench_cmd);
+    if (*reference) return seasim::cmdReference(ref_cmd);
+    if (*preview) return seasim::cmdPreview(preview_scene, preview_device);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "seasim: error: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

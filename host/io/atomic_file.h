@@ -1,0 +1,23 @@
+// atomic_file.h — every output file is written under a temporary name in its own folder and then
+// renamed onto its final name, so a reader (or `seasim run --resume`) sees either the old file or
+// the complete new one, never a partial write, even if the process is killed mid-write.
+#pragma once
+#include <functional>
+#include <string>
+
+namespace seasim {
+
+// "<dir>/.<name>.tmp-<pid>" for "<dir>/<name>": same folder (rename must not cross file systems),
+// hidden, and unique per process so two shards writing one folder do not collide.
+std::string atomicTempPath(const std::string& path);
+
+// Creates the parent folders of `path`, calls write(temp_path) to produce the complete file under
+// the temporary name, flushes it to disk and renames it onto `path`. If anything fails (including
+// an exception from `write`) the temporary file is removed, `path` is left as it was, and a
+// RuntimeError naming `path` is thrown.
+void writeFileAtomic(const std::string& path, const std::function<void(const std::string& temp_path)>& write);
+
+// Writes `text` (any bytes) to `path` atomically, creating parent folders.
+void writeTextAtomic(const std::string& path, const std::string& text);
+
+}  // namespace seasim

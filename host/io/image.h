@@ -1,0 +1,29 @@
+// image.h — a plain float image, the one pixel container host/io and host/reference share.
+#pragma once
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace seasim {
+
+struct Image {
+  int width = 0, height = 0, channels = 0;
+  std::vector<float> pixels;               // row-major, top row first, channels interleaved
+  std::vector<std::string> channel_names;  // empty = the writer's default (Y / R,G,B / R,G,B,A)
+
+  float at(int x, int y, int c) const { return pixels[index(x, y, c)]; }
+  float& at(int x, int y, int c) { return pixels[index(x, y, c)]; }
+  std::size_t index(int x, int y, int c) const {
+    return (static_cast<std::size_t>(y) * width + x) * channels + c;
+  }
+  // Sets the size and zero-fills the pixels (channel names are left alone).
+  void resize(int w, int h, int c) {
+    width = w;
+    height = h;
+    channels = c;
+    pixels.assign(static_cast<std::size_t>(w) * h * c, 0.0f);
+  }
+  std::size_t pixelCount() const { return static_cast<std::size_t>(width) * height; }
+};
+
+}  // namespace seasim

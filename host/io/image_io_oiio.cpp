@@ -1,0 +1,176 @@
+// image_io_oiio.cpp — image files through OpenImageIO 2.4 (built when SEASIM_IMAGE_IO=ON).
+// The only file in the project that includes OpenImageIO; see image_io.h for the contract.
+#include <OpenImageIO/imageio.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <set>
+
+#include "io/atomic_file.h"
+#include "io/image_io.h"
+#include "io/spectral_layout.h"
+#include "io/tonemap.h"
+#include "util/error.h"
+
+namespace seasim {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+bool hasNpyExtension(const std::string& path) { return fs::path(path).extension() == ".npy"; }
+
+void checkImage(const std::string& path, const Image& image) {
+  if (image.width <= 0 || image.height <= 0 || image.channels <= 0)
+    throw RuntimeError("cannot write '" + path + "': empty image (" + std::to_string(image.width) + "x" +
+                       std::to_string(image.height) + "x" + std::to_string(image.channels) + ")");
+  if (image.pixels.size() != image.pixelCount() * static_cast<std::size_t>(image.channels))
+    throw RuntimeError("cannot write '" + path + "': pixel buffer holds " +
+                       std::to_string(image.pixels.size()) + " values, the size needs " +
+                       std::to_string(image.pixelCount() * image.channels));
+  if (!image.channel_names.empty() && image.channel_names.size() != static_cast<std::size_t>(image.channels))
+    throw RuntimeError("cannot write '" + path + "': " + std::to_string(image.channel_names.size()) +
+                       " channel names for " + std::to_string(image.channels) + " channels");
+}
+
+std::vector<std::string> channelNamesFor(const Image& image) {
+  if (!image.channel_names.empty()) return image.channel_names;
+  switch (image.channels) {
+    case 1: return {"Y"};
+    case 2: return {"Y", "A"};
+    case 3: return {"R", "G", "B"};
+    case 4: return {"R", "G", "B", "A"};
+    default: {
+      std::vector<std::string> names;
+      for (int c = 0; c < image.channels; ++c) names.push_back("C" + std::to_string(c));
+      return names;
+    }
+  }
+}
+
+// Writes one image to `temp` in the named OIIO format; throws with OIIO's message on failure.
+void writeWithOiio(const std::string& temp, const char* format, const OIIO::ImageSpec& spec,
+                   OIIO::TypeDesc data_type, const void* data) {
+  std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(format);
+  if (!out) throw RuntimeError(std::string("OpenImageIO has no '") + format + "' writer: " + OIIO::geterror());
+  if (!out->open(temp, spec)) throw RuntimeError("OpenImageIO cannot open it: " + out->geterror());
+  if (!out->write_image(data_type, data)) {
+    const std::string err = out->geterror();
+    out->close();
+    throw RuntimeError("OpenImageIO write failed: " + err);
+  }
+  if (!out->close()) throw RuntimeError("OpenImageIO close failed: " + out->geterror());
+}
+
+}  // namespace
+
+bool imageIoAvailable() { return true; }
+
+std::string writeExr(const std::string& path, const Image& image) {
+  checkImage(path, image);
+  OIIO::ImageSpec spec(image.width, image.height, image.channels, OIIO::TypeDesc::FLOAT);
+  spec.channelnames = channelNamesFor(image);
+  spec.alpha_channel = -1;
+  for (int c = 0; c < image.channels; ++c)
+    if (spec.channelnames[c] == "A") spec.alpha_channel = c;
+  spec.attribute("compression", "zip");
+  spec.attribute("oiio:ColorSpace", "Linear");
+  writeFileAtomic(path, [&](const std::string& temp) {
+    writeWithOiio(temp, "openexr", spec, OIIO::TypeDesc::FLOAT, image.pixels.data());
+  });
+  return path;
+}
+
+std::string writePng(const std::string& path, const Image& linear_rgb, double exposure_ev) {
+  checkImage(path, linear_rgb);
+  std::vector<std::uint8_t> bytes;
+  toneMapImage8(linear_rgb, exposure_ev, bytes);
+  OIIO::ImageSpec spec(linear_rgb.width, linear_rgb.height, linear_rgb.channels, OIIO::TypeDesc::UINT8);
+  spec.attribute("oiio:ColorSpace", "sRGB");
+  writeFileAtomic(path, [&](const std::string& temp) {
+    writeWithOiio(temp, "png", spec, OIIO::TypeDesc::UINT8, bytes.data());
+  });
+  return path;
+}
+
+std::string writeSpectralExr(const std::string& path, int width, int height,
+                             const std::vector<double>& wavelengths_nm, const std::vector<float>& data) {
+  const std::size_t n = wavelengths_nm.size();
+  if (width <= 0 || height <= 0 || n == 0)
+    throw RuntimeError("cannot write '" + path + "': empty spectral image (" + std::to_string(width) + "x" +
+                       std::to_string(height) + ", " + std::to_string(n) + " bands)");
+  if (data.size() != static_cast<std::size_t>(width) * height * n)
+    throw RuntimeError("cannot write '" + path + "': spectral data holds " + std::to_string(data.size()) +
+                       " values, " + std::to_string(width) + "x" + std::to_string(height) + "x" +
+                       std::to_string(n) + " needed");
+  OIIO::ImageSpec spec(width, height, static_cast<int>(n), OIIO::TypeDesc::FLOAT);
+  std::set<std::string> seen;
+  for (std::size_t i = 0; i < n; ++i) {
+    try {
+      spec.channelnames[i] = spectralChannelName(wavelengths_nm[i]);
+    } catch (const RuntimeError& e) {
+      throw RuntimeError("cannot write '" + path + "': " + e.what());
+    }
+    if (!seen.insert(spec.channelnames[i]).second)
+      throw RuntimeError("cannot write '" + path + "': two bands share the channel name '" +
+                         spec.channelnames[i] + "'");
+  }
+  spec.alpha_channel = -1;
+  spec.attribute("compression", "zip");
+  spec.attribute("spectralLayoutVersion", kSpectralLayoutVersion);
+  spec.attribute("emissiveUnits", kSpectralEmissiveUnits);
+  writeFileAtomic(path, [&](const std::string& temp) {
+    writeWithOiio(temp, "openexr", spec, OIIO::TypeDesc::FLOAT, data.data());
+  });
+  return path;
+}
+
+Image readImage(const std::string& path) {
+  if (hasNpyExtension(path)) return readNpy(path);
+  if (!fs::exists(path)) throw RuntimeError("cannot read image '" + path + "': no such file");
+  std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(path);
+  if (!in) throw RuntimeError("cannot read image '" + path + "': " + OIIO::geterror());
+  const OIIO::ImageSpec& spec = in->spec();
+  Image image;
+  image.resize(spec.width, spec.height, spec.nchannels);
+  image.channel_names = spec.channelnames;
+  if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image.pixels.data()))
+    throw RuntimeError("cannot read image '" + path + "': " + in->geterror());
+  in->close();
+  return image;
+}
+
+std::string readImageAttribute(const std::string& path, const std::string& name) {
+  std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(path);
+  if (!in) throw RuntimeError("cannot read image '" + path + "': " + OIIO::geterror());
+  const std::string value = in->spec().get_string_attribute(name);
+  in->close();
+  return value;
+}
+
+SpectralImage readSpectralExr(const std::string& path) {
+  const Image file = readImage(path);
+  std::vector<std::pair<double, int>> bands;  // (wavelength, file channel)
+  for (int c = 0; c < file.channels; ++c) {
+    double nm = 0.0;
+    if (c < static_cast<int>(file.channel_names.size()) && parseSpectralChannelName(file.channel_names[c], nm))
+      bands.emplace_back(nm, c);
+  }
+  if (bands.empty())
+    throw RuntimeError("'" + path + "' is not a spectral EXR: no channel named like S0.550,000000nm");
+  std::sort(bands.begin(), bands.end());
+  SpectralImage out;
+  out.width = file.width;
+  out.height = file.height;
+  const std::size_t n = bands.size();
+  for (const auto& b : bands) out.wavelengths_nm.push_back(b.first);
+  out.data.resize(file.pixelCount() * n);
+  for (std::size_t p = 0; p < file.pixelCount(); ++p)
+    for (std::size_t i = 0; i < n; ++i)
+      out.data[p * n + i] = file.pixels[p * file.channels + bands[i].second];
+  return out;
+}
+
+}  // namespace seasim

@@ -1,0 +1,287 @@
+// job_parser.cpp — TOML job files -> Job: renders, frame ranges and sweeps expanded into a flat
+// list of uniquely named items, each validated with its scene. Format: scenes/README.md ("Job files").
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <regex>
+#include <sstream>
+
+#include "jobs/job.h"
+#include "scene/toml_reader.h"
+#include "util/error.h"
+#include "util/paths.h"
+
+namespace fs = std::filesystem;
+
+namespace seasim {
+namespace {
+
+const std::vector<std::string> kOutputs = {"exr", "png", "spectral_exr", "npy"};
+
+// Item and job names become file and folder names on every platform a farm may use.
+bool safeFileName(const std::string& s) {
+  if (s.empty() || s.size() > 200 || s[0] == '.' || s[0] == '-') return false;
+  for (char c : s) {
+    bool ok = std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.' ||
+              c == '=' || c == '+';
+    if (!ok) return false;
+  }
+  return true;
+}
+const char* kSafeNameRule = "letters, digits and _ - . = + only, not starting with '.' or '-'";
+
+// A sweep value as it appears in an item name: strings bare, numbers shortest, arrays joined by _.
+std::string nameText(const toml::node& n) {
+  if (auto* s = n.as_string()) return s->get();
+  if (auto* f = n.as_floating_point()) return formatNumber(f->get());
+  if (auto* a = n.as_array()) {
+    std::string out;
+    for (size_t i = 0; i < a->size(); ++i) out += (i ? "_" : "") + nameText(*a->get(i));
+    return out;
+  }
+  return valueText(n);
+}
+
+// An item before its scene is checked, with the node that gave it its name (for duplicate errors).
+struct PendingItem {
+  RenderItem item;
+  const toml::node* name_node;
+  std::string name_key;
+};
+
+class JobParser {
+ public:
+  JobParser(const TomlSource& src, Job& job) : src_(src), job_(job) {}
+
+  std::vector<PendingItem> parse(const toml::table& root_table) {
+    TableReader root(src_, root_table, "");
+    for (const char* k : {"job", "render", "sweep"}) root.has(k);
+    root.finish();
+
+    job_.name = fs::path(job_.file).stem().string();
+    toml::table empty;
+    const toml::table* jt = root.subtable("job");
+    TableReader r(src_, jt ? *jt : empty, "job");
+    job_.name = r.string("name", job_.name);
+    r.check(safeFileName(job_.name), "name",
+            "'" + job_.name + "' is not a safe folder name (" + kSafeNameRule + ")");
+    if (r.has("output_dir")) {
+      std::string dir = r.string("output_dir", "");
+      r.check(!dir.empty(), "output_dir", "must not be empty");
+      job_.output_dir = resolveRelativeTo(job_.file, dir);
+    } else {
+      job_.output_dir = (fs::current_path() / "results" / job_.name).lexically_normal().string();
+    }
+    job_.device = r.string("device", "");
+    overrides(r, job_overrides_);
+    r.finish();
+
+    std::vector<PendingItem> items;
+    for (const auto& [i, t] : arrayOfTables(root, "render")) render(*t, i, items);
+    for (const auto& [i, t] : arrayOfTables(root, "sweep")) sweep(*t, i, items);
+    if (items.empty())
+      src_.fail(&root_table, "", "the job has no [[render]] or [[sweep]] tables, so nothing to do");
+    return items;
+  }
+
+ private:
+  const TomlSource& src_;
+  Job& job_;
+  std::vector<Override> job_overrides_;
+
+  std::vector<std::pair<size_t, const toml::table*>> arrayOfTables(TableReader& root, const char* name) {
+    std::vector<std::pair<size_t, const toml::table*>> out;
+    const toml::node* n = root.get(name);
+    if (!n) return out;
+    const toml::array* a = n->as_array();
+    if (!a || (!a->empty() && !a->is_array_of_tables()))
+      root.fail(name, std::string("expected an array of tables ([[") + name + "]]), got " + typeName(*n));
+    for (size_t i = 0; i < a->size(); ++i) out.emplace_back(i, a->get(i)->as_table());
+    return out;
+  }
+
+  // overrides = { "sun.zenith_deg" = 40, water.g = 0.8 }: quoted dotted keys and TOML's own
+  // nested (dotted) keys both end up as one Override per leaf value, located at that value.
+  void flatten(const toml::table& t, const std::string& prefix, std::vector<Override>& out) {
+    for (auto&& [k, v] : t) {
+      std::string key = prefix.empty() ? std::string(k.str()) : prefix + "." + std::string(k.str());
+      if (auto* sub = v.as_table())
+        flatten(*sub, key, out);
+      else
+        out.push_back(Override{key, valueText(v), src_.locOf(&v)});
+    }
+  }
+  void overrides(TableReader& r, std::vector<Override>& out) {
+    if (const toml::table* t = r.subtable("overrides")) flatten(*t, "", out);
+  }
+
+  std::string existingFile(TableReader& r, const char* key) {
+    std::string p = r.string(key, "");
+    r.check(!p.empty(), key, "must not be empty");
+    std::string abs = resolveRelativeTo(job_.file, p);
+    r.check(fs::is_regular_file(abs), key, "file not found: " + abs);
+    return abs;
+  }
+
+  // The fields [[render]] and [[sweep]] share: scene, name, overrides, outputs, reference.
+  PendingItem common(TableReader& r, const toml::table& t) {
+    PendingItem p;
+    RenderItem& item = p.item;
+    item.loc = src_.locOf(&t);
+    r.check(r.has("scene"), "scene", "missing: the scene file to render (relative to the job file)");
+    item.scene_file = existingFile(r, "scene");
+    item.name = r.string("name", fs::path(item.scene_file).stem().string());
+    p.name_node = t.get("name") ? t.get("name") : static_cast<const toml::node*>(&t);
+    p.name_key = r.path("name");
+    item.overrides = job_overrides_;
+    overrides(r, item.overrides);
+    item.outputs = {"exr", "png"};
+    if (const toml::node* n = r.get("outputs")) {
+      const toml::array* a = n->as_array();
+      if (!a) r.fail("outputs", "expected an array of strings, got " + typeName(*n));
+      r.check(!a->empty(), "outputs", "must name at least one of exr, png, spectral_exr, npy");
+      item.outputs.clear();
+      for (size_t i = 0; i < a->size(); ++i) {
+        const toml::node& e = *a->get(i);
+        std::string where = r.path("outputs") + "[" + std::to_string(i) + "]";
+        const auto* s = e.as_string();
+        if (!s) src_.fail(&e, where, "expected a string, got " + typeName(e));
+        if (std::find(kOutputs.begin(), kOutputs.end(), s->get()) == kOutputs.end())
+          src_.fail(&e, where, "unknown output '" + s->get() + "'" + suggestion(s->get(), kOutputs));
+        if (std::find(item.outputs.begin(), item.outputs.end(), s->get()) != item.outputs.end())
+          src_.fail(&e, where, "output '" + s->get() + "' is listed twice");
+        item.outputs.push_back(s->get());
+      }
+    }
+    if (r.has("reference")) item.reference = existingFile(r, "reference");
+    return p;
+  }
+
+  void render(const toml::table& t, size_t index, std::vector<PendingItem>& items) {
+    TableReader r(src_, t, "render[" + std::to_string(index) + "]");
+    PendingItem base = common(r, t);
+
+    // resolution = [w, h]: shorthand for camera.width / camera.height overrides.
+    if (const toml::node* n = r.get("resolution")) {
+      const toml::array* a = n->as_array();
+      r.check(a && a->size() == 2, "resolution", "expected [width, height] in pixels");
+      const char* keys[] = {"camera.width", "camera.height"};
+      for (size_t i = 0; i < 2; ++i)
+        base.item.overrides.push_back(Override{keys[i], valueText(*a->get(i)), src_.locOf(a->get(i))});
+    }
+
+    long long frames = r.integerIn("frames", 1, 1, 100000);
+    const toml::node* time_node = r.get("time");
+    std::vector<double> time;
+    if (time_node) {
+      time = r.numbers("time");
+      r.check(time.size() == 2, "time", "expected [t0, t1] in seconds");
+      if (frames > 1) r.check(time[1] > time[0], "time", "t1 must be > t0");
+    } else {
+      r.check(frames == 1, "frames", "frames > 1 needs time = [t0, t1] (seconds of surface time)");
+    }
+    r.finish();
+
+    SourceLoc time_loc = src_.locOf(time_node);
+    if (frames == 1) {
+      if (time_node) base.item.overrides.push_back(Override{"surface.time", valueText(toml::value<double>(time[0])), time_loc});
+      items.push_back(base);
+      return;
+    }
+    // Frame f at t0 + f (t1 - t0) / (frames - 1): both ends included.
+    for (long long f = 0; f < frames; ++f) {
+      PendingItem p = base;
+      char suffix[32];
+      std::snprintf(suffix, sizeof suffix, "_f%04lld", f);
+      p.item.name += suffix;
+      double t_f = time[0] + (time[1] - time[0]) * static_cast<double>(f) / static_cast<double>(frames - 1);
+      p.item.overrides.push_back(Override{"surface.time", valueText(toml::value<double>(t_f)), time_loc});
+      items.push_back(p);
+    }
+  }
+
+  void sweep(const toml::table& t, size_t index, std::vector<PendingItem>& items) {
+    TableReader r(src_, t, "sweep[" + std::to_string(index) + "]");
+    PendingItem base = common(r, t);
+    r.check(r.has("param"), "param", "missing: the dotted scene key to sweep, e.g. \"sun.zenith_deg\"");
+    std::string param = r.string("param", "");
+    r.check(!param.empty(), "param", "must not be empty");
+    r.check(r.has("values"), "values", "missing: the array of values to give " + param);
+    const toml::node* vn = r.get("values");
+    const toml::array* values = vn->as_array();
+    if (!values) r.fail("values", "expected an array, got " + typeName(*vn));
+    r.check(!values->empty(), "values", "must not be empty");
+    r.finish();
+
+    // Item "<name>_<last part of param>=<value>"; the override sits at the value, so a bad value
+    // (or a param the scene does not know) is reported on its line.
+    std::string last = param.substr(param.rfind('.') == std::string::npos ? 0 : param.rfind('.') + 1);
+    for (size_t i = 0; i < values->size(); ++i) {
+      const toml::node& v = *values->get(i);
+      PendingItem p = base;
+      p.item.name = base.item.name + "_" + last + "=" + nameText(v);
+      p.item.overrides.push_back(Override{param, valueText(v), src_.locOf(&v)});
+      p.name_node = &v;
+      p.name_key = r.path("values") + "[" + std::to_string(i) + "]";
+      items.push_back(p);
+    }
+  }
+};
+
+}  // namespace
+
+Job parseJob(const std::string& toml_text, const std::string& path) {
+  toml::table root = parseTomlText(toml_text, path);
+  TomlSource src(path);
+  Job job;
+  job.file = fs::absolute(path).lexically_normal().string();
+  std::vector<PendingItem> items = JobParser(src, job).parse(root);
+
+  std::map<std::string, SourceLoc> seen;
+  for (const PendingItem& p : items) {
+    SourceLoc loc = src.locOf(p.name_node);
+    if (!safeFileName(p.item.name))
+      throw InputError(loc.file, loc.line, p.name_key,
+                       "item name '" + p.item.name + "' is not a safe file name (" + kSafeNameRule + ")");
+    auto [it, fresh] = seen.emplace(p.item.name, loc);
+    if (!fresh)
+      throw InputError(loc.file, loc.line, p.name_key,
+                       "item name '" + p.item.name + "' is used twice (also at " + it->second.file +
+                           ":" + std::to_string(it->second.line) + "); names must be unique");
+  }
+  // Validate every item's scene with its overrides now, so a bad job fails before anything renders.
+  for (const PendingItem& p : items) {
+    loadScene(p.item.scene_file, p.item.overrides);
+    job.items.push_back(p.item);
+  }
+  return job;
+}
+
+Job loadJob(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in || fs::is_directory(path)) throw InputError(path, 1, "", "cannot open job file");
+  std::stringstream text;
+  text << in.rdbuf();
+  return parseJob(text.str(), path);
+}
+
+bool isJobFile(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return false;
+  std::stringstream text;
+  text << in.rdbuf();
+  try {
+    toml::table t = toml::parse(text.str(), std::string_view(path));
+    return t.contains("job") || t.contains("render") || t.contains("sweep");
+  } catch (const toml::parse_error&) {
+    // Broken TOML: decide from the table headers so the right parser reports the syntax error.
+    static const std::regex header(R"(^\s*(\[\s*job\s*\]|\[\[\s*(render|sweep)\s*\]\]))");
+    std::string line;
+    std::istringstream lines(text.str());
+    while (std::getline(lines, line))
+      if (std::regex_search(line, header)) return true;
+    return false;
+  }
+}
+
+}  // namespace seasim

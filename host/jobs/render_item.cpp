@@ -1,0 +1,113 @@
+#include "jobs/render_item.h"
+
+#include <filesystem>
+
+#include "io/atomic_file.h"
+#include "io/image_io.h"
+#include "passes/render_frame.h"
+#include "plan/plan.h"
+#include "reference/compare.h"
+#include "util/error.h"
+
+namespace fs = std::filesystem;
+
+namespace seasim {
+
+namespace {
+
+nlohmann::json planJson(const Plan& plan) {
+  nlohmann::json passes = nlohmann::json::array();
+  for (const auto& p : plan.passes) {
+    passes.push_back({{"name", p.name}, {"kernel", "kernels/" + p.kernel_file}, {"defines", p.defines},
+                      {"reads", p.reads}, {"writes", p.writes}});
+  }
+  return passes;
+}
+
+nlohmann::json settingsJson(const Scene& s) {
+  nlohmann::json quality = nlohmann::json::object();
+  for (const auto& [key, knob] : s.quality) {
+    quality[key] = knob.automatic ? nlohmann::json("auto") : nlohmann::json(knob.value);
+  }
+  return {{"width", s.camera.width},
+          {"height", s.camera.height},
+          {"wavelength_count", s.spectral.count},
+          {"range_nm", {s.spectral.min_nm, s.spectral.max_nm}},
+          {"sensor", s.spectral.sensor},
+          {"white_balance", s.spectral.white_balance},
+          {"exposure_ev", s.camera.exposure_ev},
+          {"sun_zenith_deg", s.sun.zenith * 180.0 / M_PI},
+          {"water", s.water.present ? (s.water.jerlov.empty() ? "explicit spectra" : "Jerlov " + s.water.jerlov) : "none"},
+          {"quality", quality}};
+}
+
+}  // namespace
+
+nlohmann::json renderItem(Device& device, const Scene& scene, const ItemOutputs& outputs, const std::string& dir) {
+  const Plan plan = makePlan(scene);
+  FrameResult frame = renderFrame(device, scene, plan);
+  if (frame.nonfinite != 0) {
+    throw RuntimeError("scene '" + scene.name + "': the kernels produced " + std::to_string(frame.nonfinite) +
+                       " NaN/Inf values; nothing written for this render (a bug: please report it with the scene)");
+  }
+  fs::create_directories(dir);
+  nlohmann::json files = nlohmann::json::array();
+  for (const auto& format : outputs.formats) {
+    std::string path;
+    if (format == "exr") {
+      path = dir + "/image.exr";
+      writeExr(path, frame.rgb);
+    } else if (format == "png") {
+      path = dir + "/image.png";
+      writePng(path, frame.rgb, scene.camera.exposure_ev);
+    } else if (format == "npy") {
+      path = dir + "/image.npy";
+      writeNpy(path, frame.rgb);
+    } else if (format == "spectral_exr") {
+      if (frame.spectral.empty()) {
+        throw RuntimeError("output 'spectral_exr' needs spectral.spectral_exr = true in the scene");
+      }
+      path = dir + "/spectral.exr";
+      writeSpectralExr(path, frame.rgb.width, frame.rgb.height, frame.wavelengths_nm, frame.spectral);
+    } else {
+      throw RuntimeError("unknown output format '" + format + "'");
+    }
+    files.push_back(fs::path(path).filename().string());
+  }
+
+  nlohmann::json timings = nlohmann::json::object();
+  double total = 0;
+  for (const auto& t : frame.timings) {
+    timings[t.name] = t.ms;
+    total += t.ms;
+  }
+  nlohmann::json report = {
+      {"scene", scene.file},
+      {"name", scene.name},
+      {"device",
+       {{"label", device.info().label()},
+        {"platform", device.info().platform_name},
+        {"name", device.info().name},
+        {"driver", device.info().driver}}},
+      {"plan", planJson(plan)},
+      {"pass_ms", timings},
+      {"kernel_ms_total", total},
+      {"kernel_build_ms", frame.build_ms},
+      {"wall_ms", frame.wall_ms},
+      {"settings", settingsJson(scene)},
+      {"nonfinite", frame.nonfinite},
+      {"outputs", files}};
+  if (!outputs.reference.empty()) {
+    const Image reference = readImage(outputs.reference);
+    const CompareResult c = compareImages(frame.rgb, reference, scene.camera.exposure_ev);
+    report["error"] = {{"reference", outputs.reference},
+                       {"rmse_8bit", c.rmse_8bit},
+                       {"max_abs_8bit", c.max_abs_8bit},
+                       {"rel_l2", c.rel_l2},
+                       {"hue_sat_distance", c.hue_sat_distance}};
+  }
+  writeTextAtomic(dir + "/report.json", report.dump(2) + "\n");
+  return report;
+}
+
+}  // namespace seasim

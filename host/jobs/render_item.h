@@ -1,0 +1,25 @@
+// render_item.h — one render from scene to files: plan, render, NaN check, outputs (atomic), report.json.
+// Shared by `seasim render` and the job runner.
+#pragma once
+#include <nlohmann/json.hpp>
+
+#include <string>
+#include <vector>
+
+#include "device/device.h"
+#include "scene/scene.h"
+
+namespace seasim {
+
+struct ItemOutputs {
+  std::vector<std::string> formats = {"exr", "png"};  // "exr", "png", "spectral_exr", "npy"
+  std::string reference;                              // optional EXR to report error against
+};
+
+// Renders `scene` into folder `dir` (created): image.exr / image.png / spectral.exr / image.npy as
+// asked, and report.json last (its presence means the item is complete). Returns the report.
+// Throws RuntimeError (NaN/Inf found, unimplemented pass, I/O) or DeviceError; files already
+// written for this item stay complete (each is atomic) but report.json is not written.
+nlohmann::json renderItem(Device& device, const Scene& scene, const ItemOutputs& outputs, const std::string& dir);
+
+}  // namespace seasim

@@ -1,0 +1,588 @@
+// scene_parser.cpp — TOML scene files -> Scene. Every table and key is documented in
+// scenes/README.md (same order as here); keep the two in step.
+#include "scene/scene_parser.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+
+#include "scene/toml_reader.h"
+#include "util/error.h"
+#include "util/paths.h"
+
+namespace fs = std::filesystem;
+
+namespace seasim {
+namespace {
+
+// The [quality] knobs and their defaults: positive integers, or "auto" (the method picks the
+// cheapest setting under its error budget). scenes/README.md [quality] lists the same table.
+struct KnobDefault {
+  const char* name;
+  int value;
+  const char* meaning;
+};
+constexpr KnobDefault kQualityKnobs[] = {
+    {"sea_lut_size", 64, "sea single scattering: LUT size over theta_jo (000 eq. 5)"},
+    {"sea_nz", 12, "sea second order: depth planes n_z (000 eq. 6-8)"},
+    {"sea_nd", 128, "sea second order: directions n_d"},
+    {"sea_map_size", 32, "sea second order: scattering map resolution"},
+    {"shafts_planes", 30, "shafts: sampling planes n (001)"},
+    {"shafts_subplanes", 6, "shafts: sub-planes m per plane"},
+    {"shafts_table_size", 256, "shafts: integral table size"},
+    {"shadow_map_size", 512, "shafts: shadow map size"},
+    {"froxel_x", 160, "underwater froxel grid x (002 §5)"},
+    {"froxel_y", 90, "froxel grid y"},
+    {"froxel_z", 64, "froxel grid z (depth slices)"},
+    {"caustic_map_size", 256, "caustic map size"},
+    {"reference_spp", 64, "brute-force reference: samples per pixel"},
+    {"reference_steps", 200, "brute-force reference: ray-march steps per ray"},
+};
+constexpr long long kMaxKnob = 1 << 20;  // catches typos such as 1e9 planes
+
+constexpr double kDegToRad = std::numbers::pi / 180.0;
+
+const std::vector<std::string> kTopLevel = {"scene",   "camera", "sun",     "sky",     "water",
+                                            "air",     "surface", "bottom", "objects", "spotlights",
+                                            "spectral", "sea",    "quality"};
+
+std::string fmt(double v) { return formatNumber(v); }
+
+// ---------------------------------------------------------------------------------------------
+// Data files (Jerlov tables, camera list)
+
+// A data/ CSV: header row, first column wavelength_nm, empty cells allowed (data/README.md).
+struct CsvTable {
+  std::vector<std::string> columns;  // without the wavelength column
+  std::vector<double> wavelengths_nm;
+  std::vector<std::vector<std::string>> cells;  // [row][column]
+};
+
+CsvTable readCsv(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw RuntimeError("cannot read data file " + path);
+  auto split = [](const std::string& line) {
+    std::vector<std::string> out;
+    std::stringstream ss(line);
+    std::string cell;
+    while (std::getline(ss, cell, ',')) out.push_back(cell);
+    if (!line.empty() && line.back() == ',') out.emplace_back();
+    return out;
+  };
+  CsvTable t;
+  std::string line;
+  if (!std::getline(in, line)) throw RuntimeError("empty data file " + path);
+  auto header = split(line);
+  t.columns.assign(header.begin() + 1, header.end());
+  while (std::getline(in, line)) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.empty()) continue;
+    auto row = split(line);
+    t.wavelengths_nm.push_back(std::stod(row.at(0)));
+    row.erase(row.begin());
+    row.resize(t.columns.size());
+    t.cells.push_back(row);
+  }
+  return t;
+}
+
+// One column as a spectrum; empty cells are skipped (the neighbours then hold, see
+// data/README.md: 3C and 5C have no published b at the long-wavelength end).
+Spectrum csvColumn(const CsvTable& t, const std::string& column) {
+  auto it = std::find(t.columns.begin(), t.columns.end(), column);
+  size_t c = static_cast<size_t>(it - t.columns.begin());
+  Spectrum s;
+  for (size_t r = 0; r < t.cells.size(); ++r) {
+    if (c >= t.cells[r].size() || t.cells[r][c].empty()) continue;
+    s.wavelengths_nm.push_back(t.wavelengths_nm[r]);
+    s.values.push_back(std::stod(t.cells[r][c]));
+  }
+  return s;
+}
+
+std::vector<std::string> cameraNames() {
+  std::vector<std::string> names;
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(fs::path(dataDir()) / "cameras", ec))
+    if (e.path().extension() == ".csv") names.push_back(e.path().stem().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+// ---------------------------------------------------------------------------------------------
+// The parser
+
+class SceneParser {
+ public:
+  SceneParser(const TomlSource& src, Scene& scene) : src_(src), scene_(scene) {}
+
+  void parse(const toml::table& root_table) {
+    TableReader root(src_, root_table, "");
+    for (const auto& name : kTopLevel) root.has(name);
+    root.finish();
+
+    scene_.name = fs::path(scene_.file).stem().string();
+    if (auto* t = root.subtable("scene")) {
+      TableReader r(src_, *t, "scene");
+      scene_.name = r.string("name", scene_.name);
+      r.check(!scene_.name.empty(), "name", "must not be empty");
+      r.finish();
+    }
+    camera(section(root, "camera"));
+    sun(section(root, "sun"));
+    sky(section(root, "sky"));
+
+    scene_.water.present = root.has("water");
+    scene_.air.present = root.has("air");
+    // The surface is the air-water boundary and the bottom lies under water: both need [water].
+    for (const char* needs_water : {"surface", "bottom"}) {
+      if (root.has(needs_water) && !scene_.water.present)
+        root.fail(needs_water, std::string("needs a [water] table (the ") + needs_water +
+                                   " belongs to the water body); add [water] or remove [" +
+                                   needs_water + "]");
+    }
+    if (scene_.water.present) water(section(root, "water"));
+    if (scene_.air.present) air(section(root, "air"));
+    surface(section(root, "surface"));
+    bottom(section(root, "bottom"), root.has("bottom"));
+    for (const auto& [i, t] : arrayOfTables(root, "objects")) object(*t, i);
+    for (const auto& [i, t] : arrayOfTables(root, "spotlights")) spotlight(*t, i);
+    spectral(section(root, "spectral"));
+    sea(section(root, "sea"));
+    quality(section(root, "quality"));
+  }
+
+ private:
+  const TomlSource& src_;
+  Scene& scene_;
+  toml::table empty_;
+
+  const toml::table& section(TableReader& root, const char* name) {
+    const toml::table* t = root.subtable(name);
+    return t ? *t : empty_;
+  }
+
+  std::vector<std::pair<size_t, const toml::table*>> arrayOfTables(TableReader& root,
+                                                                   const char* name) {
+    std::vector<std::pair<size_t, const toml::table*>> out;
+    const toml::node* n = root.get(name);
+    if (!n) return out;
+    const toml::array* a = n->as_array();
+    if (!a || (!a->empty() && !a->is_array_of_tables()))
+      root.fail(name, std::string("expected an array of tables ([[") + name + "]]), got " +
+                          typeName(*n));
+    for (size_t i = 0; i < a->size(); ++i) out.emplace_back(i, a->get(i)->as_table());
+    return out;
+  }
+
+  // A texture path, resolved against the scene file's folder; it must exist.
+  std::string texture(TableReader& r, const char* key, bool required) {
+    if (!r.has(key)) {
+      if (required) r.fail(key, "missing: this type needs an image file");
+      return "";
+    }
+    std::string p = r.string(key, "");
+    r.check(!p.empty(), key, "must not be empty");
+    std::string abs = resolveRelativeTo(scene_.file, p);
+    r.check(fs::is_regular_file(abs), key, "file not found: " + abs);
+    return abs;
+  }
+
+  // Wavelengths: non-empty, positive, strictly increasing.
+  void checkWavelengths(TableReader& r, const char* key, const std::vector<double>& wl) {
+    r.check(!wl.empty(), key, "must not be empty");
+    for (size_t i = 0; i < wl.size(); ++i) {
+      r.check(wl[i] > 0, key, "wavelengths must be positive, got " + fmt(wl[i]));
+      if (i > 0)
+        r.check(wl[i] > wl[i - 1], key,
+                "wavelengths must be strictly increasing (" + fmt(wl[i - 1]) + " then " +
+                    fmt(wl[i]) + ")");
+    }
+  }
+
+  // An array of values at the table's wavelengths: same length, each in [lo, hi].
+  Spectrum spectrumValues(TableReader& r, const char* key, const std::vector<double>& wl, double lo,
+                          double hi, const std::string& range_text) {
+    std::vector<double> v = r.numbers(key);
+    r.check(v.size() == wl.size(), key,
+            "has " + std::to_string(v.size()) + " values but wavelengths_nm has " +
+                std::to_string(wl.size()));
+    for (double x : v) r.check(x >= lo && x <= hi, key, "values must be " + range_text + ", got " + fmt(x));
+    return Spectrum{wl, v};
+  }
+
+  // albedo = 0.3 or albedo = { wavelengths_nm = [...], values = [...] }, each in [0, 1].
+  Spectrum albedo(TableReader& r, const Spectrum& def) {
+    const toml::node* n = r.get("albedo");
+    if (!n) return def;
+    if (n->is_number()) {
+      double v = r.number("albedo", 0);
+      r.check(v >= 0 && v <= 1, "albedo", "must be in [0, 1], got " + fmt(v));
+      return Spectrum::constant(v);
+    }
+    const toml::table* t = n->as_table();
+    if (!t)
+      r.fail("albedo", "expected a number in [0, 1] or { wavelengths_nm = [...], values = [...] }, got " +
+                           typeName(*n));
+    TableReader s(src_, *t, r.path("albedo"));
+    for (const char* k : {"wavelengths_nm", "values"}) s.has(k);
+    s.finish();
+    std::vector<double> wl = s.numbers("wavelengths_nm");
+    checkWavelengths(s, "wavelengths_nm", wl);
+    Spectrum out = spectrumValues(s, "values", wl, 0, 1, "in [0, 1]");
+    s.finish();
+    return out;
+  }
+
+  Vec3 direction(TableReader& r, const char* key, Vec3 def) {
+    Vec3 d = r.vec3(key, def);
+    r.check(length(d) > 0, key, "must not be the zero vector");
+    return normalize(d);
+  }
+
+  void camera(const toml::table& t) {
+    TableReader r(src_, t, "camera");
+    CameraDesc& c = scene_.camera;
+    c.position = r.vec3("position", c.position);
+    c.look_at = r.vec3("look_at", c.look_at);
+    c.up = r.vec3("up", c.up);
+    double fov = r.number("fov_deg", 60.0);
+    r.check(fov > 0 && fov < 180, "fov_deg", "must be in (0, 180) degrees, got " + fmt(fov));
+    c.fov_y = fov * kDegToRad;
+    c.width = static_cast<int>(r.integerIn("width", c.width, 1, 16384));
+    c.height = static_cast<int>(r.integerIn("height", c.height, 1, 16384));
+    c.exposure_ev = r.number("exposure_ev", c.exposure_ev);
+
+    Vec3 view = c.look_at - c.position;
+    // Point at whichever of the two an override wrote, so a job's bad position is found there.
+    const char* at = src_.isOverride(t.get("position")) ? "position" : "look_at";
+    r.check(length(view) > 0, at, "camera.position and camera.look_at are the same point");
+    r.check(length(c.up) > 0, "up", "must not be the zero vector");
+    r.check(length(cross(view, c.up)) > 1e-9 * length(view) * length(c.up), "up",
+            "is parallel to the view direction (look_at - position)");
+    c.up = normalize(c.up);
+    r.finish();
+  }
+
+  void sun(const toml::table& t) {
+    TableReader r(src_, t, "sun");
+    SunDesc& s = scene_.sun;
+    s.enabled = r.boolean("enabled", s.enabled);
+    double zenith = r.number("zenith_deg", 45.0);
+    // Zenith up to 180: a sun below the horizon (dusk, night) is allowed.
+    r.check(zenith >= 0 && zenith <= 180, "zenith_deg", "must be in [0, 180] degrees, got " + fmt(zenith));
+    s.zenith = zenith * kDegToRad;
+    s.azimuth = r.number("azimuth_deg", 0.0) * kDegToRad;
+    s.irradiance = r.number("irradiance", s.irradiance);
+    r.check(s.irradiance >= 0, "irradiance", "must be >= 0, got " + fmt(s.irradiance));
+    double radius = r.number("angular_radius_deg", 0.2667);
+    r.check(radius >= 0 && radius <= 45, "angular_radius_deg",
+            "must be in [0, 45] degrees, got " + fmt(radius));
+    s.angular_radius = radius * kDegToRad;
+    r.finish();
+  }
+
+  void sky(const toml::table& t) {
+    TableReader probe(src_, t, "sky");
+    std::string model = probe.choice("model", "uniform", {"uniform", "analytic", "image"});
+    TableReader r(src_, t, "sky", "not used with model = '" + model + "'");
+    r.has("model");
+    SkyDesc& s = scene_.sky;
+    s.model = model == "uniform" ? SkyDesc::Model::Uniform
+              : model == "analytic" ? SkyDesc::Model::Analytic
+                                    : SkyDesc::Model::Image;
+    s.radiance = r.number("radiance", s.radiance);
+    r.check(s.radiance >= 0, "radiance", "must be >= 0, got " + fmt(s.radiance));
+    if (s.model == SkyDesc::Model::Image) s.image = texture(r, "image", true);
+    r.finish();
+  }
+
+  // Water: a Jerlov type (a, b from Solonenko & Mobley 2015; Kd from Jerlov 1976; data/README.md)
+  // or explicit spectra. With explicit spectra, c may be given instead of b (b = c - a), or with
+  // both, and then must equal a + b.
+  void water(const toml::table& t) {
+    TableReader r(src_, t, "water");
+    // Unknown keys first: a typo'd "jerlv" should read as a typo, not as "jerlov missing".
+    for (const char* k : {"jerlov", "wavelengths_nm", "a", "b", "c", "kd", "g", "ior"}) r.has(k);
+    r.finish();
+    WaterDesc& w = scene_.water;
+    const char* explicit_keys[] = {"wavelengths_nm", "a", "b", "c", "kd"};
+    const char* first_explicit = nullptr;
+    for (const char* k : explicit_keys)
+      if (r.has(k) && !first_explicit) first_explicit = k;
+
+    if (r.has("jerlov")) {
+      if (first_explicit)
+        r.fail(first_explicit,
+               "give either jerlov or explicit spectra (wavelengths_nm, a, b), not both");
+      std::string type = r.string("jerlov", "");
+      CsvTable ta = readCsv(dataDir() + "/jerlov_a.csv");
+      std::string canon = type;
+      for (char& ch : canon) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
+      if (std::find(ta.columns.begin(), ta.columns.end(), canon) == ta.columns.end()) {
+        std::string list;
+        for (size_t i = 0; i < ta.columns.size(); ++i) list += (i ? ", " : "") + ta.columns[i];
+        r.fail("jerlov", "unknown Jerlov water type '" + type + "'; valid: " + list);
+      }
+      w.jerlov = canon;
+      w.a = csvColumn(ta, canon);
+      w.b = csvColumn(readCsv(dataDir() + "/jerlov_b.csv"), canon);
+      w.kd = csvColumn(readCsv(dataDir() + "/jerlov_kd.csv"), canon);
+    } else if (first_explicit) {
+      r.check(r.has("wavelengths_nm"), first_explicit, "explicit spectra need wavelengths_nm");
+      r.check(r.has("a"), "wavelengths_nm", "explicit spectra need a (absorption, 1/m)");
+      r.check(r.has("b") || r.has("c"), "wavelengths_nm",
+              "explicit spectra need b (scattering, 1/m) or c (attenuation, 1/m)");
+      std::vector<double> wl = r.numbers("wavelengths_nm");
+      checkWavelengths(r, "wavelengths_nm", wl);
+      const double inf = INFINITY;
+      w.a = spectrumValues(r, "a", wl, 0, inf, ">= 0");
+      if (r.has("b")) w.b = spectrumValues(r, "b", wl, 0, inf, ">= 0");
+      if (r.has("c")) {
+        Spectrum c = spectrumValues(r, "c", wl, 0, inf, ">= 0");
+        if (!r.has("b")) w.b = Spectrum{wl, std::vector<double>(wl.size())};
+        for (size_t i = 0; i < wl.size(); ++i) {
+          double b_from_c = c.values[i] - w.a.values[i];
+          if (!r.has("b")) {
+            r.check(b_from_c >= -1e-9, "c",
+                    "c must be >= a (b = c - a), but at " + fmt(wl[i]) + " nm c = " +
+                        fmt(c.values[i]) + " < a = " + fmt(w.a.values[i]));
+            w.b.values[i] = std::max(b_from_c, 0.0);
+          } else {
+            double sum = w.a.values[i] + w.b.values[i];
+            r.check(std::abs(c.values[i] - sum) <= 0.005 * sum + 1e-6, "c",
+                    "c must equal a + b (within 0.5 %), but at " + fmt(wl[i]) + " nm c = " +
+                        fmt(c.values[i]) + " and a + b = " + fmt(sum));
+          }
+        }
+      }
+      if (r.has("kd")) w.kd = spectrumValues(r, "kd", wl, 0, inf, ">= 0");
+    } else {
+      r.fail("jerlov", "missing: [water] needs jerlov = \"IB\" (a Jerlov type) or explicit spectra "
+                       "wavelengths_nm, a and b");
+    }
+    w.g = r.number("g", w.g);
+    r.check(std::abs(w.g) < 1, "g", "must satisfy |g| < 1, got " + fmt(w.g));
+    w.ior = r.number("ior", w.ior);
+    r.check(w.ior > 1 && w.ior < 3, "ior", "must be in (1, 3) (water is denser than air), got " + fmt(w.ior));
+    r.finish();
+  }
+
+  void air(const toml::table& t) {
+    TableReader probe(src_, t, "air");
+    std::string phase = probe.choice("phase", "shafts", {"shafts", "hg"});
+    TableReader r(src_, t, "air", "not used with phase = '" + phase + "'");
+    r.has("phase");
+    AirDesc& a = scene_.air;
+    a.phase = phase == "hg" ? AirDesc::Phase::HenyeyGreenstein : AirDesc::Phase::Shafts;
+    a.density = r.number("density", a.density);
+    r.check(a.density >= 0, "density", "must be >= 0, got " + fmt(a.density));
+    a.extinction = r.number("extinction", a.extinction);
+    r.check(a.extinction >= 0, "extinction", "must be >= 0 (1/m), got " + fmt(a.extinction));
+    if (a.phase == AirDesc::Phase::HenyeyGreenstein) {
+      a.g = r.number("g", a.g);
+      r.check(std::abs(a.g) < 1, "g", "must satisfy |g| < 1, got " + fmt(a.g));
+    }
+    r.finish();
+  }
+
+  // The wave keys are read (and ignored) for a flat surface too, so a scene can switch type by
+  // an override, and a job's frames (surface.time) apply to any sea.
+  void surface(const toml::table& t) {
+    TableReader r(src_, t, "surface");
+    SurfaceDesc& s = scene_.surface;
+    std::string type = r.choice("type", "flat", {"flat", "fft"});
+    s.type = type == "fft" ? SurfaceDesc::Type::Fft : SurfaceDesc::Type::Flat;
+    auto nonNegative = [&](const char* key, double& v, const char* unit) {
+      v = r.number(key, v);
+      r.check(v >= 0, key, std::string("must be >= 0") + unit + ", got " + fmt(v));
+    };
+    nonNegative("wind_speed", s.wind_speed, " m/s");
+    s.wind_direction = r.number("wind_direction_deg", 0.0) * kDegToRad;
+    s.patch_size = r.number("patch_size", s.patch_size);
+    r.check(s.patch_size > 0, "patch_size", "must be > 0 m, got " + fmt(s.patch_size));
+    long long grid = r.integer("grid", s.grid);
+    r.check(grid >= 16 && grid <= 2048 && (grid & (grid - 1)) == 0, "grid",
+            "must be a power of two in [16, 2048], got " + std::to_string(grid));
+    s.grid = static_cast<int>(grid);
+    nonNegative("choppiness", s.choppiness, "");
+    nonNegative("directional_exponent", s.directional_exponent, "");
+    nonNegative("small_wave", s.small_wave, " m");
+    nonNegative("depth", s.depth, " m");
+    nonNegative("loop_period", s.loop_period, " s");
+    s.time = r.number("time", s.time);
+    s.seed = static_cast<unsigned>(r.integerIn("seed", s.seed, 0, 4294967295LL));
+    r.finish();
+  }
+
+  // Without [bottom] the water is deep (type "none"); a [bottom] table defaults to a flat one.
+  void bottom(const toml::table& t, bool present) {
+    TableReader probe(src_, t, "bottom");
+    std::string type = probe.choice("type", present ? "flat" : "none", {"none", "flat", "heightfield"});
+    TableReader r(src_, t, "bottom", "not used with type = '" + type + "'");
+    r.has("type");
+    BottomDesc& b = scene_.bottom;
+    if (type == "flat") {
+      b.type = BottomDesc::Type::Flat;
+      b.depth = r.number("depth", b.depth);
+      r.check(b.depth >= 0, "depth", "must be >= 0 m, got " + fmt(b.depth));
+      b.albedo = albedo(r, b.albedo);
+    } else if (type == "heightfield") {
+      b.type = BottomDesc::Type::HeightField;
+      b.heightfield = texture(r, "heightfield", true);
+      b.min_depth = r.number("min_depth", b.min_depth);
+      r.check(b.min_depth >= 0, "min_depth", "must be >= 0 m, got " + fmt(b.min_depth));
+      b.max_depth = r.number("max_depth", b.max_depth);
+      r.check(b.max_depth > b.min_depth, "max_depth",
+              "must be > min_depth (" + fmt(b.min_depth) + " m), got " + fmt(b.max_depth));
+      b.extent = r.number("extent", b.extent);
+      r.check(b.extent > 0, "extent", "must be > 0 m, got " + fmt(b.extent));
+      b.albedo = albedo(r, b.albedo);
+    } else {
+      b.type = BottomDesc::Type::None;
+    }
+    r.finish();
+  }
+
+  void object(const toml::table& t, size_t index) {
+    std::string path = "objects[" + std::to_string(index) + "]";
+    TableReader probe(src_, t, path);
+    probe.check(probe.has("type"), "type", "missing: one of 'sphere', 'box', 'plane', 'heightfield'");
+    std::string type = probe.choice("type", "", {"sphere", "box", "plane", "heightfield"});
+    TableReader r(src_, t, path, "not used with type = '" + type + "'");
+    r.has("type");
+    ObjectDesc o;
+    o.loc = src_.locOf(&t);
+    if (type == "sphere") {
+      o.type = ObjectDesc::Type::Sphere;
+      o.center = r.vec3("center", o.center);
+      o.radius = r.number("radius", o.radius);
+      r.check(o.radius > 0, "radius", "must be > 0 m, got " + fmt(o.radius));
+    } else if (type == "box") {
+      o.type = ObjectDesc::Type::Box;
+      r.check(r.has("min") && r.has("max"), r.has("min") ? "max" : "min", "missing: a box needs min and max");
+      o.box_min = r.vec3("min", o.box_min);
+      o.box_max = r.vec3("max", o.box_max);
+      r.check(o.box_min.x < o.box_max.x && o.box_min.y < o.box_max.y && o.box_min.z < o.box_max.z,
+              "max", "every component of max must be greater than min's");
+    } else if (type == "plane") {
+      o.type = ObjectDesc::Type::Plane;
+      o.point = r.vec3("point", o.point);
+      o.normal = direction(r, "normal", o.normal);
+    } else {
+      o.type = ObjectDesc::Type::HeightField;
+      o.heightfield = texture(r, "heightfield", true);
+      o.point = r.vec3("point", o.point);
+      o.extent = r.number("extent", o.extent);
+      r.check(o.extent > 0, "extent", "must be > 0 m, got " + fmt(o.extent));
+      o.height = r.number("height", o.height);
+      r.check(o.height > 0, "height", "must be > 0 m, got " + fmt(o.height));
+    }
+    o.albedo = albedo(r, o.albedo);
+    r.finish();
+    scene_.objects.push_back(o);
+  }
+
+  void spotlight(const toml::table& t, size_t index) {
+    TableReader r(src_, t, "spotlights[" + std::to_string(index) + "]");
+    SpotlightDesc s;
+    s.loc = src_.locOf(&t);
+    s.position = r.vec3("position", s.position);
+    s.direction = direction(r, "direction", s.direction);
+    double cone = r.number("cone_deg", 20.0);
+    r.check(cone > 0 && cone < 90, "cone_deg", "must be in (0, 90) degrees, got " + fmt(cone));
+    double falloff = r.number("falloff_deg", std::min(5.0, cone));
+    r.check(falloff >= 0 && falloff <= cone, "falloff_deg",
+            "must be in [0, cone_deg = " + fmt(cone) + "] degrees, got " + fmt(falloff));
+    s.cone = cone * kDegToRad;
+    s.falloff = falloff * kDegToRad;
+    s.intensity = r.number("intensity", s.intensity);
+    r.check(s.intensity >= 0, "intensity", "must be >= 0 W/sr, got " + fmt(s.intensity));
+    s.color = r.vec3("color", s.color);
+    r.check(s.color.x >= 0 && s.color.y >= 0 && s.color.z >= 0, "color", "components must be >= 0");
+    s.light_map = texture(r, "light_map", false);
+    r.finish();
+    scene_.spotlights.push_back(s);
+  }
+
+  void spectral(const toml::table& t) {
+    TableReader r(src_, t, "spectral");
+    SpectralDesc& s = scene_.spectral;
+    s.count = static_cast<int>(r.integerIn("count", s.count, 1, 1000));
+    if (r.has("range_nm")) {
+      std::vector<double> range = r.numbers("range_nm");
+      r.check(range.size() == 2, "range_nm", "expected [min, max] in nm, got " + std::to_string(range.size()) + " numbers");
+      r.check(range[0] < range[1], "range_nm", "min must be < max, got [" + fmt(range[0]) + ", " + fmt(range[1]) + "]");
+      r.check(range[0] >= 300 && range[1] <= 1000, "range_nm",
+              "must lie within [300, 1000] nm, got [" + fmt(range[0]) + ", " + fmt(range[1]) + "]");
+      s.min_nm = range[0];
+      s.max_nm = range[1];
+    }
+    s.sensor = r.string("sensor", s.sensor);
+    if (s.sensor != "cie1931" && cameraFile(s.sensor).empty()) {
+      std::vector<std::string> names = cameraNames();
+      names.insert(names.begin(), "cie1931");
+      r.fail("sensor", "unknown sensor '" + s.sensor + "' (not \"cie1931\" and no " + dataDir() +
+                           "/cameras/" + s.sensor + ".csv)" + suggestion(s.sensor, names, 6));
+    }
+    s.white_balance = r.boolean("white_balance", s.white_balance);
+    s.spectral_exr = r.boolean("spectral_exr", s.spectral_exr);
+    r.finish();
+  }
+
+  void sea(const toml::table& t) {
+    TableReader r(src_, t, "sea");
+    SeaDesc& s = scene_.sea;
+    s.single_scattering = r.boolean("single_scattering", s.single_scattering);
+    s.second_order = r.boolean("second_order", s.second_order);
+    s.reflection = r.boolean("reflection", s.reflection);
+    r.finish();
+  }
+
+  void quality(const toml::table& t) {
+    TableReader r(src_, t, "quality");
+    for (const KnobDefault& k : kQualityKnobs) {
+      Knob knob{false, static_cast<double>(k.value)};
+      if (const toml::node* n = r.get(k.name)) {
+        if (auto* s = n->as_string()) {
+          r.check(s->get() == "auto", k.name, "expected a positive integer or \"auto\", got '" + s->get() + "'");
+          knob.automatic = true;
+        } else {
+          r.check(n->is_integer(), k.name, "expected a positive integer or \"auto\", got " + typeName(*n));
+          knob.value = static_cast<double>(r.integerIn(k.name, k.value, 1, kMaxKnob));
+        }
+      }
+      scene_.quality[k.name] = knob;
+    }
+    // Exact phase function in the shafts integral instead of its table: a switch, stored as a
+    // knob of value 0 or 1 so the planner reads every setting from one map.
+    scene_.quality["shafts_exact"] = Knob{false, r.boolean("shafts_exact", false) ? 1.0 : 0.0};
+    r.finish();
+  }
+};
+
+}  // namespace
+
+Scene parseScene(const std::string& toml_text, const std::string& path,
+                 const std::vector<Override>& overrides) {
+  toml::table root = parseTomlText(toml_text, path);
+  TomlSource src(path);
+  for (const Override& o : overrides) applyOverride(root, o, src);
+  Scene scene;
+  scene.file = fs::absolute(path).lexically_normal().string();
+  SceneParser(src, scene).parse(root);
+  return scene;
+}
+
+Scene loadScene(const std::string& path, const std::vector<Override>& overrides) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in || fs::is_directory(path)) throw InputError(path, 1, "", "cannot open scene file");
+  std::stringstream text;
+  text << in.rdbuf();
+  return parseScene(text.str(), path, overrides);
+}
+
+}  // namespace seasim

@@ -1,0 +1,555 @@
+// scene_parser_test.cpp — scene files: a full scene read back with its unit conversions, the
+// defaults, overrides (applied, and errors located at the override), the example scenes, and a
+// table of bad inputs each with the exact "file:line: key 'KEY'" its message must contain.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+
+#include "scene/scene_parser.h"
+#include "util/error.h"
+
+namespace fs = std::filesystem;
+using namespace seasim;
+
+namespace {
+
+constexpr double kDeg = std::numbers::pi / 180.0;
+
+// A fresh folder under the system temp dir holding the files a test needs.
+fs::path tempDir(const std::string& name) {
+  fs::path dir = fs::temp_directory_path() / ("seasim_scene_test_" + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+void writeFile(const fs::path& p, const std::string& text) {
+  std::ofstream out(p, std::ios::binary);
+  out << text;
+}
+
+// The message parseScene throws, or "" when it does not throw.
+std::string errorOf(const std::string& text, const std::vector<Override>& overrides = {},
+                    const std::string& path = "bad.toml") {
+  try {
+    parseScene(text, path, overrides);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST(SceneParser, FullSceneRoundTrip) {
+  fs::path dir = tempDir("full");
+  writeFile(dir / "sky.exr", "not decoded by the parser");
+  writeFile(dir / "rock.png", "x");
+  writeFile(dir / "lamp.png", "x");
+  const std::string text = R"(
+[scene]
+name = "full"
+[camera]
+position = [1, 12.5, 3]
+look_at = [1, 0, -50]
+up = [0, 2, 0]
+fov_deg = 45
+width = 320
+height = 200
+exposure_ev = -1.5
+[sun]
+enabled = false
+zenith_deg = 30
+azimuth_deg = 90
+irradiance = 2
+angular_radius_deg = 0.5
+[sky]
+model = "image"
+radiance = 0.1
+image = "sky.exr"
+[water]
+wavelengths_nm = [400, 500, 600]
+a = [0.1, 0.05, 0.3]
+c = [0.3, 0.25, 0.4]
+kd = [0.2, 0.1, 0.4]
+g = 0.8
+ior = 1.34
+[air]
+density = 2
+extinction = 0.1
+phase = "hg"
+g = 0.3
+[surface]
+type = "fft"
+wind_speed = 7
+wind_direction_deg = 180
+patch_size = 64
+grid = 512
+choppiness = 1.2
+directional_exponent = 4
+small_wave = 0.01
+depth = 20
+loop_period = 10
+time = 2.5
+seed = 42
+[bottom]
+type = "heightfield"
+heightfield = "rock.png"
+min_depth = 2
+max_depth = 12
+extent = 50
+albedo = { wavelengths_nm = [400, 700], values = [0.1, 0.4] }
+[[objects]]
+type = "sphere"
+center = [0, -3, -10]
+radius = 1.5
+albedo = 0.7
+[[objects]]
+type = "box"
+min = [-1, -5, -20]
+max = [1, -4, -18]
+[[objects]]
+type = "plane"
+point = [0, -30, 0]
+normal = [0, 3, 4]
+[[objects]]
+type = "heightfield"
+heightfield = "rock.png"
+point = [0, -10, 0]
+extent = 20
+height = 2
+[[spotlights]]
+position = [0, 5, -5]
+direction = [0, -2, 0]
+cone_deg = 25
+falloff_deg = 3
+intensity = 500
+color = [1, 0.9, 0.8]
+light_map = "lamp.png"
+[spectral]
+count = 16
+range_nm = [420, 680]
+sensor = "nikon_d5100_npl"
+white_balance = false
+spectral_exr = true
+[sea]
+single_scattering = false
+second_order = true
+reflection = false
+[quality]
+sea_nz = 24
+froxel_x = "auto"
+shafts_exact = true
+)";
+  Scene s = parseScene(text, (dir / "full.toml").string());
+  const double tol = 1e-12;
+  EXPECT_EQ(s.name, "full");
+  EXPECT_EQ(s.file, (dir / "full.toml").lexically_normal().string());
+  EXPECT_DOUBLE_EQ(s.camera.position.y, 12.5);
+  EXPECT_DOUBLE_EQ(s.camera.look_at.z, -50);
+  EXPECT_NEAR(s.camera.up.y, 1.0, tol);  // normalised
+  EXPECT_NEAR(s.camera.fov_y, 45 * kDeg, tol);
+  EXPECT_EQ(s.camera.width, 320);
+  EXPECT_EQ(s.camera.height, 200);
+  EXPECT_DOUBLE_EQ(s.camera.exposure_ev, -1.5);
+
+  EXPECT_FALSE(s.sun.enabled);
+  EXPECT_NEAR(s.sun.zenith, std::numbers::pi / 6, tol);
+  EXPECT_NEAR(s.sun.azimuth, std::numbers::pi / 2, tol);
+  EXPECT_DOUBLE_EQ(s.sun.irradiance, 2);
+  EXPECT_NEAR(s.sun.angular_radius, 0.5 * kDeg, tol);
+
+  EXPECT_EQ(s.sky.model, SkyDesc::Model::Image);
+  EXPECT_DOUBLE_EQ(s.sky.radiance, 0.1);
+  EXPECT_EQ(s.sky.image, (dir / "sky.exr").string());
+
+  ASSERT_TRUE(s.water.present);
+  EXPECT_TRUE(s.water.jerlov.empty());
+  EXPECT_NEAR(s.water.a.at(500), 0.05, tol);
+  // c given instead of b: b = c - a.
+  ASSERT_EQ(s.water.b.values.size(), 3u);
+  EXPECT_NEAR(s.water.b.at(400), 0.2, tol);
+  EXPECT_NEAR(s.water.b.at(500), 0.2, tol);
+  EXPECT_NEAR(s.water.b.at(600), 0.1, tol);
+  EXPECT_NEAR(s.water.b.at(450), 0.2, tol);  // linear in between
+  EXPECT_NEAR(s.water.kd.at(600), 0.4, tol);
+  EXPECT_DOUBLE_EQ(s.water.g, 0.8);
+  EXPECT_DOUBLE_EQ(s.water.ior, 1.34);
+
+  ASSERT_TRUE(s.air.present);
+  EXPECT_DOUBLE_EQ(s.air.density, 2);
+  EXPECT_DOUBLE_EQ(s.air.extinction, 0.1);
+  EXPECT_EQ(s.air.phase, AirDesc::Phase::HenyeyGreenstein);
+  EXPECT_DOUBLE_EQ(s.air.g, 0.3);
+
+  EXPECT_EQ(s.surface.type, SurfaceDesc::Type::Fft);
+  EXPECT_DOUBLE_EQ(s.surface.wind_speed, 7);
+  EXPECT_NEAR(s.surface.wind_direction, std::numbers::pi, tol);
+  EXPECT_DOUBLE_EQ(s.surface.patch_size, 64);
+  EXPECT_EQ(s.surface.grid, 512);
+  EXPECT_DOUBLE_EQ(s.surface.choppiness, 1.2);
+  EXPECT_DOUBLE_EQ(s.surface.directional_exponent, 4);
+  EXPECT_DOUBLE_EQ(s.surface.small_wave, 0.01);
+  EXPECT_DOUBLE_EQ(s.surface.depth, 20);
+  EXPECT_DOUBLE_EQ(s.surface.loop_period, 10);
+  EXPECT_DOUBLE_EQ(s.surface.time, 2.5);
+  EXPECT_EQ(s.surface.seed, 42u);
+
+  EXPECT_EQ(s.bottom.type, BottomDesc::Type::HeightField);
+  EXPECT_EQ(s.bottom.heightfield, (dir / "rock.png").string());
+  EXPECT_DOUBLE_EQ(s.bottom.min_depth, 2);
+  EXPECT_DOUBLE_EQ(s.bottom.max_depth, 12);
+  EXPECT_DOUBLE_EQ(s.bottom.extent, 50);
+  EXPECT_NEAR(s.bottom.albedo.at(550), 0.25, tol);
+
+  ASSERT_EQ(s.objects.size(), 4u);
+  EXPECT_EQ(s.objects[0].type, ObjectDesc::Type::Sphere);
+  EXPECT_DOUBLE_EQ(s.objects[0].center.y, -3);
+  EXPECT_DOUBLE_EQ(s.objects[0].radius, 1.5);
+  EXPECT_DOUBLE_EQ(s.objects[0].albedo.at(600), 0.7);
+  EXPECT_EQ(s.objects[0].loc.line, 54);  // the [[objects]] header
+  EXPECT_EQ(s.objects[1].type, ObjectDesc::Type::Box);
+  EXPECT_DOUBLE_EQ(s.objects[1].box_min.z, -20);
+  EXPECT_DOUBLE_EQ(s.objects[1].box_max.y, -4);
+  EXPECT_DOUBLE_EQ(s.objects[1].albedo.at(500), 0.5);  // default
+  EXPECT_EQ(s.objects[2].type, ObjectDesc::Type::Plane);
+  EXPECT_NEAR(s.objects[2].normal.y, 0.6, tol);
+  EXPECT_NEAR(s.objects[2].normal.z, 0.8, tol);
+  EXPECT_EQ(s.objects[3].type, ObjectDesc::Type::HeightField);
+  EXPECT_EQ(s.objects[3].heightfield, (dir / "rock.png").string());
+  EXPECT_DOUBLE_EQ(s.objects[3].extent, 20);
+  EXPECT_DOUBLE_EQ(s.objects[3].height, 2);
+
+  ASSERT_EQ(s.spotlights.size(), 1u);
+  EXPECT_NEAR(s.spotlights[0].direction.y, -1, tol);
+  EXPECT_NEAR(s.spotlights[0].cone, 25 * kDeg, tol);
+  EXPECT_NEAR(s.spotlights[0].falloff, 3 * kDeg, tol);
+  EXPECT_DOUBLE_EQ(s.spotlights[0].intensity, 500);
+  EXPECT_DOUBLE_EQ(s.spotlights[0].color.z, 0.8);
+  EXPECT_EQ(s.spotlights[0].light_map, (dir / "lamp.png").string());
+
+  EXPECT_EQ(s.spectral.count, 16);
+  EXPECT_DOUBLE_EQ(s.spectral.min_nm, 420);
+  EXPECT_DOUBLE_EQ(s.spectral.max_nm, 680);
+  EXPECT_EQ(s.spectral.sensor, "nikon_d5100_npl");
+  EXPECT_FALSE(s.spectral.white_balance);
+  EXPECT_TRUE(s.spectral.spectral_exr);
+
+  EXPECT_FALSE(s.sea.single_scattering);
+  EXPECT_TRUE(s.sea.second_order);
+  EXPECT_FALSE(s.sea.reflection);
+
+  EXPECT_DOUBLE_EQ(s.quality.at("sea_nz").value, 24);
+  EXPECT_FALSE(s.quality.at("sea_nz").automatic);
+  EXPECT_TRUE(s.quality.at("froxel_x").automatic);
+  EXPECT_DOUBLE_EQ(s.quality.at("shafts_exact").value, 1);
+  EXPECT_DOUBLE_EQ(s.quality.at("sea_nd").value, 128);  // untouched knobs keep their default
+}
+
+TEST(SceneParser, Defaults) {
+  Scene s = parseScene("", "empty.toml");
+  EXPECT_EQ(s.name, "empty");
+  EXPECT_DOUBLE_EQ(s.camera.position.y, 10);
+  EXPECT_NEAR(s.camera.fov_y, 60 * kDeg, 1e-12);
+  EXPECT_EQ(s.camera.width, 640);
+  EXPECT_EQ(s.camera.height, 360);
+  EXPECT_TRUE(s.sun.enabled);
+  EXPECT_NEAR(s.sun.zenith, 45 * kDeg, 1e-12);
+  EXPECT_NEAR(s.sun.angular_radius, 0.2667 * kDeg, 1e-12);
+  EXPECT_EQ(s.sky.model, SkyDesc::Model::Uniform);
+  EXPECT_FALSE(s.water.present);
+  EXPECT_FALSE(s.air.present);
+  EXPECT_EQ(s.surface.type, SurfaceDesc::Type::Flat);
+  EXPECT_EQ(s.bottom.type, BottomDesc::Type::None);
+  EXPECT_TRUE(s.objects.empty());
+  EXPECT_TRUE(s.spotlights.empty());
+  EXPECT_EQ(s.spectral.count, 3);
+  EXPECT_EQ(s.spectral.sensor, "cie1931");
+  EXPECT_DOUBLE_EQ(s.spectral.min_nm, 400);
+  EXPECT_DOUBLE_EQ(s.spectral.max_nm, 700);
+  EXPECT_TRUE(s.sea.single_scattering);
+  EXPECT_FALSE(s.sea.second_order);
+  // Every knob is present with its documented default.
+  const std::pair<const char*, double> knobs[] = {
+      {"sea_lut_size", 64},      {"sea_nz", 12},          {"sea_nd", 128},
+      {"sea_map_size", 32},      {"shafts_planes", 30},   {"shafts_subplanes", 6},
+      {"shafts_table_size", 256}, {"shadow_map_size", 512}, {"froxel_x", 160},
+      {"froxel_y", 90},          {"froxel_z", 64},        {"caustic_map_size", 256},
+      {"reference_spp", 64},     {"reference_steps", 200}, {"shafts_exact", 0}};
+  EXPECT_EQ(s.quality.size(), std::size(knobs));
+  for (const auto& [name, value] : knobs) {
+    ASSERT_TRUE(s.quality.count(name)) << name;
+    EXPECT_FALSE(s.quality.at(name).automatic) << name;
+    EXPECT_DOUBLE_EQ(s.quality.at(name).value, value) << name;
+  }
+
+  // A [bottom] table without type is a flat bottom at the default depth; water defaults.
+  Scene b = parseScene("[water]\njerlov = \"IB\"\n[bottom]\n", "b.toml");
+  EXPECT_EQ(b.bottom.type, BottomDesc::Type::Flat);
+  EXPECT_DOUBLE_EQ(b.bottom.depth, 10);
+  EXPECT_DOUBLE_EQ(b.bottom.albedo.at(500), 0.3);
+  EXPECT_DOUBLE_EQ(b.water.g, 0.9);
+  EXPECT_DOUBLE_EQ(b.water.ior, 1.333);
+}
+
+TEST(SceneParser, JerlovSpectraFromData) {
+  // Values from data/jerlov_a.csv, jerlov_b.csv (Solonenko & Mobley 2015) and jerlov_kd.csv
+  // (Jerlov 1976); the type name is case-insensitive.
+  Scene s = parseScene("[water]\njerlov = \"ib\"\n", "j.toml");
+  EXPECT_EQ(s.water.jerlov, "IB");
+  EXPECT_DOUBLE_EQ(s.water.a.at(400), 0.0331);
+  EXPECT_DOUBLE_EQ(s.water.b.at(500), 0.0597);
+  EXPECT_DOUBLE_EQ(s.water.kd.at(400), 0.051);
+  EXPECT_EQ(s.water.a.wavelengths_nm.front(), 300);
+  EXPECT_EQ(s.water.a.wavelengths_nm.back(), 700);
+  // 5C has no published values past 575 nm: the spectrum stops there and holds its end value.
+  Scene c = parseScene("[water]\njerlov = \"5C\"\n", "j.toml");
+  EXPECT_EQ(c.water.b.wavelengths_nm.back(), 575);
+  EXPECT_DOUBLE_EQ(c.water.b.at(700), c.water.b.at(575));
+}
+
+TEST(SceneParser, ExplicitSpectraWithConsistentC) {
+  Scene s = parseScene("[water]\nwavelengths_nm = [400, 500]\na = [0.1, 0.2]\nb = [0.3, 0.4]\n"
+                       "c = [0.4, 0.6]\n", "c.toml");
+  EXPECT_NEAR(s.water.b.at(500), 0.4, 1e-12);
+  EXPECT_TRUE(s.water.kd.empty());  // optional when explicit
+}
+
+TEST(SceneParser, ExampleScenesValidate) {
+  Scene flat = loadScene(std::string(SEASIM_SOURCE_DIR) + "/scenes/flat_sea.toml");
+  EXPECT_EQ(flat.water.jerlov, "IB");
+  EXPECT_EQ(flat.bottom.type, BottomDesc::Type::Flat);
+  EXPECT_DOUBLE_EQ(flat.bottom.depth, 8);
+  EXPECT_DOUBLE_EQ(flat.bottom.albedo.at(550), 0.3);
+  EXPECT_EQ(flat.camera.width, 480);
+  EXPECT_EQ(flat.camera.height, 270);
+  EXPECT_EQ(flat.spectral.count, 3);
+  EXPECT_NEAR(flat.sun.zenith, 40 * kDeg, 1e-12);
+  EXPECT_GT(flat.camera.position.y, flat.camera.look_at.y);  // looking down
+
+  Scene deep = loadScene(std::string(SEASIM_SOURCE_DIR) + "/scenes/deep_ocean.toml");
+  EXPECT_EQ(deep.water.jerlov, "II");
+  EXPECT_EQ(deep.bottom.type, BottomDesc::Type::None);
+  EXPECT_EQ(deep.spectral.count, 16);
+  EXPECT_TRUE(deep.sea.second_order);
+}
+
+TEST(SceneParser, OverridesAreApplied) {
+  const std::string text = "[water]\njerlov = \"IB\"\n[sun]\nzenith_deg = 30\n[[objects]]\n"
+                           "type = \"sphere\"\nradius = 1\n";
+  SourceLoc at{"job.toml", 7};
+  Scene s = parseScene(text, "o.toml",
+                       {{"sun.zenith_deg", "40", at},
+                        {"water.jerlov", "\"II\"", at},
+                        {"air.density", "3.5", at},            // creates [air]
+                        {"objects[0].radius", "2.5", at},      // indexes [[objects]]
+                        {"spectral.range_nm", "[450, 650]", at},
+                        {"quality.sea_nd", "\"auto\"", at}});
+  EXPECT_NEAR(s.sun.zenith, 40 * kDeg, 1e-12);
+  EXPECT_EQ(s.water.jerlov, "II");
+  EXPECT_TRUE(s.air.present);
+  EXPECT_DOUBLE_EQ(s.air.density, 3.5);
+  EXPECT_DOUBLE_EQ(s.objects[0].radius, 2.5);
+  EXPECT_DOUBLE_EQ(s.spectral.min_nm, 450);
+  EXPECT_TRUE(s.quality.at("sea_nd").automatic);
+  // Later overrides win over earlier ones; a number becomes a spectrum table by override.
+  Scene t = parseScene(text + "[bottom]\nalbedo = 0.2\n", "o.toml",
+                       {{"sun.zenith_deg", "40", at},
+                        {"sun.zenith_deg", "50", at},
+                        {"bottom.albedo.wavelengths_nm", "[400, 700]", at},
+                        {"bottom.albedo.values", "[0.1, 0.7]", at}});
+  EXPECT_NEAR(t.sun.zenith, 50 * kDeg, 1e-12);
+  EXPECT_NEAR(t.bottom.albedo.at(550), 0.4, 1e-12);
+}
+
+TEST(SceneParser, OverrideErrorsNameTheOverride) {
+  const std::string text = "[water]\njerlov = \"IB\"\ng = 0.5\n[sun]\nzenith_deg = 30\n";
+  struct Case {
+    Override o;
+    std::string expected;
+  };
+  const Case cases[] = {
+      {{"water.g", "1.2", {"job.toml", 7}}, "job.toml:7: key 'water.g': must satisfy |g| < 1"},
+      {{"sun.zenith", "40", {"cli", 1}}, "cli:1: key 'sun.zenith': unknown key; did you mean 'zenith_deg'?"},
+      {{"sunn.zenith_deg", "40", {"job.toml", 3}}, "job.toml:3: key 'sunn': unknown table; did you mean 'sun'?"},
+      {{"sun.zenith_deg", "\"high\"", {"job.toml", 4}}, "job.toml:4: key 'sun.zenith_deg': expected a number, got a string"},
+      {{"sun.zenith_deg", "4 0", {"job.toml", 5}}, "job.toml:5: key 'sun.zenith_deg': cannot read override value '4 0'"},
+      {{"objects[2].radius", "1", {"job.toml", 6}}, "job.toml:6: key 'objects[2].radius': the scene has no objects[2]"},
+      {{"sun..zenith_deg", "1", {"job.toml", 8}}, "job.toml:8: key 'sun..zenith_deg': cannot use this override key"},
+      {{"camera.position", "[0, 0, -100]", {"job.toml", 9}}, "job.toml:9: key 'camera.position': camera.position and camera.look_at are the same point"},
+  };
+  for (const Case& c : cases) EXPECT_NE(errorOf(text, {c.o}).find(c.expected), std::string::npos)
+      << "override " << c.o.key << " = " << c.o.value_toml << "\n  got: " << errorOf(text, {c.o});
+  // A value the override did not touch still reports the scene file.
+  EXPECT_NE(errorOf("[water]\njerlov = \"IB\"\ng = 1.5\n", {{"sun.zenith_deg", "40", {"job.toml", 2}}})
+                .find("bad.toml:3: key 'water.g'"),
+            std::string::npos);
+}
+
+TEST(SceneParser, TexturesResolveAgainstTheSceneFile) {
+  fs::path dir = tempDir("tex");
+  fs::create_directories(dir / "sub" / "tex");
+  writeFile(dir / "sub" / "tex" / "hf.png", "x");
+  const std::string text = "[water]\njerlov = \"IB\"\n[bottom]\ntype = \"heightfield\"\nheightfield = \"tex/hf.png\"\n";
+  Scene s = parseScene(text, (dir / "sub" / "s.toml").string());
+  EXPECT_EQ(s.bottom.heightfield, (dir / "sub" / "tex" / "hf.png").string());
+  // The same scene anchored one folder up does not find its texture.
+  std::string msg = errorOf(text, {}, (dir / "s.toml").string());
+  EXPECT_NE(msg.find("s.toml:5: key 'bottom.heightfield': file not found: " + (dir / "tex" / "hf.png").string()),
+            std::string::npos) << msg;
+}
+
+TEST(SceneParser, LoadSceneReportsMissingFile) {
+  EXPECT_THROW(loadScene("/nonexistent/seasim/none.toml"), InputError);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Bad inputs: each text must fail with a message containing `expected` (file:line and key).
+
+struct BadScene {
+  const char* what;
+  const char* toml;
+  const char* expected;
+};
+
+const BadScene kBadScenes[] = {
+    {"typo'd key", "[sun]\nzenith_dg = 40\n",
+     "bad.toml:2: key 'sun.zenith_dg': unknown key; did you mean 'zenith_deg'?"},
+    {"typo'd table", "[watr]\njerlov = \"IB\"\n",
+     "bad.toml:1: key 'watr': unknown table; did you mean 'water'?"},
+    {"stray top-level key", "name = \"x\"\n", "bad.toml:1: key 'name': unknown key"},
+    {"typo'd key in [water]", "[water]\njerlv = \"IB\"\n",
+     "bad.toml:2: key 'water.jerlv': unknown key; did you mean 'jerlov'?"},
+    {"g = 1.2", "[water]\njerlov = \"IB\"\ng = 1.2\n", "bad.toml:3: key 'water.g': must satisfy |g| < 1, got 1.2"},
+    {"air g = -1", "[air]\nphase = \"hg\"\ng = -1.0\n", "bad.toml:3: key 'air.g': must satisfy |g| < 1"},
+    {"air g with shafts phase", "[air]\ng = 0.5\n",
+     "bad.toml:2: key 'air.g': unknown key (not used with phase = 'shafts')"},
+    {"negative absorption", "[water]\nwavelengths_nm = [400, 500]\na = [0.1, -0.2]\nb = [0.1, 0.1]\n",
+     "bad.toml:3: key 'water.a': values must be >= 0, got -0.2"},
+    {"negative scattering", "[water]\nwavelengths_nm = [400]\na = [0.1]\nb = [-1]\n",
+     "bad.toml:4: key 'water.b': values must be >= 0"},
+    {"negative kd", "[water]\nwavelengths_nm = [400]\na = [0.1]\nb = [0.1]\nkd = [-0.5]\n",
+     "bad.toml:5: key 'water.kd': values must be >= 0"},
+    {"negative extinction", "[air]\nextinction = -0.1\n", "bad.toml:2: key 'air.extinction': must be >= 0"},
+    {"negative density", "[air]\n\ndensity = -2\n", "bad.toml:3: key 'air.density': must be >= 0"},
+    {"negative irradiance", "[sun]\nirradiance = -1\n", "bad.toml:2: key 'sun.irradiance': must be >= 0"},
+    {"negative sky radiance", "[sky]\nradiance = -0.5\n", "bad.toml:2: key 'sky.radiance': must be >= 0"},
+    {"albedo 1.5", "[water]\njerlov = \"IB\"\n[bottom]\ndepth = 5\nalbedo = 1.5\n",
+     "bad.toml:5: key 'bottom.albedo': must be in [0, 1], got 1.5"},
+    {"albedo spectrum above 1", "[[objects]]\ntype = \"sphere\"\nalbedo = { wavelengths_nm = [400, 500], values = [0.5, 1.2] }\n",
+     "bad.toml:3: key 'objects[0].albedo.values': values must be in [0, 1], got 1.2"},
+    {"typo in albedo spectrum", "[[objects]]\ntype = \"sphere\"\nalbedo = { wavelengths_nm = [400, 500], value = [0.5, 0.2] }\n",
+     "bad.toml:3: key 'objects[0].albedo.value': unknown key; did you mean 'values'?"},
+    {"ior below 1", "[water]\njerlov = \"II\"\nior = 0.9\n", "bad.toml:3: key 'water.ior': must be in (1, 3)"},
+    {"width 0", "[camera]\nwidth = 0\n", "bad.toml:2: key 'camera.width': must be an integer in [1, 16384], got 0"},
+    {"height negative", "[camera]\nheight = -270\n", "bad.toml:2: key 'camera.height': must be an integer in [1, 16384]"},
+    {"float width", "[camera]\nwidth = 480.5\n",
+     "bad.toml:2: key 'camera.width': expected an integer, got a floating-point number"},
+    {"string for a number", "[camera]\nfov_deg = \"wide\"\n",
+     "bad.toml:2: key 'camera.fov_deg': expected a number, got a string"},
+    {"number for a bool", "[sea]\nsecond_order = 1\n",
+     "bad.toml:2: key 'sea.second_order': expected true or false, got an integer"},
+    {"table for a section value", "camera = 5\n", "bad.toml:1: key 'camera': expected a table, got an integer"},
+    {"vector of 2", "[camera]\nposition = [0, 10]\n", "bad.toml:2: key 'camera.position': expected 3 numbers"},
+    {"string in a vector", "[camera]\nlook_at = [0, \"x\", 0]\n",
+     "bad.toml:2: key 'camera.look_at[1]': expected a number, got a string"},
+    {"fov 180", "[camera]\nfov_deg = 180\n", "bad.toml:2: key 'camera.fov_deg': must be in (0, 180) degrees"},
+    {"fov 0", "[camera]\nfov_deg = 0\n", "bad.toml:2: key 'camera.fov_deg': must be in (0, 180) degrees"},
+    {"position == look_at", "[camera]\nposition = [1, 2, 3]\nlook_at = [1, 2, 3]\n",
+     "bad.toml:3: key 'camera.look_at': camera.position and camera.look_at are the same point"},
+    {"up parallel to view", "[camera]\nposition = [0, 10, 0]\nlook_at = [0, 0, 0]\nup = [0, 1, 0]\n",
+     "bad.toml:4: key 'camera.up': is parallel to the view direction"},
+    {"zenith 190", "[sun]\nzenith_deg = 190\n", "bad.toml:2: key 'sun.zenith_deg': must be in [0, 180] degrees, got 190"},
+    {"sun radius negative", "[sun]\nangular_radius_deg = -0.1\n", "bad.toml:2: key 'sun.angular_radius_deg': must be in [0, 45]"},
+    {"grid not a power of two", "[water]\njerlov = \"IB\"\n[surface]\ntype = \"fft\"\ngrid = 100\n",
+     "bad.toml:5: key 'surface.grid': must be a power of two in [16, 2048], got 100"},
+    {"grid too large", "[water]\njerlov = \"IB\"\n[surface]\ngrid = 4096\n",
+     "bad.toml:4: key 'surface.grid': must be a power of two in [16, 2048], got 4096"},
+    {"negative wind", "[water]\njerlov = \"IB\"\n[surface]\nwind_speed = -3\n",
+     "bad.toml:4: key 'surface.wind_speed': must be >= 0 m/s"},
+    {"zero patch size", "[water]\njerlov = \"IB\"\n[surface]\npatch_size = 0\n",
+     "bad.toml:4: key 'surface.patch_size': must be > 0 m"},
+    {"negative seed", "[water]\njerlov = \"IB\"\n[surface]\nseed = -1\n",
+     "bad.toml:4: key 'surface.seed': must be an integer in [0, 4294967295]"},
+    {"unknown surface type", "[water]\njerlov = \"IB\"\n[surface]\ntype = \"fftt\"\n",
+     "bad.toml:4: key 'surface.type': 'fftt' is not one of 'flat', 'fft'; did you mean 'fft'?"},
+    {"range min >= max", "[spectral]\nrange_nm = [700, 400]\n", "bad.toml:2: key 'spectral.range_nm': min must be < max"},
+    {"range below 300 nm", "[spectral]\nrange_nm = [250, 700]\n",
+     "bad.toml:2: key 'spectral.range_nm': must lie within [300, 1000] nm"},
+    {"range of 3", "[spectral]\nrange_nm = [400, 500, 600]\n", "bad.toml:2: key 'spectral.range_nm': expected [min, max]"},
+    {"count 0", "[spectral]\ncount = 0\n", "bad.toml:2: key 'spectral.count': must be an integer in [1, 1000], got 0"},
+    {"count 1001", "[spectral]\ncount = 1001\n", "bad.toml:2: key 'spectral.count': must be an integer in [1, 1000], got 1001"},
+    {"unknown sensor", "[spectral]\nsensor = \"nikon_d5100\"\n",
+     "bad.toml:2: key 'spectral.sensor': unknown sensor 'nikon_d5100'"},
+    {"unequal spectra", "[water]\nwavelengths_nm = [400, 500, 600]\na = [0.1, 0.2]\nb = [0.1, 0.1, 0.1]\n",
+     "bad.toml:3: key 'water.a': has 2 values but wavelengths_nm has 3"},
+    {"wavelengths decreasing", "[water]\nwavelengths_nm = [500, 400]\na = [0.1, 0.2]\nb = [0.1, 0.1]\n",
+     "bad.toml:2: key 'water.wavelengths_nm': wavelengths must be strictly increasing (500 then 400)"},
+    {"wavelengths repeated", "[water]\nwavelengths_nm = [400, 400]\na = [0.1, 0.2]\nb = [0.1, 0.1]\n",
+     "bad.toml:2: key 'water.wavelengths_nm': wavelengths must be strictly increasing"},
+    {"missing a", "[water]\nwavelengths_nm = [400]\nb = [0.1]\n",
+     "bad.toml:2: key 'water.wavelengths_nm': explicit spectra need a"},
+    {"c inconsistent with a + b", "[water]\nwavelengths_nm = [400]\na = [0.1]\nb = [0.1]\nc = [0.5]\n",
+     "bad.toml:5: key 'water.c': c must equal a + b"},
+    {"c below a", "[water]\nwavelengths_nm = [400]\na = [0.3]\nc = [0.2]\n",
+     "bad.toml:4: key 'water.c': c must be >= a"},
+    {"unknown Jerlov type", "[water]\njerlov = \"IV\"\n",
+     "bad.toml:2: key 'water.jerlov': unknown Jerlov water type 'IV'; valid: I, IA, IB, II, III, 1C, 3C, 5C, 7C, 9C"},
+    {"jerlov and explicit spectra", "[water]\njerlov = \"IB\"\nwavelengths_nm = [400]\na = [0.1]\nb = [0.1]\n",
+     "bad.toml:3: key 'water.wavelengths_nm': give either jerlov or explicit spectra"},
+    {"water without optics", "[water]\ng = 0.8\n", "bad.toml:1: key 'water.jerlov': missing"},
+    {"surface without water", "[surface]\ntype = \"fft\"\n", "bad.toml:1: key 'surface': needs a [water] table"},
+    {"bottom without water", "[sun]\nzenith_deg = 10\n[bottom]\ndepth = 4\n", "bad.toml:3: key 'bottom': needs a [water] table"},
+    {"missing bottom height field", "[water]\njerlov = \"IB\"\n[bottom]\ntype = \"heightfield\"\n",
+     "bad.toml:3: key 'bottom.heightfield': missing"},
+    {"missing bottom height-field file", "[water]\njerlov = \"IB\"\n[bottom]\ntype = \"heightfield\"\nheightfield = \"x.png\"\n",
+     "bad.toml:5: key 'bottom.heightfield': file not found"},
+    {"missing sky image", "[sky]\nmodel = \"image\"\nimage = \"nope.exr\"\n", "bad.toml:3: key 'sky.image': file not found"},
+    {"image with uniform sky", "[sky]\nimage = \"nope.exr\"\n",
+     "bad.toml:2: key 'sky.image': unknown key (not used with model = 'uniform')"},
+    {"missing light map", "[[spotlights]]\nposition = [0, 5, 0]\nlight_map = \"gobo.png\"\n",
+     "bad.toml:3: key 'spotlights[0].light_map': file not found"},
+    {"zero spotlight direction", "[[spotlights]]\ndirection = [0, 0, 0]\n",
+     "bad.toml:2: key 'spotlights[0].direction': must not be the zero vector"},
+    {"falloff beyond cone", "[[spotlights]]\ncone_deg = 10\nfalloff_deg = 12\n",
+     "bad.toml:3: key 'spotlights[0].falloff_deg': must be in [0, cone_deg = 10]"},
+    {"zero plane normal", "[[objects]]\ntype = \"plane\"\nnormal = [0, 0, 0]\n",
+     "bad.toml:3: key 'objects[0].normal': must not be the zero vector"},
+    {"box min >= max", "[[objects]]\ntype = \"box\"\nmin = [0, 0, 0]\nmax = [1, 0, 1]\n",
+     "bad.toml:4: key 'objects[0].max': every component of max must be greater than min's"},
+    {"radius on a box", "[[objects]]\ntype = \"box\"\nmin = [0, 0, 0]\nmax = [1, 1, 1]\nradius = 2\n",
+     "bad.toml:5: key 'objects[0].radius': unknown key (not used with type = 'box')"},
+    {"negative radius of the second object", "[[objects]]\ntype = \"sphere\"\n\n[[objects]]\ntype = \"sphere\"\nradius = -1\n",
+     "bad.toml:6: key 'objects[1].radius': must be > 0 m, got -1"},
+    {"object without type", "[[objects]]\nradius = 1\n", "bad.toml:1: key 'objects[0].type': missing"},
+    {"unknown object type", "[[objects]]\ntype = \"cone\"\n", "bad.toml:2: key 'objects[0].type': 'cone' is not one of"},
+    {"[objects] as a plain table", "[objects]\ntype = \"sphere\"\n",
+     "bad.toml:1: key 'objects': expected an array of tables ([[objects]])"},
+    {"knob 0", "[quality]\nsea_nz = 0\n", "bad.toml:2: key 'quality.sea_nz': must be an integer in [1, 1048576], got 0"},
+    {"knob bad string", "[quality]\nsea_nd = \"fast\"\n", "bad.toml:2: key 'quality.sea_nd': expected a positive integer or \"auto\", got 'fast'"},
+    {"knob float", "[quality]\nshafts_planes = 30.5\n", "bad.toml:2: key 'quality.shafts_planes': expected a positive integer or \"auto\""},
+    {"unknown knob", "[quality]\nshaft_planes = 10\n", "bad.toml:2: key 'quality.shaft_planes': unknown key; did you mean 'shafts_planes'?"},
+    {"TOML syntax error", "[camera]\nwidth = \n", "bad.toml:2: TOML syntax error"},
+    {"duplicate key", "[sun]\nzenith_deg = 10\nzenith_deg = 20\n", "bad.toml:3: TOML syntax error"},
+};
+
+class BadSceneTest : public ::testing::TestWithParam<BadScene> {};
+
+TEST_P(BadSceneTest, FailsWithFileLineAndKey) {
+  const BadScene& c = GetParam();
+  std::string msg = errorOf(c.toml);
+  ASSERT_FALSE(msg.empty()) << c.what << ": parsed without error";
+  EXPECT_NE(msg.find(c.expected), std::string::npos)
+      << c.what << "\n  expected: " << c.expected << "\n  got:      " << msg;
+}
+
+INSTANTIATE_TEST_SUITE_P(Table, BadSceneTest, ::testing::ValuesIn(kBadScenes),
+                         [](const ::testing::TestParamInfo<BadScene>& info) {
+                           std::string n = std::to_string(info.index) + "_";
+                           for (const char* p = info.param.what; *p; ++p)
+                             n += std::isalnum(static_cast<unsigned char>(*p)) ? *p : '_';
+                           return n;
+                         });
