@@ -194,7 +194,7 @@ int cmdSweep(const SweepCmd& cmd) {
   for (const auto& a : axes) header.push_back(a.key);
   for (const char* h : {"kernel_ms", "wall_ms", "rmse_8bit", "max_abs_8bit", "rel_l2", "hue_sat_distance"})
     header.emplace_back(h);
-  CsvTable table(header);
+  CsvWriter table(header);
   PlotSeries series{"rmse (8-bit levels)", {}, {}};
   for (size_t k = 0; k < scenes.size(); ++k) {
     (void)renderFrame(device, scenes[k], makePlan(scenes[k]));  // warm-up: PoCL compiles lazily
@@ -255,7 +255,7 @@ int cmdBench(const BenchCmd& cmd) {
     if (!cmd.limits) throw RuntimeError("bench needs --scene or --limits");
     return 0;
   }
-  CsvTable table({"wavelengths", "kernel_ms_median", "pixel_wavelengths_per_s"});
+  CsvWriter table({"wavelengths", "kernel_ms_median", "pixel_wavelengths_per_s"});
   PlotSeries series{"sea_single kernel", {}, {}};
   std::vector<double> ns, ts;
   for (int n : cmd.wavelengths) {

@@ -32,18 +32,18 @@ std::string CsvCell::format(double v) {
 
 std::string CsvCell::field() const { return is_number_ ? text_ : csvQuote(text_); }
 
-CsvTable::CsvTable(std::vector<std::string> header) : header_(std::move(header)) {
+CsvWriter::CsvWriter(std::vector<std::string> header) : header_(std::move(header)) {
   if (header_.empty()) throw RuntimeError("a CSV table needs at least one column");
 }
 
-void CsvTable::addRow(std::vector<CsvCell> row) {
+void CsvWriter::addRow(std::vector<CsvCell> row) {
   if (row.size() != header_.size())
     throw RuntimeError("CSV row has " + std::to_string(row.size()) + " fields, the header has " +
                        std::to_string(header_.size()));
   rows_.push_back(std::move(row));
 }
 
-std::string CsvTable::str() const {
+std::string CsvWriter::str() const {
   std::string out;
   for (std::size_t i = 0; i < header_.size(); ++i) out += (i ? "," : "") + csvQuote(header_[i]);
   out += "\n";
@@ -54,6 +54,6 @@ std::string CsvTable::str() const {
   return out;
 }
 
-void CsvTable::write(const std::string& path) const { writeTextAtomic(path, str()); }
+void CsvWriter::write(const std::string& path) const { writeTextAtomic(path, str()); }
 
 }  // namespace seasim

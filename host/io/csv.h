@@ -36,9 +36,9 @@ class CsvCell {
   bool is_number_;
 };
 
-class CsvTable {
+class CsvWriter {
  public:
-  explicit CsvTable(std::vector<std::string> header);
+  explicit CsvWriter(std::vector<std::string> header);
   // A row must have as many fields as the header (RuntimeError otherwise).
   void addRow(std::vector<CsvCell> row);
   std::size_t rows() const { return rows_.size(); }

@@ -45,7 +45,8 @@ std::string writeSpectralExr(const std::string& path, int width, int height,
 
 // Any image file (EXR, PNG, ... or .npy) as float values: EXR as stored (linear), 8-bit formats as
 // their encoded values scaled to [0,1] (NOT linearised; compare renders through EXR files).
-// Channel names are the file's. OpenEXR stores channels sorted by name; this returns them in the
+// Channel names are the file's. In the .npy build, readImage("x.png") gives the stand-in's bytes
+// as 0..255 floats. OpenEXR stores channels sorted by name; this returns them in the
 // file's order (R,G,B,A first when present).
 Image readImage(const std::string& path);
 

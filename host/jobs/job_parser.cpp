@@ -1,5 +1,6 @@
 // job_parser.cpp — TOML job files -> Job: renders, frame ranges and sweeps expanded into a flat
-// list of uniquely named items, each validated with its scene. Format: scenes/README.md ("Job files").
+// list of uniquely named items, each validated with its scene. Format: scenes/README.md ("Job
+// files").
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -89,13 +90,15 @@ class JobParser {
   Job& job_;
   std::vector<Override> job_overrides_;
 
-  std::vector<std::pair<size_t, const toml::table*>> arrayOfTables(TableReader& root, const char* name) {
+  std::vector<std::pair<size_t, const toml::table*>> arrayOfTables(TableReader& root,
+                                                                   const char* name) {
     std::vector<std::pair<size_t, const toml::table*>> out;
     const toml::node* n = root.get(name);
     if (!n) return out;
     const toml::array* a = n->as_array();
     if (!a || (!a->empty() && !a->is_array_of_tables()))
-      root.fail(name, std::string("expected an array of tables ([[") + name + "]]), got " + typeName(*n));
+      root.fail(name,
+                std::string("expected an array of tables ([[") + name + "]]), got " + typeName(*n));
     for (size_t i = 0; i < a->size(); ++i) out.emplace_back(i, a->get(i)->as_table());
     return out;
   }
@@ -128,7 +131,8 @@ class JobParser {
     PendingItem p;
     RenderItem& item = p.item;
     item.loc = src_.locOf(&t);
-    r.check(r.has("scene"), "scene", "missing: the scene file to render (relative to the job file)");
+    r.check(r.has("scene"), "scene",
+            "missing: the scene file to render (relative to the job file)");
     item.scene_file = existingFile(r, "scene");
     item.name = r.string("name", fs::path(item.scene_file).stem().string());
     p.name_node = t.get("name") ? t.get("name") : static_cast<const toml::node*>(&t);
@@ -147,7 +151,8 @@ class JobParser {
         const auto* s = e.as_string();
         if (!s) src_.fail(&e, where, "expected a string, got " + typeName(e));
         if (std::find(kOutputs.begin(), kOutputs.end(), s->get()) == kOutputs.end())
-          src_.fail(&e, where, "unknown output '" + s->get() + "'" + suggestion(s->get(), kOutputs));
+          src_.fail(&e, where,
+                    "unknown output '" + s->get() + "'" + suggestion(s->get(), kOutputs));
         if (std::find(item.outputs.begin(), item.outputs.end(), s->get()) != item.outputs.end())
           src_.fail(&e, where, "output '" + s->get() + "' is listed twice");
         item.outputs.push_back(s->get());
@@ -167,7 +172,8 @@ class JobParser {
       r.check(a && a->size() == 2, "resolution", "expected [width, height] in pixels");
       const char* keys[] = {"camera.width", "camera.height"};
       for (size_t i = 0; i < 2; ++i)
-        base.item.overrides.push_back(Override{keys[i], valueText(*a->get(i)), src_.locOf(a->get(i))});
+        base.item.overrides.push_back(
+            Override{keys[i], valueText(*a->get(i)), src_.locOf(a->get(i))});
     }
 
     long long frames = r.integerIn("frames", 1, 1, 100000);
@@ -184,7 +190,9 @@ class JobParser {
 
     SourceLoc time_loc = src_.locOf(time_node);
     if (frames == 1) {
-      if (time_node) base.item.overrides.push_back(Override{"surface.time", valueText(toml::value<double>(time[0])), time_loc});
+      if (time_node)
+        base.item.overrides.push_back(
+            Override{"surface.time", valueText(toml::value<double>(time[0])), time_loc});
       items.push_back(base);
       return;
     }
@@ -194,8 +202,10 @@ class JobParser {
       char suffix[32];
       std::snprintf(suffix, sizeof suffix, "_f%04lld", f);
       p.item.name += suffix;
-      double t_f = time[0] + (time[1] - time[0]) * static_cast<double>(f) / static_cast<double>(frames - 1);
-      p.item.overrides.push_back(Override{"surface.time", valueText(toml::value<double>(t_f)), time_loc});
+      double t_f =
+          time[0] + (time[1] - time[0]) * static_cast<double>(f) / static_cast<double>(frames - 1);
+      p.item.overrides.push_back(
+          Override{"surface.time", valueText(toml::value<double>(t_f)), time_loc});
       items.push_back(p);
     }
   }
@@ -203,7 +213,8 @@ class JobParser {
   void sweep(const toml::table& t, size_t index, std::vector<PendingItem>& items) {
     TableReader r(src_, t, "sweep[" + std::to_string(index) + "]");
     PendingItem base = common(r, t);
-    r.check(r.has("param"), "param", "missing: the dotted scene key to sweep, e.g. \"sun.zenith_deg\"");
+    r.check(r.has("param"), "param",
+            "missing: the dotted scene key to sweep, e.g. \"sun.zenith_deg\"");
     std::string param = r.string("param", "");
     r.check(!param.empty(), "param", "must not be empty");
     r.check(r.has("values"), "values", "missing: the array of values to give " + param);
@@ -215,7 +226,8 @@ class JobParser {
 
     // Item "<name>_<last part of param>=<value>"; the override sits at the value, so a bad value
     // (or a param the scene does not know) is reported on its line.
-    std::string last = param.substr(param.rfind('.') == std::string::npos ? 0 : param.rfind('.') + 1);
+    std::string last =
+        param.substr(param.rfind('.') == std::string::npos ? 0 : param.rfind('.') + 1);
     for (size_t i = 0; i < values->size(); ++i) {
       const toml::node& v = *values->get(i);
       PendingItem p = base;
@@ -241,8 +253,9 @@ Job parseJob(const std::string& toml_text, const std::string& path) {
   for (const PendingItem& p : items) {
     SourceLoc loc = src.locOf(p.name_node);
     if (!safeFileName(p.item.name))
-      throw InputError(loc.file, loc.line, p.name_key,
-                       "item name '" + p.item.name + "' is not a safe file name (" + kSafeNameRule + ")");
+      throw InputError(
+          loc.file, loc.line, p.name_key,
+          "item name '" + p.item.name + "' is not a safe file name (" + kSafeNameRule + ")");
     auto [it, fresh] = seen.emplace(p.item.name, loc);
     if (!fresh)
       throw InputError(loc.file, loc.line, p.name_key,

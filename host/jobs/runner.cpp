@@ -42,7 +42,8 @@ std::set<std::string> finishedItems(const std::string& output_dir) {
     }
     for (const auto& item : manifest.value("items", nlohmann::json::array())) {
       bool intact = true;
-      for (const auto& [file, checksum] : item.value("files", nlohmann::json::object()).items()) {
+      const nlohmann::json files = item.value("files", nlohmann::json::object());  // not a temporary: items() refers into it
+      for (const auto& [file, checksum] : files.items()) {
         if (fileChecksum(output_dir + "/" + file) != checksum.get<std::string>()) intact = false;
       }
       if (intact) done.insert(item.value("name", ""));

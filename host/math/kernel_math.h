@@ -10,6 +10,7 @@ typedef float real;
 #include "common/real3_host.h"
 #include "common/optics.h"
 #include "common/sea_surface.h"
+#include "common/ocean_spectrum.h"
 }  // namespace seasim::kmath_f
 
 namespace seasim::kmath_d {
@@ -17,4 +18,5 @@ typedef double real;
 #include "common/real3_host.h"
 #include "common/optics.h"
 #include "common/sea_surface.h"
+#include "common/ocean_spectrum.h"
 }  // namespace seasim::kmath_d

@@ -95,7 +95,9 @@ Image renderSeaReference(const Scene& scene, int steps) {
             // Beam irradiance in the water E T_i / cos_io, scattered by beta into the view ray,
             // attenuated down and back up; midpoint rule over depth.
             const double sec_sum = 1 / cos_io + 1 / cos_ji;
-            const double z_end = bottom ? scene.bottom.depth : 40.0 / std::max(kk * sec_sum, 1e-12);
+            // Below 40 optical depths (down and back) the integrand is < e^-40 of its surface value.
+            const double z_optical = 40.0 / std::max(kk * sec_sum, 1e-12);
+            const double z_end = bottom ? std::min(scene.bottom.depth, z_optical) : z_optical;
             const double dz = z_end / steps;
             double sum = 0;
             for (int s = 0; s < steps; ++s) sum += std::exp(-kk * (s + 0.5) * dz * sec_sum);

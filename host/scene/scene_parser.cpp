@@ -10,6 +10,8 @@
 #include <sstream>
 
 #include "scene/toml_reader.h"
+#include "spectral/jerlov.h"
+#include "spectral/sensor.h"
 #include "util/error.h"
 #include "util/paths.h"
 
@@ -45,72 +47,11 @@ constexpr long long kMaxKnob = 1 << 20;  // catches typos such as 1e9 planes
 
 constexpr double kDegToRad = std::numbers::pi / 180.0;
 
-const std::vector<std::string> kTopLevel = {"scene",   "camera", "sun",     "sky",     "water",
-                                            "air",     "surface", "bottom", "objects", "spotlights",
-                                            "spectral", "sea",    "quality"};
+const std::vector<std::string> kTopLevel = {
+    "scene",  "camera",  "sun",        "sky",      "water", "air",    "surface",
+    "bottom", "objects", "spotlights", "spectral", "sea",   "quality"};
 
 std::string fmt(double v) { return formatNumber(v); }
-
-// ---------------------------------------------------------------------------------------------
-// Data files (Jerlov tables, camera list)
-
-// A data/ CSV: header row, first column wavelength_nm, empty cells allowed (data/README.md).
-struct CsvTable {
-  std::vector<std::string> columns;  // without the wavelength column
-  std::vector<double> wavelengths_nm;
-  std::vector<std::vector<std::string>> cells;  // [row][column]
-};
-
-CsvTable readCsv(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw RuntimeError("cannot read data file " + path);
-  auto split = [](const std::string& line) {
-    std::vector<std::string> out;
-    std::stringstream ss(line);
-    std::string cell;
-    while (std::getline(ss, cell, ',')) out.push_back(cell);
-    if (!line.empty() && line.back() == ',') out.emplace_back();
-    return out;
-  };
-  CsvTable t;
-  std::string line;
-  if (!std::getline(in, line)) throw RuntimeError("empty data file " + path);
-  auto header = split(line);
-  t.columns.assign(header.begin() + 1, header.end());
-  while (std::getline(in, line)) {
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (line.empty()) continue;
-    auto row = split(line);
-    t.wavelengths_nm.push_back(std::stod(row.at(0)));
-    row.erase(row.begin());
-    row.resize(t.columns.size());
-    t.cells.push_back(row);
-  }
-  return t;
-}
-
-// One column as a spectrum; empty cells are skipped (the neighbours then hold, see
-// data/README.md: 3C and 5C have no published b at the long-wavelength end).
-Spectrum csvColumn(const CsvTable& t, const std::string& column) {
-  auto it = std::find(t.columns.begin(), t.columns.end(), column);
-  size_t c = static_cast<size_t>(it - t.columns.begin());
-  Spectrum s;
-  for (size_t r = 0; r < t.cells.size(); ++r) {
-    if (c >= t.cells[r].size() || t.cells[r][c].empty()) continue;
-    s.wavelengths_nm.push_back(t.wavelengths_nm[r]);
-    s.values.push_back(std::stod(t.cells[r][c]));
-  }
-  return s;
-}
-
-std::vector<std::string> cameraNames() {
-  std::vector<std::string> names;
-  std::error_code ec;
-  for (const auto& e : fs::directory_iterator(fs::path(dataDir()) / "cameras", ec))
-    if (e.path().extension() == ".csv") names.push_back(e.path().stem().string());
-  std::sort(names.begin(), names.end());
-  return names;
-}
 
 // ---------------------------------------------------------------------------------------------
 // The parser
@@ -172,8 +113,8 @@ class SceneParser {
     if (!n) return out;
     const toml::array* a = n->as_array();
     if (!a || (!a->empty() && !a->is_array_of_tables()))
-      root.fail(name, std::string("expected an array of tables ([[") + name + "]]), got " +
-                          typeName(*n));
+      root.fail(name,
+                std::string("expected an array of tables ([[") + name + "]]), got " + typeName(*n));
     for (size_t i = 0; i < a->size(); ++i) out.emplace_back(i, a->get(i)->as_table());
     return out;
   }
@@ -210,7 +151,8 @@ class SceneParser {
     r.check(v.size() == wl.size(), key,
             "has " + std::to_string(v.size()) + " values but wavelengths_nm has " +
                 std::to_string(wl.size()));
-    for (double x : v) r.check(x >= lo && x <= hi, key, "values must be " + range_text + ", got " + fmt(x));
+    for (double x : v)
+      r.check(x >= lo && x <= hi, key, "values must be " + range_text + ", got " + fmt(x));
     return Spectrum{wl, v};
   }
 
@@ -225,8 +167,9 @@ class SceneParser {
     }
     const toml::table* t = n->as_table();
     if (!t)
-      r.fail("albedo", "expected a number in [0, 1] or { wavelengths_nm = [...], values = [...] }, got " +
-                           typeName(*n));
+      r.fail("albedo",
+             "expected a number in [0, 1] or { wavelengths_nm = [...], values = [...] }, got " +
+                 typeName(*n));
     TableReader s(src_, *t, r.path("albedo"));
     for (const char* k : {"wavelengths_nm", "values"}) s.has(k);
     s.finish();
@@ -273,7 +216,8 @@ class SceneParser {
     s.enabled = r.boolean("enabled", s.enabled);
     double zenith = r.number("zenith_deg", 45.0);
     // Zenith up to 180: a sun below the horizon (dusk, night) is allowed.
-    r.check(zenith >= 0 && zenith <= 180, "zenith_deg", "must be in [0, 180] degrees, got " + fmt(zenith));
+    r.check(zenith >= 0 && zenith <= 180, "zenith_deg",
+            "must be in [0, 180] degrees, got " + fmt(zenith));
     s.zenith = zenith * kDegToRad;
     s.azimuth = r.number("azimuth_deg", 0.0) * kDegToRad;
     s.irradiance = r.number("irradiance", s.irradiance);
@@ -291,7 +235,7 @@ class SceneParser {
     TableReader r(src_, t, "sky", "not used with model = '" + model + "'");
     r.has("model");
     SkyDesc& s = scene_.sky;
-    s.model = model == "uniform" ? SkyDesc::Model::Uniform
+    s.model = model == "uniform"    ? SkyDesc::Model::Uniform
               : model == "analytic" ? SkyDesc::Model::Analytic
                                     : SkyDesc::Model::Image;
     s.radiance = r.number("radiance", s.radiance);
@@ -300,9 +244,9 @@ class SceneParser {
     r.finish();
   }
 
-  // Water: a Jerlov type (a, b from Solonenko & Mobley 2015; Kd from Jerlov 1976; data/README.md)
-  // or explicit spectra. With explicit spectra, c may be given instead of b (b = c - a), or with
-  // both, and then must equal a + b.
+  // Water: a Jerlov type or explicit spectra. With explicit spectra, c may be given instead of b
+  // (b = c - a), or with both, and then must equal a + b; kd left out stays empty and
+  // resolveWater (spectral/jerlov.h) derives it from a and b.
   void water(const toml::table& t) {
     TableReader r(src_, t, "water");
     // Unknown keys first: a typo'd "jerlv" should read as a typo, not as "jerlov missing".
@@ -319,18 +263,21 @@ class SceneParser {
         r.fail(first_explicit,
                "give either jerlov or explicit spectra (wavelengths_nm, a, b), not both");
       std::string type = r.string("jerlov", "");
-      CsvTable ta = readCsv(dataDir() + "/jerlov_a.csv");
       std::string canon = type;
       for (char& ch : canon) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
-      if (std::find(ta.columns.begin(), ta.columns.end(), canon) == ta.columns.end()) {
+      const std::vector<std::string>& types = jerlovTypes();
+      if (std::find(types.begin(), types.end(), canon) == types.end()) {
         std::string list;
-        for (size_t i = 0; i < ta.columns.size(); ++i) list += (i ? ", " : "") + ta.columns[i];
+        for (size_t i = 0; i < types.size(); ++i) list += (i ? ", " : "") + types[i];
         r.fail("jerlov", "unknown Jerlov water type '" + type + "'; valid: " + list);
       }
+      // The tables' spectra (spectral/jerlov.h: a, b from Solonenko & Mobley 2015 with its gaps
+      // filled, Kd from Jerlov 1976), so every consumer sees the same water.
+      WaterSpectra js = jerlovWater(canon);
       w.jerlov = canon;
-      w.a = csvColumn(ta, canon);
-      w.b = csvColumn(readCsv(dataDir() + "/jerlov_b.csv"), canon);
-      w.kd = csvColumn(readCsv(dataDir() + "/jerlov_kd.csv"), canon);
+      w.a = js.a;
+      w.b = js.b;
+      w.kd = js.kd;
     } else if (first_explicit) {
       r.check(r.has("wavelengths_nm"), first_explicit, "explicit spectra need wavelengths_nm");
       r.check(r.has("a"), "wavelengths_nm", "explicit spectra need a (absorption, 1/m)");
@@ -348,26 +295,28 @@ class SceneParser {
           double b_from_c = c.values[i] - w.a.values[i];
           if (!r.has("b")) {
             r.check(b_from_c >= -1e-9, "c",
-                    "c must be >= a (b = c - a), but at " + fmt(wl[i]) + " nm c = " +
-                        fmt(c.values[i]) + " < a = " + fmt(w.a.values[i]));
+                    "c must be >= a (b = c - a), but at " + fmt(wl[i]) +
+                        " nm c = " + fmt(c.values[i]) + " < a = " + fmt(w.a.values[i]));
             w.b.values[i] = std::max(b_from_c, 0.0);
           } else {
             double sum = w.a.values[i] + w.b.values[i];
             r.check(std::abs(c.values[i] - sum) <= 0.005 * sum + 1e-6, "c",
-                    "c must equal a + b (within 0.5 %), but at " + fmt(wl[i]) + " nm c = " +
-                        fmt(c.values[i]) + " and a + b = " + fmt(sum));
+                    "c must equal a + b (within 0.5 %), but at " + fmt(wl[i]) +
+                        " nm c = " + fmt(c.values[i]) + " and a + b = " + fmt(sum));
           }
         }
       }
       if (r.has("kd")) w.kd = spectrumValues(r, "kd", wl, 0, inf, ">= 0");
     } else {
-      r.fail("jerlov", "missing: [water] needs jerlov = \"IB\" (a Jerlov type) or explicit spectra "
-                       "wavelengths_nm, a and b");
+      r.fail("jerlov",
+             "missing: [water] needs jerlov = \"IB\" (a Jerlov type) or explicit spectra "
+             "wavelengths_nm, a and b");
     }
     w.g = r.number("g", w.g);
     r.check(std::abs(w.g) < 1, "g", "must satisfy |g| < 1, got " + fmt(w.g));
     w.ior = r.number("ior", w.ior);
-    r.check(w.ior > 1 && w.ior < 3, "ior", "must be in (1, 3) (water is denser than air), got " + fmt(w.ior));
+    r.check(w.ior > 1 && w.ior < 3, "ior",
+            "must be in (1, 3) (water is denser than air), got " + fmt(w.ior));
     r.finish();
   }
 
@@ -421,7 +370,8 @@ class SceneParser {
   // Without [bottom] the water is deep (type "none"); a [bottom] table defaults to a flat one.
   void bottom(const toml::table& t, bool present) {
     TableReader probe(src_, t, "bottom");
-    std::string type = probe.choice("type", present ? "flat" : "none", {"none", "flat", "heightfield"});
+    std::string type =
+        probe.choice("type", present ? "flat" : "none", {"none", "flat", "heightfield"});
     TableReader r(src_, t, "bottom", "not used with type = '" + type + "'");
     r.has("type");
     BottomDesc& b = scene_.bottom;
@@ -450,7 +400,8 @@ class SceneParser {
   void object(const toml::table& t, size_t index) {
     std::string path = "objects[" + std::to_string(index) + "]";
     TableReader probe(src_, t, path);
-    probe.check(probe.has("type"), "type", "missing: one of 'sphere', 'box', 'plane', 'heightfield'");
+    probe.check(probe.has("type"), "type",
+                "missing: one of 'sphere', 'box', 'plane', 'heightfield'");
     std::string type = probe.choice("type", "", {"sphere", "box", "plane", "heightfield"});
     TableReader r(src_, t, path, "not used with type = '" + type + "'");
     r.has("type");
@@ -463,7 +414,8 @@ class SceneParser {
       r.check(o.radius > 0, "radius", "must be > 0 m, got " + fmt(o.radius));
     } else if (type == "box") {
       o.type = ObjectDesc::Type::Box;
-      r.check(r.has("min") && r.has("max"), r.has("min") ? "max" : "min", "missing: a box needs min and max");
+      r.check(r.has("min") && r.has("max"), r.has("min") ? "max" : "min",
+              "missing: a box needs min and max");
       o.box_min = r.vec3("min", o.box_min);
       o.box_max = r.vec3("max", o.box_max);
       r.check(o.box_min.x < o.box_max.x && o.box_min.y < o.box_max.y && o.box_min.z < o.box_max.z,
@@ -514,8 +466,10 @@ class SceneParser {
     s.count = static_cast<int>(r.integerIn("count", s.count, 1, 1000));
     if (r.has("range_nm")) {
       std::vector<double> range = r.numbers("range_nm");
-      r.check(range.size() == 2, "range_nm", "expected [min, max] in nm, got " + std::to_string(range.size()) + " numbers");
-      r.check(range[0] < range[1], "range_nm", "min must be < max, got [" + fmt(range[0]) + ", " + fmt(range[1]) + "]");
+      r.check(range.size() == 2, "range_nm",
+              "expected [min, max] in nm, got " + std::to_string(range.size()) + " numbers");
+      r.check(range[0] < range[1], "range_nm",
+              "min must be < max, got [" + fmt(range[0]) + ", " + fmt(range[1]) + "]");
       r.check(range[0] >= 300 && range[1] <= 1000, "range_nm",
               "must lie within [300, 1000] nm, got [" + fmt(range[0]) + ", " + fmt(range[1]) + "]");
       s.min_nm = range[0];
@@ -548,10 +502,12 @@ class SceneParser {
       Knob knob{false, static_cast<double>(k.value)};
       if (const toml::node* n = r.get(k.name)) {
         if (auto* s = n->as_string()) {
-          r.check(s->get() == "auto", k.name, "expected a positive integer or \"auto\", got '" + s->get() + "'");
+          r.check(s->get() == "auto", k.name,
+                  "expected a positive integer or \"auto\", got '" + s->get() + "'");
           knob.automatic = true;
         } else {
-          r.check(n->is_integer(), k.name, "expected a positive integer or \"auto\", got " + typeName(*n));
+          r.check(n->is_integer(), k.name,
+                  "expected a positive integer or \"auto\", got " + typeName(*n));
           knob.value = static_cast<double>(r.integerIn(k.name, k.value, 1, kMaxKnob));
         }
       }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <sstream>
 
 #include "util/error.h"
@@ -22,7 +23,8 @@ SourceLoc TomlSource::locOf(const toml::node* n) const {
   return {file_, 1};
 }
 
-void TomlSource::fail(const toml::node* n, const std::string& key, const std::string& message) const {
+void TomlSource::fail(const toml::node* n, const std::string& key,
+                      const std::string& message) const {
   SourceLoc loc = locOf(n);
   throw InputError(loc.file, loc.line, key, message);
 }
@@ -104,8 +106,8 @@ void applyOverride(toml::table& root, const Override& o, TomlSource& source) {
     parsed = toml::parse("v = " + o.value_toml, std::string_view(o.loc.file));
   } catch (const toml::parse_error& e) {
     throw InputError(o.loc.file, o.loc.line, o.key,
-                     "cannot read override value '" + o.value_toml + "' as TOML: " +
-                         std::string(e.description()));
+                     "cannot read override value '" + o.value_toml +
+                         "' as TOML: " + std::string(e.description()));
   }
   if (parsed.size() != 1 || !parsed.contains("v"))
     throw InputError(o.loc.file, o.loc.line, o.key,
@@ -122,12 +124,11 @@ void applyOverride(toml::table& root, const Override& o, TomlSource& source) {
       size_t count = arr ? arr->size() : 0;
       if (!arr || static_cast<size_t>(s.index) >= count)
         throw InputError(o.loc.file, o.loc.line, o.key,
-                         "the scene has no " + walked + "[" + std::to_string(s.index) + "] (it has " +
-                             std::to_string(count) + "; indices start at 0)");
+                         "the scene has no " + walked + "[" + std::to_string(s.index) +
+                             "] (it has " + std::to_string(count) + "; indices start at 0)");
       walked += "[" + std::to_string(s.index) + "]";
       cur = (*arr)[static_cast<size_t>(s.index)].as_table();
-      if (!cur)
-        throw InputError(o.loc.file, o.loc.line, o.key, "'" + walked + "' is not a table");
+      if (!cur) throw InputError(o.loc.file, o.loc.line, o.key, "'" + walked + "' is not a table");
       continue;
     }
     if (!n || !n->is_table()) {
@@ -154,16 +155,26 @@ void applyOverride(toml::table& root, const Override& o, TomlSource& source) {
 
 std::string typeName(const toml::node& n) {
   switch (n.type()) {
-    case toml::node_type::table: return "a table";
-    case toml::node_type::array: return "an array";
-    case toml::node_type::string: return "a string";
-    case toml::node_type::integer: return "an integer";
-    case toml::node_type::floating_point: return "a floating-point number";
-    case toml::node_type::boolean: return "a boolean";
-    case toml::node_type::date: return "a date";
-    case toml::node_type::time: return "a time";
-    case toml::node_type::date_time: return "a date-time";
-    default: return "nothing";
+    case toml::node_type::table:
+      return "a table";
+    case toml::node_type::array:
+      return "an array";
+    case toml::node_type::string:
+      return "a string";
+    case toml::node_type::integer:
+      return "an integer";
+    case toml::node_type::floating_point:
+      return "a floating-point number";
+    case toml::node_type::boolean:
+      return "a boolean";
+    case toml::node_type::date:
+      return "a date";
+    case toml::node_type::time:
+      return "a time";
+    case toml::node_type::date_time:
+      return "a date-time";
+    default:
+      return "nothing";
   }
 }
 
@@ -181,6 +192,24 @@ std::string valueText(const toml::node& n) {
     // Keep it a float in TOML ("40" would read back as an integer).
     if (s.find_first_of(".eE") == std::string::npos) s += ".0";
     return s;
+  }
+  if (auto* str = n.as_string()) {
+    // A TOML basic string: "..." with \ " and control characters escaped.
+    std::string s = "\"";
+    for (char ch : str->get()) {
+      unsigned char u = static_cast<unsigned char>(ch);
+      if (ch == '"' || ch == '\\') {
+        s += '\\';
+        s += ch;
+      } else if (u < 0x20 || u == 0x7f) {
+        char buf[8];
+        std::snprintf(buf, sizeof buf, "\\u%04X", u);
+        s += buf;
+      } else {
+        s += ch;
+      }
+    }
+    return s + "\"";
   }
   if (auto* a = n.as_array()) {
     std::string s = "[";
@@ -226,7 +255,8 @@ std::string closestMatch(const std::string& word, const std::vector<std::string>
   for (const auto& c : candidates) {
     size_t d = editDistance(word, c);
     // A prefix ("zenith" for "zenith_deg") counts as close.
-    if (word.size() >= 3 && (c.rfind(word, 0) == 0 || word.rfind(c, 0) == 0)) d = std::min<size_t>(d, 1);
+    if (word.size() >= 3 && (c.rfind(word, 0) == 0 || word.rfind(c, 0) == 0))
+      d = std::min<size_t>(d, 1);
     if (d < best_d) best_d = d, best = c;
   }
   size_t limit = std::max<size_t>(2, word.size() / 3);
@@ -238,8 +268,18 @@ std::string suggestion(const std::string& word, const std::vector<std::string>& 
   std::string close = closestMatch(word, candidates);
   if (!close.empty()) return "; did you mean '" + close + "'?";
   if (candidates.empty()) return "";
+  // A part of a long name ("canon_5d" of "camspec_canon_5dmarkii").
+  std::vector<std::string> containing;
+  for (const auto& c : candidates)
+    if (word.size() >= 3 && c.find(word) != std::string::npos) containing.push_back(c);
+  if (!containing.empty() && containing.size() <= 5) {
+    std::string s = "; did you mean ";
+    for (size_t i = 0; i < containing.size(); ++i) s += (i ? " or '" : "'") + containing[i] + "'";
+    return s + "?";
+  }
   std::string s = "; valid: ";
-  for (size_t i = 0; i < candidates.size() && i < max_list; ++i) s += (i ? ", " : "") + candidates[i];
+  for (size_t i = 0; i < candidates.size() && i < max_list; ++i)
+    s += (i ? ", " : "") + candidates[i];
   if (candidates.size() > max_list) s += ", ... (" + std::to_string(candidates.size()) + " in all)";
   return s;
 }
@@ -316,7 +356,8 @@ std::string TableReader::choice(std::string_view key, const std::string& def,
   std::string list;
   for (size_t i = 0; i < options.size(); ++i) list += (i ? ", " : "") + ("'" + options[i] + "'");
   std::string close = closestMatch(v, options);
-  fail(key, "'" + v + "' is not one of " + list + (close.empty() ? "" : "; did you mean '" + close + "'?"));
+  fail(key, "'" + v + "' is not one of " + list +
+                (close.empty() ? "" : "; did you mean '" + close + "'?"));
 }
 
 std::vector<double> TableReader::numbers(std::string_view key) {

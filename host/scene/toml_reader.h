@@ -1,6 +1,6 @@
 // toml_reader.h — reading TOML scene and job files with validation (STYLE.md 6): each key is read
-// with an explicit default and a type check, every key never asked for is an error ("did you mean"),
-// and every error is an InputError naming file:line and the dotted key. Nodes written by an
+// with an explicit default and a type check, every key never asked for is an error ("did you
+// mean"), and every error is an InputError naming file:line and the dotted key. Nodes written by an
 // override carry the override's location, so its errors point at the job file or command line.
 #pragma once
 #include <toml++/toml.h>
@@ -23,7 +23,8 @@ class TomlSource {
   // Where a node was written: the override's location, else file:line (null: the file's line 1).
   SourceLoc locOf(const toml::node* n) const;
   bool isOverride(const toml::node* n) const { return n && override_locs_.count(n) > 0; }
-  [[noreturn]] void fail(const toml::node* n, const std::string& key, const std::string& message) const;
+  [[noreturn]] void fail(const toml::node* n, const std::string& key,
+                         const std::string& message) const;
   // Records `n` and everything under it as written at `loc` / drops that record before `n` dies.
   void markOverride(const toml::node& n, const SourceLoc& loc);
   void forget(const toml::node& n);
@@ -63,7 +64,8 @@ class TableReader {
   bool boolean(std::string_view key, bool def);
   std::string string(std::string_view key, const std::string& def);
   // A string that must be one of `options`; the message lists them.
-  std::string choice(std::string_view key, const std::string& def, const std::vector<std::string>& options);
+  std::string choice(std::string_view key, const std::string& def,
+                     const std::vector<std::string>& options);
   Vec3 vec3(std::string_view key, Vec3 def);
   // An array of numbers (empty when absent).
   std::vector<double> numbers(std::string_view key);
@@ -87,9 +89,9 @@ class TableReader {
 };
 
 // Helpers shared by the scene and job parsers.
-std::string typeName(const toml::node& n);        // "a string", "an integer", ...
-std::string formatNumber(double v);               // shortest text that reads back the same
-std::string valueText(const toml::node& n);       // a node as TOML value text (for Override)
+std::string typeName(const toml::node& n);   // "a string", "an integer", ...
+std::string formatNumber(double v);          // shortest text that reads back the same
+std::string valueText(const toml::node& n);  // a node as TOML value text (for Override)
 std::string closestMatch(const std::string& word, const std::vector<std::string>& candidates);
 // "; did you mean 'x'?" or "; valid: a, b, c" (first `max_list` of them) for a message.
 std::string suggestion(const std::string& word, const std::vector<std::string>& candidates,

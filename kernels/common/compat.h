@@ -16,7 +16,7 @@
  * so every formula a kernel runs is unit-tested on the CPU in both precisions. For that reason the
  * model headers carry no include guards and include nothing themselves (kernel_math.h orders them).
  */
-#ifdef __OPENCL_VERSION__
+#if defined(__OPENCL_VERSION__) || defined(__OPENCL_C_VERSION__)
 
 #ifdef SEASIM_REAL_DOUBLE
 #pragma OPENCL EXTENSION cl_khr_fp64 : enable

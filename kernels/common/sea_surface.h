@@ -3,11 +3,12 @@
  * clamped), no bottom (z_d -> infinity), c -> 0 (1 - exp(-x))/c form through expm1. */
 
 /* Forward-scattering fraction of Henyey–Greenstein: 2*pi * int_0^{pi/2} p(alpha) sin(alpha) dalpha,
- * the c_f of 000 eq. 5 divided by b. Closed form (1 - g^2)/(2g) * (1/(1 - g) - 1/sqrt(1 + g^2)),
- * with its g -> 0 limit 1/2 + 3g/4 (series) to avoid 0/0. */
+ * the c_f of 000 eq. 5 divided by b. The integral is (1 - g^2)/(2g) * (1/(1 - g) - 1/sqrt(1 + g^2)),
+ * which cancels catastrophically as g -> 0 (0/0). Using sqrt(1+g^2) - (1-g) = g + g^2/(1+sqrt(1+g^2))
+ * it becomes (1 + g)(1 + g/(1 + s)) / (2 s), s = sqrt(1 + g^2): no cancellation for any |g| < 1. */
 SEASIM_FN real hg_forward_fraction(real g) {
-  if (fabs(g) < R(1e-3)) return R(0.5) + R(0.75) * g;
-  return (R(1.0) - g * g) / (R(2.0) * g) * (R(1.0) / (R(1.0) - g) - R(1.0) / sqrt(R(1.0) + g * g));
+  real s = sqrt(R(1.0) + g * g);
+  return (R(1.0) + g) * (R(1.0) + g / (R(1.0) + s)) / (R(2.0) * s);
 }
 
 /* Single scattering of sunlight along the refracted view ray down to depth z_d (000 eq. 5).

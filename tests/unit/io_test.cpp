@@ -262,7 +262,7 @@ TEST_F(IoTest, CsvQuotingNumbersAndAtomicWrite) {
   EXPECT_EQ(csvQuote("say \"hi\""), "\"say \"\"hi\"\"\"");
   EXPECT_EQ(csvQuote("two\nlines"), "\"two\nlines\"");
   EXPECT_EQ(csvQuote(" padded"), "\" padded\"");
-  CsvTable t({"setting", "time_ms", "rmse_8bit", "count"});
+  CsvWriter t({"setting", "time_ms", "rmse_8bit", "count"});
   t.addRow({"n_z=12, n_d=128", 0.1, 2.5e-7, 42});
   t.addRow({std::string("x"), 1.0 / 3.0, std::numeric_limits<double>::quiet_NaN(), std::size_t{7}});
   t.addRow({"inf", std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(), -3});

@@ -1,0 +1,259 @@
+// cli_test.cpp — the real `seasim` binary end to end: devices, validate (errors with file:line, nothing
+// written), plan (different scenes, different passes), run (EXR/PNG/report.json, manifest), resume
+// after a kill, shards, render of an unimplemented pass, compare, sweep, reference.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include <fcntl.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <thread>
+
+namespace fs = std::filesystem;
+
+extern char** environ;
+
+namespace {
+
+const std::string kBinary = SEASIM_BINARY;
+const std::string kRepo = SEASIM_SOURCE_DIR;
+
+struct Result {
+  int code;
+  std::string output;  // stdout and stderr
+};
+
+Result run(const std::string& args) {
+  const std::string cmd = kBinary + " " + args + " 2>&1";
+  FILE* pipe = popen(cmd.c_str(), "r");
+  std::string out;
+  char buf[4096];
+  while (size_t n = fread(buf, 1, sizeof buf, pipe)) out.append(buf, n);
+  const int status = pclose(pipe);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+class Cli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("seasim_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string write(const std::string& name, const std::string& text) {
+    const fs::path p = dir_ / name;
+    std::ofstream(p) << text;
+    return p.string();
+  }
+  // A job of `n` renders of the repository's flat sea scene at a small size.
+  std::string smallJob(int n, const std::string& extra_overrides = "") {
+    std::ostringstream job;
+    job << "[job]\nname = \"t\"\noutput_dir = \"out\"\n";
+    for (int i = 0; i < n; ++i) {
+      job << "[[render]]\nname = \"item" << i << "\"\nscene = \"" << kRepo << "/scenes/flat_sea.toml\"\n"
+          << "overrides = { \"camera.width\" = 64, \"camera.height\" = 36, \"sun.zenith_deg\" = " << 20 + 5 * i
+          << extra_overrides << " }\n";
+    }
+    return write("job.toml", job.str());
+  }
+  fs::path dir_;
+};
+
+nlohmann::json readJson(const fs::path& p) {
+  std::ifstream in(p);
+  return nlohmann::json::parse(in);
+}
+
+TEST_F(Cli, DevicesListsPocl) {
+  const Result r = run("devices");
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("pocl:0"), std::string::npos) << r.output;
+}
+
+TEST_F(Cli, ValidateAcceptsTheShippedScenesAndJobs) {
+  const Result r = run("validate " + kRepo + "/scenes/flat_sea.toml " + kRepo + "/scenes/deep_ocean.toml " + kRepo +
+                       "/jobs/quickstart.toml");
+  EXPECT_EQ(r.code, 0) << r.output;
+}
+
+TEST_F(Cli, ValidateTypoAndBadAsymmetryNameFileLineAndKey) {
+  const std::string typo = write("typo.toml", "[water]\njerlov = \"IB\"\n[sun]\nzenit_deg = 40\n");
+  Result r = run("validate " + typo);
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.output.find("typo.toml:4: key 'sun.zenit_deg'"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("zenith_deg"), std::string::npos) << "suggests the right key: " << r.output;
+
+  const std::string bad_g = write("bad_g.toml", "[water]\njerlov = \"IB\"\ng = 1.2\n");
+  r = run("validate " + bad_g);
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.output.find("bad_g.toml:3: key 'water.g'"), std::string::npos) << r.output;
+
+  // Rendering a bad scene writes nothing.
+  r = run("render " + bad_g + " -o " + (dir_ / "out").string());
+  EXPECT_NE(r.code, 0);
+  EXPECT_FALSE(fs::exists(dir_ / "out"));
+}
+
+TEST_F(Cli, PlansDifferBetweenScenes) {
+  const Result flat = run("plan " + kRepo + "/scenes/flat_sea.toml");
+  const Result deep = run("plan " + kRepo + "/scenes/deep_ocean.toml");
+  ASSERT_EQ(flat.code, 0) << flat.output;
+  ASSERT_EQ(deep.code, 0) << deep.output;
+  EXPECT_NE(flat.output, deep.output);
+  EXPECT_NE(flat.output.find("SEASIM_HAS_BOTTOM=1"), std::string::npos);
+  EXPECT_NE(deep.output.find("SEASIM_HAS_BOTTOM=0"), std::string::npos);
+  EXPECT_EQ(flat.output.find("sea_second"), std::string::npos);
+  EXPECT_NE(deep.output.find("sea_second"), std::string::npos);
+  EXPECT_EQ(flat.output.find("shafts"), std::string::npos);
+}
+
+TEST_F(Cli, RenderOfAnUnimplementedPassFailsClearlyAndWritesNothing) {
+  const Result r = run("render " + kRepo + "/scenes/deep_ocean.toml -o " + (dir_ / "deep").string());
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.output.find("not implemented yet"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir_ / "deep" / "report.json"));
+}
+
+TEST_F(Cli, RunWritesImagesReportsAndManifestThenResumeSkipsAndRepairs) {
+  const std::string job = smallJob(3);
+  Result r = run("run " + job + " --device pocl");
+  ASSERT_EQ(r.code, 0) << r.output;
+  for (int i = 0; i < 3; ++i) {
+    const fs::path item = dir_ / "out" / ("item" + std::to_string(i));
+    EXPECT_TRUE(fs::exists(item / "image.exr"));
+    EXPECT_TRUE(fs::exists(item / "image.png"));
+    const nlohmann::json report = readJson(item / "report.json");
+    EXPECT_EQ(report["nonfinite"], 0);
+    EXPECT_GT(report["pass_ms"]["sea_single"].get<double>(), 0.0);
+    EXPECT_TRUE(report.contains("kernel_build_ms"));
+    EXPECT_EQ(report["plan"][0]["kernel"], "kernels/sea_single.cl");
+  }
+  EXPECT_EQ(readJson(dir_ / "out" / "manifest.json")["items"].size(), 3u);
+
+  r = run("run " + job + " --resume");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("0 rendered, 3 finished earlier"), std::string::npos) << r.output;
+
+  // A damaged output no longer matches its checksum: resume renders that item again, only that one.
+  std::ofstream(dir_ / "out" / "item1" / "image.png", std::ios::app) << "x";
+  r = run("run " + job + " --resume");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("1 rendered, 2 finished earlier"), std::string::npos) << r.output;
+}
+
+TEST_F(Cli, KilledRunResumesWithoutRedoingFinishedItems) {
+  // Big items so the run is still going when we kill it after the first finishes.
+  const std::string job = smallJob(4, ", \"spectral.count\" = 120");
+  std::ifstream check(job);
+  std::string text((std::istreambuf_iterator<char>(check)), {});
+  for (size_t p; (p = text.find("\"camera.width\" = 64")) != std::string::npos;)
+    text.replace(p, 19, "\"camera.width\" = 900");
+  for (size_t p; (p = text.find("\"camera.height\" = 36")) != std::string::npos;)
+    text.replace(p, 20, "\"camera.height\" = 600");
+  std::ofstream(job) << text;
+
+  pid_t pid;
+  std::vector<std::string> args = {kBinary, "run", job, "--device", "pocl"};
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
+  ASSERT_EQ(posix_spawn(&pid, kBinary.c_str(), &actions, nullptr, argv.data(), environ), 0);
+  const fs::path manifest = dir_ / "out" / "manifest.json";
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(240);
+  size_t done_before = 0;
+  while (std::chrono::steady_clock::now() < deadline) {
+    if (fs::exists(manifest)) {
+      done_before = readJson(manifest)["items"].size();
+      if (done_before >= 1) break;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  kill(pid, SIGKILL);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  posix_spawn_file_actions_destroy(&actions);
+  done_before = readJson(manifest)["items"].size();
+  ASSERT_GE(done_before, 1u);
+  ASSERT_LT(done_before, 4u) << "the run finished before it could be killed; make the items bigger";
+  const auto first_report_time = fs::last_write_time(dir_ / "out" / "item0" / "report.json");
+
+  const Result r = run("run " + job + " --resume --device pocl");
+  ASSERT_EQ(r.code, 0) << r.output;
+  const std::string expect = std::to_string(4 - done_before) + " rendered, " + std::to_string(done_before) +
+                             " finished earlier";
+  EXPECT_NE(r.output.find(expect), std::string::npos) << r.output;
+  EXPECT_EQ(fs::last_write_time(dir_ / "out" / "item0" / "report.json"), first_report_time);
+  EXPECT_EQ(readJson(manifest)["items"].size(), 4u);
+  for (int i = 0; i < 4; ++i) EXPECT_TRUE(fs::exists(dir_ / "out" / ("item" + std::to_string(i)) / "report.json"));
+}
+
+TEST_F(Cli, ShardsSplitTheItems) {
+  const std::string job = smallJob(3);
+  Result a = run("run " + job + " --shard 0/2");
+  Result b = run("run " + job + " --shard 1/2");
+  ASSERT_EQ(a.code, 0) << a.output;
+  ASSERT_EQ(b.code, 0) << b.output;
+  EXPECT_NE(a.output.find("2 rendered, 0 finished earlier, 1 left to other shards"), std::string::npos) << a.output;
+  EXPECT_NE(b.output.find("1 rendered, 0 finished earlier, 2 left to other shards"), std::string::npos) << b.output;
+  EXPECT_EQ(readJson(dir_ / "out" / "manifest-0of2.json")["items"].size(), 2u);
+  EXPECT_EQ(readJson(dir_ / "out" / "manifest-1of2.json")["items"].size(), 1u);
+  EXPECT_NE(run("run " + job + " --shard 2/2").code, 0);
+}
+
+TEST_F(Cli, ReferenceCompareAndSweepMeasureErrorAgainstTime) {
+  const std::string scene = kRepo + "/scenes/flat_sea.toml";
+  const std::string small = " --set camera.width=64 --set camera.height=36";
+  const std::string ref = (dir_ / "ref.exr").string();
+  Result r = run("reference " + scene + " -o " + ref + " --steps 2000" + small + " --set spectral.count=64");
+  ASSERT_EQ(r.code, 0) << r.output;
+
+  r = run("render " + scene + " -o " + (dir_ / "r").string() + small + " --set spectral.count=64");
+  ASSERT_EQ(r.code, 0) << r.output;
+  r = run("compare " + (dir_ / "r" / "image.exr").string() + " " + ref);
+  ASSERT_EQ(r.code, 0) << r.output;
+  double rmse = -1;
+  ASSERT_EQ(std::sscanf(r.output.c_str(), "rmse_8bit %lf", &rmse), 1) << r.output;
+  EXPECT_LT(rmse, 0.05) << "same model, same bands: only float vs double and quadrature differ";
+
+  const std::string csv = (dir_ / "sweep.csv").string(), svg = (dir_ / "sweep.svg").string();
+  r = run("sweep " + scene + " --param spectral.count=2,4,16 --reference " + ref + " --csv " + csv + " --plot " + svg +
+          small);
+  ASSERT_EQ(r.code, 0) << r.output;
+  std::ifstream in(csv);
+  std::string header, line;
+  std::getline(in, header);
+  EXPECT_NE(header.find("rmse_8bit"), std::string::npos);
+  EXPECT_NE(header.find("kernel_ms"), std::string::npos);
+  std::vector<double> errors;
+  while (std::getline(in, line)) {
+    std::vector<std::string> cells;
+    std::stringstream ss(line);
+    for (std::string c; std::getline(ss, c, ',');) cells.push_back(c);
+    errors.push_back(std::stod(cells.at(3)));
+  }
+  ASSERT_EQ(errors.size(), 3u);
+  EXPECT_GT(errors[0], errors[2]) << "more wavelength bands must get closer to the 64-band reference";
+  std::ifstream plot(svg);
+  std::string svg_text((std::istreambuf_iterator<char>(plot)), {});
+  EXPECT_NE(svg_text.find("<svg"), std::string::npos);
+}
+
+TEST_F(Cli, PreviewSaysNotBuilt) {
+  const Result r = run("preview");
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.output.find("not built"), std::string::npos) << r.output;
+}
+
+}  // namespace

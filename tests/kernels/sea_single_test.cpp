@@ -1,0 +1,109 @@
+// sea_single_test.cpp — kernels/sea_single.cl on PoCL (float) against the double-precision CPU
+// reference (host/reference/sea_reference.cpp: same scene, single scattering by quadrature), over the
+// ordinary scene and its stiff variants. Also: no NaN/Inf anywhere.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+
+#include "device/device.h"
+#include "passes/render_frame.h"
+#include "plan/plan.h"
+#include "reference/sea_reference.h"
+#include "scene/scene_parser.h"
+
+namespace {
+
+const char* kScene = R"(
+[scene]
+name = "test_sea"
+[camera]
+position = [0, 10, 0]
+look_at = [0, 0, -60]
+fov_deg = 70
+width = 48
+height = 32
+[sun]
+zenith_deg = 40
+azimuth_deg = 90
+[sky]
+radiance = 0.05
+[water]
+jerlov = "IB"
+[bottom]
+type = "flat"
+depth = 8
+albedo = 0.3
+[spectral]
+count = 8
+)";
+
+seasim::Device& device() {
+  static seasim::Device dev(seasim::chooseDevice(std::getenv("SEASIM_TEST_DEVICE") ? std::getenv("SEASIM_TEST_DEVICE")
+                                                                                      : "pocl"));
+  return dev;
+}
+
+// Max over pixels and channels of |kernel - reference| / (|reference| + floor), floor = 1e-3 of the
+// image's largest reference value (so near-black pixels are judged on an absolute scale).
+double maxRelativeError(const seasim::Image& a, const seasim::Image& ref) {
+  float peak = 0;
+  for (float v : ref.pixels) peak = std::max(peak, std::fabs(v));
+  double worst = 0;
+  for (size_t i = 0; i < ref.pixels.size(); ++i) {
+    worst = std::max(worst, std::fabs(double(a.pixels[i]) - ref.pixels[i]) / (std::fabs(ref.pixels[i]) + 1e-3 * peak));
+  }
+  return worst;
+}
+
+struct Variant {
+  const char* name;
+  std::vector<seasim::Override> overrides;
+  bool remove_bottom = false;  // drop the [bottom] table: infinitely deep water
+};
+
+class SeaSingleKernel : public ::testing::TestWithParam<Variant> {};
+
+TEST_P(SeaSingleKernel, MatchesDoubleReferenceWithoutNaN) {
+  std::string text = kScene;
+  if (GetParam().remove_bottom) text.erase(text.find("[bottom]"), text.find("[spectral]") - text.find("[bottom]"));
+  const seasim::Scene scene = seasim::parseScene(text, "test_sea.toml", GetParam().overrides);
+  const seasim::FrameResult frame = seasim::renderFrame(device(), scene, seasim::makePlan(scene));
+  EXPECT_EQ(frame.nonfinite, 0);
+  for (float v : frame.rgb.pixels) ASSERT_TRUE(std::isfinite(v));
+  const seasim::Image ref = seasim::renderSeaReference(scene, 4000);
+  EXPECT_LT(maxRelativeError(frame.rgb, ref), 2e-4) << GetParam().name;
+}
+
+seasim::Override set(const char* key, const char* value) { return {key, value, {"test", 1}}; }
+
+INSTANTIATE_TEST_SUITE_P(
+    Scenes, SeaSingleKernel,
+    ::testing::Values(Variant{"ordinary", {}},
+                      Variant{"no_bottom", {}, true},
+                      Variant{"sun_below_horizon", {set("sun.zenith_deg", "100")}},
+                      Variant{"grazing_sun", {set("sun.zenith_deg", "89.9")}},
+                      Variant{"sun_overhead", {set("sun.zenith_deg", "0")}},
+                      Variant{"looking_straight_down", {set("camera.look_at", "[0, 0, -0.001]")}},
+                      Variant{"grazing_view", {set("camera.look_at", "[0, 10, -100]")}},
+                      Variant{"very_clear_water",
+                              {set("water", "{ wavelengths_nm = [400, 700], a = [1e-6, 1e-6], b = [1e-6, 1e-6] }")}},
+                      Variant{"turbid_deep", {set("water.jerlov", "\"9C\""), set("bottom.depth", "10000")}},
+                      Variant{"one_band", {set("spectral.count", "1")}},
+                      Variant{"isotropic", {set("water.g", "0")}},
+                      Variant{"strong_forward", {set("water.g", "0.99")}}),
+    [](const ::testing::TestParamInfo<Variant>& info) { return std::string(info.param.name); });
+
+TEST(SeaSingleKernel, SpectralOutputMatchesTheRgbSum) {
+  // The spectral buffer holds each band's radiance; weighting it by the sensor must give the RGB.
+  const seasim::Scene scene =
+      seasim::parseScene(kScene, "test_sea.toml", {set("spectral.spectral_exr", "true"), set("spectral.count", "5")});
+  const seasim::FrameResult frame = seasim::renderFrame(device(), scene, seasim::makePlan(scene));
+  ASSERT_EQ(frame.spectral.size(), size_t(48 * 32 * 5));
+  EXPECT_EQ(frame.wavelengths_nm.size(), 5u);
+  EXPECT_EQ(frame.nonfinite, 0);
+  for (float v : frame.spectral) EXPECT_GE(v, 0.0f);
+}
+
+}  // namespace

@@ -1,0 +1,111 @@
+// plan_test.cpp — the planner includes exactly the passes a scene needs (DESIGN.md "Leave out what a
+// scene does not need"), with the feature defines that match the scene.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "plan/plan.h"
+#include "scene/scene_parser.h"
+
+namespace {
+
+using seasim::makePlan;
+using seasim::parseScene;
+using seasim::Plan;
+
+const char* kFlatSea = R"(
+[camera]
+position = [0, 10, 0]
+look_at = [0, 0, -100]
+[sun]
+zenith_deg = 40
+[water]
+jerlov = "IB"
+[bottom]
+type = "flat"
+depth = 8
+)";
+
+bool hasDefine(const Plan& plan, const std::string& pass, const std::string& define) {
+  const auto* p = plan.find(pass);
+  return p && std::find(p->defines.begin(), p->defines.end(), define) != p->defines.end();
+}
+
+TEST(Plan, FlatSeaNeedsOnlyTheSeaPassAndTheCheck) {
+  const Plan plan = makePlan(parseScene(kFlatSea, "flat.toml"));
+  ASSERT_EQ(plan.passes.size(), 2u);
+  EXPECT_EQ(plan.passes[0].name, "sea_single");
+  EXPECT_EQ(plan.passes[1].name, "nonfinite_check");
+  for (const char* absent : {"shafts", "shadow_maps", "ocean_fft", "caustics", "froxel", "kd_multiple", "sea_second",
+                             "raycast"}) {
+    EXPECT_FALSE(plan.hasPass(absent)) << absent;
+  }
+  EXPECT_TRUE(hasDefine(plan, "sea_single", "SEASIM_HAS_BOTTOM=1"));
+  EXPECT_TRUE(hasDefine(plan, "sea_single", "SEASIM_HAS_SUN=1"));
+  EXPECT_TRUE(hasDefine(plan, "sea_single", "SEASIM_SPECTRAL_OUTPUT=0"));
+  EXPECT_EQ(plan.kernelFiles(), (std::vector<std::string>{"sea_single.cl", "check.cl"}));
+}
+
+TEST(Plan, DeepWaterDropsTheBottomTerm) {
+  std::string deep = kFlatSea;
+  deep = deep.substr(0, deep.find("[bottom]"));
+  const Plan plan = makePlan(parseScene(deep, "deep.toml"));
+  EXPECT_TRUE(hasDefine(plan, "sea_single", "SEASIM_HAS_BOTTOM=0"));
+}
+
+TEST(Plan, SunBelowHorizonStillRendersWithoutSunTerms) {
+  const Plan plan = makePlan(parseScene(kFlatSea, "flat.toml", {{"sun.enabled", "false", {"cli", 1}}}));
+  EXPECT_TRUE(hasDefine(plan, "sea_single", "SEASIM_HAS_SUN=0"));
+  EXPECT_TRUE(hasDefine(plan, "sea_single", "SEASIM_HAS_SINGLE_SCATTERING=0"));
+}
+
+TEST(Plan, SecondOrderAddsScatteringMapsPass) {
+  const Plan plan = makePlan(parseScene(kFlatSea, "flat.toml", {{"sea.second_order", "true", {"cli", 1}}}));
+  ASSERT_TRUE(plan.hasPass("sea_second"));
+  EXPECT_FALSE(plan.find("sea_second")->implemented);
+}
+
+TEST(Plan, WavesAddTheOceanPass) {
+  const Plan plan = makePlan(parseScene(kFlatSea, "flat.toml", {{"surface.type", "\"fft\"", {"cli", 1}}}));
+  EXPECT_TRUE(plan.hasPass("ocean_fft"));
+  EXPECT_FALSE(plan.hasPass("caustics"));  // caustics only matter below the surface
+}
+
+TEST(Plan, UnderwaterCameraUsesUnderwaterPassesNotTheSeaSurface) {
+  const Plan plan = makePlan(parseScene(kFlatSea, "flat.toml", {{"camera.position", "[0, -5, 0]", {"cli", 1}}}));
+  EXPECT_FALSE(plan.hasPass("sea_single"));
+  EXPECT_TRUE(plan.hasPass("froxel"));
+  EXPECT_TRUE(plan.hasPass("kd_multiple"));
+}
+
+TEST(Plan, SpotlightsInAirAddShaftsAndShadowMapsOnlyWithObjects) {
+  const char* stage = R"(
+[camera]
+position = [0, 2, 10]
+look_at = [0, 1, 0]
+[air]
+density = 1
+extinction = 0.05
+[[spotlights]]
+position = [0, 5, 0]
+direction = [0, -1, 0]
+)";
+  Plan plan = makePlan(parseScene(stage, "stage.toml"));
+  EXPECT_TRUE(plan.hasPass("shafts"));
+  EXPECT_FALSE(plan.hasPass("shadow_maps"));
+  EXPECT_FALSE(plan.hasPass("sea_single"));
+  std::string with_object = std::string(stage) + "[[objects]]\ntype = \"sphere\"\ncenter = [0, 1, 0]\nradius = 0.5\n";
+  plan = makePlan(parseScene(with_object, "stage.toml"));
+  EXPECT_TRUE(plan.hasPass("shadow_maps"));
+  EXPECT_TRUE(plan.hasPass("raycast"));
+}
+
+TEST(Plan, TextHasOnePassPerLineWithKernelAndDefines) {
+  const Plan plan = makePlan(parseScene(kFlatSea, "flat.toml"));
+  const std::string text = plan.toText();
+  EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 2);
+  EXPECT_NE(text.find("kernels/sea_single.cl"), std::string::npos);
+  EXPECT_NE(text.find("-DSEASIM_HAS_BOTTOM=1"), std::string::npos);
+}
+
+}  // namespace
