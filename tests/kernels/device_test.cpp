@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <unistd.h>
 
 #include "device/device.h"
 #include "util/error.h"
@@ -47,7 +48,10 @@ TEST(Device, UnknownSelectorListsTheDevices) {
 class DeviceCache : public ::testing::Test {
  protected:
   void SetUp() override {
-    cache_ = fs::temp_directory_path() / "seasim_device_cache_test";
+    // One folder per test and process: ctest runs tests in parallel processes.
+    cache_ = fs::temp_directory_path() /
+             ("seasim_device_cache_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) +
+              "_" + std::to_string(::getpid()));
     fs::remove_all(cache_);
     old_ = std::getenv("SEASIM_CACHE_DIR") ? std::getenv("SEASIM_CACHE_DIR") : "";
     setenv("SEASIM_CACHE_DIR", cache_.c_str(), 1);
@@ -81,7 +85,7 @@ TEST_F(DeviceCache, ProgramsAreCachedInMemoryAndOnDisk) {
 }
 
 TEST_F(DeviceCache, FailedBuildNamesTheKernelFileAndShowsTheLog) {
-  const fs::path kdir = fs::temp_directory_path() / "seasim_bad_kernels";
+  const fs::path kdir = fs::temp_directory_path() / ("seasim_bad_kernels_" + std::to_string(::getpid()));
   fs::create_directories(kdir / "common");
   std::ofstream(kdir / "broken.cl") << "// line 1\n__kernel void broken(__global float* x) {\n  x[0] = undeclared_symbol;\n}\n";
   setenv("SEASIM_KERNEL_DIR", kdir.c_str(), 1);
@@ -99,7 +103,7 @@ TEST_F(DeviceCache, FailedBuildNamesTheKernelFileAndShowsTheLog) {
 }
 
 TEST_F(DeviceCache, Fp64DefineFollowsTheDevice) {
-  const fs::path kdir = fs::temp_directory_path() / "seasim_fp64_kernels";
+  const fs::path kdir = fs::temp_directory_path() / ("seasim_fp64_kernels_" + std::to_string(::getpid()));
   fs::create_directories(kdir);
   std::ofstream(kdir / "fp64.cl") << "__kernel void has_fp64(__global int* out) {\n"
                                      "#ifdef SEASIM_HAS_FP64\n  out[0] = 1;\n#else\n  out[0] = 0;\n#endif\n}\n";

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <regex>
+#include <unistd.h>
 
 #include "device/kernel_source.h"
 #include "util/error.h"
@@ -38,7 +39,7 @@ TEST(KernelSource, MissingKernelIsAClearError) {
 }
 
 TEST(KernelSource, KernelDirOverridesEmbeddedSources) {
-  const fs::path dir = fs::temp_directory_path() / "seasim_kernel_dir_test";
+  const fs::path dir = fs::temp_directory_path() / ("seasim_kernel_dir_test_" + std::to_string(::getpid()));
   fs::create_directories(dir / "common");
   std::ofstream(dir / "k.cl") << "#include \"common/a.h\"\n#include \"common/a.h\"\nkernel void k() {}\n";
   std::ofstream(dir / "common" / "a.h") << "#define A 1\n";
