@@ -53,13 +53,11 @@ nlohmann::json renderItem(Device& device, const Scene& scene, const ItemOutputs&
   fs::create_directories(dir);
   nlohmann::json files = nlohmann::json::array();
   for (const auto& format : outputs.formats) {
-    std::string path;
+    std::string path;  // what the writer really wrote (a .npy beside it in builds without OpenImageIO)
     if (format == "exr") {
-      path = dir + "/image.exr";
-      writeExr(path, frame.rgb);
+      path = writeExr(dir + "/image.exr", frame.rgb);
     } else if (format == "png") {
-      path = dir + "/image.png";
-      writePng(path, frame.rgb, scene.camera.exposure_ev);
+      path = writePng(dir + "/image.png", frame.rgb, scene.camera.exposure_ev);
     } else if (format == "npy") {
       path = dir + "/image.npy";
       writeNpy(path, frame.rgb);
@@ -67,8 +65,8 @@ nlohmann::json renderItem(Device& device, const Scene& scene, const ItemOutputs&
       if (frame.spectral.empty()) {
         throw RuntimeError("output 'spectral_exr' needs spectral.spectral_exr = true in the scene");
       }
-      path = dir + "/spectral.exr";
-      writeSpectralExr(path, frame.rgb.width, frame.rgb.height, frame.wavelengths_nm, frame.spectral);
+      path = writeSpectralExr(dir + "/spectral.exr", frame.rgb.width, frame.rgb.height, frame.wavelengths_nm,
+                              frame.spectral);
     } else {
       throw RuntimeError("unknown output format '" + format + "'");
     }
