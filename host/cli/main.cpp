@@ -5,6 +5,7 @@
 #include <exception>
 
 #include "cli/commands.h"
+#include "cli/ocean_command.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"seasim — OpenCL simulator of light in water and air"};
@@ -74,6 +75,21 @@ int main(int argc, char** argv) {
   reference->add_option("--steps", ref_cmd.steps, "Quadrature steps along each ray");
   reference->add_option("--set", ref_cmd.sets, "Override a scene key: key=value (repeatable)");
 
+  seasim::OceanCmd ocean_cmd;
+  auto* ocean = app.add_subcommand("ocean", "FFT ocean (004 §3): height/slope/displacement/normal/folding/caustic maps, or --bench");
+  ocean->add_option("scene", ocean_cmd.scene, "Scene file ([surface], [sun], [water])")->check(CLI::ExistingFile);
+  ocean->add_option("-o,--out", ocean_cmd.out_dir, "Output folder")->required();
+  ocean->add_option("--time", ocean_cmd.time, "Time in s (default: the scene's surface.time)");
+  ocean->add_option("--device", ocean_cmd.device, "cpu, gpu, pocl:0, nvidia:0 or a name substring");
+  ocean->add_option("--set", ocean_cmd.sets, "Override a scene key: key=value (repeatable)");
+  ocean->add_option("--caustic-depths", ocean_cmd.caustic_depths, "Caustic plane depths in m (maps + intensity PDF)")
+      ->delimiter(',');
+  ocean->add_option("--attenuation", ocean_cmd.attenuation, "Beer-Lambert c (1/m) along refracted rays for the caustic maps");
+  ocean->add_option("--supersample", ocean_cmd.caustic_supersample, "Caustic rays per surface cell per side");
+  ocean->add_flag("--bench", ocean_cmd.bench, "ms per frame, device vs FFTW, for --sizes");
+  ocean->add_option("--sizes", ocean_cmd.bench_sizes, "Bench grid sizes, e.g. 256,512,1024,2048")->delimiter(',');
+  ocean->add_option("--repeat", ocean_cmd.repeat, "Timed frames per size (median reported)");
+
   std::string preview_scene, preview_device;
   auto* preview = app.add_subcommand("preview", "Live GLFW preview window");
   preview->add_option("scene", preview_scene, "Scene file");
@@ -90,6 +106,7 @@ int main(int argc, char** argv) {
     if (*sweep) return seasim::cmdSweep(sweep_cmd);
     if (*bench) return seasim::cmdBench(bench_cmd);
     if (*reference) return seasim::cmdReference(ref_cmd);
+    if (*ocean) return seasim::cmdOcean(ocean_cmd);
     if (*preview) return seasim::cmdPreview(preview_scene, preview_device);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "seasim: error: %s\n", e.what());

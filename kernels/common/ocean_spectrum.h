@@ -163,8 +163,8 @@ SEASIM_FN void ocean_evolve(real h0r, real h0i, real h0mr, real h0mi, real phase
 SEASIM_FN void ocean_jacobian_eigen(real jxx, real jzz, real jxz, real* j_minus, real* j_plus,
                                     real* ex, real* ez) {
   real mean = R(0.5) * (jxx + jzz);
-  real half = R(0.5) * (jxx - jzz);
-  real r = sqrt(half * half + jxz * jxz);
+  real half_diff = R(0.5) * (jxx - jzz); /* not "half": a type in OpenCL C */
+  real r = sqrt(half_diff * half_diff + jxz * jxz);
   real det = jxx * jzz - jxz * jxz;
   real lo, hi;
   if (mean >= R(0.0)) {

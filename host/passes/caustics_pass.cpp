@@ -1,0 +1,110 @@
+#include "passes/caustics_pass.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstddef>
+#include <cstring>
+#include <string>
+
+#include "util/error.h"
+
+extern "C" {
+#include "common/ocean_params.h"
+}
+
+namespace seasim {
+
+static_assert(sizeof(CausticsParams) == 16 + 8 * 4, "CausticsParams layout changed: update ocean_params.h users");
+static_assert(offsetof(CausticsParams, patch_size) == 16);
+static_assert(offsetof(CausticsParams, n) == 36);
+
+CausticsPass::CausticsPass(Device& device, OceanPass& ocean, const CausticsConfig& config)
+    : device_(device), ocean_(ocean), config_(config), map_size_(config.map_size > 0 ? config.map_size : ocean.n()) {
+  if (map_size_ < 1 || map_size_ > 8192) throw RuntimeError("caustics: map_size must be in 1..8192");
+  if (config_.supersample < 1 || config_.supersample > 16) throw RuntimeError("caustics: supersample must be in 1..16");
+  if (!(config_.plane_depth >= 0)) throw RuntimeError("caustics: plane depth must be >= 0 m");
+  if (!(config_.ior >= 1)) throw RuntimeError("caustics: ior must be >= 1");
+  if (!(config_.attenuation >= 0)) throw RuntimeError("caustics: attenuation must be >= 0 1/m");
+  try {
+    const BuiltProgram& built = device.program("caustics.cl", {});
+    splat_ = cl::Kernel(built.program, "caustics_splat");
+    params_ = cl::Buffer(device.context(), CL_MEM_READ_ONLY, sizeof(CausticsParams));
+    map_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * map_size_ * map_size_);
+    splat_.setArg(0, params_);
+    splat_.setArg(1, ocean_.fields());
+    splat_.setArg(2, map_);
+  } catch (const cl::Error& e) {
+    throw DeviceError(std::string("caustics pass set-up: ") + e.what() + " " + clErrorName(e.err()));
+  }
+}
+
+double CausticsPass::run(double plane_depth) {
+  if (!(plane_depth >= 0)) throw RuntimeError("caustics: plane depth must be >= 0 m");
+  config_.plane_depth = plane_depth;
+  return run();
+}
+
+double CausticsPass::run() {
+  const auto start = std::chrono::steady_clock::now();
+  CausticsParams p{};
+  const double sz = config_.sun_zenith, sa = config_.sun_azimuth;
+  p.sun_dir[0] = static_cast<float>(std::sin(sz) * std::cos(sa));
+  p.sun_dir[1] = static_cast<float>(std::cos(sz));
+  p.sun_dir[2] = static_cast<float>(std::sin(sz) * std::sin(sa));
+  p.patch_size = static_cast<float>(ocean_.patchSize());
+  p.plane_depth = static_cast<float>(config_.plane_depth);
+  p.ior = static_cast<float>(config_.ior);
+  p.attenuation = static_cast<float>(config_.attenuation);
+  p.choppiness = static_cast<float>(ocean_.config().choppiness);
+  p.n = ocean_.n();
+  p.map_size = map_size_;
+  p.supersample = config_.supersample;
+  try {
+    cl::CommandQueue& q = device_.queue();
+    q.enqueueWriteBuffer(params_, CL_FALSE, 0, sizeof p, &p);
+    q.enqueueFillBuffer(map_, 0.0f, 0, sizeof(float) * map_size_ * map_size_);
+    // A sun at or below the horizon puts no direct light into the water: the map stays 0.
+    if (p.sun_dir[1] > 1e-6f) {
+      const size_t rays = static_cast<size_t>(ocean_.n()) * static_cast<size_t>(config_.supersample);
+      q.enqueueNDRangeKernel(splat_, cl::NullRange, cl::NDRange(rays, rays));
+    }
+    q.finish();
+  } catch (const cl::Error& e) {
+    throw DeviceError(std::string("caustics pass: ") + e.what() + " " + clErrorName(e.err()));
+  }
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+std::vector<float> CausticsPass::readMap() {
+  std::vector<float> out(static_cast<size_t>(map_size_) * map_size_);
+  try {
+    device_.queue().enqueueReadBuffer(map_, CL_TRUE, 0, sizeof(float) * out.size(), out.data());
+  } catch (const cl::Error& e) {
+    throw DeviceError(std::string("caustics read-back: ") + e.what() + " " + clErrorName(e.err()));
+  }
+  return out;
+}
+
+std::vector<double> causticIntensityPdf(const std::vector<float>& map, int bins, double max_ratio,
+                                        std::vector<double>* ratio_out) {
+  if (bins < 1 || !(max_ratio > 0)) throw RuntimeError("caustic PDF: bins must be >= 1 and max_ratio > 0");
+  double mean = 0;
+  for (float v : map) mean += v;
+  mean /= static_cast<double>(map.size());
+  std::vector<double> density(bins, 0.0);
+  const double width = max_ratio / bins;
+  if (ratio_out) {
+    ratio_out->resize(bins);
+    for (int b = 0; b < bins; ++b) (*ratio_out)[b] = (b + 0.5) * width;
+  }
+  if (map.empty() || !(mean > 0)) return density;
+  for (float v : map) {
+    const int b = std::min(bins - 1, std::max(0, static_cast<int>(v / mean / width)));
+    density[b] += 1.0;
+  }
+  for (double& d : density) d /= static_cast<double>(map.size()) * width;
+  return density;
+}
+
+}  // namespace seasim
