@@ -6,7 +6,12 @@
  * Inputs: SeaParams (camera, sun, water ior/g, bottom depth), SeaBand[band_count].
  * Output: rgb[3 * pixels] linear sensor RGB; spectral[band_count * pixels] when SEASIM_SPECTRAL_OUTPUT.
  * Defines (chosen by host/plan): SEASIM_HAS_REFLECTION, SEASIM_HAS_SINGLE_SCATTERING,
- * SEASIM_HAS_BOTTOM, SEASIM_HAS_SUN, SEASIM_SPECTRAL_OUTPUT.
+ * SEASIM_HAS_BOTTOM, SEASIM_HAS_SUN, SEASIM_SPECTRAL_OUTPUT; SEASIM_SEA_LUT (the pass, from
+ * quality.sea_lut_size): 1 reads eq. 5's factors from the look-up table over theta_jo the paper uses,
+ * 0 evaluates eq. 5 exactly.
+ * LUT: lut[band * lut_size + j] holds eq. 5 without beta and T_o (T_o is already computed per pixel
+ * for the reflection) at theta_jo = j/(lut_size - 1) * pi/2, built by the host in double; read by
+ * Catmull–Rom interpolation with mirrored ends (the factors are even about theta_jo = 0 and pi/2).
  * Stiff cases: view rays at or above the horizon see the sky (no surface hit); the sun at or below
  * the horizon contributes nothing below the surface; grazing refraction is clamped away from cos = 0.
  */
@@ -25,7 +30,20 @@ static inline float sky_radiance(const __constant SeaParams* p, const __global S
   return L;
 }
 
-__kernel void sea_single(__constant SeaParams* p, __global const SeaBand* bands, __global float* rgb
+#if SEASIM_SEA_LUT
+/* Catmull–Rom read of one band's LUT at fractional index x in [0, n-1]; indices mirrored at both ends. */
+static inline float lut_read(const __global float* lut, int n, float x) {
+  const int j = clamp((int)x, 0, n - 2);
+  const float t = x - (float)j;
+  const int jm = j > 0 ? j - 1 : 1;
+  const int jp = j + 2 < n ? j + 2 : n - 2;
+  const float p0 = lut[jm], p1 = lut[j], p2 = lut[j + 1], p3 = lut[jp];
+  return p1 + 0.5f * t * (p2 - p0 + t * (2.0f * p0 - 5.0f * p1 + 4.0f * p2 - p3 + t * (3.0f * (p1 - p2) + p3 - p0)));
+}
+#endif
+
+__kernel void sea_single(__constant SeaParams* p, __global const SeaBand* bands, __global const float* lut,
+                         __global float* rgb
 #if SEASIM_SPECTRAL_OUTPUT
                          , __global float* spectral
 #endif
@@ -82,6 +100,9 @@ __kernel void sea_single(__constant SeaParams* p, __global const SeaBand* bands,
 #else
     const float z_d = -1.0f;                                  /* no bottom: infinitely deep */
 #endif
+#if SEASIM_SEA_LUT
+    const float lut_x = acos(clamp(cos_jo, 0.0f, 1.0f)) * (p->lut_size - 1) * (2.0f / M_PI_F);
+#endif
     for (int i = 0; i < p->band_count; ++i) {
       const __global SeaBand* band = &bands[i];
       float L = 0.0f;
@@ -89,9 +110,13 @@ __kernel void sea_single(__constant SeaParams* p, __global const SeaBand* bands,
       L += R_view * sky_radiance(p, band, reflected);
 #endif
 #if SEASIM_HAS_SINGLE_SCATTERING
+#if SEASIM_SEA_LUT
+      L += band->b * phase * t_out * lut_read(lut + (size_t)i * p->lut_size, p->lut_size, lut_x);
+#else
       const float albedo = band->c > 0.0f ? band->b / band->c : 0.0f;
       L += sea_single_scattering(band->sun_irradiance * sun_horizontal, t_in, t_out, band->b * phase, band->c, albedo, c_f,
                                  cos_io, cos_ji, z_d);
+#endif
 #endif
 #if SEASIM_HAS_BOTTOM
       L += sea_bottom_reflection(band->sun_irradiance * sun_horizontal, t_in, t_out, band->bottom_albedo, band->c, z_d,

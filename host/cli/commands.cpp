@@ -20,6 +20,8 @@
 #include "plan/plan.h"
 #include "reference/compare.h"
 #include "reference/sea_reference.h"
+#include "reference/sea_second_reference.h"
+#include "reference/shafts_reference.h"
 #include "util/error.h"
 
 namespace fs = std::filesystem;
@@ -194,8 +196,11 @@ int cmdSweep(const SweepCmd& cmd) {
   for (const auto& a : axes) header.push_back(a.key);
   for (const char* h : {"kernel_ms", "wall_ms", "rmse_8bit", "max_abs_8bit", "rel_l2", "hue_sat_distance"})
     header.emplace_back(h);
+  header.emplace_back("max_diff_prev_8bit");  // max |image - previous setting's| (000 §6.1, Fig. 7/8)
   CsvWriter table(header);
   PlotSeries series{"rmse (8-bit levels)", {}, {}};
+  PlotSeries steps{"max |L(v) - L(next v)| (8-bit levels)", {}, {}};
+  Image previous;
   for (size_t k = 0; k < scenes.size(); ++k) {
     const Plan plan = makePlan(scenes[k]);
     (void)renderFrame(device, scenes[k], plan);  // warm-up: PoCL compiles lazily
@@ -209,6 +214,16 @@ int cmdSweep(const SweepCmd& cmd) {
     std::vector<CsvCell> row(grid[k].begin(), grid[k].end());
     for (double v : {kernelMs(frame), frame.wall_ms, c.rmse_8bit, c.max_abs_8bit, c.rel_l2, c.hue_sat_distance})
       row.emplace_back(v);
+    const double step = k > 0 ? compareImages(frame.rgb, previous, scenes[k].camera.exposure_ev).max_abs_8bit : 0.0;
+    row.emplace_back(step);
+    if (k > 0 && axes.size() == 1) {
+      try {
+        steps.x.push_back(std::stod(grid[k - 1][0]));
+        steps.y.push_back(step);
+      } catch (const std::exception&) {  // a non-numeric axis: no step plot
+      }
+    }
+    previous = frame.rgb;
     std::string label;
     for (size_t i = 0; i < axes.size(); ++i) label += (i ? " " : "") + axes[i].key + "=" + grid[k][i];
     std::printf("%-40s kernel %9.3f ms  rmse %8.4f  max %8.3f  relL2 %.3g\n", label.c_str(), kernelMs(frame),
@@ -226,6 +241,17 @@ int cmdSweep(const SweepCmd& cmd) {
     spec.log_y = true;  // errors span decades; a zero error (exact match) is left off the log axis
     spec.series.push_back(series);
     writeSvgPlot(cmd.plot, spec);
+    if (!steps.x.empty()) {  // the 000 §6.1 plot: difference to the next setting vs the knob
+      PlotSpec step_spec;
+      step_spec.title = "Difference to the next setting: " + fs::path(cmd.scene).stem().string();
+      step_spec.x_label = axes[0].key;
+      step_spec.y_label = "max difference (8-bit levels)";
+      step_spec.log_y = true;
+      step_spec.series.push_back(steps);
+      step_spec.series.push_back({"1 level (1/255)", {steps.x.front(), steps.x.back()}, {1.0, 1.0}});
+      const fs::path plot(cmd.plot);
+      writeSvgPlot((plot.parent_path() / (plot.stem().string() + "_steps.svg")).string(), step_spec);
+    }
   }
   return 0;
 }
@@ -311,10 +337,17 @@ int cmdBench(const BenchCmd& cmd) {
 int cmdReference(const ReferenceCmd& cmd) {
   const Scene scene = loadScene(cmd.scene, parseSets(cmd.sets));
   const auto t0 = std::chrono::steady_clock::now();
-  const Image image = renderSeaReference(scene, cmd.steps);
+  // Spotlights in air: the shafts ray marcher (issue 4); otherwise the sea reference.
+  const bool shafts = scene.air.present && !scene.spotlights.empty();
+  Image image = shafts ? renderShaftsReference(scene, cmd.steps) : renderSeaReference(scene, cmd.steps);
+  if (!shafts && scene.sea.second_order) {  // + L^(2) by direct quadrature (000 eq. 6), issue 6
+    const Image second = renderSeaSecondReference(scene);
+    for (size_t i = 0; i < image.pixels.size(); ++i) image.pixels[i] += second.pixels[i];
+  }
   const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   writeExr(cmd.out, image);
-  std::printf("reference %s: %d quadrature steps, %.1f ms (CPU, double, TBB)\n", cmd.out.c_str(), cmd.steps, ms);
+  std::printf("reference %s: %d %s steps, %.1f ms (CPU, double, TBB)\n", cmd.out.c_str(), cmd.steps,
+              shafts ? "ray-march" : "quadrature", ms);
   return 0;
 }
 

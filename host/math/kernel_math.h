@@ -9,7 +9,9 @@ namespace seasim::kmath_f {
 typedef float real;
 #include "common/real3_host.h"
 #include "common/optics.h"
+#include "common/shafts.h"
 #include "common/sea_surface.h"
+#include "common/sea_second.h"
 #include "common/ocean_spectrum.h"
 }  // namespace seasim::kmath_f
 
@@ -17,6 +19,8 @@ namespace seasim::kmath_d {
 typedef double real;
 #include "common/real3_host.h"
 #include "common/optics.h"
+#include "common/shafts.h"
 #include "common/sea_surface.h"
+#include "common/sea_second.h"
 #include "common/ocean_spectrum.h"
 }  // namespace seasim::kmath_d

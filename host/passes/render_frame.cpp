@@ -3,7 +3,9 @@
 #include <chrono>
 
 #include "passes/nonfinite_check.h"
+#include "passes/sea_second_pass.h"
 #include "passes/sea_single_pass.h"
+#include "passes/shafts_pass.h"
 #include "spectral/sensor.h"
 #include "spectral/wavelength_grid.h"
 #include "util/error.h"
@@ -32,10 +34,32 @@ FrameResult renderFrame(Device& device, const Scene& scene, const Plan& plan) {
   result.rgb.channel_names = {"R", "G", "B"};
   result.rgb.pixels.resize(3 * pixels);
 
+  if (const PassPlan* shafts = plan.find("shafts")) {  // issue 4: spotlight shafts (paper 001)
+    ShaftsPass pass(device, scene, *shafts);
+    pass.run();
+    if (plan.hasPass("shadow_maps")) result.timings.push_back({"shadow_maps", pass.shadowMapMs()});
+    result.timings.push_back({"shafts", pass.shaftsMs()});
+    NonfiniteCheck check(device);
+    double check_ms = 0;
+    result.nonfinite = check.count(pass.rgb(), 3 * pixels, &check_ms);
+    result.timings.push_back({"nonfinite_check", check_ms});
+    pass.readRgb(result.rgb.pixels);
+    result.build_ms = device.totalBuildMs() - build_before;
+    result.wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    return result;
+  }
+
   const PassPlan* sea = plan.find("sea_single");
   if (!sea) throw RuntimeError("scene '" + scene.name + "' has nothing to render (no water in view)");
   SeaSinglePass pass(device, scene, *sea, grid, sensor);
   result.timings.push_back({"sea_single", pass.run()});
+
+  // Second-order scattering by scattering maps (000 eq. 6–8), added into sea_single's buffers.
+  if (const PassPlan* second = plan.find("sea_second")) {
+    SeaSecondPass second_pass(device, scene, *second, grid, sensor, pass.rgb(),
+                              scene.spectral.spectral_exr ? &pass.spectral() : nullptr);
+    result.timings.push_back({"sea_second", second_pass.run()});
+  }
 
   NonfiniteCheck check(device);
   double check_ms = 0;

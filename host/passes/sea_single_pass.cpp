@@ -1,8 +1,10 @@
 #include "passes/sea_single_pass.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 
+#include "math/kernel_math.h"
 #include "spectral/jerlov.h"
 #include "util/error.h"
 
@@ -19,6 +21,30 @@ static_assert(offsetof(SeaParams, width) == 112);
 static_assert(sizeof(SeaBand) == 48, "SeaBand must stay 48 bytes");
 
 namespace {
+
+namespace kd = kmath_d;
+
+// One band's LUT of 000 eq. 5 over theta_jo (kernels/sea_single.cl): the factors except beta and T_o,
+// in double, at theta_jo = j/(n-1) * pi/2. e_h: sun irradiance on the horizontal surface.
+std::vector<double> singleScatteringLut(int n, double e_h, double t_in, double c, double albedo, double c_f,
+                                        double cos_io, double z_d, double ior) {
+  std::vector<double> lut(n);
+  for (int j = 0; j < n; ++j) {
+    const double theta_jo = n > 1 ? j * (M_PI / 2) / (n - 1) : 0.0;
+    const double cos_ji = std::max(std::sqrt(std::max(kd::snell_cos_t2(std::cos(theta_jo), 1.0 / ior), 0.0)), 1e-4);
+    lut[j] = kd::sea_single_scattering(e_h, t_in, 1.0, 1.0, c, albedo, c_f, cos_io, cos_ji, z_d);
+  }
+  return lut;
+}
+
+// The kernel's Catmull–Rom read (mirrored ends), in double, for choosing the "auto" size.
+double lutRead(const std::vector<double>& lut, double x) {
+  const int n = static_cast<int>(lut.size());
+  const int j = std::clamp(static_cast<int>(x), 0, n - 2);
+  const double t = x - j;
+  const double p0 = lut[j > 0 ? j - 1 : 1], p1 = lut[j], p2 = lut[j + 1], p3 = lut[j + 2 < n ? j + 2 : n - 2];
+  return p1 + 0.5 * t * (p2 - p0 + t * (2 * p0 - 5 * p1 + 4 * p2 - p3 + t * (3 * (p1 - p2) + p3 - p0)));
+}
 
 void set4(float out[4], Vec3 v) {
   out[0] = static_cast<float>(v.x);
@@ -73,20 +99,77 @@ SeaSinglePass::SeaSinglePass(Device& device, const Scene& scene, const PassPlan&
     b.w_b = static_cast<float>(sensor.to_b[i]);
   }
 
+  // The LUT over theta_jo of 000 eq. 5 (quality.sea_lut_size). The parser takes positive sizes or
+  // "auto": auto doubles the size from 16 until the interpolation is within 1e-4 (relative to the
+  // band's largest entry) of the exact factors everywhere; size 1 asks for the exact evaluation
+  // (SEASIM_SEA_LUT=0), as a one-entry table could not follow theta_jo at all.
+  std::vector<float> lut_values(1, 0.0f);
+  int lut_size = 1;
+  {
+    const auto knob = scene.quality.find("sea_lut_size");
+    const bool automatic = knob != scene.quality.end() && knob->second.automatic;
+    lut_size = automatic ? 16 : (knob != scene.quality.end() ? static_cast<int>(knob->second.value) : 64);
+    const kd::real3 sun_d{sun.x, sun.y, sun.z};
+    double t_in = 0, cos_io = 1, e_h = 0;
+    if (sun.y > 0) {
+      t_in = 1 - kd::fresnel_reflectance(sun.y, 1.0, scene.water.ior);
+      e_h = sun.y;
+      kd::real3 sun_in_water{};
+      kd::refract_dir(-sun_d, kd::real3{0, 1, 0}, 1.0 / scene.water.ior, &sun_in_water);
+      cos_io = std::max(-sun_in_water.y, 1e-4);
+    }
+    const double c_f = kd::hg_forward_fraction(scene.water.g);
+    const double z_d = scene.bottom.type == BottomDesc::Type::Flat ? scene.bottom.depth : -1.0;
+    auto build = [&](int n) {
+      std::vector<std::vector<double>> per_band;
+      for (size_t i = 0; i < bands.size(); ++i) {
+        const double c = water.c[i], albedo = c > 0 ? water.b[i] / c : 0.0;
+        per_band.push_back(singleScatteringLut(n, sun_e[i] * e_h, t_in, c, albedo, c_f, cos_io, z_d, scene.water.ior));
+      }
+      return per_band;
+    };
+    std::vector<std::vector<double>> tables = lut_size > 1 ? build(lut_size) : std::vector<std::vector<double>>{};
+    while (automatic && lut_size < 4096) {
+      double worst = 0;
+      const std::vector<std::vector<double>> fine = build(4 * (lut_size - 1) + 1);  // 3 points between entries
+      for (size_t i = 0; i < tables.size(); ++i) {
+        const double peak = *std::max_element(tables[i].begin(), tables[i].end());
+        for (size_t q = 0; q < fine[i].size(); ++q)
+          worst = std::max(worst, std::fabs(lutRead(tables[i], q / 4.0) - fine[i][q]) / std::max(peak, 1e-30));
+      }
+      if (worst < 1e-4) break;
+      lut_size = 2 * (lut_size - 1) + 1;
+      tables = build(lut_size);
+    }
+    if (lut_size > 1) {
+      lut_values.clear();
+      for (const auto& t : tables)
+        for (double v : t) lut_values.push_back(static_cast<float>(v));
+    }
+  }
+  p.lut_size = lut_size;
+  // SEASIM_SEA_LUT is set here rather than by the planner: it follows a quality knob of this pass.
+  std::vector<std::string> defines = plan.defines;
+  defines.push_back(std::string("SEASIM_SEA_LUT=") + (lut_size > 1 ? "1" : "0"));
+
   const size_t pixels = static_cast<size_t>(width_) * static_cast<size_t>(height_);
   try {
-    const BuiltProgram& built = device.program(plan.kernel_file, plan.defines);
+    const BuiltProgram& built = device.program(plan.kernel_file, defines);
     kernel_ = cl::Kernel(built.program, "sea_single");
     params_ = cl::Buffer(device.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof p, &p);
     bands_ = cl::Buffer(device.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(SeaBand) * bands.size(),
                         bands.data());
-    rgb_ = cl::Buffer(device.context(), CL_MEM_WRITE_ONLY, sizeof(float) * 3 * pixels);
+    lut_ = cl::Buffer(device.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(float) * lut_values.size(),
+                      lut_values.data());
+    rgb_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE,  // sea_second adds into it
+                       sizeof(float) * 3 * pixels);
     kernel_.setArg(0, params_);
     kernel_.setArg(1, bands_);
-    kernel_.setArg(2, rgb_);
+    kernel_.setArg(2, lut_);
+    kernel_.setArg(3, rgb_);
     if (scene.spectral.spectral_exr) {
-      spectral_ = cl::Buffer(device.context(), CL_MEM_WRITE_ONLY, sizeof(float) * pixels * bands.size());
-      kernel_.setArg(3, spectral_);
+      spectral_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * pixels * bands.size());
+      kernel_.setArg(4, spectral_);
     }
   } catch (const cl::Error& e) {
     throw DeviceError(std::string("sea_single pass set-up: ") + e.what() + " " + clErrorName(e.err()));

@@ -27,7 +27,7 @@ class SeaSinglePass {
  private:
   Device& device_;
   cl::Kernel kernel_;
-  cl::Buffer params_, bands_, rgb_, spectral_;
+  cl::Buffer params_, bands_, lut_, rgb_, spectral_;
   int width_, height_;
 };
 

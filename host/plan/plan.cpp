@@ -56,14 +56,26 @@ Plan makePlan(const Scene& scene) {
   if (objects && (underwater || lights)) {
     plan.passes.push_back({"raycast", "raycast.cl", {}, {"scene"}, {"gbuffer"},
                            "scene has objects", false, "issue 4/5 (G-buffer ray casting)"});
+    if (lights && !underwater) {  // issue 4: shafts.cl ray casts its analytic objects per pixel
+      plan.passes.back().kernel_file = "shafts.cl";
+      plan.passes.back().implemented = true;
+    }
   }
+  // Shafts feature defines (issue 4), shared by the shadow_maps and shafts passes (one build).
+  bool light_map = false;
+  for (const auto& l : scene.spotlights) light_map = light_map || !l.light_map.empty();
+  const auto exact = scene.quality.find("shafts_exact");
+  const std::vector<std::string> shafts_defines = {
+      flag("SEASIM_SHAFTS_EXACT", exact != scene.quality.end() && exact->second.value != 0),
+      flag("SEASIM_SHAFTS_HG", scene.air.phase == AirDesc::Phase::HenyeyGreenstein),
+      flag("SEASIM_HAS_OBJECTS", objects), flag("SEASIM_HAS_LIGHT_MAP", light_map)};
   if (waves) {
     plan.passes.push_back({"ocean_fft", "ocean.cl", {flag("SEASIM_HAS_CHOPPY", scene.surface.choppiness > 0)},
                            {"scene"}, {"ocean_maps"}, "surface.type = \"fft\"", false, "issue 3 (ocean waves)"});
   }
   if (lights && objects) {
-    plan.passes.push_back({"shadow_maps", "shafts.cl", {}, {"scene"}, {"shadow_maps"},
-                           "spotlights and objects that cast shadows", false, "issue 4 (shafts)"});
+    plan.passes.push_back({"shadow_maps", "shafts.cl", shafts_defines, {"scene"}, {"shadow_maps"},
+                           "spotlights and objects that cast shadows", true, ""});
   }
   if (underwater && waves) {
     plan.passes.push_back({"caustics", "caustics.cl", {}, {"ocean_maps"}, {"caustic_map"},
@@ -100,13 +112,14 @@ Plan makePlan(const Scene& scene) {
     }
     plan.passes.push_back(pass);
     if (scene.sea.second_order) {
-      plan.passes.push_back({"sea_second", "sea_second.cl", {}, {"scene"}, {"rgb"},
-                             "sea.second_order = true", false, "issue 6 (scattering maps)"});
+      plan.passes.push_back({"sea_second", "sea_second.cl",
+                             {flag("SEASIM_HAS_BOTTOM", bottom), flag("SEASIM_SPECTRAL_OUTPUT", spectral_out)},
+                             {"scene", "rgb"}, {"rgb"}, "sea.second_order = true", pass.implemented, pass.missing});
     }
   }
   if (lights) {
-    plan.passes.push_back({"shafts", "shafts.cl", {}, {"scene", "shadow_maps"}, {"rgb"},
-                           "spotlights in air", false, "issue 4 (shafts)"});
+    plan.passes.push_back({"shafts", "shafts.cl", shafts_defines, {"scene", "shadow_maps"}, {"rgb"},
+                           "spotlights in air", true, ""});
   }
   if (underwater) {
     plan.passes.push_back({"kd_multiple", "kd_multiple.cl", {}, {"gbuffer", "froxel_volume"}, {"rgb"},

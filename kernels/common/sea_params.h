@@ -17,7 +17,7 @@ typedef struct {
   int width;
   int height;
   int band_count;
-  int pad1;
+  int lut_size;          /* entries of the single-scattering LUT over theta_jo (SEASIM_SEA_LUT) */
 } SeaParams;
 
 /* One wavelength band: radiometry and water IOPs at the band centre, and the sensor weights that

@@ -117,7 +117,9 @@ TEST_F(Cli, PlansDifferBetweenScenes) {
 }
 
 TEST_F(Cli, RenderOfAnUnimplementedPassFailsClearlyAndWritesNothing) {
-  const Result r = run("render " + kRepo + "/scenes/deep_ocean.toml -o " + (dir_ / "deep").string());
+  // An underwater camera needs the froxel and K_d passes (issue 5), not built yet.
+  const Result r = run("render " + kRepo + "/scenes/deep_ocean.toml --set 'camera.position=[0, -5, 0]' -o " +
+                       (dir_ / "deep").string());
   EXPECT_NE(r.code, 0);
   EXPECT_NE(r.output.find("not implemented yet"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(dir_ / "deep" / "report.json"));

@@ -62,7 +62,10 @@ TEST(Plan, SunBelowHorizonStillRendersWithoutSunTerms) {
 TEST(Plan, SecondOrderAddsScatteringMapsPass) {
   const Plan plan = makePlan(parseScene(kFlatSea, "flat.toml", {{"sea.second_order", "true", {"cli", 1}}}));
   ASSERT_TRUE(plan.hasPass("sea_second"));
-  EXPECT_FALSE(plan.find("sea_second")->implemented);
+  EXPECT_TRUE(plan.find("sea_second")->implemented);
+  // It runs after the single-scattering pass and adds into its image.
+  EXPECT_EQ(plan.passes[0].name, "sea_single");
+  EXPECT_EQ(plan.passes[1].name, "sea_second");
 }
 
 TEST(Plan, WavesAddTheOceanPass) {

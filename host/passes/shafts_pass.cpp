@@ -1,0 +1,237 @@
+#include "passes/shafts_pass.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+
+#include "math/kernel_math.h"
+#include "util/error.h"
+
+extern "C" {
+#include "common/shafts_params.h"
+}
+
+namespace seasim {
+
+// The kernel reads these structs with OpenCL C layout; float/int are 4 bytes on both sides.
+static_assert(sizeof(ShaftsParams) == 4 * 16 + 12 * 4 + 8 * 4, "ShaftsParams layout changed: update shafts.cl users");
+static_assert(offsetof(ShaftsParams, tan_half_fov_y) == 64);
+static_assert(offsetof(ShaftsParams, width) == 112);
+static_assert(offsetof(ShaftsParams, table_size) == 140);
+static_assert(sizeof(ShaftsLight) == 5 * 16 + 8 * 4, "ShaftsLight must stay 112 bytes");
+static_assert(offsetof(ShaftsLight, cos_cone) == 80);
+static_assert(offsetof(ShaftsLight, shadow_offset) == 104);
+static_assert(sizeof(ShaftsObject) == 64, "ShaftsObject must stay 64 bytes");
+static_assert(offsetof(ShaftsObject, type) == 48);
+
+namespace {
+
+void set4(float out[4], Vec3 v, double w = 0) {
+  out[0] = static_cast<float>(v.x);
+  out[1] = static_cast<float>(v.y);
+  out[2] = static_cast<float>(v.z);
+  out[3] = static_cast<float>(w);
+}
+
+int knob(const Scene& scene, const char* name, int fallback) {
+  const auto it = scene.quality.find(name);
+  if (it == scene.quality.end() || it->second.automatic) return fallback;
+  return static_cast<int>(it->second.value);
+}
+
+bool hasDefine(const PassPlan& plan, const std::string& name) {
+  return std::find(plan.defines.begin(), plan.defines.end(), name + "=1") != plan.defines.end();
+}
+
+}  // namespace
+
+ShaftsPass::Config ShaftsPass::configFromScene(const Scene& scene) {
+  Config c;
+  c.planes = knob(scene, "shafts_planes", 30);
+  c.subplanes = knob(scene, "shafts_subplanes", 6);
+  c.shadow_map_size = knob(scene, "shadow_map_size", 512);
+  c.table_size = std::max(2, knob(scene, "shafts_table_size", 256));
+  return c;
+}
+
+ShaftsPass::ShaftsPass(Device& device, const Scene& scene, const PassPlan& plan, const Config& config)
+    : device_(device),
+      width_(scene.camera.width),
+      height_(scene.camera.height),
+      light_count_(static_cast<int>(scene.spotlights.size())),
+      shadow_size_(config.shadow_map_size),
+      has_objects_(!scene.objects.empty()) {
+  if (config.planes < 1 || config.subplanes < 1 || config.shadow_map_size < 1) {
+    throw RuntimeError("shafts: planes, sub-planes and shadow-map size must be at least 1");
+  }
+  range_ = config.has_range ? config.range : shaftsRange(scene);
+  const bool exact = hasDefine(plan, "SEASIM_SHAFTS_EXACT");
+  const bool use_hg = hasDefine(plan, "SEASIM_SHAFTS_HG");
+
+  const CameraDesc& cam = scene.camera;
+  ShaftsParams p{};
+  const Vec3 forward = normalize(cam.look_at - cam.position);
+  const Vec3 right = normalize(cross(forward, cam.up));
+  const Vec3 up = cross(right, forward);
+  set4(p.cam_pos, cam.position);
+  set4(p.cam_right, right);
+  set4(p.cam_up, up);
+  set4(p.cam_forward, forward);
+  p.tan_half_fov_y = static_cast<float>(std::tan(cam.fov_y / 2));
+  p.aspect = static_cast<float>(cam.width) / static_cast<float>(cam.height);
+  const double rho = scene.air.density, sigma_t = scene.air.density * scene.air.extinction;
+  p.rho = static_cast<float>(rho);
+  p.sigma_t = static_cast<float>(sigma_t);
+  p.z_near = static_cast<float>(range_.z_near);
+  p.z_far = static_cast<float>(range_.z_far);
+  p.hg_g = static_cast<float>(scene.air.g);
+  p.s_min = static_cast<float>(kShaftsLampRadius);
+  p.table_s_max = static_cast<float>(range_.s_max);
+  p.table_t_max = static_cast<float>(range_.t_max);
+  p.width = cam.width;
+  p.height = cam.height;
+  p.light_count = light_count_;
+  p.object_count = static_cast<int>(scene.objects.size());
+  p.planes = config.planes;
+  p.subplanes = config.subplanes;
+  p.shadow_map_size = config.shadow_map_size;
+  p.table_size = config.table_size;
+
+  // Lights, their light maps (one float RGB buffer) and shadow-map offsets.
+  std::vector<ShaftsLight> lights(scene.spotlights.size());
+  std::vector<float> maps;
+  for (size_t i = 0; i < lights.size(); ++i) {
+    const SpotlightDesc& l = scene.spotlights[i];
+    ShaftsLight& L = lights[i];
+    Vec3 lr, lu;
+    shaftsLightBasis(l, lr, lu);
+    set4(L.position, l.position);
+    set4(L.direction, normalize(l.direction));
+    set4(L.right, lr);
+    set4(L.up, lu);
+    set4(L.color, l.color * l.intensity);
+    L.cos_cone = static_cast<float>(std::cos(l.cone));
+    L.cos_inner = static_cast<float>(std::cos(std::max(0.0, l.cone - l.falloff)));
+    L.tan_cone = static_cast<float>(std::tan(l.cone));
+    L.light_map_offset = -1;
+    if (!l.light_map.empty()) {
+      const LightMap map = loadLightMap(l.light_map);
+      L.light_map_offset = static_cast<int>(maps.size());
+      L.light_map_width = map.width;
+      L.light_map_height = map.height;
+      maps.insert(maps.end(), map.rgb.begin(), map.rgb.end());
+    }
+    L.shadow_offset = static_cast<int>(i) * config.shadow_map_size * config.shadow_map_size;
+  }
+  if (!maps.empty() && !hasDefine(plan, "SEASIM_HAS_LIGHT_MAP")) {
+    throw RuntimeError("shafts: the plan has no SEASIM_HAS_LIGHT_MAP but a spotlight has a light map");
+  }
+
+  std::vector<ShaftsObject> objects;
+  for (const ObjectDesc& o : scene.objects) {
+    ShaftsObject ob{};
+    set4(ob.albedo, objectAlbedoRgb(o));
+    if (o.type == ObjectDesc::Type::Sphere) {
+      ob.type = SHAFTS_SPHERE;
+      set4(ob.a, o.center, o.radius);
+    } else if (o.type == ObjectDesc::Type::Box) {
+      ob.type = SHAFTS_BOX;
+      set4(ob.a, o.box_min);
+      set4(ob.b, o.box_max);
+    } else if (o.type == ObjectDesc::Type::Plane) {
+      ob.type = SHAFTS_PLANE;
+      set4(ob.a, o.point);
+      set4(ob.b, normalize(o.normal));
+    } else {
+      throw RuntimeError(o.loc.file + ":" + std::to_string(o.loc.line) +
+                         ": height-field objects are not supported in spotlight (shafts) scenes yet");
+    }
+    objects.push_back(ob);
+  }
+
+  // 001 eq. 6 tables: F over α ∈ [0, π]; ĥ = s² h = ρ exp(-ρκ(s + t)) over [0, s_max] x [0, t_max].
+  const int n = config.table_size;
+  std::vector<float> f_table(exact ? 1 : n), h_table(exact ? 1 : size_t(n) * n);
+  if (!exact) {
+    for (int i = 0; i < n; ++i) {
+      const double alpha = M_PI * i / (n - 1);
+      f_table[i] = static_cast<float>(kmath_d::shafts_phase_fn(std::cos(alpha), use_hg, scene.air.g));
+    }
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const double s = range_.s_max * i / (n - 1), t = range_.t_max * j / (n - 1);
+        h_table[size_t(j) * n + i] = static_cast<float>(kmath_d::shafts_h_scaled(s, t, rho, sigma_t));
+      }
+  }
+
+  const size_t pixels = static_cast<size_t>(width_) * static_cast<size_t>(height_);
+  const size_t shadow_texels = has_objects_ ? size_t(light_count_) * shadow_size_ * shadow_size_ : 1;
+  auto upload = [&](const void* data, size_t bytes) {
+    return cl::Buffer(device.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, bytes, const_cast<void*>(data));
+  };
+  const float zero = 0.0f;
+  const ShaftsObject no_object{};
+  try {
+    const BuiltProgram& built = device.program(plan.kernel_file, plan.defines);
+    render_kernel_ = cl::Kernel(built.program, "shafts_render");
+    shadow_kernel_ = cl::Kernel(built.program, "shafts_shadow_map");
+    params_ = upload(&p, sizeof p);
+    lights_ = upload(lights.data(), sizeof(ShaftsLight) * lights.size());
+    objects_ = objects.empty() ? upload(&no_object, sizeof no_object)
+                               : upload(objects.data(), sizeof(ShaftsObject) * objects.size());
+    light_maps_ = maps.empty() ? upload(&zero, sizeof zero) : upload(maps.data(), sizeof(float) * maps.size());
+    f_table_ = upload(f_table.data(), sizeof(float) * f_table.size());
+    h_table_ = upload(h_table.data(), sizeof(float) * h_table.size());
+    shadow_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * shadow_texels);
+    rgb_ = cl::Buffer(device.context(), CL_MEM_WRITE_ONLY, sizeof(float) * 3 * pixels);
+    shadow_kernel_.setArg(0, params_);
+    shadow_kernel_.setArg(1, lights_);
+    shadow_kernel_.setArg(2, objects_);
+    shadow_kernel_.setArg(3, shadow_);
+    render_kernel_.setArg(0, params_);
+    render_kernel_.setArg(1, lights_);
+    render_kernel_.setArg(2, objects_);
+    render_kernel_.setArg(3, shadow_);
+    render_kernel_.setArg(4, light_maps_);
+    render_kernel_.setArg(5, f_table_);
+    render_kernel_.setArg(6, h_table_);
+    render_kernel_.setArg(7, rgb_);
+  } catch (const cl::Error& e) {
+    throw DeviceError(std::string("shafts pass set-up: ") + e.what() + " " + clErrorName(e.err()));
+  }
+}
+
+double ShaftsPass::run() {
+  try {
+    const size_t local = 8;
+    auto up = [&](size_t v) { return (v + local - 1) / local * local; };
+    shadow_ms_ = 0;
+    if (has_objects_ && light_count_ > 0) {
+      cl::Event done;
+      device_.queue().enqueueNDRangeKernel(shadow_kernel_, cl::NullRange,
+                                           cl::NDRange(up(shadow_size_), up(shadow_size_), light_count_),
+                                           cl::NDRange(local, local, 1), nullptr, &done);
+      done.wait();
+      shadow_ms_ = eventMs(done);
+    }
+    cl::Event done;
+    device_.queue().enqueueNDRangeKernel(render_kernel_, cl::NullRange, cl::NDRange(up(width_), up(height_)),
+                                         cl::NDRange(local, local), nullptr, &done);
+    done.wait();
+    shafts_ms_ = eventMs(done);
+  } catch (const cl::Error& e) {
+    throw DeviceError(std::string("shafts pass: ") + e.what() + " " + clErrorName(e.err()));
+  }
+  return shadow_ms_ + shafts_ms_;
+}
+
+void ShaftsPass::readRgb(std::vector<float>& out) {
+  out.resize(size_t(3) * width_ * height_);
+  try {
+    device_.queue().enqueueReadBuffer(rgb_, CL_TRUE, 0, sizeof(float) * out.size(), out.data());
+  } catch (const cl::Error& e) {
+    throw DeviceError(std::string("shafts pass: reading the frame back: ") + e.what() + " " + clErrorName(e.err()));
+  }
+}
+
+}  // namespace seasim

@@ -1,0 +1,140 @@
+#include "reference/sea_second_reference.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "math/kernel_math.h"
+#include "spectral/jerlov.h"
+#include "spectral/sensor.h"
+#include "spectral/wavelength_grid.h"
+#include "util/error.h"
+
+namespace seasim {
+
+namespace {
+
+namespace k = kmath_d;
+
+// Direction at polar cosine mu and azimuth phi about the unit axis a.
+k::real3 aroundAxis(k::real3 a, double mu, double phi) {
+  const k::real3 helper = std::fabs(a.x) < 0.9 ? k::real3{1, 0, 0} : k::real3{0, 1, 0};
+  const k::real3 t1 = k::normalize(k::cross(a, helper));
+  const k::real3 t2 = k::cross(a, t1);
+  const double s = std::sqrt(std::max(0.0, 1 - mu * mu));
+  return a * mu + t1 * (s * std::cos(phi)) + t2 * (s * std::sin(phi));
+}
+
+// Inverse CDF of Henyey–Greenstein in the cosine to its axis, u in (0, 1) -> mu in (-1, 1).
+double hgInverseCdf(double u, double g) {
+  if (std::fabs(g) < 1e-6) return 1 - 2 * u;
+  const double q = (1 - g * g) / (1 - g + 2 * g * u);
+  return std::clamp((1 + g * g - q * q) / (2 * g), -1.0, 1.0);
+}
+
+}  // namespace
+
+Image renderSeaSecondReference(const Scene& scene, const SeaSecondReferenceSettings& settings) {
+  if (!scene.water.present || scene.camera.position.y <= 0) {
+    throw RuntimeError("the sea reference renders scenes seen from above the water only");
+  }
+  if (scene.surface.type != SurfaceDesc::Type::Flat || scene.bottom.type == BottomDesc::Type::HeightField ||
+      scene.sky.model != SkyDesc::Model::Uniform) {
+    throw RuntimeError("the sea reference models a flat surface, flat or no bottom and a uniform sky only");
+  }
+  if (settings.depth_steps < 1 || settings.angle_steps < 1) {
+    throw RuntimeError("second-order reference: depth_steps and angle_steps must be at least 1");
+  }
+  const WavelengthGrid grid = makeGrid(scene.spectral.count, scene.spectral.min_nm, scene.spectral.max_nm);
+  const Sensor sensor = makeSensor(scene.spectral.sensor, grid, scene.spectral.white_balance);
+  const BandOptics water = resolveWater(scene.water, grid);
+  const std::vector<double> sun_e = sunIrradianceBands(grid, scene.sun.irradiance);
+  const size_t bands = grid.centers_nm.size();
+  const double ior = scene.water.ior, g = scene.water.g;
+  const bool bottom = scene.bottom.type == BottomDesc::Type::Flat;
+
+  const CameraDesc& cam = scene.camera;
+  const Vec3 fwd = normalize(cam.look_at - cam.position);
+  const Vec3 right = normalize(cross(fwd, cam.up));
+  const Vec3 up = cross(right, fwd);
+  const double tan_half = std::tan(cam.fov_y / 2), aspect = double(cam.width) / cam.height;
+
+  Image img;
+  img.width = cam.width;
+  img.height = cam.height;
+  img.channels = 3;
+  img.channel_names = {"R", "G", "B"};
+  img.pixels.assign(static_cast<size_t>(cam.width) * cam.height * 3, 0.0f);
+
+  const k::real3 sun{std::sin(scene.sun.zenith) * std::cos(scene.sun.azimuth), std::cos(scene.sun.zenith),
+                     std::sin(scene.sun.zenith) * std::sin(scene.sun.azimuth)};
+  if (!(scene.sun.enabled && scene.sun.irradiance > 0 && sun.y > 0)) return img;  // no sun in the water
+  const k::real3 n{0, 1, 0};
+  k::real3 s{};  // travel direction of the refracted sunlight
+  k::refract_dir(-sun, n, 1.0 / ior, &s);
+  const double cos_io = std::max(-s.y, 1e-4);
+  const double e_beam_unit = sun.y * (1 - k::fresnel_reflectance(sun.y, 1.0, ior)) / cos_io;
+
+  const int N = settings.angle_steps, D = settings.depth_steps;
+  tbb::parallel_for(0, cam.height, [&](int y) {
+    struct Node {
+      k::real3 omega;
+      double factor;  // p1 p2 / (p1 + p2) / N^2: the balance-heuristic weight of one lobe's node
+    };
+    std::vector<Node> nodes(2 * static_cast<size_t>(N) * N);
+    for (int x = 0; x < cam.width; ++x) {
+      const double u = (2.0 * (x + 0.5) / cam.width - 1.0) * tan_half * aspect;
+      const double v = (1.0 - 2.0 * (y + 0.5) / cam.height) * tan_half;
+      const Vec3 dv = normalize(fwd + right * u + up * v);
+      const k::real3 d{dv.x, dv.y, dv.z};
+      if (d.y >= 0) continue;  // sky
+      const double t_out = 1 - k::fresnel_reflectance(-d.y, 1.0, ior);
+      k::real3 view{};
+      k::refract_dir(d, n, 1.0 / ior, &view);
+      const double cos_ji = std::max(-view.y, 1e-4);
+
+      // Lobe 1: p1(omega) = p(s . -omega), peaked at omega = -s. Lobe 2: p2 = p(omega . view).
+      size_t idx = 0;
+      for (int lobe = 0; lobe < 2; ++lobe) {
+        const k::real3 axis = lobe == 0 ? -s : view;
+        for (int i = 0; i < N; ++i) {
+          const double mu = hgInverseCdf((i + 0.5) / N, g);
+          for (int j = 0; j < N; ++j) {
+            const k::real3 omega = aroundAxis(axis, mu, 2 * M_PI * (j + 0.5) / N);
+            const double p1 = k::hg_phase(k::dot(s, -omega), g), p2 = k::hg_phase(k::dot(omega, view), g);
+            nodes[idx++] = {omega, p1 * p2 / (p1 + p2) / (double(N) * N)};
+          }
+        }
+      }
+
+      double rgb[3] = {0, 0, 0};
+      for (size_t b = 0; b < bands; ++b) {
+        const double c = water.c[b], albedo = c > 0 ? water.b[b] / c : 0.0;
+        if (albedo == 0) continue;
+        const double tau_d = bottom ? c * scene.bottom.depth : -1.0;
+        const double e_beam = sun_e[b] * e_beam_unit;
+        double sum = 0;  // int exp(-tau sec_ji) (J/c) dtau
+        for (int kz = 0; kz < D; ++kz) {
+          double w = 0;
+          const double tau = k::sea_plane_depth(kz, D, cos_io, tau_d, &w);
+          double j_over_c = 0;  // albedo int p2 L^(1) d omega
+          for (const Node& node : nodes) {
+            j_over_c += node.factor * k::sea_radiance_map(e_beam, albedo, 1.0, cos_io, node.omega.y, tau, tau_d);
+          }
+          sum += w * k::sea_attenuation(tau, cos_ji) * albedo * j_over_c;
+        }
+        const double L = t_out * sum / cos_ji;
+        rgb[0] += L * sensor.to_r[b];
+        rgb[1] += L * sensor.to_g[b];
+        rgb[2] += L * sensor.to_b[b];
+      }
+      float* px = &img.pixels[(static_cast<size_t>(y) * cam.width + x) * 3];
+      for (int ch = 0; ch < 3; ++ch) px[ch] = static_cast<float>(rgb[ch]);
+    }
+  });
+  return img;
+}
+
+}  // namespace seasim

@@ -1,0 +1,190 @@
+/* sea_second.cl — second-order scattering of sunlight under a flat sea by scattering maps
+ * (000 §5.2, eq. 6–8), added to the image sea_single.cl wrote.
+ *
+ * The paper's GPU passes become four kernels, run in order for one frame:
+ *   1. sea_second_vsf_map        the volume-scattering-function map: HG phase over the phase angle
+ *                                 (parameter t = sin(alpha/2), common/sea_second.h)       [vsf_size]
+ *   2. sea_second_radiance_map   the radiance map L^(1)(z_k, theta_m, phi_m) of eq. 7 per plane,
+ *                                 direction and band, the direction table (omega, weight) and the
+ *                                 planes' depth weights d tau_k per band
+ *                                                                          [n_z x n_d x bands]
+ *   3. sea_second_scattering_map per plane k and sampling point s: G(z_k) sum_m beta(alpha'_m)
+ *                                 L^(1)(z_k, m) sin(theta_m) dtheta dphi (eq. 8)  [n_z x M x M x bands]
+ *   4. sea_second_accumulate     plane-wise accumulation along each pixel's refracted view ray:
+ *                                 T_o sum_k map_k(pixel) dz_k sec(theta_ji), added into rgb.
+ * The cost is n_z x M^2 x n_d x bands for the maps plus pixels x n_z x bands for the accumulation.
+ *
+ * Sampling points. The sampling points of plane k are where an M x M grid of view rays, spread evenly
+ * over the image from the first to the last pixel centre, refracts through the surface and crosses
+ * plane k: the plane's map in the camera's projection (what the paper's texture mapping of the planes
+ * onto the view amounts to), so a pixel reads each map bilinearly at its own image position. Map rays
+ * above the horizon are lowered to just below it (the in-water values are continuous there) so that
+ * pixels next to the horizon interpolate towards the right limit.
+ *
+ * Units. Maps hold L^(2)(z_k)/c (eq. 8 divided by c) and the planes are placed in optical depth
+ * tau = c z, per band (common/sea_second.h sea_plane_depth), so that nothing divides by c.
+ *
+ * Inputs: SeaSecondParams, SeaBand[band_count] (sea_params.h). Output: rgb[3 * pixels] += L^(2) in
+ * sensor RGB; spectral[pixels * band_count] += L^(2) with SEASIM_SPECTRAL_OUTPUT.
+ * Defines (host/plan): SEASIM_HAS_BOTTOM (flat bottom at bottom_depth), SEASIM_SPECTRAL_OUTPUT.
+ * Stiff cases: the 0/0 of eq. 7 at cos theta = cos theta_io and theta = pi/2 (common/sea_second.h);
+ * sun below the horizon (sun_beam = 0: adds exactly 0); c = 0 (albedo 0: adds 0); grazing views
+ * (cos theta_ji clamped away from 0, T_o -> 0).
+ */
+#include "common/compat.h"
+#include "common/optics.h"
+#include "common/sea_params.h"
+#include "common/sea_second_params.h"
+#include "common/sea_second.h"
+
+#define SEA_SECOND_CHUNK 32 /* bands accumulated per pass over the directions (private registers) */
+
+/* World view direction through image position (fx, fy) in pixels (pixel centres at x + 0.5). */
+static inline float3 view_dir(__constant SeaSecondParams* p, float fx, float fy) {
+  const float u = (2.0f * fx / p->width - 1.0f) * p->tan_half_fov_y * p->aspect;
+  const float v = (1.0f - 2.0f * fy / p->height) * p->tan_half_fov_y;
+  const float3 right = (float3)(p->cam_right[0], p->cam_right[1], p->cam_right[2]);
+  const float3 up = (float3)(p->cam_up[0], p->cam_up[1], p->cam_up[2]);
+  const float3 fwd = (float3)(p->cam_forward[0], p->cam_forward[1], p->cam_forward[2]);
+  return normalize(fwd + u * right + v * up);
+}
+
+static inline float optical_bottom(const __global SeaBand* band, __constant SeaSecondParams* p) {
+#if SEASIM_HAS_BOTTOM
+  return band->c * p->bottom_depth;
+#else
+  return -1.0f; /* no bottom */
+#endif
+}
+
+__kernel void sea_second_vsf_map(__constant SeaSecondParams* p, __global float* vsf) {
+  const int i = get_global_id(0);
+  if (i >= p->vsf_size) return;
+  vsf[i] = sea_vsf_value((float)i / (float)(p->vsf_size - 1), p->g);
+}
+
+__kernel void sea_second_radiance_map(__constant SeaSecondParams* p, __global const SeaBand* bands,
+                                      __global float4* dirs, __global float* radiance, __global float* plane_w) {
+  const int m = get_global_id(0);
+  const int k = get_global_id(1);
+  const int n_d = p->n_theta * p->n_phi;
+  if (m >= n_d || k >= p->n_z) return;
+  float3 omega;
+  const float weight = sea_direction(m, p->n_theta, p->n_phi, &omega);
+  if (k == 0) dirs[m] = (float4)(omega.x, omega.y, omega.z, weight);
+  const float3 sun = (float3)(p->sun_in_water[0], p->sun_in_water[1], p->sun_in_water[2]);
+  const float phase = hg_phase(dot(sun, -omega), p->g); /* first scattering: sun beam -> -omega */
+  for (int i = 0; i < p->band_count; ++i) {
+    const __global SeaBand* band = &bands[i];
+    const float albedo = band->c > 0.0f ? band->b / band->c : 0.0f;
+    const float tau_d = optical_bottom(band, p);
+    float w;
+    const float tau_k = sea_plane_depth(k, p->n_z, p->cos_io, tau_d, &w);
+    if (m == 0) plane_w[k * p->band_count + i] = w; /* d tau of plane k, for the accumulation */
+    radiance[((size_t)k * n_d + m) * p->band_count + i] =
+        sea_radiance_map(band->sun_irradiance * p->sun_beam, albedo, phase, p->cos_io, omega.y, tau_k, tau_d);
+  }
+}
+
+/* Refracted view direction and cos(theta_ji) at a map sampling point (i, j). */
+static inline float3 map_view_in_water(__constant SeaSecondParams* p, int i, int j, float* cos_ji) {
+  const int M = p->map_size;
+  const float fx = M > 1 ? 0.5f + (float)i * (p->width - 1) / (M - 1) : 0.5f * p->width;
+  const float fy = M > 1 ? 0.5f + (float)j * (p->height - 1) / (M - 1) : 0.5f * p->height;
+  float3 d = view_dir(p, fx, fy);
+  if (d.y > -1e-3f) d = normalize((float3)(d.x, -1e-3f, d.z)); /* lowered below the horizon */
+  float3 v;
+  refract_dir(d, (float3)(0.0f, 1.0f, 0.0f), 1.0f / p->ior, &v);
+  *cos_ji = fmax(-v.y, 1e-4f);
+  return v;
+}
+
+__kernel void sea_second_scattering_map(__constant SeaSecondParams* p, __global const SeaBand* bands,
+                                        __global const float4* dirs, __global const float* vsf,
+                                        __global const float* radiance, __global float* maps) {
+  const int i = get_global_id(0);
+  const int j = get_global_id(1);
+  const int k = get_global_id(2);
+  const int M = p->map_size;
+  if (i >= M || j >= M || k >= p->n_z) return;
+  const int n_d = p->n_theta * p->n_phi;
+  const int nb = p->band_count;
+  float cos_ji;
+  const float3 v = map_view_in_water(p, i, j, &cos_ji);
+  const size_t out = (((size_t)k * M + j) * M + i) * nb;
+  for (int b0 = 0; b0 < nb; b0 += SEA_SECOND_CHUNK) {
+    const int count = min(SEA_SECOND_CHUNK, nb - b0);
+    float acc[SEA_SECOND_CHUNK];
+    for (int c = 0; c < count; ++c) acc[c] = 0.0f;
+    for (int m = 0; m < n_d; ++m) {
+      const float4 dw = dirs[m];
+      /* Second scattering: light travelling -omega turned towards the eye (-v): cos alpha' = omega.v */
+      const float t = sea_vsf_param(dw.x * v.x + dw.y * v.y + dw.z * v.z) * (p->vsf_size - 1);
+      const int t0 = min((int)t, p->vsf_size - 2);
+      const float f = t - (float)t0;
+      const float pw = (vsf[t0] + f * (vsf[t0 + 1] - vsf[t0])) * dw.w;
+      const __global float* L1 = radiance + ((size_t)k * n_d + m) * nb + b0;
+      for (int c = 0; c < count; ++c) acc[c] += pw * L1[c];
+    }
+    for (int c = 0; c < count; ++c) {
+      const __global SeaBand* band = &bands[b0 + c];
+      const float albedo = band->c > 0.0f ? band->b / band->c : 0.0f;
+      float w;
+      const float tau_k = sea_plane_depth(k, p->n_z, p->cos_io, optical_bottom(band, p), &w);
+      maps[out + b0 + c] = sea_attenuation(tau_k, cos_ji) * albedo * acc[c]; /* eq. 8 / c */
+    }
+  }
+}
+
+__kernel void sea_second_accumulate(__constant SeaSecondParams* p, __global const SeaBand* bands,
+                                    __global const float* maps, __global const float* plane_w, __global float* rgb
+#if SEASIM_SPECTRAL_OUTPUT
+                                    , __global float* spectral
+#endif
+) {
+  const int x = get_global_id(0);
+  const int y = get_global_id(1);
+  if (x >= p->width || y >= p->height) return;
+  const float3 d = view_dir(p, x + 0.5f, y + 0.5f);
+  if (d.y >= 0.0f) return; /* sky: no water along this ray */
+  const int pixel = y * p->width + x;
+  const float t_out = 1.0f - fresnel_reflectance(-d.y, 1.0f, p->ior); /* T_o */
+  float3 v;
+  refract_dir(d, (float3)(0.0f, 1.0f, 0.0f), 1.0f / p->ior, &v);
+  const float cos_ji = fmax(-v.y, 1e-4f);
+
+  /* Bilinear position of this pixel in every plane's map. */
+  const int M = p->map_size;
+  float mx = 0.0f, my = 0.0f;
+  if (M > 1) {
+    mx = p->width > 1 ? (float)x * (M - 1) / (p->width - 1) : 0.0f;
+    my = p->height > 1 ? (float)y * (M - 1) / (p->height - 1) : 0.0f;
+  }
+  const int i0 = M > 1 ? min((int)mx, M - 2) : 0;
+  const int j0 = M > 1 ? min((int)my, M - 2) : 0;
+  const int di = M > 1 ? 1 : 0;
+  const float fx = mx - i0, fy = my - j0;
+  const int nb = p->band_count;
+
+  float r = 0.0f, g = 0.0f, b = 0.0f;
+  for (int i = 0; i < nb; ++i) {
+    const __global SeaBand* band = &bands[i];
+    float sum = 0.0f;
+    for (int k = 0; k < p->n_z; ++k) { /* plane by plane, front to back */
+      const float w = plane_w[k * nb + i];
+      const __global float* map = maps + (size_t)k * M * M * nb + i;
+      const float a00 = map[((size_t)j0 * M + i0) * nb], a10 = map[((size_t)j0 * M + i0 + di) * nb];
+      const float a01 = map[((size_t)(j0 + di) * M + i0) * nb], a11 = map[((size_t)(j0 + di) * M + i0 + di) * nb];
+      const float top = a00 + fx * (a10 - a00), bottom = a01 + fx * (a11 - a01);
+      sum += (top + fy * (bottom - top)) * w;
+    }
+    const float L = t_out * sum / cos_ji; /* dz sec(theta_ji) = dtau sec(theta_ji) / c */
+    r += L * band->w_r; g += L * band->w_g; b += L * band->w_b;
+#if SEASIM_SPECTRAL_OUTPUT
+    spectral[(size_t)pixel * nb + i] += L;
+#endif
+  }
+  rgb[3 * pixel + 0] += r;
+  rgb[3 * pixel + 1] += g;
+  rgb[3 * pixel + 2] += b;
+}

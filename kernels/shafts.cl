@@ -1,0 +1,233 @@
+/* shafts.cl — spotlight shafts of light in a uniform medium (paper 001), per pixel on the device.
+ *
+ *   I_v = I_o exp(-ρκT) + I_s                                        (001 eq. 1)
+ *   I_s = ∫_0^T H(t) I_l(t) g(α, s, t) dt                             (001 eq. 2)
+ *   g   = ρ F(α) exp(-ρκ(s + t)) / s²  = F(α) h(s, t)                 (001 eq. 3, 6)
+ *   I_s ≈ Σ_i J_i g(α_i, s_i, t_i) Δt_i,  J_i = (1/m) Σ_j H(u_j) I_l(u_j) (001 eq. 5, 7–9)
+ *
+ * n sampling planes parallel to the screen, equally spaced in camera depth between z_near and
+ * z_far; the ray's intersection with plane i gives t_i (and Δt_i = Δz / cos θ); m sub-sample planes
+ * per interval average the shadow term H (from the shadow map) times the lamp's emission I_l
+ * (projected light map, or the cone fall-off) before multiplying by g, which varies slowly.
+ * F is 001 eq. 4 normalised to ∫F dΩ = 1 (optics.h), or Henyey–Greenstein. ρ acts as the
+ * scattering coefficient (1/m) and ρκ as the extinction coefficient. Light adds up per lamp.
+ *
+ * Kernels:
+ *   shafts_shadow_map  one depth map per light: distance from the lamp to the first object along
+ *                      each texel's ray, the texels spanning [-tan_cone, tan_cone]² in the light's
+ *                      projective plane (x/z, y/z); 1e30 where nothing is hit.
+ *   shafts_render      per pixel: ray cast of the analytic objects (sphere, box, plane), I_o by
+ *                      Lambertian shading under every spotlight with exact shadow rays, then I_s.
+ * Inputs: ShaftsParams, ShaftsLight[light_count], ShaftsObject[object_count], light maps (RGB
+ * floats), F table [table_size] over α ∈ [0, π] and ĥ = s² h table [table_size²] over
+ * (s, t) ∈ [0, s_max] × [0, t_max] (table mode). Output: rgb[3 * pixels], linear RGB radiance.
+ * Defines: SEASIM_SHAFTS_EXACT (g evaluated exactly, else from the 1-D and 2-D tables of eq. 6),
+ * SEASIM_SHAFTS_HG (Henyey–Greenstein phase), SEASIM_HAS_OBJECTS, SEASIM_HAS_LIGHT_MAP.
+ * Stiff cases: see common/shafts.h (s -> 0, ρκ = 0 and large, grazing planes); rays that hit
+ * nothing have T = ∞ and no I_o term (so ρκ = 0 never forms 0·∞).
+ */
+#include "common/compat.h"
+#include "common/optics.h"
+#include "common/shafts.h"
+#include "common/shafts_params.h"
+
+#define SHAFTS_NO_HIT 1e30f
+
+/* float[4] of any address space -> float3 */
+#define v3(a) ((float3)((a)[0], (a)[1], (a)[2]))
+
+/* First hit of the ray o + t d, t in (t_min, t_max); writes the normal (facing the ray) and the
+ * object's index. Returns t or -1. */
+static inline float scene_hit(__global const ShaftsObject* objects, int count, float3 o, float3 d, float t_min,
+                              float t_max, float3* normal, int* which) {
+  float best = t_max;
+  int hit = -1;
+  float3 nrm = (float3)(0.0f, 1.0f, 0.0f);
+  for (int k = 0; k < count; ++k) {
+    __global const ShaftsObject* ob = &objects[k];
+    float t = -1.0f;
+    int axis = 0;
+    if (ob->type == SHAFTS_SPHERE) {
+      t = ray_sphere(o, d, v3(ob->a), ob->a[3], t_min, best);
+      if (t > 0.0f) nrm = normalize(o + t * d - v3(ob->a));
+    } else if (ob->type == SHAFTS_BOX) {
+      t = ray_box(o, d, v3(ob->a), v3(ob->b), t_min, best, &axis);
+      if (t > 0.0f) nrm = box_normal(o + t * d, v3(ob->a), v3(ob->b), axis);
+    } else {
+      t = ray_plane(o, d, v3(ob->a), v3(ob->b), t_min, best);
+      if (t > 0.0f) nrm = v3(ob->b);
+    }
+    if (t > 0.0f) {
+      best = t;
+      hit = k;
+      if (normal) *normal = nrm;
+    }
+  }
+  if (which) *which = hit;
+  if (normal && hit >= 0 && dot(*normal, d) > 0.0f) *normal = -*normal;
+  return hit >= 0 ? best : -1.0f;
+}
+
+/* Light-frame coordinates of a point: x, y across the beam, z along it. */
+static inline float3 to_light(__global const ShaftsLight* L, float3 p) {
+  float3 q = p - v3(L->position);
+  return (float3)(dot(q, v3(L->right)), dot(q, v3(L->up)), dot(q, v3(L->direction)));
+}
+
+/* I_l towards a point with light-frame coordinates q at distance s, per R,G,B (W/sr). */
+static inline float3 lamp_emission(__global const ShaftsLight* L, __global const float* light_maps, float3 q, float s) {
+  if (q.z <= 0.0f || s <= 0.0f) return (float3)(0.0f);
+  const float profile = shafts_cone_profile(q.z / s, L->cos_cone, L->cos_inner);
+  if (profile <= 0.0f) return (float3)(0.0f);
+  float3 e = v3(L->color) * profile;
+#if SEASIM_HAS_LIGHT_MAP
+  if (L->light_map_offset >= 0) {
+    /* Projective texture (001 §4.2): the map covers [-tan_cone, tan_cone]² at unit distance,
+     * top row towards the light's +up. Bilinear between texel centres, clamped at the border. */
+    const float inv = 1.0f / (q.z * L->tan_cone);
+    const float fu = (0.5f * (q.x * inv + 1.0f)) * L->light_map_width - 0.5f;
+    const float fv = (0.5f * (1.0f - q.y * inv)) * L->light_map_height - 0.5f;
+    const int w = L->light_map_width, h = L->light_map_height;
+    const float cu = clamp(fu, 0.0f, (float)(w - 1)), cv = clamp(fv, 0.0f, (float)(h - 1));
+    const int x0 = min((int)cu, w - 1), y0 = min((int)cv, h - 1);
+    const int x1 = min(x0 + 1, w - 1), y1 = min(y0 + 1, h - 1);
+    const float ax = cu - x0, ay = cv - y0;
+    __global const float* m = light_maps + L->light_map_offset;
+    float3 t00 = vload3(y0 * w + x0, m), t10 = vload3(y0 * w + x1, m);
+    float3 t01 = vload3(y1 * w + x0, m), t11 = vload3(y1 * w + x1, m);
+    e *= mix(mix(t00, t10, ax), mix(t01, t11, ax), ay);
+  }
+#endif
+  return e;
+}
+
+/* H: 1 when the point (light frame q, distance s) is nearer the lamp than the shadow map's depth. */
+static inline float shadow_term(__global const ShaftsLight* L, __global const float* shadow, int size, float3 q, float s) {
+#if SEASIM_HAS_OBJECTS
+  const float inv = 1.0f / (q.z * L->tan_cone);
+  const int ix = clamp((int)(0.5f * (q.x * inv + 1.0f) * size), 0, size - 1);
+  const int iy = clamp((int)(0.5f * (q.y * inv + 1.0f) * size), 0, size - 1);
+  const float depth = shadow[L->shadow_offset + iy * size + ix];
+  return s < depth ? 1.0f : 0.0f;
+#else
+  return 1.0f;
+#endif
+}
+
+__kernel void shafts_shadow_map(__constant ShaftsParams* p, __global const ShaftsLight* lights,
+                                __global const ShaftsObject* objects, __global float* shadow) {
+  const int x = get_global_id(0), y = get_global_id(1), l = get_global_id(2);
+  const int size = p->shadow_map_size;
+  if (x >= size || y >= size || l >= p->light_count) return;
+  __global const ShaftsLight* L = &lights[l];
+  const float a = ((x + 0.5f) / size * 2.0f - 1.0f) * L->tan_cone;
+  const float b = ((y + 0.5f) / size * 2.0f - 1.0f) * L->tan_cone;
+  const float3 d = normalize(v3(L->direction) + a * v3(L->right) + b * v3(L->up));
+  const float t = scene_hit(objects, p->object_count, v3(L->position), d, 0.0f, SHAFTS_NO_HIT, 0, 0);
+  shadow[L->shadow_offset + y * size + x] = t > 0.0f ? t : SHAFTS_NO_HIT;
+}
+
+#if !SEASIM_SHAFTS_EXACT
+/* Linear interpolation in the 1-D F table over α ∈ [0, π] (001 eq. 6). */
+static inline float phase_table(__global const float* F, int n, float cos_alpha) {
+  const float x = acos(clamp(cos_alpha, -1.0f, 1.0f)) * (float)(n - 1) / M_PI_F;
+  const int i = min((int)x, n - 2);
+  const float f = x - i;
+  return mix(F[i], F[i + 1], f);
+}
+/* Bilinear interpolation in the 2-D table of ĥ = s² h over (s, t). */
+static inline float h_table(__global const float* H, int n, float s_max, float t_max, float s, float t) {
+  const float xs = clamp(s / s_max, 0.0f, 1.0f) * (n - 1), xt = clamp(t / t_max, 0.0f, 1.0f) * (n - 1);
+  const int i = min((int)xs, n - 2), j = min((int)xt, n - 2);
+  const float fs = xs - i, ft = xt - j;
+  const float a = mix(H[j * n + i], H[j * n + i + 1], fs), b = mix(H[(j + 1) * n + i], H[(j + 1) * n + i + 1], fs);
+  return mix(a, b, ft);
+}
+#endif
+
+__kernel void shafts_render(__constant ShaftsParams* p, __global const ShaftsLight* lights,
+                            __global const ShaftsObject* objects, __global const float* shadow,
+                            __global const float* light_maps, __global const float* F_table,
+                            __global const float* h_tab, __global float* rgb) {
+  const int x = get_global_id(0), y = get_global_id(1);
+  if (x >= p->width || y >= p->height) return;
+  const int pixel = y * p->width + x;
+
+  const float u = (2.0f * (x + 0.5f) / p->width - 1.0f) * p->tan_half_fov_y * p->aspect;
+  const float v = (1.0f - 2.0f * (y + 0.5f) / p->height) * p->tan_half_fov_y;
+  const float3 eye = v3(p->cam_pos), fwd = v3(p->cam_forward);
+  const float3 d = normalize(fwd + u * v3(p->cam_right) + v * v3(p->cam_up));
+  const float cos_theta = dot(d, fwd); /* > 0 for every pixel (fov < 180°) */
+
+  float3 result = (float3)(0.0f);
+  float z_end = p->z_far;
+#if SEASIM_HAS_OBJECTS
+  float3 n;
+  int which;
+  const float T = scene_hit(objects, p->object_count, eye, d, 0.0f, SHAFTS_NO_HIT, &n, &which);
+  if (T > 0.0f) {
+    /* I_o: Lambertian surface under each spotlight, exact shadow ray, Beer–Lambert lamp -> surface. */
+    const float3 P = eye + T * d;
+    const float3 albedo = v3(objects[which].albedo);
+    float3 Io = (float3)(0.0f);
+    for (int l = 0; l < p->light_count; ++l) {
+      __global const ShaftsLight* L = &lights[l];
+      const float3 to_lamp = v3(L->position) - P;
+      const float s = length(to_lamp);
+      const float3 wl = to_lamp / fmax(s, 1e-20f);
+      const float cos_n = dot(n, wl);
+      if (cos_n <= 0.0f) continue;
+      const float3 e = lamp_emission(L, light_maps, to_light(L, P), s);
+      if (e.x + e.y + e.z <= 0.0f) continue;
+      const float eps = 1e-4f * fmax(1.0f, T);
+      if (scene_hit(objects, p->object_count, P + eps * n, wl, 0.0f, s - 2.0f * eps, 0, 0) > 0.0f) continue;
+      const float sc = fmax(s, p->s_min);
+      Io += e * (cos_n * exp(-p->sigma_t * s) / (sc * sc));
+    }
+    result = Io * (albedo * (1.0f / M_PI_F)) * exp(-p->sigma_t * T); /* 001 eq. 1, first term */
+    z_end = fmin(z_end, T * cos_theta);
+  }
+#endif
+
+  /* I_s: sampling planes (001 eq. 5) with sub-sample planes (001 eq. 7–9), lamp by lamp. */
+  const int n_planes = p->planes, m = p->subplanes;
+  const float inv_cos = 1.0f / cos_theta;
+  for (int l = 0; l < p->light_count; ++l) {
+    __global const ShaftsLight* L = &lights[l];
+    const float3 lamp = v3(L->position);
+    float3 acc = (float3)(0.0f);
+    for (int i = 0; i < n_planes; ++i) {
+      float za, zb;
+      if (!shafts_interval(i, n_planes, p->z_near, p->z_far, z_end, &za, &zb)) break;
+      /* J_i: average of H I_l over m sub-sample planes in the interval (001 eq. 9). */
+      float3 J = (float3)(0.0f);
+      const float dzs = (zb - za) / m;
+      for (int j = 0; j < m; ++j) {
+        const float tu = (za + (j + 0.5f) * dzs) * inv_cos;
+        const float3 P = eye + tu * d;
+        const float3 q = to_light(L, P);
+        const float s = length(P - lamp);
+        const float3 e = lamp_emission(L, light_maps, q, s);
+        if (e.x + e.y + e.z > 0.0f) J += e * shadow_term(L, shadow, p->shadow_map_size, q, s);
+      }
+      if (J.x + J.y + J.z <= 0.0f) continue;
+      J *= 1.0f / m;
+      /* g at the plane (the interval's midpoint): 001 eq. 3, 6. */
+      const float t = 0.5f * (za + zb) * inv_cos;
+      const float3 P = eye + t * d;
+      const float3 w = P - lamp;
+      const float s = length(w);
+      const float cos_alpha = s > 0.0f ? dot(w, -d) / s : 1.0f;
+#if SEASIM_SHAFTS_EXACT
+      const float g = shafts_phase_fn(cos_alpha, SEASIM_SHAFTS_HG, p->hg_g) * shafts_h(s, t, p->rho, p->sigma_t, p->s_min);
+#else
+      const float sc = fmax(s, p->s_min);
+      const float g = phase_table(F_table, p->table_size, cos_alpha) *
+                      h_table(h_tab, p->table_size, p->table_s_max, p->table_t_max, s, t) / (sc * sc);
+#endif
+      acc += J * (g * (zb - za) * inv_cos); /* Δt_i = Δz_i / cos θ */
+    }
+    result += acc;
+  }
+  vstore3(result, pixel, rgb);
+}
