@@ -78,8 +78,8 @@ class JobParser {
     r.finish();
 
     std::vector<PendingItem> items;
-    for (const auto& [i, t] : arrayOfTables(root, "render")) render(*t, i, items);
-    for (const auto& [i, t] : arrayOfTables(root, "sweep")) sweep(*t, i, items);
+    for (const auto& [i, t] : root.arrayOfTables("render")) render(*t, i, items);
+    for (const auto& [i, t] : root.arrayOfTables("sweep")) sweep(*t, i, items);
     if (items.empty())
       src_.fail(&root_table, "", "the job has no [[render]] or [[sweep]] tables, so nothing to do");
     return items;
@@ -90,18 +90,6 @@ class JobParser {
   Job& job_;
   std::vector<Override> job_overrides_;
 
-  std::vector<std::pair<size_t, const toml::table*>> arrayOfTables(TableReader& root,
-                                                                   const char* name) {
-    std::vector<std::pair<size_t, const toml::table*>> out;
-    const toml::node* n = root.get(name);
-    if (!n) return out;
-    const toml::array* a = n->as_array();
-    if (!a || (!a->empty() && !a->is_array_of_tables()))
-      root.fail(name,
-                std::string("expected an array of tables ([[") + name + "]]), got " + typeName(*n));
-    for (size_t i = 0; i < a->size(); ++i) out.emplace_back(i, a->get(i)->as_table());
-    return out;
-  }
 
   // overrides = { "sun.zenith_deg" = 40, water.g = 0.8 }: quoted dotted keys and TOML's own
   // nested (dotted) keys both end up as one Override per leaf value, located at that value.

@@ -89,8 +89,8 @@ class SceneParser {
     if (scene_.air.present) air(section(root, "air"));
     surface(section(root, "surface"));
     bottom(section(root, "bottom"), root.has("bottom"));
-    for (const auto& [i, t] : arrayOfTables(root, "objects")) object(*t, i);
-    for (const auto& [i, t] : arrayOfTables(root, "spotlights")) spotlight(*t, i);
+    for (const auto& [i, t] : root.arrayOfTables("objects")) object(*t, i);
+    for (const auto& [i, t] : root.arrayOfTables("spotlights")) spotlight(*t, i);
     spectral(section(root, "spectral"));
     sea(section(root, "sea"));
     quality(section(root, "quality"));
@@ -106,18 +106,6 @@ class SceneParser {
     return t ? *t : empty_;
   }
 
-  std::vector<std::pair<size_t, const toml::table*>> arrayOfTables(TableReader& root,
-                                                                   const char* name) {
-    std::vector<std::pair<size_t, const toml::table*>> out;
-    const toml::node* n = root.get(name);
-    if (!n) return out;
-    const toml::array* a = n->as_array();
-    if (!a || (!a->empty() && !a->is_array_of_tables()))
-      root.fail(name,
-                std::string("expected an array of tables ([[") + name + "]]), got " + typeName(*n));
-    for (size_t i = 0; i < a->size(); ++i) out.emplace_back(i, a->get(i)->as_table());
-    return out;
-  }
 
   // A texture path, resolved against the scene file's folder; it must exist.
   std::string texture(TableReader& r, const char* key, bool required) {

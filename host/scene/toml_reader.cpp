@@ -388,6 +388,17 @@ Vec3 TableReader::vec3(std::string_view key, Vec3 def) {
   return {v[0], v[1], v[2]};
 }
 
+std::vector<std::pair<size_t, const toml::table*>> TableReader::arrayOfTables(std::string_view key) {
+  std::vector<std::pair<size_t, const toml::table*>> out;
+  const toml::node* n = get(key);
+  if (!n) return out;
+  const toml::array* a = n->as_array();
+  if (!a || (!a->empty() && !a->is_array_of_tables()))
+    fail(key, "expected an array of tables ([[" + std::string(key) + "]]), got " + typeName(*n));
+  for (size_t i = 0; i < a->size(); ++i) out.emplace_back(i, a->get(i)->as_table());
+  return out;
+}
+
 const toml::table* TableReader::subtable(std::string_view key) {
   const toml::node* n = get(key);
   if (!n) return nullptr;

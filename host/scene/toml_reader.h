@@ -71,6 +71,8 @@ class TableReader {
   std::vector<double> numbers(std::string_view key);
   // A sub-table (null when absent; an error when the key holds something else).
   const toml::table* subtable(std::string_view key);
+  // The tables of an array of tables ([[key]]) with their indices; empty when absent.
+  std::vector<std::pair<size_t, const toml::table*>> arrayOfTables(std::string_view key);
 
   // Throws at the key's node (else at this table) unless ok.
   void check(bool ok, std::string_view key, const std::string& message) {
