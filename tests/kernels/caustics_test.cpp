@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "device/device.h"
+#include "test_device.h"
 #include "math/kernel_math.h"
 #include "passes/caustics_pass.h"
 #include "passes/ocean_pass.h"
@@ -24,11 +25,7 @@ using seasim::OceanConfig;
 using seasim::OceanPass;
 namespace km = seasim::kmath_d;
 
-seasim::Device& device() {
-  static seasim::Device dev(seasim::chooseDevice(std::getenv("SEASIM_TEST_DEVICE") ? std::getenv("SEASIM_TEST_DEVICE")
-                                                                                   : "pocl:0"));
-  return dev;
-}
+seasim::Device& device() { return seasim::test::testDevice(); }
 
 OceanConfig sea() {
   OceanConfig c;

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "device/device.h"
+#include "test_device.h"
 #include "math/kernel_math.h"
 #include "ocean/ocean_cpu.h"
 #include "passes/ocean_pass.h"
@@ -23,11 +24,7 @@ using seasim::OceanConfig;
 using seasim::OceanCpu;
 using seasim::OceanPass;
 
-seasim::Device& device() {
-  static seasim::Device dev(seasim::chooseDevice(std::getenv("SEASIM_TEST_DEVICE") ? std::getenv("SEASIM_TEST_DEVICE")
-                                                                                   : "pocl:0"));
-  return dev;
-}
+seasim::Device& device() { return seasim::test::testDevice(); }
 
 OceanConfig smallOcean() {
   OceanConfig c;

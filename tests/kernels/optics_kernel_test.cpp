@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "device/device.h"
+#include "test_device.h"
 #include "math/kernel_math.h"
 
 namespace {
@@ -41,33 +42,29 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr double kAir = 1.0;
 constexpr double kWater = 1.333;
 
-// The device under test: PoCL by default (CI and this machine); SEASIM_TEST_DEVICE selects
-// another (e.g. "gpu") with the chooseDevice() syntax.
+// The device under test: tests/kernels/test_device.h.
 class OpticsKernelTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    const char* sel = std::getenv("SEASIM_TEST_DEVICE");
-    device_ = std::make_unique<seasim::Device>(seasim::chooseDevice(sel && *sel ? sel : "pocl"));
-    program_ = device_->program("optics_check.cl", {}).program;
+    program_ = device().program("optics_check.cl", {}).program;
   }
   static void TearDownTestSuite() {
     program_ = cl::Program();
-    device_.reset();
   }
 
   template <class T>
   static cl::Buffer input(const std::vector<T>& v) {
-    return cl::Buffer(device_->context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+    return cl::Buffer(device().context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
                       v.size() * sizeof(T), const_cast<T*>(v.data()));
   }
   template <class T>
   static cl::Buffer output(size_t n) {
-    return cl::Buffer(device_->context(), CL_MEM_WRITE_ONLY, n * sizeof(T));
+    return cl::Buffer(device().context(), CL_MEM_WRITE_ONLY, n * sizeof(T));
   }
   template <class T>
   static std::vector<T> read(const cl::Buffer& b, size_t n) {
     std::vector<T> v(n);
-    device_->queue().enqueueReadBuffer(b, CL_TRUE, 0, n * sizeof(T), v.data());
+    device().queue().enqueueReadBuffer(b, CL_TRUE, 0, n * sizeof(T), v.data());
     return v;
   }
   // Sets the arguments in order and runs one work-item per element.
@@ -76,14 +73,13 @@ class OpticsKernelTest : public ::testing::Test {
     cl::Kernel k(program_, name);
     cl_uint i = 0;
     (k.setArg(i++, args), ...);
-    device_->queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(n), cl::NullRange);
-    device_->queue().finish();
+    device().queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(n), cl::NullRange);
+    device().queue().finish();
   }
 
-  static std::unique_ptr<seasim::Device> device_;
+  static seasim::Device& device() { return seasim::test::testDevice(); }
   static cl::Program program_;
 };
-std::unique_ptr<seasim::Device> OpticsKernelTest::device_;
 cl::Program OpticsKernelTest::program_;
 
 // cos θt for the float inputs, in double (the conditioning factor of the bounds above).

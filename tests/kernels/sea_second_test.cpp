@@ -8,6 +8,7 @@
 #include <cstdlib>
 
 #include "device/device.h"
+#include "test_device.h"
 #include "math/kernel_math.h"
 #include "passes/render_frame.h"
 #include "passes/sea_second_pass.h"
@@ -40,11 +41,7 @@ albedo = 0.3
 count = 3
 )";
 
-seasim::Device& device() {
-  static seasim::Device dev(seasim::chooseDevice(std::getenv("SEASIM_TEST_DEVICE") ? std::getenv("SEASIM_TEST_DEVICE")
-                                                                                      : "pocl"));
-  return dev;
-}
+seasim::Device& device() { return seasim::test::testDevice(); }
 
 seasim::Override set(const char* key, const std::string& value) { return {key, value, {"test", 1}}; }
 

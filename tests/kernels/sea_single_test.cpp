@@ -8,6 +8,7 @@
 #include <cstdlib>
 
 #include "device/device.h"
+#include "test_device.h"
 #include "passes/render_frame.h"
 #include "plan/plan.h"
 #include "reference/sea_reference.h"
@@ -39,11 +40,7 @@ albedo = 0.3
 count = 8
 )";
 
-seasim::Device& device() {
-  static seasim::Device dev(seasim::chooseDevice(std::getenv("SEASIM_TEST_DEVICE") ? std::getenv("SEASIM_TEST_DEVICE")
-                                                                                      : "pocl"));
-  return dev;
-}
+seasim::Device& device() { return seasim::test::testDevice(); }
 
 // Max over pixels and channels of |kernel - reference| / (|reference| + floor), floor = 1e-3 of the
 // image's largest reference value (so near-black pixels are judged on an absolute scale).

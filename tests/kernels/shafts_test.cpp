@@ -16,6 +16,7 @@
 #include <string>
 
 #include "device/device.h"
+#include "test_device.h"
 #include "passes/render_frame.h"
 #include "passes/shafts_pass.h"
 #include "plan/plan.h"
@@ -27,11 +28,7 @@ namespace {
 
 using seasim::Override;
 
-seasim::Device& device() {
-  static seasim::Device dev(seasim::chooseDevice(std::getenv("SEASIM_TEST_DEVICE") ? std::getenv("SEASIM_TEST_DEVICE")
-                                                                                      : "pocl"));
-  return dev;
-}
+seasim::Device& device() { return seasim::test::testDevice(); }
 
 Override set(const std::string& key, const std::string& value) { return {key, value, {"test", 1}}; }
 
