@@ -3,6 +3,7 @@
 // Add a new common header here, in dependency order, when you add it to kernels/common/.
 #pragma once
 #include "common/compat.h"
+#include "common/underwater_params.h"  // plain C structs, used by underwater.h
 
 
 namespace seasim::kmath_f {
@@ -13,6 +14,7 @@ typedef float real;
 #include "common/sea_surface.h"
 #include "common/sea_second.h"
 #include "common/ocean_spectrum.h"
+#include "common/underwater.h"
 }  // namespace seasim::kmath_f
 
 namespace seasim::kmath_d {
@@ -23,4 +25,5 @@ typedef double real;
 #include "common/sea_surface.h"
 #include "common/sea_second.h"
 #include "common/ocean_spectrum.h"
+#include "common/underwater.h"
 }  // namespace seasim::kmath_d

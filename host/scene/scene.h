@@ -136,6 +136,20 @@ struct SeaDesc {
   bool reflection = true;
 };
 
+// [underwater]: the terms of the underwater model (paper 002) and their settings.
+struct UnderwaterDesc {
+  enum class Caustics { None, Texture, Map };
+  enum class Injection { Spectral, Rgb };
+  bool multiple_scattering = true;   // L_MS by K_d (002 eq. 4.7)
+  bool single_scattering = true;     // froxel single scattering of the sun beam (002 §5)
+  Caustics caustics = Caustics::Texture;  // texture: two scrolling textures (002 §5.3); map: caustics.cl
+  double caustic_period = 4.0;       // m, tile size of the caustic texture (file: caustic_period_m)
+  double caustic_speed = 0.5;        // m/s, scroll speed (file: caustic_speed_mps)
+  Injection injection = Injection::Spectral;  // froxel light injection per band or in sensor RGB
+  double froxel_near = 0.1;          // m, first froxel slice (file: froxel_near_m)
+  double froxel_far = 60.0;          // m, last froxel slice (file: froxel_far_m)
+};
+
 struct Scene {
   std::string file;  // absolute path of the scene file
   std::string name;
@@ -147,6 +161,7 @@ struct Scene {
   SurfaceDesc surface;
   BottomDesc bottom;
   SeaDesc sea;
+  UnderwaterDesc underwater;
   std::vector<ObjectDesc> objects;
   std::vector<SpotlightDesc> spotlights;
   SpectralDesc spectral;

@@ -1,0 +1,143 @@
+#include "underwater/underwater_setup.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+
+#include "math/kernel_math.h"
+#include "spectral/jerlov.h"
+#include "util/error.h"
+
+namespace seasim {
+
+static_assert(sizeof(UwParams) == 6 * 16 + 12 * 4 + 8 * 4, "UwParams layout changed: update underwater_params.h users");
+static_assert(offsetof(UwParams, tan_half_fov_y) == 96);
+static_assert(offsetof(UwParams, width) == 144);
+static_assert(sizeof(UwBand) == 64, "UwBand must stay 64 bytes");
+static_assert(sizeof(UwObject) == 48 && offsetof(UwObject, a) == 16, "UwObject must stay 48 bytes");
+
+namespace {
+
+namespace kd = kmath_d;
+
+void set4(float out[4], Vec3 v, double w = 0.0) {
+  out[0] = static_cast<float>(v.x);
+  out[1] = static_cast<float>(v.y);
+  out[2] = static_cast<float>(v.z);
+  out[3] = static_cast<float>(w);
+}
+
+}  // namespace
+
+double skyFresnelMean(double ior) {
+  const int steps = 2000;
+  double sum = 0;
+  for (int i = 0; i < steps; ++i) {  // midpoint rule in θ
+    const double t = (i + 0.5) * (M_PI / 2) / steps;
+    sum += kd::fresnel_reflectance(std::cos(t), 1.0, ior) * std::cos(t) * std::sin(t);
+  }
+  return 2.0 * sum * (M_PI / 2) / steps;
+}
+
+UnderwaterSetup makeUnderwaterSetup(const Scene& scene, const WavelengthGrid& grid, const Sensor& sensor) {
+  UnderwaterSetup s;
+  UwParams& p = s.params;
+  const CameraDesc& cam = scene.camera;
+  const Vec3 forward = normalize(cam.look_at - cam.position);
+  const Vec3 right = normalize(cross(forward, cam.up));
+  const Vec3 up = cross(right, forward);
+  set4(p.cam_pos, cam.position);
+  set4(p.cam_right, right);
+  set4(p.cam_up, up);
+  set4(p.cam_forward, forward);
+
+  // The sun in air (azimuth from +x towards +z) and refracted into the water (004 eq. 40–44).
+  const Vec3 sun{std::sin(scene.sun.zenith) * std::cos(scene.sun.azimuth), std::cos(scene.sun.zenith),
+                 std::sin(scene.sun.zenith) * std::sin(scene.sun.azimuth)};
+  const bool sun_up = scene.sun.enabled && scene.sun.irradiance > 0 && sun.y > 1e-6;
+  s.sun_air = sun;
+  s.sun_water = {0, 1, 0};
+  double t_sun = 0;
+  if (sun_up) {
+    kd::real3 in_water{};
+    kd::refract_dir(kd::real3{-sun.x, -sun.y, -sun.z}, kd::real3{0, 1, 0}, 1.0 / scene.water.ior, &in_water);
+    s.sun_water = normalize(Vec3{-in_water.x, -in_water.y, -in_water.z});
+    t_sun = 1.0 - kd::fresnel_reflectance(sun.y, 1.0, scene.water.ior);
+  }
+  set4(p.sun_dir_air, s.sun_air);
+  set4(p.sun_dir_water, s.sun_water);
+  p.tan_half_fov_y = static_cast<float>(std::tan(cam.fov_y / 2));
+  p.aspect = static_cast<float>(cam.width) / static_cast<float>(cam.height);
+  p.ior = static_cast<float>(scene.water.ior);
+  p.g = static_cast<float>(scene.water.g);
+  p.bottom_depth = scene.bottom.type == BottomDesc::Type::Flat ? static_cast<float>(scene.bottom.depth) : 0.0f;
+  p.time = static_cast<float>(scene.surface.time);
+  const UnderwaterDesc& uw = scene.underwater;
+  p.caustic_period = static_cast<float>(uw.caustic_period);
+  p.caustic_speed = static_cast<float>(uw.caustic_speed);
+  p.caustic_extent = static_cast<float>(scene.surface.patch_size);
+  p.width = cam.width;
+  p.height = cam.height;
+  p.band_count = static_cast<int>(grid.size());
+  p.caustic_mode = uw.caustics == UnderwaterDesc::Caustics::None      ? UW_CAUSTICS_NONE
+                   : uw.caustics == UnderwaterDesc::Caustics::Texture ? UW_CAUSTICS_TEXTURE
+                                                                      : UW_CAUSTICS_MAP;
+  const auto map_size = scene.quality.find("caustic_map_size");
+  p.caustic_map_size = map_size != scene.quality.end() ? static_cast<int>(map_size->second.value) : 256;
+  s.single_scattering = uw.single_scattering && sun_up;
+
+  // Per band: IOPs, the light just below the surface, sensor weights.
+  const BandOptics water = resolveWater(scene.water, grid, sun_up ? s.sun_water.y : 0.85);
+  const std::vector<double> sun_e = sunIrradianceBands(grid, sun_up ? scene.sun.irradiance : 0.0);
+  const std::vector<double> sky_l = sunIrradianceBands(grid, scene.sky.radiance);  // uniform sky: D65 shape
+  s.sky_fresnel = skyFresnelMean(scene.water.ior);
+  s.bands.resize(grid.size());
+  for (size_t i = 0; i < grid.size(); ++i) {
+    UwBand& b = s.bands[i];
+    b.a = static_cast<float>(water.a[i]);
+    b.b = static_cast<float>(water.b[i]);
+    b.c = static_cast<float>(water.c[i]);
+    b.kd = static_cast<float>(water.kd[i]);
+    b.e_sky0 = static_cast<float>(M_PI * sky_l[i] * (1.0 - s.sky_fresnel));
+    const double e_sun0 = sun_e[i] * std::max(sun.y, 0.0) * t_sun;
+    b.e_sun0 = static_cast<float>(e_sun0);
+    b.e_beam0 = sun_up ? static_cast<float>(e_sun0 / s.sun_water.y) : 0.0f;
+    b.sky_radiance = static_cast<float>(sky_l[i]);
+    b.bottom_albedo = static_cast<float>(scene.bottom.albedo.at(grid.centers_nm[i]));
+    b.w_r = static_cast<float>(sensor.to_r[i]);
+    b.w_g = static_cast<float>(sensor.to_g[i]);
+    b.w_b = static_cast<float>(sensor.to_b[i]);
+  }
+
+  for (const ObjectDesc& o : scene.objects) {
+    UwObject u{};
+    switch (o.type) {
+      case ObjectDesc::Type::Sphere:
+        u.type = UW_SPHERE;
+        set4(u.a, o.center, o.radius);
+        break;
+      case ObjectDesc::Type::Box:
+        u.type = UW_BOX;
+        set4(u.a, o.box_min);
+        set4(u.b, o.box_max);
+        break;
+      case ObjectDesc::Type::Plane:
+        u.type = UW_PLANE;
+        set4(u.a, o.point);
+        set4(u.b, normalize(o.normal));
+        break;
+      case ObjectDesc::Type::HeightField:
+        throw RuntimeError(o.loc.file + ":" + std::to_string(o.loc.line) +
+                           ": height-field objects are not supported under water yet (use spheres, boxes "
+                           "and planes, or a flat [bottom])");
+    }
+    s.objects.push_back(u);
+    for (size_t i = 0; i < grid.size(); ++i) s.albedo.push_back(static_cast<float>(o.albedo.at(grid.centers_nm[i])));
+  }
+  p.object_count = static_cast<int>(s.objects.size());
+  if (s.objects.empty()) s.objects.push_back(UwObject{});  // OpenCL buffers cannot be empty
+  if (s.albedo.empty()) s.albedo.push_back(0.0f);
+  return s;
+}
+
+}  // namespace seasim

@@ -1,0 +1,37 @@
+// underwater_setup.h — the scene turned into the parameter blocks every underwater pass reads
+// (kernels/common/underwater_params.h): camera, refracted sun, per-band water IOPs and the light just
+// below the surface, analytic objects and their albedo per band. Built once per frame and shared by
+// the raycast, froxel, kd_multiple and path-tracer (reference.cl) passes so they see the same scene.
+#pragma once
+#include <vector>
+
+#include "math/vec3.h"
+#include "scene/scene.h"
+#include "spectral/sensor.h"
+#include "spectral/wavelength_grid.h"
+
+extern "C" {
+#include "common/underwater_params.h"
+}
+
+namespace seasim {
+
+struct UnderwaterSetup {
+  UwParams params{};
+  std::vector<UwBand> bands;     // one per wavelength band
+  std::vector<UwObject> objects; // analytic objects (sphere, box, plane)
+  std::vector<float> albedo;     // [object * band_count + band]; at least one entry (OpenCL buffers)
+  Vec3 sun_air{0, 1, 0};         // unit, towards the sun in air
+  Vec3 sun_water{0, 1, 0};       // unit, towards the sun after refraction (y = μ_w)
+  double sky_fresnel = 0.0;      // r̄: the uniform sky's cosine-weighted Fresnel reflectance at the surface
+  bool single_scattering = true; // the froxel pass runs (L_MS and L_s then leave out the direct beam)
+};
+
+// The mean Fresnel reflectance of a uniform sky seen through a flat surface of relative index ior,
+// weighted by cos θ: r̄ = 2 ∫_0^{π/2} F(θ) cos θ sin θ dθ (about 0.066 for water).
+double skyFresnelMean(double ior);
+
+// RuntimeError for what the underwater passes cannot render (a height-field object, naming it).
+UnderwaterSetup makeUnderwaterSetup(const Scene& scene, const WavelengthGrid& grid, const Sensor& sensor);
+
+}  // namespace seasim

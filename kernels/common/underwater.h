@@ -1,0 +1,168 @@
+/* underwater.h — the underwater model of paper 002 per wavelength band, shared by kd_multiple.cl,
+ * raycast.cl, froxel.cl and the host (kmath_f / kmath_d, unit-tested in float and double).
+ * Needs optics.h, shafts.h (ray_sphere/ray_box/ray_plane) and underwater_params.h before it.
+ *
+ * A view ray leaves the camera at o (depth o_d = -o.y >= 0) along the unit direction d; a point on it
+ * at distance z has depth y(z) = o_d - z d_y. The thesis writes the same with ω = -d pointing to the
+ * camera (002 eq. 4.5: y = o_y - z ω_y with its y measured downwards), so its K_d ω_y is our K_d d_y.
+ *
+ * Multiple scattering (002 eq. 4.4–4.7): with the ambient irradiance E(y) = E_D0 e^{-K_d y} (eq. 4.1)
+ * scattered isotropically,
+ *   L_MS = σ_s/(4π) E_D0 ∫_0^S e^{-σ_t z} e^{-K_d (o_d - z d_y)} dz
+ *        = σ_s/(4π) E_D0 e^{-K_d o_d} (e^{(K_d d_y - σ_t) S} - 1) / (K_d d_y - σ_t)      (eq. 4.7)
+ * evaluated by kd_exp_integral without its removable singularity at K_d d_y = σ_t and without
+ * overflow/underflow pairs (camera at 1000 m looking up: e^{-K_d o_d} underflows while e^{x S} would
+ * overflow; their product is <= 1).
+ *
+ * Not counting the sun twice. The froxel pass (002 §5) integrates the single scattering of the direct
+ * sun beam, E_beam(y) = e_beam0 e^{-σ_t y / μ_w}, whose horizontal irradiance e_sun0 e^{-σ_t y/μ_w} is
+ * part of E(y). When that pass runs, L_MS uses the diffuse remainder
+ *   E_dif(y) = (e_sky0 + e_sun0) e^{-K_d y} - e_sun0 e^{-(σ_t/μ_w) y},
+ * a sum of two exponentials in y, so eq. 4.7 applies to each term with its own attenuation
+ * (K_d, then σ_t/μ_w). Without single scattering the whole E(y) is used, as in the thesis.
+ *
+ * Surfaces (eq. 2.7, 2.10): L = T(S) L_s + L_MS with T(S) = e^{-σ_t S}. A Lambertian point of albedo ρ
+ * and normal n at depth y receives the diffuse E_dif(y) on a plane tilted from the horizontal
+ * ((1 + n_y)/2 of it, a uniform upper hemisphere) plus the direct beam E_beam(y) max(n·s_w, 0) times
+ * its visibility (sun shadow ray, caustic modulation): L_s = ρ/π (E_dif (1 + n_y)/2 + E_beam n·s_w V).
+ * From below, the surface shows the sky through Snell's window, n² (1 - F) L_sky (radiance over n² is
+ * conserved), plus F times the multiple scattering seen along the reflected ray (total internal
+ * reflection outside the window). The sun is a delta light and its disk is not drawn.
+ */
+
+/* Distances at or beyond this are "no hit" (the ray runs into deep water). */
+#define UW_INFINITE R(1e30)
+
+/* e^{-k o_d} ∫_0^S e^{(k d_y - c) z} dz for k, c >= 0, o_d >= 0, S >= 0 or S >= UW_INFINITE.
+ * The integrand is e^{-k y(z) - c z}, never above 1 while y >= 0. */
+SEASIM_FN real kd_exp_integral(real k, real c, real d_y, real o_d, real S) {
+  const real x = k * d_y - c;
+  if (S >= UW_INFINITE) {
+    /* Converges only for x < 0 (always so unless c = 0 looking up, which cannot reach S = ∞). */
+    return x < R(0.0) ? exp(-k * o_d) / (-x) : R(0.0);
+  }
+  const real xs = x * S;
+  if (xs <= R(1.0)) return exp(-k * o_d) * S * expm1_over_x(xs); /* no overflow: φ(xs) <= e - 1 */
+  /* x S > 1: combine the exponents; x S - k o_d = -k y(S) - c S <= 0 on the ray inside the water. */
+  return (exp(xs - k * o_d) - exp(-k * o_d)) / x;
+}
+
+/* 002 eq. 4.7 for one band: σ_s/(4π) [e_total0 I(K_d) - e_direct0 I(σ_t/μ_w)], I = kd_exp_integral.
+ * e_total0 = e_sky0 + e_sun0; e_direct0 = e_sun0 when the froxel pass carries the direct beam, else 0.
+ * Clamped at 0 (E_dif(y) can dip below 0 where K_d > σ_t/μ_w, which the data allow for clear water). */
+SEASIM_FN real kd_multiple_scattering(real b, real c, real kd, real e_total0, real e_direct0, real mu_w, real d_y,
+                                      real o_d, real S) {
+  if (b <= R(0.0)) return R(0.0);
+  real v = e_total0 * kd_exp_integral(kd, c, d_y, o_d, S);
+  if (e_direct0 > R(0.0)) v -= e_direct0 * kd_exp_integral(c / fmax(mu_w, R(1e-4)), c, d_y, o_d, S);
+  return fmax(b * v / (R(4.0) * SEASIM_PI), R(0.0));
+}
+
+/* Diffuse downwelling irradiance E_dif(y) on a horizontal plane at depth y (see above). */
+SEASIM_FN real uw_diffuse_irradiance(real e_sky0, real e_sun0, real e_direct0, real kd, real c, real mu_w, real y) {
+  const real v = (e_sky0 + e_sun0) * exp(-kd * y) - e_direct0 * exp(-(c / fmax(mu_w, R(1e-4))) * y);
+  return fmax(v, R(0.0));
+}
+
+/* The direct sun beam's irradiance normal to itself at depth y: e_beam0 e^{-σ_t y/μ_w}. */
+SEASIM_FN real uw_beam_irradiance(real e_beam0, real c, real mu_w, real y) {
+  return e_beam0 * exp(-(c / fmax(mu_w, R(1e-4))) * y);
+}
+
+/* Outgoing radiance of a Lambertian point (albedo ρ, unit normal n) at depth y (see above). vis is the
+ * direct beam's visibility times any caustic modulation. e_direct0 as for kd_multiple_scattering: with
+ * 0 the direct beam is left in the diffuse term and not added separately. */
+SEASIM_FN real uw_lambert_radiance(real albedo, real3 n, real3 s_w, real vis, real e_sky0, real e_sun0,
+                                   real e_beam0, real e_direct0, real kd, real c, real mu_w, real y) {
+  const real diffuse = uw_diffuse_irradiance(e_sky0, e_sun0, e_direct0, kd, c, mu_w, y) * R(0.5) * (R(1.0) + n.y);
+  real direct = R(0.0);
+  if (e_direct0 > R(0.0)) direct = uw_beam_irradiance(e_beam0, c, mu_w, y) * fmax(dot(n, s_w), R(0.0)) * vis;
+  return albedo / SEASIM_PI * (diffuse + direct);
+}
+
+/* First hit along o + t d (t in (t_min, ∞)) among the objects, the flat bottom y = -bottom_depth
+ * (bottom_depth > 0) and the water surface y = 0 (approached from below). Writes the unit normal facing
+ * the ray's side of the surface it hit, and the material: object index, UW_MAT_BOTTOM, UW_MAT_SURFACE or
+ * UW_MAT_NONE (returns UW_INFINITE then). */
+SEASIM_FN real uw_scene_hit(const SEASIM_GLOBAL UwObject* objects, int count, real bottom_depth, real3 o, real3 d,
+                            real t_min, real3* normal, int* material) {
+  real best = UW_INFINITE;
+  int mat = UW_MAT_NONE;
+  real3 nrm = MAKE_REAL3(0, 1, 0);
+  if (d.y > R(0.0)) { /* the surface y = 0 from below */
+    const real t = -o.y / d.y;
+    if (t > t_min && t < best) {
+      best = t;
+      mat = UW_MAT_SURFACE;
+      nrm = MAKE_REAL3(0, -1, 0);
+    }
+  }
+  if (bottom_depth > R(0.0) && d.y < R(0.0)) {
+    const real t = (-bottom_depth - o.y) / d.y;
+    if (t > t_min && t < best) {
+      best = t;
+      mat = UW_MAT_BOTTOM;
+      nrm = MAKE_REAL3(0, 1, 0);
+    }
+  }
+  for (int k = 0; k < count; ++k) {
+    const SEASIM_GLOBAL UwObject* ob = &objects[k];
+    const real3 a = MAKE_REAL3(ob->a[0], ob->a[1], ob->a[2]);
+    const real3 b = MAKE_REAL3(ob->b[0], ob->b[1], ob->b[2]);
+    real t = R(-1.0);
+    real3 nk = nrm;
+    if (ob->type == UW_SPHERE) {
+      t = ray_sphere(o, d, a, (real)ob->a[3], t_min, best);
+      if (t > R(0.0)) nk = normalize(o + t * d - a);
+    } else if (ob->type == UW_BOX) {
+      int axis = 0;
+      t = ray_box(o, d, a, b, t_min, best, &axis);
+      if (t > R(0.0)) nk = box_normal(o + t * d, a, b, axis);
+    } else {
+      t = ray_plane(o, d, a, b, t_min, best);
+      if (t > R(0.0)) nk = dot(b, d) < R(0.0) ? b : -b;
+    }
+    if (t > R(0.0)) {
+      best = t;
+      mat = k;
+      nrm = nk;
+    }
+  }
+  if (dot(nrm, d) > R(0.0) && mat >= 0) nrm = -nrm; /* inside a sphere/box: shade the side we see */
+  *normal = nrm;
+  *material = mat;
+  return best;
+}
+
+/* Radiance the surface sends down along -d to a point below it, d the upward view direction (d.y > 0):
+ * n² (1 - F) L_sky through Snell's window plus F times l_reflected (the caller's radiance along the
+ * reflected ray; F = 1 under total internal reflection). */
+SEASIM_FN real uw_window_radiance(real d_y, real ior, real sky_radiance, real l_reflected) {
+  const real f = fresnel_reflectance(d_y, ior, R(1.0));
+  return ior * ior * (R(1.0) - f) * sky_radiance + f * l_reflected;
+}
+
+/* One band's radiance along a view ray, given its G-buffer entry (002 eq. 2.7 with 4.7):
+ * T(S) L_s + L_MS. mat/S/n from uw_scene_hit; albedo of the hit (object or bottom); vis as for
+ * uw_lambert_radiance; single_scattering: 1 when the froxel pass adds the direct beam's single
+ * scattering (then L_MS and L_s split off the direct sun as described at the top). */
+SEASIM_FN real uw_band_radiance(const SEASIM_GLOBAL UwBand* band, int mat, real S, real3 n, real3 d, real o_d,
+                                real3 s_w, real albedo, real vis, real ior, real bottom_depth, int single_scattering) {
+  const real c = band->c, kd = band->kd, mu_w = s_w.y;
+  const real e_total0 = band->e_sky0 + band->e_sun0;
+  const real e_direct0 = single_scattering ? (real)band->e_sun0 : R(0.0);
+  const real l_ms = kd_multiple_scattering(band->b, c, kd, e_total0, e_direct0, mu_w, d.y, o_d, S);
+  if (mat == UW_MAT_NONE) return l_ms;
+  const real y = fmax(o_d - S * d.y, R(0.0));
+  real l_s;
+  if (mat == UW_MAT_SURFACE) {
+    /* The reflected ray starts at depth 0 going down (d_y -> -d_y) to the bottom or deep water. */
+    const real s_r = bottom_depth > R(0.0) ? bottom_depth / fmax(d.y, R(1e-6)) : UW_INFINITE;
+    const real l_r = kd_multiple_scattering(band->b, c, kd, e_total0, e_direct0, mu_w, -d.y, R(0.0), s_r);
+    l_s = uw_window_radiance(d.y, ior, band->sky_radiance, l_r);
+  } else {
+    l_s = uw_lambert_radiance(albedo, n, s_w, vis, band->e_sky0, band->e_sun0, band->e_beam0, e_direct0, kd, c,
+                              mu_w, y);
+  }
+  return exp(-c * S) * l_s + l_ms;
+}

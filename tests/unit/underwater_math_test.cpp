@@ -1,0 +1,210 @@
+// underwater_math_test.cpp — the underwater model of paper 002 (kernels/common/underwater.h) in float
+// and double: eq. 4.7 against numerical quadrature of eq. 4.6 over a grid that crosses the singular line
+// K_d d_y = σ_t, its limits (σ_s → 0, camera at the surface and at 1000 m, rays straight up and down,
+// turbid water at long range), the surface terms and the scene ray cast.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "math/kernel_math.h"
+
+namespace {
+
+namespace kd = seasim::kmath_d;
+namespace kf = seasim::kmath_f;
+
+// e^{-K o_d} ∫_0^S e^{-c z} e^{K z d_y} dz: the integral inside 002 eq. 4.6 (σ_s E_D0 / 4π left out),
+// composite Simpson in long double.
+long double eq46Quadrature(double k, double c, double d_y, double o_d, double S, int intervals = 20000) {
+  const long double h = static_cast<long double>(S) / intervals;
+  auto f = [&](long double z) { return std::exp(-c * z - k * (o_d - z * d_y)); };
+  long double sum = f(0) + f(S);
+  for (int i = 1; i < intervals; ++i) sum += (i % 2 ? 4.0L : 2.0L) * f(i * h);
+  return sum * h / 3.0L;
+}
+
+TEST(UnderwaterMath, Eq47MatchesQuadratureAcrossTheSingularLine) {
+  // K_d d_y - σ_t takes negative, zero and positive values: K = 0.5, c = 0.25 crosses at d_y = 0.5.
+  int checked = 0;
+  for (double k : {0.02, 0.1, 0.5, 2.0}) {
+    for (double c : {0.01, 0.25, 1.0, 5.0}) {
+      std::vector<double> dys = {-1.0, -0.3, 0.0, 0.2, 0.7, 1.0};
+      if (c < k) {  // the singular line and its neighbourhood
+        const double d0 = c / k;
+        for (double e : {0.0, 1e-9, -1e-9, 1e-6, -1e-6, 1e-3, -1e-3}) dys.push_back(d0 + e);
+      }
+      for (double d_y : dys) {
+        if (d_y > 1.0) continue;
+        for (double o_d : {0.0, 3.0, 20.0}) {
+          for (double S : {0.0, 0.5, 5.0, 40.0}) {
+            if (d_y > 0 && S * d_y > o_d) continue;  // the ray would leave the water
+            const long double ref = eq46Quadrature(k, c, d_y, o_d, S);
+            const double d = kd::kd_exp_integral(k, c, d_y, o_d, S);
+            const float f = kf::kd_exp_integral(float(k), float(c), float(d_y), float(o_d), float(S));
+            const double scale = std::max(static_cast<double>(ref), 1e-300);
+            EXPECT_NEAR(d / scale, S == 0 ? 0.0 / scale : 1.0, 1e-9) << k << " " << c << " " << d_y << " " << o_d << " " << S;
+            if (S > 0) {
+              // float: inputs rounded to float move the exponent by ~1e-7 relative times its size.
+              EXPECT_NEAR(f / scale, 1.0, 2e-5 * (1 + (k * o_d + c * S))) << k << " " << c << " " << d_y << " " << o_d << " " << S;
+            }
+            EXPECT_TRUE(std::isfinite(f));
+            ++checked;
+          }
+        }
+      }
+    }
+  }
+  EXPECT_GT(checked, 500);
+}
+
+TEST(UnderwaterMath, SingularPointIsContinuousInFloat) {
+  // Exactly on the line (x = 0) the integral is e^{-K o_d} S; just off it, it moves smoothly.
+  const float k = 0.5f, c = 0.25f, o_d = 4.0f, S = 6.0f;
+  const float on = kf::kd_exp_integral(k, c, 0.5f, o_d, S);
+  EXPECT_NEAR(on, std::exp(-0.5 * 4.0) * 6.0, 1e-6);
+  for (float e : {1e-7f, 1e-6f, 1e-5f, 1e-4f, 1e-3f}) {
+    const double ref_p = kd::kd_exp_integral(0.5, 0.25, 0.5 + e, 4.0, 6.0);
+    const double ref_m = kd::kd_exp_integral(0.5, 0.25, 0.5 - e, 4.0, 6.0);
+    EXPECT_NEAR(kf::kd_exp_integral(k, c, 0.5f + e, o_d, S) / ref_p, 1.0, 1e-6) << e;
+    EXPECT_NEAR(kf::kd_exp_integral(k, c, 0.5f - e, o_d, S) / ref_m, 1.0, 1e-6) << e;
+    EXPECT_NEAR(ref_p / on, 1.0, 10 * e * S * k + 1e-6);  // derivative bounded: no jump at the line
+  }
+}
+
+TEST(UnderwaterMath, RaysStraightUpAndDown) {
+  // Straight down into deep water: ∫_0^∞ e^{-(c+K) z} dz e^{-K o_d} = e^{-K o_d} / (c + K).
+  for (double o_d : {0.0, 10.0, 1000.0}) {
+    EXPECT_NEAR(kd::kd_exp_integral(0.1, 0.4, -1.0, o_d, 1e30) / (std::exp(-0.1 * o_d) / 0.5), 1.0, 1e-12);
+    EXPECT_TRUE(std::isfinite(kf::kd_exp_integral(0.1f, 0.4f, -1.0f, float(o_d), 1e30f)));
+  }
+  // Straight up to the surface from o_d: ∫_0^{o_d} e^{-c z - K (o_d - z)} dz = (e^{-c o_d} - e^{-K o_d})/(K - c).
+  for (double o_d : {0.5, 10.0, 200.0}) {
+    const double exact = (std::exp(-0.4 * o_d) - std::exp(-0.1 * o_d)) / (0.1 - 0.4);
+    EXPECT_NEAR(kd::kd_exp_integral(0.1, 0.4, 1.0, o_d, o_d) / exact, 1.0, 1e-12);
+    EXPECT_NEAR(kf::kd_exp_integral(0.1f, 0.4f, 1.0f, float(o_d), float(o_d)) / exact, 1.0, 1e-5);
+  }
+}
+
+TEST(UnderwaterMath, CameraAtTheSurfaceAndAt1000m) {
+  // o_d = 0 looking horizontally: (1 - e^{-c S}) / c.
+  EXPECT_NEAR(kd::kd_exp_integral(0.2, 0.3, 0.0, 0.0, 10.0), (1 - std::exp(-3.0)) / 0.3, 1e-12);
+  // 1000 m looking up with K > c: e^{-K o_d} underflows in float while e^{xS} alone would overflow;
+  // the product stays finite and matches double.
+  const double k = 2.0, c = 0.05, o_d = 1000.0;
+  for (double d_y : {1.0, 0.5, 0.1}) {
+    const double S = o_d / d_y;
+    const double d = kd::kd_exp_integral(k, c, d_y, o_d, S);
+    const float f = kf::kd_exp_integral(float(k), float(c), float(d_y), float(o_d), float(S));
+    EXPECT_TRUE(std::isfinite(d) && std::isfinite(f)) << d_y;
+    EXPECT_GT(d, 0.0);
+    // Near the surface the integrand is e^{-c S} ≈ e^{-50 / d_y}: tiny but representable in double.
+    EXPECT_NEAR(f, d, 1e-6 * d + 1e-37) << d_y;
+    EXPECT_NEAR(d / static_cast<double>(eq46Quadrature(k, c, d_y, o_d, S, 200000)), 1.0, 1e-6) << d_y;
+  }
+}
+
+TEST(UnderwaterMath, MultipleScatteringVanishesWithScattering) {
+  for (double b : {0.0, 1e-12, 1e-6, 1e-3}) {
+    const double v = kd::kd_multiple_scattering(b, 0.3, 0.1, 1.0, 0.0, 0.9, -0.2, 5.0, 30.0);
+    const double per_b = kd::kd_multiple_scattering(1.0, 0.3, 0.1, 1.0, 0.0, 0.9, -0.2, 5.0, 30.0);
+    EXPECT_NEAR(v, b * per_b, 1e-15 * per_b);  // linear in σ_s, exactly 0 at 0
+  }
+  EXPECT_EQ(kf::kd_multiple_scattering(0.0f, 0.3f, 0.1f, 1.0f, 0.5f, 0.9f, -0.2f, 5.0f, 30.0f), 0.0f);
+}
+
+TEST(UnderwaterMath, DirectSunSplitOffTheDiffuseLight) {
+  // With e_direct0 = e_sun0 the ambient is (e_sky0 + e_sun0) e^{-K y} - e_sun0 e^{-(c/μ) y}; where
+  // K = c/μ the sun's part cancels and only the sky's remains.
+  const double c = 0.2, mu = 0.8, k = c / mu;
+  const double both = kd::kd_multiple_scattering(0.1, c, k, 3.0, 2.0, mu, -0.3, 4.0, 25.0);
+  const double sky_only = kd::kd_multiple_scattering(0.1, c, k, 1.0, 0.0, mu, -0.3, 4.0, 25.0);
+  EXPECT_NEAR(both / sky_only, 1.0, 1e-12);
+  // Irradiance split: E_dif + beam·μ = the whole E_D0 e^{-K y} when K = c/μ.
+  const double y = 7.0, e_sky0 = 1.0, e_sun0 = 2.0;
+  const double e_dif = kd::uw_diffuse_irradiance(e_sky0, e_sun0, e_sun0, k, c, mu, y);
+  const double e_beam = kd::uw_beam_irradiance(e_sun0 / mu, c, mu, y);
+  EXPECT_NEAR(e_dif + e_beam * mu, (e_sky0 + e_sun0) * std::exp(-k * y), 1e-12);
+  // Clear water where K < c/μ would make the remainder negative: clamped to 0, never NaN.
+  EXPECT_EQ(kd::uw_diffuse_irradiance(0.0, 1.0, 1.0, 0.01, 1.0, 0.5, 3.0) >= 0.0, true);
+}
+
+TEST(UnderwaterMath, TurbidWaterAtLongRangeStaysFinite) {
+  // Jerlov 9C-like: c ≈ 10/m, K_d ≈ 3/m, 10 km rays, camera at 10 m and 1000 m, every direction.
+  for (double o_d : {10.0, 1000.0}) {
+    for (double d_y : {-1.0, -0.5, 0.0, 0.5, 1.0}) {
+      const double S = d_y > 0 ? o_d / d_y : 1e4;
+      const float f = kf::kd_multiple_scattering(9.0f, 10.0f, 3.0f, 1.0f, 0.4f, 0.7f, float(d_y), float(o_d), float(S));
+      const double d = kd::kd_multiple_scattering(9.0, 10.0, 3.0, 1.0, 0.4, 0.7, d_y, o_d, S);
+      EXPECT_TRUE(std::isfinite(f) && f >= 0) << o_d << " " << d_y;
+      EXPECT_NEAR(f, d, 1e-5 * d + 1e-38) << o_d << " " << d_y;
+    }
+  }
+}
+
+TEST(UnderwaterMath, SceneHitFindsSurfaceBottomAndObjects) {
+  UwObject sphere{};
+  sphere.type = UW_SPHERE;
+  sphere.a[0] = 0;
+  sphere.a[1] = -5;
+  sphere.a[2] = -10;
+  sphere.a[3] = 1;
+  kd::real3 n{};
+  int mat = 0;
+  // Towards the sphere.
+  double t = kd::uw_scene_hit(&sphere, 1, 8.0, kd::real3{0, -5, 0}, kd::real3{0, 0, -1}, 0.0, &n, &mat);
+  EXPECT_EQ(mat, 0);
+  EXPECT_NEAR(t, 9.0, 1e-12);
+  EXPECT_NEAR(n.z, 1.0, 1e-12);
+  // Up to the surface from 5 m.
+  t = kd::uw_scene_hit(&sphere, 1, 8.0, kd::real3{0, -5, 0}, kd::real3{0, 1, 0}, 0.0, &n, &mat);
+  EXPECT_EQ(mat, UW_MAT_SURFACE);
+  EXPECT_NEAR(t, 5.0, 1e-12);
+  // Down to the bottom at 8 m; none without a bottom.
+  t = kd::uw_scene_hit(&sphere, 1, 8.0, kd::real3{0, -5, 0}, kd::real3{0, -1, 0}, 0.0, &n, &mat);
+  EXPECT_EQ(mat, UW_MAT_BOTTOM);
+  EXPECT_NEAR(t, 3.0, 1e-12);
+  t = kd::uw_scene_hit(&sphere, 1, 0.0, kd::real3{0, -5, 0}, kd::real3{0, -1, 0}, 0.0, &n, &mat);
+  EXPECT_EQ(mat, UW_MAT_NONE);
+  EXPECT_GE(t, 1e30);
+}
+
+TEST(UnderwaterMath, SnellWindowAndBandRadiance) {
+  // Looking straight up through a clear (b = 0) water column of 5 m: n² (1 - F(0)) L_sky e^{-a 5}.
+  UwBand band{};
+  band.a = 0.1f;
+  band.b = 0.0f;
+  band.c = 0.1f;
+  band.kd = 0.12f;
+  band.sky_radiance = 2.0f;
+  const double ior = 1.333, f0 = std::pow((ior - 1) / (ior + 1), 2);
+  const double expect = ior * ior * (1 - f0) * 2.0 * std::exp(-0.5);
+  const double got = kd::uw_band_radiance(&band, UW_MAT_SURFACE, 5.0, kd::real3{0, -1, 0}, kd::real3{0, 1, 0}, 5.0,
+                                          kd::real3{0, 1, 0}, 0.0, 1.0, ior, 0.0, 1);
+  EXPECT_NEAR(got / expect, 1.0, 1e-6);
+  // Beyond the critical angle (cos θ < cos 48.6°) the sky is not seen: total internal reflection.
+  const double d_y = 0.5;
+  const double tir = kd::uw_band_radiance(&band, UW_MAT_SURFACE, 10.0, kd::real3{0, -1, 0},
+                                          kd::real3{std::sqrt(1 - d_y * d_y), d_y, 0}, 5.0, kd::real3{0, 1, 0}, 0.0,
+                                          1.0, ior, 0.0, 1);
+  EXPECT_EQ(tir, 0.0);  // b = 0: the reflected deep water is black
+  // A lit Lambertian point straight below the sun: ρ/π (E_dif + E_beam) e^{-c S} + L_MS, float vs double.
+  band.b = 0.05f;
+  band.c = 0.15f;
+  band.e_sky0 = 0.3f;
+  band.e_sun0 = 0.9f;
+  band.e_beam0 = 0.9f;
+  const double d = kd::uw_band_radiance(&band, 0, 4.0, kd::real3{0, 1, 0}, kd::real3{0, -1, 0}, 3.0,
+                                        kd::real3{0, 1, 0}, 0.4, 1.0, ior, 0.0, 1);
+  const float f = kf::uw_band_radiance(reinterpret_cast<const UwBand*>(&band), 0, 4.0f, kf::real3{0, 1, 0},
+                                       kf::real3{0, -1, 0}, 3.0f, kf::real3{0, 1, 0}, 0.4f, 1.0f, float(ior), 0.0f, 1);
+  const double y = 7.0;
+  const double e = (0.3 + 0.9) * std::exp(-0.12 * y) - 0.9 * std::exp(-0.15 * y) + 0.9 * std::exp(-0.15 * y);
+  const double ms = kd::kd_multiple_scattering(0.05, 0.15, 0.12, 1.2, 0.9, 1.0, -1.0, 3.0, 4.0);
+  // The band holds floats (0.12f ≠ 0.12): agree to float rounding of the inputs.
+  EXPECT_NEAR(d / (0.4 / M_PI * e * std::exp(-0.15 * 4.0) + ms), 1.0, 1e-6);
+  EXPECT_NEAR(f / d, 1.0, 1e-6);
+}
+
+}  // namespace
