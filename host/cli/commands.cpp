@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <sstream>
 
 #include "device/device.h"
@@ -22,6 +23,10 @@
 #include "reference/sea_reference.h"
 #include "reference/sea_second_reference.h"
 #include "reference/shafts_reference.h"
+#include "spectral/sensor.h"
+#include "spectral/wavelength_grid.h"
+#include "underwater/underwater_cpu.h"
+#include "underwater/underwater_setup.h"
 #include "util/error.h"
 
 namespace fs = std::filesystem;
@@ -287,39 +292,90 @@ int cmdBench(const BenchCmd& cmd) {
     if (!cmd.limits) throw RuntimeError("bench needs --scene or --limits");
     return 0;
   }
-  CsvWriter table({"wavelengths", "kernel_ms_median", "pixel_wavelengths_per_s"});
-  PlotSeries series{"sea_single kernel", {}, {}};
-  std::vector<double> ns, ts;
+  // Underwater scenes also time the same G-buffer + K_d shading as a plain C++/oneTBB loop on this CPU
+  // (host/underwater/underwater_cpu.cpp, float, no froxel term) in the same run, for the ratio.
+  const bool underwater = makePlan(loadScene(cmd.scene, parseSets(cmd.sets))).hasPass("kd_multiple");
+  std::vector<std::string> columns = {"wavelengths", "kernel_ms_median", "pixel_wavelengths_per_s"};
+  if (underwater) {
+    for (const char* c : {"raycast_ms", "froxel_ms", "kd_multiple_ms", "tbb_gbuffer_kd_ms", "tbb_over_opencl"})
+      columns.push_back(c);
+  }
+  CsvWriter table(columns);
+  PlotSeries series{underwater ? "all passes (OpenCL)" : "kernels (OpenCL)", {}, {}};
+  PlotSeries kd_series{"raycast + kd_multiple (OpenCL)", {}, {}};
+  PlotSeries tbb_series{"same on C++/oneTBB", {}, {}};
+  std::vector<double> ns, ts, kd_ts;
   for (int n : cmd.wavelengths) {
-    const Scene scene = loadScene(cmd.scene, {parseSetOption("spectral.count=" + std::to_string(n))});
+    std::vector<Override> overrides = parseSets(cmd.sets);
+    overrides.push_back(parseSetOption("spectral.count=" + std::to_string(n)));
+    const Scene scene = loadScene(cmd.scene, overrides);
     const Plan plan = makePlan(scene);
     (void)renderFrame(device, scene, plan);  // warm-up
     std::vector<double> samples;
+    std::map<std::string, std::vector<double>> per_pass;
     for (int r = 0; r < std::max(1, cmd.repeat); ++r) {
       const FrameResult frame = renderFrame(device, scene, plan);
-      for (const auto& t : frame.timings)
-        if (t.name != "nonfinite_check") samples.push_back(t.ms);
+      double total = 0;
+      for (const auto& t : frame.timings) {
+        if (t.name == "nonfinite_check") continue;
+        total += t.ms;
+        per_pass[t.name].push_back(t.ms);
+      }
+      samples.push_back(total);
     }
+    auto passMs = [&](const char* name) { return per_pass.count(name) ? median(per_pass[name]) : 0.0; };
     const double ms = median(samples);
     const double pixels = static_cast<double>(scene.camera.width) * scene.camera.height;
     const double rate = pixels * n / (ms * 1e-3);
     std::printf("n = %5d  %10.3f ms  %.3e pixel*wavelength/s", n, ms, rate);
     if (exp_rate > 0) std::printf("  = %.3g x the exp/s bound", rate / exp_rate);
+    std::vector<CsvCell> row = {n, ms, rate};
+    if (underwater) {
+      const WavelengthGrid grid = makeGrid(scene.spectral.count, scene.spectral.min_nm, scene.spectral.max_nm);
+      const UnderwaterSetup setup =
+          makeUnderwaterSetup(scene, grid, makeSensor(scene.spectral.sensor, grid, scene.spectral.white_balance));
+      UnderwaterCpuOptions options;
+      options.use_double = false;
+      options.multiple = scene.underwater.multiple_scattering;
+      options.single_split = plan.hasPass("froxel");
+      std::vector<double> cpu;
+      for (int r = 0; r < std::max(1, cmd.repeat); ++r) {
+        const auto c0 = std::chrono::steady_clock::now();
+        (void)renderUnderwaterCpu(setup, options);
+        cpu.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - c0).count());
+      }
+      const double kd_ms = passMs("raycast") + passMs("kd_multiple"), tbb_ms = median(cpu);
+      std::printf("  [raycast %.3f, froxel %.3f, kd %.3f ms; TBB %.3f ms = %.2fx]", passMs("raycast"),
+                  passMs("froxel"), passMs("kd_multiple"), tbb_ms, tbb_ms / kd_ms);
+      for (double v : {passMs("raycast"), passMs("froxel"), passMs("kd_multiple"), tbb_ms, tbb_ms / kd_ms})
+        row.push_back(v);
+      kd_series.x.push_back(n);
+      kd_series.y.push_back(kd_ms);
+      tbb_series.x.push_back(n);
+      tbb_series.y.push_back(tbb_ms);
+      kd_ts.push_back(kd_ms);
+    }
     std::printf("\n");
-    table.addRow({n, ms, rate});
+    table.addRow(row);
     series.x.push_back(n);
     series.y.push_back(ms);
     ns.push_back(n);
     ts.push_back(ms);
   }
-  if (ns.size() >= 2) {  // least-squares t(n) = a + b n (002 §6.3 reports the same fit)
+  auto fit = [&](const std::vector<double>& t, const char* what) {  // least squares t(n) = a + b n (002 §6.3)
+    if (ns.size() < 2 || t.size() != ns.size()) return;
     double mn = 0, mt = 0;
-    for (size_t i = 0; i < ns.size(); ++i) mn += ns[i], mt += ts[i];
+    for (size_t i = 0; i < ns.size(); ++i) mn += ns[i], mt += t[i];
     mn /= ns.size(), mt /= ns.size();
     double sxy = 0, sxx = 0;
-    for (size_t i = 0; i < ns.size(); ++i) sxy += (ns[i] - mn) * (ts[i] - mt), sxx += (ns[i] - mn) * (ns[i] - mn);
+    for (size_t i = 0; i < ns.size(); ++i) sxy += (ns[i] - mn) * (t[i] - mt), sxx += (ns[i] - mn) * (ns[i] - mn);
     const double b = sxx > 0 ? sxy / sxx : 0, a = mt - b * mn;
-    std::printf("fit: t(n) = %.4g + %.4g n ms\n", a, b);
+    std::printf("fit (%s): t(n) = %.4g + %.4g n ms\n", what, a, b);
+  };
+  fit(ts, "all passes");
+  if (underwater) {
+    fit(kd_ts, "raycast + kd_multiple");
+    fit(tbb_series.y, "C++/oneTBB");
   }
   if (!cmd.csv.empty()) table.write(cmd.csv);
   if (!cmd.plot.empty()) {
@@ -329,6 +385,10 @@ int cmdBench(const BenchCmd& cmd) {
     spec.y_label = "ms per frame";
     spec.log_x = true;
     spec.series.push_back(series);
+    if (underwater) {
+      spec.series.push_back(kd_series);
+      spec.series.push_back(tbb_series);
+    }
     writeSvgPlot(cmd.plot, spec);
   }
   return 0;

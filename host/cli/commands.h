@@ -35,6 +35,7 @@ int cmdSweep(const SweepCmd& cmd);
 
 struct BenchCmd {
   std::string scene, csv, plot, device;
+  std::vector<std::string> sets;  // --set key=value overrides on the scene
   std::vector<int> wavelengths = {3, 8, 16, 32, 64};
   int repeat = 5;
   bool limits = false;

@@ -67,6 +67,7 @@ int main(int argc, char** argv) {
   bench->add_option("--plot", bench_cmd.plot, "SVG plot output");
   bench->add_option("--device", bench_cmd.device, "Device selector");
   bench->add_flag("--limits", bench_cmd.limits, "Measure the device's exp throughput bound");
+  bench->add_option("--set", bench_cmd.sets, "Override a scene key: --set sun.zenith_deg=60 (repeatable)");
 
   seasim::ReferenceCmd ref_cmd;
   auto* reference = app.add_subcommand("reference", "Brute-force reference render (double precision, CPU)");

@@ -6,11 +6,43 @@
 #include "passes/sea_second_pass.h"
 #include "passes/sea_single_pass.h"
 #include "passes/shafts_pass.h"
+#include "passes/underwater_pass.h"
 #include "spectral/sensor.h"
 #include "spectral/wavelength_grid.h"
+#include "underwater/underwater_setup.h"
 #include "util/error.h"
 
 namespace seasim {
+
+namespace {
+
+// The NaN/Inf check on the frame's buffers and the read-back into result (rgb, and the per-band values
+// when the scene asks for spectral output).
+void finishFrame(Device& device, const Scene& scene, cl::Buffer& rgb, cl::Buffer* spectral, size_t bands,
+                 FrameResult& result) {
+  const size_t pixels = static_cast<size_t>(scene.camera.width) * static_cast<size_t>(scene.camera.height);
+  NonfiniteCheck check(device);
+  double check_ms = 0;
+  result.nonfinite = check.count(rgb, 3 * pixels, &check_ms);
+  if (spectral) {
+    double ms = 0;
+    result.nonfinite += check.count(*spectral, pixels * bands, &ms);
+    check_ms += ms;
+  }
+  result.timings.push_back({"nonfinite_check", check_ms});
+  try {
+    device.queue().enqueueReadBuffer(rgb, CL_TRUE, 0, sizeof(float) * 3 * pixels, result.rgb.pixels.data());
+    if (spectral) {
+      result.spectral.resize(pixels * bands);
+      device.queue().enqueueReadBuffer(*spectral, CL_TRUE, 0, sizeof(float) * result.spectral.size(),
+                                       result.spectral.data());
+    }
+  } catch (const cl::Error& e) {
+    throw DeviceError(std::string("reading the frame back: ") + e.what() + " " + clErrorName(e.err()));
+  }
+}
+
+}  // namespace
 
 FrameResult renderFrame(Device& device, const Scene& scene, const Plan& plan) {
   for (const auto& pass : plan.passes) {
@@ -49,6 +81,20 @@ FrameResult renderFrame(Device& device, const Scene& scene, const Plan& plan) {
     return result;
   }
 
+  if (const PassPlan* kd = plan.find("kd_multiple")) {  // issue 5: the underwater frame (paper 002)
+    const UnderwaterSetup setup = makeUnderwaterSetup(scene, grid, sensor);
+    UnderwaterPass pass(device, setup, *plan.find("raycast"), *kd, scene.spectral.spectral_exr);
+    result.timings.push_back({"raycast", pass.runRaycast()});
+    const cl::Buffer* froxel_params = nullptr;
+    const cl::Buffer* froxel_volume = nullptr;
+    if (plan.hasPass("froxel")) throw RuntimeError("froxel pass: not wired yet");
+    result.timings.push_back({"kd_multiple", pass.runShading(froxel_params, froxel_volume)});
+    finishFrame(device, scene, pass.rgb(), scene.spectral.spectral_exr ? &pass.spectral() : nullptr, grid.size(), result);
+    result.build_ms = device.totalBuildMs() - build_before;
+    result.wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    return result;
+  }
+
   const PassPlan* sea = plan.find("sea_single");
   if (!sea) throw RuntimeError("scene '" + scene.name + "' has nothing to render (no water in view)");
   SeaSinglePass pass(device, scene, *sea, grid, sensor);
@@ -61,26 +107,7 @@ FrameResult renderFrame(Device& device, const Scene& scene, const Plan& plan) {
     result.timings.push_back({"sea_second", second_pass.run()});
   }
 
-  NonfiniteCheck check(device);
-  double check_ms = 0;
-  result.nonfinite = check.count(pass.rgb(), 3 * pixels, &check_ms);
-  if (scene.spectral.spectral_exr) {
-    double ms = 0;
-    result.nonfinite += check.count(pass.spectral(), pixels * grid.centers_nm.size(), &ms);
-    check_ms += ms;
-  }
-  result.timings.push_back({"nonfinite_check", check_ms});
-
-  try {
-    device.queue().enqueueReadBuffer(pass.rgb(), CL_TRUE, 0, sizeof(float) * 3 * pixels, result.rgb.pixels.data());
-    if (scene.spectral.spectral_exr) {
-      result.spectral.resize(pixels * grid.centers_nm.size());
-      device.queue().enqueueReadBuffer(pass.spectral(), CL_TRUE, 0, sizeof(float) * result.spectral.size(),
-                                       result.spectral.data());
-    }
-  } catch (const cl::Error& e) {
-    throw DeviceError(std::string("reading the frame back: ") + e.what() + " " + clErrorName(e.err()));
-  }
+  finishFrame(device, scene, pass.rgb(), scene.spectral.spectral_exr ? &pass.spectral() : nullptr, grid.size(), result);
   result.build_ms = device.totalBuildMs() - build_before;
   result.wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return result;

@@ -1,6 +1,7 @@
 #include "plan/plan.h"
 
 #include <algorithm>
+#include <cmath>
 #include <sstream>
 
 namespace seasim {
@@ -53,13 +54,26 @@ Plan makePlan(const Scene& scene) {
   const bool objects = !scene.objects.empty();
   const bool spectral_out = scene.spectral.spectral_exr;
 
-  if (objects && (underwater || lights)) {
-    plan.passes.push_back({"raycast", "raycast.cl", {}, {"scene"}, {"gbuffer"},
-                           "scene has objects", false, "issue 4/5 (G-buffer ray casting)"});
-    if (lights && !underwater) {  // issue 4: shafts.cl ray casts its analytic objects per pixel
-      plan.passes.back().kernel_file = "shafts.cl";
-      plan.passes.back().implemented = true;
+  const bool sun_up = scene.sun.enabled && scene.sun.irradiance > 0 && scene.sun.zenith < M_PI / 2;
+  const UnderwaterDesc& uw = scene.underwater;
+  const bool froxels = underwater && uw.single_scattering && sun_up;
+  const int caustics = !sun_up ? 0
+                       : uw.caustics == UnderwaterDesc::Caustics::Texture ? 1
+                       : uw.caustics == UnderwaterDesc::Caustics::Map     ? 2
+                                                                          : 0;
+  if (underwater) {
+    // 002 §4.3.2: the deferred pipeline's G-buffer (hit distance, normal, material, sun visibility).
+    PassPlan pass{"raycast", "raycast.cl",
+                  {flag("SEASIM_HAS_OBJECTS", objects), flag("SEASIM_HAS_SUN", sun_up),
+                   "SEASIM_CAUSTICS=" + std::to_string(caustics)},
+                  {"scene"}, {"gbuffer"}, "camera below the surface: per-pixel hit, normal, material", true, ""};
+    if (caustics == 2) {
+      pass.implemented = false;
+      pass.missing = "issue 5 (caustic map from the ocean surface under water; use caustics = \"texture\")";
     }
+    plan.passes.push_back(pass);
+  } else if (objects && lights) {  // issue 4: shafts.cl ray casts its analytic objects per pixel
+    plan.passes.push_back({"raycast", "shafts.cl", {}, {"scene"}, {"gbuffer"}, "scene has objects", true, ""});
   }
   // Shafts feature defines (issue 4), shared by the shadow_maps and shafts passes (one build).
   bool light_map = false;
@@ -81,9 +95,12 @@ Plan makePlan(const Scene& scene) {
     plan.passes.push_back({"caustics", "caustics.cl", {}, {"ocean_maps"}, {"caustic_map"},
                            "camera below a wavy surface", false, "issue 3 (caustics)"});
   }
-  if (underwater) {
-    plan.passes.push_back({"froxel", "froxel.cl", {}, {"scene", "gbuffer"}, {"froxel_volume"},
-                           "camera below the surface (y < 0)", false, "issue 5 (froxel single scattering)"});
+  if (froxels) {
+    plan.passes.push_back({"froxel", "froxel.cl",
+                           {flag("SEASIM_HAS_OBJECTS", objects), "SEASIM_CAUSTICS=" + std::to_string(caustics),
+                            flag("SEASIM_SPECTRAL_INJECTION", uw.injection == UnderwaterDesc::Injection::Spectral)},
+                           {"scene"}, {"froxel_volume"},
+                           "camera below the surface, sun up, underwater.single_scattering", true, ""});
   }
   if (sea_view) {
     const bool sun = scene.sun.enabled && scene.sun.irradiance > 0;
@@ -122,8 +139,12 @@ Plan makePlan(const Scene& scene) {
                            "spotlights in air", true, ""});
   }
   if (underwater) {
-    plan.passes.push_back({"kd_multiple", "kd_multiple.cl", {}, {"gbuffer", "froxel_volume"}, {"rgb"},
-                           "camera below the surface", false, "issue 5 (K_d multiple scattering)"});
+    std::vector<std::string> reads = {"gbuffer"};
+    if (froxels) reads.push_back("froxel_volume");
+    plan.passes.push_back({"kd_multiple", "kd_multiple.cl",
+                           {flag("SEASIM_HAS_MULTIPLE", uw.multiple_scattering), flag("SEASIM_HAS_FROXEL", froxels),
+                            flag("SEASIM_SPECTRAL_OUTPUT", spectral_out)},
+                           reads, {"rgb"}, "camera below the surface: T L_s + L_MS per band (002 eq. 4.7)", true, ""});
   }
   plan.passes.push_back({"nonfinite_check", "check.cl", {}, {"rgb"}, {"status"},
                          "always: kernels must never emit NaN/Inf", true, ""});

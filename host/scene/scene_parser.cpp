@@ -49,7 +49,7 @@ constexpr double kDegToRad = std::numbers::pi / 180.0;
 
 const std::vector<std::string> kTopLevel = {
     "scene",  "camera",  "sun",        "sky",      "water", "air",    "surface",
-    "bottom", "objects", "spotlights", "spectral", "sea",   "quality"};
+    "bottom", "objects", "spotlights", "spectral", "sea",   "underwater", "quality"};
 
 std::string fmt(double v) { return formatNumber(v); }
 
@@ -93,6 +93,7 @@ class SceneParser {
     for (const auto& [i, t] : root.arrayOfTables("spotlights")) spotlight(*t, i);
     spectral(section(root, "spectral"));
     sea(section(root, "sea"));
+    underwater(section(root, "underwater"));
     quality(section(root, "quality"));
   }
 
@@ -481,6 +482,32 @@ class SceneParser {
     s.single_scattering = r.boolean("single_scattering", s.single_scattering);
     s.second_order = r.boolean("second_order", s.second_order);
     s.reflection = r.boolean("reflection", s.reflection);
+    r.finish();
+  }
+
+  void underwater(const toml::table& t) {
+    TableReader r(src_, t, "underwater");
+    UnderwaterDesc& u = scene_.underwater;
+    u.multiple_scattering = r.boolean("multiple_scattering", u.multiple_scattering);
+    u.single_scattering = r.boolean("single_scattering", u.single_scattering);
+    const std::string caustics = r.choice("caustics", "texture", {"none", "texture", "map"});
+    u.caustics = caustics == "none"      ? UnderwaterDesc::Caustics::None
+                 : caustics == "texture" ? UnderwaterDesc::Caustics::Texture
+                                         : UnderwaterDesc::Caustics::Map;
+    if (u.caustics == UnderwaterDesc::Caustics::Map && scene_.surface.type != SurfaceDesc::Type::Fft)
+      r.fail("caustics", "\"map\" needs a wavy surface ([surface] type = \"fft\"); use \"texture\" or \"none\"");
+    u.caustic_period = r.number("caustic_period_m", u.caustic_period);
+    r.check(u.caustic_period > 0, "caustic_period_m", "must be > 0 m, got " + fmt(u.caustic_period));
+    u.caustic_speed = r.number("caustic_speed_mps", u.caustic_speed);
+    r.check(u.caustic_speed >= 0, "caustic_speed_mps", "must be >= 0 m/s, got " + fmt(u.caustic_speed));
+    u.injection = r.choice("froxel_injection", "spectral", {"spectral", "rgb"}) == "rgb"
+                      ? UnderwaterDesc::Injection::Rgb
+                      : UnderwaterDesc::Injection::Spectral;
+    u.froxel_near = r.number("froxel_near_m", u.froxel_near);
+    r.check(u.froxel_near > 0, "froxel_near_m", "must be > 0 m, got " + fmt(u.froxel_near));
+    u.froxel_far = r.number("froxel_far_m", u.froxel_far);
+    r.check(u.froxel_far > u.froxel_near && u.froxel_far <= 1e4, "froxel_far_m",
+            "must be > froxel_near_m (" + fmt(u.froxel_near) + ") and <= 10000 m, got " + fmt(u.froxel_far));
     r.finish();
   }
 

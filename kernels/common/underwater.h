@@ -34,17 +34,18 @@
 #define UW_INFINITE R(1e30)
 
 /* e^{-k o_d} ∫_0^S e^{(k d_y - c) z} dz for k, c >= 0, o_d >= 0, S >= 0 or S >= UW_INFINITE.
- * The integrand is e^{-k y(z) - c z}, never above 1 while y >= 0. */
+ * The integrand is e^{-k y(z) - c z}, never above 1 while y >= 0. With t = (k d_y - c) S and
+ * φ(t) = (e^t - 1)/t (expm1_over_x), the integral is S e^{-k o_d} φ(t), and since e^t φ(-t) = φ(t),
+ *   = S e^{max(t, 0) - k o_d} φ(-|t|):
+ * one exp and one expm1, no branch a vectorising compiler would have to run both sides of, no
+ * overflow (max(t, 0) - k o_d = -k y(S) - c S <= 0 when t > 0), φ(-|t|) in (0, 1]. S = ∞ needs t < 0,
+ * where S φ(t) -> 1/(c - k d_y); S = 1e30 gives exactly that in float and double (|t| stays finite). */
 SEASIM_FN real kd_exp_integral(real k, real c, real d_y, real o_d, real S) {
   const real x = k * d_y - c;
-  if (S >= UW_INFINITE) {
-    /* Converges only for x < 0 (always so unless c = 0 looking up, which cannot reach S = ∞). */
-    return x < R(0.0) ? exp(-k * o_d) / (-x) : R(0.0);
-  }
-  const real xs = x * S;
-  if (xs <= R(1.0)) return exp(-k * o_d) * S * expm1_over_x(xs); /* no overflow: φ(xs) <= e - 1 */
-  /* x S > 1: combine the exponents; x S - k o_d = -k y(S) - c S <= 0 on the ray inside the water. */
-  return (exp(xs - k * o_d) - exp(-k * o_d)) / x;
+  /* Unreachable for a ray in water (x >= 0 needs d_y > 0, and such a ray meets the surface). */
+  if (S >= UW_INFINITE && x >= R(0.0)) return R(0.0);
+  const real t = x * S;
+  return S * exp(fmax(t, R(0.0)) - k * o_d) * expm1_over_x(-fabs(t));
 }
 
 /* 002 eq. 4.7 for one band: σ_s/(4π) [e_total0 I(K_d) - e_direct0 I(σ_t/μ_w)], I = kd_exp_integral.
@@ -145,20 +146,23 @@ SEASIM_FN real uw_window_radiance(real d_y, real ior, real sky_radiance, real l_
 /* One band's radiance along a view ray, given its G-buffer entry (002 eq. 2.7 with 4.7):
  * T(S) L_s + L_MS. mat/S/n from uw_scene_hit; albedo of the hit (object or bottom); vis as for
  * uw_lambert_radiance; single_scattering: 1 when the froxel pass adds the direct beam's single
- * scattering (then L_MS and L_s split off the direct sun as described at the top). */
+ * scattering (then L_MS and L_s split off the direct sun as described at the top); multiple: 0 leaves
+ * L_MS out (scenes that look at single scattering alone). */
 SEASIM_FN real uw_band_radiance(const SEASIM_GLOBAL UwBand* band, int mat, real S, real3 n, real3 d, real o_d,
-                                real3 s_w, real albedo, real vis, real ior, real bottom_depth, int single_scattering) {
+                                real3 s_w, real albedo, real vis, real ior, real bottom_depth, int single_scattering,
+                                int multiple) {
   const real c = band->c, kd = band->kd, mu_w = s_w.y;
   const real e_total0 = band->e_sky0 + band->e_sun0;
   const real e_direct0 = single_scattering ? (real)band->e_sun0 : R(0.0);
-  const real l_ms = kd_multiple_scattering(band->b, c, kd, e_total0, e_direct0, mu_w, d.y, o_d, S);
+  const real l_ms = multiple ? kd_multiple_scattering(band->b, c, kd, e_total0, e_direct0, mu_w, d.y, o_d, S) : R(0.0);
   if (mat == UW_MAT_NONE) return l_ms;
   const real y = fmax(o_d - S * d.y, R(0.0));
   real l_s;
   if (mat == UW_MAT_SURFACE) {
     /* The reflected ray starts at depth 0 going down (d_y -> -d_y) to the bottom or deep water. */
     const real s_r = bottom_depth > R(0.0) ? bottom_depth / fmax(d.y, R(1e-6)) : UW_INFINITE;
-    const real l_r = kd_multiple_scattering(band->b, c, kd, e_total0, e_direct0, mu_w, -d.y, R(0.0), s_r);
+    const real l_r =
+        multiple ? kd_multiple_scattering(band->b, c, kd, e_total0, e_direct0, mu_w, -d.y, R(0.0), s_r) : R(0.0);
     l_s = uw_window_radiance(d.y, ior, band->sky_radiance, l_r);
   } else {
     l_s = uw_lambert_radiance(albedo, n, s_w, vis, band->e_sky0, band->e_sun0, band->e_beam0, e_direct0, kd, c,

@@ -181,13 +181,13 @@ TEST(UnderwaterMath, SnellWindowAndBandRadiance) {
   const double ior = 1.333, f0 = std::pow((ior - 1) / (ior + 1), 2);
   const double expect = ior * ior * (1 - f0) * 2.0 * std::exp(-0.5);
   const double got = kd::uw_band_radiance(&band, UW_MAT_SURFACE, 5.0, kd::real3{0, -1, 0}, kd::real3{0, 1, 0}, 5.0,
-                                          kd::real3{0, 1, 0}, 0.0, 1.0, ior, 0.0, 1);
+                                          kd::real3{0, 1, 0}, 0.0, 1.0, ior, 0.0, 1, 1);
   EXPECT_NEAR(got / expect, 1.0, 1e-6);
   // Beyond the critical angle (cos θ < cos 48.6°) the sky is not seen: total internal reflection.
   const double d_y = 0.5;
   const double tir = kd::uw_band_radiance(&band, UW_MAT_SURFACE, 10.0, kd::real3{0, -1, 0},
                                           kd::real3{std::sqrt(1 - d_y * d_y), d_y, 0}, 5.0, kd::real3{0, 1, 0}, 0.0,
-                                          1.0, ior, 0.0, 1);
+                                          1.0, ior, 0.0, 1, 1);
   EXPECT_EQ(tir, 0.0);  // b = 0: the reflected deep water is black
   // A lit Lambertian point straight below the sun: ρ/π (E_dif + E_beam) e^{-c S} + L_MS, float vs double.
   band.b = 0.05f;
@@ -196,9 +196,9 @@ TEST(UnderwaterMath, SnellWindowAndBandRadiance) {
   band.e_sun0 = 0.9f;
   band.e_beam0 = 0.9f;
   const double d = kd::uw_band_radiance(&band, 0, 4.0, kd::real3{0, 1, 0}, kd::real3{0, -1, 0}, 3.0,
-                                        kd::real3{0, 1, 0}, 0.4, 1.0, ior, 0.0, 1);
+                                        kd::real3{0, 1, 0}, 0.4, 1.0, ior, 0.0, 1, 1);
   const float f = kf::uw_band_radiance(reinterpret_cast<const UwBand*>(&band), 0, 4.0f, kf::real3{0, 1, 0},
-                                       kf::real3{0, -1, 0}, 3.0f, kf::real3{0, 1, 0}, 0.4f, 1.0f, float(ior), 0.0f, 1);
+                                       kf::real3{0, -1, 0}, 3.0f, kf::real3{0, 1, 0}, 0.4f, 1.0f, float(ior), 0.0f, 1, 1);
   const double y = 7.0;
   const double e = (0.3 + 0.9) * std::exp(-0.12 * y) - 0.9 * std::exp(-0.15 * y) + 0.9 * std::exp(-0.15 * y);
   const double ms = kd::kd_multiple_scattering(0.05, 0.15, 0.12, 1.2, 0.9, 1.0, -1.0, 3.0, 4.0);

@@ -1,0 +1,77 @@
+#include "passes/underwater_pass.h"
+
+#include <string>
+
+#include "util/error.h"
+
+namespace seasim {
+
+UnderwaterPass::UnderwaterPass(Device& device, const UnderwaterSetup& setup, const PassPlan& raycast,
+                               const PassPlan& kd, bool spectral_output)
+    : device_(device), width_(setup.params.width), height_(setup.params.height), spectral_output_(spectral_output) {
+  const size_t pixels = static_cast<size_t>(width_) * static_cast<size_t>(height_);
+  const cl_mem_flags in = CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR;
+  try {
+    raycast_ = cl::Kernel(device.program(raycast.kernel_file, raycast.defines).program, "raycast");
+    shade_ = cl::Kernel(device.program(kd.kernel_file, kd.defines).program, "kd_multiple");
+    params_ = cl::Buffer(device.context(), in, sizeof(UwParams), const_cast<UwParams*>(&setup.params));
+    bands_ = cl::Buffer(device.context(), in, sizeof(UwBand) * setup.bands.size(),
+                        const_cast<UwBand*>(setup.bands.data()));
+    objects_ = cl::Buffer(device.context(), in, sizeof(UwObject) * setup.objects.size(),
+                          const_cast<UwObject*>(setup.objects.data()));
+    albedo_ = cl::Buffer(device.context(), in, sizeof(float) * setup.albedo.size(),
+                         const_cast<float*>(setup.albedo.data()));
+    geom_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(cl_float4) * pixels);
+    material_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(cl_int) * pixels);
+    vis_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * pixels);
+    rgb_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * 3 * pixels);
+    if (spectral_output)
+      spectral_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * pixels * setup.bands.size());
+    raycast_.setArg(0, params_);
+    raycast_.setArg(1, objects_);
+    raycast_.setArg(2, geom_);
+    raycast_.setArg(3, material_);
+    raycast_.setArg(4, vis_);
+  } catch (const cl::Error& e) {
+    throw DeviceError(std::string("underwater pass set-up: ") + e.what() + " " + clErrorName(e.err()));
+  }
+}
+
+double UnderwaterPass::enqueue(cl::Kernel& kernel, const char* what) {
+  cl::Event done;
+  try {
+    const size_t local = 8;
+    cl::NDRange global((static_cast<size_t>(width_) + local - 1) / local * local,
+                       (static_cast<size_t>(height_) + local - 1) / local * local);
+    device_.queue().enqueueNDRangeKernel(kernel, cl::NullRange, global, cl::NDRange(local, local), nullptr, &done);
+    done.wait();
+  } catch (const cl::Error& e) {
+    throw DeviceError(std::string(what) + " pass: " + e.what() + " " + clErrorName(e.err()));
+  }
+  return eventMs(done);
+}
+
+double UnderwaterPass::runRaycast() { return enqueue(raycast_, "raycast"); }
+
+double UnderwaterPass::runShading(const cl::Buffer* froxel_params, const cl::Buffer* froxel_volume) {
+  try {
+    cl_uint arg = 0;
+    shade_.setArg(arg++, params_);
+    shade_.setArg(arg++, bands_);
+    shade_.setArg(arg++, albedo_);
+    shade_.setArg(arg++, geom_);
+    shade_.setArg(arg++, material_);
+    shade_.setArg(arg++, vis_);
+    if (froxel_params && froxel_volume) {
+      shade_.setArg(arg++, *froxel_params);
+      shade_.setArg(arg++, *froxel_volume);
+    }
+    shade_.setArg(arg++, rgb_);
+    if (spectral_output_) shade_.setArg(arg++, spectral_);
+  } catch (const cl::Error& e) {
+    throw DeviceError(std::string("kd_multiple arguments: ") + e.what() + " " + clErrorName(e.err()));
+  }
+  return enqueue(shade_, "kd_multiple");
+}
+
+}  // namespace seasim

@@ -1,0 +1,38 @@
+// underwater_pass.h — host side of kernels/raycast.cl (the G-buffer) and kernels/kd_multiple.cl (the
+// per-band deferred shading of 002 eq. 4.7–4.8): buffers, arguments, profiled times.
+#pragma once
+#include <CL/opencl.hpp>
+
+#include <vector>
+
+#include "device/device.h"
+#include "plan/plan.h"
+#include "underwater/underwater_setup.h"
+
+namespace seasim {
+
+class UnderwaterPass {
+ public:
+  // raycast / kd: the plan's passes of those names (their defines). spectral_output allocates the
+  // band_count floats per pixel buffer.
+  UnderwaterPass(Device& device, const UnderwaterSetup& setup, const PassPlan& raycast, const PassPlan& kd,
+                 bool spectral_output);
+  // The G-buffer; returns the kernel's profiled ms.
+  double runRaycast();
+  // The shading. froxel_params / froxel_volume: the froxel pass's outputs when the kd pass was planned
+  // with SEASIM_HAS_FROXEL=1 (else ignored). Returns ms.
+  double runShading(const cl::Buffer* froxel_params, const cl::Buffer* froxel_volume);
+  cl::Buffer& rgb() { return rgb_; }
+  cl::Buffer& spectral() { return spectral_; }
+  cl::Buffer& geometry() { return geom_; }  // float4 (S, n) per pixel
+
+ private:
+  double enqueue(cl::Kernel& kernel, const char* what);
+  Device& device_;
+  int width_, height_;
+  bool spectral_output_;
+  cl::Kernel raycast_, shade_;
+  cl::Buffer params_, bands_, objects_, albedo_, geom_, material_, vis_, rgb_, spectral_;
+};
+
+}  // namespace seasim

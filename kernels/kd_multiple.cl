@@ -1,0 +1,87 @@
+/* kd_multiple.cl — the underwater frame's deferred shading (002 §4): per pixel and per wavelength band,
+ * T(S) L_s + L_MS with L_MS the closed form of 002 eq. 4.7 (common/underwater.h), accumulated straight
+ * into sensor RGB by the rectangle rule (002 eq. 4.8) — the n band values are never stored unless
+ * SEASIM_SPECTRAL_OUTPUT asks for them — plus the froxel single scattering (002 eq. 5.2) read at the
+ * pixel's depth.
+ *
+ * Inputs: UwParams, UwBand[band_count], albedo[object * band_count + band], the G-buffer of raycast.cl
+ * (geom, material, sun_vis), with SEASIM_HAS_FROXEL the integrated froxel volume (froxel.cl) and its
+ * FroxelParams. Output: rgb[3 * pixels]; spectral[band_count * pixels] (band-major per pixel) with
+ * SEASIM_SPECTRAL_OUTPUT, holding T L_s + L_MS per band (the froxel term is integrated in RGB).
+ * Defines (host/plan): SEASIM_HAS_MULTIPLE (L_MS), SEASIM_HAS_FROXEL (single scattering added here and
+ * split off L_MS and L_s), SEASIM_SPECTRAL_OUTPUT.
+ */
+#include "common/compat.h"
+#include "common/optics.h"
+#include "common/shafts.h"
+#include "common/underwater_params.h"
+#include "common/underwater.h"
+#if SEASIM_HAS_FROXEL
+#include "common/froxel_params.h"
+#include "common/froxel.h"
+#endif
+
+__kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, __global const float* albedo,
+                          __global const float4* geom, __global const int* material, __global const float* sun_vis,
+#if SEASIM_HAS_FROXEL
+                          __constant FroxelParams* fp, __global const float* froxel_volume,
+#endif
+                          __global float* rgb
+#if SEASIM_SPECTRAL_OUTPUT
+                          , __global float* spectral
+#endif
+) {
+  const int x = get_global_id(0);
+  const int y = get_global_id(1);
+  if (x >= p->width || y >= p->height) return;
+  const int pixel = y * p->width + x;
+
+  const float u = (2.0f * (x + 0.5f) / p->width - 1.0f) * p->tan_half_fov_y * p->aspect;
+  const float v = (1.0f - 2.0f * (y + 0.5f) / p->height) * p->tan_half_fov_y;
+  const float3 right = (float3)(p->cam_right[0], p->cam_right[1], p->cam_right[2]);
+  const float3 up = (float3)(p->cam_up[0], p->cam_up[1], p->cam_up[2]);
+  const float3 forward = (float3)(p->cam_forward[0], p->cam_forward[1], p->cam_forward[2]);
+  const float3 d = normalize(forward + u * right + v * up);
+  const float3 s_w = (float3)(p->sun_dir_water[0], p->sun_dir_water[1], p->sun_dir_water[2]);
+  const float o_d = -p->cam_pos[1];
+
+  const float4 g = geom[pixel];
+  const float S = g.x;
+  const float3 n = (float3)(g.y, g.z, g.w);
+  const int mat = material[pixel];
+  const float vis = sun_vis[pixel];
+
+#if SEASIM_HAS_FROXEL
+  const int single = 1;
+#else
+  const int single = 0;
+#endif
+#if SEASIM_HAS_MULTIPLE
+  const int multiple = 1;
+#else
+  const int multiple = 0;
+#endif
+
+  float r = 0.0f, gr = 0.0f, b = 0.0f;
+  for (int i = 0; i < p->band_count; ++i) {
+    __global const UwBand* band = &bands[i];
+    const float alb = mat >= 0 ? albedo[mat * p->band_count + i] : band->bottom_albedo;
+    const float L = uw_band_radiance(band, mat, S, n, d, o_d, s_w, alb, vis, p->ior, p->bottom_depth, single,
+                                     multiple);
+    r += L * band->w_r;
+    gr += L * band->w_g;
+    b += L * band->w_b;
+#if SEASIM_SPECTRAL_OUTPUT
+    spectral[(size_t)pixel * p->band_count + i] = L;
+#endif
+  }
+#if SEASIM_HAS_FROXEL
+  const float3 ss = froxel_lookup(fp, froxel_volume, x, y, p->width, p->height, S);
+  r += ss.x;
+  gr += ss.y;
+  b += ss.z;
+#endif
+  rgb[3 * pixel + 0] = r;
+  rgb[3 * pixel + 1] = gr;
+  rgb[3 * pixel + 2] = b;
+}

@@ -1,0 +1,162 @@
+// underwater_kd_test.cpp — kernels/raycast.cl + kd_multiple.cl on PoCL (float) against the
+// double-precision CPU evaluation of the same shared math (host/underwater/underwater_cpu.cpp), over
+// an ordinary seabed and its stiff variants (002 eq. 4.7's singular line, camera at the surface and at
+// 1000 m, rays straight up and down, n = 1 and 1000 bands, turbid 9C at long range). No NaN/Inf.
+// The froxel term is off here (single_scattering = false); froxel_test.cpp covers it.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "passes/render_frame.h"
+#include "plan/plan.h"
+#include "scene/scene_parser.h"
+#include "spectral/sensor.h"
+#include "spectral/wavelength_grid.h"
+#include "test_device.h"
+#include "underwater/underwater_cpu.h"
+#include "underwater/underwater_setup.h"
+
+namespace {
+
+const char* kScene = R"(
+[scene]
+name = "test_seabed"
+[camera]
+position = [0, -4, 0]
+look_at = [0, -4.5, -8]
+fov_deg = 70
+width = 40
+height = 24
+[sun]
+zenith_deg = 30
+azimuth_deg = 60
+[sky]
+radiance = 0.05
+[water]
+jerlov = "II"
+[bottom]
+type = "flat"
+depth = 5
+albedo = 0.3
+[[objects]]
+type = "sphere"
+center = [-1, -4.5, -5]
+radius = 0.8
+albedo = 0.2
+[[objects]]
+type = "box"
+min = [0.8, -5, -7.5]
+max = [2.2, -3.8, -6.3]
+albedo = 0.4
+[[objects]]
+type = "sphere"
+center = [0.5, -1.5, -6]
+radius = 0.7
+albedo = 0.6
+[underwater]
+single_scattering = false
+caustics = "none"
+[spectral]
+count = 8
+sensor = "camspec_nikon_d700"
+)";
+
+seasim::Override set(const char* key, const std::string& value) { return {key, value, {"test", 1}}; }
+
+double maxRelativeError(const seasim::Image& a, const seasim::Image& ref) {
+  float peak = 0;
+  for (float v : ref.pixels) peak = std::max(peak, std::fabs(v));
+  double worst = 0;
+  for (size_t i = 0; i < ref.pixels.size(); ++i)
+    worst = std::max(worst, std::fabs(double(a.pixels[i]) - ref.pixels[i]) / (std::fabs(ref.pixels[i]) + 1e-4 * peak));
+  return worst;
+}
+
+struct Variant {
+  const char* name;
+  std::vector<seasim::Override> overrides;
+  bool remove_bottom = false;
+  double tolerance = 2e-5;  // measured: <= 2.4e-6 (float vs double)
+};
+
+class UnderwaterKdKernel : public ::testing::TestWithParam<Variant> {};
+
+TEST_P(UnderwaterKdKernel, MatchesDoubleCpuEvaluationWithoutNaN) {
+  std::string text = kScene;
+  if (GetParam().remove_bottom) text.erase(text.find("[bottom]"), text.find("[[objects]]") - text.find("[bottom]"));
+  const seasim::Scene scene = seasim::parseScene(text, "test_seabed.toml", GetParam().overrides);
+  const seasim::Plan plan = seasim::makePlan(scene);
+  ASSERT_TRUE(plan.hasPass("kd_multiple"));
+  ASSERT_FALSE(plan.hasPass("froxel"));
+  const seasim::FrameResult frame = seasim::renderFrame(seasim::test::testDevice(), scene, plan);
+  EXPECT_EQ(frame.nonfinite, 0);
+  for (float v : frame.rgb.pixels) ASSERT_TRUE(std::isfinite(v) && v >= 0.0f);
+  const seasim::WavelengthGrid grid = seasim::makeGrid(scene.spectral.count, scene.spectral.min_nm, scene.spectral.max_nm);
+  const seasim::Sensor sensor = seasim::makeSensor(scene.spectral.sensor, grid, scene.spectral.white_balance);
+  const seasim::UnderwaterSetup setup = seasim::makeUnderwaterSetup(scene, grid, sensor);
+  seasim::UnderwaterCpuOptions options;
+  options.multiple = scene.underwater.multiple_scattering;
+  const seasim::Image ref = seasim::renderUnderwaterCpu(setup, options);
+  EXPECT_LT(maxRelativeError(frame.rgb, ref), GetParam().tolerance) << GetParam().name;
+  // The float CPU path (the TBB benchmark's) agrees as well.
+  options.use_double = false;
+  EXPECT_LT(maxRelativeError(seasim::renderUnderwaterCpu(setup, options), ref), GetParam().tolerance);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Scenes, UnderwaterKdKernel,
+    ::testing::Values(
+        Variant{"ordinary", {}},
+        Variant{"no_bottom", {}, true},
+        Variant{"camera_at_surface", {set("camera.position", "[0, -1e-4, 0]")}},
+        Variant{"camera_at_1000m", {set("camera.position", "[0, -1000, 0]"), set("camera.look_at", "[0, -1000.5, -8]")},
+                true},
+        Variant{"looking_straight_up", {set("camera.look_at", "[0, 10, -0.001]")}},
+        Variant{"looking_straight_down", {set("camera.look_at", "[0, -10, -0.001]")}},
+        Variant{"up_from_1000m",
+                {set("camera.position", "[0, -1000, 0]"), set("camera.look_at", "[0, 0, -0.001]")}, true},
+        // Jerlov I's K_d dips below its beam attenuation's vertical share: eq. 4.7 crosses its singular line.
+        Variant{"jerlov_I", {set("water.jerlov", "\"I\"")}},
+        Variant{"singular_line",
+                {set("water", "{ wavelengths_nm = [400, 700], a = [0.05, 0.05], b = [0.05, 0.05], kd = [0.2, 0.2] }"),
+                 set("camera.look_at", "[0, 4, -8]")}},
+        Variant{"turbid_9C_long_range", {set("water.jerlov", "\"9C\""), set("camera.look_at", "[0, -4.2, -8]")}, true},
+        Variant{"one_band", {set("spectral.count", "1")}},
+        Variant{"thousand_bands", {set("spectral.count", "1000")}, false, 5e-5},
+        Variant{"no_multiple", {set("underwater.multiple_scattering", "false")}},
+        Variant{"night", {set("sun.zenith_deg", "100")}},
+        Variant{"cie_no_white_balance", {set("spectral.sensor", "\"cie1931\""), set("spectral.white_balance", "false")}}),
+    [](const ::testing::TestParamInfo<Variant>& info) { return std::string(info.param.name); });
+
+TEST(UnderwaterKdKernel, ScatteringFreeWaterShowsOnlyTheLitSurfaces) {
+  // σ_s = 0: L_MS = 0, so open water is black and what remains is T(S) L_s.
+  const seasim::Scene scene = seasim::parseScene(
+      kScene, "test_seabed.toml",
+      {set("water", "{ wavelengths_nm = [400, 700], a = [0.1, 0.1], b = [0, 0], kd = [0.1, 0.1] }"),
+       set("camera.look_at", "[0, -3.5, -8]")});
+  const seasim::FrameResult frame = seasim::renderFrame(seasim::test::testDevice(), scene, seasim::makePlan(scene));
+  // Top-left corner pixel looks up past the objects into the water above the horizon: totally
+  // internally reflected deep water, black.
+  EXPECT_EQ(frame.rgb.pixels[0], 0.0f);
+  float peak = *std::max_element(frame.rgb.pixels.begin(), frame.rgb.pixels.end());
+  EXPECT_GT(peak, 0.0f);
+}
+
+TEST(UnderwaterKdKernel, SpectralOutputMatchesTheRgbSum) {
+  const seasim::Scene scene =
+      seasim::parseScene(kScene, "test_seabed.toml", {set("spectral.spectral_exr", "true"), set("spectral.count", "5")});
+  const seasim::FrameResult frame = seasim::renderFrame(seasim::test::testDevice(), scene, seasim::makePlan(scene));
+  ASSERT_EQ(frame.spectral.size(), size_t(40 * 24 * 5));
+  const seasim::WavelengthGrid grid = seasim::makeGrid(5, 400, 700);
+  const seasim::Sensor sensor = seasim::makeSensor(scene.spectral.sensor, grid, true);
+  for (size_t p = 0; p < 40 * 24; p += 37) {
+    std::vector<double> bands(frame.spectral.begin() + p * 5, frame.spectral.begin() + p * 5 + 5);
+    const auto rgb = sensor.apply(bands.data());
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(frame.rgb.pixels[3 * p + k], rgb[k], 1e-5 * (1e-3 + std::fabs(rgb[k])));
+  }
+}
+
+}  // namespace
