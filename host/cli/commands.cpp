@@ -23,6 +23,7 @@
 #include "reference/sea_reference.h"
 #include "reference/sea_second_reference.h"
 #include "reference/shafts_reference.h"
+#include "reference/underwater_reference.h"
 #include "spectral/sensor.h"
 #include "spectral/wavelength_grid.h"
 #include "underwater/underwater_cpu.h"
@@ -397,6 +398,28 @@ int cmdBench(const BenchCmd& cmd) {
 int cmdReference(const ReferenceCmd& cmd) {
   const Scene scene = loadScene(cmd.scene, parseSets(cmd.sets));
   const auto t0 = std::chrono::steady_clock::now();
+  if (makePlan(scene).hasPass("kd_multiple")) {
+    // Under water (issue 5): the spectral path tracer on the device, `steps` paths per pixel. With
+    // underwater.multiple_scattering = false it traces single scattering of the sun beam only, the
+    // reference of the froxel pass (make surfaces black and the sky dark to compare that term alone).
+    Device device(chooseDevice(cmd.device));
+    const WavelengthGrid grid = makeGrid(scene.spectral.count, scene.spectral.min_nm, scene.spectral.max_nm);
+    const UnderwaterSetup setup =
+        makeUnderwaterSetup(scene, grid, makeSensor(scene.spectral.sensor, grid, scene.spectral.white_balance));
+    UnderwaterReferenceSettings settings;
+    settings.samples_per_pixel = cmd.steps;
+    if (!scene.underwater.multiple_scattering) settings.max_bounces = 1;
+    settings.progress = [](int done, int total) {
+      std::fprintf(stderr, "\rpath tracing: %d/%d samples per pixel", done, total);
+      if (done == total) std::fprintf(stderr, "\n");
+    };
+    const UnderwaterReferenceResult r = renderUnderwaterReference(device, setup, settings);
+    writeExr(cmd.out, r.rgb);
+    std::printf("reference %s: %d paths per pixel (%s), %.1f ms on %s; noise: mean standard error %.3g (image mean %.3g)\n",
+                cmd.out.c_str(), r.samples, settings.max_bounces == 1 ? "single scattering" : "multiple scattering",
+                r.ms, device.info().name.c_str(), r.mean_std_error, r.image_mean);
+    return 0;
+  }
   // Spotlights in air: the shafts ray marcher (issue 4); otherwise the sea reference.
   const bool shafts = scene.air.present && !scene.spotlights.empty();
   Image image = shafts ? renderShaftsReference(scene, cmd.steps) : renderSeaReference(scene, cmd.steps);

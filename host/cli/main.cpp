@@ -6,6 +6,7 @@
 
 #include "cli/commands.h"
 #include "cli/ocean_command.h"
+#include "cli/underwater_study_command.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"seasim — OpenCL simulator of light in water and air"};
@@ -73,7 +74,8 @@ int main(int argc, char** argv) {
   auto* reference = app.add_subcommand("reference", "Brute-force reference render (double precision, CPU)");
   reference->add_option("scene", ref_cmd.scene, "Scene file")->required()->check(CLI::ExistingFile);
   reference->add_option("-o,--out", ref_cmd.out, "Output EXR")->required();
-  reference->add_option("--steps", ref_cmd.steps, "Quadrature steps along each ray");
+  reference->add_option("--steps", ref_cmd.steps, "Quadrature steps along each ray; under water: path-tracer samples per pixel");
+  reference->add_option("--device", ref_cmd.device, "Device for the underwater path tracer");
   reference->add_option("--set", ref_cmd.sets, "Override a scene key: key=value (repeatable)");
 
   seasim::OceanCmd ocean_cmd;
@@ -90,6 +92,23 @@ int main(int argc, char** argv) {
   ocean->add_flag("--bench", ocean_cmd.bench, "ms per frame, device vs FFTW, for --sizes");
   ocean->add_option("--sizes", ocean_cmd.bench_sizes, "Bench grid sizes, e.g. 256,512,1024,2048")->delimiter(',');
   ocean->add_option("--repeat", ocean_cmd.repeat, "Timed frames per size (median reported)");
+
+  seasim::UnderwaterStudyCmd study_cmd;
+  auto* study = app.add_subcommand(
+      "underwater-study", "002 §6.1: spectral vs RGB (n = 3) vs the path tracer over waters, depths, cameras");
+  study->add_option("scene", study_cmd.scene, "The seabed scene (scenes/seabed.toml)")->required()->check(CLI::ExistingFile);
+  study->add_option("--waters", study_cmd.waters, "Jerlov types")->delimiter(',');
+  study->add_option("--depths", study_cmd.depths, "Seabed depths, m")->delimiter(',');
+  study->add_option("--cameras", study_cmd.cameras, "Camera response curves (data/cameras stems)")->delimiter(',');
+  study->add_option("--width", study_cmd.width, "Image width");
+  study->add_option("--height", study_cmd.height, "Image height");
+  study->add_option("--bands", study_cmd.spectral_bands, "Bands of the spectral render");
+  study->add_option("--reference-bands", study_cmd.reference_bands, "Bands of the path tracer");
+  study->add_option("--spp", study_cmd.spp, "Path-tracer samples per pixel per run (two runs)");
+  study->add_option("--csv", study_cmd.csv, "CSV output");
+  study->add_option("--plot", study_cmd.plot, "SVG plot output");
+  study->add_option("--device", study_cmd.device, "Device selector");
+  study->add_option("--set", study_cmd.sets, "Override a scene key: key=value (repeatable)");
 
   std::string preview_scene, preview_device;
   auto* preview = app.add_subcommand("preview", "Live GLFW preview window");
@@ -108,6 +127,7 @@ int main(int argc, char** argv) {
     if (*bench) return seasim::cmdBench(bench_cmd);
     if (*reference) return seasim::cmdReference(ref_cmd);
     if (*ocean) return seasim::cmdOcean(ocean_cmd);
+    if (*study) return seasim::cmdUnderwaterStudy(study_cmd);
     if (*preview) return seasim::cmdPreview(preview_scene, preview_device);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "seasim: error: %s\n", e.what());

@@ -4,6 +4,7 @@
 #pragma once
 #include "common/compat.h"
 #include "common/underwater_params.h"  // plain C structs, used by underwater.h
+#include "common/froxel_params.h"      // plain C struct, used by froxel.h
 
 
 namespace seasim::kmath_f {
@@ -15,6 +16,9 @@ typedef float real;
 #include "common/sea_second.h"
 #include "common/ocean_spectrum.h"
 #include "common/underwater.h"
+#include "common/caustic_texture.h"
+#include "common/froxel.h"
+#include "common/path_tracer.h"
 }  // namespace seasim::kmath_f
 
 namespace seasim::kmath_d {
@@ -26,4 +30,7 @@ typedef double real;
 #include "common/sea_second.h"
 #include "common/ocean_spectrum.h"
 #include "common/underwater.h"
+#include "common/caustic_texture.h"
+#include "common/froxel.h"
+#include "common/path_tracer.h"
 }  // namespace seasim::kmath_d

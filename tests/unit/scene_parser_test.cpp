@@ -423,6 +423,16 @@ struct BadScene {
 };
 
 const BadScene kBadScenes[] = {
+    {"unknown caustics mode", "[underwater]\ncaustics = \"fancy\"\n",
+     "bad.toml:2: key 'underwater.caustics'"},
+    {"caustic map without waves", "[water]\njerlov = \"IB\"\n[underwater]\ncaustics = \"map\"\n",
+     "bad.toml:4: key 'underwater.caustics': \"map\" needs a wavy surface"},
+    {"froxel far before near", "[underwater]\nfroxel_near_m = 5.0\nfroxel_far_m = 2.0\n",
+     "bad.toml:3: key 'underwater.froxel_far_m': must be > froxel_near_m"},
+    {"zero caustic period", "[underwater]\ncaustic_period_m = 0\n",
+     "bad.toml:2: key 'underwater.caustic_period_m': must be > 0 m"},
+    {"typo in [underwater]", "[underwater]\nsingle_scatering = false\n",
+     "bad.toml:2: key 'underwater.single_scatering': unknown key; did you mean 'single_scattering'?"},
     {"typo'd key", "[sun]\nzenith_dg = 40\n",
      "bad.toml:2: key 'sun.zenith_dg': unknown key; did you mean 'zenith_deg'?"},
     {"typo'd table", "[watr]\njerlov = \"IB\"\n",

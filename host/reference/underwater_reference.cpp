@@ -1,0 +1,206 @@
+#include "reference/underwater_reference.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "math/kernel_math.h"
+#include "util/error.h"
+
+namespace seasim {
+
+namespace {
+
+namespace kd = kmath_d;
+
+kd::real3 r3(Vec3 v) { return kd::real3{v.x, v.y, v.z}; }
+Vec3 v3(const float a[4]) { return {a[0], a[1], a[2]}; }
+
+void validate(const UnderwaterSetup& setup) {
+  const UwParams& p = setup.params;
+  if (p.width < 1 || p.height < 1) throw RuntimeError("underwater reference: the image is empty");
+  if (p.band_count < 1 || setup.bands.size() != static_cast<size_t>(p.band_count)) {
+    throw RuntimeError("underwater reference: " + std::to_string(setup.bands.size()) + " bands for band_count " +
+                       std::to_string(p.band_count));
+  }
+  if (p.object_count < 0 || setup.objects.size() < static_cast<size_t>(std::max(p.object_count, 1)) ||
+      setup.albedo.size() < static_cast<size_t>(std::max(p.object_count * p.band_count, 1))) {
+    throw RuntimeError("underwater reference: object or albedo arrays shorter than object_count says");
+  }
+  if (!(p.cam_pos[1] < 0.0f)) {
+    throw RuntimeError("underwater reference: the camera must be below the water surface (y < 0), got y = " +
+                       std::to_string(p.cam_pos[1]));
+  }
+  if (!(std::fabs(p.g) < 1.0f)) throw RuntimeError("underwater reference: |g| must be < 1, got " + std::to_string(p.g));
+}
+
+}  // namespace
+
+Vec3 underwaterPixelDirection(const UwParams& p, double x, double y) {
+  const double u = (2.0 * x / p.width - 1.0) * p.tan_half_fov_y * p.aspect;
+  const double v = (1.0 - 2.0 * y / p.height) * p.tan_half_fov_y;
+  return normalize(v3(p.cam_forward) + v3(p.cam_right) * u + v3(p.cam_up) * v);
+}
+
+UnderwaterReferenceResult renderUnderwaterReference(Device& device, const UnderwaterSetup& setup,
+                                                    const UnderwaterReferenceSettings& settings) {
+  validate(setup);
+  if (settings.samples_per_pixel < 1) throw RuntimeError("underwater reference: samples per pixel must be >= 1");
+  if (settings.batch < 1) throw RuntimeError("underwater reference: batch must be >= 1");
+  if (settings.max_bounces < 1) throw RuntimeError("underwater reference: max_bounces must be >= 1");
+  const UwParams& p = setup.params;
+  const size_t pixels = static_cast<size_t>(p.width) * static_cast<size_t>(p.height);
+  const int total = settings.samples_per_pixel;
+
+  UnderwaterReferenceResult result;
+  std::vector<cl_float4> mean(pixels), m2(pixels);
+  try {
+    const std::vector<std::string> defines = {
+        std::string("SEASIM_HAS_OBJECTS=") + (p.object_count > 0 ? "1" : "0"),
+        std::string("SEASIM_PT_ISOTROPIC=") + (settings.isotropic ? "1" : "0"),
+        std::string("SEASIM_PT_JITTER=") + (settings.jitter ? "1" : "0")};
+    const BuiltProgram& built = device.program("reference.cl", defines);
+    cl::Kernel kernel(built.program, "reference_path_trace");
+    cl::Context& ctx = device.context();
+    cl::Buffer params(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(UwParams), const_cast<UwParams*>(&p));
+    cl::Buffer bands(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(UwBand) * setup.bands.size(),
+                     const_cast<UwBand*>(setup.bands.data()));
+    cl::Buffer objects(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(UwObject) * setup.objects.size(),
+                       const_cast<UwObject*>(setup.objects.data()));
+    cl::Buffer albedo(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(float) * setup.albedo.size(),
+                      const_cast<float*>(setup.albedo.data()));
+    cl::Buffer mean_buf(ctx, CL_MEM_READ_WRITE, sizeof(cl_float4) * pixels);
+    cl::Buffer m2_buf(ctx, CL_MEM_READ_WRITE, sizeof(cl_float4) * pixels);
+    cl::CommandQueue& queue = device.queue();
+    const cl_float4 zero{};
+    queue.enqueueFillBuffer(mean_buf, zero, 0, sizeof(cl_float4) * pixels);
+    queue.enqueueFillBuffer(m2_buf, zero, 0, sizeof(cl_float4) * pixels);
+    kernel.setArg(0, params);
+    kernel.setArg(1, bands);
+    kernel.setArg(2, objects);
+    kernel.setArg(3, albedo);
+    kernel.setArg(4, static_cast<cl_uint>(settings.seed));
+    kernel.setArg(7, static_cast<cl_int>(settings.max_bounces));
+    kernel.setArg(8, mean_buf);
+    kernel.setArg(9, m2_buf);
+    const size_t local = 8;
+    const cl::NDRange global((static_cast<size_t>(p.width) + local - 1) / local * local,
+                             (static_cast<size_t>(p.height) + local - 1) / local * local);
+    for (int done = 0; done < total;) {
+      const int n = std::min(settings.batch, total - done);
+      kernel.setArg(5, static_cast<cl_int>(done));
+      kernel.setArg(6, static_cast<cl_int>(n));
+      cl::Event event;
+      queue.enqueueNDRangeKernel(kernel, cl::NullRange, global, cl::NDRange(local, local), nullptr, &event);
+      event.wait();  // one launch at a time: bounded kernel length (GPU watchdogs) and live progress
+      result.ms += eventMs(event);
+      done += n;
+      if (settings.progress) settings.progress(done, total);
+    }
+    queue.enqueueReadBuffer(mean_buf, CL_TRUE, 0, sizeof(cl_float4) * pixels, mean.data());
+    queue.enqueueReadBuffer(m2_buf, CL_TRUE, 0, sizeof(cl_float4) * pixels, m2.data());
+  } catch (const cl::Error& e) {
+    throw DeviceError(std::string("underwater reference (reference.cl): ") + e.what() + " " + clErrorName(e.err()));
+  }
+
+  result.samples = total;
+  result.rgb.resize(p.width, p.height, 3);
+  result.rgb.channel_names = {"R", "G", "B"};
+  result.std_error.resize(p.width, p.height, 3);
+  result.std_error.channel_names = {"R", "G", "B"};
+  long long nonfinite = 0;
+  double sum = 0, sum_se = 0, sum_se2 = 0;
+  const double n = total;
+  for (size_t i = 0; i < pixels; ++i) {
+    for (int ch = 0; ch < 3; ++ch) {
+      const double m = mean[i].s[ch];
+      // Var of the mean = M2 / (n - 1) / n; with one sample it is unknown and reported as 0.
+      const double se = total > 1 ? std::sqrt(std::max(double(m2[i].s[ch]), 0.0) / ((n - 1) * n)) : 0.0;
+      if (!std::isfinite(m) || !std::isfinite(se)) ++nonfinite;
+      result.rgb.pixels[3 * i + ch] = static_cast<float>(m);
+      result.std_error.pixels[3 * i + ch] = static_cast<float>(se);
+      sum += m;
+      sum_se += se;
+      sum_se2 += se * se;
+    }
+  }
+  if (nonfinite > 0) {
+    throw RuntimeError("underwater reference: " + std::to_string(nonfinite) +
+                       " non-finite pixel values (a bug in reference.cl; please report the scene)");
+  }
+  const double values = 3.0 * static_cast<double>(pixels);
+  result.image_mean = sum / values;
+  result.mean_std_error = sum_se / values;
+  result.rms_std_error = std::sqrt(sum_se2 / values);
+  result.image_mean_std_error = std::sqrt(sum_se2) / values;  // independent pixels: variances add
+  return result;
+}
+
+double underwaterSingleScatteringRay(const UnderwaterSetup& setup, int band, Vec3 origin, Vec3 dir, bool isotropic,
+                                     int steps) {
+  const UwParams& p = setup.params;
+  const UwBand& bn = setup.bands.at(static_cast<size_t>(band));
+  const double c = bn.c, b = bn.b;
+  if (c <= 0 || b <= 0 || bn.e_beam0 <= 0 || steps < 1) return 0.0;
+  const int count = p.object_count;
+  const kd::real3 o = r3(origin), d = r3(dir);
+  const kd::real3 s_w = r3(v3(p.sun_dir_water));
+  kd::real3 n{};
+  int mat = 0;
+  const double S = kd::uw_scene_hit(setup.objects.data(), count, p.bottom_depth, o, d, 0.0, &n, &mat);
+  const double phase = isotropic ? 1.0 / (4.0 * M_PI) : kd::hg_phase(kd::dot(s_w, d), p.g);
+  // Without shadows the integrand is e_beam0 e^{-c o_d/μ_w} e^{-κ z}, κ = c (1 - d_y/μ_w) (y(z) = o_d -
+  // z d_y, μ_w clamped as uw_beam_irradiance does). For κ > 0 the substitution u = 1 - e^{-κ z} makes
+  // it constant in u, so the midpoint rule is exact but for V's steps (and deep water needs no
+  // truncation); for κ <= 0 (looking up more steeply than the sun; S finite) midpoints in z.
+  const double mu = std::max(s_w.y, 1e-4);
+  const double o_d = std::max(-o.y, 0.0);
+  const double kappa = c * (1.0 - d.y / mu);
+  const double scale = bn.e_beam0 * std::exp(-c * o_d / mu);
+  if (scale <= 0) return 0.0;
+  const bool substitute = kappa > 0;
+  if (!substitute && S >= 1e29) return 0.0;  // cannot happen in water (d_y > μ_w > 0 reaches the surface)
+  const double U = substitute ? (S >= 1e29 ? 1.0 : -std::expm1(-kappa * S)) : S;
+  double sum = 0;
+  for (int i = 0; i < steps; ++i) {
+    const double u = (i + 0.5) * U / steps;
+    const double z = substitute ? -std::log1p(-u) / kappa : u;
+    if (count > 0) {
+      kd::real3 sn{};
+      int smat = 0;
+      kd::uw_scene_hit(setup.objects.data(), count, 0.0, o + z * d, s_w, 0.0, &sn, &smat);
+      if (smat >= 0) continue;
+    }
+    sum += substitute ? 1.0 / kappa : std::exp(-kappa * z);
+  }
+  return b * phase * scale * sum * (U / steps);
+}
+
+Image renderUnderwaterSingleScatteringQuadrature(const UnderwaterSetup& setup, bool isotropic, int steps) {
+  validate(setup);
+  const UwParams& p = setup.params;
+  Image img;
+  img.resize(p.width, p.height, 3);
+  img.channel_names = {"R", "G", "B"};
+  const Vec3 eye = v3(p.cam_pos);
+  tbb::parallel_for(0, p.height, [&](int y) {
+    for (int x = 0; x < p.width; ++x) {
+      const Vec3 d = underwaterPixelDirection(p, x + 0.5, y + 0.5);
+      double rgb[3] = {0, 0, 0};
+      for (int i = 0; i < p.band_count; ++i) {
+        const double L = underwaterSingleScatteringRay(setup, i, eye, d, isotropic, steps);
+        const UwBand& bn = setup.bands[static_cast<size_t>(i)];
+        rgb[0] += L * bn.w_r;
+        rgb[1] += L * bn.w_g;
+        rgb[2] += L * bn.w_b;
+      }
+      for (int ch = 0; ch < 3; ++ch) img.at(x, y, ch) = static_cast<float>(rgb[ch]);
+    }
+  });
+  return img;
+}
+
+}  // namespace seasim

@@ -1,0 +1,67 @@
+// underwater_reference.h — references for the underwater model of paper 002 (kernels/reference.cl):
+//
+//  * renderUnderwaterReference: the spectral Monte Carlo volumetric path tracer on the device, full
+//    multiple scattering (the reference 002 §6.1 validates against), progressive in batches, with the
+//    standard error of every pixel so error numbers can be quoted beside the reference's own noise.
+//    max_bounces = 1 is its single-scattering mode (the sun beam scattered once, what the froxel pass
+//    integrates).
+//  * underwaterSingleScatteringRay / renderUnderwaterSingleScatteringQuadrature: that single
+//    scattering integral by deterministic quadrature in double on the CPU with exact shadow rays,
+//      L_SS = ∫_0^S e^{-c z} b p(θ) E_beam(y(z)) V(x_z) dz,  E_beam(y) = e_beam0 e^{-c y/μ_w},
+//    the check of both the path tracer's single-scattering mode and the froxel integrator.
+//
+// Both read the scene as the underwater passes do (UnderwaterSetup: common/underwater_params.h,
+// common/underwater.h): flat surface, no caustics.
+#pragma once
+#include <functional>
+
+#include "device/device.h"
+#include "io/image.h"
+#include "math/vec3.h"
+#include "underwater/underwater_setup.h"
+
+namespace seasim {
+
+struct UnderwaterReferenceSettings {
+  int samples_per_pixel = 64;  // paths per pixel in all (the last launch may trace fewer than `batch`)
+  int batch = 8;               // paths per pixel per kernel launch
+  int max_bounces = 64;        // scattering vertices per path (medium, Lambertian, surface reflection);
+                               // 1 = single scattering of the sun beam only (no surface, sky or objects'
+                               // own shading)
+  bool isotropic = false;      // phase 1/(4π) instead of Henyey–Greenstein with UwParams.g
+  bool jitter = true;          // false: every path through the pixel centre (tests against quadrature)
+  unsigned seed = 1;           // the same seed traces the same paths, whatever `batch` is
+  std::function<void(int done, int total)> progress;  // after each launch: samples done, samples asked
+};
+
+struct UnderwaterReferenceResult {
+  Image rgb;                          // mean linear sensor RGB, Σ_bands L(λ_i) w(λ_i) (002 eq. 4.8)
+  Image std_error;                    // standard error of that mean, per pixel and channel
+  double mean_std_error = 0.0;        // mean of std_error over pixels and channels ("reference noise")
+  double rms_std_error = 0.0;         // sqrt(mean std_error²): the RMSE the reference's noise alone adds
+  double image_mean = 0.0;            // mean of rgb over pixels and channels
+  double image_mean_std_error = 0.0;  // standard error of image_mean (pixels are independent)
+  double ms = 0.0;                    // kernel time, summed over launches (profiling events)
+  int samples = 0;                    // paths per pixel traced
+};
+
+// Throws RuntimeError for settings or scenes it cannot trace (no samples, camera above the surface,
+// |g| >= 1, non-finite output) and DeviceError on OpenCL failures.
+UnderwaterReferenceResult renderUnderwaterReference(Device& device, const UnderwaterSetup& setup,
+                                                    const UnderwaterReferenceSettings& settings);
+
+// L_SS of one band along the ray origin + z dir (dir unit, origin below the surface), in double, with
+// an exact shadow ray along sun_dir_water through the objects at every step; S the first hit of
+// uw_scene_hit. Midpoint rule with `steps` steps in u = 1 - e^{-κ z}, κ = c (1 - d_y/μ_w), the
+// unshadowed integrand's own decay: exact without objects (it is 002 eq. 4.7's kd_exp_integral then),
+// error O(1/steps) across shadow edges; deep water needs no truncation. 0 when c = 0 or b = 0.
+double underwaterSingleScatteringRay(const UnderwaterSetup& setup, int band, Vec3 origin, Vec3 dir, bool isotropic,
+                                     int steps);
+
+// That integral through every pixel centre (the pinhole camera of sea_single.cl), as sensor RGB.
+Image renderUnderwaterSingleScatteringQuadrature(const UnderwaterSetup& setup, bool isotropic, int steps);
+
+// The pixel-centre view direction of pixel (x, y) in double, as the kernels compute it in float.
+Vec3 underwaterPixelDirection(const UwParams& params, double x, double y);
+
+}  // namespace seasim

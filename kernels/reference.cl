@@ -1,0 +1,202 @@
+/* reference.cl — the brute-force reference of the underwater model (paper 002 §6.1 validates against a
+ * spectral path tracer): a spectral Monte Carlo volumetric path tracer for full multiple scattering in
+ * the scene of common/underwater.h, progressive, with a per-pixel variance estimate.
+ *
+ * Scene (the same as raycast.cl / kd_multiple.cl): homogeneous water below y = 0 (per band a, b,
+ * c = a + b), Henyey–Greenstein phase function with g = UwParams.g (isotropic with SEASIM_PT_ISOTROPIC),
+ * a flat air–water surface with Fresnel reflection/refraction, Lambertian analytic objects and an
+ * optional flat Lambertian bottom (uw_scene_hit). Light: the refracted sun beam, a delta in direction
+ * along -sun_dir_water with normal irradiance e_beam0 just below the surface (its Fresnel transmission
+ * is inside e_beam0), so E_beam(y) = e_beam0 e^{-c y/μ_w}; and the uniform sky, which a path reaches by
+ * refracting out through Snell's window: n² (1 - F) L_sky below the surface. Flat surface: no caustics.
+ *
+ * Estimator, one path per sample: one wavelength band chosen uniformly (weight band_count; the sample's
+ * RGB is band_count L(λ_i) (w_r, w_g, w_b)_i, whose mean is Σ_i L(λ_i) w(λ_i), the sensor RGB of
+ * 002 eq. 4.8 as kd_multiple.cl writes it). Free flight sampled with c (weight b/c at a scattering
+ * event, 1 on reaching a surface). Next-event estimation to the sun at every medium vertex
+ * (b/c · p(θ) · E_beam(y) · V, 002 eq. 5.1's integrand) and every Lambertian vertex
+ * (ρ/π · max(n·s_w, 0) · E_beam(y) · V), V an exact shadow ray along sun_dir_water through the objects
+ * to the surface — the only way to see a delta light. At the surface from below: reflect with
+ * probability F, else escape and add n² L_sky. Continue by sampling the phase function / the cosine
+ * lobe (weight 1 / albedo); Russian roulette from the 3rd vertex on; at most max_bounces vertices
+ * (medium, Lambertian or surface reflection).
+ * max_bounces = 1 is the single-scattering mode: only the sun NEE at the first medium vertex, no surface,
+ * sky or Lambertian terms, i.e. an unbiased estimate of
+ *   L_SS = ∫_0^S e^{-c z} b p(θ) E_beam(y(z)) V(x_z) dz   (S the first hit distance; 002 §5),
+ * what the froxel integrator computes.
+ *
+ * Random numbers: common/path_tracer.h, a hash of (seed, pixel, sample index, dimension): reproducible
+ * for a seed whatever the batching. Dimensions: 0, 1 pixel jitter; 2 band; then per event in order.
+ *
+ * Inputs: UwParams, UwBand[band_count], UwObject[object_count], albedo[object * band_count + band].
+ * In/out per pixel: mean (float4: RGB mean, A unused) and m2 (float4: RGB sum of squared deviations
+ * from the mean), merged per launch with the batch's own mean/M2 (Chan, Golub, LeVeque 1979), stable in
+ * float where a plain Σx² - n mean² would cancel; sample_start samples are already in them.
+ * Defines: SEASIM_HAS_OBJECTS (0/1), SEASIM_PT_ISOTROPIC (0/1: phase 1/(4π) instead of HG),
+ * SEASIM_PT_JITTER (0/1: 0 traces every sample through the pixel centre, for tests against quadrature).
+ * Stiff cases: c = 0 (free flight UW_INFINITE; a ray into deep water then ends), a = 0 (albedo 1: only
+ * roulette and the cap end a path), the sun below the horizon (e_beam0 = 0: no NEE), E_beam underflow at
+ * great depth (0, never NaN), total internal reflection (F = 1), |g| -> 1 (path_tracer.h).
+ */
+#include "common/compat.h"
+#include "common/optics.h"
+#include "common/shafts.h"
+#include "common/underwater_params.h"
+#include "common/underwater.h"
+#include "common/path_tracer.h"
+
+#ifndef SEASIM_HAS_OBJECTS
+#define SEASIM_HAS_OBJECTS 1
+#endif
+#ifndef SEASIM_PT_ISOTROPIC
+#define SEASIM_PT_ISOTROPIC 0
+#endif
+#ifndef SEASIM_PT_JITTER
+#define SEASIM_PT_JITTER 1
+#endif
+
+/* Offset of a ray origin off a surface it leaves: relative to the coordinates' size, so float rounding
+ * at large distances cannot put the origin back behind the surface. */
+static inline float surface_offset(float3 x) { return 1e-4f * fmax(1.0f, fmax(fabs(x.x), fmax(fabs(x.y), fabs(x.z)))); }
+
+/* Visibility of the sun from x (below the surface): 1 unless an object blocks the shadow ray along s_w
+ * before the surface (the bottom cannot: the ray goes up). */
+static inline float sun_visibility(const __global UwObject* objects, int count, float3 x, float3 s_w) {
+#if SEASIM_HAS_OBJECTS
+  float3 n;
+  int mat;
+  uw_scene_hit(objects, count, 0.0f, x, s_w, 0.0f, &n, &mat);
+  return mat >= 0 ? 0.0f : 1.0f;
+#else
+  return 1.0f;
+#endif
+}
+
+/* One path's radiance in band `band` along the camera ray (o, d); key/dim as path_tracer.h. */
+static inline float trace_path(__constant UwParams* p, const __global UwBand* bn, const __global UwObject* objects,
+                               const __global float* albedo, int band, int max_bounces, unsigned int key, float3 o,
+                               float3 d) {
+#if SEASIM_HAS_OBJECTS
+  const int count = p->object_count;
+#else
+  const int count = 0;
+#endif
+  const float3 s_w = (float3)(p->sun_dir_water[0], p->sun_dir_water[1], p->sun_dir_water[2]);
+  const float mu_w = s_w.y;
+  const float c = bn->c, e_beam0 = bn->e_beam0;
+  const float scatter_albedo = c > 0.0f ? bn->b / c : 0.0f;
+  const int single_only = max_bounces == 1;
+  unsigned int dim = 3; /* 0, 1: pixel jitter; 2: band */
+  float beta = 1.0f;    /* path throughput divided by its pdf */
+  float L = 0.0f;
+  int vertices = 0;
+  for (;;) {
+    float3 n;
+    int mat;
+    const float S = uw_scene_hit(objects, count, p->bottom_depth, o, d, 0.0f, &n, &mat);
+    const float t = pt_sample_distance(c, pt_uniform(key, dim++));
+    if (t < S) {
+      /* A scattering event in the water: weight σ_s/σ_t (free flight pdf c e^{-ct}, transmittance e^{-ct}). */
+      o = o + t * d;
+      beta *= scatter_albedo;
+      ++vertices;
+      if (e_beam0 > 0.0f && beta > 0.0f) {
+#if SEASIM_PT_ISOTROPIC
+        const float phase = 1.0f / (4.0f * M_PI_F);
+#else
+        const float phase = hg_phase(dot(s_w, d), p->g); /* sunlight travels along -s_w, then along -d */
+#endif
+        const float e_beam = uw_beam_irradiance(e_beam0, c, mu_w, fmax(-o.y, 0.0f));
+        if (e_beam > 0.0f) L += beta * phase * e_beam * sun_visibility(objects, count, o, s_w);
+      }
+      if (single_only || vertices >= max_bounces) break;
+#if SEASIM_PT_ISOTROPIC
+      d = pt_sample_isotropic(pt_uniform(key, dim), pt_uniform(key, dim + 1));
+#else
+      d = pt_sample_hg(d, p->g, pt_uniform(key, dim), pt_uniform(key, dim + 1));
+#endif
+      dim += 2;
+    } else if (mat == UW_MAT_NONE || single_only) {
+      break; /* into deep water (nothing comes back along it) or, single scattering, past the first hit */
+    } else if (mat == UW_MAT_SURFACE) {
+      o = o + S * d;
+      o.y = 0.0f;
+      if (!pt_fresnel_reflects(d.y, p->ior, pt_uniform(key, dim++))) {
+        L += beta * p->ior * p->ior * bn->sky_radiance; /* n² L_sky; 1 - F is the choice's probability */
+        break;
+      }
+      if (++vertices >= max_bounces) break;
+      d.y = -d.y; /* mirror reflection at the flat surface */
+    } else {
+      /* A Lambertian object or the bottom. */
+      const float rho = mat >= 0 ? albedo[mat * p->band_count + band] : bn->bottom_albedo;
+      o = o + S * d;
+      ++vertices;
+      const float3 x = o + surface_offset(o) * n;
+      const float cos_sun = dot(n, s_w);
+      if (e_beam0 > 0.0f && cos_sun > 0.0f && rho > 0.0f) {
+        const float e_beam = uw_beam_irradiance(e_beam0, c, mu_w, fmax(-o.y, 0.0f));
+        if (e_beam > 0.0f) L += beta * rho * M_1_PI_F * cos_sun * e_beam * sun_visibility(objects, count, x, s_w);
+      }
+      if (vertices >= max_bounces) break;
+      beta *= rho; /* ρ/π cos θ over the pdf cos θ/π */
+      d = pt_sample_cosine(n, pt_uniform(key, dim), pt_uniform(key, dim + 1));
+      dim += 2;
+      o = x;
+    }
+    if (!(beta > 0.0f)) break; /* absorbed (b = 0) or a black surface: nothing more can arrive */
+    /* Russian roulette from the 3rd vertex on: a path below weight 1 survives with probability β and
+     * then carries weight 1, so weights never grow (a fixed survival probability q < 1 would multiply
+     * a conservative path's weight by 1/q per vertex: heavy tails). β = 1 (a = 0, white surfaces) is
+     * never rouletted; escape through the window or max_bounces ends it. */
+    if (vertices >= 3 && beta < 1.0f) {
+      if (pt_uniform(key, dim++) >= beta) break;
+      beta = 1.0f;
+    }
+  }
+  return L;
+}
+
+__kernel void reference_path_trace(__constant UwParams* p, __global const UwBand* bands,
+                                   __global const UwObject* objects, __global const float* albedo, uint seed,
+                                   int sample_start, int samples, int max_bounces, __global float4* mean,
+                                   __global float4* m2) {
+  const int x = get_global_id(0);
+  const int y = get_global_id(1);
+  if (x >= p->width || y >= p->height) return;
+  const int pixel = y * p->width + x;
+
+  const float3 right = (float3)(p->cam_right[0], p->cam_right[1], p->cam_right[2]);
+  const float3 up = (float3)(p->cam_up[0], p->cam_up[1], p->cam_up[2]);
+  const float3 forward = (float3)(p->cam_forward[0], p->cam_forward[1], p->cam_forward[2]);
+  const float3 eye = (float3)(p->cam_pos[0], p->cam_pos[1], p->cam_pos[2]);
+
+  /* This batch's mean and M2 by Welford's update, then merged into the running pair. */
+  float3 b_mean = (float3)(0.0f), b_m2 = (float3)(0.0f);
+  for (int j = 0; j < samples; ++j) {
+    const unsigned int key = pt_path_key(seed, (unsigned int)pixel, (unsigned int)(sample_start + j));
+#if SEASIM_PT_JITTER
+    const float jx = pt_uniform(key, 0), jy = pt_uniform(key, 1);
+#else
+    const float jx = 0.5f, jy = 0.5f;
+#endif
+    /* Pinhole camera as in sea_single.cl, at a jittered point of the pixel. */
+    const float u = (2.0f * (x + jx) / p->width - 1.0f) * p->tan_half_fov_y * p->aspect;
+    const float v = (1.0f - 2.0f * (y + jy) / p->height) * p->tan_half_fov_y;
+    const float3 d = normalize(forward + u * right + v * up);
+    const int band = min((int)(pt_uniform(key, 2) * p->band_count), p->band_count - 1);
+    const __global UwBand* bn = &bands[band];
+    const float L = p->band_count * trace_path(p, bn, objects, albedo, band, max_bounces, key, eye, d);
+    const float3 s = L * (float3)(bn->w_r, bn->w_g, bn->w_b);
+    const float3 delta = s - b_mean;
+    b_mean += delta / (float)(j + 1);
+    b_m2 += delta * (s - b_mean);
+  }
+  const float na = (float)sample_start, nb = (float)samples, n = na + nb;
+  const float3 a_mean = mean[pixel].xyz, a_m2 = m2[pixel].xyz;
+  const float3 delta = b_mean - a_mean;
+  const float3 new_mean = sample_start > 0 ? a_mean + delta * (nb / n) : b_mean;
+  const float3 new_m2 = sample_start > 0 ? a_m2 + b_m2 + delta * delta * (na * nb / n) : b_m2;
+  mean[pixel] = (float4)(new_mean, 0.0f);
+  m2[pixel] = (float4)(new_m2, 0.0f);
+}

@@ -1,0 +1,497 @@
+// underwater_reference_test.cpp — the underwater path tracer (kernels/reference.cl) on PoCL against
+// closed forms and double-precision CPU quadrature, on tiny images with hand-built scenes
+// (UnderwaterSetup filled directly, so every coefficient is known exactly):
+//   * no scattering (b = 0): Lambertian sphere, box shadow and bottom lit by the sun beam alone,
+//     e^{-c S} ρ/π E_beam(y) max(n·s_w, 0) V;
+//   * single-scattering mode (max_bounces = 1) against the L_SS quadrature, without objects (also
+//     against its closed form) and with an occluding sphere (exact shadow rays in double);
+//   * Snell's window with b = 0: n² (1 - F) L_sky e^{-c S}, zero under total internal reflection;
+//   * the ocean's white furnace: a = 0, no sun, albedo-1 objects and bottom under a uniform sky give
+//     n² L_sky everywhere, whatever b and g (uniform radiance solves the RTE and every boundary);
+//   * more bounces never lower a pixel (same seed), the same seed gives the same image whatever the
+//     batch size, and no NaN/Inf in turbid water at 1000 m or with a = 0 (roulette only).
+// Statistics: z = (path tracer - reference) / (its own standard error) per pixel and channel; the
+// tests ask for the image means to agree within 4 standard errors of the image mean, the RMS of z to
+// be near 1 (the error estimate is honest) and no |z| beyond 6. Seeds are fixed, so all is deterministic.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "math/kernel_math.h"
+#include "reference/underwater_reference.h"
+#include "test_device.h"
+#include "util/error.h"
+
+namespace {
+
+namespace kd = seasim::kmath_d;
+using seasim::Image;
+using seasim::UnderwaterReferenceResult;
+using seasim::UnderwaterReferenceSettings;
+using seasim::UnderwaterSetup;
+using seasim::Vec3;
+
+seasim::Device& device() { return seasim::test::testDevice(); }
+
+struct BandSpec {
+  double a, b;
+  double e_beam0;        // W m^-2 nm^-1, normal to the refracted beam just below the surface
+  double sky_radiance;   // in air
+  double bottom_albedo;
+  double w[3];           // sensor weights
+};
+
+struct ObjectSpec {
+  UwObject object;
+  std::vector<float> albedo;  // per band
+};
+
+UwObject sphere(Vec3 c, double r) {
+  UwObject o{};
+  o.type = UW_SPHERE;
+  o.a[0] = float(c.x), o.a[1] = float(c.y), o.a[2] = float(c.z), o.a[3] = float(r);
+  return o;
+}
+UwObject box(Vec3 lo, Vec3 hi) {
+  UwObject o{};
+  o.type = UW_BOX;
+  o.a[0] = float(lo.x), o.a[1] = float(lo.y), o.a[2] = float(lo.z);
+  o.b[0] = float(hi.x), o.b[1] = float(hi.y), o.b[2] = float(hi.z);
+  return o;
+}
+
+struct SceneSpec {
+  int width = 16, height = 12;
+  Vec3 eye{0, -5, 0};
+  Vec3 forward{0, 0, -1};
+  Vec3 up_hint{0, 1, 0};
+  double fov_y_deg = 60;
+  Vec3 sun_water = seasim::normalize(Vec3{0.3, 0.9, -0.25});
+  double ior = 1.333, g = 0.0, bottom_depth = 0.0;
+  std::vector<BandSpec> bands;
+  std::vector<ObjectSpec> objects;
+};
+
+void set4(float out[4], Vec3 v) {
+  out[0] = float(v.x), out[1] = float(v.y), out[2] = float(v.z), out[3] = 0.0f;
+}
+
+UnderwaterSetup build(const SceneSpec& s) {
+  UnderwaterSetup u;
+  UwParams& p = u.params;
+  const Vec3 f = seasim::normalize(s.forward);
+  const Vec3 r = seasim::normalize(seasim::cross(f, s.up_hint));
+  set4(p.cam_pos, s.eye);
+  set4(p.cam_forward, f);
+  set4(p.cam_right, r);
+  set4(p.cam_up, seasim::cross(r, f));
+  const Vec3 sw = seasim::normalize(s.sun_water);
+  set4(p.sun_dir_water, sw);
+  set4(p.sun_dir_air, Vec3{0, 1, 0});  // not read by the reference
+  u.sun_water = sw;
+  p.tan_half_fov_y = float(std::tan(s.fov_y_deg * M_PI / 360));
+  p.aspect = float(s.width) / float(s.height);
+  p.ior = float(s.ior);
+  p.g = float(s.g);
+  p.bottom_depth = float(s.bottom_depth);
+  p.width = s.width;
+  p.height = s.height;
+  p.band_count = int(s.bands.size());
+  p.object_count = int(s.objects.size());
+  for (const BandSpec& b : s.bands) {
+    UwBand band{};
+    band.a = float(b.a), band.b = float(b.b), band.c = float(b.a + b.b);
+    band.kd = band.c;
+    band.e_beam0 = float(b.e_beam0);
+    band.e_sun0 = float(b.e_beam0 * sw.y);
+    band.sky_radiance = float(b.sky_radiance);
+    band.bottom_albedo = float(b.bottom_albedo);
+    band.w_r = float(b.w[0]), band.w_g = float(b.w[1]), band.w_b = float(b.w[2]);
+    u.bands.push_back(band);
+  }
+  for (const ObjectSpec& o : s.objects) {
+    u.objects.push_back(o.object);
+    u.albedo.insert(u.albedo.end(), o.albedo.begin(), o.albedo.end());
+  }
+  if (u.objects.empty()) u.objects.push_back(UwObject{});
+  if (u.albedo.empty()) u.albedo.push_back(0.0f);
+  return u;
+}
+
+// Sensor RGB of per-band radiances L(i) through every pixel centre, in double.
+template <typename F>
+Image perPixel(const UnderwaterSetup& s, F radiance) {
+  const UwParams& p = s.params;
+  Image img;
+  img.resize(p.width, p.height, 3);
+  for (int y = 0; y < p.height; ++y)
+    for (int x = 0; x < p.width; ++x) {
+      const Vec3 d = seasim::underwaterPixelDirection(p, x + 0.5, y + 0.5);
+      double rgb[3] = {0, 0, 0};
+      for (int i = 0; i < p.band_count; ++i) {
+        const double L = radiance(i, kd::real3{d.x, d.y, d.z});
+        const UwBand& b = s.bands[i];
+        rgb[0] += L * b.w_r, rgb[1] += L * b.w_g, rgb[2] += L * b.w_b;
+      }
+      for (int c = 0; c < 3; ++c) img.at(x, y, c) = float(rgb[c]);
+    }
+  return img;
+}
+
+kd::real3 eyeOf(const UnderwaterSetup& s) { return kd::real3{s.params.cam_pos[0], s.params.cam_pos[1], s.params.cam_pos[2]}; }
+
+// The sun beam reflected once by a Lambertian hit, with no scattering on the way (b = 0).
+Image directSunImage(const UnderwaterSetup& s) {
+  const UwParams& p = s.params;
+  const kd::real3 sw{p.sun_dir_water[0], p.sun_dir_water[1], p.sun_dir_water[2]};
+  return perPixel(s, [&](int i, kd::real3 d) {
+    kd::real3 n{};
+    int mat = 0;
+    const double S = kd::uw_scene_hit(s.objects.data(), p.object_count, p.bottom_depth, eyeOf(s), d, 0.0, &n, &mat);
+    if (mat < 0 && mat != UW_MAT_BOTTOM) return 0.0;
+    const UwBand& b = s.bands[i];
+    const double rho = mat >= 0 ? s.albedo[mat * p.band_count + i] : b.bottom_albedo;
+    const kd::real3 x = eyeOf(s) + S * d;
+    kd::real3 sn{};
+    int smat = 0;
+    kd::uw_scene_hit(s.objects.data(), p.object_count, 0.0, x + 1e-6 * n, sw, 0.0, &sn, &smat);
+    const double vis = smat >= 0 ? 0.0 : 1.0;
+    return std::exp(-b.c * S) * rho / M_PI * kd::uw_beam_irradiance(b.e_beam0, b.c, sw.y, -x.y) *
+           std::max(kd::dot(n, sw), 0.0) * vis;
+  });
+}
+
+struct Agreement {
+  double mean_mc = 0, mean_ref = 0, mean_se = 0;  // image means and the standard error of the first
+  double rms_z = 0, max_z = 0;                     // over values with a standard error
+  int with_se = 0;
+  double worst_exact = 0;  // largest |Δ| / (|ref| + floor) where the standard error is 0
+};
+
+Agreement agreement(const UnderwaterReferenceResult& r, const Image& ref) {
+  Agreement a;
+  double peak = 0, z2 = 0;
+  for (float v : ref.pixels) peak = std::max(peak, double(std::fabs(v)));
+  for (size_t i = 0; i < ref.pixels.size(); ++i) {
+    const double mc = r.rgb.pixels[i], rf = ref.pixels[i], se = r.std_error.pixels[i];
+    a.mean_mc += mc;
+    a.mean_ref += rf;
+    // Float (kernel) against double (reference): 5e-5 of the value, or of 1e-3 of the image's peak.
+    const double rounding = 5e-5 * (std::fabs(rf) + 1e-3 * peak);
+    const double z = (mc - rf) / std::hypot(se, rounding);
+    a.max_z = std::max(a.max_z, std::fabs(z));
+    if (se > rounding) {
+      z2 += z * z;
+      ++a.with_se;
+    } else {
+      a.worst_exact = std::max(a.worst_exact, std::fabs(mc - rf) / (std::fabs(rf) + 1e-3 * peak + 1e-30));
+    }
+  }
+  a.mean_mc /= ref.pixels.size();
+  a.mean_ref /= ref.pixels.size();
+  a.mean_se = r.image_mean_std_error;
+  a.rms_z = a.with_se ? std::sqrt(z2 / a.with_se) : 0.0;
+  return a;
+}
+
+// The statistical verdict shared by the Monte Carlo tests (see the top of the file).
+void expectAgrees(const UnderwaterReferenceResult& r, const Image& ref, const char* what) {
+  const Agreement a = agreement(r, ref);
+  std::printf("[%s] image mean %.6g vs %.6g (se %.3g), rms z %.3f, max |z| %.2f over %d values, %d spp, %.1f ms\n",
+              what, a.mean_mc, a.mean_ref, a.mean_se, a.rms_z, a.max_z, a.with_se, r.samples, r.ms);
+  EXPECT_NEAR(a.mean_mc, a.mean_ref, 4 * a.mean_se + 1e-5 * std::fabs(a.mean_ref)) << what;
+  EXPECT_LT(a.max_z, 6.0) << what;
+  if (a.with_se > 50) {
+    EXPECT_GT(a.rms_z, 0.7) << what;  // the standard error is not overstated...
+    EXPECT_LT(a.rms_z, 1.4) << what;  // ...nor understated
+  }
+  EXPECT_LT(a.worst_exact, 2e-4) << what;  // float against double where every sample is the same
+}
+
+void expectFiniteNonNegative(const UnderwaterReferenceResult& r) {
+  for (float v : r.rgb.pixels) {
+    ASSERT_TRUE(std::isfinite(v));
+    ASSERT_GE(v, 0.0f);
+  }
+  for (float v : r.std_error.pixels) ASSERT_TRUE(std::isfinite(v));
+  EXPECT_TRUE(std::isfinite(r.mean_std_error));
+  EXPECT_TRUE(std::isfinite(r.image_mean_std_error));
+}
+
+const double kW1[3] = {1.0, 0.4, 0.1}, kW2[3] = {0.2, 0.8, 0.3}, kW3[3] = {0.0, 0.3, 1.2};
+
+TEST(UnderwaterReference, NoScatteringShowsTheSunOnLambertianSurfaces) {
+  // b = 0, no sky. The analytic value is the first hit's direct sun alone, so nothing may reflect
+  // twice: one Lambertian surface is white at a time, the others black (they still cast shadows),
+  // and the scene sits 100 m down, where the light the surface mirrors back down has crossed 200 m:
+  // e^{-c 200 m} ρ ≲ 2e-5 of the value, far below the noise. Free-flight sampling estimates the view
+  // ray's transmittance (a path reaches the surface with probability e^{-c S}, else it is absorbed), so
+  // even one band is a Monte Carlo estimate; three bands add the band choice.
+  const Vec3 sun = seasim::normalize(Vec3{0.3, 0.9, -0.25});
+  const Vec3 ball{0.5, -100.5, -6};
+  for (int variant = 0; variant < 2; ++variant) {
+    const bool lit_sphere = variant == 0;  // else the lit bottom with the shadows of sphere and box
+    SceneSpec spec;
+    spec.eye = {0, lit_sphere ? -97.5 : -100, 0};  // a little above the sphere: more of its lit side
+    // The sphere ahead, or the bottom seen steeply: every view ray's transmittance is above ~0.3, so
+    // 64 paths never all fail to reach the surface they look at.
+    spec.forward = lit_sphere ? ball - spec.eye : Vec3{0, -1.2, -1};
+    spec.fov_y_deg = lit_sphere ? 45 : 60;
+    spec.sun_water = sun;
+    spec.bottom_depth = 107;
+    const double bottom = lit_sphere ? 0.0 : 0.5;
+    spec.objects = {{sphere(ball, 1.5), {}},
+                    {sphere(ball + sun * 2.6, 0.6), {}},  // shades part of the lit sphere
+                    {box({-4, -104, -9}, {-1.5, -102, -7}), {}}};
+    UnderwaterReferenceSettings set;
+    set.samples_per_pixel = 64;
+    set.jitter = false;
+    for (int bands : {1, 3}) {
+      if (bands == 1) {
+        spec.bands = {{0.06, 0.0, 1e4, 0.0, bottom, {1, 0.5, 0.2}}};
+        spec.objects[0].albedo = {lit_sphere ? 0.7f : 0.0f};
+      } else {
+        spec.bands = {{0.05, 0.0, 1e4, 0.0, bottom, {kW1[0], kW1[1], kW1[2]}},
+                      {0.06, 0.0, 2e4, 0.0, bottom * 0.6, {kW2[0], kW2[1], kW2[2]}},
+                      {0.08, 0.0, 4e4, 0.0, bottom * 1.8, {kW3[0], kW3[1], kW3[2]}}};
+        spec.objects[0].albedo = lit_sphere ? std::vector<float>{0.2f, 0.6f, 0.9f} : std::vector<float>{0, 0, 0};
+      }
+      spec.objects[1].albedo = spec.objects[2].albedo = std::vector<float>(bands, 0.0f);
+      const UnderwaterSetup s = build(spec);
+      const UnderwaterReferenceResult r = seasim::renderUnderwaterReference(device(), s, set);
+      expectFiniteNonNegative(r);
+      const Image ref = directSunImage(s);
+      const std::string what = std::string(lit_sphere ? "no scattering, sphere, " : "no scattering, bottom, ") +
+                               std::to_string(bands) + " band(s)";
+      expectAgrees(r, ref, what.c_str());
+      int lit = 0, dark = 0;
+      for (size_t i = 0; i < ref.pixelCount(); ++i) (ref.pixels[3 * i + 1] > 0 ? lit : dark) += 1;
+      EXPECT_GT(lit, 8) << what;  // the scene is not trivially black...
+      EXPECT_GT(dark, 8) << what; // ...nor all lit: shadows, black objects, the sphere's far side
+    }
+  }
+}
+
+SceneSpec singleScatteringScene() {
+  SceneSpec spec;
+  spec.eye = {0, -4, 0};
+  spec.forward = {0, 0.1, -1};
+  spec.fov_y_deg = 90;  // rays up to the surface, horizontal, and down into deep water
+  spec.g = 0.8;
+  spec.bands = {{0.05, 0.3, 2.0, 0.3, 0.0, {kW1[0], kW1[1], kW1[2]}}, {0.3, 0.6, 1.0, 0.3, 0.0, {kW3[0], kW3[1], kW3[2]}}};
+  return spec;
+}
+
+TEST(UnderwaterReference, SingleScatteringModeMatchesQuadratureWithoutObjects) {
+  const UnderwaterSetup s = build(singleScatteringScene());
+  // The quadrature itself against the closed form e_beam0 b p(θ) kd_exp_integral(c/μ_w, c, d_y, o_d, S).
+  const UwParams& p = s.params;
+  const kd::real3 sw{p.sun_dir_water[0], p.sun_dir_water[1], p.sun_dir_water[2]};
+  const Image closed = perPixel(s, [&](int i, kd::real3 d) {
+    const UwBand& b = s.bands[i];
+    const double S = d.y > 0 ? -p.cam_pos[1] / d.y : 1e30;
+    return b.e_beam0 * b.b * kd::hg_phase(kd::dot(sw, d), p.g) *
+           kd::kd_exp_integral(b.c / sw.y, b.c, d.y, -p.cam_pos[1], S);
+  });
+  const Image quad = seasim::renderUnderwaterSingleScatteringQuadrature(s, false, 2000);
+  for (size_t i = 0; i < quad.pixels.size(); ++i) EXPECT_NEAR(quad.pixels[i], closed.pixels[i], 1e-5 * closed.pixels[i]);
+
+  UnderwaterReferenceSettings set;
+  set.samples_per_pixel = 128;
+  set.batch = 32;
+  set.max_bounces = 1;
+  set.jitter = false;
+  const UnderwaterReferenceResult r = seasim::renderUnderwaterReference(device(), s, set);
+  expectFiniteNonNegative(r);
+  expectAgrees(r, closed, "single scattering, no objects");
+}
+
+TEST(UnderwaterReference, SingleScatteringModeMatchesQuadratureWithAnOccluder) {
+  SceneSpec spec = singleScatteringScene();
+  // A sphere between the sun and the rays: its shadow crosses the view; some rays hit it.
+  spec.objects = {{sphere({0.8, -2.2, -4}, 1.0), {0.5f, 0.5f}}};
+  spec.g = 0.5;
+  const UnderwaterSetup s = build(spec);
+  const Image quad = seasim::renderUnderwaterSingleScatteringQuadrature(s, false, 4000);
+  UnderwaterReferenceSettings set;
+  set.samples_per_pixel = 128;
+  set.batch = 32;
+  set.max_bounces = 1;
+  set.jitter = false;
+  const UnderwaterReferenceResult r = seasim::renderUnderwaterReference(device(), s, set);
+  expectFiniteNonNegative(r);
+  expectAgrees(r, quad, "single scattering, occluding sphere");
+  // The shadow is really there: no pixel brighter than without the sphere, a patch of them darker.
+  SceneSpec open = singleScatteringScene();
+  open.g = 0.5;
+  const Image unshadowed = seasim::renderUnderwaterSingleScatteringQuadrature(build(open), false, 1000);
+  int darker = 0;
+  for (size_t i = 0; i < quad.pixels.size(); ++i) {
+    EXPECT_LE(quad.pixels[i], unshadowed.pixels[i] * (1 + 1e-6));
+    darker += quad.pixels[i] < 0.9 * unshadowed.pixels[i];
+  }
+  EXPECT_GT(darker, 3 * 15);
+
+  // Isotropic phase (the define) against the quadrature with p = 1/(4π).
+  set.isotropic = true;
+  const UnderwaterReferenceResult iso = seasim::renderUnderwaterReference(device(), s, set);
+  expectAgrees(iso, seasim::renderUnderwaterSingleScatteringQuadrature(s, true, 4000), "single scattering, isotropic");
+}
+
+TEST(UnderwaterReference, SnellsWindowWithoutScattering) {
+  SceneSpec spec;
+  spec.eye = {0, -3, 0};
+  spec.forward = {0, 1, 0};
+  spec.up_hint = {0, 0, -1};
+  spec.fov_y_deg = 120;  // the corners lie outside the window (critical angle 48.6°)
+  spec.bands = {{0.1, 0.0, 1.0, 0.5, 0.0, {kW1[0], kW1[1], kW1[2]}}, {0.6, 0.0, 1.0, 0.8, 0.0, {kW2[0], kW2[1], kW2[2]}}};
+  const UnderwaterSetup s = build(spec);
+  const Image ref = perPixel(s, [&](int i, kd::real3 d) {
+    const UwBand& b = s.bands[i];
+    return std::exp(-b.c * 3.0 / d.y) * kd::uw_window_radiance(d.y, s.params.ior, b.sky_radiance, 0.0);
+  });
+  int outside = 0;
+  for (float v : ref.pixels) outside += v == 0.0f;
+  EXPECT_GT(outside, 12);  // total internal reflection shows the (black) deep water
+  UnderwaterReferenceSettings set;
+  set.samples_per_pixel = 64;
+  set.jitter = false;
+  const UnderwaterReferenceResult r = seasim::renderUnderwaterReference(device(), s, set);
+  expectFiniteNonNegative(r);
+  expectAgrees(r, ref, "Snell's window");
+}
+
+TEST(UnderwaterReference, WhiteFurnaceIsUniformSkyRadianceTimesIorSquared) {
+  // a = 0, no sun, white (albedo 1) sphere, box and bottom under a uniform sky: L = n² L_sky is the
+  // solution (scattering conserves it, the surface sends n²(1-F) L_sky + F L_up = n² L_sky down inside
+  // the window and L_up outside, a white Lambertian surface returns what it receives), so every pixel
+  // is n² L_sky Σ w whatever b and the phase function.
+  for (double g : {0.0, 0.9}) {
+    SceneSpec spec;
+    spec.eye = {0, -3, 0};
+    spec.forward = {0.3, -0.2, -1};
+    spec.g = g;
+    spec.bottom_depth = 6;
+    spec.bands = {{0.0, 0.15, 0.0, 0.4, 1.0, {kW1[0], kW1[1], kW1[2]}}, {0.0, 0.4, 0.0, 0.7, 1.0, {kW3[0], kW3[1], kW3[2]}}};
+    spec.objects = {{sphere({1, -3.5, -5}, 1.2), {1.0f, 1.0f}}, {box({-3, -6, -8}, {-1, -4.5, -6}), {1.0f, 1.0f}}};
+    const UnderwaterSetup s = build(spec);
+    const Image ref = perPixel(s, [&](int i, kd::real3) {
+      return double(s.params.ior) * s.params.ior * s.bands[i].sky_radiance;
+    });
+    UnderwaterReferenceSettings set;
+    set.samples_per_pixel = 64;
+    set.max_bounces = 1000;  // truncation far below the noise (a path escapes at ~half its surface visits)
+    const UnderwaterReferenceResult r = seasim::renderUnderwaterReference(device(), s, set);
+    expectFiniteNonNegative(r);
+    expectAgrees(r, ref, g == 0 ? "white furnace, g = 0" : "white furnace, g = 0.9");
+  }
+}
+
+SceneSpec fullScene() {
+  SceneSpec spec;
+  spec.eye = {0, -4, 0};
+  spec.forward = {0.2, -0.15, -1};
+  spec.g = 0.85;
+  spec.bottom_depth = 10;
+  spec.bands = {{0.1, 0.3, 2.0, 0.3, 0.4, {kW1[0], kW1[1], kW1[2]}}, {0.4, 0.5, 1.0, 0.2, 0.2, {kW3[0], kW3[1], kW3[2]}}};
+  spec.objects = {{sphere({0.5, -4.5, -5}, 1.2), {0.6f, 0.3f}}, {box({-3, -10, -9}, {-1, -7, -7}), {0.4f, 0.4f}}};
+  return spec;
+}
+
+TEST(UnderwaterReference, MoreBouncesNeverDarkenAndSeedsReproduce) {
+  const UnderwaterSetup s = build(fullScene());
+  UnderwaterReferenceSettings set;
+  set.samples_per_pixel = 16;
+  Image previous;
+  double previous_mean = 0;
+  for (int bounces : {2, 3, 4, 6, 10, 64}) {
+    set.max_bounces = bounces;
+    const UnderwaterReferenceResult r = seasim::renderUnderwaterReference(device(), s, set);
+    expectFiniteNonNegative(r);
+    if (!previous.pixels.empty()) {
+      // The same paths, cut later: each sample only gains terms (float slack for the Welford sums).
+      for (size_t i = 0; i < r.rgb.pixels.size(); ++i)
+        ASSERT_GE(r.rgb.pixels[i], previous.pixels[i] * (1 - 1e-5f)) << "bounces " << bounces << " value " << i;
+      EXPECT_GT(r.image_mean, previous_mean) << bounces;
+    }
+    previous = r.rgb;
+    previous_mean = r.image_mean;
+  }
+  // Reproducible: same seed, same bits; another batch size, the same paths (float rounding apart);
+  // another seed, another image.
+  set.max_bounces = 64;
+  const UnderwaterReferenceResult a = seasim::renderUnderwaterReference(device(), s, set);
+  const UnderwaterReferenceResult b = seasim::renderUnderwaterReference(device(), s, set);
+  EXPECT_EQ(a.rgb.pixels, b.rgb.pixels);
+  set.batch = 3;
+  int progress_calls = 0, last_done = 0;
+  set.progress = [&](int done, int total) {
+    ++progress_calls;
+    EXPECT_GT(done, last_done);
+    EXPECT_EQ(total, 16);
+    last_done = done;
+  };
+  const UnderwaterReferenceResult c = seasim::renderUnderwaterReference(device(), s, set);
+  EXPECT_EQ(progress_calls, 6);  // 3+3+3+3+3+1
+  EXPECT_EQ(last_done, 16);
+  for (size_t i = 0; i < a.rgb.pixels.size(); ++i)
+    EXPECT_NEAR(c.rgb.pixels[i], a.rgb.pixels[i], 1e-5 * std::fabs(a.rgb.pixels[i]) + 1e-12);
+  set.seed = 2;
+  set.progress = nullptr;
+  const UnderwaterReferenceResult d = seasim::renderUnderwaterReference(device(), s, set);
+  EXPECT_NE(d.rgb.pixels, a.rgb.pixels);
+  // Different seeds agree within their noise (both are the same expectation).
+  EXPECT_NEAR(d.image_mean, a.image_mean, 5 * std::hypot(a.image_mean_std_error, d.image_mean_std_error));
+  // Multiple scattering adds light beyond single scattering + direct: the 64-bounce image is brighter
+  // than the 2-bounce one (checked above) and its noise is quoted.
+  std::printf("[full scene] 16x12, 16 spp: mean %.5g, mean std error %.3g, image-mean se %.3g, %.1f ms\n",
+              a.image_mean, a.mean_std_error, a.image_mean_std_error, a.ms);
+}
+
+TEST(UnderwaterReference, NoNanInTurbidDeepWaterOrWithoutAbsorption) {
+  // 9C-like turbid water (b = 10/m) at 1000 m: the sun beam underflows to 0, the sky is 10^4 optical
+  // depths away; strongly forward scattering.
+  SceneSpec turbid = fullScene();
+  turbid.eye = {0, -1000, 0};
+  turbid.bottom_depth = 1010;
+  turbid.g = 0.95;
+  turbid.objects = {{sphere({0.5, -1000.5, -5}, 1.2), {0.6f, 0.3f}}};
+  turbid.bands = {{0.8, 10.0, 2.0, 0.3, 0.4, {kW1[0], kW1[1], kW1[2]}}, {2.0, 10.0, 1.0, 0.2, 0.2, {kW3[0], kW3[1], kW3[2]}}};
+  UnderwaterReferenceSettings set;
+  set.samples_per_pixel = 8;
+  UnderwaterReferenceResult r = seasim::renderUnderwaterReference(device(), build(turbid), set);
+  expectFiniteNonNegative(r);
+  EXPECT_EQ(r.image_mean, 0.0);  // nothing reaches 1000 m through 10^4 optical depths
+
+  // a = 0: only roulette and the cap end paths (albedo 1), near the surface with sun and sky.
+  SceneSpec pure = fullScene();
+  pure.bottom_depth = 0;  // semi-infinite: paths may wander down for ever
+  for (BandSpec& b : pure.bands) b.a = 0.0;
+  for (double g : {0.0, 0.99}) {
+    pure.g = g;
+    r = seasim::renderUnderwaterReference(device(), build(pure), set);
+    expectFiniteNonNegative(r);
+    EXPECT_GT(r.image_mean, 0.0);
+  }
+  // Sun below the horizon (e_beam0 = 0) and c = 0 (a = b = 0): the sky through the window only.
+  SceneSpec empty = fullScene();
+  for (BandSpec& b : empty.bands) b.a = b.b = b.e_beam0 = 0.0;
+  r = seasim::renderUnderwaterReference(device(), build(empty), set);
+  expectFiniteNonNegative(r);
+}
+
+TEST(UnderwaterReference, RejectsWhatItCannotTrace) {
+  SceneSpec spec = fullScene();
+  UnderwaterReferenceSettings set;
+  set.samples_per_pixel = 0;
+  EXPECT_THROW(seasim::renderUnderwaterReference(device(), build(spec), set), seasim::RuntimeError);
+  set.samples_per_pixel = 1;
+  spec.eye = {0, 1, 0};  // above the surface
+  EXPECT_THROW(seasim::renderUnderwaterReference(device(), build(spec), set), seasim::RuntimeError);
+}
+
+}  // namespace
