@@ -1,7 +1,9 @@
 #include "passes/render_frame.h"
 
 #include <chrono>
+#include <memory>
 
+#include "passes/froxel_pass.h"
 #include "passes/nonfinite_check.h"
 #include "passes/sea_second_pass.h"
 #include "passes/sea_single_pass.h"
@@ -85,10 +87,15 @@ FrameResult renderFrame(Device& device, const Scene& scene, const Plan& plan) {
     const UnderwaterSetup setup = makeUnderwaterSetup(scene, grid, sensor);
     UnderwaterPass pass(device, setup, *plan.find("raycast"), *kd, scene.spectral.spectral_exr);
     result.timings.push_back({"raycast", pass.runRaycast()});
-    const cl::Buffer* froxel_params = nullptr;
-    const cl::Buffer* froxel_volume = nullptr;
-    if (plan.hasPass("froxel")) throw RuntimeError("froxel pass: not wired yet");
-    result.timings.push_back({"kd_multiple", pass.runShading(froxel_params, froxel_volume)});
+    // Froxel single scattering of the sun beam (002 §5.1–5.2), read by the shading at each pixel's depth.
+    std::unique_ptr<FroxelPass> froxels;
+    if (const PassPlan* fx = plan.find("froxel")) {
+      froxels = std::make_unique<FroxelPass>(device, scene, setup, fx->defines);
+      froxels->run();
+      for (const PassTiming& t : froxels->timings()) result.timings.push_back(t);
+    }
+    result.timings.push_back({"kd_multiple", pass.runShading(froxels ? &froxels->paramsBuffer() : nullptr,
+                                                             froxels ? &froxels->volume() : nullptr)});
     finishFrame(device, scene, pass.rgb(), scene.spectral.spectral_exr ? &pass.spectral() : nullptr, grid.size(), result);
     result.build_ms = device.totalBuildMs() - build_before;
     result.wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();

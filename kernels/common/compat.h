@@ -6,6 +6,7 @@
  *   MAKE_REAL3(x, y, z)    a real3 value
  *   SEASIM_FN              'static inline' on both sides
  *   SEASIM_GLOBAL          '__global' in kernels, nothing on the host (pointer arguments to buffers)
+ *   SEASIM_CONSTANT        '__constant' in kernels, nothing on the host (parameter blocks)
  *   dot, cross, length, normalize, clamp, mix, +,-,* on real3 — OpenCL built-ins; C++ versions below
  *   exp, expm1, log, sqrt, pow, sin, cos, acos, atan2, fabs, fmin, fmax — plain C names
  *
@@ -33,6 +34,7 @@ typedef float3 real3;
 #endif
 #define SEASIM_FN static inline
 #define SEASIM_GLOBAL __global
+#define SEASIM_CONSTANT __constant
 #define SEASIM_PI R(3.14159265358979323846)
 
 #else /* C++ host: this part is included once, outside the kmath namespaces */
@@ -42,6 +44,7 @@ typedef float3 real3;
 #include <cmath>
 #define SEASIM_FN static inline
 #define SEASIM_GLOBAL
+#define SEASIM_CONSTANT
 #define R(x) (static_cast<real>(x))
 #define MAKE_REAL3(x, y, z) (real3{static_cast<real>(x), static_cast<real>(y), static_cast<real>(z)})
 #define SEASIM_PI R(3.14159265358979323846)

@@ -23,27 +23,19 @@
  *   ∫_{z_k}^{z_k + d} e^{-σ_t z} dz = e^{-σ_t z_k} d φ(-σ_t d),   φ(x) = expm1(x)/x = expm1_over_x,
  * so a slice of any optical depth (1 m of 9C water, σ_t d = 11) neither loses its light (the plain
  * rule's d e^{-σ_t z} at one point) nor overshoots. The medium is homogeneous, so the transmittance to
- * the slice's start is e^{-σ_t z_k} directly (froxel_slice_integral); froxel_integrate_step is the
- * same step in the running form ΔL = T L_i d φ(-σ_t d), T *= e^{-σ_t d}.
+ * the slice's start is e^{-σ_t z_k} directly (froxel_slice_integral; froxel_beam_slice, what the
+ * column loop runs, fuses it with E_beam's exponential: two transcendentals per band and slice);
+ * froxel_integrate_step is the same step in the running form ΔL = T L_i d φ(-σ_t d), T *= e^{-σ_t d}.
  *
  * Read (froxel_lookup): the volume holds the integral to the END of each slice; a pixel at distance S
  * in slice k reads L(z_k) + f (L(z_{k+1}) - L(z_k)), f the fraction of that slice's light gathered by
  * S when L_i is constant in it, f = x φ(-τ x)/φ(-τ) with x = (S - z_k)/d and τ = σ̄_t d per channel
- * (σ̄_t = FroxelParams.sigma_t_rgb), which is 1 - e^{-τx} / (1 - e^{-τ}) written without 0/0 at τ = 0.
+ * (σ̄_t = FroxelParams.sigma_t_rgb), which is (1 - e^{-τx})/(1 - e^{-τ}) written without 0/0 at τ = 0.
  * Columns: bilinear between the four columns around the pixel (clamped at the border). S >= z_far
  * (deep water, UW_INFINITE) reads the value at z_far: light beyond z_far is lost, part of the froxel
  * method's error.
  */
 
-/* Address space of parameter blocks passed by pointer (kernels take them __constant). Belongs in
- * compat.h; defined here until it moves there. */
-#ifndef SEASIM_CONSTANT
-#if defined(__OPENCL_VERSION__) || defined(__OPENCL_C_VERSION__)
-#define SEASIM_CONSTANT __constant
-#else
-#define SEASIM_CONSTANT
-#endif
-#endif
 
 /* End of slice k (k = 0 .. nz-1): z_near (z_far/z_near)^{(k+1)/nz} = z_near e^{(k+1) log_far_near/nz},
  * log_far_near = log(z_far/z_near) (FroxelParams.log_far_near: one value for host and device);

@@ -27,12 +27,12 @@ typedef struct {
   float shadow_up[4];      /* unit, ⊥ sun_dir_water and shadow_right: texel y */
   float sigma_t_rgb[4];    /* 1/m, R,G,B pseudo-band extinction: RGB injection, and the in-slice
                               weighting of froxel_lookup in both modes */
-  float sigma_s_rgb[4];    /* 1/m, R,G,B pseudo-band scattering (RGB injection) */
-  float e_beam_rgb[4];     /* sensor R,G,B of the refracted beam's normal irradiance just below the
-                              surface (RGB injection) */
+  float sigma_s_rgb[4];    /* 1/m, R,G,B pseudo-band scattering; with e_beam_rgb for reports only: */
+  float e_beam_rgb[4];     /* sensor R,G,B of the beam just below the surface; froxel_integrate reads
+                              the pseudo-bands from its band buffer (froxelRgbPseudoBands) */
   float z_near;            /* m, end of the first slice is z_near (z_far/z_near)^{1/nz} */
   float z_far;             /* m, end of the last slice; pixels farther read the value at z_far */
-  float log_far_near;      /* log(z_far / z_near) */
+  float log_far_near;      /* log(z_far / z_near), computed once in double: host and device slice alike */
   float shadow_half_extent;/* m, the map covers [-h, h]² around shadow_origin in (right, up) */
   float shadow_bias;       /* m, a point is shadowed when it lies this far beyond the occluder */
   float pad0, pad1, pad2;

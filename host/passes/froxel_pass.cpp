@@ -1,0 +1,148 @@
+#include "passes/froxel_pass.h"
+
+#include <cstddef>
+#include <string>
+
+#include "util/error.h"
+
+namespace seasim {
+
+// The kernels read this struct with OpenCL C layout; float/int are 4 bytes on both sides.
+static_assert(sizeof(FroxelParams) == 6 * 16 + 8 * 4 + 8 * 4, "FroxelParams layout changed: update froxel.h users");
+static_assert(offsetof(FroxelParams, sigma_t_rgb) == 48);
+static_assert(offsetof(FroxelParams, z_near) == 96);
+static_assert(offsetof(FroxelParams, shadow_bias) == 112);
+static_assert(offsetof(FroxelParams, nx) == 128);
+static_assert(offsetof(FroxelParams, injection) == 144);
+
+namespace {
+
+// Makes `defines` hold NAME=value: adds it when missing, throws when the caller set another value.
+void requireDefine(std::vector<std::string>& defines, const std::string& name, int value) {
+  const std::string want = name + "=" + std::to_string(value);
+  for (const std::string& d : defines) {
+    if (d == want) return;
+    if (d == name || d.rfind(name + "=", 0) == 0) {
+      throw RuntimeError("froxel pass: define " + d + " disagrees with the scene (" + want +
+                         "); the plan and the scene must come from the same file");
+    }
+  }
+  defines.push_back(want);
+}
+
+size_t up(size_t v, size_t local) { return (v + local - 1) / local * local; }
+
+}  // namespace
+
+FroxelPass::FroxelPass(Device& device, const Scene& scene, const UnderwaterSetup& setup,
+                       const std::vector<std::string>& defines)
+    : FroxelPass(device, setup, froxelConfigFromScene(scene), defines) {}
+
+FroxelPass::FroxelPass(Device& device, const UnderwaterSetup& setup, const FroxelConfig& config,
+                       const std::vector<std::string>& defines)
+    : device_(device), fp_(makeFroxelParams(setup, config)), defines_(defines) {
+  requireDefine(defines_, "SEASIM_HAS_OBJECTS", setup.params.object_count > 0 ? 1 : 0);
+  requireDefine(defines_, "SEASIM_CAUSTICS", setup.params.caustic_mode);
+  requireDefine(defines_, "SEASIM_SPECTRAL_INJECTION", config.rgb_injection ? 0 : 1);
+
+  const std::vector<UwBand> bands = froxelIntegrationBands(setup, fp_);
+  const size_t froxels = size_t(fp_.nx) * fp_.ny * fp_.nz;
+  const size_t texels = fp_.shadow_size > 0 ? size_t(fp_.shadow_size) * fp_.shadow_size : 1;
+  const cl_mem_flags in = CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR;
+  try {
+    const BuiltProgram& built = device.program("froxel.cl", defines_);
+    shadow_kernel_ = cl::Kernel(built.program, "froxel_shadow_map");
+    inject_kernel_ = cl::Kernel(built.program, "froxel_inject");
+    integrate_kernel_ = cl::Kernel(built.program, "froxel_integrate");
+    resolve_kernel_ = cl::Kernel(built.program, "froxel_resolve");
+    params_ = cl::Buffer(device.context(), in, sizeof(UwParams), const_cast<UwParams*>(&setup.params));
+    fparams_ = cl::Buffer(device.context(), in, sizeof(FroxelParams), &fp_);
+    objects_ = cl::Buffer(device.context(), in, sizeof(UwObject) * setup.objects.size(),
+                          const_cast<UwObject*>(setup.objects.data()));
+    bands_ = cl::Buffer(device.context(), in, sizeof(UwBand) * bands.size(), const_cast<UwBand*>(bands.data()));
+    map_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * texels);
+    light_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * froxels);
+    volume_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * 4 * froxels);
+    shadow_kernel_.setArg(0, params_);
+    shadow_kernel_.setArg(1, fparams_);
+    shadow_kernel_.setArg(2, objects_);
+    shadow_kernel_.setArg(3, map_);
+    inject_kernel_.setArg(0, params_);
+    inject_kernel_.setArg(1, fparams_);
+    inject_kernel_.setArg(2, objects_);
+    inject_kernel_.setArg(3, map_);
+    inject_kernel_.setArg(4, light_);
+    integrate_kernel_.setArg(0, params_);
+    integrate_kernel_.setArg(1, fparams_);
+    integrate_kernel_.setArg(2, bands_);
+    integrate_kernel_.setArg(3, light_);
+    integrate_kernel_.setArg(4, volume_);
+    resolve_kernel_.setArg(0, fparams_);
+    resolve_kernel_.setArg(1, volume_);
+  } catch (const cl::Error& e) {
+    throw DeviceError(std::string("froxel pass set-up: ") + e.what() + " " + clErrorName(e.err()));
+  }
+}
+
+double FroxelPass::run() {
+  timings_.clear();
+  try {
+    auto enqueue = [&](cl::Kernel& kernel, const cl::NDRange& global, const cl::NDRange& local, const char* name) {
+      cl::Event done;
+      device_.queue().enqueueNDRangeKernel(kernel, cl::NullRange, global, local, nullptr, &done);
+      done.wait();
+      timings_.push_back({name, eventMs(done)});
+    };
+    if (fp_.shadow_size > 0) {
+      const size_t n = up(size_t(fp_.shadow_size), 8);
+      enqueue(shadow_kernel_, cl::NDRange(n, n), cl::NDRange(8, 8), "froxel_shadow_map");
+    }
+    enqueue(inject_kernel_, cl::NDRange(up(fp_.nx, 8), up(fp_.ny, 8), fp_.nz), cl::NDRange(8, 8, 1), "froxel_inject");
+    enqueue(integrate_kernel_, cl::NDRange(up(fp_.nx, 8), up(fp_.ny, 8)), cl::NDRange(8, 8), "froxel_integrate");
+  } catch (const cl::Error& e) {
+    throw DeviceError(std::string("froxel pass: ") + e.what() + " " + clErrorName(e.err()));
+  }
+  double total = 0;
+  for (const PassTiming& t : timings_) total += t.ms;
+  return total;
+}
+
+double FroxelPass::resolve(const cl::Buffer& geom, int width, int height, cl::Buffer& rgb) {
+  cl::Event done;
+  try {
+    resolve_kernel_.setArg(2, geom);
+    resolve_kernel_.setArg(3, width);
+    resolve_kernel_.setArg(4, height);
+    resolve_kernel_.setArg(5, rgb);
+    device_.queue().enqueueNDRangeKernel(resolve_kernel_, cl::NullRange,
+                                         cl::NDRange(up(size_t(width), 8), up(size_t(height), 8)), cl::NDRange(8, 8),
+                                         nullptr, &done);
+    done.wait();
+  } catch (const cl::Error& e) {
+    throw DeviceError(std::string("froxel pass: resolve: ") + e.what() + " " + clErrorName(e.err()));
+  }
+  return eventMs(done);
+}
+
+void FroxelPass::read(cl::Buffer& buffer, size_t floats, std::vector<float>& out, const char* what) {
+  out.resize(floats);
+  if (floats == 0) return;
+  try {
+    device_.queue().enqueueReadBuffer(buffer, CL_TRUE, 0, sizeof(float) * floats, out.data());
+  } catch (const cl::Error& e) {
+    throw DeviceError(std::string("froxel pass: reading the ") + what + " back: " + e.what() + " " +
+                      clErrorName(e.err()));
+  }
+}
+
+void FroxelPass::readVolume(std::vector<float>& out) {
+  read(volume_, 4 * size_t(fp_.nx) * fp_.ny * fp_.nz, out, "volume");
+}
+
+void FroxelPass::readLight(std::vector<float>& out) { read(light_, size_t(fp_.nx) * fp_.ny * fp_.nz, out, "light"); }
+
+void FroxelPass::readShadowMap(std::vector<float>& out) {
+  read(map_, fp_.shadow_size > 0 ? size_t(fp_.shadow_size) * fp_.shadow_size : 0, out, "shadow map");
+}
+
+}  // namespace seasim

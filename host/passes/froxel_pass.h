@@ -1,0 +1,62 @@
+// froxel_pass.h — host side of kernels/froxel.cl (002 §5: single scattering of the refracted sun beam
+// by froxels, with the scrolling caustic textures of §5.3): FroxelParams and the integration bands
+// from the scene (host/reference/froxel_reference.h shares that set-up with the CPU evaluation), the
+// buffers, the three kernels (sun shadow map, injection, front-to-back integration) and their times.
+//
+// Reads: scene (UnderwaterSetup: camera, sun, bands, objects). Writes: froxel_volume (4 floats per
+// froxel: RGB single scattering integrated to the end of each slice, green transmittance), read per
+// pixel by kd_multiple.cl through froxel_lookup with paramsBuffer().
+#pragma once
+#include <CL/opencl.hpp>
+
+#include <string>
+#include <vector>
+
+#include "device/device.h"
+#include "passes/render_frame.h"
+#include "reference/froxel_reference.h"
+#include "scene/scene.h"
+#include "underwater/underwater_setup.h"
+
+namespace seasim {
+
+class FroxelPass {
+ public:
+  // defines: the plan's "froxel" pass defines (SEASIM_HAS_OBJECTS, SEASIM_CAUSTICS,
+  // SEASIM_SPECTRAL_INJECTION); any of them missing is added from the setup/config, and one that
+  // contradicts them is a RuntimeError (the plan and the scene disagree). Grid, near/far, shadow-map
+  // size and injection from froxelConfigFromScene(scene).
+  FroxelPass(Device& device, const Scene& scene, const UnderwaterSetup& setup, const std::vector<std::string>& defines);
+  FroxelPass(Device& device, const UnderwaterSetup& setup, const FroxelConfig& config,
+             const std::vector<std::string>& defines);
+
+  // Enqueues shadow map (when there are spheres or boxes), injection and integration, waits; returns
+  // the summed kernel ms. timings() then holds each kernel's ms.
+  double run();
+  const std::vector<PassTiming>& timings() const { return timings_; }
+
+  // froxel_resolve: per pixel of a width × height image, the volume read at geom[pixel].x (float4 per
+  // pixel, the G-buffer of raycast.cl) into rgb (3 floats per pixel, written). Returns ms.
+  double resolve(const cl::Buffer& geom, int width, int height, cl::Buffer& rgb);
+
+  cl::Buffer& volume() { return volume_; }
+  cl::Buffer& paramsBuffer() { return fparams_; }  // FroxelParams on the device (kd_multiple.cl's fp)
+  const FroxelParams& params() const { return fp_; }
+  const std::vector<std::string>& defines() const { return defines_; }
+
+  // Read-backs for tests and tools.
+  void readVolume(std::vector<float>& out);
+  void readLight(std::vector<float>& out);
+  void readShadowMap(std::vector<float>& out);  // empty without a map
+
+ private:
+  void read(cl::Buffer& buffer, size_t floats, std::vector<float>& out, const char* what);
+  Device& device_;
+  FroxelParams fp_{};
+  std::vector<std::string> defines_;
+  cl::Kernel shadow_kernel_, inject_kernel_, integrate_kernel_, resolve_kernel_;
+  cl::Buffer params_, fparams_, objects_, bands_, map_, light_, volume_;
+  std::vector<PassTiming> timings_;
+};
+
+}  // namespace seasim
