@@ -10,6 +10,8 @@
 #include <map>
 #include <sstream>
 
+#include <unistd.h>
+
 #include "device/device.h"
 #include "io/csv.h"
 #include "io/image_io.h"
@@ -324,7 +326,18 @@ int cmdBench(const BenchCmd& cmd) {
       }
       samples.push_back(total);
     }
-    auto passMs = [&](const char* name) { return per_pass.count(name) ? median(per_pass[name]) : 0.0; };
+    // A pass's median ms; a name ending in '*' sums every pass with that prefix (froxel_shadow_map,
+    // froxel_inject, froxel_integrate -> "froxel*").
+    auto passMs = [&](std::string name) {
+      if (!name.empty() && name.back() == '*') {
+        name.pop_back();
+        double sum = 0;
+        for (auto& [k, v] : per_pass)
+          if (k.rfind(name, 0) == 0) sum += median(v);
+        return sum;
+      }
+      return per_pass.count(name) ? median(per_pass[name]) : 0.0;
+    };
     const double ms = median(samples);
     const double pixels = static_cast<double>(scene.camera.width) * scene.camera.height;
     const double rate = pixels * n / (ms * 1e-3);
@@ -347,8 +360,8 @@ int cmdBench(const BenchCmd& cmd) {
       }
       const double kd_ms = passMs("raycast") + passMs("kd_multiple"), tbb_ms = median(cpu);
       std::printf("  [raycast %.3f, froxel %.3f, kd %.3f ms; TBB %.3f ms = %.2fx]", passMs("raycast"),
-                  passMs("froxel"), passMs("kd_multiple"), tbb_ms, tbb_ms / kd_ms);
-      for (double v : {passMs("raycast"), passMs("froxel"), passMs("kd_multiple"), tbb_ms, tbb_ms / kd_ms})
+                  passMs("froxel*"), passMs("kd_multiple"), tbb_ms, tbb_ms / kd_ms);
+      for (double v : {passMs("raycast"), passMs("froxel*"), passMs("kd_multiple"), tbb_ms, tbb_ms / kd_ms})
         row.push_back(v);
       kd_series.x.push_back(n);
       kd_series.y.push_back(kd_ms);
@@ -409,9 +422,15 @@ int cmdReference(const ReferenceCmd& cmd) {
     UnderwaterReferenceSettings settings;
     settings.samples_per_pixel = cmd.steps;
     if (!scene.underwater.multiple_scattering) settings.max_bounces = 1;
-    settings.progress = [](int done, int total) {
-      std::fprintf(stderr, "\rpath tracing: %d/%d samples per pixel", done, total);
-      if (done == total) std::fprintf(stderr, "\n");
+    const bool tty = isatty(fileno(stderr));
+    settings.progress = [tty, step = std::max(1, cmd.steps / 10), next = 0](int done, int total) mutable {
+      if (tty) {  // one line, redrawn
+        std::fprintf(stderr, "\rpath tracing: %d/%d samples per pixel", done, total);
+        if (done == total) std::fprintf(stderr, "\n");
+      } else if (done >= next || done == total) {  // logs: about every 10 %
+        std::fprintf(stderr, "path tracing: %d/%d samples per pixel\n", done, total);
+        next = done + step;
+      }
     };
     const UnderwaterReferenceResult r = renderUnderwaterReference(device, setup, settings);
     writeExr(cmd.out, r.rgb);
