@@ -36,12 +36,7 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
   if (x >= p->width || y >= p->height) return;
   const int pixel = y * p->width + x;
 
-  const float u = (2.0f * (x + 0.5f) / p->width - 1.0f) * p->tan_half_fov_y * p->aspect;
-  const float v = (1.0f - 2.0f * (y + 0.5f) / p->height) * p->tan_half_fov_y;
-  const float3 right = (float3)(p->cam_right[0], p->cam_right[1], p->cam_right[2]);
-  const float3 up = (float3)(p->cam_up[0], p->cam_up[1], p->cam_up[2]);
-  const float3 forward = (float3)(p->cam_forward[0], p->cam_forward[1], p->cam_forward[2]);
-  const float3 d = normalize(forward + u * right + v * up);
+  const float3 d = uw_screen_dir(p, (x + 0.5f) / p->width, (y + 0.5f) / p->height);
   const float3 s_w = (float3)(p->sun_dir_water[0], p->sun_dir_water[1], p->sun_dir_water[2]);
   const float o_d = -p->cam_pos[1];
 

@@ -195,7 +195,7 @@ std::vector<double> froxelPixelDistances(const UnderwaterSetup& setup) {
   const kd::real3 o{p.cam_pos[0], p.cam_pos[1], p.cam_pos[2]};
   for (int y = 0; y < p.height; ++y)
     for (int x = 0; x < p.width; ++x) {
-      const kd::real3 d = kd::froxel_screen_dir(&p, (x + 0.5) / p.width, (y + 0.5) / p.height);
+      const kd::real3 d = kd::uw_screen_dir(&p, (x + 0.5) / p.width, (y + 0.5) / p.height);
       kd::real3 n{};
       int mat = 0;
       out[size_t(y) * p.width + x] =
@@ -263,7 +263,7 @@ std::vector<double> froxelBruteForce(const UnderwaterSetup& setup, int steps) {
   tbb::parallel_for(tbb::blocked_range<int>(0, p.height), [&](const tbb::blocked_range<int>& r) {
     for (int y = r.begin(); y < r.end(); ++y)
       for (int x = 0; x < p.width; ++x) {
-        const kd::real3 dk = kd::froxel_screen_dir(&p, (x + 0.5) / p.width, (y + 0.5) / p.height);
+        const kd::real3 dk = kd::uw_screen_dir(&p, (x + 0.5) / p.width, (y + 0.5) / p.height);
         const Vec3 d{dk.x, dk.y, dk.z};
         const size_t pixel = size_t(y) * p.width + x;
         for (size_t i = 0; i < setup.bands.size(); ++i) {

@@ -19,19 +19,14 @@ void shadePixel(const UnderwaterSetup& s, const UnderwaterCpuOptions& opt, int x
   using namespace std;
   const UwParams& p = s.params;
   auto v3 = [](const float a[4]) { return std::array<Real, 3>{Real(a[0]), Real(a[1]), Real(a[2])}; };
-  const auto right = v3(p.cam_right), up = v3(p.cam_up), fwd = v3(p.cam_forward), pos = v3(p.cam_pos),
-             sw = v3(p.sun_dir_water);
-  const Real u = (Real(2) * (Real(x) + Real(0.5)) / Real(p.width) - Real(1)) * Real(p.tan_half_fov_y) * Real(p.aspect);
-  const Real v = (Real(1) - Real(2) * (Real(y) + Real(0.5)) / Real(p.height)) * Real(p.tan_half_fov_y);
-  const Real dx = fwd[0] + u * right[0] + v * up[0], dy = fwd[1] + u * right[1] + v * up[1],
-             dz = fwd[2] + u * right[2] + v * up[2];
-  const Real len = std::sqrt(dx * dx + dy * dy + dz * dz);
+  const auto pos = v3(p.cam_pos), sw = v3(p.sun_dir_water);
+  const Real sx = (Real(x) + Real(0.5)) / Real(p.width), sy = (Real(y) + Real(0.5)) / Real(p.height);
   const bool sun = s.bands.empty() ? false : s.params.sun_dir_water[1] > 0 && s.bands[0].e_beam0 >= 0;
   Real rgb[3] = {0, 0, 0};
   auto run = [&](auto ns) {
     using M = decltype(ns);
     using real3 = typename M::real3;
-    const real3 d{dx / len, dy / len, dz / len};
+    const real3 d = M::dir(&p, sx, sy);
     const real3 o{pos[0], pos[1], pos[2]};
     const real3 s_w{sw[0], sw[1], sw[2]};
     real3 n{};
@@ -61,6 +56,7 @@ void shadePixel(const UnderwaterSetup& s, const UnderwaterCpuOptions& opt, int x
   if constexpr (std::is_same_v<Real, double>) {
     struct M {
       using real3 = kmath_d::real3;
+      static real3 dir(const UwParams* p, double sx, double sy) { return kmath_d::uw_screen_dir(p, sx, sy); }
       static double hit(const UwObject* ob, int n, double bd, real3 o, real3 d, double t, real3* nn, int* m) {
         return kmath_d::uw_scene_hit(ob, n, bd, o, d, t, nn, m);
       }
@@ -73,6 +69,7 @@ void shadePixel(const UnderwaterSetup& s, const UnderwaterCpuOptions& opt, int x
   } else {
     struct M {
       using real3 = kmath_f::real3;
+      static real3 dir(const UwParams* p, float sx, float sy) { return kmath_f::uw_screen_dir(p, sx, sy); }
       static float hit(const UwObject* ob, int n, float bd, real3 o, real3 d, float t, real3* nn, int* m) {
         return kmath_f::uw_scene_hit(ob, n, bd, o, d, t, nn, m);
       }

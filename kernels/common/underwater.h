@@ -30,6 +30,17 @@
  * reflection outside the window). The sun is a delta light and its disk is not drawn.
  */
 
+/* The view direction through the screen point (sx, sy) in [0,1]² (x to the right, y down), the pinhole
+ * camera of sea_single.cl: pixel (x, y) of a W×H image is ((x + ½)/W, (y + ½)/H). */
+SEASIM_FN real3 uw_screen_dir(const SEASIM_CONSTANT UwParams* p, real sx, real sy) {
+  const real u = (R(2.0) * sx - R(1.0)) * p->tan_half_fov_y * p->aspect;
+  const real v = (R(1.0) - R(2.0) * sy) * p->tan_half_fov_y;
+  const real3 right = MAKE_REAL3(p->cam_right[0], p->cam_right[1], p->cam_right[2]);
+  const real3 up = MAKE_REAL3(p->cam_up[0], p->cam_up[1], p->cam_up[2]);
+  const real3 fwd = MAKE_REAL3(p->cam_forward[0], p->cam_forward[1], p->cam_forward[2]);
+  return normalize(fwd + u * right + v * up);
+}
+
 /* Distances at or beyond this are "no hit" (the ray runs into deep water). */
 #define UW_INFINITE R(1e30)
 
