@@ -38,6 +38,9 @@
 #if SEASIM_CAUSTICS == UW_CAUSTICS_TEXTURE
 #include "common/caustic_texture.h"
 #endif
+#if SEASIM_CAUSTICS == UW_CAUSTICS_MAP
+#include "common/caustic_map.h"
+#endif
 
 #ifndef SEASIM_HAS_OBJECTS
 #define SEASIM_HAS_OBJECTS 1
@@ -57,7 +60,7 @@ __kernel void froxel_shadow_map(__constant UwParams* p, __constant FroxelParams*
 }
 
 __kernel void froxel_inject(__constant UwParams* p, __constant FroxelParams* fp, __global const UwObject* objects,
-                            __global const float* map, __global float* light) {
+                            __global const float* map, __global const float* caustic_maps, __global float* light) {
   const int i = get_global_id(0), j = get_global_id(1), k = get_global_id(2);
   if (i >= fp->nx || j >= fp->ny || k >= fp->nz) return;
   const int idx = (k * fp->ny + j) * fp->nx + i;
@@ -75,6 +78,10 @@ __kernel void froxel_inject(__constant UwParams* p, __constant FroxelParams* fp,
   /* Where the refracted sun ray through q crossed the surface (as raycast.cl does for surfaces). */
   const float t_up = -q.y / fmax(s_w.y, 1e-4f);
   v *= caustic_modulation(q.x + t_up * s_w.x, q.z + t_up * s_w.z, p->time, p->caustic_period, p->caustic_speed);
+#endif
+#if SEASIM_CAUSTICS == UW_CAUSTICS_MAP
+  v *= caustic_map_sample(caustic_maps, p->caustic_map_size, p->caustic_layers, p->caustic_extent, p->caustic_depth_max,
+                          q.x, -q.y, q.z);
 #endif
   light[idx] = v;
 }

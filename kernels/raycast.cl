@@ -3,7 +3,8 @@
  * uw_scene_hit), and the direct sun's visibility at that point (an exact shadow ray along the refracted
  * sun direction to the surface, times the caustic modulation when caustics are on).
  *
- * Inputs: UwParams, UwObject[object_count]. Outputs per pixel: geom = (S, n.x, n.y, n.z) with S the hit
+ * Inputs: UwParams, UwObject[object_count], caustic_maps (SEASIM_CAUSTICS == 2: common/caustic_map.h;
+ * otherwise unused, one float). Outputs per pixel: geom = (S, n.x, n.y, n.z) with S the hit
  * distance in m (>= UW_INFINITE: deep water), material (object index or UW_MAT_*), sun_vis in [0, ∞)
  * (0 in shadow; caustics redistribute light, so > 1 occurs).
  * Defines (host/plan): SEASIM_HAS_OBJECTS, SEASIM_HAS_SUN (shadow rays are needed only with a sun),
@@ -17,9 +18,12 @@
 #if SEASIM_CAUSTICS == 1
 #include "common/caustic_texture.h"
 #endif
+#if SEASIM_CAUSTICS == 2
+#include "common/caustic_map.h"
+#endif
 
-__kernel void raycast(__constant UwParams* p, __global const UwObject* objects, __global float4* geom,
-                      __global int* material, __global float* sun_vis) {
+__kernel void raycast(__constant UwParams* p, __global const UwObject* objects, __global const float* caustic_maps,
+                      __global float4* geom, __global int* material, __global float* sun_vis) {
   const int x = get_global_id(0);
   const int y = get_global_id(1);
   if (x >= p->width || y >= p->height) return;
@@ -55,6 +59,11 @@ __kernel void raycast(__constant UwParams* p, __global const UwObject* objects, 
     const float t_up = -hit.y / s_w.y;
     vis *= caustic_modulation(hit.x + t_up * s_w.x, hit.z + t_up * s_w.z, p->time, p->caustic_period,
                               p->caustic_speed);
+#endif
+#if SEASIM_CAUSTICS == 2
+    /* The maps were splatted along the refracted rays already: read them where the point is. */
+    vis *= caustic_map_sample(caustic_maps, p->caustic_map_size, p->caustic_layers, p->caustic_extent,
+                              p->caustic_depth_max, hit.x, -hit.y, hit.z);
 #endif
   }
 #endif

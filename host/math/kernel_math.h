@@ -5,6 +5,7 @@
 #include "common/compat.h"
 #include "common/underwater_params.h"  // plain C structs, used by underwater.h
 #include "common/froxel_params.h"      // plain C struct, used by froxel.h
+#include "common/sea_bottom_params.h"  // plain C struct, used by sea_bottom.h
 
 
 namespace seasim::kmath_f {
@@ -13,10 +14,14 @@ typedef float real;
 #include "common/optics.h"
 #include "common/shafts.h"
 #include "common/sea_surface.h"
+#include "common/sea_waves.h"
+#include "common/sky.h"
 #include "common/sea_second.h"
+#include "common/sea_bottom.h"
 #include "common/ocean_spectrum.h"
 #include "common/underwater.h"
 #include "common/caustic_texture.h"
+#include "common/caustic_map.h"
 #include "common/froxel.h"
 #include "common/path_tracer.h"
 }  // namespace seasim::kmath_f
@@ -27,10 +32,14 @@ typedef double real;
 #include "common/optics.h"
 #include "common/shafts.h"
 #include "common/sea_surface.h"
+#include "common/sea_waves.h"
+#include "common/sky.h"
 #include "common/sea_second.h"
+#include "common/sea_bottom.h"
 #include "common/ocean_spectrum.h"
 #include "common/underwater.h"
 #include "common/caustic_texture.h"
+#include "common/caustic_map.h"
 #include "common/froxel.h"
 #include "common/path_tracer.h"
 }  // namespace seasim::kmath_d

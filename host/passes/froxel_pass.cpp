@@ -1,5 +1,7 @@
 #include "passes/froxel_pass.h"
 
+#include "passes/caustic_stack.h"
+
 #include <cstddef>
 #include <string>
 
@@ -61,6 +63,7 @@ FroxelPass::FroxelPass(Device& device, const UnderwaterSetup& setup, const Froxe
                           const_cast<UwObject*>(setup.objects.data()));
     bands_ = cl::Buffer(device.context(), in, sizeof(UwBand) * bands.size(), const_cast<UwBand*>(bands.data()));
     map_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * texels);
+    no_caustics_ = noCausticMap(device);
     light_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * froxels);
     volume_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * 4 * froxels);
     shadow_kernel_.setArg(0, params_);
@@ -71,7 +74,8 @@ FroxelPass::FroxelPass(Device& device, const UnderwaterSetup& setup, const Froxe
     inject_kernel_.setArg(1, fparams_);
     inject_kernel_.setArg(2, objects_);
     inject_kernel_.setArg(3, map_);
-    inject_kernel_.setArg(4, light_);
+    inject_kernel_.setArg(4, no_caustics_);
+    inject_kernel_.setArg(5, light_);
     integrate_kernel_.setArg(0, params_);
     integrate_kernel_.setArg(1, fparams_);
     integrate_kernel_.setArg(2, bands_);
@@ -84,9 +88,10 @@ FroxelPass::FroxelPass(Device& device, const UnderwaterSetup& setup, const Froxe
   }
 }
 
-double FroxelPass::run() {
+double FroxelPass::run(const cl::Buffer* caustic_maps) {
   timings_.clear();
   try {
+    inject_kernel_.setArg(4, caustic_maps ? *caustic_maps : no_caustics_);
     auto enqueue = [&](cl::Kernel& kernel, const cl::NDRange& global, const cl::NDRange& local, const char* name) {
       cl::Event done;
       device_.queue().enqueueNDRangeKernel(kernel, cl::NullRange, global, local, nullptr, &done);

@@ -32,7 +32,8 @@ class FroxelPass {
 
   // Enqueues shadow map (when there are spheres or boxes), injection and integration, waits; returns
   // the summed kernel ms. timings() then holds each kernel's ms.
-  double run();
+  // caustic_maps: CausticStack::maps() when the pass was built with SEASIM_CAUSTICS=2 (else ignored).
+  double run(const cl::Buffer* caustic_maps = nullptr);
   const std::vector<PassTiming>& timings() const { return timings_; }
 
   // froxel_resolve: per pixel of a width × height image, the volume read at geom[pixel].x (float4 per
@@ -55,7 +56,7 @@ class FroxelPass {
   FroxelParams fp_{};
   std::vector<std::string> defines_;
   cl::Kernel shadow_kernel_, inject_kernel_, integrate_kernel_, resolve_kernel_;
-  cl::Buffer params_, fparams_, objects_, bands_, map_, light_, volume_;
+  cl::Buffer params_, fparams_, objects_, bands_, map_, light_, volume_, no_caustics_;
   std::vector<PassTiming> timings_;
 };
 

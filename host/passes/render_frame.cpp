@@ -3,6 +3,7 @@
 #include <chrono>
 #include <memory>
 
+#include "passes/caustic_stack.h"
 #include "passes/froxel_pass.h"
 #include "passes/nonfinite_check.h"
 #include "passes/sea_second_pass.h"
@@ -86,12 +87,19 @@ FrameResult renderFrame(Device& device, const Scene& scene, const Plan& plan) {
   if (const PassPlan* kd = plan.find("kd_multiple")) {  // issue 5: the underwater frame (paper 002)
     const UnderwaterSetup setup = makeUnderwaterSetup(scene, grid, sensor);
     UnderwaterPass pass(device, setup, *plan.find("raycast"), *kd, scene.spectral.spectral_exr);
-    result.timings.push_back({"raycast", pass.runRaycast()});
+    // The ocean's caustic maps (004 §5.2.1) when the scene asks for them, shared by raycast and froxels.
+    std::unique_ptr<CausticStack> caustics;
+    if (plan.hasPass("caustics")) {
+      caustics = std::make_unique<CausticStack>(device, scene, setup);
+      for (const PassTiming& t : caustics->timings()) result.timings.push_back(t);
+    }
+    const cl::Buffer* caustic_maps = caustics ? &caustics->maps() : nullptr;
+    result.timings.push_back({"raycast", pass.runRaycast(caustic_maps)});
     // Froxel single scattering of the sun beam (002 §5.1–5.2), read by the shading at each pixel's depth.
     std::unique_ptr<FroxelPass> froxels;
     if (const PassPlan* fx = plan.find("froxel")) {
       froxels = std::make_unique<FroxelPass>(device, scene, setup, fx->defines);
-      froxels->run();
+      froxels->run(caustic_maps);
       for (const PassTiming& t : froxels->timings()) result.timings.push_back(t);
     }
     result.timings.push_back({"kd_multiple", pass.runShading(froxels ? &froxels->paramsBuffer() : nullptr,
@@ -104,7 +112,13 @@ FrameResult renderFrame(Device& device, const Scene& scene, const Plan& plan) {
 
   const PassPlan* sea = plan.find("sea_single");
   if (!sea) throw RuntimeError("scene '" + scene.name + "' has nothing to render (no water in view)");
-  SeaSinglePass pass(device, scene, *sea, grid, sensor);
+  // FFT waves (004 §3): the ocean at the frame's time (surface.time) first; sea_single reads its normals.
+  std::unique_ptr<OceanPass> ocean;
+  if (plan.hasPass("ocean_fft")) {
+    ocean = std::make_unique<OceanPass>(device, oceanConfigFromSurface(scene.surface));
+    result.timings.push_back({"ocean_fft", ocean->run(scene.surface.time)});
+  }
+  SeaSinglePass pass(device, scene, *sea, grid, sensor, ocean.get());
   result.timings.push_back({"sea_single", pass.run()});
 
   // Second-order scattering by scattering maps (000 eq. 6–8), added into sea_single's buffers.

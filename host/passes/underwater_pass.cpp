@@ -2,6 +2,8 @@
 
 #include <string>
 
+#include "passes/caustic_stack.h"
+
 #include "util/error.h"
 
 namespace seasim {
@@ -24,14 +26,16 @@ UnderwaterPass::UnderwaterPass(Device& device, const UnderwaterSetup& setup, con
     geom_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(cl_float4) * pixels);
     material_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(cl_int) * pixels);
     vis_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * pixels);
+    no_caustics_ = noCausticMap(device);
     rgb_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * 3 * pixels);
     if (spectral_output)
       spectral_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * pixels * setup.bands.size());
     raycast_.setArg(0, params_);
     raycast_.setArg(1, objects_);
-    raycast_.setArg(2, geom_);
-    raycast_.setArg(3, material_);
-    raycast_.setArg(4, vis_);
+    raycast_.setArg(2, no_caustics_);
+    raycast_.setArg(3, geom_);
+    raycast_.setArg(4, material_);
+    raycast_.setArg(5, vis_);
   } catch (const cl::Error& e) {
     throw DeviceError(std::string("underwater pass set-up: ") + e.what() + " " + clErrorName(e.err()));
   }
@@ -51,7 +55,14 @@ double UnderwaterPass::enqueue(cl::Kernel& kernel, const char* what) {
   return eventMs(done);
 }
 
-double UnderwaterPass::runRaycast() { return enqueue(raycast_, "raycast"); }
+double UnderwaterPass::runRaycast(const cl::Buffer* caustic_maps) {
+  try {
+    raycast_.setArg(2, caustic_maps ? *caustic_maps : no_caustics_);
+  } catch (const cl::Error& e) {
+    throw DeviceError(std::string("raycast arguments: ") + e.what() + " " + clErrorName(e.err()));
+  }
+  return enqueue(raycast_, "raycast");
+}
 
 double UnderwaterPass::runShading(const cl::Buffer* froxel_params, const cl::Buffer* froxel_volume) {
   try {

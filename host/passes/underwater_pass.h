@@ -17,14 +17,16 @@ class UnderwaterPass {
   // band_count floats per pixel buffer.
   UnderwaterPass(Device& device, const UnderwaterSetup& setup, const PassPlan& raycast, const PassPlan& kd,
                  bool spectral_output);
-  // The G-buffer; returns the kernel's profiled ms.
-  double runRaycast();
+  // The G-buffer; returns the kernel's profiled ms. caustic_maps: CausticStack::maps() when the raycast
+  // pass was planned with SEASIM_CAUSTICS=2 (else ignored).
+  double runRaycast(const cl::Buffer* caustic_maps = nullptr);
   // The shading. froxel_params / froxel_volume: the froxel pass's outputs when the kd pass was planned
   // with SEASIM_HAS_FROXEL=1 (else ignored). Returns ms.
   double runShading(const cl::Buffer* froxel_params, const cl::Buffer* froxel_volume);
   cl::Buffer& rgb() { return rgb_; }
   cl::Buffer& spectral() { return spectral_; }
   cl::Buffer& geometry() { return geom_; }  // float4 (S, n) per pixel
+  cl::Buffer& sunVisibility() { return vis_; }  // float per pixel: shadow ray × caustic factor
 
  private:
   double enqueue(cl::Kernel& kernel, const char* what);
@@ -32,7 +34,7 @@ class UnderwaterPass {
   int width_, height_;
   bool spectral_output_;
   cl::Kernel raycast_, shade_;
-  cl::Buffer params_, bands_, objects_, albedo_, geom_, material_, vis_, rgb_, spectral_;
+  cl::Buffer params_, bands_, objects_, albedo_, geom_, material_, vis_, rgb_, spectral_, no_caustics_;
 };
 
 }  // namespace seasim

@@ -67,10 +67,6 @@ Plan makePlan(const Scene& scene) {
                   {flag("SEASIM_HAS_OBJECTS", objects), flag("SEASIM_HAS_SUN", sun_up),
                    "SEASIM_CAUSTICS=" + std::to_string(caustics)},
                   {"scene"}, {"gbuffer"}, "camera below the surface: per-pixel hit, normal, material", true, ""};
-    if (caustics == 2) {
-      pass.implemented = false;
-      pass.missing = "issue 5 (caustic map from the ocean surface under water; use caustics = \"texture\")";
-    }
     plan.passes.push_back(pass);
   } else if (objects && lights) {  // issue 4: shafts.cl ray casts its analytic objects per pixel
     plan.passes.push_back({"raycast", "shafts.cl", {}, {"scene"}, {"gbuffer"}, "scene has objects", true, ""});
@@ -83,17 +79,21 @@ Plan makePlan(const Scene& scene) {
       flag("SEASIM_SHAFTS_EXACT", exact != scene.quality.end() && exact->second.value != 0),
       flag("SEASIM_SHAFTS_HG", scene.air.phase == AirDesc::Phase::HenyeyGreenstein),
       flag("SEASIM_HAS_OBJECTS", objects), flag("SEASIM_HAS_LIGHT_MAP", light_map)};
-  if (waves) {
+  // The FFT ocean runs for the sea view's wave normals and for the caustic maps under water (under
+  // water the model's surface is otherwise flat, so texture caustics or none need no ocean).
+  const bool ocean_for_caustics = underwater && waves && caustics == 2;
+  const bool ocean_for_sea = waves && sea_view;  // sea_single's wave normals (SEASIM_HAS_WAVES)
+  if (ocean_for_sea || ocean_for_caustics) {
     plan.passes.push_back({"ocean_fft", "ocean.cl", {flag("SEASIM_HAS_CHOPPY", scene.surface.choppiness > 0)},
-                           {"scene"}, {"ocean_maps"}, "surface.type = \"fft\"", false, "issue 3 (ocean waves)"});
+                           {"scene"}, {"ocean_maps"}, "surface.type = \"fft\"", true, ""});
   }
   if (lights && objects) {
     plan.passes.push_back({"shadow_maps", "shafts.cl", shafts_defines, {"scene"}, {"shadow_maps"},
                            "spotlights and objects that cast shadows", true, ""});
   }
-  if (underwater && waves) {
+  if (ocean_for_caustics) {
     plan.passes.push_back({"caustics", "caustics.cl", {}, {"ocean_maps"}, {"caustic_map"},
-                           "camera below a wavy surface", false, "issue 3 (caustics)"});
+                           "camera below an FFT surface, underwater.caustics = \"map\" (004 §5.2.1)", true, ""});
   }
   if (froxels) {
     plan.passes.push_back({"froxel", "froxel.cl",
@@ -104,34 +104,33 @@ Plan makePlan(const Scene& scene) {
   }
   if (sea_view) {
     const bool sun = scene.sun.enabled && scene.sun.irradiance > 0;
-    const bool bottom = scene.bottom.type == BottomDesc::Type::Flat;
+    const bool height_field = scene.bottom.type == BottomDesc::Type::HeightField;
+    const bool bottom = scene.bottom.type == BottomDesc::Type::Flat || height_field;
+    // SEASIM_SKY_MODEL (common/sky.h): 0 uniform, 1 analytic (CIE clear sky), 2 lat-long image.
+    const int sky_model = scene.sky.model == SkyDesc::Model::Analytic ? 1
+                          : scene.sky.model == SkyDesc::Model::Image  ? 2
+                                                                      : 0;
     std::vector<std::string> defines = {
         flag("SEASIM_HAS_REFLECTION", scene.sea.reflection),
         flag("SEASIM_HAS_SINGLE_SCATTERING", scene.sea.single_scattering && sun),
         flag("SEASIM_HAS_BOTTOM", bottom),
         flag("SEASIM_HAS_SUN", sun),
-        flag("SEASIM_SPECTRAL_OUTPUT", spectral_out)};
+        flag("SEASIM_SPECTRAL_OUTPUT", spectral_out),
+        flag("SEASIM_HAS_WAVES", waves),  // local normals from the ocean's normal map (common/sea_waves.h)
+        "SEASIM_SKY_MODEL=" + std::to_string(sky_model)};
+    // 000 §5.4: the bottom is a height field (z_Q per pixel, depth tables for the second order).
+    if (height_field) defines.push_back("SEASIM_BOTTOM_HEIGHTFIELD=1");
     std::vector<std::string> reads = {"scene"};
     if (waves) reads.push_back("ocean_maps");
     PassPlan pass{"sea_single", "sea_single.cl", defines, reads, {"rgb"},
                   "camera above water (reflection, single scattering, bottom)", true, ""};
-    if (scene.bottom.type == BottomDesc::Type::HeightField) {
-      pass.implemented = false;
-      pass.missing = "issue 6 (height-field bottom, 000 §5.4)";
-    }
-    if (scene.sky.model != SkyDesc::Model::Uniform) {
-      pass.implemented = false;
-      pass.missing = "issue 6 (analytic and image skies)";
-    }
-    if (waves) {
-      pass.implemented = false;
-      pass.missing = "issue 3 (wave normals)";
-    }
     plan.passes.push_back(pass);
     if (scene.sea.second_order) {
-      plan.passes.push_back({"sea_second", "sea_second.cl",
-                             {flag("SEASIM_HAS_BOTTOM", bottom), flag("SEASIM_SPECTRAL_OUTPUT", spectral_out)},
-                             {"scene", "rgb"}, {"rgb"}, "sea.second_order = true", pass.implemented, pass.missing});
+      std::vector<std::string> second_defines = {flag("SEASIM_HAS_BOTTOM", bottom),
+                                                 flag("SEASIM_SPECTRAL_OUTPUT", spectral_out)};
+      if (height_field) second_defines.push_back("SEASIM_BOTTOM_HEIGHTFIELD=1");
+      plan.passes.push_back({"sea_second", "sea_second.cl", second_defines, {"scene", "rgb"}, {"rgb"},
+                             "sea.second_order = true", pass.implemented, pass.missing});
     }
   }
   if (lights) {

@@ -147,7 +147,8 @@ std::vector<UwBand> froxelIntegrationBands(const UnderwaterSetup& setup, const F
   return params.injection == FROXEL_INJECTION_RGB ? froxelRgbPseudoBands(setup) : setup.bands;
 }
 
-FroxelCpuVolume froxelEvaluateCpu(const UnderwaterSetup& setup, const FroxelParams& fp) {
+FroxelCpuVolume froxelEvaluateCpu(const UnderwaterSetup& setup, const FroxelParams& fp,
+                                  const std::vector<float>* caustic_maps) {
   FroxelCpuVolume out;
   const UwParams& p = setup.params;
   const kd::real3 s_w = toReal3(sunWater(p));
@@ -161,6 +162,9 @@ FroxelCpuVolume froxelEvaluateCpu(const UnderwaterSetup& setup, const FroxelPara
   const size_t froxels = size_t(fp.nx) * fp.ny * fp.nz;
   out.light.assign(froxels, 0.0f);
   const bool caustics = p.caustic_mode == UW_CAUSTICS_TEXTURE;
+  if (p.caustic_mode == UW_CAUSTICS_MAP && !caustic_maps)
+    throw RuntimeError("froxelEvaluateCpu: the scene has caustics = \"map\"; pass the caustic maps");
+  const bool maps = p.caustic_mode == UW_CAUSTICS_MAP;
   tbb::parallel_for(tbb::blocked_range<int>(0, fp.nz), [&](const tbb::blocked_range<int>& r) {
     for (int k = r.begin(); k < r.end(); ++k)
       for (int j = 0; j < fp.ny; ++j)
@@ -174,6 +178,9 @@ FroxelCpuVolume froxelEvaluateCpu(const UnderwaterSetup& setup, const FroxelPara
             v *= kd::caustic_modulation(q.x + t_up * s_w.x, q.z + t_up * s_w.z, p.time, p.caustic_period,
                                         p.caustic_speed);
           }
+          if (maps)
+            v *= kd::caustic_map_sample(caustic_maps->data(), p.caustic_map_size, p.caustic_layers, p.caustic_extent,
+                                        p.caustic_depth_max, q.x, -q.y, q.z);
           out.light[(size_t(k) * fp.ny + j) * fp.nx + i] = static_cast<float>(v);
         }
   });

@@ -67,8 +67,10 @@ struct FroxelCpuVolume {
 };
 
 // The froxel pass in double (shared code of common/froxel.h; caustics when setup.params.caustic_mode
-// is UW_CAUSTICS_TEXTURE). Stored as float, as the kernel stores them.
-FroxelCpuVolume froxelEvaluateCpu(const UnderwaterSetup& setup, const FroxelParams& params);
+// is UW_CAUSTICS_TEXTURE, or UW_CAUSTICS_MAP with `caustic_maps` = CausticStack::hostMaps()).
+// Stored as float, as the kernel stores them.
+FroxelCpuVolume froxelEvaluateCpu(const UnderwaterSetup& setup, const FroxelParams& params,
+                                  const std::vector<float>* caustic_maps = nullptr);
 
 // The first hit distance S of every pixel's centre ray (uw_scene_hit, double); >= UW_INFINITE (1e30)
 // for rays into deep water. Row-major, width × height of setup.params.

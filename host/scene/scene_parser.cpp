@@ -40,6 +40,7 @@ constexpr KnobDefault kQualityKnobs[] = {
     {"froxel_y", 90, "froxel grid y"},
     {"froxel_z", 64, "froxel grid z (depth slices)"},
     {"caustic_map_size", 256, "caustic map size"},
+    {"caustic_layers", 8, "underwater caustic map: depth layers (caustic_map.h)"},
     {"reference_spp", 64, "brute-force reference: samples per pixel"},
     {"reference_steps", 200, "brute-force reference: ray-march steps per ray"},
 };
@@ -531,6 +532,10 @@ class SceneParser {
     // Exact phase function in the shafts integral instead of its table: a switch, stored as a
     // knob of value 0 or 1 so the planner reads every setting from one map.
     scene_.quality["shafts_exact"] = Knob{false, r.boolean("shafts_exact", false) ? 1.0 : 0.0};
+    // RMS error budget of the shafts `auto` quality, 8-bit levels (host/passes/shafts_auto.h): a number, not a knob.
+    const double budget = r.number("shafts_error_budget", 1.0);
+    r.check(budget > 0 && budget <= 255, "shafts_error_budget", "must be in (0, 255] levels, got " + fmt(budget));
+    scene_.quality["shafts_error_budget"] = Knob{false, budget};
     r.finish();
   }
 };

@@ -84,6 +84,11 @@ UnderwaterSetup makeUnderwaterSetup(const Scene& scene, const WavelengthGrid& gr
                                                                       : UW_CAUSTICS_MAP;
   const auto map_size = scene.quality.find("caustic_map_size");
   p.caustic_map_size = map_size != scene.quality.end() ? static_cast<int>(map_size->second.value) : 256;
+  const auto layers = scene.quality.find("caustic_layers");
+  p.caustic_layers = layers != scene.quality.end() ? static_cast<int>(layers->second.value) : 8;
+  // The layers reach the bottom; in deep water, as deep as the view is likely to resolve the pattern.
+  p.caustic_depth_max = p.bottom_depth > 0 ? p.bottom_depth
+                                           : static_cast<float>(std::max(20.0, -2.0 * cam.position.y));
   s.single_scattering = uw.single_scattering && sun_up;
 
   // Per band: IOPs, the light just below the surface, sensor weights.

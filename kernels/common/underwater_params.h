@@ -43,14 +43,16 @@ typedef struct {
   float caustic_period;    /* m, tile size of the caustic texture on the horizontal plane */
   float caustic_speed;     /* m/s, scroll speed of the caustic textures */
   float caustic_extent;    /* m, side of the square the caustic map covers (UW_CAUSTICS_MAP) */
-  float pad0, pad1, pad2;
+  float caustic_depth_max; /* m, depth of the deepest caustic map layer (UW_CAUSTICS_MAP; caustic_map.h) */
+  float pad1, pad2;
   int width;
   int height;
   int band_count;
   int object_count;
   int caustic_mode;        /* UW_CAUSTICS_* */
   int caustic_map_size;    /* texels per side (UW_CAUSTICS_MAP) */
-  int pad3, pad4;
+  int caustic_layers;      /* maps at depths (k + 1) caustic_depth_max / caustic_layers (UW_CAUSTICS_MAP) */
+  int pad4;
 } UwParams;
 
 /* One wavelength band at its centre: water IOPs, the light just below the surface, sensor weights

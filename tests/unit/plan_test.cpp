@@ -74,6 +74,36 @@ TEST(Plan, WavesAddTheOceanPass) {
   EXPECT_FALSE(plan.hasPass("caustics"));  // caustics only matter below the surface
 }
 
+TEST(Plan, WavesFeedTheirNormalsToTheSeaPass) {
+  // FFT waves seen from above: the ocean runs first (implemented) and sea_single reads its normals.
+  const Plan waves = makePlan(parseScene(kFlatSea, "flat.toml", {{"surface.type", "\"fft\"", {"cli", 1}}}));
+  ASSERT_TRUE(waves.hasPass("ocean_fft"));
+  EXPECT_TRUE(waves.find("ocean_fft")->implemented);
+  EXPECT_TRUE(waves.find("sea_single")->implemented);
+  EXPECT_TRUE(hasDefine(waves, "sea_single", "SEASIM_HAS_WAVES=1"));
+  EXPECT_EQ(waves.passes[0].name, "ocean_fft");
+  EXPECT_EQ(waves.passes[1].name, "sea_single");
+  const auto& reads = waves.find("sea_single")->reads;
+  EXPECT_NE(std::find(reads.begin(), reads.end(), "ocean_maps"), reads.end());
+  // A flat sea: no ocean, no wave normals.
+  const Plan flat = makePlan(parseScene(kFlatSea, "flat.toml"));
+  EXPECT_FALSE(flat.hasPass("ocean_fft"));
+  EXPECT_FALSE(hasDefine(flat, "sea_single", "SEASIM_HAS_WAVES=1"));
+  EXPECT_TRUE(hasDefine(flat, "sea_single", "SEASIM_HAS_WAVES=0"));
+}
+
+TEST(Plan, SkyModelIsAKernelDefine) {
+  EXPECT_TRUE(hasDefine(makePlan(parseScene(kFlatSea, "flat.toml")), "sea_single", "SEASIM_SKY_MODEL=0"));
+  const Plan analytic = makePlan(parseScene(kFlatSea, "flat.toml", {{"sky.model", "\"analytic\"", {"cli", 1}}}));
+  EXPECT_TRUE(hasDefine(analytic, "sea_single", "SEASIM_SKY_MODEL=1"));
+  EXPECT_TRUE(analytic.find("sea_single")->implemented);
+  const Plan image = makePlan(parseScene(std::string(kFlatSea) + "[sky]\nmodel = \"image\"\nimage = \"" + SEASIM_SOURCE_DIR +
+                                             "/scenes/textures/sky_clear.exr\"\n",
+                                         "flat.toml"));
+  EXPECT_TRUE(hasDefine(image, "sea_single", "SEASIM_SKY_MODEL=2"));
+  EXPECT_TRUE(image.find("sea_single")->implemented);
+}
+
 TEST(Plan, UnderwaterCameraUsesUnderwaterPassesNotTheSeaSurface) {
   const Plan plan = makePlan(parseScene(kFlatSea, "flat.toml", {{"camera.position", "[0, -5, 0]", {"cli", 1}}}));
   EXPECT_FALSE(plan.hasPass("sea_single"));
@@ -88,6 +118,31 @@ TEST(Plan, UnderwaterCameraUsesUnderwaterPassesNotTheSeaSurface) {
 }
 
 seasim::Override at(const char* key, const char* value) { return {key, value, {"cli", 1}}; }
+
+TEST(Plan, UnderwaterCausticMapRunsTheOceanOnlyWhenAsked) {
+  // caustics = "map" under an FFT surface: the ocean and its caustic splat run before the G-buffer.
+  Plan plan = makePlan(parseScene(kFlatSea, "flat.toml",
+                                  {at("camera.position", "[0, -5, 0]"), at("surface.type", "\"fft\""),
+                                   at("underwater.caustics", "\"map\"")}));
+  ASSERT_TRUE(plan.hasPass("ocean_fft"));
+  ASSERT_TRUE(plan.hasPass("caustics"));
+  EXPECT_TRUE(hasDefine(plan, "raycast", "SEASIM_CAUSTICS=2"));
+  EXPECT_TRUE(hasDefine(plan, "froxel", "SEASIM_CAUSTICS=2"));
+  for (const auto& p : plan.passes) EXPECT_TRUE(p.implemented) << p.name;
+  // The same waves with texture caustics: under water the model's surface is flat, so no ocean.
+  plan = makePlan(parseScene(kFlatSea, "flat.toml",
+                             {at("camera.position", "[0, -5, 0]"), at("surface.type", "\"fft\""),
+                              at("underwater.caustics", "\"texture\"")}));
+  EXPECT_FALSE(plan.hasPass("ocean_fft"));
+  EXPECT_FALSE(plan.hasPass("caustics"));
+  // Night: no caustics at all, so no ocean either.
+  plan = makePlan(parseScene(kFlatSea, "flat.toml",
+                             {at("camera.position", "[0, -5, 0]"), at("surface.type", "\"fft\""),
+                              at("underwater.caustics", "\"map\""), at("sun.zenith_deg", "95")}));
+  EXPECT_FALSE(plan.hasPass("ocean_fft"));
+  EXPECT_FALSE(plan.hasPass("caustics"));
+  EXPECT_TRUE(hasDefine(plan, "raycast", "SEASIM_CAUSTICS=0"));
+}
 
 TEST(Plan, UnderwaterLeavesOutWhatTheSceneTurnsOff) {
   // No single scattering: no froxel pass, and the shading does not split off the direct sun.
