@@ -40,9 +40,9 @@ void validate(const UnderwaterSetup& setup) {
 }  // namespace
 
 Vec3 underwaterPixelDirection(const UwParams& p, double x, double y) {
-  const double u = (2.0 * x / p.width - 1.0) * p.tan_half_fov_y * p.aspect;
-  const double v = (1.0 - 2.0 * y / p.height) * p.tan_half_fov_y;
-  return normalize(v3(p.cam_forward) + v3(p.cam_right) * u + v3(p.cam_up) * v);
+  // The kernels' own pinhole (common/underwater.h uw_screen_dir), evaluated in double.
+  const kmath_d::real3 d = kmath_d::uw_screen_dir(&p, x / p.width, y / p.height);
+  return Vec3{d.x, d.y, d.z};
 }
 
 UnderwaterReferenceResult renderUnderwaterReference(Device& device, const UnderwaterSetup& setup,

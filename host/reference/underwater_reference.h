@@ -61,7 +61,8 @@ double underwaterSingleScatteringRay(const UnderwaterSetup& setup, int band, Vec
 // That integral through every pixel centre (the pinhole camera of sea_single.cl), as sensor RGB.
 Image renderUnderwaterSingleScatteringQuadrature(const UnderwaterSetup& setup, bool isotropic, int steps);
 
-// The pixel-centre view direction of pixel (x, y) in double, as the kernels compute it in float.
+// The view direction through image point (x, y) (pixel units; + 0.5 for a pixel centre): uw_screen_dir
+// in double, the same pinhole the kernels evaluate in float.
 Vec3 underwaterPixelDirection(const UwParams& params, double x, double y);
 
 }  // namespace seasim
