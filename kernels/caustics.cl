@@ -25,6 +25,11 @@
 #include "common/compat.h"
 #include "common/optics.h"
 #include "common/ocean_params.h"
+#include "common/sea_surface.h"
+#include "common/sea_second.h"
+#include "common/sea_bottom_params.h"
+/* sea_hf_intersect (sea_bottom.h needs sea_surface.h and sea_second.h before it) */
+#include "common/sea_bottom.h"
 
 /* float atomic add through compare-and-swap on the bit pattern (OpenCL 1.2 has no float atomics). */
 static inline void atomic_add_float(volatile __global int* addr, float value) {
@@ -104,4 +109,74 @@ __kernel void caustics_splat(__constant CausticsParams* p, __global const float2
   atomic_add_float(&map[z0 * m + x1], scale * ax * (1.0f - az));
   atomic_add_float(&map[z1 * m + x0], scale * (1.0f - ax) * az);
   atomic_add_float(&map[z1 * m + x1], scale * ax * az);
+}
+
+/* The same splat onto a height-field floor (000 §5.4, [bottom] type = "heightfield"), which is not
+ * periodic: the ocean patch is tiled `tiles` × `tiles` times from (origin_x, origin_z) so the surface
+ * covers the floor's square plus a margin the refracted rays can drift across, each ray walks to the
+ * floor (common/sea_bottom.h sea_hf_intersect), and its flux lands in the M × M map over the floor's
+ * square [-E/2, E/2]²: texel (i, j) centred at (-E/2 + (i + ½) E/M, -E/2 + (j + ½) E/M). Flux landing
+ * outside the square is dropped. Values: the irradiance on the floor itself (flux per unit floor area:
+ * per horizontal area times the floor normal's y) over the sun's irradiance on a horizontal surface
+ * above the water, so a flat sea gives T(θ) e^{-c l} (-t·n̂)/cos θt, l the refracted path length, t
+ * its direction and n̂ the floor's normal (the Lambert cosine of the slope). Rays that miss the floor
+ * within the walk (a near-horizontal ray) carry no flux. */
+__kernel void caustics_splat_floor(__constant CausticsParams* p, __global const float2* fields,
+                                   __constant SeaHeightField* hf, __global const float* depth, int tiles,
+                                   float origin_x, float origin_z, volatile __global int* map) {
+  const int I = get_global_id(0), J = get_global_id(1);
+  const int n = p->n, s = p->supersample;
+  if (I >= n * s * tiles || J >= n * s * tiles) return;
+
+  /* Surface-grid texel units from the world origin (texel i at x = i L/N, as in the plane splat). */
+  const float cell = p->patch_size / (float)n;
+  const float u = origin_x / cell + ((float)I + 0.5f) / (float)s;
+  const float v = origin_z / cell + ((float)J + 0.5f) / (float)s;
+  const float fu = floor(u), fv = floor(v);
+  const int i0 = (int)fu, j0 = (int)fv;
+  const float wx = u - fu, wz = v - fv;
+  float f00[8], f10[8], f01[8], f11[8], f[8];
+  fetch_fields(fields, n, i0, j0, f00); /* wraps: the tiles repeat the patch */
+  fetch_fields(fields, n, i0 + 1, j0, f10);
+  fetch_fields(fields, n, i0, j0 + 1, f01);
+  fetch_fields(fields, n, i0 + 1, j0 + 1, f11);
+  for (int c = 0; c < 8; ++c)
+    f[c] = (1.0f - wz) * ((1.0f - wx) * f00[c] + wx * f10[c]) + wz * ((1.0f - wx) * f01[c] + wx * f11[c]);
+
+  const float lambda = p->choppiness;
+  const float3 P = (float3)(u * cell + lambda * f[3], f[0], v * cell + lambda * f[4]);
+  const float3 tx = (float3)(1.0f + lambda * f[5], f[1], lambda * f[7]);
+  const float3 tz = (float3)(lambda * f[7], f[2], 1.0f + lambda * f[6]);
+  const float3 n_area = cross(tz, tx);
+  const float3 sun = (float3)(p->sun_dir[0], p->sun_dir[1], p->sun_dir[2]);
+  const float projected = dot(sun, n_area);
+  const float len = length(n_area);
+  if (!(projected > 0.0f) || !(len > 0.0f)) return;
+  const float3 nrm = n_area / len;
+  const float T = 1.0f - fresnel_reflectance(projected / len, 1.0f, p->ior);
+  float3 t;
+  refract_dir(-sun, nrm, 1.0f / p->ior, &t);
+  if (!(t.y < 0.0f)) return;
+  /* Long enough to pass the deepest node from the highest crest. */
+  const float t_max = (hf->max_depth + fmax(P.y, 0.0f) + 1.0f) / (-t.y);
+  float t_hit;
+  float3 floor_normal;
+  if (!sea_hf_intersect(hf, depth, P, t, t_max, &t_hit, &floor_normal)) return;
+  const float path = fmax(t_hit - fmax(P.y, 0.0f) / (-t.y), 0.0f); /* the part in the water */
+  const float3 Q = P + t_hit * t;
+  const float dA = (cell / (float)s) * (cell / (float)s);
+  const float flux = projected * dA * T * beer_lambert(p->attenuation, path);
+
+  const int m = p->map_size;
+  const float E = hf->extent, texel = E / (float)m;
+  const float scale = flux * floor_normal.y / (texel * texel * sun.y);
+  const float qx = (Q.x + 0.5f * E) / texel - 0.5f, qz = (Q.z + 0.5f * E) / texel - 0.5f;
+  const float gx = floor(qx), gz = floor(qz);
+  if (!(gx >= -1.0f && gz >= -1.0f && gx < (float)m && gz < (float)m)) return; /* off the floor's square */
+  const int x0 = (int)gx, z0 = (int)gz;
+  const float ax = qx - gx, az = qz - gz;
+  const float w[4] = {(1.0f - ax) * (1.0f - az), ax * (1.0f - az), (1.0f - ax) * az, ax * az};
+  const int xs[4] = {x0, x0 + 1, x0, x0 + 1}, zs[4] = {z0, z0, z0 + 1, z0 + 1};
+  for (int c = 0; c < 4; ++c)
+    if (xs[c] >= 0 && xs[c] < m && zs[c] >= 0 && zs[c] < m) atomic_add_float(&map[zs[c] * m + xs[c]], scale * w[c]);
 }

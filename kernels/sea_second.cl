@@ -26,7 +26,22 @@
  *
  * Inputs: SeaSecondParams, SeaBand[band_count] (sea_params.h). Output: rgb[3 * pixels] += L^(2) in
  * sensor RGB; spectral[pixels * band_count] += L^(2) with SEASIM_SPECTRAL_OUTPUT.
- * Defines (host/plan): SEASIM_HAS_BOTTOM (flat bottom at bottom_depth), SEASIM_SPECTRAL_OUTPUT.
+ * Defines (host/plan): SEASIM_HAS_BOTTOM (flat bottom at bottom_depth), SEASIM_SPECTRAL_OUTPUT,
+ * SEASIM_BOTTOM_HEIGHTFIELD (with SEASIM_HAS_BOTTOM: a height-field floor, below).
+ *
+ * Height-field floor (000 §5.4, common/sea_bottom.h). The planes still span [0, bottom_depth], the
+ * deepest node of the floor, but
+ *   0. sea_second_depth_table (once per scene; the pass caches it on disk) walks, from the sampling
+ *      point of every map ray (i, j) at each of n_z + 1 table-node depths, every sampling direction
+ *      to where it leaves the water (the floor, or the surface) and stores that distance in metres
+ *                                                                   [(n_z + 1) x M x M x n_d];
+ *   2. the radiance map is then per sampling point: the scattering-map kernel evaluates eq. 7 for
+ *      each point, direction and band from the table, read linearly in depth between the nodes
+ *      around the band's plane (the paper's interpolation between P_s and P'_s);
+ *   4. the accumulation stops at the floor: plane k counts with the share of its depth cell above
+ *      the pixel's own z_Q (its view ray walked to the floor).
+ * Table nodes below a map ray's own floor point Q take the values of its last point in the water
+ * (just above Q), so that the maps continue smoothly across the floor's edges for the pixels between.
  * Stiff cases: the 0/0 of eq. 7 at cos theta = cos theta_io and theta = pi/2 (common/sea_second.h);
  * sun below the horizon (sun_beam = 0: adds exactly 0); c = 0 (albedo 0: adds 0); grazing views
  * (cos theta_ji clamped away from 0, T_o -> 0).
@@ -36,6 +51,13 @@
 #include "common/sea_params.h"
 #include "common/sea_second_params.h"
 #include "common/sea_second.h"
+#include "common/sea_surface.h"
+#include "common/sea_bottom_params.h"
+#include "common/sea_bottom.h"
+
+#ifndef SEASIM_BOTTOM_HEIGHTFIELD
+#define SEASIM_BOTTOM_HEIGHTFIELD 0
+#endif
 
 #define SEA_SECOND_CHUNK 32 /* bands accumulated per pass over the directions (private registers) */
 
@@ -86,22 +108,75 @@ __kernel void sea_second_radiance_map(__constant SeaSecondParams* p, __global co
   }
 }
 
-/* Refracted view direction and cos(theta_ji) at a map sampling point (i, j). */
-static inline float3 map_view_in_water(__constant SeaSecondParams* p, int i, int j, float* cos_ji) {
+/* World view direction of map sampling point (i, j), lowered just below the horizon when above it. */
+static inline float3 map_view_dir(__constant SeaSecondParams* p, int i, int j) {
   const int M = p->map_size;
   const float fx = M > 1 ? 0.5f + (float)i * (p->width - 1) / (M - 1) : 0.5f * p->width;
   const float fy = M > 1 ? 0.5f + (float)j * (p->height - 1) / (M - 1) : 0.5f * p->height;
   float3 d = view_dir(p, fx, fy);
   if (d.y > -1e-3f) d = normalize((float3)(d.x, -1e-3f, d.z)); /* lowered below the horizon */
+  return d;
+}
+
+/* Refracted view direction and cos(theta_ji) at a map sampling point (i, j). */
+static inline float3 map_view_in_water(__constant SeaSecondParams* p, int i, int j, float* cos_ji) {
+  const float3 d = map_view_dir(p, i, j);
   float3 v;
   refract_dir(d, (float3)(0.0f, 1.0f, 0.0f), 1.0f / p->ior, &v);
   *cos_ji = fmax(-v.y, 1e-4f);
   return v;
 }
 
+#if SEASIM_BOTTOM_HEIGHTFIELD
+/* Where the view ray d from the camera meets the mean surface y = 0 (P of 000 Fig. 5). */
+static inline float3 surface_point(__constant SeaSecondParams* p, float3 d) {
+  const float t = p->cam_pos[1] / -d.y;
+  return (float3)(p->cam_pos[0] + t * d.x, 0.0f, p->cam_pos[2] + t * d.z);
+}
+
+/* 000 §5.4's depth tables: table[((t * M + j) * M + i) * n_d + m] = the distance (m) from map ray
+ * (i, j)'s sampling point at table-node depth z_t along sampling direction m to where it leaves the
+ * water: the floor, or the surface when nothing is in the way. */
+__kernel void sea_second_depth_table(__constant SeaSecondParams* p, __constant SeaHeightField* hf,
+                                     __global const float* hf_depth, __global float* table) {
+  const int i = get_global_id(0);
+  const int j = get_global_id(1);
+  const int t = get_global_id(2);
+  const int M = p->map_size;
+  if (i >= M || j >= M || t > p->n_z) return;
+  const int n_d = p->n_theta * p->n_phi;
+  float cos_ji;
+  const float3 v = map_view_in_water(p, i, j, &cos_ji);
+  const float3 P = surface_point(p, map_view_dir(p, i, j));
+  float t_q;
+  float3 n_q;
+  sea_hf_intersect(hf, hf_depth, P, v, 1e30f, &t_q, &n_q); /* the map ray's own floor point Q */
+  const float dz = -v.y;                                   /* depth per metre along v, > 0.66 */
+  const float z_q = dz * t_q;
+  /* Nodes at or below Q sit in the floor: use the ray's last point in the water, just above Q. */
+  const float z_max_here = fmax(z_q - 2e-4f * fmax(1.0f, z_q), 0.0f);
+  const float z_node = fmin(sea_table_node_depth(t, p->n_z, p->cos_io, p->table_c, p->bottom_depth), z_max_here);
+  const float3 Ps = P + (z_node / dz) * v;
+  __global float* out = table + (((size_t)t * M + j) * M + i) * n_d;
+  for (int m = 0; m < n_d; ++m) {
+    float3 omega;
+    sea_direction(m, p->n_theta, p->n_phi, &omega);
+    float l;
+    float3 n;
+    /* Upwards the surface ends the ray unless the floor comes first; downwards the floor always does. */
+    sea_hf_intersect(hf, hf_depth, Ps, omega, omega.y > 0.0f ? z_node / omega.y : 1e30f, &l, &n);
+    out[m] = l;
+  }
+}
+#endif
+
 __kernel void sea_second_scattering_map(__constant SeaSecondParams* p, __global const SeaBand* bands,
                                         __global const float4* dirs, __global const float* vsf,
-                                        __global const float* radiance, __global float* maps) {
+                                        __global const float* radiance, __global float* maps
+#if SEASIM_BOTTOM_HEIGHTFIELD
+                                        , __global const float* table
+#endif
+) {
   const int i = get_global_id(0);
   const int j = get_global_id(1);
   const int k = get_global_id(2);
@@ -116,6 +191,23 @@ __kernel void sea_second_scattering_map(__constant SeaSecondParams* p, __global 
     const int count = min(SEA_SECOND_CHUNK, nb - b0);
     float acc[SEA_SECOND_CHUNK];
     for (int c = 0; c < count; ++c) acc[c] = 0.0f;
+#if SEASIM_BOTTOM_HEIGHTFIELD
+    /* Per band: its plane's optical depth and the table nodes around its geometric depth. */
+    float tau_k[SEA_SECOND_CHUNK], node_w[SEA_SECOND_CHUNK], source[SEA_SECOND_CHUNK], c_band[SEA_SECOND_CHUNK];
+    int node[SEA_SECOND_CHUNK];
+    for (int c = 0; c < count; ++c) {
+      const __global SeaBand* band = &bands[b0 + c];
+      float w;
+      tau_k[c] = sea_plane_depth(k, p->n_z, p->cos_io, optical_bottom(band, p), &w);
+      const float z_k = band->c > 0.0f ? tau_k[c] / band->c : 0.0f;
+      node[c] = sea_table_node_interval(z_k, p->n_z, p->cos_io, p->table_c, p->bottom_depth, &node_w[c]);
+      source[c] = band->sun_irradiance * p->sun_beam * (band->c > 0.0f ? band->b / band->c : 0.0f);
+      c_band[c] = band->c;
+    }
+    const float3 sun = (float3)(p->sun_in_water[0], p->sun_in_water[1], p->sun_in_water[2]);
+    const size_t node_stride = (size_t)M * M * n_d;
+    const __global float* ends = table + ((size_t)j * M + i) * n_d;
+#endif
     for (int m = 0; m < n_d; ++m) {
       const float4 dw = dirs[m];
       /* Second scattering: light travelling -omega turned towards the eye (-v): cos alpha' = omega.v */
@@ -123,8 +215,18 @@ __kernel void sea_second_scattering_map(__constant SeaSecondParams* p, __global 
       const int t0 = min((int)t, p->vsf_size - 2);
       const float f = t - (float)t0;
       const float pw = (vsf[t0] + f * (vsf[t0 + 1] - vsf[t0])) * dw.w;
+#if SEASIM_BOTTOM_HEIGHTFIELD
+      /* 000 §5.4: eq. 7 at this sampling point, the sampling ray ending where the depth table says. */
+      const float phase = hg_phase(dot(sun, -(float3)(dw.x, dw.y, dw.z)), p->g);
+      for (int c = 0; c < count; ++c) {
+        const float l0 = ends[node[c] * node_stride + m], l1 = ends[(node[c] + 1) * node_stride + m];
+        acc[c] += pw * sea_radiance_map_path(source[c], 1.0f, phase, p->cos_io, dw.y, tau_k[c],
+                                             c_band[c] * (l0 + node_w[c] * (l1 - l0)));
+      }
+#else
       const __global float* L1 = radiance + ((size_t)k * n_d + m) * nb + b0;
       for (int c = 0; c < count; ++c) acc[c] += pw * L1[c];
+#endif
     }
     for (int c = 0; c < count; ++c) {
       const __global SeaBand* band = &bands[b0 + c];
@@ -141,6 +243,9 @@ __kernel void sea_second_accumulate(__constant SeaSecondParams* p, __global cons
 #if SEASIM_SPECTRAL_OUTPUT
                                     , __global float* spectral
 #endif
+#if SEASIM_BOTTOM_HEIGHTFIELD
+                                    , __constant SeaHeightField* hf, __global const float* hf_depth
+#endif
 ) {
   const int x = get_global_id(0);
   const int y = get_global_id(1);
@@ -152,6 +257,13 @@ __kernel void sea_second_accumulate(__constant SeaSecondParams* p, __global cons
   float3 v;
   refract_dir(d, (float3)(0.0f, 1.0f, 0.0f), 1.0f / p->ior, &v);
   const float cos_ji = fmax(-v.y, 1e-4f);
+#if SEASIM_BOTTOM_HEIGHTFIELD
+  /* 000 §5.4: this pixel's view ray sees water down to its own floor point Q only. */
+  float t_q;
+  float3 n_q;
+  sea_hf_intersect(hf, hf_depth, surface_point(p, d), v, 1e30f, &t_q, &n_q);
+  const float z_q = fmax(-v.y, 0.0f) * t_q;
+#endif
 
   /* Bilinear position of this pixel in every plane's map. */
   const int M = p->map_size;
@@ -171,7 +283,12 @@ __kernel void sea_second_accumulate(__constant SeaSecondParams* p, __global cons
     const __global SeaBand* band = &bands[i];
     float sum = 0.0f;
     for (int k = 0; k < p->n_z; ++k) { /* plane by plane, front to back */
+#if SEASIM_BOTTOM_HEIGHTFIELD
+      const float w = plane_w[k * nb + i] * sea_plane_share_above(k, p->n_z, p->cos_io, optical_bottom(band, p),
+                                                                  band->c * z_q);
+#else
       const float w = plane_w[k * nb + i];
+#endif
       const __global float* map = maps + (size_t)k * M * M * nb + i;
       const float a00 = map[((size_t)j0 * M + i0) * nb], a10 = map[((size_t)j0 * M + i0 + di) * nb];
       const float a01 = map[((size_t)(j0 + di) * M + i0) * nb], a11 = map[((size_t)(j0 + di) * M + i0 + di) * nb];

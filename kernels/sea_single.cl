@@ -1,31 +1,82 @@
 /* sea_single.cl — the sea seen from above: Fresnel reflection of sky and sun, single scattering of
- * sunlight in the water (000 eq. 5), and the sun reflected by a flat bottom (000 eq. 9), evaluated per
+ * sunlight in the water (000 eq. 5), and the sun reflected by the bottom (000 eq. 9; flat, or a height
+ * field with z_Q and the local floor normal per pixel, 000 §5.4, SEASIM_BOTTOM_HEIGHTFIELD), evaluated per
  * wavelength band and accumulated straight into sensor RGB (002 eq. 4.8), never storing the spectrum
  * unless SEASIM_SPECTRAL_OUTPUT asks for it.
  *
- * Inputs: SeaParams (camera, sun, water ior/g, bottom depth), SeaBand[band_count].
+ * Inputs: SeaParams (camera, sun, water ior/g, bottom depth, ocean and sky sizes), SeaBand[band_count],
+ * the LUT, the ocean's normal map (N x N float4, SEASIM_HAS_WAVES; one dummy texel otherwise) and the
+ * environment image (float4 texels, SEASIM_SKY_MODEL 2; one dummy texel otherwise).
  * Output: rgb[3 * pixels] linear sensor RGB; spectral[band_count * pixels] when SEASIM_SPECTRAL_OUTPUT.
  * Defines (chosen by host/plan): SEASIM_HAS_REFLECTION, SEASIM_HAS_SINGLE_SCATTERING,
- * SEASIM_HAS_BOTTOM, SEASIM_HAS_SUN, SEASIM_SPECTRAL_OUTPUT; SEASIM_SEA_LUT (the pass, from
- * quality.sea_lut_size): 1 reads eq. 5's factors from the look-up table over theta_jo the paper uses,
+ * SEASIM_HAS_BOTTOM, SEASIM_HAS_SUN, SEASIM_SPECTRAL_OUTPUT, SEASIM_HAS_WAVES (FFT wave normals,
+ * common/sea_waves.h), SEASIM_SKY_MODEL (0 uniform, 1 CIE clear sky, 2 environment image,
+ * common/sky.h), SEASIM_BOTTOM_HEIGHTFIELD (with SEASIM_HAS_BOTTOM: the floor is the height field
+ * of the last two arguments, common/sea_bottom.h; forces SEASIM_SEA_LUT 0); SEASIM_SEA_LUT (the
+ * pass, from quality.sea_lut_size): 1 reads eq. 5's factors from the look-up table the paper uses,
  * 0 evaluates eq. 5 exactly.
  * LUT: lut[band * lut_size + j] holds eq. 5 without beta and T_o (T_o is already computed per pixel
- * for the reflection) at theta_jo = j/(lut_size - 1) * pi/2, built by the host in double; read by
- * Catmull–Rom interpolation with mirrored ends (the factors are even about theta_jo = 0 and pi/2).
+ * for the reflection) at angle j/(lut_size - 1) * pi/2, built by the host in double; the angle is
+ * theta_jo on a flat sea (the paper's table) and the refracted view's theta_ji with waves (a tilted
+ * normal decouples the two, and theta_ji then ranges over [0, pi/2], not [0, 48.6 deg]). Read by
+ * Catmull–Rom interpolation with mirrored ends (the factors are even about 0 and pi/2).
+ * Waves: the view ray meets the mean surface y = 0 and takes the local normal there for Fresnel,
+ * reflection and refraction; sunlight still enters through the flat mean surface (000 §3; the
+ * approximations are spelled out in common/sea_waves.h).
  * Stiff cases: view rays at or above the horizon see the sky (no surface hit); the sun at or below
- * the horizon contributes nothing below the surface; grazing refraction is clamped away from cos = 0.
+ * the horizon contributes nothing below the surface; grazing refraction is clamped away from cos = 0;
+ * back-facing and folded wave normals, reflections pointing below the horizon (common/sea_waves.h).
  */
 #include "common/compat.h"
 #include "common/optics.h"
 #include "common/sea_params.h"
 #include "common/sea_surface.h"
+#include "common/sea_waves.h"
+#include "common/sky.h"
+#include "common/sea_bottom_params.h"
+#include "common/sea_second.h"
+#include "common/sea_bottom.h"
 
-/* Radiance of the sky (and the sun's disk) seen along direction d, for one band. */
-static inline float sky_radiance(const __constant SeaParams* p, const __global SeaBand* band, float3 d) {
+#ifndef SEASIM_HAS_WAVES
+#define SEASIM_HAS_WAVES 0
+#endif
+#ifndef SEASIM_SKY_MODEL
+#define SEASIM_SKY_MODEL 0
+#endif
+#ifndef SEASIM_BOTTOM_HEIGHTFIELD
+#define SEASIM_BOTTOM_HEIGHTFIELD 0 /* 1: the bottom is a height field (000 §5.4, common/sea_bottom.h) */
+#endif
+#if SEASIM_BOTTOM_HEIGHTFIELD && SEASIM_SEA_LUT
+#error "a height-field bottom needs the exact eq. 5 (SEASIM_SEA_LUT=0): z_Q changes from pixel to pixel"
+#endif
+
+/* The sky's direction-dependent factor towards d (common/sky.h), the same for every band: scale ×
+ * shape, as RGB for the image (mixed per band by sky_w_*); 1 for the uniform sky. */
+static inline float3 sky_shape(const __constant SeaParams* p, const __global float* sky, float3 d) {
+#if SEASIM_SKY_MODEL == SEASIM_SKY_ANALYTIC
+  const float3 sun = (float3)(p->sun_dir[0], p->sun_dir[1], p->sun_dir[2]);
+  const float s = p->sky_scale * sky_cie_clear_shape(d, sun);
+  return (float3)(s, s, s);
+#elif SEASIM_SKY_MODEL == SEASIM_SKY_IMAGE
+  return p->sky_scale * sky_latlong_rgb(sky, p->sky_width, p->sky_height, d);
+#else
+  return (float3)(1.0f, 1.0f, 1.0f);
+#endif
+}
+
+/* Radiance of the sky (and the sun's disk) seen along direction d, for one band; shape = sky_shape(d). */
+static inline float sky_radiance(const __constant SeaParams* p, const __global SeaBand* band, float3 shape, float3 d) {
+#if SEASIM_SKY_MODEL == SEASIM_SKY_ANALYTIC
+  float L = band->sky_radiance * shape.x;
+#elif SEASIM_SKY_MODEL == SEASIM_SKY_IMAGE
+  float L = band->sky_radiance * (band->sky_w_r * shape.x + band->sky_w_g * shape.y + band->sky_w_b * shape.z);
+#else
   float L = band->sky_radiance;
+#endif
 #if SEASIM_HAS_SUN
   float3 sun = (float3)(p->sun_dir[0], p->sun_dir[1], p->sun_dir[2]);
-  if (dot(d, sun) >= p->cos_sun_radius) L += band->sun_irradiance / p->sun_solid_angle;
+  /* A sun of radius 0 (a point) has no disk to see: skip it rather than divide by 0. */
+  if (p->sun_solid_angle > 0.0f && dot(d, sun) >= p->cos_sun_radius) L += band->sun_irradiance / p->sun_solid_angle;
 #endif
   return L;
 }
@@ -43,9 +94,12 @@ static inline float lut_read(const __global float* lut, int n, float x) {
 #endif
 
 __kernel void sea_single(__constant SeaParams* p, __global const SeaBand* bands, __global const float* lut,
-                         __global float* rgb
+                         __global const float* normals, __global const float* sky, __global float* rgb
 #if SEASIM_SPECTRAL_OUTPUT
                          , __global float* spectral
+#endif
+#if SEASIM_BOTTOM_HEIGHTFIELD /* keep these two last: the pass sets them as the last two arguments */
+                         , __constant SeaHeightField* hf, __global const float* hf_depth
 #endif
 ) {
   const int x = get_global_id(0);
@@ -64,22 +118,33 @@ __kernel void sea_single(__constant SeaParams* p, __global const SeaBand* bands,
   float r = 0.0f, g = 0.0f, b = 0.0f;
   if (d.y >= 0.0f) {
     /* Above the horizon: the sky itself. */
+    const float3 shape = sky_shape(p, sky, d);
     for (int i = 0; i < p->band_count; ++i) {
-      const float L = sky_radiance(p, &bands[i], d);
+      const float L = sky_radiance(p, &bands[i], shape, d);
       r += L * bands[i].w_r; g += L * bands[i].w_g; b += L * bands[i].w_b;
 #if SEASIM_SPECTRAL_OUTPUT
       spectral[(size_t)pixel * p->band_count + i] = L;
 #endif
     }
   } else {
+#if SEASIM_HAS_WAVES
+    /* The local normal where the view ray meets the mean surface (common/sea_waves.h). */
+    const float t_hit = sea_mean_surface_distance(p->cam_pos[1], d);
+    const float3 n = sea_facing_normal(d, sea_wave_normal(normals, p->ocean_n, p->ocean_patch,
+                                                          p->cam_pos[0] + t_hit * d.x, p->cam_pos[2] + t_hit * d.z));
+#else
     const float3 n = (float3)(0.0f, 1.0f, 0.0f);
-    const float cos_jo = -d.y;                               /* view incidence at P */
-    const float R_view = fresnel_reflectance(cos_jo, 1.0f, p->ior);
+#endif
+    float R_view;
+    float3 reflected, view_in_water;
+    const float cos_ji = sea_view_interaction(d, n, p->ior, &R_view, &reflected, &view_in_water);
     const float t_out = 1.0f - R_view;                        /* T_o of 000 eq. 5, 9 */
-    float3 view_in_water;
-    refract_dir(d, n, 1.0f / p->ior, &view_in_water);        /* air -> water never TIRs */
-    const float cos_ji = fmax(-view_in_water.y, 1e-4f);
+#if SEASIM_HAS_REFLECTION
+    const float3 reflected_shape = sky_shape(p, sky, reflected);
+#endif
 
+    /* Sunlight enters through the flat mean surface (000 §3), with or without waves. */
+    const float3 flat_n = (float3)(0.0f, 1.0f, 0.0f);
     const float3 sun = (float3)(p->sun_dir[0], p->sun_dir[1], p->sun_dir[2]);
     float t_in = 0.0f, cos_io = 1.0f, cos_alpha = 1.0f, sun_horizontal = 0.0f;
 #if SEASIM_HAS_SUN
@@ -87,27 +152,49 @@ __kernel void sea_single(__constant SeaParams* p, __global const SeaBand* bands,
       t_in = 1.0f - fresnel_reflectance(sun.y, 1.0f, p->ior);
       sun_horizontal = sun.y;                                 /* E on the horizontal surface / E normal */
       float3 sun_in_water;                                    /* travel direction of sunlight */
-      refract_dir(-sun, n, 1.0f / p->ior, &sun_in_water);
+      refract_dir(-sun, flat_n, 1.0f / p->ior, &sun_in_water);
       cos_io = fmax(-sun_in_water.y, 1e-4f);
       cos_alpha = dot(sun_in_water, -view_in_water);          /* scattered towards the eye */
     }
 #endif
-    const float3 reflected = reflect_dir(d, n);
     const float c_f = hg_forward_fraction(p->g);
     const float phase = hg_phase(cos_alpha, p->g);
-#if SEASIM_HAS_BOTTOM
+#if SEASIM_HAS_BOTTOM && SEASIM_BOTTOM_HEIGHTFIELD
+    /* 000 §5.4: z_Q, the depth where the refracted view ray from P meets the height field, replaces
+     * z_d in eq. 5 and 9, and the floor's normal at Q gives eq. 9's cos(gamma). P is where the view
+     * ray meets the mean surface y = 0. The floor does not shadow the sun (not modelled). */
+    const float t_p = p->cam_pos[1] / -d.y;
+    const float3 P = (float3)(p->cam_pos[0] + t_p * d.x, 0.0f, p->cam_pos[2] + t_p * d.z);
+    float t_q;
+    float3 n_q;
+    sea_hf_intersect(hf, hf_depth, P, view_in_water, 1e30f, &t_q, &n_q);
+    const float z_d = fmax(-view_in_water.y, 0.0f) * t_q;
+    float cos_gamma = 0.0f;
+#if SEASIM_HAS_SUN
+    if (sun.y > 0.0f) {
+      float3 sun_travel;
+      refract_dir(-sun, flat_n, 1.0f / p->ior, &sun_travel);
+      cos_gamma = fmax(dot(n_q, -sun_travel), 0.0f);
+    }
+#endif
+#elif SEASIM_HAS_BOTTOM
     const float z_d = p->bottom_depth;
 #else
     const float z_d = -1.0f;                                  /* no bottom: infinitely deep */
 #endif
 #if SEASIM_SEA_LUT
-    const float lut_x = acos(clamp(cos_jo, 0.0f, 1.0f)) * (p->lut_size - 1) * (2.0f / M_PI_F);
+#if SEASIM_HAS_WAVES
+    const float lut_angle = acos(clamp(cos_ji, 0.0f, 1.0f));          /* theta_ji */
+#else
+    const float lut_angle = acos(clamp(-d.y, 0.0f, 1.0f));            /* theta_jo (cos_jo = -d.y) */
+#endif
+    const float lut_x = lut_angle * (p->lut_size - 1) * (2.0f / M_PI_F);
 #endif
     for (int i = 0; i < p->band_count; ++i) {
       const __global SeaBand* band = &bands[i];
       float L = 0.0f;
 #if SEASIM_HAS_REFLECTION
-      L += R_view * sky_radiance(p, band, reflected);
+      L += R_view * sky_radiance(p, band, reflected_shape, reflected);
 #endif
 #if SEASIM_HAS_SINGLE_SCATTERING
 #if SEASIM_SEA_LUT
@@ -118,7 +205,10 @@ __kernel void sea_single(__constant SeaParams* p, __global const SeaBand* bands,
                                  cos_io, cos_ji, z_d);
 #endif
 #endif
-#if SEASIM_HAS_BOTTOM
+#if SEASIM_HAS_BOTTOM && SEASIM_BOTTOM_HEIGHTFIELD
+      L += sea_bottom_reflection_tilted(band->sun_irradiance * sun_horizontal, t_in, t_out, band->bottom_albedo,
+                                        band->c, z_d, cos_io, cos_ji, cos_gamma);
+#elif SEASIM_HAS_BOTTOM
       L += sea_bottom_reflection(band->sun_irradiance * sun_horizontal, t_in, t_out, band->bottom_albedo, band->c, z_d,
                                  cos_io, cos_ji);
 #endif

@@ -295,6 +295,68 @@ int cmdBench(const BenchCmd& cmd) {
     if (!cmd.limits) throw RuntimeError("bench needs --scene or --limits");
     return 0;
   }
+  if (!cmd.sea_maps.empty()) return benchSeaSecond(device, cmd, parseSets(cmd.sets));  // bench_sea.cpp
+  if (!cmd.lights.empty()) {
+    // Spotlight shafts (001 §5: "cost linear in the number of lights"): the scene with its first k
+    // spotlights, ms per frame of the shadow-map and shafts kernels, and a least-squares line.
+    const Scene full = loadScene(cmd.scene, parseSets(cmd.sets));
+    CsvWriter table({"lights", "kernel_ms_median", "shadow_maps_ms", "shafts_ms"});
+    PlotSeries total_series{"shadow maps + shafts", {}, {}}, shafts_series{"shafts kernel", {}, {}};
+    std::vector<double> ks, ts;
+    for (int k : cmd.lights) {
+      if (k < 1 || k > static_cast<int>(full.spotlights.size())) {
+        throw RuntimeError("--lights " + std::to_string(k) + ": " + cmd.scene + " has " +
+                           std::to_string(full.spotlights.size()) + " spotlights; give counts from 1 to that");
+      }
+      Scene scene = full;
+      scene.spotlights.resize(k);
+      const Plan plan = makePlan(scene);
+      (void)renderFrame(device, scene, plan);  // warm-up (PoCL compiles lazily; auto quality searches once)
+      std::vector<double> totals, shadow, shafts;
+      for (int r = 0; r < std::max(1, cmd.repeat); ++r) {
+        const FrameResult frame = renderFrame(device, scene, plan);
+        double sm = 0, sh = 0;
+        for (const auto& t : frame.timings) {
+          if (t.name == "shadow_maps") sm += t.ms;
+          if (t.name == "shafts") sh += t.ms;
+        }
+        totals.push_back(sm + sh);
+        shadow.push_back(sm);
+        shafts.push_back(sh);
+      }
+      const double ms = median(totals);
+      std::printf("lights = %d  %10.3f ms per frame  [shadow maps %.3f, shafts %.3f ms]\n", k, ms, median(shadow),
+                  median(shafts));
+      table.addRow({k, ms, median(shadow), median(shafts)});
+      total_series.x.push_back(k);
+      total_series.y.push_back(ms);
+      shafts_series.x.push_back(k);
+      shafts_series.y.push_back(median(shafts));
+      ks.push_back(k);
+      ts.push_back(ms);
+    }
+    if (ks.size() >= 2) {  // least squares t(k) = a + b k, and how straight the line is (R²)
+      double mk = 0, mt = 0;
+      for (size_t i = 0; i < ks.size(); ++i) mk += ks[i], mt += ts[i];
+      mk /= ks.size(), mt /= ks.size();
+      double sxy = 0, sxx = 0, syy = 0;
+      for (size_t i = 0; i < ks.size(); ++i)
+        sxy += (ks[i] - mk) * (ts[i] - mt), sxx += (ks[i] - mk) * (ks[i] - mk), syy += (ts[i] - mt) * (ts[i] - mt);
+      const double b = sxx > 0 ? sxy / sxx : 0, a = mt - b * mk;
+      const double r2 = sxx > 0 && syy > 0 ? sxy * sxy / (sxx * syy) : 1.0;
+      std::printf("fit: t(k) = %.4g + %.4g k ms per frame (R^2 = %.4f)\n", a, b, r2);
+    }
+    if (!cmd.csv.empty()) table.write(cmd.csv);
+    if (!cmd.plot.empty()) {
+      PlotSpec spec;
+      spec.title = "Shafts time vs light count: " + fs::path(cmd.scene).stem().string() + " (" + device.info().name + ")";
+      spec.x_label = "spotlights";
+      spec.y_label = "ms per frame";
+      spec.series = {total_series, shafts_series};
+      writeSvgPlot(cmd.plot, spec);
+    }
+    return 0;
+  }
   // Underwater scenes also time the same G-buffer + K_d shading as a plain C++/oneTBB loop on this CPU
   // (host/underwater/underwater_cpu.cpp, float, no froxel term) in the same run, for the ratio.
   const bool underwater = makePlan(loadScene(cmd.scene, parseSets(cmd.sets))).hasPass("kd_multiple");

@@ -37,10 +37,15 @@ struct BenchCmd {
   std::string scene, csv, plot, device;
   std::vector<std::string> sets;  // --set key=value overrides on the scene
   std::vector<int> wavelengths = {3, 8, 16, 32, 64};
+  std::vector<int> lights;  // --lights 1,2,3: shafts time vs light count, keeping the first k spotlights
+  std::vector<int> sea_maps;  // --sea-maps 32,64: sea second order, maps vs accumulation ms per map size
   int repeat = 5;
   bool limits = false;
 };
 int cmdBench(const BenchCmd& cmd);
+// The --sea-maps mode of bench (host/cli/bench_sea.cpp).
+class Device;
+int benchSeaSecond(Device& device, const BenchCmd& cmd, const std::vector<Override>& overrides);
 
 struct ReferenceCmd {
   std::string scene, out, device;

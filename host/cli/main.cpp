@@ -6,6 +6,7 @@
 
 #include "cli/commands.h"
 #include "cli/ocean_command.h"
+#include "cli/seashore_study_command.h"
 #include "cli/underwater_study_command.h"
 
 int main(int argc, char** argv) {
@@ -63,6 +64,8 @@ int main(int argc, char** argv) {
   auto* bench = app.add_subcommand("bench", "Throughput by wavelength count; device limits");
   bench->add_option("--scene", bench_cmd.scene, "Scene file")->check(CLI::ExistingFile);
   bench->add_option("--wavelengths", bench_cmd.wavelengths, "Band counts, e.g. 3,8,16")->delimiter(',');
+  bench->add_option("--lights", bench_cmd.lights, "Spotlight counts (the scene's first k), e.g. 1,2,3,4,5")->delimiter(',');
+  bench->add_option("--sea-maps", bench_cmd.sea_maps, "Sea second order: maps vs accumulation ms per map size, e.g. 32,64")->delimiter(',');
   bench->add_option("--repeat", bench_cmd.repeat, "Timed repetitions per setting (median reported)");
   bench->add_option("--csv", bench_cmd.csv, "CSV output");
   bench->add_option("--plot", bench_cmd.plot, "SVG plot output");
@@ -110,6 +113,18 @@ int main(int argc, char** argv) {
   study->add_option("--device", study_cmd.device, "Device selector");
   study->add_option("--set", study_cmd.sets, "Override a scene key: key=value (repeatable)");
 
+  seasim::SeashoreStudyCmd shore_cmd;
+  auto* shore = app.add_subcommand(
+      "seashore-study", "000 §5.4/§6: second-order scattering vs floor depth z_Q over a height-field bottom");
+  shore->add_option("scene", shore_cmd.scene, "A height-field scene (scenes/seashore.toml)")->required()->check(CLI::ExistingFile);
+  shore->add_option("--width", shore_cmd.width, "Image width");
+  shore->add_option("--height", shore_cmd.height, "Image height");
+  shore->add_option("--edges", shore_cmd.edges, "z_Q bin edges, m")->delimiter(',');
+  shore->add_option("--csv", shore_cmd.csv, "CSV output");
+  shore->add_option("--plot", shore_cmd.plot, "SVG plot output");
+  shore->add_option("--device", shore_cmd.device, "Device selector");
+  shore->add_option("--set", shore_cmd.sets, "Override a scene key: key=value (repeatable)");
+
   std::string preview_scene, preview_device;
   auto* preview = app.add_subcommand("preview", "Live GLFW preview window");
   preview->add_option("scene", preview_scene, "Scene file");
@@ -128,6 +143,7 @@ int main(int argc, char** argv) {
     if (*reference) return seasim::cmdReference(ref_cmd);
     if (*ocean) return seasim::cmdOcean(ocean_cmd);
     if (*study) return seasim::cmdUnderwaterStudy(study_cmd);
+    if (*shore) return seasim::cmdSeashoreStudy(shore_cmd);
     if (*preview) return seasim::cmdPreview(preview_scene, preview_device);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "seasim: error: %s\n", e.what());

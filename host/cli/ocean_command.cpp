@@ -14,6 +14,7 @@
 #include "io/svg_plot.h"
 #include "ocean/ocean_cpu.h"
 #include "passes/caustics_pass.h"
+#include "passes/sea_heightfield.h"
 #include "passes/ocean_pass.h"
 #include "scene/scene_parser.h"
 #include "util/error.h"
@@ -143,6 +144,13 @@ int cmdOcean(const OceanCmd& cmd) {
     caustic_ms.push_back(caustics.run(d));
     caustic_maps.push_back(caustics.readMap());
   }
+  // A height-field bottom (000 §5.4) gets its own map over the floor's square (004 §5.2.1 onto it).
+  std::vector<float> floor_map;
+  double floor_ms = 0;
+  if (scene.bottom.type == BottomDesc::Type::HeightField) {
+    floor_ms = caustics.runFloor(loadHeightField(scene.bottom));
+    floor_map = caustics.readFloorMap();
+  }
 
   writeExr((out / "height.exr").string(), mapImage(n, height, 1, {0}, {"Y"}));
   writeExr((out / "slope.exr").string(), mapImage(n, slope, 2, {0, 1}, {"dhdx", "dhdz"}));
@@ -167,6 +175,8 @@ int cmdOcean(const OceanCmd& cmd) {
     header.push_back("pdf_" + label + "m");
     plot.series.push_back({"depth " + label + " m", ratios, pdfs.back()});
   }
+  if (!floor_map.empty())
+    writeExr((out / "caustics_floor.exr").string(), mapImage(m, floor_map, 1, {0}, {"Y"}));
   if (!pdfs.empty()) {
     CsvWriter table(header);
     for (int b = 0; b < bins; ++b) {
@@ -182,6 +192,7 @@ int cmdOcean(const OceanCmd& cmd) {
               100.0 * folded / height.size(), ocean_ms);
   for (size_t k = 0; k < caustic_ms.size(); ++k)
     std::printf("caustics at %g m: %.2f ms\n", cmd.caustic_depths[k], caustic_ms[k]);
+  if (!floor_map.empty()) std::printf("caustics on the height-field floor: %.2f ms\n", floor_ms);
   std::printf("wrote maps to %s\n", out.c_str());
   return 0;
 }

@@ -23,7 +23,8 @@ struct OceanCmd {
 // Maps mode writes into out_dir: height.exr (Y, m), slope.exr (dhdx, dhdz), displacement.exr
 // (R,G,B = λDx, h, λDz, m), normal.exr (R,G,B = nx, ny, nz), folding.exr (J, Jminus, Jplus, ex, ez),
 // caustics_<d>m.exr (Y: irradiance / sun irradiance on a horizontal surface), caustic_pdf.csv and
-// caustic_pdf.svg (PDF of I/<I> per depth). Bench mode writes bench_ocean.csv and bench_ocean.svg.
+// caustic_pdf.svg (PDF of I/<I> per depth); with a height-field bottom also caustics_floor.exr (the
+// irradiance on the floor over its square, CausticsPass::runFloor). Bench mode writes bench_ocean.csv and bench_ocean.svg.
 // Returns 0; throws InputError/RuntimeError/DeviceError (main prints them).
 int cmdOcean(const OceanCmd& cmd);
 

@@ -29,6 +29,7 @@ CausticsPass::CausticsPass(Device& device, OceanPass& ocean, const CausticsConfi
   try {
     const BuiltProgram& built = device.program("caustics.cl", {});
     splat_ = cl::Kernel(built.program, "caustics_splat");
+    splat_floor_ = cl::Kernel(built.program, "caustics_splat_floor");
     params_ = cl::Buffer(device.context(), CL_MEM_READ_ONLY, sizeof(CausticsParams));
     map_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * map_size_ * map_size_);
     splat_.setArg(0, params_);
@@ -45,21 +46,30 @@ double CausticsPass::run(double plane_depth) {
   return run();
 }
 
-double CausticsPass::run() {
-  const auto start = std::chrono::steady_clock::now();
+namespace {
+
+CausticsParams makeParams(const CausticsConfig& config, const OceanPass& ocean, int map_size) {
   CausticsParams p{};
-  const double sz = config_.sun_zenith, sa = config_.sun_azimuth;
+  const double sz = config.sun_zenith, sa = config.sun_azimuth;
   p.sun_dir[0] = static_cast<float>(std::sin(sz) * std::cos(sa));
   p.sun_dir[1] = static_cast<float>(std::cos(sz));
   p.sun_dir[2] = static_cast<float>(std::sin(sz) * std::sin(sa));
-  p.patch_size = static_cast<float>(ocean_.patchSize());
-  p.plane_depth = static_cast<float>(config_.plane_depth);
-  p.ior = static_cast<float>(config_.ior);
-  p.attenuation = static_cast<float>(config_.attenuation);
-  p.choppiness = static_cast<float>(ocean_.config().choppiness);
-  p.n = ocean_.n();
-  p.map_size = map_size_;
-  p.supersample = config_.supersample;
+  p.patch_size = static_cast<float>(ocean.patchSize());
+  p.plane_depth = static_cast<float>(config.plane_depth);
+  p.ior = static_cast<float>(config.ior);
+  p.attenuation = static_cast<float>(config.attenuation);
+  p.choppiness = static_cast<float>(ocean.config().choppiness);
+  p.n = ocean.n();
+  p.map_size = map_size;
+  p.supersample = config.supersample;
+  return p;
+}
+
+}  // namespace
+
+double CausticsPass::run() {
+  const auto start = std::chrono::steady_clock::now();
+  const CausticsParams p = makeParams(config_, ocean_, map_size_);
   try {
     cl::CommandQueue& q = device_.queue();
     q.enqueueWriteBuffer(params_, CL_FALSE, 0, sizeof p, &p);
@@ -74,6 +84,53 @@ double CausticsPass::run() {
     throw DeviceError(std::string("caustics pass: ") + e.what() + " " + clErrorName(e.err()));
   }
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+double CausticsPass::runFloor(const HeightField& field) {
+  const auto start = std::chrono::steady_clock::now();
+  const CausticsParams p = makeParams(config_, ocean_, map_size_);
+  const double L = ocean_.patchSize(), E = field.params.extent;
+  // Refracted sunlight drifts at most depth · tan θt (< depth for water) sideways before it lands.
+  const double margin = static_cast<double>(field.params.max_depth) + L / ocean_.n();
+  const double origin = -0.5 * E - margin;
+  const int tiles = static_cast<int>(std::ceil((E + 2 * margin) / L));
+  const size_t rays = static_cast<size_t>(ocean_.n()) * static_cast<size_t>(config_.supersample) * tiles;
+  if (rays > 65536) throw RuntimeError("caustics: the floor (" + std::to_string(E) + " m) needs " + std::to_string(rays) +
+                                       " rays per side at this surface resolution; lower the ocean grid or supersample");
+  try {
+    cl::CommandQueue& q = device_.queue();
+    const HeightFieldBuffers hf = uploadHeightField(device_, field);
+    floor_map_ = cl::Buffer(device_.context(), CL_MEM_READ_WRITE, sizeof(float) * map_size_ * map_size_);
+    q.enqueueWriteBuffer(params_, CL_FALSE, 0, sizeof p, &p);
+    q.enqueueFillBuffer(floor_map_, 0.0f, 0, sizeof(float) * map_size_ * map_size_);
+    if (p.sun_dir[1] > 1e-6f) {
+      cl_uint arg = 0;
+      splat_floor_.setArg(arg++, params_);
+      splat_floor_.setArg(arg++, ocean_.fields());
+      splat_floor_.setArg(arg++, hf.params);
+      splat_floor_.setArg(arg++, hf.depth);
+      splat_floor_.setArg(arg++, tiles);
+      splat_floor_.setArg(arg++, static_cast<float>(origin));
+      splat_floor_.setArg(arg++, static_cast<float>(origin));
+      splat_floor_.setArg(arg++, floor_map_);
+      q.enqueueNDRangeKernel(splat_floor_, cl::NullRange, cl::NDRange(rays, rays));
+    }
+    q.finish();
+  } catch (const cl::Error& e) {
+    throw DeviceError(std::string("caustics pass (floor): ") + e.what() + " " + clErrorName(e.err()));
+  }
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+std::vector<float> CausticsPass::readFloorMap() {
+  if (!floor_map_()) throw RuntimeError("caustics: readFloorMap before runFloor");
+  std::vector<float> out(static_cast<size_t>(map_size_) * map_size_);
+  try {
+    device_.queue().enqueueReadBuffer(floor_map_, CL_TRUE, 0, sizeof(float) * out.size(), out.data());
+  } catch (const cl::Error& e) {
+    throw DeviceError(std::string("caustics read-back (floor): ") + e.what() + " " + clErrorName(e.err()));
+  }
+  return out;
 }
 
 std::vector<float> CausticsPass::readMap() {

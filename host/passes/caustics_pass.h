@@ -9,6 +9,7 @@
 
 #include "device/device.h"
 #include "passes/ocean_pass.h"
+#include "passes/sea_heightfield.h"
 
 namespace seasim {
 
@@ -36,6 +37,14 @@ class CausticsPass {
   double patchSize() const { return ocean_.patchSize(); }
   cl::Buffer& map() { return map_; }  // M² floats (stored as bits in int words), row = z
   std::vector<float> readMap();
+
+  // The splat onto a height-field floor instead of the plane (caustics_splat_floor in caustics.cl):
+  // an M x M map over the floor's square [-E/2, E/2]² (E = field.params.extent), M = mapSize(): the
+  // irradiance on the floor itself over the sun's on a horizontal surface above water (a level floor
+  // gives the plane's map). The ocean tiles over the square plus a margin of the deepest
+  // node's depth on every side. Waits; returns wall ms. Read with readFloorMap().
+  double runFloor(const HeightField& field);
+  std::vector<float> readFloorMap();
   const CausticsConfig& config() const { return config_; }
 
  private:
@@ -43,8 +52,8 @@ class CausticsPass {
   OceanPass& ocean_;
   CausticsConfig config_;
   int map_size_;
-  cl::Kernel splat_;
-  cl::Buffer params_, map_;
+  cl::Kernel splat_, splat_floor_;
+  cl::Buffer params_, map_, floor_map_;
 };
 
 // Probability density of I/<I> over the map's texels (004 §5.2.1, Figure 29): `bins` equal bins on

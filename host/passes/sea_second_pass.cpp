@@ -5,9 +5,13 @@
 #include <cstddef>
 #include <vector>
 
+#include "device/kernel_source.h"
 #include "math/kernel_math.h"
+#include "passes/sea_heightfield.h"
+#include "passes/sea_auto.h"
 #include "spectral/jerlov.h"
 #include "util/error.h"
+#include "util/hash.h"
 
 extern "C" {
 #include "common/sea_params.h"
@@ -56,13 +60,15 @@ SeaSecondPass::Config SeaSecondPass::configFromScene(const Scene& scene) {
   Config c;
   c.n_z = knob(scene, "sea_nz", 8);
   splitDirections(knob(scene, "sea_nd", 512), &c.n_theta, &c.n_phi);
-  c.map_size = knob(scene, "sea_map_size", 32);
+  // 000 §6.1: 32 x 32 maps for a flat bottom, 64 x 64 over a height field (§5.4).
+  c.map_size = knob(scene, "sea_map_size", scene.bottom.type == BottomDesc::Type::HeightField ? 64 : 32);
   return c;
 }
 
 SeaSecondPass::SeaSecondPass(Device& device, const Scene& scene, const PassPlan& plan, const WavelengthGrid& grid,
                              const Sensor& sensor, cl::Buffer& rgb, cl::Buffer* spectral)
     : device_(device), config_(configFromScene(scene)), width_(scene.camera.width), height_(scene.camera.height) {
+  if (seaSecondWantsAuto(scene)) resolveSeaSecondAuto(device, scene, &config_);  // 000 §6.1 per scene (sea_auto.h)
   namespace k = kmath_d;
   const CameraDesc& cam = scene.camera;
   SeaSecondParams p{};
@@ -103,6 +109,17 @@ SeaSecondPass::SeaSecondPass(Device& device, const Scene& scene, const PassPlan&
   p.vsf_size = config_.vsf_size;
 
   const BandOptics water = resolveWater(scene.water, grid);
+  // 000 §5.4: over a height field the planes span the water down to the deepest node, and the
+  // depth tables' nodes are the plane-cell walls of the clearest band (its planes reach deepest).
+  const bool height_field = scene.bottom.type == BottomDesc::Type::HeightField;
+  HeightField floor;
+  if (height_field) {
+    floor = loadHeightField(scene.bottom);
+    p.bottom_depth = floor.params.max_depth;
+    double c_min = 1e30;
+    for (double c : water.c) c_min = std::min(c_min, c);
+    p.table_c = static_cast<float>(std::max(c_min, 1e-6));
+  }
   const std::vector<double> sun_e = sunIrradianceBands(grid, scene.sun.irradiance);
   std::vector<SeaBand> bands(grid.centers_nm.size());
   for (size_t i = 0; i < bands.size(); ++i) {
@@ -145,6 +162,33 @@ SeaSecondPass::SeaSecondPass(Device& device, const Scene& scene, const PassPlan&
     maps_kernel_.setArg(3, vsf_);
     maps_kernel_.setArg(4, radiance_);
     maps_kernel_.setArg(5, maps_);
+    if (height_field) {
+      const HeightFieldBuffers hf = uploadHeightField(device, floor);
+      hf_params_ = hf.params;
+      hf_depth_ = hf.depth;
+      const size_t table_count = (static_cast<size_t>(config_.n_z) + 1) * M * M * n_d;
+      table_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * table_count);
+      table_kernel_ = cl::Kernel(built.program, "sea_second_depth_table");
+      table_kernel_.setArg(0, params_);
+      table_kernel_.setArg(1, hf_params_);
+      table_kernel_.setArg(2, hf_depth_);
+      table_kernel_.setArg(3, table_);
+      maps_kernel_.setArg(6, table_);
+      const cl_uint args = accumulate_kernel_.getInfo<CL_KERNEL_NUM_ARGS>();
+      accumulate_kernel_.setArg(args - 2, hf_params_);
+      accumulate_kernel_.setArg(args - 1, hf_depth_);
+      // The tables depend on the floor, the camera's map rays, the directions and the table nodes
+      // (all in p), and on the kernel that computes them: computed once, cached on disk by that key.
+      table_key_ = fnv1a64(&p, sizeof p);
+      table_key_ = fnv1a64(&floor.params, sizeof floor.params, table_key_);
+      table_key_ = fnv1a64(floor.depth.data(), sizeof(float) * floor.depth.size(), table_key_);
+      table_key_ = fnv1a64(assembleKernelSource(plan.kernel_file).text, table_key_);
+      table_key_ = fnv1a64(device.info().name + device.info().driver, table_key_);
+      if (const auto cached = loadDepthTable(table_key_, table_count)) {
+        device.queue().enqueueWriteBuffer(table_, CL_TRUE, 0, sizeof(float) * table_count, cached->data());
+        table_ready_ = true;
+      }
+    }
     accumulate_kernel_.setArg(0, params_);
     accumulate_kernel_.setArg(1, bands_);
     accumulate_kernel_.setArg(2, maps_);
@@ -165,6 +209,17 @@ double SeaSecondPass::run() {
   const size_t M = static_cast<size_t>(config_.map_size);
   try {
     cl::CommandQueue& q = device_.queue();  // in order: each kernel sees the previous one's output
+    if (table_kernel_() && !table_ready_) {  // 000 §5.4's depth tables, once per scene
+      cl::Event table_done;
+      q.enqueueNDRangeKernel(table_kernel_, cl::NullRange, cl::NDRange(M, M, config_.n_z + 1), cl::NullRange, nullptr,
+                             &table_done);
+      table_done.wait();
+      depth_table_ms_ = eventMs(table_done);
+      std::vector<float> table((static_cast<size_t>(config_.n_z) + 1) * M * M * n_d);
+      q.enqueueReadBuffer(table_, CL_TRUE, 0, sizeof(float) * table.size(), table.data());
+      storeDepthTable(table_key_, table);
+      table_ready_ = true;
+    }
     q.enqueueNDRangeKernel(vsf_kernel_, cl::NullRange, cl::NDRange(config_.vsf_size), cl::NullRange, nullptr,
                            &vsf_done);
     q.enqueueNDRangeKernel(radiance_kernel_, cl::NullRange, cl::NDRange(n_d, config_.n_z), cl::NullRange, nullptr,

@@ -5,6 +5,8 @@
 #pragma once
 #include <CL/opencl.hpp>
 
+#include <cstdint>
+
 #include "device/device.h"
 #include "plan/plan.h"
 #include "scene/scene.h"
@@ -36,6 +38,9 @@ class SeaSecondPass {
   double run();
   // Of the last run(): ms for the maps (VSF, radiance, scattering maps) and for the accumulation.
   double mapsMs() const { return maps_ms_; }
+  // ms of the height-field depth tables (000 §5.4), 0 when there are none or they came from the
+  // on-disk cache; computed by the first run() only and not included in its return value.
+  double depthTableMs() const { return depth_table_ms_; }
   double accumulateMs() const { return accumulate_ms_; }
   const Config& config() const { return config_; }
 
@@ -44,8 +49,13 @@ class SeaSecondPass {
   Config config_;
   cl::Kernel vsf_kernel_, radiance_kernel_, maps_kernel_, accumulate_kernel_;
   cl::Buffer params_, bands_, vsf_, dirs_, radiance_, plane_w_, maps_;
+  // Height-field floor (SEASIM_BOTTOM_HEIGHTFIELD): the floor and the depth tables of 000 §5.4.
+  cl::Kernel table_kernel_;
+  cl::Buffer hf_params_, hf_depth_, table_;
+  uint64_t table_key_ = 0;
+  bool table_ready_ = false;
   int width_, height_;
-  double maps_ms_ = 0, accumulate_ms_ = 0;
+  double maps_ms_ = 0, accumulate_ms_ = 0, depth_table_ms_ = 0;
 };
 
 }  // namespace seasim

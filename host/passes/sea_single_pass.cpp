@@ -5,6 +5,8 @@
 #include <cstddef>
 
 #include "math/kernel_math.h"
+#include "passes/sea_heightfield.h"
+#include "passes/sea_sky.h"
 #include "spectral/jerlov.h"
 #include "util/error.h"
 
@@ -15,23 +17,29 @@ extern "C" {
 namespace seasim {
 
 // The kernel reads these structs with OpenCL C layout; float/int are 4 bytes on both sides.
-static_assert(sizeof(SeaParams) == 5 * 16 + 8 * 4 + 4 * 4, "SeaParams layout changed: update sea_params.h users");
+static_assert(sizeof(SeaParams) == 5 * 16 + 8 * 4 + 4 * 4 + 8 * 4, "SeaParams layout changed: update sea_params.h users");
 static_assert(offsetof(SeaParams, tan_half_fov_y) == 80);
 static_assert(offsetof(SeaParams, width) == 112);
+static_assert(offsetof(SeaParams, ocean_patch) == 128);
+static_assert(offsetof(SeaParams, sky_scale) == 144);
+static_assert(offsetof(SeaBand, sky_w_r) == 36);
 static_assert(sizeof(SeaBand) == 48, "SeaBand must stay 48 bytes");
 
 namespace {
 
 namespace kd = kmath_d;
 
-// One band's LUT of 000 eq. 5 over theta_jo (kernels/sea_single.cl): the factors except beta and T_o,
-// in double, at theta_jo = j/(n-1) * pi/2. e_h: sun irradiance on the horizontal surface.
+// One band's LUT of 000 eq. 5 (kernels/sea_single.cl): the factors except beta and T_o, in double, at
+// angle j/(n-1) * pi/2: theta_jo on a flat sea, theta_ji (the refracted view) with waves.
+// e_h: sun irradiance on the horizontal surface.
 std::vector<double> singleScatteringLut(int n, double e_h, double t_in, double c, double albedo, double c_f,
-                                        double cos_io, double z_d, double ior) {
+                                        double cos_io, double z_d, double ior, bool over_theta_ji) {
   std::vector<double> lut(n);
   for (int j = 0; j < n; ++j) {
-    const double theta_jo = n > 1 ? j * (M_PI / 2) / (n - 1) : 0.0;
-    const double cos_ji = std::max(std::sqrt(std::max(kd::snell_cos_t2(std::cos(theta_jo), 1.0 / ior), 0.0)), 1e-4);
+    const double angle = n > 1 ? j * (M_PI / 2) / (n - 1) : 0.0;
+    const double cos_ji = over_theta_ji
+                              ? std::max(std::cos(angle), 1e-4)
+                              : std::max(std::sqrt(std::max(kd::snell_cos_t2(std::cos(angle), 1.0 / ior), 0.0)), 1e-4);
     lut[j] = kd::sea_single_scattering(e_h, t_in, 1.0, 1.0, c, albedo, c_f, cos_io, cos_ji, z_d);
   }
   return lut;
@@ -56,8 +64,14 @@ void set4(float out[4], Vec3 v) {
 }  // namespace
 
 SeaSinglePass::SeaSinglePass(Device& device, const Scene& scene, const PassPlan& plan,
-                             const WavelengthGrid& grid, const Sensor& sensor)
+                             const WavelengthGrid& grid, const Sensor& sensor, OceanPass* ocean)
     : device_(device), width_(scene.camera.width), height_(scene.camera.height) {
+  const bool waves =
+      std::find(plan.defines.begin(), plan.defines.end(), std::string("SEASIM_HAS_WAVES=1")) != plan.defines.end();
+  if (waves && !ocean) {
+    throw RuntimeError("sea_single pass: the plan has FFT waves (SEASIM_HAS_WAVES=1) but no ocean normal map was "
+                       "given; run the ocean_fft pass first (passes/render_frame.cpp does)");
+  }
   const CameraDesc& cam = scene.camera;
   SeaParams p{};
   Vec3 forward = normalize(cam.look_at - cam.position);
@@ -81,6 +95,13 @@ SeaSinglePass::SeaSinglePass(Device& device, const Scene& scene, const PassPlan&
   p.width = cam.width;
   p.height = cam.height;
   p.band_count = static_cast<int>(grid.centers_nm.size());
+  p.ocean_patch = waves ? static_cast<float>(ocean->patchSize()) : 1.0f;
+  p.ocean_n = waves ? ocean->n() : 1;
+  const double sun_dir[3] = {sun.x, sun.y, sun.z};
+  const SeaSky sky = makeSeaSky(scene.sky, sun_dir, grid);
+  p.sky_width = sky.width;
+  p.sky_height = sky.height;
+  p.sky_scale = static_cast<float>(sky.scale);
 
   const BandOptics water = resolveWater(scene.water, grid);
   const std::vector<double> sun_e = sunIrradianceBands(grid, scene.sun.irradiance);
@@ -97,9 +118,12 @@ SeaSinglePass::SeaSinglePass(Device& device, const Scene& scene, const PassPlan&
     b.w_r = static_cast<float>(sensor.to_r[i]);
     b.w_g = static_cast<float>(sensor.to_g[i]);
     b.w_b = static_cast<float>(sensor.to_b[i]);
+    b.sky_w_r = static_cast<float>(sky.band_weights[i][0]);
+    b.sky_w_g = static_cast<float>(sky.band_weights[i][1]);
+    b.sky_w_b = static_cast<float>(sky.band_weights[i][2]);
   }
 
-  // The LUT over theta_jo of 000 eq. 5 (quality.sea_lut_size). The parser takes positive sizes or
+  // The LUT over theta_jo (theta_ji with waves) of 000 eq. 5 (quality.sea_lut_size). The parser takes positive sizes or
   // "auto": auto doubles the size from 16 until the interpolation is within 1e-4 (relative to the
   // band's largest entry) of the exact factors everywhere; size 1 asks for the exact evaluation
   // (SEASIM_SEA_LUT=0), as a one-entry table could not follow theta_jo at all.
@@ -107,8 +131,13 @@ SeaSinglePass::SeaSinglePass(Device& device, const Scene& scene, const PassPlan&
   int lut_size = 1;
   {
     const auto knob = scene.quality.find("sea_lut_size");
-    const bool automatic = knob != scene.quality.end() && knob->second.automatic;
-    lut_size = automatic ? 16 : (knob != scene.quality.end() ? static_cast<int>(knob->second.value) : 64);
+    // 000 §5.4: over a height-field bottom z_Q changes from pixel to pixel, so eq. 5 is evaluated
+    // exactly (a table over the angle alone cannot hold it).
+    const bool height_field = scene.bottom.type == BottomDesc::Type::HeightField;
+    const bool automatic = !height_field && knob != scene.quality.end() && knob->second.automatic;
+    lut_size = height_field ? 1
+               : automatic  ? 16
+                            : (knob != scene.quality.end() ? static_cast<int>(knob->second.value) : 64);
     const kd::real3 sun_d{sun.x, sun.y, sun.z};
     double t_in = 0, cos_io = 1, e_h = 0;
     if (sun.y > 0) {
@@ -124,7 +153,8 @@ SeaSinglePass::SeaSinglePass(Device& device, const Scene& scene, const PassPlan&
       std::vector<std::vector<double>> per_band;
       for (size_t i = 0; i < bands.size(); ++i) {
         const double c = water.c[i], albedo = c > 0 ? water.b[i] / c : 0.0;
-        per_band.push_back(singleScatteringLut(n, sun_e[i] * e_h, t_in, c, albedo, c_f, cos_io, z_d, scene.water.ior));
+        per_band.push_back(
+            singleScatteringLut(n, sun_e[i] * e_h, t_in, c, albedo, c_f, cos_io, z_d, scene.water.ior, waves));
       }
       return per_band;
     };
@@ -161,15 +191,32 @@ SeaSinglePass::SeaSinglePass(Device& device, const Scene& scene, const PassPlan&
                         bands.data());
     lut_ = cl::Buffer(device.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(float) * lut_values.size(),
                       lut_values.data());
+    // One dummy float4 stands in for a map the kernel's defines do not read.
+    std::vector<float> dummy(4, 0.0f);
+    normals_ = waves ? ocean->normal()
+                     : cl::Buffer(device.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(float) * 4, dummy.data());
+    std::vector<float> sky_texels(sky.texels.begin(), sky.texels.end());
+    sky_ = cl::Buffer(device.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(float) * sky_texels.size(),
+                      sky_texels.data());
     rgb_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE,  // sea_second adds into it
                        sizeof(float) * 3 * pixels);
     kernel_.setArg(0, params_);
     kernel_.setArg(1, bands_);
     kernel_.setArg(2, lut_);
-    kernel_.setArg(3, rgb_);
+    kernel_.setArg(3, normals_);
+    kernel_.setArg(4, sky_);
+    kernel_.setArg(5, rgb_);
     if (scene.spectral.spectral_exr) {
       spectral_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * pixels * bands.size());
-      kernel_.setArg(4, spectral_);
+      kernel_.setArg(6, spectral_);
+    }
+    if (scene.bottom.type == BottomDesc::Type::HeightField) {  // 000 §5.4: the kernel's last two arguments
+      const HeightFieldBuffers hf = uploadHeightField(device, loadHeightField(scene.bottom));
+      hf_params_ = hf.params;
+      hf_depth_ = hf.depth;
+      const cl_uint args = kernel_.getInfo<CL_KERNEL_NUM_ARGS>();
+      kernel_.setArg(args - 2, hf_params_);
+      kernel_.setArg(args - 1, hf_depth_);
     }
   } catch (const cl::Error& e) {
     throw DeviceError(std::string("sea_single pass set-up: ") + e.what() + " " + clErrorName(e.err()));

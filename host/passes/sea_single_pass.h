@@ -1,11 +1,14 @@
 // sea_single_pass.h — host side of kernels/sea_single.cl: builds SeaParams/SeaBand from the scene,
-// enqueues the kernel, reports its time.
+// enqueues the kernel, reports its time. With FFT waves (SEASIM_HAS_WAVES=1 in the plan) it reads the
+// normal map of an OceanPass that has already run (render_frame runs it first); with an analytic or
+// image sky it uploads the sky of host/passes/sea_sky.h.
 #pragma once
 #include <CL/opencl.hpp>
 
 #include <vector>
 
 #include "device/device.h"
+#include "passes/ocean_pass.h"
 #include "plan/plan.h"
 #include "scene/scene.h"
 #include "spectral/sensor.h"
@@ -16,9 +19,11 @@ namespace seasim {
 class SeaSinglePass {
  public:
   // Output buffers are allocated here: rgb (3 floats per pixel) and, with spectral output,
-  // band_count floats per pixel.
+  // band_count floats per pixel. ocean: the run OceanPass whose normal() the kernel reads; required
+  // when the plan defines SEASIM_HAS_WAVES=1 (RuntimeError otherwise), ignored without waves. The
+  // kernel reads the buffer when run() is called, so the ocean must outlive run().
   SeaSinglePass(Device& device, const Scene& scene, const PassPlan& plan, const WavelengthGrid& grid,
-                const Sensor& sensor);
+                const Sensor& sensor, OceanPass* ocean = nullptr);
   // Enqueues the kernel; returns its profiled time in ms (waits for it).
   double run();
   cl::Buffer& rgb() { return rgb_; }
@@ -27,7 +32,8 @@ class SeaSinglePass {
  private:
   Device& device_;
   cl::Kernel kernel_;
-  cl::Buffer params_, bands_, lut_, rgb_, spectral_;
+  cl::Buffer params_, bands_, lut_, normals_, sky_, rgb_, spectral_;
+  cl::Buffer hf_params_, hf_depth_;  // height-field bottom (000 §5.4), SEASIM_BOTTOM_HEIGHTFIELD
   int width_, height_;
 };
 

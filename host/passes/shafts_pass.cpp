@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdio>
 
 #include "math/kernel_math.h"
+#include "passes/shafts_auto.h"
 #include "util/error.h"
 
 extern "C" {
@@ -54,6 +56,42 @@ ShaftsPass::Config ShaftsPass::configFromScene(const Scene& scene) {
   return c;
 }
 
+ShaftsPass::Config ShaftsPass::configFor(Device& device, const Scene& scene, const PassPlan& plan) {
+  Config c = configFromScene(scene);
+  auto automatic = [&](const char* name) {
+    const auto it = scene.quality.find(name);
+    return it != scene.quality.end() && it->second.automatic;
+  };
+  if (!automatic("shafts_planes") && !automatic("shafts_subplanes")) return c;
+  ShaftsAutoOptions options;
+  const auto budget = scene.quality.find("shafts_error_budget");
+  if (budget != scene.quality.end()) options.budget_levels = budget->second.value;
+  const ShaftsAutoResult r = chooseShaftsQuality(device, scene, plan, options);
+  c.planes = r.planes;
+  c.subplanes = r.subplanes;
+  if (!r.from_cache) {
+    std::fprintf(stderr,
+                 "shafts: auto quality n = %d, m = %d: RMS %.3f levels vs the ray-marched reference at %dx%d "
+                 "(budget %g); %zu settings searched in %.1f s%s%s\n",
+                 r.planes, r.subplanes, r.rmse_8bit, r.search_width, r.search_height, r.budget_levels,
+                 r.candidates.size(), r.search_ms * 1e-3, r.cache_file.empty() ? "" : ", cached in ",
+                 r.cache_file.c_str());
+  }
+  if (!r.met_budget) {
+    std::fprintf(stderr,
+                 "shafts: warning: no (n, m) reaches RMS %g levels on '%s'; using the most accurate, n = %d, m = %d "
+                 "(%.3f levels). The floor comes from quality.shadow_map_size / shafts_table_size, or raise "
+                 "quality.shafts_error_budget\n",
+                 r.budget_levels, scene.name.c_str(), r.planes, r.subplanes, r.rmse_8bit);
+  }
+  return c;
+}
+
+ShaftsRange ShaftsPass::rangeFor(const Scene& scene, const Config& config) {
+  if (config.has_range) return config.range;
+  return config.clip_to_cones ? shaftsClipToCones(scene, shaftsRange(scene)) : shaftsRange(scene);
+}
+
 ShaftsPass::ShaftsPass(Device& device, const Scene& scene, const PassPlan& plan, const Config& config)
     : device_(device),
       width_(scene.camera.width),
@@ -64,7 +102,7 @@ ShaftsPass::ShaftsPass(Device& device, const Scene& scene, const PassPlan& plan,
   if (config.planes < 1 || config.subplanes < 1 || config.shadow_map_size < 1) {
     throw RuntimeError("shafts: planes, sub-planes and shadow-map size must be at least 1");
   }
-  range_ = config.has_range ? config.range : shaftsRange(scene);
+  range_ = rangeFor(scene, config);
   const bool exact = hasDefine(plan, "SEASIM_SHAFTS_EXACT");
   const bool use_hg = hasDefine(plan, "SEASIM_SHAFTS_HG");
 

@@ -135,7 +135,12 @@ Plan makePlan(const Scene& scene) {
   }
   if (lights) {
     plan.passes.push_back({"shafts", "shafts.cl", shafts_defines, {"scene", "shadow_maps"}, {"rgb"},
-                           "spotlights in air", true, ""});
+                           std::string("spotlights in air") +
+                               ((scene.quality.count("shafts_planes") && scene.quality.at("shafts_planes").automatic) ||
+                                        (scene.quality.count("shafts_subplanes") && scene.quality.at("shafts_subplanes").automatic)
+                                    ? "; n, m \"auto\": the cheapest under quality.shafts_error_budget (searched once, cached)"
+                                    : ""),
+                           true, ""});
   }
   if (underwater) {
     std::vector<std::string> reads = {"gbuffer"};

@@ -5,6 +5,10 @@
 #include <cmath>
 
 #include "math/kernel_math.h"
+#include "ocean/ocean_cpu.h"
+#include "passes/sea_heightfield.h"
+#include "passes/sea_sky.h"
+#include "reference/sea_floor_reference.h"
 #include "spectral/jerlov.h"
 #include "spectral/sensor.h"
 #include "spectral/wavelength_grid.h"
@@ -17,10 +21,6 @@ namespace k = kmath_d;
 Image renderSeaReference(const Scene& scene, int steps) {
   if (!scene.water.present || scene.camera.position.y <= 0) {
     throw RuntimeError("the sea reference renders scenes seen from above the water only");
-  }
-  if (scene.surface.type != SurfaceDesc::Type::Flat || scene.bottom.type == BottomDesc::Type::HeightField ||
-      scene.sky.model != SkyDesc::Model::Uniform) {
-    throw RuntimeError("the sea reference models a flat surface, flat or no bottom and a uniform sky only");
   }
   if (steps < 1) throw RuntimeError("--steps must be at least 1");
   const WavelengthGrid grid = makeGrid(scene.spectral.count, scene.spectral.min_nm, scene.spectral.max_nm);
@@ -42,10 +42,44 @@ Image renderSeaReference(const Scene& scene, int steps) {
   const double sun_solid_angle = 2 * M_PI * (1 - cos_sun_radius);
   const double ior = scene.water.ior, g = scene.water.g;
   const bool bottom = scene.bottom.type == BottomDesc::Type::Flat;
+  // 000 §5.4: a height-field floor, met by a fine march (sea_floor_reference.h) independent of the
+  // kernels' cell walk, in steps of 1/64 of a cell.
+  const bool height_field = scene.bottom.type == BottomDesc::Type::HeightField;
+  HeightField floor;
+  double floor_step = 0;
+  if (height_field) {
+    floor = loadHeightField(scene.bottom);
+    floor_step = floor.params.extent / std::max(floor.params.nx, floor.params.ny) / 64.0;
+  }
 
-  auto sky = [&](size_t i, k::real3 d) {
-    double L = sky_l[i];
-    if (has_sun && k::dot(d, sun) >= cos_sun_radius) L += sun_e[i] / sun_solid_angle;
+  // FFT waves: the same ocean evaluated on the CPU in double (ocean_cpu.h), its normal map read as the
+  // kernel reads OceanPass's (common/sea_waves.h: mean-surface hit, bilinear, wrap-around).
+  const bool waves = scene.surface.type == SurfaceDesc::Type::Fft;
+  std::vector<double> normals;
+  OceanConfig ocean_config;
+  if (waves) {
+    ocean_config = oceanConfigFromSurface(scene.surface);
+    OceanCpu ocean(ocean_config, OceanCpu::Precision::Double);
+    ocean.run(scene.surface.time);
+    normals = ocean.normal();
+  }
+  const double sun_dir[3] = {sun.x, sun.y, sun.z};
+  const SeaSky sea_sky = makeSeaSky(scene.sky, sun_dir, grid);
+
+  // The sky's shape towards d (common/sky.h), then one band's radiance with the sun's disk.
+  auto shape = [&](k::real3 d) -> k::real3 {
+    if (sea_sky.model == 1) {
+      const double s = sea_sky.scale * k::sky_cie_clear_shape(d, sun);
+      return {s, s, s};
+    }
+    if (sea_sky.model == 2) return k::sky_latlong_rgb(sea_sky.texels.data(), sea_sky.width, sea_sky.height, d) * sea_sky.scale;
+    return {1, 1, 1};
+  };
+  auto sky = [&](size_t i, k::real3 s, k::real3 d) {
+    const auto& w = sea_sky.band_weights[i];
+    double L = sea_sky.model == 2 ? sky_l[i] * (w[0] * s.x + w[1] * s.y + w[2] * s.z)
+                                  : sea_sky.model == 1 ? sky_l[i] * s.x : sky_l[i];
+    if (has_sun && sun_solid_angle > 0 && k::dot(d, sun) >= cos_sun_radius) L += sun_e[i] / sun_solid_angle;
     return L;
   };
 
@@ -68,27 +102,50 @@ Image renderSeaReference(const Scene& scene, int steps) {
         rgb[2] += L * sensor.to_b[i];
       };
       if (d.y >= 0) {
-        for (size_t i = 0; i < bands; ++i) add(i, sky(i, d));
+        const k::real3 s = shape(d);
+        for (size_t i = 0; i < bands; ++i) add(i, sky(i, s, d));
       } else {
-        const k::real3 n{0, 1, 0};
-        const double R_view = k::fresnel_reflectance(-d.y, 1.0, ior);
-        k::real3 view_in_water{};
-        k::refract_dir(d, n, 1.0 / ior, &view_in_water);
-        const double cos_ji = std::max(-view_in_water.y, 1e-4);
+        k::real3 n{0, 1, 0};
+        if (waves) {
+          const double t_hit = k::sea_mean_surface_distance(cam.position.y, d);
+          n = k::sea_facing_normal(d, k::sea_wave_normal(normals.data(), ocean_config.grid, ocean_config.patch_size,
+                                                         cam.position.x + t_hit * d.x, cam.position.z + t_hit * d.z));
+        }
+        double R_view = 0;
+        k::real3 reflected{}, view_in_water{};
+        const double cos_ji = k::sea_view_interaction(d, n, ior, &R_view, &reflected, &view_in_water);
+        const k::real3 reflected_shape = shape(reflected);
+        const k::real3 flat_n{0, 1, 0};  // sunlight enters through the flat mean surface (000 §3)
         double t_in = 0, cos_io = 1, cos_alpha = 1, e_h = 0;
         if (has_sun && sun.y > 0) {
           t_in = 1 - k::fresnel_reflectance(sun.y, 1.0, ior);
           e_h = sun.y;
           k::real3 sun_in_water{};
-          k::refract_dir(-sun, n, 1.0 / ior, &sun_in_water);
+          k::refract_dir(-sun, flat_n, 1.0 / ior, &sun_in_water);
           cos_io = std::max(-sun_in_water.y, 1e-4);
           cos_alpha = k::dot(sun_in_water, -view_in_water);
         }
-        const k::real3 reflected = k::reflect_dir(d, n);
         const double phase = k::hg_phase(cos_alpha, g);
         const double c_f = k::hg_forward_fraction(g);
+        // The floor along the refracted view ray: z_Q and cos(gamma) (000 §5.4); flat: z_d, cos_io.
+        double z_floor = bottom ? scene.bottom.depth : -1.0, cos_gamma = cos_io;
+        if (height_field) {
+          const double t_p = cam.position.y / -d.y;  // P on the mean surface
+          const double o[3] = {cam.position.x + t_p * d.x, 0.0, cam.position.z + t_p * d.z};
+          const double v[3] = {view_in_water.x, view_in_water.y, view_in_water.z};
+          const double t_q = view_in_water.y < 0 ? fineMarchFloor(floor, o, v, 1e30, floor_step) : 0.0;
+          z_floor = std::max(-view_in_water.y, 0.0) * std::max(t_q, 0.0);
+          double nq[3];
+          floorNormalAt(floor, o[0] + t_q * v[0], o[2] + t_q * v[2], nq);
+          cos_gamma = 0;
+          if (e_h > 0) {
+            k::real3 sun_travel{};
+            k::refract_dir(-sun, flat_n, 1.0 / ior, &sun_travel);
+            cos_gamma = std::max(-(nq[0] * sun_travel.x + nq[1] * sun_travel.y + nq[2] * sun_travel.z), 0.0);
+          }
+        }
         for (size_t i = 0; i < bands; ++i) {
-          double L = scene.sea.reflection ? R_view * sky(i, reflected) : 0.0;
+          double L = scene.sea.reflection ? R_view * sky(i, reflected_shape, reflected) : 0.0;
           const double c = water.c[i], albedo = c > 0 ? water.b[i] / c : 0.0;
           const double kk = c * (1 - albedo * c_f);  // 000 eq. 5's effective attenuation
           if (scene.sea.single_scattering && e_h > 0) {
@@ -97,16 +154,17 @@ Image renderSeaReference(const Scene& scene, int steps) {
             const double sec_sum = 1 / cos_io + 1 / cos_ji;
             // Below 40 optical depths (down and back) the integrand is < e^-40 of its surface value.
             const double z_optical = 40.0 / std::max(kk * sec_sum, 1e-12);
-            const double z_end = bottom ? std::min(scene.bottom.depth, z_optical) : z_optical;
+            const double z_end = z_floor >= 0 ? std::min(z_floor, z_optical) : z_optical;
             const double dz = z_end / steps;
             double sum = 0;
             for (int s = 0; s < steps; ++s) sum += std::exp(-kk * (s + 0.5) * dz * sec_sum);
             const double beam = sun_e[i] * e_h * t_in / cos_io;
             L += beam * water.b[i] * phase * (1 - R_view) * sum * dz / cos_ji;
           }
-          if (bottom && e_h > 0) {
-            L += k::sea_bottom_reflection(sun_e[i] * e_h, t_in, 1 - R_view, scene.bottom.albedo.at(grid.centers_nm[i]),
-                                          c, scene.bottom.depth, cos_io, cos_ji);
+          if (z_floor >= 0 && e_h > 0) {  // cos_gamma = cos_io on a flat floor: eq. 9 as it stands
+            L += k::sea_bottom_reflection_tilted(sun_e[i] * e_h, t_in, 1 - R_view,
+                                                 scene.bottom.albedo.at(grid.centers_nm[i]), c, z_floor, cos_io,
+                                                 cos_ji, cos_gamma);
           }
           add(i, L);
         }

@@ -7,8 +7,11 @@
 
 namespace seasim {
 
-// `steps` quadrature intervals along each refracted view ray. Throws RuntimeError for scenes the
-// reference does not model (waves, height-field bottom, non-uniform skies).
+// `steps` quadrature intervals along each refracted view ray. FFT waves: the ocean from
+// host/ocean/ocean_cpu.h in double at surface.time, read as kernels/common/sea_waves.h describes
+// (mean-surface hit, local normal; sunlight through the flat mean surface); skies as
+// host/passes/sea_sky.h. A height-field bottom (000 §5.4): z_Q and the floor normal from a fine march of
+// the floor (reference/sea_floor_reference.h), not the kernels' cell walk.
 Image renderSeaReference(const Scene& scene, int steps);
 
 }  // namespace seasim

@@ -7,6 +7,8 @@
 #include <vector>
 
 #include "math/kernel_math.h"
+#include "passes/sea_heightfield.h"
+#include "reference/sea_floor_reference.h"
 #include "spectral/jerlov.h"
 #include "spectral/sensor.h"
 #include "spectral/wavelength_grid.h"
@@ -40,9 +42,8 @@ Image renderSeaSecondReference(const Scene& scene, const SeaSecondReferenceSetti
   if (!scene.water.present || scene.camera.position.y <= 0) {
     throw RuntimeError("the sea reference renders scenes seen from above the water only");
   }
-  if (scene.surface.type != SurfaceDesc::Type::Flat || scene.bottom.type == BottomDesc::Type::HeightField ||
-      scene.sky.model != SkyDesc::Model::Uniform) {
-    throw RuntimeError("the sea reference models a flat surface, flat or no bottom and a uniform sky only");
+  if (scene.surface.type != SurfaceDesc::Type::Flat || scene.sky.model != SkyDesc::Model::Uniform) {
+    throw RuntimeError("the sea reference models a flat surface and a uniform sky only");
   }
   if (settings.depth_steps < 1 || settings.angle_steps < 1) {
     throw RuntimeError("second-order reference: depth_steps and angle_steps must be at least 1");
@@ -54,6 +55,20 @@ Image renderSeaSecondReference(const Scene& scene, const SeaSecondReferenceSetti
   const size_t bands = grid.centers_nm.size();
   const double ior = scene.water.ior, g = scene.water.g;
   const bool bottom = scene.bottom.type == BottomDesc::Type::Flat;
+  // 000 §5.4: over a height field each pixel's view ray ends at its own z_Q (a fine march of the
+  // floor, reference/sea_floor_reference.h) and each sampling ray where it leaves the water (the
+  // floor, or the surface) — walked exactly (common/sea_bottom.h) from every quadrature node, no
+  // tables. The depth nodes are then geometric, shared by the bands: midpoints in the transmittance
+  // exp(-(1 + sec theta_io) c_min z) over [0, z_Q], c_min the clearest band's attenuation.
+  const bool height_field = scene.bottom.type == BottomDesc::Type::HeightField;
+  HeightField floor;
+  double floor_step = 0, c_min = 1e30;
+  if (height_field) {
+    floor = loadHeightField(scene.bottom);
+    floor_step = floor.params.extent / std::max(floor.params.nx, floor.params.ny) / 64.0;
+    for (double c : water.c) c_min = std::min(c_min, c);
+    c_min = std::max(c_min, 1e-6);
+  }
 
   const CameraDesc& cam = scene.camera;
   const Vec3 fwd = normalize(cam.look_at - cam.position);
@@ -110,7 +125,42 @@ Image renderSeaSecondReference(const Scene& scene, const SeaSecondReferenceSetti
       }
 
       double rgb[3] = {0, 0, 0};
-      for (size_t b = 0; b < bands; ++b) {
+      if (height_field) {
+        const double t_p = cam.position.y / -d.y;  // P on the surface
+        const double o[3] = {cam.position.x + t_p * d.x, 0.0, cam.position.z + t_p * d.z};
+        const double vv[3] = {view.x, view.y, view.z};
+        const double z_q = -view.y * std::max(fineMarchFloor(floor, o, vv, 1e30, floor_step), 0.0);
+        const double s_ref = 1 + 1 / cos_io, span = -std::expm1(-s_ref * c_min * z_q);
+        std::vector<double> sum(bands, 0.0), ends(nodes.size());
+        for (int kz = 0; kz < D && span > 0; ++kz) {
+          const double frac = (kz + 0.5) / D * span;
+          const double z = -std::log1p(-frac) / (s_ref * c_min);
+          const double dz = span / (D * s_ref * c_min * (1 - frac));
+          const k::real3 pz{o[0] + vv[0] * z / -view.y, -z, o[2] + vv[2] * z / -view.y};
+          for (size_t q = 0; q < nodes.size(); ++q) {
+            const k::real3 w = nodes[q].omega;
+            k::real3 normal{};
+            k::sea_hf_intersect(&floor.params, floor.depth.data(), pz, w, w.y > 0 ? z / w.y : 1e30, &ends[q], &normal);
+          }
+          for (size_t b = 0; b < bands; ++b) {
+            const double c = water.c[b], albedo = c > 0 ? water.b[b] / c : 0.0;
+            if (albedo == 0) continue;
+            double j_over_c = 0;  // albedo int p2 L^(1) d omega
+            for (size_t q = 0; q < nodes.size(); ++q) {
+              j_over_c += nodes[q].factor * k::sea_radiance_map_path(sun_e[b] * e_beam_unit, albedo, 1.0, cos_io,
+                                                                     nodes[q].omega.y, c * z, c * ends[q]);
+            }
+            sum[b] += c * dz * k::sea_attenuation(c * z, cos_ji) * albedo * j_over_c;
+          }
+        }
+        for (size_t b = 0; b < bands; ++b) {
+          const double L = t_out * sum[b] / cos_ji;
+          rgb[0] += L * sensor.to_r[b];
+          rgb[1] += L * sensor.to_g[b];
+          rgb[2] += L * sensor.to_b[b];
+        }
+      }
+      for (size_t b = 0; b < bands && !height_field; ++b) {
         const double c = water.c[b], albedo = c > 0 ? water.b[b] / c : 0.0;
         if (albedo == 0) continue;
         const double tau_d = bottom ? c * scene.bottom.depth : -1.0;

@@ -11,6 +11,8 @@
 //   int p1 p2 I = int p1 [p1 p2 I/(p1 + p2)] + int p2 [p1 p2 I/(p1 + p2)],
 // where the brackets are smooth and bounded by min(p1, p2) I, so fine grids converge fast for any g.
 // The depth integral uses midpoints in the transmittance exp(-(1 + sec theta_io) tau).
+// Over a height-field floor (000 §5.4) the view ray ends at the pixel's z_Q (fine march of the floor)
+// and every sampling ray is walked to the floor or the surface from every node (no depth tables).
 #pragma once
 #include "io/image.h"
 #include "scene/scene.h"

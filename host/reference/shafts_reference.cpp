@@ -24,12 +24,14 @@ struct Hit {
   int index = -1;
 };
 
+// "FILE:LINE: key 'objects[i].type': ..." like the parser's errors, before anything is rendered.
 void requireSupported(const Scene& scene) {
-  for (const auto& o : scene.objects) {
+  for (size_t i = 0; i < scene.objects.size(); ++i) {
+    const ObjectDesc& o = scene.objects[i];
     if (o.type == ObjectDesc::Type::HeightField) {
-      throw RuntimeError(o.loc.file + ":" + std::to_string(o.loc.line) +
-                         ": height-field objects are not supported in spotlight (shafts) scenes yet; use "
-                         "spheres, boxes and planes");
+      throw InputError(o.loc.file, o.loc.line, "objects[" + std::to_string(i) + "].type",
+                       "\"heightfield\" objects are not supported with [[spotlights]] (the shafts ray caster "
+                       "handles spheres, boxes and planes); remove the spotlights or use those object types");
     }
   }
 }
@@ -211,6 +213,124 @@ ShaftsRange shaftsRange(const Scene& scene) {
   const k::real3 corner = f.ray(0, 0, cam.width, cam.height);
   r.t_max = r.z_far / k::dot(corner, r3(f.fwd));
   r.s_max = 0;
+  for (const auto& l : scene.spotlights) r.s_max = std::max(r.s_max, length(l.position - cam.position) + r.t_max);
+  return r;
+}
+
+namespace {
+
+// A half-space n·x <= d (world coordinates).
+struct HalfSpace {
+  Vec3 n;
+  double d;
+};
+
+// Distance S beyond which the airlight a view ray can collect from a lamp's beam is below eps:
+// along any line, ∫ dt / s² over the part with s >= S is at most π / S, so the radiance from there
+// is at most ρ I F_max π exp(-ρκ S) / S (001 eq. 2–3 with H = 1), decreasing in S. Capped at 1e6 m.
+double beamLength(double rho, double sigma_t, double intensity, double f_max, double eps) {
+  auto bound = [&](double S) { return rho * intensity * f_max * M_PI * std::exp(-sigma_t * S) / S; };
+  double lo = 1e-3, hi = 1e6;
+  if (bound(hi) > eps) return hi;
+  if (bound(lo) <= eps) return lo;
+  for (int i = 0; i < 100; ++i) {  // bisection in log S
+    const double mid = std::sqrt(lo * hi);
+    (bound(mid) > eps ? lo : hi) = mid;
+  }
+  return hi;
+}
+
+// Extremes of f·x over the polytope {x : n_i·x <= d_i} (bounded here by the frustum's near and far
+// planes), by enumerating the vertices: every triple of planes whose intersection point satisfies all
+// constraints. 15 planes: 455 triples, negligible per frame. Returns false when the polytope is empty.
+bool depthExtremes(const std::vector<HalfSpace>& hs, Vec3 f, double& lo, double& hi) {
+  bool any = false;
+  const size_t n = hs.size();
+  for (size_t i = 0; i < n; ++i)
+    for (size_t j = i + 1; j < n; ++j)
+      for (size_t k = j + 1; k < n; ++k) {
+        const Vec3 a = hs[i].n, b = hs[j].n, c = hs[k].n;
+        const Vec3 bc = cross(b, c);
+        const double det = dot(a, bc);
+        if (std::fabs(det) < 1e-12) continue;  // two planes (nearly) parallel: no single vertex
+        const Vec3 x = (bc * hs[i].d + cross(c, a) * hs[j].d + cross(a, b) * hs[k].d) * (1.0 / det);  // Cramer
+        bool inside = true;
+        for (size_t m = 0; m < n && inside; ++m) {
+          const double tol = 1e-9 * std::max({1.0, std::fabs(hs[m].d), length(x)});
+          inside = dot(hs[m].n, x) <= hs[m].d + tol;
+        }
+        if (!inside) continue;
+        const double z = dot(f, x);
+        lo = any ? std::min(lo, z) : z;
+        hi = any ? std::max(hi, z) : z;
+        any = true;
+      }
+  return any;
+}
+
+}  // namespace
+
+ShaftsRange shaftsClipToCones(const Scene& scene, const ShaftsRange& range) {
+  const CameraDesc& cam = scene.camera;
+  const CameraFrame f = cameraFrame(cam);
+  // The view frustum in camera depth z = fwd·(x - eye): z_near <= z <= z_far, |right·q| <= tx z,
+  // |up·q| <= ty z (q = x - eye), as half-spaces n·x <= d.
+  const double ty = f.tan_half, tx = f.tan_half * f.aspect;
+  const double e_f = dot(f.fwd, f.eye);
+  std::vector<HalfSpace> frustum = {
+      {f.fwd * -1.0, -(range.z_near + e_f)},
+      {f.fwd, range.z_far + e_f},
+      {f.right - f.fwd * tx, dot(f.right - f.fwd * tx, f.eye)},
+      {f.right * -1.0 - f.fwd * tx, dot(f.right * -1.0 - f.fwd * tx, f.eye)},
+      {f.up - f.fwd * ty, dot(f.up - f.fwd * ty, f.eye)},
+      {f.up * -1.0 - f.fwd * ty, dot(f.up * -1.0 - f.fwd * ty, f.eye)},
+  };
+  const double rho = scene.air.density, sigma_t = scene.air.density * scene.air.extinction;
+  const int use_hg = scene.air.phase == AirDesc::Phase::HenyeyGreenstein;
+  const double f_max = std::max(k::shafts_phase_fn(1.0, use_hg, scene.air.g), k::shafts_phase_fn(-1.0, use_hg, scene.air.g));
+  // 0.01 of an 8-bit level at the dark end of the tone map (io/tonemap.h: slope 12.92 · 2^EV there).
+  const double eps = 0.01 / (255.0 * 12.92 * std::exp2(cam.exposure_ev));
+
+  bool any = false;
+  double z_lo = 0, z_hi = 0;
+  constexpr int kSides = 8;
+  for (const SpotlightDesc& l : scene.spotlights) {
+    Vec3 lr, lu;
+    shaftsLightBasis(l, lr, lu);
+    const Vec3 a = normalize(l.direction);
+    const double i_max = l.intensity * std::max({l.color.x, l.color.y, l.color.z});
+    if (!(i_max > 0)) continue;  // a dark lamp lights nothing
+    const double L = beamLength(rho, sigma_t, i_max, f_max, eps);
+    std::vector<HalfSpace> hs = frustum;
+    // Circumscribed pyramid: the plane tangent to the cone along lateral direction w has outward
+    // normal cos θ w - sin θ a; 8 of them contain the cone (θ < 90°, checked by the parser).
+    const double c = std::cos(l.cone), s = std::sin(l.cone);
+    for (int side = 0; side < kSides; ++side) {
+      const double phi = 2 * M_PI * side / kSides;
+      const Vec3 w = lr * std::cos(phi) + lu * std::sin(phi);
+      const Vec3 n = w * c - a * s;
+      hs.push_back({n, dot(n, l.position)});
+    }
+    hs.push_back({a, L + dot(a, l.position)});  // cap: axial distance <= L bounds the sector of radius L
+    double lo = 0, hi = 0;
+    if (!depthExtremes(hs, f.fwd, lo, hi)) continue;  // this cone is outside the frustum
+    lo -= e_f;
+    hi -= e_f;
+    z_lo = any ? std::min(z_lo, lo) : lo;
+    z_hi = any ? std::max(z_hi, hi) : hi;
+    any = true;
+  }
+  ShaftsRange r = range;
+  if (!any) {
+    r.z_far = r.z_near;  // empty: no plane carries light
+  } else {
+    r.z_near = std::max(range.z_near, z_lo);
+    r.z_far = std::min(range.z_far, std::max(z_hi, r.z_near));
+  }
+  // Tighter table ranges for the clipped planes (t <= z_far / cos θ_corner; s <= |lamp - eye| + t).
+  const k::real3 corner = f.ray(0, 0, cam.width, cam.height);
+  r.t_max = std::max(r.z_far, 2 * range.z_near) / k::dot(corner, r3(f.fwd));
+  r.s_max = r.t_max;
   for (const auto& l : scene.spotlights) r.s_max = std::max(r.s_max, length(l.position - cam.position) + r.t_max);
   return r;
 }

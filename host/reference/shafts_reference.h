@@ -30,6 +30,16 @@ struct ShaftsRange {
 };
 ShaftsRange shaftsRange(const Scene& scene);
 
+// `range` with [z_near, z_far] clipped to the camera-depth range of the union of the lights' cones
+// (001 eq. 5 places the n planes between near and far; planes where no cone reaches waste work). Each
+// cone, cut at the distance beyond which its airlight cannot reach 0.01 of an 8-bit level, is bounded
+// by a circumscribed 8-sided pyramid with a cap plane and intersected with the view frustum (near,
+// far and the four side planes); the depth extremes of that convex polytope are found at its
+// vertices. Conservative: no lit point inside the frustum is cut. A camera inside a cone keeps
+// z_near. When no cone reaches the frustum (e.g. all behind the camera) the range is empty
+// (z_far = z_near: no plane, zero airlight). t_max and s_max are recomputed for the clipped range.
+ShaftsRange shaftsClipToCones(const Scene& scene, const ShaftsRange& range);
+
 // Light frame: +z = direction, right/up across the beam (the light map's u and v).
 void shaftsLightBasis(const SpotlightDesc& light, Vec3& right, Vec3& up);
 

@@ -17,7 +17,14 @@ typedef struct {
   int width;
   int height;
   int band_count;
-  int lut_size;          /* entries of the single-scattering LUT over theta_jo (SEASIM_SEA_LUT) */
+  int lut_size;          /* entries of the single-scattering LUT (SEASIM_SEA_LUT): over theta_jo, or
+                            over theta_ji with SEASIM_HAS_WAVES (the local normal decouples the two) */
+  float ocean_patch;     /* m, L of the ocean's periodic normal map (SEASIM_HAS_WAVES) */
+  int ocean_n;           /* N, texels per side of the normal map */
+  int sky_width;         /* texels of the environment image (SEASIM_SKY_MODEL 2) */
+  int sky_height;
+  float sky_scale;       /* 1 / cosine-weighted mean of the sky's shape (common/sky.h) */
+  float pad1[3];
 } SeaParams;
 
 /* One wavelength band: radiometry and water IOPs at the band centre, and the sensor weights that
@@ -32,5 +39,7 @@ typedef struct {
   float w_r;             /* sensor weights (include the band width) */
   float w_g;
   float w_b;
-  float pad[3];
+  float sky_w_r;         /* share of the environment image's R, G, B in this band (common/sky.h) */
+  float sky_w_g;
+  float sky_w_b;
 } SeaBand;

@@ -14,7 +14,8 @@ typedef struct {
   float bottom_depth;    /* m, flat bottom (SEASIM_HAS_BOTTOM) */
   float cos_io;          /* cosine of the refracted sun to the downward vertical, > 0 */
   float sun_beam;        /* E_h T_i / cos_io per unit band sun irradiance (0: sun below the horizon) */
-  float pad0;
+  float table_c;         /* 1/m, reference attenuation of the depth-table nodes (SEASIM_BOTTOM_HEIGHTFIELD;
+                            bottom_depth is then the deepest node of the floor) */
   int width;             /* image, px */
   int height;
   int band_count;

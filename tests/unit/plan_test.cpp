@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
 
 #include "plan/plan.h"
 #include "scene/scene_parser.h"
@@ -197,6 +198,31 @@ TEST(Plan, TextHasOnePassPerLineWithKernelAndDefines) {
   EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 2);
   EXPECT_NE(text.find("kernels/sea_single.cl"), std::string::npos);
   EXPECT_NE(text.find("-DSEASIM_HAS_BOTTOM=1"), std::string::npos);
+}
+
+TEST(Plan, HeightFieldBottomDefineOnlyWithAHeightField) {
+  // 000 §5.4: a height-field floor is a bottom (SEASIM_HAS_BOTTOM=1) walked per pixel and tabulated for
+  // the second order (SEASIM_BOTTOM_HEIGHTFIELD=1, both sea passes, both implemented); flat and deep
+  // water never carry the define.
+  const std::string dir = ::testing::TempDir();
+  { std::FILE* f = std::fopen((dir + "/hf_plan.exr").c_str(), "wb"); ASSERT_NE(f, nullptr); std::fclose(f); }
+  std::string hf = kFlatSea;
+  hf = hf.substr(0, hf.find("[bottom]")) + "[bottom]\ntype = \"heightfield\"\nheightfield = \"hf_plan.exr\"\n";
+  const auto second = std::vector<seasim::Override>{{"sea.second_order", "true", {"cli", 1}}};
+  Plan plan = makePlan(parseScene(hf, dir + "/hf.toml", second));
+  for (const char* pass : {"sea_single", "sea_second"}) {
+    ASSERT_TRUE(plan.hasPass(pass)) << pass;
+    EXPECT_TRUE(plan.find(pass)->implemented) << pass;
+    EXPECT_TRUE(hasDefine(plan, pass, "SEASIM_BOTTOM_HEIGHTFIELD=1")) << pass;
+    EXPECT_TRUE(hasDefine(plan, pass, "SEASIM_HAS_BOTTOM=1")) << pass;
+  }
+  std::string deep = kFlatSea;
+  deep = deep.substr(0, deep.find("[bottom]"));
+  for (const std::string& text : {std::string(kFlatSea), deep}) {
+    plan = makePlan(parseScene(text, "flat.toml", second));
+    for (const auto& p : plan.passes)
+      for (const auto& d : p.defines) EXPECT_EQ(d.find("SEASIM_BOTTOM_HEIGHTFIELD"), std::string::npos) << p.name;
+  }
 }
 
 }  // namespace

@@ -282,8 +282,9 @@ TEST(SceneParser, Defaults) {
       {"sea_lut_size", 64},      {"sea_nz", 12},          {"sea_nd", 128},
       {"sea_map_size", 32},      {"shafts_planes", 30},   {"shafts_subplanes", 6},
       {"shafts_table_size", 256}, {"shadow_map_size", 512}, {"froxel_x", 160},
-      {"froxel_y", 90},          {"froxel_z", 64},        {"caustic_map_size", 256},
-      {"reference_spp", 64},     {"reference_steps", 200}, {"shafts_exact", 0}};
+      {"froxel_y", 90},          {"froxel_z", 64},        {"caustic_map_size", 256}, {"caustic_layers", 8},
+      {"reference_spp", 64},     {"reference_steps", 200}, {"shafts_exact", 0},
+      {"shafts_error_budget", 1}};
   EXPECT_EQ(s.quality.size(), std::size(knobs));
   for (const auto& [name, value] : knobs) {
     ASSERT_TRUE(s.quality.count(name)) << name;

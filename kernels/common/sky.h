@@ -1,0 +1,143 @@
+/* sky.h — sky radiance models for the sea seen from above (issue 6: "a sky model: at least a uniform
+ * sky and an environment image; a simple analytic sky is welcome"). kernels/sea_single.cl picks one by
+ * SEASIM_SKY_MODEL (set by host/plan): 0 uniform, 1 analytic, 2 image. Needs compat.h.
+ *
+ * Every model is a direction-dependent shape times the band's sky radiance L_sky(λ) (the scene's
+ * [sky] radiance × the D65 shape, host/spectral): L(λ, d) = L_sky(λ) · scale · shape(d). The host
+ * sets scale = 1 / (cosine-weighted mean of the shape over the upper hemisphere), so that
+ *   (1/π) ∫_{d.y > 0} L(λ, d) cos θ dω = L_sky(λ):
+ * every model gives the same sky irradiance π L_sky on a horizontal surface as the uniform sky of
+ * the same `radiance` (the underwater model's E_sky0 assumes that), and only the distribution changes.
+ *
+ * Analytic (1): the CIE standard clear sky (CIE S 011/E:2003, ISO 15469:2004, sky type 12 "CIE
+ * standard clear sky, low illuminance turbidity"): a luminance distribution relative to the zenith,
+ *   shape(θ, χ) = φ(θ) f(χ),  φ(θ) = 1 + a exp(b / cos θ),  f(χ) = 1 + c (e^{dχ} − e^{dπ/2}) + e cos²χ,
+ * θ the view's zenith angle, χ its angle to the sun, (a, b, c, d, e) = (−1, −0.32, 10, −3, 0.45).
+ * The standard's division by φ(0) f(Z_sun) is a constant absorbed by our own scale. The shape is the
+ * same at every wavelength (spectrally flat: a luminance distribution, not Preetham's chromaticity).
+ * Positive everywhere (φ ∈ [0.274, 1], f ≥ 0.90), so the mean is never 0.
+ *
+ * Image (2): a latitude–longitude environment image, RGB linear, 4 reals per texel (R, G, B, unused),
+ * row-major, top row first. Column u ∈ [0, 1) is the azimuth 2πu measured from +x towards +z (the
+ * scene's sun azimuth convention), row v ∈ [0, 1] the zenith angle πv (top row: the zenith, middle:
+ * the horizon). Bilinear between texel centres, wrapping in azimuth, clamped at the poles. Per band
+ * the image's R, G, B are mixed by sky_image_band_weights (a partition of unity over wavelength), so a
+ * grey image gives exactly L_sky(λ) × its normalised luminance, and scale = 1 / (cosine-weighted mean
+ * luminance Y = 0.2126 R + 0.7152 G + 0.0722 B over the upper hemisphere).
+ *
+ * Stiff cases: the horizon (cos θ → 0 in b / cos θ: clamped to 1e-4, where exp underflows to 0
+ * and φ = 1, its limit); the zenith; the sun below the horizon (χ up to π: every term finite); the
+ * view straight up (atan2(0, 0) = 0). Below the horizon the analytic shape holds its horizon value
+ * (cos θ is clamped) and the image gives its lower half; sea_single.cl never asks there (a reflected
+ * ray pointing down is clamped to the horizon first, sea_waves.h).
+ */
+
+#define SEASIM_SKY_UNIFORM 0
+#define SEASIM_SKY_ANALYTIC 1
+#define SEASIM_SKY_IMAGE 2
+
+/* CIE type 12 coefficients. */
+#define SKY_CIE_A R(-1.0)
+#define SKY_CIE_B R(-0.32)
+#define SKY_CIE_C R(10.0)
+#define SKY_CIE_D R(-3.0)
+#define SKY_CIE_E R(0.45)
+
+/* φ(θ) of the CIE clear sky from cos θ of the view (θ to the zenith). */
+SEASIM_FN real sky_cie_gradation(real cos_theta) {
+  const real c = fmax(cos_theta, R(1e-4)); /* horizon: b/c -> -inf, exp -> 0, φ -> 1 */
+  return R(1.0) + SKY_CIE_A * exp(SKY_CIE_B / c);
+}
+
+/* f(χ) of the CIE clear sky from cos χ (χ the angle between the view and the sun). */
+SEASIM_FN real sky_cie_indicatrix(real cos_chi) {
+  const real cc = clamp(cos_chi, R(-1.0), R(1.0));
+  const real chi = acos(cc);
+  return R(1.0) + SKY_CIE_C * (exp(SKY_CIE_D * chi) - exp(SKY_CIE_D * R(0.5) * SEASIM_PI)) + SKY_CIE_E * cc * cc;
+}
+
+/* The CIE clear sky's relative luminance towards unit direction d, sun towards unit direction sun. */
+SEASIM_FN real sky_cie_clear_shape(real3 d, real3 sun) {
+  return sky_cie_gradation(d.y) * sky_cie_indicatrix(dot(d, sun));
+}
+
+/* (1/π) ∫_{upper hemisphere} shape cos θ dω by the midpoint rule. With s = cos²θ, cos θ dω = ½ ds dφ,
+ * so the cosine-weighted mean is the plain mean of the shape over (s, φ) ∈ [0, 1] × [0, 2π): n_s × n_phi
+ * midpoints. 128 × 256 is within 3e-4 of a 1024 × 2048 rule for any sun (tests/unit/sky_test.cpp). */
+SEASIM_FN real sky_cie_clear_cosine_mean(real3 sun, int n_s, int n_phi) {
+  real sum = R(0.0);
+  for (int i = 0; i < n_s; ++i) {
+    const real s = ((real)i + R(0.5)) / (real)n_s;
+    const real ct = sqrt(s), st = sqrt(R(1.0) - s);
+    real row = R(0.0);
+    for (int k = 0; k < n_phi; ++k) {
+      const real phi = R(2.0) * SEASIM_PI * ((real)k + R(0.5)) / (real)n_phi;
+      row += sky_cie_clear_shape(MAKE_REAL3(st * cos(phi), ct, st * sin(phi)), sun);
+    }
+    sum += row;
+  }
+  return sum / ((real)n_s * (real)n_phi);
+}
+
+/* Bilinear RGB of a latitude–longitude image (layout above) towards unit direction d. */
+SEASIM_FN real3 sky_latlong_rgb(const SEASIM_GLOBAL real* texels, int w, int h, real3 d) {
+  real u = atan2(d.z, d.x) / (R(2.0) * SEASIM_PI); /* (-1/2, 1/2] */
+  u = u - floor(u);                                  /* [0, 1]; 1 only by rounding, handled by the wrap */
+  const real v = acos(clamp(d.y, R(-1.0), R(1.0))) / SEASIM_PI;
+  const real fx = u * (real)w - R(0.5);
+  const real fy = clamp(v * (real)h - R(0.5), R(0.0), (real)(h - 1));
+  int x0 = (int)floor(fx);
+  const real tx = fx - (real)x0;
+  x0 = x0 < 0 ? x0 + w : (x0 >= w ? x0 - w : x0);
+  const int x1 = x0 + 1 < w ? x0 + 1 : 0;
+  int y0 = (int)floor(fy);
+  y0 = y0 < 0 ? 0 : (y0 > h - 1 ? h - 1 : y0);
+  const real ty = fy - (real)y0;
+  const int y1 = y0 + 1 < h ? y0 + 1 : h - 1;
+  const SEASIM_GLOBAL real* t00 = texels + 4 * (y0 * w + x0);
+  const SEASIM_GLOBAL real* t10 = texels + 4 * (y0 * w + x1);
+  const SEASIM_GLOBAL real* t01 = texels + 4 * (y1 * w + x0);
+  const SEASIM_GLOBAL real* t11 = texels + 4 * (y1 * w + x1);
+  real c[3];
+  for (int k = 0; k < 3; ++k) {
+    const real top = t00[k] + tx * (t10[k] - t00[k]);
+    const real bottom = t01[k] + tx * (t11[k] - t01[k]);
+    c[k] = top + ty * (bottom - top);
+  }
+  return MAKE_REAL3(c[0], c[1], c[2]);
+}
+
+/* Luminance of linear Rec. 709 / sRGB primaries. */
+SEASIM_FN real sky_luminance(real3 rgb) { return R(0.2126) * rgb.x + R(0.7152) * rgb.y + R(0.0722) * rgb.z; }
+
+/* (1/π) ∫_{upper hemisphere} Y cos θ dω of the image taken as constant per texel: each texel row
+ * [θ0, θ1] (clipped to θ ≤ π/2) spans ∫ cos θ sin θ dθ dφ = (sin²θ1 − sin²θ0)/2 · 2π/w per texel.
+ * The bilinear reading differs from this by the interpolation only (< 1 % for smooth images;
+ * tests/unit/sky_test.cpp). */
+SEASIM_FN real sky_latlong_cosine_mean_luminance(const SEASIM_GLOBAL real* texels, int w, int h) {
+  real sum = R(0.0);
+  for (int y = 0; y < h; ++y) {
+    const real th0 = SEASIM_PI * (real)y / (real)h;
+    if (th0 >= R(0.5) * SEASIM_PI) break;
+    const real th1 = fmin(SEASIM_PI * (real)(y + 1) / (real)h, R(0.5) * SEASIM_PI);
+    const real s0 = sin(th0), s1 = sin(th1);
+    const real weight = R(0.5) * (s1 * s1 - s0 * s0) * R(2.0) / (real)w; /* (1/π) · row band · 2π/w */
+    real row = R(0.0);
+    for (int x = 0; x < w; ++x) {
+      const SEASIM_GLOBAL real* t = texels + 4 * (y * w + x);
+      row += sky_luminance(MAKE_REAL3(t[0], t[1], t[2]));
+    }
+    sum += weight * row;
+  }
+  return sum;
+}
+
+/* How much of the image's R, G and B a band at lambda_nm takes: blue alone up to 450 nm, green
+ * alone at 540 nm, red alone from 610 nm, linear in between; the three sum to 1 at every wavelength,
+ * so a grey image is spectrally flat (times the D65 sky spectrum). A deliberately simple RGB -> band
+ * spreading: the image carries three numbers per direction, not a spectrum. */
+SEASIM_FN real3 sky_image_band_weights(real lambda_nm) {
+  const real blue = clamp((R(540.0) - lambda_nm) / R(90.0), R(0.0), R(1.0));
+  const real red = clamp((lambda_nm - R(540.0)) / R(70.0), R(0.0), R(1.0));
+  return MAKE_REAL3(red, R(1.0) - blue - red, blue);
+}
