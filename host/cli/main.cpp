@@ -120,6 +120,8 @@ int main(int argc, char** argv) {
   shore->add_option("--width", shore_cmd.width, "Image width");
   shore->add_option("--height", shore_cmd.height, "Image height");
   shore->add_option("--edges", shore_cmd.edges, "z_Q bin edges, m")->delimiter(',');
+  shore->add_option("--max-depths", shore_cmd.max_depths, "Floor depth ranges to compare (bottom.max_depth, m)")
+      ->delimiter(',');
   shore->add_option("--csv", shore_cmd.csv, "CSV output");
   shore->add_option("--plot", shore_cmd.plot, "SVG plot output");
   shore->add_option("--device", shore_cmd.device, "Device selector");

@@ -1,7 +1,9 @@
 // sea_second_pass.h — host side of kernels/sea_second.cl: second-order scattering under a flat sea
-// by scattering maps (000 eq. 6–8). Builds SeaSecondParams from the scene and its quality knobs,
-// owns the VSF, radiance, direction, plane-weight and scattering-map buffers, and ADDS L^(2) into the rgb (and
-// spectral) buffers that sea_single wrote. Reads: scene. Writes: rgb (+=).
+// by scattering maps (000 eq. 6–8), over a flat or height-field floor (with the depth tables of §5.4,
+// computed on the first run() and cached on disk, host/passes/sea_heightfield.h). Builds SeaSecondParams
+// from the scene and its quality knobs, owns the VSF, radiance, direction, plane-weight and
+// scattering-map buffers, and ADDS L^(2) into the rgb (and spectral) buffers that sea_single wrote.
+// Reads: scene. Writes: rgb (+=).
 #pragma once
 #include <CL/opencl.hpp>
 

@@ -194,6 +194,10 @@ SEASIM_FN real sea_table_node_depth(int t, int n_z, real cos_io, real c_ref, rea
 SEASIM_FN int sea_table_node_interval(real z, int n_z, real cos_io, real c_ref, real z_max, real* w_next) {
   real s = R(1.0) + R(1.0) / cos_io;
   real span = -expm1(-s * c_ref * z_max);
+  if (!(span > R(0.0))) { /* a floor at the surface everywhere: one node depth */
+    *w_next = R(0.0);
+    return 0;
+  }
   real x = clamp(-expm1(-s * c_ref * fmax(z, R(0.0))) / span * R(n_z), R(0.0), R(n_z));
   int t = (int)x;
   t = t > n_z - 1 ? n_z - 1 : t;
@@ -206,12 +210,14 @@ SEASIM_FN int sea_table_node_interval(real z, int n_z, real cos_io, real c_ref, 
 /* The share of sampling plane k's depth cell that lies above the optical depth tau_q where a pixel's
  * view ray meets the floor (its planes below the floor see no water). The cell is measured in
  * 1 - u, u = exp(-s tau) the transmittance the planes are uniform in (sea_plane_depth): it spans
- * [k, k + 1] span / n_z. 1 for every cell when tau_q >= tau_d (the flat floor), 0 below the floor. */
+ * [k, k + 1] span / n_z. 1 for every cell when tau_q >= tau_d (the flat floor), 0 below the floor,
+ * and 0 when the cells are empty (tau_d = 0: c = 0, or the floor at the surface everywhere). */
 SEASIM_FN real sea_plane_share_above(int k, int n_z, real cos_io, real tau_d, real tau_q) {
   real s = R(1.0) + R(1.0) / cos_io;
   real span = tau_d < R(0.0) ? R(1.0) : -expm1(-s * tau_d);
   real top = R(k) / R(n_z) * span;
   real bottom = R(k + 1) / R(n_z) * span;
   real q = -expm1(-s * fmax(tau_q, R(0.0)));
+  if (!(bottom > top)) return R(0.0); /* tau_d = 0 (c = 0 or no water): the planes weigh nothing */
   return clamp((q - top) / (bottom - top), R(0.0), R(1.0));
 }

@@ -218,6 +218,16 @@ TEST(SeaHeightFieldKernel, FloorAtTheSurfaceAndGrazingViewsStayFinite) {
     const seasim::FrameResult f = render(parse(text, o));
     ASSERT_EQ(f.rgb.pixels.size(), size_t(20 * 12 * 3));
   }
+  // The floor at the surface everywhere (grey 1, min_depth 0): no water column at all. Single and
+  // second-order scattering vanish; what is left is the sky's reflection plus the dry floor's sunlit
+  // Lambert reflection through the surface, and nothing is NaN (the planes' cells are empty).
+  const std::string dry = writeFloor("dry.exr", 3, std::vector<float>(9, 1.0f));
+  const seasim::FrameResult f = render(parse(sceneText(dry, 0.0, 5.0, 20, 12, 3),
+                                             {set("sea.second_order", "true"), set("quality.sea_map_size", "8"),
+                                              set("quality.sea_nd", "32")}));
+  const seasim::FrameResult single = render(parse(sceneText(dry, 0.0, 5.0, 20, 12, 3),
+                                                  {set("sea.second_order", "false")}));
+  EXPECT_EQ(f.rgb.pixels, single.rgb.pixels);  // the second order adds exactly nothing
 }
 
 TEST(SeaHeightFieldKernel, DepthTablesComeBackFromTheCache) {

@@ -338,6 +338,13 @@ TEST(SeaBottom, PlaneSharesAboveTheFloor) {
     EXPECT_EQ(kd::sea_plane_share_above(k, n_z, cos_io, tau_d, 0.0), 0.0);   // floor at the surface
     EXPECT_EQ(kf::sea_plane_share_above(k, n_z, 0.8f, 6.0f, 6.0f), 1.0f);
   }
+  // Empty cells (tau_d = 0: c = 0, or the floor at the surface everywhere): 0, never 0/0.
+  EXPECT_EQ(kd::sea_plane_share_above(3, n_z, cos_io, 0.0, 0.0), 0.0);
+  EXPECT_EQ(kf::sea_plane_share_above(3, n_z, 0.8f, 0.0f, 1.0f), 0.0f);
+  double w = -1;
+  EXPECT_EQ(kd::sea_table_node_interval(0.5, n_z, cos_io, 0.3, 0.0, &w), 0);
+  EXPECT_EQ(w, 0.0);
+  EXPECT_EQ(kd::sea_table_node_depth(4, n_z, cos_io, 0.3, 0.0), 0.0);
   // The shares weight the planes' quadrature into int_0^{tau_q} of a smooth integrand.
   const double s = 1 + 1 / cos_io;
   for (double tau_q : {0.05, 0.4, 1.3, 3.0}) {
