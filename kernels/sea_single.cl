@@ -6,12 +6,15 @@
  *
  * Inputs: SeaParams (camera, sun, water ior/g, bottom depth, ocean and sky sizes), SeaBand[band_count],
  * the LUT, the ocean's normal map (N x N float4, SEASIM_HAS_WAVES; one dummy texel otherwise) and the
- * environment image (float4 texels, SEASIM_SKY_MODEL 2; one dummy texel otherwise).
+ * environment image (float4 texels, SEASIM_SKY_MODEL 2; one dummy texel otherwise), the bottom's caustic
+ * map (SEASIM_BOTTOM_CAUSTICS: the FFT ocean's flux-conservation caustics on the bottom, mean 1,
+ * periodic over the patch on a flat bottom, over the floor's square on a height field; one dummy float
+ * otherwise).
  * Output: rgb[3 * pixels] linear sensor RGB; spectral[band_count * pixels] when SEASIM_SPECTRAL_OUTPUT.
  * Defines (chosen by host/plan): SEASIM_HAS_REFLECTION, SEASIM_HAS_SINGLE_SCATTERING,
  * SEASIM_HAS_BOTTOM, SEASIM_HAS_SUN, SEASIM_SPECTRAL_OUTPUT, SEASIM_HAS_WAVES (FFT wave normals,
  * common/sea_waves.h), SEASIM_SKY_MODEL (0 uniform, 1 CIE clear sky, 2 environment image,
- * common/sky.h), SEASIM_BOTTOM_HEIGHTFIELD (with SEASIM_HAS_BOTTOM: the floor is the height field
+ * common/sky.h), SEASIM_BOTTOM_CAUSTICS, SEASIM_BOTTOM_HEIGHTFIELD (with SEASIM_HAS_BOTTOM: the floor is the height field
  * of the last two arguments, common/sea_bottom.h; forces SEASIM_SEA_LUT 0); SEASIM_SEA_LUT (the
  * pass, from quality.sea_lut_size): 1 reads eq. 5's factors from the look-up table the paper uses,
  * 0 evaluates eq. 5 exactly.
@@ -36,12 +39,16 @@
 #include "common/sea_bottom_params.h"
 #include "common/sea_second.h"
 #include "common/sea_bottom.h"
+#include "common/caustic_map.h"
 
 #ifndef SEASIM_HAS_WAVES
 #define SEASIM_HAS_WAVES 0
 #endif
 #ifndef SEASIM_SKY_MODEL
 #define SEASIM_SKY_MODEL 0
+#endif
+#ifndef SEASIM_BOTTOM_CAUSTICS
+#define SEASIM_BOTTOM_CAUSTICS 0 /* 1: the FFT ocean's caustics modulate the sun on the bottom (004 §5.2.1) */
 #endif
 #ifndef SEASIM_BOTTOM_HEIGHTFIELD
 #define SEASIM_BOTTOM_HEIGHTFIELD 0 /* 1: the bottom is a height field (000 §5.4, common/sea_bottom.h) */
@@ -94,7 +101,8 @@ static inline float lut_read(const __global float* lut, int n, float x) {
 #endif
 
 __kernel void sea_single(__constant SeaParams* p, __global const SeaBand* bands, __global const float* lut,
-                         __global const float* normals, __global const float* sky, __global float* rgb
+                         __global const float* normals, __global const float* sky,
+                         __global const float* bottom_caustics, __global float* rgb
 #if SEASIM_SPECTRAL_OUTPUT
                          , __global float* spectral
 #endif
@@ -179,8 +187,22 @@ __kernel void sea_single(__constant SeaParams* p, __global const SeaBand* bands,
 #endif
 #elif SEASIM_HAS_BOTTOM
     const float z_d = p->bottom_depth;
+#if SEASIM_BOTTOM_CAUSTICS
+    const float t_p = p->cam_pos[1] / -d.y;
+    const float3 P = (float3)(p->cam_pos[0] + t_p * d.x, 0.0f, p->cam_pos[2] + t_p * d.z);
+    const float t_q = z_d / fmax(-view_in_water.y, 1e-4f);
+#endif
 #else
     const float z_d = -1.0f;                                  /* no bottom: infinitely deep */
+#endif
+#if SEASIM_HAS_BOTTOM && SEASIM_BOTTOM_CAUSTICS
+    /* The ocean's caustics where the view ray meets the bottom (Q = P + t_q view_in_water): the sun
+     * term of eq. 9 is the mean beam times this focusing factor (mean 1; caustic_stack.h). */
+    const float3 Q = P + t_q * view_in_water;
+    const float focus = caustic_map_read(bottom_caustics, p->caustic_map_size, p->caustic_extent, p->caustic_origin,
+                                         !SEASIM_BOTTOM_HEIGHTFIELD, Q.x, Q.z);
+#else
+    const float focus = 1.0f;
 #endif
 #if SEASIM_SEA_LUT
 #if SEASIM_HAS_WAVES
@@ -206,11 +228,11 @@ __kernel void sea_single(__constant SeaParams* p, __global const SeaBand* bands,
 #endif
 #endif
 #if SEASIM_HAS_BOTTOM && SEASIM_BOTTOM_HEIGHTFIELD
-      L += sea_bottom_reflection_tilted(band->sun_irradiance * sun_horizontal, t_in, t_out, band->bottom_albedo,
-                                        band->c, z_d, cos_io, cos_ji, cos_gamma);
+      L += focus * sea_bottom_reflection_tilted(band->sun_irradiance * sun_horizontal, t_in, t_out,
+                                                band->bottom_albedo, band->c, z_d, cos_io, cos_ji, cos_gamma);
 #elif SEASIM_HAS_BOTTOM
-      L += sea_bottom_reflection(band->sun_irradiance * sun_horizontal, t_in, t_out, band->bottom_albedo, band->c, z_d,
-                                 cos_io, cos_ji);
+      L += focus * sea_bottom_reflection(band->sun_irradiance * sun_horizontal, t_in, t_out, band->bottom_albedo,
+                                         band->c, z_d, cos_io, cos_ji);
 #endif
       r += L * band->w_r; g += L * band->w_g; b += L * band->w_b;
 #if SEASIM_SPECTRAL_OUTPUT

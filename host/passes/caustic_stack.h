@@ -34,6 +34,22 @@ class CausticStack {
   std::vector<PassTiming> timings_;
 };
 
+// The ocean's caustics on the bottom for the sea seen from above (sea.bottom_caustics, the plan's
+// SEASIM_BOTTOM_CAUSTICS; read by sea_single.cl through caustic_map_read). A flat bottom: the plane
+// splat at its depth, periodic over the patch, divided by its mean. A height field: the floor splat
+// (CausticsPass::runFloor) over the floor's square, each texel divided by what a calm sea would put
+// there, T(θ) (-t·n̂)/cos θt (so flat water reads 1 up to the splat's few-% lattice ripple). Either
+// way a focusing factor with mean about 1: eq. 9's mean beam is the model's. `ocean` has run.
+struct SeaBottomCaustics {
+  cl::Buffer map;
+  std::vector<float> host;
+  int map_size = 1;
+  double extent = 1.0, origin = 0.0;  // m: the square [origin, origin + extent]² the map covers
+  bool periodic = true;
+  double ms = 0.0;                    // wall ms of the splat and normalisation
+};
+SeaBottomCaustics seaBottomCaustics(Device& device, const Scene& scene, OceanPass& ocean);
+
 // A one-float buffer for the kernels' caustic-map argument when the scene has no caustic map.
 cl::Buffer noCausticMap(Device& device);
 

@@ -118,7 +118,13 @@ FrameResult renderFrame(Device& device, const Scene& scene, const Plan& plan) {
     ocean = std::make_unique<OceanPass>(device, oceanConfigFromSurface(scene.surface));
     result.timings.push_back({"ocean_fft", ocean->run(scene.surface.time)});
   }
-  SeaSinglePass pass(device, scene, *sea, grid, sensor, ocean.get());
+  // The ocean's caustics on the bottom (004 §5.2.1), when the scene asks for them.
+  std::unique_ptr<SeaBottomCaustics> bottom_caustics;
+  if (plan.hasPass("caustics")) {
+    bottom_caustics = std::make_unique<SeaBottomCaustics>(seaBottomCaustics(device, scene, *ocean));
+    result.timings.push_back({"caustics", bottom_caustics->ms});
+  }
+  SeaSinglePass pass(device, scene, *sea, grid, sensor, ocean.get(), bottom_caustics.get());
   result.timings.push_back({"sea_single", pass.run()});
 
   // Second-order scattering by scattering maps (000 eq. 6–8), added into sea_single's buffers.

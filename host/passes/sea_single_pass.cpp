@@ -64,8 +64,15 @@ void set4(float out[4], Vec3 v) {
 }  // namespace
 
 SeaSinglePass::SeaSinglePass(Device& device, const Scene& scene, const PassPlan& plan,
-                             const WavelengthGrid& grid, const Sensor& sensor, OceanPass* ocean)
+                             const WavelengthGrid& grid, const Sensor& sensor, OceanPass* ocean,
+                             const SeaBottomCaustics* bottom_caustics)
     : device_(device), width_(scene.camera.width), height_(scene.camera.height) {
+  const bool caustics = std::find(plan.defines.begin(), plan.defines.end(), std::string("SEASIM_BOTTOM_CAUSTICS=1")) !=
+                        plan.defines.end();
+  if (caustics && !bottom_caustics) {
+    throw RuntimeError("sea_single pass: the plan has bottom caustics (SEASIM_BOTTOM_CAUSTICS=1) but no caustic map "
+                       "was given (passes/render_frame.cpp makes it with seaBottomCaustics)");
+  }
   const bool waves =
       std::find(plan.defines.begin(), plan.defines.end(), std::string("SEASIM_HAS_WAVES=1")) != plan.defines.end();
   if (waves && !ocean) {
@@ -97,6 +104,11 @@ SeaSinglePass::SeaSinglePass(Device& device, const Scene& scene, const PassPlan&
   p.band_count = static_cast<int>(grid.centers_nm.size());
   p.ocean_patch = waves ? static_cast<float>(ocean->patchSize()) : 1.0f;
   p.ocean_n = waves ? ocean->n() : 1;
+  if (caustics) {
+    p.caustic_map_size = bottom_caustics->map_size;
+    p.caustic_extent = static_cast<float>(bottom_caustics->extent);
+    p.caustic_origin = static_cast<float>(bottom_caustics->origin);
+  }
   const double sun_dir[3] = {sun.x, sun.y, sun.z};
   const SeaSky sky = makeSeaSky(scene.sky, sun_dir, grid);
   p.sky_width = sky.width;
@@ -198,6 +210,9 @@ SeaSinglePass::SeaSinglePass(Device& device, const Scene& scene, const PassPlan&
     std::vector<float> sky_texels(sky.texels.begin(), sky.texels.end());
     sky_ = cl::Buffer(device.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(float) * sky_texels.size(),
                       sky_texels.data());
+    caustics_ = caustics ? bottom_caustics->map
+                         : cl::Buffer(device.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(float) * 4,
+                                      dummy.data());
     rgb_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE,  // sea_second adds into it
                        sizeof(float) * 3 * pixels);
     kernel_.setArg(0, params_);
@@ -205,10 +220,11 @@ SeaSinglePass::SeaSinglePass(Device& device, const Scene& scene, const PassPlan&
     kernel_.setArg(2, lut_);
     kernel_.setArg(3, normals_);
     kernel_.setArg(4, sky_);
-    kernel_.setArg(5, rgb_);
+    kernel_.setArg(5, caustics_);
+    kernel_.setArg(6, rgb_);
     if (scene.spectral.spectral_exr) {
       spectral_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * pixels * bands.size());
-      kernel_.setArg(6, spectral_);
+      kernel_.setArg(7, spectral_);
     }
     if (scene.bottom.type == BottomDesc::Type::HeightField) {  // 000 §5.4: the kernel's last two arguments
       const HeightFieldBuffers hf = uploadHeightField(device, loadHeightField(scene.bottom));

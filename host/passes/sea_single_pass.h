@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "device/device.h"
+#include "passes/caustic_stack.h"
 #include "passes/ocean_pass.h"
 #include "plan/plan.h"
 #include "scene/scene.h"
@@ -21,9 +22,10 @@ class SeaSinglePass {
   // Output buffers are allocated here: rgb (3 floats per pixel) and, with spectral output,
   // band_count floats per pixel. ocean: the run OceanPass whose normal() the kernel reads; required
   // when the plan defines SEASIM_HAS_WAVES=1 (RuntimeError otherwise), ignored without waves. The
-  // kernel reads the buffer when run() is called, so the ocean must outlive run().
+  // kernel reads the buffer when run() is called, so the ocean must outlive run(). bottom_caustics:
+  // required when the plan defines SEASIM_BOTTOM_CAUSTICS=1 (the ocean's caustics on the bottom).
   SeaSinglePass(Device& device, const Scene& scene, const PassPlan& plan, const WavelengthGrid& grid,
-                const Sensor& sensor, OceanPass* ocean = nullptr);
+                const Sensor& sensor, OceanPass* ocean = nullptr, const SeaBottomCaustics* bottom_caustics = nullptr);
   // Enqueues the kernel; returns its profiled time in ms (waits for it).
   double run();
   cl::Buffer& rgb() { return rgb_; }
@@ -32,7 +34,7 @@ class SeaSinglePass {
  private:
   Device& device_;
   cl::Kernel kernel_;
-  cl::Buffer params_, bands_, lut_, normals_, sky_, rgb_, spectral_;
+  cl::Buffer params_, bands_, lut_, normals_, sky_, caustics_, rgb_, spectral_;
   cl::Buffer hf_params_, hf_depth_;  // height-field bottom (000 §5.4), SEASIM_BOTTOM_HEIGHTFIELD
   int width_, height_;
 };

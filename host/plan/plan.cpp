@@ -95,6 +95,13 @@ Plan makePlan(const Scene& scene) {
     plan.passes.push_back({"caustics", "caustics.cl", {}, {"ocean_maps"}, {"caustic_map"},
                            "camera below an FFT surface, underwater.caustics = \"map\" (004 §5.2.1)", true, ""});
   }
+  // The sea seen from above: the ocean's caustics on a bottom the sun reaches (sea.bottom_caustics).
+  const bool sea_bottom = scene.bottom.type != BottomDesc::Type::None;
+  const bool bottom_caustics = ocean_for_sea && sea_bottom && sun_up && scene.sea.bottom_caustics;
+  if (bottom_caustics) {
+    plan.passes.push_back({"caustics", "caustics.cl", {}, {"ocean_maps"}, {"caustic_map"},
+                           "FFT surface over a bottom, sea.bottom_caustics = true (004 §5.2.1)", true, ""});
+  }
   if (froxels) {
     plan.passes.push_back({"froxel", "froxel.cl",
                            {flag("SEASIM_HAS_OBJECTS", objects), "SEASIM_CAUSTICS=" + std::to_string(caustics),
@@ -117,11 +124,13 @@ Plan makePlan(const Scene& scene) {
         flag("SEASIM_HAS_SUN", sun),
         flag("SEASIM_SPECTRAL_OUTPUT", spectral_out),
         flag("SEASIM_HAS_WAVES", waves),  // local normals from the ocean's normal map (common/sea_waves.h)
-        "SEASIM_SKY_MODEL=" + std::to_string(sky_model)};
+        "SEASIM_SKY_MODEL=" + std::to_string(sky_model),
+        flag("SEASIM_BOTTOM_CAUSTICS", bottom_caustics)};
     // 000 §5.4: the bottom is a height field (z_Q per pixel, depth tables for the second order).
     if (height_field) defines.push_back("SEASIM_BOTTOM_HEIGHTFIELD=1");
     std::vector<std::string> reads = {"scene"};
     if (waves) reads.push_back("ocean_maps");
+    if (bottom_caustics) reads.push_back("caustic_map");
     PassPlan pass{"sea_single", "sea_single.cl", defines, reads, {"rgb"},
                   "camera above water (reflection, single scattering, bottom)", true, ""};
     plan.passes.push_back(pass);

@@ -23,6 +23,11 @@ Image renderSeaReference(const Scene& scene, int steps) {
     throw RuntimeError("the sea reference renders scenes seen from above the water only");
   }
   if (steps < 1) throw RuntimeError("--steps must be at least 1");
+  if (scene.sea.bottom_caustics && scene.surface.type == SurfaceDesc::Type::Fft) {
+    throw RuntimeError("the sea reference does not model the ocean's caustics on the bottom: render the reference "
+                       "with --set sea.bottom_caustics=false (tests/kernels/sea_bottom_caustics_test.cpp checks the "
+                       "caustic term on its own)");
+  }
   const WavelengthGrid grid = makeGrid(scene.spectral.count, scene.spectral.min_nm, scene.spectral.max_nm);
   const Sensor sensor = makeSensor(scene.spectral.sensor, grid, scene.spectral.white_balance);
   const BandOptics water = resolveWater(scene.water, grid);

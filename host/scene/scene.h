@@ -133,6 +133,7 @@ struct Knob {
 struct SeaDesc {
   bool single_scattering = true;
   bool second_order = false;
+  bool bottom_caustics = false;  // the FFT ocean's caustics on the bottom (needs surface.type = "fft")
   bool reflection = true;
 };
 

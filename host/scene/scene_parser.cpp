@@ -482,6 +482,7 @@ class SceneParser {
     SeaDesc& s = scene_.sea;
     s.single_scattering = r.boolean("single_scattering", s.single_scattering);
     s.second_order = r.boolean("second_order", s.second_order);
+    s.bottom_caustics = r.boolean("bottom_caustics", s.bottom_caustics);
     s.reflection = r.boolean("reflection", s.reflection);
     r.finish();
   }

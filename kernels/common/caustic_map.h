@@ -31,6 +31,23 @@ SEASIM_FN real caustic_map_bilinear(SEASIM_GLOBAL const float* layer, int m, rea
   return (R(1.0) - az) * ((R(1.0) - ax) * c00 + ax * c10) + az * ((R(1.0) - ax) * c01 + ax * c11);
 }
 
+/* Bilinear read of an M × M map over the square [origin, origin + extent]² at world (x, z): periodic
+ * (the ocean patch over a flat bottom) or clamped to its edge texels (a height-field floor's map,
+ * host/passes/caustic_stack.h seaBottomCaustics). */
+SEASIM_FN real caustic_map_read(SEASIM_GLOBAL const float* map, int m, real extent, real origin, int periodic, real x,
+                                real z) {
+  if (m < 1 || !(extent > R(0.0))) return R(1.0);
+  if (periodic) return caustic_map_bilinear(map, m, extent, x - origin, z - origin);
+  const real u = fmin(fmax((x - origin) / extent * (real)m - R(0.5), R(0.0)), (real)(m - 1));
+  const real v = fmin(fmax((z - origin) / extent * (real)m - R(0.5), R(0.0)), (real)(m - 1));
+  const int i0 = (int)fmin(floor(u), (real)(m - 1)), j0 = (int)fmin(floor(v), (real)(m - 1));
+  const int i1 = i0 + 1 < m ? i0 + 1 : i0, j1 = j0 + 1 < m ? j0 + 1 : j0;
+  const real ax = u - (real)i0, az = v - (real)j0;
+  const real c00 = (real)map[j0 * m + i0], c10 = (real)map[j0 * m + i1];
+  const real c01 = (real)map[j1 * m + i0], c11 = (real)map[j1 * m + i1];
+  return (R(1.0) - az) * ((R(1.0) - ax) * c00 + ax * c10) + az * ((R(1.0) - ax) * c01 + ax * c11);
+}
+
 /* The focusing factor (mean 1 over the patch) at world point (x, -depth, z). */
 SEASIM_FN real caustic_map_sample(SEASIM_GLOBAL const float* maps, int m, int layers, real extent, real depth_max,
                                   real x, real depth, real z) {

@@ -24,7 +24,9 @@ typedef struct {
   int sky_width;         /* texels of the environment image (SEASIM_SKY_MODEL 2) */
   int sky_height;
   float sky_scale;       /* 1 / cosine-weighted mean of the sky's shape (common/sky.h) */
-  float pad1[3];
+  int caustic_map_size;  /* M: the bottom's caustic map (SEASIM_BOTTOM_CAUSTICS; common/caustic_map.h) */
+  float caustic_extent;  /* m, side of the square it covers */
+  float caustic_origin;  /* m, its corner on x and z: 0 (periodic ocean patch) or -extent/2 (height field) */
 } SeaParams;
 
 /* One wavelength band: radiometry and water IOPs at the band centre, and the sensor weights that

@@ -69,6 +69,28 @@ TYPED_TEST(CausticMapTest, DepthInterpolation) {
               real(1e-3));
 }
 
+TYPED_TEST(CausticMapTest, ReadPeriodicOrClampedOverASquare) {
+  using real = typename TypeParam::real;
+  const std::vector<float> maps = twoLayers();  // layer 0: 4 × 4 over the square [-4, 4]² here
+  const real tol = (std::is_same_v<real, float> ? real(2e-5) : real(1e-12));
+  auto read = [&](int periodic, real x, real z) {
+    if constexpr (std::is_same_v<real, float>)
+      return seasim::kmath_f::caustic_map_read(maps.data(), 4, real(8), real(-4), periodic, x, z);
+    else
+      return seasim::kmath_d::caustic_map_read(maps.data(), 4, real(8), real(-4), periodic, x, z);
+  };
+  for (int periodic : {0, 1})
+    for (int j = 0; j < 4; ++j)
+      for (int i = 0; i < 4; ++i)  // texel centres at -4 + (i + ½) 2
+        EXPECT_NEAR(read(periodic, real(-3 + 2 * i), real(-3 + 2 * j)), maps[j * 4 + i], tol);
+  // Periodic: one square away reads the same; clamped: beyond the edge reads the edge texel.
+  EXPECT_NEAR(read(1, real(-3 + 8), real(-1 - 8)), maps[1 * 4 + 0], tol);
+  EXPECT_NEAR(read(0, real(-100), real(-100)), maps[0], tol);
+  EXPECT_NEAR(read(0, real(100), real(-1)), maps[1 * 4 + 3], tol);
+  EXPECT_NEAR(read(0, real(3.5), real(3.5)), maps[15], tol);
+  EXPECT_TRUE(std::isfinite(read(0, real(NAN), real(1e30))));
+}
+
 TYPED_TEST(CausticMapTest, DegenerateInputsReadAsNoFocusing) {
   using real = typename TypeParam::real;
   const std::vector<float> maps = twoLayers();
