@@ -53,10 +53,8 @@ void SeaSecondPass::splitDirections(int n_d, int* n_theta, int* n_phi) {
 }
 
 SeaSecondPass::Config SeaSecondPass::configFromScene(const Scene& scene) {
-  // "auto": the settings where the 000 §6.1 measure (max difference to the next setting) stays under
-  // one 8-bit level on our scenes (results/sea/*_nz.csv, *_nd.csv, column max_diff_prev_8bit): the
-  // transmittance-spaced planes converge by n_z = 2 (8 keeps a margin); n_d needs 392-512 for g = 0.9
-  // lobes, more than the paper's 128 (which leaves ~3 levels between 98 and 128 on open_ocean).
+  // "auto" knobs: placeholders (n_z = 8, n_d = 512, from our 000 §6.1 runs in results/sea/) that the
+  // constructor replaces with the per-scene search of passes/sea_auto.h (cached per scene).
   Config c;
   c.n_z = knob(scene, "sea_nz", 8);
   splitDirections(knob(scene, "sea_nd", 512), &c.n_theta, &c.n_phi);

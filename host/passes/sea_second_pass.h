@@ -19,7 +19,8 @@ namespace seasim {
 
 class SeaSecondPass {
  public:
-  // The quality knobs, resolved ("auto": n_z = 8, n_d = 512, map 32, from our 000 §6.1 runs).
+  // The quality knobs as the scene gives them; "auto" knobs get a placeholder here (n_z = 8, n_d = 512,
+  // map 32) that the constructor replaces by the per-scene 000 §6.1 search (passes/sea_auto.h).
   struct Config {
     int n_z = 12;        // sampling planes (quality.sea_nz)
     int n_theta = 8;     // n_d = n_theta * n_phi sampling directions (quality.sea_nd)
