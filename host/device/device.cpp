@@ -11,6 +11,7 @@
 #include "device/kernel_source.h"
 #include "util/error.h"
 #include "util/hash.h"
+#include "util/paths.h"
 
 namespace fs = std::filesystem;
 
@@ -28,13 +29,6 @@ std::string trim(std::string s) {
   size_t i = 0;
   while (i < s.size() && std::isspace(static_cast<unsigned char>(s[i]))) ++i;
   return s.substr(i);
-}
-
-std::string cacheDir() {
-  if (const char* d = std::getenv("SEASIM_CACHE_DIR"); d && *d) return d;
-  if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x) return std::string(x) + "/seasim";
-  if (const char* h = std::getenv("HOME"); h && *h) return std::string(h) + "/.cache/seasim";
-  return "";
 }
 
 std::vector<unsigned char> readBinaryFile(const fs::path& p) {
@@ -185,7 +179,7 @@ const BuiltProgram& Device::program(const std::string& kernel_file, const std::v
   KernelSource source = assembleKernelSource(kernel_file);
   const uint64_t hash = fnv1a64(info_.platform_name + "|" + info_.name + "|" + info_.driver + "|" + options,
                                 fnv1a64(source.text));
-  const std::string dir = cacheDir();
+  const std::string dir = cacheDir("");
   const fs::path cache_file = dir.empty() ? fs::path() : fs::path(dir) / (hex64(hash) + ".bin");
 
   BuiltProgram built;

@@ -4,20 +4,19 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
-#include <fstream>
 #include <map>
 #include <sstream>
 #include <tuple>
 
 #include "device/kernel_source.h"
-#include "io/atomic_file.h"
+#include "passes/quality_search.h"
 #include "passes/render_frame.h"
 #include "reference/compare.h"
 #include "spectral/jerlov.h"
 #include "spectral/wavelength_grid.h"
 #include "util/error.h"
 #include "util/hash.h"
+#include "util/paths.h"
 
 namespace seasim {
 
@@ -26,14 +25,6 @@ namespace {
 // Bump when the search or its rule changes meaning, so old cache entries are not reused.
 constexpr const char* kAutoVersion = "sea-auto 1";
 constexpr const char* kKnobs[] = {"sea_nz", "sea_nd", "sea_map_size"};
-
-// The same folder rule as the kernel-binary cache (device/device.cpp) and shafts_auto.
-std::string defaultCacheDir() {
-  if (const char* d = std::getenv("SEASIM_CACHE_DIR"); d && *d) return std::string(d) + "/sea_auto";
-  if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x) return std::string(x) + "/seasim/sea_auto";
-  if (const char* h = std::getenv("HOME"); h && *h) return std::string(h) + "/.cache/seasim/sea_auto";
-  return "";
-}
 
 bool isAuto(const Scene& scene, const char* name) {
   const auto it = scene.quality.find(name);
@@ -46,15 +37,6 @@ int fixedValue(const Scene& scene, const char* name, int fallback) {
 }
 
 int startMap(const Scene& scene) { return scene.bottom.type == BottomDesc::Type::HeightField ? 64 : 32; }
-
-void searchSize(const Scene& scene, const SeaAutoOptions& o, int& w, int& h) {
-  const int W = scene.camera.width, H = scene.camera.height, L = std::max(W, H);
-  const int lo = std::min(L, std::max(1, o.min_long_side));
-  const int target = std::clamp(L / std::max(1, o.downscale), lo, std::max(lo, o.max_long_side));
-  const double s = double(std::min(target, L)) / L;
-  w = std::max(1, static_cast<int>(std::lround(W * s)));
-  h = std::max(1, static_cast<int>(std::lround(H * s)));
-}
 
 // Everything the decision depends on, as text (%.17g: exact doubles). Spectra are taken at the
 // scene's band centres, which is all the sea passes read of them.
@@ -109,15 +91,8 @@ std::string describe(Device& device, const Scene& scene, const SeaAutoOptions& o
 }
 
 bool readCache(const std::string& path, SeaAutoResult& r) {
-  std::ifstream in(path);
-  if (!in) return false;
-  std::map<std::string, std::string> kv;
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    const size_t sp = line.find(' ');
-    if (sp != std::string::npos) kv[line.substr(0, sp)] = line.substr(sp + 1);
-  }
+  const std::map<std::string, std::string> kv = readCacheEntries(path);
+  if (kv.empty()) return false;
   try {
     r.n_z = std::stoi(kv.at("n_z"));
     r.n_d = std::stoi(kv.at("n_d"));
@@ -138,9 +113,6 @@ bool readCache(const std::string& path, SeaAutoResult& r) {
 void writeCache(const std::string& path, const SeaAutoResult& r, const std::string& description) {
   std::ostringstream s;
   s.precision(17);
-  s << "# seasim sea second-order auto quality (host/passes/sea_auto.h); inputs:\n";
-  std::istringstream d(description);
-  for (std::string line; std::getline(d, line);) s << "# " << line << '\n';
   s << "n_z " << r.n_z << "\nn_d " << r.n_d << "\nmap_size " << r.map_size << "\nnz_step_8bit " << r.nz_step_8bit
     << "\nnd_step_8bit " << r.nd_step_8bit << "\nmap_step_8bit " << r.map_step_8bit << "\nmet " << (r.met ? 1 : 0)
     << "\nconverged " << (r.converged ? 1 : 0) << "\nsearch_width " << r.search_width << "\nsearch_height "
@@ -149,11 +121,7 @@ void writeCache(const std::string& path, const SeaAutoResult& r, const std::stri
   for (const auto& t : r.steps)
     s << "# " << t.knob << ' ' << t.n_z << ' ' << t.n_d << ' ' << t.map_size << ' ' << t.next << ' ' << t.max_diff_8bit
       << '\n';
-  try {
-    writeTextAtomic(path, s.str());
-  } catch (const RuntimeError&) {
-    // A cache that cannot be written only costs the search next time.
-  }
+  writeCacheEntries(path, "seasim sea second-order auto quality (host/passes/sea_auto.h)", description, s.str());
 }
 
 // Renders the reduced scene at a setting, once per setting.
@@ -212,7 +180,7 @@ SeaAutoResult chooseSeaSecondQuality(Device& device, const Scene& scene, const S
   SeaAutoResult result;
   std::string description, cache_file;
   if (options.use_cache) {
-    const std::string dir = options.cache_dir.empty() ? defaultCacheDir() : options.cache_dir;
+    const std::string dir = options.cache_dir.empty() ? cacheDir("sea_auto") : options.cache_dir;
     if (!dir.empty()) {
       description = describe(device, scene, options);
       cache_file = dir + "/" + hex64(fnv1a64(description)) + ".txt";
@@ -226,7 +194,8 @@ SeaAutoResult chooseSeaSecondQuality(Device& device, const Scene& scene, const S
 
   const auto t0 = std::chrono::steady_clock::now();
   Scene small = scene;
-  searchSize(scene, options, small.camera.width, small.camera.height);
+  searchResolution(scene.camera, options.downscale, options.min_long_side, options.max_long_side, small.camera.width,
+                   small.camera.height);
   result.search_width = small.camera.width;
   result.search_height = small.camera.height;
   Renderer render(device, small);

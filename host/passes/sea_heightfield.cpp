@@ -11,6 +11,7 @@
 #include "io/image_io.h"
 #include "util/error.h"
 #include "util/hash.h"
+#include "util/paths.h"
 
 namespace seasim {
 
@@ -76,12 +77,7 @@ HeightFieldBuffers uploadHeightField(Device& device, const HeightField& field) {
 
 namespace {
 
-fs::path tableDir() {
-  if (const char* d = std::getenv("SEASIM_CACHE_DIR"); d && *d) return fs::path(d) / "sea_depth_tables";
-  if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x) return fs::path(x) / "seasim" / "sea_depth_tables";
-  if (const char* h = std::getenv("HOME"); h && *h) return fs::path(h) / ".cache" / "seasim" / "sea_depth_tables";
-  return {};
-}
+fs::path tableDir() { return fs::path(cacheDir("sea_depth_tables")); }
 
 }  // namespace
 

@@ -4,18 +4,17 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
-#include <fstream>
 #include <map>
 #include <sstream>
 
 #include "device/kernel_source.h"
-#include "io/atomic_file.h"
+#include "passes/quality_search.h"
 #include "passes/shafts_pass.h"
 #include "reference/compare.h"
 #include "reference/shafts_reference.h"
 #include "util/error.h"
 #include "util/hash.h"
+#include "util/paths.h"
 
 namespace seasim {
 
@@ -32,14 +31,6 @@ double work(int n, int m) { return double(n) * (m + 1); }
 // work of another is slower: n2 (m2 + r) >= n2 (m2 + 1) min(1, (m2 + r)/(m2 + 1)) >= 0.75 x2 >
 // 1.125 x1 >= n1 (m1 + r) for r <= 1, and n2 (m2 + r) >= x2 > 1.5 x1 >= n1 (m1 + 2) for r <= 2.
 constexpr double kWorkMargin = 1.5;
-
-// The same folder rule as the kernel-binary cache (device/device.cpp).
-std::string defaultCacheDir() {
-  if (const char* d = std::getenv("SEASIM_CACHE_DIR"); d && *d) return std::string(d) + "/shafts_auto";
-  if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x) return std::string(x) + "/seasim/shafts_auto";
-  if (const char* h = std::getenv("HOME"); h && *h) return std::string(h) + "/.cache/seasim/shafts_auto";
-  return "";
-}
 
 const Knob* findKnob(const Scene& scene, const char* name) {
   const auto it = scene.quality.find(name);
@@ -61,15 +52,6 @@ std::vector<int> ladder(const Scene& scene, const char* name, const std::vector<
   v.erase(std::unique(v.begin(), v.end()), v.end());
   if (v.empty()) throw RuntimeError("shafts auto quality: the candidate list of '" + std::string(name) + "' is empty");
   return v;
-}
-
-void searchSize(const Scene& scene, const ShaftsAutoOptions& o, int& w, int& h) {
-  const int W = scene.camera.width, H = scene.camera.height, L = std::max(W, H);
-  const int lo = std::min(L, std::max(1, o.min_long_side));
-  const int target = std::clamp(L / std::max(1, o.downscale), lo, std::max(lo, o.max_long_side));
-  const double s = double(std::min(target, L)) / L;
-  w = std::max(1, static_cast<int>(std::lround(W * s)));
-  h = std::max(1, static_cast<int>(std::lround(H * s)));
 }
 
 // Everything the decision depends on, as text (%.17g: exact doubles).
@@ -123,15 +105,8 @@ std::string describe(Device& device, const Scene& scene, const ShaftsAutoOptions
 }
 
 bool readCache(const std::string& path, ShaftsAutoResult& r) {
-  std::ifstream in(path);
-  if (!in) return false;
-  std::map<std::string, std::string> kv;
-  std::string line;
-  while (std::getline(in, line)) {
-    if (line.empty() || line[0] == '#') continue;
-    const size_t sp = line.find(' ');
-    if (sp != std::string::npos) kv[line.substr(0, sp)] = line.substr(sp + 1);
-  }
+  const std::map<std::string, std::string> kv = readCacheEntries(path);
+  if (kv.empty()) return false;
   try {
     r.planes = std::stoi(kv.at("planes"));
     r.subplanes = std::stoi(kv.at("subplanes"));
@@ -149,19 +124,12 @@ bool readCache(const std::string& path, ShaftsAutoResult& r) {
 void writeCache(const std::string& path, const ShaftsAutoResult& r, const std::string& description) {
   std::ostringstream s;
   s.precision(17);
-  s << "# seasim shafts auto quality (host/passes/shafts_auto.h); inputs:\n";
-  std::istringstream d(description);
-  for (std::string line; std::getline(d, line);) s << "# " << line << '\n';
   s << "planes " << r.planes << "\nsubplanes " << r.subplanes << "\nrmse_8bit " << r.rmse_8bit << "\nms " << r.ms
     << "\nmet_budget " << (r.met_budget ? 1 : 0) << "\nsearch_width " << r.search_width << "\nsearch_height "
     << r.search_height << '\n';
   s << "# candidates: planes subplanes rmse_8bit ms\n";
   for (const auto& c : r.candidates) s << "# " << c.planes << ' ' << c.subplanes << ' ' << c.rmse_8bit << ' ' << c.ms << '\n';
-  try {
-    writeTextAtomic(path, s.str());
-  } catch (const RuntimeError&) {
-    // A cache that cannot be written only costs the search next time.
-  }
+  writeCacheEntries(path, "seasim shafts auto quality (host/passes/shafts_auto.h)", description, s.str());
 }
 
 // Other work on a shared machine only ever adds time to a kernel: the least of three runs is the
@@ -214,7 +182,7 @@ ShaftsAutoResult chooseShaftsQuality(Device& device, const Scene& scene, const P
 
   std::string description, cache_file;
   if (options.use_cache) {
-    const std::string dir = options.cache_dir.empty() ? defaultCacheDir() : options.cache_dir;
+    const std::string dir = options.cache_dir.empty() ? cacheDir("shafts_auto") : options.cache_dir;
     if (!dir.empty()) {
       description = describe(device, scene, options);
       cache_file = dir + "/" + hex64(fnv1a64(description)) + ".txt";
@@ -229,7 +197,8 @@ ShaftsAutoResult chooseShaftsQuality(Device& device, const Scene& scene, const P
 
   const auto t0 = std::chrono::steady_clock::now();
   Scene small = scene;
-  searchSize(scene, options, small.camera.width, small.camera.height);
+  searchResolution(scene.camera, options.downscale, options.min_long_side, options.max_long_side, small.camera.width,
+                   small.camera.height);
   result.search_width = small.camera.width;
   result.search_height = small.camera.height;
   const Image reference = renderShaftsReference(small, options.reference_steps);

@@ -35,4 +35,13 @@ std::string resolveRelativeTo(const std::string& anchor_file, const std::string&
   return (base / p).lexically_normal();
 }
 
+std::string cacheDir(const std::string& sub) {
+  std::string base;
+  if (const char* d = std::getenv("SEASIM_CACHE_DIR"); d && *d) base = d;
+  else if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x) base = std::string(x) + "/seasim";
+  else if (const char* h = std::getenv("HOME"); h && *h) base = std::string(h) + "/.cache/seasim";
+  if (base.empty() || sub.empty()) return base;
+  return base + "/" + sub;
+}
+
 }  // namespace seasim

@@ -11,6 +11,10 @@ std::string dataDir();
 // data/cameras/<name>.csv for a camera sensor name (the file stem); "" when absent.
 std::string cameraFile(const std::string& name);
 
+// The folder of one on-disk cache (kernel binaries: sub = ""): $SEASIM_CACHE_DIR/<sub>, else
+// $XDG_CACHE_HOME/seasim/<sub>, else $HOME/.cache/seasim/<sub>; "" when none of those is set.
+std::string cacheDir(const std::string& sub);
+
 // Absolute, lexically normal form of `path` relative to the folder of `anchor_file`.
 std::string resolveRelativeTo(const std::string& anchor_file, const std::string& path);
 

@@ -1,0 +1,25 @@
+// quality_search.h — what the per-scene `auto` quality searches (shafts_auto, sea_auto) share: the
+// reduced resolution they render at, and their cache files (one "key value" per line, "#" comments
+// recording the inputs of the decision).
+#pragma once
+#include <map>
+#include <string>
+
+#include "scene/scene.h"
+
+namespace seasim {
+
+// The camera's size scaled by 1/downscale, the long side kept within [min_long_side, max_long_side]
+// and never above the full size; the aspect ratio kept.
+void searchResolution(const CameraDesc& camera, int downscale, int min_long_side, int max_long_side, int& width,
+                      int& height);
+
+// The "key value" lines of a cache file; empty when it cannot be read.
+std::map<std::string, std::string> readCacheEntries(const std::string& path);
+
+// Writes `title` and every line of `inputs` as comments, then `entries` (lines of "key value"),
+// atomically. Best effort: a cache that cannot be written only costs the search next time.
+void writeCacheEntries(const std::string& path, const std::string& title, const std::string& inputs,
+                       const std::string& entries);
+
+}  // namespace seasim
