@@ -53,15 +53,14 @@ static inline void fetch_fields(__global const float2* fields, int n, int i, int
   f[4] = c.x; f[5] = c.y; f[6] = d.x; f[7] = d.y;
 }
 
-__kernel void caustics_splat(__constant CausticsParams* p, __global const float2* fields,
-                             volatile __global int* map) {
-  const int I = get_global_id(0), J = get_global_id(1);
-  const int n = p->n, s = p->supersample;
-  if (I >= n * s || J >= n * s) return;
-
-  /* Sample position in texel units of the surface grid (texel i sits at x = i L/N). */
-  const float u = ((float)I + 0.5f) / (float)s;
-  const float v = ((float)J + 0.5f) / (float)s;
+/* The refracted sun ray from the surface sample at grid coordinates (u, v) (texel units: texel i
+ * sits at x = i L/N; the fields wrap, so the patch tiles): its start *P on the displaced surface, its
+ * unit direction *t into the water, and the return value projected · T, the flux it carries per unit
+ * undisplaced area over the sun's normal irradiance (004 eq. 38–44). 0 for a facet turned from the
+ * sun or a refracted ray that does not go down (possible on folded facets). */
+static inline float surface_ray(__constant CausticsParams* p, __global const float2* fields, float u, float v,
+                                float3* P, float3* t) {
+  const int n = p->n;
   const float fu = floor(u), fv = floor(v);
   const int i0 = (int)fu, j0 = (int)fv;
   const float wx = u - fu, wz = v - fv;
@@ -73,26 +72,38 @@ __kernel void caustics_splat(__constant CausticsParams* p, __global const float2
   for (int c = 0; c < 8; ++c)
     f[c] = (1.0f - wz) * ((1.0f - wx) * f00[c] + wx * f10[c]) + wz * ((1.0f - wx) * f01[c] + wx * f11[c]);
 
-  const float L = p->patch_size, lambda = p->choppiness;
-  const float cell = L / (float)n;
-  const float3 P = (float3)(u * cell + lambda * f[3], f[0], v * cell + lambda * f[4]);
+  const float lambda = p->choppiness;
+  const float cell = p->patch_size / (float)n;
+  *P = (float3)(u * cell + lambda * f[3], f[0], v * cell + lambda * f[4]);
   const float3 tx = (float3)(1.0f + lambda * f[5], f[1], lambda * f[7]);
   const float3 tz = (float3)(lambda * f[7], f[2], 1.0f + lambda * f[6]);
   const float3 n_area = cross(tz, tx); /* per unit undisplaced area */
   const float3 sun = (float3)(p->sun_dir[0], p->sun_dir[1], p->sun_dir[2]);
   const float projected = dot(sun, n_area);
   const float len = length(n_area);
-  if (!(projected > 0.0f) || !(len > 0.0f)) return;
+  if (!(projected > 0.0f) || !(len > 0.0f)) return 0.0f;
   const float3 nrm = n_area / len;
-  const float cos_i = projected / len;
-  const float T = 1.0f - fresnel_reflectance(cos_i, 1.0f, p->ior);
-  float3 t;
-  refract_dir(-sun, nrm, 1.0f / p->ior, &t); /* air -> water: no TIR */
-  if (!(t.y < 0.0f)) return;
+  const float T = 1.0f - fresnel_reflectance(projected / len, 1.0f, p->ior);
+  refract_dir(-sun, nrm, 1.0f / p->ior, t); /* air -> water: no TIR */
+  if (!((*t).y < 0.0f)) return 0.0f;
+  return projected * T;
+}
+
+__kernel void caustics_splat(__constant CausticsParams* p, __global const float2* fields,
+                             volatile __global int* map) {
+  const int I = get_global_id(0), J = get_global_id(1);
+  const int n = p->n, s = p->supersample;
+  if (I >= n * s || J >= n * s) return;
+
+  float3 P, t;
+  const float weight = surface_ray(p, fields, ((float)I + 0.5f) / (float)s, ((float)J + 0.5f) / (float)s, &P, &t);
+  if (!(weight > 0.0f)) return;
+  const float L = p->patch_size, cell = L / (float)n;
   const float path = fmax(P.y + p->plane_depth, 0.0f) / (-t.y);
   const float3 Q = P + path * t;
   const float dA = (cell / (float)s) * (cell / (float)s);
-  const float flux = projected * dA * T * beer_lambert(p->attenuation, path);
+  const float flux = weight * dA * beer_lambert(p->attenuation, path);
+  const float3 sun = (float3)(p->sun_dir[0], p->sun_dir[1], p->sun_dir[2]);
 
   /* Bilinear splat, periodic; the map stores flux / (texel area · ŝ_y). */
   const int m = p->map_size;
@@ -130,33 +141,10 @@ __kernel void caustics_splat_floor(__constant CausticsParams* p, __global const 
 
   /* Surface-grid texel units from the world origin (texel i at x = i L/N, as in the plane splat). */
   const float cell = p->patch_size / (float)n;
-  const float u = origin_x / cell + ((float)I + 0.5f) / (float)s;
-  const float v = origin_z / cell + ((float)J + 0.5f) / (float)s;
-  const float fu = floor(u), fv = floor(v);
-  const int i0 = (int)fu, j0 = (int)fv;
-  const float wx = u - fu, wz = v - fv;
-  float f00[8], f10[8], f01[8], f11[8], f[8];
-  fetch_fields(fields, n, i0, j0, f00); /* wraps: the tiles repeat the patch */
-  fetch_fields(fields, n, i0 + 1, j0, f10);
-  fetch_fields(fields, n, i0, j0 + 1, f01);
-  fetch_fields(fields, n, i0 + 1, j0 + 1, f11);
-  for (int c = 0; c < 8; ++c)
-    f[c] = (1.0f - wz) * ((1.0f - wx) * f00[c] + wx * f10[c]) + wz * ((1.0f - wx) * f01[c] + wx * f11[c]);
-
-  const float lambda = p->choppiness;
-  const float3 P = (float3)(u * cell + lambda * f[3], f[0], v * cell + lambda * f[4]);
-  const float3 tx = (float3)(1.0f + lambda * f[5], f[1], lambda * f[7]);
-  const float3 tz = (float3)(lambda * f[7], f[2], 1.0f + lambda * f[6]);
-  const float3 n_area = cross(tz, tx);
-  const float3 sun = (float3)(p->sun_dir[0], p->sun_dir[1], p->sun_dir[2]);
-  const float projected = dot(sun, n_area);
-  const float len = length(n_area);
-  if (!(projected > 0.0f) || !(len > 0.0f)) return;
-  const float3 nrm = n_area / len;
-  const float T = 1.0f - fresnel_reflectance(projected / len, 1.0f, p->ior);
-  float3 t;
-  refract_dir(-sun, nrm, 1.0f / p->ior, &t);
-  if (!(t.y < 0.0f)) return;
+  float3 P, t;
+  const float weight = surface_ray(p, fields, origin_x / cell + ((float)I + 0.5f) / (float)s,
+                                   origin_z / cell + ((float)J + 0.5f) / (float)s, &P, &t);
+  if (!(weight > 0.0f)) return;
   /* Long enough to pass the deepest node from the highest crest. */
   const float t_max = (hf->max_depth + fmax(P.y, 0.0f) + 1.0f) / (-t.y);
   float t_hit;
@@ -165,8 +153,9 @@ __kernel void caustics_splat_floor(__constant CausticsParams* p, __global const 
   const float path = fmax(t_hit - fmax(P.y, 0.0f) / (-t.y), 0.0f); /* the part in the water */
   const float3 Q = P + t_hit * t;
   const float dA = (cell / (float)s) * (cell / (float)s);
-  const float flux = projected * dA * T * beer_lambert(p->attenuation, path);
+  const float flux = weight * dA * beer_lambert(p->attenuation, path);
 
+  const float3 sun = (float3)(p->sun_dir[0], p->sun_dir[1], p->sun_dir[2]);
   const int m = p->map_size;
   const float E = hf->extent, texel = E / (float)m;
   const float scale = flux * floor_normal.y / (texel * texel * sun.y);

@@ -12,6 +12,41 @@
 
 namespace seasim {
 
+namespace {
+
+// The splat of the scene's sun into its water. No attenuation: the mean beam's e^{-c l} is the
+// model's (002 eq. 4.7 under water, 000 eq. 9 from above); the maps only redistribute it (the
+// per-ray path differences are second order in the slopes).
+CausticsConfig splatConfig(const Scene& scene, int map_size) {
+  CausticsConfig config;
+  config.sun_zenith = scene.sun.zenith;
+  config.sun_azimuth = scene.sun.azimuth;
+  config.ior = scene.water.ior;
+  config.attenuation = 0.0;
+  config.map_size = map_size;
+  return config;
+}
+
+// Divides the map by its mean; a map that received nothing (every facet turned from a grazing sun)
+// becomes uniform.
+void divideByMean(std::vector<float>& map) {
+  double sum = 0;
+  for (float v : map) sum += v;
+  const double mean = sum / static_cast<double>(map.size());
+  for (float& v : map) v = mean > 0 && std::isfinite(mean) ? static_cast<float>(v / mean) : 1.0f;
+}
+
+cl::Buffer upload(Device& device, const std::vector<float>& values, const char* what) {
+  try {
+    return cl::Buffer(device.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(float) * values.size(),
+                      const_cast<float*>(values.data()));
+  } catch (const cl::Error& e) {
+    throw DeviceError(std::string(what) + " upload: " + e.what() + " " + clErrorName(e.err()));
+  }
+}
+
+}  // namespace
+
 CausticStack::CausticStack(Device& device, const Scene& scene, const UnderwaterSetup& setup) {
   const UwParams& p = setup.params;
   layers_ = p.caustic_layers;
@@ -21,38 +56,20 @@ CausticStack::CausticStack(Device& device, const Scene& scene, const UnderwaterS
   const size_t texels = static_cast<size_t>(map_size_) * static_cast<size_t>(map_size_);
   host_.assign(texels * static_cast<size_t>(layers_), 1.0f);
 
-  const Vec3 sun = setup.sun_air;
-  if (sun.y > 0) {
+  if (setup.sun_air.y > 0) {
     OceanPass ocean(device, ocean_config);
     timings_.push_back({"ocean_fft", ocean.run(scene.surface.time)});
-    CausticsConfig config;
-    config.sun_zenith = std::acos(std::min(1.0, sun.y));
-    config.sun_azimuth = std::atan2(sun.z, sun.x);
-    config.ior = scene.water.ior;
-    // No attenuation in the splat: the mean beam's e^{-c y/μ_w} is the model's (002 eq. 4.7); the
-    // maps only redistribute it (the per-ray path differences are second order in the slopes).
-    config.attenuation = 0.0;
-    config.map_size = map_size_;
-    CausticsPass splat(device, ocean, config);
+    CausticsPass splat(device, ocean, splatConfig(scene, map_size_));
     double ms = 0;
     for (int k = 0; k < layers_; ++k) {
       ms += splat.run((k + 1) * static_cast<double>(p.caustic_depth_max) / layers_);
       std::vector<float> layer = splat.readMap();
-      double sum = 0;
-      for (float v : layer) sum += v;
-      const double mean = sum / static_cast<double>(texels);
-      // A layer that received nothing (every facet turned from a grazing sun) stays uniform.
-      if (!(mean > 0) || !std::isfinite(mean)) continue;
-      for (size_t t = 0; t < texels; ++t) host_[k * texels + t] = static_cast<float>(layer[t] / mean);
+      divideByMean(layer);
+      std::copy(layer.begin(), layer.end(), host_.begin() + static_cast<std::ptrdiff_t>(k * texels));
     }
     timings_.push_back({"caustics", ms});
   }
-  try {
-    maps_ = cl::Buffer(device.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(float) * host_.size(),
-                       host_.data());
-  } catch (const cl::Error& e) {
-    throw DeviceError(std::string("caustic map upload: ") + e.what() + " " + clErrorName(e.err()));
-  }
+  maps_ = upload(device, host_, "caustic map");
 }
 
 SeaBottomCaustics seaBottomCaustics(Device& device, const Scene& scene, OceanPass& ocean) {
@@ -60,14 +77,7 @@ SeaBottomCaustics seaBottomCaustics(Device& device, const Scene& scene, OceanPas
   SeaBottomCaustics out;
   const auto size = scene.quality.find("caustic_map_size");
   out.map_size = size != scene.quality.end() ? static_cast<int>(size->second.value) : 256;
-  CausticsConfig config;
-  config.sun_zenith = scene.sun.zenith;
-  config.sun_azimuth = scene.sun.azimuth;
-  config.ior = scene.water.ior;
-  config.attenuation = 0.0;  // eq. 9 attenuates the mean beam; the map only redistributes it
-  config.map_size = out.map_size;
-  CausticsPass splat(device, ocean, config);
-  const size_t texels = static_cast<size_t>(out.map_size) * static_cast<size_t>(out.map_size);
+  CausticsConfig config = splatConfig(scene, out.map_size);
   if (scene.bottom.type == BottomDesc::Type::HeightField) {
     const HeightField field = loadHeightField(scene.bottom);
     // The floor usually spans many ocean patches: one ray per surface texel keeps the walk count at
@@ -94,31 +104,17 @@ SeaBottomCaustics seaBottomCaustics(Device& device, const Scene& scene, OceanPas
         v = calm > 1e-6 ? static_cast<float>(v / calm) : 1.0f;
       }
   } else {
+    CausticsPass splat(device, ocean, config);
     splat.run(scene.bottom.depth);
     out.host = splat.readMap();
     out.extent = ocean.patchSize();
-    double sum = 0;
-    for (float v : out.host) sum += v;
-    const double mean = sum / static_cast<double>(texels);
-    for (float& v : out.host) v = mean > 0 && std::isfinite(mean) ? static_cast<float>(v / mean) : 1.0f;
+    divideByMean(out.host);
   }
-  try {
-    out.map = cl::Buffer(device.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(float) * out.host.size(),
-                         out.host.data());
-  } catch (const cl::Error& e) {
-    throw DeviceError(std::string("bottom caustic map upload: ") + e.what() + " " + clErrorName(e.err()));
-  }
+  out.map = upload(device, out.host, "bottom caustic map");
   out.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return out;
 }
 
-cl::Buffer noCausticMap(Device& device) {
-  float one = 1.0f;
-  try {
-    return cl::Buffer(device.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(float), &one);
-  } catch (const cl::Error& e) {
-    throw DeviceError(std::string("caustic map placeholder: ") + e.what() + " " + clErrorName(e.err()));
-  }
-}
+cl::Buffer noCausticMap(Device& device) { return upload(device, {1.0f}, "caustic map placeholder"); }
 
 }  // namespace seasim

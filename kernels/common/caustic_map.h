@@ -14,6 +14,13 @@
  * it is that layer. Layers are stored one after another: maps[k m² + j m + i].
  */
 
+/* Bilinear blend of texels (i0, j0)..(i1, j1) with weights ax, az towards i1, j1. */
+SEASIM_FN real caustic_map_blend(SEASIM_GLOBAL const float* map, int m, int i0, int i1, int j0, int j1, real ax, real az) {
+  const real c00 = (real)map[j0 * m + i0], c10 = (real)map[j0 * m + i1];
+  const real c01 = (real)map[j1 * m + i0], c11 = (real)map[j1 * m + i1];
+  return (R(1.0) - az) * ((R(1.0) - ax) * c00 + ax * c10) + az * ((R(1.0) - ax) * c01 + ax * c11);
+}
+
 /* Bilinear read of one layer at world (x, z), periodic. */
 SEASIM_FN real caustic_map_bilinear(SEASIM_GLOBAL const float* layer, int m, real extent, real x, real z) {
   const real u = x / extent * (real)m - R(0.5);
@@ -26,9 +33,7 @@ SEASIM_FN real caustic_map_bilinear(SEASIM_GLOBAL const float* layer, int m, rea
   const int j0 = (int)fmin(fmax(fv - floor(fv / (real)m) * (real)m, R(0.0)), (real)(m - 1));
   const int i1 = i0 + 1 == m ? 0 : i0 + 1;
   const int j1 = j0 + 1 == m ? 0 : j0 + 1;
-  const real c00 = (real)layer[j0 * m + i0], c10 = (real)layer[j0 * m + i1];
-  const real c01 = (real)layer[j1 * m + i0], c11 = (real)layer[j1 * m + i1];
-  return (R(1.0) - az) * ((R(1.0) - ax) * c00 + ax * c10) + az * ((R(1.0) - ax) * c01 + ax * c11);
+  return caustic_map_blend(layer, m, i0, i1, j0, j1, ax, az);
 }
 
 /* Bilinear read of an M × M map over the square [origin, origin + extent]² at world (x, z): periodic
@@ -42,10 +47,7 @@ SEASIM_FN real caustic_map_read(SEASIM_GLOBAL const float* map, int m, real exte
   const real v = fmin(fmax((z - origin) / extent * (real)m - R(0.5), R(0.0)), (real)(m - 1));
   const int i0 = (int)fmin(floor(u), (real)(m - 1)), j0 = (int)fmin(floor(v), (real)(m - 1));
   const int i1 = i0 + 1 < m ? i0 + 1 : i0, j1 = j0 + 1 < m ? j0 + 1 : j0;
-  const real ax = u - (real)i0, az = v - (real)j0;
-  const real c00 = (real)map[j0 * m + i0], c10 = (real)map[j0 * m + i1];
-  const real c01 = (real)map[j1 * m + i0], c11 = (real)map[j1 * m + i1];
-  return (R(1.0) - az) * ((R(1.0) - ax) * c00 + ax * c10) + az * ((R(1.0) - ax) * c01 + ax * c11);
+  return caustic_map_blend(map, m, i0, i1, j0, j1, u - (real)i0, v - (real)j0);
 }
 
 /* The focusing factor (mean 1 over the patch) at world point (x, -depth, z). */
