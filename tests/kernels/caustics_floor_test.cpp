@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <string>
 #include <vector>
 
 #include "math/kernel_math.h"
@@ -16,6 +17,7 @@
 #include "passes/ocean_pass.h"
 #include "passes/sea_heightfield.h"
 #include "test_device.h"
+#include "util/error.h"
 
 namespace {
 
@@ -151,6 +153,19 @@ TEST(CausticsFloor, SteepWavesGrazingSunAndShallowFloorStayFinite) {
   CausticsPass below(device(), ocean, sun(95));
   below.runFloor(floorOf(40.0, 11, [](double, double) { return 5.0; }));
   for (float v : below.readFloorMap()) ASSERT_EQ(v, 0.0f);
+}
+
+TEST(CausticsFloor, AFloorTooLargeForTheSurfaceGridIsAClearError) {
+  OceanPass ocean(device(), sea(7.0));
+  ocean.run(0.0);
+  CausticsPass splat(device(), ocean, sun(30));
+  // 64 texels × 2 rays over a 32 m patch: a 20 km floor needs > 65536 rays per side.
+  try {
+    splat.runFloor(floorOf(20000.0, 3, [](double, double) { return 5.0; }));
+    ADD_FAILURE() << "no error";
+  } catch (const seasim::RuntimeError& e) {
+    EXPECT_NE(std::string(e.what()).find("lower the ocean grid or supersample"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

@@ -172,6 +172,16 @@ TEST(UnderwaterCausticMap, FroxelInjectionReadsTheMapsAsTheCpuDoes) {
                seasim::RuntimeError);
 }
 
+TEST(UnderwaterCausticMap, LayerCountOutOfRangeIsAClearError) {
+  Frame f = load({set("quality.caustic_layers", "65")});
+  try {
+    seasim::CausticStack stack(seasim::test::testDevice(), f.scene, f.setup);
+    ADD_FAILURE() << "no error";
+  } catch (const seasim::RuntimeError& e) {
+    EXPECT_NE(std::string(e.what()).find("quality.caustic_layers must be in 1..64"), std::string::npos) << e.what();
+  }
+}
+
 TEST(UnderwaterCausticMap, CalmSeaEqualsNoCaustics) {
   const std::vector<seasim::Override> calm = {set("surface.wind_speed", "0")};
   Frame f = load(calm);
