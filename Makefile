@@ -4,7 +4,7 @@ BUILD ?= build
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=RelWithDebInfo
 DEPS = build-essential cmake pkgconf pocl-opencl-icd ocl-icd-opencl-dev opencl-c-headers \
-       opencl-clhpp-headers clinfo libfftw3-dev libvkfft-dev libopenimageio-dev libtbb-dev \
+       opencl-clhpp-headers clinfo libfftw3-dev libvkfft-dev libopenimageio-dev openimageio-tools libtbb-dev \
        libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libgtest-dev
 # Kernel build caches live in the build folder so tests and demo reuse them.
 export POCL_CACHE_DIR ?= $(CURDIR)/$(BUILD)/pocl-cache
@@ -23,7 +23,7 @@ build: configure
 	cmake --build $(BUILD) -j $(JOBS)
 
 configure: deps
-	@test -f $(BUILD)/CMakeCache.txt || cmake -S . -B $(BUILD) $(CMAKE_FLAGS)
+	cmake -S . -B $(BUILD) $(CMAKE_FLAGS)
 
 # Installs only what is missing (apt-get needs root: sudo is used when not root).
 deps:
