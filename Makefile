@@ -10,7 +10,7 @@ DEPS = build-essential cmake pkgconf pocl-opencl-icd ocl-icd-opencl-dev opencl-c
 export POCL_CACHE_DIR ?= $(CURDIR)/$(BUILD)/pocl-cache
 export SEASIM_CACHE_DIR ?= $(CURDIR)/$(BUILD)/seasim-cache
 
-.PHONY: demo test deps configure build clean
+.PHONY: demo test deps configure build clean fresh-check package install
 
 demo: build
 	$(BUILD)/seasim run jobs/quickstart.toml --device pocl
@@ -36,5 +36,19 @@ deps:
 	  $$SUDO apt-get update -qq && DEBIAN_FRONTEND=noninteractive $$SUDO apt-get install -y -qq --no-install-recommends $$missing; \
 	fi
 
+# A .deb of the binary, its data and examples (CPack; runtime dependencies from dpkg-shlibdeps).
+package: build
+	cd $(BUILD) && cpack -G DEB
+	@ls $(BUILD)/seasim_*.deb
+
+# cmake --install into PREFIX (default /usr/local): bin/seasim and share/seasim/{data,scenes,jobs}.
+PREFIX ?= /usr/local
+install: build
+	cmake --install $(BUILD) --prefix $(PREFIX)
+
 clean:
 	rm -rf $(BUILD)
+
+# The two commands above in a bare Debian 12 root (needs root; slow, not part of CI): tests/fresh_check.sh
+fresh-check:
+	bash tests/fresh_check.sh

@@ -41,7 +41,7 @@ int benchSeaSecond(Device& device, const BenchCmd& cmd, const std::vector<Overri
     const PassPlan* second = plan.find("sea_second");
     if (!second) throw RuntimeError("--sea-maps: " + cmd.scene + " has no sea second-order pass (no water in view?)");
     const WavelengthGrid grid = makeGrid(scene.spectral.count, scene.spectral.min_nm, scene.spectral.max_nm);
-    const Sensor sensor = makeSensor(scene.spectral.sensor, grid, scene.spectral.white_balance);
+    const Sensor sensor = makeSensor(scene.spectral.sensor, grid, scene.spectral.white_balance, scene.spectral.camera_dir);
     const size_t pixels = static_cast<size_t>(scene.camera.width) * scene.camera.height;
     std::vector<float> zeros(3 * pixels, 0.0f);
     cl::Buffer rgb(device.context(), CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, sizeof(float) * zeros.size(),

@@ -31,6 +31,7 @@
 #include "underwater/underwater_cpu.h"
 #include "underwater/underwater_setup.h"
 #include "util/error.h"
+#include "util/paths.h"
 
 namespace fs = std::filesystem;
 
@@ -137,10 +138,24 @@ int cmdRender(const RenderCmd& cmd) {
   return 0;
 }
 
-int cmdRun(const std::string& job, const std::string& device, const std::string& shard, bool resume) {
+int cmdRun(const std::string& job_arg, const std::string& device, const std::string& shard, bool resume,
+           const std::string& output_dir) {
   RunOptions options;
   options.device = device;
   options.resume = resume;
+  options.output_dir = output_dir;
+  // `seasim run jobs/quickstart.toml` outside the source tree runs the installed example; its outputs
+  // go where the source tree would put them, under the current folder (the install is read-only).
+  std::string job = job_arg;
+  if (!std::filesystem::exists(job)) {
+    const std::string example = installedExample(job);
+    if (example.empty()) throw RuntimeError("job file not found: " + job);
+    job = example;
+    if (options.output_dir.empty())
+      options.output_dir = (std::filesystem::current_path() / "results" / loadJob(job).name).string();
+    std::printf("%s is not here: running the installed example %s, writing to %s\n", job_arg.c_str(), job.c_str(),
+                options.output_dir.c_str());
+  }
   if (!shard.empty()) {
     const auto parts = split(shard, '/');
     try {
@@ -409,7 +424,7 @@ int cmdBench(const BenchCmd& cmd) {
     if (underwater) {
       const WavelengthGrid grid = makeGrid(scene.spectral.count, scene.spectral.min_nm, scene.spectral.max_nm);
       const UnderwaterSetup setup =
-          makeUnderwaterSetup(scene, grid, makeSensor(scene.spectral.sensor, grid, scene.spectral.white_balance));
+          makeUnderwaterSetup(scene, grid, makeSensor(scene.spectral.sensor, grid, scene.spectral.white_balance, scene.spectral.camera_dir));
       UnderwaterCpuOptions options;
       options.use_double = false;
       options.multiple = scene.underwater.multiple_scattering;
@@ -480,7 +495,7 @@ int cmdReference(const ReferenceCmd& cmd) {
     Device device(chooseDevice(cmd.device));
     const WavelengthGrid grid = makeGrid(scene.spectral.count, scene.spectral.min_nm, scene.spectral.max_nm);
     const UnderwaterSetup setup =
-        makeUnderwaterSetup(scene, grid, makeSensor(scene.spectral.sensor, grid, scene.spectral.white_balance));
+        makeUnderwaterSetup(scene, grid, makeSensor(scene.spectral.sensor, grid, scene.spectral.white_balance, scene.spectral.camera_dir));
     UnderwaterReferenceSettings settings;
     settings.samples_per_pixel = cmd.steps;
     if (!scene.underwater.multiple_scattering) settings.max_bounces = 1;

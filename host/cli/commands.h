@@ -22,7 +22,8 @@ struct RenderCmd {
 };
 int cmdRender(const RenderCmd& cmd);
 
-int cmdRun(const std::string& job, const std::string& device, const std::string& shard, bool resume);
+int cmdRun(const std::string& job, const std::string& device, const std::string& shard, bool resume,
+           const std::string& output_dir = "");
 
 int cmdCompare(const std::string& test, const std::string& reference, double exposure_ev);
 

@@ -3,15 +3,19 @@
 
 #include <cstdio>
 #include <exception>
+#include <filesystem>
 
 #include "cli/commands.h"
 #include "cli/ocean_command.h"
 #include "cli/seashore_study_command.h"
 #include "cli/underwater_study_command.h"
+#include "spectral/sensor.h"
+#include "util/version.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"seasim — OpenCL simulator of light in water and air"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", std::string("seasim ") + seasim::version() + " (git " + seasim::gitCommit() + ")");
 
   auto* devices = app.add_subcommand("devices", "List OpenCL platforms and devices");
 
@@ -35,10 +39,11 @@ int main(int argc, char** argv) {
   render->add_option("--reference", render_cmd.reference, "Reference EXR: report error against it")
       ->check(CLI::ExistingFile);
 
-  std::string run_job, run_device, run_shard;
+  std::string run_job, run_device, run_shard, run_output;
   bool run_resume = false;
   auto* run = app.add_subcommand("run", "Run a job file (renders, sweeps) with manifest and resume");
-  run->add_option("job", run_job, "Job file")->required()->check(CLI::ExistingFile);
+  run->add_option("job", run_job, "Job file (or an installed example such as jobs/quickstart.toml)")->required();
+  run->add_option("-o,--output-dir", run_output, "Write here instead of the job's output_dir");
   run->add_option("--device", run_device, "Device selector (overrides the job's)");
   run->add_option("--shard", run_shard, "i/N: render items with index % N == i");
   run->add_flag("--resume", run_resume, "Skip items the manifest records as finished");
@@ -102,7 +107,10 @@ int main(int argc, char** argv) {
   study->add_option("scene", study_cmd.scene, "The seabed scene (scenes/seabed.toml)")->required()->check(CLI::ExistingFile);
   study->add_option("--waters", study_cmd.waters, "Jerlov types")->delimiter(',');
   study->add_option("--depths", study_cmd.depths, "Seabed depths, m")->delimiter(',');
-  study->add_option("--cameras", study_cmd.cameras, "Camera response curves (data/cameras stems)")->delimiter(',');
+  auto* study_cameras = study->add_option("--cameras", study_cmd.cameras, "Camera response curves (file stems)")->delimiter(',');
+  study->add_option("--camera-dir", study_cmd.camera_dir,
+                    "Folder of <camera>.csv curves (nm,r,g,b); without --cameras, every camera in it")
+      ->check(CLI::ExistingDirectory);
   study->add_option("--width", study_cmd.width, "Image width");
   study->add_option("--height", study_cmd.height, "Image height");
   study->add_option("--bands", study_cmd.spectral_bands, "Bands of the spectral render");
@@ -138,13 +146,19 @@ int main(int argc, char** argv) {
     if (*validate) return seasim::cmdValidate(validate_files);
     if (*plan) return seasim::cmdPlan(plan_scene, plan_sets);
     if (*render) return seasim::cmdRender(render_cmd);
-    if (*run) return seasim::cmdRun(run_job, run_device, run_shard, run_resume);
+    if (*run) return seasim::cmdRun(run_job, run_device, run_shard, run_resume, run_output);
     if (*compare) return seasim::cmdCompare(cmp_a, cmp_b, cmp_exposure);
     if (*sweep) return seasim::cmdSweep(sweep_cmd);
     if (*bench) return seasim::cmdBench(bench_cmd);
     if (*reference) return seasim::cmdReference(ref_cmd);
     if (*ocean) return seasim::cmdOcean(ocean_cmd);
-    if (*study) return seasim::cmdUnderwaterStudy(study_cmd);
+    if (*study) {
+      if (!study_cmd.camera_dir.empty()) {
+        study_cmd.camera_dir = std::filesystem::absolute(study_cmd.camera_dir).lexically_normal().string();
+        if (study_cameras->count() == 0) study_cmd.cameras = seasim::cameraNamesIn(study_cmd.camera_dir);
+      }
+      return seasim::cmdUnderwaterStudy(study_cmd);
+    }
     if (*shore) return seasim::cmdSeashoreStudy(shore_cmd);
     if (*preview) return seasim::cmdPreview(preview_scene, preview_device);
   } catch (const std::exception& e) {

@@ -68,6 +68,7 @@ int cmdUnderwaterStudy(const UnderwaterStudyCmd& cmd) {
         std::vector<Override> base = seabedAt(depth);
         for (const std::string& s : cmd.sets) base.push_back(parseSetOption(s));
         base.push_back(set("water.jerlov", "\"" + water + "\""));
+        if (!cmd.camera_dir.empty()) base.push_back(set("spectral.camera_dir", "\"" + cmd.camera_dir + "\""));
         base.push_back(set("spectral.sensor", "\"" + camera + "\""));
         base.push_back(set("camera.width", std::to_string(cmd.width)));
         base.push_back(set("camera.height", std::to_string(cmd.height)));
@@ -81,7 +82,7 @@ int cmdUnderwaterStudy(const UnderwaterStudyCmd& cmd) {
         const Scene ref_scene = loadScene(cmd.scene, ref_over);
         const WavelengthGrid grid = makeGrid(cmd.reference_bands, ref_scene.spectral.min_nm, ref_scene.spectral.max_nm);
         const UnderwaterSetup setup = makeUnderwaterSetup(
-            ref_scene, grid, makeSensor(ref_scene.spectral.sensor, grid, ref_scene.spectral.white_balance));
+            ref_scene, grid, makeSensor(ref_scene.spectral.sensor, grid, ref_scene.spectral.white_balance, ref_scene.spectral.camera_dir));
         UnderwaterReferenceSettings settings;
         settings.samples_per_pixel = cmd.spp;
         const auto t_ref = std::chrono::steady_clock::now();

@@ -13,8 +13,11 @@ struct UnderwaterStudyCmd {
   std::string device;
   std::vector<std::string> waters = {"3C", "II", "I", "IA", "IB"};
   std::vector<double> depths = {3, 5, 9};
-  std::vector<std::string> cameras = {"camspec_canon_5dmarkii", "camspec_nikon_d700", "camspec_sony_nex-5n",
-                                      "camspec_pentax_k-5", "camspec_olympus_e-pl2"};
+  // The shipped (BSD) cameras by default. The thesis's sweep over many cameras reads curves that may
+  // not ship (e.g. the CC BY-NC-SA camspec database) from camera_dir: with it and no --cameras, every
+  // <name>.csv in that folder is used.
+  std::vector<std::string> cameras = {"canon_eos_5d_mark_ii_rawtoaces", "nikon_d5100_npl", "sigma_sdmerrill_npl"};
+  std::string camera_dir;
   int width = 64, height = 36;
   int spectral_bands = 32;   // the fast method's n
   int reference_bands = 32;  // the path tracer's bands

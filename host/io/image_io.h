@@ -1,7 +1,7 @@
 // image_io.h — image files. Two implementations, CMake compiles exactly one:
 //   image_io_oiio.cpp  (SEASIM_IMAGE_IO=ON, the default): OpenImageIO — EXR, PNG, spectral EXR,
 //                      reading any format OpenImageIO knows. The only file that includes OIIO.
-//   image_io_npy.cpp   (SEASIM_IMAGE_IO=OFF, builds carried to GPU machines, ../shared/GPU.md):
+//   image_io_npy.cpp   (SEASIM_IMAGE_IO=OFF, builds carried to GPU machines, docs/gpu.md):
 //                      every writer writes NumPy arrays beside the requested name instead:
 //                        writeExr(p)         -> p + ".npy"  float32 (h, w, c), linear
 //                        writePng(p)         -> p + ".npy"  uint8   (h, w, c), the PNG's bytes

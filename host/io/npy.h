@@ -1,5 +1,5 @@
 // npy.h — NumPy .npy files (format version 1.0, little endian, C order): the raw output of builds
-// without OpenImageIO (SEASIM_IMAGE_IO=OFF, for GPU machines; see ../shared/GPU.md) and a format
+// without OpenImageIO (SEASIM_IMAGE_IO=OFF, for GPU machines; see docs/gpu.md) and a format
 // any Python with numpy reads: `numpy.load("frame.exr.npy")`. Compiled in every build.
 #pragma once
 #include <cstddef>

@@ -8,6 +8,8 @@
 #include "plan/plan.h"
 #include "reference/compare.h"
 #include "util/error.h"
+#include "util/paths.h"
+#include "util/version.h"
 
 namespace fs = std::filesystem;
 
@@ -80,6 +82,7 @@ nlohmann::json renderItem(Device& device, const Scene& scene, const ItemOutputs&
     total += t.ms;
   }
   nlohmann::json report = {
+      {"seasim", {{"version", version()}, {"git_commit", gitCommit()}, {"data_dir", dataDir()}}},
       {"scene", scene.file},
       {"name", scene.name},
       {"device",

@@ -9,6 +9,7 @@ struct RunOptions {
   int shard_index = 0;     // --shard i/N: this process renders items with index % N == i
   int shard_count = 1;
   bool resume = false;     // skip items the manifest records as finished with intact files
+  std::string output_dir;  // replaces the job's output_dir when not empty (-o)
 };
 
 struct RunSummary {

@@ -58,7 +58,7 @@ FrameResult renderFrame(Device& device, const Scene& scene, const Plan& plan) {
   const double build_before = device.totalBuildMs();
   FrameResult result;
   const WavelengthGrid grid = makeGrid(scene.spectral.count, scene.spectral.min_nm, scene.spectral.max_nm);
-  const Sensor sensor = makeSensor(scene.spectral.sensor, grid, scene.spectral.white_balance);
+  const Sensor sensor = makeSensor(scene.spectral.sensor, grid, scene.spectral.white_balance, scene.spectral.camera_dir);
   result.wavelengths_nm = grid.centers_nm;
 
   const int w = scene.camera.width, h = scene.camera.height;

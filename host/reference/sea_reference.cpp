@@ -29,7 +29,7 @@ Image renderSeaReference(const Scene& scene, int steps) {
                        "caustic term on its own)");
   }
   const WavelengthGrid grid = makeGrid(scene.spectral.count, scene.spectral.min_nm, scene.spectral.max_nm);
-  const Sensor sensor = makeSensor(scene.spectral.sensor, grid, scene.spectral.white_balance);
+  const Sensor sensor = makeSensor(scene.spectral.sensor, grid, scene.spectral.white_balance, scene.spectral.camera_dir);
   const BandOptics water = resolveWater(scene.water, grid);
   const std::vector<double> sun_e = sunIrradianceBands(grid, scene.sun.irradiance);
   const std::vector<double> sky_l = sunIrradianceBands(grid, scene.sky.radiance);  // uniform sky: D65 shape

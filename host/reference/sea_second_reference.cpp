@@ -49,7 +49,7 @@ Image renderSeaSecondReference(const Scene& scene, const SeaSecondReferenceSetti
     throw RuntimeError("second-order reference: depth_steps and angle_steps must be at least 1");
   }
   const WavelengthGrid grid = makeGrid(scene.spectral.count, scene.spectral.min_nm, scene.spectral.max_nm);
-  const Sensor sensor = makeSensor(scene.spectral.sensor, grid, scene.spectral.white_balance);
+  const Sensor sensor = makeSensor(scene.spectral.sensor, grid, scene.spectral.white_balance, scene.spectral.camera_dir);
   const BandOptics water = resolveWater(scene.water, grid);
   const std::vector<double> sun_e = sunIrradianceBands(grid, scene.sun.irradiance);
   const size_t bands = grid.centers_nm.size();

@@ -119,7 +119,8 @@ struct SpectralDesc {
   int count = 3;              // wavelength bands, 1..1000
   double min_nm = 400.0;
   double max_nm = 700.0;
-  std::string sensor = "cie1931";  // "cie1931" or a camera name from data/cameras (file stem)
+  std::string sensor = "cie1931";  // "cie1931" or a camera name: a file stem in a folder of cameraDirs()
+  std::string camera_dir;          // file: camera_dir (resolved, absolute); "" = $SEASIM_CAMERA_DIR, data/cameras
   bool white_balance = true;
   bool spectral_exr = false;  // also write one channel per band
 };

@@ -465,12 +465,19 @@ class SceneParser {
       s.min_nm = range[0];
       s.max_nm = range[1];
     }
+    if (r.has("camera_dir")) {
+      const std::string dir = r.string("camera_dir", "");
+      r.check(!dir.empty(), "camera_dir", "must not be empty");
+      s.camera_dir = resolveRelativeTo(scene_.file, dir);
+      std::error_code ec;
+      r.check(std::filesystem::is_directory(s.camera_dir, ec), "camera_dir",
+              "no such folder: " + s.camera_dir + " (a folder of <camera>.csv files with the header nm,r,g,b)");
+    }
     s.sensor = r.string("sensor", s.sensor);
-    if (s.sensor != "cie1931" && cameraFile(s.sensor).empty()) {
-      std::vector<std::string> names = cameraNames();
+    if (s.sensor != "cie1931" && cameraFile(s.sensor, s.camera_dir).empty()) {
+      std::vector<std::string> names = cameraNames(s.camera_dir);
       names.insert(names.begin(), "cie1931");
-      r.fail("sensor", "unknown sensor '" + s.sensor + "' (not \"cie1931\" and no " + dataDir() +
-                           "/cameras/" + s.sensor + ".csv)" + suggestion(s.sensor, names, 6));
+      r.fail("sensor", unknownCameraMessage(s.sensor, s.camera_dir) + suggestion(s.sensor, names, 6));
     }
     s.white_balance = r.boolean("white_balance", s.white_balance);
     s.spectral_exr = r.boolean("spectral_exr", s.spectral_exr);

@@ -60,24 +60,38 @@ std::array<double, 3> Sensor::apply(const double* band_values) const {
   return {r, g, b};
 }
 
-std::vector<std::string> cameraNames() {
+std::vector<std::string> cameraNamesIn(const std::string& dir) {
   std::vector<std::string> names;
-  const std::filesystem::path dir = std::filesystem::path(dataDir()) / "cameras";
-  if (!std::filesystem::is_directory(dir)) return names;
-  for (const auto& entry : std::filesystem::directory_iterator(dir))
+  std::error_code ec;
+  if (!std::filesystem::is_directory(dir, ec)) return names;
+  for (const auto& entry : std::filesystem::directory_iterator(dir, ec))
     if (entry.is_regular_file() && entry.path().extension() == ".csv") names.push_back(entry.path().stem().string());
   std::sort(names.begin(), names.end());
   return names;
 }
 
-CameraCurves loadCamera(const std::string& name) {
-  const std::string path = cameraFile(name);
-  if (path.empty()) {
-    std::string list;
-    for (const auto& n : cameraNames()) list += (list.empty() ? "" : ", ") + n;
-    throw RuntimeError("unknown sensor '" + name + "': not \"cie1931\" and no file " + dataDir() + "/cameras/" +
-                       name + ".csv (cameras: " + list + ")");
+std::vector<std::string> cameraNames(const std::string& camera_dir) {
+  std::vector<std::string> names;
+  for (const auto& d : cameraDirs(camera_dir)) {
+    const std::vector<std::string> in_dir = cameraNamesIn(d);
+    names.insert(names.end(), in_dir.begin(), in_dir.end());
   }
+  std::sort(names.begin(), names.end());
+  names.erase(std::unique(names.begin(), names.end()), names.end());
+  return names;
+}
+
+std::string unknownCameraMessage(const std::string& name, const std::string& camera_dir) {
+  std::string dirs, list;
+  for (const auto& d : cameraDirs(camera_dir)) dirs += (dirs.empty() ? "" : ", ") + d;
+  for (const auto& n : cameraNames(camera_dir)) list += (list.empty() ? "" : ", ") + n;
+  return "unknown sensor '" + name + "': not \"cie1931\" and no file " + name + ".csv in " + dirs +
+         " (cameras: " + list + "); other curves go in a folder named by spectral.camera_dir or $SEASIM_CAMERA_DIR";
+}
+
+CameraCurves loadCamera(const std::string& name, const std::string& camera_dir) {
+  const std::string path = cameraFile(name, camera_dir);
+  if (path.empty()) throw RuntimeError(unknownCameraMessage(name, camera_dir));
   const CsvTable t = loadCsv(path);
   for (const char* ch : {"r", "g", "b"}) {
     const auto& col = t.column(ch);
@@ -88,7 +102,8 @@ CameraCurves loadCamera(const std::string& name) {
   return CameraCurves{t.spectrum("r"), t.spectrum("g"), t.spectrum("b")};
 }
 
-Sensor makeSensor(const std::string& name, const WavelengthGrid& grid, bool white_balance) {
+Sensor makeSensor(const std::string& name, const WavelengthGrid& grid, bool white_balance,
+                  const std::string& camera_dir) {
   const double lo = grid.minNm(), hi = grid.maxNm();
   const Spectrum illum = d65();
   std::array<Spectrum, 3> curves;  // x̄ȳz̄ or camera r, g, b
@@ -97,7 +112,7 @@ Sensor makeSensor(const std::string& name, const WavelengthGrid& grid, bool whit
     const CieCmf& cmf = cie1931Cmf();
     curves = {cmf.x_bar, cmf.y_bar, cmf.z_bar};
   } else {
-    CameraCurves cam = loadCamera(name);
+    CameraCurves cam = loadCamera(name, camera_dir);
     curves = {std::move(cam.r), std::move(cam.g), std::move(cam.b)};
   }
 

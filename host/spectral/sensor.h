@@ -5,8 +5,10 @@
 // Sensors (the `sensor` key of [spectral]):
 //   "cie1931"   the CIE 1931 2° observer (data/cie1931_2deg_cmf.csv): f = (x̄, ȳ, z̄) gives XYZ, then
 //               the sRGB matrix (cie.h) gives linear sRGB.
-//   <camera>    a file stem of data/cameras/*.csv (columns nm,r,g,b; provenance data/README.md §5),
-//               e.g. "camspec_canon_5dmarkii", "nikon_d5100_npl": f = the camera's r, g, b
+//   <camera>    a file stem of <dir>/*.csv for the folders of cameraDirs() (util/paths.h): the
+//               scene's camera_dir, $SEASIM_CAMERA_DIR, then the shipped data/cameras (columns
+//               nm,r,g,b; provenance data/README.md §5), e.g. "nikon_d5100_npl",
+//               "canon_eos_5d_mark_ii_rawtoaces": f = the camera's r, g, b
 //               sensitivities, linear between samples and 0 outside the measured range. Its output
 //               is the camera's own (white-balanced) RGB shown as linear sRGB, as 002 §6 compares
 //               renders per camera; no colour-correction matrix is applied (the data has none).
@@ -46,19 +48,28 @@ struct Sensor {
   std::array<double, 3> apply(const double* band_values) const;
 };
 
-// A camera's r, g, b sensitivity curves from data/cameras/<name>.csv.
+// A camera's r, g, b sensitivity curves from <dir>/<name>.csv (cameraDirs(camera_dir)).
 struct CameraCurves {
   Spectrum r, g, b;
 };
-// RuntimeError for an unknown name (listing the known ones), a malformed file or a negative value.
-CameraCurves loadCamera(const std::string& name);
+// RuntimeError for an unknown name (naming the folders searched and listing the known names), a
+// malformed file or a negative value.
+CameraCurves loadCamera(const std::string& name, const std::string& camera_dir = "");
 
-// Sorted file stems of data/cameras/*.csv: the camera names makeSensor accepts.
-std::vector<std::string> cameraNames();
+// Sorted file stems of <dir>/*.csv over cameraDirs(camera_dir): the camera names makeSensor accepts.
+std::vector<std::string> cameraNames(const std::string& camera_dir = "");
+
+// Sorted file stems of <dir>/*.csv for one folder (empty when it is not a folder).
+std::vector<std::string> cameraNamesIn(const std::string& dir);
+
+// "unknown sensor 'name': no name.csv in dir1, dir2, ... (cameras: ...)" for the folders searched.
+std::string unknownCameraMessage(const std::string& name, const std::string& camera_dir = "");
 
 // "cie1931" or a camera name (above). RuntimeError for an unknown name or a sensor with no response
 // over the grid's range.
-Sensor makeSensor(const std::string& name, const WavelengthGrid& grid, bool white_balance);
+// camera_dir: the scene's spectral.camera_dir (absolute, "" for none).
+Sensor makeSensor(const std::string& name, const WavelengthGrid& grid, bool white_balance,
+                  const std::string& camera_dir = "");
 
 // The sun's spectral irradiance per band: D65(λ_i) × scale (D65 = 1 at 560 nm), W m^-2 nm^-1.
 // D65 is held at its end values outside 300–780 nm. scale must be finite and >= 0.

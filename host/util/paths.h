@@ -1,15 +1,30 @@
 // paths.h — where the project's data lives at run time.
 #pragma once
 #include <string>
+#include <vector>
 
 namespace seasim {
 
-// The data/ folder (spectra, cameras): $SEASIM_DATA_DIR, else <source>/data when it exists,
-// else ./data. Throws RuntimeError when none has cie1931_2deg_cmf.csv.
+// <prefix>/share/seasim beside an installed binary (<prefix>/bin/seasim), found from the running
+// executable; "" when this binary is not installed (a build tree).
+std::string installedShareDir();
+
+// An installed example (jobs/, scenes/) for a relative path such as "jobs/quickstart.toml":
+// <installedShareDir()>/<path> when it exists, else "".
+std::string installedExample(const std::string& relative_path);
+
+// The data/ folder (spectra, cameras): $SEASIM_DATA_DIR, else the installed <prefix>/share/seasim/data,
+// else <source>/data when it exists, else ./data. Throws RuntimeError when none has cie1931_2deg_cmf.csv.
 std::string dataDir();
 
-// data/cameras/<name>.csv for a camera sensor name (the file stem); "" when absent.
-std::string cameraFile(const std::string& name);
+// The folders a camera sensor name is looked up in, in this order: the scene's spectral.camera_dir
+// (absolute; "" for none), $SEASIM_CAMERA_DIR, then the shipped data/cameras. Only BSD-licensed
+// curves ship; other measured curves (e.g. the CC BY-NC-SA camspec database) stay in a folder the
+// user names.
+std::vector<std::string> cameraDirs(const std::string& scene_camera_dir = "");
+
+// <dir>/<name>.csv in the first of cameraDirs() that has it; "" when none does.
+std::string cameraFile(const std::string& name, const std::string& scene_camera_dir = "");
 
 // The folder of one on-disk cache (kernel binaries: sub = ""): $SEASIM_CACHE_DIR/<sub>, else
 // $XDG_CACHE_HOME/seasim/<sub>, else $HOME/.cache/seasim/<sub>; "" when none of those is set.

@@ -71,7 +71,7 @@ froxel_near_m = 0.05
 froxel_far_m = 200
 [spectral]
 count = 8
-sensor = "camspec_nikon_d700"
+sensor = "nikon_d5100_npl"
 [quality]
 froxel_x = 32
 froxel_y = 18
@@ -87,7 +87,7 @@ seasim::Scene scene(const std::vector<seasim::Override>& overrides = {}, const c
 
 seasim::UnderwaterSetup setupOf(const seasim::Scene& s) {
   const seasim::WavelengthGrid grid = seasim::makeGrid(s.spectral.count, s.spectral.min_nm, s.spectral.max_nm);
-  const seasim::Sensor sensor = seasim::makeSensor(s.spectral.sensor, grid, s.spectral.white_balance);
+  const seasim::Sensor sensor = seasim::makeSensor(s.spectral.sensor, grid, s.spectral.white_balance, s.spectral.camera_dir);
   return seasim::makeUnderwaterSetup(s, grid, sensor);
 }
 

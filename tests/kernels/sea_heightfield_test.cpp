@@ -241,7 +241,7 @@ TEST(SeaHeightFieldKernel, DepthTablesComeBackFromTheCache) {
                                 {set("sea.second_order", "true"), set("quality.sea_map_size", "8"),
                                  set("quality.sea_nd", "32"), set("quality.sea_nz", "4")});
   const seasim::WavelengthGrid grid = seasim::makeGrid(s.spectral.count, s.spectral.min_nm, s.spectral.max_nm);
-  const seasim::Sensor sensor = seasim::makeSensor(s.spectral.sensor, grid, s.spectral.white_balance);
+  const seasim::Sensor sensor = seasim::makeSensor(s.spectral.sensor, grid, s.spectral.white_balance, s.spectral.camera_dir);
   const seasim::Plan plan = seasim::makePlan(s);
   std::vector<float> first, second;
   for (std::vector<float>* out : {&first, &second}) {

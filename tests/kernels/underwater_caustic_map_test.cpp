@@ -79,7 +79,7 @@ struct Frame {
 Frame load(std::vector<seasim::Override> overrides = {}) {
   Frame f{seasim::parseScene(kScene, "test_caustic_map.toml", overrides), {}};
   const seasim::WavelengthGrid grid = seasim::makeGrid(f.scene.spectral.count, f.scene.spectral.min_nm, f.scene.spectral.max_nm);
-  f.setup = seasim::makeUnderwaterSetup(f.scene, grid, seasim::makeSensor(f.scene.spectral.sensor, grid, f.scene.spectral.white_balance));
+  f.setup = seasim::makeUnderwaterSetup(f.scene, grid, seasim::makeSensor(f.scene.spectral.sensor, grid, f.scene.spectral.white_balance, f.scene.spectral.camera_dir));
   return f;
 }
 

@@ -61,7 +61,7 @@ single_scattering = false
 caustics = "none"
 [spectral]
 count = 8
-sensor = "camspec_nikon_d700"
+sensor = "nikon_d5100_npl"
 )";
 
 seasim::Override set(const char* key, const std::string& value) { return {key, value, {"test", 1}}; }
@@ -97,7 +97,7 @@ TEST_P(UnderwaterKdKernel, MatchesDoubleCpuEvaluationWithoutNaN) {
   EXPECT_EQ(frame.nonfinite, 0);
   for (float v : frame.rgb.pixels) ASSERT_TRUE(std::isfinite(v) && v >= 0.0f);
   const seasim::WavelengthGrid grid = seasim::makeGrid(scene.spectral.count, scene.spectral.min_nm, scene.spectral.max_nm);
-  const seasim::Sensor sensor = seasim::makeSensor(scene.spectral.sensor, grid, scene.spectral.white_balance);
+  const seasim::Sensor sensor = seasim::makeSensor(scene.spectral.sensor, grid, scene.spectral.white_balance, scene.spectral.camera_dir);
   const seasim::UnderwaterSetup setup = seasim::makeUnderwaterSetup(scene, grid, sensor);
   seasim::UnderwaterCpuOptions options;
   options.multiple = scene.underwater.multiple_scattering;

@@ -11,6 +11,9 @@
 #include <unistd.h>
 
 #include "scene/scene_parser.h"
+#include "spectral/sensor.h"
+#include "spectral/wavelength_grid.h"
+#include "util/paths.h"
 #include "util/error.h"
 
 namespace fs = std::filesystem;
@@ -405,6 +408,52 @@ TEST(SceneParser, TexturesResolveAgainstTheSceneFile) {
   std::string msg = errorOf(text, {}, (dir / "s.toml").string());
   EXPECT_NE(msg.find("s.toml:5: key 'bottom.heightfield': file not found: " + (dir / "tex" / "hf.png").string()),
             std::string::npos) << msg;
+  fs::remove_all(dir);
+}
+
+// Camera curves that do not ship are read from the scene's camera_dir (relative to the scene file),
+// then $SEASIM_CAMERA_DIR, then data/cameras. A missing one names every folder searched and the
+// scene's file, line and key.
+TEST(SceneParser, CameraDirFindsUserCurvesAndMissingOnesNameTheFolders) {
+  fs::path dir = tempDir("cameras");
+  fs::create_directories(dir / "my_cameras");
+  std::string curves = "nm,r,g,b\n";
+  for (int nm = 380; nm <= 780; nm += 10)
+    curves += std::to_string(nm) + "," + (nm > 560 ? "1" : "0.1") + "," + (nm > 480 && nm < 600 ? "1" : "0.1") +
+              "," + (nm < 500 ? "1" : "0.1") + "\n";
+  writeFile(dir / "my_cameras" / "studio_cam.csv", curves);
+
+  const std::string good = "[spectral]\ncount = 8\ncamera_dir = \"my_cameras\"\nsensor = \"studio_cam\"\n";
+  Scene s = parseScene(good, (dir / "s.toml").string());
+  EXPECT_EQ(s.spectral.camera_dir, (dir / "my_cameras").string());
+  EXPECT_EQ(cameraFile("studio_cam", s.spectral.camera_dir), (dir / "my_cameras" / "studio_cam.csv").string());
+  const WavelengthGrid g = makeGrid(8, s.spectral.min_nm, s.spectral.max_nm);
+  EXPECT_EQ(makeSensor(s.spectral.sensor, g, true, s.spectral.camera_dir).size(), 8u);
+  // The shipped cameras are still found with a camera_dir set.
+  EXPECT_NO_THROW(parseScene("[spectral]\ncamera_dir = \"my_cameras\"\nsensor = \"nikon_d5100_npl\"\n",
+                             (dir / "s.toml").string()));
+
+  // Missing: the message names the scene's file:line:key, the file looked for and each folder searched.
+  const std::string scene_file = (dir / "missing.toml").string();
+  const std::string missing = "[spectral]\ncount = 8\ncamera_dir = \"my_cameras\"\nsensor = \"camspec_nikon_d700\"\n";
+  const std::string msg = errorOf(missing, {}, scene_file);
+  EXPECT_NE(msg.find(scene_file + ":4: key 'spectral.sensor': unknown sensor 'camspec_nikon_d700'"), std::string::npos)
+      << msg;
+  EXPECT_NE(msg.find("camspec_nikon_d700.csv in " + (dir / "my_cameras").string()), std::string::npos) << msg;
+  EXPECT_NE(msg.find(dataDir() + "/cameras"), std::string::npos) << msg;
+  // A camera_dir that is not a folder is named as such.
+  const std::string no_dir = errorOf("[spectral]\ncamera_dir = \"nowhere\"\n", {}, scene_file);
+  EXPECT_NE(no_dir.find(scene_file + ":2: key 'spectral.camera_dir': no such folder: " + (dir / "nowhere").string()),
+            std::string::npos) << no_dir;
+
+  // $SEASIM_CAMERA_DIR is searched too, and named in the message when it does not have the file.
+  ::setenv("SEASIM_CAMERA_DIR", (dir / "my_cameras").c_str(), 1);
+  EXPECT_NO_THROW(parseScene("[spectral]\nsensor = \"studio_cam\"\n", scene_file));
+  const std::string env_msg = errorOf("[spectral]\nsensor = \"other_cam\"\n", {}, scene_file);
+  ::unsetenv("SEASIM_CAMERA_DIR");
+  EXPECT_NE(env_msg.find("other_cam.csv in " + (dir / "my_cameras").string() + ", " + dataDir() + "/cameras"),
+            std::string::npos) << env_msg;
+  EXPECT_THROW(parseScene("[spectral]\nsensor = \"studio_cam\"\n", scene_file), InputError);
   fs::remove_all(dir);
 }
 

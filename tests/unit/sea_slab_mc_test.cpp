@@ -77,7 +77,7 @@ second_order = true
 double referenceSecond(const seasim::Scene& scene, seasim::SeaSecondReferenceSettings settings) {
   const seasim::WavelengthGrid grid =
       seasim::makeGrid(scene.spectral.count, scene.spectral.min_nm, scene.spectral.max_nm);
-  const seasim::Sensor sensor = seasim::makeSensor(scene.spectral.sensor, grid, scene.spectral.white_balance);
+  const seasim::Sensor sensor = seasim::makeSensor(scene.spectral.sensor, grid, scene.spectral.white_balance, scene.spectral.camera_dir);
   const seasim::Image img = seasim::renderSeaSecondReference(scene, settings);
   return img.pixels[1] / sensor.to_g[0];
 }
