@@ -16,6 +16,8 @@
 #include <sstream>
 #include <thread>
 
+#include "run_command.h"
+
 namespace fs = std::filesystem;
 
 extern char** environ;
@@ -25,20 +27,9 @@ namespace {
 const std::string kBinary = SEASIM_BINARY;
 const std::string kRepo = SEASIM_SOURCE_DIR;
 
-struct Result {
-  int code;
-  std::string output;  // stdout and stderr
-};
+using seasim_test::Result;
 
-Result run(const std::string& args) {
-  const std::string cmd = kBinary + " " + args + " 2>&1";
-  FILE* pipe = popen(cmd.c_str(), "r");
-  std::string out;
-  char buf[4096];
-  while (size_t n = fread(buf, 1, sizeof buf, pipe)) out.append(buf, n);
-  const int status = pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
-}
+Result run(const std::string& args) { return seasim_test::runCommand(kBinary + " " + args); }
 
 class Cli : public ::testing::Test {
  protected:

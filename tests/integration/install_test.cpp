@@ -4,7 +4,6 @@
 // report.json.
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cstdio>
@@ -12,24 +11,17 @@
 #include <fstream>
 #include <string>
 
+#include "run_command.h"
+
 namespace fs = std::filesystem;
 
 namespace {
 
-struct Result {
-  int code;
-  std::string output;
-};
+using seasim_test::Result;
 
 // Runs a shell command line with seasim's path variables removed from its environment.
 Result shell(const std::string& cmd) {
-  const std::string full = "env -u SEASIM_DATA_DIR -u SEASIM_CAMERA_DIR -u SEASIM_KERNEL_DIR " + cmd + " 2>&1";
-  FILE* pipe = popen(full.c_str(), "r");
-  std::string out;
-  char buf[4096];
-  while (size_t n = fread(buf, 1, sizeof buf, pipe)) out.append(buf, n);
-  const int status = pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+  return seasim_test::runCommand("env -u SEASIM_DATA_DIR -u SEASIM_CAMERA_DIR -u SEASIM_KERNEL_DIR " + cmd);
 }
 
 class Install : public ::testing::Test {
