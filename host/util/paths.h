@@ -18,4 +18,10 @@ std::string cacheDir(const std::string& sub);
 // Absolute, lexically normal form of `path` relative to the folder of `anchor_file`.
 std::string resolveRelativeTo(const std::string& anchor_file, const std::string& path);
 
+// Why `dir` cannot be an output folder, or "" when it can: a NUL byte in it, a name part longer
+// than the file system allows (255 bytes) or a path over 4095 bytes, something that exists and is
+// not a folder (a file, /dev/null), or a nearest existing parent that is not a writable folder.
+// Checked before anything renders, so the message names the setting instead of a raw I/O error.
+std::string outputDirProblem(const std::string& dir);
+
 }  // namespace seasim
