@@ -47,8 +47,12 @@ nlohmann::json settingsJson(const Scene& s) {
 nlohmann::json renderItem(Device& device, const Scene& scene, const ItemOutputs& outputs, const std::string& dir) {
   const Plan plan = makePlan(scene);
   // Before any buffer exists: a render too big for the device fails here, naming its settings.
-  checkMemoryBudget(estimateBuffers(scene, plan), device.info().global_mem_bytes, device.info().max_alloc_bytes,
-                    device.info().label());
+  unsigned long long global_mem = device.info().global_mem_bytes, max_alloc = device.info().max_alloc_bytes;
+  applyMemoryCap(global_mem, max_alloc);
+  const bool capped = global_mem != device.info().global_mem_bytes || max_alloc != device.info().max_alloc_bytes;
+  checkMemoryBudget(estimateBuffers(scene, plan), global_mem, max_alloc,
+                    device.info().label() + (capped ? " capped by SEASIM_DEVICE_MEMORY_MB" : ""),
+                    !device.info().is_gpu);
   FrameResult frame = renderFrame(device, scene, plan);
   if (frame.nonfinite != 0) {
     throw RuntimeError("scene '" + scene.name + "': the kernels produced " + std::to_string(frame.nonfinite) +

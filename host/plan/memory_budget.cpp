@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 
 #include "util/error.h"
 
@@ -57,9 +58,11 @@ std::vector<BufferEstimate> estimateBuffers(const Scene& s, const Plan& plan) {
   const double w = s.camera.width, h = s.camera.height;
   const double nb = s.spectral.count;
   const std::vector<std::string> wh = {"camera.width", "camera.height"};
-  // Device buffers only; the host holds about one more RGB copy, small next to these.
-  // The frame's RGB image; the pass-specific per-pixel buffers are added below.
+  // The frame's RGB image on the device and its host copies: the float read-back and the
+  // 8-bit tone-mapped and encoded PNG bytes. The pass-specific per-pixel buffers are added below.
   out.push_back({"frame", "RGB image", 3 * 4 * w * h, wh, {w, h}});
+  out.push_back({"frame", "RGB image read back to the host", 3 * 4 * w * h, wh, {w, h}, true});
+  out.push_back({"frame", "8-bit PNG bytes (tone-mapped and encoded)", 2 * 3 * w * h, wh, {w, h}, true});
   if (s.spectral.spectral_exr)
     out.push_back({"frame", "spectral image (spectral.spectral_exr)", 4 * nb * w * h,
                    {"camera.width", "camera.height", "spectral.count"}, {w, h, nb}});
@@ -110,18 +113,41 @@ std::vector<BufferEstimate> estimateBuffers(const Scene& s, const Plan& plan) {
   return out;
 }
 
-void checkMemoryBudget(const std::vector<BufferEstimate>& buffers, unsigned long long global_mem_bytes,
-                       unsigned long long max_alloc_bytes, const std::string& device_label) {
+void applyMemoryCap(unsigned long long& global_mem_bytes, unsigned long long& max_alloc_bytes) {
+  const char* env = std::getenv("SEASIM_DEVICE_MEMORY_MB");
+  if (!env || !*env) return;
+  char* end = nullptr;
+  const unsigned long long mb = std::strtoull(env, &end, 10);
+  if (*end != '\0' || mb == 0 || mb > (1ull << 30))
+    throw RuntimeError(std::string("SEASIM_DEVICE_MEMORY_MB must be a positive number of MiB, got '") + env + "'");
+  const unsigned long long cap = mb << 20;
+  global_mem_bytes = global_mem_bytes ? std::min(global_mem_bytes, cap) : cap;
+  max_alloc_bytes = max_alloc_bytes ? std::min(max_alloc_bytes, cap) : cap;
+}
+
+void checkMemoryBudget(const std::vector<BufferEstimate>& all, unsigned long long global_mem_bytes,
+                       unsigned long long max_alloc_bytes, const std::string& device_label,
+                       bool host_shares_memory) {
+  std::vector<BufferEstimate> buffers;
+  for (const auto& b : all)
+    if (!b.host || host_shares_memory) buffers.push_back(b);
   if (buffers.empty()) return;
-  const auto largest = std::max_element(buffers.begin(), buffers.end(),
-                                        [](const BufferEstimate& a, const BufferEstimate& b) { return a.bytes < b.bytes; });
-  if (max_alloc_bytes > 0 && largest->bytes > static_cast<double>(max_alloc_bytes)) {
+  // One allocation limit applies to device buffers only.
+  std::vector<BufferEstimate> device_only;
+  for (const auto& b : buffers)
+    if (!b.host) device_only.push_back(b);
+  const auto by_size = [](const BufferEstimate& a, const BufferEstimate& b) { return a.bytes < b.bytes; };
+  const auto largest_device = std::max_element(device_only.begin(), device_only.end(), by_size);
+  if (largest_device != device_only.end() && max_alloc_bytes > 0 &&
+      largest_device->bytes > static_cast<double>(max_alloc_bytes)) {
+    const BufferEstimate* largest = &*largest_device;
     throw RuntimeError("not enough device memory: the " + largest->pass + " pass's " + largest->what + " need " +
                        mib(largest->bytes) + " in one buffer, more than the device's largest allocation (" +
                        mib(static_cast<double>(max_alloc_bytes)) + ", CL_DEVICE_MAX_MEM_ALLOC_SIZE of " +
                        device_label + ")" + whatFits(*largest, static_cast<double>(max_alloc_bytes)) +
                        "; nothing was allocated");
   }
+  const auto largest = std::max_element(buffers.begin(), buffers.end(), by_size);
   double total = 0;
   for (const auto& b : buffers) total += b.bytes;
   // A tenth kept for the small buffers, kernels and the driver's own use.

@@ -21,17 +21,24 @@ struct BufferEstimate {
   double bytes = 0;
   std::vector<std::string> settings;  // scene keys, e.g. "quality.shadow_map_size"
   std::vector<double> values;         // their values in this scene
+  bool host = false;                  // a host-side copy: shares the device's memory on a CPU device
 };
 
 // The plan's big buffers (device and the host copies the frame needs). Small parameter blocks are
 // left out; the check keeps a margin for them.
 std::vector<BufferEstimate> estimateBuffers(const Scene& scene, const Plan& plan);
 
-// Throws RuntimeError when one buffer exceeds max_alloc_bytes or all of them exceed
+// Throws RuntimeError when one device buffer exceeds max_alloc_bytes or all of them exceed
 // global_mem_bytes (less a margin), naming the buffer, its settings and the largest values that
-// fit. A zero limit is not checked.
+// fit. Host copies count towards the total only when `host_shares_memory` (a CPU device such as
+// PoCL allocates its "device" buffers in the same RAM). A zero limit is not checked.
 void checkMemoryBudget(const std::vector<BufferEstimate>& buffers, unsigned long long global_mem_bytes,
-                       unsigned long long max_alloc_bytes, const std::string& device_label);
+                       unsigned long long max_alloc_bytes, const std::string& device_label,
+                       bool host_shares_memory = false);
+
+// The limits a render plans with: the device's, capped by $SEASIM_DEVICE_MEMORY_MB when set (a
+// farm node whose GPU is shared with other jobs). Throws RuntimeError for a malformed value.
+void applyMemoryCap(unsigned long long& global_mem_bytes, unsigned long long& max_alloc_bytes);
 
 // Most spotlights and objects a scene may hold (each light has its own shadow map and shaft
 // planes; objects are tested per pixel per light). The scene parser enforces them.

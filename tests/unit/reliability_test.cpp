@@ -365,6 +365,9 @@ TEST_F(Reliability, MemoryBudgetNamesTheSettingsAndWhatFits) {
   msg = errorOf([&] { checkMemoryBudget(buffers, 8 * gib, 8 * gib, "test device"); });
   EXPECT_NE(msg.find("CL_DEVICE_GLOBAL_MEM_SIZE"), std::string::npos) << msg;
   EXPECT_EQ(errorOf([&] { checkMemoryBudget(buffers, 64 * gib, 8 * gib, "test device"); }), "");
+  // On a CPU device the host copies of the frame share the same memory and count too.
+  EXPECT_EQ(errorOf([&] { checkMemoryBudget(buffers, 12 * gib, 8 * gib, "gpu", false); }), "");
+  EXPECT_NE(errorOf([&] { checkMemoryBudget(buffers, 12 * gib, 8 * gib, "cpu", true); }), "");
 
   // Quality knobs: the message names the knob.
   const Scene spot = loadScene(std::string(SEASIM_SOURCE_DIR) + "/scenes/spot_sphere.toml",
