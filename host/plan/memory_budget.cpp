@@ -28,27 +28,40 @@ std::string num(double v) {
   return buf;
 }
 
-// "camera.width = 16384, camera.height = 16384 need 4096 MiB; at most camera.width = 8000,
-// camera.height = 8000 fit" for a buffer that must shrink to `limit` bytes.
+// " (camera.width = 16384, camera.height = 16384); to fit, at most camera.width = 8192 or
+// camera.height = 8192 (one at a time), or 11585 x 11585 together" for a buffer that must shrink
+// to `limit` bytes. Each distinct setting enters the size to the power of its repeats.
 std::string whatFits(const BufferEstimate& b, double limit) {
-  std::string now, fits;
-  // Each listed setting is one linear factor: shrink them all by the same f.
   std::vector<std::string> keys;
   std::vector<double> values;
+  std::vector<int> powers;
   for (size_t i = 0; i < b.settings.size(); ++i) {
     auto it = std::find(keys.begin(), keys.end(), b.settings[i]);
     if (it == keys.end()) {
       keys.push_back(b.settings[i]);
       values.push_back(b.values[i]);
+      powers.push_back(1);
+    } else {
+      ++powers[static_cast<size_t>(it - keys.begin())];
     }
   }
-  const double f = limit > 0 ? std::pow(limit / b.bytes, 1.0 / static_cast<double>(b.settings.size())) : 0;
+  if (keys.empty() || limit <= 0 || b.bytes <= 0) return "";
+  const double ratio = limit / b.bytes;
+  std::string now, fits;
   for (size_t i = 0; i < keys.size(); ++i) {
     now += (i ? ", " : "") + keys[i] + " = " + num(values[i]);
-    fits += (i ? ", " : "") + keys[i] + " = " + num(std::max(0.0, std::floor(values[i] * f)));
+    const double max = std::floor(values[i] * std::pow(ratio, 1.0 / powers[i]));
+    if (max >= 1) fits += (fits.empty() ? "" : " or ") + keys[i] + " = " + num(max);
   }
-  if (keys.empty()) return "";
-  return " (" + now + "); at most " + fits + " would fit" + (keys.size() > 1 ? " (shrinking them together)" : "");
+  std::string out = " (" + now + ")";
+  if (fits.empty()) return out + "; no single one of them can shrink enough";
+  out += "; to fit, at most " + fits + (keys.size() > 1 ? " (one at a time, the others as they are)" : "");
+  // An image shrinks most naturally at its aspect ratio.
+  if (keys.size() == 2 && keys[0] == "camera.width" && keys[1] == "camera.height") {
+    const double f = std::sqrt(ratio);
+    out += ", or " + num(std::floor(values[0] * f)) + " x " + num(std::floor(values[1] * f)) + " at this aspect ratio";
+  }
+  return out;
 }
 
 }  // namespace
