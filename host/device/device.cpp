@@ -9,6 +9,7 @@
 #include <sstream>
 #include <unistd.h>
 
+#include "device/crash_hint.h"
 #include "device/kernel_cache.h"
 #include "device/kernel_source.h"
 #include "util/error.h"
@@ -167,6 +168,13 @@ const BuiltProgram& Device::program(const std::string& kernel_file, const std::v
   const std::string dir = kernelCacheDir();
   const std::string cache_file = dir.empty() ? std::string() : kernelCachePath(dir, hash);
 
+  // PoCL aborts inside a build when its own cache is damaged: name the folder before dying.
+  const CrashHint crash_hint(
+      "building kernels/" + kernel_file,
+      info_.is_pocl && !poclCacheDir().empty()
+          ? "A damaged PoCL kernel cache causes this: clear '" + poclCacheDir() +
+                "' (`seasim cache clear` does it when seasim owns that folder) and run again."
+          : "If it happens again, clear the driver's kernel cache and seasim's (`seasim cache clear`).");
   BuiltProgram built;
   if (!cache_file.empty()) {
     std::vector<unsigned char> bytes;

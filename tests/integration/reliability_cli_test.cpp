@@ -226,6 +226,38 @@ TEST_F(Reliability, TruncatedOrSwappedKernelCacheBinaryIsRebuiltAndTheRunSucceed
   for (const auto& e : fs::directory_iterator(cache)) EXPECT_NE(e.path().extension(), ".bin") << e.path();
 }
 
+TEST_F(Reliability, SeasimOwnsThePoclCacheNamesItWhenPoclCrashesAndCacheClearRepairsIt) {
+  const std::string cache = (dir_ / "cache").string();
+  // No POCL_CACHE_DIR: seasim gives PoCL <cache>/pocl.
+  const std::string env = "env -u POCL_CACHE_DIR SEASIM_CACHE_DIR=" + cache + " ";
+  const std::string render = "render " + kRepo + "/scenes/flat_sea.toml --set camera.width=32 --set camera.height=16 "
+                             "--device pocl -o ";
+  Result r = run(render + (dir_ / "a").string(), env);
+  ASSERT_EQ(r.code, 0) << r.output;
+  const fs::path pocl = fs::path(cache) / "pocl";
+  int pocl_files = 0;
+  for (const auto& e : fs::recursive_directory_iterator(pocl))
+    if (e.is_regular_file() && (e.path().extension() == ".so" || e.path().extension() == ".bc")) {
+      fs::resize_file(e.path(), fs::file_size(e.path()) / 2);  // damage PoCL's own entries
+      ++pocl_files;
+    }
+  ASSERT_GT(pocl_files, 0) << "PoCL wrote its kernels under seasim's cache";
+  for (const auto& e : fs::directory_iterator(cache))
+    if (e.path().extension() == ".bin") fs::remove(e.path());  // make seasim build from source again
+  r = run(render + (dir_ / "b").string(), env);
+  // PoCL asserts on its damaged entries (it did on every try here); if it ever copes, fine.
+  if (r.code != 0) {
+    EXPECT_TRUE(contains(r.output, "clear '" + pocl.string() + "'")) << "names the folder: " << r.output;
+    EXPECT_TRUE(contains(r.output, "seasim cache clear")) << r.output;
+  }
+  r = run("cache clear", env);
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_FALSE(fs::exists(pocl));
+  r = run(render + (dir_ / "c").string(), env);
+  EXPECT_EQ(r.code, 0) << "after `cache clear` the render works: " << r.output;
+  EXPECT_TRUE(fs::exists(dir_ / "c" / "image.png"));
+}
+
 // ---------------------------------------------------------------------------------------------
 // 3. Full disk through the CLI: the PNG path names image.png and leaves nothing.
 
