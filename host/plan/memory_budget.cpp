@@ -168,10 +168,20 @@ void checkMemoryBudget(const std::vector<BufferEstimate>& all, unsigned long lon
   if (global_mem_bytes > 0 && total > usable) {
     std::string list;
     for (const auto& b : buffers) list += "\n  " + b.pass + ": " + b.what + " " + mib(b.bytes);
+    // Shrinking the largest buffer's settings shrinks every buffer that depends on all of them
+    // (all the per-pixel images with the camera size): what fits is computed over their sum.
+    BufferEstimate scaling = *largest;
+    scaling.bytes = 0;
+    for (const auto& b : buffers) {
+      bool depends = true;
+      for (const auto& key : largest->settings)
+        depends = depends && std::find(b.settings.begin(), b.settings.end(), key) != b.settings.end();
+      if (depends) scaling.bytes += b.bytes;
+    }
     throw RuntimeError("not enough device memory: this render needs about " + mib(total) + ", more than 90% of " +
                        device_label + "'s " + mib(static_cast<double>(global_mem_bytes)) +
                        " (CL_DEVICE_GLOBAL_MEM_SIZE). The largest is the " + largest->pass + " pass's " +
-                       largest->what + whatFits(*largest, usable - (total - largest->bytes)) +
+                       largest->what + whatFits(scaling, usable - (total - scaling.bytes)) +
                        "; nothing was allocated. Buffers:" + list);
   }
 }
