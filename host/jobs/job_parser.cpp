@@ -120,7 +120,8 @@ class JobParser {
     std::string p = r.string(key, "");
     r.check(!p.empty(), key, "must not be empty");
     std::string abs = resolveRelativeTo(job_.file, p);
-    r.check(fs::is_regular_file(abs), key, "file not found: " + abs);
+    const std::string problem = inputFileProblem(abs);
+    r.check(problem.empty(), key, problem);
     return abs;
   }
 
@@ -278,7 +279,7 @@ Job parseJob(const std::string& toml_text, const std::string& path) {
 
 Job loadJob(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
-  if (!in || fs::is_directory(path)) throw InputError(path, 1, "", "cannot open job file");
+  if (std::error_code ec; !in || fs::is_directory(path, ec)) throw InputError(path, 1, "", "cannot open job file");
   std::stringstream text;
   text << in.rdbuf();
   return parseJob(text.str(), path);

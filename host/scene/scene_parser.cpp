@@ -131,7 +131,8 @@ class SceneParser {
     std::string p = r.string(key, "");
     r.check(!p.empty(), key, "must not be empty");
     std::string abs = resolveRelativeTo(scene_.file, p);
-    r.check(fs::is_regular_file(abs), key, "file not found: " + abs);
+    const std::string problem = inputFileProblem(abs);
+    r.check(problem.empty(), key, problem);
     scene_.images.push_back(ImageInputRef{r.path(key), abs, src_.locOf(r.get(key))});
     return abs;
   }
@@ -570,7 +571,7 @@ Scene parseScene(const std::string& toml_text, const std::string& path,
 
 Scene loadScene(const std::string& path, const std::vector<Override>& overrides) {
   std::ifstream in(path, std::ios::binary);
-  if (!in || fs::is_directory(path)) throw InputError(path, 1, "", "cannot open scene file");
+  if (std::error_code ec; !in || fs::is_directory(path, ec)) throw InputError(path, 1, "", "cannot open scene file");
   std::stringstream text;
   text << in.rdbuf();
   return parseScene(text.str(), path, overrides);

@@ -27,7 +27,8 @@ std::string dataDir() {
 std::string cameraFile(const std::string& name) {
   if (name.empty() || name.find('/') != std::string::npos) return "";
   fs::path p = fs::path(dataDir()) / "cameras" / (name + ".csv");
-  return fs::exists(p) ? p.string() : "";
+  std::error_code ec;  // a sensor name from a file may make an unusable path: absent, not an error
+  return fs::exists(p, ec) ? p.string() : "";
 }
 
 std::string resolveRelativeTo(const std::string& anchor_file, const std::string& path) {
@@ -44,6 +45,17 @@ std::string cacheDir(const std::string& sub) {
   else if (const char* h = std::getenv("HOME"); h && *h) base = std::string(h) + "/.cache/seasim";
   if (base.empty() || sub.empty()) return base;
   return base + "/" + sub;
+}
+
+std::string inputFileProblem(const std::string& path) {
+  std::error_code ec;
+  const fs::file_status st = fs::status(path, ec);
+  if (ec && ec != std::errc::no_such_file_or_directory && ec != std::errc::not_a_directory) {
+    const std::string shown = path.size() > 120 ? path.substr(0, 120) + "..." : path;
+    return "cannot use the path '" + shown + "': " + ec.message();
+  }
+  if (!fs::is_regular_file(st)) return "file not found: " + path;
+  return "";
 }
 
 std::string outputDirProblem(const std::string& dir) {

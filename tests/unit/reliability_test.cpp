@@ -453,6 +453,20 @@ TEST_F(JobDir, OutputDirThatIsAFileOrDevNullOrHasNulIsRefusedAtItsKey) {
   EXPECT_NE(msg.find("255"), std::string::npos) << msg;
 }
 
+// Found by the fuzzer: a path part over 255 bytes made std::filesystem throw out of the parser.
+TEST_F(JobDir, OverlongInputPathsAreInputErrors) {
+  const std::string long_part(300, 'n');
+  std::string job = write("job.toml", "[[render]]\nscene = \"" + long_part + "/s.toml\"\n");
+  std::string msg = errorOf([&] { loadJob(job); });
+  EXPECT_NE(msg.find(job + ":2: key 'render[0].scene'"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("File name too long"), std::string::npos) << msg;
+  msg = errorOf([&] { parseScene("[sky]\nmodel = \"image\"\nimage = \"" + long_part + ".png\"\n", path("s.toml")); });
+  EXPECT_NE(msg.find("key 'sky.image'"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("File name too long"), std::string::npos) << msg;
+  msg = errorOf([&] { parseScene("[spectral]\nsensor = \"" + long_part + "\"\n", path("s.toml")); });
+  EXPECT_NE(msg.find("key 'spectral.sensor'"), std::string::npos) << msg;
+}
+
 TEST_F(JobDir, ItemNamedLikeAManifestIsRefused) {
   for (const std::string& name : {"manifest.json", "manifest-0of2.json", "Manifest.JSON"}) {
     const std::string job = jobWith("output_dir = \"out\"\n", "name = \"" + name + "\"\n");
