@@ -17,6 +17,7 @@
 #include "io/image_io.h"
 #include "io/svg_plot.h"
 #include "jobs/job.h"
+#include "jobs/job_inputs.h"
 #include "jobs/render_item.h"
 #include "jobs/runner.h"
 #include "passes/render_frame.h"
@@ -26,6 +27,7 @@
 #include "reference/sea_second_reference.h"
 #include "reference/shafts_reference.h"
 #include "reference/underwater_reference.h"
+#include "scene/scene_inputs.h"
 #include "spectral/sensor.h"
 #include "spectral/wavelength_grid.h"
 #include "underwater/underwater_cpu.h"
@@ -100,17 +102,25 @@ int cmdDevices() {
 }
 
 int cmdValidate(const std::vector<std::string>& files) {
+  // Every file is checked even when one fails, so one run lists every problem.
   int failures = 0;
   for (const auto& f : files) {
     try {
       if (isJobFile(f)) {
         const Job job = loadJob(f);
+        const std::map<std::string, std::string> bad = checkJobInputs(job.items);
+        for (const auto& [item, error] : bad) std::fprintf(stderr, "%s\n", error.c_str());
+        if (!bad.empty()) {
+          ++failures;
+          continue;
+        }
         std::printf("%s: ok (job '%s', %zu renders)\n", f.c_str(), job.name.c_str(), job.items.size());
       } else {
         const Scene scene = loadScene(f);
+        checkSceneInputs(scene);
         std::printf("%s: ok (scene '%s')\n", f.c_str(), scene.name.c_str());
       }
-    } catch (const InputError& e) {
+    } catch (const std::exception& e) {
       std::fprintf(stderr, "%s\n", e.what());
       ++failures;
     }
@@ -126,6 +136,10 @@ int cmdPlan(const std::string& scene_file, const std::vector<std::string>& sets)
 
 int cmdRender(const RenderCmd& cmd) {
   const Scene scene = loadScene(cmd.scene, parseSets(cmd.sets));
+  checkSceneInputs(scene);
+  const std::string out_abs = fs::absolute(cmd.out_dir).lexically_normal().string();
+  if (const std::string problem = outputDirProblem(out_abs); !problem.empty())
+    throw RuntimeError("-o " + cmd.out_dir + ": cannot write results there: " + problem);
   Device device(chooseDevice(cmd.device));
   ItemOutputs outputs;
   outputs.formats = cmd.formats;
@@ -167,9 +181,13 @@ int cmdRun(const std::string& job_arg, const std::string& device, const std::str
     }
   }
   const RunSummary s = runJob(job, options);
-  std::printf("job done: %d rendered, %d finished earlier, %d left to other shards -> %s\n", s.rendered, s.skipped,
-              s.other_shards, s.output_dir.c_str());
-  return 0;
+  std::printf("job done: %d rendered, %d finished earlier, %d left to other shards, %zu failed -> %s\n", s.rendered,
+              s.skipped, s.other_shards, s.failed.size(), s.output_dir.c_str());
+  if (s.failed.empty()) return 0;
+  std::fprintf(stderr, "seasim: %zu item(s) failed (recorded in %s):\n", s.failed.size(), s.manifest.c_str());
+  for (const auto& f : s.failed) std::fprintf(stderr, "  %s: %s\n", f.name.c_str(), f.error.c_str());
+  std::fprintf(stderr, "fix them and run again with --resume: only failed and unfinished items are rendered\n");
+  return 1;
 }
 
 int cmdCompare(const std::string& test, const std::string& reference, double exposure_ev) {

@@ -5,6 +5,7 @@
 #include <exception>
 #include <filesystem>
 
+#include "cli/cache_command.h"
 #include "cli/commands.h"
 #include "cli/ocean_command.h"
 #include "cli/seashore_study_command.h"
@@ -140,6 +141,11 @@ int main(int argc, char** argv) {
   preview->add_option("scene", preview_scene, "Scene file");
   preview->add_option("--device", preview_device, "Device selector");
 
+  auto* cache = app.add_subcommand("cache", "The on-disk caches: kernel binaries, PoCL's kernels, tables");
+  cache->require_subcommand(1);
+  auto* cache_clear = cache->add_subcommand("clear", "Remove every cache seasim owns (rebuilt on next use)");
+  auto* cache_verify = cache->add_subcommand("verify", "Check each kernel binary's header, length and checksum");
+
   CLI11_PARSE(app, argc, argv);
   try {
     if (*devices) return seasim::cmdDevices();
@@ -161,6 +167,8 @@ int main(int argc, char** argv) {
     }
     if (*shore) return seasim::cmdSeashoreStudy(shore_cmd);
     if (*preview) return seasim::cmdPreview(preview_scene, preview_device);
+    if (*cache_clear) return seasim::cmdCacheClear();
+    if (*cache_verify) return seasim::cmdCacheVerify();
   } catch (const std::exception& e) {
     std::fprintf(stderr, "seasim: error: %s\n", e.what());
     return 1;

@@ -2,12 +2,15 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <unistd.h>
 
+#include "device/crash_hint.h"
+#include "device/kernel_cache.h"
 #include "device/kernel_source.h"
 #include "util/error.h"
 #include "util/hash.h"
@@ -31,31 +34,6 @@ std::string trim(std::string s) {
   return s.substr(i);
 }
 
-std::vector<unsigned char> readBinaryFile(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  if (!in) return {};
-  return std::vector<unsigned char>(std::istreambuf_iterator<char>(in), {});
-}
-
-// Best effort: a cache that cannot be written only costs build time.
-void writeBinaryFileAtomic(const fs::path& p, const std::vector<unsigned char>& bytes) {
-  std::error_code ec;
-  fs::create_directories(p.parent_path(), ec);
-  fs::path tmp = p;
-  tmp += ".tmp-" + std::to_string(::getpid());
-  {
-    std::ofstream out(tmp, std::ios::binary);
-    if (!out) return;
-    out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-    if (!out) {
-      fs::remove(tmp, ec);
-      return;
-    }
-  }
-  fs::rename(tmp, p, ec);
-  if (ec) fs::remove(tmp, ec);
-}
-
 double msSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -72,6 +50,7 @@ std::string DeviceInfo::label() const {
 }
 
 std::vector<DeviceInfo> listDevices() {
+  usePoclCacheDir();  // before the first OpenCL call, which loads PoCL
   std::vector<DeviceInfo> result;
   std::vector<cl::Platform> platforms;
   cl_int err = cl::Platform::get(&platforms);
@@ -99,6 +78,7 @@ std::vector<DeviceInfo> listDevices() {
       info.has_fp64 = devices[d].getInfo<CL_DEVICE_EXTENSIONS>().find("cl_khr_fp64") != std::string::npos;
       info.compute_units = devices[d].getInfo<CL_DEVICE_MAX_COMPUTE_UNITS>();
       info.global_mem_bytes = devices[d].getInfo<CL_DEVICE_GLOBAL_MEM_SIZE>();
+      info.max_alloc_bytes = devices[d].getInfo<CL_DEVICE_MAX_MEM_ALLOC_SIZE>();
       result.push_back(info);
     }
   }
@@ -108,6 +88,12 @@ std::vector<DeviceInfo> listDevices() {
 DeviceInfo chooseDevice(const std::string& selector_in) {
   const std::vector<DeviceInfo> all = listDevices();
   if (all.empty()) {
+    // PoCL lists no device when its cache folder cannot be written or created: say so rather
+    // than blame the driver.
+    const std::string pocl = poclCacheDir();
+    if (const std::string problem = pocl.empty() ? "" : outputDirProblem(pocl); !problem.empty())
+      throw DeviceError("no OpenCL device found, and PoCL's cache folder '" + pocl + "' is not writable (" + problem +
+                        "); PoCL offers no device then: make it writable, or set POCL_CACHE_DIR to a writable folder");
     throw DeviceError("no OpenCL device found: install an OpenCL driver (e.g. apt-get install "
                       "pocl-opencl-icd) and check `clinfo -l`");
   }
@@ -177,27 +163,48 @@ const BuiltProgram& Device::program(const std::string& kernel_file, const std::v
 
   const auto t0 = std::chrono::steady_clock::now();
   KernelSource source = assembleKernelSource(kernel_file);
-  const uint64_t hash = fnv1a64(info_.platform_name + "|" + info_.name + "|" + info_.driver + "|" + options,
-                                fnv1a64(source.text));
-  const std::string dir = cacheDir("");
-  const fs::path cache_file = dir.empty() ? fs::path() : fs::path(dir) / (hex64(hash) + ".bin");
+  const std::string device_id = info_.platform_name + "|" + info_.name + "|" + info_.driver;
+  const uint64_t hash = fnv1a64(device_id + "|" + options, fnv1a64(source.text));
+  const std::string dir = kernelCacheDir();
+  const std::string cache_file = dir.empty() ? std::string() : kernelCachePath(dir, hash);
 
+  // PoCL aborts inside a build when its own cache is damaged: name the folder before dying.
+  const CrashHint crash_hint(
+      "building kernels/" + kernel_file,
+      info_.is_pocl && !poclCacheDir().empty()
+          ? "A damaged PoCL kernel cache causes this: clear '" + poclCacheDir() +
+                "' (`seasim cache clear` does it when seasim owns that folder) and run again."
+          : "If it happens again, clear the driver's kernel cache and seasim's (`seasim cache clear`).");
   BuiltProgram built;
   if (!cache_file.empty()) {
-    std::vector<unsigned char> bytes = readBinaryFile(cache_file);
-    if (!bytes.empty()) {
+    std::vector<unsigned char> bytes;
+    std::string why;
+    if (readKernelCacheEntry(cache_file, hash, device_id, bytes, why)) {
       try {
         cl::Program::Binaries bins{bytes};
         cl::Program p(context_, {device_}, bins);
         p.build({device_}, options.c_str());
         built.program = p;
         built.from_cache = true;
-      } catch (const cl::Error&) {
-        built.from_cache = false;  // stale or foreign binary: rebuild from source below
+      } catch (const cl::Error& e) {
+        why = std::string("the driver rejected it (") + clErrorName(e.err()) + ")";
       }
+    }
+    if (!built.from_cache && !why.empty()) {
+      // A bad entry costs one rebuild, never a failed run.
+      std::fprintf(stderr, "seasim: warning: kernel cache entry '%s' for kernels/%s is unusable: %s; rebuilding it\n",
+                   cache_file.c_str(), kernel_file.c_str(), why.c_str());
+      std::error_code ec;
+      fs::remove(cache_file, ec);
     }
   }
   if (!built.from_cache) {
+    // A build that fails on a source that built before is most often a damaged driver cache.
+    const std::string pocl_hint =
+        info_.is_pocl && !poclCacheDir().empty()
+            ? "\nIf this kernel built before, PoCL's own cache may be damaged: clear '" + poclCacheDir() +
+                  "' (`seasim cache clear` does it when seasim owns that folder) and run again"
+            : "";
     cl::Program p(context_, source.text);
     try {
       p.build({device_}, options.c_str());
@@ -205,15 +212,27 @@ const BuiltProgram& Device::program(const std::string& kernel_file, const std::v
       std::string log;
       for (const auto& [dev, text] : e.getBuildLog()) log += text;
       throw DeviceError("kernel build failed: kernels/" + kernel_file + " on " + info_.name +
-                        " with options '" + options + "'\n" + log);
+                        " with options '" + options + "'\n" + log + pocl_hint);
     } catch (const cl::Error& e) {
-      std::string log = p.getBuildInfo<CL_PROGRAM_BUILD_LOG>(device_);
-      throw DeviceError("kernel build failed: kernels/" + kernel_file + " (" + clErrorName(e.err()) + ")\n" + log);
+      std::string log;
+      try {
+        log = p.getBuildInfo<CL_PROGRAM_BUILD_LOG>(device_);
+      } catch (const cl::Error&) {
+      }
+      throw DeviceError("kernel build failed: kernels/" + kernel_file + " (" + clErrorName(e.err()) + ")\n" + log +
+                        pocl_hint);
     }
     built.program = p;
     if (!cache_file.empty()) {
       std::vector<std::vector<unsigned char>> bins = p.getInfo<CL_PROGRAM_BINARIES>();
-      if (!bins.empty() && !bins[0].empty()) writeBinaryFileAtomic(cache_file, bins[0]);
+      if (!bins.empty() && !bins[0].empty()) {
+        try {
+          writeKernelCacheEntry(cache_file, hash, device_id, bins[0]);
+        } catch (const RuntimeError& e) {
+          // A cache that cannot be written only costs build time next run.
+          std::fprintf(stderr, "seasim: warning: kernel cache not updated: %s\n", e.what());
+        }
+      }
     }
   }
   built.build_ms = msSince(t0);

@@ -22,7 +22,8 @@ struct DeviceInfo {
   bool is_pocl = false;
   bool has_fp64 = false;
   unsigned compute_units = 0;
-  unsigned long long global_mem_bytes = 0;
+  unsigned long long global_mem_bytes = 0;   // CL_DEVICE_GLOBAL_MEM_SIZE
+  unsigned long long max_alloc_bytes = 0;    // CL_DEVICE_MAX_MEM_ALLOC_SIZE (largest one buffer)
   std::string label() const;     // "pocl:0 pthread-AMD EPYC ... (CPU, 2 CU, fp64)"
 };
 

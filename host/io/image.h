@@ -26,4 +26,13 @@ struct Image {
   std::size_t pixelCount() const { return static_cast<std::size_t>(width) * height; }
 };
 
+// The most pixels (width x height) an input image may have. Readers check the header against it
+// before decoding, so a small file whose header claims 60000 x 60000 is refused instead of asking
+// for gigabytes. 16384^2 is also the largest render (camera.width/height).
+constexpr long long kMaxImagePixels = 16384LL * 16384LL;
+
+struct ImageHeader {
+  int width = 0, height = 0, channels = 0;
+};
+
 }  // namespace seasim

@@ -43,9 +43,14 @@ std::string writePng(const std::string& path, const Image& linear_rgb, double ex
 std::string writeSpectralExr(const std::string& path, int width, int height,
                              const std::vector<double>& wavelengths_nm, const std::vector<float>& data);
 
+// Reads only the header of an image file (or .npy): its size and channel count. Throws
+// RuntimeError naming the file when it cannot be opened, is not an image, or has more than
+// kMaxImagePixels pixels. Cheap: used by `validate` and at job start to check inputs.
+ImageHeader readImageHeader(const std::string& path);
+
 // Any image file (EXR, PNG, ... or .npy) as float values: EXR as stored (linear), 8-bit formats as
 // their encoded values scaled to [0,1] (NOT linearised; compare renders through EXR files).
-// Channel names are the file's. In the .npy build, readImage("x.png") gives the stand-in's bytes
+// Channel names are the file's. The header is checked first (readImageHeader). In the .npy build, readImage("x.png") gives the stand-in's bytes
 // as 0..255 floats. OpenEXR stores channels sorted by name; this returns them in the
 // file's order (R,G,B,A first when present).
 Image readImage(const std::string& path);

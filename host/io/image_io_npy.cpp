@@ -81,6 +81,13 @@ std::string writeSpectralExr(const std::string& path, int width, int height,
   return out;
 }
 
+ImageHeader readImageHeader(const std::string& path) {
+  const std::string npy = npyPathFor(path);
+  if (fs::exists(npy)) return readNpyHeader(npy);
+  throw RuntimeError("cannot read image '" + path + "': this build has no OpenImageIO (SEASIM_IMAGE_IO=OFF) "
+                     "and there is no '" + npy + "' beside it");
+}
+
 Image readImage(const std::string& path) {
   const std::string npy = npyPathFor(path);
   if (fs::exists(npy)) return readNpy(npy);

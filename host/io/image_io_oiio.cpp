@@ -1,5 +1,6 @@
 // image_io_oiio.cpp — image files through OpenImageIO 2.4 (built when SEASIM_IMAGE_IO=ON).
 // The only file in the project that includes OpenImageIO; see image_io.h for the contract.
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
@@ -50,6 +51,29 @@ std::vector<std::string> channelNamesFor(const Image& image) {
   }
 }
 
+// Encodes one image in memory and writes the bytes with writeBytes: OpenImageIO's PNG writer does
+// not report a full disk (it left a truncated image.png), so the file is written by code that checks
+// every write. Used for PNG, whose encoded size is small next to the float data.
+void writeThroughMemory(const std::string& temp, const char* format, const OIIO::ImageSpec& spec,
+                        OIIO::TypeDesc data_type, const void* data) {
+  std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(format);
+  if (!out) throw RuntimeError(std::string("OpenImageIO has no '") + format + "' writer: " + OIIO::geterror());
+  if (!out->supports("ioproxy"))
+    throw RuntimeError(std::string("OpenImageIO's '") + format + "' writer cannot write to memory");
+  std::vector<unsigned char> encoded;
+  OIIO::Filesystem::IOVecOutput proxy(encoded);
+  out->set_ioproxy(&proxy);
+  if (!out->open(temp, spec)) throw RuntimeError("OpenImageIO cannot encode it: " + out->geterror());
+  if (!out->write_image(data_type, data)) {
+    const std::string err = out->geterror();
+    out->close();
+    throw RuntimeError("OpenImageIO encoding failed: " + err);
+  }
+  if (!out->close()) throw RuntimeError("OpenImageIO close failed: " + out->geterror());
+  if (encoded.empty()) throw RuntimeError("OpenImageIO produced no bytes");
+  writeBytes(temp, encoded.data(), encoded.size());
+}
+
 // Writes one image to `temp` in the named OIIO format; throws with OIIO's message on failure.
 void writeWithOiio(const std::string& temp, const char* format, const OIIO::ImageSpec& spec,
                    OIIO::TypeDesc data_type, const void* data) {
@@ -90,7 +114,7 @@ std::string writePng(const std::string& path, const Image& linear_rgb, double ex
   OIIO::ImageSpec spec(linear_rgb.width, linear_rgb.height, linear_rgb.channels, OIIO::TypeDesc::UINT8);
   spec.attribute("oiio:ColorSpace", "sRGB");
   writeFileAtomic(path, [&](const std::string& temp) {
-    writeWithOiio(temp, "png", spec, OIIO::TypeDesc::UINT8, bytes.data());
+    writeThroughMemory(temp, "png", spec, OIIO::TypeDesc::UINT8, bytes.data());
   });
   return path;
 }
@@ -127,11 +151,39 @@ std::string writeSpectralExr(const std::string& path, int width, int height,
   return path;
 }
 
+namespace {
+
+// Opens an image and checks its header against kMaxImagePixels before anything is decoded.
+std::unique_ptr<OIIO::ImageInput> openChecked(const std::string& path) {
+  if (!fs::exists(path)) throw RuntimeError("cannot read image '" + path + "': no such file");
+  if (!fs::is_regular_file(path)) throw RuntimeError("cannot read image '" + path + "': not a regular file");
+  std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(path);
+  if (!in) throw RuntimeError("cannot read image '" + path + "': not an image OpenImageIO can read (" +
+                              OIIO::geterror() + ")");
+  const OIIO::ImageSpec& spec = in->spec();
+  const long long pixels = static_cast<long long>(spec.width) * spec.height;
+  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
+    throw RuntimeError("cannot read image '" + path + "': its header gives an empty size");
+  if (pixels > kMaxImagePixels)
+    throw RuntimeError("cannot read image '" + path + "': its header claims " + std::to_string(spec.width) + "x" +
+                       std::to_string(spec.height) + " pixels, more than the limit of " +
+                       std::to_string(kMaxImagePixels) + " (16384x16384); use a smaller image");
+  return in;
+}
+
+}  // namespace
+
+ImageHeader readImageHeader(const std::string& path) {
+  if (hasNpyExtension(path)) return readNpyHeader(path);
+  std::unique_ptr<OIIO::ImageInput> in = openChecked(path);
+  ImageHeader h{in->spec().width, in->spec().height, in->spec().nchannels};
+  in->close();
+  return h;
+}
+
 Image readImage(const std::string& path) {
   if (hasNpyExtension(path)) return readNpy(path);
-  if (!fs::exists(path)) throw RuntimeError("cannot read image '" + path + "': no such file");
-  std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(path);
-  if (!in) throw RuntimeError("cannot read image '" + path + "': " + OIIO::geterror());
+  std::unique_ptr<OIIO::ImageInput> in = openChecked(path);
   const OIIO::ImageSpec& spec = in->spec();
   Image image;
   image.resize(spec.width, spec.height, spec.nchannels);

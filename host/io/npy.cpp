@@ -92,12 +92,7 @@ void writeNpyArray(const std::string& path, NpyType type, const std::vector<std:
   const std::string header = headerFor(type, shape);
   const std::size_t bytes = product(shape) * sizeOf(type);
   writeFileAtomic(path, [&](const std::string& temp) {
-    std::ofstream out(temp, std::ios::binary | std::ios::trunc);
-    if (!out) throw RuntimeError("cannot open '" + temp + "' for writing");
-    out.write(header.data(), static_cast<std::streamsize>(header.size()));
-    out.write(static_cast<const char*>(data), static_cast<std::streamsize>(bytes));
-    out.close();
-    if (!out) throw RuntimeError("write to '" + temp + "' failed");
+    writeBytes(temp, {{header.data(), header.size()}, {data, bytes}});
   });
 }
 
@@ -142,6 +137,18 @@ NpyArray readNpyArray(const std::string& path) {
 
   const std::size_t n = product(arr.shape);
   const std::size_t elem = sizeOf(arr.type);
+  // The header is the file's word for its size: check it against the bytes really there before
+  // allocating, so a small file claiming a huge shape is refused instead of exhausting memory.
+  const std::streamoff data_start = in.tellg();
+  in.seekg(0, std::ios::end);
+  const auto available = static_cast<std::size_t>(in.tellg() - data_start);
+  in.seekg(data_start);
+  for (std::size_t d : arr.shape)
+    if (d != 0 && n / d > (std::size_t(1) << 40))
+      throw RuntimeError("'" + path + "': its header claims an absurd shape");
+  if (n > available / elem)
+    throw RuntimeError("'" + path + "': its header claims " + std::to_string(n) + " values but the file holds " +
+                       std::to_string(available / elem) + " (truncated or corrupt)");
   std::vector<char> raw(n * elem);
   in.read(raw.data(), static_cast<std::streamsize>(raw.size()));
   if (!in) throw RuntimeError("'" + path + "': truncated .npy data");
@@ -170,7 +177,36 @@ void writeNpy(const std::string& path, const Image& image) {
                 image.pixels.data());
 }
 
+ImageHeader readNpyHeader(const std::string& path) {
+  // Only the start of the file: the header dict is short (padded to 64 bytes, never 4 KiB).
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw RuntimeError("cannot open '" + path + "' for reading");
+  std::string head(4096, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(in.gcount()));
+  if (head.size() < 10 || std::memcmp(head.data(), kMagic, 6) != 0)
+    throw RuntimeError("'" + path + "' is not a .npy file");
+  std::string shape_text = dictValue(head, "shape", path);
+  for (char& ch : shape_text)
+    if (ch == '(' || ch == ')' || ch == ',') ch = ' ';
+  std::istringstream ss(shape_text);
+  std::vector<long long> shape;
+  long long dim;
+  while (ss >> dim) shape.push_back(dim);
+  if (shape.size() != 2 && shape.size() != 3)
+    throw RuntimeError("'" + path + "': expected a (height, width[, channels]) array");
+  ImageHeader h{static_cast<int>(std::min<long long>(shape[1], 1LL << 30)),
+                static_cast<int>(std::min<long long>(shape[0], 1LL << 30)),
+                shape.size() == 3 ? static_cast<int>(std::min<long long>(shape[2], 1LL << 30)) : 1};
+  if (static_cast<long long>(h.width) * h.height > kMaxImagePixels)
+    throw RuntimeError("cannot read image '" + path + "': its header claims " + std::to_string(shape[1]) + "x" +
+                       std::to_string(shape[0]) + " pixels, more than the limit of " +
+                       std::to_string(kMaxImagePixels) + " (16384x16384); use a smaller image");
+  return h;
+}
+
 Image readNpy(const std::string& path) {
+  (void)readNpyHeader(path);
   const NpyArray arr = readNpyArray(path);
   if (arr.shape.size() != 2 && arr.shape.size() != 3)
     throw RuntimeError("'" + path + "': expected a (height, width[, channels]) array, got " +

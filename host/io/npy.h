@@ -26,6 +26,10 @@ struct NpyArray {
 // Reads '<f4', '<f8' or '|u1' arrays in C order; anything else is a RuntimeError naming the file.
 NpyArray readNpyArray(const std::string& path);
 
+// The (h, w[, c]) shape of a .npy image, read from its header only; a RuntimeError when the file
+// is not one, or its header claims more than kMaxImagePixels or more data than the file holds.
+ImageHeader readNpyHeader(const std::string& path);
+
 // An image as float32 with shape (height, width, channels).
 void writeNpy(const std::string& path, const Image& image);
 // A 2-D (h, w) or 3-D (h, w, c) array as an Image (uint8 values stay 0..255, not rescaled).

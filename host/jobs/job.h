@@ -13,6 +13,8 @@ struct RenderItem {
   std::vector<Override> overrides;   // applied in order (job-level first, then the item's)
   std::vector<std::string> outputs;  // of "exr", "png", "spectral_exr", "npy"; default exr+png
   std::string reference;             // optional reference EXR (absolute) to report error against
+  SourceLoc reference_loc;           // where `reference` was written
+  std::string reference_key;         // its dotted key ("render[0].reference"), for messages
   SourceLoc loc;                     // the [[render]] / [[sweep]] table
 };
 

@@ -31,6 +31,14 @@ bool safeFileName(const std::string& s) {
 }
 const char* kSafeNameRule = "letters, digits and _ - . = + only, not starting with '.' or '-'";
 
+// Names the runner keeps for itself in the output folder: the manifests (manifest.json,
+// manifest-<i>of<N>.json) and their locks. An item of that name would overwrite them.
+bool reservedName(const std::string& s) {
+  std::string lower;
+  for (char c : s) lower += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return lower.rfind("manifest", 0) == 0;
+}
+
 // A sweep value as it appears in an item name: strings bare, numbers shortest, arrays joined by _.
 std::string nameText(const toml::node& n) {
   if (auto* s = n.as_string()) return s->get();
@@ -70,6 +78,8 @@ class JobParser {
       std::string dir = r.string("output_dir", "");
       r.check(!dir.empty(), "output_dir", "must not be empty");
       job_.output_dir = resolveRelativeTo(job_.file, dir);
+      const std::string problem = outputDirProblem(job_.output_dir);
+      r.check(problem.empty(), "output_dir", "cannot write results to '" + job_.output_dir + "': " + problem);
     } else {
       job_.output_dir = (fs::current_path() / "results" / job_.name).lexically_normal().string();
     }
@@ -110,7 +120,8 @@ class JobParser {
     std::string p = r.string(key, "");
     r.check(!p.empty(), key, "must not be empty");
     std::string abs = resolveRelativeTo(job_.file, p);
-    r.check(fs::is_regular_file(abs), key, "file not found: " + abs);
+    const std::string problem = inputFileProblem(abs);
+    r.check(problem.empty(), key, problem);
     return abs;
   }
 
@@ -146,7 +157,11 @@ class JobParser {
         item.outputs.push_back(s->get());
       }
     }
-    if (r.has("reference")) item.reference = existingFile(r, "reference");
+    if (r.has("reference")) {
+      item.reference = existingFile(r, "reference");
+      item.reference_loc = src_.locOf(r.get("reference"));
+      item.reference_key = r.path("reference");
+    }
     return p;
   }
 
@@ -244,6 +259,10 @@ Job parseJob(const std::string& toml_text, const std::string& path) {
       throw InputError(
           loc.file, loc.line, p.name_key,
           "item name '" + p.item.name + "' is not a safe file name (" + kSafeNameRule + ")");
+    if (reservedName(p.item.name))
+      throw InputError(loc.file, loc.line, p.name_key,
+                       "item name '" + p.item.name +
+                           "' is reserved: names starting with 'manifest' are the job's own files; rename the item");
     auto [it, fresh] = seen.emplace(p.item.name, loc);
     if (!fresh)
       throw InputError(loc.file, loc.line, p.name_key,
@@ -260,7 +279,7 @@ Job parseJob(const std::string& toml_text, const std::string& path) {
 
 Job loadJob(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
-  if (!in || fs::is_directory(path)) throw InputError(path, 1, "", "cannot open job file");
+  if (std::error_code ec; !in || fs::is_directory(path, ec)) throw InputError(path, 1, "", "cannot open job file");
   std::stringstream text;
   text << in.rdbuf();
   return parseJob(text.str(), path);

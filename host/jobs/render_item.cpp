@@ -5,6 +5,7 @@
 #include "io/atomic_file.h"
 #include "io/image_io.h"
 #include "passes/render_frame.h"
+#include "plan/memory_budget.h"
 #include "plan/plan.h"
 #include "reference/compare.h"
 #include "util/error.h"
@@ -47,12 +48,39 @@ nlohmann::json settingsJson(const Scene& s) {
 
 nlohmann::json renderItem(Device& device, const Scene& scene, const ItemOutputs& outputs, const std::string& dir) {
   const Plan plan = makePlan(scene);
+  // Before any buffer exists: a render too big for the device fails here, naming its settings.
+  unsigned long long global_mem = device.info().global_mem_bytes, max_alloc = device.info().max_alloc_bytes;
+  applyMemoryCap(global_mem, max_alloc);
+  const bool capped = global_mem != device.info().global_mem_bytes || max_alloc != device.info().max_alloc_bytes;
+  checkMemoryBudget(estimateBuffers(scene, plan), global_mem, max_alloc,
+                    device.info().label() + (capped ? " capped by SEASIM_DEVICE_MEMORY_MB" : ""),
+                    !device.info().is_gpu);
   FrameResult frame = renderFrame(device, scene, plan);
   if (frame.nonfinite != 0) {
     throw RuntimeError("scene '" + scene.name + "': the kernels produced " + std::to_string(frame.nonfinite) +
-                       " NaN/Inf values; nothing written for this render (a bug: please report it with the scene)");
+                       " NaN/Inf values; nothing written for this render. Check the scene for extreme values "
+                       "(huge irradiance, scattering or intensity); if they are physical, please report it with "
+                       "the scene");
   }
-  fs::create_directories(dir);
+  // The reference is read and compared before any image is written, so a bad reference leaves
+  // no images behind that look like a finished render.
+  nlohmann::json error;
+  if (!outputs.reference.empty()) {
+    const Image reference = readImage(outputs.reference);
+    if (reference.width != frame.rgb.width || reference.height != frame.rgb.height)
+      throw RuntimeError("the reference '" + outputs.reference + "' is " + std::to_string(reference.width) + "x" +
+                         std::to_string(reference.height) + " but the render is " + std::to_string(frame.rgb.width) +
+                         "x" + std::to_string(frame.rgb.height) + "; nothing written");
+    const CompareResult c = compareImages(frame.rgb, reference, scene.camera.exposure_ev);
+    error = {{"reference", outputs.reference},
+             {"rmse_8bit", c.rmse_8bit},
+             {"max_abs_8bit", c.max_abs_8bit},
+             {"rel_l2", c.rel_l2},
+             {"hue_sat_distance", c.hue_sat_distance}};
+  }
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) throw RuntimeError("cannot create the output folder '" + dir + "': " + ec.message());
   nlohmann::json files = nlohmann::json::array();
   for (const auto& format : outputs.formats) {
     std::string path;  // what the writer really wrote (a .npy beside it in builds without OpenImageIO)
@@ -98,15 +126,7 @@ nlohmann::json renderItem(Device& device, const Scene& scene, const ItemOutputs&
       {"settings", settingsJson(scene)},
       {"nonfinite", frame.nonfinite},
       {"outputs", files}};
-  if (!outputs.reference.empty()) {
-    const Image reference = readImage(outputs.reference);
-    const CompareResult c = compareImages(frame.rgb, reference, scene.camera.exposure_ev);
-    report["error"] = {{"reference", outputs.reference},
-                       {"rmse_8bit", c.rmse_8bit},
-                       {"max_abs_8bit", c.max_abs_8bit},
-                       {"rel_l2", c.rel_l2},
-                       {"hue_sat_distance", c.hue_sat_distance}};
-  }
+  if (!error.is_null()) report["error"] = error;
   writeTextAtomic(dir + "/report.json", report.dump(2) + "\n");
   return report;
 }

@@ -2,15 +2,20 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cstdio>
 #include <filesystem>
-#include <fstream>
+#include <map>
+#include <memory>
 #include <set>
 
 #include "device/device.h"
 #include "io/atomic_file.h"
 #include "jobs/job.h"
+#include "jobs/job_inputs.h"
+#include "jobs/manifest.h"
 #include "jobs/progress.h"
 #include "jobs/render_item.h"
+#include "jobs/shard_lock.h"
 #include "scene/scene_parser.h"
 #include "util/error.h"
 #include "util/hash.h"
@@ -26,30 +31,26 @@ std::string manifestPath(const std::string& output_dir, int shard_index, int sha
 
 namespace {
 
-// Items recorded as finished in any manifest of the folder whose files still match their checksums.
-std::set<std::string> finishedItems(const std::string& output_dir) {
-  std::set<std::string> done;
-  if (!fs::exists(output_dir)) return done;
-  for (const auto& entry : fs::directory_iterator(output_dir)) {
-    const std::string name = entry.path().filename().string();
-    if (name.rfind("manifest", 0) != 0 || entry.path().extension() != ".json") continue;
-    nlohmann::json manifest;
-    try {
-      std::ifstream in(entry.path());
-      manifest = nlohmann::json::parse(in);
-    } catch (const std::exception&) {
-      continue;  // unreadable manifest: its items render again
-    }
-    for (const auto& item : manifest.value("items", nlohmann::json::array())) {
-      bool intact = true;
-      const nlohmann::json files = item.value("files", nlohmann::json::object());  // not a temporary: items() refers into it
-      for (const auto& [file, checksum] : files.items()) {
-        if (fileChecksum(output_dir + "/" + file) != checksum.get<std::string>()) intact = false;
-      }
-      if (intact) done.insert(item.value("name", ""));
-    }
+// The first line of an error, for the progress line (the manifest keeps all of it).
+std::string firstLine(const std::string& text) { return text.substr(0, text.find('\n')); }
+
+// Renders one item and returns its manifest files (relative path -> checksum) and kernel ms.
+nlohmann::json renderOne(Device& device, const RenderItem& item, const std::string& output_dir,
+                         double& kernel_ms) {
+  const Scene scene = loadScene(item.scene_file, item.overrides);
+  ItemOutputs outputs;
+  outputs.formats = item.outputs;
+  outputs.reference = item.reference;
+  const std::string item_dir = output_dir + "/" + item.name;
+  const nlohmann::json report = renderItem(device, scene, outputs, item_dir);
+  nlohmann::json files = nlohmann::json::object();
+  for (const auto& f : report["outputs"]) {
+    const std::string rel = item.name + "/" + f.get<std::string>();
+    files[rel] = fileChecksum(output_dir + "/" + rel);
   }
-  return done;
+  files[item.name + "/report.json"] = fileChecksum(item_dir + "/report.json");
+  kernel_ms = report["kernel_ms_total"].get<double>();
+  return files;
 }
 
 }  // namespace
@@ -62,19 +63,13 @@ RunSummary runJob(const std::string& job_path, const RunOptions& options) {
   if (!options.output_dir.empty()) job.output_dir = fs::absolute(options.output_dir).lexically_normal().string();
   RunSummary summary;
   summary.output_dir = job.output_dir;
-  fs::create_directories(job.output_dir);
+  std::error_code ec;
+  fs::create_directories(job.output_dir, ec);
+  if (ec) throw RuntimeError("cannot create the output folder '" + job.output_dir + "': " + ec.message());
 
-  const std::set<std::string> finished = options.resume ? finishedItems(job.output_dir) : std::set<std::string>{};
   const std::string manifest_file = manifestPath(job.output_dir, options.shard_index, options.shard_count);
-  nlohmann::json manifest = {{"job", job.file}, {"items", nlohmann::json::array()}};
-  if (options.resume && fs::exists(manifest_file)) {
-    try {
-      std::ifstream in(manifest_file);
-      manifest = nlohmann::json::parse(in);
-    } catch (const std::exception&) {
-      manifest = {{"job", job.file}, {"items", nlohmann::json::array()}};
-    }
-  }
+  summary.manifest = manifest_file;
+  const ShardLock lock(shardLockPath(manifest_file));  // held until the job returns
 
   std::vector<const RenderItem*> mine;
   for (size_t i = 0; i < job.items.size(); ++i) {
@@ -84,6 +79,21 @@ RunSummary runJob(const std::string& job_path, const RunOptions& options) {
       ++summary.other_shards;
     }
   }
+
+  // Temporary files a killed run of this shard left: its manifest's and its items' (the lock
+  // guarantees no live writer owns them).
+  int orphans = removeTempFilesFor(manifest_file);
+  for (const RenderItem* item : mine) orphans += removeTempFiles(job.output_dir + "/" + item->name);
+  if (orphans > 0) std::fprintf(stderr, "removed %d temporary file(s) left by an interrupted run\n", orphans);
+
+  const std::set<std::string> finished = options.resume ? finishedItems(job.output_dir) : std::set<std::string>{};
+  Manifest manifest = options.resume ? Manifest::load(manifest_file, job.file) : Manifest(job.file);
+
+  // Inputs checkable before rendering (images decode, references match the render size).
+  std::vector<RenderItem> to_check;
+  for (const RenderItem* item : mine)
+    if (!finished.count(item->name)) to_check.push_back(*item);
+  const std::map<std::string, std::string> bad_inputs = checkJobInputs(to_check);
 
   const std::string selector = options.device.empty() ? job.device : options.device;
   std::unique_ptr<Device> device;  // opened on the first item that needs rendering
@@ -95,33 +105,30 @@ RunSummary runJob(const std::string& job_path, const RunOptions& options) {
       progress.finish(item->name, "finished earlier (resume)");
       continue;
     }
-    if (!device) device = std::make_unique<Device>(chooseDevice(selector));
-    const Scene scene = loadScene(item->scene_file, item->overrides);
-    ItemOutputs outputs;
-    outputs.formats = item->outputs;
-    outputs.reference = item->reference;
-    const std::string item_dir = job.output_dir + "/" + item->name;
-    const nlohmann::json report = renderItem(*device, scene, outputs, item_dir);
-
-    nlohmann::json files = nlohmann::json::object();
-    for (const auto& f : report["outputs"]) {
-      const std::string rel = item->name + "/" + f.get<std::string>();
-      files[rel] = fileChecksum(job.output_dir + "/" + rel);
-    }
-    files[item->name + "/report.json"] = fileChecksum(item_dir + "/report.json");
-    auto& items = manifest["items"];
-    for (auto it = items.begin(); it != items.end(); ++it) {
-      if ((*it).value("name", "") == item->name) {
-        items.erase(it);
-        break;
+    std::string error;
+    if (auto bad = bad_inputs.find(item->name); bad != bad_inputs.end()) {
+      error = bad->second;
+    } else {
+      if (!device) device = std::make_unique<Device>(chooseDevice(selector));
+      try {
+        double kernel_ms = 0;
+        const nlohmann::json files = renderOne(*device, *item, job.output_dir, kernel_ms);
+        manifest.recordDone(item->name, files, kernel_ms);
+        manifest.save(manifest_file);
+        ++summary.rendered;
+        char outcome[64];
+        std::snprintf(outcome, sizeof outcome, "done (%.1f ms kernels)", kernel_ms);
+        progress.finish(item->name, outcome);
+        continue;
+      } catch (const std::exception& e) {
+        // Any failure of this item (NaN result, I/O, device memory, a bad texture) stays with it.
+        error = e.what();
       }
     }
-    items.push_back({{"name", item->name}, {"files", files}, {"kernel_ms", report["kernel_ms_total"]}});
-    writeTextAtomic(manifest_file, manifest.dump(2) + "\n");
-    ++summary.rendered;
-    char outcome[64];
-    std::snprintf(outcome, sizeof outcome, "done (%.1f ms kernels)", report["kernel_ms_total"].get<double>());
-    progress.finish(item->name, outcome);
+    manifest.recordFailed(item->name, error);
+    manifest.save(manifest_file);
+    summary.failed.push_back({item->name, error});
+    progress.finish(item->name, "FAILED: " + firstLine(error));
   }
   progress.done();
   return summary;

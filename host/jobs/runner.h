@@ -1,6 +1,8 @@
-// runner.h — runs a job file: shards, resume from the manifest, atomic outputs, progress.
+// runner.h — runs a job file: shards, a lock per shard, resume from the manifest, atomic outputs,
+// progress, and per-item isolation (a failing item is recorded and the job goes on).
 #pragma once
 #include <string>
+#include <vector>
 
 namespace seasim {
 
@@ -12,19 +14,28 @@ struct RunOptions {
   std::string output_dir;  // replaces the job's output_dir when not empty (-o)
 };
 
+struct FailedItem {
+  std::string name;
+  std::string error;
+};
+
 struct RunSummary {
   int rendered = 0;
   int skipped = 0;  // finished earlier (resume)
   int other_shards = 0;
+  std::vector<FailedItem> failed;  // recorded in the manifest; `--resume` retries them
   std::string output_dir;
+  std::string manifest;
 };
 
 // The manifest of a shard: <output_dir>/manifest.json (or manifest-<i>of<N>.json when sharded),
-// rewritten atomically after every finished item with its files and checksums.
+// rewritten atomically after every item, finished or failed (jobs/manifest.h).
 std::string manifestPath(const std::string& output_dir, int shard_index, int shard_count);
 
-// Throws InputError for a bad job (before anything renders) and RuntimeError/DeviceError when a
-// render fails (items finished before it stay recorded).
+// Throws InputError for a bad job file (before anything renders), RuntimeError when the shard is
+// locked by another run, the output folder or a manifest cannot be used, and DeviceError when no
+// device opens. An item that fails (its input files at job start, or its render) does not stop
+// the job: it is recorded in the manifest and listed in RunSummary::failed.
 RunSummary runJob(const std::string& job_path, const RunOptions& options);
 
 }  // namespace seasim

@@ -101,11 +101,8 @@ void storeDepthTable(uint64_t key, const std::vector<float>& table) {
   const fs::path dir = tableDir();
   if (dir.empty()) return;
   try {
-    writeFileAtomic((dir / (hex64(key) + ".f32")).string(), [&](const std::string& tmp) {
-      std::ofstream out(tmp, std::ios::binary);
-      out.write(reinterpret_cast<const char*>(table.data()), static_cast<std::streamsize>(table.size() * sizeof(float)));
-      if (!out) throw RuntimeError("cannot write " + tmp);
-    });
+    writeFileAtomic((dir / (hex64(key) + ".f32")).string(),
+                    [&](const std::string& tmp) { writeBytes(tmp, table.data(), table.size() * sizeof(float)); });
   } catch (const RuntimeError&) {
     // Best effort: the table is recomputed next time.
   }

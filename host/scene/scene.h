@@ -152,6 +152,14 @@ struct UnderwaterDesc {
   double froxel_far = 60.0;          // m, last froxel slice (file: froxel_far_m)
 };
 
+// An image file the scene reads (sky, height field, light map), with where it was named, so that
+// host/scene/scene_inputs.h can check it before rendering and point at the key.
+struct ImageInputRef {
+  std::string key;   // dotted key, e.g. "spotlights[0].light_map"
+  std::string path;  // absolute
+  SourceLoc loc;
+};
+
 struct Scene {
   std::string file;  // absolute path of the scene file
   std::string name;
@@ -170,6 +178,7 @@ struct Scene {
   // Every known knob with its value or "auto"; defaults filled in by the parser. Keys are documented
   // in scenes/README.md ([quality]).
   std::map<std::string, Knob> quality;
+  std::vector<ImageInputRef> images;  // every image file named above, in file order
 };
 
 }  // namespace seasim

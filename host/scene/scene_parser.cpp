@@ -12,6 +12,7 @@
 #include "scene/toml_reader.h"
 #include "spectral/jerlov.h"
 #include "spectral/sensor.h"
+#include "plan/memory_budget.h"
 #include "util/error.h"
 #include "util/paths.h"
 
@@ -90,8 +91,20 @@ class SceneParser {
     if (scene_.air.present) air(section(root, "air"));
     surface(section(root, "surface"));
     bottom(section(root, "bottom"), root.has("bottom"));
-    for (const auto& [i, t] : root.arrayOfTables("objects")) object(*t, i);
-    for (const auto& [i, t] : root.arrayOfTables("spotlights")) spotlight(*t, i);
+    // Counts are capped (plan/memory_budget.h): each light costs a shadow map and every pixel's
+    // shaft integral, each object a test per pixel per light; thousands aborted inside the driver.
+    for (const auto& [i, t] : root.arrayOfTables("objects")) {
+      if (i >= static_cast<size_t>(kMaxObjects))
+        src_.fail(t, "objects[" + std::to_string(i) + "]",
+                  "too many objects: at most " + std::to_string(kMaxObjects) + " per scene");
+      object(*t, i);
+    }
+    for (const auto& [i, t] : root.arrayOfTables("spotlights")) {
+      if (i >= static_cast<size_t>(kMaxSpotlights))
+        src_.fail(t, "spotlights[" + std::to_string(i) + "]",
+                  "too many spotlights: at most " + std::to_string(kMaxSpotlights) + " per scene");
+      spotlight(*t, i);
+    }
     spectral(section(root, "spectral"));
     sea(section(root, "sea"));
     underwater(section(root, "underwater"));
@@ -118,7 +131,9 @@ class SceneParser {
     std::string p = r.string(key, "");
     r.check(!p.empty(), key, "must not be empty");
     std::string abs = resolveRelativeTo(scene_.file, p);
-    r.check(fs::is_regular_file(abs), key, "file not found: " + abs);
+    const std::string problem = inputFileProblem(abs);
+    r.check(problem.empty(), key, problem);
+    scene_.images.push_back(ImageInputRef{r.path(key), abs, src_.locOf(r.get(key))});
     return abs;
   }
 
@@ -563,7 +578,7 @@ Scene parseScene(const std::string& toml_text, const std::string& path,
 
 Scene loadScene(const std::string& path, const std::vector<Override>& overrides) {
   std::ifstream in(path, std::ios::binary);
-  if (!in || fs::is_directory(path)) throw InputError(path, 1, "", "cannot open scene file");
+  if (std::error_code ec; !in || fs::is_directory(path, ec)) throw InputError(path, 1, "", "cannot open scene file");
   std::stringstream text;
   text << in.rdbuf();
   return parseScene(text.str(), path, overrides);

@@ -83,6 +83,8 @@ std::vector<PathSegment> splitKeyPath(const Override& o) {
       std::string idx = part.substr(br + 1, part.size() - br - 2);
       if (idx.empty() || !std::all_of(idx.begin(), idx.end(), ::isdigit))
         return bad("the index in '" + part + "' must be a non-negative integer");
+      // No scene has a million objects or lights; longer digit strings would overflow stol.
+      if (idx.size() > 6) return bad("the index in '" + part + "' is too large (at most 999999)");
       seg.index = std::stol(idx);
     }
     bool ok = !seg.name.empty() && std::all_of(seg.name.begin(), seg.name.end(), [](char c) {
@@ -305,6 +307,30 @@ void TableReader::fail(std::string_view key, const std::string& message) const {
   source_.fail(n ? n : &table_, path(key), message);
 }
 
+namespace {
+
+// The kernels compute in single precision (largest value 3.4e38). A finite double such as 1e300
+// would be infinite there, and 1e38 overflows at the first product, which showed as NaN images
+// reported as a bug. Every number in a file must lie within these magnitudes (or be 0), leaving
+// twenty orders of magnitude of head room for the products a kernel forms.
+constexpr double kMaxMagnitude = 1e15;
+constexpr double kMinMagnitude = 1e-15;
+
+// "" when v is usable, else the reason.
+std::string magnitudeProblem(double v) {
+  if (!std::isfinite(v)) return "must be a finite number";
+  const double a = std::fabs(v);
+  if (a > kMaxMagnitude)
+    return "is " + formatNumber(v) +
+           ", too large for the single-precision kernels (they overflow): |value| must be <= 1e15";
+  if (a != 0 && a < kMinMagnitude)
+    return "is " + formatNumber(v) +
+           ", too small for the single-precision kernels (it would become 0): use 0 or |value| >= 1e-15";
+  return "";
+}
+
+}  // namespace
+
 double TableReader::number(std::string_view key, double def) {
   const toml::node* n = get(key);
   if (!n) return def;
@@ -316,7 +342,8 @@ double TableReader::number(std::string_view key, double def) {
   } else {
     fail(key, "expected a number, got " + typeName(*n));
   }
-  check(std::isfinite(v), key, "must be a finite number");
+  const std::string problem = magnitudeProblem(v);
+  check(problem.empty(), key, problem);
   return v;
 }
 
@@ -345,7 +372,11 @@ bool TableReader::boolean(std::string_view key, bool def) {
 std::string TableReader::string(std::string_view key, const std::string& def) {
   const toml::node* n = get(key);
   if (!n) return def;
-  if (auto* s = n->as_string()) return s->get();
+  if (auto* s = n->as_string()) {
+    // TOML allows "\u0000"; C file APIs would cut the string there and use another name.
+    check(s->get().find('\0') == std::string::npos, key, "contains a NUL byte (\\u0000); remove it");
+    return s->get();
+  }
   fail(key, "expected a string, got " + typeName(*n));
 }
 
@@ -369,14 +400,16 @@ std::vector<double> TableReader::numbers(std::string_view key) {
   for (size_t i = 0; i < a->size(); ++i) {
     const toml::node& e = *a->get(i);
     std::string where = path(key) + "[" + std::to_string(i) + "]";
+    double v = 0;
     if (auto* iv = e.as_integer()) {
-      out.push_back(static_cast<double>(iv->get()));
+      v = static_cast<double>(iv->get());
     } else if (auto* fv = e.as_floating_point()) {
-      if (!std::isfinite(fv->get())) source_.fail(&e, where, "must be a finite number");
-      out.push_back(fv->get());
+      v = fv->get();
     } else {
       source_.fail(&e, where, "expected a number, got " + typeName(e));
     }
+    if (const std::string problem = magnitudeProblem(v); !problem.empty()) source_.fail(&e, where, problem);
+    out.push_back(v);
   }
   return out;
 }

@@ -1,5 +1,7 @@
 #include "util/paths.h"
 
+#include <unistd.h>
+
 #include <cstdlib>
 #include <filesystem>
 #include <vector>
@@ -51,9 +53,11 @@ std::vector<std::string> cameraDirs(const std::string& scene_camera_dir) {
 
 std::string cameraFile(const std::string& name, const std::string& scene_camera_dir) {
   if (name.empty() || name.find('/') != std::string::npos) return "";
+  // A sensor name from a file may make an unusable path: absent, not an error.
   for (const auto& dir : cameraDirs(scene_camera_dir)) {
     fs::path p = fs::path(dir) / (name + ".csv");
-    if (fs::is_regular_file(p)) return p.string();
+    std::error_code ec;
+    if (fs::is_regular_file(p, ec)) return p.string();
   }
   return "";
 }
@@ -72,6 +76,41 @@ std::string cacheDir(const std::string& sub) {
   else if (const char* h = std::getenv("HOME"); h && *h) base = std::string(h) + "/.cache/seasim";
   if (base.empty() || sub.empty()) return base;
   return base + "/" + sub;
+}
+
+std::string inputFileProblem(const std::string& path) {
+  std::error_code ec;
+  const fs::file_status st = fs::status(path, ec);
+  if (ec && ec != std::errc::no_such_file_or_directory && ec != std::errc::not_a_directory) {
+    const std::string shown = path.size() > 120 ? path.substr(0, 120) + "..." : path;
+    return "cannot use the path '" + shown + "': " + ec.message();
+  }
+  if (!fs::is_regular_file(st)) return "file not found: " + path;
+  return "";
+}
+
+std::string outputDirProblem(const std::string& dir) {
+  if (dir.empty()) return "it is empty";
+  if (dir.find('\0') != std::string::npos) return "it contains a NUL byte, which no file name can hold";
+  if (dir.size() > 4095) return "the path is " + std::to_string(dir.size()) + " bytes long; the limit is 4095";
+  for (const auto& part : fs::path(dir))
+    if (part.string().size() > 255)
+      return "the name '" + part.string().substr(0, 40) + "...' is " + std::to_string(part.string().size()) +
+             " bytes long; file systems allow 255";
+  std::error_code ec;
+  const fs::file_status st = fs::status(dir, ec);
+  if (fs::exists(st)) {
+    if (!fs::is_directory(st)) return "'" + dir + "' exists and is not a folder";
+    if (::access(dir.c_str(), W_OK) != 0) return "the folder '" + dir + "' is not writable";
+    return "";
+  }
+  // Not there yet: it will be created under its nearest existing parent.
+  fs::path parent = fs::path(dir).parent_path();
+  while (!parent.empty() && !fs::exists(parent, ec)) parent = parent.parent_path();
+  if (parent.empty()) return "";
+  if (!fs::is_directory(parent, ec)) return "'" + parent.string() + "' is a file, so no folder can be made under it";
+  if (::access(parent.c_str(), W_OK) != 0) return "cannot create it: '" + parent.string() + "' is not writable";
+  return "";
 }
 
 }  // namespace seasim

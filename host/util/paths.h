@@ -33,4 +33,15 @@ std::string cacheDir(const std::string& sub);
 // Absolute, lexically normal form of `path` relative to the folder of `anchor_file`.
 std::string resolveRelativeTo(const std::string& anchor_file, const std::string& path);
 
+// Why `path` cannot be read as an input file, or "" when it is a regular file: "file not found:
+// PATH", or the system's reason when the path itself is unusable (a name over 255 bytes, a file
+// where a folder should be). Never throws: a path from a file is user input.
+std::string inputFileProblem(const std::string& path);
+
+// Why `dir` cannot be an output folder, or "" when it can: a NUL byte in it, a name part longer
+// than the file system allows (255 bytes) or a path over 4095 bytes, something that exists and is
+// not a folder (a file, /dev/null), or a nearest existing parent that is not a writable folder.
+// Checked before anything renders, so the message names the setting instead of a raw I/O error.
+std::string outputDirProblem(const std::string& dir);
+
 }  // namespace seasim
