@@ -3,9 +3,10 @@
 BUILD ?= build
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=RelWithDebInfo
+# file: CPack reads the binaries with it to declare the .deb's shared-library dependencies (make package).
 DEPS = build-essential cmake pkgconf pocl-opencl-icd ocl-icd-opencl-dev opencl-c-headers \
        opencl-clhpp-headers clinfo libfftw3-dev libvkfft-dev libopenimageio-dev openimageio-tools libtbb-dev \
-       libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libgtest-dev
+       libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libgtest-dev file
 # Kernel build caches live in the build folder so tests and demo reuse them.
 export POCL_CACHE_DIR ?= $(CURDIR)/$(BUILD)/pocl-cache
 export SEASIM_CACHE_DIR ?= $(CURDIR)/$(BUILD)/seasim-cache
