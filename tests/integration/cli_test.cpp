@@ -20,8 +20,6 @@
 
 namespace fs = std::filesystem;
 
-extern char** environ;
-
 namespace {
 
 const std::string kBinary = SEASIM_BINARY;
@@ -181,15 +179,8 @@ TEST_F(Cli, KilledRunResumesWithoutRedoingFinishedItems) {
     text.replace(p, 20, "\"camera.height\" = 600");
   std::ofstream(job) << text;
 
-  pid_t pid;
-  std::vector<std::string> args = {kBinary, "run", job, "--device", "pocl"};
-  std::vector<char*> argv;
-  for (auto& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
-  ASSERT_EQ(posix_spawn(&pid, kBinary.c_str(), &actions, nullptr, argv.data(), environ), 0);
+  const pid_t pid = seasim_test::spawnRun(kBinary, job);
+  ASSERT_GT(pid, 0);
   const fs::path manifest = dir_ / "out" / "manifest.json";
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(240);
   size_t done_before = 0;
@@ -203,7 +194,6 @@ TEST_F(Cli, KilledRunResumesWithoutRedoingFinishedItems) {
   kill(pid, SIGKILL);
   int status = 0;
   waitpid(pid, &status, 0);
-  posix_spawn_file_actions_destroy(&actions);
   done_before = readJson(manifest)["items"].size();
   ASSERT_GE(done_before, 1u);
   ASSERT_LT(done_before, 4u) << "the run finished before it could be killed; make the items bigger";

@@ -22,30 +22,20 @@
 #include <thread>
 
 #include "io/image_io.h"
+#include "run_command.h"
 
 namespace fs = std::filesystem;
-
-extern char** environ;
 
 namespace {
 
 const std::string kBinary = SEASIM_BINARY;
 const std::string kRepo = SEASIM_SOURCE_DIR;
 
-struct Result {
-  int code;
-  std::string output;  // stdout and stderr
-};
+using seasim_test::Result;
 
 // Runs seasim through the shell; `env` is a prefix such as "SEASIM_CACHE_DIR=/x ".
 Result run(const std::string& args, const std::string& env = "") {
-  const std::string cmd = env + kBinary + " " + args + " 2>&1";
-  FILE* pipe = popen(cmd.c_str(), "r");
-  std::string out;
-  char buf[4096];
-  while (size_t n = fread(buf, 1, sizeof buf, pipe)) out.append(buf, n);
-  const int status = pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+  return seasim_test::runCommand(env + kBinary + " " + args);
 }
 
 nlohmann::json readJson(const fs::path& p) {
@@ -331,15 +321,8 @@ TEST_F(Reliability, SameShardTwiceAtOnceTheSecondRefuses) {
              "/scenes/flat_sea.toml\"\noverrides = { \"camera.width\" = 480, \"camera.height\" = 270, "
              "\"spectral.count\" = 64 }\n";
   const std::string job = write("job.toml", "[job]\nname = \"lock\"\noutput_dir = \"out\"\n" + items);
-  pid_t pid;
-  std::vector<std::string> args = {kBinary, "run", job, "--device", "pocl"};
-  std::vector<char*> argv;
-  for (auto& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
-  ASSERT_EQ(posix_spawn(&pid, kBinary.c_str(), &actions, nullptr, argv.data(), environ), 0);
+  const pid_t pid = seasim_test::spawnRun(kBinary, job);
+  ASSERT_GT(pid, 0);
   const fs::path lock = dir_ / "out" / "manifest.json.lock";
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
   while (!fs::exists(lock) && std::chrono::steady_clock::now() < deadline)
@@ -348,7 +331,6 @@ TEST_F(Reliability, SameShardTwiceAtOnceTheSecondRefuses) {
   const Result second = run("run " + job + " --device pocl");
   int status = 0;
   waitpid(pid, &status, 0);
-  posix_spawn_file_actions_destroy(&actions);
   EXPECT_EQ(second.code, 1) << second.output;
   EXPECT_TRUE(contains(second.output, "this shard is already being run by process " + std::to_string(pid)))
       << second.output;

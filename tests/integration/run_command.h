@@ -1,9 +1,14 @@
 // run_command.h — runs a shell command line for the CLI tests and returns its exit code and output.
 #pragma once
+#include <fcntl.h>
+#include <spawn.h>
 #include <sys/wait.h>
 
 #include <cstdio>
 #include <string>
+#include <vector>
+
+extern char** environ;
 
 namespace seasim_test {
 
@@ -19,6 +24,22 @@ inline Result runCommand(const std::string& cmd) {
   while (size_t n = fread(buf, 1, sizeof buf, pipe)) out.append(buf, n);
   const int status = pclose(pipe);
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+// Starts `binary run JOB --device pocl` in the background, its stderr silenced; returns its pid
+// (-1 when it could not start). The caller waits for it with waitpid.
+inline pid_t spawnRun(const std::string& binary, const std::string& job) {
+  std::vector<std::string> args = {binary, "run", job, "--device", "pocl"};
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 2, "/dev/null", O_WRONLY, 0);
+  pid_t pid = -1;
+  const int rc = posix_spawn(&pid, binary.c_str(), &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  return rc == 0 ? pid : -1;
 }
 
 }  // namespace seasim_test
