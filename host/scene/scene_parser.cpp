@@ -41,8 +41,8 @@ constexpr KnobDefault kQualityKnobs[] = {
     {"froxel_z", 64, "froxel grid z (depth slices)"},
     {"caustic_map_size", 256, "caustic map size"},
     {"caustic_layers", 8, "underwater caustic map: depth layers (caustic_map.h)"},
-    {"reference_spp", 64, "brute-force reference: samples per pixel"},
-    {"reference_steps", 200, "brute-force reference: ray-march steps per ray"},
+    {"reference_spp", 64, "seasim reference under water: paths per pixel (without --steps)"},
+    {"reference_steps", 200, "seasim reference, sea and shafts: steps per ray (without --steps)"},
 };
 constexpr long long kMaxKnob = 1 << 20;  // catches typos such as 1e9 planes
 
