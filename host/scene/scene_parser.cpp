@@ -466,14 +466,19 @@ class SceneParser {
       s.max_nm = range[1];
     }
     s.sensor = r.string("sensor", s.sensor);
-    if (s.sensor != "cie1931" && cameraFile(s.sensor).empty()) {
+    if (s.sensor != "cie1931" && s.sensor != "identity" && cameraFile(s.sensor).empty()) {
       std::vector<std::string> names = cameraNames();
-      names.insert(names.begin(), "cie1931");
+      names.insert(names.begin(), {"cie1931", "identity"});
       r.fail("sensor", "unknown sensor '" + s.sensor + "' (not \"cie1931\" and no " + dataDir() +
                            "/cameras/" + s.sensor + ".csv)" + suggestion(s.sensor, names, 6));
     }
     s.white_balance = r.boolean("white_balance", s.white_balance);
     s.spectral_exr = r.boolean("spectral_exr", s.spectral_exr);
+    if (s.sensor == "identity") {  // its output is the bands themselves
+      r.check(!r.has("spectral_exr") || s.spectral_exr, "spectral_exr",
+              "must be true with sensor = \"identity\" (its image.exr is the raw bands)");
+      s.spectral_exr = true;
+    }
     r.finish();
   }
 

@@ -92,7 +92,10 @@ Sensor makeSensor(const std::string& name, const WavelengthGrid& grid, bool whit
   const double lo = grid.minNm(), hi = grid.maxNm();
   const Spectrum illum = d65();
   std::array<Spectrum, 3> curves;  // x̄ȳz̄ or camera r, g, b
-  const bool cie = (name == "cie1931");
+  // "identity": the raw bands are the output (spectral.exr layout, written as image.exr); the RGB the
+  // kernels still accumulate is the CIE luminance Y in all three channels, a grey preview.
+  const bool identity = (name == "identity");
+  const bool cie = (name == "cie1931") || identity;
   if (cie) {
     const CieCmf& cmf = cie1931Cmf();
     curves = {cmf.x_bar, cmf.y_bar, cmf.z_bar};
@@ -112,7 +115,10 @@ Sensor makeSensor(const std::string& name, const WavelengthGrid& grid, bool whit
   // out = A · (raw band sums of the three curves): A folds in the matrix and every scale factor.
   std::array<double, 9> A{};
   const auto range = "[" + std::to_string(lo) + ", " + std::to_string(hi) + "] nm";
-  if (cie) {
+  if (identity) {
+    if (!(d65_resp[1] > 0.0)) throw RuntimeError("sensor identity: y_bar (its grey preview) is zero over " + range);
+    for (int r = 0; r < 3; ++r) A[static_cast<std::size_t>(r * 3 + 1)] = 1.0 / d65_resp[1];  // Y, D65 -> 1
+  } else if (cie) {
     if (!(d65_resp[1] > 0.0)) throw RuntimeError("sensor cie1931: y_bar is zero over " + range);
     const double N = d65_resp[1];
     const auto& M = xyzToLinearSrgbMatrix();

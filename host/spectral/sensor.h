@@ -3,6 +3,9 @@
 // with λ_i the band centres and w = Δλ_i the band width (wavelength_grid.h).
 //
 // Sensors (the `sensor` key of [spectral]):
+//   "identity"  no sensor: image.exr holds the raw bands, L(λ_i) in W m⁻² sr⁻¹ nm⁻¹ (the spectral.exr
+//               layout); the three RGB channels carry the CIE luminance Y (D65 × 1 -> 1), a grey
+//               preview for image.png, compare and sweeps. White balance does not apply.
 //   "cie1931"   the CIE 1931 2° observer (data/cie1931_2deg_cmf.csv): f = (x̄, ȳ, z̄) gives XYZ, then
 //               the sRGB matrix (cie.h) gives linear sRGB.
 //   <camera>    a file stem of data/cameras/*.csv (columns nm,r,g,b; provenance data/README.md §5),

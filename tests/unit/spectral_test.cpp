@@ -183,6 +183,16 @@ TEST(Sensor, CieWhiteBalanceWorksOnNarrowRanges) {
   EXPECT_NEAR(red[0], 1.0, 1e-3);  // r balanced; g and b cannot be (z̄ = 0 there)
 }
 
+// "identity": raw bands out, and a grey luminance preview in RGB: D65 -> (1, 1, 1) on any range.
+TEST(Sensor, IdentityPreviewIsTheLuminance) {
+  for (const auto& [lo, hi] : {std::pair{400.0, 700.0}, std::pair{500.0, 510.0}}) {
+    const auto rgb = d65Through("identity", 300, true, lo, hi);
+    EXPECT_LT(maxAbsDiff(rgb, 1.0), 1e-3) << lo;
+    EXPECT_EQ(rgb[0], rgb[1]);
+    EXPECT_EQ(rgb[1], rgb[2]);
+  }
+}
+
 TEST(Sensor, CamerasLoadAndAreFiniteNonNegative) {
   const auto names = cameraNames();
   EXPECT_EQ(names.size(), 31u);
