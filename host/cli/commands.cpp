@@ -495,7 +495,16 @@ std::string stderrPath(const std::string& out) {
 int cmdReference(const ReferenceCmd& cmd) {
   const Scene scene = loadScene(cmd.scene, parseSets(cmd.sets));
   const auto t0 = std::chrono::steady_clock::now();
-  if (makePlan(scene).hasPass("kd_multiple")) {
+  const bool above = cmd.all_orders;
+  if (above && (makePlan(scene).hasPass("kd_multiple") || !scene.water.present || !(scene.camera.position.y > 0))) {
+    throw RuntimeError("reference --all-orders: for the sea seen from above only (a [water] scene, camera y > 0)");
+  }
+  if (above && (scene.sky.model != SkyDesc::Model::Uniform || scene.surface.type != SurfaceDesc::Type::Flat ||
+                scene.bottom.type == BottomDesc::Type::HeightField)) {
+    throw RuntimeError("reference --all-orders: the path tracer models a uniform sky, a flat surface and a flat "
+                       "bottom; set sky.model = \"uniform\", surface.type = \"flat\" and a flat or no bottom");
+  }
+  if (above || makePlan(scene).hasPass("kd_multiple")) {
     // Under water (issue 5): the spectral path tracer on the device, `steps` paths per pixel. With
     // underwater.multiple_scattering = false it traces single scattering of the sun beam only, the
     // reference of the froxel pass (make surfaces black and the sky dark to compare that term alone).
@@ -506,6 +515,7 @@ int cmdReference(const ReferenceCmd& cmd) {
     UnderwaterReferenceSettings settings;
     settings.samples_per_pixel = referenceSteps(scene, cmd.steps, "reference_spp");
     settings.seed = cmd.seed >= 0 ? static_cast<unsigned>(cmd.seed) : 1u;
+    settings.camera_above = above;
     if (!scene.underwater.multiple_scattering) settings.max_bounces = 1;
     const bool tty = isatty(fileno(stderr));
     settings.progress = [tty, step = std::max(1, settings.samples_per_pixel / 10), next = 0](int done, int total) mutable {

@@ -83,7 +83,10 @@ int main(int argc, char** argv) {
       "    the cone, to infinity; exact shadow rays; deterministic.\n"
       "  under water: a float spectral Monte Carlo path tracer in OpenCL on --device; --steps = paths per\n"
       "    pixel, --seed picks the paths; writes the per-pixel standard error as OUT.stderr.exr beside OUT.\n"
-      "  Without --steps: quality.reference_steps (default 200) or, under water, quality.reference_spp (64).");
+      "  --all-orders, the sea seen from above: the same path tracer with the camera above the surface,\n"
+      "    refracting in (--steps = paths per pixel): all orders of scattering, against which paper 000's\n"
+      "    single + second order is measured.\n"
+      "  Without --steps: quality.reference_steps (default 200) or, for the path tracer, quality.reference_spp (64).");
   reference->add_option("scene", ref_cmd.scene, "Scene file")->required()->check(CLI::ExistingFile);
   reference->add_option("-o,--out", ref_cmd.out, "Output EXR")->required();
   reference->add_option("--steps", ref_cmd.steps,
@@ -92,6 +95,9 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   reference->add_option("--seed", ref_cmd.seed, "Under water: seed of the path tracer's random paths (default 1)")
       ->check(CLI::Range(0LL, 4294967295LL));
+  reference->add_flag("--all-orders", ref_cmd.all_orders,
+                      "Sea seen from above: all orders of scattering by the path tracer (camera above the surface, "
+                      "refracting in; uniform sky, no sun glint), instead of paper 000's own terms by quadrature");
   reference->add_option("--device", ref_cmd.device, "Device for the underwater path tracer");
   reference->add_option("--set", ref_cmd.sets, "Override a scene key: key=value (repeatable)");
 
