@@ -11,7 +11,7 @@ DEPS = build-essential cmake pkgconf pocl-opencl-icd ocl-icd-opencl-dev opencl-c
 export POCL_CACHE_DIR ?= $(CURDIR)/$(BUILD)/pocl-cache
 export SEASIM_CACHE_DIR ?= $(CURDIR)/$(BUILD)/seasim-cache
 
-.PHONY: demo test deps configure build clean fresh-check package install
+.PHONY: demo test validate deps configure build clean fresh-check package install
 
 demo: build
 	$(BUILD)/seasim run jobs/quickstart.toml --device pocl
@@ -25,6 +25,14 @@ build: configure
 
 configure: deps
 	cmake -S . -B $(BUILD) $(CMAKE_FLAGS)
+
+# Opt-in, not part of `make test`: seasim's references against Mitsuba 3 on matching scenes (issue 13).
+# A Python virtual environment in $(BUILD)/validate-venv with mitsuba and numpy from PyPI (the scalar
+# variants need nothing else); ratio tables into results/validation/.
+validate: build
+	test -x $(BUILD)/validate-venv/bin/python || python3 -m venv $(BUILD)/validate-venv
+	$(BUILD)/validate-venv/bin/pip install -q mitsuba numpy
+	$(BUILD)/validate-venv/bin/python tests/validate/mitsuba_shafts.py $(BUILD)/seasim results/validation
 
 # Installs only what is missing (apt-get needs root: sudo is used when not root).
 deps:

@@ -25,6 +25,10 @@
  *   L_SS = ∫_0^S e^{-c z} b p(θ) E_beam(y(z)) V(x_z) dz   (S the first hit distance; 002 §5),
  * what the froxel integrator computes.
  *
+ * Camera above the surface (y > 0; the sea seen from above, for paper 000's model): a ray up sees the
+ * uniform sky; a ray down meets the flat surface, which adds R L_sky and (1 - R)/n² times the path
+ * traced from there along the refracted ray (deterministic split; no sun glint, no caustics).
+ *
  * Random numbers: common/path_tracer.h, a hash of (seed, pixel, sample index, dimension): reproducible
  * for a seed whatever the batching. Dimensions: 0, 1 pixel jitter; 2 band; then per event in order.
  *
@@ -71,6 +75,9 @@ static inline float sun_visibility(const __global UwObject* objects, int count, 
   return 1.0f;
 #endif
 }
+
+/* max_bounces = 1: single scattering of the sun beam only (no surface or sky terms). */
+static inline int single_only_mode(int max_bounces) { return max_bounces == 1; }
 
 /* One path's radiance in band `band` along the camera ray (o, d); key/dim as path_tracer.h. */
 static inline float trace_path(__constant UwParams* p, const __global UwBand* bn, const __global UwObject* objects,
@@ -186,7 +193,24 @@ __kernel void reference_path_trace(__constant UwParams* p, __global const UwBand
     const float3 d = normalize(forward + u * right + v * up);
     const int band = min((int)(pt_uniform(key, 2) * p->band_count), p->band_count - 1);
     const __global UwBand* bn = &bands[band];
-    const float L = p->band_count * trace_path(p, bn, objects, albedo, band, max_bounces, key, eye, d);
+    float L;
+    if (eye.y <= 0.0f) {
+      L = trace_path(p, bn, objects, albedo, band, max_bounces, key, eye, d);
+    } else if (d.y >= 0.0f) {
+      L = bn->sky_radiance; /* camera above the surface looking up: the uniform sky (no sun disk) */
+    } else {
+      /* Camera above the surface (the sea seen from above, paper 000's view): the flat surface reflects
+       * the uniform sky with R and lets (1 - R)/n² of the water's radiance out (radiance/n² is
+       * conserved; docs/radiometry.md), both taken deterministically; the water side is the same
+       * all-orders path from the surface point along the refracted ray. The sun's glint is not drawn. */
+      const float3 o = (float3)(eye.x + eye.y / -d.y * d.x, 0.0f, eye.z + eye.y / -d.y * d.z);
+      const float R = fresnel_reflectance(-d.y, 1.0f, p->ior);
+      float3 d_w;
+      refract_dir(d, (float3)(0.0f, 1.0f, 0.0f), 1.0f / p->ior, &d_w);
+      L = R * (single_only_mode(max_bounces) ? 0.0f : bn->sky_radiance) +
+          (1.0f - R) / (p->ior * p->ior) * trace_path(p, bn, objects, albedo, band, max_bounces, key, o, d_w);
+    }
+    L *= p->band_count;
     const float3 s = L * (float3)(bn->w_r, bn->w_g, bn->w_b);
     const float3 delta = s - b_mean;
     b_mean += delta / (float)(j + 1);

@@ -253,7 +253,8 @@ __kernel void sea_second_accumulate(__constant SeaSecondParams* p, __global cons
   const float3 d = view_dir(p, x + 0.5f, y + 0.5f);
   if (d.y >= 0.0f) return; /* sky: no water along this ray */
   const int pixel = y * p->width + x;
-  const float t_out = 1.0f - fresnel_reflectance(-d.y, 1.0f, p->ior); /* T_o */
+  /* T_o with the n² law (radiance / n² conserved across the surface; sea_single.cl, docs/radiometry.md) */
+  const float t_out = (1.0f - fresnel_reflectance(-d.y, 1.0f, p->ior)) / (p->ior * p->ior);
   float3 v;
   refract_dir(d, (float3)(0.0f, 1.0f, 0.0f), 1.0f / p->ior, &v);
   const float cos_ji = fmax(-v.y, 1e-4f);

@@ -11,6 +11,8 @@
  * periodic over the patch on a flat bottom, over the floor's square on a height field; one dummy float
  * otherwise).
  * Output: rgb[3 * pixels] linear sensor RGB; spectral[band_count * pixels] when SEASIM_SPECTRAL_OUTPUT.
+ * Radiometry (docs/radiometry.md): the water-leaving terms (eq. 5, 9) cross the surface as
+ * radiance / n², T_o (1 - R) / n²; the sun's irradiance is given normal to its beam.
  * Defines (chosen by host/plan): SEASIM_HAS_REFLECTION, SEASIM_HAS_SINGLE_SCATTERING,
  * SEASIM_HAS_BOTTOM, SEASIM_HAS_SUN, SEASIM_SPECTRAL_OUTPUT, SEASIM_HAS_WAVES (FFT wave normals,
  * common/sea_waves.h), SEASIM_SKY_MODEL (0 uniform, 1 CIE clear sky, 2 environment image,
@@ -146,7 +148,10 @@ __kernel void sea_single(__constant SeaParams* p, __global const SeaBand* bands,
     float R_view;
     float3 reflected, view_in_water;
     const float cos_ji = sea_view_interaction(d, n, p->ior, &R_view, &reflected, &view_in_water);
-    const float t_out = 1.0f - R_view;                        /* T_o of 000 eq. 5, 9 */
+    /* T_o of 000 eq. 5, 9 with the n² law: radiance / n² is conserved across the surface, so the
+     * water-leaving radiance L_w reaches the air as L_w (1 - R) / n² (docs/radiometry.md). Paper 000
+     * writes T_o alone; kd_multiple.cl applies the same law the other way (sky seen from below). */
+    const float t_out = (1.0f - R_view) / (p->ior * p->ior);
 #if SEASIM_HAS_REFLECTION
     const float3 reflected_shape = sky_shape(p, sky, reflected);
 #endif

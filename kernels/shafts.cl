@@ -5,10 +5,15 @@
  *   g   = ρ F(α) exp(-ρκ(s + t)) / s²  = F(α) h(s, t)                 (001 eq. 3, 6)
  *   I_s ≈ Σ_i J_i g(α_i, s_i, t_i) Δt_i,  J_i = (1/m) Σ_j H(u_j) I_l(u_j) (001 eq. 5, 7–9)
  *
- * n sampling planes parallel to the screen, equally spaced in camera depth between z_near and
- * z_far; the ray's intersection with plane i gives t_i (and Δt_i = Δz / cos θ); m sub-sample planes
- * per interval average the shadow term H (from the shadow map) times the lamp's emission I_l
- * (projected light map, or the cone fall-off) before multiplying by g, which varies slowly.
+ * Per lamp, eq. 2 runs over the exact part of the view ray inside the lamp's cone, from the camera
+ * to the first surface or to infinity. n sampling intervals, equal in t (and so in camera depth:
+ * planes parallel to the screen within that part), cover it up to K r past the ray's closest
+ * approach to the lamp (r: its distance); m sub-sample planes per interval average the shadow term
+ * H (from the shadow map) times the lamp's emission I_l (projected light map, or the cone fall-off)
+ * before multiplying by g, which varies slowly. Beyond K r the lamp sees the rest of the ray within
+ * atan(1/K): there eq. 2 has a closed form in exponential integrals (common/shafts.h,
+ * shafts_tail_from) with H I_l averaged over m directions and F taken in the middle one; exact for
+ * a uniform cone and an isotropic phase function.
  * F is 001 eq. 4 normalised to ∫F dΩ = 1 (optics.h), or Henyey–Greenstein. ρ acts as the
  * scattering coefficient (1/m) and ρκ as the extinction coefficient. Light adds up per lamp.
  *
@@ -157,10 +162,9 @@ __kernel void shafts_render(__constant ShaftsParams* p, __global const ShaftsLig
   const float v = (1.0f - 2.0f * (y + 0.5f) / p->height) * p->tan_half_fov_y;
   const float3 eye = v3(p->cam_pos), fwd = v3(p->cam_forward);
   const float3 d = normalize(fwd + u * v3(p->cam_right) + v * v3(p->cam_up));
-  const float cos_theta = dot(d, fwd); /* > 0 for every pixel (fov < 180°) */
 
   float3 result = (float3)(0.0f);
-  float z_end = p->z_far;
+  float t_end = SHAFTS_T_INF; /* the first surface on the ray, or none */
 #if SEASIM_HAS_OBJECTS
   float3 n;
   int which;
@@ -185,26 +189,36 @@ __kernel void shafts_render(__constant ShaftsParams* p, __global const ShaftsLig
       Io += e * (cos_n * exp(-p->sigma_t * s) / (sc * sc));
     }
     result = Io * (albedo * (1.0f / M_PI_F)) * exp(-p->sigma_t * T); /* 001 eq. 1, first term */
-    z_end = fmin(z_end, T * cos_theta);
+    t_end = T;
   }
 #endif
 
-  /* I_s: sampling planes (001 eq. 5) with sub-sample planes (001 eq. 7–9), lamp by lamp. */
+  /* I_s, lamp by lamp, over the exact part of the view ray inside the lamp's cone, from the camera to
+   * the first surface or to infinity (no near or far cut). n sampling intervals (001 eq. 5) with m
+   * sub-samples each (001 eq. 7–9) cover it up to K r past the closest approach to the lamp; beyond,
+   * the closed-form far field (common/shafts.h, shafts_tail_from) with H I_l averaged over m
+   * directions spread evenly in the angle the lamp sees, and F at the middle one. */
   const int n_planes = p->planes, m = p->subplanes;
-  const float inv_cos = 1.0f / cos_theta;
   for (int l = 0; l < p->light_count; ++l) {
     __global const ShaftsLight* L = &lights[l];
     const float3 lamp = v3(L->position);
+    float ta, tb;
+    if (!shafts_cone_interval(eye, d, lamp, v3(L->direction), L->cos_cone, &ta, &tb)) continue;
+    tb = fmin(tb, t_end);
+    if (!(tb > ta)) continue;
+    float a, h;
+    shafts_closest_approach(eye, d, lamp, &a, &h);
+    const float r = fmax(h, p->s_min);
+    const float tp = fmin(tb, fmax(ta, a + SHAFTS_TAIL_K * r)); /* planes on [ta, tp], far field on [tp, tb] */
     float3 acc = (float3)(0.0f);
-    for (int i = 0; i < n_planes; ++i) {
-      float za, zb;
-      if (!shafts_interval(i, n_planes, p->z_near, p->z_far, z_end, &za, &zb)) break;
+    const float dt = (tp - ta) / n_planes;
+    for (int i = 0; i < n_planes && dt > 0.0f; ++i) {
+      const float za = ta + i * dt;
       /* J_i: average of H I_l over m sub-sample planes in the interval (001 eq. 9). */
       float3 J = (float3)(0.0f);
-      const float dzs = (zb - za) / m;
+      const float dts = dt / m;
       for (int j = 0; j < m; ++j) {
-        const float tu = (za + (j + 0.5f) * dzs) * inv_cos;
-        const float3 P = eye + tu * d;
+        const float3 P = eye + (za + (j + 0.5f) * dts) * d;
         const float3 q = to_light(L, P);
         const float s = length(P - lamp);
         const float3 e = lamp_emission(L, light_maps, q, s);
@@ -213,9 +227,8 @@ __kernel void shafts_render(__constant ShaftsParams* p, __global const ShaftsLig
       if (J.x + J.y + J.z <= 0.0f) continue;
       J *= 1.0f / m;
       /* g at the plane (the interval's midpoint): 001 eq. 3, 6. */
-      const float t = 0.5f * (za + zb) * inv_cos;
-      const float3 P = eye + t * d;
-      const float3 w = P - lamp;
+      const float t = za + 0.5f * dt;
+      const float3 w = eye + t * d - lamp;
       const float s = length(w);
       const float cos_alpha = s > 0.0f ? dot(w, -d) / s : 1.0f;
 #if SEASIM_SHAFTS_EXACT
@@ -225,7 +238,33 @@ __kernel void shafts_render(__constant ShaftsParams* p, __global const ShaftsLig
       const float g = phase_table(F_table, p->table_size, cos_alpha) *
                       h_table(h_tab, p->table_size, p->table_s_max, p->table_t_max, s, t) / (sc * sc);
 #endif
-      acc += J * (g * (zb - za) * inv_cos); /* Δt_i = Δz_i / cos θ */
+      acc += J * (g * dt);
+    }
+    if (tb > tp) {
+      /* Far field: x = t - a >= K r. The lamp sees [tp, tb] over the angles [phi_p, phi_b],
+       * phi = atan(x / r); dt / s^2 is uniform in phi, so H I_l is averaged evenly in phi. */
+      const int infinite = tb >= SHAFTS_T_INF;
+      const float phi_p = atan((tp - a) / r), phi_b = infinite ? 0.5f * M_PI_F : atan((tb - a) / r);
+      float3 J = (float3)(0.0f);
+      for (int j = 0; j < m; ++j) {
+        const float3 P = eye + (a + r * tan(phi_p + (j + 0.5f) * (phi_b - phi_p) / m)) * d;
+        const float3 q = to_light(L, P);
+        const float s = length(P - lamp);
+        const float3 e = lamp_emission(L, light_maps, q, s);
+        if (e.x + e.y + e.z > 0.0f) J += e * shadow_term(L, shadow, p->shadow_map_size, q, s);
+      }
+      if (J.x + J.y + J.z > 0.0f) {
+        const float3 w = eye + (a + r * tan(0.5f * (phi_p + phi_b))) * d - lamp;
+        const float cos_alpha = dot(w, -d) / length(w);
+#if SEASIM_SHAFTS_EXACT
+        const float F = shafts_phase_fn(cos_alpha, SEASIM_SHAFTS_HG, p->hg_g);
+#else
+        const float F = phase_table(F_table, p->table_size, cos_alpha);
+#endif
+        float tail = shafts_tail_from(tp - a, a, h, p->rho, p->sigma_t);
+        if (!infinite) tail -= shafts_tail_from(tb - a, a, h, p->rho, p->sigma_t);
+        acc += J * (F * fmax(tail, 0.0f) / m);
+      }
     }
     result += acc;
   }

@@ -51,7 +51,9 @@ int benchSeaSecond(Device& device, const BenchCmd& cmd, const std::vector<Overri
 struct ReferenceCmd {
   std::string scene, out, device;
   std::vector<std::string> sets;
-  int steps = 256;
+  int steps = 0;      // 0: the scene's quality.reference_spp (under water) or quality.reference_steps
+  long long seed = -1;  // under water: the path tracer's seed; -1: not given (seed 1)
+  bool all_orders = false;  // the sea seen from above: the path tracer refracting in, not 000's quadrature
 };
 int cmdReference(const ReferenceCmd& cmd);
 

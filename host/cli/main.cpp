@@ -80,10 +80,30 @@ int main(int argc, char** argv) {
   bench->add_option("--set", bench_cmd.sets, "Override a scene key: --set sun.zenith_deg=60 (repeatable)");
 
   seasim::ReferenceCmd ref_cmd;
-  auto* reference = app.add_subcommand("reference", "Brute-force reference render (double precision, CPU)");
+  auto* reference = app.add_subcommand(
+      "reference",
+      "Brute-force reference of the scene's model, same units and channels as `render`'s image.exr.\n"
+      "  sea seen from above: CPU, double; single scattering by midpoint quadrature over depth (--steps\n"
+      "    intervals per ray), second order by direct quadrature; deterministic.\n"
+      "  spotlight shafts: CPU, double ray march, --steps steps per ray and lamp over the ray's part inside\n"
+      "    the cone, to infinity; exact shadow rays; deterministic.\n"
+      "  under water: a float spectral Monte Carlo path tracer in OpenCL on --device; --steps = paths per\n"
+      "    pixel, --seed picks the paths; writes the per-pixel standard error as OUT.stderr.exr beside OUT.\n"
+      "  --all-orders, the sea seen from above: the same path tracer with the camera above the surface,\n"
+      "    refracting in (--steps = paths per pixel): all orders of scattering, against which paper 000's\n"
+      "    single + second order is measured.\n"
+      "  Without --steps: quality.reference_steps (default 200) or, for the path tracer, quality.reference_spp (64).");
   reference->add_option("scene", ref_cmd.scene, "Scene file")->required()->check(CLI::ExistingFile);
   reference->add_option("-o,--out", ref_cmd.out, "Output EXR")->required();
-  reference->add_option("--steps", ref_cmd.steps, "Quadrature steps along each ray; under water: path-tracer samples per pixel");
+  reference->add_option("--steps", ref_cmd.steps,
+                        "Sea and shafts: quadrature steps per ray; under water: paths per pixel (default: the scene's "
+                        "quality.reference_steps / quality.reference_spp)")
+      ->check(CLI::PositiveNumber);
+  reference->add_option("--seed", ref_cmd.seed, "Under water: seed of the path tracer's random paths (default 1)")
+      ->check(CLI::Range(0LL, 4294967295LL));
+  reference->add_flag("--all-orders", ref_cmd.all_orders,
+                      "Sea seen from above: all orders of scattering by the path tracer (camera above the surface, "
+                      "refracting in; uniform sky, no sun glint), instead of paper 000's own terms by quadrature");
   reference->add_option("--device", ref_cmd.device, "Device for the underwater path tracer");
   reference->add_option("--set", ref_cmd.sets, "Override a scene key: key=value (repeatable)");
 

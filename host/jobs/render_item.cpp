@@ -85,7 +85,11 @@ nlohmann::json renderItem(Device& device, const Scene& scene, const ItemOutputs&
   for (const auto& format : outputs.formats) {
     std::string path;  // what the writer really wrote (a .npy beside it in builds without OpenImageIO)
     if (format == "exr") {
-      path = writeExr(dir + "/image.exr", frame.rgb);
+      // sensor = "identity": the raw bands are the image (the spectral.exr layout).
+      path = scene.spectral.sensor == "identity" && !frame.spectral.empty()
+                 ? writeSpectralExr(dir + "/image.exr", frame.rgb.width, frame.rgb.height, frame.wavelengths_nm,
+                                    frame.spectral)
+                 : writeExr(dir + "/image.exr", frame.rgb);
     } else if (format == "png") {
       path = writePng(dir + "/image.png", frame.rgb, scene.camera.exposure_ev);
     } else if (format == "npy") {

@@ -2,6 +2,7 @@
 
 #include "passes/caustic_stack.h"
 
+#include <cmath>
 #include <cstddef>
 #include <string>
 
@@ -127,6 +128,54 @@ double FroxelPass::resolve(const cl::Buffer& geom, int width, int height, cl::Bu
     throw DeviceError(std::string("froxel pass: resolve: ") + e.what() + " " + clErrorName(e.err()));
   }
   return eventMs(done);
+}
+
+double FroxelPass::addBandsToSpectral(const UnderwaterSetup& setup, const cl::Buffer& geom, int width, int height,
+                                      std::vector<float>& spectral) {
+  const size_t bands = setup.bands.size(), pixels = size_t(width) * size_t(height);
+  if (spectral.size() != pixels * bands) throw RuntimeError("froxel pass: spectral buffer size mismatch");
+  const cl_mem_flags in = CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR;
+  double ms = 0;
+  std::vector<float> rgb(3 * pixels);
+  try {
+    cl::Buffer rgb_buffer(device_.context(), CL_MEM_WRITE_ONLY, sizeof(float) * rgb.size());
+    for (size_t b = 0; b < bands; ++b) {
+      // One band, weight 1 into R (and two zero-weight copies for the RGB-injection kernel, which
+      // always reads three pseudo-bands); band_count 1 for the spectral-injection kernel.
+      UwParams p = setup.params;
+      p.band_count = 1;
+      UwBand one[3] = {setup.bands[b], setup.bands[b], setup.bands[b]};
+      one[0].w_r = 1, one[0].w_g = 0, one[0].w_b = 0;
+      for (int k = 1; k < 3; ++k) one[k].w_r = one[k].w_g = one[k].w_b = 0;
+      FroxelParams fp = fp_;
+      for (int k = 0; k < 3; ++k) fp.sigma_t_rgb[k] = setup.bands[b].c;  // in-slice fraction of this band
+      cl::Buffer params(device_.context(), in, sizeof p, &p), band_buffer(device_.context(), in, sizeof one, one);
+      cl::Buffer fparams(device_.context(), in, sizeof fp, &fp);
+      integrate_kernel_.setArg(0, params);
+      integrate_kernel_.setArg(1, fparams);
+      integrate_kernel_.setArg(2, band_buffer);
+      cl::Event integrated;
+      device_.queue().enqueueNDRangeKernel(integrate_kernel_, cl::NullRange, cl::NDRange(up(fp_.nx, 8), up(fp_.ny, 8)),
+                                           cl::NDRange(8, 8), nullptr, &integrated);
+      integrated.wait();
+      ms += eventMs(integrated);
+      resolve_kernel_.setArg(0, fparams);
+      ms += resolve(geom, width, height, rgb_buffer);
+      device_.queue().enqueueReadBuffer(rgb_buffer, CL_TRUE, 0, sizeof(float) * rgb.size(), rgb.data());
+      for (size_t px = 0; px < pixels; ++px) {
+        if (!std::isfinite(rgb[3 * px])) throw DeviceError("froxel pass: a non-finite value in band " + std::to_string(b));
+        spectral[px * bands + b] += rgb[3 * px];
+      }
+    }
+    // Back to the frame's own set-up (the volume itself now holds the last band).
+    integrate_kernel_.setArg(0, params_);
+    integrate_kernel_.setArg(1, fparams_);
+    integrate_kernel_.setArg(2, bands_);
+    resolve_kernel_.setArg(0, fparams_);
+  } catch (const cl::Error& e) {
+    throw DeviceError(std::string("froxel pass: spectral bands: ") + e.what() + " " + clErrorName(e.err()));
+  }
+  return ms;
 }
 
 void FroxelPass::read(cl::Buffer& buffer, size_t floats, std::vector<float>& out, const char* what) {

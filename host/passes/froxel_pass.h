@@ -40,6 +40,15 @@ class FroxelPass {
   // pixel, the G-buffer of raycast.cl) into rgb (3 floats per pixel, written). Returns ms.
   double resolve(const cl::Buffer& geom, int width, int height, cl::Buffer& rgb);
 
+  // The froxel term per wavelength band, added into `spectral` (band_count floats per pixel, band-major
+  // per pixel, as kd_multiple.cl writes it), so spectral.exr holds the whole image. The volume holds
+  // sensor RGB only, so each band is integrated again from the same injected light (V·C, band-free)
+  // as a one-band volume with its own c for the in-slice fraction, then resolved at geom's distances.
+  // Costs one integration and one resolve per band (opt-in: spectral_exr only); overwrites volume(),
+  // so call it after the shading has read the volume. Returns the summed kernel ms.
+  double addBandsToSpectral(const UnderwaterSetup& setup, const cl::Buffer& geom, int width, int height,
+                            std::vector<float>& spectral);
+
   cl::Buffer& volume() { return volume_; }
   cl::Buffer& paramsBuffer() { return fparams_; }  // FroxelParams on the device (kd_multiple.cl's fp)
   const FroxelParams& params() const { return fp_; }

@@ -105,6 +105,12 @@ FrameResult renderFrame(Device& device, const Scene& scene, const Plan& plan) {
     result.timings.push_back({"kd_multiple", pass.runShading(froxels ? &froxels->paramsBuffer() : nullptr,
                                                              froxels ? &froxels->volume() : nullptr)});
     finishFrame(device, scene, pass.rgb(), scene.spectral.spectral_exr ? &pass.spectral() : nullptr, grid.size(), result);
+    // spectral.exr holds the whole image: kd_multiple wrote T L_s + L_MS per band; the froxel term
+    // per band is added here (issue 13), from the same injected light.
+    if (froxels && scene.spectral.spectral_exr) {
+      result.timings.push_back({"froxel_spectral_bands",
+                                froxels->addBandsToSpectral(setup, pass.geometry(), w, h, result.spectral)});
+    }
     result.build_ms = device.totalBuildMs() - build_before;
     result.wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     return result;

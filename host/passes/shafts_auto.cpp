@@ -93,8 +93,9 @@ std::string describe(Device& device, const Scene& scene, const ShaftsAutoOptions
     const Knob* q = findKnob(scene, k);
     s << "knob " << k << ' ' << (q ? (q->automatic ? std::string("auto") : std::to_string(q->value)) : "-") << '\n';
   }
-  const ShaftsRange r = ShaftsPass::rangeFor(scene, ShaftsPass::configFromScene(scene));
-  s << "range " << r.z_near << ';' << r.z_far << ';' << r.t_max << ';' << r.s_max << '\n';
+  const ShaftsRange r = ShaftsPass::rangeFor(scene);
+  s << "method per-lamp cone ranges, far field (issue 13)\n";
+  s << "range " << r.t_max << ';' << r.s_max << '\n';
   s << "search " << o.budget_levels << ';' << o.reference_steps << ';' << o.downscale << ';' << o.min_long_side
     << ';' << o.max_long_side << ";n";
   for (int n : o.planes) s << ',' << n;

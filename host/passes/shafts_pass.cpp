@@ -87,10 +87,7 @@ ShaftsPass::Config ShaftsPass::configFor(Device& device, const Scene& scene, con
   return c;
 }
 
-ShaftsRange ShaftsPass::rangeFor(const Scene& scene, const Config& config) {
-  if (config.has_range) return config.range;
-  return config.clip_to_cones ? shaftsClipToCones(scene, shaftsRange(scene)) : shaftsRange(scene);
-}
+ShaftsRange ShaftsPass::rangeFor(const Scene& scene) { return shaftsTableRange(scene); }
 
 ShaftsPass::ShaftsPass(Device& device, const Scene& scene, const PassPlan& plan, const Config& config)
     : device_(device),
@@ -102,7 +99,7 @@ ShaftsPass::ShaftsPass(Device& device, const Scene& scene, const PassPlan& plan,
   if (config.planes < 1 || config.subplanes < 1 || config.shadow_map_size < 1) {
     throw RuntimeError("shafts: planes, sub-planes and shadow-map size must be at least 1");
   }
-  range_ = rangeFor(scene, config);
+  range_ = rangeFor(scene);
   const bool exact = hasDefine(plan, "SEASIM_SHAFTS_EXACT");
   const bool use_hg = hasDefine(plan, "SEASIM_SHAFTS_HG");
 
@@ -120,8 +117,6 @@ ShaftsPass::ShaftsPass(Device& device, const Scene& scene, const PassPlan& plan,
   const double rho = scene.air.density, sigma_t = scene.air.density * scene.air.extinction;
   p.rho = static_cast<float>(rho);
   p.sigma_t = static_cast<float>(sigma_t);
-  p.z_near = static_cast<float>(range_.z_near);
-  p.z_far = static_cast<float>(range_.z_far);
   p.hg_g = static_cast<float>(scene.air.g);
   p.s_min = static_cast<float>(kShaftsLampRadius);
   p.table_s_max = static_cast<float>(range_.s_max);

@@ -24,9 +24,6 @@ class ShaftsPass {
     int subplanes = 6;          // m sub-sample planes per interval (001 eq. 7–9)
     int shadow_map_size = 512;  // texels per side, per light
     int table_size = 256;       // F table entries; h table is table_size² (table mode)
-    bool has_range = false;     // use `range` instead of shaftsRange(scene) (tests: a fixed far plane)
-    ShaftsRange range;
-    bool clip_to_cones = true;  // without has_range: planes only where a light cone is (shaftsClipToCones)
   };
   // The quality knobs of the scene ([quality] shafts_planes, shafts_subplanes, shadow_map_size,
   // shafts_table_size); "auto" takes the paper's setting n = 30, m = 6 here (no device to search on).
@@ -36,8 +33,8 @@ class ShaftsPass {
   // resolution against the ray-marched reference, cached per scene). Prints one line to stderr
   // when it searched, and a warning when nothing met the budget.
   static Config configFor(Device& device, const Scene& scene, const PassPlan& plan);
-  // The sampling-plane depth range the pass uses for `config`.
-  static ShaftsRange rangeFor(const Scene& scene, const Config& config);
+  // The ranges of the h(s, t) table (table mode) the pass uses: shaftsTableRange(scene).
+  static ShaftsRange rangeFor(const Scene& scene);
 
   // `plan` is the "shafts" pass of makePlan(scene): its kernel file and defines.
   ShaftsPass(Device& device, const Scene& scene, const PassPlan& plan, const Config& config);

@@ -3,6 +3,7 @@
 #include <tbb/parallel_for.h>
 
 #include <cmath>
+#include <vector>
 
 #include "math/kernel_math.h"
 #include "ocean/ocean_cpu.h"
@@ -132,6 +133,9 @@ Image renderSeaReference(const Scene& scene, int steps) {
         }
         const double phase = k::hg_phase(cos_alpha, g);
         const double c_f = k::hg_forward_fraction(g);
+        // Water-leaving radiance reaches the air as L_w (1 - R) / n²: radiance / n² is conserved across
+        // the surface (docs/radiometry.md).
+        const double t_out = (1 - R_view) / (ior * ior);
         // The floor along the refracted view ray: z_Q and cos(gamma) (000 §5.4); flat: z_d, cos_io.
         double z_floor = bottom ? scene.bottom.depth : -1.0, cos_gamma = cos_io;
         if (height_field) {
@@ -164,10 +168,10 @@ Image renderSeaReference(const Scene& scene, int steps) {
             double sum = 0;
             for (int s = 0; s < steps; ++s) sum += std::exp(-kk * (s + 0.5) * dz * sec_sum);
             const double beam = sun_e[i] * e_h * t_in / cos_io;
-            L += beam * water.b[i] * phase * (1 - R_view) * sum * dz / cos_ji;
+            L += beam * water.b[i] * phase * t_out * sum * dz / cos_ji;
           }
           if (z_floor >= 0 && e_h > 0) {  // cos_gamma = cos_io on a flat floor: eq. 9 as it stands
-            L += k::sea_bottom_reflection_tilted(sun_e[i] * e_h, t_in, 1 - R_view,
+            L += k::sea_bottom_reflection_tilted(sun_e[i] * e_h, t_in, t_out,
                                                  scene.bottom.albedo.at(grid.centers_nm[i]), c, z_floor, cos_io,
                                                  cos_ji, cos_gamma);
           }
@@ -179,6 +183,51 @@ Image renderSeaReference(const Scene& scene, int steps) {
     }
   });
   return img;
+}
+
+std::vector<double> seaUpwellingBelow(const Scene& scene, Vec3 view_in_water, double z0, int steps) {
+  if (!scene.water.present) throw RuntimeError("seaUpwellingBelow: the scene has no [water]");
+  if (scene.bottom.type == BottomDesc::Type::HeightField) throw RuntimeError("seaUpwellingBelow: flat bottoms only");
+  if (!(view_in_water.y < 0) || steps < 1 || z0 < 0) throw RuntimeError("seaUpwellingBelow: needs a downward view");
+  const WavelengthGrid grid = makeGrid(scene.spectral.count, scene.spectral.min_nm, scene.spectral.max_nm);
+  const BandOptics water = resolveWater(scene.water, grid);
+  const std::vector<double> sun_e = sunIrradianceBands(grid, scene.sun.irradiance);
+  const Vec3 vn = normalize(view_in_water);
+  const k::real3 view{vn.x, vn.y, vn.z};
+  const double cos_ji = -view.y, ior = scene.water.ior, g = scene.water.g;
+  const k::real3 sun{std::sin(scene.sun.zenith) * std::cos(scene.sun.azimuth), std::cos(scene.sun.zenith),
+                     std::sin(scene.sun.zenith) * std::sin(scene.sun.azimuth)};
+  std::vector<double> L(grid.centers_nm.size(), 0.0);
+  if (!(scene.sun.enabled && scene.sun.irradiance > 0 && sun.y > 0)) return L;
+  const double t_in = 1 - k::fresnel_reflectance(sun.y, 1.0, ior);
+  k::real3 sun_in_water{};
+  k::refract_dir(-sun, k::real3{0, 1, 0}, 1.0 / ior, &sun_in_water);
+  const double cos_io = std::max(-sun_in_water.y, 1e-4);
+  const double phase = k::hg_phase(k::dot(sun_in_water, -view), g), c_f = k::hg_forward_fraction(g);
+  const bool bottom = scene.bottom.type == BottomDesc::Type::Flat;
+  const double z_floor = scene.bottom.depth;
+  for (size_t i = 0; i < L.size(); ++i) {
+    const double c = water.c[i], albedo = c > 0 ? water.b[i] / c : 0.0;
+    const double kk = c * (1 - albedo * c_f);  // 000 eq. 5's effective attenuation, on both legs
+    const double e_beam = sun_e[i] * sun.y * t_in / cos_io;  // beam irradiance just below the surface
+    if (scene.sea.single_scattering) {
+      // ∫_{z0}^{z_end} β E_beam e^{-kk z / cos_io} e^{-kk (z - z0) / cos_ji} dz / cos_ji, midpoint rule.
+      const double z_optical = z0 + 40.0 / std::max(kk * (1 / cos_io + 1 / cos_ji), 1e-12);
+      const double z_end = bottom ? std::min(z_floor, z_optical) : z_optical;
+      const double dz = (z_end - z0) / steps;
+      double sum = 0;
+      for (int s = 0; s < steps; ++s) {
+        const double z = z0 + (s + 0.5) * dz;
+        sum += std::exp(-kk * (z / cos_io + (z - z0) / cos_ji));
+      }
+      L[i] += e_beam * water.b[i] * phase * sum * dz / cos_ji;
+    }
+    if (bottom && z0 < z_floor) {  // 000 eq. 9 without T_o: Lambertian floor under the attenuated beam
+      L[i] += e_beam * cos_io * std::exp(-c * z_floor / cos_io) * scene.bottom.albedo.at(grid.centers_nm[i]) / M_PI *
+              std::exp(-c * (z_floor - z0) / cos_ji);
+    }
+  }
+  return L;
 }
 
 }  // namespace seasim

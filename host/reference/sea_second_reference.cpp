@@ -105,7 +105,7 @@ Image renderSeaSecondReference(const Scene& scene, const SeaSecondReferenceSetti
       const Vec3 dv = normalize(fwd + right * u + up * v);
       const k::real3 d{dv.x, dv.y, dv.z};
       if (d.y >= 0) continue;  // sky
-      const double t_out = 1 - k::fresnel_reflectance(-d.y, 1.0, ior);
+      const double t_out = (1 - k::fresnel_reflectance(-d.y, 1.0, ior)) / (ior * ior);  // T_o and the n² law
       k::real3 view{};
       k::refract_dir(d, n, 1.0 / ior, &view);
       const double cos_ji = std::max(-view.y, 1e-4);

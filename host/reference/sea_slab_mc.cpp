@@ -29,7 +29,7 @@ constexpr int kMisOrders = 1;     // ... at the first kMisOrders vertices (later
 // The water-side quantities every estimator and closed form shares (as sea_single.cl computes them).
 struct Geometry {
   bool sees_water = false;
-  double t_out = 0;      // T_o
+  double t_out = 0;      // T_o (1 - R) / n²: radiance / n² crosses the surface (docs/radiometry.md)
   k::real3 view{};       // refracted view ray, travelling down into the water
   double cos_ji = 1;
   bool sun_up = false;
@@ -47,7 +47,7 @@ Geometry geometry(const SlabMcSetup& s) {
   const k::real3 d{d0.x, d0.y, d0.z};
   if (d.y < 0) {
     g.sees_water = true;
-    g.t_out = 1 - k::fresnel_reflectance(-d.y, 1.0, s.ior);
+    g.t_out = (1 - k::fresnel_reflectance(-d.y, 1.0, s.ior)) / (s.ior * s.ior);  // T_o and the n² law
     k::refract_dir(d, n, 1.0 / s.ior, &g.view);
     g.cos_ji = std::max(-g.view.y, 1e-4);  // the clamp of sea_single.cl / the references
   }

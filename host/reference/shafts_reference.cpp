@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "io/image_io.h"
 #include "io/tonemap.h"
@@ -178,168 +179,47 @@ Vec3 objectAlbedoRgb(const ObjectDesc& object) {
   return {object.albedo.at(610.0), object.albedo.at(550.0), object.albedo.at(465.0)};
 }
 
-ShaftsRange shaftsRange(const Scene& scene) {
+ShaftsRange shaftsTableRange(const Scene& scene) {
   requireSupported(scene);
   const CameraDesc& cam = scene.camera;
   const CameraFrame f = cameraFrame(cam);
-  // The scene's finite extent seen from the eye: lamps and bounded objects.
-  double extent = 1.0;
-  for (const auto& l : scene.spotlights) extent = std::max(extent, length(l.position - cam.position));
-  for (const auto& o : scene.objects) {
-    if (o.type == ObjectDesc::Type::Sphere) extent = std::max(extent, length(o.center - cam.position) + o.radius);
-    if (o.type == ObjectDesc::Type::Box) {
-      for (int c = 0; c < 8; ++c) {
-        const Vec3 p{(c & 1) ? o.box_max.x : o.box_min.x, (c & 2) ? o.box_max.y : o.box_min.y,
-                     (c & 4) ? o.box_max.z : o.box_min.z};
-        extent = std::max(extent, length(p - cam.position));
+  const k::real3 eye = r3(cam.position);
+  std::vector<ShaftsRange> rows(cam.height);
+  tbb::parallel_for(0, cam.height, [&](int y) {
+    ShaftsRange& row = rows[y];
+    for (int x = 0; x < cam.width; ++x) {
+      const k::real3 d = f.ray(x + 0.5, y + 0.5, cam.width, cam.height);
+      const Hit hit = sceneHit(scene, eye, d, 0.0, 1e30);
+      for (const SpotlightDesc& l : scene.spotlights) {
+        const k::real3 lamp = r3(l.position);
+        double ta = 0, tb = 0;
+        if (!k::shafts_cone_interval(eye, d, lamp, r3(normalize(l.direction)), std::cos(l.cone), &ta, &tb)) continue;
+        if (hit.index >= 0) tb = std::min(tb, hit.t);
+        if (!(tb > ta)) continue;
+        double a = 0, h = 0;
+        k::shafts_closest_approach(eye, d, lamp, &a, &h);
+        const double tp = std::min(tb, std::max(ta, a + SHAFTS_TAIL_K * std::max(h, kShaftsLampRadius)));
+        if (!(tp > ta)) continue;
+        row.t_max = std::max(row.t_max, tp);
+        // s is convex along the ray: its largest value on [ta, tp] is at an end.
+        row.s_max = std::max({row.s_max, k::length(eye + ta * d - lamp), k::length(eye + tp * d - lamp)});
       }
     }
-  }
-  // Far plane: the deepest visible surface over a coarse grid of rays (2 % margin); a ray that
-  // sees nothing (or a surface beyond 2 x extent) extends it to 2 x the finite extent.
-  const double cap = 2.0 * extent;
-  double z_far = 0;
-  const int gx = 96, gy = 64;
-  for (int j = 0; j <= gy; ++j)
-    for (int i = 0; i <= gx; ++i) {
-      const k::real3 d = f.ray(double(i) / gx * cam.width, double(j) / gy * cam.height, cam.width, cam.height);
-      const double cos_t = k::dot(d, r3(f.fwd));
-      const Hit h = sceneHit(scene, r3(cam.position), d, 0.0, 1e30);
-      const double z = h.t > 0 ? std::min(h.t * cos_t * 1.02, cap) : cap;
-      z_far = std::max(z_far, z);
-    }
+  });
   ShaftsRange r;
-  r.z_far = std::max(z_far, 2 * r.z_near);
-  const k::real3 corner = f.ray(0, 0, cam.width, cam.height);
-  r.t_max = r.z_far / k::dot(corner, r3(f.fwd));
-  r.s_max = 0;
-  for (const auto& l : scene.spotlights) r.s_max = std::max(r.s_max, length(l.position - cam.position) + r.t_max);
+  for (const ShaftsRange& row : rows) {
+    r.t_max = std::max(r.t_max, row.t_max);
+    r.s_max = std::max(r.s_max, row.s_max);
+  }
+  r.t_max = std::max(1.01 * r.t_max, 1e-3);
+  r.s_max = std::max(1.01 * r.s_max, 1e-3);
   return r;
 }
 
-namespace {
-
-// A half-space n·x <= d (world coordinates).
-struct HalfSpace {
-  Vec3 n;
-  double d;
-};
-
-// Distance S beyond which the airlight a view ray can collect from a lamp's beam is below eps:
-// along any line, ∫ dt / s² over the part with s >= S is at most π / S, so the radiance from there
-// is at most ρ I F_max π exp(-ρκ S) / S (001 eq. 2–3 with H = 1), decreasing in S. Capped at 1e6 m.
-double beamLength(double rho, double sigma_t, double intensity, double f_max, double eps) {
-  auto bound = [&](double S) { return rho * intensity * f_max * M_PI * std::exp(-sigma_t * S) / S; };
-  double lo = 1e-3, hi = 1e6;
-  if (bound(hi) > eps) return hi;
-  if (bound(lo) <= eps) return lo;
-  for (int i = 0; i < 100; ++i) {  // bisection in log S
-    const double mid = std::sqrt(lo * hi);
-    (bound(mid) > eps ? lo : hi) = mid;
-  }
-  return hi;
-}
-
-// Extremes of f·x over the polytope {x : n_i·x <= d_i} (bounded here by the frustum's near and far
-// planes), by enumerating the vertices: every triple of planes whose intersection point satisfies all
-// constraints. 15 planes: 455 triples, negligible per frame. Returns false when the polytope is empty.
-bool depthExtremes(const std::vector<HalfSpace>& hs, Vec3 f, double& lo, double& hi) {
-  bool any = false;
-  const size_t n = hs.size();
-  for (size_t i = 0; i < n; ++i)
-    for (size_t j = i + 1; j < n; ++j)
-      for (size_t k = j + 1; k < n; ++k) {
-        const Vec3 a = hs[i].n, b = hs[j].n, c = hs[k].n;
-        const Vec3 bc = cross(b, c);
-        const double det = dot(a, bc);
-        if (std::fabs(det) < 1e-12) continue;  // two planes (nearly) parallel: no single vertex
-        const Vec3 x = (bc * hs[i].d + cross(c, a) * hs[j].d + cross(a, b) * hs[k].d) * (1.0 / det);  // Cramer
-        bool inside = true;
-        for (size_t m = 0; m < n && inside; ++m) {
-          const double tol = 1e-9 * std::max({1.0, std::fabs(hs[m].d), length(x)});
-          inside = dot(hs[m].n, x) <= hs[m].d + tol;
-        }
-        if (!inside) continue;
-        const double z = dot(f, x);
-        lo = any ? std::min(lo, z) : z;
-        hi = any ? std::max(hi, z) : z;
-        any = true;
-      }
-  return any;
-}
-
-}  // namespace
-
-ShaftsRange shaftsClipToCones(const Scene& scene, const ShaftsRange& range) {
-  const CameraDesc& cam = scene.camera;
-  const CameraFrame f = cameraFrame(cam);
-  // The view frustum in camera depth z = fwd·(x - eye): z_near <= z <= z_far, |right·q| <= tx z,
-  // |up·q| <= ty z (q = x - eye), as half-spaces n·x <= d.
-  const double ty = f.tan_half, tx = f.tan_half * f.aspect;
-  const double e_f = dot(f.fwd, f.eye);
-  std::vector<HalfSpace> frustum = {
-      {f.fwd * -1.0, -(range.z_near + e_f)},
-      {f.fwd, range.z_far + e_f},
-      {f.right - f.fwd * tx, dot(f.right - f.fwd * tx, f.eye)},
-      {f.right * -1.0 - f.fwd * tx, dot(f.right * -1.0 - f.fwd * tx, f.eye)},
-      {f.up - f.fwd * ty, dot(f.up - f.fwd * ty, f.eye)},
-      {f.up * -1.0 - f.fwd * ty, dot(f.up * -1.0 - f.fwd * ty, f.eye)},
-  };
-  const double rho = scene.air.density, sigma_t = scene.air.density * scene.air.extinction;
-  const int use_hg = scene.air.phase == AirDesc::Phase::HenyeyGreenstein;
-  const double f_max = std::max(k::shafts_phase_fn(1.0, use_hg, scene.air.g), k::shafts_phase_fn(-1.0, use_hg, scene.air.g));
-  // 0.01 of an 8-bit level at the dark end of the tone map (io/tonemap.h: slope 12.92 · 2^EV there).
-  const double eps = 0.01 / (255.0 * 12.92 * std::exp2(cam.exposure_ev));
-
-  bool any = false;
-  double z_lo = 0, z_hi = 0;
-  constexpr int kSides = 8;
-  for (const SpotlightDesc& l : scene.spotlights) {
-    Vec3 lr, lu;
-    shaftsLightBasis(l, lr, lu);
-    const Vec3 a = normalize(l.direction);
-    const double i_max = l.intensity * std::max({l.color.x, l.color.y, l.color.z});
-    if (!(i_max > 0)) continue;  // a dark lamp lights nothing
-    const double L = beamLength(rho, sigma_t, i_max, f_max, eps);
-    std::vector<HalfSpace> hs = frustum;
-    // Circumscribed pyramid: the plane tangent to the cone along lateral direction w has outward
-    // normal cos θ w - sin θ a; 8 of them contain the cone (θ < 90°, checked by the parser).
-    const double c = std::cos(l.cone), s = std::sin(l.cone);
-    for (int side = 0; side < kSides; ++side) {
-      const double phi = 2 * M_PI * side / kSides;
-      const Vec3 w = lr * std::cos(phi) + lu * std::sin(phi);
-      const Vec3 n = w * c - a * s;
-      hs.push_back({n, dot(n, l.position)});
-    }
-    hs.push_back({a, L + dot(a, l.position)});  // cap: axial distance <= L bounds the sector of radius L
-    double lo = 0, hi = 0;
-    if (!depthExtremes(hs, f.fwd, lo, hi)) continue;  // this cone is outside the frustum
-    lo -= e_f;
-    hi -= e_f;
-    z_lo = any ? std::min(z_lo, lo) : lo;
-    z_hi = any ? std::max(z_hi, hi) : hi;
-    any = true;
-  }
-  ShaftsRange r = range;
-  if (!any) {
-    r.z_far = r.z_near;  // empty: no plane carries light
-  } else {
-    r.z_near = std::max(range.z_near, z_lo);
-    r.z_far = std::min(range.z_far, std::max(z_hi, r.z_near));
-  }
-  // Tighter table ranges for the clipped planes (t <= z_far / cos θ_corner; s <= |lamp - eye| + t).
-  const k::real3 corner = f.ray(0, 0, cam.width, cam.height);
-  r.t_max = std::max(r.z_far, 2 * range.z_near) / k::dot(corner, r3(f.fwd));
-  r.s_max = r.t_max;
-  for (const auto& l : scene.spotlights) r.s_max = std::max(r.s_max, length(l.position - cam.position) + r.t_max);
-  return r;
-}
-
-Image renderShaftsReference(const Scene& scene, int steps, const ShaftsRange* range_in) {
+Image renderShaftsReference(const Scene& scene, int steps) {
   if (!scene.air.present) throw RuntimeError("the shafts reference needs an [air] table");
   if (steps < 1) throw RuntimeError("--steps must be at least 1");
   requireSupported(scene);
-  const ShaftsRange range = range_in ? *range_in : shaftsRange(scene);
   const CameraDesc& cam = scene.camera;
   const CameraFrame f = cameraFrame(cam);
   const std::vector<Lamp> lamps = makeLamps(scene);
@@ -356,9 +236,8 @@ Image renderShaftsReference(const Scene& scene, int steps, const ShaftsRange* ra
   tbb::parallel_for(0, cam.height, [&](int y) {
     for (int x = 0; x < cam.width; ++x) {
       const k::real3 d = f.ray(x + 0.5, y + 0.5, cam.width, cam.height);
-      const double cos_t = k::dot(d, r3(f.fwd));
       k::real3 result{0, 0, 0};
-      double t_end = range.z_far / cos_t;
+      double t_end = std::numeric_limits<double>::infinity();
       const Hit hit = sceneHit(scene, eye, d, 0.0, 1e30);
       if (hit.index >= 0) {
         const k::real3 P = eye + hit.t * d;
@@ -379,24 +258,35 @@ Image renderShaftsReference(const Scene& scene, int steps, const ShaftsRange* ra
         result = Io * albedo[hit.index] * (std::exp(-sigma_t * hit.t) / M_PI);  // 001 eq. 1
         t_end = std::min(t_end, hit.t);
       }
-      // 001 eq. 2 by midpoint steps over the same depth range the planes cover.
-      const double t0 = range.z_near / cos_t;
-      if (t_end > t0) {
-        const double dt = (t_end - t0) / steps;
+      // 001 eq. 2, lamp by lamp, over the cone's part of [0, t_end]: t = a + r tan φ maps it to a finite
+      // φ interval (t = ∞ is φ = π/2) with dt = r sec²φ dφ, and the integrand g dt/dφ is bounded
+      // (g ~ 1/s² = 1/(r² sec²φ) when h >= r). Midpoint steps in φ never sample t = ∞.
+      for (const Lamp& L : lamps) {
+        double ta = 0, tb = 0;
+        if (!k::shafts_cone_interval(eye, d, L.pos, L.dir, L.cos_cone, &ta, &tb)) continue;
+        if (tb >= SHAFTS_T_INF) tb = std::numeric_limits<double>::infinity();
+        tb = std::min(tb, t_end);
+        if (!(tb > ta)) continue;
+        double a = 0, h = 0;
+        k::shafts_closest_approach(eye, d, L.pos, &a, &h);
+        const double r = std::max(h, kShaftsLampRadius);
+        const double phi_a = std::atan((ta - a) / r);
+        const double phi_b = std::isinf(tb) ? M_PI / 2 : std::atan((tb - a) / r);
+        const double dphi = (phi_b - phi_a) / steps;
         for (int i = 0; i < steps; ++i) {
-          const double t = t0 + (i + 0.5) * dt;
+          const double phi = phi_a + (i + 0.5) * dphi;
+          const double tan_phi = std::tan(phi);
+          const double t = a + r * tan_phi;
           const k::real3 P = eye + t * d;
-          for (const Lamp& L : lamps) {
-            const k::real3 e = L.emission(P);
-            if (e.x + e.y + e.z <= 0) continue;
-            const k::real3 w = P - L.pos;
-            const double s = k::length(w);
-            if (!scene.objects.empty() && sceneHit(scene, P, -(w / s), 0.0, s).index >= 0) continue;  // H = 0
-            const double cos_alpha = s > 0 ? k::dot(w, -d) / s : 1.0;
-            const double g = k::shafts_phase_fn(cos_alpha, use_hg, hg_g) *
-                             k::shafts_h(s, t, rho, sigma_t, kShaftsLampRadius);  // 001 eq. 3
-            result = result + e * (g * dt);
-          }
+          const k::real3 e = L.emission(P);
+          if (e.x + e.y + e.z <= 0) continue;
+          const k::real3 w = P - L.pos;
+          const double s = k::length(w);
+          if (s > 0 && !scene.objects.empty() && sceneHit(scene, P, -(w / s), 0.0, s).index >= 0) continue;  // H = 0
+          const double cos_alpha = s > 0 ? k::dot(w, -d) / s : 1.0;
+          const double g = k::shafts_phase_fn(cos_alpha, use_hg, hg_g) *
+                           k::shafts_h(s, t, rho, sigma_t, kShaftsLampRadius);  // 001 eq. 3
+          result = result + e * (g * r * (1 + tan_phi * tan_phi) * dphi);
         }
       }
       img.at(x, y, 0) = static_cast<float>(result.x);

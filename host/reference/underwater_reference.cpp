@@ -19,7 +19,7 @@ namespace kd = kmath_d;
 kd::real3 r3(Vec3 v) { return kd::real3{v.x, v.y, v.z}; }
 Vec3 v3(const float a[4]) { return {a[0], a[1], a[2]}; }
 
-void validate(const UnderwaterSetup& setup) {
+void validate(const UnderwaterSetup& setup, bool camera_above) {
   const UwParams& p = setup.params;
   if (p.width < 1 || p.height < 1) throw RuntimeError("underwater reference: the image is empty");
   if (p.band_count < 1 || setup.bands.size() != static_cast<size_t>(p.band_count)) {
@@ -30,9 +30,10 @@ void validate(const UnderwaterSetup& setup) {
       setup.albedo.size() < static_cast<size_t>(std::max(p.object_count * p.band_count, 1))) {
     throw RuntimeError("underwater reference: object or albedo arrays shorter than object_count says");
   }
-  if (!(p.cam_pos[1] < 0.0f)) {
-    throw RuntimeError("underwater reference: the camera must be below the water surface (y < 0), got y = " +
-                       std::to_string(p.cam_pos[1]));
+  if (camera_above ? !(p.cam_pos[1] > 0.0f) : !(p.cam_pos[1] < 0.0f)) {
+    throw RuntimeError(std::string("underwater reference: the camera must be ") +
+                       (camera_above ? "above the water surface (y > 0)" : "below the water surface (y < 0)") +
+                       ", got y = " + std::to_string(p.cam_pos[1]));
   }
   if (!(std::fabs(p.g) < 1.0f)) throw RuntimeError("underwater reference: |g| must be < 1, got " + std::to_string(p.g));
 }
@@ -47,7 +48,7 @@ Vec3 underwaterPixelDirection(const UwParams& p, double x, double y) {
 
 UnderwaterReferenceResult renderUnderwaterReference(Device& device, const UnderwaterSetup& setup,
                                                     const UnderwaterReferenceSettings& settings) {
-  validate(setup);
+  validate(setup, settings.camera_above);
   if (settings.samples_per_pixel < 1) throw RuntimeError("underwater reference: samples per pixel must be >= 1");
   if (settings.batch < 1) throw RuntimeError("underwater reference: batch must be >= 1");
   if (settings.max_bounces < 1) throw RuntimeError("underwater reference: max_bounces must be >= 1");
@@ -180,7 +181,7 @@ double underwaterSingleScatteringRay(const UnderwaterSetup& setup, int band, Vec
 }
 
 Image renderUnderwaterSingleScatteringQuadrature(const UnderwaterSetup& setup, bool isotropic, int steps) {
-  validate(setup);
+  validate(setup, false);
   const UwParams& p = setup.params;
   Image img;
   img.resize(p.width, p.height, 3);

@@ -31,6 +31,8 @@ struct UnderwaterReferenceSettings {
   bool isotropic = false;      // phase 1/(4π) instead of Henyey–Greenstein with UwParams.g
   bool jitter = true;          // false: every path through the pixel centre (tests against quadrature)
   unsigned seed = 1;           // the same seed traces the same paths, whatever `batch` is
+  bool camera_above = false;   // the camera is above the surface (y > 0): the sea seen from above,
+                               // R L_sky + (1 - R)/n² × the water's paths (reference.cl); else y < 0
   std::function<void(int done, int total)> progress;  // after each launch: samples done, samples asked
 };
 

@@ -42,8 +42,8 @@ constexpr KnobDefault kQualityKnobs[] = {
     {"froxel_z", 64, "froxel grid z (depth slices)"},
     {"caustic_map_size", 256, "caustic map size"},
     {"caustic_layers", 8, "underwater caustic map: depth layers (caustic_map.h)"},
-    {"reference_spp", 64, "brute-force reference: samples per pixel"},
-    {"reference_steps", 200, "brute-force reference: ray-march steps per ray"},
+    {"reference_spp", 64, "seasim reference under water: paths per pixel (without --steps)"},
+    {"reference_steps", 200, "seasim reference, sea and shafts: steps per ray (without --steps)"},
 };
 constexpr long long kMaxKnob = 1 << 20;  // catches typos such as 1e9 planes
 
@@ -489,13 +489,18 @@ class SceneParser {
               "no such folder: " + s.camera_dir + " (a folder of <camera>.csv files with the header nm,r,g,b)");
     }
     s.sensor = r.string("sensor", s.sensor);
-    if (s.sensor != "cie1931" && cameraFile(s.sensor, s.camera_dir).empty()) {
+    if (s.sensor != "cie1931" && s.sensor != "identity" && cameraFile(s.sensor, s.camera_dir).empty()) {
       std::vector<std::string> names = cameraNames(s.camera_dir);
-      names.insert(names.begin(), "cie1931");
+      names.insert(names.begin(), {"cie1931", "identity"});
       r.fail("sensor", unknownCameraMessage(s.sensor, s.camera_dir) + suggestion(s.sensor, names, 6));
     }
     s.white_balance = r.boolean("white_balance", s.white_balance);
     s.spectral_exr = r.boolean("spectral_exr", s.spectral_exr);
+    if (s.sensor == "identity") {  // its output is the bands themselves
+      r.check(!r.has("spectral_exr") || s.spectral_exr, "spectral_exr",
+              "must be true with sensor = \"identity\" (its image.exr is the raw bands)");
+      s.spectral_exr = true;
+    }
     r.finish();
   }
 

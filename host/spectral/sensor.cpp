@@ -107,7 +107,10 @@ Sensor makeSensor(const std::string& name, const WavelengthGrid& grid, bool whit
   const double lo = grid.minNm(), hi = grid.maxNm();
   const Spectrum illum = d65();
   std::array<Spectrum, 3> curves;  // x̄ȳz̄ or camera r, g, b
-  const bool cie = (name == "cie1931");
+  // "identity": the raw bands are the output (spectral.exr layout, written as image.exr); the RGB the
+  // kernels still accumulate is the CIE luminance Y in all three channels, a grey preview.
+  const bool identity = (name == "identity");
+  const bool cie = (name == "cie1931") || identity;
   if (cie) {
     const CieCmf& cmf = cie1931Cmf();
     curves = {cmf.x_bar, cmf.y_bar, cmf.z_bar};
@@ -127,22 +130,41 @@ Sensor makeSensor(const std::string& name, const WavelengthGrid& grid, bool whit
   // out = A · (raw band sums of the three curves): A folds in the matrix and every scale factor.
   std::array<double, 9> A{};
   const auto range = "[" + std::to_string(lo) + ", " + std::to_string(hi) + "] nm";
-  if (cie) {
+  if (identity) {
+    if (!(d65_resp[1] > 0.0)) throw RuntimeError("sensor identity: y_bar (its grey preview) is zero over " + range);
+    for (int r = 0; r < 3; ++r) A[static_cast<std::size_t>(r * 3 + 1)] = 1.0 / d65_resp[1];  // Y, D65 -> 1
+  } else if (cie) {
     if (!(d65_resp[1] > 0.0)) throw RuntimeError("sensor cie1931: y_bar is zero over " + range);
     const double N = d65_resp[1];
     const auto& M = xyzToLinearSrgbMatrix();
-    std::array<double, 3> gain = {1.0, 1.0, 1.0};
+    std::array<double, 3> gain = {1.0, 1.0, 1.0};  // on linear sRGB
+    std::array<double, 3> xyz_gain = {1.0, 1.0, 1.0};  // on X, Y, Z (von Kries), narrow ranges only
     if (white_balance) {
-      const auto rgb = xyzToLinearSrgb({d65_resp[0] / N, 1.0, d65_resp[2] / N});
+      std::array<double, 3> d65_xyz = {d65_resp[0] / N, 1.0, d65_resp[2] / N};
+      auto rgb = xyzToLinearSrgb(d65_xyz);
+      if (!(rgb[0] > 0.0 && rgb[1] > 0.0 && rgb[2] > 0.0)) {
+        // Over a narrow range D65 is nearly a spectral colour, outside the sRGB gamut: no diagonal gain
+        // on sRGB can make it white. Scale X and Z first so that it lands on D65's white point
+        // (x, y) = (0.3127, 0.3290), XYZ = (0.9505, 1, 1.0891), which sRGB maps to (1, 1, 1); the sRGB
+        // gains below then only remove rounding. A curve that sees nothing over the range (z̄ above
+        // 650 nm) keeps gain 1 and its channel stays unbalanced.
+        const std::array<double, 3> white = {0.3127 / 0.3290, 1.0, (1.0 - 0.3127 - 0.3290) / 0.3290};
+        for (int k : {0, 2}) {
+          const std::size_t i = static_cast<std::size_t>(k);
+          if (d65_xyz[i] > 0.0) xyz_gain[i] = white[i] / d65_xyz[i];
+          d65_xyz[i] *= xyz_gain[i];
+        }
+        rgb = xyzToLinearSrgb(d65_xyz);
+      }
       for (int k = 0; k < 3; ++k) {
-        if (!(rgb[static_cast<std::size_t>(k)] > 0.0))
-          throw RuntimeError("sensor cie1931: cannot white-balance over " + range + " (D65 has no " + "rgb"[k] +
-                             " component there)");
-        gain[static_cast<std::size_t>(k)] = 1.0 / rgb[static_cast<std::size_t>(k)];
+        const std::size_t i = static_cast<std::size_t>(k);
+        if (rgb[i] > 0.0) gain[i] = 1.0 / rgb[i];  // else (a curve blind over the range): left as it is
       }
     }
     for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) A[static_cast<std::size_t>(r * 3 + c)] = gain[static_cast<std::size_t>(r)] * M[static_cast<std::size_t>(r * 3 + c)] / N;
+      for (int c = 0; c < 3; ++c)
+        A[static_cast<std::size_t>(r * 3 + c)] =
+            gain[static_cast<std::size_t>(r)] * M[static_cast<std::size_t>(r * 3 + c)] * xyz_gain[static_cast<std::size_t>(c)] / N;
   } else if (white_balance) {
     for (int k = 0; k < 3; ++k) {
       if (!(d65_resp[static_cast<std::size_t>(k)] > 0.0))

@@ -3,6 +3,9 @@
 // with λ_i the band centres and w = Δλ_i the band width (wavelength_grid.h).
 //
 // Sensors (the `sensor` key of [spectral]):
+//   "identity"  no sensor: image.exr holds the raw bands, L(λ_i) in W m⁻² sr⁻¹ nm⁻¹ (the spectral.exr
+//               layout); the three RGB channels carry the CIE luminance Y (D65 × 1 -> 1), a grey
+//               preview for image.png, compare and sweeps. White balance does not apply.
 //   "cie1931"   the CIE 1931 2° observer (data/cie1931_2deg_cmf.csv): f = (x̄, ȳ, z̄) gives XYZ, then
 //               the sRGB matrix (cie.h) gives linear sRGB.
 //   <camera>    a file stem of <dir>/*.csv for the folders of cameraDirs() (util/paths.h): the
@@ -19,7 +22,10 @@
 // that of eq. 4.8 itself, which vanishes as n grows (tested):
 //   cie1931:  XYZ = Σ_i L(λ_i) (x̄, ȳ, z̄)(λ_i) Δλ_i / N,  N = ∫ D65 ȳ dλ  -> a radiance of D65 × 1
 //             has Y = 1; sRGB = M · XYZ. With white balance each sRGB channel is further scaled by
-//             1 / (M · XYZ_D65)_k, a correction of < 1 % that makes D65 exactly (1, 1, 1).
+//             1 / (M · XYZ_D65)_k, a correction of < 1 % that makes D65 exactly (1, 1, 1). On a
+//             narrow range D65 falls outside the sRGB gamut (a channel of M · XYZ_D65 <= 0): X and Z
+//             are then scaled first (von Kries) to put D65 on its white point, and a curve that sees
+//             nothing over the range (z̄ above ~650 nm) leaves its channel unbalanced.
 //   camera, white balance:     rgb_k = Σ_i L(λ_i) f_k(λ_i) Δλ_i / ∫ D65 f_k dλ   -> D65 = (1, 1, 1)
 //   camera, no white balance:  rgb_k = Σ_i L(λ_i) f_k(λ_i) Δλ_i / S, one S for all channels chosen so
 //             that D65 has luminance 0.2126 r + 0.7152 g + 0.0722 b = 1: raw channel ratios, same scale.

@@ -16,12 +16,12 @@ typedef struct {
   float aspect;          /* width / height */
   float rho;             /* ρ, particle density: the scattering coefficient of 001 eq. 3, 1/m */
   float sigma_t;         /* ρκ, extinction coefficient, 1/m (001 eq. 1, 3) */
-  float z_near;          /* m, camera depth of the first sampling plane interval's start (001 eq. 5) */
-  float z_far;           /* m, camera depth of the last interval's end */
+  float pad2;            /* (the sampling planes' range is per pixel and per lamp: shafts.cl) */
+  float pad3;
   float hg_g;            /* Henyey–Greenstein asymmetry (SEASIM_SHAFTS_HG) */
   float s_min;           /* m, smallest light distance used in 1/s² (the lamp's radius) */
-  float table_s_max;     /* m, range of the h(s,t) table over s (table mode) */
-  float table_t_max;     /* m, range over t */
+  float table_s_max;     /* m, range of the h(s,t) table over s (table mode): every plane's s */
+  float table_t_max;     /* m, range over t: every plane's t (the far field does not use the table) */
   float pad0, pad1;
   int width;
   int height;

@@ -5,7 +5,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
+#include <string>
+#include <vector>
 
 #include "device/device.h"
 #include "test_device.h"
@@ -101,6 +104,67 @@ TEST(SeaSingleKernel, SpectralOutputMatchesTheRgbSum) {
   EXPECT_EQ(frame.wavelengths_nm.size(), 5u);
   EXPECT_EQ(frame.nonfinite, 0);
   for (float v : frame.spectral) EXPECT_GE(v, 0.0f);
+}
+
+// ---- The n² law across the surface (docs/radiometry.md): the same water seen from 1 mm above (the
+// kernel, through the surface) and from 1 mm below (the CPU reference's in-water radiance along the
+// refracted ray, seaUpwellingBelow) relates by (1 - R)/n², R from Fresnel's unpolarised formula
+// written out here. Clear water (c = 0.05/m) so the 1 mm of water between the two views changes the
+// radiance by under 6e-5; no sky, so nothing is reflected. Looking down 30° from the nadir.
+TEST(SeaSingleKernel, SameWaterOneMillimetreAboveAndBelowRelatesByOneMinusROverNSquared) {
+  const double n = 1.333, theta = 30 * M_PI / 180;
+  char text[1024];
+  std::snprintf(text, sizeof text, R"(
+[camera]
+position = [0, 0.001, 0]
+look_at = [0, %.17g, %.17g]
+fov_deg = 1
+width = 3
+height = 3
+[sun]
+zenith_deg = 40
+azimuth_deg = 90
+[sky]
+radiance = 0
+[water]
+wavelengths_nm = [400, 700]
+a = [0.02, 0.02]
+b = [0.03, 0.03]
+g = 0.9
+ior = %.17g
+[bottom]
+type = "flat"
+depth = 5
+albedo = 0.3
+[spectral]
+count = 4
+)",
+                0.001 - std::cos(theta), -std::sin(theta), n);
+  for (const bool bottom : {true, false}) {
+    std::string t = text;
+    if (!bottom) t.erase(t.find("[bottom]"), t.find("[spectral]") - t.find("[bottom]"));
+    const seasim::Scene scene = seasim::parseScene(t, "n2.toml", {set("spectral.spectral_exr", "true")});
+    const seasim::FrameResult frame = seasim::renderFrame(device(), scene, seasim::makePlan(scene));
+    const size_t bands = frame.wavelengths_nm.size();
+    ASSERT_EQ(bands, 4u);
+    const size_t centre = 4;  // pixel (1, 1): its ray is the camera's axis
+    // Fresnel, unpolarised, air to water at theta; the refracted ray.
+    const double ci = std::cos(theta), st = std::sin(theta) / n, ct = std::sqrt(1 - st * st);
+    const double rs = (ci - n * ct) / (ci + n * ct), rp = (ct - n * ci) / (ct + n * ci);
+    const double R = 0.5 * (rs * rs + rp * rp);
+    const seasim::Vec3 in_water{0, -ct, -st};
+    const std::vector<double> below = seasim::seaUpwellingBelow(scene, in_water, 0.001, 20000);
+    ASSERT_EQ(below.size(), bands);
+    for (size_t i = 0; i < bands; ++i) {
+      const double above = frame.spectral[centre * bands + i];
+      const double expected = below[i] * (1 - R) / (n * n);
+      std::printf("[ measured ] %s, %.0f nm: above %.6g, below %.6g, above/below %.6f, (1-R)/n² %.6f\n",
+                  bottom ? "bottom at 5 m" : "deep", frame.wavelengths_nm[i], above, below[i], above / below[i],
+                  (1 - R) / (n * n));
+      EXPECT_GT(below[i], 0);
+      EXPECT_NEAR(above / expected, 1.0, 1e-4) << "band " << i;
+    }
+  }
 }
 
 }  // namespace

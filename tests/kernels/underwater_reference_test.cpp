@@ -538,6 +538,39 @@ TEST(UnderwaterReference, NoNanInTurbidDeepWaterOrWithoutAbsorption) {
   expectFiniteNonNegative(r);
 }
 
+// The camera above the surface (the sea seen from above, issue 13): in single-scattering mode every
+// pixel is (1 - R)/n² times the in-water single scattering along the refracted ray from the surface
+// point, which the double quadrature gives independently; R and the refraction written out here.
+TEST(UnderwaterReference, CameraAboveSeesTheWaterThroughTheSurfaceByOneMinusROverNSquared) {
+  SceneSpec spec = singleScatteringScene();
+  spec.eye = {0, 3, 0};
+  spec.forward = {0, -1, -0.8};
+  spec.fov_y_deg = 50;  // every ray meets the surface, at 25° to 64° from the nadir
+  const UnderwaterSetup s = build(spec);
+  const UwParams& p = s.params;
+  const double n = p.ior;
+  const Image expected = perPixel(s, [&](int i, kd::real3 d) {
+    const double ci = -d.y, st = std::sqrt(1 - ci * ci) / n, ct = std::sqrt(1 - st * st);
+    const double rs = (ci - n * ct) / (ci + n * ct), rp = (ct - n * ci) / (ct + n * ci);
+    const double R = 0.5 * (rs * rs + rp * rp);
+    const Vec3 o{p.cam_pos[0] + p.cam_pos[1] / ci * d.x, 0.0, p.cam_pos[2] + p.cam_pos[1] / ci * d.z};
+    const Vec3 h = seasim::normalize(Vec3{d.x, 0, d.z});
+    const Vec3 dw{h.x * st, -ct, h.z * st};  // Snell: the refracted ray, in the plane of incidence
+    return (1 - R) / (n * n) * seasim::underwaterSingleScatteringRay(s, i, o, dw, false, 4000);
+  });
+  UnderwaterReferenceSettings set;
+  set.samples_per_pixel = 128;
+  set.batch = 32;
+  set.max_bounces = 1;
+  set.jitter = false;
+  set.camera_above = true;
+  const UnderwaterReferenceResult r = seasim::renderUnderwaterReference(device(), s, set);
+  expectFiniteNonNegative(r);
+  expectAgrees(r, expected, "camera above, single scattering");
+  set.camera_above = false;  // the default still wants the camera below
+  EXPECT_THROW(seasim::renderUnderwaterReference(device(), s, set), seasim::RuntimeError);
+}
+
 TEST(UnderwaterReference, RejectsWhatItCannotTrace) {
   SceneSpec spec = fullScene();
   UnderwaterReferenceSettings set;

@@ -2,6 +2,8 @@
 // (data/jerlov_*.csv, Solonenko & Mobley 2015 eq. (3)) and sensors (002 eq. 4.8).
 #include <gtest/gtest.h>
 
+#include <utility>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -164,6 +166,31 @@ TEST(Sensor, CieD65IsWhiteAndConverges) {
   const auto e1 = sunIrradianceBands(g, 1.0), e3 = sunIrradianceBands(g, 3.0);
   const auto c1 = s.apply(e1.data()), c3 = s.apply(e3.data());
   for (int k = 0; k < 3; ++k) EXPECT_NEAR(c3[static_cast<std::size_t>(k)], 3 * c1[static_cast<std::size_t>(k)], 1e-12);
+}
+
+// White balance on narrow ranges (issue 13): D65 over 10 nm is nearly a spectral colour outside the sRGB
+// gamut; the sensor then balances X and Z (von Kries) and still maps D65 to (1, 1, 1). Only where a
+// curve sees nothing (z̄ above ~650 nm) does that channel stay unbalanced, finite and with no error.
+TEST(Sensor, CieWhiteBalanceWorksOnNarrowRanges) {
+  for (const auto& [lo, hi] : {std::pair{500.0, 510.0}, std::pair{440.0, 450.0}, std::pair{580.0, 600.0},
+                               std::pair{400.0, 700.0}}) {
+    const auto rgb = d65Through("cie1931", 200, true, lo, hi);
+    std::printf("cie1931 white-balanced D65 over [%g, %g] nm: (%.6f, %.6f, %.6f)\n", lo, hi, rgb[0], rgb[1], rgb[2]);
+    EXPECT_LT(maxAbsDiff(rgb, 1.0), 1e-3) << lo << "-" << hi;
+  }
+  const auto red = d65Through("cie1931", 50, true, 690, 700);
+  for (double v : red) EXPECT_TRUE(std::isfinite(v));
+  EXPECT_NEAR(red[0], 1.0, 1e-3);  // r balanced; g and b cannot be (z̄ = 0 there)
+}
+
+// "identity": raw bands out, and a grey luminance preview in RGB: D65 -> (1, 1, 1) on any range.
+TEST(Sensor, IdentityPreviewIsTheLuminance) {
+  for (const auto& [lo, hi] : {std::pair{400.0, 700.0}, std::pair{500.0, 510.0}}) {
+    const auto rgb = d65Through("identity", 300, true, lo, hi);
+    EXPECT_LT(maxAbsDiff(rgb, 1.0), 1e-3) << lo;
+    EXPECT_EQ(rgb[0], rgb[1]);
+    EXPECT_EQ(rgb[1], rgb[2]);
+  }
 }
 
 TEST(Sensor, CamerasLoadAndAreFiniteNonNegative) {
