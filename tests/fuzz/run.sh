@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Builds the parser fuzzer with clang (build-fuzz/), makes a seed corpus from scenes/ and jobs/,
 # and runs it for SECONDS (default 60). Usage: tests/fuzz/run.sh [SECONDS] [extra libFuzzer flags]
-# Needs clang (Debian: clang-14). Not part of `make test`: CI does not depend on clang.
+# Needs clang (Debian: clang-14, libclang-rt-14-dev). Not part of `make test`; .ci/run runs it for 60 s.
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 seconds=${1:-60}
