@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <exception>
 
+#include "cli/cache_warm_command.h"
 #include "cli/commands.h"
 #include "cli/ocean_command.h"
 #include "cli/seashore_study_command.h"
@@ -127,6 +128,15 @@ int main(int argc, char** argv) {
   shore->add_option("--device", shore_cmd.device, "Device selector");
   shore->add_option("--set", shore_cmd.sets, "Override a scene key: key=value (repeatable)");
 
+  auto* cache = app.add_subcommand("cache", "Kernel build caches ($SEASIM_CACHE_DIR, $POCL_CACHE_DIR)");
+  cache->require_subcommand(1);
+  seasim::CacheWarmCmd warm_cmd;
+  auto* warm = cache->add_subcommand(
+      "warm", "Build every kernel program and work-group function the scenes' or jobs' renders need (one frame each)");
+  warm->add_option("files", warm_cmd.files, "Scene or job TOML files")->required()->check(CLI::ExistingFile);
+  warm->add_option("--device", warm_cmd.device, "cpu, gpu, pocl:0, nvidia:0 or a name substring");
+  warm->add_option("--set", warm_cmd.sets, "Override a scene key: key=value (repeatable)");
+
   std::string preview_scene, preview_device;
   auto* preview = app.add_subcommand("preview", "Live GLFW preview window");
   preview->add_option("scene", preview_scene, "Scene file");
@@ -147,6 +157,7 @@ int main(int argc, char** argv) {
     if (*study) return seasim::cmdUnderwaterStudy(study_cmd);
     if (*shore) return seasim::cmdSeashoreStudy(shore_cmd);
     if (*preview) return seasim::cmdPreview(preview_scene, preview_device);
+    if (*warm) return seasim::cmdCacheWarm(warm_cmd);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "seasim: error: %s\n", e.what());
     return 1;

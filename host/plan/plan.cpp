@@ -159,6 +159,15 @@ Plan makePlan(const Scene& scene) {
                             flag("SEASIM_SPECTRAL_OUTPUT", spectral_out)},
                            reads, {"rgb"}, "camera below the surface: T L_s + L_MS per band (002 eq. 4.7)", true, ""});
   }
+  // quality.fast_math: the light-transport passes are built with -cl-fast-relaxed-math (the define
+  // tells Device::program and the kernels). Not the NaN/Inf check below (finite-only maths may assume
+  // away the very values it counts), nor the FFT ocean and its caustics, which build without the
+  // plan's defines (their error was not measured under relaxed maths).
+  const auto fast = scene.quality.find("fast_math");
+  if (fast != scene.quality.end() && fast->second.value != 0) {
+    for (PassPlan& p : plan.passes)
+      if (p.name != "ocean_fft" && p.name != "caustics") p.defines.push_back("SEASIM_FAST_MATH=1");
+  }
   plan.passes.push_back({"nonfinite_check", "check.cl", {}, {"rgb"}, {"status"},
                          "always: kernels must never emit NaN/Inf", true, ""});
   return plan;

@@ -60,6 +60,22 @@ TEST(Plan, SunBelowHorizonStillRendersWithoutSunTerms) {
   EXPECT_TRUE(hasDefine(plan, "sea_single", "SEASIM_HAS_SINGLE_SCATTERING=0"));
 }
 
+// quality.fast_math marks every model pass's build (Device::program adds -cl-fast-relaxed-math for
+// it) and shows in `seasim plan`; the NaN/Inf check is never built with finite-only maths.
+TEST(Plan, FastMathMarksEveryModelPassButTheCheck) {
+  for (const bool fast : {false, true}) {
+    const Plan plan = makePlan(parseScene(std::string(kFlatSea) + "[sea]\nsecond_order = true\n[quality]\nfast_math = " +
+                                              (fast ? "true" : "false") + "\n",
+                                          "flat.toml"));
+    ASSERT_TRUE(plan.hasPass("sea_second"));
+    for (const auto& p : plan.passes) {
+      const bool marked = hasDefine(plan, p.name, "SEASIM_FAST_MATH=1");
+      EXPECT_EQ(marked, fast && p.name != "nonfinite_check") << p.name;
+    }
+    EXPECT_EQ(plan.toText().find("-DSEASIM_FAST_MATH=1") != std::string::npos, fast);
+  }
+}
+
 TEST(Plan, SecondOrderAddsScatteringMapsPass) {
   const Plan plan = makePlan(parseScene(kFlatSea, "flat.toml", {{"sea.second_order", "true", {"cli", 1}}}));
   ASSERT_TRUE(plan.hasPass("sea_second"));

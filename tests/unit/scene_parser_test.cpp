@@ -284,7 +284,7 @@ TEST(SceneParser, Defaults) {
       {"shafts_table_size", 256}, {"shadow_map_size", 512}, {"froxel_x", 160},
       {"froxel_y", 90},          {"froxel_z", 64},        {"caustic_map_size", 256}, {"caustic_layers", 8},
       {"reference_spp", 64},     {"reference_steps", 200}, {"shafts_exact", 0},
-      {"shafts_error_budget", 1}};
+      {"shafts_error_budget", 1}, {"fast_math", 0}};
   EXPECT_EQ(s.quality.size(), std::size(knobs));
   for (const auto& [name, value] : knobs) {
     ASSERT_TRUE(s.quality.count(name)) << name;
