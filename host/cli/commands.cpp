@@ -226,11 +226,11 @@ int cmdSweep(const SweepCmd& cmd) {
       row.emplace_back(v);
     const double step = k > 0 ? compareImages(frame.rgb, previous, scenes[k].camera.exposure_ev).max_abs_8bit : 0.0;
     row.emplace_back(step);
-    const bool fast = scenes[k].quality.count("fast_math") && scenes[k].quality.at("fast_math").value != 0;
+    const bool fast = fastMathFor(scenes[k]);
     CompareResult vs_exact{};
     if (fast) {
       Scene exact_scene = scenes[k];
-      exact_scene.quality["fast_math"].value = 0;
+      exact_scene.quality["fast_math"] = Knob{false, 0.0};
       const FrameResult exact = renderFrame(device, exact_scene, makePlan(exact_scene));
       vs_exact = compareImages(frame.rgb, exact.rgb, scenes[k].camera.exposure_ev);
     }

@@ -44,8 +44,6 @@ constexpr KnobDefault kQualityKnobs[] = {
     {"reference_spp", 64, "brute-force reference: samples per pixel"},
     {"reference_steps", 200, "brute-force reference: ray-march steps per ray"},
 };
-// quality.fast_math's default (see quality() below).
-constexpr bool kFastMathDefault = false;
 constexpr long long kMaxKnob = 1 << 20;  // catches typos such as 1e9 planes
 
 constexpr double kDegToRad = std::numbers::pi / 180.0;
@@ -535,9 +533,18 @@ class SceneParser {
     // Exact phase function in the shafts integral instead of its table: a switch, stored as a
     // knob of value 0 or 1 so the planner reads every setting from one map.
     scene_.quality["shafts_exact"] = Knob{false, r.boolean("shafts_exact", false) ? 1.0 : 0.0};
-    // Kernels built with -cl-fast-relaxed-math (host/plan). The default is what every shipped scene
-    // was measured to allow: < 0.05 of an 8-bit level from the exact-maths image (results/BENCHMARKS.md).
-    scene_.quality["fast_math"] = Knob{false, r.boolean("fast_math", kFastMathDefault) ? 1.0 : 0.0};
+    // Kernels built with -cl-fast-relaxed-math: true, false or "auto" (the default), which the planner
+    // turns on where the shipped scenes were measured within 0.05 of an 8-bit level of the exact-maths
+    // image (fastMathFor in host/plan; results/BENCHMARKS.md has the table).
+    Knob fast{true, 0.0};
+    if (const toml::node* n = r.get("fast_math")) {
+      if (auto* s = n->as_string()) {
+        r.check(s->get() == "auto", "fast_math", "expected true, false or \"auto\", got '" + s->get() + "'");
+      } else {
+        fast = Knob{false, r.boolean("fast_math", false) ? 1.0 : 0.0};
+      }
+    }
+    scene_.quality["fast_math"] = fast;
     // RMS error budget of the shafts `auto` quality, 8-bit levels (host/passes/shafts_auto.h): a number, not a knob.
     const double budget = r.number("shafts_error_budget", 1.0);
     r.check(budget > 0 && budget <= 255, "shafts_error_budget", "must be in (0, 255] levels, got " + fmt(budget));

@@ -76,6 +76,22 @@ TEST(Plan, FastMathMarksEveryModelPassButTheCheck) {
   }
 }
 
+// fast_math = "auto" (the default) is on except for the sea with FFT waves seen from above, the
+// shipped scenes whose fast-maths image moved by more than 0.05 of a level (results/BENCHMARKS.md).
+TEST(Plan, FastMathAutoIsOffOnlyForWavesSeenFromAbove) {
+  const Plan flat = makePlan(parseScene(kFlatSea, "flat.toml"));
+  EXPECT_TRUE(hasDefine(flat, "sea_single", "SEASIM_FAST_MATH=1"));
+  const Plan waves = makePlan(parseScene(kFlatSea, "flat.toml", {{"surface.type", "\"fft\"", {"cli", 1}}}));
+  EXPECT_FALSE(hasDefine(waves, "sea_single", "SEASIM_FAST_MATH=1"));
+  const Plan forced =
+      makePlan(parseScene(kFlatSea, "flat.toml",
+                          {{"surface.type", "\"fft\"", {"cli", 1}}, {"quality.fast_math", "true", {"cli", 2}}}));
+  EXPECT_TRUE(hasDefine(forced, "sea_single", "SEASIM_FAST_MATH=1"));
+  EXPECT_FALSE(hasDefine(forced, "ocean_fft", "SEASIM_FAST_MATH=1"));  // built without the plan's defines
+  const Plan off = makePlan(parseScene(kFlatSea, "flat.toml", {{"quality.fast_math", "false", {"cli", 1}}}));
+  EXPECT_FALSE(hasDefine(off, "sea_single", "SEASIM_FAST_MATH=1"));
+}
+
 TEST(Plan, SecondOrderAddsScatteringMapsPass) {
   const Plan plan = makePlan(parseScene(kFlatSea, "flat.toml", {{"sea.second_order", "true", {"cli", 1}}}));
   ASSERT_TRUE(plan.hasPass("sea_second"));
