@@ -5,7 +5,7 @@
 #   seabed frame      = [CPU of `seasim run` on a job of 3 seabed renders - CPU of a job of 1] / 2
 #   seashore 2nd order = [CPU of `bench --sea-maps 64 --repeat 5` - CPU of `--repeat 1`] / 4
 # (start-up, kernel cache loads, depth tables and image writes cancel in the differences).
-# Usage: results/perf/ab_cpu.sh NAME=KERNEL_DIR=FAST_MATH ...   (ROUNDS=3)
+# Usage: results/perf/ab_cpu.sh NAME=KERNEL_DIR=FAST_MATH ...   (ROUNDS=3; KERNEL_DIR "-": the binary's own)
 B=${B:-build/seasim}
 ROUNDS=${ROUNDS:-3}
 T=${T:-/tmp/seasim_ab_cpu}
@@ -26,7 +26,7 @@ r=1
 while [ $r -le "$ROUNDS" ]; do
   for v in "$@"; do
     name=${v%%=*}; rest=${v#*=}; dir=${rest%=*}; fm=${rest##*=}
-    export SEASIM_KERNEL_DIR=$dir
+    if [ "$dir" = "-" ]; then unset SEASIM_KERNEL_DIR; else export SEASIM_KERNEL_DIR=$dir; fi  # -: embedded
     j1=$(job 1 "$fm"); j3=$(job 3 "$fm")
     rm -rf "$T/out"; $B run "$j1" > /dev/null 2>&1  # warm-up: fills the kernel caches for this variant
     rm -rf "$T/out"; a1=$(cpu $B run "$j1")
