@@ -45,8 +45,14 @@ struct ClassRows {
   }
 };
 
-// Cloned for AVX2+FMA (8 floats per libmvec call) with a plain x86-64 fallback, picked at load time.
-__attribute__((target_clones("arch=x86-64-v3", "default")))
+// On x86-64 with GCC, cloned for AVX2+FMA (8 floats per libmvec call) with a plain x86-64 fallback,
+// picked at load time; elsewhere (an ARM GPU host, clang) the compiler's default target only.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define SEASIM_SIMD_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
+#else
+#define SEASIM_SIMD_CLONES
+#endif
+SEASIM_SIMD_CLONES
 void shadeRow(const UnderwaterSetup& s, const UnderwaterCpuOptions& opt, int y, ClassRows cls[3],
               std::vector<float>& band_albedo, float* out) {
   const UwParams& p = s.params;
