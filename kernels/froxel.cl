@@ -14,13 +14,16 @@
  *                      UW_CAUSTICS_MAP is not read here). 0 above the surface.
  *   froxel_integrate   per column, front to back (002 eq. 5.2, common/froxel.h): per band
  *                      L_i = σ_s p E_beam(y) V C at each froxel centre, integrated exactly over the
- *                      slice's transmittance, accumulated into sensor RGB with the band's w_r, w_g, w_b.
+ *                      slice's transmittance, accumulated into sensor RGB with the band's w_r, w_g, w_b;
+ *                      the (band, slice) factors come from a table the host fills once
+ *                      (froxel_fill_slice_factors), leaving one exp per band and froxel.
  *   froxel_resolve     per pixel, the volume read at the pixel's G-buffer distance (froxel_lookup);
  *                      kd_multiple.cl does the same read inline, this kernel serves tests and tools.
  *
  * Inputs: UwParams, FroxelParams, UwObject[object_count], bands: UwBand[band_count] (spectral
  * injection) or the three RGB pseudo-bands (host/reference/froxel_reference.h). Outputs: light (1 float
  * per froxel), volume (4 floats per froxel, common/froxel_params.h), rgb (3 floats per pixel).
+ * slice_factors: nz × band_count floats (froxel_fill_slice_factors).
  * Defines (host/plan): SEASIM_HAS_OBJECTS, SEASIM_CAUSTICS (UW_CAUSTICS_*), SEASIM_SPECTRAL_INJECTION
  * (1: the n wavelength bands, p->band_count of them; 0: the three RGB pseudo-bands).
  * Stiff cases: E_beam and the transmittance underflow to 0 at great depth and distance (camera at
@@ -87,7 +90,8 @@ __kernel void froxel_inject(__constant UwParams* p, __constant FroxelParams* fp,
 }
 
 __kernel void froxel_integrate(__constant UwParams* p, __constant FroxelParams* fp, __global const UwBand* bands,
-                               __global const float* light, __global float* volume) {
+                               __global const float* slice_factors, __global const float* light,
+                               __global float* volume) {
   const int i = get_global_id(0), j = get_global_id(1);
   if (i >= fp->nx || j >= fp->ny) return;
 #if SEASIM_SPECTRAL_INJECTION
@@ -95,7 +99,7 @@ __kernel void froxel_integrate(__constant UwParams* p, __constant FroxelParams* 
 #else
   const int band_count = 3;
 #endif
-  froxel_integrate_column(p, fp, bands, band_count, light, volume, i, j);
+  froxel_integrate_column(p, fp, bands, band_count, slice_factors, light, volume, i, j);
 }
 
 __kernel void froxel_resolve(__constant FroxelParams* fp, __global const float* volume, __global const float4* geom,

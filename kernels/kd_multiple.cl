@@ -57,19 +57,46 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
   const int multiple = 0;
 #endif
 
+  /* The material is tested once per pixel, outside the band loops (common/underwater.h splits the
+   * band radiance by what the ray hit), so each band loop is one straight line of arithmetic. */
   float r = 0.0f, gr = 0.0f, b = 0.0f;
-  for (int i = 0; i < p->band_count; ++i) {
-    __global const UwBand* band = &bands[i];
-    const float alb = mat >= 0 ? albedo[mat * p->band_count + i] : band->bottom_albedo;
-    const float L = uw_band_radiance(band, mat, S, n, d, o_d, s_w, alb, vis, p->ior, p->bottom_depth, single,
-                                     multiple);
-    r += L * band->w_r;
-    gr += L * band->w_g;
-    b += L * band->w_b;
 #if SEASIM_SPECTRAL_OUTPUT
-    spectral[(size_t)pixel * p->band_count + i] = L;
+#define KD_ACCUMULATE(L)                                         \
+  r += (L) * band->w_r;                                          \
+  gr += (L) * band->w_g;                                         \
+  b += (L) * band->w_b;                                          \
+  spectral[(size_t)pixel * p->band_count + i] = (L)
+#else
+#define KD_ACCUMULATE(L) \
+  r += (L) * band->w_r;  \
+  gr += (L) * band->w_g; \
+  b += (L) * band->w_b
 #endif
+  if (mat == UW_MAT_NONE) {
+    for (int i = 0; i < p->band_count; ++i) {
+      __global const UwBand* band = &bands[i];
+      const float L = uw_band_multiple(band, S, d.y, o_d, s_w.y, single, multiple);
+      KD_ACCUMULATE(L);
+    }
+  } else if (mat == UW_MAT_SURFACE) {
+    for (int i = 0; i < p->band_count; ++i) {
+      __global const UwBand* band = &bands[i];
+      const float L = exp(-band->c * S) * uw_band_surface(band, d.y, s_w.y, p->ior, p->bottom_depth, single, multiple) +
+                      uw_band_multiple(band, S, d.y, o_d, s_w.y, single, multiple);
+      KD_ACCUMULATE(L);
+    }
+  } else {
+    /* Objects read their albedo per band; the bottom (UW_MAT_BOTTOM) reads the band's. */
+    __global const float* alb = mat >= 0 ? albedo + mat * p->band_count : &bands[0].bottom_albedo;
+    const int alb_stride = mat >= 0 ? 1 : (int)(sizeof(UwBand) / sizeof(float));
+    for (int i = 0; i < p->band_count; ++i) {
+      __global const UwBand* band = &bands[i];
+      const float L = exp(-band->c * S) * uw_band_lambert(band, S, n, d.y, o_d, s_w, alb[i * alb_stride], vis, single) +
+                      uw_band_multiple(band, S, d.y, o_d, s_w.y, single, multiple);
+      KD_ACCUMULATE(L);
+    }
   }
+#undef KD_ACCUMULATE
 #if SEASIM_HAS_FROXEL
   const float3 ss = froxel_lookup(fp, froxel_volume, x, y, p->width, p->height, S);
   r += ss.x;

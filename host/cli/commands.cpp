@@ -238,6 +238,8 @@ int cmdSweep(const SweepCmd& cmd) {
   for (const char* h : {"kernel_ms", "wall_ms", "rmse_8bit", "max_abs_8bit", "rel_l2", "hue_sat_distance"})
     header.emplace_back(h);
   header.emplace_back("max_diff_prev_8bit");  // max |image - previous setting's| (000 §6.1, Fig. 7/8)
+  // quality.fast_math: the same setting rendered with exact maths, and the fast image's distance from it.
+  for (const char* h : {"fast_math", "fast_vs_exact_rmse_8bit", "fast_vs_exact_max_8bit"}) header.emplace_back(h);
   CsvWriter table(header);
   PlotSeries series{"rmse (8-bit levels)", {}, {}};
   PlotSeries steps{"max |L(v) - L(next v)| (8-bit levels)", {}, {}};
@@ -257,6 +259,15 @@ int cmdSweep(const SweepCmd& cmd) {
       row.emplace_back(v);
     const double step = k > 0 ? compareImages(frame.rgb, previous, scenes[k].camera.exposure_ev).max_abs_8bit : 0.0;
     row.emplace_back(step);
+    const bool fast = fastMathFor(scenes[k]);
+    CompareResult vs_exact{};
+    if (fast) {
+      Scene exact_scene = scenes[k];
+      exact_scene.quality["fast_math"] = Knob{false, 0.0};
+      const FrameResult exact = renderFrame(device, exact_scene, makePlan(exact_scene));
+      vs_exact = compareImages(frame.rgb, exact.rgb, scenes[k].camera.exposure_ev);
+    }
+    for (double v : {fast ? 1.0 : 0.0, vs_exact.rmse_8bit, vs_exact.max_abs_8bit}) row.emplace_back(v);
     if (k > 0 && axes.size() == 1) {
       try {
         steps.x.push_back(std::stod(grid[k - 1][0]));
@@ -267,8 +278,10 @@ int cmdSweep(const SweepCmd& cmd) {
     previous = frame.rgb;
     std::string label;
     for (size_t i = 0; i < axes.size(); ++i) label += (i ? " " : "") + axes[i].key + "=" + grid[k][i];
-    std::printf("%-40s kernel %9.3f ms  rmse %8.4f  max %8.3f  relL2 %.3g\n", label.c_str(), kernelMs(frame),
+    std::printf("%-40s kernel %9.3f ms  rmse %8.4f  max %8.3f  relL2 %.3g", label.c_str(), kernelMs(frame),
                 c.rmse_8bit, c.max_abs_8bit, c.rel_l2);
+    if (fast) std::printf("  fast maths vs exact: rmse %.4f max %.4f levels", vs_exact.rmse_8bit, vs_exact.max_abs_8bit);
+    std::printf("\n");
     table.addRow(row);
     series.x.push_back(kernelMs(frame));
     series.y.push_back(c.rmse_8bit);
@@ -297,12 +310,11 @@ int cmdSweep(const SweepCmd& cmd) {
   return 0;
 }
 
-// exp evaluations per second on the device (kernels/limits.cl), median of `repeat` runs.
-double measureExpThroughput(Device& device, int repeat) {
+// Operations per second of one kernels/limits.cl kernel (exp_throughput or fma_throughput: independent
+// operations, vectorisable across work items), median of `repeat` runs after a warm-up.
+double measureThroughput(Device& device, const char* kernel_name, int ops_per_item, int repeat) {
   const size_t items = size_t(1) << 20;
-  const int exp_per_item = 256;
-  cl::Kernel kernel(device.program("limits.cl", {"EXP_PER_ITEM=" + std::to_string(exp_per_item)}).program,
-                    "exp_throughput");
+  cl::Kernel kernel(device.program("limits.cl", {"EXP_PER_ITEM=256", "FMA_PER_ITEM=4096"}).program, kernel_name);
   cl::Buffer out(device.context(), CL_MEM_WRITE_ONLY, sizeof(float) * items);
   kernel.setArg(0, out);
   kernel.setArg(1, 0.5f);
@@ -313,7 +325,7 @@ double measureExpThroughput(Device& device, int repeat) {
     done.wait();
     if (r > 0) ms.push_back(eventMs(done));
   }
-  return double(items) * exp_per_item / (median(ms) * 1e-3);
+  return double(items) * ops_per_item / (median(ms) * 1e-3);
 }
 
 int cmdBench(const BenchCmd& cmd) {
@@ -321,8 +333,10 @@ int cmdBench(const BenchCmd& cmd) {
   std::printf("device: %s\n", device.info().label().c_str());
   double exp_rate = 0;
   if (cmd.limits) {
-    exp_rate = measureExpThroughput(device, std::max(1, cmd.repeat));
-    std::printf("limit: %.3e exp/s (float, default math)\n", exp_rate);
+    exp_rate = measureThroughput(device, "exp_throughput", 256, std::max(1, cmd.repeat));
+    const double fma_rate = measureThroughput(device, "fma_throughput", 4096, std::max(1, cmd.repeat));
+    std::printf("limit: %.3e exp/s, %.3e FMA/s (float, default math, independent operations; kernels/limits.cl)\n",
+                exp_rate, fma_rate);
   }
   if (cmd.scene.empty()) {
     if (!cmd.limits) throw RuntimeError("bench needs --scene or --limits");
@@ -395,13 +409,15 @@ int cmdBench(const BenchCmd& cmd) {
   const bool underwater = makePlan(loadScene(cmd.scene, parseSets(cmd.sets))).hasPass("kd_multiple");
   std::vector<std::string> columns = {"wavelengths", "kernel_ms_median", "pixel_wavelengths_per_s"};
   if (underwater) {
-    for (const char* c : {"raycast_ms", "froxel_ms", "kd_multiple_ms", "tbb_gbuffer_kd_ms", "tbb_over_opencl"})
+    for (const char* c : {"raycast_ms", "froxel_ms", "kd_multiple_ms", "tbb_gbuffer_kd_ms", "tbb_over_opencl",
+                          "tbb_simd_gbuffer_kd_ms", "tbb_simd_over_opencl"})
       columns.push_back(c);
   }
   CsvWriter table(columns);
   PlotSeries series{underwater ? "all passes (OpenCL)" : "kernels (OpenCL)", {}, {}};
   PlotSeries kd_series{"raycast + kd_multiple (OpenCL)", {}, {}};
   PlotSeries tbb_series{"same on C++/oneTBB", {}, {}};
+  PlotSeries simd_series{"same on C++/oneTBB, vectorised", {}, {}};
   std::vector<double> ns, ts, kd_ts;
   for (int n : cmd.wavelengths) {
     std::vector<Override> overrides = parseSets(cmd.sets);
@@ -438,6 +454,23 @@ int cmdBench(const BenchCmd& cmd) {
     const double rate = pixels * n / (ms * 1e-3);
     std::printf("n = %5d  %10.3f ms  %.3e pixel*wavelength/s", n, ms, rate);
     if (exp_rate > 0) std::printf("  = %.3g x the exp/s bound", rate / exp_rate);
+    if (exp_rate > 0) {
+      // Each band-loop kernel's own rate (items x bands per second of its time) over the exp bound:
+      // the fraction of the bound it reaches if it spent exactly one exp per item and band.
+      const double froxels = scene.quality.count("froxel_x") ? scene.quality.at("froxel_x").value *
+                                                                   scene.quality.at("froxel_y").value *
+                                                                   scene.quality.at("froxel_z").value
+                                                             : 0.0;
+      const int froxel_bands = scene.underwater.injection == UnderwaterDesc::Injection::Spectral ? n : 3;
+      const struct {
+        const char* pass;
+        double items;
+      } loops[] = {{"sea_single", pixels * n}, {"kd_multiple", pixels * n}, {"froxel_integrate", froxels * froxel_bands}};
+      for (const auto& l : loops) {
+        const double pass_ms = passMs(l.pass);
+        if (pass_ms > 0) std::printf("  [%s %.3g of the exp bound]", l.pass, l.items / (pass_ms * 1e-3) / exp_rate);
+      }
+    }
     std::vector<CsvCell> row = {n, ms, rate};
     if (underwater) {
       const WavelengthGrid grid = makeGrid(scene.spectral.count, scene.spectral.min_nm, scene.spectral.max_nm);
@@ -447,21 +480,29 @@ int cmdBench(const BenchCmd& cmd) {
       options.use_double = false;
       options.multiple = scene.underwater.multiple_scattering;
       options.single_split = plan.hasPass("froxel");
-      std::vector<double> cpu;
+      // The scalar TBB loop and the vectorised one (underwater_cpu_simd.cpp), interleaved run by run.
+      std::vector<double> cpu, cpu_simd;
       for (int r = 0; r < std::max(1, cmd.repeat); ++r) {
-        const auto c0 = std::chrono::steady_clock::now();
+        auto c0 = std::chrono::steady_clock::now();
         (void)renderUnderwaterCpu(setup, options);
         cpu.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - c0).count());
+        c0 = std::chrono::steady_clock::now();
+        (void)renderUnderwaterCpuSimd(setup, options);
+        cpu_simd.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - c0).count());
       }
-      const double kd_ms = passMs("raycast") + passMs("kd_multiple"), tbb_ms = median(cpu);
-      std::printf("  [raycast %.3f, froxel %.3f, kd %.3f ms; TBB %.3f ms = %.2fx]", passMs("raycast"),
-                  passMs("froxel*"), passMs("kd_multiple"), tbb_ms, tbb_ms / kd_ms);
-      for (double v : {passMs("raycast"), passMs("froxel*"), passMs("kd_multiple"), tbb_ms, tbb_ms / kd_ms})
+      const double kd_ms = passMs("raycast") + passMs("kd_multiple"), tbb_ms = median(cpu), simd_ms = median(cpu_simd);
+      std::printf("  [raycast %.3f, froxel %.3f, kd %.3f ms; TBB %.3f ms = %.2fx; TBB vectorised %.3f ms = %.2fx]",
+                  passMs("raycast"), passMs("froxel*"), passMs("kd_multiple"), tbb_ms, tbb_ms / kd_ms, simd_ms,
+                  simd_ms / kd_ms);
+      for (double v : {passMs("raycast"), passMs("froxel*"), passMs("kd_multiple"), tbb_ms, tbb_ms / kd_ms, simd_ms,
+                       simd_ms / kd_ms})
         row.push_back(v);
       kd_series.x.push_back(n);
       kd_series.y.push_back(kd_ms);
       tbb_series.x.push_back(n);
       tbb_series.y.push_back(tbb_ms);
+      simd_series.x.push_back(n);
+      simd_series.y.push_back(simd_ms);
       kd_ts.push_back(kd_ms);
     }
     std::printf("\n");
@@ -485,6 +526,7 @@ int cmdBench(const BenchCmd& cmd) {
   if (underwater) {
     fit(kd_ts, "raycast + kd_multiple");
     fit(tbb_series.y, "C++/oneTBB");
+    fit(simd_series.y, "C++/oneTBB vectorised");
   }
   if (!cmd.csv.empty()) table.write(cmd.csv);
   if (!cmd.plot.empty()) {
@@ -497,6 +539,7 @@ int cmdBench(const BenchCmd& cmd) {
     if (underwater) {
       spec.series.push_back(kd_series);
       spec.series.push_back(tbb_series);
+      spec.series.push_back(simd_series);
     }
     writeSvgPlot(cmd.plot, spec);
   }

@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "cli/cache_command.h"
+#include "cli/cache_warm_command.h"
 #include "cli/commands.h"
 #include "cli/ocean_command.h"
 #include "cli/seashore_study_command.h"
@@ -156,15 +157,21 @@ int main(int argc, char** argv) {
   shore->add_option("--device", shore_cmd.device, "Device selector");
   shore->add_option("--set", shore_cmd.sets, "Override a scene key: key=value (repeatable)");
 
-  std::string preview_scene, preview_device;
-  auto* preview = app.add_subcommand("preview", "Live GLFW preview window");
-  preview->add_option("scene", preview_scene, "Scene file");
-  preview->add_option("--device", preview_device, "Device selector");
-
   auto* cache = app.add_subcommand("cache", "The on-disk caches: kernel binaries, PoCL's kernels, tables");
   cache->require_subcommand(1);
   auto* cache_clear = cache->add_subcommand("clear", "Remove every cache seasim owns (rebuilt on next use)");
   auto* cache_verify = cache->add_subcommand("verify", "Check each kernel binary's header, length and checksum");
+  seasim::CacheWarmCmd warm_cmd;
+  auto* warm = cache->add_subcommand(
+      "warm", "Build every kernel program and work-group function the scenes' or jobs' renders need (one frame each)");
+  warm->add_option("files", warm_cmd.files, "Scene or job TOML files")->required()->check(CLI::ExistingFile);
+  warm->add_option("--device", warm_cmd.device, "cpu, gpu, pocl:0, nvidia:0 or a name substring");
+  warm->add_option("--set", warm_cmd.sets, "Override a scene key: key=value (repeatable)");
+
+  std::string preview_scene, preview_device;
+  auto* preview = app.add_subcommand("preview", "Live GLFW preview window");
+  preview->add_option("scene", preview_scene, "Scene file");
+  preview->add_option("--device", preview_device, "Device selector");
 
   CLI11_PARSE(app, argc, argv);
   try {
@@ -189,6 +196,7 @@ int main(int argc, char** argv) {
     if (*preview) return seasim::cmdPreview(preview_scene, preview_device);
     if (*cache_clear) return seasim::cmdCacheClear();
     if (*cache_verify) return seasim::cmdCacheVerify();
+    if (*warm) return seasim::cmdCacheWarm(warm_cmd);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "seasim: error: %s\n", e.what());
     return 1;

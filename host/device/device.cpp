@@ -157,7 +157,11 @@ Device::Device(const DeviceInfo& info) : info_(info) {
 const BuiltProgram& Device::program(const std::string& kernel_file, const std::vector<std::string>& defines) {
   std::string options = "-cl-std=CL1.2";
   if (info_.has_fp64) options += " -DSEASIM_HAS_FP64=1";
-  for (const auto& d : defines) options += " -D" + d;
+  for (const auto& d : defines) {
+    options += " -D" + d;
+    // quality.fast_math (host/plan): the planner marks each pass's build with this define.
+    if (d == "SEASIM_FAST_MATH=1") options += " -cl-fast-relaxed-math";
+  }
   const std::string key = kernel_file + "|" + options;
   if (auto it = programs_.find(key); it != programs_.end()) return it->second;
 

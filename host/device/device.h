@@ -55,6 +55,8 @@ class Device {
   // "common/x.h" are inlined with #line markers. Sources come from the binary, or from
   // $SEASIM_KERNEL_DIR when set. Binaries are cached in memory and on disk
   // ($SEASIM_CACHE_DIR, else $XDG_CACHE_HOME/seasim, else ~/.cache/seasim).
+  // The define SEASIM_FAST_MATH=1 (quality.fast_math, set by the planner) also adds
+  // -cl-fast-relaxed-math to the build options.
   // A failed build throws DeviceError with the kernel file and the compiler log.
   const BuiltProgram& program(const std::string& kernel_file, const std::vector<std::string>& defines);
 

@@ -1,5 +1,7 @@
 // image_io_oiio.cpp — image files through OpenImageIO 2.4 (built when SEASIM_IMAGE_IO=ON).
 // The only file in the project that includes OpenImageIO; see image_io.h for the contract.
+// Built into the loadable module libseasim_oiio.so, not into the binary (image_io_module.h says why);
+// the binary reaches these functions through the table at the end of this file.
 #include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
@@ -11,6 +13,7 @@
 
 #include "io/atomic_file.h"
 #include "io/image_io.h"
+#include "io/image_io_module.h"
 #include "io/spectral_layout.h"
 #include "io/tonemap.h"
 #include "util/error.h"
@@ -89,8 +92,6 @@ void writeWithOiio(const std::string& temp, const char* format, const OIIO::Imag
 }
 
 }  // namespace
-
-bool imageIoAvailable() { return true; }
 
 std::string writeExr(const std::string& path, const Image& image) {
   checkImage(path, image);
@@ -226,3 +227,12 @@ SpectralImage readSpectralExr(const std::string& path) {
 }
 
 }  // namespace seasim
+
+// The module's one entry point (image_io_module.h).
+extern "C" __attribute__((visibility("default"))) const seasim::ImageIoModule* seasim_image_io_module_v2() {
+  static const seasim::ImageIoModule table{seasim::kImageIoModuleVersion, &seasim::writeExr,
+                                           &seasim::writePng,              &seasim::writeSpectralExr,
+                                           &seasim::readImageHeader,       &seasim::readImage,
+                                           &seasim::readImageAttribute,    &seasim::readSpectralExr};
+  return &table;
+}

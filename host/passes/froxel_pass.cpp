@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <string>
 
+#include "math/kernel_math.h"
 #include "util/error.h"
 
 namespace seasim {
@@ -49,6 +50,10 @@ FroxelPass::FroxelPass(Device& device, const UnderwaterSetup& setup, const Froxe
   requireDefine(defines_, "SEASIM_SPECTRAL_INJECTION", config.rgb_injection ? 0 : 1);
 
   const std::vector<UwBand> bands = froxelIntegrationBands(setup, fp_);
+  // The (band, slice) factors of the column integral, once (common/froxel.h): the same float formula
+  // the kernels would run, evaluated here because they do not change from frame to frame.
+  std::vector<float> slice_factors(size_t(fp_.nz) * bands.size());
+  kmath_f::froxel_fill_slice_factors(&fp_, bands.data(), static_cast<int>(bands.size()), slice_factors.data());
   const size_t froxels = size_t(fp_.nx) * fp_.ny * fp_.nz;
   const size_t texels = fp_.shadow_size > 0 ? size_t(fp_.shadow_size) * fp_.shadow_size : 1;
   const cl_mem_flags in = CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR;
@@ -63,6 +68,7 @@ FroxelPass::FroxelPass(Device& device, const UnderwaterSetup& setup, const Froxe
     objects_ = cl::Buffer(device.context(), in, sizeof(UwObject) * setup.objects.size(),
                           const_cast<UwObject*>(setup.objects.data()));
     bands_ = cl::Buffer(device.context(), in, sizeof(UwBand) * bands.size(), const_cast<UwBand*>(bands.data()));
+    slice_factors_ = cl::Buffer(device.context(), in, sizeof(float) * slice_factors.size(), slice_factors.data());
     map_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * texels);
     no_caustics_ = noCausticMap(device);
     light_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * froxels);
@@ -80,8 +86,9 @@ FroxelPass::FroxelPass(Device& device, const UnderwaterSetup& setup, const Froxe
     integrate_kernel_.setArg(0, params_);
     integrate_kernel_.setArg(1, fparams_);
     integrate_kernel_.setArg(2, bands_);
-    integrate_kernel_.setArg(3, light_);
-    integrate_kernel_.setArg(4, volume_);
+    integrate_kernel_.setArg(3, slice_factors_);
+    integrate_kernel_.setArg(4, light_);
+    integrate_kernel_.setArg(5, volume_);
     resolve_kernel_.setArg(0, fparams_);
     resolve_kernel_.setArg(1, volume_);
   } catch (const cl::Error& e) {

@@ -45,6 +45,15 @@ std::string flag(const char* name, bool on) { return std::string(name) + "=" + (
 
 }  // namespace
 
+bool fastMathFor(const Scene& scene) {
+  const auto fast = scene.quality.find("fast_math");
+  if (fast == scene.quality.end()) return false;
+  if (!fast->second.automatic) return fast->second.value != 0;
+  const bool sea_view = scene.water.present && scene.camera.position.y >= 0.0;
+  const bool waves = scene.surface.type == SurfaceDesc::Type::Fft && scene.water.present;
+  return !(sea_view && waves);
+}
+
 Plan makePlan(const Scene& scene) {
   Plan plan;
   const bool underwater = scene.water.present && scene.camera.position.y < 0.0;
@@ -158,6 +167,14 @@ Plan makePlan(const Scene& scene) {
                            {flag("SEASIM_HAS_MULTIPLE", uw.multiple_scattering), flag("SEASIM_HAS_FROXEL", froxels),
                             flag("SEASIM_SPECTRAL_OUTPUT", spectral_out)},
                            reads, {"rgb"}, "camera below the surface: T L_s + L_MS per band (002 eq. 4.7)", true, ""});
+  }
+  // quality.fast_math: the light-transport passes are built with -cl-fast-relaxed-math (the define
+  // tells Device::program and the kernels). Not the NaN/Inf check below (finite-only maths may assume
+  // away the very values it counts), nor the FFT ocean and its caustics, which build without the
+  // plan's defines (their error was not measured under relaxed maths).
+  if (fastMathFor(scene)) {
+    for (PassPlan& p : plan.passes)
+      if (p.name != "ocean_fft" && p.name != "caustics") p.defines.push_back("SEASIM_FAST_MATH=1");
   }
   plan.passes.push_back({"nonfinite_check", "check.cl", {}, {"rgb"}, {"status"},
                          "always: kernels must never emit NaN/Inf", true, ""});

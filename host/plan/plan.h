@@ -29,4 +29,11 @@ struct Plan {
 
 Plan makePlan(const Scene& scene);
 
+// Whether the scene's kernels are built with -cl-fast-relaxed-math: quality.fast_math when it is
+// true or false; with "auto" (the default), on unless the sea is seen from above with FFT waves, the
+// one kind of shipped scene whose fast-maths image moved by more than 0.05 of an 8-bit level (max
+// |Δ| 0.13 and 0.28 levels on wavy_sea and wavy_sea_image_sky; every other shipped scene <= 0.0002;
+// results/BENCHMARKS.md).
+bool fastMathFor(const Scene& scene);
+
 }  // namespace seasim

@@ -186,12 +186,14 @@ FroxelCpuVolume froxelEvaluateCpu(const UnderwaterSetup& setup, const FroxelPara
   });
 
   const std::vector<UwBand> bands = froxelIntegrationBands(setup, fp);
+  std::vector<double> slice_factors(size_t(fp.nz) * bands.size());
+  kd::froxel_fill_slice_factors(&fp, bands.data(), static_cast<int>(bands.size()), slice_factors.data());
   out.volume.assign(4 * froxels, 0.0f);
   tbb::parallel_for(tbb::blocked_range<int>(0, fp.ny), [&](const tbb::blocked_range<int>& r) {
     for (int j = r.begin(); j < r.end(); ++j)
       for (int i = 0; i < fp.nx; ++i)
-        kd::froxel_integrate_column(&p, &fp, bands.data(), static_cast<int>(bands.size()), out.light.data(),
-                                    out.volume.data(), i, j);
+        kd::froxel_integrate_column(&p, &fp, bands.data(), static_cast<int>(bands.size()), slice_factors.data(),
+                                    out.light.data(), out.volume.data(), i, j);
   });
   return out;
 }

@@ -560,6 +560,18 @@ class SceneParser {
     // Exact phase function in the shafts integral instead of its table: a switch, stored as a
     // knob of value 0 or 1 so the planner reads every setting from one map.
     scene_.quality["shafts_exact"] = Knob{false, r.boolean("shafts_exact", false) ? 1.0 : 0.0};
+    // Kernels built with -cl-fast-relaxed-math: true, false or "auto" (the default), which the planner
+    // turns on where the shipped scenes were measured within 0.05 of an 8-bit level of the exact-maths
+    // image (fastMathFor in host/plan; results/BENCHMARKS.md has the table).
+    Knob fast{true, 0.0};
+    if (const toml::node* n = r.get("fast_math")) {
+      if (auto* s = n->as_string()) {
+        r.check(s->get() == "auto", "fast_math", "expected true, false or \"auto\", got '" + s->get() + "'");
+      } else {
+        fast = Knob{false, r.boolean("fast_math", false) ? 1.0 : 0.0};
+      }
+    }
+    scene_.quality["fast_math"] = fast;
     // RMS error budget of the shafts `auto` quality, 8-bit levels (host/passes/shafts_auto.h): a number, not a knob.
     const double budget = r.number("shafts_error_budget", 1.0);
     r.check(budget > 0 && budget <= 255, "shafts_error_budget", "must be in (0, 255] levels, got " + fmt(budget));

@@ -19,4 +19,12 @@ struct UnderwaterCpuOptions {
 // shadow ray only): compare kernels with caustics off.
 Image renderUnderwaterCpu(const UnderwaterSetup& setup, const UnderwaterCpuOptions& options);
 
+// The same float frame shaped for the compiler's auto-vectoriser, the strong C++ peer of the
+// OpenCL kernels in `seasim bench` (underwater_cpu_simd.cpp, built with -O3 -ffast-math so GCC
+// runs the band loops over 4/8 pixels at a time with libmvec's vector expf): per row, the G-buffer
+// as arrays, the pixels sorted by what their ray hit, then per band one straight loop over each
+// group. options.use_double is ignored (float only); the image matches renderUnderwaterCpu's float
+// one to float rounding (tests/unit/underwater_cpu_simd_test.cpp).
+Image renderUnderwaterCpuSimd(const UnderwaterSetup& setup, const UnderwaterCpuOptions& options);
+
 }  // namespace seasim

@@ -23,9 +23,12 @@
  *   ∫_{z_k}^{z_k + d} e^{-σ_t z} dz = e^{-σ_t z_k} d φ(-σ_t d),   φ(x) = expm1(x)/x = expm1_over_x,
  * so a slice of any optical depth (1 m of 9C water, σ_t d = 11) neither loses its light (the plain
  * rule's d e^{-σ_t z} at one point) nor overshoots. The medium is homogeneous, so the transmittance to
- * the slice's start is e^{-σ_t z_k} directly (froxel_slice_integral; froxel_beam_slice, what the
- * column loop runs, fuses it with E_beam's exponential: two transcendentals per band and slice);
- * froxel_integrate_step is the same step in the running form ΔL = T L_i d φ(-σ_t d), T *= e^{-σ_t d}.
+ * the slice's start is e^{-σ_t z_k} directly (froxel_slice_integral; froxel_beam_slice fuses it with
+ * E_beam's exponential); froxel_integrate_step is the same step in the running form
+ * ΔL = T L_i d φ(-σ_t d), T *= e^{-σ_t d}.
+ * Slices are the same distances along every column, so σ_s e_beam0 e^{-σ_t z_k} d φ(-σ_t d) depends on
+ * (band, slice) only: froxel_fill_slice_factors tabulates it once per set-up, and the column loop
+ * (froxel_integrate_column) is left with one exp per band and froxel, E_beam's e^{-σ_t y/μ_w}.
  *
  * Read (froxel_lookup): the volume holds the integral to the END of each slice; a pixel at distance S
  * in slice k reads L(z_k) + f (L(z_{k+1}) - L(z_k)), f the fraction of that slice's light gathered by
@@ -98,6 +101,26 @@ SEASIM_FN real froxel_integrate_step(real l_i, real sigma_t, real d, real* T) {
  * overflow, underflow to 0 at depth). scale = σ_s p V C. */
 SEASIM_FN real froxel_beam_slice(real scale, real e_beam0, real sigma_t, real mu_w, real y, real t0, real d) {
   return scale * e_beam0 * exp(-sigma_t * (t0 + y / mu_w)) * d * expm1_over_x(-sigma_t * d);
+}
+
+/* The (band, slice) part of froxel_beam_slice: σ_s e_beam0 e^{-σ_t t0} d φ(-σ_t d) for the slice
+ * [t0, t0 + d] (froxel_integrate_column multiplies by p V C and E_beam(y)). Both exponents are <= 0;
+ * a factor underflows to 0 only where its product with E_beam (<= 1) would too. */
+SEASIM_FN real froxel_slice_factor(real b, real e_beam0, real sigma_t, real t0, real d) {
+  return b * e_beam0 * exp(-sigma_t * t0) * d * expm1_over_x(-sigma_t * d);
+}
+
+/* factors[k * band_count + b] = froxel_slice_factor of slice k < fp->nz and band b: the table
+ * froxel_integrate_column reads (nz × band_count values, computed where the bands are set up). */
+SEASIM_FN void froxel_fill_slice_factors(const SEASIM_CONSTANT FroxelParams* fp, const SEASIM_GLOBAL UwBand* bands,
+                                         int band_count, SEASIM_GLOBAL real* factors) {
+  real t0 = R(0.0);
+  for (int k = 0; k < fp->nz; ++k) {
+    const real t1 = froxel_slice_end(k, fp->nz, fp->z_near, fp->z_far, fp->log_far_near);
+    for (int b = 0; b < band_count; ++b)
+      factors[k * band_count + b] = froxel_slice_factor(bands[b].b, bands[b].e_beam0, bands[b].c, t0, t1 - t0);
+    t0 = t1;
+  }
 }
 
 /* Fraction of a slice's light (constant L_i, optical depth tau >= 0) gathered over the first fraction
@@ -187,10 +210,12 @@ SEASIM_FN real froxel_plane_visibility(const SEASIM_GLOBAL UwObject* objects, in
 
 /* One column front to back (002 eq. 5.2). light: V·C per froxel (the band-independent part of L_i,
  * layout of the volume, 1 float each); bands: the wavelength bands (spectral injection) or the three
- * RGB pseudo-bands (w = unit vectors). Writes the volume's 4 floats per froxel of the column. */
+ * RGB pseudo-bands (w = unit vectors); slice_factors: froxel_fill_slice_factors of the same bands.
+ * Writes the volume's 4 floats per froxel of the column. */
 SEASIM_FN void froxel_integrate_column(const SEASIM_CONSTANT UwParams* p, const SEASIM_CONSTANT FroxelParams* fp,
                                        const SEASIM_GLOBAL UwBand* bands, int band_count,
-                                       const SEASIM_GLOBAL float* light, SEASIM_GLOBAL float* volume, int i, int j) {
+                                       const SEASIM_GLOBAL real* slice_factors, const SEASIM_GLOBAL float* light,
+                                       SEASIM_GLOBAL float* volume, int i, int j) {
   const int nx = fp->nx, ny = fp->ny, nz = fp->nz;
   const real3 d = froxel_column_dir(p, fp, i, j);
   const real3 s_w = MAKE_REAL3(p->sun_dir_water[0], p->sun_dir_water[1], p->sun_dir_water[2]);
@@ -202,15 +227,17 @@ SEASIM_FN void froxel_integrate_column(const SEASIM_CONSTANT UwParams* p, const 
   real t0 = R(0.0);
   for (int k = 0; k < nz; ++k) {
     const real t1 = froxel_slice_end(k, nz, fp->z_near, fp->z_far, fp->log_far_near);
-    const real len = t1 - t0;
     const real y = o_d - R(0.5) * (t0 + t1) * d.y; /* depth of the froxel centre */
     const int idx = (k * ny + j) * nx + i;
     const real vc = light[idx];
     if (vc > R(0.0) && y >= R(0.0)) {
       const real scale = phase * vc;
+      const real y_beam = y / mu_w; /* the beam's path from the surface to the froxel centre */
+      const SEASIM_GLOBAL real* factor = slice_factors + k * band_count;
       for (int b = 0; b < band_count; ++b) {
         const SEASIM_GLOBAL UwBand* band = &bands[b];
-        const real dl = froxel_beam_slice(scale * band->b, band->e_beam0, band->c, mu_w, y, t0, len);
+        /* froxel_beam_slice(scale σ_s, e_beam0, σ_t, μ_w, y, t0, len) with its (band, slice) part tabulated */
+        const real dl = scale * factor[b] * exp(-band->c * y_beam);
         acc_r += dl * band->w_r;
         acc_g += dl * band->w_g;
         acc_b += dl * band->w_b;

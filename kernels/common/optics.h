@@ -16,7 +16,7 @@
  *   - grazing incidence: R -> 1.
  *   - Henyey–Greenstein with |g| -> 1: 1 - g^2 and the denominator written as sums of
  *     non-negative terms, so neither cancels near the forward/backward spike.
- *   - (e^x - 1)/x at x -> 0: a Taylor series instead of 0/0.
+ *   - (e^x - 1)/x at x -> 0: a Taylor series instead of 0/0, selected without a branch.
  */
 
 /* ---------------------------------------------------------------------------------------------
@@ -140,16 +140,53 @@ SEASIM_FN real shafts_phase(real alpha) {
  */
 SEASIM_FN real beer_lambert(real sigma, real distance) { return exp(-(sigma * distance)); }
 
-/* (e^x - 1)/x with its removable singularity at 0 filled (= 1), for closed forms such as
- * 002 eq. 4.7 where the exponent K_d ω_y - σ_t can vanish. For |x| < 1e-3 a Taylor series to x⁴
- * (truncation x⁵/720 < 2e-18 relative); beyond, expm1(x)/x, which is accurate to a few ulp (expm1
- * has no cancellation). Overflows like exp for x beyond ~88 (float) / ~709 (double).
+/* φ(x) = (e^x - 1)/x with its removable singularity at 0 filled (φ(0) = 1), for closed forms such as
+ * 002 eq. 4.7, 000 eq. 5 and the froxel slices of 002 eq. 5.2, where the exponent can vanish.
+ *
+ * Branch-free, because it sits in the band loops of every model: both sides are computed and one is
+ * selected, so a vectorising compiler (PoCL's work-group vectoriser, a GPU warp) runs one straight
+ * line, and only exp is called (PoCL's expm1 is a scalar library call, about 12x its exp).
+ *   |x| <  0.5: the Taylor series φ(x) = Σ_{n>=0} x^n/(n+1)!, by Horner. Truncated after x^7 in float
+ *               (next term 0.5^8/9! = 1.1e-8 of φ >= 0.79) and after x^13 in double (0.5^14/15! =
+ *               4.7e-17); the precision is a compile-time constant (sizeof), so one of the two
+ *               polynomials is dead code.
+ *   |x| >= 0.5: (e^x - 1)/x. e^x - 1 cancels at most by e^0.5/(e^0.5 - 1) = 2.5 there (0.5 ulp of e^x
+ *               become 1.3 ulp of φ) and the subtraction itself is exact (Sterbenz), so a few ulp.
+ * The discarded side is kept finite: exp sees 1 where |x| < 0.5 (no 0/0 at x = 0).
+ * Large |x|: x -> -∞ gives -1/x -> +0 (exp underflows to 0); e^x overflows to +Inf at the same x as
+ * expm1 does (e^x - 1 rounds to e^x there), ~88.7 in float and ~709.8 in double, so no input that
+ * gave a finite φ before gives Inf now. Every model calls it with x <= 0.
  */
 SEASIM_FN real expm1_over_x(real x) {
-  if (fabs(x) < R(1e-3)) {
-    return R(1.0) +
-           x * (R(1.0) / R(2.0) +
-                x * (R(1.0) / R(6.0) + x * (R(1.0) / R(24.0) + x * (R(1.0) / R(120.0)))));
-  }
-  return expm1(x) / x;
+  const real series =
+      sizeof(real) > 4
+          ? R(1.0) +
+                x * (R(1.0) / R(2.0) +
+                     x * (R(1.0) / R(6.0) +
+                          x * (R(1.0) / R(24.0) +
+                               x * (R(1.0) / R(120.0) +
+                                    x * (R(1.0) / R(720.0) +
+                                         x * (R(1.0) / R(5040.0) +
+                                              x * (R(1.0) / R(40320.0) +
+                                                   x * (R(1.0) / R(362880.0) +
+                                                        x * (R(1.0) / R(3628800.0) +
+                                                             x * (R(1.0) / R(39916800.0) +
+                                                                  x * (R(1.0) / R(479001600.0) +
+                                                                       x * (R(1.0) / R(6227020800.0) +
+                                                                            x * (R(1.0) / R(87178291200.0))))))))))))))
+          : R(1.0) +
+                x * (R(1.0) / R(2.0) +
+                     x * (R(1.0) / R(6.0) +
+                          x * (R(1.0) / R(24.0) +
+                               x * (R(1.0) / R(120.0) +
+                                    x * (R(1.0) / R(720.0) + x * (R(1.0) / R(5040.0) + x * (R(1.0) / R(40320.0))))))));
+  const int small = fabs(x) < R(0.5);
+  const real xs = small ? R(1.0) : x;
+  const real direct = (exp(xs) - R(1.0)) / xs;
+  return small ? series : direct;
 }
+
+/* 1 - e^{-y} for y >= 0 (finite), without cancellation as y -> 0: y φ(-y), which is -expm1(-y) to a
+ * few ulp, through the branch-free expm1_over_x instead of PoCL's scalar expm1 call. 0 at y = 0,
+ * -> 1 as y grows (φ(-y) = 1/y to rounding once e^{-y} underflows). */
+SEASIM_FN real one_minus_exp_neg(real y) { return y * expm1_over_x(-y); }

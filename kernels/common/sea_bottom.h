@@ -186,19 +186,19 @@ SEASIM_FN real sea_radiance_map_path(real e_beam, real albedo, real phase, real 
 SEASIM_FN real sea_table_node_depth(int t, int n_z, real cos_io, real c_ref, real z_max) {
   if (t >= n_z) return z_max;
   real s = R(1.0) + R(1.0) / cos_io;
-  real span = -expm1(-s * c_ref * z_max);
+  real span = one_minus_exp_neg(s * c_ref * z_max);
   return -log1p(-(R(t) / R(n_z)) * span) / (s * c_ref);
 }
 
 /* The node interval [t, t + 1] holding depth z and the weight of node t + 1, for reading the tables. */
 SEASIM_FN int sea_table_node_interval(real z, int n_z, real cos_io, real c_ref, real z_max, real* w_next) {
   real s = R(1.0) + R(1.0) / cos_io;
-  real span = -expm1(-s * c_ref * z_max);
+  real span = one_minus_exp_neg(s * c_ref * z_max);
   if (!(span > R(0.0))) { /* a floor at the surface everywhere: one node depth */
     *w_next = R(0.0);
     return 0;
   }
-  real x = clamp(-expm1(-s * c_ref * fmax(z, R(0.0))) / span * R(n_z), R(0.0), R(n_z));
+  real x = clamp(one_minus_exp_neg(s * c_ref * fmax(z, R(0.0))) / span * R(n_z), R(0.0), R(n_z));
   int t = (int)x;
   t = t > n_z - 1 ? n_z - 1 : t;
   real z0 = sea_table_node_depth(t, n_z, cos_io, c_ref, z_max);
@@ -214,10 +214,10 @@ SEASIM_FN int sea_table_node_interval(real z, int n_z, real cos_io, real c_ref, 
  * and 0 when the cells are empty (tau_d = 0: c = 0, or the floor at the surface everywhere). */
 SEASIM_FN real sea_plane_share_above(int k, int n_z, real cos_io, real tau_d, real tau_q) {
   real s = R(1.0) + R(1.0) / cos_io;
-  real span = tau_d < R(0.0) ? R(1.0) : -expm1(-s * tau_d);
+  real span = tau_d < R(0.0) ? R(1.0) : one_minus_exp_neg(s * tau_d);
   real top = R(k) / R(n_z) * span;
   real bottom = R(k + 1) / R(n_z) * span;
-  real q = -expm1(-s * fmax(tau_q, R(0.0)));
+  real q = one_minus_exp_neg(s * fmax(tau_q, R(0.0)));
   if (!(bottom > top)) return R(0.0); /* tau_d = 0 (c = 0 or no water): the planes weigh nothing */
   return clamp((q - top) / (bottom - top), R(0.0), R(1.0));
 }

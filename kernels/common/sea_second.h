@@ -25,12 +25,16 @@
  * returns 0, the b = c = 0 limit of the callers). Two forms, each free of overflow and 0/0:
  *   kappa l >= 0:  e^{-a} l (1 - e^{-kappa l})/(kappa l)
  *   kappa l <  0:  e^{-(a + kappa l)} l (1 - e^{kappa l})/(-kappa l)     (same value, e^{-kappa l} > 1
- * folded into the exponent, which is the attenuation at the far end and never positive here). */
+ * folded into the exponent, which is the attenuation at the far end and never positive here).
+ * Both are e^{-(a + min(x, 0))} l φ(-|x|), written so, with the infinite path selected at the end:
+ * one exp, one φ and no branch in the direction and band loops that call this. */
 SEASIM_FN real sea_path_integral(real a, real kappa, real l_max) {
-  if (l_max < R(0.0)) return kappa > R(0.0) ? exp(-a) / kappa : R(0.0);
-  real x = kappa * l_max;
-  if (x >= R(0.0)) return exp(-a) * l_max * expm1_over_x(-x);
-  return exp(-(a + x)) * l_max * expm1_over_x(x);
+  const int infinite = l_max < R(0.0);
+  const real x = infinite ? R(0.0) : kappa * l_max;
+  const real e = exp(-(a + fmin(x, R(0.0))));
+  const real finite_path = e * l_max * expm1_over_x(-fabs(x));
+  const real infinite_path = kappa > R(0.0) ? e / fmax(kappa, R(1e-30)) : R(0.0);
+  return infinite ? infinite_path : finite_path;
 }
 
 /* The radiance map of 000 eq. 7: single-scattered sunlight L^(1)(z_k, theta, phi) arriving at depth
@@ -79,7 +83,7 @@ SEASIM_FN real sea_attenuation(real tau_k, real cos_ji) { return exp(-tau_k / co
  * d tau = du / (s u) to *weight, so that int_0^{tau_d} f dtau ~= sum_k f(tau_k) weight_k. */
 SEASIM_FN real sea_plane_depth(int k, int n_z, real cos_io, real tau_d, real* weight) {
   real s = R(1.0) + R(1.0) / cos_io;
-  real span = tau_d < R(0.0) ? R(1.0) : -expm1(-s * tau_d); /* 1 - u_min */
+  real span = tau_d < R(0.0) ? R(1.0) : one_minus_exp_neg(s * tau_d); /* 1 - u_min */
   real frac = (R(k) + R(0.5)) / R(n_z) * span;             /* 1 - u_k */
   real u = R(1.0) - frac;
   *weight = span / (R(n_z) * s * u);

@@ -31,9 +31,13 @@ SEASIM_FN real sea_single_scattering(real sun_irradiance, real t_in, real t_out,
  * (000 eq. 9): L_r = T_o L'_sun K_d cos(gamma) exp(-c z_d sec(theta_ji)). With sun_irradiance the
  * irradiance on the horizontal sea surface (as in eq. 5), the beam in the water carries
  * E T_i / cos_io, so L'_sun cos(gamma) = E T_i exp(-c z_d sec(theta_io)) on a flat bottom
- * (cos(gamma) = cos_io); the paper's reflectance K_d is taken as a Lambertian BRDF albedo/pi. */
+ * (cos(gamma) = cos_io); the paper's reflectance K_d is taken as a Lambertian BRDF albedo/pi.
+ * The two legs' attenuations, down along the sun and up along the view, are one exp: the sun leg's
+ * e^{-c z_d sec(theta_io)} is the same for every pixel of a band, and folded into the view leg's
+ * exponent it costs nothing (a per-band table would cost a buffer and still one exp per pixel).
+ * Both exponents are <= 0, so the sum underflows to 0 exactly where the product did. */
 SEASIM_FN real sea_bottom_reflection(real sun_irradiance, real t_in, real t_out, real bottom_albedo,
                                      real c, real z_d, real cos_io, real cos_ji) {
-  real horizontal_at_bottom = sun_irradiance * t_in * exp(-c * z_d / cos_io);
-  return t_out * horizontal_at_bottom * (bottom_albedo / SEASIM_PI) * exp(-c * z_d / cos_ji);
+  const real attenuation = exp(-c * z_d * (R(1.0) / cos_io + R(1.0) / cos_ji));
+  return t_out * sun_irradiance * t_in * (bottom_albedo / SEASIM_PI) * attenuation;
 }

@@ -53,21 +53,25 @@ SEASIM_FN real3 uw_screen_dir(const SEASIM_CONSTANT UwParams* p, real sx, real s
  * where S φ(t) -> 1/(c - k d_y); S = 1e30 gives exactly that in float and double (|t| stays finite). */
 SEASIM_FN real kd_exp_integral(real k, real c, real d_y, real o_d, real S) {
   const real x = k * d_y - c;
-  /* Unreachable for a ray in water (x >= 0 needs d_y > 0, and such a ray meets the surface). */
-  if (S >= UW_INFINITE && x >= R(0.0)) return R(0.0);
-  const real t = x * S;
-  return S * exp(fmax(t, R(0.0)) - k * o_d) * expm1_over_x(-fabs(t));
+  /* S = ∞ with x >= 0 diverges; unreachable for a ray in water (x >= 0 needs d_y > 0, and such a ray
+   * meets the surface): 0, selected without a branch, t zeroed so the discarded side stays finite. */
+  const int diverges = S >= UW_INFINITE && x >= R(0.0);
+  const real t = diverges ? R(0.0) : x * S;
+  const real v = S * exp(fmax(t, R(0.0)) - k * o_d) * expm1_over_x(-fabs(t));
+  return diverges ? R(0.0) : v;
 }
 
 /* 002 eq. 4.7 for one band: σ_s/(4π) [e_total0 I(K_d) - e_direct0 I(σ_t/μ_w)], I = kd_exp_integral.
  * e_total0 = e_sky0 + e_sun0; e_direct0 = e_sun0 when the froxel pass carries the direct beam, else 0.
- * Clamped at 0 (E_dif(y) can dip below 0 where K_d > σ_t/μ_w, which the data allow for clear water). */
+ * Clamped at 0 (E_dif(y) can dip below 0 where K_d > σ_t/μ_w, which the data allow for clear water).
+ * No branch: both integrals are always evaluated (finite for every input, so b = 0 or e_direct0 = 0
+ * multiply them to exactly 0), which lets a compiler vectorise the band or pixel loop around it. */
 SEASIM_FN real kd_multiple_scattering(real b, real c, real kd, real e_total0, real e_direct0, real mu_w, real d_y,
                                       real o_d, real S) {
-  if (b <= R(0.0)) return R(0.0);
-  real v = e_total0 * kd_exp_integral(kd, c, d_y, o_d, S);
-  if (e_direct0 > R(0.0)) v -= e_direct0 * kd_exp_integral(c / fmax(mu_w, R(1e-4)), c, d_y, o_d, S);
-  return fmax(b * v / (R(4.0) * SEASIM_PI), R(0.0));
+  const real total = kd_exp_integral(kd, c, d_y, o_d, S);
+  const real direct = kd_exp_integral(c / fmax(mu_w, R(1e-4)), c, d_y, o_d, S);
+  const real v = e_total0 * total - (e_direct0 > R(0.0) ? e_direct0 * direct : R(0.0));
+  return b > R(0.0) ? fmax(b * v / (R(4.0) * SEASIM_PI), R(0.0)) : R(0.0);
 }
 
 /* Diffuse downwelling irradiance E_dif(y) on a horizontal plane at depth y (see above). */
@@ -87,8 +91,9 @@ SEASIM_FN real uw_beam_irradiance(real e_beam0, real c, real mu_w, real y) {
 SEASIM_FN real uw_lambert_radiance(real albedo, real3 n, real3 s_w, real vis, real e_sky0, real e_sun0,
                                    real e_beam0, real e_direct0, real kd, real c, real mu_w, real y) {
   const real diffuse = uw_diffuse_irradiance(e_sky0, e_sun0, e_direct0, kd, c, mu_w, y) * R(0.5) * (R(1.0) + n.y);
-  real direct = R(0.0);
-  if (e_direct0 > R(0.0)) direct = uw_beam_irradiance(e_beam0, c, mu_w, y) * fmax(dot(n, s_w), R(0.0)) * vis;
+  /* Always evaluated, then selected (no branch; its exp is the diffuse term's second one). */
+  const real beam = uw_beam_irradiance(e_beam0, c, mu_w, y) * fmax(dot(n, s_w), R(0.0)) * vis;
+  const real direct = e_direct0 > R(0.0) ? beam : R(0.0);
   return albedo / SEASIM_PI * (diffuse + direct);
 }
 
@@ -154,30 +159,49 @@ SEASIM_FN real uw_window_radiance(real d_y, real ior, real sky_radiance, real l_
   return ior * ior * (R(1.0) - f) * sky_radiance + f * l_reflected;
 }
 
-/* One band's radiance along a view ray, given its G-buffer entry (002 eq. 2.7 with 4.7):
- * T(S) L_s + L_MS. mat/S/n from uw_scene_hit; albedo of the hit (object or bottom); vis as for
- * uw_lambert_radiance; single_scattering: 1 when the froxel pass adds the direct beam's single
- * scattering (then L_MS and L_s split off the direct sun as described at the top); multiple: 0 leaves
- * L_MS out (scenes that look at single scattering alone). */
+/* One band's radiance along a view ray, split by what the ray hit, so that a caller can test the
+ * material once per pixel and run a band loop with no material test in it (kd_multiple.cl, the
+ * vectorised C++ baseline): L = L_MS for UW_MAT_NONE, T(S) L_s + L_MS otherwise (002 eq. 2.7 with 4.7).
+ * single_scattering: 1 when the froxel pass adds the direct beam's single scattering (then L_MS and
+ * L_s split off the direct sun as described at the top); multiple: 0 leaves L_MS out (scenes that
+ * look at single scattering alone). */
+
+/* L_MS along the view ray (o_d, d_y) to distance S (UW_INFINITE: deep water). */
+SEASIM_FN real uw_band_multiple(const SEASIM_GLOBAL UwBand* band, real S, real d_y, real o_d, real mu_w,
+                                int single_scattering, int multiple) {
+  if (!multiple) return R(0.0);
+  const real e_direct0 = single_scattering ? (real)band->e_sun0 : R(0.0);
+  return kd_multiple_scattering(band->b, band->c, band->kd, band->e_sky0 + band->e_sun0, e_direct0, mu_w, d_y, o_d,
+                                S);
+}
+
+/* L_s of the water surface seen from below (d_y > 0): the sky through Snell's window plus the
+ * reflected ray, which starts at depth 0 going down (d_y -> -d_y) to the bottom or deep water. */
+SEASIM_FN real uw_band_surface(const SEASIM_GLOBAL UwBand* band, real d_y, real mu_w, real ior, real bottom_depth,
+                               int single_scattering, int multiple) {
+  const real s_r = bottom_depth > R(0.0) ? bottom_depth / fmax(d_y, R(1e-6)) : UW_INFINITE;
+  const real l_r = uw_band_multiple(band, s_r, -d_y, R(0.0), mu_w, single_scattering, multiple);
+  return uw_window_radiance(d_y, ior, band->sky_radiance, l_r);
+}
+
+/* L_s of a Lambertian hit (an object or the bottom) at distance S, normal n, albedo, visibility vis. */
+SEASIM_FN real uw_band_lambert(const SEASIM_GLOBAL UwBand* band, real S, real3 n, real d_y, real o_d, real3 s_w,
+                               real albedo, real vis, int single_scattering) {
+  const real y = fmax(o_d - S * d_y, R(0.0));
+  const real e_direct0 = single_scattering ? (real)band->e_sun0 : R(0.0);
+  return uw_lambert_radiance(albedo, n, s_w, vis, band->e_sky0, band->e_sun0, band->e_beam0, e_direct0, band->kd,
+                             band->c, s_w.y, y);
+}
+
+/* The three together, for callers that test the material per band (references, tests). mat/S/n from
+ * uw_scene_hit; albedo of the hit (object or bottom); vis as for uw_lambert_radiance. */
 SEASIM_FN real uw_band_radiance(const SEASIM_GLOBAL UwBand* band, int mat, real S, real3 n, real3 d, real o_d,
                                 real3 s_w, real albedo, real vis, real ior, real bottom_depth, int single_scattering,
                                 int multiple) {
-  const real c = band->c, kd = band->kd, mu_w = s_w.y;
-  const real e_total0 = band->e_sky0 + band->e_sun0;
-  const real e_direct0 = single_scattering ? (real)band->e_sun0 : R(0.0);
-  const real l_ms = multiple ? kd_multiple_scattering(band->b, c, kd, e_total0, e_direct0, mu_w, d.y, o_d, S) : R(0.0);
+  const real l_ms = uw_band_multiple(band, S, d.y, o_d, s_w.y, single_scattering, multiple);
   if (mat == UW_MAT_NONE) return l_ms;
-  const real y = fmax(o_d - S * d.y, R(0.0));
-  real l_s;
-  if (mat == UW_MAT_SURFACE) {
-    /* The reflected ray starts at depth 0 going down (d_y -> -d_y) to the bottom or deep water. */
-    const real s_r = bottom_depth > R(0.0) ? bottom_depth / fmax(d.y, R(1e-6)) : UW_INFINITE;
-    const real l_r =
-        multiple ? kd_multiple_scattering(band->b, c, kd, e_total0, e_direct0, mu_w, -d.y, R(0.0), s_r) : R(0.0);
-    l_s = uw_window_radiance(d.y, ior, band->sky_radiance, l_r);
-  } else {
-    l_s = uw_lambert_radiance(albedo, n, s_w, vis, band->e_sky0, band->e_sun0, band->e_beam0, e_direct0, kd, c,
-                              mu_w, y);
-  }
-  return exp(-c * S) * l_s + l_ms;
+  const real l_s = mat == UW_MAT_SURFACE
+                       ? uw_band_surface(band, d.y, s_w.y, ior, bottom_depth, single_scattering, multiple)
+                       : uw_band_lambert(band, S, n, d.y, o_d, s_w, albedo, vis, single_scattering);
+  return exp(-band->c * S) * l_s + l_ms;
 }

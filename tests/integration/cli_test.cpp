@@ -260,6 +260,72 @@ TEST_F(Cli, ReferenceCompareAndSweepMeasureErrorAgainstTime) {
   EXPECT_NE(svg_text.find("<svg"), std::string::npos);
 }
 
+// Reads a CSV written by the binary: the header's cells, then each row's.
+std::vector<std::vector<std::string>> readCsv(const std::string& path) {
+  std::vector<std::vector<std::string>> rows;
+  std::ifstream in(path);
+  for (std::string line; std::getline(in, line);) {
+    std::vector<std::string> cells;
+    std::stringstream ss(line);
+    for (std::string c; std::getline(ss, c, ',');) cells.push_back(c);
+    rows.push_back(cells);
+  }
+  return rows;
+}
+
+TEST_F(Cli, SweepReportsFastMathAgainstExactMathsBesideTheTime) {
+  const std::string scene = kRepo + "/scenes/flat_sea.toml";
+  const std::string small = " --set camera.width=48 --set camera.height=27";
+  Result r = run("render " + scene + " -o " + (dir_ / "exact").string() + small + " --set quality.fast_math=false");
+  ASSERT_EQ(r.code, 0) << r.output;
+  const std::string csv = (dir_ / "fast.csv").string();
+  r = run("sweep " + scene + " --param quality.fast_math=false,true --reference " + (dir_ / "exact" / "image.exr").string() +
+          " --csv " + csv + small);
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("fast maths vs exact"), std::string::npos) << r.output;
+  const auto rows = readCsv(csv);
+  ASSERT_EQ(rows.size(), 3u);
+  auto column = [&](const std::string& name) {
+    for (size_t i = 0; i < rows[0].size(); ++i)
+      if (rows[0][i] == name) return i;
+    ADD_FAILURE() << "no column " << name;
+    return size_t(0);
+  };
+  const size_t fast = column("fast_math"), max_diff = column("fast_vs_exact_max_8bit"), ms = column("kernel_ms");
+  EXPECT_EQ(std::stod(rows[1][fast]), 0.0);
+  EXPECT_EQ(std::stod(rows[1][max_diff]), 0.0);
+  EXPECT_EQ(std::stod(rows[2][fast]), 1.0);
+  EXPECT_GT(std::stod(rows[2][ms]), 0.0);
+  // The fast image is compared with the exact one: a measured, small, non-negative difference.
+  const double d = std::stod(rows[2][max_diff]);
+  EXPECT_GE(d, 0.0);
+  EXPECT_LT(d, 1.0);
+}
+
+TEST_F(Cli, CacheWarmBuildsEachDistinctPlanOnceIntoTheCaches) {
+  // Three renders that differ only in the sun share one plan: one warm-up frame. Fresh caches.
+  const fs::path seasim_cache = dir_ / "seasim_cache", pocl_cache = dir_ / "pocl_cache";
+  const std::string env = "SEASIM_CACHE_DIR=" + seasim_cache.string() + " POCL_CACHE_DIR=" + pocl_cache.string() + " ";
+  const std::string job = smallJob(3);
+  const std::string cmd = env + kBinary + " cache warm " + job + " 2>&1";
+  FILE* pipe = popen(cmd.c_str(), "r");
+  std::string out;
+  char buf[4096];
+  while (size_t n = fread(buf, 1, sizeof buf, pipe)) out.append(buf, n);
+  const int status = pclose(pipe);
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << out;
+  EXPECT_NE(out.find("1 distinct plan(s) of 3 render(s)"), std::string::npos) << out;
+  // The program binaries (sea_single.cl and the NaN check) and PoCL's work-group functions are there.
+  int programs = 0;
+  for (const auto& e : fs::directory_iterator(seasim_cache)) programs += e.path().extension() == ".bin";
+  EXPECT_GE(programs, 2) << out;
+  int pocl_files = 0;
+  for (const auto& e : fs::recursive_directory_iterator(pocl_cache)) pocl_files += e.is_regular_file();
+  EXPECT_GT(pocl_files, 0);
+  // Nothing but the caches was written: no output folder.
+  EXPECT_FALSE(fs::exists(dir_ / "out"));
+}
+
 TEST_F(Cli, PreviewSaysNotBuilt) {
   const Result r = run("preview");
   EXPECT_NE(r.code, 0);

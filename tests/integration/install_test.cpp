@@ -47,6 +47,7 @@ std::string Install::install_log_;
 
 TEST_F(Install, LaysOutBinaryDataAndExamplesWithoutNonFreeCameras) {
   EXPECT_TRUE(fs::is_regular_file(prefix_ / "bin" / "seasim"));
+  EXPECT_TRUE(fs::is_regular_file(prefix_ / "lib" / "seasim" / "libseasim_oiio.so"));
   const fs::path share = prefix_ / "share" / "seasim";
   EXPECT_TRUE(fs::is_regular_file(share / "data" / "cie1931_2deg_cmf.csv"));
   EXPECT_TRUE(fs::is_regular_file(share / "data" / "cameras" / "nikon_d5100_npl.csv"));

@@ -272,12 +272,18 @@ TEST_F(OpticsKernelTest, BeerLambertMatchesDouble) {
 
 TEST_F(OpticsKernelTest, Expm1OverXMatchesDouble) {
   std::vector<float> x;
-  for (double v : {0.0, 1e-8, 1e-6, 1e-4, 9.99e-4, 1e-3, 1.001e-3, 0.01, 0.5, 1.0, 10.0, 50.0}) {
+  // 0, ±tiny (FLT_MIN, 1e-30), both sides of the series/exp switch at |x| = 0.5, ±large (88 is
+  // just below float's exp overflow; -1e4 and -1e30 give -1/x), plus a sweep over [-90, 88].
+  for (double v : {0.0, 1e-30, double(FLT_MIN), 1e-8, 1e-6, 1e-4, 9.99e-4, 1e-3, 1.001e-3, 0.01, 0.25, 0.4999,
+                   0.5, 0.5001, 1.0, 10.0, 50.0, 88.0}) {
     x.push_back(float(v));
     x.push_back(float(-v));
   }
-  x.push_back(std::nextafter(1e-3f, 0.0f));
-  x.push_back(80.0f);
+  x.push_back(std::nextafter(0.5f, 0.0f));
+  x.push_back(-std::nextafter(0.5f, 0.0f));
+  x.push_back(-1e4f);
+  x.push_back(-1e30f);
+  for (int i = -900; i <= 880; ++i) x.push_back(float(i) * 0.1f);
   const size_t n = x.size();
   cl::Buffer bx = input(x), bo = output<float>(n);
   run("check_expm1_over_x", n, bx, bo);

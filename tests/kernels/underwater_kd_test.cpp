@@ -68,12 +68,14 @@ sensor = "nikon_d5100_npl"
 
 seasim::Override set(const char* key, const std::string& value) { return {key, value, {"test", 1}}; }
 
-double maxRelativeError(const seasim::Image& a, const seasim::Image& ref) {
+// floor: an absolute radiance below which differences do not count (0: none).
+double maxRelativeError(const seasim::Image& a, const seasim::Image& ref, double floor = 0) {
   float peak = 0;
   for (float v : ref.pixels) peak = std::max(peak, std::fabs(v));
   double worst = 0;
   for (size_t i = 0; i < ref.pixels.size(); ++i)
-    worst = std::max(worst, std::fabs(double(a.pixels[i]) - ref.pixels[i]) / (std::fabs(ref.pixels[i]) + 1e-4 * peak));
+    worst = std::max(worst, std::fabs(double(a.pixels[i]) - ref.pixels[i]) /
+                                (std::fabs(ref.pixels[i]) + 1e-4 * peak + floor));
   return worst;
 }
 
@@ -108,6 +110,13 @@ TEST_P(UnderwaterKdKernel, MatchesDoubleCpuEvaluationWithoutNaN) {
   // The float CPU path (the TBB benchmark's) agrees as well.
   options.use_double = false;
   EXPECT_LT(maxRelativeError(seasim::renderUnderwaterCpu(setup, options), ref), GetParam().tolerance);
+  // And the vectorised C++ peer (-O3 -ffast-math, material-sorted band loops). Fast maths loses
+  // the relative precision of values near float's underflow (subnormals flushed, exponents no longer
+  // kept combined): camera_at_1000m's image is ~1e-31 W m^-2 sr^-1 nm^-1 and comes out up to 40 %
+  // off there. Differences count above 1e-20 only, twenty decades under the sun's irradiance.
+  const seasim::Image simd = seasim::renderUnderwaterCpuSimd(setup, options);
+  for (float v : simd.pixels) ASSERT_TRUE(std::isfinite(v) && v >= 0.0f);
+  EXPECT_LT(maxRelativeError(simd, ref, 1e-20), GetParam().tolerance) << "vectorised C++";
 }
 
 INSTANTIATE_TEST_SUITE_P(

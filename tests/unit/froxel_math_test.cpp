@@ -173,6 +173,28 @@ TEST(FroxelMath, StepAndPartialAreStable) {
   EXPECT_TRUE(std::isfinite(kf::froxel_partial(0.0f, 1e30f)));
 }
 
+// The column loop's split of froxel_beam_slice: the tabulated (band, slice) factor times the beam's
+// e^{-σ_t y/μ_w} is the fused form, in double and float, from clear to turbid water; deep slices
+// underflow to 0, never NaN.
+TEST(FroxelMath, SliceFactorTimesBeamIsTheFusedSlice) {
+  for (double c : {0.0, 1e-4, 0.05, 0.4, 3.0, 11.0}) {
+    for (double t0 : {0.0, 0.1, 2.0, 35.0}) {
+      for (double d : {1e-3, 0.2, 1.0, 8.0}) {
+        for (double y : {0.0, 0.5, 12.0}) {
+          const double b = 0.3, e0 = 1.7, mu = 0.8, scale = 0.9;
+          const double fused = kd::froxel_beam_slice(scale * b, e0, c, mu, y, t0, d);
+          const double split = scale * kd::froxel_slice_factor(b, e0, c, t0, d) * std::exp(-c * (y / mu));
+          EXPECT_NEAR(split, fused, 1e-14 * fused + 1e-300) << "c=" << c << " t0=" << t0 << " d=" << d << " y=" << y;
+          const float splitf = float(scale) * kf::froxel_slice_factor(float(b), float(e0), float(c), float(t0), float(d)) *
+                               std::exp(-float(c) * (float(y) / float(mu)));
+          EXPECT_NEAR(splitf, fused, 2e-6 * fused + 1e-37) << "c=" << c << " t0=" << t0 << " d=" << d << " y=" << y;
+        }
+      }
+    }
+  }
+  EXPECT_EQ(kf::froxel_slice_factor(1.0f, 1.0f, 11.0f, 1e3f, 1.0f), 0.0f);
+}
+
 // A one-column grid along `forward` (the column's ray is the screen centre: exactly `forward`), one
 // band (b, c, e_beam0, sensor weight 1 in every channel), no shadows, no caustics.
 struct Column {
@@ -217,10 +239,14 @@ struct Column {
   // Integrated L_SS to distance S, by the double or float code.
   double run(double S, bool use_float) {
     if (use_float) {
-      kf::froxel_integrate_column(&p, &fp, &band, 1, light.data(), volume.data(), 0, 0);
+      std::vector<float> factors(fp.nz);
+      kf::froxel_fill_slice_factors(&fp, &band, 1, factors.data());
+      kf::froxel_integrate_column(&p, &fp, &band, 1, factors.data(), light.data(), volume.data(), 0, 0);
       return kf::froxel_lookup(&fp, volume.data(), 0, 0, 1, 1, float(S)).y;
     }
-    kd::froxel_integrate_column(&p, &fp, &band, 1, light.data(), volume.data(), 0, 0);
+    std::vector<double> factors(fp.nz);
+    kd::froxel_fill_slice_factors(&fp, &band, 1, factors.data());
+    kd::froxel_integrate_column(&p, &fp, &band, 1, factors.data(), light.data(), volume.data(), 0, 0);
     return kd::froxel_lookup(&fp, volume.data(), 0, 0, 1, 1, S).y;
   }
 };

@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <random>
 
 #include "math/kernel_math.h"
@@ -437,20 +438,49 @@ TYPED_TEST(OpticsTest, Expm1OverXAgainstLongDouble) {
   using real = typename M::real;
   // Stated bounds: 1e-6 relative in float (≈ 8 ulp), 1e-14 in double (≈ 45 ulp).
   const double rel = M::eps > 1e-10 ? 1e-6 : 1e-14;
-  for (double xd : {0.0, 1e-8, -1e-8, 1e-3, -1e-3, 9.999e-4, -9.999e-4, 1e-2, -0.7, 1.0, -1.0,
-                    20.0, 50.0, -50.0}) {
-    real x = real(xd);
-    ld xl = ld(x);
-    ld expect = xl == 0 ? 1.0L : std::expm1(xl) / xl;
-    real got = M::expm1x(x);
-    EXPECT_TRUE(std::isfinite(got));
-    EXPECT_NEAR(got / expect, 1.0L, rel) << "x=" << xd;
+  const bool is_float = M::eps > 1e-10;
+  auto expect_close = [&](real x) {
+    const ld xl = ld(x);
+    const ld expect = xl == 0 ? 1.0L : std::expm1(xl) / xl;
+    const real got = M::expm1x(x);
+    ASSERT_TRUE(std::isfinite(got)) << "x=" << double(x);
+    EXPECT_NEAR(got / expect, 1.0L, rel) << "x=" << double(x);
+  };
+  // 0, ±tiny (down to the smallest subnormal), both sides of the switch at |x| = 0.5, ±large up to
+  // just below exp's overflow (88.7 in float, 709.8 in double) and far below it.
+  const real tiny = std::numeric_limits<real>::denorm_min();
+  const real big = is_float ? real(88.0) : real(709.0);
+  for (real x : {real(0), tiny, -tiny, std::numeric_limits<real>::min(), real(1e-30), real(-1e-30), real(1e-8),
+                 real(-1e-8), real(1e-3), real(-1e-3), real(1e-2), real(-0.25), real(0.4999), real(-0.4999),
+                 real(0.5), real(-0.5), real(0.5001), real(-0.5001), real(-0.7), real(1), real(-1), real(20),
+                 real(50), real(-50), big, -big, real(-1e4), real(-1e30), -std::numeric_limits<real>::max()}) {
+    expect_close(x);
   }
-  // Continuous across the switch from the series to expm1(x)/x at |x| = 1e-3.
+  // A dense sweep over [-100, 100] (both branches, every binade of the series part).
+  for (int i = -20000; i <= 20000; ++i) {
+    const real x = real(i) * real(0.005);
+    if (x <= big) expect_close(x);  // beyond, float overflows (checked below)
+  }
+  for (int e = -140; e <= 0; ++e) {  // geometric: 2^e for both signs, into float's subnormals
+    expect_close(real(std::ldexp(1.0, e)));
+    expect_close(real(-std::ldexp(1.0, e)));
+  }
+  // Continuous across the switch from the series to (e^x - 1)/x at |x| = 0.5.
   for (double s : {1.0, -1.0}) {
-    real below = std::nextafter(real(s * 1e-3), real(0)), at = real(s * 1e-3);
+    real below = std::nextafter(real(s * 0.5), real(0)), at = real(s * 0.5);
     EXPECT_NEAR(M::expm1x(below), M::expm1x(at), 4 * M::eps);
   }
+  // Overflow: finite exactly where the previous form expm1(x)/x (in the same precision) was finite,
+  // +Inf (never NaN) beyond; x -> -Inf gives +0.
+  const real x0 = is_float ? real(88.0) : real(709.0);
+  for (int i = 0; i < 400; ++i) {
+    const real x = x0 + real(i) * real(0.005);
+    const real old = std::expm1(x) / x;
+    const real got = M::expm1x(x);
+    EXPECT_FALSE(std::isnan(got)) << "x=" << double(x);
+    EXPECT_EQ(std::isfinite(got), std::isfinite(old)) << "x=" << double(x);
+  }
+  EXPECT_EQ(M::expm1x(-std::numeric_limits<real>::infinity()), real(0));
 }
 
 }  // namespace

@@ -60,6 +60,38 @@ TEST(Plan, SunBelowHorizonStillRendersWithoutSunTerms) {
   EXPECT_TRUE(hasDefine(plan, "sea_single", "SEASIM_HAS_SINGLE_SCATTERING=0"));
 }
 
+// quality.fast_math marks every model pass's build (Device::program adds -cl-fast-relaxed-math for
+// it) and shows in `seasim plan`; the NaN/Inf check is never built with finite-only maths.
+TEST(Plan, FastMathMarksEveryModelPassButTheCheck) {
+  for (const bool fast : {false, true}) {
+    const Plan plan = makePlan(parseScene(std::string(kFlatSea) + "[sea]\nsecond_order = true\n[quality]\nfast_math = " +
+                                              (fast ? "true" : "false") + "\n",
+                                          "flat.toml"));
+    ASSERT_TRUE(plan.hasPass("sea_second"));
+    for (const auto& p : plan.passes) {
+      const bool marked = hasDefine(plan, p.name, "SEASIM_FAST_MATH=1");
+      EXPECT_EQ(marked, fast && p.name != "nonfinite_check") << p.name;
+    }
+    EXPECT_EQ(plan.toText().find("-DSEASIM_FAST_MATH=1") != std::string::npos, fast);
+  }
+}
+
+// fast_math = "auto" (the default) is on except for the sea with FFT waves seen from above, the
+// shipped scenes whose fast-maths image moved by more than 0.05 of a level (results/BENCHMARKS.md).
+TEST(Plan, FastMathAutoIsOffOnlyForWavesSeenFromAbove) {
+  const Plan flat = makePlan(parseScene(kFlatSea, "flat.toml"));
+  EXPECT_TRUE(hasDefine(flat, "sea_single", "SEASIM_FAST_MATH=1"));
+  const Plan waves = makePlan(parseScene(kFlatSea, "flat.toml", {{"surface.type", "\"fft\"", {"cli", 1}}}));
+  EXPECT_FALSE(hasDefine(waves, "sea_single", "SEASIM_FAST_MATH=1"));
+  const Plan forced =
+      makePlan(parseScene(kFlatSea, "flat.toml",
+                          {{"surface.type", "\"fft\"", {"cli", 1}}, {"quality.fast_math", "true", {"cli", 2}}}));
+  EXPECT_TRUE(hasDefine(forced, "sea_single", "SEASIM_FAST_MATH=1"));
+  EXPECT_FALSE(hasDefine(forced, "ocean_fft", "SEASIM_FAST_MATH=1"));  // built without the plan's defines
+  const Plan off = makePlan(parseScene(kFlatSea, "flat.toml", {{"quality.fast_math", "false", {"cli", 1}}}));
+  EXPECT_FALSE(hasDefine(off, "sea_single", "SEASIM_FAST_MATH=1"));
+}
+
 TEST(Plan, SecondOrderAddsScatteringMapsPass) {
   const Plan plan = makePlan(parseScene(kFlatSea, "flat.toml", {{"sea.second_order", "true", {"cli", 1}}}));
   ASSERT_TRUE(plan.hasPass("sea_second"));

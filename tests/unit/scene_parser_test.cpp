@@ -150,6 +150,7 @@ reflection = false
 sea_nz = 24
 froxel_x = "auto"
 shafts_exact = true
+fast_math = false
 )";
   Scene s = parseScene(text, (dir / "full.toml").string());
   const double tol = 1e-12;
@@ -253,6 +254,8 @@ shafts_exact = true
   EXPECT_FALSE(s.quality.at("sea_nz").automatic);
   EXPECT_TRUE(s.quality.at("froxel_x").automatic);
   EXPECT_DOUBLE_EQ(s.quality.at("shafts_exact").value, 1);
+  EXPECT_FALSE(s.quality.at("fast_math").automatic);
+  EXPECT_DOUBLE_EQ(s.quality.at("fast_math").value, 0);
   EXPECT_DOUBLE_EQ(s.quality.at("sea_nd").value, 128);  // untouched knobs keep their default
   fs::remove_all(dir);
 }
@@ -288,7 +291,8 @@ TEST(SceneParser, Defaults) {
       {"froxel_y", 90},          {"froxel_z", 64},        {"caustic_map_size", 256}, {"caustic_layers", 8},
       {"reference_spp", 64},     {"reference_steps", 200}, {"shafts_exact", 0},
       {"shafts_error_budget", 1}};
-  EXPECT_EQ(s.quality.size(), std::size(knobs));
+  EXPECT_EQ(s.quality.size(), std::size(knobs) + 1);
+  EXPECT_TRUE(s.quality.at("fast_math").automatic);  // "auto": the planner decides (fastMathFor)
   for (const auto& [name, value] : knobs) {
     ASSERT_TRUE(s.quality.count(name)) << name;
     EXPECT_FALSE(s.quality.at(name).automatic) << name;

@@ -1,0 +1,84 @@
+// cache_warm_command.cpp — `seasim cache warm` (cache_warm_command.h).
+//
+// Why a frame and not only Device::program: PoCL compiles a kernel's work-group function lazily, at
+// its first enqueue, for that local size (and caches it under $POCL_CACHE_DIR); the seasim program
+// cache only holds the OpenCL program. Running each distinct plan once at its real size is the one
+// way to hit every (kernel, defines, local size) the renders will, including the passes' own extra
+// defines (sea_single's LUT switch, the froxel pass's) and the `auto` quality searches, which cache
+// their choice too. Renders that differ only in time, sun, camera pose or other values that change no
+// kernel build share one warm-up.
+#include "cli/cache_warm_command.h"
+
+#include <chrono>
+#include <cstdio>
+#include <set>
+#include <sstream>
+
+#include "cli/commands.h"
+#include "device/device.h"
+#include "jobs/job.h"
+#include "passes/render_frame.h"
+#include "plan/plan.h"
+#include "scene/scene_parser.h"
+
+namespace seasim {
+
+namespace {
+
+// What decides the kernel builds and work-group sizes of a render: the plan (passes, kernel files,
+// defines), the image size, the band count and the quality knobs (grid and map sizes).
+std::string buildKey(const Scene& scene, const Plan& plan) {
+  std::ostringstream key;
+  key << plan.toText() << scene.camera.width << "x" << scene.camera.height << " n=" << scene.spectral.count;
+  for (const auto& [name, knob] : scene.quality) key << " " << name << "=" << (knob.automatic ? -1.0 : knob.value);
+  return key.str();
+}
+
+}  // namespace
+
+int cmdCacheWarm(const CacheWarmCmd& cmd) {
+  // Parse and validate everything first: a typo fails before any compile.
+  struct Item {
+    std::string label;
+    Scene scene;
+  };
+  std::vector<Item> items;
+  const std::vector<Override> extra = [&] {
+    std::vector<Override> o;
+    for (const auto& s : cmd.sets) o.push_back(parseSetOption(s));
+    return o;
+  }();
+  for (const std::string& file : cmd.files) {
+    if (isJobFile(file)) {
+      const Job job = loadJob(file);
+      for (const RenderItem& r : job.items) {
+        std::vector<Override> o = r.overrides;
+        o.insert(o.end(), extra.begin(), extra.end());
+        items.push_back({job.name + "/" + r.name, loadScene(r.scene_file, o)});
+      }
+    } else {
+      items.push_back({file, loadScene(file, extra)});
+    }
+  }
+
+  Device device(chooseDevice(cmd.device));
+  std::printf("device: %s\n", device.info().label().c_str());
+  std::set<std::string> done;
+  const auto t0 = std::chrono::steady_clock::now();
+  int warmed = 0;
+  for (const Item& item : items) {
+    const Plan plan = makePlan(item.scene);
+    if (!done.insert(buildKey(item.scene, plan)).second) continue;  // same builds as one already warmed
+    const double build_before = device.totalBuildMs();
+    const FrameResult frame = renderFrame(device, item.scene, plan);
+    ++warmed;
+    std::printf("warm %-40s %4zu passes  frame %9.1f ms  (program builds/cache loads %8.1f ms)\n",
+                item.label.c_str(), plan.passes.size(), frame.wall_ms, device.totalBuildMs() - build_before);
+  }
+  const double total_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  std::printf("cache warm: %d distinct plan(s) of %zu render(s) in %.1f s\n", warmed, items.size(), total_ms * 1e-3);
+  return 0;
+}
+
+}  // namespace seasim

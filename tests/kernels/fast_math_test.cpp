@@ -1,0 +1,68 @@
+// fast_math_test.cpp — quality.fast_math (kernels built with -cl-fast-relaxed-math) keeps every
+// shipped scene where it is on by default (fastMathFor: all but the two with FFT waves seen from
+// above) within the budget that made it the default: < 0.05 of an 8-bit level (max |Δ| after the
+// tone map, at the scene's exposure) from the exact-maths image, and finite. The scenes render at a
+// reduced size (the kernels and their maths are the same at any size); the full-size figures are in
+// results/BENCHMARKS.md (results/perf/fast_math_scenes.sh).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "passes/render_frame.h"
+#include "plan/plan.h"
+#include "reference/compare.h"
+#include "scene/scene_parser.h"
+#include "test_device.h"
+
+namespace {
+
+seasim::Override set(const char* key, const std::string& value) { return {key, value, {"test", 1}}; }
+
+struct Case {
+  const char* scene;   // scenes/<scene>.toml
+  int width, height;   // reduced size
+  double budget;       // max |Δ| in 8-bit levels
+};
+
+class FastMath : public ::testing::TestWithParam<Case> {};
+
+TEST_P(FastMath, ImageStaysWithinBudgetOfExactMaths) {
+  const Case& c = GetParam();
+  const std::string file = std::string(SEASIM_SOURCE_DIR) + "/scenes/" + c.scene + ".toml";
+  auto load = [&](bool fast) {
+    return seasim::loadScene(file, {set("camera.width", std::to_string(c.width)),
+                                    set("camera.height", std::to_string(c.height)),
+                                    set("quality.fast_math", fast ? "true" : "false")});
+  };
+  const seasim::Scene exact_scene = load(false), fast_scene = load(true);
+  const seasim::Plan fast_plan = seasim::makePlan(fast_scene);
+  bool marked = false;
+  for (const auto& p : fast_plan.passes)
+    for (const auto& d : p.defines) marked = marked || d == "SEASIM_FAST_MATH=1";
+  ASSERT_TRUE(marked) << "the plan does not build any pass with fast maths";
+  auto& device = seasim::test::testDevice();
+  const seasim::FrameResult exact = seasim::renderFrame(device, exact_scene, seasim::makePlan(exact_scene));
+  const seasim::FrameResult fast = seasim::renderFrame(device, fast_scene, fast_plan);
+  ASSERT_EQ(fast.nonfinite, 0);
+  ASSERT_EQ(exact.nonfinite, 0);
+  const seasim::CompareResult d = seasim::compareImages(fast.rgb, exact.rgb, exact_scene.camera.exposure_ev);
+  std::printf("[ measured ] %s fast vs exact maths: max %.4f levels, RMSE %.4f, rel. L2 %.3g\n", c.scene,
+              d.max_abs_8bit, d.rmse_8bit, d.rel_l2);
+  EXPECT_LT(d.max_abs_8bit, c.budget) << c.scene;
+  // The fast image is a different computation, not the same one: at least one value moved. (If it
+  // did not, the build option never reached the compiler and this test would guard nothing.)
+  double moved = 0;
+  for (size_t i = 0; i < fast.rgb.pixels.size(); ++i)
+    moved = std::fmax(moved, std::fabs(double(fast.rgb.pixels[i]) - exact.rgb.pixels[i]));
+  EXPECT_GT(moved, 0.0) << c.scene;
+}
+
+INSTANTIATE_TEST_SUITE_P(ShippedScenes, FastMath,
+                         ::testing::Values(Case{"deep_ocean", 96, 54, 0.05}, Case{"flat_sea", 96, 54, 0.05},
+                                           Case{"open_ocean", 96, 54, 0.05}, Case{"seabed", 96, 54, 0.05},
+                                           Case{"seashore", 96, 54, 0.05}, Case{"spot_sphere", 96, 64, 0.05},
+                                           Case{"stage", 96, 64, 0.05}, Case{"tropical", 96, 54, 0.05}),
+                         [](const ::testing::TestParamInfo<Case>& info) { return std::string(info.param.scene); });
+
+}  // namespace
