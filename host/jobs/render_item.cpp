@@ -4,7 +4,7 @@
 
 #include "io/atomic_file.h"
 #include "io/image_io.h"
-#include "passes/render_frame.h"
+#include "passes/nodes/standard_passes.h"
 #include "plan/plan.h"
 #include "reference/compare.h"
 #include "util/error.h"
@@ -46,8 +46,14 @@ nlohmann::json settingsJson(const Scene& s) {
 }  // namespace
 
 nlohmann::json renderItem(Device& device, const Scene& scene, const ItemOutputs& outputs, const std::string& dir) {
-  const Plan plan = makePlan(scene);
-  FrameResult frame = renderFrame(device, scene, plan);
+  Renderer renderer(device, scene, standardPasses());
+  return renderItem(device, renderer, outputs, dir);
+}
+
+nlohmann::json renderItem(Device& device, Renderer& renderer, const ItemOutputs& outputs, const std::string& dir) {
+  FrameResult frame = renderer.render();
+  const Scene& scene = renderer.scene();
+  const Plan& plan = renderer.plan();
   if (frame.nonfinite != 0) {
     throw RuntimeError("scene '" + scene.name + "': the kernels produced " + std::to_string(frame.nonfinite) +
                        " NaN/Inf values; nothing written for this render (a bug: please report it with the scene)");

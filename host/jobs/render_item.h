@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "device/device.h"
+#include "render/renderer.h"
 #include "scene/scene.h"
 
 namespace seasim {
@@ -21,5 +22,8 @@ struct ItemOutputs {
 // Throws RuntimeError (NaN/Inf found, unimplemented pass, I/O) or DeviceError; files already
 // written for this item stay complete (each is atomic) but report.json is not written.
 nlohmann::json renderItem(Device& device, const Scene& scene, const ItemOutputs& outputs, const std::string& dir);
+// The same with a renderer the caller keeps (a job's items on one scene file: only what changed
+// since the previous item runs again); renders its current scene.
+nlohmann::json renderItem(Device& device, Renderer& renderer, const ItemOutputs& outputs, const std::string& dir);
 
 }  // namespace seasim

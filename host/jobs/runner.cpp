@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <set>
 
 #include "device/device.h"
@@ -11,6 +12,8 @@
 #include "jobs/job.h"
 #include "jobs/progress.h"
 #include "jobs/render_item.h"
+#include "passes/nodes/standard_passes.h"
+#include "render/renderer.h"
 #include "scene/scene_parser.h"
 #include "util/error.h"
 #include "util/hash.h"
@@ -52,6 +55,19 @@ std::set<std::string> finishedItems(const std::string& output_dir) {
   return done;
 }
 
+// The keys whose value differs between two override lists (set in one only, or to other values).
+std::vector<std::string> changedKeys(const std::vector<Override>& before, const std::vector<Override>& after) {
+  std::map<std::string, std::string> a, b;
+  for (const Override& o : before) a[o.key] = o.value_toml;
+  for (const Override& o : after) b[o.key] = o.value_toml;
+  std::vector<std::string> changed;
+  for (const auto& [key, value] : a)
+    if (!b.count(key) || b[key] != value) changed.push_back(key);
+  for (const auto& [key, value] : b)
+    if (!a.count(key)) changed.push_back(key);
+  return changed;
+}
+
 }  // namespace
 
 RunSummary runJob(const std::string& job_path, const RunOptions& options) {
@@ -87,6 +103,8 @@ RunSummary runJob(const std::string& job_path, const RunOptions& options) {
 
   const std::string selector = options.device.empty() ? job.device : options.device;
   std::unique_ptr<Device> device;  // opened on the first item that needs rendering
+  std::unique_ptr<Renderer> renderer;
+  const RenderItem* previous = nullptr;
   Progress progress(static_cast<int>(mine.size()), stderrIsTerminal());
   for (const RenderItem* item : mine) {
     progress.start(item->name);
@@ -97,11 +115,19 @@ RunSummary runJob(const std::string& job_path, const RunOptions& options) {
     }
     if (!device) device = std::make_unique<Device>(chooseDevice(selector));
     const Scene scene = loadScene(item->scene_file, item->overrides);
+    // Items on the scene file of the item before (a sweep, frames) share its renderer: only the
+    // passes that read a changed key run again.
+    if (renderer && previous && previous->scene_file == item->scene_file) {
+      renderer->update(scene, changedKeys(previous->overrides, item->overrides));
+    } else {
+      renderer = std::make_unique<Renderer>(*device, scene, standardPasses());
+    }
+    previous = item;
     ItemOutputs outputs;
     outputs.formats = item->outputs;
     outputs.reference = item->reference;
     const std::string item_dir = job.output_dir + "/" + item->name;
-    const nlohmann::json report = renderItem(*device, scene, outputs, item_dir);
+    const nlohmann::json report = renderItem(*device, *renderer, outputs, item_dir);
 
     nlohmann::json files = nlohmann::json::object();
     for (const auto& f : report["outputs"]) {

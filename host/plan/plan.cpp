@@ -61,14 +61,7 @@ Plan makePlan(const Scene& scene) {
                        : uw.caustics == UnderwaterDesc::Caustics::Texture ? 1
                        : uw.caustics == UnderwaterDesc::Caustics::Map     ? 2
                                                                           : 0;
-  if (underwater) {
-    // 002 §4.3.2: the deferred pipeline's G-buffer (hit distance, normal, material, sun visibility).
-    PassPlan pass{"raycast", "raycast.cl",
-                  {flag("SEASIM_HAS_OBJECTS", objects), flag("SEASIM_HAS_SUN", sun_up),
-                   "SEASIM_CAUSTICS=" + std::to_string(caustics)},
-                  {"scene"}, {"gbuffer"}, "camera below the surface: per-pixel hit, normal, material", true, ""};
-    plan.passes.push_back(pass);
-  } else if (objects && lights) {  // issue 4: shafts.cl ray casts its analytic objects per pixel
+  if (objects && lights && !underwater) {  // issue 4: shafts.cl ray casts its analytic objects per pixel
     plan.passes.push_back({"raycast", "shafts.cl", {}, {"scene"}, {"gbuffer"}, "scene has objects", true, ""});
   }
   // Shafts feature defines (issue 4), shared by the shadow_maps and shafts passes (one build).
@@ -102,11 +95,24 @@ Plan makePlan(const Scene& scene) {
     plan.passes.push_back({"caustics", "caustics.cl", {}, {"ocean_maps"}, {"caustic_map"},
                            "FFT surface over a bottom, sea.bottom_caustics = true (004 §5.2.1)", true, ""});
   }
+  if (underwater) {
+    // 002 §4.3.2: the deferred pipeline's G-buffer (hit distance, normal, material, sun visibility);
+    // with caustic maps, after the caustics pass: the sun visibility reads them.
+    std::vector<std::string> reads = {"scene"};
+    if (ocean_for_caustics) reads.push_back("caustic_map");
+    PassPlan pass{"raycast", "raycast.cl",
+                  {flag("SEASIM_HAS_OBJECTS", objects), flag("SEASIM_HAS_SUN", sun_up),
+                   "SEASIM_CAUSTICS=" + std::to_string(caustics)},
+                  reads, {"gbuffer"}, "camera below the surface: per-pixel hit, normal, material", true, ""};
+    plan.passes.push_back(pass);
+  }
   if (froxels) {
+    std::vector<std::string> froxel_reads = {"scene"};
+    if (ocean_for_caustics) froxel_reads.push_back("caustic_map");
     plan.passes.push_back({"froxel", "froxel.cl",
                            {flag("SEASIM_HAS_OBJECTS", objects), "SEASIM_CAUSTICS=" + std::to_string(caustics),
                             flag("SEASIM_SPECTRAL_INJECTION", uw.injection == UnderwaterDesc::Injection::Spectral)},
-                           {"scene"}, {"froxel_volume"},
+                           froxel_reads, {"froxel_volume"},
                            "camera below the surface, sun up, underwater.single_scattering", true, ""});
   }
   if (sea_view) {
@@ -143,7 +149,9 @@ Plan makePlan(const Scene& scene) {
     }
   }
   if (lights) {
-    plan.passes.push_back({"shafts", "shafts.cl", shafts_defines, {"scene", "shadow_maps"}, {"rgb"},
+    std::vector<std::string> shafts_reads = {"scene"};
+    if (objects) shafts_reads.push_back("shadow_maps");
+    plan.passes.push_back({"shafts", "shafts.cl", shafts_defines, shafts_reads, {"rgb"},
                            std::string("spotlights in air") +
                                ((scene.quality.count("shafts_planes") && scene.quality.at("shafts_planes").automatic) ||
                                         (scene.quality.count("shafts_subplanes") && scene.quality.at("shafts_subplanes").automatic)
