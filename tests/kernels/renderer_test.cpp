@@ -6,9 +6,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
+#include "io/image_io.h"
+#include "jobs/runner.h"
 #include "passes/nodes/standard_passes.h"
 #include "render/radiance_target.h"
 #include "render/renderer.h"
@@ -230,6 +234,37 @@ TEST(Renderer, PlanErrorsNameThePass) {
     FAIL() << "a read before its write must be an error";
   } catch (const RuntimeError& e) {
     EXPECT_NE(std::string(e.what()).find("no earlier pass writes"), std::string::npos) << e.what();
+  }
+}
+
+// A job's items on one scene file share a renderer (jobs/runner.cpp): each item's image is the one a
+// fresh renderer makes of its scene, also when an item drops an override the item before had.
+TEST(Renderer, JobItemsOnOneSceneShareARendererAndMatchFreshFrames) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::path(SEASIM_BUILD_DIR) / "renderer_test_job";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string scene = sceneFile("wavy_sea.toml");
+  std::ofstream(dir / "job.toml") << "[job]\nname = \"reuse\"\noutput_dir = \"out\"\n"
+                                  << "[[render]]\nname = \"t0\"\nscene = \"" << scene << "\"\n"
+                                  << "overrides = { \"camera.width\" = 48, \"camera.height\" = 32, \"surface.grid\" = 64 }\noutputs = [\"exr\"]\n"
+                                  << "[[render]]\nname = \"t2\"\nscene = \"" << scene << "\"\n"
+                                  << "overrides = { \"camera.width\" = 48, \"camera.height\" = 32, \"surface.grid\" = 64, \"surface.time\" = 2.0, \"sun.zenith_deg\" = 60 }\noutputs = [\"exr\"]\n"
+                                  << "[[render]]\nname = \"back\"\nscene = \"" << scene << "\"\n"
+                                  << "overrides = { \"camera.width\" = 48, \"camera.height\" = 32, \"surface.grid\" = 64, \"surface.time\" = 2.0 }\noutputs = [\"exr\"]\n";
+  RunOptions options;
+  options.device = "pocl";
+  const RunSummary summary = runJob((dir / "job.toml").string(), options);
+  EXPECT_EQ(summary.rendered, 3);
+  const std::vector<Override> base = small({set("surface.grid", "64")});
+  std::vector<Override> t2 = base, back = base;
+  t2.push_back(set("surface.time", "2.0"));
+  t2.push_back(set("sun.zenith_deg", "60"));
+  back.push_back(set("surface.time", "2.0"));
+  const std::vector<std::pair<std::string, std::vector<Override>>> items = {{"t0", base}, {"t2", t2}, {"back", back}};
+  for (const auto& [name, overrides] : items) {
+    const Image written = readImage((dir / "out" / name / "image.exr").string());
+    EXPECT_LT(maxRelDiff(written, fresh("wavy_sea.toml", overrides).rgb), 1e-6) << name;
   }
 }
 
