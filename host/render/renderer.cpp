@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 
 #include "render/radiance_target.h"
 #include "util/error.h"
@@ -36,10 +39,27 @@ Renderer::Renderer(Device& device, const Scene& scene, Plan plan, PassRegistry r
     : device_(device), registry_(std::move(registry)), follow_scene_(false), plan_(std::move(plan)),
       ctx_(device, scene) {}
 
+namespace {
+
+std::string readSceneText(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in || std::filesystem::is_directory(path)) throw InputError(path, 1, "", "cannot open scene file");
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+}  // namespace
+
 Renderer::Renderer(Device& device, const std::string& scene_file, std::vector<Override> overrides,
                    PassRegistry registry)
-    : Renderer(device, loadScene(scene_file, overrides), std::move(registry)) {
+    : Renderer(device, scene_file, readSceneText(scene_file), std::move(overrides), std::move(registry)) {}
+
+Renderer::Renderer(Device& device, const std::string& scene_file, std::string scene_text,
+                   std::vector<Override> overrides, PassRegistry registry)
+    : Renderer(device, parseScene(scene_text, scene_file, overrides), std::move(registry)) {
   scene_file_ = scene_file;
+  scene_text_ = std::move(scene_text);
   overrides_ = std::move(overrides);
 }
 
@@ -121,7 +141,7 @@ void Renderer::update(const std::vector<Override>& overrides) {
     changed.push_back(o.key);
   }
   if (changed.empty()) return;
-  update(loadScene(scene_file_, overrides_), changed);
+  update(parseScene(scene_text_, scene_file_, overrides_), changed);
 }
 
 void Renderer::rerunAll() {

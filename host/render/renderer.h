@@ -39,8 +39,8 @@ class Renderer {
   // The scene after a change of the named keys ("surface.time", "sun.zenith_deg", "quality.froxel_x",
   // "objects[0].center"), as written in scene files and --set.
   void update(const Scene& next, const std::vector<std::string>& changed_keys);
-  // Applies overrides on top of those given so far (the scene file is read again, validated); keys
-  // whose value is what it was change nothing. Needs the scene-file constructor.
+  // Applies overrides on top of those given so far (the scene file's text, read once, is parsed and
+  // validated again); keys whose value is what it was change nothing. Needs the scene-file constructor.
   void update(const std::vector<Override>& overrides);
 
   // Marks every pass to run again on the next render() with its current set-up (timing a whole
@@ -67,6 +67,8 @@ class Renderer {
     bool rerun = false;
     std::map<std::string, uint64_t> seen_generation, seen_version;  // of its reads, after it last ran
   };
+  Renderer(Device& device, const std::string& scene_file, std::string scene_text, std::vector<Override> overrides,
+           PassRegistry registry);
   void build();
   std::vector<bool> passesToRun() const;
   bool readsReplaced(const Node& node) const;
@@ -80,6 +82,7 @@ class Renderer {
   Resources resources_;
   std::vector<Node> nodes_;
   std::string scene_file_;
+  std::string scene_text_;  // read once: an update parses it again with the new overrides
   std::vector<Override> overrides_;
   long long nonfinite_ = 0;
   std::vector<std::string> last_prepared_, last_executed_;
