@@ -23,8 +23,9 @@ bool anyMatch(const std::vector<std::string>& patterns, const std::string& key) 
   return false;
 }
 
-// Keys that change no pass's output: the exposure is applied when the PNG is written, the name labels
-// the outputs.
+// Keys that need no pass to claim them (no full rebuild when none does): the exposure is applied when
+// the PNG is written and the name labels the outputs. Passes that do read the exposure (the shafts'
+// cone clipping, the "auto" quality searches) claim it through "camera.*" and are marked as usual.
 bool changesNoPass(const std::string& key) {
   return keyMatches("camera.exposure_ev", key) || keyMatches("scene.*", key) || keyMatches("name", key);
 }
