@@ -20,7 +20,8 @@
 #include "jobs/job_inputs.h"
 #include "jobs/render_item.h"
 #include "jobs/runner.h"
-#include "passes/render_frame.h"
+#include "passes/nodes/standard_passes.h"
+#include "render/renderer.h"
 #include "plan/plan.h"
 #include "reference/compare.h"
 #include "reference/sea_reference.h"
@@ -244,12 +245,22 @@ int cmdSweep(const SweepCmd& cmd) {
   PlotSeries series{"rmse (8-bit levels)", {}, {}};
   PlotSeries steps{"max |L(v) - L(next v)| (8-bit levels)", {}, {}};
   Image previous;
+  // One renderer for the whole grid: each setting sets up again only the passes its keys touch.
+  Renderer renderer(device, scenes.front(), standardPasses());
   for (size_t k = 0; k < scenes.size(); ++k) {
-    const Plan plan = makePlan(scenes[k]);
-    (void)renderFrame(device, scenes[k], plan);  // warm-up: PoCL compiles lazily
-    // Median kernel time of three runs: single timings on a shared machine are noisy.
+    if (k > 0) {
+      std::vector<std::string> changed;
+      for (size_t i = 0; i < axes.size(); ++i)
+        if (grid[k][i] != grid[k - 1][i]) changed.push_back(axes[i].key);
+      renderer.update(scenes[k], changed);
+    }
+    (void)renderer.render();  // warm-up: PoCL compiles lazily; set-up of what changed
+    // Median kernel time of three runs of the whole frame: single timings on a shared machine are noisy.
     std::vector<FrameResult> runs;
-    for (int r = 0; r < 3; ++r) runs.push_back(renderFrame(device, scenes[k], plan));
+    for (int r = 0; r < 3; ++r) {
+      renderer.rerunAll();
+      runs.push_back(renderer.render());
+    }
     std::sort(runs.begin(), runs.end(), [](const FrameResult& a, const FrameResult& b) { return kernelMs(a) < kernelMs(b); });
     const FrameResult& frame = runs[1];
     if (frame.nonfinite) throw RuntimeError("sweep setting produced NaN/Inf values");
@@ -343,6 +354,7 @@ int cmdBench(const BenchCmd& cmd) {
     return 0;
   }
   if (!cmd.sea_maps.empty()) return benchSeaSecond(device, cmd, parseSets(cmd.sets));  // bench_sea.cpp
+  if (cmd.frames > 0) return benchFrames(device, cmd, parseSets(cmd.sets));            // bench_frames.cpp
   if (!cmd.lights.empty()) {
     // Spotlight shafts (001 §5: "cost linear in the number of lights"): the scene with its first k
     // spotlights, ms per frame of the shadow-map and shafts kernels, and a least-squares line.
@@ -357,11 +369,12 @@ int cmdBench(const BenchCmd& cmd) {
       }
       Scene scene = full;
       scene.spotlights.resize(k);
-      const Plan plan = makePlan(scene);
-      (void)renderFrame(device, scene, plan);  // warm-up (PoCL compiles lazily; auto quality searches once)
+      Renderer renderer(device, scene, standardPasses());
+      (void)renderer.render();  // warm-up (PoCL compiles lazily; auto quality searches once)
       std::vector<double> totals, shadow, shafts;
       for (int r = 0; r < std::max(1, cmd.repeat); ++r) {
-        const FrameResult frame = renderFrame(device, scene, plan);
+        renderer.rerunAll();
+        const FrameResult frame = renderer.render();
         double sm = 0, sh = 0;
         for (const auto& t : frame.timings) {
           if (t.name == "shadow_maps") sm += t.ms;
@@ -423,12 +436,14 @@ int cmdBench(const BenchCmd& cmd) {
     std::vector<Override> overrides = parseSets(cmd.sets);
     overrides.push_back(parseSetOption("spectral.count=" + std::to_string(n)));
     const Scene scene = loadScene(cmd.scene, overrides);
-    const Plan plan = makePlan(scene);
-    (void)renderFrame(device, scene, plan);  // warm-up
+    Renderer renderer(device, scene, standardPasses());
+    const Plan& plan = renderer.plan();
+    (void)renderer.render();  // warm-up
     std::vector<double> samples;
     std::map<std::string, std::vector<double>> per_pass;
     for (int r = 0; r < std::max(1, cmd.repeat); ++r) {
-      const FrameResult frame = renderFrame(device, scene, plan);
+      renderer.rerunAll();
+      const FrameResult frame = renderer.render();
       double total = 0;
       for (const auto& t : frame.timings) {
         if (t.name == "nonfinite_check") continue;

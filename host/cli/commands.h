@@ -42,11 +42,16 @@ struct BenchCmd {
   std::vector<int> sea_maps;  // --sea-maps 32,64: sea second order, maps vs accumulation ms per map size
   int repeat = 5;
   bool limits = false;
+  int frames = 0;                   // --frames N: an animation of N frames over --time-range (bench_frames.cpp)
+  std::vector<double> time_range;   // --time-range t0,t1 (s) for surface.time
+  bool fresh = false;               // --fresh: a new renderer per frame (everything set up each frame)
 };
 int cmdBench(const BenchCmd& cmd);
 // The --sea-maps mode of bench (host/cli/bench_sea.cpp).
 class Device;
 int benchSeaSecond(Device& device, const BenchCmd& cmd, const std::vector<Override>& overrides);
+// The --frames mode of bench (host/cli/bench_frames.cpp).
+int benchFrames(Device& device, const BenchCmd& cmd, const std::vector<Override>& overrides);
 
 struct ReferenceCmd {
   std::string scene, out, device;

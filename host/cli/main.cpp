@@ -78,6 +78,9 @@ int main(int argc, char** argv) {
   bench->add_option("--plot", bench_cmd.plot, "SVG plot output");
   bench->add_option("--device", bench_cmd.device, "Device selector");
   bench->add_flag("--limits", bench_cmd.limits, "Measure the device's exp throughput bound");
+  bench->add_option("--frames", bench_cmd.frames, "Animation: N frames of surface.time over --time-range, per-frame wall vs kernel ms");
+  bench->add_option("--time-range", bench_cmd.time_range, "t0,t1 in s for --frames (default 0,5)")->delimiter(',');
+  bench->add_flag("--fresh", bench_cmd.fresh, "With --frames: a new renderer per frame (everything set up again)");
   bench->add_option("--set", bench_cmd.sets, "Override a scene key: --set sun.zenith_deg=60 (repeatable)");
 
   seasim::ReferenceCmd ref_cmd;

@@ -4,7 +4,7 @@
 
 #include "io/atomic_file.h"
 #include "io/image_io.h"
-#include "passes/render_frame.h"
+#include "passes/nodes/standard_passes.h"
 #include "plan/memory_budget.h"
 #include "plan/plan.h"
 #include "reference/compare.h"
@@ -47,15 +47,24 @@ nlohmann::json settingsJson(const Scene& s) {
 }  // namespace
 
 nlohmann::json renderItem(Device& device, const Scene& scene, const ItemOutputs& outputs, const std::string& dir) {
-  const Plan plan = makePlan(scene);
-  // Before any buffer exists: a render too big for the device fails here, naming its settings.
+  checkRenderFitsDevice(device, scene, makePlan(scene));
+  Renderer renderer(device, scene, standardPasses());
+  return renderItem(device, renderer, outputs, dir);
+}
+
+void checkRenderFitsDevice(Device& device, const Scene& scene, const Plan& plan) {
   unsigned long long global_mem = device.info().global_mem_bytes, max_alloc = device.info().max_alloc_bytes;
   applyMemoryCap(global_mem, max_alloc);
   const bool capped = global_mem != device.info().global_mem_bytes || max_alloc != device.info().max_alloc_bytes;
   checkMemoryBudget(estimateBuffers(scene, plan), global_mem, max_alloc,
                     device.info().label() + (capped ? " capped by SEASIM_DEVICE_MEMORY_MB" : ""),
                     !device.info().is_gpu);
-  FrameResult frame = renderFrame(device, scene, plan);
+}
+
+nlohmann::json renderItem(Device& device, Renderer& renderer, const ItemOutputs& outputs, const std::string& dir) {
+  FrameResult frame = renderer.render();
+  const Scene& scene = renderer.scene();
+  const Plan& plan = renderer.plan();
   if (frame.nonfinite != 0) {
     throw RuntimeError("scene '" + scene.name + "': the kernels produced " + std::to_string(frame.nonfinite) +
                        " NaN/Inf values; nothing written for this render. Check the scene for extreme values "

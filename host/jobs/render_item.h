@@ -7,6 +7,8 @@
 #include <vector>
 
 #include "device/device.h"
+#include "plan/plan.h"
+#include "render/renderer.h"
 #include "scene/scene.h"
 
 namespace seasim {
@@ -21,5 +23,11 @@ struct ItemOutputs {
 // Throws RuntimeError (NaN/Inf found, unimplemented pass, I/O) or DeviceError; files already
 // written for this item stay complete (each is atomic) but report.json is not written.
 nlohmann::json renderItem(Device& device, const Scene& scene, const ItemOutputs& outputs, const std::string& dir);
+// Before any buffer exists: throws RuntimeError naming the settings when the plan's buffers would not
+// fit the device (plan/memory_budget.h; SEASIM_DEVICE_MEMORY_MB caps the device's limits).
+void checkRenderFitsDevice(Device& device, const Scene& scene, const Plan& plan);
+// The same with a renderer the caller keeps (a job's items on one scene file: only what changed
+// since the previous item runs again); renders its current scene.
+nlohmann::json renderItem(Device& device, Renderer& renderer, const ItemOutputs& outputs, const std::string& dir);
 
 }  // namespace seasim

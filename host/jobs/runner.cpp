@@ -16,6 +16,9 @@
 #include "jobs/progress.h"
 #include "jobs/render_item.h"
 #include "jobs/shard_lock.h"
+#include "passes/nodes/standard_passes.h"
+#include "plan/plan.h"
+#include "render/renderer.h"
 #include "scene/scene_parser.h"
 #include "util/error.h"
 #include "util/hash.h"
@@ -34,15 +37,43 @@ namespace {
 // The first line of an error, for the progress line (the manifest keeps all of it).
 std::string firstLine(const std::string& text) { return text.substr(0, text.find('\n')); }
 
+// The keys whose value differs between two override lists (set in one only, or to other values).
+std::vector<std::string> changedKeys(const std::vector<Override>& before, const std::vector<Override>& after) {
+  std::map<std::string, std::string> a, b;
+  for (const Override& o : before) a[o.key] = o.value_toml;
+  for (const Override& o : after) b[o.key] = o.value_toml;
+  std::vector<std::string> changed;
+  for (const auto& [key, value] : a)
+    if (!b.count(key) || b[key] != value) changed.push_back(key);
+  for (const auto& [key, value] : b)
+    if (!a.count(key)) changed.push_back(key);
+  return changed;
+}
+
+// The renderer of the item before, kept so that items on the same scene file (a sweep, frames) only
+// rerun the passes that read a changed key.
+struct RendererCache {
+  std::unique_ptr<Renderer> renderer;
+  const RenderItem* previous = nullptr;
+};
+
 // Renders one item and returns its manifest files (relative path -> checksum) and kernel ms.
-nlohmann::json renderOne(Device& device, const RenderItem& item, const std::string& output_dir,
+nlohmann::json renderOne(Device& device, RendererCache& cache, const RenderItem& item, const std::string& output_dir,
                          double& kernel_ms) {
   const Scene scene = loadScene(item.scene_file, item.overrides);
+  // Before any buffer exists: a render too big for the device fails here, naming its settings.
+  checkRenderFitsDevice(device, scene, makePlan(scene));
+  if (cache.renderer && cache.previous && cache.previous->scene_file == item.scene_file) {
+    cache.renderer->update(scene, changedKeys(cache.previous->overrides, item.overrides));
+  } else {
+    cache.renderer = std::make_unique<Renderer>(device, scene, standardPasses());
+  }
+  cache.previous = &item;
   ItemOutputs outputs;
   outputs.formats = item.outputs;
   outputs.reference = item.reference;
   const std::string item_dir = output_dir + "/" + item.name;
-  const nlohmann::json report = renderItem(device, scene, outputs, item_dir);
+  const nlohmann::json report = renderItem(device, *cache.renderer, outputs, item_dir);
   nlohmann::json files = nlohmann::json::object();
   for (const auto& f : report["outputs"]) {
     const std::string rel = item.name + "/" + f.get<std::string>();
@@ -97,6 +128,7 @@ RunSummary runJob(const std::string& job_path, const RunOptions& options) {
 
   const std::string selector = options.device.empty() ? job.device : options.device;
   std::unique_ptr<Device> device;  // opened on the first item that needs rendering
+  RendererCache renderers;
   Progress progress(static_cast<int>(mine.size()), stderrIsTerminal());
   for (const RenderItem* item : mine) {
     progress.start(item->name);
@@ -112,7 +144,7 @@ RunSummary runJob(const std::string& job_path, const RunOptions& options) {
       if (!device) device = std::make_unique<Device>(chooseDevice(selector));
       try {
         double kernel_ms = 0;
-        const nlohmann::json files = renderOne(*device, *item, job.output_dir, kernel_ms);
+        const nlohmann::json files = renderOne(*device, renderers, *item, job.output_dir, kernel_ms);
         manifest.recordDone(item->name, files, kernel_ms);
         manifest.save(manifest_file);
         ++summary.rendered;
@@ -121,7 +153,10 @@ RunSummary runJob(const std::string& job_path, const RunOptions& options) {
         progress.finish(item->name, outcome);
         continue;
       } catch (const std::exception& e) {
-        // Any failure of this item (NaN result, I/O, device memory, a bad texture) stays with it.
+        // Any failure of this item (NaN result, I/O, device memory, a bad texture) stays with it;
+        // the next item starts from a fresh renderer.
+        renderers.renderer.reset();
+        renderers.previous = nullptr;
         error = e.what();
       }
     }

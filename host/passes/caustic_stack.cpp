@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <memory>
 #include <string>
 
 #include "math/kernel_math.h"
@@ -47,7 +48,10 @@ cl::Buffer upload(Device& device, const std::vector<float>& values, const char* 
 
 }  // namespace
 
-CausticStack::CausticStack(Device& device, const Scene& scene, const UnderwaterSetup& setup) {
+CausticStack::CausticStack(Device& device, const Scene& scene, const UnderwaterSetup& setup)
+    : CausticStack(device, scene, setup, nullptr) {}
+
+CausticStack::CausticStack(Device& device, const Scene& scene, const UnderwaterSetup& setup, OceanPass* ocean) {
   const UwParams& p = setup.params;
   layers_ = p.caustic_layers;
   if (layers_ < 1 || layers_ > 64) throw RuntimeError("quality.caustic_layers must be in 1..64");
@@ -57,9 +61,13 @@ CausticStack::CausticStack(Device& device, const Scene& scene, const UnderwaterS
   host_.assign(texels * static_cast<size_t>(layers_), 1.0f);
 
   if (setup.sun_air.y > 0) {
-    OceanPass ocean(device, ocean_config);
-    timings_.push_back({"ocean_fft", ocean.run(scene.surface.time)});
-    CausticsPass splat(device, ocean, splatConfig(scene, map_size_));
+    std::unique_ptr<OceanPass> own;
+    if (!ocean) {
+      own = std::make_unique<OceanPass>(device, ocean_config);
+      timings_.push_back({"ocean_fft", own->run(scene.surface.time)});
+      ocean = own.get();
+    }
+    CausticsPass splat(device, *ocean, splatConfig(scene, map_size_));
     double ms = 0;
     for (int k = 0; k < layers_; ++k) {
       ms += splat.run((k + 1) * static_cast<double>(p.caustic_depth_max) / layers_);

@@ -19,6 +19,9 @@ class CausticStack {
  public:
   // Runs the ocean and the splats; the maps stay on the device. Sun below the horizon: all layers 1.
   CausticStack(Device& device, const Scene& scene, const UnderwaterSetup& setup);
+  // The same from an ocean that has already run at scene.surface.time (the renderer's ocean_fft
+  // pass); timings() then holds the splats only.
+  CausticStack(Device& device, const Scene& scene, const UnderwaterSetup& setup, OceanPass* ocean);
 
   cl::Buffer& maps() { return maps_; }                 // layers × m² floats, normalised to mean 1
   const std::vector<float>& hostMaps() const { return host_; }

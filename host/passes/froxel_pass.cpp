@@ -174,11 +174,17 @@ double FroxelPass::addBandsToSpectral(const UnderwaterSetup& setup, const cl::Bu
         spectral[px * bands + b] += rgb[3 * px];
       }
     }
-    // Back to the frame's own set-up (the volume itself now holds the last band).
+    // Back to the frame's own set-up, and the frame's volume integrated again from the same injected
+    // light: a renderer that later reruns only the shading must find the volume it had.
     integrate_kernel_.setArg(0, params_);
     integrate_kernel_.setArg(1, fparams_);
     integrate_kernel_.setArg(2, bands_);
     resolve_kernel_.setArg(0, fparams_);
+    cl::Event restored;
+    device_.queue().enqueueNDRangeKernel(integrate_kernel_, cl::NullRange, cl::NDRange(up(fp_.nx, 8), up(fp_.ny, 8)),
+                                         cl::NDRange(8, 8), nullptr, &restored);
+    restored.wait();
+    ms += eventMs(restored);
   } catch (const cl::Error& e) {
     throw DeviceError(std::string("froxel pass: spectral bands: ") + e.what() + " " + clErrorName(e.err()));
   }

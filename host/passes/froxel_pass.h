@@ -44,8 +44,8 @@ class FroxelPass {
   // per pixel, as kd_multiple.cl writes it), so spectral.exr holds the whole image. The volume holds
   // sensor RGB only, so each band is integrated again from the same injected light (V·C, band-free)
   // as a one-band volume with its own c for the in-slice fraction, then resolved at geom's distances.
-  // Costs one integration and one resolve per band (opt-in: spectral_exr only); overwrites volume(),
-  // so call it after the shading has read the volume. Returns the summed kernel ms.
+  // Costs one integration and one resolve per band (opt-in: spectral_exr only), then one integration
+  // that restores volume() to the frame's own. Returns the summed kernel ms.
   double addBandsToSpectral(const UnderwaterSetup& setup, const cl::Buffer& geom, int width, int height,
                             std::vector<float>& spectral);
 

@@ -1,29 +1,13 @@
-// render_frame.h — runs a plan's passes on a device for one frame and reads the image back.
+// render_frame.h — one frame of a scene, start to finish: a Renderer (render/renderer.h) built for
+// this frame alone. Callers that render more than one frame of a scene (animations, sweeps, bench)
+// keep a Renderer instead, so that only what changed runs again.
 #pragma once
-#include <string>
-#include <vector>
-
 #include "device/device.h"
-#include "io/image.h"
 #include "plan/plan.h"
+#include "render/frame_result.h"
 #include "scene/scene.h"
 
 namespace seasim {
-
-struct PassTiming {
-  std::string name;
-  double ms = 0.0;  // OpenCL profiling time of the pass's kernels
-};
-
-struct FrameResult {
-  Image rgb;                          // linear sensor RGB, 3 channels
-  std::vector<double> wavelengths_nm; // band centres
-  std::vector<float> spectral;        // band_count values per pixel, when the scene asks for it
-  std::vector<PassTiming> timings;
-  long long nonfinite = 0;            // NaN/Inf counted on the device by check.cl
-  double build_ms = 0.0;              // kernel build (or cache load) time for this frame
-  double wall_ms = 0.0;               // set-up + run + read back
-};
 
 // Throws RuntimeError when the plan has a pass that is not implemented yet (naming it and its issue),
 // DeviceError on OpenCL failures. Never returns an image with NaN/Inf silently: nonfinite > 0 is

@@ -10,7 +10,8 @@ namespace seasim {
 
 UnderwaterPass::UnderwaterPass(Device& device, const UnderwaterSetup& setup, const PassPlan& raycast,
                                const PassPlan& kd, bool spectral_output)
-    : device_(device), width_(setup.params.width), height_(setup.params.height), spectral_output_(spectral_output) {
+    : device_(device), width_(setup.params.width), height_(setup.params.height), spectral_output_(spectral_output),
+      band_count_(setup.bands.size()), object_count_(setup.objects.size()), albedo_count_(setup.albedo.size()) {
   const size_t pixels = static_cast<size_t>(width_) * static_cast<size_t>(height_);
   const cl_mem_flags in = CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR;
   try {
@@ -38,6 +39,23 @@ UnderwaterPass::UnderwaterPass(Device& device, const UnderwaterSetup& setup, con
     raycast_.setArg(5, vis_);
   } catch (const cl::Error& e) {
     throw DeviceError(std::string("underwater pass set-up: ") + e.what() + " " + clErrorName(e.err()));
+  }
+}
+
+void UnderwaterPass::update(const UnderwaterSetup& setup) {
+  if (setup.bands.size() != band_count_ || setup.objects.size() != object_count_ ||
+      setup.albedo.size() != albedo_count_ || setup.params.width != width_ || setup.params.height != height_) {
+    throw RuntimeError("underwater pass: the new set-up has other sizes (bands, objects or image); make a new pass");
+  }
+  try {
+    cl::CommandQueue& q = device_.queue();
+    q.enqueueWriteBuffer(params_, CL_FALSE, 0, sizeof(UwParams), &setup.params);
+    q.enqueueWriteBuffer(bands_, CL_FALSE, 0, sizeof(UwBand) * band_count_, setup.bands.data());
+    q.enqueueWriteBuffer(objects_, CL_FALSE, 0, sizeof(UwObject) * object_count_, setup.objects.data());
+    q.enqueueWriteBuffer(albedo_, CL_FALSE, 0, sizeof(float) * albedo_count_, setup.albedo.data());
+    q.finish();  // the host vectors may go away after this call
+  } catch (const cl::Error& e) {
+    throw DeviceError(std::string("underwater pass update: ") + e.what() + " " + clErrorName(e.err()));
   }
 }
 

@@ -23,6 +23,10 @@ class UnderwaterPass {
   // The shading. froxel_params / froxel_volume: the froxel pass's outputs when the kd pass was planned
   // with SEASIM_HAS_FROXEL=1 (else ignored). Returns ms.
   double runShading(const cl::Buffer* froxel_params, const cl::Buffer* froxel_volume);
+  // Rewrites the parameter blocks from a newer setup with the same band and object counts (a change
+  // of sun, water or time), keeping kernels and buffers; RuntimeError when a count changed (make a
+  // new pass then).
+  void update(const UnderwaterSetup& setup);
   cl::Buffer& rgb() { return rgb_; }
   cl::Buffer& spectral() { return spectral_; }
   cl::Buffer& geometry() { return geom_; }  // float4 (S, n) per pixel
@@ -35,6 +39,7 @@ class UnderwaterPass {
   bool spectral_output_;
   cl::Kernel raycast_, shade_;
   cl::Buffer params_, bands_, objects_, albedo_, geom_, material_, vis_, rgb_, spectral_, no_caustics_;
+  size_t band_count_, object_count_, albedo_count_;
 };
 
 }  // namespace seasim

@@ -59,7 +59,8 @@ Plan makePlan(const Scene& scene) {
   const bool underwater = scene.water.present && scene.camera.position.y < 0.0;
   const bool sea_view = scene.water.present && !underwater;
   const bool waves = scene.surface.type == SurfaceDesc::Type::Fft && scene.water.present;
-  const bool lights = !scene.spotlights.empty() && scene.air.present;
+  // Spotlights in or over water are not composed yet (below): in air only.
+  const bool lights = !scene.spotlights.empty() && scene.air.present && !scene.water.present;
   const bool objects = !scene.objects.empty();
   const bool spectral_out = scene.spectral.spectral_exr;
 
@@ -70,14 +71,7 @@ Plan makePlan(const Scene& scene) {
                        : uw.caustics == UnderwaterDesc::Caustics::Texture ? 1
                        : uw.caustics == UnderwaterDesc::Caustics::Map     ? 2
                                                                           : 0;
-  if (underwater) {
-    // 002 §4.3.2: the deferred pipeline's G-buffer (hit distance, normal, material, sun visibility).
-    PassPlan pass{"raycast", "raycast.cl",
-                  {flag("SEASIM_HAS_OBJECTS", objects), flag("SEASIM_HAS_SUN", sun_up),
-                   "SEASIM_CAUSTICS=" + std::to_string(caustics)},
-                  {"scene"}, {"gbuffer"}, "camera below the surface: per-pixel hit, normal, material", true, ""};
-    plan.passes.push_back(pass);
-  } else if (objects && lights) {  // issue 4: shafts.cl ray casts its analytic objects per pixel
+  if (objects && lights && !underwater) {  // issue 4: shafts.cl ray casts its analytic objects per pixel
     plan.passes.push_back({"raycast", "shafts.cl", {}, {"scene"}, {"gbuffer"}, "scene has objects", true, ""});
   }
   // Shafts feature defines (issue 4), shared by the shadow_maps and shafts passes (one build).
@@ -111,11 +105,24 @@ Plan makePlan(const Scene& scene) {
     plan.passes.push_back({"caustics", "caustics.cl", {}, {"ocean_maps"}, {"caustic_map"},
                            "FFT surface over a bottom, sea.bottom_caustics = true (004 §5.2.1)", true, ""});
   }
+  if (underwater) {
+    // 002 §4.3.2: the deferred pipeline's G-buffer (hit distance, normal, material, sun visibility);
+    // with caustic maps, after the caustics pass: the sun visibility reads them.
+    std::vector<std::string> reads = {"scene"};
+    if (ocean_for_caustics) reads.push_back("caustic_map");
+    PassPlan pass{"raycast", "raycast.cl",
+                  {flag("SEASIM_HAS_OBJECTS", objects), flag("SEASIM_HAS_SUN", sun_up),
+                   "SEASIM_CAUSTICS=" + std::to_string(caustics)},
+                  reads, {"gbuffer"}, "camera below the surface: per-pixel hit, normal, material", true, ""};
+    plan.passes.push_back(pass);
+  }
   if (froxels) {
+    std::vector<std::string> froxel_reads = {"scene"};
+    if (ocean_for_caustics) froxel_reads.push_back("caustic_map");
     plan.passes.push_back({"froxel", "froxel.cl",
                            {flag("SEASIM_HAS_OBJECTS", objects), "SEASIM_CAUSTICS=" + std::to_string(caustics),
                             flag("SEASIM_SPECTRAL_INJECTION", uw.injection == UnderwaterDesc::Injection::Spectral)},
-                           {"scene"}, {"froxel_volume"},
+                           froxel_reads, {"froxel_volume"},
                            "camera below the surface, sun up, underwater.single_scattering", true, ""});
   }
   if (sea_view) {
@@ -152,7 +159,9 @@ Plan makePlan(const Scene& scene) {
     }
   }
   if (lights) {
-    plan.passes.push_back({"shafts", "shafts.cl", shafts_defines, {"scene", "shadow_maps"}, {"rgb"},
+    std::vector<std::string> shafts_reads = {"scene"};
+    if (objects) shafts_reads.push_back("shadow_maps");
+    plan.passes.push_back({"shafts", "shafts.cl", shafts_defines, shafts_reads, {"rgb"},
                            std::string("spotlights in air") +
                                ((scene.quality.count("shafts_planes") && scene.quality.at("shafts_planes").automatic) ||
                                         (scene.quality.count("shafts_subplanes") && scene.quality.at("shafts_subplanes").automatic)
@@ -167,6 +176,17 @@ Plan makePlan(const Scene& scene) {
                            {flag("SEASIM_HAS_MULTIPLE", uw.multiple_scattering), flag("SEASIM_HAS_FROXEL", froxels),
                             flag("SEASIM_SPECTRAL_OUTPUT", spectral_out)},
                            reads, {"rgb"}, "camera below the surface: T L_s + L_MS per band (002 eq. 4.7)", true, ""});
+  }
+  // Spotlights and water in one scene (divers' torches, ROV lamps, a lamp over the sea) need the
+  // sampling planes in the water's spectral medium, which are not built: a planned pass that is not
+  // implemented stops the render before anything is written, naming the lamp's table.
+  if (!scene.spotlights.empty() && scene.water.present) {
+    const SourceLoc& at = scene.spotlights.front().loc;
+    plan.passes.push_back({"shafts", "shafts.cl", {}, {"scene"}, {"rgb"},
+                           "[[spotlights]] at " + at.file + ":" + std::to_string(at.line) + " in a scene with [water]",
+                           false,
+                           "spotlights in or over water are not composed with the water models yet (issue 12); "
+                           "remove the [[spotlights]] tables or the [water] table"});
   }
   // quality.fast_math: the light-transport passes are built with -cl-fast-relaxed-math (the define
   // tells Device::program and the kernels). Not the NaN/Inf check below (finite-only maths may assume

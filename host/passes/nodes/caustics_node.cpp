@@ -1,0 +1,90 @@
+// caustics_node.cpp — "caustics": the FFT ocean's caustics (004 §5.2.1) from the ocean_fft pass's
+// surface, written into one persistent "caustic_map" buffer (copied into, so the passes that bound it
+// as a kernel argument keep it; a new buffer only when its size changes):
+//   - seen from above, on the sea bottom (passes/caustic_stack.h seaBottomCaustics, read by sea_single);
+//   - under water, the stack of depth layers (CausticStack, read by raycast and froxel).
+#include <memory>
+
+#include "passes/caustic_stack.h"
+#include "passes/nodes/standard_passes.h"
+#include "util/error.h"
+
+namespace seasim {
+
+namespace {
+
+// Copies `fresh` into `kept` when both hold `bytes`; returns false when `kept` must be replaced.
+bool copyInto(Device& device, const cl::Buffer& fresh, cl::Buffer& kept, size_t bytes) {
+  if (!kept() || kept.getInfo<CL_MEM_SIZE>() != bytes) return false;
+  try {
+    device.queue().enqueueCopyBuffer(fresh, kept, 0, 0, bytes);
+    device.queue().finish();
+  } catch (const cl::Error& e) {
+    throw DeviceError(std::string("caustics pass: copying the caustic map: ") + e.what() + " " + clErrorName(e.err()));
+  }
+  return true;
+}
+
+const std::vector<std::string> kCausticKeys = {"sun.*", "water.*", "bottom.*", "underwater.*",
+                                               "quality.caustic_map_size", "quality.caustic_layers"};
+
+class SeaBottomCausticsNode : public Pass {
+ public:
+  PassKeys keys() const override { return {{}, kCausticKeys}; }
+  void prepare(FrameContext&, PassResources&) override {}
+  void execute(FrameContext& ctx, PassResources& res) override {
+    SeaBottomCaustics fresh = seaBottomCaustics(ctx.device(), ctx.scene(), res.read<OceanPass>("ocean_maps"));
+    ctx.timings.push_back({"caustics", fresh.ms});
+    if (kept_ && kept_->map_size == fresh.map_size &&
+        copyInto(ctx.device(), fresh.map, kept_->map, sizeof(float) * fresh.host.size())) {
+      cl::Buffer map = kept_->map;
+      *kept_ = std::move(fresh);
+      kept_->map = map;
+      return;
+    }
+    kept_ = std::make_shared<SeaBottomCaustics>(std::move(fresh));
+    res.publish("caustic_map", kept_);
+  }
+
+ private:
+  std::shared_ptr<SeaBottomCaustics> kept_;
+};
+
+// Under water: the maps of CausticStack, kept in one buffer.
+struct UnderwaterCausticMaps {
+  cl::Buffer maps;
+};
+
+class UnderwaterCausticsNode : public Pass {
+ public:
+  PassKeys keys() const override { return {{}, kCausticKeys}; }
+  void prepare(FrameContext&, PassResources&) override {}
+  void execute(FrameContext& ctx, PassResources& res) override {
+    CausticStack stack(ctx.device(), ctx.scene(), ctx.underwaterSetup(), &res.read<OceanPass>("ocean_maps"));
+    for (const PassTiming& t : stack.timings()) ctx.timings.push_back(t);
+    if (kept_ && copyInto(ctx.device(), stack.maps(), kept_->maps, sizeof(float) * stack.hostMaps().size())) return;
+    kept_ = std::make_shared<UnderwaterCausticMaps>(UnderwaterCausticMaps{stack.maps()});
+    res.publish("caustic_map", kept_);
+  }
+
+ private:
+  std::shared_ptr<UnderwaterCausticMaps> kept_;
+};
+
+}  // namespace
+
+// The underwater readers (underwater_nodes.cpp) read the buffer through this.
+const cl::Buffer* underwaterCausticMaps(PassResources& res) {
+  if (!res.declaresRead("caustic_map")) return nullptr;
+  return &res.read<UnderwaterCausticMaps>("caustic_map").maps;
+}
+
+void registerCausticsPass(PassRegistry& registry) {
+  registry.add("caustics", [](const PassPlan&, const Plan& plan, const Scene&) -> std::unique_ptr<Pass> {
+    // The plan puts kd_multiple in every underwater frame: its caustics are the layered stack.
+    if (plan.hasPass("kd_multiple")) return std::make_unique<UnderwaterCausticsNode>();
+    return std::make_unique<SeaBottomCausticsNode>();
+  });
+}
+
+}  // namespace seasim

@@ -1,0 +1,272 @@
+// renderer_test.cpp — the persistent frame graph (render/renderer.h): which passes an update sets up
+// and runs again, and that the incremental frame is the frame a fresh renderer makes (bit for bit:
+// the same kernels on the same inputs; except caustic splats, whose float atomics may add in another
+// order, compared within float rounding). Small images to keep PoCL time low.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "io/image_io.h"
+#include "jobs/runner.h"
+#include "passes/nodes/standard_passes.h"
+#include "render/radiance_target.h"
+#include "render/renderer.h"
+#include "scene/scene_parser.h"
+#include "test_device.h"
+
+namespace seasim {
+namespace {
+
+Override set(const std::string& key, const std::string& value) { return {key, value, {"renderer_test", 0}}; }
+
+std::string sceneFile(const char* name) { return std::string(SEASIM_SOURCE_DIR) + "/scenes/" + name; }
+
+std::vector<Override> small(std::vector<Override> extra) {
+  std::vector<Override> o = {set("camera.width", "48"), set("camera.height", "32")};
+  o.insert(o.end(), extra.begin(), extra.end());
+  return o;
+}
+
+// Model passes that ran (the NaN check runs whenever the image it reads was written).
+std::vector<std::string> models(const std::vector<std::string>& names) {
+  std::vector<std::string> out;
+  for (const auto& n : names)
+    if (n != "nonfinite_check") out.push_back(n);
+  return out;
+}
+
+bool has(const std::vector<std::string>& v, const std::string& s) { return std::find(v.begin(), v.end(), s) != v.end(); }
+
+// The frame a new renderer makes of the same scene file and overrides.
+FrameResult fresh(const char* scene, const std::vector<Override>& overrides) {
+  Renderer renderer(test::testDevice(), sceneFile(scene), overrides, standardPasses());
+  return renderer.render();
+}
+
+double maxRelDiff(const Image& a, const Image& b) {
+  EXPECT_EQ(a.pixels.size(), b.pixels.size());
+  double worst = 0;
+  for (size_t i = 0; i < a.pixels.size(); ++i)
+    worst = std::max(worst, std::fabs(double(a.pixels[i]) - b.pixels[i]) / std::max(1e-6, std::fabs(double(b.pixels[i]))));
+  return worst;
+}
+
+TEST(Renderer, FirstFrameRunsEveryPassOfThePlanOnce) {
+  Renderer renderer(test::testDevice(), sceneFile("wavy_sea.toml"), small({}), standardPasses());
+  const FrameResult f = renderer.render();
+  EXPECT_EQ(renderer.lastExecuted(), (std::vector<std::string>{"ocean_fft", "sea_single", "nonfinite_check"}));
+  EXPECT_EQ(renderer.lastPrepared(), renderer.lastExecuted());
+  EXPECT_EQ(f.nonfinite, 0);
+  // Nothing changed: nothing runs, and the image is the same.
+  const FrameResult again = renderer.render();
+  EXPECT_TRUE(renderer.lastExecuted().empty());
+  EXPECT_EQ(again.rgb.pixels, f.rgb.pixels);
+}
+
+// surface.time on wavy_sea (with a bottom and its caustics): the ocean, the caustics and the sea
+// run again, nothing is set up again, and the frame equals a fresh render at that time.
+TEST(Renderer, SurfaceTimeRerunsOnlyOceanCausticsAndSea) {
+  const std::vector<Override> base =
+      small({set("bottom.type", "\"flat\""), set("bottom.depth", "6.0"), set("sea.bottom_caustics", "true"),
+             set("surface.grid", "64")});
+  Renderer renderer(test::testDevice(), sceneFile("wavy_sea.toml"), base, standardPasses());
+  const FrameResult first = renderer.render();
+  ASSERT_TRUE(has(renderer.lastExecuted(), "caustics"));
+  renderer.update({set("surface.time", "2.5")});
+  const FrameResult later = renderer.render();
+  EXPECT_EQ(models(renderer.lastExecuted()), (std::vector<std::string>{"ocean_fft", "caustics", "sea_single"}));
+  EXPECT_TRUE(renderer.lastPrepared().empty());
+  EXPECT_NE(later.rgb.pixels, first.rgb.pixels);  // the waves moved
+  std::vector<Override> at = base;
+  at.push_back(set("surface.time", "2.5"));
+  EXPECT_LT(maxRelDiff(later.rgb, fresh("wavy_sea.toml", at).rgb), 1e-5);
+}
+
+// A quality knob of sea_single: only it is set up and runs again; the ocean does not run.
+TEST(Renderer, SeaLutKnobRerunsOnlyTheSeaPass) {
+  const std::vector<Override> base = small({set("surface.grid", "64")});
+  Renderer renderer(test::testDevice(), sceneFile("wavy_sea.toml"), base, standardPasses());
+  (void)renderer.render();
+  renderer.update({set("quality.sea_lut_size", "9")});
+  const FrameResult f = renderer.render();
+  EXPECT_EQ(models(renderer.lastExecuted()), std::vector<std::string>{"sea_single"});
+  EXPECT_EQ(models(renderer.lastPrepared()), std::vector<std::string>{"sea_single"});
+  std::vector<Override> at = base;
+  at.push_back(set("quality.sea_lut_size", "9"));
+  EXPECT_EQ(f.rgb.pixels, fresh("wavy_sea.toml", at).rgb.pixels);
+}
+
+// sea_second adds into sea_single's image: a knob of sea_second sets up only sea_second, but
+// sea_single must run again first (else L² would be added twice); the frame equals a fresh one.
+TEST(Renderer, SecondOrderKnobRerunsTheImageItAddsInto) {
+  const std::vector<Override> base = small({set("quality.sea_map_size", "8"), set("quality.sea_nz", "4")});
+  Renderer renderer(test::testDevice(), sceneFile("open_ocean.toml"), base, standardPasses());
+  (void)renderer.render();
+  renderer.update({set("quality.sea_nz", "6")});
+  const FrameResult f = renderer.render();
+  EXPECT_EQ(models(renderer.lastPrepared()), std::vector<std::string>{"sea_second"});
+  EXPECT_EQ(models(renderer.lastExecuted()), (std::vector<std::string>{"sea_single", "sea_second"}));
+  std::vector<Override> at = base;
+  at.push_back(set("quality.sea_nz", "6"));
+  EXPECT_EQ(f.rgb.pixels, fresh("open_ocean.toml", at).rgb.pixels);
+}
+
+std::vector<Override> smallSeabed() {
+  return small({set("quality.froxel_x", "12"), set("quality.froxel_y", "8"), set("quality.froxel_z", "16"),
+                set("quality.shadow_map_size", "64")});
+}
+
+// Under water, a new sun rewrites the G-buffer pass's parameter blocks and runs it again (the sun
+// visibility changes) but does not set it up again.
+TEST(Renderer, UnderwaterSunDoesNotRebuildTheRaycast) {
+  Renderer renderer(test::testDevice(), sceneFile("seabed.toml"), smallSeabed(), standardPasses());
+  const FrameResult first = renderer.render();
+  ASSERT_TRUE(has(renderer.lastPrepared(), "raycast"));
+  renderer.update({set("sun.zenith_deg", "55")});
+  const FrameResult f = renderer.render();
+  EXPECT_FALSE(has(renderer.lastPrepared(), "raycast"));
+  EXPECT_TRUE(has(renderer.lastExecuted(), "raycast"));
+  EXPECT_TRUE(has(renderer.lastExecuted(), "kd_multiple"));
+  EXPECT_NE(f.rgb.pixels, first.rgb.pixels);
+  std::vector<Override> at = smallSeabed();
+  at.push_back(set("sun.zenith_deg", "55"));
+  EXPECT_EQ(f.rgb.pixels, fresh("seabed.toml", at).rgb.pixels);
+}
+
+// A froxel knob sets up only the froxel pass; the G-buffer does not run again, the shading that
+// reads the new volume does.
+TEST(Renderer, FroxelKnobRebuildsOnlyTheFroxelPass) {
+  Renderer renderer(test::testDevice(), sceneFile("seabed.toml"), smallSeabed(), standardPasses());
+  (void)renderer.render();
+  renderer.update({set("quality.froxel_z", "24")});
+  const FrameResult f = renderer.render();
+  EXPECT_TRUE(has(renderer.lastPrepared(), "froxel"));
+  EXPECT_FALSE(has(renderer.lastPrepared(), "raycast"));
+  EXPECT_EQ(models(renderer.lastExecuted()), (std::vector<std::string>{"froxel", "kd_multiple"}));
+  std::vector<Override> at = smallSeabed();
+  at.push_back(set("quality.froxel_z", "24"));
+  EXPECT_EQ(f.rgb.pixels, fresh("seabed.toml", at).rgb.pixels);
+}
+
+// A change that changes the plan (the second order switched on) builds the new graph.
+TEST(Renderer, PlanChangeBuildsTheNewGraph) {
+  Renderer renderer(test::testDevice(), sceneFile("flat_sea.toml"), small({}), standardPasses());
+  (void)renderer.render();
+  EXPECT_FALSE(renderer.plan().hasPass("sea_second"));
+  renderer.update({set("sea.second_order", "true"), set("quality.sea_map_size", "8"), set("quality.sea_nz", "4")});
+  const FrameResult f = renderer.render();
+  EXPECT_TRUE(has(renderer.lastExecuted(), "sea_second"));
+  EXPECT_EQ(f.rgb.pixels,
+            fresh("flat_sea.toml", small({set("sea.second_order", "true"), set("quality.sea_map_size", "8"),
+                                          set("quality.sea_nz", "4")}))
+                .rgb.pixels);
+}
+
+// The executor knows passes only through the registry and the plan: a hand-made plan of a test pass
+// that fills the image with the sun's irradiance. A sun change reruns it; a key no pass claims sets
+// everything up again.
+class FillPass : public Pass {
+ public:
+  explicit FillPass(int* prepares) : prepares_(prepares) {}
+  PassKeys keys() const override { return {{}, {"sun.*"}}; }
+  void prepare(FrameContext& ctx, PassResources& res) override {
+    ++*prepares_;
+    auto target = std::make_shared<RadianceTarget>();
+    target->pixels = size_t(ctx.scene().camera.width) * ctx.scene().camera.height;
+    target->rgb = cl::Buffer(ctx.device().context(), CL_MEM_READ_WRITE, sizeof(float) * 3 * target->pixels);
+    res.publish("rgb", target);
+  }
+  void execute(FrameContext& ctx, PassResources& res) override {
+    RadianceTarget& t = res.read<RadianceTarget>("rgb");
+    const float v = static_cast<float>(ctx.scene().sun.irradiance);
+    ctx.device().queue().enqueueFillBuffer(t.rgb, v, 0, sizeof(float) * 3 * t.pixels);
+    ctx.device().queue().finish();
+    ctx.timings.push_back({"fill", 0.0});
+  }
+
+ private:
+  int* prepares_;
+};
+
+TEST(Renderer, RunsAHandMadePlanThroughTheRegistry) {
+  int prepares = 0;
+  PassRegistry registry = standardPasses();
+  registry.add("fill", [&](const PassPlan&, const Plan&, const Scene&) { return std::make_unique<FillPass>(&prepares); });
+  Plan plan;
+  plan.passes.push_back({"fill", "none.cl", {}, {"scene"}, {"rgb"}, "test", true, ""});
+  plan.passes.push_back({"nonfinite_check", "check.cl", {}, {"rgb"}, {"status"}, "test", true, ""});
+  Scene scene = loadScene(sceneFile("flat_sea.toml"), small({set("sun.irradiance", "2.0")}));
+  Renderer renderer(test::testDevice(), scene, plan, registry);
+  FrameResult f = renderer.render();
+  EXPECT_EQ(f.rgb.pixels.front(), 2.0f);
+  EXPECT_EQ(prepares, 1);
+  scene.sun.irradiance = 3.0;
+  renderer.update(scene, {"sun.irradiance"});
+  f = renderer.render();
+  EXPECT_EQ(f.rgb.pixels.back(), 3.0f);
+  EXPECT_EQ(prepares, 1);
+  EXPECT_EQ(renderer.lastExecuted(), (std::vector<std::string>{"fill", "nonfinite_check"}));
+  renderer.update(scene, {"camera.fov_deg"});  // claimed by no pass of this plan
+  (void)renderer.render();
+  EXPECT_EQ(prepares, 2);
+}
+
+TEST(Renderer, PlanErrorsNameThePass) {
+  const Scene scene = loadScene(sceneFile("flat_sea.toml"), small({}));
+  Plan unknown;
+  unknown.passes.push_back({"mystery", "mystery.cl", {}, {"scene"}, {"rgb"}, "test", true, ""});
+  try {
+    Renderer(test::testDevice(), scene, unknown, standardPasses()).render();
+    FAIL() << "an unregistered pass must be an error";
+  } catch (const RuntimeError& e) {
+    EXPECT_NE(std::string(e.what()).find("'mystery'"), std::string::npos) << e.what();
+  }
+  Plan backwards;  // the check reads "rgb" before any pass writes it
+  backwards.passes.push_back({"nonfinite_check", "check.cl", {}, {"rgb"}, {"status"}, "test", true, ""});
+  backwards.passes.push_back({"sea_single", "sea_single.cl", {}, {"scene"}, {"rgb"}, "test", true, ""});
+  try {
+    Renderer(test::testDevice(), scene, backwards, standardPasses()).render();
+    FAIL() << "a read before its write must be an error";
+  } catch (const RuntimeError& e) {
+    EXPECT_NE(std::string(e.what()).find("no earlier pass writes"), std::string::npos) << e.what();
+  }
+}
+
+// A job's items on one scene file share a renderer (jobs/runner.cpp): each item's image is the one a
+// fresh renderer makes of its scene, also when an item drops an override the item before had.
+TEST(Renderer, JobItemsOnOneSceneShareARendererAndMatchFreshFrames) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::path(SEASIM_BUILD_DIR) / "renderer_test_job";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::string scene = sceneFile("wavy_sea.toml");
+  std::ofstream(dir / "job.toml") << "[job]\nname = \"reuse\"\noutput_dir = \"out\"\n"
+                                  << "[[render]]\nname = \"t0\"\nscene = \"" << scene << "\"\n"
+                                  << "overrides = { \"camera.width\" = 48, \"camera.height\" = 32, \"surface.grid\" = 64 }\noutputs = [\"exr\"]\n"
+                                  << "[[render]]\nname = \"t2\"\nscene = \"" << scene << "\"\n"
+                                  << "overrides = { \"camera.width\" = 48, \"camera.height\" = 32, \"surface.grid\" = 64, \"surface.time\" = 2.0, \"sun.zenith_deg\" = 60 }\noutputs = [\"exr\"]\n"
+                                  << "[[render]]\nname = \"back\"\nscene = \"" << scene << "\"\n"
+                                  << "overrides = { \"camera.width\" = 48, \"camera.height\" = 32, \"surface.grid\" = 64, \"surface.time\" = 2.0 }\noutputs = [\"exr\"]\n";
+  RunOptions options;
+  options.device = "pocl";
+  const RunSummary summary = runJob((dir / "job.toml").string(), options);
+  EXPECT_EQ(summary.rendered, 3);
+  const std::vector<Override> base = small({set("surface.grid", "64")});
+  std::vector<Override> t2 = base, back = base;
+  t2.push_back(set("surface.time", "2.0"));
+  t2.push_back(set("sun.zenith_deg", "60"));
+  back.push_back(set("surface.time", "2.0"));
+  const std::vector<std::pair<std::string, std::vector<Override>>> items = {{"t0", base}, {"t2", t2}, {"back", back}};
+  for (const auto& [name, overrides] : items) {
+    const Image written = readImage((dir / "out" / name / "image.exr").string());
+    EXPECT_LT(maxRelDiff(written, fresh("wavy_sea.toml", overrides).rgb), 1e-6) << name;
+  }
+}
+
+}  // namespace
+}  // namespace seasim
