@@ -2,6 +2,7 @@
 
 #include "passes/caustic_stack.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <string>
@@ -142,6 +143,8 @@ double FroxelPass::addBandsToSpectral(const UnderwaterSetup& setup, const cl::Bu
   const size_t bands = setup.bands.size(), pixels = size_t(width) * size_t(height);
   if (spectral.size() != pixels * bands) throw RuntimeError("froxel pass: spectral buffer size mismatch");
   const cl_mem_flags in = CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR;
+  const bool spectral_injection =
+      std::find(defines_.begin(), defines_.end(), "SEASIM_SPECTRAL_INJECTION=1") != defines_.end();
   double ms = 0;
   std::vector<float> rgb(3 * pixels);
   try {
@@ -158,9 +161,15 @@ double FroxelPass::addBandsToSpectral(const UnderwaterSetup& setup, const cl::Bu
       for (int k = 0; k < 3; ++k) fp.sigma_t_rgb[k] = setup.bands[b].c;  // in-slice fraction of this band
       cl::Buffer params(device_.context(), in, sizeof p, &p), band_buffer(device_.context(), in, sizeof one, one);
       cl::Buffer fparams(device_.context(), in, sizeof fp, &fp);
+      // This band's (band, slice) factors: the kernel reads 1 band (spectral injection) or 3 pseudo-bands.
+      const int kernel_bands = spectral_injection ? 1 : 3;
+      std::vector<float> factors(size_t(fp.nz) * kernel_bands);
+      kmath_f::froxel_fill_slice_factors(&fp, one, kernel_bands, factors.data());
+      cl::Buffer factor_buffer(device_.context(), in, sizeof(float) * factors.size(), factors.data());
       integrate_kernel_.setArg(0, params);
       integrate_kernel_.setArg(1, fparams);
       integrate_kernel_.setArg(2, band_buffer);
+      integrate_kernel_.setArg(3, factor_buffer);
       cl::Event integrated;
       device_.queue().enqueueNDRangeKernel(integrate_kernel_, cl::NullRange, cl::NDRange(up(fp_.nx, 8), up(fp_.ny, 8)),
                                            cl::NDRange(8, 8), nullptr, &integrated);
@@ -179,6 +188,7 @@ double FroxelPass::addBandsToSpectral(const UnderwaterSetup& setup, const cl::Bu
     integrate_kernel_.setArg(0, params_);
     integrate_kernel_.setArg(1, fparams_);
     integrate_kernel_.setArg(2, bands_);
+    integrate_kernel_.setArg(3, slice_factors_);
     resolve_kernel_.setArg(0, fparams_);
     cl::Event restored;
     device_.queue().enqueueNDRangeKernel(integrate_kernel_, cl::NullRange, cl::NDRange(up(fp_.nx, 8), up(fp_.ny, 8)),
