@@ -21,8 +21,8 @@
 #include "jobs/render_item.h"
 #include "jobs/runner.h"
 #include "passes/nodes/standard_passes.h"
-#include "render/renderer.h"
 #include "plan/plan.h"
+#include "render/renderer.h"
 #include "reference/compare.h"
 #include "reference/sea_reference.h"
 #include "reference/sea_second_reference.h"
@@ -275,7 +275,8 @@ int cmdSweep(const SweepCmd& cmd) {
     if (fast) {
       Scene exact_scene = scenes[k];
       exact_scene.quality["fast_math"] = Knob{false, 0.0};
-      const FrameResult exact = renderFrame(device, exact_scene, makePlan(exact_scene));
+      Renderer exact_renderer(device, exact_scene, standardPasses());
+      const FrameResult exact = exact_renderer.render();
       vs_exact = compareImages(frame.rgb, exact.rgb, scenes[k].camera.exposure_ev);
     }
     for (double v : {fast ? 1.0 : 0.0, vs_exact.rmse_8bit, vs_exact.max_abs_8bit}) row.emplace_back(v);
