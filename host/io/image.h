@@ -24,6 +24,13 @@ struct Image {
     pixels.assign(static_cast<std::size_t>(w) * h * c, 0.0f);
   }
   std::size_t pixelCount() const { return static_cast<std::size_t>(width) * height; }
+  // A black w x h image with channels R, G, B.
+  static Image rgb(int w, int h) {
+    Image img;
+    img.resize(w, h, 3);
+    img.channel_names = {"R", "G", "B"};
+    return img;
+  }
 };
 
 // The most pixels (width x height) an input image may have. Readers check the header against it

@@ -138,6 +138,14 @@ double FroxelPass::resolve(const cl::Buffer& geom, int width, int height, cl::Bu
   return eventMs(done);
 }
 
+double FroxelPass::integrateOnce() {
+  cl::Event integrated;
+  device_.queue().enqueueNDRangeKernel(integrate_kernel_, cl::NullRange, cl::NDRange(up(fp_.nx, 8), up(fp_.ny, 8)),
+                                       cl::NDRange(8, 8), nullptr, &integrated);
+  integrated.wait();
+  return eventMs(integrated);
+}
+
 double FroxelPass::addBandsToSpectral(const UnderwaterSetup& setup, const cl::Buffer& geom, int width, int height,
                                       std::vector<float>& spectral) {
   const size_t bands = setup.bands.size(), pixels = size_t(width) * size_t(height);
@@ -170,11 +178,7 @@ double FroxelPass::addBandsToSpectral(const UnderwaterSetup& setup, const cl::Bu
       integrate_kernel_.setArg(1, fparams);
       integrate_kernel_.setArg(2, band_buffer);
       integrate_kernel_.setArg(3, factor_buffer);
-      cl::Event integrated;
-      device_.queue().enqueueNDRangeKernel(integrate_kernel_, cl::NullRange, cl::NDRange(up(fp_.nx, 8), up(fp_.ny, 8)),
-                                           cl::NDRange(8, 8), nullptr, &integrated);
-      integrated.wait();
-      ms += eventMs(integrated);
+      ms += integrateOnce();
       resolve_kernel_.setArg(0, fparams);
       ms += resolve(geom, width, height, rgb_buffer);
       device_.queue().enqueueReadBuffer(rgb_buffer, CL_TRUE, 0, sizeof(float) * rgb.size(), rgb.data());
@@ -190,11 +194,7 @@ double FroxelPass::addBandsToSpectral(const UnderwaterSetup& setup, const cl::Bu
     integrate_kernel_.setArg(2, bands_);
     integrate_kernel_.setArg(3, slice_factors_);
     resolve_kernel_.setArg(0, fparams_);
-    cl::Event restored;
-    device_.queue().enqueueNDRangeKernel(integrate_kernel_, cl::NullRange, cl::NDRange(up(fp_.nx, 8), up(fp_.ny, 8)),
-                                         cl::NDRange(8, 8), nullptr, &restored);
-    restored.wait();
-    ms += eventMs(restored);
+    ms += integrateOnce();
   } catch (const cl::Error& e) {
     throw DeviceError(std::string("froxel pass: spectral bands: ") + e.what() + " " + clErrorName(e.err()));
   }

@@ -60,6 +60,8 @@ class FroxelPass {
   void readShadowMap(std::vector<float>& out);  // empty without a map
 
  private:
+  // One froxel_integrate over the columns with the kernel's current arguments; its kernel ms.
+  double integrateOnce();
   void read(cl::Buffer& buffer, size_t floats, std::vector<float>& out, const char* what);
   Device& device_;
   FroxelParams fp_{};

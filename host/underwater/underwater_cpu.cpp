@@ -87,12 +87,7 @@ void shadePixel(const UnderwaterSetup& s, const UnderwaterCpuOptions& opt, int x
 
 Image renderUnderwaterCpu(const UnderwaterSetup& setup, const UnderwaterCpuOptions& options) {
   const int w = setup.params.width, h = setup.params.height;
-  Image img;
-  img.width = w;
-  img.height = h;
-  img.channels = 3;
-  img.channel_names = {"R", "G", "B"};
-  img.pixels.resize(static_cast<size_t>(3) * w * h);
+  Image img = Image::rgb(w, h);
   auto rows = [&](int y0, int y1) {
     for (int y = y0; y < y1; ++y)
       for (int x = 0; x < w; ++x) {

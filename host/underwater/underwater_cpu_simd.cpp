@@ -139,12 +139,7 @@ void shadeRow(const UnderwaterSetup& s, const UnderwaterCpuOptions& opt, int y, 
 
 Image renderUnderwaterCpuSimd(const UnderwaterSetup& setup, const UnderwaterCpuOptions& options) {
   const int w = setup.params.width, h = setup.params.height;
-  Image img;
-  img.width = w;
-  img.height = h;
-  img.channels = 3;
-  img.channel_names = {"R", "G", "B"};
-  img.pixels.resize(static_cast<size_t>(3) * w * h);
+  Image img = Image::rgb(w, h);
   auto rows = [&](int y0, int y1) {
     ClassRows cls[3];
     std::vector<float> band_albedo(size_t(setup.params.object_count) + 1);

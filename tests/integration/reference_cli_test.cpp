@@ -9,6 +9,7 @@
 #include <string>
 
 #include "io/image_io.h"
+#include "run_command.h"
 
 namespace fs = std::filesystem;
 
@@ -17,19 +18,9 @@ namespace {
 const std::string kBinary = SEASIM_BINARY;
 const std::string kRepo = SEASIM_SOURCE_DIR;
 
-struct Result {
-  int code;
-  std::string output;
-};
+using seasim_test::Result;
 
-Result run(const std::string& args) {
-  FILE* pipe = popen((kBinary + " " + args + " 2>&1").c_str(), "r");
-  std::string out;
-  char buf[4096];
-  while (size_t n = fread(buf, 1, sizeof buf, pipe)) out.append(buf, n);
-  const int status = pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
-}
+Result run(const std::string& args) { return seasim_test::runCommand(kBinary + " " + args); }
 
 class ReferenceCli : public ::testing::Test {
  protected:
