@@ -122,7 +122,8 @@ in_root "dpkg-query -W -f '\${Package}\n' | sort" >"$LOG_DIR/packages-after-make
 step make-package in_root "cd /src/seasim && make package"
 step install-deb in_root "cd /src/seasim/build && apt-get install -y --no-install-recommends ./seasim_*.deb"
 step installed-run in_root "rm -rf /tmp/empty && mkdir /tmp/empty && cd /tmp/empty && seasim --version && \
-  seasim run jobs/quickstart.toml && test -s results/quickstart/report.json && ls results/quickstart"
+  seasim run jobs/quickstart.toml && test -s results/quickstart/manifest.json && \
+  test -s results/quickstart/flat_sea_noon/report.json && ls results/quickstart"
 # What `make` installed on the bare root (named packages and their dependencies).
 comm -13 "$LOG_DIR/packages-bare.txt" "$LOG_DIR/packages-after-make.txt" >"$LOG_DIR/installed-by-make.txt"
 echo "fresh-check: make installed $(wc -l <"$LOG_DIR/installed-by-make.txt") packages on the bare root (list: $LOG_DIR/installed-by-make.txt)"
