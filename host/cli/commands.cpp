@@ -170,6 +170,7 @@ int cmdRun(const std::string& job_arg, const std::string& device, const std::str
       options.output_dir = (std::filesystem::current_path() / "results" / loadJob(job).name).string();
     std::printf("%s is not here: running the installed example %s, writing to %s\n", job_arg.c_str(), job.c_str(),
                 options.output_dir.c_str());
+    std::fflush(stdout);  // before the job's progress lines on stderr
   }
   if (!shard.empty()) {
     const auto parts = split(shard, '/');
