@@ -14,7 +14,7 @@
 
 #include "device/device.h"
 #include "passes/render_frame.h"
-#include "reference/froxel_reference.h"
+#include "underwater/froxel_setup.h"
 #include "scene/scene.h"
 #include "underwater/underwater_setup.h"
 

@@ -12,7 +12,7 @@
 
 #include "device/device.h"
 #include "plan/plan.h"
-#include "reference/shafts_reference.h"
+#include "geometry/shafts_geometry.h"
 #include "scene/scene.h"
 
 namespace seasim {

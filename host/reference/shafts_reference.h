@@ -12,44 +12,17 @@
 //    homogeneous medium (Sun, Ramamoorthi, Narasimhan, Nayar 2005), an exact test of the
 //    sampling-plane integrator without shadows.
 //
-// Also the frame set-up the pass and the reference share (table ranges, light frames, light maps),
-// so both integrate exactly the same problem.
+// The geometry the pass and the reference share is in geometry/shafts_geometry.h.
 #pragma once
 #include <string>
 #include <vector>
 
+#include "geometry/shafts_geometry.h"
 #include "io/image.h"
 #include "math/vec3.h"
 #include "scene/scene.h"
 
 namespace seasim {
-
-// The ranges of the 001 eq. 6 table ĥ(s, t) (table mode): the largest t and s at which any pixel's
-// sampling planes evaluate g. shafts.cl integrates each lamp over the part of the view ray inside its
-// cone, up to the first surface, with planes up to SHAFTS_TAIL_K r past the closest approach (the far
-// field beyond does not read the table); this walks the same geometry in double at every pixel
-// centre, plus 1 % for float rounding. At least 1 mm each, so an unlit scene still has a table.
-struct ShaftsRange {
-  double t_max = 0.0;  // m, longest view-ray distance of any plane
-  double s_max = 0.0;  // m, largest lamp distance of any plane
-};
-ShaftsRange shaftsTableRange(const Scene& scene);
-
-// Light frame: +z = direction, right/up across the beam (the light map's u and v).
-void shaftsLightBasis(const SpotlightDesc& light, Vec3& right, Vec3& up);
-
-// A lamp's light map as linear RGB (sRGB-decoded from the file), top row first.
-struct LightMap {
-  int width = 0, height = 0;
-  std::vector<float> rgb;  // 3 per texel
-};
-LightMap loadLightMap(const std::string& path);
-
-// Lambertian albedo of an object as linear R,G,B (its spectrum at 610, 550, 465 nm).
-Vec3 objectAlbedoRgb(const ObjectDesc& object);
-
-// The lamp's radius: 1/s² is clamped at this distance (common/shafts.h).
-constexpr double kShaftsLampRadius = 1e-3;  // m
 
 // `steps` midpoint steps per ray and lamp, uniform in φ = atan((t - a) / r) over the cone's part of
 // the ray (a: the closest approach's ray parameter, r = max(its distance, the lamp radius); t = ∞
