@@ -5,9 +5,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "geometry/shafts_geometry_k.h"
 #include "io/image_io.h"
 #include "io/tonemap.h"
-#include "math/kernel_math.h"
 #include "util/error.h"
 
 namespace seasim {
@@ -16,18 +16,13 @@ namespace k = kmath_d;
 
 namespace {
 
-k::real3 r3(Vec3 v) { return k::real3{v.x, v.y, v.z}; }
-Vec3 v3(k::real3 v) { return Vec3{v.x, v.y, v.z}; }
+k::real3 r3(Vec3 v) { return toReal3(v); }
 
-struct HitK {
-  double t = -1;
-  k::real3 normal{0, 1, 0};
-  int index = -1;
-};
+}  // namespace
 
 // First hit in (t_min, t_max) among the analytic objects; the normal faces the ray.
-HitK sceneHitK(const Scene& scene, k::real3 o, k::real3 d, double t_min, double t_max) {
-  HitK hit;
+ShaftsHitK shaftsSceneHitK(const Scene& scene, k::real3 o, k::real3 d, double t_min, double t_max) {
+  ShaftsHitK hit;
   double best = t_max;
   for (size_t i = 0; i < scene.objects.size(); ++i) {
     const ObjectDesc& ob = scene.objects[i];
@@ -55,8 +50,6 @@ HitK sceneHitK(const Scene& scene, k::real3 o, k::real3 d, double t_min, double 
   return hit;
 }
 
-}  // namespace
-
 // "FILE:LINE: key 'objects[i].type': ..." like the parser's errors, before anything is rendered.
 void requireShaftsSupported(const Scene& scene) {
   for (size_t i = 0; i < scene.objects.size(); ++i) {
@@ -70,8 +63,8 @@ void requireShaftsSupported(const Scene& scene) {
 }
 
 ShaftsHit shaftsSceneHit(const Scene& scene, Vec3 o, Vec3 d, double t_min, double t_max) {
-  const HitK h = sceneHitK(scene, r3(o), r3(d), t_min, t_max);
-  return ShaftsHit{h.t, v3(h.normal), h.index};
+  const ShaftsHitK h = shaftsSceneHitK(scene, toReal3(o), toReal3(d), t_min, t_max);
+  return ShaftsHit{h.t, toVec3(h.normal), h.index};
 }
 
 Vec3 CameraFrame::ray(double x, double y, int w, int h) const {
@@ -131,7 +124,7 @@ ShaftsRange shaftsTableRange(const Scene& scene) {
     ShaftsRange& row = rows[y];
     for (int x = 0; x < cam.width; ++x) {
       const k::real3 d = r3(f.ray(x + 0.5, y + 0.5, cam.width, cam.height));
-      const HitK hit = sceneHitK(scene, eye, d, 0.0, 1e30);
+      const ShaftsHitK hit = shaftsSceneHitK(scene, eye, d, 0.0, 1e30);
       for (const SpotlightDesc& l : scene.spotlights) {
         const k::real3 lamp = r3(l.position);
         double ta = 0, tb = 0;

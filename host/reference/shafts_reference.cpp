@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 
+#include "geometry/shafts_geometry_k.h"
 #include "io/image_io.h"
 #include "io/tonemap.h"
 #include "math/kernel_math.h"
@@ -17,19 +18,7 @@ namespace k = kmath_d;
 
 namespace {
 
-k::real3 r3(Vec3 v) { return k::real3{v.x, v.y, v.z}; }
-Vec3 v3(k::real3 v) { return Vec3{v.x, v.y, v.z}; }
-
-// shaftsSceneHit (geometry/shafts_geometry.h) in the kernels' double vectors.
-struct HitK {
-  double t;
-  k::real3 normal;
-  int index;
-};
-HitK sceneHitK(const Scene& scene, k::real3 o, k::real3 d, double t_min, double t_max) {
-  const ShaftsHit h = shaftsSceneHit(scene, v3(o), v3(d), t_min, t_max);
-  return HitK{h.t, r3(h.normal), h.index};
-}
+k::real3 r3(Vec3 v) { return toReal3(v); }
 
 // A lamp in double: its frame, light map and cone, evaluated as kernels/shafts.cl does.
 struct Lamp {
@@ -114,7 +103,7 @@ Image renderShaftsReference(const Scene& scene, int steps) {
       const k::real3 d = r3(f.ray(x + 0.5, y + 0.5, cam.width, cam.height));
       k::real3 result{0, 0, 0};
       double t_end = std::numeric_limits<double>::infinity();
-      const HitK hit = sceneHitK(scene, eye, d, 0.0, 1e30);
+      const ShaftsHitK hit = shaftsSceneHitK(scene, eye, d, 0.0, 1e30);
       if (hit.index >= 0) {
         const k::real3 P = eye + hit.t * d;
         k::real3 Io{0, 0, 0};
@@ -127,7 +116,7 @@ Image renderShaftsReference(const Scene& scene, int steps) {
           const k::real3 e = L.emission(P);
           if (e.x + e.y + e.z <= 0) continue;
           const double eps = 1e-7 * std::max(1.0, hit.t);
-          if (sceneHitK(scene, P + eps * hit.normal, wl, 0.0, s - 2 * eps).index >= 0) continue;
+          if (shaftsSceneHitK(scene, P + eps * hit.normal, wl, 0.0, s - 2 * eps).index >= 0) continue;
           const double sc = std::max(s, kShaftsLampRadius);
           Io = Io + e * (cos_n * std::exp(-sigma_t * s) / (sc * sc));
         }
@@ -158,7 +147,7 @@ Image renderShaftsReference(const Scene& scene, int steps) {
           if (e.x + e.y + e.z <= 0) continue;
           const k::real3 w = P - L.pos;
           const double s = k::length(w);
-          if (s > 0 && !scene.objects.empty() && sceneHitK(scene, P, -(w / s), 0.0, s).index >= 0) continue;  // H = 0
+          if (s > 0 && !scene.objects.empty() && shaftsSceneHitK(scene, P, -(w / s), 0.0, s).index >= 0) continue;  // H = 0
           const double cos_alpha = s > 0 ? k::dot(w, -d) / s : 1.0;
           const double g = k::shafts_phase_fn(cos_alpha, use_hg, hg_g) *
                            k::shafts_h(s, t, rho, sigma_t, kShaftsLampRadius);  // 001 eq. 3
