@@ -3,7 +3,7 @@
 // above) within the budget that made it the default: < 0.05 of an 8-bit level (max |Δ| after the
 // tone map, at the scene's exposure) from the exact-maths image, and finite. The scenes render at a
 // reduced size (the kernels and their maths are the same at any size); the full-size figures are in
-// results/BENCHMARKS.md (results/perf/fast_math_scenes.sh).
+// results/BENCHMARKS.md (tests/perf/fast_math_scenes.sh).
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -2,7 +2,7 @@
 # fast_math_scenes.sh — quality.fast_math on every shipped scene: the exact-maths image, then
 # `seasim sweep` over fast_math = false, true against it (kernel ms of both, and the fast image's
 # RMSE / max |Δ| from the exact one in 8-bit levels). Writes $OUT/<scene>/sweep.csv; summary on stdout.
-# Usage: results/perf/fast_math_scenes.sh [scene.toml ...]   (default: scenes/*.toml)
+# Usage: tests/perf/fast_math_scenes.sh [scene.toml ...]   (default: scenes/*.toml)
 set -e
 B=${B:-build/seasim}
 OUT=${OUT:-/tmp/seasim_fast_math}

@@ -2,7 +2,7 @@
 # cache_warm.sh — the first frame on a fresh render node, with and without `seasim cache warm`:
 # wall seconds of `seasim render SCENE` (a new process each time, as a farm job) with empty caches,
 # then after `cache warm` into fresh caches, then once more (everything warm).
-# Usage: results/perf/cache_warm.sh [scene.toml]   (default scenes/seabed.toml)
+# Usage: tests/perf/cache_warm.sh [scene.toml]   (default scenes/seabed.toml)
 B=${B:-build/seasim}
 S=${1:-scenes/seabed.toml}
 T=${T:-/tmp/seasim_cache_warm}

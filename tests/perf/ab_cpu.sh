@@ -5,7 +5,7 @@
 #   seabed frame      = [CPU of `seasim run` on a job of 3 seabed renders - CPU of a job of 1] / 2
 #   seashore 2nd order = [CPU of `bench --sea-maps 64 --repeat 5` - CPU of `--repeat 1`] / 4
 # (start-up, kernel cache loads, depth tables and image writes cancel in the differences).
-# Usage: results/perf/ab_cpu.sh NAME=KERNEL_DIR=FAST_MATH ...   (ROUNDS=3; KERNEL_DIR "-": the binary's own)
+# Usage: tests/perf/ab_cpu.sh NAME=KERNEL_DIR=FAST_MATH ...   (ROUNDS=3; KERNEL_DIR "-": the binary's own)
 B=${B:-build/seasim}
 ROUNDS=${ROUNDS:-3}
 T=${T:-/tmp/seasim_ab_cpu}

@@ -3,7 +3,7 @@
 # settings, interleaved round by round so the machine's load hits every variant alike: the seabed
 # frame (all passes, its 16 bands, `seasim bench`) and seashore's second order (`bench --sea-maps 64`,
 # the scattering maps and the accumulation, OpenCL profiling ms, median of 3 after a warm-up).
-# Usage: results/perf/ab_kernels.sh NAME=KERNEL_DIR=FAST_MATH ...   (FAST_MATH true|false; ROUNDS=2)
+# Usage: tests/perf/ab_kernels.sh NAME=KERNEL_DIR=FAST_MATH ...   (FAST_MATH true|false; ROUNDS=2)
 B=${B:-build/seasim}
 ROUNDS=${ROUNDS:-2}
 r=1
