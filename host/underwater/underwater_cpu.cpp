@@ -85,6 +85,14 @@ void shadePixel(const UnderwaterSetup& s, const UnderwaterCpuOptions& opt, int x
 
 }  // namespace
 
+void forRowBlocks(int height, bool parallel, const std::function<void(int, int)>& rows) {
+  if (parallel)
+    tbb::parallel_for(tbb::blocked_range<int>(0, height),
+                      [&](const tbb::blocked_range<int>& r) { rows(r.begin(), r.end()); });
+  else
+    rows(0, height);
+}
+
 Image renderUnderwaterCpu(const UnderwaterSetup& setup, const UnderwaterCpuOptions& options) {
   const int w = setup.params.width, h = setup.params.height;
   Image img = Image::rgb(w, h);
@@ -98,10 +106,7 @@ Image renderUnderwaterCpu(const UnderwaterSetup& setup, const UnderwaterCpuOptio
           shadePixel<float>(setup, options, x, y, out);
       }
   };
-  if (options.parallel)
-    tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& r) { rows(r.begin(), r.end()); });
-  else
-    rows(0, h);
+  forRowBlocks(h, options.parallel, rows);
   return img;
 }
 

@@ -3,6 +3,8 @@
 // (kernels/common/underwater.h), in double (the reference the kernels are tested against) or float,
 // with oneTBB over rows: the "plain C++/TBB implementation" the benchmark compares OpenCL against.
 #pragma once
+#include <functional>
+
 #include "io/image.h"
 #include "underwater/underwater_setup.h"
 
@@ -18,6 +20,10 @@ struct UnderwaterCpuOptions {
 // Linear sensor RGB per pixel (3 channels). Caustics are not evaluated here (visibility = the exact
 // shadow ray only): compare kernels with caustics off.
 Image renderUnderwaterCpu(const UnderwaterSetup& setup, const UnderwaterCpuOptions& options);
+
+// rows(y0, y1) over [0, height): in blocks on oneTBB's threads when `parallel`, else in one call.
+// The row loop both C++ evaluators share.
+void forRowBlocks(int height, bool parallel, const std::function<void(int, int)>& rows);
 
 // The same float frame shaped for the compiler's auto-vectoriser, the strong C++ peer of the
 // OpenCL kernels in `seasim bench` (underwater_cpu_simd.cpp, built with -O3 -ffast-math so GCC

@@ -8,8 +8,6 @@
 // pixels are split by material class (deep water, the surface from below, a Lambertian hit), so each
 // class's band loop calls one branch-free function of common/underwater.h (uw_band_multiple,
 // uw_band_surface, uw_band_lambert) over contiguous arrays: the loop the vectoriser wants.
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
 
 #include <vector>
 
@@ -145,10 +143,7 @@ Image renderUnderwaterCpuSimd(const UnderwaterSetup& setup, const UnderwaterCpuO
     std::vector<float> band_albedo(size_t(setup.params.object_count) + 1);
     for (int y = y0; y < y1; ++y) shadeRow(setup, options, y, cls, band_albedo, &img.pixels[size_t(y) * w * 3]);
   };
-  if (options.parallel)
-    tbb::parallel_for(tbb::blocked_range<int>(0, h), [&](const tbb::blocked_range<int>& r) { rows(r.begin(), r.end()); });
-  else
-    rows(0, h);
+  forRowBlocks(h, options.parallel, rows);
   return img;
 }
 

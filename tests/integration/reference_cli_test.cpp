@@ -25,10 +25,7 @@ Result run(const std::string& args) { return seasim_test::runCommand(kBinary + "
 class ReferenceCli : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("seasim_ref_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
+    dir_ = seasim_test::freshTestDir("seasim_ref_");
   }
   void TearDown() override { fs::remove_all(dir_); }
   fs::path dir_;

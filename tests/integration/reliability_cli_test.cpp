@@ -48,10 +48,7 @@ bool contains(const std::string& text, const std::string& part) { return text.fi
 class Reliability : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("seasim_rel_cli_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
+    dir_ = seasim_test::freshTestDir("seasim_rel_cli_");
   }
   void TearDown() override {
     for (const auto& m : mounts_) ::umount2(m.c_str(), MNT_DETACH);

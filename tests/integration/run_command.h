@@ -1,10 +1,14 @@
-// run_command.h — runs a shell command line for the CLI tests and returns its exit code and output.
+// run_command.h — for the CLI tests: a shell command line's exit code and output, a background
+// `seasim run`, and a fresh folder per test.
 #pragma once
 #include <fcntl.h>
 #include <spawn.h>
 #include <sys/wait.h>
 
+#include <gtest/gtest.h>
+
 #include <cstdio>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -24,6 +28,17 @@ inline Result runCommand(const std::string& cmd) {
   while (size_t n = fread(buf, 1, sizeof buf, pipe)) out.append(buf, n);
   const int status = pclose(pipe);
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+// An empty folder <temp>/<prefix><current test's name>, created afresh (per test, so tests of one
+// binary can run in parallel processes); the caller removes it in TearDown.
+inline std::filesystem::path freshTestDir(const std::string& prefix) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() /
+      (prefix + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
 }
 
 // Starts `binary run JOB --device pocl` in the background, its stderr silenced; returns its pid
