@@ -11,14 +11,19 @@ DEPS = build-essential cmake pkgconf pocl-opencl-icd ocl-icd-opencl-dev opencl-c
 export POCL_CACHE_DIR ?= $(CURDIR)/$(BUILD)/pocl-cache
 export SEASIM_CACHE_DIR ?= $(CURDIR)/$(BUILD)/seasim-cache
 
-.PHONY: demo test validate deps configure build clean fresh-check package install
+.PHONY: demo test test-deps validate deps configure build clean fresh-check package install
 
 demo: build
 	$(BUILD)/seasim run jobs/quickstart.toml --device pocl
 	@echo "images and reports: results/quickstart/"
 
-test: build
+test: build test-deps
 	cd $(BUILD) && ctest --output-on-failure -j 2
+
+# The farm test (tests/farm/) runs a real Slurm controller and node on localhost.
+TEST_DEPS = slurm-wlm munge
+test-deps:
+	@$(MAKE) --no-print-directory deps DEPS="$(TEST_DEPS)"
 
 build: configure
 	cmake --build $(BUILD) -j $(JOBS)

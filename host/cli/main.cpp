@@ -8,6 +8,7 @@
 #include "cli/cache_command.h"
 #include "cli/cache_warm_command.h"
 #include "cli/commands.h"
+#include "cli/farm_command.h"
 #include "cli/ocean_command.h"
 #include "cli/seashore_study_command.h"
 #include "cli/underwater_study_command.h"
@@ -47,7 +48,7 @@ int main(int argc, char** argv) {
   run->add_option("job", run_job, "Job file (or an installed example such as jobs/quickstart.toml)")->required();
   run->add_option("-o,--output-dir", run_output, "Write here instead of the job's output_dir");
   run->add_option("--device", run_device, "Device selector (overrides the job's)");
-  run->add_option("--shard", run_shard, "i/N: render items with index % N == i");
+  run->add_option("--shard", run_shard, "i/N: render shard i of N (balanced by estimated or measured cost)");
   run->add_flag("--resume", run_resume, "Skip items the manifest records as finished");
 
   std::string cmp_a, cmp_b;
@@ -171,6 +172,33 @@ int main(int argc, char** argv) {
   warm->add_option("--device", warm_cmd.device, "cpu, gpu, pocl:0, nvidia:0 or a name substring");
   warm->add_option("--set", warm_cmd.sets, "Override a scene key: key=value (repeatable)");
 
+  auto* farm = app.add_subcommand("farm", "A job on a Slurm cluster: submit its shards, merge them, show progress");
+  farm->require_subcommand(1);
+  seasim::FarmSlurmCmd farm_slurm_cmd;
+  auto* farm_slurm = farm->add_subcommand(
+      "slurm", "Write (and with --submit, submit) an sbatch array of the job's shards and its dependent merge");
+  farm_slurm->add_option("job", farm_slurm_cmd.job, "Job file")->required()->check(CLI::ExistingFile);
+  farm_slurm->add_option("--tasks", farm_slurm_cmd.tasks, "N: array tasks, one shard each")->required()->check(CLI::PositiveNumber);
+  farm_slurm->add_option("--partition", farm_slurm_cmd.partition, "Slurm partition");
+  farm_slurm->add_option("--time", farm_slurm_cmd.time_limit, "Time limit per task (Slurm's format, e.g. 2:00:00)");
+  farm_slurm->add_option("--retries", farm_slurm_cmd.retries, "K: retries of a failed task (seasim run --resume)")
+      ->check(CLI::NonNegativeNumber);
+  farm_slurm->add_option("--device", farm_slurm_cmd.device, "Device selector for the tasks");
+  farm_slurm->add_option("-o,--output-dir", farm_slurm_cmd.output_dir, "Shared results folder (default: the job's)");
+  farm_slurm->add_flag("--submit", farm_slurm_cmd.submit, "Submit with sbatch and print the job ids");
+  std::string farm_job, farm_output;
+  auto* farm_merge = farm->add_subcommand(
+      "merge", "Check every item is present with its checksum; write farm/report.json and farm/contact_sheet.html");
+  farm_merge->add_option("job", farm_job, "Job file")->required()->check(CLI::ExistingFile);
+  farm_merge->add_option("-o,--output-dir", farm_output, "Shared results folder (default: the job's)");
+  seasim::FarmStatusCmd farm_status_cmd;
+  auto* farm_status = farm->add_subcommand("status", "Done, running, failed and left items per shard, time remaining");
+  farm_status->add_option("job", farm_status_cmd.job, "Job file")->required()->check(CLI::ExistingFile);
+  farm_status->add_option("-o,--output-dir", farm_status_cmd.output_dir, "Shared results folder (default: the job's)");
+  farm_status->add_option("--tasks", farm_status_cmd.tasks, "Shard count (default: from the folder)")
+      ->check(CLI::PositiveNumber);
+  farm_status->add_flag("--json", farm_status_cmd.json, "JSON instead of a table");
+
   std::string preview_scene, preview_device;
   auto* preview = app.add_subcommand("preview", "Live GLFW preview window");
   preview->add_option("scene", preview_scene, "Scene file");
@@ -200,6 +228,9 @@ int main(int argc, char** argv) {
     if (*cache_clear) return seasim::cmdCacheClear();
     if (*cache_verify) return seasim::cmdCacheVerify();
     if (*warm) return seasim::cmdCacheWarm(warm_cmd);
+    if (*farm_slurm) return seasim::cmdFarmSlurm(farm_slurm_cmd);
+    if (*farm_merge) return seasim::cmdFarmMerge(farm_job, farm_output);
+    if (*farm_status) return seasim::cmdFarmStatus(farm_status_cmd);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "seasim: error: %s\n", e.what());
     return 1;

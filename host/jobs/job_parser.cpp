@@ -32,11 +32,12 @@ bool safeFileName(const std::string& s) {
 const char* kSafeNameRule = "letters, digits and _ - . = + only, not starting with '.' or '-'";
 
 // Names the runner keeps for itself in the output folder: the manifests (manifest.json,
-// manifest-<i>of<N>.json) and their locks. An item of that name would overwrite them.
+// manifest-<i>of<N>.json) and their locks, and the farm's folder (shard plans, scripts, logs, the
+// merged report). An item of that name would overwrite them.
 bool reservedName(const std::string& s) {
   std::string lower;
   for (char c : s) lower += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return lower.rfind("manifest", 0) == 0;
+  return lower.rfind("manifest", 0) == 0 || lower == "farm";
 }
 
 // A sweep value as it appears in an item name: strings bare, numbers shortest, arrays joined by _.
@@ -262,7 +263,7 @@ Job parseJob(const std::string& toml_text, const std::string& path) {
     if (reservedName(p.item.name))
       throw InputError(loc.file, loc.line, p.name_key,
                        "item name '" + p.item.name +
-                           "' is reserved: names starting with 'manifest' are the job's own files; rename the item");
+                           "' is reserved: names starting with 'manifest', and 'farm', are the job's own files; rename the item");
     auto [it, fresh] = seen.emplace(p.item.name, loc);
     if (!fresh)
       throw InputError(loc.file, loc.line, p.name_key,

@@ -38,6 +38,7 @@ ManifestEntry parseEntry(const nlohmann::json& j, size_t index, const std::strin
     e.files = j["files"];
   }
   if (j.contains("kernel_ms") && j["kernel_ms"].is_number()) e.kernel_ms = j["kernel_ms"].get<double>();
+  if (j.contains("wall_ms") && j["wall_ms"].is_number()) e.wall_ms = j["wall_ms"].get<double>();
   return e;
 }
 
@@ -64,19 +65,23 @@ void Manifest::replace(ManifestEntry entry) {
   entries_.push_back(std::move(entry));
 }
 
-void Manifest::recordDone(const std::string& name, const nlohmann::json& files, double kernel_ms) {
-  replace(ManifestEntry{name, true, "", files, kernel_ms});
+void Manifest::recordDone(const std::string& name, const nlohmann::json& files, double kernel_ms, double wall_ms) {
+  replace(ManifestEntry{name, true, "", files, kernel_ms, wall_ms});
 }
 
 void Manifest::recordFailed(const std::string& name, const std::string& error) {
-  replace(ManifestEntry{name, false, error, nlohmann::json::object(), 0.0});
+  replace(ManifestEntry{name, false, error, nlohmann::json::object(), 0.0, 0.0});
 }
 
 void Manifest::save(const std::string& path) const {
   nlohmann::json items = nlohmann::json::array();
   for (const ManifestEntry& e : entries_) {
     if (e.done)
-      items.push_back({{"name", e.name}, {"status", "done"}, {"files", e.files}, {"kernel_ms", e.kernel_ms}});
+      items.push_back({{"name", e.name},
+                       {"status", "done"},
+                       {"files", e.files},
+                       {"kernel_ms", e.kernel_ms},
+                       {"wall_ms", e.wall_ms}});
     else
       items.push_back({{"name", e.name}, {"status", "failed"}, {"error", e.error}});
   }

@@ -17,6 +17,7 @@ struct ManifestEntry {
   std::string error;            // when failed
   nlohmann::json files;         // when done: {"item/image.exr": "fnv1a64:...", ...}
   double kernel_ms = 0.0;
+  double wall_ms = 0.0;         // when done: the item's render time in the runner (0 in older manifests)
 };
 
 class Manifest {
@@ -26,7 +27,7 @@ class Manifest {
   // like a manifest is a RuntimeError naming it and saying what to do.
   static Manifest load(const std::string& path, const std::string& job_file);
 
-  void recordDone(const std::string& name, const nlohmann::json& files, double kernel_ms);
+  void recordDone(const std::string& name, const nlohmann::json& files, double kernel_ms, double wall_ms = 0.0);
   void recordFailed(const std::string& name, const std::string& error);
   const std::vector<ManifestEntry>& entries() const { return entries_; }
   void save(const std::string& path) const;  // atomic (io/atomic_file.h)

@@ -4,6 +4,7 @@
 
 #include "io/atomic_file.h"
 #include "io/image_io.h"
+#include "jobs/test_hooks.h"
 #include "passes/nodes/standard_passes.h"
 #include "plan/memory_budget.h"
 #include "plan/plan.h"
@@ -114,6 +115,7 @@ nlohmann::json renderItem(Device& device, Renderer& renderer, const ItemOutputs&
       throw RuntimeError("unknown output format '" + format + "'");
     }
     files.push_back(fs::path(path).filename().string());
+    killMidItemIfAsked(fs::path(dir).filename().string());  // tests only (jobs/test_hooks.h)
   }
 
   nlohmann::json timings = nlohmann::json::object();

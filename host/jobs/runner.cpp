@@ -2,6 +2,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -15,6 +16,7 @@
 #include "jobs/manifest.h"
 #include "jobs/progress.h"
 #include "jobs/render_item.h"
+#include "jobs/shard_balance.h"
 #include "jobs/shard_lock.h"
 #include "passes/nodes/standard_passes.h"
 #include "plan/plan.h"
@@ -102,9 +104,12 @@ RunSummary runJob(const std::string& job_path, const RunOptions& options) {
   summary.manifest = manifest_file;
   const ShardLock lock(shardLockPath(manifest_file));  // held until the job returns
 
+  // Balanced by cost, identically on every machine (jobs/shard_balance.h).
+  const std::vector<int> shard_of =
+      options.shard_count > 1 ? loadOrEstimateShardPlan(job, options.shard_count).shard_of : std::vector<int>(job.items.size(), 0);
   std::vector<const RenderItem*> mine;
   for (size_t i = 0; i < job.items.size(); ++i) {
-    if (static_cast<int>(i % static_cast<size_t>(options.shard_count)) == options.shard_index) {
+    if (shard_of[i] == options.shard_index) {
       mine.push_back(&job.items[i]);
     } else {
       ++summary.other_shards;
@@ -144,8 +149,10 @@ RunSummary runJob(const std::string& job_path, const RunOptions& options) {
       if (!device) device = std::make_unique<Device>(chooseDevice(selector));
       try {
         double kernel_ms = 0;
+        const auto t0 = std::chrono::steady_clock::now();
         const nlohmann::json files = renderOne(*device, renderers, *item, job.output_dir, kernel_ms);
-        manifest.recordDone(item->name, files, kernel_ms);
+        const double wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+        manifest.recordDone(item->name, files, kernel_ms, wall_ms);
         manifest.save(manifest_file);
         ++summary.rendered;
         char outcome[64];

@@ -8,7 +8,7 @@ namespace seasim {
 
 struct RunOptions {
   std::string device;      // overrides the job's device when not empty
-  int shard_index = 0;     // --shard i/N: this process renders items with index % N == i
+  int shard_index = 0;     // --shard i/N: this process renders shard i of N, balanced by cost (jobs/shard_balance.h)
   int shard_count = 1;
   bool resume = false;     // skip items the manifest records as finished with intact files
   std::string output_dir;  // replaces the job's output_dir when not empty (-o)
