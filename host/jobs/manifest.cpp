@@ -39,6 +39,7 @@ ManifestEntry parseEntry(const nlohmann::json& j, size_t index, const std::strin
   }
   if (j.contains("kernel_ms") && j["kernel_ms"].is_number()) e.kernel_ms = j["kernel_ms"].get<double>();
   if (j.contains("wall_ms") && j["wall_ms"].is_number()) e.wall_ms = j["wall_ms"].get<double>();
+  if (j.contains("build_ms") && j["build_ms"].is_number()) e.build_ms = j["build_ms"].get<double>();
   return e;
 }
 
@@ -65,12 +66,13 @@ void Manifest::replace(ManifestEntry entry) {
   entries_.push_back(std::move(entry));
 }
 
-void Manifest::recordDone(const std::string& name, const nlohmann::json& files, double kernel_ms, double wall_ms) {
-  replace(ManifestEntry{name, true, "", files, kernel_ms, wall_ms});
+void Manifest::recordDone(const std::string& name, const nlohmann::json& files, double kernel_ms, double wall_ms,
+                          double build_ms) {
+  replace(ManifestEntry{name, true, "", files, kernel_ms, wall_ms, build_ms});
 }
 
 void Manifest::recordFailed(const std::string& name, const std::string& error) {
-  replace(ManifestEntry{name, false, error, nlohmann::json::object(), 0.0, 0.0});
+  replace(ManifestEntry{name, false, error, nlohmann::json::object(), 0.0, 0.0, 0.0});
 }
 
 void Manifest::save(const std::string& path) const {
@@ -81,7 +83,8 @@ void Manifest::save(const std::string& path) const {
                        {"status", "done"},
                        {"files", e.files},
                        {"kernel_ms", e.kernel_ms},
-                       {"wall_ms", e.wall_ms}});
+                       {"wall_ms", e.wall_ms},
+                       {"build_ms", e.build_ms}});
     else
       items.push_back({{"name", e.name}, {"status", "failed"}, {"error", e.error}});
   }

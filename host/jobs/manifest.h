@@ -18,6 +18,7 @@ struct ManifestEntry {
   nlohmann::json files;         // when done: {"item/image.exr": "fnv1a64:...", ...}
   double kernel_ms = 0.0;
   double wall_ms = 0.0;         // when done: the item's render time in the runner (0 in older manifests)
+  double build_ms = 0.0;        // when done: of which kernel builds (or cache loads)
 };
 
 class Manifest {
@@ -27,7 +28,8 @@ class Manifest {
   // like a manifest is a RuntimeError naming it and saying what to do.
   static Manifest load(const std::string& path, const std::string& job_file);
 
-  void recordDone(const std::string& name, const nlohmann::json& files, double kernel_ms, double wall_ms = 0.0);
+  void recordDone(const std::string& name, const nlohmann::json& files, double kernel_ms, double wall_ms = 0.0,
+                  double build_ms = 0.0);
   void recordFailed(const std::string& name, const std::string& error);
   const std::vector<ManifestEntry>& entries() const { return entries_; }
   void save(const std::string& path) const;  // atomic (io/atomic_file.h)

@@ -59,9 +59,10 @@ struct RendererCache {
   const RenderItem* previous = nullptr;
 };
 
-// Renders one item and returns its manifest files (relative path -> checksum) and kernel ms.
+// Renders one item and returns its manifest files (relative path -> checksum), kernel ms and kernel
+// build ms.
 nlohmann::json renderOne(Device& device, RendererCache& cache, const RenderItem& item, const std::string& output_dir,
-                         double& kernel_ms) {
+                         double& kernel_ms, double& build_ms) {
   const Scene scene = loadScene(item.scene_file, item.overrides);
   // Before any buffer exists: a render too big for the device fails here, naming its settings.
   checkRenderFitsDevice(device, scene, makePlan(scene));
@@ -83,6 +84,7 @@ nlohmann::json renderOne(Device& device, RendererCache& cache, const RenderItem&
   }
   files[item.name + "/report.json"] = fileChecksum(item_dir + "/report.json");
   kernel_ms = report["kernel_ms_total"].get<double>();
+  build_ms = report["kernel_build_ms"].get<double>();
   return files;
 }
 
@@ -148,11 +150,11 @@ RunSummary runJob(const std::string& job_path, const RunOptions& options) {
     } else {
       if (!device) device = std::make_unique<Device>(chooseDevice(selector));
       try {
-        double kernel_ms = 0;
+        double kernel_ms = 0, build_ms = 0;
         const auto t0 = std::chrono::steady_clock::now();
-        const nlohmann::json files = renderOne(*device, renderers, *item, job.output_dir, kernel_ms);
+        const nlohmann::json files = renderOne(*device, renderers, *item, job.output_dir, kernel_ms, build_ms);
         const double wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-        manifest.recordDone(item->name, files, kernel_ms, wall_ms);
+        manifest.recordDone(item->name, files, kernel_ms, wall_ms, build_ms);
         manifest.save(manifest_file);
         ++summary.rendered;
         char outcome[64];

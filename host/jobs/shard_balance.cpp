@@ -27,23 +27,46 @@ double knob(const Scene& scene, const std::string& name, double fallback) {
   return it->second.value;
 }
 
-// How much more per pixel a pass costs at the scene's quality knobs than at their defaults.
+// A pass's cost per pixel and band relative to sea_single's, at the knobs' defaults: the median
+// kernel ms of the shipped jobs on PoCL (2-core VM; results/BENCHMARKS.md "Farm shards"): sea_single
+// 24 ms per million pixel-bands, sea_second 1.6x that (18x over a height-field floor), froxel 19x,
+// kd_multiple 6x, the ocean's caustics on a height-field floor 70x. Passes not listed count 1.
+double passWeight(const PassPlan& pass) {
+  const bool height_field =
+      std::find(pass.defines.begin(), pass.defines.end(), "SEASIM_BOTTOM_HEIGHTFIELD=1") != pass.defines.end();
+  if (pass.name == "sea_second") return height_field ? 18.0 : 1.6;
+  if (pass.name == "caustics") return 70.0;
+  if (pass.name == "froxel") return 19.0;
+  if (pass.name == "kd_multiple") return 6.0;
+  if (pass.name == "raycast") return 0.7;
+  if (pass.name == "ocean_fft") return 0.4;
+  if (pass.name == "nonfinite_check") return 0.01;
+  return 1.0;
+}
+
+// How much more a pass costs at the scene's quality knobs than at their defaults.
 double qualityFactor(const Scene& scene, const std::string& pass) {
   if (pass == "sea_second") return knob(scene, "sea_nz", 12) / 12.0 * (knob(scene, "sea_nd", 128) / 128.0);
   if (pass == "shafts") return knob(scene, "shafts_planes", 30) / 30.0 * (knob(scene, "shafts_subplanes", 6) / 6.0);
   if (pass == "froxel")
     return knob(scene, "froxel_x", 160) * knob(scene, "froxel_y", 90) * knob(scene, "froxel_z", 64) / (160.0 * 90 * 64);
+  if (pass == "caustics") return std::pow(knob(scene, "caustic_map_size", 256) / 256.0, 2);
   return 1.0;
 }
+
+// Per item and pixel, whatever the passes: reading the scene, writing EXR and PNG, the renderer's
+// set-up; about 1 µs per pixel on the same VM, i.e. 40 sea_single pixel-bands.
+constexpr double kPerPixelOverhead = 40.0;
 
 const char* sourceName(CostSource s) { return s == CostSource::Measured ? "measured" : "estimate"; }
 
 }  // namespace
 
 int64_t estimateItemCost(const Scene& scene, const Plan& plan) {
-  double passes = 0;
-  for (const PassPlan& p : plan.passes) passes += qualityFactor(scene, p.name);
-  const double cost = double(scene.camera.width) * scene.camera.height * scene.spectral.count * passes;
+  double per_band = 0;
+  for (const PassPlan& p : plan.passes) per_band += passWeight(p) * qualityFactor(scene, p.name);
+  const double cost =
+      double(scene.camera.width) * scene.camera.height * (scene.spectral.count * per_band + kPerPixelOverhead);
   // Clamped so that a sum over a million items stays far from int64's limit.
   return std::clamp<int64_t>(std::llround(cost), 1, int64_t(1) << 42);
 }
@@ -99,7 +122,8 @@ bool measuredJobCosts(const Job& job, const std::vector<int64_t>& estimates, con
       if (name.rfind("manifest", 0) != 0 || entry.path().extension() != ".json") continue;
       const Manifest manifest = Manifest::load(entry.path().string(), "");
       for (const ManifestEntry& e : manifest.entries())
-        if (e.done && e.wall_ms > 0) wall_ms[e.name] = e.wall_ms;
+        // Without the kernel build: a one-off per node and kernel cache, not a cost of the item.
+        if (e.done && e.wall_ms > 0) wall_ms[e.name] = std::max(1.0, e.wall_ms - e.build_ms);
     }
   }
   std::vector<double> ratios;

@@ -23,8 +23,9 @@
 
 namespace seasim {
 
-// Estimated cost of rendering `scene` with `plan`, in arbitrary units (pixel x band x pass x the
-// quality knobs' ratio to their defaults). Only ratios between items matter.
+// Estimated cost of rendering `scene` with `plan`, in arbitrary units: pixels x (bands x the sum over
+// the plan's passes of the pass's weight x its quality knobs' ratio to their defaults + a per-pixel
+// overhead). Only ratios between items matter.
 int64_t estimateItemCost(const Scene& scene, const Plan& plan);
 
 // Greedy longest-processing-time assignment: items by decreasing cost (ties: lower index first),
@@ -55,8 +56,8 @@ std::string shardPlanPath(const std::string& output_dir, int shard_count);
 // The estimate of every item of the job (loads each scene; throws InputError like loadJob).
 std::vector<int64_t> estimateJobCosts(const Job& job);
 
-// Costs from the render times ("wall_ms") that the manifests in `output_dir` record for done
-// items; an item without one gets its estimate scaled by the median measured/estimate ratio.
+// Costs from the render times ("wall_ms" less "build_ms", the kernel build: a one-off per node) that
+// the manifests in `output_dir` record for done items; an item without one gets its estimate scaled by the median measured/estimate ratio.
 // Returns false (and leaves `costs` alone) when no item has a timing.
 bool measuredJobCosts(const Job& job, const std::vector<int64_t>& estimates, const std::string& output_dir,
                       std::vector<int64_t>& costs);
