@@ -114,6 +114,10 @@ grep -l "killing this process in the middle of item 'item5'" "$OUT"/farm/logs/ta
   || fail "no task log shows the kill"
 grep -h "attempt 2 of 3" "$OUT"/farm/logs/task-*.log | grep -q . || fail "the killed task was not retried"
 grep -h "removing stale lock" "$OUT"/farm/logs/task-*.log | grep -q . || fail "the retry did not take over the dead run's lock"
+# The item killed between its files was not counted done: the retry rendered it again.
+KLOG=$(grep -l "killing this process in the middle of item 'item5'" "$OUT"/farm/logs/task-*.log)
+grep -q "item5: done" "$KLOG" || fail "the retry did not render item5 again"
+! grep -q "item5: finished earlier" "$KLOG" || fail "item5, killed mid-frame, was taken as finished"
 [ "$(job_state "$MERGE")" = COMPLETED ] || fail "merge job $MERGE: $(job_state "$MERGE")"
 [ "$(job_state "$MERGE_FAIL")" = CANCELLED ] || fail "merge-after-failure job $MERGE_FAIL ran: $(job_state "$MERGE_FAIL")"
 grep -q "all 8 items present with intact files" "$OUT"/farm/logs/merge-"$MERGE".log || fail "merge log"

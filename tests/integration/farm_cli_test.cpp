@@ -106,6 +106,13 @@ TEST_F(FarmCli, SlurmPrintsTheScriptsAndShardsByHandThenStatusAndMerge) {
   EXPECT_TRUE(contains(r.output, "balanced by measured timings (used)")) << r.output;
 }
 
+TEST_F(FarmCli, SubmitWithoutSlurmFailsNamingTheCommand) {
+  const seasim_test::Result r =
+      seasim_test::runCommand("PATH=/nonexistent " + kBinary + " farm slurm " + job() + " --tasks 2 --submit");
+  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_TRUE(contains(r.output, "submitting the array of shards failed (exit code 127): sbatch --parsable")) << r.output;
+}
+
 TEST_F(FarmCli, AnItemNamedFarmIsReserved) {
   const seasim_test::Result r = run("validate " + job("farm"));
   EXPECT_NE(r.code, 0);
