@@ -73,8 +73,9 @@ int cmdFarmSlurm(const FarmSlurmCmd& cmd) {
   for (int i = 0; i < cmd.tasks; ++i) {
     const std::string lock = manifestPath(job.output_dir, i, cmd.tasks) + ".lock";
     if (fs::exists(lock))
-      throw RuntimeError("shard " + std::to_string(i) + "/" + std::to_string(cmd.tasks) + " of this job is running (lock '" +
-                         lock + "'); wait for its shards to finish before writing a new farm job for the folder");
+      throw RuntimeError("shard " + std::to_string(i) + "/" + std::to_string(cmd.tasks) +
+                         " of this job is running (lock '" + lock +
+                         "'); wait for its shards to finish before writing a new farm job for the folder");
   }
   const ShardPlan plan = makeShardPlan(job, cmd.tasks, true);
   saveShardPlan(plan, job.output_dir);
@@ -118,15 +119,18 @@ int cmdFarmMerge(const std::string& job_path, const std::string& output_dir) {
     return 0;
   }
   std::fprintf(stderr, "seasim: merge failed: %s\n", missingItemsMessage(r).c_str());
-  std::fprintf(stderr, "run the job's missing shards again with --resume (only these items render), then merge again\n");
+  std::fprintf(stderr,
+               "run the job's missing shards again with --resume (only these items render), then merge again\n");
   return 1;
 }
 
 int cmdFarmStatus(const FarmStatusCmd& cmd) {
   const Job job = loadFarmJob(cmd.job, cmd.output_dir);
   const FarmStatus st = farmStatus(job, cmd.tasks);
-  if (cmd.json) std::printf("%s\n", farmStatusJson(st).dump(2).c_str());
-  else std::printf("%s", formatFarmStatus(st).c_str());
+  if (cmd.json)
+    std::printf("%s\n", farmStatusJson(st).dump(2).c_str());
+  else
+    std::printf("%s", formatFarmStatus(st).c_str());
   return 0;
 }
 

@@ -13,10 +13,14 @@ namespace seasim {
 
 const char* statusName(ItemState::Status s) {
   switch (s) {
-    case ItemState::Status::Done: return "done";
-    case ItemState::Status::Damaged: return "damaged";
-    case ItemState::Status::Failed: return "failed";
-    case ItemState::Status::Missing: return "missing";
+    case ItemState::Status::Done:
+      return "done";
+    case ItemState::Status::Damaged:
+      return "damaged";
+    case ItemState::Status::Failed:
+      return "failed";
+    case ItemState::Status::Missing:
+      return "missing";
   }
   return "?";
 }
@@ -26,10 +30,14 @@ namespace {
 // Which of two states of one item wins: done over damaged over failed over missing.
 int rank(ItemState::Status s) {
   switch (s) {
-    case ItemState::Status::Done: return 3;
-    case ItemState::Status::Damaged: return 2;
-    case ItemState::Status::Failed: return 1;
-    case ItemState::Status::Missing: return 0;
+    case ItemState::Status::Done:
+      return 3;
+    case ItemState::Status::Damaged:
+      return 2;
+    case ItemState::Status::Failed:
+      return 1;
+    case ItemState::Status::Missing:
+      return 0;
   }
   return 0;
 }
@@ -75,8 +83,10 @@ std::vector<ItemState> readItemStates(const Job& job, const std::string& output_
       for (const ManifestEntry& e : manifest.entries()) {
         ItemState s = stateOf(e, output_dir, verify_checksums);
         auto it = best.find(e.name);
-        if (it == best.end()) best.emplace(e.name, std::move(s));
-        else if (rank(s.status) > rank(it->second.status)) it->second = std::move(s);
+        if (it == best.end())
+          best.emplace(e.name, std::move(s));
+        else if (rank(s.status) > rank(it->second.status))
+          it->second = std::move(s);
       }
     }
   }

@@ -3,7 +3,6 @@
 // checksums verified) and `seasim farm status` (without: it is polled while shards write).
 #pragma once
 #include <nlohmann/json.hpp>
-
 #include <string>
 #include <vector>
 
@@ -13,15 +12,15 @@ namespace seasim {
 
 struct ItemState {
   enum class Status {
-    Done,      // a manifest records it done (and, when verified, every file matches its checksum)
-    Damaged,   // recorded done, but a file is missing or no longer matches its checksum (verified only)
-    Failed,    // the last attempt recorded an error
-    Missing,   // no manifest mentions it
+    Done,     // a manifest records it done (and, when verified, every file matches its checksum)
+    Damaged,  // recorded done, but a file is missing or no longer matches its checksum (verified only)
+    Failed,   // the last attempt recorded an error
+    Missing,  // no manifest mentions it
   };
   std::string name;
   Status status = Status::Missing;
-  std::string detail;       // Failed: the error; Damaged: which file and why
-  nlohmann::json files;     // Done: relative path -> checksum
+  std::string detail;    // Failed: the error; Damaged: which file and why
+  nlohmann::json files;  // Done: relative path -> checksum
   double wall_ms = 0, kernel_ms = 0;
 };
 

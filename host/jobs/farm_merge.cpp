@@ -29,11 +29,20 @@ std::string htmlEscape(const std::string& s) {
   std::string out;
   for (char c : s) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      default: out += c;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -41,10 +50,14 @@ std::string htmlEscape(const std::string& s) {
 
 std::string whyMissing(const ItemState& s) {
   switch (s.status) {
-    case ItemState::Status::Failed: return "failed: " + s.detail.substr(0, s.detail.find('\n'));
-    case ItemState::Status::Damaged: return "damaged: " + s.detail;
-    case ItemState::Status::Missing: return "not rendered";
-    case ItemState::Status::Done: return "done";
+    case ItemState::Status::Failed:
+      return "failed: " + s.detail.substr(0, s.detail.find('\n'));
+    case ItemState::Status::Damaged:
+      return "damaged: " + s.detail;
+    case ItemState::Status::Missing:
+      return "not rendered";
+    case ItemState::Status::Done:
+      return "done";
   }
   return "";
 }

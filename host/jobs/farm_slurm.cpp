@@ -104,9 +104,8 @@ SlurmScripts makeSlurmScripts(const std::string& job_file, const Job& job, const
     << "# and fails naming the missing items otherwise.\n"
     << "#SBATCH --job-name=" << slurmName(job.name) << "-merge\n"
     << "#SBATCH --output=" << farm << "/logs/merge-%j.log\n"
-    << options
-    << "exec " << shellQuote(o.seasim) << " farm merge " << shellQuote(job_file) << " -o " << shellQuote(o.output_dir)
-    << "\n";
+    << options << "exec " << shellQuote(o.seasim) << " farm merge " << shellQuote(job_file) << " -o "
+    << shellQuote(o.output_dir) << "\n";
   return {t.str(), m.str(), farm + "/tasks.sbatch", farm + "/merge.sbatch"};
 }
 

@@ -19,18 +19,18 @@
 namespace seasim {
 
 struct SlurmFarmOptions {
-  int tasks = 1;            // N: array tasks = shards
-  std::string partition;    // --partition (empty: the cluster's default)
-  std::string time_limit;   // --time per task, Slurm's format (empty: the partition's default)
-  int retries = 2;          // K: extra attempts of a failed task
-  std::string device;       // seasim run --device (empty: the job's)
-  std::string seasim;       // absolute path of the seasim binary on the nodes
-  std::string output_dir;   // the shared results folder (absolute)
+  int tasks = 1;           // N: array tasks = shards
+  std::string partition;   // --partition (empty: the cluster's default)
+  std::string time_limit;  // --time per task, Slurm's format (empty: the partition's default)
+  int retries = 2;         // K: extra attempts of a failed task
+  std::string device;      // seasim run --device (empty: the job's)
+  std::string seasim;      // absolute path of the seasim binary on the nodes
+  std::string output_dir;  // the shared results folder (absolute)
 };
 
 struct SlurmScripts {
-  std::string tasks;  // the array script
-  std::string merge;  // the merge script
+  std::string tasks;                   // the array script
+  std::string merge;                   // the merge script
   std::string tasks_path, merge_path;  // where they are written (<output_dir>/farm/)
 };
 

@@ -56,9 +56,12 @@ std::string formatSeconds(double s) {
   if (s < 0) return "unknown";
   const long t = std::lround(s);
   char buf[32];
-  if (t >= 3600) std::snprintf(buf, sizeof buf, "%ldh%02ldm", t / 3600, (t / 60) % 60);
-  else if (t >= 60) std::snprintf(buf, sizeof buf, "%ldm%02lds", t / 60, t % 60);
-  else std::snprintf(buf, sizeof buf, "%lds", t);
+  if (t >= 3600)
+    std::snprintf(buf, sizeof buf, "%ldh%02ldm", t / 3600, (t / 60) % 60);
+  else if (t >= 60)
+    std::snprintf(buf, sizeof buf, "%ldm%02lds", t / 60, t % 60);
+  else
+    std::snprintf(buf, sizeof buf, "%lds", t);
   return buf;
 }
 
@@ -87,9 +90,9 @@ FarmStatus farmStatus(const Job& job, int shard_count) {
   st.shard_count = shard_count > 0 ? shard_count : detectShardCount(job.output_dir);
   const ShardPlan plan = loadOrEstimateShardPlan(job, st.shard_count);
   st.balance = std::string(plan.source == CostSource::Measured ? "measured timings" : "estimated cost") +
-               (fs::exists(shardPlanPath(job.output_dir, st.shard_count)) ? ", farm/shard-plan-" +
-                                                                                std::to_string(st.shard_count) + ".json"
-                                                                          : ", computed");
+               (fs::exists(shardPlanPath(job.output_dir, st.shard_count))
+                    ? ", farm/shard-plan-" + std::to_string(st.shard_count) + ".json"
+                    : ", computed");
   const std::vector<ItemState> states = readItemStates(job, job.output_dir, false);
 
   // The job's rate: render time per unit of cost, over the done items with a timing.
@@ -131,12 +134,18 @@ FarmStatus farmStatus(const Job& job, int shard_count) {
         remaining_cost += double(plan.costs[i]);
       }
     }
-    if (active) sh.state = "running";
-    else if (lock.held) sh.state = "stale lock";
-    else if (sh.left == 0 && sh.failed == 0) sh.state = "finished";
-    else if (sh.left == 0) sh.state = "failed";
-    else if (sh.done == 0 && sh.failed == 0) sh.state = "not started";
-    else sh.state = "stopped";
+    if (active)
+      sh.state = "running";
+    else if (lock.held)
+      sh.state = "stale lock";
+    else if (sh.left == 0 && sh.failed == 0)
+      sh.state = "finished";
+    else if (sh.left == 0)
+      sh.state = "failed";
+    else if (sh.done == 0 && sh.failed == 0)
+      sh.state = "not started";
+    else
+      sh.state = "stopped";
     sh.remaining_s = remaining_cost == 0 ? 0 : (ms_per_cost > 0 ? remaining_cost * ms_per_cost / 1000.0 : -1);
     st.total.done += sh.done;
     st.total.running += sh.running;
@@ -171,8 +180,8 @@ std::string formatFarmStatus(const FarmStatus& st) {
 
 nlohmann::json farmStatusJson(const FarmStatus& st) {
   const auto shardJson = [](const ShardStatus& sh) {
-    nlohmann::json j = {{"done", sh.done},     {"running", sh.running}, {"failed", sh.failed},
-                        {"left", sh.left},     {"state", sh.state},     {"lock", sh.lock}};
+    nlohmann::json j = {{"done", sh.done}, {"running", sh.running}, {"failed", sh.failed},
+                        {"left", sh.left}, {"state", sh.state},     {"lock", sh.lock}};
     j["remaining_s"] = sh.remaining_s < 0 ? nlohmann::json(nullptr) : nlohmann::json(sh.remaining_s);
     return j;
   };
@@ -185,8 +194,10 @@ nlohmann::json farmStatusJson(const FarmStatus& st) {
   nlohmann::json total = shardJson(st.total);
   total.erase("state");
   total.erase("lock");
-  return {{"job", st.job},     {"output_dir", st.output_dir}, {"items", st.items}, {"shard_count", st.shard_count},
-          {"balance", st.balance}, {"shards", shards},        {"total", total}};
+  return {{"job", st.job},         {"output_dir", st.output_dir},
+          {"items", st.items},     {"shard_count", st.shard_count},
+          {"balance", st.balance}, {"shards", shards},
+          {"total", total}};
 }
 
 }  // namespace seasim

@@ -10,7 +10,6 @@
 // item is done. The job's is its slowest shard's: shards run side by side.
 #pragma once
 #include <nlohmann/json.hpp>
-
 #include <string>
 #include <vector>
 
@@ -31,7 +30,7 @@ struct FarmStatus {
   int items = 0, shard_count = 1;
   std::string balance;  // "estimate" or "measured", and where the plan comes from
   std::vector<ShardStatus> shards;
-  ShardStatus total;    // sums; remaining_s = the slowest shard's
+  ShardStatus total;  // sums; remaining_s = the slowest shard's
 };
 
 // The shard count a folder was run with: the largest N of its manifests "manifest-<i>of<N>.json" and

@@ -107,8 +107,8 @@ RunSummary runJob(const std::string& job_path, const RunOptions& options) {
   const ShardLock lock(shardLockPath(manifest_file));  // held until the job returns
 
   // Balanced by cost, identically on every machine (jobs/shard_balance.h).
-  const std::vector<int> shard_of =
-      options.shard_count > 1 ? loadOrEstimateShardPlan(job, options.shard_count).shard_of : std::vector<int>(job.items.size(), 0);
+  const std::vector<int> shard_of = options.shard_count > 1 ? loadOrEstimateShardPlan(job, options.shard_count).shard_of
+                                                            : std::vector<int>(job.items.size(), 0);
   std::vector<const RenderItem*> mine;
   for (size_t i = 0; i < job.items.size(); ++i) {
     if (shard_of[i] == options.shard_index) {

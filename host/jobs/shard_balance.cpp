@@ -1,12 +1,11 @@
 #include "jobs/shard_balance.h"
 
-#include <nlohmann/json.hpp>
-
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <numeric>
 
 #include "io/atomic_file.h"
@@ -128,7 +127,8 @@ bool measuredJobCosts(const Job& job, const std::vector<int64_t>& estimates, con
   }
   std::vector<double> ratios;
   for (size_t i = 0; i < job.items.size(); ++i)
-    if (auto it = wall_ms.find(job.items[i].name); it != wall_ms.end()) ratios.push_back(it->second / double(estimates[i]));
+    if (auto it = wall_ms.find(job.items[i].name); it != wall_ms.end())
+      ratios.push_back(it->second / double(estimates[i]));
   if (ratios.empty()) return false;
   std::sort(ratios.begin(), ratios.end());
   const double median_ms_per_unit = ratios[ratios.size() / 2];
@@ -196,11 +196,13 @@ ShardPlan loadOrEstimateShardPlan(const Job& job, int shard_count) {
   } catch (const nlohmann::json::exception& e) {
     throw bad(std::string("is not shaped like a shard plan (") + e.what() + ")");
   }
-  if (by_name.size() != job.items.size()) throw bad("lists " + std::to_string(by_name.size()) + " items but the job has " + std::to_string(job.items.size()));
+  if (by_name.size() != job.items.size())
+    throw bad("lists " + std::to_string(by_name.size()) + " items but the job has " + std::to_string(job.items.size()));
   for (const RenderItem& item : job.items) {
     const auto it = by_name.find(item.name);
     if (it == by_name.end()) throw bad("has no item '" + item.name + "' (the job changed since it was written)");
-    if (it->second.first < 0 || it->second.first >= shard_count) throw bad("puts '" + item.name + "' in no valid shard");
+    if (it->second.first < 0 || it->second.first >= shard_count)
+      throw bad("puts '" + item.name + "' in no valid shard");
     plan.names.push_back(item.name);
     plan.shard_of.push_back(it->second.first);
     plan.costs.push_back(it->second.second);

@@ -57,8 +57,8 @@ std::string shardPlanPath(const std::string& output_dir, int shard_count);
 std::vector<int64_t> estimateJobCosts(const Job& job);
 
 // Costs from the render times ("wall_ms" less "build_ms", the kernel build: a one-off per node) that
-// the manifests in `output_dir` record for done items; an item without one gets its estimate scaled by the median measured/estimate ratio.
-// Returns false (and leaves `costs` alone) when no item has a timing.
+// the manifests in `output_dir` record for done items; an item without one gets its estimate scaled by the median
+// measured/estimate ratio. Returns false (and leaves `costs` alone) when no item has a timing.
 bool measuredJobCosts(const Job& job, const std::vector<int64_t>& estimates, const std::string& output_dir,
                       std::vector<int64_t>& costs);
 

@@ -1,10 +1,10 @@
 // farm_cli_test.cpp — `seasim farm slurm|status|merge` through the real binary, with shards run by
 // hand (no scheduler: tests/farm/farm_slurm_test.sh runs them under a real Slurm).
 #include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
 
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "run_command.h"
@@ -45,9 +45,10 @@ TEST_F(FarmCli, SlurmPrintsTheScriptsAndShardsByHandThenStatusAndMerge) {
   const fs::path out = dir_ / "out";
   seasim_test::Result r = run("farm slurm " + j + " --tasks 2 --retries 1 --partition gpu --time 10:00");
   ASSERT_EQ(r.code, 0) << r.output;
-  for (const char* part : {"#SBATCH --array=0-1", "--shard \"$shard\" --resume", "#SBATCH --partition=gpu",
-                           "#SBATCH --time=10:00", "farm merge", "--dependency=afterok:$ARRAY --kill-on-invalid-dep=yes",
-                           "--dependency=afternotok:$ARRAY", "by item count (index % N)", "balanced by estimate (used)"})
+  for (const char* part :
+       {"#SBATCH --array=0-1", "--shard \"$shard\" --resume", "#SBATCH --partition=gpu", "#SBATCH --time=10:00",
+        "farm merge", "--dependency=afterok:$ARRAY --kill-on-invalid-dep=yes", "--dependency=afternotok:$ARRAY",
+        "by item count (index % N)", "balanced by estimate (used)"})
     EXPECT_TRUE(contains(r.output, part)) << part << "\n" << r.output;
   EXPECT_TRUE(fs::exists(out / "farm" / "tasks.sbatch"));
   EXPECT_TRUE(fs::exists(out / "farm" / "merge.sbatch"));
@@ -110,7 +111,8 @@ TEST_F(FarmCli, SubmitWithoutSlurmFailsNamingTheCommand) {
   const seasim_test::Result r =
       seasim_test::runCommand("PATH=/nonexistent " + kBinary + " farm slurm " + job() + " --tasks 2 --submit");
   EXPECT_EQ(r.code, 1) << r.output;
-  EXPECT_TRUE(contains(r.output, "submitting the array of shards failed (exit code 127): sbatch --parsable")) << r.output;
+  EXPECT_TRUE(contains(r.output, "submitting the array of shards failed (exit code 127): sbatch --parsable"))
+      << r.output;
 }
 
 TEST_F(FarmCli, AnItemNamedFarmIsReserved) {

@@ -4,11 +4,11 @@
 // the merge's checks (missing, failed and damaged items named; complete summary and contact sheet)
 // and `farm status` counting from manifests and shard locks.
 #include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
 #include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <numeric>
 #include <set>
 #include <sstream>
@@ -61,9 +61,9 @@ class Farm : public ::testing::Test {
     nlohmann::json files = nlohmann::json::object();
     for (const char* f : {"image.png", "report.json"}) {
       const std::string rel = name + "/" + f;
-      std::ofstream(j.output_dir + "/" + rel) << (std::string(f) == "report.json"
-                                                      ? R"({"device": {"label": "pocl:0 test"}, "pass_ms": {"a": 1}})"
-                                                      : "png of " + name);
+      std::ofstream(j.output_dir + "/" + rel)
+          << (std::string(f) == "report.json" ? R"({"device": {"label": "pocl:0 test"}, "pass_ms": {"a": 1}})"
+                                              : "png of " + name);
       files[rel] = fileChecksum(j.output_dir + "/" + rel);
     }
     return files;
@@ -92,7 +92,8 @@ TEST(ShardBalance, EveryItemIsInExactlyOneShardAndTheAnswerIsDeterministic) {
     EXPECT_EQ(a, balanceShards(costs, n)) << "same input, same shards";
     // Loads sum to the total: each item counted once.
     const auto loads = shardLoads(costs, a, n);
-    EXPECT_EQ(std::accumulate(loads.begin(), loads.end(), int64_t{0}), std::accumulate(costs.begin(), costs.end(), int64_t{0}));
+    EXPECT_EQ(std::accumulate(loads.begin(), loads.end(), int64_t{0}),
+              std::accumulate(costs.begin(), costs.end(), int64_t{0}));
   }
 }
 
@@ -127,9 +128,9 @@ TEST_F(Farm, EstimatedCostScalesWithPixelsBandsAndPasses) {
   ASSERT_TRUE(makePlan(second).hasPass("sea_second"));
   EXPECT_GT(estimateItemCost(second, makePlan(second)), estimateItemCost(base, makePlan(base)));
   // More second-order depth planes cost more.
-  const Scene finer = loadScene(kRepo + "/scenes/flat_sea.toml", {Override{"spectral.count", "8", {}},
-                                                                   Override{"sea.second_order", "true", {}},
-                                                                   Override{"quality.sea_nz", "24", {}}});
+  const Scene finer = loadScene(kRepo + "/scenes/flat_sea.toml",
+                                {Override{"spectral.count", "8", {}}, Override{"sea.second_order", "true", {}},
+                                 Override{"quality.sea_nz", "24", {}}});
   EXPECT_GT(estimateItemCost(finer, makePlan(finer)), estimateItemCost(second, makePlan(second)));
 }
 
@@ -190,11 +191,12 @@ TEST_F(Farm, SlurmScriptsRunEveryShardWithResumeLogsRetriesAndDependentMerge) {
   o.seasim = "/opt/seasim bin/seasim";
   o.output_dir = "/shared/out";
   const SlurmScripts s = makeSlurmScripts("/jobs/it's.toml", j, o);
-  for (const char* line : {"#SBATCH --array=0-3\n", "#SBATCH --output=/shared/out/farm/logs/task-%a.log\n",
-                           "#SBATCH --open-mode=append\n", "#SBATCH --requeue\n", "#SBATCH --partition=render\n",
-                           "#SBATCH --time=1:00:00\n", "shard=\"${SLURM_ARRAY_TASK_ID:?", "}/4\"\n",
-                           "'/opt/seasim bin/seasim' run '/jobs/it'\\''s.toml' --shard \"$shard\" --resume -o '/shared/out'",
-                           "for attempt in $(seq 1 4)"})
+  for (const char* line :
+       {"#SBATCH --array=0-3\n", "#SBATCH --output=/shared/out/farm/logs/task-%a.log\n", "#SBATCH --open-mode=append\n",
+        "#SBATCH --requeue\n", "#SBATCH --partition=render\n", "#SBATCH --time=1:00:00\n",
+        "shard=\"${SLURM_ARRAY_TASK_ID:?", "}/4\"\n",
+        "'/opt/seasim bin/seasim' run '/jobs/it'\\''s.toml' --shard \"$shard\" --resume -o '/shared/out'",
+        "for attempt in $(seq 1 4)"})
     EXPECT_NE(s.tasks.find(line), std::string::npos) << line << "\n" << s.tasks;
   EXPECT_NE(s.merge.find("exec '/opt/seasim bin/seasim' farm merge '/jobs/it'\\''s.toml' -o '/shared/out'"),
             std::string::npos)
@@ -353,9 +355,15 @@ TEST_F(Farm, StatusCountsDoneRunningFailedAndLeftPerShard) {
     EXPECT_EQ(farmStatusJson(st)["shards"][0]["running"], 1);
   }
   // A lock whose process is gone (SIGKILL): stale, nothing running.
-  std::ofstream(shardLockPath(manifestPath(j.output_dir, 1, 2)))
-      << nlohmann::json{{"host", [] { char b[256] = {}; ::gethostname(b, 255); return std::string(b); }()},
-                        {"pid", 999999999L}, {"started", "x"}}.dump();
+  std::ofstream(shardLockPath(manifestPath(j.output_dir, 1, 2))) << nlohmann::json{
+      {"host",
+       [] {
+         char b[256] = {};
+         ::gethostname(b, 255);
+         return std::string(b);
+       }()},
+      {"pid", 999999999L},
+      {"started", "x"}}.dump();
   st = farmStatus(j, 2);
   EXPECT_EQ(st.shards[1].state, "stale lock");
   EXPECT_EQ(st.shards[1].running, 0);
