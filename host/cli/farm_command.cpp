@@ -54,7 +54,7 @@ void printBalance(const ShardPlan& plan, const Job& job) {
   const char* unit_name = measured ? "ms of render time (an earlier run's)" : "million units (estimate)";
   const auto show = [&](const char* what, const std::vector<int>& shard_of) {
     const auto loads = shardLoads(plan.costs, shard_of, n);
-    std::printf("  %-34s imbalance %.3f  (per shard: %s)\n", what, imbalance(loads), loadsText(loads, unit).c_str());
+    std::printf("  %-36s imbalance %.3f  (per shard: %s)\n", what, imbalance(loads), loadsText(loads, unit).c_str());
   };
   std::printf("%zu items in %d shards; cost per shard in %s; imbalance = largest shard / mean:\n", plan.costs.size(), n,
               unit_name);
