@@ -1,0 +1,122 @@
+// preview_quality_test.cpp — the preview's quality levels and frame-time budget
+// (host/preview/preview_quality.h).
+#include <gtest/gtest.h>
+
+#include <map>
+
+#include "preview/preview_quality.h"
+#include "scene/scene_parser.h"
+
+namespace {
+
+using namespace seasim;
+
+const char* kShafts = R"(
+[camera]
+position = [0, 1.6, 9]
+look_at = [0, 1.6, 0]
+width = 720
+height = 480
+[air]
+density = 0.04
+[[spotlights]]
+position = [0, 5, 0]
+[quality]
+shafts_planes = 30
+shafts_subplanes = 6
+froxel_z = "auto"
+[spectral]
+count = 16
+)";
+
+std::map<std::string, std::string> asMap(const std::vector<Override>& overrides) {
+  std::map<std::string, std::string> out;
+  for (const auto& o : overrides) out[o.key] = o.value_toml;
+  return out;
+}
+
+TEST(PreviewQuality, FullLevelIsTheScenesOwnQuality) {
+  const Scene scene = parseScene(kShafts, "t.toml");
+  const auto full = asMap(qualityLevelOverrides(scene, kPreviewFullLevel));
+  EXPECT_EQ(full.at("quality.shafts_planes"), "30");
+  EXPECT_EQ(full.at("quality.shafts_subplanes"), "6");
+  EXPECT_EQ(full.at("quality.shadow_map_size"), "512");  // a default, named so a lower level can go back
+  EXPECT_EQ(full.at("camera.width"), "720");
+  EXPECT_EQ(full.at("spectral.count"), "16");
+  EXPECT_EQ(full.count("quality.froxel_z"), 0u);  // "auto" is left to its method
+  // Applied to the scene, level 3 changes nothing.
+  const Scene same = parseScene(kShafts, "t.toml", qualityLevelOverrides(scene, kPreviewFullLevel));
+  EXPECT_EQ(same.quality.at("shafts_planes").value, 30);
+  EXPECT_EQ(same.camera.height, 480);
+}
+
+TEST(PreviewQuality, EachLevelHalvesDownToAFloor) {
+  const Scene scene = parseScene(kShafts, "t.toml");
+  const auto l2 = asMap(qualityLevelOverrides(scene, 2));
+  EXPECT_EQ(l2.at("quality.shafts_planes"), "15");
+  EXPECT_EQ(l2.at("quality.shafts_subplanes"), "3");
+  EXPECT_EQ(l2.at("camera.width"), "720");
+  EXPECT_EQ(l2.at("spectral.count"), "8");
+  const auto l1 = asMap(qualityLevelOverrides(scene, 1));
+  EXPECT_EQ(l1.at("quality.shafts_planes"), "7");
+  EXPECT_EQ(l1.at("camera.width"), "360");
+  EXPECT_EQ(l1.at("camera.height"), "240");
+  const auto l0 = asMap(qualityLevelOverrides(scene, 0));
+  EXPECT_EQ(l0.at("quality.shafts_planes"), "6");  // floor 6, not 30 >> 3 = 3
+  EXPECT_EQ(l0.at("quality.shafts_subplanes"), "1");
+  EXPECT_EQ(l0.at("camera.width"), "180");
+  EXPECT_EQ(l0.at("spectral.count"), "3");  // never below 3 bands
+  // Every level is a valid scene.
+  for (int level = 0; level <= kPreviewFullLevel; ++level)
+    EXPECT_NO_THROW(parseScene(kShafts, "t.toml", qualityLevelOverrides(scene, level))) << level;
+  EXPECT_THROW(qualityLevelOverrides(scene, 4), std::exception);
+}
+
+TEST(PreviewQuality, KnobsBelowTheirFloorStayAsTheyAre) {
+  const Scene scene = parseScene("[quality]\nshafts_planes = 4\n[spectral]\ncount = 1\n", "t.toml");
+  const auto l0 = asMap(qualityLevelOverrides(scene, 0));
+  EXPECT_EQ(l0.at("quality.shafts_planes"), "4");
+  EXPECT_EQ(l0.at("spectral.count"), "1");
+}
+
+TEST(QualityBudget, NoBudgetMeansFullQuality) {
+  QualityBudget none(0);
+  EXPECT_EQ(none.next(true), kPreviewFullLevel);
+  EXPECT_EQ(none.next(false), kPreviewFullLevel);
+}
+
+TEST(QualityBudget, MovingPicksTheHighestLevelWithinTheBudget) {
+  QualityBudget b(100);
+  EXPECT_EQ(b.next(true), 1);  // nothing measured yet
+  b.record(1, 30);             // level 2 predicted 60 ms, level 3 120 ms
+  EXPECT_DOUBLE_EQ(b.predictedMs(2), 60);
+  EXPECT_DOUBLE_EQ(b.predictedMs(3), 120);
+  EXPECT_EQ(b.next(true), 2);
+  b.record(2, 150);  // slower than predicted: back to level 1
+  EXPECT_EQ(b.next(true), 1);
+  b.record(0, 10);
+  b.record(1, 140);  // now even level 1 is over: level 0
+  EXPECT_EQ(b.next(true), 0);
+}
+
+TEST(QualityBudget, StillRefinesOneLevelPerFrame) {
+  QualityBudget b(100);
+  b.record(0, 10);
+  EXPECT_EQ(b.next(false), 1);
+  b.record(1, 20);
+  EXPECT_EQ(b.next(false), 2);
+  b.record(2, 40);
+  EXPECT_EQ(b.next(false), 3);
+  b.record(3, 400);  // the full level is slow, but a still view is shown at it
+  EXPECT_EQ(b.next(false), 3);
+  EXPECT_EQ(b.next(true), 2);  // moving again: the fastest level that fits
+}
+
+TEST(QualityBudget, LevelText) {
+  EXPECT_EQ(levelText(1, true, false), "level 1/3 (moving)");
+  EXPECT_EQ(levelText(2, false, false), "level 2/3 (refining)");
+  EXPECT_EQ(levelText(3, false, false), "level 3/3 (full)");
+  EXPECT_EQ(levelText(0, false, true), "level 0/3 (preset)");
+}
+
+}  // namespace
