@@ -122,8 +122,9 @@ int cmdPreview(const PreviewCmd& cmd) {
       quit |= effect.quit;
     }
     if (quit) break;
-    // A window left alone at full quality: nothing to render, wait for input.
-    if (cmd.frames == 0 && !moving && !save && !settings.playing() && level == kPreviewFullLevel && frame > 0) {
+    // A window left alone at full quality (or at its fixed preset): nothing to render, wait for input.
+    if (cmd.frames == 0 && frame > 0 && !moving && !save && !settings.playing() &&
+        (settings.preset() >= 0 || level == kPreviewFullLevel)) {
       window.waitEvents(0.05);
       continue;
     }
@@ -142,13 +143,14 @@ int cmdPreview(const PreviewCmd& cmd) {
     if (const std::vector<Override> changed = changedOverrides(next, applied); !changed.empty()) renderer.update(changed);
     const FrameResult result = renderer.render();
     const double frame_ms = msSince(start);
-    if (!renderer.lastExecuted().empty()) budget.record(level, frame_ms);
+    // The budget learns what a frame at this level costs; a kernel build (or cache load) is paid once.
+    if (!renderer.lastExecuted().empty()) budget.record(level, std::max(0.0, frame_ms - result.build_ms));
     if (result.nonfinite) std::fprintf(stderr, "seasim preview: frame %d has %lld NaN/Inf values (shown black)\n", frame, result.nonfinite);
     toneMapImage8(result.rgb, renderer.scene().camera.exposure_ev, bytes);
 
     std::string title = "seasim preview: " + scene.name + " | " + levelText(level, moving, settings.preset() >= 0);
     char text[64];
-    std::snprintf(text, sizeof text, " | %.1f fps %.0f ms |", frame_ms > 0 ? 1000.0 / frame_ms : 0.0, frame_ms);
+    std::snprintf(text, sizeof text, " | %.1f fps %.1f ms |", frame_ms > 0 ? 1000.0 / frame_ms : 0.0, frame_ms);
     title += text;
     for (const PassTiming& t : result.timings) {
       std::snprintf(text, sizeof text, " %s %.1f", t.name.c_str(), t.ms);

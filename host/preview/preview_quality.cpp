@@ -45,9 +45,13 @@ std::vector<Override> qualityLevelOverrides(const Scene& scene, int level) {
 }
 
 double QualityBudget::predictedMs(int level) const {
-  if (ms_[static_cast<size_t>(level)] > 0) return ms_[static_cast<size_t>(level)];
+  auto known = [&](int k) {
+    const size_t i = static_cast<size_t>(k);
+    return ms_[i] > 0 && frames_ - measured_at_[i] < kStaleFrames;
+  };
+  if (known(level)) return ms_[static_cast<size_t>(level)];
   for (int k = level - 1; k >= 0; --k)
-    if (ms_[static_cast<size_t>(k)] > 0) return ms_[static_cast<size_t>(k)] * std::exp2(level - k);
+    if (known(k)) return ms_[static_cast<size_t>(k)] * std::exp2(2 * (level - k));  // x4 per level
   return 0.0;
 }
 
@@ -65,7 +69,9 @@ int QualityBudget::next(bool moving) const {
 }
 
 void QualityBudget::record(int level, double frame_ms) {
+  ++frames_;
   ms_[static_cast<size_t>(level)] = frame_ms;
+  measured_at_[static_cast<size_t>(level)] = frames_;
   shown_ = level;
 }
 

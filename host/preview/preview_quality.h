@@ -24,7 +24,10 @@ std::vector<Override> qualityLevelOverrides(const Scene& scene, int level);
 
 // Chooses the level of the next frame from the frame times measured so far.
 //   moving: the highest level whose predicted time fits the budget (the last time measured at that
-//           level, else the nearest lower level's time x 2 per level up; level 1 when nothing is known);
+//           level, else the nearest lower level's time x 4 per level up; level 1 when nothing is known).
+//           A time kStaleFrames frames old is forgotten: the frame that switches level also sets
+//           passes up (tables, FFT plans), so its time can overstate what the level costs while
+//           moving, and without forgetting it that level would never be tried again;
 //   still:  one level above the last one shown, up to level 3 (refining step by step).
 // A budget of 0 or less means no budget: always level 3.
 class QualityBudget {
@@ -33,10 +36,13 @@ class QualityBudget {
   int next(bool moving) const;
   void record(int level, double frame_ms);
   double predictedMs(int level) const;  // 0 when nothing is known
+  static constexpr long kStaleFrames = 8;
 
  private:
   double budget_ms_;
   std::array<double, kPreviewLevels> ms_{};  // last measured frame time per level, 0 = not yet
+  std::array<long, kPreviewLevels> measured_at_{};  // frame count when measured
+  long frames_ = 0;
   int shown_ = -1;
 };
 
