@@ -70,8 +70,10 @@ int QualityBudget::next(bool moving) const {
 
 void QualityBudget::record(int level, double frame_ms) {
   ++frames_;
-  ms_[static_cast<size_t>(level)] = frame_ms;
-  measured_at_[static_cast<size_t>(level)] = frames_;
+  if (level == shown_) {
+    ms_[static_cast<size_t>(level)] = frame_ms;
+    measured_at_[static_cast<size_t>(level)] = frames_;
+  }
   shown_ = level;
 }
 

@@ -25,15 +25,17 @@ std::vector<Override> qualityLevelOverrides(const Scene& scene, int level);
 // Chooses the level of the next frame from the frame times measured so far.
 //   moving: the highest level whose predicted time fits the budget (the last time measured at that
 //           level, else the nearest lower level's time x 4 per level up; level 1 when nothing is known).
-//           A time kStaleFrames frames old is forgotten: the frame that switches level also sets
-//           passes up (tables, FFT plans), so its time can overstate what the level costs while
-//           moving, and without forgetting it that level would never be tried again;
+//           Only frames at the same level as the frame before count: the frame that switches level
+//           also sets passes up again (tables, FFT plans), which a moving view at that level does not
+//           pay each frame. A time kStaleFrames frames old is forgotten, so a level measured once in a
+//           slow moment is tried again;
 //   still:  one level above the last one shown, up to level 3 (refining step by step).
 // A budget of 0 or less means no budget: always level 3.
 class QualityBudget {
  public:
   explicit QualityBudget(double budget_ms) : budget_ms_(budget_ms) {}
   int next(bool moving) const;
+  // The frame just shown and its time (counted only when the level is the previous frame's).
   void record(int level, double frame_ms);
   double predictedMs(int level) const;  // 0 when nothing is known
   static constexpr long kStaleFrames = 8;
