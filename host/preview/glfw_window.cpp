@@ -6,6 +6,7 @@
 #include <GLFW/glfw3.h>
 
 #include <cstdint>
+#include <cstdio>
 #include <cstring>
 #include <map>
 #include <string>
@@ -89,6 +90,17 @@ void onScroll(GLFWwindow* w, double, double y) { self(w)->inputs.push_back({Prev
 
 int glfw_users = 0;  // glfwInit/glfwTerminate around the windows the process has open
 
+// "" when OpenGL reports no error since the last check, else the error and the call before it.
+std::string glError(const char* call) {
+  std::string text;
+  for (GLenum e = glGetError(); e != GL_NO_ERROR; e = glGetError()) {
+    char code[16];
+    std::snprintf(code, sizeof code, "0x%04x", e);
+    text += std::string(text.empty() ? "OpenGL error " : ", ") + code;
+  }
+  return text.empty() ? text : text + " after " + call;
+}
+
 void* openWindow(int width, int height, const std::string& title, std::string& error) {
   glfwSetErrorCallback(nullptr);
   if (glfw_users == 0 && !glfwInit()) {
@@ -153,10 +165,11 @@ std::vector<PreviewInput> poll(void* handle, bool& closed) {
   return out;
 }
 
-void present(void* handle, const std::uint8_t* rgb, int width, int height, std::vector<std::uint8_t>* capture,
-             int* capture_width, int* capture_height) {
+std::string present(void* handle, const std::uint8_t* rgb, int width, int height, std::vector<std::uint8_t>* capture,
+                    int* capture_width, int* capture_height) {
   auto* win = static_cast<Window*>(handle);
   glfwMakeContextCurrent(win->glfw);
+  (void)glError("");  // errors from before this frame are not this frame's
   // Upload: a plain texture upload (the image is already tone-mapped to 8-bit sRGB on the host by
   // io/tonemap.h, the function image.png uses). Rows go in top row first, so the blit flips them.
   glBindTexture(GL_TEXTURE_2D, win->texture);
@@ -173,6 +186,7 @@ void present(void* handle, const std::uint8_t* rgb, int width, int height, std::
   } else {
     glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, width, height, GL_RGB, GL_UNSIGNED_BYTE, rgb);
   }
+  if (std::string e = glError("the texture upload (glTexImage2D/glTexSubImage2D)"); !e.empty()) return e;
   int fb_width = 0, fb_height = 0;
   glfwGetFramebufferSize(win->glfw, &fb_width, &fb_height);
   win->gl.bindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
@@ -184,6 +198,7 @@ void present(void* handle, const std::uint8_t* rgb, int width, int height, std::
   const bool same = fb_width == width && fb_height == height;
   win->gl.blitFramebuffer(0, height, width, 0, 0, 0, fb_width, fb_height, GL_COLOR_BUFFER_BIT,
                           same ? GL_NEAREST : GL_LINEAR);
+  if (std::string e = glError("glBlitFramebuffer"); !e.empty()) return e;
   if (capture) {
     win->gl.bindFramebuffer(GL_READ_FRAMEBUFFER, 0);
     glReadBuffer(GL_BACK);
@@ -191,6 +206,7 @@ void present(void* handle, const std::uint8_t* rgb, int width, int height, std::
     std::vector<std::uint8_t> bottom_up(static_cast<size_t>(fb_width) * fb_height * 3);
     glFinish();
     glReadPixels(0, 0, fb_width, fb_height, GL_RGB, GL_UNSIGNED_BYTE, bottom_up.data());
+    if (std::string e = glError("glReadPixels"); !e.empty()) return e;
     capture->resize(bottom_up.size());
     const size_t row = static_cast<size_t>(fb_width) * 3;
     for (int y = 0; y < fb_height; ++y)
@@ -200,6 +216,7 @@ void present(void* handle, const std::uint8_t* rgb, int width, int height, std::
     *capture_height = fb_height;
   }
   glfwSwapBuffers(win->glfw);
+  return "";
 }
 
 void waitEvents(void*, double seconds) { glfwWaitEventsTimeout(seconds); }

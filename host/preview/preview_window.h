@@ -28,8 +28,9 @@ struct PreviewWindowModule {
   // window's close button was pressed.
   std::vector<PreviewInput> (*poll)(void* window, bool& closed);
   // Draws the RGB image (8-bit sRGB, top row first) scaled to the framebuffer and shows it. With
-  // `capture`, first reads the drawn framebuffer back (glReadPixels, top row first, RGB).
-  void (*present)(void* window, const std::uint8_t* rgb, int width, int height, std::vector<std::uint8_t>* capture,
+  // `capture`, first reads the drawn framebuffer back (glReadPixels, top row first, RGB). Returns ""
+  // or the OpenGL error met, naming the call.
+  std::string (*present)(void* window, const std::uint8_t* rgb, int width, int height, std::vector<std::uint8_t>* capture,
                   int* capture_width, int* capture_height);
   // Sleeps until an input arrives or `seconds` pass (the window idle at full quality).
   void (*wait)(void* window, double seconds);
@@ -52,19 +53,20 @@ class PreviewWindow {
   void setTitle(const std::string& title) { module_->setTitle(handle_, title); }
   std::vector<PreviewInput> poll(bool& closed) { return module_->poll(handle_, closed); }
   void present(const std::vector<std::uint8_t>& rgb, int width, int height) {
-    module_->present(handle_, rgb.data(), width, height, nullptr, nullptr, nullptr);
+    check(module_->present(handle_, rgb.data(), width, height, nullptr, nullptr, nullptr));
   }
   // present() and the framebuffer read back as an 8-bit RGB image.
   std::vector<std::uint8_t> presentAndCapture(const std::vector<std::uint8_t>& rgb, int width, int height,
                                               int& capture_width, int& capture_height) {
     std::vector<std::uint8_t> out;
-    module_->present(handle_, rgb.data(), width, height, &out, &capture_width, &capture_height);
+    check(module_->present(handle_, rgb.data(), width, height, &out, &capture_width, &capture_height));
     return out;
   }
   void waitEvents(double seconds) { module_->wait(handle_, seconds); }
   std::string info() { return module_->info(handle_); }
 
  private:
+  static void check(const std::string& gl_error);  // throws RuntimeError when not empty
   const PreviewWindowModule* module_;
   void* handle_;
 };

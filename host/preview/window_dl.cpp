@@ -78,4 +78,8 @@ PreviewWindow::PreviewWindow(int width, int height, const std::string& title) : 
 
 PreviewWindow::~PreviewWindow() { module_->close(handle_); }
 
+void PreviewWindow::check(const std::string& gl_error) {
+  if (!gl_error.empty()) throw RuntimeError("seasim preview: " + gl_error);
+}
+
 }  // namespace seasim
