@@ -6,7 +6,10 @@ CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=RelWithDebInfo
 # file: CPack reads the binaries with it to declare the .deb's shared-library dependencies (make package).
 DEPS = build-essential cmake pkgconf pocl-opencl-icd ocl-icd-opencl-dev opencl-c-headers \
        opencl-clhpp-headers clinfo libfftw3-dev libvkfft-dev libopenimageio-dev openimageio-tools libtbb-dev \
-       libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libgtest-dev file
+       libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libgtest-dev file libglfw3-dev libgl-dev libopengl-dev
+# `make test` also needs a display for the preview's tests (Xvfb, xauth and Mesa's llvmpipe,
+# libgl1-mesa-dri) and, for the farm test (tests/farm/), a real Slurm controller and node on localhost.
+TEST_DEPS = xvfb xauth libgl1-mesa-dri slurm-wlm munge
 # Kernel build caches live in the build folder so tests and demo reuse them.
 export POCL_CACHE_DIR ?= $(CURDIR)/$(BUILD)/pocl-cache
 export SEASIM_CACHE_DIR ?= $(CURDIR)/$(BUILD)/seasim-cache
@@ -20,8 +23,6 @@ demo: build
 test: build test-deps
 	cd $(BUILD) && ctest --output-on-failure -j 2
 
-# The farm test (tests/farm/) runs a real Slurm controller and node on localhost.
-TEST_DEPS = slurm-wlm munge
 test-deps:
 	@$(MAKE) --no-print-directory deps DEPS="$(TEST_DEPS)"
 

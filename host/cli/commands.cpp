@@ -645,13 +645,4 @@ int cmdReference(const ReferenceCmd& cmd) {
   return 0;
 }
 
-int cmdPreview(const std::string& scene, const std::string& device) {
-#if SEASIM_PREVIEW
-  throw RuntimeError("preview: not built yet");
-#else
-  std::fprintf(stderr, "seasim preview: not built (configure with -DSEASIM_PREVIEW=ON; the preview is a later issue)\n");
-  return 2;
-#endif
-}
-
 }  // namespace seasim

@@ -62,6 +62,4 @@ struct ReferenceCmd {
 };
 int cmdReference(const ReferenceCmd& cmd);
 
-int cmdPreview(const std::string& scene, const std::string& device);
-
 }  // namespace seasim

@@ -10,6 +10,7 @@
 #include "cli/commands.h"
 #include "cli/farm_command.h"
 #include "cli/ocean_command.h"
+#include "cli/preview_command.h"
 #include "cli/seashore_study_command.h"
 #include "cli/underwater_study_command.h"
 #include "spectral/sensor.h"
@@ -199,10 +200,17 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   farm_status->add_flag("--json", farm_status_cmd.json, "JSON instead of a table");
 
-  std::string preview_scene, preview_device;
-  auto* preview = app.add_subcommand("preview", "Live GLFW preview window");
-  preview->add_option("scene", preview_scene, "Scene file");
-  preview->add_option("--device", preview_device, "Device selector");
+  seasim::PreviewCmd preview_cmd;
+  auto* preview = app.add_subcommand("preview", "Live preview window (GLFW): keys and mouse change the scene (docs/preview.md)");
+  preview->add_option("scene", preview_cmd.scene, "Scene file")->required()->check(CLI::ExistingFile);
+  preview->add_option("--device", preview_cmd.device, "cpu, gpu, pocl:0, nvidia:0 or a name substring");
+  preview->add_option("--set", preview_cmd.sets, "Override a scene key: key=value (repeatable)");
+  preview->add_option("--size", preview_cmd.size, "WIDTHxHEIGHT of the window and the render (camera.width/height)");
+  preview->add_option("--frames", preview_cmd.frames, "Stop after N frames (0: when the window closes)");
+  preview->add_option("--screenshot", preview_cmd.screenshot, "Save the last frame's framebuffer as this PNG (needs --frames)");
+  preview->add_option("--script", preview_cmd.script, "Key script, one input per frame: \"UP*3 ORBIT:40,0 WAIT S\"");
+  preview->add_option("--budget-ms", preview_cmd.budget_ms, "Frame-time budget while the view moves (0: always full quality)");
+  preview->add_option("--save-prefix", preview_cmd.save_prefix, "The S key writes PREFIX_<n>.png and PREFIX_<n>.toml");
 
   CLI11_PARSE(app, argc, argv);
   try {
@@ -224,7 +232,7 @@ int main(int argc, char** argv) {
       return seasim::cmdUnderwaterStudy(study_cmd);
     }
     if (*shore) return seasim::cmdSeashoreStudy(shore_cmd);
-    if (*preview) return seasim::cmdPreview(preview_scene, preview_device);
+    if (*preview) return seasim::cmdPreview(preview_cmd);
     if (*cache_clear) return seasim::cmdCacheClear();
     if (*cache_verify) return seasim::cmdCacheVerify();
     if (*warm) return seasim::cmdCacheWarm(warm_cmd);

@@ -16,6 +16,7 @@
 // final name; parent folders are created; on failure nothing is left behind and a RuntimeError
 // names the path. `.npy` paths (writeNpy, readImage("x.npy")) work in both builds.
 #pragma once
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,11 @@ std::string writeExr(const std::string& path, const Image& image);
 // Tone-mapped 8-bit sRGB PNG through io/tonemap.h (1, 2, 3 or 4 channels). NaN/Inf show as 0;
 // count them beforehand with toneMapImage if the caller must fail on them.
 std::string writePng(const std::string& path, const Image& linear_rgb, double exposure_ev);
+
+// 8-bit values written as they are, no tone map (a screenshot of the preview window): `bytes` holds
+// width x height x channels (1..4) values, interleaved, top row first.
+std::string writePngBytes(const std::string& path, int width, int height, int channels,
+                          const std::vector<std::uint8_t>& bytes);
 
 // Spectral EXR in the layout of Fichet, Pacanowski & Wilkie, "An OpenEXR Layout for Spectral
 // Images", JCGT 10(3), 2021: one float channel per band named "S0.<int>,<6 decimals>nm" (emissive,

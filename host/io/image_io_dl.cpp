@@ -80,6 +80,11 @@ std::string writePng(const std::string& path, const Image& linear_rgb, double ex
   return module().writePng(path, linear_rgb, exposure_ev);
 }
 
+std::string writePngBytes(const std::string& path, int width, int height, int channels,
+                          const std::vector<std::uint8_t>& bytes) {
+  return module().writePngBytes(path, width, height, channels, bytes);
+}
+
 std::string writeSpectralExr(const std::string& path, int width, int height, const std::vector<double>& wavelengths_nm,
                              const std::vector<float>& data) {
   return module().writeSpectralExr(path, width, height, wavelengths_nm, data);

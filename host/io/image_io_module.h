@@ -15,14 +15,16 @@
 
 namespace seasim {
 
-constexpr int kImageIoModuleVersion = 2;
-#define SEASIM_IMAGE_IO_MODULE_ENTRY "seasim_image_io_module_v2"
+constexpr int kImageIoModuleVersion = 3;
+#define SEASIM_IMAGE_IO_MODULE_ENTRY "seasim_image_io_module_v3"
 #define SEASIM_IMAGE_IO_MODULE_FILE "libseasim_oiio.so"
 
 struct ImageIoModule {
   int version;
   std::string (*writeExr)(const std::string& path, const Image& image);
   std::string (*writePng)(const std::string& path, const Image& linear_rgb, double exposure_ev);
+  std::string (*writePngBytes)(const std::string& path, int width, int height, int channels,
+                               const std::vector<std::uint8_t>& bytes);
   std::string (*writeSpectralExr)(const std::string& path, int width, int height,
                                   const std::vector<double>& wavelengths_nm, const std::vector<float>& data);
   ImageHeader (*readImageHeader)(const std::string& path);

@@ -56,6 +56,16 @@ std::string writePng(const std::string& path, const Image& linear_rgb, double ex
   return out;
 }
 
+std::string writePngBytes(const std::string& path, int width, int height, int channels,
+                          const std::vector<std::uint8_t>& bytes) {
+  if (width <= 0 || height <= 0 || channels < 1 || channels > 4 || bytes.size() != sz(width) * sz(height) * sz(channels))
+    throw RuntimeError("cannot write '" + path + "': the bytes are not a " + std::to_string(width) + "x" +
+                       std::to_string(height) + "x" + std::to_string(channels) + " image");
+  const std::string out = npyPathFor(path);
+  writeNpyArray(out, NpyType::UInt8, {sz(height), sz(width), sz(channels)}, bytes.data());
+  return out;
+}
+
 std::string writeSpectralExr(const std::string& path, int width, int height,
                              const std::vector<double>& wavelengths_nm, const std::vector<float>& data) {
   const std::size_t n = wavelengths_nm.size();

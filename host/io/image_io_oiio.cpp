@@ -120,6 +120,20 @@ std::string writePng(const std::string& path, const Image& linear_rgb, double ex
   return path;
 }
 
+std::string writePngBytes(const std::string& path, int width, int height, int channels,
+                          const std::vector<std::uint8_t>& bytes) {
+  if (width <= 0 || height <= 0 || channels < 1 || channels > 4 ||
+      bytes.size() != static_cast<std::size_t>(width) * height * channels)
+    throw RuntimeError("cannot write '" + path + "': " + std::to_string(bytes.size()) + " bytes are not a " +
+                       std::to_string(width) + "x" + std::to_string(height) + "x" + std::to_string(channels) + " image");
+  OIIO::ImageSpec spec(width, height, channels, OIIO::TypeDesc::UINT8);
+  spec.attribute("oiio:ColorSpace", "sRGB");
+  writeFileAtomic(path, [&](const std::string& temp) {
+    writeThroughMemory(temp, "png", spec, OIIO::TypeDesc::UINT8, bytes.data());
+  });
+  return path;
+}
+
 std::string writeSpectralExr(const std::string& path, int width, int height,
                              const std::vector<double>& wavelengths_nm, const std::vector<float>& data) {
   const std::size_t n = wavelengths_nm.size();
@@ -229,9 +243,10 @@ SpectralImage readSpectralExr(const std::string& path) {
 }  // namespace seasim
 
 // The module's one entry point (image_io_module.h).
-extern "C" __attribute__((visibility("default"))) const seasim::ImageIoModule* seasim_image_io_module_v2() {
+extern "C" __attribute__((visibility("default"))) const seasim::ImageIoModule* seasim_image_io_module_v3() {
   static const seasim::ImageIoModule table{seasim::kImageIoModuleVersion, &seasim::writeExr,
-                                           &seasim::writePng,              &seasim::writeSpectralExr,
+                                           &seasim::writePng,              &seasim::writePngBytes,
+                                           &seasim::writeSpectralExr,
                                            &seasim::readImageHeader,       &seasim::readImage,
                                            &seasim::readImageAttribute,    &seasim::readSpectralExr};
   return &table;

@@ -323,10 +323,14 @@ TEST_F(Cli, CacheWarmBuildsEachDistinctPlanOnceIntoTheCaches) {
   EXPECT_FALSE(fs::exists(dir_ / "out"));
 }
 
-TEST_F(Cli, PreviewSaysNotBuilt) {
+// The preview itself runs under Xvfb in preview_cli_test.cpp; here only what needs no display.
+TEST_F(Cli, PreviewNeedsAScene) {
   const Result r = run("preview");
   EXPECT_NE(r.code, 0);
-  EXPECT_NE(r.output.find("not built"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("scene is required"), std::string::npos) << r.output;
+  const Result bad = run("preview " + kRepo + "/scenes/flat_sea.toml --size 10x10 --frames 1");
+  EXPECT_NE(bad.code, 0);
+  EXPECT_NE(bad.output.find("--size expects WIDTHxHEIGHT"), std::string::npos) << bad.output;
 }
 
 }  // namespace

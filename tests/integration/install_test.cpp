@@ -11,6 +11,7 @@
 #include <fstream>
 #include <string>
 
+#include "preview/preview_window.h"
 #include "run_command.h"
 
 namespace fs = std::filesystem;
@@ -48,6 +49,8 @@ std::string Install::install_log_;
 TEST_F(Install, LaysOutBinaryDataAndExamplesWithoutNonFreeCameras) {
   EXPECT_TRUE(fs::is_regular_file(prefix_ / "bin" / "seasim"));
   EXPECT_TRUE(fs::is_regular_file(prefix_ / "lib" / "seasim" / "libseasim_oiio.so"));
+  // The preview's window module, in builds that have it (CMake found GLFW and OpenGL).
+  EXPECT_EQ(fs::is_regular_file(prefix_ / "lib" / "seasim" / "libseasim_preview.so"), seasim::previewBuilt());
   const fs::path share = prefix_ / "share" / "seasim";
   EXPECT_TRUE(fs::is_regular_file(share / "data" / "cie1931_2deg_cmf.csv"));
   EXPECT_TRUE(fs::is_regular_file(share / "data" / "cameras" / "nikon_d5100_npl.csv"));
