@@ -144,6 +144,15 @@ Plan makePlan(const Scene& scene) {
         flag("SEASIM_BOTTOM_CAUSTICS", bottom_caustics)};
     // 000 §5.4: the bottom is a height field (z_Q per pixel, depth tables for the second order).
     if (height_field) defines.push_back("SEASIM_BOTTOM_HEIGHTFIELD=1");
+    // Issue 19: wave normals filtered over the pixel's footprint (common/sea_lean.h), unless turned
+    // off or replaced by its reference, n x n rays per pixel over the unfiltered normals.
+    const auto knob = [&](const char* name, double fallback) {
+      const auto it = scene.quality.find(name);
+      return it == scene.quality.end() ? fallback : it->second.value;
+    };
+    const int supersample = static_cast<int>(knob("sea_supersample", 1));
+    if (waves) defines.push_back(flag("SEASIM_WAVE_FILTER", knob("wave_filter", 1) != 0 && supersample == 1));
+    if (supersample > 1) defines.push_back("SEASIM_SUPERSAMPLE=" + std::to_string(supersample));
     std::vector<std::string> reads = {"scene"};
     if (waves) reads.push_back("ocean_maps");
     if (bottom_caustics) reads.push_back("caustic_map");
