@@ -16,7 +16,7 @@
  * Defines (chosen by host/plan): SEASIM_HAS_REFLECTION, SEASIM_HAS_SINGLE_SCATTERING,
  * SEASIM_HAS_BOTTOM, SEASIM_HAS_SUN, SEASIM_SPECTRAL_OUTPUT, SEASIM_HAS_WAVES (FFT wave normals,
  * common/sea_waves.h), SEASIM_SKY_MODEL (0 uniform, 1 CIE clear sky, 2 environment image,
- * common/sky.h), SEASIM_BOTTOM_CAUSTICS, SEASIM_BOTTOM_HEIGHTFIELD (with SEASIM_HAS_BOTTOM: the floor is the height field
+ * common/sky.h; 3 Preetham), SEASIM_BOTTOM_CAUSTICS, SEASIM_BOTTOM_HEIGHTFIELD (with SEASIM_HAS_BOTTOM: the floor is the height field
  * of the last two arguments, common/sea_bottom.h; forces SEASIM_SEA_LUT 0); SEASIM_SEA_LUT (the
  * pass, from quality.sea_lut_size): 1 reads eq. 5's factors from the look-up table the paper uses,
  * 0 evaluates eq. 5 exactly.
@@ -78,6 +78,9 @@ static inline float3 sky_shape(const __constant SeaParams* p, const __global flo
   return (float3)(s, s, s);
 #elif SEASIM_SKY_MODEL == SEASIM_SKY_IMAGE
   return p->sky_scale * sky_latlong_rgb(sky, p->sky_width, p->sky_height, d);
+#elif SEASIM_SKY_MODEL == SEASIM_SKY_PREETHAM
+  const float3 sun = (float3)(p->sun_dir[0], p->sun_dir[1], p->sun_dir[2]);
+  return p->sky_scale * sky_preetham_rgb(sky, d, sun);
 #else
   return (float3)(1.0f, 1.0f, 1.0f);
 #endif
@@ -86,7 +89,7 @@ static inline float3 sky_shape(const __constant SeaParams* p, const __global flo
 /* One band's sky radiance for a shape from sky_shape (linear in the shape: a weighted sum of shapes
  * gives the same sum of radiances, which the wave filter uses). */
 static inline float sky_band(const __global SeaBand* band, float3 shape) {
-#if SEASIM_SKY_MODEL == SEASIM_SKY_IMAGE
+#if SEASIM_SKY_MODEL == SEASIM_SKY_IMAGE || SEASIM_SKY_MODEL == SEASIM_SKY_PREETHAM
   return band->sky_radiance * (band->sky_w_r * shape.x + band->sky_w_g * shape.y + band->sky_w_b * shape.z);
 #else
   return band->sky_radiance * shape.x; /* uniform: shape 1; analytic: grey */

@@ -129,10 +129,11 @@ Plan makePlan(const Scene& scene) {
     const bool sun = scene.sun.enabled && scene.sun.irradiance > 0;
     const bool height_field = scene.bottom.type == BottomDesc::Type::HeightField;
     const bool bottom = scene.bottom.type == BottomDesc::Type::Flat || height_field;
-    // SEASIM_SKY_MODEL (common/sky.h): 0 uniform, 1 analytic (CIE clear sky), 2 lat-long image.
-    const int sky_model = scene.sky.model == SkyDesc::Model::Analytic ? 1
-                          : scene.sky.model == SkyDesc::Model::Image  ? 2
-                                                                      : 0;
+    // SEASIM_SKY_MODEL (common/sky.h): 0 uniform, 1 analytic (CIE clear sky), 2 lat-long image, 3 Preetham.
+    const int sky_model = scene.sky.model == SkyDesc::Model::Analytic   ? 1
+                          : scene.sky.model == SkyDesc::Model::Image    ? 2
+                          : scene.sky.model == SkyDesc::Model::Preetham ? 3
+                                                                        : 0;
     std::vector<std::string> defines = {
         flag("SEASIM_HAS_REFLECTION", scene.sea.reflection),
         flag("SEASIM_HAS_SINGLE_SCATTERING", scene.sea.single_scattering && sun),

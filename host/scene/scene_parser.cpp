@@ -237,16 +237,22 @@ class SceneParser {
 
   void sky(const toml::table& t) {
     TableReader probe(src_, t, "sky");
-    std::string model = probe.choice("model", "uniform", {"uniform", "analytic", "image"});
+    std::string model = probe.choice("model", "uniform", {"uniform", "analytic", "image", "preetham"});
     TableReader r(src_, t, "sky", "not used with model = '" + model + "'");
     r.has("model");
     SkyDesc& s = scene_.sky;
     s.model = model == "uniform"    ? SkyDesc::Model::Uniform
               : model == "analytic" ? SkyDesc::Model::Analytic
+              : model == "preetham" ? SkyDesc::Model::Preetham
                                     : SkyDesc::Model::Image;
     s.radiance = r.number("radiance", s.radiance);
     r.check(s.radiance >= 0, "radiance", "must be >= 0, got " + fmt(s.radiance));
     if (s.model == SkyDesc::Model::Image) s.image = texture(r, "image", true);
+    if (s.model == SkyDesc::Model::Preetham) {
+      s.turbidity = r.number("turbidity", s.turbidity);
+      // Preetham et al. 1999 fitted T in [2, 10]; 1.7 (the clearest skies) is the usual lower limit.
+      r.check(s.turbidity >= 1.7 && s.turbidity <= 10, "turbidity", "must be in [1.7, 10], got " + fmt(s.turbidity));
+    }
     r.finish();
   }
 
