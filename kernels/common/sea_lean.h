@@ -61,6 +61,7 @@
  * the whole sea's RMS went from 1.83 levels (1.0) to 1.26 (0.7) and 1.04 (0.5), the horizon's from
  * 1.34 to 1.26 and 1.36. */
 #define SEA_LEAN_FOOTPRINT_SCALE R(0.6)
+SEASIM_FN real sea_lean_footprint_scale(void) { return SEA_LEAN_FOOTPRINT_SCALE; }
 
 /* The slope of the facet with unit normal n (y up), capped at SEA_LEAN_MAX_SLOPE. */
 SEASIM_FN void sea_lean_slope(real3 n, real* sx, real* sz) {

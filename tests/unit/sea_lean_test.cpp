@@ -174,7 +174,8 @@ TYPED_TEST(SeaLean, FootprintMatchesDirectAveragesAtMipCells) {
       const double cx = (ti + 0.5) * side * cell, cz = (tj + 0.5) * side * cell;
       const std::vector<double> m = bilinearAverage(sx, sz, n, side * ti, side * (ti + 1), side * tj, side * (tj + 1));
       T out[5];
-      const double size = side * cell;  // a footprint of exactly one cell of this level
+      // A footprint read exactly at this level (the reads use SEA_LEAN_FOOTPRINT_SCALE of its size).
+      const double size = side * cell / kd::sea_lean_footprint_scale();
       L::footprint(mips.data(), n, T(patch), T(cx), T(cz), T(1), T(0), T(size), T(size), out);
       const double tol = std::is_same_v<T, float> ? 2e-5 : 1e-12;
       EXPECT_NEAR(double(out[0]), m[0], tol) << "level " << level << " cell " << ti;
