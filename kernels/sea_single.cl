@@ -16,7 +16,7 @@
  * Defines (chosen by host/plan): SEASIM_HAS_REFLECTION, SEASIM_HAS_SINGLE_SCATTERING,
  * SEASIM_HAS_BOTTOM, SEASIM_HAS_SUN, SEASIM_SPECTRAL_OUTPUT, SEASIM_HAS_WAVES (FFT wave normals,
  * common/sea_waves.h), SEASIM_SKY_MODEL (0 uniform, 1 CIE clear sky, 2 environment image,
- * common/sky.h), SEASIM_BOTTOM_CAUSTICS, SEASIM_BOTTOM_HEIGHTFIELD (with SEASIM_HAS_BOTTOM: the floor is the height field
+ * common/sky.h; 3 Preetham), SEASIM_BOTTOM_CAUSTICS, SEASIM_BOTTOM_HEIGHTFIELD (with SEASIM_HAS_BOTTOM: the floor is the height field
  * of the last two arguments, common/sea_bottom.h; forces SEASIM_SEA_LUT 0); SEASIM_SEA_LUT (the
  * pass, from quality.sea_lut_size): 1 reads eq. 5's factors from the look-up table the paper uses,
  * 0 evaluates eq. 5 exactly.
@@ -37,6 +37,7 @@
 #include "common/sea_params.h"
 #include "common/sea_surface.h"
 #include "common/sea_waves.h"
+#include "common/sea_lean.h"
 #include "common/sky.h"
 #include "common/sea_bottom_params.h"
 #include "common/sea_second.h"
@@ -55,6 +56,15 @@
 #ifndef SEASIM_BOTTOM_HEIGHTFIELD
 #define SEASIM_BOTTOM_HEIGHTFIELD 0 /* 1: the bottom is a height field (000 §5.4, common/sea_bottom.h) */
 #endif
+#ifndef SEASIM_WAVE_FILTER
+#define SEASIM_WAVE_FILTER 0 /* 1: wave normals filtered over the pixel's footprint (common/sea_lean.h) */
+#endif
+#ifndef SEASIM_SUPERSAMPLE
+#define SEASIM_SUPERSAMPLE 1 /* n: n x n rays per pixel, averaged (the filter's reference, issue 19) */
+#endif
+#if SEASIM_WAVE_FILTER && (!SEASIM_HAS_WAVES || SEASIM_SUPERSAMPLE > 1)
+#error "the wave filter needs waves, and the supersampled reference reads the unfiltered normals"
+#endif
 #if SEASIM_BOTTOM_HEIGHTFIELD && SEASIM_SEA_LUT
 #error "a height-field bottom needs the exact eq. 5 (SEASIM_SEA_LUT=0): z_Q changes from pixel to pixel"
 #endif
@@ -68,20 +78,27 @@ static inline float3 sky_shape(const __constant SeaParams* p, const __global flo
   return (float3)(s, s, s);
 #elif SEASIM_SKY_MODEL == SEASIM_SKY_IMAGE
   return p->sky_scale * sky_latlong_rgb(sky, p->sky_width, p->sky_height, d);
+#elif SEASIM_SKY_MODEL == SEASIM_SKY_PREETHAM
+  const float3 sun = (float3)(p->sun_dir[0], p->sun_dir[1], p->sun_dir[2]);
+  return p->sky_scale * sky_preetham_rgb(sky, d, sun);
 #else
   return (float3)(1.0f, 1.0f, 1.0f);
 #endif
 }
 
+/* One band's sky radiance for a shape from sky_shape (linear in the shape: a weighted sum of shapes
+ * gives the same sum of radiances, which the wave filter uses). */
+static inline float sky_band(const __global SeaBand* band, float3 shape) {
+#if SEASIM_SKY_MODEL == SEASIM_SKY_IMAGE || SEASIM_SKY_MODEL == SEASIM_SKY_PREETHAM
+  return band->sky_radiance * (band->sky_w_r * shape.x + band->sky_w_g * shape.y + band->sky_w_b * shape.z);
+#else
+  return band->sky_radiance * shape.x; /* uniform: shape 1; analytic: grey */
+#endif
+}
+
 /* Radiance of the sky (and the sun's disk) seen along direction d, for one band; shape = sky_shape(d). */
 static inline float sky_radiance(const __constant SeaParams* p, const __global SeaBand* band, float3 shape, float3 d) {
-#if SEASIM_SKY_MODEL == SEASIM_SKY_ANALYTIC
-  float L = band->sky_radiance * shape.x;
-#elif SEASIM_SKY_MODEL == SEASIM_SKY_IMAGE
-  float L = band->sky_radiance * (band->sky_w_r * shape.x + band->sky_w_g * shape.y + band->sky_w_b * shape.z);
-#else
-  float L = band->sky_radiance;
-#endif
+  float L = sky_band(band, shape);
 #if SEASIM_HAS_SUN
   float3 sun = (float3)(p->sun_dir[0], p->sun_dir[1], p->sun_dir[2]);
   /* A sun of radius 0 (a point) has no disk to see: skip it rather than divide by 0. */
@@ -103,7 +120,7 @@ static inline float lut_read(const __global float* lut, int n, float x) {
 #endif
 
 __kernel void sea_single(__constant SeaParams* p, __global const SeaBand* bands, __global const float* lut,
-                         __global const float* normals, __global const float* sky,
+                         __global const float* normals, __global const float* slope_mips, __global const float* sky,
                          __global const float* bottom_caustics, __global float* rgb
 #if SEASIM_SPECTRAL_OUTPUT
                          , __global float* spectral
@@ -117,26 +134,78 @@ __kernel void sea_single(__constant SeaParams* p, __global const SeaBand* bands,
   if (x >= p->width || y >= p->height) return;
   const int pixel = y * p->width + x;
 
-  /* Pinhole camera: pixel centre -> world direction (worldFromCamera basis). */
-  const float u = (2.0f * (x + 0.5f) / p->width - 1.0f) * p->tan_half_fov_y * p->aspect;
-  const float v = (1.0f - 2.0f * (y + 0.5f) / p->height) * p->tan_half_fov_y;
   const float3 right = (float3)(p->cam_right[0], p->cam_right[1], p->cam_right[2]);
   const float3 up = (float3)(p->cam_up[0], p->cam_up[1], p->cam_up[2]);
   const float3 fwd = (float3)(p->cam_forward[0], p->cam_forward[1], p->cam_forward[2]);
+  float r = 0.0f, g = 0.0f, b = 0.0f;
+#if SEASIM_SUPERSAMPLE > 1
+  /* The reference of the wave filter: n x n rays on a regular grid over the pixel, averaged. */
+  const float sub_weight = 1.0f / (float)(SEASIM_SUPERSAMPLE * SEASIM_SUPERSAMPLE);
+#if SEASIM_SPECTRAL_OUTPUT
+  for (int i = 0; i < p->band_count; ++i) spectral[(size_t)pixel * p->band_count + i] = 0.0f;
+#endif
+#define SPECTRAL_STORE(i, L) spectral[(size_t)pixel * p->band_count + (i)] += (L) * sub_weight
+#else
+  const float sub_weight = 1.0f;
+#define SPECTRAL_STORE(i, L) spectral[(size_t)pixel * p->band_count + (i)] = (L)
+#endif
+  for (int sub = 0; sub < SEASIM_SUPERSAMPLE * SEASIM_SUPERSAMPLE; ++sub) {
+  /* Pinhole camera: a point of the pixel (its centre without supersampling) -> world direction. */
+  const float ox = ((float)(sub % SEASIM_SUPERSAMPLE) + 0.5f) / (float)SEASIM_SUPERSAMPLE;
+  const float oy = ((float)(sub / SEASIM_SUPERSAMPLE) + 0.5f) / (float)SEASIM_SUPERSAMPLE;
+  const float u = (2.0f * (x + ox) / p->width - 1.0f) * p->tan_half_fov_y * p->aspect;
+  const float v = (1.0f - 2.0f * (y + oy) / p->height) * p->tan_half_fov_y;
   const float3 d = normalize(fwd + u * right + v * up);
 
-  float r = 0.0f, g = 0.0f, b = 0.0f;
   if (d.y >= 0.0f) {
     /* Above the horizon: the sky itself. */
     const float3 shape = sky_shape(p, sky, d);
     for (int i = 0; i < p->band_count; ++i) {
-      const float L = sky_radiance(p, &bands[i], shape, d);
+      const float L = sky_radiance(p, &bands[i], shape, d) * sub_weight;
       r += L * bands[i].w_r; g += L * bands[i].w_g; b += L * bands[i].w_b;
 #if SEASIM_SPECTRAL_OUTPUT
-      spectral[(size_t)pixel * p->band_count + i] = L;
+      SPECTRAL_STORE(i, L / sub_weight);
 #endif
     }
   } else {
+    const float3 sun = (float3)(p->sun_dir[0], p->sun_dir[1], p->sun_dir[2]);
+#if SEASIM_WAVE_FILTER
+    /* The footprint's slope statistics (common/sea_lean.h): its mean normal refracts the view, the
+     * Fresnel-weighted sky of its facets is reflected, and the facets facing the sun give the glint. */
+    const float t_hit = sea_mean_surface_distance(p->cam_pos[1], d);
+    const float minor = t_hit * p->pixel_angle * fmax(dot(d, fwd), 0.1f);
+    const float major = minor / fmax(-d.y, 1e-6f);
+    const float horizontal = sqrt(d.x * d.x + d.z * d.z);
+    const float dir_x = horizontal > 1e-6f ? d.x / horizontal : 1.0f, dir_z = horizontal > 1e-6f ? d.z / horizontal : 0.0f;
+    float stats[SEA_LEAN_STRIDE];
+    sea_lean_footprint(slope_mips, p->ocean_n, p->ocean_patch, p->cam_pos[0] + t_hit * d.x, p->cam_pos[2] + t_hit * d.z,
+                       dir_x, dir_z, minor, major, stats);
+    float cxx, czz, cxz, l11, l21, l22;
+    sea_lean_covariance(stats[2], stats[3], stats[4], p->sun_slope_variance, &cxx, &czz, &cxz, &l11, &l21, &l22);
+    const float3 n = sea_facing_normal(d, sea_lean_normal(stats[0], stats[1]));
+    /* Facets turned away from the eye are bent to grazing by the unfiltered path: F = 1, and the ray
+     * goes on to the horizon's sky (common/sea_lean.h, sea_lean_rule). */
+    const SeaLeanRule rule = sea_lean_rule(d, stats[0], stats[1], l11, l21, l22);
+    float R_mean = rule.back;
+    float3 reflected_shape = rule.back * sky_shape(p, sky, sea_sky_direction(d));
+    const int nodes = sea_lean_rule_nodes(&rule);
+    for (int k = 0; k < nodes; ++k) {
+      float sx, sz;
+      const float w = sea_lean_rule_node(&rule, k, &sx, &sz);
+      const float3 nk = sea_facing_normal(d, sea_lean_normal(sx, sz));
+      const float wf = w * fresnel_reflectance(-dot(d, nk), 1.0f, p->ior);
+      R_mean += wf;
+      reflected_shape += wf * sky_shape(p, sky, sea_sky_direction(reflect_dir(d, nk)));
+    }
+    float glint = 0.0f;
+#if SEASIM_HAS_SUN
+    if (sun.y > 0.0f && p->sun_solid_angle > 0.0f) glint = sea_lean_glint(d, sun, p->ior, stats[0], stats[1], cxx, czz, cxz);
+#endif
+    float R_center;
+    float3 reflected, view_in_water;
+    const float cos_ji = sea_view_interaction(d, n, p->ior, &R_center, &reflected, &view_in_water);
+    const float R_view = R_mean;
+#else
 #if SEASIM_HAS_WAVES
     /* The local normal where the view ray meets the mean surface (common/sea_waves.h). */
     const float t_hit = sea_mean_surface_distance(p->cam_pos[1], d);
@@ -148,17 +217,17 @@ __kernel void sea_single(__constant SeaParams* p, __global const SeaBand* bands,
     float R_view;
     float3 reflected, view_in_water;
     const float cos_ji = sea_view_interaction(d, n, p->ior, &R_view, &reflected, &view_in_water);
+#endif
     /* T_o of 000 eq. 5, 9 with the n² law: radiance / n² is conserved across the surface, so the
      * water-leaving radiance L_w reaches the air as L_w (1 - R) / n² (docs/radiometry.md). Paper 000
      * writes T_o alone; kd_multiple.cl applies the same law the other way (sky seen from below). */
     const float t_out = (1.0f - R_view) / (p->ior * p->ior);
-#if SEASIM_HAS_REFLECTION
+#if SEASIM_HAS_REFLECTION && !SEASIM_WAVE_FILTER
     const float3 reflected_shape = sky_shape(p, sky, reflected);
 #endif
 
     /* Sunlight enters through the flat mean surface (000 §3), with or without waves. */
     const float3 flat_n = (float3)(0.0f, 1.0f, 0.0f);
-    const float3 sun = (float3)(p->sun_dir[0], p->sun_dir[1], p->sun_dir[2]);
     float t_in = 0.0f, cos_io = 1.0f, cos_alpha = 1.0f, sun_horizontal = 0.0f;
 #if SEASIM_HAS_SUN
     if (sun.y > 0.0f) {
@@ -220,7 +289,9 @@ __kernel void sea_single(__constant SeaParams* p, __global const SeaBand* bands,
     for (int i = 0; i < p->band_count; ++i) {
       const __global SeaBand* band = &bands[i];
       float L = 0.0f;
-#if SEASIM_HAS_REFLECTION
+#if SEASIM_HAS_REFLECTION && SEASIM_WAVE_FILTER
+      L += sky_band(band, reflected_shape) + glint * band->sun_irradiance; /* R already in both */
+#elif SEASIM_HAS_REFLECTION
       L += R_view * sky_radiance(p, band, reflected_shape, reflected);
 #endif
 #if SEASIM_HAS_SINGLE_SCATTERING
@@ -239,13 +310,66 @@ __kernel void sea_single(__constant SeaParams* p, __global const SeaBand* bands,
       L += focus * sea_bottom_reflection(band->sun_irradiance * sun_horizontal, t_in, t_out, band->bottom_albedo,
                                          band->c, z_d, cos_io, cos_ji);
 #endif
+      L *= sub_weight;
       r += L * band->w_r; g += L * band->w_g; b += L * band->w_b;
 #if SEASIM_SPECTRAL_OUTPUT
-      spectral[(size_t)pixel * p->band_count + i] = L;
+      SPECTRAL_STORE(i, L / sub_weight);
 #endif
     }
   }
+  } /* sub-pixel rays */
+#undef SPECTRAL_STORE
   rgb[3 * pixel + 0] = r;
   rgb[3 * pixel + 1] = g;
   rgb[3 * pixel + 2] = b;
 }
+
+#if SEASIM_WAVE_FILTER
+/* The point map (common/sea_lean.h) from the ocean's normal map (float4 per texel). A folded facet's
+ * downward normal is turned up first, as sea_facing_normal does. */
+__kernel void sea_slope_moments(__global const float* normals, int n, __global float* mips) {
+  const int i = get_global_id(0), j = get_global_id(1);
+  if (i >= n || j >= n) return;
+  const size_t at = (size_t)j * n + i;
+  float3 nn = (float3)(normals[4 * at], normals[4 * at + 1], normals[4 * at + 2]);
+  if (nn.y < 0.0f) nn = -nn;
+  float sx, sz;
+  sea_lean_slope(nn, &sx, &sz);
+  __global float* m = mips + SEA_LEAN_STRIDE * at;
+  m[0] = sx;
+  m[1] = sz;
+  m[2] = sx * sx;
+  m[3] = sz * sz;
+  m[4] = sx * sz;
+}
+
+/* Level 0: the moments of the bilinear slope field over each cell between four texels (periodic). */
+__kernel void sea_slope_cells(__global float* mips, int n) {
+  const int i = get_global_id(0), j = get_global_id(1);
+  if (i >= n || j >= n) return;
+  const int i1 = i + 1 < n ? i + 1 : 0, j1 = j + 1 < n ? j + 1 : 0;
+  const __global float* a = mips + SEA_LEAN_STRIDE * ((size_t)j * n + i);
+  const __global float* b = mips + SEA_LEAN_STRIDE * ((size_t)j * n + i1);
+  const __global float* c = mips + SEA_LEAN_STRIDE * ((size_t)j1 * n + i);
+  const __global float* e = mips + SEA_LEAN_STRIDE * ((size_t)j1 * n + i1);
+  float m[SEA_LEAN_STRIDE];
+  sea_lean_cell_moments(a[0], a[1], b[0], b[1], c[0], c[1], e[0], e[1], m);
+  __global float* t = mips + sea_lean_level_offset(n, 0) + SEA_LEAN_STRIDE * ((size_t)j * n + i);
+  for (int k = 0; k < SEA_LEAN_STRIDE; ++k) t[k] = m[k];
+}
+
+/* One mip level from the one above: 2 x 2 box averages (src_n even; the patch is periodic). */
+__kernel void sea_slope_downsample(__global float* mips, int src_offset, int src_n, int dst_offset) {
+  const int i = get_global_id(0), j = get_global_id(1), dst_n = src_n / 2;
+  if (i >= dst_n || j >= dst_n) return;
+  const __global float* s = mips + src_offset;
+  __global float* t = mips + dst_offset + SEA_LEAN_STRIDE * ((size_t)j * dst_n + i);
+  for (int k = 0; k < SEA_LEAN_STRIDE; ++k) {
+    const float a = s[SEA_LEAN_STRIDE * ((size_t)(2 * j) * src_n + 2 * i) + k];
+    const float b = s[SEA_LEAN_STRIDE * ((size_t)(2 * j) * src_n + 2 * i + 1) + k];
+    const float c = s[SEA_LEAN_STRIDE * ((size_t)(2 * j + 1) * src_n + 2 * i) + k];
+    const float e = s[SEA_LEAN_STRIDE * ((size_t)(2 * j + 1) * src_n + 2 * i + 1) + k];
+    t[k] = 0.25f * ((a + b) + (c + e));
+  }
+}
+#endif

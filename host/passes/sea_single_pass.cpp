@@ -17,7 +17,9 @@ extern "C" {
 namespace seasim {
 
 // The kernel reads these structs with OpenCL C layout; float/int are 4 bytes on both sides.
-static_assert(sizeof(SeaParams) == 5 * 16 + 8 * 4 + 4 * 4 + 8 * 4, "SeaParams layout changed: update sea_params.h users");
+static_assert(sizeof(SeaParams) == 5 * 16 + 8 * 4 + 4 * 4 + 9 * 4, "SeaParams layout changed: update sea_params.h users");
+static_assert(offsetof(SeaParams, pixel_angle) == 108);
+static_assert(offsetof(SeaParams, sun_slope_variance) == 160);
 static_assert(offsetof(SeaParams, tan_half_fov_y) == 80);
 static_assert(offsetof(SeaParams, width) == 112);
 static_assert(offsetof(SeaParams, ocean_patch) == 128);
@@ -99,6 +101,8 @@ SeaSinglePass::SeaSinglePass(Device& device, const Scene& scene, const PassPlan&
   p.bottom_depth = static_cast<float>(scene.bottom.depth);
   p.cos_sun_radius = static_cast<float>(std::cos(scene.sun.angular_radius));
   p.sun_solid_angle = static_cast<float>(2 * M_PI * (1 - std::cos(scene.sun.angular_radius)));
+  p.pixel_angle = static_cast<float>(2 * std::tan(cam.fov_y / 2) / cam.height);
+  p.sun_slope_variance = static_cast<float>(scene.sun.angular_radius * scene.sun.angular_radius / 16);
   p.width = cam.width;
   p.height = cam.height;
   p.band_count = static_cast<int>(grid.centers_nm.size());
@@ -219,12 +223,32 @@ SeaSinglePass::SeaSinglePass(Device& device, const Scene& scene, const PassPlan&
     kernel_.setArg(1, bands_);
     kernel_.setArg(2, lut_);
     kernel_.setArg(3, normals_);
-    kernel_.setArg(4, sky_);
-    kernel_.setArg(5, caustics_);
-    kernel_.setArg(6, rgb_);
+    // The wave filter's slope-moment mip chain (common/sea_lean.h), rebuilt from the normal map each run.
+    const bool filter = std::find(plan.defines.begin(), plan.defines.end(), std::string("SEASIM_WAVE_FILTER=1")) !=
+                        plan.defines.end();
+    if (filter) {
+      ocean_n_ = ocean->n();
+      mips_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE,
+                         sizeof(float) * static_cast<size_t>(kd::sea_lean_level_offset(ocean_n_, kd::sea_lean_levels(ocean_n_))));
+      moments_ = cl::Kernel(built.program, "sea_slope_moments");
+      moments_.setArg(0, normals_);
+      moments_.setArg(1, ocean_n_);
+      moments_.setArg(2, mips_);
+      cells_ = cl::Kernel(built.program, "sea_slope_cells");
+      cells_.setArg(0, mips_);
+      cells_.setArg(1, ocean_n_);
+      downsample_ = cl::Kernel(built.program, "sea_slope_downsample");
+      downsample_.setArg(0, mips_);
+    } else {
+      mips_ = cl::Buffer(device.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(float) * 4, dummy.data());
+    }
+    kernel_.setArg(4, mips_);
+    kernel_.setArg(5, sky_);
+    kernel_.setArg(6, caustics_);
+    kernel_.setArg(7, rgb_);
     if (scene.spectral.spectral_exr) {
       spectral_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * pixels * bands.size());
-      kernel_.setArg(7, spectral_);
+      kernel_.setArg(8, spectral_);
     }
     if (scene.bottom.type == BottomDesc::Type::HeightField) {  // 000 §5.4: the kernel's last two arguments
       const HeightFieldBuffers hf = uploadHeightField(device, loadHeightField(scene.bottom));
@@ -241,7 +265,31 @@ SeaSinglePass::SeaSinglePass(Device& device, const Scene& scene, const PassPlan&
 
 double SeaSinglePass::run() {
   cl::Event done;
+  double ms = 0;
   try {
+    if (ocean_n_ > 0) {  // the wave filter's moment mips: level 0 from the normals, then 2 x 2 averages
+      cl::Event moments;
+      const size_t n = static_cast<size_t>(ocean_n_);
+      device_.queue().enqueueNDRangeKernel(moments_, cl::NullRange, cl::NDRange(n, n), cl::NullRange, nullptr, &moments);
+      moments.wait();
+      ms += eventMs(moments);
+      cl::Event cells;
+      device_.queue().enqueueNDRangeKernel(cells_, cl::NullRange, cl::NDRange(n, n), cl::NullRange, nullptr, &cells);
+      cells.wait();
+      ms += eventMs(cells);
+      for (int level = 0; (ocean_n_ >> level) > 1; ++level) {
+        const int src_n = ocean_n_ >> level;
+        downsample_.setArg(1, kd::sea_lean_level_offset(ocean_n_, level));
+        downsample_.setArg(2, src_n);
+        downsample_.setArg(3, kd::sea_lean_level_offset(ocean_n_, level + 1));
+        cl::Event step;
+        const size_t half = static_cast<size_t>(src_n / 2);
+        device_.queue().enqueueNDRangeKernel(downsample_, cl::NullRange, cl::NDRange(half, half), cl::NullRange, nullptr,
+                                             &step);
+        step.wait();
+        ms += eventMs(step);
+      }
+    }
     const size_t local = 8;
     cl::NDRange global((static_cast<size_t>(width_) + local - 1) / local * local,
                        (static_cast<size_t>(height_) + local - 1) / local * local);
@@ -250,7 +298,7 @@ double SeaSinglePass::run() {
   } catch (const cl::Error& e) {
     throw DeviceError(std::string("sea_single pass: ") + e.what() + " " + clErrorName(e.err()));
   }
-  return eventMs(done);
+  return ms + eventMs(done);
 }
 
 }  // namespace seasim

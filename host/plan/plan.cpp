@@ -129,10 +129,11 @@ Plan makePlan(const Scene& scene) {
     const bool sun = scene.sun.enabled && scene.sun.irradiance > 0;
     const bool height_field = scene.bottom.type == BottomDesc::Type::HeightField;
     const bool bottom = scene.bottom.type == BottomDesc::Type::Flat || height_field;
-    // SEASIM_SKY_MODEL (common/sky.h): 0 uniform, 1 analytic (CIE clear sky), 2 lat-long image.
-    const int sky_model = scene.sky.model == SkyDesc::Model::Analytic ? 1
-                          : scene.sky.model == SkyDesc::Model::Image  ? 2
-                                                                      : 0;
+    // SEASIM_SKY_MODEL (common/sky.h): 0 uniform, 1 analytic (CIE clear sky), 2 lat-long image, 3 Preetham.
+    const int sky_model = scene.sky.model == SkyDesc::Model::Analytic   ? 1
+                          : scene.sky.model == SkyDesc::Model::Image    ? 2
+                          : scene.sky.model == SkyDesc::Model::Preetham ? 3
+                                                                        : 0;
     std::vector<std::string> defines = {
         flag("SEASIM_HAS_REFLECTION", scene.sea.reflection),
         flag("SEASIM_HAS_SINGLE_SCATTERING", scene.sea.single_scattering && sun),
@@ -144,6 +145,15 @@ Plan makePlan(const Scene& scene) {
         flag("SEASIM_BOTTOM_CAUSTICS", bottom_caustics)};
     // 000 §5.4: the bottom is a height field (z_Q per pixel, depth tables for the second order).
     if (height_field) defines.push_back("SEASIM_BOTTOM_HEIGHTFIELD=1");
+    // Issue 19: wave normals filtered over the pixel's footprint (common/sea_lean.h), unless turned
+    // off or replaced by its reference, n x n rays per pixel over the unfiltered normals.
+    const auto knob = [&](const char* name, double fallback) {
+      const auto it = scene.quality.find(name);
+      return it == scene.quality.end() ? fallback : it->second.value;
+    };
+    const int supersample = static_cast<int>(knob("sea_supersample", 1));
+    if (waves) defines.push_back(flag("SEASIM_WAVE_FILTER", knob("wave_filter", 1) != 0 && supersample == 1));
+    if (supersample > 1) defines.push_back("SEASIM_SUPERSAMPLE=" + std::to_string(supersample));
     std::vector<std::string> reads = {"scene"};
     if (waves) reads.push_back("ocean_maps");
     if (bottom_caustics) reads.push_back("caustic_map");

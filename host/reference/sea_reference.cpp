@@ -19,6 +19,50 @@ namespace seasim {
 
 namespace k = kmath_d;
 
+namespace {
+
+// The wave filter's moment maps (common/sea_lean.h) from a normal map (4 doubles per texel), as
+// kernels/sea_single.cl builds them: the point map (folded facets turned up), level 0's cell moments of
+// the bilinear slope field, then 2 x 2 box averages.
+std::vector<double> slopeMomentMips(const std::vector<double>& normals, int n) {
+  std::vector<double> mips(k::sea_lean_level_offset(n, k::sea_lean_levels(n)));
+  for (int t = 0; t < n * n; ++t) {
+    k::real3 nn{normals[4 * t], normals[4 * t + 1], normals[4 * t + 2]};
+    if (nn.y < 0) nn = -nn;
+    double sx, sz;
+    k::sea_lean_slope(nn, &sx, &sz);
+    double* m = &mips[SEA_LEAN_STRIDE * t];
+    m[0] = sx, m[1] = sz, m[2] = sx * sx, m[3] = sz * sz, m[4] = sx * sz;
+  }
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      auto p = [&](int ii, int jj) { return &mips[SEA_LEAN_STRIDE * ((jj % n) * n + (ii % n))]; };
+      const double *a = p(i, j), *b = p(i + 1, j), *c = p(i, j + 1), *e = p(i + 1, j + 1);
+      k::sea_lean_cell_moments(a[0], a[1], b[0], b[1], c[0], c[1], e[0], e[1],
+                               &mips[k::sea_lean_level_offset(n, 0) + SEA_LEAN_STRIDE * (j * n + i)]);
+    }
+  for (int l = 0; (n >> l) > 1; ++l) {
+    const int src = n >> l, dst = src / 2;
+    const double* s = &mips[k::sea_lean_level_offset(n, l)];
+    double* d = &mips[k::sea_lean_level_offset(n, l + 1)];
+    for (int j = 0; j < dst; ++j)
+      for (int i = 0; i < dst; ++i)
+        for (int q = 0; q < SEA_LEAN_STRIDE; ++q) {
+          auto at = [&](int ii, int jj) { return s[SEA_LEAN_STRIDE * (jj * src + ii) + q]; };
+          d[SEA_LEAN_STRIDE * (j * dst + i) + q] =
+              0.25 * ((at(2 * i, 2 * j) + at(2 * i + 1, 2 * j)) + (at(2 * i, 2 * j + 1) + at(2 * i + 1, 2 * j + 1)));
+        }
+  }
+  return mips;
+}
+
+double qualityValue(const Scene& scene, const char* name, double fallback) {
+  const auto it = scene.quality.find(name);
+  return it == scene.quality.end() ? fallback : it->second.value;
+}
+
+}  // namespace
+
 Image renderSeaReference(const Scene& scene, int steps) {
   if (!scene.water.present || scene.camera.position.y <= 0) {
     throw RuntimeError("the sea reference renders scenes seen from above the water only");
@@ -69,6 +113,12 @@ Image renderSeaReference(const Scene& scene, int steps) {
     ocean.run(scene.surface.time);
     normals = ocean.normal();
   }
+  // The wave filter (common/sea_lean.h) as the kernel runs it, or its reference: n x n rays per pixel.
+  const int supersample = static_cast<int>(qualityValue(scene, "sea_supersample", 1));
+  const bool filter = waves && qualityValue(scene, "wave_filter", 1) != 0 && supersample == 1;
+  const std::vector<double> mips = filter ? slopeMomentMips(normals, ocean_config.grid) : std::vector<double>{};
+  const double pixel_angle = 2 * tan_half / cam.height;
+  const double sun_slope_variance = scene.sun.angular_radius * scene.sun.angular_radius / 16;
   const double sun_dir[3] = {sun.x, sun.y, sun.z};
   const SeaSky sea_sky = makeSeaSky(scene.sky, sun_dir, grid);
 
@@ -79,12 +129,15 @@ Image renderSeaReference(const Scene& scene, int steps) {
       return {s, s, s};
     }
     if (sea_sky.model == 2) return k::sky_latlong_rgb(sea_sky.texels.data(), sea_sky.width, sea_sky.height, d) * sea_sky.scale;
+    if (sea_sky.model == 3) return k::sky_preetham_rgb(sea_sky.texels.data(), d, sun) * sea_sky.scale;
     return {1, 1, 1};
   };
-  auto sky = [&](size_t i, k::real3 s, k::real3 d) {
+  auto sky_only = [&](size_t i, k::real3 s) {
     const auto& w = sea_sky.band_weights[i];
-    double L = sea_sky.model == 2 ? sky_l[i] * (w[0] * s.x + w[1] * s.y + w[2] * s.z)
-                                  : sea_sky.model == 1 ? sky_l[i] * s.x : sky_l[i];
+    return sea_sky.model >= 2 ? sky_l[i] * (w[0] * s.x + w[1] * s.y + w[2] * s.z) : sky_l[i] * s.x;
+  };
+  auto sky = [&](size_t i, k::real3 s, k::real3 d) {
+    double L = sky_only(i, s);
     if (has_sun && sun_solid_angle > 0 && k::dot(d, sun) >= cos_sun_radius) L += sun_e[i] / sun_solid_angle;
     return L;
   };
@@ -97,22 +150,57 @@ Image renderSeaReference(const Scene& scene, int steps) {
   img.pixels.assign(static_cast<size_t>(cam.width) * cam.height * 3, 0.0f);
   tbb::parallel_for(0, cam.height, [&](int y) {
     for (int x = 0; x < cam.width; ++x) {
-      const double u = (2.0 * (x + 0.5) / cam.width - 1.0) * tan_half * aspect;
-      const double v = (1.0 - 2.0 * (y + 0.5) / cam.height) * tan_half;
+      double rgb[3] = {0, 0, 0};
+      const double sub_weight = 1.0 / (supersample * supersample);
+      for (int sub = 0; sub < supersample * supersample; ++sub) {
+      const double ox = (sub % supersample + 0.5) / supersample, oy = (sub / supersample + 0.5) / supersample;
+      const double u = (2.0 * (x + ox) / cam.width - 1.0) * tan_half * aspect;
+      const double v = (1.0 - 2.0 * (y + oy) / cam.height) * tan_half;
       const Vec3 dv = normalize(fwd + right * u + up * v);
       const k::real3 d{dv.x, dv.y, dv.z};
-      double rgb[3] = {0, 0, 0};
       auto add = [&](size_t i, double L) {
-        rgb[0] += L * sensor.to_r[i];
-        rgb[1] += L * sensor.to_g[i];
-        rgb[2] += L * sensor.to_b[i];
+        rgb[0] += sub_weight * L * sensor.to_r[i];
+        rgb[1] += sub_weight * L * sensor.to_g[i];
+        rgb[2] += sub_weight * L * sensor.to_b[i];
       };
       if (d.y >= 0) {
         const k::real3 s = shape(d);
         for (size_t i = 0; i < bands; ++i) add(i, sky(i, s, d));
       } else {
         k::real3 n{0, 1, 0};
-        if (waves) {
+        // The filter: the footprint's statistics, the facets' Fresnel-weighted sky (3 x 3 nodes) and
+        // the glint, as kernels/sea_single.cl with SEASIM_WAVE_FILTER.
+        double R_mean = 0, glint = 0;
+        std::vector<k::real3> node_dirs;
+        std::vector<double> node_weights;
+        if (filter) {
+          const double t_hit = k::sea_mean_surface_distance(cam.position.y, d);
+          const k::real3 fw{fwd.x, fwd.y, fwd.z};
+          const double minor = t_hit * pixel_angle * std::max(k::dot(d, fw), 0.1);
+          const double major = minor / std::max(-d.y, 1e-6);
+          const double horizontal = std::sqrt(d.x * d.x + d.z * d.z);
+          const double dir_x = horizontal > 1e-6 ? d.x / horizontal : 1.0, dir_z = horizontal > 1e-6 ? d.z / horizontal : 0.0;
+          double st[SEA_LEAN_STRIDE];
+          k::sea_lean_footprint(mips.data(), ocean_config.grid, ocean_config.patch_size, cam.position.x + t_hit * d.x,
+                                cam.position.z + t_hit * d.z, dir_x, dir_z, minor, major, st);
+          double cxx, czz, cxz, l11, l21, l22;
+          k::sea_lean_covariance(st[2], st[3], st[4], sun_slope_variance, &cxx, &czz, &cxz, &l11, &l21, &l22);
+          n = k::sea_facing_normal(d, k::sea_lean_normal(st[0], st[1]));
+          const k::SeaLeanRule rule = k::sea_lean_rule(d, st[0], st[1], l11, l21, l22);
+          R_mean = rule.back;  // facets turned away: F = 1 towards the horizon's sky
+          node_weights.push_back(rule.back);
+          node_dirs.push_back(k::sea_sky_direction(d));
+          for (int q = 0; q < k::sea_lean_rule_nodes(&rule); ++q) {
+            double sx, sz;
+            const double w = k::sea_lean_rule_node(&rule, q, &sx, &sz);
+            const k::real3 nk = k::sea_facing_normal(d, k::sea_lean_normal(sx, sz));
+            const double wf = w * k::fresnel_reflectance(-k::dot(d, nk), 1.0, ior);
+            R_mean += wf;
+            node_weights.push_back(wf);
+            node_dirs.push_back(k::sea_sky_direction(k::reflect_dir(d, nk)));
+          }
+          if (has_sun && sun.y > 0 && sun_solid_angle > 0) glint = k::sea_lean_glint(d, sun, ior, st[0], st[1], cxx, czz, cxz);
+        } else if (waves) {
           const double t_hit = k::sea_mean_surface_distance(cam.position.y, d);
           n = k::sea_facing_normal(d, k::sea_wave_normal(normals.data(), ocean_config.grid, ocean_config.patch_size,
                                                          cam.position.x + t_hit * d.x, cam.position.z + t_hit * d.z));
@@ -120,6 +208,7 @@ Image renderSeaReference(const Scene& scene, int steps) {
         double R_view = 0;
         k::real3 reflected{}, view_in_water{};
         const double cos_ji = k::sea_view_interaction(d, n, ior, &R_view, &reflected, &view_in_water);
+        if (filter) R_view = R_mean;
         const k::real3 reflected_shape = shape(reflected);
         const k::real3 flat_n{0, 1, 0};  // sunlight enters through the flat mean surface (000 §3)
         double t_in = 0, cos_io = 1, cos_alpha = 1, e_h = 0;
@@ -154,7 +243,13 @@ Image renderSeaReference(const Scene& scene, int steps) {
           }
         }
         for (size_t i = 0; i < bands; ++i) {
-          double L = scene.sea.reflection ? R_view * sky(i, reflected_shape, reflected) : 0.0;
+          double L = 0;
+          if (scene.sea.reflection && filter) {
+            for (size_t q = 0; q < node_dirs.size(); ++q) L += node_weights[q] * sky_only(i, shape(node_dirs[q]));
+            L += glint * sun_e[i];
+          } else if (scene.sea.reflection) {
+            L += R_view * sky(i, reflected_shape, reflected);
+          }
           const double c = water.c[i], albedo = c > 0 ? water.b[i] / c : 0.0;
           const double kk = c * (1 - albedo * c_f);  // 000 eq. 5's effective attenuation
           if (scene.sea.single_scattering && e_h > 0) {
@@ -178,6 +273,7 @@ Image renderSeaReference(const Scene& scene, int steps) {
           add(i, L);
         }
       }
+      }  // sub-pixel rays
       float* px = &img.pixels[(static_cast<size_t>(y) * cam.width + x) * 3];
       for (int ch = 0; ch < 3; ++ch) px[ch] = static_cast<float>(rgb[ch]);
     }

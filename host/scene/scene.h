@@ -37,10 +37,11 @@ struct SunDesc {
 };
 
 struct SkyDesc {
-  enum class Model { Uniform, Analytic, Image };
+  enum class Model { Uniform, Analytic, Image, Preetham };
   Model model = Model::Uniform;
   double radiance = 0.05;      // scale on D65 radiance (W m^-2 sr^-1 nm^-1 at 560 nm) for uniform
   std::string image;           // environment image (lat-long), resolved absolute path, for Image
+  double turbidity = 3.0;      // Preetham: atmospheric turbidity T (1.7 very clear … 10 hazy)
 };
 
 // Water inherent optical properties. Either a Jerlov type (a, b, Kd from data/) or explicit spectra.

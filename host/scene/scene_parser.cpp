@@ -30,6 +30,7 @@ struct KnobDefault {
 };
 constexpr KnobDefault kQualityKnobs[] = {
     {"sea_lut_size", 64, "sea single scattering: LUT size over theta_jo (000 eq. 5)"},
+    {"sea_supersample", 1, "sea from above: n x n rays per pixel over unfiltered wave normals (the wave filter's reference)"},
     {"sea_nz", 12, "sea second order: depth planes n_z (000 eq. 6-8)"},
     {"sea_nd", 128, "sea second order: directions n_d"},
     {"sea_map_size", 32, "sea second order: scattering map resolution"},
@@ -236,16 +237,22 @@ class SceneParser {
 
   void sky(const toml::table& t) {
     TableReader probe(src_, t, "sky");
-    std::string model = probe.choice("model", "uniform", {"uniform", "analytic", "image"});
+    std::string model = probe.choice("model", "uniform", {"uniform", "analytic", "image", "preetham"});
     TableReader r(src_, t, "sky", "not used with model = '" + model + "'");
     r.has("model");
     SkyDesc& s = scene_.sky;
     s.model = model == "uniform"    ? SkyDesc::Model::Uniform
               : model == "analytic" ? SkyDesc::Model::Analytic
+              : model == "preetham" ? SkyDesc::Model::Preetham
                                     : SkyDesc::Model::Image;
     s.radiance = r.number("radiance", s.radiance);
     r.check(s.radiance >= 0, "radiance", "must be >= 0, got " + fmt(s.radiance));
     if (s.model == SkyDesc::Model::Image) s.image = texture(r, "image", true);
+    if (s.model == SkyDesc::Model::Preetham) {
+      s.turbidity = r.number("turbidity", s.turbidity);
+      // Preetham et al. 1999 fitted T in [2, 10]; 1.7 (the clearest skies) is the usual lower limit.
+      r.check(s.turbidity >= 1.7 && s.turbidity <= 10, "turbidity", "must be in [1.7, 10], got " + fmt(s.turbidity));
+    }
     r.finish();
   }
 
@@ -560,6 +567,8 @@ class SceneParser {
     // Exact phase function in the shafts integral instead of its table: a switch, stored as a
     // knob of value 0 or 1 so the planner reads every setting from one map.
     scene_.quality["shafts_exact"] = Knob{false, r.boolean("shafts_exact", false) ? 1.0 : 0.0};
+    // Wave normals filtered over each pixel's footprint (kernels/common/sea_lean.h): on by default.
+    scene_.quality["wave_filter"] = Knob{false, r.boolean("wave_filter", true) ? 1.0 : 0.0};
     // Kernels built with -cl-fast-relaxed-math: true, false or "auto" (the default), which the planner
     // turns on where the shipped scenes were measured within 0.05 of an 8-bit level of the exact-maths
     // image (fastMathFor in host/plan; results/BENCHMARKS.md has the table).

@@ -13,7 +13,7 @@ typedef struct {
   float bottom_depth;    /* m, flat bottom (SEASIM_HAS_BOTTOM) */
   float cos_sun_radius;  /* cosine of the sun's angular radius: the reflected sun disk */
   float sun_solid_angle; /* sr, converts sun irradiance to disk radiance */
-  float pad0;
+  float pixel_angle;     /* 2 tan(fov_y / 2) / height: a pixel's angle, for the wave filter's footprint */
   int width;
   int height;
   int band_count;
@@ -27,6 +27,7 @@ typedef struct {
   int caustic_map_size;  /* M: the bottom's caustic map (SEASIM_BOTTOM_CAUSTICS; common/caustic_map.h) */
   float caustic_extent;  /* m, side of the square it covers */
   float caustic_origin;  /* m, its corner on x and z: 0 (periodic ocean patch) or -extent/2 (height field) */
+  float sun_slope_variance; /* the sun disk's slope variance per axis, rho^2 / 16 (common/sea_lean.h) */
 } SeaParams;
 
 /* One wavelength band: radiometry and water IOPs at the band centre, and the sensor weights that

@@ -25,6 +25,17 @@
  * grey image gives exactly L_sky(λ) × its normalised luminance, and scale = 1 / (cosine-weighted mean
  * luminance Y = 0.2126 R + 0.7152 G + 0.0722 B over the upper hemisphere).
  *
+ * Preetham (3): Preetham, Shirley & Smits 1999, "A Practical Analytic Model for Daylight" (SIGGRAPH
+ * 99), Appendix A.2: luminance Y and chromaticity x, y each follow Perez et al.'s distribution
+ *   F(θ, γ) = (1 + A e^{B / cos θ}) (1 + C e^{D γ} + E cos²γ),   Y = Y_z F(θ, γ) / F(0, θ_s)
+ * (and so for x, y), with A…E linear in the turbidity T (sky_preetham_coefficients) and the zenith
+ * chromaticity x_z, y_z a cubic in θ_s times a quadratic in T. The zenith luminance Y_z is absorbed by
+ * the scale, like every model's overall level. x, y, Y → XYZ → linear Rec. 709 RGB, an RGB shape like
+ * the image sky's (mixed per band by sky_image_band_weights), negative primaries clamped to 0. The
+ * host packs, per quantity (Y, x, y), A…E and zenith / F(0, θ_s) into 18 reals (the sky buffer). The
+ * fit covers T ∈ [2, 10] and the sun above the horizon: the parser takes T ∈ [1.7, 10], and θ_s is
+ * clamped to 90° (a sun below the horizon gives the sky of a sun at the horizon).
+ *
  * Stiff cases: the horizon (cos θ → 0 in b / cos θ: clamped to 1e-4, where exp underflows to 0
  * and φ = 1, its limit); the zenith; the sun below the horizon (χ up to π: every term finite); the
  * view straight up (atan2(0, 0) = 0). Below the horizon the analytic shape holds its horizon value
@@ -35,6 +46,7 @@
 #define SEASIM_SKY_UNIFORM 0
 #define SEASIM_SKY_ANALYTIC 1
 #define SEASIM_SKY_IMAGE 2
+#define SEASIM_SKY_PREETHAM 3
 
 /* CIE type 12 coefficients. */
 #define SKY_CIE_A R(-1.0)
@@ -107,6 +119,75 @@ SEASIM_FN real3 sky_latlong_rgb(const SEASIM_GLOBAL real* texels, int w, int h, 
   return MAKE_REAL3(c[0], c[1], c[2]);
 }
 
+/* Preetham's A…E for Y, x, y at turbidity t (1999, Appendix A.2), into c[15]: c[5 q + k], q = Y, x, y. */
+SEASIM_FN void sky_preetham_coefficients(real t, real c[15]) {
+  const real slope[15] = {R(0.1787), R(-0.3554), R(-0.0227), R(0.1206), R(-0.0670),
+                          R(-0.0193), R(-0.0665), R(-0.0004), R(-0.0641), R(-0.0033),
+                          R(-0.0167), R(-0.0950), R(-0.0079), R(-0.0441), R(-0.0109)};
+  const real offset[15] = {R(-1.4630), R(0.4275), R(5.3251), R(-2.5771), R(0.3703),
+                           R(-0.2592), R(0.0008), R(0.2125), R(-0.8989), R(0.0452),
+                           R(-0.2608), R(0.0092), R(0.2102), R(-1.6537), R(0.0529)};
+  for (int k = 0; k < 15; ++k) c[k] = slope[k] * t + offset[k];
+}
+
+/* Perez's F(θ, γ) from cos θ of the view (clamped at the horizon, as the CIE sky's) and γ, the angle
+ * between the view and the sun; c: A…E. */
+SEASIM_FN real sky_perez(const real* c, real cos_theta, real gamma) {
+  const real ct = fmax(cos_theta, R(1e-4));
+  const real cg = cos(gamma);
+  return (R(1.0) + c[0] * exp(c[1] / ct)) * (R(1.0) + c[2] * exp(c[3] * gamma) + c[4] * cg * cg);
+}
+
+/* Zenith chromaticity x_z, y_z (1999, Appendix A.2) for sun zenith angle theta_s (radians) and
+ * turbidity t. */
+SEASIM_FN void sky_preetham_zenith_xy(real theta_s, real t, real* xz, real* yz) {
+  const real th = theta_s, th2 = th * th, th3 = th2 * th, t2 = t * t;
+  *xz = t2 * (R(0.00166) * th3 - R(0.00375) * th2 + R(0.00209) * th) +
+        t * (R(-0.02903) * th3 + R(0.06377) * th2 - R(0.03202) * th + R(0.00394)) +
+        (R(0.11693) * th3 - R(0.21196) * th2 + R(0.06052) * th + R(0.25886));
+  *yz = t2 * (R(0.00275) * th3 - R(0.00610) * th2 + R(0.00317) * th) +
+        t * (R(-0.04214) * th3 + R(0.08970) * th2 - R(0.04153) * th + R(0.00516)) +
+        (R(0.15346) * th3 - R(0.26756) * th2 + R(0.06670) * th + R(0.26688));
+}
+
+/* The 18 reals of the Preetham sky (header): per quantity Y, x, y, A…E then zenith / F(0, θ_s),
+ * with the zenith luminance taken as 1. */
+SEASIM_FN void sky_preetham_pack(real3 sun, real t, real packed[18]) {
+  real c[15];
+  sky_preetham_coefficients(t, c);
+  const real theta_s = acos(clamp(sun.y, R(0.0), R(1.0)));
+  real xz, yz;
+  sky_preetham_zenith_xy(theta_s, t, &xz, &yz);
+  const real zenith[3] = {R(1.0), xz, yz};
+  for (int q = 0; q < 3; ++q) {
+    for (int k = 0; k < 5; ++k) packed[6 * q + k] = c[5 * q + k];
+    packed[6 * q + 5] = zenith[q] / sky_perez(c + 5 * q, R(1.0), theta_s);
+  }
+}
+
+/* Linear Rec. 709 RGB (relative) of the Preetham sky towards unit d; sun: unit, towards the sun,
+ * held at the horizon when below it. */
+SEASIM_FN real3 sky_preetham_rgb(const SEASIM_GLOBAL real* packed, real3 d, real3 sun) {
+  real3 s = sun;
+  if (s.y < R(0.0)) {
+    const real h = sqrt(s.x * s.x + s.z * s.z);
+    s = h > R(1e-12) ? MAKE_REAL3(s.x / h, R(0.0), s.z / h) : MAKE_REAL3(R(1.0), R(0.0), R(0.0));
+  }
+  const real gamma = acos(clamp(dot(d, s), R(-1.0), R(1.0)));
+  real v[3];
+  for (int q = 0; q < 3; ++q) {
+    real c[5];
+    for (int k = 0; k < 5; ++k) c[k] = packed[6 * q + k];
+    v[q] = packed[6 * q + 5] * sky_perez(c, d.y, gamma);
+  }
+  const real Y = fmax(v[0], R(0.0)), x = v[1], y = fmax(v[2], R(1e-4));
+  const real X = x * Y / y, Z = (R(1.0) - x - y) * Y / y;
+  const real r = R(3.2404542) * X - R(1.5371385) * Y - R(0.4985314) * Z;
+  const real g = R(-0.9692660) * X + R(1.8760108) * Y + R(0.0415560) * Z;
+  const real b = R(0.0556434) * X - R(0.2040259) * Y + R(1.0572252) * Z;
+  return MAKE_REAL3(fmax(r, R(0.0)), fmax(g, R(0.0)), fmax(b, R(0.0)));
+}
+
 /* Luminance of linear Rec. 709 / sRGB primaries. */
 SEASIM_FN real sky_luminance(real3 rgb) { return R(0.2126) * rgb.x + R(0.7152) * rgb.y + R(0.0722) * rgb.z; }
 
@@ -140,4 +221,19 @@ SEASIM_FN real3 sky_image_band_weights(real lambda_nm) {
   const real blue = clamp((R(540.0) - lambda_nm) / R(90.0), R(0.0), R(1.0));
   const real red = clamp((lambda_nm - R(540.0)) / R(70.0), R(0.0), R(1.0));
   return MAKE_REAL3(red, R(1.0) - blue - red, blue);
+}
+
+/* (1/π) ∫_{upper hemisphere} Y cos θ dω of the Preetham sky's RGB (its luminance), by the midpoint rule
+ * in (s = cos²θ, φ) as sky_cie_clear_cosine_mean. */
+SEASIM_FN real sky_preetham_cosine_mean(const SEASIM_GLOBAL real* packed, real3 sun, int n_s, int n_phi) {
+  real sum = R(0.0);
+  for (int i = 0; i < n_s; ++i) {
+    const real s = ((real)i + R(0.5)) / (real)n_s;
+    const real ct = sqrt(s), st = sqrt(R(1.0) - s);
+    for (int k = 0; k < n_phi; ++k) {
+      const real phi = R(2.0) * SEASIM_PI * ((real)k + R(0.5)) / (real)n_phi;
+      sum += sky_luminance(sky_preetham_rgb(packed, MAKE_REAL3(st * cos(phi), ct, st * sin(phi)), sun));
+    }
+  }
+  return sum / ((real)n_s * (real)n_phi);
 }

@@ -51,6 +51,9 @@ depth = 6
 albedo = 0.3
 [spectral]
 count = 6
+[quality]
+wave_filter = false             # one normal per pixel, as renderSeaReference's unfiltered path; the
+                                # filtered variants below turn it on
 )";
 
 seasim::Device& device() { return seasim::test::testDevice(); }
@@ -120,6 +123,27 @@ INSTANTIATE_TEST_SUITE_P(
                                set("sky.image", std::string("\"") + SEASIM_SOURCE_DIR + "/scenes/textures/sky_clear.exr\""),
                                set("quality.sea_lut_size", "1")},
                               5e-4},
+                      // Issue 19's wave filter (common/sea_lean.h) against its double CPU twin: the
+                      // same moments, footprints and quadrature from the double ocean.
+                      Variant{"waves_filtered", {set("quality.wave_filter", "true"), set("quality.sea_lut_size", "1")}, 5e-4},
+                      Variant{"waves_filtered_analytic_sky",
+                              {set("quality.wave_filter", "true"), set("sky.model", "\"analytic\""),
+                               set("quality.sea_lut_size", "1"), set("sun.azimuth_deg", "270")},
+                              5e-4},
+                      Variant{"waves_filtered_image_sky",
+                              {set("quality.wave_filter", "true"), set("sky.model", "\"image\""),
+                               set("sky.image", std::string("\"") + SEASIM_SOURCE_DIR + "/scenes/textures/sky_clear.exr\""),
+                               set("quality.sea_lut_size", "1")},
+                              5e-4},
+                      Variant{"waves_filtered_preetham_sky",
+                              {set("quality.wave_filter", "true"), set("sky.model", "\"preetham\""),
+                               set("sky.turbidity", "4"), set("quality.sea_lut_size", "1")},
+                              5e-4},
+                      Variant{"flat_preetham_sky",
+                              {set("surface.type", "\"flat\""), set("sky.model", "\"preetham\""),
+                               set("camera.look_at", "[0, 4, -10]")},
+                              2e-4},
+                      Variant{"waves_supersampled", {set("quality.sea_supersample", "3"), set("quality.sea_lut_size", "1")}, 5e-4},
                       Variant{"flat_analytic_sky", {set("surface.type", "\"flat\""), set("sky.model", "\"analytic\"")}, 2e-4},
                       Variant{"flat_analytic_sky_sun_down",
                               {set("surface.type", "\"flat\""), set("sky.model", "\"analytic\""), set("sun.zenith_deg", "100"),

@@ -17,7 +17,9 @@ class SeaSingleNode : public Pass {
   explicit SeaSingleNode(const PassPlan& entry) : entry_(entry) {}
   // The ocean and the caustic map come in as resources: a new one sets this pass up again.
   PassKeys keys() const override {
-    return {{"camera.*", "sun.*", "sky.*", "water.*", "bottom.*", "sea.*", "spectral.*", "quality.sea_lut_size"}, {}};
+    return {{"camera.*", "sun.*", "sky.*", "water.*", "bottom.*", "sea.*", "spectral.*", "quality.sea_lut_size",
+             "quality.sea_supersample", "quality.wave_filter"},
+            {}};
   }
   void prepare(FrameContext& ctx, PassResources& res) override {
     OceanPass* ocean = res.declaresRead("ocean_maps") ? &res.read<OceanPass>("ocean_maps") : nullptr;
