@@ -132,13 +132,13 @@ void Renderer::update(const std::vector<Override>& overrides) {
   }
   std::vector<std::string> changed;
   for (const Override& o : overrides) {
-    auto it = std::find_if(overrides_.begin(), overrides_.end(), [&](const Override& x) { return x.key == o.key; });
-    if (it != overrides_.end()) {
-      if (it->value_toml == o.value_toml) continue;
-      *it = o;
-    } else {
-      overrides_.push_back(o);
-    }
+    // The last override of a key is the one in effect (they apply in order): compare with it, then
+    // keep only the new one, so an earlier duplicate can never shadow a later update.
+    auto last = std::find_if(overrides_.rbegin(), overrides_.rend(), [&](const Override& x) { return x.key == o.key; });
+    if (last != overrides_.rend() && last->value_toml == o.value_toml) continue;
+    overrides_.erase(std::remove_if(overrides_.begin(), overrides_.end(), [&](const Override& x) { return x.key == o.key; }),
+                     overrides_.end());
+    overrides_.push_back(o);
     changed.push_back(o.key);
   }
   if (changed.empty()) return;

@@ -87,6 +87,22 @@ TEST(Renderer, SurfaceTimeRerunsOnlyOceanCausticsAndSea) {
   EXPECT_LT(maxRelDiff(later.rgb, fresh("wavy_sea.toml", at).rgb), 1e-5);
 }
 
+// A key given twice when the renderer was made (the later one in effect): updating it back to the
+// earlier value is a change, not a no-op (found by the preview, issue 16).
+TEST(Renderer, UpdateComparesWithTheOverrideInEffect) {
+  const std::vector<Override> base = small({set("surface.grid", "64"), set("quality.sea_lut_size", "17"),
+                                            set("quality.sea_lut_size", "9")});
+  Renderer renderer(test::testDevice(), sceneFile("wavy_sea.toml"), base, standardPasses());
+  (void)renderer.render();
+  EXPECT_EQ(renderer.scene().quality.at("sea_lut_size").value, 9);
+  renderer.update({set("quality.sea_lut_size", "17")});
+  EXPECT_EQ(renderer.scene().quality.at("sea_lut_size").value, 17);
+  (void)renderer.render();
+  EXPECT_EQ(models(renderer.lastExecuted()), std::vector<std::string>{"sea_single"});
+  renderer.update({set("quality.sea_lut_size", "17")});  // now a real no-op
+  EXPECT_EQ(renderer.scene().quality.at("sea_lut_size").value, 17);
+}
+
 // A quality knob of sea_single: only it is set up and runs again; the ocean does not run.
 TEST(Renderer, SeaLutKnobRerunsOnlyTheSeaPass) {
   const std::vector<Override> base = small({set("surface.grid", "64")});
