@@ -4,6 +4,7 @@
 #include <fcntl.h>
 #include <spawn.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <gtest/gtest.h>
 
@@ -32,10 +33,12 @@ inline Result runCommand(const std::string& cmd) {
 
 // An empty folder <temp>/<prefix><current test's name>, created afresh (per test, so tests of one
 // binary can run in parallel processes); the caller removes it in TearDown.
+// The pid keeps two checkouts' test runs on one machine (or a rerun while an old one still runs)
+// out of each other's folders: two runs of one test once damaged each other's PoCL caches and locks.
 inline std::filesystem::path freshTestDir(const std::string& prefix) {
   const std::filesystem::path dir =
       std::filesystem::temp_directory_path() /
-      (prefix + ::testing::UnitTest::GetInstance()->current_test_info()->name());
+      (prefix + ::testing::UnitTest::GetInstance()->current_test_info()->name() + "_" + std::to_string(::getpid()));
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;
