@@ -24,6 +24,7 @@ typedef float real;
 #include "common/caustic_map.h"
 #include "common/froxel.h"
 #include "common/path_tracer.h"
+#include "common/fourflow.h"
 }  // namespace seasim::kmath_f
 
 namespace seasim::kmath_d {
@@ -42,4 +43,5 @@ typedef double real;
 #include "common/caustic_map.h"
 #include "common/froxel.h"
 #include "common/path_tracer.h"
+#include "common/fourflow.h"
 }  // namespace seasim::kmath_d
