@@ -6,6 +6,7 @@
 #include "common/underwater_params.h"  // plain C structs, used by underwater.h
 #include "common/froxel_params.h"      // plain C struct, used by froxel.h
 #include "common/sea_bottom_params.h"  // plain C struct, used by sea_bottom.h
+#include "common/fourflow_params.h"    // plain C structs, used by fourflow.h
 
 
 namespace seasim::kmath_f {

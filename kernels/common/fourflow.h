@@ -310,3 +310,103 @@ SEASIM_FN real ff_bottom_irradiance(FfSolution sol) {
   return sol.C1 * exp(-ff_lambda(sol.m) * sol.tau0) + sol.Fp_bot;
 }
 SEASIM_FN real ff_upwelling(FfSolution sol) { return sol.Fm_top; }
+
+/* ---------------------------------------------------------------------------------------------
+ * Per band and per pixel (003 eq. 1–3, 11–13, 20–23), on the FfBand / FfParams blocks of
+ * fourflow_params.h. The light field is solved for the texture's mean bottom albedo R̄ (eq. 12: the
+ * "average color bottom"); the bottom point seen reflects it with its own albedo (eq. 11). */
+
+/* What eq. 20 needs from the light field at bottom depth h (m): the light reaching the bottom,
+ * G+(τ0) + F+(τ0), and the upwelling under the surface, F-(0). */
+typedef struct {
+  real down_bottom, up_surface;
+} FfBandTerms;
+
+SEASIM_FN FfBandTerms ff_band_terms(FfBand b, real h) {
+  FfMedium m;
+  m.k = b.k, m.S = b.S, m.S1 = b.S1, m.S2 = b.S2;
+  FfSurface s;
+  s.T_dd = b.T_dd, s.T_df = b.T_df, s.T_ff = b.T_ff, s.Rw_dd = b.Rw_dd, s.Rw_df = b.Rw_df, s.Rw_ff = b.Rw_ff;
+  const FfSolution sol = ff_solve(m, s, ff_lambert_bottom(b.rho_mean), (real)b.eps * h, b.e_sun, b.e_sky);
+  FfBandTerms t;
+  t.down_bottom = ff_bottom_irradiance(sol);
+  t.up_surface = ff_upwelling(sol);
+  return t;
+}
+
+/* 003 eq. 20 with α_l = e^{-ε l} (eq. 3): E_refr = α_l R̂ (G+ + F+)(τ0) + (1 - α_l) F-(0). */
+SEASIM_FN real ff_refracted(FfBandTerms t, real alpha_l, real rho) {
+  return alpha_l * rho * t.down_bottom + (R(1.0) - alpha_l) * t.up_surface;
+}
+
+/* The bottom albedo of band b where the texture mixes material b with weight tex ∈ [0, 1]. */
+SEASIM_FN real ff_bottom_albedo(FfBand b, real tex) { return (R(1.0) - tex) * b.rho_a + tex * b.rho_b; }
+
+/* The exact path: eq. 20 per band, summed into linear RGB through the bands' sensor weights. */
+SEASIM_FN void ff_exact_rgb(const SEASIM_GLOBAL FfBand* bands, int n_bands, real l, real h, real tex, real* rgb) {
+  rgb[0] = rgb[1] = rgb[2] = R(0.0);
+  for (int i = 0; i < n_bands; ++i) {
+    const FfBand b = bands[i];
+    const real e = ff_refracted(ff_band_terms(b, h), exp(-(real)b.eps * l), ff_bottom_albedo(b, tex));
+    rgb[0] += b.rgb[0] * e;
+    rgb[1] += b.rgb[1] * e;
+    rgb[2] += b.rgb[2] * e;
+  }
+}
+
+/* One (l, h) table cell of 003 eq. 22–23, written to cell[0..7]:
+ *   T0 = Φ(E_refr over a white bottom)      "the colour of water for the specified bottom" once
+ *                                            multiplied by the bottom texture's RGB;
+ *   T1 = Φ(E_refr over the mean bottom R̄)  "the water colour for some average bottom";
+ *   a  = 1 - (1 - mean_λ e^{-ε l})^γ        eq. 23 (the paper's (1/400)∫_380^780 is the band mean).
+ * Φ here is the linear band -> RGB map; the display transform comes after the blend. */
+SEASIM_FN void ff_table_cell(const SEASIM_GLOBAL FfBand* bands, int n_bands, real gamma, real l, real h, real* cell) {
+  real t0[3] = {R(0.0), R(0.0), R(0.0)}, t1[3] = {R(0.0), R(0.0), R(0.0)};
+  real alpha_sum = R(0.0);
+  for (int i = 0; i < n_bands; ++i) {
+    const FfBand b = bands[i];
+    const FfBandTerms t = ff_band_terms(b, h);
+    const real alpha = exp(-(real)b.eps * l);
+    const real e_white = ff_refracted(t, alpha, R(1.0));
+    const real e_mean = ff_refracted(t, alpha, (real)b.rho_mean);
+    for (int c = 0; c < 3; ++c) {
+      t0[c] += b.rgb[c] * e_white;
+      t1[c] += b.rgb[c] * e_mean;
+    }
+    alpha_sum += alpha;
+  }
+  const real mean_alpha = n_bands > 0 ? alpha_sum / (real)n_bands : R(0.0);
+  cell[0] = t0[0], cell[1] = t0[1], cell[2] = t0[2];
+  cell[3] = R(1.0) - pow(fmax(R(1.0) - mean_alpha, R(0.0)), gamma);
+  cell[4] = t1[0], cell[5] = t1[1], cell[6] = t1[2];
+  cell[7] = R(0.0);
+}
+
+/* The table node (l, h) stands for: l_max i/(n_l - 1), h_max j/(n_h - 1). */
+SEASIM_FN real ff_table_l(FfParams p, int i) { return (real)p.l_max * (real)i / (real)(p.n_l - 1); }
+SEASIM_FN real ff_table_h(FfParams p, int j) { return (real)p.h_max * (real)j / (real)(p.n_h - 1); }
+
+/* The real-time path per pixel: bilinear lookup of (T0, a, T1) at (l, h), clamped to the table's
+ * range (beyond l_max the view ray has left the table: e^{-ε l_max} should be ~0 there, which the
+ * planner's l_max ensures), then 003 eq. 22: T_refr = a T0 T_bottom + (1 - a) T1, with T_bottom the
+ * linear RGB reflectance of the texture at the pixel. table[(j n_l + i) FF_TABLE_STRIDE + c]. */
+SEASIM_FN void ff_table_rgb(FfParams p, const SEASIM_GLOBAL float* table, real l, real h, real tex, real* rgb) {
+  const real fl = clamp(l / (real)p.l_max, R(0.0), R(1.0)) * (real)(p.n_l - 1);
+  const real fh = clamp(h / (real)p.h_max, R(0.0), R(1.0)) * (real)(p.n_h - 1);
+  const int il = (int)fl, jh = (int)fh;
+  const int i0 = il < p.n_l - 2 ? il : p.n_l - 2, j0 = jh < p.n_h - 2 ? jh : p.n_h - 2;
+  const real u = fl - (real)i0, v = fh - (real)j0;
+  real c[8];
+  for (int q = 0; q < 8; ++q) {
+    const real c00 = table[((j0 + 0) * p.n_l + i0 + 0) * FF_TABLE_STRIDE + q];
+    const real c10 = table[((j0 + 0) * p.n_l + i0 + 1) * FF_TABLE_STRIDE + q];
+    const real c01 = table[((j0 + 1) * p.n_l + i0 + 0) * FF_TABLE_STRIDE + q];
+    const real c11 = table[((j0 + 1) * p.n_l + i0 + 1) * FF_TABLE_STRIDE + q];
+    c[q] = (R(1.0) - v) * ((R(1.0) - u) * c00 + u * c10) + v * ((R(1.0) - u) * c01 + u * c11);
+  }
+  const real a = c[3];
+  for (int ch = 0; ch < 3; ++ch) {
+    const real t_bottom = (R(1.0) - tex) * (real)p.rgb_a[ch] + tex * (real)p.rgb_b[ch];
+    rgb[ch] = a * c[ch] * t_bottom + (R(1.0) - a) * c[4 + ch];
+  }
+}
