@@ -45,3 +45,67 @@ __kernel void ff_table_blend(__constant FfParams* p, __global const float* table
   ff_table_rgb(*p, table, path_l[i], depth_h[i], tex[i], rgb);
   vstore3((float3)(rgb[0], rgb[1], rgb[2]), i, out_rgb);
 }
+
+/* ---------------------------------------------------------------------------------------------
+ * The frame: the view from above a flat water surface (003 eq. 1). Per pixel: the camera ray meets
+ * the surface (y = 0) at B with Fresnel term F(θ); the reflected part sees the uniform sky; the
+ * refracted ray runs to the bottom point C (flat bottom, or the sea module's height field:
+ * common/sea_bottom.h), giving the view path length l = |BC| and the depth h of C; the bottom texture
+ * at C gives the dark material's share. Then E_refr (eq. 20) by the exact band sum or the tables.
+ *
+ * Radiance: E_refr is an irradiance-like flow (the paper's units); a diffuse field of that exitance
+ * has radiance E/π in the water, and radiance over n² is conserved across the surface (docs/:
+ * one radiometric convention), so the pixel gets F L_sky + (1 - F) E_refr / (π n²).
+ */
+#if SEASIM_FF_HEIGHTFIELD /* the sea module's height field and its exact ray walk (000 §5.4) */
+#include "common/sea_bottom_params.h"
+#include "common/sea_surface.h"
+#include "common/sea_second.h"
+#include "common/sea_bottom.h"
+#endif
+
+__kernel void ff_render(__constant FfView* v, __global const FfBand* bands, __constant FfParams* p,
+                        __global const float* table, __global float* rgb
+#if SEASIM_FF_HEIGHTFIELD
+                        , __constant SeaHeightField* hf, __global const float* hf_depth
+#endif
+) {
+  const int x = get_global_id(0), y = get_global_id(1);
+  if (x >= v->width || y >= v->height) return;
+  const real sx = ((real)x + R(0.5)) / (real)v->width, sy = ((real)y + R(0.5)) / (real)v->height;
+  const real3 right = MAKE_REAL3(v->cam_right[0], v->cam_right[1], v->cam_right[2]);
+  const real3 up = MAKE_REAL3(v->cam_up[0], v->cam_up[1], v->cam_up[2]);
+  const real3 fwd = MAKE_REAL3(v->cam_forward[0], v->cam_forward[1], v->cam_forward[2]);
+  const real3 o = MAKE_REAL3(v->cam_pos[0], v->cam_pos[1], v->cam_pos[2]);
+  const real3 d = normalize(fwd + ((R(2.0) * sx - R(1.0)) * v->tan_half_fov_y * v->aspect) * right +
+                            ((R(1.0) - R(2.0) * sy) * v->tan_half_fov_y) * up);
+  real out[3] = {v->sky_rgb[0], v->sky_rgb[1], v->sky_rgb[2]};
+  if (d.y < R(0.0)) {
+    const real3 b = o + (o.y / -d.y) * d; /* B on y = 0 */
+    const real F = fresnel_reflectance(-d.y, R(1.0), v->ior);
+    real3 dw;
+    refract_dir(d, MAKE_REAL3(R(0.0), R(1.0), R(0.0)), R(1.0) / v->ior, &dw);
+    real l, h;
+#if SEASIM_FF_HEIGHTFIELD
+    real3 n_floor;
+    const real t_max = R(1e4);
+    const int hit = sea_hf_intersect(hf, hf_depth, b, dw, t_max, &l, &n_floor);
+    h = hit ? -(b.y + l * dw.y) : (real)hf->max_depth;
+    l = hit ? l : t_max;
+#else
+    h = v->bottom_depth;
+    l = h / fmax(-dw.y, R(1e-6));
+#endif
+    const real3 c = b + l * dw;
+    const real tex = ff_bottom_texture(c.x, c.z, v->texture_scale, v->dark_fraction);
+    real refr[3];
+#if SEASIM_FF_TABLES
+    ff_table_rgb(*p, table, l, h, tex, refr);
+#else
+    ff_exact_rgb(bands, p->n_bands, l, h, tex, refr);
+#endif
+    const real k = (R(1.0) - F) / (SEASIM_PI * v->ior * v->ior);
+    for (int ch = 0; ch < 3; ++ch) out[ch] = F * out[ch] + k * fmax(refr[ch], R(0.0));
+  }
+  vstore3((float3)(out[0], out[1], out[2]), y * v->width + x, rgb);
+}

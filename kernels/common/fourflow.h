@@ -410,3 +410,31 @@ SEASIM_FN void ff_table_rgb(FfParams p, const SEASIM_GLOBAL float* table, real l
     rgb[ch] = a * c[ch] * t_bottom + (R(1.0) - a) * c[4 + ch];
   }
 }
+
+/* ---------------------------------------------------------------------------------------------
+ * The procedural bottom texture: the share tex ∈ [0, 1] of the dark material at (x, z) (m). Value noise
+ * (a hashed lattice, smoothstep-interpolated, two octaves) in [0, 1], turned into patches:
+ * tex = clamp(3 (n - 1/2) + (dark_fraction - 1/2) 3 + 1/2, 0, 1), which for noise symmetric about 1/2
+ * has a mean near dark_fraction; the host measures the exact mean (the "average bottom" R̄ of eq. 12)
+ * with this same function. Generated, so nothing needs a licence. */
+SEASIM_FN real ff_lattice(int i, int j) {
+  unsigned int h = (unsigned int)i * 73856093u ^ (unsigned int)j * 19349663u;
+  h ^= h >> 13;
+  h *= 0x5bd1e995u;
+  h ^= h >> 15;
+  return (real)(h & 0xffffu) / R(65535.0);
+}
+SEASIM_FN real ff_value_noise(real x, real z) {
+  /* floor without the C library (an int cast truncates towards 0); |x| stays far below 2^31 here. */
+  const int i = (int)x - (x < (real)(int)x ? 1 : 0), j = (int)z - (z < (real)(int)z ? 1 : 0);
+  const real fx = (real)i, fz = (real)j;
+  real u = x - fx, v = z - fz;
+  u = u * u * (R(3.0) - R(2.0) * u);
+  v = v * v * (R(3.0) - R(2.0) * v);
+  const real a = ff_lattice(i, j), b = ff_lattice(i + 1, j), c = ff_lattice(i, j + 1), d = ff_lattice(i + 1, j + 1);
+  return (a + u * (b - a)) + v * ((c + u * (d - c)) - (a + u * (b - a)));
+}
+SEASIM_FN real ff_bottom_texture(real x, real z, real scale, real dark_fraction) {
+  const real n = R(0.65) * ff_value_noise(x / scale, z / scale) + R(0.35) * ff_value_noise(R(2.7) * x / scale + R(17.0), R(2.7) * z / scale - R(5.0));
+  return clamp(R(3.0) * (n - R(0.5)) + R(3.0) * (dark_fraction - R(0.5)) + R(0.5), R(0.0), R(1.0));
+}

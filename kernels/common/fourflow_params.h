@@ -32,6 +32,18 @@ typedef struct {
   float rgb_a[4], rgb_b[4];     /* linear RGB reflectance of the two bottom materials (4th unused) */
 } FfParams;
 
+/* The view from above a flat water surface (kernels/fourflow.cl ff_render). */
+typedef struct {
+  float cam_pos[4], cam_right[4], cam_up[4], cam_forward[4]; /* world, m; 4th unused */
+  float sky_rgb[4];          /* linear RGB of the uniform sky's radiance (reflected, and above the horizon) */
+  float tan_half_fov_y, aspect;
+  int width, height;
+  float ior;                 /* water's refractive index */
+  float bottom_depth;        /* m, flat bottom (without a height field) */
+  float texture_scale;       /* m, feature size of the bottom texture (ff_bottom_texture) */
+  float dark_fraction;       /* the texture's mean share of the dark material */
+} FfView;
+
 /* One table cell: T0 (white bottom) rgb, a, T1 (average bottom) rgb, pad — 8 floats. */
 #define FF_TABLE_STRIDE 8
 
