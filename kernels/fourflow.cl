@@ -36,13 +36,14 @@ __kernel void ff_build_tables(__global const FfBand* bands, __constant FfParams*
   for (int q = 0; q < FF_TABLE_STRIDE; ++q) table[(j * p->n_l + i) * FF_TABLE_STRIDE + q] = cell[q];
 }
 
-/* The real-time path: bilinear table lookup and the blend of eq. 22 per pixel. */
+/* The real-time path: bilinear table lookup and the blend of eq. 22 (eq24 = 0) or eq. 24 per pixel. */
 __kernel void ff_table_blend(__constant FfParams* p, __global const float* table, __global const float* path_l,
-                             __global const float* depth_h, __global const float* tex, __global float* out_rgb, int n) {
+                             __global const float* depth_h, __global const float* tex, __global float* out_rgb, int n,
+                             int eq24) {
   const int i = get_global_id(0);
   if (i >= n) return;
   real rgb[3];
-  ff_table_rgb(*p, table, path_l[i], depth_h[i], tex[i], rgb);
+  ff_table_rgb(*p, table, path_l[i], depth_h[i], tex[i], eq24, rgb);
   vstore3((float3)(rgb[0], rgb[1], rgb[2]), i, out_rgb);
 }
 
@@ -99,8 +100,8 @@ __kernel void ff_render(__constant FfView* v, __global const FfBand* bands, __co
     const real3 c = b + l * dw;
     const real tex = ff_bottom_texture(c.x, c.z, v->texture_scale, v->dark_fraction);
     real refr[3];
-#if SEASIM_FF_TABLES
-    ff_table_rgb(*p, table, l, h, tex, refr);
+#if SEASIM_FF_TABLES /* 1: eq. 22, 2: eq. 24 */
+    ff_table_rgb(*p, table, l, h, tex, SEASIM_FF_TABLES == 2, refr);
 #else
     ff_exact_rgb(bands, p->n_bands, l, h, tex, refr);
 #endif

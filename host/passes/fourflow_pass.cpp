@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "math/kernel_math.h"
+#include "passes/fourflow_auto.h"
 #include "spectral/jerlov.h"
 #include "underwater/fourflow_setup.h"
 #include "util/error.h"
@@ -82,10 +83,7 @@ FourFlowSetup makeFourFlowSetup(const Scene& scene, const WavelengthGrid& grid, 
   const double h_max = s.height_field ? s.field.params.max_depth : scene.bottom.depth;
 
   FfParams& p = s.params;
-  const auto knob = scene.quality.find("fourflow_table_size");
-  const int n = table_size > 0 ? table_size : (knob != scene.quality.end() && !knob->second.automatic ? int(knob->second.value) : 32);
   p.n_bands = int(s.bands.size());
-  p.n_l = p.n_h = std::max(n, 2);
   // l beyond l_max: e^{-ε l} < 1e-4 in every band, so the bottom term is below 1e-4 of its value at
   // l = 0 and the clamped lookup only misses that.
   p.l_max = float(std::min(std::log(1e4) / eps_min, 1e4));
@@ -95,6 +93,12 @@ FourFlowSetup makeFourFlowSetup(const Scene& scene, const WavelengthGrid& grid, 
     p.rgb_a[c] = float(rgb_den[c] > 0 ? rgb_a_num[c] / rgb_den[c] : 0.0);
     p.rgb_b[c] = float(sh.dark_albedo);
   }
+  // Resolution: the argument, the knob, or "auto" (passes/fourflow_auto.h).
+  const auto knob = scene.quality.find("fourflow_table_size");
+  int n = table_size > 0 ? table_size : knob != scene.quality.end() ? int(knob->second.value) : 32;
+  if (table_size <= 0 && knob != scene.quality.end() && knob->second.automatic)
+    n = chooseFourFlowTableSize(s.bands, p).size;
+  p.n_l = p.n_h = std::max(n, 2);
 
   FfView& v = s.view;
   const CameraDesc& cam = scene.camera;
@@ -123,7 +127,7 @@ FourFlowPass::FourFlowPass(Device& device, const Scene& scene, const PassPlan& p
   if (scene.spectral.spectral_exr)
     throw RuntimeError("fourflow pass: spectral_exr output is not built for the four-flow model (issue 17)");
   const FourFlowSetup s = makeFourFlowSetup(scene, grid, sensor, table_size);
-  const bool tables = hasDefine(plan, "SEASIM_FF_TABLES=1");
+  const bool tables = !hasDefine(plan, "SEASIM_FF_TABLES=0");
   const bool hf = hasDefine(plan, "SEASIM_FF_HEIGHTFIELD=1");
   if (hf != s.height_field) throw RuntimeError("fourflow pass: the plan's SEASIM_FF_HEIGHTFIELD does not match the scene");
   const size_t pixels = size_t(width_) * size_t(height_);

@@ -129,14 +129,16 @@ Plan makePlan(const Scene& scene) {
   // model for the view from above; its tables are built only on the table path.
   const bool shallow = sea_view && scene.shallow.present;
   if (shallow) {
-    const bool table = scene.shallow.path == ShallowDesc::Path::Table;
+    const bool table = scene.shallow.path != ShallowDesc::Path::Exact;
+    const bool eq24 = scene.shallow.path == ShallowDesc::Path::TableEq24;
     plan.passes.push_back({"fourflow", "fourflow.cl",
-                           {flag("SEASIM_FF_TABLES", table),
+                           {std::string("SEASIM_FF_TABLES=") + (eq24 ? "2" : table ? "1" : "0"),
                             flag("SEASIM_FF_HEIGHTFIELD", scene.shallow.slope ||
                                                               scene.bottom.type == BottomDesc::Type::HeightField)},
                            {"scene"}, {"rgb"},
                            std::string("[shallow]: four-flow light field over a visible bottom (003 eq. 4-20), ") +
-                               (table ? "(l, h) tables + blend (eq. 22-23)" : "exact spectral path (eq. 20)"),
+                               (eq24 ? "(l, h) tables + pre-converted blend (eq. 24)"
+                                       : table ? "(l, h) tables + blend (eq. 22-23)" : "exact spectral path (eq. 20)"),
                            true, ""});
   }
   if (sea_view && !shallow) {

@@ -156,9 +156,10 @@ struct UnderwaterDesc {
 // flat water surface. Present only when the scene has the table; then the planner runs the fourflow
 // pass instead of the sea model.
 struct ShallowDesc {
-  enum class Path { Table, Exact };
+  enum class Path { Table, TableEq24, Exact };
   bool present = false;
-  Path path = Path::Table;       // "table": RGB tables + blend (003 eq. 22); "exact": eq. 20 per band
+  Path path = Path::Table;       // "table": RGB tables + blend (003 eq. 22); "table_eq24": the
+                                 // pre-converted blend of eq. 24; "exact": eq. 20 per band
   double gamma = 1.0;            // 003 eq. 23 transition exponent
   double texture_scale = 2.0;    // m, feature size of the procedural bottom texture (file: texture_scale_m)
   double dark_albedo = 0.04;     // albedo of the texture's second (dark) bottom material

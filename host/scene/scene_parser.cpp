@@ -554,8 +554,10 @@ class SceneParser {
     TableReader r(src_, t, "shallow");
     ShallowDesc& s = scene_.shallow;
     s.present = true;
-    s.path = r.choice("path", "table", {"table", "exact"}) == "exact" ? ShallowDesc::Path::Exact
-                                                                      : ShallowDesc::Path::Table;
+    const std::string path = r.choice("path", "table", {"table", "table_eq24", "exact"});
+    s.path = path == "exact"        ? ShallowDesc::Path::Exact
+             : path == "table_eq24" ? ShallowDesc::Path::TableEq24
+                                    : ShallowDesc::Path::Table;
     s.gamma = r.number("gamma", s.gamma);
     r.check(s.gamma > 0 && s.gamma <= 100, "gamma", "must be in (0, 100], got " + fmt(s.gamma));
     s.texture_scale = r.number("texture_scale_m", s.texture_scale);

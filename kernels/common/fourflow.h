@@ -354,50 +354,62 @@ SEASIM_FN void ff_exact_rgb(const SEASIM_GLOBAL FfBand* bands, int n_bands, real
   }
 }
 
-/* One (l, h) table cell of 003 eq. 22–23, written to cell[0..7]:
- *   T0 = Φ(E_refr over a white bottom)      "the colour of water for the specified bottom" once
- *                                            multiplied by the bottom texture's RGB;
- *   T1 = Φ(E_refr over the mean bottom R̄)  "the water colour for some average bottom";
- *   a  = 1 - (1 - mean_λ e^{-ε l})^γ        eq. 23 (the paper's (1/400)∫_380^780 is the band mean).
+/* One (l, h) table cell of 003 eq. 22–24, written to cell[0 .. FF_TABLE_STRIDE - 1]:
+ *   [0..2]  T0 = Φ(E_refr over a white bottom)      "the colour of water for the specified bottom" once
+ *                                                    multiplied by the bottom texture's RGB;
+ *   [3]     a  = 1 - (1 - mean_λ e^{-ε l})^γ        eq. 23 (the paper's (1/400)∫_380^780 is the band mean);
+ *   [4..6]  T1 = Φ(E_refr over the mean bottom R̄)  "the water colour for some average bottom";
+ *   [8..10] T_α = Φ(α_l) under the incoming light    eq. 24's pre-converted transmittance (Σ w α E / Σ w E);
+ *   [12..14] Φ(G+ + F+)(τ0), [16..18] Φ(F-(0))      eq. 24's T0(h), T1(h); the other slots 0.
  * Φ here is the linear band -> RGB map; the display transform comes after the blend. */
 SEASIM_FN void ff_table_cell(const SEASIM_GLOBAL FfBand* bands, int n_bands, real gamma, real l, real h, real* cell) {
-  real t0[3] = {R(0.0), R(0.0), R(0.0)}, t1[3] = {R(0.0), R(0.0), R(0.0)};
-  real alpha_sum = R(0.0);
+  for (int q = 0; q < FF_TABLE_STRIDE; ++q) cell[q] = R(0.0);
+  real alpha_sum = R(0.0), light_w[3] = {R(0.0), R(0.0), R(0.0)};
   for (int i = 0; i < n_bands; ++i) {
     const FfBand b = bands[i];
     const FfBandTerms t = ff_band_terms(b, h);
     const real alpha = exp(-(real)b.eps * l);
     const real e_white = ff_refracted(t, alpha, R(1.0));
     const real e_mean = ff_refracted(t, alpha, (real)b.rho_mean);
+    const real light = (real)b.e_sun + (real)b.e_sky;
     for (int c = 0; c < 3; ++c) {
-      t0[c] += b.rgb[c] * e_white;
-      t1[c] += b.rgb[c] * e_mean;
+      const real w = (real)b.rgb[c];
+      cell[c] += w * e_white;
+      cell[4 + c] += w * e_mean;
+      cell[8 + c] += w * alpha * light;
+      light_w[c] += w * light;
+      cell[12 + c] += w * t.down_bottom;
+      cell[16 + c] += w * t.up_surface;
     }
     alpha_sum += alpha;
   }
   const real mean_alpha = n_bands > 0 ? alpha_sum / (real)n_bands : R(0.0);
-  cell[0] = t0[0], cell[1] = t0[1], cell[2] = t0[2];
   cell[3] = R(1.0) - pow(fmax(R(1.0) - mean_alpha, R(0.0)), gamma);
-  cell[4] = t1[0], cell[5] = t1[1], cell[6] = t1[2];
-  cell[7] = R(0.0);
+  for (int c = 0; c < 3; ++c) cell[8 + c] = light_w[c] > R(0.0) ? cell[8 + c] / light_w[c] : R(0.0);
 }
 
-/* The table node (l, h) stands for: l_max i/(n_l - 1), h_max j/(n_h - 1). */
-SEASIM_FN real ff_table_l(FfParams p, int i) { return (real)p.l_max * (real)i / (real)(p.n_l - 1); }
+/* The table node (l, h) stands for: l_max (i/(n_l - 1))², h_max j/(n_h - 1). The nodes along l are
+ * dense near l = 0 because e^{-ε l} changes fastest there (red bands: ε ~ 0.4 m⁻¹ while l_max is set by
+ * the clearest band, hundreds of m); uniform nodes left the first metres between two nodes (the sweep
+ * measured no convergence up to 128 nodes). */
+SEASIM_FN real ff_table_l(FfParams p, int i) {
+  const real t = (real)i / (real)(p.n_l - 1);
+  return (real)p.l_max * t * t;
+}
 SEASIM_FN real ff_table_h(FfParams p, int j) { return (real)p.h_max * (real)j / (real)(p.n_h - 1); }
 
-/* The real-time path per pixel: bilinear lookup of (T0, a, T1) at (l, h), clamped to the table's
+/* The real-time path per pixel: bilinear lookup (in √l and h) of the cell at (l, h), clamped to the table's
  * range (beyond l_max the view ray has left the table: e^{-ε l_max} should be ~0 there, which the
- * planner's l_max ensures), then 003 eq. 22: T_refr = a T0 T_bottom + (1 - a) T1, with T_bottom the
+ * planner's l_max ensures), then 003 eq. 22: T_refr = a T0 T_bottom + (1 - a) T1 (or eq. 24 when eq24), with T_bottom the
  * linear RGB reflectance of the texture at the pixel. table[(j n_l + i) FF_TABLE_STRIDE + c]. */
-SEASIM_FN void ff_table_rgb(FfParams p, const SEASIM_GLOBAL float* table, real l, real h, real tex, real* rgb) {
-  const real fl = clamp(l / (real)p.l_max, R(0.0), R(1.0)) * (real)(p.n_l - 1);
+SEASIM_FN void ff_table_rgb(FfParams p, const SEASIM_GLOBAL float* table, real l, real h, real tex, int eq24, real* rgb) {
+  const real fl = sqrt(clamp(l / (real)p.l_max, R(0.0), R(1.0))) * (real)(p.n_l - 1);
   const real fh = clamp(h / (real)p.h_max, R(0.0), R(1.0)) * (real)(p.n_h - 1);
   const int il = (int)fl, jh = (int)fh;
   const int i0 = il < p.n_l - 2 ? il : p.n_l - 2, j0 = jh < p.n_h - 2 ? jh : p.n_h - 2;
   const real u = fl - (real)i0, v = fh - (real)j0;
-  real c[8];
-  for (int q = 0; q < 8; ++q) {
+  real c[FF_TABLE_STRIDE];
+  for (int q = 0; q < FF_TABLE_STRIDE; ++q) {
     const real c00 = table[((j0 + 0) * p.n_l + i0 + 0) * FF_TABLE_STRIDE + q];
     const real c10 = table[((j0 + 0) * p.n_l + i0 + 1) * FF_TABLE_STRIDE + q];
     const real c01 = table[((j0 + 1) * p.n_l + i0 + 0) * FF_TABLE_STRIDE + q];
@@ -407,7 +419,10 @@ SEASIM_FN void ff_table_rgb(FfParams p, const SEASIM_GLOBAL float* table, real l
   const real a = c[3];
   for (int ch = 0; ch < 3; ++ch) {
     const real t_bottom = (R(1.0) - tex) * (real)p.rgb_a[ch] + tex * (real)p.rgb_b[ch];
-    rgb[ch] = a * c[ch] * t_bottom + (R(1.0) - a) * c[4 + ch];
+    /* eq. 24, which the paper reports worse than eq. 22 (RGB conversion before the blend):
+     * T_α T_bottom T0(h) + (1 - T_α) T1(h). */
+    rgb[ch] = eq24 ? c[8 + ch] * t_bottom * c[12 + ch] + (R(1.0) - c[8 + ch]) * c[16 + ch]
+                   : a * c[ch] * t_bottom + (R(1.0) - a) * c[4 + ch];
   }
 }
 

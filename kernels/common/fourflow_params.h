@@ -26,7 +26,7 @@ typedef struct {
 typedef struct {
   int n_bands;
   int n_l, n_h;                 /* table resolution (>= 2 each) */
-  float l_max, h_max;           /* m: table ranges, nodes at l_max i/(n_l - 1), h_max j/(n_h - 1) */
+  float l_max, h_max;           /* m: table ranges, nodes at l_max (i/(n_l - 1))², h_max j/(n_h - 1) */
   float gamma;                  /* 003 eq. 23 transition exponent */
   float pad0, pad1;
   float rgb_a[4], rgb_b[4];     /* linear RGB reflectance of the two bottom materials (4th unused) */
@@ -44,7 +44,7 @@ typedef struct {
   float dark_fraction;       /* the texture's mean share of the dark material */
 } FfView;
 
-/* One table cell: T0 (white bottom) rgb, a, T1 (average bottom) rgb, pad — 8 floats. */
-#define FF_TABLE_STRIDE 8
+/* One table cell (ff_table_cell has the layout): eq. 22–23's T0, a, T1 and eq. 24's T_α, T0(h), T1(h). */
+#define FF_TABLE_STRIDE 20
 
 #endif

@@ -308,6 +308,8 @@ TEST(Plan, ShallowWaterGetsTheFourFlowPassInsteadOfTheSeaModel) {
 
   const Plan exact = makePlan(parseScene(std::string(kShallowLake) + "path = \"exact\"\n", "lake.toml"));
   EXPECT_TRUE(hasDefine(exact, "fourflow", "SEASIM_FF_TABLES=0"));
+  const Plan eq24 = makePlan(parseScene(std::string(kShallowLake) + "path = \"table_eq24\"\n", "lake.toml"));
+  EXPECT_TRUE(hasDefine(eq24, "fourflow", "SEASIM_FF_TABLES=2"));
   // A flat [bottom] without the slope: no height field.
   const Plan flat = makePlan(parseScene(
       "[camera]\nposition = [0, 3, 0]\n[water]\njerlov = \"I\"\n[bottom]\ntype = \"flat\"\ndepth = 4\n[shallow]\n",

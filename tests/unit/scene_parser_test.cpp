@@ -611,7 +611,7 @@ const BadScene kBadScenes[] = {
     {"shallow over waves", "[water]\njerlov = \"I\"\n[surface]\ntype = \"fft\"\n[shallow]\n",
      "bad.toml:5: key 'shallow': needs a flat surface"},
     {"shallow unknown path", "[water]\njerlov = \"I\"\n[shallow]\npath = \"fast\"\n",
-     "bad.toml:4: key 'shallow.path': 'fast' is not one of 'table', 'exact'"},
+     "bad.toml:4: key 'shallow.path': 'fast' is not one of 'table', 'table_eq24', 'exact'"},
     {"shallow slope upside down", "[water]\njerlov = \"I\"\n[shallow]\nslope_depths_m = [5, 1]\n",
      "bad.toml:4: key 'shallow.slope_depths_m': expected [shallow, deep]"},
     {"shallow gamma 0", "[water]\njerlov = \"I\"\n[bottom]\ntype = \"flat\"\n[shallow]\ngamma = 0\n",
