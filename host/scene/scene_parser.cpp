@@ -12,6 +12,7 @@
 #include "scene/toml_reader.h"
 #include "spectral/jerlov.h"
 #include "spectral/sensor.h"
+#include "spectral/von_kries.h"
 #include "plan/memory_budget.h"
 #include "util/error.h"
 #include "util/paths.h"
@@ -499,9 +500,16 @@ class SceneParser {
               "no such folder: " + s.camera_dir + " (a folder of <camera>.csv files with the header nm,r,g,b)");
     }
     s.sensor = r.string("sensor", s.sensor);
-    if (s.sensor != "cie1931" && s.sensor != "identity" && cameraFile(s.sensor, s.camera_dir).empty()) {
+    double white_kelvin = 0;  // "vonkries[:<kelvin>]": 003 eq. 15-17 (spectral/von_kries.h)
+    bool von_kries = false;
+    try {
+      von_kries = parseVonKriesSensor(s.sensor, &white_kelvin);
+    } catch (const std::exception& e) {
+      r.fail("sensor", e.what());
+    }
+    if (s.sensor != "cie1931" && s.sensor != "identity" && !von_kries && cameraFile(s.sensor, s.camera_dir).empty()) {
       std::vector<std::string> names = cameraNames(s.camera_dir);
-      names.insert(names.begin(), {"cie1931", "identity"});
+      names.insert(names.begin(), {"cie1931", "identity", "vonkries"});
       r.fail("sensor", unknownCameraMessage(s.sensor, s.camera_dir) + suggestion(s.sensor, names, 6));
     }
     s.white_balance = r.boolean("white_balance", s.white_balance);

@@ -620,6 +620,8 @@ const BadScene kBadScenes[] = {
      "bad.toml:4: key 'shallow.gama': unknown key; did you mean 'gamma'?"},
     {"shallow without a bottom", "[water]\njerlov = \"I\"\n[shallow]\ngamma = 2\n",
      "key 'shallow.slope_depths_m': missing: [shallow] needs a bottom"},
+    {"von Kries temperature", "[spectral]\nsensor = \"vonkries:hot\"\n",
+     "bad.toml:2: key 'spectral.sensor': sensor 'vonkries:hot': expected \"vonkries\" or \"vonkries:<kelvin>\""},
     {"TOML syntax error", "[camera]\nwidth = \n", "bad.toml:2: TOML syntax error"},
     {"duplicate key", "[sun]\nzenith_deg = 10\nzenith_deg = 20\n", "bad.toml:3: TOML syntax error"},
 };
