@@ -73,19 +73,13 @@ __kernel void ff_render(__constant FfView* v, __global const FfBand* bands, __co
 ) {
   const int x = get_global_id(0), y = get_global_id(1);
   if (x >= v->width || y >= v->height) return;
-  const real sx = ((real)x + R(0.5)) / (real)v->width, sy = ((real)y + R(0.5)) / (real)v->height;
-  const real3 right = MAKE_REAL3(v->cam_right[0], v->cam_right[1], v->cam_right[2]);
-  const real3 up = MAKE_REAL3(v->cam_up[0], v->cam_up[1], v->cam_up[2]);
-  const real3 fwd = MAKE_REAL3(v->cam_forward[0], v->cam_forward[1], v->cam_forward[2]);
-  const real3 o = MAKE_REAL3(v->cam_pos[0], v->cam_pos[1], v->cam_pos[2]);
-  const real3 d = normalize(fwd + ((R(2.0) * sx - R(1.0)) * v->tan_half_fov_y * v->aspect) * right +
-                            ((R(1.0) - R(2.0) * sy) * v->tan_half_fov_y) * up);
-  real out[3] = {v->sky_rgb[0], v->sky_rgb[1], v->sky_rgb[2]};
-  if (d.y < R(0.0)) {
-    const real3 b = o + (o.y / -d.y) * d; /* B on y = 0 */
-    const real F = fresnel_reflectance(-d.y, R(1.0), v->ior);
-    real3 dw;
-    refract_dir(d, MAKE_REAL3(R(0.0), R(1.0), R(0.0)), R(1.0) / v->ior, &dw);
+  const FfView view = *v;
+  const real3 o = MAKE_REAL3(view.cam_pos[0], view.cam_pos[1], view.cam_pos[2]);
+  const real3 d = ff_camera_dir(view, x, y);
+  real out[3] = {view.sky_rgb[0], view.sky_rgb[1], view.sky_rgb[2]};
+  real3 b, dw;
+  real F;
+  if (ff_enter_water(view, o, d, &b, &F, &dw)) {
     real l, h;
 #if SEASIM_FF_HEIGHTFIELD
     real3 n_floor;
@@ -94,19 +88,13 @@ __kernel void ff_render(__constant FfView* v, __global const FfBand* bands, __co
     h = hit ? -(b.y + l * dw.y) : (real)hf->max_depth;
     l = hit ? l : t_max;
 #else
-    h = v->bottom_depth;
+    h = view.bottom_depth;
     l = h / fmax(-dw.y, R(1e-6));
 #endif
-    const real3 c = b + l * dw;
-    const real tex = ff_bottom_texture(c.x, c.z, v->texture_scale, v->dark_fraction);
-    real refr[3];
-#if SEASIM_FF_TABLES /* 1: eq. 22, 2: eq. 24 */
-    ff_table_rgb(*p, table, l, h, tex, SEASIM_FF_TABLES == 2, refr);
-#else
-    ff_exact_rgb(bands, p->n_bands, l, h, tex, refr);
+#ifndef SEASIM_FF_TABLES
+#define SEASIM_FF_TABLES 0
 #endif
-    const real k = (R(1.0) - F) / (SEASIM_PI * v->ior * v->ior);
-    for (int ch = 0; ch < 3; ++ch) out[ch] = F * out[ch] + k * fmax(refr[ch], R(0.0));
+    ff_shade(view, bands, *p, table, SEASIM_FF_TABLES, F, l, h, b + l * dw, out);
   }
-  vstore3((float3)(out[0], out[1], out[2]), y * v->width + x, rgb);
+  vstore3((float3)(out[0], out[1], out[2]), y * view.width + x, rgb);
 }

@@ -12,6 +12,10 @@ static_assert(sizeof(FfBand) == 20 * 4, "FfBand layout changed: update fourflow_
 static_assert(offsetof(FfBand, rgb) == 16 * 4);
 static_assert(sizeof(FfParams) == 16 * 4, "FfParams layout changed: update fourflow_params.h users");
 static_assert(offsetof(FfParams, rgb_a) == 8 * 4);
+static_assert(sizeof(FfView) == 28 * 4, "FfView layout changed: update fourflow_params.h users");
+static_assert(offsetof(FfView, tan_half_fov_y) == 20 * 4);
+static_assert(offsetof(FfView, width) == 22 * 4);
+static_assert(offsetof(FfView, dark_fraction) == 27 * 4);
 
 FfBand makeFourFlowBand(const FourFlowBandInput& in, double mu_sun, double n_water) {
   if (!(in.absorption + in.scattering > 0)) throw std::invalid_argument("four-flow band: water must attenuate (a + b > 0)");

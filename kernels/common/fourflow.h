@@ -453,3 +453,43 @@ SEASIM_FN real ff_bottom_texture(real x, real z, real scale, real dark_fraction)
   const real n = R(0.65) * ff_value_noise(x / scale, z / scale) + R(0.35) * ff_value_noise(R(2.7) * x / scale + R(17.0), R(2.7) * z / scale - R(5.0));
   return clamp(R(3.0) * (n - R(0.5)) + R(3.0) * (dark_fraction - R(0.5)) + R(0.5), R(0.0), R(1.0));
 }
+
+/* ---------------------------------------------------------------------------------------------
+ * The frame's per-pixel steps (kernels/fourflow.cl ff_render; tests/kernels/fourflow_test.cpp runs
+ * them in double on the host): the camera ray, its entry into the water, and the pixel's colour once
+ * the bottom point C (path l through the water, depth h) is known. */
+
+/* The unit view direction of pixel (x, y) (pixel centres, y down), the pinhole camera of the sea model. */
+SEASIM_FN real3 ff_camera_dir(FfView v, int x, int y) {
+  const real sx = ((real)x + R(0.5)) / (real)v.width, sy = ((real)y + R(0.5)) / (real)v.height;
+  const real3 right = MAKE_REAL3(v.cam_right[0], v.cam_right[1], v.cam_right[2]);
+  const real3 up = MAKE_REAL3(v.cam_up[0], v.cam_up[1], v.cam_up[2]);
+  const real3 fwd = MAKE_REAL3(v.cam_forward[0], v.cam_forward[1], v.cam_forward[2]);
+  return normalize(fwd + ((R(2.0) * sx - R(1.0)) * (real)v.tan_half_fov_y * (real)v.aspect) * right +
+                   ((R(1.0) - R(2.0) * sy) * (real)v.tan_half_fov_y) * up);
+}
+
+/* A ray from o (above the water) along d meets the flat surface y = 0 at *b when d.y < 0: returns 1
+ * with the Fresnel term *F (003 eq. 1) and the refracted direction *dw; 0 when it sees the sky. */
+SEASIM_FN int ff_enter_water(FfView v, real3 o, real3 d, real3* b, real* F, real3* dw) {
+  if (!(d.y < R(0.0))) return 0;
+  *b = o + (o.y / -d.y) * d;
+  *F = fresnel_reflectance(-d.y, R(1.0), (real)v.ior);
+  refract_dir(d, MAKE_REAL3(R(0.0), R(1.0), R(0.0)), R(1.0) / (real)v.ior, dw);
+  return 1;
+}
+
+/* The pixel (003 eq. 1): F L_sky + (1 - F) E_refr / (π n²), E_refr (eq. 20) at bottom point c, path l,
+ * depth h, by the exact band sum (mode 0), the tables with eq. 22 (mode 1) or eq. 24 (mode 2). */
+SEASIM_FN void ff_shade(FfView v, const SEASIM_GLOBAL FfBand* bands, FfParams p, const SEASIM_GLOBAL float* table,
+                        int mode, real F, real l, real h, real3 c, real* rgb) {
+  const real tex = ff_bottom_texture(c.x, c.z, (real)v.texture_scale, (real)v.dark_fraction);
+  real refr[3];
+  if (mode == 0) {
+    ff_exact_rgb(bands, p.n_bands, l, h, tex, refr);
+  } else {
+    ff_table_rgb(p, table, l, h, tex, mode == 2, refr);
+  }
+  const real k = (R(1.0) - F) / (SEASIM_PI * (real)v.ior * (real)v.ior);
+  for (int ch = 0; ch < 3; ++ch) rgb[ch] = F * (real)v.sky_rgb[ch] + k * fmax(refr[ch], R(0.0));
+}
