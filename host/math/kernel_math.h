@@ -6,6 +6,7 @@
 #include "common/underwater_params.h"  // plain C structs, used by underwater.h
 #include "common/froxel_params.h"      // plain C struct, used by froxel.h
 #include "common/sea_bottom_params.h"  // plain C struct, used by sea_bottom.h
+#include "common/fourflow_params.h"    // plain C structs, used by fourflow.h
 
 
 namespace seasim::kmath_f {
@@ -25,6 +26,7 @@ typedef float real;
 #include "common/caustic_map.h"
 #include "common/froxel.h"
 #include "common/path_tracer.h"
+#include "common/fourflow.h"
 }  // namespace seasim::kmath_f
 
 namespace seasim::kmath_d {
@@ -44,4 +46,5 @@ typedef double real;
 #include "common/caustic_map.h"
 #include "common/froxel.h"
 #include "common/path_tracer.h"
+#include "common/fourflow.h"
 }  // namespace seasim::kmath_d

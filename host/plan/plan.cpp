@@ -125,7 +125,23 @@ Plan makePlan(const Scene& scene) {
                            froxel_reads, {"froxel_volume"},
                            "camera below the surface, sun up, underwater.single_scattering", true, ""});
   }
-  if (sea_view) {
+  // Shallow water with a visible bottom (paper 003): the four-flow pass takes the place of the sea
+  // model for the view from above; its tables are built only on the table path.
+  const bool shallow = sea_view && scene.shallow.present;
+  if (shallow) {
+    const bool table = scene.shallow.path != ShallowDesc::Path::Exact;
+    const bool eq24 = scene.shallow.path == ShallowDesc::Path::TableEq24;
+    plan.passes.push_back({"fourflow", "fourflow.cl",
+                           {std::string("SEASIM_FF_TABLES=") + (eq24 ? "2" : table ? "1" : "0"),
+                            flag("SEASIM_FF_HEIGHTFIELD", scene.shallow.slope ||
+                                                              scene.bottom.type == BottomDesc::Type::HeightField)},
+                           {"scene"}, {"rgb"},
+                           std::string("[shallow]: four-flow light field over a visible bottom (003 eq. 4-20), ") +
+                               (eq24 ? "(l, h) tables + pre-converted blend (eq. 24)"
+                                       : table ? "(l, h) tables + blend (eq. 22-23)" : "exact spectral path (eq. 20)"),
+                           true, ""});
+  }
+  if (sea_view && !shallow) {
     const bool sun = scene.sun.enabled && scene.sun.irradiance > 0;
     const bool height_field = scene.bottom.type == BottomDesc::Type::HeightField;
     const bool bottom = scene.bottom.type == BottomDesc::Type::Flat || height_field;
@@ -204,7 +220,8 @@ Plan makePlan(const Scene& scene) {
   // plan's defines (their error was not measured under relaxed maths).
   if (fastMathFor(scene)) {
     for (PassPlan& p : plan.passes)
-      if (p.name != "ocean_fft" && p.name != "caustics") p.defines.push_back("SEASIM_FAST_MATH=1");
+      if (p.name != "ocean_fft" && p.name != "caustics" && p.name != "fourflow")  // fourflow: not measured
+        p.defines.push_back("SEASIM_FAST_MATH=1");
   }
   plan.passes.push_back({"nonfinite_check", "check.cl", {}, {"rgb"}, {"status"},
                          "always: kernels must never emit NaN/Inf", true, ""});

@@ -153,6 +153,26 @@ struct UnderwaterDesc {
   double froxel_far = 60.0;          // m, last froxel slice (file: froxel_far_m)
 };
 
+// [shallow]: shallow water with a visible bottom by the four-flow model (paper 003), seen from above a
+// flat water surface. Present only when the scene has the table; then the planner runs the fourflow
+// pass instead of the sea model.
+struct ShallowDesc {
+  enum class Path { Table, TableEq24, Exact };
+  bool present = false;
+  Path path = Path::Table;       // "table": RGB tables + blend (003 eq. 22); "table_eq24": the
+                                 // pre-converted blend of eq. 24; "exact": eq. 20 per band
+  double gamma = 1.0;            // 003 eq. 23 transition exponent
+  double texture_scale = 2.0;    // m, feature size of the procedural bottom texture (file: texture_scale_m)
+  double dark_albedo = 0.04;     // albedo of the texture's second (dark) bottom material
+  double dark_fraction = 0.35;   // share of the bottom the dark material covers on average
+  // A bottom sloping along -z between two depths (file: slope_depths_m), in place of the [bottom]
+  // geometry ([bottom] albedo still applies), over a square of side slope_extent (file: slope_extent_m).
+  bool slope = false;
+  double slope_shallow = 0.0;    // m, depth at z = +extent/2 (the shore)
+  double slope_deep = 15.0;      // m, depth at z = -extent/2
+  double slope_extent = 100.0;   // m
+};
+
 // An image file the scene reads (sky, height field, light map), with where it was named, so that
 // host/scene/scene_inputs.h can check it before rendering and point at the key.
 struct ImageInputRef {
@@ -173,6 +193,7 @@ struct Scene {
   BottomDesc bottom;
   SeaDesc sea;
   UnderwaterDesc underwater;
+  ShallowDesc shallow;
   std::vector<ObjectDesc> objects;
   std::vector<SpotlightDesc> spotlights;
   SpectralDesc spectral;

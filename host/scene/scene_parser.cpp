@@ -12,6 +12,7 @@
 #include "scene/toml_reader.h"
 #include "spectral/jerlov.h"
 #include "spectral/sensor.h"
+#include "spectral/von_kries.h"
 #include "plan/memory_budget.h"
 #include "util/error.h"
 #include "util/paths.h"
@@ -45,6 +46,7 @@ constexpr KnobDefault kQualityKnobs[] = {
     {"caustic_layers", 8, "underwater caustic map: depth layers (caustic_map.h)"},
     {"reference_spp", 64, "seasim reference under water: paths per pixel (without --steps)"},
     {"reference_steps", 200, "seasim reference, sea and shafts: steps per ray (without --steps)"},
+    {"fourflow_table_size", 32, "shallow water: (l, h) table resolution of 003 eq. 22-23"},
 };
 constexpr long long kMaxKnob = 1 << 20;  // catches typos such as 1e9 planes
 
@@ -52,7 +54,7 @@ constexpr double kDegToRad = std::numbers::pi / 180.0;
 
 const std::vector<std::string> kTopLevel = {
     "scene",  "camera",  "sun",        "sky",      "water", "air",    "surface",
-    "bottom", "objects", "spotlights", "spectral", "sea",   "underwater", "quality"};
+    "bottom", "objects", "spotlights", "spectral", "sea",   "underwater", "shallow", "quality"};
 
 std::string fmt(double v) { return formatNumber(v); }
 
@@ -109,6 +111,15 @@ class SceneParser {
     spectral(section(root, "spectral"));
     sea(section(root, "sea"));
     underwater(section(root, "underwater"));
+    if (root.subtable("shallow")) {
+      // [shallow] needs water seen from above a flat surface: errors at the [shallow] header.
+      root.check(scene_.water.present, "shallow", "needs a [water] table (the four-flow model's water)");
+      root.check(scene_.camera.position.y > 0, "shallow",
+                 "the four-flow model renders water seen from above: camera.position y must be > 0");
+      root.check(scene_.surface.type == SurfaceDesc::Type::Flat, "shallow",
+                 "needs a flat surface (the wave-averaged coefficients of 003 eq. 10 are not built)");
+      shallow(section(root, "shallow"));
+    }
     quality(section(root, "quality"));
   }
 
@@ -496,9 +507,16 @@ class SceneParser {
               "no such folder: " + s.camera_dir + " (a folder of <camera>.csv files with the header nm,r,g,b)");
     }
     s.sensor = r.string("sensor", s.sensor);
-    if (s.sensor != "cie1931" && s.sensor != "identity" && cameraFile(s.sensor, s.camera_dir).empty()) {
+    double white_kelvin = 0;  // "vonkries[:<kelvin>]": 003 eq. 15-17 (spectral/von_kries.h)
+    bool von_kries = false;
+    try {
+      von_kries = parseVonKriesSensor(s.sensor, &white_kelvin);
+    } catch (const std::exception& e) {
+      r.fail("sensor", e.what());
+    }
+    if (s.sensor != "cie1931" && s.sensor != "identity" && !von_kries && cameraFile(s.sensor, s.camera_dir).empty()) {
       std::vector<std::string> names = cameraNames(s.camera_dir);
-      names.insert(names.begin(), {"cie1931", "identity"});
+      names.insert(names.begin(), {"cie1931", "identity", "vonkries"});
       r.fail("sensor", unknownCameraMessage(s.sensor, s.camera_dir) + suggestion(s.sensor, names, 6));
     }
     s.white_balance = r.boolean("white_balance", s.white_balance);
@@ -544,6 +562,40 @@ class SceneParser {
     u.froxel_far = r.number("froxel_far_m", u.froxel_far);
     r.check(u.froxel_far > u.froxel_near && u.froxel_far <= 1e4, "froxel_far_m",
             "must be > froxel_near_m (" + fmt(u.froxel_near) + ") and <= 10000 m, got " + fmt(u.froxel_far));
+    r.finish();
+  }
+
+  void shallow(const toml::table& t) {
+    TableReader r(src_, t, "shallow");
+    ShallowDesc& s = scene_.shallow;
+    s.present = true;
+    const std::string path = r.choice("path", "table", {"table", "table_eq24", "exact"});
+    s.path = path == "exact"        ? ShallowDesc::Path::Exact
+             : path == "table_eq24" ? ShallowDesc::Path::TableEq24
+                                    : ShallowDesc::Path::Table;
+    s.gamma = r.number("gamma", s.gamma);
+    r.check(s.gamma > 0 && s.gamma <= 100, "gamma", "must be in (0, 100], got " + fmt(s.gamma));
+    s.texture_scale = r.number("texture_scale_m", s.texture_scale);
+    r.check(s.texture_scale > 0, "texture_scale_m", "must be > 0 m, got " + fmt(s.texture_scale));
+    s.dark_albedo = r.number("dark_albedo", s.dark_albedo);
+    r.check(s.dark_albedo >= 0 && s.dark_albedo <= 1, "dark_albedo", "must be in [0, 1], got " + fmt(s.dark_albedo));
+    s.dark_fraction = r.number("dark_fraction", s.dark_fraction);
+    r.check(s.dark_fraction >= 0 && s.dark_fraction <= 1, "dark_fraction",
+            "must be in [0, 1], got " + fmt(s.dark_fraction));
+    if (r.has("slope_depths_m")) {
+      const std::vector<double> d = r.numbers("slope_depths_m");
+      r.check(d.size() == 2 && d[0] >= 0 && d[1] > d[0] && d[1] <= 1e4, "slope_depths_m",
+              "expected [shallow, deep] in m with 0 <= shallow < deep <= 10000");
+      s.slope = true;
+      s.slope_shallow = d[0];
+      s.slope_deep = d[1];
+      s.slope_extent = r.number("slope_extent_m", s.slope_extent);
+      r.check(s.slope_extent > 0 && s.slope_extent <= 1e5, "slope_extent_m",
+              "must be in (0, 100000] m, got " + fmt(s.slope_extent));
+    } else {
+      r.check(scene_.bottom.type != BottomDesc::Type::None, "slope_depths_m",
+              "missing: [shallow] needs a bottom: [bottom] type = \"flat\" or \"heightfield\", or slope_depths_m");
+    }
     r.finish();
   }
 

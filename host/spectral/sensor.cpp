@@ -7,6 +7,7 @@
 #include <functional>
 
 #include "spectral/csv_table.h"
+#include "spectral/von_kries.h"
 #include "util/error.h"
 #include "util/paths.h"
 
@@ -110,7 +111,9 @@ Sensor makeSensor(const std::string& name, const WavelengthGrid& grid, bool whit
   // "identity": the raw bands are the output (spectral.exr layout, written as image.exr); the RGB the
   // kernels still accumulate is the CIE luminance Y in all three channels, a grey preview.
   const bool identity = (name == "identity");
-  const bool cie = (name == "cie1931") || identity;
+  double white_kelvin = 0;
+  const bool von_kries = parseVonKriesSensor(name, &white_kelvin);  // 003 eq. 15-17 (von_kries.h)
+  const bool cie = (name == "cie1931") || identity || von_kries;
   if (cie) {
     const CieCmf& cmf = cie1931Cmf();
     curves = {cmf.x_bar, cmf.y_bar, cmf.z_bar};
@@ -161,10 +164,29 @@ Sensor makeSensor(const std::string& name, const WavelengthGrid& grid, bool whit
         if (rgb[i] > 0.0) gain[i] = 1.0 / rgb[i];  // else (a curve blind over the range): left as it is
       }
     }
+    // von Kries (003 eq. 15-17): XYZ adapted from the black-body white point (luminance 1, eq. 16) to
+    // D65's, so the white point shows as D65 does; then the same sRGB matrix and balance.
+    Mat3 adapt = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+    if (von_kries) {
+      const CieCmf& cmf = cie1931Cmf();
+      Vec3d white{};
+      const Spectrum* xyz_curves[3] = {&cmf.x_bar, &cmf.y_bar, &cmf.z_bar};
+      for (int k = 0; k < 3; ++k)
+        white[static_cast<std::size_t>(k)] = integrate(
+            [&](double l) { return blackbody(l, white_kelvin) * responseAt(*xyz_curves[k], l); }, knotsOf({xyz_curves[k]}),
+            lo, hi);
+      if (!(white[1] > 0.0)) throw RuntimeError("sensor " + name + ": the white point has no luminance over " + range);
+      const Vec3d white_xyz = {white[0] / white[1], 1.0, white[2] / white[1]};
+      const Vec3d d65_xyz = {d65_resp[0] / N, 1.0, d65_resp[2] / N};
+      adapt = vonKriesXyzTransform(white_xyz, d65_xyz);
+    }
     for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c)
-        A[static_cast<std::size_t>(r * 3 + c)] =
-            gain[static_cast<std::size_t>(r)] * M[static_cast<std::size_t>(r * 3 + c)] * xyz_gain[static_cast<std::size_t>(c)] / N;
+      for (int c = 0; c < 3; ++c) {
+        double v = 0;
+        for (int k = 0; k < 3; ++k)
+          v += M[static_cast<std::size_t>(r * 3 + k)] * xyz_gain[static_cast<std::size_t>(k)] * adapt[static_cast<std::size_t>(k * 3 + c)];
+        A[static_cast<std::size_t>(r * 3 + c)] = gain[static_cast<std::size_t>(r)] * v / N;
+      }
   } else if (white_balance) {
     for (int k = 0; k < 3; ++k) {
       if (!(d65_resp[static_cast<std::size_t>(k)] > 0.0))

@@ -279,3 +279,58 @@ TEST(Plan, HeightFieldBottomDefineOnlyWithAHeightField) {
 }
 
 }  // namespace
+
+namespace {
+
+const char* kShallowLake = R"(
+[camera]
+position = [0, 3, 49]
+look_at = [0, 0, 20]
+[water]
+jerlov = "I"
+[bottom]
+albedo = 0.35
+[shallow]
+slope_depths_m = [0, 15]
+)";
+
+TEST(Plan, ShallowWaterGetsTheFourFlowPassInsteadOfTheSeaModel) {
+  const Plan plan = makePlan(parseScene(kShallowLake, "lake.toml"));
+  ASSERT_EQ(plan.passes.size(), 2u);
+  EXPECT_EQ(plan.passes[0].name, "fourflow");
+  EXPECT_EQ(plan.passes[1].name, "nonfinite_check");
+  EXPECT_FALSE(plan.hasPass("sea_single"));
+  EXPECT_FALSE(plan.hasPass("sea_second"));
+  EXPECT_TRUE(hasDefine(plan, "fourflow", "SEASIM_FF_TABLES=1"));     // path = "table" by default
+  EXPECT_TRUE(hasDefine(plan, "fourflow", "SEASIM_FF_HEIGHTFIELD=1"));  // the slope is a height field
+  EXPECT_FALSE(hasDefine(plan, "fourflow", "SEASIM_FAST_MATH=1"));     // not measured under relaxed maths
+  EXPECT_EQ(plan.kernelFiles(), (std::vector<std::string>{"fourflow.cl", "check.cl"}));
+
+  const Plan exact = makePlan(parseScene(std::string(kShallowLake) + "path = \"exact\"\n", "lake.toml"));
+  EXPECT_TRUE(hasDefine(exact, "fourflow", "SEASIM_FF_TABLES=0"));
+  const Plan eq24 = makePlan(parseScene(std::string(kShallowLake) + "path = \"table_eq24\"\n", "lake.toml"));
+  EXPECT_TRUE(hasDefine(eq24, "fourflow", "SEASIM_FF_TABLES=2"));
+  // A flat [bottom] without the slope: no height field.
+  const Plan flat = makePlan(parseScene(
+      "[camera]\nposition = [0, 3, 0]\n[water]\njerlov = \"I\"\n[bottom]\ntype = \"flat\"\ndepth = 4\n[shallow]\n",
+      "flat_lake.toml"));
+  EXPECT_TRUE(hasDefine(flat, "fourflow", "SEASIM_FF_HEIGHTFIELD=0"));
+}
+
+TEST(Plan, OnlyShallowScenesGetTheFourFlowPass) {
+  // The same water without [shallow] is the sea model; no other shipped kind of scene plans fourflow.
+  EXPECT_FALSE(makePlan(parseScene(kFlatSea, "flat.toml")).hasPass("fourflow"));
+  const char* others[] = {"flat_sea", "tropical", "seabed", "deep_ocean", "wavy_sea", "stage", "spot_sphere", "seashore"};
+  for (const char* name : others) {
+    const std::string path = std::string(SEASIM_SOURCE_DIR) + "/scenes/" + name + ".toml";
+    EXPECT_FALSE(makePlan(seasim::loadScene(path)).hasPass("fourflow")) << name;
+  }
+  for (const char* name : {"mountain_lake", "tropical_shallows", "muddy_coast"}) {
+    const std::string path = std::string(SEASIM_SOURCE_DIR) + "/scenes/" + name + ".toml";
+    const Plan plan = makePlan(seasim::loadScene(path));
+    EXPECT_TRUE(plan.hasPass("fourflow")) << name;
+    EXPECT_FALSE(plan.hasPass("sea_single")) << name;
+  }
+}
+
+}  // namespace

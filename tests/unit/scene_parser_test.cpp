@@ -283,6 +283,7 @@ TEST(SceneParser, Defaults) {
   EXPECT_DOUBLE_EQ(s.spectral.max_nm, 700);
   EXPECT_TRUE(s.sea.single_scattering);
   EXPECT_FALSE(s.sea.second_order);
+  EXPECT_FALSE(s.shallow.present);  // no [shallow]: the four-flow model is not asked for
   // Every knob is present with its documented default.
   const std::pair<const char*, double> knobs[] = {
       {"sea_lut_size", 64},      {"sea_nz", 12},          {"sea_nd", 128},
@@ -290,7 +291,8 @@ TEST(SceneParser, Defaults) {
       {"shafts_table_size", 256}, {"shadow_map_size", 512}, {"froxel_x", 160},
       {"froxel_y", 90},          {"froxel_z", 64},        {"caustic_map_size", 256}, {"caustic_layers", 8},
       {"reference_spp", 64},     {"reference_steps", 200}, {"shafts_exact", 0},
-      {"shafts_error_budget", 1}, {"sea_supersample", 1},  {"wave_filter", 1}};
+      {"shafts_error_budget", 1}, {"sea_supersample", 1},  {"wave_filter", 1},
+      {"fourflow_table_size", 32}};
   EXPECT_EQ(s.quality.size(), std::size(knobs) + 1);
   EXPECT_TRUE(s.quality.at("fast_math").automatic);  // "auto": the planner decides (fastMathFor)
   for (const auto& [name, value] : knobs) {
@@ -603,6 +605,24 @@ const BadScene kBadScenes[] = {
     {"knob bad string", "[quality]\nsea_nd = \"fast\"\n", "bad.toml:2: key 'quality.sea_nd': expected a positive integer or \"auto\", got 'fast'"},
     {"knob float", "[quality]\nshafts_planes = 30.5\n", "bad.toml:2: key 'quality.shafts_planes': expected a positive integer or \"auto\""},
     {"unknown knob", "[quality]\nshaft_planes = 10\n", "bad.toml:2: key 'quality.shaft_planes': unknown key; did you mean 'shafts_planes'?"},
+    {"shallow without water", "[shallow]\nslope_depths_m = [0, 5]\n",
+     "bad.toml:1: key 'shallow': needs a [water] table"},
+    {"shallow seen from below", "[camera]\nposition = [0, -2, 0]\n[water]\njerlov = \"I\"\n[shallow]\n",
+     "bad.toml:5: key 'shallow': the four-flow model renders water seen from above"},
+    {"shallow over waves", "[water]\njerlov = \"I\"\n[surface]\ntype = \"fft\"\n[shallow]\n",
+     "bad.toml:5: key 'shallow': needs a flat surface"},
+    {"shallow unknown path", "[water]\njerlov = \"I\"\n[shallow]\npath = \"fast\"\n",
+     "bad.toml:4: key 'shallow.path': 'fast' is not one of 'table', 'table_eq24', 'exact'"},
+    {"shallow slope upside down", "[water]\njerlov = \"I\"\n[shallow]\nslope_depths_m = [5, 1]\n",
+     "bad.toml:4: key 'shallow.slope_depths_m': expected [shallow, deep]"},
+    {"shallow gamma 0", "[water]\njerlov = \"I\"\n[bottom]\ntype = \"flat\"\n[shallow]\ngamma = 0\n",
+     "bad.toml:6: key 'shallow.gamma': must be in (0, 100]"},
+    {"shallow typo", "[water]\njerlov = \"I\"\n[shallow]\ngama = 2\nslope_depths_m = [0, 5]\n",
+     "bad.toml:4: key 'shallow.gama': unknown key; did you mean 'gamma'?"},
+    {"shallow without a bottom", "[water]\njerlov = \"I\"\n[shallow]\ngamma = 2\n",
+     "key 'shallow.slope_depths_m': missing: [shallow] needs a bottom"},
+    {"von Kries temperature", "[spectral]\nsensor = \"vonkries:hot\"\n",
+     "bad.toml:2: key 'spectral.sensor': sensor 'vonkries:hot': expected \"vonkries\" or \"vonkries:<kelvin>\""},
     {"TOML syntax error", "[camera]\nwidth = \n", "bad.toml:2: TOML syntax error"},
     {"duplicate key", "[sun]\nzenith_deg = 10\nzenith_deg = 20\n", "bad.toml:3: TOML syntax error"},
 };

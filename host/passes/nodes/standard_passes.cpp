@@ -9,6 +9,7 @@ PassRegistry standardPasses() {
   registerSeaPasses(registry);
   registerShaftsPasses(registry);
   registerUnderwaterPasses(registry);
+  registerFourFlowPass(registry);
   registerCheckPass(registry);
   return registry;
 }

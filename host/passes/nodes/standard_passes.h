@@ -17,6 +17,7 @@ void registerCausticsPass(PassRegistry& registry);   // caustics (sea bottom, or
 void registerSeaPasses(PassRegistry& registry);      // sea_single, sea_second
 void registerUnderwaterPasses(PassRegistry& registry);  // raycast (raycast.cl), froxel, kd_multiple
 void registerShaftsPasses(PassRegistry& registry);   // raycast (shafts.cl), shadow_maps, shafts
+void registerFourFlowPass(PassRegistry& registry);   // fourflow (shallow water, paper 003)
 void registerCheckPass(PassRegistry& registry);      // nonfinite_check
 
 // Under water, the "caustic_map" buffer of the caustics pass when `res` declares reading it, else null.

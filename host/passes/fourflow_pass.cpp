@@ -1,0 +1,181 @@
+// fourflow_pass.cpp — the four-flow pass (see the header).
+#include "passes/fourflow_pass.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "math/kernel_math.h"
+#include "passes/fourflow_auto.h"
+#include "spectral/jerlov.h"
+#include "underwater/fourflow_setup.h"
+#include "util/error.h"
+
+namespace seasim {
+
+namespace {
+
+void set4(float out[4], Vec3 v) {
+  out[0] = static_cast<float>(v.x), out[1] = static_cast<float>(v.y), out[2] = static_cast<float>(v.z), out[3] = 0;
+}
+
+bool hasDefine(const PassPlan& plan, const char* d) {
+  return std::find(plan.defines.begin(), plan.defines.end(), std::string(d)) != plan.defines.end();
+}
+
+}  // namespace
+
+double fourFlowTextureMean(double scale, double dark_fraction) {
+  // 400 x 400 samples over 100 texture features: the lattice values are independent per cell, so the
+  // sample mean is within ~1e-2 of the texture's mean, which moves R̄ by that share of ρa - ρb.
+  double sum = 0;
+  const int n = 400;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i)
+      sum += kmath_d::ff_bottom_texture((i + 0.5) * 100.0 * scale / n, (j + 0.5) * 100.0 * scale / n, scale, dark_fraction);
+  return sum / (double(n) * n);
+}
+
+FourFlowSetup makeFourFlowSetup(const Scene& scene, const WavelengthGrid& grid, const Sensor& sensor, int table_size) {
+  const ShallowDesc& sh = scene.shallow;
+  FourFlowSetup s;
+  const bool sun_up = scene.sun.enabled && scene.sun.irradiance > 0 && scene.sun.zenith < M_PI / 2;
+  const double mu_sun = sun_up ? std::cos(scene.sun.zenith) : 1.0;
+  const BandOptics water = resolveWater(scene.water, grid);
+  const std::vector<double> sun_e = sunIrradianceBands(grid, scene.sun.irradiance);
+  const std::vector<double> sky_l = sunIrradianceBands(grid, scene.sky.radiance);  // uniform sky, D65 shape
+  const double tex_mean = fourFlowTextureMean(sh.texture_scale, sh.dark_fraction);
+  double rgb_a_num[3] = {0, 0, 0}, rgb_den[3] = {0, 0, 0}, sky_rgb[3] = {0, 0, 0};
+  double eps_min = 1e30;
+  for (size_t i = 0; i < grid.centers_nm.size(); ++i) {
+    FourFlowBandInput in;
+    in.absorption = water.a[i];
+    in.scattering = water.b[i];
+    in.mean_cosine = scene.water.g;
+    in.e_sun = sun_up ? sun_e[i] * mu_sun : 0.0;  // on the horizontal surface
+    in.e_sky = M_PI * sky_l[i];                   // a uniform sky of radiance L gives π L
+    in.rho_a = scene.bottom.albedo.at(grid.centers_nm[i]);
+    in.rho_b = sh.dark_albedo;
+    in.rho_mean = (1 - tex_mean) * in.rho_a + tex_mean * in.rho_b;
+    in.rgb = {sensor.to_r[i], sensor.to_g[i], sensor.to_b[i]};
+    s.bands.push_back(makeFourFlowBand(in, mu_sun, scene.water.ior));
+    eps_min = std::min(eps_min, in.absorption + in.scattering);
+    // The materials' RGB reflectance under the light that reaches the water (T_bottom of eq. 22).
+    const double light = in.e_sun + in.e_sky;
+    for (int c = 0; c < 3; ++c) {
+      rgb_a_num[c] += in.rgb[c] * in.rho_a * light;
+      rgb_den[c] += in.rgb[c] * light;
+      sky_rgb[c] += in.rgb[c] * sky_l[i];
+    }
+  }
+  // Bottom: the [shallow] slope or the [bottom] table.
+  if (sh.slope) {
+    const int n = 65;
+    std::vector<float> depth(size_t(n) * n);
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i)
+        depth[size_t(j) * n + i] = float(sh.slope_deep + (sh.slope_shallow - sh.slope_deep) * j / (n - 1.0));
+    s.field = makeHeightField(n, n, sh.slope_extent, depth);
+    s.height_field = true;
+  } else if (scene.bottom.type == BottomDesc::Type::HeightField) {
+    s.field = loadHeightField(scene.bottom);
+    s.height_field = true;
+  }
+  const double h_max = s.height_field ? s.field.params.max_depth : scene.bottom.depth;
+
+  FfParams& p = s.params;
+  p.n_bands = int(s.bands.size());
+  // l beyond l_max: e^{-ε l} < 1e-4 in every band, so the bottom term is below 1e-4 of its value at
+  // l = 0 and the clamped lookup only misses that.
+  p.l_max = float(std::min(std::log(1e4) / eps_min, 1e4));
+  p.h_max = float(std::max(h_max, 1e-3));
+  p.gamma = float(sh.gamma);
+  for (int c = 0; c < 3; ++c) {
+    p.rgb_a[c] = float(rgb_den[c] > 0 ? rgb_a_num[c] / rgb_den[c] : 0.0);
+    p.rgb_b[c] = float(sh.dark_albedo);
+  }
+  // Resolution: the argument, the knob, or "auto" (passes/fourflow_auto.h).
+  const auto knob = scene.quality.find("fourflow_table_size");
+  int n = table_size > 0 ? table_size : knob != scene.quality.end() ? int(knob->second.value) : 32;
+  if (table_size <= 0 && knob != scene.quality.end() && knob->second.automatic)
+    n = chooseFourFlowTableSize(s.bands, p).size;
+  p.n_l = p.n_h = std::max(n, 2);
+
+  FfView& v = s.view;
+  const CameraDesc& cam = scene.camera;
+  const Vec3 forward = normalize(cam.look_at - cam.position);
+  const Vec3 right = normalize(cross(forward, cam.up));
+  const Vec3 up = cross(right, forward);
+  set4(v.cam_pos, cam.position);
+  set4(v.cam_right, right);
+  set4(v.cam_up, up);
+  set4(v.cam_forward, forward);
+  for (int c = 0; c < 3; ++c) v.sky_rgb[c] = float(sky_rgb[c]);
+  v.tan_half_fov_y = float(std::tan(cam.fov_y / 2));
+  v.aspect = float(cam.width) / float(cam.height);
+  v.width = cam.width;
+  v.height = cam.height;
+  v.ior = float(scene.water.ior);
+  v.bottom_depth = float(scene.bottom.depth);
+  v.texture_scale = float(sh.texture_scale);
+  v.dark_fraction = float(sh.dark_fraction);
+  return s;
+}
+
+FourFlowPass::FourFlowPass(Device& device, const Scene& scene, const PassPlan& plan, const WavelengthGrid& grid,
+                           const Sensor& sensor, int table_size)
+    : device_(device), width_(scene.camera.width), height_(scene.camera.height) {
+  if (scene.spectral.spectral_exr)
+    throw RuntimeError("fourflow pass: spectral_exr output is not built for the four-flow model (issue 17)");
+  const FourFlowSetup s = makeFourFlowSetup(scene, grid, sensor, table_size);
+  const bool tables = !hasDefine(plan, "SEASIM_FF_TABLES=0");
+  const bool hf = hasDefine(plan, "SEASIM_FF_HEIGHTFIELD=1");
+  if (hf != s.height_field) throw RuntimeError("fourflow pass: the plan's SEASIM_FF_HEIGHTFIELD does not match the scene");
+  const size_t pixels = size_t(width_) * size_t(height_);
+  try {
+    const BuiltProgram& built = device.program(plan.kernel_file, plan.defines);
+    view_ = cl::Buffer(device.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(FfView), const_cast<FfView*>(&s.view));
+    bands_ = cl::Buffer(device.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(FfBand) * s.bands.size(),
+                        const_cast<FfBand*>(s.bands.data()));
+    params_ = cl::Buffer(device.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(FfParams),
+                         const_cast<FfParams*>(&s.params));
+    const size_t cells = tables ? size_t(s.params.n_l) * s.params.n_h : 1;
+    table_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * FF_TABLE_STRIDE * cells);
+    rgb_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * 3 * pixels);
+    if (tables) {  // 003 §6: the tables are the preprocessing stage, built once per scene
+      cl::Kernel build(built.program, "ff_build_tables");
+      build.setArg(0, bands_), build.setArg(1, params_), build.setArg(2, table_);
+      cl::Event done;
+      device.queue().enqueueNDRangeKernel(build, cl::NullRange, cl::NDRange(s.params.n_l, s.params.n_h), cl::NullRange,
+                                          nullptr, &done);
+      done.wait();
+      table_ms_ = eventMs(done);
+    }
+    render_ = cl::Kernel(built.program, "ff_render");
+    render_.setArg(0, view_), render_.setArg(1, bands_), render_.setArg(2, params_), render_.setArg(3, table_);
+    render_.setArg(4, rgb_);
+    if (hf) {
+      const HeightFieldBuffers b = uploadHeightField(device, s.field);
+      hf_params_ = b.params;
+      hf_depth_ = b.depth;
+      render_.setArg(5, hf_params_);
+      render_.setArg(6, hf_depth_);
+    }
+  } catch (const cl::Error& e) {
+    throw DeviceError(std::string("fourflow pass set-up: ") + e.what() + " " + clErrorName(e.err()));
+  }
+}
+
+double FourFlowPass::run() {
+  cl::Event done;
+  try {
+    const size_t local = 8;
+    cl::NDRange global((size_t(width_) + local - 1) / local * local, (size_t(height_) + local - 1) / local * local);
+    device_.queue().enqueueNDRangeKernel(render_, cl::NullRange, global, cl::NDRange(local, local), nullptr, &done);
+    done.wait();
+  } catch (const cl::Error& e) {
+    throw DeviceError(std::string("fourflow pass: ") + e.what() + " " + clErrorName(e.err()));
+  }
+  return eventMs(done);
+}
+
+}  // namespace seasim
