@@ -29,6 +29,14 @@
  * uniform sky; a ray down meets the flat surface, which adds R L_sky and (1 - R)/n² times the path
  * traced from there along the refracted ray (deterministic split; no sun glint, no caustics).
  *
+ * Spotlights (UwLampParams.lamp_count > 0; common/underwater_lamps_params.h): point lamps with a cone
+ * and a soft edge (shafts_cone_profile) and a spectral intensity I(λ) per band, seen by next-event
+ * estimation at every medium vertex (b/c · p_HG(w·(-d)) · I P e^{-c s}/s² · V, w the lamp's light
+ * direction at the vertex) and every Lambertian vertex (ρ/π · max(n·(-w), 0) · I P e^{-c s}/s² · V), V an
+ * exact shadow ray to the lamp through the objects, 1/s² clamped at the lamp radius s_min as in the
+ * fast pass. A point lamp is a delta light: NEE is the only way a path sees it. Its light then goes on
+ * scattering (all orders), which the fast pass (underwater_lamps.cl, single scattering) leaves out.
+ *
  * Random numbers: common/path_tracer.h, a hash of (seed, pixel, sample index, dimension): reproducible
  * for a seed whatever the batching. Dimensions: 0, 1 pixel jitter; 2 band; then per event in order.
  *
@@ -48,6 +56,8 @@
 #include "common/underwater_params.h"
 #include "common/underwater.h"
 #include "common/path_tracer.h"
+#include "common/underwater_lamps_params.h"
+#include "common/underwater_lamps.h"
 
 #ifndef SEASIM_HAS_OBJECTS
 #define SEASIM_HAS_OBJECTS 1
@@ -76,13 +86,61 @@ static inline float sun_visibility(const __global UwObject* objects, int count, 
 #endif
 }
 
+/* Visibility of a lamp at distance s along the unit direction w from x: 1 unless an object blocks it. */
+static inline float lamp_visibility(const __global UwObject* objects, int count, float3 x, float3 w, float s) {
+#if SEASIM_HAS_OBJECTS
+  float3 n;
+  int mat;
+  const float t = uw_scene_hit(objects, count, 0.0f, x, w, 0.0f, &n, &mat);
+  return (mat >= 0 && t < s) ? 0.0f : 1.0f;
+#else
+  return 1.0f;
+#endif
+}
+
+/* The lamps' light arriving at x per unit phase/BRDF factor, for next-event estimation. d_out: the
+ * direction the light leaves x towards the previous vertex (-d); normal: for a Lambertian vertex
+ * (medium: lambert = 0). Returns Σ_lamps I P e^{-c s}/max(s, s_min)² V × (p_HG(cos) or cos_n/π·ρ). */
+static inline float lamps_nee(__constant UwLampParams* lp, const __global UwLamp* lamps,
+                              const __global float* lamp_spectra, const __global UwObject* objects, int count, int band,
+                              float c, float g, float3 x, float3 d_out, int lambert, float3 normal) {
+  float L = 0.0f;
+  for (int l = 0; l < lp->lamp_count; ++l) {
+    const __global UwLamp* lamp = &lamps[l];
+    const float3 pos = (float3)(lamp->position[0], lamp->position[1], lamp->position[2]);
+    const float3 axis = (float3)(lamp->direction[0], lamp->direction[1], lamp->direction[2]);
+    const float3 to_lamp = pos - x;
+    const float s = length(to_lamp);
+    if (!(s > 0.0f)) continue;
+    const float3 w_in = to_lamp / s; /* towards the lamp; the light travels along -w_in */
+    const float prof = uw_lamp_profile(x, pos, axis, lamp->cos_cone, lamp->cos_inner);
+    if (prof <= 0.0f) continue;
+    float f;
+    if (lambert) {
+      f = dot(normal, w_in) * M_1_PI_F;
+      if (f <= 0.0f) continue;
+    } else {
+#if SEASIM_PT_ISOTROPIC
+      f = 1.0f / (4.0f * M_PI_F);
+#else
+      f = hg_phase(dot(-w_in, d_out), g);
+#endif
+    }
+    const float sc = fmax(s, lp->s_min);
+    const float e = lamp_spectra[l * lp->band_count + band] * prof * exp(-c * s) / (sc * sc);
+    if (e > 0.0f) L += f * e * lamp_visibility(objects, count, x, w_in, s);
+  }
+  return L;
+}
+
 /* max_bounces = 1: single scattering of the sun beam only (no surface or sky terms). */
 static inline int single_only_mode(int max_bounces) { return max_bounces == 1; }
 
 /* One path's radiance in band `band` along the camera ray (o, d); key/dim as path_tracer.h. */
 static inline float trace_path(__constant UwParams* p, const __global UwBand* bn, const __global UwObject* objects,
-                               const __global float* albedo, int band, int max_bounces, unsigned int key, float3 o,
-                               float3 d) {
+                               const __global float* albedo, __constant UwLampParams* lp, const __global UwLamp* lamps,
+                               const __global float* lamp_spectra, int band, int max_bounces, unsigned int key,
+                               float3 o, float3 d) {
 #if SEASIM_HAS_OBJECTS
   const int count = p->object_count;
 #else
@@ -116,6 +174,8 @@ static inline float trace_path(__constant UwParams* p, const __global UwBand* bn
         const float e_beam = uw_beam_irradiance(e_beam0, c, mu_w, fmax(-o.y, 0.0f));
         if (e_beam > 0.0f) L += beta * phase * e_beam * sun_visibility(objects, count, o, s_w);
       }
+      if (lp->lamp_count > 0 && beta > 0.0f)
+        L += beta * lamps_nee(lp, lamps, lamp_spectra, objects, count, band, c, p->g, o, -d, 0, d);
       if (single_only || vertices >= max_bounces) break;
 #if SEASIM_PT_ISOTROPIC
       d = pt_sample_isotropic(pt_uniform(key, dim), pt_uniform(key, dim + 1));
@@ -145,6 +205,8 @@ static inline float trace_path(__constant UwParams* p, const __global UwBand* bn
         const float e_beam = uw_beam_irradiance(e_beam0, c, mu_w, fmax(-o.y, 0.0f));
         if (e_beam > 0.0f) L += beta * rho * M_1_PI_F * cos_sun * e_beam * sun_visibility(objects, count, x, s_w);
       }
+      if (lp->lamp_count > 0 && rho > 0.0f)
+        L += beta * rho * lamps_nee(lp, lamps, lamp_spectra, objects, count, band, c, p->g, x, -d, 1, n);
       if (vertices >= max_bounces) break;
       beta *= rho; /* ρ/π cos θ over the pdf cos θ/π */
       d = pt_sample_cosine(n, pt_uniform(key, dim), pt_uniform(key, dim + 1));
@@ -167,7 +229,8 @@ static inline float trace_path(__constant UwParams* p, const __global UwBand* bn
 __kernel void reference_path_trace(__constant UwParams* p, __global const UwBand* bands,
                                    __global const UwObject* objects, __global const float* albedo, uint seed,
                                    int sample_start, int samples, int max_bounces, __global float4* mean,
-                                   __global float4* m2) {
+                                   __global float4* m2, __constant UwLampParams* lp, __global const UwLamp* lamps,
+                                   __global const float* lamp_spectra) {
   const int x = get_global_id(0);
   const int y = get_global_id(1);
   if (x >= p->width || y >= p->height) return;
@@ -195,7 +258,7 @@ __kernel void reference_path_trace(__constant UwParams* p, __global const UwBand
     const __global UwBand* bn = &bands[band];
     float L;
     if (eye.y <= 0.0f) {
-      L = trace_path(p, bn, objects, albedo, band, max_bounces, key, eye, d);
+      L = trace_path(p, bn, objects, albedo, lp, lamps, lamp_spectra, band, max_bounces, key, eye, d);
     } else if (d.y >= 0.0f) {
       L = bn->sky_radiance; /* camera above the surface looking up: the uniform sky (no sun disk) */
     } else {
@@ -208,7 +271,7 @@ __kernel void reference_path_trace(__constant UwParams* p, __global const UwBand
       float3 d_w;
       refract_dir(d, (float3)(0.0f, 1.0f, 0.0f), 1.0f / p->ior, &d_w);
       L = R * (single_only_mode(max_bounces) ? 0.0f : bn->sky_radiance) +
-          (1.0f - R) / (p->ior * p->ior) * trace_path(p, bn, objects, albedo, band, max_bounces, key, o, d_w);
+          (1.0f - R) / (p->ior * p->ior) * trace_path(p, bn, objects, albedo, lp, lamps, lamp_spectra, band, max_bounces, key, o, d_w);
     }
     L *= p->band_count;
     const float3 s = L * (float3)(bn->w_r, bn->w_g, bn->w_b);

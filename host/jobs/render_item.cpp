@@ -4,7 +4,7 @@
 
 #include "io/atomic_file.h"
 #include "io/image_io.h"
-#include "passes/nodes/standard_passes.h"
+#include "quality/auto_quality.h"
 #include "plan/memory_budget.h"
 #include "plan/plan.h"
 #include "reference/compare.h"
@@ -48,7 +48,7 @@ nlohmann::json settingsJson(const Scene& s) {
 
 nlohmann::json renderItem(Device& device, const Scene& scene, const ItemOutputs& outputs, const std::string& dir) {
   checkRenderFitsDevice(device, scene, makePlan(scene));
-  Renderer renderer(device, scene, standardPasses());
+  Renderer renderer(device, scene, shippedPasses());
   return renderItem(device, renderer, outputs, dir);
 }
 

@@ -16,7 +16,7 @@
 #include "jobs/progress.h"
 #include "jobs/render_item.h"
 #include "jobs/shard_lock.h"
-#include "passes/nodes/standard_passes.h"
+#include "quality/auto_quality.h"
 #include "plan/plan.h"
 #include "render/renderer.h"
 #include "scene/scene_parser.h"
@@ -66,7 +66,7 @@ nlohmann::json renderOne(Device& device, RendererCache& cache, const RenderItem&
   if (cache.renderer && cache.previous && cache.previous->scene_file == item.scene_file) {
     cache.renderer->update(scene, changedKeys(cache.previous->overrides, item.overrides));
   } else {
-    cache.renderer = std::make_unique<Renderer>(device, scene, standardPasses());
+    cache.renderer = std::make_unique<Renderer>(device, scene, shippedPasses());
   }
   cache.previous = &item;
   ItemOutputs outputs;

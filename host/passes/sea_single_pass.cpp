@@ -71,13 +71,13 @@ SeaSinglePass::SeaSinglePass(Device& device, const Scene& scene, const PassPlan&
                         plan.defines.end();
   if (caustics && !bottom_caustics) {
     throw RuntimeError("sea_single pass: the plan has bottom caustics (SEASIM_BOTTOM_CAUSTICS=1) but no caustic map "
-                       "was given (passes/render_frame.cpp makes it with seaBottomCaustics)");
+                       "was given (the renderer makes it with seaBottomCaustics)");
   }
   const bool waves =
       std::find(plan.defines.begin(), plan.defines.end(), std::string("SEASIM_HAS_WAVES=1")) != plan.defines.end();
   if (waves && !ocean) {
     throw RuntimeError("sea_single pass: the plan has FFT waves (SEASIM_HAS_WAVES=1) but no ocean normal map was "
-                       "given; run the ocean_fft pass first (passes/render_frame.cpp does)");
+                       "given; run the ocean_fft pass first (the renderer does)");
   }
   const CameraDesc& cam = scene.camera;
   SeaParams p{};

@@ -112,6 +112,12 @@ struct SpotlightDesc {
   double intensity = 100.0;   // W/sr on the axis
   Vec3 color{1, 1, 1};        // linear RGB tint
   std::string light_map;      // image path (resolved), optional: the lamp's intensity distribution
+  // The lamp's spectrum (spectral/lamp_spectrum.h): a relative spectral distribution normalised to 1 at
+  // 560 nm, intensity then being W sr^-1 nm^-1 there. temperature_k > 0: Planck's law at that colour
+  // temperature; spectrum: a CSV (nm, relative power; resolved path). Neither: equal energy.
+  double temperature_k = 0.0;
+  std::string spectrum;
+  bool has_color = false;     // `color` was written in the file (under water it is an error)
   SourceLoc loc;
 };
 
