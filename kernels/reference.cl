@@ -30,12 +30,15 @@
  * traced from there along the refracted ray (deterministic split; no sun glint, no caustics).
  *
  * Spotlights (UwLampParams.lamp_count > 0; common/underwater_lamps_params.h): point lamps with a cone
- * and a soft edge (shafts_cone_profile) and a spectral intensity I(λ) per band, seen by next-event
- * estimation at every medium vertex (b/c · p_HG(w·(-d)) · I P e^{-c s}/s² · V, w the lamp's light
- * direction at the vertex) and every Lambertian vertex (ρ/π · max(n·(-w), 0) · I P e^{-c s}/s² · V), V an
- * exact shadow ray to the lamp through the objects, 1/s² clamped at the lamp radius s_min as in the
- * fast pass. A point lamp is a delta light: NEE is the only way a path sees it. Its light then goes on
+ * and a soft edge (shafts_cone_profile) and a spectral intensity I(λ) per band. A point lamp is a delta
+ * light, so next-event estimation is the only way a path sees it: on every segment of the path through
+ * the water (to the next surface, or to infinity) one distance per lamp sampled equiangularly about the
+ * lamp (path_tracer.h), weighted e^{-c t} b p_HG · I P e^{-c s}/s² · V / pdf(t) (this replaces NEE at the
+ * free-flight vertices, whose 1/s² near the lamp made the estimate heavy-tailed), and at every
+ * Lambertian vertex ρ/π · max(n·w, 0) · I P e^{-c s}/s² · V; V an exact shadow ray to the lamp through the
+ * objects, 1/s² clamped at the lamp radius s_min as in the fast pass. The lamps' light then goes on
  * scattering (all orders), which the fast pass (underwater_lamps.cl, single scattering) leaves out.
+ * max_bounces = 1 keeps only the first segment's lamp estimate: the lamps' single scattering.
  *
  * Random numbers: common/path_tracer.h, a hash of (seed, pixel, sample index, dimension): reproducible
  * for a seed whatever the batching. Dimensions: 0, 1 pixel jitter; 2 band; then per event in order.
@@ -98,12 +101,11 @@ static inline float lamp_visibility(const __global UwObject* objects, int count,
 #endif
 }
 
-/* The lamps' light arriving at x per unit phase/BRDF factor, for next-event estimation. d_out: the
- * direction the light leaves x towards the previous vertex (-d); normal: for a Lambertian vertex
- * (medium: lambert = 0). Returns Σ_lamps I P e^{-c s}/max(s, s_min)² V × (p_HG(cos) or cos_n/π·ρ). */
-static inline float lamps_nee(__constant UwLampParams* lp, const __global UwLamp* lamps,
-                              const __global float* lamp_spectra, const __global UwObject* objects, int count, int band,
-                              float c, float g, float3 x, float3 d_out, int lambert, float3 normal) {
+/* The lamps' direct light reflected by a Lambertian point x (normal n) per unit albedo:
+ * Σ_lamps max(n·w, 0)/π · I P e^{-c s}/max(s, s_min)² · V, w the unit direction to the lamp. */
+static inline float lamps_lambert(__constant UwLampParams* lp, const __global UwLamp* lamps,
+                                  const __global float* lamp_spectra, const __global UwObject* objects, int count,
+                                  int band, float c, float3 x, float3 normal) {
   float L = 0.0f;
   for (int l = 0; l < lp->lamp_count; ++l) {
     const __global UwLamp* lamp = &lamps[l];
@@ -112,23 +114,48 @@ static inline float lamps_nee(__constant UwLampParams* lp, const __global UwLamp
     const float3 to_lamp = pos - x;
     const float s = length(to_lamp);
     if (!(s > 0.0f)) continue;
-    const float3 w_in = to_lamp / s; /* towards the lamp; the light travels along -w_in */
+    const float3 w = to_lamp / s;
+    const float cos_n = dot(normal, w);
+    if (cos_n <= 0.0f) continue;
     const float prof = uw_lamp_profile(x, pos, axis, lamp->cos_cone, lamp->cos_inner);
     if (prof <= 0.0f) continue;
-    float f;
-    if (lambert) {
-      f = dot(normal, w_in) * M_1_PI_F;
-      if (f <= 0.0f) continue;
-    } else {
-#if SEASIM_PT_ISOTROPIC
-      f = 1.0f / (4.0f * M_PI_F);
-#else
-      f = hg_phase(dot(-w_in, d_out), g);
-#endif
-    }
     const float sc = fmax(s, lp->s_min);
-    const float e = lamp_spectra[l * lp->band_count + band] * prof * exp(-c * s) / (sc * sc);
-    if (e > 0.0f) L += f * e * lamp_visibility(objects, count, x, w_in, s);
+    const float e = cos_n * M_1_PI_F * lamp_spectra[l * lp->band_count + band] * prof * exp(-c * s) / (sc * sc);
+    if (e > 0.0f) L += e * lamp_visibility(objects, count, x, w, s);
+  }
+  return L;
+}
+
+/* The lamps' light scattered once towards -d along the segment o + t d, t in [0, S) (S may be
+ * UW_INFINITE), per unit path throughput: one equiangular sample per lamp (dimension *dim onwards). */
+static inline float lamps_segment(__constant UwLampParams* lp, const __global UwLamp* lamps,
+                                  const __global float* lamp_spectra, const __global UwObject* objects, int count,
+                                  int band, float b, float c, float g, float3 o, float3 d, float S, unsigned int key,
+                                  unsigned int* dim) {
+  float L = 0.0f;
+  for (int l = 0; l < lp->lamp_count; ++l) {
+    const __global UwLamp* lamp = &lamps[l];
+    const float3 pos = (float3)(lamp->position[0], lamp->position[1], lamp->position[2]);
+    const float3 axis = (float3)(lamp->direction[0], lamp->direction[1], lamp->direction[2]);
+    const float u = pt_uniform(key, (*dim)++);
+    float a, h, pdf;
+    shafts_closest_approach(o, d, pos, &a, &h);
+    const float t = pt_sample_equiangular(a, fmax(h, lp->s_min), 0.0f, S, u, &pdf);
+    if (!(pdf > 0.0f)) continue;
+    const float3 x = o + t * d;
+    const float prof = uw_lamp_profile(x, pos, axis, lamp->cos_cone, lamp->cos_inner);
+    if (prof <= 0.0f) continue;
+    const float3 to_lamp = pos - x;
+    const float s = length(to_lamp);
+    if (!(s > 0.0f)) continue;
+#if SEASIM_PT_ISOTROPIC
+    const float phase = 1.0f / (4.0f * M_PI_F);
+#else
+    const float phase = hg_phase(dot(-to_lamp / s, -d), g); /* lamp -> x, then along -d */
+#endif
+    const float sc = fmax(s, lp->s_min);
+    const float e = exp(-c * (t + s)) * b * phase * lamp_spectra[l * lp->band_count + band] * prof / (sc * sc * pdf);
+    if (e > 0.0f) L += e * lamp_visibility(objects, count, x, to_lamp / s, s);
   }
   return L;
 }
@@ -159,6 +186,8 @@ static inline float trace_path(__constant UwParams* p, const __global UwBand* bn
     float3 n;
     int mat;
     const float S = uw_scene_hit(objects, count, p->bottom_depth, o, d, 0.0f, &n, &mat);
+    if (lp->lamp_count > 0 && beta > 0.0f)
+      L += beta * lamps_segment(lp, lamps, lamp_spectra, objects, count, band, bn->b, c, p->g, o, d, S, key, &dim);
     const float t = pt_sample_distance(c, pt_uniform(key, dim++));
     if (t < S) {
       /* A scattering event in the water: weight σ_s/σ_t (free flight pdf c e^{-ct}, transmittance e^{-ct}). */
@@ -174,8 +203,6 @@ static inline float trace_path(__constant UwParams* p, const __global UwBand* bn
         const float e_beam = uw_beam_irradiance(e_beam0, c, mu_w, fmax(-o.y, 0.0f));
         if (e_beam > 0.0f) L += beta * phase * e_beam * sun_visibility(objects, count, o, s_w);
       }
-      if (lp->lamp_count > 0 && beta > 0.0f)
-        L += beta * lamps_nee(lp, lamps, lamp_spectra, objects, count, band, c, p->g, o, -d, 0, d);
       if (single_only || vertices >= max_bounces) break;
 #if SEASIM_PT_ISOTROPIC
       d = pt_sample_isotropic(pt_uniform(key, dim), pt_uniform(key, dim + 1));
@@ -206,7 +233,7 @@ static inline float trace_path(__constant UwParams* p, const __global UwBand* bn
         if (e_beam > 0.0f) L += beta * rho * M_1_PI_F * cos_sun * e_beam * sun_visibility(objects, count, x, s_w);
       }
       if (lp->lamp_count > 0 && rho > 0.0f)
-        L += beta * rho * lamps_nee(lp, lamps, lamp_spectra, objects, count, band, c, p->g, x, -d, 1, n);
+        L += beta * rho * lamps_lambert(lp, lamps, lamp_spectra, objects, count, band, c, x, n);
       if (vertices >= max_bounces) break;
       beta *= rho; /* ρ/π cos θ over the pdf cos θ/π */
       d = pt_sample_cosine(n, pt_uniform(key, dim), pt_uniform(key, dim + 1));

@@ -4,9 +4,9 @@
 
 #include "io/atomic_file.h"
 #include "io/image_io.h"
-#include "quality/auto_quality.h"
 #include "plan/memory_budget.h"
 #include "plan/plan.h"
+#include "quality/auto_quality.h"
 #include "reference/compare.h"
 #include "util/error.h"
 #include "util/paths.h"

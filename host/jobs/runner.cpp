@@ -10,14 +10,15 @@
 
 #include "device/device.h"
 #include "io/atomic_file.h"
+#include "io/data_files.h"
 #include "jobs/job.h"
 #include "jobs/job_inputs.h"
 #include "jobs/manifest.h"
 #include "jobs/progress.h"
 #include "jobs/render_item.h"
 #include "jobs/shard_lock.h"
-#include "quality/auto_quality.h"
 #include "plan/plan.h"
+#include "quality/auto_quality.h"
 #include "render/renderer.h"
 #include "scene/scene_parser.h"
 #include "util/error.h"
@@ -55,12 +56,14 @@ std::vector<std::string> changedKeys(const std::vector<Override>& before, const 
 struct RendererCache {
   std::unique_ptr<Renderer> renderer;
   const RenderItem* previous = nullptr;
+  std::shared_ptr<DataFiles> files = std::make_shared<DataFiles>();  // the whole job's data files
 };
 
 // Renders one item and returns its manifest files (relative path -> checksum) and kernel ms.
 nlohmann::json renderOne(Device& device, RendererCache& cache, const RenderItem& item, const std::string& output_dir,
                          double& kernel_ms) {
-  const Scene scene = loadScene(item.scene_file, item.overrides);
+  Scene scene = loadScene(item.scene_file, item.overrides);
+  scene.files = cache.files;  // read each data file once per job
   // Before any buffer exists: a render too big for the device fails here, naming its settings.
   checkRenderFitsDevice(device, scene, makePlan(scene));
   if (cache.renderer && cache.previous && cache.previous->scene_file == item.scene_file) {

@@ -110,7 +110,7 @@ SeaSecondPass::SeaSecondPass(Device& device, const Scene& scene, const PassPlan&
   const bool height_field = scene.bottom.type == BottomDesc::Type::HeightField;
   HeightField floor;
   if (height_field) {
-    floor = loadHeightField(scene.bottom);
+    floor = loadHeightField(scene.bottom, scene.files.get());
     p.bottom_depth = floor.params.max_depth;
     double c_min = 1e30;
     for (double c : water.c) c_min = std::min(c_min, c);

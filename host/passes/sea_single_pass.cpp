@@ -110,7 +110,7 @@ SeaSinglePass::SeaSinglePass(Device& device, const Scene& scene, const PassPlan&
     p.caustic_origin = static_cast<float>(bottom_caustics->origin);
   }
   const double sun_dir[3] = {sun.x, sun.y, sun.z};
-  const SeaSky sky = makeSeaSky(scene.sky, sun_dir, grid);
+  const SeaSky sky = makeSeaSky(scene.sky, sun_dir, grid, scene.files.get());
   p.sky_width = sky.width;
   p.sky_height = sky.height;
   p.sky_scale = static_cast<float>(sky.scale);
@@ -227,7 +227,7 @@ SeaSinglePass::SeaSinglePass(Device& device, const Scene& scene, const PassPlan&
       kernel_.setArg(7, spectral_);
     }
     if (scene.bottom.type == BottomDesc::Type::HeightField) {  // 000 §5.4: the kernel's last two arguments
-      const HeightFieldBuffers hf = uploadHeightField(device, loadHeightField(scene.bottom));
+      const HeightFieldBuffers hf = uploadHeightField(device, loadHeightField(scene.bottom, scene.files.get()));
       hf_params_ = hf.params;
       hf_depth_ = hf.depth;
       const cl_uint args = kernel_.getInfo<CL_KERNEL_NUM_ARGS>();

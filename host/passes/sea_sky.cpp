@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cmath>
 
+#include "io/data_files.h"
 #include "io/image_io.h"
 #include "io/tonemap.h"
 #include "math/kernel_math.h"
@@ -32,7 +33,7 @@ bool linearFormat(const std::string& path) {
 
 }  // namespace
 
-SeaSky makeSeaSky(const SkyDesc& desc, const double sun_dir[3], const WavelengthGrid& grid) {
+SeaSky makeSeaSky(const SkyDesc& desc, const double sun_dir[3], const WavelengthGrid& grid, DataFiles* files) {
   SeaSky sky;
   sky.model = skyModelDefine(desc);
   sky.texels.assign(4, 0.0);
@@ -45,7 +46,7 @@ SeaSky makeSeaSky(const SkyDesc& desc, const double sun_dir[3], const Wavelength
     const kd::real3 sun{sun_dir[0], sun_dir[1], sun_dir[2]};
     sky.scale = 1.0 / kd::sky_cie_clear_cosine_mean(sun, 128, 256);
   } else if (sky.model == 2) {
-    const Image img = readImage(desc.image);
+    const Image img = readImageVia(files, desc.image);
     if (img.width < 2 || img.height < 2 || img.channels < 1) {
       throw RuntimeError("sky image '" + desc.image + "': expected a latitude-longitude image of at least 2 x 2 texels");
     }

@@ -111,13 +111,13 @@ ShaftsPass::ShaftsPass(Device& device, const Scene& scene, const PassPlan& plan,
     set4(L.direction, normalize(l.direction));
     set4(L.right, lr);
     set4(L.up, lu);
-    set4(L.color, shaftsLampRgb(l, scene.spectral));  // spectral/lamp_spectrum.h
+    set4(L.color, shaftsLampRgb(l, scene.spectral, scene.files.get()));  // spectral/lamp_spectrum.h
     L.cos_cone = static_cast<float>(std::cos(l.cone));
     L.cos_inner = static_cast<float>(std::cos(std::max(0.0, l.cone - l.falloff)));
     L.tan_cone = static_cast<float>(std::tan(l.cone));
     L.light_map_offset = -1;
     if (!l.light_map.empty()) {
-      const LightMap map = loadLightMap(l.light_map);
+      const LightMap map = loadLightMap(l.light_map, scene.files.get());
       L.light_map_offset = static_cast<int>(maps.size());
       L.light_map_width = map.width;
       L.light_map_height = map.height;

@@ -3,6 +3,7 @@
 // scenes/README.md documents every key, its unit and its default; keep the two in step.
 #pragma once
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -11,6 +12,8 @@
 #include "spectral/spectrum.h"
 
 namespace seasim {
+
+class DataFiles;  // io/data_files.h
 
 // Where a value came from, for error messages and reports ("scenes/a.toml:12").
 struct SourceLoc {
@@ -185,6 +188,10 @@ struct Scene {
   // in scenes/README.md ([quality]).
   std::map<std::string, Knob> quality;
   std::vector<ImageInputRef> images;  // every image file named above, in file order
+  // The data files (camera curves, lamp spectra, light maps, sky images, height fields) as read once
+  // for this process (io/data_files.h); shared by the copies of a scene. Null: each reader reads the
+  // file itself (the Renderer makes one for a scene that has none).
+  std::shared_ptr<DataFiles> files;
 };
 
 }  // namespace seasim

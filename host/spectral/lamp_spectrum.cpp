@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "io/data_files.h"
 #include "spectral/csv_table.h"
 #include "util/error.h"
 
@@ -25,12 +26,12 @@ double planckRelative(double lambda_nm, double temperature_k) {
   return planckShape(lambda_nm, temperature_k) / planckShape(560.0, temperature_k);
 }
 
-std::vector<double> lampSpectralIntensity(const SpotlightDesc& lamp, const WavelengthGrid& grid) {
+std::vector<double> lampSpectralIntensity(const SpotlightDesc& lamp, const WavelengthGrid& grid, DataFiles* files) {
   std::vector<double> out(grid.size(), lamp.intensity);
   if (lamp.temperature_k > 0) {
     for (size_t i = 0; i < grid.size(); ++i) out[i] *= planckRelative(grid.centers_nm[i], lamp.temperature_k);
   } else if (!lamp.spectrum.empty()) {
-    const CsvTable t = loadCsv(lamp.spectrum);
+    const CsvTable t = readCsvVia(files, lamp.spectrum);
     if (t.names.size() < 2) throw RuntimeError(lamp.spectrum + ": a lamp spectrum needs two columns: nm, relative power");
     const Spectrum s = t.spectrum(t.names[1]);
     for (size_t r = 0; r < s.values.size(); ++r)
@@ -43,16 +44,17 @@ std::vector<double> lampSpectralIntensity(const SpotlightDesc& lamp, const Wavel
   return out;
 }
 
-std::array<double, 3> lampSensorRgb(const SpotlightDesc& lamp, const WavelengthGrid& grid, const Sensor& sensor) {
-  const std::vector<double> I = lampSpectralIntensity(lamp, grid);
+std::array<double, 3> lampSensorRgb(const SpotlightDesc& lamp, const WavelengthGrid& grid, const Sensor& sensor,
+                                    DataFiles* files) {
+  const std::vector<double> I = lampSpectralIntensity(lamp, grid, files);
   return sensor.apply(I.data());
 }
 
-Vec3 shaftsLampRgb(const SpotlightDesc& lamp, const SpectralDesc& spectral) {
+Vec3 shaftsLampRgb(const SpotlightDesc& lamp, const SpectralDesc& spectral, DataFiles* files) {
   if (lamp.temperature_k <= 0 && lamp.spectrum.empty()) return lamp.color * lamp.intensity;
   const WavelengthGrid grid = makeGrid(spectral.count, spectral.min_nm, spectral.max_nm);
-  const Sensor sensor = makeSensor(spectral.sensor, grid, spectral.white_balance, spectral.camera_dir);
-  const std::array<double, 3> rgb = lampSensorRgb(lamp, grid, sensor);
+  const Sensor sensor = makeSensor(spectral.sensor, grid, spectral.white_balance, spectral.camera_dir, files);
+  const std::array<double, 3> rgb = lampSensorRgb(lamp, grid, sensor, files);
   return Vec3{rgb[0], rgb[1], rgb[2]};
 }
 

@@ -21,16 +21,19 @@ double planckRelative(double lambda_nm, double temperature_k);
 
 // I(λ_i) for each band of `grid`. RuntimeError naming the CSV for a file without a positive value at
 // 560 nm or with a negative value.
-std::vector<double> lampSpectralIntensity(const SpotlightDesc& lamp, const WavelengthGrid& grid);
+// files: read the CSV through it (io/data_files.h), or directly when null.
+std::vector<double> lampSpectralIntensity(const SpotlightDesc& lamp, const WavelengthGrid& grid,
+                                          DataFiles* files = nullptr);
 
 // The lamp's intensity seen through the sensor: Σ_i I(λ_i) (to_r, to_g, to_b)_i, W/sr in the sensor's
 // linear RGB (what the spotlight shafts in air, a grey medium, multiply by).
-std::array<double, 3> lampSensorRgb(const SpotlightDesc& lamp, const WavelengthGrid& grid, const Sensor& sensor);
+std::array<double, 3> lampSensorRgb(const SpotlightDesc& lamp, const WavelengthGrid& grid, const Sensor& sensor,
+                                    DataFiles* files = nullptr);
 
 // What the shafts in air (a grey medium: the same ρ, κ at every λ) multiply by, per R, G, B (W/sr):
 // for a spectral lamp (temperature_k or spectrum) lampSensorRgb through the scene's [spectral] grid and
 // sensor, which is exact since nothing else in air depends on λ; for a lamp without either, intensity
 // × color as before (an RGB lamp: the sensor does not see it).
-Vec3 shaftsLampRgb(const SpotlightDesc& lamp, const SpectralDesc& spectral);
+Vec3 shaftsLampRgb(const SpotlightDesc& lamp, const SpectralDesc& spectral, DataFiles* files = nullptr);
 
 }  // namespace seasim

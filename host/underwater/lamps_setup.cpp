@@ -31,7 +31,7 @@ UnderwaterLamps makeUnderwaterLamps(const Scene& scene, const WavelengthGrid& gr
     L.cos_cone = static_cast<float>(std::cos(l.cone));
     L.cos_inner = static_cast<float>(std::cos(l.cone - l.falloff));
     out.lamps.push_back(L);
-    for (double v : lampSpectralIntensity(l, grid)) out.spectra.push_back(static_cast<float>(v));
+    for (double v : lampSpectralIntensity(l, grid, scene.files.get())) out.spectra.push_back(static_cast<float>(v));
   }
   if (out.lamps.empty()) out.lamps.push_back(UwLamp{});
   if (out.spectra.empty()) out.spectra.push_back(0.0f);

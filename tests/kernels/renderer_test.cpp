@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "io/data_files.h"
 #include "io/image_io.h"
 #include "jobs/runner.h"
 #include "quality/auto_quality.h"
@@ -136,6 +137,24 @@ TEST(Renderer, UnderwaterSunDoesNotRebuildTheRaycast) {
   std::vector<Override> at = smallSeabed();
   at.push_back(set("sun.zenith_deg", "55"));
   EXPECT_EQ(f.rgb.pixels, fresh("seabed.toml", at).rgb.pixels);
+}
+
+// Data files are read once per renderer (and per job, which shares them): a change of the band count
+// makes the sensor again from the camera curves already read; a new Renderer on a scene that carries
+// the same DataFiles reads nothing either.
+TEST(Renderer, CameraCurvesAreReadOnceAcrossUpdates) {
+  Renderer renderer(test::testDevice(), sceneFile("seabed.toml"), smallSeabed(), shippedPasses());
+  (void)renderer.render();
+  ASSERT_NE(renderer.scene().files, nullptr);
+  const int reads = renderer.scene().files->reads();
+  EXPECT_EQ(reads, 1);  // canon_eos_5d_mark_ii_rawtoaces.csv (the scene has no images)
+  renderer.update({set("spectral.count", "8")});
+  (void)renderer.render();
+  EXPECT_EQ(renderer.scene().files->reads(), reads);
+  Scene again = renderer.scene();
+  Renderer second(test::testDevice(), again, shippedPasses());
+  (void)second.render();
+  EXPECT_EQ(renderer.scene().files->reads(), reads);
 }
 
 // A froxel knob sets up only the froxel pass; the G-buffer does not run again, the shading that
