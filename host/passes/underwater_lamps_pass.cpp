@@ -1,8 +1,6 @@
 #include "passes/underwater_lamps_pass.h"
 
 #include <algorithm>
-#include <cmath>
-#include <cstddef>
 
 #include "underwater/lamps_setup.h"
 #include "util/error.h"

@@ -252,6 +252,21 @@ TEST(UnderwaterLamps, RovLightsComposesLampsWithTheSunsPasses) {
   EXPECT_EQ(std::find(prepared.begin(), prepared.end(), "underwater_lamps"), prepared.end());
   const auto& executed = renderer.lastExecuted();
   EXPECT_NE(std::find(executed.begin(), executed.end(), "underwater_lamps"), executed.end());
+  // A knob of the lamps' pass sets up only that pass; the G-buffer and the froxels do not run again,
+  // kd_multiple does (the lamps add into the image it writes, so it is written afresh first).
+  renderer.update({set("quality.shafts_planes", "12")});
+  const seasim::FrameResult knob = renderer.render();
+  EXPECT_EQ(renderer.lastPrepared(), std::vector<std::string>{"underwater_lamps"});
+  const auto& rerun = renderer.lastExecuted();
+  for (const char* absent : {"raycast", "froxel"})
+    EXPECT_EQ(std::find(rerun.begin(), rerun.end(), absent), rerun.end()) << absent;
+  EXPECT_NE(std::find(rerun.begin(), rerun.end(), "kd_multiple"), rerun.end());
+  // The same frame as a new renderer's: nothing added twice.
+  std::vector<Override> fresh_overrides = small;
+  fresh_overrides.push_back(set("sun.zenith_deg", "50.0"));
+  fresh_overrides.push_back(set("quality.shafts_planes", "12"));
+  seasim::Renderer fresh(seasim::test::testDevice(), file, fresh_overrides, seasim::shippedPasses());
+  EXPECT_EQ(knob.rgb.pixels, fresh.render().rgb.pixels);
 }
 
 }  // namespace
