@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -140,6 +141,30 @@ TEST(UnderwaterLamps, KernelMatchesTheDoubleCpuEvaluation) {
   std::printf("kernel vs double CPU: max |difference| %.3g of a peak %.4g\n", worst, peak);
   EXPECT_LT(worst, 2e-3 * peak) << "worst " << worst << " of peak " << peak;
   EXPECT_NEAR(meanOf(frame.rgb), meanOf(cpu), 1e-4 * meanOf(cpu));
+}
+
+TEST(UnderwaterLamps, SpectralOutputHoldsTheLampsBands) {
+  // spectral.exr holds the whole image per band: here (sun off, black sky) the lamps' bands alone,
+  // which through the sensor weights give the RGB image.
+  const Scene scene = lampScene({set("spectral.spectral_exr", "true")});
+  const seasim::FrameResult frame = render(scene);
+  const seasim::WavelengthGrid grid = seasim::makeGrid(scene.spectral.count, scene.spectral.min_nm, scene.spectral.max_nm);
+  const seasim::Sensor sensor = seasim::makeSensor(scene.spectral.sensor, grid, scene.spectral.white_balance);
+  const size_t nb = grid.size(), pixels = frame.rgb.pixels.size() / 3;
+  ASSERT_EQ(frame.spectral.size(), pixels * nb);
+  double peak = 0, worst = 0;
+  for (size_t p = 0; p < pixels; ++p) {
+    const std::array<double, 3> rgb = [&] {
+      std::vector<double> bands(frame.spectral.begin() + p * nb, frame.spectral.begin() + (p + 1) * nb);
+      return sensor.apply(bands.data());
+    }();
+    for (int c = 0; c < 3; ++c) {
+      peak = std::max(peak, std::fabs(rgb[c]));
+      worst = std::max(worst, std::fabs(rgb[c] - frame.rgb.pixels[3 * p + c]));
+    }
+  }
+  ASSERT_GT(peak, 0);
+  EXPECT_LT(worst, 1e-5 * peak + 1e-9);
 }
 
 TEST(UnderwaterLamps, PathTracerSingleScatteringAgreesWithThePass) {
