@@ -21,12 +21,15 @@ UnderwaterLampsPass::Config UnderwaterLampsPass::configFromScene(const Scene& sc
   Config c;
   c.planes = knob(scene, "shafts_planes", 30);
   c.subplanes = knob(scene, "shafts_subplanes", 6);
+  const auto delta_m = scene.quality.find("lamps_delta_m");
+  c.delta_m = delta_m == scene.quality.end() || delta_m->second.value != 0;
   return c;
 }
 
 UnderwaterLampsPass::UnderwaterLampsPass(Device& device, const Scene& scene, const UnderwaterSetup& setup,
                                          const WavelengthGrid& grid, const PassPlan& plan, const Config& config)
     : device_(device),
+      delta_m_(config.delta_m),
       width_(setup.params.width),
       height_(setup.params.height),
       band_count_(setup.bands.size()),
@@ -37,12 +40,16 @@ UnderwaterLampsPass::UnderwaterLampsPass(Device& device, const Scene& scene, con
   UnderwaterLamps lamps = makeUnderwaterLamps(scene, grid);
   lamps.params.planes = config.planes;
   lamps.params.subplanes = config.subplanes;
+  // The medium the lamps' light sees: the water, delta-M scaled unless asked not to.
+  UwParams params = setup.params;
+  std::vector<UwBand> bands = setup.bands;
+  if (delta_m_) deltaMScale(params, bands);
   UwObject none{};  // OpenCL buffers cannot be empty
   const cl_mem_flags in = CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR;
   try {
     kernel_ = cl::Kernel(device.program(plan.kernel_file, plan.defines).program, "underwater_lamps");
-    params_ = cl::Buffer(device.context(), in, sizeof(UwParams), const_cast<UwParams*>(&setup.params));
-    bands_ = cl::Buffer(device.context(), in, sizeof(UwBand) * setup.bands.size(), const_cast<UwBand*>(setup.bands.data()));
+    params_ = cl::Buffer(device.context(), in, sizeof(UwParams), &params);
+    bands_ = cl::Buffer(device.context(), in, sizeof(UwBand) * bands.size(), bands.data());
     albedo_ = cl::Buffer(device.context(), in, sizeof(float) * setup.albedo.size(), const_cast<float*>(setup.albedo.data()));
     objects_ = cl::Buffer(device.context(), in, sizeof(UwObject) * std::max<size_t>(1, setup.objects.size()),
                           setup.objects.empty() ? &none : const_cast<UwObject*>(setup.objects.data()));
@@ -59,10 +66,13 @@ void UnderwaterLampsPass::update(const UnderwaterSetup& setup) {
       setup.albedo.size() != albedo_count_ || setup.params.width != width_ || setup.params.height != height_) {
     throw RuntimeError("underwater_lamps pass: the new set-up has other sizes (bands, objects or image); make a new pass");
   }
+  UwParams params = setup.params;
+  std::vector<UwBand> bands = setup.bands;
+  if (delta_m_) deltaMScale(params, bands);
   try {
     cl::CommandQueue& q = device_.queue();
-    q.enqueueWriteBuffer(params_, CL_FALSE, 0, sizeof(UwParams), &setup.params);
-    q.enqueueWriteBuffer(bands_, CL_FALSE, 0, sizeof(UwBand) * band_count_, setup.bands.data());
+    q.enqueueWriteBuffer(params_, CL_FALSE, 0, sizeof(UwParams), &params);
+    q.enqueueWriteBuffer(bands_, CL_FALSE, 0, sizeof(UwBand) * band_count_, bands.data());
     if (object_count_ > 0)
       q.enqueueWriteBuffer(objects_, CL_FALSE, 0, sizeof(UwObject) * object_count_, setup.objects.data());
     q.enqueueWriteBuffer(albedo_, CL_FALSE, 0, sizeof(float) * albedo_count_, setup.albedo.data());

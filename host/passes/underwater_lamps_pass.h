@@ -6,6 +6,8 @@
 // G-buffer (hit distance, normal, material), the lamps with their spectra (spectral/lamp_spectrum.h).
 // Writes: += rgb, += spectral. Quality: quality.shafts_planes (n), quality.shafts_subplanes (m), the
 // knobs of the shafts in air; "auto" takes the paper's n = 30, m = 6 (the auto search is for air).
+// quality.lamps_delta_m (default true): the lamps see the water delta-M scaled, so the light forward
+// scattering keeps in the beam is not lost (measured against the path tracer: results/BENCHMARKS.md).
 #pragma once
 #include <CL/opencl.hpp>
 
@@ -24,6 +26,7 @@ class UnderwaterLampsPass {
   struct Config {
     int planes = 30;    // n sampling planes per lamp (001 eq. 5)
     int subplanes = 6;  // m sub-samples per interval (001 eq. 7–9)
+    bool delta_m = true;  // quality.lamps_delta_m: the water delta-M scaled (underwater/lamps_setup.h)
   };
   static Config configFromScene(const Scene& scene);
 
@@ -37,6 +40,7 @@ class UnderwaterLampsPass {
 
  private:
   Device& device_;
+  bool delta_m_;
   int width_, height_;
   size_t band_count_, object_count_, albedo_count_;
   cl::Kernel kernel_;

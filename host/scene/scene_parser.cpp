@@ -588,6 +588,8 @@ class SceneParser {
     // Exact phase function in the shafts integral instead of its table: a switch, stored as a
     // knob of value 0 or 1 so the planner reads every setting from one map.
     scene_.quality["shafts_exact"] = Knob{false, r.boolean("shafts_exact", false) ? 1.0 : 0.0};
+    // Spotlights under water see the water delta-M scaled (underwater/lamps_setup.h): a switch, 0 or 1.
+    scene_.quality["lamps_delta_m"] = Knob{false, r.boolean("lamps_delta_m", true) ? 1.0 : 0.0};
     // Kernels built with -cl-fast-relaxed-math: true, false or "auto" (the default), which the planner
     // turns on where the shipped scenes were measured within 0.05 of an 8-bit level of the exact-maths
     // image (fastMathFor in host/plan; results/BENCHMARKS.md has the table).

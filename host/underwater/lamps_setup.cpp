@@ -1,5 +1,6 @@
 #include "underwater/lamps_setup.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 
@@ -36,6 +37,19 @@ UnderwaterLamps makeUnderwaterLamps(const Scene& scene, const WavelengthGrid& gr
   if (out.lamps.empty()) out.lamps.push_back(UwLamp{});
   if (out.spectra.empty()) out.spectra.push_back(0.0f);
   return out;
+}
+
+void deltaMScale(UwParams& params, std::vector<UwBand>& bands) {
+  const double g = std::min(static_cast<double>(params.g), 1.0);
+  if (!(g > 0)) return;
+  const double f = g * g;
+  for (UwBand& band : bands) {
+    const double b = band.b * (1 - f);
+    band.c = static_cast<float>(band.a + b);
+    band.b = static_cast<float>(b);
+  }
+  // (g - f)/(1 - f) in the form without its 0/0 at g = 1 (where all of the light is in the peak).
+  params.g = static_cast<float>(g / (1 + g));
 }
 
 }  // namespace seasim

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "scene/scene.h"
+#include "underwater/underwater_setup.h"
 #include "spectral/wavelength_grid.h"
 
 extern "C" {
@@ -21,5 +22,13 @@ struct UnderwaterLamps {
 };
 
 UnderwaterLamps makeUnderwaterLamps(const Scene& scene, const WavelengthGrid& grid);
+
+// Delta-M scaling of a Henyey–Greenstein medium (Wiscombe 1977, "The delta-M method", J. Atmos. Sci.
+// 34): the fraction f = g² of the scattered light in the forward peak is treated as not scattered at
+// all, so σ_s' = σ_s (1 − f), σ_t' = σ_a + σ_s', and the rest keeps the phase function HG(g'),
+// g' = (g − f)/(1 − f) = g/(1 + g). Single scattering in the scaled medium carries the light that is
+// scattered a few degrees and goes on along the beam, which single scattering in the real medium
+// counts as lost. g <= 0 has no forward peak: unchanged. Rewrites b, c per band and params.g.
+void deltaMScale(UwParams& params, std::vector<UwBand>& bands);
 
 }  // namespace seasim

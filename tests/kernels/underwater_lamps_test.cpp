@@ -77,10 +77,12 @@ seasim::FrameResult render(const Scene& scene) {
 
 // The same lamps in double on the CPU: per pixel the G-buffer hit (bottom only, no objects), then per
 // band I(λ) [in-scattering + ρ_bottom × direct light], through the sensor weights.
-seasim::Image cpuDouble(const Scene& scene, int planes, int subplanes) {
+// delta_m: the lamps see the water delta-M scaled, as the pass does with quality.lamps_delta_m = 1.
+seasim::Image cpuDouble(const Scene& scene, int planes, int subplanes, bool delta_m) {
   const seasim::WavelengthGrid grid = seasim::makeGrid(scene.spectral.count, scene.spectral.min_nm, scene.spectral.max_nm);
   const seasim::Sensor sensor = seasim::makeSensor(scene.spectral.sensor, grid, scene.spectral.white_balance);
-  const seasim::UnderwaterSetup setup = seasim::makeUnderwaterSetup(scene, grid, sensor);
+  seasim::UnderwaterSetup setup = seasim::makeUnderwaterSetup(scene, grid, sensor);
+  if (delta_m) seasim::deltaMScale(setup.params, setup.bands);
   const seasim::UnderwaterLamps lamps = seasim::makeUnderwaterLamps(scene, grid);
   const UwParams& p = setup.params;
   seasim::Image img;
@@ -129,18 +131,28 @@ double meanOf(const seasim::Image& img) {
 }
 
 TEST(UnderwaterLamps, KernelMatchesTheDoubleCpuEvaluation) {
-  const Scene scene = lampScene({set("quality.shafts_planes", "30"), set("quality.shafts_subplanes", "6")});
+  for (const bool delta_m : {false, true}) {
+  const Scene scene = lampScene({set("quality.shafts_planes", "30"), set("quality.shafts_subplanes", "6"),
+                                 set("quality.lamps_delta_m", delta_m ? "true" : "false")});
   const seasim::FrameResult frame = render(scene);
   ASSERT_EQ(frame.nonfinite, 0);
-  const seasim::Image cpu = cpuDouble(scene, 30, 6);
+  const seasim::Image cpu = cpuDouble(scene, 30, 6, delta_m);
   const double peak = maxOf(cpu);
   ASSERT_GT(peak, 0);
   double worst = 0;
   for (size_t k = 0; k < cpu.pixels.size(); ++k)
     worst = std::max(worst, double(std::fabs(frame.rgb.pixels[k] - cpu.pixels[k])));
-  std::printf("kernel vs double CPU: max |difference| %.3g of a peak %.4g\n", worst, peak);
+  std::printf("kernel vs double CPU (delta-M %d): max |difference| %.3g of a peak %.4g\n", int(delta_m), worst, peak);
   EXPECT_LT(worst, 2e-3 * peak) << "worst " << worst << " of peak " << peak;
   EXPECT_NEAR(meanOf(frame.rgb), meanOf(cpu), 1e-4 * meanOf(cpu));
+  }
+}
+
+TEST(UnderwaterLamps, DeltaMKeepsTheForwardScatteredLight) {
+  // The scaled medium loses less of the beam (σ_t' < σ_t): a brighter lit bottom and a brighter frame.
+  const double plain = meanOf(render(lampScene({set("quality.lamps_delta_m", "false")})).rgb);
+  const double scaled = meanOf(render(lampScene({set("quality.lamps_delta_m", "true")})).rgb);
+  EXPECT_GT(scaled, 1.2 * plain);
 }
 
 TEST(UnderwaterLamps, SpectralOutputHoldsTheLampsBands) {
@@ -171,7 +183,9 @@ TEST(UnderwaterLamps, PathTracerSingleScatteringAgreesWithThePass) {
   // Black bottom: the frame is the lamp's single scattering, what the tracer's max_bounces = 1 estimates.
   // The lamp behind the camera, out of view: no view ray passes near it, where next-event estimation's
   // 1/s² has a variance that grows as 1/h³ with the ray's distance h to the lamp.
+  // The pass's plain single scattering (no delta-M scaling): the integral the tracer's mode estimates.
   const Scene scene = lampScene({set("bottom.albedo", "0.0"), set("quality.shafts_planes", "200"),
+                                 set("quality.lamps_delta_m", "false"),
                                  set("quality.shafts_subplanes", "16"), set("spotlights[0].position", "[0.3, -3.5, 1.0]"),
                                  set("spotlights[0].direction", "[-0.05, -0.4, -1.0]")});
   const seasim::FrameResult frame = render(scene);
@@ -245,7 +259,7 @@ TEST(UnderwaterLamps, ConeOfATenthOfADegreeMatchesTheDoubleEvaluation) {
   const seasim::FrameResult f = render(scene);
   EXPECT_EQ(f.nonfinite, 0);
   for (float v : f.rgb.pixels) ASSERT_TRUE(std::isfinite(v));
-  const seasim::Image cpu = cpuDouble(scene, 30, 6);
+  const seasim::Image cpu = cpuDouble(scene, 30, 6, true);
   const double fast = f.rgb.at(20, 12, 1), exact = cpu.at(20, 12, 1);
   ASSERT_GT(exact, 0);  // the pixel sees the beam
   std::printf("0.1 deg cone, pixel (20, 12): kernel %.6g, double %.6g\n", fast, exact);

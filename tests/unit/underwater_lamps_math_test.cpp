@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "math/kernel_math.h"
+#include "underwater/lamps_setup.h"
 
 namespace {
 
@@ -166,4 +167,35 @@ TEST(UnderwaterLampsMath, DirectLightOnASurface) {
   // The lamp on the surface (s = 0): finite.
   EXPECT_TRUE(std::isfinite(kf::uw_lamp_surface(kf::real3{0, -3, 0}, kf::real3{0, 1, 0}, 3.0f, kf::real3{0, -3, 0},
                                                 kf::real3{0, -1, 0}, 0.9f, 0.95f, 1e-3f, 0.4f, 1.0f)));
+}
+
+TEST(UnderwaterLampsMath, DeltaMScalingOfTheWater) {
+  UwParams p{};
+  std::vector<UwBand> bands(2);
+  bands[0].a = 0.1f, bands[0].b = 0.5f, bands[0].c = 0.6f;
+  bands[1].a = 0.3f, bands[1].b = 0.0f, bands[1].c = 0.3f;
+  p.g = 0.9f;
+  seasim::deltaMScale(p, bands);
+  EXPECT_NEAR(bands[0].b, 0.5 * 0.19, 1e-6);
+  EXPECT_NEAR(bands[0].c, 0.1 + 0.5 * 0.19, 1e-6);
+  EXPECT_NEAR(bands[1].c, 0.3, 1e-7);  // nothing to scale
+  EXPECT_NEAR(p.g, 0.9 / 1.9, 1e-6);   // g' = (g - g²)/(1 - g²)
+  // No forward peak (g <= 0): unchanged; g -> 1: finite.
+  for (float g : {0.0f, -0.5f}) {
+    UwParams q{};
+    q.g = g;
+    std::vector<UwBand> b(1);
+    b[0].a = 0.1f, b[0].b = 0.5f, b[0].c = 0.6f;
+    seasim::deltaMScale(q, b);
+    EXPECT_EQ(b[0].b, 0.5f);
+    EXPECT_EQ(q.g, g);
+  }
+  UwParams one{};
+  one.g = 1.0f;
+  std::vector<UwBand> b(1);
+  b[0].a = 0.1f, b[0].b = 0.5f, b[0].c = 0.6f;
+  seasim::deltaMScale(one, b);
+  EXPECT_FLOAT_EQ(one.g, 0.5f);  // g/(1 + g): no 0/0 at g = 1
+  EXPECT_EQ(b[0].b, 0.0f);       // all of the light in the forward peak: none scattered
+  EXPECT_FLOAT_EQ(b[0].c, 0.1f);
 }

@@ -135,7 +135,8 @@ class UnderwaterLampsNode : public Pass {
  public:
   explicit UnderwaterLampsNode(const PassPlan& entry) : entry_(entry) {}
   PassKeys keys() const override {
-    return {{"camera.*", "spectral.*", "objects.*", "spotlights.*", "quality.shafts_planes", "quality.shafts_subplanes"},
+    return {{"camera.*", "spectral.*", "objects.*", "spotlights.*", "quality.shafts_planes", "quality.shafts_subplanes",
+             "quality.lamps_delta_m"},
             kSetupKeys};
   }
   void prepare(FrameContext& ctx, PassResources&) override {
