@@ -59,7 +59,7 @@ Plan makePlan(const Scene& scene) {
   const bool underwater = scene.water.present && scene.camera.position.y < 0.0;
   const bool sea_view = scene.water.present && !underwater;
   const bool waves = scene.surface.type == SurfaceDesc::Type::Fft && scene.water.present;
-  // Spotlights in or over water are not composed yet (below): in air only.
+  // The air shafts pass: spotlights in a scene without water (under water: underwater_lamps, below).
   const bool lights = !scene.spotlights.empty() && scene.air.present && !scene.water.present;
   const bool objects = !scene.objects.empty();
   const bool spectral_out = scene.spectral.spectral_exr;
