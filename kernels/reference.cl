@@ -29,6 +29,17 @@
  * uniform sky; a ray down meets the flat surface, which adds R L_sky and (1 - R)/n² times the path
  * traced from there along the refracted ray (deterministic split; no sun glint, no caustics).
  *
+ * Spotlights (UwLampParams.lamp_count > 0; common/underwater_lamps_params.h): point lamps with a cone
+ * and a soft edge (shafts_cone_profile) and a spectral intensity I(λ) per band. A point lamp is a delta
+ * light, so next-event estimation is the only way a path sees it: on every segment of the path through
+ * the water (to the next surface, or to infinity) one distance per lamp sampled equiangularly about the
+ * lamp (path_tracer.h), weighted e^{-c t} b p_HG · I P e^{-c s}/s² · V / pdf(t) (this replaces NEE at the
+ * free-flight vertices, whose 1/s² near the lamp made the estimate heavy-tailed), and at every
+ * Lambertian vertex ρ/π · max(n·w, 0) · I P e^{-c s}/s² · V; V an exact shadow ray to the lamp through the
+ * objects, 1/s² clamped at the lamp radius s_min as in the fast pass. The lamps' light then goes on
+ * scattering (all orders), which the fast pass (underwater_lamps.cl, single scattering) leaves out.
+ * max_bounces = 1 keeps only the first segment's lamp estimate: the lamps' single scattering.
+ *
  * Random numbers: common/path_tracer.h, a hash of (seed, pixel, sample index, dimension): reproducible
  * for a seed whatever the batching. Dimensions: 0, 1 pixel jitter; 2 band; then per event in order.
  *
@@ -48,6 +59,8 @@
 #include "common/underwater_params.h"
 #include "common/underwater.h"
 #include "common/path_tracer.h"
+#include "common/underwater_lamps_params.h"
+#include "common/underwater_lamps.h"
 
 #ifndef SEASIM_HAS_OBJECTS
 #define SEASIM_HAS_OBJECTS 1
@@ -76,13 +89,85 @@ static inline float sun_visibility(const __global UwObject* objects, int count, 
 #endif
 }
 
+/* Visibility of a lamp at distance s along the unit direction w from x: 1 unless an object blocks it. */
+static inline float lamp_visibility(const __global UwObject* objects, int count, float3 x, float3 w, float s) {
+#if SEASIM_HAS_OBJECTS
+  float3 n;
+  int mat;
+  const float t = uw_scene_hit(objects, count, 0.0f, x, w, 0.0f, &n, &mat);
+  return (mat >= 0 && t < s) ? 0.0f : 1.0f;
+#else
+  return 1.0f;
+#endif
+}
+
+/* The lamps' direct light reflected by a Lambertian point x (normal n) per unit albedo:
+ * Σ_lamps max(n·w, 0)/π · I P e^{-c s}/max(s, s_min)² · V, w the unit direction to the lamp. */
+static inline float lamps_lambert(__constant UwLampParams* lp, const __global UwLamp* lamps,
+                                  const __global float* lamp_spectra, const __global UwObject* objects, int count,
+                                  int band, float c, float3 x, float3 normal) {
+  float L = 0.0f;
+  for (int l = 0; l < lp->lamp_count; ++l) {
+    const __global UwLamp* lamp = &lamps[l];
+    const float3 pos = (float3)(lamp->position[0], lamp->position[1], lamp->position[2]);
+    const float3 axis = (float3)(lamp->direction[0], lamp->direction[1], lamp->direction[2]);
+    const float3 to_lamp = pos - x;
+    const float s = length(to_lamp);
+    if (!(s > 0.0f)) continue;
+    const float3 w = to_lamp / s;
+    const float cos_n = dot(normal, w);
+    if (cos_n <= 0.0f) continue;
+    const float prof = uw_lamp_profile(x, pos, axis, lamp->cos_cone, lamp->cos_inner);
+    if (prof <= 0.0f) continue;
+    const float sc = fmax(s, lp->s_min);
+    const float e = cos_n * M_1_PI_F * lamp_spectra[l * lp->band_count + band] * prof * exp(-c * s) / (sc * sc);
+    if (e > 0.0f) L += e * lamp_visibility(objects, count, x, w, s);
+  }
+  return L;
+}
+
+/* The lamps' light scattered once towards -d along the segment o + t d, t in [0, S) (S may be
+ * UW_INFINITE), per unit path throughput: one equiangular sample per lamp (dimension *dim onwards). */
+static inline float lamps_segment(__constant UwLampParams* lp, const __global UwLamp* lamps,
+                                  const __global float* lamp_spectra, const __global UwObject* objects, int count,
+                                  int band, float b, float c, float g, float3 o, float3 d, float S, unsigned int key,
+                                  unsigned int* dim) {
+  float L = 0.0f;
+  for (int l = 0; l < lp->lamp_count; ++l) {
+    const __global UwLamp* lamp = &lamps[l];
+    const float3 pos = (float3)(lamp->position[0], lamp->position[1], lamp->position[2]);
+    const float3 axis = (float3)(lamp->direction[0], lamp->direction[1], lamp->direction[2]);
+    const float u = pt_uniform(key, (*dim)++);
+    float a, h, pdf;
+    shafts_closest_approach(o, d, pos, &a, &h);
+    const float t = pt_sample_equiangular(a, fmax(h, lp->s_min), 0.0f, S, u, &pdf);
+    if (!(pdf > 0.0f)) continue;
+    const float3 x = o + t * d;
+    const float prof = uw_lamp_profile(x, pos, axis, lamp->cos_cone, lamp->cos_inner);
+    if (prof <= 0.0f) continue;
+    const float3 to_lamp = pos - x;
+    const float s = length(to_lamp);
+    if (!(s > 0.0f)) continue;
+#if SEASIM_PT_ISOTROPIC
+    const float phase = 1.0f / (4.0f * M_PI_F);
+#else
+    const float phase = hg_phase(dot(-to_lamp / s, -d), g); /* lamp -> x, then along -d */
+#endif
+    const float sc = fmax(s, lp->s_min);
+    const float e = exp(-c * (t + s)) * b * phase * lamp_spectra[l * lp->band_count + band] * prof / (sc * sc * pdf);
+    if (e > 0.0f) L += e * lamp_visibility(objects, count, x, to_lamp / s, s);
+  }
+  return L;
+}
+
 /* max_bounces = 1: single scattering of the sun beam only (no surface or sky terms). */
 static inline int single_only_mode(int max_bounces) { return max_bounces == 1; }
 
 /* One path's radiance in band `band` along the camera ray (o, d); key/dim as path_tracer.h. */
 static inline float trace_path(__constant UwParams* p, const __global UwBand* bn, const __global UwObject* objects,
-                               const __global float* albedo, int band, int max_bounces, unsigned int key, float3 o,
-                               float3 d) {
+                               const __global float* albedo, __constant UwLampParams* lp, const __global UwLamp* lamps,
+                               const __global float* lamp_spectra, int band, int max_bounces, unsigned int key,
+                               float3 o, float3 d) {
 #if SEASIM_HAS_OBJECTS
   const int count = p->object_count;
 #else
@@ -101,6 +186,8 @@ static inline float trace_path(__constant UwParams* p, const __global UwBand* bn
     float3 n;
     int mat;
     const float S = uw_scene_hit(objects, count, p->bottom_depth, o, d, 0.0f, &n, &mat);
+    if (lp->lamp_count > 0 && beta > 0.0f)
+      L += beta * lamps_segment(lp, lamps, lamp_spectra, objects, count, band, bn->b, c, p->g, o, d, S, key, &dim);
     const float t = pt_sample_distance(c, pt_uniform(key, dim++));
     if (t < S) {
       /* A scattering event in the water: weight σ_s/σ_t (free flight pdf c e^{-ct}, transmittance e^{-ct}). */
@@ -145,6 +232,8 @@ static inline float trace_path(__constant UwParams* p, const __global UwBand* bn
         const float e_beam = uw_beam_irradiance(e_beam0, c, mu_w, fmax(-o.y, 0.0f));
         if (e_beam > 0.0f) L += beta * rho * M_1_PI_F * cos_sun * e_beam * sun_visibility(objects, count, x, s_w);
       }
+      if (lp->lamp_count > 0 && rho > 0.0f)
+        L += beta * rho * lamps_lambert(lp, lamps, lamp_spectra, objects, count, band, c, x, n);
       if (vertices >= max_bounces) break;
       beta *= rho; /* ρ/π cos θ over the pdf cos θ/π */
       d = pt_sample_cosine(n, pt_uniform(key, dim), pt_uniform(key, dim + 1));
@@ -167,7 +256,8 @@ static inline float trace_path(__constant UwParams* p, const __global UwBand* bn
 __kernel void reference_path_trace(__constant UwParams* p, __global const UwBand* bands,
                                    __global const UwObject* objects, __global const float* albedo, uint seed,
                                    int sample_start, int samples, int max_bounces, __global float4* mean,
-                                   __global float4* m2) {
+                                   __global float4* m2, __constant UwLampParams* lp, __global const UwLamp* lamps,
+                                   __global const float* lamp_spectra) {
   const int x = get_global_id(0);
   const int y = get_global_id(1);
   if (x >= p->width || y >= p->height) return;
@@ -195,7 +285,7 @@ __kernel void reference_path_trace(__constant UwParams* p, __global const UwBand
     const __global UwBand* bn = &bands[band];
     float L;
     if (eye.y <= 0.0f) {
-      L = trace_path(p, bn, objects, albedo, band, max_bounces, key, eye, d);
+      L = trace_path(p, bn, objects, albedo, lp, lamps, lamp_spectra, band, max_bounces, key, eye, d);
     } else if (d.y >= 0.0f) {
       L = bn->sky_radiance; /* camera above the surface looking up: the uniform sky (no sun disk) */
     } else {
@@ -208,7 +298,7 @@ __kernel void reference_path_trace(__constant UwParams* p, __global const UwBand
       float3 d_w;
       refract_dir(d, (float3)(0.0f, 1.0f, 0.0f), 1.0f / p->ior, &d_w);
       L = R * (single_only_mode(max_bounces) ? 0.0f : bn->sky_radiance) +
-          (1.0f - R) / (p->ior * p->ior) * trace_path(p, bn, objects, albedo, band, max_bounces, key, o, d_w);
+          (1.0f - R) / (p->ior * p->ior) * trace_path(p, bn, objects, albedo, lp, lamps, lamp_spectra, band, max_bounces, key, o, d_w);
     }
     L *= p->band_count;
     const float3 s = L * (float3)(bn->w_r, bn->w_g, bn->w_b);

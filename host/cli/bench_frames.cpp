@@ -15,7 +15,7 @@
 
 #include "cli/commands.h"
 #include "io/csv.h"
-#include "passes/nodes/standard_passes.h"
+#include "quality/auto_quality.h"
 #include "render/renderer.h"
 #include "util/error.h"
 
@@ -39,7 +39,7 @@ int benchFrames(Device& device, const BenchCmd& cmd, const std::vector<Override>
     if (!renderer || cmd.fresh) {
       std::vector<Override> all = overrides;
       all.push_back(time);
-      renderer = std::make_unique<Renderer>(device, cmd.scene, all, standardPasses());
+      renderer = std::make_unique<Renderer>(device, cmd.scene, all, shippedPasses());
     } else {
       renderer->update({time});
     }

@@ -13,6 +13,7 @@
 #include "io/csv.h"
 #include "passes/sea_second_pass.h"
 #include "plan/plan.h"
+#include "quality/sea_auto.h"
 #include "scene/scene_parser.h"
 #include "spectral/sensor.h"
 #include "spectral/wavelength_grid.h"
@@ -50,7 +51,8 @@ int benchSeaSecond(Device& device, const BenchCmd& cmd, const std::vector<Overri
     if (scene.spectral.spectral_exr) {
       spectral = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * pixels * grid.size());
     }
-    SeaSecondPass pass(device, scene, *second, grid, sensor, rgb, scene.spectral.spectral_exr ? &spectral : nullptr);
+    SeaSecondPass pass(device, scene, *second, seaSecondConfigWithAuto(device, scene), grid, sensor, rgb,
+                       scene.spectral.spectral_exr ? &spectral : nullptr);
     (void)pass.run();  // warm-up: PoCL compiles lazily; height-field depth tables are built here
     std::vector<double> maps, acc;
     for (int r = 0; r < std::max(1, cmd.repeat); ++r) {

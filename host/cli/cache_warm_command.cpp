@@ -17,7 +17,7 @@
 #include "cli/commands.h"
 #include "device/device.h"
 #include "jobs/job.h"
-#include "passes/render_frame.h"
+#include "quality/render_frame.h"
 #include "plan/plan.h"
 #include "scene/scene_parser.h"
 

@@ -20,14 +20,14 @@
 #include "jobs/job_inputs.h"
 #include "jobs/render_item.h"
 #include "jobs/runner.h"
-#include "passes/nodes/standard_passes.h"
 #include "plan/plan.h"
-#include "render/renderer.h"
+#include "quality/auto_quality.h"
 #include "reference/compare.h"
 #include "reference/sea_reference.h"
 #include "reference/sea_second_reference.h"
 #include "reference/shafts_reference.h"
 #include "reference/underwater_reference.h"
+#include "render/renderer.h"
 #include "scene/scene_inputs.h"
 #include "spectral/sensor.h"
 #include "spectral/wavelength_grid.h"
@@ -247,7 +247,7 @@ int cmdSweep(const SweepCmd& cmd) {
   PlotSeries steps{"max |L(v) - L(next v)| (8-bit levels)", {}, {}};
   Image previous;
   // One renderer for the whole grid: each setting sets up again only the passes its keys touch.
-  Renderer renderer(device, scenes.front(), standardPasses());
+  Renderer renderer(device, scenes.front(), shippedPasses());
   for (size_t k = 0; k < scenes.size(); ++k) {
     if (k > 0) {
       std::vector<std::string> changed;
@@ -276,7 +276,7 @@ int cmdSweep(const SweepCmd& cmd) {
     if (fast) {
       Scene exact_scene = scenes[k];
       exact_scene.quality["fast_math"] = Knob{false, 0.0};
-      Renderer exact_renderer(device, exact_scene, standardPasses());
+      Renderer exact_renderer(device, exact_scene, shippedPasses());
       const FrameResult exact = exact_renderer.render();
       vs_exact = compareImages(frame.rgb, exact.rgb, scenes[k].camera.exposure_ev);
     }
@@ -371,7 +371,7 @@ int cmdBench(const BenchCmd& cmd) {
       }
       Scene scene = full;
       scene.spotlights.resize(k);
-      Renderer renderer(device, scene, standardPasses());
+      Renderer renderer(device, scene, shippedPasses());
       (void)renderer.render();  // warm-up (PoCL compiles lazily; auto quality searches once)
       std::vector<double> totals, shadow, shafts;
       for (int r = 0; r < std::max(1, cmd.repeat); ++r) {
@@ -438,7 +438,7 @@ int cmdBench(const BenchCmd& cmd) {
     std::vector<Override> overrides = parseSets(cmd.sets);
     overrides.push_back(parseSetOption("spectral.count=" + std::to_string(n)));
     const Scene scene = loadScene(cmd.scene, overrides);
-    Renderer renderer(device, scene, standardPasses());
+    Renderer renderer(device, scene, shippedPasses());
     const Plan& plan = renderer.plan();
     (void)renderer.render();  // warm-up
     std::vector<double> samples;
@@ -610,6 +610,8 @@ int cmdReference(const ReferenceCmd& cmd) {
     settings.seed = cmd.seed >= 0 ? static_cast<unsigned>(cmd.seed) : 1u;
     settings.camera_above = above;
     if (!scene.underwater.multiple_scattering) settings.max_bounces = 1;
+    const UnderwaterLamps lamps = makeUnderwaterLamps(scene, grid);  // [[spotlights]] under water, by NEE
+    settings.lamps = &lamps;
     const bool tty = isatty(fileno(stderr));
     settings.progress = [tty, step = std::max(1, settings.samples_per_pixel / 10), next = 0](int done, int total) mutable {
       if (tty) {  // one line, redrawn

@@ -10,7 +10,7 @@
 #include "device/device.h"
 #include "io/image_io.h"
 #include "io/tonemap.h"
-#include "passes/nodes/standard_passes.h"
+#include "quality/auto_quality.h"
 #include "preview/preview_quality.h"
 #include "preview/preview_settings.h"
 #include "preview/preview_window.h"
@@ -103,7 +103,7 @@ int cmdPreview(const PreviewCmd& cmd) {
   std::map<std::string, std::string> applied;
   std::vector<Override> all = concat(base, qualityLevelOverrides(settings_scene, level));
   (void)changedOverrides(all, applied);
-  Renderer renderer(device, cmd.scene, all, standardPasses());
+  Renderer renderer(device, cmd.scene, all, shippedPasses());
 
   std::vector<std::uint8_t> bytes;
   int saves = 0;

@@ -10,7 +10,7 @@
 #include "io/svg_plot.h"
 #include "io/tonemap.h"
 #include "math/kernel_math.h"
-#include "passes/render_frame.h"
+#include "quality/render_frame.h"
 #include "passes/sea_heightfield.h"
 #include "plan/plan.h"
 #include "reference/compare.h"

@@ -9,7 +9,7 @@
 #include "device/device.h"
 #include "io/csv.h"
 #include "io/svg_plot.h"
-#include "passes/render_frame.h"
+#include "quality/render_frame.h"
 #include "plan/plan.h"
 #include "reference/compare.h"
 #include "reference/underwater_reference.h"

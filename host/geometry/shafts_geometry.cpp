@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "geometry/shafts_geometry_k.h"
+#include "io/data_files.h"
 #include "io/image_io.h"
 #include "io/tonemap.h"
 #include "util/error.h"
@@ -92,8 +93,8 @@ void shaftsLightBasis(const SpotlightDesc& light, Vec3& right, Vec3& up) {
   up = cross(right, dir);
 }
 
-LightMap loadLightMap(const std::string& path) {
-  const Image img = readImage(path);
+LightMap loadLightMap(const std::string& path, DataFiles* files) {
+  const Image img = readImageVia(files, path);
   if (img.width < 1 || img.height < 1 || img.channels < 1 || img.channels > 4) {
     throw RuntimeError("light map '" + path + "': expected a grey or RGB(A) image");
   }

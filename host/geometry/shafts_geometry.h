@@ -52,7 +52,8 @@ struct LightMap {
   int width = 0, height = 0;
   std::vector<float> rgb;  // 3 per texel
 };
-LightMap loadLightMap(const std::string& path);
+// files: read the image through it (io/data_files.h), or directly when null.
+LightMap loadLightMap(const std::string& path, DataFiles* files = nullptr);
 
 // Lambertian albedo of an object as linear R,G,B (its spectrum at 610, 550, 465 nm).
 Vec3 objectAlbedoRgb(const ObjectDesc& object);

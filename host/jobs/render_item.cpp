@@ -5,9 +5,9 @@
 #include "io/atomic_file.h"
 #include "io/image_io.h"
 #include "jobs/test_hooks.h"
-#include "passes/nodes/standard_passes.h"
 #include "plan/memory_budget.h"
 #include "plan/plan.h"
+#include "quality/auto_quality.h"
 #include "reference/compare.h"
 #include "util/error.h"
 #include "util/paths.h"
@@ -49,7 +49,7 @@ nlohmann::json settingsJson(const Scene& s) {
 
 nlohmann::json renderItem(Device& device, const Scene& scene, const ItemOutputs& outputs, const std::string& dir) {
   checkRenderFitsDevice(device, scene, makePlan(scene));
-  Renderer renderer(device, scene, standardPasses());
+  Renderer renderer(device, scene, shippedPasses());
   return renderItem(device, renderer, outputs, dir);
 }
 

@@ -11,6 +11,7 @@
 
 #include "device/device.h"
 #include "io/atomic_file.h"
+#include "io/data_files.h"
 #include "jobs/job.h"
 #include "jobs/job_inputs.h"
 #include "jobs/manifest.h"
@@ -18,8 +19,8 @@
 #include "jobs/render_item.h"
 #include "jobs/shard_balance.h"
 #include "jobs/shard_lock.h"
-#include "passes/nodes/standard_passes.h"
 #include "plan/plan.h"
+#include "quality/auto_quality.h"
 #include "render/renderer.h"
 #include "scene/scene_parser.h"
 #include "util/error.h"
@@ -57,19 +58,21 @@ std::vector<std::string> changedKeys(const std::vector<Override>& before, const 
 struct RendererCache {
   std::unique_ptr<Renderer> renderer;
   const RenderItem* previous = nullptr;
+  std::shared_ptr<DataFiles> files = std::make_shared<DataFiles>();  // the whole job's data files
 };
 
 // Renders one item and returns its manifest files (relative path -> checksum), kernel ms and kernel
 // build ms.
 nlohmann::json renderOne(Device& device, RendererCache& cache, const RenderItem& item, const std::string& output_dir,
                          double& kernel_ms, double& build_ms) {
-  const Scene scene = loadScene(item.scene_file, item.overrides);
+  Scene scene = loadScene(item.scene_file, item.overrides);
+  scene.files = cache.files;  // read each data file once per job
   // Before any buffer exists: a render too big for the device fails here, naming its settings.
   checkRenderFitsDevice(device, scene, makePlan(scene));
   if (cache.renderer && cache.previous && cache.previous->scene_file == item.scene_file) {
     cache.renderer->update(scene, changedKeys(cache.previous->overrides, item.overrides));
   } else {
-    cache.renderer = std::make_unique<Renderer>(device, scene, standardPasses());
+    cache.renderer = std::make_unique<Renderer>(device, scene, shippedPasses());
   }
   cache.previous = &item;
   ItemOutputs outputs;

@@ -7,6 +7,7 @@
 #include "common/froxel_params.h"      // plain C struct, used by froxel.h
 #include "common/sea_bottom_params.h"  // plain C struct, used by sea_bottom.h
 #include "common/fourflow_params.h"    // plain C structs, used by fourflow.h
+#include "common/underwater_lamps_params.h"  // plain C structs of underwater_lamps.cl
 
 
 namespace seasim::kmath_f {
@@ -22,6 +23,7 @@ typedef float real;
 #include "common/sea_bottom.h"
 #include "common/ocean_spectrum.h"
 #include "common/underwater.h"
+#include "common/underwater_lamps.h"
 #include "common/caustic_texture.h"
 #include "common/caustic_map.h"
 #include "common/froxel.h"
@@ -42,6 +44,7 @@ typedef double real;
 #include "common/sea_bottom.h"
 #include "common/ocean_spectrum.h"
 #include "common/underwater.h"
+#include "common/underwater_lamps.h"
 #include "common/caustic_texture.h"
 #include "common/caustic_map.h"
 #include "common/froxel.h"

@@ -87,7 +87,7 @@ SeaBottomCaustics seaBottomCaustics(Device& device, const Scene& scene, OceanPas
   out.map_size = size != scene.quality.end() ? static_cast<int>(size->second.value) : 256;
   CausticsConfig config = splatConfig(scene, out.map_size);
   if (scene.bottom.type == BottomDesc::Type::HeightField) {
-    const HeightField field = loadHeightField(scene.bottom);
+    const HeightField field = loadHeightField(scene.bottom, scene.files.get());
     // The floor usually spans many ocean patches: one ray per surface texel keeps the walk count at
     // (N · tiles)² instead of 4× that (the map is coarser than the tiled surface anyway).
     config.supersample = 1;

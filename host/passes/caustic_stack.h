@@ -9,7 +9,7 @@
 
 #include "device/device.h"
 #include "passes/ocean_pass.h"
-#include "passes/render_frame.h"
+#include "render/frame_result.h"
 #include "scene/scene.h"
 #include "underwater/underwater_setup.h"
 

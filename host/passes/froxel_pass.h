@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "device/device.h"
-#include "passes/render_frame.h"
+#include "render/frame_result.h"
 #include "underwater/froxel_setup.h"
 #include "scene/scene.h"
 #include "underwater/underwater_setup.h"

@@ -8,6 +8,7 @@
 #include <fstream>
 
 #include "io/atomic_file.h"
+#include "io/data_files.h"
 #include "io/image_io.h"
 #include "util/error.h"
 #include "util/hash.h"
@@ -39,8 +40,8 @@ HeightField makeHeightField(int nx, int ny, double extent, std::vector<float> de
   return f;
 }
 
-HeightField loadHeightField(const BottomDesc& bottom) {
-  const Image img = readImage(bottom.heightfield);
+HeightField loadHeightField(const BottomDesc& bottom, DataFiles* files) {
+  const Image img = readImageVia(files, bottom.heightfield);
   if (img.width < 2 || img.height < 2 || img.channels < 1) {
     throw RuntimeError("height-field bottom '" + bottom.heightfield + "': need a grey image of at least 2 x 2 pixels, got " +
                        std::to_string(img.width) + " x " + std::to_string(img.height));

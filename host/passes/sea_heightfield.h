@@ -30,7 +30,8 @@ struct HeightField {
 
 // Reads bottom.heightfield. Throws RuntimeError naming the file when it cannot be read, is smaller
 // than 2 x 2 or holds a non-finite value.
-HeightField loadHeightField(const BottomDesc& bottom);
+// files: read the image through it (io/data_files.h), or directly when null.
+HeightField loadHeightField(const BottomDesc& bottom, DataFiles* files = nullptr);
 
 // A floor from nodes already in memory (tests, tools): depth[j * nx + i] in m, >= 0.
 HeightField makeHeightField(int nx, int ny, double extent, std::vector<float> depth);

@@ -8,7 +8,6 @@
 #include "device/kernel_source.h"
 #include "math/kernel_math.h"
 #include "passes/sea_heightfield.h"
-#include "passes/sea_auto.h"
 #include "spectral/jerlov.h"
 #include "util/error.h"
 #include "util/hash.h"
@@ -53,8 +52,8 @@ void SeaSecondPass::splitDirections(int n_d, int* n_theta, int* n_phi) {
 }
 
 SeaSecondPass::Config SeaSecondPass::configFromScene(const Scene& scene) {
-  // "auto" knobs: placeholders (n_z = 8, n_d = 512, from our 000 §6.1 runs in results/sea/) that the
-  // constructor replaces with the per-scene search of passes/sea_auto.h (cached per scene).
+  // "auto" knobs: placeholders (n_z = 8, n_d = 512, from our 000 §6.1 runs in results/sea/); the
+  // per-scene search of quality/sea_auto.h replaces them through passes/auto_quality.h.
   Config c;
   c.n_z = knob(scene, "sea_nz", 8);
   splitDirections(knob(scene, "sea_nd", 512), &c.n_theta, &c.n_phi);
@@ -63,10 +62,9 @@ SeaSecondPass::Config SeaSecondPass::configFromScene(const Scene& scene) {
   return c;
 }
 
-SeaSecondPass::SeaSecondPass(Device& device, const Scene& scene, const PassPlan& plan, const WavelengthGrid& grid,
-                             const Sensor& sensor, cl::Buffer& rgb, cl::Buffer* spectral)
-    : device_(device), config_(configFromScene(scene)), width_(scene.camera.width), height_(scene.camera.height) {
-  if (seaSecondWantsAuto(scene)) resolveSeaSecondAuto(device, scene, &config_);  // 000 §6.1 per scene (sea_auto.h)
+SeaSecondPass::SeaSecondPass(Device& device, const Scene& scene, const PassPlan& plan, const Config& config,
+                             const WavelengthGrid& grid, const Sensor& sensor, cl::Buffer& rgb, cl::Buffer* spectral)
+    : device_(device), config_(config), width_(scene.camera.width), height_(scene.camera.height) {
   namespace k = kmath_d;
   const CameraDesc& cam = scene.camera;
   SeaSecondParams p{};
@@ -112,7 +110,7 @@ SeaSecondPass::SeaSecondPass(Device& device, const Scene& scene, const PassPlan&
   const bool height_field = scene.bottom.type == BottomDesc::Type::HeightField;
   HeightField floor;
   if (height_field) {
-    floor = loadHeightField(scene.bottom);
+    floor = loadHeightField(scene.bottom, scene.files.get());
     p.bottom_depth = floor.params.max_depth;
     double c_min = 1e30;
     for (double c : water.c) c_min = std::min(c_min, c);

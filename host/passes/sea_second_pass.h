@@ -20,7 +20,7 @@ namespace seasim {
 class SeaSecondPass {
  public:
   // The quality knobs as the scene gives them; "auto" knobs get a placeholder here (n_z = 8, n_d = 512,
-  // map 32) that the constructor replaces by the per-scene 000 §6.1 search (passes/sea_auto.h).
+  // map 32); the per-scene 000 §6.1 search (quality/sea_auto.h) comes in through passes/auto_quality.h.
   struct Config {
     int n_z = 12;        // sampling planes (quality.sea_nz)
     int n_theta = 8;     // n_d = n_theta * n_phi sampling directions (quality.sea_nd)
@@ -35,8 +35,8 @@ class SeaSecondPass {
 
   // rgb: 3 floats per pixel to add into; spectral: band_count floats per pixel (only read with
   // scene.spectral.spectral_exr). Both are the buffers of the pass that ran before (sea_single).
-  SeaSecondPass(Device& device, const Scene& scene, const PassPlan& plan, const WavelengthGrid& grid,
-                const Sensor& sensor, cl::Buffer& rgb, cl::Buffer* spectral);
+  SeaSecondPass(Device& device, const Scene& scene, const PassPlan& plan, const Config& config,
+                const WavelengthGrid& grid, const Sensor& sensor, cl::Buffer& rgb, cl::Buffer* spectral);
   // Enqueues the four kernels; returns their total profiled time in ms (waits for them).
   double run();
   // Of the last run(): ms for the maps (VSF, radiance, scattering maps) and for the accumulation.

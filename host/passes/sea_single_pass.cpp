@@ -73,13 +73,13 @@ SeaSinglePass::SeaSinglePass(Device& device, const Scene& scene, const PassPlan&
                         plan.defines.end();
   if (caustics && !bottom_caustics) {
     throw RuntimeError("sea_single pass: the plan has bottom caustics (SEASIM_BOTTOM_CAUSTICS=1) but no caustic map "
-                       "was given (passes/render_frame.cpp makes it with seaBottomCaustics)");
+                       "was given (the renderer makes it with seaBottomCaustics)");
   }
   const bool waves =
       std::find(plan.defines.begin(), plan.defines.end(), std::string("SEASIM_HAS_WAVES=1")) != plan.defines.end();
   if (waves && !ocean) {
     throw RuntimeError("sea_single pass: the plan has FFT waves (SEASIM_HAS_WAVES=1) but no ocean normal map was "
-                       "given; run the ocean_fft pass first (passes/render_frame.cpp does)");
+                       "given; run the ocean_fft pass first (the renderer does)");
   }
   const CameraDesc& cam = scene.camera;
   SeaParams p{};
@@ -114,7 +114,7 @@ SeaSinglePass::SeaSinglePass(Device& device, const Scene& scene, const PassPlan&
     p.caustic_origin = static_cast<float>(bottom_caustics->origin);
   }
   const double sun_dir[3] = {sun.x, sun.y, sun.z};
-  const SeaSky sky = makeSeaSky(scene.sky, sun_dir, grid);
+  const SeaSky sky = makeSeaSky(scene.sky, sun_dir, grid, scene.files.get());
   p.sky_width = sky.width;
   p.sky_height = sky.height;
   p.sky_scale = static_cast<float>(sky.scale);
@@ -251,7 +251,7 @@ SeaSinglePass::SeaSinglePass(Device& device, const Scene& scene, const PassPlan&
       kernel_.setArg(8, spectral_);
     }
     if (scene.bottom.type == BottomDesc::Type::HeightField) {  // 000 §5.4: the kernel's last two arguments
-      const HeightFieldBuffers hf = uploadHeightField(device, loadHeightField(scene.bottom));
+      const HeightFieldBuffers hf = uploadHeightField(device, loadHeightField(scene.bottom, scene.files.get()));
       hf_params_ = hf.params;
       hf_depth_ = hf.depth;
       const cl_uint args = kernel_.getInfo<CL_KERNEL_NUM_ARGS>();

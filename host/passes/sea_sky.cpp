@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cmath>
 
+#include "io/data_files.h"
 #include "io/image_io.h"
 #include "io/tonemap.h"
 #include "math/kernel_math.h"
@@ -33,7 +34,7 @@ bool linearFormat(const std::string& path) {
 
 }  // namespace
 
-SeaSky makeSeaSky(const SkyDesc& desc, const double sun_dir[3], const WavelengthGrid& grid) {
+SeaSky makeSeaSky(const SkyDesc& desc, const double sun_dir[3], const WavelengthGrid& grid, DataFiles* files) {
   SeaSky sky;
   sky.model = skyModelDefine(desc);
   sky.texels.assign(4, 0.0);
@@ -55,7 +56,7 @@ SeaSky makeSeaSky(const SkyDesc& desc, const double sun_dir[3], const Wavelength
     const double mean = kd::sky_preetham_cosine_mean(sky.texels.data(), sun, 256, 512);
     sky.scale = mean > 0 ? 1.0 / mean : 0.0;
   } else if (sky.model == 2) {
-    const Image img = readImage(desc.image);
+    const Image img = readImageVia(files, desc.image);
     if (img.width < 2 || img.height < 2 || img.channels < 1) {
       throw RuntimeError("sky image '" + desc.image + "': expected a latitude-longitude image of at least 2 x 2 texels");
     }

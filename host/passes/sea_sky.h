@@ -26,6 +26,7 @@ int skyModelDefine(const SkyDesc& sky);
 // Reads the image for model = "image": EXR/HDR/PFM/NPY as linear values, other formats (PNG, JPEG)
 // as sRGB-encoded and decoded to linear; grey images are used for R, G and B. sun: unit, towards the
 // sun (the analytic sky's indicatrix). RuntimeError naming the file if it cannot be used.
-SeaSky makeSeaSky(const SkyDesc& sky, const double sun_dir[3], const WavelengthGrid& grid);
+// files: read the sky image through it (io/data_files.h), or directly when null.
+SeaSky makeSeaSky(const SkyDesc& sky, const double sun_dir[3], const WavelengthGrid& grid, DataFiles* files = nullptr);
 
 }  // namespace seasim

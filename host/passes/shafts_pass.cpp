@@ -6,7 +6,7 @@
 #include <cstdio>
 
 #include "math/kernel_math.h"
-#include "passes/shafts_auto.h"
+#include "spectral/lamp_spectrum.h"
 #include "util/error.h"
 
 extern "C" {
@@ -53,37 +53,6 @@ ShaftsPass::Config ShaftsPass::configFromScene(const Scene& scene) {
   c.subplanes = knob(scene, "shafts_subplanes", 6);
   c.shadow_map_size = knob(scene, "shadow_map_size", 512);
   c.table_size = std::max(2, knob(scene, "shafts_table_size", 256));
-  return c;
-}
-
-ShaftsPass::Config ShaftsPass::configFor(Device& device, const Scene& scene, const PassPlan& plan) {
-  Config c = configFromScene(scene);
-  auto automatic = [&](const char* name) {
-    const auto it = scene.quality.find(name);
-    return it != scene.quality.end() && it->second.automatic;
-  };
-  if (!automatic("shafts_planes") && !automatic("shafts_subplanes")) return c;
-  ShaftsAutoOptions options;
-  const auto budget = scene.quality.find("shafts_error_budget");
-  if (budget != scene.quality.end()) options.budget_levels = budget->second.value;
-  const ShaftsAutoResult r = chooseShaftsQuality(device, scene, plan, options);
-  c.planes = r.planes;
-  c.subplanes = r.subplanes;
-  if (!r.from_cache) {
-    std::fprintf(stderr,
-                 "shafts: auto quality n = %d, m = %d: RMS %.3f levels vs the ray-marched reference at %dx%d "
-                 "(budget %g); %zu settings searched in %.1f s%s%s\n",
-                 r.planes, r.subplanes, r.rmse_8bit, r.search_width, r.search_height, r.budget_levels,
-                 r.candidates.size(), r.search_ms * 1e-3, r.cache_file.empty() ? "" : ", cached in ",
-                 r.cache_file.c_str());
-  }
-  if (!r.met_budget) {
-    std::fprintf(stderr,
-                 "shafts: warning: no (n, m) reaches RMS %g levels on '%s'; using the most accurate, n = %d, m = %d "
-                 "(%.3f levels). The floor comes from quality.shadow_map_size / shafts_table_size, or raise "
-                 "quality.shafts_error_budget\n",
-                 r.budget_levels, scene.name.c_str(), r.planes, r.subplanes, r.rmse_8bit);
-  }
   return c;
 }
 
@@ -142,13 +111,13 @@ ShaftsPass::ShaftsPass(Device& device, const Scene& scene, const PassPlan& plan,
     set4(L.direction, normalize(l.direction));
     set4(L.right, lr);
     set4(L.up, lu);
-    set4(L.color, l.color * l.intensity);
+    set4(L.color, shaftsLampRgb(l, scene.spectral, scene.files.get()));  // spectral/lamp_spectrum.h
     L.cos_cone = static_cast<float>(std::cos(l.cone));
     L.cos_inner = static_cast<float>(std::cos(std::max(0.0, l.cone - l.falloff)));
     L.tan_cone = static_cast<float>(std::tan(l.cone));
     L.light_map_offset = -1;
     if (!l.light_map.empty()) {
-      const LightMap map = loadLightMap(l.light_map);
+      const LightMap map = loadLightMap(l.light_map, scene.files.get());
       L.light_map_offset = static_cast<int>(maps.size());
       L.light_map_width = map.width;
       L.light_map_height = map.height;

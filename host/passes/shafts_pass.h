@@ -26,20 +26,14 @@ class ShaftsPass {
     int table_size = 256;       // F table entries; h table is table_size² (table mode)
   };
   // The quality knobs of the scene ([quality] shafts_planes, shafts_subplanes, shadow_map_size,
-  // shafts_table_size); "auto" takes the paper's setting n = 30, m = 6 here (no device to search on).
+  // shafts_table_size); "auto" takes the paper's setting n = 30, m = 6 here. The per-scene search
+  // of "auto" (host/quality/shafts_auto.h) comes in through passes/auto_quality.h.
   static Config configFromScene(const Scene& scene);
-  // configFromScene, and when shafts_planes or shafts_subplanes is "auto", the cheapest (n, m) whose
-  // RMS error is under quality.shafts_error_budget (host/passes/shafts_auto.h: a search at reduced
-  // resolution against the ray-marched reference, cached per scene). Prints one line to stderr
-  // when it searched, and a warning when nothing met the budget.
-  static Config configFor(Device& device, const Scene& scene, const PassPlan& plan);
   // The ranges of the h(s, t) table (table mode) the pass uses: shaftsTableRange(scene).
   static ShaftsRange rangeFor(const Scene& scene);
 
   // `plan` is the "shafts" pass of makePlan(scene): its kernel file and defines.
   ShaftsPass(Device& device, const Scene& scene, const PassPlan& plan, const Config& config);
-  ShaftsPass(Device& device, const Scene& scene, const PassPlan& plan)
-      : ShaftsPass(device, scene, plan, configFor(device, scene, plan)) {}
 
   // Enqueues the shadow maps (if any objects) and the shafts kernel, waits; returns total kernel ms.
   double run();

@@ -31,6 +31,7 @@ class UnderwaterPass {
   cl::Buffer& spectral() { return spectral_; }
   cl::Buffer& geometry() { return geom_; }  // float4 (S, n) per pixel
   cl::Buffer& sunVisibility() { return vis_; }  // float per pixel: shadow ray × caustic factor
+  cl::Buffer& material() { return material_; }  // int per pixel: object index or UW_MAT_*
 
  private:
   double enqueue(cl::Kernel& kernel, const char* what);

@@ -117,6 +117,10 @@ std::vector<BufferEstimate> estimateBuffers(const Scene& s, const Plan& plan) {
       const double C = knob(s, "caustic_map_size", 256);
       out.push_back({p.name, "caustic maps", 2 * 4 * C * C,
                      {"quality.caustic_map_size", "quality.caustic_map_size"}, {C, C}});
+    } else if (p.name == "underwater_lamps") {
+      // Its own copies of the underwater parameter blocks are per band, not per pixel: only the spectra.
+      out.push_back({p.name, "lamp spectra (one per spotlight and band)", 4 * lights * nb,
+                     {"spotlights (count)", "spectral.count"}, {lights, nb}});
     } else if (p.name == "ocean_fft") {
       const double N = s.surface.grid;
       // h0, spectra, height, slope, displacement, normal, Jacobian, folding, FFT scratch (ocean_pass).

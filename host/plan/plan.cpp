@@ -59,7 +59,7 @@ Plan makePlan(const Scene& scene) {
   const bool underwater = scene.water.present && scene.camera.position.y < 0.0;
   const bool sea_view = scene.water.present && !underwater;
   const bool waves = scene.surface.type == SurfaceDesc::Type::Fft && scene.water.present;
-  // Spotlights in or over water are not composed yet (below): in air only.
+  // The air shafts pass: spotlights in a scene without water (under water: underwater_lamps, below).
   const bool lights = !scene.spotlights.empty() && scene.air.present && !scene.water.present;
   const bool objects = !scene.objects.empty();
   const bool spectral_out = scene.spectral.spectral_exr;
@@ -203,16 +203,26 @@ Plan makePlan(const Scene& scene) {
                             flag("SEASIM_SPECTRAL_OUTPUT", spectral_out)},
                            reads, {"rgb"}, "camera below the surface: T L_s + L_MS per band (002 eq. 4.7)", true, ""});
   }
-  // Spotlights and water in one scene (divers' torches, ROV lamps, a lamp over the sea) need the
-  // sampling planes in the water's spectral medium, which are not built: a planned pass that is not
-  // implemented stops the render before anything is written, naming the lamp's table.
-  if (!scene.spotlights.empty() && scene.water.present) {
+  // Spotlights under water (divers' torches, ROV lamps): the sampling planes in the water's spectral
+  // medium, added into the frame kd_multiple wrote (it reads "rgb" so that it runs after).
+  if (underwater && !scene.spotlights.empty()) {
+    plan.passes.push_back({"underwater_lamps", "underwater_lamps.cl",
+                           {flag("SEASIM_HAS_OBJECTS", objects), flag("SEASIM_SPECTRAL_OUTPUT", spectral_out)},
+                           {"gbuffer", "rgb"}, {"rgb"},
+                           "[[spotlights]] under water: 001's sampling planes with the water's sigma_s, sigma_t, HG",
+                           true, ""});
+  }
+  // Spotlights over the sea seen from above need the lamp's light through the surface, which is not
+  // modelled: a planned pass that is not implemented stops the render before anything is written,
+  // naming the lamp's table.
+  if (sea_view && !scene.spotlights.empty()) {
     const SourceLoc& at = scene.spotlights.front().loc;
     plan.passes.push_back({"shafts", "shafts.cl", {}, {"scene"}, {"rgb"},
-                           "[[spotlights]] at " + at.file + ":" + std::to_string(at.line) + " in a scene with [water]",
+                           "[[spotlights]] at " + at.file + ":" + std::to_string(at.line) +
+                               " with the camera above [water]",
                            false,
-                           "spotlights in or over water are not composed with the water models yet (issue 12); "
-                           "remove the [[spotlights]] tables or the [water] table"});
+                           "spotlights are composed with the underwater view (camera below y = 0), not with the sea "
+                           "seen from above; move the camera below the surface or remove the [[spotlights]] tables"});
   }
   // quality.fast_math: the light-transport passes are built with -cl-fast-relaxed-math (the define
   // tells Device::program and the kernels). Not the NaN/Inf check below (finite-only maths may assume

@@ -98,7 +98,7 @@ Image renderSeaReference(const Scene& scene, int steps) {
   HeightField floor;
   double floor_step = 0;
   if (height_field) {
-    floor = loadHeightField(scene.bottom);
+    floor = loadHeightField(scene.bottom, scene.files.get());
     floor_step = floor.params.extent / std::max(floor.params.nx, floor.params.ny) / 64.0;
   }
 
@@ -120,7 +120,7 @@ Image renderSeaReference(const Scene& scene, int steps) {
   const double pixel_angle = 2 * tan_half / cam.height;
   const double sun_slope_variance = scene.sun.angular_radius * scene.sun.angular_radius / 16;
   const double sun_dir[3] = {sun.x, sun.y, sun.z};
-  const SeaSky sea_sky = makeSeaSky(scene.sky, sun_dir, grid);
+  const SeaSky sea_sky = makeSeaSky(scene.sky, sun_dir, grid, scene.files.get());
 
   // The sky's shape towards d (common/sky.h), then one band's radiance with the sun's disk.
   auto shape = [&](k::real3 d) -> k::real3 {

@@ -64,7 +64,7 @@ Image renderSeaSecondReference(const Scene& scene, const SeaSecondReferenceSetti
   HeightField floor;
   double floor_step = 0, c_min = 1e30;
   if (height_field) {
-    floor = loadHeightField(scene.bottom);
+    floor = loadHeightField(scene.bottom, scene.files.get());
     floor_step = floor.params.extent / std::max(floor.params.nx, floor.params.ny) / 64.0;
     for (double c : water.c) c_min = std::min(c_min, c);
     c_min = std::max(c_min, 1e-6);

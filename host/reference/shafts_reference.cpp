@@ -10,6 +10,7 @@
 #include "io/image_io.h"
 #include "io/tonemap.h"
 #include "math/kernel_math.h"
+#include "spectral/lamp_spectrum.h"
 #include "util/error.h"
 
 namespace seasim {
@@ -66,12 +67,12 @@ std::vector<Lamp> makeLamps(const Scene& scene) {
     lamp.dir = r3(normalize(l.direction));
     lamp.right = r3(right);
     lamp.up = r3(up);
-    lamp.color = r3(l.color) * l.intensity;
+    lamp.color = r3(shaftsLampRgb(l, scene.spectral, scene.files.get()));  // spectral/lamp_spectrum.h
     lamp.cos_cone = std::cos(l.cone);
     lamp.cos_inner = std::cos(std::max(0.0, l.cone - l.falloff));
     lamp.tan_cone = std::tan(l.cone);
     if (!l.light_map.empty()) {
-      lamp.map = loadLightMap(l.light_map);
+      lamp.map = loadLightMap(l.light_map, scene.files.get());
       lamp.has_map = true;
     }
     lamps.push_back(std::move(lamp));

@@ -87,6 +87,19 @@ UnderwaterReferenceResult renderUnderwaterReference(Device& device, const Underw
     kernel.setArg(7, static_cast<cl_int>(settings.max_bounces));
     kernel.setArg(8, mean_buf);
     kernel.setArg(9, m2_buf);
+    UnderwaterLamps no_lamps;  // lamp_count 0, one zero entry per buffer
+    no_lamps.lamps.push_back(UwLamp{});
+    no_lamps.spectra.push_back(0.0f);
+    const UnderwaterLamps& lamps = settings.lamps ? *settings.lamps : no_lamps;
+    cl::Buffer lamp_params(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(UwLampParams),
+                           const_cast<UwLampParams*>(&lamps.params));
+    cl::Buffer lamp_buf(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(UwLamp) * lamps.lamps.size(),
+                        const_cast<UwLamp*>(lamps.lamps.data()));
+    cl::Buffer lamp_spectra(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(float) * lamps.spectra.size(),
+                            const_cast<float*>(lamps.spectra.data()));
+    kernel.setArg(10, lamp_params);
+    kernel.setArg(11, lamp_buf);
+    kernel.setArg(12, lamp_spectra);
     const size_t local = 8;
     const cl::NDRange global((static_cast<size_t>(p.width) + local - 1) / local * local,
                              (static_cast<size_t>(p.height) + local - 1) / local * local);

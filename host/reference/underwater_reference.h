@@ -11,13 +11,15 @@
 //    the check of both the path tracer's single-scattering mode and the froxel integrator.
 //
 // Both read the scene as the underwater passes do (UnderwaterSetup: common/underwater_params.h,
-// common/underwater.h): flat surface, no caustics.
+// common/underwater.h): flat surface, no caustics. The path tracer also lights the scene's spotlights
+// (settings.lamps, as the underwater_lamps pass does), to all orders of scattering.
 #pragma once
 #include <functional>
 
 #include "device/device.h"
 #include "io/image.h"
 #include "math/vec3.h"
+#include "underwater/lamps_setup.h"
 #include "underwater/underwater_setup.h"
 
 namespace seasim {
@@ -33,6 +35,9 @@ struct UnderwaterReferenceSettings {
   unsigned seed = 1;           // the same seed traces the same paths, whatever `batch` is
   bool camera_above = false;   // the camera is above the surface (y > 0): the sea seen from above,
                                // R L_sky + (1 - R)/n² × the water's paths (reference.cl); else y < 0
+  // The scene's spotlights (underwater/lamps_setup.h: makeUnderwaterLamps), seen by next-event
+  // estimation at every vertex; null: no lamps. Must outlive the call.
+  const UnderwaterLamps* lamps = nullptr;
   std::function<void(int done, int total)> progress;  // after each launch: samples done, samples asked
 };
 

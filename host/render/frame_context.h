@@ -1,7 +1,8 @@
 // frame_context.h — what every pass of a frame shares besides the named resources: the device, the
 // scene as it stands after the last update, and the scene-wide products that are costly to make
 // (wavelength grid, sensor weights from the camera CSVs, the underwater parameter blocks). Each
-// product is made on first use and kept until an update changes a key it depends on.
+// product is made on first use and kept until an update changes a key it depends on. Its scene
+// always has data files (Scene::files): the scene's own, or one made here and kept across updates.
 #pragma once
 #include <memory>
 #include <optional>

@@ -3,6 +3,7 @@
 // scenes/README.md documents every key, its unit and its default; keep the two in step.
 #pragma once
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -11,6 +12,8 @@
 #include "spectral/spectrum.h"
 
 namespace seasim {
+
+class DataFiles;  // io/data_files.h
 
 // Where a value came from, for error messages and reports ("scenes/a.toml:12").
 struct SourceLoc {
@@ -113,6 +116,12 @@ struct SpotlightDesc {
   double intensity = 100.0;   // W/sr on the axis
   Vec3 color{1, 1, 1};        // linear RGB tint
   std::string light_map;      // image path (resolved), optional: the lamp's intensity distribution
+  // The lamp's spectrum (spectral/lamp_spectrum.h): a relative spectral distribution normalised to 1 at
+  // 560 nm, intensity then being W sr^-1 nm^-1 there. temperature_k > 0: Planck's law at that colour
+  // temperature; spectrum: a CSV (nm, relative power; resolved path). Neither: equal energy.
+  double temperature_k = 0.0;
+  std::string spectrum;
+  bool has_color = false;     // `color` was written in the file (under water it is an error)
   SourceLoc loc;
 };
 
@@ -201,6 +210,10 @@ struct Scene {
   // in scenes/README.md ([quality]).
   std::map<std::string, Knob> quality;
   std::vector<ImageInputRef> images;  // every image file named above, in file order
+  // The data files (camera curves, lamp spectra, light maps, sky images, height fields) as read once
+  // for this process (io/data_files.h); shared by the copies of a scene. Null: each reader reads the
+  // file itself (the Renderer makes one for a scene that has none).
+  std::shared_ptr<DataFiles> files;
 };
 
 }  // namespace seasim

@@ -478,7 +478,35 @@ class SceneParser {
     r.check(s.intensity >= 0, "intensity", "must be >= 0 W/sr, got " + fmt(s.intensity));
     s.color = r.vec3("color", s.color);
     r.check(s.color.x >= 0 && s.color.y >= 0 && s.color.z >= 0, "color", "components must be >= 0");
+    s.has_color = r.has("color");
     s.light_map = texture(r, "light_map", false);
+    if (r.has("temperature_k")) {
+      s.temperature_k = r.number("temperature_k", 0.0);
+      r.check(s.temperature_k >= 500 && s.temperature_k <= 50000, "temperature_k",
+              "must be in [500, 50000] K, got " + fmt(s.temperature_k));
+    }
+    if (r.has("spectrum")) {
+      r.check(s.temperature_k == 0, "spectrum", "give either spectrum or temperature_k, not both");
+      const std::string p = r.string("spectrum", "");
+      r.check(!p.empty(), "spectrum", "must not be empty");
+      s.spectrum = resolveRelativeTo(scene_.file, p);
+      const std::string problem = inputFileProblem(s.spectrum);
+      r.check(problem.empty(), "spectrum", problem);
+    }
+    const bool spectral_lamp = s.temperature_k > 0 || !s.spectrum.empty();
+    r.check(!(spectral_lamp && s.has_color), "color",
+            "a lamp with temperature_k or spectrum takes its colour from that spectrum; remove color");
+    // Under water the lamp shines in the water's spectral medium (passes/underwater_lamps_pass.h):
+    // its colour is a spectrum, and it must be in the water (a lamp in air would light the water
+    // through the refracting surface, which is not modelled).
+    if (scene_.water.present && scene_.camera.position.y < 0) {
+      r.check(s.position.y < 0, "position",
+              "a lamp at or above the water surface (y = " + fmt(s.position.y) +
+                  " >= 0) is not modelled under water (its light would refract through the surface); put it "
+                  "below y = 0");
+      r.check(!s.has_color, "color", "under water a lamp is spectral: give temperature_k or spectrum instead of color");
+      r.check(s.light_map.empty(), "light_map", "light maps are not supported for lamps under water yet");
+    }
     r.finish();
     scene_.spotlights.push_back(s);
   }
@@ -621,6 +649,8 @@ class SceneParser {
     scene_.quality["shafts_exact"] = Knob{false, r.boolean("shafts_exact", false) ? 1.0 : 0.0};
     // Wave normals filtered over each pixel's footprint (kernels/common/sea_lean.h): on by default.
     scene_.quality["wave_filter"] = Knob{false, r.boolean("wave_filter", true) ? 1.0 : 0.0};
+    // Spotlights under water see the water delta-M scaled (underwater/lamps_setup.h): a switch, 0 or 1.
+    scene_.quality["lamps_delta_m"] = Knob{false, r.boolean("lamps_delta_m", true) ? 1.0 : 0.0};
     // Kernels built with -cl-fast-relaxed-math: true, false or "auto" (the default), which the planner
     // turns on where the shipped scenes were measured within 0.05 of an 8-bit level of the exact-maths
     // image (fastMathFor in host/plan; results/BENCHMARKS.md has the table).
@@ -633,7 +663,7 @@ class SceneParser {
       }
     }
     scene_.quality["fast_math"] = fast;
-    // RMS error budget of the shafts `auto` quality, 8-bit levels (host/passes/shafts_auto.h): a number, not a knob.
+    // RMS error budget of the shafts `auto` quality, 8-bit levels (host/quality/shafts_auto.h): a number, not a knob.
     const double budget = r.number("shafts_error_budget", 1.0);
     r.check(budget > 0 && budget <= 255, "shafts_error_budget", "must be in (0, 255] levels, got " + fmt(budget));
     scene_.quality["shafts_error_budget"] = Knob{false, budget};

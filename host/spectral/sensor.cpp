@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <functional>
 
+#include "io/data_files.h"
 #include "spectral/csv_table.h"
 #include "spectral/von_kries.h"
 #include "util/error.h"
@@ -90,10 +91,10 @@ std::string unknownCameraMessage(const std::string& name, const std::string& cam
          " (cameras: " + list + "); other curves go in a folder named by spectral.camera_dir or $SEASIM_CAMERA_DIR";
 }
 
-CameraCurves loadCamera(const std::string& name, const std::string& camera_dir) {
+CameraCurves loadCamera(const std::string& name, const std::string& camera_dir, DataFiles* files) {
   const std::string path = cameraFile(name, camera_dir);
   if (path.empty()) throw RuntimeError(unknownCameraMessage(name, camera_dir));
-  const CsvTable t = loadCsv(path);
+  const CsvTable t = readCsvVia(files, path);
   for (const char* ch : {"r", "g", "b"}) {
     const auto& col = t.column(ch);
     for (std::size_t row = 0; row < t.rows(); ++row)
@@ -104,7 +105,7 @@ CameraCurves loadCamera(const std::string& name, const std::string& camera_dir) 
 }
 
 Sensor makeSensor(const std::string& name, const WavelengthGrid& grid, bool white_balance,
-                  const std::string& camera_dir) {
+                  const std::string& camera_dir, DataFiles* files) {
   const double lo = grid.minNm(), hi = grid.maxNm();
   const Spectrum illum = d65();
   std::array<Spectrum, 3> curves;  // x̄ȳz̄ or camera r, g, b
@@ -118,7 +119,7 @@ Sensor makeSensor(const std::string& name, const WavelengthGrid& grid, bool whit
     const CieCmf& cmf = cie1931Cmf();
     curves = {cmf.x_bar, cmf.y_bar, cmf.z_bar};
   } else {
-    CameraCurves cam = loadCamera(name, camera_dir);
+    CameraCurves cam = loadCamera(name, camera_dir, files);
     curves = {std::move(cam.r), std::move(cam.g), std::move(cam.b)};
   }
 

@@ -43,6 +43,8 @@
 
 namespace seasim {
 
+class DataFiles;  // io/data_files.h
+
 struct Sensor {
   std::string name;
   bool white_balance = true;
@@ -60,7 +62,8 @@ struct CameraCurves {
 };
 // RuntimeError for an unknown name (naming the folders searched and listing the known names), a
 // malformed file or a negative value.
-CameraCurves loadCamera(const std::string& name, const std::string& camera_dir = "");
+// files: read the CSV through it (io/data_files.h), or directly when null.
+CameraCurves loadCamera(const std::string& name, const std::string& camera_dir = "", DataFiles* files = nullptr);
 
 // Sorted file stems of <dir>/*.csv over cameraDirs(camera_dir): the camera names makeSensor accepts.
 std::vector<std::string> cameraNames(const std::string& camera_dir = "");
@@ -75,7 +78,7 @@ std::string unknownCameraMessage(const std::string& name, const std::string& cam
 // over the grid's range.
 // camera_dir: the scene's spectral.camera_dir (absolute, "" for none).
 Sensor makeSensor(const std::string& name, const WavelengthGrid& grid, bool white_balance,
-                  const std::string& camera_dir = "");
+                  const std::string& camera_dir = "", DataFiles* files = nullptr);
 
 // The sun's spectral irradiance per band: D65(λ_i) × scale (D65 = 1 at 560 nm), W m^-2 nm^-1.
 // D65 is held at its end values outside 300–780 nm. scale must be finite and >= 0.

@@ -17,6 +17,11 @@
  *   isotropic         cos θ = 1 - 2u, pdf 1/(4π)
  *   cosine hemisphere about a normal, pdf cos θ/π (Lambertian reflection: weight = albedo)
  *   Fresnel choice    reflect with probability F (weight 1 either way)
+ *   equiangular       a distance on a ray segment with pdf ∝ 1/(r² + (t - a)²) about a point light
+ *                     (Kulla & Fajardo 2012, "Importance sampling techniques for path tracing in
+ *                     participating media"): uniform in the angle the light sees, which cancels the
+ *                     1/s² of a point light in the medium (free-flight sampling leaves it, and its
+ *                     variance grows as 1/h³ with the ray's distance h to the light)
  * Directions are built from 1 - cos θ (not cos θ) so sin θ = sqrt((1-cos)(1+cos)) keeps its digits
  * for small angles.
  */
@@ -117,4 +122,21 @@ SEASIM_FN real3 pt_sample_cosine(real3 n, real u1, real u2) {
  * over n² is conserved across the interface). */
 SEASIM_FN int pt_fresnel_reflects(real d_y, real ior, real u) {
   return u < fresnel_reflectance(d_y, ior, R(1.0)) ? 1 : 0;
+}
+
+/* Equiangular distance on [t0, t1] (t1 may be UW_INFINITE) of the ray o + t d about a light at closest
+ * approach parameter a and distance r > 0 (r = max(h, the light's radius): any r > 0 gives a valid pdf):
+ * θ uniform in [θ0, θ1], θ = atan((t - a)/r), t = a + r tan θ; writes pdf(t) = r / ((θ1 - θ0)(r² + (t - a)²)).
+ * u < 1 keeps θ < π/2, so t is finite. Returns t; *pdf = 0 when the segment is empty. */
+SEASIM_FN real pt_sample_equiangular(real a, real r, real t0, real t1, real u, real* pdf) {
+  const real th0 = atan((t0 - a) / r);
+  const real th1 = t1 >= UW_INFINITE ? R(0.5) * SEASIM_PI : atan((t1 - a) / r);
+  if (!(th1 > th0)) {
+    *pdf = R(0.0);
+    return t0;
+  }
+  const real th = th0 + u * (th1 - th0);
+  const real x = r * tan(th);
+  *pdf = r / ((th1 - th0) * (r * r + x * x));
+  return a + x;
 }

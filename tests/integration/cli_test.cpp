@@ -116,6 +116,25 @@ TEST_F(Cli, RenderThatCannotBeDoneFailsNamingTheKeyAndWritesNothing) {
   EXPECT_FALSE(fs::exists(dir_ / "hf" / "image.exr"));
 }
 
+TEST_F(Cli, LampAboveTheSurfaceUnderWaterIsRefusedNamingItsPosition) {
+  // Spotlights under water (issue 12) must be in the water: a lamp above y = 0 would light the water
+  // through the refracting surface, which is not modelled. Refused before anything is written.
+  const std::string scene = write("lamp_above.toml", "[camera]\nposition = [0, -2, 0]\nwidth = 32\nheight = 24\n"
+                                                     "[water]\njerlov = \"IB\"\n[[spotlights]]\n"
+                                                     "position = [0, 1, 0]\ntemperature_k = 3200\n");
+  const Result r = run("render " + scene + " --device pocl -o " + (dir_ / "above").string());
+  EXPECT_NE(r.code, 0);
+  EXPECT_NE(r.output.find("lamp_above.toml:8: key 'spotlights[0].position'"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir_ / "above" / "report.json"));
+  // Moved below the surface it renders, with the lamps' pass after the underwater shading.
+  const std::string below = write("lamp_below.toml", "[camera]\nposition = [0, -2, 0]\nwidth = 32\nheight = 24\n"
+                                                     "[water]\njerlov = \"IB\"\n[[spotlights]]\n"
+                                                     "position = [0, -1, 0]\ntemperature_k = 3200\n");
+  const Result ok = run("render " + below + " --device pocl -o " + (dir_ / "below").string());
+  EXPECT_EQ(ok.code, 0) << ok.output;
+  EXPECT_TRUE(fs::exists(dir_ / "below" / "report.json"));
+}
+
 TEST_F(Cli, WavySeaRenderRunsTheOceanBeforeTheSeaPass) {
   // FFT waves seen from above: the ocean's normals feed sea_single (issue 3).
   const Result r = run("render " + kRepo + "/scenes/deep_ocean.toml --set 'surface.type=\"fft\"' --set surface.grid=64 "

@@ -9,7 +9,7 @@
 #include <cmath>
 #include <string>
 
-#include "passes/render_frame.h"
+#include "quality/render_frame.h"
 #include "plan/plan.h"
 #include "reference/compare.h"
 #include "scene/scene_parser.h"

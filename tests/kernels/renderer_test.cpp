@@ -11,9 +11,10 @@
 #include <string>
 #include <vector>
 
+#include "io/data_files.h"
 #include "io/image_io.h"
 #include "jobs/runner.h"
-#include "passes/nodes/standard_passes.h"
+#include "quality/auto_quality.h"
 #include "render/radiance_target.h"
 #include "render/renderer.h"
 #include "scene/scene_parser.h"
@@ -44,7 +45,7 @@ bool has(const std::vector<std::string>& v, const std::string& s) { return std::
 
 // The frame a new renderer makes of the same scene file and overrides.
 FrameResult fresh(const char* scene, const std::vector<Override>& overrides) {
-  Renderer renderer(test::testDevice(), sceneFile(scene), overrides, standardPasses());
+  Renderer renderer(test::testDevice(), sceneFile(scene), overrides, shippedPasses());
   return renderer.render();
 }
 
@@ -57,7 +58,7 @@ double maxRelDiff(const Image& a, const Image& b) {
 }
 
 TEST(Renderer, FirstFrameRunsEveryPassOfThePlanOnce) {
-  Renderer renderer(test::testDevice(), sceneFile("wavy_sea.toml"), small({}), standardPasses());
+  Renderer renderer(test::testDevice(), sceneFile("wavy_sea.toml"), small({}), shippedPasses());
   const FrameResult f = renderer.render();
   EXPECT_EQ(renderer.lastExecuted(), (std::vector<std::string>{"ocean_fft", "sea_single", "nonfinite_check"}));
   EXPECT_EQ(renderer.lastPrepared(), renderer.lastExecuted());
@@ -74,7 +75,7 @@ TEST(Renderer, SurfaceTimeRerunsOnlyOceanCausticsAndSea) {
   const std::vector<Override> base =
       small({set("bottom.type", "\"flat\""), set("bottom.depth", "6.0"), set("sea.bottom_caustics", "true"),
              set("surface.grid", "64")});
-  Renderer renderer(test::testDevice(), sceneFile("wavy_sea.toml"), base, standardPasses());
+  Renderer renderer(test::testDevice(), sceneFile("wavy_sea.toml"), base, shippedPasses());
   const FrameResult first = renderer.render();
   ASSERT_TRUE(has(renderer.lastExecuted(), "caustics"));
   renderer.update({set("surface.time", "2.5")});
@@ -106,7 +107,7 @@ TEST(Renderer, UpdateComparesWithTheOverrideInEffect) {
 // A quality knob of sea_single: only it is set up and runs again; the ocean does not run.
 TEST(Renderer, SeaLutKnobRerunsOnlyTheSeaPass) {
   const std::vector<Override> base = small({set("surface.grid", "64")});
-  Renderer renderer(test::testDevice(), sceneFile("wavy_sea.toml"), base, standardPasses());
+  Renderer renderer(test::testDevice(), sceneFile("wavy_sea.toml"), base, shippedPasses());
   (void)renderer.render();
   renderer.update({set("quality.sea_lut_size", "9")});
   const FrameResult f = renderer.render();
@@ -121,7 +122,7 @@ TEST(Renderer, SeaLutKnobRerunsOnlyTheSeaPass) {
 // sea_single must run again first (else L² would be added twice); the frame equals a fresh one.
 TEST(Renderer, SecondOrderKnobRerunsTheImageItAddsInto) {
   const std::vector<Override> base = small({set("quality.sea_map_size", "8"), set("quality.sea_nz", "4")});
-  Renderer renderer(test::testDevice(), sceneFile("open_ocean.toml"), base, standardPasses());
+  Renderer renderer(test::testDevice(), sceneFile("open_ocean.toml"), base, shippedPasses());
   (void)renderer.render();
   renderer.update({set("quality.sea_nz", "6")});
   const FrameResult f = renderer.render();
@@ -140,7 +141,7 @@ std::vector<Override> smallSeabed() {
 // Under water, a new sun rewrites the G-buffer pass's parameter blocks and runs it again (the sun
 // visibility changes) but does not set it up again.
 TEST(Renderer, UnderwaterSunDoesNotRebuildTheRaycast) {
-  Renderer renderer(test::testDevice(), sceneFile("seabed.toml"), smallSeabed(), standardPasses());
+  Renderer renderer(test::testDevice(), sceneFile("seabed.toml"), smallSeabed(), shippedPasses());
   const FrameResult first = renderer.render();
   ASSERT_TRUE(has(renderer.lastPrepared(), "raycast"));
   renderer.update({set("sun.zenith_deg", "55")});
@@ -154,10 +155,28 @@ TEST(Renderer, UnderwaterSunDoesNotRebuildTheRaycast) {
   EXPECT_EQ(f.rgb.pixels, fresh("seabed.toml", at).rgb.pixels);
 }
 
+// Data files are read once per renderer (and per job, which shares them): a change of the band count
+// makes the sensor again from the camera curves already read; a new Renderer on a scene that carries
+// the same DataFiles reads nothing either.
+TEST(Renderer, CameraCurvesAreReadOnceAcrossUpdates) {
+  Renderer renderer(test::testDevice(), sceneFile("seabed.toml"), smallSeabed(), shippedPasses());
+  (void)renderer.render();
+  ASSERT_NE(renderer.scene().files, nullptr);
+  const int reads = renderer.scene().files->reads();
+  EXPECT_EQ(reads, 1);  // canon_eos_5d_mark_ii_rawtoaces.csv (the scene has no images)
+  renderer.update({set("spectral.count", "8")});
+  (void)renderer.render();
+  EXPECT_EQ(renderer.scene().files->reads(), reads);
+  Scene again = renderer.scene();
+  Renderer second(test::testDevice(), again, shippedPasses());
+  (void)second.render();
+  EXPECT_EQ(renderer.scene().files->reads(), reads);
+}
+
 // A froxel knob sets up only the froxel pass; the G-buffer does not run again, the shading that
 // reads the new volume does.
 TEST(Renderer, FroxelKnobRebuildsOnlyTheFroxelPass) {
-  Renderer renderer(test::testDevice(), sceneFile("seabed.toml"), smallSeabed(), standardPasses());
+  Renderer renderer(test::testDevice(), sceneFile("seabed.toml"), smallSeabed(), shippedPasses());
   (void)renderer.render();
   renderer.update({set("quality.froxel_z", "24")});
   const FrameResult f = renderer.render();
@@ -171,7 +190,7 @@ TEST(Renderer, FroxelKnobRebuildsOnlyTheFroxelPass) {
 
 // A change that changes the plan (the second order switched on) builds the new graph.
 TEST(Renderer, PlanChangeBuildsTheNewGraph) {
-  Renderer renderer(test::testDevice(), sceneFile("flat_sea.toml"), small({}), standardPasses());
+  Renderer renderer(test::testDevice(), sceneFile("flat_sea.toml"), small({}), shippedPasses());
   (void)renderer.render();
   EXPECT_FALSE(renderer.plan().hasPass("sea_second"));
   renderer.update({set("sea.second_order", "true"), set("quality.sea_map_size", "8"), set("quality.sea_nz", "4")});
@@ -211,7 +230,7 @@ class FillPass : public Pass {
 
 TEST(Renderer, RunsAHandMadePlanThroughTheRegistry) {
   int prepares = 0;
-  PassRegistry registry = standardPasses();
+  PassRegistry registry = shippedPasses();
   registry.add("fill", [&](const PassPlan&, const Plan&, const Scene&) { return std::make_unique<FillPass>(&prepares); });
   Plan plan;
   plan.passes.push_back({"fill", "none.cl", {}, {"scene"}, {"rgb"}, "test", true, ""});
@@ -237,7 +256,7 @@ TEST(Renderer, PlanErrorsNameThePass) {
   Plan unknown;
   unknown.passes.push_back({"mystery", "mystery.cl", {}, {"scene"}, {"rgb"}, "test", true, ""});
   try {
-    Renderer(test::testDevice(), scene, unknown, standardPasses()).render();
+    Renderer(test::testDevice(), scene, unknown, shippedPasses()).render();
     FAIL() << "an unregistered pass must be an error";
   } catch (const RuntimeError& e) {
     EXPECT_NE(std::string(e.what()).find("'mystery'"), std::string::npos) << e.what();
@@ -246,7 +265,7 @@ TEST(Renderer, PlanErrorsNameThePass) {
   backwards.passes.push_back({"nonfinite_check", "check.cl", {}, {"rgb"}, {"status"}, "test", true, ""});
   backwards.passes.push_back({"sea_single", "sea_single.cl", {}, {"scene"}, {"rgb"}, "test", true, ""});
   try {
-    Renderer(test::testDevice(), scene, backwards, standardPasses()).render();
+    Renderer(test::testDevice(), scene, backwards, shippedPasses()).render();
     FAIL() << "a read before its write must be an error";
   } catch (const RuntimeError& e) {
     EXPECT_NE(std::string(e.what()).find("no earlier pass writes"), std::string::npos) << e.what();

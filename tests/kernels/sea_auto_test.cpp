@@ -1,4 +1,4 @@
-// sea_auto_test.cpp — `auto` quality of the sea's second order (host/passes/sea_auto.h, 000 §6.1) on
+// sea_auto_test.cpp — `auto` quality of the sea's second order (host/quality/sea_auto.h, 000 §6.1) on
 // PoCL, on a 32x18, 3-band flat sea (the search runs at the scene's own size):
 //  * the chosen (n_z, n_d, M) meets the criterion when re-measured by independent renders: max
 //    |L(n_z) - L(n_z + 1)|, |L(n_d) - L(next n_d)| and |L(M) - L(next M)| under 1 8-bit level;
@@ -12,8 +12,8 @@
 
 #include <unistd.h>
 
-#include "passes/render_frame.h"
-#include "passes/sea_auto.h"
+#include "quality/render_frame.h"
+#include "quality/sea_auto.h"
 #include "plan/plan.h"
 #include "reference/compare.h"
 #include "scene/scene_parser.h"

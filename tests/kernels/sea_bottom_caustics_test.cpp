@@ -12,7 +12,7 @@
 
 #include "passes/caustic_stack.h"
 #include "passes/ocean_pass.h"
-#include "passes/render_frame.h"
+#include "quality/render_frame.h"
 #include "plan/plan.h"
 #include "reference/sea_reference.h"
 #include "scene/scene_parser.h"

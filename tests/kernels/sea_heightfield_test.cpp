@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "io/image_io.h"
-#include "passes/render_frame.h"
+#include "quality/render_frame.h"
 #include "passes/sea_heightfield.h"
 #include "passes/sea_second_pass.h"
 #include "plan/plan.h"
@@ -248,7 +248,8 @@ TEST(SeaHeightFieldKernel, DepthTablesComeBackFromTheCache) {
     cl::Buffer rgb(device().context(), CL_MEM_READ_WRITE, sizeof(float) * 3 * 12 * 8);
     std::vector<float> zero(3 * 12 * 8, 0.0f);
     device().queue().enqueueWriteBuffer(rgb, CL_TRUE, 0, sizeof(float) * zero.size(), zero.data());
-    seasim::SeaSecondPass pass(device(), s, *plan.find("sea_second"), grid, sensor, rgb, nullptr);
+    seasim::SeaSecondPass pass(device(), s, *plan.find("sea_second"), seasim::SeaSecondPass::configFromScene(s), grid,
+                               sensor, rgb, nullptr);
     pass.run();
     if (out == &first) EXPECT_GT(pass.depthTableMs(), 0.0);
     else EXPECT_EQ(pass.depthTableMs(), 0.0);  // from the cache

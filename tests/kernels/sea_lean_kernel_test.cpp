@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "io/tonemap.h"
-#include "passes/render_frame.h"
+#include "quality/render_frame.h"
 #include "plan/plan.h"
 #include "scene/scene_parser.h"
 #include "test_device.h"

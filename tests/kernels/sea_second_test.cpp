@@ -10,7 +10,7 @@
 #include "device/device.h"
 #include "test_device.h"
 #include "math/kernel_math.h"
-#include "passes/render_frame.h"
+#include "quality/render_frame.h"
 #include "passes/sea_second_pass.h"
 #include "plan/plan.h"
 #include "reference/compare.h"

@@ -11,7 +11,7 @@
 #include <string>
 
 #include "device/device.h"
-#include "passes/render_frame.h"
+#include "quality/render_frame.h"
 #include "plan/plan.h"
 #include "reference/sea_reference.h"
 #include "scene/scene_parser.h"

@@ -1,4 +1,4 @@
-// shafts_auto_test.cpp — `auto` quality of the spotlight shafts (host/passes/shafts_auto.h) on PoCL,
+// shafts_auto_test.cpp — `auto` quality of the spotlight shafts (host/quality/shafts_auto.h) on PoCL,
 // on spot_sphere at 64x40 (the search runs at the scene's own size there) with a short ladder:
 //  * the chosen (n, m) meets the budget against an independently rendered ray-marched reference,
 //    and every cheaper candidate tried misses it;
@@ -17,7 +17,7 @@
 
 #include <unistd.h>
 
-#include "passes/shafts_auto.h"
+#include "quality/shafts_auto.h"
 #include "passes/shafts_pass.h"
 #include "plan/plan.h"
 #include "reference/compare.h"
@@ -164,7 +164,7 @@ TEST(ShaftsAuto, ThePassSearchesWhenAKnobIsAutoAndKeepsAFixedOne) {
   const seasim::Scene scene = autoScene("40");
   const seasim::Plan plan = seasim::makePlan(scene);
   EXPECT_NE(plan.find("shafts")->why.find("auto"), std::string::npos);  // `seasim plan` says so
-  const seasim::ShaftsPass::Config c = seasim::ShaftsPass::configFor(device(), scene, *plan.find("shafts"));
+  const seasim::ShaftsPass::Config c = seasim::shaftsConfigWithAuto(device(), scene, *plan.find("shafts"));
   EXPECT_EQ(c.planes, 40);
   seasim::ShaftsAutoOptions o;  // what the pass uses: default ladder and budget, the default folder
   const seasim::ShaftsAutoResult r = seasim::chooseShaftsQuality(device(), scene, *plan.find("shafts"), o);

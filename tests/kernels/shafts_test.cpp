@@ -18,7 +18,7 @@
 
 #include "device/device.h"
 #include "test_device.h"
-#include "passes/render_frame.h"
+#include "quality/render_frame.h"
 #include "passes/shafts_pass.h"
 #include "plan/plan.h"
 #include "reference/compare.h"

@@ -14,7 +14,7 @@
 #include "math/kernel_math.h"
 #include "passes/caustic_stack.h"
 #include "passes/froxel_pass.h"
-#include "passes/render_frame.h"
+#include "quality/render_frame.h"
 #include "passes/underwater_pass.h"
 #include "plan/plan.h"
 #include "reference/froxel_reference.h"

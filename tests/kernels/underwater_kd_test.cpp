@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "passes/render_frame.h"
+#include "quality/render_frame.h"
 #include "plan/plan.h"
 #include "scene/scene_parser.h"
 #include "spectral/sensor.h"

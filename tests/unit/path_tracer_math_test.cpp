@@ -286,4 +286,45 @@ TYPED_TEST(PathTracerMath, FresnelChoiceReflectsWithProbabilityF) {
   }
 }
 
+// Equiangular sampling about a point light (path_tracer.h): the pdf it reports integrates to 1 over
+// the segment and is the derivative of the sampled CDF (dt/du = 1/pdf), for a finite and an infinite
+// segment; an empty segment gives pdf 0; float stays finite at u = 1 - 2^-24 on an infinite segment.
+TEST(PathTracerEquiangular, PdfIsNormalisedAndIsTheSamplesDensity) {
+  const double a = 1.5, r = 0.05, t0 = 0.0;
+  for (double t1 : {3.0, 40.0, 1e30}) {
+    const bool infinite = t1 >= 1e29;
+    // dt/du · pdf = 1 at a few points (finite differences in u).
+    for (double u : {0.01, 0.3, 0.5, 0.7, 0.99}) {
+      double p, p2;
+      const double t = kd::pt_sample_equiangular(a, r, t0, t1, u, &p);
+      const double t2 = kd::pt_sample_equiangular(a, r, t0, t1, u + 1e-7, &p2);
+      EXPECT_GE(t, t0);
+      if (!infinite) EXPECT_LE(t, t1);
+      EXPECT_NEAR((t2 - t) / 1e-7 * p, 1.0, 1e-4) << t1 << " " << u;
+    }
+    // ∫ pdf dt by the trapezoid rule on a grid dense near t0 (the light is at t = 1.5, 5 cm off the ray).
+    const double top = infinite ? 1e5 : t1;
+    double integral = 0, prev_t = t0, prev_p = 0;
+    (void)kd::pt_sample_equiangular(a, r, t0, t1, 0.0, &prev_p);
+    const int m = 400000;
+    for (int i = 1; i <= m; ++i) {
+      const double t = t0 + (top - t0) * std::pow(double(i) / m, 3);
+      const double th0 = std::atan((t0 - a) / r), th1 = infinite ? M_PI / 2 : std::atan((t1 - a) / r);
+      const double p = r / ((th1 - th0) * (r * r + (t - a) * (t - a)));
+      integral += 0.5 * (p + prev_p) * (t - prev_t);
+      prev_t = t;
+      prev_p = p;
+    }
+    // The infinite segment's tail beyond 1e5 m holds r/(π/2 + atan(a/r)) / 1e5 ≈ 3e-7 of it.
+    EXPECT_NEAR(integral, 1.0, 1e-4) << t1;
+  }
+  double pdf = 1;
+  (void)kd::pt_sample_equiangular(0.0, 1.0, 2.0, 2.0, 0.5, &pdf);
+  EXPECT_EQ(pdf, 0.0);
+  float pf;
+  const float tf = kf::pt_sample_equiangular(0.0f, 1e-3f, 0.0f, 1e30f, 1.0f - std::ldexp(1.0f, -24), &pf);
+  EXPECT_TRUE(std::isfinite(tf) && std::isfinite(pf) && pf > 0);
+}
+
 }  // namespace
+

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <string>
+#include <vector>
 
 #include "plan/plan.h"
 #include "scene/scene_parser.h"
@@ -224,9 +226,9 @@ direction = [0, -1, 0]
   EXPECT_TRUE(plan.hasPass("raycast"));
 }
 
-// Spotlights with water are not composed yet: the plan holds a shafts pass marked not implemented,
-// naming the lamp's file and line, so the render stops before writing anything.
-TEST(Plan, SpotlightsWithWaterArePlannedAsNotImplementedNamingTheLamp) {
+// Spotlights under water (issue 12): the water's passes and the lamps' pass, which adds into the rgb
+// kd_multiple wrote (so it comes after it), and none of the air shafts' passes.
+TEST(Plan, SpotlightsUnderWaterAddTheLampsPassAfterTheShading) {
   const char* text = R"(
 [camera]
 position = [0, -2, 0]
@@ -238,11 +240,58 @@ position = [0, -1, 0]
 direction = [0, -1, -1]
 )";
   const Plan plan = makePlan(parseScene(text, "rov.toml"));
+  const seasim::PassPlan* lamps = plan.find("underwater_lamps");
+  ASSERT_NE(lamps, nullptr);
+  EXPECT_TRUE(lamps->implemented);
+  EXPECT_EQ(lamps->kernel_file, "underwater_lamps.cl");
+  EXPECT_TRUE(hasDefine(plan, "underwater_lamps", "SEASIM_HAS_OBJECTS=0"));
+  std::vector<std::string> order;
+  for (const auto& p : plan.passes) order.push_back(p.name);
+  const auto kd = std::find(order.begin(), order.end(), "kd_multiple");
+  const auto lp = std::find(order.begin(), order.end(), "underwater_lamps");
+  ASSERT_NE(kd, order.end());
+  EXPECT_LT(kd - order.begin(), lp - order.begin());
+  EXPECT_NE(std::find(lamps->reads.begin(), lamps->reads.end(), "gbuffer"), lamps->reads.end());
+  EXPECT_NE(std::find(lamps->reads.begin(), lamps->reads.end(), "rgb"), lamps->reads.end());
+  for (const char* absent : {"shafts", "shadow_maps", "sea_single", "sea_second", "ocean_fft"})
+    EXPECT_FALSE(plan.hasPass(absent)) << absent;
+  // Without lamps the same water has no lamps pass.
+  const std::string no_lamps = std::string(text).substr(0, std::string(text).find("[[spotlights]]"));
+  EXPECT_FALSE(makePlan(parseScene(no_lamps, "rov.toml")).hasPass("underwater_lamps"));
+}
+
+// rov_lights.toml: ray cast, froxels (sun up, single scattering), K_d shading, the lamps, the check;
+// texture caustics need no ocean and no caustic maps; nothing of the sea seen from above or of air.
+TEST(Plan, RovLightsRunsTheUnderwaterPassesAndTheLampsOnly) {
+  const Plan plan = makePlan(seasim::loadScene(std::string(SEASIM_SOURCE_DIR) + "/scenes/rov_lights.toml"));
+  std::vector<std::string> order;
+  for (const auto& p : plan.passes) order.push_back(p.name);
+  const std::vector<std::string> expected = {"raycast", "froxel", "kd_multiple", "underwater_lamps", "nonfinite_check"};
+  EXPECT_EQ(order, expected);
+  EXPECT_TRUE(hasDefine(plan, "underwater_lamps", "SEASIM_HAS_OBJECTS=1"));
+  for (const auto& p : plan.passes) EXPECT_TRUE(p.implemented) << p.name;
+}
+
+// Spotlights with the camera above the water are not composed: the plan holds a shafts pass marked
+// not implemented, naming the lamp's file and line, so the render stops before writing anything.
+TEST(Plan, SpotlightsOverTheSeaSeenFromAboveArePlannedAsNotImplementedNamingTheLamp) {
+  const char* text = R"(
+[camera]
+position = [0, 2, 0]
+look_at = [0, -3, -10]
+[water]
+jerlov = "IB"
+[[spotlights]]
+position = [0, 5, 0]
+direction = [0, -1, -1]
+)";
+  const Plan plan = makePlan(parseScene(text, "lamp_over_sea.toml"));
   const seasim::PassPlan* shafts = plan.find("shafts");
   ASSERT_NE(shafts, nullptr);
   EXPECT_FALSE(shafts->implemented);
-  EXPECT_NE(shafts->why.find("rov.toml:7"), std::string::npos) << shafts->why;
-  EXPECT_TRUE(plan.hasPass("kd_multiple"));  // the water itself is planned as before
+  EXPECT_NE(shafts->why.find("lamp_over_sea.toml:7"), std::string::npos) << shafts->why;
+  EXPECT_FALSE(plan.hasPass("underwater_lamps"));
+  EXPECT_TRUE(plan.hasPass("sea_single"));  // the water itself is planned as before
 }
 
 TEST(Plan, TextHasOnePassPerLineWithKernelAndDefines) {

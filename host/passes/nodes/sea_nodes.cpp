@@ -2,6 +2,7 @@
 // bottom; passes/sea_single_pass.h), which owns the frame's "rgb" target, and "sea_second" (the
 // scattering maps of 000 eq. 6–8; passes/sea_second_pass.h), which adds into it.
 #include <memory>
+#include <utility>
 
 #include "passes/nodes/standard_passes.h"
 #include "passes/sea_second_pass.h"
@@ -42,7 +43,7 @@ class SeaSingleNode : public Pass {
 
 class SeaSecondNode : public Pass {
  public:
-  explicit SeaSecondNode(const PassPlan& entry) : entry_(entry) {}
+  SeaSecondNode(const PassPlan& entry, AutoQuality auto_quality) : entry_(entry), auto_quality_(std::move(auto_quality)) {}
   PassKeys keys() const override {
     return {{"camera.*", "sun.*", "sky.*", "water.*", "bottom.*", "sea.*", "spectral.*", "quality.sea_nz",
              "quality.sea_nd", "quality.sea_map_size"},
@@ -50,23 +51,26 @@ class SeaSecondNode : public Pass {
   }
   void prepare(FrameContext& ctx, PassResources& res) override {
     RadianceTarget& target = res.read<RadianceTarget>("rgb");
-    pass_ = std::make_unique<SeaSecondPass>(ctx.device(), ctx.scene(), entry_, ctx.grid(), ctx.sensor(), target.rgb,
-                                            ctx.scene().spectral.spectral_exr ? &target.spectral : nullptr);
+    const SeaSecondPass::Config config = auto_quality_.seaSecondConfig(ctx.device(), ctx.scene());
+    pass_ = std::make_unique<SeaSecondPass>(ctx.device(), ctx.scene(), entry_, config, ctx.grid(), ctx.sensor(),
+                                            target.rgb, ctx.scene().spectral.spectral_exr ? &target.spectral : nullptr);
   }
   void execute(FrameContext& ctx, PassResources&) override { ctx.timings.push_back({"sea_second", pass_->run()}); }
 
  private:
   const PassPlan& entry_;
+  AutoQuality auto_quality_;
   std::unique_ptr<SeaSecondPass> pass_;
 };
 
 }  // namespace
 
-void registerSeaPasses(PassRegistry& registry) {
+void registerSeaPasses(PassRegistry& registry, const AutoQuality& auto_quality) {
   registry.add("sea_single",
                [](const PassPlan& e, const Plan&, const Scene&) { return std::make_unique<SeaSingleNode>(e); });
-  registry.add("sea_second",
-               [](const PassPlan& e, const Plan&, const Scene&) { return std::make_unique<SeaSecondNode>(e); });
+  registry.add("sea_second", [auto_quality](const PassPlan& e, const Plan&, const Scene&) {
+    return std::make_unique<SeaSecondNode>(e, auto_quality);
+  });
 }
 
 }  // namespace seasim

@@ -4,6 +4,7 @@
 // maps are enqueued just before it), so their nodes hold nothing; "shafts" sets up the pass (and its
 // "auto" (n, m) search), runs it, and reports the shadow-map and shafts kernel times.
 #include <memory>
+#include <utility>
 
 #include "passes/nodes/standard_passes.h"
 #include "passes/shafts_pass.h"
@@ -28,10 +29,12 @@ class InsideShaftsNode : public Pass {
 
 class ShaftsNode : public Pass {
  public:
-  ShaftsNode(const PassPlan& entry, bool shadow_maps) : entry_(entry), shadow_maps_(shadow_maps) {}
+  ShaftsNode(const PassPlan& entry, bool shadow_maps, AutoQuality auto_quality)
+      : entry_(entry), shadow_maps_(shadow_maps), auto_quality_(std::move(auto_quality)) {}
   PassKeys keys() const override { return {kShaftsKeys, {}}; }
   void prepare(FrameContext& ctx, PassResources& res) override {
-    pass_ = std::make_unique<ShaftsPass>(ctx.device(), ctx.scene(), entry_);
+    const ShaftsPass::Config config = auto_quality_.shaftsConfig(ctx.device(), ctx.scene(), entry_);
+    pass_ = std::make_unique<ShaftsPass>(ctx.device(), ctx.scene(), entry_, config);
     auto target = std::make_shared<RadianceTarget>();
     target->rgb = pass_->rgb();
     target->pixels = static_cast<size_t>(ctx.scene().camera.width) * static_cast<size_t>(ctx.scene().camera.height);
@@ -46,18 +49,19 @@ class ShaftsNode : public Pass {
  private:
   const PassPlan& entry_;
   bool shadow_maps_;
+  AutoQuality auto_quality_;
   std::unique_ptr<ShaftsPass> pass_;
 };
 
 }  // namespace
 
-void registerShaftsPasses(PassRegistry& registry) {
+void registerShaftsPasses(PassRegistry& registry, const AutoQuality& auto_quality) {
   registry.add("raycast", "shafts.cl",
                [](const PassPlan&, const Plan&, const Scene&) { return std::make_unique<InsideShaftsNode>(); });
   registry.add("shadow_maps",
                [](const PassPlan&, const Plan&, const Scene&) { return std::make_unique<InsideShaftsNode>(); });
-  registry.add("shafts", [](const PassPlan& e, const Plan& plan, const Scene&) {
-    return std::make_unique<ShaftsNode>(e, plan.hasPass("shadow_maps"));
+  registry.add("shafts", [auto_quality](const PassPlan& e, const Plan& plan, const Scene&) {
+    return std::make_unique<ShaftsNode>(e, plan.hasPass("shadow_maps"), auto_quality);
   });
 }
 

@@ -2,12 +2,12 @@
 
 namespace seasim {
 
-PassRegistry standardPasses() {
+PassRegistry standardPasses(const AutoQuality& auto_quality) {
   PassRegistry registry;
   registerOceanPass(registry);
   registerCausticsPass(registry);
-  registerSeaPasses(registry);
-  registerShaftsPasses(registry);
+  registerSeaPasses(registry, auto_quality);
+  registerShaftsPasses(registry, auto_quality);
   registerUnderwaterPasses(registry);
   registerFourFlowPass(registry);
   registerCheckPass(registry);

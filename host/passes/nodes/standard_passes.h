@@ -5,18 +5,21 @@
 #pragma once
 #include <CL/opencl.hpp>
 
+#include "passes/auto_quality.h"
 #include "render/pass_registry.h"
 
 namespace seasim {
 
-PassRegistry standardPasses();
+// `auto_quality` chooses the settings of "auto" quality knobs (passes/auto_quality.h); the default
+// gives them their placeholders. Commands use quality/auto_quality.h's shippedPasses(), which searches.
+PassRegistry standardPasses(const AutoQuality& auto_quality = {});
 
 // One registration per file of this folder.
 void registerOceanPass(PassRegistry& registry);      // ocean_fft
 void registerCausticsPass(PassRegistry& registry);   // caustics (sea bottom, or under water)
-void registerSeaPasses(PassRegistry& registry);      // sea_single, sea_second
-void registerUnderwaterPasses(PassRegistry& registry);  // raycast (raycast.cl), froxel, kd_multiple
-void registerShaftsPasses(PassRegistry& registry);   // raycast (shafts.cl), shadow_maps, shafts
+void registerSeaPasses(PassRegistry& registry, const AutoQuality& auto_quality);  // sea_single, sea_second
+void registerUnderwaterPasses(PassRegistry& registry);  // raycast (raycast.cl), froxel, kd_multiple, underwater_lamps
+void registerShaftsPasses(PassRegistry& registry, const AutoQuality& auto_quality);  // raycast (shafts.cl), shadow_maps, shafts
 void registerFourFlowPass(PassRegistry& registry);   // fourflow (shallow water, paper 003)
 void registerCheckPass(PassRegistry& registry);      // nonfinite_check
 

@@ -11,6 +11,7 @@
 
 #include "passes/froxel_pass.h"
 #include "passes/nodes/standard_passes.h"
+#include "passes/underwater_lamps_pass.h"
 #include "passes/underwater_pass.h"
 #include "render/radiance_target.h"
 #include "device/device.h"
@@ -129,6 +130,37 @@ class KdNode : public Pass {
   const UnderwaterPass* published_for_ = nullptr;
 };
 
+// Spotlights in the water (passes/underwater_lamps_pass.h): adds into the "rgb" kd_multiple wrote.
+class UnderwaterLampsNode : public Pass {
+ public:
+  explicit UnderwaterLampsNode(const PassPlan& entry) : entry_(entry) {}
+  PassKeys keys() const override {
+    return {{"camera.*", "spectral.*", "objects.*", "spotlights.*", "quality.shafts_planes", "quality.shafts_subplanes",
+             "quality.lamps_delta_m"},
+            kSetupKeys};
+  }
+  void prepare(FrameContext& ctx, PassResources&) override {
+    pass_ = std::make_unique<UnderwaterLampsPass>(ctx.device(), ctx.scene(), ctx.underwaterSetup(), ctx.grid(), entry_,
+                                                  UnderwaterLampsPass::configFromScene(ctx.scene()));
+    setup_version_ = ctx.setupVersion();
+  }
+  void execute(FrameContext& ctx, PassResources& res) override {
+    if (setup_version_ != ctx.setupVersion()) {
+      pass_->update(ctx.underwaterSetup());
+      setup_version_ = ctx.setupVersion();
+    }
+    UnderwaterPass& gbuffer = *res.read<UnderwaterGBuffer>("gbuffer").pass;
+    RadianceTarget& target = res.read<RadianceTarget>("rgb");
+    cl::Buffer* spectral = ctx.scene().spectral.spectral_exr ? &target.spectral : nullptr;
+    ctx.timings.push_back({"underwater_lamps", pass_->run(gbuffer.geometry(), gbuffer.material(), target.rgb, spectral)});
+  }
+
+ private:
+  const PassPlan& entry_;
+  std::unique_ptr<UnderwaterLampsPass> pass_;
+  uint64_t setup_version_ = 0;
+};
+
 }  // namespace
 
 void registerUnderwaterPasses(PassRegistry& registry) {
@@ -139,6 +171,8 @@ void registerUnderwaterPasses(PassRegistry& registry) {
   });
   registry.add("froxel", [](const PassPlan& e, const Plan&, const Scene&) { return std::make_unique<FroxelNode>(e); });
   registry.add("kd_multiple", [](const PassPlan&, const Plan&, const Scene&) { return std::make_unique<KdNode>(); });
+  registry.add("underwater_lamps",
+               [](const PassPlan& e, const Plan&, const Scene&) { return std::make_unique<UnderwaterLampsNode>(e); });
 }
 
 }  // namespace seasim

@@ -1,4 +1,4 @@
-#include "passes/shafts_auto.h"
+#include "quality/shafts_auto.h"
 
 #include <algorithm>
 #include <chrono>
@@ -8,7 +8,7 @@
 #include <sstream>
 
 #include "device/kernel_source.h"
-#include "passes/quality_search.h"
+#include "quality/quality_search.h"
 #include "passes/shafts_pass.h"
 #include "reference/compare.h"
 #include "reference/shafts_reference.h"
@@ -77,6 +77,13 @@ std::string describe(Device& device, const Scene& scene, const ShaftsAutoOptions
     s << l.cone << ';' << l.falloff << ';' << l.intensity << ';';
     v3(l.color);
     s << (l.light_map.empty() ? std::string("-") : fileChecksum(l.light_map)) << '\n';
+    // A spectral lamp's RGB comes from its spectrum through the sensor (spectral/lamp_spectrum.h);
+    // written only for such lamps, so the keys of RGB lamps stay as they were.
+    if (l.temperature_k > 0 || !l.spectrum.empty()) {
+      s << "lamp_spectrum " << l.temperature_k << ';' << (l.spectrum.empty() ? std::string("-") : fileChecksum(l.spectrum))
+        << ';' << scene.spectral.count << ';' << scene.spectral.min_nm << ';' << scene.spectral.max_nm << ';'
+        << scene.spectral.sensor << ';' << scene.spectral.white_balance << ';' << scene.spectral.camera_dir << '\n';
+    }
   }
   for (const ObjectDesc& ob : scene.objects) {
     s << "object " << int(ob.type) << ';';
@@ -130,7 +137,7 @@ void writeCache(const std::string& path, const ShaftsAutoResult& r, const std::s
     << r.search_height << '\n';
   s << "# candidates: planes subplanes rmse_8bit ms\n";
   for (const auto& c : r.candidates) s << "# " << c.planes << ' ' << c.subplanes << ' ' << c.rmse_8bit << ' ' << c.ms << '\n';
-  writeCacheEntries(path, "seasim shafts auto quality (host/passes/shafts_auto.h)", description, s.str());
+  writeCacheEntries(path, "seasim shafts auto quality (host/quality/shafts_auto.h)", description, s.str());
 }
 
 // Other work on a shared machine only ever adds time to a kernel: the least of three runs is the
@@ -265,6 +272,37 @@ ShaftsAutoResult chooseShaftsQuality(Device& device, const Scene& scene, const P
     result.cache_file = cache_file;
   }
   return result;
+}
+
+ShaftsPass::Config shaftsConfigWithAuto(Device& device, const Scene& scene, const PassPlan& plan) {
+  ShaftsPass::Config c = ShaftsPass::configFromScene(scene);
+  auto automatic = [&](const char* name) {
+    const auto it = scene.quality.find(name);
+    return it != scene.quality.end() && it->second.automatic;
+  };
+  if (!automatic("shafts_planes") && !automatic("shafts_subplanes")) return c;
+  ShaftsAutoOptions options;
+  const auto budget = scene.quality.find("shafts_error_budget");
+  if (budget != scene.quality.end()) options.budget_levels = budget->second.value;
+  const ShaftsAutoResult r = chooseShaftsQuality(device, scene, plan, options);
+  c.planes = r.planes;
+  c.subplanes = r.subplanes;
+  if (!r.from_cache) {
+    std::fprintf(stderr,
+                 "shafts: auto quality n = %d, m = %d: RMS %.3f levels vs the ray-marched reference at %dx%d "
+                 "(budget %g); %zu settings searched in %.1f s%s%s\n",
+                 r.planes, r.subplanes, r.rmse_8bit, r.search_width, r.search_height, r.budget_levels,
+                 r.candidates.size(), r.search_ms * 1e-3, r.cache_file.empty() ? "" : ", cached in ",
+                 r.cache_file.c_str());
+  }
+  if (!r.met_budget) {
+    std::fprintf(stderr,
+                 "shafts: warning: no (n, m) reaches RMS %g levels on '%s'; using the most accurate, n = %d, m = %d "
+                 "(%.3f levels). The floor comes from quality.shadow_map_size / shafts_table_size, or raise "
+                 "quality.shafts_error_budget\n",
+                 r.budget_levels, scene.name.c_str(), r.planes, r.subplanes, r.rmse_8bit);
+  }
+  return c;
 }
 
 }  // namespace seasim

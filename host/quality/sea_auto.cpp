@@ -1,4 +1,4 @@
-#include "passes/sea_auto.h"
+#include "quality/sea_auto.h"
 
 #include <algorithm>
 #include <chrono>
@@ -9,8 +9,8 @@
 #include <tuple>
 
 #include "device/kernel_source.h"
-#include "passes/quality_search.h"
-#include "passes/render_frame.h"
+#include "quality/quality_search.h"
+#include "quality/render_frame.h"
 #include "reference/compare.h"
 #include "spectral/jerlov.h"
 #include "spectral/wavelength_grid.h"
@@ -121,7 +121,7 @@ void writeCache(const std::string& path, const SeaAutoResult& r, const std::stri
   for (const auto& t : r.steps)
     s << "# " << t.knob << ' ' << t.n_z << ' ' << t.n_d << ' ' << t.map_size << ' ' << t.next << ' ' << t.max_diff_8bit
       << '\n';
-  writeCacheEntries(path, "seasim sea second-order auto quality (host/passes/sea_auto.h)", description, s.str());
+  writeCacheEntries(path, "seasim sea second-order auto quality (host/quality/sea_auto.h)", description, s.str());
 }
 
 // Renders the reduced scene at a setting, once per setting.
@@ -277,11 +277,13 @@ SeaAutoResult chooseSeaSecondQuality(Device& device, const Scene& scene, const S
   return result;
 }
 
-void resolveSeaSecondAuto(Device& device, const Scene& scene, SeaSecondPass::Config* config) {
+SeaSecondPass::Config seaSecondConfigWithAuto(Device& device, const Scene& scene) {
+  SeaSecondPass::Config config = SeaSecondPass::configFromScene(scene);
+  if (!seaSecondWantsAuto(scene)) return config;
   const SeaAutoResult r = chooseSeaSecondQuality(device, scene);
-  if (isAuto(scene, kKnobs[0])) config->n_z = r.n_z;
-  if (isAuto(scene, kKnobs[1])) SeaSecondPass::splitDirections(r.n_d, &config->n_theta, &config->n_phi);
-  if (isAuto(scene, kKnobs[2])) config->map_size = r.map_size;
+  if (isAuto(scene, kKnobs[0])) config.n_z = r.n_z;
+  if (isAuto(scene, kKnobs[1])) SeaSecondPass::splitDirections(r.n_d, &config.n_theta, &config.n_phi);
+  if (isAuto(scene, kKnobs[2])) config.map_size = r.map_size;
   if (!r.from_cache) {
     std::fprintf(stderr,
                  "sea_second: auto quality n_z = %d, n_d = %d, map %dx%d (steps to the next setting %.3f, %.3f, "
@@ -296,6 +298,7 @@ void resolveSeaSecondAuto(Device& device, const Scene& scene, SeaSecondPass::Con
                  !r.met ? "did not get under the threshold before a ladder ran out" : "did not settle within the rounds",
                  r.n_z, r.n_d, r.map_size);
   }
+  return config;
 }
 
 }  // namespace seasim

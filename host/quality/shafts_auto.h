@@ -36,6 +36,7 @@
 #include <vector>
 
 #include "device/device.h"
+#include "passes/shafts_pass.h"
 #include "plan/plan.h"
 #include "scene/scene.h"
 
@@ -82,6 +83,12 @@ int pickShaftsCandidate(const std::vector<ShaftsAutoCandidate>& candidates, doub
 // objects, no [air]) throw RuntimeError.
 ShaftsAutoResult chooseShaftsQuality(Device& device, const Scene& scene, const PassPlan& plan,
                                      const ShaftsAutoOptions& options);
+
+// The settings ShaftsPass gets (through quality/auto_quality.h): ShaftsPass::configFromScene, and
+// when shafts_planes or shafts_subplanes is "auto", the cheapest (n, m) whose RMS error is under
+// quality.shafts_error_budget (chooseShaftsQuality). Prints one line to stderr when it searched, and
+// a warning when nothing met the budget.
+ShaftsPass::Config shaftsConfigWithAuto(Device& device, const Scene& scene, const PassPlan& plan);
 
 // The cache key of the search (hex FNV-1a 64 of the inputs listed above), for tests and reports.
 std::string shaftsAutoKey(Device& device, const Scene& scene, const ShaftsAutoOptions& options);

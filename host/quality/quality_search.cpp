@@ -1,4 +1,4 @@
-#include "passes/quality_search.h"
+#include "quality/quality_search.h"
 
 #include <algorithm>
 #include <cmath>

@@ -74,10 +74,11 @@ bool seaSecondWantsAuto(const Scene& scene);
 // scattering: RuntimeError otherwise, when a frame has NaN/Inf, or when the options are invalid).
 SeaAutoResult chooseSeaSecondQuality(Device& device, const Scene& scene, const SeaAutoOptions& options = {});
 
-// The hook for SeaSecondPass: sets each "auto" knob of `config` to the chosen value (n_d through
-// SeaSecondPass::splitDirections); fixed knobs keep theirs. Prints one line to stderr after a search
-// (not after a cache hit), and a warning when the threshold was not met.
-void resolveSeaSecondAuto(Device& device, const Scene& scene, SeaSecondPass::Config* config);
+// The settings SeaSecondPass gets (through quality/auto_quality.h): SeaSecondPass::configFromScene
+// with each "auto" knob set to the chosen value (n_d through SeaSecondPass::splitDirections); fixed
+// knobs keep theirs. Prints one line to stderr after a search (not after a cache hit), and a warning
+// when the threshold was not met.
+SeaSecondPass::Config seaSecondConfigWithAuto(Device& device, const Scene& scene);
 
 // The cache key (hex FNV-1a 64 of the inputs listed above).
 std::string seaAutoKey(Device& device, const Scene& scene, const SeaAutoOptions& options);

@@ -1,5 +1,5 @@
 // render_frame.h — one frame of a scene, start to finish: a Renderer (render/renderer.h) built for
-// this frame alone. Callers that render more than one frame of a scene (animations, sweeps, bench)
+// this frame alone, with the shipped passes and their "auto" quality searched (quality/auto_quality.h). Callers that render more than one frame of a scene (animations, sweeps, bench)
 // keep a Renderer instead, so that only what changed runs again.
 #pragma once
 #include "device/device.h"

@@ -1,0 +1,111 @@
+#include "passes/underwater_lamps_pass.h"
+
+#include <algorithm>
+
+#include "underwater/lamps_setup.h"
+#include "util/error.h"
+
+namespace seasim {
+
+namespace {
+
+int knob(const Scene& scene, const char* name, int fallback) {
+  const auto it = scene.quality.find(name);
+  if (it == scene.quality.end() || it->second.automatic) return fallback;
+  return static_cast<int>(it->second.value);
+}
+
+}  // namespace
+
+UnderwaterLampsPass::Config UnderwaterLampsPass::configFromScene(const Scene& scene) {
+  Config c;
+  c.planes = knob(scene, "shafts_planes", 30);
+  c.subplanes = knob(scene, "shafts_subplanes", 6);
+  const auto delta_m = scene.quality.find("lamps_delta_m");
+  c.delta_m = delta_m == scene.quality.end() || delta_m->second.value != 0;
+  return c;
+}
+
+UnderwaterLampsPass::UnderwaterLampsPass(Device& device, const Scene& scene, const UnderwaterSetup& setup,
+                                         const WavelengthGrid& grid, const PassPlan& plan, const Config& config)
+    : device_(device),
+      delta_m_(config.delta_m),
+      width_(setup.params.width),
+      height_(setup.params.height),
+      band_count_(setup.bands.size()),
+      object_count_(setup.objects.size()),
+      albedo_count_(setup.albedo.size()) {
+  if (config.planes < 1 || config.subplanes < 1)
+    throw RuntimeError("underwater_lamps: planes and sub-planes must be at least 1");
+  UnderwaterLamps lamps = makeUnderwaterLamps(scene, grid);
+  lamps.params.planes = config.planes;
+  lamps.params.subplanes = config.subplanes;
+  // The medium the lamps' light sees: the water, delta-M scaled unless asked not to.
+  UwParams params = setup.params;
+  std::vector<UwBand> bands = setup.bands;
+  if (delta_m_) deltaMScale(params, bands);
+  UwObject none{};  // OpenCL buffers cannot be empty
+  const cl_mem_flags in = CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR;
+  try {
+    kernel_ = cl::Kernel(device.program(plan.kernel_file, plan.defines).program, "underwater_lamps");
+    params_ = cl::Buffer(device.context(), in, sizeof(UwParams), &params);
+    bands_ = cl::Buffer(device.context(), in, sizeof(UwBand) * bands.size(), bands.data());
+    albedo_ = cl::Buffer(device.context(), in, sizeof(float) * setup.albedo.size(), const_cast<float*>(setup.albedo.data()));
+    objects_ = cl::Buffer(device.context(), in, sizeof(UwObject) * std::max<size_t>(1, setup.objects.size()),
+                          setup.objects.empty() ? &none : const_cast<UwObject*>(setup.objects.data()));
+    lamp_params_ = cl::Buffer(device.context(), in, sizeof(UwLampParams), &lamps.params);
+    lamps_ = cl::Buffer(device.context(), in, sizeof(UwLamp) * lamps.lamps.size(), lamps.lamps.data());
+    spectra_ = cl::Buffer(device.context(), in, sizeof(float) * lamps.spectra.size(), lamps.spectra.data());
+  } catch (const cl::Error& e) {
+    throw DeviceError(std::string("underwater_lamps pass set-up: ") + e.what() + " " + clErrorName(e.err()));
+  }
+}
+
+void UnderwaterLampsPass::update(const UnderwaterSetup& setup) {
+  if (setup.bands.size() != band_count_ || setup.objects.size() != object_count_ ||
+      setup.albedo.size() != albedo_count_ || setup.params.width != width_ || setup.params.height != height_) {
+    throw RuntimeError("underwater_lamps pass: the new set-up has other sizes (bands, objects or image); make a new pass");
+  }
+  UwParams params = setup.params;
+  std::vector<UwBand> bands = setup.bands;
+  if (delta_m_) deltaMScale(params, bands);
+  try {
+    cl::CommandQueue& q = device_.queue();
+    q.enqueueWriteBuffer(params_, CL_FALSE, 0, sizeof(UwParams), &params);
+    q.enqueueWriteBuffer(bands_, CL_FALSE, 0, sizeof(UwBand) * band_count_, bands.data());
+    if (object_count_ > 0)
+      q.enqueueWriteBuffer(objects_, CL_FALSE, 0, sizeof(UwObject) * object_count_, setup.objects.data());
+    q.enqueueWriteBuffer(albedo_, CL_FALSE, 0, sizeof(float) * albedo_count_, setup.albedo.data());
+    q.finish();
+  } catch (const cl::Error& e) {
+    throw DeviceError(std::string("underwater_lamps pass update: ") + e.what() + " " + clErrorName(e.err()));
+  }
+}
+
+double UnderwaterLampsPass::run(cl::Buffer& geom, cl::Buffer& material, cl::Buffer& rgb, cl::Buffer* spectral) {
+  cl::Event done;
+  try {
+    cl_uint arg = 0;
+    kernel_.setArg(arg++, params_);
+    kernel_.setArg(arg++, bands_);
+    kernel_.setArg(arg++, albedo_);
+    kernel_.setArg(arg++, objects_);
+    kernel_.setArg(arg++, geom);
+    kernel_.setArg(arg++, material);
+    kernel_.setArg(arg++, lamp_params_);
+    kernel_.setArg(arg++, lamps_);
+    kernel_.setArg(arg++, spectra_);
+    kernel_.setArg(arg++, rgb);
+    if (spectral) kernel_.setArg(arg++, *spectral);
+    const size_t local = 8;
+    cl::NDRange global((static_cast<size_t>(width_) + local - 1) / local * local,
+                       (static_cast<size_t>(height_) + local - 1) / local * local);
+    device_.queue().enqueueNDRangeKernel(kernel_, cl::NullRange, global, cl::NDRange(local, local), nullptr, &done);
+    done.wait();
+  } catch (const cl::Error& e) {
+    throw DeviceError(std::string("underwater_lamps pass: ") + e.what() + " " + clErrorName(e.err()));
+  }
+  return eventMs(done);
+}
+
+}  // namespace seasim

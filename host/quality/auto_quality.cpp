@@ -1,0 +1,18 @@
+#include "quality/auto_quality.h"
+
+#include "passes/nodes/standard_passes.h"
+#include "quality/sea_auto.h"
+#include "quality/shafts_auto.h"
+
+namespace seasim {
+
+AutoQuality searchedAutoQuality() {
+  AutoQuality q;
+  q.shafts = shaftsConfigWithAuto;
+  q.sea_second = seaSecondConfigWithAuto;
+  return q;
+}
+
+PassRegistry shippedPasses() { return standardPasses(searchedAutoQuality()); }
+
+}  // namespace seasim

@@ -1,0 +1,141 @@
+/* underwater_lamps.cl — spotlights in the water (divers' torches, ROV lamps): paper 001's sampling
+ * planes in the water's spectral medium, added into the underwater frame that kd_multiple.cl wrote
+ * (sun K_d multiple scattering, froxels, caustics). The math and its derivation: common/underwater_lamps.h.
+ *
+ * Per pixel, per lamp: the part of the view ray inside the cone up to the G-buffer's hit (S), n planes
+ * with m sub-samples each (H P by exact shadow rays against the objects), the closed-form far field
+ * beyond K r; the bands innermost, each with its own σ_s, σ_t (002: Jerlov/IOP data) and the lamp's
+ * I(λ). A hit object or bottom adds the lamp's direct light. Bands go to RGB through the sensor
+ * weights (002 eq. 4.8), added to rgb (and to spectral with SEASIM_SPECTRAL_OUTPUT).
+ *
+ * Inputs: UwParams (camera, g, bottom), UwBand[band_count] (b, c, bottom albedo, sensor weights),
+ * albedo[object * band_count + band], UwObject[], the G-buffer of raycast.cl (geom, material),
+ * UwLampParams, UwLamp[lamp_count], lamp_spectra[lamp * band_count + band] (W sr⁻¹ nm⁻¹ on the axis).
+ * Output: rgb[3 * pixels] (+=), spectral[band_count * pixels] (+=, SEASIM_SPECTRAL_OUTPUT).
+ * Defines: SEASIM_HAS_OBJECTS (shadow rays), SEASIM_SPECTRAL_OUTPUT.
+ * Stiff cases: common/underwater_lamps.h; never NaN/Inf (every division is by a clamped distance).
+ */
+#include "common/compat.h"
+#include "common/optics.h"
+#include "common/shafts.h"
+#include "common/underwater_params.h"
+#include "common/underwater.h"
+#include "common/underwater_lamps_params.h"
+#include "common/underwater_lamps.h"
+
+#define v3(a) ((float3)((a)[0], (a)[1], (a)[2]))
+
+/* H: 1 when nothing lies between the point p and the lamp (objects only: the bottom and the surface
+ * cannot come between two points under water above the bottom). */
+static inline float lamp_visible(__global const UwObject* objects, int count, float3 p, float3 lamp) {
+#if SEASIM_HAS_OBJECTS
+  const float3 w = lamp - p;
+  const float s = length(w);
+  if (!(s > 0.0f)) return 1.0f;
+  float3 n;
+  int mat;
+  const float t = uw_scene_hit(objects, count, 0.0f, p, w / s, 0.0f, &n, &mat);
+  return (mat >= 0 && t < s) ? 0.0f : 1.0f;
+#else
+  return 1.0f;
+#endif
+}
+
+__kernel void underwater_lamps(__constant UwParams* p, __global const UwBand* bands, __global const float* albedo,
+                               __global const UwObject* objects, __global const float4* geom,
+                               __global const int* material, __constant UwLampParams* lp,
+                               __global const UwLamp* lamps, __global const float* lamp_spectra, __global float* rgb
+#if SEASIM_SPECTRAL_OUTPUT
+                               , __global float* spectral
+#endif
+) {
+  const int x = get_global_id(0), y = get_global_id(1);
+  if (x >= p->width || y >= p->height) return;
+  const int pixel = y * p->width + x;
+  const int nb = lp->band_count, n_planes = lp->planes, m = lp->subplanes;
+#if SEASIM_HAS_OBJECTS
+  const int count = p->object_count;
+#else
+  const int count = 0;
+#endif
+  const float3 o = v3(p->cam_pos);
+  const float3 d = uw_screen_dir(p, (x + 0.5f) / p->width, (y + 0.5f) / p->height);
+  const float4 gb = geom[pixel];
+  const float S = gb.x;
+  const float3 n = (float3)(gb.y, gb.z, gb.w);
+  const int mat = material[pixel];
+  const int lit_surface = mat >= 0 || mat == UW_MAT_BOTTOM;
+  const float t_end = S >= UW_INFINITE ? SHAFTS_T_INF : S;
+  __global const float* alb = mat >= 0 ? albedo + mat * nb : &bands[0].bottom_albedo;
+  const int alb_stride = mat >= 0 ? 1 : (int)(sizeof(UwBand) / sizeof(float));
+
+  float r = 0.0f, g = 0.0f, b = 0.0f;
+#if SEASIM_SPECTRAL_OUTPUT
+#define LAMP_ADD(i, L)                                     \
+  r += (L) * bands[i].w_r;                                 \
+  g += (L) * bands[i].w_g;                                 \
+  b += (L) * bands[i].w_b;                                 \
+  spectral[(size_t)pixel * nb + (i)] += (L)
+#else
+#define LAMP_ADD(i, L)      \
+  r += (L) * bands[i].w_r;  \
+  g += (L) * bands[i].w_g;  \
+  b += (L) * bands[i].w_b
+#endif
+  for (int l = 0; l < lp->lamp_count; ++l) {
+    __global const UwLamp* L = &lamps[l];
+    __global const float* I = lamp_spectra + l * nb;
+    const float3 lamp = v3(L->position), axis = v3(L->direction);
+    /* The lamp's direct light on the surface the pixel sees (001 eq. 1, first term). */
+    if (lit_surface) {
+      const float3 P = o + S * d;
+      const float vis = lamp_visible(objects, count, P + 1e-3f * n, lamp);
+      if (vis > 0.0f) {
+        for (int i = 0; i < nb; ++i) {
+          const float Lo = I[i] * alb[i * alb_stride] *
+                           uw_lamp_surface(P, n, S, lamp, axis, L->cos_cone, L->cos_inner, lp->s_min, bands[i].c, vis);
+          LAMP_ADD(i, Lo);
+        }
+      }
+    }
+    /* The light it scatters towards the eye (001 eq. 2, 5, 7–9), the planes once, the bands innermost. */
+    UwLampSpan sp;
+    if (!uw_lamp_span(o, d, lamp, axis, L->cos_cone, lp->s_min, t_end, n_planes, &sp)) continue;
+    for (int k = 0; k < n_planes && sp.dt > 0.0f; ++k) {
+      float J = 0.0f;
+      for (int j = 0; j < m; ++j) {
+        const float3 P = o + uw_lamp_subsample_t(&sp, k, j, m) * d;
+        const float prof = uw_lamp_profile(P, lamp, axis, L->cos_cone, L->cos_inner);
+        if (prof > 0.0f) J += prof * lamp_visible(objects, count, P, lamp);
+      }
+      if (J <= 0.0f) continue;
+      J *= sp.dt / m;
+      float s, c;
+      const float t = sp.ta + (k + 0.5f) * sp.dt;
+      uw_lamp_at(o, d, lamp, t, &s, &c);
+      for (int i = 0; i < nb; ++i) {
+        const float Ls = I[i] * J * uw_lamp_plane_g(bands[i].b, bands[i].c, p->g, s, t, c, lp->s_min);
+        LAMP_ADD(i, Ls);
+      }
+    }
+    if (sp.tail) {
+      float J = 0.0f;
+      for (int j = 0; j < m; ++j) {
+        const float3 P = o + uw_lamp_tail_t(&sp, j, m) * d;
+        const float prof = uw_lamp_profile(P, lamp, axis, L->cos_cone, L->cos_inner);
+        if (prof > 0.0f) J += prof * lamp_visible(objects, count, P, lamp);
+      }
+      if (J > 0.0f) {
+        J *= hg_phase(uw_lamp_tail_cos(&sp, o, d, lamp), p->g) / m;
+        for (int i = 0; i < nb; ++i) {
+          const float Ls = I[i] * J * uw_lamp_tail(&sp, bands[i].b, bands[i].c);
+          LAMP_ADD(i, Ls);
+        }
+      }
+    }
+  }
+#undef LAMP_ADD
+  rgb[3 * pixel + 0] += r;
+  rgb[3 * pixel + 1] += g;
+  rgb[3 * pixel + 2] += b;
+}
