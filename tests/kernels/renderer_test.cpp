@@ -93,7 +93,7 @@ TEST(Renderer, SurfaceTimeRerunsOnlyOceanCausticsAndSea) {
 TEST(Renderer, UpdateComparesWithTheOverrideInEffect) {
   const std::vector<Override> base = small({set("surface.grid", "64"), set("quality.sea_lut_size", "17"),
                                             set("quality.sea_lut_size", "9")});
-  Renderer renderer(test::testDevice(), sceneFile("wavy_sea.toml"), base, standardPasses());
+  Renderer renderer(test::testDevice(), sceneFile("wavy_sea.toml"), base, shippedPasses());
   (void)renderer.render();
   EXPECT_EQ(renderer.scene().quality.at("sea_lut_size").value, 9);
   renderer.update({set("quality.sea_lut_size", "17")});
