@@ -103,7 +103,9 @@ copy_source() {
 mount_all() {
   for d in proc dev sys; do
     mkdir -p "$ROOT/$d"
-    mount --bind "/$d" "$ROOT/$d"
+    # /sys with its submounts: slurmd (the farm test's real Slurm node) stops at start-up without
+    # the cgroup file system at /sys/fs/cgroup, which every booted machine has.
+    if [ "$d" = sys ]; then mount --rbind "/$d" "$ROOT/$d"; else mount --bind "/$d" "$ROOT/$d"; fi
     MOUNTED+=("$ROOT/$d")
   done
   # PoCL and the tests need a shared-memory folder and a writable /tmp.

@@ -78,7 +78,14 @@ CONF
 wait_pidfile() {
   local f=$1 name=$2
   for _ in $(seq 100); do [ -s "$f" ] && break; sleep 0.1; done
-  [ -s "$f" ] || { log "$name did not start; its log: $STATE/log/$name.log"; tail -5 "$STATE/log/$name.log" >&2 || true; return 1; }
+  if [ ! -s "$f" ]; then
+    log "$name did not start; its log: $STATE/log/$name.log"
+    tail -5 "$STATE/log/$name.log" >&2 || true
+    if grep -q "No filesystem mounted on /sys/fs/cgroup" "$STATE/log/$name.log" 2>/dev/null; then
+      log "$name needs the cgroup file system at /sys/fs/cgroup (in a chroot: mount --rbind /sys)"
+    fi
+    return 1
+  fi
   cp "$f" "$STATE/pids/$name.pid"
   alive "$name" || { log "$name exited right after starting"; tail -5 "$STATE/log/$name.log" >&2 || true; return 1; }
 }
