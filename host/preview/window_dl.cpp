@@ -1,35 +1,13 @@
 // window_dl.cpp — loads the GLFW window module (preview_window.h) the first time a window opens.
-#include <dlfcn.h>
-
-#include <cstdlib>
-#include <filesystem>
 #include <mutex>
 
 #include "preview/preview_window.h"
 #include "util/error.h"
+#include "util/module_loader.h"
 
 namespace seasim {
 
 namespace {
-
-namespace fs = std::filesystem;
-
-// As the image module (io/image_io_dl.cpp): $SEASIM_LIB_DIR, beside the binary, <prefix>/lib/seasim,
-// the build folder.
-std::vector<fs::path> moduleCandidates() {
-  std::vector<fs::path> out;
-  if (const char* dir = std::getenv("SEASIM_LIB_DIR"); dir && *dir) out.push_back(fs::path(dir) / SEASIM_PREVIEW_MODULE_FILE);
-  std::error_code ec;
-  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-  if (!ec) {
-    out.push_back(exe.parent_path() / SEASIM_PREVIEW_MODULE_FILE);
-    out.push_back(exe.parent_path().parent_path() / "lib" / "seasim" / SEASIM_PREVIEW_MODULE_FILE);
-  }
-#ifdef SEASIM_PREVIEW_MODULE_DIR
-  out.push_back(fs::path(SEASIM_PREVIEW_MODULE_DIR) / SEASIM_PREVIEW_MODULE_FILE);
-#endif
-  return out;
-}
 
 const PreviewWindowModule& module() {
   if (!previewBuilt())
@@ -39,28 +17,15 @@ const PreviewWindowModule& module() {
   static std::string failure;
   static std::once_flag once;
   std::call_once(once, [] {
+#ifdef SEASIM_PREVIEW_MODULE_DIR
+    const std::string build_dir = SEASIM_PREVIEW_MODULE_DIR;
+#else
+    const std::string build_dir;
+#endif
     std::string tried;
-    for (const fs::path& path : moduleCandidates()) {
-      if (!fs::exists(path)) {
-        tried += "\n  " + path.string() + ": not there";
-        continue;
-      }
-      void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);  // never closed: used until exit
-      if (!handle) {
-        tried += "\n  " + path.string() + ": " + dlerror();
-        continue;
-      }
-      using Entry = const PreviewWindowModule* (*)();
-      auto entry = reinterpret_cast<Entry>(dlsym(handle, SEASIM_PREVIEW_MODULE_ENTRY));
-      const PreviewWindowModule* t = entry ? entry() : nullptr;
-      if (!t || t->version != kPreviewModuleVersion) {
-        tried += "\n  " + path.string() + ": not a matching seasim preview module (rebuild it with this binary)";
-        continue;
-      }
-      table = t;
-      return;
-    }
-    failure = "cannot load the preview module " SEASIM_PREVIEW_MODULE_FILE ":" + tried;
+    table = loadModuleTable<PreviewWindowModule>(moduleCandidates(SEASIM_PREVIEW_MODULE_FILE, build_dir),
+                                                 SEASIM_PREVIEW_MODULE_ENTRY, kPreviewModuleVersion, "preview", tried);
+    if (!table) failure = "cannot load the preview module " SEASIM_PREVIEW_MODULE_FILE ":" + tried;
   });
   if (!table) throw RuntimeError(failure);
   return *table;
