@@ -161,10 +161,11 @@ __kernel void sea_single(__constant SeaParams* p, __global const SeaBand* bands,
     /* Above the horizon: the sky itself. */
     const float3 shape = sky_shape(p, sky, d);
     for (int i = 0; i < p->band_count; ++i) {
-      const float L = sky_radiance(p, &bands[i], shape, d) * sub_weight;
-      r += L * bands[i].w_r; g += L * bands[i].w_g; b += L * bands[i].w_b;
+      const float L = sky_radiance(p, &bands[i], shape, d);
+      const float Lw = L * sub_weight;
+      r += Lw * bands[i].w_r; g += Lw * bands[i].w_g; b += Lw * bands[i].w_b;
 #if SEASIM_SPECTRAL_OUTPUT
-      SPECTRAL_STORE(i, L / sub_weight);
+      SPECTRAL_STORE(i, L);
 #endif
     }
   } else {
@@ -310,10 +311,10 @@ __kernel void sea_single(__constant SeaParams* p, __global const SeaBand* bands,
       L += focus * sea_bottom_reflection(band->sun_irradiance * sun_horizontal, t_in, t_out, band->bottom_albedo,
                                          band->c, z_d, cos_io, cos_ji);
 #endif
-      L *= sub_weight;
-      r += L * band->w_r; g += L * band->w_g; b += L * band->w_b;
+      const float Lw = L * sub_weight;
+      r += Lw * band->w_r; g += Lw * band->w_g; b += Lw * band->w_b;
 #if SEASIM_SPECTRAL_OUTPUT
-      SPECTRAL_STORE(i, L / sub_weight);
+      SPECTRAL_STORE(i, L);
 #endif
     }
   }
