@@ -54,6 +54,10 @@ __kernel void ff_table_blend(__constant FfParams* p, __global const float* table
  * common/sea_bottom.h), giving the view path length l = |BC| and the depth h of C; the bottom texture
  * at C gives the dark material's share. Then E_refr (eq. 20) by the exact band sum or the tables.
  *
+ * With SEASIM_SPECTRAL_OUTPUT the kernel also writes every band's radiance (ff_band_radiance), the
+ * exact eq. 20 per band on every path: the tables hold RGB only, so a spectral image of the table path
+ * would not exist; on the exact path the bands through the sensor weights give the RGB image.
+ *
  * Radiance: E_refr is an irradiance-like flow (the paper's units); a diffuse field of that exitance
  * has radiance E/π in the water, and radiance over n² is conserved across the surface (docs/:
  * one radiometric convention), so the pixel gets F L_sky + (1 - F) E_refr / (π n²).
@@ -69,6 +73,9 @@ __kernel void ff_render(__constant FfView* v, __global const FfBand* bands, __co
                         __global const float* table, __global float* rgb
 #if SEASIM_FF_HEIGHTFIELD
                         , __constant SeaHeightField* hf, __global const float* hf_depth
+#endif
+#if SEASIM_SPECTRAL_OUTPUT /* one radiance per band per pixel, always the exact eq. 20 (spectral.exr) */
+                        , __global float* spectral
 #endif
 ) {
   const int x = get_global_id(0), y = get_global_id(1);
@@ -95,6 +102,15 @@ __kernel void ff_render(__constant FfView* v, __global const FfBand* bands, __co
 #define SEASIM_FF_TABLES 0
 #endif
     ff_shade(view, bands, *p, table, SEASIM_FF_TABLES, F, l, h, b + l * dw, out);
+#if SEASIM_SPECTRAL_OUTPUT
+    const real3 c = b + l * dw;
+    const real tex = ff_bottom_texture(c.x, c.z, (real)view.texture_scale, (real)view.dark_fraction);
+    for (int i = 0; i < p->n_bands; ++i)
+      spectral[(size_t)(y * view.width + x) * p->n_bands + i] = ff_band_radiance(bands[i], (real)view.ior, F, l, h, tex);
+  } else {
+    for (int i = 0; i < p->n_bands; ++i)
+      spectral[(size_t)(y * view.width + x) * p->n_bands + i] = (real)bands[i].e_sky / SEASIM_PI;
+#endif
   }
   vstore3((float3)(out[0], out[1], out[2]), y * view.width + x, rgb);
 }

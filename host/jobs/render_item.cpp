@@ -4,6 +4,7 @@
 
 #include "io/atomic_file.h"
 #include "io/image_io.h"
+#include "io/tonemap_eq18.h"
 #include "jobs/test_hooks.h"
 #include "plan/memory_budget.h"
 #include "plan/plan.h"
@@ -101,7 +102,13 @@ nlohmann::json renderItem(Device& device, Renderer& renderer, const ItemOutputs&
                                     frame.spectral)
                  : writeExr(dir + "/image.exr", frame.rgb);
     } else if (format == "png") {
-      path = writePng(dir + "/image.png", frame.rgb, scene.camera.exposure_ev);
+      if (scene.display.tone_map == DisplayDesc::ToneMap::Eq18) {  // 003 eq. 18 (io/tonemap_eq18.h)
+        std::vector<std::uint8_t> bytes;
+        toneMapImage8Eq18(frame.rgb, scene.camera.exposure_ev, scene.display.eq18, bytes);
+        path = writePngBytes(dir + "/image.png", frame.rgb.width, frame.rgb.height, frame.rgb.channels, bytes);
+      } else {
+        path = writePng(dir + "/image.png", frame.rgb, scene.camera.exposure_ev);
+      }
     } else if (format == "npy") {
       path = dir + "/image.npy";
       writeNpy(path, frame.rgb);

@@ -29,6 +29,7 @@ typedef float real;
 #include "common/froxel.h"
 #include "common/path_tracer.h"
 #include "common/fourflow.h"
+#include "common/fourflow_waves.h"
 }  // namespace seasim::kmath_f
 
 namespace seasim::kmath_d {
@@ -50,4 +51,5 @@ typedef double real;
 #include "common/froxel.h"
 #include "common/path_tracer.h"
 #include "common/fourflow.h"
+#include "common/fourflow_waves.h"
 }  // namespace seasim::kmath_d

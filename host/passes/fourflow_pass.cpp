@@ -8,6 +8,7 @@
 #include "passes/fourflow_auto.h"
 #include "spectral/jerlov.h"
 #include "underwater/fourflow_setup.h"
+#include "underwater/fourflow_waves.h"
 #include "util/error.h"
 
 namespace seasim {
@@ -46,6 +47,11 @@ FourFlowSetup makeFourFlowSetup(const Scene& scene, const WavelengthGrid& grid, 
   const double tex_mean = fourFlowTextureMean(sh.texture_scale, sh.dark_fraction);
   double rgb_a_num[3] = {0, 0, 0}, rgb_den[3] = {0, 0, 0}, sky_rgb[3] = {0, 0, 0};
   double eps_min = 1e30;
+  // The air–water coefficients: a flat mirror, or 003 eq. 10 over the FFT patch when the surface has waves.
+  const FourFlowSurface surface =
+      scene.surface.type == SurfaceDesc::Type::Fft
+          ? waveAveragedSurface(oceanFacetNormals(scene.surface), scene.sun.zenith, scene.sun.azimuth, scene.water.ior)
+          : flatFourFlowSurface(mu_sun, scene.water.ior);
   for (size_t i = 0; i < grid.centers_nm.size(); ++i) {
     FourFlowBandInput in;
     in.absorption = water.a[i];
@@ -57,7 +63,7 @@ FourFlowSetup makeFourFlowSetup(const Scene& scene, const WavelengthGrid& grid, 
     in.rho_b = sh.dark_albedo;
     in.rho_mean = (1 - tex_mean) * in.rho_a + tex_mean * in.rho_b;
     in.rgb = {sensor.to_r[i], sensor.to_g[i], sensor.to_b[i]};
-    s.bands.push_back(makeFourFlowBand(in, mu_sun, scene.water.ior));
+    s.bands.push_back(makeFourFlowBand(in, surface));
     eps_min = std::min(eps_min, in.absorption + in.scattering);
     // The materials' RGB reflectance under the light that reaches the water (T_bottom of eq. 22).
     const double light = in.e_sun + in.e_sky;
@@ -124,8 +130,6 @@ FourFlowSetup makeFourFlowSetup(const Scene& scene, const WavelengthGrid& grid, 
 FourFlowPass::FourFlowPass(Device& device, const Scene& scene, const PassPlan& plan, const WavelengthGrid& grid,
                            const Sensor& sensor, int table_size)
     : device_(device), width_(scene.camera.width), height_(scene.camera.height) {
-  if (scene.spectral.spectral_exr)
-    throw RuntimeError("fourflow pass: spectral_exr output is not built for the four-flow model (issue 17)");
   const FourFlowSetup s = makeFourFlowSetup(scene, grid, sensor, table_size);
   const bool tables = !hasDefine(plan, "SEASIM_FF_TABLES=0");
   const bool hf = hasDefine(plan, "SEASIM_FF_HEIGHTFIELD=1");
@@ -159,6 +163,10 @@ FourFlowPass::FourFlowPass(Device& device, const Scene& scene, const PassPlan& p
       hf_depth_ = b.depth;
       render_.setArg(5, hf_params_);
       render_.setArg(6, hf_depth_);
+    }
+    if (hasDefine(plan, "SEASIM_SPECTRAL_OUTPUT=1")) {
+      spectral_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * pixels * s.bands.size());
+      render_.setArg(hf ? 7 : 5, spectral_);
     }
   } catch (const cl::Error& e) {
     throw DeviceError(std::string("fourflow pass set-up: ") + e.what() + " " + clErrorName(e.err()));

@@ -1,6 +1,7 @@
 // fourflow_pass.h — host side of kernels/fourflow.cl (paper 003): the four-flow bands from the scene,
 // the (l, h) tables of eq. 22–23 (built once by a kernel on the table path), and the frame kernel
-// ff_render, which writes linear RGB (3 floats per pixel). Bottom: [bottom] flat or height field, or
+// ff_render, which writes linear RGB (3 floats per pixel) and, with spectral.spectral_exr, every band's
+// radiance (the exact eq. 20 per band, on either path). Bottom: [bottom] flat or height field, or
 // the [shallow] slope, through the sea module's height field (passes/sea_heightfield.h).
 #pragma once
 #include <CL/opencl.hpp>
@@ -39,11 +40,12 @@ class FourFlowPass {
   double run();  // ff_render; returns its profiled ms
   double tableMs() const { return table_ms_; }  // ff_build_tables, 0 on the exact path
   cl::Buffer& rgb() { return rgb_; }
+  cl::Buffer& spectral() { return spectral_; }  // bands per pixel; null unless spectral.spectral_exr
 
  private:
   Device& device_;
   cl::Kernel render_;
-  cl::Buffer view_, bands_, params_, table_, rgb_, hf_params_, hf_depth_;
+  cl::Buffer view_, bands_, params_, table_, rgb_, spectral_, hf_params_, hf_depth_;
   int width_, height_;
   double table_ms_ = 0;
 };

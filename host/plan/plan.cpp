@@ -85,7 +85,8 @@ Plan makePlan(const Scene& scene) {
   // The FFT ocean runs for the sea view's wave normals and for the caustic maps under water (under
   // water the model's surface is otherwise flat, so texture caustics or none need no ocean).
   const bool ocean_for_caustics = underwater && waves && caustics == 2;
-  const bool ocean_for_sea = waves && sea_view;  // sea_single's wave normals (SEASIM_HAS_WAVES)
+  // sea_single's wave normals (SEASIM_HAS_WAVES); [shallow] averages its waves on the host (003 eq. 10).
+  const bool ocean_for_sea = waves && sea_view && !scene.shallow.present;
   if (ocean_for_sea || ocean_for_caustics) {
     plan.passes.push_back({"ocean_fft", "ocean.cl", {flag("SEASIM_HAS_CHOPPY", scene.surface.choppiness > 0)},
                            {"scene"}, {"ocean_maps"}, "surface.type = \"fft\"", true, ""});
@@ -134,7 +135,8 @@ Plan makePlan(const Scene& scene) {
     plan.passes.push_back({"fourflow", "fourflow.cl",
                            {std::string("SEASIM_FF_TABLES=") + (eq24 ? "2" : table ? "1" : "0"),
                             flag("SEASIM_FF_HEIGHTFIELD", scene.shallow.slope ||
-                                                              scene.bottom.type == BottomDesc::Type::HeightField)},
+                                                              scene.bottom.type == BottomDesc::Type::HeightField),
+                            flag("SEASIM_SPECTRAL_OUTPUT", spectral_out)},
                            {"scene"}, {"rgb"},
                            std::string("[shallow]: four-flow light field over a visible bottom (003 eq. 4-20), ") +
                                (eq24 ? "(l, h) tables + pre-converted blend (eq. 24)"

@@ -23,11 +23,12 @@ bool anyMatch(const std::vector<std::string>& patterns, const std::string& key) 
   return false;
 }
 
-// Keys that need no pass to claim them (no full rebuild when none does): the exposure is applied when
-// the PNG is written and the name labels the outputs. Passes that do read the exposure (the shafts'
+// Keys that need no pass to claim them (no full rebuild when none does): the exposure and [display] are
+// applied when the PNG is written and the name labels the outputs. Passes that do read the exposure (the shafts'
 // cone clipping, the "auto" quality searches) claim it through "camera.*" and are marked as usual.
 bool changesNoPass(const std::string& key) {
-  return keyMatches("camera.exposure_ev", key) || keyMatches("scene.*", key) || keyMatches("name", key);
+  return keyMatches("camera.exposure_ev", key) || keyMatches("display.*", key) || keyMatches("scene.*", key) ||
+         keyMatches("name", key);
 }
 
 }  // namespace

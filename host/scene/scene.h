@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "math/vec3.h"
+#include "io/tonemap_eq18.h"
 #include "spectral/spectrum.h"
 
 namespace seasim {
@@ -206,6 +207,7 @@ struct Scene {
   std::vector<ObjectDesc> objects;
   std::vector<SpotlightDesc> spotlights;
   SpectralDesc spectral;
+  DisplayDesc display;  // [display]: the PNG's tone map (io/tonemap.h or 003 eq. 18, io/tonemap_eq18.h)
   // Every known knob with its value or "auto"; defaults filled in by the parser. Keys are documented
   // in scenes/README.md ([quality]).
   std::map<std::string, Knob> quality;

@@ -54,7 +54,8 @@ constexpr double kDegToRad = std::numbers::pi / 180.0;
 
 const std::vector<std::string> kTopLevel = {
     "scene",  "camera",  "sun",        "sky",      "water", "air",    "surface",
-    "bottom", "objects", "spotlights", "spectral", "sea",   "underwater", "shallow", "quality"};
+    "bottom", "objects", "spotlights", "spectral", "sea",   "underwater", "shallow", "quality",
+    "display"};
 
 std::string fmt(double v) { return formatNumber(v); }
 
@@ -116,11 +117,10 @@ class SceneParser {
       root.check(scene_.water.present, "shallow", "needs a [water] table (the four-flow model's water)");
       root.check(scene_.camera.position.y > 0, "shallow",
                  "the four-flow model renders water seen from above: camera.position y must be > 0");
-      root.check(scene_.surface.type == SurfaceDesc::Type::Flat, "shallow",
-                 "needs a flat surface (the wave-averaged coefficients of 003 eq. 10 are not built)");
       shallow(section(root, "shallow"));
     }
     quality(section(root, "quality"));
+    display(section(root, "display"));
   }
 
  private:
@@ -623,6 +623,48 @@ class SceneParser {
     } else {
       r.check(scene_.bottom.type != BottomDesc::Type::None, "slope_depths_m",
               "missing: [shallow] needs a bottom: [bottom] type = \"flat\" or \"heightfield\", or slope_depths_m");
+    }
+    r.finish();
+  }
+
+  // [display] (io/tonemap_eq18.h): the default curve, or 003 eq. 18 with its constants.
+  void display(const toml::table& t) {
+    TableReader probe(src_, t, "display");
+    const std::string mode = probe.choice("tone_map", "default", {"default", "eq18"});
+    TableReader r(src_, t, "display", "not used with tone_map = '" + mode + "'");
+    r.has("tone_map");
+    DisplayDesc& d = scene_.display;
+    if (mode == "eq18") {
+      d.tone_map = DisplayDesc::ToneMap::Eq18;
+      Eq18Params& p = d.eq18;
+      if (const toml::node* n = r.get("adaptation_luminance")) {
+        if (auto* s = n->as_string()) {
+          r.check(s->get() == "mean" || s->get() == "log_mean", "adaptation_luminance",
+                  "expected \"log_mean\", \"mean\" or a number > 0, got \"" + s->get() + "\"");
+          p.adaptation = s->get() == "mean" ? Eq18Params::Adaptation::Mean : Eq18Params::Adaptation::LogMean;
+        } else {
+          p.adaptation = Eq18Params::Adaptation::Given;
+          p.world_adaptation = r.number("adaptation_luminance", p.world_adaptation);
+          r.check(p.world_adaptation > 0 && std::isfinite(p.world_adaptation), "adaptation_luminance",
+                  "must be > 0, got " + fmt(p.world_adaptation));
+        }
+      }
+      const auto positive = [&](const char* key, double& v) {
+        v = r.number(key, v);
+        r.check(v > 0 && v <= 1e6, key, "must be in (0, 1e6], got " + fmt(v));
+      };
+      positive("display_adaptation", p.display_adaptation);
+      positive("gamma_world", p.gamma_world);
+      positive("gamma_display", p.gamma_display);
+      positive("contrast_scale", p.contrast_scale);
+      if (const toml::node* n = r.get("white")) {
+        if (auto* s = n->as_string()) {
+          r.check(s->get() == "max", "white", "expected \"max\" or a number > 0, got \"" + s->get() + "\"");
+        } else {
+          p.white_from_image = false;
+          positive("white", p.white);
+        }
+      }
     }
     r.finish();
   }

@@ -18,10 +18,13 @@ static_assert(offsetof(FfView, width) == 22 * 4);
 static_assert(offsetof(FfView, dark_fraction) == 27 * 4);
 
 FfBand makeFourFlowBand(const FourFlowBandInput& in, double mu_sun, double n_water) {
+  return makeFourFlowBand(in, flatFourFlowSurface(mu_sun, n_water));
+}
+
+FfBand makeFourFlowBand(const FourFlowBandInput& in, const FourFlowSurface& s) {
   if (!(in.absorption + in.scattering > 0)) throw std::invalid_argument("four-flow band: water must attenuate (a + b > 0)");
   namespace kd = kmath_d;
   const kd::FfMedium m = kd::ff_medium(in.absorption, in.scattering, in.mean_cosine);
-  const kd::FfSurface s = kd::ff_flat_surface(mu_sun, n_water);
   FfBand b{};
   b.eps = float(in.absorption + in.scattering);
   b.k = float(m.k), b.S = float(m.S), b.S1 = float(m.S1), b.S2 = float(m.S2);

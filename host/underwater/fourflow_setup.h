@@ -7,6 +7,7 @@
 #include <array>
 
 #include "common/fourflow_params.h"
+#include "underwater/fourflow_waves.h"
 
 namespace seasim {
 
@@ -20,7 +21,9 @@ struct FourFlowBandInput {
   std::array<double, 3> rgb{};  // band -> linear RGB weights
 };
 
-// mu_sun: cos of the sun's zenith angle in air; n_water: water's refractive index.
+// mu_sun: cos of the sun's zenith angle in air; n_water: water's refractive index (a flat surface).
 FfBand makeFourFlowBand(const FourFlowBandInput& in, double mu_sun, double n_water);
+// With given air–water coefficients (a flat surface, or averaged over waves: underwater/fourflow_waves.h).
+FfBand makeFourFlowBand(const FourFlowBandInput& in, const FourFlowSurface& surface);
 
 }  // namespace seasim

@@ -43,9 +43,12 @@
  *     (m = min(λ, λ0)), a divided difference that tends to τ e^{-λτ} as λ0 -> λ instead of 0/0, and
  *       w_p(τ) = [(λ0 Σ + λ λ0 Δ/a) Φ(τ) - (Σ - λ0 Δ/a) e^{-λτ}] / (λ0 + λ).
  *     The G- forcing is its mirror image (τ -> τ0 - τ, F+ <-> F-: s unchanged, w negated).
- * α and β come from the two diffuse boundary conditions, a 2×2 system whose determinant is written as
- * a sum of non-negative terms (C² - E² = λ0² exactly; see ff_solve). The flows at the two boundaries
- * are then read from the boundary conditions themselves, which keeps them finite as τ0 -> 0.
+ * The outgoing diffuse flows F-(0) and F+(τ0) come from adding the layer (its Kubelka–Munk reflectance
+ * and transmittance, and the beams' emergent flows between black boundaries) to the two boundaries, a
+ * 2×2 system whose determinant and right-hand sides are sums of non-negative terms (C² - E² = λ0²;
+ * see ff_solve); α, β and the incoming flows then follow from the boundary conditions. This keeps a
+ * small F-(0) (thin water over a dark bottom) to float's relative precision: 1e-6 relative in float
+ * against the double reference over the test grids (tests/unit/fourflow_math_test.cpp).
  *
  * Stiff cases handled, each tested in tests/unit/fourflow_math_test.cpp:
  *   - τ0 = 50, 200, 1e4: no overflow, no Inf·0; F-(0) tends to the semi-infinite solution;
@@ -166,6 +169,34 @@ SEASIM_FN real ff_particular_w(FfMedium m, real x) {
   return ((l0 * sig + l * r * del) * ff_divided_exp(x, l, l0) - (sig - r * del) * exp(-l * x)) / (l0 + l);
 }
 
+/* Two non-negative gaps of the beam's divided exponential Φ = Φ(τ0) (ff_divided_exp), E = λ0/sinh(λ0 τ0):
+ *   gap_e = 1 - E Φ = E ∫_0^τ0 [sinh(λ0 y) + e^{-λ0 y}(1 - e^{-λ(τ0 - y)})] dy,
+ *   gap_p = Ψ - Φ = ∫_0^τ0 e^{-λ x}(1 - e^{-λ0 (τ0 - x)}) dx,   Ψ = (1 - e^{-λτ0})/λ.
+ * In thin water both are O(τ0) differences of O(1) quantities; there ((λ + λ0) τ0 <= 1) they are
+ * integrated from their non-negative integrands by 8-point Gauss–Legendre (entire integrands over a
+ * range of at most one e-fold: error ~1e-13), elsewhere taken as the differences. */
+SEASIM_FN void ff_beam_gaps(real t0, real l, real l0, real E, real* gap_e, real* gap_p) {
+  const real phi = ff_divided_exp(t0, l, l0);
+  if ((l + l0) * t0 > R(1.0)) {
+    *gap_e = fmax(R(1.0) - E * phi, R(0.0));
+    *gap_p = fmax(t0 * expm1_over_x(-l * t0) - phi, R(0.0));
+    return;
+  }
+  const real xg[4] = {R(0.1834346424956498), R(0.5255324099163290), R(0.7966664774136267), R(0.9602898564975363)};
+  const real wg[4] = {R(0.3626837833783620), R(0.3137066458778873), R(0.2223810344533745), R(0.1012285362903763)};
+  real se = R(0.0), sp = R(0.0);
+  for (int i = 0; i < 8; ++i) {
+    const real y = R(0.5) * t0 * (R(1.0) + (i < 4 ? xg[i] : -xg[i - 4]));
+    const real w = wg[i < 4 ? i : i - 4];
+    const real z = t0 - y;
+    /* sinh(λ0 y) = λ0 y (1 + e^{-2λ0 y})/2 ... written as e^{λ0 y} λ0 y φ(-2λ0 y) (no cancellation). */
+    se += w * (exp(l0 * y) * l0 * y * expm1_over_x(-R(2.0) * l0 * y) + exp(-l0 * y) * l * z * expm1_over_x(-l * z));
+    sp += w * exp(-l * y) * l0 * z * expm1_over_x(-l0 * z);
+  }
+  *gap_e = E * R(0.5) * t0 * se;
+  *gap_p = R(0.5) * t0 * sp;
+}
+
 /* ---------------------------------------------------------------------------------------------
  * 003 eq. 7–9 solved for one band: bottom at optical depth tau0 = ε h, sun and sky irradiance on a
  * horizontal plane just above the surface (e_sun, e_sky). */
@@ -196,33 +227,71 @@ SEASIM_FN FfSolution ff_solve(FfMedium m, FfSurface srf, FfBottom bot, real tau0
   const real sp_bot = sol.C1 * ff_particular_s(m, t0);
   const real wp_bot = sol.C1 * ff_particular_w(m, t0) - sol.C4s * ff_particular_w(m, R(0.0));
 
-  /* F+ - R F- = ((1 - R) s + (1 + R) w)/2 at the top, F- - R F+ = ((1 - R) s - (1 + R) w)/2 at the
-   * bottom, with s_h(0) = α, s_h(τ0) = β, w_h(0) = (α C - β E)/a, w_h(τ0) = (α E - β C)/a,
-   * C = c(τ0) = λ0 coth(λ0 τ0), E = c(0) = λ0 / sinh(λ0 τ0):
-   *   [(1-Rt)/2 + (1+Rt) C/(2a)] α - (1+Rt) E/(2a) β = src_top - ((1-Rt) sp + (1+Rt) wp)_top / 2
-   *   -(1+Rb) E/(2a) α + [(1-Rb)/2 + (1+Rb) C/(2a)] β = src_bot - ((1-Rb) sp - (1+Rb) wp)_bot / 2 */
-  const real C = ff_cosh_ratio(t0, l0, t0);
+  /* The outgoing diffuse flows u = F-(0) and v = F+(τ0) by adding the layer to its two boundaries
+   * (the same solution as the 2×2 system for the homogeneous amplitudes, rearranged): the layer alone
+   * reflects ρ = S/Q and transmits t = E/Q of a diffuse flow, Q = k + S + C, C = λ0 coth(λ0 τ0),
+   * E = λ0 / sinh(λ0 τ0) (Kubelka–Munk, with C² - E² = λ0²), and the beams alone, between black
+   * boundaries, send J_up up through the surface side and J_dn down onto the bottom. With the incoming
+   * flows F+(0) = src_top + Rt u, F-(τ0) = src_bot + Rb v:
+   *   u = ρ F+(0) + t F-(τ0) + J_up,   v = t F+(0) + ρ F-(τ0) + J_dn.
+   * Why: reading u as (s(0) - src_top)/(1 + Rt) from the amplitude α lost the digits of a small F-(0)
+   * under O(1) flows (4e-5 relative in float under a thin layer over a black bottom); here every piece
+   * is a sum of non-negative terms except the beams' J, whose cancellation is bounded (measured in
+   * tests/unit/fourflow_math_test.cpp). */
+  const real Cm = ff_cosh_ratio(t0, l0, t0);  /* C */
   const real E = ff_cosh_ratio(R(0.0), l0, t0);
-  const real m11 = R(0.5) * (R(1.0) - Rt) + R(0.5) * (R(1.0) + Rt) * C / a;
-  const real m12 = -R(0.5) * (R(1.0) + Rt) * E / a;
-  const real m21 = -R(0.5) * (R(1.0) + Rb) * E / a;
-  const real m22 = R(0.5) * (R(1.0) - Rb) + R(0.5) * (R(1.0) + Rb) * C / a;
-  /* m11 m22 - m12 m21 with (C² - E²)/a² = λ0²/a² = k/a: a sum of non-negative terms, no cancellation
-   * (it vanishes only for a closed lossless box, Rt = Rb = 1 and k = 0, which has no steady state). */
-  const real det = R(0.25) * ((R(1.0) - Rt) * (R(1.0) - Rb) +
-                              ((R(1.0) - Rt) * (R(1.0) + Rb) + (R(1.0) + Rt) * (R(1.0) - Rb)) * C / a +
-                              (R(1.0) + Rt) * (R(1.0) + Rb) * m.k / a);
-  const real r1 = src_top - R(0.5) * ((R(1.0) - Rt) * sp_top + (R(1.0) + Rt) * wp_top);
-  const real r2 = src_bot - R(0.5) * ((R(1.0) - Rb) * sp_bot - (R(1.0) + Rb) * wp_bot);
-  sol.alpha = (r1 * m22 - m12 * r2) / det;
-  sol.beta = (m11 * r2 - m21 * r1) / det;
-
-  /* Boundary flows from the boundary conditions: with s = F+ + F- known at an end,
-   * F+ - R F- = src gives F- = (s - src)/(1 + R) at the top and F+ = (s - src)/(1 + R) at the bottom. */
-  sol.Fm_top = fmax((sol.alpha + sp_top - src_top) / (R(1.0) + Rt), R(0.0));
+  /* C - E = (1 - e^{-λ0 τ0})² / (2 τ0 φ(-2 λ0 τ0)), exact and >= 0 (it -> 0 with λ0 τ0). */
+  const real one_m = l0 * t0 * expm1_over_x(-l0 * t0);
+  const real c_minus_e = one_m * one_m / (R(2.0) * t0 * expm1_over_x(-R(2.0) * l0 * t0));
+  /* The beam G+ = e^{-λτ} between black boundaries (its mirror G- = e^{-λ(τ0-τ)} swaps up and down):
+   *   2 Q J_up = -w_p(0) (a + C - E) + E dws
+   *   2 Q J_dn = (k + C) s_p(τ0) + (a + C) [w_p(τ0) - w_p(0)] - (a + C - E)(-w_p(0))
+   * with -w_p(0) = (Σ - rΔ)/(λ0 + λ) >= 0, r = λ0/a, and, from ff_particular_w and _s,
+   *   w_p(τ0) - w_p(0) = [λ0 (Σ + λΔ/a) Φ(τ0) + (Σ - rΔ)(1 - e^{-λτ0})]/(λ0 + λ)   (both terms >= 0),
+   *   dws = w_p(τ0) - w_p(0) - s_p(τ0) = [(Σ - rΔ)(1 - e^{-λτ0}) - (a - λ0)(Σ + λΔ/a) Φ(τ0)]/(λ0 + λ). */
+  const real sig = m.S1 + m.S2, del = m.S1 - m.S2;
+  const real r = l0 / a;
+  const real inv_sum = R(1.0) / (l0 + l);
+  const real phi0 = ff_divided_exp(t0, l, l0);
+  const real beam_loss = l * t0 * expm1_over_x(-l * t0); /* 1 - e^{-λτ0} */
+  const real w0n = (sig - r * del) * inv_sum;             /* -w_p(0) */
+  const real gq = sig + l * del / a;
+  const real dw = (l0 * gq * phi0 + (sig - r * del) * beam_loss) * inv_sum;
+  const real sp1 = ff_particular_s(m, t0);
+  const real ace = a + c_minus_e; /* a + C - E */
+  /* Q J_up, rearranged with (a - λ0)(Σ + λΔ/a) = (Σ - rΔ)(a + λ) - 2 S2 (λ + λ0) into non-negative terms:
+   *   2 Q J_up (λ0 + λ) = (Σ - rΔ)[a (1 - EΦ) + (C - E) + λ E (Ψ - Φ)] + 2 S2 (λ + λ0) E Φ;
+   * the form above, -w_p(0)(a + C - E) + E dws, cancels in thin water to the single backscatter
+   * S2 τ0 from terms of size Σ (a factor Σ/2S2 = 10 for X1 = 0.9). */
+  real gap_e, gap_p;
+  ff_beam_gaps(t0, l, l0, E, &gap_e, &gap_p);
+  const real q_up = R(0.5) * ((sig - r * del) * (a * gap_e + c_minus_e + l * E * gap_p) * inv_sum +
+                              R(2.0) * m.S2 * E * phi0); /* Q J_up for a unit G+ */
+  /* Q J_dn two ways, equal in exact arithmetic: the first cancels in deep water ((a + C) dw and
+   * (a + C - E)(-w_p(0)) agree to E/(a + C)), the second in thin water ((a + C) w_p(τ0) against
+   * E w_p(0), both ~ 1/τ0); the one whose terms are smaller in magnitude is the one rounded least. */
+  const real w1 = ff_particular_w(m, t0);
+  const real dn_thin_a = (m.k + Cm) * sp1 + (a + Cm) * dw, dn_thin_b = ace * w0n;
+  const real dn_deep_a = (m.k + Cm) * sp1 + E * w0n, dn_deep_b = (a + Cm) * w1;
+  const real q_dn = R(0.5) * (fabs(dn_thin_a) + fabs(dn_thin_b) <= fabs(dn_deep_a) + fabs(dn_deep_b)
+                                  ? dn_thin_a - dn_thin_b
+                                  : dn_deep_a + dn_deep_b); /* Q J_dn for a unit G+ */
+  const real qj_up = fmax(sol.C1 * q_up + sol.C4s * q_dn, R(0.0));
+  const real qj_dn = fmax(sol.C1 * q_dn + sol.C4s * q_up, R(0.0));
+  /* Q × the right-hand sides, and the 2×2 system times Q²: its determinant
+   * (Q - S Rt)(Q - S Rb) - E² Rt Rb = C²(1 - Rt Rb) + C (p_t + p_b) + p_t p_b + λ0² Rt Rb,
+   * p = k + S (1 - R), a sum of non-negative terms. */
+  const real b1 = m.S * src_top + E * src_bot + qj_up;
+  const real b2 = E * src_top + m.S * src_bot + qj_dn;
+  const real pt = m.k + m.S * (R(1.0) - Rt), pb = m.k + m.S * (R(1.0) - Rb);
+  const real det = Cm * Cm * (R(1.0) - Rt * Rb) + Cm * (pt + pb) + pt * pb + l0 * l0 * Rt * Rb;
+  sol.Fm_top = fmax(((Cm + pb) * b1 + E * Rb * b2) / det, R(0.0));
+  sol.Fp_bot = fmax((E * Rt * b1 + (Cm + pt) * b2) / det, R(0.0));
   sol.Fp_top = src_top + Rt * sol.Fm_top;
-  sol.Fp_bot = fmax((sol.beta + sp_bot - src_bot) / (R(1.0) + Rb), R(0.0));
   sol.Fm_bot = src_bot + Rb * sol.Fp_bot;
+  /* The homogeneous amplitudes of s at the two ends, for the interior flows (ff_flows_at). */
+  sol.alpha = sol.Fp_top + sol.Fm_top - sp_top;
+  sol.beta = sol.Fp_bot + sol.Fm_bot - sp_bot;
   /* w_h'' = λ0² w_h as well, so the interior w needs only its two end values; taking them from the
    * boundary flows avoids (α C - β E)/a, which cancels as τ0 -> 0 (C, E ~ 1/τ0, α ≈ β). */
   sol.wh_top = sol.Fp_top - sol.Fm_top - wp_top;
@@ -477,6 +546,14 @@ SEASIM_FN int ff_enter_water(FfView v, real3 o, real3 d, real3* b, real* F, real
   *F = fresnel_reflectance(-d.y, R(1.0), (real)v.ior);
   refract_dir(d, MAKE_REAL3(R(0.0), R(1.0), R(0.0)), R(1.0) / (real)v.ior, dw);
   return 1;
+}
+
+/* One band's radiance at the pixel (the spectral EXR): eq. 1 with eq. 20 for that band alone,
+ * F L_sky + (1 - F) E_refr / (π n²), L_sky = e_sky / π (a uniform sky). The exact path's RGB is the
+ * sum of these through the bands' rgb weights. */
+SEASIM_FN real ff_band_radiance(FfBand b, real ior, real F, real l, real h, real tex) {
+  const real e = ff_refracted(ff_band_terms(b, h), exp(-(real)b.eps * l), ff_bottom_albedo(b, tex));
+  return (F * (real)b.e_sky + (R(1.0) - F) * fmax(e, R(0.0)) / (ior * ior)) / SEASIM_PI;
 }
 
 /* The pixel (003 eq. 1): F L_sky + (1 - F) E_refr / (π n²), E_refr (eq. 20) at bottom point c, path l,

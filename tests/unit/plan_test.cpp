@@ -364,6 +364,15 @@ TEST(Plan, ShallowWaterGetsTheFourFlowPassInsteadOfTheSeaModel) {
       "[camera]\nposition = [0, 3, 0]\n[water]\njerlov = \"I\"\n[bottom]\ntype = \"flat\"\ndepth = 4\n[shallow]\n",
       "flat_lake.toml"));
   EXPECT_TRUE(hasDefine(flat, "fourflow", "SEASIM_FF_HEIGHTFIELD=0"));
+  EXPECT_TRUE(hasDefine(flat, "fourflow", "SEASIM_SPECTRAL_OUTPUT=0"));
+  // Spectral output: the frame kernel writes the bands too.
+  const Plan spectral = makePlan(parseScene(std::string(kShallowLake) + "[spectral]\nspectral_exr = true\n", "lake.toml"));
+  EXPECT_TRUE(hasDefine(spectral, "fourflow", "SEASIM_SPECTRAL_OUTPUT=1"));
+  // Waves: their R and T are averaged on the host (003 eq. 10), so no FFT pass runs for them.
+  const Plan wavy = makePlan(parseScene(std::string(kShallowLake) + "[surface]\ntype = \"fft\"\n", "lake.toml"));
+  EXPECT_TRUE(wavy.hasPass("fourflow"));
+  EXPECT_FALSE(wavy.hasPass("ocean_fft"));
+  EXPECT_EQ(wavy.passes.size(), 2u);
 }
 
 TEST(Plan, OnlyShallowScenesGetTheFourFlowPass) {

@@ -619,8 +619,6 @@ const BadScene kBadScenes[] = {
      "bad.toml:1: key 'shallow': needs a [water] table"},
     {"shallow seen from below", "[camera]\nposition = [0, -2, 0]\n[water]\njerlov = \"I\"\n[shallow]\n",
      "bad.toml:5: key 'shallow': the four-flow model renders water seen from above"},
-    {"shallow over waves", "[water]\njerlov = \"I\"\n[surface]\ntype = \"fft\"\n[shallow]\n",
-     "bad.toml:5: key 'shallow': needs a flat surface"},
     {"shallow unknown path", "[water]\njerlov = \"I\"\n[shallow]\npath = \"fast\"\n",
      "bad.toml:4: key 'shallow.path': 'fast' is not one of 'table', 'table_eq24', 'exact'"},
     {"shallow slope upside down", "[water]\njerlov = \"I\"\n[shallow]\nslope_depths_m = [5, 1]\n",

@@ -25,6 +25,7 @@ class FourFlowNode : public Pass {
     auto target = std::make_shared<RadianceTarget>();
     target->rgb = pass_->rgb();
     target->pixels = static_cast<size_t>(ctx.scene().camera.width) * static_cast<size_t>(ctx.scene().camera.height);
+    target->spectral = pass_->spectral();  // null unless spectral.spectral_exr
     target->bands = ctx.grid().size();
     res.publish("rgb", target);
   }
