@@ -10,6 +10,7 @@
 #include "device/device.h"
 #include "io/image_io.h"
 #include "io/tonemap.h"
+#include "io/tonemap_eq18.h"
 #include "quality/auto_quality.h"
 #include "preview/preview_quality.h"
 #include "preview/preview_settings.h"
@@ -146,7 +147,11 @@ int cmdPreview(const PreviewCmd& cmd) {
     // The budget learns what a frame at this level costs; a kernel build (or cache load) is paid once.
     if (!renderer.lastExecuted().empty()) budget.record(level, std::max(0.0, frame_ms - result.build_ms));
     if (result.nonfinite) std::fprintf(stderr, "seasim preview: frame %d has %lld NaN/Inf values (shown black)\n", frame, result.nonfinite);
-    toneMapImage8(result.rgb, renderer.scene().camera.exposure_ev, bytes);
+    const Scene& shown = renderer.scene();  // [display]: the PNG's tone map, shown the same way
+    if (shown.display.tone_map == DisplayDesc::ToneMap::Eq18)
+      toneMapImage8Eq18(result.rgb, shown.camera.exposure_ev, shown.display.eq18, bytes);
+    else
+      toneMapImage8(result.rgb, shown.camera.exposure_ev, bytes);
 
     std::string title = "seasim preview: " + scene.name + " | " + levelText(level, moving, settings.preset() >= 0);
     char text[64];

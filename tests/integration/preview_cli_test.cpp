@@ -81,6 +81,18 @@ TEST_F(Preview, FullQualityScreenshotIsTheRenderedImage) {
   EXPECT_LE(rms8(shot, (dir_ / "r" / "image.png").string()), 1.0);
 }
 
+TEST_F(Preview, ShowsTheScenesDisplayToneMap) {
+  // mountain_lake has [display] tone_map = "eq18" (003 eq. 18): the window shows what the PNG shows.
+  const std::string shot = (dir_ / "shot.png").string();
+  const Result p = preview(kRepo + "/scenes/mountain_lake.toml --size 160x90 --frames 2 --budget-ms 0 --screenshot " + shot);
+  ASSERT_EQ(p.code, 0) << p.output;
+  ASSERT_EQ(render(kRepo + "/scenes/mountain_lake.toml", (dir_ / "eq18").string(), kSmall).code, 0);
+  ASSERT_EQ(render(kRepo + "/scenes/mountain_lake.toml", (dir_ / "default").string(),
+                   kSmall + " --set 'display.tone_map=\"default\"'").code, 0);
+  EXPECT_LE(rms8(shot, (dir_ / "eq18" / "image.png").string()), 1.0);
+  EXPECT_GT(rms8(shot, (dir_ / "default" / "image.png").string()), 10.0);  // measured 46 levels apart
+}
+
 TEST_F(Preview, ScriptedSunMovesTheWaterNotTheSkyAndSavedSceneRendersTheSame) {
   const std::string scene = kRepo + "/scenes/flat_sea.toml";
   const std::string before = (dir_ / "before.png").string(), after = (dir_ / "after.png").string();
