@@ -88,6 +88,21 @@ TEST(Renderer, SurfaceTimeRerunsOnlyOceanCausticsAndSea) {
   EXPECT_LT(maxRelDiff(later.rgb, fresh("wavy_sea.toml", at).rgb), 1e-5);
 }
 
+// Shallow water over waves: a surface key re-prepares the fourflow pass (its R and T are averaged over
+// the FFT patch, 003 eq. 10, when it is set up) and the frame equals a fresh render with that key.
+TEST(Renderer, ShallowWaterWindRePreparesTheFourFlowPass) {
+  const std::vector<Override> base = small({set("surface.type", "\"fft\""), set("surface.grid", "64")});
+  Renderer renderer(test::testDevice(), sceneFile("mountain_lake.toml"), base, shippedPasses());
+  const FrameResult before = renderer.render();  // the default wind, 10 m/s
+  renderer.update({set("surface.wind_speed", "15")});
+  const FrameResult windy = renderer.render();
+  EXPECT_EQ(models(renderer.lastPrepared()), std::vector<std::string>{"fourflow"});
+  EXPECT_NE(windy.rgb.pixels, before.rgb.pixels);  // rougher water: other R and T
+  std::vector<Override> at = base;
+  at.push_back(set("surface.wind_speed", "15"));
+  EXPECT_LT(maxRelDiff(windy.rgb, fresh("mountain_lake.toml", at).rgb), 1e-5);
+}
+
 // A key given twice when the renderer was made (the later one in effect): updating it back to the
 // earlier value is a change, not a no-op (found by the preview, issue 16).
 TEST(Renderer, UpdateComparesWithTheOverrideInEffect) {

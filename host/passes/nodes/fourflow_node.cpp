@@ -15,7 +15,8 @@ class FourFlowNode : public Pass {
  public:
   explicit FourFlowNode(const PassPlan& entry) : entry_(entry) {}
   PassKeys keys() const override {
-    return {{"camera.*", "sun.*", "sky.*", "water.*", "bottom.*", "shallow.*", "spectral.*",
+    // surface.*: with waves, R and T are averaged over the FFT patch (003 eq. 10) when the pass is set up.
+    return {{"camera.*", "sun.*", "sky.*", "water.*", "surface.*", "bottom.*", "shallow.*", "spectral.*",
              "quality.fourflow_table_size"},
             {}};
   }
