@@ -124,6 +124,7 @@ Image renderSeaReference(const Scene& scene, int steps) {
   const SeaSky sea_sky = makeSeaSky(scene.sky, sun_dir, grid, scene.files.get());
   const bool multiple = scene.sea.model == SeaDesc::Model::Multiple;
   const double sky_fresnel = skyFresnelMean(ior), mu_sky = k::sea_sky_mean_cosine(ior);
+  const double r_below = k::sea_surface_reflectance_below(sky_fresnel, ior);
 
   // The sky's shape towards d (common/sky.h), then one band's radiance with the sun's disk.
   auto shape = [&](k::real3 d) -> k::real3 {
@@ -267,7 +268,7 @@ Image renderSeaReference(const Scene& scene, int steps) {
             if (z_floor >= 0) {
               L += t_out * k::sea_multiple_bottom(e_sun, t_in, e_sky, water.a[i], water.b[i], c_f,
                                                   scene.bottom.albedo.at(grid.centers_nm[i]), z_floor, cos_io, cos_ji,
-                                                  mu_sky, 1.0);
+                                                  mu_sky, 1.0, r_below);
             }
           } else if (scene.sea.single_scattering && e_h > 0) {
             // Beam irradiance in the water E T_i / cos_io, scattered by beta into the view ray,

@@ -4,7 +4,7 @@
  * sea_single_scattering) before it. Shared by kernels/sea_single.cl, the host and
  * tests/unit/sea_multiple_test.cpp (float and double).
  *
- * Why (measured, results/sea_allorders/): paper 000's terms are 0.14–0.87 of all orders in image-mean
+ * Why (measured, results/sea_allorders/): paper 000's terms are 0.17–0.87 of all orders in image-mean
  * luminance outside deep clear water. Two things are missing:
  *  - the bottom: eq. 9 attenuates the sun with c down and up. At g = 0.9 almost all scattered light goes
  *    on forwards (c_f = 0.977) and still reaches the bottom, and the light the bottom reflects still
@@ -20,6 +20,7 @@
  *   column:  L_c = (L_sun + L_sky) (1 + 2.02 u), each its deep-water value times the depth factor
  *            1 - e^{-k H (1/μ_in + D_C/μ_v)} (μ_in: μ_s for the sun, μ_sky for the sky)
  *   bottom:  L_b = ρ/π E_d(H) e^{-k H D_B / μ_v},   E_d(H) = E_sun e^{-k H/μ_s} + E_sky e^{-k H/μ_sky}
+ *            times the bottom–surface interreflection 1/(1 - ρ r_below e^{-4 k H})
  *   D_C = 1.03 sqrt(1 + 2.4 u),  D_B = 1.04 sqrt(1 + 5.4 u)   (Lee 1999 eq. 6, 7: the upwelling light's
  *   path per metre of depth, longer than the view's 1/μ_v because it has been scattered).
  * L_sun is 000 eq. 5 in deep water (single scattering of the sun beam with the exact HG phase at the
@@ -47,6 +48,15 @@
 SEASIM_FN real sea_sky_mean_cosine(real ior) {
   const real s = R(1.0) / fmax(ior, R(1.0));
   return R(0.5) * (R(1.0) + sqrt(fmax(R(1.0) - s * s, R(0.0))));
+}
+
+/* The surface's reflectance, seen from below, for a uniform (Lambertian) upwelling radiance:
+ * r_below = 1 - (1 - r_above)/n², r_above the same for a uniform sky from above (the cosine-weighted
+ * mean Fresnel reflectance, skyFresnelMean). Exact by reciprocity: a direction pair across the surface
+ * has one F, and n² cos θ_w dω_w = cos θ_a dω_a, so the flux a uniform L_w sends out is π L_w (1 -
+ * r_above)/n²; the rest, total internal reflection included, goes back down (0.47 at n = 1.333). */
+SEASIM_FN real sea_surface_reflectance_below(real r_above, real ior) {
+  return R(1.0) - (R(1.0) - r_above) / (ior * ior);
 }
 
 /* 1 - e^{-k H secants}, or 1 without a bottom (H < 0): as x φ(-x), φ = expm1_over_x, exact as k -> 0. */
@@ -99,12 +109,18 @@ SEASIM_FN real sea_multiple_column(real e_sun, real t_in, real e_sky, real a, re
 
 /* The Lambertian bottom's radiance just below the surface towards the eye (no T_o), 0 without a bottom
  * (H < 0): ρ/π E_d(H) e^{-k H D_B / cos_ji}, E_d(H) = focus E_sun t_in e^{-k H/cos_io} + E_sky
- * e^{-k H/μ_sky}; focus the caustic factor on the sun's light (1 without caustics), albedo ρ. */
+ * e^{-k H/μ_sky}; focus the caustic factor on the sun's light (1 without caustics), albedo ρ.
+ * Bottom and surface reflect each other's light: of the bottom's diffuse light ρ E_d the surface
+ * sends r_below (sea_surface_reflectance_below) back down, which the bottom reflects again, ...: the
+ * geometric series 1 / (1 - ρ r_below T²), T = e^{-2 k H} the transmittance of a diffuse (Lambertian)
+ * flux across the depth, mean secant 2, with the QSSA k. */
 SEASIM_FN real sea_multiple_bottom(real e_sun, real t_in, real e_sky, real a, real b, real c_f, real albedo, real H,
-                                   real cos_io, real cos_ji, real mu_sky, real focus) {
+                                   real cos_io, real cos_ji, real mu_sky, real focus, real r_below) {
   const SeaMultipleFactors f = sea_multiple_factors(a, b, c_f);
   const real depth = fmax(H, R(0.0));
-  const real e_bottom = focus * e_sun * t_in * exp(-f.k * depth / cos_io) + e_sky * exp(-f.k * depth / mu_sky);
+  const real e_direct = focus * e_sun * t_in * exp(-f.k * depth / cos_io) + e_sky * exp(-f.k * depth / mu_sky);
+  const real bounce = albedo * r_below * exp(-R(4.0) * f.k * depth);   /* < 1: albedo, r_below <= 1 */
+  const real e_bottom = e_direct / (R(1.0) - fmin(bounce, R(0.999)));
   const real v = albedo / SEASIM_PI * e_bottom * exp(-f.k * depth * f.d_b / cos_ji);
   return H < R(0.0) ? R(0.0) : v;
 }

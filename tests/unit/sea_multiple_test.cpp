@@ -30,6 +30,23 @@ TEST(SeaMultiple, SkyMeanCosineMatchesQuadratureOverSnellsCone) {
   EXPECT_DOUBLE_EQ(kd::sea_sky_mean_cosine(1.0), 0.5);  // the open hemisphere (n = 1)
 }
 
+TEST(SeaMultiple, SurfaceReflectanceBelowMatchesFresnelQuadratureWithTotalInternalReflection) {
+  // Uniform radiance from below: r = ∫ F(μ) 2μ dμ over the upper hemisphere, F from water to air
+  // (1 beyond the critical angle); from above the same with F from air to water.
+  for (double n : {1.0, 1.333, 1.5}) {
+    const int steps = 200000;
+    long double below = 0, above = 0;
+    for (int i = 0; i < steps; ++i) {
+      const double mu = (i + 0.5) / steps;
+      below += kd::fresnel_reflectance(mu, n, 1.0) * 2 * mu / steps;
+      above += kd::fresnel_reflectance(mu, 1.0, n) * 2 * mu / steps;
+    }
+    EXPECT_NEAR(kd::sea_surface_reflectance_below(static_cast<double>(above), n), static_cast<double>(below), 2e-5) << n;
+    EXPECT_NEAR(kf::sea_surface_reflectance_below(float(above), float(n)), static_cast<double>(below), 2e-5) << n;
+  }
+  EXPECT_NEAR(kd::sea_surface_reflectance_below(0.0663, 1.333), 0.474, 1e-3);  // water: about half goes back down
+}
+
 TEST(SeaMultiple, DepthFactorIsOneMinusExpAndStableAsKVanishes) {
   for (double k : {2.0, 0.3, 1e-3}) {
     for (double H : {0.0, 0.5, 5.0, 50.0}) {
@@ -113,27 +130,31 @@ TEST(SeaMultiple, BottomTermMatchesItsClosedFormAndVanishesWithoutABottom) {
   const double a = 0.08, b = 1.06, c_f = kd::hg_forward_fraction(0.9), mu_sky = kd::sea_sky_mean_cosine(1.333);
   const kd::SeaMultipleFactors f = kd::sea_multiple_factors(a, b, c_f);
   for (double H : {0.0, 2.0, 20.0}) {
+    // The light bouncing between bottom and surface, summed bounce by bounce (each a round trip of a
+    // diffuse flux, e^{-2kH} each way, reflected by the surface with 0.47 and by the bottom with 0.3).
+    double bounces = 0, term = 1;
+    for (int n = 0; n < 200; ++n, term *= 0.3 * 0.47 * std::exp(-4 * f.k * H)) bounces += term;
     const double ref = 0.3 / M_PI * (0.7 * 0.98 * std::exp(-f.k * H / 0.87) + 0.14 * std::exp(-f.k * H / mu_sky)) *
-                       std::exp(-f.k * H * f.d_b / 0.6);
-    const double d = kd::sea_multiple_bottom(0.7, 0.98, 0.14, a, b, c_f, 0.3, H, 0.87, 0.6, mu_sky, 1.0);
+                       bounces * std::exp(-f.k * H * f.d_b / 0.6);
+    const double d = kd::sea_multiple_bottom(0.7, 0.98, 0.14, a, b, c_f, 0.3, H, 0.87, 0.6, mu_sky, 1.0, 0.47);
     const float fl = kf::sea_multiple_bottom(0.7f, 0.98f, 0.14f, float(a), float(b), float(c_f), 0.3f, float(H), 0.87f,
-                                             0.6f, float(mu_sky), 1.0f);
+                                             0.6f, float(mu_sky), 1.0f, 0.47f);
     EXPECT_NEAR(d / ref, 1.0, 1e-12) << H;
     EXPECT_NEAR(fl / ref, 1.0, 2e-6) << H;
   }
-  EXPECT_EQ(kd::sea_multiple_bottom(0.7, 0.98, 0.14, a, b, c_f, 0.3, -1.0, 0.87, 0.6, mu_sky, 1.0), 0.0);
+  EXPECT_EQ(kd::sea_multiple_bottom(0.7, 0.98, 0.14, a, b, c_f, 0.3, -1.0, 0.87, 0.6, mu_sky, 1.0, 0.47), 0.0);
   // The bottom's light is attenuated by k = a + b_b, not by c (eq. 9): at 2 m of Jerlov 3C it is
   // hundreds of times brighter than eq. 9's.
   const double eq9 = kd::sea_bottom_reflection(0.7, 0.98, 1.0, 0.3, a + b, 2.0, 0.87, 0.6);
-  EXPECT_GT(kd::sea_multiple_bottom(0.7, 0.98, 0.0, a, b, c_f, 0.3, 2.0, 0.87, 0.6, mu_sky, 1.0), 100 * eq9);
+  EXPECT_GT(kd::sea_multiple_bottom(0.7, 0.98, 0.0, a, b, c_f, 0.3, 2.0, 0.87, 0.6, mu_sky, 1.0, 0.0), 100 * eq9);
 }
 
 TEST(SeaMultiple, DeepBottomTendsToNoBottomAndEverythingStaysFinite) {
   const double a = 0.06, b = 0.3, c_f = kd::hg_forward_fraction(0.9), mu = kd::sea_sky_mean_cosine(1.333);
   const double none = kd::sea_multiple_column(0.7, 0.98, 0.14, a, b, c_f, -1.0, 0.87, 0.6, 0.003, mu) +
-                      kd::sea_multiple_bottom(0.7, 0.98, 0.14, a, b, c_f, 0.3, -1.0, 0.87, 0.6, mu, 1.0);
+                      kd::sea_multiple_bottom(0.7, 0.98, 0.14, a, b, c_f, 0.3, -1.0, 0.87, 0.6, mu, 1.0, 0.47);
   const double deep = kd::sea_multiple_column(0.7, 0.98, 0.14, a, b, c_f, 1e4, 0.87, 0.6, 0.003, mu) +
-                      kd::sea_multiple_bottom(0.7, 0.98, 0.14, a, b, c_f, 0.3, 1e4, 0.87, 0.6, mu, 1.0);
+                      kd::sea_multiple_bottom(0.7, 0.98, 0.14, a, b, c_f, 0.3, 1e4, 0.87, 0.6, mu, 1.0, 0.47);
   EXPECT_NEAR(deep / none, 1.0, 1e-12);
   // Stiff inputs in float: grazing cosines (the callers clamp at 1e-4), huge and zero depths, clear and
   // very turbid water, g at its ends: finite and >= 0.
@@ -144,7 +165,7 @@ TEST(SeaMultiple, DeepBottomTendsToNoBottomAndEverythingStaysFinite) {
         for (float aa : {0.0f, 1e-6f, 2.0f}) {
           for (float bb : {0.0f, 1e-6f, 50.0f}) {
             const float col = kf::sea_multiple_column(1.0f, 0.97f, 0.2f, aa, bb, cf, H, 1e-4f, cos_v, 0.5f, 0.83f);
-            const float bot = kf::sea_multiple_bottom(1.0f, 0.97f, 0.2f, aa, bb, cf, 0.3f, H, 1e-4f, cos_v, 0.83f, 2.0f);
+            const float bot = kf::sea_multiple_bottom(1.0f, 0.97f, 0.2f, aa, bb, cf, 0.3f, H, 1e-4f, cos_v, 0.83f, 2.0f, 1.0f);
             EXPECT_TRUE(std::isfinite(col) && col >= 0.0f) << g << " " << H << " " << cos_v << " " << aa << " " << bb;
             EXPECT_TRUE(std::isfinite(bot) && bot >= 0.0f) << g << " " << H << " " << cos_v << " " << aa << " " << bb;
           }
