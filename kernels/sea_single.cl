@@ -19,7 +19,9 @@
  * common/sky.h; 3 Preetham), SEASIM_BOTTOM_CAUSTICS, SEASIM_BOTTOM_HEIGHTFIELD (with SEASIM_HAS_BOTTOM: the floor is the height field
  * of the last two arguments, common/sea_bottom.h; forces SEASIM_SEA_LUT 0); SEASIM_SEA_LUT (the
  * pass, from quality.sea_lut_size): 1 reads eq. 5's factors from the look-up table the paper uses,
- * 0 evaluates eq. 5 exactly.
+ * 0 evaluates eq. 5 exactly; SEASIM_SEA_MODEL (sea.model): 0 paper 000's eq. 5 and 9, 1 "multiple", all
+ * orders in closed form (common/sea_multiple.h: QSSA with Lee et al.'s factors, skylight in the water,
+ * the bottom lit and seen through forward-scattering water; needs SEASIM_SEA_LUT 0).
  * LUT: lut[band * lut_size + j] holds eq. 5 without beta and T_o (T_o is already computed per pixel
  * for the reflection) at angle j/(lut_size - 1) * pi/2, built by the host in double; the angle is
  * theta_jo on a flat sea (the paper's table) and the refracted view's theta_ji with waves (a tilted
@@ -43,6 +45,7 @@
 #include "common/sea_second.h"
 #include "common/sea_bottom.h"
 #include "common/caustic_map.h"
+#include "common/sea_multiple.h"
 
 #ifndef SEASIM_HAS_WAVES
 #define SEASIM_HAS_WAVES 0
@@ -58,6 +61,12 @@
 #endif
 #ifndef SEASIM_WAVE_FILTER
 #define SEASIM_WAVE_FILTER 0 /* 1: wave normals filtered over the pixel's footprint (common/sea_lean.h) */
+#endif
+#ifndef SEASIM_SEA_MODEL
+#define SEASIM_SEA_MODEL 0 /* 0: paper 000's eq. 5 and 9; 1: sea.model = "multiple" (common/sea_multiple.h) */
+#endif
+#if SEASIM_SEA_MODEL == 1 && SEASIM_SEA_LUT
+#error "sea.model = \"multiple\" evaluates eq. 5 exactly (SEASIM_SEA_LUT=0)"
 #endif
 #ifndef SEASIM_SUPERSAMPLE
 #define SEASIM_SUPERSAMPLE 1 /* n: n x n rays per pixel, averaged (the filter's reference, issue 19) */
@@ -242,6 +251,10 @@ __kernel void sea_single(__constant SeaParams* p, __global const SeaBand* bands,
 #endif
     const float c_f = hg_forward_fraction(p->g);
     const float phase = hg_phase(cos_alpha, p->g);
+#if SEASIM_SEA_MODEL == 1
+    const float mu_sky = sea_sky_mean_cosine(p->ior);             /* the skylight's mean cosine in the water */
+    const float r_below = sea_surface_reflectance_below(p->sky_fresnel_mean, p->ior); /* bottom-surface bounces */
+#endif
 #if SEASIM_HAS_BOTTOM && SEASIM_BOTTOM_HEIGHTFIELD
     /* 000 §5.4: z_Q, the depth where the refracted view ray from P meets the height field, replaces
      * z_d in eq. 5 and 9, and the floor's normal at Q gives eq. 9's cos(gamma). P is where the view
@@ -295,6 +308,20 @@ __kernel void sea_single(__constant SeaParams* p, __global const SeaBand* bands,
 #elif SEASIM_HAS_REFLECTION
       L += R_view * sky_radiance(p, band, reflected_shape, reflected);
 #endif
+#if SEASIM_SEA_MODEL == 1
+      /* sea.model = "multiple": all orders in closed form (common/sea_multiple.h), through the
+       * surface with T_o = (1 - R)/n². The sky's irradiance below the surface: π L_sky (1 - r̄), L_sky
+       * the band's cosine-weighted mean sky radiance (sky_shape is normalised to mean 1). */
+      const float e_sky = M_PI_F * sky_band(band, (float3)(1.0f, 1.0f, 1.0f)) * (1.0f - p->sky_fresnel_mean);
+#if SEASIM_HAS_SINGLE_SCATTERING
+      L += t_out * sea_multiple_column(band->sun_irradiance * sun_horizontal, t_in, e_sky, band->a, band->b, c_f, z_d,
+                                       cos_io, cos_ji, phase, mu_sky);
+#endif
+#if SEASIM_HAS_BOTTOM
+      L += t_out * sea_multiple_bottom(band->sun_irradiance * sun_horizontal, t_in, e_sky, band->a, band->b, c_f,
+                                       band->bottom_albedo, z_d, cos_io, cos_ji, mu_sky, focus, r_below);
+#endif
+#else
 #if SEASIM_HAS_SINGLE_SCATTERING
 #if SEASIM_SEA_LUT
       L += band->b * phase * t_out * lut_read(lut + (size_t)i * p->lut_size, p->lut_size, lut_x);
@@ -311,6 +338,7 @@ __kernel void sea_single(__constant SeaParams* p, __global const SeaBand* bands,
       L += focus * sea_bottom_reflection(band->sun_irradiance * sun_horizontal, t_in, t_out, band->bottom_albedo,
                                          band->c, z_d, cos_io, cos_ji);
 #endif
+#endif /* SEASIM_SEA_MODEL */
       const float Lw = L * sub_weight;
       r += Lw * band->w_r; g += Lw * band->w_g; b += Lw * band->w_b;
 #if SEASIM_SPECTRAL_OUTPUT

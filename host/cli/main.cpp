@@ -90,7 +90,8 @@ int main(int argc, char** argv) {
       "reference",
       "Brute-force reference of the scene's model, same units and channels as `render`'s image.exr.\n"
       "  sea seen from above: CPU, double; single scattering by midpoint quadrature over depth (--steps\n"
-      "    intervals per ray), second order by direct quadrature; deterministic.\n"
+      "    intervals per ray), second order by direct quadrature; deterministic. With sea.model = \"multiple\":\n"
+      "    that closed form in double (no quadrature; --steps unused).\n"
       "  spotlight shafts: CPU, double ray march, --steps steps per ray and lamp over the ray's part inside\n"
       "    the cone, to infinity; exact shadow rays; deterministic.\n"
       "  under water: a float spectral Monte Carlo path tracer in OpenCL on --device; --steps = paths per\n"

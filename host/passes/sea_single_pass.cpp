@@ -8,6 +8,7 @@
 #include "passes/sea_heightfield.h"
 #include "passes/sea_sky.h"
 #include "spectral/jerlov.h"
+#include "underwater/underwater_setup.h"
 #include "util/error.h"
 
 extern "C" {
@@ -17,7 +18,8 @@ extern "C" {
 namespace seasim {
 
 // The kernel reads these structs with OpenCL C layout; float/int are 4 bytes on both sides.
-static_assert(sizeof(SeaParams) == 5 * 16 + 8 * 4 + 4 * 4 + 9 * 4, "SeaParams layout changed: update sea_params.h users");
+static_assert(sizeof(SeaParams) == 5 * 16 + 8 * 4 + 4 * 4 + 10 * 4, "SeaParams layout changed: update sea_params.h users");
+static_assert(offsetof(SeaParams, sky_fresnel_mean) == 164);
 static_assert(offsetof(SeaParams, pixel_angle) == 108);
 static_assert(offsetof(SeaParams, sun_slope_variance) == 160);
 static_assert(offsetof(SeaParams, tan_half_fov_y) == 80);
@@ -103,6 +105,7 @@ SeaSinglePass::SeaSinglePass(Device& device, const Scene& scene, const PassPlan&
   p.sun_solid_angle = static_cast<float>(2 * M_PI * (1 - std::cos(scene.sun.angular_radius)));
   p.pixel_angle = static_cast<float>(2 * std::tan(cam.fov_y / 2) / cam.height);
   p.sun_slope_variance = static_cast<float>(scene.sun.angular_radius * scene.sun.angular_radius / 16);
+  p.sky_fresnel_mean = static_cast<float>(skyFresnelMean(scene.water.ior));
   p.width = cam.width;
   p.height = cam.height;
   p.band_count = static_cast<int>(grid.centers_nm.size());
@@ -150,8 +153,10 @@ SeaSinglePass::SeaSinglePass(Device& device, const Scene& scene, const PassPlan&
     // 000 §5.4: over a height-field bottom z_Q changes from pixel to pixel, so eq. 5 is evaluated
     // exactly (a table over the angle alone cannot hold it).
     const bool height_field = scene.bottom.type == BottomDesc::Type::HeightField;
-    const bool automatic = !height_field && knob != scene.quality.end() && knob->second.automatic;
-    lut_size = height_field ? 1
+    // sea.model = "multiple" evaluates eq. 5 exactly too: its depth factor is not eq. 5's.
+    const bool exact = height_field || scene.sea.model == SeaDesc::Model::Multiple;
+    const bool automatic = !exact && knob != scene.quality.end() && knob->second.automatic;
+    lut_size = exact ? 1
                : automatic  ? 16
                             : (knob != scene.quality.end() ? static_cast<int>(knob->second.value) : 64);
     const kd::real3 sun_d{sun.x, sun.y, sun.z};

@@ -147,6 +147,7 @@ Plan makePlan(const Scene& scene) {
     const bool sun = scene.sun.enabled && scene.sun.irradiance > 0;
     const bool height_field = scene.bottom.type == BottomDesc::Type::HeightField;
     const bool bottom = scene.bottom.type == BottomDesc::Type::Flat || height_field;
+    const bool multiple = scene.sea.model == SeaDesc::Model::Multiple;
     // SEASIM_SKY_MODEL (common/sky.h): 0 uniform, 1 analytic (CIE clear sky), 2 lat-long image, 3 Preetham.
     const int sky_model = scene.sky.model == SkyDesc::Model::Analytic   ? 1
                           : scene.sky.model == SkyDesc::Model::Image    ? 2
@@ -160,7 +161,9 @@ Plan makePlan(const Scene& scene) {
         flag("SEASIM_SPECTRAL_OUTPUT", spectral_out),
         flag("SEASIM_HAS_WAVES", waves),  // local normals from the ocean's normal map (common/sea_waves.h)
         "SEASIM_SKY_MODEL=" + std::to_string(sky_model),
-        flag("SEASIM_BOTTOM_CAUSTICS", bottom_caustics)};
+        flag("SEASIM_BOTTOM_CAUSTICS", bottom_caustics),
+        // sea.model: 0 paper 000's eq. 5 and 9, 1 "multiple" (all orders in closed form, no second order)
+        std::string("SEASIM_SEA_MODEL=") + (multiple ? "1" : "0")};
     // 000 §5.4: the bottom is a height field (z_Q per pixel, depth tables for the second order).
     if (height_field) defines.push_back("SEASIM_BOTTOM_HEIGHTFIELD=1");
     // Issue 19: wave normals filtered over the pixel's footprint (common/sea_lean.h), unless turned
@@ -176,9 +179,13 @@ Plan makePlan(const Scene& scene) {
     if (waves) reads.push_back("ocean_maps");
     if (bottom_caustics) reads.push_back("caustic_map");
     PassPlan pass{"sea_single", "sea_single.cl", defines, reads, {"rgb"},
-                  "camera above water (reflection, single scattering, bottom)", true, ""};
+                  multiple ? "camera above water (reflection; sea.model = \"multiple\": all orders of the water and "
+                             "the bottom in closed form)"
+                           : "camera above water (reflection, single scattering, bottom)",
+                  true, ""};
     plan.passes.push_back(pass);
-    if (scene.sea.second_order) {
+    // With "multiple" the second order is inside the closed form: its pass would count it twice.
+    if (scene.sea.second_order && !multiple) {
       std::vector<std::string> second_defines = {flag("SEASIM_HAS_BOTTOM", bottom),
                                                  flag("SEASIM_SPECTRAL_OUTPUT", spectral_out)};
       if (height_field) second_defines.push_back("SEASIM_BOTTOM_HEIGHTFIELD=1");

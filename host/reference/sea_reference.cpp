@@ -13,6 +13,7 @@
 #include "spectral/jerlov.h"
 #include "spectral/sensor.h"
 #include "spectral/wavelength_grid.h"
+#include "underwater/underwater_setup.h"
 #include "util/error.h"
 
 namespace seasim {
@@ -121,6 +122,9 @@ Image renderSeaReference(const Scene& scene, int steps) {
   const double sun_slope_variance = scene.sun.angular_radius * scene.sun.angular_radius / 16;
   const double sun_dir[3] = {sun.x, sun.y, sun.z};
   const SeaSky sea_sky = makeSeaSky(scene.sky, sun_dir, grid, scene.files.get());
+  const bool multiple = scene.sea.model == SeaDesc::Model::Multiple;
+  const double sky_fresnel = skyFresnelMean(ior), mu_sky = k::sea_sky_mean_cosine(ior);
+  const double r_below = k::sea_surface_reflectance_below(sky_fresnel, ior);
 
   // The sky's shape towards d (common/sky.h), then one band's radiance with the sun's disk.
   auto shape = [&](k::real3 d) -> k::real3 {
@@ -252,7 +256,21 @@ Image renderSeaReference(const Scene& scene, int steps) {
           }
           const double c = water.c[i], albedo = c > 0 ? water.b[i] / c : 0.0;
           const double kk = c * (1 - albedo * c_f);  // 000 eq. 5's effective attenuation
-          if (scene.sea.single_scattering && e_h > 0) {
+          if (multiple) {
+            // sea.model = "multiple": the closed form in double (common/sea_multiple.h), the kernel's
+            // float evaluation is tested against it (tests/kernels/sea_multiple_kernel_test.cpp).
+            const double e_sky = M_PI * sky_only(i, k::real3{1, 1, 1}) * (1 - sky_fresnel);
+            const double e_sun = sun_e[i] * e_h;
+            if (scene.sea.single_scattering) {
+              L += t_out * k::sea_multiple_column(e_sun, t_in, e_sky, water.a[i], water.b[i], c_f, z_floor, cos_io,
+                                                  cos_ji, phase, mu_sky);
+            }
+            if (z_floor >= 0) {
+              L += t_out * k::sea_multiple_bottom(e_sun, t_in, e_sky, water.a[i], water.b[i], c_f,
+                                                  scene.bottom.albedo.at(grid.centers_nm[i]), z_floor, cos_io, cos_ji,
+                                                  mu_sky, 1.0, r_below);
+            }
+          } else if (scene.sea.single_scattering && e_h > 0) {
             // Beam irradiance in the water E T_i / cos_io, scattered by beta into the view ray,
             // attenuated down and back up; midpoint rule over depth.
             const double sec_sum = 1 / cos_io + 1 / cos_ji;
@@ -265,7 +283,7 @@ Image renderSeaReference(const Scene& scene, int steps) {
             const double beam = sun_e[i] * e_h * t_in / cos_io;
             L += beam * water.b[i] * phase * t_out * sum * dz / cos_ji;
           }
-          if (z_floor >= 0 && e_h > 0) {  // cos_gamma = cos_io on a flat floor: eq. 9 as it stands
+          if (!multiple && z_floor >= 0 && e_h > 0) {  // cos_gamma = cos_io on a flat floor: eq. 9 as it stands
             L += k::sea_bottom_reflection_tilted(sun_e[i] * e_h, t_in, t_out,
                                                  scene.bottom.albedo.at(grid.centers_nm[i]), c, z_floor, cos_io,
                                                  cos_ji, cos_gamma);

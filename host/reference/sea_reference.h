@@ -16,6 +16,7 @@ namespace seasim {
 // host/passes/sea_sky.h. A height-field bottom (000 §5.4): z_Q and the floor normal from a fine march of
 // the floor (reference/sea_floor_reference.h), not the kernels' cell walk.
 // Water-leaving terms cross the surface as radiance / n² (T_o = (1 - R) / n², docs/radiometry.md).
+// sea.model = "multiple": its closed form (common/sea_multiple.h) evaluated in double instead of eq. 5/9.
 Image renderSeaReference(const Scene& scene, int steps);
 
 // What a camera at depth z0 (m, below a flat surface) looking along view_in_water (downwards) sees of

@@ -143,6 +143,10 @@ struct Knob {
 };
 
 struct SeaDesc {
+  // sea.model: "paper" = 000's eq. 5 (+ eq. 6-8 with second_order) and eq. 9; "multiple" = all orders in
+  // closed form (kernels/common/sea_multiple.h), which leaves out the second-order pass.
+  enum class Model { Paper, Multiple };
+  Model model = Model::Paper;
   bool single_scattering = true;
   bool second_order = false;
   bool bottom_caustics = false;  // the FFT ocean's caustics on the bottom (needs surface.type = "fft")

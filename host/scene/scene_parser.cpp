@@ -560,6 +560,8 @@ class SceneParser {
   void sea(const toml::table& t) {
     TableReader r(src_, t, "sea");
     SeaDesc& s = scene_.sea;
+    s.model = r.choice("model", "paper", {"paper", "multiple"}) == "multiple" ? SeaDesc::Model::Multiple
+                                                                             : SeaDesc::Model::Paper;
     s.single_scattering = r.boolean("single_scattering", s.single_scattering);
     s.second_order = r.boolean("second_order", s.second_order);
     s.bottom_caustics = r.boolean("bottom_caustics", s.bottom_caustics);

@@ -28,6 +28,7 @@ typedef struct {
   float caustic_extent;  /* m, side of the square it covers */
   float caustic_origin;  /* m, its corner on x and z: 0 (periodic ocean patch) or -extent/2 (height field) */
   float sun_slope_variance; /* the sun disk's slope variance per axis, rho^2 / 16 (common/sea_lean.h) */
+  float sky_fresnel_mean; /* r̄: the uniform sky's cosine-weighted Fresnel reflectance (sea.model "multiple") */
 } SeaParams;
 
 /* One wavelength band: radiometry and water IOPs at the band centre, and the sensor weights that

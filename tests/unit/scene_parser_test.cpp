@@ -631,6 +631,9 @@ const BadScene kBadScenes[] = {
      "key 'shallow.slope_depths_m': missing: [shallow] needs a bottom"},
     {"von Kries temperature", "[spectral]\nsensor = \"vonkries:hot\"\n",
      "bad.toml:2: key 'spectral.sensor': sensor 'vonkries:hot': expected \"vonkries\" or \"vonkries:<kelvin>\""},
+    {"unknown sea model", "[water]\njerlov = \"I\"\n[sea]\nmodel = \"multi\"\n",
+     "bad.toml:4: key 'sea.model': 'multi' is not one of 'paper', 'multiple'"},
+    {"sea model not a string", "[water]\njerlov = \"I\"\n[sea]\nmodel = 2\n", "bad.toml:4: key 'sea.model'"},
     {"TOML syntax error", "[camera]\nwidth = \n", "bad.toml:2: TOML syntax error"},
     {"duplicate key", "[sun]\nzenith_deg = 10\nzenith_deg = 20\n", "bad.toml:3: TOML syntax error"},
 };

@@ -1,0 +1,126 @@
+/* sea_multiple.h — sea.model = "multiple": a closed form per band for the water-leaving radiance of the
+ * sea seen from above with all orders of scattering, in place of paper 000's eq. 5 + eq. 6–8 + eq. 9
+ * (sea.model = "paper"). Needs compat.h, optics.h and sea_surface.h (hg_forward_fraction,
+ * sea_single_scattering) before it. Shared by kernels/sea_single.cl, the host and
+ * tests/unit/sea_multiple_test.cpp (float and double).
+ *
+ * Why (measured, results/sea_allorders/): paper 000's terms are 0.17–0.87 of all orders in image-mean
+ * luminance outside deep clear water. Two things are missing:
+ *  - the bottom: eq. 9 attenuates the sun with c down and up. At g = 0.9 almost all scattered light goes
+ *    on forwards (c_f = 0.977) and still reaches the bottom, and the light the bottom reflects still
+ *    reaches the surface; in Jerlov III at 2 m eq. 9's e^{-c H (sec + sec)} is 0.008 where the bottom's
+ *    light really arrives at about 2/3.
+ *  - the orders above 2 in turbid water, and the skylight in the water (no term in paper 000).
+ *
+ * The model: the quasi-single-scattering approximation (QSSA: light scattered forwards, into the
+ * hemisphere ahead, is counted as not scattered) that paper 000's own eq. 5 uses, k = c (1 - ω₀ c_f) =
+ * a + b_b with b_b = b (1 - c_f) the HG back-scattering coefficient, carried to every term, with the
+ * semi-analytic shallow-water model of Lee et al. (1998, Appl. Opt. 37, 6329, eq. 9–12; 1999, Appl.
+ * Opt. 38, 3831, eq. 4–7) for what the QSSA leaves: u = b_b / (a + b_b),
+ *   column:  L_c = (L_sun + L_sky) (1 + 2.02 u), each its deep-water value times the depth factor
+ *            1 - e^{-k H (1/μ_in + D_C/μ_v)} (μ_in: μ_s for the sun, μ_sky for the sky)
+ *   bottom:  L_b = ρ/π E_d(H) e^{-k H D_B / μ_v},   E_d(H) = E_sun e^{-k H/μ_s} + E_sky e^{-k H/μ_sky}
+ *            times the bottom–surface interreflection 1/(1 - ρ r_below e^{-4 k H})
+ *   D_C = 1.03 sqrt(1 + 2.4 u),  D_B = 1.04 sqrt(1 + 5.4 u)   (Lee 1999 eq. 6, 7: the upwelling light's
+ *   path per metre of depth, longer than the view's 1/μ_v because it has been scattered).
+ * L_sun is 000 eq. 5 in deep water (single scattering of the sun beam with the exact HG phase at the
+ * pixel's angle, k on both legs); L_sky the same QSSA single scattering of the diffuse skylight in the
+ * water, E_sky = π L_sky (1 - r̄) (r̄ the uniform sky's mean Fresnel reflectance), arriving inside
+ * Snell's window (mean cosine μ_sky = E_d/E_0 = (1 + cos θ_c)/2, exact for a uniform radiance over
+ * the window's cone) and scattered back with b_b spread evenly over the upper hemisphere, b_b/(2π) per sr:
+ *   L_sky(deep) = E_sky/μ_sky · b_b/(2π) / (k (1 + μ_v/μ_sky)).
+ * 1 + 2.02 u is Lee's (0.084 + 0.170 u) u over its single-scattering limit 0.084 u: the higher orders
+ * relative to the first, which this model puts on top of the exact HG first order instead of Lee's
+ * fitted one (Lee's coefficients come from Hydrolight with a Petzold phase function, whose back
+ * scattering is shaped unlike HG's; its ratio of orders is kept, its absolute value is not).
+ * Not in papers 000–004: Lee et al.'s coefficients are the one outside source (docs/models.md).
+ * Everything here is below the surface; the caller applies T_o = (1 - R)/n² (the n² law).
+ *
+ * Stiff cases: k -> 0 (clear water at long wavelengths is not that, but a = b = 0 is allowed): the
+ * depth factors go through expm1_over_x; H < 0 means no bottom (infinitely deep): depth factors 1,
+ * bottom 0; μ_v, μ_s clamped away from 0 by the caller (1e-4); u in [0, 1]: the square roots are of
+ * numbers >= 1.
+ */
+
+/* Mean cosine E_d / E_0 (to the downward vertical) of a uniform sky refracted into water of index ior:
+ * the radiance fills Snell's cone of half-angle θ_c, sin θ_c = 1/ior, so E_d = π L sin² θ_c and
+ * E_0 = 2π L (1 - cos θ_c), whose ratio is (1 + cos θ_c)/2. E_d decays at first as e^{-k y/μ}. */
+SEASIM_FN real sea_sky_mean_cosine(real ior) {
+  const real s = R(1.0) / fmax(ior, R(1.0));
+  return R(0.5) * (R(1.0) + sqrt(fmax(R(1.0) - s * s, R(0.0))));
+}
+
+/* The surface's reflectance, seen from below, for a uniform (Lambertian) upwelling radiance:
+ * r_below = 1 - (1 - r_above)/n², r_above the same for a uniform sky from above (the cosine-weighted
+ * mean Fresnel reflectance, skyFresnelMean). Exact by reciprocity: a direction pair across the surface
+ * has one F, and n² cos θ_w dω_w = cos θ_a dω_a, so the flux a uniform L_w sends out is π L_w (1 -
+ * r_above)/n²; the rest, total internal reflection included, goes back down (0.47 at n = 1.333). */
+SEASIM_FN real sea_surface_reflectance_below(real r_above, real ior) {
+  return R(1.0) - (R(1.0) - r_above) / (ior * ior);
+}
+
+/* 1 - e^{-k H secants}, or 1 without a bottom (H < 0): as x φ(-x), φ = expm1_over_x, exact as k -> 0. */
+SEASIM_FN real sea_depth_factor(real k, real H, real secants) {
+  const real x = k * fmax(H, R(0.0)) * secants;
+  return H < R(0.0) ? R(1.0) : x * expm1_over_x(-x);
+}
+
+/* The skylight's QSSA single scattering back along the view in infinitely deep water (see the top),
+ * below the surface: e_sky the diffuse irradiance just below the surface, mu_sky its mean cosine, bb
+ * the back-scattering coefficient, k = a + b_b, cos_ji the refracted view's cosine. */
+SEASIM_FN real sea_sky_backscatter_deep(real e_sky, real mu_sky, real bb, real k, real cos_ji) {
+  return e_sky / mu_sky * bb / (R(2.0) * SEASIM_PI) / fmax(k * (R(1.0) + cos_ji / mu_sky), R(1e-30));
+}
+
+/* Lee 1999's factors for one band (see the top): k = a + b_b, u = b_b / k, D_C, D_B, 1 + 2.02 u. */
+typedef struct {
+  real bb, k, u, d_c, d_b, orders;
+} SeaMultipleFactors;
+
+SEASIM_FN SeaMultipleFactors sea_multiple_factors(real a, real b, real c_f) {
+  SeaMultipleFactors f;
+  f.bb = b * (R(1.0) - c_f);
+  f.k = a + f.bb;                                             /* = c (1 - ω₀ c_f), 000 eq. 5 */
+  f.u = f.k > R(0.0) ? f.bb / f.k : R(0.0);
+  f.d_c = R(1.03) * sqrt(R(1.0) + R(2.4) * f.u);              /* Lee 1999 eq. 6 */
+  f.d_b = R(1.04) * sqrt(R(1.0) + R(5.4) * f.u);              /* Lee 1999 eq. 7 */
+  f.orders = R(1.0) + (R(0.170) / R(0.084)) * f.u;            /* Lee 1999 eq. 5 over its first order */
+  return f;
+}
+
+/* The water column's radiance just below the surface towards the eye (no T_o): the sun's 000 eq. 5 and
+ * the skylight's back-scattering, each in deep water times its depth factor, times the higher orders.
+ * e_sun: the sun's irradiance on the horizontal surface above the water (eq. 5's L_sun), t_in its
+ * Fresnel transmittance; e_sky = π L_sky (1 - r̄) just below the surface; a, b the water's IOPs, c_f
+ * = hg_forward_fraction(g); H the bottom depth (< 0: none); cos_io, cos_ji the refracted sun's and
+ * view's cosines to the vertical (> 0); phase the HG phase at the pixel's scattering angle (sun beam
+ * into the view); mu_sky from sea_sky_mean_cosine. */
+SEASIM_FN real sea_multiple_column(real e_sun, real t_in, real e_sky, real a, real b, real c_f, real H, real cos_io,
+                                   real cos_ji, real phase, real mu_sky) {
+  const SeaMultipleFactors f = sea_multiple_factors(a, b, c_f);
+  const real c = a + b;
+  const real albedo_w = c > R(0.0) ? b / c : R(0.0);
+  const real sun = sea_single_scattering(e_sun, t_in, R(1.0), b * phase, c, albedo_w, c_f, cos_io, cos_ji, R(-1.0)) *
+                   sea_depth_factor(f.k, H, R(1.0) / cos_io + f.d_c / cos_ji);
+  const real sky = sea_sky_backscatter_deep(e_sky, mu_sky, f.bb, f.k, cos_ji) *
+                   sea_depth_factor(f.k, H, R(1.0) / mu_sky + f.d_c / cos_ji);
+  return (sun + sky) * f.orders;
+}
+
+/* The Lambertian bottom's radiance just below the surface towards the eye (no T_o), 0 without a bottom
+ * (H < 0): ρ/π E_d(H) e^{-k H D_B / cos_ji}, E_d(H) = focus E_sun t_in e^{-k H/cos_io} + E_sky
+ * e^{-k H/μ_sky}; focus the caustic factor on the sun's light (1 without caustics), albedo ρ.
+ * Bottom and surface reflect each other's light: of the bottom's diffuse light ρ E_d the surface
+ * sends r_below (sea_surface_reflectance_below) back down, which the bottom reflects again, ...: the
+ * geometric series 1 / (1 - ρ r_below T²), T = e^{-2 k H} the transmittance of a diffuse (Lambertian)
+ * flux across the depth, mean secant 2, with the QSSA k. */
+SEASIM_FN real sea_multiple_bottom(real e_sun, real t_in, real e_sky, real a, real b, real c_f, real albedo, real H,
+                                   real cos_io, real cos_ji, real mu_sky, real focus, real r_below) {
+  const SeaMultipleFactors f = sea_multiple_factors(a, b, c_f);
+  const real depth = fmax(H, R(0.0));
+  const real e_direct = focus * e_sun * t_in * exp(-f.k * depth / cos_io) + e_sky * exp(-f.k * depth / mu_sky);
+  const real bounce = albedo * r_below * exp(-R(4.0) * f.k * depth);   /* < 1: albedo, r_below <= 1 */
+  const real e_bottom = e_direct / (R(1.0) - fmin(bounce, R(0.999)));
+  const real v = albedo / SEASIM_PI * e_bottom * exp(-f.k * depth * f.d_b / cos_ji);
+  return H < R(0.0) ? R(0.0) : v;
+}
