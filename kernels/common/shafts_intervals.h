@@ -238,13 +238,12 @@ SEASIM_FN real3 shafts_light_map_rgb(ShaftsLamp L, SEASIM_GLOBAL const float* ma
   return top + ay * (bottom - top);
 }
 
-/* At φ (t = a + r tan φ): returns V F, the cone profile times the light map (RGB) times the phase
- * function F(α), and writes to *kern the rest of eq. 2's integrand per dφ,
- * ρ exp(-ρκ (s + t)) dt/dφ / max(s, s_min)² (001 eq. 3, 6). */
-SEASIM_FN real3 shafts_interval_vf(real phi, real3 o, real3 d, ShaftsLamp L, SEASIM_GLOBAL const float* map, real a,
-                                   real h, real r, real rho, real sigma_t, real s_min, int use_hg, real hg_g,
+/* At φ given by cp = cos φ > 0, sp = sin φ (t = a + r tan φ): returns V F, the cone profile times
+ * the light map (RGB) times the phase function F(α), and writes to *kern the rest of eq. 2's
+ * integrand per dφ, ρ exp(-ρκ (s + t)) dt/dφ / max(s, s_min)² (001 eq. 3, 6). */
+SEASIM_FN real3 shafts_interval_vf(real cp, real sp, real3 o, real3 d, ShaftsLamp L, SEASIM_GLOBAL const float* map,
+                                   real a, real h, real r, real rho, real sigma_t, real s_min, int use_hg, real hg_g,
                                    real* kern) {
-  const real sp = sin(phi), cp = cos(phi);
   const real x = r * sp / cp;                      /* t - a */
   const real s2 = x * x + h * h, s = sqrt(s2);     /* distance to the lamp */
   const real3 w = o + (a + x) * d - L.pos;         /* lamp -> sample */
@@ -291,13 +290,21 @@ SEASIM_FN real3 shafts_interval_stretch(real t0, real t1, real3 o, real3 d, Shaf
     const int panels = shafts_interval_panels(phi0, phi1, L, panel_rad, map_panel_texels);
     const real dphi = (phi1 - phi0) / (real)panels;
     const real node = R(0.28867513459481288) * dphi; /* GL nodes at mid ± dphi / (2 sqrt 3) */
+    /* The nodes' (cos, sin) advance by a rotation of dphi per panel: no sin/cos in the loop. */
+    const real cd = cos(dphi), sd = sin(dphi);
+    const real first = phi0 + R(0.5) * dphi - node;
+    real ca = cos(first), sa = sin(first), cb = cos(first + R(2.0) * node), sb = sin(first + R(2.0) * node);
     real3 near = MAKE_REAL3(0, 0, 0);
     for (int k = 0; k < panels; ++k) {
-      const real mid = phi0 + ((real)k + R(0.5)) * dphi;
-      real3 vf = shafts_interval_vf(mid - node, o, d, L, map, a, h, r, rho, sigma_t, s_min, use_hg, hg_g, &kern);
+      real3 vf = shafts_interval_vf(ca, sa, o, d, L, map, a, h, r, rho, sigma_t, s_min, use_hg, hg_g, &kern);
       near = near + vf * kern;
-      vf = shafts_interval_vf(mid + node, o, d, L, map, a, h, r, rho, sigma_t, s_min, use_hg, hg_g, &kern);
+      vf = shafts_interval_vf(cb, sb, o, d, L, map, a, h, r, rho, sigma_t, s_min, use_hg, hg_g, &kern);
       near = near + vf * kern;
+      const real ca1 = ca * cd - sa * sd, cb1 = cb * cd - sb * sd;
+      sa = sa * cd + ca * sd;
+      sb = sb * cd + cb * sd;
+      ca = ca1;
+      cb = cb1;
     }
     sum = near * (R(0.5) * dphi);
   }
@@ -311,8 +318,10 @@ SEASIM_FN real3 shafts_interval_stretch(real t0, real t1, real3 o, real3 d, Shaf
     real3 mean = MAKE_REAL3(0, 0, 0);
     for (int k = 0; k < panels; ++k) {
       const real mid = phi0 + ((real)k + R(0.5)) * dphi;
-      mean = mean + shafts_interval_vf(mid - node, o, d, L, map, a, h, r, rho, sigma_t, s_min, use_hg, hg_g, &kern);
-      mean = mean + shafts_interval_vf(mid + node, o, d, L, map, a, h, r, rho, sigma_t, s_min, use_hg, hg_g, &kern);
+      mean = mean + shafts_interval_vf(cos(mid - node), sin(mid - node), o, d, L, map, a, h, r, rho, sigma_t, s_min,
+                                       use_hg, hg_g, &kern);
+      mean = mean + shafts_interval_vf(cos(mid + node), sin(mid + node), o, d, L, map, a, h, r, rho, sigma_t, s_min,
+                                       use_hg, hg_g, &kern);
     }
     real tail = shafts_tail_from(tf - a, a, h, rho, sigma_t);
     if (!infinite) tail -= shafts_tail_from(t1 - a, a, h, rho, sigma_t);
