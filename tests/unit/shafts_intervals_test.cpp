@@ -103,6 +103,25 @@ TEST(ShaftsIntervals, ShadowIntervalsAreExactShadowRays) {
       if (in != exact) ++mismatches;
       (exact ? shadowed : lit) += 1;
     }
+    // The packed form the kernel reads (float planes, narrowing the caller's range) gives the same.
+    float packed[4 * SHAFTS_OCC_PLANES];
+    for (int k = 0; k < vol.plane_count; ++k) {
+      packed[4 * k] = float(vol.n[k].x);
+      packed[4 * k + 1] = float(vol.n[k].y);
+      packed[4 * k + 2] = float(vol.n[k].z);
+      packed[4 * k + 3] = float(vol.b[k]);
+    }
+    double plo = 0, phi = 30;  // a lit range [0, 30]
+    const int pany = kd::shafts_shadow_interval_packed(packed, vol.plane_count, vol.has_cone, vol.always, vol.apex,
+                                                       vol.axis, vol.cos_cone, eye, d, &plo, &phi);
+    const double clo = std::max(lo, 0.0), chi = std::min(hi, 30.0);
+    if (any && chi - clo > 1e-3) {
+      ASSERT_TRUE(pany) << "trial " << trial;
+      EXPECT_NEAR(plo, clo, 1e-4 * (10 + std::fabs(clo))) << "trial " << trial;
+      EXPECT_NEAR(phi, chi, 1e-4 * (10 + std::fabs(chi))) << "trial " << trial;
+    } else if (!any || chi < clo - 1e-3) {
+      EXPECT_FALSE(pany && phi - plo > 1e-3) << "trial " << trial;
+    }
     // Float (the kernel's precision) agrees with double at the ends, relative to the scene's scale.
     float flo = 0, fhi = 0;
     const int fany = kf::shafts_shadow_interval(volumeF(o, lamp), f3(eye), f3(d), &flo, &fhi);
