@@ -26,7 +26,9 @@
  * Inputs: ShaftsParams, ShaftsLight[light_count], ShaftsObject[object_count], light maps (RGB
  * floats), F table [table_size] over α ∈ [0, π] and ĥ = s² h table [table_size²] over
  * (s, t) ∈ [0, s_max] × [0, t_max] (table mode). Output: rgb[3 * pixels], linear RGB radiance.
- * Defines: SEASIM_SHAFTS_EXACT (g evaluated exactly, else from the 1-D and 2-D tables of eq. 6),
+ * Defines: SEASIM_SHAFTS_INTERVALS (issue 14: I_s integrated over the exact lit stretches of the ray,
+ * common/shafts_intervals.h, with exact g and no shadow maps; the objects' shadow volumes come in
+ * `occluders`), SEASIM_SHAFTS_EXACT (g evaluated exactly, else from the 1-D and 2-D tables of eq. 6),
  * SEASIM_SHAFTS_HG (Henyey–Greenstein phase), SEASIM_HAS_OBJECTS, SEASIM_HAS_LIGHT_MAP.
  * Stiff cases: see common/shafts.h (s -> 0, ρκ = 0 and large, grazing planes); rays that hit
  * nothing have T = ∞ and no I_o term (so ρκ = 0 never forms 0·∞).
@@ -34,6 +36,7 @@
 #include "common/compat.h"
 #include "common/optics.h"
 #include "common/shafts.h"
+#include "common/shafts_intervals.h"
 #include "common/shafts_params.h"
 
 #define SHAFTS_NO_HIT 1e30f
@@ -153,7 +156,8 @@ static inline float h_table(__global const float* H, int n, float s_max, float t
 __kernel void shafts_render(__constant ShaftsParams* p, __global const ShaftsLight* lights,
                             __global const ShaftsObject* objects, __global const float* shadow,
                             __global const float* light_maps, __global const float* F_table,
-                            __global const float* h_tab, __global float* rgb) {
+                            __global const float* h_tab, __global const ShaftsOccluder* occluders,
+                            __global float* rgb) {
   const int x = get_global_id(0), y = get_global_id(1);
   if (x >= p->width || y >= p->height) return;
   const int pixel = y * p->width + x;
@@ -193,6 +197,51 @@ __kernel void shafts_render(__constant ShaftsParams* p, __global const ShaftsLig
   }
 #endif
 
+#if SEASIM_SHAFTS_INTERVALS
+  /* I_s, lamp by lamp, over the lit stretches of the ray inside the lamp's cone (common/shafts_intervals.h):
+   * the cone's part up to the first surface, minus each object's shadow interval, integrated in the
+   * lamp's angle with the far-field closed form beyond K r. */
+  for (int l = 0; l < p->light_count; ++l) {
+    __global const ShaftsLight* Lg = &lights[l];
+    ShaftsLamp L;
+    L.pos = v3(Lg->position);
+    L.axis = v3(Lg->direction);
+    L.right = v3(Lg->right);
+    L.up = v3(Lg->up);
+    L.cos_cone = Lg->cos_cone;
+    L.cos_inner = Lg->cos_inner;
+    L.tan_cone = Lg->tan_cone;
+    L.map_w = 0;
+    L.map_h = 0;
+#if SEASIM_HAS_LIGHT_MAP
+    if (Lg->light_map_offset >= 0) {
+      L.map_w = Lg->light_map_width;
+      L.map_h = Lg->light_map_height;
+    }
+#endif
+    float lo[SHAFTS_MAX_PIECES], hi[SHAFTS_MAX_PIECES];
+    if (!shafts_cone_interval(eye, d, L.pos, L.axis, L.cos_cone, &lo[0], &hi[0])) continue;
+    hi[0] = fmin(hi[0], t_end);
+    if (!(hi[0] > lo[0])) continue;
+    int n = 1;
+#if SEASIM_HAS_OBJECTS
+    for (int k = 0; k < p->object_count && n > 0; ++k) {
+      __global const ShaftsOccluder* oc = &occluders[l * p->object_count + k];
+      float s0 = lo[0], s1 = hi[n - 1]; /* the shadow matters only where the ray is lit */
+      if (shafts_shadow_interval_packed(&oc->planes[0][0], oc->plane_count, oc->has_cone, oc->always, v3(oc->apex),
+                                        v3(oc->axis), oc->axis[3], eye, d, &s0, &s1))
+        n = shafts_pieces_subtract(lo, hi, n, s0, s1);
+    }
+#endif
+    if (n == 0) continue;
+    float ti0 = 0.0f, ti1 = 0.0f;
+    const int has_inner = shafts_cone_interval(eye, d, L.pos, L.axis, L.cos_inner, &ti0, &ti1);
+    __global const float* map = light_maps + max(Lg->light_map_offset, 0);
+    result += v3(Lg->color) * shafts_interval_airlight(lo, hi, n, has_inner, ti0, ti1, eye, d, L, map, p->rho,
+                                                       p->sigma_t, p->s_min, SEASIM_SHAFTS_HG, p->hg_g, p->panel_rad,
+                                                       p->map_panel_texels);
+  }
+#else
   /* I_s, lamp by lamp, over the exact part of the view ray inside the lamp's cone, from the camera to
    * the first surface or to infinity (no near or far cut). n sampling intervals (001 eq. 5) with m
    * sub-samples each (001 eq. 7–9) cover it up to K r past the closest approach to the lamp; beyond,
@@ -268,5 +317,6 @@ __kernel void shafts_render(__constant ShaftsParams* p, __global const ShaftsLig
     }
     result += acc;
   }
+#endif
   vstore3(result, pixel, rgb);
 }

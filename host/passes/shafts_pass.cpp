@@ -6,6 +6,8 @@
 #include <cstdio>
 
 #include "math/kernel_math.h"
+#include "geometry/shafts_geometry_k.h"
+#include "plan/shafts_method.h"
 #include "spectral/lamp_spectrum.h"
 #include "util/error.h"
 
@@ -25,6 +27,10 @@ static_assert(offsetof(ShaftsLight, cos_cone) == 80);
 static_assert(offsetof(ShaftsLight, shadow_offset) == 104);
 static_assert(sizeof(ShaftsObject) == 64, "ShaftsObject must stay 64 bytes");
 static_assert(offsetof(ShaftsObject, type) == 48);
+static_assert(sizeof(ShaftsOccluder) == 16 * SHAFTS_OCCLUDER_PLANES + 2 * 16 + 4 * 4, "ShaftsOccluder must stay 192 bytes");
+static_assert(offsetof(ShaftsOccluder, plane_count) == 176);
+static_assert(SHAFTS_OCCLUDER_PLANES == SHAFTS_OCC_PLANES, "shafts_params.h and shafts_intervals.h disagree");
+static_assert(kShaftsIntervalsMaxObjects == SHAFTS_MAX_PIECES - 1, "plan/shafts_method.h and shafts_intervals.h disagree");
 
 namespace {
 
@@ -53,6 +59,12 @@ ShaftsPass::Config ShaftsPass::configFromScene(const Scene& scene) {
   c.subplanes = knob(scene, "shafts_subplanes", 6);
   c.shadow_map_size = knob(scene, "shadow_map_size", 512);
   c.table_size = std::max(2, knob(scene, "shafts_table_size", 256));
+  const auto real_knob = [&](const char* name, double fallback) {
+    const auto it = scene.quality.find(name);
+    return it == scene.quality.end() ? fallback : it->second.value;
+  };
+  c.panel_deg = real_knob("shafts_panel_deg", kShaftsPanelDegDefault);
+  c.panel_texels = real_knob("shafts_panel_texels", kShaftsPanelTexelsDefault);
   return c;
 }
 
@@ -71,6 +83,14 @@ ShaftsPass::ShaftsPass(Device& device, const Scene& scene, const PassPlan& plan,
   range_ = rangeFor(scene);
   const bool exact = hasDefine(plan, "SEASIM_SHAFTS_EXACT");
   const bool use_hg = hasDefine(plan, "SEASIM_SHAFTS_HG");
+  intervals_ = hasDefine(plan, "SEASIM_SHAFTS_INTERVALS");
+  if (intervals_ && static_cast<int>(scene.objects.size()) > kShaftsIntervalsMaxObjects) {
+    throw RuntimeError("shafts: the intervals method handles at most " + std::to_string(kShaftsIntervalsMaxObjects) +
+                       " objects (quality.shafts_method = \"planes\" has no such limit)");
+  }
+  if (intervals_ && !(config.panel_deg > 0 && config.panel_texels > 0)) {
+    throw RuntimeError("shafts: panel width and panel texels must be positive");
+  }
 
   const CameraDesc& cam = scene.camera;
   ShaftsParams p{};
@@ -90,6 +110,8 @@ ShaftsPass::ShaftsPass(Device& device, const Scene& scene, const PassPlan& plan,
   p.s_min = static_cast<float>(kShaftsLampRadius);
   p.table_s_max = static_cast<float>(range_.s_max);
   p.table_t_max = static_cast<float>(range_.t_max);
+  p.panel_rad = static_cast<float>(config.panel_deg * M_PI / 180);
+  p.map_panel_texels = static_cast<float>(config.panel_texels);
   p.width = cam.width;
   p.height = cam.height;
   p.light_count = light_count_;
@@ -151,10 +173,36 @@ ShaftsPass::ShaftsPass(Device& device, const Scene& scene, const PassPlan& plan,
     objects.push_back(ob);
   }
 
+  // Intervals method: each object's shadow volume from each lamp, in double, then float
+  // (kernels/common/shafts_intervals.h), indexed [light * object_count + object].
+  std::vector<ShaftsOccluder> occluders(1, ShaftsOccluder{});
+  if (intervals_ && !scene.objects.empty()) {
+    occluders.assign(scene.spotlights.size() * scene.objects.size(), ShaftsOccluder{});
+    for (size_t i = 0; i < scene.spotlights.size(); ++i) {
+      const kmath_d::real3 lamp = toReal3(scene.spotlights[i].position);
+      for (size_t k = 0; k < scene.objects.size(); ++k) {
+        const ObjectDesc& o = scene.objects[k];
+        kmath_d::ShaftsShadowVolume v;
+        if (o.type == ObjectDesc::Type::Sphere) v = kmath_d::shafts_sphere_shadow(lamp, toReal3(o.center), o.radius);
+        else if (o.type == ObjectDesc::Type::Box) v = kmath_d::shafts_box_shadow(lamp, toReal3(o.box_min), toReal3(o.box_max));
+        else v = kmath_d::shafts_plane_shadow(lamp, toReal3(o.point), toReal3(normalize(o.normal)));
+        ShaftsOccluder& oc = occluders[i * scene.objects.size() + k];
+        for (int j = 0; j < v.plane_count; ++j)
+          set4(oc.planes[j], Vec3{v.n[j].x, v.n[j].y, v.n[j].z}, v.b[j]);
+        set4(oc.apex, Vec3{v.apex.x, v.apex.y, v.apex.z});
+        set4(oc.axis, Vec3{v.axis.x, v.axis.y, v.axis.z}, v.cos_cone);
+        oc.plane_count = v.plane_count;
+        oc.has_cone = v.has_cone;
+        oc.always = v.always;
+      }
+    }
+  }
+
   // 001 eq. 6 tables: F over α ∈ [0, π]; ĥ = s² h = ρ exp(-ρκ(s + t)) over [0, s_max] x [0, t_max].
   const int n = config.table_size;
-  std::vector<float> f_table(exact ? 1 : n), h_table(exact ? 1 : size_t(n) * n);
-  if (!exact) {
+  const bool tables = !exact && !intervals_;  // the intervals method evaluates g exactly
+  std::vector<float> f_table(tables ? n : 1), h_table(tables ? size_t(n) * n : 1);
+  if (tables) {
     for (int i = 0; i < n; ++i) {
       const double alpha = M_PI * i / (n - 1);
       f_table[i] = static_cast<float>(kmath_d::shafts_phase_fn(std::cos(alpha), use_hg, scene.air.g));
@@ -167,7 +215,7 @@ ShaftsPass::ShaftsPass(Device& device, const Scene& scene, const PassPlan& plan,
   }
 
   const size_t pixels = static_cast<size_t>(width_) * static_cast<size_t>(height_);
-  const size_t shadow_texels = has_objects_ ? size_t(light_count_) * shadow_size_ * shadow_size_ : 1;
+  const size_t shadow_texels = has_objects_ && !intervals_ ? size_t(light_count_) * shadow_size_ * shadow_size_ : 1;
   auto upload = [&](const void* data, size_t bytes) {
     return cl::Buffer(device.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, bytes, const_cast<void*>(data));
   };
@@ -184,6 +232,7 @@ ShaftsPass::ShaftsPass(Device& device, const Scene& scene, const PassPlan& plan,
     light_maps_ = maps.empty() ? upload(&zero, sizeof zero) : upload(maps.data(), sizeof(float) * maps.size());
     f_table_ = upload(f_table.data(), sizeof(float) * f_table.size());
     h_table_ = upload(h_table.data(), sizeof(float) * h_table.size());
+    occluders_ = upload(occluders.data(), sizeof(ShaftsOccluder) * occluders.size());
     shadow_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * shadow_texels);
     rgb_ = cl::Buffer(device.context(), CL_MEM_WRITE_ONLY, sizeof(float) * 3 * pixels);
     shadow_kernel_.setArg(0, params_);
@@ -197,7 +246,8 @@ ShaftsPass::ShaftsPass(Device& device, const Scene& scene, const PassPlan& plan,
     render_kernel_.setArg(4, light_maps_);
     render_kernel_.setArg(5, f_table_);
     render_kernel_.setArg(6, h_table_);
-    render_kernel_.setArg(7, rgb_);
+    render_kernel_.setArg(7, occluders_);
+    render_kernel_.setArg(8, rgb_);
   } catch (const cl::Error& e) {
     throw DeviceError(std::string("shafts pass set-up: ") + e.what() + " " + clErrorName(e.err()));
   }
@@ -208,7 +258,7 @@ double ShaftsPass::run() {
     const size_t local = 8;
     auto up = [&](size_t v) { return (v + local - 1) / local * local; };
     shadow_ms_ = 0;
-    if (has_objects_ && light_count_ > 0) {
+    if (has_objects_ && light_count_ > 0 && !intervals_) {
       cl::Event done;
       device_.queue().enqueueNDRangeKernel(shadow_kernel_, cl::NullRange,
                                            cl::NDRange(up(shadow_size_), up(shadow_size_), light_count_),

@@ -1,7 +1,9 @@
 // shafts_pass.h — host side of kernels/shafts.cl (paper 001): builds ShaftsParams, the lights
 // (frames, light maps), the objects and the F and h tables of 001 eq. 6 from the scene; enqueues the
 // shadow-map kernel (one depth map per light, when there are objects) and the per-pixel
-// sampling-plane kernel; reports each kernel's profiled time.
+// sampling-plane kernel; reports each kernel's profiled time. With the intervals method
+// (plan/shafts_method.h, define SEASIM_SHAFTS_INTERVALS) it builds each object's shadow volume per
+// light instead of shadow maps (kernels/common/shafts_intervals.h).
 //
 // Reads: scene. Writes: shadow_maps (internal), rgb (3 floats per pixel, linear RGB radiance).
 #pragma once
@@ -24,6 +26,8 @@ class ShaftsPass {
     int subplanes = 6;          // m sub-sample planes per interval (001 eq. 7–9)
     int shadow_map_size = 512;  // texels per side, per light
     int table_size = 256;       // F table entries; h table is table_size² (table mode)
+    double panel_deg = 4.0;     // intervals: widest quadrature panel, degrees of the lamp's angle
+    double panel_texels = 2.0;  // intervals: widest panel over a light map, its texels
   };
   // The quality knobs of the scene ([quality] shafts_planes, shafts_subplanes, shadow_map_size,
   // shafts_table_size); "auto" takes the paper's setting n = 30, m = 6 here. The per-scene search
@@ -47,9 +51,10 @@ class ShaftsPass {
  private:
   Device& device_;
   cl::Kernel shadow_kernel_, render_kernel_;
-  cl::Buffer params_, lights_, objects_, shadow_, light_maps_, f_table_, h_table_, rgb_;
+  cl::Buffer params_, lights_, objects_, shadow_, light_maps_, f_table_, h_table_, occluders_, rgb_;
   int width_, height_, light_count_, shadow_size_;
   bool has_objects_;
+  bool intervals_ = false;  // SEASIM_SHAFTS_INTERVALS: no shadow maps
   double shadow_ms_ = 0, shafts_ms_ = 0;
   ShaftsRange range_;
 };

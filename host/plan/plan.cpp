@@ -1,4 +1,5 @@
 #include "plan/plan.h"
+#include "plan/shafts_method.h"
 
 #include <algorithm>
 #include <cmath>
@@ -78,7 +79,9 @@ Plan makePlan(const Scene& scene) {
   bool light_map = false;
   for (const auto& l : scene.spotlights) light_map = light_map || !l.light_map.empty();
   const auto exact = scene.quality.find("shafts_exact");
+  const bool intervals = shaftsUseIntervals(scene);  // plan/shafts_method.h (issue 14)
   const std::vector<std::string> shafts_defines = {
+      flag("SEASIM_SHAFTS_INTERVALS", intervals),
       flag("SEASIM_SHAFTS_EXACT", exact != scene.quality.end() && exact->second.value != 0),
       flag("SEASIM_SHAFTS_HG", scene.air.phase == AirDesc::Phase::HenyeyGreenstein),
       flag("SEASIM_HAS_OBJECTS", objects), flag("SEASIM_HAS_LIGHT_MAP", light_map)};
@@ -91,7 +94,7 @@ Plan makePlan(const Scene& scene) {
     plan.passes.push_back({"ocean_fft", "ocean.cl", {flag("SEASIM_HAS_CHOPPY", scene.surface.choppiness > 0)},
                            {"scene"}, {"ocean_maps"}, "surface.type = \"fft\"", true, ""});
   }
-  if (lights && objects) {
+  if (lights && objects && !intervals) {  // the intervals method casts exact shadow volumes instead
     plan.passes.push_back({"shadow_maps", "shafts.cl", shafts_defines, {"scene"}, {"shadow_maps"},
                            "spotlights and objects that cast shadows", true, ""});
   }
@@ -195,9 +198,11 @@ Plan makePlan(const Scene& scene) {
   }
   if (lights) {
     std::vector<std::string> shafts_reads = {"scene"};
-    if (objects) shafts_reads.push_back("shadow_maps");
+    if (objects && !intervals) shafts_reads.push_back("shadow_maps");
     plan.passes.push_back({"shafts", "shafts.cl", shafts_defines, shafts_reads, {"rgb"},
-                           std::string("spotlights in air") +
+                           intervals ? std::string("spotlights in air; method intervals: exact lit stretches, "
+                                                   "analytic shadow volumes, no shadow maps (quality.shafts_method)")
+                                     : std::string("spotlights in air; method planes (001's sampling planes)") +
                                ((scene.quality.count("shafts_planes") && scene.quality.at("shafts_planes").automatic) ||
                                         (scene.quality.count("shafts_subplanes") && scene.quality.at("shafts_subplanes").automatic)
                                     ? "; n, m \"auto\": the cheapest under quality.shafts_error_budget (searched once, cached)"

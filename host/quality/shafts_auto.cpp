@@ -281,6 +281,8 @@ ShaftsPass::Config shaftsConfigWithAuto(Device& device, const Scene& scene, cons
     return it != scene.quality.end() && it->second.automatic;
   };
   if (!automatic("shafts_planes") && !automatic("shafts_subplanes")) return c;
+  // n and m are the planes method's knobs: the intervals method (plan/shafts_method.h) has none to search.
+  if (std::find(plan.defines.begin(), plan.defines.end(), "SEASIM_SHAFTS_INTERVALS=1") != plan.defines.end()) return c;
   ShaftsAutoOptions options;
   const auto budget = scene.quality.find("shafts_error_budget");
   if (budget != scene.quality.end()) options.budget_levels = budget->second.value;

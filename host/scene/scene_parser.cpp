@@ -14,6 +14,7 @@
 #include "spectral/sensor.h"
 #include "spectral/von_kries.h"
 #include "plan/memory_budget.h"
+#include "plan/shafts_method.h"
 #include "util/error.h"
 #include "util/paths.h"
 
@@ -707,6 +708,29 @@ class SceneParser {
       }
     }
     scene_.quality["fast_math"] = fast;
+    // The shafts method (issue 14): "intervals" (exact lit stretches, kernels/common/shafts_intervals.h)
+    // or "planes" (paper 001's sampling planes, which suit GPU texture units). Absent: the planner's
+    // choice (plan.cpp: intervals while the objects fit its per-pixel stretch list). Stored as a knob,
+    // 1 = intervals, automatic when absent.
+    if (r.has("shafts_method")) {
+      const std::string method = r.choice("shafts_method", "intervals", {"planes", "intervals"});
+      r.check(method == "planes" || static_cast<int>(scene_.objects.size()) <= kShaftsIntervalsMaxObjects,
+              "shafts_method",
+              "\"intervals\" handles at most " + std::to_string(kShaftsIntervalsMaxObjects) + " objects, the scene has " +
+                  std::to_string(scene_.objects.size()) + "; use \"planes\"");
+      scene_.quality["shafts_method"] = Knob{false, method == "intervals" ? 1.0 : 0.0};
+    } else {
+      scene_.quality["shafts_method"] = Knob{true, 1.0};
+    }
+    // Intervals method: the widest quadrature panel in degrees of the lamp's angle, and over a light
+    // map in its texels (the error-time knobs of `seasim sweep`).
+    const double panel_deg = r.number("shafts_panel_deg", kShaftsPanelDegDefault);
+    r.check(panel_deg >= 0.05 && panel_deg <= 90, "shafts_panel_deg", "must be in [0.05, 90] degrees, got " + fmt(panel_deg));
+    scene_.quality["shafts_panel_deg"] = Knob{false, panel_deg};
+    const double panel_texels = r.number("shafts_panel_texels", kShaftsPanelTexelsDefault);
+    r.check(panel_texels >= 0.05 && panel_texels <= 64, "shafts_panel_texels",
+            "must be in [0.05, 64] light-map texels, got " + fmt(panel_texels));
+    scene_.quality["shafts_panel_texels"] = Knob{false, panel_texels};
     // RMS error budget of the shafts `auto` quality, 8-bit levels (host/quality/shafts_auto.h): a number, not a knob.
     const double budget = r.number("shafts_error_budget", 1.0);
     r.check(budget > 0 && budget <= 255, "shafts_error_budget", "must be in (0, 255] levels, got " + fmt(budget));

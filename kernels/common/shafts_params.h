@@ -16,8 +16,8 @@ typedef struct {
   float aspect;          /* width / height */
   float rho;             /* ρ, particle density: the scattering coefficient of 001 eq. 3, 1/m */
   float sigma_t;         /* ρκ, extinction coefficient, 1/m (001 eq. 1, 3) */
-  float pad2;            /* (the sampling planes' range is per pixel and per lamp: shafts.cl) */
-  float pad3;
+  float panel_rad;       /* intervals method: widest quadrature panel, radians of the lamp's angle */
+  float map_panel_texels; /* intervals method: widest panel over a light map, in its texels */
   float hg_g;            /* Henyey–Greenstein asymmetry (SEASIM_SHAFTS_HG) */
   float s_min;           /* m, smallest light distance used in 1/s² (the lamp's radius) */
   float table_s_max;     /* m, range of the h(s,t) table over s (table mode): every plane's s */
@@ -56,3 +56,18 @@ typedef struct {
   int type;              /* SHAFTS_SPHERE, SHAFTS_BOX, SHAFTS_PLANE */
   int pad[3];
 } ShaftsObject;
+
+/* The shadow volume of one object from one lamp (intervals method, common/shafts_intervals.h's
+ * ShaftsShadowVolume in float[4]s): inside every plane n.xyz . p <= n.w (the first plane_count), and
+ * inside the cone of apex `apex`, axis xyz and cos w when has_cone. always: 1 every point is in
+ * shadow (the lamp is inside the object), -1 none is. Indexed [light * object_count + object]. */
+#define SHAFTS_OCCLUDER_PLANES 9
+typedef struct {
+  float planes[SHAFTS_OCCLUDER_PLANES][4];
+  float apex[4];
+  float axis[4];
+  int plane_count;
+  int has_cone;
+  int always;
+  int pad;
+} ShaftsOccluder;

@@ -4,8 +4,9 @@
 //   L = ∫_{cone part of [0, ∞)} ρ I /(4π) exp(-ρκ (s + t)) / s² dt,
 // which the closed form of Sun et al. 2005 (sunAirlight, itself checked against quadrature in
 // tests/unit/shafts_math_test.cpp) gives over any [0, T]; the cone part [t0, t1] of each ray is found
-// here by bisection on the point-in-cone test, independently of the code under test. Both
-// `seasim render` (exact g, n = 4000 planes, m = 1) and `seasim reference` must match within 1e-3
+// here by bisection on the point-in-cone test, independently of the code under test. `seasim render`
+// with the planes (exact g, n = 4000 planes, m = 1) and with the intervals method (issue 14, default
+// panels), and `seasim reference` must match within 1e-3
 // relative at every pixel. The cameras are placed where the former fixed cuts lost airlight: 5 cm
 // from the lamp (a 1 cm near cut), behind the lamp looking down the beam and looking back at it
 // from inside, and in nearly clear air (a far cut at twice the scene's extent).
@@ -126,11 +127,17 @@ TEST_P(ShaftsOpenMedium, RenderAndReferenceMatchTheExactIntegral) {
 
   std::string out;
   ASSERT_EQ(runCli("render " + scene + " -o " + (dir / "r").string() +
-                       " --set quality.shafts_planes=4000 --set quality.shafts_subplanes=1"
-                       " --set quality.shafts_exact=true --device pocl",
+                       " --set quality.shafts_method=planes --set quality.shafts_planes=4000"
+                       " --set quality.shafts_subplanes=1 --set quality.shafts_exact=true --device pocl",
                    &out),
             0)
       << out;
+  // The intervals method (issue 14) at its default panels.
+  ASSERT_EQ(runCli("render " + scene + " -o " + (dir / "i").string() + " --set quality.shafts_method=intervals --device pocl",
+                   &out),
+            0)
+      << out;
+  const seasim::Image intervals = seasim::readImage((dir / "i" / "image.exr").string());
   ASSERT_EQ(runCli("reference " + scene + " -o " + (dir / "ref.exr").string() + " --steps 4000", &out), 0) << out;
   const seasim::Image render = seasim::readImage((dir / "r" / "image.exr").string());
   const seasim::Image ref = seasim::readImage((dir / "ref.exr").string());
@@ -141,7 +148,7 @@ TEST_P(ShaftsOpenMedium, RenderAndReferenceMatchTheExactIntegral) {
   const seasim::Vec3 right = seasim::normalize(seasim::cross(fwd, seasim::Vec3{0, 1, 0}));
   const seasim::Vec3 up = seasim::cross(right, fwd);
   const double tan_half = std::tan(kFovDeg * M_PI / 360), aspect = double(kWidth) / kHeight;
-  double worst_render = 0, worst_ref = 0, lit = 0;
+  double worst_render = 0, worst_ref = 0, worst_intervals = 0, lit = 0;
   char worst_at[200] = "";
   for (int y = 0; y < kHeight; ++y)
     for (int x = 0; x < kWidth; ++x) {
@@ -156,12 +163,14 @@ TEST_P(ShaftsOpenMedium, RenderAndReferenceMatchTheExactIntegral) {
         if (e > worst_render) std::snprintf(worst_at, sizeof worst_at, "(%d, %d): render %.7g, exact %.7g", x, y, render.at(x, y, ch), exact);
         worst_render = std::max(worst_render, e);
         worst_ref = std::max(worst_ref, std::fabs(ref.at(x, y, ch) - exact) / exact);
+        worst_intervals = std::max(worst_intervals, std::fabs(intervals.at(x, y, ch) - exact) / exact);
       }
     }
-  std::printf("[ measured ] %s: max relative error vs the exact integral: render %.2e, reference %.2e (%g pixels); "
-              "render's worst pixel %s\n",
-              c.name, worst_render, worst_ref, lit, worst_at);
+  std::printf("[ measured ] %s: max relative error vs the exact integral: render (planes) %.2e, intervals %.2e, "
+              "reference %.2e (%g pixels); render's worst pixel %s\n",
+              c.name, worst_render, worst_intervals, worst_ref, lit, worst_at);
   EXPECT_LT(worst_render, 1e-3);
+  EXPECT_LT(worst_intervals, 1e-3);
   EXPECT_LT(worst_ref, 1e-3);
   fs::remove_all(dir);
 }

@@ -36,7 +36,9 @@ Override set(const std::string& key, const std::string& value) { return {key, va
 
 seasim::Scene autoScene(const std::string& planes = "\"auto\"") {
   return seasim::loadScene(std::string(SEASIM_SOURCE_DIR) + "/scenes/spot_sphere.toml",
-                           {set("camera.width", "64"), set("camera.height", "40"), set("quality.shafts_planes", planes),
+                           {set("camera.width", "64"), set("camera.height", "40"),
+                            set("quality.shafts_method", "\"planes\""),  // n and m are the planes method's
+                            set("quality.shafts_planes", planes),
                             set("quality.shafts_subplanes", "\"auto\""), set("quality.shadow_map_size", "256")});
 }
 

@@ -7,7 +7,9 @@
 //    reference with exact shadow rays: RMS in 8-bit levels under the paper's 2.6 % of 256 levels,
 //    and sub-sample planes reducing the error (m = 6 vs m = 1);
 //  * stiff cases: camera inside a cone, a sample at the lamp (s -> 0), ρκ = 0 and ρκ large, a light
-//    behind the camera, grazing planes (fov 170°): no NaN/Inf, and close to the reference.
+//    behind the camera, grazing planes (fov 170°): no NaN/Inf, and close to the reference, with both
+//    methods (quality.shafts_method "planes" and "intervals", issue 14).
+// The planes tests set quality.shafts_method = "planes" (the default is intervals).
 // Reduced resolutions keep the suite to a few seconds.
 #include <gtest/gtest.h>
 
@@ -82,6 +84,7 @@ direction = [0, 0, -1]
 intensity = 40
 [quality]
 shafts_exact = %s
+shafts_method = "planes"
 )",
                 rho, c.sigma_t / rho, c.lamp[0], c.lamp[1], c.lamp[2], c.lamp[0], c.lamp[1], c.lamp[2],
                 c.exact ? "true" : "false");
@@ -136,7 +139,8 @@ double rmsVsReference(const seasim::Scene& scene, const seasim::Image& ref, int 
 
 TEST(ShaftsVsReference, SpotSphereAtThePapersSettingBeatsItsError) {
   const seasim::Scene scene =
-      seasim::loadScene(kSpotSphere, {set("camera.width", "180"), set("camera.height", "120")});
+      seasim::loadScene(kSpotSphere, {set("camera.width", "180"), set("camera.height", "120"),
+                                      set("quality.shafts_method", "\"planes\"")});
   const seasim::Image ref = seasim::renderShaftsReference(scene, 600);
   const double rms_30_6 = rmsVsReference(scene, ref, 30, 6);
   const double rms_30_1 = rmsVsReference(scene, ref, 30, 1);
@@ -149,7 +153,8 @@ TEST(ShaftsVsReference, SpotSphereAtThePapersSettingBeatsItsError) {
 
 TEST(ShaftsVsReference, StageWithFiveLightsAndAGoboBeatsThePapersError) {
   const std::string stage = std::string(SEASIM_SOURCE_DIR) + "/scenes/stage.toml";
-  const seasim::Scene scene = seasim::loadScene(stage, {set("camera.width", "144"), set("camera.height", "96")});
+  const seasim::Scene scene = seasim::loadScene(
+      stage, {set("camera.width", "144"), set("camera.height", "96"), set("quality.shafts_method", "\"planes\"")});
   ASSERT_EQ(scene.spotlights.size(), 5u);
   const seasim::Image ref = seasim::renderShaftsReference(scene, 600);
   const double rms = rmsVsReference(scene, ref, 30, 6);
@@ -158,8 +163,8 @@ TEST(ShaftsVsReference, StageWithFiveLightsAndAGoboBeatsThePapersError) {
 }
 
 TEST(ShaftsVsReference, RenderFrameRunsThePlannedPasses) {
-  const seasim::Scene scene =
-      seasim::loadScene(kSpotSphere, {set("camera.width", "72"), set("camera.height", "48")});
+  const seasim::Scene scene = seasim::loadScene(
+      kSpotSphere, {set("camera.width", "72"), set("camera.height", "48"), set("quality.shafts_method", "\"planes\"")});
   const seasim::Plan plan = seasim::makePlan(scene);
   ASSERT_TRUE(plan.find("shafts")->implemented);
   const seasim::FrameResult frame = seasim::renderFrame(device(), scene, plan);
@@ -186,22 +191,27 @@ class ShaftsStiff : public ::testing::TestWithParam<Stiff> {};
 TEST_P(ShaftsStiff, FiniteAndNearTheReference) {
   std::vector<Override> o = {set("camera.width", "64"), set("camera.height", "40")};
   for (const auto& x : GetParam().overrides) o.push_back(x);
-  const seasim::Scene scene = seasim::loadScene(kSpotSphere, o);
-  const seasim::FrameResult frame = seasim::renderFrame(device(), scene, seasim::makePlan(scene));
-  EXPECT_EQ(frame.nonfinite, 0);
-  for (float v : frame.rgb.pixels) ASSERT_TRUE(std::isfinite(v) && v >= 0);
-  const seasim::Image ref = seasim::renderShaftsReference(scene, 2000);
-  const seasim::CompareResult c = seasim::compareImages(frame.rgb, ref, scene.camera.exposure_ev);
-  std::printf("[ measured ] %s: RMS %.3f levels, max %.2f, rel L2 %.3g\n", GetParam().name, c.rmse_8bit,
-              c.max_abs_8bit, c.rel_l2);
-  EXPECT_LT(c.rmse_8bit, GetParam().max_rms);
+  const seasim::Image ref = seasim::renderShaftsReference(seasim::loadScene(kSpotSphere, o), 2000);
   double ref_sum = 0;
   for (float v : ref.pixels) ref_sum += v;
-  if (GetParam().lit) {
-    EXPECT_GT(ref_sum, 0);
-    EXPECT_LT(c.rel_l2, GetParam().max_rel_l2);
-  } else {
-    EXPECT_LT(ref_sum, 1e-20);
+  // Both methods (issue 14): the sampling planes and the intervals.
+  for (const char* method : {"planes", "intervals"}) {
+    std::vector<Override> om = o;
+    om.push_back(set("quality.shafts_method", std::string("\"") + method + "\""));
+    const seasim::Scene scene = seasim::loadScene(kSpotSphere, om);
+    const seasim::FrameResult frame = seasim::renderFrame(device(), scene, seasim::makePlan(scene));
+    EXPECT_EQ(frame.nonfinite, 0) << method;
+    for (float v : frame.rgb.pixels) ASSERT_TRUE(std::isfinite(v) && v >= 0) << method;
+    const seasim::CompareResult c = seasim::compareImages(frame.rgb, ref, scene.camera.exposure_ev);
+    std::printf("[ measured ] %s, %s: RMS %.3f levels, max %.2f, rel L2 %.3g\n", GetParam().name, method, c.rmse_8bit,
+                c.max_abs_8bit, c.rel_l2);
+    EXPECT_LT(c.rmse_8bit, GetParam().max_rms) << method;
+    if (GetParam().lit) {
+      EXPECT_GT(ref_sum, 0);
+      EXPECT_LT(c.rel_l2, GetParam().max_rel_l2) << method;
+    } else {
+      EXPECT_LT(ref_sum, 1e-20);
+    }
   }
 }
 
@@ -240,8 +250,10 @@ direction = [0, 0, 1]
 cone_deg = 30
 )",
                                            "lamp.toml");
-  for (bool exact : {true, false}) {
+  for (int variant = 0; variant < 3; ++variant) {  // planes exact, planes tables, intervals
+    const bool exact = variant != 1;
     scene.quality["shafts_exact"].value = exact;
+    scene.quality["shafts_method"] = seasim::Knob{false, variant == 2 ? 1.0 : 0.0};
     seasim::ShaftsPass::Config config;
     config.planes = 10;
     config.subplanes = 1;

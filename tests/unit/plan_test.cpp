@@ -221,9 +221,25 @@ direction = [0, -1, 0]
   EXPECT_FALSE(plan.hasPass("shadow_maps"));
   EXPECT_FALSE(plan.hasPass("sea_single"));
   std::string with_object = std::string(stage) + "[[objects]]\ntype = \"sphere\"\ncenter = [0, 1, 0]\nradius = 0.5\n";
+  // The default method, intervals (issue 14), casts exact shadow volumes: no shadow maps.
   plan = makePlan(parseScene(with_object, "stage.toml"));
+  EXPECT_FALSE(plan.hasPass("shadow_maps"));
+  EXPECT_TRUE(plan.hasPass("raycast"));
+  const auto& defines = plan.find("shafts")->defines;
+  EXPECT_NE(std::find(defines.begin(), defines.end(), "SEASIM_SHAFTS_INTERVALS=1"), defines.end());
+  EXPECT_NE(plan.find("shafts")->why.find("intervals"), std::string::npos);
+  // Paper 001's sampling planes read shadow maps.
+  plan = makePlan(parseScene(with_object + "[quality]\nshafts_method = \"planes\"\n", "stage.toml"));
   EXPECT_TRUE(plan.hasPass("shadow_maps"));
   EXPECT_TRUE(plan.hasPass("raycast"));
+  const auto& planes_defines = plan.find("shafts")->defines;
+  EXPECT_NE(std::find(planes_defines.begin(), planes_defines.end(), "SEASIM_SHAFTS_INTERVALS=0"), planes_defines.end());
+  // More objects than the intervals kernel's stretch list holds: the planner falls back to planes.
+  std::string many = stage;
+  for (int i = 0; i < 16; ++i)
+    many += "[[objects]]\ntype = \"sphere\"\ncenter = [" + std::to_string(i) + ", 1, 0]\nradius = 0.2\n";
+  plan = makePlan(parseScene(many, "stage.toml"));
+  EXPECT_TRUE(plan.hasPass("shadow_maps"));
 }
 
 // Spotlights under water (issue 12): the water's passes and the lamps' pass, which adds into the rgb

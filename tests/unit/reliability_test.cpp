@@ -376,13 +376,15 @@ TEST_F(Reliability, MemoryBudgetNamesTheSettingsAndWhatFits) {
 
   // Quality knobs: the message names the knob.
   const Scene spot = loadScene(std::string(SEASIM_SOURCE_DIR) + "/scenes/spot_sphere.toml",
-                               {{"quality.shadow_map_size", "200000", {"t", 1}}});
+                               {{"quality.shadow_map_size", "200000", {"t", 1}},
+                                {"quality.shafts_method", "\"planes\"", {"t", 1}}});  // intervals: no shadow maps
   msg = errorOf([&] { checkMemoryBudget(estimateBuffers(spot, makePlan(spot)), 64 * gib, 2 * gib, "d"); });
   EXPECT_NE(msg.find("quality.shadow_map_size = 200000"), std::string::npos) << msg;
   // 2 GiB of floats for one light: 23170^2 texels.
   EXPECT_NE(msg.find("at most quality.shadow_map_size = 23170"), std::string::npos) << msg;
   const Scene table = loadScene(std::string(SEASIM_SOURCE_DIR) + "/scenes/spot_sphere.toml",
-                                {{"quality.shafts_table_size", "1000000", {"t", 1}}});
+                                {{"quality.shafts_table_size", "1000000", {"t", 1}},
+                                 {"quality.shafts_method", "\"planes\"", {"t", 1}}});
   msg = errorOf([&] { checkMemoryBudget(estimateBuffers(table, makePlan(table)), 64 * gib, 2 * gib, "d"); });
   EXPECT_NE(msg.find("quality.shafts_table_size = 1000000"), std::string::npos) << msg;
 }

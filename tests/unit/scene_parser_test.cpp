@@ -292,9 +292,10 @@ TEST(SceneParser, Defaults) {
       {"froxel_y", 90},          {"froxel_z", 64},        {"caustic_map_size", 256}, {"caustic_layers", 8},
       {"reference_spp", 64},     {"reference_steps", 200}, {"shafts_exact", 0},
       {"shafts_error_budget", 1}, {"sea_supersample", 1},  {"wave_filter", 1},
-      {"fourflow_table_size", 32}, {"lamps_delta_m", 1}};
-  EXPECT_EQ(s.quality.size(), std::size(knobs) + 1);
+      {"fourflow_table_size", 32}, {"lamps_delta_m", 1}, {"shafts_panel_deg", 4}, {"shafts_panel_texels", 2}};
+  EXPECT_EQ(s.quality.size(), std::size(knobs) + 2);
   EXPECT_TRUE(s.quality.at("fast_math").automatic);  // "auto": the planner decides (fastMathFor)
+  EXPECT_TRUE(s.quality.at("shafts_method").automatic);  // the planner decides (plan/shafts_method.h)
   for (const auto& [name, value] : knobs) {
     ASSERT_TRUE(s.quality.count(name)) << name;
     EXPECT_FALSE(s.quality.at(name).automatic) << name;
@@ -634,6 +635,21 @@ const BadScene kBadScenes[] = {
     {"unknown sea model", "[water]\njerlov = \"I\"\n[sea]\nmodel = \"multi\"\n",
      "bad.toml:4: key 'sea.model': 'multi' is not one of 'paper', 'multiple'"},
     {"sea model not a string", "[water]\njerlov = \"I\"\n[sea]\nmodel = 2\n", "bad.toml:4: key 'sea.model'"},
+    {"shafts method unknown", "[quality]\nshafts_method = \"rays\"\n",
+     "bad.toml:2: key 'quality.shafts_method': 'rays' is not one of 'planes', 'intervals'"},
+    {"shafts method not a string", "[quality]\nshafts_method = 1\n", "bad.toml:2: key 'quality.shafts_method'"},
+    {"shafts panel 0", "[quality]\nshafts_panel_deg = 0\n",
+     "bad.toml:2: key 'quality.shafts_panel_deg': must be in [0.05, 90] degrees, got 0"},
+    {"shafts panel texels", "[quality]\nshafts_panel_texels = 100\n",
+     "bad.toml:2: key 'quality.shafts_panel_texels': must be in [0.05, 64] light-map texels, got 100"},
+    {"intervals with 16 objects",
+     "[[objects]]\ntype = \"sphere\"\n[[objects]]\ntype = \"sphere\"\n[[objects]]\ntype = \"sphere\"\n"
+     "[[objects]]\ntype = \"sphere\"\n[[objects]]\ntype = \"sphere\"\n[[objects]]\ntype = \"sphere\"\n"
+     "[[objects]]\ntype = \"sphere\"\n[[objects]]\ntype = \"sphere\"\n[[objects]]\ntype = \"sphere\"\n"
+     "[[objects]]\ntype = \"sphere\"\n[[objects]]\ntype = \"sphere\"\n[[objects]]\ntype = \"sphere\"\n"
+     "[[objects]]\ntype = \"sphere\"\n[[objects]]\ntype = \"sphere\"\n[[objects]]\ntype = \"sphere\"\n"
+     "[[objects]]\ntype = \"sphere\"\n[quality]\nshafts_method = \"intervals\"\n",
+     "bad.toml:34: key 'quality.shafts_method': \"intervals\" handles at most 15 objects, the scene has 16"},
     {"TOML syntax error", "[camera]\nwidth = \n", "bad.toml:2: TOML syntax error"},
     {"duplicate key", "[sun]\nzenith_deg = 10\nzenith_deg = 20\n", "bad.toml:3: TOML syntax error"},
 };

@@ -17,7 +17,8 @@ namespace {
 const std::vector<std::string> kShaftsKeys = {
     "camera.*",         "spotlights.*",           "objects.*",           "air.*", "spectral.*",
     "quality.shafts_exact", "quality.shafts_planes", "quality.shafts_subplanes", "quality.shafts_error_budget",
-    "quality.shafts_table_size", "quality.shadow_map_size"};
+    "quality.shafts_table_size", "quality.shadow_map_size", "quality.shafts_method", "quality.shafts_panel_deg",
+    "quality.shafts_panel_texels"};
 
 // An entry whose work the shafts node does (see the file comment).
 class InsideShaftsNode : public Pass {

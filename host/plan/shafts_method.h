@@ -1,0 +1,27 @@
+// shafts_method.h — which integrator the spotlight shafts use (issue 14), read by the scene parser,
+// the planner and the shafts pass:
+//   "intervals"  per pixel and lamp, the exact lit stretches of the view ray (analytic shadow volumes,
+//                no shadow maps) integrated in the lamp's angle (kernels/common/shafts_intervals.h);
+//   "planes"     paper 001's sampling planes with shadow-map sub-samples, which suit GPU texture units.
+// quality.shafts_method absent: intervals while the scene's objects fit the kernel's per-pixel list of
+// lit stretches, else planes.
+#pragma once
+#include "scene/scene.h"
+
+namespace seasim {
+
+// SHAFTS_MAX_PIECES - 1 (kernels/common/shafts_intervals.h): each object's shadow splits at most one stretch.
+constexpr int kShaftsIntervalsMaxObjects = 15;
+// Intervals method defaults: the widest quadrature panel in degrees of the lamp's angle, and in
+// light-map texels (chosen from the error-time sweep in results/BENCHMARKS.md, issue 14).
+constexpr double kShaftsPanelDegDefault = 4.0;
+constexpr double kShaftsPanelTexelsDefault = 2.0;
+
+inline bool shaftsUseIntervals(const Scene& scene) {
+  const auto it = scene.quality.find("shafts_method");
+  if (it == scene.quality.end() || it->second.automatic)
+    return static_cast<int>(scene.objects.size()) <= kShaftsIntervalsMaxObjects;
+  return it->second.value != 0;
+}
+
+}  // namespace seasim
