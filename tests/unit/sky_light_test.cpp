@@ -7,7 +7,9 @@
 //  - a Preetham sky moves E_D0 the expected way: bluer than the uniform sky of the same luminance;
 //  - Snell's window: the air direction is unit, obeys n sin θ_w = sin θ_a, and at and past the
 //    critical angle stays finite (the horizon);
-//  - the sun: its disk's solid angle (6.8e-5 sr at the default radius) and radiance E_sun / Ω.
+//  - the sun: its disk's solid angle (6.8e-5 sr at the default radius) and radiance E_sun / Ω;
+//  - the planner builds kd_multiple.cl and fourflow.cl for the scene's sky model;
+//  - the sweep: the integral's rule at several sizes, error against the brute force and time.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -15,9 +17,11 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <string>
 #include <vector>
 
 #include "math/kernel_math.h"
+#include "plan/plan.h"
 #include "scene/scene_parser.h"
 #include "sky/sky_light.h"
 #include "spectral/sensor.h"
@@ -181,6 +185,32 @@ TEST(SkyLightSweep, IrradianceRuleErrorAndTime) {
     std::printf("%4d x %-5d   %.2e         %.1f\n", n, 2 * n, worst, ms);
     if (n == 256) EXPECT_LT(worst, 1e-4);
   }
+}
+
+}  // namespace
+
+namespace {
+
+// The planner builds the underwater and shallow kernels for the scene's sky model (the define their
+// sky_view.h branch folds on); the uniform sky keeps 0.
+TEST(SkyLightPlan, UnderwaterAndShallowKernelsAreBuiltForTheSkyModel) {
+  auto define = [](const seasim::Plan& plan, const char* pass) {
+    const seasim::PassPlan* p = plan.find(pass);
+    EXPECT_NE(p, nullptr) << pass;
+    if (!p) return std::string();
+    for (const std::string& d : p->defines)
+      if (d.rfind("SEASIM_SKY_MODEL=", 0) == 0) return d;
+    return std::string();
+  };
+  const std::string under = "[camera]\nposition = [0, -3, 0]\nlook_at = [0, 0, -5]\n[water]\njerlov = \"IB\"\n";
+  const std::string shallow = "[camera]\nposition = [0, 3, 0]\nlook_at = [0, 0, -10]\n[water]\njerlov = \"IB\"\n"
+                              "[bottom]\ntype = \"flat\"\ndepth = 4\n[shallow]\n";
+  EXPECT_EQ(define(seasim::makePlan(seasim::parseScene(under, "u.toml")), "kd_multiple"), "SEASIM_SKY_MODEL=0");
+  EXPECT_EQ(define(seasim::makePlan(seasim::parseScene(under + "[sky]\nmodel = \"preetham\"\n", "u.toml")), "kd_multiple"),
+            "SEASIM_SKY_MODEL=3");
+  EXPECT_EQ(define(seasim::makePlan(seasim::parseScene(shallow, "s.toml")), "fourflow"), "SEASIM_SKY_MODEL=0");
+  EXPECT_EQ(define(seasim::makePlan(seasim::parseScene(shallow + "[sky]\nmodel = \"analytic\"\n", "s.toml")), "fourflow"),
+            "SEASIM_SKY_MODEL=1");
 }
 
 }  // namespace
