@@ -90,7 +90,7 @@ Frame render(const std::string& sky) {
   return f;
 }
 
-class SkyFourFlow : public ::testing::TestWithParam<const char*> {};
+class SkyFourFlow : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(SkyFourFlow, FrameMatchesDoubleWithTheSkyModel) {
   const Frame f = render(GetParam());
@@ -104,11 +104,17 @@ TEST_P(SkyFourFlow, FrameMatchesDoubleWithTheSkyModel) {
   }
 }
 
+std::string skyName(const ::testing::TestParamInfo<std::string>& info) {
+  const char* names[] = {"uniform", "cie_clear", "preetham", "image"};
+  return names[info.index];
+}
+
 INSTANTIATE_TEST_SUITE_P(Skies, SkyFourFlow,
-                         ::testing::Values("", "model = \"analytic\"\n", "model = \"preetham\"\nturbidity = 3\n"),
-                         [](const auto& info) {
-                           return std::string(info.index == 0 ? "uniform" : info.index == 1 ? "cie_clear" : "preetham");
-                         });
+                         ::testing::Values(std::string(), std::string("model = \"analytic\"\n"),
+                                           std::string("model = \"preetham\"\nturbidity = 3\n"),
+                                           std::string("model = \"image\"\nimage = \"") + SEASIM_SOURCE_DIR +
+                                               "/scenes/textures/sky_clear.exr\"\n"),
+                         skyName);
 
 TEST(SkyFourFlowDirection, PreethamSkyIsBrighterTowardsTheSunInTheSkyAndItsReflection) {
   // The sun at azimuth 270° is towards -z, ahead of the camera; the frame's left and right edges are

@@ -3,7 +3,8 @@
 // the host's sky interface (host/sky/sky_light.*): per pixel looking up from 3 m, with the multiple
 // scattering and the froxel term off, the surface pixels are Σ_λ w(λ) e^{-c S} n² (1 - F) L_sky(λ, a)
 // with a the refracted view in air (and black under total internal reflection). For the uniform,
-// CIE clear, Preetham and image skies. Then the direction of the change: a Preetham sky brightens the
+// CIE clear, Preetham (T 3 and 9) and image (scenes/textures/sky_clear.exr) skies. Then the
+// direction of the change: a Preetham sky brightens the
 // window towards the sun and darkens it away from it, where a uniform sky is symmetric.
 #include <gtest/gtest.h>
 
@@ -96,25 +97,37 @@ double maxRelativeError(const seasim::Image& a, const seasim::Image& ref) {
   return worst;
 }
 
-class SkyWindow : public ::testing::TestWithParam<const char*> {};
+class SkyWindow : public ::testing::TestWithParam<std::string> {};
+
+// The shipped environment image (scenes/textures/sky_clear.exr) as the sky.
+std::string imageSky() {
+  return std::string("model = \"image\"\nimage = \"") + SEASIM_SOURCE_DIR + "/scenes/textures/sky_clear.exr\"\n";
+}
 
 TEST_P(SkyWindow, KernelShowsTheSkyModelThroughTheWindow) {
   const Frame f = renderWithSky(GetParam());
-  for (float v : f.got.pixels) ASSERT_TRUE(std::isfinite(v) && v >= 0.0f);
+  // Finite; not necessarily >= 0: the CIE 1931 sensor's sRGB primaries make a saturated blue sky
+  // (the image's) negative in R, in the double evaluation as on the device.
+  for (float v : f.got.pixels) ASSERT_TRUE(std::isfinite(v));
   float peak = 0;
   for (float v : f.want.pixels) peak = std::max(peak, v);
   EXPECT_GT(peak, 0.0f);
-  EXPECT_LT(maxRelativeError(f.got, f.want), 1e-4) << GetParam();
+  // The image sky: its texel coordinates from atan2/acos in float move the bilinear weights, and the
+  // R of its saturated blue crosses 0 (relative error large there); measured 2.2e-4.
+  const double tolerance = GetParam().find("image") != std::string::npos ? 5e-4 : 1e-4;
+  EXPECT_LT(maxRelativeError(f.got, f.want), tolerance) << GetParam();
+}
+
+std::string skyName(const ::testing::TestParamInfo<std::string>& info) {
+  const char* names[] = {"uniform", "cie_clear", "preetham_t3", "preetham_t9", "image"};
+  return names[info.index];
 }
 
 INSTANTIATE_TEST_SUITE_P(Skies, SkyWindow,
-                         ::testing::Values("", "model = \"analytic\"\n", "model = \"preetham\"\nturbidity = 3\n",
-                                           "model = \"preetham\"\nturbidity = 9\n"),
-                         [](const auto& info) {
-                           return std::string(info.index == 0 ? "uniform" : info.index == 1 ? "cie_clear"
-                                                                           : info.index == 2 ? "preetham_t3"
-                                                                                             : "preetham_t9");
-                         });
+                         ::testing::Values(std::string(), std::string("model = \"analytic\"\n"),
+                                           std::string("model = \"preetham\"\nturbidity = 3\n"),
+                                           std::string("model = \"preetham\"\nturbidity = 9\n"), imageSky()),
+                         skyName);
 
 // Luminance-like sum of a pixel's RGB.
 double sum(const seasim::Image& im, int x, int y) { return im.at(x, y, 0) + im.at(x, y, 1) + im.at(x, y, 2); }
