@@ -38,8 +38,9 @@ SEASIM_FN real3 sky_view_shape(const SEASIM_CONSTANT SkyParams* p, const SEASIM_
 /* The share of a shape one band takes: its weights w (R, G, B; the daylight basis for Preetham) for
  * the image and Preetham skies, the grey value for the others (a grey shape is spectrally flat: no
  * weighting). Linear in the shape, but held at 0: with the sun near the horizon Preetham's x, y reach
- * 0.46, 0.49 near the sun (about 2500 K), past the daylight basis's 4000–25000 K, and the spectrum
- * S0 + M1 S1 + M2 S2 dips below 0 in the violet (tests/unit/sky_daylight_test.cpp). */
+ * about 0.46–0.49 near the sun, warmer than the daylight basis's 4000 K end and off its locus, and
+ * the spectrum S0 + M1 S1 + M2 S2 dips below 0 in the violet; at T = 10 it does at 360–380 nm even
+ * with the sun high (tests/unit/sky_daylight_test.cpp). */
 SEASIM_FN real sky_view_band(int model, real3 w, real3 shape) {
   if (model == SEASIM_SKY_IMAGE || model == SEASIM_SKY_PREETHAM) return fmax(dot(w, shape), R(0.0));
   return shape.x;

@@ -50,8 +50,9 @@ TEST(SkyDaylight, BasisAtD65ChromaticityGivesD65) {
   const seasim::Spectrum d65 = seasim::d65();
   double worst = 0;
   for (int l = 380; l <= 780; l += 5) worst = std::max(worst, std::fabs(s.at(l) / 100 - d65.at(l)) / d65.at(l));
-  // CIE 15 tabulates D65 from M1, M2 rounded to 3 decimals and a 10 nm basis: 0.3 % apart at worst.
-  EXPECT_LT(worst, 5e-3);
+  // The tabulated D65 is not the basis at full precision at D65's x, y (rounded M1, M2 and tables):
+  // measured 4.75e-3 apart at worst over 380–780 nm.
+  EXPECT_LT(worst, 6e-3);
   const auto xy = seasim::chromaticityOf(s);
   EXPECT_NEAR(xy[0], 0.31271, 2e-4);
   EXPECT_NEAR(xy[1], 0.32902, 2e-4);
@@ -77,7 +78,7 @@ TEST(SkyDaylight, SpectrumReproducesPreethamChromaticity) {
           worst = std::max({worst, std::fabs(xy[0] - Yxy[1]), std::fabs(xy[1] - Yxy[2])});
         }
     }
-  // Measured 2.5e-4 (the CIE formula for M1, M2 is a fit to the basis's own chromaticities).
+  // Measured 1.4e-4 (the CIE formula for M1, M2 is a fit to the basis's own chromaticities).
   EXPECT_LT(worst, 1e-3);
 }
 
