@@ -16,6 +16,14 @@
 #include "common/optics.h"
 #include "common/fourflow_params.h"
 #include "common/fourflow.h"
+#ifndef SEASIM_SKY_MODEL
+#define SEASIM_SKY_MODEL 0
+#endif
+#if SEASIM_SKY_MODEL != 0 /* the [sky] model (host/sky): one sky for every model, common/sky_view.h */
+#include "common/sky.h"
+#include "common/sky_params.h"
+#include "common/sky_view.h"
+#endif
 
 /* The exact spectral path: eq. 20 per band per pixel, summed into linear RGB. */
 __kernel void ff_exact(__global const FfBand* bands, int n_bands, __global const float* path_l,
@@ -49,7 +57,8 @@ __kernel void ff_table_blend(__constant FfParams* p, __global const float* table
 
 /* ---------------------------------------------------------------------------------------------
  * The frame: the view from above a flat water surface (003 eq. 1). Per pixel: the camera ray meets
- * the surface (y = 0) at B with Fresnel term F(θ); the reflected part sees the uniform sky; the
+ * the surface (y = 0) at B with Fresnel term F(θ); the reflected part sees the sky (uniform, or the
+ * [sky] model towards the mirrored view with SEASIM_SKY_MODEL); the
  * refracted ray runs to the bottom point C (flat bottom, or the sea module's height field:
  * common/sea_bottom.h), giving the view path length l = |BC| and the depth h of C; the bottom texture
  * at C gives the dark material's share. Then E_refr (eq. 20) by the exact band sum or the tables.
@@ -77,12 +86,23 @@ __kernel void ff_render(__constant FfView* v, __global const FfBand* bands, __co
 #if SEASIM_SPECTRAL_OUTPUT /* one radiance per band per pixel, always the exact eq. 20 (spectral.exr) */
                         , __global float* spectral
 #endif
+#if SEASIM_SKY_MODEL != 0 /* after the spectral buffer: the host sets them in this order */
+                        , __constant SkyParams* sky_params, __global const float* sky, __constant float* sky_rgb_matrix
+#endif
 ) {
   const int x = get_global_id(0), y = get_global_id(1);
   if (x >= v->width || y >= v->height) return;
-  const FfView view = *v;
+  FfView view = *v;
   const real3 o = MAKE_REAL3(view.cam_pos[0], view.cam_pos[1], view.cam_pos[2]);
   const real3 d = ff_camera_dir(view, x, y);
+#if SEASIM_SKY_MODEL != 0
+  /* The sky towards the view, or towards its mirror image in the flat surface: the sky the pixel sees
+   * above the horizon, or the one ff_shade reflects (F L_sky(reflected), 003 eq. 1). */
+  const float3 seen = sky_view_rgb(sky_rgb_matrix, sky_view_shape(sky_params, sky, (float3)(d.x, fabs(d.y), d.z)));
+  view.sky_rgb[0] = seen.x;
+  view.sky_rgb[1] = seen.y;
+  view.sky_rgb[2] = seen.z;
+#endif
   real out[3] = {view.sky_rgb[0], view.sky_rgb[1], view.sky_rgb[2]};
   real3 b, dw;
   real F;

@@ -8,14 +8,21 @@
  * (geom, material, sun_vis), with SEASIM_HAS_FROXEL the integrated froxel volume (froxel.cl) and its
  * FroxelParams. Output: rgb[3 * pixels]; spectral[band_count * pixels] (band-major per pixel) with
  * SEASIM_SPECTRAL_OUTPUT, holding T L_s + L_MS per band (the froxel term is integrated in RGB).
+ * SkyParams and the sky buffer: the [sky] Snell's window shows (common/sky_view.h, host/sky).
  * Defines (host/plan): SEASIM_HAS_MULTIPLE (L_MS), SEASIM_HAS_FROXEL (single scattering added here and
- * split off L_MS and L_s), SEASIM_SPECTRAL_OUTPUT.
+ * split off L_MS and L_s), SEASIM_SPECTRAL_OUTPUT, SEASIM_SKY_MODEL (common/sky.h).
  */
 #include "common/compat.h"
 #include "common/optics.h"
 #include "common/shafts.h"
 #include "common/underwater_params.h"
 #include "common/underwater.h"
+#ifndef SEASIM_SKY_MODEL
+#define SEASIM_SKY_MODEL 0
+#endif
+#include "common/sky.h"
+#include "common/sky_params.h"
+#include "common/sky_view.h"
 #if SEASIM_HAS_FROXEL
 #include "common/froxel_params.h"
 #include "common/froxel.h"
@@ -23,6 +30,7 @@
 
 __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, __global const float* albedo,
                           __global const float4* geom, __global const int* material, __global const float* sun_vis,
+                          __constant SkyParams* sky_params, __global const float* sky,
 #if SEASIM_HAS_FROXEL
                           __constant FroxelParams* fp, __global const float* froxel_volume,
 #endif
@@ -79,9 +87,21 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
       KD_ACCUMULATE(L);
     }
   } else if (mat == UW_MAT_SURFACE) {
+    /* Snell's window sees the sky along the refracted view (common/sky_view.h): its shape once per
+     * pixel, each band's share in the loop; the uniform sky reads the band's radiance as it always did. */
+#if SEASIM_SKY_MODEL != SEASIM_SKY_UNIFORM
+    const float3 sky_shape = sky_view_shape(sky_params, sky, sky_window_air_dir(d, p->ior));
+#endif
     for (int i = 0; i < p->band_count; ++i) {
       __global const UwBand* band = &bands[i];
-      const float L = exp(-band->c * S) * uw_band_surface(band, d.y, s_w.y, p->ior, p->bottom_depth, single, multiple) +
+#if SEASIM_SKY_MODEL != SEASIM_SKY_UNIFORM
+      const float sky_l = band->sky_radiance *
+                          sky_view_band(SEASIM_SKY_MODEL, (float3)(band->sky_w_r, band->sky_w_g, band->sky_w_b), sky_shape);
+#else
+      const float sky_l = band->sky_radiance;
+#endif
+      const float L = exp(-band->c * S) *
+                          uw_band_surface_sky(band, sky_l, d.y, s_w.y, p->ior, p->bottom_depth, single, multiple) +
                       uw_band_multiple(band, S, d.y, o_d, s_w.y, single, multiple);
       KD_ACCUMULATE(L);
     }

@@ -79,7 +79,8 @@
 #endif
 
 /* The sky's direction-dependent factor towards d (common/sky.h), the same for every band: scale ×
- * shape, as RGB for the image (mixed per band by sky_w_*); 1 for the uniform sky. */
+ * shape, as RGB for the image and as CIE daylight basis weights for Preetham (mixed per band by
+ * sky_w_*); 1 for the uniform sky. */
 static inline float3 sky_shape(const __constant SeaParams* p, const __global float* sky, float3 d) {
 #if SEASIM_SKY_MODEL == SEASIM_SKY_ANALYTIC
   const float3 sun = (float3)(p->sun_dir[0], p->sun_dir[1], p->sun_dir[2]);
@@ -89,7 +90,7 @@ static inline float3 sky_shape(const __constant SeaParams* p, const __global flo
   return p->sky_scale * sky_latlong_rgb(sky, p->sky_width, p->sky_height, d);
 #elif SEASIM_SKY_MODEL == SEASIM_SKY_PREETHAM
   const float3 sun = (float3)(p->sun_dir[0], p->sun_dir[1], p->sun_dir[2]);
-  return p->sky_scale * sky_preetham_rgb(sky, d, sun);
+  return p->sky_scale * sky_preetham_daylight(sky, d, sun); /* spectral: CIE daylight basis weights */
 #else
   return (float3)(1.0f, 1.0f, 1.0f);
 #endif
@@ -99,7 +100,9 @@ static inline float3 sky_shape(const __constant SeaParams* p, const __global flo
  * gives the same sum of radiances, which the wave filter uses). */
 static inline float sky_band(const __global SeaBand* band, float3 shape) {
 #if SEASIM_SKY_MODEL == SEASIM_SKY_IMAGE || SEASIM_SKY_MODEL == SEASIM_SKY_PREETHAM
-  return band->sky_radiance * (band->sky_w_r * shape.x + band->sky_w_g * shape.y + band->sky_w_b * shape.z);
+  /* sky_view_band's rule (common/sky_view.h): the daylight basis past its range is held at 0. */
+  return band->sky_radiance *
+         fmax(band->sky_w_r * shape.x + band->sky_w_g * shape.y + band->sky_w_b * shape.z, 0.0f);
 #else
   return band->sky_radiance * shape.x; /* uniform: shape 1; analytic: grey */
 #endif

@@ -8,6 +8,7 @@
 #include "common/sea_bottom_params.h"  // plain C struct, used by sea_bottom.h
 #include "common/fourflow_params.h"    // plain C structs, used by fourflow.h
 #include "common/underwater_lamps_params.h"  // plain C structs of underwater_lamps.cl
+#include "common/sky_params.h"             // plain C struct, used by sky_view.h
 
 
 namespace seasim::kmath_f {
@@ -20,6 +21,7 @@ typedef float real;
 #include "common/sea_waves.h"
 #include "common/sea_lean.h"
 #include "common/sky.h"
+#include "common/sky_view.h"
 #include "common/sea_second.h"
 #include "common/sea_bottom.h"
 #include "common/sea_multiple.h"
@@ -44,6 +46,7 @@ typedef double real;
 #include "common/sea_waves.h"
 #include "common/sea_lean.h"
 #include "common/sky.h"
+#include "common/sky_view.h"
 #include "common/sea_second.h"
 #include "common/sea_bottom.h"
 #include "common/sea_multiple.h"

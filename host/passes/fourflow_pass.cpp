@@ -43,7 +43,9 @@ FourFlowSetup makeFourFlowSetup(const Scene& scene, const WavelengthGrid& grid, 
   const double mu_sun = sun_up ? std::cos(scene.sun.zenith) : 1.0;
   const BandOptics water = resolveWater(scene.water, grid);
   const std::vector<double> sun_e = sunIrradianceBands(grid, scene.sun.irradiance);
-  const std::vector<double> sky_l = sunIrradianceBands(grid, scene.sky.radiance);  // uniform sky, D65 shape
+  const SkyLight sky = makeSkyLight(scene, grid);  // host/sky: the one sky of every model
+  const std::vector<double>& sky_l = sky.level;  // the uniform level, D65 shape
+  const std::vector<double> sky_e = sky.horizontalIrradiance();
   const double tex_mean = fourFlowTextureMean(sh.texture_scale, sh.dark_fraction);
   double rgb_a_num[3] = {0, 0, 0}, rgb_den[3] = {0, 0, 0}, sky_rgb[3] = {0, 0, 0};
   double eps_min = 1e30;
@@ -58,7 +60,7 @@ FourFlowSetup makeFourFlowSetup(const Scene& scene, const WavelengthGrid& grid, 
     in.scattering = water.b[i];
     in.mean_cosine = scene.water.g;
     in.e_sun = sun_up ? sun_e[i] * mu_sun : 0.0;  // on the horizontal surface
-    in.e_sky = M_PI * sky_l[i];                   // a uniform sky of radiance L gives π L
+    in.e_sky = sky_e[i];                          // ∫ L cos θ dω: π L for a uniform sky
     in.rho_a = scene.bottom.albedo.at(grid.centers_nm[i]);
     in.rho_b = sh.dark_albedo;
     in.rho_mean = (1 - tex_mean) * in.rho_a + tex_mean * in.rho_b;
@@ -116,6 +118,9 @@ FourFlowSetup makeFourFlowSetup(const Scene& scene, const WavelengthGrid& grid, 
   set4(v.cam_up, up);
   set4(v.cam_forward, forward);
   for (int c = 0; c < 3; ++c) v.sky_rgb[c] = float(sky_rgb[c]);
+  s.sky_params = sky.params;
+  s.sky_buffer = sky.kernelBuffer();
+  s.sky_rgb_matrix = sky.rgbMatrix(sensor.to_r, sensor.to_g, sensor.to_b);
   v.tan_half_fov_y = float(std::tan(cam.fov_y / 2));
   v.aspect = float(cam.width) / float(cam.height);
   v.width = cam.width;
@@ -164,9 +169,23 @@ FourFlowPass::FourFlowPass(Device& device, const Scene& scene, const PassPlan& p
       render_.setArg(5, hf_params_);
       render_.setArg(6, hf_depth_);
     }
+    cl_uint next_arg = hf ? 7 : 5;
     if (hasDefine(plan, "SEASIM_SPECTRAL_OUTPUT=1")) {
       spectral_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * pixels * s.bands.size());
-      render_.setArg(hf ? 7 : 5, spectral_);
+      render_.setArg(next_arg++, spectral_);
+    }
+    // A sky model other than the uniform one (plan.cpp's SEASIM_SKY_MODEL): its arguments follow.
+    const bool sky_model = std::any_of(plan.defines.begin(), plan.defines.end(), [](const std::string& d) {
+      return d.rfind("SEASIM_SKY_MODEL=", 0) == 0 && d != "SEASIM_SKY_MODEL=0";
+    });
+    if (sky_model) {
+      const cl_uint arg = next_arg;
+      const cl_mem_flags in = CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR;
+      sky_params_ = cl::Buffer(device.context(), in, sizeof(SkyParams), const_cast<SkyParams*>(&s.sky_params));
+      sky_ = cl::Buffer(device.context(), in, sizeof(float) * s.sky_buffer.size(), const_cast<float*>(s.sky_buffer.data()));
+      sky_matrix_ = cl::Buffer(device.context(), in, sizeof(float) * s.sky_rgb_matrix.size(),
+                               const_cast<float*>(s.sky_rgb_matrix.data()));
+      render_.setArg(arg, sky_params_), render_.setArg(arg + 1, sky_), render_.setArg(arg + 2, sky_matrix_);
     }
   } catch (const cl::Error& e) {
     throw DeviceError(std::string("fourflow pass set-up: ") + e.what() + " " + clErrorName(e.err()));

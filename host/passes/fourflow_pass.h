@@ -6,6 +6,7 @@
 #pragma once
 #include <CL/opencl.hpp>
 
+#include <array>
 #include <vector>
 
 #include "device/device.h"
@@ -15,6 +16,7 @@
 #include "spectral/wavelength_grid.h"
 #include "common/fourflow_params.h"
 #include "passes/sea_heightfield.h"
+#include "sky/sky_light.h"
 
 namespace seasim {
 
@@ -25,6 +27,10 @@ struct FourFlowSetup {
   FfView view{};
   bool height_field = false;
   HeightField field;  // when height_field
+  // The [sky] model for ff_render (host/sky; used when the plan's SEASIM_SKY_MODEL is not 0).
+  SkyParams sky_params{};
+  std::vector<float> sky_buffer;
+  std::array<float, 12> sky_rgb_matrix{};
 };
 // table_size <= 0: quality.fourflow_table_size.
 FourFlowSetup makeFourFlowSetup(const Scene& scene, const WavelengthGrid& grid, const Sensor& sensor,
@@ -45,7 +51,7 @@ class FourFlowPass {
  private:
   Device& device_;
   cl::Kernel render_;
-  cl::Buffer view_, bands_, params_, table_, rgb_, spectral_, hf_params_, hf_depth_;
+  cl::Buffer view_, bands_, params_, table_, rgb_, spectral_, hf_params_, hf_depth_, sky_params_, sky_, sky_matrix_;
   int width_, height_;
   double table_ms_ = 0;
 };

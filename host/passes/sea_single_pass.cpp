@@ -7,6 +7,7 @@
 #include "math/kernel_math.h"
 #include "passes/sea_heightfield.h"
 #include "passes/sea_sky.h"
+#include "sky/sky_light.h"
 #include "spectral/jerlov.h"
 #include "underwater/underwater_setup.h"
 #include "util/error.h"
@@ -116,15 +117,16 @@ SeaSinglePass::SeaSinglePass(Device& device, const Scene& scene, const PassPlan&
     p.caustic_extent = static_cast<float>(bottom_caustics->extent);
     p.caustic_origin = static_cast<float>(bottom_caustics->origin);
   }
-  const double sun_dir[3] = {sun.x, sun.y, sun.z};
-  const SeaSky sky = makeSeaSky(scene.sky, sun_dir, grid, scene.files.get());
+  // The sky through the one sky interface (host/sky): its shape for the kernel, its level per band.
+  const SkyLight light = makeSkyLight(scene, grid);
+  const SeaSky& sky = light.shape;
   p.sky_width = sky.width;
   p.sky_height = sky.height;
   p.sky_scale = static_cast<float>(sky.scale);
 
   const BandOptics water = resolveWater(scene.water, grid);
   const std::vector<double> sun_e = sunIrradianceBands(grid, scene.sun.irradiance);
-  const std::vector<double> sky_l = sunIrradianceBands(grid, scene.sky.radiance);  // uniform sky: D65 shape
+  const std::vector<double>& sky_l = light.level;  // the uniform level: D65 shape
   std::vector<SeaBand> bands(grid.centers_nm.size());
   for (size_t i = 0; i < bands.size(); ++i) {
     SeaBand& b = bands[i];

@@ -8,6 +8,7 @@
 #include "io/image_io.h"
 #include "io/tonemap.h"
 #include "math/kernel_math.h"
+#include "spectral/cie_daylight.h"
 #include "util/error.h"
 
 namespace seasim {
@@ -50,10 +51,15 @@ SeaSky makeSeaSky(const SkyDesc& desc, const double sun_dir[3], const Wavelength
     // Preetham: the 18 packed reals in place of texels (common/sky.h), and the scale from its mean
     // luminance (256 x 512 midpoints: the circumsolar peak is sharper than the CIE sky's, and 128 x 256
     // was 0.3 % off; tests/unit/sky_preetham_test.cpp).
+    // Spectral (issue 19): the 18 reals, then the daylight basis's luminance weights; each band takes
+    // the basis S0, S1, S2 over D65 (sky_preetham_daylight), not R, G, B.
     const kd::real3 sun{sun_dir[0], sun_dir[1], sun_dir[2]};
-    sky.texels.assign(18, 0.0);
+    sky.texels.assign(21, 0.0);
     kd::sky_preetham_pack(sun, desc.turbidity, sky.texels.data());
-    const double mean = kd::sky_preetham_cosine_mean(sky.texels.data(), sun, 256, 512);
+    const std::array<double, 3> n = daylightLuminanceWeights();
+    for (int k = 0; k < 3; ++k) sky.texels[static_cast<size_t>(18 + k)] = n[static_cast<size_t>(k)];
+    for (size_t i = 0; i < grid.centers_nm.size(); ++i) sky.band_weights[i] = daylightBandWeights(grid.centers_nm[i]);
+    const double mean = kd::sky_preetham_daylight_cosine_mean(sky.texels.data(), sun, 256, 512);
     sky.scale = mean > 0 ? 1.0 / mean : 0.0;
   } else if (sky.model == 2) {
     const Image img = readImageVia(files, desc.image);

@@ -16,8 +16,9 @@ struct SeaSky {
   int model = 0;                    // SEASIM_SKY_MODEL: 0 uniform, 1 analytic (CIE clear sky), 2 image, 3 Preetham
   double scale = 1.0;               // sky_scale: 1 / cosine-weighted mean of the shape (common/sky.h)
   int width = 1, height = 1;        // environment image texels (1 x 1 black placeholder otherwise)
-  std::vector<double> texels;       // 4 per texel (R, G, B, 0), linear, top row = zenith; Preetham: its 18 reals
-  std::vector<std::array<double, 3>> band_weights;  // per band: share of R, G, B (sky_image_band_weights)
+  std::vector<double> texels;       // 4 per texel (R, G, B, 0), linear, top row = zenith; Preetham: its 21 reals
+  // per band: share of R, G, B (sky_image_band_weights); Preetham: of the daylight basis (cie_daylight.h)
+  std::vector<std::array<double, 3>> band_weights;
 };
 
 // SEASIM_SKY_MODEL of a scene's sky (the planner's define).

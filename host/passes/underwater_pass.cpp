@@ -11,7 +11,8 @@ namespace seasim {
 UnderwaterPass::UnderwaterPass(Device& device, const UnderwaterSetup& setup, const PassPlan& raycast,
                                const PassPlan& kd, bool spectral_output)
     : device_(device), width_(setup.params.width), height_(setup.params.height), spectral_output_(spectral_output),
-      band_count_(setup.bands.size()), object_count_(setup.objects.size()), albedo_count_(setup.albedo.size()) {
+      band_count_(setup.bands.size()), object_count_(setup.objects.size()), albedo_count_(setup.albedo.size()),
+      sky_count_(setup.sky_buffer.size()) {
   const size_t pixels = static_cast<size_t>(width_) * static_cast<size_t>(height_);
   const cl_mem_flags in = CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR;
   try {
@@ -24,6 +25,9 @@ UnderwaterPass::UnderwaterPass(Device& device, const UnderwaterSetup& setup, con
                           const_cast<UwObject*>(setup.objects.data()));
     albedo_ = cl::Buffer(device.context(), in, sizeof(float) * setup.albedo.size(),
                          const_cast<float*>(setup.albedo.data()));
+    sky_params_ = cl::Buffer(device.context(), in, sizeof(SkyParams), const_cast<SkyParams*>(&setup.sky_params));
+    sky_ = cl::Buffer(device.context(), in, sizeof(float) * setup.sky_buffer.size(),
+                      const_cast<float*>(setup.sky_buffer.data()));
     geom_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(cl_float4) * pixels);
     material_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(cl_int) * pixels);
     vis_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * pixels);
@@ -44,8 +48,9 @@ UnderwaterPass::UnderwaterPass(Device& device, const UnderwaterSetup& setup, con
 
 void UnderwaterPass::update(const UnderwaterSetup& setup) {
   if (setup.bands.size() != band_count_ || setup.objects.size() != object_count_ ||
-      setup.albedo.size() != albedo_count_ || setup.params.width != width_ || setup.params.height != height_) {
-    throw RuntimeError("underwater pass: the new set-up has other sizes (bands, objects or image); make a new pass");
+      setup.albedo.size() != albedo_count_ || setup.sky_buffer.size() != sky_count_ || setup.params.width != width_ ||
+      setup.params.height != height_) {
+    throw RuntimeError("underwater pass: the new set-up has other sizes (bands, objects, sky or image); make a new pass");
   }
   try {
     cl::CommandQueue& q = device_.queue();
@@ -53,6 +58,8 @@ void UnderwaterPass::update(const UnderwaterSetup& setup) {
     q.enqueueWriteBuffer(bands_, CL_FALSE, 0, sizeof(UwBand) * band_count_, setup.bands.data());
     q.enqueueWriteBuffer(objects_, CL_FALSE, 0, sizeof(UwObject) * object_count_, setup.objects.data());
     q.enqueueWriteBuffer(albedo_, CL_FALSE, 0, sizeof(float) * albedo_count_, setup.albedo.data());
+    q.enqueueWriteBuffer(sky_params_, CL_FALSE, 0, sizeof(SkyParams), &setup.sky_params);
+    q.enqueueWriteBuffer(sky_, CL_FALSE, 0, sizeof(float) * sky_count_, setup.sky_buffer.data());
     q.finish();  // the host vectors may go away after this call
   } catch (const cl::Error& e) {
     throw DeviceError(std::string("underwater pass update: ") + e.what() + " " + clErrorName(e.err()));
@@ -91,6 +98,8 @@ double UnderwaterPass::runShading(const cl::Buffer* froxel_params, const cl::Buf
     shade_.setArg(arg++, geom_);
     shade_.setArg(arg++, material_);
     shade_.setArg(arg++, vis_);
+    shade_.setArg(arg++, sky_params_);
+    shade_.setArg(arg++, sky_);
     if (froxel_params && froxel_volume) {
       shade_.setArg(arg++, *froxel_params);
       shade_.setArg(arg++, *froxel_volume);

@@ -40,7 +40,8 @@ class UnderwaterPass {
   bool spectral_output_;
   cl::Kernel raycast_, shade_;
   cl::Buffer params_, bands_, objects_, albedo_, geom_, material_, vis_, rgb_, spectral_, no_caustics_;
-  size_t band_count_, object_count_, albedo_count_;
+  cl::Buffer sky_params_, sky_;  // the [sky] for Snell's window (common/sky_view.h)
+  size_t band_count_, object_count_, albedo_count_, sky_count_;
 };
 
 }  // namespace seasim

@@ -7,6 +7,18 @@
 
 namespace seasim {
 
+namespace {
+
+// SEASIM_SKY_MODEL (common/sky.h): 0 uniform, 1 analytic (CIE clear sky), 2 lat-long image, 3 Preetham.
+int skyModelOf(const SkyDesc& sky) {
+  return sky.model == SkyDesc::Model::Analytic   ? 1
+         : sky.model == SkyDesc::Model::Image    ? 2
+         : sky.model == SkyDesc::Model::Preetham ? 3
+                                                 : 0;
+}
+
+}  // namespace
+
 bool Plan::hasPass(const std::string& name) const { return find(name) != nullptr; }
 
 const PassPlan* Plan::find(const std::string& name) const {
@@ -139,7 +151,8 @@ Plan makePlan(const Scene& scene) {
                            {std::string("SEASIM_FF_TABLES=") + (eq24 ? "2" : table ? "1" : "0"),
                             flag("SEASIM_FF_HEIGHTFIELD", scene.shallow.slope ||
                                                               scene.bottom.type == BottomDesc::Type::HeightField),
-                            flag("SEASIM_SPECTRAL_OUTPUT", spectral_out)},
+                            flag("SEASIM_SPECTRAL_OUTPUT", spectral_out),
+                            "SEASIM_SKY_MODEL=" + std::to_string(skyModelOf(scene.sky))},
                            {"scene"}, {"rgb"},
                            std::string("[shallow]: four-flow light field over a visible bottom (003 eq. 4-20), ") +
                                (eq24 ? "(l, h) tables + pre-converted blend (eq. 24)"
@@ -151,11 +164,7 @@ Plan makePlan(const Scene& scene) {
     const bool height_field = scene.bottom.type == BottomDesc::Type::HeightField;
     const bool bottom = scene.bottom.type == BottomDesc::Type::Flat || height_field;
     const bool multiple = scene.sea.model == SeaDesc::Model::Multiple;
-    // SEASIM_SKY_MODEL (common/sky.h): 0 uniform, 1 analytic (CIE clear sky), 2 lat-long image, 3 Preetham.
-    const int sky_model = scene.sky.model == SkyDesc::Model::Analytic   ? 1
-                          : scene.sky.model == SkyDesc::Model::Image    ? 2
-                          : scene.sky.model == SkyDesc::Model::Preetham ? 3
-                                                                        : 0;
+    const int sky_model = skyModelOf(scene.sky);
     std::vector<std::string> defines = {
         flag("SEASIM_HAS_REFLECTION", scene.sea.reflection),
         flag("SEASIM_HAS_SINGLE_SCATTERING", scene.sea.single_scattering && sun),
@@ -214,7 +223,8 @@ Plan makePlan(const Scene& scene) {
     if (froxels) reads.push_back("froxel_volume");
     plan.passes.push_back({"kd_multiple", "kd_multiple.cl",
                            {flag("SEASIM_HAS_MULTIPLE", uw.multiple_scattering), flag("SEASIM_HAS_FROXEL", froxels),
-                            flag("SEASIM_SPECTRAL_OUTPUT", spectral_out)},
+                            flag("SEASIM_SPECTRAL_OUTPUT", spectral_out),
+                            "SEASIM_SKY_MODEL=" + std::to_string(skyModelOf(scene.sky))},  // Snell's window
                            reads, {"rgb"}, "camera below the surface: T L_s + L_MS per band (002 eq. 4.7)", true, ""});
   }
   // Spotlights under water (divers' torches, ROV lamps): the sampling planes in the water's spectral

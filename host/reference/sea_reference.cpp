@@ -133,12 +133,12 @@ Image renderSeaReference(const Scene& scene, int steps) {
       return {s, s, s};
     }
     if (sea_sky.model == 2) return k::sky_latlong_rgb(sea_sky.texels.data(), sea_sky.width, sea_sky.height, d) * sea_sky.scale;
-    if (sea_sky.model == 3) return k::sky_preetham_rgb(sea_sky.texels.data(), d, sun) * sea_sky.scale;
+    if (sea_sky.model == 3) return k::sky_preetham_daylight(sea_sky.texels.data(), d, sun) * sea_sky.scale;
     return {1, 1, 1};
   };
   auto sky_only = [&](size_t i, k::real3 s) {
     const auto& w = sea_sky.band_weights[i];
-    return sea_sky.model >= 2 ? sky_l[i] * (w[0] * s.x + w[1] * s.y + w[2] * s.z) : sky_l[i] * s.x;
+    return sea_sky.model >= 2 ? sky_l[i] * std::max(w[0] * s.x + w[1] * s.y + w[2] * s.z, 0.0) : sky_l[i] * s.x;
   };
   auto sky = [&](size_t i, k::real3 s, k::real3 d) {
     double L = sky_only(i, s);

@@ -29,16 +29,6 @@ void set4(float out[4], Vec3 v, double w = 0.0) {
 
 }  // namespace
 
-double skyFresnelMean(double ior) {
-  const int steps = 2000;
-  double sum = 0;
-  for (int i = 0; i < steps; ++i) {  // midpoint rule in θ
-    const double t = (i + 0.5) * (M_PI / 2) / steps;
-    sum += kd::fresnel_reflectance(std::cos(t), 1.0, ior) * std::cos(t) * std::sin(t);
-  }
-  return 2.0 * sum * (M_PI / 2) / steps;
-}
-
 UnderwaterSetup makeUnderwaterSetup(const Scene& scene, const WavelengthGrid& grid, const Sensor& sensor) {
   UnderwaterSetup s;
   UwParams& p = s.params;
@@ -94,8 +84,14 @@ UnderwaterSetup makeUnderwaterSetup(const Scene& scene, const WavelengthGrid& gr
   // Per band: IOPs, the light just below the surface, sensor weights.
   const BandOptics water = resolveWater(scene.water, grid, sun_up ? s.sun_water.y : 0.85);
   const std::vector<double> sun_e = sunIrradianceBands(grid, sun_up ? scene.sun.irradiance : 0.0);
-  const std::vector<double> sky_l = sunIrradianceBands(grid, scene.sky.radiance);  // uniform sky: D65 shape
+  // The sky (host/sky): its level per band for Snell's window (times its shape in the kernel), and
+  // the irradiance it sends through the flat surface for E_D0.
+  const SkyLight sky = makeSkyLight(scene, grid);
+  const std::vector<double>& sky_l = sky.level;
+  const std::vector<double> e_sky0 = sky.transmittedIrradiance(scene.water.ior);
   s.sky_fresnel = skyFresnelMean(scene.water.ior);
+  s.sky_params = sky.params;
+  s.sky_buffer = sky.kernelBuffer();
   s.bands.resize(grid.size());
   for (size_t i = 0; i < grid.size(); ++i) {
     UwBand& b = s.bands[i];
@@ -103,11 +99,14 @@ UnderwaterSetup makeUnderwaterSetup(const Scene& scene, const WavelengthGrid& gr
     b.b = static_cast<float>(water.b[i]);
     b.c = static_cast<float>(water.c[i]);
     b.kd = static_cast<float>(water.kd[i]);
-    b.e_sky0 = static_cast<float>(M_PI * sky_l[i] * (1.0 - s.sky_fresnel));
+    b.e_sky0 = static_cast<float>(e_sky0[i]);
     const double e_sun0 = sun_e[i] * std::max(sun.y, 0.0) * t_sun;
     b.e_sun0 = static_cast<float>(e_sun0);
     b.e_beam0 = sun_up ? static_cast<float>(e_sun0 / s.sun_water.y) : 0.0f;
     b.sky_radiance = static_cast<float>(sky_l[i]);
+    b.sky_w_r = static_cast<float>(sky.shape.band_weights[i][0]);
+    b.sky_w_g = static_cast<float>(sky.shape.band_weights[i][1]);
+    b.sky_w_b = static_cast<float>(sky.shape.band_weights[i][2]);
     b.bottom_albedo = static_cast<float>(scene.bottom.albedo.at(grid.centers_nm[i]));
     b.w_r = static_cast<float>(sensor.to_r[i]);
     b.w_g = static_cast<float>(sensor.to_g[i]);

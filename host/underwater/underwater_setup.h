@@ -7,6 +7,7 @@
 
 #include "math/vec3.h"
 #include "scene/scene.h"
+#include "sky/sky_light.h"  // skyFresnelMean, SkyParams
 #include "spectral/sensor.h"
 #include "spectral/wavelength_grid.h"
 
@@ -24,12 +25,10 @@ struct UnderwaterSetup {
   Vec3 sun_air{0, 1, 0};         // unit, towards the sun in air
   Vec3 sun_water{0, 1, 0};       // unit, towards the sun after refraction (y = μ_w)
   double sky_fresnel = 0.0;      // r̄: the uniform sky's cosine-weighted Fresnel reflectance at the surface
+  SkyParams sky_params{};        // the [sky] for Snell's window in kd_multiple.cl (common/sky_view.h)
+  std::vector<float> sky_buffer; // its image texels or Preetham's reals; at least one entry
   bool single_scattering = true; // the froxel pass runs (L_MS and L_s then leave out the direct beam)
 };
-
-// The mean Fresnel reflectance of a uniform sky seen through a flat surface of relative index ior,
-// weighted by cos θ: r̄ = 2 ∫_0^{π/2} F(θ) cos θ sin θ dθ (about 0.066 for water).
-double skyFresnelMean(double ior);
 
 // RuntimeError for what the underwater passes cannot render (a height-field object, naming it).
 UnderwaterSetup makeUnderwaterSetup(const Scene& scene, const WavelengthGrid& grid, const Sensor& sensor);

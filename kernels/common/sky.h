@@ -30,9 +30,12 @@
  *   F(θ, γ) = (1 + A e^{B / cos θ}) (1 + C e^{D γ} + E cos²γ),   Y = Y_z F(θ, γ) / F(0, θ_s)
  * (and so for x, y), with A…E linear in the turbidity T (sky_preetham_coefficients) and the zenith
  * chromaticity x_z, y_z a cubic in θ_s times a quadratic in T. The zenith luminance Y_z is absorbed by
- * the scale, like every model's overall level. x, y, Y → XYZ → linear Rec. 709 RGB, an RGB shape like
- * the image sky's (mixed per band by sky_image_band_weights), negative primaries clamped to 0. The
- * host packs, per quantity (Y, x, y), A…E and zenith / F(0, θ_s) into 18 reals (the sky buffer). The
+ * the scale, like every model's overall level. Spectral (sky_preetham_daylight): x, y → the CIE
+ * daylight spectrum S0 + M1 S1 + M2 S2 (CIE 15:2004 §3.1, as Preetham 1999 §A.3 does) at luminance Y,
+ * as three basis weights that each band mixes by S_k(λ) / D65(λ). (sky_preetham_rgb, x, y, Y → XYZ →
+ * linear Rec. 709 RGB with negative primaries clamped to 0, is kept for the zenith chromaticity test
+ * and the RGB view of the sky.) The host packs, per quantity (Y, x, y), A…E and zenith / F(0, θ_s)
+ * into 18 reals, then the daylight basis's luminance weights n0, n1, n2 (21 in all; the sky buffer). The
  * fit covers T ∈ [2, 10] and the sun above the horizon: the parser takes T ∈ [1.7, 10], and θ_s is
  * clamped to 90° (a sun below the horizon gives the sky of a sun at the horizon).
  *
@@ -186,6 +189,59 @@ SEASIM_FN real3 sky_preetham_rgb(const SEASIM_GLOBAL real* packed, real3 d, real
   const real g = R(-0.9692660) * X + R(1.8760108) * Y + R(0.0415560) * Z;
   const real b = R(0.0556434) * X - R(0.2040259) * Y + R(1.0572252) * Z;
   return MAKE_REAL3(fmax(r, R(0.0)), fmax(g, R(0.0)), fmax(b, R(0.0)));
+}
+
+/* The CIE daylight basis weights M1, M2 of chromaticity x, y (CIE 15:2004 §3.1, eq. 3.5–3.6; the
+ * daylight spectrum is S0 + M1 S1 + M2 S2): M = 0.0241 + 0.2562 x − 0.7341 y, negative for every
+ * chromaticity near the daylight locus (about −0.12 there); held at −1e-3 so that a chromaticity far
+ * off it (never met by Preetham's fit over its range) stays finite. Preetham 1999 §A.3 uses the same. */
+SEASIM_FN void sky_daylight_m(real x, real y, real* m1, real* m2) {
+  const real m = fmin(R(0.0241) + R(0.2562) * x - R(0.7341) * y, R(-1e-3));
+  *m1 = (R(-1.3515) - R(1.7703) * x + R(5.9114) * y) / m;
+  *m2 = (R(0.0300) - R(31.4424) * x + R(30.0717) * y) / m;
+}
+
+/* The spectral Preetham sky (issue 19): towards unit d, Preetham's Y and x, y, and from x, y the CIE
+ * daylight spectrum S(λ) = S0 + M1 S1 + M2 S2 scaled to luminance Y. Returned as the three weights of
+ * the basis, (Y, Y M1, Y M2) / N with N = n0 + M1 n1 + M2 n2 the spectrum's luminance, so that a band
+ * takes dot(w_λ, shape) with w_λ = S_k(λ) / D65(λ) (host/passes/sea_sky.cpp): linear in the shape
+ * like every model's, and the luminance of the band radiances is exactly Y times the uniform sky's.
+ * packed: the 18 reals of sky_preetham_pack, then n0, n1, n2 = ∫ S_k ȳ dλ / ∫ D65 ȳ dλ (the host's,
+ * from data/cie_daylight_components.csv). */
+SEASIM_FN real3 sky_preetham_daylight(const SEASIM_GLOBAL real* packed, real3 d, real3 sun) {
+  real3 s = sun;
+  if (s.y < R(0.0)) {
+    const real h = sqrt(s.x * s.x + s.z * s.z);
+    s = h > R(1e-12) ? MAKE_REAL3(s.x / h, R(0.0), s.z / h) : MAKE_REAL3(R(1.0), R(0.0), R(0.0));
+  }
+  const real gamma = acos(clamp(dot(d, s), R(-1.0), R(1.0)));
+  real v[3];
+  for (int q = 0; q < 3; ++q) {
+    real c[5];
+    for (int k = 0; k < 5; ++k) c[k] = packed[6 * q + k];
+    v[q] = packed[6 * q + 5] * sky_perez(c, d.y, gamma);
+  }
+  real m1, m2;
+  sky_daylight_m(v[1], v[2], &m1, &m2);
+  const real n = fmax(packed[18] + m1 * packed[19] + m2 * packed[20], R(1e-6));
+  const real k = fmax(v[0], R(0.0)) / n;
+  return MAKE_REAL3(k, k * m1, k * m2);
+}
+
+/* (1/π) ∫_{upper hemisphere} Y cos θ dω of the spectral Preetham sky (its luminance, Y of each view),
+ * by the midpoint rule in (s = cos²θ, φ) as sky_cie_clear_cosine_mean. */
+SEASIM_FN real sky_preetham_daylight_cosine_mean(const SEASIM_GLOBAL real* packed, real3 sun, int n_s, int n_phi) {
+  real sum = R(0.0);
+  for (int i = 0; i < n_s; ++i) {
+    const real s = ((real)i + R(0.5)) / (real)n_s;
+    const real ct = sqrt(s), st = sqrt(R(1.0) - s);
+    for (int k = 0; k < n_phi; ++k) {
+      const real phi = R(2.0) * SEASIM_PI * ((real)k + R(0.5)) / (real)n_phi;
+      const real3 w = sky_preetham_daylight(packed, MAKE_REAL3(st * cos(phi), ct, st * sin(phi)), sun);
+      sum += w.x * packed[18] + w.y * packed[19] + w.z * packed[20];
+    }
+  }
+  return sum / ((real)n_s * (real)n_phi);
 }
 
 /* Luminance of linear Rec. 709 / sRGB primaries. */

@@ -176,12 +176,19 @@ SEASIM_FN real uw_band_multiple(const SEASIM_GLOBAL UwBand* band, real S, real d
 }
 
 /* L_s of the water surface seen from below (d_y > 0): the sky through Snell's window plus the
- * reflected ray, which starts at depth 0 going down (d_y -> -d_y) to the bottom or deep water. */
-SEASIM_FN real uw_band_surface(const SEASIM_GLOBAL UwBand* band, real d_y, real mu_w, real ior, real bottom_depth,
-                               int single_scattering, int multiple) {
+ * reflected ray, which starts at depth 0 going down (d_y -> -d_y) to the bottom or deep water.
+ * sky_l: the sky's radiance in air along the refracted view (common/sky_view.h; band->sky_radiance
+ * for the uniform sky, which uw_band_surface passes). */
+SEASIM_FN real uw_band_surface_sky(const SEASIM_GLOBAL UwBand* band, real sky_l, real d_y, real mu_w, real ior,
+                                   real bottom_depth, int single_scattering, int multiple) {
   const real s_r = bottom_depth > R(0.0) ? bottom_depth / fmax(d_y, R(1e-6)) : UW_INFINITE;
   const real l_r = uw_band_multiple(band, s_r, -d_y, R(0.0), mu_w, single_scattering, multiple);
-  return uw_window_radiance(d_y, ior, band->sky_radiance, l_r);
+  return uw_window_radiance(d_y, ior, sky_l, l_r);
+}
+
+SEASIM_FN real uw_band_surface(const SEASIM_GLOBAL UwBand* band, real d_y, real mu_w, real ior, real bottom_depth,
+                               int single_scattering, int multiple) {
+  return uw_band_surface_sky(band, band->sky_radiance, d_y, mu_w, ior, bottom_depth, single_scattering, multiple);
 }
 
 /* L_s of a Lambertian hit (an object or the bottom) at distance S, normal n, albedo, visibility vis. */

@@ -63,17 +63,20 @@ typedef struct {
   float c;                 /* extinction σ_t = a + b, 1/m */
   float kd;                /* diffuse downwelling attenuation K_d, 1/m (002 eq. 4.1) */
   float e_sky0;            /* W m^-2 nm^-1: sky irradiance on a horizontal plane just below the
-                              surface, π L_sky (1 - r̄) with r̄ the sky-averaged Fresnel reflectance */
+                              surface, ∫ L_sky (1 - F) cos θ dω (host/sky: π L_sky (1 - r̄) when uniform) */
   float e_sun0;            /* W m^-2 nm^-1: sun irradiance on a horizontal plane just below the
                               surface, E_sun cosθ_a (1 - F(θ_a)) */
   float e_beam0;           /* W m^-2 nm^-1: the refracted sun beam's irradiance normal to itself just
                               below the surface, e_sun0 / μ_w */
-  float sky_radiance;      /* W m^-2 sr^-1 nm^-1, uniform sky radiance in air */
+  float sky_radiance;      /* W m^-2 sr^-1 nm^-1, the sky's uniform level in air (× its shape, sky_view.h) */
   float bottom_albedo;     /* Lambertian reflectance of the bottom */
   float w_r;               /* sensor weights (002 eq. 4.8) */
   float w_g;
   float w_b;
-  float pad[4];
+  float sky_w_r;           /* share of the sky shape's R, G, B in this band (common/sky_view.h) */
+  float sky_w_g;
+  float sky_w_b;
+  float pad;
 } UwBand;
 
 /* An analytic object: sphere (a = centre xyz, radius), box (a = min, b = max), plane (a = point,

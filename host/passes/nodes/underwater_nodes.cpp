@@ -42,7 +42,10 @@ class RaycastNode : public Pass {
  public:
   RaycastNode(const PassPlan& entry, const PassPlan& kd) : entry_(entry), kd_(kd) {}
   // Sizes (image, bands, objects) and the kernels' defines come from these.
-  PassKeys keys() const override { return {{"camera.*", "spectral.*", "objects.*"}, kSetupKeys}; }
+  // sky.model and sky.image: kd_multiple's SEASIM_SKY_MODEL and the size of its sky buffer.
+  PassKeys keys() const override {
+    return {{"camera.*", "spectral.*", "objects.*", "sky.model", "sky.image"}, kSetupKeys};
+  }
   void prepare(FrameContext& ctx, PassResources& res) override {
     auto gbuffer = std::make_shared<UnderwaterGBuffer>();
     gbuffer->pass = std::make_unique<UnderwaterPass>(ctx.device(), ctx.underwaterSetup(), entry_, kd_,
