@@ -168,21 +168,27 @@ SEASIM_FN void sky_preetham_pack(real3 sun, real t, real packed[18]) {
   }
 }
 
-/* Linear Rec. 709 RGB (relative) of the Preetham sky towards unit d; sun: unit, towards the sun,
- * held at the horizon when below it. */
-SEASIM_FN real3 sky_preetham_rgb(const SEASIM_GLOBAL real* packed, real3 d, real3 sun) {
+/* Preetham's Y, x, y towards unit d (v[0], v[1], v[2]); packed: the 18 reals of sky_preetham_pack;
+ * sun: unit, towards the sun, held at the horizon when below it. */
+SEASIM_FN void sky_preetham_yxy(const SEASIM_GLOBAL real* packed, real3 d, real3 sun, real* v) {
   real3 s = sun;
   if (s.y < R(0.0)) {
     const real h = sqrt(s.x * s.x + s.z * s.z);
     s = h > R(1e-12) ? MAKE_REAL3(s.x / h, R(0.0), s.z / h) : MAKE_REAL3(R(1.0), R(0.0), R(0.0));
   }
   const real gamma = acos(clamp(dot(d, s), R(-1.0), R(1.0)));
-  real v[3];
   for (int q = 0; q < 3; ++q) {
     real c[5];
     for (int k = 0; k < 5; ++k) c[k] = packed[6 * q + k];
     v[q] = packed[6 * q + 5] * sky_perez(c, d.y, gamma);
   }
+}
+
+/* Linear Rec. 709 RGB (relative) of the Preetham sky towards unit d; sun: unit, towards the sun,
+ * held at the horizon when below it. */
+SEASIM_FN real3 sky_preetham_rgb(const SEASIM_GLOBAL real* packed, real3 d, real3 sun) {
+  real v[3];
+  sky_preetham_yxy(packed, d, sun, v);
   const real Y = fmax(v[0], R(0.0)), x = v[1], y = fmax(v[2], R(1e-4));
   const real X = x * Y / y, Z = (R(1.0) - x - y) * Y / y;
   const real r = R(3.2404542) * X - R(1.5371385) * Y - R(0.4985314) * Z;
@@ -209,18 +215,8 @@ SEASIM_FN void sky_daylight_m(real x, real y, real* m1, real* m2) {
  * packed: the 18 reals of sky_preetham_pack, then n0, n1, n2 = ∫ S_k ȳ dλ / ∫ D65 ȳ dλ (the host's,
  * from data/cie_daylight_components.csv). */
 SEASIM_FN real3 sky_preetham_daylight(const SEASIM_GLOBAL real* packed, real3 d, real3 sun) {
-  real3 s = sun;
-  if (s.y < R(0.0)) {
-    const real h = sqrt(s.x * s.x + s.z * s.z);
-    s = h > R(1e-12) ? MAKE_REAL3(s.x / h, R(0.0), s.z / h) : MAKE_REAL3(R(1.0), R(0.0), R(0.0));
-  }
-  const real gamma = acos(clamp(dot(d, s), R(-1.0), R(1.0)));
   real v[3];
-  for (int q = 0; q < 3; ++q) {
-    real c[5];
-    for (int k = 0; k < 5; ++k) c[k] = packed[6 * q + k];
-    v[q] = packed[6 * q + 5] * sky_perez(c, d.y, gamma);
-  }
+  sky_preetham_yxy(packed, d, sun, v);
   real m1, m2;
   sky_daylight_m(v[1], v[2], &m1, &m2);
   const real n = fmax(packed[18] + m1 * packed[19] + m2 * packed[20], R(1e-6));
