@@ -1,6 +1,7 @@
 // fast_math_test.cpp — quality.fast_math (kernels built with -cl-fast-relaxed-math) keeps every
-// shipped scene where it is on by default (fastMathFor: all but the two with FFT waves seen from
-// above) within the budget that made it the default: < 0.05 of an 8-bit level (max |Δ| after the
+// shipped scene where it is on by default (fastMathFor: all but those with FFT waves seen from
+// above; the four-flow pass is never built with it), and the non-default models a scene may pick
+// (sea.model = "multiple", the shafts' sampling planes), within the budget that made it the default: < 0.05 of an 8-bit level (max |Δ| after the
 // tone map, at the scene's exposure) from the exact-maths image, and finite. The scenes render at a
 // reduced size (the kernels and their maths are the same at any size); the full-size figures are in
 // results/BENCHMARKS.md (tests/perf/fast_math_scenes.sh).
@@ -8,6 +9,7 @@
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "quality/render_frame.h"
 #include "plan/plan.h"
@@ -23,6 +25,9 @@ struct Case {
   const char* scene;   // scenes/<scene>.toml
   int width, height;   // reduced size
   double budget;       // max |Δ| in 8-bit levels
+  const char* key = "";    // an extra override (e.g. a non-default model), or ""
+  const char* value = "";
+  const char* name = "";   // the test's name when it differs from the scene's
 };
 
 class FastMath : public ::testing::TestWithParam<Case> {};
@@ -31,9 +36,11 @@ TEST_P(FastMath, ImageStaysWithinBudgetOfExactMaths) {
   const Case& c = GetParam();
   const std::string file = std::string(SEASIM_SOURCE_DIR) + "/scenes/" + c.scene + ".toml";
   auto load = [&](bool fast) {
-    return seasim::loadScene(file, {set("camera.width", std::to_string(c.width)),
-                                    set("camera.height", std::to_string(c.height)),
-                                    set("quality.fast_math", fast ? "true" : "false")});
+    std::vector<seasim::Override> o = {set("camera.width", std::to_string(c.width)),
+                                       set("camera.height", std::to_string(c.height)),
+                                       set("quality.fast_math", fast ? "true" : "false")};
+    if (*c.key) o.push_back(set(c.key, c.value));
+    return seasim::loadScene(file, o);
   };
   const seasim::Scene exact_scene = load(false), fast_scene = load(true);
   const seasim::Plan fast_plan = seasim::makePlan(fast_scene);
@@ -62,7 +69,13 @@ INSTANTIATE_TEST_SUITE_P(ShippedScenes, FastMath,
                          ::testing::Values(Case{"deep_ocean", 96, 54, 0.05}, Case{"flat_sea", 96, 54, 0.05},
                                            Case{"open_ocean", 96, 54, 0.05}, Case{"seabed", 96, 54, 0.05},
                                            Case{"seashore", 96, 54, 0.05}, Case{"spot_sphere", 96, 64, 0.05},
-                                           Case{"stage", 96, 64, 0.05}, Case{"tropical", 96, 54, 0.05}),
-                         [](const ::testing::TestParamInfo<Case>& info) { return std::string(info.param.scene); });
+                                           Case{"stage", 96, 64, 0.05}, Case{"tropical", 96, 54, 0.05},
+                                           Case{"rov_lights", 96, 54, 0.05},
+                                           Case{"flat_sea", 96, 54, 0.05, "sea.model", "\"multiple\"", "flat_sea_multiple"},
+                                           Case{"spot_sphere", 96, 64, 0.05, "quality.shafts_method", "\"planes\"",
+                                                "spot_sphere_planes"}),
+                         [](const ::testing::TestParamInfo<Case>& info) {
+                           return std::string(*info.param.name ? info.param.name : info.param.scene);
+                         });
 
 }  // namespace
