@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "geometry/kernel_camera.h"
 #include "math/kernel_math.h"
 #include "passes/fourflow_auto.h"
 #include "spectral/jerlov.h"
@@ -14,10 +15,6 @@
 namespace seasim {
 
 namespace {
-
-void set4(float out[4], Vec3 v) {
-  out[0] = static_cast<float>(v.x), out[1] = static_cast<float>(v.y), out[2] = static_cast<float>(v.z), out[3] = 0;
-}
 
 bool hasDefine(const PassPlan& plan, const char* d) {
   return std::find(plan.defines.begin(), plan.defines.end(), std::string(d)) != plan.defines.end();
@@ -110,13 +107,7 @@ FourFlowSetup makeFourFlowSetup(const Scene& scene, const WavelengthGrid& grid, 
 
   FfView& v = s.view;
   const CameraDesc& cam = scene.camera;
-  const Vec3 forward = normalize(cam.look_at - cam.position);
-  const Vec3 right = normalize(cross(forward, cam.up));
-  const Vec3 up = cross(right, forward);
-  set4(v.cam_pos, cam.position);
-  set4(v.cam_right, right);
-  set4(v.cam_up, up);
-  set4(v.cam_forward, forward);
+  setKernelCamera(v, cam);
   for (int c = 0; c < 3; ++c) v.sky_rgb[c] = float(sky_rgb[c]);
   s.sky_params = sky.params;
   s.sky_buffer = sky.kernelBuffer();

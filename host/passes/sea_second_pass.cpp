@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "geometry/kernel_camera.h"
 #include "device/kernel_source.h"
 #include "math/kernel_math.h"
 #include "passes/sea_heightfield.h"
@@ -27,13 +28,6 @@ static_assert(offsetof(SeaSecondParams, vsf_size) == 140);
 static_assert(sizeof(SeaBand) == 48, "SeaBand must stay 48 bytes");
 
 namespace {
-
-void set4(float out[4], Vec3 v) {
-  out[0] = static_cast<float>(v.x);
-  out[1] = static_cast<float>(v.y);
-  out[2] = static_cast<float>(v.z);
-  out[3] = 0.0f;
-}
 
 // A knob's value, or `automatic` when the scene says "auto".
 int knob(const Scene& scene, const char* name, int automatic) {
@@ -68,13 +62,7 @@ SeaSecondPass::SeaSecondPass(Device& device, const Scene& scene, const PassPlan&
   namespace k = kmath_d;
   const CameraDesc& cam = scene.camera;
   SeaSecondParams p{};
-  const Vec3 forward = normalize(cam.look_at - cam.position);
-  const Vec3 right = normalize(cross(forward, cam.up));
-  const Vec3 up = cross(right, forward);
-  set4(p.cam_pos, cam.position);
-  set4(p.cam_right, right);
-  set4(p.cam_up, up);
-  set4(p.cam_forward, forward);
+  setKernelCamera(p, cam);
   // Sun direction from zenith and azimuth (azimuth from +x towards +z), refracted into the water.
   const k::real3 sun{std::sin(scene.sun.zenith) * std::cos(scene.sun.azimuth), std::cos(scene.sun.zenith),
                      std::sin(scene.sun.zenith) * std::sin(scene.sun.azimuth)};

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstddef>
 
+#include "geometry/kernel_camera.h"
 #include "math/kernel_math.h"
 #include "passes/sea_heightfield.h"
 #include "passes/sea_sky.h"
@@ -59,13 +60,6 @@ double lutRead(const std::vector<double>& lut, double x) {
   return p1 + 0.5 * t * (p2 - p0 + t * (2 * p0 - 5 * p1 + 4 * p2 - p3 + t * (3 * (p1 - p2) + p3 - p0)));
 }
 
-void set4(float out[4], Vec3 v) {
-  out[0] = static_cast<float>(v.x);
-  out[1] = static_cast<float>(v.y);
-  out[2] = static_cast<float>(v.z);
-  out[3] = 0.0f;
-}
-
 }  // namespace
 
 SeaSinglePass::SeaSinglePass(Device& device, const Scene& scene, const PassPlan& plan,
@@ -86,13 +80,7 @@ SeaSinglePass::SeaSinglePass(Device& device, const Scene& scene, const PassPlan&
   }
   const CameraDesc& cam = scene.camera;
   SeaParams p{};
-  Vec3 forward = normalize(cam.look_at - cam.position);
-  Vec3 right = normalize(cross(forward, cam.up));
-  Vec3 up = cross(right, forward);
-  set4(p.cam_pos, cam.position);
-  set4(p.cam_right, right);
-  set4(p.cam_up, up);
-  set4(p.cam_forward, forward);
+  setKernelCamera(p, cam);
   // Sun direction from zenith and azimuth (azimuth from +x towards +z).
   Vec3 sun{std::sin(scene.sun.zenith) * std::cos(scene.sun.azimuth), std::cos(scene.sun.zenith),
            std::sin(scene.sun.zenith) * std::sin(scene.sun.azimuth)};

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <cstdio>
 
+#include "geometry/kernel_camera.h"
 #include "math/kernel_math.h"
 #include "geometry/shafts_geometry_k.h"
 #include "plan/shafts_method.h"
@@ -33,13 +34,6 @@ static_assert(SHAFTS_OCCLUDER_PLANES == SHAFTS_OCC_PLANES, "shafts_params.h and 
 static_assert(kShaftsIntervalsMaxObjects == SHAFTS_MAX_PIECES - 1, "plan/shafts_method.h and shafts_intervals.h disagree");
 
 namespace {
-
-void set4(float out[4], Vec3 v, double w = 0) {
-  out[0] = static_cast<float>(v.x);
-  out[1] = static_cast<float>(v.y);
-  out[2] = static_cast<float>(v.z);
-  out[3] = static_cast<float>(w);
-}
 
 int knob(const Scene& scene, const char* name, int fallback) {
   const auto it = scene.quality.find(name);
@@ -94,13 +88,7 @@ ShaftsPass::ShaftsPass(Device& device, const Scene& scene, const PassPlan& plan,
 
   const CameraDesc& cam = scene.camera;
   ShaftsParams p{};
-  const Vec3 forward = normalize(cam.look_at - cam.position);
-  const Vec3 right = normalize(cross(forward, cam.up));
-  const Vec3 up = cross(right, forward);
-  set4(p.cam_pos, cam.position);
-  set4(p.cam_right, right);
-  set4(p.cam_up, up);
-  set4(p.cam_forward, forward);
+  setKernelCamera(p, cam);
   p.tan_half_fov_y = static_cast<float>(std::tan(cam.fov_y / 2));
   p.aspect = static_cast<float>(cam.width) / static_cast<float>(cam.height);
   const double rho = scene.air.density, sigma_t = scene.air.density * scene.air.extinction;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "geometry/kernel_camera.h"
 #include "math/kernel_math.h"
 #include "util/error.h"
 
@@ -15,13 +16,6 @@ int knob(const Scene& scene, const char* name, int fallback) {
   const auto it = scene.quality.find(name);
   if (it == scene.quality.end() || it->second.automatic) return fallback;
   return static_cast<int>(it->second.value);
-}
-
-void set4(float out[4], Vec3 v) {
-  out[0] = static_cast<float>(v.x);
-  out[1] = static_cast<float>(v.y);
-  out[2] = static_cast<float>(v.z);
-  out[3] = 0.0f;
 }
 
 Vec3 sunWater(const UwParams& p) { return {p.sun_dir_water[0], p.sun_dir_water[1], p.sun_dir_water[2]}; }

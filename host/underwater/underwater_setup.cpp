@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstddef>
 
+#include "geometry/kernel_camera.h"
 #include "math/kernel_math.h"
 #include "spectral/jerlov.h"
 #include "util/error.h"
@@ -20,26 +21,13 @@ namespace {
 
 namespace kd = kmath_d;
 
-void set4(float out[4], Vec3 v, double w = 0.0) {
-  out[0] = static_cast<float>(v.x);
-  out[1] = static_cast<float>(v.y);
-  out[2] = static_cast<float>(v.z);
-  out[3] = static_cast<float>(w);
-}
-
 }  // namespace
 
 UnderwaterSetup makeUnderwaterSetup(const Scene& scene, const WavelengthGrid& grid, const Sensor& sensor) {
   UnderwaterSetup s;
   UwParams& p = s.params;
   const CameraDesc& cam = scene.camera;
-  const Vec3 forward = normalize(cam.look_at - cam.position);
-  const Vec3 right = normalize(cross(forward, cam.up));
-  const Vec3 up = cross(right, forward);
-  set4(p.cam_pos, cam.position);
-  set4(p.cam_right, right);
-  set4(p.cam_up, up);
-  set4(p.cam_forward, forward);
+  setKernelCamera(p, cam);
 
   // The sun in air (azimuth from +x towards +z) and refracted into the water (004 eq. 40–44).
   const Vec3 sun{std::sin(scene.sun.zenith) * std::cos(scene.sun.azimuth), std::cos(scene.sun.zenith),
