@@ -10,6 +10,7 @@
 
 #include "io/atomic_file.h"
 #include "jobs/manifest.h"
+#include "plan/shafts_method.h"
 #include "scene/scene_parser.h"
 #include "util/error.h"
 
@@ -43,10 +44,22 @@ double passWeight(const PassPlan& pass) {
   return 1.0;
 }
 
+// The shafts pass per pixel and band, relative to sea_single: it grows with the lamps, and the two
+// integrators (plan/shafts_method.h) differ. Per lamp, from stage (5 lamps) and spot_sphere (1) at
+// 720x480 against flat_sea, interleaved (results/BENCHMARKS.md "Farm shards"): intervals 8-10x,
+// planes at n = 30, m = 6 19-26x. The planes scale with n x m; the intervals' panel width moves them
+// little (stage: -22 % from 4 to 32 degrees), so it is left out.
+double shaftsFactor(const Scene& scene) {
+  const double lamps = std::max<double>(1.0, static_cast<double>(scene.spotlights.size()));
+  if (shaftsUseIntervals(scene))
+    return lamps * 9.0;
+  return lamps * 22.0 * (knob(scene, "shafts_planes", 30) / 30.0) * (knob(scene, "shafts_subplanes", 6) / 6.0);
+}
+
 // How much more a pass costs at the scene's quality knobs than at their defaults.
 double qualityFactor(const Scene& scene, const std::string& pass) {
   if (pass == "sea_second") return knob(scene, "sea_nz", 12) / 12.0 * (knob(scene, "sea_nd", 128) / 128.0);
-  if (pass == "shafts") return knob(scene, "shafts_planes", 30) / 30.0 * (knob(scene, "shafts_subplanes", 6) / 6.0);
+  if (pass == "shafts") return shaftsFactor(scene);
   if (pass == "froxel")
     return knob(scene, "froxel_x", 160) * knob(scene, "froxel_y", 90) * knob(scene, "froxel_z", 64) / (160.0 * 90 * 64);
   if (pass == "caustics") return std::pow(knob(scene, "caustic_map_size", 256) / 256.0, 2);

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
+#include <sstream>
 #include <utility>
 
 #include "preview/preview_settings.h"
@@ -21,6 +23,22 @@ const std::vector<std::pair<std::string, int>>& scaledKnobs() {
   return knobs;
 }
 
+// The intervals method's knobs (plan/shafts_method.h) work the other way: a wider quadrature panel is
+// cheaper, so a level doubles them, up to a ceiling well inside the parser's range.
+const std::vector<std::pair<std::string, double>>& widenedKnobs() {
+  static const std::vector<std::pair<std::string, double>> knobs = {{"shafts_panel_deg", 32.0},
+                                                                    {"shafts_panel_texels", 16.0}};
+  return knobs;
+}
+
+std::string numberText(double v) {
+  std::ostringstream out;
+  out << std::setprecision(17) << v;
+  std::string text = out.str();
+  if (text.find_first_of(".e") == std::string::npos) text += ".0";
+  return text;
+}
+
 }  // namespace
 
 std::vector<Override> qualityLevelOverrides(const Scene& scene, int level) {
@@ -36,6 +54,12 @@ std::vector<Override> qualityLevelOverrides(const Scene& scene, int level) {
     if (it == scene.quality.end() || it->second.automatic) continue;
     const long full = std::lround(it->second.value);
     add("quality." + name, std::max<long>(std::min<long>(full, floor), full >> halvings));
+  }
+  for (const auto& [name, ceiling] : widenedKnobs()) {
+    const auto it = scene.quality.find(name);
+    if (it == scene.quality.end() || it->second.automatic) continue;
+    const double full = it->second.value;
+    out.push_back({"quality." + name, numberText(std::max(full, std::min(ceiling, std::ldexp(full, halvings)))), at});
   }
   add("camera.width", std::max(16, scene.camera.width >> size_shift));
   add("camera.height", std::max(9, scene.camera.height >> size_shift));

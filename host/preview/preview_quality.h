@@ -1,7 +1,8 @@
 // preview_quality.h — the preview's quality levels and its frame-time budget (issue 16: responsive
 // while the view moves, then accurate). Level 3 is the scene's own quality; each level below halves
 // the numeric [quality] knobs again (sampling planes, froxel slices, depth planes and directions, map
-// and table sizes; never below a floor, "auto" knobs left alone), levels 1 and 0 also render at 1/2
+// and table sizes; never below a floor, "auto" knobs left alone; the shafts intervals' panel widths
+// double instead, up to a ceiling), levels 1 and 0 also render at 1/2
 // and 1/4 of the width and height (the window scales the image up), and the wavelength count is
 // halved per level down to 3 bands. Unit-tested in tests/unit/preview_quality_test.cpp; the error of
 // each level against level 3 is measured by tests/perf/preview_levels.sh (results/BENCHMARKS.md).

@@ -134,6 +134,20 @@ TEST_F(Farm, EstimatedCostScalesWithPixelsBandsAndPasses) {
   EXPECT_GT(estimateItemCost(finer, makePlan(finer)), estimateItemCost(second, makePlan(second)));
 }
 
+// Shafts: the cost follows the lamps and the integrator the planner picks (the measured weights in
+// host/jobs/shard_balance.cpp): stage's five lamps cost more than spot_sphere's one at the same size,
+// and the paper's planes more than twice the intervals.
+TEST_F(Farm, EstimatedShaftsCostFollowsLampsAndMethod) {
+  const auto cost = [](const std::string& scene, const std::string& method) {
+    const Scene s = loadScene(kRepo + "/scenes/" + scene,
+                              {Override{"quality.shafts_method", "\"" + method + "\"", {}}});
+    return double(estimateItemCost(s, makePlan(s)));
+  };
+  EXPECT_GT(cost("stage.toml", "intervals"), 2.0 * cost("spot_sphere.toml", "intervals"));
+  EXPECT_GT(cost("stage.toml", "planes"), 1.8 * cost("stage.toml", "intervals"));
+  EXPECT_GT(cost("spot_sphere.toml", "planes"), 1.5 * cost("spot_sphere.toml", "intervals"));
+}
+
 TEST_F(Farm, MeasuredCostsLeaveOutKernelBuilds) {
   const Job j = job({64, 64});
   Manifest m(j.file);

@@ -72,6 +72,29 @@ TEST(PreviewQuality, EachLevelHalvesDownToAFloor) {
   EXPECT_THROW(qualityLevelOverrides(scene, 4), std::exception);
 }
 
+// The shafts' intervals method (the default for these scenes) gets cheaper with wider panels: each
+// level doubles them, up to a ceiling, and a scene already past the ceiling keeps its own.
+TEST(PreviewQuality, IntervalPanelsWidenPerLevelUpToACeiling) {
+  const Scene scene = parseScene(kShafts, "t.toml");
+  const auto full = asMap(qualityLevelOverrides(scene, kPreviewFullLevel));
+  EXPECT_EQ(full.at("quality.shafts_panel_deg"), "4.0");
+  EXPECT_EQ(full.at("quality.shafts_panel_texels"), "2.0");
+  const auto l2 = asMap(qualityLevelOverrides(scene, 2));
+  EXPECT_EQ(l2.at("quality.shafts_panel_deg"), "8.0");
+  EXPECT_EQ(l2.at("quality.shafts_panel_texels"), "4.0");
+  const auto l0 = asMap(qualityLevelOverrides(scene, 0));
+  EXPECT_EQ(l0.at("quality.shafts_panel_deg"), "32.0");
+  EXPECT_EQ(l0.at("quality.shafts_panel_texels"), "16.0");
+  const Scene coarse = parseScene(kShafts, "t.toml", qualityLevelOverrides(scene, 0));
+  EXPECT_DOUBLE_EQ(coarse.quality.at("shafts_panel_deg").value, 32.0);
+
+  const Scene wide = parseScene("[quality]\nshafts_panel_deg = 45.5\nshafts_panel_texels = 0.25\n", "t.toml");
+  const auto w0 = asMap(qualityLevelOverrides(wide, 0));
+  EXPECT_EQ(w0.at("quality.shafts_panel_deg"), "45.5");      // past the ceiling: left as it is
+  EXPECT_EQ(w0.at("quality.shafts_panel_texels"), "2.0");    // 0.25 x 2^3
+  EXPECT_NO_THROW(parseScene("", "t.toml", qualityLevelOverrides(wide, 0)));
+}
+
 TEST(PreviewQuality, KnobsBelowTheirFloorStayAsTheyAre) {
   const Scene scene = parseScene("[quality]\nshafts_planes = 4\n[spectral]\ncount = 1\n", "t.toml");
   const auto l0 = asMap(qualityLevelOverrides(scene, 0));
