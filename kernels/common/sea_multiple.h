@@ -23,8 +23,10 @@
  *            times the bottom–surface interreflection 1/(1 - ρ r_below e^{-4 k H})
  *   D_C = 1.03 sqrt(1 + 2.4 u),  D_B = 1.04 sqrt(1 + 5.4 u)   (Lee 1999 eq. 6, 7: the upwelling light's
  *   path per metre of depth, longer than the view's 1/μ_v because it has been scattered).
- * L_sun is 000 eq. 5 in deep water (single scattering of the sun beam with the exact HG phase at the
- * pixel's angle, k on both legs); L_sky the same QSSA single scattering of the diffuse skylight in the
+ * L_sun is the sun's QSSA single scattering split into the unscattered beam (exact HG phase at the
+ * pixel's angle, c on the way down) and the light already scattered forwards (b_b/(2π) per sr), each
+ * with its own depth factor (sea_sun_backscatter); 000 eq. 5 gives all of it the beam's phase and k on
+ * both legs, which was 0.74–0.82 of all orders in deep Jerlov II, III, 3C. L_sky the same QSSA single scattering of the diffuse skylight in the
  * water, E_sky = π L_sky (1 - r̄) (r̄ the uniform sky's mean Fresnel reflectance), arriving inside
  * Snell's window (mean cosine μ_sky = E_d/E_0 = (1 + cos θ_c)/2, exact for a uniform radiance over
  * the window's cone) and scattered back with b_b spread evenly over the upper hemisphere, b_b/(2π) per sr:
@@ -88,20 +90,49 @@ SEASIM_FN SeaMultipleFactors sea_multiple_factors(real a, real b, real c_f) {
   return f;
 }
 
-/* The water column's radiance just below the surface towards the eye (no T_o): the sun's 000 eq. 5 and
- * the skylight's back-scattering, each in deep water times its depth factor, times the higher orders.
- * e_sun: the sun's irradiance on the horizontal surface above the water (eq. 5's L_sun), t_in its
- * Fresnel transmittance; e_sky = π L_sky (1 - r̄) just below the surface; a, b the water's IOPs, c_f
- * = hg_forward_fraction(g); H the bottom depth (< 0: none); cos_io, cos_ji the refracted sun's and
- * view's cosines to the vertical (> 0); phase the HG phase at the pixel's scattering angle (sun beam
- * into the view); mu_sky from sea_sky_mean_cosine. */
+/* The sun's light scattered back towards the eye below the surface (no T_o, no higher orders), the
+ * QSSA downwelling split in two (issue 13):
+ *  - the unscattered beam, E_n e^{-c y/μ_s}, scattered into the view with the exact HG phase at the
+ *    pixel's angle (the true first order: only unscattered light keeps the sun's direction);
+ *  - the light already scattered forwards, E_n (e^{-k y/μ_s} - e^{-c y/μ_s}) (the QSSA's total minus the
+ *    beam), whose directions have spread around the sun's, scattered back evenly over the upper
+ *    hemisphere, b_b/(2π) per sr, as the skylight is.
+ * Paper 000's eq. 5 gives the whole QSSA flux the beam's phase; at g = 0.9 and the sun behind the
+ * camera the view sees HG near 180°, 0.6x its mean over the back hemisphere, and that is most of what
+ * it missed in turbid water (results/sea_allorders/: deep Jerlov III 0.74 -> 0.95 of all orders).
+ * Both parts go back up with k. In deep water (H < 0), with E_n = E/μ_s and ∫ dy/μ_v:
+ *   beam   = E b p / (c μ_v + k μ_s)
+ *   spread = E b_b/(2π) (1/(k (μ_s + μ_v)) - 1/(c μ_v + k μ_s)) = E b_b/(2π) b_f μ_v / (k (μ_s + μ_v) (c μ_v + k μ_s))
+ * with b_f = c - k, the forward scattering; over a bottom at H each part times its depth factor, the
+ * view leg stretched by d_c (Lee 1999, as for the sky): 1 - e^{-x_c} and 1 - e^{-x_k}, x_c = H (c/μ_s
+ * + k d_c/μ_v), x_k = H k (1/μ_s + d_c/μ_v); the spread is A (1 - e^{-x_k}) - B (1 - e^{-x_c}), A and B
+ * its two deep terms, whose difference cancels only where the spread is small beside the beam (b_f H
+ * small): an absolute error of a float ulp of the beam's size, and clamped at 0.
+ * e_sun_in: E t_in, the sun's irradiance on the horizontal just below the surface. */
+SEASIM_FN real sea_sun_backscatter(real e_sun_in, real b, real phase, real bb, real c, real k, real H, real cos_io,
+                                   real cos_ji, real d_c) {
+  const real bf = fmax(c - k, R(0.0));
+  const real to_beam = fmax(c * cos_ji + k * cos_io, R(1e-30));
+  const real to_all = fmax(k * (cos_io + cos_ji), R(1e-30));
+  const real B = bb / (R(2.0) * SEASIM_PI) / to_beam;
+  const real spread_deep = bb / (R(2.0) * SEASIM_PI) * bf * cos_ji / (to_all * to_beam); /* A - B */
+  const real beam_depth = sea_depth_factor(R(1.0), H, c / cos_io + k * d_c / cos_ji);
+  const real all_depth = sea_depth_factor(k, H, R(1.0) / cos_io + d_c / cos_ji);
+  const real spread = fmax((spread_deep + B) * all_depth - B * beam_depth, R(0.0));
+  return e_sun_in * (b * phase / to_beam * beam_depth + spread);
+}
+
+/* The water column's radiance just below the surface towards the eye (no T_o): the sun's part
+ * (sea_sun_backscatter) and the skylight's back-scattering in deep water times its depth factor, both
+ * times the higher orders. e_sun: the sun's irradiance on the horizontal surface above the water (eq.
+ * 5's L_sun), t_in its Fresnel transmittance; e_sky = π L_sky (1 - r̄) just below the surface; a, b the
+ * water's IOPs, c_f = hg_forward_fraction(g); H the bottom depth (< 0: none); cos_io, cos_ji the
+ * refracted sun's and view's cosines to the vertical (> 0); phase the HG phase at the pixel's
+ * scattering angle (sun beam into the view); mu_sky from sea_sky_mean_cosine. */
 SEASIM_FN real sea_multiple_column(real e_sun, real t_in, real e_sky, real a, real b, real c_f, real H, real cos_io,
                                    real cos_ji, real phase, real mu_sky) {
   const SeaMultipleFactors f = sea_multiple_factors(a, b, c_f);
-  const real c = a + b;
-  const real albedo_w = c > R(0.0) ? b / c : R(0.0);
-  const real sun = sea_single_scattering(e_sun, t_in, R(1.0), b * phase, c, albedo_w, c_f, cos_io, cos_ji, R(-1.0)) *
-                   sea_depth_factor(f.k, H, R(1.0) / cos_io + f.d_c / cos_ji);
+  const real sun = sea_sun_backscatter(e_sun * t_in, b, phase, f.bb, a + b, f.k, H, cos_io, cos_ji, f.d_c);
   const real sky = sea_sky_backscatter_deep(e_sky, mu_sky, f.bb, f.k, cos_ji) *
                    sea_depth_factor(f.k, H, R(1.0) / mu_sky + f.d_c / cos_ji);
   return (sun + sky) * f.orders;

@@ -12,6 +12,7 @@
 # The path tracer's images are kept in $PT_DIR (default build/sea_allorders_pt, one per case and
 # paths-per-pixel count; seed 1, so a kept image is the one a rerun would make) and reused, so a second
 # model costs only its own renders.
+# JERLOV and DEPTHS (space-separated) pick a subset of the cases, e.g. JERLOV="II III" DEPTHS="5 1000".
 # Columns: image-mean luminance (0.2126 R + 0.7152 G + 0.0722 B of linear sensor RGB) of the model and
 # of the path tracer, the standard error of the path tracer's mean (from its per-pixel standard-error
 # image), their ratio, per-pixel rel. L2 and RMSE (8-bit levels, `seasim compare`), the model's kernel
@@ -53,8 +54,8 @@ ALL="${W}x${H}+0+0"
 FAR="${W}x${HALF}+0+0"
 NEAR="${W}x$((H - HALF))+0+$HALF"
 echo "jerlov,bottom_m,model_lum,pt_lum,pt_lum_se,ratio,rel_l2,rmse_8bit,model_ms,pt_ms,ratio_far,ratio_far_se,ratio_near,ratio_near_se" > "$OUT"
-for j in I IB II III 3C; do
-  for d in 2 5 10 20 1000; do
+for j in ${JERLOV:-I IB II III 3C}; do
+  for d in ${DEPTHS:-2 5 10 20 1000}; do
     set_case="--set water.jerlov=\"$j\" --set bottom.depth=$d"
     pt="$PT_DIR/pt_${j}_${d}_${SPP}.exr"
     pt_ms_file="$PT_DIR/pt_${j}_${d}_${SPP}.ms"

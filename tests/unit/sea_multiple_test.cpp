@@ -1,7 +1,7 @@
 // sea_multiple_test.cpp — sea.model = "multiple" (kernels/common/sea_multiple.h) in float and double:
 // its parts against independent quadrature of the integrals they stand for, the mean cosine of the
 // skylight in the water against quadrature over Snell's cone, its limits (no bottom, k -> 0, very deep
-// bottom, u -> 0 is paper 000's eq. 5) and its stiff inputs.
+// bottom, b -> 0 is paper 000's eq. 5) and its stiff inputs.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -17,7 +17,7 @@ TEST(SeaMultiple, SkyMeanCosineMatchesQuadratureOverSnellsCone) {
   // Uniform radiance inside the cone of half-angle θ_c: mean cosine E_d / E_0 = ∫ cos sin / ∫ sin over [0, θ_c].
   for (double n : {1.0, 1.2, 1.333, 1.5}) {
     const double theta_c = std::asin(1.0 / n);
-    const int steps = 100000;
+    const int steps = 250000;
     long double num = 0, den = 0;
     for (int i = 0; i < steps; ++i) {
       const long double t = (i + 0.5L) * theta_c / steps;
@@ -116,10 +116,49 @@ TEST(SeaMultiple, FactorsFollowLee1999) {
   EXPECT_EQ(zero.orders, 1.0f);
 }
 
-TEST(SeaMultiple, ColumnWithoutBackscatterIsPaper000Eq5) {
-  // Without sky and with b_b -> 0 (u -> 0, D_C -> 1.03) the column is eq. 5 of the same water up to the
-  // 3 % longer view leg of D_C; in deep water exactly eq. 5.
-  const double a = 0.06, b = 0.05, g = 0.999999, c_f = kd::hg_forward_fraction(g);
+// The integral sea_sun_backscatter stands for, with D_C = 1: E/(μ_s μ_v) ∫_0^H [b p e^{-c y/μ_s} +
+// b_b/(2π) (e^{-k y/μ_s} - e^{-c y/μ_s})] e^{-k y/μ_v} dy, by the midpoint rule in long double.
+long double sunQuadrature(double e, double b, double phase, double bb, double c, double k, double H, double mu_s,
+                          double mu_v) {
+  const int steps = 250000;
+  const long double dy = H / steps;
+  long double sum = 0;
+  for (int i = 0; i < steps; ++i) {
+    const long double y = (i + 0.5L) * dy;
+    const long double beam = std::exp(-c * y / mu_s), all = std::exp(-k * y / mu_s);
+    sum += (b * phase * beam + bb / (2 * M_PI) * (all - beam)) * std::exp(-k * y / mu_v);
+  }
+  return e / (mu_s * mu_v) * sum * dy;
+}
+
+TEST(SeaMultiple, SunTermMatchesQuadratureOfBeamAndSpreadLight) {
+  // Jerlov III-like water at g = 0.9: b_f = c - k is most of c, so the two parts differ a lot.
+  const double a = 0.12, b = 0.35, c_f = kd::hg_forward_fraction(0.9), bb = b * (1 - c_f), k = a + bb, c = a + b;
+  const double phase = kd::hg_phase(-0.95, 0.9);
+  for (double mu_s : {0.87, 0.3}) {
+    for (double mu_v : {1.0, 0.75, 0.2}) {
+      for (double H : {0.5, 5.0, 400.0}) {
+        const long double ref = sunQuadrature(1.3, b, phase, bb, c, k, H, mu_s, mu_v);
+        const double d = kd::sea_sun_backscatter(1.3, b, phase, bb, c, k, H, mu_s, mu_v, 1.0);
+        const float f = kf::sea_sun_backscatter(1.3f, float(b), float(phase), float(bb), float(c), float(k), float(H),
+                                                float(mu_s), float(mu_v), 1.0f);
+        EXPECT_NEAR(d / ref, 1.0, 1e-7) << mu_s << " " << mu_v << " " << H;
+        EXPECT_NEAR(f / ref, 1.0, 3e-6) << mu_s << " " << mu_v << " " << H;
+      }
+      // No bottom: the deep closed form, which a 400 m bottom (x_k >= 35) already reaches.
+      const double deep = kd::sea_sun_backscatter(1.3, b, phase, bb, c, k, -1.0, mu_s, mu_v, 1.0);
+      EXPECT_NEAR(deep / double(sunQuadrature(1.3, b, phase, bb, c, k, 400.0, mu_s, mu_v)), 1.0, 1e-7);
+    }
+  }
+  // The spread light's share is real: here it is most of the sun's term, not a correction.
+  const double beam_only = 1.3 * b * phase / (c * 0.75 + k * 0.87);
+  EXPECT_GT(kd::sea_sun_backscatter(1.3, b, phase, bb, c, k, -1.0, 0.87, 0.75, 1.0), 2.0 * beam_only);
+}
+
+TEST(SeaMultiple, ColumnWithLittleScatteringIsPaper000Eq5) {
+  // As b -> 0 nothing has been scattered before the first scattering: the beam is all of the sun's
+  // light, c -> k -> a, u -> 0, and the column is eq. 5 of the same water (deep, no sky).
+  const double a = 0.06, b = 1e-7, g = 0.9, c_f = kd::hg_forward_fraction(g);
   const double cos_io = 0.87, cos_ji = 0.8, phase = 0.01;
   const double col = kd::sea_multiple_column(1.0, 0.97, 0.0, a, b, c_f, -1.0, cos_io, cos_ji, phase, 0.83);
   const double eq5 = kd::sea_single_scattering(1.0, 0.97, 1.0, b * phase, a + b, b / (a + b), c_f, cos_io, cos_ji, -1.0);
