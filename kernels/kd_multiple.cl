@@ -16,7 +16,7 @@
  * SkyParams and the sky buffer: the [sky] Snell's window shows (common/sky_view.h, host/sky).
  * Defines (host/plan): SEASIM_HAS_MULTIPLE (L_MS), SEASIM_HAS_FROXEL (single scattering added here and
  * split off L_MS and L_s), SEASIM_SPECTRAL_OUTPUT, SEASIM_SKY_MODEL (common/sky.h); SEASIM_BAND_LANES
- * (4, 8 or 16; default 8, common/band_lanes.h).
+ * (4, 8 or 16; default 16, common/band_lanes.h).
  */
 #include "common/compat.h"
 #include "common/optics.h"

@@ -7,18 +7,21 @@
  * the CPU (host/math/kernel_math.h) and compared with double on PoCL.
  *
  *   realb, maskb           N bands of real / their comparison mask (floatN, intN; real, int on the host)
- *   SEASIM_BAND_LANES      N (kernels: 4, 8 or 16, default 8; the host: 1)
+ *   SEASIM_BAND_LANES      N (kernels: 4, 8 or 16, default 16; the host: 1)
  *   LOADB(p, i)            bands i..i+N-1 of a float row p (p padded to a multiple of N)
  *   SPLATB(x)              x in every lane
  *   SELECTB(m, a, b)       per lane: m ? a : b (m from a comparison of realb values, combined with &)
  *   SUMB(v)                the sum of the lanes
  * Comparisons of a realb with a scalar give a maskb on both sides; a scalar condition must be splat
  * first (SPLATB(s) >= x), since OpenCL's scalar true is 1, not the all-ones a vector mask uses.
+ * Width, measured on PoCL 3.1 (AVX-512 CPU; seabed, 256 bands, kd_multiple ms, two rounds): 4 lanes
+ * 454/454, 8 lanes 241/253, 16 lanes 142/148 (results/BENCHMARKS.md, issue 14). A GPU, which runs
+ * one work-item per lane already, would rather have 1 (not measured: no GPU lent).
  * Needs compat.h; kernels: float only. */
 #if defined(__OPENCL_VERSION__) || defined(__OPENCL_C_VERSION__)
 
 #ifndef SEASIM_BAND_LANES
-#define SEASIM_BAND_LANES 8
+#define SEASIM_BAND_LANES 16
 #endif
 #if SEASIM_BAND_LANES == 4
 typedef float4 realb;
