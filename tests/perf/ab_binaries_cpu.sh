@@ -3,7 +3,8 @@
 # for several seasim binaries (e.g. a copy of main's and this tree's), interleaved round by round, at
 # several band counts: per variant, round and n,
 #   frame_cpu_s = [CPU of `seasim run` on a job of 3 seabed renders - CPU of a job of 1] / 2
-# (start-up, program builds and image writes cancel in the difference). The machine's other jobs
+# (start-up, program builds and image writes cancel in the difference; the renders differ by
+# 1/100 degree of sun azimuth, since a job renders identical items once). The machine's other jobs
 # disturb CPU seconds far less than wall or profiling time.
 # Usage: tests/perf/ab_binaries_cpu.sh NAME=BINARY[=KERNEL_DIR] ...   (ROUNDS=2, BANDS="16 256")
 ROUNDS=${ROUNDS:-2}
@@ -16,8 +17,9 @@ job() {  # job file of $1 renders at $2 bands
   printf '[job]\nname = "ab"\noutput_dir = "out"\n' > "$f"
   i=0
   while [ $i -lt "$1" ]; do
-    printf '[[render]]\nname = "r%d"\nscene = "%s"\noutputs = ["exr"]\noverrides = { "spectral.count" = %s }\n' \
-      $i "$SCENE" "$2" >> "$f"
+    # the sun moved by i/100 degree: renders of one scene must differ, or the job renders it once
+    printf '[[render]]\nname = "r%d"\nscene = "%s"\noutputs = ["exr"]\noverrides = { "spectral.count" = %s, "sun.azimuth_deg" = 60.0%d }\n' \
+      $i "$SCENE" "$2" $i >> "$f"
     i=$((i + 1))
   done
   echo "$f"
