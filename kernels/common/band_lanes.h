@@ -49,7 +49,7 @@ typedef int16 maskb;
 /* Writes the first count (>= 1) lanes of v to dst (the last step of a band count that is not a
  * multiple of the lanes). */
 SEASIM_FN void store_lanes(realb v, __global float* dst, int count) {
-  float lanes[SEASIM_BAND_LANES];
+  float lanes[SEASIM_BAND_LANES] __attribute__((aligned(4 * SEASIM_BAND_LANES))); /* a realb's alignment */
   *(realb*)lanes = v;
   for (int j = 0; j < count && j < SEASIM_BAND_LANES; ++j) dst[j] = lanes[j];
 }

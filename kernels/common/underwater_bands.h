@@ -5,7 +5,7 @@
  * σ_t/μ_w and σ_s/(4π) E_0 are no longer divided per pixel. tests/unit/underwater_bands_test.cpp holds
  * these to underwater.h's scalar functions in float and double, tests/kernels/underwater_kd_test.cpp
  * the kernel to the double CPU evaluation.
- * Two exps fewer than underwater.h per lit band: T(S) = e^{-σ_t S} is folded into the exps of the
+ * One exp fewer than underwater.h per lit band: T(S) = e^{-σ_t S} is folded into the exps of the
  * irradiance at depth, e^{-σ_t S} e^{-k y} = e^{-(k y + σ_t S)} (and the clamp at 0 commutes with the
  * positive factor).
  * Needs compat.h, band_lanes.h, optics.h (fresnel), underwater_band_table.h, underwater.h
