@@ -4,13 +4,19 @@
  * SEASIM_SPECTRAL_OUTPUT asks for them — plus the froxel single scattering (002 eq. 5.2) read at the
  * pixel's depth.
  *
- * Inputs: UwParams, UwBand[band_count], albedo[object * band_count + band], the G-buffer of raycast.cl
+ * Explicit SIMD over the bands (issue 14): SEASIM_BAND_LANES bands per step in floatN vectors
+ * (common/band_lanes.h, common/underwater_bands.h), since PoCL does not vectorise this kernel across
+ * work-items; the band table (common/underwater_band_table.h) holds every per-band value the loop reads.
+ *
+ * Inputs: UwParams, UwBand[band_count] and albedo[object * band_count + band] (the set-up as every
+ * underwater pass gets it; the band loop reads their values from band_table), the G-buffer of raycast.cl
  * (geom, material, sun_vis), with SEASIM_HAS_FROXEL the integrated froxel volume (froxel.cl) and its
  * FroxelParams. Output: rgb[3 * pixels]; spectral[band_count * pixels] (band-major per pixel) with
  * SEASIM_SPECTRAL_OUTPUT, holding T L_s + L_MS per band (the froxel term is integrated in RGB).
  * SkyParams and the sky buffer: the [sky] Snell's window shows (common/sky_view.h, host/sky).
  * Defines (host/plan): SEASIM_HAS_MULTIPLE (L_MS), SEASIM_HAS_FROXEL (single scattering added here and
- * split off L_MS and L_s), SEASIM_SPECTRAL_OUTPUT, SEASIM_SKY_MODEL (common/sky.h).
+ * split off L_MS and L_s), SEASIM_SPECTRAL_OUTPUT, SEASIM_SKY_MODEL (common/sky.h); SEASIM_BAND_LANES
+ * (4, 8 or 16; default 16, common/band_lanes.h).
  */
 #include "common/compat.h"
 #include "common/optics.h"
@@ -23,12 +29,16 @@
 #include "common/sky.h"
 #include "common/sky_params.h"
 #include "common/sky_view.h"
+#include "common/band_lanes.h"
+#include "common/underwater_band_table.h"
+#include "common/underwater_bands.h"
 #if SEASIM_HAS_FROXEL
 #include "common/froxel_params.h"
 #include "common/froxel.h"
 #endif
 
 __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, __global const float* albedo,
+                          __global const float* band_table,
                           __global const float4* geom, __global const int* material, __global const float* sun_vis,
                           __constant SkyParams* sky_params, __global const float* sky,
 #if SEASIM_HAS_FROXEL
@@ -65,58 +75,55 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
   const int multiple = 0;
 #endif
 
-  /* The material is tested once per pixel, outside the band loops (common/underwater.h splits the
-   * band radiance by what the ray hit), so each band loop is one straight line of arithmetic. */
-  float r = 0.0f, gr = 0.0f, b = 0.0f;
+  /* Sky and geometry once per pixel; then SEASIM_BAND_LANES bands per step (common/band_lanes.h),
+   * reading the pixel-invariant per-band values from the band table with vector loads. The material
+   * test stays in the loop: it is the same for every step of a pixel, one predictable branch per
+   * SEASIM_BAND_LANES bands, and the lanes themselves are branch-free. */
+#if SEASIM_SKY_MODEL != SEASIM_SKY_UNIFORM
+  const float3 sky_shape = mat == UW_MAT_SURFACE ? sky_view_shape(sky_params, sky, sky_window_air_dir(d, p->ior))
+                                                 : (float3)(0.0f, 0.0f, 0.0f);
+#endif
+  const float y_hit = fmax(o_d - S * d.y, 0.0f);
+  const float n_dot_s = dot(n, s_w);
+  const int band_count = p->band_count;
+  const int stride = UW_BAND_STRIDE(band_count);
+#define ROW(r) (band_table + (r) * stride)
+  __global const float* albedo_row = ROW(mat >= 0 ? UW_ROWS + mat : UW_ROW_BOTTOM_ALBEDO);
+  realb r_lanes = SPLATB(0.0f), g_lanes = SPLATB(0.0f), b_lanes = SPLATB(0.0f);
+  for (int i = 0; i < band_count; i += SEASIM_BAND_LANES) {
+    const realb c = LOADB(ROW(UW_ROW_C), i);
+    const realb kd = LOADB(ROW(UW_ROW_KD), i);
+    const realb k_beam = LOADB(ROW(UW_ROW_K_BEAM), i);
+    const realb ms_total = LOADB(ROW(UW_ROW_MS_TOTAL), i);
+    const realb ms_direct = LOADB(ROW(UW_ROW_MS_DIRECT), i);
+    /* L = T(S) L_s + L_MS (002 eq. 2.7 with 4.7), T(S) folded into L_s (common/underwater_bands.h). */
+    realb L = multiple ? uw_lanes_multiple(ms_total, ms_direct, kd, k_beam, c, single, d.y, o_d, S) : SPLATB(0.0f);
+    if (mat == UW_MAT_SURFACE) {
+#if SEASIM_SKY_MODEL != SEASIM_SKY_UNIFORM
+      const realb sky_l = LOADB(ROW(UW_ROW_SKY), i) *
+                          sky_view_band_b(SEASIM_SKY_MODEL, LOADB(ROW(UW_ROW_SKY_W_R), i),
+                                          LOADB(ROW(UW_ROW_SKY_W_G), i), LOADB(ROW(UW_ROW_SKY_W_B), i), sky_shape);
+#else
+      const realb sky_l = LOADB(ROW(UW_ROW_SKY), i);
+#endif
+      L += uw_lanes_surface(sky_l, ms_total, ms_direct, kd, k_beam, c, single, multiple, S, d.y, p->ior,
+                            p->bottom_depth);
+    } else if (mat != UW_MAT_NONE) {
+      /* Objects read their albedo row; the bottom (UW_MAT_BOTTOM) reads the bottom's. */
+      L += uw_lanes_lambert(LOADB(albedo_row, i), c, kd, k_beam, LOADB(ROW(UW_ROW_E_TOTAL), i),
+                            LOADB(ROW(UW_ROW_E_SUN), i), LOADB(ROW(UW_ROW_E_BEAM), i), single, S, y_hit, n.y,
+                            n_dot_s, vis);
+    }
+    /* 002 eq. 4.8; the padding bands' weights are 0. */
+    r_lanes += L * LOADB(ROW(UW_ROW_W_R), i);
+    g_lanes += L * LOADB(ROW(UW_ROW_W_G), i);
+    b_lanes += L * LOADB(ROW(UW_ROW_W_B), i);
 #if SEASIM_SPECTRAL_OUTPUT
-#define KD_ACCUMULATE(L)                                         \
-  r += (L) * band->w_r;                                          \
-  gr += (L) * band->w_g;                                         \
-  b += (L) * band->w_b;                                          \
-  spectral[(size_t)pixel * p->band_count + i] = (L)
-#else
-#define KD_ACCUMULATE(L) \
-  r += (L) * band->w_r;  \
-  gr += (L) * band->w_g; \
-  b += (L) * band->w_b
+    store_lanes(L, spectral + (size_t)pixel * band_count + i, band_count - i);
 #endif
-  if (mat == UW_MAT_NONE) {
-    for (int i = 0; i < p->band_count; ++i) {
-      __global const UwBand* band = &bands[i];
-      const float L = uw_band_multiple(band, S, d.y, o_d, s_w.y, single, multiple);
-      KD_ACCUMULATE(L);
-    }
-  } else if (mat == UW_MAT_SURFACE) {
-    /* Snell's window sees the sky along the refracted view (common/sky_view.h): its shape once per
-     * pixel, each band's share in the loop; the uniform sky reads the band's radiance as it always did. */
-#if SEASIM_SKY_MODEL != SEASIM_SKY_UNIFORM
-    const float3 sky_shape = sky_view_shape(sky_params, sky, sky_window_air_dir(d, p->ior));
-#endif
-    for (int i = 0; i < p->band_count; ++i) {
-      __global const UwBand* band = &bands[i];
-#if SEASIM_SKY_MODEL != SEASIM_SKY_UNIFORM
-      const float sky_l = band->sky_radiance *
-                          sky_view_band(SEASIM_SKY_MODEL, (float3)(band->sky_w_r, band->sky_w_g, band->sky_w_b), sky_shape);
-#else
-      const float sky_l = band->sky_radiance;
-#endif
-      const float L = exp(-band->c * S) *
-                          uw_band_surface_sky(band, sky_l, d.y, s_w.y, p->ior, p->bottom_depth, single, multiple) +
-                      uw_band_multiple(band, S, d.y, o_d, s_w.y, single, multiple);
-      KD_ACCUMULATE(L);
-    }
-  } else {
-    /* Objects read their albedo per band; the bottom (UW_MAT_BOTTOM) reads the band's. */
-    __global const float* alb = mat >= 0 ? albedo + mat * p->band_count : &bands[0].bottom_albedo;
-    const int alb_stride = mat >= 0 ? 1 : (int)(sizeof(UwBand) / sizeof(float));
-    for (int i = 0; i < p->band_count; ++i) {
-      __global const UwBand* band = &bands[i];
-      const float L = exp(-band->c * S) * uw_band_lambert(band, S, n, d.y, o_d, s_w, alb[i * alb_stride], vis, single) +
-                      uw_band_multiple(band, S, d.y, o_d, s_w.y, single, multiple);
-      KD_ACCUMULATE(L);
-    }
   }
-#undef KD_ACCUMULATE
+#undef ROW
+  float r = SUMB(r_lanes), gr = SUMB(g_lanes), b = SUMB(b_lanes);
 #if SEASIM_HAS_FROXEL
   const float3 ss = froxel_lookup(fp, froxel_volume, x, y, p->width, p->height, S);
   r += ss.x;

@@ -9,6 +9,7 @@
 #include "common/fourflow_params.h"    // plain C structs, used by fourflow.h
 #include "common/underwater_lamps_params.h"  // plain C structs of underwater_lamps.cl
 #include "common/sky_params.h"             // plain C struct, used by sky_view.h
+#include "common/underwater_band_table.h"  // plain C layout, used by underwater_bands.h
 
 
 namespace seasim::kmath_f {
@@ -27,6 +28,8 @@ typedef float real;
 #include "common/sea_multiple.h"
 #include "common/ocean_spectrum.h"
 #include "common/underwater.h"
+#include "common/band_lanes.h"
+#include "common/underwater_bands.h"
 #include "common/underwater_lamps.h"
 #include "common/caustic_texture.h"
 #include "common/caustic_map.h"
@@ -52,6 +55,8 @@ typedef double real;
 #include "common/sea_multiple.h"
 #include "common/ocean_spectrum.h"
 #include "common/underwater.h"
+#include "common/band_lanes.h"
+#include "common/underwater_bands.h"
 #include "common/underwater_lamps.h"
 #include "common/caustic_texture.h"
 #include "common/caustic_map.h"

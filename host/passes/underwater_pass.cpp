@@ -3,6 +3,7 @@
 #include <string>
 
 #include "passes/caustic_stack.h"
+#include "underwater/underwater_band_table.h"
 
 #include "util/error.h"
 
@@ -25,6 +26,9 @@ UnderwaterPass::UnderwaterPass(Device& device, const UnderwaterSetup& setup, con
                           const_cast<UwObject*>(setup.objects.data()));
     albedo_ = cl::Buffer(device.context(), in, sizeof(float) * setup.albedo.size(),
                          const_cast<float*>(setup.albedo.data()));
+    std::vector<float> band_table = underwaterBandTable(setup);
+    band_table_count_ = band_table.size();
+    band_table_ = cl::Buffer(device.context(), in, sizeof(float) * band_table.size(), band_table.data());
     sky_params_ = cl::Buffer(device.context(), in, sizeof(SkyParams), const_cast<SkyParams*>(&setup.sky_params));
     sky_ = cl::Buffer(device.context(), in, sizeof(float) * setup.sky_buffer.size(),
                       const_cast<float*>(setup.sky_buffer.data()));
@@ -58,6 +62,8 @@ void UnderwaterPass::update(const UnderwaterSetup& setup) {
     q.enqueueWriteBuffer(bands_, CL_FALSE, 0, sizeof(UwBand) * band_count_, setup.bands.data());
     q.enqueueWriteBuffer(objects_, CL_FALSE, 0, sizeof(UwObject) * object_count_, setup.objects.data());
     q.enqueueWriteBuffer(albedo_, CL_FALSE, 0, sizeof(float) * albedo_count_, setup.albedo.data());
+    const std::vector<float> band_table = underwaterBandTable(setup);  // same size: same band and object counts
+    q.enqueueWriteBuffer(band_table_, CL_FALSE, 0, sizeof(float) * band_table_count_, band_table.data());
     q.enqueueWriteBuffer(sky_params_, CL_FALSE, 0, sizeof(SkyParams), &setup.sky_params);
     q.enqueueWriteBuffer(sky_, CL_FALSE, 0, sizeof(float) * sky_count_, setup.sky_buffer.data());
     q.finish();  // the host vectors may go away after this call
@@ -95,6 +101,7 @@ double UnderwaterPass::runShading(const cl::Buffer* froxel_params, const cl::Buf
     shade_.setArg(arg++, params_);
     shade_.setArg(arg++, bands_);
     shade_.setArg(arg++, albedo_);
+    shade_.setArg(arg++, band_table_);
     shade_.setArg(arg++, geom_);
     shade_.setArg(arg++, material_);
     shade_.setArg(arg++, vis_);

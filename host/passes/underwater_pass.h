@@ -41,7 +41,8 @@ class UnderwaterPass {
   cl::Kernel raycast_, shade_;
   cl::Buffer params_, bands_, objects_, albedo_, geom_, material_, vis_, rgb_, spectral_, no_caustics_;
   cl::Buffer sky_params_, sky_;  // the [sky] for Snell's window (common/sky_view.h)
-  size_t band_count_, object_count_, albedo_count_, sky_count_;
+  cl::Buffer band_table_;         // per-band values of the band loop (underwater/underwater_band_table.h)
+  size_t band_count_, object_count_, albedo_count_, sky_count_, band_table_count_ = 0;
 };
 
 }  // namespace seasim
