@@ -8,7 +8,7 @@ Mapping of conventions (seasim -> Mitsuba 3, variant scalar_rgb; docs/radiometry
                           sun.irradiance and sky.radiance are the values themselves. Mitsuba renders
                           grey RGB (R = G = B) and channel R is compared. `seasim render` writes the raw
                           band; `seasim reference` writes the band's CIE Y (D65 -> 1) in grey, which for a
-                          1 nm band at 560 nm is the raw band to < 1e-6.
+                          1 nm band at 560 nm is the raw band to 2e-5 (D65 and ȳ bend at 560).
   [water] a, b, g, ior    homogeneous medium, sigma_t = a + b, albedo = b / (a + b), hg phase with g;
                           a rectangle at y = 0 (normal +y, half-size 1 km) with a smooth `dielectric`
                           (int_ior = ior, ext_ior = 1) and the water as its interior; Mitsuba's
