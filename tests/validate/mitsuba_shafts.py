@@ -32,8 +32,9 @@ W, H = 64, 48
 
 
 SS = 4  # seasim supersampling per axis
-# Mitsuba 3.9's scalar sampler seeds pixel i with about seed + i, so seeds 0, 1, 2, ... give images that
-# are shifted copies of each other's noise; seeds k x 1000003 are independent (water_scenes.py).
+# Mitsuba 3.9's scalar sampler behaves as if pixel i were seeded with seed + i (measured, not read in
+# its source), so seeds 0, 1, 2, ... give images that are largely shifted copies of each other's noise;
+# seeds k x 1000003 are independent (water_scenes.py).
 SEED_STRIDE = 1000003
 
 
