@@ -10,6 +10,8 @@ DEPS = build-essential cmake pkgconf pocl-opencl-icd ocl-icd-opencl-dev opencl-c
 # `make test` also needs a display for the preview's tests (Xvfb, xauth and Mesa's llvmpipe,
 # libgl1-mesa-dri) and, for the farm test (tests/farm/), a real Slurm controller and node on localhost.
 TEST_DEPS = xvfb xauth libgl1-mesa-dri slurm-wlm munge
+# `make validate` (opt-in) also needs Python's venv module.
+VALIDATE_DEPS = python3-venv
 # Kernel build caches live in the build folder so tests and demo reuse them.
 export POCL_CACHE_DIR ?= $(CURDIR)/$(BUILD)/pocl-cache
 export SEASIM_CACHE_DIR ?= $(CURDIR)/$(BUILD)/seasim-cache
@@ -34,11 +36,15 @@ configure: deps
 
 # Opt-in, not part of `make test`: seasim's references against Mitsuba 3 on matching scenes (issue 13).
 # A Python virtual environment in $(BUILD)/validate-venv with mitsuba and numpy from PyPI (the scalar
-# variants need nothing else); ratio tables into results/validation/.
+# variants need nothing else); ratio tables into results/validation/: spotlight shafts, the underwater
+# flat-bottom scene and the sea seen from above (about 20 min on the shared 2-core VM).
 validate: build
+	@$(MAKE) --no-print-directory deps DEPS="$(VALIDATE_DEPS)"
 	test -x $(BUILD)/validate-venv/bin/python || python3 -m venv $(BUILD)/validate-venv
 	$(BUILD)/validate-venv/bin/pip install -q mitsuba numpy
 	$(BUILD)/validate-venv/bin/python tests/validate/mitsuba_shafts.py $(BUILD)/seasim results/validation
+	$(BUILD)/validate-venv/bin/python tests/validate/mitsuba_underwater.py $(BUILD)/seasim results/validation
+	$(BUILD)/validate-venv/bin/python tests/validate/mitsuba_sea.py $(BUILD)/seasim results/validation
 
 # Installs only what is missing (apt-get needs root: sudo is used when not root).
 deps:
