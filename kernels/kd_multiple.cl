@@ -27,6 +27,13 @@
 #include "common/froxel_params.h"
 #include "common/froxel.h"
 #endif
+#ifndef SEASIM_UNDERWATER_MODEL
+#define SEASIM_UNDERWATER_MODEL 0
+#endif
+#if SEASIM_UNDERWATER_MODEL == 1 /* underwater.model = "improved" (issue 13): its header and per-band block */
+#include "common/underwater_improved_params.h"
+#include "common/underwater_improved.h"
+#endif
 
 __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, __global const float* albedo,
                           __global const float4* geom, __global const int* material, __global const float* sun_vis,
@@ -37,6 +44,9 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
                           __global float* rgb
 #if SEASIM_SPECTRAL_OUTPUT
                           , __global float* spectral
+#endif
+#if SEASIM_UNDERWATER_MODEL == 1
+                          , __global const UwiBand* improved
 #endif
 ) {
   const int x = get_global_id(0);
@@ -80,6 +90,30 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
   gr += (L) * band->w_g; \
   b += (L) * band->w_b
 #endif
+#if SEASIM_UNDERWATER_MODEL == 1
+  /* underwater.model = "improved" (common/underwater_improved.h): one loop, the material tested per band. */
+  {
+    __global const float* alb = mat >= 0 ? albedo + mat * p->band_count : &bands[0].bottom_albedo;
+    const int alb_stride = mat >= 0 ? 1 : (int)(sizeof(UwBand) / sizeof(float));
+#if SEASIM_SKY_MODEL != SEASIM_SKY_UNIFORM
+    const float3 sky_shape = mat == UW_MAT_SURFACE ? sky_view_shape(sky_params, sky, sky_window_air_dir(d, p->ior))
+                                                   : (float3)(0.0f, 0.0f, 0.0f);
+#endif
+    for (int i = 0; i < p->band_count; ++i) {
+      __global const UwBand* band = &bands[i];
+#if SEASIM_SKY_MODEL != SEASIM_SKY_UNIFORM
+      const float sky_l = band->sky_radiance *
+                          sky_view_band(SEASIM_SKY_MODEL, (float3)(band->sky_w_r, band->sky_w_g, band->sky_w_b), sky_shape);
+#else
+      const float sky_l = band->sky_radiance;
+#endif
+      const float a_i = mat == UW_MAT_NONE || mat == UW_MAT_SURFACE ? 0.0f : alb[i * alb_stride];
+      const float L = uwi_band_radiance(&improved[i], band, p->g, mat, S, n, d, o_d, s_w, a_i, vis, sky_l, p->ior,
+                                        p->bottom_depth, single, multiple);
+      KD_ACCUMULATE(L);
+    }
+  }
+#else
   if (mat == UW_MAT_NONE) {
     for (int i = 0; i < p->band_count; ++i) {
       __global const UwBand* band = &bands[i];
@@ -116,6 +150,7 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
       KD_ACCUMULATE(L);
     }
   }
+#endif /* SEASIM_UNDERWATER_MODEL */
 #undef KD_ACCUMULATE
 #if SEASIM_HAS_FROXEL
   const float3 ss = froxel_lookup(fp, froxel_volume, x, y, p->width, p->height, S);
