@@ -36,6 +36,13 @@
 #include "common/froxel_params.h"
 #include "common/froxel.h"
 #endif
+#ifndef SEASIM_UNDERWATER_MODEL
+#define SEASIM_UNDERWATER_MODEL 0
+#endif
+#if SEASIM_UNDERWATER_MODEL == 1 /* underwater.model = "improved" (issue 13): its header and per-band block */
+#include "common/underwater_improved_params.h"
+#include "common/underwater_improved.h"
+#endif
 
 __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, __global const float* albedo,
                           __global const float* band_table,
@@ -47,6 +54,9 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
                           __global float* rgb
 #if SEASIM_SPECTRAL_OUTPUT
                           , __global float* spectral
+#endif
+#if SEASIM_UNDERWATER_MODEL == 1
+                          , __global const UwiBand* improved
 #endif
 ) {
   const int x = get_global_id(0);
@@ -75,6 +85,37 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
   const int multiple = 0;
 #endif
 
+#if SEASIM_UNDERWATER_MODEL == 1
+  /* underwater.model = "improved" (common/underwater_improved.h): one scalar loop, the material tested
+   * per band; the band lanes in the #else are the thesis model's (002 eq. 4.7). */
+  float r = 0.0f, gr = 0.0f, b = 0.0f;
+  {
+    __global const float* alb = mat >= 0 ? albedo + mat * p->band_count : &bands[0].bottom_albedo;
+    const int alb_stride = mat >= 0 ? 1 : (int)(sizeof(UwBand) / sizeof(float));
+#if SEASIM_SKY_MODEL != SEASIM_SKY_UNIFORM
+    const float3 sky_shape = mat == UW_MAT_SURFACE ? sky_view_shape(sky_params, sky, sky_window_air_dir(d, p->ior))
+                                                   : (float3)(0.0f, 0.0f, 0.0f);
+#endif
+    for (int i = 0; i < p->band_count; ++i) {
+      __global const UwBand* band = &bands[i];
+#if SEASIM_SKY_MODEL != SEASIM_SKY_UNIFORM
+      const float sky_l = band->sky_radiance *
+                          sky_view_band(SEASIM_SKY_MODEL, (float3)(band->sky_w_r, band->sky_w_g, band->sky_w_b), sky_shape);
+#else
+      const float sky_l = band->sky_radiance;
+#endif
+      const float a_i = mat == UW_MAT_NONE || mat == UW_MAT_SURFACE ? 0.0f : alb[i * alb_stride];
+      const float L = uwi_band_radiance(&improved[i], band, p->g, mat, S, n, d, o_d, s_w, a_i, vis, sky_l, p->ior,
+                                        p->bottom_depth, single, multiple);
+      r += L * band->w_r;
+      gr += L * band->w_g;
+      b += L * band->w_b;
+#if SEASIM_SPECTRAL_OUTPUT
+      spectral[(size_t)pixel * p->band_count + i] = L;
+#endif
+    }
+  }
+#else
   /* Sky and geometry once per pixel; then SEASIM_BAND_LANES bands per step (common/band_lanes.h),
    * reading the pixel-invariant per-band values from the band table with vector loads. The material
    * test stays in the loop: it is the same for every step of a pixel, one predictable branch per
@@ -124,6 +165,7 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
   }
 #undef ROW
   float r = SUMB(r_lanes), gr = SUMB(g_lanes), b = SUMB(b_lanes);
+#endif /* SEASIM_UNDERWATER_MODEL */
 #if SEASIM_HAS_FROXEL
   const float3 ss = froxel_lookup(fp, froxel_volume, x, y, p->width, p->height, S);
   r += ss.x;

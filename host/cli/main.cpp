@@ -12,6 +12,7 @@
 #include "cli/ocean_command.h"
 #include "cli/preview_command.h"
 #include "cli/seashore_study_command.h"
+#include "cli/underwater_regions_command.h"
 #include "cli/underwater_study_command.h"
 #include "spectral/sensor.h"
 #include "util/version.h"
@@ -149,6 +150,23 @@ int main(int argc, char** argv) {
   study->add_option("--device", study_cmd.device, "Device selector");
   study->add_option("--set", study_cmd.sets, "Override a scene key: key=value (repeatable)");
 
+  seasim::UnderwaterRegionsCmd regions_cmd;  // issue 13: the fast underwater model by region vs the path tracer
+  auto* regions = app.add_subcommand("underwater-regions",
+                                     "Fast underwater model vs the path tracer by region (bottom near/far, water "
+                                     "up/down, objects) over one-band waters, g, depths, views and models");
+  regions->add_option("scene", regions_cmd.scene, "One-band scene (tests/perf/underwater_regions.toml)")
+      ->check(CLI::ExistingFile);
+  regions->add_option("--waters", regions_cmd.waters, "a:b pairs in 1/m")->delimiter(',');
+  regions->add_option("--g", regions_cmd.gs, "HG asymmetries")->delimiter(',');
+  regions->add_option("--depths", regions_cmd.depths, "Bottom depths in m (0: no bottom)")->delimiter(',');
+  regions->add_option("--views", regions_cmd.views, "level, up, down")->delimiter(',');
+  regions->add_option("--models", regions_cmd.models, "underwater.model values")->delimiter(',');
+  regions->add_option("--spp", regions_cmd.spp, "Path-tracer samples per pixel");
+  regions->add_option("--cache", regions_cmd.cache_dir, "Folder of cached references");
+  regions->add_option("--csv", regions_cmd.csv, "CSV output");
+  regions->add_option("--device", regions_cmd.device, "Device selector");
+  regions->add_option("--set", regions_cmd.sets, "Override a scene key: key=value (repeatable)");
+
   seasim::SeashoreStudyCmd shore_cmd;
   auto* shore = app.add_subcommand(
       "seashore-study", "000 §5.4/§6: second-order scattering vs floor depth z_Q over a height-field bottom");
@@ -232,6 +250,7 @@ int main(int argc, char** argv) {
       }
       return seasim::cmdUnderwaterStudy(study_cmd);
     }
+    if (*regions) return seasim::cmdUnderwaterRegions(regions_cmd);
     if (*shore) return seasim::cmdSeashoreStudy(shore_cmd);
     if (*preview) return seasim::cmdPreview(preview_cmd);
     if (*cache_clear) return seasim::cmdCacheClear();

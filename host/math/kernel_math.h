@@ -4,6 +4,7 @@
 #pragma once
 #include "common/compat.h"
 #include "common/underwater_params.h"  // plain C structs, used by underwater.h
+#include "common/underwater_improved_params.h"  // plain C struct, used by underwater_improved.h
 #include "common/froxel_params.h"      // plain C struct, used by froxel.h
 #include "common/sea_bottom_params.h"  // plain C struct, used by sea_bottom.h
 #include "common/fourflow_params.h"    // plain C structs, used by fourflow.h
@@ -30,6 +31,7 @@ typedef float real;
 #include "common/underwater.h"
 #include "common/band_lanes.h"
 #include "common/underwater_bands.h"
+#include "common/underwater_improved.h"
 #include "common/underwater_lamps.h"
 #include "common/caustic_texture.h"
 #include "common/caustic_map.h"
@@ -57,6 +59,7 @@ typedef double real;
 #include "common/underwater.h"
 #include "common/band_lanes.h"
 #include "common/underwater_bands.h"
+#include "common/underwater_improved.h"
 #include "common/underwater_lamps.h"
 #include "common/caustic_texture.h"
 #include "common/caustic_map.h"

@@ -32,6 +32,10 @@ UnderwaterPass::UnderwaterPass(Device& device, const UnderwaterSetup& setup, con
     sky_params_ = cl::Buffer(device.context(), in, sizeof(SkyParams), const_cast<SkyParams*>(&setup.sky_params));
     sky_ = cl::Buffer(device.context(), in, sizeof(float) * setup.sky_buffer.size(),
                       const_cast<float*>(setup.sky_buffer.data()));
+    has_improved_ = !setup.improved.empty();
+    if (has_improved_)
+      improved_ = cl::Buffer(device.context(), in, sizeof(UwiBand) * setup.improved.size(),
+                             const_cast<UwiBand*>(setup.improved.data()));
     geom_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(cl_float4) * pixels);
     material_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(cl_int) * pixels);
     vis_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * pixels);
@@ -53,7 +57,7 @@ UnderwaterPass::UnderwaterPass(Device& device, const UnderwaterSetup& setup, con
 void UnderwaterPass::update(const UnderwaterSetup& setup) {
   if (setup.bands.size() != band_count_ || setup.objects.size() != object_count_ ||
       setup.albedo.size() != albedo_count_ || setup.sky_buffer.size() != sky_count_ || setup.params.width != width_ ||
-      setup.params.height != height_) {
+      setup.params.height != height_ || !setup.improved.empty() != has_improved_) {
     throw RuntimeError("underwater pass: the new set-up has other sizes (bands, objects, sky or image); make a new pass");
   }
   try {
@@ -66,6 +70,7 @@ void UnderwaterPass::update(const UnderwaterSetup& setup) {
     q.enqueueWriteBuffer(band_table_, CL_FALSE, 0, sizeof(float) * band_table_count_, band_table.data());
     q.enqueueWriteBuffer(sky_params_, CL_FALSE, 0, sizeof(SkyParams), &setup.sky_params);
     q.enqueueWriteBuffer(sky_, CL_FALSE, 0, sizeof(float) * sky_count_, setup.sky_buffer.data());
+    if (has_improved_) q.enqueueWriteBuffer(improved_, CL_FALSE, 0, sizeof(UwiBand) * band_count_, setup.improved.data());
     q.finish();  // the host vectors may go away after this call
   } catch (const cl::Error& e) {
     throw DeviceError(std::string("underwater pass update: ") + e.what() + " " + clErrorName(e.err()));
@@ -113,6 +118,7 @@ double UnderwaterPass::runShading(const cl::Buffer* froxel_params, const cl::Buf
     }
     shade_.setArg(arg++, rgb_);
     if (spectral_output_) shade_.setArg(arg++, spectral_);
+    if (has_improved_) shade_.setArg(arg++, improved_);  // kd_multiple.cl's last argument with SEASIM_UNDERWATER_MODEL == 1
   } catch (const cl::Error& e) {
     throw DeviceError(std::string("kd_multiple arguments: ") + e.what() + " " + clErrorName(e.err()));
   }

@@ -219,13 +219,20 @@ Plan makePlan(const Scene& scene) {
                            true, ""});
   }
   if (underwater) {
+    const bool improved_uw = uw.model == UnderwaterDesc::Model::Improved;
     std::vector<std::string> reads = {"gbuffer"};
     if (froxels) reads.push_back("froxel_volume");
     plan.passes.push_back({"kd_multiple", "kd_multiple.cl",
                            {flag("SEASIM_HAS_MULTIPLE", uw.multiple_scattering), flag("SEASIM_HAS_FROXEL", froxels),
                             flag("SEASIM_SPECTRAL_OUTPUT", spectral_out),
-                            "SEASIM_SKY_MODEL=" + std::to_string(skyModelOf(scene.sky))},  // Snell's window
-                           reads, {"rgb"}, "camera below the surface: T L_s + L_MS per band (002 eq. 4.7)", true, ""});
+                            "SEASIM_SKY_MODEL=" + std::to_string(skyModelOf(scene.sky)),  // Snell's window
+                            // underwater.model: 0 thesis (002 eq. 4.7), 1 improved (common/underwater_improved.h)
+                            "SEASIM_UNDERWATER_MODEL=" + std::string(improved_uw ? "1" : "0")},
+                           reads, {"rgb"},
+                           improved_uw ? "camera below the surface: T L_s + L_MS per band, model \"improved\" (delta-M, "
+                                         "two-stream with the bottom, phase-weighted diffuse light)"
+                                       : "camera below the surface: T L_s + L_MS per band (002 eq. 4.7)",
+                           true, ""});
   }
   // Spotlights under water (divers' torches, ROV lamps): the sampling planes in the water's spectral
   // medium, added into the frame kd_multiple wrote (it reads "rgb" so that it runs after).

@@ -157,6 +157,8 @@ struct SeaDesc {
 struct UnderwaterDesc {
   enum class Caustics { None, Texture, Map };
   enum class Injection { Spectral, Rgb };
+  enum class Model { Thesis, Improved };
+  Model model = Model::Thesis;       // "thesis": 002 eq. 4.7; "improved": common/underwater_improved.h
   bool multiple_scattering = true;   // L_MS by K_d (002 eq. 4.7)
   bool single_scattering = true;     // froxel single scattering of the sun beam (002 §5)
   Caustics caustics = Caustics::Texture;  // texture: two scrolling textures (002 §5.3); map: caustics.cl

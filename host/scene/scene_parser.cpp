@@ -573,6 +573,8 @@ class SceneParser {
   void underwater(const toml::table& t) {
     TableReader r(src_, t, "underwater");
     UnderwaterDesc& u = scene_.underwater;
+    u.model = r.choice("model", "thesis", {"thesis", "improved"}) == "improved" ? UnderwaterDesc::Model::Improved
+                                                                             : UnderwaterDesc::Model::Thesis;
     u.multiple_scattering = r.boolean("multiple_scattering", u.multiple_scattering);
     u.single_scattering = r.boolean("single_scattering", u.single_scattering);
     const std::string caustics = r.choice("caustics", "texture", {"none", "texture", "map"});

@@ -7,6 +7,7 @@
 #include "geometry/kernel_camera.h"
 #include "math/kernel_math.h"
 #include "spectral/jerlov.h"
+#include "underwater/underwater_improved_setup.h"
 #include "util/error.h"
 
 namespace seasim {
@@ -126,6 +127,7 @@ UnderwaterSetup makeUnderwaterSetup(const Scene& scene, const WavelengthGrid& gr
     s.objects.push_back(u);
     for (size_t i = 0; i < grid.size(); ++i) s.albedo.push_back(static_cast<float>(o.albedo.at(grid.centers_nm[i])));
   }
+  if (uw.model == UnderwaterDesc::Model::Improved) s.improved = makeUwiBands(p, s.bands);
   p.object_count = static_cast<int>(s.objects.size());
   if (s.objects.empty()) s.objects.push_back(UwObject{});  // OpenCL buffers cannot be empty
   if (s.albedo.empty()) s.albedo.push_back(0.0f);

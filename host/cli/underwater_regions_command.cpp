@@ -1,0 +1,171 @@
+#include "cli/underwater_regions_command.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <iterator>
+
+#include "cli/commands.h"
+#include "device/device.h"
+#include "io/csv.h"
+#include "io/npy.h"
+#include "plan/plan.h"
+#include "quality/render_frame.h"
+#include "reference/underwater_reference.h"
+#include "reference/underwater_regions.h"
+#include "scene/scene_parser.h"
+#include "spectral/sensor.h"
+#include "spectral/wavelength_grid.h"
+#include "underwater/underwater_setup.h"
+#include "util/error.h"
+
+namespace seasim {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+Override set(const std::string& key, const std::string& value) { return {key, value, {"underwater-regions", 0}}; }
+
+std::string num(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.4g", v);
+  std::string s = b;
+  if (s.find_first_of(".e") == std::string::npos) s += ".0";
+  return s;
+}
+
+// The scene's geometry (tests/perf/underwater_regions.toml, scenes/seabed.toml's) at bottom depth
+// `depth` (0: no bottom, the rocks as at 5 m), camera 1.2 m above the bottom, looking as `view` says:
+// "level" (the seabed view, slightly down: bottom near and far, rocks, water up), "up" (30° up: the
+// water looking up and Snell's window), "down" (45° down: the near bottom, or deep water).
+std::vector<Override> geometry(double depth, const std::string& view) {
+  const double h = depth > 0 ? depth : 5.0;
+  const double cam_y = -(h - 1.2);
+  std::vector<Override> o = {set("camera.position", "[0.0, " + num(cam_y) + ", 0.0]"),
+                             set("objects[0].center", "[-1.4, " + num(-(h - 0.5)) + ", -5.0]"),
+                             set("objects[1].min", "[0.8, " + num(-h) + ", -7.5]"),
+                             set("objects[1].max", "[2.2, " + num(-(h - 1.2)) + ", -6.3]"),
+                             set("objects[2].center", "[0.3, " + num(-(h - 0.8)) + ", -10.5]")};
+  if (depth > 0) {
+    o.push_back(set("bottom.depth", num(depth)));
+    o.push_back(set("bottom.albedo", "0.35"));  // sand (not a key of type = "none")
+  }
+  else o.push_back(set("bottom.type", "\"none\""));
+  double dy = -0.7;  // level: scenes/seabed.toml's look_at 0.7 m lower, 8 m ahead
+  if (view == "up") dy = 8.0 * std::tan(30.0 * M_PI / 180.0);
+  else if (view == "down") dy = -8.0;
+  else if (view != "level") throw RuntimeError("underwater-regions: unknown view '" + view + "' (level, up, down)");
+  o.push_back(set("camera.look_at", "[0.0, " + num(cam_y + dy) + ", -8.0]"));
+  return o;
+}
+
+double msSince(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// The scene file's text, the overrides and the path count name a reference (a changed scene is new).
+std::string cacheKey(const std::string& scene_file, const std::vector<Override>& over, int spp) {
+  std::ifstream in(scene_file, std::ios::binary);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  text += "|" + std::to_string(spp);
+  for (const Override& o : over) text += "|" + o.key + "=" + o.value_toml;
+  char b[32];
+  std::snprintf(b, sizeof b, "%016zx", std::hash<std::string>{}(text));
+  return b;
+}
+
+}  // namespace
+
+int cmdUnderwaterRegions(const UnderwaterRegionsCmd& cmd) {
+  Device device(chooseDevice(cmd.device));
+  std::printf("device: %s\n", device.info().label().c_str());
+  std::string cache = cmd.cache_dir;
+  if (cache.empty()) {
+    const char* env = std::getenv("SEASIM_CACHE_DIR");
+    cache = (env && *env ? std::string(env) : std::string("build")) + "/underwater_regions";
+  }
+  fs::create_directories(cache);
+  std::vector<std::string> header = {"a", "b", "g", "depth_m", "view", "model", "kd_multiple_ms", "reference_spp"};
+  for (int r = 0; r < kUwRegionCount; ++r) {
+    const std::string name = uwRegionName(static_cast<UwRegion>(r));
+    for (const char* col : {"_pixels", "_ratio", "_ref_rel_se"}) header.push_back(name + col);
+  }
+  CsvWriter table(header);
+  std::printf("%-5s %-5s %-4s %-5s %-5s %-8s %8s", "a", "b", "g", "depth", "view", "model", "kd ms");
+  for (int r = 0; r < kUwRegionCount; ++r) std::printf(" %18s", uwRegionName(static_cast<UwRegion>(r)));
+  std::printf("\n");
+  for (const std::string& water : cmd.waters) {
+    const size_t colon = water.find(':');
+    if (colon == std::string::npos) throw RuntimeError("underwater-regions: --waters wants a:b pairs, got '" + water + "'");
+    const double a = std::stod(water.substr(0, colon)), b = std::stod(water.substr(colon + 1));
+    for (double g : cmd.gs)
+      for (double depth : cmd.depths)
+        for (const std::string& view : cmd.views) {
+          std::vector<Override> base = geometry(depth, view);
+          base.push_back(set("water.a", "[" + num(a) + ", " + num(a) + "]"));
+          base.push_back(set("water.b", "[" + num(b) + ", " + num(b) + "]"));
+          base.push_back(set("water.g", num(g)));
+          for (const std::string& s : cmd.sets) base.push_back(parseSetOption(s));
+          const Scene ref_scene = loadScene(cmd.scene, base);
+
+          // The reference, from the cache or traced (with its per-pixel standard error).
+          const std::string stem = cache + "/" + cacheKey(cmd.scene, base, cmd.spp);
+          Image ref, se;
+          if (fs::exists(stem + ".rgb.npy") && fs::exists(stem + ".se.npy")) {
+            ref = readNpy(stem + ".rgb.npy");
+            se = readNpy(stem + ".se.npy");
+          } else {
+            const WavelengthGrid grid =
+                makeGrid(ref_scene.spectral.count, ref_scene.spectral.min_nm, ref_scene.spectral.max_nm);
+            const UnderwaterSetup setup = makeUnderwaterSetup(
+                ref_scene, grid,
+                makeSensor(ref_scene.spectral.sensor, grid, ref_scene.spectral.white_balance, ref_scene.spectral.camera_dir));
+            UnderwaterReferenceSettings settings;
+            settings.samples_per_pixel = cmd.spp;
+            const UnderwaterReferenceResult r = renderUnderwaterReference(device, setup, settings);
+            ref = r.rgb;
+            se = r.std_error;
+            writeNpy(stem + ".se.npy", se);
+            writeNpy(stem + ".rgb.npy", ref);
+          }
+          const WavelengthGrid grid =
+              makeGrid(ref_scene.spectral.count, ref_scene.spectral.min_nm, ref_scene.spectral.max_nm);
+          const std::vector<UwRegion> regions = underwaterRegions(makeUnderwaterSetup(
+              ref_scene, grid,
+              makeSensor(ref_scene.spectral.sensor, grid, ref_scene.spectral.white_balance, ref_scene.spectral.camera_dir)));
+
+          for (const std::string& model : cmd.models) {
+            std::vector<Override> over = base;
+            over.push_back(set("underwater.model", "\"" + model + "\""));
+            const Scene scene = loadScene(cmd.scene, over);
+            const FrameResult frame = renderFrame(device, scene, makePlan(scene));
+            if (frame.nonfinite != 0) throw RuntimeError("underwater-regions: NaN/Inf in a render");
+            double kd_ms = 0.0;
+            for (const PassTiming& t : frame.timings)
+              if (t.name == "kd_multiple") kd_ms += t.ms;
+            const auto stats = underwaterRegionStats(regions, frame.rgb, ref, se);
+            std::vector<CsvCell> row = {a, b, g, depth, view, model, kd_ms, cmd.spp};
+            std::printf("%-5.3g %-5.3g %-4.3g %-5.3g %-5s %-8s %8.2f", a, b, g, depth, view.c_str(), model.c_str(), kd_ms);
+            for (const UwRegionStat& s : stats) {
+              row.push_back(s.pixels);
+              row.push_back(s.pixels ? CsvCell(s.ratio()) : CsvCell(std::string()));
+              row.push_back(s.pixels ? CsvCell(s.relNoise()) : CsvCell(std::string()));
+              if (s.pixels) std::printf(" %6.3f ±%5.3f (%4d)", s.ratio(), s.relNoise(), s.pixels);
+              else std::printf(" %18s", "-");
+            }
+            std::printf("\n");
+            std::fflush(stdout);
+            table.addRow(row);
+          }
+        }
+  }
+  if (!cmd.csv.empty()) table.write(cmd.csv);
+  return 0;
+}
+
+}  // namespace seasim

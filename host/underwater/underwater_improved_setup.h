@@ -1,0 +1,26 @@
+// underwater_improved_setup.h — the per-band coefficients of underwater.model = "improved"
+// (kernels/common/underwater_improved.h, whose comment gives the model): delta-M scaled IOPs and the
+// two-stream solution for the diffuse plane irradiances E_d(y), E_u(y) in a layer over a Lambertian
+// bottom, solved in double on the host once per frame.
+#pragma once
+#include <vector>
+
+extern "C" {
+#include "common/underwater_params.h"
+#include "common/underwater_improved_params.h"
+}
+
+namespace seasim {
+
+// The surface's reflectance, from below, of upwelling light of uniform radiance: 2 ∫_0^1 F(μ) μ dμ
+// (total internal reflection outside Snell's window included); about 0.47 for ior 1.34.
+double internalDiffuseReflectance(double ior);
+
+// One band's coefficients. mu_w: the refracted sun's cosine (any value in (0, 1] when the sun is off:
+// e_beam0 = e_sun0 = 0 then); bottom_depth <= 0: no bottom; g the water's HG asymmetry.
+UwiBand makeUwiBand(const UwBand& band, double g, double mu_w, double bottom_depth, double ior);
+
+// All bands of a set-up (params.g, params.bottom_depth, params.ior, params.sun_dir_water[1]).
+std::vector<UwiBand> makeUwiBands(const UwParams& params, const std::vector<UwBand>& bands);
+
+}  // namespace seasim

@@ -1,0 +1,117 @@
+/* underwater_improved.h — underwater.model = "improved": a closed form per band for the light that
+ * 002's eq. 4.7 ("thesis", common/underwater.h) models by an isotropic b/(4π) E(y) with a measured K_d.
+ * Shared by kd_multiple.cl (SEASIM_UNDERWATER_MODEL == 1) and the host (kmath_f / kmath_d, unit-tested
+ * in float and double); needs optics.h, underwater_params.h, underwater.h and
+ * underwater_improved_params.h before it. Coefficients per band: host/underwater/underwater_improved_setup.*
+ *
+ * What it changes against eq. 4.7, each measured in results/BENCHMARKS.md ("A better fast underwater
+ * model"):
+ *  - delta-M scaling (Wiscombe 1977; the maths of quality.lamps_delta_m): the phase function's forward
+ *    peak f = g² counts as unscattered, b' = b (1 - f), c' = a + b', g' = g / (1 + g). Light turned by a
+ *    few degrees goes on: view rays, surfaces and the sun beam are attenuated by c', not c.
+ *  - the diffuse field from the IOPs and g, not a measured K_d: a two-stream solution for a layer over a
+ *    Lambertian bottom of albedo ρ (plane irradiances E_d down, E_u up; quadrature coefficients
+ *    γ1 = √3 (2 - ω'(1 + g'))/2, γ2 = √3 ω'(1 - g')/2, the beam's split γ3 = (2 - 3 g' μ_w)/4, γ4 = 1 - γ3),
+ *    with the delta-M sun beam as its source, the sky's irradiance and the surface's internal reflection
+ *    of E_u at the top and E_u(H) = ρ (E_d(H) + E_sun(H)) at the bottom. So the bottom's upwelling light
+ *    lights the water and the objects' undersides.
+ *  - the diffuse field's angular shape, weighted by the phase: as the quadrature two-stream assumes, the
+ *    down and up streams are rings at ν = ±1/√3 (ν the cosine of the photon's direction with the
+ *    downward vertical; scalar irradiance √3 (E_d + E_u)), scattered by the delta-M phase to first
+ *    order, (1 + 3 g' cos θ)/(4π), averaged over the ring's azimuth:
+ *      J(ν) = b' [√3 (E_d + E_u) + 3 g' ν (E_d - E_u)] / (4π)   (per m per sr)
+ *    plus the beam scattered once with the exact phase function (Nakajima & Tanaka 1988's TMS
+ *    correction: delta-M's truncated phase would overstate the back-scatter), b p_HG(g, cos θ_s)
+ *    e_beam0 e^{-m y}, attenuated as the delta-M beam.
+ *  - when the froxel pass adds the strict single scattering b p_HG(g) of the beam e^{-c y/μ_w} (002 eq.
+ *    5.2), that term's unshadowed closed form is taken off here, so the sum is the model's total.
+ * Along a view ray (depth y(z) = o_d - z d_y; the photon towards the camera has ν = d_y):
+ *   L = e^{-c' S} L_s + ∫_0^S e^{-c' z} J(y(z)) dz,
+ * every term of J an exponential in y, so each integral is kd_exp_integral (common/underwater.h): four
+ * per band with froxels (three without), where eq. 4.7 takes two.
+ */
+
+#define UWI_SQRT3 R(1.7320508075688772)
+
+/* The first-order phase-weighted source of a pair of plane irradiances (D down, U up) seen along ν. */
+SEASIM_FN real uwi_source_weight(real b_dm, real g_dm, real nu, real D, real U) {
+  return b_dm * (UWI_SQRT3 * (D + U) + R(3.0) * g_dm * nu * (D - U)) / (R(4.0) * SEASIM_PI);
+}
+
+/* E_d(y) and E_u(y), the diffuse plane irradiances at depth y (common/underwater_improved_params.h),
+ * not clamped (the host's solution is positive; callers clamp what they shade with). */
+SEASIM_FN void uwi_irradiance(const SEASIM_GLOBAL UwiBand* ib, real bottom_depth, real y, real* ed, real* eu) {
+  const real e1 = exp(-(real)ib->k * y);
+  /* Selected, not branched: without a bottom d2 = u2 = 0 and the exponent is kept at <= 0. */
+  const real e2 = bottom_depth > R(0.0) ? exp(-(real)ib->k * fmax(bottom_depth - y, R(0.0))) : R(0.0);
+  const real ep = exp(-(real)ib->m * y);
+  *ed = (real)ib->d1 * e1 + (real)ib->d2 * e2 + (real)ib->dp * ep;
+  *eu = (real)ib->u1 * e1 + (real)ib->u2 * e2 + (real)ib->up * ep;
+}
+
+/* In-scattered radiance along a view ray from depth o_d along d (d_y its vertical component) to
+ * distance S (UW_INFINITE: deep water); cos_s = d·s_w. g: the water's own asymmetry (for the froxel
+ * term taken off when single_scattering). Never negative. */
+SEASIM_FN real uwi_multiple(const SEASIM_GLOBAL UwiBand* ib, const SEASIM_GLOBAL UwBand* band, real g,
+                            real bottom_depth, real S, real d_y, real o_d, real cos_s, real mu_w,
+                            int single_scattering, int multiple) {
+  if (!multiple) return R(0.0);
+  const real b_dm = ib->b_dm, g_dm = ib->g_dm, c_dm = ib->c_dm, k = ib->k;
+  const real w1 = uwi_source_weight(b_dm, g_dm, d_y, ib->d1, ib->u1);
+  const real w2 = uwi_source_weight(b_dm, g_dm, d_y, ib->d2, ib->u2);
+  /* The beam scattered once with the exact phase function (TMS), attenuated as the delta-M beam. */
+  const real wp = uwi_source_weight(b_dm, g_dm, d_y, ib->dp, ib->up) +
+                  (real)band->b * hg_phase(cos_s, g) * (real)band->e_beam0;
+  const real i1 = kd_exp_integral(k, c_dm, d_y, o_d, S);
+  /* e^{-k (H - y(z))} = e^{-k (H - o_d)} e^{-k d_y z}: the same integral seen from the bottom. */
+  const real i2 = bottom_depth > R(0.0) ? kd_exp_integral(k, c_dm, -d_y, fmax(bottom_depth - o_d, R(0.0)), S) : R(0.0);
+  const real ip = kd_exp_integral(ib->m, c_dm, d_y, o_d, S);
+  const real c = band->c;
+  const real ss = single_scattering ? (real)band->b * hg_phase(cos_s, g) * (real)band->e_beam0 *
+                                          kd_exp_integral(c / fmax(mu_w, R(1e-4)), c, d_y, o_d, S)
+                                    : R(0.0);
+  return fmax(w1 * i1 + w2 * i2 + wp * ip - ss, R(0.0));
+}
+
+/* A Lambertian point (albedo, unit normal n) at depth y: the diffuse field on its tilted plane (E_d
+ * from above, E_u from below) plus the delta-M beam times vis (shadow ray, caustic modulation). */
+SEASIM_FN real uwi_lambert(const SEASIM_GLOBAL UwiBand* ib, const SEASIM_GLOBAL UwBand* band, real bottom_depth,
+                           real y, real3 n, real3 s_w, real albedo, real vis) {
+  real ed, eu;
+  uwi_irradiance(ib, bottom_depth, y, &ed, &eu);
+  const real beam = (real)band->e_beam0 * exp(-(real)ib->m * y) * fmax(dot(n, s_w), R(0.0)) * vis;
+  return albedo / SEASIM_PI *
+         (fmax(ed, R(0.0)) * R(0.5) * (R(1.0) + n.y) + fmax(eu, R(0.0)) * R(0.5) * (R(1.0) - n.y) + beam);
+}
+
+/* The water surface seen from below along d (d.y > 0): the sky through Snell's window (sky_l, as
+ * uw_band_surface_sky) plus F times what the reflected ray sees: its in-scatter down to the bottom or
+ * deep water, and the bottom itself (its sunlit, unshadowed radiance). */
+SEASIM_FN real uwi_surface(const SEASIM_GLOBAL UwiBand* ib, const SEASIM_GLOBAL UwBand* band, real g,
+                           real bottom_depth, real sky_l, real3 d, real3 s_w, real ior, int single_scattering,
+                           int multiple) {
+  const real d_y = fmax(d.y, R(1e-6));
+  const real s_r = bottom_depth > R(0.0) ? bottom_depth / d_y : UW_INFINITE;
+  const real cos_r = dot(d, s_w) - R(2.0) * d.y * s_w.y; /* the reflected ray (d.x, -d.y, d.z) */
+  const real l_ms = uwi_multiple(ib, band, g, bottom_depth, s_r, -d_y, R(0.0), cos_r, s_w.y, single_scattering, multiple);
+  const real l_bottom = bottom_depth > R(0.0)
+                            ? exp(-(real)ib->c_dm * fmin(s_r, R(1e4))) *
+                                  uwi_lambert(ib, band, bottom_depth, bottom_depth, MAKE_REAL3(0, 1, 0), s_w,
+                                              band->bottom_albedo, R(1.0))
+                            : R(0.0);
+  return uw_window_radiance(d.y, ior, sky_l, l_ms + l_bottom);
+}
+
+/* One band's radiance along the view ray (common/underwater.h uw_band_radiance's peer): mat, S, n from
+ * uw_scene_hit; albedo of the hit; vis the direct beam's visibility; sky_l the sky along the refracted
+ * view (surface hits). */
+SEASIM_FN real uwi_band_radiance(const SEASIM_GLOBAL UwiBand* ib, const SEASIM_GLOBAL UwBand* band, real g, int mat,
+                                 real S, real3 n, real3 d, real o_d, real3 s_w, real albedo, real vis, real sky_l,
+                                 real ior, real bottom_depth, int single_scattering, int multiple) {
+  const real l_ms = uwi_multiple(ib, band, g, bottom_depth, S, d.y, o_d, dot(d, s_w), s_w.y, single_scattering, multiple);
+  if (mat == UW_MAT_NONE) return l_ms;
+  const real l_s = mat == UW_MAT_SURFACE
+                       ? uwi_surface(ib, band, g, bottom_depth, sky_l, d, s_w, ior, single_scattering, multiple)
+                       : uwi_lambert(ib, band, bottom_depth, fmax(o_d - S * d.y, R(0.0)), n, s_w, albedo, vis);
+  return exp(-(real)ib->c_dm * S) * l_s + l_ms;
+}

@@ -1,0 +1,26 @@
+/* underwater_improved_params.h — the per-band block of underwater.model = "improved"
+ * (common/underwater_improved.h), built on the host (host/underwater/underwater_improved_setup.*,
+ * which static_asserts its layout) and read by kd_multiple.cl with SEASIM_UNDERWATER_MODEL == 1.
+ * Plain C on both sides, no math.
+ *
+ * Depth y >= 0 below the flat surface, bottom at H (UwParams.bottom_depth; <= 0: none). The diffuse
+ * plane irradiances (W m^-2 nm^-1), downwelling E_d and upwelling E_u, are sums of three exponentials:
+ *   E_d(y) = d1 e^{-k y} + d2 e^{-k (H - y)} + dp e^{-m y},   E_u(y) = u1 e^{-k y} + u2 e^{-k (H - y)} + up e^{-m y}
+ * (d2 = u2 = 0 without a bottom). */
+
+#ifndef SEASIM_UNDERWATER_IMPROVED_PARAMS_H
+#define SEASIM_UNDERWATER_IMPROVED_PARAMS_H
+
+typedef struct {
+  float c_dm;   /* delta-M extinction c' = a + b (1 - g²), 1/m: view rays and the sun beam */
+  float b_dm;   /* delta-M scattering b' = b (1 - g²), 1/m */
+  float g_dm;   /* delta-M asymmetry g' = g / (1 + g) */
+  float k;      /* the diffuse field's eigen-attenuation, 1/m (two-stream) */
+  float m;      /* the delta-M sun beam's attenuation with depth, c' / μ_w, 1/m */
+  float d1, u1; /* E_d, E_u coefficients of e^{-k y} */
+  float d2, u2; /* of e^{-k (H - y)} (light the bottom sends up, and its back-scatter) */
+  float dp, up; /* of e^{-m y} (the delta-M beam's diffuse source) */
+  float pad;
+} UwiBand;
+
+#endif /* SEASIM_UNDERWATER_IMPROVED_PARAMS_H */

@@ -1,0 +1,92 @@
+// underwater_model_option_test.cpp — underwater.model (issue 13): the parser's choice with file:line:key
+// errors, the planner's SEASIM_UNDERWATER_MODEL define on kd_multiple, and the set-up's per-band block
+// that only "improved" fills.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <string>
+
+#include "plan/plan.h"
+#include "scene/scene_parser.h"
+#include "spectral/sensor.h"
+#include "spectral/wavelength_grid.h"
+#include "underwater/underwater_setup.h"
+#include "util/error.h"
+
+namespace {
+
+using namespace seasim;
+
+const char* kScene = R"([scene]
+name = "uw"
+[camera]
+position = [0, -3, 0]
+look_at = [0, -3, -5]
+width = 8
+height = 6
+[water]
+jerlov = "IB"
+[bottom]
+type = "flat"
+depth = 5
+[underwater]
+caustics = "none"
+)";
+
+std::string withModel(const std::string& value) {
+  std::string s = kScene;
+  return s + "model = " + value + "\n";
+}
+
+bool hasDefine(const Plan& plan, const std::string& define) {
+  const PassPlan* p = plan.find("kd_multiple");
+  return p && std::find(p->defines.begin(), p->defines.end(), define) != p->defines.end();
+}
+
+TEST(UnderwaterModelOption, DefaultIsTheThesisAndThePlanSaysSo) {
+  const Scene scene = parseScene(kScene, "uw.toml");
+  EXPECT_EQ(scene.underwater.model, UnderwaterDesc::Model::Thesis);
+  const Plan plan = makePlan(scene);
+  EXPECT_TRUE(hasDefine(plan, "SEASIM_UNDERWATER_MODEL=0"));
+  EXPECT_FALSE(hasDefine(plan, "SEASIM_UNDERWATER_MODEL=1"));
+}
+
+TEST(UnderwaterModelOption, ImprovedSetsTheDefineAndFillsThePerBandBlock) {
+  const Scene scene = parseScene(withModel("\"improved\""), "uw.toml");
+  EXPECT_EQ(scene.underwater.model, UnderwaterDesc::Model::Improved);
+  const Plan plan = makePlan(scene);
+  EXPECT_TRUE(hasDefine(plan, "SEASIM_UNDERWATER_MODEL=1"));
+  EXPECT_NE(plan.find("kd_multiple")->why.find("improved"), std::string::npos);
+  const WavelengthGrid grid = makeGrid(4, 400, 700);
+  const UnderwaterSetup improved = makeUnderwaterSetup(scene, grid, makeSensor("cie1931", grid, true, ""));
+  ASSERT_EQ(improved.improved.size(), 4u);
+  for (const UwiBand& b : improved.improved) {
+    EXPECT_GT(b.c_dm, 0.0f);
+    EXPECT_LT(b.c_dm, improved.bands[0].c + 10.0f);
+    EXPECT_GT(b.k, 0.0f);
+  }
+  const UnderwaterSetup thesis =
+      makeUnderwaterSetup(parseScene(kScene, "uw.toml"), grid, makeSensor("cie1931", grid, true, ""));
+  EXPECT_TRUE(thesis.improved.empty());
+}
+
+TEST(UnderwaterModelOption, BadValuesNameFileLineAndKey) {
+  for (const char* bad : {"\"improv\"", "\"Thesis\"", "1", "true"}) {
+    try {
+      parseScene(withModel(bad), "uw.toml");
+      ADD_FAILURE() << "accepted " << bad;
+    } catch (const InputError& e) {
+      const std::string m = e.what();
+      EXPECT_NE(m.find("uw.toml:15"), std::string::npos) << m;
+      EXPECT_NE(m.find("underwater.model"), std::string::npos) << m;
+    }
+  }
+  try {
+    parseScene(kScene, "uw.toml", {{"underwater.model", "\"improv\"", {"command line", 0}}});
+    ADD_FAILURE() << "accepted --set underwater.model=\"improv\"";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("did you mean 'improved'"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
