@@ -72,6 +72,10 @@ FroxelPass::FroxelPass(Device& device, const UnderwaterSetup& setup, const Froxe
     slice_factors_ = cl::Buffer(device.context(), in, sizeof(float) * slice_factors.size(), slice_factors.data());
     map_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * texels);
     no_caustics_ = noCausticMap(device);
+    // The caustic textures' feature points (common/caustic_texture.h): constant, so filled here once.
+    std::vector<float> caustic_table(CAUSTIC_TABLE_REALS);
+    kmath_f::caustic_fill_table(caustic_table.data());
+    caustic_table_ = cl::Buffer(device.context(), in, sizeof(float) * caustic_table.size(), caustic_table.data());
     light_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * froxels);
     volume_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * 4 * froxels);
     shadow_kernel_.setArg(0, params_);
@@ -84,6 +88,7 @@ FroxelPass::FroxelPass(Device& device, const UnderwaterSetup& setup, const Froxe
     inject_kernel_.setArg(3, map_);
     inject_kernel_.setArg(4, no_caustics_);
     inject_kernel_.setArg(5, light_);
+    inject_kernel_.setArg(6, caustic_table_);
     integrate_kernel_.setArg(0, params_);
     integrate_kernel_.setArg(1, fparams_);
     integrate_kernel_.setArg(2, bands_);
@@ -111,7 +116,7 @@ double FroxelPass::run(const cl::Buffer* caustic_maps) {
       const size_t n = up(size_t(fp_.shadow_size), 8);
       enqueue(shadow_kernel_, cl::NDRange(n, n), cl::NDRange(8, 8), "froxel_shadow_map");
     }
-    enqueue(inject_kernel_, cl::NDRange(up(fp_.nx, 8), up(fp_.ny, 8), fp_.nz), cl::NDRange(8, 8, 1), "froxel_inject");
+    enqueue(inject_kernel_, cl::NDRange(up(fp_.nx, 8), up(fp_.ny, 8)), cl::NDRange(8, 8), "froxel_inject");
     enqueue(integrate_kernel_, cl::NDRange(up(fp_.nx, 8), up(fp_.ny, 8)), cl::NDRange(8, 8), "froxel_integrate");
   } catch (const cl::Error& e) {
     throw DeviceError(std::string("froxel pass: ") + e.what() + " " + clErrorName(e.err()));
