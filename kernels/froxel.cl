@@ -15,6 +15,8 @@
  *                      caustic_table (caustic_fill_table, filled once by the host) instead of hashed;
  *                      1 otherwise — the caustic map of UW_CAUSTICS_MAP is not read here). 0 above the
  *                      surface; the caustic is not evaluated where V = 0.
+ *   froxel_column_extent  (before froxel_inject, when the pass is given the G-buffer) per pixel, the last
+ *                      slice its read needs in each column it reads: froxels beyond are not evaluated.
  *   froxel_integrate   per column, front to back (002 eq. 5.2, common/froxel.h): per band
  *                      L_i = σ_s p E_beam(y) V C at each froxel centre, integrated exactly over the
  *                      slice's transmittance, accumulated into sensor RGB with the band's w_r, w_g, w_b;
@@ -28,6 +30,7 @@
  * per froxel), volume (4 floats per froxel, common/froxel_params.h), rgb (3 floats per pixel).
  * slice_factors: nz × band_count floats (froxel_fill_slice_factors). caustic_table: CAUSTIC_TABLE_REALS
  * floats (common/caustic_texture.h caustic_fill_table), read only with SEASIM_CAUSTICS == UW_CAUSTICS_TEXTURE.
+ * column_last: 1 int per column (froxel_column_extent).
  * Defines (host/plan): SEASIM_HAS_OBJECTS, SEASIM_CAUSTICS (UW_CAUSTICS_*), SEASIM_SPECTRAL_INJECTION
  * (1: the n wavelength bands, p->band_count of them; 0: the three RGB pseudo-bands).
  * Stiff cases: E_beam and the transmittance underflow to 0 at great depth and distance (camera at
@@ -91,13 +94,36 @@ float froxel_injected(__constant UwParams* p, __constant FroxelParams* fp, __glo
   return v;
 }
 
+/* Per pixel of the G-buffer (raycast.cl's geom: S in .x): raises column_last of the up to four columns
+ * its froxel_lookup reads (froxel_pixel_column) to the slice it reads there (froxel_read_slice). The
+ * host sets column_last to -1 first; atomic_max makes the result independent of the order. */
+__kernel void froxel_column_extent(__constant FroxelParams* fp, __global const float4* geom, int width, int height,
+                                   __global int* column_last) {
+  const int x = get_global_id(0), y = get_global_id(1);
+  if (x >= width || y >= height) return;
+  const int k = froxel_read_slice(fp, geom[y * width + x].x);
+  if (k < 0) return;
+  const int nx = fp->nx, ny = fp->ny;
+  const int i0 = (int)froxel_pixel_column(x, width, nx), j0 = (int)froxel_pixel_column(y, height, ny);
+  const int i1 = i0 + 1 < nx ? i0 + 1 : nx - 1, j1 = j0 + 1 < ny ? j0 + 1 : ny - 1;
+  atomic_max(&column_last[j0 * nx + i0], k);
+  atomic_max(&column_last[j0 * nx + i1], k);
+  atomic_max(&column_last[j1 * nx + i0], k);
+  atomic_max(&column_last[j1 * nx + i1], k);
+}
+
 /* One work-item per column (i, j), front to back: the column's ray and each slice end are computed
- * once (slice k starts where k - 1 ended), the same centres as froxel_center. */
+ * once (slice k starts where k - 1 ended), the same centres as froxel_center. Froxels past
+ * column_last[j nx + i] + 1 are written 0 without evaluating them: no pixel reads them, not even
+ * through the running integral (froxel_column_extent; one slice of margin against a rounding
+ * difference between froxel_read_slice here and in kd_multiple.cl). column_last = nz - 1 everywhere:
+ * every froxel. */
 __kernel void froxel_inject(__constant UwParams* p, __constant FroxelParams* fp, __global const UwObject* objects,
                             __global const float* map, __global const float* caustic_maps, __global float* light,
-                            __global const float* caustic_table) {
+                            __global const float* caustic_table, __global const int* column_last) {
   const int i = get_global_id(0), j = get_global_id(1);
   if (i >= fp->nx || j >= fp->ny) return;
+  const int last = column_last[j * fp->nx + i] + 1;
   const float3 s_w = SUN_DIR_WATER(p);
   const float3 o = (float3)(p->cam_pos[0], p->cam_pos[1], p->cam_pos[2]);
   const float3 d = froxel_column_dir(p, fp, i, j);
@@ -106,7 +132,7 @@ __kernel void froxel_inject(__constant UwParams* p, __constant FroxelParams* fp,
     const float t1 = froxel_slice_end(k, fp->nz, fp->z_near, fp->z_far, fp->log_far_near);
     const float t = 0.5f * (t0 + t1);
     light[(k * fp->ny + j) * fp->nx + i] =
-        froxel_injected(p, fp, objects, map, caustic_maps, caustic_table, s_w, o + t * d);
+        k <= last ? froxel_injected(p, fp, objects, map, caustic_maps, caustic_table, s_w, o + t * d) : 0.0f;
     t0 = t1;
   }
 }

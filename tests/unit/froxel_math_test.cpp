@@ -195,6 +195,46 @@ TEST(CausticTexture, TableGivesTheHashedTexture) {
   EXPECT_EQ(kd::caustic_modulation_table(1.0, 2.0, 3.0, -1.0, 0.5, td.data()), 1.0);
 }
 
+// ---- which froxels a read needs ----
+
+template <typename K, typename Real>
+void checkReadSliceAndColumns() {
+  FroxelParams fp{};
+  fp.nx = 160, fp.ny = 90, fp.nz = 64;
+  fp.z_near = 0.1f, fp.z_far = 60.0f, fp.log_far_near = float(std::log(600.0));
+  // No read at S <= 0; the last slice at and beyond z_far (deep water, UW_INFINITE).
+  EXPECT_EQ(K::froxel_read_slice(&fp, Real(-1)), -1);
+  EXPECT_EQ(K::froxel_read_slice(&fp, Real(0)), -1);
+  EXPECT_EQ(K::froxel_read_slice(&fp, Real(NAN)), 63);  // fmin(NaN, z_far) = z_far, as froxel_lookup reads
+  EXPECT_EQ(K::froxel_read_slice(&fp, Real(1e-30)), 0);
+  EXPECT_EQ(K::froxel_read_slice(&fp, Real(60)), 63);
+  EXPECT_EQ(K::froxel_read_slice(&fp, Real(1e30)), 63);
+  for (int k = 1; k < 63; ++k) {  // just past a slice's end: the next slice
+    const Real end = K::froxel_slice_end(k - 1, fp.nz, Real(fp.z_near), Real(fp.z_far), Real(fp.log_far_near));
+    EXPECT_EQ(K::froxel_read_slice(&fp, end * Real(1.0001)), k);
+  }
+  // Pixel centres over columns: clamped to [0, n − 1] at the border, two pixels per column at 2×.
+  EXPECT_EQ(K::froxel_pixel_column(0, 320, 160), Real(0));
+  EXPECT_EQ(K::froxel_pixel_column(319, 320, 160), Real(159));
+  EXPECT_NEAR(K::froxel_pixel_column(100, 320, 160), Real(49.75), 1e-5);
+  EXPECT_EQ(K::froxel_pixel_column(0, 1, 1), Real(0));
+}
+
+TEST(FroxelMath, ReadSliceAndPixelColumns) {
+  struct F {
+    static int froxel_read_slice(const FroxelParams* fp, float s) { return kf::froxel_read_slice(fp, s); }
+    static float froxel_pixel_column(int x, int w, int n) { return kf::froxel_pixel_column(x, w, n); }
+    static float froxel_slice_end(int k, int nz, float a, float b, float c) { return kf::froxel_slice_end(k, nz, a, b, c); }
+  };
+  struct D {
+    static int froxel_read_slice(const FroxelParams* fp, double s) { return kd::froxel_read_slice(fp, s); }
+    static double froxel_pixel_column(int x, int w, int n) { return kd::froxel_pixel_column(x, w, n); }
+    static double froxel_slice_end(int k, int nz, double a, double b, double c) { return kd::froxel_slice_end(k, nz, a, b, c); }
+  };
+  checkReadSliceAndColumns<F, float>();
+  checkReadSliceAndColumns<D, double>();
+}
+
 // ---- froxel grid ----
 
 TEST(FroxelMath, ExponentialSlices) {
