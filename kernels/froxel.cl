@@ -7,11 +7,16 @@
  *   froxel_shadow_map  the sun's orthographic depth map along -s_w over the spheres and boxes (planes
  *                      are unbounded and tested exactly in froxel_inject): per texel the distance to the
  *                      first object below the surface, UW_INFINITE where none. Only with objects.
- *   froxel_inject      per froxel (i, j, k), the band-independent part of the in-scatter at its centre:
+ *   froxel_inject      per column (i, j), for each froxel k front to back, the band-independent part of
+ *                      the in-scatter at its centre:
  *                      V (shadow map, 2×2 PCF, times the exact plane test) × C (caustic_modulation at
  *                      the surface point the refracted sun ray through the froxel came from, when
- *                      SEASIM_CAUSTICS == UW_CAUSTICS_TEXTURE; 1 otherwise — the caustic map of
- *                      UW_CAUSTICS_MAP is not read here). 0 above the surface.
+ *                      SEASIM_CAUSTICS == UW_CAUSTICS_TEXTURE, its feature points read from
+ *                      caustic_table (caustic_fill_table, filled once by the host) instead of hashed;
+ *                      1 otherwise — the caustic map of UW_CAUSTICS_MAP is not read here). 0 above the
+ *                      surface; the caustic is not evaluated where V = 0.
+ *   froxel_column_extent  (before froxel_inject, when the pass is given the G-buffer) per pixel, the last
+ *                      slice its read needs in each column it reads: froxels beyond are not evaluated.
  *   froxel_integrate   per column, front to back (002 eq. 5.2, common/froxel.h): per band
  *                      L_i = σ_s p E_beam(y) V C at each froxel centre, integrated exactly over the
  *                      slice's transmittance, accumulated into sensor RGB with the band's w_r, w_g, w_b;
@@ -23,7 +28,9 @@
  * Inputs: UwParams, FroxelParams, UwObject[object_count], bands: UwBand[band_count] (spectral
  * injection) or the three RGB pseudo-bands (host/reference/froxel_reference.h). Outputs: light (1 float
  * per froxel), volume (4 floats per froxel, common/froxel_params.h), rgb (3 floats per pixel).
- * slice_factors: nz × band_count floats (froxel_fill_slice_factors).
+ * slice_factors: nz × band_count floats (froxel_fill_slice_factors). caustic_table: CAUSTIC_TABLE_REALS
+ * floats (common/caustic_texture.h caustic_fill_table), read only with SEASIM_CAUSTICS == UW_CAUSTICS_TEXTURE.
+ * column_last: 1 int per column (froxel_column_extent).
  * Defines (host/plan): SEASIM_HAS_OBJECTS, SEASIM_CAUSTICS (UW_CAUSTICS_*), SEASIM_SPECTRAL_INJECTION
  * (1: the n wavelength bands, p->band_count of them; 0: the three RGB pseudo-bands).
  * Stiff cases: E_beam and the transmittance underflow to 0 at great depth and distance (camera at
@@ -62,31 +69,72 @@ __kernel void froxel_shadow_map(__constant UwParams* p, __constant FroxelParams*
   map[j * n + i] = froxel_shadow_texel(fp, objects, p->object_count, SUN_DIR_WATER(p), i, j);
 }
 
-__kernel void froxel_inject(__constant UwParams* p, __constant FroxelParams* fp, __global const UwObject* objects,
-                            __global const float* map, __global const float* caustic_maps, __global float* light) {
-  const int i = get_global_id(0), j = get_global_id(1), k = get_global_id(2);
-  if (i >= fp->nx || j >= fp->ny || k >= fp->nz) return;
-  const int idx = (k * fp->ny + j) * fp->nx + i;
-  const float3 q = froxel_center(p, fp, i, j, k);
-  if (q.y > 0.0f) { /* above the surface: no water, no beam */
-    light[idx] = 0.0f;
-    return;
-  }
-  const float3 s_w = SUN_DIR_WATER(p);
+/* V·C of one froxel with centre q (see the top): 0 above the surface. */
+float froxel_injected(__constant UwParams* p, __constant FroxelParams* fp, __global const UwObject* objects,
+                      __global const float* map, __global const float* caustic_maps,
+                      __global const float* caustic_table, float3 s_w, float3 q) {
+  if (q.y > 0.0f) return 0.0f; /* above the surface: no water, no beam */
   float v = 1.0f;
 #if SEASIM_HAS_OBJECTS
   v = froxel_shadow_visibility(fp, map, s_w, q) * froxel_plane_visibility(objects, p->object_count, s_w, q);
 #endif
 #if SEASIM_CAUSTICS == UW_CAUSTICS_TEXTURE
-  /* Where the refracted sun ray through q crossed the surface (as raycast.cl does for surfaces). */
-  const float t_up = -q.y / fmax(s_w.y, 1e-4f);
-  v *= caustic_modulation(q.x + t_up * s_w.x, q.z + t_up * s_w.z, p->time, p->caustic_period, p->caustic_speed);
+  /* Where the refracted sun ray through q crossed the surface (as raycast.cl does for surfaces); a
+   * shadowed froxel (v = 0) stays 0 without it. */
+  if (v > 0.0f) {
+    const float t_up = -q.y / fmax(s_w.y, 1e-4f);
+    v *= caustic_modulation_table(q.x + t_up * s_w.x, q.z + t_up * s_w.z, p->time, p->caustic_period,
+                                  p->caustic_speed, caustic_table);
+  }
 #endif
 #if SEASIM_CAUSTICS == UW_CAUSTICS_MAP
   v *= caustic_map_sample(caustic_maps, p->caustic_map_size, p->caustic_layers, p->caustic_extent, p->caustic_depth_max,
                           q.x, -q.y, q.z);
 #endif
-  light[idx] = v;
+  return v;
+}
+
+/* Per pixel of the G-buffer (raycast.cl's geom: S in .x): raises column_last of the up to four columns
+ * its froxel_lookup reads (froxel_pixel_column) to the slice it reads there (froxel_read_slice). The
+ * host sets column_last to -1 first; atomic_max makes the result independent of the order. */
+__kernel void froxel_column_extent(__constant FroxelParams* fp, __global const float4* geom, int width, int height,
+                                   __global int* column_last) {
+  const int x = get_global_id(0), y = get_global_id(1);
+  if (x >= width || y >= height) return;
+  const int k = froxel_read_slice(fp, geom[y * width + x].x);
+  if (k < 0) return;
+  const int nx = fp->nx, ny = fp->ny;
+  const int i0 = (int)froxel_pixel_column(x, width, nx), j0 = (int)froxel_pixel_column(y, height, ny);
+  const int i1 = i0 + 1 < nx ? i0 + 1 : nx - 1, j1 = j0 + 1 < ny ? j0 + 1 : ny - 1;
+  atomic_max(&column_last[j0 * nx + i0], k);
+  atomic_max(&column_last[j0 * nx + i1], k);
+  atomic_max(&column_last[j1 * nx + i0], k);
+  atomic_max(&column_last[j1 * nx + i1], k);
+}
+
+/* One work-item per column (i, j), front to back: the column's ray and each slice end are computed
+ * once (slice k starts where k - 1 ended), the same centres as froxel_center. Froxels past
+ * column_last[j nx + i] + 1 are written 0 without evaluating them: no pixel reads them, not even
+ * through the running integral (froxel_column_extent; one slice of margin against a rounding
+ * difference between froxel_read_slice here and in kd_multiple.cl). column_last = nz - 1 everywhere:
+ * every froxel. */
+__kernel void froxel_inject(__constant UwParams* p, __constant FroxelParams* fp, __global const UwObject* objects,
+                            __global const float* map, __global const float* caustic_maps, __global float* light,
+                            __global const float* caustic_table, __global const int* column_last) {
+  const int i = get_global_id(0), j = get_global_id(1);
+  if (i >= fp->nx || j >= fp->ny) return;
+  const int last = column_last[j * fp->nx + i] + 1;
+  const float3 s_w = SUN_DIR_WATER(p);
+  const float3 o = (float3)(p->cam_pos[0], p->cam_pos[1], p->cam_pos[2]);
+  const float3 d = froxel_column_dir(p, fp, i, j);
+  float t0 = 0.0f;
+  for (int k = 0; k < fp->nz; ++k) {
+    const float t1 = froxel_slice_end(k, fp->nz, fp->z_near, fp->z_far, fp->log_far_near);
+    const float t = 0.5f * (t0 + t1);
+    light[(k * fp->ny + j) * fp->nx + i] =
+        k <= last ? froxel_injected(p, fp, objects, map, caustic_maps, caustic_table, s_w, o + t * d) : 0.0f;
+    t0 = t1;
+  }
 }
 
 __kernel void froxel_integrate(__constant UwParams* p, __constant FroxelParams* fp, __global const UwBand* bands,

@@ -62,6 +62,7 @@ FroxelPass::FroxelPass(Device& device, const UnderwaterSetup& setup, const Froxe
     const BuiltProgram& built = device.program("froxel.cl", defines_);
     shadow_kernel_ = cl::Kernel(built.program, "froxel_shadow_map");
     inject_kernel_ = cl::Kernel(built.program, "froxel_inject");
+    extent_kernel_ = cl::Kernel(built.program, "froxel_column_extent");
     integrate_kernel_ = cl::Kernel(built.program, "froxel_integrate");
     resolve_kernel_ = cl::Kernel(built.program, "froxel_resolve");
     params_ = cl::Buffer(device.context(), in, sizeof(UwParams), const_cast<UwParams*>(&setup.params));
@@ -72,7 +73,12 @@ FroxelPass::FroxelPass(Device& device, const UnderwaterSetup& setup, const Froxe
     slice_factors_ = cl::Buffer(device.context(), in, sizeof(float) * slice_factors.size(), slice_factors.data());
     map_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * texels);
     no_caustics_ = noCausticMap(device);
+    // The caustic textures' feature points (common/caustic_texture.h): constant, so filled here once.
+    std::vector<float> caustic_table(CAUSTIC_TABLE_REALS);
+    kmath_f::caustic_fill_table(caustic_table.data());
+    caustic_table_ = cl::Buffer(device.context(), in, sizeof(float) * caustic_table.size(), caustic_table.data());
     light_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * froxels);
+    column_last_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(cl_int) * size_t(fp_.nx) * fp_.ny);
     volume_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * 4 * froxels);
     shadow_kernel_.setArg(0, params_);
     shadow_kernel_.setArg(1, fparams_);
@@ -84,6 +90,10 @@ FroxelPass::FroxelPass(Device& device, const UnderwaterSetup& setup, const Froxe
     inject_kernel_.setArg(3, map_);
     inject_kernel_.setArg(4, no_caustics_);
     inject_kernel_.setArg(5, light_);
+    inject_kernel_.setArg(6, caustic_table_);
+    inject_kernel_.setArg(7, column_last_);
+    extent_kernel_.setArg(0, fparams_);
+    extent_kernel_.setArg(4, column_last_);
     integrate_kernel_.setArg(0, params_);
     integrate_kernel_.setArg(1, fparams_);
     integrate_kernel_.setArg(2, bands_);
@@ -97,7 +107,7 @@ FroxelPass::FroxelPass(Device& device, const UnderwaterSetup& setup, const Froxe
   }
 }
 
-double FroxelPass::run(const cl::Buffer* caustic_maps) {
+double FroxelPass::run(const cl::Buffer* caustic_maps, const cl::Buffer* geom, int width, int height) {
   timings_.clear();
   try {
     inject_kernel_.setArg(4, caustic_maps ? *caustic_maps : no_caustics_);
@@ -107,11 +117,21 @@ double FroxelPass::run(const cl::Buffer* caustic_maps) {
       done.wait();
       timings_.push_back({name, eventMs(done)});
     };
+    // The last slice each column needs: from the pixels' reads with a G-buffer, else every slice.
+    const cl_int all = geom ? -1 : fp_.nz - 1;
+    device_.queue().enqueueFillBuffer(column_last_, all, 0, sizeof(cl_int) * size_t(fp_.nx) * fp_.ny);
+    if (geom) {
+      extent_kernel_.setArg(1, *geom);
+      extent_kernel_.setArg(2, width);
+      extent_kernel_.setArg(3, height);
+      enqueue(extent_kernel_, cl::NDRange(up(size_t(width), 8), up(size_t(height), 8)), cl::NDRange(8, 8),
+              "froxel_column_extent");
+    }
     if (fp_.shadow_size > 0) {
       const size_t n = up(size_t(fp_.shadow_size), 8);
       enqueue(shadow_kernel_, cl::NDRange(n, n), cl::NDRange(8, 8), "froxel_shadow_map");
     }
-    enqueue(inject_kernel_, cl::NDRange(up(fp_.nx, 8), up(fp_.ny, 8), fp_.nz), cl::NDRange(8, 8, 1), "froxel_inject");
+    enqueue(inject_kernel_, cl::NDRange(up(fp_.nx, 8), up(fp_.ny, 8)), cl::NDRange(8, 8), "froxel_inject");
     enqueue(integrate_kernel_, cl::NDRange(up(fp_.nx, 8), up(fp_.ny, 8)), cl::NDRange(8, 8), "froxel_integrate");
   } catch (const cl::Error& e) {
     throw DeviceError(std::string("froxel pass: ") + e.what() + " " + clErrorName(e.err()));

@@ -33,7 +33,11 @@ class FroxelPass {
   // Enqueues shadow map (when there are spheres or boxes), injection and integration, waits; returns
   // the summed kernel ms. timings() then holds each kernel's ms.
   // caustic_maps: CausticStack::maps() when the pass was built with SEASIM_CAUSTICS=2 (else ignored).
-  double run(const cl::Buffer* caustic_maps = nullptr);
+  // geom: the G-buffer (float4 per pixel of width × height, raycast.cl) the volume will be read at: froxels
+  // that no pixel's froxel_lookup reads are then left 0 instead of evaluated (froxel_column_extent),
+  // which leaves every read, and so the image, unchanged. Without it every froxel is evaluated.
+  double run(const cl::Buffer* caustic_maps = nullptr, const cl::Buffer* geom = nullptr, int width = 0,
+             int height = 0);
   const std::vector<PassTiming>& timings() const { return timings_; }
 
   // froxel_resolve: per pixel of a width × height image, the volume read at geom[pixel].x (float4 per
@@ -66,8 +70,9 @@ class FroxelPass {
   Device& device_;
   FroxelParams fp_{};
   std::vector<std::string> defines_;
-  cl::Kernel shadow_kernel_, inject_kernel_, integrate_kernel_, resolve_kernel_;
-  cl::Buffer params_, fparams_, objects_, bands_, slice_factors_, map_, light_, volume_, no_caustics_;
+  cl::Kernel shadow_kernel_, inject_kernel_, extent_kernel_, integrate_kernel_, resolve_kernel_;
+  cl::Buffer params_, fparams_, objects_, bands_, slice_factors_, map_, light_, volume_, no_caustics_,
+      caustic_table_, column_last_;
   std::vector<PassTiming> timings_;
 };
 

@@ -133,7 +133,7 @@ Plan makePlan(const Scene& scene) {
     plan.passes.push_back(pass);
   }
   if (froxels) {
-    std::vector<std::string> froxel_reads = {"scene"};
+    std::vector<std::string> froxel_reads = {"scene", "gbuffer"};  // gbuffer: which froxels are read
     if (ocean_for_caustics) froxel_reads.push_back("caustic_map");
     plan.passes.push_back({"froxel", "froxel.cl",
                            {flag("SEASIM_HAS_OBJECTS", objects), "SEASIM_CAUSTICS=" + std::to_string(caustics),

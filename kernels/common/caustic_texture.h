@@ -51,8 +51,20 @@ SEASIM_FN unsigned int caustic_hash(unsigned int x) {
   return x;
 }
 
-/* The seamless texture h at (u, v) in [0,1)², n cells per tile side, seed choosing the points. */
-SEASIM_FN real caustic_texture(real u, real v, int n, unsigned int seed) {
+/* The texture's profile across a cell edge: h(e) = FLOOR + (1 − FLOOR) exp(−e²), e = (F2 − F1)/WIDTH >= 0.
+ * h decreases with e, so the minimum of two textures is h of the larger e: one exp per point
+ * (caustic_modulation) gives exactly fmin(h(e_a), h(e_b)). */
+SEASIM_FN real caustic_profile(real e) {
+  return CAUSTIC_FLOOR + (R(1.0) - CAUSTIC_FLOOR) * exp(-e * e);
+}
+
+/* The edge distance e = (F2 − F1)/WIDTH of the seamless texture at (u, v) in [0,1)², n cells per tile
+ * side, seed choosing the points (h = caustic_profile(e)). F1, F2 are kept as squared distances and
+ * updated without branches: f2 = min(f2, max(f1, d2)), f1 = min(f1, d2) gives the same two smallest
+ * values as "if (d2 < f1) {f2 = f1; f1 = d2;} else if (d2 < f2) f2 = d2;" (min/max are exact) without
+ * the mispredicted jumps of that form. Written as selects, not fmin/fmax: without relaxed maths those
+ * cost more on PoCL (their NaN rules; froxel_inject measured 160 → 115 ms wall with exact maths). */
+SEASIM_FN real caustic_edge(real u, real v, int n, unsigned int seed) {
   const real x = u * (real)n, y = v * (real)n;
   int cx = (int)floor(x), cy = (int)floor(y);
   cx = cx < 0 ? 0 : (cx >= n ? n - 1 : cx);
@@ -70,16 +82,89 @@ SEASIM_FN real caustic_texture(real u, real v, int n, unsigned int seed) {
       const real py = (real)j + R(0.5) + CAUSTIC_JITTER * ((real)(h >> 16) * R(1.0 / 65536.0) - R(0.5));
       const real dx = px - fx, dy = py - fy;
       const real d2 = dx * dx + dy * dy;
-      if (d2 < f1) {
-        f2 = f1;
-        f1 = d2;
-      } else if (d2 < f2) {
-        f2 = d2;
-      }
+      const real hi = d2 > f1 ? d2 : f1;
+      f2 = f2 < hi ? f2 : hi;
+      f1 = d2 < f1 ? d2 : f1;
     }
   }
-  const real e = (sqrt(f2) - sqrt(f1)) / CAUSTIC_WIDTH;
-  return CAUSTIC_FLOOR + (R(1.0) - CAUSTIC_FLOOR) * exp(-e * e);
+  return (sqrt(f2) - sqrt(f1)) / CAUSTIC_WIDTH;
+}
+
+/* The seamless texture h at (u, v) in [0,1)², n cells per tile side, seed choosing the points. */
+SEASIM_FN real caustic_texture(real u, real v, int n, unsigned int seed) {
+  return caustic_profile(caustic_edge(u, v, n, seed));
+}
+
+/* ---- the same textures from a table of the feature points (froxel.cl: one look-up per cell instead of
+ * a hash, an int-to-float conversion pair and the index wrap) ---- */
+
+/* Reals in the table of one n-cell texture: 2 per cell of the tile padded by one wrapped cell on every
+ * side, (n + 2)². */
+#define CAUSTIC_TABLE_SIZE(n) (2 * ((n) + 2) * ((n) + 2))
+/* Reals in caustic_fill_table's table of both textures (A, then B): 2 (34² + 29²) = 3994. */
+#define CAUSTIC_TABLE_REALS (CAUSTIC_TABLE_SIZE(CAUSTIC_CELLS_A) + CAUSTIC_TABLE_SIZE(CAUSTIC_CELLS_B))
+
+/* One texture's table: at 2 (X + (n + 2) Y) + {0, 1} for the padded cell (X, Y), X, Y in [0, n + 2),
+ * which is the tile's cell ((X − 1) mod n, (Y − 1) mod n), that cell's jitter
+ * JITTER (hash/65536 − ½) in x and y, the very product caustic_edge adds to the cell centre. */
+SEASIM_FN void caustic_fill_texture_table(int n, unsigned int seed, SEASIM_GLOBAL real* table) {
+  for (int Y = 0; Y < n + 2; ++Y) {
+    const int wy = (Y - 1 + n) % n;
+    for (int X = 0; X < n + 2; ++X) {
+      const int wx = (X - 1 + n) % n;
+      const unsigned int h = caustic_hash((unsigned int)(wx + n * wy) + seed);
+      table[2 * (X + (n + 2) * Y) + 0] = CAUSTIC_JITTER * ((real)(h & 0xffffU) * R(1.0 / 65536.0) - R(0.5));
+      table[2 * (X + (n + 2) * Y) + 1] = CAUSTIC_JITTER * ((real)(h >> 16) * R(1.0 / 65536.0) - R(0.5));
+    }
+  }
+}
+
+/* The table of both textures of caustic_modulation (CAUSTIC_TABLE_REALS reals): A's, then B's. It does
+ * not depend on time, period or speed: filled once (host/passes/froxel_pass.cpp). */
+SEASIM_FN void caustic_fill_table(SEASIM_GLOBAL real* table) {
+  caustic_fill_texture_table(CAUSTIC_CELLS_A, 0U, table);
+  caustic_fill_texture_table(CAUSTIC_CELLS_B, 0x68bc21ebU, table + CAUSTIC_TABLE_SIZE(CAUSTIC_CELLS_A));
+}
+
+/* caustic_edge with the feature points read from one texture's table: the same points and the same
+ * arithmetic but for the jitter product, which the table holds rounded (caustic_edge's compiler may
+ * fuse it into the addition: a difference of at most an ulp in a point's position). */
+SEASIM_FN real caustic_edge_table(real u, real v, int n, const SEASIM_GLOBAL real* table) {
+  const real x = u * (real)n, y = v * (real)n;
+  int cx = (int)floor(x), cy = (int)floor(y);
+  cx = cx < 0 ? 0 : (cx >= n ? n - 1 : cx);
+  cy = cy < 0 ? 0 : (cy >= n ? n - 1 : cy);
+  const real fx = x - (real)cx, fy = y - (real)cy;
+  /* Padded cell (cx + i + 1, cy + j + 1) is cell (cx + i, cy + j) wrapped: row j starts at padded X = cx. */
+  const SEASIM_GLOBAL real* corner = table + 2 * (cx + (n + 2) * cy);
+  real f1 = R(1e9), f2 = R(1e9); /* squared distances */
+  for (int j = -1; j <= 1; ++j) {
+    const SEASIM_GLOBAL real* row = corner + 2 * (n + 2) * (j + 1);
+    for (int i = -1; i <= 1; ++i) {
+      const real px = (real)i + R(0.5) + row[2 * (i + 1) + 0];
+      const real py = (real)j + R(0.5) + row[2 * (i + 1) + 1];
+      const real dx = px - fx, dy = py - fy;
+      const real d2 = dx * dx + dy * dy;
+      const real hi = d2 > f1 ? d2 : f1;
+      f2 = f2 < hi ? f2 : hi;
+      f1 = d2 < f1 ? d2 : f1;
+    }
+  }
+  return (sqrt(f2) - sqrt(f1)) / CAUSTIC_WIDTH;
+}
+
+/* ---- the two scrolling instances ---- */
+
+/* Where (x, z) (m) falls at time t (s) in the tiles of instance A (*ua, *va) and B (*ub, *vb), [0,1)². */
+SEASIM_FN void caustic_tile_coords(real x, real z, real time, real period, real speed, real* ua, real* va, real* ub,
+                                   real* vb) {
+  const real inv = R(1.0) / period;
+  const real s = speed * time * inv; /* tiles travelled at unit relative speed */
+  const real u = x * inv, v = z * inv;
+  *ua = caustic_fract(caustic_fract(u) - caustic_fract(R(0.8) * s));
+  *va = caustic_fract(caustic_fract(v) - caustic_fract(R(0.6) * s));
+  *ub = caustic_fract(caustic_fract(u) - caustic_fract(R(0.37) + R(-0.1764) * s));
+  *vb = caustic_fract(caustic_fract(v) - caustic_fract(R(0.71) + R(0.6048) * s));
 }
 
 /* The sun's caustic modulation at the surface point (x, z) (m, world) at time t (s): 002 §5.3's
@@ -88,14 +173,19 @@ SEASIM_FN real caustic_texture(real u, real v, int n, unsigned int seed) {
  * refracted sun direction first. */
 SEASIM_FN real caustic_modulation(real x, real z, real time, real period, real speed) {
   if (!(period > R(0.0))) return R(1.0);
-  const real inv = R(1.0) / period;
-  const real s = speed * time * inv; /* tiles travelled at unit relative speed */
-  const real u = x * inv, v = z * inv;
-  const real ua = caustic_fract(caustic_fract(u) - caustic_fract(R(0.8) * s));
-  const real va = caustic_fract(caustic_fract(v) - caustic_fract(R(0.6) * s));
-  const real ub = caustic_fract(caustic_fract(u) - caustic_fract(R(0.37) + R(-0.1764) * s));
-  const real vb = caustic_fract(caustic_fract(v) - caustic_fract(R(0.71) + R(0.6048) * s));
-  const real ha = caustic_texture(ua, va, CAUSTIC_CELLS_A, 0U);
-  const real hb = caustic_texture(ub, vb, CAUSTIC_CELLS_B, 0x68bc21ebU);
-  return fmin(ha, hb) / CAUSTIC_MEAN;
+  real ua, va, ub, vb;
+  caustic_tile_coords(x, z, time, period, speed, &ua, &va, &ub, &vb);
+  const real e = fmax(caustic_edge(ua, va, CAUSTIC_CELLS_A, 0U), caustic_edge(ub, vb, CAUSTIC_CELLS_B, 0x68bc21ebU));
+  return caustic_profile(e) / CAUSTIC_MEAN; /* = fmin(h_a, h_b) / MEAN (caustic_profile) */
+}
+
+/* caustic_modulation with the feature points from caustic_fill_table's table (froxel.cl). */
+SEASIM_FN real caustic_modulation_table(real x, real z, real time, real period, real speed,
+                                        const SEASIM_GLOBAL real* table) {
+  if (!(period > R(0.0))) return R(1.0);
+  real ua, va, ub, vb;
+  caustic_tile_coords(x, z, time, period, speed, &ua, &va, &ub, &vb);
+  const real e = fmax(caustic_edge_table(ua, va, CAUSTIC_CELLS_A, table),
+                      caustic_edge_table(ub, vb, CAUSTIC_CELLS_B, table + CAUSTIC_TABLE_SIZE(CAUSTIC_CELLS_A)));
+  return caustic_profile(e) / CAUSTIC_MEAN;
 }

@@ -251,14 +251,30 @@ SEASIM_FN void froxel_integrate_column(const SEASIM_CONSTANT UwParams* p, const 
   }
 }
 
+/* The continuous column coordinate of pixel x's centre in an image `width` pixels wide over n columns
+ * (column i's centre sits at i), clamped at the border: froxel_lookup reads columns (int) g and the next
+ * one (the last column at the border). */
+SEASIM_FN real froxel_pixel_column(int x, int width, int n) {
+  return clamp(((real)x + R(0.5)) / (real)width * (real)n - R(0.5), R(0.0), (real)(n - 1));
+}
+
+/* The slice froxel_lookup reads at distance S: it reads the volume at slice k and k − 1, which hold the
+ * running integral over every froxel k' <= k; -1 when it reads nothing (S <= 0; a NaN S reads at z_far,
+ * as fmin gives). */
+SEASIM_FN int froxel_read_slice(const SEASIM_CONSTANT FroxelParams* fp, real S) {
+  const real t = fmin(S, (real)fp->z_far);
+  if (!(t > R(0.0))) return -1;
+  return froxel_slice_index(t, fp->nz, fp->z_near, fp->z_far, fp->log_far_near);
+}
+
 /* In-scattered sensor RGB from the camera to distance S along pixel (x, y) of a width × height image
  * (see the top: bilinear over columns, in-slice fraction by σ̄_t per channel, S clamped to z_far). */
 SEASIM_FN real3 froxel_lookup(const SEASIM_CONSTANT FroxelParams* fp, const SEASIM_GLOBAL float* volume, int x, int y,
                               int width, int height, real S) {
   const int nx = fp->nx, ny = fp->ny, nz = fp->nz;
+  const int k = froxel_read_slice(fp, S);
+  if (k < 0) return MAKE_REAL3(0, 0, 0);
   const real t = fmin(S, (real)fp->z_far);
-  if (!(t > R(0.0))) return MAKE_REAL3(0, 0, 0);
-  const int k = froxel_slice_index(t, nz, fp->z_near, fp->z_far, fp->log_far_near);
   const real t0 = froxel_slice_start(k, nz, fp->z_near, fp->z_far, fp->log_far_near);
   const real len = froxel_slice_end(k, nz, fp->z_near, fp->z_far, fp->log_far_near) - t0;
   const real xf = len > R(0.0) ? clamp((t - t0) / len, R(0.0), R(1.0)) : R(1.0);
@@ -266,8 +282,8 @@ SEASIM_FN real3 froxel_lookup(const SEASIM_CONSTANT FroxelParams* fp, const SEAS
   const real f_g = froxel_partial(xf, fp->sigma_t_rgb[1] * len);
   const real f_b = froxel_partial(xf, fp->sigma_t_rgb[2] * len);
   /* Continuous column coordinates of the pixel centre; column i's centre sits at i. */
-  const real gx = clamp(((real)x + R(0.5)) / (real)width * (real)nx - R(0.5), R(0.0), (real)(nx - 1));
-  const real gy = clamp(((real)y + R(0.5)) / (real)height * (real)ny - R(0.5), R(0.0), (real)(ny - 1));
+  const real gx = froxel_pixel_column(x, width, nx);
+  const real gy = froxel_pixel_column(y, height, ny);
   const int i0 = (int)gx, j0 = (int)gy;
   const int i1 = i0 + 1 < nx ? i0 + 1 : nx - 1, j1 = j0 + 1 < ny ? j0 + 1 : ny - 1;
   const real ax = gx - (real)i0, ay = gy - (real)j0;

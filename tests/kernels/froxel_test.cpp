@@ -26,6 +26,8 @@
 
 namespace {
 
+namespace kf = seasim::kmath_f;
+
 // 32×18 pixels, camera 4 m down looking slightly down; the sun 30° from the zenith behind the camera's
 // left; a sphere above the view (x = 0.5, y = -1.5) whose shadow the view rays cross, a rock and a box
 // in view, a flat bottom at 6 m.
@@ -348,6 +350,61 @@ TEST(FroxelKernelError, CausticsMoveLightButKeepTheMean) {
   EXPECT_GT(biggest, 0.05);           // the image changes
   EXPECT_NEAR(ratio, 1.0, 0.03);      // its mean does not (modulation mean 1)
   EXPECT_NEAR(mean(b.rgb) / mean(ref_on), 1.0, 0.03);
+}
+
+TEST(FroxelKernelCulling, UnreadFroxelsAreSkippedAndTheImageIsBitIdentical) {
+  // Given the G-buffer, froxel_inject leaves 0 the froxels past the last slice any pixel's read needs
+  // in their column (froxel_column_extent): every froxel a read uses is the same float, so the image is
+  // the same bit for bit, and the froxels behind the bottom and the rocks are not evaluated.
+  for (const char* look_at : {"[0, -4.5, -8]", "[0, 4, -8]"}) {
+    const seasim::Scene s = scene({set("underwater.caustics", "\"texture\""), set("camera.look_at", look_at)});
+    const seasim::UnderwaterSetup setup = setupOf(s);
+    seasim::Device& device = seasim::test::testDevice();
+    const int w = setup.params.width, h = setup.params.height;
+    const std::vector<double> S = seasim::froxelPixelDistances(setup);
+    std::vector<float> geom(4 * S.size(), 0.0f);
+    for (size_t i = 0; i < S.size(); ++i) geom[4 * i] = static_cast<float>(std::min(S[i], 1e30));
+    cl::Buffer geom_buf(device.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(float) * geom.size(),
+                        geom.data());
+    cl::Buffer rgb_buf(device.context(), CL_MEM_WRITE_ONLY, sizeof(float) * 3 * S.size());
+    std::vector<float> light[2], rgb[2];
+    seasim::FroxelPass pass(device, setup, seasim::froxelConfigFromScene(s), {});
+    for (int culled = 0; culled < 2; ++culled) {
+      pass.run(nullptr, culled ? &geom_buf : nullptr, w, h);
+      pass.resolve(geom_buf, w, h, rgb_buf);
+      rgb[culled].resize(3 * S.size());
+      device.queue().enqueueReadBuffer(rgb_buf, CL_TRUE, 0, sizeof(float) * rgb[culled].size(), rgb[culled].data());
+      pass.readLight(light[culled]);
+    }
+    ASSERT_EQ(rgb[0].size(), rgb[1].size());
+    for (size_t i = 0; i < rgb[0].size(); ++i) ASSERT_EQ(rgb[1][i], rgb[0][i]) << look_at << " value " << i;
+    // Skipped froxels are 0; every other one is unchanged; every froxel a pixel reads is unchanged.
+    const FroxelParams fp = pass.params();
+    size_t skipped = 0, lit = 0;
+    for (size_t i = 0; i < light[0].size(); ++i) {
+      if (light[0][i] > 0) ++lit;
+      if (light[1][i] == light[0][i]) continue;
+      ASSERT_EQ(light[1][i], 0.0f) << i;
+      ++skipped;
+    }
+    for (int y = 0; y < h; ++y) {
+      for (int x = 0; x < w; ++x) {
+        const int k = kf::froxel_read_slice(&fp, geom[4 * (size_t(y) * w + x)]);
+        const int i0 = int(kf::froxel_pixel_column(x, w, fp.nx)), j0 = int(kf::froxel_pixel_column(y, h, fp.ny));
+        for (int j : {j0, std::min(j0 + 1, fp.ny - 1)})
+          for (int i : {i0, std::min(i0 + 1, fp.nx - 1)})
+            for (int kk = 0; kk <= k; ++kk) {
+              const size_t idx = (size_t(kk) * fp.ny + j) * fp.nx + i;
+              ASSERT_EQ(light[1][idx], light[0][idx]) << "pixel " << x << "," << y << " slice " << kk;
+            }
+      }
+    }
+    std::printf("culling, look_at %s: %zu of %zu lit froxels skipped (%.0f %%)\n", look_at, skipped, lit,
+                100.0 * skipped / std::max<size_t>(lit, 1));
+    // Looking down, the froxels behind the bottom and the rocks (measured 20 %); looking up at the
+    // surface, next to none (the froxels above it are 0 already).
+    if (look_at[4] == '-') EXPECT_GT(skipped, lit / 10) << look_at;
+  }
 }
 
 TEST(FroxelKernelError, ContradictoryDefinesAreAnError) {

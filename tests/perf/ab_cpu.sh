@@ -4,7 +4,9 @@
 # profiling time. Per variant and round:
 #   seabed frame      = [CPU of `seasim run` on a job of 3 seabed renders - CPU of a job of 1] / 2
 #   seashore 2nd order = [CPU of `bench --sea-maps 64 --repeat 5` - CPU of `--repeat 1`] / 4
-# (start-up, kernel cache loads, depth tables and image writes cancel in the differences).
+# (start-up, kernel cache loads, depth tables and image writes cancel in the differences). Each render
+# of a job has its own surface.time (the caustics' time: same work, another image): a job's renderer
+# skips a render whose settings equal the one before, which would make the frame cost nothing.
 # Usage: tests/perf/ab_cpu.sh NAME=KERNEL_DIR=FAST_MATH ...   (ROUNDS=3; KERNEL_DIR "-": the binary's own)
 B=${B:-build/seasim}
 ROUNDS=${ROUNDS:-3}
@@ -15,8 +17,8 @@ job() {  # job file of $1 seabed renders with fast_math=$2
   printf '[job]\nname = "ab"\noutput_dir = "out"\n' > "$f"
   i=0
   while [ $i -lt "$1" ]; do
-    printf '[[render]]\nname = "r%d"\nscene = "%s/scenes/seabed.toml"\noutputs = ["exr"]\noverrides = { "quality.fast_math" = %s }\n' \
-      $i "$PWD" "$2" >> "$f"
+    printf '[[render]]\nname = "r%d"\nscene = "%s/scenes/seabed.toml"\noutputs = ["exr"]\noverrides = { "quality.fast_math" = %s, "surface.time" = %d.5 }\n' \
+      $i "$PWD" "$2" $i >> "$f"
     i=$((i + 1))
   done
   echo "$f"

@@ -91,6 +91,150 @@ TEST(CausticTexture, FiniteBoundedAndMoving) {
   EXPECT_EQ(kf::caustic_modulation(1.0f, 2.0f, 3.0f, -1.0f, 0.5f), 1.0f);
 }
 
+// The edge distance of caustic_edge's 3×3 search with the branching F1/F2 update it replaced, as the
+// reference for the branch-free one (min/max are exact: the same two values, bit for bit).
+template <typename K, typename Real>
+Real edgeBranching(Real u, Real v, int n, unsigned seed) {
+  const Real x = u * Real(n), y = v * Real(n);
+  int cx = std::clamp(int(std::floor(x)), 0, n - 1), cy = std::clamp(int(std::floor(y)), 0, n - 1);
+  const Real fx = x - Real(cx), fy = y - Real(cy);
+  Real f1 = Real(1e9), f2 = Real(1e9);
+  for (int j = -1; j <= 1; ++j) {
+    for (int i = -1; i <= 1; ++i) {
+      const int wx = (cx + i + n) % n, wy = (cy + j + n) % n;
+      const unsigned h = K::caustic_hash(unsigned(wx + n * wy) + seed);
+      const Real px = Real(i) + Real(0.5) + Real(0.8) * (Real(h & 0xffffU) * Real(1.0 / 65536.0) - Real(0.5));
+      const Real py = Real(j) + Real(0.5) + Real(0.8) * (Real(h >> 16) * Real(1.0 / 65536.0) - Real(0.5));
+      const Real d2 = (px - fx) * (px - fx) + (py - fy) * (py - fy);
+      if (d2 < f1) {
+        f2 = f1;
+        f1 = d2;
+      } else if (d2 < f2) {
+        f2 = d2;
+      }
+    }
+  }
+  return (std::sqrt(f2) - std::sqrt(f1)) / Real(0.15);
+}
+
+struct KfNs {
+  static unsigned caustic_hash(unsigned x) { return kf::caustic_hash(x); }
+};
+struct KdNs {
+  static unsigned caustic_hash(unsigned x) { return kd::caustic_hash(x); }
+};
+
+TEST(CausticTexture, BranchFreeSearchAndOneExpAreTheOldTexture) {
+  // The branch-free F1/F2 update finds the same two distances; min(h_a, h_b) = h(max(e_a, e_b)).
+  for (int k = 0; k < 20000; ++k) {
+    const double u = std::fmod(0.000731 * k * k + 0.1 * k, 1.0), v = std::fmod(0.37 + 0.0137 * k, 1.0);
+    for (int n : {27, 32}) {
+      const unsigned seed = n == 32 ? 0U : 0x68bc21ebU;
+      ASSERT_EQ(kd::caustic_edge(u, v, n, seed), (edgeBranching<KdNs, double>(u, v, n, seed))) << u << " " << v;
+      EXPECT_NEAR(kf::caustic_edge(float(u), float(v), n, seed), (edgeBranching<KfNs, float>(float(u), float(v), n, seed)),
+                  1e-5f);
+    }
+    const double x = -13 + 0.0031 * k, z = 7 - 0.0017 * k, t = 0.001 * k;
+    double ua, va, ub, vb;
+    kd::caustic_tile_coords(x, z, t, 4.0, 0.5, &ua, &va, &ub, &vb);
+    const double two_exp = std::min(kd::caustic_texture(ua, va, 32, 0U), kd::caustic_texture(ub, vb, 27, 0x68bc21ebU));
+    EXPECT_EQ(kd::caustic_modulation(x, z, t, 4.0, 0.5), two_exp / 0.32258);
+  }
+}
+
+TEST(CausticTexture, TableWrapsTheTile) {
+  std::vector<double> table(CAUSTIC_TABLE_REALS);
+  kd::caustic_fill_table(table.data());
+  EXPECT_EQ(table.size(), 2u * (34 * 34 + 29 * 29));
+  for (int n : {32, 27}) {
+    const double* t = table.data() + (n == 32 ? 0 : CAUSTIC_TABLE_SIZE(32));
+    const int w = n + 2;
+    for (int c = 0; c < w; ++c) {
+      for (int q = 0; q < 2; ++q) {
+        EXPECT_EQ(t[2 * (0 + w * c) + q], t[2 * (n + w * c) + q]);      // column -1 is column n - 1
+        EXPECT_EQ(t[2 * (n + 1 + w * c) + q], t[2 * (1 + w * c) + q]);  // column n is column 0
+        EXPECT_EQ(t[2 * (c + w * 0) + q], t[2 * (c + w * n) + q]);
+        EXPECT_EQ(t[2 * (c + w * (n + 1)) + q], t[2 * (c + w * 1) + q]);
+      }
+    }
+    for (int i = 0; i < 2 * w * w; ++i) ASSERT_LE(std::fabs(t[i]), 0.4);  // jitter within the central 80 %
+  }
+}
+
+TEST(CausticTexture, TableGivesTheHashedTexture) {
+  // froxel.cl reads the feature points from caustic_fill_table: double the same to rounding; float the
+  // same but for the jitter product's rounding (at most an ulp of a point's position, against the
+  // texture's steepest slope of ~40 per cell), and within the float-vs-double budget of PeriodicOnTheTile.
+  std::vector<double> td(CAUSTIC_TABLE_REALS);
+  std::vector<float> tf(CAUSTIC_TABLE_REALS);
+  kd::caustic_fill_table(td.data());
+  kf::caustic_fill_table(tf.data());
+  double worst_d = 0, worst_f = 0, worst_fd = 0;
+  for (int k = 0; k < 200000; ++k) {
+    const double x = -31 + 0.000619 * k, z = 11 - 0.000233 * k + 0.05 * std::sin(0.01 * k), t = 0.00037 * k;
+    const double hd = kd::caustic_modulation(x, z, t, 4.0, 0.5);
+    const double ht = kd::caustic_modulation_table(x, z, t, 4.0, 0.5, td.data());
+    const float hf = kf::caustic_modulation(float(x), float(z), float(t), 4.0f, 0.5f);
+    const float htf = kf::caustic_modulation_table(float(x), float(z), float(t), 4.0f, 0.5f, tf.data());
+    worst_d = std::max(worst_d, std::fabs(ht - hd));
+    worst_f = std::max(worst_f, double(std::fabs(htf - hf)));
+    worst_fd = std::max(worst_fd, std::fabs(double(htf) - hd));
+  }
+  std::printf("caustic table vs hash: double %.2e, float %.2e, float table vs double %.2e\n", worst_d, worst_f,
+              worst_fd);
+  EXPECT_LT(worst_d, 1e-12);
+  EXPECT_LT(worst_f, 1e-4);
+  EXPECT_LT(worst_fd, 2e-3);
+  // The seam, large inputs and no period, as for the hashed texture.
+  for (double z : {0.1, 1.3, 2.9})
+    EXPECT_NEAR(kd::caustic_modulation_table(4.0 - 1e-9, z, 0.0, 4.0, 0.5, td.data()),
+                kd::caustic_modulation_table(0.0, z, 0.0, 4.0, 0.5, td.data()), 1e-6);
+  EXPECT_TRUE(std::isfinite(kf::caustic_modulation_table(3e4f, -7e4f, 1e6f, 4.0f, 0.5f, tf.data())));
+  EXPECT_TRUE(std::isfinite(kd::caustic_modulation_table(1e12, -1e12, 1e9, 4.0, 0.5, td.data())));
+  EXPECT_EQ(kf::caustic_modulation_table(1.0f, 2.0f, 3.0f, 0.0f, 0.5f, tf.data()), 1.0f);
+  EXPECT_EQ(kd::caustic_modulation_table(1.0, 2.0, 3.0, -1.0, 0.5, td.data()), 1.0);
+}
+
+// ---- which froxels a read needs ----
+
+template <typename K, typename Real>
+void checkReadSliceAndColumns() {
+  FroxelParams fp{};
+  fp.nx = 160, fp.ny = 90, fp.nz = 64;
+  fp.z_near = 0.1f, fp.z_far = 60.0f, fp.log_far_near = float(std::log(600.0));
+  // No read at S <= 0; the last slice at and beyond z_far (deep water, UW_INFINITE).
+  EXPECT_EQ(K::froxel_read_slice(&fp, Real(-1)), -1);
+  EXPECT_EQ(K::froxel_read_slice(&fp, Real(0)), -1);
+  EXPECT_EQ(K::froxel_read_slice(&fp, Real(NAN)), 63);  // fmin(NaN, z_far) = z_far, as froxel_lookup reads
+  EXPECT_EQ(K::froxel_read_slice(&fp, Real(1e-30)), 0);
+  EXPECT_EQ(K::froxel_read_slice(&fp, Real(60)), 63);
+  EXPECT_EQ(K::froxel_read_slice(&fp, Real(1e30)), 63);
+  for (int k = 1; k < 63; ++k) {  // just past a slice's end: the next slice
+    const Real end = K::froxel_slice_end(k - 1, fp.nz, Real(fp.z_near), Real(fp.z_far), Real(fp.log_far_near));
+    EXPECT_EQ(K::froxel_read_slice(&fp, end * Real(1.0001)), k);
+  }
+  // Pixel centres over columns: clamped to [0, n − 1] at the border, two pixels per column at 2×.
+  EXPECT_EQ(K::froxel_pixel_column(0, 320, 160), Real(0));
+  EXPECT_EQ(K::froxel_pixel_column(319, 320, 160), Real(159));
+  EXPECT_NEAR(K::froxel_pixel_column(100, 320, 160), Real(49.75), 1e-5);
+  EXPECT_EQ(K::froxel_pixel_column(0, 1, 1), Real(0));
+}
+
+TEST(FroxelMath, ReadSliceAndPixelColumns) {
+  struct F {
+    static int froxel_read_slice(const FroxelParams* fp, float s) { return kf::froxel_read_slice(fp, s); }
+    static float froxel_pixel_column(int x, int w, int n) { return kf::froxel_pixel_column(x, w, n); }
+    static float froxel_slice_end(int k, int nz, float a, float b, float c) { return kf::froxel_slice_end(k, nz, a, b, c); }
+  };
+  struct D {
+    static int froxel_read_slice(const FroxelParams* fp, double s) { return kd::froxel_read_slice(fp, s); }
+    static double froxel_pixel_column(int x, int w, int n) { return kd::froxel_pixel_column(x, w, n); }
+    static double froxel_slice_end(int k, int nz, double a, double b, double c) { return kd::froxel_slice_end(k, nz, a, b, c); }
+  };
+  checkReadSliceAndColumns<F, float>();
+  checkReadSliceAndColumns<D, double>();
+}
+
 // ---- froxel grid ----
 
 TEST(FroxelMath, ExponentialSlices) {

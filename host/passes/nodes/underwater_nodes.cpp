@@ -82,7 +82,10 @@ class FroxelNode : public Pass {
   }
   void execute(FrameContext& ctx, PassResources& res) override {
     FroxelPass& froxels = res.read<FroxelPass>("froxel_volume");
-    froxels.run(underwaterCausticMaps(res));
+    // With the G-buffer, only the froxels that kd_multiple's reads need are evaluated.
+    const cl::Buffer* geom =
+        res.declaresRead("gbuffer") ? &res.read<UnderwaterGBuffer>("gbuffer").pass->geometry() : nullptr;
+    froxels.run(underwaterCausticMaps(res), geom, ctx.scene().camera.width, ctx.scene().camera.height);
     for (const PassTiming& t : froxels.timings()) ctx.timings.push_back(t);
   }
 
