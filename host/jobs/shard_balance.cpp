@@ -29,15 +29,17 @@ double knob(const Scene& scene, const std::string& name, double fallback) {
 
 // A pass's cost per pixel and band relative to sea_single's, at the knobs' defaults: the median
 // kernel ms of the shipped jobs on PoCL (2-core VM; results/BENCHMARKS.md "Farm shards"): sea_single
-// 24 ms per million pixel-bands, sea_second 1.6x that (18x over a height-field floor), froxel 19x,
-// kd_multiple 6x, the ocean's caustics on a height-field floor 70x. Passes not listed count 1.
+// 24 ms per million pixel-bands, sea_second 1.6x that (18x over a height-field floor), the ocean's
+// caustics on a height-field floor 70x; froxel 16x and kd_multiple 1.5x re-measured after issue 14's
+// band lanes and froxel culling (seabed against flat_sea, 3 rounds; they were 19x and 6x). Passes not
+// listed count 1.
 double passWeight(const PassPlan& pass) {
   const bool height_field =
       std::find(pass.defines.begin(), pass.defines.end(), "SEASIM_BOTTOM_HEIGHTFIELD=1") != pass.defines.end();
   if (pass.name == "sea_second") return height_field ? 18.0 : 1.6;
   if (pass.name == "caustics") return 70.0;
-  if (pass.name == "froxel") return 19.0;
-  if (pass.name == "kd_multiple") return 6.0;
+  if (pass.name == "froxel") return 16.0;
+  if (pass.name == "kd_multiple") return 1.5;
   if (pass.name == "raycast") return 0.7;
   if (pass.name == "ocean_fft") return 0.4;
   if (pass.name == "nonfinite_check") return 0.01;
