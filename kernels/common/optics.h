@@ -157,29 +157,33 @@ SEASIM_FN real beer_lambert(real sigma, real distance) { return exp(-(sigma * di
  * expm1 does (e^x - 1 rounds to e^x there), ~88.7 in float and ~709.8 in double, so no input that
  * gave a finite φ before gives Inf now. Every model calls it with x <= 0.
  */
+/* The Taylor series of (e^x - 1)/x that expm1_over_x uses below |x| = 0.5 (13 terms in double, 8 in
+ * float), as a macro so that the band-vector version (underwater_bands.h, expm1_over_x_b) shares it. */
+#define SEASIM_EXPM1_OVER_X_SERIES(x) \
+  (sizeof(real) > 4 \
+   ? R(1.0) + \
+   (x) * (R(1.0) / R(2.0) + \
+   (x) * (R(1.0) / R(6.0) + \
+   (x) * (R(1.0) / R(24.0) + \
+   (x) * (R(1.0) / R(120.0) + \
+   (x) * (R(1.0) / R(720.0) + \
+   (x) * (R(1.0) / R(5040.0) + \
+   (x) * (R(1.0) / R(40320.0) + \
+   (x) * (R(1.0) / R(362880.0) + \
+   (x) * (R(1.0) / R(3628800.0) + \
+   (x) * (R(1.0) / R(39916800.0) + \
+   (x) * (R(1.0) / R(479001600.0) + \
+   (x) * (R(1.0) / R(6227020800.0) + \
+   (x) * (R(1.0) / R(87178291200.0)))))))))))))) \
+   : R(1.0) + \
+   (x) * (R(1.0) / R(2.0) + \
+   (x) * (R(1.0) / R(6.0) + \
+   (x) * (R(1.0) / R(24.0) + \
+   (x) * (R(1.0) / R(120.0) + \
+   (x) * (R(1.0) / R(720.0) + (x) * (R(1.0) / R(5040.0) + (x) * (R(1.0) / R(40320.0)))))))))
+
 SEASIM_FN real expm1_over_x(real x) {
-  const real series =
-      sizeof(real) > 4
-          ? R(1.0) +
-                x * (R(1.0) / R(2.0) +
-                     x * (R(1.0) / R(6.0) +
-                          x * (R(1.0) / R(24.0) +
-                               x * (R(1.0) / R(120.0) +
-                                    x * (R(1.0) / R(720.0) +
-                                         x * (R(1.0) / R(5040.0) +
-                                              x * (R(1.0) / R(40320.0) +
-                                                   x * (R(1.0) / R(362880.0) +
-                                                        x * (R(1.0) / R(3628800.0) +
-                                                             x * (R(1.0) / R(39916800.0) +
-                                                                  x * (R(1.0) / R(479001600.0) +
-                                                                       x * (R(1.0) / R(6227020800.0) +
-                                                                            x * (R(1.0) / R(87178291200.0))))))))))))))
-          : R(1.0) +
-                x * (R(1.0) / R(2.0) +
-                     x * (R(1.0) / R(6.0) +
-                          x * (R(1.0) / R(24.0) +
-                               x * (R(1.0) / R(120.0) +
-                                    x * (R(1.0) / R(720.0) + x * (R(1.0) / R(5040.0) + x * (R(1.0) / R(40320.0))))))));
+  const real series = SEASIM_EXPM1_OVER_X_SERIES(x);
   const int small = fabs(x) < R(0.5);
   const real xs = small ? R(1.0) : x;
   const real direct = (exp(xs) - R(1.0)) / xs;

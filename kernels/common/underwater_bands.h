@@ -13,28 +13,7 @@
 
 /* expm1_over_x of optics.h, lane by lane (the same series and switch at |x| = 0.5, branch-free). */
 SEASIM_FN realb expm1_over_x_b(realb x) {
-  const realb series =
-      sizeof(real) > 4
-          ? R(1.0) +
-                x * (R(1.0) / R(2.0) +
-                     x * (R(1.0) / R(6.0) +
-                          x * (R(1.0) / R(24.0) +
-                               x * (R(1.0) / R(120.0) +
-                                    x * (R(1.0) / R(720.0) +
-                                         x * (R(1.0) / R(5040.0) +
-                                              x * (R(1.0) / R(40320.0) +
-                                                   x * (R(1.0) / R(362880.0) +
-                                                        x * (R(1.0) / R(3628800.0) +
-                                                             x * (R(1.0) / R(39916800.0) +
-                                                                  x * (R(1.0) / R(479001600.0) +
-                                                                       x * (R(1.0) / R(6227020800.0) +
-                                                                            x * (R(1.0) / R(87178291200.0))))))))))))))
-          : R(1.0) +
-                x * (R(1.0) / R(2.0) +
-                     x * (R(1.0) / R(6.0) +
-                          x * (R(1.0) / R(24.0) +
-                               x * (R(1.0) / R(120.0) +
-                                    x * (R(1.0) / R(720.0) + x * (R(1.0) / R(5040.0) + x * (R(1.0) / R(40320.0))))))));
+  const realb series = SEASIM_EXPM1_OVER_X_SERIES(x);
   const maskb small = fabs(x) < R(0.5);
   const realb xs = SELECTB(small, SPLATB(R(1.0)), x);
   const realb direct = (exp(xs) - R(1.0)) / xs;
