@@ -58,6 +58,32 @@ SEASIM_FN real caustic_profile(real e) {
   return CAUSTIC_FLOOR + (R(1.0) - CAUSTIC_FLOOR) * exp(-e * e);
 }
 
+/* The cell of an n-cell tile that (u, v) in [0,1)² falls in (clamped to the tile), and the position
+ * (*fx, *fy) within it in cell units. */
+SEASIM_FN void caustic_cell(real u, real v, int n, int* cx, int* cy, real* fx, real* fy) {
+  const real x = u * (real)n, y = v * (real)n;
+  int ix = (int)floor(x), iy = (int)floor(y);
+  ix = ix < 0 ? 0 : (ix >= n ? n - 1 : ix);
+  iy = iy < 0 ? 0 : (iy >= n ? n - 1 : iy);
+  *cx = ix;
+  *cy = iy;
+  *fx = x - (real)ix;
+  *fy = y - (real)iy;
+}
+
+/* A cell's feature point offset from the cell centre, JITTER (hash/65536 − ½) in x and y. */
+SEASIM_FN void caustic_jitter(unsigned int h, real* jx, real* jy) {
+  *jx = CAUSTIC_JITTER * ((real)(h & 0xffffU) * R(1.0 / 65536.0) - R(0.5));
+  *jy = CAUSTIC_JITTER * ((real)(h >> 16) * R(1.0 / 65536.0) - R(0.5));
+}
+
+/* Keeps the two smallest squared distances seen, *f1 <= *f2, without branches (see caustic_edge). */
+SEASIM_FN void caustic_keep_two_nearest(real d2, real* f1, real* f2) {
+  const real hi = d2 > *f1 ? d2 : *f1;
+  *f2 = *f2 < hi ? *f2 : hi;
+  *f1 = d2 < *f1 ? d2 : *f1;
+}
+
 /* The edge distance e = (F2 − F1)/WIDTH of the seamless texture at (u, v) in [0,1)², n cells per tile
  * side, seed choosing the points (h = caustic_profile(e)). F1, F2 are kept as squared distances and
  * updated without branches: f2 = min(f2, max(f1, d2)), f1 = min(f1, d2) gives the same two smallest
@@ -65,11 +91,9 @@ SEASIM_FN real caustic_profile(real e) {
  * the mispredicted jumps of that form. Written as selects, not fmin/fmax: without relaxed maths those
  * cost more on PoCL (their NaN rules; froxel_inject measured 160 → 115 ms wall with exact maths). */
 SEASIM_FN real caustic_edge(real u, real v, int n, unsigned int seed) {
-  const real x = u * (real)n, y = v * (real)n;
-  int cx = (int)floor(x), cy = (int)floor(y);
-  cx = cx < 0 ? 0 : (cx >= n ? n - 1 : cx);
-  cy = cy < 0 ? 0 : (cy >= n ? n - 1 : cy);
-  const real fx = x - (real)cx, fy = y - (real)cy;
+  int cx, cy;
+  real fx, fy;
+  caustic_cell(u, v, n, &cx, &cy, &fx, &fy);
   real f1 = R(1e9), f2 = R(1e9); /* squared distances */
   for (int j = -1; j <= 1; ++j) {
     int wy = cy + j;
@@ -77,14 +101,10 @@ SEASIM_FN real caustic_edge(real u, real v, int n, unsigned int seed) {
     for (int i = -1; i <= 1; ++i) {
       int wx = cx + i;
       wx = wx < 0 ? wx + n : (wx >= n ? wx - n : wx);
-      const unsigned int h = caustic_hash((unsigned int)(wx + n * wy) + seed);
-      const real px = (real)i + R(0.5) + CAUSTIC_JITTER * ((real)(h & 0xffffU) * R(1.0 / 65536.0) - R(0.5));
-      const real py = (real)j + R(0.5) + CAUSTIC_JITTER * ((real)(h >> 16) * R(1.0 / 65536.0) - R(0.5));
-      const real dx = px - fx, dy = py - fy;
-      const real d2 = dx * dx + dy * dy;
-      const real hi = d2 > f1 ? d2 : f1;
-      f2 = f2 < hi ? f2 : hi;
-      f1 = d2 < f1 ? d2 : f1;
+      real jx, jy;
+      caustic_jitter(caustic_hash((unsigned int)(wx + n * wy) + seed), &jx, &jy);
+      const real dx = (real)i + R(0.5) + jx - fx, dy = (real)j + R(0.5) + jy - fy;
+      caustic_keep_two_nearest(dx * dx + dy * dy, &f1, &f2);
     }
   }
   return (sqrt(f2) - sqrt(f1)) / CAUSTIC_WIDTH;
@@ -112,9 +132,10 @@ SEASIM_FN void caustic_fill_texture_table(int n, unsigned int seed, SEASIM_GLOBA
     const int wy = (Y - 1 + n) % n;
     for (int X = 0; X < n + 2; ++X) {
       const int wx = (X - 1 + n) % n;
-      const unsigned int h = caustic_hash((unsigned int)(wx + n * wy) + seed);
-      table[2 * (X + (n + 2) * Y) + 0] = CAUSTIC_JITTER * ((real)(h & 0xffffU) * R(1.0 / 65536.0) - R(0.5));
-      table[2 * (X + (n + 2) * Y) + 1] = CAUSTIC_JITTER * ((real)(h >> 16) * R(1.0 / 65536.0) - R(0.5));
+      real jx, jy;
+      caustic_jitter(caustic_hash((unsigned int)(wx + n * wy) + seed), &jx, &jy);
+      table[2 * (X + (n + 2) * Y) + 0] = jx;
+      table[2 * (X + (n + 2) * Y) + 1] = jy;
     }
   }
 }
@@ -126,28 +147,21 @@ SEASIM_FN void caustic_fill_table(SEASIM_GLOBAL real* table) {
   caustic_fill_texture_table(CAUSTIC_CELLS_B, 0x68bc21ebU, table + CAUSTIC_TABLE_SIZE(CAUSTIC_CELLS_A));
 }
 
-/* caustic_edge with the feature points read from one texture's table: the same points and the same
- * arithmetic but for the jitter product, which the table holds rounded (caustic_edge's compiler may
- * fuse it into the addition: a difference of at most an ulp in a point's position). */
+/* caustic_edge with the feature points read from one texture's table: the same points (caustic_jitter)
+ * and the same arithmetic, but for the jitter product, which the table holds rounded (caustic_edge's
+ * compiler may fuse it into the addition: a difference of at most an ulp in a point's position). */
 SEASIM_FN real caustic_edge_table(real u, real v, int n, const SEASIM_GLOBAL real* table) {
-  const real x = u * (real)n, y = v * (real)n;
-  int cx = (int)floor(x), cy = (int)floor(y);
-  cx = cx < 0 ? 0 : (cx >= n ? n - 1 : cx);
-  cy = cy < 0 ? 0 : (cy >= n ? n - 1 : cy);
-  const real fx = x - (real)cx, fy = y - (real)cy;
+  int cx, cy;
+  real fx, fy;
+  caustic_cell(u, v, n, &cx, &cy, &fx, &fy);
   /* Padded cell (cx + i + 1, cy + j + 1) is cell (cx + i, cy + j) wrapped: row j starts at padded X = cx. */
   const SEASIM_GLOBAL real* corner = table + 2 * (cx + (n + 2) * cy);
   real f1 = R(1e9), f2 = R(1e9); /* squared distances */
   for (int j = -1; j <= 1; ++j) {
     const SEASIM_GLOBAL real* row = corner + 2 * (n + 2) * (j + 1);
     for (int i = -1; i <= 1; ++i) {
-      const real px = (real)i + R(0.5) + row[2 * (i + 1) + 0];
-      const real py = (real)j + R(0.5) + row[2 * (i + 1) + 1];
-      const real dx = px - fx, dy = py - fy;
-      const real d2 = dx * dx + dy * dy;
-      const real hi = d2 > f1 ? d2 : f1;
-      f2 = f2 < hi ? f2 : hi;
-      f1 = d2 < f1 ? d2 : f1;
+      const real dx = (real)i + R(0.5) + row[2 * (i + 1) + 0] - fx, dy = (real)j + R(0.5) + row[2 * (i + 1) + 1] - fy;
+      caustic_keep_two_nearest(dx * dx + dy * dy, &f1, &f2);
     }
   }
   return (sqrt(f2) - sqrt(f1)) / CAUSTIC_WIDTH;

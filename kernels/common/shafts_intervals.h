@@ -64,16 +64,23 @@ SEASIM_FN void shafts_clip_halfspace(real3 o, real3 d, real3 n, real b, real* lo
   else *lo = fmax(*lo, t);
 }
 
-/* The shadow volume of the plane through p with normal nrm, lit from `lamp`: the half-space on the
- * other side (empty when the lamp lies on the plane: a shadow ray ending on it is not blocked). */
-SEASIM_FN ShaftsShadowVolume shafts_plane_shadow(real3 lamp, real3 p, real3 nrm) {
+/* A shadow volume from `lamp` with no planes, no cone and nothing always in shadow (what each object's
+ * constructor below starts from), its cone axis `axis`. */
+SEASIM_FN ShaftsShadowVolume shafts_shadow_volume_empty(real3 lamp, real3 axis) {
   ShaftsShadowVolume v;
   v.plane_count = 0;
   v.has_cone = 0;
   v.always = 0;
   v.cos_cone = R(0.0);
   v.apex = lamp;
-  v.axis = nrm;
+  v.axis = axis;
+  return v;
+}
+
+/* The shadow volume of the plane through p with normal nrm, lit from `lamp`: the half-space on the
+ * other side (empty when the lamp lies on the plane: a shadow ray ending on it is not blocked). */
+SEASIM_FN ShaftsShadowVolume shafts_plane_shadow(real3 lamp, real3 p, real3 nrm) {
+  ShaftsShadowVolume v = shafts_shadow_volume_empty(lamp, nrm);
   const real side = dot(nrm, lamp - p);
   if (side != R(0.0)) {
     const real3 m = side > R(0.0) ? nrm : -nrm; /* points towards the lamp */
@@ -88,15 +95,9 @@ SEASIM_FN ShaftsShadowVolume shafts_plane_shadow(real3 lamp, real3 p, real3 nrm)
 
 /* The shadow volume of the sphere (centre c, radius rad) from `lamp`. */
 SEASIM_FN ShaftsShadowVolume shafts_sphere_shadow(real3 lamp, real3 c, real rad) {
-  ShaftsShadowVolume v;
-  v.plane_count = 0;
-  v.has_cone = 0;
-  v.always = 0;
-  v.apex = lamp;
   const real3 w = c - lamp;
   const real dist = length(w);
-  v.axis = dist > R(0.0) ? w / dist : MAKE_REAL3(0, 0, 1);
-  v.cos_cone = R(0.0);
+  ShaftsShadowVolume v = shafts_shadow_volume_empty(lamp, dist > R(0.0) ? w / dist : MAKE_REAL3(0, 0, 1));
   if (dist <= rad) {
     v.always = 1;
     return v;
@@ -113,13 +114,7 @@ SEASIM_FN ShaftsShadowVolume shafts_sphere_shadow(real3 lamp, real3 c, real rad)
 
 /* The shadow volume of the axis-aligned box [bmin, bmax] from `lamp`. */
 SEASIM_FN ShaftsShadowVolume shafts_box_shadow(real3 lamp, real3 bmin, real3 bmax) {
-  ShaftsShadowVolume v;
-  v.plane_count = 0;
-  v.has_cone = 0;
-  v.always = 0;
-  v.apex = lamp;
-  v.axis = MAKE_REAL3(0, 0, 1);
-  v.cos_cone = R(0.0);
+  ShaftsShadowVolume v = shafts_shadow_volume_empty(lamp, MAKE_REAL3(0, 0, 1));
   const real l[3] = {lamp.x, lamp.y, lamp.z};
   const real mn[3] = {bmin.x, bmin.y, bmin.z}, mx[3] = {bmax.x, bmax.y, bmax.z};
   /* front[k][0]: the face at bmin[k] faces the lamp; front[k][1]: the face at bmax[k]. */
