@@ -2,11 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <iomanip>
-#include <sstream>
 #include <utility>
 
 #include "preview/preview_settings.h"
+#include "scene/toml_reader.h"
 #include "util/error.h"
 
 namespace seasim {
@@ -31,14 +30,6 @@ const std::vector<std::pair<std::string, double>>& widenedKnobs() {
   return knobs;
 }
 
-std::string numberText(double v) {
-  std::ostringstream out;
-  out << std::setprecision(17) << v;
-  std::string text = out.str();
-  if (text.find_first_of(".e") == std::string::npos) text += ".0";
-  return text;
-}
-
 }  // namespace
 
 std::vector<Override> qualityLevelOverrides(const Scene& scene, int level) {
@@ -59,7 +50,7 @@ std::vector<Override> qualityLevelOverrides(const Scene& scene, int level) {
     const auto it = scene.quality.find(name);
     if (it == scene.quality.end() || it->second.automatic) continue;
     const double full = it->second.value;
-    out.push_back({"quality." + name, numberText(std::max(full, std::min(ceiling, std::ldexp(full, halvings)))), at});
+    out.push_back({"quality." + name, floatText(std::max(full, std::min(ceiling, std::ldexp(full, halvings)))), at});
   }
   add("camera.width", std::max(16, scene.camera.width >> size_shift));
   add("camera.height", std::max(9, scene.camera.height >> size_shift));

@@ -186,14 +186,18 @@ std::string formatNumber(double v) {
   return std::string(buf, res.ptr);
 }
 
+std::string floatText(double v) {
+  std::string s = formatNumber(v);
+  // Keep it a float in TOML ("40" would read back as an integer).
+  if (s.find_first_of(".eE") == std::string::npos) s += ".0";
+  return s;
+}
+
 std::string valueText(const toml::node& n) {
   if (auto* f = n.as_floating_point()) {
     double v = f->get();
     if (!std::isfinite(v)) return std::isnan(v) ? "nan" : (v > 0 ? "inf" : "-inf");
-    std::string s = formatNumber(v);
-    // Keep it a float in TOML ("40" would read back as an integer).
-    if (s.find_first_of(".eE") == std::string::npos) s += ".0";
-    return s;
+    return floatText(v);
   }
   if (auto* str = n.as_string()) {
     // A TOML basic string: "..." with \ " and control characters escaped.

@@ -93,6 +93,7 @@ class TableReader {
 // Helpers shared by the scene and job parsers.
 std::string typeName(const toml::node& n);   // "a string", "an integer", ...
 std::string formatNumber(double v);          // shortest text that reads back the same
+std::string floatText(double v);             // a finite double as TOML float text ("40.0", not "40")
 std::string valueText(const toml::node& n);  // a node as TOML value text (for Override)
 std::string closestMatch(const std::string& word, const std::vector<std::string>& candidates);
 // "; did you mean 'x'?" or "; valid: a, b, c" (first `max_list` of them) for a message.
