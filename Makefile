@@ -37,7 +37,8 @@ configure: deps
 # Opt-in, not part of `make test`: seasim's references against Mitsuba 3 on matching scenes (issue 13).
 # A Python virtual environment in $(BUILD)/validate-venv with mitsuba and numpy from PyPI (the scalar
 # variants need nothing else); ratio tables into results/validation/: spotlight shafts, the underwater
-# flat-bottom scene and the sea seen from above (about 20 min on the shared 2-core VM).
+# flat-bottom scene (level and through Snell's window) and the sea seen from above (about 30 min on the
+# shared 2-core VM).
 validate: build
 	@$(MAKE) --no-print-directory deps DEPS="$(VALIDATE_DEPS)"
 	test -x $(BUILD)/validate-venv/bin/python || python3 -m venv $(BUILD)/validate-venv
