@@ -256,7 +256,8 @@ __kernel void sea_single(__constant SeaParams* p, __global const SeaBand* bands,
     const float phase = hg_phase(cos_alpha, p->g);
 #if SEASIM_SEA_MODEL == 1
     const float mu_sky = sea_sky_mean_cosine(p->ior);             /* the skylight's mean cosine in the water */
-    const float r_below = sea_surface_reflectance_below(p->sky_fresnel_mean, p->ior); /* bottom-surface bounces */
+    const float r_below = sea_surface_reflectance_below(p->sky_fresnel_mean, p->ior); /* the surface's light back down */
+    const float mu_ret = sea_reflected_mean_cosine(r_below, p->ior);                   /* and its mean cosine */
 #endif
 #if SEASIM_HAS_BOTTOM && SEASIM_BOTTOM_HEIGHTFIELD
     /* 000 §5.4: z_Q, the depth where the refracted view ray from P meets the height field, replaces
@@ -322,7 +323,14 @@ __kernel void sea_single(__constant SeaParams* p, __global const SeaBand* bands,
 #endif
 #if SEASIM_HAS_BOTTOM
       L += t_out * sea_multiple_bottom(band->sun_irradiance * sun_horizontal, t_in, e_sky, band->a, band->b, c_f,
-                                       band->bottom_albedo, z_d, cos_io, cos_ji, mu_sky, focus, r_below);
+                                       band->bottom_albedo, z_d, cos_io, cos_ji, mu_sky, focus);
+#endif
+#if SEASIM_HAS_SINGLE_SCATTERING || SEASIM_HAS_BOTTOM
+      /* What the surface reflects back down of the upwelling light, returned by the water (z_d < 0: no
+       * bottom, so its albedo is unused). */
+      L += t_out * sea_multiple_surface_return(band->sun_irradiance * sun_horizontal, t_in, e_sky, band->a, band->b, c_f,
+                                               band->bottom_albedo, z_d, cos_io, cos_ji, mu_sky, focus, r_below, mu_ret,
+                                               SEASIM_HAS_SINGLE_SCATTERING);
 #endif
 #else
 #if SEASIM_HAS_SINGLE_SCATTERING

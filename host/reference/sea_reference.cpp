@@ -125,6 +125,7 @@ Image renderSeaReference(const Scene& scene, int steps) {
   const bool multiple = scene.sea.model == SeaDesc::Model::Multiple;
   const double sky_fresnel = skyFresnelMean(ior), mu_sky = k::sea_sky_mean_cosine(ior);
   const double r_below = k::sea_surface_reflectance_below(sky_fresnel, ior);
+  const double mu_ret = k::sea_reflected_mean_cosine(r_below, ior);
 
   // The sky's shape towards d (common/sky.h), then one band's radiance with the sun's disk.
   auto shape = [&](k::real3 d) -> k::real3 {
@@ -268,7 +269,13 @@ Image renderSeaReference(const Scene& scene, int steps) {
             if (z_floor >= 0) {
               L += t_out * k::sea_multiple_bottom(e_sun, t_in, e_sky, water.a[i], water.b[i], c_f,
                                                   scene.bottom.albedo.at(grid.centers_nm[i]), z_floor, cos_io, cos_ji,
-                                                  mu_sky, 1.0, r_below);
+                                                  mu_sky, 1.0);
+            }
+            if (scene.sea.single_scattering || z_floor >= 0) {
+              const double albedo = z_floor >= 0 ? scene.bottom.albedo.at(grid.centers_nm[i]) : 0.0;
+              L += t_out * k::sea_multiple_surface_return(e_sun, t_in, e_sky, water.a[i], water.b[i], c_f, albedo,
+                                                          z_floor, cos_io, cos_ji, mu_sky, 1.0, r_below, mu_ret,
+                                                          scene.sea.single_scattering ? 1 : 0);
             }
           } else if (scene.sea.single_scattering && e_h > 0) {
             // Beam irradiance in the water E T_i / cos_io, scattered by beta into the view ray,
