@@ -167,7 +167,9 @@ Plan makePlan(const Scene& scene) {
     const int sky_model = skyModelOf(scene.sky);
     std::vector<std::string> defines = {
         flag("SEASIM_HAS_REFLECTION", scene.sea.reflection),
-        flag("SEASIM_HAS_SINGLE_SCATTERING", scene.sea.single_scattering && sun),
+        // "multiple"'s column also holds the skylight scattered in the water, which a sun that is off
+        // does not remove; paper 000's single scattering is the sun's alone.
+        flag("SEASIM_HAS_SINGLE_SCATTERING", scene.sea.single_scattering && (sun || multiple)),
         flag("SEASIM_HAS_BOTTOM", bottom),
         flag("SEASIM_HAS_SUN", sun),
         flag("SEASIM_SPECTRAL_OUTPUT", spectral_out),

@@ -98,6 +98,10 @@ INSTANTIATE_TEST_SUITE_P(
                       Variant{"bottom_at_the_surface", {set("bottom.depth", "0")}},
                       Variant{"deep", {set("bottom.depth", "10000")}},
                       Variant{"sun_below_horizon", {set("sun.zenith_deg", "100")}},
+                      // The sky's light in the water column stays when the sun is off (the plan once
+                      // dropped the column with the sun).
+                      Variant{"sun_off", {set("sun.enabled", "false")}},
+                      Variant{"sun_of_zero_irradiance", {set("sun.irradiance", "0")}},
                       Variant{"grazing_sun", {set("sun.zenith_deg", "89.9")}},
                       Variant{"grazing_view", {set("camera.look_at", "[0, 5, -100]")}},
                       Variant{"looking_straight_down", {set("camera.look_at", "[0, 0, -0.001]")}},
