@@ -4,12 +4,13 @@
  * wavelength band and accumulated straight into sensor RGB (002 eq. 4.8), never storing the spectrum
  * unless SEASIM_SPECTRAL_OUTPUT asks for it.
  *
- * Inputs: SeaParams (camera, sun, water ior/g, bottom depth, ocean and sky sizes), SeaBand[band_count],
- * the LUT, the ocean's normal map (N x N float4, SEASIM_HAS_WAVES; one dummy texel otherwise) and the
- * environment image (float4 texels, SEASIM_SKY_MODEL 2; one dummy texel otherwise), the bottom's caustic
- * map (SEASIM_BOTTOM_CAUSTICS: the FFT ocean's flux-conservation caustics on the bottom, mean 1,
- * periodic over the patch on a flat bottom, over the floor's square on a height field; one dummy float
- * otherwise).
+ * Inputs: SeaParams (camera, sun, water ior/g, bottom depth, ocean and sky sizes), SeaBand[band_count]
+ * (the scalar loop), the band table (the lanes: SeaBand's fields and the LUT, bands contiguous,
+ * common/sea_band_table.h), the ocean's normal map (N x N float4, SEASIM_HAS_WAVES; one dummy texel
+ * otherwise) and the environment image (float4 texels, SEASIM_SKY_MODEL 2; one dummy texel otherwise),
+ * the bottom's caustic map (SEASIM_BOTTOM_CAUSTICS: the FFT ocean's flux-conservation caustics on the
+ * bottom, mean 1, periodic over the patch on a flat bottom, over the floor's square on a height field;
+ * one dummy float otherwise).
  * Output: rgb[3 * pixels] linear sensor RGB; spectral[band_count * pixels] when SEASIM_SPECTRAL_OUTPUT.
  * Radiometry (docs/radiometry.md): the water-leaving terms (eq. 5, 9) cross the surface as
  * radiance / n², T_o (1 - R) / n²; the sun's irradiance is given normal to its beam.
@@ -27,14 +28,13 @@
  * table (common/sea_band_table.h: SeaBand's fields and the LUT, bands contiguous); the pixel's work
  * (view, Fresnel, sun, bottom hit, LUT taps, whether the reflected ray sees the sun's disk) is done once
  * before it. sea.model "multiple" stays on the scalar loop over SeaBand (sea_multiple.h's closed form
- * has no lanes version). Both sum the bands into RGB in a different order than before (per lane, then
- * across lanes), which changes images by float rounding only.
+ * has no lanes version); the sky above the horizon takes the lanes for both. The lanes add the bands
+ * into RGB in another order than one band at a time (per lane, then across lanes): float rounding only.
  * LUT: row SEA_ROW_LUT + j of the table holds, for every band, eq. 5 without beta and T_o (T_o is
  * already computed per pixel for the reflection) at angle j/(lut_size - 1) * pi/2, built by the host
- * in double; the angle is
- * theta_jo on a flat sea (the paper's table) and the refracted view's theta_ji with waves (a tilted
- * normal decouples the two, and theta_ji then ranges over [0, pi/2], not [0, 48.6 deg]). Read by
- * Catmull–Rom interpolation with mirrored ends (the factors are even about 0 and pi/2).
+ * in double; the angle is theta_jo on a flat sea (the paper's table) and the refracted view's theta_ji
+ * with waves (a tilted normal decouples the two, and theta_ji then ranges over [0, pi/2], not
+ * [0, 48.6 deg]). Read by Catmull–Rom interpolation with mirrored ends (the factors are even about 0 and pi/2).
  * Waves: the view ray meets the mean surface y = 0 and takes the local normal there for Fresnel,
  * reflection and refraction; sunlight still enters through the flat mean surface (000 §3; the
  * approximations are spelled out in common/sea_waves.h).
