@@ -30,6 +30,7 @@
 #include "common/sky_params.h"
 #include "common/sky_view.h"
 #include "common/band_lanes.h"
+#include "common/band_lanes_math.h"
 #include "common/underwater_band_table.h"
 #include "common/underwater_bands.h"
 #if SEASIM_HAS_FROXEL

@@ -4,12 +4,13 @@
  * wavelength band and accumulated straight into sensor RGB (002 eq. 4.8), never storing the spectrum
  * unless SEASIM_SPECTRAL_OUTPUT asks for it.
  *
- * Inputs: SeaParams (camera, sun, water ior/g, bottom depth, ocean and sky sizes), SeaBand[band_count],
- * the LUT, the ocean's normal map (N x N float4, SEASIM_HAS_WAVES; one dummy texel otherwise) and the
- * environment image (float4 texels, SEASIM_SKY_MODEL 2; one dummy texel otherwise), the bottom's caustic
- * map (SEASIM_BOTTOM_CAUSTICS: the FFT ocean's flux-conservation caustics on the bottom, mean 1,
- * periodic over the patch on a flat bottom, over the floor's square on a height field; one dummy float
- * otherwise).
+ * Inputs: SeaParams (camera, sun, water ior/g, bottom depth, ocean and sky sizes), SeaBand[band_count]
+ * (the scalar loop), the band table (the lanes: SeaBand's fields and the LUT, bands contiguous,
+ * common/sea_band_table.h), the ocean's normal map (N x N float4, SEASIM_HAS_WAVES; one dummy texel
+ * otherwise) and the environment image (float4 texels, SEASIM_SKY_MODEL 2; one dummy texel otherwise),
+ * the bottom's caustic map (SEASIM_BOTTOM_CAUSTICS: the FFT ocean's flux-conservation caustics on the
+ * bottom, mean 1, periodic over the patch on a flat bottom, over the floor's square on a height field;
+ * one dummy float otherwise).
  * Output: rgb[3 * pixels] linear sensor RGB; spectral[band_count * pixels] when SEASIM_SPECTRAL_OUTPUT.
  * Radiometry (docs/radiometry.md): the water-leaving terms (eq. 5, 9) cross the surface as
  * radiance / n², T_o (1 - R) / n²; the sun's irradiance is given normal to its beam.
@@ -22,11 +23,18 @@
  * 0 evaluates eq. 5 exactly; SEASIM_SEA_MODEL (sea.model): 0 paper 000's eq. 5 and 9, 1 "multiple", all
  * orders in closed form (common/sea_multiple.h: QSSA with Lee et al.'s factors, skylight in the water,
  * the bottom lit and seen through forward-scattering water; needs SEASIM_SEA_LUT 0).
- * LUT: lut[band * lut_size + j] holds eq. 5 without beta and T_o (T_o is already computed per pixel
- * for the reflection) at angle j/(lut_size - 1) * pi/2, built by the host in double; the angle is
- * theta_jo on a flat sea (the paper's table) and the refracted view's theta_ji with waves (a tilted
- * normal decouples the two, and theta_ji then ranges over [0, pi/2], not [0, 48.6 deg]). Read by
- * Catmull–Rom interpolation with mirrored ends (the factors are even about 0 and pi/2).
+ * Band loop (issue 14): sea.model "single" (SEASIM_SEA_MODEL 0, every other variant) runs
+ * SEASIM_BAND_LANES bands per step in floatN (common/band_lanes.h, common/sea_bands.h), reading the band
+ * table (common/sea_band_table.h: SeaBand's fields and the LUT, bands contiguous); the pixel's work
+ * (view, Fresnel, sun, bottom hit, LUT taps, whether the reflected ray sees the sun's disk) is done once
+ * before it. sea.model "multiple" stays on the scalar loop over SeaBand (sea_multiple.h's closed form
+ * has no lanes version); the sky above the horizon takes the lanes for both. The lanes add the bands
+ * into RGB in another order than one band at a time (per lane, then across lanes): float rounding only.
+ * LUT: row SEA_ROW_LUT + j of the table holds, for every band, eq. 5 without beta and T_o (T_o is
+ * already computed per pixel for the reflection) at angle j/(lut_size - 1) * pi/2, built by the host
+ * in double; the angle is theta_jo on a flat sea (the paper's table) and the refracted view's theta_ji
+ * with waves (a tilted normal decouples the two, and theta_ji then ranges over [0, pi/2], not
+ * [0, 48.6 deg]). Read by Catmull–Rom interpolation with mirrored ends (the factors are even about 0 and pi/2).
  * Waves: the view ray meets the mean surface y = 0 and takes the local normal there for Fresnel,
  * reflection and refraction; sunlight still enters through the flat mean surface (000 §3; the
  * approximations are spelled out in common/sea_waves.h).
@@ -46,6 +54,10 @@
 #include "common/sea_bottom.h"
 #include "common/caustic_map.h"
 #include "common/sea_multiple.h"
+#include "common/band_lanes.h"
+#include "common/band_lanes_math.h"
+#include "common/sea_band_table.h"
+#include "common/sea_bands.h"
 
 #ifndef SEASIM_HAS_WAVES
 #define SEASIM_HAS_WAVES 0
@@ -119,19 +131,16 @@ static inline float sky_radiance(const __constant SeaParams* p, const __global S
   return L;
 }
 
-#if SEASIM_SEA_LUT
-/* Catmull–Rom read of one band's LUT at fractional index x in [0, n-1]; indices mirrored at both ends. */
-static inline float lut_read(const __global float* lut, int n, float x) {
-  const int j = clamp((int)x, 0, n - 2);
-  const float t = x - (float)j;
-  const int jm = j > 0 ? j - 1 : 1;
-  const int jp = j + 2 < n ? j + 2 : n - 2;
-  const float p0 = lut[jm], p1 = lut[j], p2 = lut[j + 1], p3 = lut[jp];
-  return p1 + 0.5f * t * (p2 - p0 + t * (2.0f * p0 - 5.0f * p1 + 4.0f * p2 - p3 + t * (3.0f * (p1 - p2) + p3 - p0)));
+#if SEASIM_SPECTRAL_OUTPUT && SEASIM_SUPERSAMPLE > 1
+/* Adds the first count (>= 1) lanes of v to dst (band_lanes.h's store_lanes, summing the sub-pixel rays). */
+static inline void add_lanes(realb v, __global float* dst, int count) {
+  float lanes[SEASIM_BAND_LANES] __attribute__((aligned(4 * SEASIM_BAND_LANES)));
+  *(realb*)lanes = v;
+  for (int j = 0; j < count && j < SEASIM_BAND_LANES; ++j) dst[j] += lanes[j];
 }
 #endif
 
-__kernel void sea_single(__constant SeaParams* p, __global const SeaBand* bands, __global const float* lut,
+__kernel void sea_single(__constant SeaParams* p, __global const SeaBand* bands, __global const float* table,
                          __global const float* normals, __global const float* slope_mips, __global const float* sky,
                          __global const float* bottom_caustics, __global float* rgb
 #if SEASIM_SPECTRAL_OUTPUT
@@ -149,7 +158,11 @@ __kernel void sea_single(__constant SeaParams* p, __global const SeaBand* bands,
   const float3 right = (float3)(p->cam_right[0], p->cam_right[1], p->cam_right[2]);
   const float3 up = (float3)(p->cam_up[0], p->cam_up[1], p->cam_up[2]);
   const float3 fwd = (float3)(p->cam_forward[0], p->cam_forward[1], p->cam_forward[2]);
-  float r = 0.0f, g = 0.0f, b = 0.0f;
+  const int band_count = p->band_count;
+  const int stride = SEA_BAND_STRIDE(band_count);
+#define ROW(r) (table + (size_t)(r) * stride)
+  float r = 0.0f, g = 0.0f, b = 0.0f;                                     /* the scalar loop's sums */
+  realb r_lanes = SPLATB(0.0f), g_lanes = SPLATB(0.0f), b_lanes = SPLATB(0.0f); /* the lanes' sums */
 #if SEASIM_SUPERSAMPLE > 1
   /* The reference of the wave filter: n x n rays on a regular grid over the pixel, averaged. */
   const float sub_weight = 1.0f / (float)(SEASIM_SUPERSAMPLE * SEASIM_SUPERSAMPLE);
@@ -157,9 +170,11 @@ __kernel void sea_single(__constant SeaParams* p, __global const SeaBand* bands,
   for (int i = 0; i < p->band_count; ++i) spectral[(size_t)pixel * p->band_count + i] = 0.0f;
 #endif
 #define SPECTRAL_STORE(i, L) spectral[(size_t)pixel * p->band_count + (i)] += (L) * sub_weight
+#define SPECTRAL_LANES(i, L) add_lanes((L) * sub_weight, spectral + (size_t)pixel * band_count + (i), band_count - (i))
 #else
   const float sub_weight = 1.0f;
 #define SPECTRAL_STORE(i, L) spectral[(size_t)pixel * p->band_count + (i)] = (L)
+#define SPECTRAL_LANES(i, L) store_lanes((L), spectral + (size_t)pixel * band_count + (i), band_count - (i))
 #endif
   for (int sub = 0; sub < SEASIM_SUPERSAMPLE * SEASIM_SUPERSAMPLE; ++sub) {
   /* Pinhole camera: a point of the pixel (its centre without supersampling) -> world direction. */
@@ -172,12 +187,25 @@ __kernel void sea_single(__constant SeaParams* p, __global const SeaBand* bands,
   if (d.y >= 0.0f) {
     /* Above the horizon: the sky itself. */
     const float3 shape = sky_shape(p, sky, d);
-    for (int i = 0; i < p->band_count; ++i) {
-      const float L = sky_radiance(p, &bands[i], shape, d);
-      const float Lw = L * sub_weight;
-      r += Lw * bands[i].w_r; g += Lw * bands[i].w_g; b += Lw * bands[i].w_b;
+#if SEASIM_HAS_SUN
+    /* sky_radiance's sun disk; a point sun (radius 0) has none. */
+    const float3 sun = (float3)(p->sun_dir[0], p->sun_dir[1], p->sun_dir[2]);
+    const int sees_sun = p->sun_solid_angle > 0.0f && dot(d, sun) >= p->cos_sun_radius;
+#endif
+    for (int i = 0; i < band_count; i += SEASIM_BAND_LANES) {
+      const realb sky_l = sea_sky_band_b(SEASIM_SKY_MODEL, LOADB(ROW(SEA_ROW_SKY), i), LOADB(ROW(SEA_ROW_SKY_W_R), i),
+                                         LOADB(ROW(SEA_ROW_SKY_W_G), i), LOADB(ROW(SEA_ROW_SKY_W_B), i), shape);
+#if SEASIM_HAS_SUN
+      const realb L = sees_sun ? sky_l + LOADB(ROW(SEA_ROW_SUN), i) / p->sun_solid_angle : sky_l;
+#else
+      const realb L = sky_l;
+#endif
+      const realb Lw = L * sub_weight;
+      r_lanes += Lw * LOADB(ROW(SEA_ROW_W_R), i);
+      g_lanes += Lw * LOADB(ROW(SEA_ROW_W_G), i);
+      b_lanes += Lw * LOADB(ROW(SEA_ROW_W_B), i);
 #if SEASIM_SPECTRAL_OUTPUT
-      SPECTRAL_STORE(i, L);
+      SPECTRAL_LANES(i, L);
 #endif
     }
   } else {
@@ -296,15 +324,70 @@ __kernel void sea_single(__constant SeaParams* p, __global const SeaBand* bands,
 #else
     const float focus = 1.0f;
 #endif
+#if SEASIM_SEA_MODEL == 0
+    /* The band lanes (common/sea_bands.h): what is the same for every band was found above or here,
+     * once per pixel; each step then reads SEASIM_BAND_LANES bands of the table with vector loads. */
 #if SEASIM_SEA_LUT
 #if SEASIM_HAS_WAVES
     const float lut_angle = acos(clamp(cos_ji, 0.0f, 1.0f));          /* theta_ji */
 #else
     const float lut_angle = acos(clamp(-d.y, 0.0f, 1.0f));            /* theta_jo (cos_jo = -d.y) */
 #endif
-    const float lut_x = lut_angle * (p->lut_size - 1) * (2.0f / M_PI_F);
+    int lut_jm, lut_j, lut_jp;
+    const float lut_t =
+        sea_lut_taps(p->lut_size, lut_angle * (p->lut_size - 1) * (2.0f / M_PI_F), &lut_jm, &lut_j, &lut_jp);
 #endif
-    for (int i = 0; i < p->band_count; ++i) {
+#if SEASIM_HAS_REFLECTION && !SEASIM_WAVE_FILTER && SEASIM_HAS_SUN
+    /* sky_radiance's sun disk along the reflected ray; a point sun (radius 0) has none. */
+    const int reflects_sun = p->sun_solid_angle > 0.0f && dot(reflected, sun) >= p->cos_sun_radius;
+#endif
+    for (int i = 0; i < band_count; i += SEASIM_BAND_LANES) {
+      const realb sun_e = LOADB(ROW(SEA_ROW_SUN), i);
+      realb L = SPLATB(0.0f);
+#if SEASIM_HAS_REFLECTION
+      const realb sky_l = sea_sky_band_b(SEASIM_SKY_MODEL, LOADB(ROW(SEA_ROW_SKY), i), LOADB(ROW(SEA_ROW_SKY_W_R), i),
+                                         LOADB(ROW(SEA_ROW_SKY_W_G), i), LOADB(ROW(SEA_ROW_SKY_W_B), i), reflected_shape);
+#if SEASIM_WAVE_FILTER
+      L += sky_l + glint * sun_e; /* R already in both */
+#elif SEASIM_HAS_SUN
+      L += R_view * (reflects_sun ? sky_l + sun_e / p->sun_solid_angle : sky_l);
+#else
+      L += R_view * sky_l;
+#endif
+#endif
+#if SEASIM_HAS_SINGLE_SCATTERING
+      const realb scattering = LOADB(ROW(SEA_ROW_B), i);
+#if SEASIM_SEA_LUT
+      L += scattering * phase * t_out *
+           sea_lut_read_b(LOADB(ROW(SEA_ROW_LUT + lut_jm), i), LOADB(ROW(SEA_ROW_LUT + lut_j), i),
+                          LOADB(ROW(SEA_ROW_LUT + lut_j + 1), i), LOADB(ROW(SEA_ROW_LUT + lut_jp), i), lut_t);
+#else
+      const realb c = LOADB(ROW(SEA_ROW_C), i);
+      const realb albedo = SELECTB(c > 0.0f, scattering / c, SPLATB(0.0f));
+      L += sea_single_scattering_b(sun_e * sun_horizontal, t_in, t_out, scattering * phase, c, albedo, c_f, cos_io,
+                                   cos_ji, z_d);
+#endif
+#endif
+#if SEASIM_HAS_BOTTOM
+      const realb bottom = sea_bottom_reflection_b(sun_e * sun_horizontal, t_in, t_out,
+                                                   LOADB(ROW(SEA_ROW_BOTTOM_ALBEDO), i), LOADB(ROW(SEA_ROW_C), i), z_d,
+                                                   cos_io, cos_ji);
+#if SEASIM_BOTTOM_HEIGHTFIELD
+      L += focus * (bottom * (cos_gamma / cos_io)); /* sea_bottom_reflection_tilted */
+#else
+      L += focus * bottom;
+#endif
+#endif
+      const realb Lw = L * sub_weight;
+      r_lanes += Lw * LOADB(ROW(SEA_ROW_W_R), i);
+      g_lanes += Lw * LOADB(ROW(SEA_ROW_W_G), i);
+      b_lanes += Lw * LOADB(ROW(SEA_ROW_W_B), i);
+#if SEASIM_SPECTRAL_OUTPUT
+      SPECTRAL_LANES(i, L);
+#endif
+    }
+#else /* SEASIM_SEA_MODEL 1: one band per step over SeaBand */
+    for (int i = 0; i < band_count; ++i) {
       const __global SeaBand* band = &bands[i];
       float L = 0.0f;
 #if SEASIM_HAS_REFLECTION && SEASIM_WAVE_FILTER
@@ -312,7 +395,6 @@ __kernel void sea_single(__constant SeaParams* p, __global const SeaBand* bands,
 #elif SEASIM_HAS_REFLECTION
       L += R_view * sky_radiance(p, band, reflected_shape, reflected);
 #endif
-#if SEASIM_SEA_MODEL == 1
       /* sea.model = "multiple": all orders in closed form (common/sea_multiple.h), through the
        * surface with T_o = (1 - R)/n². The sky's irradiance below the surface: π L_sky (1 - r̄), L_sky
        * the band's cosine-weighted mean sky radiance (sky_shape is normalised to mean 1). */
@@ -332,33 +414,21 @@ __kernel void sea_single(__constant SeaParams* p, __global const SeaBand* bands,
                                                band->bottom_albedo, z_d, cos_io, cos_ji, mu_sky, focus, r_below, mu_ret,
                                                SEASIM_HAS_SINGLE_SCATTERING);
 #endif
-#else
-#if SEASIM_HAS_SINGLE_SCATTERING
-#if SEASIM_SEA_LUT
-      L += band->b * phase * t_out * lut_read(lut + (size_t)i * p->lut_size, p->lut_size, lut_x);
-#else
-      const float albedo = band->c > 0.0f ? band->b / band->c : 0.0f;
-      L += sea_single_scattering(band->sun_irradiance * sun_horizontal, t_in, t_out, band->b * phase, band->c, albedo, c_f,
-                                 cos_io, cos_ji, z_d);
-#endif
-#endif
-#if SEASIM_HAS_BOTTOM && SEASIM_BOTTOM_HEIGHTFIELD
-      L += focus * sea_bottom_reflection_tilted(band->sun_irradiance * sun_horizontal, t_in, t_out,
-                                                band->bottom_albedo, band->c, z_d, cos_io, cos_ji, cos_gamma);
-#elif SEASIM_HAS_BOTTOM
-      L += focus * sea_bottom_reflection(band->sun_irradiance * sun_horizontal, t_in, t_out, band->bottom_albedo,
-                                         band->c, z_d, cos_io, cos_ji);
-#endif
-#endif /* SEASIM_SEA_MODEL */
       const float Lw = L * sub_weight;
       r += Lw * band->w_r; g += Lw * band->w_g; b += Lw * band->w_b;
 #if SEASIM_SPECTRAL_OUTPUT
       SPECTRAL_STORE(i, L);
 #endif
     }
+#endif /* SEASIM_SEA_MODEL */
   }
   } /* sub-pixel rays */
 #undef SPECTRAL_STORE
+#undef SPECTRAL_LANES
+#undef ROW
+  r += SUMB(r_lanes);
+  g += SUMB(g_lanes);
+  b += SUMB(b_lanes);
   rgb[3 * pixel + 0] = r;
   rgb[3 * pixel + 1] = g;
   rgb[3 * pixel + 2] = b;

@@ -11,6 +11,7 @@
 #include "common/underwater_lamps_params.h"  // plain C structs of underwater_lamps.cl
 #include "common/sky_params.h"             // plain C struct, used by sky_view.h
 #include "common/underwater_band_table.h"  // plain C layout, used by underwater_bands.h
+#include "common/sea_band_table.h"         // plain C layout, used by sea_bands.h
 
 
 namespace seasim::kmath_f {
@@ -30,7 +31,9 @@ typedef float real;
 #include "common/ocean_spectrum.h"
 #include "common/underwater.h"
 #include "common/band_lanes.h"
+#include "common/band_lanes_math.h"
 #include "common/underwater_bands.h"
+#include "common/sea_bands.h"
 #include "common/underwater_improved.h"
 #include "common/underwater_lamps.h"
 #include "common/caustic_texture.h"
@@ -58,7 +61,9 @@ typedef double real;
 #include "common/ocean_spectrum.h"
 #include "common/underwater.h"
 #include "common/band_lanes.h"
+#include "common/band_lanes_math.h"
 #include "common/underwater_bands.h"
+#include "common/sea_bands.h"
 #include "common/underwater_improved.h"
 #include "common/underwater_lamps.h"
 #include "common/caustic_texture.h"

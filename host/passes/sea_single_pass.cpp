@@ -6,6 +6,7 @@
 
 #include "geometry/kernel_camera.h"
 #include "math/kernel_math.h"
+#include "passes/sea_band_table.h"
 #include "passes/sea_heightfield.h"
 #include "passes/sea_sky.h"
 #include "sky/sky_light.h"
@@ -200,8 +201,10 @@ SeaSinglePass::SeaSinglePass(Device& device, const Scene& scene, const PassPlan&
     params_ = cl::Buffer(device.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof p, &p);
     bands_ = cl::Buffer(device.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(SeaBand) * bands.size(),
                         bands.data());
-    lut_ = cl::Buffer(device.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(float) * lut_values.size(),
-                      lut_values.data());
+    // The band lanes' table (kernels/common/sea_band_table.h): the bands' fields and the LUT, bands contiguous.
+    const std::vector<float> table = seaBandTable(bands, lut_values, lut_size);
+    table_ = cl::Buffer(device.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(float) * table.size(),
+                        const_cast<float*>(table.data()));
     // One dummy float4 stands in for a map the kernel's defines do not read.
     std::vector<float> dummy(4, 0.0f);
     normals_ = waves ? ocean->normal()
@@ -216,7 +219,7 @@ SeaSinglePass::SeaSinglePass(Device& device, const Scene& scene, const PassPlan&
                        sizeof(float) * 3 * pixels);
     kernel_.setArg(0, params_);
     kernel_.setArg(1, bands_);
-    kernel_.setArg(2, lut_);
+    kernel_.setArg(2, table_);
     kernel_.setArg(3, normals_);
     // The wave filter's slope-moment mip chain (common/sea_lean.h), rebuilt from the normal map each run.
     const bool filter = std::find(plan.defines.begin(), plan.defines.end(), std::string("SEASIM_WAVE_FILTER=1")) !=

@@ -158,7 +158,7 @@ SEASIM_FN real beer_lambert(real sigma, real distance) { return exp(-(sigma * di
  * gave a finite φ before gives Inf now. Every model calls it with x <= 0.
  */
 /* The Taylor series of (e^x - 1)/x that expm1_over_x uses below |x| = 0.5 (13 terms in double, 8 in
- * float), as a macro so that the band-vector version (underwater_bands.h, expm1_over_x_b) shares it. */
+ * float), as a macro so that the band-vector version (band_lanes_math.h, expm1_over_x_b) shares it. */
 #define SEASIM_EXPM1_OVER_X_SERIES(x) \
   (sizeof(real) > 4 \
    ? R(1.0) + \

@@ -1,5 +1,7 @@
 /* sea_params.h — the parameter blocks of kernels/sea_single.cl, shared with host/passes/sea_single_pass.cpp
  * (which static_asserts their layout). No float3 inside (16 bytes in OpenCL C): vectors are float[4]. */
+#ifndef SEASIM_SEA_PARAMS_H
+#define SEASIM_SEA_PARAMS_H
 typedef struct {
   float cam_pos[4];      /* m, world */
   float cam_right[4];    /* worldFromCamera basis, unit */
@@ -47,3 +49,5 @@ typedef struct {
   float sky_w_g;
   float sky_w_b;
 } SeaBand;
+
+#endif /* SEASIM_SEA_PARAMS_H */

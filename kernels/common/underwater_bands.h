@@ -8,17 +8,8 @@
  * One exp fewer than underwater.h per lit band: T(S) = e^{-σ_t S} is folded into the exps of the
  * irradiance at depth, e^{-σ_t S} e^{-k y} = e^{-(k y + σ_t S)} (and the clamp at 0 commutes with the
  * positive factor).
- * Needs compat.h, band_lanes.h, optics.h (fresnel), underwater_band_table.h, underwater.h
- * (UW_INFINITE). */
-
-/* expm1_over_x of optics.h, lane by lane (the same series and switch at |x| = 0.5, branch-free). */
-SEASIM_FN realb expm1_over_x_b(realb x) {
-  const realb series = SEASIM_EXPM1_OVER_X_SERIES(x);
-  const maskb small = fabs(x) < R(0.5);
-  const realb xs = SELECTB(small, SPLATB(R(1.0)), x);
-  const realb direct = (exp(xs) - R(1.0)) / xs;
-  return SELECTB(small, series, direct);
-}
+ * Needs compat.h, band_lanes.h, band_lanes_math.h (expm1_over_x_b, sky_view_band_b), optics.h
+ * (fresnel), underwater_band_table.h, underwater.h (UW_INFINITE). */
 
 /* kd_exp_integral of underwater.h for the lanes' attenuations k and extinctions c, on one ray
  * (d_y, o_d, S shared): e^{-k o_d} ∫_0^S e^{(k d_y - c) z} dz = S e^{max(t, 0) - k o_d} φ(-|t|). */
@@ -52,13 +43,6 @@ SEASIM_FN realb uw_lanes_lambert(realb albedo, realb c, realb kd, realb k_beam, 
   const realb diffuse = fmax(diffuse_t - e_sun * beam_t, R(0.0)) * (R(0.5) * (R(1.0) + n_y));
   const realb direct = e_beam * beam_t * (fmax(n_dot_s, R(0.0)) * vis);
   return albedo / SEASIM_PI * (diffuse + direct);
-}
-
-/* sky_view_band of sky_view.h for the lanes' weights (w_r, w_g, w_b) and one shape. */
-SEASIM_FN realb sky_view_band_b(int model, realb w_r, realb w_g, realb w_b, real3 shape) {
-  if (model == SEASIM_SKY_IMAGE || model == SEASIM_SKY_PREETHAM)
-    return fmax(w_r * shape.x + w_g * shape.y + w_b * shape.z, R(0.0));
-  return SPLATB(shape.x);
 }
 
 /* T(S) L_s of the water surface seen from below along d_y > 0 (uw_band_surface_sky times e^{-σ_t S}):

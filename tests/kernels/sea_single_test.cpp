@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -16,6 +17,8 @@
 #include "plan/plan.h"
 #include "reference/sea_reference.h"
 #include "scene/scene_parser.h"
+#include "spectral/sensor.h"
+#include "spectral/wavelength_grid.h"
 
 namespace {
 
@@ -166,5 +169,60 @@ count = 4
     }
   }
 }
+
+// ---- The band lanes (issue 14: SEASIM_BAND_LANES bands per step, common/sea_bands.h) with band counts
+// that do not fill the lanes: 1, 3, 17 and 31 bands (16 lanes by default: one partly filled step, a
+// full step and one of 1, a full step and one of 15), from the LUT and from the exact eq. 5. The RGB
+// must match the double reference (the padding lanes must add nothing), and the spectral buffer, which
+// the lanes write only up to the band count, must sum through the sensor to the RGB (a lane written
+// past the end would overwrite the next pixel's first bands).
+struct LaneCase {
+  int bands;
+  bool lut;
+};
+
+class SeaSingleLanes : public ::testing::TestWithParam<LaneCase> {};
+
+TEST_P(SeaSingleLanes, BandCountsThatDoNotFillTheLanesMatchTheReferenceAndTheSpectrum) {
+  const LaneCase c = GetParam();
+  const std::string count = std::to_string(c.bands);
+  std::vector<seasim::Override> overrides = {set("spectral.count", count.c_str()), set("spectral.spectral_exr", "true"),
+                                             set("camera.width", "24"), set("camera.height", "16")};
+  if (!c.lut) overrides.push_back(set("quality.sea_lut_size", "1"));  // exact eq. 5 (SEASIM_SEA_LUT=0)
+  const seasim::Scene scene = seasim::parseScene(kScene, "test_sea.toml", overrides);
+  const seasim::FrameResult frame = seasim::renderFrame(device(), scene, seasim::makePlan(scene));
+  EXPECT_EQ(frame.nonfinite, 0);
+  const seasim::Image ref = seasim::renderSeaReference(scene, 4000);
+  const double error = maxRelativeError(frame.rgb, ref);
+  std::printf("[ measured ] %d bands, %s: max relative error against the double reference %.3g\n", c.bands,
+              c.lut ? "LUT" : "exact eq. 5", error);
+  EXPECT_LT(error, 2e-4);
+
+  const size_t bands = static_cast<size_t>(c.bands), pixels = 24 * 16;
+  ASSERT_EQ(frame.spectral.size(), pixels * bands);
+  const seasim::WavelengthGrid grid = seasim::makeGrid(scene.spectral.count, scene.spectral.min_nm, scene.spectral.max_nm);
+  const seasim::Sensor sensor = seasim::makeSensor(scene.spectral.sensor, grid, scene.spectral.white_balance);
+  ASSERT_EQ(sensor.size(), bands);
+  float peak = 0;
+  for (float v : frame.rgb.pixels) peak = std::max(peak, std::fabs(v));
+  double worst = 0;
+  for (size_t px = 0; px < pixels; ++px) {
+    std::vector<double> values(frame.spectral.begin() + px * bands, frame.spectral.begin() + (px + 1) * bands);
+    const std::array<double, 3> rgb = sensor.apply(values.data());
+    for (int ch = 0; ch < 3; ++ch) {
+      const double kernel = frame.rgb.pixels[3 * px + ch];
+      worst = std::max(worst, std::fabs(rgb[ch] - kernel) / (std::fabs(kernel) + 1e-3 * peak));
+    }
+  }
+  EXPECT_LT(worst, 1e-5) << "the spectral buffer does not sum to the RGB";
+}
+
+INSTANTIATE_TEST_SUITE_P(BandCounts, SeaSingleLanes,
+                         ::testing::Values(LaneCase{1, true}, LaneCase{3, true}, LaneCase{17, true}, LaneCase{31, true},
+                                           LaneCase{1, false}, LaneCase{3, false}, LaneCase{17, false},
+                                           LaneCase{31, false}),
+                         [](const ::testing::TestParamInfo<LaneCase>& info) {
+                           return std::to_string(info.param.bands) + (info.param.lut ? "_bands_lut" : "_bands_exact");
+                         });
 
 }  // namespace
