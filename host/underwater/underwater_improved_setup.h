@@ -16,6 +16,14 @@ namespace seasim {
 // (total internal reflection outside Snell's window included); about 0.47 for ior 1.34.
 double internalDiffuseReflectance(double ior);
 
+// The mean cosines μ̄ (plane irradiance over scalar irradiance) of the diffuse down and up streams
+// with which the in-scatter source weighs them (scalar irradiance E_d/μ̄_down + E_u/μ̄_up), as a
+// function of the HG asymmetry g: a small table fitted to the path tracer (see the .cpp).
+struct DiffuseMeanCosines {
+  double down, up;
+};
+DiffuseMeanCosines diffuseMeanCosines(double g);
+
 // One band's coefficients. mu_w: the refracted sun's cosine (any value in (0, 1] when the sun is off:
 // e_beam0 = e_sun0 = 0 then); bottom_depth <= 0: no bottom; g the water's HG asymmetry.
 UwiBand makeUwiBand(const UwBand& band, double g, double mu_w, double bottom_depth, double ior);
