@@ -35,6 +35,11 @@ DiffuseMeanCosines diffuseMeanCosines(double g) {
 }
 
 UwiBand makeUwiBand(const UwBand& band, double g, double mu_w, double bottom_depth, double ior) {
+  return makeUwiBand(band, g, mu_w, bottom_depth, ior, diffuseMeanCosines(g));
+}
+
+UwiBand makeUwiBand(const UwBand& band, double g, double mu_w, double bottom_depth, double ior,
+                    DiffuseMeanCosines mean) {
   UwiBand o{};
   const double a = band.a, b = band.b;
   // Delta-M (as deltaMScale in underwater/lamps_setup.cpp): the peak f = g² counts as unscattered.
@@ -46,9 +51,8 @@ UwiBand makeUwiBand(const UwBand& band, double g, double mu_w, double bottom_dep
   o.c_dm = static_cast<float>(c_dm);
   o.b_dm = static_cast<float>(b_dm);
   o.g_dm = static_cast<float>(g_dm);
-  const DiffuseMeanCosines mc = diffuseMeanCosines(g);
-  o.e0_down = static_cast<float>(1.0 / mc.down);
-  o.e0_up = static_cast<float>(1.0 / mc.up);
+  o.e0_down = static_cast<float>(1.0 / mean.down);
+  o.e0_up = static_cast<float>(1.0 / mean.up);
   if (!(c_dm > 0)) return o;  // no medium: no diffuse source, nothing to attenuate
 
   // Two-stream (plane irradiances, depth y down; Meador & Weaver 1980's form in metres):
@@ -105,11 +109,11 @@ UwiBand makeUwiBand(const UwBand& band, double g, double mu_w, double bottom_dep
   return o;
 }
 
-std::vector<UwiBand> makeUwiBands(const UwParams& params, const std::vector<UwBand>& bands) {
+std::vector<UwiBand> makeUwiBands(const UwParams& params, const std::vector<UwBand>& bands, DiffuseMeanCosines mean) {
   std::vector<UwiBand> out;
   out.reserve(bands.size());
   for (const UwBand& band : bands)
-    out.push_back(makeUwiBand(band, params.g, params.sun_dir_water[1], params.bottom_depth, params.ior));
+    out.push_back(makeUwiBand(band, params.g, params.sun_dir_water[1], params.bottom_depth, params.ior, mean));
   return out;
 }
 

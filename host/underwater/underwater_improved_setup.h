@@ -25,10 +25,13 @@ struct DiffuseMeanCosines {
 DiffuseMeanCosines diffuseMeanCosines(double g);
 
 // One band's coefficients. mu_w: the refracted sun's cosine (any value in (0, 1] when the sun is off:
-// e_beam0 = e_sun0 = 0 then); bottom_depth <= 0: no bottom; g the water's HG asymmetry.
+// e_beam0 = e_sun0 = 0 then); bottom_depth <= 0: no bottom; g the water's HG asymmetry; mean: the
+// streams' mean cosines (the first form: the fitted table at g).
 UwiBand makeUwiBand(const UwBand& band, double g, double mu_w, double bottom_depth, double ior);
+UwiBand makeUwiBand(const UwBand& band, double g, double mu_w, double bottom_depth, double ior,
+                    DiffuseMeanCosines mean);
 
 // All bands of a set-up (params.g, params.bottom_depth, params.ior, params.sun_dir_water[1]).
-std::vector<UwiBand> makeUwiBands(const UwParams& params, const std::vector<UwBand>& bands);
+std::vector<UwiBand> makeUwiBands(const UwParams& params, const std::vector<UwBand>& bands, DiffuseMeanCosines mean);
 
 }  // namespace seasim
