@@ -166,6 +166,8 @@ int main(int argc, char** argv) {
   regions->add_option("--csv", regions_cmd.csv, "CSV output");
   regions->add_option("--device", regions_cmd.device, "Device selector");
   regions->add_option("--set", regions_cmd.sets, "Override a scene key: key=value (repeatable)");
+  regions->add_option("--model-set", regions_cmd.model_sets,
+                      "Override a key of the fast models' renders only, the references kept: key=value (repeatable)");
 
   seasim::SeashoreStudyCmd shore_cmd;
   auto* shore = app.add_subcommand(

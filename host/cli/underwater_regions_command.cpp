@@ -142,6 +142,7 @@ int cmdUnderwaterRegions(const UnderwaterRegionsCmd& cmd) {
           for (const std::string& model : cmd.models) {
             std::vector<Override> over = base;
             over.push_back(set("underwater.model", "\"" + model + "\""));
+            for (const std::string& s : cmd.model_sets) over.push_back(parseSetOption(s));
             const Scene scene = loadScene(cmd.scene, over);
             const FrameResult frame = renderFrame(device, scene, makePlan(scene));
             if (frame.nonfinite != 0) throw RuntimeError("underwater-regions: NaN/Inf in a render");

@@ -21,6 +21,7 @@ struct UnderwaterRegionsCmd {
   std::string cache_dir;  // reference images (default: $SEASIM_CACHE_DIR/underwater_regions or build/)
   std::string csv;
   std::vector<std::string> sets;  // extra scene overrides (applied to every render and reference)
+  std::vector<std::string> model_sets;  // overrides for the fast models' renders only (not the references)
 };
 
 int cmdUnderwaterRegions(const UnderwaterRegionsCmd& cmd);

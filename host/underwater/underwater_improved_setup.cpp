@@ -8,8 +8,8 @@
 
 namespace seasim {
 
-static_assert(sizeof(UwiBand) == 12 * 4, "UwiBand layout changed: update underwater_improved_params.h users");
-static_assert(offsetof(UwiBand, d1) == 20 && offsetof(UwiBand, up) == 40);
+static_assert(sizeof(UwiBand) == 16 * 4, "UwiBand layout changed: update underwater_improved_params.h users");
+static_assert(offsetof(UwiBand, d1) == 20 && offsetof(UwiBand, up) == 40 && offsetof(UwiBand, e0_up) == 48);
 
 double internalDiffuseReflectance(double ior) {
   // Midpoint rule in μ: F jumps to 1 at the critical angle, so a fine uniform grid (error ~1e-5).
@@ -22,7 +22,24 @@ double internalDiffuseReflectance(double ior) {
   return 2.0 * sum / n;
 }
 
+DiffuseMeanCosines diffuseMeanCosines(double g) {
+  // Fitted offline to the path tracer (tests/perf/underwater_regions_fit.sh scans them on the training
+  // grid of tests/perf/underwater_regions.sh; results/BENCHMARKS.md reports them on a held-out grid):
+  // the up stream's 0.52 at every g (the quadrature's 1/√3 = 0.577 left the water looking up too dark
+  // at g <= 0.5: the upwelling light lies nearer the horizon than its ring); the down stream's 1/√3 up
+  // to g = 0.5, rising linearly to 0.72 at g = 0.9 and held there (forward scattering keeps the diffuse
+  // downwelling light nearer the sun's direction, so less of it per unit flux reaches a level view).
+  const double mu_quadrature = 1.0 / std::sqrt(3.0);
+  const double t = std::clamp((g - 0.5) / 0.4, 0.0, 1.0);
+  return {mu_quadrature + t * (0.72 - mu_quadrature), 0.52};
+}
+
 UwiBand makeUwiBand(const UwBand& band, double g, double mu_w, double bottom_depth, double ior) {
+  return makeUwiBand(band, g, mu_w, bottom_depth, ior, diffuseMeanCosines(g));
+}
+
+UwiBand makeUwiBand(const UwBand& band, double g, double mu_w, double bottom_depth, double ior,
+                    DiffuseMeanCosines mean) {
   UwiBand o{};
   const double a = band.a, b = band.b;
   // Delta-M (as deltaMScale in underwater/lamps_setup.cpp): the peak f = g² counts as unscattered.
@@ -34,6 +51,8 @@ UwiBand makeUwiBand(const UwBand& band, double g, double mu_w, double bottom_dep
   o.c_dm = static_cast<float>(c_dm);
   o.b_dm = static_cast<float>(b_dm);
   o.g_dm = static_cast<float>(g_dm);
+  o.e0_down = static_cast<float>(1.0 / mean.down);
+  o.e0_up = static_cast<float>(1.0 / mean.up);
   if (!(c_dm > 0)) return o;  // no medium: no diffuse source, nothing to attenuate
 
   // Two-stream (plane irradiances, depth y down; Meador & Weaver 1980's form in metres):
@@ -90,11 +109,11 @@ UwiBand makeUwiBand(const UwBand& band, double g, double mu_w, double bottom_dep
   return o;
 }
 
-std::vector<UwiBand> makeUwiBands(const UwParams& params, const std::vector<UwBand>& bands) {
+std::vector<UwiBand> makeUwiBands(const UwParams& params, const std::vector<UwBand>& bands, DiffuseMeanCosines mean) {
   std::vector<UwiBand> out;
   out.reserve(bands.size());
   for (const UwBand& band : bands)
-    out.push_back(makeUwiBand(band, params.g, params.sun_dir_water[1], params.bottom_depth, params.ior));
+    out.push_back(makeUwiBand(band, params.g, params.sun_dir_water[1], params.bottom_depth, params.ior, mean));
   return out;
 }
 

@@ -16,11 +16,22 @@ namespace seasim {
 // (total internal reflection outside Snell's window included); about 0.47 for ior 1.34.
 double internalDiffuseReflectance(double ior);
 
+// The mean cosines μ̄ (plane irradiance over scalar irradiance) of the diffuse down and up streams
+// with which the in-scatter source weighs them (scalar irradiance E_d/μ̄_down + E_u/μ̄_up), as a
+// function of the HG asymmetry g: a small table fitted to the path tracer (see the .cpp).
+struct DiffuseMeanCosines {
+  double down, up;
+};
+DiffuseMeanCosines diffuseMeanCosines(double g);
+
 // One band's coefficients. mu_w: the refracted sun's cosine (any value in (0, 1] when the sun is off:
-// e_beam0 = e_sun0 = 0 then); bottom_depth <= 0: no bottom; g the water's HG asymmetry.
+// e_beam0 = e_sun0 = 0 then); bottom_depth <= 0: no bottom; g the water's HG asymmetry; mean: the
+// streams' mean cosines (the first form: the fitted table at g).
 UwiBand makeUwiBand(const UwBand& band, double g, double mu_w, double bottom_depth, double ior);
+UwiBand makeUwiBand(const UwBand& band, double g, double mu_w, double bottom_depth, double ior,
+                    DiffuseMeanCosines mean);
 
 // All bands of a set-up (params.g, params.bottom_depth, params.ior, params.sun_dir_water[1]).
-std::vector<UwiBand> makeUwiBands(const UwParams& params, const std::vector<UwBand>& bands);
+std::vector<UwiBand> makeUwiBands(const UwParams& params, const std::vector<UwBand>& bands, DiffuseMeanCosines mean);
 
 }  // namespace seasim

@@ -127,7 +127,12 @@ UnderwaterSetup makeUnderwaterSetup(const Scene& scene, const WavelengthGrid& gr
     s.objects.push_back(u);
     for (size_t i = 0; i < grid.size(); ++i) s.albedo.push_back(static_cast<float>(o.albedo.at(grid.centers_nm[i])));
   }
-  if (uw.model == UnderwaterDesc::Model::Improved) s.improved = makeUwiBands(p, s.bands);
+  if (uw.model == UnderwaterDesc::Model::Improved) {
+    DiffuseMeanCosines mean = diffuseMeanCosines(p.g);
+    if (uw.improved_mean_cosine_down > 0) mean.down = uw.improved_mean_cosine_down;
+    if (uw.improved_mean_cosine_up > 0) mean.up = uw.improved_mean_cosine_up;
+    s.improved = makeUwiBands(p, s.bands, mean);
+  }
   p.object_count = static_cast<int>(s.objects.size());
   if (s.objects.empty()) s.objects.push_back(UwObject{});  // OpenCL buffers cannot be empty
   if (s.albedo.empty()) s.albedo.push_back(0.0f);

@@ -15,11 +15,15 @@
  *    with the delta-M sun beam as its source, the sky's irradiance and the surface's internal reflection
  *    of E_u at the top and E_u(H) = ρ (E_d(H) + E_sun(H)) at the bottom. So the bottom's upwelling light
  *    lights the water and the objects' undersides.
- *  - the diffuse field's angular shape, weighted by the phase: as the quadrature two-stream assumes, the
- *    down and up streams are rings at ν = ±1/√3 (ν the cosine of the photon's direction with the
- *    downward vertical; scalar irradiance √3 (E_d + E_u)), scattered by the delta-M phase to first
- *    order, (1 + 3 g' cos θ)/(4π), averaged over the ring's azimuth:
- *      J(ν) = b' [√3 (E_d + E_u) + 3 g' ν (E_d - E_u)] / (4π)   (per m per sr)
+ *  - the diffuse field's angular shape, weighted by the phase: the down and up streams scattered by the
+ *    delta-M phase to first order, (1 + 3 g' cos θ)/(4π) (ν the cosine of the photon's direction with
+ *    the downward vertical), each stream's scalar irradiance its plane irradiance over its mean cosine:
+ *      J(ν) = b' [E_d/μ̄_d + E_u/μ̄_u + 3 g' ν (E_d - E_u)] / (4π)   (per m per sr)
+ *    The quadrature two-stream's rings at ±1/√3 would give μ̄_d = μ̄_u = 1/√3; μ̄_d(g), μ̄_u are instead
+ *    a small table fitted offline to the path tracer (diffuseMeanCosines, host/underwater/
+ *    underwater_improved_setup.cpp; fitted on one grid, reported on a held-out one in BENCHMARKS.md):
+ *    the up stream lies nearer the horizon (0.52), the down stream nearer the sun as g grows (1/√3 up
+ *    to g = 0.5, 0.72 from g = 0.9). The two-stream equations themselves keep the quadrature closure.
  *    plus the beam scattered once with the exact phase function (Nakajima & Tanaka 1988's TMS
  *    correction: delta-M's truncated phase would overstate the back-scatter), b p_HG(g, cos θ_s)
  *    e_beam0 e^{-m y}, attenuated as the delta-M beam.
@@ -31,11 +35,11 @@
  * per band with froxels (three without), where eq. 4.7 takes two.
  */
 
-#define UWI_SQRT3 R(1.7320508075688772)
-
-/* The first-order phase-weighted source of a pair of plane irradiances (D down, U up) seen along ν. */
-SEASIM_FN real uwi_source_weight(real b_dm, real g_dm, real nu, real D, real U) {
-  return b_dm * (UWI_SQRT3 * (D + U) + R(3.0) * g_dm * nu * (D - U)) / (R(4.0) * SEASIM_PI);
+/* The first-order phase-weighted source of a pair of plane irradiances (D down, U up) seen along ν:
+ * scalar irradiance D/μ̄_down + U/μ̄_up (e0_down, e0_up = 1/μ̄) plus the flux term 3 g' ν (D - U). */
+SEASIM_FN real uwi_source_weight(const SEASIM_GLOBAL UwiBand* ib, real nu, real D, real U) {
+  return (real)ib->b_dm * ((real)ib->e0_down * D + (real)ib->e0_up * U + R(3.0) * (real)ib->g_dm * nu * (D - U)) /
+         (R(4.0) * SEASIM_PI);
 }
 
 /* E_d(y) and E_u(y), the diffuse plane irradiances at depth y (common/underwater_improved_params.h),
@@ -56,11 +60,11 @@ SEASIM_FN real uwi_multiple(const SEASIM_GLOBAL UwiBand* ib, const SEASIM_GLOBAL
                             real bottom_depth, real S, real d_y, real o_d, real cos_s, real mu_w,
                             int single_scattering, int multiple) {
   if (!multiple) return R(0.0);
-  const real b_dm = ib->b_dm, g_dm = ib->g_dm, c_dm = ib->c_dm, k = ib->k;
-  const real w1 = uwi_source_weight(b_dm, g_dm, d_y, ib->d1, ib->u1);
-  const real w2 = uwi_source_weight(b_dm, g_dm, d_y, ib->d2, ib->u2);
+  const real c_dm = ib->c_dm, k = ib->k;
+  const real w1 = uwi_source_weight(ib, d_y, ib->d1, ib->u1);
+  const real w2 = uwi_source_weight(ib, d_y, ib->d2, ib->u2);
   /* The beam scattered once with the exact phase function (TMS), attenuated as the delta-M beam. */
-  const real wp = uwi_source_weight(b_dm, g_dm, d_y, ib->dp, ib->up) +
+  const real wp = uwi_source_weight(ib, d_y, ib->dp, ib->up) +
                   (real)band->b * hg_phase(cos_s, g) * (real)band->e_beam0;
   const real i1 = kd_exp_integral(k, c_dm, d_y, o_d, S);
   /* e^{-k (H - y(z))} = e^{-k (H - o_d)} e^{-k d_y z}: the same integral seen from the bottom. */

@@ -20,7 +20,9 @@ typedef struct {
   float d1, u1; /* E_d, E_u coefficients of e^{-k y} */
   float d2, u2; /* of e^{-k (H - y)} (light the bottom sends up, and its back-scatter) */
   float dp, up; /* of e^{-m y} (the delta-M beam's diffuse source) */
-  float pad;
+  float e0_down, e0_up; /* 1/μ̄ of the down and up streams: scalar irradiance per plane irradiance in the
+                           in-scatter source (diffuseMeanCosines in underwater_improved_setup.h) */
+  float pad0, pad1, pad2;
 } UwiBand;
 
 #endif /* SEASIM_UNDERWATER_IMPROVED_PARAMS_H */

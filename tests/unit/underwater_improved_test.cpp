@@ -122,11 +122,12 @@ long double multipleQuadrature(const UwiBand& ib, const UwBand& bd, double g, do
   const int n = 20000;
   const double S_end = S >= 1e29 ? 60.0 / ib.c_dm : S;
   const long double h = S_end / n;
+  const seasim::DiffuseMeanCosines mean = seasim::diffuseMeanCosines(g);
   auto f = [&](long double z) -> long double {
     const double y = o_d - double(z) * d_y;
     double ed, eu;
     kd::uwi_irradiance(&ib, H, y, &ed, &eu);
-    const double J = ib.b_dm * (std::sqrt(3.0) * (ed + eu) + 3 * ib.g_dm * d_y * (ed - eu)) / (4 * M_PI) +
+    const double J = ib.b_dm * (ed / mean.down + eu / mean.up + 3 * ib.g_dm * d_y * (ed - eu)) / (4 * M_PI) +
                      bd.b * kd::hg_phase(cos_s, g) * bd.e_beam0 * std::exp(-double(ib.m) * y);
     const double ss = single ? bd.b * kd::hg_phase(cos_s, g) * bd.e_beam0 * std::exp(-bd.c * y / mu_w - bd.c * double(z)) : 0;
     return J * std::exp(-double(ib.c_dm) * double(z)) - ss;
@@ -211,6 +212,37 @@ TEST(UnderwaterImproved, NoScatteringLeavesTheBeamAndSkyAttenuatedByAbsorption) 
   const double l = kd::uwi_lambert(&ib, &bd, 0.0, y, n, s_w, 0.5, 1.0);
   const double expect = 0.5 / M_PI * (0.3 * std::exp(-std::sqrt(3.0) * a * y) + 1.0 * std::exp(-a * y / mu));
   EXPECT_NEAR(l / expect, 1.0, 1e-5);
+}
+
+TEST(UnderwaterImproved, DiffuseMeanCosinesFollowTheirTableAndReachTheKernel) {
+  // The fitted table (underwater_improved_setup.cpp): the up stream at 0.52 for every g; the down stream
+  // at the quadrature's 1/√3 up to g = 0.5, linear to 0.72 at g = 0.9, held above it (and below g = 0).
+  const double q = 1.0 / std::sqrt(3.0);
+  for (double g : {-0.3, 0.0, 0.3, 0.5}) {
+    EXPECT_DOUBLE_EQ(seasim::diffuseMeanCosines(g).down, q) << g;
+    EXPECT_DOUBLE_EQ(seasim::diffuseMeanCosines(g).up, 0.52) << g;
+  }
+  EXPECT_NEAR(seasim::diffuseMeanCosines(0.7).down, 0.5 * (q + 0.72), 1e-12);
+  for (double g : {0.9, 0.95, 0.999, 1.0}) EXPECT_NEAR(seasim::diffuseMeanCosines(g).down, 0.72, 1e-12) << g;
+  // Continuous at the knots, and within (0, 1] (a cosine) everywhere.
+  for (double knot : {0.5, 0.9}) {
+    EXPECT_NEAR(seasim::diffuseMeanCosines(knot - 1e-9).down, seasim::diffuseMeanCosines(knot + 1e-9).down, 1e-8);
+  }
+  for (int i = 0; i <= 100; ++i) {
+    const seasim::DiffuseMeanCosines m = seasim::diffuseMeanCosines(i / 100.0);
+    EXPECT_GT(m.down, 0.0);
+    EXPECT_LE(m.down, 1.0);
+  }
+  // The band block carries 1/μ̄, and the in-scatter source weighs the streams by it: a horizontal view
+  // ray (ν = 0) in a layer with only E_u (no flux term difference from ν) sees b' E_u/μ̄_u/(4π).
+  const UwiBand ib = makeUwiBand(band(0.1, 0.3, 0.3, 1.0, 0.9, 0.35), 0.9, 0.9, 5.0, 1.34);
+  EXPECT_NEAR(ib.e0_down, 1 / 0.72, 1e-6);
+  EXPECT_NEAR(ib.e0_up, 1 / 0.52, 1e-6);
+  const double w_d = kd::uwi_source_weight(&ib, 0.0, 1.0, 0.0), w_u = kd::uwi_source_weight(&ib, 0.0, 0.0, 1.0);
+  EXPECT_NEAR(w_d, ib.b_dm / 0.72 / (4 * M_PI), 1e-6 * w_d);
+  EXPECT_NEAR(w_u, ib.b_dm / 0.52 / (4 * M_PI), 1e-6 * w_u);
+  const float wf = kf::uwi_source_weight(&ib, 0.5f, 1.0f, 0.25f);
+  EXPECT_NEAR(wf, kd::uwi_source_weight(&ib, 0.5, 1.0, 0.25), 1e-6 * wf);
 }
 
 TEST(UnderwaterImproved, InternalDiffuseReflectance) {

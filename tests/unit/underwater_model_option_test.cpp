@@ -10,6 +10,7 @@
 #include "scene/scene_parser.h"
 #include "spectral/sensor.h"
 #include "spectral/wavelength_grid.h"
+#include "underwater/underwater_improved_setup.h"
 #include "underwater/underwater_setup.h"
 #include "util/error.h"
 
@@ -86,6 +87,33 @@ TEST(UnderwaterModelOption, BadValuesNameFileLineAndKey) {
     ADD_FAILURE() << "accepted --set underwater.model=\"improv\"";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("did you mean 'improved'"), std::string::npos) << e.what();
+  }
+}
+
+TEST(UnderwaterModelOption, MeanCosineKeysOverrideTheFittedTableOrAreRejectedWithFileLineAndKey) {
+  const WavelengthGrid grid = makeGrid(2, 400, 700);
+  const Sensor sensor = makeSensor("cie1931", grid, true, "");
+  // Default: the fitted table at the water's g (jerlov IB's default g).
+  const Scene plain = parseScene(withModel("\"improved\""), "uw.toml");
+  const DiffuseMeanCosines table = diffuseMeanCosines(plain.water.g);
+  const UnderwaterSetup a = makeUnderwaterSetup(plain, grid, sensor);
+  EXPECT_FLOAT_EQ(a.improved[0].e0_down, float(1 / table.down));
+  EXPECT_FLOAT_EQ(a.improved[0].e0_up, float(1 / table.up));
+  // Set: each key replaces its stream's value only.
+  const Scene set = parseScene(withModel("\"improved\"\nimproved_mean_cosine_down = 0.8"), "uw.toml");
+  const UnderwaterSetup b = makeUnderwaterSetup(set, grid, sensor);
+  EXPECT_FLOAT_EQ(b.improved[1].e0_down, float(1 / 0.8));
+  EXPECT_FLOAT_EQ(b.improved[1].e0_up, float(1 / table.up));
+  for (const char* bad : {"improved_mean_cosine_up = 0.05", "improved_mean_cosine_down = 1.5"}) {
+    try {
+      parseScene(withModel(std::string("\"improved\"\n") + bad), "uw.toml");
+      ADD_FAILURE() << "accepted " << bad;
+    } catch (const InputError& e) {
+      const std::string m = e.what();
+      EXPECT_NE(m.find("uw.toml:16"), std::string::npos) << m;
+      EXPECT_NE(m.find(std::string("underwater.") + std::string(bad).substr(0, std::string(bad).find(' '))),
+                std::string::npos) << m;
+    }
   }
 }
 
