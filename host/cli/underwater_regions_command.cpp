@@ -1,6 +1,5 @@
 #include "cli/underwater_regions_command.h"
 
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -62,10 +61,6 @@ std::vector<Override> geometry(double depth, const std::string& view) {
   else if (view != "level") throw RuntimeError("underwater-regions: unknown view '" + view + "' (level, up, down)");
   o.push_back(set("camera.look_at", "[0.0, " + num(cam_y + dy) + ", -8.0]"));
   return o;
-}
-
-double msSince(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
 // The scene file's text, the overrides and the path count name a reference (a changed scene is new).
