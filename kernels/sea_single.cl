@@ -176,6 +176,21 @@ __kernel void sea_single(__constant SeaParams* p, __global const SeaBand* bands,
 #define SPECTRAL_STORE(i, L) spectral[(size_t)pixel * p->band_count + (i)] = (L)
 #define SPECTRAL_LANES(i, L) store_lanes((L), spectral + (size_t)pixel * band_count + (i), band_count - (i))
 #endif
+#if SEASIM_SPECTRAL_OUTPUT
+#define SPECTRAL_LANES_IF_ASKED(i, L) SPECTRAL_LANES(i, L)
+#else
+#define SPECTRAL_LANES_IF_ASKED(i, L)
+#endif
+/* One step's radiance L (bands i .. i + SEASIM_BAND_LANES - 1) into the pixel's sums (by the
+ * sensor's weights per band; the padding bands' are 0), and into the spectral buffer when it is asked for. */
+#define ADD_LANES(i, L)                                                                                   \
+  do {                                                                                                     \
+    const realb Lw_ = (L) * sub_weight;                                                                    \
+    r_lanes += Lw_ * LOADB(ROW(SEA_ROW_W_R), i);                                                           \
+    g_lanes += Lw_ * LOADB(ROW(SEA_ROW_W_G), i);                                                           \
+    b_lanes += Lw_ * LOADB(ROW(SEA_ROW_W_B), i);                                                           \
+    SPECTRAL_LANES_IF_ASKED(i, L);                                                                         \
+  } while (0)
   for (int sub = 0; sub < SEASIM_SUPERSAMPLE * SEASIM_SUPERSAMPLE; ++sub) {
   /* Pinhole camera: a point of the pixel (its centre without supersampling) -> world direction. */
   const float ox = ((float)(sub % SEASIM_SUPERSAMPLE) + 0.5f) / (float)SEASIM_SUPERSAMPLE;
@@ -200,13 +215,7 @@ __kernel void sea_single(__constant SeaParams* p, __global const SeaBand* bands,
 #else
       const realb L = sky_l;
 #endif
-      const realb Lw = L * sub_weight;
-      r_lanes += Lw * LOADB(ROW(SEA_ROW_W_R), i);
-      g_lanes += Lw * LOADB(ROW(SEA_ROW_W_G), i);
-      b_lanes += Lw * LOADB(ROW(SEA_ROW_W_B), i);
-#if SEASIM_SPECTRAL_OUTPUT
-      SPECTRAL_LANES(i, L);
-#endif
+      ADD_LANES(i, L);
     }
   } else {
     const float3 sun = (float3)(p->sun_dir[0], p->sun_dir[1], p->sun_dir[2]);
@@ -378,13 +387,7 @@ __kernel void sea_single(__constant SeaParams* p, __global const SeaBand* bands,
       L += focus * bottom;
 #endif
 #endif
-      const realb Lw = L * sub_weight;
-      r_lanes += Lw * LOADB(ROW(SEA_ROW_W_R), i);
-      g_lanes += Lw * LOADB(ROW(SEA_ROW_W_G), i);
-      b_lanes += Lw * LOADB(ROW(SEA_ROW_W_B), i);
-#if SEASIM_SPECTRAL_OUTPUT
-      SPECTRAL_LANES(i, L);
-#endif
+      ADD_LANES(i, L);
     }
 #else /* SEASIM_SEA_MODEL 1: one band per step over SeaBand */
     for (int i = 0; i < band_count; ++i) {
@@ -425,6 +428,8 @@ __kernel void sea_single(__constant SeaParams* p, __global const SeaBand* bands,
   } /* sub-pixel rays */
 #undef SPECTRAL_STORE
 #undef SPECTRAL_LANES
+#undef SPECTRAL_LANES_IF_ASKED
+#undef ADD_LANES
 #undef ROW
   r += SUMB(r_lanes);
   g += SUMB(g_lanes);
