@@ -7,6 +7,8 @@
  * Explicit SIMD over the bands (issue 14): SEASIM_BAND_LANES bands per step in floatN vectors
  * (common/band_lanes.h, common/underwater_bands.h), since PoCL does not vectorise this kernel across
  * work-items; the band table (common/underwater_band_table.h) holds every per-band value the loop reads.
+ * underwater.model = "improved" (SEASIM_UNDERWATER_MODEL == 1, issue 13) runs on the same lanes
+ * (common/underwater_improved_bands.h), reading the table's improved rows.
  *
  * Inputs: UwParams, UwBand[band_count] and albedo[object * band_count + band] (the set-up as every
  * underwater pass gets it; the band loop reads their values from band_table), the G-buffer of raycast.cl
@@ -40,9 +42,8 @@
 #ifndef SEASIM_UNDERWATER_MODEL
 #define SEASIM_UNDERWATER_MODEL 0
 #endif
-#if SEASIM_UNDERWATER_MODEL == 1 /* underwater.model = "improved" (issue 13): its header and per-band block */
-#include "common/underwater_improved_params.h"
-#include "common/underwater_improved.h"
+#if SEASIM_UNDERWATER_MODEL == 1 /* underwater.model = "improved" (issue 13) on the band lanes */
+#include "common/underwater_improved_bands.h"
 #endif
 
 __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, __global const float* albedo,
@@ -55,9 +56,6 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
                           __global float* rgb
 #if SEASIM_SPECTRAL_OUTPUT
                           , __global float* spectral
-#endif
-#if SEASIM_UNDERWATER_MODEL == 1
-                          , __global const UwiBand* improved
 #endif
 ) {
   const int x = get_global_id(0);
@@ -86,41 +84,11 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
   const int multiple = 0;
 #endif
 
-#if SEASIM_UNDERWATER_MODEL == 1
-  /* underwater.model = "improved" (common/underwater_improved.h): one scalar loop, the material tested
-   * per band; the band lanes in the #else are the thesis model's (002 eq. 4.7). */
-  float r = 0.0f, gr = 0.0f, b = 0.0f;
-  {
-    __global const float* alb = mat >= 0 ? albedo + mat * p->band_count : &bands[0].bottom_albedo;
-    const int alb_stride = mat >= 0 ? 1 : (int)(sizeof(UwBand) / sizeof(float));
-#if SEASIM_SKY_MODEL != SEASIM_SKY_UNIFORM
-    const float3 sky_shape = mat == UW_MAT_SURFACE ? sky_view_shape(sky_params, sky, sky_window_air_dir(d, p->ior))
-                                                   : (float3)(0.0f, 0.0f, 0.0f);
-#endif
-    for (int i = 0; i < p->band_count; ++i) {
-      __global const UwBand* band = &bands[i];
-#if SEASIM_SKY_MODEL != SEASIM_SKY_UNIFORM
-      const float sky_l = band->sky_radiance *
-                          sky_view_band(SEASIM_SKY_MODEL, (float3)(band->sky_w_r, band->sky_w_g, band->sky_w_b), sky_shape);
-#else
-      const float sky_l = band->sky_radiance;
-#endif
-      const float a_i = mat == UW_MAT_NONE || mat == UW_MAT_SURFACE ? 0.0f : alb[i * alb_stride];
-      const float L = uwi_band_radiance(&improved[i], band, p->g, mat, S, n, d, o_d, s_w, a_i, vis, sky_l, p->ior,
-                                        p->bottom_depth, single, multiple);
-      r += L * band->w_r;
-      gr += L * band->w_g;
-      b += L * band->w_b;
-#if SEASIM_SPECTRAL_OUTPUT
-      spectral[(size_t)pixel * p->band_count + i] = L;
-#endif
-    }
-  }
-#else
   /* Sky and geometry once per pixel; then SEASIM_BAND_LANES bands per step (common/band_lanes.h),
    * reading the pixel-invariant per-band values from the band table with vector loads. The material
    * test stays in the loop: it is the same for every step of a pixel, one predictable branch per
-   * SEASIM_BAND_LANES bands, and the lanes themselves are branch-free. */
+   * SEASIM_BAND_LANES bands, and the lanes themselves are branch-free. Both models share this; the
+   * improved one's lanes are common/underwater_improved_bands.h, the thesis's common/underwater_bands.h. */
 #if SEASIM_SKY_MODEL != SEASIM_SKY_UNIFORM
   const float3 sky_shape = mat == UW_MAT_SURFACE ? sky_view_shape(sky_params, sky, sky_window_air_dir(d, p->ior))
                                                  : (float3)(0.0f, 0.0f, 0.0f);
@@ -132,6 +100,30 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
 #define ROW(r) (band_table + (r) * stride)
   __global const float* albedo_row = ROW(mat >= 0 ? UW_ROWS + mat : UW_ROW_BOTTOM_ALBEDO);
   realb r_lanes = SPLATB(0.0f), g_lanes = SPLATB(0.0f), b_lanes = SPLATB(0.0f);
+#if SEASIM_UNDERWATER_MODEL == 1
+  /* underwater.model = "improved": its rows follow the objects' albedo rows; the phase of the view and
+   * (surface hits) of the reflected ray (d.x, -d.y, d.z) once per pixel. */
+  const int uwi_row0 = UW_ROWS + p->object_count;
+  const float cos_s = dot(d, s_w);
+  const float phase = hg_phase(cos_s, p->g);
+  const float phase_r = mat == UW_MAT_SURFACE ? hg_phase(cos_s - 2.0f * d.y * s_w.y, p->g) : 0.0f;
+  for (int i = 0; i < band_count; i += SEASIM_BAND_LANES) {
+    const UwiLanes v = uwi_lanes_load(band_table, stride, uwi_row0, i);
+    realb L = multiple ? uwi_lanes_multiple(&v, phase, p->bottom_depth, S, d.y, o_d, single) : SPLATB(0.0f);
+    if (mat == UW_MAT_SURFACE) {
+#if SEASIM_SKY_MODEL != SEASIM_SKY_UNIFORM
+      const realb sky_l = LOADB(ROW(UW_ROW_SKY), i) *
+                          sky_view_band_b(SEASIM_SKY_MODEL, LOADB(ROW(UW_ROW_SKY_W_R), i),
+                                          LOADB(ROW(UW_ROW_SKY_W_G), i), LOADB(ROW(UW_ROW_SKY_W_B), i), sky_shape);
+#else
+      const realb sky_l = LOADB(ROW(UW_ROW_SKY), i);
+#endif
+      L += uwi_lanes_surface(&v, sky_l, LOADB(ROW(uwi_row0 + UWI_ROW_BOTTOM_L), i), phase_r, p->bottom_depth, S, d.y,
+                             p->ior, single, multiple);
+    } else if (mat != UW_MAT_NONE) {
+      L += uwi_lanes_lambert(&v, LOADB(albedo_row, i), p->bottom_depth, S, y_hit, n.y, n_dot_s, vis);
+    }
+#else
   for (int i = 0; i < band_count; i += SEASIM_BAND_LANES) {
     const realb c = LOADB(ROW(UW_ROW_C), i);
     const realb kd = LOADB(ROW(UW_ROW_KD), i);
@@ -156,6 +148,7 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
                             LOADB(ROW(UW_ROW_E_SUN), i), LOADB(ROW(UW_ROW_E_BEAM), i), single, S, y_hit, n.y,
                             n_dot_s, vis);
     }
+#endif /* SEASIM_UNDERWATER_MODEL */
     /* 002 eq. 4.8; the padding bands' weights are 0. */
     r_lanes += L * LOADB(ROW(UW_ROW_W_R), i);
     g_lanes += L * LOADB(ROW(UW_ROW_W_G), i);
@@ -166,7 +159,6 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
   }
 #undef ROW
   float r = SUMB(r_lanes), gr = SUMB(g_lanes), b = SUMB(b_lanes);
-#endif /* SEASIM_UNDERWATER_MODEL */
 #if SEASIM_HAS_FROXEL
   const float3 ss = froxel_lookup(fp, froxel_volume, x, y, p->width, p->height, S);
   r += ss.x;

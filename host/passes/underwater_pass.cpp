@@ -32,10 +32,7 @@ UnderwaterPass::UnderwaterPass(Device& device, const UnderwaterSetup& setup, con
     sky_params_ = cl::Buffer(device.context(), in, sizeof(SkyParams), const_cast<SkyParams*>(&setup.sky_params));
     sky_ = cl::Buffer(device.context(), in, sizeof(float) * setup.sky_buffer.size(),
                       const_cast<float*>(setup.sky_buffer.data()));
-    has_improved_ = !setup.improved.empty();
-    if (has_improved_)
-      improved_ = cl::Buffer(device.context(), in, sizeof(UwiBand) * setup.improved.size(),
-                             const_cast<UwiBand*>(setup.improved.data()));
+    has_improved_ = !setup.improved.empty();  // its values are the band table's improved rows
     geom_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(cl_float4) * pixels);
     material_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(cl_int) * pixels);
     vis_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * pixels);
@@ -66,11 +63,11 @@ void UnderwaterPass::update(const UnderwaterSetup& setup) {
     q.enqueueWriteBuffer(bands_, CL_FALSE, 0, sizeof(UwBand) * band_count_, setup.bands.data());
     q.enqueueWriteBuffer(objects_, CL_FALSE, 0, sizeof(UwObject) * object_count_, setup.objects.data());
     q.enqueueWriteBuffer(albedo_, CL_FALSE, 0, sizeof(float) * albedo_count_, setup.albedo.data());
-    const std::vector<float> band_table = underwaterBandTable(setup);  // same size: same band and object counts
+    // Same size: same band and object counts, and the improved rows or not.
+    const std::vector<float> band_table = underwaterBandTable(setup);
     q.enqueueWriteBuffer(band_table_, CL_FALSE, 0, sizeof(float) * band_table_count_, band_table.data());
     q.enqueueWriteBuffer(sky_params_, CL_FALSE, 0, sizeof(SkyParams), &setup.sky_params);
     q.enqueueWriteBuffer(sky_, CL_FALSE, 0, sizeof(float) * sky_count_, setup.sky_buffer.data());
-    if (has_improved_) q.enqueueWriteBuffer(improved_, CL_FALSE, 0, sizeof(UwiBand) * band_count_, setup.improved.data());
     q.finish();  // the host vectors may go away after this call
   } catch (const cl::Error& e) {
     throw DeviceError(std::string("underwater pass update: ") + e.what() + " " + clErrorName(e.err()));
@@ -118,7 +115,6 @@ double UnderwaterPass::runShading(const cl::Buffer* froxel_params, const cl::Buf
     }
     shade_.setArg(arg++, rgb_);
     if (spectral_output_) shade_.setArg(arg++, spectral_);
-    if (has_improved_) shade_.setArg(arg++, improved_);  // kd_multiple.cl's last argument with SEASIM_UNDERWATER_MODEL == 1
   } catch (const cl::Error& e) {
     throw DeviceError(std::string("kd_multiple arguments: ") + e.what() + " " + clErrorName(e.err()));
   }

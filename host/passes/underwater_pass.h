@@ -42,8 +42,7 @@ class UnderwaterPass {
   cl::Buffer params_, bands_, objects_, albedo_, geom_, material_, vis_, rgb_, spectral_, no_caustics_;
   cl::Buffer sky_params_, sky_;  // the [sky] for Snell's window (common/sky_view.h)
   cl::Buffer band_table_;         // per-band values of the band loop (underwater/underwater_band_table.h)
-  cl::Buffer improved_;           // UwiBand per band, underwater.model = "improved" only (setup.improved)
-  bool has_improved_ = false;
+  bool has_improved_ = false;      // underwater.model = "improved": the band table has its rows
   size_t band_count_, object_count_, albedo_count_, sky_count_, band_table_count_ = 0;
 };
 

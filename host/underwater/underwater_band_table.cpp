@@ -3,13 +3,17 @@
 #include <algorithm>
 #include <cmath>
 
+#include "math/kernel_math.h"
+
 namespace seasim {
 
 std::vector<float> underwaterBandTable(const UnderwaterSetup& setup) {
   const int bands = static_cast<int>(setup.bands.size());
   const int objects = static_cast<int>(setup.objects.size());
   const int stride = UW_BAND_STRIDE(std::max(bands, 1));
-  std::vector<float> table(static_cast<size_t>(UW_ROWS + objects) * stride, 0.0f);
+  const bool improved = !setup.improved.empty();
+  const int uwi_row0 = UW_ROWS + objects;
+  std::vector<float> table(static_cast<size_t>(uwi_row0 + (improved ? UWI_ROWS : 0)) * stride, 0.0f);
   if (bands == 0) return table;
   auto at = [&](int row, int band) -> float& { return table[static_cast<size_t>(row) * stride + band]; };
   // The same clamp of μ_w as kd_multiple_scattering and uw_beam_irradiance (common/underwater.h).
@@ -38,6 +42,36 @@ std::vector<float> underwaterBandTable(const UnderwaterSetup& setup) {
     for (int o = 0; o < objects; ++o) {
       const size_t a = static_cast<size_t>(o) * bands + k;
       at(UW_ROWS + o, i) = a < setup.albedo.size() ? setup.albedo[a] : 0.0f;
+    }
+    if (improved && k < static_cast<int>(setup.improved.size())) {
+      const UwiBand& ib = setup.improved[k];
+      auto uwi = [&](int row, double v) { at(uwi_row0 + row, i) = static_cast<float>(v); };
+      uwi(UWI_ROW_C_DM, ib.c_dm);
+      uwi(UWI_ROW_K, ib.k);
+      uwi(UWI_ROW_M, ib.m);
+      // uwi_source_weight (common/underwater_improved.h) split as w_a + ν w_b.
+      const double s = double(ib.b_dm) / kFourPi;
+      auto weight = [&](int row_a, int row_b, double D, double U) {
+        uwi(row_a, s * (double(ib.e0_down) * D + double(ib.e0_up) * U));
+        uwi(row_b, s * 3.0 * double(ib.g_dm) * (D - U));
+      };
+      weight(UWI_ROW_W1_A, UWI_ROW_W1_B, ib.d1, ib.u1);
+      weight(UWI_ROW_W2_A, UWI_ROW_W2_B, ib.d2, ib.u2);
+      weight(UWI_ROW_WP_A, UWI_ROW_WP_B, ib.dp, ib.up);
+      uwi(UWI_ROW_B_E_BEAM, double(b.b) * b.e_beam0);
+      uwi(UWI_ROW_D1, ib.d1);
+      uwi(UWI_ROW_U1, ib.u1);
+      uwi(UWI_ROW_D2, ib.d2);
+      uwi(UWI_ROW_U2, ib.u2);
+      uwi(UWI_ROW_DP, ib.dp);
+      uwi(UWI_ROW_UP, ib.up);
+      // The bottom that the surface's reflected ray ends on (uwi_surface): no bottom, no term.
+      const double depth = setup.params.bottom_depth;
+      const kmath_d::real3 s_w{setup.params.sun_dir_water[0], setup.params.sun_dir_water[1],
+                               setup.params.sun_dir_water[2]};
+      uwi(UWI_ROW_BOTTOM_L, depth > 0 ? kmath_d::uwi_lambert(&ib, &b, depth, depth, kmath_d::real3{0, 1, 0}, s_w,
+                                                               b.bottom_albedo, 1.0)
+                                      : 0.0);
     }
   }
   return table;

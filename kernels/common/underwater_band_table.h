@@ -6,7 +6,9 @@
  * Row r of the table holds one value for every band: table[r * stride + band], stride =
  * UW_BAND_STRIDE(band_count). The padding bands have sensor weight 0 and copy the last band's other
  * values (finite, so the lanes they fill cost nothing and add nothing). After the UW_ROWS rows of the
- * water and light, one row of albedo per object (UW_ROWS + object index).
+ * water and light, one row of albedo per object (UW_ROWS + object index); with underwater.model =
+ * "improved", UWI_ROWS more after those (row UW_ROWS + object count + UWI_ROW_*), read by
+ * common/underwater_improved_bands.h.
  */
 #ifndef SEASIM_UNDERWATER_BAND_TABLE_H
 #define SEASIM_UNDERWATER_BAND_TABLE_H
@@ -31,5 +33,26 @@
 #define UW_ROW_W_B 14
 #define UW_ROW_BOTTOM_ALBEDO 15
 #define UW_ROWS 16
+
+/* underwater.model = "improved" (common/underwater_improved_bands.h): UwiBand's values
+ * (common/underwater_improved_params.h) and what the model makes of them without the pixel. */
+#define UWI_ROW_C_DM 0         /* delta-M extinction c', 1/m */
+#define UWI_ROW_K 1            /* the diffuse field's eigen-attenuation k, 1/m */
+#define UWI_ROW_M 2            /* the delta-M beam's attenuation with depth c'/μ_w, 1/m */
+#define UWI_ROW_W1_A 3         /* source weight of (d1, u1) seen along ν: w_a + ν w_b, per m per sr */
+#define UWI_ROW_W1_B 4
+#define UWI_ROW_W2_A 5         /* of (d2, u2) */
+#define UWI_ROW_W2_B 6
+#define UWI_ROW_WP_A 7         /* of (dp, up) */
+#define UWI_ROW_WP_B 8
+#define UWI_ROW_B_E_BEAM 9     /* b e_beam0 (times p_HG: the beam scattered once) */
+#define UWI_ROW_D1 10          /* E_d, E_u coefficients of e^{-k y}, e^{-k (H - y)}, e^{-m y} */
+#define UWI_ROW_U1 11
+#define UWI_ROW_D2 12
+#define UWI_ROW_U2 13
+#define UWI_ROW_DP 14
+#define UWI_ROW_UP 15
+#define UWI_ROW_BOTTOM_L 16    /* the bottom's sunlit, unshadowed radiance (uwi_lambert at y = H, n up) */
+#define UWI_ROWS 17
 
 #endif /* SEASIM_UNDERWATER_BAND_TABLE_H */

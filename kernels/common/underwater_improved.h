@@ -1,7 +1,8 @@
 /* underwater_improved.h — underwater.model = "improved": a closed form per band for the light that
  * 002's eq. 4.7 ("thesis", common/underwater.h) models by an isotropic b/(4π) E(y) with a measured K_d.
- * Shared by kd_multiple.cl (SEASIM_UNDERWATER_MODEL == 1) and the host (kmath_f / kmath_d, unit-tested
- * in float and double); needs optics.h, underwater_params.h, underwater.h and
+ * The scalar form, one band per call: the host's (kmath_f / kmath_d, unit-tested in float and double)
+ * and the reference that kd_multiple.cl's band lanes (SEASIM_UNDERWATER_MODEL == 1,
+ * common/underwater_improved_bands.h) are tested against; needs optics.h, underwater_params.h, underwater.h and
  * underwater_improved_params.h before it. Coefficients per band: host/underwater/underwater_improved_setup.*
  *
  * What it changes against eq. 4.7, each measured in results/BENCHMARKS.md ("A better fast underwater

@@ -2,7 +2,9 @@
 // (SEASIM_UNDERWATER_MODEL == 1, common/underwater_improved.h) on PoCL in float, against the same
 // shared maths evaluated per pixel in double on the CPU (ray cast, shadow ray, band loop, sensor
 // weights), over an ordinary seabed and its extremes: no bottom, g = 0 and 0.95, a camera 1000 m down,
-// straight up and down, turbid 9C, one band, night. No NaN/Inf; with froxels the frame stays finite.
+// straight up and down, turbid 9C, night, and band counts that are not a multiple of the kernel's 16
+// band lanes (1, 3, 17, 31; the spectral output per band at 17). No NaN/Inf; with froxels the frame
+// stays finite.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -65,13 +67,15 @@ sensor = "nikon_d5100_npl"
 
 seasim::Override set(const char* key, const std::string& value) { return {key, value, {"test", 1}}; }
 
-// The frame by the shared maths in double (kd_multiple.cl's improved block, raycast.cl's shadow ray).
-seasim::Image cpuImproved(const seasim::UnderwaterSetup& s, bool multiple) {
+// The frame by the shared maths in double (kd_multiple.cl's improved block, raycast.cl's shadow ray);
+// with spectral, also every band's radiance (band-major per pixel, as spectral.exr).
+seasim::Image cpuImproved(const seasim::UnderwaterSetup& s, bool multiple, std::vector<double>* spectral = nullptr) {
   const UwParams& p = s.params;
   seasim::Image out = seasim::Image::rgb(p.width, p.height);
   const kd::real3 o{p.cam_pos[0], p.cam_pos[1], p.cam_pos[2]};
   const kd::real3 s_w{p.sun_dir_water[0], p.sun_dir_water[1], p.sun_dir_water[2]};
   const bool sun = s.bands[0].e_beam0 > 0 || s.bands.back().e_beam0 > 0;
+  if (spectral) spectral->assign(size_t(p.width) * p.height * p.band_count, 0.0);
   for (int y = 0; y < p.height; ++y)
     for (int x = 0; x < p.width; ++x) {
       const kd::real3 d = kd::uw_screen_dir(&p, (x + 0.5) / p.width, (y + 0.5) / p.height);
@@ -94,6 +98,7 @@ seasim::Image cpuImproved(const seasim::UnderwaterSetup& s, bool multiple) {
         rgb[0] += L * b.w_r;
         rgb[1] += L * b.w_g;
         rgb[2] += L * b.w_b;
+        if (spectral) (*spectral)[(size_t(y) * p.width + x) * p.band_count + i] = L;
       }
       for (int c = 0; c < 3; ++c) out.pixels[3 * (size_t(y) * p.width + x) + c] = float(rgb[c]);
     }
@@ -151,9 +156,35 @@ INSTANTIATE_TEST_SUITE_P(
         Variant{"looking_straight_down", {set("camera.look_at", "[0, -10, -0.001]")}},
         Variant{"up_from_1000m", {set("camera.position", "[0, -1000, 0]"), set("camera.look_at", "[0, 0, -0.001]")}, true},
         Variant{"turbid_9C_long_range", {set("water.jerlov", "\"9C\""), set("camera.look_at", "[0, -4.2, -8]")}, true},
-        Variant{"one_band", {set("spectral.count", "1")}}, Variant{"night", {set("sun.zenith_deg", "100")}},
+        Variant{"one_band", {set("spectral.count", "1")}}, Variant{"three_bands", {set("spectral.count", "3")}},
+        Variant{"seventeen_bands", {set("spectral.count", "17")}},
+        Variant{"thirty_one_bands_no_bottom", {set("spectral.count", "31")}, true},
+        Variant{"night", {set("sun.zenith_deg", "100")}},
         Variant{"no_multiple", {set("underwater.multiple_scattering", "false")}}),
     [](const ::testing::TestParamInfo<Variant>& info) { return std::string(info.param.name); });
+
+// spectral.exr's bands from the lanes' store_lanes, 17 bands (one full step of 16 and one of 1), each
+// band against the double CPU evaluation.
+TEST(UnderwaterImprovedKernel, SpectralOutputHoldsEveryBand) {
+  const seasim::Scene scene = seasim::parseScene(kScene, "test_improved.toml",
+                                                 {set("spectral.spectral_exr", "true"), set("spectral.count", "17")});
+  const seasim::FrameResult frame = seasim::renderFrame(seasim::test::testDevice(), scene, seasim::makePlan(scene));
+  const seasim::WavelengthGrid grid = seasim::makeGrid(scene.spectral.count, scene.spectral.min_nm, scene.spectral.max_nm);
+  const seasim::UnderwaterSetup setup = seasim::makeUnderwaterSetup(
+      scene, grid, seasim::makeSensor(scene.spectral.sensor, grid, scene.spectral.white_balance, scene.spectral.camera_dir));
+  std::vector<double> ref;
+  cpuImproved(setup, true, &ref);
+  ASSERT_EQ(frame.spectral.size(), ref.size());
+  double peak = 0;
+  for (double v : ref) peak = std::max(peak, std::fabs(v));
+  int off = 0;
+  for (size_t i = 0; i < ref.size(); ++i) {
+    ASSERT_TRUE(std::isfinite(frame.spectral[i]));
+    if (std::fabs(frame.spectral[i] - ref[i]) > 2e-4 * (std::fabs(ref[i]) + 1e-4 * peak)) ++off;
+  }
+  EXPECT_LE(off, int(ref.size() / 100));  // shadow edges, as above
+  EXPECT_GT(peak, 0.0);
+}
 
 TEST(UnderwaterImprovedKernel, WithFroxelsTheFrameIsFiniteAndDiffersFromTheThesis) {
   const seasim::Scene improved =

@@ -1,0 +1,115 @@
+/* underwater_improved_bands.h — underwater.model = "improved" (common/underwater_improved.h) for
+ * SEASIM_BAND_LANES bands at once (issue 14/13): the improved model's band loop in kd_multiple.cl
+ * (SEASIM_UNDERWATER_MODEL == 1) on the band lanes of common/band_lanes.h, as the thesis model's
+ * (common/underwater_bands.h). The same formulas as underwater_improved.h (its header comment derives
+ * them; "uwi" there), rewritten on realb because OpenCL C has no templates, with every pixel-invariant
+ * per-band value precomputed in the band table's improved rows (UWI_ROW_*, common/underwater_band_table.h,
+ * filled by host/underwater/underwater_band_table.cpp):
+ *  - the in-scatter source weight of a pair of plane irradiances (D, U) seen along ν (uwi_source_weight),
+ *      w(ν) = b' [D/μ̄_d + U/μ̄_u + 3 g' ν (D - U)] / (4π) = w_a + ν w_b,
+ *    for the three exponentials' pairs (d1, u1), (d2, u2), (dp, up): w_a and w_b per band;
+ *  - the TMS beam term b p_HG(g, cos θ_s) e_beam0 = (b e_beam0) p_HG: b e_beam0 per band, the phase
+ *    (g is the scene's) once per pixel;
+ *  - the bottom's sunlit unshadowed radiance that the surface's reflected ray ends on (uwi_surface's
+ *    l_bottom / e^{-c' s_r}), which depends on no pixel.
+ * The material, the phase functions and the reflected ray's direction are per pixel (kd_multiple.cl);
+ * bottom_depth is the scene's (one uniform test per step). The lanes are branch-free otherwise.
+ * One exp fewer per lit band than underwater_improved.h: T(S) = e^{-c' S} is folded into the three
+ * exps of the irradiance at the hit, e^{-c' S} e^{-k y} = e^{-(k y + c' S)} (the clamps at 0 commute with
+ * the positive factor), as underwater_bands.h does for the thesis.
+ * tests/unit/underwater_improved_bands_test.cpp holds these lanes (one band per step on the host) to
+ * uwi_band_radiance in float and double; tests/kernels/underwater_improved_kernel_test.cpp the kernel
+ * to the double CPU evaluation of uwi_band_radiance.
+ * Needs compat.h, band_lanes.h, band_lanes_math.h, optics.h (fresnel_reflectance), underwater.h
+ * (UW_INFINITE), underwater_bands.h (kd_exp_integral_b), underwater_band_table.h. */
+
+/* One step's per-band values: the thesis rows the model shares (σ_t, σ_t/μ_w, e_beam0) and the
+ * improved rows. */
+typedef struct {
+  realb c, k_beam, e_beam; /* σ_t; σ_t / max(μ_w, 1e-4) (the froxel term's beam); e_beam0 */
+  realb c_dm, k, m;        /* delta-M extinction c', the diffuse field's k, the delta-M beam's c'/μ_w */
+  realb w1_a, w1_b, w2_a, w2_b, wp_a, wp_b; /* source weights w(ν) = w_a + ν w_b of each exponential */
+  realb b_e_beam;          /* b e_beam0: the TMS term and the froxel term per unit phase */
+  realb d1, u1, d2, u2, dp, up; /* E_d, E_u coefficients (UwiBand) */
+} UwiLanes;
+
+/* Bands i..i+SEASIM_BAND_LANES-1 of the table (row stride `stride`), the improved rows starting at row
+ * uwi_row0 = UW_ROWS + object count. */
+SEASIM_FN UwiLanes uwi_lanes_load(const SEASIM_GLOBAL float* table, int stride, int uwi_row0, int i) {
+  UwiLanes v;
+#define UWI_LOAD(row) LOADB(table + (size_t)(row) * (size_t)stride, i)
+  v.c = UWI_LOAD(UW_ROW_C);
+  v.k_beam = UWI_LOAD(UW_ROW_K_BEAM);
+  v.e_beam = UWI_LOAD(UW_ROW_E_BEAM);
+  v.c_dm = UWI_LOAD(uwi_row0 + UWI_ROW_C_DM);
+  v.k = UWI_LOAD(uwi_row0 + UWI_ROW_K);
+  v.m = UWI_LOAD(uwi_row0 + UWI_ROW_M);
+  v.w1_a = UWI_LOAD(uwi_row0 + UWI_ROW_W1_A);
+  v.w1_b = UWI_LOAD(uwi_row0 + UWI_ROW_W1_B);
+  v.w2_a = UWI_LOAD(uwi_row0 + UWI_ROW_W2_A);
+  v.w2_b = UWI_LOAD(uwi_row0 + UWI_ROW_W2_B);
+  v.wp_a = UWI_LOAD(uwi_row0 + UWI_ROW_WP_A);
+  v.wp_b = UWI_LOAD(uwi_row0 + UWI_ROW_WP_B);
+  v.b_e_beam = UWI_LOAD(uwi_row0 + UWI_ROW_B_E_BEAM);
+  v.d1 = UWI_LOAD(uwi_row0 + UWI_ROW_D1);
+  v.u1 = UWI_LOAD(uwi_row0 + UWI_ROW_U1);
+  v.d2 = UWI_LOAD(uwi_row0 + UWI_ROW_D2);
+  v.u2 = UWI_LOAD(uwi_row0 + UWI_ROW_U2);
+  v.dp = UWI_LOAD(uwi_row0 + UWI_ROW_DP);
+  v.up = UWI_LOAD(uwi_row0 + UWI_ROW_UP);
+#undef UWI_LOAD
+  return v;
+}
+
+/* uwi_multiple: in-scattered radiance along the ray (d_y, o_d) to distance S (UW_INFINITE: deep water),
+ * phase = p_HG(g, d·s_w) of the pixel. Each term of J(y) an exponential in y, so each integral is
+ * kd_exp_integral_b (002 eq. 4.7's form); with single_scattering the froxel pass's unshadowed strict
+ * single scattering b p_HG e_beam0 ∫ e^{-c z} e^{-(c/μ_w) y(z)} dz (002 eq. 5.2) is taken off. */
+SEASIM_FN realb uwi_lanes_multiple(const UwiLanes* v, real phase, real bottom_depth, real S, real d_y, real o_d,
+                                   int single_scattering) {
+  const realb beam_phase = v->b_e_beam * phase;
+  const realb w1 = v->w1_a + d_y * v->w1_b;
+  const realb wp = v->wp_a + d_y * v->wp_b + beam_phase;
+  realb sum = w1 * kd_exp_integral_b(v->k, v->c_dm, d_y, o_d, S) + wp * kd_exp_integral_b(v->m, v->c_dm, d_y, o_d, S);
+  if (bottom_depth > R(0.0)) {
+    /* e^{-k (H - y(z))} = e^{-k (H - o_d)} e^{-k d_y z}: the same integral seen from the bottom. */
+    const realb w2 = v->w2_a + d_y * v->w2_b;
+    sum += w2 * kd_exp_integral_b(v->k, v->c_dm, -d_y, fmax(bottom_depth - o_d, R(0.0)), S);
+  }
+  if (single_scattering) sum -= beam_phase * kd_exp_integral_b(v->k_beam, v->c, d_y, o_d, S);
+  return fmax(sum, R(0.0));
+}
+
+/* uwi_lambert times T(S) = e^{-c' S}: a Lambertian hit (albedo, normal with vertical n_y, n_dot_s =
+ * n·s_w) at distance S and depth y lit by E_d from above, E_u from below and the delta-M beam times vis. */
+SEASIM_FN realb uwi_lanes_lambert(const UwiLanes* v, realb albedo, real bottom_depth, real S, real y, real n_y,
+                                  real n_dot_s, real vis) {
+  const realb c_s = v->c_dm * S;
+  const realb e1 = exp(-(v->k * y + c_s));
+  const realb ep = exp(-(v->m * y + c_s));
+  realb ed = v->d1 * e1 + v->dp * ep;
+  realb eu = v->u1 * e1 + v->up * ep;
+  if (bottom_depth > R(0.0)) {
+    const realb e2 = exp(-(v->k * fmax(bottom_depth - y, R(0.0)) + c_s));
+    ed += v->d2 * e2;
+    eu += v->u2 * e2;
+  }
+  const realb beam = v->e_beam * ep * (fmax(n_dot_s, R(0.0)) * vis);
+  return albedo / SEASIM_PI *
+         (fmax(ed, R(0.0)) * (R(0.5) * (R(1.0) + n_y)) + fmax(eu, R(0.0)) * (R(0.5) * (R(1.0) - n_y)) + beam);
+}
+
+/* uwi_surface times T(S): the surface seen from below along d (d_y = d.y > 0) at distance S: the sky
+ * through Snell's window (sky_l, the lanes' sky radiance in air along the refracted view) plus F times
+ * the reflected ray's in-scatter (phase_r = p_HG(g, cos of the reflected ray with s_w)) down to the
+ * bottom, and the bottom itself (bottom_l: UWI_ROW_BOTTOM_L, its sunlit radiance), or deep water. */
+SEASIM_FN realb uwi_lanes_surface(const UwiLanes* v, realb sky_l, realb bottom_l, real phase_r, real bottom_depth,
+                                  real S, real d_y, real ior, int single_scattering, int multiple) {
+  const real dy = fmax(d_y, R(1e-6));
+  const real s_r = bottom_depth > R(0.0) ? bottom_depth / dy : UW_INFINITE;
+  realb reflected = multiple ? uwi_lanes_multiple(v, phase_r, bottom_depth, s_r, -dy, R(0.0), single_scattering)
+                             : SPLATB(R(0.0));
+  if (bottom_depth > R(0.0)) reflected += exp(-v->c_dm * fmin(s_r, R(1e4))) * bottom_l;
+  const real f = fresnel_reflectance(d_y, ior, R(1.0));
+  return exp(-v->c_dm * S) * (ior * ior * (R(1.0) - f) * sky_l + f * reflected);
+}
