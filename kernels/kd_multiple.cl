@@ -46,6 +46,19 @@
 #include "common/underwater_improved_bands.h"
 #endif
 
+/* The lanes' sky radiance in air along the refracted view (surface hits): the band's radiance, shaped
+ * by the sky model (sky_shape, once per pixel) unless the sky is uniform. Both models' loops read it. */
+realb kd_sky_lanes(__global const float* band_table, int stride, int i, float3 sky_shape) {
+  const realb sky = LOADB(band_table + UW_ROW_SKY * stride, i);
+#if SEASIM_SKY_MODEL != SEASIM_SKY_UNIFORM
+  return sky * sky_view_band_b(SEASIM_SKY_MODEL, LOADB(band_table + UW_ROW_SKY_W_R * stride, i),
+                               LOADB(band_table + UW_ROW_SKY_W_G * stride, i),
+                               LOADB(band_table + UW_ROW_SKY_W_B * stride, i), sky_shape);
+#else
+  return sky;
+#endif
+}
+
 __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, __global const float* albedo,
                           __global const float* band_table,
                           __global const float4* geom, __global const int* material, __global const float* sun_vis,
@@ -92,6 +105,8 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
 #if SEASIM_SKY_MODEL != SEASIM_SKY_UNIFORM
   const float3 sky_shape = mat == UW_MAT_SURFACE ? sky_view_shape(sky_params, sky, sky_window_air_dir(d, p->ior))
                                                  : (float3)(0.0f, 0.0f, 0.0f);
+#else
+  const float3 sky_shape = (float3)(1.0f, 1.0f, 1.0f); /* unused: a uniform sky is the band's radiance */
 #endif
   const float y_hit = fmax(o_d - S * d.y, 0.0f);
   const float n_dot_s = dot(n, s_w);
@@ -111,13 +126,7 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
     const UwiLanes v = uwi_lanes_load(band_table, stride, uwi_row0, i);
     realb L = multiple ? uwi_lanes_multiple(&v, phase, p->bottom_depth, S, d.y, o_d, single) : SPLATB(0.0f);
     if (mat == UW_MAT_SURFACE) {
-#if SEASIM_SKY_MODEL != SEASIM_SKY_UNIFORM
-      const realb sky_l = LOADB(ROW(UW_ROW_SKY), i) *
-                          sky_view_band_b(SEASIM_SKY_MODEL, LOADB(ROW(UW_ROW_SKY_W_R), i),
-                                          LOADB(ROW(UW_ROW_SKY_W_G), i), LOADB(ROW(UW_ROW_SKY_W_B), i), sky_shape);
-#else
-      const realb sky_l = LOADB(ROW(UW_ROW_SKY), i);
-#endif
+      const realb sky_l = kd_sky_lanes(band_table, stride, i, sky_shape);
       L += uwi_lanes_surface(&v, sky_l, LOADB(ROW(uwi_row0 + UWI_ROW_BOTTOM_L), i), phase_r, p->bottom_depth, S, d.y,
                              p->ior, single, multiple);
     } else if (mat != UW_MAT_NONE) {
@@ -133,13 +142,7 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
     /* L = T(S) L_s + L_MS (002 eq. 2.7 with 4.7), T(S) folded into L_s (common/underwater_bands.h). */
     realb L = multiple ? uw_lanes_multiple(ms_total, ms_direct, kd, k_beam, c, single, d.y, o_d, S) : SPLATB(0.0f);
     if (mat == UW_MAT_SURFACE) {
-#if SEASIM_SKY_MODEL != SEASIM_SKY_UNIFORM
-      const realb sky_l = LOADB(ROW(UW_ROW_SKY), i) *
-                          sky_view_band_b(SEASIM_SKY_MODEL, LOADB(ROW(UW_ROW_SKY_W_R), i),
-                                          LOADB(ROW(UW_ROW_SKY_W_G), i), LOADB(ROW(UW_ROW_SKY_W_B), i), sky_shape);
-#else
-      const realb sky_l = LOADB(ROW(UW_ROW_SKY), i);
-#endif
+      const realb sky_l = kd_sky_lanes(band_table, stride, i, sky_shape);
       L += uw_lanes_surface(sky_l, ms_total, ms_direct, kd, k_beam, c, single, multiple, S, d.y, p->ior,
                             p->bottom_depth);
     } else if (mat != UW_MAT_NONE) {
