@@ -8,6 +8,7 @@
 #include <string>
 
 #include "math/kernel_math.h"
+#include "reference/pixel_centre_hits.h"
 #include "util/error.h"
 
 namespace seasim {
@@ -74,17 +75,9 @@ FroxelCpuVolume froxelEvaluateCpu(const UnderwaterSetup& setup, const FroxelPara
 }
 
 std::vector<double> froxelPixelDistances(const UnderwaterSetup& setup) {
-  const UwParams& p = setup.params;
-  std::vector<double> out(size_t(p.width) * p.height);
-  const kd::real3 o{p.cam_pos[0], p.cam_pos[1], p.cam_pos[2]};
-  for (int y = 0; y < p.height; ++y)
-    for (int x = 0; x < p.width; ++x) {
-      const kd::real3 d = kd::uw_screen_dir(&p, (x + 0.5) / p.width, (y + 0.5) / p.height);
-      kd::real3 n{};
-      int mat = 0;
-      out[size_t(y) * p.width + x] =
-          kd::uw_scene_hit(setup.objects.data(), p.object_count, p.bottom_depth, o, d, 0.0, &n, &mat);
-    }
+  const std::vector<PixelCentreHit> hits = pixelCentreHits(setup);
+  std::vector<double> out(hits.size());
+  for (size_t i = 0; i < hits.size(); ++i) out[i] = hits[i].distance;
   return out;
 }
 

@@ -3,11 +3,10 @@
 #include <cmath>
 
 #include "math/kernel_math.h"
+#include "reference/pixel_centre_hits.h"
 #include "util/error.h"
 
 namespace seasim {
-
-namespace kd = kmath_d;
 
 const char* uwRegionName(UwRegion r) {
   switch (r) {
@@ -21,21 +20,15 @@ const char* uwRegionName(UwRegion r) {
 }
 
 std::vector<UwRegion> underwaterRegions(const UnderwaterSetup& setup) {
-  const UwParams& p = setup.params;
-  std::vector<UwRegion> out(size_t(p.width) * p.height);
-  const kd::real3 o{p.cam_pos[0], p.cam_pos[1], p.cam_pos[2]};
-  for (int y = 0; y < p.height; ++y)
-    for (int x = 0; x < p.width; ++x) {
-      const kd::real3 d = kd::uw_screen_dir(&p, (x + 0.5) / p.width, (y + 0.5) / p.height);
-      kd::real3 n{};
-      int mat = 0;
-      const double S = kd::uw_scene_hit(setup.objects.data(), p.object_count, p.bottom_depth, o, d, 0.0, &n, &mat);
-      UwRegion r;
-      if (mat >= 0) r = UwRegion::Objects;
-      else if (mat == UW_MAT_BOTTOM) r = S < kUwNearBottomM ? UwRegion::BottomNear : UwRegion::BottomFar;
-      else r = d.y > 0 ? UwRegion::WaterUp : UwRegion::WaterDown;
-      out[size_t(y) * p.width + x] = r;
-    }
+  const std::vector<PixelCentreHit> hits = pixelCentreHits(setup);
+  std::vector<UwRegion> out(hits.size());
+  for (size_t i = 0; i < hits.size(); ++i) {
+    const PixelCentreHit& h = hits[i];
+    if (h.material >= 0) out[i] = UwRegion::Objects;
+    else if (h.material == UW_MAT_BOTTOM)
+      out[i] = h.distance < kUwNearBottomM ? UwRegion::BottomNear : UwRegion::BottomFar;
+    else out[i] = h.dir_y > 0 ? UwRegion::WaterUp : UwRegion::WaterDown;
+  }
   return out;
 }
 
