@@ -17,7 +17,7 @@
  * a + b_b with b_b = b (1 - c_f) the HG back-scattering coefficient, carried to every term, with the
  * semi-analytic shallow-water model of Lee et al. (1998, Appl. Opt. 37, 6329, eq. 9–12; 1999, Appl.
  * Opt. 38, 3831, eq. 4–7) for what the QSSA leaves: u = b_b / (a + b_b),
- *   column:  L_c = (L_sun + L_sky) (1 + 2.02 u), each its deep-water value times the depth factor
+ *   column:  L_c = (L_sun + L_sky) orders(u), each its deep-water value times the depth factor
  *            1 - e^{-k H (1/μ_in + D_C/μ_v)} (μ_in: μ_s for the sun, μ_sky for the sky)
  *   bottom:  L_b = ρ/π E_d(H) e^{-k H D_B / μ_v},   E_d(H) = E_sun e^{-k H/μ_s} + E_sky e^{-k H/μ_sky}
  *   surface: the surface sends r_below of the upwelling light (column and bottom) back down, and
@@ -32,11 +32,12 @@
  * Snell's window (mean cosine μ_sky = E_d/E_0 = (1 + cos θ_c)/2, exact for a uniform radiance over
  * the window's cone) and scattered back with b_b spread evenly over the upper hemisphere, b_b/(2π) per sr:
  *   L_sky(deep) = E_sky/μ_sky · b_b/(2π) / (k (1 + μ_v/μ_sky)).
- * 1 + 2.02 u is Lee's (0.084 + 0.170 u) u over its single-scattering limit 0.084 u: the higher orders
- * relative to the first, which this model puts on top of the exact HG first order instead of Lee's
- * fitted one (Lee's coefficients come from Hydrolight with a Petzold phase function, whose back
- * scattering is shaped unlike HG's; its ratio of orders is kept, its absolute value is not).
- * Not in papers 000–004: Lee et al.'s coefficients are the one outside source (docs/models.md).
+ * orders(u) = 1 + 0.6 (1 - e^{-30 u²}) (sea_higher_orders): the higher orders relative to the first,
+ * put on top of the exact HG first order; fitted on the path tracer for HG g = 0.9 (issue 13). Until
+ * then it was Lee's 1 + 2.02 u ((0.084 + 0.170 u) u over its single-scattering limit 0.084 u, from
+ * Hydrolight with a Petzold phase function), too bright for u >= 0.35 (sea_higher_orders).
+ * Not in papers 000–004: Lee et al.'s D_C, D_B are an outside source (docs/models.md), and the orders'
+ * two numbers are fitted here.
  * Everything here is below the surface; the caller applies T_o = (1 - R)/n² (the n² law).
  *
  * Stiff cases: k -> 0 (clear water at long wavelengths is not that, but a = b = 0 is allowed): the
@@ -75,7 +76,26 @@ SEASIM_FN real sea_sky_backscatter_deep(real e_sky, real mu_sky, real bb, real k
   return e_sky / mu_sky * bb / (R(2.0) * SEASIM_PI) / fmax(k * (R(1.0) + cos_ji / mu_sky), R(1e-30));
 }
 
-/* Lee 1999's factors for one band (see the top): k = a + b_b, u = b_b / k, D_C, D_B, 1 + 2.02 u. */
+/* The higher orders relative to this model's QSSA first order, by u = b_b/(a + b_b), for HG g = 0.9:
+ *   orders(u) = 1 + 0.6 (1 - e^{-30 u²})
+ * fitted (issue 13, two numbers) on the path tracer of kernels/reference.cl without internal
+ * reflection over the first order alone (sea.model = "multiple" with orders 1 and no surface return;
+ * the sky's reflection subtracted from both), 14 deep one-grey-band cases at u = 0.02–0.7, the view of
+ * tests/perf/sea_allorders.sh: within 1.9 % of the path tracer for u = 0.05–0.7
+ * (tests/perf/sea_orders_fit.sh, results/sea_allorders/orders_fit.csv); checked, not fitted, on the
+ * surface return (internal_reflection.csv) and the 25 Jerlov cases (table_multiple.csv).
+ * Lee 1999 eq. 5's 1 + 2.02 u (Hydrolight, Petzold phase function), used before, grows on linearly;
+ * on top of the exact HG first order it was 1.09 of all orders at u = 0.35 and 1.70 at 0.62: the
+ * needed factor rises like Lee's to u ≈ 0.2 and then levels at about 1.6 (why, a hypothesis not
+ * measured: the QSSA first order keeps the forward-scattered light on the sun's path, where the real
+ * light turns diffuse and is absorbed sooner, so it grows faster than all orders at large u). Written as
+ * 1.6 - 0.6 e^{-30 u²}: the difference is at least 1, 5/8 of 1.6, so no cancellation, and exactly 1
+ * at u = 0; exp, not expm1: expm1 here made the whole kernel 5x slower on PoCL (measured, issue 13). */
+SEASIM_FN real sea_higher_orders(real u) {
+  return R(1.6) - R(0.6) * exp(-R(30.0) * u * u);
+}
+
+/* The band's factors (see the top): k = a + b_b, u = b_b / k, D_C, D_B (Lee 1999), sea_higher_orders. */
 typedef struct {
   real bb, k, u, d_c, d_b, orders;
 } SeaMultipleFactors;
@@ -87,7 +107,7 @@ SEASIM_FN SeaMultipleFactors sea_multiple_factors(real a, real b, real c_f) {
   f.u = f.k > R(0.0) ? f.bb / f.k : R(0.0);
   f.d_c = R(1.03) * sqrt(R(1.0) + R(2.4) * f.u);              /* Lee 1999 eq. 6 */
   f.d_b = R(1.04) * sqrt(R(1.0) + R(5.4) * f.u);              /* Lee 1999 eq. 7 */
-  f.orders = R(1.0) + (R(0.170) / R(0.084)) * f.u;            /* Lee 1999 eq. 5 over its first order */
+  f.orders = sea_higher_orders(f.u);
   return f;
 }
 
