@@ -171,6 +171,12 @@ struct UnderwaterDesc {
   // (diffuseMeanCosines, underwater_improved_setup.h). Set to refit it (tests/perf/underwater_regions_fit.sh).
   double improved_mean_cosine_down = 0.0;  // file: improved_mean_cosine_down
   double improved_mean_cosine_up = 0.0;    // file: improved_mean_cosine_up
+  double improved_beam_mean_cosine_down = 0.0;  // file: improved_beam_mean_cosine_down (the beam's offspring)
+  double improved_beam_mean_cosine_up = 0.0;    // file: improved_beam_mean_cosine_up
+  // "improved" only: the two-stream's closure (TwoStreamClosure, underwater_improved_setup.h); Default:
+  // the model's own (diffuseMeanCosines' table). For refitting. file: improved_two_stream
+  enum class TwoStream { Default, Quadrature, Asymptotic };
+  TwoStream improved_two_stream = TwoStream::Default;
 };
 
 // [shallow]: shallow water with a visible bottom by the four-flow model (paper 003), seen from above a

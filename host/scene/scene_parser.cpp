@@ -596,11 +596,17 @@ class SceneParser {
     r.check(u.froxel_far > u.froxel_near && u.froxel_far <= 1e4, "froxel_far_m",
             "must be > froxel_near_m (" + fmt(u.froxel_near) + ") and <= 10000 m, got " + fmt(u.froxel_far));
     for (auto [key, value] : {std::pair{"improved_mean_cosine_down", &u.improved_mean_cosine_down},
-                              std::pair{"improved_mean_cosine_up", &u.improved_mean_cosine_up}}) {
+                              std::pair{"improved_mean_cosine_up", &u.improved_mean_cosine_up},
+                              std::pair{"improved_beam_mean_cosine_down", &u.improved_beam_mean_cosine_down},
+                              std::pair{"improved_beam_mean_cosine_up", &u.improved_beam_mean_cosine_up}}) {
       *value = r.number(key, *value);
       r.check(*value == 0 || (*value >= 0.1 && *value <= 1), key,
               "must be 0 (the fitted table) or a mean cosine in [0.1, 1], got " + fmt(*value));
     }
+    const std::string two_stream = r.choice("improved_two_stream", "default", {"default", "quadrature", "asymptotic"});
+    u.improved_two_stream = two_stream == "quadrature"   ? UnderwaterDesc::TwoStream::Quadrature
+                            : two_stream == "asymptotic" ? UnderwaterDesc::TwoStream::Asymptotic
+                                                         : UnderwaterDesc::TwoStream::Default;
     r.finish();
   }
 

@@ -51,13 +51,13 @@ std::vector<float> underwaterBandTable(const UnderwaterSetup& setup) {
       uwi(UWI_ROW_M, ib.m);
       // uwi_source_weight (common/underwater_improved.h) split as w_a + ν w_b.
       const double s = double(ib.b_dm) / kFourPi;
-      auto weight = [&](int row_a, int row_b, double D, double U) {
-        uwi(row_a, s * (double(ib.e0_down) * D + double(ib.e0_up) * U));
+      auto weight = [&](int row_a, int row_b, double D, double U, double e0_down, double e0_up) {
+        uwi(row_a, s * (e0_down * D + e0_up * U));
         uwi(row_b, s * 3.0 * double(ib.g_dm) * (D - U));
       };
-      weight(UWI_ROW_W1_A, UWI_ROW_W1_B, ib.d1, ib.u1);
-      weight(UWI_ROW_W2_A, UWI_ROW_W2_B, ib.d2, ib.u2);
-      weight(UWI_ROW_WP_A, UWI_ROW_WP_B, ib.dp, ib.up);
+      weight(UWI_ROW_W1_A, UWI_ROW_W1_B, ib.d1, ib.u1, ib.e0_down, ib.e0_up);
+      weight(UWI_ROW_W2_A, UWI_ROW_W2_B, ib.d2, ib.u2, ib.e0_down, ib.e0_up);
+      weight(UWI_ROW_WP_A, UWI_ROW_WP_B, ib.dp, ib.up, ib.e0_beam_down, ib.e0_beam_up);
       uwi(UWI_ROW_B_E_BEAM, double(b.b) * b.e_beam0);
       uwi(UWI_ROW_D1, ib.d1);
       uwi(UWI_ROW_U1, ib.u1);

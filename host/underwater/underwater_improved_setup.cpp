@@ -9,7 +9,8 @@
 namespace seasim {
 
 static_assert(sizeof(UwiBand) == 16 * 4, "UwiBand layout changed: update underwater_improved_params.h users");
-static_assert(offsetof(UwiBand, d1) == 20 && offsetof(UwiBand, up) == 40 && offsetof(UwiBand, e0_up) == 48);
+static_assert(offsetof(UwiBand, d1) == 20 && offsetof(UwiBand, up) == 40 && offsetof(UwiBand, e0_up) == 48 &&
+              offsetof(UwiBand, e0_beam_up) == 56);
 
 double internalDiffuseReflectance(double ior) {
   // Midpoint rule in μ: F jumps to 1 at the critical angle, so a fine uniform grid (error ~1e-5).
@@ -31,7 +32,32 @@ DiffuseMeanCosines diffuseMeanCosines(double g) {
   // downwelling light nearer the sun's direction, so less of it per unit flux reaches a level view).
   const double mu_quadrature = 1.0 / std::sqrt(3.0);
   const double t = std::clamp((g - 0.5) / 0.4, 0.0, 1.0);
-  return {mu_quadrature + t * (0.72 - mu_quadrature), 0.52};
+  const double down = mu_quadrature + t * (0.72 - mu_quadrature);
+  return {down, 0.52, down, 0.52};
+}
+
+TwoStreamClosure twoStreamClosure() { return TwoStreamClosure::Quadrature; }
+
+double isotropicAsymptoticKappa(double omega) {
+  if (!(omega > 0)) return 1.0;
+  if (omega >= 1) return 0.0;
+  // f(κ) = omega atanh(κ) - κ is < 0 just above 0 (slope omega - 1) and -> +inf at 1, convex: one root.
+  // Bisection in double; 200 halvings reach the double spacing near both ends.
+  double lo = 0, hi = 1;
+  for (int i = 0; i < 200 && hi - lo > 0; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    if (mid == lo || mid == hi) break;
+    (omega * std::atanh(mid) - mid < 0 ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
+}
+
+double asymptoticStreamCosine(double omega) {
+  // Near omega = 1, κ = √(3 (1 - omega)) (1 + O(1 - omega)): the ratio -> 1/√3; within 1e-6 of it the
+  // limit is taken (error O(1e-6)) rather than the 0/0 of two vanishing numbers.
+  if (omega >= 1 - 1e-6) return 1.0 / std::sqrt(3.0);
+  if (!(omega > 0)) return 1.0;
+  return std::min(std::sqrt(1 - omega) / isotropicAsymptoticKappa(omega), 1.0);
 }
 
 UwiBand makeUwiBand(const UwBand& band, double g, double mu_w, double bottom_depth, double ior) {
@@ -39,7 +65,7 @@ UwiBand makeUwiBand(const UwBand& band, double g, double mu_w, double bottom_dep
 }
 
 UwiBand makeUwiBand(const UwBand& band, double g, double mu_w, double bottom_depth, double ior,
-                    DiffuseMeanCosines mean) {
+                    DiffuseMeanCosines mean, TwoStreamClosure closure) {
   UwiBand o{};
   const double a = band.a, b = band.b;
   // Delta-M (as deltaMScale in underwater/lamps_setup.cpp): the peak f = g² counts as unscattered.
@@ -53,6 +79,8 @@ UwiBand makeUwiBand(const UwBand& band, double g, double mu_w, double bottom_dep
   o.g_dm = static_cast<float>(g_dm);
   o.e0_down = static_cast<float>(1.0 / mean.down);
   o.e0_up = static_cast<float>(1.0 / mean.up);
+  o.e0_beam_down = static_cast<float>(1.0 / mean.beam_down);
+  o.e0_beam_up = static_cast<float>(1.0 / mean.beam_up);
   if (!(c_dm > 0)) return o;  // no medium: no diffuse source, nothing to attenuate
 
   // Two-stream (plane irradiances, depth y down; Meador & Weaver 1980's form in metres):
@@ -62,15 +90,20 @@ UwiBand makeUwiBand(const UwBand& band, double g, double mu_w, double bottom_dep
   // and the delta-M beam's b' split by Eddington's γ3 = (2 - 3 g' μ_w)/4 upwards, the rest downwards.
   // (Tried and measured worse overall: b B(g), the HG phase's own hemispheric back-scatter, in place
   // of b (1 - g)/2; results/BENCHMARKS.md.)
-  const double w = b_dm / c_dm;
-  const double alpha1 = c_dm * std::sqrt(3.0) * (2 - w * (1 + g_dm)) / 2;
-  const double alpha2 = c_dm * std::sqrt(3.0) * w * (1 - g_dm) / 2;
+  // In general form with the streams at ±μ1 (TwoStreamClosure): b_b = b' (1 - g')/2 the back-scatter
+  // per stream, α1 = (a + b_b)/μ1, α2 = b_b/μ1; the quadrature's μ1 = 1/√3 gives the α1, α2 above.
+  const double b_back = b_dm * (1 - g_dm) / 2;
+  const double mu1 = closure == TwoStreamClosure::Asymptotic
+                         ? asymptoticStreamCosine(2 * b_back / (a + 2 * b_back))  // the similarity albedo
+                         : 1.0 / std::sqrt(3.0);
+  const double alpha1 = (a + b_back) / mu1;
+  const double alpha2 = b_back / mu1;
   const double gamma3 = std::clamp((2 - 3 * g_dm * mu0) / 4, 0.0, 1.0);
   const double s_up = gamma3 * b_dm, s_down = b_dm - s_up;
-  // k² = α1² - α2² = 3 c'² (1 - ω')(1 - ω' g'), written without the cancellation of the difference.
-  // Kept >= 1e-3 c': at a = 0 (no absorption) k = 0 and the pair e^{-k y}, e^{-k (H - y)} would be one
-  // function, leaving the bottom's boundary system singular.
-  double k = std::max(c_dm * std::sqrt(3.0) * std::sqrt(std::max((1 - w) * (1 - w * g_dm), 0.0)), 1e-3 * c_dm);
+  // k² = α1² - α2² = a (a + 2 b_b)/μ1² (= 3 c'² (1 - ω')(1 - ω' g') at μ1 = 1/√3), written without the
+  // cancellation of the difference. Kept >= 1e-3 c': at a = 0 (no absorption) k = 0 and the pair
+  // e^{-k y}, e^{-k (H - y)} would be one function, leaving the bottom's boundary system singular.
+  double k = std::max(std::sqrt(std::max(a * (a + 2 * b_back), 0.0)) / mu1, 1e-3 * c_dm);
   const double m = c_dm / mu0;
   // At k = m the particular solution resonates (it becomes y e^{-m y}) and P and A1 grow as 1/(k - m)
   // with opposite signs, so float loses digits in their sum. Within 0.1 % of it k is moved 0.1 % away.
@@ -109,11 +142,12 @@ UwiBand makeUwiBand(const UwBand& band, double g, double mu_w, double bottom_dep
   return o;
 }
 
-std::vector<UwiBand> makeUwiBands(const UwParams& params, const std::vector<UwBand>& bands, DiffuseMeanCosines mean) {
+std::vector<UwiBand> makeUwiBands(const UwParams& params, const std::vector<UwBand>& bands, DiffuseMeanCosines mean,
+                                  TwoStreamClosure closure) {
   std::vector<UwiBand> out;
   out.reserve(bands.size());
   for (const UwBand& band : bands)
-    out.push_back(makeUwiBand(band, params.g, params.sun_dir_water[1], params.bottom_depth, params.ior, mean));
+    out.push_back(makeUwiBand(band, params.g, params.sun_dir_water[1], params.bottom_depth, params.ior, mean, closure));
   return out;
 }
 

@@ -131,7 +131,14 @@ UnderwaterSetup makeUnderwaterSetup(const Scene& scene, const WavelengthGrid& gr
     DiffuseMeanCosines mean = diffuseMeanCosines(p.g);
     if (uw.improved_mean_cosine_down > 0) mean.down = uw.improved_mean_cosine_down;
     if (uw.improved_mean_cosine_up > 0) mean.up = uw.improved_mean_cosine_up;
-    s.improved = makeUwiBands(p, s.bands, mean);
+    if (uw.improved_beam_mean_cosine_down > 0) mean.beam_down = uw.improved_beam_mean_cosine_down;
+    if (uw.improved_beam_mean_cosine_up > 0) mean.beam_up = uw.improved_beam_mean_cosine_up;
+    const TwoStreamClosure closure = uw.improved_two_stream == UnderwaterDesc::TwoStream::Quadrature
+                                         ? TwoStreamClosure::Quadrature
+                                     : uw.improved_two_stream == UnderwaterDesc::TwoStream::Asymptotic
+                                         ? TwoStreamClosure::Asymptotic
+                                         : twoStreamClosure();
+    s.improved = makeUwiBands(p, s.bands, mean, closure);
   }
   p.object_count = static_cast<int>(s.objects.size());
   if (s.objects.empty()) s.objects.push_back(UwObject{});  // OpenCL buffers cannot be empty

@@ -24,7 +24,13 @@
  *    a small table fitted offline to the path tracer (diffuseMeanCosines, host/underwater/
  *    underwater_improved_setup.cpp; fitted on one grid, reported on a held-out one in BENCHMARKS.md):
  *    the up stream lies nearer the horizon (0.52), the down stream nearer the sun as g grows (1/√3 up
- *    to g = 0.5, 0.72 from g = 0.9). The two-stream equations themselves keep the quadrature closure.
+ *    to g = 0.5, 0.72 from g = 0.9). The beam's diffuse offspring (the e^{-m y} terms dp, up) is weighed
+    by its own pair (e0_beam_down, e0_beam_up; the table sets it equal to the other), so a refit can
+    tell the light near the beam from the two-stream's own modes; the band table folds either pair
+    into its source weights on the host. The two-stream's closure (its α1, α2: TwoStreamClosure in
+    underwater_improved_setup.h, host-side only) is the quadrature's; "asymptotic" (k the exact K∞
+    of the similarity-scaled medium) is a refit option. Both measured worse so far (BENCHMARKS.md,
+    s6a): apart pairs break the cancellation of dp against d1 near k = m.
  *    plus the beam scattered once with the exact phase function (Nakajima & Tanaka 1988's TMS
  *    correction: delta-M's truncated phase would overstate the back-scatter), b p_HG(g, cos θ_s)
  *    e_beam0 e^{-m y}, attenuated as the delta-M beam.
@@ -37,10 +43,10 @@
  */
 
 /* The first-order phase-weighted source of a pair of plane irradiances (D down, U up) seen along ν:
- * scalar irradiance D/μ̄_down + U/μ̄_up (e0_down, e0_up = 1/μ̄) plus the flux term 3 g' ν (D - U). */
-SEASIM_FN real uwi_source_weight(const SEASIM_GLOBAL UwiBand* ib, real nu, real D, real U) {
-  return (real)ib->b_dm * ((real)ib->e0_down * D + (real)ib->e0_up * U + R(3.0) * (real)ib->g_dm * nu * (D - U)) /
-         (R(4.0) * SEASIM_PI);
+ * scalar irradiance D e0_down + U e0_up (e0 = 1/μ̄ of that pair's streams: ib->e0_down/up for the
+ * diffuse modes, ib->e0_beam_down/up for the beam's) plus the flux term 3 g' ν (D - U). */
+SEASIM_FN real uwi_source_weight(const SEASIM_GLOBAL UwiBand* ib, real nu, real D, real U, real e0_down, real e0_up) {
+  return (real)ib->b_dm * (e0_down * D + e0_up * U + R(3.0) * (real)ib->g_dm * nu * (D - U)) / (R(4.0) * SEASIM_PI);
 }
 
 /* E_d(y) and E_u(y), the diffuse plane irradiances at depth y (common/underwater_improved_params.h),
@@ -62,10 +68,12 @@ SEASIM_FN real uwi_multiple(const SEASIM_GLOBAL UwiBand* ib, const SEASIM_GLOBAL
                             int single_scattering, int multiple) {
   if (!multiple) return R(0.0);
   const real c_dm = ib->c_dm, k = ib->k;
-  const real w1 = uwi_source_weight(ib, d_y, ib->d1, ib->u1);
-  const real w2 = uwi_source_weight(ib, d_y, ib->d2, ib->u2);
-  /* The beam scattered once with the exact phase function (TMS), attenuated as the delta-M beam. */
-  const real wp = uwi_source_weight(ib, d_y, ib->dp, ib->up) +
+  const real e0_d = ib->e0_down, e0_u = ib->e0_up;
+  const real w1 = uwi_source_weight(ib, d_y, ib->d1, ib->u1, e0_d, e0_u);
+  const real w2 = uwi_source_weight(ib, d_y, ib->d2, ib->u2, e0_d, e0_u);
+  /* The beam's diffuse offspring with its own mean cosines, and the beam scattered once with the exact
+   * phase function (TMS), attenuated as the delta-M beam. */
+  const real wp = uwi_source_weight(ib, d_y, ib->dp, ib->up, (real)ib->e0_beam_down, (real)ib->e0_beam_up) +
                   (real)band->b * hg_phase(cos_s, g) * (real)band->e_beam0;
   const real i1 = kd_exp_integral(k, c_dm, d_y, o_d, S);
   /* e^{-k (H - y(z))} = e^{-k (H - o_d)} e^{-k d_y z}: the same integral seen from the bottom. */

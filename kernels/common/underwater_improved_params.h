@@ -20,9 +20,11 @@ typedef struct {
   float d1, u1; /* E_d, E_u coefficients of e^{-k y} */
   float d2, u2; /* of e^{-k (H - y)} (light the bottom sends up, and its back-scatter) */
   float dp, up; /* of e^{-m y} (the delta-M beam's diffuse source) */
-  float e0_down, e0_up; /* 1/μ̄ of the down and up streams: scalar irradiance per plane irradiance in the
-                           in-scatter source (diffuseMeanCosines in underwater_improved_setup.h) */
-  float pad0, pad1, pad2;
+  float e0_down, e0_up; /* 1/μ̄ of the down and up streams of e^{-k y} and e^{-k (H - y)}: scalar
+                           irradiance per plane irradiance in the in-scatter source (diffuseMeanCosines in
+                           underwater_improved_setup.h) */
+  float e0_beam_down, e0_beam_up; /* the same of the beam's diffuse offspring, e^{-m y} (dp, up) */
+  float pad0;
 } UwiBand;
 
 #endif /* SEASIM_UNDERWATER_IMPROVED_PARAMS_H */

@@ -2,7 +2,8 @@
 """underwater_regions_fit.py — the scan of tests/perf/underwater_regions_fit.sh as a table: for each CSV
 (named fit_<mu_down>_<mu_up>.csv) and each g, the judged region cases within 5 % of the path tracer and
 the RMS of ratio - 1 (the same judging as underwater_regions_summary.py), then the best pair per g.
-Standard library only. Usage: tests/perf/underwater_regions_fit.py DIR/fit_*.csv
+Standard library only. Usage: tests/perf/underwater_regions_fit.py DIR/fit_*.csv (also the five-value
+names of underwater_regions_fit_two_stream.sh)
 """
 import os
 import sys
@@ -29,19 +30,24 @@ def score(path):
 def main(paths):
     table = {}
     for p in paths:
-        _, down, up = os.path.basename(p)[:-4].split("_")
-        table[(float(down), float(up))] = score(p)
+        # fit_<mu_down>_<mu_up>.csv, or fit_<two_stream>_<mu_down>_<mu_up>_<mu_beam_down>_<mu_beam_up>.csv
+        # (underwater_regions_fit_two_stream.sh; "table" for the model's own values)
+        table[tuple(os.path.basename(p)[:-4].split("_")[1:])] = score(p)
     gs = sorted({g for s in table.values() for g in s})
-    print("| mu_down | mu_up | " + " | ".join(f"g = {g:g}: within 5 %, RMS" for g in gs) + " |")
-    print("|---:|---:|" + "---:|" * len(gs))
-    for (down, up), s in sorted(table.items()):
-        print(f"| {down:g} | {up:g} | " +
+    width = max(len(k) for k in table)
+    names = (["mu_down", "mu_up"] if width == 2 else
+             ["two_stream", "mu_down", "mu_up", "mu_beam_down", "mu_beam_up"][:width])
+    table = {k + ("",) * (width - len(k)): v for k, v in table.items()}
+    print("| " + " | ".join(names) + " | " + " | ".join(f"g = {g:g}: within 5 %, RMS" for g in gs) + " |")
+    print("|" + "---:|" * (len(names) + len(gs)))
+    for key, s in sorted(table.items()):
+        print("| " + " | ".join(key) + " | " +
               " | ".join(f"{s[g][1]}/{s[g][0]}, {(s[g][2] / s[g][0]) ** 0.5:.3f}" for g in gs) + " |")
     print()
     for g in gs:
         best = max(table.items(), key=lambda kv: (kv[1][g][1], -kv[1][g][2]))
-        print(f"best at g = {g:g}: mu_down {best[0][0]:g}, mu_up {best[0][1]:g} "
-              f"({best[1][g][1]}/{best[1][g][0]} within 5 %)")
+        print(f"best at g = {g:g}: " + ", ".join(f"{n} {v}" for n, v in zip(names, best[0])) +
+              f" ({best[1][g][1]}/{best[1][g][0]} within 5 %)")
 
 
 if __name__ == "__main__":

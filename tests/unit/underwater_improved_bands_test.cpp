@@ -126,13 +126,27 @@ TEST(UnderwaterImprovedBands, TableRowsHoldTheBlockAndPaddingIsWeightless) {
     EXPECT_EQ(at(row0 + UWI_ROW_UP, k), ib.up);
     // w(ν) = w_a + ν w_b is uwi_source_weight at every ν.
     for (double nu : {-1.0, 0.0, 0.7}) {
-      const double w = kd::uwi_source_weight(&ib, nu, ib.d1, ib.u1);
+      const double w = kd::uwi_source_weight(&ib, nu, ib.d1, ib.u1, ib.e0_down, ib.e0_up);
       const double wa = at(row0 + UWI_ROW_W1_A, k), wb = at(row0 + UWI_ROW_W1_B, k);
       EXPECT_NEAR(wa + nu * wb, w, 1e-6 * (std::fabs(wa) + std::fabs(wb)));  // each row rounded to float
     }
     for (int r = 0; r < UWI_ROWS; ++r) EXPECT_TRUE(std::isfinite(at(row0 + r, k))) << r;
   }
   EXPECT_GT(at(row0 + UWI_ROW_BOTTOM_L, 0), 0.0f);
+  // The beam's offspring (dp, up) is weighed by its own mean cosines, the two-stream's modes by theirs:
+  // set the two pairs apart and each weight row follows its own.
+  seasim::UnderwaterSetup apart = s;
+  for (UwiBand& ib : apart.improved) {
+    ib.e0_down = 1 / 0.5f, ib.e0_up = 1 / 0.6f;
+    ib.e0_beam_down = 1 / 0.9f, ib.e0_beam_up = 1 / 0.4f;
+  }
+  const std::vector<float> ta = seasim::underwaterBandTable(apart);
+  const UwiBand& ia = apart.improved[0];
+  auto at_apart = [&](int row) { return double(ta[size_t(row0 + row) * stride]); };
+  const double b4pi = ia.b_dm / (4 * M_PI);
+  EXPECT_NEAR(at_apart(UWI_ROW_WP_A), b4pi * (ia.dp / 0.9 + ia.up / 0.4), 1e-6 * std::fabs(at_apart(UWI_ROW_WP_A)));
+  EXPECT_NEAR(at_apart(UWI_ROW_W1_A), b4pi * (ia.d1 / 0.5 + ia.u1 / 0.6), 1e-6 * std::fabs(at_apart(UWI_ROW_W1_A)));
+  EXPECT_NEAR(at_apart(UWI_ROW_W2_A), b4pi * (ia.d2 / 0.5 + ia.u2 / 0.6), 1e-6 * std::fabs(at_apart(UWI_ROW_W2_A)));
   // No bottom: no bottom radiance; the thesis model: no improved rows.
   EXPECT_EQ(seasim::underwaterBandTable(makeSetup(0.9, 0.0, 0.8, 0.1, 0.3))[size_t(row0 + UWI_ROW_BOTTOM_L) * stride],
             0.0f);

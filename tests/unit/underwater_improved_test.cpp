@@ -17,6 +17,7 @@ namespace {
 namespace kd = seasim::kmath_d;
 namespace kf = seasim::kmath_f;
 using seasim::makeUwiBand;
+using seasim::TwoStreamClosure;
 
 UwBand band(double a, double b, double e_sky0, double e_sun0, double mu_w, double rho) {
   UwBand o{};
@@ -42,16 +43,20 @@ std::vector<Case> cases() {
   return out;
 }
 
-// The two-stream coefficients as underwater_improved_setup.cpp documents them (quadrature closure on
-// the delta-M medium; the beam's b' split by Eddington's γ3).
+// The two-stream coefficients as underwater_improved_setup.cpp documents them (the closure's streams
+// at ±μ1 on the delta-M medium; the beam's b' split by Eddington's γ3).
 struct TwoStream {
   double a1, a2, s_up, s_down, m;
 };
-TwoStream twoStream(const Case& c, const UwiBand& ib) {
+TwoStream twoStream(const Case& c, const UwiBand& ib, TwoStreamClosure closure = seasim::twoStreamClosure()) {
   const double w = ib.b_dm / ib.c_dm, gp = ib.g_dm;
   TwoStream t;
-  t.a1 = ib.c_dm * std::sqrt(3.0) * (2 - w * (1 + gp)) / 2;
-  t.a2 = ib.c_dm * std::sqrt(3.0) * w * (1 - gp) / 2;
+  // Quadrature: μ1 = 1/√3; asymptotic: that of the similarity albedo b'(1 - g')/(a + b'(1 - g')).
+  const double bb = ib.b_dm * (1 - gp) / 2, a = ib.c_dm - ib.b_dm;
+  const double mu1 = closure == TwoStreamClosure::Asymptotic ? seasim::asymptoticStreamCosine(2 * bb / (a + 2 * bb))
+                                                             : 1 / std::sqrt(3.0);
+  t.a1 = ib.c_dm * (2 - w * (1 + gp)) / 2 / mu1;
+  t.a2 = ib.c_dm * w * (1 - gp) / 2 / mu1;
   t.s_up = ib.b_dm * (2 - 3 * gp * c.mu_w) / 4;
   t.s_down = ib.b_dm - t.s_up;
   t.m = ib.c_dm / c.mu_w;
@@ -60,10 +65,11 @@ TwoStream twoStream(const Case& c, const UwiBand& ib) {
 
 TEST(UnderwaterImproved, TwoStreamSolvesItsEquationsAndBoundaries) {
   const double ior = 1.34, rs = seasim::internalDiffuseReflectance(ior);
+  for (TwoStreamClosure closure : {TwoStreamClosure::Quadrature, TwoStreamClosure::Asymptotic})
   for (const Case& c : cases()) {
     const UwBand bd = band(c.a, c.b, 0.3, 1.0, c.mu_w, c.rho);
-    const UwiBand ib = makeUwiBand(bd, c.g, c.mu_w, c.H, ior);
-    const TwoStream t = twoStream(c, ib);
+    const UwiBand ib = makeUwiBand(bd, c.g, c.mu_w, c.H, ior, seasim::diffuseMeanCosines(c.g), closure);
+    const TwoStream t = twoStream(c, ib, closure);
     auto E = [&](double y, double* ed, double* eu) { kd::uwi_irradiance(&ib, c.H, y, ed, eu); };
     const double y_max = c.H > 0 ? c.H : 30.0;
     double scale = 0;
@@ -127,7 +133,10 @@ long double multipleQuadrature(const UwiBand& ib, const UwBand& bd, double g, do
     const double y = o_d - double(z) * d_y;
     double ed, eu;
     kd::uwi_irradiance(&ib, H, y, &ed, &eu);
-    const double J = ib.b_dm * (ed / mean.down + eu / mean.up + 3 * ib.g_dm * d_y * (ed - eu)) / (4 * M_PI) +
+    // The beam's offspring (dp, up) by its own mean cosines, the rest by the two-stream modes'.
+    const double ep = std::exp(-double(ib.m) * y), bd_ = ib.dp * ep, bu_ = ib.up * ep;
+    const double J = ib.b_dm * ((ed - bd_) / mean.down + (eu - bu_) / mean.up + bd_ / mean.beam_down +
+                                bu_ / mean.beam_up + 3 * ib.g_dm * d_y * (ed - eu)) / (4 * M_PI) +
                      bd.b * kd::hg_phase(cos_s, g) * bd.e_beam0 * std::exp(-double(ib.m) * y);
     const double ss = single ? bd.b * kd::hg_phase(cos_s, g) * bd.e_beam0 * std::exp(-bd.c * y / mu_w - bd.c * double(z)) : 0;
     return J * std::exp(-double(ib.c_dm) * double(z)) - ss;
@@ -238,11 +247,57 @@ TEST(UnderwaterImproved, DiffuseMeanCosinesFollowTheirTableAndReachTheKernel) {
   const UwiBand ib = makeUwiBand(band(0.1, 0.3, 0.3, 1.0, 0.9, 0.35), 0.9, 0.9, 5.0, 1.34);
   EXPECT_NEAR(ib.e0_down, 1 / 0.72, 1e-6);
   EXPECT_NEAR(ib.e0_up, 1 / 0.52, 1e-6);
-  const double w_d = kd::uwi_source_weight(&ib, 0.0, 1.0, 0.0), w_u = kd::uwi_source_weight(&ib, 0.0, 0.0, 1.0);
+  const double w_d = kd::uwi_source_weight(&ib, 0.0, 1.0, 0.0, ib.e0_down, ib.e0_up),
+               w_u = kd::uwi_source_weight(&ib, 0.0, 0.0, 1.0, ib.e0_down, ib.e0_up);
   EXPECT_NEAR(w_d, ib.b_dm / 0.72 / (4 * M_PI), 1e-6 * w_d);
   EXPECT_NEAR(w_u, ib.b_dm / 0.52 / (4 * M_PI), 1e-6 * w_u);
-  const float wf = kf::uwi_source_weight(&ib, 0.5f, 1.0f, 0.25f);
-  EXPECT_NEAR(wf, kd::uwi_source_weight(&ib, 0.5, 1.0, 0.25), 1e-6 * wf);
+  const float wf = kf::uwi_source_weight(&ib, 0.5f, 1.0f, 0.25f, ib.e0_down, ib.e0_up);
+  EXPECT_NEAR(wf, kd::uwi_source_weight(&ib, 0.5, 1.0, 0.25, ib.e0_down, ib.e0_up), 1e-6 * wf);
+}
+
+TEST(UnderwaterImproved, AsymptoticClosureDecaysAtTheIsotropicEigenvalue) {
+  // κ = K∞/c of isotropic scattering, the root of ω atanh(κ) = κ: Case & Zweifel's tabulated
+  // 1/ν0 (ω = 0.5: ν0 = 1.04438; 0.9: 1.90320; 0.99: 5.79672), and its ends (at ω = 1e-6, 1 - κ =
+  // 2 e^{-2/ω} is below the double spacing).
+  EXPECT_NEAR(seasim::isotropicAsymptoticKappa(0.5), 1 / 1.04438, 1e-5);
+  EXPECT_EQ(seasim::isotropicAsymptoticKappa(1e-6), 1.0);
+  EXPECT_NEAR(seasim::isotropicAsymptoticKappa(0.9), 1 / 1.90320, 1e-5);
+  EXPECT_NEAR(seasim::isotropicAsymptoticKappa(0.99), 1 / 5.79672, 1e-5);
+  EXPECT_EQ(seasim::isotropicAsymptoticKappa(0.0), 1.0);
+  EXPECT_EQ(seasim::isotropicAsymptoticKappa(1.0), 0.0);
+  for (double w : {0.2, 0.3, 0.6, 0.99, 1 - 1e-5}) {
+    const double k = seasim::isotropicAsymptoticKappa(w);
+    EXPECT_NEAR(w * std::atanh(k), k, 1e-9 * (1 + k)) << w;
+  }
+  // μ1 = √(1 - ω)/κ: 1 with no scattering, the diffusion limit 1/√3 at ω -> 1, continuous at the
+  // 1 - 1e-6 switch to the limit, monotone between, always a cosine.
+  EXPECT_EQ(seasim::asymptoticStreamCosine(0.0), 1.0);
+  EXPECT_NEAR(seasim::asymptoticStreamCosine(1.0), 1 / std::sqrt(3.0), 1e-12);
+  EXPECT_NEAR(seasim::asymptoticStreamCosine(1 - 1.01e-6), seasim::asymptoticStreamCosine(1 - 0.99e-6), 1e-6);
+  double prev = 1.0;
+  for (int i = 1; i <= 1000; ++i) {
+    const double mu = seasim::asymptoticStreamCosine(i / 1000.0);
+    EXPECT_LE(mu, prev + 1e-12) << i;
+    EXPECT_GE(mu, 1 / std::sqrt(3.0) - 1e-9) << i;
+    prev = mu;
+  }
+  // The band's k is then the similarity medium's K∞ = (a + b'(1 - g')) κ, where the quadrature's is
+  // larger (isotropic ω = 0.75: 0.866 c against 0.776 c); deep in a bottomless layer E_d decays at it.
+  for (double g : {0.0, 0.5, 0.9}) {
+    const UwBand bd = band(0.1, 0.3, 0.3, 1.0, 0.9, 0.35);
+    const UwiBand ia = makeUwiBand(bd, g, 0.9, 0.0, 1.34, seasim::diffuseMeanCosines(g), TwoStreamClosure::Asymptotic);
+    const UwiBand iq = makeUwiBand(bd, g, 0.9, 0.0, 1.34, seasim::diffuseMeanCosines(g), TwoStreamClosure::Quadrature);
+    const double bb = ia.b_dm * (1 - ia.g_dm), cs = 0.1 + bb;
+    EXPECT_NEAR(ia.k, cs * seasim::isotropicAsymptoticKappa(bb / cs), 1e-6) << g;
+    EXPECT_LT(ia.k, 0.95 * iq.k) << g;
+    if (g == 0.0) EXPECT_NEAR(ia.k / 0.4, 0.77552, 1e-4);
+    if (ia.k < ia.m) {  // the beam's offspring decays faster: far down only e^{-k y} is left
+      double e1, u1, e2, u2;
+      kd::uwi_irradiance(&ia, 0.0, 200.0, &e1, &u1);
+      kd::uwi_irradiance(&ia, 0.0, 201.0, &e2, &u2);
+      EXPECT_NEAR(std::log(e1 / e2), ia.k, 2e-3 * ia.k) << g;
+    }
+  }
 }
 
 TEST(UnderwaterImproved, InternalDiffuseReflectance) {

@@ -104,7 +104,23 @@ TEST(UnderwaterModelOption, MeanCosineKeysOverrideTheFittedTableOrAreRejectedWit
   const UnderwaterSetup b = makeUnderwaterSetup(set, grid, sensor);
   EXPECT_FLOAT_EQ(b.improved[1].e0_down, float(1 / 0.8));
   EXPECT_FLOAT_EQ(b.improved[1].e0_up, float(1 / table.up));
-  for (const char* bad : {"improved_mean_cosine_up = 0.05", "improved_mean_cosine_down = 1.5"}) {
+  EXPECT_FLOAT_EQ(b.improved[1].e0_beam_down, float(1 / table.beam_down));
+  // The beam's offspring's keys replace its pair only.
+  const Scene beam = parseScene(withModel("\"improved\"\nimproved_beam_mean_cosine_down = 0.9\n"
+                                          "improved_beam_mean_cosine_up = 0.45"), "uw.toml");
+  const UnderwaterSetup c = makeUnderwaterSetup(beam, grid, sensor);
+  EXPECT_FLOAT_EQ(c.improved[1].e0_beam_down, float(1 / 0.9));
+  EXPECT_FLOAT_EQ(c.improved[1].e0_beam_up, float(1 / 0.45));
+  EXPECT_FLOAT_EQ(c.improved[1].e0_down, float(1 / table.down));
+  EXPECT_FLOAT_EQ(c.improved[1].e0_up, float(1 / table.up));
+  // The closure key: "asymptotic" lowers k below the default (quadrature) one's; "quadrature" is it.
+  const Scene asym = parseScene(withModel("\"improved\"\nimproved_two_stream = \"asymptotic\""), "uw.toml");
+  const Scene quad = parseScene(withModel("\"improved\"\nimproved_two_stream = \"quadrature\""), "uw.toml");
+  EXPECT_LT(makeUnderwaterSetup(asym, grid, sensor).improved[1].k, 0.95f * a.improved[1].k);
+  EXPECT_EQ(makeUnderwaterSetup(quad, grid, sensor).improved[1].k, a.improved[1].k);
+  for (const char* bad : {"improved_mean_cosine_up = 0.05", "improved_mean_cosine_down = 1.5",
+                          "improved_beam_mean_cosine_down = 1.5", "improved_beam_mean_cosine_up = -0.2",
+                          "improved_two_stream = \"cubic\""}) {
     try {
       parseScene(withModel(std::string("\"improved\"\n") + bad), "uw.toml");
       ADD_FAILURE() << "accepted " << bad;
