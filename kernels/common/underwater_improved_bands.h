@@ -17,6 +17,10 @@
  * One exp fewer per lit band than underwater_improved.h: T(S) = e^{-c' S} is folded into the three
  * exps of the irradiance at the hit, e^{-c' S} e^{-k y} = e^{-(k y + c' S)} (the clamps at 0 commute with
  * the positive factor), as underwater_bands.h does for the thesis.
+ * One exp fewer per integral than kd_exp_integral_b: each ray's start factors e^{-κ o_d} (UwiStart) are
+ * per band and frame for the camera's rays (the table's UWI_ROW_EXP_* rows) and 1 or e^{-k H} for the
+ * surface's reflected ray (o_d = 0), so each integral is kd_exp_integral_from_b (issue 13's 2x budget
+ * per band: four integrals where eq. 4.7 takes two, now at one exp each).
  * tests/unit/underwater_improved_bands_test.cpp holds these lanes (one band per step on the host) to
  * uwi_band_radiance in float and double; tests/kernels/underwater_improved_kernel_test.cpp the kernel
  * to the double CPU evaluation of uwi_band_radiance.
@@ -61,22 +65,39 @@ SEASIM_FN UwiLanes uwi_lanes_load(const SEASIM_GLOBAL float* table, int stride, 
   return v;
 }
 
+/* The start factors e^{-κ o_d} of the integrals along a ray that starts at depth o_d, per band. */
+typedef struct {
+  realb k, m, beam; /* e^{-k o_d}, e^{-m o_d}, e^{-(σ_t/μ_w) o_d} */
+  realb k_bottom;   /* e^{-k max(H - o_d, 0)}: the bottom's term, integrated from the bottom */
+} UwiStart;
+
+/* The camera's (o_d = -cam_pos[1]): the table's per-frame rows. */
+SEASIM_FN UwiStart uwi_start_camera(const SEASIM_GLOBAL float* table, int stride, int uwi_row0, int i) {
+  UwiStart a;
+  a.k = LOADB(table + (size_t)(uwi_row0 + UWI_ROW_EXP_K_OD) * (size_t)stride, i);
+  a.m = LOADB(table + (size_t)(uwi_row0 + UWI_ROW_EXP_M_OD) * (size_t)stride, i);
+  a.beam = LOADB(table + (size_t)(uwi_row0 + UWI_ROW_EXP_BEAM_OD) * (size_t)stride, i);
+  a.k_bottom = LOADB(table + (size_t)(uwi_row0 + UWI_ROW_EXP_K_HOD) * (size_t)stride, i);
+  return a;
+}
+
 /* uwi_multiple: in-scattered radiance along the ray (d_y, o_d) to distance S (UW_INFINITE: deep water),
- * phase = p_HG(g, d·s_w) of the pixel. Each term of J(y) an exponential in y, so each integral is
+ * phase = p_HG(g, d·s_w) of the pixel, a the ray's start factors at o_d. Each term of J(y) an exponential in y, so each integral is
  * kd_exp_integral_b (002 eq. 4.7's form); with single_scattering the froxel pass's unshadowed strict
  * single scattering b p_HG e_beam0 ∫ e^{-c z} e^{-(c/μ_w) y(z)} dz (002 eq. 5.2) is taken off. */
-SEASIM_FN realb uwi_lanes_multiple(const UwiLanes* v, real phase, real bottom_depth, real S, real d_y, real o_d,
-                                   int single_scattering) {
+SEASIM_FN realb uwi_lanes_multiple(const UwiLanes* v, const UwiStart* a, real phase, real bottom_depth, real S,
+                                   real d_y, real o_d, int single_scattering) {
   const realb beam_phase = v->b_e_beam * phase;
   const realb w1 = v->w1_a + d_y * v->w1_b;
   const realb wp = v->wp_a + d_y * v->wp_b + beam_phase;
-  realb sum = w1 * kd_exp_integral_b(v->k, v->c_dm, d_y, o_d, S) + wp * kd_exp_integral_b(v->m, v->c_dm, d_y, o_d, S);
+  realb sum = w1 * kd_exp_integral_from_b(v->k, v->c_dm, a->k, d_y, o_d, S) +
+              wp * kd_exp_integral_from_b(v->m, v->c_dm, a->m, d_y, o_d, S);
   if (bottom_depth > R(0.0)) {
     /* e^{-k (H - y(z))} = e^{-k (H - o_d)} e^{-k d_y z}: the same integral seen from the bottom. */
     const realb w2 = v->w2_a + d_y * v->w2_b;
-    sum += w2 * kd_exp_integral_b(v->k, v->c_dm, -d_y, fmax(bottom_depth - o_d, R(0.0)), S);
+    sum += w2 * kd_exp_integral_from_b(v->k, v->c_dm, a->k_bottom, -d_y, fmax(bottom_depth - o_d, R(0.0)), S);
   }
-  if (single_scattering) sum -= beam_phase * kd_exp_integral_b(v->k_beam, v->c, d_y, o_d, S);
+  if (single_scattering) sum -= beam_phase * kd_exp_integral_from_b(v->k_beam, v->c, a->beam, d_y, o_d, S);
   return fmax(sum, R(0.0));
 }
 
@@ -102,12 +123,19 @@ SEASIM_FN realb uwi_lanes_lambert(const UwiLanes* v, realb albedo, real bottom_d
 /* uwi_surface times T(S): the surface seen from below along d (d_y = d.y > 0) at distance S: the sky
  * through Snell's window (sky_l, the lanes' sky radiance in air along the refracted view) plus F times
  * the reflected ray's in-scatter (phase_r = p_HG(g, cos of the reflected ray with s_w)) down to the
- * bottom, and the bottom itself (bottom_l: UWI_ROW_BOTTOM_L, its sunlit radiance), or deep water. */
-SEASIM_FN realb uwi_lanes_surface(const UwiLanes* v, realb sky_l, realb bottom_l, real phase_r, real bottom_depth,
-                                  real S, real d_y, real ior, int single_scattering, int multiple) {
+ * bottom, and the bottom itself (bottom_l: UWI_ROW_BOTTOM_L, its sunlit radiance), or deep water.
+ * exp_k_h: e^{-k H} (UWI_ROW_EXP_K_H), the reflected ray's start factor of the bottom's term; the others
+ * are 1 at o_d = 0. */
+SEASIM_FN realb uwi_lanes_surface(const UwiLanes* v, realb sky_l, realb bottom_l, realb exp_k_h, real phase_r,
+                                  real bottom_depth, real S, real d_y, real ior, int single_scattering, int multiple) {
   const real dy = fmax(d_y, R(1e-6));
   const real s_r = bottom_depth > R(0.0) ? bottom_depth / dy : UW_INFINITE;
-  realb reflected = multiple ? uwi_lanes_multiple(v, phase_r, bottom_depth, s_r, -dy, R(0.0), single_scattering)
+  UwiStart a;
+  a.k = SPLATB(R(1.0));
+  a.m = SPLATB(R(1.0));
+  a.beam = SPLATB(R(1.0));
+  a.k_bottom = exp_k_h;
+  realb reflected = multiple ? uwi_lanes_multiple(v, &a, phase_r, bottom_depth, s_r, -dy, R(0.0), single_scattering)
                              : SPLATB(R(0.0));
   if (bottom_depth > R(0.0)) reflected += exp(-v->c_dm * fmin(s_r, R(1e4))) * bottom_l;
   const real f = fresnel_reflectance(d_y, ior, R(1.0));
