@@ -75,7 +75,7 @@ std::vector<float> underwaterBandTable(const UnderwaterSetup& setup) {
       // The integrals' start factors at the camera's depth, as the kernel forms their exponents: from
       // the float rows and the float depth o_d = -cam_pos[1] (>= 0: the underwater frame's camera is
       // below the surface), in double, then rounded once. Deep cameras underflow them to 0, which is
-      // their value to float precision (kd_exp_integral_from_b).
+      // their value to float precision (kd_exp_integral_ends_b).
       const float o_d = -setup.params.cam_pos[1];
       const float h_od = std::max(setup.params.bottom_depth - o_d, 0.0f);
       const double k_f = at(uwi_row0 + UWI_ROW_K, i), m_f = at(uwi_row0 + UWI_ROW_M, i);

@@ -80,15 +80,16 @@ struct Ray {
     const ns::UwiLanes v = ns::uwi_lanes_load(table.data(), stride, uwi_row0, k);                            \
     const ns::UwiStart a = ns::uwi_start_camera(table.data(), stride, uwi_row0, k);                          \
     auto row = [&](int rw) { return Real(table[size_t(rw) * stride + k]); };                                 \
-    Real L = ns::uwi_lanes_multiple(&v, &a, phase, H, S, d.y, o_d, single);                                  \
+    const Real y = std::max(o_d - S * d.y, Real(0));                                                         \
+    const ns::UwiEnds e = ns::uwi_ends(&v, H, S, y, single);                                                 \
+    Real L = ns::uwi_lanes_multiple(&v, &a, &e, phase, H, S, d.y, single);                                   \
     if (r.mat == UW_MAT_SURFACE) {                                                                           \
       L += ns::uwi_lanes_surface(&v, Real(r.sky_l), row(uwi_row0 + UWI_ROW_BOTTOM_L),                        \
                                  row(uwi_row0 + UWI_ROW_EXP_K_H), phase_r, H, S, d.y, Real(s.params.ior),    \
                                  single, 1);                                                                 \
     } else if (r.mat != UW_MAT_NONE) {                                                                       \
       const Real albedo = row(r.mat >= 0 ? UW_ROWS + r.mat : UW_ROW_BOTTOM_ALBEDO);                          \
-      L += ns::uwi_lanes_lambert(&v, albedo, H, S, std::max(o_d - S * d.y, Real(0)), n.y, ns::dot(n, s_w),   \
-                                 Real(r.vis));                                                               \
+      L += ns::uwi_lanes_lambert(&v, &e, albedo, H, n.y, ns::dot(n, s_w), Real(r.vis));                       \
     }                                                                                                        \
     return L;                                                                                                \
   }
