@@ -27,7 +27,7 @@
  * uwi_band_radiance in float and double; tests/kernels/underwater_improved_kernel_test.cpp the kernel
  * to the double CPU evaluation of uwi_band_radiance.
  * Needs compat.h, band_lanes.h, band_lanes_math.h, optics.h (fresnel_reflectance), underwater.h
- * (UW_INFINITE), underwater_bands.h (kd_exp_integral_b), underwater_band_table.h. */
+ * (UW_INFINITE), underwater_bands.h (kd_exp_integral_ends_b), underwater_band_table.h. */
 
 /* One step's per-band values: the thesis rows the model shares (σ_t, σ_t/μ_w, e_beam0) and the
  * improved rows. */
@@ -106,7 +106,7 @@ SEASIM_FN UwiEnds uwi_ends(const UwiLanes* v, real bottom_depth, real S, real y,
 /* uwi_multiple: in-scattered radiance along the ray (d_y) to distance S (UW_INFINITE: deep water),
  * phase = p_HG(g, d·s_w) of the pixel, a the ray's start factors, e its far ends (uwi_ends with the same
  * single_scattering). Each term of J(y) an exponential in y, so each integral is
- * kd_exp_integral_b (002 eq. 4.7's form); with single_scattering the froxel pass's unshadowed strict
+ * kd_exp_integral_ends_b (002 eq. 4.7's form); with single_scattering the froxel pass's unshadowed strict
  * single scattering b p_HG e_beam0 ∫ e^{-c z} e^{-(c/μ_w) y(z)} dz (002 eq. 5.2) is taken off. */
 SEASIM_FN realb uwi_lanes_multiple(const UwiLanes* v, const UwiStart* a, const UwiEnds* e, real phase,
                                    real bottom_depth, real S, real d_y, int single_scattering) {
