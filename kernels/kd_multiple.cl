@@ -131,8 +131,8 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
     realb L = multiple ? uwi_lanes_multiple(&v, &camera, &ends, phase, p->bottom_depth, S, d.y, single) : SPLATB(0.0f);
     if (mat == UW_MAT_SURFACE) {
       const realb sky_l = kd_sky_lanes(band_table, stride, i, sky_shape);
-      L += uwi_lanes_surface(&v, sky_l, LOADB(ROW(uwi_row0 + UWI_ROW_BOTTOM_L), i),
-                             LOADB(ROW(uwi_row0 + UWI_ROW_EXP_K_H), i), phase_r, p->bottom_depth, S, d.y, p->ior,
+      L += uwi_lanes_surface(&v, ends.k, sky_l, LOADB(ROW(uwi_row0 + UWI_ROW_BOTTOM_L), i),
+                             LOADB(ROW(uwi_row0 + UWI_ROW_EXP_K_H), i), phase_r, p->bottom_depth, d.y, p->ior,
                              single, multiple);
     } else if (mat != UW_MAT_NONE) {
       L += uwi_lanes_lambert(&v, &ends, LOADB(albedo_row, i), p->bottom_depth, n.y, n_dot_s, vis);

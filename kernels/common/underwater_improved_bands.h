@@ -22,7 +22,8 @@
  * per band and frame for the camera's rays (the table's UWI_ROW_EXP_* rows) and 1 or e^{-k H} for the
  * surface's reflected ray (o_d = 0); its far ends e^{-(κ y(S) + c' S)} (UwiEnds) are the exps of the
  * hit's irradiance times T(S), taken once per step and shared by the integrals and the Lambert hit.
- * So a lit hit takes four exps per band (three without froxels) where the thesis's lanes take six.
+ * So a lit hit takes four exps per band (three without froxels) where the thesis's lanes take six, and
+ * the surface from below eight (its T(S) the camera's far end; the reflected ray's four) against nine.
  * tests/unit/underwater_improved_bands_test.cpp holds these lanes (one band per step on the host) to
  * uwi_band_radiance in float and double; tests/kernels/underwater_improved_kernel_test.cpp the kernel
  * to the double CPU evaluation of uwi_band_radiance.
@@ -144,13 +145,17 @@ SEASIM_FN realb uwi_lanes_lambert(const UwiLanes* v, const UwiEnds* e, realb alb
  * through Snell's window (sky_l, the lanes' sky radiance in air along the refracted view) plus F times
  * the reflected ray's in-scatter (phase_r = p_HG(g, cos of the reflected ray with s_w)) down to the
  * bottom, and the bottom itself (bottom_l: UWI_ROW_BOTTOM_L, its sunlit radiance), or deep water.
- * exp_k_h: e^{-k H} (UWI_ROW_EXP_K_H), the reflected ray's start factor of the bottom's term; the others
- * are 1 at o_d = 0. */
-SEASIM_FN realb uwi_lanes_surface(const UwiLanes* v, realb sky_l, realb bottom_l, realb exp_k_h, real phase_r,
-                                  real bottom_depth, real S, real d_y, real ior, int single_scattering, int multiple) {
+ * t_s: T(S) = e^{-c' S}, which is the camera ray's far end e^{-(k y + c' S)} at the surface (y = 0:
+ * uwi_ends' k). exp_k_h: e^{-k H} (UWI_ROW_EXP_K_H), the reflected ray's start factor of the bottom's
+ * term; the others are 1 at o_d = 0. */
+SEASIM_FN realb uwi_lanes_surface(const UwiLanes* v, realb t_s, realb sky_l, realb bottom_l, realb exp_k_h,
+                                  real phase_r, real bottom_depth, real d_y, real ior, int single_scattering,
+                                  int multiple) {
   const real dy = fmax(d_y, R(1e-6));
   const real s_r = bottom_depth > R(0.0) ? bottom_depth / dy : UW_INFINITE;
   realb reflected = SPLATB(R(0.0));
+  /* The bottom's attenuation along the reflected ray, e^{-c' min(s_r, 1e4)} as uwi_surface takes it. */
+  realb t_bottom = SPLATB(R(0.0));
   if (multiple) {
     UwiStart a;
     a.k = SPLATB(R(1.0));
@@ -161,8 +166,13 @@ SEASIM_FN realb uwi_lanes_surface(const UwiLanes* v, realb sky_l, realb bottom_l
     const UwiEnds e = uwi_ends(v, bottom_depth, s_r, bottom_depth > R(0.0) ? bottom_depth : UW_INFINITE,
                                single_scattering);
     reflected = uwi_lanes_multiple(v, &a, &e, phase_r, bottom_depth, s_r, -dy, single_scattering);
+    /* Its far end e^{-(k (H - y) + c' s_r)} at y = H: the same but past s_r = 1e4 (within H/1e4 of
+     * the horizon), where both are e^{-c' 1e4} or less. */
+    t_bottom = e.k_bottom;
+  } else if (bottom_depth > R(0.0)) {
+    t_bottom = exp(-v->c_dm * fmin(s_r, R(1e4)));
   }
-  if (bottom_depth > R(0.0)) reflected += exp(-v->c_dm * fmin(s_r, R(1e4))) * bottom_l;
+  if (bottom_depth > R(0.0)) reflected += t_bottom * bottom_l;
   const real f = fresnel_reflectance(d_y, ior, R(1.0));
-  return exp(-v->c_dm * S) * (ior * ior * (R(1.0) - f) * sky_l + f * reflected);
+  return t_s * (ior * ior * (R(1.0) - f) * sky_l + f * reflected);
 }
