@@ -124,13 +124,18 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
   const float phase_r = mat == UW_MAT_SURFACE ? hg_phase(cos_s - 2.0f * d.y * s_w.y, p->g) : 0.0f;
   for (int i = 0; i < band_count; i += SEASIM_BAND_LANES) {
     const UwiLanes v = uwi_lanes_load(band_table, stride, uwi_row0, i);
-    realb L = multiple ? uwi_lanes_multiple(&v, phase, p->bottom_depth, S, d.y, o_d, single) : SPLATB(0.0f);
+    /* The in-scatter's integrals start at the camera (per-frame rows: o_d is the frame's) and end at the
+     * hit, whose exps a Lambertian hit shares. */
+    const UwiStart camera = uwi_start_camera(band_table, stride, uwi_row0, i);
+    const UwiEnds ends = uwi_ends(&v, p->bottom_depth, S, y_hit, single && multiple);
+    realb L = multiple ? uwi_lanes_multiple(&v, &camera, &ends, phase, p->bottom_depth, S, d.y, single) : SPLATB(0.0f);
     if (mat == UW_MAT_SURFACE) {
       const realb sky_l = kd_sky_lanes(band_table, stride, i, sky_shape);
-      L += uwi_lanes_surface(&v, sky_l, LOADB(ROW(uwi_row0 + UWI_ROW_BOTTOM_L), i), phase_r, p->bottom_depth, S, d.y,
-                             p->ior, single, multiple);
+      L += uwi_lanes_surface(&v, ends.k, sky_l, LOADB(ROW(uwi_row0 + UWI_ROW_BOTTOM_L), i),
+                             LOADB(ROW(uwi_row0 + UWI_ROW_EXP_K_H), i), phase_r, p->bottom_depth, d.y, p->ior,
+                             single, multiple);
     } else if (mat != UW_MAT_NONE) {
-      L += uwi_lanes_lambert(&v, LOADB(albedo_row, i), p->bottom_depth, S, y_hit, n.y, n_dot_s, vis);
+      L += uwi_lanes_lambert(&v, &ends, LOADB(albedo_row, i), p->bottom_depth, n.y, n_dot_s, vis);
     }
 #else
   for (int i = 0; i < band_count; i += SEASIM_BAND_LANES) {

@@ -72,6 +72,18 @@ std::vector<float> underwaterBandTable(const UnderwaterSetup& setup) {
       uwi(UWI_ROW_BOTTOM_L, depth > 0 ? kmath_d::uwi_lambert(&ib, &b, depth, depth, kmath_d::real3{0, 1, 0}, s_w,
                                                                b.bottom_albedo, 1.0)
                                       : 0.0);
+      // The integrals' start factors at the camera's depth, as the kernel forms their exponents: from
+      // the float rows and the float depth o_d = -cam_pos[1] (>= 0: the underwater frame's camera is
+      // below the surface), in double, then rounded once. Deep cameras underflow them to 0, which is
+      // their value to float precision (kd_exp_integral_ends_b).
+      const float o_d = -setup.params.cam_pos[1];
+      const float h_od = std::max(setup.params.bottom_depth - o_d, 0.0f);
+      const double k_f = at(uwi_row0 + UWI_ROW_K, i), m_f = at(uwi_row0 + UWI_ROW_M, i);
+      uwi(UWI_ROW_EXP_K_OD, std::exp(-k_f * o_d));
+      uwi(UWI_ROW_EXP_M_OD, std::exp(-m_f * o_d));
+      uwi(UWI_ROW_EXP_BEAM_OD, std::exp(-double(at(UW_ROW_K_BEAM, i)) * o_d));
+      uwi(UWI_ROW_EXP_K_HOD, std::exp(-k_f * h_od));
+      uwi(UWI_ROW_EXP_K_H, std::exp(-k_f * std::max(depth, 0.0)));
     }
   }
   return table;

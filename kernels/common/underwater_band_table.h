@@ -53,6 +53,13 @@
 #define UWI_ROW_DP 14
 #define UWI_ROW_UP 15
 #define UWI_ROW_BOTTOM_L 16    /* the bottom's sunlit, unshadowed radiance (uwi_lambert at y = H, n up) */
-#define UWI_ROWS 17
+/* The start factors of the camera's integrals (UwiStart, common/underwater_improved_bands.h): every primary
+ * ray starts at the camera's depth o_d = -cam_pos[1], the same for the whole frame. */
+#define UWI_ROW_EXP_K_OD 17    /* e^{-k o_d} */
+#define UWI_ROW_EXP_M_OD 18    /* e^{-m o_d} */
+#define UWI_ROW_EXP_BEAM_OD 19 /* e^{-(σ_t/μ_w) o_d} (UW_ROW_K_BEAM's attenuation) */
+#define UWI_ROW_EXP_K_HOD 20   /* e^{-k max(H - o_d, 0)}: the bottom's term, whose integral runs from the bottom */
+#define UWI_ROW_EXP_K_H 21     /* e^{-k H}: the same for the surface's reflected ray (o_d = 0); 1 without a bottom */
+#define UWI_ROWS 22
 
 #endif /* SEASIM_UNDERWATER_BAND_TABLE_H */

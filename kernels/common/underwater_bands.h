@@ -21,6 +21,27 @@ SEASIM_FN realb kd_exp_integral_b(realb k, realb c, real d_y, real o_d, real S) 
   return SELECTB(diverges, SPLATB(R(0.0)), v);
 }
 
+/* kd_exp_integral_b with both ends of the integrand given: a = e^{-k o_d} where the ray starts (per band
+ * and frame for the camera's rays, whose depth o_d is the frame's: common/underwater_band_table.h) and
+ * b = e^{-(k y(S) + c S)} where it ends (the exp that a hit's irradiance takes anyway, so shared with
+ * it: common/underwater_improved_bands.h). No exp of its own. With x = k d_y - c and t = x S,
+ *   e^{-k o_d} ∫_0^S e^{x z} dz = (b - a) / x          (b = e^{t - k o_d}: y(S) = o_d - S d_y)
+ * and a S φ(t) (the series of expm1_over_x) where |t| < 0.5 and the difference would cancel. No
+ * overflow: a, b <= 1 for a ray in the water. A camera so deep that a underflows (k o_d > 87 in float)
+ * loses only what is below float's range (with t > 0, b carries the value); the clamp at 0 keeps the
+ * sign where both underflow with different roundings. S = ∞ (t < 0, b = 0) gives a / (c - k d_y), the
+ * divergent case 0, as kd_exp_integral_b. */
+SEASIM_FN realb kd_exp_integral_ends_b(realb k, realb c, realb a, realb b, real d_y, real S) {
+  const realb x = k * d_y - c;
+  const maskb diverges = (SPLATB(S) >= UW_INFINITE) & (x >= R(0.0));
+  const realb t = SELECTB(diverges, SPLATB(R(0.0)), x * S);
+  const maskb small = fabs(t) < R(0.5);
+  const realb xs = SELECTB(small, SPLATB(R(1.0)), x);
+  const realb ends = fmax((b - a) / xs, R(0.0));
+  const realb v = SELECTB(small, (a * S) * SEASIM_EXPM1_OVER_X_SERIES(t), ends);
+  return SELECTB(diverges, SPLATB(R(0.0)), v);
+}
+
 /* L_MS along the ray (d_y, o_d) to distance S (002 eq. 4.7; kd_multiple_scattering of underwater.h):
  * ms_total = σ_s/(4π) (e_sky0 + e_sun0), ms_direct = σ_s/(4π) e_sun0; single_scattering (a constant
  * in the kernel, so the second integral folds away without it) takes the direct beam out. */

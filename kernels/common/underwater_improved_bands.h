@@ -17,11 +17,18 @@
  * One exp fewer per lit band than underwater_improved.h: T(S) = e^{-c' S} is folded into the three
  * exps of the irradiance at the hit, e^{-c' S} e^{-k y} = e^{-(k y + c' S)} (the clamps at 0 commute with
  * the positive factor), as underwater_bands.h does for the thesis.
+ * Issue 13's budget (<= 2x the thesis per band; four integrals where eq. 4.7 takes two): each integral
+ * is kd_exp_integral_ends_b, which takes no exp of its own. Its start factors e^{-κ o_d} (UwiStart) are
+ * per band and frame for the camera's rays (the table's UWI_ROW_EXP_* rows) and 1 or e^{-k H} for the
+ * surface's reflected ray (o_d = 0); its far ends e^{-(κ y(S) + c' S)} (UwiEnds) are the exps of the
+ * hit's irradiance times T(S), taken once per step and shared by the integrals and the Lambert hit.
+ * So a lit hit takes four exps per band (three without froxels) where the thesis's lanes take six, and
+ * the surface from below eight (its T(S) the camera's far end; the reflected ray's four) against nine.
  * tests/unit/underwater_improved_bands_test.cpp holds these lanes (one band per step on the host) to
  * uwi_band_radiance in float and double; tests/kernels/underwater_improved_kernel_test.cpp the kernel
  * to the double CPU evaluation of uwi_band_radiance.
  * Needs compat.h, band_lanes.h, band_lanes_math.h, optics.h (fresnel_reflectance), underwater.h
- * (UW_INFINITE), underwater_bands.h (kd_exp_integral_b), underwater_band_table.h. */
+ * (UW_INFINITE), underwater_bands.h (kd_exp_integral_ends_b), underwater_band_table.h. */
 
 /* One step's per-band values: the thesis rows the model shares (σ_t, σ_t/μ_w, e_beam0) and the
  * improved rows. */
@@ -61,40 +68,75 @@ SEASIM_FN UwiLanes uwi_lanes_load(const SEASIM_GLOBAL float* table, int stride, 
   return v;
 }
 
-/* uwi_multiple: in-scattered radiance along the ray (d_y, o_d) to distance S (UW_INFINITE: deep water),
- * phase = p_HG(g, d·s_w) of the pixel. Each term of J(y) an exponential in y, so each integral is
- * kd_exp_integral_b (002 eq. 4.7's form); with single_scattering the froxel pass's unshadowed strict
+/* The start factors e^{-κ o_d} of the integrals along a ray that starts at depth o_d, per band. */
+typedef struct {
+  realb k, m, beam; /* e^{-k o_d}, e^{-m o_d}, e^{-(σ_t/μ_w) o_d} */
+  realb k_bottom;   /* e^{-k max(H - o_d, 0)}: the bottom's term, integrated from the bottom */
+} UwiStart;
+
+/* The camera's (o_d = -cam_pos[1]): the table's per-frame rows. */
+SEASIM_FN UwiStart uwi_start_camera(const SEASIM_GLOBAL float* table, int stride, int uwi_row0, int i) {
+  UwiStart a;
+  a.k = LOADB(table + (size_t)(uwi_row0 + UWI_ROW_EXP_K_OD) * (size_t)stride, i);
+  a.m = LOADB(table + (size_t)(uwi_row0 + UWI_ROW_EXP_M_OD) * (size_t)stride, i);
+  a.beam = LOADB(table + (size_t)(uwi_row0 + UWI_ROW_EXP_BEAM_OD) * (size_t)stride, i);
+  a.k_bottom = LOADB(table + (size_t)(uwi_row0 + UWI_ROW_EXP_K_HOD) * (size_t)stride, i);
+  return a;
+}
+
+/* The far ends of a ray's integrals, at distance S and depth y = max(y(S), 0) (T(S) = e^{-c' S} folded
+ * in as underwater_bands.h does for the thesis; the clamps at 0 commute with the positive factor). */
+typedef struct {
+  realb k, m;     /* e^{-(k y + c' S)}, e^{-(m y + c' S)} */
+  realb k_bottom; /* e^{-(k max(H - y, 0) + c' S)} with a bottom, else 0 */
+  realb beam;     /* e^{-((σ_t/μ_w) y + σ_t S)} with the froxel term (single_scattering), else 0 */
+} UwiEnds;
+
+/* uwi_irradiance's exps at the end of the ray, times T(S): a Lambertian hit's and the integrals' far
+ * ends alike. S = UW_INFINITE with y = its depth there: all 0 (deep water). */
+SEASIM_FN UwiEnds uwi_ends(const UwiLanes* v, real bottom_depth, real S, real y, int single_scattering) {
+  UwiEnds e;
+  const realb c_s = v->c_dm * S;
+  e.k = exp(-(v->k * y + c_s));
+  e.m = exp(-(v->m * y + c_s));
+  e.k_bottom = bottom_depth > R(0.0) ? exp(-(v->k * fmax(bottom_depth - y, R(0.0)) + c_s)) : SPLATB(R(0.0));
+  e.beam = single_scattering ? exp(-(v->k_beam * y + v->c * S)) : SPLATB(R(0.0));
+  return e;
+}
+
+/* uwi_multiple: in-scattered radiance along the ray (d_y) to distance S (UW_INFINITE: deep water),
+ * phase = p_HG(g, d·s_w) of the pixel, a the ray's start factors, e its far ends (uwi_ends with the same
+ * single_scattering). Each term of J(y) an exponential in y, so each integral is
+ * kd_exp_integral_ends_b (002 eq. 4.7's form); with single_scattering the froxel pass's unshadowed strict
  * single scattering b p_HG e_beam0 ∫ e^{-c z} e^{-(c/μ_w) y(z)} dz (002 eq. 5.2) is taken off. */
-SEASIM_FN realb uwi_lanes_multiple(const UwiLanes* v, real phase, real bottom_depth, real S, real d_y, real o_d,
-                                   int single_scattering) {
+SEASIM_FN realb uwi_lanes_multiple(const UwiLanes* v, const UwiStart* a, const UwiEnds* e, real phase,
+                                   real bottom_depth, real S, real d_y, int single_scattering) {
   const realb beam_phase = v->b_e_beam * phase;
   const realb w1 = v->w1_a + d_y * v->w1_b;
   const realb wp = v->wp_a + d_y * v->wp_b + beam_phase;
-  realb sum = w1 * kd_exp_integral_b(v->k, v->c_dm, d_y, o_d, S) + wp * kd_exp_integral_b(v->m, v->c_dm, d_y, o_d, S);
+  realb sum = w1 * kd_exp_integral_ends_b(v->k, v->c_dm, a->k, e->k, d_y, S) +
+              wp * kd_exp_integral_ends_b(v->m, v->c_dm, a->m, e->m, d_y, S);
   if (bottom_depth > R(0.0)) {
     /* e^{-k (H - y(z))} = e^{-k (H - o_d)} e^{-k d_y z}: the same integral seen from the bottom. */
     const realb w2 = v->w2_a + d_y * v->w2_b;
-    sum += w2 * kd_exp_integral_b(v->k, v->c_dm, -d_y, fmax(bottom_depth - o_d, R(0.0)), S);
+    sum += w2 * kd_exp_integral_ends_b(v->k, v->c_dm, a->k_bottom, e->k_bottom, -d_y, S);
   }
-  if (single_scattering) sum -= beam_phase * kd_exp_integral_b(v->k_beam, v->c, d_y, o_d, S);
+  if (single_scattering) sum -= beam_phase * kd_exp_integral_ends_b(v->k_beam, v->c, a->beam, e->beam, d_y, S);
   return fmax(sum, R(0.0));
 }
 
 /* uwi_lambert times T(S) = e^{-c' S}: a Lambertian hit (albedo, normal with vertical n_y, n_dot_s =
- * n·s_w) at distance S and depth y lit by E_d from above, E_u from below and the delta-M beam times vis. */
-SEASIM_FN realb uwi_lanes_lambert(const UwiLanes* v, realb albedo, real bottom_depth, real S, real y, real n_y,
+ * n·s_w) at distance S and depth y lit by E_d from above, E_u from below and the delta-M beam times vis;
+ * e = uwi_ends(v, bottom_depth, S, y, …): its exps. */
+SEASIM_FN realb uwi_lanes_lambert(const UwiLanes* v, const UwiEnds* e, realb albedo, real bottom_depth, real n_y,
                                   real n_dot_s, real vis) {
-  const realb c_s = v->c_dm * S;
-  const realb e1 = exp(-(v->k * y + c_s));
-  const realb ep = exp(-(v->m * y + c_s));
-  realb ed = v->d1 * e1 + v->dp * ep;
-  realb eu = v->u1 * e1 + v->up * ep;
+  realb ed = v->d1 * e->k + v->dp * e->m;
+  realb eu = v->u1 * e->k + v->up * e->m;
   if (bottom_depth > R(0.0)) {
-    const realb e2 = exp(-(v->k * fmax(bottom_depth - y, R(0.0)) + c_s));
-    ed += v->d2 * e2;
-    eu += v->u2 * e2;
+    ed += v->d2 * e->k_bottom;
+    eu += v->u2 * e->k_bottom;
   }
-  const realb beam = v->e_beam * ep * (fmax(n_dot_s, R(0.0)) * vis);
+  const realb beam = v->e_beam * e->m * (fmax(n_dot_s, R(0.0)) * vis);
   return albedo / SEASIM_PI *
          (fmax(ed, R(0.0)) * (R(0.5) * (R(1.0) + n_y)) + fmax(eu, R(0.0)) * (R(0.5) * (R(1.0) - n_y)) + beam);
 }
@@ -102,14 +144,35 @@ SEASIM_FN realb uwi_lanes_lambert(const UwiLanes* v, realb albedo, real bottom_d
 /* uwi_surface times T(S): the surface seen from below along d (d_y = d.y > 0) at distance S: the sky
  * through Snell's window (sky_l, the lanes' sky radiance in air along the refracted view) plus F times
  * the reflected ray's in-scatter (phase_r = p_HG(g, cos of the reflected ray with s_w)) down to the
- * bottom, and the bottom itself (bottom_l: UWI_ROW_BOTTOM_L, its sunlit radiance), or deep water. */
-SEASIM_FN realb uwi_lanes_surface(const UwiLanes* v, realb sky_l, realb bottom_l, real phase_r, real bottom_depth,
-                                  real S, real d_y, real ior, int single_scattering, int multiple) {
+ * bottom, and the bottom itself (bottom_l: UWI_ROW_BOTTOM_L, its sunlit radiance), or deep water.
+ * t_s: T(S) = e^{-c' S}, which is the camera ray's far end e^{-(k y + c' S)} at the surface (y = 0:
+ * uwi_ends' k). exp_k_h: e^{-k H} (UWI_ROW_EXP_K_H), the reflected ray's start factor of the bottom's
+ * term; the others are 1 at o_d = 0. */
+SEASIM_FN realb uwi_lanes_surface(const UwiLanes* v, realb t_s, realb sky_l, realb bottom_l, realb exp_k_h,
+                                  real phase_r, real bottom_depth, real d_y, real ior, int single_scattering,
+                                  int multiple) {
   const real dy = fmax(d_y, R(1e-6));
   const real s_r = bottom_depth > R(0.0) ? bottom_depth / dy : UW_INFINITE;
-  realb reflected = multiple ? uwi_lanes_multiple(v, phase_r, bottom_depth, s_r, -dy, R(0.0), single_scattering)
-                             : SPLATB(R(0.0));
-  if (bottom_depth > R(0.0)) reflected += exp(-v->c_dm * fmin(s_r, R(1e4))) * bottom_l;
+  realb reflected = SPLATB(R(0.0));
+  /* The bottom's attenuation along the reflected ray, e^{-c' min(s_r, 1e4)} as uwi_surface takes it. */
+  realb t_bottom = SPLATB(R(0.0));
+  if (multiple) {
+    UwiStart a;
+    a.k = SPLATB(R(1.0));
+    a.m = SPLATB(R(1.0));
+    a.beam = SPLATB(R(1.0));
+    a.k_bottom = exp_k_h;
+    /* It ends on the bottom (y = H) or in deep water (S, y = ∞: its ends 0). */
+    const UwiEnds e = uwi_ends(v, bottom_depth, s_r, bottom_depth > R(0.0) ? bottom_depth : UW_INFINITE,
+                               single_scattering);
+    reflected = uwi_lanes_multiple(v, &a, &e, phase_r, bottom_depth, s_r, -dy, single_scattering);
+    /* Its far end e^{-(k (H - y) + c' s_r)} at y = H: the same but past s_r = 1e4 (within H/1e4 of
+     * the horizon), where both are e^{-c' 1e4} or less. */
+    t_bottom = e.k_bottom;
+  } else if (bottom_depth > R(0.0)) {
+    t_bottom = exp(-v->c_dm * fmin(s_r, R(1e4)));
+  }
+  if (bottom_depth > R(0.0)) reflected += t_bottom * bottom_l;
   const real f = fresnel_reflectance(d_y, ior, R(1.0));
-  return exp(-v->c_dm * S) * (ior * ior * (R(1.0) - f) * sky_l + f * reflected);
+  return t_s * (ior * ior * (R(1.0) - f) * sky_l + f * reflected);
 }

@@ -107,6 +107,57 @@ TEST(UnderwaterBands, Expm1OverXLanesIsTheScalarFunction) {
   }
 }
 
+// kd_exp_integral_ends_b (no exp: its start factor e^{-k o_d} given, as the improved model's rows give
+// it, and its far end e^{-(k y(S) + c S)}, as the hit's irradiance takes it) against the general
+// kd_exp_integral in double: across its switch to the series at |t| = 0.5, on
+// the singular line k d_y = c (and 1e-7 off it), deep water (S = ∞), a camera at 1000 m looking up
+// (e^{-k o_d} far below float's range, 0 in the float table), and the divergent case.
+TEST(UnderwaterBands, IntegralFromItsStartFactorIsTheGeneralOne) {
+  int checked = 0;
+  double worst_d = 0, worst_f = 0;
+  for (double k : {0.0, 0.05, 0.5, 3.0})
+    for (double c : {0.0, 0.25, 1.0, 10.0})
+      for (double d_y : {-1.0, -0.3, 0.0, 0.5, 1.0})
+        for (double o_d : {0.0, 1e-4, 3.0, 1000.0})
+          for (double S : {0.0, 1e-3, 0.5, 2.0, 30.0, 1e30}) {
+            if (d_y > 0 && S * d_y > o_d) continue;  // past the surface
+            // x = k d_y - c on and near 0, t = x S on both sides of the series' switch at |t| = 0.5.
+            for (double c_shift : {0.0, 1e-7, -1e-7, 0.5 / std::max(S, 1e-30) + 1e-6, -0.5 / std::max(S, 1e-30)}) {
+              const double cc = c + (c == 0.25 ? k * d_y - c + c_shift : 0.0);  // c = 0.25 marks "x near 0"
+              if (cc < 0) continue;
+              const double ref = kd::kd_exp_integral(k, cc, d_y, o_d, S);
+              const float a_f = float(std::exp(-k * o_d));  // the table's row, rounded to float
+              // The far end as the lanes take it, in double and float (y = max(y(S), 0)).
+              const double b_d = std::exp(-(k * std::max(o_d - S * d_y, 0.0) + cc * S));
+              const float yf = std::max(float(o_d) - float(S) * float(d_y), 0.0f);
+              const float b_f = std::exp(-(float(k) * yf + float(cc) * float(S)));
+              const double vd = kd::kd_exp_integral_ends_b(k, cc, double(a_f), b_d, d_y, S);
+              const float vf = kf::kd_exp_integral_ends_b(float(k), float(cc), a_f, b_f, float(d_y), float(S));
+              ASSERT_TRUE(std::isfinite(vd) && std::isfinite(vf) && vd >= 0 && vf >= 0)
+                  << k << " " << cc << " " << d_y << " " << o_d << " " << S;
+              // Relative to the value, per unit exponent (float rounding of an exponent x moves e^x by
+              // x ε); 1e-30 absolute where e^{-k o_d} is below float's range (it is 0 in the table).
+              const double scale = (std::fabs(ref) + 1e-30) * (1 + k * o_d + std::fabs(k * d_y - cc) * std::min(S, 1e3));
+              worst_d = std::max(worst_d, std::fabs(vd - ref) / scale);
+              worst_f = std::max(worst_f, std::fabs(vf - ref) / scale);
+              EXPECT_NEAR(vd, ref, 2e-7 * scale) << k << " " << cc << " " << d_y << " " << o_d << " " << S;
+              EXPECT_NEAR(vf, ref, 2e-6 * scale) << k << " " << cc << " " << d_y << " " << o_d << " " << S;
+              ++checked;
+            }
+          }
+  EXPECT_GT(checked, 1500);
+  // A wrong start factor shows: e^{-k o_d} at another depth moves the value by the ratio.
+  // A wrong end shows: e^{-k o_d} at another depth, or the far end at another distance.
+  const double right = kd::kd_exp_integral(0.5, 1.0, -0.5, 3.0, 2.0), b = std::exp(-(0.5 * 4.0 + 2.0));
+  EXPECT_NEAR(kd::kd_exp_integral_ends_b(0.5, 1.0, std::exp(-0.5 * 3.0), b, -0.5, 2.0), right, 1e-12);
+  EXPECT_GT(std::fabs(kd::kd_exp_integral_ends_b(0.5, 1.0, std::exp(-0.5 * 2.9), b, -0.5, 2.0) - right), 0.04 * right);
+  EXPECT_GT(std::fabs(kd::kd_exp_integral_ends_b(0.5, 1.0, std::exp(-0.5 * 3.0), b * 1.5, -0.5, 2.0) - right),
+            0.04 * right);
+  std::printf("kd_exp_integral_ends_b vs kd_exp_integral: double %.2e, float %.2e (relative, per unit exponent; "
+              "%d values)\n",
+              worst_d, worst_f, checked);
+}
+
 TEST(UnderwaterBands, TableIsPaddedWithWeightlessCopiesOfTheLastBand) {
   const seasim::UnderwaterSetup s = makeSetup(0.8f);
   const std::vector<float> t = seasim::underwaterBandTable(s);

@@ -78,15 +78,18 @@ struct Ray {
     const Real phase = ns::hg_phase(cos_s, g);                                                               \
     const Real phase_r = ns::hg_phase(cos_s - Real(2) * d.y * s_w.y, g);                                     \
     const ns::UwiLanes v = ns::uwi_lanes_load(table.data(), stride, uwi_row0, k);                            \
+    const ns::UwiStart a = ns::uwi_start_camera(table.data(), stride, uwi_row0, k);                          \
     auto row = [&](int rw) { return Real(table[size_t(rw) * stride + k]); };                                 \
-    Real L = ns::uwi_lanes_multiple(&v, phase, H, S, d.y, o_d, single);                                      \
+    const Real y = std::max(o_d - S * d.y, Real(0));                                                         \
+    const ns::UwiEnds e = ns::uwi_ends(&v, H, S, y, single);                                                 \
+    Real L = ns::uwi_lanes_multiple(&v, &a, &e, phase, H, S, d.y, single);                                   \
     if (r.mat == UW_MAT_SURFACE) {                                                                           \
-      L += ns::uwi_lanes_surface(&v, Real(r.sky_l), row(uwi_row0 + UWI_ROW_BOTTOM_L), phase_r, H, S, d.y,    \
-                                 Real(s.params.ior), single, 1);                                             \
+      L += ns::uwi_lanes_surface(&v, e.k, Real(r.sky_l), row(uwi_row0 + UWI_ROW_BOTTOM_L),                   \
+                                 row(uwi_row0 + UWI_ROW_EXP_K_H), phase_r, H, d.y, Real(s.params.ior), single, \
+                                 1);                                                                         \
     } else if (r.mat != UW_MAT_NONE) {                                                                       \
       const Real albedo = row(r.mat >= 0 ? UW_ROWS + r.mat : UW_ROW_BOTTOM_ALBEDO);                          \
-      L += ns::uwi_lanes_lambert(&v, albedo, H, S, std::max(o_d - S * d.y, Real(0)), n.y, ns::dot(n, s_w),   \
-                                 Real(r.vis));                                                               \
+      L += ns::uwi_lanes_lambert(&v, &e, albedo, H, n.y, ns::dot(n, s_w), Real(r.vis));                       \
     }                                                                                                        \
     return L;                                                                                                \
   }
@@ -155,6 +158,37 @@ TEST(UnderwaterImprovedBands, TableRowsHoldTheBlockAndPaddingIsWeightless) {
   EXPECT_EQ(seasim::underwaterBandTable(thesis).size(), size_t(row0) * stride);
 }
 
+// The start factors of the camera's integrals are taken at the camera's depth and follow it: at the
+// surface 1 (the bottom's e^{-k H}), at 3 m e^{-κ 3}, below the bottom's depth the bottom's factor clamps
+// at 1, and at 1000 m they underflow to 0 without turning into NaN or Inf; e^{-k H} does not move.
+TEST(UnderwaterImprovedBands, CameraRowsAreTheStartFactorsAtTheCamerasDepth) {
+  const int stride = UW_BAND_STRIDE(kBands), row0 = UW_ROWS + 2;
+  for (double o_d : {0.0, 3.0, 6.0, 1000.0})
+    for (double mu_w : {0.8, 1e-3}) {
+      seasim::UnderwaterSetup s = makeSetup(0.9, 5.0, mu_w, 0.1, 0.3);
+      s.params.cam_pos[1] = float(-o_d);
+      const std::vector<float> t = seasim::underwaterBandTable(s);
+      auto at = [&](int row, int k) { return double(t[size_t(row) * stride + k]); };
+      for (int k = 0; k < stride; ++k) {
+        const UwiBand& ib = s.improved[std::min(k, kBands - 1)];
+        const double k_beam = at(UW_ROW_K_BEAM, k);
+        const double expect[][2] = {{UWI_ROW_EXP_K_OD, std::exp(-double(ib.k) * o_d)},
+                                    {UWI_ROW_EXP_M_OD, std::exp(-double(ib.m) * o_d)},
+                                    {UWI_ROW_EXP_BEAM_OD, std::exp(-k_beam * o_d)},
+                                    {UWI_ROW_EXP_K_HOD, std::exp(-double(ib.k) * std::max(5.0 - o_d, 0.0))},
+                                    {UWI_ROW_EXP_K_H, std::exp(-double(ib.k) * 5.0)}};
+        for (const auto& [row, value] : expect) {
+          const double v = at(row0 + int(row), k);
+          ASSERT_TRUE(std::isfinite(v) && v >= 0 && v <= 1) << row << " " << o_d;
+          EXPECT_NEAR(v, value, 1e-7 * value + 1e-37) << row << " o_d " << o_d << " mu_w " << mu_w << " k " << k;
+        }
+      }
+      if (o_d == 3.0) EXPECT_GT(at(row0 + UWI_ROW_EXP_K_OD, 0), 0.5);  // a real factor, not a default 0 or 1
+      if (o_d == 3.0) EXPECT_LT(at(row0 + UWI_ROW_EXP_K_OD, 0), 0.999);
+      if (o_d >= 5.0) EXPECT_EQ(at(row0 + UWI_ROW_EXP_K_HOD, 0), 1.0);
+    }
+}
+
 TEST(UnderwaterImprovedBands, LanesMatchTheScalarModelInFloatAndDouble) {
   struct Water {
     double a, b;
@@ -175,10 +209,13 @@ TEST(UnderwaterImprovedBands, LanesMatchTheScalarModelInFloatAndDouble) {
           seasim::UnderwaterSetup magnitude = s;
           for (UwiBand& ib : magnitude.improved)
             for (float* v : {&ib.d1, &ib.u1, &ib.d2, &ib.u2, &ib.dp, &ib.up}) *v = std::fabs(*v);
-          const std::vector<float> table = seasim::underwaterBandTable(s);
           const double s_w[3] = {std::sqrt(1 - mu_w * mu_w), mu_w, 0};
           for (double o_d : {0.0, 1e-4, 3.0, 1000.0}) {
             if (H > 0 && o_d >= H) continue;
+            // The camera's rays start at its depth: the table's per-frame rows are taken there.
+            seasim::UnderwaterSetup at_depth = s;
+            at_depth.params.cam_pos[1] = float(-o_d);
+            const std::vector<float> table = seasim::underwaterBandTable(at_depth);
             for (double d_y : {-1.0, -0.6, -0.2, 0.0, 0.3, 0.7, 1.0})
               for (int mat : {UW_MAT_NONE, UW_MAT_SURFACE, UW_MAT_BOTTOM, 0, 1}) {
                 if (mat == UW_MAT_SURFACE && d_y <= 0) continue;
