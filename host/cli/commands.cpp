@@ -609,6 +609,7 @@ int cmdReference(const ReferenceCmd& cmd) {
     settings.samples_per_pixel = referenceSteps(scene, cmd.steps, "reference_spp");
     settings.seed = cmd.seed >= 0 ? static_cast<unsigned>(cmd.seed) : 1u;
     settings.camera_above = above;
+    if (cmd.max_bounces > 0) settings.max_bounces = cmd.max_bounces;
     if (!scene.underwater.multiple_scattering) settings.max_bounces = 1;
     const UnderwaterLamps lamps = makeUnderwaterLamps(scene, grid);  // [[spotlights]] under water, by NEE
     settings.lamps = &lamps;

@@ -59,6 +59,7 @@ struct ReferenceCmd {
   int steps = 0;      // 0: the scene's quality.reference_spp (under water) or quality.reference_steps
   long long seed = -1;  // under water: the path tracer's seed; -1: not given (seed 1)
   bool all_orders = false;  // the sea seen from above: the path tracer refracting in, not 000's quadrature
+  int max_bounces = 0;      // path tracer: scattering vertices per path (0: its default, 64)
 };
 int cmdReference(const ReferenceCmd& cmd);
 

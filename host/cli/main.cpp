@@ -112,6 +112,10 @@ int main(int argc, char** argv) {
   reference->add_flag("--all-orders", ref_cmd.all_orders,
                       "Sea seen from above: all orders of scattering by the path tracer (camera above the surface, "
                       "refracting in; uniform sky, no sun glint), instead of paper 000's own terms by quadrature");
+  reference->add_option("--max-bounces", ref_cmd.max_bounces,
+                        "Path tracer: at most this many scattering vertices per path (default 64; strongly forward "
+                        "water with little absorption, e.g. g 0.95 at u >= 0.2, needs more)")
+      ->check(CLI::PositiveNumber);
   reference->add_option("--device", ref_cmd.device, "Device for the underwater path tracer");
   reference->add_option("--set", ref_cmd.sets, "Override a scene key: key=value (repeatable)");
 
