@@ -89,7 +89,10 @@ SEASIM_FN real sea_sky_backscatter_deep(real e_sky, real mu_sky, real bb, real k
  * cases, g = 0, 0.5, 0.8, 0.9, 0.95 at u = 0.05-0.7, the view of tests/perf/sea_allorders.sh
  * (tests/perf/sea_orders_fit.sh, results/sea_allorders/orders_fit_g.csv): RMS 1.7 %, worst 5.4 % (g 0.95
  * at u 0.05, where the path tracer needs 0.997, less than the first order; else within 4.2 %); at g 0.9
- * within 1.7 % for u = 0.05-0.7. Checked, not fitted: see results/sea_allorders/README.md (s6e).
+ * within 1.7 % for u = 0.05-0.7. Checked, not fitted, on uncapped references (results/sea_allorders/
+ * README.md, s6e): one grey band, deep, g 0.9, internal reflection included, u 0.35 / 0.45 / 0.62:
+ * 0.985 / 1.010 / 1.070 of all orders (the s6c factor 0.968 / 0.924 / 0.854); Jerlov III and 3C at 10 m
+ * and deep, I deep, 16 bands: 0.973-1.000 (s6c 0.974-1.004; III closer by 1 %, 3C further by 2 %).
  * Before (s6c) it was 1 + 0.6 (1 - e^{-30 u²}) for g = 0.9 alone, fitted on a path tracer capped at 64
  * scattering vertices, which made the factor level at 1.6: uncapped it rises on, 1.90 at u = 0.6; and
  * before that Lee 1999 eq. 5's 1 + 2.02 u (Hydrolight, Petzold phase function), too bright for u >= 0.35.
