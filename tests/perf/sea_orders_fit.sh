@@ -41,7 +41,7 @@ grep -q 'break; /\* no internal reflection \*/' "$TMP/kernels_no_ir/reference.cl
   { echo "sea_orders_fit.sh: kernels/reference.cl changed; update the patch" >&2; exit 1; }
 # The model's first order: orders 1, nothing sent back down by the surface.
 cp -R kernels "$TMP/kernels_first"
-sed -i -e 's|f.orders = sea_higher_orders(f.u);|f.orders = R(1.0);|' \
+sed -i -e 's|f.orders = sea_higher_orders(f.u, c_f);|f.orders = R(1.0);|' \
   -e 's|const real e_down = r_below \* e_up|const real e_down = R(0.0) * e_up|' "$TMP/kernels_first/common/sea_multiple.h"
 { grep -q 'f.orders = R(1.0);' "$TMP/kernels_first/common/sea_multiple.h" &&
   grep -q 'e_down = R(0.0) \* e_up' "$TMP/kernels_first/common/sea_multiple.h"; } ||
@@ -87,7 +87,7 @@ for case in $CASES; do
   p=$(lum "$pt_no"); m=$(lum "$TMP/first/image.exr"); s=$(lum "$TMP/sky/image.exr")
   awk -v a="$a" -v b="$b" -v p="$p" -v m="$m" -v s="$s" -v g="$G" 'BEGIN {
     f = (g == 0) ? 0.5 : (1 - g) / (2 * g) * ((1 + g) / sqrt(1 + g * g) - 1); u = f * b / (a + f * b)
-    need = (p - s) / (m - s); o = 1 + 0.6 * (1 - exp(-30 * u * u)); lee = 1 + 0.170 / 0.084 * u
+    need = (p - s) / (m - s); h = (g > 0) ? 1 - 2 * f : 0; o = 1 + 0.52 * u * (0.5 + u) + 0.636 * h * u * u / (u * u + 0.0397); lee = 1 + 0.170 / 0.084 * u
     printf "%s,%s,%.3f,%s,%s,%s,%.4f,%.4f,%.4f,%.4f,%.4f\n", a, b, u, p, m, s, need, o, o / need, lee, lee / need
   }' >> "$OUT"
 done
