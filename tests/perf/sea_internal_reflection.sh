@@ -32,11 +32,8 @@ export POCL_CACHE_DIR="$B/pocl-cache" SEASIM_CACHE_DIR="$B/seasim-cache"
 mkdir -p "$PT_DIR" "$(dirname "$OUT")"
 
 # The path tracer without internal reflection: at the surface from below, a reflected path ends.
-cp -R kernels "$TMP/kernels_no_ir"
-sed -i 's|d.y = -d.y; /\* mirror reflection at the flat surface \*/|break; /* no internal reflection */|' \
-  "$TMP/kernels_no_ir/reference.cl"
-grep -q 'break; /\* no internal reflection \*/' "$TMP/kernels_no_ir/reference.cl" ||
-  { echo "sea_internal_reflection.sh: kernels/reference.cl changed; update the patch" >&2; exit 1; }
+. tests/perf/sea_kernels_no_ir.sh
+kernels_no_ir "$TMP/kernels_no_ir"
 
 lum() {
   oiiotool "$1" --chsum:weight=2126,7152,722 --printstats | awk '/Stats Avg/ { printf "%.6g", $3 / 1e4 }'

@@ -34,11 +34,8 @@ trap 'rm -rf "$TMP"' EXIT
 export POCL_CACHE_DIR="$B/pocl-cache" SEASIM_CACHE_DIR="$B/seasim-cache"
 mkdir -p "$PT_DIR" "$(dirname "$OUT")"
 
-cp -R kernels "$TMP/kernels_no_ir"
-sed -i 's|d.y = -d.y; /\* mirror reflection at the flat surface \*/|break; /* no internal reflection */|' \
-  "$TMP/kernels_no_ir/reference.cl"
-grep -q 'break; /\* no internal reflection \*/' "$TMP/kernels_no_ir/reference.cl" ||
-  { echo "sea_orders_fit.sh: kernels/reference.cl changed; update the patch" >&2; exit 1; }
+. tests/perf/sea_kernels_no_ir.sh
+kernels_no_ir "$TMP/kernels_no_ir"
 # The model's first order: orders 1, nothing sent back down by the surface.
 cp -R kernels "$TMP/kernels_first"
 sed -i -e 's|f.orders = sea_higher_orders(f.u, c_f);|f.orders = R(1.0);|' \
