@@ -12,22 +12,24 @@
 # needed = (all orders - sky reflection) / (first order - sky reflection): the factor that would make the
 # model's water part equal the path tracer's. The script prints it beside the model's factor now
 # (sea_higher_orders, computed here by awk from the same formula) and Lee's 1 + 2.02 u (the factor before).
-#   [G=g] [U="u u ..."] tests/perf/sea_orders_fit.sh [build-dir] [paths-per-pixel] [out.csv]
-# e.g. tests/perf/sea_orders_fit.sh build 512 results/sea_allorders/orders_fit.csv
+#   [G=g] [U="u u ..."] [MAXB=n] tests/perf/sea_orders_fit.sh [build-dir] [paths-per-pixel] [out.csv]
+# e.g. MAXB=64 tests/perf/sea_orders_fit.sh build 512 results/sea_allorders/orders_fit.csv (as it was measured)
 #      G=0.5 U="0.05 0.1 0.2 0.35 0.6" tests/perf/sea_orders_fit.sh build 512 build/orders_fit_g0.5.csv
 # G: the water's HG g (water.g; default 0.9, the fit's). U: backscattering ratios to measure, each with
 # b = 1 and a = f b (1 - u)/u (f the HG backscattered fraction at G); without U, the fit's 14 (a, b).
 # Path tracer images are kept in $PT_DIR (default build/sea_ir_pt, shared with sea_internal_reflection.sh);
 # for G other than 0.9 their names carry g (pt_no_ir_g<G>_...), so images of different g never collide.
-# MAXB: the path tracer's cap on scattering vertices per path (seasim reference --max-bounces; default its
-# 64, named in the image as _mb<MAXB>): at g 0.95 and small a the cap ends paths that would come back up.
+# MAXB: the path tracer's cap on scattering vertices per path (seasim reference --max-bounces; default 1000,
+# the CLI's default), always passed and named in the image (_mb<MAXB>_), as sea_internal_reflection.sh does:
+# images without it were traced under the old default cap of 64, which ends paths that would come back up
+# at g 0.95 and small a, and are never reused. (orders_fit.csv was measured with that cap: MAXB=64.)
 set -eu
 B=${1:-build}
 SPP=${2:-512}
 OUT=${3:-results/sea_allorders/orders_fit.csv}
 G=${G:-0.9}
 U=${U:-}
-MAXB=${MAXB:-}
+MAXB=${MAXB:-1000}
 PT_DIR=${PT_DIR:-$B/sea_ir_pt}
 TMP=$(mktemp -d)
 trap 'rm -rf "$TMP"' EXIT
@@ -61,8 +63,7 @@ if [ -n "$U" ]; then
 fi
 GTAG=""
 [ "$G" = "0.9" ] || GTAG="g${G}_"
-MB_ARG=""
-[ -z "$MAXB" ] || { GTAG="${GTAG}mb${MAXB}_"; MB_ARG="--max-bounces $MAXB"; }
+GTAG="${GTAG}mb${MAXB}_"
 for case in $CASES; do
   a=${case%/*}
   b=${case#*/}
@@ -74,7 +75,7 @@ for case in $CASES; do
   pt_no="$PT_DIR/pt_no_ir_${GTAG}${a}_${b}_${d}_${SPP}.exr"
   if [ ! -f "$pt_no" ]; then
     SEASIM_KERNEL_DIR="$TMP/kernels_no_ir" "$B/seasim" reference "$TMP/sea.toml" --set bottom.depth="$d" \
-      --all-orders $MB_ARG --steps "$SPP" --seed 1 -o "$TMP/pt.exr" > /dev/null 2>&1
+      --all-orders --max-bounces "$MAXB" --steps "$SPP" --seed 1 -o "$TMP/pt.exr" > /dev/null 2>&1
     mv "$TMP/pt.exr" "$pt_no"
   fi
   SEASIM_KERNEL_DIR="$TMP/kernels_first" "$B/seasim" render "$TMP/sea.toml" --set bottom.depth="$d" \
