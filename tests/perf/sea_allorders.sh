@@ -7,11 +7,13 @@
 # results/sea_allorders/README.md describes.
 #   tests/perf/sea_allorders.sh [build-dir] [paths-per-pixel] [out.csv] [render --set ...]
 # e.g. (from the repository root)
-#   tests/perf/sea_allorders.sh build 2048 results/sea_allorders/table.csv --set 'sea.model="paper"' --set sea.second_order=true
+#   MAXB=64 tests/perf/sea_allorders.sh build 2048 results/sea_allorders/table.csv --set 'sea.model="paper"' --set sea.second_order=true
 #   tests/perf/sea_allorders.sh build 2048 results/sea_allorders/table_multiple.csv --set 'sea.model="multiple"'
-# The path tracer's images are kept in $PT_DIR (default build/sea_allorders_pt, one per case and
+# The path tracer's images are kept in $PT_DIR (default build/sea_allorders_pt, one per case, cap and
 # paths-per-pixel count; seed 1, so a kept image is the one a rerun would make) and reused, so a second
-# model costs only its own renders.
+# model costs only its own renders. MAXB: the path tracer's cap on scattering vertices (--max-bounces;
+# default 1000, the CLI's), always passed and named in the image (pt_mb<MAXB>_...), so images traced under
+# the old default cap of 64 (names without it) are never reused; table.csv was traced with MAXB=64.
 # JERLOV and DEPTHS (space-separated) pick a subset of the cases, e.g. JERLOV="II III" DEPTHS="5 1000".
 # Columns: image-mean luminance (0.2126 R + 0.7152 G + 0.0722 B of linear sensor RGB) of the model and
 # of the path tracer, the standard error of the path tracer's mean (from its per-pixel standard-error
@@ -25,6 +27,7 @@ SPP=${2:-2048}
 OUT=${3:-results/sea_allorders/table.csv}
 [ $# -ge 3 ] && shift 3 || shift $#
 PT_DIR=${PT_DIR:-$B/sea_allorders_pt}
+MAXB=${MAXB:-1000}
 TMP=$(mktemp -d)
 trap 'rm -rf "$TMP"' EXIT
 export POCL_CACHE_DIR="$B/pocl-cache" SEASIM_CACHE_DIR="$B/seasim-cache"
@@ -57,11 +60,11 @@ echo "jerlov,bottom_m,model_lum,pt_lum,pt_lum_se,ratio,rel_l2,rmse_8bit,model_ms
 for j in ${JERLOV:-I IB II III 3C}; do
   for d in ${DEPTHS:-2 5 10 20 1000}; do
     set_case="--set water.jerlov=\"$j\" --set bottom.depth=$d"
-    pt="$PT_DIR/pt_${j}_${d}_${SPP}.exr"
-    pt_ms_file="$PT_DIR/pt_${j}_${d}_${SPP}.ms"
+    pt="$PT_DIR/pt_mb${MAXB}_${j}_${d}_${SPP}.exr"
+    pt_ms_file="$PT_DIR/pt_mb${MAXB}_${j}_${d}_${SPP}.ms"
     if [ ! -f "$pt" ] || [ ! -f "$pt_ms_file" ]; then
       t0=$(date +%s%N)
-      eval "\"$B/seasim\" reference \"$TMP/sea.toml\" $set_case --all-orders --steps $SPP --seed 1 -o \"$TMP/pt.exr\"" \
+      eval "\"$B/seasim\" reference \"$TMP/sea.toml\" $set_case --all-orders --max-bounces $MAXB --steps $SPP --seed 1 -o \"$TMP/pt.exr\"" \
         > /dev/null 2>&1
       t1=$(date +%s%N)
       mv "$TMP/pt.exr" "$pt"
