@@ -170,6 +170,24 @@ TEST(Renderer, UnderwaterSunDoesNotRebuildTheRaycast) {
   EXPECT_EQ(f.rgb.pixels, fresh("seabed.toml", at).rgb.pixels);
 }
 
+// underwater.model = "improved": the band table holds the start factors of the camera's integrals
+// (e^{-k o_d} and its kin at the camera's depth, UWI_ROW_EXP_*), so a frame after the camera moved in
+// depth (camera.* sets the G-buffer pass up again, band table included) is the frame a new renderer
+// makes there.
+TEST(Renderer, UnderwaterImprovedCameraMovedInDepthMatchesAFreshFrame) {
+  std::vector<Override> at = smallSeabed();
+  at.push_back(set("underwater.model", "\"improved\""));
+  Renderer renderer(test::testDevice(), sceneFile("seabed.toml"), at, shippedPasses());
+  const FrameResult first = renderer.render();
+  const Override moved = set("camera.position", "[0.0, -2.0, 0.0]");
+  renderer.update({moved});
+  const FrameResult f = renderer.render();
+  EXPECT_TRUE(has(renderer.lastExecuted(), "kd_multiple"));
+  EXPECT_NE(f.rgb.pixels, first.rgb.pixels);
+  at.push_back(moved);
+  EXPECT_EQ(f.rgb.pixels, fresh("seabed.toml", at).rgb.pixels);
+}
+
 // Data files are read once per renderer (and per job, which shares them): a change of the band count
 // makes the sensor again from the camera curves already read; a new Renderer on a scene that carries
 // the same DataFiles reads nothing either.
