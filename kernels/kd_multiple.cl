@@ -133,7 +133,7 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
       const realb sky_l = kd_sky_lanes(band_table, stride, i, sky_shape);
       L += uwi_lanes_surface(&v, ends.k, sky_l, LOADB(ROW(uwi_row0 + UWI_ROW_BOTTOM_L), i),
                              LOADB(ROW(uwi_row0 + UWI_ROW_EXP_K_H), i), phase_r, p->bottom_depth, d.y, p->ior,
-                             single, multiple);
+                             multiple);
     } else if (mat != UW_MAT_NONE) {
       L += uwi_lanes_lambert(&v, &ends, LOADB(albedo_row, i), p->bottom_depth, n.y, n_dot_s, vis);
     }

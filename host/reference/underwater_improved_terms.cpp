@@ -60,6 +60,12 @@ std::vector<UwiPixelTerms> improvedModelTerms(const UnderwaterSetup& s, bool mul
         vis = smat >= 0 ? 0.0 : 1.0;
       }
       UwiPixelTerms& t = out[size_t(y) * p.width + x];
+      if (mat == UW_MAT_SURFACE) {
+        kd::real3 rn{};
+        int rmat = 0;
+        kd::uw_scene_hit(s.objects.data(), p.object_count, H, o + S * d, kd::real3{d.x, -d.y, d.z}, 0.0, &rn, &rmat);
+        t.reflected_object = rmat >= 0 ? 1.0 : 0.0;
+      }
       for (int i = 0; i < p.band_count; ++i) {
         const UwBand& b = s.bands[i];
         const UwiBand& ib = s.improved[i];
@@ -80,7 +86,7 @@ std::vector<UwiPixelTerms> improvedModelTerms(const UnderwaterSetup& s, bool mul
           const double s_r = H > 0 ? H / dy : 1e30;  // UW_INFINITE
           const double cos_r = kd::dot(d, s_w) - 2.0 * d.y * s_w.y;
           const double f = kd::fresnel_reflectance(d.y, p.ior, 1.0);
-          const double l_ms = kd::uwi_multiple(&ib, &b, p.g, H, s_r, -dy, 0.0, cos_r, mu_w, froxels, multiple);
+          const double l_ms = kd::uwi_multiple(&ib, &b, p.g, H, s_r, -dy, 0.0, cos_r, mu_w, 0, multiple);
           const double l_bottom =
               H > 0 ? std::exp(-double(ib.c_dm) * std::min(s_r, 1e4)) *
                           kd::uwi_lambert(&ib, &b, H, H, kd::real3{0, 1, 0}, s_w, b.bottom_albedo, 1.0)

@@ -99,14 +99,18 @@ SEASIM_FN real uwi_lambert(const SEASIM_GLOBAL UwiBand* ib, const SEASIM_GLOBAL 
 
 /* The water surface seen from below along d (d.y > 0): the sky through Snell's window (sky_l, as
  * uw_band_surface_sky) plus F times what the reflected ray sees: its in-scatter down to the bottom or
- * deep water, and the bottom itself (its sunlit, unshadowed radiance). */
+ * deep water, and the bottom itself (its sunlit, unshadowed radiance).
+ * The reflected ray's in-scatter keeps the beam's single scattering (its TMS term, uwi_multiple with
+ * single_scattering = 0) whether or not the froxel pass runs: that pass integrates along the camera's
+ * ray only, so taking its term off here would drop the reflected ray's single scattering altogether.
+ * Measured (results/BENCHMARKS.md, s7b): that was the water looking up under total internal reflection
+ * too dark at g = 0 (clear water 0.86–0.93 of the path tracer). */
 SEASIM_FN real uwi_surface(const SEASIM_GLOBAL UwiBand* ib, const SEASIM_GLOBAL UwBand* band, real g,
-                           real bottom_depth, real sky_l, real3 d, real3 s_w, real ior, int single_scattering,
-                           int multiple) {
+                           real bottom_depth, real sky_l, real3 d, real3 s_w, real ior, int multiple) {
   const real d_y = fmax(d.y, R(1e-6));
   const real s_r = bottom_depth > R(0.0) ? bottom_depth / d_y : UW_INFINITE;
   const real cos_r = dot(d, s_w) - R(2.0) * d.y * s_w.y; /* the reflected ray (d.x, -d.y, d.z) */
-  const real l_ms = uwi_multiple(ib, band, g, bottom_depth, s_r, -d_y, R(0.0), cos_r, s_w.y, single_scattering, multiple);
+  const real l_ms = uwi_multiple(ib, band, g, bottom_depth, s_r, -d_y, R(0.0), cos_r, s_w.y, 0, multiple);
   const real l_bottom = bottom_depth > R(0.0)
                             ? exp(-(real)ib->c_dm * fmin(s_r, R(1e4))) *
                                   uwi_lambert(ib, band, bottom_depth, bottom_depth, MAKE_REAL3(0, 1, 0), s_w,
@@ -124,7 +128,7 @@ SEASIM_FN real uwi_band_radiance(const SEASIM_GLOBAL UwiBand* ib, const SEASIM_G
   const real l_ms = uwi_multiple(ib, band, g, bottom_depth, S, d.y, o_d, dot(d, s_w), s_w.y, single_scattering, multiple);
   if (mat == UW_MAT_NONE) return l_ms;
   const real l_s = mat == UW_MAT_SURFACE
-                       ? uwi_surface(ib, band, g, bottom_depth, sky_l, d, s_w, ior, single_scattering, multiple)
+                       ? uwi_surface(ib, band, g, bottom_depth, sky_l, d, s_w, ior, multiple)
                        : uwi_lambert(ib, band, bottom_depth, fmax(o_d - S * d.y, R(0.0)), n, s_w, albedo, vis);
   return exp(-(real)ib->c_dm * S) * l_s + l_ms;
 }

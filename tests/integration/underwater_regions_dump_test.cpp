@@ -59,7 +59,8 @@ TEST_F(UnderwaterRegionsDump, WritesEveryPixelWithRegionReferenceRendersAndTerms
     for (size_t i = 0; i < header.size(); ++i) col[header[i]] = i;
     for (const char* c : {"x", "y", "region", "d_y", "reference", "reference_se", "fast_thesis", "fast_improved",
                           "inscatter_modes", "inscatter_beam", "inscatter_tms", "froxel_ss", "window",
-                          "reflected_inscatter", "reflected_bottom", "reflected_froxel_ss", "lambert", "model_total"})
+                          "reflected_inscatter", "reflected_bottom", "reflected_froxel_ss", "reflected_object", "lambert",
+                          "model_total"})
       ASSERT_TRUE(col.count(c)) << "column " << c << " in " << line;
     std::vector<std::vector<std::string>> rows;
     while (std::getline(in, line)) rows.push_back(splitCsv(line));

@@ -2,7 +2,8 @@
 """underwater_regions_terms.py — the per-pixel CSVs of `seasim underwater-regions --dump DIR` summed by
 region, and the water looking up split at Snell's window (d_y above or below cos 48.6°): per part the
 reference, the improved model's render and its terms (reference/underwater_improved_terms.h), each as a
-fraction of the reference, so a miss shows which term it is in (issue 13).
+fraction of the reference, so a miss shows which term it is in (issue 13); refl_obj: the fraction of the
+part's pixels whose reflected ray meets an object (which the model does not trace).
 Usage: tests/perf/underwater_regions_terms.py DIR/*.csv"""
 import csv
 import math
@@ -22,8 +23,8 @@ def part(row):
 
 
 def main(paths):
-    print("| case | part | px | fast/ref | " + " | ".join(SHORT) + " |")
-    print("|---|---|---:|---:|" + "---:|" * len(SHORT))
+    print("| case | part | px | fast/ref | " + " | ".join(SHORT) + " | refl_obj |")
+    print("|---|---|---:|---:|" + "---:|" * (len(SHORT) + 1))
     for path in paths:
         with open(path) as f:
             rows = list(csv.DictReader(f))
@@ -31,8 +32,9 @@ def main(paths):
             continue
         parts = {}
         for row in rows:
-            s = parts.setdefault(part(row), {"px": 0, "reference": 0.0, "fast": 0.0, **{t: 0.0 for t in TERMS}})
+            s = parts.setdefault(part(row), {"px": 0, "obj": 0, "reference": 0.0, "fast": 0.0, **{t: 0.0 for t in TERMS}})
             s["px"] += 1
+            s["obj"] += float(row.get("reflected_object") or 0) > 0
             s["reference"] += float(row["reference"])
             s["fast"] += float(row["fast_improved"])
             for t in TERMS:
@@ -42,7 +44,7 @@ def main(paths):
             s = parts[p]
             ref = s["reference"] or 1.0
             cells = " | ".join("%.3f" % (s[t] / ref) for t in TERMS)
-            print("| %s | %s | %d | %.3f | %s |" % (name, p, s["px"], s["fast"] / ref, cells))
+            print("| %s | %s | %d | %.3f | %s | %.2f |" % (name, p, s["px"], s["fast"] / ref, cells, s["obj"] / s["px"]))
 
 
 if __name__ == "__main__":

@@ -85,8 +85,7 @@ struct Ray {
     Real L = ns::uwi_lanes_multiple(&v, &a, &e, phase, H, S, d.y, single);                                   \
     if (r.mat == UW_MAT_SURFACE) {                                                                           \
       L += ns::uwi_lanes_surface(&v, e.k, Real(r.sky_l), row(uwi_row0 + UWI_ROW_BOTTOM_L),                   \
-                                 row(uwi_row0 + UWI_ROW_EXP_K_H), phase_r, H, d.y, Real(s.params.ior), single, \
-                                 1);                                                                         \
+                                 row(uwi_row0 + UWI_ROW_EXP_K_H), phase_r, H, d.y, Real(s.params.ior), 1);     \
     } else if (r.mat != UW_MAT_NONE) {                                                                       \
       const Real albedo = row(r.mat >= 0 ? UW_ROWS + r.mat : UW_ROW_BOTTOM_ALBEDO);                          \
       L += ns::uwi_lanes_lambert(&v, &e, albedo, H, n.y, ns::dot(n, s_w), Real(r.vis));                       \
