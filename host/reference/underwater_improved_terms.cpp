@@ -60,12 +60,12 @@ std::vector<UwiPixelTerms> improvedModelTerms(const UnderwaterSetup& s, bool mul
         vis = smat >= 0 ? 0.0 : 1.0;
       }
       UwiPixelTerms& t = out[size_t(y) * p.width + x];
-      if (mat == UW_MAT_SURFACE) {
-        kd::real3 rn{};
-        int rmat = 0;
-        kd::uw_scene_hit(s.objects.data(), p.object_count, H, o + S * d, kd::real3{d.x, -d.y, d.z}, 0.0, &rn, &rmat);
-        t.reflected_object = rmat >= 0 ? 1.0 : 0.0;
-      }
+      int mat_m = UW_MAT_NONE;  // the object in the surface's mirror, as kd_multiple.cl traces it
+      kd::UwiMirrorHit mirror = mat == UW_MAT_SURFACE
+                                    ? kd::uwi_mirror_hit(s.objects.data(), p.object_count, o, d, S, s_w, &mat_m)
+                                    : kd::uwi_no_mirror_object();
+      const bool object_in_mirror = mat_m >= 0 && !(H > 0 && mirror.s >= H / std::max(d.y, 1e-6));
+      t.reflected_object = object_in_mirror ? 1.0 : 0.0;
       for (int i = 0; i < p.band_count; ++i) {
         const UwBand& b = s.bands[i];
         const UwiBand& ib = s.improved[i];
@@ -80,17 +80,21 @@ std::vector<UwiPixelTerms> improvedModelTerms(const UnderwaterSetup& s, bool mul
           if (froxels) t.froxel_ss += w * v.froxel_ss;
         }
         const double T = std::exp(-double(ib.c_dm) * S);
+        if (mat_m >= 0) mirror.albedo = s.albedo[size_t(mat_m) * p.band_count + i];
         if (mat == UW_MAT_SURFACE) {
-          // uwi_surface, its two parts apart.
+          // uwi_surface, its two parts apart (the reflected ray ends on the object in the mirror, if any).
           const double dy = std::max(d.y, 1e-6);
-          const double s_r = H > 0 ? H / dy : 1e30;  // UW_INFINITE
+          const double s_r = object_in_mirror ? mirror.s : H > 0 ? H / dy : 1e30;  // UW_INFINITE
           const double cos_r = kd::dot(d, s_w) - 2.0 * d.y * s_w.y;
           const double f = kd::fresnel_reflectance(d.y, p.ior, 1.0);
           const double l_ms = kd::uwi_multiple(&ib, &b, p.g, H, s_r, -dy, 0.0, cos_r, mu_w, 0, multiple);
           const double l_bottom =
-              H > 0 ? std::exp(-double(ib.c_dm) * std::min(s_r, 1e4)) *
-                          kd::uwi_lambert(&ib, &b, H, H, kd::real3{0, 1, 0}, s_w, b.bottom_albedo, 1.0)
-                    : 0.0;
+              object_in_mirror
+                  ? std::exp(-double(ib.c_dm) * s_r) *
+                        kd::uwi_lambert(&ib, &b, H, s_r * dy, mirror.n, s_w, mirror.albedo, mirror.vis)
+              : H > 0 ? std::exp(-double(ib.c_dm) * std::min(s_r, 1e4)) *
+                            kd::uwi_lambert(&ib, &b, H, H, kd::real3{0, 1, 0}, s_w, b.bottom_albedo, 1.0)
+                      : 0.0;
           t.window += w * T * p.ior * p.ior * (1 - f) * b.sky_radiance;
           t.reflected_inscatter += w * T * f * l_ms;
           t.reflected_bottom += w * T * f * l_bottom;
@@ -101,7 +105,7 @@ std::vector<UwiPixelTerms> improvedModelTerms(const UnderwaterSetup& s, bool mul
           t.lambert += w * T * kd::uwi_lambert(&ib, &b, H, std::max(o_d - S * d.y, 0.0), n, s_w, albedo, vis);
         }
         t.total += w * (kd::uwi_band_radiance(&ib, &b, p.g, mat, S, n, d, o_d, s_w, albedo, vis, b.sky_radiance,
-                                              p.ior, H, froxels, multiple) +
+                                              p.ior, H, froxels, multiple, mirror) +
                         (froxels && multiple ? inScatterTerms(ib, b, p.g, H, S, d.y, o_d, kd::dot(d, s_w), mu_w).froxel_ss
                                              : 0.0));
       }

@@ -19,14 +19,15 @@ struct UwiPixelTerms {
   // the froxel pass runs and that pass adds back with its shadows (0 without froxels).
   double inscatter_modes = 0, inscatter_beam = 0, inscatter_tms = 0, froxel_ss = 0;
   // The surface seen from below (uwi_surface) times T(S): the sky through Snell's window, n² (1 - F) L_sky;
-  // F times the reflected ray's in-scatter as the model takes it; F times the bottom it ends on.
+  // F times the reflected ray's in-scatter as the model takes it; F times the bottom (or the object in
+  // the mirror, uwi_mirror_hit) it ends on.
   double window = 0, reflected_inscatter = 0, reflected_bottom = 0;
   // The beam's strict single scattering along the reflected ray (closed form, unshadowed) times T(S) F,
   // for comparison (0 without froxels): no froxel pass runs along a reflected ray, so the model keeps it
   // in reflected_inscatter as its TMS term (before s7b it took it off there, as along the camera's ray).
   double reflected_froxel_ss = 0;
-  // 1 where the surface's reflected ray meets an object before the bottom or deep water: the model
-  // does not trace it (uwi_surface sees the open bottom or water there), the path tracer does.
+  // 1 where the surface's reflected ray meets an object before the bottom or deep water (traced since
+  // s7b; before, the model saw the open bottom or water there).
   double reflected_object = 0;
   // A Lambertian hit (object or bottom) times T(S): uwi_lambert.
   double lambert = 0;

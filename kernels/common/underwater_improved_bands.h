@@ -149,20 +149,29 @@ SEASIM_FN realb uwi_lanes_lambert(const UwiLanes* v, const UwiEnds* e, realb alb
  * t_s: T(S) = e^{-c' S}, which is the camera ray's far end e^{-(k y + c' S)} at the surface (y = 0:
  * uwi_ends' k). exp_k_h: e^{-k H} (UWI_ROW_EXP_K_H), the reflected ray's start factor of the bottom's
  * term; the others are 1 at o_d = 0. The reflected ray keeps its single scattering (no froxel term
- * taken off: the froxel pass runs along the camera's ray only), as uwi_surface. */
+ * taken off: the froxel pass runs along the camera's ray only), as uwi_surface.
+ * An object in the mirror (uwi_surface's UwiMirrorHit, traced once per pixel by the caller): its
+ * distance s_m from the surface (UW_INFINITE: none), albedo_m in these bands, its normal's vertical n_m_y,
+ * n_m_dot_s = n·s_w and the sun's visibility vis_m; the reflected ray's integrals then end on it, and its
+ * Lambert hit shares their far ends (no more exps than the bottom's case). */
 SEASIM_FN realb uwi_lanes_surface(const UwiLanes* v, realb t_s, realb sky_l, realb bottom_l, realb exp_k_h,
-                                  real phase_r, real bottom_depth, real d_y, real ior, int multiple) {
+                                  real phase_r, real bottom_depth, real d_y, real ior, int multiple, real s_m,
+                                  realb albedo_m, real n_m_y, real n_m_dot_s, real vis_m) {
   const real dy = fmax(d_y, R(1e-6));
   const real s_r = bottom_depth > R(0.0) ? bottom_depth / dy : UW_INFINITE;
   realb reflected = SPLATB(R(0.0));
   /* The bottom's attenuation along the reflected ray, e^{-c' min(s_r, 1e4)} as uwi_surface takes it. */
   realb t_bottom = SPLATB(R(0.0));
-  if (multiple) {
-    UwiStart a;
-    a.k = SPLATB(R(1.0));
-    a.m = SPLATB(R(1.0));
-    a.beam = SPLATB(R(1.0));
-    a.k_bottom = exp_k_h;
+  UwiStart a;
+  a.k = SPLATB(R(1.0));
+  a.m = SPLATB(R(1.0));
+  a.beam = SPLATB(R(1.0));
+  a.k_bottom = exp_k_h;
+  if (s_m < s_r) { /* per pixel: an object in the mirror, at depth s_m dy */
+    const UwiEnds e = uwi_ends(v, bottom_depth, s_m, s_m * dy, 0);
+    reflected = uwi_lanes_lambert(v, &e, albedo_m, bottom_depth, n_m_y, n_m_dot_s, vis_m);
+    if (multiple) reflected += uwi_lanes_multiple(v, &a, &e, phase_r, bottom_depth, s_m, -dy, 0);
+  } else if (multiple) {
     /* It ends on the bottom (y = H) or in deep water (S, y = ∞: its ends 0). */
     const UwiEnds e = uwi_ends(v, bottom_depth, s_r, bottom_depth > R(0.0) ? bottom_depth : UW_INFINITE, 0);
     reflected = uwi_lanes_multiple(v, &a, &e, phase_r, bottom_depth, s_r, -dy, 0);
@@ -172,7 +181,7 @@ SEASIM_FN realb uwi_lanes_surface(const UwiLanes* v, realb t_s, realb sky_l, rea
   } else if (bottom_depth > R(0.0)) {
     t_bottom = exp(-v->c_dm * fmin(s_r, R(1e4)));
   }
-  if (bottom_depth > R(0.0)) reflected += t_bottom * bottom_l;
+  if (bottom_depth > R(0.0) && !(s_m < s_r)) reflected += t_bottom * bottom_l;
   const real f = fresnel_reflectance(d_y, ior, R(1.0));
   return t_s * (ior * ior * (R(1.0) - f) * sky_l + f * reflected);
 }

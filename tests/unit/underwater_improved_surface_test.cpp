@@ -3,7 +3,8 @@
 // beam's single scattering along the camera's ray only, so the surface's reflected ray keeps its own
 // (the TMS term) whether or not that pass runs. Turning the froxel term on must change a surface
 // pixel by exactly the camera ray's closed-form single scattering, in float and double, inside Snell's
-// window and under total internal reflection (where the reflected ray is the whole surface term).
+// window and under total internal reflection (where the reflected ray is the whole surface term); and an
+// object in the mirror (uwi_mirror_hit) ends the reflected ray and is lit there.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -45,7 +46,8 @@ struct Kd {
   static double uwi_band_radiance(const UwiBand* ib, const UwBand* b, double g, int mat, double S, real3 n, real3 d,
                                   double o_d, real3 s_w, double albedo, double vis, double sky, double ior, double H,
                                   int ss, int ms) {
-    return kd::uwi_band_radiance(ib, b, g, mat, S, n, d, o_d, s_w, albedo, vis, sky, ior, H, ss, ms);
+    return kd::uwi_band_radiance(ib, b, g, mat, S, n, d, o_d, s_w, albedo, vis, sky, ior, H, ss, ms,
+                                 kd::uwi_no_mirror_object());
   }
 };
 struct Kf {
@@ -53,7 +55,8 @@ struct Kf {
   static float uwi_band_radiance(const UwiBand* ib, const UwBand* b, float g, int mat, float S, real3 n, real3 d,
                                  float o_d, real3 s_w, float albedo, float vis, float sky, float ior, float H, int ss,
                                  int ms) {
-    return kf::uwi_band_radiance(ib, b, g, mat, S, n, d, o_d, s_w, albedo, vis, sky, ior, H, ss, ms);
+    return kf::uwi_band_radiance(ib, b, g, mat, S, n, d, o_d, s_w, albedo, vis, sky, ior, H, ss, ms,
+                                 kf::uwi_no_mirror_object());
   }
 };
 
@@ -108,9 +111,57 @@ TEST(UnderwaterImprovedSurface, ReflectedRayKeepsTheBeamsSingleScatteringUnderTo
   // The surface term (froxels on for the camera's ray) holds the reflected ray's in-scatter with it.
   const double S = o_d / d_y;
   const double surface =
-      kd::uwi_band_radiance(&ib, &bd, 0.0, UW_MAT_SURFACE, S, kd::real3{0, -1, 0}, d, o_d, s_w, 0, 1, 0.0, 1.34, 0.0, 1, 1) -
+      kd::uwi_band_radiance(&ib, &bd, 0.0, UW_MAT_SURFACE, S, kd::real3{0, -1, 0}, d, o_d, s_w, 0, 1, 0.0, 1.34, 0.0, 1, 1,
+                             kd::uwi_no_mirror_object()) -
       kd::uwi_multiple(&ib, &bd, 0.0, 0.0, S, d_y, o_d, kd::dot(d, s_w), mu_w, 1, 1);
   EXPECT_NEAR(surface, std::exp(-double(ib.c_dm) * S) * with, 1e-12 + 1e-9 * surface);
+}
+
+}  // namespace
+
+namespace {
+
+TEST(UnderwaterImprovedSurface, ObjectInTheMirrorEndsTheReflectedRayAndIsLitThere) {
+  // A sphere below the surface point, on the reflected ray, nearer than the 5 m bottom: the surface
+  // shows F times the in-scatter to the sphere plus the sphere's Lambertian radiance attenuated by c';
+  // beyond the bottom (or with none in the way) the bottom as before.
+  const double mu_w = 0.93, o_d = 1.0, d_y = 0.3, H = 5.0;
+  const UwBand bd = band(0.03, 0.05, mu_w);
+  const UwiBand ib = seasim::makeUwiBand(bd, 0.9, mu_w, H, 1.34);
+  const double dx = std::sqrt(1 - d_y * d_y);
+  const kd::real3 o{0, -o_d, 0}, d{0, d_y, -dx};
+  const kd::real3 s_w{0.3 * std::sqrt(1 - mu_w * mu_w), mu_w, -0.95 * std::sqrt(1 - mu_w * mu_w)};
+  const double S = o_d / d_y;
+  const kd::real3 surface_point = o + S * d, d_r{0, -d_y, -dx};
+  UwObject objects[1] = {};
+  objects[0].type = UW_SPHERE;
+  const kd::real3 centre = surface_point + 6.0 * d_r;  // 6 m along the reflected ray (bottom at 5/0.3 m)
+  objects[0].a[0] = float(centre.x), objects[0].a[1] = float(centre.y), objects[0].a[2] = float(centre.z);
+  objects[0].a[3] = 0.5f;
+  int mat = UW_MAT_NONE;
+  kd::UwiMirrorHit m = kd::uwi_mirror_hit(objects, 1, o, d, S, s_w, &mat);
+  ASSERT_EQ(mat, 0);
+  EXPECT_NEAR(m.s, 5.5, 1e-5) << "the sphere's near side";
+  EXPECT_NEAR(m.n.y, d_y, 1e-5) << "facing the surface point";
+  EXPECT_EQ(m.vis, 1.0) << "nothing between it and the sun";
+  m.albedo = 0.3;
+  const double cos_r = kd::dot(d, s_w) - 2 * d.y * s_w.y;
+  const double f = kd::fresnel_reflectance(d_y, 1.34, 1.0);
+  const double expect =
+      1.34 * 1.34 * (1 - f) * bd.sky_radiance +
+      f * (kd::uwi_multiple(&ib, &bd, 0.9, H, m.s, -d_y, 0.0, cos_r, mu_w, 0, 1) +
+           std::exp(-double(ib.c_dm) * m.s) * kd::uwi_lambert(&ib, &bd, H, m.s * d_y, m.n, s_w, 0.3, 1.0));
+  const double with = kd::uwi_surface(&ib, &bd, 0.9, H, bd.sky_radiance, d, s_w, 1.34, 1, m);
+  EXPECT_NEAR(with, expect, 1e-12 + 1e-9 * expect);
+  const double none = kd::uwi_surface(&ib, &bd, 0.9, H, bd.sky_radiance, d, s_w, 1.34, 1, kd::uwi_no_mirror_object());
+  EXPECT_GT(std::fabs(with / none - 1), 0.01) << "the sphere is not the bottom";
+  // Beyond the bottom it is hidden: the same as no object.
+  m.s = H / d_y + 0.1;
+  EXPECT_EQ(kd::uwi_surface(&ib, &bd, 0.9, H, bd.sky_radiance, d, s_w, 1.34, 1, m), none);
+  // The sphere moved off the ray: no hit.
+  objects[0].a[0] += 2.0f;
+  EXPECT_GE(kd::uwi_mirror_hit(objects, 1, o, d, S, s_w, &mat).s, 1e29);
+  EXPECT_EQ(mat, UW_MAT_NONE);
 }
 
 }  // namespace
