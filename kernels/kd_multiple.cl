@@ -11,7 +11,8 @@
  * (common/underwater_improved_bands.h), reading the table's improved rows.
  *
  * Inputs: UwParams, UwBand[band_count] and albedo[object * band_count + band] (the set-up as every
- * underwater pass gets it; the band loop reads their values from band_table), the G-buffer of raycast.cl
+ * underwater pass gets it; the band loop reads their values from band_table), the objects (the improved
+ * model traces the surface's reflected ray against them, once per surface pixel), the G-buffer of raycast.cl
  * (geom, material, sun_vis), with SEASIM_HAS_FROXEL the integrated froxel volume (froxel.cl) and its
  * FroxelParams. Output: rgb[3 * pixels]; spectral[band_count * pixels] (band-major per pixel) with
  * SEASIM_SPECTRAL_OUTPUT, holding T L_s + L_MS per band (the froxel term is integrated in RGB).
@@ -43,6 +44,9 @@
 #define SEASIM_UNDERWATER_MODEL 0
 #endif
 #if SEASIM_UNDERWATER_MODEL == 1 /* underwater.model = "improved" (issue 13) on the band lanes */
+#include "common/underwater_improved_params.h"
+/* uwi_mirror_hit: the surface's reflected ray against the objects */
+#include "common/underwater_improved.h"
 #include "common/underwater_improved_bands.h"
 #endif
 
@@ -60,7 +64,7 @@ realb kd_sky_lanes(__global const float* band_table, int stride, int i, float3 s
 }
 
 __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, __global const float* albedo,
-                          __global const float* band_table,
+                          __global const float* band_table, __global const UwObject* objects,
                           __global const float4* geom, __global const int* material, __global const float* sun_vis,
                           __constant SkyParams* sky_params, __global const float* sky,
 #if SEASIM_HAS_FROXEL
@@ -122,6 +126,15 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
   const float cos_s = dot(d, s_w);
   const float phase = hg_phase(cos_s, p->g);
   const float phase_r = mat == UW_MAT_SURFACE ? hg_phase(cos_s - 2.0f * d.y * s_w.y, p->g) : 0.0f;
+  /* The object the reflected ray meets first, if any (surface hits; uwi_mirror_hit). */
+  int mat_m = UW_MAT_NONE;
+  const UwiMirrorHit mirror =
+      mat == UW_MAT_SURFACE
+          ? uwi_mirror_hit(objects, p->object_count, (float3)(p->cam_pos[0], p->cam_pos[1], p->cam_pos[2]), d, S, s_w,
+                           &mat_m)
+          : uwi_no_mirror_object();
+  __global const float* albedo_m_row = ROW(mat_m >= 0 ? UW_ROWS + mat_m : UW_ROW_BOTTOM_ALBEDO);
+  const float n_m_dot_s = dot(mirror.n, s_w);
   for (int i = 0; i < band_count; i += SEASIM_BAND_LANES) {
     const UwiLanes v = uwi_lanes_load(band_table, stride, uwi_row0, i);
     /* The in-scatter's integrals start at the camera (per-frame rows: o_d is the frame's) and end at the
@@ -133,7 +146,7 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
       const realb sky_l = kd_sky_lanes(band_table, stride, i, sky_shape);
       L += uwi_lanes_surface(&v, ends.k, sky_l, LOADB(ROW(uwi_row0 + UWI_ROW_BOTTOM_L), i),
                              LOADB(ROW(uwi_row0 + UWI_ROW_EXP_K_H), i), phase_r, p->bottom_depth, d.y, p->ior,
-                             single, multiple);
+                             multiple, mirror.s, LOADB(albedo_m_row, i), mirror.n.y, n_m_dot_s, mirror.vis);
     } else if (mat != UW_MAT_NONE) {
       L += uwi_lanes_lambert(&v, &ends, LOADB(albedo_row, i), p->bottom_depth, n.y, n_dot_s, vis);
     }

@@ -9,11 +9,14 @@
 #include <iterator>
 
 #include "cli/commands.h"
+#include "cli/underwater_regions_dump.h"
 #include "device/device.h"
 #include "io/csv.h"
 #include "io/npy.h"
 #include "plan/plan.h"
 #include "quality/render_frame.h"
+#include "reference/pixel_centre_hits.h"
+#include "reference/underwater_improved_terms.h"
 #include "reference/underwater_reference.h"
 #include "reference/underwater_regions.h"
 #include "scene/scene_parser.h"
@@ -130,9 +133,17 @@ int cmdUnderwaterRegions(const UnderwaterRegionsCmd& cmd) {
           }
           const WavelengthGrid grid =
               makeGrid(ref_scene.spectral.count, ref_scene.spectral.min_nm, ref_scene.spectral.max_nm);
-          const std::vector<UwRegion> regions = underwaterRegions(makeUnderwaterSetup(
+          const UnderwaterSetup ref_setup = makeUnderwaterSetup(
               ref_scene, grid,
-              makeSensor(ref_scene.spectral.sensor, grid, ref_scene.spectral.white_balance, ref_scene.spectral.camera_dir)));
+              makeSensor(ref_scene.spectral.sensor, grid, ref_scene.spectral.white_balance, ref_scene.spectral.camera_dir));
+          const std::vector<UwRegion> regions = underwaterRegions(ref_setup);
+          UnderwaterRegionsDump dump;  // --dump: the case's pixels
+          if (!cmd.dump_dir.empty()) {
+            dump.regions = regions;
+            for (const PixelCentreHit& h : pixelCentreHits(ref_setup)) dump.dir_y.push_back(h.dir_y);
+            dump.reference = ref;
+            dump.reference_se = se;
+          }
 
           for (const std::string& model : cmd.models) {
             std::vector<Override> over = base;
@@ -145,6 +156,15 @@ int cmdUnderwaterRegions(const UnderwaterRegionsCmd& cmd) {
             for (const PassTiming& t : frame.timings)
               if (t.name == "kd_multiple") kd_ms += t.ms;
             const auto stats = underwaterRegionStats(regions, frame.rgb, ref, se);
+            if (!cmd.dump_dir.empty()) {
+              dump.fast.emplace_back(model, frame.rgb);
+              if (model == "improved")
+                dump.improved_terms = improvedModelTerms(
+                    makeUnderwaterSetup(scene, grid,
+                                        makeSensor(scene.spectral.sensor, grid, scene.spectral.white_balance,
+                                                   scene.spectral.camera_dir)),
+                    scene.underwater.multiple_scattering);
+            }
             std::vector<CsvCell> row = {a, b, g, depth, view, model, kd_ms, cmd.spp};
             std::printf("%-5.3g %-5.3g %-4.3g %-5.3g %-5s %-8s %8.2f", a, b, g, depth, view.c_str(), model.c_str(), kd_ms);
             for (const UwRegionStat& s : stats) {
@@ -158,6 +178,8 @@ int cmdUnderwaterRegions(const UnderwaterRegionsCmd& cmd) {
             std::fflush(stdout);
             table.addRow(row);
           }
+          if (!cmd.dump_dir.empty())
+            writeUnderwaterRegionsDump(cmd.dump_dir + "/" + underwaterRegionsDumpName(a, b, g, depth, view), dump);
         }
   }
   if (!cmd.csv.empty()) table.write(cmd.csv);

@@ -22,6 +22,7 @@ struct UnderwaterRegionsCmd {
   std::string csv;
   std::vector<std::string> sets;  // extra scene overrides (applied to every render and reference)
   std::vector<std::string> model_sets;  // overrides for the fast models' renders only (not the references)
+  std::string dump_dir;  // per case a CSV of every pixel: region, d_y, reference, fast renders, improved terms
 };
 
 int cmdUnderwaterRegions(const UnderwaterRegionsCmd& cmd);

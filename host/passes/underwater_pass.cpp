@@ -104,6 +104,7 @@ double UnderwaterPass::runShading(const cl::Buffer* froxel_params, const cl::Buf
     shade_.setArg(arg++, bands_);
     shade_.setArg(arg++, albedo_);
     shade_.setArg(arg++, band_table_);
+    shade_.setArg(arg++, objects_);
     shade_.setArg(arg++, geom_);
     shade_.setArg(arg++, material_);
     shade_.setArg(arg++, vis_);

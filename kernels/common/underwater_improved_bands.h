@@ -23,7 +23,8 @@
  * surface's reflected ray (o_d = 0); its far ends e^{-(κ y(S) + c' S)} (UwiEnds) are the exps of the
  * hit's irradiance times T(S), taken once per step and shared by the integrals and the Lambert hit.
  * So a lit hit takes four exps per band (three without froxels) where the thesis's lanes take six, and
- * the surface from below eight (its T(S) the camera's far end; the reflected ray's four) against nine.
+ * the surface from below seven with froxels (its T(S) the camera's far end; the reflected ray's three, no
+ * froxel term along it) against nine.
  * tests/unit/underwater_improved_bands_test.cpp holds these lanes (one band per step on the host) to
  * uwi_band_radiance in float and double; tests/kernels/underwater_improved_kernel_test.cpp the kernel
  * to the double CPU evaluation of uwi_band_radiance.
@@ -147,32 +148,40 @@ SEASIM_FN realb uwi_lanes_lambert(const UwiLanes* v, const UwiEnds* e, realb alb
  * bottom, and the bottom itself (bottom_l: UWI_ROW_BOTTOM_L, its sunlit radiance), or deep water.
  * t_s: T(S) = e^{-c' S}, which is the camera ray's far end e^{-(k y + c' S)} at the surface (y = 0:
  * uwi_ends' k). exp_k_h: e^{-k H} (UWI_ROW_EXP_K_H), the reflected ray's start factor of the bottom's
- * term; the others are 1 at o_d = 0. */
+ * term; the others are 1 at o_d = 0. The reflected ray keeps its single scattering (no froxel term
+ * taken off: the froxel pass runs along the camera's ray only), as uwi_surface.
+ * An object in the mirror (uwi_surface's UwiMirrorHit, traced once per pixel by the caller): its
+ * distance s_m from the surface (UW_INFINITE: none), albedo_m in these bands, its normal's vertical n_m_y,
+ * n_m_dot_s = n·s_w and the sun's visibility vis_m; the reflected ray's integrals then end on it, and its
+ * Lambert hit shares their far ends (no more exps than the bottom's case). */
 SEASIM_FN realb uwi_lanes_surface(const UwiLanes* v, realb t_s, realb sky_l, realb bottom_l, realb exp_k_h,
-                                  real phase_r, real bottom_depth, real d_y, real ior, int single_scattering,
-                                  int multiple) {
+                                  real phase_r, real bottom_depth, real d_y, real ior, int multiple, real s_m,
+                                  realb albedo_m, real n_m_y, real n_m_dot_s, real vis_m) {
   const real dy = fmax(d_y, R(1e-6));
   const real s_r = bottom_depth > R(0.0) ? bottom_depth / dy : UW_INFINITE;
   realb reflected = SPLATB(R(0.0));
   /* The bottom's attenuation along the reflected ray, e^{-c' min(s_r, 1e4)} as uwi_surface takes it. */
   realb t_bottom = SPLATB(R(0.0));
-  if (multiple) {
-    UwiStart a;
-    a.k = SPLATB(R(1.0));
-    a.m = SPLATB(R(1.0));
-    a.beam = SPLATB(R(1.0));
-    a.k_bottom = exp_k_h;
+  UwiStart a;
+  a.k = SPLATB(R(1.0));
+  a.m = SPLATB(R(1.0));
+  a.beam = SPLATB(R(1.0));
+  a.k_bottom = exp_k_h;
+  if (s_m < s_r) { /* per pixel: an object in the mirror, at depth s_m dy */
+    const UwiEnds e = uwi_ends(v, bottom_depth, s_m, s_m * dy, 0);
+    reflected = uwi_lanes_lambert(v, &e, albedo_m, bottom_depth, n_m_y, n_m_dot_s, vis_m);
+    if (multiple) reflected += uwi_lanes_multiple(v, &a, &e, phase_r, bottom_depth, s_m, -dy, 0);
+  } else if (multiple) {
     /* It ends on the bottom (y = H) or in deep water (S, y = ∞: its ends 0). */
-    const UwiEnds e = uwi_ends(v, bottom_depth, s_r, bottom_depth > R(0.0) ? bottom_depth : UW_INFINITE,
-                               single_scattering);
-    reflected = uwi_lanes_multiple(v, &a, &e, phase_r, bottom_depth, s_r, -dy, single_scattering);
+    const UwiEnds e = uwi_ends(v, bottom_depth, s_r, bottom_depth > R(0.0) ? bottom_depth : UW_INFINITE, 0);
+    reflected = uwi_lanes_multiple(v, &a, &e, phase_r, bottom_depth, s_r, -dy, 0);
     /* Its far end e^{-(k (H - y) + c' s_r)} at y = H: the same but past s_r = 1e4 (within H/1e4 of
      * the horizon), where both are e^{-c' 1e4} or less. */
     t_bottom = e.k_bottom;
   } else if (bottom_depth > R(0.0)) {
     t_bottom = exp(-v->c_dm * fmin(s_r, R(1e4)));
   }
-  if (bottom_depth > R(0.0)) reflected += t_bottom * bottom_l;
+  if (bottom_depth > R(0.0) && !(s_m < s_r)) reflected += t_bottom * bottom_l;
   const real f = fresnel_reflectance(d_y, ior, R(1.0));
   return t_s * (ior * ior * (R(1.0) - f) * sky_l + f * reflected);
 }

@@ -69,7 +69,9 @@ seasim::Override set(const char* key, const std::string& value) { return {key, v
 
 // The frame by the shared maths in double (kd_multiple.cl's improved block, raycast.cl's shadow ray);
 // with spectral, also every band's radiance (band-major per pixel, as spectral.exr).
-seasim::Image cpuImproved(const seasim::UnderwaterSetup& s, bool multiple, std::vector<double>* spectral = nullptr) {
+// mirror_hits: counts the surface pixels whose reflected ray meets an object (uwi_mirror_hit).
+seasim::Image cpuImproved(const seasim::UnderwaterSetup& s, bool multiple, std::vector<double>* spectral = nullptr,
+                          int* mirror_hits = nullptr) {
   const UwParams& p = s.params;
   seasim::Image out = seasim::Image::rgb(p.width, p.height);
   const kd::real3 o{p.cam_pos[0], p.cam_pos[1], p.cam_pos[2]};
@@ -89,12 +91,18 @@ seasim::Image cpuImproved(const seasim::UnderwaterSetup& s, bool multiple, std::
         kd::uw_scene_hit(s.objects.data(), p.object_count, 0.0, o + S * d + 1e-3 * n, s_w, 0.0, &sn, &smat);
         vis = smat >= 0 ? 0.0 : 1.0;
       }
+      int mat_m = UW_MAT_NONE;  // the object in the surface's mirror (kd_multiple.cl's uwi_mirror_hit)
+      kd::UwiMirrorHit mirror = mat == UW_MAT_SURFACE
+                                    ? kd::uwi_mirror_hit(s.objects.data(), p.object_count, o, d, S, s_w, &mat_m)
+                                    : kd::uwi_no_mirror_object();
+      if (mirror_hits && mat_m >= 0 && mirror.s < p.bottom_depth / std::max(d.y, 1e-6)) ++*mirror_hits;
       double rgb[3] = {0, 0, 0};
       for (int i = 0; i < p.band_count; ++i) {
+        if (mat_m >= 0) mirror.albedo = s.albedo[size_t(mat_m) * p.band_count + i];
         const UwBand& b = s.bands[i];
         const double albedo = mat >= 0 ? s.albedo[size_t(mat) * p.band_count + i] : mat == UW_MAT_BOTTOM ? b.bottom_albedo : 0.0;
         const double L = kd::uwi_band_radiance(&s.improved[i], &b, p.g, mat, S, n, d, -o.y, s_w, albedo, vis,
-                                               b.sky_radiance, p.ior, p.bottom_depth, 0, multiple ? 1 : 0);
+                                               b.sky_radiance, p.ior, p.bottom_depth, 0, multiple ? 1 : 0, mirror);
         rgb[0] += L * b.w_r;
         rgb[1] += L * b.w_g;
         rgb[2] += L * b.w_b;
@@ -126,7 +134,9 @@ TEST_P(UnderwaterImprovedKernel, MatchesDoubleCpuEvaluationWithoutNaN) {
   const seasim::UnderwaterSetup setup = seasim::makeUnderwaterSetup(
       scene, grid, seasim::makeSensor(scene.spectral.sensor, grid, scene.spectral.white_balance, scene.spectral.camera_dir));
   ASSERT_EQ(setup.improved.size(), setup.bands.size());
-  const seasim::Image ref = cpuImproved(setup, scene.underwater.multiple_scattering);
+  int mirror_hits = 0;
+  const seasim::Image ref = cpuImproved(setup, scene.underwater.multiple_scattering, nullptr, &mirror_hits);
+  if (std::string(GetParam().name) == "objects_in_the_mirror") EXPECT_GT(mirror_hits, 20) << "the sphere in the mirror";
   float peak = 0;
   for (float v : ref.pixels) peak = std::max(peak, std::fabs(v));
   // Per pixel, relative; a shadow edge may fall on the other side of a pixel centre in float, so 1 %
@@ -160,7 +170,10 @@ INSTANTIATE_TEST_SUITE_P(
         Variant{"seventeen_bands", {set("spectral.count", "17")}},
         Variant{"thirty_one_bands_no_bottom", {set("spectral.count", "31")}, true},
         Variant{"night", {set("sun.zenith_deg", "100")}},
-        Variant{"no_multiple", {set("underwater.multiple_scattering", "false")}}),
+        Variant{"no_multiple", {set("underwater.multiple_scattering", "false")}},
+        Variant{"objects_in_the_mirror",  // a sphere just below the surface, seen in its reflection (s7b)
+                {set("camera.position", "[0, -1.5, 0]"), set("camera.look_at", "[0, -0.5, -8]"),
+                 set("objects[0].center", "[-1, -1.0, -7]")}}),
     [](const ::testing::TestParamInfo<Variant>& info) { return std::string(info.param.name); });
 
 // spectral.exr's bands from the lanes' store_lanes, 17 bands (one full step of 16 and one of 1), each

@@ -61,6 +61,11 @@ struct Ray {
   int mat;
   double S, o_d, vis, sky_l;
   double d[3], n[3], s_w[3];
+  // Surface hits: the object the reflected ray meets (uwi_surface's UwiMirrorHit; s_m = 1e30: none).
+  double s_m = 1e30;
+  int mat_m = 1;
+  double n_m[3] = {0.0, 0.6, 0.8};
+  double vis_m = 1.0;
 };
 
 // kd_multiple.cl's improved band loop for band k (real = float or double): the per-pixel phases, the
@@ -84,9 +89,10 @@ struct Ray {
     const ns::UwiEnds e = ns::uwi_ends(&v, H, S, y, single);                                                 \
     Real L = ns::uwi_lanes_multiple(&v, &a, &e, phase, H, S, d.y, single);                                   \
     if (r.mat == UW_MAT_SURFACE) {                                                                           \
+      const ns::real3 n_m{Real(r.n_m[0]), Real(r.n_m[1]), Real(r.n_m[2])};                                   \
       L += ns::uwi_lanes_surface(&v, e.k, Real(r.sky_l), row(uwi_row0 + UWI_ROW_BOTTOM_L),                   \
-                                 row(uwi_row0 + UWI_ROW_EXP_K_H), phase_r, H, d.y, Real(s.params.ior), single, \
-                                 1);                                                                         \
+                                 row(uwi_row0 + UWI_ROW_EXP_K_H), phase_r, H, d.y, Real(s.params.ior), 1,      \
+                                 Real(r.s_m), row(UW_ROWS + r.mat_m), n_m.y, ns::dot(n_m, s_w), Real(r.vis_m)); \
     } else if (r.mat != UW_MAT_NONE) {                                                                       \
       const Real albedo = row(r.mat >= 0 ? UW_ROWS + r.mat : UW_ROW_BOTTOM_ALBEDO);                          \
       L += ns::uwi_lanes_lambert(&v, &e, albedo, H, n.y, ns::dot(n, s_w), Real(r.vis));                       \
@@ -101,8 +107,10 @@ double scalarRadiance(const seasim::UnderwaterSetup& s, int k, const Ray& r, int
   const UwBand& b = s.bands[k];
   const double albedo = r.mat >= 0 ? s.albedo[size_t(r.mat) * kBands + k] : b.bottom_albedo;
   const kd::real3 d{r.d[0], r.d[1], r.d[2]}, n{r.n[0], r.n[1], r.n[2]}, s_w{r.s_w[0], r.s_w[1], r.s_w[2]};
+  const kd::UwiMirrorHit m{r.s_m, kd::real3{r.n_m[0], r.n_m[1], r.n_m[2]}, s.albedo[size_t(r.mat_m) * kBands + k],
+                           r.vis_m};
   return kd::uwi_band_radiance(&s.improved[k], &b, s.params.g, r.mat, r.S, n, d, r.o_d, s_w, albedo, r.vis, r.sky_l,
-                               s.params.ior, s.params.bottom_depth, single, 1);
+                               s.params.ior, s.params.bottom_depth, single, 1, m);
 }
 
 float scalarRadianceFloat(const seasim::UnderwaterSetup& s, int k, const Ray& r, int single) {
@@ -110,8 +118,10 @@ float scalarRadianceFloat(const seasim::UnderwaterSetup& s, int k, const Ray& r,
   const float albedo = r.mat >= 0 ? s.albedo[size_t(r.mat) * kBands + k] : b.bottom_albedo;
   const kf::real3 d{float(r.d[0]), float(r.d[1]), float(r.d[2])}, n{float(r.n[0]), float(r.n[1]), float(r.n[2])};
   const kf::real3 s_w{float(r.s_w[0]), float(r.s_w[1]), float(r.s_w[2])};
+  const kf::UwiMirrorHit m{float(r.s_m), kf::real3{float(r.n_m[0]), float(r.n_m[1]), float(r.n_m[2])},
+                           s.albedo[size_t(r.mat_m) * kBands + k], float(r.vis_m)};
   return kf::uwi_band_radiance(&s.improved[k], &b, s.params.g, r.mat, float(r.S), n, d, float(r.o_d), s_w, albedo,
-                               float(r.vis), float(r.sky_l), s.params.ior, s.params.bottom_depth, single, 1);
+                               float(r.vis), float(r.sky_l), s.params.ior, s.params.bottom_depth, single, 1, m);
 }
 
 TEST(UnderwaterImprovedBands, TableRowsHoldTheBlockAndPaddingIsWeightless) {
@@ -224,6 +234,10 @@ TEST(UnderwaterImprovedBands, LanesMatchTheScalarModelInFloatAndDouble) {
                 const double dx = std::sqrt(1 - d_y * d_y);
                 for (double S : {0.0, 1e-3, 2.0, 30.0}) {
                   Ray r{mat, S, o_d, 0.7, 0.15, {dx * 0.6, d_y, -dx * 0.8}, {0.6, 0.8, 0}, {s_w[0], s_w[1], s_w[2]}};
+                  // Surface hits: an object in the mirror (lit or in shadow) at S's distance, or none.
+                  if (mat == UW_MAT_SURFACE && S == 1e-3) continue;  // S = 0: none
+                  if (mat == UW_MAT_SURFACE && S == 2.0) r.s_m = 1.5, r.vis_m = 0.0;
+                  if (mat == UW_MAT_SURFACE && S == 30.0) r.s_m = 3.0;
                   if (mat == UW_MAT_NONE) r.S = 1e30;
                   if (mat == UW_MAT_SURFACE) r.S = o_d / d_y;
                   if (mat == UW_MAT_BOTTOM) r.S = (H - o_d) / -d_y, r.n[0] = 0, r.n[1] = 1;

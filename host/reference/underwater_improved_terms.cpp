@@ -1,0 +1,116 @@
+#include "reference/underwater_improved_terms.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "math/kernel_math.h"
+#include "util/error.h"
+
+namespace seasim {
+
+namespace kd = kmath_d;
+
+namespace {
+
+// uwi_multiple's sum before its clamp, term by term (common/underwater_improved.h).
+struct InScatter {
+  double modes = 0, beam = 0, tms = 0, froxel_ss = 0;
+};
+
+InScatter inScatterTerms(const UwiBand& ib, const UwBand& band, double g, double bottom_depth, double S, double d_y,
+                         double o_d, double cos_s, double mu_w) {
+  InScatter t;
+  const double w1 = kd::uwi_source_weight(&ib, d_y, ib.d1, ib.u1, ib.e0_down, ib.e0_up);
+  const double w2 = kd::uwi_source_weight(&ib, d_y, ib.d2, ib.u2, ib.e0_down, ib.e0_up);
+  const double wp = kd::uwi_source_weight(&ib, d_y, ib.dp, ib.up, ib.e0_beam_down, ib.e0_beam_up);
+  const double phase = double(band.b) * kd::hg_phase(cos_s, g) * band.e_beam0;
+  const double i1 = kd::kd_exp_integral(ib.k, ib.c_dm, d_y, o_d, S);
+  const double i2 = bottom_depth > 0 ? kd::kd_exp_integral(ib.k, ib.c_dm, -d_y, std::max(bottom_depth - o_d, 0.0), S) : 0.0;
+  const double ip = kd::kd_exp_integral(ib.m, ib.c_dm, d_y, o_d, S);
+  t.modes = w1 * i1 + w2 * i2;
+  t.beam = wp * ip;
+  t.tms = phase * ip;
+  t.froxel_ss = phase * kd::kd_exp_integral(band.c / std::max(mu_w, 1e-4), band.c, d_y, o_d, S);
+  return t;
+}
+
+}  // namespace
+
+std::vector<UwiPixelTerms> improvedModelTerms(const UnderwaterSetup& s, bool multiple_scattering) {
+  const UwParams& p = s.params;
+  if (s.improved.size() != s.bands.size() || s.bands.empty())
+    throw RuntimeError("improved model terms: the setup has no improved model (underwater.model = \"improved\")");
+  std::vector<UwiPixelTerms> out(size_t(p.width) * p.height);
+  const kd::real3 o{p.cam_pos[0], p.cam_pos[1], p.cam_pos[2]};
+  const kd::real3 s_w{p.sun_dir_water[0], p.sun_dir_water[1], p.sun_dir_water[2]};
+  const double o_d = -o.y, mu_w = s_w.y, H = p.bottom_depth;
+  const int froxels = s.single_scattering ? 1 : 0;
+  const int multiple = multiple_scattering ? 1 : 0;
+  for (int y = 0; y < p.height; ++y)
+    for (int x = 0; x < p.width; ++x) {
+      const kd::real3 d = kd::uw_screen_dir(&p, (x + 0.5) / p.width, (y + 0.5) / p.height);
+      kd::real3 n{};
+      int mat = 0;
+      const double S = kd::uw_scene_hit(s.objects.data(), p.object_count, H, o, d, 0.0, &n, &mat);
+      double vis = 0;  // the sun's shadow ray from a Lambertian hit (raycast.cl)
+      if (mat >= 0 || mat == UW_MAT_BOTTOM) {
+        kd::real3 sn{};
+        int smat = 0;
+        kd::uw_scene_hit(s.objects.data(), p.object_count, 0.0, o + S * d + 1e-3 * n, s_w, 0.0, &sn, &smat);
+        vis = smat >= 0 ? 0.0 : 1.0;
+      }
+      UwiPixelTerms& t = out[size_t(y) * p.width + x];
+      int mat_m = UW_MAT_NONE;  // the object in the surface's mirror, as kd_multiple.cl traces it
+      kd::UwiMirrorHit mirror = mat == UW_MAT_SURFACE
+                                    ? kd::uwi_mirror_hit(s.objects.data(), p.object_count, o, d, S, s_w, &mat_m)
+                                    : kd::uwi_no_mirror_object();
+      const bool object_in_mirror = mat_m >= 0 && !(H > 0 && mirror.s >= H / std::max(d.y, 1e-6));
+      t.reflected_object = object_in_mirror ? 1.0 : 0.0;
+      for (int i = 0; i < p.band_count; ++i) {
+        const UwBand& b = s.bands[i];
+        const UwiBand& ib = s.improved[i];
+        const double w = double(b.w_r) + b.w_g + b.w_b;
+        const double albedo =
+            mat >= 0 ? s.albedo[size_t(mat) * p.band_count + i] : mat == UW_MAT_BOTTOM ? b.bottom_albedo : 0.0;
+        if (multiple) {
+          const InScatter v = inScatterTerms(ib, b, p.g, H, S, d.y, o_d, kd::dot(d, s_w), mu_w);
+          t.inscatter_modes += w * v.modes;
+          t.inscatter_beam += w * v.beam;
+          t.inscatter_tms += w * v.tms;
+          if (froxels) t.froxel_ss += w * v.froxel_ss;
+        }
+        const double T = std::exp(-double(ib.c_dm) * S);
+        if (mat_m >= 0) mirror.albedo = s.albedo[size_t(mat_m) * p.band_count + i];
+        if (mat == UW_MAT_SURFACE) {
+          // uwi_surface, its two parts apart (the reflected ray ends on the object in the mirror, if any).
+          const double dy = std::max(d.y, 1e-6);
+          const double s_r = object_in_mirror ? mirror.s : H > 0 ? H / dy : 1e30;  // UW_INFINITE
+          const double cos_r = kd::dot(d, s_w) - 2.0 * d.y * s_w.y;
+          const double f = kd::fresnel_reflectance(d.y, p.ior, 1.0);
+          const double l_ms = kd::uwi_multiple(&ib, &b, p.g, H, s_r, -dy, 0.0, cos_r, mu_w, 0, multiple);
+          const double l_bottom =
+              object_in_mirror
+                  ? std::exp(-double(ib.c_dm) * s_r) *
+                        kd::uwi_lambert(&ib, &b, H, s_r * dy, mirror.n, s_w, mirror.albedo, mirror.vis)
+              : H > 0 ? std::exp(-double(ib.c_dm) * std::min(s_r, 1e4)) *
+                            kd::uwi_lambert(&ib, &b, H, H, kd::real3{0, 1, 0}, s_w, b.bottom_albedo, 1.0)
+                      : 0.0;
+          t.window += w * T * p.ior * p.ior * (1 - f) * b.sky_radiance;
+          t.reflected_inscatter += w * T * f * l_ms;
+          t.reflected_bottom += w * T * f * l_bottom;
+          if (froxels && multiple)
+            t.reflected_froxel_ss +=
+                w * T * f * inScatterTerms(ib, b, p.g, H, s_r, -dy, 0.0, cos_r, mu_w).froxel_ss;
+        } else if (mat != UW_MAT_NONE) {
+          t.lambert += w * T * kd::uwi_lambert(&ib, &b, H, std::max(o_d - S * d.y, 0.0), n, s_w, albedo, vis);
+        }
+        t.total += w * (kd::uwi_band_radiance(&ib, &b, p.g, mat, S, n, d, o_d, s_w, albedo, vis, b.sky_radiance,
+                                              p.ior, H, froxels, multiple, mirror) +
+                        (froxels && multiple ? inScatterTerms(ib, b, p.g, H, S, d.y, o_d, kd::dot(d, s_w), mu_w).froxel_ss
+                                             : 0.0));
+      }
+    }
+  return out;
+}
+
+}  // namespace seasim

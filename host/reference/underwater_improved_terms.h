@@ -1,0 +1,44 @@
+// underwater_improved_terms.h — underwater.model = "improved" (common/underwater_improved.h) split into
+// its terms per pixel, for diagnosis (issue 13: which term a miss against the path tracer is in). Each
+// pixel's centre ray is cast in double with the kernels' own geometry and shaded by the scalar model in
+// double, one term at a time; the terms add up to the model's radiance (uwi_band_radiance) plus the
+// froxel pass's single scattering, unshadowed.
+#pragma once
+#include <vector>
+
+#include "underwater/underwater_setup.h"
+
+namespace seasim {
+
+// Every term summed over the bands with the sensor's weights (w_r + w_g + w_b): the units of a render's
+// three channels added, as the region ratios take them.
+struct UwiPixelTerms {
+  // The in-scatter along the view ray (uwi_multiple): the two-stream's modes (e^{-k y}, e^{-k (H - y)}),
+  // the beam's diffuse offspring (e^{-m y}), the beam scattered once at the exact phase (TMS), and the
+  // froxel pass's unshadowed strict single scattering (002 eq. 5.2), which the model takes off where
+  // the froxel pass runs and that pass adds back with its shadows (0 without froxels).
+  double inscatter_modes = 0, inscatter_beam = 0, inscatter_tms = 0, froxel_ss = 0;
+  // The surface seen from below (uwi_surface) times T(S): the sky through Snell's window, n² (1 - F) L_sky;
+  // F times the reflected ray's in-scatter as the model takes it; F times the bottom (or the object in
+  // the mirror, uwi_mirror_hit) it ends on.
+  double window = 0, reflected_inscatter = 0, reflected_bottom = 0;
+  // The beam's strict single scattering along the reflected ray (closed form, unshadowed) times T(S) F,
+  // for comparison (0 without froxels): no froxel pass runs along a reflected ray, so the model keeps it
+  // in reflected_inscatter as its TMS term (before s7b it took it off there, as along the camera's ray).
+  double reflected_froxel_ss = 0;
+  // 1 where the surface's reflected ray meets an object before the bottom or deep water (traced since
+  // s7b; before, the model saw the open bottom or water there).
+  double reflected_object = 0;
+  // A Lambertian hit (object or bottom) times T(S): uwi_lambert.
+  double lambert = 0;
+  // uwi_band_radiance + froxel_ss: the model's total (its in-scatter clamped at 0 as the kernel does).
+  double total = 0;
+};
+
+// Row-major, width × height of setup.params. setup.improved must hold one UwiBand per band
+// (underwater.model = "improved"; RuntimeError otherwise). multiple_scattering: the scene's
+// underwater.multiple_scattering (false leaves every in-scatter term out, as the kernel does).
+// A uniform sky (the surface's window takes each band's sky_radiance).
+std::vector<UwiPixelTerms> improvedModelTerms(const UnderwaterSetup& setup, bool multiple_scattering);
+
+}  // namespace seasim

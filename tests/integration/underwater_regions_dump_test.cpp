@@ -1,0 +1,123 @@
+// underwater_regions_dump_test.cpp — `seasim underwater-regions --dump DIR` (issue 13): one CSV per case
+// with every pixel's region, ray direction, the reference, each model's render and the improved model's
+// terms, and the terms add up to the model (the render and the reference the files hold are the ones
+// the region ratios were taken from).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "io/npy.h"
+#include "run_command.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kBinary = SEASIM_BINARY;
+const std::string kRepo = SEASIM_SOURCE_DIR;
+
+std::vector<std::string> splitCsv(const std::string& line) {
+  std::vector<std::string> out;
+  std::stringstream ss(line);
+  std::string f;
+  while (std::getline(ss, f, ',')) out.push_back(f);
+  return out;
+}
+
+class UnderwaterRegionsDump : public ::testing::Test {
+ protected:
+  void SetUp() override { dir_ = seasim_test::freshTestDir("seasim_uwdump_"); }
+  void TearDown() override { fs::remove_all(dir_); }
+  fs::path dir_;
+};
+
+TEST_F(UnderwaterRegionsDump, WritesEveryPixelWithRegionReferenceRendersAndTermsThatAddUp) {
+  const fs::path dump = dir_ / "dump";
+  // Clear water at g = 0 over 5 m, level: bottom near and far, objects and the water looking up (the
+  // surface under total internal reflection), 4 paths per pixel (the test needs the files, not accuracy).
+  const seasim_test::Result r = seasim_test::runCommand(
+      kBinary + " underwater-regions " + kRepo + "/tests/perf/underwater_regions.toml --waters 0.03:0.05 --g 0" +
+      " --depths 5 --views level,up --models thesis,improved --spp 4 --device pocl --set camera.width=32" +
+      " --set camera.height=18 --cache " + (dir_ / "cache").string() + " --dump " + dump.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  std::vector<double> reference_sums;  // per case, from the CSV
+  for (const char* view : {"level", "up"}) {
+    const fs::path file = dump / (std::string("a0.03_b0.05_g0_d5_") + view + ".csv");
+    ASSERT_TRUE(fs::exists(file)) << file;
+    std::ifstream in(file);
+    std::string line;
+    ASSERT_TRUE(std::getline(in, line));
+    const std::vector<std::string> header = splitCsv(line);
+    std::map<std::string, size_t> col;
+    for (size_t i = 0; i < header.size(); ++i) col[header[i]] = i;
+    for (const char* c : {"x", "y", "region", "d_y", "reference", "reference_se", "fast_thesis", "fast_improved",
+                          "inscatter_modes", "inscatter_beam", "inscatter_tms", "froxel_ss", "window",
+                          "reflected_inscatter", "reflected_bottom", "reflected_froxel_ss", "reflected_object", "lambert",
+                          "model_total"})
+      ASSERT_TRUE(col.count(c)) << "column " << c << " in " << line;
+    std::vector<std::vector<std::string>> rows;
+    while (std::getline(in, line)) rows.push_back(splitCsv(line));
+    ASSERT_EQ(rows.size(), 32u * 18u) << "one row per pixel";
+    std::map<std::string, int> regions;
+    double fast = 0, total = 0, reference = 0, window = 0, reflected = 0;
+    for (size_t i = 0; i < rows.size(); ++i) {
+      const auto& row = rows[i];
+      ASSERT_EQ(row.size(), header.size());
+      EXPECT_EQ(std::stoi(row[col["x"]]), int(i % 32));
+      EXPECT_EQ(std::stoi(row[col["y"]]), int(i / 32));
+      ++regions[row[col["region"]]];
+      auto v = [&](const char* c) { return std::stod(row[col[c]]); };
+      for (const auto& h : header)
+        if (h != "region") ASSERT_TRUE(std::isfinite(std::stod(row[col[h]]))) << h;
+      // Where the surface is seen, the ray goes up; the sky through Snell's window only inside it.
+      if (v("window") > 0 || v("reflected_inscatter") > 0) EXPECT_GT(v("d_y"), 0.0);
+      if (v("d_y") < std::sqrt(1 - 1 / (1.33 * 1.33)) - 0.01) EXPECT_EQ(v("window"), 0.0) << "TIR";
+      // The terms add up to the model's total wherever its in-scatter is not clamped at 0.
+      const double inscatter = v("inscatter_modes") + v("inscatter_beam") + v("inscatter_tms") - v("froxel_ss");
+      if (inscatter > 0) {
+        const double sum = inscatter + v("froxel_ss") + v("window") + v("reflected_inscatter") +
+                           v("reflected_bottom") + v("lambert");
+        EXPECT_NEAR(sum, v("model_total"), 1e-9 + 1e-9 * std::fabs(sum));
+      }
+      fast += v("fast_improved");
+      total += v("model_total");
+      reference += v("reference");
+      window += v("window");
+      reflected += v("reflected_inscatter") + v("reflected_bottom");
+    }
+    // The render is the model (float, froxel shadows and their grid: a few per cent at most).
+    EXPECT_NEAR(fast / total, 1.0, 0.02) << view;
+    EXPECT_GT(reference, 0.0);
+    reference_sums.push_back(reference);
+    EXPECT_GT(reflected, 0.0) << view << ": the surface's reflected ray";
+    if (std::string(view) == "level") {
+      EXPECT_GT(regions["bottom_near"], 0);
+      EXPECT_GT(regions["water_up"], 0);
+      EXPECT_EQ(window, 0.0) << "level: every upward ray is beyond the critical angle";
+    } else {
+      EXPECT_GT(window, 0.0) << "30° up: Snell's window is in view";
+    }
+  }
+  // The reference column is the cached path-traced image, summed over its channels.
+  std::vector<double> npy_sums;
+  for (const auto& e : fs::directory_iterator(dir_ / "cache"))
+    if (e.path().string().ends_with(".rgb.npy")) {
+      double sum = 0;
+      for (float p : seasim::readNpy(e.path().string()).pixels) sum += p;
+      npy_sums.push_back(sum);
+    }
+  ASSERT_EQ(npy_sums.size(), 2u) << "one reference per case";
+  for (double s : reference_sums) {
+    const double d0 = std::fabs(s - npy_sums[0]), d1 = std::fabs(s - npy_sums[1]);
+    EXPECT_LT(std::min(d0, d1), 1e-4 * s) << "the CSV's reference is a cached reference";
+  }
+}
+
+}  // namespace
