@@ -177,6 +177,9 @@ struct UnderwaterDesc {
   // the model's own (diffuseMeanCosines' table). For refitting. file: improved_two_stream
   enum class TwoStream { Default, Quadrature, Asymptotic };
   TwoStream improved_two_stream = TwoStream::Default;
+  // "improved" only: the asymptotic mode's share w in the diffuse k over the camera's depth
+  // (depthMeanDiffuseK); < 0: the model's own (diffuseAsymptoticShare). file: improved_asymptotic_share
+  double improved_asymptotic_share = -1.0;
 };
 
 // [shallow]: shallow water with a visible bottom by the four-flow model (paper 003), seen from above a

@@ -607,6 +607,10 @@ class SceneParser {
     u.improved_two_stream = two_stream == "quadrature"   ? UnderwaterDesc::TwoStream::Quadrature
                             : two_stream == "asymptotic" ? UnderwaterDesc::TwoStream::Asymptotic
                                                          : UnderwaterDesc::TwoStream::Default;
+    u.improved_asymptotic_share = r.number("improved_asymptotic_share", u.improved_asymptotic_share);
+    r.check(u.improved_asymptotic_share == -1 || (u.improved_asymptotic_share >= 0 && u.improved_asymptotic_share <= 1),
+            "improved_asymptotic_share", "must be -1 (the model's own) or a share in [0, 1], got " +
+            fmt(u.improved_asymptotic_share));
     r.finish();
   }
 

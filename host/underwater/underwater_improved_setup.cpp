@@ -60,12 +60,48 @@ double asymptoticStreamCosine(double omega) {
   return std::min(std::sqrt(1 - omega) / isotropicAsymptoticKappa(omega), 1.0);
 }
 
+double asymptoticDiffuseK(double a, double b_back) {
+  const double c_s = a + 2 * b_back;
+  if (!(c_s > 0) || !(a > 0)) return 0.0;
+  return c_s * isotropicAsymptoticKappa(2 * b_back / c_s);
+}
+
+double depthMeanDiffuseK(double k_two_stream, double k_inf, double depth, double asymptotic_share) {
+  const double w = asymptotic_share;
+  if (!(depth > 0) || !(w > 0) || !(k_two_stream > k_inf)) return k_two_stream;
+  if (w >= 1) return k_inf;
+  // ln(w + (1 - w) e^{-q}) = log1p((1 - w) expm1(-q)): no cancellation as D -> 0 (the slope tends to
+  // k), and ln w (finite) once e^{-q} underflows.
+  const double q = (k_two_stream - k_inf) * depth / (1 - w);
+  return k_inf - std::log1p((1 - w) * std::expm1(-q)) / depth;
+}
+
+double diffuseAsymptoticShare(double g) {
+  // Fitted offline to the path tracer (tests/perf/underwater_regions_fit_depth.sh scans w = 0.1–0.8 on
+  // the training grid of tests/perf/underwater_regions.sh; results/BENCHMARKS.md, s7a, reports them
+  // and the held-out grid): per g of the grid the w with the most region cases within 5 % (ties: the
+  // smaller w), linear in g between, held outside [0, 0.95]. Not monotone in g: at g = 0.5 w >= 0.3
+  // over-brightens the coastal water's level views (0.4:1.2, 3.8 m); at g = 0.95 the views looking up
+  // want 0.7 where the level views at g = 0.9 want 0.4.
+  static const double kG[] = {0.0, 0.5, 0.9, 0.95};
+  static const double kShare[] = {0.3, 0.2, 0.4, 0.7};
+  if (!(g > kG[0])) return kShare[0];
+  for (int i = 1; i < 4; ++i)
+    if (g <= kG[i]) return kShare[i - 1] + (g - kG[i - 1]) / (kG[i] - kG[i - 1]) * (kShare[i] - kShare[i - 1]);
+  return kShare[3];
+}
+
+double diffuseViewDepth(const UwParams& params) {
+  const double depth = std::max(-static_cast<double>(params.cam_pos[1]), 0.0);
+  return params.bottom_depth > 0 ? std::min(depth, static_cast<double>(params.bottom_depth)) : depth;
+}
+
 UwiBand makeUwiBand(const UwBand& band, double g, double mu_w, double bottom_depth, double ior) {
   return makeUwiBand(band, g, mu_w, bottom_depth, ior, diffuseMeanCosines(g));
 }
 
 UwiBand makeUwiBand(const UwBand& band, double g, double mu_w, double bottom_depth, double ior,
-                    DiffuseMeanCosines mean, TwoStreamClosure closure) {
+                    DiffuseMeanCosines mean, TwoStreamClosure closure, DiffuseDepth view) {
   UwiBand o{};
   const double a = band.a, b = band.b;
   // Delta-M (as deltaMScale in underwater/lamps_setup.cpp): the peak f = g² counts as unscattered.
@@ -96,14 +132,20 @@ UwiBand makeUwiBand(const UwBand& band, double g, double mu_w, double bottom_dep
   const double mu1 = closure == TwoStreamClosure::Asymptotic
                          ? asymptoticStreamCosine(2 * b_back / (a + 2 * b_back))  // the similarity albedo
                          : 1.0 / std::sqrt(3.0);
-  const double alpha1 = (a + b_back) / mu1;
-  const double alpha2 = b_back / mu1;
+  // Over the depths the frame sees, the field's mean slope (depthMeanDiffuseK) rather than its slope at
+  // the surface: k moves towards K∞ by the factor s, with α1, α2 (the streams' cosine μ1/s), so the
+  // two-stream stays a solution of its own equations and r = α2/(α1 + k) is unchanged.
+  const double k_surface = std::sqrt(std::max(a * (a + 2 * b_back), 0.0)) / mu1;
+  const double k_view = depthMeanDiffuseK(k_surface, asymptoticDiffuseK(a, b_back), view.depth, view.asymptotic_share);
+  const double s_view = k_surface > 0 ? k_view / k_surface : 1.0;
+  const double alpha1 = s_view * (a + b_back) / mu1;
+  const double alpha2 = s_view * b_back / mu1;
   const double gamma3 = std::clamp((2 - 3 * g_dm * mu0) / 4, 0.0, 1.0);
   const double s_up = gamma3 * b_dm, s_down = b_dm - s_up;
   // k² = α1² - α2² = a (a + 2 b_b)/μ1² (= 3 c'² (1 - ω')(1 - ω' g') at μ1 = 1/√3), written without the
   // cancellation of the difference. Kept >= 1e-3 c': at a = 0 (no absorption) k = 0 and the pair
   // e^{-k y}, e^{-k (H - y)} would be one function, leaving the bottom's boundary system singular.
-  double k = std::max(std::sqrt(std::max(a * (a + 2 * b_back), 0.0)) / mu1, 1e-3 * c_dm);
+  double k = std::max(k_view, 1e-3 * c_dm);
   const double m = c_dm / mu0;
   // At k = m the particular solution resonates (it becomes y e^{-m y}) and P and A1 grow as 1/(k - m)
   // with opposite signs, so float loses digits in their sum. Within 0.1 % of it k is moved 0.1 % away.
@@ -143,11 +185,14 @@ UwiBand makeUwiBand(const UwBand& band, double g, double mu_w, double bottom_dep
 }
 
 std::vector<UwiBand> makeUwiBands(const UwParams& params, const std::vector<UwBand>& bands, DiffuseMeanCosines mean,
-                                  TwoStreamClosure closure) {
+                                  TwoStreamClosure closure, double asymptotic_share) {
+  const DiffuseDepth view{diffuseViewDepth(params),
+                          asymptotic_share >= 0 ? asymptotic_share : diffuseAsymptoticShare(params.g)};
   std::vector<UwiBand> out;
   out.reserve(bands.size());
   for (const UwBand& band : bands)
-    out.push_back(makeUwiBand(band, params.g, params.sun_dir_water[1], params.bottom_depth, params.ior, mean, closure));
+    out.push_back(
+        makeUwiBand(band, params.g, params.sun_dir_water[1], params.bottom_depth, params.ior, mean, closure, view));
   return out;
 }
 

@@ -41,15 +41,45 @@ double isotropicAsymptoticKappa(double omega);
 // K∞ (1/√3 as omega -> 1, the diffusion limit; 1 at omega = 0, where only the unscattered light remains).
 double asymptoticStreamCosine(double omega);
 
+// K∞ of the similarity-scaled medium (absorption a, isotropic scattering 2 b_back, b_back = b'(1 - g')/2
+// per stream as in the two-stream): (a + 2 b_back) κ(ω_s), ω_s = 2 b_back / (a + 2 b_back); 0 when
+// a = 0 (nothing is absorbed: the diffuse light does not decay), 0 for an empty medium.
+double asymptoticDiffuseK(double a, double b_back);
+
+// The diffuse field's attenuation over the depths a frame sees (s7a, results/BENCHMARKS.md): the mean
+// log-slope -ln(E(D)/E(0))/D over [0, D] of a field of two modes, the fast one and the asymptotic
+// e^{-K∞ y}, that holds the share w of E(0) and whose slope at the surface is the two-stream's k:
+//   E(y) = (1 - w) e^{-k_f y} + w e^{-K∞ y},   (1 - w) k_f + w K∞ = k
+//   k(D) = K∞ - ln(w + (1 - w) e^{-(k - K∞) D/(1 - w)}) / D
+// k at D = 0 (and at w = 0), falling monotonically to K∞ as D grows; w >= 1 gives K∞. Taken as k when
+// k <= K∞ or D <= 0. Continuous in D, w, k and K∞; finite for all finite inputs.
+double depthMeanDiffuseK(double k_two_stream, double k_inf, double depth, double asymptotic_share);
+
+// The asymptotic mode's share w of the diffuse field (depthMeanDiffuseK), fitted to the path tracer on
+// the training grid (see the .cpp); 0 turns the depth dependence off.
+double diffuseAsymptoticShare(double g);
+
+// Where the scene's depth enters the improved model's k: the depth D over which the diffuse field's
+// mean slope is taken (the camera's depth, within [0, H] over a bottom; set per frame, so the band
+// table follows a moving camera) and the asymptotic share w.
+struct DiffuseDepth {
+  double depth = 0;
+  double asymptotic_share = 0;
+};
+// The camera's depth -cam_pos[1], clamped to [0, bottom_depth] when there is a bottom (> 0).
+double diffuseViewDepth(const UwParams& params);
+
 // One band's coefficients. mu_w: the refracted sun's cosine (any value in (0, 1] when the sun is off:
 // e_beam0 = e_sun0 = 0 then); bottom_depth <= 0: no bottom; g the water's HG asymmetry; mean: the
 // streams' mean cosines (the first form: the fitted table at g).
 UwiBand makeUwiBand(const UwBand& band, double g, double mu_w, double bottom_depth, double ior);
 UwiBand makeUwiBand(const UwBand& band, double g, double mu_w, double bottom_depth, double ior,
-                    DiffuseMeanCosines mean, TwoStreamClosure closure = twoStreamClosure());
+                    DiffuseMeanCosines mean, TwoStreamClosure closure = twoStreamClosure(),
+                    DiffuseDepth depth = {});
 
-// All bands of a set-up (params.g, params.bottom_depth, params.ior, params.sun_dir_water[1]).
+// All bands of a set-up (params.g, params.bottom_depth, params.ior, params.sun_dir_water[1]; the
+// depth of diffuseViewDepth(params)) with the asymptotic share w (negative: diffuseAsymptoticShare(g)).
 std::vector<UwiBand> makeUwiBands(const UwParams& params, const std::vector<UwBand>& bands, DiffuseMeanCosines mean,
-                                  TwoStreamClosure closure = twoStreamClosure());
+                                  TwoStreamClosure closure = twoStreamClosure(), double asymptotic_share = -1);
 
 }  // namespace seasim

@@ -138,7 +138,8 @@ UnderwaterSetup makeUnderwaterSetup(const Scene& scene, const WavelengthGrid& gr
                                      : uw.improved_two_stream == UnderwaterDesc::TwoStream::Asymptotic
                                          ? TwoStreamClosure::Asymptotic
                                          : twoStreamClosure();
-    s.improved = makeUwiBands(p, s.bands, mean, closure);
+    // The camera's depth enters k here (diffuseViewDepth): set per frame, with the camera.
+    s.improved = makeUwiBands(p, s.bands, mean, closure, uw.improved_asymptotic_share);
   }
   p.object_count = static_cast<int>(s.objects.size());
   if (s.objects.empty()) s.objects.push_back(UwObject{});  // OpenCL buffers cannot be empty

@@ -13,7 +13,9 @@
  *  - the diffuse field from the IOPs and g, not a measured K_d: a two-stream solution for a layer over a
  *    Lambertian bottom of albedo ρ (plane irradiances E_d down, E_u up; quadrature coefficients
  *    γ1 = √3 (2 - ω'(1 + g'))/2, γ2 = √3 ω'(1 - g')/2, the beam's split γ3 = (2 - 3 g' μ_w)/4, γ4 = 1 - γ3),
- *    with the delta-M sun beam as its source, the sky's irradiance and the surface's internal reflection
+ *    with the delta-M sun beam as its source (its k, the field's decay, taken per frame as the mean slope
+ *    over the camera's depth of the two-stream's mode plus a share of the asymptotic e^{-K∞ y}: host-side,
+ *    depthMeanDiffuseK in underwater_improved_setup.h; the formulas here are unchanged), the sky's irradiance and the surface's internal reflection
  *    of E_u at the top and E_u(H) = ρ (E_d(H) + E_sun(H)) at the bottom. So the bottom's upwelling light
  *    lights the water and the objects' undersides.
  *  - the diffuse field's angular shape, weighted by the phase: the down and up streams scattered by the

@@ -15,7 +15,8 @@ typedef struct {
   float c_dm;   /* delta-M extinction c' = a + b (1 - g²), 1/m: view rays and the sun beam */
   float b_dm;   /* delta-M scattering b' = b (1 - g²), 1/m */
   float g_dm;   /* delta-M asymmetry g' = g / (1 + g) */
-  float k;      /* the diffuse field's eigen-attenuation, 1/m (two-stream) */
+  float k;      /* the diffuse field's attenuation, 1/m: the two-stream's, taken as the mean slope over
+                   the camera's depth (depthMeanDiffuseK, host/underwater/underwater_improved_setup.h) */
   float m;      /* the delta-M sun beam's attenuation with depth, c' / μ_w, 1/m */
   float d1, u1; /* E_d, E_u coefficients of e^{-k y} */
   float d2, u2; /* of e^{-k (H - y)} (light the bottom sends up, and its back-scatter) */
