@@ -611,6 +611,10 @@ class SceneParser {
     r.check(u.improved_asymptotic_share == -1 || (u.improved_asymptotic_share >= 0 && u.improved_asymptotic_share <= 1),
             "improved_asymptotic_share", "must be -1 (the model's own) or a share in [0, 1], got " +
             fmt(u.improved_asymptotic_share));
+    u.improved_flux_scale = r.number("improved_flux_scale", u.improved_flux_scale);
+    r.check(u.improved_flux_scale == -1 || (u.improved_flux_scale >= 0 && u.improved_flux_scale <= 3),
+            "improved_flux_scale", "must be -1 (the model's own) or a scale in [0, 3], got " +
+            fmt(u.improved_flux_scale));
     r.finish();
   }
 

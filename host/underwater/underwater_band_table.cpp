@@ -53,7 +53,7 @@ std::vector<float> underwaterBandTable(const UnderwaterSetup& setup) {
       const double s = double(ib.b_dm) / kFourPi;
       auto weight = [&](int row_a, int row_b, double D, double U, double e0_down, double e0_up) {
         uwi(row_a, s * (e0_down * D + e0_up * U));
-        uwi(row_b, s * 3.0 * double(ib.g_dm) * (D - U));
+        uwi(row_b, s * 3.0 * double(ib.g_flux) * (D - U));
       };
       weight(UWI_ROW_W1_A, UWI_ROW_W1_B, ib.d1, ib.u1, ib.e0_down, ib.e0_up);
       weight(UWI_ROW_W2_A, UWI_ROW_W2_B, ib.d2, ib.u2, ib.e0_down, ib.e0_up);

@@ -59,12 +59,17 @@ double depthMeanDiffuseK(double k_two_stream, double k_inf, double depth, double
 // the training grid (see the .cpp); 0 turns the depth dependence off.
 double diffuseAsymptoticShare(double g);
 
+// The scale s(g) of the flux term's asymmetry, g_f = s(g) g' (UwiBand::g_flux): a table fitted to the
+// path tracer on the training grid (see the .cpp); 1 is the first-order phase expansion (before s7c).
+double diffuseFluxScale(double g);
+
 // Where the scene's depth enters the improved model's k: the depth D over which the diffuse field's
 // mean slope is taken (the camera's depth, within [0, H] over a bottom; set per frame, so the band
 // table follows a moving camera) and the asymptotic share w.
 struct DiffuseDepth {
   double depth = 0;
   double asymptotic_share = 0;
+  double flux_scale = 1;  // s(g) of the flux term (diffuseFluxScale); 1: the first-order expansion
 };
 // The camera's depth -cam_pos[1], clamped to [0, bottom_depth] when there is a bottom (> 0).
 double diffuseViewDepth(const UwParams& params);
@@ -78,8 +83,10 @@ UwiBand makeUwiBand(const UwBand& band, double g, double mu_w, double bottom_dep
                     DiffuseDepth depth = {});
 
 // All bands of a set-up (params.g, params.bottom_depth, params.ior, params.sun_dir_water[1]; the
-// depth of diffuseViewDepth(params)) with the asymptotic share w (negative: diffuseAsymptoticShare(g)).
+// depth of diffuseViewDepth(params)) with the asymptotic share w (negative: diffuseAsymptoticShare(g)) and
+// the flux term's scale (negative: diffuseFluxScale(g)).
 std::vector<UwiBand> makeUwiBands(const UwParams& params, const std::vector<UwBand>& bands, DiffuseMeanCosines mean,
-                                  TwoStreamClosure closure = twoStreamClosure(), double asymptotic_share = -1);
+                                  TwoStreamClosure closure = twoStreamClosure(), double asymptotic_share = -1,
+                                  double flux_scale = -1);
 
 }  // namespace seasim

@@ -139,7 +139,7 @@ UnderwaterSetup makeUnderwaterSetup(const Scene& scene, const WavelengthGrid& gr
                                          ? TwoStreamClosure::Asymptotic
                                          : twoStreamClosure();
     // The camera's depth enters k here (diffuseViewDepth): set per frame, with the camera.
-    s.improved = makeUwiBands(p, s.bands, mean, closure, uw.improved_asymptotic_share);
+    s.improved = makeUwiBands(p, s.bands, mean, closure, uw.improved_asymptotic_share, uw.improved_flux_scale);
   }
   p.object_count = static_cast<int>(s.objects.size());
   if (s.objects.empty()) s.objects.push_back(UwObject{});  // OpenCL buffers cannot be empty

@@ -21,7 +21,11 @@
  *  - the diffuse field's angular shape, weighted by the phase: the down and up streams scattered by the
  *    delta-M phase to first order, (1 + 3 g' cos θ)/(4π) (ν the cosine of the photon's direction with
  *    the downward vertical), each stream's scalar irradiance its plane irradiance over its mean cosine:
- *      J(ν) = b' [E_d/μ̄_d + E_u/μ̄_u + 3 g' ν (E_d - E_u)] / (4π)   (per m per sr)
+ *      J(ν) = b' [E_d/μ̄_d + E_u/μ̄_u + 3 g_f ν (E_d - E_u)] / (4π)   (per m per sr)
+ *    g_f = s(g) g' (ib->g_flux): the flux term's asymmetry, g' times a scale s(g) >= 1 fitted to the path
+ *    tracer (diffuseFluxScale, host-side; s7c): the first-order expansion leaves out the higher orders
+ *    of a forward-peaked phase seen against a downward-peaked field, which brighten the views looking
+ *    up and darken those looking down (measured: turbid water looking up at g = 0.9 was 0.88–0.90).
  *    The quadrature two-stream's rings at ±1/√3 would give μ̄_d = μ̄_u = 1/√3; μ̄_d(g), μ̄_u are instead
  *    a small table fitted offline to the path tracer (diffuseMeanCosines, host/underwater/
  *    underwater_improved_setup.cpp; fitted on one grid, reported on a held-out one in BENCHMARKS.md):
@@ -46,9 +50,9 @@
 
 /* The first-order phase-weighted source of a pair of plane irradiances (D down, U up) seen along ν:
  * scalar irradiance D e0_down + U e0_up (e0 = 1/μ̄ of that pair's streams: ib->e0_down/up for the
- * diffuse modes, ib->e0_beam_down/up for the beam's) plus the flux term 3 g' ν (D - U). */
+ * diffuse modes, ib->e0_beam_down/up for the beam's) plus the flux term 3 g_f ν (D - U). */
 SEASIM_FN real uwi_source_weight(const SEASIM_GLOBAL UwiBand* ib, real nu, real D, real U, real e0_down, real e0_up) {
-  return (real)ib->b_dm * (e0_down * D + e0_up * U + R(3.0) * (real)ib->g_dm * nu * (D - U)) / (R(4.0) * SEASIM_PI);
+  return (real)ib->b_dm * (e0_down * D + e0_up * U + R(3.0) * (real)ib->g_flux * nu * (D - U)) / (R(4.0) * SEASIM_PI);
 }
 
 /* E_d(y) and E_u(y), the diffuse plane irradiances at depth y (common/underwater_improved_params.h),

@@ -6,7 +6,7 @@
  * per-band value precomputed in the band table's improved rows (UWI_ROW_*, common/underwater_band_table.h,
  * filled by host/underwater/underwater_band_table.cpp):
  *  - the in-scatter source weight of a pair of plane irradiances (D, U) seen along ν (uwi_source_weight),
- *      w(ν) = b' [D/μ̄_d + U/μ̄_u + 3 g' ν (D - U)] / (4π) = w_a + ν w_b,
+ *      w(ν) = b' [D/μ̄_d + U/μ̄_u + 3 g_f ν (D - U)] / (4π) = w_a + ν w_b,
  *    for the three exponentials' pairs (d1, u1), (d2, u2), (dp, up): w_a and w_b per band;
  *  - the TMS beam term b p_HG(g, cos θ_s) e_beam0 = (b e_beam0) p_HG: b e_beam0 per band, the phase
  *    (g is the scene's) once per pixel;

@@ -25,7 +25,8 @@ typedef struct {
                            irradiance per plane irradiance in the in-scatter source (diffuseMeanCosines in
                            underwater_improved_setup.h) */
   float e0_beam_down, e0_beam_up; /* the same of the beam's diffuse offspring, e^{-m y} (dp, up) */
-  float pad0;
+  float g_flux; /* the flux term's asymmetry in the in-scatter source: g' times a scale fitted to the path
+                   tracer (diffuseFluxScale in underwater_improved_setup.h; s7c, results/BENCHMARKS.md) */
 } UwiBand;
 
 #endif /* SEASIM_UNDERWATER_IMPROVED_PARAMS_H */

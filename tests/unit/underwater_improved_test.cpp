@@ -136,7 +136,7 @@ long double multipleQuadrature(const UwiBand& ib, const UwBand& bd, double g, do
     // The beam's offspring (dp, up) by its own mean cosines, the rest by the two-stream modes'.
     const double ep = std::exp(-double(ib.m) * y), bd_ = ib.dp * ep, bu_ = ib.up * ep;
     const double J = ib.b_dm * ((ed - bd_) / mean.down + (eu - bu_) / mean.up + bd_ / mean.beam_down +
-                                bu_ / mean.beam_up + 3 * ib.g_dm * d_y * (ed - eu)) / (4 * M_PI) +
+                                bu_ / mean.beam_up + 3 * ib.g_flux * d_y * (ed - eu)) / (4 * M_PI) +
                      bd.b * kd::hg_phase(cos_s, g) * bd.e_beam0 * std::exp(-double(ib.m) * y);
     const double ss = single ? bd.b * kd::hg_phase(cos_s, g) * bd.e_beam0 * std::exp(-bd.c * y / mu_w - bd.c * double(z)) : 0;
     return J * std::exp(-double(ib.c_dm) * double(z)) - ss;

@@ -1,0 +1,136 @@
+// underwater_improved_flux_test.cpp — the improved model's flux term scale (s7c, issue 13;
+// host/underwater/underwater_improved_setup.*): the fitted table s(g), the band's g_flux = s g', the
+// in-scatter source's flux term following g_flux (not the two-stream's g'), the set-up taking s from the
+// table or from underwater.improved_flux_scale, and the key's file:line:key errors.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "math/kernel_math.h"
+#include "scene/scene_parser.h"
+#include "spectral/sensor.h"
+#include "spectral/wavelength_grid.h"
+#include "underwater/underwater_improved_setup.h"
+#include "underwater/underwater_setup.h"
+#include "util/error.h"
+
+namespace {
+
+namespace kd = seasim::kmath_d;
+using seasim::diffuseFluxScale;
+using seasim::DiffuseDepth;
+using seasim::makeUwiBand;
+
+UwBand band(double a, double b) {
+  UwBand o{};
+  o.a = float(a);
+  o.b = float(b);
+  o.c = float(a + b);
+  o.e_sky0 = 0.3f;
+  o.e_sun0 = 1.0f;
+  o.e_beam0 = float(1.0 / 0.8);
+  o.bottom_albedo = 0.2f;
+  return o;
+}
+
+// The table at its knots, linear between, held outside; >= 1 and finite everywhere (the first-order
+// expansion is the lower bound the fit never went under).
+TEST(UnderwaterImprovedFlux, TableAtKnotsBetweenAndOutside) {
+  EXPECT_DOUBLE_EQ(diffuseFluxScale(0.0), 1.0);
+  EXPECT_DOUBLE_EQ(diffuseFluxScale(0.5), 1.3);
+  EXPECT_DOUBLE_EQ(diffuseFluxScale(0.9), 1.6);
+  EXPECT_DOUBLE_EQ(diffuseFluxScale(0.95), 1.3);
+  EXPECT_NEAR(diffuseFluxScale(0.7), 1.45, 1e-12);
+  EXPECT_NEAR(diffuseFluxScale(0.25), 1.15, 1e-12);
+  EXPECT_DOUBLE_EQ(diffuseFluxScale(-0.5), 1.0);
+  EXPECT_DOUBLE_EQ(diffuseFluxScale(0.99), 1.3);
+  for (double g = -1; g <= 1.0001; g += 0.01) {
+    const double s = diffuseFluxScale(g);
+    EXPECT_TRUE(std::isfinite(s)) << g;
+    EXPECT_GE(s, 1.0) << g;
+  }
+  EXPECT_DOUBLE_EQ(diffuseFluxScale(std::nan("")), 1.0);
+}
+
+// g_flux = s g'; g_dm (which the two-stream and the tests of it use) stays g / (1 + g); the two-stream's
+// solution does not depend on s.
+TEST(UnderwaterImprovedFlux, BandCarriesTheScaledAsymmetryOnly) {
+  const UwBand b = band(0.1, 0.3);
+  const auto mean = seasim::diffuseMeanCosines(0.9);
+  const UwiBand one = makeUwiBand(b, 0.9, 0.8, 5.0, 1.34, mean, seasim::twoStreamClosure(), DiffuseDepth{3.0, 0.4, 1.0});
+  const UwiBand two = makeUwiBand(b, 0.9, 0.8, 5.0, 1.34, mean, seasim::twoStreamClosure(), DiffuseDepth{3.0, 0.4, 1.6});
+  EXPECT_FLOAT_EQ(one.g_dm, float(0.9 / 1.9));
+  EXPECT_FLOAT_EQ(one.g_flux, one.g_dm);
+  EXPECT_FLOAT_EQ(two.g_flux, float(1.6 * 0.9 / 1.9));
+  EXPECT_EQ(two.g_dm, one.g_dm);
+  EXPECT_EQ(two.k, one.k);
+  EXPECT_EQ(two.d1, one.d1);
+  EXPECT_EQ(two.u2, one.u2);
+  EXPECT_EQ(two.dp, one.dp);
+  // The plain form (no depth, no table) is the first-order expansion.
+  EXPECT_EQ(makeUwiBand(b, 0.9, 0.8, 5.0, 1.34).g_flux, makeUwiBand(b, 0.9, 0.8, 5.0, 1.34).g_dm);
+}
+
+// The source's flux term, its odd part in ν, is 3 g_flux ν (D - U) b'/(4π): scaling s scales it, the
+// even part (the scalar irradiance) is unchanged. Would fail if the kernel's formula kept g'.
+TEST(UnderwaterImprovedFlux, SourceFluxTermFollowsTheScale) {
+  const UwBand b = band(0.4, 1.2);
+  const auto mean = seasim::diffuseMeanCosines(0.9);
+  for (double s : {1.0, 1.6, 2.5}) {
+    const UwiBand ib = makeUwiBand(b, 0.9, 0.8, 0.0, 1.34, mean, seasim::twoStreamClosure(), DiffuseDepth{2.0, 0.4, s});
+    const double D = 0.7, U = 0.2, nu = 0.6;
+    const double up = kd::uwi_source_weight(&ib, nu, D, U, ib.e0_down, ib.e0_up);
+    const double down = kd::uwi_source_weight(&ib, -nu, D, U, ib.e0_down, ib.e0_up);
+    const double odd = 0.5 * (up - down), even = 0.5 * (up + down);
+    EXPECT_NEAR(odd, ib.b_dm * 3 * s * (0.9 / 1.9) * nu * (D - U) / (4 * M_PI), 1e-6 * std::abs(odd)) << s;
+    EXPECT_NEAR(even, ib.b_dm * (ib.e0_down * D + ib.e0_up * U) / (4 * M_PI), 1e-6 * even) << s;
+  }
+}
+
+const char* kScene = R"([scene]
+name = "uw"
+[camera]
+position = [0, -3, 0]
+look_at = [0, -3, -5]
+width = 8
+height = 6
+[water]
+jerlov = "IB"
+[bottom]
+type = "flat"
+depth = 25
+[underwater]
+caustics = "none"
+model = "improved"
+)";
+
+// The set-up takes s from the table at the water's g by default, or from the key; bad values name the
+// file, line and key.
+TEST(UnderwaterImprovedFlux, SetUpTakesTheTableOrTheKey) {
+  using namespace seasim;
+  const WavelengthGrid grid = makeGrid(4, 400, 700);
+  const Sensor sensor = makeSensor("cie1931", grid, true, "");
+  const Scene plain = parseScene(kScene, "uw.toml");
+  EXPECT_EQ(plain.underwater.improved_flux_scale, -1.0);
+  const UnderwaterSetup p = makeUnderwaterSetup(plain, grid, sensor);
+  ASSERT_GT(p.params.g, 0.0f);
+  const double g_dm = p.params.g / (1.0 + p.params.g);
+  EXPECT_FLOAT_EQ(p.improved[1].g_flux, float(diffuseFluxScale(p.params.g) * g_dm));
+  const UnderwaterSetup k =
+      makeUnderwaterSetup(parseScene(std::string(kScene) + "improved_flux_scale = 2\n", "uw.toml"), grid, sensor);
+  EXPECT_FLOAT_EQ(k.improved[1].g_flux, float(2 * g_dm));
+  EXPECT_EQ(k.improved[1].k, p.improved[1].k);
+  for (const char* bad : {"improved_flux_scale = 3.5", "improved_flux_scale = -0.5"}) {
+    try {
+      parseScene(std::string(kScene) + bad + "\n", "uw.toml");
+      ADD_FAILURE() << "accepted " << bad;
+    } catch (const InputError& e) {
+      const std::string m = e.what();
+      EXPECT_NE(m.find("uw.toml:16"), std::string::npos) << m;
+      EXPECT_NE(m.find("underwater.improved_flux_scale"), std::string::npos) << m;
+    }
+  }
+}
+
+}  // namespace
