@@ -1,6 +1,7 @@
 #include "underwater/underwater_improved_setup.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 
@@ -76,6 +77,16 @@ double depthMeanDiffuseK(double k_two_stream, double k_inf, double depth, double
   return k_inf - std::log1p((1 - w) * std::expm1(-q)) / depth;
 }
 
+// A table fitted per g of the training grid (tests/perf/underwater_regions.sh: g = 0, 0.5, 0.9, 0.95),
+// linear in g between its points and held outside them.
+static double interpolateOnTrainingG(const std::array<double, 4>& values, double g) {
+  static constexpr std::array<double, 4> kG = {0.0, 0.5, 0.9, 0.95};
+  if (!(g > kG[0])) return values[0];
+  for (size_t i = 1; i < kG.size(); ++i)
+    if (g <= kG[i]) return values[i - 1] + (g - kG[i - 1]) / (kG[i] - kG[i - 1]) * (values[i] - values[i - 1]);
+  return values.back();
+}
+
 double diffuseAsymptoticShare(double g) {
   // Fitted offline to the path tracer (tests/perf/underwater_regions_fit_depth.sh scans w = 0.1–0.8 on
   // the training grid of tests/perf/underwater_regions.sh; results/BENCHMARKS.md, s7a, reports them
@@ -83,12 +94,7 @@ double diffuseAsymptoticShare(double g) {
   // smaller w), linear in g between, held outside [0, 0.95]. Not monotone in g: at g = 0.5 w >= 0.3
   // over-brightens the coastal water's level views (0.4:1.2, 3.8 m); at g = 0.95 the views looking up
   // want 0.7 where the level views at g = 0.9 want 0.4.
-  static const double kG[] = {0.0, 0.5, 0.9, 0.95};
-  static const double kShare[] = {0.3, 0.2, 0.4, 0.7};
-  if (!(g > kG[0])) return kShare[0];
-  for (int i = 1; i < 4; ++i)
-    if (g <= kG[i]) return kShare[i - 1] + (g - kG[i - 1]) / (kG[i] - kG[i - 1]) * (kShare[i] - kShare[i - 1]);
-  return kShare[3];
+  return interpolateOnTrainingG({0.3, 0.2, 0.4, 0.7}, g);
 }
 
 double diffuseFluxScale(double g) {
@@ -100,12 +106,7 @@ double diffuseFluxScale(double g) {
   // A larger s brightens the views looking up in turbid water at g = 0.9 (0.88–0.90 -> 0.96–0.98) and
   // darkens the long level rays looking down (clear water 1.14 -> 1.03); above 1.6 the level views over
   // shallow bottoms looking up leave the 5 % band.
-  static const double kG[] = {0.0, 0.5, 0.9, 0.95};
-  static const double kScale[] = {1.0, 1.3, 1.6, 1.3};
-  if (!(g > kG[0])) return kScale[0];
-  for (int i = 1; i < 4; ++i)
-    if (g <= kG[i]) return kScale[i - 1] + (g - kG[i - 1]) / (kG[i] - kG[i - 1]) * (kScale[i] - kScale[i - 1]);
-  return kScale[3];
+  return interpolateOnTrainingG({1.0, 1.3, 1.6, 1.3}, g);
 }
 
 double diffuseViewDepth(const UwParams& params) {
