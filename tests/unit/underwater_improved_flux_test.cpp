@@ -13,7 +13,8 @@
 #include "spectral/wavelength_grid.h"
 #include "underwater/underwater_improved_setup.h"
 #include "underwater/underwater_setup.h"
-#include "util/error.h"
+
+#include "underwater_improved_fixtures.h"
 
 namespace {
 
@@ -22,17 +23,7 @@ using seasim::diffuseFluxScale;
 using seasim::DiffuseDepth;
 using seasim::makeUwiBand;
 
-UwBand band(double a, double b) {
-  UwBand o{};
-  o.a = float(a);
-  o.b = float(b);
-  o.c = float(a + b);
-  o.e_sky0 = 0.3f;
-  o.e_sun0 = 1.0f;
-  o.e_beam0 = float(1.0 / 0.8);
-  o.bottom_albedo = 0.2f;
-  return o;
-}
+UwBand band(double a, double b) { return seasim::testing::uwTestBand(a, b, 0.3, 1.0, 0.8, 0.2); }
 
 // The table at its knots, linear between, held outside; >= 1 and finite everywhere (the first-order
 // expansion is the lower bound the fit never went under).
@@ -88,22 +79,7 @@ TEST(UnderwaterImprovedFlux, SourceFluxTermFollowsTheScale) {
   }
 }
 
-const char* kScene = R"([scene]
-name = "uw"
-[camera]
-position = [0, -3, 0]
-look_at = [0, -3, -5]
-width = 8
-height = 6
-[water]
-jerlov = "IB"
-[bottom]
-type = "flat"
-depth = 25
-[underwater]
-caustics = "none"
-model = "improved"
-)";
+using seasim::testing::kImprovedScene;
 
 // The set-up takes s from the table at the water's g by default, or from the key; bad values name the
 // file, line and key.
@@ -111,25 +87,18 @@ TEST(UnderwaterImprovedFlux, SetUpTakesTheTableOrTheKey) {
   using namespace seasim;
   const WavelengthGrid grid = makeGrid(4, 400, 700);
   const Sensor sensor = makeSensor("cie1931", grid, true, "");
-  const Scene plain = parseScene(kScene, "uw.toml");
+  const Scene plain = parseScene(kImprovedScene, "uw.toml");
   EXPECT_EQ(plain.underwater.improved_flux_scale, -1.0);
   const UnderwaterSetup p = makeUnderwaterSetup(plain, grid, sensor);
   ASSERT_GT(p.params.g, 0.0f);
   const double g_dm = p.params.g / (1.0 + p.params.g);
   EXPECT_FLOAT_EQ(p.improved[1].g_flux, float(diffuseFluxScale(p.params.g) * g_dm));
   const UnderwaterSetup k =
-      makeUnderwaterSetup(parseScene(std::string(kScene) + "improved_flux_scale = 2\n", "uw.toml"), grid, sensor);
+      makeUnderwaterSetup(parseScene(std::string(kImprovedScene) + "improved_flux_scale = 2\n", "uw.toml"), grid, sensor);
   EXPECT_FLOAT_EQ(k.improved[1].g_flux, float(2 * g_dm));
   EXPECT_EQ(k.improved[1].k, p.improved[1].k);
   for (const char* bad : {"improved_flux_scale = 3.5", "improved_flux_scale = -0.5"}) {
-    try {
-      parseScene(std::string(kScene) + bad + "\n", "uw.toml");
-      ADD_FAILURE() << "accepted " << bad;
-    } catch (const InputError& e) {
-      const std::string m = e.what();
-      EXPECT_NE(m.find("uw.toml:16"), std::string::npos) << m;
-      EXPECT_NE(m.find("underwater.improved_flux_scale"), std::string::npos) << m;
-    }
+    seasim::testing::expectImprovedSceneRejects(bad, "underwater.improved_flux_scale");
   }
 }
 

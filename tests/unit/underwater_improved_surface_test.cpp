@@ -12,21 +12,16 @@
 #include "math/kernel_math.h"
 #include "underwater/underwater_improved_setup.h"
 
+#include "underwater_improved_fixtures.h"
+
 namespace {
 
 namespace kd = seasim::kmath_d;
 namespace kf = seasim::kmath_f;
 
 UwBand band(double a, double b, double mu_w) {
-  UwBand o{};
-  o.a = float(a);
-  o.b = float(b);
-  o.c = float(a + b);
-  o.e_sky0 = 0.3f;
-  o.e_sun0 = 1.0f;
-  o.e_beam0 = float(1.0 / mu_w);
+  UwBand o = seasim::testing::uwTestBand(a, b, 0.3, 1.0, mu_w, 0.35);
   o.sky_radiance = 0.05f;
-  o.bottom_albedo = 0.35f;
   return o;
 }
 

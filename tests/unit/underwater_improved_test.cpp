@@ -12,6 +12,8 @@
 #include "math/kernel_math.h"
 #include "underwater/underwater_improved_setup.h"
 
+#include "underwater_improved_fixtures.h"
+
 namespace {
 
 namespace kd = seasim::kmath_d;
@@ -19,17 +21,7 @@ namespace kf = seasim::kmath_f;
 using seasim::makeUwiBand;
 using seasim::TwoStreamClosure;
 
-UwBand band(double a, double b, double e_sky0, double e_sun0, double mu_w, double rho) {
-  UwBand o{};
-  o.a = float(a);
-  o.b = float(b);
-  o.c = float(a + b);
-  o.e_sky0 = float(e_sky0);
-  o.e_sun0 = float(e_sun0);
-  o.e_beam0 = float(e_sun0 / mu_w);
-  o.bottom_albedo = float(rho);
-  return o;
-}
+using seasim::testing::uwTestBand;
 
 struct Case {
   double a, b, g, mu_w, H, rho;
@@ -67,7 +59,7 @@ TEST(UnderwaterImproved, TwoStreamSolvesItsEquationsAndBoundaries) {
   const double ior = 1.34, rs = seasim::internalDiffuseReflectance(ior);
   for (TwoStreamClosure closure : {TwoStreamClosure::Quadrature, TwoStreamClosure::Asymptotic})
   for (const Case& c : cases()) {
-    const UwBand bd = band(c.a, c.b, 0.3, 1.0, c.mu_w, c.rho);
+    const UwBand bd = uwTestBand(c.a, c.b, 0.3, 1.0, c.mu_w, c.rho);
     const UwiBand ib = makeUwiBand(bd, c.g, c.mu_w, c.H, ior, seasim::diffuseMeanCosines(c.g), closure);
     const TwoStream t = twoStream(c, ib, closure);
     auto E = [&](double y, double* ed, double* eu) { kd::uwi_irradiance(&ib, c.H, y, ed, eu); };
@@ -109,7 +101,7 @@ TEST(UnderwaterImproved, NoAbsorptionConservesNetFlux) {
   for (double H : {0.0, 10.0})
     for (double g : {0.0, 0.9}) {
       const double mu = 0.85;
-      const UwBand bd = band(0.0, 0.2, 0.3, 1.0, mu, 0.5);
+      const UwBand bd = uwTestBand(0.0, 0.2, 0.3, 1.0, mu, 0.5);
       const UwiBand ib = makeUwiBand(bd, g, mu, H, 1.34);
       auto net = [&](double y) {
         double ed, eu;
@@ -149,7 +141,7 @@ long double multipleQuadrature(const UwiBand& ib, const UwBand& bd, double g, do
 TEST(UnderwaterImproved, ViewRayClosedFormMatchesQuadrature) {
   int checked = 0;
   for (const Case& c : cases()) {
-    const UwBand bd = band(c.a, c.b, 0.3, 1.0, c.mu_w, c.rho);
+    const UwBand bd = uwTestBand(c.a, c.b, 0.3, 1.0, c.mu_w, c.rho);
     const UwiBand ib = makeUwiBand(bd, c.g, c.mu_w, c.H, 1.34);
     for (double d_y : {-1.0, -0.5, -0.05, 0.0, 0.3, 0.9}) {
       const double o_d = c.H > 0 ? 0.6 * c.H : 4.0;
@@ -181,7 +173,7 @@ TEST(UnderwaterImproved, ResonanceAndExtremesStayFiniteAndContinuous) {
   const double mu_res = 1.0 / (std::sqrt(3.0) * std::sqrt(5.0 / 6.0));
   for (double dm : {-0.01, -0.0011, -0.0009, -0.0001, 0.0, 0.0001, 0.0009, 0.0011, 0.01}) {
     const double mu = mu_res * (1 + dm);
-    const UwiBand ib = makeUwiBand(band(1.0, 0.2, 0.3, 1.0, mu, 0.35), 0.0, mu, 5.0, 1.34);
+    const UwiBand ib = makeUwiBand(uwTestBand(1.0, 0.2, 0.3, 1.0, mu, 0.35), 0.0, mu, 5.0, 1.34);
     double ed, eu;
     kd::uwi_irradiance(&ib, 5.0, 3.0, &ed, &eu);
     ASSERT_TRUE(std::isfinite(ed) && std::isfinite(eu));
@@ -194,7 +186,7 @@ TEST(UnderwaterImproved, ResonanceAndExtremesStayFiniteAndContinuous) {
   // Extremes: no water, no scattering, g -> 1, grazing sun, a camera 1000 m down looking up.
   for (auto [a, b, g, mu] : {std::tuple{0.0, 0.0, 0.9, 0.9}, std::tuple{0.5, 0.0, 0.0, 0.9},
                              std::tuple{0.05, 2.0, 0.999, 0.6}, std::tuple{0.1, 0.3, 0.9, 1e-3}}) {
-    const UwBand bd = band(a, b, 0.3, 1.0, mu, 0.35);
+    const UwBand bd = uwTestBand(a, b, 0.3, 1.0, mu, 0.35);
     for (double H : {0.0, 5.0}) {
       const UwiBand ib = makeUwiBand(bd, g, mu, H, 1.34);
       for (float d_y : {-1.0f, 0.0f, 1.0f}) {
@@ -214,7 +206,7 @@ TEST(UnderwaterImproved, NoScatteringLeavesTheBeamAndSkyAttenuatedByAbsorption) 
   // b = 0: no in-scatter; a horizontal Lambertian point at depth y sees ρ/π (E_d + e_sun0 e^{-a y/μ_w}),
   // E_d the sky's light decaying as e^{-√3·... } (two-stream diffusivity 2·(√3/2) = √3) without a bottom.
   const double a = 0.2, mu = 0.8, y = 4.0;
-  const UwBand bd = band(a, 0.0, 0.3, 1.0, mu, 0.0);
+  const UwBand bd = uwTestBand(a, 0.0, 0.3, 1.0, mu, 0.0);
   const UwiBand ib = makeUwiBand(bd, 0.9, mu, 0.0, 1.34);
   EXPECT_EQ(kd::uwi_multiple(&ib, &bd, 0.9, 0.0, 5.0, -1.0, 1.0, 0.2, mu, 1, 1), 0.0);
   const kd::real3 n = {0, 1, 0}, s_w = {0, mu, std::sqrt(1 - mu * mu)};
@@ -244,7 +236,7 @@ TEST(UnderwaterImproved, DiffuseMeanCosinesFollowTheirTableAndReachTheKernel) {
   }
   // The band block carries 1/μ̄, and the in-scatter source weighs the streams by it: a horizontal view
   // ray (ν = 0) in a layer with only E_u (no flux term difference from ν) sees b' E_u/μ̄_u/(4π).
-  const UwiBand ib = makeUwiBand(band(0.1, 0.3, 0.3, 1.0, 0.9, 0.35), 0.9, 0.9, 5.0, 1.34);
+  const UwiBand ib = makeUwiBand(uwTestBand(0.1, 0.3, 0.3, 1.0, 0.9, 0.35), 0.9, 0.9, 5.0, 1.34);
   EXPECT_NEAR(ib.e0_down, 1 / 0.72, 1e-6);
   EXPECT_NEAR(ib.e0_up, 1 / 0.52, 1e-6);
   const double w_d = kd::uwi_source_weight(&ib, 0.0, 1.0, 0.0, ib.e0_down, ib.e0_up),
@@ -284,7 +276,7 @@ TEST(UnderwaterImproved, AsymptoticClosureDecaysAtTheIsotropicEigenvalue) {
   // The band's k is then the similarity medium's K∞ = (a + b'(1 - g')) κ, where the quadrature's is
   // larger (isotropic ω = 0.75: 0.866 c against 0.776 c); deep in a bottomless layer E_d decays at it.
   for (double g : {0.0, 0.5, 0.9}) {
-    const UwBand bd = band(0.1, 0.3, 0.3, 1.0, 0.9, 0.35);
+    const UwBand bd = uwTestBand(0.1, 0.3, 0.3, 1.0, 0.9, 0.35);
     const UwiBand ia = makeUwiBand(bd, g, 0.9, 0.0, 1.34, seasim::diffuseMeanCosines(g), TwoStreamClosure::Asymptotic);
     const UwiBand iq = makeUwiBand(bd, g, 0.9, 0.0, 1.34, seasim::diffuseMeanCosines(g), TwoStreamClosure::Quadrature);
     const double bb = ia.b_dm * (1 - ia.g_dm), cs = 0.1 + bb;

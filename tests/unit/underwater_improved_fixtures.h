@@ -1,0 +1,64 @@
+// underwater_improved_fixtures.h — what the improved underwater model's unit tests share
+// (underwater_improved_test, _depth_test, _flux_test, _surface_test): one band's block as the set-up
+// would fill it, and a small improved-model scene whose [underwater] table a test may extend.
+#ifndef SEASIM_TESTS_UNDERWATER_IMPROVED_FIXTURES_H
+#define SEASIM_TESTS_UNDERWATER_IMPROVED_FIXTURES_H
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "common/underwater_params.h"
+#include "scene/scene_parser.h"
+#include "util/error.h"
+
+namespace seasim::testing {
+
+// a, b in 1/m; the sky's and the sun's irradiance just below the surface; μ_w the refracted sun's
+// cosine (the beam is e_sun0 / μ_w per unit area across it); rho the bottom's albedo.
+inline UwBand uwTestBand(double a, double b, double e_sky0, double e_sun0, double mu_w, double rho) {
+  UwBand o{};
+  o.a = float(a);
+  o.b = float(b);
+  o.c = float(a + b);
+  o.e_sky0 = float(e_sky0);
+  o.e_sun0 = float(e_sun0);
+  o.e_beam0 = float(e_sun0 / mu_w);
+  o.bottom_albedo = float(rho);
+  return o;
+}
+
+// Jerlov IB over a 25 m bottom, the camera at 3 m; ends inside [underwater], so keys may be appended.
+inline constexpr const char* kImprovedScene = R"([scene]
+name = "uw"
+[camera]
+position = [0, -3, 0]
+look_at = [0, -3, -5]
+width = 8
+height = 6
+[water]
+jerlov = "IB"
+[bottom]
+type = "flat"
+depth = 25
+[underwater]
+caustics = "none"
+model = "improved"
+)";
+
+// kImprovedScene with `line` appended (its line 16) must be rejected with an error naming that file:line
+// and `key` (underwater.…).
+inline void expectImprovedSceneRejects(const std::string& line, const std::string& key) {
+  try {
+    parseScene(std::string(kImprovedScene) + line + "\n", "uw.toml");
+    ADD_FAILURE() << "accepted " << line;
+  } catch (const InputError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("uw.toml:16"), std::string::npos) << m;
+    EXPECT_NE(m.find(key), std::string::npos) << m;
+  }
+}
+
+}  // namespace seasim::testing
+
+#endif  // SEASIM_TESTS_UNDERWATER_IMPROVED_FIXTURES_H
