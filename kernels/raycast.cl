@@ -48,11 +48,7 @@ __kernel void raycast(__constant UwParams* p, __global const UwObject* objects, 
     const float3 hit = o + S * d;
     vis = 1.0f;
 #if SEASIM_HAS_OBJECTS
-    /* Shadow ray to the surface; offset along the normal against self-hits. */
-    float3 sn;
-    int smat;
-    uw_scene_hit(objects, count, 0.0f, hit + 1e-3f * n, s_w, 0.0f, &sn, &smat);
-    if (smat >= 0) vis = 0.0f;
+    vis = uw_sun_visibility(objects, count, hit, n, s_w);
 #endif
 #if SEASIM_CAUSTICS == 1
     /* Where the refracted sun ray through this point crossed the surface. */

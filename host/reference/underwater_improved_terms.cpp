@@ -53,12 +53,7 @@ std::vector<UwiPixelTerms> improvedModelTerms(const UnderwaterSetup& s, bool mul
       int mat = 0;
       const double S = kd::uw_scene_hit(s.objects.data(), p.object_count, H, o, d, 0.0, &n, &mat);
       double vis = 0;  // the sun's shadow ray from a Lambertian hit (raycast.cl)
-      if (mat >= 0 || mat == UW_MAT_BOTTOM) {
-        kd::real3 sn{};
-        int smat = 0;
-        kd::uw_scene_hit(s.objects.data(), p.object_count, 0.0, o + S * d + 1e-3 * n, s_w, 0.0, &sn, &smat);
-        vis = smat >= 0 ? 0.0 : 1.0;
-      }
+      if (mat >= 0 || mat == UW_MAT_BOTTOM) vis = kd::uw_sun_visibility(s.objects.data(), p.object_count, o + S * d, n, s_w);
       UwiPixelTerms& t = out[size_t(y) * p.width + x];
       int mat_m = UW_MAT_NONE;  // the object in the surface's mirror, as kd_multiple.cl traces it
       kd::UwiMirrorHit mirror = mat == UW_MAT_SURFACE

@@ -69,13 +69,7 @@ void shadeRow(const UnderwaterSetup& s, const UnderwaterCpuOptions& opt, int y, 
     const float S = K::uw_scene_hit(s.objects.data(), p.object_count, p.bottom_depth, o, d, 0.0f, &n, &mat);
     float vis = 0.0f;
     if (sun && (mat >= 0 || mat == UW_MAT_BOTTOM)) {
-      vis = 1.0f;
-      if (p.object_count > 0) {
-        K::real3 sn{};
-        int smat = 0;
-        K::uw_scene_hit(s.objects.data(), p.object_count, 0.0f, o + S * d + 1e-3f * n, s_w, 0.0f, &sn, &smat);
-        if (smat >= 0) vis = 0.0f;
-      }
+      vis = p.object_count > 0 ? K::uw_sun_visibility(s.objects.data(), p.object_count, o + S * d, n, s_w) : 1.0f;
     }
     const int c = mat == UW_MAT_NONE ? 0 : mat == UW_MAT_SURFACE ? 1 : 2;
     cls[c].add(x, mat >= 0 ? mat : p.object_count, S, d, n, vis);

@@ -151,6 +151,15 @@ SEASIM_FN real uw_scene_hit(const SEASIM_GLOBAL UwObject* objects, int count, re
   return best;
 }
 
+/* The direct sun's visibility at a hit point with unit normal n: a shadow ray towards the sun (s_w) up
+ * to the surface, offset along the normal against self-hits; 0 if an object is in the way, else 1. */
+SEASIM_FN real uw_sun_visibility(const SEASIM_GLOBAL UwObject* objects, int count, real3 hit, real3 n, real3 s_w) {
+  real3 sn;
+  int smat = UW_MAT_NONE;
+  uw_scene_hit(objects, count, R(0.0), hit + R(1e-3) * n, s_w, R(0.0), &sn, &smat);
+  return smat >= 0 ? R(0.0) : R(1.0);
+}
+
 /* Radiance the surface sends down along -d to a point below it, d the upward view direction (d.y > 0):
  * n² (1 - F) L_sky through Snell's window plus F times l_reflected (the caller's radiance along the
  * reflected ray; F = 1 under total internal reflection). */

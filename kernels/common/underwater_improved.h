@@ -143,10 +143,7 @@ SEASIM_FN UwiMirrorHit uwi_mirror_hit(const SEASIM_GLOBAL UwObject* objects, int
   }
   h.s = t;
   h.n = n;
-  real3 sn;
-  int smat = UW_MAT_NONE;
-  uw_scene_hit(objects, count, R(0.0), o_s + t * d_r + R(1e-3) * n, s_w, R(0.0), &sn, &smat);
-  h.vis = smat >= 0 ? R(0.0) : R(1.0);
+  h.vis = uw_sun_visibility(objects, count, o_s + t * d_r, n, s_w);
   return h;
 }
 
