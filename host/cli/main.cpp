@@ -167,6 +167,16 @@ int main(int argc, char** argv) {
   regions->add_option("--views", regions_cmd.views, "level, up, down")->delimiter(',');
   regions->add_option("--models", regions_cmd.models, "underwater.model values")->delimiter(',');
   regions->add_option("--spp", regions_cmd.spp, "Path-tracer samples per pixel");
+  regions->add_flag("--jitter", regions_cmd.jitter,
+                    "Trace the reference over each pixel's area (as `seasim reference`) instead of through the "
+                    "pixel centre, the ray the fast models shade");
+  regions->add_option("--target-noise", regions_cmd.target_noise,
+                      "Trace a case again with more paths where a region of >= 40 pixels has a reference noisier "
+                      "than this (relative standard error; 0: off)")
+      ->check(CLI::Range(0.0, 1.0));
+  regions->add_option("--max-spp", regions_cmd.max_spp,
+                      "The most paths per pixel --target-noise may trace (cases that would need more keep --spp)")
+      ->check(CLI::PositiveNumber);
   regions->add_option("--cache", regions_cmd.cache_dir, "Folder of cached references");
   regions->add_option("--csv", regions_cmd.csv, "CSV output");
   regions->add_option("--device", regions_cmd.device, "Device selector");

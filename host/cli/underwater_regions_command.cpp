@@ -1,5 +1,6 @@
 #include "cli/underwater_regions_command.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -66,18 +67,46 @@ std::vector<Override> geometry(double depth, const std::string& view) {
   return o;
 }
 
-// The scene file's text, the overrides and the path count name a reference (a changed scene is new).
-std::string cacheKey(const std::string& scene_file, const std::vector<Override>& over, int spp) {
+// The scene file's text, the overrides, the path count and the pixel sampling name a reference (a
+// changed scene is new; jittered references keep the names they had before centre rays existed).
+std::string cacheKey(const std::string& scene_file, const std::vector<Override>& over, int spp, bool jitter) {
   std::ifstream in(scene_file, std::ios::binary);
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   text += "|" + std::to_string(spp);
+  if (!jitter) text += "|centre";
   for (const Override& o : over) text += "|" + o.key + "=" + o.value_toml;
   char b[32];
   std::snprintf(b, sizeof b, "%016zx", std::hash<std::string>{}(text));
   return b;
 }
 
+// The reference of one case at `spp` paths: the cached images at `stem`, or traced and cached there.
+void loadOrTraceReference(Device& device, const UnderwaterSetup& setup, const std::string& stem, int spp, bool jitter,
+                          Image& ref, Image& se) {
+  if (fs::exists(stem + ".rgb.npy") && fs::exists(stem + ".se.npy")) {
+    ref = readNpy(stem + ".rgb.npy");
+    se = readNpy(stem + ".se.npy");
+    return;
+  }
+  UnderwaterReferenceSettings settings;
+  settings.samples_per_pixel = spp;
+  settings.jitter = jitter;
+  const UnderwaterReferenceResult r = renderUnderwaterReference(device, setup, settings);
+  ref = r.rgb;
+  se = r.std_error;
+  writeNpy(stem + ".se.npy", se);
+  writeNpy(stem + ".rgb.npy", ref);
+}
+
 }  // namespace
+
+int refinedPathCount(int spp, double noise, double target, int max_spp) {
+  if (!(target > 0) || !(noise > target)) return spp;
+  const double want = spp * (noise / target) * (noise / target);
+  long long n = spp;
+  while (n < want && n <= max_spp) n *= 2;
+  return n <= max_spp ? static_cast<int>(n) : 0;
+}
 
 int cmdUnderwaterRegions(const UnderwaterRegionsCmd& cmd) {
   Device device(chooseDevice(cmd.device));
@@ -111,32 +140,33 @@ int cmdUnderwaterRegions(const UnderwaterRegionsCmd& cmd) {
           for (const std::string& s : cmd.sets) base.push_back(parseSetOption(s));
           const Scene ref_scene = loadScene(cmd.scene, base);
 
-          // The reference, from the cache or traced (with its per-pixel standard error).
-          const std::string stem = cache + "/" + cacheKey(cmd.scene, base, cmd.spp);
-          Image ref, se;
-          if (fs::exists(stem + ".rgb.npy") && fs::exists(stem + ".se.npy")) {
-            ref = readNpy(stem + ".rgb.npy");
-            se = readNpy(stem + ".se.npy");
-          } else {
-            const WavelengthGrid grid =
-                makeGrid(ref_scene.spectral.count, ref_scene.spectral.min_nm, ref_scene.spectral.max_nm);
-            const UnderwaterSetup setup = makeUnderwaterSetup(
-                ref_scene, grid,
-                makeSensor(ref_scene.spectral.sensor, grid, ref_scene.spectral.white_balance, ref_scene.spectral.camera_dir));
-            UnderwaterReferenceSettings settings;
-            settings.samples_per_pixel = cmd.spp;
-            const UnderwaterReferenceResult r = renderUnderwaterReference(device, setup, settings);
-            ref = r.rgb;
-            se = r.std_error;
-            writeNpy(stem + ".se.npy", se);
-            writeNpy(stem + ".rgb.npy", ref);
-          }
+          // The reference, from the cache or traced (with its per-pixel standard error); with
+          // --target-noise, traced again with more paths where a judged region is too noisy.
           const WavelengthGrid grid =
               makeGrid(ref_scene.spectral.count, ref_scene.spectral.min_nm, ref_scene.spectral.max_nm);
           const UnderwaterSetup ref_setup = makeUnderwaterSetup(
               ref_scene, grid,
               makeSensor(ref_scene.spectral.sensor, grid, ref_scene.spectral.white_balance, ref_scene.spectral.camera_dir));
           const std::vector<UwRegion> regions = underwaterRegions(ref_setup);
+          int spp = cmd.spp;
+          Image ref, se;
+          loadOrTraceReference(device, ref_setup, cache + "/" + cacheKey(cmd.scene, base, spp, cmd.jitter), spp,
+                               cmd.jitter, ref, se);
+          if (cmd.target_noise > 0) {
+            // The most paths that a judged region within reach of max_spp needs (a region that would
+            // need more than max_spp does not hold the others back).
+            int refined = spp;
+            for (const UwRegionStat& s : underwaterRegionStats(regions, ref, ref, se))
+              if (s.pixels >= kRegionsJudgedMinPixels)
+                refined = std::max(refined, refinedPathCount(spp, s.relNoise(), cmd.target_noise, cmd.max_spp));
+            if (refined > spp) {
+              std::printf("(a judged region's reference noise is above %g at %d paths: traced again at %d)\n",
+                          cmd.target_noise, spp, refined);
+              spp = refined;
+              loadOrTraceReference(device, ref_setup, cache + "/" + cacheKey(cmd.scene, base, spp, cmd.jitter), spp,
+                                   cmd.jitter, ref, se);
+            }
+          }
           UnderwaterRegionsDump dump;  // --dump: the case's pixels
           if (!cmd.dump_dir.empty()) {
             dump.regions = regions;
@@ -165,7 +195,7 @@ int cmdUnderwaterRegions(const UnderwaterRegionsCmd& cmd) {
                                                    scene.spectral.camera_dir)),
                     scene.underwater.multiple_scattering);
             }
-            std::vector<CsvCell> row = {a, b, g, depth, view, model, kd_ms, cmd.spp};
+            std::vector<CsvCell> row = {a, b, g, depth, view, model, kd_ms, spp};
             std::printf("%-5.3g %-5.3g %-4.3g %-5.3g %-5s %-8s %8.2f", a, b, g, depth, view.c_str(), model.c_str(), kd_ms);
             for (const UwRegionStat& s : stats) {
               row.push_back(s.pixels);

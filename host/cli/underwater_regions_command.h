@@ -18,12 +18,30 @@ struct UnderwaterRegionsCmd {
   std::vector<std::string> views = {"level", "up"};
   std::vector<std::string> models = {"thesis", "improved"};
   int spp = 2048;         // path tracer samples per pixel
+  // false: every reference path through the pixel's centre, the one ray per pixel that the fast models
+  // shade and that underwaterRegions classifies (s8b); true: over the pixel's area, as `seasim reference`
+  // (the tables before s8b), where an object's edge pixels mix in the sand or water beside it.
+  bool jitter = false;
+  // > 0: where a region of at least kRegionsJudgedMinPixels pixels has a reference noisier than this
+  // (relative standard error) at `spp`, the case is traced again at the path count that noise implies
+  // for the target (spp (noise/target)², rounded up to a power of two), if that is at most max_spp;
+  // cases that would need more keep `spp` and their noise (reported, not hidden). 0: off.
+  double target_noise = 0;
+  int max_spp = 16384;
   std::string cache_dir;  // reference images (default: $SEASIM_CACHE_DIR/underwater_regions or build/)
   std::string csv;
   std::vector<std::string> sets;  // extra scene overrides (applied to every render and reference)
   std::vector<std::string> model_sets;  // overrides for the fast models' renders only (not the references)
   std::string dump_dir;  // per case a CSV of every pixel: region, d_y, reference, fast renders, improved terms
 };
+
+// The smallest region whose ratio tests/perf/underwater_regions_summary.py judges (its MIN_PIXELS).
+inline constexpr int kRegionsJudgedMinPixels = 40;
+
+// The path count at which a reference of relative noise `noise` at `spp` paths reaches `target`
+// (noise falls as 1/√paths): spp (noise/target)² rounded up to a power-of-two multiple of spp; spp
+// itself when noise <= target or target <= 0; 0 when that is more than max_spp.
+int refinedPathCount(int spp, double noise, double target, int max_spp);
 
 int cmdUnderwaterRegions(const UnderwaterRegionsCmd& cmd);
 

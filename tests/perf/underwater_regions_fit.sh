@@ -15,6 +15,7 @@ for down in 0.45 0.5 0.55 0.577 0.62 0.67 0.72 0.77; do
     [ -f "$DIR/fit_${down}_${up}.csv" ] && continue  # a rerun completes an interrupted scan (delete DIR to redo)
     $B underwater-regions tests/perf/underwater_regions.toml --waters 0.03:0.05,0.1:0.3,0.4:1.2 \
       --g 0,0.5,0.9,0.95 --depths 2,5,20,0 --views level,up --models improved --spp 2048 \
+      --target-noise 0.018 --max-spp 16384 \
       --model-set underwater.improved_mean_cosine_down=$down --model-set underwater.improved_mean_cosine_up=$up \
       --csv "$DIR/fit_${down}_${up}.csv" > /dev/null || exit 1
   done

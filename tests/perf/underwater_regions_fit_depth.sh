@@ -17,6 +17,7 @@ for w in ${SHARES:-0 0.1 0.2 0.3 0.4}; do
   [ -f "$DIR/fit_$w.csv" ] && continue  # a rerun completes an interrupted scan (delete DIR to redo)
   $B underwater-regions tests/perf/underwater_regions.toml --waters 0.03:0.05,0.1:0.3,0.4:1.2 \
     --g 0,0.5,0.9,0.95 --depths 2,5,20,0 --views level,up --models improved --spp 2048 \
+    --target-noise 0.018 --max-spp 16384 \
     --model-set underwater.improved_asymptotic_share=$w --csv "$DIR/fit_$w.csv" > /dev/null || exit 1
 done
 python3 tests/perf/underwater_regions_fit.py "$DIR"/fit_*.csv

@@ -20,6 +20,7 @@ for combo in ${COMBOS:-asymptotic_0.9_0.9_0.9_0.9 asymptotic_0.65_0.65_0.65_0.65
   set -- $(echo "$combo" | tr _ ' ')
   $B underwater-regions tests/perf/underwater_regions.toml --waters 0.03:0.05,0.1:0.3,0.4:1.2 \
     --g 0,0.5,0.9,0.95 --depths 2,5,20,0 --views level,up --models improved --spp 2048 \
+    --target-noise 0.018 --max-spp 16384 \
     --model-set underwater.improved_two_stream=$1 \
     --model-set underwater.improved_mean_cosine_down=$2 --model-set underwater.improved_mean_cosine_up=$3 \
     --model-set underwater.improved_beam_mean_cosine_down=$4 --model-set underwater.improved_beam_mean_cosine_up=$5 \
