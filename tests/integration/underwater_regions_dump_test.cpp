@@ -11,6 +11,7 @@
 #include <map>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "io/npy.h"
@@ -173,6 +174,48 @@ TEST_F(UnderwaterRegionsDump, ReferenceRaysGoThroughThePixelCentreUnlessJittered
   EXPECT_EQ(cached, 2) << "a centre-ray reference and a jittered one are different cache entries";
   EXPECT_LT(edge_error[0], 0.6 * edge_error[1])
       << "edge pixels: model vs centre-ray reference " << edge_error[0] << ", vs jittered " << edge_error[1];
+}
+
+// --target-noise: a case whose judged region is noisier than the target is traced again at the path
+// count that reaches it (the CSV's reference_spp says which, and both references are cached); one that
+// would need more than --max-spp keeps --spp.
+TEST_F(UnderwaterRegionsDump, NoisyReferencesAreTracedAgainWithinTheBudget) {
+  auto run = [&](const std::string& name, const std::string& max_spp) {
+    const fs::path csv = dir_ / (name + ".csv");
+    const seasim_test::Result r = seasim_test::runCommand(
+        kBinary + " underwater-regions " + kRepo + "/tests/perf/underwater_regions.toml --waters 0.1:0.3 --g 0.5" +
+        " --depths 5 --views level --models improved --spp 4 --target-noise 0.05 --max-spp " + max_spp +
+        " --device pocl --set camera.width=32 --set camera.height=18 --cache " + (dir_ / name).string() +
+        " --csv " + csv.string());
+    EXPECT_EQ(r.code, 0) << r.output;
+    std::ifstream in(csv);
+    std::string header, row;
+    std::getline(in, header);
+    std::getline(in, row);
+    const auto h = splitCsv(header), v = splitCsv(row);
+    int spp = -1;
+    double worst_noise = 0;
+    for (size_t i = 0; i < h.size() && i < v.size(); ++i) {
+      if (h[i] == "reference_spp") spp = std::stoi(v[i]);
+      if (h[i].ends_with("_ref_rel_se") && !v[i].empty() && std::stoi(v[i - 2]) >= 40)
+        worst_noise = std::max(worst_noise, std::stod(v[i]));
+    }
+    int cached = 0;
+    for (const auto& e : fs::directory_iterator(dir_ / name)) cached += e.path().string().ends_with(".rgb.npy");
+    return std::tuple{spp, worst_noise, cached};
+  };
+  // 4 paths leave the regions' noise at several per cent: 0.05 needs a few times more, within 1024.
+  const auto [spp, noise, cached] = run("roomy", "1024");
+  EXPECT_GT(spp, 4);
+  EXPECT_LE(spp, 1024);
+  EXPECT_EQ(spp & (spp - 1), 0) << "a power of two";
+  EXPECT_EQ(cached, 2) << "the first reference and the one traced again";
+  EXPECT_LT(noise, 0.05 * 1.3) << "near the target (the noise estimate is itself noisy)";
+  // Without the budget for that, the case keeps its 4 paths and its noise.
+  const auto [spp_tight, noise_tight, cached_tight] = run("tight", "5");
+  EXPECT_EQ(spp_tight, 4);
+  EXPECT_GT(noise_tight, 0.05);
+  EXPECT_EQ(cached_tight, 1);
 }
 
 }  // namespace
