@@ -29,6 +29,11 @@ def main(paths):
     models = sorted({r["model"] for r in data}, key=lambda m: (m != "thesis", m))
     print(f"Cases: regions of at least {MIN_PIXELS} pixels whose reference noise is <= {100 * MAX_NOISE:g} % "
           "(the others are counted as 'not judged').")
+    spp = {}
+    for r in data:
+        if r["model"] == models[0]:
+            spp[int(r["reference_spp"])] = spp.get(int(r["reference_spp"]), 0) + 1
+    print("Reference paths per pixel: " + ", ".join(f"{n} case{'s' if n != 1 else ''} at {k}" for k, n in sorted(spp.items())) + ".")
     print()
     print("| model | region | cases | within 5 % | median abs(ratio-1) | worst ratio (a:b, g, depth, view) | not judged |")
     print("|---|---|---:|---:|---:|---|---:|")
