@@ -32,6 +32,24 @@ std::vector<std::string> splitCsv(const std::string& line) {
   return out;
 }
 
+// A CSV file the command wrote (text and numbers, no quoting): its header, each name's column and the
+// rows. (host's loadCsv reads numeric tables only.)
+struct CsvRows {
+  std::vector<std::string> header;
+  std::map<std::string, size_t> col;
+  std::vector<std::vector<std::string>> rows;
+};
+CsvRows readCsvRows(const fs::path& file) {
+  CsvRows t;
+  std::ifstream in(file);
+  std::string line;
+  if (!std::getline(in, line)) return t;
+  t.header = splitCsv(line);
+  for (size_t i = 0; i < t.header.size(); ++i) t.col[t.header[i]] = i;
+  while (std::getline(in, line)) t.rows.push_back(splitCsv(line));
+  return t;
+}
+
 class UnderwaterRegionsDump : public ::testing::Test {
  protected:
   void SetUp() override { dir_ = seasim_test::freshTestDir("seasim_uwdump_"); }
@@ -52,19 +70,16 @@ TEST_F(UnderwaterRegionsDump, WritesEveryPixelWithRegionReferenceRendersAndTerms
   for (const char* view : {"level", "up"}) {
     const fs::path file = dump / (std::string("a0.03_b0.05_g0_d5_") + view + ".csv");
     ASSERT_TRUE(fs::exists(file)) << file;
-    std::ifstream in(file);
-    std::string line;
-    ASSERT_TRUE(std::getline(in, line));
-    const std::vector<std::string> header = splitCsv(line);
-    std::map<std::string, size_t> col;
-    for (size_t i = 0; i < header.size(); ++i) col[header[i]] = i;
+    CsvRows csv = readCsvRows(file);
+    ASSERT_FALSE(csv.header.empty()) << file;
+    const std::vector<std::string>& header = csv.header;
+    std::map<std::string, size_t>& col = csv.col;
     for (const char* c : {"x", "y", "region", "d_y", "reference", "reference_se", "fast_thesis", "fast_improved",
                           "inscatter_modes", "inscatter_beam", "inscatter_tms", "froxel_ss", "window",
                           "reflected_inscatter", "reflected_bottom", "reflected_froxel_ss", "reflected_object", "lambert",
                           "model_total"})
-      ASSERT_TRUE(col.count(c)) << "column " << c << " in " << line;
-    std::vector<std::vector<std::string>> rows;
-    while (std::getline(in, line)) rows.push_back(splitCsv(line));
+      ASSERT_TRUE(col.count(c)) << "column " << c << " in " << file;
+    const std::vector<std::vector<std::string>>& rows = csv.rows;
     ASSERT_EQ(rows.size(), 32u * 18u) << "one row per pixel";
     std::map<std::string, int> regions;
     double fast = 0, total = 0, reference = 0, window = 0, reflected = 0;
@@ -128,18 +143,11 @@ TEST_F(UnderwaterRegionsDump, WritesEveryPixelWithRegionReferenceRendersAndTerms
 TEST_F(UnderwaterRegionsDump, ReferenceRaysGoThroughThePixelCentreUnlessJittered) {
   // Per pixel: region and |fast_improved / reference - 1|, from a dump.
   auto read = [](const fs::path& file) {
-    std::ifstream in(file);
-    std::string line;
-    std::getline(in, line);
-    const std::vector<std::string> header = splitCsv(line);
-    std::map<std::string, size_t> col;
-    for (size_t i = 0; i < header.size(); ++i) col[header[i]] = i;
+    CsvRows csv = readCsvRows(file);
     std::vector<std::pair<std::string, double>> px;
-    while (std::getline(in, line)) {
-      const auto row = splitCsv(line);
-      px.emplace_back(row[col["region"]],
-                      std::fabs(std::stod(row[col["fast_improved"]]) / std::stod(row[col["reference"]]) - 1));
-    }
+    for (const auto& row : csv.rows)
+      px.emplace_back(row[csv.col["region"]], std::fabs(std::stod(row[csv.col["fast_improved"]]) /
+                                                            std::stod(row[csv.col["reference"]]) - 1));
     return px;
   };
   const int w = 32, h = 18;
@@ -188,11 +196,10 @@ TEST_F(UnderwaterRegionsDump, NoisyReferencesAreTracedAgainWithinTheBudget) {
         " --device pocl --set camera.width=32 --set camera.height=18 --cache " + (dir_ / name).string() +
         " --csv " + csv.string());
     EXPECT_EQ(r.code, 0) << r.output;
-    std::ifstream in(csv);
-    std::string header, row;
-    std::getline(in, header);
-    std::getline(in, row);
-    const auto h = splitCsv(header), v = splitCsv(row);
+    const CsvRows table = readCsvRows(csv);
+    EXPECT_EQ(table.rows.size(), 1u) << "one case, one model";
+    const std::vector<std::string>& h = table.header;
+    const std::vector<std::string> v = table.rows.empty() ? std::vector<std::string>{} : table.rows[0];
     int spp = -1;
     double worst_noise = 0;
     for (size_t i = 0; i < h.size() && i < v.size(); ++i) {

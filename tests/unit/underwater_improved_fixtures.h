@@ -1,6 +1,7 @@
 // underwater_improved_fixtures.h — what the improved underwater model's unit tests share
-// (underwater_improved_test, _depth_test, _flux_test, _surface_test): one band's block as the set-up
-// would fill it, and a small improved-model scene whose [underwater] table a test may extend.
+// (underwater_improved_test, _depth_test, _flux_test, _surface_test, underwater_model_option_test):
+// one band's block as the set-up would fill it, and a small improved-model scene whose [underwater]
+// table a test may extend, with its file:line:key rejection check.
 #ifndef SEASIM_TESTS_UNDERWATER_IMPROVED_FIXTURES_H
 #define SEASIM_TESTS_UNDERWATER_IMPROVED_FIXTURES_H
 
