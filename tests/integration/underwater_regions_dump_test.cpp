@@ -225,4 +225,20 @@ TEST_F(UnderwaterRegionsDump, NoisyReferencesAreTracedAgainWithinTheBudget) {
   EXPECT_EQ(cached_tight, 1);
 }
 
+// Bad values of the new options are refused before any tracing, naming the option.
+TEST_F(UnderwaterRegionsDump, BadTargetNoiseOrMaxSppIsRefusedNamingTheOption) {
+  for (const auto& [option, name] : {std::pair{"--target-noise 2", "--target-noise"},
+                                     std::pair{"--target-noise -0.1", "--target-noise"},
+                                     std::pair{"--max-spp 0", "--max-spp"}}) {
+    const seasim_test::Result r = seasim_test::runCommand(
+        kBinary + " underwater-regions " + kRepo + "/tests/perf/underwater_regions.toml --waters 0.1:0.3 --g 0.5" +
+        " --depths 5 --views level --models improved --spp 4 " + option + " --device pocl --cache " +
+        (dir_ / "cache").string() + " --csv " + (dir_ / "bad.csv").string());
+    EXPECT_NE(r.code, 0) << option;
+    EXPECT_NE(r.output.find(name), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(dir_ / "bad.csv")) << option;
+    EXPECT_FALSE(fs::exists(dir_ / "cache")) << option << ": nothing traced";
+  }
+}
+
 }  // namespace
