@@ -20,9 +20,10 @@ struct InScatter {
 InScatter inScatterTerms(const UwiBand& ib, const UwBand& band, double g, double bottom_depth, double S, double d_y,
                          double o_d, double cos_s, double mu_w) {
   InScatter t;
-  const double w1 = kd::uwi_source_weight(&ib, d_y, ib.d1, ib.u1, ib.e0_down, ib.e0_up);
-  const double w2 = kd::uwi_source_weight(&ib, d_y, ib.d2, ib.u2, ib.e0_down, ib.e0_up);
-  const double wp = kd::uwi_source_weight(&ib, d_y, ib.dp, ib.up, ib.e0_beam_down, ib.e0_beam_up);
+  const double chi = kd::uwi_azimuth_factor(cos_s, d_y, mu_w);
+  const double w1 = kd::uwi_source_weight(&ib, d_y, chi, ib.d1, ib.u1, ib.o1, ib.h1);
+  const double w2 = kd::uwi_source_weight(&ib, d_y, chi, ib.d2, ib.u2, ib.o2, ib.h2);
+  const double wp = kd::uwi_source_weight(&ib, d_y, chi, ib.dp, ib.up, ib.op, ib.hp);
   const double phase = double(band.b) * kd::hg_phase(cos_s, g) * band.e_beam0;
   const double i1 = kd::kd_exp_integral(ib.k, ib.c_dm, d_y, o_d, S);
   const double i2 = bottom_depth > 0 ? kd::kd_exp_integral(ib.k, ib.c_dm, -d_y, std::max(bottom_depth - o_d, 0.0), S) : 0.0;

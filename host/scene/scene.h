@@ -167,7 +167,11 @@ struct UnderwaterDesc {
   Injection injection = Injection::Spectral;  // froxel light injection per band or in sensor RGB
   double froxel_near = 0.1;          // m, first froxel slice (file: froxel_near_m)
   double froxel_far = 60.0;          // m, last froxel slice (file: froxel_far_m)
-  // "improved" only: the diffuse streams' mean cosines in its in-scatter source; 0 = the fitted table
+  // "improved" only: how its diffuse field is solved (underwater_improved_ordinates.h): "discrete_ordinates"
+  // (the default) or "two_stream" (the two-stream with its fitted tables, below). file: improved_diffuse
+  enum class Diffuse { DiscreteOrdinates, TwoStream };
+  Diffuse improved_diffuse = Diffuse::DiscreteOrdinates;
+  // "improved", two_stream only: the diffuse streams' mean cosines in its in-scatter source; 0 = the fitted table
   // (diffuseMeanCosines, underwater_improved_setup.h). Set to refit it (tests/perf/underwater_regions_fit.sh).
   double improved_mean_cosine_down = 0.0;  // file: improved_mean_cosine_down
   double improved_mean_cosine_up = 0.0;    // file: improved_mean_cosine_up

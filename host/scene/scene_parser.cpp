@@ -595,6 +595,10 @@ class SceneParser {
     u.froxel_far = r.number("froxel_far_m", u.froxel_far);
     r.check(u.froxel_far > u.froxel_near && u.froxel_far <= 1e4, "froxel_far_m",
             "must be > froxel_near_m (" + fmt(u.froxel_near) + ") and <= 10000 m, got " + fmt(u.froxel_far));
+    u.improved_diffuse = r.choice("improved_diffuse", "discrete_ordinates", {"discrete_ordinates", "two_stream"}) ==
+                                 "two_stream"
+                             ? UnderwaterDesc::Diffuse::TwoStream
+                             : UnderwaterDesc::Diffuse::DiscreteOrdinates;
     for (auto [key, value] : {std::pair{"improved_mean_cosine_down", &u.improved_mean_cosine_down},
                               std::pair{"improved_mean_cosine_up", &u.improved_mean_cosine_up},
                               std::pair{"improved_beam_mean_cosine_down", &u.improved_beam_mean_cosine_down},

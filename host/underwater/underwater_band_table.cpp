@@ -49,15 +49,16 @@ std::vector<float> underwaterBandTable(const UnderwaterSetup& setup) {
       uwi(UWI_ROW_C_DM, ib.c_dm);
       uwi(UWI_ROW_K, ib.k);
       uwi(UWI_ROW_M, ib.m);
-      // uwi_source_weight (common/underwater_improved.h) split as w_a + ν w_b.
-      const double s = double(ib.b_dm) / kFourPi;
-      auto weight = [&](int row_a, int row_b, double D, double U, double e0_down, double e0_up) {
-        uwi(row_a, s * (e0_down * D + e0_up * U));
-        uwi(row_b, s * 3.0 * double(ib.g_flux) * (D - U));
+      // uwi_source_weight (common/underwater_improved.h) split as w_a + ν w_b + chi w_h.
+      const double s = double(ib.b_dm) / kFourPi, s_flux = s * 3.0 * double(ib.g_flux);
+      auto weight = [&](int row_a, int row_b, int row_h, double D, double U, double O, double Hf) {
+        uwi(row_a, s * O);
+        uwi(row_b, s_flux * (D - U));
+        uwi(row_h, s_flux * Hf);
       };
-      weight(UWI_ROW_W1_A, UWI_ROW_W1_B, ib.d1, ib.u1, ib.e0_down, ib.e0_up);
-      weight(UWI_ROW_W2_A, UWI_ROW_W2_B, ib.d2, ib.u2, ib.e0_down, ib.e0_up);
-      weight(UWI_ROW_WP_A, UWI_ROW_WP_B, ib.dp, ib.up, ib.e0_beam_down, ib.e0_beam_up);
+      weight(UWI_ROW_W1_A, UWI_ROW_W1_B, UWI_ROW_W1_H, ib.d1, ib.u1, ib.o1, ib.h1);
+      weight(UWI_ROW_W2_A, UWI_ROW_W2_B, UWI_ROW_W2_H, ib.d2, ib.u2, ib.o2, ib.h2);
+      weight(UWI_ROW_WP_A, UWI_ROW_WP_B, UWI_ROW_WP_H, ib.dp, ib.up, ib.op, ib.hp);
       uwi(UWI_ROW_B_E_BEAM, double(b.b) * b.e_beam0);
       uwi(UWI_ROW_D1, ib.d1);
       uwi(UWI_ROW_U1, ib.u1);

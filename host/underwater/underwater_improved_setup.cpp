@@ -9,9 +9,10 @@
 
 namespace seasim {
 
-static_assert(sizeof(UwiBand) == 16 * 4, "UwiBand layout changed: update underwater_improved_params.h users");
-static_assert(offsetof(UwiBand, d1) == 20 && offsetof(UwiBand, up) == 40 && offsetof(UwiBand, e0_up) == 48 &&
-              offsetof(UwiBand, e0_beam_up) == 56 && offsetof(UwiBand, g_flux) == 60);
+static_assert(sizeof(UwiBand) == 18 * 4, "UwiBand layout changed: update underwater_improved_params.h users");
+static_assert(offsetof(UwiBand, d1) == 20 && offsetof(UwiBand, up) == 40 && offsetof(UwiBand, g_flux) == 44 &&
+              offsetof(UwiBand, o1) == 48 && offsetof(UwiBand, op) == 56 && offsetof(UwiBand, h1) == 60 &&
+              offsetof(UwiBand, hp) == 68);
 
 double internalDiffuseReflectance(double ior) {
   // Midpoint rule in μ: F jumps to 1 at the critical angle, so a fine uniform grid (error ~1e-5).
@@ -132,10 +133,6 @@ UwiBand makeUwiBand(const UwBand& band, double g, double mu_w, double bottom_dep
   o.b_dm = static_cast<float>(b_dm);
   o.g_dm = static_cast<float>(g_dm);
   o.g_flux = static_cast<float>(view.flux_scale * g_dm);
-  o.e0_down = static_cast<float>(1.0 / mean.down);
-  o.e0_up = static_cast<float>(1.0 / mean.up);
-  o.e0_beam_down = static_cast<float>(1.0 / mean.beam_down);
-  o.e0_beam_up = static_cast<float>(1.0 / mean.beam_up);
   if (!(c_dm > 0)) return o;  // no medium: no diffuse source, nothing to attenuate
 
   // Two-stream (plane irradiances, depth y down; Meador & Weaver 1980's form in metres):
@@ -200,6 +197,11 @@ UwiBand makeUwiBand(const UwBand& band, double g, double mu_w, double bottom_dep
   o.u2 = static_cast<float>(A2);
   o.dp = static_cast<float>(pd);
   o.up = static_cast<float>(pu);
+  // The scalar irradiance from the streams' mean cosines (E_d/μ̄_d + E_u/μ̄_u); the two streams carry
+  // no horizontal flux.
+  o.o1 = static_cast<float>(A1 / mean.down + r * A1 / mean.up);
+  o.o2 = static_cast<float>(r * A2 / mean.down + A2 / mean.up);
+  o.op = static_cast<float>(pd / mean.beam_down + pu / mean.beam_up);
   return o;
 }
 

@@ -7,6 +7,7 @@
 #include "geometry/kernel_camera.h"
 #include "math/kernel_math.h"
 #include "spectral/jerlov.h"
+#include "underwater/underwater_improved_ordinates.h"
 #include "underwater/underwater_improved_setup.h"
 #include "util/error.h"
 
@@ -139,7 +140,9 @@ UnderwaterSetup makeUnderwaterSetup(const Scene& scene, const WavelengthGrid& gr
                                          ? TwoStreamClosure::Asymptotic
                                          : twoStreamClosure();
     // The camera's depth enters k here (diffuseViewDepth): set per frame, with the camera.
-    s.improved = makeUwiBands(p, s.bands, mean, closure, uw.improved_asymptotic_share, uw.improved_flux_scale);
+    s.improved = uw.improved_diffuse == UnderwaterDesc::Diffuse::TwoStream
+                     ? makeUwiBands(p, s.bands, mean, closure, uw.improved_asymptotic_share, uw.improved_flux_scale)
+                     : makeUwiBandsFromOrdinates(p, s.bands, uw.improved_flux_scale);
   }
   p.object_count = static_cast<int>(s.objects.size());
   if (s.objects.empty()) s.objects.push_back(UwObject{});  // OpenCL buffers cannot be empty

@@ -39,7 +39,8 @@
 #define UWI_ROW_C_DM 0         /* delta-M extinction c', 1/m */
 #define UWI_ROW_K 1            /* the diffuse field's eigen-attenuation k, 1/m */
 #define UWI_ROW_M 2            /* the delta-M beam's attenuation with depth c'/μ_w, 1/m */
-#define UWI_ROW_W1_A 3         /* source weight of (d1, u1) seen along ν: w_a + ν w_b, per m per sr */
+#define UWI_ROW_W1_A 3         /* source weight of (d1, u1) seen along ν: w_a + ν w_b + chi w_h, per m per sr
+                                  (chi: uwi_azimuth_factor; w_h in rows UWI_ROW_W*_H) */
 #define UWI_ROW_W1_B 4
 #define UWI_ROW_W2_A 5         /* of (d2, u2) */
 #define UWI_ROW_W2_B 6
@@ -60,6 +61,9 @@
 #define UWI_ROW_EXP_BEAM_OD 19 /* e^{-(σ_t/μ_w) o_d} (UW_ROW_K_BEAM's attenuation) */
 #define UWI_ROW_EXP_K_HOD 20   /* e^{-k max(H - o_d, 0)}: the bottom's term, whose integral runs from the bottom */
 #define UWI_ROW_EXP_K_H 21     /* e^{-k H}: the same for the surface's reflected ray (o_d = 0); 1 without a bottom */
-#define UWI_ROWS 22
+#define UWI_ROW_W1_H 22        /* the source weights' part across the vertical (the horizontal flux's) */
+#define UWI_ROW_W2_H 23
+#define UWI_ROW_WP_H 24
+#define UWI_ROWS 25
 
 #endif /* SEASIM_UNDERWATER_BAND_TABLE_H */

@@ -48,11 +48,20 @@
  * per band with froxels (three without), where eq. 4.7 takes two.
  */
 
-/* The first-order phase-weighted source of a pair of plane irradiances (D down, U up) seen along ν:
- * scalar irradiance D e0_down + U e0_up (e0 = 1/μ̄ of that pair's streams: ib->e0_down/up for the
- * diffuse modes, ib->e0_beam_down/up for the beam's) plus the flux term 3 g_f ν (D - U). */
-SEASIM_FN real uwi_source_weight(const SEASIM_GLOBAL UwiBand* ib, real nu, real D, real U, real e0_down, real e0_up) {
-  return (real)ib->b_dm * (e0_down * D + e0_up * U + R(3.0) * (real)ib->g_flux * nu * (D - U)) / (R(4.0) * SEASIM_PI);
+/* The first-order phase-weighted source of one exponential of the diffuse field (plane irradiances D
+ * down, U up, scalar irradiance O, net horizontal flux Hf towards the sun's azimuth) seen along a photon
+ * direction of downward cosine ν whose horizontal part along the sun's azimuth is chi (uwi_azimuth_factor):
+ * b' [O + 3 g_f (ν (D - U) + chi Hf)] / (4π), the phase's first two Legendre terms against the field. */
+SEASIM_FN real uwi_source_weight(const SEASIM_GLOBAL UwiBand* ib, real nu, real chi, real D, real U, real O, real Hf) {
+  return (real)ib->b_dm * (O + R(3.0) * (real)ib->g_flux * (nu * (D - U) + chi * Hf)) / (R(4.0) * SEASIM_PI);
+}
+
+/* √(1 - ν²) cos Δφ of a photon direction (downward cosine ν, cosine cos_s with the sun beam's direction of
+ * downward cosine mu_w), Δφ its azimuth from the beam's: (cos_s - ν mu_w) / √(1 - mu_w²); 0 for a sun
+ * within 0.1° of the zenith, where the field has no horizontal flux to weigh. */
+SEASIM_FN real uwi_azimuth_factor(real cos_s, real nu, real mu_w) {
+  const real s2 = R(1.0) - mu_w * mu_w;
+  return s2 > R(3e-6) ? (cos_s - nu * mu_w) / sqrt(s2) : R(0.0);
 }
 
 /* E_d(y) and E_u(y), the diffuse plane irradiances at depth y (common/underwater_improved_params.h),
@@ -74,12 +83,12 @@ SEASIM_FN real uwi_multiple(const SEASIM_GLOBAL UwiBand* ib, const SEASIM_GLOBAL
                             int single_scattering, int multiple) {
   if (!multiple) return R(0.0);
   const real c_dm = ib->c_dm, k = ib->k;
-  const real e0_d = ib->e0_down, e0_u = ib->e0_up;
-  const real w1 = uwi_source_weight(ib, d_y, ib->d1, ib->u1, e0_d, e0_u);
-  const real w2 = uwi_source_weight(ib, d_y, ib->d2, ib->u2, e0_d, e0_u);
-  /* The beam's diffuse offspring with its own mean cosines, and the beam scattered once with the exact
-   * phase function (TMS), attenuated as the delta-M beam. */
-  const real wp = uwi_source_weight(ib, d_y, ib->dp, ib->up, (real)ib->e0_beam_down, (real)ib->e0_beam_up) +
+  const real chi = uwi_azimuth_factor(cos_s, d_y, mu_w);
+  const real w1 = uwi_source_weight(ib, d_y, chi, ib->d1, ib->u1, ib->o1, ib->h1);
+  const real w2 = uwi_source_weight(ib, d_y, chi, ib->d2, ib->u2, ib->o2, ib->h2);
+  /* The beam's diffuse offspring, and the beam scattered once with the exact phase function (TMS),
+   * attenuated as the delta-M beam. */
+  const real wp = uwi_source_weight(ib, d_y, chi, ib->dp, ib->up, ib->op, ib->hp) +
                   (real)band->b * hg_phase(cos_s, g) * (real)band->e_beam0;
   const real i1 = kd_exp_integral(k, c_dm, d_y, o_d, S);
   /* e^{-k (H - y(z))} = e^{-k (H - o_d)} e^{-k d_y z}: the same integral seen from the bottom. */

@@ -36,7 +36,8 @@
 typedef struct {
   realb c, k_beam, e_beam; /* σ_t; σ_t / max(μ_w, 1e-4) (the froxel term's beam); e_beam0 */
   realb c_dm, k, m;        /* delta-M extinction c', the diffuse field's k, the delta-M beam's c'/μ_w */
-  realb w1_a, w1_b, w2_a, w2_b, wp_a, wp_b; /* source weights w(ν) = w_a + ν w_b of each exponential */
+  realb w1_a, w1_b, w2_a, w2_b, wp_a, wp_b; /* source weights w(ν) = w_a + ν w_b + chi w_h of each exponential */
+  realb w1_h, w2_h, wp_h;
   realb b_e_beam;          /* b e_beam0: the TMS term and the froxel term per unit phase */
   realb d1, u1, d2, u2, dp, up; /* E_d, E_u coefficients (UwiBand) */
 } UwiLanes;
@@ -58,6 +59,9 @@ SEASIM_FN UwiLanes uwi_lanes_load(const SEASIM_GLOBAL float* table, int stride, 
   v.w2_b = UWI_LOAD(uwi_row0 + UWI_ROW_W2_B);
   v.wp_a = UWI_LOAD(uwi_row0 + UWI_ROW_WP_A);
   v.wp_b = UWI_LOAD(uwi_row0 + UWI_ROW_WP_B);
+  v.w1_h = UWI_LOAD(uwi_row0 + UWI_ROW_W1_H);
+  v.w2_h = UWI_LOAD(uwi_row0 + UWI_ROW_W2_H);
+  v.wp_h = UWI_LOAD(uwi_row0 + UWI_ROW_WP_H);
   v.b_e_beam = UWI_LOAD(uwi_row0 + UWI_ROW_B_E_BEAM);
   v.d1 = UWI_LOAD(uwi_row0 + UWI_ROW_D1);
   v.u1 = UWI_LOAD(uwi_row0 + UWI_ROW_U1);
@@ -106,20 +110,20 @@ SEASIM_FN UwiEnds uwi_ends(const UwiLanes* v, real bottom_depth, real S, real y,
 }
 
 /* uwi_multiple: in-scattered radiance along the ray (d_y) to distance S (UW_INFINITE: deep water),
- * phase = p_HG(g, d·s_w) of the pixel, a the ray's start factors, e its far ends (uwi_ends with the same
+ * phase = p_HG(g, d·s_w) of the pixel, chi = uwi_azimuth_factor(d·s_w, d_y, μ_w), a the ray's start factors, e its far ends (uwi_ends with the same
  * single_scattering). Each term of J(y) an exponential in y, so each integral is
  * kd_exp_integral_ends_b (002 eq. 4.7's form); with single_scattering the froxel pass's unshadowed strict
  * single scattering b p_HG e_beam0 ∫ e^{-c z} e^{-(c/μ_w) y(z)} dz (002 eq. 5.2) is taken off. */
-SEASIM_FN realb uwi_lanes_multiple(const UwiLanes* v, const UwiStart* a, const UwiEnds* e, real phase,
+SEASIM_FN realb uwi_lanes_multiple(const UwiLanes* v, const UwiStart* a, const UwiEnds* e, real phase, real chi,
                                    real bottom_depth, real S, real d_y, int single_scattering) {
   const realb beam_phase = v->b_e_beam * phase;
-  const realb w1 = v->w1_a + d_y * v->w1_b;
-  const realb wp = v->wp_a + d_y * v->wp_b + beam_phase;
+  const realb w1 = v->w1_a + d_y * v->w1_b + chi * v->w1_h;
+  const realb wp = v->wp_a + d_y * v->wp_b + chi * v->wp_h + beam_phase;
   realb sum = w1 * kd_exp_integral_ends_b(v->k, v->c_dm, a->k, e->k, d_y, S) +
               wp * kd_exp_integral_ends_b(v->m, v->c_dm, a->m, e->m, d_y, S);
   if (bottom_depth > R(0.0)) {
     /* e^{-k (H - y(z))} = e^{-k (H - o_d)} e^{-k d_y z}: the same integral seen from the bottom. */
-    const realb w2 = v->w2_a + d_y * v->w2_b;
+    const realb w2 = v->w2_a + d_y * v->w2_b + chi * v->w2_h;
     sum += w2 * kd_exp_integral_ends_b(v->k, v->c_dm, a->k_bottom, e->k_bottom, -d_y, S);
   }
   if (single_scattering) sum -= beam_phase * kd_exp_integral_ends_b(v->k_beam, v->c, a->beam, e->beam, d_y, S);
@@ -144,7 +148,8 @@ SEASIM_FN realb uwi_lanes_lambert(const UwiLanes* v, const UwiEnds* e, realb alb
 
 /* uwi_surface times T(S): the surface seen from below along d (d_y = d.y > 0) at distance S: the sky
  * through Snell's window (sky_l, the lanes' sky radiance in air along the refracted view) plus F times
- * the reflected ray's in-scatter (phase_r = p_HG(g, cos of the reflected ray with s_w)) down to the
+ * the reflected ray's in-scatter (phase_r = p_HG(g, cos of the reflected ray with s_w), chi_r its
+ * uwi_azimuth_factor) down to the
  * bottom, and the bottom itself (bottom_l: UWI_ROW_BOTTOM_L, its sunlit radiance), or deep water.
  * t_s: T(S) = e^{-c' S}, which is the camera ray's far end e^{-(k y + c' S)} at the surface (y = 0:
  * uwi_ends' k). exp_k_h: e^{-k H} (UWI_ROW_EXP_K_H), the reflected ray's start factor of the bottom's
@@ -155,7 +160,7 @@ SEASIM_FN realb uwi_lanes_lambert(const UwiLanes* v, const UwiEnds* e, realb alb
  * n_m_dot_s = n·s_w and the sun's visibility vis_m; the reflected ray's integrals then end on it, and its
  * Lambert hit shares their far ends (no more exps than the bottom's case). */
 SEASIM_FN realb uwi_lanes_surface(const UwiLanes* v, realb t_s, realb sky_l, realb bottom_l, realb exp_k_h,
-                                  real phase_r, real bottom_depth, real d_y, real ior, int multiple, real s_m,
+                                  real phase_r, real chi_r, real bottom_depth, real d_y, real ior, int multiple, real s_m,
                                   realb albedo_m, real n_m_y, real n_m_dot_s, real vis_m) {
   const real dy = fmax(d_y, R(1e-6));
   const real s_r = bottom_depth > R(0.0) ? bottom_depth / dy : UW_INFINITE;
@@ -170,11 +175,11 @@ SEASIM_FN realb uwi_lanes_surface(const UwiLanes* v, realb t_s, realb sky_l, rea
   if (s_m < s_r) { /* per pixel: an object in the mirror, at depth s_m dy */
     const UwiEnds e = uwi_ends(v, bottom_depth, s_m, s_m * dy, 0);
     reflected = uwi_lanes_lambert(v, &e, albedo_m, bottom_depth, n_m_y, n_m_dot_s, vis_m);
-    if (multiple) reflected += uwi_lanes_multiple(v, &a, &e, phase_r, bottom_depth, s_m, -dy, 0);
+    if (multiple) reflected += uwi_lanes_multiple(v, &a, &e, phase_r, chi_r, bottom_depth, s_m, -dy, 0);
   } else if (multiple) {
     /* It ends on the bottom (y = H) or in deep water (S, y = ∞: its ends 0). */
     const UwiEnds e = uwi_ends(v, bottom_depth, s_r, bottom_depth > R(0.0) ? bottom_depth : UW_INFINITE, 0);
-    reflected = uwi_lanes_multiple(v, &a, &e, phase_r, bottom_depth, s_r, -dy, 0);
+    reflected = uwi_lanes_multiple(v, &a, &e, phase_r, chi_r, bottom_depth, s_r, -dy, 0);
     /* Its far end e^{-(k (H - y) + c' s_r)} at y = H: the same but past s_r = 1e4 (within H/1e4 of
      * the horizon), where both are e^{-c' 1e4} or less. */
     t_bottom = e.k_bottom;

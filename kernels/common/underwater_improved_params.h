@@ -6,7 +6,9 @@
  * Depth y >= 0 below the flat surface, bottom at H (UwParams.bottom_depth; <= 0: none). The diffuse
  * plane irradiances (W m^-2 nm^-1), downwelling E_d and upwelling E_u, are sums of three exponentials:
  *   E_d(y) = d1 e^{-k y} + d2 e^{-k (H - y)} + dp e^{-m y},   E_u(y) = u1 e^{-k y} + u2 e^{-k (H - y)} + up e^{-m y}
- * (d2 = u2 = 0 without a bottom). */
+ * (d2 = u2 = 0 without a bottom); so are the scalar irradiance E_0 (o*) and the horizontal flux F_h (h*).
+ * The host builds them from a discrete-ordinates solution (underwater.improved_diffuse =
+ * "discrete_ordinates") or from the two-stream (o from the streams' mean cosines, no F_h). */
 
 #ifndef SEASIM_UNDERWATER_IMPROVED_PARAMS_H
 #define SEASIM_UNDERWATER_IMPROVED_PARAMS_H
@@ -21,12 +23,12 @@ typedef struct {
   float d1, u1; /* E_d, E_u coefficients of e^{-k y} */
   float d2, u2; /* of e^{-k (H - y)} (light the bottom sends up, and its back-scatter) */
   float dp, up; /* of e^{-m y} (the delta-M beam's diffuse source) */
-  float e0_down, e0_up; /* 1/μ̄ of the down and up streams of e^{-k y} and e^{-k (H - y)}: scalar
-                           irradiance per plane irradiance in the in-scatter source (diffuseMeanCosines in
-                           underwater_improved_setup.h) */
-  float e0_beam_down, e0_beam_up; /* the same of the beam's diffuse offspring, e^{-m y} (dp, up) */
   float g_flux; /* the flux term's asymmetry in the in-scatter source: g' times a scale fitted to the path
                    tracer (diffuseFluxScale in underwater_improved_setup.h; s7c, results/BENCHMARKS.md) */
+  float o1, o2, op; /* the diffuse scalar irradiance E_0(y) = o1 e^{-k y} + o2 e^{-k (H - y)} + op e^{-m y}:
+                       the in-scatter source's isotropic part */
+  float h1, h2, hp; /* the diffuse light's net horizontal flux towards the sun's azimuth, F_h(y), in the
+                       same exponentials: the flux term's part across the vertical */
 } UwiBand;
 
 #endif /* SEASIM_UNDERWATER_IMPROVED_PARAMS_H */

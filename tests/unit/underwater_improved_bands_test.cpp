@@ -81,17 +81,19 @@ struct Ray {
     const Real S = Real(r.S), o_d = Real(r.o_d), H = Real(s.params.bottom_depth), g = Real(s.params.g);      \
     const Real cos_s = ns::dot(d, s_w);                                                                      \
     const Real phase = ns::hg_phase(cos_s, g);                                                               \
-    const Real phase_r = ns::hg_phase(cos_s - Real(2) * d.y * s_w.y, g);                                     \
+    const Real cos_r = cos_s - Real(2) * d.y * s_w.y;                                                        \
+    const Real phase_r = ns::hg_phase(cos_r, g);                                                             \
+    const Real chi = ns::uwi_azimuth_factor(cos_s, d.y, s_w.y), chi_r = ns::uwi_azimuth_factor(cos_r, -d.y, s_w.y); \
     const ns::UwiLanes v = ns::uwi_lanes_load(table.data(), stride, uwi_row0, k);                            \
     const ns::UwiStart a = ns::uwi_start_camera(table.data(), stride, uwi_row0, k);                          \
     auto row = [&](int rw) { return Real(table[size_t(rw) * stride + k]); };                                 \
     const Real y = std::max(o_d - S * d.y, Real(0));                                                         \
     const ns::UwiEnds e = ns::uwi_ends(&v, H, S, y, single);                                                 \
-    Real L = ns::uwi_lanes_multiple(&v, &a, &e, phase, H, S, d.y, single);                                   \
+    Real L = ns::uwi_lanes_multiple(&v, &a, &e, phase, chi, H, S, d.y, single);                              \
     if (r.mat == UW_MAT_SURFACE) {                                                                           \
       const ns::real3 n_m{Real(r.n_m[0]), Real(r.n_m[1]), Real(r.n_m[2])};                                   \
       L += ns::uwi_lanes_surface(&v, e.k, Real(r.sky_l), row(uwi_row0 + UWI_ROW_BOTTOM_L),                   \
-                                 row(uwi_row0 + UWI_ROW_EXP_K_H), phase_r, H, d.y, Real(s.params.ior), 1,      \
+                                 row(uwi_row0 + UWI_ROW_EXP_K_H), phase_r, chi_r, H, d.y, Real(s.params.ior), 1, \
                                  Real(r.s_m), row(UW_ROWS + r.mat_m), n_m.y, ns::dot(n_m, s_w), Real(r.vis_m)); \
     } else if (r.mat != UW_MAT_NONE) {                                                                       \
       const Real albedo = row(r.mat >= 0 ? UW_ROWS + r.mat : UW_ROW_BOTTOM_ALBEDO);                          \
@@ -137,29 +139,33 @@ TEST(UnderwaterImprovedBands, TableRowsHoldTheBlockAndPaddingIsWeightless) {
     EXPECT_EQ(at(row0 + UWI_ROW_K, k), ib.k);
     EXPECT_EQ(at(row0 + UWI_ROW_D2, k), ib.d2);
     EXPECT_EQ(at(row0 + UWI_ROW_UP, k), ib.up);
-    // w(ν) = w_a + ν w_b is uwi_source_weight at every ν.
-    for (double nu : {-1.0, 0.0, 0.7}) {
-      const double w = kd::uwi_source_weight(&ib, nu, ib.d1, ib.u1, ib.e0_down, ib.e0_up);
-      const double wa = at(row0 + UWI_ROW_W1_A, k), wb = at(row0 + UWI_ROW_W1_B, k);
-      EXPECT_NEAR(wa + nu * wb, w, 1e-6 * (std::fabs(wa) + std::fabs(wb)));  // each row rounded to float
-    }
+    // w(ν, chi) = w_a + ν w_b + chi w_h is uwi_source_weight at every ν and azimuth.
+    for (double nu : {-1.0, 0.0, 0.7})
+      for (double chi : {-0.6, 0.0, 0.3}) {
+        const double w = kd::uwi_source_weight(&ib, nu, chi, ib.d1, ib.u1, ib.o1, ib.h1);
+        const double wa = at(row0 + UWI_ROW_W1_A, k), wb = at(row0 + UWI_ROW_W1_B, k), wh = at(row0 + UWI_ROW_W1_H, k);
+        EXPECT_NEAR(wa + nu * wb + chi * wh, w, 1e-6 * (std::fabs(wa) + std::fabs(wb) + std::fabs(wh)));  // rows in float
+      }
     for (int r = 0; r < UWI_ROWS; ++r) EXPECT_TRUE(std::isfinite(at(row0 + r, k))) << r;
   }
   EXPECT_GT(at(row0 + UWI_ROW_BOTTOM_L, 0), 0.0f);
-  // The beam's offspring (dp, up) is weighed by its own mean cosines, the two-stream's modes by theirs:
-  // set the two pairs apart and each weight row follows its own.
+  // Each exponential is weighed by its own scalar irradiance and horizontal flux: set them apart and each
+  // weight row follows its own.
   seasim::UnderwaterSetup apart = s;
   for (UwiBand& ib : apart.improved) {
-    ib.e0_down = 1 / 0.5f, ib.e0_up = 1 / 0.6f;
-    ib.e0_beam_down = 1 / 0.9f, ib.e0_beam_up = 1 / 0.4f;
+    ib.o1 = 2.0f, ib.o2 = 3.0f, ib.op = 5.0f;
+    ib.h1 = 0.25f, ib.h2 = -0.5f, ib.hp = 0.75f;
   }
   const std::vector<float> ta = seasim::underwaterBandTable(apart);
   const UwiBand& ia = apart.improved[0];
   auto at_apart = [&](int row) { return double(ta[size_t(row0 + row) * stride]); };
-  const double b4pi = ia.b_dm / (4 * M_PI);
-  EXPECT_NEAR(at_apart(UWI_ROW_WP_A), b4pi * (ia.dp / 0.9 + ia.up / 0.4), 1e-6 * std::fabs(at_apart(UWI_ROW_WP_A)));
-  EXPECT_NEAR(at_apart(UWI_ROW_W1_A), b4pi * (ia.d1 / 0.5 + ia.u1 / 0.6), 1e-6 * std::fabs(at_apart(UWI_ROW_W1_A)));
-  EXPECT_NEAR(at_apart(UWI_ROW_W2_A), b4pi * (ia.d2 / 0.5 + ia.u2 / 0.6), 1e-6 * std::fabs(at_apart(UWI_ROW_W2_A)));
+  const double b4pi = ia.b_dm / (4 * M_PI), flux = 3 * b4pi * ia.g_flux;
+  EXPECT_NEAR(at_apart(UWI_ROW_W1_A), b4pi * 2, 1e-6 * b4pi);
+  EXPECT_NEAR(at_apart(UWI_ROW_W2_A), b4pi * 3, 1e-6 * b4pi);
+  EXPECT_NEAR(at_apart(UWI_ROW_WP_A), b4pi * 5, 1e-6 * b4pi);
+  EXPECT_NEAR(at_apart(UWI_ROW_W1_H), flux * 0.25, 1e-6 * flux);
+  EXPECT_NEAR(at_apart(UWI_ROW_W2_H), flux * -0.5, 1e-6 * flux);
+  EXPECT_NEAR(at_apart(UWI_ROW_WP_H), flux * 0.75, 1e-6 * flux);
   // No bottom: no bottom radiance; the thesis model: no improved rows.
   EXPECT_EQ(seasim::underwaterBandTable(makeSetup(0.9, 0.0, 0.8, 0.1, 0.3))[size_t(row0 + UWI_ROW_BOTTOM_L) * stride],
             0.0f);
@@ -213,12 +219,13 @@ TEST(UnderwaterImprovedBands, LanesMatchTheScalarModelInFloatAndDouble) {
       for (double H : {0.0, 5.0, 40.0})
         for (double mu_w : {0.95, 0.3, 1e-3}) {
           const seasim::UnderwaterSetup s = makeSetup(g, H, mu_w, w.a, w.b);
-          // The same with every E_d, E_u coefficient made positive: the size of the terms that cancel
+          // The same with every E_d, E_u, E_0, F_h coefficient made positive: the size of the terms that cancel
           // (without absorption k sits at its floor and the bottom's pair e^{-k y}, e^{-k (H - y)}
           // carries large coefficients of opposite sign), against which rounding is measured.
           seasim::UnderwaterSetup magnitude = s;
           for (UwiBand& ib : magnitude.improved)
-            for (float* v : {&ib.d1, &ib.u1, &ib.d2, &ib.u2, &ib.dp, &ib.up}) *v = std::fabs(*v);
+            for (float* v : {&ib.d1, &ib.u1, &ib.d2, &ib.u2, &ib.dp, &ib.up, &ib.o1, &ib.o2, &ib.op, &ib.h1, &ib.h2, &ib.hp})
+              *v = std::fabs(*v);
           const double s_w[3] = {std::sqrt(1 - mu_w * mu_w), mu_w, 0};
           for (double o_d : {0.0, 1e-4, 3.0, 1000.0}) {
             if (H > 0 && o_d >= H) continue;

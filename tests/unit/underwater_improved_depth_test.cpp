@@ -161,27 +161,27 @@ TEST(UnderwaterImprovedDepth, ViewDepthIsTheCamerasWithinTheWater) {
 
 using seasim::testing::kImprovedScene;
 
-// The set-up takes D from the camera (so a camera moved in depth changes k: the renderer builds the
-// set-up again and the band table follows, tests/kernels/renderer_test.cpp), w from the key or, by
-// default, from the fitted share.
+// With the two-stream's diffuse field (improved_diffuse = "two_stream"), the set-up takes D from the
+// camera (so a camera moved in depth changes k: the renderer builds the set-up again and the band table
+// follows, tests/kernels/renderer_test.cpp), w from the key or, by default, from the fitted share.
 TEST(UnderwaterImprovedDepth, SetUpTakesTheCamerasDepthAndTheKey) {
   using namespace seasim;
   const WavelengthGrid grid = makeGrid(4, 400, 700);
   const Sensor sensor = makeSensor("cie1931", grid, true, "");
   const std::string share = "improved_asymptotic_share = 0.4\n";
-  Scene shallow = parseScene(std::string(kImprovedScene) + share, "uw.toml");
+  Scene shallow = parseScene(seasim::testing::twoStreamScene() + share, "uw.toml");
   Scene deep = shallow;
   deep.camera.position.y = -20;
   const UnderwaterSetup s = makeUnderwaterSetup(shallow, grid, sensor);
   const UnderwaterSetup d = makeUnderwaterSetup(deep, grid, sensor);
   EXPECT_LT(d.improved[1].k, s.improved[1].k * 0.999f);
-  Scene off = parseScene(std::string(kImprovedScene) + "improved_asymptotic_share = 0\n", "uw.toml");
+  Scene off = parseScene(seasim::testing::twoStreamScene() + "improved_asymptotic_share = 0\n", "uw.toml");
   const UnderwaterSetup o = makeUnderwaterSetup(off, grid, sensor);
   EXPECT_GT(o.improved[1].k, s.improved[1].k);
   off.camera.position.y = -20;
   EXPECT_EQ(makeUnderwaterSetup(off, grid, sensor).improved[1].k, o.improved[1].k);  // w = 0: no depth
   // Default (-1): the fitted share at the water's g.
-  const Scene plain = parseScene(kImprovedScene, "uw.toml");
+  const Scene plain = parseScene(seasim::testing::twoStreamScene(), "uw.toml");
   EXPECT_EQ(plain.underwater.improved_asymptotic_share, -1.0);
   const UnderwaterSetup p = makeUnderwaterSetup(plain, grid, sensor);
   const UwiBand expected = makeUwiBand(p.bands[1], p.params.g, p.params.sun_dir_water[1], p.params.bottom_depth,

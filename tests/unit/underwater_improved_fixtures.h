@@ -47,6 +47,9 @@ caustics = "none"
 model = "improved"
 )";
 
+// The improved model with the two-stream's diffuse field (its fitted tables), keys may be appended.
+inline std::string twoStreamScene() { return std::string(kImprovedScene) + "improved_diffuse = \"two_stream\"\n"; }
+
 // kImprovedScene with `line` appended (its line 16) must be rejected with an error naming that file:line
 // and `key` (underwater.…).
 inline void expectImprovedSceneRejects(const std::string& line, const std::string& key) {

@@ -11,6 +11,7 @@
 #include "scene/scene_parser.h"
 #include "spectral/sensor.h"
 #include "spectral/wavelength_grid.h"
+#include "underwater/underwater_improved_ordinates.h"
 #include "underwater/underwater_improved_setup.h"
 #include "underwater/underwater_setup.h"
 
@@ -71,11 +72,13 @@ TEST(UnderwaterImprovedFlux, SourceFluxTermFollowsTheScale) {
   for (double s : {1.0, 1.6, 2.5}) {
     const UwiBand ib = makeUwiBand(b, 0.9, 0.8, 0.0, 1.34, mean, seasim::twoStreamClosure(), DiffuseDepth{2.0, 0.4, s});
     const double D = 0.7, U = 0.2, nu = 0.6;
-    const double up = kd::uwi_source_weight(&ib, nu, D, U, ib.e0_down, ib.e0_up);
-    const double down = kd::uwi_source_weight(&ib, -nu, D, U, ib.e0_down, ib.e0_up);
+    const double O = 1.5, Hf = 0.3, chi = -0.4;
+    const double up = kd::uwi_source_weight(&ib, nu, chi, D, U, O, Hf);
+    const double down = kd::uwi_source_weight(&ib, -nu, chi, D, U, O, Hf);
     const double odd = 0.5 * (up - down), even = 0.5 * (up + down);
     EXPECT_NEAR(odd, ib.b_dm * 3 * s * (0.9 / 1.9) * nu * (D - U) / (4 * M_PI), 1e-6 * std::abs(odd)) << s;
-    EXPECT_NEAR(even, ib.b_dm * (ib.e0_down * D + ib.e0_up * U) / (4 * M_PI), 1e-6 * even) << s;
+    // The even part: the scalar irradiance and the horizontal flux's term, which the scale scales too.
+    EXPECT_NEAR(even, ib.b_dm * (O + 3 * s * (0.9 / 1.9) * chi * Hf) / (4 * M_PI), 1e-6 * even) << s;
   }
 }
 
@@ -92,11 +95,16 @@ TEST(UnderwaterImprovedFlux, SetUpTakesTheTableOrTheKey) {
   const UnderwaterSetup p = makeUnderwaterSetup(plain, grid, sensor);
   ASSERT_GT(p.params.g, 0.0f);
   const double g_dm = p.params.g / (1.0 + p.params.g);
-  EXPECT_FLOAT_EQ(p.improved[1].g_flux, float(diffuseFluxScale(p.params.g) * g_dm));
-  const UnderwaterSetup k =
-      makeUnderwaterSetup(parseScene(std::string(kImprovedScene) + "improved_flux_scale = 2\n", "uw.toml"), grid, sensor);
-  EXPECT_FLOAT_EQ(k.improved[1].g_flux, float(2 * g_dm));
-  EXPECT_EQ(k.improved[1].k, p.improved[1].k);
+  // Each diffuse solver its own table: the discrete ordinates' (the default) and the two-stream's.
+  EXPECT_FLOAT_EQ(p.improved[1].g_flux, float(ordinatesFluxScale(p.params.g) * g_dm));
+  const UnderwaterSetup t = makeUnderwaterSetup(parseScene(seasim::testing::twoStreamScene(), "uw.toml"), grid, sensor);
+  EXPECT_FLOAT_EQ(t.improved[1].g_flux, float(diffuseFluxScale(p.params.g) * g_dm));
+  for (const std::string& scene : {std::string(kImprovedScene), seasim::testing::twoStreamScene()}) {
+    const UnderwaterSetup d = makeUnderwaterSetup(parseScene(scene, "uw.toml"), grid, sensor);
+    const UnderwaterSetup k = makeUnderwaterSetup(parseScene(scene + "improved_flux_scale = 2\n", "uw.toml"), grid, sensor);
+    EXPECT_FLOAT_EQ(k.improved[1].g_flux, float(2 * g_dm));
+    EXPECT_EQ(k.improved[1].k, d.improved[1].k);
+  }
   for (const char* bad : {"improved_flux_scale = 3.5", "improved_flux_scale = -0.5"}) {
     seasim::testing::expectImprovedSceneRejects(bad, "underwater.improved_flux_scale");
   }

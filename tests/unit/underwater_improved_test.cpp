@@ -234,17 +234,20 @@ TEST(UnderwaterImproved, DiffuseMeanCosinesFollowTheirTableAndReachTheKernel) {
     EXPECT_GT(m.down, 0.0);
     EXPECT_LE(m.down, 1.0);
   }
-  // The band block carries 1/μ̄, and the in-scatter source weighs the streams by it: a horizontal view
-  // ray (ν = 0) in a layer with only E_u (no flux term difference from ν) sees b' E_u/μ̄_u/(4π).
+  // The two-stream's scalar irradiance is its plane irradiances over the mean cosines, mode by mode, and
+  // the in-scatter source weighs it isotropically: a level view (ν = 0) sees b' E_0/(4π); the two streams
+  // carry no horizontal flux.
   const UwiBand ib = makeUwiBand(uwTestBand(0.1, 0.3, 0.3, 1.0, 0.9, 0.35), 0.9, 0.9, 5.0, 1.34);
-  EXPECT_NEAR(ib.e0_down, 1 / 0.72, 1e-6);
-  EXPECT_NEAR(ib.e0_up, 1 / 0.52, 1e-6);
-  const double w_d = kd::uwi_source_weight(&ib, 0.0, 1.0, 0.0, ib.e0_down, ib.e0_up),
-               w_u = kd::uwi_source_weight(&ib, 0.0, 0.0, 1.0, ib.e0_down, ib.e0_up);
-  EXPECT_NEAR(w_d, ib.b_dm / 0.72 / (4 * M_PI), 1e-6 * w_d);
-  EXPECT_NEAR(w_u, ib.b_dm / 0.52 / (4 * M_PI), 1e-6 * w_u);
-  const float wf = kf::uwi_source_weight(&ib, 0.5f, 1.0f, 0.25f, ib.e0_down, ib.e0_up);
-  EXPECT_NEAR(wf, kd::uwi_source_weight(&ib, 0.5, 1.0, 0.25, ib.e0_down, ib.e0_up), 1e-6 * wf);
+  EXPECT_NEAR(ib.o1, ib.d1 / 0.72 + ib.u1 / 0.52, 1e-6 * std::fabs(ib.o1));
+  EXPECT_NEAR(ib.o2, ib.d2 / 0.72 + ib.u2 / 0.52, 1e-6 * std::fabs(ib.o2));
+  EXPECT_NEAR(ib.op, ib.dp / 0.72 + ib.up / 0.52, 1e-6 * std::fabs(ib.op));
+  EXPECT_EQ(ib.h1, 0.0f);
+  EXPECT_EQ(ib.h2, 0.0f);
+  EXPECT_EQ(ib.hp, 0.0f);
+  const double w = kd::uwi_source_weight(&ib, 0.0, 0.4, 1.0, 0.5, 2.0, 0.0);
+  EXPECT_NEAR(w, ib.b_dm * 2.0 / (4 * M_PI), 1e-6 * w);
+  const float wf = kf::uwi_source_weight(&ib, 0.5f, -0.3f, 1.0f, 0.25f, 2.0f, 0.1f);
+  EXPECT_NEAR(wf, kd::uwi_source_weight(&ib, 0.5, -0.3, 1.0, 0.25, 2.0, 0.1), 1e-6 * wf);
 }
 
 TEST(UnderwaterImproved, AsymptoticClosureDecaysAtTheIsotropicEigenvalue) {

@@ -95,34 +95,35 @@ TEST(UnderwaterModelOption, BadValuesNameFileLineAndKey) {
 TEST(UnderwaterModelOption, MeanCosineKeysOverrideTheFittedTableOrAreRejectedWithFileLineAndKey) {
   const WavelengthGrid grid = makeGrid(2, 400, 700);
   const Sensor sensor = makeSensor("cie1931", grid, true, "");
-  // Default: the fitted table at the water's g (jerlov IB's default g).
-  const Scene plain = parseScene(withModel("\"improved\""), "uw.toml");
+  // With the two-stream's diffuse field, default: the fitted table at the water's g (jerlov IB's default
+  // g); the scalar irradiance of each exponential is its plane irradiances over the streams' mean cosines.
+  const std::string two = "\"improved\"\nimproved_diffuse = \"two_stream\"";
+  const Scene plain = parseScene(withModel(two), "uw.toml");
   const DiffuseMeanCosines table = diffuseMeanCosines(plain.water.g);
   const UnderwaterSetup a = makeUnderwaterSetup(plain, grid, sensor);
-  EXPECT_FLOAT_EQ(a.improved[0].e0_down, float(1 / table.down));
-  EXPECT_FLOAT_EQ(a.improved[0].e0_up, float(1 / table.up));
+  auto scalar = [](const UwiBand& ib, double down, double up, double beam_down, double beam_up) {
+    EXPECT_FLOAT_EQ(ib.o1, float(ib.d1 / down + ib.u1 / up));
+    EXPECT_FLOAT_EQ(ib.o2, float(ib.d2 / down + ib.u2 / up));
+    EXPECT_FLOAT_EQ(ib.op, float(ib.dp / beam_down + ib.up / beam_up));
+  };
+  scalar(a.improved[0], table.down, table.up, table.beam_down, table.beam_up);
   // Set: each key replaces its stream's value only.
-  const Scene set = parseScene(withModel("\"improved\"\nimproved_mean_cosine_down = 0.8"), "uw.toml");
+  const Scene set = parseScene(withModel(two + "\nimproved_mean_cosine_down = 0.8"), "uw.toml");
   const UnderwaterSetup b = makeUnderwaterSetup(set, grid, sensor);
-  EXPECT_FLOAT_EQ(b.improved[1].e0_down, float(1 / 0.8));
-  EXPECT_FLOAT_EQ(b.improved[1].e0_up, float(1 / table.up));
-  EXPECT_FLOAT_EQ(b.improved[1].e0_beam_down, float(1 / table.beam_down));
+  scalar(b.improved[1], 0.8, table.up, table.beam_down, table.beam_up);
   // The beam's offspring's keys replace its pair only.
-  const Scene beam = parseScene(withModel("\"improved\"\nimproved_beam_mean_cosine_down = 0.9\n"
-                                          "improved_beam_mean_cosine_up = 0.45"), "uw.toml");
+  const Scene beam = parseScene(withModel(two + "\nimproved_beam_mean_cosine_down = 0.9\n"
+                                                "improved_beam_mean_cosine_up = 0.45"), "uw.toml");
   const UnderwaterSetup c = makeUnderwaterSetup(beam, grid, sensor);
-  EXPECT_FLOAT_EQ(c.improved[1].e0_beam_down, float(1 / 0.9));
-  EXPECT_FLOAT_EQ(c.improved[1].e0_beam_up, float(1 / 0.45));
-  EXPECT_FLOAT_EQ(c.improved[1].e0_down, float(1 / table.down));
-  EXPECT_FLOAT_EQ(c.improved[1].e0_up, float(1 / table.up));
+  scalar(c.improved[1], table.down, table.up, 0.9, 0.45);
   // The closure key: "asymptotic" lowers k below the default (quadrature) one's; "quadrature" is it.
-  const Scene asym = parseScene(withModel("\"improved\"\nimproved_two_stream = \"asymptotic\""), "uw.toml");
-  const Scene quad = parseScene(withModel("\"improved\"\nimproved_two_stream = \"quadrature\""), "uw.toml");
+  const Scene asym = parseScene(withModel(two + "\nimproved_two_stream = \"asymptotic\""), "uw.toml");
+  const Scene quad = parseScene(withModel(two + "\nimproved_two_stream = \"quadrature\""), "uw.toml");
   EXPECT_LT(makeUnderwaterSetup(asym, grid, sensor).improved[1].k, 0.95f * a.improved[1].k);
   EXPECT_EQ(makeUnderwaterSetup(quad, grid, sensor).improved[1].k, a.improved[1].k);
   for (const std::string bad : {"improved_mean_cosine_up = 0.05", "improved_mean_cosine_down = 1.5",
                                 "improved_beam_mean_cosine_down = 1.5", "improved_beam_mean_cosine_up = -0.2",
-                                "improved_two_stream = \"cubic\""})
+                                "improved_two_stream = \"cubic\"", "improved_diffuse = \"four_stream\""})
     seasim::testing::expectImprovedSceneRejects(bad, "underwater." + bad.substr(0, bad.find(' ')));
 }
 

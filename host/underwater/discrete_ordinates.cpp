@@ -1,0 +1,366 @@
+#include "underwater/discrete_ordinates.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "math/kernel_math.h"
+
+namespace seasim {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Gauss-Legendre nodes and weights on (0, 1): Newton's method on P_n from the usual first guess.
+void gaussLegendreUnit(int n, std::vector<double>& x, std::vector<double>& w) {
+  x.assign(n, 0.0);
+  w.assign(n, 0.0);
+  for (int i = 0; i < n; ++i) {
+    double z = std::cos(kPi * (i + 0.75) / (n + 0.5)), dp = 1;
+    for (int it = 0; it < 100; ++it) {
+      double p0 = 1, p1 = z;
+      for (int l = 2; l <= n; ++l) {
+        const double p2 = ((2 * l - 1) * z * p1 - (l - 1) * p0) / l;
+        p0 = p1;
+        p1 = p2;
+      }
+      const double pn = n == 1 ? z : p1, pm = n == 1 ? 1.0 : p0;
+      dp = n * (z * pn - pm) / (z * z - 1);
+      const double dz = pn / dp;
+      z -= dz;
+      if (std::abs(dz) < 1e-15) break;
+    }
+    x[i] = 0.5 * (1 - z);  // ascending on (0, 1)
+    w[i] = 1.0 / ((1 - z * z) * dp * dp);  // (2 / ((1 - z²) P_n'²)) / 2
+  }
+}
+
+// The azimuth mode's Legendre functions at x, l = 0..count-1, scaled for the addition theorem:
+// mode 0: P_l(x); mode 1: P_l^1(x) / √(l (l + 1)) (0 at l = 0), so that the mode's phase is
+// Σ_l (2l + 1) χ_l q_l(μ) q_l(μ') / (4π) in both.
+std::vector<double> azimuthLegendre(int mode, int count, double x) {
+  std::vector<double> p(count, 0.0);
+  if (mode == 0) {
+    if (count > 0) p[0] = 1;
+    if (count > 1) p[1] = x;
+    for (int l = 2; l < count; ++l) p[l] = ((2 * l - 1) * x * p[l - 1] - (l - 1) * p[l - 2]) / l;
+    return p;
+  }
+  // P_1^1 = √(1 - x²) (the Condon-Shortley sign cancels in the products), P_2^1 = 3 x P_1^1,
+  // (l - 1) P_{l+1}^1 = (2l + 1) x P_l^1 - (l + 1) P_{l-1}^1 ... written for l + 1 = L: (L - 1) P_L^1 =
+  // (2L - 1) x P_{L-1}^1 - L P_{L-2}^1.
+  std::vector<double> raw(count, 0.0);
+  const double s = std::sqrt(std::max(1 - x * x, 0.0));
+  if (count > 1) raw[1] = s;
+  if (count > 2) raw[2] = 3 * x * s;
+  for (int l = 3; l < count; ++l) raw[l] = ((2 * l - 1) * x * raw[l - 1] - l * raw[l - 2]) / (l - 1);
+  for (int l = 1; l < count; ++l) p[l] = raw[l] / std::sqrt(double(l) * (l + 1));
+  return p;
+}
+
+// Solves a x = rhs (n x n, row-major) by Gaussian elimination with partial pivoting; a and rhs are
+// overwritten, the solution is left in rhs.
+void solveLinear(std::vector<double>& a, std::vector<double>& rhs, int n) {
+  for (int col = 0; col < n; ++col) {
+    int piv = col;
+    for (int r = col + 1; r < n; ++r)
+      if (std::abs(a[r * n + col]) > std::abs(a[piv * n + col])) piv = r;
+    if (!(std::abs(a[piv * n + col]) > 0)) throw std::runtime_error("discrete ordinates: singular system");
+    if (piv != col) {
+      for (int c = 0; c < n; ++c) std::swap(a[col * n + c], a[piv * n + c]);
+      std::swap(rhs[col], rhs[piv]);
+    }
+    for (int r = col + 1; r < n; ++r) {
+      const double f = a[r * n + col] / a[col * n + col];
+      if (f == 0) continue;
+      for (int c = col; c < n; ++c) a[r * n + c] -= f * a[col * n + c];
+      rhs[r] -= f * rhs[col];
+    }
+  }
+  for (int r = n - 1; r >= 0; --r) {
+    double s = rhs[r];
+    for (int c = r + 1; c < n; ++c) s -= a[r * n + c] * rhs[c];
+    rhs[r] = s / a[r * n + r];
+  }
+}
+
+// Eigen-decomposition of a symmetric n x n matrix (row-major, destroyed) by cyclic Jacobi rotations:
+// eigenvalues in `values`, eigenvectors in the columns of `vectors`.
+void symmetricEigen(std::vector<double>& a, int n, std::vector<double>& values, std::vector<double>& vectors) {
+  vectors.assign(static_cast<size_t>(n) * n, 0.0);
+  for (int i = 0; i < n; ++i) vectors[i * n + i] = 1;
+  for (int sweep = 0; sweep < 100; ++sweep) {
+    double off = 0, diag = 0;
+    for (int i = 0; i < n; ++i) {
+      diag += a[i * n + i] * a[i * n + i];
+      for (int j = i + 1; j < n; ++j) off += a[i * n + j] * a[i * n + j];
+    }
+    if (off <= 1e-30 * diag) break;
+    for (int p = 0; p < n; ++p)
+      for (int q = p + 1; q < n; ++q) {
+        const double apq = a[p * n + q];
+        if (std::abs(apq) < 1e-300) continue;
+        const double theta = (a[q * n + q] - a[p * n + p]) / (2 * apq);
+        const double t = (theta >= 0 ? 1.0 : -1.0) / (std::abs(theta) + std::sqrt(theta * theta + 1));
+        const double c = 1 / std::sqrt(t * t + 1), s = t * c;
+        for (int k = 0; k < n; ++k) {  // columns p, q
+          const double akp = a[k * n + p], akq = a[k * n + q];
+          a[k * n + p] = c * akp - s * akq;
+          a[k * n + q] = s * akp + c * akq;
+        }
+        for (int k = 0; k < n; ++k) {  // rows p, q
+          const double apk = a[p * n + k], aqk = a[q * n + k];
+          a[p * n + k] = c * apk - s * aqk;
+          a[q * n + k] = s * apk + c * aqk;
+        }
+        for (int k = 0; k < n; ++k) {
+          const double vkp = vectors[k * n + p], vkq = vectors[k * n + q];
+          vectors[k * n + p] = c * vkp - s * vkq;
+          vectors[k * n + q] = s * vkp + c * vkq;
+        }
+      }
+  }
+  values.resize(n);
+  for (int i = 0; i < n; ++i) values[i] = a[i * n + i];
+}
+
+void requireRange(bool ok, const std::string& what) {
+  if (!ok) throw std::invalid_argument("discrete ordinates: " + what);
+}
+
+}  // namespace
+
+DiscreteOrdinates::DiscreteOrdinates(const DiscreteOrdinatesLayer& layer, int streams, int azimuth_mode) {
+  requireRange(streams >= 2, "at least 2 streams per hemisphere");
+  requireRange(azimuth_mode == 0 || azimuth_mode == 1, "the azimuth mode must be 0 or 1");
+  mode_ = azimuth_mode;
+  requireRange(layer.a >= 0 && layer.b >= 0 && std::isfinite(layer.a) && std::isfinite(layer.b),
+               "a and b must be finite and >= 0");
+  requireRange(std::abs(layer.g) < 1, "|g| must be < 1");
+  requireRange(layer.mu_sun > 0 && layer.mu_sun <= 1, "mu_sun must be in (0, 1]");
+  requireRange(layer.bottom_albedo >= 0 && layer.bottom_albedo <= 1, "bottom albedo must be in [0, 1]");
+  requireRange(layer.e_sun0 >= 0 && layer.e_sky0 >= 0, "irradiances must be >= 0");
+  const int n = n_ = streams;
+  gaussLegendreUnit(n, mu_, w_);
+  bottom_ = layer.bottom_depth > 0 ? layer.bottom_depth : 0;
+  mu_sun_ = layer.mu_sun;
+  e_sun0_ = layer.e_sun0;
+
+  // Delta-M to the 2N moments the quadrature integrates exactly (Wiscombe 1977).
+  const int moments = 2 * n;
+  const double f = std::pow(layer.g, moments);
+  std::vector<double> chi(moments);
+  for (int l = 0; l < moments; ++l) chi[l] = (std::pow(layer.g, l) - f) / (1 - f);
+  const double b_hat = layer.b * (1 - f);
+  // A little absorption keeps the conservative limit (a = 0: a mode that does not decay, a linear
+  // solution) an exponential; 1e-6 of c changes the light by less than that over 1000 optical depths.
+  const double a_hat = std::max({layer.a, 1e-6 * (layer.a + b_hat), 1e-9});
+  const double c_hat = a_hat + b_hat;
+  m_ = c_hat / mu_sun_;
+
+  // The azimuth mode's phase between the quadrature's cosines: same hemisphere (pp) and opposite (pm),
+  // p^m(μ, μ') = Σ_l (2l + 1) χ_l q_l(μ) q_l(μ') / (4π) (azimuthLegendre; P_l^m(-μ) = (-1)^{l+m} P_l^m(μ)),
+  // and towards the sun's cosine. Mode 0 is the azimuth average; mode 1 the cos φ part (φ from the
+  // sun's azimuth), whose in-scatter has the same 2π ∫ dμ' form (Chandrasekhar 1960, §48).
+  std::vector<std::vector<double>> pl(n);
+  for (int i = 0; i < n; ++i) pl[i] = azimuthLegendre(mode_, moments, mu_[i]);
+  const std::vector<double> pl_sun = azimuthLegendre(mode_, moments, mu_sun_);
+  std::vector<double> pp(n * n), pm(n * n), q_plus(n), q_minus(n);
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) {
+      double s_pp = 0, s_pm = 0;
+      for (int l = 0; l < moments; ++l) {
+        const double t = (2 * l + 1) * chi[l] * pl[i][l] * pl[j][l];
+        s_pp += t;
+        s_pm += ((l + mode_) % 2 ? -t : t);
+      }
+      pp[i * n + j] = s_pp / (4 * kPi);
+      pm[i * n + j] = s_pm / (4 * kPi);
+    }
+    double s_down = 0, s_up = 0;
+    for (int l = 0; l < moments; ++l) {
+      const double t = (2 * l + 1) * chi[l] * pl[i][l] * pl_sun[l];
+      s_down += t;
+      s_up += ((l + mode_) % 2 ? -t : t);
+    }
+    // The beam's scattering towards ±μ_i: b̂ p^m F0 (twice that for m = 1: the cos φ term of the
+    // addition theorem), F0 = e_sun0 / μ_sun its normal irradiance.
+    const double fourier = mode_ == 0 ? 1.0 : 2.0;
+    q_plus[i] = fourier * b_hat * s_down / (4 * kPi) * e_sun0_ / mu_sun_;
+    q_minus[i] = fourier * b_hat * s_up / (4 * kPi) * e_sun0_ / mu_sun_;
+  }
+
+  // dL+/dy = A L+ + B L-, dL-/dy = -B L+ - A L-, A = M^-1 (-ĉ + 2π b̂ Pp W), B = M^-1 2π b̂ Pm W. The
+  // modes e^{σ y} have σ² the eigenvalues of (A - B)(A + B) = W^-1 T^½ (Y1 Y2) T^-½ W, T = W M^-1,
+  // Y1,2 = T^½ (ĉ W^-1 - 2π b̂ (Pp ∓ Pm)) T^½ symmetric positive definite (a > 0): with Y2 = C Cᵀ the
+  // symmetric Cᵀ Y1 C has the same eigenvalues, and its eigenvector z gives Y1 Y2's as Y1 C z.
+  std::vector<double> y1(n * n), y2(n * n);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const double tij = std::sqrt(w_[i] / mu_[i] * w_[j] / mu_[j]);
+      const double diag = i == j ? c_hat / w_[i] : 0.0;
+      y1[i * n + j] = tij * (diag - 2 * kPi * b_hat * (pp[i * n + j] - pm[i * n + j]));
+      y2[i * n + j] = tij * (diag - 2 * kPi * b_hat * (pp[i * n + j] + pm[i * n + j]));
+    }
+  std::vector<double> chol(n * n, 0.0);  // lower C, Y2 = C Cᵀ
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j <= i; ++j) {
+      double s = y2[i * n + j];
+      for (int k = 0; k < j; ++k) s -= chol[i * n + k] * chol[j * n + k];
+      if (i == j) {
+        if (!(s > 0)) throw std::runtime_error("discrete ordinates: the medium's matrix is not positive definite");
+        chol[i * n + i] = std::sqrt(s);
+      } else {
+        chol[i * n + j] = s / chol[j * n + j];
+      }
+    }
+  std::vector<double> y1c(n * n, 0.0), sym(n * n, 0.0);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      double s = 0;
+      for (int k = j; k < n; ++k) s += y1[i * n + k] * chol[k * n + j];
+      y1c[i * n + j] = s;
+    }
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      double s = 0;
+      for (int k = i; k < n; ++k) s += chol[k * n + i] * y1c[k * n + j];
+      sym[i * n + j] = s;
+    }
+  for (int i = 0; i < n; ++i)  // symmetric up to rounding: make it exactly so for Jacobi
+    for (int j = i + 1; j < n; ++j) sym[i * n + j] = sym[j * n + i] = 0.5 * (sym[i * n + j] + sym[j * n + i]);
+  std::vector<double> sigma2, z;
+  symmetricEigen(sym, n, sigma2, z);
+
+  lambda_.assign(n, 0.0);
+  x_plus_.assign(n * n, 0.0);
+  x_minus_.assign(n * n, 0.0);
+  k_min_ = 0;
+  for (int j = 0; j < n; ++j) {
+    const double lam = std::sqrt(std::max(sigma2[j], 0.0));
+    lambda_[j] = lam;
+    // S = W^-1 T^½ Y1 C z; D = (A + B) S / σ with σ = -λ (the mode that decays downwards).
+    std::vector<double> s(n);
+    for (int i = 0; i < n; ++i) {
+      double v = 0;
+      for (int k = 0; k < n; ++k) v += y1c[i * n + k] * z[k * n + j];
+      s[i] = std::sqrt(w_[i] / mu_[i]) / w_[i] * v;
+    }
+    for (int i = 0; i < n; ++i) {
+      double apb = -c_hat * s[i];
+      for (int k = 0; k < n; ++k) apb += 2 * kPi * b_hat * (pp[i * n + k] + pm[i * n + k]) * w_[k] * s[k];
+      const double d = -(apb / mu_[i]) / lam;
+      x_plus_[i * n + j] = 0.5 * (s[i] + d);
+      x_minus_[i * n + j] = 0.5 * (s[i] - d);
+    }
+    k_min_ = j == 0 ? lam : std::min(k_min_, lam);
+  }
+
+  // The beam's particular solution Z e^{-m y}: [A + m, B; -B, -A + m] Z = [-M^-1 Q+; M^-1 Q-]. At a
+  // mode's λ = m it resonates: m is moved by 1e-7 of itself (its solution changes by about as much).
+  double m = m_;
+  for (double lam : lambda_)
+    if (std::abs(lam - m) < 1e-7 * m) m = lam + (m >= lam ? 1e-7 : -1e-7) * m_;
+  {
+    const int n2 = 2 * n;
+    std::vector<double> sys(n2 * n2, 0.0), rhs(n2, 0.0);
+    for (int i = 0; i < n; ++i) {
+      for (int j = 0; j < n; ++j) {
+        const double a_ij = (2 * kPi * b_hat * pp[i * n + j] * w_[j] - (i == j ? c_hat : 0.0)) / mu_[i];
+        const double b_ij = 2 * kPi * b_hat * pm[i * n + j] * w_[j] / mu_[i];
+        sys[i * n2 + j] = a_ij + (i == j ? m : 0.0);
+        sys[i * n2 + n + j] = b_ij;
+        sys[(n + i) * n2 + j] = -b_ij;
+        sys[(n + i) * n2 + n + j] = -a_ij + (i == j ? m : 0.0);
+      }
+      rhs[i] = -q_plus[i] / mu_[i];
+      rhs[n + i] = q_minus[i] / mu_[i];
+    }
+    if (e_sun0_ > 0) solveLinear(sys, rhs, n2);
+    z_plus_.assign(rhs.begin(), rhs.begin() + n);
+    z_minus_.assign(rhs.begin() + n, rhs.end());
+  }
+
+  // Boundary conditions. Top: L+(0) = R L-(0) + the sky through the window, (1 - R) n² L_sky, scaled to
+  // e_sky0. Bottom: L-(H) = (ρ/π) (E_d(H) + e_sun0 e^{-m H}). The uniform sky and the Lambertian bottom
+  // have no cos φ part: mode 1 sees neither (the surface reflects it as any radiance).
+  std::vector<double> refl(n), sky(n);
+  double sky_unit = 0;
+  for (int i = 0; i < n; ++i) {
+    refl[i] = kmath_d::fresnel_reflectance(mu_[i], layer.ior, 1.0);
+    sky[i] = 1 - refl[i];
+    sky_unit += 2 * kPi * w_[i] * mu_[i] * sky[i];
+  }
+  for (int i = 0; i < n; ++i) sky[i] = sky_unit > 0 && mode_ == 0 ? sky[i] * layer.e_sky0 / sky_unit : 0.0;
+  c_decay_.assign(n, 0.0);
+  c_grow_.assign(n, 0.0);
+  if (bottom_ > 0) {
+    const int n2 = 2 * n;
+    const double rho = mode_ == 0 ? layer.bottom_albedo : 0.0, em = std::exp(-m_ * bottom_), ep = std::exp(-m * bottom_);
+    std::vector<double> sys(n2 * n2, 0.0), rhs(n2, 0.0);
+    for (int i = 0; i < n; ++i) {
+      for (int j = 0; j < n; ++j) {
+        const double e = std::exp(-lambda_[j] * bottom_);
+        sys[i * n2 + j] = x_plus_[i * n + j] - refl[i] * x_minus_[i * n + j];
+        sys[i * n2 + n + j] = e * (x_minus_[i * n + j] - refl[i] * x_plus_[i * n + j]);
+        double flux_dec = 0, flux_grow = 0;  // 2ρ Σ_k w_k μ_k (the mode's down radiance at H)
+        for (int k = 0; k < n; ++k) {
+          flux_dec += w_[k] * mu_[k] * x_plus_[k * n + j];
+          flux_grow += w_[k] * mu_[k] * x_minus_[k * n + j];
+        }
+        sys[(n + i) * n2 + j] = e * (x_minus_[i * n + j] - 2 * rho * flux_dec);
+        sys[(n + i) * n2 + n + j] = x_plus_[i * n + j] - 2 * rho * flux_grow;
+      }
+      double flux_p = 0;
+      for (int k = 0; k < n; ++k) flux_p += w_[k] * mu_[k] * z_plus_[k];
+      rhs[i] = sky[i] - (z_plus_[i] - refl[i] * z_minus_[i]);
+      rhs[n + i] = rho / kPi * e_sun0_ * em - ep * (z_minus_[i] - 2 * rho * flux_p);
+    }
+    solveLinear(sys, rhs, n2);
+    std::copy(rhs.begin(), rhs.begin() + n, c_decay_.begin());
+    std::copy(rhs.begin() + n, rhs.end(), c_grow_.begin());
+  } else {
+    std::vector<double> sys(n * n, 0.0), rhs(n, 0.0);
+    for (int i = 0; i < n; ++i) {
+      for (int j = 0; j < n; ++j) sys[i * n + j] = x_plus_[i * n + j] - refl[i] * x_minus_[i * n + j];
+      rhs[i] = sky[i] - (z_plus_[i] - refl[i] * z_minus_[i]);
+    }
+    solveLinear(sys, rhs, n);
+    c_decay_ = rhs;
+  }
+  m_particular_ = m;
+}
+
+DiscreteOrdinatesIrradiance DiscreteOrdinates::at(double depth) const {
+  const int n = n_;
+  const double y = bottom_ > 0 ? std::clamp(depth, 0.0, bottom_) : std::max(depth, 0.0);
+  std::vector<double> e_dec(n), e_grow(n, 0.0);
+  for (int j = 0; j < n; ++j) {
+    e_dec[j] = std::exp(-lambda_[j] * y);
+    if (bottom_ > 0) e_grow[j] = std::exp(-lambda_[j] * (bottom_ - y));
+  }
+  const double ep = std::exp(-m_particular_ * y);
+  DiscreteOrdinatesIrradiance out;
+  for (int i = 0; i < n; ++i) {
+    double down = z_plus_[i] * ep, up = z_minus_[i] * ep;
+    for (int j = 0; j < n; ++j) {
+      down += c_decay_[j] * x_plus_[i * n + j] * e_dec[j] + c_grow_[j] * x_minus_[i * n + j] * e_grow[j];
+      up += c_decay_[j] * x_minus_[i * n + j] * e_dec[j] + c_grow_[j] * x_plus_[i * n + j] * e_grow[j];
+    }
+    if (mode_ == 0) {
+      out.down += 2 * kPi * w_[i] * mu_[i] * down;
+      out.up += 2 * kPi * w_[i] * mu_[i] * up;
+      out.scalar += 2 * kPi * w_[i] * (down + up);
+    } else {  // ∫ L^1(μ) cos φ · √(1 - μ²) cos φ dφ dμ = π ∫ L^1 √(1 - μ²) dμ
+      out.horizontal += kPi * w_[i] * std::sqrt(1 - mu_[i] * mu_[i]) * (down + up);
+    }
+  }
+  out.beam_down = e_sun0_ * std::exp(-m_ * y);
+  out.beam_scalar = out.beam_down / mu_sun_;
+  out.beam_horizontal = out.beam_scalar * std::sqrt(std::max(1 - mu_sun_ * mu_sun_, 0.0));
+  if (mode_ == 1) out.down = out.up = out.scalar = 0;
+  return out;
+}
+
+}  // namespace seasim

@@ -1,0 +1,66 @@
+// discrete_ordinates.h — the diffuse light of a plane-parallel water layer by discrete ordinates
+// (Chandrasekhar 1960; the eigen-solution of Stamnes & Swanson 1981, as DISORT solves it), for
+// underwater.model = "improved": the depth profiles of the diffuse plane irradiances E_d, E_u and the
+// scalar irradiance E_0 that the model's closed form is fitted to (underwater_improved_setup.*).
+//
+// The layer: homogeneous water (absorption a, scattering b, Henyey-Greenstein g) from the flat surface
+// (y = 0) to a Lambertian bottom of albedo rho at depth H, or without a bottom (semi-infinite). Lit by the
+// refracted sun beam (horizontal irradiance e_sun0 just below the surface, direction cosine mu_sun) and
+// a uniform sky seen through Snell's window (transmitted irradiance e_sky0). The surface reflects the
+// upwelling light back down by Fresnel's law (total internal reflection outside the window).
+//
+// The radiance is azimuth-averaged (the m = 0 Fourier mode: all that plane irradiances and the scalar
+// irradiance need) on a double-Gauss quadrature of `streams` cosines per hemisphere. The HG phase is
+// delta-M scaled to the 2 streams moments it resolves (Wiscombe 1977: f = g^(2 streams), so at 16
+// streams and g = 0.95 f = 0.19, and the unscattered beam then carries the peak's f). Solved in closed
+// form per depth (eigenvalues of a symmetric N x N matrix by Jacobi rotations, the beam's particular
+// solution and the boundary conditions by Gaussian elimination), in double.
+#pragma once
+#include <vector>
+
+namespace seasim {
+
+struct DiscreteOrdinatesLayer {
+  double a = 0, b = 0, g = 0;  // 1/m, 1/m, HG asymmetry in (-1, 1)
+  double bottom_depth = 0;     // m; <= 0: no bottom
+  double bottom_albedo = 0;    // Lambertian, in [0, 1]
+  double ior = 1.34;           // the water's refractive index (the surface's Fresnel reflection)
+  double mu_sun = 1;           // the refracted sun's direction cosine with the downward vertical, (0, 1]
+  double e_sun0 = 0;           // the beam's irradiance on a horizontal plane just below the surface
+  double e_sky0 = 0;           // the sky's transmitted irradiance just below the surface (uniform sky)
+};
+
+// The diffuse light at one depth: the radiance without the (delta-M scaled) unscattered beam,
+// integrated over the hemispheres. The beam's own part is beam_down (its horizontal irradiance) and
+// beam_scalar (its scalar irradiance, beam_down / mu_sun).
+// horizontal (azimuth mode 1 only; the others mode 0 only): the diffuse light's net flux along the
+// sun's horizontal direction, ∫ L sinθ cos φ dΩ; beam_horizontal the beam's, beam_scalar √(1 - μ_sun²).
+struct DiscreteOrdinatesIrradiance {
+  double down = 0, up = 0, scalar = 0, horizontal = 0;
+  double beam_down = 0, beam_scalar = 0, beam_horizontal = 0;
+};
+
+class DiscreteOrdinates {
+ public:
+  // streams: cosines per hemisphere, >= 2. azimuth_mode: 0 the azimuth-averaged radiance (down, up,
+  // scalar), 1 its cos φ part (horizontal). Throws std::invalid_argument on negative IOPs, |g| >= 1,
+  // mu_sun outside (0, 1], an albedo outside [0, 1] or another mode.
+  explicit DiscreteOrdinates(const DiscreteOrdinatesLayer& layer, int streams = 16, int azimuth_mode = 0);
+
+  DiscreteOrdinatesIrradiance at(double depth) const;
+  // The slowest decay of the homogeneous solution, 1/m: the diffuse field's asymptotic K∞.
+  double asymptoticK() const { return k_min_; }
+  // The unscattered beam's decay with depth, c_hat / mu_sun, 1/m (c_hat: the delta-M extinction).
+  double beamK() const { return m_; }
+
+ private:
+  int n_ = 0, mode_ = 0;
+  double bottom_ = 0, m_ = 0, m_particular_ = 0, k_min_ = 0, mu_sun_ = 1, e_sun0_ = 0;
+  std::vector<double> mu_, w_;                 // the N positive cosines and their weights
+  std::vector<double> lambda_;                 // N decay rates, 1/m
+  std::vector<double> x_plus_, x_minus_;       // N x N: mode j's down (x_plus_) and up radiances at cosine i
+  std::vector<double> z_plus_, z_minus_;       // N: the particular solution's down and up radiances
+  std::vector<double> c_decay_, c_grow_;       // N each: the modes' amplitudes
+};
+
+}  // namespace seasim
