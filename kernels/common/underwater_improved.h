@@ -3,40 +3,37 @@
  * The scalar form, one band per call: the host's (kmath_f / kmath_d, unit-tested in float and double)
  * and the reference that kd_multiple.cl's band lanes (SEASIM_UNDERWATER_MODEL == 1,
  * common/underwater_improved_bands.h) are tested against; needs optics.h, underwater_params.h, underwater.h and
- * underwater_improved_params.h before it. Coefficients per band: host/underwater/underwater_improved_setup.*
+ * underwater_improved_params.h before it. Coefficients per band: host/underwater/underwater_improved_ordinates.*
+ * (and underwater_improved_setup.* for the two-stream)
  *
  * What it changes against eq. 4.7, each measured in results/BENCHMARKS.md ("A better fast underwater
  * model"):
  *  - delta-M scaling (Wiscombe 1977; the maths of quality.lamps_delta_m): the phase function's forward
  *    peak f = g² counts as unscattered, b' = b (1 - f), c' = a + b', g' = g / (1 + g). Light turned by a
  *    few degrees goes on: view rays, surfaces and the sun beam are attenuated by c', not c.
- *  - the diffuse field from the IOPs and g, not a measured K_d: a two-stream solution for a layer over a
- *    Lambertian bottom of albedo ρ (plane irradiances E_d down, E_u up; quadrature coefficients
- *    γ1 = √3 (2 - ω'(1 + g'))/2, γ2 = √3 ω'(1 - g')/2, the beam's split γ3 = (2 - 3 g' μ_w)/4, γ4 = 1 - γ3),
- *    with the delta-M sun beam as its source (its k, the field's decay, taken per frame as the mean slope
- *    over the camera's depth of the two-stream's mode plus a share of the asymptotic e^{-K∞ y}: host-side,
- *    depthMeanDiffuseK in underwater_improved_setup.h; the formulas here are unchanged), the sky's irradiance and the surface's internal reflection
- *    of E_u at the top and E_u(H) = ρ (E_d(H) + E_sun(H)) at the bottom. So the bottom's upwelling light
- *    lights the water and the objects' undersides.
- *  - the diffuse field's angular shape, weighted by the phase: the down and up streams scattered by the
- *    delta-M phase to first order, (1 + 3 g' cos θ)/(4π) (ν the cosine of the photon's direction with
- *    the downward vertical), each stream's scalar irradiance its plane irradiance over its mean cosine:
- *      J(ν) = b' [E_d/μ̄_d + E_u/μ̄_u + 3 g_f ν (E_d - E_u)] / (4π)   (per m per sr)
- *    g_f = s(g) g' (ib->g_flux): the flux term's asymmetry, g' times a scale s(g) >= 1 fitted to the path
- *    tracer (diffuseFluxScale, host-side; s7c): the first-order expansion leaves out the higher orders
- *    of a forward-peaked phase seen against a downward-peaked field, which brighten the views looking
- *    up and darken those looking down (measured: turbid water looking up at g = 0.9 was 0.88–0.90).
- *    The quadrature two-stream's rings at ±1/√3 would give μ̄_d = μ̄_u = 1/√3; μ̄_d(g), μ̄_u are instead
- *    a small table fitted offline to the path tracer (diffuseMeanCosines, host/underwater/
- *    underwater_improved_setup.cpp; fitted on one grid, reported on a held-out one in BENCHMARKS.md):
- *    the up stream lies nearer the horizon (0.52), the down stream nearer the sun as g grows (1/√3 up
- *    to g = 0.5, 0.72 from g = 0.9). The beam's diffuse offspring (the e^{-m y} terms dp, up) is weighed
-    by its own pair (e0_beam_down, e0_beam_up; the table sets it equal to the other), so a refit can
-    tell the light near the beam from the two-stream's own modes; the band table folds either pair
-    into its source weights on the host. The two-stream's closure (its α1, α2: TwoStreamClosure in
-    underwater_improved_setup.h, host-side only) is the quadrature's; "asymptotic" (k the exact K∞
-    of the similarity-scaled medium) is a refit option. Both measured worse so far (BENCHMARKS.md,
-    s6a): apart pairs break the cancellation of dp against d1 near k = m.
+ *  - the diffuse field from the IOPs and g, not a measured K_d, built on the host per band and frame
+ *    (underwater.improved_diffuse): by default ("discrete_ordinates", host/underwater/
+ *    underwater_improved_ordinates.*) a discrete-ordinates solution of the plane-parallel water (16
+ *    streams per hemisphere, the HG phase, the sun beam and the sky through the Fresnel surface, a
+ *    Lambertian bottom of albedo ρ) whose plane irradiances E_d, E_u, scalar irradiance E_0 and net
+ *    horizontal flux F_h towards the sun's azimuth (its cos φ mode), less the delta-M beam's, are fitted
+ *    to three exponentials in depth: e^{-k y}, e^{-k (H - y)} and the beam's e^{-m y}. Or
+ *    ("two_stream", before s9a) a two-stream solution over the bottom (quadrature coefficients
+ *    γ1 = √3 (2 - ω'(1 + g'))/2, γ2 = √3 ω'(1 - g')/2, the beam's split γ3 = (2 - 3 g' μ_w)/4, γ4 = 1 - γ3;
+ *    k the mean slope over the camera's depth of its mode plus a fitted share of e^{-K∞ y},
+ *    depthMeanDiffuseK), E_0 from fitted mean cosines (E_d/μ̄_d + E_u/μ̄_u, diffuseMeanCosines) and no F_h.
+ *    Either way the bottom's upwelling light lights the water and the objects' undersides.
+ *  - the diffuse field's angular shape, weighted by the phase: the field scattered by the delta-M phase
+ *    to first order, (1 + 3 g' cos Θ)/(4π), seen along the photon's direction (ν its cosine with the
+ *    downward vertical, chi = √(1 - ν²) cos Δφ its horizontal part along the sun's azimuth,
+ *    uwi_azimuth_factor):
+ *      J = b' [E_0 + 3 g_f (ν (E_d - E_u) + chi F_h)] / (4π)   (per m per sr)
+ *    g_f = s g' (ib->g_flux): g' times a scale fitted to the path tracer (ordinatesFluxScale 1.2;
+ *    diffuseFluxScale's table for the two-stream): the first-order expansion leaves out the higher
+ *    orders of a forward-peaked phase seen against a peaked field. The F_h term is what makes the water
+ *    darker looking away from the sun's azimuth than towards it (measured, s9a: without it the level
+ *    views of deep water at g = 0.9 were 1.12–1.25 of the path tracer, falling across the image as the
+ *    view turns towards the sun).
  *    plus the beam scattered once with the exact phase function (Nakajima & Tanaka 1988's TMS
  *    correction: delta-M's truncated phase would overstate the back-scatter), b p_HG(g, cos θ_s)
  *    e_beam0 e^{-m y}, attenuated as the delta-M beam.

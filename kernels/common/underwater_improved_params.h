@@ -17,12 +17,13 @@ typedef struct {
   float c_dm;   /* delta-M extinction c' = a + b (1 - g²), 1/m: view rays and the sun beam */
   float b_dm;   /* delta-M scattering b' = b (1 - g²), 1/m */
   float g_dm;   /* delta-M asymmetry g' = g / (1 + g) */
-  float k;      /* the diffuse field's attenuation, 1/m: the two-stream's, taken as the mean slope over
-                   the camera's depth (depthMeanDiffuseK, host/underwater/underwater_improved_setup.h) */
+  float k;      /* the diffuse field's attenuation, 1/m: fitted with the coefficients to the discrete
+                   ordinates' field (underwater_improved_ordinates.h), or the two-stream's mean slope over
+                   the camera's depth (depthMeanDiffuseK, underwater_improved_setup.h) */
   float m;      /* the delta-M sun beam's attenuation with depth, c' / μ_w, 1/m */
   float d1, u1; /* E_d, E_u coefficients of e^{-k y} */
   float d2, u2; /* of e^{-k (H - y)} (light the bottom sends up, and its back-scatter) */
-  float dp, up; /* of e^{-m y} (the delta-M beam's diffuse source) */
+  float dp, up; /* of e^{-m y} (the delta-M beam's diffuse offspring) */
   float g_flux; /* the flux term's asymmetry in the in-scatter source: g' times a scale fitted to the path
                    tracer (diffuseFluxScale in underwater_improved_setup.h; s7c, results/BENCHMARKS.md) */
   float o1, o2, op; /* the diffuse scalar irradiance E_0(y) = o1 e^{-k y} + o2 e^{-k (H - y)} + op e^{-m y}:

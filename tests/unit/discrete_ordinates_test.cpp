@@ -1,7 +1,7 @@
 // discrete_ordinates_test.cpp — the plane-parallel discrete-ordinates solver behind the improved
 // underwater model's diffuse field (host/underwater/discrete_ordinates.*, issue 13 s9a): against an
 // independent solution (tests/perf/plane_parallel_dom.py: the exact HG phase averaged over azimuth
-// numerically, no delta-M, 100–120 streams per hemisphere, numpy's general eigen-solver), the isotropic
+// numerically, no delta-M, 100 streams per hemisphere, numpy's general eigen-solver), the isotropic
 // K∞ of the characteristic equation, energy conservation without absorption, the cos φ mode, the
 // bottom's limits and bad input.
 #include <gtest/gtest.h>
@@ -38,15 +38,21 @@ double totalDown(const DiscreteOrdinates& d, double y) {
   return e.down + e.beam_down;
 }
 
-// Values of tests/perf/plane_parallel_dom.py (exact HG phase, no delta-M): E_d with the beam, and E_u.
+// Values of tests/perf/plane_parallel_dom.py (exact HG phase, no delta-M): E_d with the beam, E_u, and
+// E_0 with the beam.
 TEST(DiscreteOrdinates, AgreesWithTheIndependentSolution) {
   struct Case {
-    double a, b, g, bottom, y, e_d, e_u;
+    double a, b, g, bottom, y, e_d, e_u, e_0;
   };
   const Case cases[] = {
-      {0.1, 0.3, 0.95, 0, 10, 0.29584, 0.0039598},  {0.1, 0.3, 0.95, 0, 20, 0.081262, 0.0011453},
-      {0.1, 0.3, 0.0, 0, 10, 0.061553, 0.017172},   {0.1, 0.3, 0.0, 0, 20, 0.0028143, 0.00078869},
-      {0.1, 0.3, 0.95, 20, 18.8, 0.09556, 0.02312}, {0.1, 0.3, 0.95, 0, 0, 1.0039, 0.0115},
+      // plane_parallel_dom.py 0.1 0.3 0.95 --depths 0,10,20; ... 0.1 0.3 0 --depths 10,20;
+      // ... 0.1 0.3 0.95 --bottom 20 --depths 18.8 (100 streams)
+      {0.1, 0.3, 0.95, 0, 0, 1.00357, 0.0114946, 1.14623},
+      {0.1, 0.3, 0.95, 0, 10, 0.295783, 0.00395864, 0.370326},
+      {0.1, 0.3, 0.95, 0, 20, 0.0812508, 0.00114509, 0.104984},
+      {0.1, 0.3, 0.0, 0, 10, 0.0615539, 0.0171726, 0.136012},
+      {0.1, 0.3, 0.0, 0, 20, 0.00281435, 0.000788701, 0.00627639},
+      {0.1, 0.3, 0.95, 20, 18.8, 0.0955633, 0.0231175, 0.161197},
   };
   for (const Case& c : cases) {
     const DiscreteOrdinates d(studyLayer(c.a, c.b, c.g, c.bottom), 16);
@@ -54,6 +60,7 @@ TEST(DiscreteOrdinates, AgreesWithTheIndependentSolution) {
     // 0.5 %: the 16 streams' delta-M and the Snell window's edge between two cosines (0.3 % at g = 0).
     EXPECT_NEAR(e.down + e.beam_down, c.e_d, 5e-3 * c.e_d) << c.g << " " << c.bottom << " " << c.y;
     EXPECT_NEAR(e.up, c.e_u, 5e-3 * c.e_u) << c.g << " " << c.bottom << " " << c.y;
+    EXPECT_NEAR(e.scalar + e.beam_scalar, c.e_0, 5e-3 * c.e_0) << c.g << " " << c.bottom << " " << c.y;
   }
 }
 
