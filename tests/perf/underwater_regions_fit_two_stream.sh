@@ -1,5 +1,6 @@
 #!/bin/sh
 # underwater_regions_fit_two_stream.sh — how the "improved" underwater model's two-stream closure and
+# (The two-stream's tables: run with underwater.improved_diffuse = "two_stream", the model before s9a.)
 # mean cosines per mode were chosen (s6a, issue 13): the closure (`underwater.improved_two_stream`,
 # quadrature or asymptotic: TwoStreamClosure in host/underwater/underwater_improved_setup.h), the mean
 # cosines of the two-stream's own modes e^{-k y}, e^{-k (H - y)} (μ̄_down, μ̄_up) and of the sun beam's
@@ -21,7 +22,7 @@ for combo in ${COMBOS:-asymptotic_0.9_0.9_0.9_0.9 asymptotic_0.65_0.65_0.65_0.65
   $B underwater-regions tests/perf/underwater_regions.toml --waters 0.03:0.05,0.1:0.3,0.4:1.2 \
     --g 0,0.5,0.9,0.95 --depths 2,5,20,0 --views level,up --models improved --spp 2048 \
     --target-noise 0.018 --max-spp 16384 \
-    --model-set underwater.improved_two_stream=$1 \
+    --model-set underwater.improved_diffuse='"two_stream"' --model-set underwater.improved_two_stream=$1 \
     --model-set underwater.improved_mean_cosine_down=$2 --model-set underwater.improved_mean_cosine_up=$3 \
     --model-set underwater.improved_beam_mean_cosine_down=$4 --model-set underwater.improved_beam_mean_cosine_up=$5 \
     --csv "$DIR/fit_$combo.csv" > /dev/null || exit 1
