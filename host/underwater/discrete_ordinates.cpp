@@ -340,6 +340,35 @@ DiscreteOrdinatesIrradiance DiscreteOrdinates::at(double depth) const {
     e_dec[j] = std::exp(-lambda_[j] * y);
     if (bottom_ > 0) e_grow[j] = std::exp(-lambda_[j] * (bottom_ - y));
   }
+  return irradianceFrom(y, e_dec.data(), e_grow.data());
+}
+
+std::vector<DiscreteOrdinatesIrradiance> DiscreteOrdinates::profile(double depth_end, int samples) const {
+  const int n = n_;
+  samples = std::max(samples, 2);
+  const double end = bottom_ > 0 ? std::clamp(depth_end, 0.0, bottom_) : std::max(depth_end, 0.0);
+  const double step = end / (samples - 1);
+  // e^{-λ y_s} for every sample and mode (decaying, so the products only underflow towards 0, as the
+  // exps would); the bottom's e^{-λ (H - y_s)} is the same sequence read backwards when the samples end
+  // at H, and its own sequence from e^{-λ H} otherwise.
+  std::vector<double> dec(static_cast<size_t>(samples) * n), grow(static_cast<size_t>(samples) * n, 0.0);
+  for (int j = 0; j < n; ++j) {
+    const double r = std::exp(-lambda_[j] * step);
+    double e = 1;
+    for (int s = 0; s < samples; ++s, e *= r) dec[size_t(s) * n + j] = e;
+  }
+  if (bottom_ > 0)
+    for (int s = 0; s < samples; ++s)
+      for (int j = 0; j < n; ++j)
+        grow[size_t(s) * n + j] = end == bottom_ ? dec[size_t(samples - 1 - s) * n + j]
+                                                 : std::exp(-lambda_[j] * (bottom_ - s * step));
+  std::vector<DiscreteOrdinatesIrradiance> out(samples);
+  for (int s = 0; s < samples; ++s) out[s] = irradianceFrom(s * step, &dec[size_t(s) * n], &grow[size_t(s) * n]);
+  return out;
+}
+
+DiscreteOrdinatesIrradiance DiscreteOrdinates::irradianceFrom(double y, const double* e_dec, const double* e_grow) const {
+  const int n = n_;
   const double ep = std::exp(-m_particular_ * y);
   DiscreteOrdinatesIrradiance out;
   for (int i = 0; i < n; ++i) {
@@ -359,7 +388,6 @@ DiscreteOrdinatesIrradiance DiscreteOrdinates::at(double depth) const {
   out.beam_down = e_sun0_ * std::exp(-m_ * y);
   out.beam_scalar = out.beam_down / mu_sun_;
   out.beam_horizontal = out.beam_scalar * std::sqrt(std::max(1 - mu_sun_ * mu_sun_, 0.0));
-  if (mode_ == 1) out.down = out.up = out.scalar = 0;
   return out;
 }
 

@@ -48,12 +48,18 @@ class DiscreteOrdinates {
   explicit DiscreteOrdinates(const DiscreteOrdinatesLayer& layer, int streams = 16, int azimuth_mode = 0);
 
   DiscreteOrdinatesIrradiance at(double depth) const;
+  // at() at `samples` (>= 2) evenly spaced depths from 0 to depth_end, each mode's exponentials taken as
+  // geometric sequences (one exp per mode rather than one per depth).
+  std::vector<DiscreteOrdinatesIrradiance> profile(double depth_end, int samples) const;
   // The slowest decay of the homogeneous solution, 1/m: the diffuse field's asymptotic K∞.
   double asymptoticK() const { return k_min_; }
   // The unscattered beam's decay with depth, c_hat / mu_sun, 1/m (c_hat: the delta-M extinction).
   double beamK() const { return m_; }
 
  private:
+  // The irradiances at depth y from the modes' exponentials there (e_grow: e^{-λ (H - y)}, 0 without a bottom).
+  DiscreteOrdinatesIrradiance irradianceFrom(double y, const double* e_dec, const double* e_grow) const;
+
   int n_ = 0, mode_ = 0;
   double bottom_ = 0, m_ = 0, m_particular_ = 0, k_min_ = 0, mu_sun_ = 1, e_sun0_ = 0;
   std::vector<double> mu_, w_;                 // the N positive cosines and their weights

@@ -111,10 +111,13 @@ UwiBand makeUwiBandFromOrdinates(const UwBand& band, double g, double mu_w, doub
   Profile down, up, scalar, horizontal;
   const double sin_w = std::sqrt(std::max(1 - mu0 * mu0, 0.0));
   double largest = 0;
+  const std::vector<DiscreteOrdinatesIrradiance> field_y = field.profile(depth_end, kDepthSamples);
+  const std::vector<DiscreteOrdinatesIrradiance> field_h_y =
+      azimuth ? field_h.profile(depth_end, kDepthSamples) : std::vector<DiscreteOrdinatesIrradiance>{};
   for (int i = 0; i < kDepthSamples; ++i) {
     const double y = depth_end * i / (kDepthSamples - 1);
     ys[i] = y;
-    const DiscreteOrdinatesIrradiance e = field.at(y);
+    const DiscreteOrdinatesIrradiance& e = field_y[i];
     const double beam = e_sun0 * std::exp(-m * y);  // the kernel's delta-M beam, horizontal irradiance
     const double total_down = e.down + e.beam_down, total_scalar = e.scalar + e.beam_scalar;
     down.target.push_back(total_down - beam);
@@ -125,7 +128,7 @@ UwiBand makeUwiBandFromOrdinates(const UwBand& band, double g, double mu_w, doub
     scalar.reference.push_back(total_scalar);
     double h = 0;
     if (azimuth) {
-      const DiscreteOrdinatesIrradiance eh = field_h.at(y);
+      const DiscreteOrdinatesIrradiance& eh = field_h_y[i];
       h = eh.horizontal + eh.beam_horizontal - beam / mu0 * sin_w;
     }
     horizontal.target.push_back(h);
@@ -177,18 +180,16 @@ UwiBand makeUwiBandFromOrdinates(const UwBand& band, double g, double mu_w, doub
   const Fit fd = fitProfile(down, basis, n_basis), fu = fitProfile(up, basis, n_basis);
   const Fit fo = fitProfile(scalar, basis, n_basis), fh = fitProfile(horizontal, basis, n_basis);
   o.k = static_cast<float>(best_k);
-  o.d1 = static_cast<float>(fd.c[0]);
-  o.d2 = static_cast<float>(fd.c[1]);
-  o.dp = static_cast<float>(fd.c[2]);
-  o.u1 = static_cast<float>(fu.c[0]);
-  o.u2 = static_cast<float>(fu.c[1]);
-  o.up = static_cast<float>(fu.c[2]);
-  o.o1 = static_cast<float>(fo.c[0]);
-  o.o2 = static_cast<float>(fo.c[1]);
-  o.op = static_cast<float>(fo.c[2]);
-  o.h1 = static_cast<float>(fh.c[0]);
-  o.h2 = static_cast<float>(fh.c[1]);
-  o.hp = static_cast<float>(fh.c[2]);
+  // Each quantity's coefficients of e^{-k y}, e^{-k (H - y)}, e^{-m y}.
+  auto store = [](const Fit& f, float& first, float& second, float& beam) {
+    first = static_cast<float>(f.c[0]);
+    second = static_cast<float>(f.c[1]);
+    beam = static_cast<float>(f.c[2]);
+  };
+  store(fd, o.d1, o.d2, o.dp);
+  store(fu, o.u1, o.u2, o.up);
+  store(fo, o.o1, o.o2, o.op);
+  store(fh, o.h1, o.h2, o.hp);
   if (fit) *fit = OrdinatesFitError{fd.error, fu.error, fo.error, fh.error};
   return o;
 }

@@ -153,6 +153,28 @@ TEST(DiscreteOrdinates, BottomLimitsAndDegenerateLayers) {
   EXPECT_EQ(e.beam_down, 0.0);
 }
 
+// profile() is at() at evenly spaced depths (its exponentials as geometric sequences), with a bottom
+// (ending at it or above it) and without.
+TEST(DiscreteOrdinates, ProfileIsAtEvenlySpacedDepths) {
+  for (double bottom : {0.0, 5.0})
+    for (int mode : {0, 1}) {
+      const DiscreteOrdinates d(studyLayer(0.4, 1.2, 0.9, bottom), 16, mode);
+      for (double end : {5.0, 3.0}) {
+        const auto p = d.profile(end, 41);
+        ASSERT_EQ(p.size(), 41u);
+        for (int s = 0; s <= 40; ++s) {
+          const auto e = d.at(end * s / 40);
+          const double size = std::abs(e.down) + std::abs(e.up) + std::abs(e.scalar) + std::abs(e.horizontal) + 1e-30;
+          EXPECT_NEAR(p[s].down, e.down, 1e-12 * size) << bottom << " " << mode << " " << end << " " << s;
+          EXPECT_NEAR(p[s].up, e.up, 1e-12 * size);
+          EXPECT_NEAR(p[s].scalar, e.scalar, 1e-12 * size);
+          EXPECT_NEAR(p[s].horizontal, e.horizontal, 1e-12 * size);
+          EXPECT_NEAR(p[s].beam_down, e.beam_down, 1e-12 * (e.beam_down + 1e-30));
+        }
+      }
+    }
+}
+
 TEST(DiscreteOrdinates, RejectsBadInput) {
   auto bad = [](auto edit, int streams = 16, int mode = 0) {
     DiscreteOrdinatesLayer l = studyLayer(0.1, 0.3, 0.9, 5);
