@@ -6,6 +6,7 @@
 #include <string>
 
 #include "math/kernel_math.h"
+#include "math/linear_solve.h"
 
 namespace seasim {
 namespace {
@@ -59,30 +60,9 @@ std::vector<double> azimuthLegendre(int mode, int count, double x) {
   return p;
 }
 
-// Solves a x = rhs (n x n, row-major) by Gaussian elimination with partial pivoting; a and rhs are
-// overwritten, the solution is left in rhs.
-void solveLinear(std::vector<double>& a, std::vector<double>& rhs, int n) {
-  for (int col = 0; col < n; ++col) {
-    int piv = col;
-    for (int r = col + 1; r < n; ++r)
-      if (std::abs(a[r * n + col]) > std::abs(a[piv * n + col])) piv = r;
-    if (!(std::abs(a[piv * n + col]) > 0)) throw std::runtime_error("discrete ordinates: singular system");
-    if (piv != col) {
-      for (int c = 0; c < n; ++c) std::swap(a[col * n + c], a[piv * n + c]);
-      std::swap(rhs[col], rhs[piv]);
-    }
-    for (int r = col + 1; r < n; ++r) {
-      const double f = a[r * n + col] / a[col * n + col];
-      if (f == 0) continue;
-      for (int c = col; c < n; ++c) a[r * n + c] -= f * a[col * n + c];
-      rhs[r] -= f * rhs[col];
-    }
-  }
-  for (int r = n - 1; r >= 0; --r) {
-    double s = rhs[r];
-    for (int c = r + 1; c < n; ++c) s -= a[r * n + c] * rhs[c];
-    rhs[r] = s / a[r * n + r];
-  }
+// The boundary and particular systems: singular only for a degenerate medium the checks above exclude.
+void solveOrThrow(std::vector<double>& a, std::vector<double>& rhs, int n) {
+  if (!solveLinear(a, rhs, n)) throw std::runtime_error("discrete ordinates: singular system");
 }
 
 // Eigen-decomposition of a symmetric n x n matrix (row-major, destroyed) by cyclic Jacobi rotations:
@@ -277,7 +257,7 @@ DiscreteOrdinates::DiscreteOrdinates(const DiscreteOrdinatesLayer& layer, int st
       rhs[i] = -q_plus[i] / mu_[i];
       rhs[n + i] = q_minus[i] / mu_[i];
     }
-    if (e_sun0_ > 0) solveLinear(sys, rhs, n2);
+    if (e_sun0_ > 0) solveOrThrow(sys, rhs, n2);
     z_plus_.assign(rhs.begin(), rhs.begin() + n);
     z_minus_.assign(rhs.begin() + n, rhs.end());
   }
@@ -298,26 +278,30 @@ DiscreteOrdinates::DiscreteOrdinates(const DiscreteOrdinatesLayer& layer, int st
   if (bottom_ > 0) {
     const int n2 = 2 * n;
     const double rho = mode_ == 0 ? layer.bottom_albedo : 0.0, em = std::exp(-m_ * bottom_), ep = std::exp(-m * bottom_);
+    // Σ_k w_k μ_k of each mode's and the particular solution's down radiance (E_d / 2π at H, before the
+    // modes' exponentials): the same for every row of the bottom's condition.
+    std::vector<double> flux_dec(n, 0.0), flux_grow(n, 0.0);
+    double flux_p = 0;
+    for (int k = 0; k < n; ++k) {
+      for (int j = 0; j < n; ++j) {
+        flux_dec[j] += w_[k] * mu_[k] * x_plus_[k * n + j];
+        flux_grow[j] += w_[k] * mu_[k] * x_minus_[k * n + j];
+      }
+      flux_p += w_[k] * mu_[k] * z_plus_[k];
+    }
     std::vector<double> sys(n2 * n2, 0.0), rhs(n2, 0.0);
     for (int i = 0; i < n; ++i) {
       for (int j = 0; j < n; ++j) {
         const double e = std::exp(-lambda_[j] * bottom_);
         sys[i * n2 + j] = x_plus_[i * n + j] - refl[i] * x_minus_[i * n + j];
         sys[i * n2 + n + j] = e * (x_minus_[i * n + j] - refl[i] * x_plus_[i * n + j]);
-        double flux_dec = 0, flux_grow = 0;  // 2ρ Σ_k w_k μ_k (the mode's down radiance at H)
-        for (int k = 0; k < n; ++k) {
-          flux_dec += w_[k] * mu_[k] * x_plus_[k * n + j];
-          flux_grow += w_[k] * mu_[k] * x_minus_[k * n + j];
-        }
-        sys[(n + i) * n2 + j] = e * (x_minus_[i * n + j] - 2 * rho * flux_dec);
-        sys[(n + i) * n2 + n + j] = x_plus_[i * n + j] - 2 * rho * flux_grow;
+        sys[(n + i) * n2 + j] = e * (x_minus_[i * n + j] - 2 * rho * flux_dec[j]);
+        sys[(n + i) * n2 + n + j] = x_plus_[i * n + j] - 2 * rho * flux_grow[j];
       }
-      double flux_p = 0;
-      for (int k = 0; k < n; ++k) flux_p += w_[k] * mu_[k] * z_plus_[k];
       rhs[i] = sky[i] - (z_plus_[i] - refl[i] * z_minus_[i]);
       rhs[n + i] = rho / kPi * e_sun0_ * em - ep * (z_minus_[i] - 2 * rho * flux_p);
     }
-    solveLinear(sys, rhs, n2);
+    solveOrThrow(sys, rhs, n2);
     std::copy(rhs.begin(), rhs.begin() + n, c_decay_.begin());
     std::copy(rhs.begin() + n, rhs.end(), c_grow_.begin());
   } else {
@@ -326,7 +310,7 @@ DiscreteOrdinates::DiscreteOrdinates(const DiscreteOrdinatesLayer& layer, int st
       for (int j = 0; j < n; ++j) sys[i * n + j] = x_plus_[i * n + j] - refl[i] * x_minus_[i * n + j];
       rhs[i] = sky[i] - (z_plus_[i] - refl[i] * z_minus_[i]);
     }
-    solveLinear(sys, rhs, n);
+    solveOrThrow(sys, rhs, n);
     c_decay_ = rhs;
   }
   m_particular_ = m;

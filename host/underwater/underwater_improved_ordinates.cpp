@@ -7,6 +7,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include "math/linear_solve.h"
 #include "underwater/discrete_ordinates.h"
 #include "underwater/underwater_improved_setup.h"
 
@@ -27,39 +28,21 @@ struct Fit {
 };
 
 // Weighted least squares on the basis (2 functions without a bottom: the second is left 0) by its
-// normal equations, solved by Gaussian elimination with pivoting.
+// normal equations.
 Fit fitProfile(const Profile& p, const std::vector<std::array<double, 3>>& basis, int n_basis) {
-  double a[3][3] = {}, rhs[3] = {};
+  std::vector<double> a(n_basis * n_basis, 0.0), rhs(n_basis, 0.0);
   const int idx[3] = {0, n_basis == 3 ? 1 : 2, 2};
   for (size_t s = 0; s < basis.size(); ++s) {
     const double w = 1.0 / p.reference[s];
     for (int i = 0; i < n_basis; ++i) {
       const double bi = basis[s][idx[i]] * w;
       rhs[i] += bi * p.target[s] * w;
-      for (int j = 0; j < n_basis; ++j) a[i][j] += bi * basis[s][idx[j]] * w;
+      for (int j = 0; j < n_basis; ++j) a[i * n_basis + j] += bi * basis[s][idx[j]] * w;
     }
   }
-  for (int col = 0; col < n_basis; ++col) {
-    int piv = col;
-    for (int r = col + 1; r < n_basis; ++r)
-      if (std::abs(a[r][col]) > std::abs(a[piv][col])) piv = r;
-    std::swap(a[col], a[piv]);
-    std::swap(rhs[col], rhs[piv]);
-    if (!(std::abs(a[col][col]) > 0)) return Fit{{}, 1e30};
-    for (int r = col + 1; r < n_basis; ++r) {
-      const double f = a[r][col] / a[col][col];
-      for (int c = col; c < n_basis; ++c) a[r][c] -= f * a[col][c];
-      rhs[r] -= f * rhs[col];
-    }
-  }
-  double x[3] = {};
-  for (int r = n_basis - 1; r >= 0; --r) {
-    double s = rhs[r];
-    for (int c = r + 1; c < n_basis; ++c) s -= a[r][c] * x[c];
-    x[r] = s / a[r][r];
-  }
+  if (!solveLinear(a, rhs, n_basis)) return Fit{{}, 1e30};
   Fit f;
-  for (int i = 0; i < n_basis; ++i) f.c[idx[i]] = x[i];
+  for (int i = 0; i < n_basis; ++i) f.c[idx[i]] = rhs[i];
   for (size_t s = 0; s < basis.size(); ++s) {
     const double v = f.c[0] * basis[s][0] + f.c[1] * basis[s][1] + f.c[2] * basis[s][2];
     f.error = std::max(f.error, std::abs(v - p.target[s]) / p.reference[s]);
@@ -72,17 +55,12 @@ Fit fitProfile(const Profile& p, const std::vector<std::array<double, 3>>& basis
 
 UwiBand makeUwiBandFromOrdinates(const UwBand& band, double g, double mu_w, double bottom_depth, double ior,
                                  double view_depth, double flux_scale, int streams, OrdinatesFitError* fit) {
-  UwiBand o{};
   const double a = band.a, b = band.b;
-  // The kernel's delta-M (as makeUwiBand's): f = g², its beam e_beam0 e^{-m y}, m = c'/μ_w.
-  const double gp = std::max(g, 0.0);
-  const double b_dm = b * (1 - gp * gp), c_dm = a + b_dm;
-  const double g_dm = g >= 0 ? g / (1 + g) : g;
+  // The kernel's delta-M (the two-stream's too): f = g², its beam e_beam0 e^{-m y}, m = c'/μ_w.
+  const DeltaMMedium medium = improvedDeltaM(a, b, g);
+  const double c_dm = medium.c_dm;
   const double mu0 = std::clamp(mu_w, 1e-3, 1.0);
-  o.c_dm = static_cast<float>(c_dm);
-  o.b_dm = static_cast<float>(b_dm);
-  o.g_dm = static_cast<float>(g_dm);
-  o.g_flux = static_cast<float>(flux_scale * g_dm);
+  UwiBand o = uwiBandOfMedium(medium, flux_scale);
   if (fit) *fit = OrdinatesFitError{};
   const double e_sun0 = band.e_sun0, e_sky0 = band.e_sky0;
   if (!(c_dm > 0) || !(e_sun0 + e_sky0 > 0)) return o;  // no medium or no light: no diffuse field
@@ -107,7 +85,6 @@ UwiBand makeUwiBandFromOrdinates(const UwBand& band, double g, double mu_w, doub
   const double k_inf = field.asymptoticK();
 
   const double depth_end = H > 0 ? H : std::max(view_depth, 0.0) + 5.0 / c_dm;
-  std::vector<double> ys(kDepthSamples);
   Profile down, up, scalar, horizontal;
   const double sin_w = std::sqrt(std::max(1 - mu0 * mu0, 0.0));
   double largest = 0;
@@ -116,7 +93,6 @@ UwiBand makeUwiBandFromOrdinates(const UwBand& band, double g, double mu_w, doub
       azimuth ? field_h.profile(depth_end, kDepthSamples) : std::vector<DiscreteOrdinatesIrradiance>{};
   for (int i = 0; i < kDepthSamples; ++i) {
     const double y = depth_end * i / (kDepthSamples - 1);
-    ys[i] = y;
     const DiscreteOrdinatesIrradiance& e = field_y[i];
     const double beam = e_sun0 * std::exp(-m * y);  // the kernel's delta-M beam, horizontal irradiance
     const double total_down = e.down + e.beam_down, total_scalar = e.scalar + e.beam_scalar;
@@ -144,17 +120,17 @@ UwiBand makeUwiBandFromOrdinates(const UwBand& band, double g, double mu_w, doub
   // The samples are evenly spaced: each exponential is a geometric sequence (one exp per k).
   const double step = depth_end / (kDepthSamples - 1);
   auto basisAt = [&](double k) {
-    std::vector<std::array<double, 3>> basis(ys.size());
+    std::vector<std::array<double, 3>> basis(kDepthSamples);
     const double rk = std::exp(-k * step), rm = std::exp(-m * step);
     double ek = 1, em = 1;
-    for (size_t s = 0; s < ys.size(); ++s) {
+    for (int s = 0; s < kDepthSamples; ++s) {
       basis[s] = {ek, 0.0, em};
       ek *= rk;
       em *= rm;
     }
     // e^{-k (H - y_s)} = e^{-k y_{n-1-s}} since y_{n-1} = H.
     if (H > 0)
-      for (size_t s = 0; s < ys.size(); ++s) basis[s][1] = basis[ys.size() - 1 - s][0];
+      for (int s = 0; s < kDepthSamples; ++s) basis[s][1] = basis[kDepthSamples - 1 - s][0];
     return basis;
   };
   // k from a scan over [0.8, 2.5] K∞, coarse (steps of 0.1 K∞) then fine (0.01 K∞) around the best: not
@@ -207,7 +183,7 @@ std::vector<UwiBand> makeUwiBandsFromOrdinates(const UwParams& params, const std
                                                double flux_scale) {
   const double s = flux_scale >= 0 ? flux_scale : ordinatesFluxScale(params.g);
   const double view_depth = diffuseViewDepth(params);
-  // Bands are independent (about 0.2 ms each at 16 streams on one core): in parallel.
+  // Bands are independent (0.4–0.7 ms each at 16 streams on one core, results/BENCHMARKS.md s9a): in parallel.
   std::vector<UwiBand> out(bands.size());
   tbb::parallel_for(size_t(0), bands.size(), [&](size_t i) {
     out[i] = makeUwiBandFromOrdinates(bands[i], params.g, params.sun_dir_water[1], params.bottom_depth, params.ior,

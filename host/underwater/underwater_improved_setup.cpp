@@ -115,24 +115,36 @@ double diffuseViewDepth(const UwParams& params) {
   return params.bottom_depth > 0 ? std::min(depth, static_cast<double>(params.bottom_depth)) : depth;
 }
 
+DeltaMMedium improvedDeltaM(double a, double b, double g) {
+  const double gp = std::max(g, 0.0);
+  const double f = gp * gp;
+  DeltaMMedium m;
+  m.b_dm = b * (1 - f);
+  m.c_dm = a + m.b_dm;
+  m.g_dm = g >= 0 ? g / (1 + g) : g;
+  return m;
+}
+
+UwiBand uwiBandOfMedium(const DeltaMMedium& medium, double flux_scale) {
+  UwiBand o{};
+  o.c_dm = static_cast<float>(medium.c_dm);
+  o.b_dm = static_cast<float>(medium.b_dm);
+  o.g_dm = static_cast<float>(medium.g_dm);
+  o.g_flux = static_cast<float>(flux_scale * medium.g_dm);
+  return o;
+}
+
 UwiBand makeUwiBand(const UwBand& band, double g, double mu_w, double bottom_depth, double ior) {
   return makeUwiBand(band, g, mu_w, bottom_depth, ior, diffuseMeanCosines(g));
 }
 
 UwiBand makeUwiBand(const UwBand& band, double g, double mu_w, double bottom_depth, double ior,
                     DiffuseMeanCosines mean, TwoStreamClosure closure, DiffuseDepth view) {
-  UwiBand o{};
   const double a = band.a, b = band.b;
-  // Delta-M (as deltaMScale in underwater/lamps_setup.cpp): the peak f = g² counts as unscattered.
-  const double gp = std::max(g, 0.0);
-  const double f = gp * gp;
-  const double b_dm = b * (1 - f), c_dm = a + b_dm;
-  const double g_dm = g >= 0 ? g / (1 + g) : g;  // (g - f)/(1 - f) without its 0/0 at g = 1
+  const DeltaMMedium medium = improvedDeltaM(a, b, g);
+  const double b_dm = medium.b_dm, c_dm = medium.c_dm, g_dm = medium.g_dm;
   const double mu0 = std::clamp(mu_w, 1e-3, 1.0);
-  o.c_dm = static_cast<float>(c_dm);
-  o.b_dm = static_cast<float>(b_dm);
-  o.g_dm = static_cast<float>(g_dm);
-  o.g_flux = static_cast<float>(view.flux_scale * g_dm);
+  UwiBand o = uwiBandOfMedium(medium, view.flux_scale);
   if (!(c_dm > 0)) return o;  // no medium: no diffuse source, nothing to attenuate
 
   // Two-stream (plane irradiances, depth y down; Meador & Weaver 1980's form in metres):

@@ -74,6 +74,16 @@ struct DiffuseDepth {
 // The camera's depth -cam_pos[1], clamped to [0, bottom_depth] when there is a bottom (> 0).
 double diffuseViewDepth(const UwParams& params);
 
+// The improved model's delta-M medium (Wiscombe 1977; as deltaMScale in underwater/lamps_setup.h): the
+// forward peak f = g² counts as unscattered, b' = b (1 - f), c' = a + b', g' = g / (1 + g) ((g - f)/(1 - f)
+// without its 0/0 at g = 1); g < 0 is left unscaled. Both diffuse solvers' bands start from it.
+struct DeltaMMedium {
+  double b_dm = 0, c_dm = 0, g_dm = 0;
+};
+DeltaMMedium improvedDeltaM(double a, double b, double g);
+// A band block with the medium's c', b', g' and the flux term's g_f = flux_scale g' set, the rest 0.
+UwiBand uwiBandOfMedium(const DeltaMMedium& medium, double flux_scale);
+
 // One band's coefficients. mu_w: the refracted sun's cosine (any value in (0, 1] when the sun is off:
 // e_beam0 = e_sun0 = 0 then); bottom_depth <= 0: no bottom; g the water's HG asymmetry; mean: the
 // streams' mean cosines (the first form: the fitted table at g).

@@ -1,0 +1,12 @@
+// linear_solve.h — a small dense linear system a x = rhs by Gaussian elimination with partial pivoting
+// (the discrete-ordinates solver's boundary and particular systems, the improved model's 3x3 fits).
+#pragma once
+#include <vector>
+
+namespace seasim {
+
+// a: n x n, row-major; a and rhs are overwritten and the solution is left in rhs. Returns false (rhs
+// then undefined) when a pivot is 0 or not finite: the system is singular.
+bool solveLinear(std::vector<double>& a, std::vector<double>& rhs, int n);
+
+}  // namespace seasim
