@@ -184,8 +184,8 @@ struct UnderwaterDesc {
   // "improved" only: the asymptotic mode's share w in the diffuse k over the camera's depth
   // (depthMeanDiffuseK); < 0: the model's own (diffuseAsymptoticShare). file: improved_asymptotic_share
   double improved_asymptotic_share = -1.0;
-  // "improved" only: the scale of the in-scatter's flux term (diffuseFluxScale); < 0: the model's own.
-  // For refitting. file: improved_flux_scale
+  // "improved", "two_stream" only: the scale of its first-order in-scatter's flux term
+  // (diffuseFluxScale); < 0: the model's own. For refitting. file: improved_flux_scale
   double improved_flux_scale = -1.0;
 };
 

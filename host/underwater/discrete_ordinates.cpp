@@ -111,7 +111,8 @@ void requireRange(bool ok, const std::string& what) {
 
 }  // namespace
 
-DiscreteOrdinates::DiscreteOrdinates(const DiscreteOrdinatesLayer& layer, int streams, int azimuth_mode) {
+DiscreteOrdinates::DiscreteOrdinates(const DiscreteOrdinatesLayer& layer, int streams, int azimuth_mode,
+                                     int phase_moments) {
   requireRange(streams >= 2, "at least 2 streams per hemisphere");
   requireRange(azimuth_mode == 0 || azimuth_mode == 1, "the azimuth mode must be 0 or 1");
   mode_ = azimuth_mode;
@@ -127,17 +128,21 @@ DiscreteOrdinates::DiscreteOrdinates(const DiscreteOrdinatesLayer& layer, int st
   mu_sun_ = layer.mu_sun;
   e_sun0_ = layer.e_sun0;
 
-  // Delta-M to the 2N moments the quadrature integrates exactly (Wiscombe 1977).
-  const int moments = 2 * n;
-  const double f = std::pow(layer.g, moments);
-  std::vector<double> chi(moments);
-  for (int l = 0; l < moments; ++l) chi[l] = (std::pow(layer.g, l) - f) / (1 - f);
+  // Delta-M to the 2N moments the quadrature integrates exactly (Wiscombe 1977), or to fewer.
+  requireRange(phase_moments >= 0 && phase_moments <= 2 * n, "the phase's moments must be in [0, 2 streams]");
+  const int moments = 2 * n, kept = phase_moments > 0 ? phase_moments : moments;
+  const double f = std::pow(layer.g, kept);
+  std::vector<double> chi(moments, 0.0);
+  for (int l = 0; l < kept; ++l) chi[l] = (std::pow(layer.g, l) - f) / (1 - f);
   const double b_hat = layer.b * (1 - f);
   // A little absorption keeps the conservative limit (a = 0: a mode that does not decay, a linear
   // solution) an exponential; 1e-6 of c changes the light by less than that over 1000 optical depths.
   const double a_hat = std::max({layer.a, 1e-6 * (layer.a + b_hat), 1e-9});
   const double c_hat = a_hat + b_hat;
   m_ = c_hat / mu_sun_;
+  b_hat_ = b_hat;
+  c_hat_ = c_hat;
+  chi_ = chi;
 
   // The azimuth mode's phase between the quadrature's cosines: same hemisphere (pp) and opposite (pm),
   // p^m(μ, μ') = Σ_l (2l + 1) χ_l q_l(μ) q_l(μ') / (4π) (azimuthLegendre; P_l^m(-μ) = (-1)^{l+m} P_l^m(μ)),
@@ -327,15 +332,16 @@ DiscreteOrdinatesIrradiance DiscreteOrdinates::at(double depth) const {
   return irradianceFrom(y, e_dec.data(), e_grow.data());
 }
 
-std::vector<DiscreteOrdinatesIrradiance> DiscreteOrdinates::profile(double depth_end, int samples) const {
+double DiscreteOrdinates::sampleExponentials(double depth_end, int samples, std::vector<double>& dec,
+                                             std::vector<double>& grow) const {
   const int n = n_;
-  samples = std::max(samples, 2);
   const double end = bottom_ > 0 ? std::clamp(depth_end, 0.0, bottom_) : std::max(depth_end, 0.0);
   const double step = end / (samples - 1);
   // e^{-λ y_s} for every sample and mode (decaying, so the products only underflow towards 0, as the
   // exps would); the bottom's e^{-λ (H - y_s)} is the same sequence read backwards when the samples end
   // at H, and its own sequence from e^{-λ H} otherwise.
-  std::vector<double> dec(static_cast<size_t>(samples) * n), grow(static_cast<size_t>(samples) * n, 0.0);
+  dec.assign(static_cast<size_t>(samples) * n, 0.0);
+  grow.assign(static_cast<size_t>(samples) * n, 0.0);
   for (int j = 0; j < n; ++j) {
     const double r = std::exp(-lambda_[j] * step);
     double e = 1;
@@ -346,27 +352,94 @@ std::vector<DiscreteOrdinatesIrradiance> DiscreteOrdinates::profile(double depth
       for (int j = 0; j < n; ++j)
         grow[size_t(s) * n + j] = end == bottom_ ? dec[size_t(samples - 1 - s) * n + j]
                                                  : std::exp(-lambda_[j] * (bottom_ - s * step));
+  return step;
+}
+
+void DiscreteOrdinates::radiances(double depth, std::vector<double>& down, std::vector<double>& up) const {
+  const int n = n_;
+  const double y = bottom_ > 0 ? std::clamp(depth, 0.0, bottom_) : std::max(depth, 0.0);
+  std::vector<double> e_dec(n), e_grow(n, 0.0);
+  for (int j = 0; j < n; ++j) {
+    e_dec[j] = std::exp(-lambda_[j] * y);
+    if (bottom_ > 0) e_grow[j] = std::exp(-lambda_[j] * (bottom_ - y));
+  }
+  down.assign(n, 0.0);
+  up.assign(n, 0.0);
+  radiancesFrom(y, e_dec.data(), e_grow.data(), down.data(), up.data());
+}
+
+std::vector<DiscreteOrdinatesIrradiance> DiscreteOrdinates::profile(double depth_end, int samples) const {
+  const int n = n_;
+  samples = std::max(samples, 2);
+  std::vector<double> dec, grow;
+  const double step = sampleExponentials(depth_end, samples, dec, grow);
   std::vector<DiscreteOrdinatesIrradiance> out(samples);
   for (int s = 0; s < samples; ++s) out[s] = irradianceFrom(s * step, &dec[size_t(s) * n], &grow[size_t(s) * n]);
   return out;
 }
 
-DiscreteOrdinatesIrradiance DiscreteOrdinates::irradianceFrom(double y, const double* e_dec, const double* e_grow) const {
+std::vector<double> DiscreteOrdinates::inscatterProfile(const std::vector<double>& nus, double depth_end,
+                                                        int samples) const {
+  const int n = n_, moments = static_cast<int>(chi_.size()), nu_count = static_cast<int>(nus.size());
+  samples = std::max(samples, 2);
+  // 2π b̂ w_j p^m(ν, ±μ_j): the phase's addition-theorem sum between each user cosine and each node.
+  std::vector<std::vector<double>> pl(n);
+  for (int j = 0; j < n; ++j) pl[j] = azimuthLegendre(mode_, moments, mu_[j]);
+  std::vector<double> to_down(size_t(nu_count) * n), to_up(size_t(nu_count) * n);
+  for (int u = 0; u < nu_count; ++u) {
+    const std::vector<double> pu = azimuthLegendre(mode_, moments, std::clamp(nus[u], -1.0, 1.0));
+    for (int j = 0; j < n; ++j) {
+      double s_down = 0, s_up = 0;
+      for (int l = 0; l < moments; ++l) {
+        const double t = (2 * l + 1) * chi_[l] * pu[l] * pl[j][l];
+        s_down += t;
+        s_up += (l + mode_) % 2 ? -t : t;
+      }
+      to_down[size_t(u) * n + j] = 2 * kPi * b_hat_ * w_[j] * s_down / (4 * kPi);
+      to_up[size_t(u) * n + j] = 2 * kPi * b_hat_ * w_[j] * s_up / (4 * kPi);
+    }
+  }
+  std::vector<double> dec, grow;
+  const double step = sampleExponentials(depth_end, samples, dec, grow);
+  std::vector<double> out(size_t(samples) * nu_count, 0.0), down(n), up(n);
+  for (int s = 0; s < samples; ++s) {
+    radiancesFrom(s * step, &dec[size_t(s) * n], &grow[size_t(s) * n], down.data(), up.data());
+    for (int u = 0; u < nu_count; ++u) {
+      double j_in = 0;
+      for (int j = 0; j < n; ++j) j_in += to_down[size_t(u) * n + j] * down[j] + to_up[size_t(u) * n + j] * up[j];
+      out[size_t(s) * nu_count + u] = j_in;
+    }
+  }
+  return out;
+}
+
+void DiscreteOrdinates::radiancesFrom(double y, const double* e_dec, const double* e_grow, double* down,
+                                      double* up) const {
   const int n = n_;
   const double ep = std::exp(-m_particular_ * y);
+  for (int i = 0; i < n; ++i) {
+    double d = z_plus_[i] * ep, u = z_minus_[i] * ep;
+    for (int j = 0; j < n; ++j) {
+      d += c_decay_[j] * x_plus_[i * n + j] * e_dec[j] + c_grow_[j] * x_minus_[i * n + j] * e_grow[j];
+      u += c_decay_[j] * x_minus_[i * n + j] * e_dec[j] + c_grow_[j] * x_plus_[i * n + j] * e_grow[j];
+    }
+    down[i] = d;
+    up[i] = u;
+  }
+}
+
+DiscreteOrdinatesIrradiance DiscreteOrdinates::irradianceFrom(double y, const double* e_dec, const double* e_grow) const {
+  const int n = n_;
+  std::vector<double> down(n), up(n);
+  radiancesFrom(y, e_dec, e_grow, down.data(), up.data());
   DiscreteOrdinatesIrradiance out;
   for (int i = 0; i < n; ++i) {
-    double down = z_plus_[i] * ep, up = z_minus_[i] * ep;
-    for (int j = 0; j < n; ++j) {
-      down += c_decay_[j] * x_plus_[i * n + j] * e_dec[j] + c_grow_[j] * x_minus_[i * n + j] * e_grow[j];
-      up += c_decay_[j] * x_minus_[i * n + j] * e_dec[j] + c_grow_[j] * x_plus_[i * n + j] * e_grow[j];
-    }
     if (mode_ == 0) {
-      out.down += 2 * kPi * w_[i] * mu_[i] * down;
-      out.up += 2 * kPi * w_[i] * mu_[i] * up;
-      out.scalar += 2 * kPi * w_[i] * (down + up);
+      out.down += 2 * kPi * w_[i] * mu_[i] * down[i];
+      out.up += 2 * kPi * w_[i] * mu_[i] * up[i];
+      out.scalar += 2 * kPi * w_[i] * (down[i] + up[i]);
     } else {  // ∫ L^1(μ) cos φ · √(1 - μ²) cos φ dφ dμ = π ∫ L^1 √(1 - μ²) dμ
-      out.horizontal += kPi * w_[i] * std::sqrt(1 - mu_[i] * mu_[i]) * (down + up);
+      out.horizontal += kPi * w_[i] * std::sqrt(1 - mu_[i] * mu_[i]) * (down[i] + up[i]);
     }
   }
   out.beam_down = e_sun0_ * std::exp(-m_ * y);

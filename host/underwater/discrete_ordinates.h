@@ -1,7 +1,8 @@
 // discrete_ordinates.h — the diffuse light of a plane-parallel water layer by discrete ordinates
 // (Chandrasekhar 1960; the eigen-solution of Stamnes & Swanson 1981, as DISORT solves it), for
 // underwater.model = "improved": the depth profiles of the diffuse plane irradiances E_d, E_u and the
-// scalar irradiance E_0 that the model's closed form is fitted to (underwater_improved_setup.*).
+// scalar irradiance E_0, and the in-scatter towards any direction, that the model's closed form is fitted
+// to (underwater_improved_ordinates.*).
 //
 // The layer: homogeneous water (absorption a, scattering b, Henyey-Greenstein g) from the flat surface
 // (y = 0) to a Lambertian bottom of albedo rho at depth H, or without a bottom (semi-infinite). Lit by the
@@ -9,10 +10,11 @@
 // a uniform sky seen through Snell's window (transmitted irradiance e_sky0). The surface reflects the
 // upwelling light back down by Fresnel's law (total internal reflection outside the window).
 //
-// The radiance is azimuth-averaged (the m = 0 Fourier mode: all that plane irradiances and the scalar
-// irradiance need) on a double-Gauss quadrature of `streams` cosines per hemisphere. The HG phase is
-// delta-M scaled to the 2 streams moments it resolves (Wiscombe 1977: f = g^(2 streams), so at 16
-// streams and g = 0.95 f = 0.19, and the unscattered beam then carries the peak's f). Solved in closed
+// One azimuth mode of the radiance: the average (m = 0, all that plane irradiances and the scalar
+// irradiance need) or the cos φ part (m = 1), on a double-Gauss quadrature of `streams` cosines per
+// hemisphere. The HG phase is delta-M scaled to the 2 streams moments it resolves (Wiscombe 1977:
+// f = g^(2 streams), so at 16 streams and g = 0.95 f = 0.19, and the unscattered beam then carries the
+// peak's f), or to fewer (phase_moments). Solved in closed
 // form per depth (eigenvalues of a symmetric N x N matrix by Jacobi rotations, the beam's particular
 // solution and the boundary conditions by Gaussian elimination), in double.
 #pragma once
@@ -45,23 +47,47 @@ class DiscreteOrdinates {
   // streams: cosines per hemisphere, >= 2. azimuth_mode: 0 the azimuth-averaged radiance (down, up,
   // scalar), 1 its cos φ part (horizontal). Throws std::invalid_argument on negative IOPs, |g| >= 1,
   // mu_sun outside (0, 1], an albedo outside [0, 1] or another mode.
-  explicit DiscreteOrdinates(const DiscreteOrdinatesLayer& layer, int streams = 16, int azimuth_mode = 0);
+  // phase_moments: the delta-M order M (Wiscombe 1977: f = g^M, the phase's first M Legendre moments
+  // kept, the rest 0), in [1, 2 streams]; 0: 2 streams, the most the quadrature integrates.
+  explicit DiscreteOrdinates(const DiscreteOrdinatesLayer& layer, int streams = 16, int azimuth_mode = 0,
+                             int phase_moments = 0);
 
   DiscreteOrdinatesIrradiance at(double depth) const;
   // at() at `samples` (>= 2) evenly spaced depths from 0 to depth_end, each mode's exponentials taken as
   // geometric sequences (one exp per mode rather than one per depth).
   std::vector<DiscreteOrdinatesIrradiance> profile(double depth_end, int samples) const;
+  // The quadrature's cosines (N, ascending in (0, 1)) and the diffuse radiance of this azimuth mode along
+  // them at depth y: down[i] travelling down at cosines()[i], up[i] up.
+  const std::vector<double>& cosines() const { return mu_; }
+  void radiances(double depth, std::vector<double>& down, std::vector<double>& up) const;
   // The slowest decay of the homogeneous solution, 1/m: the diffuse field's asymptotic K∞.
   double asymptoticK() const { return k_min_; }
   // The unscattered beam's decay with depth, c_hat / mu_sun, 1/m (c_hat: the delta-M extinction).
   double beamK() const { return m_; }
+  // The delta-M extinction c_hat = a + b (1 - f), f = g^(2 streams), 1/m: what the radiance along a ray
+  // decays by between the in-scatter it gathers (inscatterProfile).
+  double extinction() const { return c_hat_; }
+  // The diffuse light's in-scatter towards the downward direction cosines `nus` (in [-1, 1]) at `samples`
+  // (>= 2) evenly spaced depths from 0 to depth_end, per m per sr: this azimuth mode's
+  // b_hat ∫ p^m(ν, μ') L^m(μ') dΩ' (the delta-M phase's 2 streams Legendre terms against the quadrature's
+  // radiance; the beam's own scattering left out: the caller adds it with the exact phase, Nakajima &
+  // Tanaka 1988's TMS). Mode 1's is the coefficient of cos φ, φ from the sun's azimuth. Integrated along
+  // a ray with extinction() it gives the radiance at any angle (the source-function integration of
+  // DISORT's user angles). Row-major, samples x nus.size().
+  std::vector<double> inscatterProfile(const std::vector<double>& nus, double depth_end, int samples) const;
 
  private:
   // The irradiances at depth y from the modes' exponentials there (e_grow: e^{-λ (H - y)}, 0 without a bottom).
   DiscreteOrdinatesIrradiance irradianceFrom(double y, const double* e_dec, const double* e_grow) const;
+  // The quadrature's radiances at depth y, down (L+) and up (L-), from the modes' exponentials there.
+  void radiancesFrom(double y, const double* e_dec, const double* e_grow, double* down, double* up) const;
+  // The depths of profile(depth_end, samples) (clamped to the layer) and each mode's e^{-λ y_s} (dec) and
+  // e^{-λ (H - y_s)} (grow, 0 without a bottom), samples x N, as geometric sequences.
+  double sampleExponentials(double depth_end, int samples, std::vector<double>& dec, std::vector<double>& grow) const;
 
   int n_ = 0, mode_ = 0;
-  double bottom_ = 0, m_ = 0, m_particular_ = 0, k_min_ = 0, mu_sun_ = 1, e_sun0_ = 0;
+  double bottom_ = 0, m_ = 0, m_particular_ = 0, k_min_ = 0, mu_sun_ = 1, e_sun0_ = 0, b_hat_ = 0, c_hat_ = 0;
+  std::vector<double> chi_;                    // the delta-M phase's Legendre moments, 2N
   std::vector<double> mu_, w_;                 // the N positive cosines and their weights
   std::vector<double> lambda_;                 // N decay rates, 1/m
   std::vector<double> x_plus_, x_minus_;       // N x N: mode j's down (x_plus_) and up radiances at cosine i

@@ -46,19 +46,12 @@ std::vector<float> underwaterBandTable(const UnderwaterSetup& setup) {
     if (improved && k < static_cast<int>(setup.improved.size())) {
       const UwiBand& ib = setup.improved[k];
       auto uwi = [&](int row, double v) { at(uwi_row0 + row, i) = static_cast<float>(v); };
-      uwi(UWI_ROW_C_DM, ib.c_dm);
       uwi(UWI_ROW_K, ib.k);
       uwi(UWI_ROW_M, ib.m);
-      // uwi_source_weight (common/underwater_improved.h) split as w_a + ν w_b + chi w_h.
-      const double s = double(ib.b_dm) / kFourPi, s_flux = s * 3.0 * double(ib.g_flux);
-      auto weight = [&](int row_a, int row_b, int row_h, double D, double U, double O, double Hf) {
-        uwi(row_a, s * O);
-        uwi(row_b, s_flux * (D - U));
-        uwi(row_h, s_flux * Hf);
-      };
-      weight(UWI_ROW_W1_A, UWI_ROW_W1_B, UWI_ROW_W1_H, ib.d1, ib.u1, ib.o1, ib.h1);
-      weight(UWI_ROW_W2_A, UWI_ROW_W2_B, UWI_ROW_W2_H, ib.d2, ib.u2, ib.o2, ib.h2);
-      weight(UWI_ROW_WP_A, UWI_ROW_WP_B, UWI_ROW_WP_H, ib.dp, ib.up, ib.op, ib.hp);
+      uwi(UWI_ROW_C_SRC, ib.c_src);
+      uwi(UWI_ROW_M_SRC, ib.m_src);
+      uwi(UWI_ROW_K_SRC, ib.k_src);
+      for (int q = 0; q < UWI_SOURCE_NODES * UWI_SOURCE_TERMS; ++q) uwi(UWI_ROW_SRC + q, ib.src[q]);
       uwi(UWI_ROW_B_E_BEAM, double(b.b) * b.e_beam0);
       uwi(UWI_ROW_D1, ib.d1);
       uwi(UWI_ROW_U1, ib.u1);
@@ -79,9 +72,9 @@ std::vector<float> underwaterBandTable(const UnderwaterSetup& setup) {
       // their value to float precision (kd_exp_integral_ends_b).
       const float o_d = -setup.params.cam_pos[1];
       const float h_od = std::max(setup.params.bottom_depth - o_d, 0.0f);
-      const double k_f = at(uwi_row0 + UWI_ROW_K, i), m_f = at(uwi_row0 + UWI_ROW_M, i);
+      const double k_f = at(uwi_row0 + UWI_ROW_K_SRC, i), m_src_f = at(uwi_row0 + UWI_ROW_M_SRC, i);
       uwi(UWI_ROW_EXP_K_OD, std::exp(-k_f * o_d));
-      uwi(UWI_ROW_EXP_M_OD, std::exp(-m_f * o_d));
+      uwi(UWI_ROW_EXP_M_SRC_OD, std::exp(-m_src_f * o_d));
       uwi(UWI_ROW_EXP_BEAM_OD, std::exp(-double(at(UW_ROW_K_BEAM, i)) * o_d));
       uwi(UWI_ROW_EXP_K_HOD, std::exp(-k_f * h_od));
       uwi(UWI_ROW_EXP_K_H, std::exp(-k_f * std::max(depth, 0.0)));

@@ -27,22 +27,22 @@ struct Fit {
   double error = 0;           // largest relative error
 };
 
-// Weighted least squares on the basis (2 functions without a bottom: the second is left 0) by its
-// normal equations.
-Fit fitProfile(const Profile& p, const std::vector<std::array<double, 3>>& basis, int n_basis) {
-  std::vector<double> a(n_basis * n_basis, 0.0), rhs(n_basis, 0.0);
-  const int idx[3] = {0, n_basis == 3 ? 1 : 2, 2};
+// Weighted least squares in relative error on the basis functions `columns` (of e^{-k y}, e^{-k (H - y)},
+// e^{-m y}: 0, 1, 2; the others left 0) by the normal equations.
+Fit fitProfile(const Profile& p, const std::vector<std::array<double, 3>>& basis, const std::vector<int>& columns) {
+  const int n = static_cast<int>(columns.size());
+  std::vector<double> a(n * n, 0.0), rhs(n, 0.0);
   for (size_t s = 0; s < basis.size(); ++s) {
     const double w = 1.0 / p.reference[s];
-    for (int i = 0; i < n_basis; ++i) {
-      const double bi = basis[s][idx[i]] * w;
+    for (int i = 0; i < n; ++i) {
+      const double bi = basis[s][columns[i]] * w;
       rhs[i] += bi * p.target[s] * w;
-      for (int j = 0; j < n_basis; ++j) a[i * n_basis + j] += bi * basis[s][idx[j]] * w;
+      for (int j = 0; j < n; ++j) a[i * n + j] += bi * basis[s][columns[j]] * w;
     }
   }
-  if (!solveLinear(a, rhs, n_basis)) return Fit{{}, 1e30};
+  if (!solveLinear(a, rhs, n)) return Fit{{}, 1e30};
   Fit f;
-  for (int i = 0; i < n_basis; ++i) f.c[idx[i]] = rhs[i];
+  for (int i = 0; i < n; ++i) f.c[columns[i]] = rhs[i];
   for (size_t s = 0; s < basis.size(); ++s) {
     const double v = f.c[0] * basis[s][0] + f.c[1] * basis[s][1] + f.c[2] * basis[s][2];
     f.error = std::max(f.error, std::abs(v - p.target[s]) / p.reference[s]);
@@ -51,16 +51,95 @@ Fit fitProfile(const Profile& p, const std::vector<std::array<double, 3>>& basis
   return f;
 }
 
+// The exponentials at the fit's evenly spaced depths (step apart from 0): e^{-k y}, e^{-k (H - y)} (0
+// without a bottom; the samples then end at H), e^{-m y}, each a geometric sequence (one exp per rate).
+std::vector<std::array<double, 3>> basisAt(double k, double m, double step, bool bottom) {
+  std::vector<std::array<double, 3>> basis(kDepthSamples);
+  const double rk = std::exp(-k * step), rm = std::exp(-m * step);
+  double ek = 1, em = 1;
+  for (int s = 0; s < kDepthSamples; ++s) {
+    basis[s] = {ek, 0.0, em};
+    ek *= rk;
+    em *= rm;
+  }
+  // e^{-k (H - y_s)} = e^{-k y_{n-1-s}} since y_{n-1} = H.
+  if (bottom)
+    for (int s = 0; s < kDepthSamples; ++s) basis[s][1] = basis[kDepthSamples - 1 - s][0];
+  return basis;
+}
+
+// k from a scan over [0.8, 2.5] K∞, coarse (steps of 0.1 K∞) then fine (0.01 K∞) around the best, by
+// error(k): not within 2 % of m, where the two exponentials fit each other's cancellation. m 1.05 when
+// nothing was tried (K∞ = 0: no absorption; a slow mode).
+template <class Error>
+double scanK(double k_inf, double m, Error error) {
+  double best_k = -1, best_error = 0;
+  auto tryK = [&](double k) {
+    if (!(k > 0) || std::abs(k - m) < 0.02 * m) return;
+    const double e = error(k);
+    if (best_k < 0 || e < best_error) {
+      best_k = k;
+      best_error = e;
+    }
+  };
+  for (int i = 0; i <= 17; ++i) tryK(k_inf * (0.8 + 0.1 * i));
+  const double coarse = best_k;
+  if (coarse > 0)
+    for (int i = -9; i <= 9; ++i)
+      if (i != 0) tryK(std::clamp(coarse + 0.01 * i * k_inf, 0.8 * k_inf, 2.5 * k_inf));
+  return best_k > 0 ? best_k : m * 1.05;
+}
+
+// The discrete ordinates' in-scatter (both azimuth modes) at the table's cosines, fitted per cosine to
+// e^{-k_src y}, e^{-k_src (H - y)}, e^{-m_src y} (relative to the azimuth average's size): UwiBand.src.
+// Returns the largest relative error over cosines and depths. Where k_src comes within 2 % of m_src the
+// beam's exponential is left out, as the pair would fit each other's cancellation.
+double fitSourceTable(const DiscreteOrdinates& field, const DiscreteOrdinates* field_h, double depth_end,
+                      double k_src, double m_src, bool bottom, UwiBand& o) {
+  std::vector<double> nus(UWI_SOURCE_NODES);
+  for (int j = 0; j < UWI_SOURCE_NODES; ++j) nus[j] = -1.0 + 2.0 * j / (UWI_SOURCE_NODES - 1);
+  const std::vector<double> j0 = field.inscatterProfile(nus, depth_end, kDepthSamples);
+  const std::vector<double> j1 =
+      field_h ? field_h->inscatterProfile(nus, depth_end, kDepthSamples) : std::vector<double>(j0.size(), 0.0);
+  double largest = 0;
+  for (double v : j0) largest = std::max(largest, std::abs(v));
+  std::vector<Profile> p0(UWI_SOURCE_NODES), p1(UWI_SOURCE_NODES);
+  for (int j = 0; j < UWI_SOURCE_NODES; ++j)
+    for (int s = 0; s < kDepthSamples; ++s) {
+      const size_t at = size_t(s) * UWI_SOURCE_NODES + j;
+      const double ref = std::max(std::abs(j0[at]), 1e-9 * largest + 1e-300);
+      p0[j].target.push_back(j0[at]);
+      p1[j].target.push_back(j1[at]);
+      p0[j].reference.push_back(ref);
+      p1[j].reference.push_back(ref);
+    }
+  const double step = depth_end / (kDepthSamples - 1);
+  const auto basis = basisAt(k_src, m_src, step, bottom);
+  std::vector<int> columns = bottom ? std::vector<int>{0, 1} : std::vector<int>{0};
+  if (std::abs(k_src - m_src) >= 0.02 * m_src) columns.push_back(2);
+  double error = 0;
+  for (int j = 0; j < UWI_SOURCE_NODES; ++j) {
+    const Fit f0 = fitProfile(p0[j], basis, columns), f1 = fitProfile(p1[j], basis, columns);
+    error = std::max({error, f0.error, f1.error});
+    float* row = o.src + j * UWI_SOURCE_TERMS;
+    for (int q = 0; q < 3; ++q) {
+      row[q] = static_cast<float>(f0.error < 1e30 ? f0.c[q] : 0.0);
+      row[q + 3] = static_cast<float>(f1.error < 1e30 ? f1.c[q] : 0.0);
+    }
+  }
+  return error;
+}
+
 }  // namespace
 
 UwiBand makeUwiBandFromOrdinates(const UwBand& band, double g, double mu_w, double bottom_depth, double ior,
-                                 double view_depth, double flux_scale, int streams, OrdinatesFitError* fit) {
+                                 double view_depth, int streams, OrdinatesFitError* fit) {
   const double a = band.a, b = band.b;
   // The kernel's delta-M (the two-stream's too): f = g², its beam e_beam0 e^{-m y}, m = c'/μ_w.
   const DeltaMMedium medium = improvedDeltaM(a, b, g);
   const double c_dm = medium.c_dm;
   const double mu0 = std::clamp(mu_w, 1e-3, 1.0);
-  UwiBand o = uwiBandOfMedium(medium, flux_scale);
+  UwiBand o = uwiBandOfMedium(medium, 1.0);  // g_flux = g': the first-order source's, unused here
   if (fit) *fit = OrdinatesFitError{};
   const double e_sun0 = band.e_sun0, e_sky0 = band.e_sky0;
   if (!(c_dm > 0) || !(e_sun0 + e_sky0 > 0)) return o;  // no medium or no light: no diffuse field
@@ -78,10 +157,14 @@ UwiBand makeUwiBandFromOrdinates(const UwBand& band, double g, double mu_w, doub
   layer.mu_sun = mu0;
   layer.e_sun0 = e_sun0;
   layer.e_sky0 = e_sky0;
-  const DiscreteOrdinates field(layer, streams, 0);
+  // Delta-M to kOrdinatesSourceMoments moments (f = g^3): the frame of the view rays' source (a forward
+  // peak this narrow goes on with the beam and the views; measured against the full order, s9b). A
+  // backward phase (g < 0) keeps every moment.
+  const int moments = g > 0 ? kOrdinatesSourceMoments : 0;
+  const DiscreteOrdinates field(layer, streams, 0, moments);
   // The cos φ mode only where there is a beam off the zenith and a phase that is not isotropic.
   const bool azimuth = e_sun0 > 0 && mu0 < 1 - 1e-6 && g != 0;
-  const DiscreteOrdinates field_h = azimuth ? DiscreteOrdinates(layer, streams, 1) : field;
+  const DiscreteOrdinates field_h = azimuth ? DiscreteOrdinates(layer, streams, 1, moments) : field;
   const double k_inf = field.asymptoticK();
 
   const double depth_end = H > 0 ? H : std::max(view_depth, 0.0) + 5.0 / c_dm;
@@ -116,45 +199,16 @@ UwiBand makeUwiBandFromOrdinates(const UwBand& band, double g, double mu_w, doub
   for (Profile* p : {&down, &up, &scalar, &horizontal})
     for (double& r : p->reference) r = std::max(std::abs(r), 1e-12 * largest);
 
-  const int n_basis = H > 0 ? 3 : 2;
-  // The samples are evenly spaced: each exponential is a geometric sequence (one exp per k).
+  const std::vector<int> columns = H > 0 ? std::vector<int>{0, 1, 2} : std::vector<int>{0, 2};
   const double step = depth_end / (kDepthSamples - 1);
-  auto basisAt = [&](double k) {
-    std::vector<std::array<double, 3>> basis(kDepthSamples);
-    const double rk = std::exp(-k * step), rm = std::exp(-m * step);
-    double ek = 1, em = 1;
-    for (int s = 0; s < kDepthSamples; ++s) {
-      basis[s] = {ek, 0.0, em};
-      ek *= rk;
-      em *= rm;
-    }
-    // e^{-k (H - y_s)} = e^{-k y_{n-1-s}} since y_{n-1} = H.
-    if (H > 0)
-      for (int s = 0; s < kDepthSamples; ++s) basis[s][1] = basis[kDepthSamples - 1 - s][0];
-    return basis;
-  };
-  // k from a scan over [0.8, 2.5] K∞, coarse (steps of 0.1 K∞) then fine (0.01 K∞) around the best: not
-  // within 2 % of m, where the two exponentials fit each other's cancellation.
-  double best_k = -1, best_error = 0;
-  auto tryK = [&](double k) {
-    if (!(k > 0) || std::abs(k - m) < 0.02 * m) return;
-    const auto basis = basisAt(k);
-    const double error =
-        fitProfile(down, basis, n_basis).error + fitProfile(up, basis, n_basis).error + fitProfile(scalar, basis, n_basis).error;
-    if (best_k < 0 || error < best_error) {
-      best_k = k;
-      best_error = error;
-    }
-  };
-  for (int i = 0; i <= 17; ++i) tryK(k_inf * (0.8 + 0.1 * i));
-  const double coarse = best_k;
-  if (coarse > 0)
-    for (int i = -9; i <= 9; ++i)
-      if (i != 0) tryK(std::clamp(coarse + 0.01 * i * k_inf, 0.8 * k_inf, 2.5 * k_inf));
-  if (best_k < 0) best_k = m * 1.05;  // K∞ = 0 (no absorption): a slow mode
-  const auto basis = basisAt(best_k);
-  const Fit fd = fitProfile(down, basis, n_basis), fu = fitProfile(up, basis, n_basis);
-  const Fit fo = fitProfile(scalar, basis, n_basis), fh = fitProfile(horizontal, basis, n_basis);
+  const double best_k = scanK(k_inf, m, [&](double k) {
+    const auto basis = basisAt(k, m, step, H > 0);
+    return fitProfile(down, basis, columns).error + fitProfile(up, basis, columns).error +
+           fitProfile(scalar, basis, columns).error;
+  });
+  const auto basis = basisAt(best_k, m, step, H > 0);
+  const Fit fd = fitProfile(down, basis, columns), fu = fitProfile(up, basis, columns);
+  const Fit fo = fitProfile(scalar, basis, columns), fh = fitProfile(horizontal, basis, columns);
   o.k = static_cast<float>(best_k);
   // Each quantity's coefficients of e^{-k y}, e^{-k (H - y)}, e^{-m y}.
   auto store = [](const Fit& f, float& first, float& second, float& beam) {
@@ -166,28 +220,40 @@ UwiBand makeUwiBandFromOrdinates(const UwBand& band, double g, double mu_w, doub
   store(fu, o.u1, o.u2, o.up);
   store(fo, o.o1, o.o2, o.op);
   store(fh, o.h1, o.h2, o.hp);
-  if (fit) *fit = OrdinatesFitError{fd.error, fu.error, fo.error, fh.error};
+  // The source view rays gather: the solver's own in-scatter at the table's cosines, integrated with its
+  // extinction ĉ; its beam's e^{-ĉ y/μ_w} (the TMS term's too).
+  // Its k_src from the solver's own scalar irradiance (the in-scatter's integral over directions is
+  // b̂ E_0): in this frame the light scattered out of the g² peak builds up below the surface and decays
+  // with the field's slowest modes, where the irradiances' k holds the field less the kernel's beam.
+  const double m_src = field.beamK();
+  // Over the depths the view rays gather from: [0, H], or 5 of the source's attenuation lengths below the
+  // camera without a bottom.
+  const double source_end = H > 0 ? H : std::max(view_depth, 0.0) + 5.0 / field.extinction();
+  const double source_step = source_end / (kDepthSamples - 1);
+  Profile own_scalar;
+  for (const DiscreteOrdinatesIrradiance& e : field.profile(source_end, kDepthSamples)) {
+    own_scalar.target.push_back(e.scalar);
+    own_scalar.reference.push_back(std::max(std::abs(e.scalar), 1e-12 * largest));
+  }
+  const double k_src = scanK(k_inf, m_src, [&](double k) {
+    return fitProfile(own_scalar, basisAt(k, m_src, source_step, H > 0), columns).error;
+  });
+  o.c_src = static_cast<float>(field.extinction());
+  o.m_src = static_cast<float>(m_src);
+  o.k_src = static_cast<float>(k_src);
+  const double source_error =
+      fitSourceTable(field, azimuth ? &field_h : nullptr, source_end, k_src, m_src, H > 0, o);
+  if (fit) *fit = OrdinatesFitError{fd.error, fu.error, fo.error, fh.error, source_error};
   return o;
 }
 
-double ordinatesFluxScale(double g) {
-  // Fitted offline to the path tracer (`--model-set underwater.improved_flux_scale=s` on the training grid
-  // of tests/perf/underwater_regions.sh, s = 0.8–2.0; results/BENCHMARKS.md, s9a, reports it and the
-  // held-out grid): one number for every g (at g = 0, g' = 0 and it has no effect). The first-order
-  // phase leaves out the forward peak's higher Legendre terms, which weigh the field's flux more.
-  (void)g;
-  return 1.2;
-}
-
-std::vector<UwiBand> makeUwiBandsFromOrdinates(const UwParams& params, const std::vector<UwBand>& bands,
-                                               double flux_scale) {
-  const double s = flux_scale >= 0 ? flux_scale : ordinatesFluxScale(params.g);
+std::vector<UwiBand> makeUwiBandsFromOrdinates(const UwParams& params, const std::vector<UwBand>& bands) {
   const double view_depth = diffuseViewDepth(params);
   // Bands are independent (0.4–0.7 ms each at 16 streams on one core, results/BENCHMARKS.md s9a): in parallel.
   std::vector<UwiBand> out(bands.size());
   tbb::parallel_for(size_t(0), bands.size(), [&](size_t i) {
     out[i] = makeUwiBandFromOrdinates(bands[i], params.g, params.sun_dir_water[1], params.bottom_depth, params.ior,
-                                      view_depth, s);
+                                      view_depth);
   });
   return out;
 }

@@ -8,8 +8,15 @@
 // ([0, H] over a bottom; down to 5 attenuation lengths c'^-1 below the camera without one), to the
 // discrete ordinates' field less the kernel's delta-M beam (the diffuse light the kernel's beam does not
 // carry); k is the one of a scan over [0.8, 2.5] K∞ with the least error (the field near the surface
-// decays faster than its asymptotic K∞). No table fitted to the path tracer enters: E_0 replaces the
-// streams' mean cosines, and F_h adds the source's dependence on the view's azimuth from the sun.
+// decays faster than its asymptotic K∞). E_d and E_u light the surfaces; E_0 and F_h are kept for the
+// record (the two-stream's first-order source uses its own).
+//
+// The view rays' source (s9b) is the solver's own in-scatter towards 65 cosines, both azimuth modes
+// (DiscreteOrdinates::inscatterProfile), fitted per cosine over [0, H] (or 5 attenuation lengths ĉ^-1
+// below the camera) to e^{-k_src y}, e^{-k_src (H - y)} and its beam's e^{-m_src y}, k_src from a scan
+// against its scalar irradiance: UwiBand.src, integrated in the kernel with the solver's extinction ĉ
+// (c_src). The solver runs at the delta-M order kOrdinatesSourceMoments, the one number fitted to the
+// path tracer.
 #pragma once
 #include <vector>
 
@@ -20,26 +27,26 @@ extern "C" {
 
 namespace seasim {
 
+// The delta-M order (phase moments kept, f = g^M) of the discrete-ordinates solution whose in-scatter is
+// the kernel's source and whose extinction ĉ = a + b (1 - g^M) attenuates the view rays (fitted to the
+// path tracer: results/BENCHMARKS.md, s9b).
+inline constexpr int kOrdinatesSourceMoments = 3;
+
 // How well the exponentials hold the discrete ordinates' field: the largest relative error over the
 // fitted depths of E_d (against the total with the beam), E_u, E_0 (with the beam) and F_h (relative to E_0).
 struct OrdinatesFitError {
   double down = 0, up = 0, scalar = 0, horizontal = 0;
+  double source = 0;  // the in-scatter table's (both azimuth modes, relative to the average's size)
 };
 
 // One band. mu_w: the refracted sun's cosine (any value in (0, 1] when the sun is off); bottom_depth <= 0:
-// no bottom; view_depth: the camera's depth (diffuseViewDepth); flux_scale: s of g_flux = s g'.
-// streams: the discrete ordinates' cosines per hemisphere. fit (optional): the fit's errors.
+// no bottom; view_depth: the camera's depth (diffuseViewDepth). streams: the discrete ordinates'
+// cosines per hemisphere. fit (optional): the fit's errors.
 UwiBand makeUwiBandFromOrdinates(const UwBand& band, double g, double mu_w, double bottom_depth, double ior,
-                                 double view_depth, double flux_scale, int streams = 16,
-                                 OrdinatesFitError* fit = nullptr);
-
-// The flux term's scale s(g) for this solver (UwiBand::g_flux = s g'), a table fitted to the path
-// tracer (see the .cpp).
-double ordinatesFluxScale(double g);
+                                 double view_depth, int streams = 16, OrdinatesFitError* fit = nullptr);
 
 // All bands of a set-up (params.g, bottom_depth, ior, sun_dir_water[1], the camera's depth of
-// diffuseViewDepth) with the flux scale (negative: ordinatesFluxScale(g)).
-std::vector<UwiBand> makeUwiBandsFromOrdinates(const UwParams& params, const std::vector<UwBand>& bands,
-                                               double flux_scale = -1);
+// diffuseViewDepth).
+std::vector<UwiBand> makeUwiBandsFromOrdinates(const UwParams& params, const std::vector<UwBand>& bands);
 
 }  // namespace seasim

@@ -9,10 +9,12 @@
 
 namespace seasim {
 
-static_assert(sizeof(UwiBand) == 18 * 4, "UwiBand layout changed: update underwater_improved_params.h users");
+static_assert(sizeof(UwiBand) == (21 + UWI_SOURCE_NODES * UWI_SOURCE_TERMS) * 4,
+              "UwiBand layout changed: update underwater_improved_params.h users");
 static_assert(offsetof(UwiBand, d1) == 20 && offsetof(UwiBand, up) == 40 && offsetof(UwiBand, g_flux) == 44 &&
               offsetof(UwiBand, o1) == 48 && offsetof(UwiBand, op) == 56 && offsetof(UwiBand, h1) == 60 &&
-              offsetof(UwiBand, hp) == 68);
+              offsetof(UwiBand, hp) == 68 && offsetof(UwiBand, c_src) == 72 && offsetof(UwiBand, m_src) == 76 &&
+              offsetof(UwiBand, k_src) == 80 && offsetof(UwiBand, src) == 84);
 
 double internalDiffuseReflectance(double ior) {
   // Midpoint rule in μ: F jumps to 1 at the critical angle, so a fine uniform grid (error ~1e-5).
@@ -128,6 +130,7 @@ DeltaMMedium improvedDeltaM(double a, double b, double g) {
 UwiBand uwiBandOfMedium(const DeltaMMedium& medium, double flux_scale) {
   UwiBand o{};
   o.c_dm = static_cast<float>(medium.c_dm);
+  o.c_src = o.c_dm;
   o.b_dm = static_cast<float>(medium.b_dm);
   o.g_dm = static_cast<float>(medium.g_dm);
   o.g_flux = static_cast<float>(flux_scale * medium.g_dm);
@@ -214,7 +217,24 @@ UwiBand makeUwiBand(const UwBand& band, double g, double mu_w, double bottom_dep
   o.o1 = static_cast<float>(A1 / mean.down + r * A1 / mean.up);
   o.o2 = static_cast<float>(r * A2 / mean.down + A2 / mean.up);
   o.op = static_cast<float>(pd / mean.beam_down + pu / mean.beam_up);
+  setFirstOrderSource(o);
   return o;
+}
+
+void setFirstOrderSource(UwiBand& o) {
+  const double s = double(o.b_dm) / (4 * 3.14159265358979323846), s_flux = 3 * s * double(o.g_flux);
+  const double coef[3][4] = {{o.o1, o.d1, o.u1, o.h1}, {o.o2, o.d2, o.u2, o.h2}, {o.op, o.dp, o.up, o.hp}};
+  for (int node = 0; node < UWI_SOURCE_NODES; ++node) {
+    const double nu = -1.0 + 2.0 * node / (UWI_SOURCE_NODES - 1);
+    float* row = o.src + node * UWI_SOURCE_TERMS;
+    for (int q = 0; q < 3; ++q) {
+      row[q] = static_cast<float>(s * coef[q][0] + s_flux * nu * (coef[q][1] - coef[q][2]));
+      row[q + 3] = static_cast<float>(s_flux * std::sqrt(std::max(1 - nu * nu, 0.0)) * coef[q][3]);
+    }
+  }
+  o.c_src = o.c_dm;
+  o.m_src = o.m;
+  o.k_src = o.k;
 }
 
 std::vector<UwiBand> makeUwiBands(const UwParams& params, const std::vector<UwBand>& bands, DiffuseMeanCosines mean,

@@ -81,8 +81,13 @@ struct DeltaMMedium {
   double b_dm = 0, c_dm = 0, g_dm = 0;
 };
 DeltaMMedium improvedDeltaM(double a, double b, double g);
-// A band block with the medium's c', b', g' and the flux term's g_f = flux_scale g' set, the rest 0.
+// A band block with the medium's c', b', g' (c_src = c') and the flux term's g_f = flux_scale g' set, the
+// rest 0.
 UwiBand uwiBandOfMedium(const DeltaMMedium& medium, double flux_scale);
+// The source table of the first-order phase (the two-stream's; before s9b the discrete ordinates' too):
+// J = b' [E_0 + 3 g_f (ν (E_d - E_u) + √(1 - ν²) cos Δφ F_h)]/(4π) per exponential from the band's o*, d*,
+// u*, h* and g_flux, integrated with c_src = c' and m_src = m.
+void setFirstOrderSource(UwiBand& band);
 
 // One band's coefficients. mu_w: the refracted sun's cosine (any value in (0, 1] when the sun is off:
 // e_beam0 = e_sun0 = 0 then); bottom_depth <= 0: no bottom; g the water's HG asymmetry; mean: the

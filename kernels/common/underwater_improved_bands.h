@@ -5,9 +5,9 @@
  * them; "uwi" there), rewritten on realb because OpenCL C has no templates, with every pixel-invariant
  * per-band value precomputed in the band table's improved rows (UWI_ROW_*, common/underwater_band_table.h,
  * filled by host/underwater/underwater_band_table.cpp):
- *  - the in-scatter source weight of a pair of plane irradiances (D, U) seen along ν (uwi_source_weight),
- *      w(ν) = b' [D/μ̄_d + U/μ̄_u + 3 g_f ν (D - U)] / (4π) = w_a + ν w_b,
- *    for the three exponentials' pairs (d1, u1), (d2, u2), (dp, up): w_a and w_b per band;
+ *  - the in-scatter source's table (UwiBand.src) in the band table's rows UWI_ROW_SRC + …: the pixel's
+ *    node and fraction in ν and its cos Δφ (uwi_source_node, uwi_cos_azimuth) once per pixel, then two
+ *    rows per term and band (uwi_lanes_weights);
  *  - the TMS beam term b p_HG(g, cos θ_s) e_beam0 = (b e_beam0) p_HG: b e_beam0 per band, the phase
  *    (g is the scene's) once per pixel;
  *  - the bottom's sunlit unshadowed radiance that the surface's reflected ray ends on (uwi_surface's
@@ -21,9 +21,10 @@
  * is kd_exp_integral_ends_b, which takes no exp of its own. Its start factors e^{-κ o_d} (UwiStart) are
  * per band and frame for the camera's rays (the table's UWI_ROW_EXP_* rows) and 1 or e^{-k H} for the
  * surface's reflected ray (o_d = 0); its far ends e^{-(κ y(S) + c' S)} (UwiEnds) are the exps of the
- * hit's irradiance times T(S), taken once per step and shared by the integrals and the Lambert hit.
- * So a lit hit takes four exps per band (three without froxels) where the thesis's lanes take six, and
- * the surface from below seven with froxels (its T(S) the camera's far end; the reflected ray's three, no
+ * hit's irradiance times T(S), taken once per step for the Lambert hit; the source's integrals take
+ * their own three, e^{-(κ y(S) + c_src S)} for κ = k_src, m_src and the bottom's.
+ * So a lit hit takes seven exps per band (six without froxels) where the thesis's lanes take six, and the
+ * surface from below thirteen with froxels (its T(S) the camera's far end; the reflected ray's six, no
  * froxel term along it) against nine.
  * tests/unit/underwater_improved_bands_test.cpp holds these lanes (one band per step on the host) to
  * uwi_band_radiance in float and double; tests/kernels/underwater_improved_kernel_test.cpp the kernel
@@ -35,9 +36,8 @@
  * improved rows. */
 typedef struct {
   realb c, k_beam, e_beam; /* σ_t; σ_t / max(μ_w, 1e-4) (the froxel term's beam); e_beam0 */
-  realb c_dm, k, m;        /* delta-M extinction c', the diffuse field's k, the delta-M beam's c'/μ_w */
-  realb w1_a, w1_b, w2_a, w2_b, wp_a, wp_b; /* source weights w(ν) = w_a + ν w_b + chi w_h of each exponential */
-  realb w1_h, w2_h, wp_h;
+  realb k, m;              /* the irradiances' k, the delta-M beam's c'/μ_w */
+  realb c_src, m_src, k_src; /* the extinction along view rays and the source's exponentials (UwiBand) */
   realb b_e_beam;          /* b e_beam0: the TMS term and the froxel term per unit phase */
   realb d1, u1, d2, u2, dp, up; /* E_d, E_u coefficients (UwiBand) */
 } UwiLanes;
@@ -50,18 +50,11 @@ SEASIM_FN UwiLanes uwi_lanes_load(const SEASIM_GLOBAL float* table, int stride, 
   v.c = UWI_LOAD(UW_ROW_C);
   v.k_beam = UWI_LOAD(UW_ROW_K_BEAM);
   v.e_beam = UWI_LOAD(UW_ROW_E_BEAM);
-  v.c_dm = UWI_LOAD(uwi_row0 + UWI_ROW_C_DM);
   v.k = UWI_LOAD(uwi_row0 + UWI_ROW_K);
   v.m = UWI_LOAD(uwi_row0 + UWI_ROW_M);
-  v.w1_a = UWI_LOAD(uwi_row0 + UWI_ROW_W1_A);
-  v.w1_b = UWI_LOAD(uwi_row0 + UWI_ROW_W1_B);
-  v.w2_a = UWI_LOAD(uwi_row0 + UWI_ROW_W2_A);
-  v.w2_b = UWI_LOAD(uwi_row0 + UWI_ROW_W2_B);
-  v.wp_a = UWI_LOAD(uwi_row0 + UWI_ROW_WP_A);
-  v.wp_b = UWI_LOAD(uwi_row0 + UWI_ROW_WP_B);
-  v.w1_h = UWI_LOAD(uwi_row0 + UWI_ROW_W1_H);
-  v.w2_h = UWI_LOAD(uwi_row0 + UWI_ROW_W2_H);
-  v.wp_h = UWI_LOAD(uwi_row0 + UWI_ROW_WP_H);
+  v.c_src = UWI_LOAD(uwi_row0 + UWI_ROW_C_SRC);
+  v.m_src = UWI_LOAD(uwi_row0 + UWI_ROW_M_SRC);
+  v.k_src = UWI_LOAD(uwi_row0 + UWI_ROW_K_SRC);
   v.b_e_beam = UWI_LOAD(uwi_row0 + UWI_ROW_B_E_BEAM);
   v.d1 = UWI_LOAD(uwi_row0 + UWI_ROW_D1);
   v.u1 = UWI_LOAD(uwi_row0 + UWI_ROW_U1);
@@ -73,17 +66,38 @@ SEASIM_FN UwiLanes uwi_lanes_load(const SEASIM_GLOBAL float* table, int stride, 
   return v;
 }
 
+/* The source's weights of the three exponentials (uwi_source_weight) towards one photon direction:
+ * node and frac from uwi_source_node (once per pixel), cos_dphi from uwi_cos_azimuth. */
+typedef struct {
+  realb w1, w2, wp; /* of e^{-k y}, e^{-k (H - y)}, e^{-m_src y} */
+} UwiWeights;
+
+SEASIM_FN UwiWeights uwi_lanes_weights(const SEASIM_GLOBAL float* table, int stride, int uwi_row0, int i, int node,
+                                       real frac, real cos_dphi) {
+  const int row = uwi_row0 + UWI_ROW_SRC + node * UWI_SOURCE_TERMS;
+#define UWI_TERM(q)                                                                              \
+  (LOADB(table + (size_t)(row + (q)) * (size_t)stride, i) +                                       \
+   frac * (LOADB(table + (size_t)(row + UWI_SOURCE_TERMS + (q)) * (size_t)stride, i) -            \
+           LOADB(table + (size_t)(row + (q)) * (size_t)stride, i)))
+  UwiWeights w;
+  w.w1 = UWI_TERM(0) + cos_dphi * UWI_TERM(3);
+  w.w2 = UWI_TERM(1) + cos_dphi * UWI_TERM(4);
+  w.wp = UWI_TERM(2) + cos_dphi * UWI_TERM(5);
+#undef UWI_TERM
+  return w;
+}
+
 /* The start factors e^{-κ o_d} of the integrals along a ray that starts at depth o_d, per band. */
 typedef struct {
-  realb k, m, beam; /* e^{-k o_d}, e^{-m o_d}, e^{-(σ_t/μ_w) o_d} */
-  realb k_bottom;   /* e^{-k max(H - o_d, 0)}: the bottom's term, integrated from the bottom */
+  realb k, m, beam; /* e^{-k_src o_d}, e^{-m_src o_d}, e^{-(σ_t/μ_w) o_d} */
+  realb k_bottom;   /* e^{-k_src max(H - o_d, 0)}: the bottom's term, integrated from the bottom */
 } UwiStart;
 
 /* The camera's (o_d = -cam_pos[1]): the table's per-frame rows. */
 SEASIM_FN UwiStart uwi_start_camera(const SEASIM_GLOBAL float* table, int stride, int uwi_row0, int i) {
   UwiStart a;
   a.k = LOADB(table + (size_t)(uwi_row0 + UWI_ROW_EXP_K_OD) * (size_t)stride, i);
-  a.m = LOADB(table + (size_t)(uwi_row0 + UWI_ROW_EXP_M_OD) * (size_t)stride, i);
+  a.m = LOADB(table + (size_t)(uwi_row0 + UWI_ROW_EXP_M_SRC_OD) * (size_t)stride, i);
   a.beam = LOADB(table + (size_t)(uwi_row0 + UWI_ROW_EXP_BEAM_OD) * (size_t)stride, i);
   a.k_bottom = LOADB(table + (size_t)(uwi_row0 + UWI_ROW_EXP_K_HOD) * (size_t)stride, i);
   return a;
@@ -92,39 +106,43 @@ SEASIM_FN UwiStart uwi_start_camera(const SEASIM_GLOBAL float* table, int stride
 /* The far ends of a ray's integrals, at distance S and depth y = max(y(S), 0) (T(S) = e^{-c' S} folded
  * in as underwater_bands.h does for the thesis; the clamps at 0 commute with the positive factor). */
 typedef struct {
-  realb k, m;     /* e^{-(k y + c' S)}, e^{-(m y + c' S)} */
-  realb k_bottom; /* e^{-(k max(H - y, 0) + c' S)} with a bottom, else 0 */
+  realb k, m;     /* e^{-(k y + c_src S)}, e^{-(m y + c_src S)} */
+  realb k_bottom; /* e^{-(k max(H - y, 0) + c_src S)} with a bottom, else 0 */
   realb beam;     /* e^{-((σ_t/μ_w) y + σ_t S)} with the froxel term (single_scattering), else 0 */
+  realb src_k, src_k_bottom, src_m; /* the source's integrals' ends: e^{-(k_src y + c_src S)},
+                                       e^{-(k_src max(H - y, 0) + c_src S)} (0 without a bottom),
+                                       e^{-(m_src y + c_src S)} */
 } UwiEnds;
 
 /* uwi_irradiance's exps at the end of the ray, times T(S): a Lambertian hit's and the integrals' far
  * ends alike. S = UW_INFINITE with y = its depth there: all 0 (deep water). */
 SEASIM_FN UwiEnds uwi_ends(const UwiLanes* v, real bottom_depth, real S, real y, int single_scattering) {
   UwiEnds e;
-  const realb c_s = v->c_dm * S;
+  const realb c_s = v->c_src * S;
   e.k = exp(-(v->k * y + c_s));
   e.m = exp(-(v->m * y + c_s));
   e.k_bottom = bottom_depth > R(0.0) ? exp(-(v->k * fmax(bottom_depth - y, R(0.0)) + c_s)) : SPLATB(R(0.0));
   e.beam = single_scattering ? exp(-(v->k_beam * y + v->c * S)) : SPLATB(R(0.0));
+  e.src_k = exp(-(v->k_src * y + c_s));
+  e.src_k_bottom = bottom_depth > R(0.0) ? exp(-(v->k_src * fmax(bottom_depth - y, R(0.0)) + c_s)) : SPLATB(R(0.0));
+  e.src_m = exp(-(v->m_src * y + c_s));
   return e;
 }
 
 /* uwi_multiple: in-scattered radiance along the ray (d_y) to distance S (UW_INFINITE: deep water),
- * phase = p_HG(g, d·s_w) of the pixel, chi = uwi_azimuth_factor(d·s_w, d_y, μ_w), a the ray's start factors, e its far ends (uwi_ends with the same
- * single_scattering). Each term of J(y) an exponential in y, so each integral is
- * kd_exp_integral_ends_b (002 eq. 4.7's form); with single_scattering the froxel pass's unshadowed strict
- * single scattering b p_HG e_beam0 ∫ e^{-c z} e^{-(c/μ_w) y(z)} dz (002 eq. 5.2) is taken off. */
-SEASIM_FN realb uwi_lanes_multiple(const UwiLanes* v, const UwiStart* a, const UwiEnds* e, real phase, real chi,
-                                   real bottom_depth, real S, real d_y, int single_scattering) {
+ * w the source's weights towards the ray's photon (uwi_lanes_weights), phase = p_HG(g, d·s_w) of the
+ * pixel, a the ray's start factors, e its far ends (uwi_ends with the same single_scattering). Each term
+ * of J(y) an exponential in y, so each integral is kd_exp_integral_ends_b (002 eq. 4.7's form); with
+ * single_scattering the froxel pass's unshadowed strict single scattering b p_HG e_beam0 ∫ e^{-c z}
+ * e^{-(c/μ_w) y(z)} dz (002 eq. 5.2) is taken off. */
+SEASIM_FN realb uwi_lanes_multiple(const UwiLanes* v, const UwiWeights* w, const UwiStart* a, const UwiEnds* e,
+                                   real phase, real bottom_depth, real S, real d_y, int single_scattering) {
   const realb beam_phase = v->b_e_beam * phase;
-  const realb w1 = v->w1_a + d_y * v->w1_b + chi * v->w1_h;
-  const realb wp = v->wp_a + d_y * v->wp_b + chi * v->wp_h + beam_phase;
-  realb sum = w1 * kd_exp_integral_ends_b(v->k, v->c_dm, a->k, e->k, d_y, S) +
-              wp * kd_exp_integral_ends_b(v->m, v->c_dm, a->m, e->m, d_y, S);
+  realb sum = w->w1 * kd_exp_integral_ends_b(v->k_src, v->c_src, a->k, e->src_k, d_y, S) +
+              (w->wp + beam_phase) * kd_exp_integral_ends_b(v->m_src, v->c_src, a->m, e->src_m, d_y, S);
   if (bottom_depth > R(0.0)) {
     /* e^{-k (H - y(z))} = e^{-k (H - o_d)} e^{-k d_y z}: the same integral seen from the bottom. */
-    const realb w2 = v->w2_a + d_y * v->w2_b + chi * v->w2_h;
-    sum += w2 * kd_exp_integral_ends_b(v->k, v->c_dm, a->k_bottom, e->k_bottom, -d_y, S);
+    sum += w->w2 * kd_exp_integral_ends_b(v->k_src, v->c_src, a->k_bottom, e->src_k_bottom, -d_y, S);
   }
   if (single_scattering) sum -= beam_phase * kd_exp_integral_ends_b(v->k_beam, v->c, a->beam, e->beam, d_y, S);
   return fmax(sum, R(0.0));
@@ -148,24 +166,25 @@ SEASIM_FN realb uwi_lanes_lambert(const UwiLanes* v, const UwiEnds* e, realb alb
 
 /* uwi_surface times T(S): the surface seen from below along d (d_y = d.y > 0) at distance S: the sky
  * through Snell's window (sky_l, the lanes' sky radiance in air along the refracted view) plus F times
- * the reflected ray's in-scatter (phase_r = p_HG(g, cos of the reflected ray with s_w), chi_r its
- * uwi_azimuth_factor) down to the
+ * the reflected ray's in-scatter (phase_r = p_HG(g, cos of the reflected ray with s_w), w_r the source's
+ * weights towards its photon) down to the
  * bottom, and the bottom itself (bottom_l: UWI_ROW_BOTTOM_L, its sunlit radiance), or deep water.
- * t_s: T(S) = e^{-c' S}, which is the camera ray's far end e^{-(k y + c' S)} at the surface (y = 0:
- * uwi_ends' k). exp_k_h: e^{-k H} (UWI_ROW_EXP_K_H), the reflected ray's start factor of the bottom's
+ * t_s: T(S) = e^{-c_src S}, which is the camera ray's far end e^{-(k y + c_src S)} at the surface (y = 0:
+ * uwi_ends' k). exp_k_h:
+ * e^{-k_src H} (UWI_ROW_EXP_K_H), the reflected ray's start factor of the bottom's
  * term; the others are 1 at o_d = 0. The reflected ray keeps its single scattering (no froxel term
  * taken off: the froxel pass runs along the camera's ray only), as uwi_surface.
  * An object in the mirror (uwi_surface's UwiMirrorHit, traced once per pixel by the caller): its
  * distance s_m from the surface (UW_INFINITE: none), albedo_m in these bands, its normal's vertical n_m_y,
  * n_m_dot_s = n·s_w and the sun's visibility vis_m; the reflected ray's integrals then end on it, and its
  * Lambert hit shares their far ends (no more exps than the bottom's case). */
-SEASIM_FN realb uwi_lanes_surface(const UwiLanes* v, realb t_s, realb sky_l, realb bottom_l, realb exp_k_h,
-                                  real phase_r, real chi_r, real bottom_depth, real d_y, real ior, int multiple, real s_m,
+SEASIM_FN realb uwi_lanes_surface(const UwiLanes* v, const UwiWeights* w_r, realb t_s, realb sky_l, realb bottom_l,
+                                  realb exp_k_h, real phase_r, real bottom_depth, real d_y, real ior, int multiple, real s_m,
                                   realb albedo_m, real n_m_y, real n_m_dot_s, real vis_m) {
   const real dy = fmax(d_y, R(1e-6));
   const real s_r = bottom_depth > R(0.0) ? bottom_depth / dy : UW_INFINITE;
   realb reflected = SPLATB(R(0.0));
-  /* The bottom's attenuation along the reflected ray, e^{-c' min(s_r, 1e4)} as uwi_surface takes it. */
+  /* The bottom's attenuation along the reflected ray, e^{-c_src min(s_r, 1e4)} as uwi_surface takes it. */
   realb t_bottom = SPLATB(R(0.0));
   UwiStart a;
   a.k = SPLATB(R(1.0));
@@ -175,16 +194,16 @@ SEASIM_FN realb uwi_lanes_surface(const UwiLanes* v, realb t_s, realb sky_l, rea
   if (s_m < s_r) { /* per pixel: an object in the mirror, at depth s_m dy */
     const UwiEnds e = uwi_ends(v, bottom_depth, s_m, s_m * dy, 0);
     reflected = uwi_lanes_lambert(v, &e, albedo_m, bottom_depth, n_m_y, n_m_dot_s, vis_m);
-    if (multiple) reflected += uwi_lanes_multiple(v, &a, &e, phase_r, chi_r, bottom_depth, s_m, -dy, 0);
+    if (multiple) reflected += uwi_lanes_multiple(v, w_r, &a, &e, phase_r, bottom_depth, s_m, -dy, 0);
   } else if (multiple) {
     /* It ends on the bottom (y = H) or in deep water (S, y = ∞: its ends 0). */
     const UwiEnds e = uwi_ends(v, bottom_depth, s_r, bottom_depth > R(0.0) ? bottom_depth : UW_INFINITE, 0);
-    reflected = uwi_lanes_multiple(v, &a, &e, phase_r, chi_r, bottom_depth, s_r, -dy, 0);
-    /* Its far end e^{-(k (H - y) + c' s_r)} at y = H: the same but past s_r = 1e4 (within H/1e4 of
-     * the horizon), where both are e^{-c' 1e4} or less. */
-    t_bottom = e.k_bottom;
+    reflected = uwi_lanes_multiple(v, w_r, &a, &e, phase_r, bottom_depth, s_r, -dy, 0);
+    /* The source's far end e^{-(k_src (H - y) + c_src s_r)} at y = H: the same but past s_r = 1e4
+     * (within H/1e4 of the horizon), where both are e^{-c_src 1e4} or less. */
+    t_bottom = e.src_k_bottom;
   } else if (bottom_depth > R(0.0)) {
-    t_bottom = exp(-v->c_dm * fmin(s_r, R(1e4)));
+    t_bottom = exp(-v->c_src * fmin(s_r, R(1e4)));
   }
   if (bottom_depth > R(0.0) && !(s_m < s_r)) reflected += t_bottom * bottom_l;
   const real f = fresnel_reflectance(d_y, ior, R(1.0));

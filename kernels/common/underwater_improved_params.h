@@ -8,7 +8,16 @@
  *   E_d(y) = d1 e^{-k y} + d2 e^{-k (H - y)} + dp e^{-m y},   E_u(y) = u1 e^{-k y} + u2 e^{-k (H - y)} + up e^{-m y}
  * (d2 = u2 = 0 without a bottom); so are the scalar irradiance E_0 (o*) and the horizontal flux F_h (h*).
  * The host builds them from a discrete-ordinates solution (underwater.improved_diffuse =
- * "discrete_ordinates") or from the two-stream (o from the streams' mean cosines, no F_h). */
+ * "discrete_ordinates") or from the two-stream (o from the streams' mean cosines, no F_h).
+ *
+ * The in-scatter source J(y, ν, Δφ) that view rays gather (common/underwater_improved.h) is tabulated in
+ * the photon's downward cosine ν at UWI_SOURCE_NODES evenly spaced nodes from -1 to 1, per exponential:
+ *   J = Σ_q [T0_q(ν) + cos Δφ T1_q(ν)] e_q(y),  e_q: e^{-k_src y}, e^{-k_src (H - y)}, e^{-m_src y},
+ * linear between nodes, src[node * UWI_SOURCE_TERMS + q] = T0_q, [... + 3 + q] = T1_q (Δφ: the photon's
+ * azimuth from the sun beam's). Integrated along a ray with extinction c_src. */
+
+#define UWI_SOURCE_NODES 65
+#define UWI_SOURCE_TERMS 6
 
 #ifndef SEASIM_UNDERWATER_IMPROVED_PARAMS_H
 #define SEASIM_UNDERWATER_IMPROVED_PARAMS_H
@@ -30,6 +39,12 @@ typedef struct {
                        the in-scatter source's isotropic part */
   float h1, h2, hp; /* the diffuse light's net horizontal flux towards the sun's azimuth, F_h(y), in the
                        same exponentials: the flux term's part across the vertical */
+  float c_src;  /* the extinction the source is integrated with along a ray, 1/m: the discrete ordinates'
+                   own delta-M ĉ = a + b (1 - g^32) (their field already holds the light scattered out of
+                   the f = g² peak), or c' (two-stream) */
+  float m_src;  /* the source's beam exponential, ĉ/μ_w (discrete ordinates' beam) or m (two-stream) */
+  float k_src;  /* the source's diffuse exponential (its own fit; k for the two-stream) */
+  float src[UWI_SOURCE_NODES * UWI_SOURCE_TERMS]; /* the source's table, per m per sr (see above) */
 } UwiBand;
 
 #endif /* SEASIM_UNDERWATER_IMPROVED_PARAMS_H */

@@ -7,6 +7,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <algorithm>
+#include <vector>
 #include <stdexcept>
 
 #include "underwater/discrete_ordinates.h"
@@ -189,6 +191,86 @@ TEST(DiscreteOrdinates, RejectsBadInput) {
   bad([](DiscreteOrdinatesLayer& l) { l.e_sun0 = -1; });
   bad([](DiscreteOrdinatesLayer&) {}, 1);
   bad([](DiscreteOrdinatesLayer&) {}, 16, 2);
+  EXPECT_THROW(DiscreteOrdinates(studyLayer(0.1, 0.3, 0.9, 5), 16, 0, 33), std::invalid_argument);
+  EXPECT_THROW(DiscreteOrdinates(studyLayer(0.1, 0.3, 0.9, 5), 16, 0, -1), std::invalid_argument);
+}
+
+// The beam's own scattering towards a cosine ν of this azimuth mode: fourier b̂ p^m(ν, μ_sun) F0 e^{-m y}
+// from the delta-M phase's first `kept` moments (written here from Legendre's recurrences, not the solver's).
+double beamSource(const DiscreteOrdinatesLayer& l, int mode, int kept, double nu, double y, double m) {
+  const double f = std::pow(l.g, kept), b_hat = l.b * (1 - f);
+  auto legendre = [&](double x, int n) {  // P_l (mode 0) or P_l^1 / √(l (l + 1)) (mode 1), l = 0..n-1
+    std::vector<double> p(n, 0.0), raw(n + 1, 0.0);
+    if (mode == 0) {
+      p[0] = 1;
+      if (n > 1) p[1] = x;
+      for (int k = 2; k < n; ++k) p[k] = ((2 * k - 1) * x * p[k - 1] - (k - 1) * p[k - 2]) / k;
+      return p;
+    }
+    raw[1] = std::sqrt(1 - x * x);
+    for (int k = 2; k < n; ++k) raw[k] = ((2 * k - 1) * x * raw[k - 1] - k * raw[k - 2]) / (k - 1);
+    for (int k = 1; k < n; ++k) p[k] = raw[k] / std::sqrt(double(k) * (k + 1));
+    return p;
+  };
+  const std::vector<double> pn = legendre(nu, kept), ps = legendre(l.mu_sun, kept);
+  double s = 0;
+  for (int k = 0; k < kept; ++k) s += (2 * k + 1) * (std::pow(l.g, k) - f) / (1 - f) * pn[k] * ps[k];
+  return (mode == 0 ? 1.0 : 2.0) * b_hat * s / (4 * M_PI) * l.e_sun0 / l.mu_sun * std::exp(-m * y);
+}
+
+// The in-scatter towards the quadrature's own cosines closes the transfer equation of the solver's
+// radiance: ±μ dL/dy + ĉ L - J = the beam's scattering, per node, depth and azimuth mode (dL/dy by central
+// differences), for the full delta-M order and a low one (phase_moments 4). Its integral over directions
+// is b̂ E_0 (mode 0), its first moment b̂ χ_1 (E_d - E_u). Would fail with a wrong phase sum, a wrong
+// weight, the hemispheres swapped or the user cosines' Legendre functions off.
+TEST(DiscreteOrdinates, InscatterClosesTheTransferEquation) {
+  for (double bottom : {0.0, 5.0})
+    for (int kept : {0, 4})
+      for (int mode : {0, 1}) {
+        const DiscreteOrdinatesLayer l = studyLayer(0.1, 0.3, 0.9, bottom);
+        const DiscreteOrdinates d(l, 16, mode, kept);
+        const std::vector<double>& mu = d.cosines();
+        std::vector<double> nus;
+        for (double m : mu) nus.push_back(m);
+        for (double m : mu) nus.push_back(-m);
+        const double y = 2.0, h = 1e-4, c = d.extinction();
+        // inscatterProfile's samples y = 0, 1, 2, 3, 4: y is sample 2.
+        const std::vector<double> j = d.inscatterProfile(nus, 4.0, 5);
+        std::vector<double> dn, up, dn_p, up_p, dn_m, up_m;
+        d.radiances(y, dn, up);
+        d.radiances(y + h, dn_p, up_p);
+        d.radiances(y - h, dn_m, up_m);
+        const int n = static_cast<int>(mu.size());
+        double largest = 0;
+        for (int i = 0; i < n; ++i) largest = std::max({largest, c * dn[i], c * up[i]});
+        for (int i = 0; i < n; ++i) {
+          const double j_down = j[2 * nus.size() + i], j_up = j[2 * nus.size() + n + i];
+          const double res_down = mu[i] * (dn_p[i] - dn_m[i]) / (2 * h) + c * dn[i] - j_down;
+          const double res_up = -mu[i] * (up_p[i] - up_m[i]) / (2 * h) + c * up[i] - j_up;
+          const int order = kept > 0 ? kept : 32;
+          EXPECT_NEAR(res_down, beamSource(l, mode, order, mu[i], y, d.beamK()), 1e-6 * largest)
+              << "bottom " << bottom << " kept " << kept << " mode " << mode << " mu " << mu[i];
+          EXPECT_NEAR(res_up, beamSource(l, mode, order, -mu[i], y, d.beamK()), 1e-6 * largest)
+              << "bottom " << bottom << " kept " << kept << " mode " << mode << " mu " << -mu[i];
+        }
+        if (mode == 1) continue;
+        // Simpson's rule in ν over [-1, 1] (J is a polynomial of degree < 32 in ν): 2π ∫ J dν and 2π ∫ ν J dν.
+        const int count = 2001;
+        std::vector<double> grid(count);
+        for (int i = 0; i < count; ++i) grid[i] = -1.0 + 2.0 * i / (count - 1);
+        const std::vector<double> jg = d.inscatterProfile(grid, 4.0, 5);
+        double zeroth = 0, first = 0;
+        for (int i = 0; i < count; ++i) {
+          const double w = (i == 0 || i == count - 1 ? 1.0 : i % 2 ? 4.0 : 2.0) * (2.0 / (count - 1)) / 3.0;
+          zeroth += 2 * M_PI * w * jg[2 * count + i];
+          first += 2 * M_PI * w * grid[i] * jg[2 * count + i];
+        }
+        const int order = kept > 0 ? kept : 32;
+        const double f = std::pow(l.g, order), b_hat = l.b * (1 - f), chi1 = (l.g - f) / (1 - f);
+        const auto e = d.at(y);
+        EXPECT_NEAR(zeroth, b_hat * e.scalar, 1e-8 * b_hat * e.scalar) << bottom << " " << kept;
+        EXPECT_NEAR(first, b_hat * chi1 * (e.down - e.up), 1e-8 * b_hat * e.scalar) << bottom << " " << kept;
+      }
 }
 
 }  // namespace

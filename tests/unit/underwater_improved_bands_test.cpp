@@ -16,6 +16,7 @@
 #include "math/kernel_math.h"
 #include "underwater/underwater_band_table.h"
 #include "underwater/underwater_improved_setup.h"
+#include "underwater/underwater_improved_ordinates.h"
 
 namespace {
 
@@ -24,8 +25,9 @@ namespace kf = seasim::kmath_f;
 
 constexpr int kBands = 5;
 
-// Five bands of one water type family, g, bottom depth H (0: none) and sun cosine in water mu_w.
-seasim::UnderwaterSetup makeSetup(double g, double H, double mu_w, double a0, double b0) {
+// Five bands of one water type family, g, bottom depth H (0: none) and sun cosine in water mu_w; the
+// two-stream's bands, or (ordinates) the discrete ordinates' (the default improved_diffuse).
+seasim::UnderwaterSetup makeSetup(double g, double H, double mu_w, double a0, double b0, bool ordinates = false) {
   seasim::UnderwaterSetup s;
   s.params.g = float(g);
   s.params.bottom_depth = float(H);
@@ -53,7 +55,8 @@ seasim::UnderwaterSetup makeSetup(double g, double H, double mu_w, double a0, do
   s.objects.resize(2);
   for (int o = 0; o < 2; ++o)
     for (int k = 0; k < kBands; ++k) s.albedo.push_back(float(0.1 + 0.2 * o + 0.05 * k));
-  s.improved = seasim::makeUwiBands(s.params, s.bands, seasim::diffuseMeanCosines(g));
+  s.improved = ordinates ? seasim::makeUwiBandsFromOrdinates(s.params, s.bands)
+                         : seasim::makeUwiBands(s.params, s.bands, seasim::diffuseMeanCosines(g));
   return s;
 }
 
@@ -83,17 +86,23 @@ struct Ray {
     const Real phase = ns::hg_phase(cos_s, g);                                                               \
     const Real cos_r = cos_s - Real(2) * d.y * s_w.y;                                                        \
     const Real phase_r = ns::hg_phase(cos_r, g);                                                             \
-    const Real chi = ns::uwi_azimuth_factor(cos_s, d.y, s_w.y), chi_r = ns::uwi_azimuth_factor(cos_r, -d.y, s_w.y); \
+    Real frac = 0, frac_r = 0;                                                                               \
+    const int node = ns::uwi_source_node(d.y, &frac), node_r = ns::uwi_source_node(-d.y, &frac_r);         \
+    const Real cos_dphi = ns::uwi_cos_azimuth(cos_s, d.y, s_w.y);                                           \
+    const Real cos_dphi_r = ns::uwi_cos_azimuth(cos_r, -d.y, s_w.y);                                        \
     const ns::UwiLanes v = ns::uwi_lanes_load(table.data(), stride, uwi_row0, k);                            \
+    const ns::UwiWeights w = ns::uwi_lanes_weights(table.data(), stride, uwi_row0, k, node, frac, cos_dphi); \
+    const ns::UwiWeights w_r =                                                                               \
+        ns::uwi_lanes_weights(table.data(), stride, uwi_row0, k, node_r, frac_r, cos_dphi_r);                \
     const ns::UwiStart a = ns::uwi_start_camera(table.data(), stride, uwi_row0, k);                          \
     auto row = [&](int rw) { return Real(table[size_t(rw) * stride + k]); };                                 \
     const Real y = std::max(o_d - S * d.y, Real(0));                                                         \
     const ns::UwiEnds e = ns::uwi_ends(&v, H, S, y, single);                                                 \
-    Real L = ns::uwi_lanes_multiple(&v, &a, &e, phase, chi, H, S, d.y, single);                              \
+    Real L = ns::uwi_lanes_multiple(&v, &w, &a, &e, phase, H, S, d.y, single);                               \
     if (r.mat == UW_MAT_SURFACE) {                                                                           \
       const ns::real3 n_m{Real(r.n_m[0]), Real(r.n_m[1]), Real(r.n_m[2])};                                   \
-      L += ns::uwi_lanes_surface(&v, e.k, Real(r.sky_l), row(uwi_row0 + UWI_ROW_BOTTOM_L),                   \
-                                 row(uwi_row0 + UWI_ROW_EXP_K_H), phase_r, chi_r, H, d.y, Real(s.params.ior), 1, \
+      L += ns::uwi_lanes_surface(&v, &w_r, e.k, Real(r.sky_l), row(uwi_row0 + UWI_ROW_BOTTOM_L),         \
+                                 row(uwi_row0 + UWI_ROW_EXP_K_H), phase_r, H, d.y, Real(s.params.ior), 1,    \
                                  Real(r.s_m), row(UW_ROWS + r.mat_m), n_m.y, ns::dot(n_m, s_w), Real(r.vis_m)); \
     } else if (r.mat != UW_MAT_NONE) {                                                                       \
       const Real albedo = row(r.mat >= 0 ? UW_ROWS + r.mat : UW_ROW_BOTTOM_ALBEDO);                          \
@@ -135,37 +144,28 @@ TEST(UnderwaterImprovedBands, TableRowsHoldTheBlockAndPaddingIsWeightless) {
   for (int k = 0; k < stride; ++k) {
     const UwiBand& ib = s.improved[std::min(k, kBands - 1)];
     EXPECT_EQ(at(UW_ROW_W_G, k), k < kBands ? 0.5f : 0.0f);
-    EXPECT_EQ(at(row0 + UWI_ROW_C_DM, k), ib.c_dm);
     EXPECT_EQ(at(row0 + UWI_ROW_K, k), ib.k);
     EXPECT_EQ(at(row0 + UWI_ROW_D2, k), ib.d2);
     EXPECT_EQ(at(row0 + UWI_ROW_UP, k), ib.up);
-    // w(ν, chi) = w_a + ν w_b + chi w_h is uwi_source_weight at every ν and azimuth.
-    for (double nu : {-1.0, 0.0, 0.7})
-      for (double chi : {-0.6, 0.0, 0.3}) {
-        const double w = kd::uwi_source_weight(&ib, nu, chi, ib.d1, ib.u1, ib.o1, ib.h1);
-        const double wa = at(row0 + UWI_ROW_W1_A, k), wb = at(row0 + UWI_ROW_W1_B, k), wh = at(row0 + UWI_ROW_W1_H, k);
-        EXPECT_NEAR(wa + nu * wb + chi * wh, w, 1e-6 * (std::fabs(wa) + std::fabs(wb) + std::fabs(wh)));  // rows in float
+    EXPECT_EQ(at(row0 + UWI_ROW_C_SRC, k), ib.c_src);
+    EXPECT_EQ(at(row0 + UWI_ROW_K_SRC, k), ib.k_src);
+    EXPECT_EQ(at(row0 + UWI_ROW_M_SRC, k), ib.m_src);
+    // The source's rows are the band's table, and the lanes' weights are uwi_source_weight at every ν and
+    // azimuth.
+    for (int q = 0; q < UWI_SOURCE_NODES * UWI_SOURCE_TERMS; ++q) ASSERT_EQ(at(row0 + UWI_ROW_SRC + q, k), ib.src[q]) << q;
+    for (double nu : {-1.0, -0.3, 0.0, 0.7, 1.0})
+      for (double cos_dphi : {-0.6, 0.0, 1.0}) {
+        double frac = 0;
+        const int node = kd::uwi_source_node(nu, &frac);
+        const kd::UwiWeights w = kd::uwi_lanes_weights(t.data(), stride, row0, k, node, frac, cos_dphi);
+        for (int q = 0; q < 3; ++q) {
+          const double expect = kd::uwi_source_weight(&ib, node, frac, cos_dphi, q);
+          EXPECT_NEAR(q == 0 ? w.w1 : q == 1 ? w.w2 : w.wp, expect, 1e-12 * std::fabs(expect) + 1e-30) << nu;
+        }
       }
     for (int r = 0; r < UWI_ROWS; ++r) EXPECT_TRUE(std::isfinite(at(row0 + r, k))) << r;
   }
   EXPECT_GT(at(row0 + UWI_ROW_BOTTOM_L, 0), 0.0f);
-  // Each exponential is weighed by its own scalar irradiance and horizontal flux: set them apart and each
-  // weight row follows its own.
-  seasim::UnderwaterSetup apart = s;
-  for (UwiBand& ib : apart.improved) {
-    ib.o1 = 2.0f, ib.o2 = 3.0f, ib.op = 5.0f;
-    ib.h1 = 0.25f, ib.h2 = -0.5f, ib.hp = 0.75f;
-  }
-  const std::vector<float> ta = seasim::underwaterBandTable(apart);
-  const UwiBand& ia = apart.improved[0];
-  auto at_apart = [&](int row) { return double(ta[size_t(row0 + row) * stride]); };
-  const double b4pi = ia.b_dm / (4 * M_PI), flux = 3 * b4pi * ia.g_flux;
-  EXPECT_NEAR(at_apart(UWI_ROW_W1_A), b4pi * 2, 1e-6 * b4pi);
-  EXPECT_NEAR(at_apart(UWI_ROW_W2_A), b4pi * 3, 1e-6 * b4pi);
-  EXPECT_NEAR(at_apart(UWI_ROW_WP_A), b4pi * 5, 1e-6 * b4pi);
-  EXPECT_NEAR(at_apart(UWI_ROW_W1_H), flux * 0.25, 1e-6 * flux);
-  EXPECT_NEAR(at_apart(UWI_ROW_W2_H), flux * -0.5, 1e-6 * flux);
-  EXPECT_NEAR(at_apart(UWI_ROW_WP_H), flux * 0.75, 1e-6 * flux);
   // No bottom: no bottom radiance; the thesis model: no improved rows.
   EXPECT_EQ(seasim::underwaterBandTable(makeSetup(0.9, 0.0, 0.8, 0.1, 0.3))[size_t(row0 + UWI_ROW_BOTTOM_L) * stride],
             0.0f);
@@ -188,11 +188,11 @@ TEST(UnderwaterImprovedBands, CameraRowsAreTheStartFactorsAtTheCamerasDepth) {
       for (int k = 0; k < stride; ++k) {
         const UwiBand& ib = s.improved[std::min(k, kBands - 1)];
         const double k_beam = at(UW_ROW_K_BEAM, k);
-        const double expect[][2] = {{UWI_ROW_EXP_K_OD, std::exp(-double(ib.k) * o_d)},
-                                    {UWI_ROW_EXP_M_OD, std::exp(-double(ib.m) * o_d)},
+        const double expect[][2] = {{UWI_ROW_EXP_K_OD, std::exp(-double(ib.k_src) * o_d)},
+                                    {UWI_ROW_EXP_M_SRC_OD, std::exp(-double(ib.m_src) * o_d)},
                                     {UWI_ROW_EXP_BEAM_OD, std::exp(-k_beam * o_d)},
-                                    {UWI_ROW_EXP_K_HOD, std::exp(-double(ib.k) * std::max(5.0 - o_d, 0.0))},
-                                    {UWI_ROW_EXP_K_H, std::exp(-double(ib.k) * 5.0)}};
+                                    {UWI_ROW_EXP_K_HOD, std::exp(-double(ib.k_src) * std::max(5.0 - o_d, 0.0))},
+                                    {UWI_ROW_EXP_K_H, std::exp(-double(ib.k_src) * 5.0)}};
         for (const auto& [row, value] : expect) {
           const double v = at(row0 + int(row), k);
           ASSERT_TRUE(std::isfinite(v) && v >= 0 && v <= 1) << row << " " << o_d;
@@ -217,15 +217,18 @@ TEST(UnderwaterImprovedBands, LanesMatchTheScalarModelInFloatAndDouble) {
   for (const Water& w : waters)
     for (double g : {0.0, 0.5, 0.9, 0.95})
       for (double H : {0.0, 5.0, 40.0})
-        for (double mu_w : {0.95, 0.3, 1e-3}) {
-          const seasim::UnderwaterSetup s = makeSetup(g, H, mu_w, w.a, w.b);
-          // The same with every E_d, E_u, E_0, F_h coefficient made positive: the size of the terms that cancel
+        for (double mu_w : {0.95, 0.3, 1e-3})
+          for (bool ordinates : {false, true}) {
+          const seasim::UnderwaterSetup s = makeSetup(g, H, mu_w, w.a, w.b, ordinates);
+          // The same with every E_d, E_u and source coefficient made positive: the size of the terms that cancel
           // (without absorption k sits at its floor and the bottom's pair e^{-k y}, e^{-k (H - y)}
           // carries large coefficients of opposite sign), against which rounding is measured.
           seasim::UnderwaterSetup magnitude = s;
-          for (UwiBand& ib : magnitude.improved)
-            for (float* v : {&ib.d1, &ib.u1, &ib.d2, &ib.u2, &ib.dp, &ib.up, &ib.o1, &ib.o2, &ib.op, &ib.h1, &ib.h2, &ib.hp})
+          for (UwiBand& ib : magnitude.improved) {
+            for (float* v : {&ib.d1, &ib.u1, &ib.d2, &ib.u2, &ib.dp, &ib.up})
               *v = std::fabs(*v);
+            for (float& v : ib.src) v = std::fabs(v);
+          }
           const double s_w[3] = {std::sqrt(1 - mu_w * mu_w), mu_w, 0};
           for (double o_d : {0.0, 1e-4, 3.0, 1000.0}) {
             if (H > 0 && o_d >= H) continue;
@@ -262,7 +265,8 @@ TEST(UnderwaterImprovedBands, LanesMatchTheScalarModelInFloatAndDouble) {
                       // the float rounding of an exponent of size x moves e^x by x ε.
                       const double size = std::fabs(ref) + scalarRadiance(magnitude, k, r, 0);
                       const double scale = (size + 1e-9 * (s.bands[k].e_sky0 + s.bands[k].e_sun0)) *
-                                           (1 + s.bands[k].c * std::min(r.S, 1e3) + s.improved[k].k * o_d);
+                                           (1 + s.bands[k].c * std::min(r.S, 1e3) +
+                                            std::max(s.improved[k].k, s.improved[k].k_src) * o_d);
                       worst_d = std::max(worst_d, std::fabs(ld - ref) / scale);
                       worst_f = std::max(worst_f, std::fabs(lf - ref) / scale);
                       worst_ff = std::max(worst_ff, std::fabs(double(rf) - ref) / scale);

@@ -71,14 +71,16 @@ TEST(UnderwaterImprovedFlux, SourceFluxTermFollowsTheScale) {
   const auto mean = seasim::diffuseMeanCosines(0.9);
   for (double s : {1.0, 1.6, 2.5}) {
     const UwiBand ib = makeUwiBand(b, 0.9, 0.8, 0.0, 1.34, mean, seasim::twoStreamClosure(), DiffuseDepth{2.0, 0.4, s});
-    const double D = 0.7, U = 0.2, nu = 0.6;
-    const double O = 1.5, Hf = 0.3, chi = -0.4;
-    const double up = kd::uwi_source_weight(&ib, nu, chi, D, U, O, Hf);
-    const double down = kd::uwi_source_weight(&ib, -nu, chi, D, U, O, Hf);
+    // The first exponential's source (the table holds the two-stream's first-order form) at ±ν on nodes.
+    const double nu = 0.625, cos_dphi = -0.4;
+    double frac = 0;
+    const int node_up = kd::uwi_source_node(nu, &frac), node_down = kd::uwi_source_node(-nu, &frac);
+    const double up = kd::uwi_source_weight(&ib, node_up, 0.0, cos_dphi, 0);
+    const double down = kd::uwi_source_weight(&ib, node_down, 0.0, cos_dphi, 0);
     const double odd = 0.5 * (up - down), even = 0.5 * (up + down);
-    EXPECT_NEAR(odd, ib.b_dm * 3 * s * (0.9 / 1.9) * nu * (D - U) / (4 * M_PI), 1e-6 * std::abs(odd)) << s;
-    // The even part: the scalar irradiance and the horizontal flux's term, which the scale scales too.
-    EXPECT_NEAR(even, ib.b_dm * (O + 3 * s * (0.9 / 1.9) * chi * Hf) / (4 * M_PI), 1e-6 * even) << s;
+    EXPECT_NEAR(odd, ib.b_dm * 3 * s * (0.9 / 1.9) * nu * (ib.d1 - ib.u1) / (4 * M_PI), 1e-6 * std::abs(odd)) << s;
+    // The even part: the scalar irradiance (the two streams carry no horizontal flux).
+    EXPECT_NEAR(even, ib.b_dm * ib.o1 / (4 * M_PI), 1e-6 * even) << s;
   }
 }
 
@@ -95,16 +97,19 @@ TEST(UnderwaterImprovedFlux, SetUpTakesTheTableOrTheKey) {
   const UnderwaterSetup p = makeUnderwaterSetup(plain, grid, sensor);
   ASSERT_GT(p.params.g, 0.0f);
   const double g_dm = p.params.g / (1.0 + p.params.g);
-  // Each diffuse solver its own table: the discrete ordinates' (the default) and the two-stream's.
-  EXPECT_FLOAT_EQ(p.improved[1].g_flux, float(ordinatesFluxScale(p.params.g) * g_dm));
-  const UnderwaterSetup t = makeUnderwaterSetup(parseScene(seasim::testing::twoStreamScene(), "uw.toml"), grid, sensor);
+  // The two-stream's flux term takes its table's s(g), or the key's.
+  const std::string two_stream = seasim::testing::twoStreamScene();
+  const UnderwaterSetup t = makeUnderwaterSetup(parseScene(two_stream, "uw.toml"), grid, sensor);
   EXPECT_FLOAT_EQ(t.improved[1].g_flux, float(diffuseFluxScale(p.params.g) * g_dm));
-  for (const std::string& scene : {std::string(kImprovedScene), seasim::testing::twoStreamScene()}) {
-    const UnderwaterSetup d = makeUnderwaterSetup(parseScene(scene, "uw.toml"), grid, sensor);
-    const UnderwaterSetup k = makeUnderwaterSetup(parseScene(scene + "improved_flux_scale = 2\n", "uw.toml"), grid, sensor);
-    EXPECT_FLOAT_EQ(k.improved[1].g_flux, float(2 * g_dm));
-    EXPECT_EQ(k.improved[1].k, d.improved[1].k);
-  }
+  const UnderwaterSetup tk = makeUnderwaterSetup(parseScene(two_stream + "improved_flux_scale = 2\n", "uw.toml"), grid, sensor);
+  EXPECT_FLOAT_EQ(tk.improved[1].g_flux, float(2 * g_dm));
+  EXPECT_EQ(tk.improved[1].k, t.improved[1].k);
+  EXPECT_NE(tk.improved[1].src[0], t.improved[1].src[0]);
+  // The discrete ordinates (the default) have no flux term to scale: their source is their own
+  // in-scatter, the same with the key.
+  const UnderwaterSetup dk =
+      makeUnderwaterSetup(parseScene(std::string(kImprovedScene) + "improved_flux_scale = 2\n", "uw.toml"), grid, sensor);
+  for (int q = 0; q < UWI_SOURCE_NODES * UWI_SOURCE_TERMS; ++q) ASSERT_EQ(dk.improved[1].src[q], p.improved[1].src[q]) << q;
   for (const char* bad : {"improved_flux_scale = 3.5", "improved_flux_scale = -0.5"}) {
     seasim::testing::expectImprovedSceneRejects(bad, "underwater.improved_flux_scale");
   }

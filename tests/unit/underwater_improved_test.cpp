@@ -244,10 +244,22 @@ TEST(UnderwaterImproved, DiffuseMeanCosinesFollowTheirTableAndReachTheKernel) {
   EXPECT_EQ(ib.h1, 0.0f);
   EXPECT_EQ(ib.h2, 0.0f);
   EXPECT_EQ(ib.hp, 0.0f);
-  const double w = kd::uwi_source_weight(&ib, 0.0, 0.4, 1.0, 0.5, 2.0, 0.0);
-  EXPECT_NEAR(w, ib.b_dm * 2.0 / (4 * M_PI), 1e-6 * w);
-  const float wf = kf::uwi_source_weight(&ib, 0.5f, -0.3f, 1.0f, 0.25f, 2.0f, 0.1f);
-  EXPECT_NEAR(wf, kd::uwi_source_weight(&ib, 0.5, -0.3, 1.0, 0.25, 2.0, 0.1), 1e-6 * wf);
+  // The two-stream's source table is the first-order form b' [E_0 + 3 g_f ν (E_d - E_u)]/(4π) per
+  // exponential, exact between the nodes (linear in ν), the same in float, integrated with c' and k, m.
+  for (double nu : {-1.0, -0.37, 0.0, 0.5, 1.0}) {
+    double frac = 0;
+    const int node = kd::uwi_source_node(nu, &frac);
+    const double w = kd::uwi_source_weight(&ib, node, frac, 0.4, 0);
+    const double expect = ib.b_dm * (ib.o1 + 3 * ib.g_flux * nu * (ib.d1 - ib.u1)) / (4 * M_PI);
+    EXPECT_NEAR(w, expect, 1e-6 * std::fabs(expect)) << nu;
+    float frac_f = 0;
+    const int node_f = kf::uwi_source_node(float(nu), &frac_f);
+    EXPECT_EQ(node_f, node);
+    EXPECT_NEAR(kf::uwi_source_weight(&ib, node_f, frac_f, 0.4f, 0), w, 1e-6 * std::fabs(w));
+  }
+  EXPECT_EQ(ib.c_src, ib.c_dm);
+  EXPECT_EQ(ib.k_src, ib.k);
+  EXPECT_EQ(ib.m_src, ib.m);
 }
 
 TEST(UnderwaterImproved, AsymptoticClosureDecaysAtTheIsotropicEigenvalue) {
