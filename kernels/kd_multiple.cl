@@ -127,11 +127,10 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
   const float phase = hg_phase(cos_s, p->g);
   const float cos_r = cos_s - 2.0f * d.y * s_w.y;
   const float phase_r = mat == UW_MAT_SURFACE ? hg_phase(cos_r, p->g) : 0.0f;
-  /* The source table's node and fraction in ν and the azimuth's cosine from the sun's, of the camera's
-   * ray's photon (ν = d.y) and the reflected ray's (ν = -d.y). */
-  float frac, frac_r;
-  const int node = uwi_source_node(d.y, &frac);
-  const int node_r = uwi_source_node(-d.y, &frac_r);
+  /* The source table's nearest node in ν and the azimuth's cosine from the sun's, of the camera's ray's
+   * photon (ν = d.y) and the reflected ray's (ν = -d.y). */
+  const int node = uwi_source_node(d.y);
+  const int node_r = uwi_source_node(-d.y);
   const float cos_dphi = uwi_cos_azimuth(cos_s, d.y, s_w.y);
   const float cos_dphi_r = uwi_cos_azimuth(cos_r, -d.y, s_w.y);
   /* The object the reflected ray meets first, if any (surface hits; uwi_mirror_hit). */
@@ -149,11 +148,11 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
      * hit, whose exps a Lambertian hit shares. */
     const UwiStart camera = uwi_start_camera(band_table, stride, uwi_row0, i);
     const UwiEnds ends = uwi_ends(&v, p->bottom_depth, S, y_hit, single && multiple);
-    const UwiWeights w = uwi_lanes_weights(band_table, stride, uwi_row0, i, node, frac, cos_dphi);
+    const UwiWeights w = uwi_lanes_weights(band_table, stride, uwi_row0, i, node, cos_dphi);
     realb L = multiple ? uwi_lanes_multiple(&v, &w, &camera, &ends, phase, p->bottom_depth, S, d.y, single) : SPLATB(0.0f);
     if (mat == UW_MAT_SURFACE) {
       const realb sky_l = kd_sky_lanes(band_table, stride, i, sky_shape);
-      const UwiWeights w_r = uwi_lanes_weights(band_table, stride, uwi_row0, i, node_r, frac_r, cos_dphi_r);
+      const UwiWeights w_r = uwi_lanes_weights(band_table, stride, uwi_row0, i, node_r, cos_dphi_r);
       L += uwi_lanes_surface(&v, &w_r, ends.k, sky_l, LOADB(ROW(uwi_row0 + UWI_ROW_BOTTOM_L), i),
                              LOADB(ROW(uwi_row0 + UWI_ROW_EXP_K_H), i), phase_r, p->bottom_depth, d.y, p->ior,
                              multiple, mirror.s, LOADB(albedo_m_row, i), mirror.n.y, n_m_dot_s, mirror.vis);

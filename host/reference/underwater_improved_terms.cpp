@@ -20,16 +20,15 @@ struct InScatter {
 InScatter inScatterTerms(const UwiBand& ib, const UwBand& band, double g, double bottom_depth, double S, double d_y,
                          double o_d, double cos_s, double mu_w) {
   InScatter t;
-  double frac = 0;
-  const int node = kd::uwi_source_node(d_y, &frac);
+  const int node = kd::uwi_source_node(d_y);
   const double cos_dphi = kd::uwi_cos_azimuth(cos_s, d_y, mu_w);
-  const double w1 = kd::uwi_source_weight(&ib, node, frac, cos_dphi, 0);
-  const double w2 = kd::uwi_source_weight(&ib, node, frac, cos_dphi, 1);
-  const double wp = kd::uwi_source_weight(&ib, node, frac, cos_dphi, 2);
+  const double w1 = kd::uwi_source_weight(&ib, node, cos_dphi, 0);
+  const double w2 = kd::uwi_source_weight(&ib, node, cos_dphi, 1);
+  const double wp = kd::uwi_source_weight(&ib, node, cos_dphi, 2);
   const double phase = double(band.b) * kd::hg_phase(cos_s, g) * band.e_beam0;
-  const double i1 = kd::kd_exp_integral(ib.k_src, ib.c_src, d_y, o_d, S);
-  const double i2 = bottom_depth > 0 ? kd::kd_exp_integral(ib.k_src, ib.c_src, -d_y, std::max(bottom_depth - o_d, 0.0), S) : 0.0;
-  const double ip = kd::kd_exp_integral(ib.m_src, ib.c_src, d_y, o_d, S);
+  const double i1 = kd::kd_exp_integral(ib.k, ib.c_dm, d_y, o_d, S);
+  const double i2 = bottom_depth > 0 ? kd::kd_exp_integral(ib.k, ib.c_dm, -d_y, std::max(bottom_depth - o_d, 0.0), S) : 0.0;
+  const double ip = kd::kd_exp_integral(ib.m, ib.c_dm, d_y, o_d, S);
   t.modes = w1 * i1 + w2 * i2;
   t.beam = wp * ip;
   t.tms = phase * ip;

@@ -38,14 +38,24 @@ void gaussLegendreUnit(int n, std::vector<double>& x, std::vector<double>& w) {
 }
 
 // The azimuth mode's Legendre functions at x, l = 0..count-1, scaled for the addition theorem:
-// mode 0: P_l(x); mode 1: P_l^1(x) / √(l (l + 1)) (0 at l = 0), so that the mode's phase is
-// Σ_l (2l + 1) χ_l q_l(μ) q_l(μ') / (4π) in both.
+// mode 0: P_l(x); mode 1: P_l^1(x) / √(l (l + 1)) (0 at l = 0); mode 2: P_l^2(x) / √((l - 1) l (l + 1) (l + 2))
+// (0 at l < 2), so that the mode's phase is Σ_l (2l + 1) χ_l q_l(μ) q_l(μ') / (4π) in each.
 std::vector<double> azimuthLegendre(int mode, int count, double x) {
   std::vector<double> p(count, 0.0);
   if (mode == 0) {
     if (count > 0) p[0] = 1;
     if (count > 1) p[1] = x;
     for (int l = 2; l < count; ++l) p[l] = ((2 * l - 1) * x * p[l - 1] - (l - 1) * p[l - 2]) / l;
+    return p;
+  }
+  if (mode == 2) {
+    // P_2^2 = 3 (1 - x²), P_3^2 = 15 x (1 - x²), (L - 2) P_L^2 = (2L - 1) x P_{L-1}^2 - (L + 1) P_{L-2}^2.
+    std::vector<double> raw(count, 0.0);
+    const double s2 = std::max(1 - x * x, 0.0);
+    if (count > 2) raw[2] = 3 * s2;
+    if (count > 3) raw[3] = 15 * x * s2;
+    for (int l = 4; l < count; ++l) raw[l] = ((2 * l - 1) * x * raw[l - 1] - (l + 1) * raw[l - 2]) / (l - 2);
+    for (int l = 2; l < count; ++l) p[l] = raw[l] / std::sqrt(double(l - 1) * l * (l + 1) * (l + 2));
     return p;
   }
   // P_1^1 = √(1 - x²) (the Condon-Shortley sign cancels in the products), P_2^1 = 3 x P_1^1,
@@ -114,7 +124,7 @@ void requireRange(bool ok, const std::string& what) {
 DiscreteOrdinates::DiscreteOrdinates(const DiscreteOrdinatesLayer& layer, int streams, int azimuth_mode,
                                      int phase_moments) {
   requireRange(streams >= 2, "at least 2 streams per hemisphere");
-  requireRange(azimuth_mode == 0 || azimuth_mode == 1, "the azimuth mode must be 0 or 1");
+  requireRange(azimuth_mode >= 0 && azimuth_mode <= 2, "the azimuth mode must be 0, 1 or 2");
   mode_ = azimuth_mode;
   requireRange(layer.a >= 0 && layer.b >= 0 && std::isfinite(layer.a) && std::isfinite(layer.b),
                "a and b must be finite and >= 0");
@@ -438,7 +448,7 @@ DiscreteOrdinatesIrradiance DiscreteOrdinates::irradianceFrom(double y, const do
       out.down += 2 * kPi * w_[i] * mu_[i] * down[i];
       out.up += 2 * kPi * w_[i] * mu_[i] * up[i];
       out.scalar += 2 * kPi * w_[i] * (down[i] + up[i]);
-    } else {  // ∫ L^1(μ) cos φ · √(1 - μ²) cos φ dφ dμ = π ∫ L^1 √(1 - μ²) dμ
+    } else if (mode_ == 1) {  // ∫ L^1(μ) cos φ · √(1 - μ²) cos φ dφ dμ = π ∫ L^1 √(1 - μ²) dμ
       out.horizontal += kPi * w_[i] * std::sqrt(1 - mu_[i] * mu_[i]) * (down[i] + up[i]);
     }
   }

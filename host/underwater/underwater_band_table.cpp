@@ -46,11 +46,9 @@ std::vector<float> underwaterBandTable(const UnderwaterSetup& setup) {
     if (improved && k < static_cast<int>(setup.improved.size())) {
       const UwiBand& ib = setup.improved[k];
       auto uwi = [&](int row, double v) { at(uwi_row0 + row, i) = static_cast<float>(v); };
+      uwi(UWI_ROW_C_DM, ib.c_dm);
       uwi(UWI_ROW_K, ib.k);
       uwi(UWI_ROW_M, ib.m);
-      uwi(UWI_ROW_C_SRC, ib.c_src);
-      uwi(UWI_ROW_M_SRC, ib.m_src);
-      uwi(UWI_ROW_K_SRC, ib.k_src);
       for (int q = 0; q < UWI_SOURCE_NODES * UWI_SOURCE_TERMS; ++q) uwi(UWI_ROW_SRC + q, ib.src[q]);
       uwi(UWI_ROW_B_E_BEAM, double(b.b) * b.e_beam0);
       uwi(UWI_ROW_D1, ib.d1);
@@ -72,9 +70,9 @@ std::vector<float> underwaterBandTable(const UnderwaterSetup& setup) {
       // their value to float precision (kd_exp_integral_ends_b).
       const float o_d = -setup.params.cam_pos[1];
       const float h_od = std::max(setup.params.bottom_depth - o_d, 0.0f);
-      const double k_f = at(uwi_row0 + UWI_ROW_K_SRC, i), m_src_f = at(uwi_row0 + UWI_ROW_M_SRC, i);
+      const double k_f = at(uwi_row0 + UWI_ROW_K, i), m_f = at(uwi_row0 + UWI_ROW_M, i);
       uwi(UWI_ROW_EXP_K_OD, std::exp(-k_f * o_d));
-      uwi(UWI_ROW_EXP_M_SRC_OD, std::exp(-m_src_f * o_d));
+      uwi(UWI_ROW_EXP_M_OD, std::exp(-m_f * o_d));
       uwi(UWI_ROW_EXP_BEAM_OD, std::exp(-double(at(UW_ROW_K_BEAM, i)) * o_d));
       uwi(UWI_ROW_EXP_K_HOD, std::exp(-k_f * h_od));
       uwi(UWI_ROW_EXP_K_H, std::exp(-k_f * std::max(depth, 0.0)));

@@ -90,41 +90,48 @@ double scanK(double k_inf, double m, Error error) {
   return best_k > 0 ? best_k : m * 1.05;
 }
 
-// The discrete ordinates' in-scatter (both azimuth modes) at the table's cosines, fitted per cosine to
-// e^{-k_src y}, e^{-k_src (H - y)}, e^{-m_src y} (relative to the azimuth average's size): UwiBand.src.
-// Returns the largest relative error over cosines and depths. Where k_src comes within 2 % of m_src the
+// The discrete ordinates' in-scatter (azimuth modes 0, 1, 2) at the table's cosines, fitted per cosine to
+// e^{-k y}, e^{-k (H - y)}, e^{-m y} (relative to the azimuth average's size): UwiBand.src. Returns the
+// largest relative error over cosines and depths. Where k comes within 2 % of m (the k scan avoids it) the
 // beam's exponential is left out, as the pair would fit each other's cancellation.
-double fitSourceTable(const DiscreteOrdinates& field, const DiscreteOrdinates* field_h, double depth_end,
-                      double k_src, double m_src, bool bottom, UwiBand& o) {
+double fitSourceTable(const DiscreteOrdinates& field, const DiscreteOrdinates* field_h,
+                      const DiscreteOrdinates* field_h2, double depth_end, double k, double m, bool bottom,
+                      UwiBand& o) {
   std::vector<double> nus(UWI_SOURCE_NODES);
   for (int j = 0; j < UWI_SOURCE_NODES; ++j) nus[j] = -1.0 + 2.0 * j / (UWI_SOURCE_NODES - 1);
   const std::vector<double> j0 = field.inscatterProfile(nus, depth_end, kDepthSamples);
   const std::vector<double> j1 =
       field_h ? field_h->inscatterProfile(nus, depth_end, kDepthSamples) : std::vector<double>(j0.size(), 0.0);
+  const std::vector<double> j2 =
+      field_h2 ? field_h2->inscatterProfile(nus, depth_end, kDepthSamples) : std::vector<double>(j0.size(), 0.0);
   double largest = 0;
   for (double v : j0) largest = std::max(largest, std::abs(v));
-  std::vector<Profile> p0(UWI_SOURCE_NODES), p1(UWI_SOURCE_NODES);
+  std::vector<Profile> p0(UWI_SOURCE_NODES), p1(UWI_SOURCE_NODES), p2(UWI_SOURCE_NODES);
   for (int j = 0; j < UWI_SOURCE_NODES; ++j)
     for (int s = 0; s < kDepthSamples; ++s) {
       const size_t at = size_t(s) * UWI_SOURCE_NODES + j;
       const double ref = std::max(std::abs(j0[at]), 1e-9 * largest + 1e-300);
       p0[j].target.push_back(j0[at]);
       p1[j].target.push_back(j1[at]);
+      p2[j].target.push_back(j2[at]);
       p0[j].reference.push_back(ref);
       p1[j].reference.push_back(ref);
+      p2[j].reference.push_back(ref);
     }
   const double step = depth_end / (kDepthSamples - 1);
-  const auto basis = basisAt(k_src, m_src, step, bottom);
+  const auto basis = basisAt(k, m, step, bottom);
   std::vector<int> columns = bottom ? std::vector<int>{0, 1} : std::vector<int>{0};
-  if (std::abs(k_src - m_src) >= 0.02 * m_src) columns.push_back(2);
+  if (std::abs(k - m) >= 0.02 * m) columns.push_back(2);
   double error = 0;
   for (int j = 0; j < UWI_SOURCE_NODES; ++j) {
     const Fit f0 = fitProfile(p0[j], basis, columns), f1 = fitProfile(p1[j], basis, columns);
-    error = std::max({error, f0.error, f1.error});
+    const Fit f2 = fitProfile(p2[j], basis, columns);
+    error = std::max({error, f0.error, f1.error, f2.error});
     float* row = o.src + j * UWI_SOURCE_TERMS;
     for (int q = 0; q < 3; ++q) {
       row[q] = static_cast<float>(f0.error < 1e30 ? f0.c[q] : 0.0);
       row[q + 3] = static_cast<float>(f1.error < 1e30 ? f1.c[q] : 0.0);
+      row[q + 6] = static_cast<float>(f2.error < 1e30 ? f2.c[q] : 0.0);
     }
   }
   return error;
@@ -135,8 +142,10 @@ double fitSourceTable(const DiscreteOrdinates& field, const DiscreteOrdinates* f
 UwiBand makeUwiBandFromOrdinates(const UwBand& band, double g, double mu_w, double bottom_depth, double ior,
                                  double view_depth, int streams, OrdinatesFitError* fit) {
   const double a = band.a, b = band.b;
-  // The kernel's delta-M (the two-stream's too): f = g², its beam e_beam0 e^{-m y}, m = c'/μ_w.
-  const DeltaMMedium medium = improvedDeltaM(a, b, g);
+  // The kernel's delta-M is the solver's (kOrdinatesSourceMoments: f = g³ for g > 0), its beam
+  // e_beam0 e^{-m y}, m = c'/μ_w: the view rays' source is the solver's in-scatter in that frame.
+  const int moments = g > 0 ? kOrdinatesSourceMoments : 0;
+  const DeltaMMedium medium = improvedDeltaM(a, b, g, moments > 0 ? moments : 2);
   const double c_dm = medium.c_dm;
   const double mu0 = std::clamp(mu_w, 1e-3, 1.0);
   UwiBand o = uwiBandOfMedium(medium, 1.0);  // g_flux = g': the first-order source's, unused here
@@ -157,14 +166,13 @@ UwiBand makeUwiBandFromOrdinates(const UwBand& band, double g, double mu_w, doub
   layer.mu_sun = mu0;
   layer.e_sun0 = e_sun0;
   layer.e_sky0 = e_sky0;
-  // Delta-M to kOrdinatesSourceMoments moments (f = g^3): the frame of the view rays' source (a forward
-  // peak this narrow goes on with the beam and the views; measured against the full order, s9b). A
+  // Delta-M to kOrdinatesSourceMoments moments (f = g³; measured against the full order, s9b). A
   // backward phase (g < 0) keeps every moment.
-  const int moments = g > 0 ? kOrdinatesSourceMoments : 0;
   const DiscreteOrdinates field(layer, streams, 0, moments);
   // The cos φ mode only where there is a beam off the zenith and a phase that is not isotropic.
   const bool azimuth = e_sun0 > 0 && mu0 < 1 - 1e-6 && g != 0;
   const DiscreteOrdinates field_h = azimuth ? DiscreteOrdinates(layer, streams, 1, moments) : field;
+  const DiscreteOrdinates field_h2 = azimuth ? DiscreteOrdinates(layer, streams, 2, moments) : field;
   const double k_inf = field.asymptoticK();
 
   const double depth_end = H > 0 ? H : std::max(view_depth, 0.0) + 5.0 / c_dm;
@@ -220,29 +228,10 @@ UwiBand makeUwiBandFromOrdinates(const UwBand& band, double g, double mu_w, doub
   store(fu, o.u1, o.u2, o.up);
   store(fo, o.o1, o.o2, o.op);
   store(fh, o.h1, o.h2, o.hp);
-  // The source view rays gather: the solver's own in-scatter at the table's cosines, integrated with its
-  // extinction ĉ; its beam's e^{-ĉ y/μ_w} (the TMS term's too).
-  // Its k_src from the solver's own scalar irradiance (the in-scatter's integral over directions is
-  // b̂ E_0): in this frame the light scattered out of the g² peak builds up below the surface and decays
-  // with the field's slowest modes, where the irradiances' k holds the field less the kernel's beam.
-  const double m_src = field.beamK();
-  // Over the depths the view rays gather from: [0, H], or 5 of the source's attenuation lengths below the
-  // camera without a bottom.
-  const double source_end = H > 0 ? H : std::max(view_depth, 0.0) + 5.0 / field.extinction();
-  const double source_step = source_end / (kDepthSamples - 1);
-  Profile own_scalar;
-  for (const DiscreteOrdinatesIrradiance& e : field.profile(source_end, kDepthSamples)) {
-    own_scalar.target.push_back(e.scalar);
-    own_scalar.reference.push_back(std::max(std::abs(e.scalar), 1e-12 * largest));
-  }
-  const double k_src = scanK(k_inf, m_src, [&](double k) {
-    return fitProfile(own_scalar, basisAt(k, m_src, source_step, H > 0), columns).error;
-  });
-  o.c_src = static_cast<float>(field.extinction());
-  o.m_src = static_cast<float>(m_src);
-  o.k_src = static_cast<float>(k_src);
-  const double source_error =
-      fitSourceTable(field, azimuth ? &field_h : nullptr, source_end, k_src, m_src, H > 0, o);
+  // The source view rays gather: the solver's own in-scatter at the table's cosines, in the same
+  // exponentials (the kernel's delta-M is the solver's: c' = ĉ, the beam's m its own).
+  const double source_error = fitSourceTable(field, azimuth ? &field_h : nullptr, azimuth ? &field_h2 : nullptr,
+                                             depth_end, best_k, m, H > 0, o);
   if (fit) *fit = OrdinatesFitError{fd.error, fu.error, fo.error, fh.error, source_error};
   return o;
 }

@@ -11,12 +11,12 @@
 // decays faster than its asymptotic K∞). E_d and E_u light the surfaces; E_0 and F_h are kept for the
 // record (the two-stream's first-order source uses its own).
 //
-// The view rays' source (s9b) is the solver's own in-scatter towards 65 cosines, both azimuth modes
-// (DiscreteOrdinates::inscatterProfile), fitted per cosine over [0, H] (or 5 attenuation lengths ĉ^-1
-// below the camera) to e^{-k_src y}, e^{-k_src (H - y)} and its beam's e^{-m_src y}, k_src from a scan
-// against its scalar irradiance: UwiBand.src, integrated in the kernel with the solver's extinction ĉ
-// (c_src). The solver runs at the delta-M order kOrdinatesSourceMoments, the one number fitted to the
-// path tracer.
+// The view rays' source (s9b) is the solver's own in-scatter towards 65 cosines, azimuth modes 0–2
+// (DiscreteOrdinates::inscatterProfile), fitted per cosine over the same depths to the same three
+// exponentials: UwiBand.src. The solver runs at the delta-M order kOrdinatesSourceMoments, the one number
+// fitted to the path tracer, and the kernel's delta-M is the solver's (c' its ĉ, m its beam's): the view
+// rays integrate the source in the frame it was computed in. At order 3 the phase has three Legendre
+// terms, so azimuth modes 0–2 are all the in-scatter has, and the table holds it whole.
 #pragma once
 #include <vector>
 
@@ -36,7 +36,7 @@ inline constexpr int kOrdinatesSourceMoments = 3;
 // fitted depths of E_d (against the total with the beam), E_u, E_0 (with the beam) and F_h (relative to E_0).
 struct OrdinatesFitError {
   double down = 0, up = 0, scalar = 0, horizontal = 0;
-  double source = 0;  // the in-scatter table's (both azimuth modes, relative to the average's size)
+  double source = 0;  // the in-scatter table's (azimuth modes 0–2, relative to the average's size)
 };
 
 // One band. mu_w: the refracted sun's cosine (any value in (0, 1] when the sun is off); bottom_depth <= 0:

@@ -9,12 +9,11 @@
 
 namespace seasim {
 
-static_assert(sizeof(UwiBand) == (21 + UWI_SOURCE_NODES * UWI_SOURCE_TERMS) * 4,
+static_assert(sizeof(UwiBand) == (18 + UWI_SOURCE_NODES * UWI_SOURCE_TERMS) * 4,
               "UwiBand layout changed: update underwater_improved_params.h users");
 static_assert(offsetof(UwiBand, d1) == 20 && offsetof(UwiBand, up) == 40 && offsetof(UwiBand, g_flux) == 44 &&
               offsetof(UwiBand, o1) == 48 && offsetof(UwiBand, op) == 56 && offsetof(UwiBand, h1) == 60 &&
-              offsetof(UwiBand, hp) == 68 && offsetof(UwiBand, c_src) == 72 && offsetof(UwiBand, m_src) == 76 &&
-              offsetof(UwiBand, k_src) == 80 && offsetof(UwiBand, src) == 84);
+              offsetof(UwiBand, hp) == 68 && offsetof(UwiBand, src) == 72);
 
 double internalDiffuseReflectance(double ior) {
   // Midpoint rule in μ: F jumps to 1 at the critical angle, so a fine uniform grid (error ~1e-5).
@@ -117,20 +116,19 @@ double diffuseViewDepth(const UwParams& params) {
   return params.bottom_depth > 0 ? std::min(depth, static_cast<double>(params.bottom_depth)) : depth;
 }
 
-DeltaMMedium improvedDeltaM(double a, double b, double g) {
+DeltaMMedium improvedDeltaM(double a, double b, double g, int power) {
   const double gp = std::max(g, 0.0);
-  const double f = gp * gp;
+  const double f = std::pow(gp, power);
   DeltaMMedium m;
   m.b_dm = b * (1 - f);
   m.c_dm = a + m.b_dm;
-  m.g_dm = g >= 0 ? g / (1 + g) : g;
+  m.g_dm = g < 0 ? g : power == 2 ? g / (1 + g) : (g - f) / (1 - f);
   return m;
 }
 
 UwiBand uwiBandOfMedium(const DeltaMMedium& medium, double flux_scale) {
   UwiBand o{};
   o.c_dm = static_cast<float>(medium.c_dm);
-  o.c_src = o.c_dm;
   o.b_dm = static_cast<float>(medium.b_dm);
   o.g_dm = static_cast<float>(medium.g_dm);
   o.g_flux = static_cast<float>(flux_scale * medium.g_dm);
@@ -230,11 +228,9 @@ void setFirstOrderSource(UwiBand& o) {
     for (int q = 0; q < 3; ++q) {
       row[q] = static_cast<float>(s * coef[q][0] + s_flux * nu * (coef[q][1] - coef[q][2]));
       row[q + 3] = static_cast<float>(s_flux * std::sqrt(std::max(1 - nu * nu, 0.0)) * coef[q][3]);
+      row[q + 6] = 0.0f;
     }
   }
-  o.c_src = o.c_dm;
-  o.m_src = o.m;
-  o.k_src = o.k;
 }
 
 std::vector<UwiBand> makeUwiBands(const UwParams& params, const std::vector<UwBand>& bands, DiffuseMeanCosines mean,

@@ -75,18 +75,18 @@ struct DiffuseDepth {
 double diffuseViewDepth(const UwParams& params);
 
 // The improved model's delta-M medium (Wiscombe 1977; as deltaMScale in underwater/lamps_setup.h): the
-// forward peak f = g² counts as unscattered, b' = b (1 - f), c' = a + b', g' = g / (1 + g) ((g - f)/(1 - f)
-// without its 0/0 at g = 1); g < 0 is left unscaled. Both diffuse solvers' bands start from it.
+// forward peak f = g^power counts as unscattered, b' = b (1 - f), c' = a + b', g' = (g - f)/(1 - f) (at the
+// two-stream's power 2, g / (1 + g), without its 0/0 at g = 1); g < 0 is left unscaled. Both diffuse
+// solvers' bands start from it: the two-stream at power 2, the discrete ordinates at their own order.
 struct DeltaMMedium {
   double b_dm = 0, c_dm = 0, g_dm = 0;
 };
-DeltaMMedium improvedDeltaM(double a, double b, double g);
-// A band block with the medium's c', b', g' (c_src = c') and the flux term's g_f = flux_scale g' set, the
-// rest 0.
+DeltaMMedium improvedDeltaM(double a, double b, double g, int power = 2);
+// A band block with the medium's c', b', g' and the flux term's g_f = flux_scale g' set, the rest 0.
 UwiBand uwiBandOfMedium(const DeltaMMedium& medium, double flux_scale);
 // The source table of the first-order phase (the two-stream's; before s9b the discrete ordinates' too):
 // J = b' [E_0 + 3 g_f (ν (E_d - E_u) + √(1 - ν²) cos Δφ F_h)]/(4π) per exponential from the band's o*, d*,
-// u*, h* and g_flux, integrated with c_src = c' and m_src = m.
+// u*, h* and g_flux.
 void setFirstOrderSource(UwiBand& band);
 
 // One band's coefficients. mu_w: the refracted sun's cosine (any value in (0, 1] when the sun is off:

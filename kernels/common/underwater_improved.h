@@ -9,68 +9,60 @@
  * What it changes against eq. 4.7, each measured in results/BENCHMARKS.md ("A better fast underwater
  * model"):
  *  - delta-M scaling (Wiscombe 1977; the maths of quality.lamps_delta_m): the phase function's forward
- *    peak f = g² counts as unscattered for the sun beam that lights surfaces and for the irradiances:
- *    b' = b (1 - f), c' = a + b', g' = g / (1 + g), the beam e^{-m y}, m = c'/μ_w. View rays are
- *    attenuated by c_src, the extinction of the frame their source is computed in (below).
+ *    peak f counts as unscattered, b' = b (1 - f), c' = a + b'. Light turned by a few degrees goes on:
+ *    view rays, surfaces and the sun beam (e^{-m y}, m = c'/μ_w) are attenuated by c', not c. With the
+ *    discrete ordinates (the default) f = g³, their delta-M order (kOrdinatesSourceMoments: the one
+ *    number fitted to the path tracer, s9b); with the two-stream f = g², g' = g / (1 + g).
  *  - the diffuse field from the IOPs and g, not a measured K_d, built on the host per band and frame
  *    (underwater.improved_diffuse): by default ("discrete_ordinates", host/underwater/
  *    underwater_improved_ordinates.*) a discrete-ordinates solution of the plane-parallel water (16
- *    streams per hemisphere, the HG phase delta-M scaled to 3 moments, the sun beam and the sky through
- *    the Fresnel surface, a Lambertian bottom of albedo ρ) whose plane irradiances E_d, E_u, scalar irradiance E_0 and net
- *    horizontal flux F_h towards the sun's azimuth (its cos φ mode), less the delta-M beam's, are fitted
- *    to three exponentials in depth: e^{-k y}, e^{-k (H - y)} and the beam's e^{-m y}. Or
- *    ("two_stream", before s9a) a two-stream solution over the bottom (quadrature coefficients
- *    γ1 = √3 (2 - ω'(1 + g'))/2, γ2 = √3 ω'(1 - g')/2, the beam's split γ3 = (2 - 3 g' μ_w)/4, γ4 = 1 - γ3;
- *    k the mean slope over the camera's depth of its mode plus a fitted share of e^{-K∞ y},
- *    depthMeanDiffuseK), E_0 from fitted mean cosines (E_d/μ̄_d + E_u/μ̄_u, diffuseMeanCosines) and no F_h.
- *    Either way the bottom's upwelling light lights the water and the objects' undersides.
+ *    streams per hemisphere, the HG phase delta-M scaled to its first three Legendre moments, the sun
+ *    beam and the sky through the Fresnel surface, a Lambertian bottom of albedo ρ) whose plane
+ *    irradiances E_d, E_u are fitted to three exponentials in depth: e^{-k y}, e^{-k (H - y)} and the
+ *    beam's e^{-m y}. Or ("two_stream", before s9a) a two-stream solution over the bottom (quadrature
+ *    coefficients γ1 = √3 (2 - ω'(1 + g'))/2, γ2 = √3 ω'(1 - g')/2, the beam's split
+ *    γ3 = (2 - 3 g' μ_w)/4, γ4 = 1 - γ3; k the mean slope over the camera's depth of its mode plus a
+ *    fitted share of e^{-K∞ y}, depthMeanDiffuseK). Either way the bottom's upwelling light lights the
+ *    water and the objects' undersides.
  *  - the in-scatter source J(y, ν, Δφ) that view rays gather, tabulated per band in the photon's
  *    direction (UwiBand.src, common/underwater_improved_params.h: ν its cosine with the downward
  *    vertical, Δφ its azimuth from the sun beam's, uwi_cos_azimuth), per exponential of depth. By default
- *    the discrete ordinates' own in-scatter, their phase delta-M scaled to M = 3 Legendre moments
- *    (f = g^3, kOrdinatesSourceMoments) against their radiance (azimuth modes 0 and 1, the average and
- *    the cos Δφ part) at 65 cosines, fitted per cosine to e^{-k_src y}, e^{-k_src (H - y)}, e^{-m_src y}
- *    (m_src = ĉ/μ_w their beam's, k_src fitted to their scalar irradiance), and integrated along the
- *    view with their extinction ĉ = a + b (1 - g^3), c_src: DISORT's intensities
- *    at user angles (the source-function integration of Stamnes et al. 1988) in that frame, as are the
- *    surface, the bottom and the objects at the ray's end. Measured (results/BENCHMARKS.md, s9b): the
+ *    the discrete ordinates' own in-scatter: their three-term phase against their radiance in azimuth
+ *    modes 0, 1 and 2 (all that phase scatters into) at 129 cosines (a ray reads the nearest), fitted per cosine to the same three
+ *    exponentials: DISORT's intensities at user angles (the source-function integration of Stamnes et
+ *    al. 1988), exact in that frame but for the fit. Measured (results/BENCHMARKS.md, s9b): the
  *    first-order phase 1 + 3 g' cos Θ it replaces goes negative backwards for g' > 1/3, and the water
  *    looking up at g >= 0.9 (the surface mirroring upwelling light) came out 0.89–0.95 of the path
- *    tracer; the full order (f = g^32) leaves the light scattered by a few degrees in the field, whose
- *    in-scatter two azimuth modes cannot hold (level views 1.13–1.19 at g = 0.9); M = 2, 4, 6, 8 fit
- *    the path tracer worse than 3.
- *    The two-stream keeps the first-order source b' [E_0 + 3 g_f ν (E_d - E_u)]/(4π) in the same table
- *    (linear in ν: the table holds it exactly) with c_src = c', k_src = k, m_src = m.
+ *    tracer; the solver's full order (f = g^32) leaves light scattered by a few degrees in its field,
+ *    whose in-scatter two azimuth modes could not hold (level views 1.13–1.19 at g = 0.9).
+ *    The two-stream keeps the first-order source b' [E_0 + 3 g_f ν (E_d - E_u)]/(4π) (E_0 from fitted
+ *    mean cosines, diffuseMeanCosines; g_f = s g', diffuseFluxScale) in the same table (exact at the
+ *    nodes; within half a node's step of ν, 1/128, between them).
  *    Plus the beam scattered once with the exact phase function (Nakajima & Tanaka 1988's TMS
  *    correction: delta-M's truncated phase would overstate the back-scatter), b p_HG(g, cos θ_s)
- *    e_beam0 e^{-m_src y}, attenuated as the source.
+ *    e_beam0 e^{-m y}, attenuated as the delta-M beam.
  *  - when the froxel pass adds the strict single scattering b p_HG(g) of the beam e^{-c y/μ_w} (002 eq.
  *    5.2), that term's unshadowed closed form is taken off here, so the sum is the model's total.
  * Along a view ray (depth y(z) = o_d - z d_y; the photon towards the camera has ν = d_y):
- *   L = e^{-c_src S} L_s + ∫_0^S e^{-c_src z} J(y(z)) dz,
+ *   L = e^{-c' S} L_s + ∫_0^S e^{-c' z} J(y(z)) dz,
  * every term of J an exponential in y, so each integral is kd_exp_integral (common/underwater.h): four
  * per band with froxels (three without), where eq. 4.7 takes two.
  */
 
-/* The source table's node at or below the downward cosine nu (clamped to [-1, 1]) and nu's fraction of
- * the way to the next node: linear interpolation in ν. */
-SEASIM_FN int uwi_source_node(real nu, real* frac) {
-  const real t = clamp((nu + R(1.0)) * R(0.5) * (real)(UWI_SOURCE_NODES - 1), R(0.0), (real)(UWI_SOURCE_NODES - 1));
-  const int below = (int)t;
-  const int node = below < UWI_SOURCE_NODES - 2 ? below : UWI_SOURCE_NODES - 2;
-  *frac = t - (real)node;
-  return node;
+/* The source table's node nearest the downward cosine nu (clamped to [-1, 1]). */
+SEASIM_FN int uwi_source_node(real nu) {
+  const real t = clamp((nu + R(1.0)) * R(0.5) * (real)(UWI_SOURCE_NODES - 1) + R(0.5), R(0.0),
+                       (real)(UWI_SOURCE_NODES - 1));
+  const int node = (int)t;
+  return node < UWI_SOURCE_NODES - 1 ? node : UWI_SOURCE_NODES - 1;
 }
 
-/* The source of exponential q (0: e^{-k_src y}, 1: e^{-k_src (H - y)}, 2: e^{-m_src y}) towards the photon
- * direction at the table's node and frac (uwi_source_node), cos_dphi its azimuth's cosine from the sun
- * beam's (uwi_cos_azimuth), per m per sr per unit of the exponential. */
-SEASIM_FN real uwi_source_weight(const SEASIM_GLOBAL UwiBand* ib, int node, real frac, real cos_dphi, int q) {
-  const SEASIM_GLOBAL float* lo = ib->src + node * UWI_SOURCE_TERMS;
-  const SEASIM_GLOBAL float* hi = lo + UWI_SOURCE_TERMS;
-  const real t0 = (real)lo[q] + frac * ((real)hi[q] - (real)lo[q]);
-  const real t1 = (real)lo[q + 3] + frac * ((real)hi[q + 3] - (real)lo[q + 3]);
-  return t0 + cos_dphi * t1;
+/* The source of exponential q (0: e^{-k y}, 1: e^{-k (H - y)}, 2: e^{-m y}) towards the photon
+ * direction of the table's node (uwi_source_node), cos_dphi its azimuth's cosine from the sun beam's
+ * (uwi_cos_azimuth), per m per sr per unit of the exponential: the azimuth modes 0, 1, 2. */
+SEASIM_FN real uwi_source_weight(const SEASIM_GLOBAL UwiBand* ib, int node, real cos_dphi, int q) {
+  const SEASIM_GLOBAL float* t = ib->src + node * UWI_SOURCE_TERMS;
+  return (real)t[q] + cos_dphi * (real)t[q + 3] + (R(2.0) * cos_dphi * cos_dphi - R(1.0)) * (real)t[q + 6];
 }
 
 /* cos Δφ of a photon direction (downward cosine ν, cosine cos_s with the sun beam's direction of downward
@@ -100,18 +92,17 @@ SEASIM_FN real uwi_multiple(const SEASIM_GLOBAL UwiBand* ib, const SEASIM_GLOBAL
                             real bottom_depth, real S, real d_y, real o_d, real cos_s, real mu_w,
                             int single_scattering, int multiple) {
   if (!multiple) return R(0.0);
-  const real c_src = ib->c_src, k = ib->k_src;
-  real frac;
-  const int node = uwi_source_node(d_y, &frac);
+  const real c_dm = ib->c_dm, k = ib->k;
+  const int node = uwi_source_node(d_y);
   const real cos_dphi = uwi_cos_azimuth(cos_s, d_y, mu_w);
-  const real w1 = uwi_source_weight(ib, node, frac, cos_dphi, 0);
-  const real w2 = uwi_source_weight(ib, node, frac, cos_dphi, 1);
+  const real w1 = uwi_source_weight(ib, node, cos_dphi, 0);
+  const real w2 = uwi_source_weight(ib, node, cos_dphi, 1);
   /* The beam's diffuse offspring, and the beam scattered once with the exact phase function (TMS). */
-  const real wp = uwi_source_weight(ib, node, frac, cos_dphi, 2) + (real)band->b * hg_phase(cos_s, g) * (real)band->e_beam0;
-  const real i1 = kd_exp_integral(k, c_src, d_y, o_d, S);
+  const real wp = uwi_source_weight(ib, node, cos_dphi, 2) + (real)band->b * hg_phase(cos_s, g) * (real)band->e_beam0;
+  const real i1 = kd_exp_integral(k, c_dm, d_y, o_d, S);
   /* e^{-k (H - y(z))} = e^{-k (H - o_d)} e^{-k d_y z}: the same integral seen from the bottom. */
-  const real i2 = bottom_depth > R(0.0) ? kd_exp_integral(k, c_src, -d_y, fmax(bottom_depth - o_d, R(0.0)), S) : R(0.0);
-  const real ip = kd_exp_integral(ib->m_src, c_src, d_y, o_d, S);
+  const real i2 = bottom_depth > R(0.0) ? kd_exp_integral(k, c_dm, -d_y, fmax(bottom_depth - o_d, R(0.0)), S) : R(0.0);
+  const real ip = kd_exp_integral(ib->m, c_dm, d_y, o_d, S);
   const real c = band->c;
   const real ss = single_scattering ? (real)band->b * hg_phase(cos_s, g) * (real)band->e_beam0 *
                                           kd_exp_integral(c / fmax(mu_w, R(1e-4)), c, d_y, o_d, S)
@@ -196,10 +187,10 @@ SEASIM_FN real uwi_surface(const SEASIM_GLOBAL UwiBand* ib, const SEASIM_GLOBAL 
   const real l_ms = uwi_multiple(ib, band, g, bottom_depth, s_r, -d_y, R(0.0), cos_r, s_w.y, 0, multiple);
   real l_hit = R(0.0);
   if (object) /* at depth s d_y on the reflected ray */
-    l_hit = exp(-(real)ib->c_src * mirror.s) *
+    l_hit = exp(-(real)ib->c_dm * mirror.s) *
             uwi_lambert(ib, band, bottom_depth, mirror.s * d_y, mirror.n, s_w, mirror.albedo, mirror.vis);
   else if (bottom_depth > R(0.0))
-    l_hit = exp(-(real)ib->c_src * fmin(s_r, R(1e4))) *
+    l_hit = exp(-(real)ib->c_dm * fmin(s_r, R(1e4))) *
             uwi_lambert(ib, band, bottom_depth, bottom_depth, MAKE_REAL3(0, 1, 0), s_w, band->bottom_albedo, R(1.0));
   return uw_window_radiance(d.y, ior, sky_l, l_ms + l_hit);
 }
@@ -216,5 +207,5 @@ SEASIM_FN real uwi_band_radiance(const SEASIM_GLOBAL UwiBand* ib, const SEASIM_G
   const real l_s = mat == UW_MAT_SURFACE
                        ? uwi_surface(ib, band, g, bottom_depth, sky_l, d, s_w, ior, multiple, mirror)
                        : uwi_lambert(ib, band, bottom_depth, fmax(o_d - S * d.y, R(0.0)), n, s_w, albedo, vis);
-  return exp(-(real)ib->c_src * S) * l_s + l_ms;
+  return exp(-(real)ib->c_dm * S) * l_s + l_ms;
 }

@@ -6,8 +6,8 @@
  * per-band value precomputed in the band table's improved rows (UWI_ROW_*, common/underwater_band_table.h,
  * filled by host/underwater/underwater_band_table.cpp):
  *  - the in-scatter source's table (UwiBand.src) in the band table's rows UWI_ROW_SRC + …: the pixel's
- *    node and fraction in ν and its cos Δφ (uwi_source_node, uwi_cos_azimuth) once per pixel, then two
- *    rows per term and band (uwi_lanes_weights);
+ *    nearest node in ν and its cos Δφ (uwi_source_node, uwi_cos_azimuth) once per pixel, then one row per
+ *    term and band (uwi_lanes_weights);
  *  - the TMS beam term b p_HG(g, cos θ_s) e_beam0 = (b e_beam0) p_HG: b e_beam0 per band, the phase
  *    (g is the scene's) once per pixel;
  *  - the bottom's sunlit unshadowed radiance that the surface's reflected ray ends on (uwi_surface's
@@ -21,11 +21,11 @@
  * is kd_exp_integral_ends_b, which takes no exp of its own. Its start factors e^{-κ o_d} (UwiStart) are
  * per band and frame for the camera's rays (the table's UWI_ROW_EXP_* rows) and 1 or e^{-k H} for the
  * surface's reflected ray (o_d = 0); its far ends e^{-(κ y(S) + c' S)} (UwiEnds) are the exps of the
- * hit's irradiance times T(S), taken once per step for the Lambert hit; the source's integrals take
- * their own three, e^{-(κ y(S) + c_src S)} for κ = k_src, m_src and the bottom's.
- * So a lit hit takes seven exps per band (six without froxels) where the thesis's lanes take six, and the
- * surface from below thirteen with froxels (its T(S) the camera's far end; the reflected ray's six, no
- * froxel term along it) against nine.
+ * hit's irradiance times T(S), taken once per step and shared by the integrals and the Lambert hit.
+ * So a lit hit takes four exps per band (three without froxels) where the thesis's lanes take six, and
+ * the surface from below seven with froxels (its T(S) the camera's far end; the reflected ray's three, no
+ * froxel term along it) against nine. The source's table adds nine rows' loads per ray and band (its
+ * two nearest nodes interpolated took twice the kernel's time per band: s9b).
  * tests/unit/underwater_improved_bands_test.cpp holds these lanes (one band per step on the host) to
  * uwi_band_radiance in float and double; tests/kernels/underwater_improved_kernel_test.cpp the kernel
  * to the double CPU evaluation of uwi_band_radiance.
@@ -36,8 +36,7 @@
  * improved rows. */
 typedef struct {
   realb c, k_beam, e_beam; /* σ_t; σ_t / max(μ_w, 1e-4) (the froxel term's beam); e_beam0 */
-  realb k, m;              /* the irradiances' k, the delta-M beam's c'/μ_w */
-  realb c_src, m_src, k_src; /* the extinction along view rays and the source's exponentials (UwiBand) */
+  realb c_dm, k, m;        /* delta-M extinction c', the diffuse field's k, the delta-M beam's c'/μ_w */
   realb b_e_beam;          /* b e_beam0: the TMS term and the froxel term per unit phase */
   realb d1, u1, d2, u2, dp, up; /* E_d, E_u coefficients (UwiBand) */
 } UwiLanes;
@@ -52,9 +51,7 @@ SEASIM_FN UwiLanes uwi_lanes_load(const SEASIM_GLOBAL float* table, int stride, 
   v.e_beam = UWI_LOAD(UW_ROW_E_BEAM);
   v.k = UWI_LOAD(uwi_row0 + UWI_ROW_K);
   v.m = UWI_LOAD(uwi_row0 + UWI_ROW_M);
-  v.c_src = UWI_LOAD(uwi_row0 + UWI_ROW_C_SRC);
-  v.m_src = UWI_LOAD(uwi_row0 + UWI_ROW_M_SRC);
-  v.k_src = UWI_LOAD(uwi_row0 + UWI_ROW_K_SRC);
+  v.c_dm = UWI_LOAD(uwi_row0 + UWI_ROW_C_DM);
   v.b_e_beam = UWI_LOAD(uwi_row0 + UWI_ROW_B_E_BEAM);
   v.d1 = UWI_LOAD(uwi_row0 + UWI_ROW_D1);
   v.u1 = UWI_LOAD(uwi_row0 + UWI_ROW_U1);
@@ -67,37 +64,35 @@ SEASIM_FN UwiLanes uwi_lanes_load(const SEASIM_GLOBAL float* table, int stride, 
 }
 
 /* The source's weights of the three exponentials (uwi_source_weight) towards one photon direction:
- * node and frac from uwi_source_node (once per pixel), cos_dphi from uwi_cos_azimuth. */
+ * node from uwi_source_node (once per pixel), cos_dphi from uwi_cos_azimuth. */
 typedef struct {
-  realb w1, w2, wp; /* of e^{-k y}, e^{-k (H - y)}, e^{-m_src y} */
+  realb w1, w2, wp; /* of e^{-k y}, e^{-k (H - y)}, e^{-m y} */
 } UwiWeights;
 
 SEASIM_FN UwiWeights uwi_lanes_weights(const SEASIM_GLOBAL float* table, int stride, int uwi_row0, int i, int node,
-                                       real frac, real cos_dphi) {
+                                       real cos_dphi) {
   const int row = uwi_row0 + UWI_ROW_SRC + node * UWI_SOURCE_TERMS;
-#define UWI_TERM(q)                                                                              \
-  (LOADB(table + (size_t)(row + (q)) * (size_t)stride, i) +                                       \
-   frac * (LOADB(table + (size_t)(row + UWI_SOURCE_TERMS + (q)) * (size_t)stride, i) -            \
-           LOADB(table + (size_t)(row + (q)) * (size_t)stride, i)))
+#define UWI_TERM(q) LOADB(table + (size_t)(row + (q)) * (size_t)stride, i)
+  const real cos_2dphi = R(2.0) * cos_dphi * cos_dphi - R(1.0);
   UwiWeights w;
-  w.w1 = UWI_TERM(0) + cos_dphi * UWI_TERM(3);
-  w.w2 = UWI_TERM(1) + cos_dphi * UWI_TERM(4);
-  w.wp = UWI_TERM(2) + cos_dphi * UWI_TERM(5);
+  w.w1 = UWI_TERM(0) + cos_dphi * UWI_TERM(3) + cos_2dphi * UWI_TERM(6);
+  w.w2 = UWI_TERM(1) + cos_dphi * UWI_TERM(4) + cos_2dphi * UWI_TERM(7);
+  w.wp = UWI_TERM(2) + cos_dphi * UWI_TERM(5) + cos_2dphi * UWI_TERM(8);
 #undef UWI_TERM
   return w;
 }
 
 /* The start factors e^{-κ o_d} of the integrals along a ray that starts at depth o_d, per band. */
 typedef struct {
-  realb k, m, beam; /* e^{-k_src o_d}, e^{-m_src o_d}, e^{-(σ_t/μ_w) o_d} */
-  realb k_bottom;   /* e^{-k_src max(H - o_d, 0)}: the bottom's term, integrated from the bottom */
+  realb k, m, beam; /* e^{-k o_d}, e^{-m o_d}, e^{-(σ_t/μ_w) o_d} */
+  realb k_bottom;   /* e^{-k max(H - o_d, 0)}: the bottom's term, integrated from the bottom */
 } UwiStart;
 
 /* The camera's (o_d = -cam_pos[1]): the table's per-frame rows. */
 SEASIM_FN UwiStart uwi_start_camera(const SEASIM_GLOBAL float* table, int stride, int uwi_row0, int i) {
   UwiStart a;
   a.k = LOADB(table + (size_t)(uwi_row0 + UWI_ROW_EXP_K_OD) * (size_t)stride, i);
-  a.m = LOADB(table + (size_t)(uwi_row0 + UWI_ROW_EXP_M_SRC_OD) * (size_t)stride, i);
+  a.m = LOADB(table + (size_t)(uwi_row0 + UWI_ROW_EXP_M_OD) * (size_t)stride, i);
   a.beam = LOADB(table + (size_t)(uwi_row0 + UWI_ROW_EXP_BEAM_OD) * (size_t)stride, i);
   a.k_bottom = LOADB(table + (size_t)(uwi_row0 + UWI_ROW_EXP_K_HOD) * (size_t)stride, i);
   return a;
@@ -106,26 +101,20 @@ SEASIM_FN UwiStart uwi_start_camera(const SEASIM_GLOBAL float* table, int stride
 /* The far ends of a ray's integrals, at distance S and depth y = max(y(S), 0) (T(S) = e^{-c' S} folded
  * in as underwater_bands.h does for the thesis; the clamps at 0 commute with the positive factor). */
 typedef struct {
-  realb k, m;     /* e^{-(k y + c_src S)}, e^{-(m y + c_src S)} */
-  realb k_bottom; /* e^{-(k max(H - y, 0) + c_src S)} with a bottom, else 0 */
+  realb k, m;     /* e^{-(k y + c' S)}, e^{-(m y + c' S)} */
+  realb k_bottom; /* e^{-(k max(H - y, 0) + c' S)} with a bottom, else 0 */
   realb beam;     /* e^{-((σ_t/μ_w) y + σ_t S)} with the froxel term (single_scattering), else 0 */
-  realb src_k, src_k_bottom, src_m; /* the source's integrals' ends: e^{-(k_src y + c_src S)},
-                                       e^{-(k_src max(H - y, 0) + c_src S)} (0 without a bottom),
-                                       e^{-(m_src y + c_src S)} */
 } UwiEnds;
 
 /* uwi_irradiance's exps at the end of the ray, times T(S): a Lambertian hit's and the integrals' far
  * ends alike. S = UW_INFINITE with y = its depth there: all 0 (deep water). */
 SEASIM_FN UwiEnds uwi_ends(const UwiLanes* v, real bottom_depth, real S, real y, int single_scattering) {
   UwiEnds e;
-  const realb c_s = v->c_src * S;
+  const realb c_s = v->c_dm * S;
   e.k = exp(-(v->k * y + c_s));
   e.m = exp(-(v->m * y + c_s));
   e.k_bottom = bottom_depth > R(0.0) ? exp(-(v->k * fmax(bottom_depth - y, R(0.0)) + c_s)) : SPLATB(R(0.0));
   e.beam = single_scattering ? exp(-(v->k_beam * y + v->c * S)) : SPLATB(R(0.0));
-  e.src_k = exp(-(v->k_src * y + c_s));
-  e.src_k_bottom = bottom_depth > R(0.0) ? exp(-(v->k_src * fmax(bottom_depth - y, R(0.0)) + c_s)) : SPLATB(R(0.0));
-  e.src_m = exp(-(v->m_src * y + c_s));
   return e;
 }
 
@@ -138,11 +127,11 @@ SEASIM_FN UwiEnds uwi_ends(const UwiLanes* v, real bottom_depth, real S, real y,
 SEASIM_FN realb uwi_lanes_multiple(const UwiLanes* v, const UwiWeights* w, const UwiStart* a, const UwiEnds* e,
                                    real phase, real bottom_depth, real S, real d_y, int single_scattering) {
   const realb beam_phase = v->b_e_beam * phase;
-  realb sum = w->w1 * kd_exp_integral_ends_b(v->k_src, v->c_src, a->k, e->src_k, d_y, S) +
-              (w->wp + beam_phase) * kd_exp_integral_ends_b(v->m_src, v->c_src, a->m, e->src_m, d_y, S);
+  realb sum = w->w1 * kd_exp_integral_ends_b(v->k, v->c_dm, a->k, e->k, d_y, S) +
+              (w->wp + beam_phase) * kd_exp_integral_ends_b(v->m, v->c_dm, a->m, e->m, d_y, S);
   if (bottom_depth > R(0.0)) {
     /* e^{-k (H - y(z))} = e^{-k (H - o_d)} e^{-k d_y z}: the same integral seen from the bottom. */
-    sum += w->w2 * kd_exp_integral_ends_b(v->k_src, v->c_src, a->k_bottom, e->src_k_bottom, -d_y, S);
+    sum += w->w2 * kd_exp_integral_ends_b(v->k, v->c_dm, a->k_bottom, e->k_bottom, -d_y, S);
   }
   if (single_scattering) sum -= beam_phase * kd_exp_integral_ends_b(v->k_beam, v->c, a->beam, e->beam, d_y, S);
   return fmax(sum, R(0.0));
@@ -169,9 +158,9 @@ SEASIM_FN realb uwi_lanes_lambert(const UwiLanes* v, const UwiEnds* e, realb alb
  * the reflected ray's in-scatter (phase_r = p_HG(g, cos of the reflected ray with s_w), w_r the source's
  * weights towards its photon) down to the
  * bottom, and the bottom itself (bottom_l: UWI_ROW_BOTTOM_L, its sunlit radiance), or deep water.
- * t_s: T(S) = e^{-c_src S}, which is the camera ray's far end e^{-(k y + c_src S)} at the surface (y = 0:
+ * t_s: T(S) = e^{-c' S}, which is the camera ray's far end e^{-(k y + c' S)} at the surface (y = 0:
  * uwi_ends' k). exp_k_h:
- * e^{-k_src H} (UWI_ROW_EXP_K_H), the reflected ray's start factor of the bottom's
+ * e^{-k H} (UWI_ROW_EXP_K_H), the reflected ray's start factor of the bottom's
  * term; the others are 1 at o_d = 0. The reflected ray keeps its single scattering (no froxel term
  * taken off: the froxel pass runs along the camera's ray only), as uwi_surface.
  * An object in the mirror (uwi_surface's UwiMirrorHit, traced once per pixel by the caller): its
@@ -184,7 +173,7 @@ SEASIM_FN realb uwi_lanes_surface(const UwiLanes* v, const UwiWeights* w_r, real
   const real dy = fmax(d_y, R(1e-6));
   const real s_r = bottom_depth > R(0.0) ? bottom_depth / dy : UW_INFINITE;
   realb reflected = SPLATB(R(0.0));
-  /* The bottom's attenuation along the reflected ray, e^{-c_src min(s_r, 1e4)} as uwi_surface takes it. */
+  /* The bottom's attenuation along the reflected ray, e^{-c' min(s_r, 1e4)} as uwi_surface takes it. */
   realb t_bottom = SPLATB(R(0.0));
   UwiStart a;
   a.k = SPLATB(R(1.0));
@@ -199,11 +188,11 @@ SEASIM_FN realb uwi_lanes_surface(const UwiLanes* v, const UwiWeights* w_r, real
     /* It ends on the bottom (y = H) or in deep water (S, y = ∞: its ends 0). */
     const UwiEnds e = uwi_ends(v, bottom_depth, s_r, bottom_depth > R(0.0) ? bottom_depth : UW_INFINITE, 0);
     reflected = uwi_lanes_multiple(v, w_r, &a, &e, phase_r, bottom_depth, s_r, -dy, 0);
-    /* The source's far end e^{-(k_src (H - y) + c_src s_r)} at y = H: the same but past s_r = 1e4
-     * (within H/1e4 of the horizon), where both are e^{-c_src 1e4} or less. */
-    t_bottom = e.src_k_bottom;
+    /* Its far end e^{-(k (H - y) + c' s_r)} at y = H: the same but past s_r = 1e4 (within H/1e4 of
+     * the horizon), where both are e^{-c' 1e4} or less. */
+    t_bottom = e.k_bottom;
   } else if (bottom_depth > R(0.0)) {
-    t_bottom = exp(-v->c_src * fmin(s_r, R(1e4)));
+    t_bottom = exp(-v->c_dm * fmin(s_r, R(1e4)));
   }
   if (bottom_depth > R(0.0) && !(s_m < s_r)) reflected += t_bottom * bottom_l;
   const real f = fresnel_reflectance(d_y, ior, R(1.0));

@@ -11,19 +11,23 @@
  * "discrete_ordinates") or from the two-stream (o from the streams' mean cosines, no F_h).
  *
  * The in-scatter source J(y, ν, Δφ) that view rays gather (common/underwater_improved.h) is tabulated in
- * the photon's downward cosine ν at UWI_SOURCE_NODES evenly spaced nodes from -1 to 1, per exponential:
- *   J = Σ_q [T0_q(ν) + cos Δφ T1_q(ν)] e_q(y),  e_q: e^{-k_src y}, e^{-k_src (H - y)}, e^{-m_src y},
- * linear between nodes, src[node * UWI_SOURCE_TERMS + q] = T0_q, [... + 3 + q] = T1_q (Δφ: the photon's
- * azimuth from the sun beam's). Integrated along a ray with extinction c_src. */
+ * the photon's downward cosine ν at UWI_SOURCE_NODES evenly spaced nodes from -1 to 1, per exponential
+ * (a ray reads its nearest node: s9b measured the linear interpolation between two at twice the kernel's
+ * cost per band, for the same accuracy as twice the nodes):
+ *   J = Σ_q [T0_q(ν) + cos Δφ T1_q(ν) + cos 2Δφ T2_q(ν)] e_q(y),
+ *   e_q: e^{-k y}, e^{-k (H - y)}, e^{-m y},
+ * src[node * UWI_SOURCE_TERMS + q] = T0_q, [... + 3 + q] = T1_q, [... + 6 + q] = T2_q
+ * (Δφ: the photon's azimuth from the sun beam's). Integrated along a ray with extinction c_dm. */
 
-#define UWI_SOURCE_NODES 65
-#define UWI_SOURCE_TERMS 6
+#define UWI_SOURCE_NODES 129
+#define UWI_SOURCE_TERMS 9
 
 #ifndef SEASIM_UNDERWATER_IMPROVED_PARAMS_H
 #define SEASIM_UNDERWATER_IMPROVED_PARAMS_H
 
 typedef struct {
-  float c_dm;   /* delta-M extinction c' = a + b (1 - g²), 1/m: view rays and the sun beam */
+  float c_dm;   /* delta-M extinction c' = a + b (1 - f), 1/m: view rays and the sun beam (f = g³ with the
+                   discrete ordinates, their delta-M order; g² with the two-stream) */
   float b_dm;   /* delta-M scattering b' = b (1 - g²), 1/m */
   float g_dm;   /* delta-M asymmetry g' = g / (1 + g) */
   float k;      /* the diffuse field's attenuation, 1/m: fitted with the coefficients to the discrete
@@ -39,11 +43,6 @@ typedef struct {
                        the in-scatter source's isotropic part */
   float h1, h2, hp; /* the diffuse light's net horizontal flux towards the sun's azimuth, F_h(y), in the
                        same exponentials: the flux term's part across the vertical */
-  float c_src;  /* the extinction the source is integrated with along a ray, 1/m: the discrete ordinates'
-                   own delta-M ĉ = a + b (1 - g^32) (their field already holds the light scattered out of
-                   the f = g² peak), or c' (two-stream) */
-  float m_src;  /* the source's beam exponential, ĉ/μ_w (discrete ordinates' beam) or m (two-stream) */
-  float k_src;  /* the source's diffuse exponential (its own fit; k for the two-stream) */
   float src[UWI_SOURCE_NODES * UWI_SOURCE_TERMS]; /* the source's table, per m per sr (see above) */
 } UwiBand;
 

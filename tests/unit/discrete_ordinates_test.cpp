@@ -190,7 +190,7 @@ TEST(DiscreteOrdinates, RejectsBadInput) {
   bad([](DiscreteOrdinatesLayer& l) { l.bottom_albedo = 1.5; });
   bad([](DiscreteOrdinatesLayer& l) { l.e_sun0 = -1; });
   bad([](DiscreteOrdinatesLayer&) {}, 1);
-  bad([](DiscreteOrdinatesLayer&) {}, 16, 2);
+  bad([](DiscreteOrdinatesLayer&) {}, 16, 3);
   EXPECT_THROW(DiscreteOrdinates(studyLayer(0.1, 0.3, 0.9, 5), 16, 0, 33), std::invalid_argument);
   EXPECT_THROW(DiscreteOrdinates(studyLayer(0.1, 0.3, 0.9, 5), 16, 0, -1), std::invalid_argument);
 }
@@ -199,17 +199,20 @@ TEST(DiscreteOrdinates, RejectsBadInput) {
 // from the delta-M phase's first `kept` moments (written here from Legendre's recurrences, not the solver's).
 double beamSource(const DiscreteOrdinatesLayer& l, int mode, int kept, double nu, double y, double m) {
   const double f = std::pow(l.g, kept), b_hat = l.b * (1 - f);
-  auto legendre = [&](double x, int n) {  // P_l (mode 0) or P_l^1 / √(l (l + 1)) (mode 1), l = 0..n-1
-    std::vector<double> p(n, 0.0), raw(n + 1, 0.0);
-    if (mode == 0) {
-      p[0] = 1;
-      if (n > 1) p[1] = x;
-      for (int k = 2; k < n; ++k) p[k] = ((2 * k - 1) * x * p[k - 1] - (k - 1) * p[k - 2]) / k;
-      return p;
+  // P_l^m(x) √((l - m)! / (l + m)!), l = 0..n-1, by the recurrence in l from P_m^m = (2m - 1)!! (1 - x²)^{m/2}
+  // (the Condon-Shortley sign left out: it cancels in the products).
+  auto legendre = [&](double x, int n) {
+    std::vector<double> raw(n + 1, 0.0), p(n, 0.0);
+    double pmm = 1;
+    for (int k = 1; k <= mode; ++k) pmm *= (2 * k - 1) * std::sqrt(1 - x * x);
+    if (mode < n) raw[mode] = pmm;
+    if (mode + 1 < n) raw[mode + 1] = (2 * mode + 1) * x * pmm;
+    for (int k = mode + 2; k < n; ++k) raw[k] = ((2 * k - 1) * x * raw[k - 1] - (k + mode - 1) * raw[k - 2]) / (k - mode);
+    for (int k = mode; k < n; ++k) {
+      double ratio = 1;  // (l - m)! / (l + m)!
+      for (int i = k - mode + 1; i <= k + mode; ++i) ratio /= i;
+      p[k] = raw[k] * std::sqrt(ratio);
     }
-    raw[1] = std::sqrt(1 - x * x);
-    for (int k = 2; k < n; ++k) raw[k] = ((2 * k - 1) * x * raw[k - 1] - k * raw[k - 2]) / (k - 1);
-    for (int k = 1; k < n; ++k) p[k] = raw[k] / std::sqrt(double(k) * (k + 1));
     return p;
   };
   const std::vector<double> pn = legendre(nu, kept), ps = legendre(l.mu_sun, kept);
@@ -219,14 +222,14 @@ double beamSource(const DiscreteOrdinatesLayer& l, int mode, int kept, double nu
 }
 
 // The in-scatter towards the quadrature's own cosines closes the transfer equation of the solver's
-// radiance: ±μ dL/dy + ĉ L - J = the beam's scattering, per node, depth and azimuth mode (dL/dy by central
-// differences), for the full delta-M order and a low one (phase_moments 4). Its integral over directions
-// is b̂ E_0 (mode 0), its first moment b̂ χ_1 (E_d - E_u). Would fail with a wrong phase sum, a wrong
-// weight, the hemispheres swapped or the user cosines' Legendre functions off.
+// radiance: ±μ dL/dy + ĉ L - J = the beam's scattering, per node and depth (dL/dy by central differences),
+// in azimuth modes 0, 1 and 2, for the full delta-M order and a low one (phase_moments 4). Its integral
+// over directions is b̂ E_0 (mode 0), its first moment b̂ χ_1 (E_d - E_u). Would fail with a wrong phase
+// sum, a wrong weight, the hemispheres swapped or the user cosines' Legendre functions off.
 TEST(DiscreteOrdinates, InscatterClosesTheTransferEquation) {
   for (double bottom : {0.0, 5.0})
     for (int kept : {0, 4})
-      for (int mode : {0, 1}) {
+      for (int mode : {0, 1, 2}) {
         const DiscreteOrdinatesLayer l = studyLayer(0.1, 0.3, 0.9, bottom);
         const DiscreteOrdinates d(l, 16, mode, kept);
         const std::vector<double>& mu = d.cosines();
@@ -253,7 +256,7 @@ TEST(DiscreteOrdinates, InscatterClosesTheTransferEquation) {
           EXPECT_NEAR(res_up, beamSource(l, mode, order, -mu[i], y, d.beamK()), 1e-6 * largest)
               << "bottom " << bottom << " kept " << kept << " mode " << mode << " mu " << -mu[i];
         }
-        if (mode == 1) continue;
+        if (mode > 0) continue;
         // Simpson's rule in ν over [-1, 1] (J is a polynomial of degree < 32 in ν): 2π ∫ J dν and 2π ∫ ν J dν.
         const int count = 2001;
         std::vector<double> grid(count);

@@ -86,14 +86,12 @@ struct Ray {
     const Real phase = ns::hg_phase(cos_s, g);                                                               \
     const Real cos_r = cos_s - Real(2) * d.y * s_w.y;                                                        \
     const Real phase_r = ns::hg_phase(cos_r, g);                                                             \
-    Real frac = 0, frac_r = 0;                                                                               \
-    const int node = ns::uwi_source_node(d.y, &frac), node_r = ns::uwi_source_node(-d.y, &frac_r);         \
+    const int node = ns::uwi_source_node(d.y), node_r = ns::uwi_source_node(-d.y);                         \
     const Real cos_dphi = ns::uwi_cos_azimuth(cos_s, d.y, s_w.y);                                           \
     const Real cos_dphi_r = ns::uwi_cos_azimuth(cos_r, -d.y, s_w.y);                                        \
     const ns::UwiLanes v = ns::uwi_lanes_load(table.data(), stride, uwi_row0, k);                            \
-    const ns::UwiWeights w = ns::uwi_lanes_weights(table.data(), stride, uwi_row0, k, node, frac, cos_dphi); \
-    const ns::UwiWeights w_r =                                                                               \
-        ns::uwi_lanes_weights(table.data(), stride, uwi_row0, k, node_r, frac_r, cos_dphi_r);                \
+    const ns::UwiWeights w = ns::uwi_lanes_weights(table.data(), stride, uwi_row0, k, node, cos_dphi);       \
+    const ns::UwiWeights w_r = ns::uwi_lanes_weights(table.data(), stride, uwi_row0, k, node_r, cos_dphi_r); \
     const ns::UwiStart a = ns::uwi_start_camera(table.data(), stride, uwi_row0, k);                          \
     auto row = [&](int rw) { return Real(table[size_t(rw) * stride + k]); };                                 \
     const Real y = std::max(o_d - S * d.y, Real(0));                                                         \
@@ -147,19 +145,17 @@ TEST(UnderwaterImprovedBands, TableRowsHoldTheBlockAndPaddingIsWeightless) {
     EXPECT_EQ(at(row0 + UWI_ROW_K, k), ib.k);
     EXPECT_EQ(at(row0 + UWI_ROW_D2, k), ib.d2);
     EXPECT_EQ(at(row0 + UWI_ROW_UP, k), ib.up);
-    EXPECT_EQ(at(row0 + UWI_ROW_C_SRC, k), ib.c_src);
-    EXPECT_EQ(at(row0 + UWI_ROW_K_SRC, k), ib.k_src);
-    EXPECT_EQ(at(row0 + UWI_ROW_M_SRC, k), ib.m_src);
+    EXPECT_EQ(at(row0 + UWI_ROW_C_DM, k), ib.c_dm);
+    EXPECT_EQ(at(row0 + UWI_ROW_M, k), ib.m);
     // The source's rows are the band's table, and the lanes' weights are uwi_source_weight at every ν and
     // azimuth.
     for (int q = 0; q < UWI_SOURCE_NODES * UWI_SOURCE_TERMS; ++q) ASSERT_EQ(at(row0 + UWI_ROW_SRC + q, k), ib.src[q]) << q;
     for (double nu : {-1.0, -0.3, 0.0, 0.7, 1.0})
       for (double cos_dphi : {-0.6, 0.0, 1.0}) {
-        double frac = 0;
-        const int node = kd::uwi_source_node(nu, &frac);
-        const kd::UwiWeights w = kd::uwi_lanes_weights(t.data(), stride, row0, k, node, frac, cos_dphi);
+        const int node = kd::uwi_source_node(nu);
+        const kd::UwiWeights w = kd::uwi_lanes_weights(t.data(), stride, row0, k, node, cos_dphi);
         for (int q = 0; q < 3; ++q) {
-          const double expect = kd::uwi_source_weight(&ib, node, frac, cos_dphi, q);
+          const double expect = kd::uwi_source_weight(&ib, node, cos_dphi, q);
           EXPECT_NEAR(q == 0 ? w.w1 : q == 1 ? w.w2 : w.wp, expect, 1e-12 * std::fabs(expect) + 1e-30) << nu;
         }
       }
@@ -188,11 +184,11 @@ TEST(UnderwaterImprovedBands, CameraRowsAreTheStartFactorsAtTheCamerasDepth) {
       for (int k = 0; k < stride; ++k) {
         const UwiBand& ib = s.improved[std::min(k, kBands - 1)];
         const double k_beam = at(UW_ROW_K_BEAM, k);
-        const double expect[][2] = {{UWI_ROW_EXP_K_OD, std::exp(-double(ib.k_src) * o_d)},
-                                    {UWI_ROW_EXP_M_SRC_OD, std::exp(-double(ib.m_src) * o_d)},
+        const double expect[][2] = {{UWI_ROW_EXP_K_OD, std::exp(-double(ib.k) * o_d)},
+                                    {UWI_ROW_EXP_M_OD, std::exp(-double(ib.m) * o_d)},
                                     {UWI_ROW_EXP_BEAM_OD, std::exp(-k_beam * o_d)},
-                                    {UWI_ROW_EXP_K_HOD, std::exp(-double(ib.k_src) * std::max(5.0 - o_d, 0.0))},
-                                    {UWI_ROW_EXP_K_H, std::exp(-double(ib.k_src) * 5.0)}};
+                                    {UWI_ROW_EXP_K_HOD, std::exp(-double(ib.k) * std::max(5.0 - o_d, 0.0))},
+                                    {UWI_ROW_EXP_K_H, std::exp(-double(ib.k) * 5.0)}};
         for (const auto& [row, value] : expect) {
           const double v = at(row0 + int(row), k);
           ASSERT_TRUE(std::isfinite(v) && v >= 0 && v <= 1) << row << " " << o_d;
@@ -265,8 +261,7 @@ TEST(UnderwaterImprovedBands, LanesMatchTheScalarModelInFloatAndDouble) {
                       // the float rounding of an exponent of size x moves e^x by x ε.
                       const double size = std::fabs(ref) + scalarRadiance(magnitude, k, r, 0);
                       const double scale = (size + 1e-9 * (s.bands[k].e_sky0 + s.bands[k].e_sun0)) *
-                                           (1 + s.bands[k].c * std::min(r.S, 1e3) +
-                                            std::max(s.improved[k].k, s.improved[k].k_src) * o_d);
+                                           (1 + s.bands[k].c * std::min(r.S, 1e3) + s.improved[k].k * o_d);
                       worst_d = std::max(worst_d, std::fabs(ld - ref) / scale);
                       worst_f = std::max(worst_f, std::fabs(lf - ref) / scale);
                       worst_ff = std::max(worst_ff, std::fabs(double(rf) - ref) / scale);

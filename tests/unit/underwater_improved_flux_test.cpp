@@ -73,10 +73,9 @@ TEST(UnderwaterImprovedFlux, SourceFluxTermFollowsTheScale) {
     const UwiBand ib = makeUwiBand(b, 0.9, 0.8, 0.0, 1.34, mean, seasim::twoStreamClosure(), DiffuseDepth{2.0, 0.4, s});
     // The first exponential's source (the table holds the two-stream's first-order form) at ±ν on nodes.
     const double nu = 0.625, cos_dphi = -0.4;
-    double frac = 0;
-    const int node_up = kd::uwi_source_node(nu, &frac), node_down = kd::uwi_source_node(-nu, &frac);
-    const double up = kd::uwi_source_weight(&ib, node_up, 0.0, cos_dphi, 0);
-    const double down = kd::uwi_source_weight(&ib, node_down, 0.0, cos_dphi, 0);
+    const int node_up = kd::uwi_source_node(nu), node_down = kd::uwi_source_node(-nu);
+    const double up = kd::uwi_source_weight(&ib, node_up, cos_dphi, 0);
+    const double down = kd::uwi_source_weight(&ib, node_down, cos_dphi, 0);
     const double odd = 0.5 * (up - down), even = 0.5 * (up + down);
     EXPECT_NEAR(odd, ib.b_dm * 3 * s * (0.9 / 1.9) * nu * (ib.d1 - ib.u1) / (4 * M_PI), 1e-6 * std::abs(odd)) << s;
     // The even part: the scalar irradiance (the two streams carry no horizontal flux).

@@ -46,8 +46,8 @@ DiscreteOrdinatesLayer layerOf(const UwBand& b, double g, double H) {
 // E_d (with the kernel's delta-M beam) and E_u from the band as the kernel evaluates them
 // (uwi_irradiance), against the solver's at its full delta-M order (the band is fitted to its order
 // kOrdinatesSourceMoments), over the bottom's whole depth: within 4 %. The fit's own largest errors,
-// printed: 0.05–0.5 % in clear water, up to 4.1 % (E_0) at 8 optical depths, where three exponentials no
-// longer hold the field near both ends; the source table's 0.6–6.3 %.
+// printed: 0.01–0.2 % in clear water, up to 3.6 % (E_0) at 8 optical depths, where three exponentials no
+// longer hold the field near both ends; the source table's 0.6–8.6 %.
 TEST(UnderwaterImprovedOrdinates, BandHoldsTheSolversIrradiance) {
   struct Case {
     double a, b, g, H;
@@ -115,7 +115,7 @@ TEST(UnderwaterImprovedOrdinates, ScalarIrradianceAndHorizontalFlux) {
   EXPECT_EQ(deep.u2, 0.0f);
   EXPECT_EQ(deep.o2, 0.0f);
   EXPECT_GT(deep.d1 + deep.dp, 0.0f);
-  EXPECT_FLOAT_EQ(ib.c_dm, float(0.1 + 0.3 * (1 - 0.81)));
+  EXPECT_FLOAT_EQ(ib.c_dm, float(0.1 + 0.3 * (1 - 0.729)));  // the solver's delta-M, f = g³
 }
 
 // No medium, no light, no absorption, no scattering, a black bottom 1 mm down: every coefficient finite,
@@ -166,14 +166,14 @@ TEST(UnderwaterImprovedOrdinates, CosAzimuth) {
 namespace {
 
 // The kernel's radiance from a discrete-ordinates band (uwi_band_radiance, double: the source's table
-// integrated along the view with c_src, the surface and the bottom at the ray's end) against the
+// integrated along the view with c', the surface and the bottom at the ray's end) against the
 // solver's own radiance at its cosines, for the same delta-M order, 2 m down, looking down into deep
 // water or onto a 5 m bottom and up at the surface. Lit by the sky alone at g = 0.9 (no beam: the
 // source is the solver's in-scatter and nothing else), and by the sun and the sky at g = 0 (the TMS term's
 // exact phase is then the solver's). Measures what the table's exponential fit and its linear
 // interpolation in ν lose: within 5 % (the worst printed: 4.7 %, the dimmest views down into deep water
 // lit by the sky alone at g = 0.9). Would fail with the table's cosines reversed,
-// the source integrated with c' or the surface and bottom attenuated by c'.
+// the source integrated with another extinction than the solver's, or a mode of the table left out.
 TEST(UnderwaterImprovedOrdinates, SourceTableGivesTheSolversRadiance) {
   struct Light {
     double g, e_sky0, e_sun0;

@@ -121,6 +121,8 @@ long double multipleQuadrature(const UwiBand& ib, const UwBand& bd, double g, do
   const double S_end = S >= 1e29 ? 60.0 / ib.c_dm : S;
   const long double h = S_end / n;
   const seasim::DiffuseMeanCosines mean = seasim::diffuseMeanCosines(g);
+  // The source's table holds the first-order form at its nodes; the ray reads the one nearest its ν.
+  const double nu_node = -1.0 + 2.0 * kd::uwi_source_node(d_y) / (UWI_SOURCE_NODES - 1);
   auto f = [&](long double z) -> long double {
     const double y = o_d - double(z) * d_y;
     double ed, eu;
@@ -128,7 +130,7 @@ long double multipleQuadrature(const UwiBand& ib, const UwBand& bd, double g, do
     // The beam's offspring (dp, up) by its own mean cosines, the rest by the two-stream modes'.
     const double ep = std::exp(-double(ib.m) * y), bd_ = ib.dp * ep, bu_ = ib.up * ep;
     const double J = ib.b_dm * ((ed - bd_) / mean.down + (eu - bu_) / mean.up + bd_ / mean.beam_down +
-                                bu_ / mean.beam_up + 3 * ib.g_flux * d_y * (ed - eu)) / (4 * M_PI) +
+                                bu_ / mean.beam_up + 3 * ib.g_flux * nu_node * (ed - eu)) / (4 * M_PI) +
                      bd.b * kd::hg_phase(cos_s, g) * bd.e_beam0 * std::exp(-double(ib.m) * y);
     const double ss = single ? bd.b * kd::hg_phase(cos_s, g) * bd.e_beam0 * std::exp(-bd.c * y / mu_w - bd.c * double(z)) : 0;
     return J * std::exp(-double(ib.c_dm) * double(z)) - ss;
@@ -245,21 +247,21 @@ TEST(UnderwaterImproved, DiffuseMeanCosinesFollowTheirTableAndReachTheKernel) {
   EXPECT_EQ(ib.h2, 0.0f);
   EXPECT_EQ(ib.hp, 0.0f);
   // The two-stream's source table is the first-order form b' [E_0 + 3 g_f ν (E_d - E_u)]/(4π) per
-  // exponential, exact between the nodes (linear in ν), the same in float, integrated with c' and k, m.
-  for (double nu : {-1.0, -0.37, 0.0, 0.5, 1.0}) {
-    double frac = 0;
-    const int node = kd::uwi_source_node(nu, &frac);
-    const double w = kd::uwi_source_weight(&ib, node, frac, 0.4, 0);
-    const double expect = ib.b_dm * (ib.o1 + 3 * ib.g_flux * nu * (ib.d1 - ib.u1)) / (4 * M_PI);
+  // exponential at its nodes (ν = -1 + 2 j / 128), which a ray reads nearest to its own ν: within half a
+  // node's step between them; the same in float.
+  for (double nu : {-1.0, -0.37, 0.0, 0.5, 0.996, 1.0}) {
+    const int node = kd::uwi_source_node(nu);
+    const double nu_node = -1.0 + 2.0 * node / (UWI_SOURCE_NODES - 1);
+    EXPECT_LE(std::fabs(nu_node - nu), 1.0 / (UWI_SOURCE_NODES - 1) + 1e-12) << nu;
+    const double w = kd::uwi_source_weight(&ib, node, 0.4, 0);
+    const double expect = ib.b_dm * (ib.o1 + 3 * ib.g_flux * nu_node * (ib.d1 - ib.u1)) / (4 * M_PI);
     EXPECT_NEAR(w, expect, 1e-6 * std::fabs(expect)) << nu;
-    float frac_f = 0;
-    const int node_f = kf::uwi_source_node(float(nu), &frac_f);
+    const int node_f = kf::uwi_source_node(float(nu));
     EXPECT_EQ(node_f, node);
-    EXPECT_NEAR(kf::uwi_source_weight(&ib, node_f, frac_f, 0.4f, 0), w, 1e-6 * std::fabs(w));
+    EXPECT_NEAR(kf::uwi_source_weight(&ib, node_f, 0.4f, 0), w, 1e-6 * std::fabs(w));
   }
-  EXPECT_EQ(ib.c_src, ib.c_dm);
-  EXPECT_EQ(ib.k_src, ib.k);
-  EXPECT_EQ(ib.m_src, ib.m);
+  EXPECT_EQ(kd::uwi_source_node(-2.0), 0);  // clamped
+  EXPECT_EQ(kd::uwi_source_node(2.0), UWI_SOURCE_NODES - 1);
 }
 
 TEST(UnderwaterImproved, AsymptoticClosureDecaysAtTheIsotropicEigenvalue) {
