@@ -106,32 +106,41 @@ double fitSourceTable(const DiscreteOrdinates& field, const DiscreteOrdinates* f
       field_h2 ? field_h2->inscatterProfile(nus, depth_end, kDepthSamples) : std::vector<double>(j0.size(), 0.0);
   double largest = 0;
   for (double v : j0) largest = std::max(largest, std::abs(v));
-  std::vector<Profile> p0(UWI_SOURCE_NODES), p1(UWI_SOURCE_NODES), p2(UWI_SOURCE_NODES);
-  for (int j = 0; j < UWI_SOURCE_NODES; ++j)
-    for (int s = 0; s < kDepthSamples; ++s) {
-      const size_t at = size_t(s) * UWI_SOURCE_NODES + j;
-      const double ref = std::max(std::abs(j0[at]), 1e-9 * largest + 1e-300);
-      p0[j].target.push_back(j0[at]);
-      p1[j].target.push_back(j1[at]);
-      p2[j].target.push_back(j2[at]);
-      p0[j].reference.push_back(ref);
-      p1[j].reference.push_back(ref);
-      p2[j].reference.push_back(ref);
-    }
   const double step = depth_end / (kDepthSamples - 1);
   const auto basis = basisAt(k, m, step, bottom);
   std::vector<int> columns = bottom ? std::vector<int>{0, 1} : std::vector<int>{0};
   if (std::abs(k - m) >= 0.02 * m) columns.push_back(2);
+  const int n = static_cast<int>(columns.size());
+  // Per cosine: one weighting (relative to the azimuth average) and so one normal matrix for the three
+  // modes' right-hand sides.
+  const std::vector<double>* modes[3] = {&j0, &j1, &j2};
+  std::vector<double> weight(kDepthSamples), normal(n * n), a(n * n), rhs(n);
   double error = 0;
   for (int j = 0; j < UWI_SOURCE_NODES; ++j) {
-    const Fit f0 = fitProfile(p0[j], basis, columns), f1 = fitProfile(p1[j], basis, columns);
-    const Fit f2 = fitProfile(p2[j], basis, columns);
-    error = std::max({error, f0.error, f1.error, f2.error});
+    std::fill(normal.begin(), normal.end(), 0.0);
+    for (int s = 0; s < kDepthSamples; ++s) {
+      weight[s] = 1.0 / std::max(std::abs(j0[size_t(s) * UWI_SOURCE_NODES + j]), 1e-9 * largest + 1e-300);
+      const double w2 = weight[s] * weight[s];
+      for (int r = 0; r < n; ++r)
+        for (int c = 0; c < n; ++c) normal[r * n + c] += w2 * basis[s][columns[r]] * basis[s][columns[c]];
+    }
     float* row = o.src + j * UWI_SOURCE_TERMS;
-    for (int q = 0; q < 3; ++q) {
-      row[q] = static_cast<float>(f0.error < 1e30 ? f0.c[q] : 0.0);
-      row[q + 3] = static_cast<float>(f1.error < 1e30 ? f1.c[q] : 0.0);
-      row[q + 6] = static_cast<float>(f2.error < 1e30 ? f2.c[q] : 0.0);
+    for (int mode = 0; mode < 3; ++mode) {
+      const std::vector<double>& target = *modes[mode];
+      std::fill(rhs.begin(), rhs.end(), 0.0);
+      for (int s = 0; s < kDepthSamples; ++s) {
+        const double w2t = weight[s] * weight[s] * target[size_t(s) * UWI_SOURCE_NODES + j];
+        for (int r = 0; r < n; ++r) rhs[r] += w2t * basis[s][columns[r]];
+      }
+      a = normal;
+      std::array<double, 3> coef{};
+      if (solveLinear(a, rhs, n))
+        for (int r = 0; r < n; ++r) coef[columns[r]] = rhs[r];
+      for (int s = 0; s < kDepthSamples; ++s) {
+        const double v = coef[0] * basis[s][0] + coef[1] * basis[s][1] + coef[2] * basis[s][2];
+        error = std::max(error, std::abs(v - target[size_t(s) * UWI_SOURCE_NODES + j]) * weight[s]);
+      }
+      for (int q = 0; q < 3; ++q) row[q + 3 * mode] = static_cast<float>(coef[q]);
     }
   }
   return error;
