@@ -331,14 +331,21 @@ DiscreteOrdinates::DiscreteOrdinates(const DiscreteOrdinatesLayer& layer, int st
   m_particular_ = m;
 }
 
-DiscreteOrdinatesIrradiance DiscreteOrdinates::at(double depth) const {
+double DiscreteOrdinates::exponentialsAt(double depth, std::vector<double>& e_dec, std::vector<double>& e_grow) const {
   const int n = n_;
   const double y = bottom_ > 0 ? std::clamp(depth, 0.0, bottom_) : std::max(depth, 0.0);
-  std::vector<double> e_dec(n), e_grow(n, 0.0);
+  e_dec.assign(n, 0.0);
+  e_grow.assign(n, 0.0);
   for (int j = 0; j < n; ++j) {
     e_dec[j] = std::exp(-lambda_[j] * y);
     if (bottom_ > 0) e_grow[j] = std::exp(-lambda_[j] * (bottom_ - y));
   }
+  return y;
+}
+
+DiscreteOrdinatesIrradiance DiscreteOrdinates::at(double depth) const {
+  std::vector<double> e_dec, e_grow;
+  const double y = exponentialsAt(depth, e_dec, e_grow);
   return irradianceFrom(y, e_dec.data(), e_grow.data());
 }
 
@@ -366,15 +373,10 @@ double DiscreteOrdinates::sampleExponentials(double depth_end, int samples, std:
 }
 
 void DiscreteOrdinates::radiances(double depth, std::vector<double>& down, std::vector<double>& up) const {
-  const int n = n_;
-  const double y = bottom_ > 0 ? std::clamp(depth, 0.0, bottom_) : std::max(depth, 0.0);
-  std::vector<double> e_dec(n), e_grow(n, 0.0);
-  for (int j = 0; j < n; ++j) {
-    e_dec[j] = std::exp(-lambda_[j] * y);
-    if (bottom_ > 0) e_grow[j] = std::exp(-lambda_[j] * (bottom_ - y));
-  }
-  down.assign(n, 0.0);
-  up.assign(n, 0.0);
+  std::vector<double> e_dec, e_grow;
+  const double y = exponentialsAt(depth, e_dec, e_grow);
+  down.assign(n_, 0.0);
+  up.assign(n_, 0.0);
   radiancesFrom(y, e_dec.data(), e_grow.data(), down.data(), up.data());
 }
 

@@ -79,6 +79,9 @@ class DiscreteOrdinates {
  private:
   // The irradiances at depth y from the modes' exponentials there (e_grow: e^{-λ (H - y)}, 0 without a bottom).
   DiscreteOrdinatesIrradiance irradianceFrom(double y, const double* e_dec, const double* e_grow) const;
+  // The depth clamped to the layer, and each mode's e^{-λ y} (e_dec) and e^{-λ (H - y)} (e_grow, 0 without
+  // a bottom) there.
+  double exponentialsAt(double depth, std::vector<double>& e_dec, std::vector<double>& e_grow) const;
   // The quadrature's radiances at depth y, down (L+) and up (L-), from the modes' exponentials there.
   void radiancesFrom(double y, const double* e_dec, const double* e_grow, double* down, double* up) const;
   // The depths of profile(depth_end, samples) (clamped to the layer) and each mode's e^{-λ y_s} (dec) and

@@ -247,7 +247,7 @@ UwiBand makeUwiBandFromOrdinates(const UwBand& band, double g, double mu_w, doub
 
 std::vector<UwiBand> makeUwiBandsFromOrdinates(const UwParams& params, const std::vector<UwBand>& bands) {
   const double view_depth = diffuseViewDepth(params);
-  // Bands are independent (0.4–0.7 ms each at 16 streams on one core, results/BENCHMARKS.md s9a): in parallel.
+  // Bands are independent (1.5–1.8 ms each at 16 streams on one core, results/BENCHMARKS.md s9b): in parallel.
   std::vector<UwiBand> out(bands.size());
   tbb::parallel_for(size_t(0), bands.size(), [&](size_t i) {
     out[i] = makeUwiBandFromOrdinates(bands[i], params.g, params.sun_dir_water[1], params.bottom_depth, params.ior,

@@ -19,17 +19,17 @@
  * src[node * UWI_SOURCE_TERMS + q] = T0_q, [... + 3 + q] = T1_q, [... + 6 + q] = T2_q
  * (Δφ: the photon's azimuth from the sun beam's). Integrated along a ray with extinction c_dm. */
 
-#define UWI_SOURCE_NODES 129
-#define UWI_SOURCE_TERMS 9
-
 #ifndef SEASIM_UNDERWATER_IMPROVED_PARAMS_H
 #define SEASIM_UNDERWATER_IMPROVED_PARAMS_H
+
+#define UWI_SOURCE_NODES 129
+#define UWI_SOURCE_TERMS 9
 
 typedef struct {
   float c_dm;   /* delta-M extinction c' = a + b (1 - f), 1/m: view rays and the sun beam (f = g³ with the
                    discrete ordinates, their delta-M order; g² with the two-stream) */
-  float b_dm;   /* delta-M scattering b' = b (1 - g²), 1/m */
-  float g_dm;   /* delta-M asymmetry g' = g / (1 + g) */
+  float b_dm;   /* delta-M scattering b' = b (1 - f), 1/m */
+  float g_dm;   /* delta-M asymmetry g' = (g - f)/(1 - f) (g / (1 + g) at f = g²) */
   float k;      /* the diffuse field's attenuation, 1/m: fitted with the coefficients to the discrete
                    ordinates' field (underwater_improved_ordinates.h), or the two-stream's mean slope over
                    the camera's depth (depthMeanDiffuseK, underwater_improved_setup.h) */
@@ -37,12 +37,13 @@ typedef struct {
   float d1, u1; /* E_d, E_u coefficients of e^{-k y} */
   float d2, u2; /* of e^{-k (H - y)} (light the bottom sends up, and its back-scatter) */
   float dp, up; /* of e^{-m y} (the delta-M beam's diffuse offspring) */
-  float g_flux; /* the flux term's asymmetry in the in-scatter source: g' times a scale fitted to the path
+  /* Host-side only (the kernels read src): */
+  float g_flux; /* the two-stream's first-order source's flux asymmetry: g' times a scale fitted to the path
                    tracer (diffuseFluxScale in underwater_improved_setup.h; s7c, results/BENCHMARKS.md) */
   float o1, o2, op; /* the diffuse scalar irradiance E_0(y) = o1 e^{-k y} + o2 e^{-k (H - y)} + op e^{-m y}:
-                       the in-scatter source's isotropic part */
+                       the first-order source's isotropic part */
   float h1, h2, hp; /* the diffuse light's net horizontal flux towards the sun's azimuth, F_h(y), in the
-                       same exponentials: the flux term's part across the vertical */
+                       same exponentials (the discrete ordinates'; 0 for the two-stream) */
   float src[UWI_SOURCE_NODES * UWI_SOURCE_TERMS]; /* the source's table, per m per sr (see above) */
 } UwiBand;
 
