@@ -9,7 +9,9 @@ namespace seasim {
 
 std::vector<float> underwaterBandTable(const UnderwaterSetup& setup) {
   const int bands = static_cast<int>(setup.bands.size());
-  const int objects = static_cast<int>(setup.objects.size());
+  // The scene's objects: the kernel reads its rows after params.object_count albedo rows (setup.objects
+  // holds one placeholder when there is none, since OpenCL buffers cannot be empty).
+  const int objects = setup.params.object_count;
   const int stride = UW_BAND_STRIDE(std::max(bands, 1));
   const bool improved = !setup.improved.empty();
   const int uwi_row0 = UW_ROWS + objects;
