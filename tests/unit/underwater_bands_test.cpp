@@ -45,6 +45,7 @@ seasim::UnderwaterSetup makeSetup(float mu_w) {
   s.bands = {band(0.15f, 0.1f, 0.5f, 1.0f, 2.0f, mu_w), band(0.02f, 0.01f, 0.3f, 0.5f, 1.5f, mu_w),
              band(0.2f, 0.0f, 0.25f, 1.0f, 1.0f, mu_w), band(3.0f, 7.0f, 3.0f, 0.2f, 0.4f, mu_w)};
   s.objects.resize(2);
+  s.params.object_count = 2;  // as makeUnderwaterSetup keeps them: the table's object rows follow it
   for (int o = 0; o < 2; ++o)
     for (int k = 0; k < 4; ++k) s.albedo.push_back(0.1f + 0.2f * o + 0.05f * k);
   return s;
