@@ -41,32 +41,22 @@ void gaussLegendreUnit(int n, std::vector<double>& x, std::vector<double>& w) {
 // mode 0: P_l(x); mode 1: P_l^1(x) / √(l (l + 1)) (0 at l = 0); mode 2: P_l^2(x) / √((l - 1) l (l + 1) (l + 2))
 // (0 at l < 2), so that the mode's phase is Σ_l (2l + 1) χ_l q_l(μ) q_l(μ') / (4π) in each.
 std::vector<double> azimuthLegendre(int mode, int count, double x) {
-  std::vector<double> p(count, 0.0);
-  if (mode == 0) {
-    if (count > 0) p[0] = 1;
-    if (count > 1) p[1] = x;
-    for (int l = 2; l < count; ++l) p[l] = ((2 * l - 1) * x * p[l - 1] - (l - 1) * p[l - 2]) / l;
-    return p;
-  }
-  if (mode == 2) {
-    // P_2^2 = 3 (1 - x²), P_3^2 = 15 x (1 - x²), (L - 2) P_L^2 = (2L - 1) x P_{L-1}^2 - (L + 1) P_{L-2}^2.
-    std::vector<double> raw(count, 0.0);
-    const double s2 = std::max(1 - x * x, 0.0);
-    if (count > 2) raw[2] = 3 * s2;
-    if (count > 3) raw[3] = 15 * x * s2;
-    for (int l = 4; l < count; ++l) raw[l] = ((2 * l - 1) * x * raw[l - 1] - (l + 1) * raw[l - 2]) / (l - 2);
-    for (int l = 2; l < count; ++l) p[l] = raw[l] / std::sqrt(double(l - 1) * l * (l + 1) * (l + 2));
-    return p;
-  }
-  // P_1^1 = √(1 - x²) (the Condon-Shortley sign cancels in the products), P_2^1 = 3 x P_1^1,
-  // (l - 1) P_{l+1}^1 = (2l + 1) x P_l^1 - (l + 1) P_{l-1}^1 ... written for l + 1 = L: (L - 1) P_L^1 =
-  // (2L - 1) x P_{L-1}^1 - L P_{L-2}^1.
-  std::vector<double> raw(count, 0.0);
+  // P_m^m = (2m - 1)!! (1 - x²)^{m/2} (the Condon-Shortley sign cancels in the products), P_{m+1}^m =
+  // (2m + 1) x P_m^m, (l - m) P_l^m = (2l - 1) x P_{l-1}^m - (l + m - 1) P_{l-2}^m; scaled by
+  // √((l - m)! / (l + m)!).
+  std::vector<double> raw(count, 0.0), p(count, 0.0);
   const double s = std::sqrt(std::max(1 - x * x, 0.0));
-  if (count > 1) raw[1] = s;
-  if (count > 2) raw[2] = 3 * x * s;
-  for (int l = 3; l < count; ++l) raw[l] = ((2 * l - 1) * x * raw[l - 1] - l * raw[l - 2]) / (l - 1);
-  for (int l = 1; l < count; ++l) p[l] = raw[l] / std::sqrt(double(l) * (l + 1));
+  double pmm = 1;
+  for (int k = 1; k <= mode; ++k) pmm *= (2 * k - 1) * s;
+  if (mode < count) raw[mode] = pmm;
+  if (mode + 1 < count) raw[mode + 1] = (2 * mode + 1) * x * pmm;
+  for (int l = mode + 2; l < count; ++l)
+    raw[l] = ((2 * l - 1) * x * raw[l - 1] - (l + mode - 1) * raw[l - 2]) / (l - mode);
+  for (int l = mode; l < count; ++l) {
+    double factorials = 1;  // (l + m)! / (l - m)!
+    for (int i = l - mode + 1; i <= l + mode; ++i) factorials *= i;
+    p[l] = raw[l] / std::sqrt(factorials);
+  }
   return p;
 }
 

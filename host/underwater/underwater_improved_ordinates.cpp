@@ -7,6 +7,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include "math/kernel_math.h"
 #include "math/linear_solve.h"
 #include "underwater/discrete_ordinates.h"
 #include "underwater/underwater_improved_setup.h"
@@ -22,39 +23,62 @@ struct Profile {
   std::vector<double> target, reference;
 };
 
+using Basis = std::vector<std::array<double, 3>>;  // e^{-k y}, e^{-k (H - y)}, e^{-m y} at each depth
+
 struct Fit {
   std::array<double, 3> c{};  // of e^{-k y}, e^{-k (H - y)}, e^{-m y}
-  double error = 0;           // largest relative error
+  double error = 0;           // largest weighted residual (relative error)
+  bool solved = false;        // false: the normal equations were singular, c left 0
 };
 
-// Weighted least squares in relative error on the basis functions `columns` (of e^{-k y}, e^{-k (H - y)},
-// e^{-m y}: 0, 1, 2; the others left 0) by the normal equations.
-Fit fitProfile(const Profile& p, const std::vector<std::array<double, 3>>& basis, const std::vector<int>& columns) {
+// Weighted least squares of `targets` targets (target(t, s): target t at depth sample s) on the basis
+// functions `columns` (0, 1, 2 of the basis; the others left 0), the residual at sample s weighted by
+// weight[s], by one set of normal equations for them all.
+template <class Target>
+std::vector<Fit> fitWeighted(const Basis& basis, const std::vector<int>& columns, const std::vector<double>& weight,
+                             int targets, Target target) {
   const int n = static_cast<int>(columns.size());
-  std::vector<double> a(n * n, 0.0), rhs(n, 0.0);
+  std::vector<double> normal(n * n, 0.0), a, rhs(n);
   for (size_t s = 0; s < basis.size(); ++s) {
-    const double w = 1.0 / p.reference[s];
-    for (int i = 0; i < n; ++i) {
-      const double bi = basis[s][columns[i]] * w;
-      rhs[i] += bi * p.target[s] * w;
-      for (int j = 0; j < n; ++j) a[i * n + j] += bi * basis[s][columns[j]] * w;
+    const double w2 = weight[s] * weight[s];
+    for (int r = 0; r < n; ++r)
+      for (int c = 0; c < n; ++c) normal[r * n + c] += w2 * basis[s][columns[r]] * basis[s][columns[c]];
+  }
+  std::vector<Fit> fits(targets);
+  for (int t = 0; t < targets; ++t) {
+    std::fill(rhs.begin(), rhs.end(), 0.0);
+    for (size_t s = 0; s < basis.size(); ++s) {
+      const double w2t = weight[s] * weight[s] * target(t, int(s));
+      for (int r = 0; r < n; ++r) rhs[r] += w2t * basis[s][columns[r]];
+    }
+    a = normal;
+    Fit& f = fits[t];
+    f.solved = solveLinear(a, rhs, n);
+    if (f.solved)
+      for (int r = 0; r < n; ++r) f.c[columns[r]] = rhs[r];
+    for (size_t s = 0; s < basis.size(); ++s) {
+      const double v = f.c[0] * basis[s][0] + f.c[1] * basis[s][1] + f.c[2] * basis[s][2];
+      f.error = std::max(f.error, std::abs(v - target(t, int(s))) * weight[s]);
     }
   }
-  if (!solveLinear(a, rhs, n)) return Fit{{}, 1e30};
-  Fit f;
-  for (int i = 0; i < n; ++i) f.c[columns[i]] = rhs[i];
-  for (size_t s = 0; s < basis.size(); ++s) {
-    const double v = f.c[0] * basis[s][0] + f.c[1] * basis[s][1] + f.c[2] * basis[s][2];
-    f.error = std::max(f.error, std::abs(v - p.target[s]) / p.reference[s]);
-  }
+  return fits;
+}
+
+// One profile in relative error (weights 1/reference); a singular system or a non-finite error counts as
+// an error of 1e30.
+Fit fitProfile(const Profile& p, const Basis& basis, const std::vector<int>& columns) {
+  std::vector<double> weight(basis.size());
+  for (size_t s = 0; s < basis.size(); ++s) weight[s] = 1.0 / p.reference[s];
+  Fit f = fitWeighted(basis, columns, weight, 1, [&](int, int s) { return p.target[s]; })[0];
+  if (!f.solved) return Fit{{}, 1e30, false};
   if (!std::isfinite(f.error)) f.error = 1e30;
   return f;
 }
 
 // The exponentials at the fit's evenly spaced depths (step apart from 0): e^{-k y}, e^{-k (H - y)} (0
 // without a bottom; the samples then end at H), e^{-m y}, each a geometric sequence (one exp per rate).
-std::vector<std::array<double, 3>> basisAt(double k, double m, double step, bool bottom) {
-  std::vector<std::array<double, 3>> basis(kDepthSamples);
+Basis basisAt(double k, double m, double step, bool bottom) {
+  Basis basis(kDepthSamples);
   const double rk = std::exp(-k * step), rm = std::exp(-m * step);
   double ek = 1, em = 1;
   for (int s = 0; s < kDepthSamples; ++s) {
@@ -98,7 +122,7 @@ double fitSourceTable(const DiscreteOrdinates& field, const DiscreteOrdinates* f
                       const DiscreteOrdinates* field_h2, double depth_end, double k, double m, bool bottom,
                       UwiBand& o) {
   std::vector<double> nus(UWI_SOURCE_NODES);
-  for (int j = 0; j < UWI_SOURCE_NODES; ++j) nus[j] = -1.0 + 2.0 * j / (UWI_SOURCE_NODES - 1);
+  for (int j = 0; j < UWI_SOURCE_NODES; ++j) nus[j] = kmath_d::uwi_source_node_cosine(j);
   const std::vector<double> j0 = field.inscatterProfile(nus, depth_end, kDepthSamples);
   const std::vector<double> j1 =
       field_h ? field_h->inscatterProfile(nus, depth_end, kDepthSamples) : std::vector<double>(j0.size(), 0.0);
@@ -110,37 +134,21 @@ double fitSourceTable(const DiscreteOrdinates& field, const DiscreteOrdinates* f
   const auto basis = basisAt(k, m, step, bottom);
   std::vector<int> columns = bottom ? std::vector<int>{0, 1} : std::vector<int>{0};
   if (std::abs(k - m) >= 0.02 * m) columns.push_back(2);
-  const int n = static_cast<int>(columns.size());
-  // Per cosine: one weighting (relative to the azimuth average) and so one normal matrix for the three
-  // modes' right-hand sides.
+  // Per cosine: one weighting (relative to the azimuth average), so one set of normal equations for the
+  // three modes.
   const std::vector<double>* modes[3] = {&j0, &j1, &j2};
-  std::vector<double> weight(kDepthSamples), normal(n * n), a(n * n), rhs(n);
+  std::vector<double> weight(kDepthSamples);
   double error = 0;
   for (int j = 0; j < UWI_SOURCE_NODES; ++j) {
-    std::fill(normal.begin(), normal.end(), 0.0);
-    for (int s = 0; s < kDepthSamples; ++s) {
+    for (int s = 0; s < kDepthSamples; ++s)
       weight[s] = 1.0 / std::max(std::abs(j0[size_t(s) * UWI_SOURCE_NODES + j]), 1e-9 * largest + 1e-300);
-      const double w2 = weight[s] * weight[s];
-      for (int r = 0; r < n; ++r)
-        for (int c = 0; c < n; ++c) normal[r * n + c] += w2 * basis[s][columns[r]] * basis[s][columns[c]];
-    }
+    const std::vector<Fit> fits = fitWeighted(basis, columns, weight, 3, [&](int mode, int s) {
+      return (*modes[mode])[size_t(s) * UWI_SOURCE_NODES + j];
+    });
     float* row = o.src + j * UWI_SOURCE_TERMS;
     for (int mode = 0; mode < 3; ++mode) {
-      const std::vector<double>& target = *modes[mode];
-      std::fill(rhs.begin(), rhs.end(), 0.0);
-      for (int s = 0; s < kDepthSamples; ++s) {
-        const double w2t = weight[s] * weight[s] * target[size_t(s) * UWI_SOURCE_NODES + j];
-        for (int r = 0; r < n; ++r) rhs[r] += w2t * basis[s][columns[r]];
-      }
-      a = normal;
-      std::array<double, 3> coef{};
-      if (solveLinear(a, rhs, n))
-        for (int r = 0; r < n; ++r) coef[columns[r]] = rhs[r];
-      for (int s = 0; s < kDepthSamples; ++s) {
-        const double v = coef[0] * basis[s][0] + coef[1] * basis[s][1] + coef[2] * basis[s][2];
-        error = std::max(error, std::abs(v - target[size_t(s) * UWI_SOURCE_NODES + j]) * weight[s]);
-      }
-      for (int q = 0; q < 3; ++q) row[q + 3 * mode] = static_cast<float>(coef[q]);
+      error = std::max(error, fits[mode].error);
+      for (int q = 0; q < 3; ++q) row[q + 3 * mode] = static_cast<float>(fits[mode].c[q]);
     }
   }
   return error;
@@ -154,7 +162,7 @@ UwiBand makeUwiBandFromOrdinates(const UwBand& band, double g, double mu_w, doub
   // The kernel's delta-M is the solver's (kOrdinatesSourceMoments: f = g³ for g > 0), its beam
   // e_beam0 e^{-m y}, m = c'/μ_w: the view rays' source is the solver's in-scatter in that frame.
   const int moments = g > 0 ? kOrdinatesSourceMoments : 0;
-  const DeltaMMedium medium = improvedDeltaM(a, b, g, moments > 0 ? moments : 2);
+  const DeltaMMedium medium = improvedDeltaM(a, b, g, kOrdinatesSourceMoments);
   const double c_dm = medium.c_dm;
   const double mu0 = std::clamp(mu_w, 1e-3, 1.0);
   UwiBand o = uwiBandOfMedium(medium, 1.0);  // g_flux = g': the first-order source's, unused here

@@ -11,7 +11,7 @@
 // decays faster than its asymptotic K∞). E_d and E_u light the surfaces; E_0 and F_h are kept for the
 // record (the two-stream's first-order source uses its own).
 //
-// The view rays' source (s9b) is the solver's own in-scatter towards 65 cosines, azimuth modes 0–2
+// The view rays' source (s9b) is the solver's own in-scatter towards UWI_SOURCE_NODES (129) cosines, azimuth modes 0–2
 // (DiscreteOrdinates::inscatterProfile), fitted per cosine over the same depths to the same three
 // exponentials: UwiBand.src. The solver runs at the delta-M order kOrdinatesSourceMoments, the one number
 // fitted to the path tracer, and the kernel's delta-M is the solver's (c' its ĉ, m its beam's): the view

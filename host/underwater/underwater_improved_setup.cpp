@@ -223,7 +223,7 @@ void setFirstOrderSource(UwiBand& o) {
   const double s = double(o.b_dm) / (4 * 3.14159265358979323846), s_flux = 3 * s * double(o.g_flux);
   const double coef[3][4] = {{o.o1, o.d1, o.u1, o.h1}, {o.o2, o.d2, o.u2, o.h2}, {o.op, o.dp, o.up, o.hp}};
   for (int node = 0; node < UWI_SOURCE_NODES; ++node) {
-    const double nu = -1.0 + 2.0 * node / (UWI_SOURCE_NODES - 1);
+    const double nu = kmath_d::uwi_source_node_cosine(node);
     float* row = o.src + node * UWI_SOURCE_TERMS;
     for (int q = 0; q < 3; ++q) {
       row[q] = static_cast<float>(s * coef[q][0] + s_flux * nu * (coef[q][1] - coef[q][2]));

@@ -57,6 +57,11 @@ SEASIM_FN int uwi_source_node(real nu) {
   return node < UWI_SOURCE_NODES - 1 ? node : UWI_SOURCE_NODES - 1;
 }
 
+/* The downward cosine of the table's node: the nodes are evenly spaced from -1 to 1. */
+SEASIM_FN real uwi_source_node_cosine(int node) {
+  return R(-1.0) + R(2.0) * (real)node / (real)(UWI_SOURCE_NODES - 1);
+}
+
 /* The source of exponential q (0: e^{-k y}, 1: e^{-k (H - y)}, 2: e^{-m y}) towards the photon
  * direction of the table's node (uwi_source_node), cos_dphi its azimuth's cosine from the sun beam's
  * (uwi_cos_azimuth), per m per sr per unit of the exponential: the azimuth modes 0, 1, 2. */

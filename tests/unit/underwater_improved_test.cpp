@@ -122,7 +122,7 @@ long double multipleQuadrature(const UwiBand& ib, const UwBand& bd, double g, do
   const long double h = S_end / n;
   const seasim::DiffuseMeanCosines mean = seasim::diffuseMeanCosines(g);
   // The source's table holds the first-order form at its nodes; the ray reads the one nearest its ν.
-  const double nu_node = -1.0 + 2.0 * kd::uwi_source_node(d_y) / (UWI_SOURCE_NODES - 1);
+  const double nu_node = kd::uwi_source_node_cosine(kd::uwi_source_node(d_y));
   auto f = [&](long double z) -> long double {
     const double y = o_d - double(z) * d_y;
     double ed, eu;
@@ -251,7 +251,7 @@ TEST(UnderwaterImproved, DiffuseMeanCosinesFollowTheirTableAndReachTheKernel) {
   // node's step between them; the same in float.
   for (double nu : {-1.0, -0.37, 0.0, 0.5, 0.996, 1.0}) {
     const int node = kd::uwi_source_node(nu);
-    const double nu_node = -1.0 + 2.0 * node / (UWI_SOURCE_NODES - 1);
+    const double nu_node = kd::uwi_source_node_cosine(node);
     EXPECT_LE(std::fabs(nu_node - nu), 1.0 / (UWI_SOURCE_NODES - 1) + 1e-12) << nu;
     const double w = kd::uwi_source_weight(&ib, node, 0.4, 0);
     const double expect = ib.b_dm * (ib.o1 + 3 * ib.g_flux * nu_node * (ib.d1 - ib.u1)) / (4 * M_PI);
