@@ -118,11 +118,13 @@ TEST(UnderwaterImprovedOrdinates, ScalarIrradianceAndHorizontalFlux) {
   EXPECT_FLOAT_EQ(ib.c_dm, float(0.1 + 0.3 * (1 - 0.729)));  // the solver's delta-M, f = g³
 }
 
-// No medium, no light, no absorption, no scattering, a black bottom 1 mm down: every coefficient finite,
-// and no light gives no field.
+// No medium, no light, no absorption, no scattering, a black bottom 1 mm down: every coefficient and the
+// source's table finite, and no light gives no field and no source.
 TEST(UnderwaterImprovedOrdinates, DegenerateBandsStayFinite) {
   auto finite = [](const UwiBand& b) {
-    for (float v : {b.k, b.m, b.d1, b.u1, b.d2, b.u2, b.dp, b.up, b.o1, b.o2, b.op, b.h1, b.h2, b.hp})
+    for (float v : {b.c_dm, b.k, b.m, b.d1, b.u1, b.d2, b.u2, b.dp, b.up, b.o1, b.o2, b.op, b.h1, b.h2, b.hp})
+      if (!std::isfinite(v)) return false;
+    for (float v : b.src)
       if (!std::isfinite(v)) return false;
     return true;
   };
@@ -131,6 +133,7 @@ TEST(UnderwaterImprovedOrdinates, DegenerateBandsStayFinite) {
   EXPECT_TRUE(finite(none));
   EXPECT_EQ(none.d1, 0.0f);
   EXPECT_EQ(none.o1, 0.0f);
+  for (float v : none.src) ASSERT_EQ(v, 0.0f);
   for (const UwBand& b : {uwTestBand(0.0, 0.0, 0.146, 0.85, kMuW, 0.35), uwTestBand(0.0, 0.3, 0.146, 0.85, kMuW, 0.35),
                           uwTestBand(0.1, 0.0, 0.146, 0.85, kMuW, 0.35), uwTestBand(0.1, 0.3, 0.146, 0.85, kMuW, 0.0)})
     for (double H : {0.0, 1e-3, 5.0})
