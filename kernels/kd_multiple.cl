@@ -142,6 +142,20 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
           : uwi_no_mirror_object();
   __global const float* albedo_m_row = ROW(mat_m >= 0 ? UW_ROWS + mat_m : UW_ROW_BOTTOM_ALBEDO);
   const float n_m_dot_s = dot(mirror.n, s_w);
+  /* The tilted plane table's node and azimuth of the object hit's normal and of the mirrored object's
+   * (uwi_tilt_node, uwi_tilt_irradiance); the bottom reads E_d. */
+  float frac, frac_m;
+  const int tilt_node = uwi_tilt_node(n.y, &frac);
+  const int tilt_node_m = uwi_tilt_node(mirror.n.y, &frac_m);
+  const float cos_phi_n = uwi_cos_azimuth(n_dot_s, n.y, s_w.y);
+  const float cos_phi_m = uwi_cos_azimuth(n_m_dot_s, mirror.n.y, s_w.y);
+  const int mirror_object = mat_m >= 0;
+  /* Whether the bottom an object's face sees is sunlit (uwi_bottom_visibility; the mirrored object's is
+   * taken as sunlit). */
+  const float vis_b = mat >= 0 ? uwi_bottom_visibility(objects, p->object_count, p->bottom_depth,
+                                                       (float3)(p->cam_pos[0], p->cam_pos[1], p->cam_pos[2]) + S * d,
+                                                       n, s_w)
+                               : 1.0f;
   for (int i = 0; i < band_count; i += SEASIM_BAND_LANES) {
     const UwiLanes v = uwi_lanes_load(band_table, stride, uwi_row0, i);
     /* The in-scatter's integrals start at the camera (per-frame rows: o_d is the frame's) and end at the
@@ -153,11 +167,18 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
     if (mat == UW_MAT_SURFACE) {
       const realb sky_l = kd_sky_lanes(band_table, stride, i, sky_shape);
       const UwiWeights w_r = uwi_lanes_weights(band_table, stride, uwi_row0, i, node_r, cos_dphi_r);
+      const UwiWeights tilt_m = mirror_object
+                                    ? uwi_lanes_tilt(band_table, stride, uwi_row0, i, tilt_node_m, frac_m, cos_phi_m, 1.0f)
+                                    : uwi_lanes_down(&v);
       L += uwi_lanes_surface(&v, &w_r, ends.k, sky_l, LOADB(ROW(uwi_row0 + UWI_ROW_BOTTOM_L), i),
                              LOADB(ROW(uwi_row0 + UWI_ROW_EXP_K_H), i), phase_r, p->bottom_depth, d.y, p->ior,
-                             multiple, mirror.s, LOADB(albedo_m_row, i), mirror.n.y, n_m_dot_s, mirror.vis);
+                             multiple, mirror.s, LOADB(albedo_m_row, i), &tilt_m, n_m_dot_s, mirror.vis);
+    } else if (mat == UW_MAT_BOTTOM) {
+      const UwiWeights down = uwi_lanes_down(&v);
+      L += uwi_lanes_lambert(&v, &ends, &down, LOADB(albedo_row, i), p->bottom_depth, n_dot_s, vis);
     } else if (mat != UW_MAT_NONE) {
-      L += uwi_lanes_lambert(&v, &ends, LOADB(albedo_row, i), p->bottom_depth, n.y, n_dot_s, vis);
+      const UwiWeights tilt = uwi_lanes_tilt(band_table, stride, uwi_row0, i, tilt_node, frac, cos_phi_n, vis_b);
+      L += uwi_lanes_lambert(&v, &ends, &tilt, LOADB(albedo_row, i), p->bottom_depth, n_dot_s, vis);
     }
 #else
   for (int i = 0; i < band_count; i += SEASIM_BAND_LANES) {

@@ -56,6 +56,8 @@ std::vector<UwiPixelTerms> improvedModelTerms(const UnderwaterSetup& s, bool mul
       const double S = kd::uw_scene_hit(s.objects.data(), p.object_count, H, o, d, 0.0, &n, &mat);
       double vis = 0;  // the sun's shadow ray from a Lambertian hit (raycast.cl)
       if (mat >= 0 || mat == UW_MAT_BOTTOM) vis = kd::uw_sun_visibility(s.objects.data(), p.object_count, o + S * d, n, s_w);
+      // Whether the bottom an object's face sees is sunlit (kd_multiple.cl's).
+      const double vis_b = mat >= 0 ? kd::uwi_bottom_visibility(s.objects.data(), p.object_count, H, o + S * d, n, s_w) : 1.0;
       UwiPixelTerms& t = out[size_t(y) * p.width + x];
       int mat_m = UW_MAT_NONE;  // the object in the surface's mirror, as kd_multiple.cl traces it
       kd::UwiMirrorHit mirror = mat == UW_MAT_SURFACE
@@ -88,9 +90,9 @@ std::vector<UwiPixelTerms> improvedModelTerms(const UnderwaterSetup& s, bool mul
           const double l_bottom =
               object_in_mirror
                   ? std::exp(-double(ib.c_dm) * s_r) *
-                        kd::uwi_lambert(&ib, &b, H, s_r * dy, mirror.n, s_w, mirror.albedo, mirror.vis)
+                        kd::uwi_lambert(&ib, &b, H, s_r * dy, mirror.n, s_w, mirror.albedo, mirror.vis, 1.0)
               : H > 0 ? std::exp(-double(ib.c_dm) * std::min(s_r, 1e4)) *
-                            kd::uwi_lambert(&ib, &b, H, H, kd::real3{0, 1, 0}, s_w, b.bottom_albedo, 1.0)
+                            kd::uwi_lambert(&ib, &b, H, H, kd::real3{0, 1, 0}, s_w, b.bottom_albedo, 1.0, 1.0)
                       : 0.0;
           t.window += w * T * p.ior * p.ior * (1 - f) * b.sky_radiance;
           t.reflected_inscatter += w * T * f * l_ms;
@@ -99,9 +101,9 @@ std::vector<UwiPixelTerms> improvedModelTerms(const UnderwaterSetup& s, bool mul
             t.reflected_froxel_ss +=
                 w * T * f * inScatterTerms(ib, b, p.g, H, s_r, -dy, 0.0, cos_r, mu_w).froxel_ss;
         } else if (mat != UW_MAT_NONE) {
-          t.lambert += w * T * kd::uwi_lambert(&ib, &b, H, std::max(o_d - S * d.y, 0.0), n, s_w, albedo, vis);
+          t.lambert += w * T * kd::uwi_lambert(&ib, &b, H, std::max(o_d - S * d.y, 0.0), n, s_w, albedo, vis, vis_b);
         }
-        t.total += w * (kd::uwi_band_radiance(&ib, &b, p.g, mat, S, n, d, o_d, s_w, albedo, vis, b.sky_radiance,
+        t.total += w * (kd::uwi_band_radiance(&ib, &b, p.g, mat, S, n, d, o_d, s_w, albedo, vis, vis_b, b.sky_radiance,
                                               p.ior, H, froxels, multiple, mirror) +
                         (froxels && multiple ? inScatterTerms(ib, b, p.g, H, S, d.y, o_d, kd::dot(d, s_w), mu_w).froxel_ss
                                              : 0.0));

@@ -111,6 +111,20 @@ void requireRange(bool ok, const std::string& what) {
 
 }  // namespace
 
+double tiltedIrradianceKernel(int mode, double nu, double n_y) {
+  const double a = nu * n_y, b = std::sqrt(std::max((1 - nu * nu) * (1 - n_y * n_y), 0.0));
+  if (a <= -b) return 0.0;  // the plane faces away from every such direction
+  // The arc |ψ| < ψ0 where a + b cos ψ > 0: all of it when a >= b.
+  const double psi0 = a >= b ? kPi : std::acos(std::clamp(-a / b, -1.0, 1.0));
+  const double s1 = std::sin(psi0), s2 = std::sin(2 * psi0), s3 = std::sin(3 * psi0);
+  switch (mode) {
+    case 0: return 2 * (a * psi0 + b * s1);
+    case 1: return 2 * a * s1 + b * (psi0 + 0.5 * s2);      // ∫ (a cos ψ + b cos² ψ)
+    case 2: return a * s2 + b * (s1 + s3 / 3);               // ∫ (a cos 2ψ + b cos ψ cos 2ψ)
+    default: return 0.0;
+  }
+}
+
 DiscreteOrdinates::DiscreteOrdinates(const DiscreteOrdinatesLayer& layer, int streams, int azimuth_mode,
                                      int phase_moments) {
   requireRange(streams >= 2, "at least 2 streams per hemisphere");
@@ -121,6 +135,7 @@ DiscreteOrdinates::DiscreteOrdinates(const DiscreteOrdinatesLayer& layer, int st
   requireRange(std::abs(layer.g) < 1, "|g| must be < 1");
   requireRange(layer.mu_sun > 0 && layer.mu_sun <= 1, "mu_sun must be in (0, 1]");
   requireRange(layer.bottom_albedo >= 0 && layer.bottom_albedo <= 1, "bottom albedo must be in [0, 1]");
+  requireRange(layer.bottom_sunlit >= 0 && layer.bottom_sunlit <= 1, "the bottom's sunlit share must be in [0, 1]");
   requireRange(layer.e_sun0 >= 0 && layer.e_sky0 >= 0, "irradiances must be >= 0");
   const int n = n_ = streams;
   gaussLegendreUnit(n, mu_, w_);
@@ -268,7 +283,7 @@ DiscreteOrdinates::DiscreteOrdinates(const DiscreteOrdinatesLayer& layer, int st
   }
 
   // Boundary conditions. Top: L+(0) = R L-(0) + the sky through the window, (1 - R) n² L_sky, scaled to
-  // e_sky0. Bottom: L-(H) = (ρ/π) (E_d(H) + e_sun0 e^{-m H}). The uniform sky and the Lambertian bottom
+  // e_sky0. Bottom: L-(H) = (ρ/π) (E_d(H) + s e_sun0 e^{-m H}), s the share of the beam it reflects. The uniform sky and the Lambertian bottom
   // have no cos φ part: mode 1 sees neither (the surface reflects it as any radiance).
   std::vector<double> refl(n), sky(n);
   double sky_unit = 0;
@@ -280,6 +295,8 @@ DiscreteOrdinates::DiscreteOrdinates(const DiscreteOrdinatesLayer& layer, int st
   for (int i = 0; i < n; ++i) sky[i] = sky_unit > 0 && mode_ == 0 ? sky[i] * layer.e_sky0 / sky_unit : 0.0;
   c_decay_.assign(n, 0.0);
   c_grow_.assign(n, 0.0);
+  c_decay_bottom_.assign(n, 0.0);
+  c_grow_bottom_.assign(n, 0.0);
   if (bottom_ > 0) {
     const int n2 = 2 * n;
     const double rho = mode_ == 0 ? layer.bottom_albedo : 0.0, em = std::exp(-m_ * bottom_), ep = std::exp(-m * bottom_);
@@ -304,11 +321,20 @@ DiscreteOrdinates::DiscreteOrdinates(const DiscreteOrdinatesLayer& layer, int st
         sys[(n + i) * n2 + n + j] = x_plus_[i * n + j] - 2 * rho * flux_grow[j];
       }
       rhs[i] = sky[i] - (z_plus_[i] - refl[i] * z_minus_[i]);
-      rhs[n + i] = rho / kPi * e_sun0_ * em - ep * (z_minus_[i] - 2 * rho * flux_p);
+      rhs[n + i] = rho / kPi * layer.bottom_sunlit * e_sun0_ * em - ep * (z_minus_[i] - 2 * rho * flux_p);
     }
+    // The part of the field the bottom's reflection of the whole beam brings: the same boundary system with
+    // that source alone (tiltedIrradianceProfile's bottom_beam; the field is linear in bottom_sunlit).
+    std::vector<double> sys_bottom = sys, rhs_bottom(n2, 0.0);
+    for (int i = 0; i < n; ++i) rhs_bottom[n + i] = rho / kPi * e_sun0_ * em;
     solveOrThrow(sys, rhs, n2);
     std::copy(rhs.begin(), rhs.begin() + n, c_decay_.begin());
     std::copy(rhs.begin() + n, rhs.end(), c_grow_.begin());
+    if (rho > 0 && e_sun0_ > 0) {
+      solveOrThrow(sys_bottom, rhs_bottom, n2);
+      std::copy(rhs_bottom.begin(), rhs_bottom.begin() + n, c_decay_bottom_.begin());
+      std::copy(rhs_bottom.begin() + n, rhs_bottom.end(), c_grow_bottom_.begin());
+    }
   } else {
     std::vector<double> sys(n * n, 0.0), rhs(n, 0.0);
     for (int i = 0; i < n; ++i) {
@@ -415,15 +441,46 @@ std::vector<double> DiscreteOrdinates::inscatterProfile(const std::vector<double
   return out;
 }
 
+std::vector<double> DiscreteOrdinates::tiltedIrradianceProfile(const std::vector<double>& n_ys, double depth_end,
+                                                               int samples, bool bottom_beam) const {
+  const int n = n_, count = static_cast<int>(n_ys.size());
+  samples = std::max(samples, 2);
+  // w_j K_m(±μ_j, n_y): the quadrature's weight of each stream on each plane (∫ dμ over a hemisphere is
+  // Σ_j w_j; the azimuth integral is the kernel's).
+  std::vector<double> from_down(size_t(count) * n), from_up(size_t(count) * n);
+  for (int u = 0; u < count; ++u) {
+    const double n_y = std::clamp(n_ys[u], -1.0, 1.0);
+    for (int j = 0; j < n; ++j) {
+      from_down[size_t(u) * n + j] = w_[j] * tiltedIrradianceKernel(mode_, mu_[j], n_y);
+      from_up[size_t(u) * n + j] = w_[j] * tiltedIrradianceKernel(mode_, -mu_[j], n_y);
+    }
+  }
+  std::vector<double> dec, grow;
+  const double step = sampleExponentials(depth_end, samples, dec, grow);
+  std::vector<double> out(size_t(samples) * count, 0.0), down(n), up(n);
+  for (int s = 0; s < samples; ++s) {
+    radiancesFrom(s * step, &dec[size_t(s) * n], &grow[size_t(s) * n], down.data(), up.data(), bottom_beam);
+    for (int u = 0; u < count; ++u) {
+      double e = 0;
+      for (int j = 0; j < n; ++j) e += from_down[size_t(u) * n + j] * down[j] + from_up[size_t(u) * n + j] * up[j];
+      out[size_t(s) * count + u] = e;
+    }
+  }
+  return out;
+}
+
 void DiscreteOrdinates::radiancesFrom(double y, const double* e_dec, const double* e_grow, double* down,
-                                      double* up) const {
+                                      double* up, bool bottom_beam) const {
   const int n = n_;
-  const double ep = std::exp(-m_particular_ * y);
+  // The bottom's reflection of the beam alone is a homogeneous solution: no particular part.
+  const double ep = bottom_beam ? 0.0 : std::exp(-m_particular_ * y);
+  const std::vector<double>& c_dec = bottom_beam ? c_decay_bottom_ : c_decay_;
+  const std::vector<double>& c_gro = bottom_beam ? c_grow_bottom_ : c_grow_;
   for (int i = 0; i < n; ++i) {
     double d = z_plus_[i] * ep, u = z_minus_[i] * ep;
     for (int j = 0; j < n; ++j) {
-      d += c_decay_[j] * x_plus_[i * n + j] * e_dec[j] + c_grow_[j] * x_minus_[i * n + j] * e_grow[j];
-      u += c_decay_[j] * x_minus_[i * n + j] * e_dec[j] + c_grow_[j] * x_plus_[i * n + j] * e_grow[j];
+      d += c_dec[j] * x_plus_[i * n + j] * e_dec[j] + c_gro[j] * x_minus_[i * n + j] * e_grow[j];
+      u += c_dec[j] * x_minus_[i * n + j] * e_dec[j] + c_gro[j] * x_plus_[i * n + j] * e_grow[j];
     }
     down[i] = d;
     up[i] = u;

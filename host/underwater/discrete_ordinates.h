@@ -26,6 +26,8 @@ struct DiscreteOrdinatesLayer {
   double a = 0, b = 0, g = 0;  // 1/m, 1/m, HG asymmetry in (-1, 1)
   double bottom_depth = 0;     // m; <= 0: no bottom
   double bottom_albedo = 0;    // Lambertian, in [0, 1]
+  double bottom_sunlit = 1;    // the share of the beam's irradiance the bottom reflects, in [0, 1] (0: a
+                               // bottom in shadow, lit by the diffuse light alone)
   double ior = 1.34;           // the water's refractive index (the surface's Fresnel reflection)
   double mu_sun = 1;           // the refracted sun's direction cosine with the downward vertical, (0, 1]
   double e_sun0 = 0;           // the beam's irradiance on a horizontal plane just below the surface
@@ -41,6 +43,11 @@ struct DiscreteOrdinatesIrradiance {
   double down = 0, up = 0, scalar = 0, horizontal = 0;
   double beam_down = 0, beam_scalar = 0, beam_horizontal = 0;
 };
+
+// ∫_0^{2π} max(0, ν n_y + √((1 - ν²)(1 - n_y²)) cos ψ) cos(m ψ) dψ, m in 0..2: what a plane of normal n
+// (upward vertical n_y) collects of radiance L^m(ν) cos(m φ) travelling at downward cosine ν, ψ = φ - φ_n
+// (φ_n the azimuth of -n). Closed form over the arc where the cosine factor is positive.
+double tiltedIrradianceKernel(int mode, double nu, double n_y);
 
 class DiscreteOrdinates {
  public:
@@ -75,6 +82,15 @@ class DiscreteOrdinates {
   // a ray with extinction() it gives the radiance at any angle (the source-function integration of
   // DISORT's user angles). Row-major, samples x nus.size().
   std::vector<double> inscatterProfile(const std::vector<double>& nus, double depth_end, int samples) const;
+  // The diffuse light's irradiance on a plane whose unit normal has the upward vertical component n_y (in
+  // [-1, 1]) at `samples` (>= 2) evenly spaced depths from 0 to depth_end: this azimuth mode's
+  // ∫ L^m(ω) cos(m φ) max(0, -ω·n) dΩ with the normal's azimuth φ_n at 0, so the coefficient of cos(m φ_n),
+  // φ_n the azimuth of -n from the sun beam's (tiltedIrradianceKernel). n_y = 1 gives E_d (mode 0), -1 E_u;
+  // at n_y = 0 mode 1 gives half the horizontal flux. Row-major, samples x n_ys.size(). bottom_beam: only the
+  // part the bottom's reflection of the whole beam brings (what a face seeing the bottom in shadow lacks; 0
+  // without a bottom and in modes 1, 2), whatever bottom_sunlit is.
+  std::vector<double> tiltedIrradianceProfile(const std::vector<double>& n_ys, double depth_end, int samples,
+                                              bool bottom_beam = false) const;
 
  private:
   // The irradiances at depth y from the modes' exponentials there (e_grow: e^{-λ (H - y)}, 0 without a bottom).
@@ -82,8 +98,10 @@ class DiscreteOrdinates {
   // The depth clamped to the layer, and each mode's e^{-λ y} (e_dec) and e^{-λ (H - y)} (e_grow, 0 without
   // a bottom) there.
   double exponentialsAt(double depth, std::vector<double>& e_dec, std::vector<double>& e_grow) const;
-  // The quadrature's radiances at depth y, down (L+) and up (L-), from the modes' exponentials there.
-  void radiancesFrom(double y, const double* e_dec, const double* e_grow, double* down, double* up) const;
+  // The quadrature's radiances at depth y, down (L+) and up (L-), from the modes' exponentials there
+  // (bottom_beam: the part the bottom's reflection of the whole beam brings).
+  void radiancesFrom(double y, const double* e_dec, const double* e_grow, double* down, double* up,
+                     bool bottom_beam = false) const;
   // The depths of profile(depth_end, samples) (clamped to the layer) and each mode's e^{-λ y_s} (dec) and
   // e^{-λ (H - y_s)} (grow, 0 without a bottom), samples x N, as geometric sequences.
   double sampleExponentials(double depth_end, int samples, std::vector<double>& dec, std::vector<double>& grow) const;
@@ -96,6 +114,7 @@ class DiscreteOrdinates {
   std::vector<double> x_plus_, x_minus_;       // N x N: mode j's down (x_plus_) and up radiances at cosine i
   std::vector<double> z_plus_, z_minus_;       // N: the particular solution's down and up radiances
   std::vector<double> c_decay_, c_grow_;       // N each: the modes' amplitudes
+  std::vector<double> c_decay_bottom_, c_grow_bottom_;  // N each: those of the bottom's reflection of the beam
 };
 
 }  // namespace seasim

@@ -52,19 +52,18 @@ std::vector<float> underwaterBandTable(const UnderwaterSetup& setup) {
       uwi(UWI_ROW_K, ib.k);
       uwi(UWI_ROW_M, ib.m);
       for (int q = 0; q < UWI_SOURCE_NODES * UWI_SOURCE_TERMS; ++q) uwi(UWI_ROW_SRC + q, ib.src[q]);
+      for (int q = 0; q < UWI_TILT_NODES * UWI_SOURCE_TERMS; ++q) uwi(UWI_ROW_TILT + q, ib.tilt[q]);
+      for (int q = 0; q < UWI_TILT_NODES * 3; ++q) uwi(UWI_ROW_TILT_BOTTOM + q, ib.tilt_bottom[q]);
       uwi(UWI_ROW_B_E_BEAM, double(b.b) * b.e_beam0);
       uwi(UWI_ROW_D1, ib.d1);
-      uwi(UWI_ROW_U1, ib.u1);
       uwi(UWI_ROW_D2, ib.d2);
-      uwi(UWI_ROW_U2, ib.u2);
       uwi(UWI_ROW_DP, ib.dp);
-      uwi(UWI_ROW_UP, ib.up);
       // The bottom that the surface's reflected ray ends on (uwi_surface): no bottom, no term.
       const double depth = setup.params.bottom_depth;
       const kmath_d::real3 s_w{setup.params.sun_dir_water[0], setup.params.sun_dir_water[1],
                                setup.params.sun_dir_water[2]};
       uwi(UWI_ROW_BOTTOM_L, depth > 0 ? kmath_d::uwi_lambert(&ib, &b, depth, depth, kmath_d::real3{0, 1, 0}, s_w,
-                                                               b.bottom_albedo, 1.0)
+                                                               b.bottom_albedo, 1.0, 1.0)
                                       : 0.0);
       // The integrals' start factors at the camera's depth, as the kernel forms their exponents: from
       // the float rows and the float depth o_d = -cam_pos[1] (>= 0: the underwater frame's camera is

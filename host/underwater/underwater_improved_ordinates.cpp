@@ -114,42 +114,86 @@ double scanK(double k_inf, double m, Error error) {
   return best_k > 0 ? best_k : m * 1.05;
 }
 
-// The discrete ordinates' in-scatter (azimuth modes 0, 1, 2) at the table's cosines, fitted per cosine to
-// e^{-k y}, e^{-k (H - y)}, e^{-m y} (relative to the azimuth average's size): UwiBand.src. Returns the
-// largest relative error over cosines and depths. Where k comes within 2 % of m (the k scan avoids it) the
-// beam's exponential is left out, as the pair would fit each other's cancellation.
-double fitSourceTable(const DiscreteOrdinates& field, const DiscreteOrdinates* field_h,
-                      const DiscreteOrdinates* field_h2, double depth_end, double k, double m, bool bottom,
-                      UwiBand& o) {
-  std::vector<double> nus(UWI_SOURCE_NODES);
-  for (int j = 0; j < UWI_SOURCE_NODES; ++j) nus[j] = kmath_d::uwi_source_node_cosine(j);
-  const std::vector<double> j0 = field.inscatterProfile(nus, depth_end, kDepthSamples);
-  const std::vector<double> j1 =
-      field_h ? field_h->inscatterProfile(nus, depth_end, kDepthSamples) : std::vector<double>(j0.size(), 0.0);
-  const std::vector<double> j2 =
-      field_h2 ? field_h2->inscatterProfile(nus, depth_end, kDepthSamples) : std::vector<double>(j0.size(), 0.0);
+// A table of the solver's azimuth modes 0, 1, 2 at `nodes` nodes (profiles[mode]: samples x nodes, mode 0
+// at least; the others may be empty: 0), fitted per node to e^{-k y}, e^{-k (H - y)}, e^{-m y} relative to
+// the azimuth average's size: out[node * UWI_SOURCE_TERMS + q + 3 mode]. Returns the largest relative error
+// over nodes and depths. Where k comes within 2 % of m (the k scan avoids it) the beam's exponential is
+// left out, as the pair would fit each other's cancellation.
+double fitModeTable(const std::vector<double>* profiles[3], int nodes, double depth_end, double k, double m,
+                    bool bottom, float* out) {
+  const std::vector<double>& j0 = *profiles[0];
   double largest = 0;
   for (double v : j0) largest = std::max(largest, std::abs(v));
   const double step = depth_end / (kDepthSamples - 1);
   const auto basis = basisAt(k, m, step, bottom);
   std::vector<int> columns = bottom ? std::vector<int>{0, 1} : std::vector<int>{0};
   if (std::abs(k - m) >= 0.02 * m) columns.push_back(2);
-  // Per cosine: one weighting (relative to the azimuth average), so one set of normal equations for the
+  // Per node: one weighting (relative to the azimuth average), so one set of normal equations for the
   // three modes.
-  const std::vector<double>* modes[3] = {&j0, &j1, &j2};
   std::vector<double> weight(kDepthSamples);
   double error = 0;
-  for (int j = 0; j < UWI_SOURCE_NODES; ++j) {
+  for (int j = 0; j < nodes; ++j) {
     for (int s = 0; s < kDepthSamples; ++s)
-      weight[s] = 1.0 / std::max(std::abs(j0[size_t(s) * UWI_SOURCE_NODES + j]), 1e-9 * largest + 1e-300);
+      weight[s] = 1.0 / std::max(std::abs(j0[size_t(s) * nodes + j]), 1e-9 * largest + 1e-300);
     const std::vector<Fit> fits = fitWeighted(basis, columns, weight, 3, [&](int mode, int s) {
-      return (*modes[mode])[size_t(s) * UWI_SOURCE_NODES + j];
+      return profiles[mode]->empty() ? 0.0 : (*profiles[mode])[size_t(s) * nodes + j];
     });
-    float* row = o.src + j * UWI_SOURCE_TERMS;
+    float* row = out + j * UWI_SOURCE_TERMS;
     for (int mode = 0; mode < 3; ++mode) {
       error = std::max(error, fits[mode].error);
       for (int q = 0; q < 3; ++q) row[q + 3 * mode] = static_cast<float>(fits[mode].c[q]);
     }
+  }
+  return error;
+}
+
+// The discrete ordinates' in-scatter (azimuth modes 0, 1, 2; field_h, field_h2 null: only mode 0) at the
+// source table's cosines, fitted per cosine: UwiBand.src.
+double fitSourceTable(const DiscreteOrdinates& field, const DiscreteOrdinates* field_h,
+                      const DiscreteOrdinates* field_h2, double depth_end, double k, double m, bool bottom,
+                      UwiBand& o) {
+  std::vector<double> nus(UWI_SOURCE_NODES);
+  for (int j = 0; j < UWI_SOURCE_NODES; ++j) nus[j] = kmath_d::uwi_source_node_cosine(j);
+  const std::vector<double> j0 = field.inscatterProfile(nus, depth_end, kDepthSamples);
+  const std::vector<double> j1 = field_h ? field_h->inscatterProfile(nus, depth_end, kDepthSamples) : std::vector<double>{};
+  const std::vector<double> j2 = field_h2 ? field_h2->inscatterProfile(nus, depth_end, kDepthSamples) : std::vector<double>{};
+  const std::vector<double>* profiles[3] = {&j0, &j1, &j2};
+  return fitModeTable(profiles, UWI_SOURCE_NODES, depth_end, k, m, bottom, o.src);
+}
+
+// The discrete ordinates' irradiance on tilted planes (azimuth modes 0, 1, 2) at the table's normals,
+// fitted per normal: UwiBand.tilt. Its end nodes (a plane facing straight up, straight down) are E_d's and
+// E_u's own fits (o.d*, o.u*), so the bottom, lit by E_d, reads the same from either. The part of the
+// azimuth average that the bottom's reflection of the beam brings (field's bottom_beam; over a lit bottom),
+// fitted the same way: UwiBand.tilt_bottom.
+double fitTiltTable(const DiscreteOrdinates& field, const DiscreteOrdinates* field_h,
+                    const DiscreteOrdinates* field_h2, double depth_end, double k, double m, bool bottom,
+                    UwiBand& o) {
+  std::vector<double> n_ys(UWI_TILT_NODES);
+  for (int j = 0; j < UWI_TILT_NODES; ++j) n_ys[j] = kmath_d::uwi_tilt_node_cosine(j);
+  const std::vector<double> e0 = field.tiltedIrradianceProfile(n_ys, depth_end, kDepthSamples);
+  const std::vector<double> lit =
+      bottom ? field.tiltedIrradianceProfile(n_ys, depth_end, kDepthSamples, true) : std::vector<double>{};
+  // None where the bottom reflects no beam (black, no sun): tilt_bottom stays 0.
+  if (std::any_of(lit.begin(), lit.end(), [](double v) { return v != 0.0; })) {
+    const std::vector<double> none;
+    const std::vector<double>* profiles[3] = {&lit, &none, &none};
+    std::vector<float> table(UWI_TILT_NODES * UWI_SOURCE_TERMS);
+    fitModeTable(profiles, UWI_TILT_NODES, depth_end, k, m, bottom, table.data());
+    for (int j = 0; j < UWI_TILT_NODES; ++j)
+      for (int q = 0; q < 3; ++q) o.tilt_bottom[j * 3 + q] = table[j * UWI_SOURCE_TERMS + q];
+  }
+  const std::vector<double> e1 = field_h ? field_h->tiltedIrradianceProfile(n_ys, depth_end, kDepthSamples) : std::vector<double>{};
+  const std::vector<double> e2 = field_h2 ? field_h2->tiltedIrradianceProfile(n_ys, depth_end, kDepthSamples) : std::vector<double>{};
+  const std::vector<double>* profiles[3] = {&e0, &e1, &e2};
+  const double error = fitModeTable(profiles, UWI_TILT_NODES, depth_end, k, m, bottom, o.tilt);
+  float* up = o.tilt + (UWI_TILT_NODES - 1) * UWI_SOURCE_TERMS;
+  float* down = o.tilt;
+  const float d[3] = {o.d1, o.d2, o.dp}, u[3] = {o.u1, o.u2, o.up};
+  for (int q = 0; q < 3; ++q) {
+    up[q] = d[q];
+    down[q] = u[q];
+    up[q + 3] = up[q + 6] = down[q + 3] = down[q + 6] = 0.0f;  // no azimuth about the vertical
   }
   return error;
 }
@@ -249,7 +293,9 @@ UwiBand makeUwiBandFromOrdinates(const UwBand& band, double g, double mu_w, doub
   // exponentials (the kernel's delta-M is the solver's: c' = ĉ, the beam's m its own).
   const double source_error = fitSourceTable(field, azimuth ? &field_h : nullptr, azimuth ? &field_h2 : nullptr,
                                              depth_end, best_k, m, H > 0, o);
-  if (fit) *fit = OrdinatesFitError{fd.error, fu.error, fo.error, fh.error, source_error};
+  const double tilt_error = fitTiltTable(field, azimuth ? &field_h : nullptr, azimuth ? &field_h2 : nullptr,
+                                         depth_end, best_k, m, H > 0, o);
+  if (fit) *fit = OrdinatesFitError{fd.error, fu.error, fo.error, fh.error, source_error, tilt_error};
   return o;
 }
 

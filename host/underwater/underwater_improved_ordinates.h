@@ -17,6 +17,9 @@
 // fitted to the path tracer, and the kernel's delta-M is the solver's (c' its ĉ, m its beam's): the view
 // rays integrate the source in the frame it was computed in. At order 3 the phase has three Legendre
 // terms, so azimuth modes 0–2 are all the in-scatter has, and the table holds it whole.
+//
+// The objects' faces are lit by the solver's irradiance on their tilted plane (DiscreteOrdinates::
+// tiltedIrradianceProfile, azimuth modes 0–2 at UWI_TILT_NODES normals), fitted the same way: UwiBand.tilt.
 #pragma once
 #include <vector>
 
@@ -37,6 +40,7 @@ inline constexpr int kOrdinatesSourceMoments = 3;
 struct OrdinatesFitError {
   double down = 0, up = 0, scalar = 0, horizontal = 0;
   double source = 0;  // the in-scatter table's (azimuth modes 0–2, relative to the average's size)
+  double tilt = 0;    // the tilted plane's irradiance table's (the same; its end nodes are E_d's and E_u's)
 };
 
 // One band. mu_w: the refracted sun's cosine (any value in (0, 1] when the sun is off); bottom_depth <= 0:

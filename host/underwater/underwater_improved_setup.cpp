@@ -9,11 +9,13 @@
 
 namespace seasim {
 
-static_assert(sizeof(UwiBand) == (18 + UWI_SOURCE_NODES * UWI_SOURCE_TERMS) * 4,
+static_assert(sizeof(UwiBand) == (18 + (UWI_SOURCE_NODES + UWI_TILT_NODES) * UWI_SOURCE_TERMS + UWI_TILT_NODES * 3) * 4,
               "UwiBand layout changed: update underwater_improved_params.h users");
 static_assert(offsetof(UwiBand, d1) == 20 && offsetof(UwiBand, up) == 40 && offsetof(UwiBand, g_flux) == 44 &&
               offsetof(UwiBand, o1) == 48 && offsetof(UwiBand, op) == 56 && offsetof(UwiBand, h1) == 60 &&
-              offsetof(UwiBand, hp) == 68 && offsetof(UwiBand, src) == 72);
+              offsetof(UwiBand, hp) == 68 && offsetof(UwiBand, src) == 72 &&
+              offsetof(UwiBand, tilt) == 72 + UWI_SOURCE_NODES * UWI_SOURCE_TERMS * 4 &&
+              offsetof(UwiBand, tilt_bottom) == offsetof(UwiBand, tilt) + UWI_TILT_NODES * UWI_SOURCE_TERMS * 4);
 
 double internalDiffuseReflectance(double ior) {
   // Midpoint rule in μ: F jumps to 1 at the critical angle, so a fine uniform grid (error ~1e-5).
@@ -216,6 +218,7 @@ UwiBand makeUwiBand(const UwBand& band, double g, double mu_w, double bottom_dep
   o.o2 = static_cast<float>(r * A2 / mean.down + A2 / mean.up);
   o.op = static_cast<float>(pd / mean.beam_down + pu / mean.beam_up);
   setFirstOrderSource(o);
+  setHemisphereTilt(o);
   return o;
 }
 
@@ -229,6 +232,18 @@ void setFirstOrderSource(UwiBand& o) {
       row[q] = static_cast<float>(s * coef[q][0] + s_flux * nu * (coef[q][1] - coef[q][2]));
       row[q + 3] = static_cast<float>(s_flux * std::sqrt(std::max(1 - nu * nu, 0.0)) * coef[q][3]);
       row[q + 6] = 0.0f;
+    }
+  }
+}
+
+void setHemisphereTilt(UwiBand& o) {
+  const double down[3] = {o.d1, o.d2, o.dp}, up[3] = {o.u1, o.u2, o.up};
+  for (int node = 0; node < UWI_TILT_NODES; ++node) {
+    const double n_y = kmath_d::uwi_tilt_node_cosine(node);
+    float* row = o.tilt + node * UWI_SOURCE_TERMS;
+    for (int q = 0; q < 3; ++q) {
+      row[q] = static_cast<float>(0.5 * (1 + n_y) * down[q] + 0.5 * (1 - n_y) * up[q]);
+      row[q + 3] = row[q + 6] = 0.0f;
     }
   }
 }

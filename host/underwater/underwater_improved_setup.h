@@ -88,6 +88,9 @@ UwiBand uwiBandOfMedium(const DeltaMMedium& medium, double flux_scale);
 // J = b' [E_0 + 3 g_f (ν (E_d - E_u) + √(1 - ν²) cos Δφ F_h)]/(4π) per exponential from the band's o*, d*,
 // u*, h* and g_flux.
 void setFirstOrderSource(UwiBand& band);
+// The tilted plane's irradiance table (UwiBand.tilt) of hemispheres of uniform radiance, E_d (1 + n_y)/2 +
+// E_u (1 - n_y)/2 per exponential from the band's d*, u* (the two-stream's; azimuth modes 1, 2 zero).
+void setHemisphereTilt(UwiBand& band);
 
 // One band's coefficients. mu_w: the refracted sun's cosine (any value in (0, 1] when the sun is off:
 // e_beam0 = e_sun0 = 0 then); bottom_depth <= 0: no bottom; g the water's HG asymmetry; mean: the

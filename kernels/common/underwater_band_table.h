@@ -40,23 +40,24 @@
 #define UWI_ROW_K 1            /* the diffuse field's attenuation k, 1/m */
 #define UWI_ROW_M 2            /* the delta-M beam's attenuation with depth c'/μ_w, 1/m */
 #define UWI_ROW_B_E_BEAM 3     /* b e_beam0 (times p_HG: the beam scattered once) */
-#define UWI_ROW_D1 4           /* E_d, E_u coefficients of e^{-k y}, e^{-k (H - y)}, e^{-m y} */
-#define UWI_ROW_U1 5
-#define UWI_ROW_D2 6
-#define UWI_ROW_U2 7
-#define UWI_ROW_DP 8
-#define UWI_ROW_UP 9
-#define UWI_ROW_BOTTOM_L 10    /* the bottom's sunlit, unshadowed radiance (uwi_lambert at y = H, n up) */
+#define UWI_ROW_D1 4           /* E_d's coefficients of e^{-k y}, e^{-k (H - y)}, e^{-m y}: the bottom's light */
+#define UWI_ROW_D2 5
+#define UWI_ROW_DP 6
+#define UWI_ROW_BOTTOM_L 7     /* the bottom's sunlit, unshadowed radiance (uwi_lambert at y = H, n up) */
 /* The start factors of the camera's integrals (UwiStart, common/underwater_improved_bands.h): every primary
  * ray starts at the camera's depth o_d = -cam_pos[1], the same for the whole frame. */
-#define UWI_ROW_EXP_K_OD 11    /* e^{-k o_d} */
-#define UWI_ROW_EXP_M_OD 12    /* e^{-m o_d} */
-#define UWI_ROW_EXP_BEAM_OD 13 /* e^{-(σ_t/μ_w) o_d} (UW_ROW_K_BEAM's attenuation) */
-#define UWI_ROW_EXP_K_HOD 14   /* e^{-k max(H - o_d, 0)}: the bottom's term, whose integral runs from the bottom */
-#define UWI_ROW_EXP_K_H 15     /* e^{-k H}: the same for the surface's reflected ray (o_d = 0); 1 without a bottom */
+#define UWI_ROW_EXP_K_OD 8     /* e^{-k o_d} */
+#define UWI_ROW_EXP_M_OD 9     /* e^{-m o_d} */
+#define UWI_ROW_EXP_BEAM_OD 10 /* e^{-(σ_t/μ_w) o_d} (UW_ROW_K_BEAM's attenuation) */
+#define UWI_ROW_EXP_K_HOD 11   /* e^{-k max(H - o_d, 0)}: the bottom's term, whose integral runs from the bottom */
+#define UWI_ROW_EXP_K_H 12     /* e^{-k H}: the same for the surface's reflected ray (o_d = 0); 1 without a bottom */
 /* The source's table (UwiBand.src): node j's term q in row UWI_ROW_SRC + j * UWI_SOURCE_TERMS + q
- * (common/underwater_improved_params.h). */
-#define UWI_ROW_SRC 16
-#define UWI_ROWS (UWI_ROW_SRC + UWI_SOURCE_NODES * UWI_SOURCE_TERMS)
+ * (common/underwater_improved_params.h); then the tilted plane's irradiance table (UwiBand.tilt) the same
+ * way from UWI_ROW_TILT. */
+#define UWI_ROW_SRC 13
+#define UWI_ROW_TILT (UWI_ROW_SRC + UWI_SOURCE_NODES * UWI_SOURCE_TERMS)
+#define UWI_ROW_TILT_BOTTOM (UWI_ROW_TILT + UWI_TILT_NODES * UWI_SOURCE_TERMS) /* UwiBand.tilt_bottom: node j's
+                                                                            term q in row + j * 3 + q */
+#define UWI_ROWS (UWI_ROW_TILT_BOTTOM + UWI_TILT_NODES * 3)
 
 #endif /* SEASIM_UNDERWATER_BAND_TABLE_H */

@@ -41,6 +41,11 @@
  *    Plus the beam scattered once with the exact phase function (Nakajima & Tanaka 1988's TMS
  *    correction: delta-M's truncated phase would overstate the back-scatter), b p_HG(g, cos θ_s)
  *    e_beam0 e^{-m y}, attenuated as the delta-M beam.
+ *  - an object's face lit by the diffuse field's irradiance on its own plane (uwi_tilt_irradiance: the
+ *    solver's radiance in azimuth modes 0-2 over the half-space the face sees, tabulated per band in the
+ *    normal's vertical, UwiBand.tilt), not by uniform hemispheres E_d (1 + n_y)/2 + E_u (1 - n_y)/2 (the
+ *    two-stream's table still is); less the light of the sunlit bottom where the sand the face sees is in
+ *    shadow (uwi_bottom_visibility, UwiBand.tilt_bottom). Measured (results/BENCHMARKS.md, s10).
  *  - when the froxel pass adds the strict single scattering b p_HG(g) of the beam e^{-c y/μ_w} (002 eq.
  *    5.2), that term's unshadowed closed form is taken off here, so the sum is the model's total.
  * Along a view ray (depth y(z) = o_d - z d_y; the photon towards the camera has ν = d_y):
@@ -79,6 +84,71 @@ SEASIM_FN real uwi_cos_azimuth(real cos_s, real nu, real mu_w) {
   return s_nu > R(3e-6) && s_w > R(3e-6) ? clamp((cos_s - nu * mu_w) / sqrt(s_nu * s_w), R(-1.0), R(1.0)) : R(0.0);
 }
 
+/* The tilted plane's table (UwiBand.tilt): the node below the normal's upward vertical n_y (clamped to
+ * [-1, 1]), at most UWI_TILT_NODES - 2, and n_y's fraction of the way to the next, in [0, 1]. */
+SEASIM_FN int uwi_tilt_node(real n_y, real* frac) {
+  const real t = clamp((n_y + R(1.0)) * R(0.5) * (real)(UWI_TILT_NODES - 1), R(0.0), (real)(UWI_TILT_NODES - 1));
+  const int node = (int)t < UWI_TILT_NODES - 2 ? (int)t : UWI_TILT_NODES - 2;
+  *frac = t - (real)node;
+  return node;
+}
+
+/* The upward vertical of the tilted plane table's node's normal: evenly spaced from -1 to 1. */
+SEASIM_FN real uwi_tilt_node_cosine(int node) {
+  return R(-1.0) + R(2.0) * (real)node / (real)(UWI_TILT_NODES - 1);
+}
+
+/* The diffuse irradiance on a plane of unit normal n at depth y (the table UwiBand.tilt: azimuth modes
+ * 0-2 in the azimuth φ_n of -n from the sun beam's, whose cosine is uwi_cos_azimuth of -n's downward
+ * cosine n.y and its cosine n·s_w with the beam), not clamped. Light from above and below a plane that is
+ * not horizontal, weighed by the field's own angular distribution: the discrete ordinates' near the surface
+ * is Snell's window's cone and the forward-scattered beam, which a vertical face sees far less of than the
+ * half of E_d that uniform hemispheres give it. vis_b (uwi_bottom_visibility): 0 takes off the light the
+ * sunlit bottom brings (UwiBand.tilt_bottom), for a face that sees the bottom in shadow. */
+SEASIM_FN real uwi_tilt_irradiance(const SEASIM_GLOBAL UwiBand* ib, real bottom_depth, real y, real3 n, real3 s_w,
+                                   real vis_b) {
+  real frac;
+  const int node = uwi_tilt_node(n.y, &frac);
+  const real cos_phi = uwi_cos_azimuth(dot(n, s_w), n.y, s_w.y);
+  const real cos_2phi = R(2.0) * cos_phi * cos_phi - R(1.0);
+  const SEASIM_GLOBAL float* t0 = ib->tilt + node * UWI_SOURCE_TERMS;
+  const SEASIM_GLOBAL float* t1 = t0 + UWI_SOURCE_TERMS;
+  const SEASIM_GLOBAL float* b0 = ib->tilt_bottom + node * 3;
+  const real e[3] = {exp(-(real)ib->k * y),
+                     /* Selected, not branched: without a bottom the term is 0 and its exponent kept <= 0. */
+                     bottom_depth > R(0.0) ? exp(-(real)ib->k * fmax(bottom_depth - y, R(0.0))) : R(0.0),
+                     exp(-(real)ib->m * y)};
+  real sum = R(0.0);
+  for (int q = 0; q < 3; ++q) {
+    const real a = (real)t0[q] + cos_phi * (real)t0[q + 3] + cos_2phi * (real)t0[q + 6];
+    const real b = (real)t1[q] + cos_phi * (real)t1[q + 3] + cos_2phi * (real)t1[q + 6];
+    const real lit = (real)b0[q] + frac * ((real)b0[q + 3] - (real)b0[q]);
+    sum += (a + frac * (b - a) - (R(1.0) - vis_b) * lit) * e[q];
+  }
+  return sum;
+}
+
+/* Whether the bottom that a face at p (unit normal n) sees is sunlit, 0 or 1: one ray from p towards
+ * the bottom, half-way between the normal and straight down ((n - up) normalised: straight down for a face
+ * looking down, 45° down for a vertical one), and from where it meets the bottom a shadow ray to the sun.
+ * 0 when the ray meets an object first (it sees no sand, and the object is darker); 1 without a bottom or for
+ * a face looking straight up (it sees no bottom). The model's diffuse field is the plane-parallel water's, whose
+ * bottom is sunlit everywhere; the objects shade the sand next to them, which their own lower faces see.
+ * Measured (results/BENCHMARKS.md, s10): the objects in clear water over sand were 1.04–1.06 of the path
+ * tracer with that light, 0.99–1.00 over a black bottom. One sample per pixel: a hard edge where a soft one is. */
+SEASIM_FN real uwi_bottom_visibility(const SEASIM_GLOBAL UwObject* objects, int count, real bottom_depth, real3 p,
+                                     real3 n, real3 s_w) {
+  const real3 toward = MAKE_REAL3(n.x, n.y - R(1.0), n.z);
+  const real len2 = dot(toward, toward);
+  if (!(bottom_depth > R(0.0)) || len2 < R(1e-6)) return R(1.0);
+  const real3 d = toward * (R(1.0) / sqrt(len2));
+  real3 nb = MAKE_REAL3(0, 1, 0);
+  int mat = UW_MAT_NONE;
+  const real t = uw_scene_hit(objects, count, bottom_depth, p + R(1e-3) * n, d, R(0.0), &nb, &mat);
+  if (mat != UW_MAT_BOTTOM) return R(0.0);
+  return uw_sun_visibility(objects, count, p + R(1e-3) * n + t * d, MAKE_REAL3(0, 1, 0), s_w);
+}
+
 /* E_d(y) and E_u(y), the diffuse plane irradiances at depth y (common/underwater_improved_params.h),
  * not clamped (the host's solution is positive; callers clamp what they shade with). */
 SEASIM_FN void uwi_irradiance(const SEASIM_GLOBAL UwiBand* ib, real bottom_depth, real y, real* ed, real* eu) {
@@ -115,15 +185,14 @@ SEASIM_FN real uwi_multiple(const SEASIM_GLOBAL UwiBand* ib, const SEASIM_GLOBAL
   return fmax(w1 * i1 + w2 * i2 + wp * ip - ss, R(0.0));
 }
 
-/* A Lambertian point (albedo, unit normal n) at depth y: the diffuse field on its tilted plane (E_d
- * from above, E_u from below) plus the delta-M beam times vis (shadow ray, caustic modulation). */
+/* A Lambertian point (albedo, unit normal n) at depth y: the diffuse field on its tilted plane
+ * (uwi_tilt_irradiance, vis_b the bottom it sees sunlit or not; E_d for the bottom, whose normal is straight
+ * up) plus the delta-M beam times vis (shadow ray, caustic modulation). */
 SEASIM_FN real uwi_lambert(const SEASIM_GLOBAL UwiBand* ib, const SEASIM_GLOBAL UwBand* band, real bottom_depth,
-                           real y, real3 n, real3 s_w, real albedo, real vis) {
-  real ed, eu;
-  uwi_irradiance(ib, bottom_depth, y, &ed, &eu);
+                           real y, real3 n, real3 s_w, real albedo, real vis, real vis_b) {
+  const real e = uwi_tilt_irradiance(ib, bottom_depth, y, n, s_w, vis_b);
   const real beam = (real)band->e_beam0 * exp(-(real)ib->m * y) * fmax(dot(n, s_w), R(0.0)) * vis;
-  return albedo / SEASIM_PI *
-         (fmax(ed, R(0.0)) * R(0.5) * (R(1.0) + n.y) + fmax(eu, R(0.0)) * R(0.5) * (R(1.0) - n.y) + beam);
+  return albedo / SEASIM_PI * (fmax(e, R(0.0)) + beam);
 }
 
 /* What the surface's reflected ray (d.x, -d.y, d.z) meets first when that is an object: the caller
@@ -193,24 +262,26 @@ SEASIM_FN real uwi_surface(const SEASIM_GLOBAL UwiBand* ib, const SEASIM_GLOBAL 
   real l_hit = R(0.0);
   if (object) /* at depth s d_y on the reflected ray */
     l_hit = exp(-(real)ib->c_dm * mirror.s) *
-            uwi_lambert(ib, band, bottom_depth, mirror.s * d_y, mirror.n, s_w, mirror.albedo, mirror.vis);
+            uwi_lambert(ib, band, bottom_depth, mirror.s * d_y, mirror.n, s_w, mirror.albedo, mirror.vis, R(1.0));
   else if (bottom_depth > R(0.0))
     l_hit = exp(-(real)ib->c_dm * fmin(s_r, R(1e4))) *
-            uwi_lambert(ib, band, bottom_depth, bottom_depth, MAKE_REAL3(0, 1, 0), s_w, band->bottom_albedo, R(1.0));
+            uwi_lambert(ib, band, bottom_depth, bottom_depth, MAKE_REAL3(0, 1, 0), s_w, band->bottom_albedo, R(1.0),
+                        R(1.0));
   return uw_window_radiance(d.y, ior, sky_l, l_ms + l_hit);
 }
 
 /* One band's radiance along the view ray (common/underwater.h uw_band_radiance's peer): mat, S, n from
- * uw_scene_hit; albedo of the hit; vis the direct beam's visibility; sky_l the sky along the refracted
+ * uw_scene_hit; albedo of the hit; vis the direct beam's visibility; vis_b whether the bottom an object's
+ * face sees is sunlit (uwi_bottom_visibility; 1 for the bottom itself); sky_l the sky along the refracted
  * view and mirror the object the reflected ray meets (surface hits; uwi_no_mirror_object() otherwise). */
 SEASIM_FN real uwi_band_radiance(const SEASIM_GLOBAL UwiBand* ib, const SEASIM_GLOBAL UwBand* band, real g, int mat,
-                                 real S, real3 n, real3 d, real o_d, real3 s_w, real albedo, real vis, real sky_l,
-                                 real ior, real bottom_depth, int single_scattering, int multiple,
+                                 real S, real3 n, real3 d, real o_d, real3 s_w, real albedo, real vis, real vis_b,
+                                 real sky_l, real ior, real bottom_depth, int single_scattering, int multiple,
                                  UwiMirrorHit mirror) {
   const real l_ms = uwi_multiple(ib, band, g, bottom_depth, S, d.y, o_d, dot(d, s_w), s_w.y, single_scattering, multiple);
   if (mat == UW_MAT_NONE) return l_ms;
   const real l_s = mat == UW_MAT_SURFACE
                        ? uwi_surface(ib, band, g, bottom_depth, sky_l, d, s_w, ior, multiple, mirror)
-                       : uwi_lambert(ib, band, bottom_depth, fmax(o_d - S * d.y, R(0.0)), n, s_w, albedo, vis);
+                       : uwi_lambert(ib, band, bottom_depth, fmax(o_d - S * d.y, R(0.0)), n, s_w, albedo, vis, vis_b);
   return exp(-(real)ib->c_dm * S) * l_s + l_ms;
 }

@@ -12,6 +12,10 @@
  *    (g is the scene's) once per pixel;
  *  - the bottom's sunlit unshadowed radiance that the surface's reflected ray ends on (uwi_surface's
  *    l_bottom / e^{-c' s_r}), which depends on no pixel.
+ *  - an object's face reads the tilted plane's table (UwiBand.tilt, tilt_bottom: rows UWI_ROW_TILT…,
+ *    UWI_ROW_TILT_BOTTOM…) at its normal's two nearest nodes (uwi_lanes_tilt; node, azimuth and the bottom's
+ *    visibility once per pixel); the bottom, facing straight up, reads E_d's coefficients (uwi_lanes_down),
+ *    which are that table's top node.
  * The material, the phase functions and the reflected ray's direction are per pixel (kd_multiple.cl);
  * bottom_depth is the scene's (one uniform test per step). The lanes are branch-free otherwise.
  * One exp fewer per lit band than underwater_improved.h: T(S) = e^{-c' S} is folded into the three
@@ -38,7 +42,7 @@ typedef struct {
   realb c, k_beam, e_beam; /* σ_t; σ_t / max(μ_w, 1e-4) (the froxel term's beam); e_beam0 */
   realb c_dm, k, m;        /* delta-M extinction c', the diffuse field's k, the delta-M beam's c'/μ_w */
   realb b_e_beam;          /* b e_beam0: the TMS term and the froxel term per unit phase */
-  realb d1, u1, d2, u2, dp, up; /* E_d, E_u coefficients (UwiBand) */
+  realb d1, d2, dp;        /* E_d's coefficients (UwiBand): the bottom's light */
 } UwiLanes;
 
 /* Bands i..i+SEASIM_BAND_LANES-1 of the table (row stride `stride`), the improved rows starting at row
@@ -54,11 +58,8 @@ SEASIM_FN UwiLanes uwi_lanes_load(const SEASIM_GLOBAL float* table, int stride, 
   v.c_dm = UWI_LOAD(uwi_row0 + UWI_ROW_C_DM);
   v.b_e_beam = UWI_LOAD(uwi_row0 + UWI_ROW_B_E_BEAM);
   v.d1 = UWI_LOAD(uwi_row0 + UWI_ROW_D1);
-  v.u1 = UWI_LOAD(uwi_row0 + UWI_ROW_U1);
   v.d2 = UWI_LOAD(uwi_row0 + UWI_ROW_D2);
-  v.u2 = UWI_LOAD(uwi_row0 + UWI_ROW_U2);
   v.dp = UWI_LOAD(uwi_row0 + UWI_ROW_DP);
-  v.up = UWI_LOAD(uwi_row0 + UWI_ROW_UP);
 #undef UWI_LOAD
   return v;
 }
@@ -79,6 +80,42 @@ SEASIM_FN UwiWeights uwi_lanes_weights(const SEASIM_GLOBAL float* table, int str
   w.w2 = UWI_TERM(1) + cos_dphi * UWI_TERM(4) + cos_2dphi * UWI_TERM(7);
   w.wp = UWI_TERM(2) + cos_dphi * UWI_TERM(5) + cos_2dphi * UWI_TERM(8);
 #undef UWI_TERM
+  return w;
+}
+
+/* The diffuse irradiance's weights of the three exponentials on a tilted plane (uwi_tilt_irradiance):
+ * node and frac from uwi_tilt_node of the normal's n_y, cos_phi = uwi_cos_azimuth(n·s_w, n_y, μ_w) and vis_b
+ * (uwi_bottom_visibility) once per pixel; the table's two nodes interpolated. */
+SEASIM_FN UwiWeights uwi_lanes_tilt(const SEASIM_GLOBAL float* table, int stride, int uwi_row0, int i, int node,
+                                    real frac, real cos_phi, real vis_b) {
+  const int row_b = uwi_row0 + UWI_ROW_TILT_BOTTOM + node * 3;
+  const int row = uwi_row0 + UWI_ROW_TILT + node * UWI_SOURCE_TERMS;
+#define UWI_TILT(q) LOADB(table + (size_t)(row + (q)) * (size_t)stride, i)
+  const real cos_2phi = R(2.0) * cos_phi * cos_phi - R(1.0);
+  realb t[3];
+  for (int q = 0; q < 3; ++q) {
+    const realb a = UWI_TILT(q) + cos_phi * UWI_TILT(q + 3) + cos_2phi * UWI_TILT(q + 6);
+    const realb b = UWI_TILT(q + UWI_SOURCE_TERMS) + cos_phi * UWI_TILT(q + UWI_SOURCE_TERMS + 3) +
+                    cos_2phi * UWI_TILT(q + UWI_SOURCE_TERMS + 6);
+    const realb lit_a = LOADB(table + (size_t)(row_b + q) * (size_t)stride, i);
+    const realb lit = lit_a + frac * (LOADB(table + (size_t)(row_b + 3 + q) * (size_t)stride, i) - lit_a);
+    t[q] = a + frac * (b - a) - (R(1.0) - vis_b) * lit;
+  }
+#undef UWI_TILT
+  UwiWeights w;
+  w.w1 = t[0];
+  w.w2 = t[1];
+  w.wp = t[2];
+  return w;
+}
+
+/* The same for a plane facing straight up (the bottom): E_d's coefficients, which are the tilted table's
+ * top node. */
+SEASIM_FN UwiWeights uwi_lanes_down(const UwiLanes* v) {
+  UwiWeights w;
+  w.w1 = v->d1;
+  w.w2 = v->d2;
+  w.wp = v->dp;
   return w;
 }
 
@@ -137,20 +174,15 @@ SEASIM_FN realb uwi_lanes_multiple(const UwiLanes* v, const UwiWeights* w, const
   return fmax(sum, R(0.0));
 }
 
-/* uwi_lambert times T(S) = e^{-c' S}: a Lambertian hit (albedo, normal with vertical n_y, n_dot_s =
- * n·s_w) at distance S and depth y lit by E_d from above, E_u from below and the delta-M beam times vis;
- * e = uwi_ends(v, bottom_depth, S, y, …): its exps. */
-SEASIM_FN realb uwi_lanes_lambert(const UwiLanes* v, const UwiEnds* e, realb albedo, real bottom_depth, real n_y,
-                                  real n_dot_s, real vis) {
-  realb ed = v->d1 * e->k + v->dp * e->m;
-  realb eu = v->u1 * e->k + v->up * e->m;
-  if (bottom_depth > R(0.0)) {
-    ed += v->d2 * e->k_bottom;
-    eu += v->u2 * e->k_bottom;
-  }
+/* uwi_lambert times T(S) = e^{-c' S}: a Lambertian hit (albedo, n_dot_s = n·s_w) at distance S and depth
+ * y lit by the diffuse field on its plane (tilt: uwi_lanes_tilt, or uwi_lanes_down for the bottom) and the
+ * delta-M beam times vis; e = uwi_ends(v, bottom_depth, S, y, …): its exps. */
+SEASIM_FN realb uwi_lanes_lambert(const UwiLanes* v, const UwiEnds* e, const UwiWeights* tilt, realb albedo,
+                                  real bottom_depth, real n_dot_s, real vis) {
+  realb diffuse = tilt->w1 * e->k + tilt->wp * e->m;
+  if (bottom_depth > R(0.0)) diffuse += tilt->w2 * e->k_bottom;
   const realb beam = v->e_beam * e->m * (fmax(n_dot_s, R(0.0)) * vis);
-  return albedo / SEASIM_PI *
-         (fmax(ed, R(0.0)) * (R(0.5) * (R(1.0) + n_y)) + fmax(eu, R(0.0)) * (R(0.5) * (R(1.0) - n_y)) + beam);
+  return albedo / SEASIM_PI * (fmax(diffuse, R(0.0)) + beam);
 }
 
 /* uwi_surface times T(S): the surface seen from below along d (d_y = d.y > 0) at distance S: the sky
@@ -164,12 +196,13 @@ SEASIM_FN realb uwi_lanes_lambert(const UwiLanes* v, const UwiEnds* e, realb alb
  * term; the others are 1 at o_d = 0. The reflected ray keeps its single scattering (no froxel term
  * taken off: the froxel pass runs along the camera's ray only), as uwi_surface.
  * An object in the mirror (uwi_surface's UwiMirrorHit, traced once per pixel by the caller): its
- * distance s_m from the surface (UW_INFINITE: none), albedo_m in these bands, its normal's vertical n_m_y,
+ * distance s_m from the surface (UW_INFINITE: none), albedo_m in these bands, the diffuse light on its plane
+ * tilt_m (uwi_lanes_tilt of its normal; unread without one),
  * n_m_dot_s = n·s_w and the sun's visibility vis_m; the reflected ray's integrals then end on it, and its
  * Lambert hit shares their far ends (no more exps than the bottom's case). */
 SEASIM_FN realb uwi_lanes_surface(const UwiLanes* v, const UwiWeights* w_r, realb t_s, realb sky_l, realb bottom_l,
                                   realb exp_k_h, real phase_r, real bottom_depth, real d_y, real ior, int multiple, real s_m,
-                                  realb albedo_m, real n_m_y, real n_m_dot_s, real vis_m) {
+                                  realb albedo_m, const UwiWeights* tilt_m, real n_m_dot_s, real vis_m) {
   const real dy = fmax(d_y, R(1e-6));
   const real s_r = bottom_depth > R(0.0) ? bottom_depth / dy : UW_INFINITE;
   realb reflected = SPLATB(R(0.0));
@@ -182,7 +215,7 @@ SEASIM_FN realb uwi_lanes_surface(const UwiLanes* v, const UwiWeights* w_r, real
   a.k_bottom = exp_k_h;
   if (s_m < s_r) { /* per pixel: an object in the mirror, at depth s_m dy */
     const UwiEnds e = uwi_ends(v, bottom_depth, s_m, s_m * dy, 0);
-    reflected = uwi_lanes_lambert(v, &e, albedo_m, bottom_depth, n_m_y, n_m_dot_s, vis_m);
+    reflected = uwi_lanes_lambert(v, &e, tilt_m, albedo_m, bottom_depth, n_m_dot_s, vis_m);
     if (multiple) reflected += uwi_lanes_multiple(v, w_r, &a, &e, phase_r, bottom_depth, s_m, -dy, 0);
   } else if (multiple) {
     /* It ends on the bottom (y = H) or in deep water (S, y = ∞: its ends 0). */

@@ -17,13 +17,25 @@
  *   J = Σ_q [T0_q(ν) + cos Δφ T1_q(ν) + cos 2Δφ T2_q(ν)] e_q(y),
  *   e_q: e^{-k y}, e^{-k (H - y)}, e^{-m y},
  * src[node * UWI_SOURCE_TERMS + q] = T0_q, [... + 3 + q] = T1_q, [... + 6 + q] = T2_q
- * (Δφ: the photon's azimuth from the sun beam's). Integrated along a ray with extinction c_dm. */
+ * (Δφ: the photon's azimuth from the sun beam's). Integrated along a ray with extinction c_dm.
+ *
+ * The diffuse irradiance on a tilted plane (the objects' faces) is tabulated the same way in the upward
+ * vertical n_y of the plane's normal n, at UWI_TILT_NODES evenly spaced nodes from -1 to 1, read with
+ * linear interpolation (common/underwater_improved.h uwi_tilt_irradiance):
+ *   E(y, n) = Σ_q [A0_q(n_y) + cos φ_n A1_q(n_y) + cos 2φ_n A2_q(n_y)] e_q(y),
+ * φ_n the azimuth of -n from the sun beam's; tilt[node * UWI_SOURCE_TERMS + q + 3 m] = Am_q. At n_y = 1 it
+ * is E_d, at -1 E_u. The two-stream's is E_d (1 + n_y)/2 + E_u (1 - n_y)/2 (hemispheres of uniform
+ * radiance), linear in n_y.
+ * A face that sees shadowed bottom (uwi_bottom_visibility: the objects shade the sand the model's plane-
+ * parallel field takes as sunlit) loses (1 - vis_b) of tilt_bottom, the part of E(y, n) the beam reflected
+ * by the bottom brings (Lambertian, so azimuth mode 0 only); 0 with the two-stream. */
 
 #ifndef SEASIM_UNDERWATER_IMPROVED_PARAMS_H
 #define SEASIM_UNDERWATER_IMPROVED_PARAMS_H
 
 #define UWI_SOURCE_NODES 129
 #define UWI_SOURCE_TERMS 9
+#define UWI_TILT_NODES 33
 
 typedef struct {
   float c_dm;   /* delta-M extinction c' = a + b (1 - f), 1/m: view rays and the sun beam (f = g³ with the
@@ -45,6 +57,10 @@ typedef struct {
   float h1, h2, hp; /* the diffuse light's net horizontal flux towards the sun's azimuth, F_h(y), in the
                        same exponentials (the discrete ordinates'; 0 for the two-stream) */
   float src[UWI_SOURCE_NODES * UWI_SOURCE_TERMS]; /* the source's table, per m per sr (see above) */
+  float tilt[UWI_TILT_NODES * UWI_SOURCE_TERMS];  /* the tilted plane's irradiance table (see above) */
+  float tilt_bottom[UWI_TILT_NODES * 3];         /* [node * 3 + q]: the part of tilt's A0_q that the bottom's
+                                                    reflection of the beam brings: what a face loses where
+                                                    the bottom it sees is in shadow */
 } UwiBand;
 
 #endif /* SEASIM_UNDERWATER_IMPROVED_PARAMS_H */

@@ -70,8 +70,9 @@ seasim::Override set(const char* key, const std::string& value) { return {key, v
 // The frame by the shared maths in double (kd_multiple.cl's improved block, raycast.cl's shadow ray);
 // with spectral, also every band's radiance (band-major per pixel, as spectral.exr).
 // mirror_hits: counts the surface pixels whose reflected ray meets an object (uwi_mirror_hit).
+// shaded_faces: counts the object pixels whose face sees the bottom in shadow (uwi_bottom_visibility 0).
 seasim::Image cpuImproved(const seasim::UnderwaterSetup& s, bool multiple, std::vector<double>* spectral = nullptr,
-                          int* mirror_hits = nullptr) {
+                          int* mirror_hits = nullptr, int* shaded_faces = nullptr) {
   const UwParams& p = s.params;
   seasim::Image out = seasim::Image::rgb(p.width, p.height);
   const kd::real3 o{p.cam_pos[0], p.cam_pos[1], p.cam_pos[2]};
@@ -91,6 +92,11 @@ seasim::Image cpuImproved(const seasim::UnderwaterSetup& s, bool multiple, std::
         kd::uw_scene_hit(s.objects.data(), p.object_count, 0.0, o + S * d + 1e-3 * n, s_w, 0.0, &sn, &smat);
         vis = smat >= 0 ? 0.0 : 1.0;
       }
+      // Whether the bottom an object's face sees is sunlit (kd_multiple.cl's uwi_bottom_visibility).
+      const double vis_b = mat >= 0 ? kd::uwi_bottom_visibility(s.objects.data(), p.object_count, p.bottom_depth,
+                                                                o + S * d, n, s_w)
+                                    : 1.0;
+      if (shaded_faces && mat >= 0 && vis_b == 0.0) ++*shaded_faces;
       int mat_m = UW_MAT_NONE;  // the object in the surface's mirror (kd_multiple.cl's uwi_mirror_hit)
       kd::UwiMirrorHit mirror = mat == UW_MAT_SURFACE
                                     ? kd::uwi_mirror_hit(s.objects.data(), p.object_count, o, d, S, s_w, &mat_m)
@@ -101,7 +107,7 @@ seasim::Image cpuImproved(const seasim::UnderwaterSetup& s, bool multiple, std::
         if (mat_m >= 0) mirror.albedo = s.albedo[size_t(mat_m) * p.band_count + i];
         const UwBand& b = s.bands[i];
         const double albedo = mat >= 0 ? s.albedo[size_t(mat) * p.band_count + i] : mat == UW_MAT_BOTTOM ? b.bottom_albedo : 0.0;
-        const double L = kd::uwi_band_radiance(&s.improved[i], &b, p.g, mat, S, n, d, -o.y, s_w, albedo, vis,
+        const double L = kd::uwi_band_radiance(&s.improved[i], &b, p.g, mat, S, n, d, -o.y, s_w, albedo, vis, vis_b,
                                                b.sky_radiance, p.ior, p.bottom_depth, 0, multiple ? 1 : 0, mirror);
         rgb[0] += L * b.w_r;
         rgb[1] += L * b.w_g;
@@ -137,9 +143,10 @@ TEST_P(UnderwaterImprovedKernel, MatchesDoubleCpuEvaluationWithoutNaN) {
   const seasim::UnderwaterSetup setup = seasim::makeUnderwaterSetup(
       scene, grid, seasim::makeSensor(scene.spectral.sensor, grid, scene.spectral.white_balance, scene.spectral.camera_dir));
   ASSERT_EQ(setup.improved.size(), setup.bands.size());
-  int mirror_hits = 0;
-  const seasim::Image ref = cpuImproved(setup, scene.underwater.multiple_scattering, nullptr, &mirror_hits);
+  int mirror_hits = 0, shaded_faces = 0;
+  const seasim::Image ref = cpuImproved(setup, scene.underwater.multiple_scattering, nullptr, &mirror_hits, &shaded_faces);
   if (std::string(GetParam().name) == "objects_in_the_mirror") EXPECT_GT(mirror_hits, 20) << "the sphere in the mirror";
+  if (std::string(GetParam().name) == "faces_over_their_shadows") EXPECT_GT(shaded_faces, 15) << "faces over shadow";
   float peak = 0;
   for (float v : ref.pixels) peak = std::max(peak, std::fabs(v));
   // Per pixel, relative; a shadow edge may fall on the other side of a pixel centre in float, so 1 %
@@ -180,7 +187,10 @@ INSTANTIATE_TEST_SUITE_P(
         // No objects: the set-up holds one placeholder object for OpenCL, and the band table's improved
         // rows must still follow the scene's object count (they followed the placeholder's before s9b:
         // 4.4x the thesis's light in make validate's scene).
-        Variant{"no_objects", {}, false, true}, Variant{"no_objects_no_bottom", {}, true, true}),
+        Variant{"no_objects", {}, false, true}, Variant{"no_objects_no_bottom", {}, true, true},
+        // The sun ahead of the camera, low: the objects cast their shadows towards it, and the faces it sees
+        // look down on that shadowed sand (uwi_bottom_visibility 0, the tilted table's bottom part taken off).
+        Variant{"faces_over_their_shadows", {set("sun.zenith_deg", "55"), set("sun.azimuth_deg", "-90")}}),
     [](const ::testing::TestParamInfo<Variant>& info) { return std::string(info.param.name); });
 
 // spectral.exr's bands from the lanes' store_lanes, 17 bands (one full step of 16 and one of 1), each

@@ -69,6 +69,7 @@ struct Ray {
   int mat_m = 1;
   double n_m[3] = {0.0, 0.6, 0.8};
   double vis_m = 1.0;
+  double vis_b = 1.0;  // whether the bottom an object's face sees is sunlit (uwi_bottom_visibility)
 };
 
 // kd_multiple.cl's improved band loop for band k (real = float or double): the per-pixel phases, the
@@ -99,12 +100,25 @@ struct Ray {
     Real L = ns::uwi_lanes_multiple(&v, &w, &a, &e, phase, H, S, d.y, single);                               \
     if (r.mat == UW_MAT_SURFACE) {                                                                           \
       const ns::real3 n_m{Real(r.n_m[0]), Real(r.n_m[1]), Real(r.n_m[2])};                                   \
+      Real frac_m;                                                                                           \
+      const int tilt_node_m = ns::uwi_tilt_node(n_m.y, &frac_m);                                             \
+      const Real cos_phi_m = ns::uwi_cos_azimuth(ns::dot(n_m, s_w), n_m.y, s_w.y);                           \
+      const ns::UwiWeights tilt_m =                                                                          \
+          r.s_m < Real(1e29) ? ns::uwi_lanes_tilt(table.data(), stride, uwi_row0, k, tilt_node_m, frac_m, cos_phi_m, Real(1)) \
+                             : ns::uwi_lanes_down(&v);                                                       \
       L += ns::uwi_lanes_surface(&v, &w_r, e.k, Real(r.sky_l), row(uwi_row0 + UWI_ROW_BOTTOM_L),         \
                                  row(uwi_row0 + UWI_ROW_EXP_K_H), phase_r, H, d.y, Real(s.params.ior), 1,    \
-                                 Real(r.s_m), row(UW_ROWS + r.mat_m), n_m.y, ns::dot(n_m, s_w), Real(r.vis_m)); \
+                                 Real(r.s_m), row(UW_ROWS + r.mat_m), &tilt_m, ns::dot(n_m, s_w), Real(r.vis_m)); \
+    } else if (r.mat == UW_MAT_BOTTOM) {                                                                     \
+      const ns::UwiWeights down = ns::uwi_lanes_down(&v);                                                    \
+      L += ns::uwi_lanes_lambert(&v, &e, &down, row(UW_ROW_BOTTOM_ALBEDO), H, ns::dot(n, s_w), Real(r.vis)); \
     } else if (r.mat != UW_MAT_NONE) {                                                                       \
-      const Real albedo = row(r.mat >= 0 ? UW_ROWS + r.mat : UW_ROW_BOTTOM_ALBEDO);                          \
-      L += ns::uwi_lanes_lambert(&v, &e, albedo, H, n.y, ns::dot(n, s_w), Real(r.vis));                       \
+      Real frac;                                                                                             \
+      const int tilt_node = ns::uwi_tilt_node(n.y, &frac);                                                   \
+      const ns::UwiWeights tilt = ns::uwi_lanes_tilt(table.data(), stride, uwi_row0, k, tilt_node, frac,     \
+                                                     ns::uwi_cos_azimuth(ns::dot(n, s_w), n.y, s_w.y),       \
+                                                     Real(r.vis_b));                                         \
+      L += ns::uwi_lanes_lambert(&v, &e, &tilt, row(UW_ROWS + r.mat), H, ns::dot(n, s_w), Real(r.vis));      \
     }                                                                                                        \
     return L;                                                                                                \
   }
@@ -118,7 +132,7 @@ double scalarRadiance(const seasim::UnderwaterSetup& s, int k, const Ray& r, int
   const kd::real3 d{r.d[0], r.d[1], r.d[2]}, n{r.n[0], r.n[1], r.n[2]}, s_w{r.s_w[0], r.s_w[1], r.s_w[2]};
   const kd::UwiMirrorHit m{r.s_m, kd::real3{r.n_m[0], r.n_m[1], r.n_m[2]}, s.albedo[size_t(r.mat_m) * kBands + k],
                            r.vis_m};
-  return kd::uwi_band_radiance(&s.improved[k], &b, s.params.g, r.mat, r.S, n, d, r.o_d, s_w, albedo, r.vis, r.sky_l,
+  return kd::uwi_band_radiance(&s.improved[k], &b, s.params.g, r.mat, r.S, n, d, r.o_d, s_w, albedo, r.vis, r.vis_b, r.sky_l,
                                s.params.ior, s.params.bottom_depth, single, 1, m);
 }
 
@@ -130,7 +144,8 @@ float scalarRadianceFloat(const seasim::UnderwaterSetup& s, int k, const Ray& r,
   const kf::UwiMirrorHit m{float(r.s_m), kf::real3{float(r.n_m[0]), float(r.n_m[1]), float(r.n_m[2])},
                            s.albedo[size_t(r.mat_m) * kBands + k], float(r.vis_m)};
   return kf::uwi_band_radiance(&s.improved[k], &b, s.params.g, r.mat, float(r.S), n, d, float(r.o_d), s_w, albedo,
-                               float(r.vis), float(r.sky_l), s.params.ior, s.params.bottom_depth, single, 1, m);
+                               float(r.vis), float(r.vis_b), float(r.sky_l), s.params.ior, s.params.bottom_depth, single,
+                               1, m);
 }
 
 TEST(UnderwaterImprovedBands, TableRowsHoldTheBlockAndPaddingIsWeightless) {
@@ -144,12 +159,14 @@ TEST(UnderwaterImprovedBands, TableRowsHoldTheBlockAndPaddingIsWeightless) {
     EXPECT_EQ(at(UW_ROW_W_G, k), k < kBands ? 0.5f : 0.0f);
     EXPECT_EQ(at(row0 + UWI_ROW_K, k), ib.k);
     EXPECT_EQ(at(row0 + UWI_ROW_D2, k), ib.d2);
-    EXPECT_EQ(at(row0 + UWI_ROW_UP, k), ib.up);
+    EXPECT_EQ(at(row0 + UWI_ROW_DP, k), ib.dp);
     EXPECT_EQ(at(row0 + UWI_ROW_C_DM, k), ib.c_dm);
     EXPECT_EQ(at(row0 + UWI_ROW_M, k), ib.m);
     // The source's rows are the band's table, and the lanes' weights are uwi_source_weight at every ν and
     // azimuth.
     for (int q = 0; q < UWI_SOURCE_NODES * UWI_SOURCE_TERMS; ++q) ASSERT_EQ(at(row0 + UWI_ROW_SRC + q, k), ib.src[q]) << q;
+    for (int q = 0; q < UWI_TILT_NODES * UWI_SOURCE_TERMS; ++q) ASSERT_EQ(at(row0 + UWI_ROW_TILT + q, k), ib.tilt[q]) << q;
+    for (int q = 0; q < UWI_TILT_NODES * 3; ++q) ASSERT_EQ(at(row0 + UWI_ROW_TILT_BOTTOM + q, k), ib.tilt_bottom[q]) << q;
     for (double nu : {-1.0, -0.3, 0.0, 0.7, 1.0})
       for (double cos_dphi : {-0.6, 0.0, 1.0}) {
         const int node = kd::uwi_source_node(nu);
@@ -224,6 +241,8 @@ TEST(UnderwaterImprovedBands, LanesMatchTheScalarModelInFloatAndDouble) {
             for (float* v : {&ib.d1, &ib.u1, &ib.d2, &ib.u2, &ib.dp, &ib.up})
               *v = std::fabs(*v);
             for (float& v : ib.src) v = std::fabs(v);
+            for (float& v : ib.tilt) v = std::fabs(v);
+            for (float& v : ib.tilt_bottom) v = std::fabs(v);
           }
           const double s_w[3] = {std::sqrt(1 - mu_w * mu_w), mu_w, 0};
           for (double o_d : {0.0, 1e-4, 3.0, 1000.0}) {
@@ -247,6 +266,11 @@ TEST(UnderwaterImprovedBands, LanesMatchTheScalarModelInFloatAndDouble) {
                   if (mat == UW_MAT_NONE) r.S = 1e30;
                   if (mat == UW_MAT_SURFACE) r.S = o_d / d_y;
                   if (mat == UW_MAT_BOTTOM) r.S = (H - o_d) / -d_y, r.n[0] = 0, r.n[1] = 1;
+                  // Object 1 faces down and sideways, off the sun's azimuth (the tilted table's lower
+                  // nodes and its azimuth modes).
+                  // Object 1 sees the bottom in shadow where it is far (vis_b 0: the tilted table's
+                  // bottom part taken off).
+                  if (mat == 1) r.n[0] = 0.48, r.n[1] = -0.6, r.n[2] = 0.64, r.vis_b = S == 30.0 ? 0.0 : 1.0;
                   if (mat >= 0 && o_d - S * d_y < 0) continue;  // above the surface
                   if (mat >= 0 && H > 0 && o_d - S * d_y > H) continue;  // below the bottom
                   for (int single : {0, 1})

@@ -202,7 +202,7 @@ TEST(UnderwaterImprovedOrdinates, SourceTableGivesTheSolversRadiance) {
           if (d_y > 0) mat = UW_MAT_SURFACE, S = y / d_y;
           if (d_y < 0 && H > 0) mat = UW_MAT_BOTTOM, S = (H - y) / -d_y;
           const double L = kd::uwi_band_radiance(&ib, &band, light.g, mat, S, kd::real3{0, 1, 0}, d, y, s_w,
-                                                 band.bottom_albedo, 1.0, sky_l, 1.34, H, 0, 1,
+                                                 band.bottom_albedo, 1.0, 1.0, sky_l, 1.34, H, 0, 1,
                                                  kd::uwi_no_mirror_object());
           const double ref = d_y > 0 ? down[i] : up[i];
           worst = std::max(worst, std::fabs(L / ref - 1));

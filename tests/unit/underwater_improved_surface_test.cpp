@@ -41,7 +41,7 @@ struct Kd {
   static double uwi_band_radiance(const UwiBand* ib, const UwBand* b, double g, int mat, double S, real3 n, real3 d,
                                   double o_d, real3 s_w, double albedo, double vis, double sky, double ior, double H,
                                   int ss, int ms) {
-    return kd::uwi_band_radiance(ib, b, g, mat, S, n, d, o_d, s_w, albedo, vis, sky, ior, H, ss, ms,
+    return kd::uwi_band_radiance(ib, b, g, mat, S, n, d, o_d, s_w, albedo, vis, 1.0, sky, ior, H, ss, ms,
                                  kd::uwi_no_mirror_object());
   }
 };
@@ -50,7 +50,7 @@ struct Kf {
   static float uwi_band_radiance(const UwiBand* ib, const UwBand* b, float g, int mat, float S, real3 n, real3 d,
                                  float o_d, real3 s_w, float albedo, float vis, float sky, float ior, float H, int ss,
                                  int ms) {
-    return kf::uwi_band_radiance(ib, b, g, mat, S, n, d, o_d, s_w, albedo, vis, sky, ior, H, ss, ms,
+    return kf::uwi_band_radiance(ib, b, g, mat, S, n, d, o_d, s_w, albedo, vis, 1.0f, sky, ior, H, ss, ms,
                                  kf::uwi_no_mirror_object());
   }
 };
@@ -106,7 +106,7 @@ TEST(UnderwaterImprovedSurface, ReflectedRayKeepsTheBeamsSingleScatteringUnderTo
   // The surface term (froxels on for the camera's ray) holds the reflected ray's in-scatter with it.
   const double S = o_d / d_y;
   const double surface =
-      kd::uwi_band_radiance(&ib, &bd, 0.0, UW_MAT_SURFACE, S, kd::real3{0, -1, 0}, d, o_d, s_w, 0, 1, 0.0, 1.34, 0.0, 1, 1,
+      kd::uwi_band_radiance(&ib, &bd, 0.0, UW_MAT_SURFACE, S, kd::real3{0, -1, 0}, d, o_d, s_w, 0, 1, 1, 0.0, 1.34, 0.0, 1, 1,
                              kd::uwi_no_mirror_object()) -
       kd::uwi_multiple(&ib, &bd, 0.0, 0.0, S, d_y, o_d, kd::dot(d, s_w), mu_w, 1, 1);
   EXPECT_NEAR(surface, std::exp(-double(ib.c_dm) * S) * with, 1e-12 + 1e-9 * surface);
@@ -145,7 +145,7 @@ TEST(UnderwaterImprovedSurface, ObjectInTheMirrorEndsTheReflectedRayAndIsLitTher
   const double expect =
       1.34 * 1.34 * (1 - f) * bd.sky_radiance +
       f * (kd::uwi_multiple(&ib, &bd, 0.9, H, m.s, -d_y, 0.0, cos_r, mu_w, 0, 1) +
-           std::exp(-double(ib.c_dm) * m.s) * kd::uwi_lambert(&ib, &bd, H, m.s * d_y, m.n, s_w, 0.3, 1.0));
+           std::exp(-double(ib.c_dm) * m.s) * kd::uwi_lambert(&ib, &bd, H, m.s * d_y, m.n, s_w, 0.3, 1.0, 1.0));
   const double with = kd::uwi_surface(&ib, &bd, 0.9, H, bd.sky_radiance, d, s_w, 1.34, 1, m);
   EXPECT_NEAR(with, expect, 1e-12 + 1e-9 * expect);
   const double none = kd::uwi_surface(&ib, &bd, 0.9, H, bd.sky_radiance, d, s_w, 1.34, 1, kd::uwi_no_mirror_object());

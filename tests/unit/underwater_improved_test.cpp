@@ -198,7 +198,7 @@ TEST(UnderwaterImproved, ResonanceAndExtremesStayFiniteAndContinuous) {
         EXPECT_TRUE(std::isfinite(v) && v >= 0) << a << " " << b << " " << g << " " << mu << " " << H << " " << d_y;
       }
       const kf::real3 n = {0.0f, 1.0f, 0.0f}, s_w = {0.0f, float(mu), std::sqrt(1.0f - float(mu * mu))};
-      const float l = kf::uwi_lambert(&ib, &bd, float(H), 1.0f, n, s_w, 0.35f, 1.0f);
+      const float l = kf::uwi_lambert(&ib, &bd, float(H), 1.0f, n, s_w, 0.35f, 1.0f, 1.0f);
       EXPECT_TRUE(std::isfinite(l) && l >= 0);
     }
   }
@@ -212,7 +212,7 @@ TEST(UnderwaterImproved, NoScatteringLeavesTheBeamAndSkyAttenuatedByAbsorption) 
   const UwiBand ib = makeUwiBand(bd, 0.9, mu, 0.0, 1.34);
   EXPECT_EQ(kd::uwi_multiple(&ib, &bd, 0.9, 0.0, 5.0, -1.0, 1.0, 0.2, mu, 1, 1), 0.0);
   const kd::real3 n = {0, 1, 0}, s_w = {0, mu, std::sqrt(1 - mu * mu)};
-  const double l = kd::uwi_lambert(&ib, &bd, 0.0, y, n, s_w, 0.5, 1.0);
+  const double l = kd::uwi_lambert(&ib, &bd, 0.0, y, n, s_w, 0.5, 1.0, 1.0);
   const double expect = 0.5 / M_PI * (0.3 * std::exp(-std::sqrt(3.0) * a * y) + 1.0 * std::exp(-a * y / mu));
   EXPECT_NEAR(l / expect, 1.0, 1e-5);
 }
