@@ -150,8 +150,8 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
   const float cos_phi_n = uwi_cos_azimuth(n_dot_s, n.y, s_w.y);
   const float cos_phi_m = uwi_cos_azimuth(n_m_dot_s, mirror.n.y, s_w.y);
   const int mirror_object = mat_m >= 0;
-  /* Whether the bottom an object's face sees is sunlit (uwi_bottom_visibility; the mirrored object's is
-   * taken as sunlit). */
+  /* The share of the sand an object's face sees that is sunlit (uwi_bottom_visibility; the mirrored
+   * object's is taken as 1). */
   const float vis_b = mat >= 0 ? uwi_bottom_visibility(objects, p->object_count, p->bottom_depth,
                                                        (float3)(p->cam_pos[0], p->cam_pos[1], p->cam_pos[2]) + S * d,
                                                        n, s_w)

@@ -56,7 +56,7 @@ std::vector<UwiPixelTerms> improvedModelTerms(const UnderwaterSetup& s, bool mul
       const double S = kd::uw_scene_hit(s.objects.data(), p.object_count, H, o, d, 0.0, &n, &mat);
       double vis = 0;  // the sun's shadow ray from a Lambertian hit (raycast.cl)
       if (mat >= 0 || mat == UW_MAT_BOTTOM) vis = kd::uw_sun_visibility(s.objects.data(), p.object_count, o + S * d, n, s_w);
-      // Whether the bottom an object's face sees is sunlit (kd_multiple.cl's).
+      // The share of the sand an object's face sees that is sunlit (kd_multiple.cl's).
       const double vis_b = mat >= 0 ? kd::uwi_bottom_visibility(s.objects.data(), p.object_count, H, o + S * d, n, s_w) : 1.0;
       UwiPixelTerms& t = out[size_t(y) * p.width + x];
       int mat_m = UW_MAT_NONE;  // the object in the surface's mirror, as kd_multiple.cl traces it

@@ -119,9 +119,10 @@ double scanK(double k_inf, double m, Error error) {
 // the azimuth average's size: out[node * UWI_SOURCE_TERMS + q + 3 mode]. Returns the largest relative error
 // over nodes and depths. Where k comes within 2 % of m (the k scan avoids it) the beam's exponential is
 // left out, as the pair would fit each other's cancellation.
-double fitModeTable(const std::vector<double>* profiles[3], int nodes, double depth_end, double k, double m,
-                    bool bottom, float* out) {
-  const std::vector<double>& j0 = *profiles[0];
+using ModeProfiles = std::array<std::vector<double>, 3>;
+double fitModeTable(const ModeProfiles& profiles, int nodes, double depth_end, double k, double m, bool bottom,
+                    float* out) {
+  const std::vector<double>& j0 = profiles[0];
   double largest = 0;
   for (double v : j0) largest = std::max(largest, std::abs(v));
   const double step = depth_end / (kDepthSamples - 1);
@@ -136,7 +137,7 @@ double fitModeTable(const std::vector<double>* profiles[3], int nodes, double de
     for (int s = 0; s < kDepthSamples; ++s)
       weight[s] = 1.0 / std::max(std::abs(j0[size_t(s) * nodes + j]), 1e-9 * largest + 1e-300);
     const std::vector<Fit> fits = fitWeighted(basis, columns, weight, 3, [&](int mode, int s) {
-      return profiles[mode]->empty() ? 0.0 : (*profiles[mode])[size_t(s) * nodes + j];
+      return profiles[mode].empty() ? 0.0 : profiles[mode][size_t(s) * nodes + j];
     });
     float* row = out + j * UWI_SOURCE_TERMS;
     for (int mode = 0; mode < 3; ++mode) {
@@ -147,6 +148,14 @@ double fitModeTable(const std::vector<double>* profiles[3], int nodes, double de
   return error;
 }
 
+// The three azimuth modes' profiles, each field's `profile` (field_h, field_h2 null: empty, that mode 0).
+template <class Profile>
+ModeProfiles modeProfiles(const DiscreteOrdinates& field, const DiscreteOrdinates* field_h,
+                          const DiscreteOrdinates* field_h2, Profile profile) {
+  return {profile(field), field_h ? profile(*field_h) : std::vector<double>{},
+          field_h2 ? profile(*field_h2) : std::vector<double>{}};
+}
+
 // The discrete ordinates' in-scatter (azimuth modes 0, 1, 2; field_h, field_h2 null: only mode 0) at the
 // source table's cosines, fitted per cosine: UwiBand.src.
 double fitSourceTable(const DiscreteOrdinates& field, const DiscreteOrdinates* field_h,
@@ -154,10 +163,9 @@ double fitSourceTable(const DiscreteOrdinates& field, const DiscreteOrdinates* f
                       UwiBand& o) {
   std::vector<double> nus(UWI_SOURCE_NODES);
   for (int j = 0; j < UWI_SOURCE_NODES; ++j) nus[j] = kmath_d::uwi_source_node_cosine(j);
-  const std::vector<double> j0 = field.inscatterProfile(nus, depth_end, kDepthSamples);
-  const std::vector<double> j1 = field_h ? field_h->inscatterProfile(nus, depth_end, kDepthSamples) : std::vector<double>{};
-  const std::vector<double> j2 = field_h2 ? field_h2->inscatterProfile(nus, depth_end, kDepthSamples) : std::vector<double>{};
-  const std::vector<double>* profiles[3] = {&j0, &j1, &j2};
+  const ModeProfiles profiles = modeProfiles(field, field_h, field_h2, [&](const DiscreteOrdinates& f) {
+    return f.inscatterProfile(nus, depth_end, kDepthSamples);
+  });
   return fitModeTable(profiles, UWI_SOURCE_NODES, depth_end, k, m, bottom, o.src);
 }
 
@@ -171,21 +179,18 @@ double fitTiltTable(const DiscreteOrdinates& field, const DiscreteOrdinates* fie
                     UwiBand& o) {
   std::vector<double> n_ys(UWI_TILT_NODES);
   for (int j = 0; j < UWI_TILT_NODES; ++j) n_ys[j] = kmath_d::uwi_tilt_node_cosine(j);
-  const std::vector<double> e0 = field.tiltedIrradianceProfile(n_ys, depth_end, kDepthSamples);
-  const std::vector<double> lit =
-      bottom ? field.tiltedIrradianceProfile(n_ys, depth_end, kDepthSamples, true) : std::vector<double>{};
+  ModeProfiles lit;
+  if (bottom) lit[0] = field.tiltedIrradianceProfile(n_ys, depth_end, kDepthSamples, true);
   // None where the bottom reflects no beam (black, no sun): tilt_bottom stays 0.
-  if (std::any_of(lit.begin(), lit.end(), [](double v) { return v != 0.0; })) {
-    const std::vector<double> none;
-    const std::vector<double>* profiles[3] = {&lit, &none, &none};
+  if (std::any_of(lit[0].begin(), lit[0].end(), [](double v) { return v != 0.0; })) {
     std::vector<float> table(UWI_TILT_NODES * UWI_SOURCE_TERMS);
-    fitModeTable(profiles, UWI_TILT_NODES, depth_end, k, m, bottom, table.data());
+    fitModeTable(lit, UWI_TILT_NODES, depth_end, k, m, bottom, table.data());
     for (int j = 0; j < UWI_TILT_NODES; ++j)
       for (int q = 0; q < 3; ++q) o.tilt_bottom[j * 3 + q] = table[j * UWI_SOURCE_TERMS + q];
   }
-  const std::vector<double> e1 = field_h ? field_h->tiltedIrradianceProfile(n_ys, depth_end, kDepthSamples) : std::vector<double>{};
-  const std::vector<double> e2 = field_h2 ? field_h2->tiltedIrradianceProfile(n_ys, depth_end, kDepthSamples) : std::vector<double>{};
-  const std::vector<double>* profiles[3] = {&e0, &e1, &e2};
+  const ModeProfiles profiles = modeProfiles(field, field_h, field_h2, [&](const DiscreteOrdinates& f) {
+    return f.tiltedIrradianceProfile(n_ys, depth_end, kDepthSamples);
+  });
   const double error = fitModeTable(profiles, UWI_TILT_NODES, depth_end, k, m, bottom, o.tilt);
   float* up = o.tilt + (UWI_TILT_NODES - 1) * UWI_SOURCE_TERMS;
   float* down = o.tilt;

@@ -103,8 +103,9 @@ SEASIM_FN real uwi_tilt_node_cosine(int node) {
  * cosine n.y and its cosine n·s_w with the beam), not clamped. Light from above and below a plane that is
  * not horizontal, weighed by the field's own angular distribution: the discrete ordinates' near the surface
  * is Snell's window's cone and the forward-scattered beam, which a vertical face sees far less of than the
- * half of E_d that uniform hemispheres give it. vis_b (uwi_bottom_visibility): 0 takes off the light the
- * sunlit bottom brings (UwiBand.tilt_bottom), for a face that sees the bottom in shadow. */
+ * half of E_d that uniform hemispheres give it. vis_b (uwi_bottom_visibility, the share of the sand the
+ * face sees that is sunlit): 1 - vis_b of the light the sunlit bottom brings (UwiBand.tilt_bottom) is taken
+ * off. */
 SEASIM_FN real uwi_tilt_irradiance(const SEASIM_GLOBAL UwiBand* ib, real bottom_depth, real y, real3 n, real3 s_w,
                                    real vis_b) {
   real frac;
@@ -128,25 +129,39 @@ SEASIM_FN real uwi_tilt_irradiance(const SEASIM_GLOBAL UwiBand* ib, real bottom_
   return sum;
 }
 
-/* Whether the bottom that a face at p (unit normal n) sees is sunlit, 0 or 1: one ray from p towards
- * the bottom, half-way between the normal and straight down ((n - up) normalised: straight down for a face
- * looking down, 45° down for a vertical one), and from where it meets the bottom a shadow ray to the sun.
- * 0 when the ray meets an object first (it sees no sand, and the object is darker); 1 without a bottom or for
- * a face looking straight up (it sees no bottom). The model's diffuse field is the plane-parallel water's, whose
- * bottom is sunlit everywhere; the objects shade the sand next to them, which their own lower faces see.
- * Measured (results/BENCHMARKS.md, s10): the objects in clear water over sand were 1.04–1.06 of the path
- * tracer with that light, 0.99–1.00 over a black bottom. One sample per pixel: a hard edge where a soft one is. */
+#define UWI_BOTTOM_RAYS 8
+
+/* The share of the bottom that a face at p (unit normal n) sees that is sunlit, in [0, 1]: UWI_BOTTOM_RAYS
+ * rays from p, cosine-weighted about n (a fixed golden-angle pattern in the face's tangent frame, as a
+ * Lambertian face weighs what it sees), and of those going down, the share whose sand a shadow ray finds
+ * lit (a ray that meets an object first sees no sand, and the object is darker: 0). 1 without a bottom or
+ * when no ray goes down (a face looking up sees no bottom). The model's diffuse field is the plane-parallel
+ * water's, whose bottom is sunlit everywhere; the objects shade the sand next to them, which their own lower
+ * faces see. Measured (results/BENCHMARKS.md, s10): the objects in clear water over sand were 1.04–1.06 of
+ * the path tracer with that light, 0.99–1.00 over a black bottom. Eight rays give the shadow's edge on a
+ * face nine steps where the true one is soft (one ray drew it hard). */
 SEASIM_FN real uwi_bottom_visibility(const SEASIM_GLOBAL UwObject* objects, int count, real bottom_depth, real3 p,
                                      real3 n, real3 s_w) {
-  const real3 toward = MAKE_REAL3(n.x, n.y - R(1.0), n.z);
-  const real len2 = dot(toward, toward);
-  if (!(bottom_depth > R(0.0)) || len2 < R(1e-6)) return R(1.0);
-  const real3 d = toward * (R(1.0) / sqrt(len2));
-  real3 nb = MAKE_REAL3(0, 1, 0);
-  int mat = UW_MAT_NONE;
-  const real t = uw_scene_hit(objects, count, bottom_depth, p + R(1e-3) * n, d, R(0.0), &nb, &mat);
-  if (mat != UW_MAT_BOTTOM) return R(0.0);
-  return uw_sun_visibility(objects, count, p + R(1e-3) * n + t * d, MAKE_REAL3(0, 1, 0), s_w);
+  if (!(bottom_depth > R(0.0))) return R(1.0);
+  /* A tangent frame (t, b, n): t from the axis least aligned with n. */
+  const real3 axis = fabs(n.x) < R(0.9) ? MAKE_REAL3(1, 0, 0) : MAKE_REAL3(0, 0, 1);
+  const real3 t = normalize(cross(axis, n));
+  const real3 b = cross(n, t);
+  const real3 o = p + R(1e-3) * n;
+  real lit = R(0.0), down = R(0.0);
+  for (int k = 0; k < UWI_BOTTOM_RAYS; ++k) {
+    const real u = ((real)k + R(0.5)) / (real)UWI_BOTTOM_RAYS;
+    const real phi = R(2.39996322972865332) * (real)k; /* the golden angle */
+    const real r = sqrt(u);
+    const real3 d = (r * cos(phi)) * t + (r * sin(phi)) * b + sqrt(R(1.0) - u) * n;
+    if (!(d.y < R(0.0))) continue;
+    down += R(1.0);
+    real3 nb = MAKE_REAL3(0, 1, 0);
+    int mat = UW_MAT_NONE;
+    const real s = uw_scene_hit(objects, count, bottom_depth, o, d, R(0.0), &nb, &mat);
+    if (mat == UW_MAT_BOTTOM) lit += uw_sun_visibility(objects, count, o + s * d, MAKE_REAL3(0, 1, 0), s_w);
+  }
+  return down > R(0.0) ? lit / down : R(1.0);
 }
 
 /* E_d(y) and E_u(y), the diffuse plane irradiances at depth y (common/underwater_improved_params.h),
@@ -271,8 +286,8 @@ SEASIM_FN real uwi_surface(const SEASIM_GLOBAL UwiBand* ib, const SEASIM_GLOBAL 
 }
 
 /* One band's radiance along the view ray (common/underwater.h uw_band_radiance's peer): mat, S, n from
- * uw_scene_hit; albedo of the hit; vis the direct beam's visibility; vis_b whether the bottom an object's
- * face sees is sunlit (uwi_bottom_visibility; 1 for the bottom itself); sky_l the sky along the refracted
+ * uw_scene_hit; albedo of the hit; vis the direct beam's visibility; vis_b the share of the sand an
+ * object's face sees that is sunlit (uwi_bottom_visibility; 1 for the bottom itself); sky_l the sky along the refracted
  * view and mirror the object the reflected ray meets (surface hits; uwi_no_mirror_object() otherwise). */
 SEASIM_FN real uwi_band_radiance(const SEASIM_GLOBAL UwiBand* ib, const SEASIM_GLOBAL UwBand* band, real g, int mat,
                                  real S, real3 n, real3 d, real o_d, real3 s_w, real albedo, real vis, real vis_b,

@@ -26,9 +26,10 @@
  * φ_n the azimuth of -n from the sun beam's; tilt[node * UWI_SOURCE_TERMS + q + 3 m] = Am_q. At n_y = 1 it
  * is E_d, at -1 E_u. The two-stream's is E_d (1 + n_y)/2 + E_u (1 - n_y)/2 (hemispheres of uniform
  * radiance), linear in n_y.
- * A face that sees shadowed bottom (uwi_bottom_visibility: the objects shade the sand the model's plane-
- * parallel field takes as sunlit) loses (1 - vis_b) of tilt_bottom, the part of E(y, n) the beam reflected
- * by the bottom brings (Lambertian, so azimuth mode 0 only); 0 with the two-stream. */
+ * A face that sees shadowed sand (vis_b, uwi_bottom_visibility: the share of the sand it sees that is
+ * sunlit; the objects shade the sand the model's plane-parallel field takes as sunlit) loses (1 - vis_b)
+ * of tilt_bottom, the part of E(y, n) the beam reflected by the bottom brings (Lambertian, so azimuth mode
+ * 0 only); 0 with the two-stream. */
 
 #ifndef SEASIM_UNDERWATER_IMPROVED_PARAMS_H
 #define SEASIM_UNDERWATER_IMPROVED_PARAMS_H

@@ -70,7 +70,7 @@ seasim::Override set(const char* key, const std::string& value) { return {key, v
 // The frame by the shared maths in double (kd_multiple.cl's improved block, raycast.cl's shadow ray);
 // with spectral, also every band's radiance (band-major per pixel, as spectral.exr).
 // mirror_hits: counts the surface pixels whose reflected ray meets an object (uwi_mirror_hit).
-// shaded_faces: counts the object pixels whose face sees the bottom in shadow (uwi_bottom_visibility 0).
+// shaded_faces: counts the object pixels whose face sees sand in shadow (uwi_bottom_visibility < 1).
 seasim::Image cpuImproved(const seasim::UnderwaterSetup& s, bool multiple, std::vector<double>* spectral = nullptr,
                           int* mirror_hits = nullptr, int* shaded_faces = nullptr) {
   const UwParams& p = s.params;
@@ -92,11 +92,11 @@ seasim::Image cpuImproved(const seasim::UnderwaterSetup& s, bool multiple, std::
         kd::uw_scene_hit(s.objects.data(), p.object_count, 0.0, o + S * d + 1e-3 * n, s_w, 0.0, &sn, &smat);
         vis = smat >= 0 ? 0.0 : 1.0;
       }
-      // Whether the bottom an object's face sees is sunlit (kd_multiple.cl's uwi_bottom_visibility).
+      // The share of the sand an object's face sees that is sunlit (kd_multiple.cl's uwi_bottom_visibility).
       const double vis_b = mat >= 0 ? kd::uwi_bottom_visibility(s.objects.data(), p.object_count, p.bottom_depth,
                                                                 o + S * d, n, s_w)
                                     : 1.0;
-      if (shaded_faces && mat >= 0 && vis_b == 0.0) ++*shaded_faces;
+      if (shaded_faces && mat >= 0 && vis_b < 1.0) ++*shaded_faces;
       int mat_m = UW_MAT_NONE;  // the object in the surface's mirror (kd_multiple.cl's uwi_mirror_hit)
       kd::UwiMirrorHit mirror = mat == UW_MAT_SURFACE
                                     ? kd::uwi_mirror_hit(s.objects.data(), p.object_count, o, d, S, s_w, &mat_m)
@@ -189,7 +189,7 @@ INSTANTIATE_TEST_SUITE_P(
         // 4.4x the thesis's light in make validate's scene).
         Variant{"no_objects", {}, false, true}, Variant{"no_objects_no_bottom", {}, true, true},
         // The sun ahead of the camera, low: the objects cast their shadows towards it, and the faces it sees
-        // look down on that shadowed sand (uwi_bottom_visibility 0, the tilted table's bottom part taken off).
+        // look down on that shadowed sand (uwi_bottom_visibility < 1: the tilted table's bottom part taken off).
         Variant{"faces_over_their_shadows", {set("sun.zenith_deg", "55"), set("sun.azimuth_deg", "-90")}}),
     [](const ::testing::TestParamInfo<Variant>& info) { return std::string(info.param.name); });
 

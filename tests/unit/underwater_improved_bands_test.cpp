@@ -69,7 +69,7 @@ struct Ray {
   int mat_m = 1;
   double n_m[3] = {0.0, 0.6, 0.8};
   double vis_m = 1.0;
-  double vis_b = 1.0;  // whether the bottom an object's face sees is sunlit (uwi_bottom_visibility)
+  double vis_b = 1.0;  // the share of the sand an object's face sees that is sunlit (uwi_bottom_visibility)
 };
 
 // kd_multiple.cl's improved band loop for band k (real = float or double): the per-pixel phases, the
@@ -268,9 +268,9 @@ TEST(UnderwaterImprovedBands, LanesMatchTheScalarModelInFloatAndDouble) {
                   if (mat == UW_MAT_BOTTOM) r.S = (H - o_d) / -d_y, r.n[0] = 0, r.n[1] = 1;
                   // Object 1 faces down and sideways, off the sun's azimuth (the tilted table's lower
                   // nodes and its azimuth modes).
-                  // Object 1 sees the bottom in shadow where it is far (vis_b 0: the tilted table's
-                  // bottom part taken off).
-                  if (mat == 1) r.n[0] = 0.48, r.n[1] = -0.6, r.n[2] = 0.64, r.vis_b = S == 30.0 ? 0.0 : 1.0;
+                  // Object 1 sees sand in shadow: all of it where it is far, 5/8 at 2 m (vis_b: the tilted
+                  // table's bottom part taken off in that share).
+                  if (mat == 1) r.n[0] = 0.48, r.n[1] = -0.6, r.n[2] = 0.64, r.vis_b = S == 30.0 ? 0.0 : S == 2.0 ? 0.375 : 1.0;
                   if (mat >= 0 && o_d - S * d_y < 0) continue;  // above the surface
                   if (mat >= 0 && H > 0 && o_d - S * d_y > H) continue;  // below the bottom
                   for (int single : {0, 1})

@@ -11,6 +11,7 @@
 
 #include "common/underwater_params.h"
 #include "scene/scene_parser.h"
+#include "underwater/discrete_ordinates.h"
 #include "util/error.h"
 
 namespace seasim::testing {
@@ -27,6 +28,25 @@ inline UwBand uwTestBand(double a, double b, double e_sky0, double e_sun0, doubl
   o.e_beam0 = float(e_sun0 / mu_w);
   o.bottom_albedo = float(rho);
   return o;
+}
+
+// The sun 30° from the zenith, refracted (n = 1.34): its cosine under water.
+inline constexpr double kUwTestMuW = 0.9273;
+
+// The discrete ordinates' layer of the band (its a, b, irradiances, bottom albedo) at asymmetry g over a
+// bottom at H (<= 0: none), ior 1.34, the sun at kUwTestMuW.
+inline DiscreteOrdinatesLayer uwTestLayer(const UwBand& b, double g, double H) {
+  DiscreteOrdinatesLayer l;
+  l.a = b.a;
+  l.b = b.b;
+  l.g = g;
+  l.bottom_depth = H;
+  l.bottom_albedo = b.bottom_albedo;
+  l.ior = 1.34;
+  l.mu_sun = kUwTestMuW;
+  l.e_sun0 = b.e_sun0;
+  l.e_sky0 = b.e_sky0;
+  return l;
 }
 
 // Jerlov IB over a 25 m bottom, the camera at 3 m; ends inside [underwater], so keys may be appended.

@@ -27,21 +27,9 @@ using seasim::makeUwiBandFromOrdinates;
 using seasim::OrdinatesFitError;
 using seasim::testing::uwTestBand;
 
-constexpr double kMuW = 0.9273;  // the sun 30° from the zenith, refracted (n = 1.34)
+constexpr double kMuW = seasim::testing::kUwTestMuW;
 
-DiscreteOrdinatesLayer layerOf(const UwBand& b, double g, double H) {
-  DiscreteOrdinatesLayer l;
-  l.a = b.a;
-  l.b = b.b;
-  l.g = g;
-  l.bottom_depth = H;
-  l.bottom_albedo = b.bottom_albedo;
-  l.ior = 1.34;
-  l.mu_sun = kMuW;
-  l.e_sun0 = b.e_sun0;
-  l.e_sky0 = b.e_sky0;
-  return l;
-}
+DiscreteOrdinatesLayer layerOf(const UwBand& b, double g, double H) { return seasim::testing::uwTestLayer(b, g, H); }
 
 // E_d (with the kernel's delta-M beam) and E_u from the band as the kernel evaluates them
 // (uwi_irradiance), against the solver's at its full delta-M order (the band is fitted to its order

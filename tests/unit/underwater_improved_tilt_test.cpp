@@ -27,21 +27,9 @@ using seasim::DiscreteOrdinates;
 using seasim::DiscreteOrdinatesLayer;
 using seasim::testing::uwTestBand;
 
-constexpr double kMuW = 0.9273;  // the sun 30° from the zenith, refracted (n = 1.34)
+constexpr double kMuW = seasim::testing::kUwTestMuW;
 
-DiscreteOrdinatesLayer layerOf(const UwBand& b, double g, double H) {
-  DiscreteOrdinatesLayer l;
-  l.a = b.a;
-  l.b = b.b;
-  l.g = g;
-  l.bottom_depth = H;
-  l.bottom_albedo = b.bottom_albedo;
-  l.ior = 1.34;
-  l.mu_sun = kMuW;
-  l.e_sun0 = b.e_sun0;
-  l.e_sky0 = b.e_sky0;
-  return l;
-}
+DiscreteOrdinatesLayer layerOf(const UwBand& b, double g, double H) { return seasim::testing::uwTestLayer(b, g, H); }
 
 // The closed form of ∫ max(0, ν n_y + √((1 - ν²)(1 - n_y²)) cos ψ) cos(m ψ) dψ against the midpoint rule,
 // at and near its corners (ν, n_y = ±1, 0; the plane edge-on to the direction).
@@ -236,20 +224,25 @@ UwObject sphere(float x, float y, float z, float r) {
   return o;
 }
 
-// Whether the bottom a face sees is sunlit, in float and double: the sand beside a box on a 5 m bottom under
-// a sun straight above, a sphere that shades it, the box's own top, a face looking up, no bottom.
+// The share of the sand a face sees that is sunlit, in float and double, under a sun straight above a 5 m
+// bottom with a box on it and a sphere above the sand far away: all of it far from both, none just above the
+// box's top or under the sphere, some where the box hides part of the sand, all of it beside the box, and 1
+// for a face looking up (no sand in view) or without a bottom.
 template <class M>
 void checkBottomVisibility() {
   using V = typename M::real3;
-  const std::vector<UwObject> objects = {box(-1, -5, -1, 1, -4, 1), sphere(5, -1, 0, 0.5f)};
+  const std::vector<UwObject> objects = {box(-1, -5, -1, 1, -4, 1), sphere(-20, -1, -20, 0.5f)};
   const V up{0, 1, 0}, down{0, -1, 0}, side{1, 0, 0}, s_w{0, 1, 0};
   auto vis = [&](V p, V n, float H = 5) { return M::uwi_bottom_visibility(objects.data(), 2, H, p, n, s_w); };
-  EXPECT_EQ(vis(V{3, -2, 0}, down), 1);     // sunlit sand below
-  EXPECT_EQ(vis(V{5, -2, 0}, down), 0);     // sand in the sphere's shadow
-  EXPECT_EQ(vis(V{0, -2, 0}, down), 0);     // the box's top, not sand
-  EXPECT_EQ(vis(V{1.0f, -4.5f, 0}, side), 1);  // the box's side, 45° down to the sand at x = 1.5
-  EXPECT_EQ(vis(V{5, -2, 0}, up), 1);       // looking up: no bottom in view
-  EXPECT_EQ(vis(V{5, -2, 0}, down, 0), 1);  // no bottom
+  EXPECT_EQ(vis(V{30, -2, 30}, down), 1);            // open sand, sunlit
+  EXPECT_EQ(vis(V{-20, -4.9f, -20}, down), 0);       // 0.1 m above the sphere's shadow (its rays reach 0.4 m)
+  EXPECT_EQ(vis(V{0, -3.9f, 0}, down), 0);           // just above the box's top: no sand in view
+  const auto part = vis(V{2, -3, 0}, down);          // the box hides some of the sand
+  EXPECT_GT(part, 0);
+  EXPECT_LT(part, 1);
+  EXPECT_EQ(vis(V{1, -4.5f, 0}, side), 1);           // the box's side looks at sunlit sand
+  EXPECT_EQ(vis(V{30, -2, 30}, up), 1);              // looking up: no sand in view
+  EXPECT_EQ(vis(V{30, -2, 30}, down, 0), 1);         // no bottom
 }
 
 struct Kd {
