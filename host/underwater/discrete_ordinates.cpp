@@ -114,9 +114,12 @@ void requireRange(bool ok, const std::string& what) {
 double tiltedIrradianceKernel(int mode, double nu, double n_y) {
   const double a = nu * n_y, b = std::sqrt(std::max((1 - nu * nu) * (1 - n_y * n_y), 0.0));
   if (a <= -b) return 0.0;  // the plane faces away from every such direction
-  // The arc |ψ| < ψ0 where a + b cos ψ > 0: all of it when a >= b.
-  const double psi0 = a >= b ? kPi : std::acos(std::clamp(-a / b, -1.0, 1.0));
-  const double s1 = std::sin(psi0), s2 = std::sin(2 * psi0), s3 = std::sin(3 * psi0);
+  // The arc |ψ| < ψ0 where a + b cos ψ > 0: all of it when a >= b. sin 2ψ0 and sin 3ψ0 from sin ψ0 and
+  // cos ψ0 (= -a/b), without more trigonometry.
+  const double c1 = a >= b ? -1.0 : std::clamp(-a / b, -1.0, 1.0);
+  const double psi0 = a >= b ? kPi : std::acos(c1);
+  const double s1 = a >= b ? 0.0 : std::sqrt(std::max(1 - c1 * c1, 0.0));
+  const double s2 = 2 * s1 * c1, s3 = s1 * (3 - 4 * s1 * s1);
   switch (mode) {
     case 0: return 2 * (a * psi0 + b * s1);
     case 1: return 2 * a * s1 + b * (psi0 + 0.5 * s2);      // ∫ (a cos ψ + b cos² ψ)

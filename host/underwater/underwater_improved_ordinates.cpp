@@ -115,7 +115,7 @@ double scanK(double k_inf, double m, Error error) {
 }
 
 // A table of the solver's azimuth modes 0, 1, 2 at `nodes` nodes (profiles[mode]: samples x nodes, mode 0
-// at least; the others may be empty: 0), fitted per node to e^{-k y}, e^{-k (H - y)}, e^{-m y} relative to
+// at least; the last ones may be empty: 0, not fitted), fitted per node to e^{-k y}, e^{-k (H - y)}, e^{-m y} relative to
 // the azimuth average's size: out[node * UWI_SOURCE_TERMS + q + 3 mode]. Returns the largest relative error
 // over nodes and depths. Where k comes within 2 % of m (the k scan avoids it) the beam's exponential is
 // left out, as the pair would fit each other's cancellation.
@@ -133,16 +133,18 @@ double fitModeTable(const ModeProfiles& profiles, int nodes, double depth_end, d
   // three modes.
   std::vector<double> weight(kDepthSamples);
   double error = 0;
+  // The modes to fit: up to the first empty one (those after it are 0).
+  const int modes = profiles[1].empty() ? 1 : profiles[2].empty() ? 2 : 3;
   for (int j = 0; j < nodes; ++j) {
     for (int s = 0; s < kDepthSamples; ++s)
       weight[s] = 1.0 / std::max(std::abs(j0[size_t(s) * nodes + j]), 1e-9 * largest + 1e-300);
-    const std::vector<Fit> fits = fitWeighted(basis, columns, weight, 3, [&](int mode, int s) {
-      return profiles[mode].empty() ? 0.0 : profiles[mode][size_t(s) * nodes + j];
+    const std::vector<Fit> fits = fitWeighted(basis, columns, weight, modes, [&](int mode, int s) {
+      return profiles[mode][size_t(s) * nodes + j];
     });
     float* row = out + j * UWI_SOURCE_TERMS;
     for (int mode = 0; mode < 3; ++mode) {
-      error = std::max(error, fits[mode].error);
-      for (int q = 0; q < 3; ++q) row[q + 3 * mode] = static_cast<float>(fits[mode].c[q]);
+      if (mode < modes) error = std::max(error, fits[mode].error);
+      for (int q = 0; q < 3; ++q) row[q + 3 * mode] = mode < modes ? static_cast<float>(fits[mode].c[q]) : 0.0f;
     }
   }
   return error;
