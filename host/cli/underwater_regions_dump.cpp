@@ -11,7 +11,7 @@ namespace {
 
 const char* const kTermColumns[] = {"inscatter_modes", "inscatter_beam",  "inscatter_tms",       "froxel_ss",
                                     "window",          "reflected_inscatter", "reflected_bottom", "reflected_froxel_ss",
-                                    "reflected_object", "lambert",        "model_total"};
+                                    "reflected_object", "lambert",        "model_total",         "forward"};
 
 double sum3(const Image& im, size_t i) {
   return double(im.pixels[3 * i]) + im.pixels[3 * i + 1] + im.pixels[3 * i + 2];
@@ -47,7 +47,7 @@ void writeUnderwaterRegionsDump(const std::string& path, const UnderwaterRegions
       const UwiPixelTerms& t = d.improved_terms[i];
       for (double v : {t.inscatter_modes, t.inscatter_beam, t.inscatter_tms, t.froxel_ss, t.window,
                        t.reflected_inscatter, t.reflected_bottom, t.reflected_froxel_ss, t.reflected_object, t.lambert,
-                       t.total})
+                       t.total, t.forward})
         row.push_back(v);
     }
     csv.addRow(row);

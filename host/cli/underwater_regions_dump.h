@@ -3,7 +3,8 @@
 // (issue 13). Columns: x, y (pixel, row 0 at the top), region, d_y (the centre ray's vertical direction,
 // > 0 towards the surface), reference and reference_se (the path tracer and its standard error),
 // fast_<model> per model rendered, and with the improved model its terms (reference/
-// underwater_improved_terms.h): every radiance the sum of the three channels; reflected_object 0 or 1.
+// underwater_improved_terms.h): every radiance the sum of the three channels; reflected_object 0 or 1;
+// forward, the part of the hit's light that delta-M counts as unscattered (not a part of model_total).
 #pragma once
 #include <string>
 #include <utility>

@@ -79,6 +79,8 @@ std::vector<UwiPixelTerms> improvedModelTerms(const UnderwaterSetup& s, bool mul
           if (froxels) t.froxel_ss += w * v.froxel_ss;
         }
         const double T = std::exp(-double(ib.c_dm) * S);
+        // The share of T(S) that was scattered by small angles (delta-M's peak): 1 - e^{-(c - c') S}.
+        const double small_angle = -std::expm1(-(double(b.c) - double(ib.c_dm)) * std::min(S, 1e4));
         if (mat_m >= 0) mirror.albedo = s.albedo[size_t(mat_m) * p.band_count + i];
         if (mat == UW_MAT_SURFACE) {
           // uwi_surface, its two parts apart (the reflected ray ends on the object in the mirror, if any).
@@ -97,11 +99,14 @@ std::vector<UwiPixelTerms> improvedModelTerms(const UnderwaterSetup& s, bool mul
           t.window += w * T * p.ior * p.ior * (1 - f) * b.sky_radiance;
           t.reflected_inscatter += w * T * f * l_ms;
           t.reflected_bottom += w * T * f * l_bottom;
+          t.forward += w * small_angle * T * (p.ior * p.ior * (1 - f) * b.sky_radiance + f * (l_ms + l_bottom));
           if (froxels && multiple)
             t.reflected_froxel_ss +=
                 w * T * f * inScatterTerms(ib, b, p.g, H, s_r, -dy, 0.0, cos_r, mu_w).froxel_ss;
         } else if (mat != UW_MAT_NONE) {
-          t.lambert += w * T * kd::uwi_lambert(&ib, &b, H, std::max(o_d - S * d.y, 0.0), n, s_w, albedo, vis, vis_b);
+          const double lambert = T * kd::uwi_lambert(&ib, &b, H, std::max(o_d - S * d.y, 0.0), n, s_w, albedo, vis, vis_b);
+          t.lambert += w * lambert;
+          t.forward += w * small_angle * lambert;
         }
         t.total += w * (kd::uwi_band_radiance(&ib, &b, p.g, mat, S, n, d, o_d, s_w, albedo, vis, vis_b, b.sky_radiance,
                                               p.ior, H, froxels, multiple, mirror) +

@@ -31,6 +31,11 @@ struct UwiPixelTerms {
   double reflected_object = 0;
   // A Lambertian hit (object or bottom) times T(S): uwi_lambert.
   double lambert = 0;
+  // Of the hit's light that reaches the camera (lambert, or the surface's window and reflected terms), the
+  // part delta-M counts as unscattered though it was scattered by a few degrees on the way: 1 - e^{-(c - c') S}
+  // of it. The model sends it on from the same point; the water spreads it over the pixels around (its
+  // point-spread, s10: the objects at g >= 0.9 too dark, the pixels beside them too bright). Not in total.
+  double forward = 0;
   // uwi_band_radiance + froxel_ss: the model's total (its in-scatter clamped at 0 as the kernel does).
   double total = 0;
 };

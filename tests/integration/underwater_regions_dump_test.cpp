@@ -77,7 +77,7 @@ TEST_F(UnderwaterRegionsDump, WritesEveryPixelWithRegionReferenceRendersAndTerms
     for (const char* c : {"x", "y", "region", "d_y", "reference", "reference_se", "fast_thesis", "fast_improved",
                           "inscatter_modes", "inscatter_beam", "inscatter_tms", "froxel_ss", "window",
                           "reflected_inscatter", "reflected_bottom", "reflected_froxel_ss", "reflected_object", "lambert",
-                          "model_total"})
+                          "model_total", "forward"})
       ASSERT_TRUE(col.count(c)) << "column " << c << " in " << file;
     const std::vector<std::vector<std::string>>& rows = csv.rows;
     ASSERT_EQ(rows.size(), 32u * 18u) << "one row per pixel";
@@ -95,6 +95,8 @@ TEST_F(UnderwaterRegionsDump, WritesEveryPixelWithRegionReferenceRendersAndTerms
       // Where the surface is seen, the ray goes up; the sky through Snell's window only inside it.
       if (v("window") > 0 || v("reflected_inscatter") > 0) EXPECT_GT(v("d_y"), 0.0);
       if (v("d_y") < std::sqrt(1 - 1 / (1.33 * 1.33)) - 0.01) EXPECT_EQ(v("window"), 0.0) << "TIR";
+      // At g = 0 delta-M moves nothing: no small-angle part (UnderwaterRegionsDump.ForwardIs… at g = 0.9).
+      EXPECT_EQ(v("forward"), 0.0);
       // The terms add up to the model's total wherever its in-scatter is not clamped at 0.
       const double inscatter = v("inscatter_modes") + v("inscatter_beam") + v("inscatter_tms") - v("froxel_ss");
       if (inscatter > 0) {
@@ -239,6 +241,32 @@ TEST_F(UnderwaterRegionsDump, BadTargetNoiseOrMaxSppIsRefusedNamingTheOption) {
     EXPECT_FALSE(fs::exists(dir_ / "bad.csv")) << option;
     EXPECT_FALSE(fs::exists(dir_ / "cache")) << option << ": nothing traced";
   }
+}
+
+// At g = 0.9 the small-angle part of a hit's light (the forward column) is a real part of it: positive
+// where there is a hit, never more than the hit's light, none without one.
+TEST_F(UnderwaterRegionsDump, ForwardIsThePartOfTheHitsLightDeltaMCountsAsUnscattered) {
+  const fs::path dump = dir_ / "dump_g09";
+  const seasim_test::Result r = seasim_test::runCommand(
+      kBinary + " underwater-regions " + kRepo + "/tests/perf/underwater_regions.toml --waters 0.1:0.3 --g 0.9" +
+      " --depths 5 --views level --models improved --spp 4 --device pocl --set camera.width=32" +
+      " --set camera.height=18 --cache " + (dir_ / "cache_g09").string() + " --dump " + dump.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  CsvRows csv = readCsvRows(dump / "a0.1_b0.3_g0.9_d5_level.csv");
+  ASSERT_EQ(csv.rows.size(), 32u * 18u);
+  double forward = 0, hit = 0;
+  for (const auto& row : csv.rows) {
+    auto v = [&](const char* c) { return std::stod(row[csv.col[c]]); };
+    const double hit_light = v("lambert") + v("window") + v("reflected_inscatter") + v("reflected_bottom");
+    EXPECT_GE(v("forward"), 0.0);
+    EXPECT_LE(v("forward"), hit_light * (1 + 1e-9) + 1e-15);
+    if (hit_light > 0) EXPECT_GT(v("forward"), 0.0);
+    forward += v("forward");
+    hit += hit_light;
+  }
+  // c - c' = b g³ = 0.219/m over a few metres: a sizeable share.
+  EXPECT_GT(forward, 0.2 * hit);
+  EXPECT_LT(forward, 0.95 * hit);
 }
 
 }  // namespace
