@@ -17,8 +17,12 @@
  * FroxelParams. Output: rgb[3 * pixels]; spectral[band_count * pixels] (band-major per pixel) with
  * SEASIM_SPECTRAL_OUTPUT, holding T L_s + L_MS per band (the froxel term is integrated in RGB).
  * SkyParams and the sky buffer: the [sky] Snell's window shows (common/sky_view.h, host/sky).
+ * With SEASIM_UWI_SPREAD (the improved model, g > 0, underwater.point_spread): the light scattered by
+ * small angles (common/water_spread.h) is left out of rgb and spectral and kept apart as its moments,
+ * forward_rgb [pixel][2][3], forward_depth [pixel][2] and, with SEASIM_SPECTRAL_OUTPUT, forward_spectral
+ * [pixel][2][band_count] (common/water_spread_params.h), for water_spread.cl to add back blurred.
  * Defines (host/plan): SEASIM_HAS_MULTIPLE (L_MS), SEASIM_HAS_FROXEL (single scattering added here and
- * split off L_MS and L_s), SEASIM_SPECTRAL_OUTPUT, SEASIM_SKY_MODEL (common/sky.h); SEASIM_BAND_LANES
+ * split off L_MS and L_s), SEASIM_SPECTRAL_OUTPUT, SEASIM_UWI_SPREAD, SEASIM_SKY_MODEL (common/sky.h); SEASIM_BAND_LANES
  * (4, 8 or 16; default 16, common/band_lanes.h).
  */
 #include "common/compat.h"
@@ -49,6 +53,13 @@
 #include "common/underwater_improved.h"
 #include "common/underwater_improved_bands.h"
 #endif
+#ifndef SEASIM_UWI_SPREAD
+#define SEASIM_UWI_SPREAD 0
+#endif
+#if SEASIM_UWI_SPREAD /* the water's point-spread (issue 13 s11): the forward light kept apart per layer */
+#include "common/water_spread_params.h"
+#include "common/water_spread.h"
+#endif
 
 /* The lanes' sky radiance in air along the refracted view (surface hits): the band's radiance, shaped
  * by the sky model (sky_shape, once per pixel) unless the sky is uniform. Both models' loops read it. */
@@ -73,6 +84,12 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
                           __global float* rgb
 #if SEASIM_SPECTRAL_OUTPUT
                           , __global float* spectral
+#endif
+#if SEASIM_UWI_SPREAD
+                          , __global float* forward_rgb, __global float* forward_depth
+#if SEASIM_SPECTRAL_OUTPUT
+                          , __global float* forward_spectral
+#endif
 #endif
 ) {
   const int x = get_global_id(0);
@@ -156,6 +173,14 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
                                                        (float3)(p->cam_pos[0], p->cam_pos[1], p->cam_pos[2]) + S * d,
                                                        n, s_w)
                                : 1.0f;
+#if SEASIM_UWI_SPREAD
+  /* The light scattered by small angles, its moments (common/water_spread.h) in sensor RGB: F, F E, and
+   * the sums over bands of (w_r + w_g + w_b) F D and (w_r + w_g + w_b) F. */
+  realb fwd_r = SPLATB(0.0f), fwd_g = SPLATB(0.0f), fwd_b = SPLATB(0.0f);
+  realb cnt_r = SPLATB(0.0f), cnt_g = SPLATB(0.0f), cnt_b = SPLATB(0.0f);
+  realb fwd_light_depth = SPLATB(0.0f);
+  const float s_spread = fmin(S, 1e4f);
+#endif
   for (int i = 0; i < band_count; i += SEASIM_BAND_LANES) {
     const UwiLanes v = uwi_lanes_load(band_table, stride, uwi_row0, i);
     /* The in-scatter's integrals start at the camera (per-frame rows: o_d is the frame's) and end at the
@@ -164,22 +189,51 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
     const UwiEnds ends = uwi_ends(&v, p->bottom_depth, S, y_hit, single && multiple);
     const UwiWeights w = uwi_lanes_weights(band_table, stride, uwi_row0, i, node, cos_dphi);
     realb L = multiple ? uwi_lanes_multiple(&v, &w, &camera, &ends, phase, p->bottom_depth, S, d.y, single) : SPLATB(0.0f);
+    realb hit = SPLATB(0.0f); /* the light of what the ray meets, T(S) included */
     if (mat == UW_MAT_SURFACE) {
       const realb sky_l = kd_sky_lanes(band_table, stride, i, sky_shape);
       const UwiWeights w_r = uwi_lanes_weights(band_table, stride, uwi_row0, i, node_r, cos_dphi_r);
       const UwiWeights tilt_m = mirror_object
                                     ? uwi_lanes_tilt(band_table, stride, uwi_row0, i, tilt_node_m, frac_m, cos_phi_m, 1.0f)
                                     : uwi_lanes_down(&v);
-      L += uwi_lanes_surface(&v, &w_r, ends.k, sky_l, LOADB(ROW(uwi_row0 + UWI_ROW_BOTTOM_L), i),
+      hit = uwi_lanes_surface(&v, &w_r, ends.k, sky_l, LOADB(ROW(uwi_row0 + UWI_ROW_BOTTOM_L), i),
                              LOADB(ROW(uwi_row0 + UWI_ROW_EXP_K_H), i), phase_r, p->bottom_depth, d.y, p->ior,
                              multiple, mirror.s, LOADB(albedo_m_row, i), &tilt_m, n_m_dot_s, mirror.vis);
     } else if (mat == UW_MAT_BOTTOM) {
       const UwiWeights down = uwi_lanes_down(&v);
-      L += uwi_lanes_lambert(&v, &ends, &down, LOADB(albedo_row, i), p->bottom_depth, n_dot_s, vis);
+      hit = uwi_lanes_lambert(&v, &ends, &down, LOADB(albedo_row, i), p->bottom_depth, n_dot_s, vis);
     } else if (mat != UW_MAT_NONE) {
       const UwiWeights tilt = uwi_lanes_tilt(band_table, stride, uwi_row0, i, tilt_node, frac, cos_phi_n, vis_b);
-      L += uwi_lanes_lambert(&v, &ends, &tilt, LOADB(albedo_row, i), p->bottom_depth, n_dot_s, vis);
+      hit = uwi_lanes_lambert(&v, &ends, &tilt, LOADB(albedo_row, i), p->bottom_depth, n_dot_s, vis);
     }
+#if SEASIM_UWI_SPREAD
+    /* Its share scattered by small angles (water_spread.h (1), (3)) and the in-scatter's ((4), (5)), kept
+     * apart as moments; water_spread.cl puts them back blurred. */
+    const realb delta = v.c - v.c_dm;
+    const realb em = uws_expm1_neg_b(delta * s_spread);
+    realb count_in, depth_in;
+    const realb share_in = uws_inscatter_share_b(v.c_dm, delta, s_spread, em, &count_in, &depth_in);
+    const realb fwd_hit = hit * uws_hit_share_b(em);
+    const realb fwd = fwd_hit + L * share_in;
+    const realb cnt = hit * (delta * s_spread) + L * count_in;
+    const realb fwd_depth = fwd_hit * s_spread + L * depth_in;
+    const realb w_r_band = LOADB(ROW(UW_ROW_W_R), i), w_g_band = LOADB(ROW(UW_ROW_W_G), i),
+                w_b_band = LOADB(ROW(UW_ROW_W_B), i);
+    fwd_r += fwd * w_r_band;
+    fwd_g += fwd * w_g_band;
+    fwd_b += fwd * w_b_band;
+    cnt_r += cnt * w_r_band;
+    cnt_g += cnt * w_g_band;
+    cnt_b += cnt * w_b_band;
+    fwd_light_depth += fwd_depth * (w_r_band + w_g_band + w_b_band);
+    L += hit - fwd;
+#if SEASIM_SPECTRAL_OUTPUT
+    store_lanes(fwd, forward_spectral + ((size_t)pixel * 2) * band_count + i, band_count - i);
+    store_lanes(cnt, forward_spectral + ((size_t)pixel * 2 + 1) * band_count + i, band_count - i);
+#endif
+#else
+    L += hit;
+#endif
 #else
   for (int i = 0; i < band_count; i += SEASIM_BAND_LANES) {
     const realb c = LOADB(ROW(UW_ROW_C), i);
@@ -219,4 +273,14 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
   rgb[3 * pixel + 0] = r;
   rgb[3 * pixel + 1] = gr;
   rgb[3 * pixel + 2] = b;
+#if SEASIM_UWI_SPREAD
+  forward_rgb[6 * pixel + 0] = SUMB(fwd_r);
+  forward_rgb[6 * pixel + 1] = SUMB(fwd_g);
+  forward_rgb[6 * pixel + 2] = SUMB(fwd_b);
+  forward_rgb[6 * pixel + 3] = SUMB(cnt_r);
+  forward_rgb[6 * pixel + 4] = SUMB(cnt_g);
+  forward_rgb[6 * pixel + 5] = SUMB(cnt_b);
+  forward_depth[2 * pixel + 0] = SUMB(fwd_light_depth);
+  forward_depth[2 * pixel + 1] = SUMB(fwd_r) + SUMB(fwd_g) + SUMB(fwd_b); /* the sum of (w_r + w_g + w_b) F */
+#endif
 }

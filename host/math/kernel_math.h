@@ -12,6 +12,7 @@
 #include "common/sky_params.h"             // plain C struct, used by sky_view.h
 #include "common/underwater_band_table.h"  // plain C layout, used by underwater_bands.h
 #include "common/sea_band_table.h"         // plain C layout, used by sea_bands.h
+#include "common/water_spread_params.h"    // UWS_LAYERS, used by water_spread.h
 
 
 namespace seasim::kmath_f {
@@ -36,6 +37,7 @@ typedef float real;
 #include "common/sea_bands.h"
 #include "common/underwater_improved.h"
 #include "common/underwater_improved_bands.h"
+#include "common/water_spread.h"
 #include "common/underwater_lamps.h"
 #include "common/caustic_texture.h"
 #include "common/caustic_map.h"
@@ -67,6 +69,7 @@ typedef double real;
 #include "common/sea_bands.h"
 #include "common/underwater_improved.h"
 #include "common/underwater_improved_bands.h"
+#include "common/water_spread.h"
 #include "common/underwater_lamps.h"
 #include "common/caustic_texture.h"
 #include "common/caustic_map.h"

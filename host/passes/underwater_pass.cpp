@@ -1,5 +1,6 @@
 #include "passes/underwater_pass.h"
 
+#include <algorithm>
 #include <string>
 
 #include "passes/caustic_stack.h"
@@ -40,6 +41,15 @@ UnderwaterPass::UnderwaterPass(Device& device, const UnderwaterSetup& setup, con
     rgb_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * 3 * pixels);
     if (spectral_output)
       spectral_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * pixels * setup.bands.size());
+    spread_ = std::find(kd.defines.begin(), kd.defines.end(), "SEASIM_UWI_SPREAD=1") != kd.defines.end();
+    if (spread_) {
+      // The forward light's moments (common/water_spread_params.h): F and F E per channel, F D and F per pixel.
+      forward_rgb_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * pixels * 2 * 3);
+      forward_depth_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * pixels * 2);
+      if (spectral_output)
+        forward_spectral_ =
+            cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * pixels * 2 * setup.bands.size());
+    }
     raycast_.setArg(0, params_);
     raycast_.setArg(1, objects_);
     raycast_.setArg(2, no_caustics_);
@@ -116,6 +126,11 @@ double UnderwaterPass::runShading(const cl::Buffer* froxel_params, const cl::Buf
     }
     shade_.setArg(arg++, rgb_);
     if (spectral_output_) shade_.setArg(arg++, spectral_);
+    if (spread_) {
+      shade_.setArg(arg++, forward_rgb_);
+      shade_.setArg(arg++, forward_depth_);
+      if (spectral_output_) shade_.setArg(arg++, forward_spectral_);
+    }
   } catch (const cl::Error& e) {
     throw DeviceError(std::string("kd_multiple arguments: ") + e.what() + " " + clErrorName(e.err()));
   }

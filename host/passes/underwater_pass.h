@@ -32,12 +32,22 @@ class UnderwaterPass {
   cl::Buffer& geometry() { return geom_; }  // float4 (S, n) per pixel
   cl::Buffer& sunVisibility() { return vis_; }  // float per pixel: shadow ray × caustic factor
   cl::Buffer& material() { return material_; }  // int per pixel: object index or UW_MAT_*
+  // With the water's point-spread (kd planned with SEASIM_UWI_SPREAD=1, kernels/water_spread.cl): the
+  // moments of the forward light kd_multiple kept apart (common/water_spread_params.h), [pixel][2][3] in
+  // sensor RGB, [pixel][2] its light-weighted distance and, with spectral output, [pixel][2][band_count];
+  // null buffers otherwise.
+  bool spread() const { return spread_; }
+  cl::Buffer& forwardRgb() { return forward_rgb_; }
+  cl::Buffer& forwardSpectral() { return forward_spectral_; }
+  cl::Buffer& forwardDepth() { return forward_depth_; }
 
  private:
   double enqueue(cl::Kernel& kernel, const char* what);
   Device& device_;
   int width_, height_;
   bool spectral_output_;
+  bool spread_ = false;
+  cl::Buffer forward_rgb_, forward_spectral_, forward_depth_;
   cl::Kernel raycast_, shade_;
   cl::Buffer params_, bands_, objects_, albedo_, geom_, material_, vis_, rgb_, spectral_, no_caustics_;
   cl::Buffer sky_params_, sky_;  // the [sky] for Snell's window (common/sky_view.h)

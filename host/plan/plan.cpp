@@ -222,6 +222,7 @@ Plan makePlan(const Scene& scene) {
   }
   if (underwater) {
     const bool improved_uw = uw.model == UnderwaterDesc::Model::Improved;
+    const bool spread = improved_uw && uw.point_spread && scene.water.g > 0;
     std::vector<std::string> reads = {"gbuffer"};
     if (froxels) reads.push_back("froxel_volume");
     plan.passes.push_back({"kd_multiple", "kd_multiple.cl",
@@ -229,12 +230,20 @@ Plan makePlan(const Scene& scene) {
                             flag("SEASIM_SPECTRAL_OUTPUT", spectral_out),
                             "SEASIM_SKY_MODEL=" + std::to_string(skyModelOf(scene.sky)),  // Snell's window
                             // underwater.model: 0 thesis (002 eq. 4.7), 1 improved (common/underwater_improved.h)
-                            "SEASIM_UNDERWATER_MODEL=" + std::string(improved_uw ? "1" : "0")},
+                            "SEASIM_UNDERWATER_MODEL=" + std::string(improved_uw ? "1" : "0"),
+                            flag("SEASIM_UWI_SPREAD", spread)},
                            reads, {"rgb"},
                            improved_uw ? "camera below the surface: T L_s + L_MS per band, model \"improved\" (delta-M, "
                                          "two-stream with the bottom, phase-weighted diffuse light)"
                                        : "camera below the surface: T L_s + L_MS per band (002 eq. 4.7)",
                            true, ""});
+    // The light delta-M counts as unscattered was scattered by small angles: put back blurred (issue 13
+    // s11). Only the improved model scales by delta-M, and only a forward phase (g > 0) has a peak.
+    if (spread)
+      plan.passes.push_back({"water_spread", "water_spread.cl", {}, {"gbuffer", "rgb"}, {"rgb"},
+                             "underwater.model \"improved\", water.g > 0, underwater.point_spread: the light delta-M "
+                             "counts as unscattered, blurred by the phase's small angles (common/water_spread.h)",
+                             true, ""});
   }
   // Spotlights under water (divers' torches, ROV lamps): the sampling planes in the water's spectral
   // medium, added into the frame kd_multiple wrote (it reads "rgb" so that it runs after).

@@ -170,6 +170,9 @@ struct UnderwaterDesc {
   // "improved" only: how its diffuse field is solved (underwater_improved_ordinates.h): "discrete_ordinates"
   // (the default) or "two_stream" (the two-stream with its fitted tables, below). file: improved_diffuse
   enum class Diffuse { DiscreteOrdinates, TwoStream };
+  // "improved" only: the light delta-M counts as unscattered is put back blurred by the phase's small
+  // angles (the water_spread pass, kernels/common/water_spread.h). file: point_spread
+  bool point_spread = true;
   Diffuse improved_diffuse = Diffuse::DiscreteOrdinates;
   // "improved", two_stream only: the diffuse streams' mean cosines in its in-scatter source; 0 = the fitted table
   // (diffuseMeanCosines, underwater_improved_setup.h). Set to refit it (tests/perf/underwater_regions_fit.sh).

@@ -599,6 +599,7 @@ class SceneParser {
                                  "two_stream"
                              ? UnderwaterDesc::Diffuse::TwoStream
                              : UnderwaterDesc::Diffuse::DiscreteOrdinates;
+    u.point_spread = r.boolean("point_spread", u.point_spread);
     for (auto [key, value] : {std::pair{"improved_mean_cosine_down", &u.improved_mean_cosine_down},
                               std::pair{"improved_mean_cosine_up", &u.improved_mean_cosine_up},
                               std::pair{"improved_beam_mean_cosine_down", &u.improved_beam_mean_cosine_down},

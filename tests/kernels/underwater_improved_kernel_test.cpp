@@ -19,7 +19,9 @@
 #include "spectral/sensor.h"
 #include "spectral/wavelength_grid.h"
 #include "test_device.h"
+#include "underwater/underwater_improved_ordinates.h"
 #include "underwater/underwater_setup.h"
+#include "water_spread_cpu.h"
 
 namespace {
 
@@ -60,6 +62,7 @@ albedo = 0.4
 model = "improved"
 single_scattering = false
 caustics = "none"
+point_spread = false
 [spectral]
 count = 8
 sensor = "nikon_d5100_npl"
@@ -67,18 +70,30 @@ sensor = "nikon_d5100_npl"
 
 seasim::Override set(const char* key, const std::string& value) { return {key, value, {"test", 1}}; }
 
+// With the water's point-spread (SEASIM_UWI_SPREAD): what kd_multiple.cl keeps apart, in double
+// (common/water_spread_params.h): S per pixel (the G-buffer's), [pixel][2] depth, [pixel][2][3] RGB and
+// [pixel][2][bands] spectral moments.
+struct ForwardMoments {
+  std::vector<double> s, depth, rgb, spectral;
+};
+
 // The frame by the shared maths in double (kd_multiple.cl's improved block, raycast.cl's shadow ray);
 // with spectral, also every band's radiance (band-major per pixel, as spectral.exr).
 // mirror_hits: counts the surface pixels whose reflected ray meets an object (uwi_mirror_hit).
 // shaded_faces: counts the object pixels whose face sees sand in shadow (uwi_bottom_visibility < 1).
+// forward: the frame and the bands leave out the light scattered by small angles, returned there
+// (common/water_spread.h: the hit's and the in-scatter's shares, by uwi_multiple apart from the hit).
 seasim::Image cpuImproved(const seasim::UnderwaterSetup& s, bool multiple, std::vector<double>* spectral = nullptr,
-                          int* mirror_hits = nullptr, int* shaded_faces = nullptr) {
+                          int* mirror_hits = nullptr, int* shaded_faces = nullptr, ForwardMoments* forward = nullptr) {
   const UwParams& p = s.params;
   seasim::Image out = seasim::Image::rgb(p.width, p.height);
   const kd::real3 o{p.cam_pos[0], p.cam_pos[1], p.cam_pos[2]};
   const kd::real3 s_w{p.sun_dir_water[0], p.sun_dir_water[1], p.sun_dir_water[2]};
   const bool sun = s.bands[0].e_beam0 > 0 || s.bands.back().e_beam0 > 0;
   if (spectral) spectral->assign(size_t(p.width) * p.height * p.band_count, 0.0);
+  const size_t pixels = size_t(p.width) * p.height;
+  if (forward) *forward = {std::vector<double>(pixels), std::vector<double>(2 * pixels, 0.0),
+                           std::vector<double>(6 * pixels, 0.0), std::vector<double>(2 * pixels * p.band_count, 0.0)};
   for (int y = 0; y < p.height; ++y)
     for (int x = 0; x < p.width; ++x) {
       const kd::real3 d = kd::uw_screen_dir(&p, (x + 0.5) / p.width, (y + 0.5) / p.height);
@@ -107,8 +122,31 @@ seasim::Image cpuImproved(const seasim::UnderwaterSetup& s, bool multiple, std::
         if (mat_m >= 0) mirror.albedo = s.albedo[size_t(mat_m) * p.band_count + i];
         const UwBand& b = s.bands[i];
         const double albedo = mat >= 0 ? s.albedo[size_t(mat) * p.band_count + i] : mat == UW_MAT_BOTTOM ? b.bottom_albedo : 0.0;
-        const double L = kd::uwi_band_radiance(&s.improved[i], &b, p.g, mat, S, n, d, -o.y, s_w, albedo, vis, vis_b,
-                                               b.sky_radiance, p.ior, p.bottom_depth, 0, multiple ? 1 : 0, mirror);
+        double L = kd::uwi_band_radiance(&s.improved[i], &b, p.g, mat, S, n, d, -o.y, s_w, albedo, vis, vis_b,
+                                         b.sky_radiance, p.ior, p.bottom_depth, 0, multiple ? 1 : 0, mirror);
+        if (forward) {
+          const size_t px = size_t(y) * p.width + x;
+          const double l_in = kd::uwi_multiple(&s.improved[i], &b, p.g, p.bottom_depth, S, d.y, -o.y, kd::dot(d, s_w),
+                                               s_w.y, 0, multiple ? 1 : 0);
+          const double hit = L - l_in;
+          const double s_spread = std::min(S, 1e4), delta = double(b.c) - double(s.improved[i].c_dm);
+          const double em = kd::uws_expm1_neg_b(delta * s_spread);
+          double count_in = 0, depth_in = 0;
+          const double share_in = kd::uws_inscatter_share_b(s.improved[i].c_dm, delta, s_spread, em, &count_in, &depth_in);
+          const double fwd = hit * kd::uws_hit_share_b(em) + l_in * share_in;
+          const double cnt = hit * delta * s_spread + l_in * count_in;
+          const double w[3] = {b.w_r, b.w_g, b.w_b};
+          for (int c = 0; c < 3; ++c) {
+            forward->rgb[6 * px + c] += fwd * w[c];
+            forward->rgb[6 * px + 3 + c] += cnt * w[c];
+          }
+          forward->depth[2 * px] += (hit * kd::uws_hit_share_b(em) * s_spread + l_in * depth_in) * (w[0] + w[1] + w[2]);
+          forward->depth[2 * px + 1] += fwd * (w[0] + w[1] + w[2]);
+          forward->spectral[(2 * px) * p.band_count + i] = fwd;
+          forward->spectral[(2 * px + 1) * p.band_count + i] = cnt;
+          forward->s[px] = S;
+          L -= fwd;
+        }
         rgb[0] += L * b.w_r;
         rgb[1] += L * b.w_g;
         rgb[2] += L * b.w_b;
@@ -214,6 +252,123 @@ TEST(UnderwaterImprovedKernel, SpectralOutputHoldsEveryBand) {
   }
   EXPECT_LE(off, int(ref.size() / 100));  // shadow edges, as above
   EXPECT_GT(peak, 0.0);
+}
+
+// The water's point-spread on: kd_multiple keeps the light scattered by small angles apart and
+// water_spread.cl puts it back blurred. The frame against the double CPU evaluation of both (the moments
+// above, then tests/kernels/water_spread_cpu.h's passes), and the spread must move light: the frame
+// differs from the one without it by more than the float noise, and keeps at least 90 % of its light.
+class UnderwaterImprovedSpread : public ::testing::TestWithParam<Variant> {};
+
+TEST_P(UnderwaterImprovedSpread, MatchesDoubleCpuEvaluation) {
+  std::string text = kScene;
+  if (GetParam().remove_bottom) text.erase(text.find("[bottom]"), text.find("[[objects]]") - text.find("[bottom]"));
+  std::vector<seasim::Override> overrides = GetParam().overrides;
+  overrides.push_back(set("underwater.point_spread", "true"));
+  const seasim::Scene scene = seasim::parseScene(text, "test_improved.toml", overrides);
+  const seasim::Plan plan = seasim::makePlan(scene);
+  ASSERT_TRUE(plan.hasPass("water_spread"));
+  const seasim::FrameResult frame = seasim::renderFrame(seasim::test::testDevice(), scene, plan);
+  EXPECT_EQ(frame.nonfinite, 0);
+  for (float v : frame.rgb.pixels) ASSERT_TRUE(std::isfinite(v) && v >= 0.0f);
+  const seasim::WavelengthGrid grid = seasim::makeGrid(scene.spectral.count, scene.spectral.min_nm, scene.spectral.max_nm);
+  const seasim::UnderwaterSetup setup = seasim::makeUnderwaterSetup(
+      scene, grid, seasim::makeSensor(scene.spectral.sensor, grid, scene.spectral.white_balance, scene.spectral.camera_dir));
+  ForwardMoments fm;
+  const seasim::Image direct = cpuImproved(setup, scene.underwater.multiple_scattering, nullptr, nullptr, nullptr, &fm);
+  const UwParams& p = setup.params;
+  const seasim::WaterSpread spread =
+      seasim::makeWaterSpread(p.g, seasim::kOrdinatesSourceMoments, p.tan_half_fov_y, p.width, p.height);
+  std::vector<double> ref(direct.pixels.begin(), direct.pixels.end());
+  seasim::test::waterSpreadCpu(spread, 3, fm.s, fm.depth, fm.rgb, ref);
+  double forward_sum = 0, sum_a = 0, sum_b = 0, peak = 0;
+  for (size_t i = 0; i < fm.rgb.size(); i += 6) forward_sum += fm.rgb[i] + fm.rgb[i + 1] + fm.rgb[i + 2];
+  for (double v : ref) peak = std::max(peak, std::fabs(v));
+  int off = 0;
+  double worst = 0, moved = 0, kept = 0;
+  for (size_t i = 0; i < ref.size(); ++i) {
+    const double e = std::fabs(double(frame.rgb.pixels[i]) - ref[i]) / (std::fabs(ref[i]) + 1e-4 * peak);
+    if (e > 5e-4) ++off;
+    else worst = std::max(worst, e);
+    sum_a += frame.rgb.pixels[i];
+    sum_b += ref[i];
+    // Without the spread the pixel keeps its own forward light.
+    const double unspread = direct.pixels[i] + fm.rgb[6 * (i / 3) + i % 3];
+    moved += std::fabs(ref[i] - unspread);
+    kept += unspread;
+  }
+  // A shadow edge on the other side of a pixel centre in float also moves its forward light to the pixels
+  // around it: up to 3 % of the pixels may differ more (counted).
+  EXPECT_LE(off, int(ref.size() * 3 / 100)) << GetParam().name;
+  EXPECT_LT(worst, 5e-4) << GetParam().name;
+  EXPECT_NEAR(sum_a / sum_b, 1.0, 5e-3) << GetParam().name;
+  EXPECT_GT(forward_sum, 1e-3 * sum_b) << GetParam().name << ": the forward light is a real share";
+  // The spread moves light between pixels (by more than float noise); it loses what the near objects block
+  // (spread_reach), and its clamped edges count an edge pixel's light more than once.
+  EXPECT_GT(moved, 1e-3 * kept) << GetParam().name;
+  EXPECT_LT(sum_b, kept * 1.02) << GetParam().name;
+  EXPECT_GT(sum_b, 0.9 * kept) << GetParam().name;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Scenes, UnderwaterImprovedSpread,
+    ::testing::Values(Variant{"ordinary", {}}, Variant{"no_bottom", {}, true}, Variant{"g095", {set("water.g", "0.95")}},
+                      Variant{"g05_wide", {set("water.g", "0.5")}},
+                      Variant{"turbid_9C_long_range", {set("water.jerlov", "\"9C\""), set("camera.look_at", "[0, -4.2, -8]")}, true},
+                      Variant{"camera_at_1000m", {set("camera.position", "[0, -1000, 0]"), set("camera.look_at", "[0, -1000.5, -8]")}, true},
+                      Variant{"looking_straight_up", {set("camera.look_at", "[0, 10, -0.001]")}},
+                      Variant{"seventeen_bands", {set("spectral.count", "17")}},
+                      // 160x96: sigma_1 above 4 pixels at g = 0.5, so the blur runs on cells of 2x2 pixels and more.
+                      Variant{"cells_of_pixels", {set("water.g", "0.5"), set("camera.width", "160"), set("camera.height", "96")}}),
+    [](const ::testing::TestParamInfo<Variant>& info) { return std::string(info.param.name); });
+
+// spectral.exr with the spread: every band blurred as the frame is (its bands split between the layers by
+// their own mean count, the frame's channels by theirs), so the bands' sensor-weighted sum is the frame
+// to within that split's difference, and the light is the same.
+TEST(UnderwaterImprovedSpread, SpectralOutputHoldsTheSpread) {
+  const seasim::Scene scene = seasim::parseScene(
+      kScene, "test_improved.toml",
+      {set("spectral.spectral_exr", "true"), set("spectral.count", "17"), set("underwater.point_spread", "true")});
+  const seasim::FrameResult frame = seasim::renderFrame(seasim::test::testDevice(), scene, seasim::makePlan(scene));
+  const seasim::WavelengthGrid grid = seasim::makeGrid(scene.spectral.count, scene.spectral.min_nm, scene.spectral.max_nm);
+  const seasim::UnderwaterSetup setup = seasim::makeUnderwaterSetup(
+      scene, grid, seasim::makeSensor(scene.spectral.sensor, grid, scene.spectral.white_balance, scene.spectral.camera_dir));
+  const int bands = setup.params.band_count;
+  const size_t pixels = frame.rgb.pixels.size() / 3;
+  ASSERT_EQ(frame.spectral.size(), pixels * bands);
+  // The bands against the double CPU evaluation, band by band.
+  ForwardMoments fm;
+  std::vector<double> ref_bands;
+  cpuImproved(setup, true, &ref_bands, nullptr, nullptr, &fm);
+  const UwParams& p = setup.params;
+  seasim::test::waterSpreadCpu(
+      seasim::makeWaterSpread(p.g, seasim::kOrdinatesSourceMoments, p.tan_half_fov_y, p.width, p.height), bands, fm.s,
+      fm.depth, fm.spectral, ref_bands);
+  double peak = 0;
+  for (double v : ref_bands) peak = std::max(peak, std::fabs(v));
+  int off = 0;
+  for (size_t i = 0; i < ref_bands.size(); ++i) {
+    ASSERT_TRUE(std::isfinite(frame.spectral[i]));
+    if (std::fabs(frame.spectral[i] - ref_bands[i]) > 5e-4 * (std::fabs(ref_bands[i]) + 1e-4 * peak)) ++off;
+  }
+  EXPECT_LE(off, int(ref_bands.size() * 3 / 100));
+  // The bands' sensor-weighted sum against the frame.
+  double sum_rgb = 0, sum_bands = 0, worst = 0, rgb_peak = 0;
+  for (float v : frame.rgb.pixels) rgb_peak = std::max(rgb_peak, double(v));
+  for (size_t px = 0; px < pixels; ++px)
+    for (int c = 0; c < 3; ++c) {
+      double v = 0;
+      for (int i = 0; i < bands; ++i) {
+        const UwBand& b = setup.bands[i];
+        v += frame.spectral[px * bands + i] * (c == 0 ? b.w_r : c == 1 ? b.w_g : b.w_b);
+      }
+      const double rgb = frame.rgb.pixels[3 * px + c];
+      worst = std::max(worst, std::fabs(v - rgb) / (rgb + 1e-3 * rgb_peak));
+      sum_rgb += rgb;
+      sum_bands += v;
+    }
+  EXPECT_NEAR(sum_bands / sum_rgb, 1.0, 1e-3);
+  EXPECT_LT(worst, 0.02);
 }
 
 TEST(UnderwaterImprovedKernel, WithFroxelsTheFrameIsFiniteAndDiffersFromTheThesis) {

@@ -7,6 +7,10 @@ the same point, where the water spreads it over the pixels around (the dump's `f
 part, 1 - e^{-(c - c') S} of the hit's light). Here `forward` is taken off each pixel and put back blurred
 by a Gaussian of sigma pixels, and the region ratios against the path tracer are printed per sigma.
 
+The model has done this itself since s11 (underwater.point_spread, the water_spread pass, with widths from
+the phase and the distances): dump with `--set underwater.point_spread=false` to measure from the unspread
+model, as s10 did.
+
 Usage: tests/perf/underwater_psf_blur.py DUMP_DIR [--sigmas 0,1,2,3] [--width 64 --height 36]
 Needs numpy. The dump's cases must be 64x36 unless --width/--height say otherwise.
 """

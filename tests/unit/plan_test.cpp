@@ -204,6 +204,39 @@ TEST(Plan, UnderwaterLeavesOutWhatTheSceneTurnsOff) {
   for (const char* absent : {"raycast", "froxel", "kd_multiple"}) EXPECT_FALSE(plan.hasPass(absent)) << absent;
 }
 
+TEST(Plan, WaterSpreadOnlyForTheImprovedModelWithAForwardPhase) {
+  // The improved model scales by delta-M: with g > 0 its forward light is kept apart and spread.
+  Plan plan = makePlan(parseScene(kFlatSea, "flat.toml",
+                                  {at("camera.position", "[0, -5, 0]"), at("underwater.model", "\"improved\""),
+                                   at("water.g", "0.9")}));
+  ASSERT_TRUE(plan.hasPass("water_spread"));
+  EXPECT_TRUE(hasDefine(plan, "kd_multiple", "SEASIM_UWI_SPREAD=1"));
+  EXPECT_EQ(plan.find("water_spread")->reads, (std::vector<std::string>{"gbuffer", "rgb"}));
+  // After the shading that writes "rgb", before the check that reads it.
+  const auto index = [&](const char* name) {
+    return std::find_if(plan.passes.begin(), plan.passes.end(), [&](const auto& p) { return p.name == name; }) -
+           plan.passes.begin();
+  };
+  EXPECT_LT(index("kd_multiple"), index("water_spread"));
+  EXPECT_LT(index("water_spread"), index("nonfinite_check"));
+  // The thesis's model, an isotropic phase, or the spread turned off: neither the pass nor the define.
+  for (const std::vector<seasim::Override>& off :
+       {std::vector<seasim::Override>{at("underwater.model", "\"thesis\""), at("water.g", "0.9")},
+        std::vector<seasim::Override>{at("underwater.model", "\"improved\""), at("water.g", "0.0")},
+        std::vector<seasim::Override>{at("underwater.model", "\"improved\""), at("water.g", "0.9"),
+                                      at("underwater.point_spread", "false")}}) {
+    std::vector<seasim::Override> overrides = off;
+    overrides.push_back(at("camera.position", "[0, -5, 0]"));
+    plan = makePlan(parseScene(kFlatSea, "flat.toml", overrides));
+    EXPECT_TRUE(plan.hasPass("kd_multiple"));
+    EXPECT_FALSE(plan.hasPass("water_spread")) << off[0].value_toml << " " << off[1].value_toml;
+    EXPECT_TRUE(hasDefine(plan, "kd_multiple", "SEASIM_UWI_SPREAD=0"));
+  }
+  // Above the water there is nothing to spread.
+  plan = makePlan(parseScene(kFlatSea, "flat.toml", {at("underwater.model", "\"improved\""), at("water.g", "0.9")}));
+  EXPECT_FALSE(plan.hasPass("water_spread"));
+}
+
 TEST(Plan, SpotlightsInAirAddShaftsAndShadowMapsOnlyWithObjects) {
   const char* stage = R"(
 [camera]

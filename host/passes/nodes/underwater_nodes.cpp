@@ -13,6 +13,8 @@
 #include "passes/nodes/standard_passes.h"
 #include "passes/underwater_lamps_pass.h"
 #include "passes/underwater_pass.h"
+#include "passes/water_spread_pass.h"
+#include "underwater/underwater_improved_ordinates.h"  // kOrdinatesSourceMoments
 #include "render/radiance_target.h"
 #include "device/device.h"
 #include "util/error.h"
@@ -136,6 +138,39 @@ class KdNode : public Pass {
   const UnderwaterPass* published_for_ = nullptr;
 };
 
+// The water's point-spread (passes/water_spread_pass.h, issue 13 s11): adds the forward light kd_multiple
+// kept apart, blurred, into the "rgb" it wrote.
+class WaterSpreadNode : public Pass {
+ public:
+  explicit WaterSpreadNode(const PassPlan& entry) : entry_(entry) {}
+  // The blur follows the image's size and field of view and the phase's g (and the model's delta-M order).
+  PassKeys keys() const override { return {{"camera.*", "spectral.*", "water.*", "underwater.*"}, kSetupKeys}; }
+  void prepare(FrameContext& ctx, PassResources&) override {
+    const Scene& scene = ctx.scene();
+    const UwParams& p = ctx.underwaterSetup().params;
+    const int order = scene.underwater.improved_diffuse == UnderwaterDesc::Diffuse::DiscreteOrdinates
+                          ? kOrdinatesSourceMoments
+                          : 2;  // the two-stream's f = g² (improvedDeltaM)
+    pass_ = std::make_unique<WaterSpreadPass>(ctx.device(), entry_,
+                                              makeWaterSpread(p.g, order, p.tan_half_fov_y, p.width, p.height),
+                                              scene.spectral.spectral_exr ? p.band_count : 0);
+  }
+  void execute(FrameContext& ctx, PassResources& res) override {
+    UnderwaterPass& gbuffer = *res.read<UnderwaterGBuffer>("gbuffer").pass;
+    if (!gbuffer.spread())
+      throw RuntimeError("plan: the water_spread pass needs kd_multiple planned with SEASIM_UWI_SPREAD=1");
+    RadianceTarget& target = res.read<RadianceTarget>("rgb");
+    const bool spectral = ctx.scene().spectral.spectral_exr;
+    ctx.timings.push_back({"water_spread", pass_->run(gbuffer.geometry(), gbuffer.forwardDepth(), gbuffer.forwardRgb(), target.rgb,
+                                                      spectral ? &gbuffer.forwardSpectral() : nullptr,
+                                                      spectral ? &target.spectral : nullptr)});
+  }
+
+ private:
+  const PassPlan& entry_;
+  std::unique_ptr<WaterSpreadPass> pass_;
+};
+
 // Spotlights in the water (passes/underwater_lamps_pass.h): adds into the "rgb" kd_multiple wrote.
 class UnderwaterLampsNode : public Pass {
  public:
@@ -177,6 +212,8 @@ void registerUnderwaterPasses(PassRegistry& registry) {
   });
   registry.add("froxel", [](const PassPlan& e, const Plan&, const Scene&) { return std::make_unique<FroxelNode>(e); });
   registry.add("kd_multiple", [](const PassPlan&, const Plan&, const Scene&) { return std::make_unique<KdNode>(); });
+  registry.add("water_spread",
+               [](const PassPlan& e, const Plan&, const Scene&) { return std::make_unique<WaterSpreadNode>(e); });
   registry.add("underwater_lamps",
                [](const PassPlan& e, const Plan&, const Scene&) { return std::make_unique<UnderwaterLampsNode>(e); });
 }
