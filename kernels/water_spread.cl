@@ -61,51 +61,47 @@ __kernel void spread_reduce(__constant UwsParams* p, __global const float4* geom
   }
 }
 
+/* Adds layer k's taps along one axis of the grid into out[channels]: the cells base + clamp(pos + j, 0,
+ * len - 1) * step of `in` ([cell][UWS_LAYERS][channels]), each weighed by what it can reach of s_dest. */
+void spread_axis(__constant UwsParams* p, __global const float* taps, int k, float s_dest, __global const float* cell_d,
+                 __global const float* in, size_t base, int pos, int len, size_t step, __global float* out) {
+  const int c_n = p->channels;
+  __global const float* t = taps + p->tap_offset[k];
+  for (int j = -p->radius[k]; j <= p->radius[k]; ++j) {
+    const size_t src = base + (size_t)clamp(pos + j, 0, len - 1) * step;
+    const float w = t[abs(j)] * spread_reach(s_dest, cell_d[src]);
+    __global const float* x = in + (src * UWS_LAYERS + k) * (size_t)c_n;
+    for (int c = 0; c < c_n; ++c) out[c] += w * x[c];
+  }
+}
+
+/* Writes rows [cell][UWS_LAYERS][channels]: each layer blurred along x. */
 __kernel void spread_rows(__constant UwsParams* p, __global const float* taps, __global const float* cell_s,
                           __global const float* cell_d, __global const float* layers, __global float* rows) {
   const int cx = get_global_id(0);
   const int cy = get_global_id(1);
   if (cx >= p->low_width || cy >= p->low_height) return;
   const int c_n = p->channels;
-  const size_t stride = (size_t)UWS_LAYERS * (size_t)c_n;
   const size_t row = (size_t)cy * (size_t)p->low_width;
-  const float s_dest = cell_s[row + cx];
   for (int k = 0; k < UWS_LAYERS; ++k) {
-    const int r = p->radius[k];
-    __global const float* t = taps + p->tap_offset[k];
-    __global float* out = rows + (row + cx) * stride + k * c_n;
+    __global float* out = rows + ((row + cx) * UWS_LAYERS + k) * (size_t)c_n;
     for (int c = 0; c < c_n; ++c) out[c] = 0.0f;
-    for (int j = -r; j <= r; ++j) {
-      const int xs = clamp(cx + j, 0, p->low_width - 1);
-      const float w = t[abs(j)] * spread_reach(s_dest, cell_d[row + xs]);
-      __global const float* in = layers + (row + xs) * stride + k * c_n;
-      for (int c = 0; c < c_n; ++c) out[c] += w * in[c];
-    }
+    spread_axis(p, taps, k, cell_s[row + cx], cell_d, layers, row, cx, p->low_width, 1, out);
   }
 }
 
-/* Writes blurred [cell][channels]: the layers summed. */
+/* Writes blurred [cell][channels]: each layer of rows blurred along y, the layers summed. */
 __kernel void spread_columns(__constant UwsParams* p, __global const float* taps, __global const float* cell_s,
                              __global const float* cell_d, __global const float* rows, __global float* blurred) {
   const int cx = get_global_id(0);
   const int cy = get_global_id(1);
   if (cx >= p->low_width || cy >= p->low_height) return;
   const int c_n = p->channels;
-  const size_t stride = (size_t)UWS_LAYERS * (size_t)c_n;
   const size_t cell = (size_t)cy * (size_t)p->low_width + cx;
-  const float s_dest = cell_s[cell];
   __global float* out = blurred + cell * (size_t)c_n;
   for (int c = 0; c < c_n; ++c) out[c] = 0.0f;
-  for (int k = 0; k < UWS_LAYERS; ++k) {
-    const int r = p->radius[k];
-    __global const float* t = taps + p->tap_offset[k];
-    for (int j = -r; j <= r; ++j) {
-      const size_t src = (size_t)clamp(cy + j, 0, p->low_height - 1) * (size_t)p->low_width + cx;
-      const float w = t[abs(j)] * spread_reach(s_dest, cell_d[src]);
-      __global const float* in = rows + src * stride + k * c_n;
-      for (int c = 0; c < c_n; ++c) out[c] += w * in[c];
-    }
-  }
+  for (int k = 0; k < UWS_LAYERS; ++k)
+    spread_axis(p, taps, k, cell_s[cell], cell_d, rows, cx, cy, p->low_height, (size_t)p->low_width, out);
 }
 
 /* The cell's light per pixel (the cells at the frame's right and bottom edges may hold fewer). */

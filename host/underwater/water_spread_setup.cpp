@@ -107,6 +107,14 @@ std::vector<float> gaussianTaps(double sigma, int max_radius) {
   return taps;
 }
 
+void addLayerTaps(WaterSpread& s, int k, double sigma_cells) {
+  // A layer wider than the grid adds nothing but time: its taps stop at the grid's larger side.
+  const std::vector<float> taps = gaussianTaps(sigma_cells, std::max(s.params.low_width, s.params.low_height));
+  s.params.radius[k] = static_cast<int>(taps.size()) - 1;
+  s.params.tap_offset[k] = static_cast<int>(s.taps.size());
+  s.taps.insert(s.taps.end(), taps.begin(), taps.end());
+}
+
 WaterSpread makeWaterSpread(double g, int order, double tan_half_fov_y, int width, int height) {
   if (width <= 0 || height <= 0 || !(tan_half_fov_y > 0))
     throw RuntimeError("water spread: the image needs a size and a field of view");
@@ -123,12 +131,7 @@ WaterSpread makeWaterSpread(double g, int order, double tan_half_fov_y, int widt
   const double added = (double(factor) * factor - 1) / 12 + double(factor) * factor / 6;  // pixels^2
   for (int k = 0; k < UWS_LAYERS; ++k) {
     const double sigma_px2 = s.sigma1_px * s.sigma1_px * double(1 << k);
-    const double sigma_cells = factor == 1 ? std::sqrt(sigma_px2) : std::sqrt(std::max(sigma_px2 - added, 0.0)) / factor;
-    // A layer wider than the grid adds nothing but time: its taps stop at the grid's larger side.
-    const std::vector<float> taps = gaussianTaps(sigma_cells, std::max(s.params.low_width, s.params.low_height));
-    s.params.radius[k] = static_cast<int>(taps.size()) - 1;
-    s.params.tap_offset[k] = static_cast<int>(s.taps.size());
-    s.taps.insert(s.taps.end(), taps.begin(), taps.end());
+    addLayerTaps(s, k, factor == 1 ? std::sqrt(sigma_px2) : std::sqrt(std::max(sigma_px2 - added, 0.0)) / factor);
   }
   return s;
 }

@@ -35,6 +35,10 @@ struct WaterSpread {
   double sigma1_px = 0;      // sigma_1 in pixels (layer k: sigma_1 sqrt(2^k))
 };
 
+// Appends layer k's taps for a Gaussian of sigma_cells cells (radius capped at the grid's larger side) and
+// sets its radius and offset in s.params. Layers are added in order, k = 0 first.
+void addLayerTaps(WaterSpread& s, int k, double sigma_cells);
+
 // The blur for an image of width x height with vertical half-angle atan(tan_half_fov_y): sigma_1 in
 // pixels at the image's centre (2 tan_half_fov_y / height radians per pixel). The grid's cell is
 // factor = max(1, floor(sigma_1 / 2)) pixels on a side, so that the narrowest layer is about 2 cells wide

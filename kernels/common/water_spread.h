@@ -12,10 +12,12 @@
  * The spread of one scattering seen from the camera. A photon from the hit at distance S, turned by a
  * small angle theta at distance x from the camera, arrives off the hit's direction by theta (1 - x/S)
  * (the path's two ends are fixed: its slope at the camera is minus the sum of the turns times
- * (1 - x_i/S)). With x uniform along the ray, per image axis the variance of that angle is
- *   sigma_1^2 = sigma_theta^2 <(1 - u)^2> = sigma_theta^2 / 3,                            (2)
- * sigma_theta the peak's per-axis spread, and n turns add n sigma_1^2. The host takes sigma_theta from
- * the peak's median angle (host/underwater/water_spread_setup.h). Conditioned on n >= 1 the mean count is
+ * (1 - x_i/S)). With x even along the ray, one turn moves the light by
+ *   theta v,  v = 1 - x/S uniform on [0, 1],                                               (2)
+ * theta from the peak (HG less its delta-M expansion). The host takes sigma_1, per image axis, as the 2-D
+ * Gaussian with the median radius of theta v (host/underwater/water_spread_setup.h: 2.9 deg at g = 0.9,
+ * 1.7 at 0.95); theta v is peaked at 0 and heavy-tailed, and the Gaussian of its rms, sigma_theta / sqrt(3),
+ * spread the light's bulk too wide (s11). n turns add n sigma_1^2. Conditioned on n >= 1 the mean count is
  *   E[n | n >= 1] = tau / (1 - e^{-tau})                                                  (3)
  * (1 for small tau, tau for large), which sets the pixel's mean variance E sigma_1^2.
  *

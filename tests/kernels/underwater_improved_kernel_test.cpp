@@ -164,22 +164,34 @@ struct Variant {
   bool remove_objects = false;
 };
 
+// The variant's scene: kScene less its bottom or objects, with its overrides and `extra`.
+seasim::Scene variantScene(const Variant& v, const std::vector<seasim::Override>& extra = {}) {
+  std::string text = kScene;
+  if (v.remove_bottom) text.erase(text.find("[bottom]"), text.find("[[objects]]") - text.find("[bottom]"));
+  if (v.remove_objects) text.erase(text.find("[[objects]]"), text.find("[underwater]") - text.find("[[objects]]"));
+  std::vector<seasim::Override> overrides = v.overrides;
+  overrides.insert(overrides.end(), extra.begin(), extra.end());
+  return seasim::parseScene(text, "test_improved.toml", overrides);
+}
+
+// The set-up the renderer shaded the scene from (its grid and sensor).
+seasim::UnderwaterSetup setupOf(const seasim::Scene& scene) {
+  const seasim::WavelengthGrid grid = seasim::makeGrid(scene.spectral.count, scene.spectral.min_nm, scene.spectral.max_nm);
+  return seasim::makeUnderwaterSetup(
+      scene, grid, seasim::makeSensor(scene.spectral.sensor, grid, scene.spectral.white_balance, scene.spectral.camera_dir));
+}
+
 class UnderwaterImprovedKernel : public ::testing::TestWithParam<Variant> {};
 
 TEST_P(UnderwaterImprovedKernel, MatchesDoubleCpuEvaluationWithoutNaN) {
-  std::string text = kScene;
-  if (GetParam().remove_bottom) text.erase(text.find("[bottom]"), text.find("[[objects]]") - text.find("[bottom]"));
-  if (GetParam().remove_objects)
-    text.erase(text.find("[[objects]]"), text.find("[underwater]") - text.find("[[objects]]"));
-  const seasim::Scene scene = seasim::parseScene(text, "test_improved.toml", GetParam().overrides);
+  const seasim::Scene scene = variantScene(GetParam());
   const seasim::Plan plan = seasim::makePlan(scene);
   ASSERT_TRUE(plan.hasPass("kd_multiple"));
+  EXPECT_FALSE(plan.hasPass("water_spread"));
   const seasim::FrameResult frame = seasim::renderFrame(seasim::test::testDevice(), scene, plan);
   EXPECT_EQ(frame.nonfinite, 0);
   for (float v : frame.rgb.pixels) ASSERT_TRUE(std::isfinite(v) && v >= 0.0f);
-  const seasim::WavelengthGrid grid = seasim::makeGrid(scene.spectral.count, scene.spectral.min_nm, scene.spectral.max_nm);
-  const seasim::UnderwaterSetup setup = seasim::makeUnderwaterSetup(
-      scene, grid, seasim::makeSensor(scene.spectral.sensor, grid, scene.spectral.white_balance, scene.spectral.camera_dir));
+  const seasim::UnderwaterSetup setup = setupOf(scene);
   ASSERT_EQ(setup.improved.size(), setup.bands.size());
   int mirror_hits = 0, shaded_faces = 0;
   const seasim::Image ref = cpuImproved(setup, scene.underwater.multiple_scattering, nullptr, &mirror_hits, &shaded_faces);
@@ -237,9 +249,7 @@ TEST(UnderwaterImprovedKernel, SpectralOutputHoldsEveryBand) {
   const seasim::Scene scene = seasim::parseScene(kScene, "test_improved.toml",
                                                  {set("spectral.spectral_exr", "true"), set("spectral.count", "17")});
   const seasim::FrameResult frame = seasim::renderFrame(seasim::test::testDevice(), scene, seasim::makePlan(scene));
-  const seasim::WavelengthGrid grid = seasim::makeGrid(scene.spectral.count, scene.spectral.min_nm, scene.spectral.max_nm);
-  const seasim::UnderwaterSetup setup = seasim::makeUnderwaterSetup(
-      scene, grid, seasim::makeSensor(scene.spectral.sensor, grid, scene.spectral.white_balance, scene.spectral.camera_dir));
+  const seasim::UnderwaterSetup setup = setupOf(scene);
   std::vector<double> ref;
   cpuImproved(setup, true, &ref);
   ASSERT_EQ(frame.spectral.size(), ref.size());
@@ -261,19 +271,13 @@ TEST(UnderwaterImprovedKernel, SpectralOutputHoldsEveryBand) {
 class UnderwaterImprovedSpread : public ::testing::TestWithParam<Variant> {};
 
 TEST_P(UnderwaterImprovedSpread, MatchesDoubleCpuEvaluation) {
-  std::string text = kScene;
-  if (GetParam().remove_bottom) text.erase(text.find("[bottom]"), text.find("[[objects]]") - text.find("[bottom]"));
-  std::vector<seasim::Override> overrides = GetParam().overrides;
-  overrides.push_back(set("underwater.point_spread", "true"));
-  const seasim::Scene scene = seasim::parseScene(text, "test_improved.toml", overrides);
+  const seasim::Scene scene = variantScene(GetParam(), {set("underwater.point_spread", "true")});
   const seasim::Plan plan = seasim::makePlan(scene);
   ASSERT_TRUE(plan.hasPass("water_spread"));
   const seasim::FrameResult frame = seasim::renderFrame(seasim::test::testDevice(), scene, plan);
   EXPECT_EQ(frame.nonfinite, 0);
   for (float v : frame.rgb.pixels) ASSERT_TRUE(std::isfinite(v) && v >= 0.0f);
-  const seasim::WavelengthGrid grid = seasim::makeGrid(scene.spectral.count, scene.spectral.min_nm, scene.spectral.max_nm);
-  const seasim::UnderwaterSetup setup = seasim::makeUnderwaterSetup(
-      scene, grid, seasim::makeSensor(scene.spectral.sensor, grid, scene.spectral.white_balance, scene.spectral.camera_dir));
+  const seasim::UnderwaterSetup setup = setupOf(scene);
   ForwardMoments fm;
   const seasim::Image direct = cpuImproved(setup, scene.underwater.multiple_scattering, nullptr, nullptr, nullptr, &fm);
   const UwParams& p = setup.params;
@@ -330,9 +334,7 @@ TEST(UnderwaterImprovedSpread, SpectralOutputHoldsTheSpread) {
       kScene, "test_improved.toml",
       {set("spectral.spectral_exr", "true"), set("spectral.count", "17"), set("underwater.point_spread", "true")});
   const seasim::FrameResult frame = seasim::renderFrame(seasim::test::testDevice(), scene, seasim::makePlan(scene));
-  const seasim::WavelengthGrid grid = seasim::makeGrid(scene.spectral.count, scene.spectral.min_nm, scene.spectral.max_nm);
-  const seasim::UnderwaterSetup setup = seasim::makeUnderwaterSetup(
-      scene, grid, seasim::makeSensor(scene.spectral.sensor, grid, scene.spectral.white_balance, scene.spectral.camera_dir));
+  const seasim::UnderwaterSetup setup = setupOf(scene);
   const int bands = setup.params.band_count;
   const size_t pixels = frame.rgb.pixels.size() / 3;
   ASSERT_EQ(frame.spectral.size(), pixels * bands);

@@ -24,12 +24,7 @@ seasim::WaterSpread spreadOf(int width, int height, int factor, double sigma_cel
   s.params.low_width = (width + factor - 1) / factor;
   s.params.low_height = (height + factor - 1) / factor;
   s.params.channels = 3;
-  for (int k = 0; k < UWS_LAYERS; ++k) {
-    const std::vector<float> taps = seasim::gaussianTaps(sigma_cells * std::sqrt(double(1 << k)), 1000);
-    s.params.radius[k] = int(taps.size()) - 1;
-    s.params.tap_offset[k] = int(s.taps.size());
-    s.taps.insert(s.taps.end(), taps.begin(), taps.end());
-  }
+  for (int k = 0; k < UWS_LAYERS; ++k) seasim::addLayerTaps(s, k, sigma_cells * std::sqrt(double(1 << k)));
   return s;
 }
 
