@@ -107,6 +107,17 @@ std::vector<float> gaussianTaps(double sigma, int max_radius) {
   return taps;
 }
 
+WaterSpread waterSpreadGrid(int width, int height, int factor) {
+  WaterSpread s;
+  s.params.width = width;
+  s.params.height = height;
+  s.params.factor = factor;
+  s.params.low_width = (width + factor - 1) / factor;
+  s.params.low_height = (height + factor - 1) / factor;
+  s.params.channels = 3;
+  return s;
+}
+
 void addLayerTaps(WaterSpread& s, int k, double sigma_cells) {
   // A layer wider than the grid adds nothing but time: its taps stop at the grid's larger side.
   const std::vector<float> taps = gaussianTaps(sigma_cells, std::max(s.params.low_width, s.params.low_height));
@@ -118,19 +129,13 @@ void addLayerTaps(WaterSpread& s, int k, double sigma_cells) {
 WaterSpread makeWaterSpread(double g, int order, double tan_half_fov_y, int width, int height) {
   if (width <= 0 || height <= 0 || !(tan_half_fov_y > 0))
     throw RuntimeError("water spread: the image needs a size and a field of view");
-  WaterSpread s;
-  const double rad_per_px = 2 * tan_half_fov_y / height;
-  s.sigma1_px = singleScatterSpread(g, order) / rad_per_px;
-  const int factor = std::max(1, static_cast<int>(std::floor(s.sigma1_px / 2)));
-  s.params.width = width;
-  s.params.height = height;
-  s.params.factor = factor;
-  s.params.low_width = (width + factor - 1) / factor;
-  s.params.low_height = (height + factor - 1) / factor;
-  s.params.channels = 3;
+  const double sigma1_px = singleScatterSpread(g, order) / (2 * tan_half_fov_y / height);
+  const int factor = std::max(1, static_cast<int>(std::floor(sigma1_px / 2)));
+  WaterSpread s = waterSpreadGrid(width, height, factor);
+  s.sigma1_px = sigma1_px;
   const double added = (double(factor) * factor - 1) / 12 + double(factor) * factor / 6;  // pixels^2
   for (int k = 0; k < UWS_LAYERS; ++k) {
-    const double sigma_px2 = s.sigma1_px * s.sigma1_px * double(1 << k);
+    const double sigma_px2 = sigma1_px * sigma1_px * double(1 << k);
     addLayerTaps(s, k, factor == 1 ? std::sqrt(sigma_px2) : std::sqrt(std::max(sigma_px2 - added, 0.0)) / factor);
   }
   return s;

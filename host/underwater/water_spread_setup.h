@@ -35,6 +35,9 @@ struct WaterSpread {
   double sigma1_px = 0;      // sigma_1 in pixels (layer k: sigma_1 sqrt(2^k))
 };
 
+// The grid of cells of factor x factor pixels over a width x height frame (channels 3, no layers yet).
+WaterSpread waterSpreadGrid(int width, int height, int factor);
+
 // Appends layer k's taps for a Gaussian of sigma_cells cells (radius capped at the grid's larger side) and
 // sets its radius and offset in s.params. Layers are added in order, k = 0 first.
 void addLayerTaps(WaterSpread& s, int k, double sigma_cells);

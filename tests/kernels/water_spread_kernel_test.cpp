@@ -17,13 +17,7 @@ namespace {
 
 // A blur of sigma_1 sigma_cells cells, on cells of factor pixels (makeWaterSpread's layout, chosen here).
 seasim::WaterSpread spreadOf(int width, int height, int factor, double sigma_cells) {
-  seasim::WaterSpread s;
-  s.params.width = width;
-  s.params.height = height;
-  s.params.factor = factor;
-  s.params.low_width = (width + factor - 1) / factor;
-  s.params.low_height = (height + factor - 1) / factor;
-  s.params.channels = 3;
+  seasim::WaterSpread s = seasim::waterSpreadGrid(width, height, factor);
   for (int k = 0; k < UWS_LAYERS; ++k) seasim::addLayerTaps(s, k, sigma_cells * std::sqrt(double(1 << k)));
   return s;
 }
