@@ -22,8 +22,8 @@
  * forward_rgb [pixel][2][3], forward_depth [pixel][2] and, with SEASIM_SPECTRAL_OUTPUT, forward_spectral
  * [pixel][2][band_count] (common/water_spread_params.h), for water_spread.cl to add back blurred.
  * Defines (host/plan): SEASIM_HAS_MULTIPLE (L_MS), SEASIM_HAS_FROXEL (single scattering added here and
- * split off L_MS and L_s), SEASIM_SPECTRAL_OUTPUT, SEASIM_UWI_SPREAD, SEASIM_SKY_MODEL (common/sky.h); SEASIM_BAND_LANES
- * (4, 8 or 16; default 16, common/band_lanes.h).
+ * split off L_MS and L_s), SEASIM_SPECTRAL_OUTPUT, SEASIM_UWI_SPREAD, SEASIM_SKY_MODEL (common/sky.h);
+ * SEASIM_BAND_LANES (4, 8 or 16; default 16, common/band_lanes.h).
  */
 #include "common/compat.h"
 #include "common/optics.h"

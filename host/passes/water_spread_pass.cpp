@@ -56,7 +56,8 @@ double WaterSpreadPass::blur(Channels& ch, const cl::Buffer& geom, const cl::Buf
     reduce_.setArg(4, ch.layers);
     reduce_.setArg(5, cell_s_);
     reduce_.setArg(6, cell_d_);
-    for (auto [kernel, in, out] : {std::tuple{&rows_, &ch.layers, &ch.rows}, std::tuple{&columns_, &ch.rows, &ch.blurred}}) {
+    for (auto [kernel, in, out] :
+         {std::tuple{&rows_, &ch.layers, &ch.rows}, std::tuple{&columns_, &ch.rows, &ch.blurred}}) {
       kernel->setArg(0, ch.params);
       kernel->setArg(1, taps_);
       kernel->setArg(2, cell_s_);

@@ -234,7 +234,8 @@ Plan makePlan(const Scene& scene) {
                             flag("SEASIM_UWI_SPREAD", spread)},
                            reads, {"rgb"},
                            improved_uw ? "camera below the surface: T L_s + L_MS per band, model \"improved\" (delta-M, "
-                                         "the diffuse field over the bottom by discrete ordinates or a two-stream, its in-scatter by direction)"
+                                         "the diffuse field over the bottom by discrete ordinates or a two-stream, "
+                                         "its in-scatter by direction)"
                                        : "camera below the surface: T L_s + L_MS per band (002 eq. 4.7)",
                            true, ""});
     // The light delta-M counts as unscattered was scattered by small angles: put back blurred (issue 13

@@ -70,7 +70,8 @@ SEASIM_FN realb uws_hit_share_b(realb em) { return -em; }
  * below z = 0.25 (truncation 2e-9), where the closed form's cancellation would cost float ~6e-8/z. */
 SEASIM_FN realb uws_phi1_b(realb z, realb e_z, realb r_z) {
   const realb series =
-      R(1.0) - z * (R(0.5) - z * (R(1.0 / 6.0) - z * (R(1.0 / 24.0) - z * (R(1.0 / 120.0) - z * (R(1.0 / 720.0) - z * R(1.0 / 5040.0))))));
+      R(1.0) - z * (R(0.5) - z * (R(1.0 / 6.0) - z * (R(1.0 / 24.0) -
+                                                      z * (R(1.0 / 120.0) - z * (R(1.0 / 720.0) - z * R(1.0 / 5040.0))))));
   return SELECTB(z < R(0.25), series, (R(1.0) - e_z) * r_z);
 }
 
@@ -78,7 +79,10 @@ SEASIM_FN realb uws_phi1_b(realb z, realb e_z, realb r_z) {
  * z = 0.5 (truncation 3e-8 relative), where the closed form's cancellation would cost float ~1e-7/z^2. */
 SEASIM_FN realb uws_phi2_b(realb z, realb e_z, realb r_z) {
   const realb series =
-      R(0.5) - z * (R(1.0 / 3.0) - z * (R(1.0 / 8.0) - z * (R(1.0 / 30.0) - z * (R(1.0 / 144.0) - z * (R(1.0 / 840.0) - z * (R(1.0 / 5760.0) - z * R(1.0 / 45360.0)))))));
+      R(0.5) - z * (R(1.0 / 3.0) -
+                    z * (R(1.0 / 8.0) -
+                         z * (R(1.0 / 30.0) -
+                              z * (R(1.0 / 144.0) - z * (R(1.0 / 840.0) - z * (R(1.0 / 5760.0) - z * R(1.0 / 45360.0)))))));
   return SELECTB(z < R(0.5), series, (R(1.0) - e_z * (R(1.0) + z)) * (r_z * r_z));
 }
 

@@ -74,7 +74,8 @@ TEST(WaterSpread, HitShareIsOneMinusTransmittance) {
 
 // phi1 and phi2 against long double on both sides of their series' switch-overs (0.25 and 0.5).
 TEST(WaterSpread, PhiFunctionsAreStableThroughTheirSwitchOvers) {
-  for (double z : {0.0, 1e-8, 1e-4, 1e-3, 0.01, 0.05, 0.2499, 0.25, 0.2501, 0.4999, 0.5, 0.5001, 1.0, 10.0, 100.0, 1e4}) {
+  for (double z :
+       {0.0, 1e-8, 1e-4, 1e-3, 0.01, 0.05, 0.2499, 0.25, 0.2501, 0.4999, 0.5, 0.5001, 1.0, 10.0, 100.0, 1e4}) {
     const long double zl = z, e = std::exp(-zl);
     const long double phi1 = z == 0 ? 1.0L : (1 - e) / zl;
     const long double phi2 = z < 1e-6 ? 0.5L - zl / 3 : (1 - e * (1 + zl)) / (zl * zl);
