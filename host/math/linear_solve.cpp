@@ -5,7 +5,8 @@
 
 namespace seasim {
 
-bool solveLinear(std::vector<double>& a, std::vector<double>& rhs, int n) {
+bool solveLinear(std::vector<double>& a, std::vector<double>& rhs, int n, int columns) {
+  const int m = columns;
   for (int col = 0; col < n; ++col) {
     int piv = col;
     for (int r = col + 1; r < n; ++r)
@@ -13,20 +14,21 @@ bool solveLinear(std::vector<double>& a, std::vector<double>& rhs, int n) {
     if (!(std::abs(a[piv * n + col]) > 0)) return false;
     if (piv != col) {
       for (int c = 0; c < n; ++c) std::swap(a[col * n + c], a[piv * n + c]);
-      std::swap(rhs[col], rhs[piv]);
+      for (int k = 0; k < m; ++k) std::swap(rhs[col * m + k], rhs[piv * m + k]);
     }
     for (int r = col + 1; r < n; ++r) {
       const double f = a[r * n + col] / a[col * n + col];
       if (f == 0) continue;
       for (int c = col; c < n; ++c) a[r * n + c] -= f * a[col * n + c];
-      rhs[r] -= f * rhs[col];
+      for (int k = 0; k < m; ++k) rhs[r * m + k] -= f * rhs[col * m + k];
     }
   }
-  for (int r = n - 1; r >= 0; --r) {
-    double s = rhs[r];
-    for (int c = r + 1; c < n; ++c) s -= a[r * n + c] * rhs[c];
-    rhs[r] = s / a[r * n + r];
-  }
+  for (int k = 0; k < m; ++k)
+    for (int r = n - 1; r >= 0; --r) {
+      double s = rhs[r * m + k];
+      for (int c = r + 1; c < n; ++c) s -= a[r * n + c] * rhs[c * m + k];
+      rhs[r * m + k] = s / a[r * n + r];
+    }
   return true;
 }
 

@@ -5,8 +5,9 @@
 
 namespace seasim {
 
-// a: n x n, row-major; a and rhs are overwritten and the solution is left in rhs. Returns false (rhs
-// then undefined) when a pivot is 0 or not finite: the system is singular.
-bool solveLinear(std::vector<double>& a, std::vector<double>& rhs, int n);
+// a: n x n, row-major; rhs: n x columns, row-major (columns right-hand sides, one elimination for them
+// all). a and rhs are overwritten and the solutions are left in rhs. Returns false (rhs then undefined)
+// when a pivot is 0 or not finite: the system is singular.
+bool solveLinear(std::vector<double>& a, std::vector<double>& rhs, int n, int columns = 1);
 
 }  // namespace seasim

@@ -61,8 +61,8 @@ std::vector<double> azimuthLegendre(int mode, int count, double x) {
 }
 
 // The boundary and particular systems: singular only for a degenerate medium the checks above exclude.
-void solveOrThrow(std::vector<double>& a, std::vector<double>& rhs, int n) {
-  if (!solveLinear(a, rhs, n)) throw std::runtime_error("discrete ordinates: singular system");
+void solveOrThrow(std::vector<double>& a, std::vector<double>& rhs, int n, int columns = 1) {
+  if (!solveLinear(a, rhs, n, columns)) throw std::runtime_error("discrete ordinates: singular system");
 }
 
 // Eigen-decomposition of a symmetric n x n matrix (row-major, destroyed) by cyclic Jacobi rotations:
@@ -286,8 +286,9 @@ DiscreteOrdinates::DiscreteOrdinates(const DiscreteOrdinatesLayer& layer, int st
   }
 
   // Boundary conditions. Top: L+(0) = R L-(0) + the sky through the window, (1 - R) n² L_sky, scaled to
-  // e_sky0. Bottom: L-(H) = (ρ/π) (E_d(H) + s e_sun0 e^{-m H}), s the share of the beam it reflects. The uniform sky and the Lambertian bottom
-  // have no cos φ part: mode 1 sees neither (the surface reflects it as any radiance).
+  // e_sky0. Bottom: L-(H) = (ρ/π) (E_d(H) + s e_sun0 e^{-m H}), s the share of the beam it reflects. The
+  // uniform sky and the Lambertian bottom have no cos φ part: mode 1 sees neither (the surface reflects it
+  // as any radiance).
   std::vector<double> refl(n), sky(n);
   double sky_unit = 0;
   for (int i = 0; i < n; ++i) {
@@ -314,7 +315,10 @@ DiscreteOrdinates::DiscreteOrdinates(const DiscreteOrdinatesLayer& layer, int st
       }
       flux_p += w_[k] * mu_[k] * z_plus_[k];
     }
-    std::vector<double> sys(n2 * n2, 0.0), rhs(n2, 0.0);
+    // Two right-hand sides, one elimination: column 0 the whole field; column 1 the part the bottom's
+    // reflection of the whole beam brings, that source alone (tiltedIrradianceProfile's bottom_beam; the
+    // field is linear in bottom_sunlit).
+    std::vector<double> sys(n2 * n2, 0.0), rhs(n2 * 2, 0.0);
     for (int i = 0; i < n; ++i) {
       for (int j = 0; j < n; ++j) {
         const double e = std::exp(-lambda_[j] * bottom_);
@@ -323,20 +327,16 @@ DiscreteOrdinates::DiscreteOrdinates(const DiscreteOrdinatesLayer& layer, int st
         sys[(n + i) * n2 + j] = e * (x_minus_[i * n + j] - 2 * rho * flux_dec[j]);
         sys[(n + i) * n2 + n + j] = x_plus_[i * n + j] - 2 * rho * flux_grow[j];
       }
-      rhs[i] = sky[i] - (z_plus_[i] - refl[i] * z_minus_[i]);
-      rhs[n + i] = rho / kPi * layer.bottom_sunlit * e_sun0_ * em - ep * (z_minus_[i] - 2 * rho * flux_p);
+      rhs[2 * i] = sky[i] - (z_plus_[i] - refl[i] * z_minus_[i]);
+      rhs[2 * (n + i)] = rho / kPi * layer.bottom_sunlit * e_sun0_ * em - ep * (z_minus_[i] - 2 * rho * flux_p);
+      rhs[2 * (n + i) + 1] = rho / kPi * e_sun0_ * em;
     }
-    // The part of the field the bottom's reflection of the whole beam brings: the same boundary system with
-    // that source alone (tiltedIrradianceProfile's bottom_beam; the field is linear in bottom_sunlit).
-    std::vector<double> sys_bottom = sys, rhs_bottom(n2, 0.0);
-    for (int i = 0; i < n; ++i) rhs_bottom[n + i] = rho / kPi * e_sun0_ * em;
-    solveOrThrow(sys, rhs, n2);
-    std::copy(rhs.begin(), rhs.begin() + n, c_decay_.begin());
-    std::copy(rhs.begin() + n, rhs.end(), c_grow_.begin());
-    if (rho > 0 && e_sun0_ > 0) {
-      solveOrThrow(sys_bottom, rhs_bottom, n2);
-      std::copy(rhs_bottom.begin(), rhs_bottom.begin() + n, c_decay_bottom_.begin());
-      std::copy(rhs_bottom.begin() + n, rhs_bottom.end(), c_grow_bottom_.begin());
+    solveOrThrow(sys, rhs, n2, 2);
+    for (int j = 0; j < n; ++j) {
+      c_decay_[j] = rhs[2 * j];
+      c_grow_[j] = rhs[2 * (n + j)];
+      c_decay_bottom_[j] = rhs[2 * j + 1];
+      c_grow_bottom_[j] = rhs[2 * (n + j) + 1];
     }
   } else {
     std::vector<double> sys(n * n, 0.0), rhs(n, 0.0);

@@ -33,29 +33,31 @@ struct Fit {
 
 // Weighted least squares of `targets` targets (target(t, s): target t at depth sample s) on the basis
 // functions `columns` (0, 1, 2 of the basis; the others left 0), the residual at sample s weighted by
-// weight[s], by one set of normal equations for them all.
+// weight[s], by one set of normal equations for them all (one elimination, a right-hand side each).
 template <class Target>
 std::vector<Fit> fitWeighted(const Basis& basis, const std::vector<int>& columns, const std::vector<double>& weight,
                              int targets, Target target) {
   const int n = static_cast<int>(columns.size());
-  std::vector<double> normal(n * n, 0.0), a, rhs(n);
+  std::vector<double> normal(n * n, 0.0);
   for (size_t s = 0; s < basis.size(); ++s) {
     const double w2 = weight[s] * weight[s];
     for (int r = 0; r < n; ++r)
       for (int c = 0; c < n; ++c) normal[r * n + c] += w2 * basis[s][columns[r]] * basis[s][columns[c]];
   }
-  std::vector<Fit> fits(targets);
-  for (int t = 0; t < targets; ++t) {
-    std::fill(rhs.begin(), rhs.end(), 0.0);
+  // Every target a right-hand side of the one system, solved by one elimination.
+  std::vector<double> rhs(size_t(n) * targets, 0.0);
+  for (int t = 0; t < targets; ++t)
     for (size_t s = 0; s < basis.size(); ++s) {
       const double w2t = weight[s] * weight[s] * target(t, int(s));
-      for (int r = 0; r < n; ++r) rhs[r] += w2t * basis[s][columns[r]];
+      for (int r = 0; r < n; ++r) rhs[size_t(r) * targets + t] += w2t * basis[s][columns[r]];
     }
-    a = normal;
+  const bool solved = solveLinear(normal, rhs, n, targets);
+  std::vector<Fit> fits(targets);
+  for (int t = 0; t < targets; ++t) {
     Fit& f = fits[t];
-    f.solved = solveLinear(a, rhs, n);
+    f.solved = solved;
     if (f.solved)
-      for (int r = 0; r < n; ++r) f.c[columns[r]] = rhs[r];
+      for (int r = 0; r < n; ++r) f.c[columns[r]] = rhs[size_t(r) * targets + t];
     for (size_t s = 0; s < basis.size(); ++s) {
       const double v = f.c[0] * basis[s][0] + f.c[1] * basis[s][1] + f.c[2] * basis[s][2];
       f.error = std::max(f.error, std::abs(v - target(t, int(s))) * weight[s]);

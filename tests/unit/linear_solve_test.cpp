@@ -21,6 +21,24 @@ TEST(LinearSolve, SolvesASystemThatNeedsPivoting) {
   for (int i = 0; i < 3; ++i) EXPECT_NEAR(rhs[i], x[i], 1e-14);
 }
 
+// Several right-hand sides in one elimination: each column the solution the system gives it alone, to the
+// last bit (the same operations in the same order).
+TEST(LinearSolve, SolvesSeveralRightHandSidesAsEachAlone) {
+  const std::vector<double> a0 = {0, 2, 1, 1, 1, 1, 4, -1, 2};
+  const std::vector<std::vector<double>> rhss = {{3, 2, 12}, {1, 0, -1}, {0.5, -7, 3.25}};
+  std::vector<double> a = a0, many(9);
+  for (int i = 0; i < 3; ++i)
+    for (int k = 0; k < 3; ++k) many[i * 3 + k] = rhss[k][i];
+  ASSERT_TRUE(seasim::solveLinear(a, many, 3, 3));
+  for (int k = 0; k < 3; ++k) {
+    std::vector<double> alone_a = a0, alone = rhss[k];
+    ASSERT_TRUE(seasim::solveLinear(alone_a, alone, 3));
+    for (int i = 0; i < 3; ++i) EXPECT_EQ(many[i * 3 + k], alone[i]) << k << " " << i;
+  }
+  std::vector<double> dependent = {1, 2, 2, 4}, two = {1, 0, 2, 0};
+  EXPECT_FALSE(seasim::solveLinear(dependent, two, 2, 2));
+}
+
 TEST(LinearSolve, ReportsSingularSystems) {
   std::vector<double> dependent = {1, 2, 2, 4}, rhs = {1, 2};
   EXPECT_FALSE(seasim::solveLinear(dependent, rhs, 2));
