@@ -182,6 +182,9 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
   const float s_spread = fmin(S, 1e4f);
 #endif
   for (int i = 0; i < band_count; i += SEASIM_BAND_LANES) {
+    /* The sensor's weights of these bands (002 eq. 4.8; the padding bands' are 0). */
+    const realb w_r_band = LOADB(ROW(UW_ROW_W_R), i), w_g_band = LOADB(ROW(UW_ROW_W_G), i),
+                w_b_band = LOADB(ROW(UW_ROW_W_B), i);
     const UwiLanes v = uwi_lanes_load(band_table, stride, uwi_row0, i);
     /* The in-scatter's integrals start at the camera (per-frame rows: o_d is the frame's) and end at the
      * hit, whose exps a Lambertian hit shares. */
@@ -217,8 +220,6 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
     const realb fwd = fwd_hit + L * share_in;
     const realb cnt = hit * (delta * s_spread) + L * count_in;
     const realb fwd_depth = fwd_hit * s_spread + L * depth_in;
-    const realb w_r_band = LOADB(ROW(UW_ROW_W_R), i), w_g_band = LOADB(ROW(UW_ROW_W_G), i),
-                w_b_band = LOADB(ROW(UW_ROW_W_B), i);
     fwd_r += fwd * w_r_band;
     fwd_g += fwd * w_g_band;
     fwd_b += fwd * w_b_band;
@@ -236,6 +237,9 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
 #endif
 #else
   for (int i = 0; i < band_count; i += SEASIM_BAND_LANES) {
+    /* The sensor's weights of these bands (002 eq. 4.8; the padding bands' are 0). */
+    const realb w_r_band = LOADB(ROW(UW_ROW_W_R), i), w_g_band = LOADB(ROW(UW_ROW_W_G), i),
+                w_b_band = LOADB(ROW(UW_ROW_W_B), i);
     const realb c = LOADB(ROW(UW_ROW_C), i);
     const realb kd = LOADB(ROW(UW_ROW_KD), i);
     const realb k_beam = LOADB(ROW(UW_ROW_K_BEAM), i);
@@ -254,10 +258,10 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
                             n_dot_s, vis);
     }
 #endif /* SEASIM_UNDERWATER_MODEL */
-    /* 002 eq. 4.8; the padding bands' weights are 0. */
-    r_lanes += L * LOADB(ROW(UW_ROW_W_R), i);
-    g_lanes += L * LOADB(ROW(UW_ROW_W_G), i);
-    b_lanes += L * LOADB(ROW(UW_ROW_W_B), i);
+    /* 002 eq. 4.8. */
+    r_lanes += L * w_r_band;
+    g_lanes += L * w_g_band;
+    b_lanes += L * w_b_band;
 #if SEASIM_SPECTRAL_OUTPUT
     store_lanes(L, spectral + (size_t)pixel * band_count + i, band_count - i);
 #endif

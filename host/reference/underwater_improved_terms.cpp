@@ -79,8 +79,10 @@ std::vector<UwiPixelTerms> improvedModelTerms(const UnderwaterSetup& s, bool mul
           if (froxels) t.froxel_ss += w * v.froxel_ss;
         }
         const double T = std::exp(-double(ib.c_dm) * S);
-        // The share of T(S) that was scattered by small angles (delta-M's peak): 1 - e^{-(c - c') S}.
-        const double small_angle = -std::expm1(-(double(b.c) - double(ib.c_dm)) * std::min(S, 1e4));
+        // The share of T(S) that was scattered by small angles (delta-M's peak): 1 - e^{-(c - c') S}, as
+        // kd_multiple.cl takes it (common/water_spread.h).
+        const double small_angle =
+            kd::uws_hit_share_b(kd::uws_expm1_neg_b((double(b.c) - double(ib.c_dm)) * std::min(S, 1e4)));
         if (mat_m >= 0) mirror.albedo = s.albedo[size_t(mat_m) * p.band_count + i];
         if (mat == UW_MAT_SURFACE) {
           // uwi_surface, its two parts apart (the reflected ray ends on the object in the mirror, if any).

@@ -161,8 +161,8 @@ class WaterSpreadNode : public Pass {
       throw RuntimeError("plan: the water_spread pass needs kd_multiple planned with SEASIM_UWI_SPREAD=1");
     RadianceTarget& target = res.read<RadianceTarget>("rgb");
     const bool spectral = ctx.scene().spectral.spectral_exr;
-    ctx.timings.push_back({"water_spread", pass_->run(gbuffer.geometry(), gbuffer.forwardDepth(), gbuffer.forwardRgb(), target.rgb,
-                                                      spectral ? &gbuffer.forwardSpectral() : nullptr,
+    ctx.timings.push_back({"water_spread", pass_->run(gbuffer.geometry(), gbuffer.forwardDepth(), gbuffer.forwardRgb(),
+                                                      target.rgb, spectral ? &gbuffer.forwardSpectral() : nullptr,
                                                       spectral ? &target.spectral : nullptr)});
   }
 
