@@ -7,6 +7,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <utility>
 #include <algorithm>
 #include <vector>
 #include <stdexcept>
@@ -70,11 +72,12 @@ TEST(DiscreteOrdinates, AgreesWithTheIndependentSolution) {
 // solver's slowest mode must be it, and with HG the python solution's eigenvalue (0.1336 at g = 0.95).
 TEST(DiscreteOrdinates, SlowestModeIsTheAsymptoticK) {
   // (Below ω ≈ 0.3 κ is within 1e-3 of 1, beyond the largest cosine's 1/μ: the discrete eigenvalue then
-  // sits at the quadrature's edge, not at κ.)
+  // sits at the quadrature's edge, not at κ. At ω = 0.5, 1/κ = 1.044 is near it: the window's 8 nodes of
+  // the split quadrature, the largest at 0.9934, give κ within 1.6e-6.)
   for (double omega : {0.5, 0.75, 0.95, 0.99}) {
     DiscreteOrdinatesLayer l = studyLayer(1 - omega, omega, 0.0, 0);
     const DiscreteOrdinates d(l, 16);
-    EXPECT_NEAR(d.asymptoticK(), seasim::isotropicAsymptoticKappa(omega), 1e-6) << omega;
+    EXPECT_NEAR(d.asymptoticK(), seasim::isotropicAsymptoticKappa(omega), omega > 0.5 ? 1e-6 : 2e-6) << omega;
   }
   EXPECT_NEAR(DiscreteOrdinates(studyLayer(0.1, 0.3, 0.95, 0), 16).asymptoticK(), 0.13365, 2e-4);
   EXPECT_NEAR(DiscreteOrdinates(studyLayer(0.4, 1.2, 0.9, 0), 16).asymptoticK(), 0.6084, 6e-4);
@@ -277,3 +280,42 @@ TEST(DiscreteOrdinates, InscatterClosesTheTransferEquation) {
 }
 
 }  // namespace
+
+// At the kernel's delta-M order (3 moments) the quadrature is split at the edge of Snell's window, half
+// the nodes each side: the cosines fall on either side of μ_c and the weights integrate [0, 1]. With the
+// split the field converges in the streams (one Gauss rule over (0, 1) moved the regions' ratios by
+// several % between 8, 12, 16 and 32 streams, BENCHMARKS s12): the irradiances and the in-scatter
+// towards near-horizontal and vertical directions at 8–24 streams against 48.
+TEST(DiscreteOrdinates, SplitQuadratureConvergesInTheStreams) {
+  const double mu_c = std::sqrt(1 - 1 / (1.34 * 1.34));
+  struct Case { double a, b, g, bottom; };
+  const std::vector<double> nus = {-1.0, -0.6, -0.1, 0.0, 0.1, 0.6, 1.0};
+  double worst_e = 0, worst_j = 0;
+  for (const Case c : {Case{0.03, 0.05, 0.9, 0}, Case{0.1, 0.3, 0.95, 5}, Case{0.4, 1.2, 0.5, 2},
+                       Case{0.4, 1.2, 0.95, 0}}) {
+    const DiscreteOrdinatesLayer l = studyLayer(c.a, c.b, c.g, c.bottom);
+    const double depth_end = c.bottom > 0 ? c.bottom : 8.0;
+    const DiscreteOrdinates ref(l, 48, 0, 3);
+    const auto e_ref = ref.profile(depth_end, 5);
+    const auto j_ref = ref.inscatterProfile(nus, depth_end, 5);
+    for (int streams : {8, 12, 16, 24}) {
+      const DiscreteOrdinates d(l, streams, 0, 3);
+      const std::vector<double>& mu = d.cosines();
+      EXPECT_LT(mu[streams / 2 - 1], mu_c);
+      EXPECT_GT(mu[streams / 2], mu_c);
+      const auto e = d.profile(depth_end, 5);
+      const auto j = d.inscatterProfile(nus, depth_end, 5);
+      for (int s = 0; s < 5; ++s) {
+        for (auto [x, r] : {std::pair{e[s].down, e_ref[s].down}, std::pair{e[s].up, e_ref[s].up},
+                            std::pair{e[s].scalar, e_ref[s].scalar}})
+          worst_e = std::max(worst_e, std::abs(x / r - 1));
+        for (size_t u = 0; u < nus.size(); ++u)
+          worst_j = std::max(worst_j, std::abs(j[s * nus.size() + u] / j_ref[s * nus.size() + u] - 1));
+      }
+    }
+  }
+  std::printf("split quadrature, 8-24 streams against 48: irradiances within %.2e, in-scatter within %.2e\n",
+              worst_e, worst_j);
+  EXPECT_LT(worst_e, 1e-2);
+  EXPECT_LT(worst_j, 1e-2);
+}
