@@ -174,6 +174,10 @@ struct UnderwaterDesc {
   // angles (the water_spread pass, kernels/common/water_spread.h). file: point_spread
   bool point_spread = true;
   Diffuse improved_diffuse = Diffuse::DiscreteOrdinates;
+  // "improved", discrete_ordinates only: the streams (and delta-M order) of the solution the view rays'
+  // source table is fitted to (underwater/ordinates_high_order.h); 0: the order-3 field's own in-scatter.
+  // Even, 8-64, or 0 (default kOrdinatesHighOrderStreams). file: improved_source_streams
+  int improved_source_streams = 32;
   // "improved", two_stream only: the diffuse streams' mean cosines in its in-scatter source; 0 = the fitted table
   // (diffuseMeanCosines, underwater_improved_setup.h). Set to refit it (tests/perf/underwater_regions_fit.sh).
   double improved_mean_cosine_down = 0.0;  // file: improved_mean_cosine_down

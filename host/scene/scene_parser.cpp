@@ -600,6 +600,12 @@ class SceneParser {
                              ? UnderwaterDesc::Diffuse::TwoStream
                              : UnderwaterDesc::Diffuse::DiscreteOrdinates;
     u.point_spread = r.boolean("point_spread", u.point_spread);
+    u.improved_source_streams =
+        static_cast<int>(r.integerIn("improved_source_streams", u.improved_source_streams, 0, 64));
+    r.check(u.improved_source_streams == 0 || (u.improved_source_streams >= 8 && u.improved_source_streams % 2 == 0),
+            "improved_source_streams",
+            "must be 0 (the order-3 field's own in-scatter) or an even number of streams in [8, 64], got " +
+                std::to_string(u.improved_source_streams));
     for (auto [key, value] : {std::pair{"improved_mean_cosine_down", &u.improved_mean_cosine_down},
                               std::pair{"improved_mean_cosine_up", &u.improved_mean_cosine_up},
                               std::pair{"improved_beam_mean_cosine_down", &u.improved_beam_mean_cosine_down},

@@ -161,6 +161,18 @@ double tiltedIrradianceKernel(int mode, double nu, double n_y) {
   }
 }
 
+double hgAzimuthMode(double g, int mode, double nu, double mu) {
+  requireRange(std::abs(g) < 1 && mode >= 0 && mode <= 2, "hgAzimuthMode: |g| < 1, mode 0, 1 or 2");
+  // Terms until g^l < 1e-10 (at g = 0.95, 449), at most 4000.
+  const int count = g == 0 ? 1 : std::clamp(static_cast<int>(std::ceil(std::log(1e-10) / std::log(std::abs(g)))) + 1,
+                                            mode + 1, 4000);
+  const std::vector<double> pn = azimuthLegendre(mode, count, std::clamp(nu, -1.0, 1.0));
+  const std::vector<double> pm = azimuthLegendre(mode, count, std::clamp(mu, -1.0, 1.0));
+  double sum = 0, gl = 1;
+  for (int l = 0; l < count; ++l, gl *= g) sum += (2 * l + 1) * gl * pn[l] * pm[l];
+  return (mode == 0 ? 1.0 : 2.0) * sum / (4 * kPi);
+}
+
 DiscreteOrdinates::DiscreteOrdinates(const DiscreteOrdinatesLayer& layer, int streams, int azimuth_mode,
                                      int phase_moments) {
   requireRange(streams >= 2, "at least 2 streams per hemisphere");

@@ -50,6 +50,11 @@ struct DiscreteOrdinatesIrradiance {
 // (φ_n the azimuth of -n). Closed form over the arc where the cosine factor is positive.
 double tiltedIrradianceKernel(int mode, double nu, double n_y);
 
+// The Henyey-Greenstein phase between downward cosines nu and mu in azimuth mode 0, 1 or 2, as the
+// coefficient of cos(m Δφ): (2 - δ_m0) Σ_l (2l + 1) g^l q_l^m(ν) q_l^m(μ) / (4π) (the addition theorem,
+// q_l^m the normalised associated Legendre functions), summed until g^l < 1e-10. Per sr.
+double hgAzimuthMode(double g, int mode, double nu, double mu);
+
 class DiscreteOrdinates {
  public:
   // streams: cosines per hemisphere, >= 2. azimuth_mode: 0 the azimuth-averaged radiance (down, up,

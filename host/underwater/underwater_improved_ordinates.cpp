@@ -10,6 +10,7 @@
 #include "math/kernel_math.h"
 #include "math/linear_solve.h"
 #include "underwater/discrete_ordinates.h"
+#include "underwater/ordinates_high_order.h"
 #include "underwater/underwater_improved_setup.h"
 
 namespace seasim {
@@ -161,16 +162,33 @@ ModeProfiles modeProfiles(const DiscreteOrdinates& field, const DiscreteOrdinate
 }
 
 // The discrete ordinates' in-scatter (azimuth modes 0, 1, 2; field_h, field_h2 null: only mode 0) at the
-// source table's cosines, fitted per cosine: UwiBand.src.
+// source table's cosines, fitted per cosine: UwiBand.src. With source_streams > 0 the table is then fitted
+// to the radiance of the solution at that order (ordinates_high_order.h), but near the beam's direction;
+// the error returned is the order-3 fit's.
 double fitSourceTable(const DiscreteOrdinates& field, const DiscreteOrdinates* field_h,
                       const DiscreteOrdinates* field_h2, double depth_end, double k, double m, bool bottom,
-                      UwiBand& o) {
+                      UwiBand& o, const DiscreteOrdinatesLayer& layer, double c_kernel, double view_depth,
+                      int source_streams) {
   std::vector<double> nus(UWI_SOURCE_NODES);
   for (int j = 0; j < UWI_SOURCE_NODES; ++j) nus[j] = kmath_d::uwi_source_node_cosine(j);
   const ModeProfiles profiles = modeProfiles(field, field_h, field_h2, [&](const DiscreteOrdinates& f) {
     return f.inscatterProfile(nus, depth_end, kDepthSamples);
   });
-  return fitModeTable(profiles, UWI_SOURCE_NODES, depth_end, k, m, bottom, o.src);
+  const double error = fitModeTable(profiles, UWI_SOURCE_NODES, depth_end, k, m, bottom, o.src);
+  if (source_streams > 0) {
+    const int modes = field_h ? 3 : 1;
+    const HighOrderField high = solveHighOrderField(layer, source_streams, modes, nus, depth_end);
+    SourceTableBasis basis;
+    basis.k = k;
+    basis.m = m;
+    basis.c_kernel = c_kernel;
+    basis.bottom_depth = bottom ? depth_end : 0.0;
+    basis.depth_end = depth_end;
+    basis.view_depth = view_depth;
+    basis.samples = kDepthSamples;
+    fitSourceTableToField(high, nus, basis, layer.mu_sun, layer.e_sun0 > 0, o.src, UWI_SOURCE_TERMS);
+  }
+  return error;
 }
 
 // The discrete ordinates' irradiance on tilted planes (azimuth modes 0, 1, 2) at the table's normals,
@@ -210,7 +228,7 @@ double fitTiltTable(const DiscreteOrdinates& field, const DiscreteOrdinates* fie
 }  // namespace
 
 UwiBand makeUwiBandFromOrdinates(const UwBand& band, double g, double mu_w, double bottom_depth, double ior,
-                                 double view_depth, int streams, OrdinatesFitError* fit) {
+                                 double view_depth, int streams, OrdinatesFitError* fit, int source_streams) {
   const double a = band.a, b = band.b;
   // The kernel's delta-M is the solver's (kOrdinatesSourceMoments: f = g³ for g > 0), its beam
   // e_beam0 e^{-m y}, m = c'/μ_w: the view rays' source is the solver's in-scatter in that frame.
@@ -301,20 +319,21 @@ UwiBand makeUwiBandFromOrdinates(const UwBand& band, double g, double mu_w, doub
   // The source view rays gather: the solver's own in-scatter at the table's cosines, in the same
   // exponentials (the kernel's delta-M is the solver's: c' = ĉ, the beam's m its own).
   const double source_error = fitSourceTable(field, azimuth ? &field_h : nullptr, azimuth ? &field_h2 : nullptr,
-                                             depth_end, best_k, m, H > 0, o);
+                                             depth_end, best_k, m, H > 0, o, layer, c_dm, view_depth, source_streams);
   const double tilt_error = fitTiltTable(field, azimuth ? &field_h : nullptr, azimuth ? &field_h2 : nullptr,
                                          depth_end, best_k, m, H > 0, o);
   if (fit) *fit = OrdinatesFitError{fd.error, fu.error, fo.error, fh.error, source_error, tilt_error};
   return o;
 }
 
-std::vector<UwiBand> makeUwiBandsFromOrdinates(const UwParams& params, const std::vector<UwBand>& bands) {
+std::vector<UwiBand> makeUwiBandsFromOrdinates(const UwParams& params, const std::vector<UwBand>& bands,
+                                               int source_streams) {
   const double view_depth = diffuseViewDepth(params);
   // Bands are independent (1.5–1.8 ms each at 16 streams on one core, results/BENCHMARKS.md s9b): in parallel.
   std::vector<UwiBand> out(bands.size());
   tbb::parallel_for(size_t(0), bands.size(), [&](size_t i) {
     out[i] = makeUwiBandFromOrdinates(bands[i], params.g, params.sun_dir_water[1], params.bottom_depth, params.ior,
-                                      view_depth);
+                                      view_depth, 16, nullptr, source_streams);
   });
   return out;
 }

@@ -11,12 +11,15 @@
 // decays faster than its asymptotic K∞). E_d and E_u light the surfaces; E_0 and F_h are kept for the
 // record (the two-stream's first-order source uses its own).
 //
-// The view rays' source (s9b) is the solver's own in-scatter towards UWI_SOURCE_NODES (129) cosines, azimuth modes 0–2
-// (DiscreteOrdinates::inscatterProfile), fitted per cosine over the same depths to the same three
+// The view rays' source (s9b) is the solver's own in-scatter towards UWI_SOURCE_NODES (129) cosines, azimuth
+// modes 0–2 (DiscreteOrdinates::inscatterProfile), fitted per cosine over the same depths to the same three
 // exponentials: UwiBand.src. The solver runs at the delta-M order kOrdinatesSourceMoments, the one number
 // fitted to the path tracer, and the kernel's delta-M is the solver's (c' its ĉ, m its beam's): the view
 // rays integrate the source in the frame it was computed in. At order 3 the phase has three Legendre
-// terms, so azimuth modes 0–2 are all the in-scatter has, and the table holds it whole.
+// terms, so azimuth modes 0–2 are all the in-scatter has, and the table holds it whole. Since s12 (the
+// default, underwater.improved_source_streams) the table is then fitted instead to the radiance of a
+// solution at a high delta-M order, carried with the kernel's c' (ordinates_high_order.h), but towards
+// the beam's direction, where the order-3 in-scatter stays.
 //
 // The objects' faces are lit by the solver's irradiance on their tilted plane (DiscreteOrdinates::
 // tiltedIrradianceProfile, azimuth modes 0–2 at UWI_TILT_NODES normals), fitted the same way: UwiBand.tilt.
@@ -43,14 +46,22 @@ struct OrdinatesFitError {
   double tilt = 0;    // the tilted plane's irradiance table's (the same; its end nodes are E_d's and E_u's)
 };
 
+// The streams (and delta-M order) of the solution the view rays' source is fitted to (s12: 16 to 48 gave
+// the same regions; ordinates_high_order.h); underwater.improved_source_streams. 0: the order-3 field's
+// own in-scatter (s9b-s11).
+inline constexpr int kOrdinatesHighOrderStreams = 32;
+
 // One band. mu_w: the refracted sun's cosine (any value in (0, 1] when the sun is off); bottom_depth <= 0:
 // no bottom; view_depth: the camera's depth (diffuseViewDepth). streams: the discrete ordinates'
-// cosines per hemisphere. fit (optional): the fit's errors.
+// cosines per hemisphere. fit (optional): the fit's errors (the source's: of the order-3 field's own
+// in-scatter). source_streams: kOrdinatesHighOrderStreams' meaning.
 UwiBand makeUwiBandFromOrdinates(const UwBand& band, double g, double mu_w, double bottom_depth, double ior,
-                                 double view_depth, int streams = 16, OrdinatesFitError* fit = nullptr);
+                                 double view_depth, int streams = 16, OrdinatesFitError* fit = nullptr,
+                                 int source_streams = kOrdinatesHighOrderStreams);
 
 // All bands of a set-up (params.g, bottom_depth, ior, sun_dir_water[1], the camera's depth of
 // diffuseViewDepth).
-std::vector<UwiBand> makeUwiBandsFromOrdinates(const UwParams& params, const std::vector<UwBand>& bands);
+std::vector<UwiBand> makeUwiBandsFromOrdinates(const UwParams& params, const std::vector<UwBand>& bands,
+                                               int source_streams = kOrdinatesHighOrderStreams);
 
 }  // namespace seasim

@@ -142,7 +142,7 @@ UnderwaterSetup makeUnderwaterSetup(const Scene& scene, const WavelengthGrid& gr
     // The camera's depth enters k here (diffuseViewDepth): set per frame, with the camera.
     s.improved = uw.improved_diffuse == UnderwaterDesc::Diffuse::TwoStream
                      ? makeUwiBands(p, s.bands, mean, closure, uw.improved_asymptotic_share, uw.improved_flux_scale)
-                     : makeUwiBandsFromOrdinates(p, s.bands);
+                     : makeUwiBandsFromOrdinates(p, s.bands, uw.improved_source_streams);
   }
   p.object_count = static_cast<int>(s.objects.size());
   if (s.objects.empty()) s.objects.push_back(UwObject{});  // OpenCL buffers cannot be empty

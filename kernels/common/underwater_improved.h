@@ -27,6 +27,9 @@
  *  - the in-scatter source J(y, ν, Δφ) that view rays gather, tabulated per band in the photon's
  *    direction (UwiBand.src, common/underwater_improved_params.h: ν its cosine with the downward
  *    vertical, Δφ its azimuth from the sun beam's, uwi_cos_azimuth), per exponential of depth. By default
+ *    (s12, underwater.improved_source_streams; host/underwater/ordinates_high_order.h) fitted on the host
+ *    to the light a 32-stream solution's radiance gathers along rays with this kernel's c' (the kernel
+ *    reads it as any table), but within 10-20° of the beam's polar angle, where it stays, as before s12,
  *    the discrete ordinates' own in-scatter: their three-term phase against their radiance in azimuth
  *    modes 0, 1 and 2 (all that phase scatters into) at 129 cosines (a ray reads the nearest), fitted per cosine to the same three
  *    exponentials: DISORT's intensities at user angles (the source-function integration of Stamnes et

@@ -492,6 +492,13 @@ const BadScene kBadScenes[] = {
      "bad.toml:2: key 'underwater.point_spread': expected true or false, got a string"},
     {"typo in point_spread", "[underwater]\npoint_spred = false\n",
      "bad.toml:2: key 'underwater.point_spred': unknown key; did you mean 'point_spread'?"},
+    {"odd source streams", "[underwater]\nimproved_source_streams = 17\n",
+     "bad.toml:2: key 'underwater.improved_source_streams': must be 0 (the order-3 field's own in-scatter) or an even "
+     "number of streams in [8, 64], got 17"},
+    {"too many source streams", "[underwater]\nimproved_source_streams = 128\n",
+     "bad.toml:2: key 'underwater.improved_source_streams'"},
+    {"source streams as a string", "[underwater]\nimproved_source_streams = \"32\"\n",
+     "bad.toml:2: key 'underwater.improved_source_streams'"},
     {"typo in [underwater]", "[underwater]\nsingle_scatering = false\n",
      "bad.toml:2: key 'underwater.single_scatering': unknown key; did you mean 'single_scattering'?"},
     {"typo'd key", "[sun]\nzenith_dg = 40\n",

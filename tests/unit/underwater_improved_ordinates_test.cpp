@@ -156,9 +156,9 @@ TEST(UnderwaterImprovedOrdinates, CosAzimuth) {
 
 namespace {
 
-// The kernel's radiance from a discrete-ordinates band (uwi_band_radiance, double: the source's table
-// integrated along the view with c', the surface and the bottom at the ray's end) against the
-// solver's own radiance at its cosines, for the same delta-M order, 2 m down, looking down into deep
+// The kernel's radiance from a discrete-ordinates band with the order-3 source (uwi_band_radiance, double:
+// the source's table integrated along the view with c', the surface and the bottom at the ray's end)
+// against the solver's own radiance at its cosines, for the same delta-M order, 2 m down, looking down into deep
 // water or onto a 5 m bottom and up at the surface. Lit by the sky alone at g = 0.9 (no beam: the
 // source is the solver's in-scatter and nothing else), and by the sun and the sky at g = 0 (the TMS term's
 // exact phase is then the solver's). Measures what the table's exponential fit and its linear
@@ -174,7 +174,9 @@ TEST(UnderwaterImprovedOrdinates, SourceTableGivesTheSolversRadiance) {
   for (const Light& light : {Light{0.9, sky_e, 0.0}, Light{0.0, sky_e, 0.85}})
     for (double H : {0.0, 5.0}) {
       const UwBand band = uwTestBand(0.1, 0.3, light.e_sky0, light.e_sun0, kMuW, 0.35);
-      const UwiBand ib = makeUwiBandFromOrdinates(band, light.g, kMuW, H, 1.34, y);
+      // The order-3 field's own in-scatter (source_streams 0): ordinates_high_order_test.cpp holds the
+      // default table to the high-order field's radiance.
+      const UwiBand ib = makeUwiBandFromOrdinates(band, light.g, kMuW, H, 1.34, y, 16, nullptr, 0);
       const DiscreteOrdinates field(layerOf(band, light.g, H), 16, 0, seasim::kOrdinatesSourceMoments);
       std::vector<double> down, up;
       field.radiances(y, down, up);
