@@ -317,7 +317,8 @@ UwiBand makeUwiBandFromOrdinates(const UwBand& band, double g, double mu_w, doub
   store(fo, o.o1, o.o2, o.op);
   store(fh, o.h1, o.h2, o.hp);
   // The source view rays gather: the solver's own in-scatter at the table's cosines, in the same
-  // exponentials (the kernel's delta-M is the solver's: c' = ĉ, the beam's m its own).
+  // exponentials (the kernel's delta-M is the solver's: c' = ĉ, the beam's m its own); by default then
+  // refitted to the high-order solution's radiance (source_streams; ordinates_high_order.h).
   const double source_error = fitSourceTable(field, azimuth ? &field_h : nullptr, azimuth ? &field_h2 : nullptr,
                                              depth_end, best_k, m, H > 0, o, layer, c_dm, view_depth, source_streams);
   const double tilt_error = fitTiltTable(field, azimuth ? &field_h : nullptr, azimuth ? &field_h2 : nullptr,
