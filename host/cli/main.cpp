@@ -164,7 +164,7 @@ int main(int argc, char** argv) {
   regions->add_option("--waters", regions_cmd.waters, "a:b pairs in 1/m")->delimiter(',');
   regions->add_option("--g", regions_cmd.gs, "HG asymmetries")->delimiter(',');
   regions->add_option("--depths", regions_cmd.depths, "Bottom depths in m (0: no bottom)")->delimiter(',');
-  regions->add_option("--views", regions_cmd.views, "level, up, down")->delimiter(',');
+  regions->add_option("--views", regions_cmd.views, "level, up, down, sun (at the refracted sun)")->delimiter(',');
   regions->add_option("--models", regions_cmd.models, "underwater.model values")->delimiter(',');
   regions->add_option("--spp", regions_cmd.spp, "Path-tracer samples per pixel");
   regions->add_flag("--jitter", regions_cmd.jitter,

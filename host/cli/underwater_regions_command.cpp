@@ -45,8 +45,9 @@ std::string num(double v) {
 // The scene's geometry (tests/perf/underwater_regions.toml, scenes/seabed.toml's) at bottom depth
 // `depth` (0: no bottom, the rocks as at 5 m), camera 1.2 m above the bottom, looking as `view` says:
 // "level" (the seabed view, slightly down: bottom near and far, rocks, water up), "up" (30° up: the
-// water looking up and Snell's window), "down" (45° down: the near bottom, or deep water).
-std::vector<Override> geometry(double depth, const std::string& view) {
+// water looking up and Snell's window), "down" (45° down: the near bottom, or deep water), "sun" (at
+// the refracted sun, sun_w its direction in the water: the beam's forward peak, Snell's window).
+std::vector<Override> geometry(double depth, const std::string& view, const double sun_w[3]) {
   const double h = depth > 0 ? depth : 5.0;
   const double cam_y = -(h - 1.2);
   std::vector<Override> o = {set("camera.position", "[0.0, " + num(cam_y) + ", 0.0]"),
@@ -59,10 +60,16 @@ std::vector<Override> geometry(double depth, const std::string& view) {
     o.push_back(set("bottom.albedo", "0.35"));  // sand (not a key of type = "none")
   }
   else o.push_back(set("bottom.type", "\"none\""));
+  if (view == "sun") {
+    o.push_back(set("camera.look_at",
+                    "[" + num(8 * sun_w[0]) + ", " + num(cam_y + 8 * sun_w[1]) + ", " + num(8 * sun_w[2]) + "]"));
+    return o;
+  }
   double dy = -0.7;  // level: scenes/seabed.toml's look_at 0.7 m lower, 8 m ahead
   if (view == "up") dy = 8.0 * std::tan(30.0 * M_PI / 180.0);
   else if (view == "down") dy = -8.0;
-  else if (view != "level") throw RuntimeError("underwater-regions: unknown view '" + view + "' (level, up, down)");
+  else if (view != "level")
+    throw RuntimeError("underwater-regions: unknown view '" + view + "' (level, up, down, sun)");
   o.push_back(set("camera.look_at", "[0.0, " + num(cam_y + dy) + ", -8.0]"));
   return o;
 }
@@ -133,7 +140,18 @@ int cmdUnderwaterRegions(const UnderwaterRegionsCmd& cmd) {
     for (double g : cmd.gs)
       for (double depth : cmd.depths)
         for (const std::string& view : cmd.views) {
-          std::vector<Override> base = geometry(depth, view);
+          // The refracted sun (Snell's law at the flat surface), from the scene with --set applied.
+          double sun_w[3] = {0, 1, 0};
+          if (view == "sun") {
+            std::vector<Override> sun_over;
+            for (const std::string& s : cmd.sets) sun_over.push_back(parseSetOption(s));
+            const Scene sun_scene = loadScene(cmd.scene, sun_over);
+            const double sin_w = std::sin(sun_scene.sun.zenith) / sun_scene.water.ior;
+            sun_w[0] = sin_w * std::cos(sun_scene.sun.azimuth);
+            sun_w[1] = std::sqrt(std::max(1 - sin_w * sin_w, 0.0));
+            sun_w[2] = sin_w * std::sin(sun_scene.sun.azimuth);
+          }
+          std::vector<Override> base = geometry(depth, view, sun_w);
           base.push_back(set("water.a", "[" + num(a) + ", " + num(a) + "]"));
           base.push_back(set("water.b", "[" + num(b) + ", " + num(b) + "]"));
           base.push_back(set("water.g", num(g)));
