@@ -269,4 +269,35 @@ TEST_F(UnderwaterRegionsDump, ForwardIsThePartOfTheHitsLightDeltaMCountsAsUnscat
   EXPECT_LT(forward, 0.95 * hit);
 }
 
+// --views sun turns the camera to the refracted sun: the frame's centre looks along the sun's direction in
+// the water (Snell's law from the scene's sun, 30° from the zenith, and its water's n = 1.333), so every
+// pixel sees the surface; an unknown view is refused, naming the ones there are.
+TEST_F(UnderwaterRegionsDump, SunViewLooksAtTheRefractedSun) {
+  const fs::path dump = dir_ / "dump_sun";
+  const std::string common = kBinary + " underwater-regions " + kRepo +
+                             "/tests/perf/underwater_regions.toml --waters 0.1:0.3 --g 0.5 --depths 5 --models improved"
+                             " --spp 4 --device pocl --set camera.width=32 --set camera.height=18 --cache " +
+                             (dir_ / "cache_sun").string();
+  const seasim_test::Result r = seasim_test::runCommand(common + " --views sun --dump " + dump.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  CsvRows csv = readCsvRows(dump / "a0.1_b0.3_g0.5_d5_sun.csv");
+  ASSERT_EQ(csv.rows.size(), 32u * 18u);
+  const double sin_w = 0.5 / 1.333, mu_w = std::sqrt(1 - sin_w * sin_w);
+  double centre = 0;
+  int centre_pixels = 0;
+  for (const auto& row : csv.rows) {
+    EXPECT_EQ(row[csv.col["region"]], "water_up");
+    const int x = std::stoi(row[csv.col["x"]]), y = std::stoi(row[csv.col["y"]]);
+    if ((x == 15 || x == 16) && (y == 8 || y == 9)) {
+      centre += std::stod(row[csv.col["d_y"]]);
+      ++centre_pixels;
+    }
+  }
+  ASSERT_EQ(centre_pixels, 4);
+  EXPECT_NEAR(centre / 4, mu_w, 0.03);
+  const seasim_test::Result bad = seasim_test::runCommand(common + " --views sideways");
+  EXPECT_NE(bad.code, 0);
+  EXPECT_NE(bad.output.find("unknown view 'sideways' (level, up, down, sun)"), std::string::npos) << bad.output;
+}
+
 }  // namespace
