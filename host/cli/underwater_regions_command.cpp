@@ -133,6 +133,16 @@ int cmdUnderwaterRegions(const UnderwaterRegionsCmd& cmd) {
   std::printf("%-5s %-5s %-4s %-5s %-5s %-8s %8s", "a", "b", "g", "depth", "view", "model", "kd ms");
   for (int r = 0; r < kUwRegionCount; ++r) std::printf(" %18s", uwRegionName(static_cast<UwRegion>(r)));
   std::printf("\n");
+  // The refracted sun ("sun" views), from the scene with --set applied: the same for every case.
+  double sun_w[3] = {0, 1, 0};
+  if (std::find(cmd.views.begin(), cmd.views.end(), "sun") != cmd.views.end()) {
+    std::vector<Override> sun_over;
+    for (const std::string& s : cmd.sets) sun_over.push_back(parseSetOption(s));
+    const Vec3 d = sunInWater(loadScene(cmd.scene, sun_over));
+    sun_w[0] = d.x;
+    sun_w[1] = d.y;
+    sun_w[2] = d.z;
+  }
   for (const std::string& water : cmd.waters) {
     const size_t colon = water.find(':');
     if (colon == std::string::npos) throw RuntimeError("underwater-regions: --waters wants a:b pairs, got '" + water + "'");
@@ -140,17 +150,6 @@ int cmdUnderwaterRegions(const UnderwaterRegionsCmd& cmd) {
     for (double g : cmd.gs)
       for (double depth : cmd.depths)
         for (const std::string& view : cmd.views) {
-          // The refracted sun (Snell's law at the flat surface), from the scene with --set applied.
-          double sun_w[3] = {0, 1, 0};
-          if (view == "sun") {
-            std::vector<Override> sun_over;
-            for (const std::string& s : cmd.sets) sun_over.push_back(parseSetOption(s));
-            const Scene sun_scene = loadScene(cmd.scene, sun_over);
-            const double sin_w = std::sin(sun_scene.sun.zenith) / sun_scene.water.ior;
-            sun_w[0] = sin_w * std::cos(sun_scene.sun.azimuth);
-            sun_w[1] = std::sqrt(std::max(1 - sin_w * sin_w, 0.0));
-            sun_w[2] = sin_w * std::sin(sun_scene.sun.azimuth);
-          }
           std::vector<Override> base = geometry(depth, view, sun_w);
           base.push_back(set("water.a", "[" + num(a) + ", " + num(a) + "]"));
           base.push_back(set("water.b", "[" + num(b) + ", " + num(b) + "]"));

@@ -13,9 +13,9 @@
 // One azimuth mode of the radiance: the average (m = 0, all that plane irradiances and the scalar
 // irradiance need) or the cos φ part (m = 1), on a quadrature of `streams` cosines per hemisphere:
 // Gauss-Legendre split at the edge of Snell's window where the phase's moments allow (total internal
-// reflection beyond it), double-Gauss otherwise (surfaceQuadrature in the .cpp). The HG phase is delta-M scaled to the 2 streams moments it resolves (Wiscombe 1977:
-// f = g^(2 streams), so at 16 streams and g = 0.95 f = 0.19, and the unscattered beam then carries the
-// peak's f), or to fewer (phase_moments). Solved in closed
+// reflection beyond it), double-Gauss otherwise (surfaceQuadrature in the .cpp). The HG phase is delta-M
+// scaled to the 2 streams moments it resolves (Wiscombe 1977: f = g^(2 streams), so at 16 streams and
+// g = 0.95 f = 0.19, and the unscattered beam then carries the peak's f), or to fewer (phase_moments). Solved in closed
 // form per depth (eigenvalues of a symmetric N x N matrix by Jacobi rotations, the beam's particular
 // solution and the boundary conditions by Gaussian elimination), in double.
 #pragma once

@@ -25,25 +25,39 @@ namespace kd = kmath_d;
 
 }  // namespace
 
+namespace {
+
+// The sun in air (azimuth from +x towards +z), unit, towards the sun.
+Vec3 sunInAir(const Scene& scene) {
+  return {std::sin(scene.sun.zenith) * std::cos(scene.sun.azimuth), std::cos(scene.sun.zenith),
+          std::sin(scene.sun.zenith) * std::sin(scene.sun.azimuth)};
+}
+
+bool sunIsUp(const Scene& scene, const Vec3& sun) {
+  return scene.sun.enabled && scene.sun.irradiance > 0 && sun.y > 1e-6;
+}
+
+}  // namespace
+
+Vec3 sunInWater(const Scene& scene) {
+  const Vec3 sun = sunInAir(scene);
+  if (!sunIsUp(scene, sun)) return {0, 1, 0};
+  kd::real3 in_water{};
+  kd::refract_dir(kd::real3{-sun.x, -sun.y, -sun.z}, kd::real3{0, 1, 0}, 1.0 / scene.water.ior, &in_water);
+  return normalize(Vec3{-in_water.x, -in_water.y, -in_water.z});
+}
+
 UnderwaterSetup makeUnderwaterSetup(const Scene& scene, const WavelengthGrid& grid, const Sensor& sensor) {
   UnderwaterSetup s;
   UwParams& p = s.params;
   const CameraDesc& cam = scene.camera;
   setKernelCamera(p, cam);
 
-  // The sun in air (azimuth from +x towards +z) and refracted into the water (004 eq. 40–44).
-  const Vec3 sun{std::sin(scene.sun.zenith) * std::cos(scene.sun.azimuth), std::cos(scene.sun.zenith),
-                 std::sin(scene.sun.zenith) * std::sin(scene.sun.azimuth)};
-  const bool sun_up = scene.sun.enabled && scene.sun.irradiance > 0 && sun.y > 1e-6;
+  const Vec3 sun = sunInAir(scene);
+  const bool sun_up = sunIsUp(scene, sun);
   s.sun_air = sun;
-  s.sun_water = {0, 1, 0};
-  double t_sun = 0;
-  if (sun_up) {
-    kd::real3 in_water{};
-    kd::refract_dir(kd::real3{-sun.x, -sun.y, -sun.z}, kd::real3{0, 1, 0}, 1.0 / scene.water.ior, &in_water);
-    s.sun_water = normalize(Vec3{-in_water.x, -in_water.y, -in_water.z});
-    t_sun = 1.0 - kd::fresnel_reflectance(sun.y, 1.0, scene.water.ior);
-  }
+  s.sun_water = sunInWater(scene);
+  const double t_sun = sun_up ? 1.0 - kd::fresnel_reflectance(sun.y, 1.0, scene.water.ior) : 0.0;
   set4(p.sun_dir_air, s.sun_air);
   set4(p.sun_dir_water, s.sun_water);
   p.tan_half_fov_y = static_cast<float>(std::tan(cam.fov_y / 2));

@@ -35,4 +35,8 @@ struct UnderwaterSetup {
 // RuntimeError for what the underwater passes cannot render (a height-field object, naming it).
 UnderwaterSetup makeUnderwaterSetup(const Scene& scene, const WavelengthGrid& grid, const Sensor& sensor);
 
+// The unit direction towards the sun after refraction into the water at the flat surface (004 eq. 40–44);
+// (0, 1, 0) when the sun is off or below the horizon. UnderwaterSetup::sun_water.
+Vec3 sunInWater(const Scene& scene);
+
 }  // namespace seasim
