@@ -150,6 +150,11 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
   const int node_r = uwi_source_node(-d.y);
   const float cos_dphi = uwi_cos_azimuth(cos_s, d.y, s_w.y);
   const float cos_dphi_r = uwi_cos_azimuth(cos_r, -d.y, s_w.y);
+  /* The forward peak's aureole (uwi_aureole) of a ray looking up: its table's node, and where the ray ends
+   * (the surface: 0, where every band's share is 1). */
+  float aureole_frac;
+  const int aureole_node = uwi_aureole_node(cos_s, &aureole_frac);
+  const float aureole_end = mat == UW_MAT_SURFACE ? 0.0f : y_hit;
   /* The object the reflected ray meets first, if any (surface hits; uwi_mirror_hit). */
   int mat_m = UW_MAT_NONE;
   const UwiMirrorHit mirror =
@@ -191,7 +196,17 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
     const UwiStart camera = uwi_start_camera(band_table, stride, uwi_row0, i);
     const UwiEnds ends = uwi_ends(&v, p->bottom_depth, S, y_hit, single && multiple);
     const UwiWeights w = uwi_lanes_weights(band_table, stride, uwi_row0, i, node, cos_dphi);
-    realb L = multiple ? uwi_lanes_multiple(&v, &w, &camera, &ends, phase, p->bottom_depth, S, d.y, single) : SPLATB(0.0f);
+    realb strict;
+    realb L = multiple ? uwi_lanes_multiple(&v, &w, &camera, &ends, phase, p->bottom_depth, S, d.y, single, &strict)
+                       : SPLATB(0.0f);
+    /* The in-scatter with the forward peak's light (uwi_forward_peak), as uwi_band_radiance sums it; the
+     * point-spread below takes its share of the rest alone: the aureole is the light's spread at the
+     * camera already. */
+    const realb in_scatter = multiple ? fmax(L + uwi_lanes_forward_peak(band_table, stride, uwi_row0, i, &v, aureole_node,
+                                                                         aureole_frac, node, phase, d.y, o_d, aureole_end,
+                                                                         s_w.y, strict),
+                                             SPLATB(0.0f))
+                                      : SPLATB(0.0f);
     realb hit = SPLATB(0.0f); /* the light of what the ray meets, T(S) included */
     if (mat == UW_MAT_SURFACE) {
       const realb sky_l = kd_sky_lanes(band_table, stride, i, sky_shape);
@@ -217,7 +232,7 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
     realb count_in, depth_in;
     const realb share_in = uws_inscatter_share_b(v.c_dm, delta, s_spread, em, &count_in, &depth_in);
     const realb fwd_hit = hit * uws_hit_share_b(em);
-    const realb fwd = fwd_hit + L * share_in;
+    const realb fwd = fwd_hit + fmin(L * share_in, in_scatter);
     const realb cnt = hit * (delta * s_spread) + L * count_in;
     const realb fwd_depth = fwd_hit * s_spread + L * depth_in;
     fwd_r += fwd * w_r_band;
@@ -227,13 +242,13 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
     cnt_g += cnt * w_g_band;
     cnt_b += cnt * w_b_band;
     fwd_light_depth += fwd_depth * (w_r_band + w_g_band + w_b_band);
-    L += hit - fwd;
+    L = in_scatter + hit - fwd;
 #if SEASIM_SPECTRAL_OUTPUT
     store_lanes(fwd, forward_spectral + ((size_t)pixel * 2) * band_count + i, band_count - i);
     store_lanes(cnt, forward_spectral + ((size_t)pixel * 2 + 1) * band_count + i, band_count - i);
 #endif
 #else
-    L += hit;
+    L = in_scatter + hit;
 #endif
 #else
   for (int i = 0; i < band_count; i += SEASIM_BAND_LANES) {

@@ -9,7 +9,7 @@ namespace seasim {
 
 namespace {
 
-const char* const kTermColumns[] = {"inscatter_modes", "inscatter_beam",  "inscatter_tms",       "froxel_ss",
+const char* const kTermColumns[] = {"inscatter_modes", "inscatter_beam",  "inscatter_tms",       "aureole", "froxel_ss",
                                     "window",          "reflected_inscatter", "reflected_bottom", "reflected_froxel_ss",
                                     "reflected_object", "lambert",        "model_total",         "forward"};
 
@@ -45,7 +45,7 @@ void writeUnderwaterRegionsDump(const std::string& path, const UnderwaterRegions
     for (const auto& f : d.fast) row.push_back(sum3(f.second, i));
     if (terms) {
       const UwiPixelTerms& t = d.improved_terms[i];
-      for (double v : {t.inscatter_modes, t.inscatter_beam, t.inscatter_tms, t.froxel_ss, t.window,
+      for (double v : {t.inscatter_modes, t.inscatter_beam, t.inscatter_tms, t.aureole, t.froxel_ss, t.window,
                        t.reflected_inscatter, t.reflected_bottom, t.reflected_froxel_ss, t.reflected_object, t.lambert,
                        t.total, t.forward})
         row.push_back(v);

@@ -25,13 +25,15 @@ InScatter inScatterTerms(const UwiBand& ib, const UwBand& band, double g, double
   const double w1 = kd::uwi_source_weight(&ib, node, cos_dphi, 0);
   const double w2 = kd::uwi_source_weight(&ib, node, cos_dphi, 1);
   const double wp = kd::uwi_source_weight(&ib, node, cos_dphi, 2);
-  const double phase = double(band.b) * kd::hg_phase(cos_s, g) * band.e_beam0;
+  const double p_hg = kd::hg_phase(cos_s, g);
+  const double phase = double(band.b) * p_hg * band.e_beam0;
+  const double tms_phase = double(band.b) * kd::uwi_tms_phase(p_hg, ib.p_clip) * band.e_beam0;
   const double i1 = kd::kd_exp_integral(ib.k, ib.c_dm, d_y, o_d, S);
   const double i2 = bottom_depth > 0 ? kd::kd_exp_integral(ib.k, ib.c_dm, -d_y, std::max(bottom_depth - o_d, 0.0), S) : 0.0;
   const double ip = kd::kd_exp_integral(ib.m, ib.c_dm, d_y, o_d, S);
   t.modes = w1 * i1 + w2 * i2;
   t.beam = wp * ip;
-  t.tms = phase * ip;
+  t.tms = tms_phase * ip;
   t.froxel_ss = phase * kd::kd_exp_integral(band.c / std::max(mu_w, 1e-4), band.c, d_y, o_d, S);
   return t;
 }
@@ -76,6 +78,8 @@ std::vector<UwiPixelTerms> improvedModelTerms(const UnderwaterSetup& s, bool mul
           t.inscatter_modes += w * v.modes;
           t.inscatter_beam += w * v.beam;
           t.inscatter_tms += w * v.tms;
+          const double y1 = mat == UW_MAT_SURFACE ? 0.0 : std::max(o_d - S * d.y, 0.0);
+          t.aureole += w * kd::uwi_aureole(&ib, &b, kd::hg_phase(kd::dot(d, s_w), p.g), kd::dot(d, s_w), d.y, o_d, y1, mu_w);
           if (froxels) t.froxel_ss += w * v.froxel_ss;
         }
         const double T = std::exp(-double(ib.c_dm) * S);

@@ -14,10 +14,13 @@ namespace seasim {
 // three channels added, as the region ratios take them.
 struct UwiPixelTerms {
   // The in-scatter along the view ray (uwi_multiple): the two-stream's modes (e^{-k y}, e^{-k (H - y)}),
-  // the beam's diffuse offspring (e^{-m y}), the beam scattered once at the exact phase (TMS), and the
+  // the beam's diffuse offspring (e^{-m y}), the beam scattered once at the exact phase below its peak (TMS), and the
   // froxel pass's unshadowed strict single scattering (002 eq. 5.2), which the model takes off where
   // the froxel pass runs and that pass adds back with its shadows (0 without froxels).
   double inscatter_modes = 0, inscatter_beam = 0, inscatter_tms = 0, froxel_ss = 0;
+  // The forward peak's aureole at the camera (uwi_aureole; s13): the light delta-M's beam carries that the
+  // peak turned towards the view (the TMS term above scatters that beam with p_HG capped below the peak).
+  double aureole = 0;
   // The surface seen from below (uwi_surface) times T(S): the sky through Snell's window, n² (1 - F) L_sky;
   // F times the reflected ray's in-scatter as the model takes it; F times the bottom (or the object in
   // the mirror, uwi_mirror_hit) it ends on.

@@ -133,7 +133,7 @@ HighOrderField solveHighOrderField(const DiscreteOrdinatesLayer& layer, int stre
 }
 
 void fitSourceTableToField(const HighOrderField& field, const std::vector<double>& nus, const SourceTableBasis& basis,
-                           double mu_sun, bool beam, float* table, int terms_per_cosine) {
+                           double mu_sun, bool beam, float* table, int terms_per_cosine, float* order3_share) {
   const double k = basis.k, m = basis.m, c = basis.c_kernel;
   const bool bottom = basis.bottom_depth > 0;
   const double H = basis.bottom_depth;
@@ -150,6 +150,9 @@ void fitSourceTableToField(const HighOrderField& field, const std::vector<double
     values[s] = {std::exp(-k * y), bottom ? std::exp(-k * (H - y)) : 0.0, std::exp(-m * y)};
   }
   const int modes = field.modes;
+  auto tms = [&](int mode, int j) {
+    return basis.tms[mode].empty() ? field.beam_phase[mode][j] : basis.tms[mode][j];
+  };
   std::vector<double> normal, rhs;
   for (int j = 0; j < field.cosines; ++j) {
     const double w = beam ? beamTaper(nus[j], mu_sun, kTaperFrom, kTaperTo) : 1.0;
@@ -185,7 +188,7 @@ void fitSourceTableToField(const HighOrderField& field, const std::vector<double
         const double attenuation = len >= 1e29 ? 0.0 : std::exp(-c * len);
         for (int mode = 0; mode < modes; ++mode)
           targets[mode] = field.radianceAt(mode, j, y0) - attenuation * field.radianceAt(mode, j, y0 - nu * len) -
-                          field.beam_phase[mode][j] * integrals[2];
+                          tms(mode, j) * integrals[2];
         addRow(integrals, targets, weight);
       }
     }
@@ -194,7 +197,7 @@ void fitSourceTableToField(const HighOrderField& field, const std::vector<double
       const double y = s * step;
       for (int mode = 0; mode < modes; ++mode)
         targets[mode] = field.sourceAt(mode, j, y) - (field.c - c) * field.radianceAt(mode, j, y) -
-                        field.beam_phase[mode][j] * values[s][2];
+                        tms(mode, j) * values[s][2];
       addRow(values[s], targets, kSourceRowWeight / std::max(std::abs(field.sourceAt(0, j, y)), 1e-300));
     }
     if (!solveLinear(normal, rhs, n, modes)) continue;  // keeps the order-3 fit
@@ -204,6 +207,7 @@ void fitSourceTableToField(const HighOrderField& field, const std::vector<double
       float* row = table + j * terms_per_cosine + 3 * mode;
       for (int q = 0; q < 3; ++q) row[q] = static_cast<float>(w * coefficients[q] + (1 - w) * row[q]);
     }
+    if (order3_share) order3_share[j] = static_cast<float>(1 - w);
   }
 }
 

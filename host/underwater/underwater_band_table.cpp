@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "math/kernel_math.h"
 
@@ -55,6 +56,11 @@ std::vector<float> underwaterBandTable(const UnderwaterSetup& setup) {
       for (int q = 0; q < UWI_TILT_NODES * UWI_SOURCE_TERMS; ++q) uwi(UWI_ROW_TILT + q, ib.tilt[q]);
       for (int q = 0; q < UWI_TILT_NODES * 3; ++q) uwi(UWI_ROW_TILT_BOTTOM + q, ib.tilt_bottom[q]);
       uwi(UWI_ROW_B_E_BEAM, double(b.b) * b.e_beam0);
+      // No ceiling: the largest float, which min() and the excess (p_HG - p_clip)+ then pass by.
+      uwi(UWI_ROW_P_CLIP, ib.p_clip > 0 ? double(ib.p_clip) : double(std::numeric_limits<float>::max()));
+      uwi(UWI_ROW_AUREOLE_1, ib.aureole_single);
+      for (int j = 0; j < UWI_AUREOLE_NODES; ++j) uwi(UWI_ROW_AUREOLE + j, ib.aureole[j]);
+      for (int j = 0; j < UWI_SOURCE_NODES; ++j) uwi(UWI_ROW_AUREOLE_W + j, ib.aureole_weight[j]);
       uwi(UWI_ROW_D1, ib.d1);
       uwi(UWI_ROW_D2, ib.d2);
       uwi(UWI_ROW_DP, ib.dp);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <numbers>
 #include <vector>
 
 #include <tbb/parallel_for.h>
@@ -10,6 +11,7 @@
 #include "math/kernel_math.h"
 #include "math/linear_solve.h"
 #include "underwater/discrete_ordinates.h"
+#include "underwater/forward_peak.h"
 #include "underwater/ordinates_high_order.h"
 #include "underwater/underwater_improved_setup.h"
 
@@ -165,10 +167,31 @@ ModeProfiles modeProfiles(const DiscreteOrdinates& field, const DiscreteOrdinate
 // source table's cosines, fitted per cosine: UwiBand.src. With source_streams > 0 the table is then fitted
 // to the radiance of the solution at that order (ordinates_high_order.h), but near the beam's direction;
 // the error returned is the order-3 fit's.
+// The kernel's TMS per unit of e^{-m y} towards the table's cosines nus, as azimuth modes 0-2 (the coefficient
+// of cos m Δφ, Δφ from the beam's azimuth; the midpoint rule on 256 azimuths over [0, π], the phase being even
+// in Δφ): what the high-order fit leaves out (s13). mu_w: the refracted sun's cosine as the kernel reads it.
+void kernelTmsModes(const UwiBand& o, const UwBand& band, double g, double mu_w, const std::vector<double>& nus,
+                    SourceTableBasis& basis) {
+  constexpr int kAzimuths = 256;
+  const double sin_w = std::sqrt(std::max(1 - mu_w * mu_w, 0.0));
+  for (int mode = 0; mode < 3; ++mode) basis.tms[mode].assign(nus.size(), 0.0);
+  const double b_e_beam = double(band.b) * band.e_beam0;
+  for (size_t j = 0; j < nus.size(); ++j) {
+    const double nu = nus[j], sin_nu = std::sqrt(std::max(1 - nu * nu, 0.0));
+    for (int i = 0; i < kAzimuths; ++i) {
+      const double dphi = std::numbers::pi * (i + 0.5) / kAzimuths;
+      const double cos_s = std::clamp(nu * mu_w + sin_nu * sin_w * std::cos(dphi), -1.0, 1.0);
+      const double tms = b_e_beam * kmath_d::uwi_tms_phase(kmath_d::hg_phase(cos_s, g), o.p_clip);
+      for (int mode = 0; mode < 3; ++mode)
+        basis.tms[mode][j] += (mode == 0 ? 1.0 : 2.0) * std::cos(mode * dphi) / kAzimuths * tms;
+    }
+  }
+}
+
 double fitSourceTable(const DiscreteOrdinates& field, const DiscreteOrdinates* field_h,
                       const DiscreteOrdinates* field_h2, double depth_end, double k, double m, bool bottom,
                       UwiBand& o, const DiscreteOrdinatesLayer& layer, double c_kernel, double view_depth,
-                      int source_streams) {
+                      int source_streams, const UwBand& band, double g, double mu_w) {
   std::vector<double> nus(UWI_SOURCE_NODES);
   for (int j = 0; j < UWI_SOURCE_NODES; ++j) nus[j] = kmath_d::uwi_source_node_cosine(j);
   const ModeProfiles profiles = modeProfiles(field, field_h, field_h2, [&](const DiscreteOrdinates& f) {
@@ -186,7 +209,8 @@ double fitSourceTable(const DiscreteOrdinates& field, const DiscreteOrdinates* f
     basis.depth_end = depth_end;
     basis.view_depth = view_depth;
     basis.samples = kDepthSamples;
-    fitSourceTableToField(high, nus, basis, layer.mu_sun, layer.e_sun0 > 0, o.src, UWI_SOURCE_TERMS);
+    if (o.p_clip > 0) kernelTmsModes(o, band, g, mu_w, nus, basis);
+    fitSourceTableToField(high, nus, basis, layer.mu_sun, layer.e_sun0 > 0, o.src, UWI_SOURCE_TERMS, o.aureole_weight);
   }
   return error;
 }
@@ -243,6 +267,9 @@ UwiBand makeUwiBandFromOrdinates(const UwBand& band, double g, double mu_w, doub
   const double m = c_dm / mu0;
   const double H = bottom_depth > 0 ? bottom_depth : 0.0;
   o.m = static_cast<float>(m);
+  // The forward peak delta-M counts as unscattered (forward_peak.h): before the source's fit, which takes
+  // the kernel's TMS and aureole off its target.
+  setForwardPeak(o, band, g, std::pow(std::max(g, 0.0), kOrdinatesSourceMoments), mu_w, view_depth);
 
   DiscreteOrdinatesLayer layer;
   layer.a = a;
@@ -320,7 +347,8 @@ UwiBand makeUwiBandFromOrdinates(const UwBand& band, double g, double mu_w, doub
   // exponentials (the kernel's delta-M is the solver's: c' = ĉ, the beam's m its own); by default then
   // refitted to the high-order solution's radiance (source_streams; ordinates_high_order.h).
   const double source_error = fitSourceTable(field, azimuth ? &field_h : nullptr, azimuth ? &field_h2 : nullptr,
-                                             depth_end, best_k, m, H > 0, o, layer, c_dm, view_depth, source_streams);
+                                             depth_end, best_k, m, H > 0, o, layer, c_dm, view_depth, source_streams,
+                                             band, g, mu_w);
   const double tilt_error = fitTiltTable(field, azimuth ? &field_h : nullptr, azimuth ? &field_h2 : nullptr,
                                          depth_end, best_k, m, H > 0, o);
   if (fit) *fit = OrdinatesFitError{fd.error, fu.error, fo.error, fh.error, source_error, tilt_error};

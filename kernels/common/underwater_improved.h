@@ -43,7 +43,8 @@
  *    nodes; within half a node's step of ν, 1/128, between them).
  *    Plus the beam scattered once with the exact phase function (Nakajima & Tanaka 1988's TMS
  *    correction: delta-M's truncated phase would overstate the back-scatter), b p_HG(g, cos θ_s)
- *    e_beam0 e^{-m y}, attenuated as the delta-M beam.
+ *    e_beam0 e^{-m y}, attenuated as the delta-M beam; since s13 with p_HG capped below its forward peak
+ *    (uwi_tms_phase), whose light the delta-M beam already carries and uwi_aureole draws at the camera.
  *  - an object's face lit by the diffuse field's irradiance on its own plane (uwi_tilt_irradiance: the
  *    solver's radiance in azimuth modes 0-2 over the half-space the face sees, tabulated per band in the
  *    normal's vertical, UwiBand.tilt), not by uniform hemispheres E_d (1 + n_y)/2 + E_u (1 - n_y)/2 (the
@@ -178,9 +179,72 @@ SEASIM_FN void uwi_irradiance(const SEASIM_GLOBAL UwiBand* ib, real bottom_depth
   *eu = (real)ib->u1 * e1 + (real)ib->u2 * e2 + (real)ib->up * ep;
 }
 
+/* The phase the TMS term scatters the delta-M beam with (s13): p_HG capped at ib->p_clip, whose part above
+ * the cap holds delta-M's f (host/underwater/forward_peak.h). The delta-M beam e^{-m y} already carries
+ * that peak's light (its surplus over the unscattered beam, F0 (e^{-c' y/μ_w} - e^{-c y/μ_w})); scattered
+ * once more with the whole p_HG, the light looking towards the sun was counted twice: measured
+ * (results/BENCHMARKS.md, s12-s13), the water looking at the refracted sun at g >= 0.9 came out 1.26-2.66
+ * of the path tracer. uwi_aureole draws the peak's light instead. p_clip <= 0: no cap. */
+SEASIM_FN real uwi_tms_phase(real phase, real p_clip) {
+  return p_clip > R(0.0) ? fmin(phase, p_clip) : phase;
+}
+
+/* The aureole table's node below the scattering angle θ = acos(cos_s) (nodes at θ_j = π t_j², t_j = j /
+ * (UWI_AUREOLE_NODES - 1): a twentieth of a degree apart at the sun, where the peak is sharpest, 5.6° at
+ * the back) and θ's fraction of the way to the next, in [0, 1]. */
+SEASIM_FN int uwi_aureole_node(real cos_s, real* frac) {
+  const real theta = acos(clamp(cos_s, R(-1.0), R(1.0)));
+  const real t = clamp(sqrt(theta / SEASIM_PI), R(0.0), R(1.0)) * (real)(UWI_AUREOLE_NODES - 1);
+  const int node = (int)t < UWI_AUREOLE_NODES - 2 ? (int)t : UWI_AUREOLE_NODES - 2;
+  *frac = clamp(t - (real)node, R(0.0), R(1.0));
+  return node;
+}
+
+/* The scattering angle of the aureole table's node, radians. */
+SEASIM_FN real uwi_aureole_node_angle(int node) {
+  const real t = (real)node / (real)(UWI_AUREOLE_NODES - 1);
+  return SEASIM_PI * t * t;
+}
+
+/* The share of the aureole at the camera (depth y_c) that a view ray looking up and ending at depth y1 <=
+ * y_c (an object; 0 at the surface) sees: the light whose first scattering by the peak was below y1,
+ * (e^{-q y1} - e^{-q y_c}) / (1 - e^{-q y_c}), q = (c - c') / μ_w the peak's scatterings per metre of depth
+ * (the rest met the object on its way); (y_c - y1) / y_c as q y_c -> 0. 1 at y1 = 0, 0 at y1 = y_c. */
+SEASIM_FN real uwi_aureole_share(real q, real y_c, real y1) {
+  if (!(y_c > R(0.0))) return R(0.0);
+  const real y = clamp(y1, R(0.0), y_c);
+  const real den = -expm1(-q * y_c);
+  return den > R(1e-6) ? exp(-q * y) * -expm1(-q * (y_c - y)) / den : (y_c - y) / y_c;
+}
+
+/* The forward peak's light at the camera towards a view ray d (d_y > 0: looking up; cos_s = d·s_w, phase =
+ * p_HG(g, cos_s)) that ends at depth y1 (the surface: 0): the light of the delta-M beam that delta-M counts
+ * as unscattered but the peak turned (s13, host/underwater/forward_peak.h). At the camera's depth y_c that
+ * light is F0 e^{-c' y_c/μ_w} Σ_{k>=1} Poisson(k; n) P_k(θ), n = (c - c') y_c/μ_w its mean count of
+ * scatterings by the peak (the small-angle picture: each scattering turns the light by the peak's angle,
+ * independently): P_1 the peak (p_HG - p_clip)+ / f itself, P_k for k >= 2 a von Mises-Fisher distribution
+ * with the peak's mean cosine to the k-th power (the Legendre moments of a convolution multiply). The host
+ * tabulates it per band for the camera's depth (UwiBand.aureole_single, aureole); uwi_aureole_share takes off
+ * what an object in front of the sun hides. Drawn in the order-3 table's share of the ray's source node
+ * (UwiBand.aureole_weight): away from the beam's polar angle the table is fitted to a high-order field,
+ * which holds the peak's light itself (ordinates_high_order.h; s13 measured the kernel against that field
+ * 2.4-3.5 % off at 30-70° from the beam in turbid water at g = 0.95 when the fit took the aureole off
+ * instead: three exponentials in depth cannot follow its depth). 0 looking down. */
+SEASIM_FN real uwi_aureole(const SEASIM_GLOBAL UwiBand* ib, const SEASIM_GLOBAL UwBand* band, real phase, real cos_s,
+                           real d_y, real y_c, real y1, real mu_w) {
+  if (!(d_y > R(0.0)) || !(ib->p_clip > R(0.0))) return R(0.0);
+  real frac;
+  const int node = uwi_aureole_node(cos_s, &frac);
+  const real a0 = (real)ib->aureole[node], a1 = (real)ib->aureole[node + 1];
+  const real light = (real)ib->aureole_single * fmax(phase - (real)ib->p_clip, R(0.0)) + a0 + frac * (a1 - a0);
+  const real q = fmax((real)band->c - (real)ib->c_dm, R(0.0)) / fmax(mu_w, R(1e-4));
+  return light * uwi_aureole_share(q, y_c, y1) * (real)ib->aureole_weight[uwi_source_node(d_y)];
+}
+
 /* In-scattered radiance along a view ray from depth o_d along d (d_y its vertical component) to
  * distance S (UW_INFINITE: deep water); cos_s = d·s_w. g: the water's own asymmetry (for the froxel
- * term taken off when single_scattering). Never negative. */
+ * term taken off when single_scattering). Never negative. The forward peak's aureole is not in it
+ * (uwi_aureole: the water's point-spread, common/water_spread.h, spreads this light, not that). */
 SEASIM_FN real uwi_multiple(const SEASIM_GLOBAL UwiBand* ib, const SEASIM_GLOBAL UwBand* band, real g,
                             real bottom_depth, real S, real d_y, real o_d, real cos_s, real mu_w,
                             int single_scattering, int multiple) {
@@ -190,17 +254,39 @@ SEASIM_FN real uwi_multiple(const SEASIM_GLOBAL UwiBand* ib, const SEASIM_GLOBAL
   const real cos_dphi = uwi_cos_azimuth(cos_s, d_y, mu_w);
   const real w1 = uwi_source_weight(ib, node, cos_dphi, 0);
   const real w2 = uwi_source_weight(ib, node, cos_dphi, 1);
-  /* The beam's diffuse offspring, and the beam scattered once with the exact phase function (TMS). */
-  const real wp = uwi_source_weight(ib, node, cos_dphi, 2) + (real)band->b * hg_phase(cos_s, g) * (real)band->e_beam0;
+  /* The beam's diffuse offspring, and the beam scattered once with the exact phase function below its
+   * peak (TMS; uwi_tms_phase). */
+  const real phase = hg_phase(cos_s, g);
+  const real wp = uwi_source_weight(ib, node, cos_dphi, 2) +
+                  (real)band->b * uwi_tms_phase(phase, (real)ib->p_clip) * (real)band->e_beam0;
   const real i1 = kd_exp_integral(k, c_dm, d_y, o_d, S);
   /* e^{-k (H - y(z))} = e^{-k (H - o_d)} e^{-k d_y z}: the same integral seen from the bottom. */
   const real i2 = bottom_depth > R(0.0) ? kd_exp_integral(k, c_dm, -d_y, fmax(bottom_depth - o_d, R(0.0)), S) : R(0.0);
   const real ip = kd_exp_integral(ib->m, c_dm, d_y, o_d, S);
   const real c = band->c;
-  const real ss = single_scattering ? (real)band->b * hg_phase(cos_s, g) * (real)band->e_beam0 *
+  /* The strict single scattering's part below the peak: the part above it is in the aureole (uwi_forward_peak). */
+  const real ss = single_scattering ? (real)band->b * uwi_tms_phase(phase, (real)ib->p_clip) * (real)band->e_beam0 *
                                           kd_exp_integral(c / fmax(mu_w, R(1e-4)), c, d_y, o_d, S)
                                     : R(0.0);
   return fmax(w1 * i1 + w2 * i2 + wp * ip - ss, R(0.0));
+}
+
+/* The forward peak's light along a view ray from depth o_d along d (d_y, cos_s = d·s_w) to distance S,
+ * ending at depth y1 (the surface: 0): its aureole at the camera (uwi_aureole) less, with the froxel pass
+ * (single_scattering), the peak's part of the strict single scattering that pass adds,
+ * b (p_HG - p_clip)+ e_beam0 ∫_0^S e^{-c z} e^{-(c/μ_w) y(z)} dz: the aureole's once-scattered light holds
+ * it (uwi_multiple takes off the part below the peak). Not clamped (it may be slightly negative where the
+ * small-angle aureole is below the strict integral): uwi_band_radiance clamps its sum with uwi_multiple. */
+SEASIM_FN real uwi_forward_peak(const SEASIM_GLOBAL UwiBand* ib, const SEASIM_GLOBAL UwBand* band, real g, real S,
+                                real d_y, real o_d, real y1, real cos_s, real mu_w, int single_scattering) {
+  if (!(ib->p_clip > R(0.0))) return R(0.0);
+  const real phase = hg_phase(cos_s, g);
+  const real aureole = uwi_aureole(ib, band, phase, cos_s, d_y, o_d, y1, mu_w);
+  const real excess = fmax(phase - (real)ib->p_clip, R(0.0));
+  if (!single_scattering || !(excess > R(0.0))) return aureole;
+  const real c = band->c;
+  return aureole - (real)band->b * excess * (real)band->e_beam0 *
+                       kd_exp_integral(c / fmax(mu_w, R(1e-4)), c, d_y, o_d, S);
 }
 
 /* A Lambertian point (albedo, unit normal n) at depth y: the diffuse field on its tilted plane
@@ -296,7 +382,14 @@ SEASIM_FN real uwi_band_radiance(const SEASIM_GLOBAL UwiBand* ib, const SEASIM_G
                                  real S, real3 n, real3 d, real o_d, real3 s_w, real albedo, real vis, real vis_b,
                                  real sky_l, real ior, real bottom_depth, int single_scattering, int multiple,
                                  UwiMirrorHit mirror) {
-  const real l_ms = uwi_multiple(ib, band, g, bottom_depth, S, d.y, o_d, dot(d, s_w), s_w.y, single_scattering, multiple);
+  const real cos_s = dot(d, s_w);
+  /* The aureole to where the ray ends (the surface: 0, as kd_multiple.cl takes it). */
+  const real y1 = mat == UW_MAT_SURFACE ? R(0.0) : fmax(o_d - S * d.y, R(0.0));
+  const real l_ms =
+      multiple ? fmax(uwi_multiple(ib, band, g, bottom_depth, S, d.y, o_d, cos_s, s_w.y, single_scattering, multiple) +
+                          uwi_forward_peak(ib, band, g, S, d.y, o_d, y1, cos_s, s_w.y, single_scattering),
+                      R(0.0))
+               : R(0.0);
   if (mat == UW_MAT_NONE) return l_ms;
   const real l_s = mat == UW_MAT_SURFACE
                        ? uwi_surface(ib, band, g, bottom_depth, sky_l, d, s_w, ior, multiple, mirror)

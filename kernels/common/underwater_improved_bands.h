@@ -42,6 +42,7 @@ typedef struct {
   realb c, k_beam, e_beam; /* σ_t; σ_t / max(μ_w, 1e-4) (the froxel term's beam); e_beam0 */
   realb c_dm, k, m;        /* delta-M extinction c', the diffuse field's k, the delta-M beam's c'/μ_w */
   realb b_e_beam;          /* b e_beam0: the TMS term and the froxel term per unit phase */
+  realb p_clip;            /* the TMS term's phase ceiling (uwi_tms_phase; a large float for none) */
   realb d1, d2, dp;        /* E_d's coefficients (UwiBand): the bottom's light */
 } UwiLanes;
 
@@ -57,6 +58,7 @@ SEASIM_FN UwiLanes uwi_lanes_load(const SEASIM_GLOBAL float* table, int stride, 
   v.m = UWI_LOAD(uwi_row0 + UWI_ROW_M);
   v.c_dm = UWI_LOAD(uwi_row0 + UWI_ROW_C_DM);
   v.b_e_beam = UWI_LOAD(uwi_row0 + UWI_ROW_B_E_BEAM);
+  v.p_clip = UWI_LOAD(uwi_row0 + UWI_ROW_P_CLIP);
   v.d1 = UWI_LOAD(uwi_row0 + UWI_ROW_D1);
   v.d2 = UWI_LOAD(uwi_row0 + UWI_ROW_D2);
   v.dp = UWI_LOAD(uwi_row0 + UWI_ROW_DP);
@@ -162,16 +164,47 @@ SEASIM_FN UwiEnds uwi_ends(const UwiLanes* v, real bottom_depth, real S, real y,
  * single_scattering the froxel pass's unshadowed strict single scattering b p_HG e_beam0 ∫ e^{-c z}
  * e^{-(c/μ_w) y(z)} dz (002 eq. 5.2) is taken off. */
 SEASIM_FN realb uwi_lanes_multiple(const UwiLanes* v, const UwiWeights* w, const UwiStart* a, const UwiEnds* e,
-                                   real phase, real bottom_depth, real S, real d_y, int single_scattering) {
-  const realb beam_phase = v->b_e_beam * phase;
+                                   real phase, real bottom_depth, real S, real d_y, int single_scattering,
+                                   realb* strict) {
+  const realb tms = v->b_e_beam * fmin(SPLATB(phase), v->p_clip); /* uwi_tms_phase */
   realb sum = w->w1 * kd_exp_integral_ends_b(v->k, v->c_dm, a->k, e->k, d_y, S) +
-              (w->wp + beam_phase) * kd_exp_integral_ends_b(v->m, v->c_dm, a->m, e->m, d_y, S);
+              (w->wp + tms) * kd_exp_integral_ends_b(v->m, v->c_dm, a->m, e->m, d_y, S);
   if (bottom_depth > R(0.0)) {
     /* e^{-k (H - y(z))} = e^{-k (H - o_d)} e^{-k d_y z}: the same integral seen from the bottom. */
     sum += w->w2 * kd_exp_integral_ends_b(v->k, v->c_dm, a->k_bottom, e->k_bottom, -d_y, S);
   }
-  if (single_scattering) sum -= beam_phase * kd_exp_integral_ends_b(v->k_beam, v->c, a->beam, e->beam, d_y, S);
+  *strict = SPLATB(R(0.0));
+  if (single_scattering) {
+    *strict = v->b_e_beam * kd_exp_integral_ends_b(v->k_beam, v->c, a->beam, e->beam, d_y, S);
+    sum -= fmin(SPLATB(phase), v->p_clip) * *strict;
+  }
   return fmax(sum, R(0.0));
+}
+
+/* uwi_forward_peak for these bands: the aureole (uwi_aureole; d_y > 0, node and frac from uwi_aureole_node of
+ * the pixel's cos_s, source_node uwi_source_node of d_y, y_c the camera's depth and y1 where the ray ends,
+ * each once per pixel) less strict
+ * (uwi_lanes_multiple's: b e_beam0 times the strict single scattering's integral, 0 without froxels) times the
+ * peak's excess (p_HG - p_clip)+. The aureole's share is 1 at the surface (y1 = 0), where the per-band exps
+ * are skipped. Not clamped: the caller clamps its sum with uwi_lanes_multiple's. */
+SEASIM_FN realb uwi_lanes_forward_peak(const SEASIM_GLOBAL float* table, int stride, int uwi_row0, int i,
+                                       const UwiLanes* v, int node, real frac, int source_node, real phase, real d_y,
+                                       real y_c, real y1, real mu_w, realb strict) {
+  const realb excess = fmax(SPLATB(phase) - v->p_clip, SPLATB(R(0.0)));
+  if (!(d_y > R(0.0)) || !(y_c > y1)) return -strict * excess;
+  const SEASIM_GLOBAL float* row = table + (size_t)(uwi_row0 + UWI_ROW_AUREOLE + node) * (size_t)stride;
+  const realb a0 = LOADB(row, i), a1 = LOADB(row + stride, i);
+  realb light = (LOADB(table + (size_t)(uwi_row0 + UWI_ROW_AUREOLE_1) * (size_t)stride, i) * excess + a0 +
+                 frac * (a1 - a0)) *
+                LOADB(table + (size_t)(uwi_row0 + UWI_ROW_AUREOLE_W + source_node) * (size_t)stride, i);
+  if (y1 > R(0.0)) {
+    /* uwi_aureole_share, on the lanes. */
+    const realb q = fmax(v->c - v->c_dm, SPLATB(R(0.0))) / fmax(mu_w, R(1e-4));
+    const realb den = -expm1(-q * y_c);
+    light *= SELECTB(den > SPLATB(R(1e-6)), exp(-q * y1) * -expm1(-q * (y_c - y1)) / den,
+                     SPLATB((y_c - y1) / y_c));
+  }
+  return light - strict * excess;
 }
 
 /* uwi_lambert times T(S) = e^{-c' S}: a Lambertian hit (albedo, n_dot_s = n·s_w) at distance S and depth
@@ -216,11 +249,13 @@ SEASIM_FN realb uwi_lanes_surface(const UwiLanes* v, const UwiWeights* w_r, real
   if (s_m < s_r) { /* per pixel: an object in the mirror, at depth s_m dy */
     const UwiEnds e = uwi_ends(v, bottom_depth, s_m, s_m * dy, 0);
     reflected = uwi_lanes_lambert(v, &e, tilt_m, albedo_m, bottom_depth, n_m_dot_s, vis_m);
-    if (multiple) reflected += uwi_lanes_multiple(v, w_r, &a, &e, phase_r, bottom_depth, s_m, -dy, 0);
+    realb unused;
+    if (multiple) reflected += uwi_lanes_multiple(v, w_r, &a, &e, phase_r, bottom_depth, s_m, -dy, 0, &unused);
   } else if (multiple) {
     /* It ends on the bottom (y = H) or in deep water (S, y = ∞: its ends 0). */
     const UwiEnds e = uwi_ends(v, bottom_depth, s_r, bottom_depth > R(0.0) ? bottom_depth : UW_INFINITE, 0);
-    reflected = uwi_lanes_multiple(v, w_r, &a, &e, phase_r, bottom_depth, s_r, -dy, 0);
+    realb unused;
+    reflected = uwi_lanes_multiple(v, w_r, &a, &e, phase_r, bottom_depth, s_r, -dy, 0, &unused);
     /* Its far end e^{-(k (H - y) + c' s_r)} at y = H: the same but past s_r = 1e4 (within H/1e4 of
      * the horizon), where both are e^{-c' 1e4} or less. */
     t_bottom = e.k_bottom;

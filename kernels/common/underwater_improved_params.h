@@ -37,6 +37,7 @@
 #define UWI_SOURCE_NODES 129
 #define UWI_SOURCE_TERMS 9
 #define UWI_TILT_NODES 33
+#define UWI_AUREOLE_NODES 64
 
 typedef struct {
   float c_dm;   /* delta-M extinction c' = a + b (1 - f), 1/m: view rays and the sun beam (f = g³ with the
@@ -62,6 +63,17 @@ typedef struct {
   float tilt_bottom[UWI_TILT_NODES * 3];         /* [node * 3 + q]: the part of tilt's A0_q that the bottom's
                                                     reflection of the beam brings: what a face loses where
                                                     the bottom it sees is in shadow */
+  /* The forward peak (s13; host/underwater/forward_peak.h, common/underwater_improved.h uwi_aureole): */
+  float p_clip;         /* the TMS term's phase ceiling, per sr: it scatters the delta-M beam with
+                           min(p_HG, p_clip), the part of p_HG above it holding delta-M's f; 0: none */
+  float aureole_single; /* the aureole at the camera scattered by the peak once, per unit of (p_HG - p_clip)+ */
+  float aureole[UWI_AUREOLE_NODES]; /* the aureole at the camera scattered by the peak twice or more, W m^-2
+                                       nm^-1 sr^-1, at the scattering angles θ_j = π (j / (UWI_AUREOLE_NODES -
+                                       1))² (uwi_aureole_node) */
+  float aureole_weight[UWI_SOURCE_NODES]; /* per source node: the share of the order-3 in-scatter in src (1 - the
+                                             high-order fit's weight, ordinates_high_order.h), in which the
+                                             aureole is drawn: the high-order field holds the peak's light
+                                             itself away from the beam */
 } UwiBand;
 
 #endif /* SEASIM_UNDERWATER_IMPROVED_PARAMS_H */

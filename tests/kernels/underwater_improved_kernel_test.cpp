@@ -128,12 +128,20 @@ seasim::Image cpuImproved(const seasim::UnderwaterSetup& s, bool multiple, std::
           const size_t px = size_t(y) * p.width + x;
           const double l_in = kd::uwi_multiple(&s.improved[i], &b, p.g, p.bottom_depth, S, d.y, -o.y, kd::dot(d, s_w),
                                                s_w.y, 0, multiple ? 1 : 0);
-          const double hit = L - l_in;
+          // The in-scatter with the forward peak's light (uwi_forward_peak), which the spread leaves alone
+          // (kd_multiple.cl): the rest of L is the hit's.
+          const double y1 = mat == UW_MAT_SURFACE ? 0.0 : std::max(-o.y - S * d.y, 0.0);
+          const double l_total_in =
+              multiple ? std::max(l_in + kd::uwi_forward_peak(&s.improved[i], &b, p.g, S, d.y, -o.y, y1,
+                                                              kd::dot(d, s_w), s_w.y, 0),
+                                  0.0)
+                       : 0.0;
+          const double hit = L - l_total_in;
           const double s_spread = std::min(S, 1e4), delta = double(b.c) - double(s.improved[i].c_dm);
           const double em = kd::uws_expm1_neg_b(delta * s_spread);
           double count_in = 0, depth_in = 0;
           const double share_in = kd::uws_inscatter_share_b(s.improved[i].c_dm, delta, s_spread, em, &count_in, &depth_in);
-          const double fwd = hit * kd::uws_hit_share_b(em) + l_in * share_in;
+          const double fwd = hit * kd::uws_hit_share_b(em) + std::min(l_in * share_in, l_total_in);
           const double cnt = hit * delta * s_spread + l_in * count_in;
           const double w[3] = {b.w_r, b.w_g, b.w_b};
           for (int c = 0; c < 3; ++c) {
@@ -240,7 +248,12 @@ INSTANTIATE_TEST_SUITE_P(
         Variant{"no_objects", {}, false, true}, Variant{"no_objects_no_bottom", {}, true, true},
         // The sun ahead of the camera, low: the objects cast their shadows towards it, and the faces it sees
         // look down on that shadowed sand (uwi_bottom_visibility < 1: the tilted table's bottom part taken off).
-        Variant{"faces_over_their_shadows", {set("sun.zenith_deg", "55"), set("sun.azimuth_deg", "-90")}}),
+        Variant{"faces_over_their_shadows", {set("sun.zenith_deg", "55"), set("sun.azimuth_deg", "-90")}},
+        // The sun overhead and the camera looking at it (s13): the forward peak's aureole and the TMS term's
+        // ceiling at and around the centre pixels, over a bottom and in turbid water without one.
+        Variant{"at_the_sun", {set("sun.zenith_deg", "0"), set("camera.look_at", "[0, 10, -0.001]")}},
+        Variant{"at_the_sun_turbid", {set("sun.zenith_deg", "0"), set("camera.look_at", "[0, 10, -0.001]"),
+                                      set("water.jerlov", "\"9C\"")}, true}),
     [](const ::testing::TestParamInfo<Variant>& info) { return std::string(info.param.name); });
 
 // spectral.exr's bands from the lanes' store_lanes, 17 bands (one full step of 16 and one of 1), each
@@ -321,6 +334,7 @@ INSTANTIATE_TEST_SUITE_P(
                       Variant{"turbid_9C_long_range", {set("water.jerlov", "\"9C\""), set("camera.look_at", "[0, -4.2, -8]")}, true},
                       Variant{"camera_at_1000m", {set("camera.position", "[0, -1000, 0]"), set("camera.look_at", "[0, -1000.5, -8]")}, true},
                       Variant{"looking_straight_up", {set("camera.look_at", "[0, 10, -0.001]")}},
+                      Variant{"at_the_sun", {set("sun.zenith_deg", "0"), set("camera.look_at", "[0, 10, -0.001]")}},
                       Variant{"seventeen_bands", {set("spectral.count", "17")}},
                       // 160x96: sigma_1 above 4 pixels at g = 0.5, so the blur runs on cells of 2x2 pixels and more.
                       Variant{"cells_of_pixels", {set("water.g", "0.5"), set("camera.width", "160"), set("camera.height", "96")}}),

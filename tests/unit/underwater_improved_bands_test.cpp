@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <vector>
@@ -97,7 +98,13 @@ struct Ray {
     auto row = [&](int rw) { return Real(table[size_t(rw) * stride + k]); };                                 \
     const Real y = std::max(o_d - S * d.y, Real(0));                                                         \
     const ns::UwiEnds e = ns::uwi_ends(&v, H, S, y, single);                                                 \
-    Real L = ns::uwi_lanes_multiple(&v, &w, &a, &e, phase, H, S, d.y, single);                               \
+    Real strict;                                                                                             \
+    Real L = ns::uwi_lanes_multiple(&v, &w, &a, &e, phase, H, S, d.y, single, &strict);                      \
+    Real frac_a;                                                                                             \
+    const int node_a = ns::uwi_aureole_node(cos_s, &frac_a);                                                 \
+    L = std::max(L + ns::uwi_lanes_forward_peak(table.data(), stride, uwi_row0, k, &v, node_a, frac_a, node, phase, \
+                                                d.y, o_d, r.mat == UW_MAT_SURFACE ? Real(0) : y, s_w.y, strict), \
+                 Real(0));                                                                                   \
     if (r.mat == UW_MAT_SURFACE) {                                                                           \
       const ns::real3 n_m{Real(r.n_m[0]), Real(r.n_m[1]), Real(r.n_m[2])};                                   \
       Real frac_m;                                                                                           \
@@ -251,14 +258,24 @@ TEST(UnderwaterImprovedBands, LanesMatchTheScalarModelInFloatAndDouble) {
             seasim::UnderwaterSetup at_depth = s;
             at_depth.params.cam_pos[1] = float(-o_d);
             const std::vector<float> table = seasim::underwaterBandTable(at_depth);
-            for (double d_y : {-1.0, -0.6, -0.2, 0.0, 0.3, 0.7, 1.0})
+            // Rays at the listed verticals, and (s13) along the refracted sun and 2° off it: the forward peak's
+            // aureole and its strict single scattering, taken off with froxels.
+            std::vector<std::array<double, 3>> dirs;
+            for (double d_y : {-1.0, -0.6, -0.2, 0.0, 0.3, 0.7, 1.0}) {
+              const double dx = std::sqrt(1 - d_y * d_y);
+              dirs.push_back({dx * 0.6, d_y, -dx * 0.8});
+            }
+            const double off = 2.0 * 3.14159265358979 / 180;
+            dirs.push_back({s_w[0], s_w[1], s_w[2]});
+            dirs.push_back({s_w[0] * std::cos(off) - s_w[1] * std::sin(off), s_w[0] * std::sin(off) + s_w[1] * std::cos(off), 0});
+            for (const auto& dir : dirs)
               for (int mat : {UW_MAT_NONE, UW_MAT_SURFACE, UW_MAT_BOTTOM, 0, 1}) {
+                const double d_y = dir[1];
                 if (mat == UW_MAT_SURFACE && d_y <= 0) continue;
                 if (mat == UW_MAT_BOTTOM && !(H > 0 && d_y < 0)) continue;
                 if (mat == UW_MAT_NONE && (d_y > 0 || H > 0 && d_y < 0)) continue;  // it meets surface or bottom
-                const double dx = std::sqrt(1 - d_y * d_y);
                 for (double S : {0.0, 1e-3, 2.0, 30.0}) {
-                  Ray r{mat, S, o_d, 0.7, 0.15, {dx * 0.6, d_y, -dx * 0.8}, {0.6, 0.8, 0}, {s_w[0], s_w[1], s_w[2]}};
+                  Ray r{mat, S, o_d, 0.7, 0.15, {dir[0], dir[1], dir[2]}, {0.6, 0.8, 0}, {s_w[0], s_w[1], s_w[2]}};
                   // Surface hits: an object in the mirror (lit or in shadow) at S's distance, or none.
                   if (mat == UW_MAT_SURFACE && S == 1e-3) continue;  // S = 0: none
                   if (mat == UW_MAT_SURFACE && S == 2.0) r.s_m = 1.5, r.vis_m = 0.0;
