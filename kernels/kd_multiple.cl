@@ -203,7 +203,8 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
      * point-spread below takes its share of the rest alone: the aureole is the light's spread at the
      * camera already. */
     const realb in_scatter = multiple ? fmax(L + uwi_lanes_forward_peak(band_table, stride, uwi_row0, i, &v, aureole_node,
-                                                                         aureole_frac, node, phase, d.y, o_d, aureole_end,
+                                                                         aureole_frac, node, cos_dphi, phase, d.y, o_d,
+                                                                         aureole_end,
                                                                          s_w.y, strict),
                                              SPLATB(0.0f))
                                       : SPLATB(0.0f);

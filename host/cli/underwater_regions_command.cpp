@@ -187,7 +187,10 @@ int cmdUnderwaterRegions(const UnderwaterRegionsCmd& cmd) {
           UnderwaterRegionsDump dump;  // --dump: the case's pixels
           if (!cmd.dump_dir.empty()) {
             dump.regions = regions;
-            for (const PixelCentreHit& h : pixelCentreHits(ref_setup)) dump.dir_y.push_back(h.dir_y);
+            for (const PixelCentreHit& h : pixelCentreHits(ref_setup)) {
+              dump.dir_y.push_back(h.dir_y);
+              dump.cos_sun.push_back(h.cos_sun);
+            }
             dump.reference = ref;
             dump.reference_se = se;
           }

@@ -20,7 +20,7 @@ double sum3(const Image& im, size_t i) {
 }  // namespace
 
 std::vector<std::string> underwaterRegionsDumpHeader(const std::vector<std::string>& models, bool with_terms) {
-  std::vector<std::string> h = {"x", "y", "region", "d_y", "reference", "reference_se"};
+  std::vector<std::string> h = {"x", "y", "region", "d_y", "cos_sun", "reference", "reference_se"};
   for (const std::string& m : models) h.push_back("fast_" + m);
   if (with_terms)
     for (const char* c : kTermColumns) h.push_back(c);
@@ -30,7 +30,7 @@ std::vector<std::string> underwaterRegionsDumpHeader(const std::vector<std::stri
 void writeUnderwaterRegionsDump(const std::string& path, const UnderwaterRegionsDump& d) {
   const size_t n = d.regions.size();
   const bool terms = !d.improved_terms.empty();
-  bool sizes_agree = d.dir_y.size() == n && d.reference.pixelCount() == n && d.reference_se.pixelCount() == n &&
+  bool sizes_agree = d.dir_y.size() == n && d.cos_sun.size() == n && d.reference.pixelCount() == n && d.reference_se.pixelCount() == n &&
                      (!terms || d.improved_terms.size() == n) && d.reference.channels == 3 &&
                      d.reference_se.channels == 3;
   for (const auto& [name, im] : d.fast) sizes_agree = sizes_agree && im.pixelCount() == n && im.channels == 3;
@@ -40,7 +40,7 @@ void writeUnderwaterRegionsDump(const std::string& path, const UnderwaterRegions
   CsvWriter csv(underwaterRegionsDumpHeader(models, terms));
   const int width = d.reference.width;
   for (size_t i = 0; i < n; ++i) {
-    std::vector<CsvCell> row = {int(i % width), int(i / width), std::string(uwRegionName(d.regions[i])), d.dir_y[i],
+    std::vector<CsvCell> row = {int(i % width), int(i / width), std::string(uwRegionName(d.regions[i])), d.dir_y[i], d.cos_sun[i],
                                 sum3(d.reference, i), sum3(d.reference_se, i)};
     for (const auto& f : d.fast) row.push_back(sum3(f.second, i));
     if (terms) {

@@ -1,7 +1,7 @@
 // underwater_regions_dump.h — `seasim underwater-regions --dump DIR`: one case's images as a per-pixel
 // CSV, to see where in the frame a region's miss sits and which of the fast model's terms it is in
 // (issue 13). Columns: x, y (pixel, row 0 at the top), region, d_y (the centre ray's vertical direction,
-// > 0 towards the surface), reference and reference_se (the path tracer and its standard error),
+// > 0 towards the surface), cos_sun (its cosine with the direction to the refracted sun), reference and reference_se (the path tracer and its standard error),
 // fast_<model> per model rendered, and with the improved model its terms (reference/
 // underwater_improved_terms.h): every radiance the sum of the three channels; reflected_object 0 or 1;
 // forward, the part of the hit's light that delta-M counts as unscattered (not a part of model_total).
@@ -18,7 +18,7 @@ namespace seasim {
 
 struct UnderwaterRegionsDump {
   std::vector<UwRegion> regions;
-  std::vector<double> dir_y;                           // per pixel
+  std::vector<double> dir_y, cos_sun;                  // per pixel
   Image reference, reference_se;
   std::vector<std::pair<std::string, Image>> fast;     // model name, its render
   std::vector<UwiPixelTerms> improved_terms;           // empty: no improved model in the case

@@ -12,6 +12,7 @@ struct PixelCentreHit {
   double distance = 0.0;  // S to the first hit; >= UW_INFINITE (1e30) for a ray into deep water
   int material = 0;       // uw_scene_hit's: an object's index (>= 0) or a UW_MAT_* value
   double dir_y = 0.0;     // the ray's vertical direction (> 0: towards the surface)
+  double cos_sun = 0.0;   // its cosine with the direction to the refracted sun (UwParams.sun_dir_water)
 };
 
 // Row-major, width × height of setup.params.

@@ -95,8 +95,8 @@ void setForwardPeak(UwiBand& o, const UwBand& band, double g, double f, double m
   o.p_clip = 0;
   o.aureole_single = 0;
   std::fill(std::begin(o.aureole), std::end(o.aureole), 0.0f);
-  // The order-3 in-scatter everywhere until a high-order fit says otherwise (ordinates_high_order.h).
-  std::fill(std::begin(o.aureole_weight), std::end(o.aureole_weight), 1.0f);
+  // The order-3 in-scatter in src until a high-order fit says otherwise (ordinates_high_order.h).
+  std::fill(std::begin(o.aureole_modes), std::end(o.aureole_modes), 0.0f);
   const double p_clip = hgPeakCeiling(g, f);
   if (!(p_clip > 0)) return;
   o.p_clip = static_cast<float>(p_clip);
@@ -121,6 +121,27 @@ void setForwardPeak(UwiBand& o, const UwBand& band, double g, double f, double m
     double sum = 0;
     for (size_t k = 0; k < weight.size(); ++k) sum += weight[k] * vonMisesFisher(cos_theta, kappa[k]);
     o.aureole[j] = static_cast<float>(beam * sum);
+  }
+}
+
+void setAureoleModesHeld(UwiBand& o, double g, double mu_w, const std::vector<float>& fit_weight) {
+  std::fill(std::begin(o.aureole_modes), std::end(o.aureole_modes), 0.0f);
+  if (!(o.p_clip > 0)) return;
+  constexpr int kAzimuths = 256;
+  const double sin_w = std::sqrt(std::max(1 - mu_w * mu_w, 0.0));
+  const int nodes = std::min(static_cast<int>(fit_weight.size()), UWI_SOURCE_NODES);
+  for (int j = 0; j < nodes; ++j) {
+    const double w = fit_weight[j], nu = kmath_d::uwi_source_node_cosine(j);
+    if (!(w > 0) || !(nu > 0)) continue;  // the order-3 table's node, or looking down (no aureole)
+    const double sin_nu = std::sqrt(std::max(1 - nu * nu, 0.0));
+    double m[3] = {0, 0, 0};
+    for (int i = 0; i < kAzimuths; ++i) {
+      const double dphi = kPi * (i + 0.5) / kAzimuths;
+      const double cos_s = std::clamp(nu * mu_w + sin_nu * sin_w * std::cos(dphi), -1.0, 1.0);
+      const double a = kmath_d::uwi_aureole_at_camera(&o, kmath_d::hg_phase(cos_s, g), cos_s, nu);
+      for (int mode = 0; mode < 3; ++mode) m[mode] += (mode == 0 ? 1.0 : 2.0) * std::cos(mode * dphi) * a / kAzimuths;
+    }
+    for (int mode = 0; mode < 3; ++mode) o.aureole_modes[3 * j + mode] = static_cast<float>(w * m[mode]);
   }
 }
 

@@ -14,6 +14,7 @@
 // itself) or by a von Mises-Fisher distribution whose mean cosine is the peak's to the power k (k >= 2: the
 // Legendre moments of a convolution multiply). Its total is the surplus F0 (e^{-c' y_c/μ_w} - e^{-c y_c/μ_w}).
 #pragma once
+#include <vector>
 
 extern "C" {
 #include "common/underwater_params.h"
@@ -42,9 +43,16 @@ double vonMisesFisher(double cos_theta, double kappa);
 // Fills band block o's p_clip, aureole_single and aureole (UwiBand) for HG asymmetry g and delta-M's f, the
 // refracted sun's cosine mu_w and the camera's depth y_c, from the band's c and e_beam0 and the block's c_dm
 // and m (already set: the kernel's own extinctions, so the aureole's total is the surplus of the kernel's
-// beam), and its aureole_weight to 1 at every source node (the order-3 table's; a high-order fit lowers it
-// where it takes over). No peak (hgPeakCeiling 0): p_clip and the aureole 0, and the kernel's TMS keeps the
-// whole p_HG.
+// beam), and its aureole_modes to 0 (src the order-3 in-scatter, which holds none of the peak's light; a
+// high-order fit sets them where it takes over: setAureoleModesHeld). No peak (hgPeakCeiling 0): p_clip and
+// the aureole 0, and the kernel's TMS keeps the whole p_HG.
 void setForwardPeak(UwiBand& o, const UwBand& band, double g, double f, double mu_w, double y_c);
+
+// Where the source's table was fitted to a high-order field (ordinates_high_order.h), which has the peak's
+// light in azimuth modes 0-2: o.aureole_modes[3 j + m] = fit_weight[j] times mode m of the aureole at the
+// camera (uwi_aureole_at_camera with p_HG at g; the midpoint rule on 256 azimuths over [0, π]) at source node
+// j's cosine, for the kernel to take off (uwi_aureole). mu_w: the refracted sun's cosine as the kernel reads
+// it. Set after setForwardPeak.
+void setAureoleModesHeld(UwiBand& o, double g, double mu_w, const std::vector<float>& fit_weight);
 
 }  // namespace seasim

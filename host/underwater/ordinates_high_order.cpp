@@ -133,7 +133,7 @@ HighOrderField solveHighOrderField(const DiscreteOrdinatesLayer& layer, int stre
 }
 
 void fitSourceTableToField(const HighOrderField& field, const std::vector<double>& nus, const SourceTableBasis& basis,
-                           double mu_sun, bool beam, float* table, int terms_per_cosine, float* order3_share) {
+                           double mu_sun, bool beam, float* table, int terms_per_cosine, float* fit_weight) {
   const double k = basis.k, m = basis.m, c = basis.c_kernel;
   const bool bottom = basis.bottom_depth > 0;
   const double H = basis.bottom_depth;
@@ -207,7 +207,7 @@ void fitSourceTableToField(const HighOrderField& field, const std::vector<double
       float* row = table + j * terms_per_cosine + 3 * mode;
       for (int q = 0; q < 3; ++q) row[q] = static_cast<float>(w * coefficients[q] + (1 - w) * row[q]);
     }
-    if (order3_share) order3_share[j] = static_cast<float>(1 - w);
+    if (fit_weight) fit_weight[j] = static_cast<float>(w);
   }
 }
 

@@ -66,19 +66,19 @@ struct SourceTableBasis {
   int samples = 2;          // the depth samples of the weak source rows
   // The kernel's TMS term per unit of e^{-m y} in azimuth modes (the coefficient of cos m Δφ) per table
   // cosine, which the targets leave out: b e_beam0 min(p_HG, p_clip) (s13, forward_peak.h); empty: the
-  // field's beam_phase, the whole p_HG. The kernel's aureole is not taken off: the field resolves the
-  // forward peak's light away from the beam, and the kernel draws its aureole only in the order-3 table's
-  // share (UwiBand.aureole_weight, which the fit writes).
+  // field's beam_phase, the whole p_HG. The kernel's aureole is not taken off: the field has the forward
+  // peak's light in the modes the table holds, and the kernel adds only the aureole's higher modes where
+  // the fit was taken (UwiBand.aureole_modes, forward_peak.h setAureoleModesHeld, from fit_weight).
   std::array<std::vector<double>, 3> tms;
 };
 
 // Fits `table` (UwiBand.src's layout: cosine j's coefficients of the three exponentials, 3 per mode) to the
 // field as above, blended by beamTaper with what `table` held (the order-3 field's fit) for a beam at
 // cosine mu_sun (e_sun0 > 0; none: the field everywhere).
-// order3_share (optional, one per cosine): 1 - the blend's weight where the fit was taken, left as it was
-// where the order-3 row was kept (within the beam's taper's core, or a singular fit).
+// fit_weight (optional, one per cosine): the blend's weight where the fit was taken, left as it was where
+// the order-3 row was kept (within the beam's taper's core, or a singular fit).
 void fitSourceTableToField(const HighOrderField& field, const std::vector<double>& nus, const SourceTableBasis& basis,
-                           double mu_sun, bool beam, float* table, int terms_per_cosine, float* order3_share = nullptr);
+                           double mu_sun, bool beam, float* table, int terms_per_cosine, float* fit_weight = nullptr);
 
 // The weight of the high-order fit against the order-3 one at downward cosine nu for a beam at mu_sun: 0
 // within delta0 of the beam's polar angle, 1 beyond delta1 (radians), smooth between.

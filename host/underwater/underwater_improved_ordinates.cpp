@@ -210,7 +210,9 @@ double fitSourceTable(const DiscreteOrdinates& field, const DiscreteOrdinates* f
     basis.view_depth = view_depth;
     basis.samples = kDepthSamples;
     if (o.p_clip > 0) kernelTmsModes(o, band, g, mu_w, nus, basis);
-    fitSourceTableToField(high, nus, basis, layer.mu_sun, layer.e_sun0 > 0, o.src, UWI_SOURCE_TERMS, o.aureole_weight);
+    std::vector<float> fit_weight(UWI_SOURCE_NODES, 0.0f);
+    fitSourceTableToField(high, nus, basis, layer.mu_sun, layer.e_sun0 > 0, o.src, UWI_SOURCE_TERMS, fit_weight.data());
+    setAureoleModesHeld(o, g, mu_w, fit_weight);
   }
   return error;
 }

@@ -60,11 +60,12 @@
                                                                             term q in row + j * 3 + q */
 /* The forward peak (s13; UwiBand.p_clip, aureole_single, aureole): the TMS term's phase ceiling (a
  * large float where UwiBand has none), the aureole's once-scattered part per unit of (p_HG - p_clip)+, its
- * table, node j in row UWI_ROW_AUREOLE + j, and its weight per source node. */
+ * table, node j in row UWI_ROW_AUREOLE + j, and its azimuth modes per source node that the source's table holds. */
 #define UWI_ROW_P_CLIP (UWI_ROW_TILT_BOTTOM + UWI_TILT_NODES * 3)
 #define UWI_ROW_AUREOLE_1 (UWI_ROW_P_CLIP + 1)
 #define UWI_ROW_AUREOLE (UWI_ROW_AUREOLE_1 + 1)
-#define UWI_ROW_AUREOLE_W (UWI_ROW_AUREOLE + UWI_AUREOLE_NODES) /* UwiBand.aureole_weight: source node j's */
-#define UWI_ROWS (UWI_ROW_AUREOLE_W + UWI_SOURCE_NODES)
+#define UWI_ROW_AUREOLE_M (UWI_ROW_AUREOLE + UWI_AUREOLE_NODES) /* UwiBand.aureole_modes: source node j's mode m
+                                                                   in row + j * 3 + m */
+#define UWI_ROWS (UWI_ROW_AUREOLE_M + UWI_SOURCE_NODES * 3)
 
 #endif /* SEASIM_UNDERWATER_BAND_TABLE_H */

@@ -225,20 +225,31 @@ SEASIM_FN real uwi_aureole_share(real q, real y_c, real y1) {
  * independently): P_1 the peak (p_HG - p_clip)+ / f itself, P_k for k >= 2 a von Mises-Fisher distribution
  * with the peak's mean cosine to the k-th power (the Legendre moments of a convolution multiply). The host
  * tabulates it per band for the camera's depth (UwiBand.aureole_single, aureole); uwi_aureole_share takes off
- * what an object in front of the sun hides. Drawn in the order-3 table's share of the ray's source node
- * (UwiBand.aureole_weight): away from the beam's polar angle the table is fitted to a high-order field,
- * which holds the peak's light itself (ordinates_high_order.h; s13 measured the kernel against that field
- * 2.4-3.5 % off at 30-70° from the beam in turbid water at g = 0.95 when the fit took the aureole off
- * instead: three exponentials in depth cannot follow its depth). 0 looking down. */
-SEASIM_FN real uwi_aureole(const SEASIM_GLOBAL UwiBand* ib, const SEASIM_GLOBAL UwBand* band, real phase, real cos_s,
-                           real d_y, real y_c, real y1, real mu_w) {
+ * what an object in front of the sun hides. 0 looking down. uwi_aureole_at_camera is that light whole;
+ * uwi_aureole less the azimuth modes 0-2 of it that the source's table already holds at the ray's node
+ * (UwiBand.aureole_modes): away from the beam's polar angle the table is fitted to a high-order field, which
+ * has the peak's light, in those modes only. Measured (s13, results/BENCHMARKS.md): with the aureole left
+ * out there, the peak's light lost its azimuthal shape (the table has three modes): 0.73-1.18 of the path
+ * tracer around the sun at g >= 0.9; taken off the fit's targets instead, the kernel was 2.4-3.5 % off that
+ * field 30-70° from the beam in turbid water at g = 0.95 (three exponentials in depth cannot follow its
+ * depth). */
+SEASIM_FN real uwi_aureole_at_camera(const SEASIM_GLOBAL UwiBand* ib, real phase, real cos_s, real d_y) {
   if (!(d_y > R(0.0)) || !(ib->p_clip > R(0.0))) return R(0.0);
   real frac;
   const int node = uwi_aureole_node(cos_s, &frac);
   const real a0 = (real)ib->aureole[node], a1 = (real)ib->aureole[node + 1];
-  const real light = (real)ib->aureole_single * fmax(phase - (real)ib->p_clip, R(0.0)) + a0 + frac * (a1 - a0);
+  return (real)ib->aureole_single * fmax(phase - (real)ib->p_clip, R(0.0)) + a0 + frac * (a1 - a0);
+}
+
+SEASIM_FN real uwi_aureole(const SEASIM_GLOBAL UwiBand* ib, const SEASIM_GLOBAL UwBand* band, real phase, real cos_s,
+                           real d_y, real y_c, real y1, real mu_w) {
+  if (!(d_y > R(0.0)) || !(ib->p_clip > R(0.0))) return R(0.0);
+  const SEASIM_GLOBAL float* held = ib->aureole_modes + 3 * uwi_source_node(d_y);
+  const real cos_dphi = uwi_cos_azimuth(cos_s, d_y, mu_w);
+  const real light = uwi_aureole_at_camera(ib, phase, cos_s, d_y) -
+                     ((real)held[0] + cos_dphi * (real)held[1] + (R(2.0) * cos_dphi * cos_dphi - R(1.0)) * (real)held[2]);
   const real q = fmax((real)band->c - (real)ib->c_dm, R(0.0)) / fmax(mu_w, R(1e-4));
-  return light * uwi_aureole_share(q, y_c, y1) * (real)ib->aureole_weight[uwi_source_node(d_y)];
+  return light * uwi_aureole_share(q, y_c, y1);
 }
 
 /* In-scattered radiance along a view ray from depth o_d along d (d_y its vertical component) to

@@ -182,21 +182,23 @@ SEASIM_FN realb uwi_lanes_multiple(const UwiLanes* v, const UwiWeights* w, const
 }
 
 /* uwi_forward_peak for these bands: the aureole (uwi_aureole; d_y > 0, node and frac from uwi_aureole_node of
- * the pixel's cos_s, source_node uwi_source_node of d_y, y_c the camera's depth and y1 where the ray ends,
- * each once per pixel) less strict
+ * the pixel's cos_s, source_node uwi_source_node of d_y and cos_dphi the azimuth's cosine there
+ * (uwi_cos_azimuth), y_c the camera's depth and y1 where the ray ends, each once per pixel) less strict
  * (uwi_lanes_multiple's: b e_beam0 times the strict single scattering's integral, 0 without froxels) times the
  * peak's excess (p_HG - p_clip)+. The aureole's share is 1 at the surface (y1 = 0), where the per-band exps
  * are skipped. Not clamped: the caller clamps its sum with uwi_lanes_multiple's. */
 SEASIM_FN realb uwi_lanes_forward_peak(const SEASIM_GLOBAL float* table, int stride, int uwi_row0, int i,
-                                       const UwiLanes* v, int node, real frac, int source_node, real phase, real d_y,
-                                       real y_c, real y1, real mu_w, realb strict) {
+                                       const UwiLanes* v, int node, real frac, int source_node, real cos_dphi,
+                                       real phase, real d_y, real y_c, real y1, real mu_w, realb strict) {
   const realb excess = fmax(SPLATB(phase) - v->p_clip, SPLATB(R(0.0)));
   if (!(d_y > R(0.0)) || !(y_c > y1)) return -strict * excess;
   const SEASIM_GLOBAL float* row = table + (size_t)(uwi_row0 + UWI_ROW_AUREOLE + node) * (size_t)stride;
   const realb a0 = LOADB(row, i), a1 = LOADB(row + stride, i);
-  realb light = (LOADB(table + (size_t)(uwi_row0 + UWI_ROW_AUREOLE_1) * (size_t)stride, i) * excess + a0 +
-                 frac * (a1 - a0)) *
-                LOADB(table + (size_t)(uwi_row0 + UWI_ROW_AUREOLE_W + source_node) * (size_t)stride, i);
+  const SEASIM_GLOBAL float* held = table + (size_t)(uwi_row0 + UWI_ROW_AUREOLE_M + 3 * source_node) * (size_t)stride;
+  realb light = LOADB(table + (size_t)(uwi_row0 + UWI_ROW_AUREOLE_1) * (size_t)stride, i) * excess + a0 +
+                frac * (a1 - a0) -
+                (LOADB(held, i) + cos_dphi * LOADB(held + stride, i) +
+                 (R(2.0) * cos_dphi * cos_dphi - R(1.0)) * LOADB(held + 2 * (size_t)stride, i));
   if (y1 > R(0.0)) {
     /* uwi_aureole_share, on the lanes. */
     const realb q = fmax(v->c - v->c_dm, SPLATB(R(0.0))) / fmax(mu_w, R(1e-4));

@@ -70,10 +70,10 @@ typedef struct {
   float aureole[UWI_AUREOLE_NODES]; /* the aureole at the camera scattered by the peak twice or more, W m^-2
                                        nm^-1 sr^-1, at the scattering angles θ_j = π (j / (UWI_AUREOLE_NODES -
                                        1))² (uwi_aureole_node) */
-  float aureole_weight[UWI_SOURCE_NODES]; /* per source node: the share of the order-3 in-scatter in src (1 - the
-                                             high-order fit's weight, ordinates_high_order.h), in which the
-                                             aureole is drawn: the high-order field holds the peak's light
-                                             itself away from the beam */
+  float aureole_modes[UWI_SOURCE_NODES * 3]; /* [node * 3 + m]: the aureole's azimuth modes m = 0-2 at the
+                                                source node's cosine that src already holds (the high-order
+                                                fit's weight times them, ordinates_high_order.h: its field has
+                                                the peak's light; 0 where src is the order-3 in-scatter) */
 } UwiBand;
 
 #endif /* SEASIM_UNDERWATER_IMPROVED_PARAMS_H */

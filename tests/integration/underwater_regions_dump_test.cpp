@@ -74,8 +74,8 @@ TEST_F(UnderwaterRegionsDump, WritesEveryPixelWithRegionReferenceRendersAndTerms
     ASSERT_FALSE(csv.header.empty()) << file;
     const std::vector<std::string>& header = csv.header;
     std::map<std::string, size_t>& col = csv.col;
-    for (const char* c : {"x", "y", "region", "d_y", "reference", "reference_se", "fast_thesis", "fast_improved",
-                          "inscatter_modes", "inscatter_beam", "inscatter_tms", "froxel_ss", "window",
+    for (const char* c : {"x", "y", "region", "d_y", "cos_sun", "reference", "reference_se", "fast_thesis",
+                          "fast_improved", "inscatter_modes", "inscatter_beam", "inscatter_tms", "aureole", "froxel_ss", "window",
                           "reflected_inscatter", "reflected_bottom", "reflected_froxel_ss", "reflected_object", "lambert",
                           "model_total", "forward"})
       ASSERT_TRUE(col.count(c)) << "column " << c << " in " << file;
@@ -98,7 +98,8 @@ TEST_F(UnderwaterRegionsDump, WritesEveryPixelWithRegionReferenceRendersAndTerms
       // At g = 0 delta-M moves nothing: no small-angle part (UnderwaterRegionsDump.ForwardIs… at g = 0.9).
       EXPECT_EQ(v("forward"), 0.0);
       // The terms add up to the model's total wherever its in-scatter is not clamped at 0.
-      const double inscatter = v("inscatter_modes") + v("inscatter_beam") + v("inscatter_tms") - v("froxel_ss");
+      const double inscatter =
+          v("inscatter_modes") + v("inscatter_beam") + v("inscatter_tms") + v("aureole") - v("froxel_ss");
       if (inscatter > 0) {
         const double sum = inscatter + v("froxel_ss") + v("window") + v("reflected_inscatter") +
                            v("reflected_bottom") + v("lambert");
@@ -291,6 +292,7 @@ TEST_F(UnderwaterRegionsDump, SunViewLooksAtTheRefractedSun) {
     if ((x == 15 || x == 16) && (y == 8 || y == 9)) {
       centre += std::stod(row[csv.col["d_y"]]);
       ++centre_pixels;
+      EXPECT_GT(std::stod(row[csv.col["cos_sun"]]), std::cos(4 * 3.14159265358979 / 180)) << "the sun at the centre";
     }
   }
   ASSERT_EQ(centre_pixels, 4);

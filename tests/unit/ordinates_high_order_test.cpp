@@ -146,13 +146,11 @@ TEST(OrdinatesHighOrder, TableCarriesTheFieldsRadiance) {
         // kernel measures it.
         const double cos_dphi = kd::uwi_cos_azimuth(cos_s, d_y, kMuW), cos_2dphi = 2 * cos_dphi * cos_dphi - 1;
         // The table carries modes 0-2; above them the kernel's TMS term (the delta-M beam scattered once
-        // with the exact phase below its peak, s13) carries the beam's azimuthal detail: the capped phase less
-        // its modes 0-2 (by quadrature over the azimuth). Here, away from the beam, the table is the
-        // high-order fit's alone and the kernel draws no aureole (UwiBand.aureole_weight 0): the field holds
-        // the peak's light.
-        ASSERT_EQ(high.aureole_weight[j], 0.0f);
+        // with the exact phase below its peak, s13) and its forward peak's aureole (looking up) carry the
+        // beam's azimuthal detail: each less its modes 0-2 (by quadrature over the azimuth).
         const double tms_path = band.b * band.e_beam0 * kd::kd_exp_integral(high.m, high.c_dm, d_y, y, S);
         auto tms = [&](double cs) { return kd::uwi_tms_phase(hg(c.g, cs), high.p_clip); };
+        auto aureole = [&](double cs) { return kd::uwi_aureole_at_camera(&high, hg(c.g, cs), cs, d_y); };
         auto above_2 = [&](auto fn) {
           constexpr int kAzimuths = 512;
           double m[3] = {0, 0, 0};
@@ -165,7 +163,7 @@ TEST(OrdinatesHighOrder, TableCarriesTheFieldsRadiance) {
           return fn(cos_s) - m[0] - m[1] * cos_dphi - m[2] * cos_2dphi;
         };
         const double ref = field.radianceAt(0, j, y) + field.radianceAt(1, j, y) * cos_dphi +
-                           field.radianceAt(2, j, y) * cos_2dphi + above_2(tms) * tms_path;
+                           field.radianceAt(2, j, y) * cos_2dphi + above_2(tms) * tms_path + above_2(aureole);
         const double l_high = radiance(high), l_low = radiance(low);
         worst_low = std::max(worst_low, std::fabs(l_low / ref - 1));
         worst_high = std::max(worst_high, std::fabs(l_high / ref - 1));

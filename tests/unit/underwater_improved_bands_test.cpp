@@ -102,7 +102,7 @@ struct Ray {
     Real L = ns::uwi_lanes_multiple(&v, &w, &a, &e, phase, H, S, d.y, single, &strict);                      \
     Real frac_a;                                                                                             \
     const int node_a = ns::uwi_aureole_node(cos_s, &frac_a);                                                 \
-    L = std::max(L + ns::uwi_lanes_forward_peak(table.data(), stride, uwi_row0, k, &v, node_a, frac_a, node, phase, \
+    L = std::max(L + ns::uwi_lanes_forward_peak(table.data(), stride, uwi_row0, k, &v, node_a, frac_a, node, cos_dphi, phase, \
                                                 d.y, o_d, r.mat == UW_MAT_SURFACE ? Real(0) : y, s_w.y, strict), \
                  Real(0));                                                                                   \
     if (r.mat == UW_MAT_SURFACE) {                                                                           \
