@@ -7,12 +7,15 @@
 // BENCHMARKS.md s12: 1.26-2.66 of the path tracer at g >= 0.9). Here the HG phase is split into
 //   p_HG = min(p_HG, p_clip) + (p_HG - p_clip)+,
 // the peak (the second part) holding exactly f of the light (p_clip solves ∫ (p_HG - p_clip)+ dΩ = f). The
-// TMS term keeps the first part. The peak's light is drawn as the aureole at the camera, in the small-angle
-// picture (each scattering by the peak turns the light independently of the others; Nakajima & Tanaka
-// 1988 correct DISORT's intensities near the beam to second order on the same idea): at depth y_c, a
-// Poisson number k of scatterings with mean n = (c - c') y_c / μ_w, spread by the peak once (k = 1: the peak
-// itself) or by a von Mises-Fisher distribution whose mean cosine is the peak's to the power k (k >= 2: the
-// Legendre moments of a convolution multiply). Its total is the surplus F0 (e^{-c' y_c/μ_w} - e^{-c y_c/μ_w}).
+// TMS term keeps the first part. The peak's light is drawn as the aureole at the camera: at depth y_c the beam
+// has met a Poisson number k of scatterings by the peak, mean n = (c - c') y_c / μ_w, each turning it by the
+// peak's own distribution P = (p_HG - p_clip)+ / f, independently (the peak's light stays near the beam, so
+// the depth it has to cross is the beam's). k scatterings spread it by P convolved k times on the sphere,
+// whose Legendre moments are P's to the power k (Nakajima & Tanaka 1988 correct DISORT's intensities near
+// the beam to second order on the same idea). So the light scattered twice or more is
+//   F0 e^{-c' y_c/μ_w} Σ_l (2l + 1)/(4π) e^{-n} (e^{n χ_l} - 1 - n χ_l) P_l(cos θ),
+// χ_l the moments of P; the once-scattered light F0 e^{-c' y_c/μ_w} n e^{-n} P(θ) is drawn exactly in the
+// kernel from the pixel's p_HG. Its total is the surplus F0 (e^{-c' y_c/μ_w} - e^{-c y_c/μ_w}).
 #pragma once
 #include <vector>
 
@@ -29,24 +32,24 @@ namespace seasim {
 // floor).
 double hgPeakCeiling(double g, double f);
 
-// The mean cosine of the peak (p_HG - p_clip)+ over its own integral (quadrature on 4000 steps in √θ);
-// 1 without a peak (p_clip <= 0).
-double hgPeakMeanCosine(double g, double p_clip);
+// The peak of HG asymmetry g holding delta-M's f: its ceiling and the Legendre moments χ_l of P = (p_HG -
+// p_clip)+ / f (χ_0 = 1), by the midpoint rule on 6000 steps in √θ over the peak, up to where 32 in a row are
+// below 1e-7 (l <= 4000; g = 0.999 reaches the cap). Shared by every band of a set-up (it depends on g and f
+// alone). No peak: p_clip 0, no moments.
+struct ForwardPeak {
+  double g = 0, f = 0, p_clip = 0;
+  std::vector<double> moments;
+};
+ForwardPeak forwardPeak(double g, double f);
 
-// κ of the von Mises-Fisher distribution on the sphere whose mean cosine coth κ - 1/κ is mean_cosine in
-// [0, 1): bisection in log κ. 0 at 0.
-double vonMisesFisherKappa(double mean_cosine);
-
-// The von Mises-Fisher density κ e^{κ (cos θ - 1)} / (2π (1 - e^{-2κ})) per sr; 1/(4π) as κ -> 0.
-double vonMisesFisher(double cos_theta, double kappa);
-
-// Fills band block o's p_clip, aureole_single and aureole (UwiBand) for HG asymmetry g and delta-M's f, the
-// refracted sun's cosine mu_w and the camera's depth y_c, from the band's c and e_beam0 and the block's c_dm
+// Fills band block o's p_clip, aureole_single and aureole (UwiBand) for the peak, the refracted sun's cosine
+// mu_w and the camera's depth y_c, from the band's c and e_beam0 and the block's c_dm
 // and m (already set: the kernel's own extinctions, so the aureole's total is the surplus of the kernel's
 // beam), and its aureole_modes to 0 (src the order-3 in-scatter, which holds none of the peak's light; a
 // high-order fit sets them where it takes over: setAureoleModesHeld). No peak (hgPeakCeiling 0): p_clip and
-// the aureole 0, and the kernel's TMS keeps the whole p_HG.
-void setForwardPeak(UwiBand& o, const UwBand& band, double g, double f, double mu_w, double y_c);
+// the aureole 0, and the kernel's TMS keeps the whole p_HG. Returns the factor the table was scaled by so that,
+// read as the kernel reads it, it holds its light over the sphere (1 where there is none to hold).
+double setForwardPeak(UwiBand& o, const UwBand& band, const ForwardPeak& peak, double mu_w, double y_c);
 
 // Where the source's table was fitted to a high-order field (ordinates_high_order.h), which has the peak's
 // light in azimuth modes 0-2: o.aureole_modes[3 j + m] = fit_weight[j] times mode m of the aureole at the

@@ -254,7 +254,8 @@ double fitTiltTable(const DiscreteOrdinates& field, const DiscreteOrdinates* fie
 }  // namespace
 
 UwiBand makeUwiBandFromOrdinates(const UwBand& band, double g, double mu_w, double bottom_depth, double ior,
-                                 double view_depth, int streams, OrdinatesFitError* fit, int source_streams) {
+                                 double view_depth, int streams, OrdinatesFitError* fit, int source_streams,
+                                 const ForwardPeak* peak) {
   const double a = band.a, b = band.b;
   // The kernel's delta-M is the solver's (kOrdinatesSourceMoments: f = g³ for g > 0), its beam
   // e_beam0 e^{-m y}, m = c'/μ_w: the view rays' source is the solver's in-scatter in that frame.
@@ -271,7 +272,8 @@ UwiBand makeUwiBandFromOrdinates(const UwBand& band, double g, double mu_w, doub
   o.m = static_cast<float>(m);
   // The forward peak delta-M counts as unscattered (forward_peak.h): before the source's fit, which takes
   // the kernel's TMS and aureole off its target.
-  setForwardPeak(o, band, g, std::pow(std::max(g, 0.0), kOrdinatesSourceMoments), mu_w, view_depth);
+  setForwardPeak(o, band, peak ? *peak : forwardPeak(g, std::pow(std::max(g, 0.0), kOrdinatesSourceMoments)), mu_w,
+                 view_depth);
 
   DiscreteOrdinatesLayer layer;
   layer.a = a;
@@ -360,11 +362,12 @@ UwiBand makeUwiBandFromOrdinates(const UwBand& band, double g, double mu_w, doub
 std::vector<UwiBand> makeUwiBandsFromOrdinates(const UwParams& params, const std::vector<UwBand>& bands,
                                                int source_streams) {
   const double view_depth = diffuseViewDepth(params);
+  const ForwardPeak peak = forwardPeak(params.g, std::pow(std::max(double(params.g), 0.0), kOrdinatesSourceMoments));
   // Bands are independent (1.5–1.8 ms each at 16 streams on one core, results/BENCHMARKS.md s9b): in parallel.
   std::vector<UwiBand> out(bands.size());
   tbb::parallel_for(size_t(0), bands.size(), [&](size_t i) {
     out[i] = makeUwiBandFromOrdinates(bands[i], params.g, params.sun_dir_water[1], params.bottom_depth, params.ior,
-                                      view_depth, 16, nullptr, source_streams);
+                                      view_depth, 16, nullptr, source_streams, &peak);
   });
   return out;
 }

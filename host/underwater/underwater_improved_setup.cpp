@@ -147,7 +147,7 @@ UwiBand makeUwiBand(const UwBand& band, double g, double mu_w, double bottom_dep
 }
 
 UwiBand makeUwiBand(const UwBand& band, double g, double mu_w, double bottom_depth, double ior,
-                    DiffuseMeanCosines mean, TwoStreamClosure closure, DiffuseDepth view) {
+                    DiffuseMeanCosines mean, TwoStreamClosure closure, DiffuseDepth view, const ForwardPeak* peak) {
   const double a = band.a, b = band.b;
   const DeltaMMedium medium = improvedDeltaM(a, b, g);
   const double b_dm = medium.b_dm, c_dm = medium.c_dm, g_dm = medium.g_dm;
@@ -225,7 +225,7 @@ UwiBand makeUwiBand(const UwBand& band, double g, double mu_w, double bottom_dep
   setFirstOrderSource(o);
   setHemisphereTilt(o);
   // The forward peak delta-M counts as unscattered, f = g² (forward_peak.h).
-  setForwardPeak(o, band, g, std::pow(std::max(g, 0.0), 2), mu_w, view.depth);
+  setForwardPeak(o, band, peak ? *peak : forwardPeak(g, std::pow(std::max(g, 0.0), 2)), mu_w, view.depth);
   return o;
 }
 
@@ -260,11 +260,12 @@ std::vector<UwiBand> makeUwiBands(const UwParams& params, const std::vector<UwBa
   const DiffuseDepth view{diffuseViewDepth(params),
                           asymptotic_share >= 0 ? asymptotic_share : diffuseAsymptoticShare(params.g),
                           flux_scale >= 0 ? flux_scale : diffuseFluxScale(params.g)};
+  const ForwardPeak peak = forwardPeak(params.g, std::pow(std::max(double(params.g), 0.0), 2));
   std::vector<UwiBand> out;
   out.reserve(bands.size());
   for (const UwBand& band : bands)
-    out.push_back(
-        makeUwiBand(band, params.g, params.sun_dir_water[1], params.bottom_depth, params.ior, mean, closure, view));
+    out.push_back(makeUwiBand(band, params.g, params.sun_dir_water[1], params.bottom_depth, params.ior, mean, closure,
+                              view, &peak));
   return out;
 }
 

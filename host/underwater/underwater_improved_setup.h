@@ -12,6 +12,8 @@ extern "C" {
 
 namespace seasim {
 
+struct ForwardPeak;  // forward_peak.h
+
 // The surface's reflectance, from below, of upwelling light of uniform radiance: 2 ∫_0^1 F(μ) μ dμ
 // (total internal reflection outside Snell's window included); about 0.47 for ior 1.34.
 double internalDiffuseReflectance(double ior);
@@ -96,9 +98,10 @@ void setHemisphereTilt(UwiBand& band);
 // e_beam0 = e_sun0 = 0 then); bottom_depth <= 0: no bottom; g the water's HG asymmetry; mean: the
 // streams' mean cosines (the first form: the fitted table at g).
 UwiBand makeUwiBand(const UwBand& band, double g, double mu_w, double bottom_depth, double ior);
+// peak: the forward peak of g and f = g² (forward_peak.h), the same for every band; null: computed here.
 UwiBand makeUwiBand(const UwBand& band, double g, double mu_w, double bottom_depth, double ior,
                     DiffuseMeanCosines mean, TwoStreamClosure closure = twoStreamClosure(),
-                    DiffuseDepth depth = {});
+                    DiffuseDepth depth = {}, const ForwardPeak* peak = nullptr);
 
 // All bands of a set-up (params.g, params.bottom_depth, params.ior, params.sun_dir_water[1]; the
 // depth of diffuseViewDepth(params)) with the asymptotic share w (negative: diffuseAsymptoticShare(g)) and

@@ -221,10 +221,11 @@ SEASIM_FN real uwi_aureole_share(real q, real y_c, real y1) {
  * p_HG(g, cos_s)) that ends at depth y1 (the surface: 0): the light of the delta-M beam that delta-M counts
  * as unscattered but the peak turned (s13, host/underwater/forward_peak.h). At the camera's depth y_c that
  * light is F0 e^{-c' y_c/μ_w} Σ_{k>=1} Poisson(k; n) P_k(θ), n = (c - c') y_c/μ_w its mean count of
- * scatterings by the peak (the small-angle picture: each scattering turns the light by the peak's angle,
- * independently): P_1 the peak (p_HG - p_clip)+ / f itself, P_k for k >= 2 a von Mises-Fisher distribution
- * with the peak's mean cosine to the k-th power (the Legendre moments of a convolution multiply). The host
- * tabulates it per band for the camera's depth (UwiBand.aureole_single, aureole); uwi_aureole_share takes off
+ * scatterings by the peak (each turns the light by the peak's own distribution, independently): P_1 the peak
+ * (p_HG - p_clip)+ / f itself, P_k for k >= 2 the peak convolved k times on the sphere (its Legendre moments
+ * to the k-th power; host/underwater/forward_peak.h sums the series). The host tabulates the light scattered
+ * twice or more per band for the camera's depth (UwiBand.aureole; the once-scattered part is aureole_single
+ * times the pixel's (p_HG - p_clip)+); uwi_aureole_share takes off
  * what an object in front of the sun hides. 0 looking down. uwi_aureole_at_camera is that light whole;
  * uwi_aureole less the azimuth modes 0-2 of it that the source's table already holds at the ray's node
  * (UwiBand.aureole_modes): away from the beam's polar angle the table is fitted to a high-order field, which

@@ -58,6 +58,8 @@ def panel(out, x0, title, models, bins):
         a += 10
     out.append(f'<rect x="{x0 + L}" y="{T}" width="{W - L - R}" height="{H - T - B}" fill="none" stroke="black"/>')
     out.append(f'<text x="{x0 + (L + W - R) / 2}" y="{H - 16}" text-anchor="middle">angle to the refracted sun (°)</text>')
+    out.append(f'<text x="{x0 + 14}" y="{(T + H - B) / 2}" text-anchor="middle" '
+               f'transform="rotate(-90 {x0 + 14} {(T + H - B) / 2})">radiance (R + G + B)</text>')
     for s in ["reference"] + models:
         pts = [(px((k + 0.5) * STEP), py(bins[k][s] / bins[k]["n"])) for k in keys if bins[k][s] > 0]
         dash = ' stroke-dasharray="5,3"' if s == "reference" else ""
