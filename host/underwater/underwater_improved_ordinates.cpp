@@ -163,10 +163,6 @@ ModeProfiles modeProfiles(const DiscreteOrdinates& field, const DiscreteOrdinate
           field_h2 ? profile(*field_h2) : std::vector<double>{}};
 }
 
-// The discrete ordinates' in-scatter (azimuth modes 0, 1, 2; field_h, field_h2 null: only mode 0) at the
-// source table's cosines, fitted per cosine: UwiBand.src. With source_streams > 0 the table is then fitted
-// to the radiance of the solution at that order (ordinates_high_order.h), but near the beam's direction;
-// the error returned is the order-3 fit's.
 // The kernel's TMS per unit of e^{-m y} towards the table's cosines nus, as azimuth modes 0-2 (the coefficient
 // of cos m Δφ, Δφ from the beam's azimuth; the midpoint rule on 256 azimuths over [0, π], the phase being even
 // in Δφ): what the high-order fit leaves out (s13). mu_w: the refracted sun's cosine as the kernel reads it.
@@ -188,6 +184,11 @@ void kernelTmsModes(const UwiBand& o, const UwBand& band, double g, double mu_w,
   }
 }
 
+// The discrete ordinates' in-scatter (azimuth modes 0, 1, 2; field_h, field_h2 null: only mode 0) at the
+// source table's cosines, fitted per cosine: UwiBand.src. With source_streams > 0 the table is then fitted
+// to the radiance of the solution at that order (ordinates_high_order.h), but near the beam's direction;
+// the error returned is the order-3 fit's. Where the fit is taken, the aureole's modes 0-2 that its field
+// holds are set for the kernel to take off (forward_peak.h setAureoleModesHeld).
 double fitSourceTable(const DiscreteOrdinates& field, const DiscreteOrdinates* field_h,
                       const DiscreteOrdinates* field_h2, double depth_end, double k, double m, bool bottom,
                       UwiBand& o, const DiscreteOrdinatesLayer& layer, double c_kernel, double view_depth,
@@ -271,7 +272,7 @@ UwiBand makeUwiBandFromOrdinates(const UwBand& band, double g, double mu_w, doub
   const double H = bottom_depth > 0 ? bottom_depth : 0.0;
   o.m = static_cast<float>(m);
   // The forward peak delta-M counts as unscattered (forward_peak.h): before the source's fit, which takes
-  // the kernel's TMS and aureole off its target.
+  // the kernel's TMS term (capped at p_clip) off its targets.
   setForwardPeak(o, band, peak ? *peak : forwardPeak(g, std::pow(std::max(g, 0.0), kOrdinatesSourceMoments)), mu_w,
                  view_depth);
 

@@ -162,7 +162,8 @@ SEASIM_FN UwiEnds uwi_ends(const UwiLanes* v, real bottom_depth, real S, real y,
  * pixel, a the ray's start factors, e its far ends (uwi_ends with the same single_scattering). Each term
  * of J(y) an exponential in y, so each integral is kd_exp_integral_ends_b (002 eq. 4.7's form); with
  * single_scattering the froxel pass's unshadowed strict single scattering b p_HG e_beam0 ∫ e^{-c z}
- * e^{-(c/μ_w) y(z)} dz (002 eq. 5.2) is taken off. */
+ * e^{-(c/μ_w) y(z)} dz (002 eq. 5.2) is taken off below the peak (min(p_HG, p_clip), as the TMS term; the
+ * rest is uwi_lanes_forward_peak's), and *strict is b e_beam0 ∫ e^{-c z} e^{-(c/μ_w) y(z)} dz (0 without). */
 SEASIM_FN realb uwi_lanes_multiple(const UwiLanes* v, const UwiWeights* w, const UwiStart* a, const UwiEnds* e,
                                    real phase, real bottom_depth, real S, real d_y, int single_scattering,
                                    realb* strict) {
