@@ -71,7 +71,7 @@ TEST(ForwardPeak, MomentsAgainstQuadrature) {
     ASSERT_GT(peak.moments.size(), 3u);
     EXPECT_EQ(peak.moments[0], 1.0);
     if (g < 0.99) EXPECT_LT(peak.moments.size(), 4001u) << g;
-    // Gauss on μ: 200000 midpoints over [μ_c, 1] (the peak vanishes below).
+    // The midpoint rule on μ: 200000 steps over [μ_c, 1] (the peak vanishes below).
     const double mu_c = (1 + g * g - std::pow((1 - g * g) / (4 * kPi * peak.p_clip), 2.0 / 3.0)) / (2 * g);
     for (int l : {1, 2, 5, 20, 60}) {
       if (size_t(l) >= peak.moments.size()) continue;
