@@ -155,6 +155,15 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
   float aureole_frac;
   const int aureole_node = uwi_aureole_node(cos_s, &aureole_frac);
   const float aureole_end = mat == UW_MAT_SURFACE ? 0.0f : y_hit;
+  /* The share of the sunlit sand's light the ray gathers that no object hides or shades (uwi_sand_share,
+   * with the first band's c' and k). */
+  const float v_sand = multiple ? uwi_sand_share(objects, p->object_count, p->bottom_depth,
+                                                 (float3)(p->cam_pos[0], p->cam_pos[1], p->cam_pos[2]), d, S,
+                                                 band_table[(uwi_row0 + UWI_ROW_C_DM) * stride],
+                                                 band_table[(uwi_row0 + UWI_ROW_K) * stride], s_w,
+                                                 band_table + UW_ROWS * stride, stride,
+                                                 band_table[UW_ROW_BOTTOM_ALBEDO * stride])
+                                : 1.0f;
   /* The object the reflected ray meets first, if any (surface hits; uwi_mirror_hit). */
   int mat_m = UW_MAT_NONE;
   const UwiMirrorHit mirror =
@@ -195,7 +204,8 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
      * hit, whose exps a Lambertian hit shares. */
     const UwiStart camera = uwi_start_camera(band_table, stride, uwi_row0, i);
     const UwiEnds ends = uwi_ends(&v, p->bottom_depth, S, y_hit, single && multiple);
-    const UwiWeights w = uwi_lanes_weights(band_table, stride, uwi_row0, i, node, cos_dphi);
+    UwiWeights w = uwi_lanes_weights(band_table, stride, uwi_row0, i, node, cos_dphi);
+    if (v_sand < 1.0f) uwi_lanes_hide_sand(band_table, stride, uwi_row0, i, node, v_sand, &w);
     realb strict;
     realb L = multiple ? uwi_lanes_multiple(&v, &w, &camera, &ends, phase, p->bottom_depth, S, d.y, single, &strict)
                        : SPLATB(0.0f);

@@ -456,7 +456,7 @@ std::vector<DiscreteOrdinatesIrradiance> DiscreteOrdinates::profile(double depth
 }
 
 std::vector<double> DiscreteOrdinates::inscatterProfile(const std::vector<double>& nus, double depth_end,
-                                                        int samples) const {
+                                                        int samples, bool bottom_beam) const {
   const int n = n_, moments = static_cast<int>(chi_.size()), nu_count = static_cast<int>(nus.size());
   samples = std::max(samples, 2);
   // 2π b̂ w_j p^m(ν, ±μ_j): the phase's addition-theorem sum between each user cosine and each node.
@@ -480,7 +480,7 @@ std::vector<double> DiscreteOrdinates::inscatterProfile(const std::vector<double
   const double step = sampleExponentials(depth_end, samples, dec, grow);
   std::vector<double> out(size_t(samples) * nu_count, 0.0), down(n), up(n);
   for (int s = 0; s < samples; ++s) {
-    radiancesFrom(s * step, &dec[size_t(s) * n], &grow[size_t(s) * n], down.data(), up.data());
+    radiancesFrom(s * step, &dec[size_t(s) * n], &grow[size_t(s) * n], down.data(), up.data(), bottom_beam);
     for (int u = 0; u < nu_count; ++u) {
       double j_in = 0;
       for (int j = 0; j < n; ++j) j_in += to_down[size_t(u) * n + j] * down[j] + to_up[size_t(u) * n + j] * up[j];

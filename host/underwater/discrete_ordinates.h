@@ -86,8 +86,10 @@ class DiscreteOrdinates {
   // radiance; the beam's own scattering left out: the caller adds it with the exact phase, Nakajima &
   // Tanaka 1988's TMS). Mode 1's is the coefficient of cos φ, φ from the sun's azimuth. Integrated along
   // a ray with extinction() it gives the radiance at any angle (the source-function integration of
-  // DISORT's user angles). Row-major, samples x nus.size().
-  std::vector<double> inscatterProfile(const std::vector<double>& nus, double depth_end, int samples) const;
+  // DISORT's user angles). Row-major, samples x nus.size(). bottom_beam: only the in-scatter of the light the
+  // bottom's reflection of the whole beam brings (as tiltedIrradianceProfile's; 0 in modes 1, 2).
+  std::vector<double> inscatterProfile(const std::vector<double>& nus, double depth_end, int samples,
+                                       bool bottom_beam = false) const;
   // The diffuse light's irradiance on a plane whose unit normal has the upward vertical component n_y (in
   // [-1, 1]) at `samples` (>= 2) evenly spaced depths from 0 to depth_end: this azimuth mode's
   // ∫ L^m(ω) cos(m φ) max(0, -ω·n) dΩ with the normal's azimuth φ_n at 0, so the coefficient of cos(m φ_n),

@@ -199,6 +199,19 @@ double fitSourceTable(const DiscreteOrdinates& field, const DiscreteOrdinates* f
     return f.inscatterProfile(nus, depth_end, kDepthSamples);
   });
   const double error = fitModeTable(profiles, UWI_SOURCE_NODES, depth_end, k, m, bottom, o.src);
+  // The part of it the bottom's reflection of the beam brings (azimuth mode 0; over a lit bottom), fitted the
+  // same way: UwiBand.src_bottom, what the kernel takes off where objects hide or shade the sand
+  // (uwi_sand_share).
+  if (bottom) {
+    ModeProfiles lit;
+    lit[0] = field.inscatterProfile(nus, depth_end, kDepthSamples, true);
+    if (std::any_of(lit[0].begin(), lit[0].end(), [](double v) { return v != 0.0; })) {
+      std::vector<float> table(UWI_SOURCE_NODES * UWI_SOURCE_TERMS);
+      fitModeTable(lit, UWI_SOURCE_NODES, depth_end, k, m, bottom, table.data());
+      for (int j = 0; j < UWI_SOURCE_NODES; ++j)
+        for (int q = 0; q < 3; ++q) o.src_bottom[j * 3 + q] = table[j * UWI_SOURCE_TERMS + q];
+    }
+  }
   if (source_streams > 0) {
     const int modes = field_h ? 3 : 1;
     const HighOrderField high = solveHighOrderField(layer, source_streams, modes, nus, depth_end);

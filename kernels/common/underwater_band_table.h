@@ -66,6 +66,8 @@
 #define UWI_ROW_AUREOLE (UWI_ROW_AUREOLE_1 + 1)
 #define UWI_ROW_AUREOLE_M (UWI_ROW_AUREOLE + UWI_AUREOLE_NODES) /* UwiBand.aureole_modes: source node j's mode m
                                                                    in row + j * 3 + m */
-#define UWI_ROWS (UWI_ROW_AUREOLE_M + UWI_SOURCE_NODES * 3)
+/* UwiBand.src_bottom: source node j's term q in row UWI_ROW_SRC_BOTTOM + j * 3 + q. */
+#define UWI_ROW_SRC_BOTTOM (UWI_ROW_AUREOLE_M + UWI_SOURCE_NODES * 3)
+#define UWI_ROWS (UWI_ROW_SRC_BOTTOM + UWI_SOURCE_NODES * 3)
 
 #endif /* SEASIM_UNDERWATER_BAND_TABLE_H */

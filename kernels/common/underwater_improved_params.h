@@ -74,6 +74,10 @@ typedef struct {
                                                 source node's cosine that src already holds (the high-order
                                                 fit's weight times them, ordinates_high_order.h: its field has
                                                 the peak's light; 0 where src is the order-3 in-scatter) */
+  float src_bottom[UWI_SOURCE_NODES * 3]; /* [node * 3 + q]: the part of src's T0_q that the bottom's
+                                             reflection of the beam brings (the order-3 field's; 0 without a
+                                             bottom): what the water loses where objects hide or shade the sand
+                                             (s13, uwi_sand_share) */
 } UwiBand;
 
 #endif /* SEASIM_UNDERWATER_IMPROVED_PARAMS_H */
