@@ -253,8 +253,8 @@ SEASIM_FN real uwi_aureole(const SEASIM_GLOBAL UwiBand* ib, const SEASIM_GLOBAL 
   return light * uwi_aureole_share(q, y_c, y1);
 }
 
-#define UWI_SAND_POINTS 4
-#define UWI_SAND_RAYS 8
+#define UWI_SAND_POINTS 2
+#define UWI_SAND_RAYS 4
 
 /* The sunlit sand's light a water point x gets from below, as a share of what the plane-parallel model's
  * sand everywhere would send: UWI_SAND_RAYS rays cosine-weighted about the downward vertical (the
@@ -290,8 +290,9 @@ SEASIM_FN real uwi_sand_seen_lit(const SEASIM_GLOBAL UwObject* objects, int coun
  * ray, weighted by how the bottom's term of the source e^{-k (H - y)} reaches the camera, e^{-c' z - k (H -
  * y(z))} (c', k and the albedos: one band's, the same for every band of the pixel); not above 1. The model's plane-parallel water has
  * sunlit sand everywhere below; measured (results/BENCHMARKS.md, s13) the objects in clear water came out
- * 1.04-1.06 of the path tracer, 1.10-1.11 when black, 1.03 with the sand black too. 1 without a bottom or
- * objects. */
+ * 1.04-1.06 of the path tracer, 1.10-1.11 when black, 1.03 with the sand black too; with the share the training
+ * and held-out grids are all within 5 % (2 points x 4 rays: 4 x 8 lost a case and cost 81-88 ms where this costs
+ * 28-31 ms, kd_multiple at 320x180 and 16 bands). 1 without a bottom or objects. */
 SEASIM_FN real uwi_sand_share(const SEASIM_GLOBAL UwObject* objects, int count, real bottom_depth, real3 o, real3 d,
                               real S, real c_dm, real k, real3 s_w, const SEASIM_GLOBAL float* object_albedo,
                               int albedo_stride, real sand_albedo) {
