@@ -11,6 +11,7 @@
 
 #include "math/kernel_math.h"
 #include "underwater/forward_peak.h"
+#include "underwater_improved_fixtures.h"
 
 namespace {
 
@@ -216,20 +217,14 @@ namespace {
 
 // s13's other part (common/underwater_improved.h uwi_sand_seen_lit, uwi_sand_share): the share of the sunlit
 // sand's light a water point gets, against objects whose answer is known, in float and double.
-UwObject box(float x0, float y0, float z0, float x1, float y1, float z1) {
-  UwObject o{};
-  o.type = UW_BOX;
-  o.a[0] = x0, o.a[1] = y0, o.a[2] = z0;
-  o.b[0] = x1, o.b[1] = y1, o.b[2] = z1;
-  return o;
-}
+using seasim::testing::uwTestBox;
 
 TEST(SandShare, KnownAnswersInFloatAndDouble) {
   const double H = 5.0;
   const kd::real3 x{0, -2, 0}, sun_up{0, 1, 0};
   const kf::real3 xf{0, -2, 0}, sun_up_f{0, 1, 0};
   // A slab under the point, wider than every ray's reach to the sand: all the sand hidden.
-  const UwObject slab[1] = {box(-100, -4, -100, 100, -3, 100)};
+  const UwObject slab[1] = {uwTestBox(-100, -4, -100, 100, -3, 100)};
   const float black[1] = {0.0f}, sand_like[1] = {0.3f};
   EXPECT_EQ(kd::uwi_sand_seen_lit(slab, 1, H, x, sun_up, black, 1, 0.3), 0.0);
   EXPECT_EQ(kf::uwi_sand_seen_lit(slab, 1, float(H), xf, sun_up_f, black, 1, 0.3f), 0.0f);
@@ -238,10 +233,10 @@ TEST(SandShare, KnownAnswersInFloatAndDouble) {
   EXPECT_NEAR(kf::uwi_sand_seen_lit(slab, 1, float(H), xf, sun_up_f, sand_like, 1, 0.3f), 1.0f, 1e-6f);
   // Nothing below the point (the slab above it): every ray reaches sunlit sand... but the slab above shades
   // the sand from the sun overhead, so none of it is lit.
-  const UwObject roof[1] = {box(-100, -1.5f, -100, 100, -1, 100)};
+  const UwObject roof[1] = {uwTestBox(-100, -1.5f, -100, 100, -1, 100)};
   EXPECT_EQ(kd::uwi_sand_seen_lit(roof, 1, H, x, sun_up, black, 1, 0.3), 0.0);
   // A small box far to the side: no ray meets it, no shadow falls under the point: 1.
-  const UwObject aside[1] = {box(50, -4, 50, 51, -3, 51)};
+  const UwObject aside[1] = {uwTestBox(50, -4, 50, 51, -3, 51)};
   EXPECT_EQ(kd::uwi_sand_seen_lit(aside, 1, H, x, sun_up, black, 1, 0.3), 1.0);
   // No objects, or no bottom: the plane-parallel model's own answer, 1.
   const kd::real3 d{0, 0, -1};
@@ -251,7 +246,7 @@ TEST(SandShare, KnownAnswersInFloatAndDouble) {
   // Along a level ray over the black slab: every point's sand hidden.
   EXPECT_EQ(kd::uwi_sand_share(slab, 1, H, x, d, 10.0, 0.1, 0.05, sun_up, black, 1, 0.3), 0.0);
   // Over a slab that covers half the ray's points (x < 0 from z = -5): the weights of its points.
-  const UwObject half[1] = {box(-100, -4, -100, 100, -3, -5)};
+  const UwObject half[1] = {uwTestBox(-100, -4, -100, 100, -3, -5)};
   const double v = kd::uwi_sand_share(half, 1, H, x, d, 10.0, 0.0, 0.0, sun_up, black, 1, 0.3);
   EXPECT_GT(v, 0.3);
   EXPECT_LT(v, 0.7);

@@ -1,5 +1,6 @@
 // underwater_improved_fixtures.h — what the improved underwater model's unit tests share
-// (underwater_improved_test, _depth_test, _flux_test, _surface_test, underwater_model_option_test):
+// (underwater_improved_test, _depth_test, _flux_test, _surface_test, _tilt_test, underwater_model_option_test,
+// forward_peak_test):
 // one band's block as the set-up would fill it, and a small improved-model scene whose [underwater]
 // table a test may extend, with its file:line:key rejection check.
 #ifndef SEASIM_TESTS_UNDERWATER_IMPROVED_FIXTURES_H
@@ -32,6 +33,21 @@ inline UwBand uwTestBand(double a, double b, double e_sky0, double e_sun0, doubl
 
 // The sun 30° from the zenith, refracted (n = 1.34): its cosine under water.
 inline constexpr double kUwTestMuW = 0.9273;
+
+// An axis-aligned box from (x0, y0, z0) to (x1, y1, z1) and a sphere, as the scene's objects (m).
+inline UwObject uwTestBox(float x0, float y0, float z0, float x1, float y1, float z1) {
+  UwObject o{};
+  o.type = UW_BOX;
+  o.a[0] = x0, o.a[1] = y0, o.a[2] = z0;
+  o.b[0] = x1, o.b[1] = y1, o.b[2] = z1;
+  return o;
+}
+inline UwObject uwTestSphere(float x, float y, float z, float r) {
+  UwObject o{};
+  o.type = UW_SPHERE;
+  o.a[0] = x, o.a[1] = y, o.a[2] = z, o.a[3] = r;
+  return o;
+}
 
 // The discrete ordinates' layer of the band (its a, b, irradiances, bottom albedo) at asymmetry g over a
 // bottom at H (<= 0: none), ior 1.34, the sun at kUwTestMuW.

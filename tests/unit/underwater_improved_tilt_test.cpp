@@ -209,20 +209,8 @@ TEST(UnderwaterImprovedTilt, TwoStreamTableIsUniformHemispheres) {
     }
 }
 
-UwObject box(float x0, float y0, float z0, float x1, float y1, float z1) {
-  UwObject o{};
-  o.type = UW_BOX;
-  o.a[0] = x0, o.a[1] = y0, o.a[2] = z0;
-  o.b[0] = x1, o.b[1] = y1, o.b[2] = z1;
-  return o;
-}
-
-UwObject sphere(float x, float y, float z, float r) {
-  UwObject o{};
-  o.type = UW_SPHERE;
-  o.a[0] = x, o.a[1] = y, o.a[2] = z, o.a[3] = r;
-  return o;
-}
+using seasim::testing::uwTestBox;
+using seasim::testing::uwTestSphere;
 
 // The share of the sand a face sees that is sunlit, in float and double, under a sun straight above a 5 m
 // bottom with a box on it and a sphere above the sand far away: all of it far from both, none just above the
@@ -231,7 +219,7 @@ UwObject sphere(float x, float y, float z, float r) {
 template <class M>
 void checkBottomVisibility() {
   using V = typename M::real3;
-  const std::vector<UwObject> objects = {box(-1, -5, -1, 1, -4, 1), sphere(-20, -1, -20, 0.5f)};
+  const std::vector<UwObject> objects = {uwTestBox(-1, -5, -1, 1, -4, 1), uwTestSphere(-20, -1, -20, 0.5f)};
   const V up{0, 1, 0}, down{0, -1, 0}, side{1, 0, 0}, s_w{0, 1, 0};
   auto vis = [&](V p, V n, float H = 5) { return M::uwi_bottom_visibility(objects.data(), 2, H, p, n, s_w); };
   EXPECT_EQ(vis(V{30, -2, 30}, down), 1);            // open sand, sunlit
