@@ -19,6 +19,9 @@
 // form per depth (eigenvalues of a symmetric N x N matrix by Jacobi rotations, the beam's particular
 // solution and the boundary conditions by Gaussian elimination), in double.
 #pragma once
+#include <algorithm>
+#include <array>
+#include <cmath>
 #include <vector>
 
 namespace seasim {
@@ -54,6 +57,22 @@ double tiltedIrradianceKernel(int mode, double nu, double n_y);
 // coefficient of cos(m Δφ): (2 - δ_m0) Σ_l (2l + 1) g^l q_l^m(ν) q_l^m(μ) / (4π) (the addition theorem,
 // q_l^m the normalised associated Legendre functions), summed until g^l < 1e-10. Per sr.
 double hgAzimuthMode(double g, int mode, double nu, double mu);
+
+// Any function of the scattering angle's cosine, f(cos Θ) with cos Θ = ν μ + √(1 - ν²) √(1 - μ²) cos Δφ
+// between downward cosines nu and mu, in azimuth modes 0, 1, 2 as coefficients of cos(m Δφ) (the same
+// convention): the midpoint rule on `azimuths` points over [0, π], f being even in Δφ. For the phases the
+// kernel uses that have no series (its capped TMS phase, the forward peak's aureole; s13).
+template <class F>
+std::array<double, 3> azimuthModes(double nu, double mu, int azimuths, F f) {
+  std::array<double, 3> m{0, 0, 0};
+  const double sin_nu = std::sqrt(std::max(1 - nu * nu, 0.0)), sin_mu = std::sqrt(std::max(1 - mu * mu, 0.0));
+  for (int i = 0; i < azimuths; ++i) {
+    const double dphi = 3.14159265358979323846 * (i + 0.5) / azimuths;
+    const double v = f(std::clamp(nu * mu + sin_nu * sin_mu * std::cos(dphi), -1.0, 1.0));
+    for (int mode = 0; mode < 3; ++mode) m[mode] += (mode == 0 ? 1.0 : 2.0) * std::cos(mode * dphi) * v / azimuths;
+  }
+  return m;
+}
 
 class DiscreteOrdinates {
  public:

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "math/kernel_math.h"
+#include "underwater/discrete_ordinates.h"
 
 namespace seasim {
 
@@ -13,7 +14,8 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-double hg(double mu, double g) { return (1 - g * g) / (4 * kPi * std::pow(1 + g * g - 2 * g * mu, 1.5)); }
+// The kernel's own HG (optics.h): its denominator keeps its digits as g -> 1 and μ -> 1.
+double hg(double mu, double g) { return kmath_d::hg_phase(mu, g); }
 
 // ∫ p_HG dΩ over the cone cos θ >= mu_c: (1 - g²)/(2g) [1/(1 - g) - (1 + g² - 2 g mu_c)^{-1/2}] (g >= 1e-3,
 // where the difference loses no more than 1e-13).
@@ -140,20 +142,13 @@ double setForwardPeak(UwiBand& o, const UwBand& band, const ForwardPeak& peak, d
 void setAureoleModesHeld(UwiBand& o, double g, double mu_w, const std::vector<float>& fit_weight) {
   std::fill(std::begin(o.aureole_modes), std::end(o.aureole_modes), 0.0f);
   if (!(o.p_clip > 0)) return;
-  constexpr int kAzimuths = 256;
-  const double sin_w = std::sqrt(std::max(1 - mu_w * mu_w, 0.0));
   const int nodes = std::min(static_cast<int>(fit_weight.size()), UWI_SOURCE_NODES);
   for (int j = 0; j < nodes; ++j) {
     const double w = fit_weight[j], nu = kmath_d::uwi_source_node_cosine(j);
     if (!(w > 0) || !(nu > 0)) continue;  // the order-3 table's node, or looking down (no aureole)
-    const double sin_nu = std::sqrt(std::max(1 - nu * nu, 0.0));
-    double m[3] = {0, 0, 0};
-    for (int i = 0; i < kAzimuths; ++i) {
-      const double dphi = kPi * (i + 0.5) / kAzimuths;
-      const double cos_s = std::clamp(nu * mu_w + sin_nu * sin_w * std::cos(dphi), -1.0, 1.0);
-      const double a = kmath_d::uwi_aureole_at_camera(&o, kmath_d::hg_phase(cos_s, g), cos_s, nu);
-      for (int mode = 0; mode < 3; ++mode) m[mode] += (mode == 0 ? 1.0 : 2.0) * std::cos(mode * dphi) * a / kAzimuths;
-    }
+    const std::array<double, 3> m = azimuthModes(nu, mu_w, 256, [&](double cos_s) {
+      return kmath_d::uwi_aureole_at_camera(&o, kmath_d::hg_phase(cos_s, g), cos_s, nu);
+    });
     for (int mode = 0; mode < 3; ++mode) o.aureole_modes[3 * j + mode] = static_cast<float>(w * m[mode]);
   }
 }

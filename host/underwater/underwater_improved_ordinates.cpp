@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <numbers>
 #include <vector>
 
 #include <tbb/parallel_for.h>
@@ -168,19 +167,13 @@ ModeProfiles modeProfiles(const DiscreteOrdinates& field, const DiscreteOrdinate
 // in Δφ): what the high-order fit leaves out (s13). mu_w: the refracted sun's cosine as the kernel reads it.
 void kernelTmsModes(const UwiBand& o, const UwBand& band, double g, double mu_w, const std::vector<double>& nus,
                     SourceTableBasis& basis) {
-  constexpr int kAzimuths = 256;
-  const double sin_w = std::sqrt(std::max(1 - mu_w * mu_w, 0.0));
   for (int mode = 0; mode < 3; ++mode) basis.tms[mode].assign(nus.size(), 0.0);
   const double b_e_beam = double(band.b) * band.e_beam0;
   for (size_t j = 0; j < nus.size(); ++j) {
-    const double nu = nus[j], sin_nu = std::sqrt(std::max(1 - nu * nu, 0.0));
-    for (int i = 0; i < kAzimuths; ++i) {
-      const double dphi = std::numbers::pi * (i + 0.5) / kAzimuths;
-      const double cos_s = std::clamp(nu * mu_w + sin_nu * sin_w * std::cos(dphi), -1.0, 1.0);
-      const double tms = b_e_beam * kmath_d::uwi_tms_phase(kmath_d::hg_phase(cos_s, g), o.p_clip);
-      for (int mode = 0; mode < 3; ++mode)
-        basis.tms[mode][j] += (mode == 0 ? 1.0 : 2.0) * std::cos(mode * dphi) / kAzimuths * tms;
-    }
+    const std::array<double, 3> m = azimuthModes(nus[j], mu_w, 256, [&](double cos_s) {
+      return b_e_beam * kmath_d::uwi_tms_phase(kmath_d::hg_phase(cos_s, g), o.p_clip);
+    });
+    for (int mode = 0; mode < 3; ++mode) basis.tms[mode][j] = m[mode];
   }
 }
 
