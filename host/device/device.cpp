@@ -11,6 +11,7 @@
 
 #include "device/crash_hint.h"
 #include "device/kernel_cache.h"
+#include "device/pocl_cache_check.h"
 #include "device/kernel_source.h"
 #include "util/error.h"
 #include "util/hash.h"
@@ -50,7 +51,8 @@ std::string DeviceInfo::label() const {
 }
 
 std::vector<DeviceInfo> listDevices() {
-  usePoclCacheDir();  // before the first OpenCL call, which loads PoCL
+  usePoclCacheDir();    // before the first OpenCL call, which loads PoCL
+  preparePoclCache();   // and PoCL's cache checked: PoCL crashes on a damaged one (pocl_cache_check.h)
   std::vector<DeviceInfo> result;
   std::vector<cl::Platform> platforms;
   cl_int err = cl::Platform::get(&platforms);
@@ -199,7 +201,7 @@ const BuiltProgram& Device::program(const std::string& kernel_file, const std::v
       std::fprintf(stderr, "seasim: warning: kernel cache entry '%s' for kernels/%s is unusable: %s; rebuilding it\n",
                    cache_file.c_str(), kernel_file.c_str(), why.c_str());
       std::error_code ec;
-      fs::remove(cache_file, ec);
+      fs::remove_all(cache_file, ec);  // a folder put in its place goes too
     }
   }
   if (!built.from_cache) {
