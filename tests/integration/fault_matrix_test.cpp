@@ -426,7 +426,17 @@ TEST_F(FaultMatrix, ValidateRefusesAnEmptySceneAndAnUnreadableSensorCsv) {
   r = run("validate " + scene);
   EXPECT_EQ(r.code, 1) << r.output;
   EXPECT_TRUE(contains(r.output, scene + ":8: key 'spectral.sensor': ")) << r.output;
-  EXPECT_TRUE(contains(r.output, "broken.csv")) << r.output;
+  EXPECT_TRUE(contains(r.output, "broken.csv:2: column 'r': 'not' is not a finite number")) << r.output;
+  // A well-formed CSV that cannot be read (mode 000, as an unprivileged user).
+  write("cams/broken.csv", "nm,r,g,b\n400,1,1,1\n700,1,1,1\n");
+  fs::permissions(cams / "broken.csv", fs::perms::none);
+  if (::geteuid() == 0 && seasim_test::runCommand("setpriv --reuid=65534 --regid=65534 --clear-groups true").code != 0)
+    GTEST_SKIP() << "the mode-000 CSV needs setpriv to drop root";
+  r = seasim_test::runCommand(asUnprivileged() + kBinary + " validate " + scene);
+  EXPECT_EQ(r.code, 1) << r.output;
+  EXPECT_TRUE(contains(r.output, scene + ":8: key 'spectral.sensor': " + (cams / "broken.csv").string() +
+                                     ": cannot open for reading"))
+      << r.output;
 }
 
 // A sweep of 10^6 values made `validate` take 3.1 GB and 16 s; it is refused before it is expanded.
@@ -446,8 +456,9 @@ TEST_F(FaultMatrix, HugeSweepIsRefusedBeforeItIsExpanded) {
   EXPECT_TRUE(contains(r.output, job + ":4: key 'sweep[0].values': 1000000 items (0 before it) are more than a job "
                                        "may hold (100000)"))
       << r.output;
-  EXPECT_LT(s, 10.0);
-  EXPECT_LT(usage.ru_maxrss, 1024L * 1024L) << "KiB of the largest child: under 1 GiB";
+  // Most of the time is toml++ reading the 8 MB array (5.7 s on the shared 2-core VM, was 16 s).
+  EXPECT_LT(s, 30.0);
+  EXPECT_LT(usage.ru_maxrss, 1024L * 1024L) << "KiB of the largest child: under 1 GiB (was 3.1 GB)";
   std::printf("validate of a 10^6-value sweep: %.2f s, max RSS %ld MiB\n", s, usage.ru_maxrss / 1024);
 }
 
