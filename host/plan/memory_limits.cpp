@@ -26,7 +26,10 @@ bool readValue(const fs::path& file, std::string& value) {
 constexpr unsigned long long kNoLimitAbove = 1ull << 60;
 
 // One cgroup level: its limit less its use, or nothing when it has no limit.
-void tighten(ProcessMemoryLimit& best, const fs::path& dir, const char* limit_file, const char* usage_file) {
+// `inactive_key`: the memory.stat line of the inactive page cache under this level (v2
+// "inactive_file", v1 "total_inactive_file": its usage_in_bytes counts the children too).
+void tighten(ProcessMemoryLimit& best, const fs::path& dir, const char* limit_file, const char* usage_file,
+             const char* inactive_key) {
   std::string limit_text, usage_text;
   if (!readValue(dir / limit_file, limit_text) || limit_text == "max") return;
   unsigned long long limit = 0, usage = 0;
@@ -37,22 +40,32 @@ void tighten(ProcessMemoryLimit& best, const fs::path& dir, const char* limit_fi
     return;
   }
   if (limit >= kNoLimitAbove) return;
+  // The page cache counts in the use but the kernel gives it back under pressure: what a new
+  // allocation competes with is the working set, use less inactive file pages (as `docker stats`).
+  std::ifstream stat(dir / "memory.stat");
+  std::string key;
+  unsigned long long value = 0;
+  while (stat >> key >> value)
+    if (key == inactive_key) {
+      usage = value < usage ? usage - value : 0;
+      break;
+    }
   const unsigned long long available = usage < limit ? limit - usage : 0;
   if (best.available_bytes != 0 && available >= best.available_bytes) return;
   best.available_bytes = available == 0 ? 1 : available;  // 1: a limit already reached still counts
   best.source = "the memory cgroup's limit (" + (dir / limit_file).string() + ") of " + mib(limit) + ", " +
-                mib(usage) + " in use";
+                mib(usage) + " in use (page cache it can drop left out)";
 }
 
 // Every level from `path` (relative to `mount`) up to `mount` itself.
 void walkUp(ProcessMemoryLimit& best, const fs::path& mount, std::string path, const char* limit_file,
-            const char* usage_file) {
+            const char* usage_file, const char* inactive_key) {
   while (!path.empty() && path.front() == '/') path.erase(0, 1);
   fs::path dir = mount / path;
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) dir = mount;  // a container's own cgroup mounted as the root
   for (;;) {
-    tighten(best, dir, limit_file, usage_file);
+    tighten(best, dir, limit_file, usage_file, inactive_key);
     if (dir == mount || !dir.has_parent_path() || dir.parent_path() == dir) break;
     dir = dir.parent_path();
     if (dir.string().size() < mount.string().size()) break;
@@ -84,13 +97,14 @@ ProcessMemoryLimit cgroupMemoryLimit(const std::string& cgroup_root, const std::
       const fs::path unified = fs::exists(fs::path(cgroup_root) / "cgroup.controllers")
                                    ? fs::path(cgroup_root)
                                    : fs::path(cgroup_root) / "unified";
-      walkUp(best, unified, path, "memory.max", "memory.current");
+      walkUp(best, unified, path, "memory.max", "memory.current", "inactive_file");
     } else {
       std::istringstream names(controllers);
       std::string name;
       while (std::getline(names, name, ','))
         if (name == "memory")
-          walkUp(best, fs::path(cgroup_root) / "memory", path, "memory.limit_in_bytes", "memory.usage_in_bytes");
+          walkUp(best, fs::path(cgroup_root) / "memory", path, "memory.limit_in_bytes", "memory.usage_in_bytes",
+                 "total_inactive_file");
     }
   }
   return best;

@@ -23,7 +23,8 @@ ProcessMemoryLimit addressSpaceLimit(unsigned long long limit_bytes, unsigned lo
 // The cgroup of `proc_self_cgroup` (the text of /proc/self/cgroup) under `cgroup_root` (normally
 // /sys/fs/cgroup): v2 ("0::/path", <root>/<path>/memory.max and memory.current) or v1 (the
 // "memory" controller's line, <root>/memory/<path>/memory.limit_in_bytes and memory.usage_in_bytes);
-// each level from the process's cgroup up to the root counts. A path that is not there (a
+// each level from the process's cgroup up to the root counts, its use less the inactive page cache
+// of its memory.stat (the kernel drops that first). A path that is not there (a
 // container that shows its own cgroup as the root) falls back to the mount's root.
 ProcessMemoryLimit cgroupMemoryLimit(const std::string& cgroup_root, const std::string& proc_self_cgroup);
 

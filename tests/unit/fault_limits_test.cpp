@@ -96,13 +96,16 @@ TEST_F(FaultLimits, CgroupLimitsAreReadForV1AndV2AndTheTightestLevelWins) {
   write("v2/jobs/task7/memory.current", "1000\n");
   ProcessMemoryLimit l = cgroupMemoryLimit(path("v2"), "0::/jobs/task7\n");
   EXPECT_EQ(l.available_bytes, 1536ull << 20);
-  EXPECT_NE(l.source.find("memory cgroup's limit (" + path("v2/jobs/memory.max") + ") of 2048 MiB, 512 MiB in use"),
+  EXPECT_NE(l.source.find("memory cgroup's limit (" + path("v2/jobs/memory.max") + ") of 2048 MiB, 512 MiB in use"
+                          " (page cache it can drop left out)"),
             std::string::npos)
       << l.source;
   // v1: the memory controller's line; "no limit" is a huge page-rounded number.
   write("v1/memory/memory.limit_in_bytes", "9223372036854771712\n");
   write("v1/memory/box/memory.limit_in_bytes", "1073741824\n");
-  write("v1/memory/box/memory.usage_in_bytes", "268435456\n");
+  write("v1/memory/box/memory.usage_in_bytes", "536870912\n");
+  // Of its 512 MiB in use, 256 MiB are page cache the kernel drops first.
+  write("v1/memory/box/memory.stat", "cache 300000000\ninactive_file 1\ntotal_inactive_file 268435456\n");
   l = cgroupMemoryLimit(path("v1"), "5:cpu,cpuacct:/\n4:memory:/box\n0::/\n");
   EXPECT_EQ(l.available_bytes, 768ull << 20);
   // A container that shows its own cgroup as the mount's root: the path is not there, the root counts.
