@@ -127,6 +127,14 @@ std::vector<BufferEstimate> estimateBuffers(const Scene& s, const Plan& plan) {
       const double C = knob(s, "caustic_map_size", 256);
       out.push_back({p.name, "caustic maps", 2 * 4 * C * C,
                      {"quality.caustic_map_size", "quality.caustic_map_size"}, {C, C}});
+    } else if (p.name == "kd_multiple" &&
+               std::find(p.defines.begin(), p.defines.end(), "SEASIM_UWI_SPREAD=1") != p.defines.end()) {
+      // The forward light's moments the point spread blurs (underwater_pass.cpp): F and F E per
+      // channel, F D and F per pixel, and per band with spectral output.
+      out.push_back({p.name, "forward light moments (underwater.point_spread)", 4 * 8 * w * h, wh, {w, h}});
+      if (s.spectral.spectral_exr)
+        out.push_back({p.name, "forward light moments per band", 4 * 2 * nb * w * h,
+                       {"camera.width", "camera.height", "spectral.count"}, {w, h, nb}});
     } else if (p.name == "underwater_lamps") {
       // Its own copies of the underwater parameter blocks are per band, not per pixel: only the spectra.
       out.push_back({p.name, "lamp spectra (one per spotlight and band)", 4 * lights * nb,

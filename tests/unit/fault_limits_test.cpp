@@ -15,6 +15,7 @@
 #include "jobs/shard_lock.h"
 #include "plan/memory_budget.h"
 #include "plan/memory_limits.h"
+#include "plan/plan.h"
 #include "scene/scene_parser.h"
 #include "scene/toml_limits.h"
 #include "util/error.h"
@@ -112,6 +113,24 @@ TEST_F(FaultLimits, CgroupLimitsAreReadForV1AndV2AndTheTightestLevelWins) {
   l = cgroupMemoryLimit(path("v1"), "4:memory:/process_api/abc\n");
   EXPECT_EQ(l.available_bytes, 0u) << "the root has no limit";
   EXPECT_EQ(cgroupMemoryLimit(path("none"), "0::/\n").available_bytes, 0u);
+}
+
+// The buffers the froxel pass (sun shadow map over spheres and boxes) and kd_multiple (the forward
+// light's moments under underwater.point_spread) allocate per setting are in the estimate.
+TEST_F(FaultLimits, UnderwaterShadowMapAndForwardMomentsAreInTheBudget) {
+  const Scene seabed = loadScene(std::string(SEASIM_SOURCE_DIR) + "/scenes/seabed.toml",
+                                 {{"quality.shadow_map_size", "4096", {"t", 1}},
+                                  {"underwater.model", "\"improved\"", {"t", 2}},
+                                  {"underwater.point_spread", "true", {"t", 3}},
+                                  {"camera.width", "100", {"t", 4}},
+                                  {"camera.height", "50", {"t", 5}}});
+  double shadow = 0, moments = 0;
+  for (const BufferEstimate& b : estimateBuffers(seabed, makePlan(seabed))) {
+    if (b.pass == "froxel" && b.what == "sun shadow map over the objects") shadow = b.bytes;
+    if (b.pass == "kd_multiple" && b.what == "forward light moments (underwater.point_spread)") moments = b.bytes;
+  }
+  EXPECT_EQ(shadow, 4.0 * 4096 * 4096);  // one float per texel (froxel_pass.cpp)
+  EXPECT_EQ(moments, 4.0 * 8 * 100 * 50);  // 2 x 3 channel moments + 2 per pixel (underwater_pass.cpp)
 }
 
 TEST_F(FaultLimits, ShardLocksOfDifferentLayoutsExcludeEachOther) {
