@@ -145,17 +145,26 @@ fs::path entryOf(const fs::path& dir, const fs::path& file) {
   return it == rel.end() ? file : entry;
 }
 
+// Why PoCL cannot write `dir` ("" when it can), as the sentence the warning uses: "is read-only
+// (...)" for a read-only file system or missing permission, else "cannot be used (...)".
 std::string writableProblem(const std::string& dir) {
+  const auto why = [](int err, const std::string& what) {
+    const bool read_only = err == EROFS || err == EACCES || err == EPERM;
+    return std::string(read_only ? "is read-only (" : "cannot be used (") + what + ")";
+  };
   std::error_code ec;
   if (!fs::exists(dir, ec)) {
     fs::create_directories(dir, ec);  // as PoCL would; where it cannot, PoCL offered no device at all
-    if (ec) return "it cannot be created: " + ec.message();
+    if (ec) return why(ec.value(), "it cannot be created: " + ec.message());
   }
-  if (!fs::is_directory(dir, ec)) return "it is not a folder";
+  if (!fs::is_directory(dir, ec)) return why(ENOTDIR, "it is not a folder");
   // access(2) ignores read-only mounts for root and ACL subtleties: a real file says it all.
   const std::string probe = dir + "/.seasim-write-test-" + std::to_string(::getpid());
   const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
-  if (fd < 0) return std::strerror(errno);
+  if (fd < 0) {
+    const int err = errno;
+    return why(err, std::strerror(err));
+  }
   ::close(fd);
   ::unlink(probe.c_str());
   return "";
@@ -185,7 +194,7 @@ std::string poclCacheFileProblem(const std::string& path) {
 PoclCacheRepair checkPoclCache(const std::string& dir) {
   PoclCacheRepair out;
   if (const std::string problem = writableProblem(dir); !problem.empty()) {
-    out.bypass_reason = "PoCL's cache folder '" + dir + "' is read-only (" + problem + ")";
+    out.bypass_reason = "PoCL's cache folder '" + dir + "' " + problem;
     return out;
   }
   std::error_code ec;
