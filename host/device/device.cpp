@@ -180,7 +180,8 @@ const BuiltProgram& Device::program(const std::string& kernel_file, const std::v
       info_.is_pocl && !poclCacheDir().empty()
           ? "A damaged PoCL kernel cache causes this: clear '" + poclCacheDir() +
                 "' (`seasim cache clear` does it when seasim owns that folder) and run again."
-          : "If it happens again, clear the driver's kernel cache and seasim's (`seasim cache clear`).");
+          : "If it happens again, clear the driver's kernel cache and seasim's (`seasim cache clear`).",
+      info_.is_pocl && !poclCacheDir().empty() ? poclCrashMarker(poclCacheDir()) : "");
   BuiltProgram built;
   if (!cache_file.empty()) {
     std::vector<unsigned char> bytes;

@@ -191,6 +191,8 @@ std::string poclCacheFileProblem(const std::string& path) {
   return ext == ".so" ? elfProblem(in, size) : bitcodeProblem(in, size);
 }
 
+std::string poclCrashMarker(const std::string& dir) { return dir + "/.seasim-crashed"; }
+
 PoclCacheRepair checkPoclCache(const std::string& dir) {
   PoclCacheRepair out;
   if (const std::string problem = writableProblem(dir); !problem.empty()) {
@@ -199,6 +201,26 @@ PoclCacheRepair checkPoclCache(const std::string& dir) {
   }
   std::error_code ec;
   if (!fs::is_directory(dir, ec)) return out;
+  if (fs::exists(poclCrashMarker(dir), ec)) {
+    std::vector<fs::path> entries;
+    for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) entries.push_back(it->path());
+    int removed = 0;
+    for (const fs::path& entry : entries) {
+      std::error_code rm;
+      fs::remove_all(entry, rm);
+      if (rm) {
+        out.bypass_reason = "PoCL's cache folder '" + dir + "' held a crashed build and cannot be cleared (" +
+                            rm.message() + ")";
+        return out;
+      }
+      ++removed;
+    }
+    std::fprintf(stderr,
+                 "seasim: warning: the last run crashed inside PoCL while building kernels; cleared PoCL's cache "
+                 "'%s' (%d entries), which may have caused it\n",
+                 dir.c_str(), removed - 1);
+    out.removed += removed - 1;  // the marker is not an entry
+  }
   std::vector<std::pair<fs::path, std::string>> damaged;
   for (fs::recursive_directory_iterator it(dir, fs::directory_options::skip_permission_denied, ec), end;
        !ec && it != end; it.increment(ec)) {

@@ -14,6 +14,11 @@ namespace seasim {
 // files are not checked. A folder where a file belongs is damage too.
 std::string poclCacheFileProblem(const std::string& path);
 
+// The file a crash inside PoCL's kernel build leaves in its cache folder (device/crash_hint.h):
+// "<dir>/.seasim-crashed". checkPoclCache then clears the folder, since a damaged entry the
+// structural checks pass (a flipped byte) is the likely cause, and removes the marker.
+std::string poclCrashMarker(const std::string& dir);
+
 struct PoclCacheRepair {
   int removed = 0;             // damaged program entries removed (PoCL rebuilds them)
   std::string bypass_reason;   // not empty: the folder could not be used or repaired

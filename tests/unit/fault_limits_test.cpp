@@ -3,7 +3,9 @@
 // locks of different layouts, and PoCL cache files cut short. The same cases through the real
 // binary are in tests/integration/fault_matrix_test.cpp.
 #include <gtest/gtest.h>
+#include <signal.h>
 #include <sys/file.h>
+#include <sys/wait.h>
 #include <fcntl.h>
 #include <unistd.h>
 
@@ -11,6 +13,7 @@
 #include <fstream>
 #include <functional>
 
+#include "device/crash_hint.h"
 #include "device/pocl_cache_check.h"
 #include "jobs/shard_lock.h"
 #include "plan/memory_budget.h"
@@ -180,6 +183,21 @@ TEST_F(FaultLimits, LockFilesAreNeverEmptyAndAGarbageOneIsTakenOnlyWhenNobodyHol
   ::close(fd);
 }
 
+// A crash while a CrashHint is alive leaves its marker and still dies by the same signal.
+TEST_F(FaultLimits, CrashInsideTheDriverLeavesTheMarkerAndDiesAsBefore) {
+  const std::string marker = poclCrashMarker(dir_.string());
+  const pid_t child = ::fork();
+  if (child == 0) {
+    const CrashHint hint("building kernels/test.cl", "a hint", marker);
+    ::raise(SIGABRT);
+    ::_exit(0);
+  }
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGABRT) << status;
+  EXPECT_TRUE(fs::exists(marker));
+}
+
 TEST_F(FaultLimits, PoclCacheFilesCutShortAreFound) {
   // A real shared object of this system, whole and halved.
   std::string so;
@@ -219,6 +237,14 @@ TEST_F(FaultLimits, PoclCacheFilesCutShortAreFound) {
   EXPECT_EQ(repair.removed, 1);
   EXPECT_FALSE(fs::exists(dir_ / "AB" / "CDEF"));
   EXPECT_TRUE(fs::exists(dir_ / "AB" / "GOOD" / "k.so"));
+
+  // A build that crashed inside PoCL left its marker (device/crash_hint.h): the whole cache goes,
+  // whole-looking entries too (a flipped byte passes the structural checks).
+  write(".seasim-crashed", "");
+  const PoclCacheRepair cleared = checkPoclCache(dir_.string());
+  EXPECT_EQ(cleared.bypass_reason, "");
+  EXPECT_EQ(cleared.removed, 2) << "AB and ok.bc";
+  EXPECT_TRUE(fs::is_empty(dir_));
 }
 
 }  // namespace
