@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/file.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <fcntl.h>
 #include <unistd.h>
@@ -89,6 +90,35 @@ TEST_F(FaultLimits, AddressSpaceLimitLeavesWhatIsNotMapped) {
   EXPECT_EQ(l.available_bytes, 3ull << 30);
   EXPECT_EQ(l.source, "the process's address-space limit (RLIMIT_AS, ulimit -v) of 4096 MiB, 1024 MiB of it mapped");
   EXPECT_EQ(addressSpaceLimit(1ull << 30, 2ull << 30).available_bytes, 1u) << "already over: nothing left";
+}
+
+// On a GPU the device's buffers are its own, but the host copies of the frame are this process's:
+// under RLIMIT_AS they are checked against what the process may still map (in a child, so the
+// limit does not stay on the test runner).
+TEST_F(FaultLimits, OnAGpuTheHostCopiesMeetTheProcesssLimit) {
+  const std::string out = path("message");
+  const pid_t child = ::fork();
+  if (child == 0) {
+    rlimit as{};
+    as.rlim_cur = as.rlim_max = 8ull << 30;
+    ::setrlimit(RLIMIT_AS, &as);
+    const double big = 12.0 * 16384 * 16384;  // 3 GiB each
+    const std::vector<BufferEstimate> buffers = {
+        {"frame", "RGB image", big, {"camera.width", "camera.height"}, {16384, 16384}, false},
+        {"frame", "RGB image read back to the host", big, {"camera.width", "camera.height"}, {16384, 16384}, true},
+        {"frame", "another host copy", big, {"camera.width", "camera.height"}, {16384, 16384}, true},
+        {"frame", "a third host copy", big, {"camera.width", "camera.height"}, {16384, 16384}, true}};
+    std::string msg = errorOf([&] { checkRenderMemory(buffers, 80ull << 30, 20ull << 30, "gpu:0 test", false); });
+    std::ofstream(out) << msg;
+    ::_exit(0);
+  }
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  std::ifstream in(out);
+  const std::string msg((std::istreambuf_iterator<char>(in)), {});
+  EXPECT_NE(msg.find("more than 90% of the host side of this process's"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("the process's address-space limit (RLIMIT_AS, ulimit -v) of 8192 MiB"), std::string::npos) << msg;
+  EXPECT_EQ(msg.find("RGB image 3072"), std::string::npos) << "the device's own buffer is not a host copy: " << msg;
 }
 
 TEST_F(FaultLimits, CgroupLimitsAreReadForV1AndV2AndTheTightestLevelWins) {
