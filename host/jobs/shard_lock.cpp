@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cerrno>
+#include <chrono>
 #include <cstdio>
 #include <cstring>
 #include <ctime>
@@ -78,11 +79,20 @@ struct Probe {
 bool isStale(const std::string& path, const Owner& o, Probe& probe) {
   probe.fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
   if (probe.fd < 0) return false;  // gone meanwhile: the next attempt creates it
+  bool flock_known = true;
   if (::flock(probe.fd, LOCK_EX | LOCK_NB) != 0) {
-    probe.held = true;
-    return false;
+    if (errno == EWOULDBLOCK) {
+      probe.held = true;
+      return false;
+    }
+    flock_known = false;  // a file system without flock (NFS without lockd): age and PID decide
   }
-  if (!o.readable) return true;  // seasim writes locks complete: an empty or garbage one is left over
+  if (!o.readable) {
+    if (flock_known) return true;  // seasim writes locks complete: an empty or garbage one is left over
+    std::error_code ec;
+    const auto age = fs::file_time_type::clock::now() - fs::last_write_time(path, ec);
+    return !ec && age > std::chrono::minutes(1);
+  }
   if (o.host != hostName()) return false;
   return ::kill(static_cast<pid_t>(o.pid), 0) != 0 && errno == ESRCH;
 }
@@ -161,9 +171,13 @@ void ShardLock::acquire() {
   ::unlink(temp.c_str());
   writeBytes(temp, content.data(), content.size());
   fd_ = ::open(temp.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd_ < 0 || ::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+  // Where the file system has no flock (ENOLCK, EOPNOTSUPP), the lock still excludes by its name;
+  // only telling a dead owner's empty lock from a live one falls back to its age.
+  if (fd_ < 0 || (::flock(fd_, LOCK_EX | LOCK_NB) != 0 && errno == EWOULDBLOCK)) {
     const std::string why = std::strerror(errno);
     ::unlink(temp.c_str());
+    if (fd_ >= 0) ::close(fd_);
+    fd_ = -1;
     throw RuntimeError("cannot create the shard lock '" + path_ + "': " + why);
   }
   for (int attempt = 0; attempt < 2; ++attempt) {

@@ -3,7 +3,8 @@
 // files the other run had replaced. The lock is a file beside the manifest holding the host, PID
 // and start time of its owner, written complete under a temporary name and linked onto its name
 // (link(2) fails if the name exists: atomic on local disks and NFS, and never an empty lock), and
-// flock(2)-held by its owner while it runs, so a lock nobody holds is known to be left over.
+// flock(2)-held by its owner while it runs, so a lock nobody holds is known to be left over (on a
+// file system without flock, an unreadable lock is taken over once it is a minute old).
 //
 // Runs exclude each other by the items they render: shards of one layout (--shard i/N, same N)
 // render disjoint items and run side by side; a run of another layout (no --shard, or another N)
