@@ -158,6 +158,32 @@ TEST_F(FaultMatrix, WholeJobAndShardRunsAtOnceTheSecondRefuses) {
   EXPECT_EQ(merge.code, 0) << merge.output;
 }
 
+// SIGKILL in the middle of an item (after its first output, before report.json): the next run
+// takes over the dead run's lock (nobody holds its flock, its PID is gone) and --resume renders the
+// killed item and the rest, not the finished one; merge then finds every file.
+TEST_F(FaultMatrix, KilledMidItemTheLockIsTakenOverAndResumeRedoesOnlyWhatIsUnfinished) {
+  const std::string job =
+      write("job.toml", "[job]\nname = \"k\"\noutput_dir = \"out\"\n" + flatItem("a") + flatItem("b") + flatItem("c"));
+  const fs::path marker = dir_ / "killed";
+  Result r = run("run " + job + " --device pocl", "SEASIM_TEST_KILL_MID_ITEM=b:" + marker.string() + " ");
+  ASSERT_TRUE(fs::exists(marker)) << "the run was killed in item b: " << r.output;
+  EXPECT_NE(r.code, 0);
+  const fs::path out = dir_ / "out";
+  ASSERT_TRUE(fs::exists(out / "manifest.json.lock")) << "the killed run's lock is left behind";
+  EXPECT_TRUE(fs::exists(out / "b" / "image.exr"));
+  EXPECT_FALSE(fs::exists(out / "b" / "report.json"));
+
+  r = run("run " + job + " --resume --device pocl");
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_TRUE(contains(r.output, "removing stale lock '" + (out / "manifest.json.lock").string() + "' (process"))
+      << r.output;
+  EXPECT_TRUE(contains(r.output, "2 rendered, 1 finished earlier")) << r.output;
+  EXPECT_FALSE(fs::exists(out / "manifest.json.lock"));
+  r = run("farm merge " + job);
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_TRUE(contains(r.output, "all 3 items present with intact files")) << r.output;
+}
+
 // A lock left empty (created, then killed before it was written) or holding garbage blocked its
 // shard until deleted by hand. Nobody holds it: it is taken over.
 TEST_F(FaultMatrix, EmptyOrGarbageLockNobodyHoldsIsTakenOver) {
