@@ -461,7 +461,7 @@ TEST_F(FaultMatrix, ValidateRefusesAnEmptySceneAndAnUnreadableSensorCsv) {
   r = seasim_test::runCommand(asUnprivileged() + kBinary + " validate " + scene);
   EXPECT_EQ(r.code, 1) << r.output;
   EXPECT_TRUE(contains(r.output, scene + ":8: key 'spectral.sensor': " + (cams / "broken.csv").string() +
-                                     ": cannot open for reading"))
+                                     ": cannot open for reading: Permission denied"))
       << r.output;
 }
 
