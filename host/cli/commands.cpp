@@ -40,23 +40,6 @@ namespace fs = std::filesystem;
 
 namespace seasim {
 
-Override parseSetOption(const std::string& text) {
-  const size_t eq = text.find('=');
-  if (eq == std::string::npos || eq == 0) {
-    throw InputError("<command line>", 0, text, "--set expects key=value, e.g. --set sun.zenith_deg=40");
-  }
-  std::string key = text.substr(0, eq);
-  std::string value = text.substr(eq + 1);
-  try {
-    (void)toml::parse("v = " + value);
-  } catch (const toml::parse_error&) {
-    std::string quoted = "\"";  // not TOML: take it as a string (--set water.jerlov=IB)
-    for (char c : value) quoted += (c == '"' || c == '\\') ? std::string("\\") + c : std::string(1, c);
-    value = quoted + "\"";
-  }
-  return Override{key, value, SourceLoc{"<command line --set " + text + ">", 0}};
-}
-
 namespace {
 
 std::vector<Override> parseSets(const std::vector<std::string>& sets) {

@@ -5,11 +5,10 @@
 #include <vector>
 
 #include "scene/scene_parser.h"
+#include "scene/set_option.h"
 
 namespace seasim {
 
-// "key=value" from --set; a value that is not valid TOML is taken as a string.
-Override parseSetOption(const std::string& text);
 
 int cmdDevices();
 int cmdValidate(const std::vector<std::string>& files);

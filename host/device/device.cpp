@@ -12,6 +12,7 @@
 
 #include "device/crash_hint.h"
 #include "device/kernel_cache.h"
+#include "device/pocl_cache_check.h"
 #include "device/kernel_source.h"
 #include "util/error.h"
 #include "util/hash.h"
@@ -51,7 +52,8 @@ std::string DeviceInfo::label() const {
 }
 
 std::vector<DeviceInfo> listDevices() {
-  usePoclCacheDir();  // before the first OpenCL call, which loads PoCL
+  usePoclCacheDir();    // before the first OpenCL call, which loads PoCL
+  preparePoclCache();   // and PoCL's cache checked: PoCL crashes on a damaged one (pocl_cache_check.h)
   std::vector<DeviceInfo> result;
   std::vector<cl::Platform> platforms;
   cl_int err = cl::Platform::get(&platforms);
@@ -191,7 +193,8 @@ const BuiltProgram& Device::program(const std::string& kernel_file, const std::v
       info_.is_pocl && !poclCacheDir().empty()
           ? "A damaged PoCL kernel cache causes this: clear '" + poclCacheDir() +
                 "' (`seasim cache clear` does it when seasim owns that folder) and run again."
-          : "If it happens again, clear the driver's kernel cache and seasim's (`seasim cache clear`).");
+          : "If it happens again, clear the driver's kernel cache and seasim's (`seasim cache clear`).",
+      info_.is_pocl && !poclCacheDir().empty() ? poclCrashMarker(poclCacheDir()) : "");
   BuiltProgram built;
   if (!cache_file.empty()) {
     std::vector<unsigned char> bytes;
@@ -212,7 +215,7 @@ const BuiltProgram& Device::program(const std::string& kernel_file, const std::v
       std::fprintf(stderr, "seasim: warning: kernel cache entry '%s' for kernels/%s is unusable: %s; rebuilding it\n",
                    cache_file.c_str(), kernel_file.c_str(), why.c_str());
       std::error_code ec;
-      fs::remove(cache_file, ec);
+      fs::remove_all(cache_file, ec);  // a folder put in its place goes too
     }
   }
   if (!built.from_cache) {

@@ -1,5 +1,6 @@
 #include "jobs/render_item.h"
 
+#include <algorithm>
 #include <filesystem>
 
 #include "io/atomic_file.h"
@@ -55,23 +56,42 @@ nlohmann::json renderItem(Device& device, const Scene& scene, const ItemOutputs&
 }
 
 void checkRenderFitsDevice(Device& device, const Scene& scene, const Plan& plan) {
-  unsigned long long global_mem = device.info().global_mem_bytes, max_alloc = device.info().max_alloc_bytes;
-  applyMemoryCap(global_mem, max_alloc);
-  const bool capped = global_mem != device.info().global_mem_bytes || max_alloc != device.info().max_alloc_bytes;
-  checkMemoryBudget(estimateBuffers(scene, plan), global_mem, max_alloc,
-                    device.info().label() + (capped ? " capped by SEASIM_DEVICE_MEMORY_MB" : ""),
-                    !device.info().is_gpu);
+  checkRenderMemory(estimateBuffers(scene, plan), device.info().global_mem_bytes, device.info().max_alloc_bytes,
+                    device.info().label(), !device.info().is_gpu);
+}
+
+void checkOutputsPossible(const Scene& scene, const Plan& plan, const std::vector<std::string>& formats) {
+  if (std::find(formats.begin(), formats.end(), "spectral_exr") == formats.end()) return;
+  if (!scene.spectral.spectral_exr)
+    throw RuntimeError("output 'spectral_exr' needs spectral.spectral_exr = true in the scene '" + scene.file +
+                       "' (or --set spectral.spectral_exr=true); nothing written");
+  // Only the passes built with SEASIM_SPECTRAL_OUTPUT keep per-band radiance; the air-only
+  // models (shafts, raycast) render sensor RGB directly.
+  std::string names;
+  for (const PassPlan& p : plan.passes) {
+    if (std::find(p.defines.begin(), p.defines.end(), "SEASIM_SPECTRAL_OUTPUT=1") != p.defines.end()) return;
+    names += (names.empty() ? "" : ", ") + p.name;
+  }
+  throw RuntimeError("output 'spectral_exr': scene '" + scene.name + "' has no spectral image: its passes (" + names +
+                     ") render RGB only, spectral output comes from the sea and underwater models; drop "
+                     "spectral_exr from the outputs; nothing written");
 }
 
 nlohmann::json renderItem(Device& device, Renderer& renderer, const ItemOutputs& outputs, const std::string& dir) {
-  FrameResult frame = renderer.render();
   const Scene& scene = renderer.scene();
   const Plan& plan = renderer.plan();
+  checkOutputsPossible(scene, plan, outputs.formats);  // before the render and before any file
+  FrameResult frame = renderer.render();
   if (frame.nonfinite != 0) {
-    throw RuntimeError("scene '" + scene.name + "': the kernels produced " + std::to_string(frame.nonfinite) +
+    // Input images are checked for NaN/Inf before the render (scene/scene_inputs.h); still name them.
+    std::string images;
+    for (const ImageInputRef& image : scene.images) images += "\n  " + image.key + " = '" + image.path + "'";
+    throw RuntimeError("scene '" + scene.name + "' (" + scene.file + "): the kernels produced " +
+                       std::to_string(frame.nonfinite) +
                        " NaN/Inf values; nothing written for this render. Check the scene for extreme values "
-                       "(huge irradiance, scattering or intensity); if they are physical, please report it with "
-                       "the scene");
+                       "(huge irradiance, scattering or intensity)" +
+                       (images.empty() ? "" : " and the images it reads:" + images + "\n") +
+                       "; if they are physical, please report it with the scene");
   }
   // The reference is read and compared before any image is written, so a bad reference leaves
   // no images behind that look like a finished render.
@@ -89,6 +109,10 @@ nlohmann::json renderItem(Device& device, Renderer& renderer, const ItemOutputs&
              {"rel_l2", c.rel_l2},
              {"hue_sat_distance", c.hue_sat_distance}};
   }
+  const bool wants_spectral =
+      std::find(outputs.formats.begin(), outputs.formats.end(), "spectral_exr") != outputs.formats.end();
+  if (wants_spectral && frame.spectral.empty())  // the plan promised it (checkOutputsPossible): a bug
+    throw RuntimeError("output 'spectral_exr': the render produced no spectral image; nothing written");
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec) throw RuntimeError("cannot create the output folder '" + dir + "': " + ec.message());
@@ -113,9 +137,6 @@ nlohmann::json renderItem(Device& device, Renderer& renderer, const ItemOutputs&
       path = dir + "/image.npy";
       writeNpy(path, frame.rgb);
     } else if (format == "spectral_exr") {
-      if (frame.spectral.empty()) {
-        throw RuntimeError("output 'spectral_exr' needs spectral.spectral_exr = true in the scene");
-      }
       path = writeSpectralExr(dir + "/spectral.exr", frame.rgb.width, frame.rgb.height, frame.wavelengths_nm,
                               frame.spectral);
     } else {

@@ -12,6 +12,7 @@
 #include "device/device.h"
 #include "io/atomic_file.h"
 #include "io/data_files.h"
+#include "jobs/farm_items.h"
 #include "jobs/job.h"
 #include "jobs/job_inputs.h"
 #include "jobs/manifest.h"
@@ -107,7 +108,8 @@ RunSummary runJob(const std::string& job_path, const RunOptions& options) {
 
   const std::string manifest_file = manifestPath(job.output_dir, options.shard_index, options.shard_count);
   summary.manifest = manifest_file;
-  const ShardLock lock(shardLockPath(manifest_file));  // held until the job returns
+  // Held until the job returns; refused while a run of another shard count uses the folder.
+  const ShardLock lock(job.output_dir, options.shard_index, options.shard_count);
 
   // Balanced by cost, identically on every machine (jobs/shard_balance.h).
   const std::vector<int> shard_of = options.shard_count > 1 ? loadOrEstimateShardPlan(job, options.shard_count).shard_of
@@ -127,7 +129,7 @@ RunSummary runJob(const std::string& job_path, const RunOptions& options) {
   for (const RenderItem* item : mine) orphans += removeTempFiles(job.output_dir + "/" + item->name);
   if (orphans > 0) std::fprintf(stderr, "removed %d temporary file(s) left by an interrupted run\n", orphans);
 
-  const std::set<std::string> finished = options.resume ? finishedItems(job.output_dir) : std::set<std::string>{};
+  const std::set<std::string> finished = options.resume ? finishedItems(job, job.output_dir) : std::set<std::string>{};
   Manifest manifest = options.resume ? Manifest::load(manifest_file, job.file) : Manifest(job.file);
 
   // Inputs checkable before rendering (images decode, references match the render size).

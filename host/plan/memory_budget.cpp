@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "plan/memory_limits.h"
 #include "util/error.h"
 
 namespace seasim {
@@ -110,6 +111,15 @@ std::vector<BufferEstimate> estimateBuffers(const Scene& s, const Plan& plan) {
       const double fx = knob(s, "froxel_x", 160), fy = knob(s, "froxel_y", 90), fz = knob(s, "froxel_z", 64);
       out.push_back({p.name, "froxel volume", 20 * fx * fy * fz,
                      {"quality.froxel_x", "quality.froxel_y", "quality.froxel_z"}, {fx, fy, fz}});
+      // The sun's shadow map over the spheres and boxes (froxel_setup.cpp), one float per texel.
+      const bool bounded = std::any_of(s.objects.begin(), s.objects.end(), [](const ObjectDesc& o) {
+        return o.type == ObjectDesc::Type::Sphere || o.type == ObjectDesc::Type::Box;
+      });
+      if (bounded) {
+        const double S = knob(s, "shadow_map_size", 512);
+        out.push_back({p.name, "sun shadow map over the objects", 4 * S * S,
+                       {"quality.shadow_map_size", "quality.shadow_map_size"}, {S, S}});
+      }
       const double C = knob(s, "caustic_map_size", 256), L = knob(s, "caustic_layers", 8);
       out.push_back({p.name, "caustic maps", 4 * L * C * C,
                      {"quality.caustic_layers", "quality.caustic_map_size", "quality.caustic_map_size"}, {L, C, C}});
@@ -117,6 +127,14 @@ std::vector<BufferEstimate> estimateBuffers(const Scene& s, const Plan& plan) {
       const double C = knob(s, "caustic_map_size", 256);
       out.push_back({p.name, "caustic maps", 2 * 4 * C * C,
                      {"quality.caustic_map_size", "quality.caustic_map_size"}, {C, C}});
+    } else if (p.name == "kd_multiple" &&
+               std::find(p.defines.begin(), p.defines.end(), "SEASIM_UWI_SPREAD=1") != p.defines.end()) {
+      // The forward light's moments the point spread blurs (underwater_pass.cpp): F and F E per
+      // channel, F D and F per pixel, and per band with spectral output.
+      out.push_back({p.name, "forward light moments (underwater.point_spread)", 4 * 8 * w * h, wh, {w, h}});
+      if (s.spectral.spectral_exr)
+        out.push_back({p.name, "forward light moments per band", 4 * 2 * nb * w * h,
+                       {"camera.width", "camera.height", "spectral.count"}, {w, h, nb}});
     } else if (p.name == "underwater_lamps") {
       // Its own copies of the underwater parameter blocks are per band, not per pixel: only the spectra.
       out.push_back({p.name, "lamp spectra (one per spotlight and band)", 4 * lights * nb,
@@ -142,9 +160,37 @@ void applyMemoryCap(unsigned long long& global_mem_bytes, unsigned long long& ma
   max_alloc_bytes = max_alloc_bytes ? std::min(max_alloc_bytes, cap) : cap;
 }
 
+void checkRenderMemory(const std::vector<BufferEstimate>& buffers, unsigned long long global_mem_bytes,
+                       unsigned long long max_alloc_bytes, const std::string& device_label, bool host_shares_memory) {
+  const unsigned long long device_global = global_mem_bytes, device_alloc = max_alloc_bytes;
+  applyMemoryCap(global_mem_bytes, max_alloc_bytes);
+  const bool capped = global_mem_bytes != device_global || max_alloc_bytes != device_alloc;
+  const std::string label = device_label + (capped ? " capped by SEASIM_DEVICE_MEMORY_MB" : "");
+  const ProcessMemoryLimit process = processMemoryLimit();
+  if (process.available_bytes == 0) {
+    checkMemoryBudget(buffers, global_mem_bytes, max_alloc_bytes, label, host_shares_memory);
+    return;
+  }
+  if (host_shares_memory) {
+    if (global_mem_bytes == 0 || process.available_bytes < global_mem_bytes) {
+      // 0.9 of the total is usable in checkMemoryBudget: the same margin below the process's limit.
+      checkMemoryBudget(buffers, process.available_bytes, std::min(max_alloc_bytes, process.available_bytes),
+                        label + " within " + process.source, true, "what is left to this process");
+      return;
+    }
+    checkMemoryBudget(buffers, global_mem_bytes, max_alloc_bytes, label, true);
+    return;
+  }
+  checkMemoryBudget(buffers, global_mem_bytes, max_alloc_bytes, label, false);
+  std::vector<BufferEstimate> host;
+  for (BufferEstimate b : buffers)
+    if (b.host) host.push_back(b);
+  checkMemoryBudget(host, process.available_bytes, 0, "the host side of this process", true, process.source);
+}
+
 void checkMemoryBudget(const std::vector<BufferEstimate>& all, unsigned long long global_mem_bytes,
                        unsigned long long max_alloc_bytes, const std::string& device_label,
-                       bool host_shares_memory) {
+                       bool host_shares_memory, const std::string& total_limit_name) {
   std::vector<BufferEstimate> buffers;
   for (const auto& b : all)
     if (!b.host || host_shares_memory) buffers.push_back(b);
@@ -184,7 +230,7 @@ void checkMemoryBudget(const std::vector<BufferEstimate>& all, unsigned long lon
     }
     throw RuntimeError("not enough device memory: this render needs about " + mib(total) + ", more than 90% of " +
                        device_label + "'s " + mib(static_cast<double>(global_mem_bytes)) +
-                       " (CL_DEVICE_GLOBAL_MEM_SIZE). The largest is the " + largest->pass + " pass's " +
+                       " (" + total_limit_name + "). The largest is the " + largest->pass + " pass's " +
                        largest->what + whatFits(scaling, usable - (total - scaling.bytes)) +
                        "; nothing was allocated. Buffers:" + list);
   }

@@ -548,6 +548,15 @@ class SceneParser {
       names.insert(names.begin(), {"cie1931", "identity", "vonkries"});
       r.fail("sensor", unknownCameraMessage(s.sensor, s.camera_dir) + suggestion(s.sensor, names, 6));
     }
+    if (s.sensor != "cie1931" && s.sensor != "identity" && !von_kries) {
+      // Read now, not at the first frame: an unreadable or malformed camera CSV passed `validate`
+      // and failed the render.
+      try {
+        (void)loadCamera(s.sensor, s.camera_dir);
+      } catch (const std::exception& e) {
+        r.fail("sensor", e.what());
+      }
+    }
     s.white_balance = r.boolean("white_balance", s.white_balance);
     s.spectral_exr = r.boolean("spectral_exr", s.spectral_exr);
     if (s.sensor == "identity") {  // its output is the bands themselves

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "scene/toml_limits.h"
 #include "util/error.h"
 
 namespace seasim {
@@ -51,6 +52,7 @@ void TomlSource::forget(const toml::node& n) {
 // Parsing and overrides
 
 toml::table parseTomlText(std::string_view text, const std::string& file) {
+  checkTomlLimits(text, file);
   try {
     return toml::parse(text, std::string_view(file));
   } catch (const toml::parse_error& e) {
@@ -72,6 +74,13 @@ std::vector<PathSegment> splitKeyPath(const Override& o) {
   auto bad = [&](const std::string& why) -> std::vector<PathSegment> {
     throw InputError(o.loc.file, o.loc.line, o.key, "cannot use this override key: " + why);
   };
+  if (std::count(o.key.begin(), o.key.end(), '.') >= kMaxTomlKeyParts) {
+    // The key itself would be a page long in the message: its start is enough to find it.
+    const std::string start = o.key.substr(0, 40) + "...";
+    throw InputError(o.loc.file, o.loc.line, start,
+                     "cannot use this override key: it has more than " + std::to_string(kMaxTomlKeyParts) +
+                         " parts; scene keys have a few");
+  }
   std::stringstream ss(o.key);
   std::string part;
   while (std::getline(ss, part, '.')) {
@@ -103,6 +112,7 @@ std::vector<PathSegment> splitKeyPath(const Override& o) {
 void applyOverride(toml::table& root, const Override& o, TomlSource& source) {
   std::vector<PathSegment> segs = splitKeyPath(o);
 
+  checkTomlLimits(o.value_toml, o.loc.file, o.loc.line);
   toml::table parsed;
   try {
     parsed = toml::parse("v = " + o.value_toml, std::string_view(o.loc.file));
