@@ -97,7 +97,9 @@ RunSummary runJob(const std::string& job_path, const RunOptions& options) {
   if (options.shard_count < 1 || options.shard_index < 0 || options.shard_index >= options.shard_count) {
     throw RuntimeError("--shard must be i/N with 0 <= i < N");
   }
-  Job job = loadJob(job_path);  // validates every item's scene before anything renders
+  JobLoadOptions load;
+  load.extra_overrides = options.overrides;
+  Job job = loadJob(job_path, load);  // validates every item's scene before anything renders
   if (!options.output_dir.empty()) job.output_dir = fs::absolute(options.output_dir).lexically_normal().string();
   RunSummary summary;
   summary.output_dir = job.output_dir;
