@@ -7,7 +7,7 @@ Extracts the fenced shell blocks' lines that start with `seasim` or `build/seasi
 joined, comments dropped) and runs each in an empty work folder at a small size, failing on a non-zero
 exit, so the docs cannot go stale against the command line. Each command is run as written except:
   * the binary is SEASIM_BINARY; scenes/, jobs/, tests/ paths are the repository's; outputs (-o, --csv,
-    --plot, ref.exr ...) stay relative, in the work folder;
+    --plot, ref.exr ...) stay relative, in the work folder, and an absolute -o moves into it;
   * `[...]` (optional arguments in a synopsis) is dropped;
   * a command that takes --set gets --set camera.width=32 --set camera.height=18 (`bench --frames`
     and `ocean` also a 64-point FFT grid), `run` and `farm` get -o in the work folder, sizes and counts
@@ -114,6 +114,12 @@ def rewrite(words, binary, repo, work):
     if sub == "ocean" or (sub == "bench" and "--frames" in words):
         if "--bench" not in words:
             words += ["--set", "surface.grid=64"]
+    # An absolute output folder in a doc (-o /tmp/seasim-farm) moves into the work folder too.
+    for option in ("-o", "--out", "--output-dir"):
+        if option in words[:-1]:
+            i = words.index(option) + 1
+            if os.path.isabs(words[i]) and not words[i].startswith(str(work)):
+                words[i] = str(work / Path(words[i]).name)
     if sub == "run" and "-o" not in words:
         words += ["-o", str(work / "run_out")]
     if sub == "farm" and "-o" not in words:
