@@ -139,6 +139,14 @@ nlohmann::json recordedSettings(const std::string& image_path) {
   return nullptr;
 }
 
+nlohmann::json reportSettings(const std::string& folder) {
+  const fs::path report = fs::path(folder) / "report.json";
+  std::error_code ec;
+  if (!fs::is_regular_file(report, ec)) return nullptr;
+  const nlohmann::json r = readJsonFile(report);
+  return r.contains("settings") ? r["settings"] : nlohmann::json();
+}
+
 std::vector<SettingsDifference> settingsDifferences(const nlohmann::json& test, const nlohmann::json& reference) {
   std::vector<SettingsDifference> out;
   if (test.is_object() && reference.is_object()) diff(test, reference, "", false, out);

@@ -31,6 +31,10 @@ void writeSettingsSidecar(const std::string& image_path, const Scene& scene, con
 // JSON is a RuntimeError naming it.
 nlohmann::json recordedSettings(const std::string& image_path);
 
+// The "settings" of FOLDER/report.json (a render's folder); null when the report has none. A report
+// that is not JSON is a RuntimeError naming it.
+nlohmann::json reportSettings(const std::string& folder);
+
 struct SettingsDifference {
   std::string key;          // "sun_zenith_deg", "quality.sea_nz"
   std::string test, reference;  // the values as JSON text ("(none)" when one side lacks the key)

@@ -1,5 +1,6 @@
 // first_hour_cli_test.cpp — what a newcomer meets first, through the real binary: `validate` lists
-// every error of a file; `run --set` makes every item of a job smaller; `farm slurm --submit` without
+// every error of a file; `run --set` makes every item of a job smaller (and --resume renders again
+// what was rendered with other settings); `farm slurm --submit` without
 // a Slurm configuration says how to start a local cluster; and every text of every plot the
 // commands write (bench, sweep, ocean --bench, ocean's caustic PDF, seashore-study,
 // underwater-study) lies inside its canvas (tests/unit/svg_layout_check.h).
@@ -73,6 +74,16 @@ TEST_F(FirstHourCli, RunSetAppliesToEveryItem) {
     EXPECT_EQ(report["settings"]["wavelength_count"], 4) << e.path();
   }
   EXPECT_GE(items, 2) << q.output;
+  // --resume keeps what was rendered with these settings and renders again what was not.
+  const auto same = seasim_test::runCommand(cmd + " --resume");
+  ASSERT_EQ(same.code, 0) << same.output;
+  EXPECT_NE(same.output.find("job done: 0 rendered, " + std::to_string(items) + " finished earlier"), std::string::npos)
+      << same.output;
+  const auto wider = seasim_test::runCommand(cmd + " --set camera.width=44 --resume");
+  ASSERT_EQ(wider.code, 0) << wider.output;
+  EXPECT_NE(wider.output.find("rendered with width = 40, now 44: rendering it again"), std::string::npos) << wider.output;
+  EXPECT_NE(wider.output.find("job done: " + std::to_string(items) + " rendered, 0 finished earlier"), std::string::npos)
+      << wider.output;
 }
 
 TEST_F(FirstHourCli, SubmitWithoutSlurmConfigurationSaysHowToStartALocalCluster) {
