@@ -118,7 +118,7 @@ int cmdUnderwaterStudy(const UnderwaterStudyCmd& cmd) {
       }
       char depth_text[32];
       std::snprintf(depth_text, sizeof depth_text, "%g", depth);
-      labels.push_back(water + ", " + depth_text + " m");
+      labels.push_back(water + ", " + depth_text + "\u00a0m");  // no-break space: "5 m" stays on one line
       for (const char* m : {"spectral", "rgb"}) {
         rmse[m].x.push_back(scene_index);
         rmse[m].y.push_back(sum_rmse[m] / cmd.cameras.size());

@@ -146,6 +146,11 @@ Axis makeAxis(bool log, bool any, double lo, double hi) {
   return log ? logAxis(lo, hi) : linearAxis(lo, hi);
 }
 
+struct LabelBox {
+  double x0, y0, x1, y1;
+  bool overlaps(const LabelBox& o) const { return x0 < o.x1 && o.x0 < x1 && y0 < o.y1 && o.y0 < y1; }
+};
+
 std::string marker(int shape, double x, double y, const char* colour) {
   const std::string fill = "fill=\"" + std::string(colour) + "\"";
   switch (shape) {
@@ -307,7 +312,8 @@ std::string renderSvgPlot(const PlotSpec& spec) {
   if (!any)
     svg += text((x0 + x1) / 2, (y0 + y1) / 2, 14, "middle", "no data", " fill=\"#888\"");
 
-  // Series: polylines broken at skipped points, then markers on top.
+  // Series: polylines broken at skipped points, then markers on top, then point labels.
+  std::vector<LabelBox> placed;
   for (std::size_t k = 0; k < spec.series.size(); ++k) {
     const PlotSeries& s = spec.series[k];
     const char* colour = kColours[k % kNumColours];
@@ -331,11 +337,37 @@ std::string renderSvgPlot(const PlotSpec& spec) {
       ++in_run;
       markers += marker(shape, px, py, colour) + "\n";
       if (i < s.labels.size() && !s.labels[i].empty()) {
-        // Above right of the point; to its left where that would leave the frame; below it near the top.
+        // Above right of the point, else below right, above left, below left, then the same a line and
+        // two lines further out: the first place inside the frame that no earlier label covers (else
+        // the first inside the frame).
         const double w = svgTextWidth(s.labels[i], kPointLabelSize);
-        const bool left = px + 6 + w > x1;
-        const double ty = py - 6 - kPointLabelSize * kAscent < y1 ? py + 6 + kPointLabelSize * kAscent : py - 6;
-        labels += text(left ? px - 6 : px + 6, ty, kPointLabelSize, left ? "end" : "start", escapeXml(s.labels[i]),
+        const double step = kPointLabelSize * kLineHeight;
+        struct Place {
+          bool left;
+          double baseline;
+        };
+        std::vector<Place> places;
+        for (int k = 0; k < 3; ++k)
+          for (bool left : {false, true}) {
+            places.push_back({left, py - 6 - k * step});
+            places.push_back({left, py + 6 + kPointLabelSize * kAscent + k * step});
+          }
+        auto boxOf = [&](bool left, double baseline) {
+          const double bx0 = left ? px - 6 - w : px + 6;
+          return LabelBox{bx0, baseline - kPointLabelSize * kAscent, bx0 + w, baseline + kPointLabelSize * kDescent};
+        };
+        int chosen = -1;
+        for (int pass = 0; pass < 2 && chosen < 0; ++pass)
+          for (int c = 0; c < static_cast<int>(places.size()) && chosen < 0; ++c) {
+            const LabelBox b = boxOf(places[c].left, places[c].baseline);
+            const bool inside = b.x0 >= x0 && b.x1 <= x1 && b.y0 >= y1 && b.y1 <= y0;
+            const bool free = std::none_of(placed.begin(), placed.end(), [&](const LabelBox& o) { return o.overlaps(b); });
+            if (inside && (free || pass == 1)) chosen = c;
+          }
+        if (chosen < 0) chosen = px + 6 + w > x1 ? 2 : 0;  // wider than the frame allows: at least on the canvas side
+        placed.push_back(boxOf(places[chosen].left, places[chosen].baseline));
+        labels += text(places[chosen].left ? px - 6 : px + 6, places[chosen].baseline, kPointLabelSize,
+                       places[chosen].left ? "end" : "start", escapeXml(s.labels[i]),
                        " class=\"point\" fill=\"" + std::string(colour) + "\"");
       }
     }

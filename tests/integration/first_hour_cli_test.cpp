@@ -143,8 +143,8 @@ TEST_F(FirstHourCli, EveryTextOfEveryPlotTheCommandsWriteLiesInsideTheCanvas) {
   ASSERT_EQ(r.code, 0) << r.output;
   expectTextInside(path("study.svg"));
   const std::string study = readText(path("study.svg"));
-  EXPECT_NE(study.find(">IB, 3 m</text>"), std::string::npos) << "one labelled tick per water and depth";
-  EXPECT_NE(study.find(">3C, 9 m</text>"), std::string::npos);
+  EXPECT_NE(study.find(">IB, 3\u00a0m</text>"), std::string::npos) << "one labelled tick per water and depth";
+  EXPECT_NE(study.find(">3C, 9\u00a0m</text>"), std::string::npos);
 }
 
 }  // namespace

@@ -153,6 +153,23 @@ TEST(SvgLayout, SweepPointsCarryTheirKnobValues) {
   EXPECT_EQ(textsOfClass(renderSvgPlot(spec), "point"), spec.series[0].labels);
 }
 
+TEST(SvgLayout, PointLabelsOfNearbyPointsDoNotOverlap) {
+  PlotSpec spec;
+  PlotSeries s{"rmse", {0.140, 0.1402, 0.1404, 0.151, 0.160}, {1.0, 1.0, 1.0, 1.0, 1.0}};
+  s.labels = {"sea_nz=8", "sea_nz=12", "sea_nz=16", "sea_nz=24", "sea_nz=4"};
+  spec.series.push_back(s);
+  const std::string svg = renderSvgPlot(spec);
+  std::vector<seasim_test::TextBox> points;
+  for (const auto& b : seasim_test::svgTextBoxes(svg))
+    if (b.text.rfind("sea_nz=", 0) == 0) points.push_back(b);
+  ASSERT_EQ(points.size(), 5u);
+  for (size_t i = 0; i < points.size(); ++i)
+    for (size_t j = i + 1; j < points.size(); ++j) {
+      const auto &a = points[i], &b = points[j];
+      EXPECT_FALSE(a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1) << a.text << " overlaps " << b.text;
+    }
+}
+
 TEST(SvgLayout, CategoricalAxisTicksEachCategoryAndDrawsNoLines) {
   PlotSpec spec;
   spec.x_categories = {"IB, 5 m", "IB, 20 m", "3C, 5 m"};
