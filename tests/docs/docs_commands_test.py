@@ -34,6 +34,7 @@ EXCLUDED = [
     (r"--submit\b", "submits to Slurm: needs a configured cluster (root for slurmd); ctest farm.slurm covers it"),
     (r"\bfarm merge\b", "merges a farm's finished outputs, which a docs test does not have (FarmCli covers it)"),
     (r"render out/view_1\.toml", "renders the file the preview window's S key saved"),
+    (r"--device[ =](gpu|nvidia|amd|intel)", "needs a GPU and its vendor's OpenCL driver (docs/gpu.md); CI has PoCL only"),
     (r"\blocal-cluster (start|stop)\b", "starts or stops Slurm daemons: needs root; ctest farm.slurm runs the same script"),
 ]
 PLACEHOLDER = re.compile(r"^[A-Z][A-Z0-9_]*(\.[a-z]+)?$")  # JOB, N, DIR, REF.exr; not IB or 3C (water types)
