@@ -8,25 +8,33 @@ DEPS = build-essential cmake pkgconf pocl-opencl-icd ocl-icd-opencl-dev opencl-c
        opencl-clhpp-headers clinfo libfftw3-dev libvkfft-dev libopenimageio-dev openimageio-tools libtbb-dev \
        libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libgtest-dev file libglfw3-dev libgl-dev libopengl-dev
 # `make test` also needs a display for the preview's tests (Xvfb, xauth and Mesa's llvmpipe,
-# libgl1-mesa-dri) and, for the farm test (tests/farm/), a real Slurm controller and node on localhost.
-TEST_DEPS = xvfb xauth libgl1-mesa-dri slurm-wlm munge
+# libgl1-mesa-dri), for the farm test (tests/farm/) a real Slurm controller and node on localhost, and
+# for the portability tests (tests/runtimes/) Oclgrind, and python3 with pip to fetch Intel's OpenCL
+# CPU runtime from PyPI into $(BUILD)/intel-opencl (the wheels cached outside $(BUILD): docs/install.md).
+TEST_DEPS = xvfb xauth libgl1-mesa-dri slurm-wlm munge oclgrind python3 python3-pip
 # `make validate` (opt-in) also needs Python's venv module.
 VALIDATE_DEPS = python3-venv
 # Kernel build caches live in the build folder so tests and demo reuse them.
 export POCL_CACHE_DIR ?= $(CURDIR)/$(BUILD)/pocl-cache
 export SEASIM_CACHE_DIR ?= $(CURDIR)/$(BUILD)/seasim-cache
 
-.PHONY: demo test test-deps validate deps configure build clean fresh-check package install
+.PHONY: demo test test-deps intel-opencl validate deps configure build clean fresh-check package install
 
 demo: build
 	$(BUILD)/seasim run jobs/quickstart.toml --device pocl
 	@echo "images and reports: results/quickstart/"
 
-test: build test-deps
+test: build test-deps intel-opencl
 	cd $(BUILD) && ctest --output-on-failure -j 2
 
 test-deps:
 	@$(MAKE) --no-print-directory deps DEPS="$(TEST_DEPS)"
+
+# Intel's OpenCL CPU runtime in $(BUILD)/intel-opencl, registered by its own ICD folder (nothing
+# system-wide). When it cannot be installed, make test goes on and its tests fail saying why.
+intel-opencl: test-deps
+	@test -f $(BUILD)/intel-opencl/vendors/intel-cpu.icd || tests/runtimes/install_intel_opencl.sh $(BUILD)/intel-opencl \
+	  || echo "warning: Intel's OpenCL CPU runtime could not be installed; the runtimes.intel tests will fail"
 
 build: configure
 	cmake --build $(BUILD) -j $(JOBS)
