@@ -11,8 +11,11 @@ exit, so the docs cannot go stale against the command line. Each command is run 
   * `[...]` (optional arguments in a synopsis) is dropped;
   * a command that takes --set gets --set camera.width=32 --set camera.height=18 (`bench --frames`
     and `ocean` also a 64-point FFT grid), `run` and `farm` get -o in the work folder, sizes and counts
-    are cut (--steps 16, --frames 2, --sizes 32,64, --wavelengths 3,8, --repeat 1);
+    are cut (--steps 16, --frames 2, --sizes 32,64, --wavelengths 3,8, --repeat 1); `run` and `farm`
+    without -o write to job_out/<job file's stem>, so a tutorial's shards, status and merge meet;
   * `cache clear` runs against private, empty cache folders (it would empty the build's);
+  * the blocks' shell lines that make files (mkdir, cp, sed ... > file) run too, in order, in the work
+    folder, where scenes/, jobs/, docs/, data/ and tests/ link to the repository's;
   * a file a block writes with a here-document (`cat > my_scene.toml <<'EOF'` ... `EOF`) is written
     into the work folder first, so a tutorial's commands on its own scene run too.
 A line with a placeholder (an all-capitals word such as JOB, N, DIR) is a synopsis, not a command:
@@ -32,10 +35,20 @@ from pathlib import Path
 EXCLUDED = [
     (r"\bpreview\b", "opens a window (GLFW, needs a display); tests/integration/preview_cli_test.cpp covers it"),
     (r"--submit\b", "submits to Slurm: needs a configured cluster (root for slurmd); ctest farm.slurm covers it"),
-    (r"\bfarm merge\b", "merges a farm's finished outputs, which a docs test does not have (FarmCli covers it)"),
+    (r"\bfarm merge jobs/jerlov_table", "README writes the farm's scripts only: no shard renders its 30 items here"),
     (r"render out/view_1\.toml", "renders the file the preview window's S key saved"),
-    (r"--device[ =](gpu|nvidia|amd|intel)", "needs a GPU and its vendor's OpenCL driver (docs/gpu.md); CI has PoCL only"),
+    (r"--device[ =](gpu|nvidia|amd)", "needs a GPU and its vendor's OpenCL driver (docs/gpu.md); CI has PoCL only"),
+    (r"--devices?[ =]\S*intel", "needs Intel's OpenCL runtime (make intel-opencl); runtimes.intel_vs_pocl_scenes covers it"),
     (r"\blocal-cluster (start|stop)\b", "starts or stops Slurm daemons: needs root; ctest farm.slurm runs the same script"),
+]
+# Shell lines in the blocks that make files the next commands read (mkdir, cp, sed > file ...): run
+# with bash in the work folder, where scenes/, jobs/, docs/, data/ and tests/ link to the repository's.
+# A line with an absolute path (or sudo) is never run: the test writes only inside its work folder.
+PREPARE = re.compile(r"^(\$ )?(mkdir|cp|sed|touch) ")
+OUTSIDE = re.compile(r"(^|[\s>=])(/|~)|\bsudo\b")
+# (pattern, reason): commands the docs show failing on purpose; they must exit non-zero.
+EXPECTED_TO_FAIL = [
+    (r"validate mywork/typo\.toml", "the tutorial shows validate's message for a misspelt key"),
 ]
 PLACEHOLDER = re.compile(r"^[A-Z][A-Z0-9_]*(\.[a-z]+)?$")  # JOB, N, DIR, REF.exr; not IB or 3C (water types)
 TIMEOUT_S = 150  # one command
@@ -70,6 +83,9 @@ def commands(path, files):
         m = re.match(r"^(\$ )?cat > ?(\S+) <<-?'?\"?(\w+)'?\"?$", stripped)
         if m:
             heredoc, heredoc_end, heredoc_lines = m.group(2), m.group(3), []
+            continue
+        if not pending and PREPARE.match(stripped) and not OUTSIDE.search(stripped):
+            out.append((number, "!" + stripped.removeprefix("$ ")))  # a shell line that makes a file
             continue
         if pending:
             pending += " " + stripped
@@ -121,10 +137,10 @@ def rewrite(words, binary, repo, work):
             i = words.index(option) + 1
             if os.path.isabs(words[i]) and not words[i].startswith(str(work)):
                 words[i] = str(work / Path(words[i]).name)
-    if sub == "run" and "-o" not in words:
-        words += ["-o", str(work / "run_out")]
-    if sub == "farm" and "-o" not in words:
-        words += ["-o", str(work / "farm_out")]
+    if sub in ("run", "farm") and "-o" not in words and "local-cluster" not in words:
+        # One folder per job file, so a job's farm scripts, shards and status meet (and no other job's).
+        job = next((w for w in words[2:] if w.endswith(".toml")), "job")
+        words += ["-o", str(work / "job_out" / Path(job).stem)]
     return words
 
 
@@ -133,6 +149,8 @@ def main():
     work = Path(sys.argv[3]).resolve() if len(sys.argv) > 3 else Path(tempfile.mkdtemp(prefix="seasim_docs_"))
     shutil.rmtree(work, ignore_errors=True)  # a command must not pass on what an earlier run left
     work.mkdir(parents=True)
+    for name in ("scenes", "jobs", "docs", "data", "tests"):
+        (work / name).symlink_to(repo / name)
     failures, ran, skipped = [], 0, []
     t0 = time.time()
     for doc in doc_files(repo):
@@ -143,6 +161,14 @@ def main():
             (work / name).write_text(content, encoding="utf-8")
         for number, text in found:
             where = f"{doc.relative_to(repo)}:{number}"
+            if text.startswith("!"):
+                # A preparation that fails here (a GPU recipe's copy of a build it did not make) is
+                # listed, not failed: a seasim command that needed its file fails in its place.
+                p = subprocess.run(["bash", "-c", text[1:]], cwd=work, capture_output=True, text=True, timeout=60)
+                print(f"[{time.time() - t0:5.0f} s] {where}: exit {p.returncode}: {text[1:]}", flush=True)
+                if p.returncode != 0:
+                    skipped.append(f"{where}: preparation failed here: {text[1:]}: {(p.stdout + p.stderr).strip()[-300:]}")
+                continue
             text = re.sub(r"\[[^\]]*\]", "", text)  # optional arguments of a synopsis
             reason = next((r for pattern, r in EXCLUDED if re.search(pattern, text)), None)
             if reason:
@@ -164,6 +190,9 @@ def main():
             except subprocess.TimeoutExpired:
                 code, output = "timeout", f"over {TIMEOUT_S} s"
             ran += 1
+            expected = next((r for pattern, r in EXPECTED_TO_FAIL if re.search(pattern, text)), None)
+            if expected:
+                code = 0 if code not in (0, "timeout") else f"{code} (expected to fail: {expected})"
             print(f"[{time.time() - t0:5.0f} s] {where}: exit {code} in {time.time() - start:.1f} s: {shlex.join(words[1:])}",
                   flush=True)
             if code != 0:
