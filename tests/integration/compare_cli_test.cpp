@@ -85,6 +85,13 @@ TEST_F(CompareCli, WarnsWhenTheImagesWereMadeWithDifferentSettings) {
   EXPECT_NE(r.output.find("warning: the image and the reference were made with different settings: sun_zenith_deg 60 vs 40"),
             std::string::npos)
       << r.output;
+  // sweep says the same of its reference.
+  const auto s = run("sweep " + scene + " --param spectral.count=4 --reference " + path("ref.exr") + " --csv " +
+                     path("s.csv") + kSmall + " --set sun.zenith_deg=60");
+  EXPECT_EQ(s.code, 0) << s.output;
+  EXPECT_NE(s.output.find("warning: the reference was made with sun_zenith_deg = 40, the sweep's scene has 60"),
+            std::string::npos)
+      << s.output;
 }
 
 TEST_F(CompareCli, ReportsTheReferencesNoiseAndTheShareItExplains) {
