@@ -57,19 +57,31 @@ int main(int argc, char** argv) {
   run->add_option("--device", run_device, "Device selector (overrides the job's)");
   run->add_option("--shard", run_shard, "i/N: render shard i of N (balanced by estimated or measured cost)");
   run->add_flag("--resume", run_resume, "Skip items the manifest records as finished");
+  std::vector<std::string> run_sets;
+  run->add_option("--set", run_sets,
+                  "Override a scene key of every item, after the item's own: key=value (repeatable), e.g. "
+                  "--set camera.width=160 --set camera.height=90");
 
   std::string cmp_a, cmp_b;
   double cmp_exposure = 0;
-  auto* compare = app.add_subcommand("compare", "Error of an image against a reference (8-bit levels, rel. L2, hue/sat)");
+  auto* compare = app.add_subcommand(
+      "compare", "Error of an image against a reference (8-bit levels, rel. L2, hue/sat), the reference's noise");
   compare->add_option("image", cmp_a, "Image under test")->required()->check(kReadableFile);
-  compare->add_option("reference", cmp_b, "Reference image")->required()->check(kReadableFile);
-  compare->add_option("--exposure", cmp_exposure, "Exposure (EV) of the shared tone map");
+  compare->add_option("reference", cmp_b, "Reference image (its noise from REF.stderr.exr beside it)")
+      ->required()
+      ->check(kReadableFile);
+  auto* cmp_exposure_opt = compare->add_option(
+      "--exposure", cmp_exposure,
+      "Exposure (EV) of the shared tone map (default: the scene's, as recorded with the images; as `sweep` uses)");
 
   seasim::SweepCmd sweep_cmd;
   auto* sweep = app.add_subcommand("sweep", "Render over a grid of settings; error vs time to CSV and SVG");
   sweep->add_option("scene", sweep_cmd.scene, "Scene file")->required()->check(kReadableFile);
   sweep->add_option("--param", sweep_cmd.params, "KEY=v1,v2,... (repeat for a grid)")->required();
-  sweep->add_option("--reference", sweep_cmd.reference, "Reference EXR")->required()->check(kReadableFile);
+  sweep->add_option("--reference", sweep_cmd.reference,
+                    "Reference EXR (default: the scene's reference, made first and written beside the CSV as "
+                    "CSV_STEM.reference.exr)")
+      ->check(kReadableFile);
   sweep->add_option("--csv", sweep_cmd.csv, "CSV output")->required();
   sweep->add_option("--plot", sweep_cmd.plot, "SVG plot output (error vs time)");
   sweep->add_option("--set", sweep_cmd.sets, "Override a scene key: key=value (repeatable)");
@@ -247,6 +259,16 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   farm_status->add_flag("--json", farm_status_cmd.json, "JSON instead of a table");
 
+  std::string cluster_action, cluster_dir;
+  auto* farm_cluster = farm->add_subcommand(
+      "local-cluster",
+      "A private single-node Slurm in a folder, to try `farm slurm --submit` on one machine (needs root); "
+      "then export SLURM_CONF=DIR/slurm.conf");
+  farm_cluster->add_option("action", cluster_action, "start, stop, or env (prints the export line)")
+      ->required()
+      ->check(CLI::IsMember({"start", "stop", "env"}));
+  farm_cluster->add_option("dir", cluster_dir, "Folder for its configuration, keys, state and logs")->required();
+
   seasim::PreviewCmd preview_cmd;
   auto* preview = app.add_subcommand("preview", "Live preview window (GLFW): keys and mouse change the scene (docs/preview.md)");
   preview->add_option("scene", preview_cmd.scene, "Scene file")->required()->check(kReadableFile);
@@ -265,8 +287,8 @@ int main(int argc, char** argv) {
     if (*validate) return seasim::cmdValidate(validate_files);
     if (*plan) return seasim::cmdPlan(plan_scene, plan_sets);
     if (*render) return seasim::cmdRender(render_cmd);
-    if (*run) return seasim::cmdRun(run_job, run_device, run_shard, run_resume, run_output);
-    if (*compare) return seasim::cmdCompare(cmp_a, cmp_b, cmp_exposure);
+    if (*run) return seasim::cmdRun(run_job, run_device, run_shard, run_resume, run_output, run_sets);
+    if (*compare) return seasim::cmdCompare(cmp_a, cmp_b, cmp_exposure_opt->count() ? std::optional<double>(cmp_exposure) : std::nullopt);
     if (*sweep) return seasim::cmdSweep(sweep_cmd);
     if (*bench) return seasim::cmdBench(bench_cmd);
     if (*reference) return seasim::cmdReference(ref_cmd);
@@ -287,6 +309,7 @@ int main(int argc, char** argv) {
     if (*farm_slurm) return seasim::cmdFarmSlurm(farm_slurm_cmd);
     if (*farm_merge) return seasim::cmdFarmMerge(farm_job, farm_output);
     if (*farm_status) return seasim::cmdFarmStatus(farm_status_cmd);
+    if (*farm_cluster) return seasim::cmdFarmLocalCluster(cluster_action, cluster_dir);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "seasim: error: %s\n", e.what());
     return 1;

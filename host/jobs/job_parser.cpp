@@ -259,9 +259,10 @@ class JobParser {
 
 }  // namespace
 
-Job parseJob(const std::string& toml_text, const std::string& path) {
+Job parseJob(const std::string& toml_text, const std::string& path, const JobLoadOptions& options) {
   toml::table root = parseTomlText(toml_text, path);
   TomlSource src(path);
+  for (const std::string& key : options.ignored_keys) src.ignore(key);
   Job job;
   job.file = fs::absolute(path).lexically_normal().string();
   std::vector<PendingItem> items = JobParser(src, job).parse(root);
@@ -284,19 +285,20 @@ Job parseJob(const std::string& toml_text, const std::string& path) {
                            ":" + std::to_string(it->second.line) + "); names must be unique");
   }
   // Validate every item's scene with its overrides now, so a bad job fails before anything renders.
-  for (const PendingItem& p : items) {
-    loadScene(p.item.scene_file, p.item.overrides);
+  for (PendingItem& p : items) {
+    p.item.overrides.insert(p.item.overrides.end(), options.extra_overrides.begin(), options.extra_overrides.end());
+    if (options.check_scenes) loadScene(p.item.scene_file, p.item.overrides);
     job.items.push_back(p.item);
   }
   return job;
 }
 
-Job loadJob(const std::string& path) {
+Job loadJob(const std::string& path, const JobLoadOptions& options) {
   std::ifstream in(path, std::ios::binary);
   if (std::error_code ec; !in || fs::is_directory(path, ec)) throw InputError(path, 1, "", "cannot open job file");
   std::stringstream text;
   text << in.rdbuf();
-  return parseJob(text.str(), path);
+  return parseJob(text.str(), path, options);
 }
 
 bool isJobFile(const std::string& path) {

@@ -6,6 +6,7 @@
 #include "io/atomic_file.h"
 #include "io/image_io.h"
 #include "io/tonemap_eq18.h"
+#include "jobs/recorded_settings.h"
 #include "jobs/test_hooks.h"
 #include "plan/memory_budget.h"
 #include "plan/plan.h"
@@ -28,23 +29,6 @@ nlohmann::json planJson(const Plan& plan) {
                       {"reads", p.reads}, {"writes", p.writes}});
   }
   return passes;
-}
-
-nlohmann::json settingsJson(const Scene& s) {
-  nlohmann::json quality = nlohmann::json::object();
-  for (const auto& [key, knob] : s.quality) {
-    quality[key] = knob.automatic ? nlohmann::json("auto") : nlohmann::json(knob.value);
-  }
-  return {{"width", s.camera.width},
-          {"height", s.camera.height},
-          {"wavelength_count", s.spectral.count},
-          {"range_nm", {s.spectral.min_nm, s.spectral.max_nm}},
-          {"sensor", s.spectral.sensor},
-          {"white_balance", s.spectral.white_balance},
-          {"exposure_ev", s.camera.exposure_ev},
-          {"sun_zenith_deg", s.sun.zenith * 180.0 / M_PI},
-          {"water", s.water.present ? (s.water.jerlov.empty() ? "explicit spectra" : "Jerlov " + s.water.jerlov) : "none"},
-          {"quality", quality}};
 }
 
 }  // namespace

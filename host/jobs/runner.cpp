@@ -17,6 +17,7 @@
 #include "jobs/job_inputs.h"
 #include "jobs/manifest.h"
 #include "jobs/progress.h"
+#include "jobs/recorded_settings.h"
 #include "jobs/render_item.h"
 #include "jobs/shard_balance.h"
 #include "jobs/shard_lock.h"
@@ -98,7 +99,9 @@ RunSummary runJob(const std::string& job_path, const RunOptions& options) {
   if (options.shard_count < 1 || options.shard_index < 0 || options.shard_index >= options.shard_count) {
     throw RuntimeError("--shard must be i/N with 0 <= i < N");
   }
-  Job job = loadJob(job_path);  // validates every item's scene before anything renders
+  JobLoadOptions load;
+  load.extra_overrides = options.overrides;
+  Job job = loadJob(job_path, load);  // validates every item's scene before anything renders
   if (!options.output_dir.empty()) job.output_dir = fs::absolute(options.output_dir).lexically_normal().string();
   RunSummary summary;
   summary.output_dir = job.output_dir;
@@ -129,7 +132,21 @@ RunSummary runJob(const std::string& job_path, const RunOptions& options) {
   for (const RenderItem* item : mine) orphans += removeTempFiles(job.output_dir + "/" + item->name);
   if (orphans > 0) std::fprintf(stderr, "removed %d temporary file(s) left by an interrupted run\n", orphans);
 
-  const std::set<std::string> finished = options.resume ? finishedItems(job, job.output_dir) : std::set<std::string>{};
+  std::set<std::string> finished = options.resume ? finishedItems(job, job.output_dir) : std::set<std::string>{};
+  // An item finished with other settings (a `run --set` since, or an edited job) is rendered again.
+  // The [quality] knobs are left out: "auto" ones are recorded as the values they resolved to.
+  for (const RenderItem* item : mine) {
+    if (!finished.count(item->name)) continue;
+    const nlohmann::json recorded = reportSettings(job.output_dir + "/" + item->name);
+    if (recorded.is_null()) continue;  // a report without settings (older seasim): kept as finished
+    for (const SettingsDifference& d : settingsDifferences(settingsJson(loadScene(item->scene_file, item->overrides)), recorded))
+      if (d.key.rfind("quality.", 0) != 0) {
+        std::fprintf(stderr, "%s: rendered with %s = %s, now %s: rendering it again\n", item->name.c_str(),
+                     d.key.c_str(), d.reference.c_str(), d.test.c_str());
+        finished.erase(item->name);
+        break;
+      }
+  }
   Manifest manifest = options.resume ? Manifest::load(manifest_file, job.file) : Manifest(job.file);
 
   // Inputs checkable before rendering (images decode, references match the render size).

@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include "scene/scene_parser.h"
+
 namespace seasim {
 
 struct RunOptions {
@@ -12,6 +14,7 @@ struct RunOptions {
   int shard_count = 1;
   bool resume = false;     // skip items the manifest records as finished with intact files
   std::string output_dir;  // replaces the job's output_dir when not empty (-o)
+  std::vector<Override> overrides;  // `run --set`: applied to every item after its own overrides
 };
 
 struct FailedItem {

@@ -783,10 +783,11 @@ class SceneParser {
 
 }  // namespace
 
-Scene parseScene(const std::string& toml_text, const std::string& path,
-                 const std::vector<Override>& overrides) {
+Scene parseScene(const std::string& toml_text, const std::string& path, const std::vector<Override>& overrides,
+                 const std::vector<std::string>& ignored_keys) {
   toml::table root = parseTomlText(toml_text, path);
   TomlSource src(path);
+  for (const std::string& key : ignored_keys) src.ignore(key);
   for (const Override& o : overrides) applyOverride(root, o, src);
   Scene scene;
   scene.file = fs::absolute(path).lexically_normal().string();
@@ -795,11 +796,16 @@ Scene parseScene(const std::string& toml_text, const std::string& path,
 }
 
 Scene loadScene(const std::string& path, const std::vector<Override>& overrides) {
+  return loadScene(path, overrides, {});
+}
+
+Scene loadScene(const std::string& path, const std::vector<Override>& overrides,
+                const std::vector<std::string>& ignored_keys) {
   std::ifstream in(path, std::ios::binary);
   if (std::error_code ec; !in || fs::is_directory(path, ec)) throw InputError(path, 1, "", "cannot open scene file");
   std::stringstream text;
   text << in.rdbuf();
-  return parseScene(text.str(), path, overrides);
+  return parseScene(text.str(), path, overrides, ignored_keys);
 }
 
 }  // namespace seasim

@@ -313,6 +313,7 @@ std::string TableReader::path(std::string_view key) const {
 
 const toml::node* TableReader::get(std::string_view key) {
   if (std::find(known_.begin(), known_.end(), key) == known_.end()) known_.emplace_back(key);
+  if (source_.ignored(path(key))) return nullptr;
   return table_.get(key);
 }
 
@@ -456,7 +457,7 @@ const toml::table* TableReader::subtable(std::string_view key) {
 void TableReader::finish() {
   for (auto&& [k, v] : table_) {
     std::string key(k.str());
-    if (std::find(known_.begin(), known_.end(), key) != known_.end()) continue;
+    if (std::find(known_.begin(), known_.end(), key) != known_.end() || source_.ignored(path(key))) continue;
     std::string what = v.is_table() ? "unknown table" : "unknown key";
     if (!note_.empty()) what += " (" + note_ + ")";
     source_.fail(&v, path(key), what + suggestion(key, known_));
