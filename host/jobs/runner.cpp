@@ -140,11 +140,17 @@ RunSummary runJob(const std::string& job_path, const RunOptions& options) {
   std::unique_ptr<Device> device;  // opened on the first item that needs rendering
   RendererCache renderers;
   Progress progress(static_cast<int>(mine.size()), stderrIsTerminal());
+  int handled = 0;
+  auto finish = [&](const std::string& name, const std::string& outcome) {
+    ++handled;
+    if (options.on_item) options.on_item(handled, static_cast<int>(mine.size()), name, outcome);
+    else progress.finish(name, outcome);
+  };
   for (const RenderItem* item : mine) {
-    progress.start(item->name);
+    if (!options.on_item) progress.start(item->name);
     if (finished.count(item->name)) {
       ++summary.skipped;
-      progress.finish(item->name, "finished earlier (resume)");
+      finish(item->name, "finished earlier (resume)");
       continue;
     }
     std::string error;
@@ -162,7 +168,7 @@ RunSummary runJob(const std::string& job_path, const RunOptions& options) {
         ++summary.rendered;
         char outcome[64];
         std::snprintf(outcome, sizeof outcome, "done (%.1f ms kernels)", kernel_ms);
-        progress.finish(item->name, outcome);
+        finish(item->name, outcome);
         continue;
       } catch (const std::exception& e) {
         // Any failure of this item (NaN result, I/O, device memory, a bad texture) stays with it;
@@ -175,9 +181,9 @@ RunSummary runJob(const std::string& job_path, const RunOptions& options) {
     manifest.recordFailed(item->name, error);
     manifest.save(manifest_file);
     summary.failed.push_back({item->name, error});
-    progress.finish(item->name, "FAILED: " + firstLine(error));
+    finish(item->name, "FAILED: " + firstLine(error));
   }
-  progress.done();
+  if (!options.on_item) progress.done();
   return summary;
 }
 
