@@ -9,21 +9,41 @@ DEPS = build-essential cmake pkgconf pocl-opencl-icd ocl-icd-opencl-dev opencl-c
        libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libgtest-dev file libglfw3-dev libgl-dev libopengl-dev
 # `make test` also needs a display for the preview's tests (Xvfb, xauth and Mesa's llvmpipe,
 # libgl1-mesa-dri) and, for the farm test (tests/farm/), a real Slurm controller and node on localhost.
-TEST_DEPS = xvfb xauth libgl1-mesa-dri slurm-wlm munge
+TEST_DEPS = xvfb xauth libgl1-mesa-dri slurm-wlm munge python3-venv python3-dev
 # `make validate` (opt-in) also needs Python's venv module.
 VALIDATE_DEPS = python3-venv
 # Kernel build caches live in the build folder so tests and demo reuse them.
 export POCL_CACHE_DIR ?= $(CURDIR)/$(BUILD)/pocl-cache
 export SEASIM_CACHE_DIR ?= $(CURDIR)/$(BUILD)/seasim-cache
 
-.PHONY: demo test test-deps validate deps configure build clean fresh-check package install
+# The Python package (docs/python/README.md): a virtual environment with what builds and tests it.
+PYVENV = $(BUILD)/python-venv
+PYTHON_PACKAGES = nanobind scikit-build-core numpy pytest
+PYTHON_CMAKE_FLAGS = -DSEASIM_PYTHON=ON -DPython_EXECUTABLE=$(abspath $(PYVENV))/bin/python
+
+.PHONY: demo test test-deps validate deps configure build clean fresh-check package install python-venv wheel
 
 demo: build
 	$(BUILD)/seasim run jobs/quickstart.toml --device pocl
 	@echo "images and reports: results/quickstart/"
 
-test: build test-deps
+# The test build adds the Python module (SEASIM_PYTHON), which ctest's python.pytest imports.
+test: test-deps python-venv
+	@$(MAKE) --no-print-directory build CMAKE_FLAGS="$(CMAKE_FLAGS) $(PYTHON_CMAKE_FLAGS)"
 	cd $(BUILD) && ctest --output-on-failure -j 2
+
+python-venv:
+	@$(MAKE) --no-print-directory deps DEPS="python3-venv python3-dev"
+	test -x $(PYVENV)/bin/python || python3 -m venv $(PYVENV)
+	$(PYVENV)/bin/python -c "import nanobind, scikit_build_core, numpy, pytest" 2>/dev/null || \
+	  $(PYVENV)/bin/pip install -q $(PYTHON_PACKAGES)
+
+# A wheel of the Python package into $(BUILD)/, built by scikit-build-core in the build folder itself
+# (so only the module is compiled anew), with that folder's CMake generator.
+wheel: configure python-venv
+	CMAKE_GENERATOR="$$(sed -n 's/^CMAKE_GENERATOR:INTERNAL=//p' $(BUILD)/CMakeCache.txt)" \
+	  $(PYVENV)/bin/pip wheel -q --no-build-isolation --no-deps -w $(BUILD) -C build-dir=$(BUILD) .
+	@ls $(BUILD)/seasim-*.whl
 
 test-deps:
 	@$(MAKE) --no-print-directory deps DEPS="$(TEST_DEPS)"

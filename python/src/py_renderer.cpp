@@ -95,13 +95,14 @@ void bindRenderer(nb::module_& m) {
             if (f.frame.spectral.empty()) return nb::none();
             const Image& rgb = f.frame.rgb;
             const size_t bands = f.frame.wavelengths_nm.size();
-            return nb::cast(view(f, f.frame.spectral.data(), rgb.height, rgb.width, bands));
+            return nb::cast(view(f, f.frame.spectral.data(), rgb.height, rgb.width, bands), nb::rv_policy::reference);
           },
           "Per-band radiance, float32 (height, width, bands), when the scene sets spectral.spectral_exr = true; "
           "else None.")
       .def_prop_ro("wavelengths_nm", [](const PyFrame& f) {
         std::vector<double> nm = f.frame.wavelengths_nm;
-        return ownedArray(std::move(nm), {nm.size()});
+        const size_t n = nm.size();
+        return nb::cast(ownedArray(std::move(nm), {n}), nb::rv_policy::automatic);
       }, "The bands' centres in nm.")
       .def_prop_ro("timings", [](const PyFrame& f) {
         nb::dict d;  // a pass that ran twice adds up

@@ -121,13 +121,13 @@ nb::dict runJob(nb::handle job, int shard_index, int shard_count, bool resume, c
   return d;
 }
 
-// Raises `name` from seasim.errors with message and attributes.
-[[noreturn]] void raise(const char* name, const std::string& message, nb::dict attrs = {}) {
+// Sets `name` from seasim.errors, with message and attributes, as the pending Python error (an
+// exception translator sets it and returns).
+void raise(const char* name, const std::string& message, nb::dict attrs = {}) {
   nb::object type = nb::module_::import_("seasim.errors").attr(name);
   nb::object error = type(message);
   for (auto [k, v] : attrs) nb::setattr(error, k, v);
   PyErr_SetObject(type.ptr(), error.ptr());
-  throw nb::python_error();
 }
 
 }  // namespace
