@@ -51,7 +51,7 @@ def read_image(path: PathLike) -> np.ndarray:
 
 
 def _as_image(image: ImageLike) -> np.ndarray:
-    if isinstance(image, Frame):
+    if isinstance(image, (Frame, ReferenceResult)):
         return image.rgb
     if isinstance(image, (str, os.PathLike)):
         return read_image(image)
@@ -66,7 +66,7 @@ def _as_image(image: ImageLike) -> np.ndarray:
 def compare(test: ImageLike, reference: ImageLike, exposure_ev: float = 0.0) -> dict:
     """The error of ``test`` against ``reference``, with the metrics of ``seasim compare``.
 
-    Either may be an array (H, W, C), a Frame or an image path. Returns rmse_8bit and max_abs_8bit
+    Either may be an array (H, W, C), a Frame, a ReferenceResult or an image path. Returns rmse_8bit and max_abs_8bit
     (8-bit display levels after the PNG's tone map at ``exposure_ev``), rel_l2 (linear) and
     hue_sat_distance, and nonfinite (NaN/Inf met). Raises seasim.RenderError for different sizes.
     """
