@@ -32,7 +32,7 @@ from .errors import DeviceError, RenderError, SceneError  # noqa: E402
 
 __all__ = [
     "DeviceInfo", "Frame", "Renderer", "Scene", "ReferenceResult", "DeviceError", "RenderError", "SceneError",
-    "compare", "data_dir", "device", "devices", "read_image", "reference", "run_job", "scenes_dir", "version",
+    "compare", "data_dir", "device", "devices", "display", "read_image", "reference", "run_job", "scenes_dir", "version",
 ]
 
 PathLike = Union[str, "os.PathLike[str]"]
@@ -71,6 +71,16 @@ def compare(test: ImageLike, reference: ImageLike, exposure_ev: float = 0.0) -> 
     hue_sat_distance, and nonfinite (NaN/Inf met). Raises seasim.RenderError for different sizes.
     """
     return _seasim._compare(_as_image(test), _as_image(reference), exposure_ev)
+
+
+def display(image: ImageLike, exposure_ev: Optional[float] = None) -> np.ndarray:
+    """Display sRGB in [0, 1], float32 (H, W, C): the tone map of the PNGs and of compare's 8-bit metrics.
+
+    ``exposure_ev`` defaults to the frame's scene setting (camera.exposure_ev) for a Frame, else 0.
+    """
+    if exposure_ev is None:
+        exposure_ev = image.report["settings"]["exposure_ev"] if isinstance(image, Frame) else 0.0
+    return _seasim._display(_as_image(image), exposure_ev)
 
 
 @dataclass

@@ -7,6 +7,7 @@
 #include <CL/opencl.hpp>
 
 #include "io/image_io.h"
+#include "io/tonemap.h"
 #include "jobs/runner.h"
 #include "py_convert.h"
 #include "py_scene.h"
@@ -172,6 +173,12 @@ void bindTools(nb::module_& m) {
         nb::arg("max_bounces"), nb::arg("device"), nb::arg("progress").none());
   m.def("_run_job", &runJob, nb::arg("job"), nb::arg("shard_index"), nb::arg("shard_count"), nb::arg("resume"),
         nb::arg("device"), nb::arg("output_dir"), nb::arg("on_item").none());
+  m.def("_display", [](const ImageArray& linear, double exposure_ev) {
+    Image display;
+    const long long nonfinite = toneMapImage(toImage(linear), exposure_ev, display);
+    if (nonfinite) throw RuntimeError(std::to_string(nonfinite) + " NaN/Inf values in the image to display");
+    return toArray(std::move(display));
+  }, nb::arg("linear"), nb::arg("exposure_ev"));
   m.def("data_dir", &dataDir, "The data folder seasim reads spectra and cameras from.");
   m.def("version", [] { return std::string(version()) + " (" + gitCommit() + ")"; },
         "seasim's version and git commit, as `seasim --version` prints them.");
