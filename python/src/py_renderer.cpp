@@ -97,13 +97,14 @@ void bindRenderer(nb::module_& m) {
             const size_t bands = f.frame.wavelengths_nm.size();
             return nb::cast(view(f, f.frame.spectral.data(), rgb.height, rgb.width, bands), nb::rv_policy::reference);
           },
+          nb::for_getter(nb::sig("def spectral(self, /) -> NDArray[numpy.float32] | None")),
           "Per-band radiance, float32 (height, width, bands), when the scene sets spectral.spectral_exr = true; "
           "else None.")
       .def_prop_ro("wavelengths_nm", [](const PyFrame& f) {
         std::vector<double> nm = f.frame.wavelengths_nm;
         const size_t n = nm.size();
         return nb::cast(ownedArray(std::move(nm), {n}), nb::rv_policy::automatic);
-      }, "The bands' centres in nm.")
+      }, nb::for_getter(nb::sig("def wavelengths_nm(self, /) -> NDArray[numpy.float64]")), "The bands' centres in nm.")
       .def_prop_ro("timings", [](const PyFrame& f) {
         nb::dict d;  // a pass that ran twice adds up
         for (const PassTiming& t : f.frame.timings) {
@@ -113,6 +114,7 @@ void bindRenderer(nb::module_& m) {
         return d;
       }, "Milliseconds of each pass that ran for this frame (OpenCL profiling), in plan order.")
       .def_prop_ro("report", [](const PyFrame& f) { return jsonToPython(f.report); },
+                   nb::for_getter(nb::sig("def report(self, /) -> dict")),
                    "report.json's content for this frame (device, plan, pass_ms, settings, ...), without outputs.")
       .def_prop_ro("build_ms", [](const PyFrame& f) { return f.frame.build_ms; })
       .def_prop_ro("wall_ms", [](const PyFrame& f) { return f.frame.wall_ms; })

@@ -73,7 +73,7 @@ void bindScene(nb::module_& m) {
       .def_prop_ro("name", [](const PyScene& s) { return s.scene.name; })
       .def_prop_ro("file", [](const PyScene& s) -> nb::object {
         return s.fromDict() ? nb::none() : nb::object(nb::str(s.path.c_str()));
-      }, "The scene file; None for a scene made from a dict.")
+      }, nb::for_getter(nb::sig("def file(self, /) -> str | None")), "The scene file; None for a scene made from a dict.")
       .def_prop_ro("width", [](const PyScene& s) { return s.scene.camera.width; })
       .def_prop_ro("height", [](const PyScene& s) { return s.scene.camera.height; })
       .def_prop_ro("toml", [](const PyScene& s) { return s.text; }, "The TOML text (a dict's as written for it).")

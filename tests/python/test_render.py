@@ -28,6 +28,9 @@ def test_render_equals_the_command_lines_image_exr_bit_for_bit(flat_sea_frame, t
     from_cli = seasim.read_image(out / "image.exr")
     assert from_cli.shape == flat_sea_frame.rgb.shape
     assert np.array_equal(from_cli, flat_sea_frame.rgb)
+    # display() is the PNG's tone map: the same 8-bit levels as the command line's image.png.
+    png_levels = np.rint(seasim.read_image(out / "image.png") * 255)
+    assert np.array_equal(np.rint(seasim.display(flat_sea_frame) * 255), png_levels)
 
 
 def test_report_and_timings_describe_the_frame(flat_sea, flat_sea_frame):
