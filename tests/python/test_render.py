@@ -4,6 +4,8 @@ what it should, arrays are views, the report and timings are the CLI's."""
 from __future__ import annotations
 
 import subprocess
+import threading
+import time
 
 import numpy as np
 import pytest
@@ -86,3 +88,31 @@ def test_a_bad_update_raises_and_changes_nothing(flat_sea):
 def test_unknown_device_is_a_device_error(flat_sea):
     with pytest.raises(seasim.DeviceError, match="no-such-device"):
         seasim.Renderer(flat_sea, device="no-such-device")
+
+
+def test_the_gil_is_released_while_the_kernels_run():
+    # A Python thread keeps ticking while another thread renders; were the GIL held through the
+    # kernels, it would stop for the whole render.
+    renderer = seasim.Renderer(seasim.Scene.load(scene_path("seabed.toml"),
+                                                 overrides={"camera.width": 160, "camera.height": 90}))
+    renderer.render()  # kernel builds out of the way
+    ticks, done = [], threading.Event()
+
+    def tick():
+        while not done.is_set():
+            ticks.append(time.perf_counter())
+            time.sleep(0.001)
+
+    ticker = threading.Thread(target=tick)
+    ticker.start()
+    time.sleep(0.02)
+    renderer.rerun_all()
+    t0 = time.perf_counter()
+    renderer.render()
+    t1 = time.perf_counter()
+    done.set()
+    ticker.join()
+    during = [t for t in ticks if t0 < t < t1]
+    longest_pause = float(np.max(np.diff([t0, *during, t1])))
+    assert t1 - t0 > 0.05, "the render is too short to tell"
+    assert longest_pause < 0.5 * (t1 - t0), f"no tick for {longest_pause:.3f} s of a {t1 - t0:.3f} s render"
