@@ -18,7 +18,7 @@ export SEASIM_CACHE_DIR ?= $(CURDIR)/$(BUILD)/seasim-cache
 
 # The Python package (docs/python/README.md): a virtual environment with what builds and tests it.
 PYVENV = $(BUILD)/python-venv
-PYTHON_PACKAGES = nanobind scikit-build-core numpy pytest
+PYTHON_PACKAGES = nanobind scikit-build-core numpy pytest tqdm
 PYTHON_CMAKE_FLAGS = -DSEASIM_PYTHON=ON -DPython_EXECUTABLE=$(abspath $(PYVENV))/bin/python
 
 .PHONY: demo test test-deps validate deps configure build clean fresh-check package install python-venv wheel
@@ -35,7 +35,7 @@ test: test-deps python-venv
 python-venv:
 	@$(MAKE) --no-print-directory deps DEPS="python3-venv python3-dev"
 	test -x $(PYVENV)/bin/python || python3 -m venv $(PYVENV)
-	$(PYVENV)/bin/python -c "import nanobind, scikit_build_core, numpy, pytest" 2>/dev/null || \
+	$(PYVENV)/bin/python -c "import nanobind, scikit_build_core, numpy, pytest, tqdm" 2>/dev/null || \
 	  $(PYVENV)/bin/pip install -q $(PYTHON_PACKAGES)
 
 # A wheel of the Python package into $(BUILD)/, built by scikit-build-core in the build folder itself

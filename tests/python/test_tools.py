@@ -72,7 +72,7 @@ def test_reference_equals_seasim_reference(flat_sea, tmp_path):
     assert seasim.compare(seasim.Renderer(flat_sea).render(), ref)["rmse_8bit"] < 2.0
 
 
-def test_run_job_renders_resumes_and_reports_progress(tmp_path):
+def write_job(tmp_path):
     job = tmp_path / "job.toml"
     job.write_text(f"""
 [job]
@@ -89,6 +89,11 @@ name = "evening"
 scene = "{scene_path('flat_sea.toml')}"
 overrides = {{ "camera.width" = 32, "camera.height" = 18, "sun.zenith_deg" = 75 }}
 """, encoding="utf-8")
+    return job
+
+
+def test_run_job_renders_resumes_and_reports_progress(tmp_path):
+    job = write_job(tmp_path)
     calls = []
     summary = seasim.run_job(job, progress=lambda *a: calls.append(a))
     assert summary["rendered"] == 2 and summary["failed"] == [] and summary["skipped"] == 0
@@ -111,3 +116,13 @@ def test_run_job_names_a_bad_job_file(tmp_path):
     with pytest.raises(seasim.SceneError) as e:
         seasim.run_job(job, progress=False)
     assert e.value.file == str(job) and e.value.line == 4 and "speed" in str(e.value)
+
+
+def test_run_job_draws_a_tqdm_bar_else_a_line_per_item(tmp_path, capsys, monkeypatch):
+    job = write_job(tmp_path)
+    seasim.run_job(job)
+    assert "2/2" in capsys.readouterr().err  # tqdm's count (make python-venv installs tqdm)
+    monkeypatch.setitem(sys.modules, "tqdm.auto", None)  # as without tqdm: import fails
+    seasim.run_job(job, output_dir=tmp_path / "plain")
+    err = capsys.readouterr().err
+    assert "[1/2] noon: done" in err and "[2/2] evening: done" in err
