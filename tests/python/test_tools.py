@@ -126,3 +126,18 @@ def test_run_job_draws_a_tqdm_bar_else_a_line_per_item(tmp_path, capsys, monkeyp
     seasim.run_job(job, output_dir=tmp_path / "plain")
     err = capsys.readouterr().err
     assert "[1/2] noon: done" in err and "[2/2] evening: done" in err
+
+
+def test_underwater_reference_is_the_path_tracer_of_seasim_reference(tmp_path):
+    tiny = {"camera.width": 32, "camera.height": 18}
+    scene = seasim.Scene.load(scene_path("seabed.toml"), overrides=tiny)
+    calls = []
+    ref = seasim.reference(scene, steps=8, seed=3, progress=lambda done, total: calls.append((done, total)))
+    assert ref.method == "path tracer" and ref.steps == 8 and ref.info["seed"] == 3
+    assert calls[-1] == (8, 8)
+    out = tmp_path / "ref.exr"
+    sets = [a for k, v in tiny.items() for a in ("--set", f"{k}={v}")]
+    subprocess.run([str(BINARY), "reference", str(scene_path("seabed.toml")), *sets, "--steps", "8", "--seed", "3",
+                    "-o", str(out)], check=True, capture_output=True)
+    assert np.array_equal(seasim.read_image(out), ref.rgb)
+    assert np.array_equal(seasim.read_image(tmp_path / "ref.stderr.exr"), ref.std_error)
