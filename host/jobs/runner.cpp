@@ -158,6 +158,8 @@ RunSummary runJob(const std::string& job_path, const RunOptions& options) {
       error = bad->second;
     } else {
       if (!device) device = std::make_unique<Device>(chooseDevice(selector));
+      char outcome[64] = "";
+      bool rendered = false;
       try {
         double kernel_ms = 0, build_ms = 0;
         const auto t0 = std::chrono::steady_clock::now();
@@ -166,16 +168,18 @@ RunSummary runJob(const std::string& job_path, const RunOptions& options) {
         manifest.recordDone(item->name, files, kernel_ms, wall_ms, build_ms);
         manifest.save(manifest_file);
         ++summary.rendered;
-        char outcome[64];
         std::snprintf(outcome, sizeof outcome, "done (%.1f ms kernels)", kernel_ms);
-        finish(item->name, outcome);
-        continue;
+        rendered = true;
       } catch (const std::exception& e) {
         // Any failure of this item (NaN result, I/O, device memory, a bad texture) stays with it;
         // the next item starts from a fresh renderer.
         renderers.renderer.reset();
         renderers.previous = nullptr;
         error = e.what();
+      }
+      if (rendered) {  // outside the try: a progress callback that throws is not the item's failure
+        finish(item->name, outcome);
+        continue;
       }
     }
     manifest.recordFailed(item->name, error);

@@ -141,3 +141,15 @@ def test_underwater_reference_is_the_path_tracer_of_seasim_reference(tmp_path):
                     "-o", str(out)], check=True, capture_output=True)
     assert np.array_equal(seasim.read_image(out), ref.rgb)
     assert np.array_equal(seasim.read_image(tmp_path / "ref.stderr.exr"), ref.std_error)
+
+
+def test_a_progress_callback_that_raises_stops_the_job_and_the_item_stays_done(tmp_path):
+    job = write_job(tmp_path)
+
+    def stop(handled, total, item, outcome):
+        raise RuntimeError(f"stopped after {item}")
+
+    with pytest.raises(RuntimeError, match="stopped after noon"):
+        seasim.run_job(job, progress=stop)
+    again = seasim.run_job(job, resume=True, progress=False)
+    assert again["skipped"] == 1 and again["rendered"] == 1 and again["failed"] == []
