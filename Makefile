@@ -39,10 +39,12 @@ python-venv:
 	  $(PYVENV)/bin/pip install -q $(PYTHON_PACKAGES)
 
 # A wheel of the Python package into $(BUILD)/, built by scikit-build-core in the build folder itself
-# (so only the module is compiled anew), with that folder's CMake generator.
+# (so only the module is compiled anew), with that folder's CMake generator; then the install prefix
+# and the SKBUILD settings it cached are dropped again, so the folder configures as before.
 wheel: configure python-venv
 	CMAKE_GENERATOR="$$(sed -n 's/^CMAKE_GENERATOR:INTERNAL=//p' $(BUILD)/CMakeCache.txt)" \
 	  $(PYVENV)/bin/pip wheel -q --no-build-isolation --no-deps -w $(BUILD) -C build-dir=$(BUILD) .
+	cmake -S . -B $(BUILD) -UCMAKE_INSTALL_PREFIX -U'SKBUILD*' > /dev/null
 	@ls $(BUILD)/seasim-*.whl
 
 test-deps:
