@@ -18,7 +18,7 @@ from __future__ import annotations
 import os
 import sys
 from dataclasses import dataclass
-from typing import Any, Callable, Mapping, Optional, Sequence, Tuple, Union
+from typing import Callable, Optional, Tuple, Union
 
 import numpy as np
 
@@ -36,7 +36,7 @@ __all__ = [
 ]
 
 PathLike = Union[str, "os.PathLike[str]"]
-ImageLike = Union[np.ndarray, Frame, PathLike]
+ImageLike = Union[np.ndarray, Frame, "ReferenceResult", PathLike]
 
 
 def scenes_dir() -> Optional[str]:
