@@ -25,6 +25,7 @@
 #include "plan/plan.h"
 #include "quality/auto_quality.h"
 #include "reference/compare.h"
+#include "reference/reference_image.h"
 #include "reference/sea_reference.h"
 #include "reference/sea_second_reference.h"
 #include "reference/shafts_reference.h"
@@ -626,87 +627,43 @@ int cmdBench(const BenchCmd& cmd) {
   return 0;
 }
 
-namespace {
-
-// --steps, else the scene's quality knob (a count: "auto" has no meaning for a reference).
-int referenceSteps(const Scene& scene, int steps, const char* knob) {
-  if (steps > 0) return steps;
-  const auto it = scene.quality.find(knob);
-  if (it == scene.quality.end()) throw RuntimeError(std::string("reference: no quality.") + knob);
-  if (it->second.automatic) {
-    throw RuntimeError(std::string("reference: quality.") + knob +
-                       " = \"auto\" is not supported (a reference has no error budget): give a number or --steps");
-  }
-  return static_cast<int>(it->second.value);
-}
-
-}  // namespace
-
 // The reference of `scene` written to `out` (with OUT.stderr.exr for the path tracer, and
 // OUT.settings.json: the settings `compare` checks); returns the line that describes it.
 std::string writeSceneReference(const Scene& scene, const ReferenceCmd& cmd, const std::string& out) {
-  const auto t0 = std::chrono::steady_clock::now();
-  const bool above = cmd.all_orders;
-  if (above && (makePlan(scene).hasPass("kd_multiple") || !scene.water.present || !(scene.camera.position.y > 0))) {
-    throw RuntimeError("reference --all-orders: for the sea seen from above only (a [water] scene, camera y > 0)");
-  }
-  if (above && (scene.sky.model != SkyDesc::Model::Uniform || scene.surface.type != SurfaceDesc::Type::Flat ||
-                scene.bottom.type == BottomDesc::Type::HeightField)) {
-    throw RuntimeError("reference --all-orders: the path tracer models a uniform sky, a flat surface and a flat "
-                       "bottom; set sky.model = \"uniform\", surface.type = \"flat\" and a flat or no bottom");
-  }
+  ReferenceOptions options;
+  options.device = cmd.device;
+  options.steps = cmd.steps;
+  options.seed = cmd.seed;
+  options.all_orders = cmd.all_orders;
+  options.max_bounces = cmd.max_bounces;
+  const bool tty = isatty(fileno(stderr));
+  // The path tracer's samples per pixel; its total is known at the first call.
+  options.progress = [tty, next = 0](int done, int total) mutable {
+    if (tty) {  // one line, redrawn
+      std::fprintf(stderr, "\rpath tracing: %d/%d samples per pixel", done, total);
+      if (done == total) std::fprintf(stderr, "\n");
+    } else if (done >= next || done == total) {  // logs: about every 10 %
+      std::fprintf(stderr, "path tracing: %d/%d samples per pixel\n", done, total);
+      next = done + std::max(1, total / 10);
+    }
+  };
+  const ReferenceImage r = renderReference(scene, options);
   char line[1024];
-  if (above || makePlan(scene).hasPass("kd_multiple")) {
-    // Under water: the spectral path tracer on the device, `steps` paths per pixel. With
-    // underwater.multiple_scattering = false it traces single scattering of the sun beam only, the
-    // reference of the froxel pass (make surfaces black and the sky dark to compare that term alone).
-    Device device(chooseDevice(cmd.device));
-    const WavelengthGrid grid = makeGrid(scene.spectral.count, scene.spectral.min_nm, scene.spectral.max_nm);
-    const UnderwaterSetup setup =
-        makeUnderwaterSetup(scene, grid, makeSensor(scene.spectral.sensor, grid, scene.spectral.white_balance, scene.spectral.camera_dir));
-    UnderwaterReferenceSettings settings;
-    settings.samples_per_pixel = referenceSteps(scene, cmd.steps, "reference_spp");
-    settings.seed = cmd.seed >= 0 ? static_cast<unsigned>(cmd.seed) : 1u;
-    settings.camera_above = above;
-    if (cmd.max_bounces > 0) settings.max_bounces = cmd.max_bounces;
-    if (!scene.underwater.multiple_scattering) settings.max_bounces = 1;
-    const UnderwaterLamps lamps = makeUnderwaterLamps(scene, grid);  // [[spotlights]] under water, by NEE
-    settings.lamps = &lamps;
-    const bool tty = isatty(fileno(stderr));
-    settings.progress = [tty, step = std::max(1, settings.samples_per_pixel / 10), next = 0](int done, int total) mutable {
-      if (tty) {  // one line, redrawn
-        std::fprintf(stderr, "\rpath tracing: %d/%d samples per pixel", done, total);
-        if (done == total) std::fprintf(stderr, "\n");
-      } else if (done >= next || done == total) {  // logs: about every 10 %
-        std::fprintf(stderr, "path tracing: %d/%d samples per pixel\n", done, total);
-        next = done + step;
-      }
-    };
-    const UnderwaterReferenceResult r = renderUnderwaterReference(device, setup, settings);
-    writeExr(out, r.rgb);
+  writeExr(out, r.rgb);
+  if (r.method == "path tracer") {
     const std::string se_path = writeExr(stderrPath(out), r.std_error);
     writeSettingsSidecar(out, scene, "seasim reference (path tracer)");
     std::snprintf(line, sizeof line,
                   "reference %s: %d paths per pixel (%s, seed %u), %.1f ms on %s; noise: mean standard error %.3g "
                   "(image mean %.3g), per pixel in %s",
-                  out.c_str(), r.samples, settings.max_bounces == 1 ? "single scattering" : "multiple scattering",
-                  settings.seed, r.ms, device.info().name.c_str(), r.mean_std_error, r.image_mean, se_path.c_str());
+                  out.c_str(), r.steps, r.max_bounces == 1 ? "single scattering" : "multiple scattering", r.seed, r.ms,
+                  r.device_name.c_str(), r.mean_std_error, r.image_mean, se_path.c_str());
     return line;
   }
-  // Spotlights in air: the shafts ray marcher; otherwise the sea reference.
-  const bool shafts = scene.air.present && !scene.spotlights.empty();
-  const int steps = referenceSteps(scene, cmd.steps, "reference_steps");
   if (cmd.seed >= 0) std::fprintf(stderr, "reference: --seed ignored: this reference is deterministic (no random paths)\n");
-  Image image = shafts ? renderShaftsReference(scene, steps) : renderSeaReference(scene, steps);
-  if (!shafts && scene.sea.second_order) {  // + L^(2) by direct quadrature (000 eq. 6)
-    const Image second = renderSeaSecondReference(scene);
-    for (size_t i = 0; i < image.pixels.size(); ++i) image.pixels[i] += second.pixels[i];
-  }
-  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  writeExr(out, image);
   writeSettingsSidecar(out, scene, "seasim reference (quadrature)");
-  std::snprintf(line, sizeof line, "reference %s: %d %s steps, %.1f ms (CPU, double, TBB)", out.c_str(), steps,
-                shafts ? "ray-march" : "quadrature", ms);
+  std::snprintf(line, sizeof line, "reference %s: %d %s steps, %.1f ms (CPU, double, TBB)", out.c_str(), r.steps,
+                r.method.c_str(), r.ms);
   return line;
 }
 

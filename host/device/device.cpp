@@ -56,7 +56,12 @@ std::vector<DeviceInfo> listDevices() {
   preparePoclCache();   // and PoCL's cache checked: PoCL crashes on a damaged one (pocl_cache_check.h)
   std::vector<DeviceInfo> result;
   std::vector<cl::Platform> platforms;
-  cl_int err = cl::Platform::get(&platforms);
+  cl_int err = CL_SUCCESS;
+  try {
+    err = cl::Platform::get(&platforms);
+  } catch (const cl::Error& e) {  // CL_HPP_ENABLE_EXCEPTIONS: a loader without platforms throws -1001
+    err = e.err();
+  }
   if (err != CL_SUCCESS && err != CL_PLATFORM_NOT_FOUND_KHR) checkCl(err, "clGetPlatformIDs");
   for (size_t p = 0; p < platforms.size(); ++p) {
     std::vector<cl::Device> devices;

@@ -130,32 +130,35 @@ nlohmann::json renderItem(Device& device, Renderer& renderer, const ItemOutputs&
     killMidItemIfAsked(fs::path(dir).filename().string());  // tests only (jobs/test_hooks.h)
   }
 
+  nlohmann::json report = frameReport(device, scene, plan, frame);
+  report["outputs"] = files;
+  if (!error.is_null()) report["error"] = error;
+  writeTextAtomic(dir + "/report.json", report.dump(2) + "\n");
+  return report;
+}
+
+nlohmann::json frameReport(const Device& device, const Scene& scene, const Plan& plan, const FrameResult& frame) {
   nlohmann::json timings = nlohmann::json::object();
   double total = 0;
   for (const auto& t : frame.timings) {
     timings[t.name] = t.ms;
     total += t.ms;
   }
-  nlohmann::json report = {
-      {"seasim", {{"version", version()}, {"git_commit", gitCommit()}, {"data_dir", dataDir()}}},
-      {"scene", scene.file},
-      {"name", scene.name},
-      {"device",
-       {{"label", device.info().label()},
-        {"platform", device.info().platform_name},
-        {"name", device.info().name},
-        {"driver", device.info().driver}}},
-      {"plan", planJson(plan)},
-      {"pass_ms", timings},
-      {"kernel_ms_total", total},
-      {"kernel_build_ms", frame.build_ms},
-      {"wall_ms", frame.wall_ms},
-      {"settings", settingsJson(scene)},
-      {"nonfinite", frame.nonfinite},
-      {"outputs", files}};
-  if (!error.is_null()) report["error"] = error;
-  writeTextAtomic(dir + "/report.json", report.dump(2) + "\n");
-  return report;
+  return {{"seasim", {{"version", version()}, {"git_commit", gitCommit()}, {"data_dir", dataDir()}}},
+          {"scene", scene.file},
+          {"name", scene.name},
+          {"device",
+           {{"label", device.info().label()},
+            {"platform", device.info().platform_name},
+            {"name", device.info().name},
+            {"driver", device.info().driver}}},
+          {"plan", planJson(plan)},
+          {"pass_ms", timings},
+          {"kernel_ms_total", total},
+          {"kernel_build_ms", frame.build_ms},
+          {"wall_ms", frame.wall_ms},
+          {"settings", settingsJson(scene)},
+          {"nonfinite", frame.nonfinite}};
 }
 
 }  // namespace seasim

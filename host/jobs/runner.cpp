@@ -159,11 +159,17 @@ RunSummary runJob(const std::string& job_path, const RunOptions& options) {
   std::unique_ptr<Device> device;  // opened on the first item that needs rendering
   RendererCache renderers;
   Progress progress(static_cast<int>(mine.size()), stderrIsTerminal());
+  int handled = 0;
+  auto finish = [&](const std::string& name, const std::string& outcome) {
+    ++handled;
+    if (options.on_item) options.on_item(handled, static_cast<int>(mine.size()), name, outcome);
+    else progress.finish(name, outcome);
+  };
   for (const RenderItem* item : mine) {
-    progress.start(item->name);
+    if (!options.on_item) progress.start(item->name);
     if (finished.count(item->name)) {
       ++summary.skipped;
-      progress.finish(item->name, "finished earlier (resume)");
+      finish(item->name, "finished earlier (resume)");
       continue;
     }
     std::string error;
@@ -171,6 +177,8 @@ RunSummary runJob(const std::string& job_path, const RunOptions& options) {
       error = bad->second;
     } else {
       if (!device) device = std::make_unique<Device>(chooseDevice(selector));
+      char outcome[64] = "";
+      bool rendered = false;
       try {
         double kernel_ms = 0, build_ms = 0;
         const auto t0 = std::chrono::steady_clock::now();
@@ -179,10 +187,8 @@ RunSummary runJob(const std::string& job_path, const RunOptions& options) {
         manifest.recordDone(item->name, files, kernel_ms, wall_ms, build_ms);
         manifest.save(manifest_file);
         ++summary.rendered;
-        char outcome[64];
         std::snprintf(outcome, sizeof outcome, "done (%.1f ms kernels)", kernel_ms);
-        progress.finish(item->name, outcome);
-        continue;
+        rendered = true;
       } catch (const std::exception& e) {
         // Any failure of this item (NaN result, I/O, device memory, a bad texture) stays with it;
         // the next item starts from a fresh renderer.
@@ -190,13 +196,17 @@ RunSummary runJob(const std::string& job_path, const RunOptions& options) {
         renderers.previous = nullptr;
         error = e.what();
       }
+      if (rendered) {  // outside the try: a progress callback that throws is not the item's failure
+        finish(item->name, outcome);
+        continue;
+      }
     }
     manifest.recordFailed(item->name, error);
     manifest.save(manifest_file);
     summary.failed.push_back({item->name, error});
-    progress.finish(item->name, "FAILED: " + firstLine(error));
+    finish(item->name, "FAILED: " + firstLine(error));
   }
-  progress.done();
+  if (!options.on_item) progress.done();
   return summary;
 }
 
