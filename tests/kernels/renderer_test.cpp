@@ -321,7 +321,7 @@ TEST(Renderer, JobItemsOnOneSceneShareARendererAndMatchFreshFrames) {
                                   << "[[render]]\nname = \"back\"\nscene = \"" << scene << "\"\n"
                                   << "overrides = { \"camera.width\" = 48, \"camera.height\" = 32, \"surface.grid\" = 64, \"surface.time\" = 2.0 }\noutputs = [\"exr\"]\n";
   RunOptions options;
-  options.device = "pocl";
+  options.device = test::testDeviceSelector();  // the fresh frames below render on the test device
   const RunSummary summary = runJob((dir / "job.toml").string(), options);
   EXPECT_EQ(summary.rendered, 3);
   const std::vector<Override> base = small({set("surface.grid", "64")});

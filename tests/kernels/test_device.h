@@ -13,10 +13,15 @@
 
 namespace seasim::test {
 
+// The selector of the test device, for tests that start a job or a command on the same device.
+inline std::string testDeviceSelector() {
+  const char* env = std::getenv("SEASIM_TEST_DEVICE");
+  return env && *env ? env : "pocl";
+}
+
 inline Device& testDevice() {
   static Device* device = new Device([] {
-    const char* env = std::getenv("SEASIM_TEST_DEVICE");
-    const std::string selector = env && *env ? env : "pocl";
+    const std::string selector = testDeviceSelector();
     try {
       return chooseDevice(selector);
     } catch (const DeviceError& e) {
