@@ -21,6 +21,7 @@
 #include "jobs/render_item.h"
 #include "jobs/runner.h"
 #include "plan/plan.h"
+#include "plan/scene_facts.h"
 #include "quality/auto_quality.h"
 #include "reference/compare.h"
 #include "reference/sea_reference.h"
@@ -421,7 +422,7 @@ int cmdBench(const BenchCmd& cmd) {
   }
   // Underwater scenes also time the same G-buffer + K_d shading as a plain C++/oneTBB loop on this CPU
   // (host/underwater/underwater_cpu.cpp, float, no froxel term) in the same run, for the ratio.
-  const bool underwater = makePlan(loadScene(cmd.scene, parseSets(cmd.sets))).hasPass("kd_multiple");
+  const bool underwater = cameraUnderwater(loadScene(cmd.scene, parseSets(cmd.sets)));
   std::vector<std::string> columns = {"wavelengths", "kernel_ms_median", "pixel_wavelengths_per_s"};
   if (underwater) {
     for (const char* c : {"raycast_ms", "froxel_ms", "kd_multiple_ms", "tbb_gbuffer_kd_ms", "tbb_over_opencl",
@@ -496,7 +497,7 @@ int cmdBench(const BenchCmd& cmd) {
       UnderwaterCpuOptions options;
       options.use_double = false;
       options.multiple = scene.underwater.multiple_scattering;
-      options.single_split = plan.hasPass("froxel");
+      options.single_split = plan.produces("froxel_volume");
       // The scalar TBB loop and the vectorised one (underwater_cpu_simd.cpp), interleaved run by run.
       std::vector<double> cpu, cpu_simd;
       for (int r = 0; r < std::max(1, cmd.repeat); ++r) {
@@ -589,7 +590,7 @@ int cmdReference(const ReferenceCmd& cmd) {
   const Scene scene = loadScene(cmd.scene, parseSets(cmd.sets));
   const auto t0 = std::chrono::steady_clock::now();
   const bool above = cmd.all_orders;
-  if (above && (makePlan(scene).hasPass("kd_multiple") || !scene.water.present || !(scene.camera.position.y > 0))) {
+  if (above && (cameraUnderwater(scene) || !scene.water.present || !(scene.camera.position.y > 0))) {
     throw RuntimeError("reference --all-orders: for the sea seen from above only (a [water] scene, camera y > 0)");
   }
   if (above && (scene.sky.model != SkyDesc::Model::Uniform || scene.surface.type != SurfaceDesc::Type::Flat ||
@@ -597,7 +598,7 @@ int cmdReference(const ReferenceCmd& cmd) {
     throw RuntimeError("reference --all-orders: the path tracer models a uniform sky, a flat surface and a flat "
                        "bottom; set sky.model = \"uniform\", surface.type = \"flat\" and a flat or no bottom");
   }
-  if (above || makePlan(scene).hasPass("kd_multiple")) {
+  if (above || cameraUnderwater(scene)) {
     // Under water (issue 5): the spectral path tracer on the device, `steps` paths per pixel. With
     // underwater.multiple_scattering = false it traces single scattering of the sun beam only, the
     // reference of the froxel pass (make surfaces black and the sky dark to compare that term alone).

@@ -7,6 +7,7 @@
 #include "geometry/kernel_camera.h"
 #include "math/kernel_math.h"
 #include "passes/fourflow_auto.h"
+#include "passes/fourflow_features.h"
 #include "spectral/jerlov.h"
 #include "underwater/fourflow_setup.h"
 #include "underwater/fourflow_waves.h"
@@ -15,10 +16,6 @@
 namespace seasim {
 
 namespace {
-
-bool hasDefine(const PassPlan& plan, const char* d) {
-  return std::find(plan.defines.begin(), plan.defines.end(), std::string(d)) != plan.defines.end();
-}
 
 }  // namespace
 
@@ -127,8 +124,9 @@ FourFlowPass::FourFlowPass(Device& device, const Scene& scene, const PassPlan& p
                            const Sensor& sensor, int table_size)
     : device_(device), width_(scene.camera.width), height_(scene.camera.height) {
   const FourFlowSetup s = makeFourFlowSetup(scene, grid, sensor, table_size);
-  const bool tables = !hasDefine(plan, "SEASIM_FF_TABLES=0");
-  const bool hf = hasDefine(plan, "SEASIM_FF_HEIGHTFIELD=1");
+  const FourFlowFeatures& features = plan.featuresAs<FourFlowFeatures>();
+  const bool tables = features.tables != 0;
+  const bool hf = features.height_field;
   if (hf != s.height_field) throw RuntimeError("fourflow pass: the plan's SEASIM_FF_HEIGHTFIELD does not match the scene");
   const size_t pixels = size_t(width_) * size_t(height_);
   try {
@@ -161,15 +159,12 @@ FourFlowPass::FourFlowPass(Device& device, const Scene& scene, const PassPlan& p
       render_.setArg(6, hf_depth_);
     }
     cl_uint next_arg = hf ? 7 : 5;
-    if (hasDefine(plan, "SEASIM_SPECTRAL_OUTPUT=1")) {
+    if (features.spectral_output) {
       spectral_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * pixels * s.bands.size());
       render_.setArg(next_arg++, spectral_);
     }
-    // A sky model other than the uniform one (plan.cpp's SEASIM_SKY_MODEL): its arguments follow.
-    const bool sky_model = std::any_of(plan.defines.begin(), plan.defines.end(), [](const std::string& d) {
-      return d.rfind("SEASIM_SKY_MODEL=", 0) == 0 && d != "SEASIM_SKY_MODEL=0";
-    });
-    if (sky_model) {
+    // A sky model other than the uniform one: its arguments follow.
+    if (features.sky_model != 0) {
       const cl_uint arg = next_arg;
       const cl_mem_flags in = CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR;
       sky_params_ = cl::Buffer(device.context(), in, sizeof(SkyParams), const_cast<SkyParams*>(&s.sky_params));

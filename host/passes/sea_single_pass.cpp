@@ -8,6 +8,7 @@
 #include "math/kernel_math.h"
 #include "passes/sea_band_table.h"
 #include "passes/sea_heightfield.h"
+#include "passes/sea_single_features.h"
 #include "passes/sea_sky.h"
 #include "sky/sky_light.h"
 #include "spectral/jerlov.h"
@@ -67,14 +68,13 @@ SeaSinglePass::SeaSinglePass(Device& device, const Scene& scene, const PassPlan&
                              const WavelengthGrid& grid, const Sensor& sensor, OceanPass* ocean,
                              const SeaBottomCaustics* bottom_caustics)
     : device_(device), width_(scene.camera.width), height_(scene.camera.height) {
-  const bool caustics = std::find(plan.defines.begin(), plan.defines.end(), std::string("SEASIM_BOTTOM_CAUSTICS=1")) !=
-                        plan.defines.end();
+  const SeaSingleFeatures& features = plan.featuresAs<SeaSingleFeatures>();
+  const bool caustics = features.bottom_caustics;
   if (caustics && !bottom_caustics) {
     throw RuntimeError("sea_single pass: the plan has bottom caustics (SEASIM_BOTTOM_CAUSTICS=1) but no caustic map "
                        "was given (the renderer makes it with seaBottomCaustics)");
   }
-  const bool waves =
-      std::find(plan.defines.begin(), plan.defines.end(), std::string("SEASIM_HAS_WAVES=1")) != plan.defines.end();
+  const bool waves = features.waves;
   if (waves && !ocean) {
     throw RuntimeError("sea_single pass: the plan has FFT waves (SEASIM_HAS_WAVES=1) but no ocean normal map was "
                        "given; run the ocean_fft pass first (the renderer does)");
@@ -222,8 +222,7 @@ SeaSinglePass::SeaSinglePass(Device& device, const Scene& scene, const PassPlan&
     kernel_.setArg(2, table_);
     kernel_.setArg(3, normals_);
     // The wave filter's slope-moment mip chain (common/sea_lean.h), rebuilt from the normal map each run.
-    const bool filter = std::find(plan.defines.begin(), plan.defines.end(), std::string("SEASIM_WAVE_FILTER=1")) !=
-                        plan.defines.end();
+    const bool filter = features.waves && features.wave_filter;
     if (filter) {
       ocean_n_ = ocean->n();
       mips_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE,

@@ -8,6 +8,7 @@
 #include "geometry/kernel_camera.h"
 #include "math/kernel_math.h"
 #include "geometry/shafts_geometry_k.h"
+#include "passes/shafts_features.h"
 #include "plan/shafts_method.h"
 #include "spectral/lamp_spectrum.h"
 #include "util/error.h"
@@ -41,10 +42,6 @@ int knob(const Scene& scene, const char* name, int fallback) {
   return static_cast<int>(it->second.value);
 }
 
-bool hasDefine(const PassPlan& plan, const std::string& name) {
-  return std::find(plan.defines.begin(), plan.defines.end(), name + "=1") != plan.defines.end();
-}
-
 }  // namespace
 
 ShaftsPass::Config ShaftsPass::configFromScene(const Scene& scene) {
@@ -75,9 +72,10 @@ ShaftsPass::ShaftsPass(Device& device, const Scene& scene, const PassPlan& plan,
     throw RuntimeError("shafts: planes, sub-planes and shadow-map size must be at least 1");
   }
   range_ = rangeFor(scene);
-  const bool exact = hasDefine(plan, "SEASIM_SHAFTS_EXACT");
-  const bool use_hg = hasDefine(plan, "SEASIM_SHAFTS_HG");
-  intervals_ = hasDefine(plan, "SEASIM_SHAFTS_INTERVALS");
+  const ShaftsFeatures& features = plan.featuresAs<ShaftsFeatures>();
+  const bool exact = features.exact;
+  const bool use_hg = features.henyey_greenstein;
+  intervals_ = features.intervals;
   if (intervals_ && static_cast<int>(scene.objects.size()) > kShaftsIntervalsMaxObjects) {
     throw RuntimeError("shafts: the intervals method handles at most " + std::to_string(kShaftsIntervalsMaxObjects) +
                        " objects (quality.shafts_method = \"planes\" has no such limit)");
@@ -135,8 +133,8 @@ ShaftsPass::ShaftsPass(Device& device, const Scene& scene, const PassPlan& plan,
     }
     L.shadow_offset = static_cast<int>(i) * config.shadow_map_size * config.shadow_map_size;
   }
-  if (!maps.empty() && !hasDefine(plan, "SEASIM_HAS_LIGHT_MAP")) {
-    throw RuntimeError("shafts: the plan has no SEASIM_HAS_LIGHT_MAP but a spotlight has a light map");
+  if (!maps.empty() && !features.light_map) {
+    throw RuntimeError("shafts: the plan has no light_map feature (SEASIM_HAS_LIGHT_MAP) but a spotlight has a light map");
   }
 
   std::vector<ShaftsObject> objects;

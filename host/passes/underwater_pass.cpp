@@ -4,6 +4,7 @@
 #include <string>
 
 #include "passes/caustic_stack.h"
+#include "passes/underwater_features.h"
 #include "underwater/underwater_band_table.h"
 
 #include "util/error.h"
@@ -41,7 +42,7 @@ UnderwaterPass::UnderwaterPass(Device& device, const UnderwaterSetup& setup, con
     rgb_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * 3 * pixels);
     if (spectral_output)
       spectral_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * pixels * setup.bands.size());
-    spread_ = std::find(kd.defines.begin(), kd.defines.end(), "SEASIM_UWI_SPREAD=1") != kd.defines.end();
+    spread_ = kd.featuresAs<KdFeatures>().point_spread;
     if (spread_) {
       // The forward light's moments (common/water_spread_params.h): F and F E per channel, F D and F per pixel.
       forward_rgb_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * pixels * 2 * 3);

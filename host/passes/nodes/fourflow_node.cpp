@@ -3,23 +3,26 @@
 // prepare (the paper's preprocessing stage) and timed there; execute runs the frame kernel.
 #include <memory>
 
+#include "passes/fourflow_features.h"
 #include "passes/fourflow_pass.h"
 #include "passes/nodes/standard_passes.h"
+#include "plan/pass_descriptor.h"
+#include "plan/scene_facts.h"
 #include "render/radiance_target.h"
 
 namespace seasim {
 
 namespace {
 
+// surface.*: with waves, R and T are averaged over the FFT patch (003 eq. 10) when the pass is set up.
+const PassKeys kFourFlowKeys = {{"camera.*", "sun.*", "sky.*", "water.*", "surface.*", "bottom.*", "shallow.*",
+                                 "spectral.*", "quality.fourflow_table_size"},
+                                {}};
+
 class FourFlowNode : public Pass {
  public:
   explicit FourFlowNode(const PassPlan& entry) : entry_(entry) {}
-  PassKeys keys() const override {
-    // surface.*: with waves, R and T are averaged over the FFT patch (003 eq. 10) when the pass is set up.
-    return {{"camera.*", "sun.*", "sky.*", "water.*", "surface.*", "bottom.*", "shallow.*", "spectral.*",
-             "quality.fourflow_table_size"},
-            {}};
-  }
+  PassKeys keys() const override { return kFourFlowKeys; }
   void prepare(FrameContext& ctx, PassResources& res) override {
     pass_ = std::make_unique<FourFlowPass>(ctx.device(), ctx.scene(), entry_, ctx.grid(), ctx.sensor());
     if (pass_->tableMs() > 0) ctx.timings.push_back({"fourflow_tables", pass_->tableMs()});
@@ -39,9 +42,36 @@ class FourFlowNode : public Pass {
 
 }  // namespace
 
-void registerFourFlowPass(PassRegistry& registry) {
-  registry.add("fourflow",
-               [](const PassPlan& e, const Plan&, const Scene&) { return std::make_unique<FourFlowNode>(e); });
+PassDescriptor fourFlowDescriptor() {
+  PassDescriptor d;
+  d.name = "fourflow";
+  d.kernel_file = "fourflow.cl";
+  // Shallow water with a visible bottom: the four-flow pass takes the place of the sea model for the
+  // view from above; its tables are built only on the table path.
+  d.rule = [](const Scene& scene, const Plan&) -> std::optional<PassPlan> {
+    if (!seaSeenFromAbove(scene) || !scene.shallow.present) return std::nullopt;
+    const ShallowDesc::Path path = scene.shallow.path;
+    auto features = std::make_shared<FourFlowFeatures>();
+    features->tables = path == ShallowDesc::Path::TableEq24 ? 2 : path != ShallowDesc::Path::Exact ? 1 : 0;
+    features->height_field = scene.shallow.slope || scene.bottom.type == BottomDesc::Type::HeightField;
+    features->spectral_output = scene.spectral.spectral_exr;
+    features->sky_model = skyModelOf(scene.sky);
+    const char* method = features->tables == 2   ? "(l, h) tables + pre-converted blend (eq. 24)"
+                         : features->tables == 1 ? "(l, h) tables + blend (eq. 22-23)"
+                                                 : "exact spectral path (eq. 20)";
+    return planEntry({"scene"}, {"rgb"},
+                     std::string("[shallow]: four-flow light field over a visible bottom (003 eq. 4-20), ") + method,
+                     features);
+  };
+  d.keys = kFourFlowKeys;
+  // Built without the plan's relaxed maths: its error was not measured under it.
+  d.fast_math = false;
+  d.buffers = [](const Scene&, const PassPlan&) { return std::vector<BufferEstimate>{}; };
+  d.cost = [](const Scene&, const PassPlan&) { return 1.0; };
+  d.factory = [](const PassPlan& e, const Plan&, const Scene&, const AutoQuality&) -> std::unique_ptr<Pass> {
+    return std::make_unique<FourFlowNode>(e);
+  };
+  return d;
 }
 
 }  // namespace seasim
