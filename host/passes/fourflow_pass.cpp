@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "device/enqueue.h"
 #include "geometry/kernel_camera.h"
 #include "math/kernel_math.h"
 #include "passes/fourflow_auto.h"
@@ -129,7 +130,7 @@ FourFlowPass::FourFlowPass(Device& device, const Scene& scene, const PassPlan& p
   const bool hf = features.height_field;
   if (hf != s.height_field) throw RuntimeError("fourflow pass: the plan's SEASIM_FF_HEIGHTFIELD does not match the scene");
   const size_t pixels = size_t(width_) * size_t(height_);
-  try {
+  onDevice("fourflow pass set-up", [&] {
     const BuiltProgram& built = device.program(plan.kernel_file, plan.defines);
     view_ = cl::Buffer(device.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(FfView), const_cast<FfView*>(&s.view));
     bands_ = cl::Buffer(device.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(FfBand) * s.bands.size(),
@@ -173,22 +174,9 @@ FourFlowPass::FourFlowPass(Device& device, const Scene& scene, const PassPlan& p
                                const_cast<float*>(s.sky_rgb_matrix.data()));
       render_.setArg(arg, sky_params_), render_.setArg(arg + 1, sky_), render_.setArg(arg + 2, sky_matrix_);
     }
-  } catch (const cl::Error& e) {
-    throw DeviceError(std::string("fourflow pass set-up: ") + e.what() + " " + clErrorName(e.err()));
-  }
+  });
 }
 
-double FourFlowPass::run() {
-  cl::Event done;
-  try {
-    const size_t local = 8;
-    cl::NDRange global((size_t(width_) + local - 1) / local * local, (size_t(height_) + local - 1) / local * local);
-    device_.queue().enqueueNDRangeKernel(render_, cl::NullRange, global, cl::NDRange(local, local), nullptr, &done);
-    done.wait();
-  } catch (const cl::Error& e) {
-    throw DeviceError(std::string("fourflow pass: ") + e.what() + " " + clErrorName(e.err()));
-  }
-  return eventMs(done);
-}
+double FourFlowPass::run() { return runKernel2d(device_, "fourflow", render_, width_, height_); }
 
 }  // namespace seasim

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <cstdio>
 
+#include "device/enqueue.h"
 #include "geometry/kernel_camera.h"
 #include "math/kernel_math.h"
 #include "geometry/shafts_geometry_k.h"
@@ -207,7 +208,7 @@ ShaftsPass::ShaftsPass(Device& device, const Scene& scene, const PassPlan& plan,
   };
   const float zero = 0.0f;
   const ShaftsObject no_object{};
-  try {
+  onDevice("shafts pass set-up", [&] {
     const BuiltProgram& built = device.program(plan.kernel_file, plan.defines);
     render_kernel_ = cl::Kernel(built.program, "shafts_render");
     shadow_kernel_ = cl::Kernel(built.program, "shafts_shadow_map");
@@ -234,42 +235,26 @@ ShaftsPass::ShaftsPass(Device& device, const Scene& scene, const PassPlan& plan,
     render_kernel_.setArg(6, h_table_);
     render_kernel_.setArg(7, occluders_);
     render_kernel_.setArg(8, rgb_);
-  } catch (const cl::Error& e) {
-    throw DeviceError(std::string("shafts pass set-up: ") + e.what() + " " + clErrorName(e.err()));
-  }
+  });
 }
 
 double ShaftsPass::run() {
-  try {
-    const size_t local = 8;
-    auto up = [&](size_t v) { return (v + local - 1) / local * local; };
-    shadow_ms_ = 0;
-    if (has_objects_ && light_count_ > 0 && !intervals_) {
-      cl::Event done;
-      device_.queue().enqueueNDRangeKernel(shadow_kernel_, cl::NullRange,
-                                           cl::NDRange(up(shadow_size_), up(shadow_size_), light_count_),
-                                           cl::NDRange(local, local, 1), nullptr, &done);
-      done.wait();
-      shadow_ms_ = eventMs(done);
-    }
-    cl::Event done;
-    device_.queue().enqueueNDRangeKernel(render_kernel_, cl::NullRange, cl::NDRange(up(width_), up(height_)),
-                                         cl::NDRange(local, local), nullptr, &done);
-    done.wait();
-    shafts_ms_ = eventMs(done);
-  } catch (const cl::Error& e) {
-    throw DeviceError(std::string("shafts pass: ") + e.what() + " " + clErrorName(e.err()));
+  const size_t local = 8;
+  shadow_ms_ = 0;
+  if (has_objects_ && light_count_ > 0 && !intervals_) {
+    const size_t side = roundUp(static_cast<size_t>(shadow_size_), local);
+    shadow_ms_ = runKernel(device_, "shadow_maps", shadow_kernel_, cl::NDRange(side, side, light_count_),
+                           cl::NDRange(local, local, 1));
   }
+  shafts_ms_ = runKernel2d(device_, "shafts", render_kernel_, width_, height_, local);
   return shadow_ms_ + shafts_ms_;
 }
 
 void ShaftsPass::readRgb(std::vector<float>& out) {
   out.resize(size_t(3) * width_ * height_);
-  try {
+  onDevice("shafts pass: reading the frame back", [&] {
     device_.queue().enqueueReadBuffer(rgb_, CL_TRUE, 0, sizeof(float) * out.size(), out.data());
-  } catch (const cl::Error& e) {
-    throw DeviceError(std::string("shafts pass: reading the frame back: ") + e.what() + " " + clErrorName(e.err()));
-  }
+  });
 }
 
 }  // namespace seasim

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <memory>
 
+#include "device/enqueue.h"
 #include "passes/caustic_stack.h"
 #include "passes/nodes/standard_passes.h"
 #include "passes/nodes/underwater_frame.h"
@@ -20,12 +21,10 @@ namespace {
 // Copies `fresh` into `kept` when both hold `bytes`; returns false when `kept` must be replaced.
 bool copyInto(Device& device, const cl::Buffer& fresh, cl::Buffer& kept, size_t bytes) {
   if (!kept() || kept.getInfo<CL_MEM_SIZE>() != bytes) return false;
-  try {
+  onDevice("caustics pass: copying the caustic map", [&] {
     device.queue().enqueueCopyBuffer(fresh, kept, 0, 0, bytes);
     device.queue().finish();
-  } catch (const cl::Error& e) {
-    throw DeviceError(std::string("caustics pass: copying the caustic map: ") + e.what() + " " + clErrorName(e.err()));
-  }
+  });
   return true;
 }
 

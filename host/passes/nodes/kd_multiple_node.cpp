@@ -4,6 +4,7 @@
 #include <memory>
 #include <vector>
 
+#include "device/enqueue.h"
 #include "device/device.h"
 #include "passes/froxel_pass.h"
 #include "passes/nodes/underwater_frame.h"
@@ -45,15 +46,13 @@ class KdNode : public Pass {
       const size_t pixels = static_cast<size_t>(scene.camera.width) * static_cast<size_t>(scene.camera.height);
       std::vector<float> spectral(pixels * ctx.grid().size());
       cl::CommandQueue& queue = ctx.device().queue();
-      try {
+      onDevice("froxel spectral bands", [&] {
         queue.enqueueReadBuffer(gbuffer.pass->spectral(), CL_TRUE, 0, sizeof(float) * spectral.size(), spectral.data());
         const double ms = froxels->addBandsToSpectral(ctx.underwaterSetup(), gbuffer.pass->geometry(), scene.camera.width,
                                                       scene.camera.height, spectral);
         queue.enqueueWriteBuffer(gbuffer.pass->spectral(), CL_TRUE, 0, sizeof(float) * spectral.size(), spectral.data());
         ctx.timings.push_back({"froxel_spectral_bands", ms});
-      } catch (const cl::Error& e) {
-        throw DeviceError(std::string("froxel spectral bands: ") + e.what() + " " + clErrorName(e.err()));
-      }
+      });
     }
   }
 
