@@ -228,7 +228,7 @@ __kernel void shafts_render(__constant ShaftsParams* p, __global const ShaftsLig
     for (int k = 0; k < p->object_count && n > 0; ++k) {
       __global const ShaftsOccluder* oc = &occluders[l * p->object_count + k];
       float s0 = lo[0], s1 = hi[n - 1]; /* the shadow matters only where the ray is lit */
-      if (shafts_shadow_interval_packed(&oc->planes[0][0], oc->plane_count, oc->has_cone, oc->always, v3(oc->apex),
+      if (shafts_shadow_interval_packed(oc->planes, oc->plane_count, oc->has_cone, oc->always, v3(oc->apex),
                                         v3(oc->axis), oc->axis[3], eye, d, &s0, &s1))
         n = shafts_pieces_subtract(lo, hi, n, s0, s1);
     }

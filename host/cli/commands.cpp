@@ -343,6 +343,7 @@ double measureThroughput(Device& device, const char* kernel_name, int ops_per_it
 }
 
 int cmdBench(const BenchCmd& cmd) {
+  if (!cmd.devices.empty()) return benchDevices(cmd, parseSets(cmd.sets));  // bench_devices.cpp
   Device device(chooseDevice(cmd.device));
   std::printf("device: %s\n", device.info().label().c_str());
   double exp_rate = 0;

@@ -45,6 +45,7 @@ struct BenchCmd {
   int frames = 0;                   // --frames N: an animation of N frames over --time-range (bench_frames.cpp)
   std::vector<double> time_range;   // --time-range t0,t1 (s) for surface.time
   bool fresh = false;               // --fresh: a new renderer per frame (everything set up each frame)
+  std::vector<std::string> devices; // --devices pocl,intel: per-pass times on each (bench_devices.cpp)
 };
 int cmdBench(const BenchCmd& cmd);
 // The --sea-maps mode of bench (host/cli/bench_sea.cpp).
@@ -52,6 +53,8 @@ class Device;
 int benchSeaSecond(Device& device, const BenchCmd& cmd, const std::vector<Override>& overrides);
 // The --frames mode of bench (host/cli/bench_frames.cpp).
 int benchFrames(Device& device, const BenchCmd& cmd, const std::vector<Override>& overrides);
+// The --devices mode of bench (host/cli/bench_devices.cpp): one table of per-pass times and ratios.
+int benchDevices(const BenchCmd& cmd, const std::vector<Override>& overrides);
 
 struct ReferenceCmd {
   std::string scene, out, device;

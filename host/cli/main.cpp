@@ -80,6 +80,9 @@ int main(int argc, char** argv) {
   bench->add_option("--csv", bench_cmd.csv, "CSV output");
   bench->add_option("--plot", bench_cmd.plot, "SVG plot output");
   bench->add_option("--device", bench_cmd.device, "Device selector");
+  bench->add_option("--devices", bench_cmd.devices,
+                    "With --scene: the same scene on each device (selectors as --device), per-pass ms and ratios")
+      ->delimiter(',');
   bench->add_flag("--limits", bench_cmd.limits, "Measure the device's exp throughput bound");
   bench->add_option("--frames", bench_cmd.frames, "Animation: N frames of surface.time over --time-range, per-frame wall vs kernel ms");
   bench->add_option("--time-range", bench_cmd.time_range, "t0,t1 in s for --frames (default 0,5)")->delimiter(',');

@@ -1,6 +1,7 @@
 #include "device/device.h"
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -227,6 +228,7 @@ const BuiltProgram& Device::program(const std::string& kernel_file, const std::v
                         pocl_hint);
     }
     built.program = p;
+    noteBuildWarnings(kernel_file, p);
     if (!cache_file.empty()) {
       std::vector<std::vector<unsigned char>> bins = p.getInfo<CL_PROGRAM_BINARIES>();
       if (!bins.empty() && !bins[0].empty()) {
@@ -242,6 +244,25 @@ const BuiltProgram& Device::program(const std::string& kernel_file, const std::v
   built.build_ms = msSince(t0);
   total_build_ms_ += built.build_ms;
   return programs_.emplace(key, std::move(built)).first->second;
+}
+
+// A kernel must build cleanly on every driver: a warning on one is often an error on another (an
+// implicit conversion, an unused variable hiding a typo). The driver's log is printed and counted; the
+// cross-runtime test fails on any. Drivers also log progress ("Compilation done", vectorisation
+// remarks), so only lines with "warning:" count.
+void Device::noteBuildWarnings(const std::string& kernel_file, const cl::Program& program) {
+  std::string log;
+  try {
+    log = program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(device_);
+  } catch (const cl::Error&) {
+    return;
+  }
+  std::string lowered = log;
+  for (char& c : lowered) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (lowered.find("warning:") == std::string::npos) return;
+  ++build_warnings_;
+  std::fprintf(stderr, "seasim: warning: kernels/%s built with warnings on %s:\n%s\n", kernel_file.c_str(),
+               info_.name.c_str(), log.c_str());
 }
 
 double eventMs(const cl::Event& event) {

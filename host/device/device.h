@@ -63,13 +63,19 @@ class Device {
   // Total build milliseconds spent by program() so far (for report.json).
   double totalBuildMs() const { return total_build_ms_; }
 
+  // Kernel builds from source whose driver log held a compiler warning (each printed on stderr).
+  int buildWarnings() const { return build_warnings_; }
+
  private:
+  void noteBuildWarnings(const std::string& kernel_file, const cl::Program& program);
+
   DeviceInfo info_;
   cl::Device device_;
   cl::Context context_;
   cl::CommandQueue queue_;
   std::map<std::string, BuiltProgram> programs_;
   double total_build_ms_ = 0.0;
+  int build_warnings_ = 0;
 };
 
 // Milliseconds between an event's start and end (profiling queue).

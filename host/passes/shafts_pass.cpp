@@ -221,7 +221,8 @@ ShaftsPass::ShaftsPass(Device& device, const Scene& scene, const PassPlan& plan,
     h_table_ = upload(h_table.data(), sizeof(float) * h_table.size());
     occluders_ = upload(occluders.data(), sizeof(ShaftsOccluder) * occluders.size());
     shadow_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * shadow_texels);
-    rgb_ = cl::Buffer(device.context(), CL_MEM_WRITE_ONLY, sizeof(float) * 3 * pixels);
+    // Read and written: the render kernel writes it, the NaN/Inf check kernel reads it.
+    rgb_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * 3 * pixels);
     shadow_kernel_.setArg(0, params_);
     shadow_kernel_.setArg(1, lights_);
     shadow_kernel_.setArg(2, objects_);

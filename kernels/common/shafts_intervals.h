@@ -184,17 +184,19 @@ SEASIM_FN int shafts_shadow_interval(ShaftsShadowVolume v, real3 o, real3 d, rea
 }
 
 /* shafts_shadow_interval on a volume packed as the kernel's buffer holds it (common/shafts_params.h,
- * ShaftsOccluder): planes[4 k .. 4 k + 3] = n.xyz, b. It narrows the caller's [*lo, *hi] (the lit
+ * ShaftsOccluder): planes[k] = n.xyz, b, one row of four per plane (rows, not a flat float pointer
+ * into the struct's 2-D array: indexing past the first row through such a pointer is outside its
+ * array in C, and Oclgrind reports it). It narrows the caller's [*lo, *hi] (the lit
  * range the shadow could touch) plane by plane and stops at the first that leaves it empty, as most
  * rays miss most shadows. */
-SEASIM_FN int shafts_shadow_interval_packed(SEASIM_GLOBAL const float* planes, int plane_count, int has_cone,
+SEASIM_FN int shafts_shadow_interval_packed(SEASIM_GLOBAL const float (*planes)[4], int plane_count, int has_cone,
                                             int always, real3 apex, real3 axis, real cos_cone, real3 o, real3 d,
                                             real* lo, real* hi) {
   if (always < 0) return 0;
   if (always > 0) return 1;
   for (int k = 0; k < plane_count; ++k) {
-    const real3 n = MAKE_REAL3(planes[4 * k], planes[4 * k + 1], planes[4 * k + 2]);
-    shafts_clip_halfspace(o, d, n, (real)planes[4 * k + 3], lo, hi);
+    const real3 n = MAKE_REAL3(planes[k][0], planes[k][1], planes[k][2]);
+    shafts_clip_halfspace(o, d, n, (real)planes[k][3], lo, hi);
     if (!(*hi > *lo)) return 0;
   }
   if (has_cone) {

@@ -106,12 +106,12 @@ TEST(ShaftsIntervals, ShadowIntervalsAreExactShadowRays) {
       (exact ? shadowed : lit) += 1;
     }
     // The packed form the kernel reads (float planes, narrowing the caller's range) gives the same.
-    float packed[4 * SHAFTS_OCC_PLANES];
+    float packed[SHAFTS_OCC_PLANES][4];
     for (int k = 0; k < vol.plane_count; ++k) {
-      packed[4 * k] = float(vol.n[k].x);
-      packed[4 * k + 1] = float(vol.n[k].y);
-      packed[4 * k + 2] = float(vol.n[k].z);
-      packed[4 * k + 3] = float(vol.b[k]);
+      packed[k][0] = float(vol.n[k].x);
+      packed[k][1] = float(vol.n[k].y);
+      packed[k][2] = float(vol.n[k].z);
+      packed[k][3] = float(vol.b[k]);
     }
     double plo = 0, phi = 30;  // a lit range [0, 30]
     const int pany = kd::shafts_shadow_interval_packed(packed, vol.plane_count, vol.has_cone, vol.always, vol.apex,
