@@ -72,7 +72,7 @@ FourFlowSetup makeFourFlowSetup(const Scene& scene, const WavelengthGrid& grid, 
   }
   // Bottom: the [shallow] slope or the [bottom] table.
   if (sh.slope) {
-    const int n = 65;
+    const int n = kFourFlowSlopeNodes;
     std::vector<float> depth(size_t(n) * n);
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i)

@@ -64,6 +64,10 @@ HeightField loadHeightField(const BottomDesc& bottom, DataFiles* files) {
   return makeHeightField(img.width, img.height, bottom.extent, std::move(depth));
 }
 
+double heightFieldBytes(const HeightField& field) {
+  return double(sizeof(SeaHeightField)) + double(sizeof(float)) * double(field.depth.size());
+}
+
 HeightFieldBuffers uploadHeightField(Device& device, const HeightField& field) {
   HeightFieldBuffers b;
   onDevice("height-field floor upload", [&] {

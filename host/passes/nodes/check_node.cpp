@@ -43,7 +43,9 @@ PassDescriptor nonfiniteCheckDescriptor() {
   };
   // Finite-only maths may assume away the very values it counts.
   d.fast_math = false;
-  d.buffers = [](const Scene&, const PassPlan&) { return std::vector<BufferEstimate>{}; };
+  d.buffers = [](const Scene&, const PassPlan& p) {
+    return std::vector<BufferEstimate>{{p.name, "NaN/Inf counter", double(sizeof(cl_uint)), {}, {}}};
+  };
   d.cost = [](const Scene&, const PassPlan&) { return 0.01; };
   d.factory = [](const PassPlan&, const Plan&, const Scene&, const AutoQuality&) -> std::unique_ptr<Pass> {
     return std::make_unique<CheckNode>();

@@ -1,6 +1,7 @@
 // fourflow_node.cpp — shallow water with a visible bottom (paper 003): "fourflow"
 // (passes/fourflow_pass.h), which owns the frame's "rgb" target. The (l, h) tables are built in
 // prepare (the paper's preprocessing stage) and timed there; execute runs the frame kernel.
+#include <algorithm>
 #include <memory>
 
 #include "passes/fourflow_features.h"
@@ -66,7 +67,26 @@ PassDescriptor fourFlowDescriptor() {
   d.keys = kFourFlowKeys;
   // Built without the plan's relaxed maths: its error was not measured under it.
   d.fast_math = false;
-  d.buffers = [](const Scene&, const PassPlan&) { return std::vector<BufferEstimate>{}; };
+  d.knobs = {{"fourflow_table_size", 32}};
+  d.buffers = [d](const Scene& s, const PassPlan& p) -> std::vector<BufferEstimate> {
+    const FourFlowFeatures& f = p.featuresAs<FourFlowFeatures>();
+    const double nb = s.spectral.count;
+    std::vector<BufferEstimate> out = {{p.name, "view, bands and parameter block",
+                                        double(sizeof(FfView)) + double(sizeof(FfBand)) * nb + double(sizeof(FfParams)),
+                                        {}, {}}};
+    // The (l, h) tables, FF_TABLE_STRIDE floats per cell ("auto" sizes are not known before the search).
+    const double n = f.tables == 0 ? 1.0 : std::max(2.0, d.knob(s, "fourflow_table_size"));
+    out.push_back({p.name, "(l, h) tables", 4.0 * FF_TABLE_STRIDE * n * n,
+                   {"quality.fourflow_table_size", "quality.fourflow_table_size"}, {n, n}});
+    if (s.shallow.slope) {
+      const double side = kFourFlowSlopeNodes;
+      out.push_back({p.name, "bottom slope's height field", double(sizeof(SeaHeightField)) + 4 * side * side, {}, {}});
+    } else if (f.height_field) {
+      const double bytes = heightFieldBytes(loadHeightField(s.bottom, s.files.get()));
+      out.push_back({p.name, "bottom height field", bytes, {}, {}});
+    }
+    return out;
+  };
   d.cost = [](const Scene&, const PassPlan&) { return 1.0; };
   d.factory = [](const PassPlan& e, const Plan&, const Scene&, const AutoQuality&) -> std::unique_ptr<Pass> {
     return std::make_unique<FourFlowNode>(e);

@@ -3,8 +3,12 @@
 #include <memory>
 #include <utility>
 
+#include "common/sea_params.h"
+#include "common/sea_second_params.h"
+
 #include "passes/nodes/standard_passes.h"
 #include "passes/sea_second_features.h"
+#include "passes/sea_heightfield.h"
 #include "passes/sea_second_pass.h"
 #include "plan/pass_descriptor.h"
 #include "plan/scene_facts.h"
@@ -63,6 +67,15 @@ PassDescriptor seaSecondDescriptor() {
          {"quality.sea_nz", "quality.sea_map_size", "quality.sea_map_size", "spectral.count"}, {n_z, M, M, nb}},
         {p.name, "radiance maps", 4 * n_z * n_d * nb, {"quality.sea_nz", "quality.sea_nd", "spectral.count"},
          {n_z, n_d, nb}}};
+    // The parameter block, the bands, the VSF map, the directions and the planes' weights.
+    const double vsf = SeaSecondPass::Config{}.vsf_size;
+    out.push_back({p.name, "parameter block, bands, VSF map, directions, plane weights",
+                   double(sizeof(SeaSecondParams)) + double(sizeof(SeaBand)) * nb + 4 * vsf + 16 * n_d + 4 * n_z * nb,
+                   {}, {}});
+    if (s.bottom.type == BottomDesc::Type::HeightField) {
+      const double bytes = heightFieldBytes(loadHeightField(s.bottom, s.files.get()));
+      out.push_back({p.name, "bottom height field", bytes, {}, {}});
+    }
     if (s.bottom.type == BottomDesc::Type::HeightField)
       out.push_back({p.name, "height-field depth table", 4 * (n_z + 1) * M * M * n_d,
                      {"quality.sea_nz", "quality.sea_map_size", "quality.sea_map_size", "quality.sea_nd"},

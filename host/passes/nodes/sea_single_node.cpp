@@ -1,12 +1,20 @@
 // sea_single_node.cpp — "sea_single": the sea seen from above (paper 000: reflection, single
 // scattering, bottom; passes/sea_single_pass.h), which owns the frame's "rgb" target.
+#include <algorithm>
 #include <memory>
+
+extern "C" {
+#include "common/sea_band_table.h"
+#include "common/sea_params.h"
+}
 
 #include "passes/nodes/standard_passes.h"
 #include "passes/sea_single_features.h"
 #include "passes/sea_single_pass.h"
 #include "plan/pass_descriptor.h"
 #include "plan/scene_facts.h"
+#include "math/kernel_math.h"
+#include "passes/sea_heightfield.h"
 #include "render/radiance_target.h"
 
 namespace seasim {
@@ -86,7 +94,37 @@ PassDescriptor seaSingleDescriptor() {
                          : "camera above water (reflection, single scattering, bottom)",
                      features);
   };
-  d.buffers = [](const Scene&, const PassPlan&) { return std::vector<BufferEstimate>{}; };
+  d.knobs.push_back({"sea_lut_size", 64});
+  d.buffers = [d](const Scene& s, const PassPlan& p) -> std::vector<BufferEstimate> {
+    const SeaSingleFeatures& f = p.featuresAs<SeaSingleFeatures>();
+    const double nb = s.spectral.count;
+    // The LUT's rows (SeaSinglePass): none to follow over a height field or with "multiple" (one
+    // placeholder row), 16 to start an "auto" search from, else the knob.
+    const auto lut_knob = s.quality.find("sea_lut_size");
+    const double lut = f.bottom_height_field || f.sea_model == 1                  ? 1.0
+                       : lut_knob != s.quality.end() && lut_knob->second.automatic ? 16.0
+                                                                                 : d.knob(s, "sea_lut_size");
+    // The parameter block, the bands, their lanes' table with the LUT (common/sea_band_table.h),
+    // the sky's texels and the one-float4 stand-ins for maps the defines do not read.
+    std::vector<BufferEstimate> out = {
+        {p.name, "parameter block, bands, band table and LUT",
+         double(sizeof(SeaParams)) + double(sizeof(SeaBand)) * nb +
+             4.0 * (SEA_ROWS + std::max(1.0, lut)) * SEA_BAND_STRIDE(static_cast<int>(nb)) + 4 * 16.0,
+         {}, {}}};
+    if (f.bottom_height_field) {
+      const double bytes = heightFieldBytes(loadHeightField(s.bottom, s.files.get()));
+      out.push_back({p.name, "bottom height field", bytes, {}, {}});
+    }
+    if (f.waves && f.wave_filter) {
+      // The wave filter's slope-moment mip chain over the ocean's normal map (common/sea_lean.h).
+      const int n = s.surface.grid;
+      const double N = n;
+      out.push_back({p.name, "wave filter's slope-moment mips",
+                     4.0 * kmath_d::sea_lean_level_offset(n, kmath_d::sea_lean_levels(n)),
+                     {"surface.grid", "surface.grid"}, {N, N}});
+    }
+    return out;
+  };
   // The unit of the shard cost: 24 ms per million pixel-bands on PoCL (results/BENCHMARKS.md "Farm shards").
   d.cost = [](const Scene&, const PassPlan&) { return 1.0; };
   d.factory = [](const PassPlan& e, const Plan&, const Scene&, const AutoQuality&) -> std::unique_ptr<Pass> {
