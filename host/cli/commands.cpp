@@ -600,7 +600,7 @@ int cmdReference(const ReferenceCmd& cmd) {
                        "bottom; set sky.model = \"uniform\", surface.type = \"flat\" and a flat or no bottom");
   }
   if (above || cameraUnderwater(scene)) {
-    // Under water (issue 5): the spectral path tracer on the device, `steps` paths per pixel. With
+    // Under water: the spectral path tracer on the device, `steps` paths per pixel. With
     // underwater.multiple_scattering = false it traces single scattering of the sun beam only, the
     // reference of the froxel pass (make surfaces black and the sky dark to compare that term alone).
     Device device(chooseDevice(cmd.device));
@@ -634,12 +634,12 @@ int cmdReference(const ReferenceCmd& cmd) {
                 settings.seed, r.ms, device.info().name.c_str(), r.mean_std_error, r.image_mean, se_path.c_str());
     return 0;
   }
-  // Spotlights in air: the shafts ray marcher (issue 4); otherwise the sea reference.
+  // Spotlights in air: the shafts ray marcher; otherwise the sea reference.
   const bool shafts = scene.air.present && !scene.spotlights.empty();
   const int steps = referenceSteps(scene, cmd.steps, "reference_steps");
   if (cmd.seed >= 0) std::fprintf(stderr, "reference: --seed ignored: this reference is deterministic (no random paths)\n");
   Image image = shafts ? renderShaftsReference(scene, steps) : renderSeaReference(scene, steps);
-  if (!shafts && scene.sea.second_order) {  // + L^(2) by direct quadrature (000 eq. 6), issue 6
+  if (!shafts && scene.sea.second_order) {  // + L^(2) by direct quadrature (000 eq. 6)
     const Image second = renderSeaSecondReference(scene);
     for (size_t i = 0; i < image.pixels.size(); ++i) image.pixels[i] += second.pixels[i];
   }

@@ -3,7 +3,8 @@
 // self-describing plugins: its plan rule, the scene keys it depends on, its quality knobs and their
 // defaults, its buffer estimate, its cost weight and its factory. The planner (makePlan), the memory
 // budget, the shard balancer and the renderer's registry ask the descriptors; none of them names a
-// model. Adding a model = a node with its descriptor and one line in passDescriptors()'s list.
+// model. Adding a model = a node with its descriptor, and its declaration and place in the ordered
+// list of host/passes/nodes/pass_list.cpp.
 #pragma once
 #include <functional>
 #include <memory>
