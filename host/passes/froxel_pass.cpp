@@ -202,12 +202,8 @@ double FroxelPass::addBandsToSpectral(const UnderwaterSetup& setup, const cl::Bu
 void FroxelPass::read(cl::Buffer& buffer, size_t floats, std::vector<float>& out, const char* what) {
   out.resize(floats);
   if (floats == 0) return;
-  try {
-    device_.queue().enqueueReadBuffer(buffer, CL_TRUE, 0, sizeof(float) * floats, out.data());
-  } catch (const cl::Error& e) {
-    throw DeviceError(std::string("froxel pass: reading the ") + what + " back: " + e.what() + " " +
-                      clErrorName(e.err()));
-  }
+  onDevice(std::string("froxel pass: reading the ") + what + " back",
+           [&] { device_.queue().enqueueReadBuffer(buffer, CL_TRUE, 0, sizeof(float) * floats, out.data()); });
 }
 
 void FroxelPass::readVolume(std::vector<float>& out) {
