@@ -20,18 +20,10 @@
 
 namespace {
 
-const char* kFlatSea = R"(
-[camera]
-position = [0, 10, 0]
-look_at = [0, 0, -100]
-[sun]
-zenith_deg = 40
-[water]
-jerlov = "IB"
-[bottom]
-type = "flat"
-depth = 8
-)";
+// The shipped sea seen from above: sun at 40 degrees, a flat sand bottom at 8 m.
+seasim::Scene flatSea(const std::vector<seasim::Override>& overrides = {}) {
+  return seasim::loadScene(SEASIM_SOURCE_DIR "/scenes/flat_sea.toml", overrides);
+}
 
 std::vector<std::string> shippedScenes() {
   std::vector<std::string> files;
@@ -79,7 +71,7 @@ TEST(PassDescriptor, KnobsAreReadFromTheDescriptorsOwnListWithItsDefaults) {
   for (const auto& d : seasim::passDescriptors())
     if (d.name == "sea_second") second = &d;
   ASSERT_NE(second, nullptr);
-  seasim::Scene scene = seasim::parseScene(kFlatSea, "flat.toml");
+  seasim::Scene scene = flatSea();
   scene.quality.erase("sea_nz");
   EXPECT_EQ(second->knob(scene, "sea_nz"), 12.0);  // absent: the descriptor's default
   scene.quality["sea_nz"] = seasim::Knob{false, 20.0};
@@ -93,7 +85,7 @@ TEST(PassDescriptor, KnobsAreReadFromTheDescriptorsOwnListWithItsDefaults) {
 }
 
 TEST(PassDescriptor, TheBudgetAndTheShardCostAskTheDescriptors) {
-  seasim::Scene scene = seasim::parseScene(kFlatSea, "flat.toml", {{"sea.second_order", "true", {}}});
+  seasim::Scene scene = flatSea({{"sea.second_order", "true", {}}});
   const seasim::Plan plan = seasim::makePlan(scene);
   ASSERT_TRUE(plan.hasPass("sea_second"));
   const auto buffers = seasim::estimateBuffers(scene, plan);
@@ -143,7 +135,7 @@ TEST(Features, TheDefinesAreGeneratedFromTheTypedFieldsInOrder) {
 }
 
 TEST(Features, APassReadsItsOwnStructAndRefusesAnother) {
-  const seasim::Plan plan = seasim::makePlan(seasim::parseScene(kFlatSea, "flat.toml"));
+  const seasim::Plan plan = seasim::makePlan(flatSea());
   const seasim::PassPlan& sea = *plan.find("sea_single");
   EXPECT_TRUE(sea.featuresAs<seasim::SeaSingleFeatures>().bottom);
   EXPECT_THROW((void)sea.featuresAs<seasim::ShaftsFeatures>(), seasim::RuntimeError);
