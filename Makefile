@@ -8,25 +8,56 @@ DEPS = build-essential cmake pkgconf pocl-opencl-icd ocl-icd-opencl-dev opencl-c
        opencl-clhpp-headers clinfo libfftw3-dev libvkfft-dev libopenimageio-dev openimageio-tools libtbb-dev \
        libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libgtest-dev file libglfw3-dev libgl-dev libopengl-dev
 # `make test` also needs a display for the preview's tests (Xvfb, xauth and Mesa's llvmpipe,
-# libgl1-mesa-dri) and, for the farm test (tests/farm/), a real Slurm controller and node on localhost.
-TEST_DEPS = xvfb xauth libgl1-mesa-dri slurm-wlm munge
+# libgl1-mesa-dri), for the farm test (tests/farm/) a real Slurm controller and node on localhost,
+# for the portability tests (tests/runtimes/) Oclgrind, and python3 with pip to fetch Intel's OpenCL
+# CPU runtime from PyPI into $(BUILD)/intel-opencl (the wheels cached outside $(BUILD): docs/install.md),
+# and for the Python package's tests python3-venv and python3-dev.
+TEST_DEPS = xvfb xauth libgl1-mesa-dri slurm-wlm munge oclgrind python3 python3-pip python3-venv python3-dev
 # `make validate` (opt-in) also needs Python's venv module.
 VALIDATE_DEPS = python3-venv
 # Kernel build caches live in the build folder so tests and demo reuse them.
 export POCL_CACHE_DIR ?= $(CURDIR)/$(BUILD)/pocl-cache
 export SEASIM_CACHE_DIR ?= $(CURDIR)/$(BUILD)/seasim-cache
 
-.PHONY: demo test test-deps validate deps configure build clean fresh-check package install
+# The Python package (docs/python/README.md): a virtual environment with what builds and tests it.
+PYVENV = $(BUILD)/python-venv
+PYTHON_PACKAGES = nanobind scikit-build-core numpy pytest tqdm
+PYTHON_CMAKE_FLAGS = -DSEASIM_PYTHON=ON -DPython_EXECUTABLE=$(abspath $(PYVENV))/bin/python
+
+.PHONY: demo test test-deps intel-opencl validate deps configure build clean fresh-check package install python-venv wheel
 
 demo: build
 	$(BUILD)/seasim run jobs/quickstart.toml --device pocl
 	@echo "images and reports: results/quickstart/"
 
-test: build test-deps
+# The test build adds the Python module (SEASIM_PYTHON), which ctest's python.pytest imports.
+test: test-deps python-venv intel-opencl
+	@$(MAKE) --no-print-directory build CMAKE_FLAGS="$(CMAKE_FLAGS) $(PYTHON_CMAKE_FLAGS)"
 	cd $(BUILD) && ctest --output-on-failure -j 2
+
+python-venv:
+	@$(MAKE) --no-print-directory deps DEPS="python3-venv python3-dev"
+	test -x $(PYVENV)/bin/python || python3 -m venv $(PYVENV)
+	$(PYVENV)/bin/python -c "import nanobind, scikit_build_core, numpy, pytest, tqdm" 2>/dev/null || \
+	  $(PYVENV)/bin/pip install -q $(PYTHON_PACKAGES)
+
+# A wheel of the Python package into $(BUILD)/, built by scikit-build-core in the build folder itself
+# (so only the module is compiled anew), with that folder's CMake generator; then the install prefix
+# and the SKBUILD settings it cached are dropped again, so the folder configures as before.
+wheel: configure python-venv
+	CMAKE_GENERATOR="$$(sed -n 's/^CMAKE_GENERATOR:INTERNAL=//p' $(BUILD)/CMakeCache.txt)" \
+	  $(PYVENV)/bin/pip wheel -q --no-build-isolation --no-deps -w $(BUILD) -C build-dir=$(BUILD) .
+	cmake -S . -B $(BUILD) -UCMAKE_INSTALL_PREFIX -U'SKBUILD*' > /dev/null
+	@ls $(BUILD)/seasim-*.whl
 
 test-deps:
 	@$(MAKE) --no-print-directory deps DEPS="$(TEST_DEPS)"
+
+# Intel's OpenCL CPU runtime in $(BUILD)/intel-opencl, registered by its own ICD folder (nothing
+# system-wide). When it cannot be installed, make test goes on and its tests fail saying why.
+intel-opencl: test-deps
+	@test -f $(BUILD)/intel-opencl/vendors/intel-cpu.icd || tests/runtimes/install_intel_opencl.sh $(BUILD)/intel-opencl \
+	  || echo "warning: Intel's OpenCL CPU runtime could not be installed; the runtimes.intel tests will fail"
 
 build: configure
 	cmake --build $(BUILD) -j $(JOBS)

@@ -16,14 +16,17 @@
 #include "io/csv.h"
 #include "io/image_io.h"
 #include "io/svg_plot.h"
+#include "jobs/file_errors.h"
 #include "jobs/job.h"
 #include "jobs/job_inputs.h"
+#include "jobs/recorded_settings.h"
 #include "jobs/render_item.h"
 #include "jobs/runner.h"
 #include "plan/plan.h"
 #include "plan/scene_facts.h"
 #include "quality/auto_quality.h"
 #include "reference/compare.h"
+#include "reference/reference_image.h"
 #include "reference/sea_reference.h"
 #include "reference/sea_second_reference.h"
 #include "reference/shafts_reference.h"
@@ -40,23 +43,6 @@
 namespace fs = std::filesystem;
 
 namespace seasim {
-
-Override parseSetOption(const std::string& text) {
-  const size_t eq = text.find('=');
-  if (eq == std::string::npos || eq == 0) {
-    throw InputError("<command line>", 0, text, "--set expects key=value, e.g. --set sun.zenith_deg=40");
-  }
-  std::string key = text.substr(0, eq);
-  std::string value = text.substr(eq + 1);
-  try {
-    (void)toml::parse("v = " + value);
-  } catch (const toml::parse_error&) {
-    std::string quoted = "\"";  // not TOML: take it as a string (--set water.jerlov=IB)
-    for (char c : value) quoted += (c == '"' || c == '\\') ? std::string("\\") + c : std::string(1, c);
-    value = quoted + "\"";
-  }
-  return Override{key, value, SourceLoc{"<command line --set " + text + ">", 0}};
-}
 
 namespace {
 
@@ -77,6 +63,12 @@ std::vector<std::string> split(const std::string& text, char sep) {
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
   return v.empty() ? 0.0 : v[v.size() / 2];
+}
+
+// "ref.exr" -> "ref.stderr.exr": the standard-error image beside the reference.
+std::string stderrPath(const std::string& out) {
+  const fs::path p(out);
+  return (p.parent_path() / (p.stem().string() + ".stderr" + p.extension().string())).string();
 }
 
 double kernelMs(const FrameResult& frame) {
@@ -104,11 +96,20 @@ int cmdDevices() {
 }
 
 int cmdValidate(const std::vector<std::string>& files) {
-  // Every file is checked even when one fails, so one run lists every problem.
+  // Every file is checked even when one fails, and every error of a file is listed
+  // (jobs/file_errors.h), so one run shows every problem.
   int failures = 0;
   for (const auto& f : files) {
     try {
-      if (isJobFile(f)) {
+      const bool job_file = isJobFile(f);
+      const std::vector<std::string> errors = job_file ? jobFileErrors(f) : sceneFileErrors(f);
+      for (const auto& e : errors) std::fprintf(stderr, "%s\n", e.c_str());
+      if (!errors.empty()) {
+        if (errors.size() > 1) std::fprintf(stderr, "%s: %zu errors\n", f.c_str(), errors.size());
+        ++failures;
+        continue;
+      }
+      if (job_file) {
         const Job job = loadJob(f);
         const std::map<std::string, std::string> bad = checkJobInputs(job.items);
         for (const auto& [item, error] : bad) std::fprintf(stderr, "%s\n", error.c_str());
@@ -155,8 +156,9 @@ int cmdRender(const RenderCmd& cmd) {
 }
 
 int cmdRun(const std::string& job_arg, const std::string& device, const std::string& shard, bool resume,
-           const std::string& output_dir) {
+           const std::string& output_dir, const std::vector<std::string>& sets) {
   RunOptions options;
+  options.overrides = parseSets(sets);
   options.device = device;
   options.resume = resume;
   options.output_dir = output_dir;
@@ -193,10 +195,51 @@ int cmdRun(const std::string& job_arg, const std::string& device, const std::str
   return 1;
 }
 
-int cmdCompare(const std::string& test, const std::string& reference, double exposure_ev) {
-  const CompareResult c = compareImages(readImage(test), readImage(reference), exposure_ev);
-  std::printf("rmse_8bit %.4f\nmax_abs_8bit %.4f\nrel_l2 %.6g\nhue_sat_distance %.6g\n", c.rmse_8bit,
-              c.max_abs_8bit, c.rel_l2, c.hue_sat_distance);
+int cmdCompare(const std::string& test, const std::string& reference, std::optional<double> exposure_ev) {
+  const nlohmann::json test_settings = recordedSettings(test), ref_settings = recordedSettings(reference);
+  auto recordedExposure = [](const nlohmann::json& s) -> std::optional<double> {
+    if (s.is_object() && s.contains("exposure_ev") && s["exposure_ev"].is_number()) return s["exposure_ev"].get<double>();
+    return std::nullopt;
+  };
+  std::string exposure_from = "--exposure";
+  if (!exposure_ev) {
+    if ((exposure_ev = recordedExposure(test_settings))) exposure_from = "the image's recorded settings";
+    else if ((exposure_ev = recordedExposure(ref_settings))) exposure_from = "the reference's recorded settings";
+    else exposure_ev = 0.0, exposure_from = "no settings recorded with either image; give --exposure";
+  }
+  const Image ref_image = readImage(reference);
+  const CompareResult c = compareImages(readImage(test), ref_image, *exposure_ev);
+  std::printf("rmse_8bit %.4f\nmax_abs_8bit %.4f\nrel_l2 %.6g\nhue_sat_distance %.6g\nexposure_ev %g (%s)\n",
+              c.rmse_8bit, c.max_abs_8bit, c.rel_l2, c.hue_sat_distance, *exposure_ev, exposure_from.c_str());
+  const std::string se_path = stderrPath(reference);
+  if (fs::is_regular_file(se_path) || fs::is_regular_file(se_path + ".npy")) {  // .npy: builds without OpenImageIO
+    // rmse² ≈ bias² + noise² (reference/compare.h): the share of rmse² the reference's noise explains.
+    const double noise = referenceNoise8bit(ref_image, readImage(se_path), *exposure_ev);
+    const double share = c.rmse_8bit > 0 ? std::min(1.0, noise * noise / (c.rmse_8bit * c.rmse_8bit)) : 0.0;
+    const double rest = std::sqrt(std::max(0.0, c.rmse_8bit * c.rmse_8bit - noise * noise));
+    std::printf("reference_noise_8bit %.4f (RMS of one standard error, %s)\n", noise, se_path.c_str());
+    std::printf("noise_share_of_rmse2 %.3f\nrmse_less_noise_8bit %.4f\n", share, rest);
+    if (share > 0.5)
+      std::fprintf(stderr, "seasim: warning: the reference's noise explains %.0f %% of rmse^2; trace it with more paths "
+                           "(reference --steps) to measure the image rather than the reference\n", 100 * share);
+  }
+  // Settings recorded with both images that differ: the error then measures the difference in the
+  // scene, not the method. Quality knobs and the wavelength count differ on purpose (listed only).
+  std::vector<std::string> scene_diffs, knob_diffs;
+  for (const SettingsDifference& d : settingsDifferences(test_settings, ref_settings))
+    (d.knob ? knob_diffs : scene_diffs).push_back(d.key + " " + d.test + " vs " + d.reference);
+  for (const auto& d : scene_diffs)
+    std::fprintf(stderr, "seasim: warning: the image and the reference were made with different settings: %s\n", d.c_str());
+  if (!knob_diffs.empty()) {
+    std::printf("knobs that differ from the reference's:");
+    for (const auto& d : knob_diffs) std::printf(" %s;", d.c_str());
+    std::printf("\n");
+  }
+  if (test_settings.is_null() || ref_settings.is_null())
+    std::printf("settings not recorded with %s: not compared\n",
+                test_settings.is_null() && ref_settings.is_null() ? "either image"
+                : test_settings.is_null()                        ? "the image"
+                                                                 : "the reference");
   return c.nonfinite == 0 ? 0 : 1;
 }
 
@@ -225,7 +268,6 @@ int cmdSweep(const SweepCmd& cmd) {
     grid = next;
   }
 
-  const Image reference = readImage(cmd.reference);
   const std::vector<Override> base = parseSets(cmd.sets);
   // Validate every setting before rendering any, so a typo fails fast.
   std::vector<Scene> scenes;
@@ -235,6 +277,23 @@ int cmdSweep(const SweepCmd& cmd) {
     scenes.push_back(loadScene(cmd.scene, overrides));
   }
 
+  std::string reference_path = cmd.reference;
+  if (reference_path.empty()) {
+    // What a user running `sweep --param` expects: the error against the scene's own reference.
+    const fs::path csv(cmd.csv);
+    reference_path = (csv.parent_path() / (csv.stem().string() + ".reference.exr")).string();
+    ReferenceCmd ref_cmd;
+    ref_cmd.device = cmd.device;
+    std::printf("sweep: no --reference given: making the scene's reference first (seasim reference %s -o %s)\n",
+                cmd.scene.c_str(), reference_path.c_str());
+    std::fflush(stdout);
+    std::printf("%s\n", writeSceneReference(loadScene(cmd.scene, base), ref_cmd, reference_path).c_str());
+  }
+  const Image reference = readImage(reference_path);
+  for (const SettingsDifference& d : settingsDifferences(settingsJson(scenes.front()), recordedSettings(reference_path)))
+    if (!d.knob)
+      std::fprintf(stderr, "seasim: warning: the reference was made with %s = %s, the sweep's scene has %s\n",
+                   d.key.c_str(), d.reference.c_str(), d.test.c_str());
   Device device(chooseDevice(cmd.device));
   std::vector<std::string> header;
   for (const auto& a : axes) header.push_back(a.key);
@@ -299,6 +358,10 @@ int cmdSweep(const SweepCmd& cmd) {
     table.addRow(row);
     series.x.push_back(kernelMs(frame));
     series.y.push_back(c.rmse_8bit);
+    std::string point;  // the knob values beside the point: "sea_nz=8" (the key's last part)
+    for (size_t i = 0; i < axes.size(); ++i)
+      point += (i ? ", " : "") + axes[i].key.substr(axes[i].key.rfind('.') + 1) + "=" + grid[k][i];
+    series.labels.push_back(point);
   }
   table.write(cmd.csv);
   if (!cmd.plot.empty()) {
@@ -565,88 +628,49 @@ int cmdBench(const BenchCmd& cmd) {
   return 0;
 }
 
-namespace {
-
-// --steps, else the scene's quality knob (a count: "auto" has no meaning for a reference).
-int referenceSteps(const Scene& scene, int steps, const char* knob) {
-  if (steps > 0) return steps;
-  const auto it = scene.quality.find(knob);
-  if (it == scene.quality.end()) throw RuntimeError(std::string("reference: no quality.") + knob);
-  if (it->second.automatic) {
-    throw RuntimeError(std::string("reference: quality.") + knob +
-                       " = \"auto\" is not supported (a reference has no error budget): give a number or --steps");
+// The reference of `scene` written to `out` (with OUT.stderr.exr for the path tracer, and
+// OUT.settings.json: the settings `compare` checks); returns the line that describes it.
+std::string writeSceneReference(const Scene& scene, const ReferenceCmd& cmd, const std::string& out) {
+  ReferenceOptions options;
+  options.device = cmd.device;
+  options.steps = cmd.steps;
+  options.seed = cmd.seed;
+  options.all_orders = cmd.all_orders;
+  options.max_bounces = cmd.max_bounces;
+  const bool tty = isatty(fileno(stderr));
+  // The path tracer's samples per pixel; its total is known at the first call.
+  options.progress = [tty, next = 0](int done, int total) mutable {
+    if (tty) {  // one line, redrawn
+      std::fprintf(stderr, "\rpath tracing: %d/%d samples per pixel", done, total);
+      if (done == total) std::fprintf(stderr, "\n");
+    } else if (done >= next || done == total) {  // logs: about every 10 %
+      std::fprintf(stderr, "path tracing: %d/%d samples per pixel\n", done, total);
+      next = done + std::max(1, total / 10);
+    }
+  };
+  const ReferenceImage r = renderReference(scene, options);
+  char line[1024];
+  writeExr(out, r.rgb);
+  if (r.method == "path tracer") {
+    const std::string se_path = writeExr(stderrPath(out), r.std_error);
+    writeSettingsSidecar(out, scene, "seasim reference (path tracer)");
+    std::snprintf(line, sizeof line,
+                  "reference %s: %d paths per pixel (%s, seed %u), %.1f ms on %s; noise: mean standard error %.3g "
+                  "(image mean %.3g), per pixel in %s",
+                  out.c_str(), r.steps, r.max_bounces == 1 ? "single scattering" : "multiple scattering", r.seed, r.ms,
+                  r.device_name.c_str(), r.mean_std_error, r.image_mean, se_path.c_str());
+    return line;
   }
-  return static_cast<int>(it->second.value);
+  if (cmd.seed >= 0) std::fprintf(stderr, "reference: --seed ignored: this reference is deterministic (no random paths)\n");
+  writeSettingsSidecar(out, scene, "seasim reference (quadrature)");
+  std::snprintf(line, sizeof line, "reference %s: %d %s steps, %.1f ms (CPU, double, TBB)", out.c_str(), r.steps,
+                r.method.c_str(), r.ms);
+  return line;
 }
-
-// "ref.exr" -> "ref.stderr.exr": the standard-error image beside the reference.
-std::string stderrPath(const std::string& out) {
-  const fs::path p(out);
-  return (p.parent_path() / (p.stem().string() + ".stderr" + p.extension().string())).string();
-}
-
-}  // namespace
 
 int cmdReference(const ReferenceCmd& cmd) {
   const Scene scene = loadScene(cmd.scene, parseSets(cmd.sets));
-  const auto t0 = std::chrono::steady_clock::now();
-  const bool above = cmd.all_orders;
-  if (above && (cameraUnderwater(scene) || !scene.water.present || !(scene.camera.position.y > 0))) {
-    throw RuntimeError("reference --all-orders: for the sea seen from above only (a [water] scene, camera y > 0)");
-  }
-  if (above && (scene.sky.model != SkyDesc::Model::Uniform || scene.surface.type != SurfaceDesc::Type::Flat ||
-                scene.bottom.type == BottomDesc::Type::HeightField)) {
-    throw RuntimeError("reference --all-orders: the path tracer models a uniform sky, a flat surface and a flat "
-                       "bottom; set sky.model = \"uniform\", surface.type = \"flat\" and a flat or no bottom");
-  }
-  if (above || cameraUnderwater(scene)) {
-    // Under water: the spectral path tracer on the device, `steps` paths per pixel. With
-    // underwater.multiple_scattering = false it traces single scattering of the sun beam only, the
-    // reference of the froxel pass (make surfaces black and the sky dark to compare that term alone).
-    Device device(chooseDevice(cmd.device));
-    const WavelengthGrid grid = makeGrid(scene.spectral.count, scene.spectral.min_nm, scene.spectral.max_nm);
-    const UnderwaterSetup setup =
-        makeUnderwaterSetup(scene, grid, makeSensor(scene.spectral.sensor, grid, scene.spectral.white_balance, scene.spectral.camera_dir));
-    UnderwaterReferenceSettings settings;
-    settings.samples_per_pixel = referenceSteps(scene, cmd.steps, "reference_spp");
-    settings.seed = cmd.seed >= 0 ? static_cast<unsigned>(cmd.seed) : 1u;
-    settings.camera_above = above;
-    if (cmd.max_bounces > 0) settings.max_bounces = cmd.max_bounces;
-    if (!scene.underwater.multiple_scattering) settings.max_bounces = 1;
-    const UnderwaterLamps lamps = makeUnderwaterLamps(scene, grid);  // [[spotlights]] under water, by NEE
-    settings.lamps = &lamps;
-    const bool tty = isatty(fileno(stderr));
-    settings.progress = [tty, step = std::max(1, settings.samples_per_pixel / 10), next = 0](int done, int total) mutable {
-      if (tty) {  // one line, redrawn
-        std::fprintf(stderr, "\rpath tracing: %d/%d samples per pixel", done, total);
-        if (done == total) std::fprintf(stderr, "\n");
-      } else if (done >= next || done == total) {  // logs: about every 10 %
-        std::fprintf(stderr, "path tracing: %d/%d samples per pixel\n", done, total);
-        next = done + step;
-      }
-    };
-    const UnderwaterReferenceResult r = renderUnderwaterReference(device, setup, settings);
-    writeExr(cmd.out, r.rgb);
-    const std::string se_path = writeExr(stderrPath(cmd.out), r.std_error);
-    std::printf("reference %s: %d paths per pixel (%s, seed %u), %.1f ms on %s; noise: mean standard error %.3g "
-                "(image mean %.3g), per pixel in %s\n",
-                cmd.out.c_str(), r.samples, settings.max_bounces == 1 ? "single scattering" : "multiple scattering",
-                settings.seed, r.ms, device.info().name.c_str(), r.mean_std_error, r.image_mean, se_path.c_str());
-    return 0;
-  }
-  // Spotlights in air: the shafts ray marcher; otherwise the sea reference.
-  const bool shafts = scene.air.present && !scene.spotlights.empty();
-  const int steps = referenceSteps(scene, cmd.steps, "reference_steps");
-  if (cmd.seed >= 0) std::fprintf(stderr, "reference: --seed ignored: this reference is deterministic (no random paths)\n");
-  Image image = shafts ? renderShaftsReference(scene, steps) : renderSeaReference(scene, steps);
-  if (!shafts && scene.sea.second_order) {  // + L^(2) by direct quadrature (000 eq. 6)
-    const Image second = renderSeaSecondReference(scene);
-    for (size_t i = 0; i < image.pixels.size(); ++i) image.pixels[i] += second.pixels[i];
-  }
-  const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  writeExr(cmd.out, image);
-  std::printf("reference %s: %d %s steps, %.1f ms (CPU, double, TBB)\n", cmd.out.c_str(), steps,
-              shafts ? "ray-march" : "quadrature", ms);
+  std::printf("%s\n", writeSceneReference(scene, cmd, cmd.out).c_str());
   return 0;
 }
 

@@ -1,15 +1,15 @@
 // commands.h — the subcommands behind `seasim`, as plain functions over plain option structs, so
 // main() only wires CLI11 to them and tests can call them. Each returns the process exit code.
 #pragma once
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "scene/scene_parser.h"
+#include "scene/set_option.h"
 
 namespace seasim {
 
-// "key=value" from --set; a value that is not valid TOML is taken as a string.
-Override parseSetOption(const std::string& text);
 
 int cmdDevices();
 int cmdValidate(const std::vector<std::string>& files);
@@ -22,13 +22,19 @@ struct RenderCmd {
 };
 int cmdRender(const RenderCmd& cmd);
 
+// `sets` (--set key=value) are applied to every item of the job, after the item's own overrides.
 int cmdRun(const std::string& job, const std::string& device, const std::string& shard, bool resume,
-           const std::string& output_dir = "");
+           const std::string& output_dir = "", const std::vector<std::string>& sets = {});
 
-int cmdCompare(const std::string& test, const std::string& reference, double exposure_ev);
+// The tone map's exposure is --exposure when given, else the one recorded with the test image (its
+// render's report.json), else the reference's (REF.settings.json), as `sweep` uses the scene's; 0 when
+// neither is recorded. With REF.stderr.exr beside the reference, its noise is reported with the part
+// of the error it explains. Recorded settings that differ between the two are warned about.
+int cmdCompare(const std::string& test, const std::string& reference, std::optional<double> exposure_ev);
 
 struct SweepCmd {
-  std::string scene, reference, csv, plot, device;
+  std::string scene, csv, plot, device;
+  std::string reference;  // "": the scene's own reference (with --set, not --param) is made beside the CSV
   std::vector<std::string> params;  // "KEY=v1,v2,..." (several: the grid of all combinations)
   std::vector<std::string> sets;
 };
@@ -65,5 +71,8 @@ struct ReferenceCmd {
   int max_bounces = 0;      // path tracer: scattering vertices per path (0: its default, 64)
 };
 int cmdReference(const ReferenceCmd& cmd);
+// The reference of `scene` (the model's brute-force method, as `seasim reference` picks it) written to
+// `out`, with OUT.stderr.exr (path tracer) and OUT.settings.json beside it; returns a line describing it.
+std::string writeSceneReference(const Scene& scene, const ReferenceCmd& cmd, const std::string& out);
 
 }  // namespace seasim

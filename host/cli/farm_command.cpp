@@ -4,6 +4,8 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include "io/atomic_file.h"
 #include "jobs/farm_merge.h"
@@ -13,6 +15,7 @@
 #include "jobs/runner.h"
 #include "jobs/shard_balance.h"
 #include "util/error.h"
+#include "util/paths.h"
 
 namespace fs = std::filesystem;
 
@@ -132,6 +135,29 @@ int cmdFarmStatus(const FarmStatusCmd& cmd) {
   else
     std::printf("%s", formatFarmStatus(st).c_str());
   return 0;
+}
+
+int cmdFarmLocalCluster(const std::string& action, const std::string& dir) {
+  if (action != "start" && action != "stop" && action != "env")
+    throw RuntimeError("farm local-cluster: expected start, stop or env, got '" + action + "'");
+  std::string script;
+  for (const std::string& candidate :
+       {installedShareDir().empty() ? std::string() : installedShareDir() + "/tools/slurm_localhost.sh",
+        std::string(SEASIM_SOURCE_DIR) + "/tests/farm/slurm_localhost.sh"})
+    if (!candidate.empty() && fs::is_regular_file(candidate)) {
+      script = candidate;
+      break;
+    }
+  if (script.empty())
+    throw RuntimeError("farm local-cluster: slurm_localhost.sh is neither installed (share/seasim/tools) nor in the "
+                       "source tree this binary was built from (" SEASIM_SOURCE_DIR "/tests/farm)");
+  std::fflush(stdout);
+  std::vector<std::string> args = {"bash", script, action, dir};
+  std::vector<char*> argv;
+  for (auto& a : args) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  ::execv("/bin/bash", argv.data());
+  throw RuntimeError("farm local-cluster: cannot run /bin/bash " + script);
 }
 
 }  // namespace seasim

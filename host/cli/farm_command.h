@@ -22,4 +22,10 @@ struct FarmStatusCmd {
 };
 int cmdFarmStatus(const FarmStatusCmd& cmd);
 
+// `seasim farm local-cluster start|stop|env DIR`: a private single-node Slurm (munged, slurmctld,
+// slurmd) with every file under DIR, so `farm slurm --submit` can be tried on one machine. Runs the
+// shipped slurm_localhost.sh (installed under share/seasim/tools; tests/farm/ in the source tree),
+// the one the farm test uses; its exit code is returned (77: cannot run here, e.g. not root).
+int cmdFarmLocalCluster(const std::string& action, const std::string& dir);
+
 }  // namespace seasim

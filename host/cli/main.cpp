@@ -15,9 +15,14 @@
 #include "cli/underwater_regions_command.h"
 #include "cli/underwater_study_command.h"
 #include "spectral/sensor.h"
+#include "util/paths.h"
 #include "util/version.h"
 
 int main(int argc, char** argv) {
+  // CLI11's ExistingFile said "File does not exist" for a file in a folder that cannot be read;
+  // this names the path and the system's reason (Permission denied).
+  const CLI::Validator kReadableFile(
+      [](std::string& path) { return seasim::inputFileProblem(path); }, "FILE", "a readable file");
   CLI::App app{"seasim — OpenCL simulator of light in water and air"};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("seasim ") + seasim::version() + " (git " + seasim::gitCommit() + ")");
@@ -26,23 +31,23 @@ int main(int argc, char** argv) {
 
   std::vector<std::string> validate_files;
   auto* validate = app.add_subcommand("validate", "Check scene and job files (errors name file:line and key)");
-  validate->add_option("files", validate_files, "Scene or job TOML files")->required()->check(CLI::ExistingFile);
+  validate->add_option("files", validate_files, "Scene or job TOML files")->required()->check(kReadableFile);
 
   std::string plan_scene;
   std::vector<std::string> plan_sets;
   auto* plan = app.add_subcommand("plan", "Print the passes a scene needs, with kernel files and defines");
-  plan->add_option("scene", plan_scene, "Scene file")->required()->check(CLI::ExistingFile);
+  plan->add_option("scene", plan_scene, "Scene file")->required()->check(kReadableFile);
   plan->add_option("--set", plan_sets, "Override a scene key: key=value (repeatable)");
 
   seasim::RenderCmd render_cmd;
   auto* render = app.add_subcommand("render", "Render one scene into a folder (EXR, PNG, report.json)");
-  render->add_option("scene", render_cmd.scene, "Scene file")->required()->check(CLI::ExistingFile);
+  render->add_option("scene", render_cmd.scene, "Scene file")->required()->check(kReadableFile);
   render->add_option("-o,--out", render_cmd.out_dir, "Output folder")->required();
   render->add_option("--device", render_cmd.device, "cpu, gpu, pocl:0, nvidia:0 or a name substring");
   render->add_option("--set", render_cmd.sets, "Override a scene key: key=value (repeatable)");
   render->add_option("--output", render_cmd.formats, "Formats: exr png spectral_exr npy")->delimiter(',');
   render->add_option("--reference", render_cmd.reference, "Reference EXR: report error against it")
-      ->check(CLI::ExistingFile);
+      ->check(kReadableFile);
 
   std::string run_job, run_device, run_shard, run_output;
   bool run_resume = false;
@@ -52,19 +57,31 @@ int main(int argc, char** argv) {
   run->add_option("--device", run_device, "Device selector (overrides the job's)");
   run->add_option("--shard", run_shard, "i/N: render shard i of N (balanced by estimated or measured cost)");
   run->add_flag("--resume", run_resume, "Skip items the manifest records as finished");
+  std::vector<std::string> run_sets;
+  run->add_option("--set", run_sets,
+                  "Override a scene key of every item, after the item's own: key=value (repeatable), e.g. "
+                  "--set camera.width=160 --set camera.height=90");
 
   std::string cmp_a, cmp_b;
   double cmp_exposure = 0;
-  auto* compare = app.add_subcommand("compare", "Error of an image against a reference (8-bit levels, rel. L2, hue/sat)");
-  compare->add_option("image", cmp_a, "Image under test")->required()->check(CLI::ExistingFile);
-  compare->add_option("reference", cmp_b, "Reference image")->required()->check(CLI::ExistingFile);
-  compare->add_option("--exposure", cmp_exposure, "Exposure (EV) of the shared tone map");
+  auto* compare = app.add_subcommand(
+      "compare", "Error of an image against a reference (8-bit levels, rel. L2, hue/sat), the reference's noise");
+  compare->add_option("image", cmp_a, "Image under test")->required()->check(kReadableFile);
+  compare->add_option("reference", cmp_b, "Reference image (its noise from REF.stderr.exr beside it)")
+      ->required()
+      ->check(kReadableFile);
+  auto* cmp_exposure_opt = compare->add_option(
+      "--exposure", cmp_exposure,
+      "Exposure (EV) of the shared tone map (default: the scene's, as recorded with the images; as `sweep` uses)");
 
   seasim::SweepCmd sweep_cmd;
   auto* sweep = app.add_subcommand("sweep", "Render over a grid of settings; error vs time to CSV and SVG");
-  sweep->add_option("scene", sweep_cmd.scene, "Scene file")->required()->check(CLI::ExistingFile);
+  sweep->add_option("scene", sweep_cmd.scene, "Scene file")->required()->check(kReadableFile);
   sweep->add_option("--param", sweep_cmd.params, "KEY=v1,v2,... (repeat for a grid)")->required();
-  sweep->add_option("--reference", sweep_cmd.reference, "Reference EXR")->required()->check(CLI::ExistingFile);
+  sweep->add_option("--reference", sweep_cmd.reference,
+                    "Reference EXR (default: the scene's reference, made first and written beside the CSV as "
+                    "CSV_STEM.reference.exr)")
+      ->check(kReadableFile);
   sweep->add_option("--csv", sweep_cmd.csv, "CSV output")->required();
   sweep->add_option("--plot", sweep_cmd.plot, "SVG plot output (error vs time)");
   sweep->add_option("--set", sweep_cmd.sets, "Override a scene key: key=value (repeatable)");
@@ -72,7 +89,7 @@ int main(int argc, char** argv) {
 
   seasim::BenchCmd bench_cmd;
   auto* bench = app.add_subcommand("bench", "Throughput by wavelength count; device limits");
-  bench->add_option("--scene", bench_cmd.scene, "Scene file")->check(CLI::ExistingFile);
+  bench->add_option("--scene", bench_cmd.scene, "Scene file")->check(kReadableFile);
   bench->add_option("--wavelengths", bench_cmd.wavelengths, "Band counts, e.g. 3,8,16")->delimiter(',');
   bench->add_option("--lights", bench_cmd.lights, "Spotlight counts (the scene's first k), e.g. 1,2,3,4,5")->delimiter(',');
   bench->add_option("--sea-maps", bench_cmd.sea_maps, "Sea second order: maps vs accumulation ms per map size, e.g. 32,64")->delimiter(',');
@@ -104,7 +121,7 @@ int main(int argc, char** argv) {
       "    refracting in (--steps = paths per pixel): all orders of scattering, against which paper 000's\n"
       "    single + second order is measured.\n"
       "  Without --steps: quality.reference_steps (default 200) or, for the path tracer, quality.reference_spp (64).");
-  reference->add_option("scene", ref_cmd.scene, "Scene file")->required()->check(CLI::ExistingFile);
+  reference->add_option("scene", ref_cmd.scene, "Scene file")->required()->check(kReadableFile);
   reference->add_option("-o,--out", ref_cmd.out, "Output EXR")->required();
   reference->add_option("--steps", ref_cmd.steps,
                         "Sea and shafts: quadrature steps per ray; under water: paths per pixel (default: the scene's "
@@ -125,7 +142,7 @@ int main(int argc, char** argv) {
 
   seasim::OceanCmd ocean_cmd;
   auto* ocean = app.add_subcommand("ocean", "FFT ocean (004 §3): height/slope/displacement/normal/folding/caustic maps, or --bench");
-  ocean->add_option("scene", ocean_cmd.scene, "Scene file ([surface], [sun], [water])")->check(CLI::ExistingFile);
+  ocean->add_option("scene", ocean_cmd.scene, "Scene file ([surface], [sun], [water])")->check(kReadableFile);
   ocean->add_option("-o,--out", ocean_cmd.out_dir, "Output folder")->required();
   ocean->add_option("--time", ocean_cmd.time, "Time in s (default: the scene's surface.time)");
   ocean->add_option("--device", ocean_cmd.device, "cpu, gpu, pocl:0, nvidia:0 or a name substring");
@@ -141,7 +158,7 @@ int main(int argc, char** argv) {
   seasim::UnderwaterStudyCmd study_cmd;
   auto* study = app.add_subcommand(
       "underwater-study", "002 §6.1: spectral vs RGB (n = 3) vs the path tracer over waters, depths, cameras");
-  study->add_option("scene", study_cmd.scene, "The seabed scene (scenes/seabed.toml)")->required()->check(CLI::ExistingFile);
+  study->add_option("scene", study_cmd.scene, "The seabed scene (scenes/seabed.toml)")->required()->check(kReadableFile);
   study->add_option("--waters", study_cmd.waters, "Jerlov types")->delimiter(',');
   study->add_option("--depths", study_cmd.depths, "Seabed depths, m")->delimiter(',');
   auto* study_cameras = study->add_option("--cameras", study_cmd.cameras, "Camera response curves (file stems)")->delimiter(',');
@@ -163,7 +180,7 @@ int main(int argc, char** argv) {
                                      "Fast underwater model vs the path tracer by region (bottom near/far, water "
                                      "up/down, objects) over one-band waters, g, depths, views and models");
   regions->add_option("scene", regions_cmd.scene, "One-band scene (tests/perf/underwater_regions.toml)")
-      ->check(CLI::ExistingFile);
+      ->check(kReadableFile);
   regions->add_option("--waters", regions_cmd.waters, "a:b pairs in 1/m")->delimiter(',');
   regions->add_option("--g", regions_cmd.gs, "HG asymmetries")->delimiter(',');
   regions->add_option("--depths", regions_cmd.depths, "Bottom depths in m (0: no bottom)")->delimiter(',');
@@ -193,7 +210,7 @@ int main(int argc, char** argv) {
   seasim::SeashoreStudyCmd shore_cmd;
   auto* shore = app.add_subcommand(
       "seashore-study", "000 §5.4/§6: second-order scattering vs floor depth z_Q over a height-field bottom");
-  shore->add_option("scene", shore_cmd.scene, "A height-field scene (scenes/seashore.toml)")->required()->check(CLI::ExistingFile);
+  shore->add_option("scene", shore_cmd.scene, "A height-field scene (scenes/seashore.toml)")->required()->check(kReadableFile);
   shore->add_option("--width", shore_cmd.width, "Image width");
   shore->add_option("--height", shore_cmd.height, "Image height");
   shore->add_option("--edges", shore_cmd.edges, "z_Q bin edges, m")->delimiter(',');
@@ -211,7 +228,7 @@ int main(int argc, char** argv) {
   seasim::CacheWarmCmd warm_cmd;
   auto* warm = cache->add_subcommand(
       "warm", "Build every kernel program and work-group function the scenes' or jobs' renders need (one frame each)");
-  warm->add_option("files", warm_cmd.files, "Scene or job TOML files")->required()->check(CLI::ExistingFile);
+  warm->add_option("files", warm_cmd.files, "Scene or job TOML files")->required()->check(kReadableFile);
   warm->add_option("--device", warm_cmd.device, "cpu, gpu, pocl:0, nvidia:0 or a name substring");
   warm->add_option("--set", warm_cmd.sets, "Override a scene key: key=value (repeatable)");
 
@@ -220,7 +237,7 @@ int main(int argc, char** argv) {
   seasim::FarmSlurmCmd farm_slurm_cmd;
   auto* farm_slurm = farm->add_subcommand(
       "slurm", "Write (and with --submit, submit) an sbatch array of the job's shards and its dependent merge");
-  farm_slurm->add_option("job", farm_slurm_cmd.job, "Job file")->required()->check(CLI::ExistingFile);
+  farm_slurm->add_option("job", farm_slurm_cmd.job, "Job file")->required()->check(kReadableFile);
   farm_slurm->add_option("--tasks", farm_slurm_cmd.tasks, "N: array tasks, one shard each")->required()->check(CLI::PositiveNumber);
   farm_slurm->add_option("--partition", farm_slurm_cmd.partition, "Slurm partition");
   farm_slurm->add_option("--time", farm_slurm_cmd.time_limit, "Time limit per task (Slurm's format, e.g. 2:00:00)");
@@ -232,19 +249,29 @@ int main(int argc, char** argv) {
   std::string farm_job, farm_output;
   auto* farm_merge = farm->add_subcommand(
       "merge", "Check every item is present with its checksum; write farm/report.json and farm/contact_sheet.html");
-  farm_merge->add_option("job", farm_job, "Job file")->required()->check(CLI::ExistingFile);
+  farm_merge->add_option("job", farm_job, "Job file")->required()->check(kReadableFile);
   farm_merge->add_option("-o,--output-dir", farm_output, "Shared results folder (default: the job's)");
   seasim::FarmStatusCmd farm_status_cmd;
   auto* farm_status = farm->add_subcommand("status", "Done, running, failed and left items per shard, time remaining");
-  farm_status->add_option("job", farm_status_cmd.job, "Job file")->required()->check(CLI::ExistingFile);
+  farm_status->add_option("job", farm_status_cmd.job, "Job file")->required()->check(kReadableFile);
   farm_status->add_option("-o,--output-dir", farm_status_cmd.output_dir, "Shared results folder (default: the job's)");
   farm_status->add_option("--tasks", farm_status_cmd.tasks, "Shard count (default: from the folder)")
       ->check(CLI::PositiveNumber);
   farm_status->add_flag("--json", farm_status_cmd.json, "JSON instead of a table");
 
+  std::string cluster_action, cluster_dir;
+  auto* farm_cluster = farm->add_subcommand(
+      "local-cluster",
+      "A private single-node Slurm in a folder, to try `farm slurm --submit` on one machine (needs root); "
+      "then export SLURM_CONF=DIR/slurm.conf");
+  farm_cluster->add_option("action", cluster_action, "start, stop, or env (prints the export line)")
+      ->required()
+      ->check(CLI::IsMember({"start", "stop", "env"}));
+  farm_cluster->add_option("dir", cluster_dir, "Folder for its configuration, keys, state and logs")->required();
+
   seasim::PreviewCmd preview_cmd;
   auto* preview = app.add_subcommand("preview", "Live preview window (GLFW): keys and mouse change the scene (docs/preview.md)");
-  preview->add_option("scene", preview_cmd.scene, "Scene file")->required()->check(CLI::ExistingFile);
+  preview->add_option("scene", preview_cmd.scene, "Scene file")->required()->check(kReadableFile);
   preview->add_option("--device", preview_cmd.device, "cpu, gpu, pocl:0, nvidia:0 or a name substring");
   preview->add_option("--set", preview_cmd.sets, "Override a scene key: key=value (repeatable)");
   preview->add_option("--size", preview_cmd.size, "WIDTHxHEIGHT of the window and the render (camera.width/height)");
@@ -260,8 +287,8 @@ int main(int argc, char** argv) {
     if (*validate) return seasim::cmdValidate(validate_files);
     if (*plan) return seasim::cmdPlan(plan_scene, plan_sets);
     if (*render) return seasim::cmdRender(render_cmd);
-    if (*run) return seasim::cmdRun(run_job, run_device, run_shard, run_resume, run_output);
-    if (*compare) return seasim::cmdCompare(cmp_a, cmp_b, cmp_exposure);
+    if (*run) return seasim::cmdRun(run_job, run_device, run_shard, run_resume, run_output, run_sets);
+    if (*compare) return seasim::cmdCompare(cmp_a, cmp_b, cmp_exposure_opt->count() ? std::optional<double>(cmp_exposure) : std::nullopt);
     if (*sweep) return seasim::cmdSweep(sweep_cmd);
     if (*bench) return seasim::cmdBench(bench_cmd);
     if (*reference) return seasim::cmdReference(ref_cmd);
@@ -282,6 +309,7 @@ int main(int argc, char** argv) {
     if (*farm_slurm) return seasim::cmdFarmSlurm(farm_slurm_cmd);
     if (*farm_merge) return seasim::cmdFarmMerge(farm_job, farm_output);
     if (*farm_status) return seasim::cmdFarmStatus(farm_status_cmd);
+    if (*farm_cluster) return seasim::cmdFarmLocalCluster(cluster_action, cluster_dir);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "seasim: error: %s\n", e.what());
     return 1;

@@ -116,7 +116,9 @@ int cmdUnderwaterStudy(const UnderwaterStudyCmd& cmd) {
           std::fflush(stdout);
         }
       }
-      labels.push_back(water + ".d" + num(depth).substr(0, num(depth).find('.')));
+      char depth_text[32];
+      std::snprintf(depth_text, sizeof depth_text, "%g", depth);
+      labels.push_back(water + ", " + depth_text + "\u00a0m");  // no-break space: "5 m" stays on one line
       for (const char* m : {"spectral", "rgb"}) {
         rmse[m].x.push_back(scene_index);
         rmse[m].y.push_back(sum_rmse[m] / cmd.cameras.size());
@@ -133,9 +135,8 @@ int cmdUnderwaterStudy(const UnderwaterStudyCmd& cmd) {
   if (!cmd.plot.empty()) {
     PlotSpec spec;
     spec.title = "Spectral vs RGB against the path tracer (mean over cameras)";
-    std::string x_label = "scene:";
-    for (size_t i = 0; i < labels.size(); ++i) x_label += " " + std::to_string(i) + "=" + labels[i];
-    spec.x_label = x_label;
+    spec.x_categories = labels;  // the x values are scene_index: one category per water and depth
+    spec.x_label = "Jerlov water type, seabed depth";
     spec.y_label = "RMSE (8-bit levels); hue+sat distance x100";
     for (const char* m : {"spectral", "rgb"}) {
       spec.series.push_back(rmse[m]);

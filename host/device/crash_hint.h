@@ -7,10 +7,12 @@
 namespace seasim {
 
 // While alive, SIGABRT, SIGSEGV and SIGBUS print "seasim: the OpenCL driver crashed while <what>.
-// <hint>" to stderr and then die as they would have (default action, same signal). Not nested.
+// <hint>" to stderr, create the file `marker` when one is named (the next run sees it: PoCL's
+// cache is cleared then, device/pocl_cache_check.h), and die as they would have (default action,
+// same signal). Not nested.
 class CrashHint {
  public:
-  CrashHint(const std::string& what, const std::string& hint);
+  CrashHint(const std::string& what, const std::string& hint, const std::string& marker = "");
   ~CrashHint();
   CrashHint(const CrashHint&) = delete;
   CrashHint& operator=(const CrashHint&) = delete;

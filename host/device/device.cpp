@@ -12,6 +12,7 @@
 
 #include "device/crash_hint.h"
 #include "device/kernel_cache.h"
+#include "device/pocl_cache_check.h"
 #include "device/kernel_source.h"
 #include "util/error.h"
 #include "util/hash.h"
@@ -51,10 +52,16 @@ std::string DeviceInfo::label() const {
 }
 
 std::vector<DeviceInfo> listDevices() {
-  usePoclCacheDir();  // before the first OpenCL call, which loads PoCL
+  usePoclCacheDir();    // before the first OpenCL call, which loads PoCL
+  preparePoclCache();   // and PoCL's cache checked: PoCL crashes on a damaged one (pocl_cache_check.h)
   std::vector<DeviceInfo> result;
   std::vector<cl::Platform> platforms;
-  cl_int err = cl::Platform::get(&platforms);
+  cl_int err = CL_SUCCESS;
+  try {
+    err = cl::Platform::get(&platforms);
+  } catch (const cl::Error& e) {  // CL_HPP_ENABLE_EXCEPTIONS: a loader without platforms throws -1001
+    err = e.err();
+  }
   if (err != CL_SUCCESS && err != CL_PLATFORM_NOT_FOUND_KHR) checkCl(err, "clGetPlatformIDs");
   for (size_t p = 0; p < platforms.size(); ++p) {
     std::vector<cl::Device> devices;
@@ -155,13 +162,25 @@ Device::Device(const DeviceInfo& info) : info_(info) {
   }
 }
 
+// What quality.fast_math asks of the driver. -cl-fast-relaxed-math lets a driver use approximate
+// maths functions and assume no NaN/Inf, and drivers differ in how far they go: PoCL's images moved by
+// at most 0.0002 of an 8-bit level on every shipped scene where it is on (results/BENCHMARKS.md), but
+// Intel's OpenCL CPU runtime under the same flag puts the sea's multiple scattering 0.6 % off its
+// double evaluation and the second order over a height field up to 100 % off at some map texels (the
+// kernel tests tests/kernels/sea_multiple_kernel_test.cpp, sea_heightfield_test.cpp). So the full flag
+// only where its error was measured, PoCL; elsewhere the two relaxations that cannot change which
+// branch a kernel takes or how accurate a maths function is: fused multiply-adds and unsigned zeros.
+std::string fastMathOptions(const DeviceInfo& device) {
+  return device.is_pocl ? " -cl-fast-relaxed-math" : " -cl-mad-enable -cl-no-signed-zeros";
+}
+
 const BuiltProgram& Device::program(const std::string& kernel_file, const std::vector<std::string>& defines) {
   std::string options = "-cl-std=CL1.2";
   if (info_.has_fp64) options += " -DSEASIM_HAS_FP64=1";
   for (const auto& d : defines) {
     options += " -D" + d;
     // quality.fast_math (host/plan): the planner marks each pass's build with this define.
-    if (d == "SEASIM_FAST_MATH=1") options += " -cl-fast-relaxed-math";
+    if (d == "SEASIM_FAST_MATH=1") options += fastMathOptions(info_);
   }
   const std::string key = kernel_file + "|" + options;
   if (auto it = programs_.find(key); it != programs_.end()) return it->second;
@@ -179,7 +198,8 @@ const BuiltProgram& Device::program(const std::string& kernel_file, const std::v
       info_.is_pocl && !poclCacheDir().empty()
           ? "A damaged PoCL kernel cache causes this: clear '" + poclCacheDir() +
                 "' (`seasim cache clear` does it when seasim owns that folder) and run again."
-          : "If it happens again, clear the driver's kernel cache and seasim's (`seasim cache clear`).");
+          : "If it happens again, clear the driver's kernel cache and seasim's (`seasim cache clear`).",
+      info_.is_pocl && !poclCacheDir().empty() ? poclCrashMarker(poclCacheDir()) : "");
   BuiltProgram built;
   if (!cache_file.empty()) {
     std::vector<unsigned char> bytes;
@@ -200,7 +220,7 @@ const BuiltProgram& Device::program(const std::string& kernel_file, const std::v
       std::fprintf(stderr, "seasim: warning: kernel cache entry '%s' for kernels/%s is unusable: %s; rebuilding it\n",
                    cache_file.c_str(), kernel_file.c_str(), why.c_str());
       std::error_code ec;
-      fs::remove(cache_file, ec);
+      fs::remove_all(cache_file, ec);  // a folder put in its place goes too
     }
   }
   if (!built.from_cache) {

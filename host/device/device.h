@@ -56,7 +56,7 @@ class Device {
   // $SEASIM_KERNEL_DIR when set. Binaries are cached in memory and on disk
   // ($SEASIM_CACHE_DIR, else $XDG_CACHE_HOME/seasim, else ~/.cache/seasim).
   // The define SEASIM_FAST_MATH=1 (quality.fast_math, set by the planner) also adds
-  // -cl-fast-relaxed-math to the build options.
+  // fastMathOptions(info) to the build options.
   // A failed build throws DeviceError with the kernel file and the compiler log.
   const BuiltProgram& program(const std::string& kernel_file, const std::vector<std::string>& defines);
 
@@ -77,6 +77,11 @@ class Device {
   double total_build_ms_ = 0.0;
   int build_warnings_ = 0;
 };
+
+// The build options that quality.fast_math's define (SEASIM_FAST_MATH=1) adds on this device:
+// -cl-fast-relaxed-math on PoCL, where its error was measured; only -cl-mad-enable and
+// -cl-no-signed-zeros on other drivers (device.cpp says why).
+std::string fastMathOptions(const DeviceInfo& device);
 
 // Milliseconds between an event's start and end (profiling queue).
 double eventMs(const cl::Event& event);

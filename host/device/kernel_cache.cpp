@@ -74,6 +74,10 @@ std::string kernelCachePath(const std::string& dir, uint64_t key) { return dir +
 bool readKernelCacheEntry(const std::string& path, uint64_t key, const std::string& device_id,
                           std::vector<unsigned char>& payload, std::string& why) {
   why.clear();
+  if (std::error_code ec; fs::is_directory(path, ec)) {
+    why = "it is a folder, not a cache file";
+    return false;
+  }
   bool exists = false;
   const std::vector<unsigned char> bytes = readAll(path, exists);
   if (!exists) return false;

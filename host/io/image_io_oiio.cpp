@@ -6,6 +6,9 @@
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 #include <cstdint>
 #include <filesystem>
 #include <memory>
@@ -77,18 +80,59 @@ void writeThroughMemory(const std::string& temp, const char* format, const OIIO:
   writeBytes(temp, encoded.data(), encoded.size());
 }
 
-// Writes one image to `temp` in the named OIIO format; throws with OIIO's message on failure.
+// OpenImageIO's file proxy that remembers why a write failed. OpenEXR reports a full disk as "File
+// output failed" and nothing more, and IOFile::close() drops fflush's error, so the last buffer of
+// a file could be lost unreported. Here every write and the final flush keep errno.
+class CheckedFile : public OIIO::Filesystem::IOFile {
+ public:
+  CheckedFile(const std::string& path) : IOFile(path, IOProxy::Write) {
+    if (!opened()) error_ = errno ? errno : EIO;
+  }
+  size_t write(const void* buf, size_t size) override { return note(IOFile::write(buf, size), size); }
+  size_t pwrite(const void* buf, size_t size, int64_t offset) override {
+    return note(IOFile::pwrite(buf, size, offset), size);
+  }
+  void close() override {
+    if (opened() && handle() && std::fflush(handle()) != 0 && error_ == 0) error_ = errno;
+    IOFile::close();
+  }
+  int error() const { return error_; }
+
+ private:
+  size_t note(size_t done, size_t size) {
+    if (done < size && error_ == 0) error_ = errno ? errno : EIO;
+    return done;
+  }
+  int error_ = 0;
+};
+
+// Writes one image to `temp` in the named OIIO format through CheckedFile; throws with the system's
+// reason (No space left on device, ...) when a write failed, else OpenImageIO's message.
 void writeWithOiio(const std::string& temp, const char* format, const OIIO::ImageSpec& spec,
                    OIIO::TypeDesc data_type, const void* data) {
   std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(format);
   if (!out) throw RuntimeError(std::string("OpenImageIO has no '") + format + "' writer: " + OIIO::geterror());
-  if (!out->open(temp, spec)) throw RuntimeError("OpenImageIO cannot open it: " + out->geterror());
+  std::unique_ptr<CheckedFile> proxy;
+  if (out->supports("ioproxy")) {
+    errno = 0;
+    proxy = std::make_unique<CheckedFile>(temp);
+    if (proxy->error() != 0) throw RuntimeError("cannot create '" + temp + "': " + std::strerror(proxy->error()));
+    out->set_ioproxy(proxy.get());
+  }
+  const auto fail = [&](const std::string& what, std::string err) {
+    if (proxy && proxy->error() != 0) err = std::strerror(proxy->error());
+    throw RuntimeError("cannot write '" + temp + "': " + what + ": " + err);
+  };
+  if (!out->open(temp, spec)) fail("OpenImageIO cannot open it", out->geterror());
   if (!out->write_image(data_type, data)) {
     const std::string err = out->geterror();
     out->close();
-    throw RuntimeError("OpenImageIO write failed: " + err);
+    if (proxy) proxy->close();
+    fail("OpenImageIO write failed", err);
   }
-  if (!out->close()) throw RuntimeError("OpenImageIO close failed: " + out->geterror());
+  const bool closed = out->close();
+  if (proxy) proxy->close();  // flushes: a full disk often shows only here
+  if (!closed || (proxy && proxy->error() != 0)) fail("OpenImageIO close failed", out->geterror());
 }
 
 }  // namespace

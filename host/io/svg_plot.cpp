@@ -1,5 +1,7 @@
-// svg_plot.cpp — layout: a fixed 800x500 canvas, the plot frame on the left, the legend in a column
-// on its right. All coordinates are formatted with std::to_chars, independent of the C locale.
+// svg_plot.cpp — layout: a fixed 800x500 canvas; the title on top, the legend in a column on the
+// right, the frame in what is left after the margins that the measured tick labels, axis labels and
+// legend need (io/svg_text.h). All coordinates are formatted with std::to_chars, independent of the
+// C locale.
 #include "io/svg_plot.h"
 
 #include <algorithm>
@@ -7,13 +9,18 @@
 #include <cmath>
 
 #include "io/atomic_file.h"
+#include "io/svg_text.h"
 
 namespace seasim {
 
 namespace {
 
 constexpr double kWidth = 800, kHeight = 500;
-constexpr double kLeft = 80, kTop = 45, kBottom = 60, kGap = 20;
+constexpr double kPad = 10, kGap = 20;  // canvas edge to any text; frame to legend
+constexpr double kTitleSize = 16, kMinTitleSize = 12, kLabelSize = 13, kTickSize = 12, kLegendSize = 12;
+constexpr double kPointLabelSize = 10;
+constexpr double kLineHeight = 1.25;   // baseline to baseline, in font sizes
+constexpr double kAscent = 0.93, kDescent = 0.24;  // DejaVu Sans, in font sizes
 // Okabe & Ito's colour-blind-safe palette (yellow left out: too faint on white), then black/grey.
 constexpr const char* kColours[] = {"#0072B2", "#D55E00", "#009E73", "#CC79A7",
                                     "#E69F00", "#56B4E9", "#000000", "#999999"};
@@ -122,10 +129,27 @@ Axis logAxis(double lo, double hi) {  // lo, hi in log10 units
   return a;
 }
 
+Axis categoryAxis(const std::vector<std::string>& names) {  // ticks at 0 .. n-1, half a step of room each side
+  Axis a;
+  a.lo = -0.5;
+  a.hi = static_cast<double>(names.size()) - 0.5;
+  for (size_t i = 0; i < names.size(); ++i) {
+    a.major.push_back(static_cast<double>(i));
+    a.labels.push_back(escapeXml(names[i]));
+  }
+  if (names.empty()) a.hi = 0.5;
+  return a;
+}
+
 Axis makeAxis(bool log, bool any, double lo, double hi) {
   if (!any) return log ? logAxis(0, 1) : linearAxis(0, 1);
   return log ? logAxis(lo, hi) : linearAxis(lo, hi);
 }
+
+struct LabelBox {
+  double x0, y0, x1, y1;
+  bool overlaps(const LabelBox& o) const { return x0 < o.x1 && o.x0 < x1 && y0 < o.y1 && o.y0 < y1; }
+};
 
 std::string marker(int shape, double x, double y, const char* colour) {
   const std::string fill = "fill=\"" + std::string(colour) + "\"";
@@ -145,14 +169,16 @@ std::string marker(int shape, double x, double y, const char* colour) {
 }  // namespace
 
 std::string renderSvgPlot(const PlotSpec& spec) {
+  const bool categorical = !spec.x_categories.empty();
+  const bool log_x = spec.log_x && !categorical;
   // Data ranges over the usable points only.
   bool any = false;
   double xlo = INFINITY, xhi = -INFINITY, ylo = INFINITY, yhi = -INFINITY;
   for (const PlotSeries& s : spec.series) {
     const std::size_t n = std::min(s.x.size(), s.y.size());
     for (std::size_t i = 0; i < n; ++i) {
-      if (!usable(s.x[i], spec.log_x) || !usable(s.y[i], spec.log_y)) continue;
-      const double px = toPlot(s.x[i], spec.log_x), py = toPlot(s.y[i], spec.log_y);
+      if (!usable(s.x[i], log_x) || !usable(s.y[i], spec.log_y)) continue;
+      const double px = toPlot(s.x[i], log_x), py = toPlot(s.y[i], spec.log_y);
       any = true;
       xlo = std::min(xlo, px);
       xhi = std::max(xhi, px);
@@ -160,26 +186,91 @@ std::string renderSvgPlot(const PlotSpec& spec) {
       yhi = std::max(yhi, py);
     }
   }
-  const Axis ax = makeAxis(spec.log_x, any, xlo, xhi);
+  const Axis ax = categorical ? categoryAxis(spec.x_categories) : makeAxis(log_x, any, xlo, xhi);
   const Axis ay = makeAxis(spec.log_y, any, ylo, yhi);
 
-  // Legend column width from the longest name (about 7 px per character at 12 px).
-  std::size_t longest = 0;
-  for (const PlotSeries& s : spec.series) longest = std::max(longest, s.name.size());
-  const double legend_w = spec.series.empty() ? 0.0 : std::min(260.0, 40.0 + 7.0 * static_cast<double>(longest));
-  const double x0 = kLeft, x1 = kWidth - kGap - legend_w - (legend_w > 0 ? kGap : 0);
-  const double y0 = kHeight - kBottom, y1 = kTop;  // y0 = bottom edge of the frame
+  // Title: shrunk to fit one line down to kMinTitleSize, then wrapped.
+  double title_size = kTitleSize;
+  const double text_w = kWidth - 2 * kPad;
+  while (title_size > kMinTitleSize && svgTextWidth(spec.title, title_size, true) > text_w) title_size -= 1;
+  const std::vector<std::string> title_lines =
+      spec.title.empty() ? std::vector<std::string>{} : wrapSvgText(spec.title, title_size, text_w, true);
+  const double title_h = static_cast<double>(title_lines.size()) * title_size * kLineHeight;
+
+  // Legend: names wrapped to at most a third of the canvas; the column as wide as its widest line.
+  const double legend_text_max = kWidth / 3 - 30;
+  std::vector<std::vector<std::string>> legend_lines;
+  double legend_text_w = 0;
+  for (const PlotSeries& s : spec.series) {
+    legend_lines.push_back(wrapSvgText(s.name, kLegendSize, legend_text_max));
+    for (const auto& l : legend_lines.back()) legend_text_w = std::max(legend_text_w, svgTextWidth(l, kLegendSize));
+  }
+  const double legend_w = spec.series.empty() ? 0.0 : 30 + legend_text_w;
+
+  // Tick label sizes: a log axis's "10^k" is "10" at 12 px and k at 10 px, 7 px up.
+  auto tickWidth = [&](const std::string& label) {
+    const size_t sup = label.find("<tspan");
+    if (sup == std::string::npos) return svgTextWidth(svgPlainText(label), kTickSize);
+    return svgTextWidth(svgPlainText(label.substr(0, sup)), kTickSize) +
+           svgTextWidth(svgPlainText(label.substr(sup)), 10);
+  };
+  double ytick_w = 0;
+  for (const auto& l : ay.labels) ytick_w = std::max(ytick_w, tickWidth(l));
+
+  // Frame left/right: the y label (rotated, its lines side by side), the tick labels, the legend.
+  const double y_label_room = 300;  // the frame's least height: the y label wraps to it
+  const std::vector<std::string> ylabel_lines =
+      spec.y_label.empty() ? std::vector<std::string>{} : wrapSvgText(spec.y_label, kLabelSize, y_label_room);
+  const double ylabel_w = static_cast<double>(ylabel_lines.size()) * kLabelSize * kLineHeight;
+  double x0 = kPad + ylabel_w + (ylabel_lines.empty() ? 0 : 6) + ytick_w + 9;
+  double x1 = kWidth - kPad - legend_w - (legend_w > 0 ? kGap : 0);
+  // The first and last x tick labels are centred on the frame's edges: room for their halves.
+  if (!ax.labels.empty() && !categorical) {
+    x0 = std::max(x0, kPad + tickWidth(ax.labels.front()) / 2);
+    x1 = std::min(x1, kWidth - kPad - (legend_w > 0 ? legend_w + kGap : 0) - tickWidth(ax.labels.back()) / 2);
+  }
+
+  // X tick labels: numbers on one line; categories wrapped to their share of the frame, at 12 px or
+  // smaller until each fits in three lines.
+  double xtick_size = kTickSize;
+  std::vector<std::vector<std::string>> xtick_lines;
+  const double slot = categorical ? (x1 - x0) / std::max<double>(1.0, static_cast<double>(ax.major.size())) - 4 : 1e9;
+  for (;;) {
+    xtick_lines.clear();
+    size_t most = 1;
+    for (const auto& l : ax.labels) {
+      xtick_lines.push_back(categorical ? wrapSvgText(svgPlainText(l), xtick_size, slot) : std::vector<std::string>{l});
+      most = std::max(most, xtick_lines.back().size());
+    }
+    if (most <= 3 || xtick_size <= 8) break;
+    xtick_size -= 1;
+  }
+  size_t xtick_rows = 1;
+  for (const auto& l : xtick_lines) xtick_rows = std::max(xtick_rows, l.size());
+  const std::vector<std::string> xlabel_lines =
+      spec.x_label.empty() ? std::vector<std::string>{} : wrapSvgText(spec.x_label, kLabelSize, x1 - x0);
+
+  // Frame top/bottom: the title above; ticks, tick labels and the x label below.
+  const double y1 = kPad + title_h + 12;
+  const double xtick_h = 6 + 4 + static_cast<double>(xtick_rows) * xtick_size * kLineHeight;
+  const double xlabel_h = static_cast<double>(xlabel_lines.size()) * kLabelSize * kLineHeight;
+  const double y0 = kHeight - kPad - xlabel_h - (xlabel_lines.empty() ? 0 : 4) - xtick_h;
   auto sx = [&](double p) { return x0 + (p - ax.lo) / (ax.hi - ax.lo) * (x1 - x0); };
   auto sy = [&](double p) { return y0 - (p - ay.lo) / (ay.hi - ay.lo) * (y0 - y1); };
+  // One <text> with every attribute a reader needs to find its box.
+  auto text = [](double x, double y, double size, const char* anchor, const std::string& body, const std::string& extra = "") {
+    return "<text" + extra + " x=\"" + num(x) + "\" y=\"" + num(y) + "\" font-size=\"" + num(size) +
+           "\" text-anchor=\"" + anchor + "\">" + body + "</text>\n";
+  };
 
   std::string svg;
   svg += "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
   svg += "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" + num(kWidth) + "\" height=\"" + num(kHeight) +
          "\" viewBox=\"0 0 " + num(kWidth) + " " + num(kHeight) + "\" font-family=\"sans-serif\">\n";
   svg += "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
-  if (!spec.title.empty())
-    svg += "<text x=\"" + num((x0 + x1) / 2) + "\" y=\"26\" text-anchor=\"middle\" font-size=\"16\" font-weight=\"bold\">" +
-           escapeXml(spec.title) + "</text>\n";
+  for (size_t i = 0; i < title_lines.size(); ++i)
+    svg += text(kWidth / 2, kPad + title_size * (kAscent + kLineHeight * static_cast<double>(i)), title_size, "middle",
+                escapeXml(title_lines[i]), " class=\"title\" font-weight=\"bold\"");
 
   // Grid and ticks.
   svg += "<g stroke=\"#e3e3e3\" stroke-width=\"1\">\n";
@@ -194,64 +285,110 @@ std::string renderSvgPlot(const PlotSpec& spec) {
   svg += "<rect x=\"" + num(x0) + "\" y=\"" + num(y1) + "\" width=\"" + num(x1 - x0) + "\" height=\"" + num(y0 - y1) +
          "\" fill=\"none\" stroke=\"#333\" stroke-width=\"1.2\"/>\n";
 
-  // Tick labels (labels are generated here, so their markup needs no escaping).
-  svg += "<g font-size=\"12\" fill=\"#222\">\n";
-  for (std::size_t i = 0; i < ax.major.size(); ++i)
-    svg += "<text class=\"xtick\" x=\"" + num(sx(ax.major[i])) + "\" y=\"" + num(y0 + 20) + "\" text-anchor=\"middle\">" +
-           ax.labels[i] + "</text>\n";
+  // Tick labels (numeric labels are generated here, so their markup needs no escaping).
+  svg += "<g fill=\"#222\">\n";
+  for (std::size_t i = 0; i < ax.major.size(); ++i) {
+    if (categorical) {
+      for (size_t r = 0; r < xtick_lines[i].size(); ++r)
+        svg += text(sx(ax.major[i]), y0 + 10 + xtick_size * (kAscent + kLineHeight * static_cast<double>(r)), xtick_size,
+                    "middle", escapeXml(xtick_lines[i][r]), " class=\"xtick\"");
+    } else {
+      svg += text(sx(ax.major[i]), y0 + 10 + kTickSize * kAscent, kTickSize, "middle", ax.labels[i], " class=\"xtick\"");
+    }
+  }
   for (std::size_t i = 0; i < ay.major.size(); ++i)
-    svg += "<text class=\"ytick\" x=\"" + num(x0 - 9) + "\" y=\"" + num(sy(ay.major[i]) + 4) + "\" text-anchor=\"end\">" +
-           ay.labels[i] + "</text>\n";
+    svg += text(x0 - 9, sy(ay.major[i]) + 4, kTickSize, "end", ay.labels[i], " class=\"ytick\"");
   svg += "</g>\n";
-  if (!spec.x_label.empty())
-    svg += "<text x=\"" + num((x0 + x1) / 2) + "\" y=\"" + num(kHeight - 16) + "\" text-anchor=\"middle\" font-size=\"13\">" +
-           escapeXml(spec.x_label) + "</text>\n";
-  if (!spec.y_label.empty())
-    svg += "<text transform=\"translate(20 " + num((y0 + y1) / 2) + ") rotate(-90)\" text-anchor=\"middle\" font-size=\"13\">" +
-           escapeXml(spec.y_label) + "</text>\n";
+  for (size_t i = 0; i < xlabel_lines.size(); ++i)
+    svg += text((x0 + x1) / 2, y0 + xtick_h + 4 + kLabelSize * (kAscent + kLineHeight * static_cast<double>(i)), kLabelSize,
+                "middle", escapeXml(xlabel_lines[i]), " class=\"xlabel\"");
+  // The y label turned a quarter left: its baseline runs up at x = the line's right edge.
+  for (size_t i = 0; i < ylabel_lines.size(); ++i) {
+    const double bx = kPad + kLabelSize * (kAscent + kLineHeight * static_cast<double>(i));
+    svg += "<text class=\"ylabel\" x=\"0\" y=\"0\" font-size=\"" + num(kLabelSize) +
+           "\" text-anchor=\"middle\" transform=\"translate(" + num(bx) + " " + num((y0 + y1) / 2) + ") rotate(-90)\">" +
+           escapeXml(ylabel_lines[i]) + "</text>\n";
+  }
   if (!any)
-    svg += "<text x=\"" + num((x0 + x1) / 2) + "\" y=\"" + num((y0 + y1) / 2) +
-           "\" text-anchor=\"middle\" font-size=\"14\" fill=\"#888\">no data</text>\n";
+    svg += text((x0 + x1) / 2, (y0 + y1) / 2, 14, "middle", "no data", " fill=\"#888\"");
 
-  // Series: polylines broken at skipped points, then markers on top.
+  // Series: polylines broken at skipped points, then markers on top, then point labels.
+  std::vector<LabelBox> placed;
   for (std::size_t k = 0; k < spec.series.size(); ++k) {
     const PlotSeries& s = spec.series[k];
     const char* colour = kColours[k % kNumColours];
     const int shape = static_cast<int>(k % kNumMarkers);
     svg += "<g class=\"series\" stroke=\"" + std::string(colour) + "\">\n";
-    std::string points, markers;
+    std::string points, markers, labels;
     int in_run = 0;
     auto flush = [&]() {
-      if (in_run >= 2) svg += "<polyline fill=\"none\" stroke-width=\"1.8\" points=\"" + points + "\"/>\n";
+      if (in_run >= 2 && !categorical) svg += "<polyline fill=\"none\" stroke-width=\"1.8\" points=\"" + points + "\"/>\n";
       points.clear();
       in_run = 0;
     };
     const std::size_t n = std::min(s.x.size(), s.y.size());
     for (std::size_t i = 0; i < n; ++i) {
-      if (!usable(s.x[i], spec.log_x) || !usable(s.y[i], spec.log_y)) {
+      if (!usable(s.x[i], log_x) || !usable(s.y[i], spec.log_y)) {
         flush();
         continue;
       }
-      const double px = sx(toPlot(s.x[i], spec.log_x)), py = sy(toPlot(s.y[i], spec.log_y));
+      const double px = sx(toPlot(s.x[i], log_x)), py = sy(toPlot(s.y[i], spec.log_y));
       points += (in_run ? " " : "") + num(px) + "," + num(py);
       ++in_run;
       markers += marker(shape, px, py, colour) + "\n";
+      if (i < s.labels.size() && !s.labels[i].empty()) {
+        // Above right of the point, else below right, above left, below left, then the same a line and
+        // two lines further out: the first place inside the frame that no earlier label covers (else
+        // the first inside the frame).
+        const double w = svgTextWidth(s.labels[i], kPointLabelSize);
+        const double step = kPointLabelSize * kLineHeight;
+        struct Place {
+          bool left;
+          double baseline;
+        };
+        std::vector<Place> places;
+        for (int k = 0; k < 3; ++k)
+          for (bool left : {false, true}) {
+            places.push_back({left, py - 6 - k * step});
+            places.push_back({left, py + 6 + kPointLabelSize * kAscent + k * step});
+          }
+        auto boxOf = [&](bool left, double baseline) {
+          const double bx0 = left ? px - 6 - w : px + 6;
+          return LabelBox{bx0, baseline - kPointLabelSize * kAscent, bx0 + w, baseline + kPointLabelSize * kDescent};
+        };
+        int chosen = -1;
+        for (int pass = 0; pass < 2 && chosen < 0; ++pass)
+          for (int c = 0; c < static_cast<int>(places.size()) && chosen < 0; ++c) {
+            const LabelBox b = boxOf(places[c].left, places[c].baseline);
+            const bool inside = b.x0 >= x0 && b.x1 <= x1 && b.y0 >= y1 && b.y1 <= y0;
+            const bool free = std::none_of(placed.begin(), placed.end(), [&](const LabelBox& o) { return o.overlaps(b); });
+            if (inside && (free || pass == 1)) chosen = c;
+          }
+        if (chosen < 0) chosen = px + 6 + w > x1 ? 2 : 0;  // wider than the frame allows: at least on the canvas side
+        placed.push_back(boxOf(places[chosen].left, places[chosen].baseline));
+        labels += text(places[chosen].left ? px - 6 : px + 6, places[chosen].baseline, kPointLabelSize,
+                       places[chosen].left ? "end" : "start", escapeXml(s.labels[i]),
+                       " class=\"point\" fill=\"" + std::string(colour) + "\"");
+      }
     }
     flush();
-    svg += "</g>\n<g stroke=\"none\">\n" + markers + "</g>\n";
+    svg += "</g>\n<g stroke=\"none\">\n" + markers + "</g>\n" + labels;
   }
 
-  // Legend.
+  // Legend: one entry per series, its name's lines under each other.
   if (!spec.series.empty()) {
     const double lx = x1 + kGap;
-    svg += "<g font-size=\"12\" fill=\"#222\">\n";
+    double ly = y1 + 10;
+    svg += "<g fill=\"#222\">\n";
     for (std::size_t k = 0; k < spec.series.size(); ++k) {
-      const double ly = y1 + 10 + 20.0 * static_cast<double>(k);
       const char* colour = kColours[k % kNumColours];
       svg += "<line x1=\"" + num(lx) + "\" y1=\"" + num(ly) + "\" x2=\"" + num(lx + 24) + "\" y2=\"" + num(ly) +
              "\" stroke=\"" + colour + "\" stroke-width=\"1.8\"/>\n";
       svg += marker(static_cast<int>(k % kNumMarkers), lx + 12, ly, colour) + "\n";
-      svg += "<text x=\"" + num(lx + 30) + "\" y=\"" + num(ly + 4) + "\">" + escapeXml(spec.series[k].name) + "</text>\n";
+      for (size_t r = 0; r < legend_lines[k].size(); ++r)
+        svg += text(lx + 30, ly + 4 + kLegendSize * kLineHeight * static_cast<double>(r), kLegendSize, "start",
+                    escapeXml(legend_lines[k][r]), " class=\"legend\"");
+      ly += 8 + kLegendSize * kLineHeight * static_cast<double>(legend_lines[k].size());
     }
     svg += "</g>\n";
   }

@@ -4,6 +4,12 @@
 // steps, or every decade with minor ticks at 2..9 on log axes), grid, title, axis labels, legend.
 // Points with a NaN/Inf coordinate, or a non-positive one on a log axis, are skipped and break the
 // line there. Empty series and an empty plot render without error (an empty frame).
+//
+// Text is laid out so that none leaves the 800 x 500 canvas (widths by io/svg_text.h, an upper
+// bound for the sans-serif faces browsers pick): a long title shrinks, then wraps; legend names,
+// axis labels and category labels wrap; the margins grow to hold the tick labels, the axis labels
+// and the legend. Every <text> carries its own x, y, font-size and text-anchor, so a reader (the
+// plot-layout test) can find its box.
 #pragma once
 #include <string>
 #include <vector>
@@ -13,12 +19,17 @@ namespace seasim {
 struct PlotSeries {
   std::string name;
   std::vector<double> x, y;  // same length; extra values in the longer one are ignored
+  std::vector<std::string> labels{};  // optional, one per point: drawn beside it (a sweep's knob values)
 };
 
 struct PlotSpec {
   std::string title, x_label, y_label;
   bool log_x = false, log_y = false;
   std::vector<PlotSeries> series;
+  // Not empty: the x axis is categorical; x values are indices 0, 1, ... into these names, one tick
+  // per category, labelled with its name (wrapped to the category's width); log_x is ignored, and
+  // points are not joined by lines (nothing lies between two categories).
+  std::vector<std::string> x_categories{};
 };
 
 // The complete SVG document (starts with an XML declaration).

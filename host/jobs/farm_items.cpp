@@ -42,7 +42,31 @@ int rank(ItemState::Status s) {
   return 0;
 }
 
-ItemState stateOf(const ManifestEntry& e, const std::string& output_dir, bool verify) {
+// The file each of the item's outputs is written to (render_item.cpp), relative to its folder. A
+// build without OpenImageIO writes "<name>.npy" instead (io/image_io.h); either counts.
+const char* outputFileName(const std::string& format) {
+  if (format == "exr") return "image.exr";
+  if (format == "png") return "image.png";
+  if (format == "npy") return "image.npy";
+  if (format == "spectral_exr") return "spectral.exr";
+  return nullptr;
+}
+
+// The first file the job expects of this item that the manifest's list leaves out ("" when none):
+// report.json and one file per output. A manifest edited by hand, or written by a run whose job
+// asked for fewer outputs, must not make an item count as done.
+std::string unlistedFile(const RenderItem& item, const nlohmann::json& files) {
+  const std::string dir = item.name + "/";
+  if (!files.contains(dir + "report.json")) return dir + "report.json";
+  for (const std::string& format : item.outputs) {
+    const char* name = outputFileName(format);
+    if (!name) continue;  // the job parser accepts no other format
+    if (!files.contains(dir + name) && !files.contains(dir + name + ".npy")) return dir + name;
+  }
+  return "";
+}
+
+ItemState stateOf(const ManifestEntry& e, const RenderItem* item, const std::string& output_dir, bool verify) {
   ItemState s;
   s.name = e.name;
   if (!e.done) {
@@ -54,6 +78,13 @@ ItemState stateOf(const ManifestEntry& e, const std::string& output_dir, bool ve
   s.files = e.files;
   s.wall_ms = e.wall_ms;
   s.kernel_ms = e.kernel_ms;
+  if (item) {
+    if (const std::string file = unlistedFile(*item, e.files); !file.empty()) {
+      s.status = ItemState::Status::Damaged;
+      s.detail = "'" + file + "', an output the job asks for, is not among the manifest's files";
+      return s;
+    }
+  }
   if (!verify) return s;
   for (const auto& [file, checksum] : e.files.items()) {
     const std::string path = output_dir + "/" + file;
@@ -69,6 +100,8 @@ ItemState stateOf(const ManifestEntry& e, const std::string& output_dir, bool ve
 }  // namespace
 
 std::vector<ItemState> readItemStates(const Job& job, const std::string& output_dir, bool verify_checksums) {
+  std::map<std::string, const RenderItem*> items;
+  for (const RenderItem& item : job.items) items.emplace(item.name, &item);
   std::map<std::string, ItemState> best;
   if (fs::is_directory(output_dir)) {
     std::vector<fs::path> manifests;
@@ -81,7 +114,8 @@ std::vector<ItemState> readItemStates(const Job& job, const std::string& output_
     for (const fs::path& path : manifests) {
       const Manifest manifest = Manifest::load(path.string(), "");
       for (const ManifestEntry& e : manifest.entries()) {
-        ItemState s = stateOf(e, output_dir, verify_checksums);
+        const auto item = items.find(e.name);
+        ItemState s = stateOf(e, item == items.end() ? nullptr : item->second, output_dir, verify_checksums);
         auto it = best.find(e.name);
         if (it == best.end())
           best.emplace(e.name, std::move(s));
@@ -102,6 +136,13 @@ std::vector<ItemState> readItemStates(const Job& job, const std::string& output_
     }
   }
   return states;
+}
+
+std::set<std::string> finishedItems(const Job& job, const std::string& output_dir) {
+  std::set<std::string> done;
+  for (const ItemState& s : readItemStates(job, output_dir, true))
+    if (s.status == ItemState::Status::Done) done.insert(s.name);
+  return done;
 }
 
 }  // namespace seasim

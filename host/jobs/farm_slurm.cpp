@@ -39,13 +39,25 @@ std::string submit(const std::string& command, const std::string& what) {
   const std::string id = out.substr(0, out.find(';'));
   if (r.code != 0 || id.empty() || id.find_first_not_of("0123456789") != std::string::npos)
     throw RuntimeError("submitting the " + what + " failed (exit code " + std::to_string(r.code) + "): " + command +
-                       "\n" + out);
+                       "\n" + out + slurmConfigHint(out));
   return id;
 }
 
 std::string slurmName(const std::string& name) { return "seasim-" + name; }
 
 }  // namespace
+
+std::string slurmConfigHint(const std::string& out) {
+  if (out.find("Could not establish a configuration source") == std::string::npos &&
+      out.find("slurm.conf") == std::string::npos)
+    return "";
+  return "\nhint: sbatch found no Slurm cluster configuration (no /etc/slurm/slurm.conf and SLURM_CONF unset). To "
+         "try the farm on this machine, start a private single-node cluster in a folder (needs root: slurmd starts "
+         "the jobs as their users):\n"
+         "  sudo seasim farm local-cluster start /tmp/seasim-slurm\n"
+         "  export SLURM_CONF=/tmp/seasim-slurm/slurm.conf\n"
+         "then submit again; stop it with `sudo seasim farm local-cluster stop /tmp/seasim-slurm` (docs/farm.md).";
+}
 
 std::string shellQuote(const std::string& word) {
   std::string q = "'";

@@ -51,4 +51,10 @@ SlurmSubmission submitSlurm(const SlurmScripts& scripts);
 // Quotes a word for a POSIX shell ('...' with ' escaped).
 std::string shellQuote(const std::string& word);
 
+// What to tell the user about a failed sbatch's output: when it found no Slurm configuration
+// ("Could not establish a configuration source": no slurm.conf, SLURM_CONF unset, no configless
+// controller), how to start a private single-node cluster with `seasim farm local-cluster` and point
+// the clients at it; "" for any other failure.
+std::string slurmConfigHint(const std::string& sbatch_output);
+
 }  // namespace seasim

@@ -26,10 +26,16 @@ struct Job {
   std::vector<RenderItem> items;
 };
 
+struct JobLoadOptions {
+  std::vector<Override> extra_overrides;  // appended to every item's overrides (`run --set`), so they win
+  std::vector<std::string> ignored_keys;  // job-file keys read as absent (`validate` finding every error)
+  bool check_scenes = true;               // load every item's scene with its overrides
+};
+
 // Parses and validates a job file, and validates every scene it names with its overrides, so a
 // bad job fails before anything renders. Throws InputError.
-Job loadJob(const std::string& path);
-Job parseJob(const std::string& toml_text, const std::string& path);
+Job loadJob(const std::string& path, const JobLoadOptions& options = {});
+Job parseJob(const std::string& toml_text, const std::string& path, const JobLoadOptions& options = {});
 
 // True when the file looks like a job (has [job], [[render]] or [[sweep]]), for `seasim validate`.
 bool isJobFile(const std::string& path);

@@ -3,6 +3,8 @@
 #include <set>
 
 #include "io/image_io.h"
+#include "jobs/render_item.h"
+#include "plan/plan.h"
 #include "scene/scene_inputs.h"
 #include "util/error.h"
 
@@ -15,6 +17,11 @@ std::map<std::string, std::string> checkJobInputs(const std::vector<RenderItem>&
     try {
       const Scene scene = loadScene(item.scene_file, item.overrides);
       checkSceneInputs(scene, &good_images);
+      try {
+        checkOutputsPossible(scene, makePlan(scene), item.outputs);  // spectral_exr from an RGB-only plan
+      } catch (const RuntimeError& e) {
+        throw InputError(item.loc.file, item.loc.line, "outputs", e.what());
+      }
       if (!item.reference.empty()) {
         ImageHeader ref;
         try {

@@ -5,7 +5,6 @@
 
 #include "io/atomic_file.h"
 #include "util/error.h"
-#include "util/hash.h"
 
 namespace fs = std::filesystem;
 
@@ -90,24 +89,6 @@ void Manifest::save(const std::string& path) const {
   }
   const nlohmann::json j = {{"job", job_file_}, {"items", items}};
   writeTextAtomic(path, j.dump(2) + "\n");
-}
-
-std::set<std::string> finishedItems(const std::string& output_dir) {
-  std::set<std::string> done;
-  if (!fs::is_directory(output_dir)) return done;
-  for (const auto& entry : fs::directory_iterator(output_dir)) {
-    const std::string name = entry.path().filename().string();
-    if (name.rfind("manifest", 0) != 0 || entry.path().extension() != ".json" || !entry.is_regular_file()) continue;
-    const Manifest manifest = Manifest::load(entry.path().string(), "");  // named: entries() refers into it
-    for (const ManifestEntry& e : manifest.entries()) {
-      if (!e.done) continue;
-      bool intact = true;
-      for (const auto& [file, checksum] : e.files.items())
-        if (fileChecksum(output_dir + "/" + file) != checksum.get<std::string>()) intact = false;
-      if (intact) done.insert(e.name);
-    }
-  }
-  return done;
 }
 
 }  // namespace seasim

@@ -40,8 +40,7 @@ class Manifest {
   std::vector<ManifestEntry> entries_;
 };
 
-// Items recorded as done, in any manifest of the folder, whose files still match their checksums.
-// Throws like Manifest::load for a manifest it cannot use.
-std::set<std::string> finishedItems(const std::string& output_dir);
+// Which items are finished is decided against the job, not the manifest alone: finishedItems in
+// jobs/farm_items.h.
 
 }  // namespace seasim

@@ -1,10 +1,12 @@
 #include "jobs/render_item.h"
 
+#include <algorithm>
 #include <filesystem>
 
 #include "io/atomic_file.h"
 #include "io/image_io.h"
 #include "io/tonemap_eq18.h"
+#include "jobs/recorded_settings.h"
 #include "jobs/test_hooks.h"
 #include "plan/memory_budget.h"
 #include "plan/plan.h"
@@ -29,23 +31,6 @@ nlohmann::json planJson(const Plan& plan) {
   return passes;
 }
 
-nlohmann::json settingsJson(const Scene& s) {
-  nlohmann::json quality = nlohmann::json::object();
-  for (const auto& [key, knob] : s.quality) {
-    quality[key] = knob.automatic ? nlohmann::json("auto") : nlohmann::json(knob.value);
-  }
-  return {{"width", s.camera.width},
-          {"height", s.camera.height},
-          {"wavelength_count", s.spectral.count},
-          {"range_nm", {s.spectral.min_nm, s.spectral.max_nm}},
-          {"sensor", s.spectral.sensor},
-          {"white_balance", s.spectral.white_balance},
-          {"exposure_ev", s.camera.exposure_ev},
-          {"sun_zenith_deg", s.sun.zenith * 180.0 / M_PI},
-          {"water", s.water.present ? (s.water.jerlov.empty() ? "explicit spectra" : "Jerlov " + s.water.jerlov) : "none"},
-          {"quality", quality}};
-}
-
 }  // namespace
 
 nlohmann::json renderItem(Device& device, const Scene& scene, const ItemOutputs& outputs, const std::string& dir) {
@@ -55,23 +40,42 @@ nlohmann::json renderItem(Device& device, const Scene& scene, const ItemOutputs&
 }
 
 void checkRenderFitsDevice(Device& device, const Scene& scene, const Plan& plan) {
-  unsigned long long global_mem = device.info().global_mem_bytes, max_alloc = device.info().max_alloc_bytes;
-  applyMemoryCap(global_mem, max_alloc);
-  const bool capped = global_mem != device.info().global_mem_bytes || max_alloc != device.info().max_alloc_bytes;
-  checkMemoryBudget(estimateBuffers(scene, plan), global_mem, max_alloc,
-                    device.info().label() + (capped ? " capped by SEASIM_DEVICE_MEMORY_MB" : ""),
-                    !device.info().is_gpu);
+  checkRenderMemory(estimateBuffers(scene, plan), device.info().global_mem_bytes, device.info().max_alloc_bytes,
+                    device.info().label(), !device.info().is_gpu);
+}
+
+void checkOutputsPossible(const Scene& scene, const Plan& plan, const std::vector<std::string>& formats) {
+  if (std::find(formats.begin(), formats.end(), "spectral_exr") == formats.end()) return;
+  if (!scene.spectral.spectral_exr)
+    throw RuntimeError("output 'spectral_exr' needs spectral.spectral_exr = true in the scene '" + scene.file +
+                       "' (or --set spectral.spectral_exr=true); nothing written");
+  // Only the passes built with SEASIM_SPECTRAL_OUTPUT keep per-band radiance; the air-only
+  // models (shafts, raycast) render sensor RGB directly.
+  std::string names;
+  for (const PassPlan& p : plan.passes) {
+    if (std::find(p.defines.begin(), p.defines.end(), "SEASIM_SPECTRAL_OUTPUT=1") != p.defines.end()) return;
+    names += (names.empty() ? "" : ", ") + p.name;
+  }
+  throw RuntimeError("output 'spectral_exr': scene '" + scene.name + "' has no spectral image: its passes (" + names +
+                     ") render RGB only, spectral output comes from the sea and underwater models; drop "
+                     "spectral_exr from the outputs; nothing written");
 }
 
 nlohmann::json renderItem(Device& device, Renderer& renderer, const ItemOutputs& outputs, const std::string& dir) {
-  FrameResult frame = renderer.render();
   const Scene& scene = renderer.scene();
   const Plan& plan = renderer.plan();
+  checkOutputsPossible(scene, plan, outputs.formats);  // before the render and before any file
+  FrameResult frame = renderer.render();
   if (frame.nonfinite != 0) {
-    throw RuntimeError("scene '" + scene.name + "': the kernels produced " + std::to_string(frame.nonfinite) +
+    // Input images are checked for NaN/Inf before the render (scene/scene_inputs.h); still name them.
+    std::string images;
+    for (const ImageInputRef& image : scene.images) images += "\n  " + image.key + " = '" + image.path + "'";
+    throw RuntimeError("scene '" + scene.name + "' (" + scene.file + "): the kernels produced " +
+                       std::to_string(frame.nonfinite) +
                        " NaN/Inf values; nothing written for this render. Check the scene for extreme values "
-                       "(huge irradiance, scattering or intensity); if they are physical, please report it with "
-                       "the scene");
+                       "(huge irradiance, scattering or intensity)" +
+                       (images.empty() ? "" : " and the images it reads:" + images + "\n") +
+                       "; if they are physical, please report it with the scene");
   }
   // The reference is read and compared before any image is written, so a bad reference leaves
   // no images behind that look like a finished render.
@@ -89,6 +93,10 @@ nlohmann::json renderItem(Device& device, Renderer& renderer, const ItemOutputs&
              {"rel_l2", c.rel_l2},
              {"hue_sat_distance", c.hue_sat_distance}};
   }
+  const bool wants_spectral =
+      std::find(outputs.formats.begin(), outputs.formats.end(), "spectral_exr") != outputs.formats.end();
+  if (wants_spectral && frame.spectral.empty())  // the plan promised it (checkOutputsPossible): a bug
+    throw RuntimeError("output 'spectral_exr': the render produced no spectral image; nothing written");
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec) throw RuntimeError("cannot create the output folder '" + dir + "': " + ec.message());
@@ -113,9 +121,6 @@ nlohmann::json renderItem(Device& device, Renderer& renderer, const ItemOutputs&
       path = dir + "/image.npy";
       writeNpy(path, frame.rgb);
     } else if (format == "spectral_exr") {
-      if (frame.spectral.empty()) {
-        throw RuntimeError("output 'spectral_exr' needs spectral.spectral_exr = true in the scene");
-      }
       path = writeSpectralExr(dir + "/spectral.exr", frame.rgb.width, frame.rgb.height, frame.wavelengths_nm,
                               frame.spectral);
     } else {
@@ -125,32 +130,35 @@ nlohmann::json renderItem(Device& device, Renderer& renderer, const ItemOutputs&
     killMidItemIfAsked(fs::path(dir).filename().string());  // tests only (jobs/test_hooks.h)
   }
 
+  nlohmann::json report = frameReport(device, scene, plan, frame);
+  report["outputs"] = files;
+  if (!error.is_null()) report["error"] = error;
+  writeTextAtomic(dir + "/report.json", report.dump(2) + "\n");
+  return report;
+}
+
+nlohmann::json frameReport(const Device& device, const Scene& scene, const Plan& plan, const FrameResult& frame) {
   nlohmann::json timings = nlohmann::json::object();
   double total = 0;
   for (const auto& t : frame.timings) {
     timings[t.name] = t.ms;
     total += t.ms;
   }
-  nlohmann::json report = {
-      {"seasim", {{"version", version()}, {"git_commit", gitCommit()}, {"data_dir", dataDir()}}},
-      {"scene", scene.file},
-      {"name", scene.name},
-      {"device",
-       {{"label", device.info().label()},
-        {"platform", device.info().platform_name},
-        {"name", device.info().name},
-        {"driver", device.info().driver}}},
-      {"plan", planJson(plan)},
-      {"pass_ms", timings},
-      {"kernel_ms_total", total},
-      {"kernel_build_ms", frame.build_ms},
-      {"wall_ms", frame.wall_ms},
-      {"settings", settingsJson(scene)},
-      {"nonfinite", frame.nonfinite},
-      {"outputs", files}};
-  if (!error.is_null()) report["error"] = error;
-  writeTextAtomic(dir + "/report.json", report.dump(2) + "\n");
-  return report;
+  return {{"seasim", {{"version", version()}, {"git_commit", gitCommit()}, {"data_dir", dataDir()}}},
+          {"scene", scene.file},
+          {"name", scene.name},
+          {"device",
+           {{"label", device.info().label()},
+            {"platform", device.info().platform_name},
+            {"name", device.info().name},
+            {"driver", device.info().driver}}},
+          {"plan", planJson(plan)},
+          {"pass_ms", timings},
+          {"kernel_ms_total", total},
+          {"kernel_build_ms", frame.build_ms},
+          {"wall_ms", frame.wall_ms},
+          {"settings", settingsJson(scene)},
+          {"nonfinite", frame.nonfinite}};
 }
 
 }  // namespace seasim

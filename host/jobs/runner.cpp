@@ -12,10 +12,12 @@
 #include "device/device.h"
 #include "io/atomic_file.h"
 #include "io/data_files.h"
+#include "jobs/farm_items.h"
 #include "jobs/job.h"
 #include "jobs/job_inputs.h"
 #include "jobs/manifest.h"
 #include "jobs/progress.h"
+#include "jobs/recorded_settings.h"
 #include "jobs/render_item.h"
 #include "jobs/shard_balance.h"
 #include "jobs/shard_lock.h"
@@ -97,7 +99,9 @@ RunSummary runJob(const std::string& job_path, const RunOptions& options) {
   if (options.shard_count < 1 || options.shard_index < 0 || options.shard_index >= options.shard_count) {
     throw RuntimeError("--shard must be i/N with 0 <= i < N");
   }
-  Job job = loadJob(job_path);  // validates every item's scene before anything renders
+  JobLoadOptions load;
+  load.extra_overrides = options.overrides;
+  Job job = loadJob(job_path, load);  // validates every item's scene before anything renders
   if (!options.output_dir.empty()) job.output_dir = fs::absolute(options.output_dir).lexically_normal().string();
   RunSummary summary;
   summary.output_dir = job.output_dir;
@@ -107,7 +111,8 @@ RunSummary runJob(const std::string& job_path, const RunOptions& options) {
 
   const std::string manifest_file = manifestPath(job.output_dir, options.shard_index, options.shard_count);
   summary.manifest = manifest_file;
-  const ShardLock lock(shardLockPath(manifest_file));  // held until the job returns
+  // Held until the job returns; refused while a run of another shard count uses the folder.
+  const ShardLock lock(job.output_dir, options.shard_index, options.shard_count);
 
   // Balanced by cost, identically on every machine (jobs/shard_balance.h).
   const std::vector<int> shard_of = options.shard_count > 1 ? loadOrEstimateShardPlan(job, options.shard_count).shard_of
@@ -127,7 +132,21 @@ RunSummary runJob(const std::string& job_path, const RunOptions& options) {
   for (const RenderItem* item : mine) orphans += removeTempFiles(job.output_dir + "/" + item->name);
   if (orphans > 0) std::fprintf(stderr, "removed %d temporary file(s) left by an interrupted run\n", orphans);
 
-  const std::set<std::string> finished = options.resume ? finishedItems(job.output_dir) : std::set<std::string>{};
+  std::set<std::string> finished = options.resume ? finishedItems(job, job.output_dir) : std::set<std::string>{};
+  // An item finished with other settings (a `run --set` since, or an edited job) is rendered again.
+  // The [quality] knobs are left out: "auto" ones are recorded as the values they resolved to.
+  for (const RenderItem* item : mine) {
+    if (!finished.count(item->name)) continue;
+    const nlohmann::json recorded = reportSettings(job.output_dir + "/" + item->name);
+    if (recorded.is_null()) continue;  // a report without settings (older seasim): kept as finished
+    for (const SettingsDifference& d : settingsDifferences(settingsJson(loadScene(item->scene_file, item->overrides)), recorded))
+      if (d.key.rfind("quality.", 0) != 0) {
+        std::fprintf(stderr, "%s: rendered with %s = %s, now %s: rendering it again\n", item->name.c_str(),
+                     d.key.c_str(), d.reference.c_str(), d.test.c_str());
+        finished.erase(item->name);
+        break;
+      }
+  }
   Manifest manifest = options.resume ? Manifest::load(manifest_file, job.file) : Manifest(job.file);
 
   // Inputs checkable before rendering (images decode, references match the render size).
@@ -140,11 +159,17 @@ RunSummary runJob(const std::string& job_path, const RunOptions& options) {
   std::unique_ptr<Device> device;  // opened on the first item that needs rendering
   RendererCache renderers;
   Progress progress(static_cast<int>(mine.size()), stderrIsTerminal());
+  int handled = 0;
+  auto finish = [&](const std::string& name, const std::string& outcome) {
+    ++handled;
+    if (options.on_item) options.on_item(handled, static_cast<int>(mine.size()), name, outcome);
+    else progress.finish(name, outcome);
+  };
   for (const RenderItem* item : mine) {
-    progress.start(item->name);
+    if (!options.on_item) progress.start(item->name);
     if (finished.count(item->name)) {
       ++summary.skipped;
-      progress.finish(item->name, "finished earlier (resume)");
+      finish(item->name, "finished earlier (resume)");
       continue;
     }
     std::string error;
@@ -152,6 +177,8 @@ RunSummary runJob(const std::string& job_path, const RunOptions& options) {
       error = bad->second;
     } else {
       if (!device) device = std::make_unique<Device>(chooseDevice(selector));
+      char outcome[64] = "";
+      bool rendered = false;
       try {
         double kernel_ms = 0, build_ms = 0;
         const auto t0 = std::chrono::steady_clock::now();
@@ -160,10 +187,8 @@ RunSummary runJob(const std::string& job_path, const RunOptions& options) {
         manifest.recordDone(item->name, files, kernel_ms, wall_ms, build_ms);
         manifest.save(manifest_file);
         ++summary.rendered;
-        char outcome[64];
         std::snprintf(outcome, sizeof outcome, "done (%.1f ms kernels)", kernel_ms);
-        progress.finish(item->name, outcome);
-        continue;
+        rendered = true;
       } catch (const std::exception& e) {
         // Any failure of this item (NaN result, I/O, device memory, a bad texture) stays with it;
         // the next item starts from a fresh renderer.
@@ -171,13 +196,17 @@ RunSummary runJob(const std::string& job_path, const RunOptions& options) {
         renderers.previous = nullptr;
         error = e.what();
       }
+      if (rendered) {  // outside the try: a progress callback that throws is not the item's failure
+        finish(item->name, outcome);
+        continue;
+      }
     }
     manifest.recordFailed(item->name, error);
     manifest.save(manifest_file);
     summary.failed.push_back({item->name, error});
-    progress.finish(item->name, "FAILED: " + firstLine(error));
+    finish(item->name, "FAILED: " + firstLine(error));
   }
-  progress.done();
+  if (!options.on_item) progress.done();
   return summary;
 }
 

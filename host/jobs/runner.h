@@ -1,8 +1,11 @@
 // runner.h — runs a job file: shards, a lock per shard, resume from the manifest, atomic outputs,
 // progress, and per-item isolation (a failing item is recorded and the job goes on).
 #pragma once
+#include <functional>
 #include <string>
 #include <vector>
+
+#include "scene/scene_parser.h"
 
 namespace seasim {
 
@@ -12,6 +15,10 @@ struct RunOptions {
   int shard_count = 1;
   bool resume = false;     // skip items the manifest records as finished with intact files
   std::string output_dir;  // replaces the job's output_dir when not empty (-o)
+  std::vector<Override> overrides;  // `run --set`: applied to every item after its own overrides
+  // When set, called after each item (handled so far, items of this shard, item name, outcome) in place
+  // of the progress lines on stderr (the Python package draws its own bar).
+  std::function<void(int handled, int total, const std::string& item, const std::string& outcome)> on_item;
 };
 
 struct FailedItem {

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "plan/memory_limits.h"
 #include "plan/pass_descriptor.h"
 #include "util/error.h"
 
@@ -96,9 +97,37 @@ void applyMemoryCap(unsigned long long& global_mem_bytes, unsigned long long& ma
   max_alloc_bytes = max_alloc_bytes ? std::min(max_alloc_bytes, cap) : cap;
 }
 
+void checkRenderMemory(const std::vector<BufferEstimate>& buffers, unsigned long long global_mem_bytes,
+                       unsigned long long max_alloc_bytes, const std::string& device_label, bool host_shares_memory) {
+  const unsigned long long device_global = global_mem_bytes, device_alloc = max_alloc_bytes;
+  applyMemoryCap(global_mem_bytes, max_alloc_bytes);
+  const bool capped = global_mem_bytes != device_global || max_alloc_bytes != device_alloc;
+  const std::string label = device_label + (capped ? " capped by SEASIM_DEVICE_MEMORY_MB" : "");
+  const ProcessMemoryLimit process = processMemoryLimit();
+  if (process.available_bytes == 0) {
+    checkMemoryBudget(buffers, global_mem_bytes, max_alloc_bytes, label, host_shares_memory);
+    return;
+  }
+  if (host_shares_memory) {
+    if (global_mem_bytes == 0 || process.available_bytes < global_mem_bytes) {
+      // 0.9 of the total is usable in checkMemoryBudget: the same margin below the process's limit.
+      checkMemoryBudget(buffers, process.available_bytes, std::min(max_alloc_bytes, process.available_bytes),
+                        label + " within " + process.source, true, "what is left to this process");
+      return;
+    }
+    checkMemoryBudget(buffers, global_mem_bytes, max_alloc_bytes, label, true);
+    return;
+  }
+  checkMemoryBudget(buffers, global_mem_bytes, max_alloc_bytes, label, false);
+  std::vector<BufferEstimate> host;
+  for (BufferEstimate b : buffers)
+    if (b.host) host.push_back(b);
+  checkMemoryBudget(host, process.available_bytes, 0, "the host side of this process", true, process.source);
+}
+
 void checkMemoryBudget(const std::vector<BufferEstimate>& all, unsigned long long global_mem_bytes,
                        unsigned long long max_alloc_bytes, const std::string& device_label,
-                       bool host_shares_memory) {
+                       bool host_shares_memory, const std::string& total_limit_name) {
   std::vector<BufferEstimate> buffers;
   for (const auto& b : all)
     if (!b.host || host_shares_memory) buffers.push_back(b);
@@ -138,7 +167,7 @@ void checkMemoryBudget(const std::vector<BufferEstimate>& all, unsigned long lon
     }
     throw RuntimeError("not enough device memory: this render needs about " + mib(total) + ", more than 90% of " +
                        device_label + "'s " + mib(static_cast<double>(global_mem_bytes)) +
-                       " (CL_DEVICE_GLOBAL_MEM_SIZE). The largest is the " + largest->pass + " pass's " +
+                       " (" + total_limit_name + "). The largest is the " + largest->pass + " pass's " +
                        largest->what + whatFits(scaling, usable - (total - scaling.bytes)) +
                        "; nothing was allocated. Buffers:" + list);
   }

@@ -32,9 +32,18 @@ std::vector<BufferEstimate> estimateBuffers(const Scene& scene, const Plan& plan
 // global_mem_bytes (less a margin), naming the buffer, its settings and the largest values that
 // fit. Host copies count towards the total only when `host_shares_memory` (a CPU device such as
 // PoCL allocates its "device" buffers in the same RAM). A zero limit is not checked.
+// `total_limit_name` says where global_mem_bytes came from in the message.
 void checkMemoryBudget(const std::vector<BufferEstimate>& buffers, unsigned long long global_mem_bytes,
                        unsigned long long max_alloc_bytes, const std::string& device_label,
-                       bool host_shares_memory = false);
+                       bool host_shares_memory = false,
+                       const std::string& total_limit_name = "CL_DEVICE_GLOBAL_MEM_SIZE");
+
+// The whole check a render makes before allocating: the device's limits (capped by
+// SEASIM_DEVICE_MEMORY_MB) and the process's own (plan/memory_limits.h: address space, cgroup).
+// On a CPU device every buffer, device or host copy, is this process's memory and the smaller
+// limit applies to all; on a GPU the host copies are checked against the process's limit.
+void checkRenderMemory(const std::vector<BufferEstimate>& buffers, unsigned long long global_mem_bytes,
+                       unsigned long long max_alloc_bytes, const std::string& device_label, bool host_shares_memory);
 
 // The limits a render plans with: the device's, capped by $SEASIM_DEVICE_MEMORY_MB when set (a
 // farm node whose GPU is shared with other jobs). Throws RuntimeError for a malformed value.

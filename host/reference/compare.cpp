@@ -112,4 +112,38 @@ CompareResult compareImages(const Image& test, const Image& reference, double ex
   return r;
 }
 
+double referenceNoise8bit(const Image& reference, const Image& std_error, double exposure_ev) {
+  checkLayout(reference, "reference");
+  checkLayout(std_error, "standard-error");
+  if (reference.width != std_error.width || reference.height != std_error.height ||
+      (reference.channels >= 3) != (std_error.channels >= 3))
+    throw RuntimeError("compare: the reference's standard-error image is " + std::to_string(std_error.width) + "x" +
+                       std::to_string(std_error.height) + "x" + std::to_string(std_error.channels) +
+                       ", the reference " + std::to_string(reference.width) + "x" +
+                       std::to_string(reference.height) + "x" + std::to_string(reference.channels));
+  if (!std::isfinite(exposure_ev)) throw RuntimeError("compare: exposure must be finite");
+  const double scale = std::exp2(exposure_ev);
+  const std::size_t n = reference.pixelCount();
+  const int sources = reference.channels >= 3 ? 3 : 1;  // grey: one value drives all three
+  double sum_var = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    float b[3], se[3], d0[3];
+    colourAt(reference, i, b);
+    colourAt(std_error, i, se);
+    toneMapRgb(b, scale, d0);
+    for (int c = 0; c < sources; ++c) {
+      if (!std::isfinite(se[c]) || se[c] <= 0.0f) continue;
+      float moved[3] = {b[0], b[1], b[2]}, d1[3];
+      for (int k = 0; k < 3; ++k)
+        if (sources == 3 ? k == c : true) moved[k] += se[c];
+      toneMapRgb(moved, scale, d1);
+      for (int k = 0; k < 3; ++k) {
+        const double d8 = 255.0 * (static_cast<double>(d1[k]) - d0[k]);
+        sum_var += d8 * d8;
+      }
+    }
+  }
+  return n > 0 ? std::sqrt(sum_var / (3.0 * static_cast<double>(n))) : 0.0;
+}
+
 }  // namespace seasim

@@ -34,6 +34,15 @@ struct CompareResult {
 // Different width, height or colour layout (grey vs RGB), or more than 4 channels: RuntimeError.
 CompareResult compareImages(const Image& test, const Image& reference, double exposure_ev = 0);
 
+// The reference's own noise in the units of rmse_8bit: the RMS over pixels and display channels of
+// the display error one standard error of the reference makes. Per pixel the tone map is linearised
+// (each linear channel c moved by its standard error se_c alone, the change in every display
+// channel taken; channels' noise independent), so a display channel's variance is the sum over c of
+// those changes squared. A test image that were exact would score about this rmse against the
+// reference: rmse² ≈ bias² + noise² (the reference's noise is independent of the test image).
+// `std_error` has the reference's size and channel layout (RuntimeError otherwise).
+double referenceNoise8bit(const Image& reference, const Image& std_error, double exposure_ev = 0);
+
 // HSV of a display colour in [0,1]: h in degrees [0, 360), s and v in [0,1] (h = s = 0 for greys).
 void rgbToHsv(const float rgb[3], double& h_deg, double& s, double& v);
 

@@ -133,18 +133,20 @@ void Renderer::update(const std::vector<Override>& overrides) {
     throw RuntimeError("Renderer::update(overrides) needs a renderer made from a scene file");
   }
   std::vector<std::string> changed;
+  std::vector<Override> next = overrides_;  // kept only when the scene with them parses: a bad value changes nothing
   for (const Override& o : overrides) {
     // The last override of a key is the one in effect (they apply in order): compare with it, then
     // keep only the new one, so an earlier duplicate can never shadow a later update.
-    auto last = std::find_if(overrides_.rbegin(), overrides_.rend(), [&](const Override& x) { return x.key == o.key; });
-    if (last != overrides_.rend() && last->value_toml == o.value_toml) continue;
-    overrides_.erase(std::remove_if(overrides_.begin(), overrides_.end(), [&](const Override& x) { return x.key == o.key; }),
-                     overrides_.end());
-    overrides_.push_back(o);
+    auto last = std::find_if(next.rbegin(), next.rend(), [&](const Override& x) { return x.key == o.key; });
+    if (last != next.rend() && last->value_toml == o.value_toml) continue;
+    next.erase(std::remove_if(next.begin(), next.end(), [&](const Override& x) { return x.key == o.key; }), next.end());
+    next.push_back(o);
     changed.push_back(o.key);
   }
   if (changed.empty()) return;
-  update(parseScene(scene_text_, scene_file_, overrides_), changed);
+  Scene scene = parseScene(scene_text_, scene_file_, next);
+  overrides_ = std::move(next);
+  update(scene, changed);
 }
 
 void Renderer::rerunAll() {

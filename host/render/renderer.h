@@ -35,6 +35,10 @@ class Renderer {
   Renderer(Device& device, const Scene& scene, Plan plan, PassRegistry registry);
   // The scene file with its overrides, so that update(overrides) can read it again with more.
   Renderer(Device& device, const std::string& scene_file, std::vector<Override> overrides, PassRegistry registry);
+  // The same from the scene's TOML text, named `scene_file` in messages and anchoring relative paths
+  // (a scene that is no file: the Python package's Scene.from_dict).
+  Renderer(Device& device, const std::string& scene_file, std::string scene_text, std::vector<Override> overrides,
+           PassRegistry registry);
 
   // The scene after a change of the named keys ("surface.time", "sun.zenith_deg", "quality.froxel_x",
   // "objects[0].center"), as written in scene files and --set.
@@ -67,8 +71,6 @@ class Renderer {
     bool rerun = false;
     std::map<std::string, uint64_t> seen_generation, seen_version;  // of its reads, after it last ran
   };
-  Renderer(Device& device, const std::string& scene_file, std::string scene_text, std::vector<Override> overrides,
-           PassRegistry registry);
   void build();
   std::vector<bool> passesToRun() const;
   bool readsReplaced(const Node& node) const;

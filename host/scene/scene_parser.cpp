@@ -548,6 +548,15 @@ class SceneParser {
       names.insert(names.begin(), {"cie1931", "identity", "vonkries"});
       r.fail("sensor", unknownCameraMessage(s.sensor, s.camera_dir) + suggestion(s.sensor, names, 6));
     }
+    if (s.sensor != "cie1931" && s.sensor != "identity" && !von_kries) {
+      // Read now, not at the first frame: an unreadable or malformed camera CSV passed `validate`
+      // and failed the render.
+      try {
+        (void)loadCamera(s.sensor, s.camera_dir);
+      } catch (const std::exception& e) {
+        r.fail("sensor", e.what());
+      }
+    }
     s.white_balance = r.boolean("white_balance", s.white_balance);
     s.spectral_exr = r.boolean("spectral_exr", s.spectral_exr);
     if (s.sensor == "identity") {  // its output is the bands themselves
@@ -774,10 +783,11 @@ class SceneParser {
 
 }  // namespace
 
-Scene parseScene(const std::string& toml_text, const std::string& path,
-                 const std::vector<Override>& overrides) {
+Scene parseScene(const std::string& toml_text, const std::string& path, const std::vector<Override>& overrides,
+                 const std::vector<std::string>& ignored_keys) {
   toml::table root = parseTomlText(toml_text, path);
   TomlSource src(path);
+  for (const std::string& key : ignored_keys) src.ignore(key);
   for (const Override& o : overrides) applyOverride(root, o, src);
   Scene scene;
   scene.file = fs::absolute(path).lexically_normal().string();
@@ -786,11 +796,16 @@ Scene parseScene(const std::string& toml_text, const std::string& path,
 }
 
 Scene loadScene(const std::string& path, const std::vector<Override>& overrides) {
+  return loadScene(path, overrides, {});
+}
+
+Scene loadScene(const std::string& path, const std::vector<Override>& overrides,
+                const std::vector<std::string>& ignored_keys) {
   std::ifstream in(path, std::ios::binary);
   if (std::error_code ec; !in || fs::is_directory(path, ec)) throw InputError(path, 1, "", "cannot open scene file");
   std::stringstream text;
   text << in.rdbuf();
-  return parseScene(text.str(), path, overrides);
+  return parseScene(text.str(), path, overrides, ignored_keys);
 }
 
 }  // namespace seasim

@@ -23,7 +23,11 @@ struct Override {
 Scene loadScene(const std::string& path, const std::vector<Override>& overrides = {});
 
 // Same, from TOML text (tests); `path` names it in messages and anchors relative paths.
+// `ignored_keys` (dotted, as errors name them) are read as absent: `validate` parses again without
+// the key that failed to find the file's next error.
 Scene parseScene(const std::string& toml_text, const std::string& path,
-                 const std::vector<Override>& overrides = {});
+                 const std::vector<Override>& overrides = {}, const std::vector<std::string>& ignored_keys = {});
+Scene loadScene(const std::string& path, const std::vector<Override>& overrides,
+                const std::vector<std::string>& ignored_keys);
 
 }  // namespace seasim

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <sstream>
 
+#include "scene/toml_limits.h"
 #include "util/error.h"
 
 namespace seasim {
@@ -51,6 +52,7 @@ void TomlSource::forget(const toml::node& n) {
 // Parsing and overrides
 
 toml::table parseTomlText(std::string_view text, const std::string& file) {
+  checkTomlLimits(text, file);
   try {
     return toml::parse(text, std::string_view(file));
   } catch (const toml::parse_error& e) {
@@ -72,6 +74,13 @@ std::vector<PathSegment> splitKeyPath(const Override& o) {
   auto bad = [&](const std::string& why) -> std::vector<PathSegment> {
     throw InputError(o.loc.file, o.loc.line, o.key, "cannot use this override key: " + why);
   };
+  if (std::count(o.key.begin(), o.key.end(), '.') >= kMaxTomlKeyParts) {
+    // The key itself would be a page long in the message: its start is enough to find it.
+    const std::string start = o.key.substr(0, 40) + "...";
+    throw InputError(o.loc.file, o.loc.line, start,
+                     "cannot use this override key: it has more than " + std::to_string(kMaxTomlKeyParts) +
+                         " parts; scene keys have a few");
+  }
   std::stringstream ss(o.key);
   std::string part;
   while (std::getline(ss, part, '.')) {
@@ -103,6 +112,7 @@ std::vector<PathSegment> splitKeyPath(const Override& o) {
 void applyOverride(toml::table& root, const Override& o, TomlSource& source) {
   std::vector<PathSegment> segs = splitKeyPath(o);
 
+  checkTomlLimits(o.value_toml, o.loc.file, o.loc.line);
   toml::table parsed;
   try {
     parsed = toml::parse("v = " + o.value_toml, std::string_view(o.loc.file));
@@ -303,6 +313,7 @@ std::string TableReader::path(std::string_view key) const {
 
 const toml::node* TableReader::get(std::string_view key) {
   if (std::find(known_.begin(), known_.end(), key) == known_.end()) known_.emplace_back(key);
+  if (source_.ignored(path(key))) return nullptr;
   return table_.get(key);
 }
 
@@ -446,7 +457,7 @@ const toml::table* TableReader::subtable(std::string_view key) {
 void TableReader::finish() {
   for (auto&& [k, v] : table_) {
     std::string key(k.str());
-    if (std::find(known_.begin(), known_.end(), key) != known_.end()) continue;
+    if (std::find(known_.begin(), known_.end(), key) != known_.end() || source_.ignored(path(key))) continue;
     std::string what = v.is_table() ? "unknown table" : "unknown key";
     if (!note_.empty()) what += " (" + note_ + ")";
     source_.fail(&v, path(key), what + suggestion(key, known_));

@@ -5,6 +5,7 @@
 #pragma once
 #include <toml++/toml.h>
 
+#include <algorithm>
 #include <string>
 #include <string_view>
 #include <unordered_map>
@@ -28,9 +29,16 @@ class TomlSource {
   // Records `n` and everything under it as written at `loc` / drops that record before `n` dies.
   void markOverride(const toml::node& n, const SourceLoc& loc);
   void forget(const toml::node& n);
+  // Keys (dotted paths as errors name them) read as absent and never reported unknown: how
+  // `validate` finds the next error after one, by parsing again without the key that failed.
+  void ignore(const std::string& dotted_key) { ignored_.push_back(dotted_key); }
+  bool ignored(const std::string& dotted_key) const {
+    return std::find(ignored_.begin(), ignored_.end(), dotted_key) != ignored_.end();
+  }
 
  private:
   std::string file_;
+  std::vector<std::string> ignored_;
   std::unordered_map<const toml::node*, SourceLoc> override_locs_;
 };
 

@@ -1,7 +1,9 @@
 // csv_table.cpp — the reader behind every data/*.csv file (format in csv_table.h).
 #include "spectral/csv_table.h"
 
+#include <cerrno>
 #include <charconv>
+#include <cstring>
 #include <cmath>
 #include <fstream>
 #include <limits>
@@ -120,8 +122,9 @@ CsvTable parseCsv(const std::string& text, const std::string& name) {
 }
 
 CsvTable loadCsv(const std::string& path) {
+  errno = 0;
   std::ifstream f(path, std::ios::binary);
-  if (!f) throw RuntimeError(path + ": cannot open for reading");
+  if (!f) throw RuntimeError(path + ": cannot open for reading" + (errno ? std::string(": ") + std::strerror(errno) : ""));
   std::ostringstream ss;
   ss << f.rdbuf();
   return parseCsv(ss.str(), path);

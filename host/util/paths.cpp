@@ -2,7 +2,9 @@
 
 #include <unistd.h>
 
+#include <cerrno>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <vector>
 
@@ -35,9 +37,15 @@ std::string dataDir() {
   candidates.emplace_back(std::string(SEASIM_SOURCE_DIR) + "/data");
   candidates.emplace_back("data");
   std::string looked;
-  for (const auto& dir : candidates) {
-    if (fs::exists(fs::path(dir) / "cie1931_2deg_cmf.csv")) return fs::absolute(dir).lexically_normal();
-    looked += (looked.empty() ? "" : ", ") + dir;
+  for (size_t i = 0; i < candidates.size(); ++i) {
+    const std::string& dir = candidates[i];
+    std::error_code ec;
+    if (fs::exists(fs::path(dir) / "cie1931_2deg_cmf.csv", ec)) return fs::absolute(dir).lexically_normal();
+    // A folder that cannot be read (mode 000) threw a bare "filesystem error"; the one the user
+    // named in SEASIM_DATA_DIR is not passed over in silence.
+    if (ec && i == 0 && std::getenv("SEASIM_DATA_DIR"))
+      throw RuntimeError("cannot read the data folder '" + dir + "' (SEASIM_DATA_DIR): " + ec.message());
+    looked += (looked.empty() ? "" : ", ") + dir + (ec ? " (" + ec.message() + ")" : "");
   }
   throw RuntimeError("cannot find the data folder (looked in " + looked + "); set SEASIM_DATA_DIR");
 }
@@ -86,6 +94,7 @@ std::string inputFileProblem(const std::string& path) {
     return "cannot use the path '" + shown + "': " + ec.message();
   }
   if (!fs::is_regular_file(st)) return "file not found: " + path;
+  if (::access(path.c_str(), R_OK) != 0) return "cannot read '" + path + "': " + std::strerror(errno);
   return "";
 }
 

@@ -1,9 +1,11 @@
-// parsers_fuzz.cpp — libFuzzer target over the scene and job parsers and the override syntax
-// (issue 15). Built only with clang and -DSEASIM_FUZZ=ON (tests/fuzz/README.md). The first byte
-// of an input picks the parser:
+// parsers_fuzz.cpp — libFuzzer target over the scene and job parsers and the override syntax.
+// Built only with clang and -DSEASIM_FUZZ=ON (tests/fuzz/README.md). The first byte of an input
+// picks the parser:
 //   0: a scene file                         parseScene(text)
-//   1: a job file (anchored in jobs/, so the seeds' ../scenes paths resolve)   parseJob(text)
-//   2: "key=value\n" then a scene file      parseScene(text, {Override{key, value}})
+//   1: a job file (anchored in jobs/, so the seeds' ../scenes paths resolve; its items' overrides
+//      are applied to their scenes)         parseJob(text)
+//   2: "key=value\n" then a scene file      parseScene(text, {Override{key, value}}) (a job's override)
+//   3: "key=value\n" then a scene file      parseScene(text, {parseSetOption(line)}) (the command line's --set)
 // Bad input must end in InputError (or RuntimeError, for files the input names); any other
 // exception escapes and libFuzzer reports it, as it does crashes, leaks and sanitizer findings.
 #include <cstddef>
@@ -12,11 +14,12 @@
 
 #include "jobs/job.h"
 #include "scene/scene_parser.h"
+#include "scene/set_option.h"
 #include "util/error.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (size < 1) return 0;
-  const int mode = data[0] % 3;
+  const int mode = data[0] % 4;
   std::string text(reinterpret_cast<const char*>(data) + 1, size - 1);
   const std::string scene_path = std::string(SEASIM_SOURCE_DIR) + "/scenes/fuzz_input.toml";
   const std::string job_path = std::string(SEASIM_SOURCE_DIR) + "/jobs/fuzz_input.toml";
@@ -25,6 +28,10 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
       (void)seasim::parseScene(text, scene_path);
     } else if (mode == 1) {
       (void)seasim::parseJob(text, job_path);
+    } else if (mode == 3) {
+      const size_t nl = text.find('\n');
+      const seasim::Override o = seasim::parseSetOption(text.substr(0, nl));
+      (void)seasim::parseScene(nl == std::string::npos ? "" : text.substr(nl + 1), scene_path, {o});
     } else {
       const size_t nl = text.find('\n');
       const std::string line = text.substr(0, nl);

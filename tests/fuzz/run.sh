@@ -16,8 +16,17 @@ corpus=build-fuzz/corpus
 mkdir -p "$seeds" "$corpus"
 for f in scenes/*.toml; do { printf '\000'; cat "$f"; } > "$seeds/scene_$(basename "$f")"; done
 for f in jobs/*.toml; do { printf '\001'; cat "$f"; } > "$seeds/job_$(basename "$f")"; done
-for f in scenes/*.toml; do { printf '\002sun.zenith_deg=40\n'; cat "$f"; } > "$seeds/set_$(basename "$f")"; done
+for f in scenes/*.toml; do { printf '\002sun.zenith_deg=40\n'; cat "$f"; } > "$seeds/override_$(basename "$f")"; done
+for f in scenes/*.toml; do { printf '\003water.jerlov=IB\n'; cat "$f"; } > "$seeds/set_$(basename "$f")"; done
 # Findings (crash-*, leak-*, timeout-*) are written to build-fuzz/.
 export SEASIM_CACHE_DIR="$PWD/build-fuzz/cache"
-exec build-fuzz/seasim_fuzz_parsers "$corpus" "$seeds" -max_total_time="$seconds" -max_len=16384 \
-     -artifact_prefix=build-fuzz/ -print_final_stats=1 "$@"
+log=build-fuzz/last-run.log
+status=0
+build-fuzz/seasim_fuzz_parsers "$corpus" "$seeds" -max_total_time="$seconds" -max_len=16384 \
+  -artifact_prefix=build-fuzz/ -print_final_stats=1 "$@" 2>&1 | tee "$log" || status=$?
+# One line for CI logs: how much was tried, and what was found.
+execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -n 1)
+rate=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$log" | tail -n 1)
+findings=$(find build-fuzz -maxdepth 1 \( -name 'crash-*' -o -name 'leak-*' -o -name 'timeout-*' \) -newer "$seeds" | wc -l)
+echo "fuzz: ${execs:-?} executions in ${seconds} s (${rate:-?}/s), corpus $(ls "$corpus" | wc -l) units, $findings finding(s), exit $status"
+exit "$status"

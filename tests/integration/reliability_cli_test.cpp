@@ -409,19 +409,8 @@ TEST_F(Reliability, FloatOverflowValuesAreInputErrorsWithFileLineKey) {
   EXPECT_FALSE(contains(r.output, "bug")) << r.output;
 }
 
-TEST_F(Reliability, ReadOnlyPoclCacheIsNamed) {
-  const std::string ro = (dir_ / "ro").string();
-  std::string why;
-  if (!mountTmpfs(ro, "size=64k,ro", why)) GTEST_SKIP() << "read-only PoCL cache test skipped: " << why;
-  // PoCL cannot create its cache folder on a read-only file system: it then lists no device.
-  const std::string pocl = ro + "/pocl";
-  const Result r = run("render " + kRepo + "/scenes/flat_sea.toml --set camera.width=32 --set camera.height=16 -o " +
-                           (dir_ / "o").string() + " --device pocl",
-                       "POCL_CACHE_DIR=" + pocl + " ");
-  EXPECT_EQ(r.code, 1) << r.output;
-  EXPECT_TRUE(contains(r.output, "PoCL's cache folder '" + pocl + "' is not writable")) << r.output;
-  EXPECT_TRUE(contains(r.output, "set POCL_CACHE_DIR")) << r.output;
-}
+// A read-only PoCL cache: FaultMatrix.ReadOnlyPoclCacheGetsItsOwnMessageAndTheRenderGoesOn
+// (fault_matrix_test.cpp); PoCL now gets a private folder instead of offering no device.
 
 TEST_F(Reliability, OrphanTemporaryFilesAreCleanedOnResume) {
   const std::string job = write("job.toml", "[job]\noutput_dir = \"out\"\n" + flatItem("a"));

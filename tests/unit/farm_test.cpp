@@ -55,11 +55,12 @@ class Farm : public ::testing::Test {
     std::ofstream(path) << t.str();
     return loadJob(path);
   }
-  // Writes an item's files and returns its manifest "files" object.
+  // Writes an item's files (every one the job expects: its outputs exr and png, and report.json)
+  // and returns its manifest "files" object.
   nlohmann::json writeItem(const Job& j, const std::string& name) {
     fs::create_directories(j.output_dir + "/" + name);
     nlohmann::json files = nlohmann::json::object();
-    for (const char* f : {"image.png", "report.json"}) {
+    for (const char* f : {"image.exr", "image.png", "report.json"}) {
       const std::string rel = name + "/" + f;
       std::ofstream(j.output_dir + "/" + rel)
           << (std::string(f) == "report.json" ? R"({"device": {"label": "pocl:0 test"}, "pass_ms": {"a": 1}})"

@@ -20,6 +20,7 @@
 #include "io/atomic_file.h"
 #include "io/image_io.h"
 #include "io/npy.h"
+#include "jobs/farm_items.h"
 #include "jobs/job.h"
 #include "jobs/manifest.h"
 #include "jobs/shard_lock.h"
@@ -285,25 +286,67 @@ TEST_F(Reliability, ManifestOfTheWrongShapeIsAClearError) {
     EXPECT_NE(msg.find(p), std::string::npos) << text << " -> " << msg;
     EXPECT_NE(msg.find("is not a seasim job manifest"), std::string::npos) << text << " -> " << msg;
     EXPECT_NE(msg.find("delete it"), std::string::npos) << msg;
-    EXPECT_NE(errorOf([&] { (void)finishedItems(dir_.string()); }), "") << text;
+    EXPECT_NE(errorOf([&] { (void)finishedItems(Job{}, dir_.string()); }), "") << text;
   }
 }
 
+// A job of two items whose only output is report.json (outputs = {}), for the manifest tests.
+Job reportOnlyJob(const std::vector<std::string>& names) {
+  Job job;
+  for (const std::string& name : names) job.items.push_back(RenderItem{name, "", {}, {}, "", {}, "", {}});
+  return job;
+}
+
 TEST_F(Reliability, ManifestRecordsFailedItemsAndResumeSkipsOnlyDoneOnes) {
-  write("a.txt", "a");
+  fs::create_directories(dir_ / "good");
+  fs::create_directories(dir_ / "bad");
+  write("good/report.json", "{}");
+  write("bad/report.json", "{}");
+  const Job job = reportOnlyJob({"good", "bad"});
   Manifest m("job.toml");
-  m.recordDone("good", {{"a.txt", fileChecksum(path("a.txt"))}}, 1.5);
+  m.recordDone("good", {{"good/report.json", fileChecksum(path("good/report.json"))}}, 1.5);
   m.recordFailed("bad", "scene.toml:3: key 'x': broken");
   m.save(path("manifest.json"));
   const Manifest back = Manifest::load(path("manifest.json"), "job.toml");
   ASSERT_EQ(back.entries().size(), 2u);
   EXPECT_FALSE(back.entries()[1].done);
   EXPECT_EQ(back.entries()[1].error, "scene.toml:3: key 'x': broken");
-  EXPECT_EQ(finishedItems(dir_.string()), std::set<std::string>{"good"});
+  EXPECT_EQ(finishedItems(job, dir_.string()), std::set<std::string>{"good"});
   // Recording the item again replaces its entry.
-  m.recordDone("bad", nlohmann::json::object(), 2.0);
+  m.recordDone("bad", {{"bad/report.json", fileChecksum(path("bad/report.json"))}}, 2.0);
   m.save(path("manifest.json"));
-  EXPECT_EQ(finishedItems(dir_.string()), (std::set<std::string>{"bad", "good"}));
+  EXPECT_EQ(finishedItems(job, dir_.string()), (std::set<std::string>{"bad", "good"}));
+}
+
+// The manifest's own list is not trusted: an item whose list leaves out a file the job expects
+// (edited to {} by hand, or one output dropped) is not finished, whatever the listed checksums say.
+TEST_F(Reliability, FinishedItemsNeedEveryFileTheJobExpectsNotJustTheManifestsList) {
+  fs::create_directories(dir_ / "a");
+  write("a/report.json", "{}");
+  write("a/image.png", "png");
+  Job job = reportOnlyJob({"a"});
+  job.items[0].outputs = {"exr", "png"};
+  Manifest m("job.toml");
+  m.recordDone("a", nlohmann::json::object(), 1.0);
+  m.save(path("manifest.json"));
+  EXPECT_TRUE(finishedItems(job, dir_.string()).empty()) << "an empty list of files";
+  m.recordDone("a", {{"a/report.json", fileChecksum(path("a/report.json"))},
+                     {"a/image.png", fileChecksum(path("a/image.png"))}}, 1.0);
+  m.save(path("manifest.json"));
+  EXPECT_TRUE(finishedItems(job, dir_.string()).empty()) << "image.exr left out of the list";
+  const std::vector<ItemState> states = readItemStates(job, dir_.string(), true);
+  ASSERT_EQ(states.size(), 1u);
+  EXPECT_EQ(states[0].status, ItemState::Status::Damaged);
+  EXPECT_NE(states[0].detail.find("'a/image.exr', an output the job asks for, is not among the manifest's files"),
+            std::string::npos) << states[0].detail;
+  write("a/image.exr", "exr");
+  m.recordDone("a", {{"a/report.json", fileChecksum(path("a/report.json"))},
+                     {"a/image.png", fileChecksum(path("a/image.png"))},
+                     {"a/image.exr", fileChecksum(path("a/image.exr"))}}, 1.0);
+  m.save(path("manifest.json"));
+  EXPECT_EQ(finishedItems(job, dir_.string()), std::set<std::string>{"a"});
+  write("a/image.exr", "ex");  // truncated on disk
+  EXPECT_TRUE(finishedItems(job, dir_.string()).empty()) << "a listed file that no longer matches";
 }
 
 TEST_F(Reliability, ShardLockRefusesASecondRunAndTakesOverStaleLocks) {
@@ -366,9 +409,9 @@ TEST_F(Reliability, MemoryBudgetNamesTheSettingsAndWhatFits) {
   msg = errorOf([&] { checkMemoryBudget(buffers, 8 * gib, 8 * gib, "test device"); });
   EXPECT_NE(msg.find("CL_DEVICE_GLOBAL_MEM_SIZE"), std::string::npos) << msg;
   // All device per-pixel buffers (12 + 16 + 4 + 4 = 36 bytes a pixel) shrink with the image; the
-  // froxel and caustic maps (about 20 MiB) stay: 0.9 x 8 GiB minus those over 36 bytes is
-  // 214.1M pixels, 14632^2 at this aspect ratio.
-  EXPECT_NE(msg.find("or 14634 x 14634 at this aspect ratio"), std::string::npos) << msg;
+  // froxel, caustic and sun shadow maps (about 21 MiB) stay: 0.9 x 8 GiB minus those over 36 bytes
+  // is 214.1M pixels, 14633^2 at this aspect ratio.
+  EXPECT_NE(msg.find("or 14633 x 14633 at this aspect ratio"), std::string::npos) << msg;
   EXPECT_EQ(errorOf([&] { checkMemoryBudget(buffers, 64 * gib, 8 * gib, "test device"); }), "");
   // On a CPU device the host copies of the frame share the same memory and count too.
   EXPECT_EQ(errorOf([&] { checkMemoryBudget(buffers, 12 * gib, 8 * gib, "gpu", false); }), "");

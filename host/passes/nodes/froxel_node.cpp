@@ -1,5 +1,6 @@
 // froxel_node.cpp — "froxel": single scattering of the sun beam in the underwater frame (002 §5,
 // froxel.cl, passes/froxel_pass.h), published as "froxel_volume" for kd_multiple.
+#include <algorithm>
 #include <memory>
 
 #include "passes/froxel_pass.h"
@@ -62,14 +63,25 @@ PassDescriptor froxelDescriptor() {
                      features);
   };
   d.keys = froxelKeys();
-  d.knobs = {{"froxel_x", 160}, {"froxel_y", 90}, {"froxel_z", 64}, {"caustic_map_size", 256}, {"caustic_layers", 8}};
+  d.knobs = {{"froxel_x", 160},         {"froxel_y", 90},      {"froxel_z", 64},
+             {"caustic_map_size", 256}, {"caustic_layers", 8}, {"shadow_map_size", 512}};
   d.buffers = [d](const Scene& s, const PassPlan& p) -> std::vector<BufferEstimate> {
     const double fx = d.knob(s, "froxel_x"), fy = d.knob(s, "froxel_y"), fz = d.knob(s, "froxel_z");
+    std::vector<BufferEstimate> out = {{p.name, "froxel volume", 20 * fx * fy * fz,
+                                        {"quality.froxel_x", "quality.froxel_y", "quality.froxel_z"}, {fx, fy, fz}}};
+    // The sun's shadow map over the spheres and boxes (froxel_setup.cpp), one float per texel.
+    const bool bounded = std::any_of(s.objects.begin(), s.objects.end(), [](const ObjectDesc& o) {
+      return o.type == ObjectDesc::Type::Sphere || o.type == ObjectDesc::Type::Box;
+    });
+    if (bounded) {
+      const double S = d.knob(s, "shadow_map_size");
+      out.push_back({p.name, "sun shadow map over the objects", 4 * S * S,
+                     {"quality.shadow_map_size", "quality.shadow_map_size"}, {S, S}});
+    }
     const double C = d.knob(s, "caustic_map_size"), L = d.knob(s, "caustic_layers");
-    return {{p.name, "froxel volume", 20 * fx * fy * fz,
-             {"quality.froxel_x", "quality.froxel_y", "quality.froxel_z"}, {fx, fy, fz}},
-            {p.name, "caustic maps", 4 * L * C * C,
-             {"quality.caustic_layers", "quality.caustic_map_size", "quality.caustic_map_size"}, {L, C, C}}};
+    out.push_back({p.name, "caustic maps", 4 * L * C * C,
+                   {"quality.caustic_layers", "quality.caustic_map_size", "quality.caustic_map_size"}, {L, C, C}});
+    return out;
   };
   // 16x sea_single per pixel and band at the default grid (seabed against flat_sea, 3 rounds;
   // results/BENCHMARKS.md "Farm shards"), in proportion to the froxel count.

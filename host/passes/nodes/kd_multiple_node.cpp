@@ -87,7 +87,18 @@ PassDescriptor kdMultipleDescriptor() {
                      features);
   };
   d.keys = {{}, kUnderwaterSetupKeys};
-  d.buffers = [](const Scene&, const PassPlan&) { return std::vector<BufferEstimate>{}; };
+  d.buffers = [](const Scene& s, const PassPlan& p) -> std::vector<BufferEstimate> {
+    if (!p.featuresAs<KdFeatures>().point_spread) return {};
+    // The forward light's moments the point spread blurs (underwater_pass.cpp): F and F E per
+    // channel, F D and F per pixel, and per band with spectral output.
+    const double w = s.camera.width, h = s.camera.height, nb = s.spectral.count;
+    std::vector<BufferEstimate> out = {{p.name, "forward light moments (underwater.point_spread)", 4 * 8 * w * h,
+                                        {"camera.width", "camera.height"}, {w, h}}};
+    if (s.spectral.spectral_exr)
+      out.push_back({p.name, "forward light moments per band", 4 * 2 * nb * w * h,
+                     {"camera.width", "camera.height", "spectral.count"}, {w, h, nb}});
+    return out;
+  };
   // 1.5x sea_single per pixel and band (seabed against flat_sea; results/BENCHMARKS.md "Farm shards").
   d.cost = [](const Scene&, const PassPlan&) { return 1.5; };
   d.factory = [](const PassPlan&, const Plan&, const Scene&, const AutoQuality&) -> std::unique_ptr<Pass> {

@@ -1,0 +1,89 @@
+#include "reference/reference_image.h"
+
+#include <chrono>
+
+#include "device/device.h"
+#include "plan/scene_facts.h"
+#include "reference/sea_reference.h"
+#include "reference/sea_second_reference.h"
+#include "reference/shafts_reference.h"
+#include "reference/underwater_reference.h"
+#include "spectral/sensor.h"
+#include "spectral/wavelength_grid.h"
+#include "underwater/underwater_setup.h"
+#include "util/error.h"
+
+namespace seasim {
+
+namespace {
+
+// The given steps, else the scene's quality knob (a count: "auto" has no meaning for a reference).
+int referenceSteps(const Scene& scene, int steps, const char* knob) {
+  if (steps > 0) return steps;
+  const auto it = scene.quality.find(knob);
+  if (it == scene.quality.end()) throw RuntimeError(std::string("reference: no quality.") + knob);
+  if (it->second.automatic) {
+    throw RuntimeError(std::string("reference: quality.") + knob +
+                       " = \"auto\" is not supported (a reference has no error budget): give a number or --steps");
+  }
+  return static_cast<int>(it->second.value);
+}
+
+}  // namespace
+
+ReferenceImage renderReference(const Scene& scene, const ReferenceOptions& options) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const bool above = options.all_orders;
+  if (above && (cameraUnderwater(scene) || !scene.water.present || !(scene.camera.position.y > 0))) {
+    throw RuntimeError("reference --all-orders: for the sea seen from above only (a [water] scene, camera y > 0)");
+  }
+  if (above && (scene.sky.model != SkyDesc::Model::Uniform || scene.surface.type != SurfaceDesc::Type::Flat ||
+                scene.bottom.type == BottomDesc::Type::HeightField)) {
+    throw RuntimeError("reference --all-orders: the path tracer models a uniform sky, a flat surface and a flat "
+                       "bottom; set sky.model = \"uniform\", surface.type = \"flat\" and a flat or no bottom");
+  }
+  ReferenceImage out;
+  if (above || cameraUnderwater(scene)) {
+    // Under water: the spectral path tracer on the device, `steps` paths per pixel. With
+    // underwater.multiple_scattering = false it traces single scattering of the sun beam only, the
+    // reference of the froxel pass (make surfaces black and the sky dark to compare that term alone).
+    Device device(chooseDevice(options.device));
+    const WavelengthGrid grid = makeGrid(scene.spectral.count, scene.spectral.min_nm, scene.spectral.max_nm);
+    const UnderwaterSetup setup = makeUnderwaterSetup(
+        scene, grid, makeSensor(scene.spectral.sensor, grid, scene.spectral.white_balance, scene.spectral.camera_dir));
+    UnderwaterReferenceSettings settings;
+    settings.samples_per_pixel = referenceSteps(scene, options.steps, "reference_spp");
+    settings.seed = options.seed >= 0 ? static_cast<unsigned>(options.seed) : 1u;
+    settings.camera_above = above;
+    if (options.max_bounces > 0) settings.max_bounces = options.max_bounces;
+    if (!scene.underwater.multiple_scattering) settings.max_bounces = 1;
+    const UnderwaterLamps lamps = makeUnderwaterLamps(scene, grid);  // [[spotlights]] under water, by NEE
+    settings.lamps = &lamps;
+    settings.progress = options.progress;
+    UnderwaterReferenceResult r = renderUnderwaterReference(device, setup, settings);
+    out.rgb = std::move(r.rgb);
+    out.std_error = std::move(r.std_error);
+    out.method = "path tracer";
+    out.steps = r.samples;
+    out.seed = settings.seed;
+    out.max_bounces = settings.max_bounces;
+    out.ms = r.ms;
+    out.mean_std_error = r.mean_std_error;
+    out.image_mean = r.image_mean;
+    out.device_name = device.info().name;
+    return out;
+  }
+  // Spotlights in air: the shafts ray marcher; otherwise the sea reference.
+  const bool shafts = scene.air.present && !scene.spotlights.empty();
+  out.steps = referenceSteps(scene, options.steps, "reference_steps");
+  out.method = shafts ? "ray-march" : "quadrature";
+  out.rgb = shafts ? renderShaftsReference(scene, out.steps) : renderSeaReference(scene, out.steps);
+  if (!shafts && scene.sea.second_order) {  // + L^(2) by direct quadrature (000 eq. 6)
+    const Image second = renderSeaSecondReference(scene);
+    for (size_t i = 0; i < out.rgb.pixels.size(); ++i) out.rgb.pixels[i] += second.pixels[i];
+  }
+  out.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  return out;
+}
+
+}  // namespace seasim

@@ -1,0 +1,151 @@
+// py_renderer.cpp — seasim.Renderer and its Frame: the persistent Renderer of host/render (the one
+// the CLI, the job runner and the preview use), its device, and each frame's image, per-band values,
+// per-pass times and report as NumPy arrays and dicts. Kernels run with the GIL released.
+#include "py_renderer.h"
+
+#include <nanobind/ndarray.h>
+#include <nanobind/stl/string.h>
+#include <nanobind/stl/vector.h>
+
+#include <memory>
+
+#include "jobs/render_item.h"
+#include "plan/plan.h"
+#include "py_convert.h"
+#include "py_device.h"
+#include "py_scene.h"
+#include "quality/auto_quality.h"
+#include "render/renderer.h"
+#include "util/error.h"
+
+namespace nb = nanobind;
+
+namespace seasim::py {
+
+namespace {
+
+struct PyFrame {
+  FrameResult frame;
+  nlohmann::json report;
+};
+
+struct PyRenderer {
+  std::unique_ptr<Device> device;
+  std::unique_ptr<Renderer> renderer;
+
+  PyRenderer(const PyScene& scene, const std::string& selector) {
+    nb::gil_scoped_release unlocked;  // device start-up and kernel builds
+    device = std::make_unique<Device>(pickDevice(selector));
+    // Before any buffer exists, as `seasim render` does: a render too big for the device fails here.
+    checkRenderFitsDevice(*device, scene.scene, makePlan(scene.scene));
+    renderer = std::make_unique<Renderer>(*device, scene.path, scene.text, scene.overrides, shippedPasses());
+  }
+
+  PyFrame render() {
+    PyFrame out;
+    {
+      nb::gil_scoped_release unlocked;
+      out.frame = renderer->render();
+    }
+    // As renderItem: an image with NaN/Inf is never handed back.
+    if (out.frame.nonfinite != 0) {
+      throw RuntimeError("scene '" + renderer->scene().name + "': the kernels produced " +
+                         std::to_string(out.frame.nonfinite) + " NaN/Inf values. Check the scene for extreme values "
+                         "(huge irradiance, scattering or intensity); if they are physical, please report it with the scene");
+    }
+    out.report = frameReport(*device, renderer->scene(), renderer->plan(), out.frame);
+    return out;
+  }
+
+  // Python keyword names cannot hold dots: sun__zenith_deg stands for sun.zenith_deg.
+  void update(nb::handle overrides, nb::kwargs kwargs) {
+    std::vector<Override> all = overridesFrom(overrides);
+    nb::dict renamed;
+    for (auto [k, v] : kwargs) {
+      std::string key = nb::cast<std::string>(k);
+      for (size_t at; (at = key.find("__")) != std::string::npos;) key.replace(at, 2, ".");
+      renamed[key.c_str()] = v;
+    }
+    for (Override& o : overridesFrom(renamed)) all.push_back(std::move(o));
+    renderer->update(all);
+  }
+};
+
+// The frame's image as an (H, W, C) view into the frame's memory, kept alive by the Python frame.
+template <class T>
+nb::ndarray<nb::numpy, T> view(const PyFrame& owner, T* data, size_t h, size_t w, size_t c) {
+  return nb::ndarray<nb::numpy, T>(data, {h, w, c}, nb::find(&owner));
+}
+
+}  // namespace
+
+void bindRenderer(nb::module_& m) {
+  nb::class_<PyFrame>(m, "Frame", "One rendered frame (Renderer.render()).")
+      .def_prop_ro(
+          "rgb",
+          [](PyFrame& f) {
+            Image& rgb = f.frame.rgb;
+            return view(f, rgb.pixels.data(), rgb.height, rgb.width, rgb.channels);
+          },
+          "Linear sensor RGB, float32 (height, width, 3): the values `seasim render` writes to image.exr. "
+          "A view of the frame's memory, no copy.")
+      .def_prop_ro(
+          "spectral",
+          [](PyFrame& f) -> nb::object {
+            if (f.frame.spectral.empty()) return nb::none();
+            const Image& rgb = f.frame.rgb;
+            const size_t bands = f.frame.wavelengths_nm.size();
+            return nb::cast(view(f, f.frame.spectral.data(), rgb.height, rgb.width, bands), nb::rv_policy::reference);
+          },
+          nb::for_getter(nb::sig("def spectral(self, /) -> NDArray[numpy.float32] | None")),
+          "Per-band radiance, float32 (height, width, bands), when the scene sets spectral.spectral_exr = true; "
+          "else None.")
+      .def_prop_ro("wavelengths_nm", [](const PyFrame& f) {
+        std::vector<double> nm = f.frame.wavelengths_nm;
+        const size_t n = nm.size();
+        return nb::cast(ownedArray(std::move(nm), {n}), nb::rv_policy::automatic);
+      }, nb::for_getter(nb::sig("def wavelengths_nm(self, /) -> NDArray[numpy.float64]")), "The bands' centres in nm.")
+      .def_prop_ro("timings", [](const PyFrame& f) {
+        nb::dict d;  // a pass that ran twice adds up
+        for (const PassTiming& t : f.frame.timings) {
+          const double before = d.contains(t.name.c_str()) ? nb::cast<double>(d[t.name.c_str()]) : 0.0;
+          d[t.name.c_str()] = before + t.ms;
+        }
+        return d;
+      }, "Milliseconds of each pass that ran for this frame (OpenCL profiling), in plan order.")
+      .def_prop_ro("report", [](const PyFrame& f) { return jsonToPython(f.report); },
+                   nb::for_getter(nb::sig("def report(self, /) -> dict")),
+                   "report.json's content for this frame (device, plan, pass_ms, settings, ...), without outputs.")
+      .def_prop_ro("build_ms", [](const PyFrame& f) { return f.frame.build_ms; })
+      .def_prop_ro("wall_ms", [](const PyFrame& f) { return f.frame.wall_ms; })
+      .def("__repr__", [](const PyFrame& f) {
+        return "<seasim.Frame " + std::to_string(f.frame.rgb.width) + "x" + std::to_string(f.frame.rgb.height) + ">";
+      });
+
+  nb::class_<PyRenderer>(m, "Renderer",
+                         "The frame graph of one scene on one device, kept between frames: after update() only "
+                         "the passes that read a changed key run again (as in `seasim preview`).")
+      .def(nb::init<const PyScene&, const std::string&>(), nb::arg("scene"), nb::arg("device") = "",
+           "Opens the device (a selector as --device takes; '' = first GPU, else PoCL) and plans the scene. "
+           "Raises seasim.DeviceError when no device opens or the render does not fit it.")
+      .def("render", &PyRenderer::render,
+           "Renders a frame (the GIL is released while the kernels run). Raises seasim.RenderError when the "
+           "kernels produce NaN/Inf.")
+      .def("update", &PyRenderer::update, nb::arg("overrides") = nb::none(), nb::arg("kwargs"),
+           "Applies overrides on top of those so far: update({'sun.zenith_deg': 30}) or update(sun__zenith_deg=30). "
+           "The next render() reruns only the passes whose keys changed. A bad value raises seasim.SceneError "
+           "and changes nothing.")
+      .def("rerun_all", [](PyRenderer& r) { r.renderer->rerunAll(); },
+           "Makes the next render() run every pass again (to time a whole frame).")
+      .def_prop_ro("last_prepared", [](const PyRenderer& r) { return r.renderer->lastPrepared(); },
+                   "Passes set up by the last render(), in plan order.")
+      .def_prop_ro("last_executed", [](const PyRenderer& r) { return r.renderer->lastExecuted(); },
+                   "Passes run by the last render(), in plan order.")
+      .def_prop_ro("plan", [](const PyRenderer& r) { return r.renderer->plan().toText(); })
+      .def_prop_ro("device", [](const PyRenderer& r) { return r.device->info(); })
+      .def("__repr__", [](const PyRenderer& r) {
+        return "<seasim.Renderer '" + r.renderer->scene().name + "' on " + r.device->info().label() + ">";
+      });
+}
+
+}  // namespace seasim::py

@@ -1,0 +1,118 @@
+"""seasim.Renderer and Frame: the image is seasim render's image.exr bit for bit, update() reruns only
+what it should, arrays are views, the report and timings are the CLI's."""
+
+from __future__ import annotations
+
+import subprocess
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import seasim
+from conftest import BINARY, SMALL, scene_path
+
+
+def test_rgb_is_float32_h_w_3_and_a_view_not_a_copy(flat_sea_frame):
+    rgb = flat_sea_frame.rgb
+    assert rgb.shape == (36, 64, 3) and rgb.dtype == np.float32
+    assert np.all(np.isfinite(rgb)) and rgb.max() > 0
+    assert np.shares_memory(rgb, flat_sea_frame.rgb)  # two reads of .rgb: one buffer
+    assert flat_sea_frame.spectral is None
+
+
+def test_render_equals_the_command_lines_image_exr_bit_for_bit(flat_sea_frame, tmp_path):
+    out = tmp_path / "cli"
+    sets = [arg for key, value in SMALL.items() for arg in ("--set", f"{key}={value}")]
+    subprocess.run([str(BINARY), "render", str(scene_path("flat_sea.toml")), *sets, "-o", str(out)], check=True,
+                   capture_output=True)
+    from_cli = seasim.read_image(out / "image.exr")
+    assert from_cli.shape == flat_sea_frame.rgb.shape
+    assert np.array_equal(from_cli, flat_sea_frame.rgb)
+    # display() is the PNG's tone map: the same 8-bit levels as the command line's image.png.
+    png_levels = np.rint(seasim.read_image(out / "image.png") * 255)
+    assert np.array_equal(np.rint(seasim.display(flat_sea_frame) * 255), png_levels)
+
+
+def test_report_and_timings_describe_the_frame(flat_sea, flat_sea_frame):
+    report = flat_sea_frame.report
+    assert report["name"] == "flat_sea" and report["nonfinite"] == 0
+    assert report["settings"]["width"] == 64 and report["settings"]["height"] == 36
+    assert [p["name"] for p in report["plan"]] == list(flat_sea_frame.timings)
+    assert report["pass_ms"] == pytest.approx(flat_sea_frame.timings)
+    assert all(ms >= 0 for ms in flat_sea_frame.timings.values())
+    assert report["device"]["label"]
+
+
+def test_spectral_where_the_scene_asks_for_it():
+    scene = seasim.Scene.load(scene_path("flat_sea.toml"),
+                              overrides={**SMALL, "spectral.count": 8, "spectral.spectral_exr": True})
+    frame = seasim.Renderer(scene).render()
+    assert frame.spectral.shape == (36, 64, 8) and frame.spectral.dtype == np.float32
+    assert frame.wavelengths_nm.shape == (8,)
+    assert np.all(np.diff(frame.wavelengths_nm) > 0)
+    assert frame.spectral.max() > 0
+
+
+def test_update_reruns_only_the_passes_whose_keys_changed():
+    scene = seasim.Scene.load(scene_path("wavy_sea.toml"), overrides=SMALL)
+    renderer = seasim.Renderer(scene)
+    first = renderer.render()
+    assert renderer.last_executed == ["ocean_fft", "sea_single", "nonfinite_check"]
+    again = renderer.render()  # nothing changed: nothing runs
+    assert renderer.last_executed == [] and np.array_equal(again.rgb, first.rgb)
+    renderer.update({"quality.sea_lut_size": 17})  # the sea's table: not the waves
+    changed = renderer.render()
+    assert "ocean_fft" not in renderer.last_executed and "sea_single" in renderer.last_executed
+    fresh = seasim.Renderer(scene.with_overrides({"quality.sea_lut_size": 17})).render()
+    assert np.array_equal(changed.rgb, fresh.rgb)
+    renderer.update(quality__sea_lut_size=17)  # the same value again, by keyword: a no-op
+    renderer.render()
+    assert renderer.last_executed == []
+
+
+def test_a_bad_update_raises_and_changes_nothing(flat_sea):
+    renderer = seasim.Renderer(flat_sea)
+    renderer.render()
+    with pytest.raises(seasim.SceneError, match="<overrides>: key 'sun.zenith_deg'"):
+        renderer.update({"sun.zenith_deg": "high"})
+    renderer.render()
+    assert renderer.last_executed == []  # nothing was marked to run again
+    renderer.update({"sun.zenith_deg": 50})  # and the next good update applies as if the bad one never came
+    frame = renderer.render()
+    fresh = seasim.Renderer(flat_sea.with_overrides({"sun.zenith_deg": 50})).render()
+    assert np.array_equal(frame.rgb, fresh.rgb)
+
+
+def test_unknown_device_is_a_device_error(flat_sea):
+    with pytest.raises(seasim.DeviceError, match="no-such-device"):
+        seasim.Renderer(flat_sea, device="no-such-device")
+
+
+def test_the_gil_is_released_while_the_kernels_run():
+    # A Python thread keeps ticking while another thread renders; were the GIL held through the
+    # kernels, it would stop for the whole render.
+    renderer = seasim.Renderer(seasim.Scene.load(scene_path("seabed.toml"),
+                                                 overrides={"camera.width": 160, "camera.height": 90}))
+    renderer.render()  # kernel builds out of the way
+    ticks, done = [], threading.Event()
+
+    def tick():
+        while not done.is_set():
+            ticks.append(time.perf_counter())
+            time.sleep(0.001)
+
+    ticker = threading.Thread(target=tick)
+    ticker.start()
+    time.sleep(0.02)
+    renderer.rerun_all()
+    t0 = time.perf_counter()
+    renderer.render()
+    t1 = time.perf_counter()
+    done.set()
+    ticker.join()
+    during = [t for t in ticks if t0 < t < t1]
+    longest_pause = float(np.max(np.diff([t0, *during, t1])))
+    assert t1 - t0 > 0.05, "the render is too short to tell"
+    assert longest_pause < 0.5 * (t1 - t0), f"no tick for {longest_pause:.3f} s of a {t1 - t0:.3f} s render"
