@@ -23,6 +23,7 @@
 #include "jobs/render_item.h"
 #include "jobs/runner.h"
 #include "plan/plan.h"
+#include "plan/scene_facts.h"
 #include "quality/auto_quality.h"
 #include "reference/compare.h"
 #include "reference/reference_image.h"
@@ -485,7 +486,7 @@ int cmdBench(const BenchCmd& cmd) {
   }
   // Underwater scenes also time the same G-buffer + K_d shading as a plain C++/oneTBB loop on this CPU
   // (host/underwater/underwater_cpu.cpp, float, no froxel term) in the same run, for the ratio.
-  const bool underwater = makePlan(loadScene(cmd.scene, parseSets(cmd.sets))).hasPass("kd_multiple");
+  const bool underwater = cameraUnderwater(loadScene(cmd.scene, parseSets(cmd.sets)));
   std::vector<std::string> columns = {"wavelengths", "kernel_ms_median", "pixel_wavelengths_per_s"};
   if (underwater) {
     for (const char* c : {"raycast_ms", "froxel_ms", "kd_multiple_ms", "tbb_gbuffer_kd_ms", "tbb_over_opencl",
@@ -560,7 +561,7 @@ int cmdBench(const BenchCmd& cmd) {
       UnderwaterCpuOptions options;
       options.use_double = false;
       options.multiple = scene.underwater.multiple_scattering;
-      options.single_split = plan.hasPass("froxel");
+      options.single_split = plan.produces("froxel_volume");
       // The scalar TBB loop and the vectorised one (underwater_cpu_simd.cpp), interleaved run by run.
       std::vector<double> cpu, cpu_simd;
       for (int r = 0; r < std::max(1, cmd.repeat); ++r) {

@@ -10,7 +10,7 @@
 
 #include "io/atomic_file.h"
 #include "jobs/manifest.h"
-#include "plan/shafts_method.h"
+#include "plan/pass_descriptor.h"
 #include "scene/scene_parser.h"
 #include "util/error.h"
 
@@ -19,54 +19,6 @@ namespace fs = std::filesystem;
 namespace seasim {
 
 namespace {
-
-// A knob's value, its default when "auto" or absent (the auto search's pick is not known here).
-double knob(const Scene& scene, const std::string& name, double fallback) {
-  const auto it = scene.quality.find(name);
-  if (it == scene.quality.end() || it->second.automatic || it->second.value <= 0) return fallback;
-  return it->second.value;
-}
-
-// A pass's cost per pixel and band relative to sea_single's, at the knobs' defaults: the median
-// kernel ms of the shipped jobs on PoCL (2-core VM; results/BENCHMARKS.md "Farm shards"): sea_single
-// 24 ms per million pixel-bands, sea_second 1.6x that (18x over a height-field floor), the ocean's
-// caustics on a height-field floor 70x; froxel 16x and kd_multiple 1.5x re-measured after issue 14's
-// band lanes and froxel culling (seabed against flat_sea, 3 rounds; they were 19x and 6x). Passes not
-// listed count 1.
-double passWeight(const PassPlan& pass) {
-  const bool height_field =
-      std::find(pass.defines.begin(), pass.defines.end(), "SEASIM_BOTTOM_HEIGHTFIELD=1") != pass.defines.end();
-  if (pass.name == "sea_second") return height_field ? 18.0 : 1.6;
-  if (pass.name == "caustics") return 70.0;
-  if (pass.name == "froxel") return 16.0;
-  if (pass.name == "kd_multiple") return 1.5;
-  if (pass.name == "raycast") return 0.7;
-  if (pass.name == "ocean_fft") return 0.4;
-  if (pass.name == "nonfinite_check") return 0.01;
-  return 1.0;
-}
-
-// The shafts pass per pixel and band, relative to sea_single: it grows with the lamps, and the two
-// integrators (plan/shafts_method.h) differ. Per lamp, from stage (5 lamps) and spot_sphere (1) at
-// 720x480 against flat_sea, interleaved (results/BENCHMARKS.md "Farm shards"): intervals 8-10x,
-// planes at n = 30, m = 6 19-26x. The planes scale with n x m; the intervals' panel width moves them
-// little (stage: -22 % from 4 to 32 degrees), so it is left out.
-double shaftsFactor(const Scene& scene) {
-  const double lamps = std::max<double>(1.0, static_cast<double>(scene.spotlights.size()));
-  if (shaftsUseIntervals(scene))
-    return lamps * 9.0;
-  return lamps * 22.0 * (knob(scene, "shafts_planes", 30) / 30.0) * (knob(scene, "shafts_subplanes", 6) / 6.0);
-}
-
-// How much more a pass costs at the scene's quality knobs than at their defaults.
-double qualityFactor(const Scene& scene, const std::string& pass) {
-  if (pass == "sea_second") return knob(scene, "sea_nz", 12) / 12.0 * (knob(scene, "sea_nd", 128) / 128.0);
-  if (pass == "shafts") return shaftsFactor(scene);
-  if (pass == "froxel")
-    return knob(scene, "froxel_x", 160) * knob(scene, "froxel_y", 90) * knob(scene, "froxel_z", 64) / (160.0 * 90 * 64);
-  if (pass == "caustics") return std::pow(knob(scene, "caustic_map_size", 256) / 256.0, 2);
-  return 1.0;
-}
 
 // Per item and pixel, whatever the passes: reading the scene, writing EXR and PNG, the renderer's
 // set-up; about 1 µs per pixel on the same VM, i.e. 40 sea_single pixel-bands.
@@ -78,7 +30,12 @@ const char* sourceName(CostSource s) { return s == CostSource::Measured ? "measu
 
 int64_t estimateItemCost(const Scene& scene, const Plan& plan) {
   double per_band = 0;
-  for (const PassPlan& p : plan.passes) per_band += passWeight(p) * qualityFactor(scene, p.name);
+  // Each pass's weight at the scene's knobs, from its descriptor (plan/pass_descriptor.h); an entry
+  // without one (a plan built by hand) counts as much as sea_single.
+  for (const PassPlan& p : plan.passes) {
+    const PassDescriptor* d = descriptorOf(p);
+    per_band += d && d->cost ? d->cost(scene, p) : 1.0;
+  }
   const double cost =
       double(scene.camera.width) * scene.camera.height * (scene.spectral.count * per_band + kPerPixelOverhead);
   // Clamped so that a sum over a million items stays far from int64's limit.

@@ -6,6 +6,7 @@
 #include <memory>
 #include <string>
 
+#include "device/enqueue.h"
 #include "math/kernel_math.h"
 #include "passes/caustics_pass.h"
 #include "passes/sea_heightfield.h"
@@ -38,12 +39,10 @@ void divideByMean(std::vector<float>& map) {
 }
 
 cl::Buffer upload(Device& device, const std::vector<float>& values, const char* what) {
-  try {
+  return onDevice(std::string(what) + " upload", [&] {
     return cl::Buffer(device.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(float) * values.size(),
                       const_cast<float*>(values.data()));
-  } catch (const cl::Error& e) {
-    throw DeviceError(std::string(what) + " upload: " + e.what() + " " + clErrorName(e.err()));
-  }
+  });
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <string>
 
+#include "device/enqueue.h"
 #include "util/error.h"
 
 extern "C" {
@@ -26,7 +27,7 @@ CausticsPass::CausticsPass(Device& device, OceanPass& ocean, const CausticsConfi
   if (!(config_.plane_depth >= 0)) throw RuntimeError("caustics: plane depth must be >= 0 m");
   if (!(config_.ior >= 1)) throw RuntimeError("caustics: ior must be >= 1");
   if (!(config_.attenuation >= 0)) throw RuntimeError("caustics: attenuation must be >= 0 1/m");
-  try {
+  onDevice("caustics pass set-up", [&] {
     const BuiltProgram& built = device.program("caustics.cl", {});
     splat_ = cl::Kernel(built.program, "caustics_splat");
     splat_floor_ = cl::Kernel(built.program, "caustics_splat_floor");
@@ -35,9 +36,7 @@ CausticsPass::CausticsPass(Device& device, OceanPass& ocean, const CausticsConfi
     splat_.setArg(0, params_);
     splat_.setArg(1, ocean_.fields());
     splat_.setArg(2, map_);
-  } catch (const cl::Error& e) {
-    throw DeviceError(std::string("caustics pass set-up: ") + e.what() + " " + clErrorName(e.err()));
-  }
+  });
 }
 
 double CausticsPass::run(double plane_depth) {
@@ -70,7 +69,7 @@ CausticsParams makeParams(const CausticsConfig& config, const OceanPass& ocean, 
 double CausticsPass::run() {
   const auto start = std::chrono::steady_clock::now();
   const CausticsParams p = makeParams(config_, ocean_, map_size_);
-  try {
+  onDevice("caustics pass", [&] {
     cl::CommandQueue& q = device_.queue();
     q.enqueueWriteBuffer(params_, CL_FALSE, 0, sizeof p, &p);
     q.enqueueFillBuffer(map_, 0.0f, 0, sizeof(float) * map_size_ * map_size_);
@@ -80,9 +79,7 @@ double CausticsPass::run() {
       q.enqueueNDRangeKernel(splat_, cl::NullRange, cl::NDRange(rays, rays));
     }
     q.finish();
-  } catch (const cl::Error& e) {
-    throw DeviceError(std::string("caustics pass: ") + e.what() + " " + clErrorName(e.err()));
-  }
+  });
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
@@ -97,7 +94,7 @@ double CausticsPass::runFloor(const HeightField& field) {
   const size_t rays = static_cast<size_t>(ocean_.n()) * static_cast<size_t>(config_.supersample) * tiles;
   if (rays > 65536) throw RuntimeError("caustics: the floor (" + std::to_string(E) + " m) needs " + std::to_string(rays) +
                                        " rays per side at this surface resolution; lower the ocean grid or supersample");
-  try {
+  onDevice("caustics pass (floor)", [&] {
     cl::CommandQueue& q = device_.queue();
     const HeightFieldBuffers hf = uploadHeightField(device_, field);
     floor_map_ = cl::Buffer(device_.context(), CL_MEM_READ_WRITE, sizeof(float) * map_size_ * map_size_);
@@ -116,30 +113,24 @@ double CausticsPass::runFloor(const HeightField& field) {
       q.enqueueNDRangeKernel(splat_floor_, cl::NullRange, cl::NDRange(rays, rays));
     }
     q.finish();
-  } catch (const cl::Error& e) {
-    throw DeviceError(std::string("caustics pass (floor): ") + e.what() + " " + clErrorName(e.err()));
-  }
+  });
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
 std::vector<float> CausticsPass::readFloorMap() {
   if (!floor_map_()) throw RuntimeError("caustics: readFloorMap before runFloor");
   std::vector<float> out(static_cast<size_t>(map_size_) * map_size_);
-  try {
+  onDevice("caustics read-back (floor)", [&] {
     device_.queue().enqueueReadBuffer(floor_map_, CL_TRUE, 0, sizeof(float) * out.size(), out.data());
-  } catch (const cl::Error& e) {
-    throw DeviceError(std::string("caustics read-back (floor): ") + e.what() + " " + clErrorName(e.err()));
-  }
+  });
   return out;
 }
 
 std::vector<float> CausticsPass::readMap() {
   std::vector<float> out(static_cast<size_t>(map_size_) * map_size_);
-  try {
+  onDevice("caustics read-back", [&] {
     device_.queue().enqueueReadBuffer(map_, CL_TRUE, 0, sizeof(float) * out.size(), out.data());
-  } catch (const cl::Error& e) {
-    throw DeviceError(std::string("caustics read-back: ") + e.what() + " " + clErrorName(e.err()));
-  }
+  });
   return out;
 }
 

@@ -4,9 +4,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "device/enqueue.h"
 #include "geometry/kernel_camera.h"
 #include "math/kernel_math.h"
 #include "passes/fourflow_auto.h"
+#include "passes/fourflow_features.h"
 #include "spectral/jerlov.h"
 #include "underwater/fourflow_setup.h"
 #include "underwater/fourflow_waves.h"
@@ -15,10 +17,6 @@
 namespace seasim {
 
 namespace {
-
-bool hasDefine(const PassPlan& plan, const char* d) {
-  return std::find(plan.defines.begin(), plan.defines.end(), std::string(d)) != plan.defines.end();
-}
 
 }  // namespace
 
@@ -74,7 +72,7 @@ FourFlowSetup makeFourFlowSetup(const Scene& scene, const WavelengthGrid& grid, 
   }
   // Bottom: the [shallow] slope or the [bottom] table.
   if (sh.slope) {
-    const int n = 65;
+    const int n = kFourFlowSlopeNodes;
     std::vector<float> depth(size_t(n) * n);
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i)
@@ -127,11 +125,12 @@ FourFlowPass::FourFlowPass(Device& device, const Scene& scene, const PassPlan& p
                            const Sensor& sensor, int table_size)
     : device_(device), width_(scene.camera.width), height_(scene.camera.height) {
   const FourFlowSetup s = makeFourFlowSetup(scene, grid, sensor, table_size);
-  const bool tables = !hasDefine(plan, "SEASIM_FF_TABLES=0");
-  const bool hf = hasDefine(plan, "SEASIM_FF_HEIGHTFIELD=1");
+  const FourFlowFeatures& features = plan.featuresAs<FourFlowFeatures>();
+  const bool tables = features.tables != 0;
+  const bool hf = features.height_field;
   if (hf != s.height_field) throw RuntimeError("fourflow pass: the plan's SEASIM_FF_HEIGHTFIELD does not match the scene");
   const size_t pixels = size_t(width_) * size_t(height_);
-  try {
+  onDevice("fourflow pass set-up", [&] {
     const BuiltProgram& built = device.program(plan.kernel_file, plan.defines);
     view_ = cl::Buffer(device.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(FfView), const_cast<FfView*>(&s.view));
     bands_ = cl::Buffer(device.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(FfBand) * s.bands.size(),
@@ -161,15 +160,12 @@ FourFlowPass::FourFlowPass(Device& device, const Scene& scene, const PassPlan& p
       render_.setArg(6, hf_depth_);
     }
     cl_uint next_arg = hf ? 7 : 5;
-    if (hasDefine(plan, "SEASIM_SPECTRAL_OUTPUT=1")) {
+    if (features.spectral_output) {
       spectral_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * pixels * s.bands.size());
       render_.setArg(next_arg++, spectral_);
     }
-    // A sky model other than the uniform one (plan.cpp's SEASIM_SKY_MODEL): its arguments follow.
-    const bool sky_model = std::any_of(plan.defines.begin(), plan.defines.end(), [](const std::string& d) {
-      return d.rfind("SEASIM_SKY_MODEL=", 0) == 0 && d != "SEASIM_SKY_MODEL=0";
-    });
-    if (sky_model) {
+    // A sky model other than the uniform one: its arguments follow.
+    if (features.sky_model != 0) {
       const cl_uint arg = next_arg;
       const cl_mem_flags in = CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR;
       sky_params_ = cl::Buffer(device.context(), in, sizeof(SkyParams), const_cast<SkyParams*>(&s.sky_params));
@@ -178,22 +174,9 @@ FourFlowPass::FourFlowPass(Device& device, const Scene& scene, const PassPlan& p
                                const_cast<float*>(s.sky_rgb_matrix.data()));
       render_.setArg(arg, sky_params_), render_.setArg(arg + 1, sky_), render_.setArg(arg + 2, sky_matrix_);
     }
-  } catch (const cl::Error& e) {
-    throw DeviceError(std::string("fourflow pass set-up: ") + e.what() + " " + clErrorName(e.err()));
-  }
+  });
 }
 
-double FourFlowPass::run() {
-  cl::Event done;
-  try {
-    const size_t local = 8;
-    cl::NDRange global((size_t(width_) + local - 1) / local * local, (size_t(height_) + local - 1) / local * local);
-    device_.queue().enqueueNDRangeKernel(render_, cl::NullRange, global, cl::NDRange(local, local), nullptr, &done);
-    done.wait();
-  } catch (const cl::Error& e) {
-    throw DeviceError(std::string("fourflow pass: ") + e.what() + " " + clErrorName(e.err()));
-  }
-  return eventMs(done);
-}
+double FourFlowPass::run() { return runKernel2d(device_, "fourflow", render_, width_, height_); }
 
 }  // namespace seasim

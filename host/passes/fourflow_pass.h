@@ -16,6 +16,11 @@
 #include "spectral/wavelength_grid.h"
 #include "common/fourflow_params.h"
 #include "passes/sea_heightfield.h"
+
+namespace seasim {
+// Nodes per side of the height field a [shallow] slope becomes.
+inline constexpr int kFourFlowSlopeNodes = 65;
+}  // namespace seasim
 #include "sky/sky_light.h"
 
 namespace seasim {

@@ -1,5 +1,6 @@
 #include "passes/froxel_pass.h"
 
+#include "device/enqueue.h"
 #include "passes/caustic_stack.h"
 
 #include <algorithm>
@@ -35,7 +36,6 @@ void requireDefine(std::vector<std::string>& defines, const std::string& name, i
   defines.push_back(want);
 }
 
-size_t up(size_t v, size_t local) { return (v + local - 1) / local * local; }
 
 }  // namespace
 
@@ -58,7 +58,7 @@ FroxelPass::FroxelPass(Device& device, const UnderwaterSetup& setup, const Froxe
   const size_t froxels = size_t(fp_.nx) * fp_.ny * fp_.nz;
   const size_t texels = fp_.shadow_size > 0 ? size_t(fp_.shadow_size) * fp_.shadow_size : 1;
   const cl_mem_flags in = CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR;
-  try {
+  onDevice("froxel pass set-up", [&] {
     const BuiltProgram& built = device.program("froxel.cl", defines_);
     shadow_kernel_ = cl::Kernel(built.program, "froxel_shadow_map");
     inject_kernel_ = cl::Kernel(built.program, "froxel_inject");
@@ -102,20 +102,15 @@ FroxelPass::FroxelPass(Device& device, const UnderwaterSetup& setup, const Froxe
     integrate_kernel_.setArg(5, volume_);
     resolve_kernel_.setArg(0, fparams_);
     resolve_kernel_.setArg(1, volume_);
-  } catch (const cl::Error& e) {
-    throw DeviceError(std::string("froxel pass set-up: ") + e.what() + " " + clErrorName(e.err()));
-  }
+  });
 }
 
 double FroxelPass::run(const cl::Buffer* caustic_maps, const cl::Buffer* geom, int width, int height) {
   timings_.clear();
-  try {
+  onDevice("froxel pass", [&] {
     inject_kernel_.setArg(4, caustic_maps ? *caustic_maps : no_caustics_);
     auto enqueue = [&](cl::Kernel& kernel, const cl::NDRange& global, const cl::NDRange& local, const char* name) {
-      cl::Event done;
-      device_.queue().enqueueNDRangeKernel(kernel, cl::NullRange, global, local, nullptr, &done);
-      done.wait();
-      timings_.push_back({name, eventMs(done)});
+      timings_.push_back({name, runKernel(device_, "froxel", kernel, global, local)});
     };
     // The last slice each column needs: from the pixels' reads with a G-buffer, else every slice.
     const cl_int all = geom ? -1 : fp_.nz - 1;
@@ -124,47 +119,32 @@ double FroxelPass::run(const cl::Buffer* caustic_maps, const cl::Buffer* geom, i
       extent_kernel_.setArg(1, *geom);
       extent_kernel_.setArg(2, width);
       extent_kernel_.setArg(3, height);
-      enqueue(extent_kernel_, cl::NDRange(up(size_t(width), 8), up(size_t(height), 8)), cl::NDRange(8, 8),
+      enqueue(extent_kernel_, cl::NDRange(roundUp(size_t(width), 8), roundUp(size_t(height), 8)), cl::NDRange(8, 8),
               "froxel_column_extent");
     }
     if (fp_.shadow_size > 0) {
-      const size_t n = up(size_t(fp_.shadow_size), 8);
+      const size_t n = roundUp(size_t(fp_.shadow_size), 8);
       enqueue(shadow_kernel_, cl::NDRange(n, n), cl::NDRange(8, 8), "froxel_shadow_map");
     }
-    enqueue(inject_kernel_, cl::NDRange(up(fp_.nx, 8), up(fp_.ny, 8)), cl::NDRange(8, 8), "froxel_inject");
-    enqueue(integrate_kernel_, cl::NDRange(up(fp_.nx, 8), up(fp_.ny, 8)), cl::NDRange(8, 8), "froxel_integrate");
-  } catch (const cl::Error& e) {
-    throw DeviceError(std::string("froxel pass: ") + e.what() + " " + clErrorName(e.err()));
-  }
+    enqueue(inject_kernel_, cl::NDRange(roundUp(fp_.nx, 8), roundUp(fp_.ny, 8)), cl::NDRange(8, 8), "froxel_inject");
+    enqueue(integrate_kernel_, cl::NDRange(roundUp(fp_.nx, 8), roundUp(fp_.ny, 8)), cl::NDRange(8, 8), "froxel_integrate");
+  });
   double total = 0;
   for (const PassTiming& t : timings_) total += t.ms;
   return total;
 }
 
 double FroxelPass::resolve(const cl::Buffer& geom, int width, int height, cl::Buffer& rgb) {
-  cl::Event done;
-  try {
+  onDevice("froxel pass: resolve", [&] {
     resolve_kernel_.setArg(2, geom);
     resolve_kernel_.setArg(3, width);
     resolve_kernel_.setArg(4, height);
     resolve_kernel_.setArg(5, rgb);
-    device_.queue().enqueueNDRangeKernel(resolve_kernel_, cl::NullRange,
-                                         cl::NDRange(up(size_t(width), 8), up(size_t(height), 8)), cl::NDRange(8, 8),
-                                         nullptr, &done);
-    done.wait();
-  } catch (const cl::Error& e) {
-    throw DeviceError(std::string("froxel pass: resolve: ") + e.what() + " " + clErrorName(e.err()));
-  }
-  return eventMs(done);
+  });
+  return runKernel2d(device_, "froxel", resolve_kernel_, size_t(width), size_t(height));
 }
 
-double FroxelPass::integrateOnce() {
-  cl::Event integrated;
-  device_.queue().enqueueNDRangeKernel(integrate_kernel_, cl::NullRange, cl::NDRange(up(fp_.nx, 8), up(fp_.ny, 8)),
-                                       cl::NDRange(8, 8), nullptr, &integrated);
-  integrated.wait();
-  return eventMs(integrated);
-}
+double FroxelPass::integrateOnce() { return runKernel2d(device_, "froxel", integrate_kernel_, fp_.nx, fp_.ny); }
 
 double FroxelPass::addBandsToSpectral(const UnderwaterSetup& setup, const cl::Buffer& geom, int width, int height,
                                       std::vector<float>& spectral) {
@@ -175,7 +155,7 @@ double FroxelPass::addBandsToSpectral(const UnderwaterSetup& setup, const cl::Bu
       std::find(defines_.begin(), defines_.end(), "SEASIM_SPECTRAL_INJECTION=1") != defines_.end();
   double ms = 0;
   std::vector<float> rgb(3 * pixels);
-  try {
+  onDevice("froxel pass: spectral bands", [&] {
     cl::Buffer rgb_buffer(device_.context(), CL_MEM_WRITE_ONLY, sizeof(float) * rgb.size());
     for (size_t b = 0; b < bands; ++b) {
       // One band, weight 1 into R (and two zero-weight copies for the RGB-injection kernel, which
@@ -215,21 +195,15 @@ double FroxelPass::addBandsToSpectral(const UnderwaterSetup& setup, const cl::Bu
     integrate_kernel_.setArg(3, slice_factors_);
     resolve_kernel_.setArg(0, fparams_);
     ms += integrateOnce();
-  } catch (const cl::Error& e) {
-    throw DeviceError(std::string("froxel pass: spectral bands: ") + e.what() + " " + clErrorName(e.err()));
-  }
+  });
   return ms;
 }
 
 void FroxelPass::read(cl::Buffer& buffer, size_t floats, std::vector<float>& out, const char* what) {
   out.resize(floats);
   if (floats == 0) return;
-  try {
-    device_.queue().enqueueReadBuffer(buffer, CL_TRUE, 0, sizeof(float) * floats, out.data());
-  } catch (const cl::Error& e) {
-    throw DeviceError(std::string("froxel pass: reading the ") + what + " back: " + e.what() + " " +
-                      clErrorName(e.err()));
-  }
+  onDevice(std::string("froxel pass: reading the ") + what + " back",
+           [&] { device_.queue().enqueueReadBuffer(buffer, CL_TRUE, 0, sizeof(float) * floats, out.data()); });
 }
 
 void FroxelPass::readVolume(std::vector<float>& out) {

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <string>
 
+#include "device/enqueue.h"
 #include "util/error.h"
 
 extern "C" {
@@ -68,10 +69,6 @@ OceanParams makeParams(const OceanConfig& c) {
   return p;
 }
 
-[[noreturn]] void rethrow(const cl::Error& e, const std::string& where) {
-  throw DeviceError("ocean pass " + where + ": " + e.what() + " " + clErrorName(e.err()));
-}
-
 }  // namespace
 
 OceanPass::OceanPass(Device& device, const OceanConfig& config) : device_(device), config_(config) {
@@ -79,7 +76,7 @@ OceanPass::OceanPass(Device& device, const OceanConfig& config) : device_(device
   const size_t n = static_cast<size_t>(config_.grid);
   const size_t texels = n * n;
   const OceanParams p = makeParams(config_);
-  try {
+  onDevice("ocean pass set-up", [&] {
     const BuiltProgram& built = device.program("ocean.cl", {});
     init_ = cl::Kernel(built.program, "ocean_init");
     evolve_ = cl::Kernel(built.program, "ocean_evolve_fields");
@@ -114,9 +111,7 @@ OceanPass::OceanPass(Device& device, const OceanConfig& config) : device_(device
 
     device.queue().enqueueNDRangeKernel(init_, cl::NullRange, cl::NDRange(n, n));
     device.queue().finish();
-  } catch (const cl::Error& e) {
-    rethrow(e, "set-up");
-  }
+  });
   fft_ = std::make_unique<VkfftPlan>(device, fields_, config_.grid, 4);
 }
 
@@ -137,25 +132,21 @@ void OceanPass::setTime(double time_s) {
 double OceanPass::run(double time_s) {
   const auto start = std::chrono::steady_clock::now();
   const size_t n = static_cast<size_t>(config_.grid);
-  try {
+  onDevice("ocean pass run", [&] {
     setTime(time_s);
     device_.queue().enqueueNDRangeKernel(evolve_, cl::NullRange, cl::NDRange(n, n));
     fft_->inverse();
     device_.queue().enqueueNDRangeKernel(maps_, cl::NullRange, cl::NDRange(n, n));
     device_.queue().finish();
-  } catch (const cl::Error& e) {
-    rethrow(e, "run");
-  }
+  });
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
 std::vector<float> OceanPass::read(const cl::Buffer& buffer, size_t floats) {
   std::vector<float> out(floats);
-  try {
+  onDevice("ocean pass read-back", [&] {
     device_.queue().enqueueReadBuffer(buffer, CL_TRUE, 0, sizeof(float) * floats, out.data());
-  } catch (const cl::Error& e) {
-    rethrow(e, "read-back");
-  }
+  });
   return out;
 }
 
@@ -179,27 +170,23 @@ std::vector<std::complex<float>> OceanPass::readH0() { return toComplex(read(h0_
 
 std::vector<std::complex<float>> OceanPass::heightSpectrum(double time_s) {
   const size_t n = static_cast<size_t>(config_.grid);
-  try {
+  onDevice("ocean pass height spectrum", [&] {
     if (!scratch_()) scratch_ = cl::Buffer(device_.context(), CL_MEM_READ_WRITE, sizeof(float) * 2 * n * n);
     setTime(time_s);
     spectrum_.setArg(2, scratch_);
     device_.queue().enqueueNDRangeKernel(spectrum_, cl::NullRange, cl::NDRange(n, n));
     device_.queue().finish();
-  } catch (const cl::Error& e) {
-    rethrow(e, "height spectrum");
-  }
+  });
   return toComplex(read(scratch_, 2 * n * n));
 }
 
 std::vector<std::complex<float>> OceanPass::heightComplex(double time_s) {
   heightSpectrum(time_s);
   if (!scratch_fft_) scratch_fft_ = std::make_unique<VkfftPlan>(device_, scratch_, config_.grid, 1);
-  try {
+  onDevice("ocean pass height FFT", [&] {
     scratch_fft_->inverse();
     device_.queue().finish();
-  } catch (const cl::Error& e) {
-    rethrow(e, "height FFT");
-  }
+  });
   return toComplex(read(scratch_, 2 * texelsOf(config_)));
 }
 

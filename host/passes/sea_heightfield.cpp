@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "device/enqueue.h"
 #include "io/atomic_file.h"
 #include "io/data_files.h"
 #include "io/image_io.h"
@@ -63,16 +64,18 @@ HeightField loadHeightField(const BottomDesc& bottom, DataFiles* files) {
   return makeHeightField(img.width, img.height, bottom.extent, std::move(depth));
 }
 
+double heightFieldBytes(const HeightField& field) {
+  return double(sizeof(SeaHeightField)) + double(sizeof(float)) * double(field.depth.size());
+}
+
 HeightFieldBuffers uploadHeightField(Device& device, const HeightField& field) {
   HeightFieldBuffers b;
-  try {
+  onDevice("height-field floor upload", [&] {
     b.params = cl::Buffer(device.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(SeaHeightField),
                           const_cast<SeaHeightField*>(&field.params));
     b.depth = cl::Buffer(device.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(float) * field.depth.size(),
                          const_cast<float*>(field.depth.data()));
-  } catch (const cl::Error& e) {
-    throw DeviceError(std::string("height-field floor upload: ") + e.what() + " " + clErrorName(e.err()));
-  }
+  });
   return b;
 }
 

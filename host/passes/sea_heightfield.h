@@ -41,6 +41,8 @@ struct HeightFieldBuffers {
   cl::Buffer depth;   // nx * ny floats
 };
 HeightFieldBuffers uploadHeightField(Device& device, const HeightField& field);
+// The device bytes uploadHeightField allocates for `field` (the memory budget's estimate).
+double heightFieldBytes(const HeightField& field);
 
 // The second-order depth tables are a pure function of their inputs (floor, camera, map and
 // direction settings, table nodes, kernel source), so they are cached on disk under

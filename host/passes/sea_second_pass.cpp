@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "device/enqueue.h"
 #include "geometry/kernel_camera.h"
 #include "device/kernel_source.h"
 #include "math/kernel_math.h"
@@ -36,7 +37,6 @@ int knob(const Scene& scene, const char* name, int automatic) {
   return static_cast<int>(it->second.value);
 }
 
-size_t roundUp(size_t n, size_t local) { return (n + local - 1) / local * local; }
 
 }  // namespace
 
@@ -120,7 +120,7 @@ SeaSecondPass::SeaSecondPass(Device& device, const Scene& scene, const PassPlan&
   const size_t n_d = static_cast<size_t>(config_.n_theta) * config_.n_phi;
   const size_t M = static_cast<size_t>(config_.map_size);
   const size_t nb = bands.size();
-  try {
+  onDevice("sea_second pass set-up", [&] {
     const BuiltProgram& built = device.program(plan.kernel_file, plan.defines);
     vsf_kernel_ = cl::Kernel(built.program, "sea_second_vsf_map");
     radiance_kernel_ = cl::Kernel(built.program, "sea_second_radiance_map");
@@ -187,16 +187,14 @@ SeaSecondPass::SeaSecondPass(Device& device, const Scene& scene, const PassPlan&
       if (!spectral) throw RuntimeError("sea_second pass: spectral output asked for but no spectral buffer given");
       accumulate_kernel_.setArg(5, *spectral);
     }
-  } catch (const cl::Error& e) {
-    throw DeviceError(std::string("sea_second pass set-up: ") + e.what() + " " + clErrorName(e.err()));
-  }
+  });
 }
 
 double SeaSecondPass::run() {
   cl::Event vsf_done, radiance_done, maps_done, accumulate_done;
   const size_t n_d = static_cast<size_t>(config_.n_theta) * config_.n_phi;
   const size_t M = static_cast<size_t>(config_.map_size);
-  try {
+  onDevice("sea_second pass", [&] {
     cl::CommandQueue& q = device_.queue();  // in order: each kernel sees the previous one's output
     if (table_kernel_() && !table_ready_) {  // 000 §5.4's depth tables, once per scene
       cl::Event table_done;
@@ -220,9 +218,7 @@ double SeaSecondPass::run() {
                            cl::NDRange(roundUp(width_, local), roundUp(height_, local)), cl::NDRange(local, local),
                            nullptr, &accumulate_done);
     accumulate_done.wait();
-  } catch (const cl::Error& e) {
-    throw DeviceError(std::string("sea_second pass: ") + e.what() + " " + clErrorName(e.err()));
-  }
+  });
   maps_ms_ = eventMs(vsf_done) + eventMs(radiance_done) + eventMs(maps_done);
   accumulate_ms_ = eventMs(accumulate_done);
   return maps_ms_ + accumulate_ms_;

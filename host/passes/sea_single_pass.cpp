@@ -4,10 +4,12 @@
 #include <cmath>
 #include <cstddef>
 
+#include "device/enqueue.h"
 #include "geometry/kernel_camera.h"
 #include "math/kernel_math.h"
 #include "passes/sea_band_table.h"
 #include "passes/sea_heightfield.h"
+#include "passes/sea_single_features.h"
 #include "passes/sea_sky.h"
 #include "sky/sky_light.h"
 #include "spectral/jerlov.h"
@@ -67,14 +69,13 @@ SeaSinglePass::SeaSinglePass(Device& device, const Scene& scene, const PassPlan&
                              const WavelengthGrid& grid, const Sensor& sensor, OceanPass* ocean,
                              const SeaBottomCaustics* bottom_caustics)
     : device_(device), width_(scene.camera.width), height_(scene.camera.height) {
-  const bool caustics = std::find(plan.defines.begin(), plan.defines.end(), std::string("SEASIM_BOTTOM_CAUSTICS=1")) !=
-                        plan.defines.end();
+  const SeaSingleFeatures& features = plan.featuresAs<SeaSingleFeatures>();
+  const bool caustics = features.bottom_caustics;
   if (caustics && !bottom_caustics) {
     throw RuntimeError("sea_single pass: the plan has bottom caustics (SEASIM_BOTTOM_CAUSTICS=1) but no caustic map "
                        "was given (the renderer makes it with seaBottomCaustics)");
   }
-  const bool waves =
-      std::find(plan.defines.begin(), plan.defines.end(), std::string("SEASIM_HAS_WAVES=1")) != plan.defines.end();
+  const bool waves = features.waves;
   if (waves && !ocean) {
     throw RuntimeError("sea_single pass: the plan has FFT waves (SEASIM_HAS_WAVES=1) but no ocean normal map was "
                        "given; run the ocean_fft pass first (the renderer does)");
@@ -195,7 +196,7 @@ SeaSinglePass::SeaSinglePass(Device& device, const Scene& scene, const PassPlan&
   defines.push_back(std::string("SEASIM_SEA_LUT=") + (lut_size > 1 ? "1" : "0"));
 
   const size_t pixels = static_cast<size_t>(width_) * static_cast<size_t>(height_);
-  try {
+  onDevice("sea_single pass set-up", [&] {
     const BuiltProgram& built = device.program(plan.kernel_file, defines);
     kernel_ = cl::Kernel(built.program, "sea_single");
     params_ = cl::Buffer(device.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof p, &p);
@@ -222,8 +223,7 @@ SeaSinglePass::SeaSinglePass(Device& device, const Scene& scene, const PassPlan&
     kernel_.setArg(2, table_);
     kernel_.setArg(3, normals_);
     // The wave filter's slope-moment mip chain (common/sea_lean.h), rebuilt from the normal map each run.
-    const bool filter = std::find(plan.defines.begin(), plan.defines.end(), std::string("SEASIM_WAVE_FILTER=1")) !=
-                        plan.defines.end();
+    const bool filter = features.waves && features.wave_filter;
     if (filter) {
       ocean_n_ = ocean->n();
       mips_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE,
@@ -256,47 +256,27 @@ SeaSinglePass::SeaSinglePass(Device& device, const Scene& scene, const PassPlan&
       kernel_.setArg(args - 2, hf_params_);
       kernel_.setArg(args - 1, hf_depth_);
     }
-  } catch (const cl::Error& e) {
-    throw DeviceError(std::string("sea_single pass set-up: ") + e.what() + " " + clErrorName(e.err()));
-  }
+  });
 }
 
 double SeaSinglePass::run() {
-  cl::Event done;
   double ms = 0;
-  try {
-    if (ocean_n_ > 0) {  // the wave filter's moment mips: level 0 from the normals, then 2 x 2 averages
-      cl::Event moments;
-      const size_t n = static_cast<size_t>(ocean_n_);
-      device_.queue().enqueueNDRangeKernel(moments_, cl::NullRange, cl::NDRange(n, n), cl::NullRange, nullptr, &moments);
-      moments.wait();
-      ms += eventMs(moments);
-      cl::Event cells;
-      device_.queue().enqueueNDRangeKernel(cells_, cl::NullRange, cl::NDRange(n, n), cl::NullRange, nullptr, &cells);
-      cells.wait();
-      ms += eventMs(cells);
-      for (int level = 0; (ocean_n_ >> level) > 1; ++level) {
-        const int src_n = ocean_n_ >> level;
+  if (ocean_n_ > 0) {  // the wave filter's moment mips: level 0 from the normals, then 2 x 2 averages
+    const size_t n = static_cast<size_t>(ocean_n_);
+    ms += runKernel(device_, "sea_single", moments_, cl::NDRange(n, n));
+    ms += runKernel(device_, "sea_single", cells_, cl::NDRange(n, n));
+    for (int level = 0; (ocean_n_ >> level) > 1; ++level) {
+      const int src_n = ocean_n_ >> level;
+      onDevice("sea_single pass", [&] {
         downsample_.setArg(1, kd::sea_lean_level_offset(ocean_n_, level));
         downsample_.setArg(2, src_n);
         downsample_.setArg(3, kd::sea_lean_level_offset(ocean_n_, level + 1));
-        cl::Event step;
-        const size_t half = static_cast<size_t>(src_n / 2);
-        device_.queue().enqueueNDRangeKernel(downsample_, cl::NullRange, cl::NDRange(half, half), cl::NullRange, nullptr,
-                                             &step);
-        step.wait();
-        ms += eventMs(step);
-      }
+      });
+      const size_t half = static_cast<size_t>(src_n / 2);
+      ms += runKernel(device_, "sea_single", downsample_, cl::NDRange(half, half));
     }
-    const size_t local = 8;
-    cl::NDRange global((static_cast<size_t>(width_) + local - 1) / local * local,
-                       (static_cast<size_t>(height_) + local - 1) / local * local);
-    device_.queue().enqueueNDRangeKernel(kernel_, cl::NullRange, global, cl::NDRange(local, local), nullptr, &done);
-    done.wait();
-  } catch (const cl::Error& e) {
-    throw DeviceError(std::string("sea_single pass: ") + e.what() + " " + clErrorName(e.err()));
   }
-  return ms + eventMs(done);
+  return ms + runKernel2d(device_, "sea_single", kernel_, width_, height_);
 }
 
 }  // namespace seasim

@@ -5,9 +5,11 @@
 #include <cstddef>
 #include <cstdio>
 
+#include "device/enqueue.h"
 #include "geometry/kernel_camera.h"
 #include "math/kernel_math.h"
 #include "geometry/shafts_geometry_k.h"
+#include "passes/shafts_features.h"
 #include "plan/shafts_method.h"
 #include "spectral/lamp_spectrum.h"
 #include "util/error.h"
@@ -41,10 +43,6 @@ int knob(const Scene& scene, const char* name, int fallback) {
   return static_cast<int>(it->second.value);
 }
 
-bool hasDefine(const PassPlan& plan, const std::string& name) {
-  return std::find(plan.defines.begin(), plan.defines.end(), name + "=1") != plan.defines.end();
-}
-
 }  // namespace
 
 ShaftsPass::Config ShaftsPass::configFromScene(const Scene& scene) {
@@ -75,9 +73,10 @@ ShaftsPass::ShaftsPass(Device& device, const Scene& scene, const PassPlan& plan,
     throw RuntimeError("shafts: planes, sub-planes and shadow-map size must be at least 1");
   }
   range_ = rangeFor(scene);
-  const bool exact = hasDefine(plan, "SEASIM_SHAFTS_EXACT");
-  const bool use_hg = hasDefine(plan, "SEASIM_SHAFTS_HG");
-  intervals_ = hasDefine(plan, "SEASIM_SHAFTS_INTERVALS");
+  const ShaftsFeatures& features = plan.featuresAs<ShaftsFeatures>();
+  const bool exact = features.exact;
+  const bool use_hg = features.henyey_greenstein;
+  intervals_ = features.intervals;
   if (intervals_ && static_cast<int>(scene.objects.size()) > kShaftsIntervalsMaxObjects) {
     throw RuntimeError("shafts: the intervals method handles at most " + std::to_string(kShaftsIntervalsMaxObjects) +
                        " objects (quality.shafts_method = \"planes\" has no such limit)");
@@ -135,8 +134,8 @@ ShaftsPass::ShaftsPass(Device& device, const Scene& scene, const PassPlan& plan,
     }
     L.shadow_offset = static_cast<int>(i) * config.shadow_map_size * config.shadow_map_size;
   }
-  if (!maps.empty() && !hasDefine(plan, "SEASIM_HAS_LIGHT_MAP")) {
-    throw RuntimeError("shafts: the plan has no SEASIM_HAS_LIGHT_MAP but a spotlight has a light map");
+  if (!maps.empty() && !features.light_map) {
+    throw RuntimeError("shafts: the plan has no light_map feature (SEASIM_HAS_LIGHT_MAP) but a spotlight has a light map");
   }
 
   std::vector<ShaftsObject> objects;
@@ -209,7 +208,7 @@ ShaftsPass::ShaftsPass(Device& device, const Scene& scene, const PassPlan& plan,
   };
   const float zero = 0.0f;
   const ShaftsObject no_object{};
-  try {
+  onDevice("shafts pass set-up", [&] {
     const BuiltProgram& built = device.program(plan.kernel_file, plan.defines);
     render_kernel_ = cl::Kernel(built.program, "shafts_render");
     shadow_kernel_ = cl::Kernel(built.program, "shafts_shadow_map");
@@ -237,42 +236,26 @@ ShaftsPass::ShaftsPass(Device& device, const Scene& scene, const PassPlan& plan,
     render_kernel_.setArg(6, h_table_);
     render_kernel_.setArg(7, occluders_);
     render_kernel_.setArg(8, rgb_);
-  } catch (const cl::Error& e) {
-    throw DeviceError(std::string("shafts pass set-up: ") + e.what() + " " + clErrorName(e.err()));
-  }
+  });
 }
 
 double ShaftsPass::run() {
-  try {
-    const size_t local = 8;
-    auto up = [&](size_t v) { return (v + local - 1) / local * local; };
-    shadow_ms_ = 0;
-    if (has_objects_ && light_count_ > 0 && !intervals_) {
-      cl::Event done;
-      device_.queue().enqueueNDRangeKernel(shadow_kernel_, cl::NullRange,
-                                           cl::NDRange(up(shadow_size_), up(shadow_size_), light_count_),
-                                           cl::NDRange(local, local, 1), nullptr, &done);
-      done.wait();
-      shadow_ms_ = eventMs(done);
-    }
-    cl::Event done;
-    device_.queue().enqueueNDRangeKernel(render_kernel_, cl::NullRange, cl::NDRange(up(width_), up(height_)),
-                                         cl::NDRange(local, local), nullptr, &done);
-    done.wait();
-    shafts_ms_ = eventMs(done);
-  } catch (const cl::Error& e) {
-    throw DeviceError(std::string("shafts pass: ") + e.what() + " " + clErrorName(e.err()));
+  const size_t local = 8;
+  shadow_ms_ = 0;
+  if (has_objects_ && light_count_ > 0 && !intervals_) {
+    const size_t side = roundUp(static_cast<size_t>(shadow_size_), local);
+    shadow_ms_ = runKernel(device_, "shadow_maps", shadow_kernel_, cl::NDRange(side, side, light_count_),
+                           cl::NDRange(local, local, 1));
   }
+  shafts_ms_ = runKernel2d(device_, "shafts", render_kernel_, width_, height_, local);
   return shadow_ms_ + shafts_ms_;
 }
 
 void ShaftsPass::readRgb(std::vector<float>& out) {
   out.resize(size_t(3) * width_ * height_);
-  try {
+  onDevice("shafts pass: reading the frame back", [&] {
     device_.queue().enqueueReadBuffer(rgb_, CL_TRUE, 0, sizeof(float) * out.size(), out.data());
-  } catch (const cl::Error& e) {
-    throw DeviceError(std::string("shafts pass: reading the frame back: ") + e.what() + " " + clErrorName(e.err()));
-  }
+  });
 }
 
 }  // namespace seasim

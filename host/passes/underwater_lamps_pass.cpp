@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "device/enqueue.h"
 #include "underwater/lamps_setup.h"
 #include "util/error.h"
 
@@ -46,7 +47,7 @@ UnderwaterLampsPass::UnderwaterLampsPass(Device& device, const Scene& scene, con
   if (delta_m_) deltaMScale(params, bands);
   UwObject none{};  // OpenCL buffers cannot be empty
   const cl_mem_flags in = CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR;
-  try {
+  onDevice("underwater_lamps pass set-up", [&] {
     kernel_ = cl::Kernel(device.program(plan.kernel_file, plan.defines).program, "underwater_lamps");
     params_ = cl::Buffer(device.context(), in, sizeof(UwParams), &params);
     bands_ = cl::Buffer(device.context(), in, sizeof(UwBand) * bands.size(), bands.data());
@@ -56,9 +57,7 @@ UnderwaterLampsPass::UnderwaterLampsPass(Device& device, const Scene& scene, con
     lamp_params_ = cl::Buffer(device.context(), in, sizeof(UwLampParams), &lamps.params);
     lamps_ = cl::Buffer(device.context(), in, sizeof(UwLamp) * lamps.lamps.size(), lamps.lamps.data());
     spectra_ = cl::Buffer(device.context(), in, sizeof(float) * lamps.spectra.size(), lamps.spectra.data());
-  } catch (const cl::Error& e) {
-    throw DeviceError(std::string("underwater_lamps pass set-up: ") + e.what() + " " + clErrorName(e.err()));
-  }
+  });
 }
 
 void UnderwaterLampsPass::update(const UnderwaterSetup& setup) {
@@ -69,7 +68,7 @@ void UnderwaterLampsPass::update(const UnderwaterSetup& setup) {
   UwParams params = setup.params;
   std::vector<UwBand> bands = setup.bands;
   if (delta_m_) deltaMScale(params, bands);
-  try {
+  onDevice("underwater_lamps pass update", [&] {
     cl::CommandQueue& q = device_.queue();
     q.enqueueWriteBuffer(params_, CL_FALSE, 0, sizeof(UwParams), &params);
     q.enqueueWriteBuffer(bands_, CL_FALSE, 0, sizeof(UwBand) * band_count_, bands.data());
@@ -77,14 +76,11 @@ void UnderwaterLampsPass::update(const UnderwaterSetup& setup) {
       q.enqueueWriteBuffer(objects_, CL_FALSE, 0, sizeof(UwObject) * object_count_, setup.objects.data());
     q.enqueueWriteBuffer(albedo_, CL_FALSE, 0, sizeof(float) * albedo_count_, setup.albedo.data());
     q.finish();
-  } catch (const cl::Error& e) {
-    throw DeviceError(std::string("underwater_lamps pass update: ") + e.what() + " " + clErrorName(e.err()));
-  }
+  });
 }
 
 double UnderwaterLampsPass::run(cl::Buffer& geom, cl::Buffer& material, cl::Buffer& rgb, cl::Buffer* spectral) {
-  cl::Event done;
-  try {
+  onDevice("underwater_lamps pass", [&] {
     cl_uint arg = 0;
     kernel_.setArg(arg++, params_);
     kernel_.setArg(arg++, bands_);
@@ -97,15 +93,8 @@ double UnderwaterLampsPass::run(cl::Buffer& geom, cl::Buffer& material, cl::Buff
     kernel_.setArg(arg++, spectra_);
     kernel_.setArg(arg++, rgb);
     if (spectral) kernel_.setArg(arg++, *spectral);
-    const size_t local = 8;
-    cl::NDRange global((static_cast<size_t>(width_) + local - 1) / local * local,
-                       (static_cast<size_t>(height_) + local - 1) / local * local);
-    device_.queue().enqueueNDRangeKernel(kernel_, cl::NullRange, global, cl::NDRange(local, local), nullptr, &done);
-    done.wait();
-  } catch (const cl::Error& e) {
-    throw DeviceError(std::string("underwater_lamps pass: ") + e.what() + " " + clErrorName(e.err()));
-  }
-  return eventMs(done);
+  });
+  return runKernel2d(device_, "underwater_lamps", kernel_, width_, height_);
 }
 
 }  // namespace seasim

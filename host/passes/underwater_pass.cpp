@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <string>
 
+#include "device/enqueue.h"
 #include "passes/caustic_stack.h"
+#include "passes/underwater_features.h"
 #include "underwater/underwater_band_table.h"
 
 #include "util/error.h"
@@ -17,7 +19,7 @@ UnderwaterPass::UnderwaterPass(Device& device, const UnderwaterSetup& setup, con
       sky_count_(setup.sky_buffer.size()) {
   const size_t pixels = static_cast<size_t>(width_) * static_cast<size_t>(height_);
   const cl_mem_flags in = CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR;
-  try {
+  onDevice("underwater pass set-up", [&] {
     raycast_ = cl::Kernel(device.program(raycast.kernel_file, raycast.defines).program, "raycast");
     shade_ = cl::Kernel(device.program(kd.kernel_file, kd.defines).program, "kd_multiple");
     params_ = cl::Buffer(device.context(), in, sizeof(UwParams), const_cast<UwParams*>(&setup.params));
@@ -41,7 +43,7 @@ UnderwaterPass::UnderwaterPass(Device& device, const UnderwaterSetup& setup, con
     rgb_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * 3 * pixels);
     if (spectral_output)
       spectral_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * pixels * setup.bands.size());
-    spread_ = std::find(kd.defines.begin(), kd.defines.end(), "SEASIM_UWI_SPREAD=1") != kd.defines.end();
+    spread_ = kd.featuresAs<KdFeatures>().point_spread;
     if (spread_) {
       // The forward light's moments (common/water_spread_params.h): F and F E per channel, F D and F per pixel.
       forward_rgb_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * pixels * 2 * 3);
@@ -56,9 +58,7 @@ UnderwaterPass::UnderwaterPass(Device& device, const UnderwaterSetup& setup, con
     raycast_.setArg(3, geom_);
     raycast_.setArg(4, material_);
     raycast_.setArg(5, vis_);
-  } catch (const cl::Error& e) {
-    throw DeviceError(std::string("underwater pass set-up: ") + e.what() + " " + clErrorName(e.err()));
-  }
+  });
 }
 
 void UnderwaterPass::update(const UnderwaterSetup& setup) {
@@ -67,7 +67,7 @@ void UnderwaterPass::update(const UnderwaterSetup& setup) {
       setup.params.height != height_ || !setup.improved.empty() != has_improved_) {
     throw RuntimeError("underwater pass: the new set-up has other sizes (bands, objects, sky or image); make a new pass");
   }
-  try {
+  onDevice("underwater pass update", [&] {
     cl::CommandQueue& q = device_.queue();
     q.enqueueWriteBuffer(params_, CL_FALSE, 0, sizeof(UwParams), &setup.params);
     q.enqueueWriteBuffer(bands_, CL_FALSE, 0, sizeof(UwBand) * band_count_, setup.bands.data());
@@ -79,36 +79,22 @@ void UnderwaterPass::update(const UnderwaterSetup& setup) {
     q.enqueueWriteBuffer(sky_params_, CL_FALSE, 0, sizeof(SkyParams), &setup.sky_params);
     q.enqueueWriteBuffer(sky_, CL_FALSE, 0, sizeof(float) * sky_count_, setup.sky_buffer.data());
     q.finish();  // the host vectors may go away after this call
-  } catch (const cl::Error& e) {
-    throw DeviceError(std::string("underwater pass update: ") + e.what() + " " + clErrorName(e.err()));
-  }
+  });
 }
 
 double UnderwaterPass::enqueue(cl::Kernel& kernel, const char* what) {
-  cl::Event done;
-  try {
-    const size_t local = 8;
-    cl::NDRange global((static_cast<size_t>(width_) + local - 1) / local * local,
-                       (static_cast<size_t>(height_) + local - 1) / local * local);
-    device_.queue().enqueueNDRangeKernel(kernel, cl::NullRange, global, cl::NDRange(local, local), nullptr, &done);
-    done.wait();
-  } catch (const cl::Error& e) {
-    throw DeviceError(std::string(what) + " pass: " + e.what() + " " + clErrorName(e.err()));
-  }
-  return eventMs(done);
+  return runKernel2d(device_, what, kernel, width_, height_);
 }
 
 double UnderwaterPass::runRaycast(const cl::Buffer* caustic_maps) {
-  try {
+  onDevice("raycast arguments", [&] {
     raycast_.setArg(2, caustic_maps ? *caustic_maps : no_caustics_);
-  } catch (const cl::Error& e) {
-    throw DeviceError(std::string("raycast arguments: ") + e.what() + " " + clErrorName(e.err()));
-  }
+  });
   return enqueue(raycast_, "raycast");
 }
 
 double UnderwaterPass::runShading(const cl::Buffer* froxel_params, const cl::Buffer* froxel_volume) {
-  try {
+  onDevice("kd_multiple arguments", [&] {
     cl_uint arg = 0;
     shade_.setArg(arg++, params_);
     shade_.setArg(arg++, bands_);
@@ -131,9 +117,7 @@ double UnderwaterPass::runShading(const cl::Buffer* froxel_params, const cl::Buf
       shade_.setArg(arg++, forward_depth_);
       if (spectral_output_) shade_.setArg(arg++, forward_spectral_);
     }
-  } catch (const cl::Error& e) {
-    throw DeviceError(std::string("kd_multiple arguments: ") + e.what() + " " + clErrorName(e.err()));
-  }
+  });
   return enqueue(shade_, "kd_multiple");
 }
 

@@ -2,6 +2,7 @@
 
 #include <tuple>
 
+#include "device/enqueue.h"
 #include "util/error.h"
 
 namespace seasim {
@@ -21,7 +22,7 @@ WaterSpreadPass::Channels WaterSpreadPass::makeChannels(int channels) {
 WaterSpreadPass::WaterSpreadPass(Device& device, const PassPlan& plan, const WaterSpread& spread, int band_count)
     : device_(device), spread_(spread), band_count_(band_count) {
   const size_t cells = static_cast<size_t>(spread.params.low_width) * static_cast<size_t>(spread.params.low_height);
-  try {
+  onDevice("water spread pass set-up", [&] {
     const cl::Program& program = device.program(plan.kernel_file, plan.defines).program;
     reduce_ = cl::Kernel(program, "spread_reduce");
     rows_ = cl::Kernel(program, "spread_rows");
@@ -33,22 +34,19 @@ WaterSpreadPass::WaterSpreadPass(Device& device, const PassPlan& plan, const Wat
     cell_d_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * cells);
     rgb_ = makeChannels(3);
     if (band_count > 0) spectral_ = makeChannels(band_count);
-  } catch (const cl::Error& e) {
-    throw DeviceError(std::string("water spread pass set-up: ") + e.what() + " " + clErrorName(e.err()));
-  }
+  });
 }
 
 double WaterSpreadPass::blur(Channels& ch, const cl::Buffer& geom, const cl::Buffer& depth, const cl::Buffer& forward,
                              cl::Buffer& frame) {
   const size_t local = 8;
   auto range = [&](int w, int h) {
-    return cl::NDRange((static_cast<size_t>(w) + local - 1) / local * local,
-                       (static_cast<size_t>(h) + local - 1) / local * local);
+    return cl::NDRange(roundUp(static_cast<size_t>(w), local), roundUp(static_cast<size_t>(h), local));
   };
   const cl::NDRange cells = range(spread_.params.low_width, spread_.params.low_height);
   const cl::NDRange pixels = range(spread_.params.width, spread_.params.height);
   cl::Event done[4];
-  try {
+  onDevice("water spread pass", [&] {
     reduce_.setArg(0, ch.params);
     reduce_.setArg(1, geom);
     reduce_.setArg(2, depth);
@@ -75,9 +73,7 @@ double WaterSpreadPass::blur(Channels& ch, const cl::Buffer& geom, const cl::Buf
     q.enqueueNDRangeKernel(columns_, cl::NullRange, cells, group, nullptr, &done[2]);
     q.enqueueNDRangeKernel(expand_, cl::NullRange, pixels, group, nullptr, &done[3]);
     done[3].wait();
-  } catch (const cl::Error& e) {
-    throw DeviceError(std::string("water spread pass: ") + e.what() + " " + clErrorName(e.err()));
-  }
+  });
   double ms = 0;
   for (const cl::Event& e : done) ms += eventMs(e);
   return ms;

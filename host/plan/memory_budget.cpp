@@ -6,16 +6,12 @@
 #include <cstdlib>
 
 #include "plan/memory_limits.h"
+#include "plan/pass_descriptor.h"
 #include "util/error.h"
 
 namespace seasim {
 
 namespace {
-
-double knob(const Scene& s, const char* name, double fallback) {
-  auto it = s.quality.find(name);
-  return it == s.quality.end() ? fallback : it->second.value;
-}
 
 std::string mib(double bytes) {
   char buf[32];
@@ -73,77 +69,18 @@ std::vector<BufferEstimate> estimateBuffers(const Scene& s, const Plan& plan) {
   const double nb = s.spectral.count;
   const std::vector<std::string> wh = {"camera.width", "camera.height"};
   // The frame's RGB image on the device and its host copies: the float read-back and the
-  // 8-bit tone-mapped and encoded PNG bytes. The pass-specific per-pixel buffers are added below.
+  // 8-bit tone-mapped and encoded PNG bytes.
   out.push_back({"frame", "RGB image", 3 * 4 * w * h, wh, {w, h}});
   out.push_back({"frame", "RGB image read back to the host", 3 * 4 * w * h, wh, {w, h}, true});
   out.push_back({"frame", "8-bit PNG bytes (tone-mapped and encoded)", 2 * 3 * w * h, wh, {w, h}, true});
   if (s.spectral.spectral_exr)
     out.push_back({"frame", "spectral image (spectral.spectral_exr)", 4 * nb * w * h,
                    {"camera.width", "camera.height", "spectral.count"}, {w, h, nb}});
-  const double n_z = knob(s, "sea_nz", 12), n_d = knob(s, "sea_nd", 128), M = knob(s, "sea_map_size", 32);
-  const double lights = static_cast<double>(s.spotlights.size());
+  // Each pass's own buffers, from its descriptor (plan/pass_descriptor.h).
   for (const PassPlan& p : plan.passes) {
-    if (p.name == "raycast" && p.kernel_file == "raycast.cl") {
-      // G-buffer (002 §4.3.2): float4 hit and normal; int material and float sun visibility.
-      out.push_back({p.name, "G-buffer hits", 16 * w * h, wh, {w, h}});
-      out.push_back({p.name, "G-buffer materials", 4 * w * h, wh, {w, h}});
-      out.push_back({p.name, "G-buffer sun visibility", 4 * w * h, wh, {w, h}});
-    } else if (p.name == "sea_second") {
-      out.push_back({p.name, "scattering maps", 4 * n_z * M * M * nb,
-                     {"quality.sea_nz", "quality.sea_map_size", "quality.sea_map_size", "spectral.count"},
-                     {n_z, M, M, nb}});
-      out.push_back({p.name, "radiance maps", 4 * n_z * n_d * nb,
-                     {"quality.sea_nz", "quality.sea_nd", "spectral.count"}, {n_z, n_d, nb}});
-      if (s.bottom.type == BottomDesc::Type::HeightField)
-        out.push_back({p.name, "height-field depth table", 4 * (n_z + 1) * M * M * n_d,
-                       {"quality.sea_nz", "quality.sea_map_size", "quality.sea_map_size", "quality.sea_nd"},
-                       {n_z + 1, M, M, n_d}});
-    } else if (p.name == "shadow_maps") {
-      const double S = knob(s, "shadow_map_size", 512);
-      out.push_back({p.name, "shadow maps (one per spotlight)", 4 * lights * S * S,
-                     {"spotlights (count)", "quality.shadow_map_size", "quality.shadow_map_size"}, {lights, S, S}});
-    } else if (p.name == "shafts") {
-      const double n = knob(s, "shafts_table_size", 256);
-      // Built on the host in float and uploaded (an oversized one threw bad_alloc on the host).
-      out.push_back({p.name, "shafts integral table", 4 * n * n,
-                     {"quality.shafts_table_size", "quality.shafts_table_size"}, {n, n}});
-    } else if (p.name == "froxel") {
-      const double fx = knob(s, "froxel_x", 160), fy = knob(s, "froxel_y", 90), fz = knob(s, "froxel_z", 64);
-      out.push_back({p.name, "froxel volume", 20 * fx * fy * fz,
-                     {"quality.froxel_x", "quality.froxel_y", "quality.froxel_z"}, {fx, fy, fz}});
-      // The sun's shadow map over the spheres and boxes (froxel_setup.cpp), one float per texel.
-      const bool bounded = std::any_of(s.objects.begin(), s.objects.end(), [](const ObjectDesc& o) {
-        return o.type == ObjectDesc::Type::Sphere || o.type == ObjectDesc::Type::Box;
-      });
-      if (bounded) {
-        const double S = knob(s, "shadow_map_size", 512);
-        out.push_back({p.name, "sun shadow map over the objects", 4 * S * S,
-                       {"quality.shadow_map_size", "quality.shadow_map_size"}, {S, S}});
-      }
-      const double C = knob(s, "caustic_map_size", 256), L = knob(s, "caustic_layers", 8);
-      out.push_back({p.name, "caustic maps", 4 * L * C * C,
-                     {"quality.caustic_layers", "quality.caustic_map_size", "quality.caustic_map_size"}, {L, C, C}});
-    } else if (p.name == "caustics") {
-      const double C = knob(s, "caustic_map_size", 256);
-      out.push_back({p.name, "caustic maps", 2 * 4 * C * C,
-                     {"quality.caustic_map_size", "quality.caustic_map_size"}, {C, C}});
-    } else if (p.name == "kd_multiple" &&
-               std::find(p.defines.begin(), p.defines.end(), "SEASIM_UWI_SPREAD=1") != p.defines.end()) {
-      // The forward light's moments the point spread blurs (underwater_pass.cpp): F and F E per
-      // channel, F D and F per pixel, and per band with spectral output.
-      out.push_back({p.name, "forward light moments (underwater.point_spread)", 4 * 8 * w * h, wh, {w, h}});
-      if (s.spectral.spectral_exr)
-        out.push_back({p.name, "forward light moments per band", 4 * 2 * nb * w * h,
-                       {"camera.width", "camera.height", "spectral.count"}, {w, h, nb}});
-    } else if (p.name == "underwater_lamps") {
-      // Its own copies of the underwater parameter blocks are per band, not per pixel: only the spectra.
-      out.push_back({p.name, "lamp spectra (one per spotlight and band)", 4 * lights * nb,
-                     {"spotlights (count)", "spectral.count"}, {lights, nb}});
-    } else if (p.name == "ocean_fft") {
-      const double N = s.surface.grid;
-      // h0, spectra, height, slope, displacement, normal, Jacobian, folding, FFT scratch (ocean_pass).
-      out.push_back({p.name, "ocean maps", 4 * 28 * N * N, {"surface.grid", "surface.grid"}, {N, N}});
-    }
+    const PassDescriptor* d = descriptorOf(p);
+    if (!d || !d->buffers) continue;
+    for (BufferEstimate& b : d->buffers(s, p)) out.push_back(std::move(b));
   }
   return out;
 }

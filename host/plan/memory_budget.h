@@ -16,7 +16,7 @@ namespace seasim {
 // `settings` is one factor ("camera.width", "camera.height"; "shadow_map_size" twice for a square
 // map), so scaling every listed setting by f scales the buffer by f^settings.size().
 struct BufferEstimate {
-  std::string pass;                   // "shafts", "froxel", "frame"
+  std::string pass;                   // the plan entry's name, or "frame" for the image
   std::string what;                   // "shadow maps"
   double bytes = 0;
   std::vector<std::string> settings;  // scene keys, e.g. "quality.shadow_map_size"

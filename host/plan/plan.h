@@ -1,28 +1,42 @@
-// plan.h — the planner: scene -> ordered passes with their kernel file and feature defines
-// (DESIGN.md "Leave out what a scene does not need"). `seasim plan SCENE` prints toText().
+// plan.h — the planner: scene -> ordered passes with their kernel file and typed features
+// (DESIGN.md "Leave out what a scene does not need"). Each model's rule lives in its descriptor
+// (plan/pass_descriptor.h); makePlan asks them in order. `seasim plan SCENE` prints toText().
 #pragma once
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "plan/features.h"
 #include "scene/scene.h"
 
 namespace seasim {
 
 struct PassPlan {
-  std::string name;                  // "sea_single"
+  std::string name;                  // its descriptor's name (plan/pass_descriptor.h)
   std::string kernel_file;           // relative to kernels/, e.g. "sea_single.cl"
   std::vector<std::string> defines;  // "SEASIM_HAS_BOTTOM=1"
   std::vector<std::string> reads;    // resources the pass reads ("scene", "gbuffer", ...)
   std::vector<std::string> writes;   // resources it writes ("rgb", ...)
   std::string why;                   // the scene content that made the planner add it
   bool implemented = true;           // false: planned but the model is not built yet
-  std::string missing;               // for !implemented: which issue brings it
+  std::string missing;               // for !implemented: what is missing and what to do instead
+  // The pass's optional kernel features (null: it has none); `defines` is generated from them.
+  std::shared_ptr<const PassFeatures> features;
+
+  // The features as the pass's own struct; RuntimeError naming the entry when it carries another.
+  template <class T>
+  const T& featuresAs() const {
+    if (const T* f = dynamic_cast<const T*>(features.get())) return *f;
+    missingFeatures();
+  }
+  [[noreturn]] void missingFeatures() const;
 };
 
 struct Plan {
   std::vector<PassPlan> passes;
   bool hasPass(const std::string& name) const;
   const PassPlan* find(const std::string& name) const;
+  bool produces(const std::string& resource) const;  // some pass writes it ("caustic_map")
   std::vector<std::string> kernelFiles() const;  // distinct, in pass order
   std::string toText() const;                    // one pass per line
 };

@@ -9,6 +9,7 @@
 
 #include "device/kernel_source.h"
 #include "quality/quality_search.h"
+#include "passes/shafts_features.h"
 #include "passes/shafts_pass.h"
 #include "reference/compare.h"
 #include "reference/shafts_reference.h"
@@ -282,7 +283,7 @@ ShaftsPass::Config shaftsConfigWithAuto(Device& device, const Scene& scene, cons
   };
   if (!automatic("shafts_planes") && !automatic("shafts_subplanes")) return c;
   // n and m are the planes method's knobs: the intervals method (plan/shafts_method.h) has none to search.
-  if (std::find(plan.defines.begin(), plan.defines.end(), "SEASIM_SHAFTS_INTERVALS=1") != plan.defines.end()) return c;
+  if (plan.featuresAs<ShaftsFeatures>().intervals) return c;
   ShaftsAutoOptions options;
   const auto budget = scene.quality.find("shafts_error_budget");
   if (budget != scene.quality.end()) options.budget_levels = budget->second.value;

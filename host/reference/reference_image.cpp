@@ -3,7 +3,7 @@
 #include <chrono>
 
 #include "device/device.h"
-#include "plan/plan.h"
+#include "plan/scene_facts.h"
 #include "reference/sea_reference.h"
 #include "reference/sea_second_reference.h"
 #include "reference/shafts_reference.h"
@@ -34,7 +34,7 @@ int referenceSteps(const Scene& scene, int steps, const char* knob) {
 ReferenceImage renderReference(const Scene& scene, const ReferenceOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
   const bool above = options.all_orders;
-  if (above && (makePlan(scene).hasPass("kd_multiple") || !scene.water.present || !(scene.camera.position.y > 0))) {
+  if (above && (cameraUnderwater(scene) || !scene.water.present || !(scene.camera.position.y > 0))) {
     throw RuntimeError("reference --all-orders: for the sea seen from above only (a [water] scene, camera y > 0)");
   }
   if (above && (scene.sky.model != SkyDesc::Model::Uniform || scene.surface.type != SurfaceDesc::Type::Flat ||
@@ -43,7 +43,7 @@ ReferenceImage renderReference(const Scene& scene, const ReferenceOptions& optio
                        "bottom; set sky.model = \"uniform\", surface.type = \"flat\" and a flat or no bottom");
   }
   ReferenceImage out;
-  if (above || makePlan(scene).hasPass("kd_multiple")) {
+  if (above || cameraUnderwater(scene)) {
     // Under water: the spectral path tracer on the device, `steps` paths per pixel. With
     // underwater.multiple_scattering = false it traces single scattering of the sun beam only, the
     // reference of the froxel pass (make surfaces black and the sky dark to compare that term alone).

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "plan/pass_descriptor.h"  // PassKeys
 #include "plan/plan.h"
 #include "render/frame_context.h"
 #include "render/resources.h"
@@ -20,11 +21,6 @@ namespace seasim {
 // Scene keys as written in files and --set: "sun.zenith_deg", "objects[1].center". A pattern is a
 // key ("surface.time") or a section with ".*" ("sun.*"; "objects.*" covers every objects[i] key).
 bool keyMatches(const std::string& pattern, const std::string& key);
-
-struct PassKeys {
-  std::vector<std::string> rebuild_on;  // prepare + execute again
-  std::vector<std::string> rerun_on;    // execute again with the same set-up
-};
 
 class Pass {
  public:

@@ -1,6 +1,6 @@
 // pass_registry.h — passes by plan name. The renderer asks the registry for the pass of each plan
-// entry; a new model registers its pass here (host/passes/standard_passes.cpp) and adds a plan rule,
-// without touching the renderer.
+// entry; the shipped registry is built from the models' descriptors (plan/pass_descriptor.h,
+// passes/nodes/standard_passes.h), so a new model never touches the renderer.
 #pragma once
 #include <functional>
 #include <map>

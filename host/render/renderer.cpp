@@ -6,6 +6,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "device/enqueue.h"
 #include "render/radiance_target.h"
 #include "util/error.h"
 
@@ -250,16 +251,14 @@ FrameResult Renderer::render() {
     throw RuntimeError("scene '" + scene.name + "' has nothing to render (no pass of its plan writes 'rgb')");
   }
   RadianceTarget& target = resources_.get<RadianceTarget>("rgb");
-  try {
+  onDevice("reading the frame back", [&] {
     device_.queue().enqueueReadBuffer(target.rgb, CL_TRUE, 0, sizeof(float) * 3 * pixels, result.rgb.pixels.data());
     if (scene.spectral.spectral_exr && target.hasSpectral()) {
       result.spectral.resize(pixels * target.bands);
       device_.queue().enqueueReadBuffer(target.spectral, CL_TRUE, 0, sizeof(float) * result.spectral.size(),
                                         result.spectral.data());
     }
-  } catch (const cl::Error& e) {
-    throw DeviceError(std::string("reading the frame back: ") + e.what() + " " + clErrorName(e.err()));
-  }
+  });
   result.build_ms = device_.totalBuildMs() - build_before;
   result.wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return result;

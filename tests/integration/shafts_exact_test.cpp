@@ -12,6 +12,8 @@
 // from inside, and in nearly clear air (a far cut at twice the scene's extent).
 #include <gtest/gtest.h>
 
+#include <ostream>
+
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -41,6 +43,8 @@ struct OpenCase {
   seasim::Vec3 camera, look_at;
   double density, extinction;  // ρ (1/m) and κ: ρκ is the extinction coefficient
 };
+// The case as gtest prints it (its name, not the struct's bytes).
+void PrintTo(const OpenCase& c, std::ostream* os) { *os << c.name; }
 
 constexpr double kCone = 80.0 * M_PI / 180, kIntensity = 10.0;
 constexpr int kWidth = 24, kHeight = 16;

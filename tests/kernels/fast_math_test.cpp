@@ -7,6 +7,8 @@
 // results/BENCHMARKS.md (tests/perf/fast_math_scenes.sh).
 #include <gtest/gtest.h>
 
+#include <ostream>
+
 #include <cmath>
 #include <string>
 #include <vector>
@@ -29,6 +31,8 @@ struct Case {
   const char* value = "";
   const char* name = "";   // the test's name when it differs from the scene's
 };
+// The case as gtest prints it (its name, not the struct's bytes).
+void PrintTo(const Case& c, std::ostream* os) { *os << (*c.name ? c.name : c.scene) << " at " << c.width << "x" << c.height; }
 
 class FastMath : public ::testing::TestWithParam<Case> {};
 

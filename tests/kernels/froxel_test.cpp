@@ -8,6 +8,8 @@
 // move light around without changing the mean. No NaN/Inf anywhere.
 #include <gtest/gtest.h>
 
+#include <ostream>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -160,6 +162,8 @@ struct Variant {
   const char* name;
   std::vector<seasim::Override> overrides;
 };
+// The case as gtest prints it (its name, not the struct's bytes).
+void PrintTo(const Variant& c, std::ostream* os) { *os << c.name; }
 
 class FroxelKernel : public ::testing::TestWithParam<Variant> {};
 

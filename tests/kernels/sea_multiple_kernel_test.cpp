@@ -5,6 +5,8 @@
 // way), and the second-order pass is left out of its plan.
 #include <gtest/gtest.h>
 
+#include <ostream>
+
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -72,6 +74,8 @@ struct Variant {
   std::vector<seasim::Override> overrides;
   bool remove_bottom = false;
 };
+// The case as gtest prints it (its name, not the struct's bytes).
+void PrintTo(const Variant& c, std::ostream* os) { *os << c.name; }
 
 class SeaMultipleKernel : public ::testing::TestWithParam<Variant> {};
 

@@ -3,6 +3,8 @@
 // stiff scenes; second order -> 0 as b -> 0; single + second is bluer than single only.
 #include <gtest/gtest.h>
 
+#include <ostream>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -103,6 +105,8 @@ struct Variant {
   double tolerance;
   const char* n_d = "2048";
 };
+// The case as gtest prints it (its name, not the struct's bytes).
+void PrintTo(const Variant& c, std::ostream* os) { *os << c.name; }
 
 class SeaSecondVsReference : public ::testing::TestWithParam<Variant> {};
 

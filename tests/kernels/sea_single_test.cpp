@@ -3,6 +3,8 @@
 // ordinary scene and its stiff variants. Also: no NaN/Inf anywhere.
 #include <gtest/gtest.h>
 
+#include <ostream>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -65,6 +67,8 @@ struct Variant {
   std::vector<seasim::Override> overrides;
   bool remove_bottom = false;  // drop the [bottom] table: infinitely deep water
 };
+// The case as gtest prints it (its name, not the struct's bytes).
+void PrintTo(const Variant& c, std::ostream* os) { *os << c.name; }
 
 class SeaSingleKernel : public ::testing::TestWithParam<Variant> {};
 
@@ -180,6 +184,8 @@ struct LaneCase {
   int bands;
   bool lut;
 };
+// The case as gtest prints it (its name, not the struct's bytes).
+void PrintTo(const LaneCase& c, std::ostream* os) { *os << c.bands << (c.lut ? " bands, LUT" : " bands, exact"); }
 
 class SeaSingleLanes : public ::testing::TestWithParam<LaneCase> {};
 

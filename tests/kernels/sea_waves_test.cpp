@@ -5,6 +5,8 @@
 // waves and grazing views give no NaN/Inf.
 #include <gtest/gtest.h>
 
+#include <ostream>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -90,6 +92,8 @@ struct Variant {
   double tolerance;  // max relative error vs the double reference (measured values in the comments)
   bool remove_bottom = false;  // drop the [bottom] table: infinitely deep water
 };
+// The case as gtest prints it (its name, not the struct's bytes).
+void PrintTo(const Variant& c, std::ostream* os) { *os << c.name; }
 
 class SeaWavesKernel : public ::testing::TestWithParam<Variant> {};
 

@@ -9,6 +9,8 @@
 // stiff cases run both methods; tests/unit/shafts_intervals_test.cpp tests the math at those points.
 #include <gtest/gtest.h>
 
+#include <ostream>
+
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -125,6 +127,8 @@ struct PhaseCase {
   const char* name;
   std::vector<Override> overrides;
 };
+// The case as gtest prints it (its name, not the struct's bytes).
+void PrintTo(const PhaseCase& c, std::ostream* os) { *os << c.name; }
 
 class ShaftsIntervalsKernel : public ::testing::TestWithParam<PhaseCase> {};
 

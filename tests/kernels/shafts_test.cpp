@@ -13,6 +13,8 @@
 // Reduced resolutions keep the suite to a few seconds.
 #include <gtest/gtest.h>
 
+#include <ostream>
+
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -55,6 +57,8 @@ struct SunCase {
   double sigma_t;
   bool exact;
 };
+// The case as gtest prints it (its name, not the struct's bytes).
+void PrintTo(const SunCase& c, std::ostream* os) { *os << "lamp (" << c.lamp[0] << ", " << c.lamp[1] << ", " << c.lamp[2] << "), sigma_t " << c.sigma_t << (c.exact ? ", exact" : ", planes"); }
 
 class ShaftsVsSun : public ::testing::TestWithParam<SunCase> {};
 
@@ -185,6 +189,8 @@ struct Stiff {
   bool lit = true;  // the reference shows light (not all attenuated away)
   double max_rel_l2 = 0.05;
 };
+// The case as gtest prints it (its name, not the struct's bytes).
+void PrintTo(const Stiff& c, std::ostream* os) { *os << c.name; }
 
 class ShaftsStiff : public ::testing::TestWithParam<Stiff> {};
 

@@ -7,6 +7,8 @@
 // stays finite.
 #include <gtest/gtest.h>
 
+#include <ostream>
+
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -177,6 +179,8 @@ struct Variant {
   bool remove_bottom = false;
   bool remove_objects = false;
 };
+// The case as gtest prints it (its name, not the struct's bytes).
+void PrintTo(const Variant& c, std::ostream* os) { *os << c.name; }
 
 // The variant's scene: kScene less its bottom or objects, with its overrides and `extra`.
 seasim::Scene variantScene(const Variant& v, const std::vector<seasim::Override>& extra = {}) {

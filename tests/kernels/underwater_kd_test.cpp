@@ -5,6 +5,8 @@
 // The froxel term is off here (single_scattering = false); froxel_test.cpp covers it.
 #include <gtest/gtest.h>
 
+#include <ostream>
+
 #include <utility>
 
 #include <algorithm>
@@ -87,6 +89,8 @@ struct Variant {
   // - E_sun0 e^{-c y/μ_w} cancels (K_d close to c/μ_w, Jerlov I and II).
   double tolerance = 1e-4;
 };
+// The case as gtest prints it (its name, not the struct's bytes).
+void PrintTo(const Variant& c, std::ostream* os) { *os << c.name; }
 
 class UnderwaterKdKernel : public ::testing::TestWithParam<Variant> {};
 

@@ -3,6 +3,8 @@
 // "file:line: key 'KEY'" its message must contain (the job's line for anything the job wrote).
 #include <gtest/gtest.h>
 
+#include <ostream>
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -192,6 +194,8 @@ struct BadJob {
   const char* toml;
   const char* expected;
 };
+// The case as gtest prints it (its name, not the struct's bytes).
+void PrintTo(const BadJob& c, std::ostream* os) { *os << c.what; }
 
 const BadJob kBadJobs[] = {
     {"typo'd key in [[render]]", "[[render]]\nscene = \"scenes/sea.toml\"\nframe = 3\n",

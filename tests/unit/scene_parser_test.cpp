@@ -3,6 +3,8 @@
 // table of bad inputs each with the exact "file:line: key 'KEY'" its message must contain.
 #include <gtest/gtest.h>
 
+#include <ostream>
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -478,6 +480,8 @@ struct BadScene {
   const char* toml;
   const char* expected;
 };
+// The case as gtest prints it (its name, not the struct's bytes).
+void PrintTo(const BadScene& c, std::ostream* os) { *os << c.what; }
 
 const BadScene kBadScenes[] = {
     {"unknown caustics mode", "[underwater]\ncaustics = \"fancy\"\n",

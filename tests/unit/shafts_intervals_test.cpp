@@ -9,6 +9,8 @@
 //    surface, ρκ = 0 and large, stretches reaching φ = π/2.
 #include <gtest/gtest.h>
 
+#include <ostream>
+
 #include <cmath>
 #include <cstdio>
 #include <random>
@@ -192,6 +194,8 @@ struct SunCase {
   double sigma_t;
   double T;  // ray length; infinity: no wall
 };
+// The case as gtest prints it (its name, not the struct's bytes).
+void PrintTo(const SunCase& c, std::ostream* os) { *os << "lamp (" << c.lamp[0] << ", " << c.lamp[1] << ", " << c.lamp[2] << "), sigma_t " << c.sigma_t << ", ray " << c.T << " m"; }
 
 class ShaftsIntervalsVsSun : public ::testing::TestWithParam<SunCase> {};
 

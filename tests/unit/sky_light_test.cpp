@@ -12,6 +12,8 @@
 //  - the sweep: the integral's rule at several sizes, error against the brute force and time.
 #include <gtest/gtest.h>
 
+#include <ostream>
+
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -76,6 +78,8 @@ struct ModelCase {
   std::string sky;
   double tolerance;  // relative, module's 256 x 512 rule against the brute force
 };
+// The case as gtest prints it (its name, not the struct's bytes).
+void PrintTo(const ModelCase& c, std::ostream* os) { *os << c.name; }
 
 class SkyLightModels : public ::testing::TestWithParam<ModelCase> {};
 

@@ -3,10 +3,15 @@
 // as a kernel argument keep it; a new buffer only when its size changes):
 //   - seen from above, on the sea bottom (passes/caustic_stack.h seaBottomCaustics, read by sea_single);
 //   - under water, the stack of depth layers (CausticStack, read by raycast and froxel).
+#include <cmath>
 #include <memory>
 
+#include "device/enqueue.h"
 #include "passes/caustic_stack.h"
 #include "passes/nodes/standard_passes.h"
+#include "passes/nodes/underwater_frame.h"
+#include "plan/pass_descriptor.h"
+#include "plan/scene_facts.h"
 #include "util/error.h"
 
 namespace seasim {
@@ -16,12 +21,10 @@ namespace {
 // Copies `fresh` into `kept` when both hold `bytes`; returns false when `kept` must be replaced.
 bool copyInto(Device& device, const cl::Buffer& fresh, cl::Buffer& kept, size_t bytes) {
   if (!kept() || kept.getInfo<CL_MEM_SIZE>() != bytes) return false;
-  try {
+  onDevice("caustics pass: copying the caustic map", [&] {
     device.queue().enqueueCopyBuffer(fresh, kept, 0, 0, bytes);
     device.queue().finish();
-  } catch (const cl::Error& e) {
-    throw DeviceError(std::string("caustics pass: copying the caustic map: ") + e.what() + " " + clErrorName(e.err()));
-  }
+  });
   return true;
 }
 
@@ -79,12 +82,37 @@ const cl::Buffer* underwaterCausticMaps(PassResources& res) {
   return &res.read<UnderwaterCausticMaps>("caustic_map").maps;
 }
 
-void registerCausticsPass(PassRegistry& registry) {
-  registry.add("caustics", [](const PassPlan&, const Plan& plan, const Scene&) -> std::unique_ptr<Pass> {
-    // The plan puts kd_multiple in every underwater frame: its caustics are the layered stack.
-    if (plan.hasPass("kd_multiple")) return std::make_unique<UnderwaterCausticsNode>();
+PassDescriptor causticsDescriptor() {
+  PassDescriptor d;
+  d.name = "caustics";
+  d.kernel_file = "caustics.cl";
+  d.rule = [](const Scene& scene, const Plan&) -> std::optional<PassPlan> {
+    if (oceanForUnderwaterCaustics(scene))
+      return planEntry({"ocean_maps"}, {"caustic_map"},
+                       "camera below an FFT surface, underwater.caustics = \"map\" (004 §5.2.1)");
+    if (seaBottomCausticsPlanned(scene))
+      return planEntry({"ocean_maps"}, {"caustic_map"},
+                       "FFT surface over a bottom, sea.bottom_caustics = true (004 §5.2.1)");
+    return std::nullopt;
+  };
+  d.keys = {{}, kCausticKeys};
+  d.knobs = {{"caustic_map_size", 256}, {"caustic_layers", 8}};
+  // Built without the plan's relaxed maths: its error was not measured under it.
+  d.fast_math = false;
+  d.buffers = [d](const Scene& s, const PassPlan& p) -> std::vector<BufferEstimate> {
+    const double C = d.knob(s, "caustic_map_size");
+    return {{p.name, "caustic maps", 2 * 4 * C * C, {"quality.caustic_map_size", "quality.caustic_map_size"}, {C, C}}};
+  };
+  // 70x sea_single per pixel and band on a height-field floor (results/BENCHMARKS.md "Farm shards").
+  d.cost = [d](const Scene& s, const PassPlan&) {
+    return 70.0 * std::pow(d.settledKnob(s, "caustic_map_size") / 256.0, 2);
+  };
+  d.factory = [](const PassPlan&, const Plan&, const Scene& scene, const AutoQuality&) -> std::unique_ptr<Pass> {
+    // Under water the caustics are the layered stack the G-buffer and the froxels read.
+    if (cameraUnderwater(scene)) return std::make_unique<UnderwaterCausticsNode>();
     return std::make_unique<SeaBottomCausticsNode>();
-  });
+  };
+  return d;
 }
 
 }  // namespace seasim

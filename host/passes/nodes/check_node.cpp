@@ -4,6 +4,7 @@
 
 #include "passes/nodes/standard_passes.h"
 #include "passes/nonfinite_check.h"
+#include "plan/pass_descriptor.h"
 #include "render/radiance_target.h"
 
 namespace seasim {
@@ -33,9 +34,23 @@ class CheckNode : public Pass {
 
 }  // namespace
 
-void registerCheckPass(PassRegistry& registry) {
-  registry.add("nonfinite_check",
-               [](const PassPlan&, const Plan&, const Scene&) { return std::make_unique<CheckNode>(); });
+PassDescriptor nonfiniteCheckDescriptor() {
+  PassDescriptor d;
+  d.name = "nonfinite_check";
+  d.kernel_file = "check.cl";
+  d.rule = [](const Scene&, const Plan&) -> std::optional<PassPlan> {
+    return planEntry({"rgb"}, {"status"}, "always: kernels must never emit NaN/Inf");
+  };
+  // Finite-only maths may assume away the very values it counts.
+  d.fast_math = false;
+  d.buffers = [](const Scene&, const PassPlan& p) {
+    return std::vector<BufferEstimate>{{p.name, "NaN/Inf counter", double(sizeof(cl_uint)), {}, {}}};
+  };
+  d.cost = [](const Scene&, const PassPlan&) { return 0.01; };
+  d.factory = [](const PassPlan&, const Plan&, const Scene&, const AutoQuality&) -> std::unique_ptr<Pass> {
+    return std::make_unique<CheckNode>();
+  };
+  return d;
 }
 
 }  // namespace seasim

@@ -1,16 +1,17 @@
 #include "passes/nodes/standard_passes.h"
 
+#include "plan/pass_descriptor.h"
+
 namespace seasim {
 
 PassRegistry standardPasses(const AutoQuality& auto_quality) {
   PassRegistry registry;
-  registerOceanPass(registry);
-  registerCausticsPass(registry);
-  registerSeaPasses(registry, auto_quality);
-  registerShaftsPasses(registry, auto_quality);
-  registerUnderwaterPasses(registry);
-  registerFourFlowPass(registry);
-  registerCheckPass(registry);
+  for (const PassDescriptor& d : passDescriptors()) {
+    registry.add(d.name, d.kernel_file,
+                 [factory = d.factory, auto_quality](const PassPlan& entry, const Plan& plan, const Scene& scene) {
+                   return factory(entry, plan, scene, auto_quality);
+                 });
+  }
   return registry;
 }
 

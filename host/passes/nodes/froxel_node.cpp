@@ -1,0 +1,98 @@
+// froxel_node.cpp — "froxel": single scattering of the sun beam in the underwater frame (002 §5,
+// froxel.cl, passes/froxel_pass.h), published as "froxel_volume" for kd_multiple.
+#include <algorithm>
+#include <memory>
+
+#include "passes/froxel_pass.h"
+#include "passes/nodes/underwater_frame.h"
+#include "passes/underwater_features.h"
+#include "plan/pass_descriptor.h"
+#include "plan/scene_facts.h"
+#include "render/pass.h"
+
+namespace seasim {
+
+namespace {
+
+// FroxelPass folds the whole setup into its tables at set-up.
+PassKeys froxelKeys() {
+  std::vector<std::string> rebuild = kUnderwaterSetupKeys;
+  for (const char* key : {"camera.*", "spectral.*", "quality.froxel_x", "quality.froxel_y", "quality.froxel_z",
+                          "quality.shadow_map_size"})
+    rebuild.push_back(key);
+  return {rebuild, {}};
+}
+
+class FroxelNode : public Pass {
+ public:
+  explicit FroxelNode(const PassPlan& entry) : entry_(entry) {}
+  PassKeys keys() const override { return froxelKeys(); }
+  void prepare(FrameContext& ctx, PassResources& res) override {
+    res.publish("froxel_volume",
+                std::make_shared<FroxelPass>(ctx.device(), ctx.scene(), ctx.underwaterSetup(), entry_.defines));
+  }
+  void execute(FrameContext& ctx, PassResources& res) override {
+    FroxelPass& froxels = res.read<FroxelPass>("froxel_volume");
+    // With the G-buffer, only the froxels that kd_multiple's reads need are evaluated.
+    const cl::Buffer* geom =
+        res.declaresRead("gbuffer") ? &res.read<UnderwaterGBuffer>("gbuffer").pass->geometry() : nullptr;
+    froxels.run(underwaterCausticMaps(res), geom, ctx.scene().camera.width, ctx.scene().camera.height);
+    for (const PassTiming& t : froxels.timings()) ctx.timings.push_back(t);
+  }
+
+ private:
+  const PassPlan& entry_;
+};
+
+}  // namespace
+
+PassDescriptor froxelDescriptor() {
+  PassDescriptor d;
+  d.name = "froxel";
+  d.kernel_file = "froxel.cl";
+  d.rule = [](const Scene& scene, const Plan& so_far) -> std::optional<PassPlan> {
+    const UnderwaterDesc& uw = scene.underwater;
+    if (!cameraUnderwater(scene) || !uw.single_scattering || !sunUp(scene)) return std::nullopt;
+    std::vector<std::string> reads = {"scene", "gbuffer"};  // gbuffer: which froxels are read
+    if (so_far.produces("caustic_map")) reads.push_back("caustic_map");
+    auto features = std::make_shared<FroxelFeatures>();
+    features->objects = !scene.objects.empty();
+    features->caustics = underwaterCausticsMode(scene);
+    features->spectral_injection = uw.injection == UnderwaterDesc::Injection::Spectral;
+    return planEntry(reads, {"froxel_volume"}, "camera below the surface, sun up, underwater.single_scattering",
+                     features);
+  };
+  d.keys = froxelKeys();
+  d.knobs = {{"froxel_x", 160},         {"froxel_y", 90},      {"froxel_z", 64},
+             {"caustic_map_size", 256}, {"caustic_layers", 8}, {"shadow_map_size", 512}};
+  d.buffers = [d](const Scene& s, const PassPlan& p) -> std::vector<BufferEstimate> {
+    const double fx = d.knob(s, "froxel_x"), fy = d.knob(s, "froxel_y"), fz = d.knob(s, "froxel_z");
+    std::vector<BufferEstimate> out = {{p.name, "froxel volume", 20 * fx * fy * fz,
+                                        {"quality.froxel_x", "quality.froxel_y", "quality.froxel_z"}, {fx, fy, fz}}};
+    // The sun's shadow map over the spheres and boxes (froxel_setup.cpp), one float per texel.
+    const bool bounded = std::any_of(s.objects.begin(), s.objects.end(), [](const ObjectDesc& o) {
+      return o.type == ObjectDesc::Type::Sphere || o.type == ObjectDesc::Type::Box;
+    });
+    if (bounded) {
+      const double S = d.knob(s, "shadow_map_size");
+      out.push_back({p.name, "sun shadow map over the objects", 4 * S * S,
+                     {"quality.shadow_map_size", "quality.shadow_map_size"}, {S, S}});
+    }
+    const double C = d.knob(s, "caustic_map_size"), L = d.knob(s, "caustic_layers");
+    out.push_back({p.name, "caustic maps", 4 * L * C * C,
+                   {"quality.caustic_layers", "quality.caustic_map_size", "quality.caustic_map_size"}, {L, C, C}});
+    return out;
+  };
+  // 16x sea_single per pixel and band at the default grid (seabed against flat_sea, 3 rounds;
+  // results/BENCHMARKS.md "Farm shards"), in proportion to the froxel count.
+  d.cost = [d](const Scene& s, const PassPlan&) {
+    return 16.0 * (d.settledKnob(s, "froxel_x") * d.settledKnob(s, "froxel_y") * d.settledKnob(s, "froxel_z") /
+                   (160.0 * 90 * 64));
+  };
+  d.factory = [](const PassPlan& e, const Plan&, const Scene&, const AutoQuality&) -> std::unique_ptr<Pass> {
+    return std::make_unique<FroxelNode>(e);
+  };
+  return d;
+}
+
+}  // namespace seasim

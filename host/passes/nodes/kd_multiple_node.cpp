@@ -1,0 +1,110 @@
+// kd_multiple_node.cpp — "kd_multiple": the underwater frame's per-band shading (002 eq. 4.7-4.8,
+// or the discrete-ordinates model of common/underwater_improved.h), run by the G-buffer's
+// UnderwaterPass; it publishes the frame's "rgb".
+#include <memory>
+#include <vector>
+
+#include "device/enqueue.h"
+#include "device/device.h"
+#include "passes/froxel_pass.h"
+#include "passes/nodes/underwater_frame.h"
+#include "passes/underwater_features.h"
+#include "plan/pass_descriptor.h"
+#include "plan/scene_facts.h"
+#include "render/pass.h"
+#include "render/radiance_target.h"
+#include "util/error.h"
+
+namespace seasim {
+
+namespace {
+
+class KdNode : public Pass {
+ public:
+  PassKeys keys() const override { return {{}, kUnderwaterSetupKeys}; }
+  void prepare(FrameContext& ctx, PassResources& res) override {
+    UnderwaterPass& pass = *res.read<UnderwaterGBuffer>("gbuffer").pass;
+    if (&pass == published_for_) return;  // a new froxel volume only: the same image buffers
+    published_for_ = &pass;
+    auto target = std::make_shared<RadianceTarget>();
+    target->rgb = pass.rgb();
+    target->spectral = pass.spectral();
+    target->pixels = static_cast<size_t>(ctx.scene().camera.width) * static_cast<size_t>(ctx.scene().camera.height);
+    target->bands = ctx.grid().size();
+    res.publish("rgb", target);
+  }
+  void execute(FrameContext& ctx, PassResources& res) override {
+    UnderwaterGBuffer& gbuffer = res.read<UnderwaterGBuffer>("gbuffer");
+    gbuffer.sync(ctx);
+    FroxelPass* froxels = res.declaresRead("froxel_volume") ? &res.read<FroxelPass>("froxel_volume") : nullptr;
+    ctx.timings.push_back({"kd_multiple", gbuffer.pass->runShading(froxels ? &froxels->paramsBuffer() : nullptr,
+                                                                   froxels ? &froxels->volume() : nullptr)});
+    // spectral.exr holds the whole image: kd_multiple wrote T L_s + L_MS per band; the froxel term per
+    // band is added from the same injected light, into the buffer the renderer reads back.
+    if (froxels && ctx.scene().spectral.spectral_exr) {
+      const Scene& scene = ctx.scene();
+      const size_t pixels = static_cast<size_t>(scene.camera.width) * static_cast<size_t>(scene.camera.height);
+      std::vector<float> spectral(pixels * ctx.grid().size());
+      cl::CommandQueue& queue = ctx.device().queue();
+      onDevice("froxel spectral bands", [&] {
+        queue.enqueueReadBuffer(gbuffer.pass->spectral(), CL_TRUE, 0, sizeof(float) * spectral.size(), spectral.data());
+        const double ms = froxels->addBandsToSpectral(ctx.underwaterSetup(), gbuffer.pass->geometry(), scene.camera.width,
+                                                      scene.camera.height, spectral);
+        queue.enqueueWriteBuffer(gbuffer.pass->spectral(), CL_TRUE, 0, sizeof(float) * spectral.size(), spectral.data());
+        ctx.timings.push_back({"froxel_spectral_bands", ms});
+      });
+    }
+  }
+
+ private:
+  const UnderwaterPass* published_for_ = nullptr;
+};
+
+}  // namespace
+
+PassDescriptor kdMultipleDescriptor() {
+  PassDescriptor d;
+  d.name = "kd_multiple";
+  d.kernel_file = "kd_multiple.cl";
+  d.rule = [](const Scene& scene, const Plan& so_far) -> std::optional<PassPlan> {
+    if (!cameraUnderwater(scene)) return std::nullopt;
+    const bool froxels = so_far.produces("froxel_volume");
+    const bool ordinates = scene.underwater.model == UnderwaterDesc::Model::Improved;
+    std::vector<std::string> reads = {"gbuffer"};
+    if (froxels) reads.push_back("froxel_volume");
+    auto features = std::make_shared<KdFeatures>();
+    features->multiple = scene.underwater.multiple_scattering;
+    features->froxel = froxels;
+    features->spectral_output = scene.spectral.spectral_exr;
+    features->sky_model = skyModelOf(scene.sky);
+    features->underwater_model = ordinates ? 1 : 0;
+    features->point_spread = underwaterPointSpread(scene);
+    return planEntry(reads, {"rgb"},
+                     ordinates ? "camera below the surface: T L_s + L_MS per band, model \"improved\" (delta-M, the "
+                                 "diffuse field over the bottom by discrete ordinates or a two-stream, its in-scatter "
+                                 "by direction)"
+                               : "camera below the surface: T L_s + L_MS per band (002 eq. 4.7)",
+                     features);
+  };
+  d.keys = {{}, kUnderwaterSetupKeys};
+  d.buffers = [](const Scene& s, const PassPlan& p) -> std::vector<BufferEstimate> {
+    if (!p.featuresAs<KdFeatures>().point_spread) return {};
+    // The forward light's moments the point spread blurs (underwater_pass.cpp): F and F E per
+    // channel, F D and F per pixel, and per band with spectral output.
+    const double w = s.camera.width, h = s.camera.height, nb = s.spectral.count;
+    std::vector<BufferEstimate> out = {{p.name, "forward light moments (underwater.point_spread)", 4 * 8 * w * h,
+                                        {"camera.width", "camera.height"}, {w, h}}};
+    if (s.spectral.spectral_exr)
+      out.push_back({p.name, "forward light moments per band", 4 * 2 * nb * w * h,
+                     {"camera.width", "camera.height", "spectral.count"}, {w, h, nb}});
+    return out;
+  };
+  // 1.5x sea_single per pixel and band (seabed against flat_sea; results/BENCHMARKS.md "Farm shards").
+  d.cost = [](const Scene&, const PassPlan&) { return 1.5; };
+  d.factory = [](const PassPlan&, const Plan&, const Scene&, const AutoQuality&) -> std::unique_ptr<Pass> {
+    return std::make_unique<KdNode>();
+  };
+  return d;
+}
+
+}  // namespace seasim

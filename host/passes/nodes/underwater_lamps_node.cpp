@@ -1,0 +1,76 @@
+// underwater_lamps_node.cpp — "underwater_lamps": spotlights in the water (divers' torches, ROV
+// lamps; passes/underwater_lamps_pass.h), 001's sampling planes in the water's spectral medium,
+// added into the "rgb" kd_multiple wrote (it reads "rgb" so that it runs after).
+#include <memory>
+
+#include "passes/nodes/underwater_frame.h"
+#include "passes/underwater_features.h"
+#include "passes/underwater_lamps_pass.h"
+#include "plan/pass_descriptor.h"
+#include "plan/scene_facts.h"
+#include "render/pass.h"
+#include "render/radiance_target.h"
+
+namespace seasim {
+
+namespace {
+
+const PassKeys kLampsKeys = {{"camera.*", "spectral.*", "objects.*", "spotlights.*", "quality.shafts_planes",
+                              "quality.shafts_subplanes", "quality.lamps_delta_m"},
+                             kUnderwaterSetupKeys};
+
+class UnderwaterLampsNode : public Pass {
+ public:
+  explicit UnderwaterLampsNode(const PassPlan& entry) : entry_(entry) {}
+  PassKeys keys() const override { return kLampsKeys; }
+  void prepare(FrameContext& ctx, PassResources&) override {
+    pass_ = std::make_unique<UnderwaterLampsPass>(ctx.device(), ctx.scene(), ctx.underwaterSetup(), ctx.grid(), entry_,
+                                                  UnderwaterLampsPass::configFromScene(ctx.scene()));
+    setup_version_ = ctx.setupVersion();
+  }
+  void execute(FrameContext& ctx, PassResources& res) override {
+    if (setup_version_ != ctx.setupVersion()) {
+      pass_->update(ctx.underwaterSetup());
+      setup_version_ = ctx.setupVersion();
+    }
+    UnderwaterPass& gbuffer = *res.read<UnderwaterGBuffer>("gbuffer").pass;
+    RadianceTarget& target = res.read<RadianceTarget>("rgb");
+    cl::Buffer* spectral = ctx.scene().spectral.spectral_exr ? &target.spectral : nullptr;
+    ctx.timings.push_back({"underwater_lamps", pass_->run(gbuffer.geometry(), gbuffer.material(), target.rgb, spectral)});
+  }
+
+ private:
+  const PassPlan& entry_;
+  std::unique_ptr<UnderwaterLampsPass> pass_;
+  uint64_t setup_version_ = 0;
+};
+
+}  // namespace
+
+PassDescriptor underwaterLampsDescriptor() {
+  PassDescriptor d;
+  d.name = "underwater_lamps";
+  d.kernel_file = "underwater_lamps.cl";
+  d.rule = [](const Scene& scene, const Plan&) -> std::optional<PassPlan> {
+    if (!cameraUnderwater(scene) || scene.spotlights.empty()) return std::nullopt;
+    auto features = std::make_shared<UnderwaterLampsFeatures>();
+    features->objects = !scene.objects.empty();
+    features->spectral_output = scene.spectral.spectral_exr;
+    return planEntry({"gbuffer", "rgb"}, {"rgb"},
+                     "[[spotlights]] under water: 001's sampling planes with the water's sigma_s, sigma_t, HG", features);
+  };
+  d.keys = kLampsKeys;
+  d.buffers = [](const Scene& s, const PassPlan& p) -> std::vector<BufferEstimate> {
+    const double lights = static_cast<double>(s.spotlights.size()), nb = s.spectral.count;
+    // Its own copies of the underwater parameter blocks are per band, not per pixel: only the spectra.
+    return {{p.name, "lamp spectra (one per spotlight and band)", 4 * lights * nb,
+             {"spotlights (count)", "spectral.count"}, {lights, nb}}};
+  };
+  d.cost = [](const Scene&, const PassPlan&) { return 1.0; };
+  d.factory = [](const PassPlan& e, const Plan&, const Scene&, const AutoQuality&) -> std::unique_ptr<Pass> {
+    return std::make_unique<UnderwaterLampsNode>(e);
+  };
+  return d;
+}
+
+}  // namespace seasim

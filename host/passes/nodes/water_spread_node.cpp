@@ -1,0 +1,73 @@
+// water_spread_node.cpp — "water_spread": the water's point-spread (passes/water_spread_pass.h):
+// adds the forward light kd_multiple kept apart, blurred by the phase's small angles, into the "rgb"
+// it wrote.
+#include <memory>
+
+#include "passes/nodes/underwater_frame.h"
+#include "passes/water_spread_pass.h"
+#include "plan/pass_descriptor.h"
+#include "plan/scene_facts.h"
+#include "render/pass.h"
+#include "render/radiance_target.h"
+#include "underwater/underwater_improved_ordinates.h"  // kOrdinatesSourceMoments
+#include "util/error.h"
+
+namespace seasim {
+
+namespace {
+
+// The blur follows the image's size and field of view and the phase's g (and the model's delta-M order).
+const PassKeys kWaterSpreadKeys = {{"camera.*", "spectral.*", "water.*", "underwater.*"}, kUnderwaterSetupKeys};
+
+class WaterSpreadNode : public Pass {
+ public:
+  explicit WaterSpreadNode(const PassPlan& entry) : entry_(entry) {}
+  PassKeys keys() const override { return kWaterSpreadKeys; }
+  void prepare(FrameContext& ctx, PassResources&) override {
+    const Scene& scene = ctx.scene();
+    const UwParams& p = ctx.underwaterSetup().params;
+    const int order = scene.underwater.improved_diffuse == UnderwaterDesc::Diffuse::DiscreteOrdinates
+                          ? kOrdinatesSourceMoments
+                          : 2;  // the two-stream's f = g² (improvedDeltaM)
+    pass_ = std::make_unique<WaterSpreadPass>(ctx.device(), entry_,
+                                              makeWaterSpread(p.g, order, p.tan_half_fov_y, p.width, p.height),
+                                              scene.spectral.spectral_exr ? p.band_count : 0);
+  }
+  void execute(FrameContext& ctx, PassResources& res) override {
+    UnderwaterPass& gbuffer = *res.read<UnderwaterGBuffer>("gbuffer").pass;
+    if (!gbuffer.spread())
+      throw RuntimeError("plan: the water_spread pass needs kd_multiple planned with its point_spread feature");
+    RadianceTarget& target = res.read<RadianceTarget>("rgb");
+    const bool spectral = ctx.scene().spectral.spectral_exr;
+    ctx.timings.push_back({"water_spread", pass_->run(gbuffer.geometry(), gbuffer.forwardDepth(), gbuffer.forwardRgb(),
+                                                      target.rgb, spectral ? &gbuffer.forwardSpectral() : nullptr,
+                                                      spectral ? &target.spectral : nullptr)});
+  }
+
+ private:
+  const PassPlan& entry_;
+  std::unique_ptr<WaterSpreadPass> pass_;
+};
+
+}  // namespace
+
+PassDescriptor waterSpreadDescriptor() {
+  PassDescriptor d;
+  d.name = "water_spread";
+  d.kernel_file = "water_spread.cl";
+  d.rule = [](const Scene& scene, const Plan&) -> std::optional<PassPlan> {
+    if (!cameraUnderwater(scene) || !underwaterPointSpread(scene)) return std::nullopt;
+    return planEntry({"gbuffer", "rgb"}, {"rgb"},
+                     "underwater.model \"improved\", water.g > 0, underwater.point_spread: the light delta-M "
+                     "counts as unscattered, blurred by the phase's small angles (common/water_spread.h)");
+  };
+  d.keys = kWaterSpreadKeys;
+  d.buffers = [](const Scene&, const PassPlan&) { return std::vector<BufferEstimate>{}; };
+  d.cost = [](const Scene&, const PassPlan&) { return 1.0; };
+  d.factory = [](const PassPlan& e, const Plan&, const Scene&, const AutoQuality&) -> std::unique_ptr<Pass> {
+    return std::make_unique<WaterSpreadNode>(e);
+  };
+  return d;
+}
+
+}  // namespace seasim

@@ -1,0 +1,61 @@
+// underwater_features.h — the kernel features of the underwater frame's kernels (paper 002):
+// raycast.cl's G-buffer, froxel.cl, kd_multiple.cl and underwater_lamps.cl, each chosen by its plan
+// rule (nodes/raycast_node.cpp, froxel_node.cpp, kd_multiple_node.cpp, underwater_lamps_node.cpp).
+#pragma once
+#include "plan/features.h"
+
+namespace seasim {
+
+struct UnderwaterRaycastFeatures final : PassFeatures {
+  bool objects = false;  // analytic objects in the water
+  bool sun = false;      // the sun is up: its visibility per pixel
+  int caustics = 0;      // 0 none, 1 texture, 2 the ocean's caustic maps
+
+  void list(FeatureList& out) const override {
+    out.flag("objects", "SEASIM_HAS_OBJECTS", objects);
+    out.flag("sun", "SEASIM_HAS_SUN", sun);
+    out.value("caustics", "SEASIM_CAUSTICS", caustics);
+  }
+};
+
+struct FroxelFeatures final : PassFeatures {
+  bool objects = false;             // objects shadow the beam
+  int caustics = 0;                 // 0 none, 1 texture, 2 the ocean's caustic maps
+  bool spectral_injection = false;  // underwater.injection = "spectral" (else RGB)
+
+  void list(FeatureList& out) const override {
+    out.flag("objects", "SEASIM_HAS_OBJECTS", objects);
+    out.value("caustics", "SEASIM_CAUSTICS", caustics);
+    out.flag("spectral_injection", "SEASIM_SPECTRAL_INJECTION", spectral_injection);
+  }
+};
+
+struct KdFeatures final : PassFeatures {
+  bool multiple = false;         // L_MS (underwater.multiple_scattering)
+  bool froxel = false;           // the froxel volume's single scattering is added
+  bool spectral_output = false;  // the per-band image (spectral.spectral_exr)
+  int sky_model = 0;             // Snell's window: common/sky.h's models
+  int underwater_model = 0;      // 0 thesis (002 eq. 4.7), 1 discrete ordinates (common/underwater_improved.h)
+  bool point_spread = false;     // the forward light kept apart for water_spread
+
+  void list(FeatureList& out) const override {
+    out.flag("multiple", "SEASIM_HAS_MULTIPLE", multiple);
+    out.flag("froxel", "SEASIM_HAS_FROXEL", froxel);
+    out.flag("spectral_output", "SEASIM_SPECTRAL_OUTPUT", spectral_output);
+    out.value("sky_model", "SEASIM_SKY_MODEL", sky_model);
+    out.value("underwater_model", "SEASIM_UNDERWATER_MODEL", underwater_model);
+    out.flag("point_spread", "SEASIM_UWI_SPREAD", point_spread);
+  }
+};
+
+struct UnderwaterLampsFeatures final : PassFeatures {
+  bool objects = false;          // objects shadow the lamps
+  bool spectral_output = false;  // the per-band image (spectral.spectral_exr)
+
+  void list(FeatureList& out) const override {
+    out.flag("objects", "SEASIM_HAS_OBJECTS", objects);
+    out.flag("spectral_output", "SEASIM_SPECTRAL_OUTPUT", spectral_output);
+  }
+};
+
+}  // namespace seasim

@@ -1,0 +1,46 @@
+#include "plan/pass_descriptor.h"
+
+#include "util/error.h"
+
+namespace seasim {
+
+namespace {
+
+const KnobDefault& knobDefault(const PassDescriptor& d, const char* name) {
+  for (const KnobDefault& k : d.knobs)
+    if (std::string(k.name) == name) return k;
+  throw RuntimeError("the " + d.name + " pass's descriptor does not list the knob quality." + name);
+}
+
+}  // namespace
+
+double PassDescriptor::knob(const Scene& scene, const char* name) const {
+  const KnobDefault& k = knobDefault(*this, name);
+  const auto it = scene.quality.find(name);
+  return it == scene.quality.end() ? k.value : it->second.value;
+}
+
+double PassDescriptor::settledKnob(const Scene& scene, const char* name) const {
+  const KnobDefault& k = knobDefault(*this, name);
+  const auto it = scene.quality.find(name);
+  if (it == scene.quality.end() || it->second.automatic || it->second.value <= 0) return k.value;
+  return it->second.value;
+}
+
+PassPlan planEntry(std::vector<std::string> reads, std::vector<std::string> writes, std::string why,
+                   std::shared_ptr<const PassFeatures> features) {
+  PassPlan p;
+  p.reads = std::move(reads);
+  p.writes = std::move(writes);
+  p.why = std::move(why);
+  p.features = std::move(features);
+  return p;
+}
+
+const PassDescriptor* descriptorOf(const PassPlan& entry) {
+  for (const PassDescriptor& d : passDescriptors())
+    if (d.name == entry.name && d.kernel_file == entry.kernel_file) return &d;
+  return nullptr;
+}
+
+}  // namespace seasim

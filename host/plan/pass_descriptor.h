@@ -1,0 +1,79 @@
+// pass_descriptor.h — everything the rest of seasim knows about one model, kept beside its pass
+// (host/passes/nodes/<model>_node.cpp), after Filament's addPass(setup, execute) and Mitsuba's
+// self-describing plugins: its plan rule, the scene keys it depends on, its quality knobs and their
+// defaults, its buffer estimate, its cost weight and its factory. The planner (makePlan), the memory
+// budget, the shard balancer and the renderer's registry ask the descriptors; none of them names a
+// model. Adding a model = a node with its descriptor, and its declaration and place in the ordered
+// list of host/passes/nodes/pass_list.cpp.
+#pragma once
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "plan/memory_budget.h"
+#include "plan/plan.h"
+#include "scene/scene.h"
+
+namespace seasim {
+
+class Pass;
+struct AutoQuality;
+
+// Scene keys as written in files and --set: "sun.zenith_deg", "objects[1].center". A pattern is a
+// key ("surface.time") or a section with ".*" ("sun.*"; "objects.*" covers every objects[i] key).
+struct PassKeys {
+  std::vector<std::string> rebuild_on;  // prepare + execute again
+  std::vector<std::string> rerun_on;    // execute again with the same set-up
+};
+
+// A [quality] knob a model reads, with the default it plans, estimates and costs with.
+struct KnobDefault {
+  const char* name;  // without "quality."
+  double value;
+};
+
+struct PassDescriptor {
+  std::string name;         // the plan entry's name
+  std::string kernel_file;  // relative to kernels/ ("sea_single.cl")
+
+  // The plan rule: the entry this model adds for `scene`, given the passes planned before it
+  // (`so_far`, in plan order); nullopt when the scene does not need it. makePlan gives the entry
+  // the descriptor's name and kernel file and generates its defines from its features.
+  std::function<std::optional<PassPlan>(const Scene& scene, const Plan& so_far)> rule;
+  // The scene keys the pass depends on (render/pass.h: rebuild or rerun when one changes).
+  PassKeys keys;
+  // Its [quality] knobs; knob() and settledKnob() read only these.
+  std::vector<KnobDefault> knobs;
+  // Whether quality.fast_math builds its kernel with -cl-fast-relaxed-math (false where the error
+  // under relaxed maths was not measured, or where finite-only maths would hide what it checks).
+  bool fast_math = true;
+  // The big device buffers (and host copies) it allocates for `entry` (plan/memory_budget.h).
+  std::function<std::vector<BufferEstimate>(const Scene& scene, const PassPlan& entry)> buffers;
+  // Its cost per pixel and band relative to sea_single's at the default knobs, times how much more
+  // the scene's knobs cost (jobs/shard_balance.h). Null: 1.
+  std::function<double(const Scene& scene, const PassPlan& entry)> cost;
+  // Makes the renderer's pass for one entry of `plan` (render/pass_registry.h).
+  std::function<std::unique_ptr<Pass>(const PassPlan& entry, const Plan& plan, const Scene& scene,
+                                      const AutoQuality& auto_quality)>
+      factory;
+
+  // The knob's value in the scene (an "auto" knob's placeholder value), its default when absent.
+  double knob(const Scene& scene, const char* name) const;
+  // The same, but the default when the knob is "auto" or not positive: the search's pick is not
+  // known before rendering.
+  double settledKnob(const Scene& scene, const char* name) const;
+};
+
+// A plan rule's entry: what it reads and writes, why the scene needs it, its features.
+PassPlan planEntry(std::vector<std::string> reads, std::vector<std::string> writes, std::string why,
+                   std::shared_ptr<const PassFeatures> features = nullptr);
+
+// Every shipped model, in plan order (host/passes/nodes/pass_list.cpp).
+const std::vector<PassDescriptor>& passDescriptors();
+
+// The descriptor that made `entry` (same name and kernel file), or null for an entry built by hand.
+const PassDescriptor* descriptorOf(const PassPlan& entry);
+
+}  // namespace seasim
