@@ -17,6 +17,11 @@ namespace seasim {
 // n rounded up to a multiple of `local`.
 size_t roundUp(size_t n, size_t local);
 
+// `local` when this device can run `kernel` in groups of that size (CL_KERNEL_WORK_GROUP_SIZE and
+// CL_DEVICE_MAX_WORK_ITEM_SIZES), else NullRange: the driver chooses. OpenCL sets no minimum group
+// size, so an explicit 8 x 8 is a request, not a requirement; global sizes are whole groups anyway.
+cl::NDRange workGroupFor(Device& device, const cl::Kernel& kernel, const cl::NDRange& local);
+
 // Launches `kernel` over width x height in local x local work-groups and waits; returns its ms.
 double runKernel2d(Device& device, const std::string& pass, const cl::Kernel& kernel, size_t width, size_t height,
                    size_t local = 8);

@@ -68,10 +68,10 @@ double WaterSpreadPass::blur(Channels& ch, const cl::Buffer& geom, const cl::Buf
     expand_.setArg(2, frame);
     cl::CommandQueue& q = device_.queue();
     const cl::NDRange group(local, local);
-    q.enqueueNDRangeKernel(reduce_, cl::NullRange, cells, group, nullptr, &done[0]);
-    q.enqueueNDRangeKernel(rows_, cl::NullRange, cells, group, nullptr, &done[1]);
-    q.enqueueNDRangeKernel(columns_, cl::NullRange, cells, group, nullptr, &done[2]);
-    q.enqueueNDRangeKernel(expand_, cl::NullRange, pixels, group, nullptr, &done[3]);
+    q.enqueueNDRangeKernel(reduce_, cl::NullRange, cells, workGroupFor(device_, reduce_, group), nullptr, &done[0]);
+    q.enqueueNDRangeKernel(rows_, cl::NullRange, cells, workGroupFor(device_, rows_, group), nullptr, &done[1]);
+    q.enqueueNDRangeKernel(columns_, cl::NullRange, cells, workGroupFor(device_, columns_, group), nullptr, &done[2]);
+    q.enqueueNDRangeKernel(expand_, cl::NullRange, pixels, workGroupFor(device_, expand_, group), nullptr, &done[3]);
     done[3].wait();
   });
   double ms = 0;

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "device/enqueue.h"
 #include "math/kernel_math.h"
 #include "util/error.h"
 
@@ -108,7 +109,8 @@ UnderwaterReferenceResult renderUnderwaterReference(Device& device, const Underw
       kernel.setArg(5, static_cast<cl_int>(done));
       kernel.setArg(6, static_cast<cl_int>(n));
       cl::Event event;
-      queue.enqueueNDRangeKernel(kernel, cl::NullRange, global, cl::NDRange(local, local), nullptr, &event);
+      queue.enqueueNDRangeKernel(kernel, cl::NullRange, global, workGroupFor(device, kernel, cl::NDRange(local, local)),
+                                 nullptr, &event);
       event.wait();  // one launch at a time: bounded kernel length (GPU watchdogs) and live progress
       result.ms += eventMs(event);
       done += n;

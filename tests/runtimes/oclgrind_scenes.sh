@@ -58,6 +58,26 @@ for scene in "${scenes[@]}"; do
     tail -n 5 "$work/$name.out"
   fi
 done
+# A device that allows fewer work-items per group than the passes' 8 x 8 (as a GPU may for a
+# register-heavy kernel): the launches must fall back to a size the driver chooses, not fail.
+if [ $# -eq 0 ] || printf '%s\n' "$@" | grep -q seabed; then
+  small_group_scene="$scenes_dir/seabed.toml"
+  args=()
+  for kv in "${small[@]}"; do args+=(--set "$kv"); done
+  log="$work/seabed_wgsize16.oclgrind.log"
+  oclgrind --check-api --max-wgsize 16 --num-threads 1 --log "$log" "$seasim" render "$small_group_scene" \
+    -o "$work/seabed_wgsize16" --device oclgrind "${args[@]}" >"$work/seabed_wgsize16.out" 2>&1
+  rc=$?
+  reports=0
+  [ -s "$log" ] && reports=$(grep -c '^[^[:space:]]' "$log")
+  printf '%-22s %6s %8s %7s %s\n' "seabed, groups <= 16" "$rc" "-" "-" "$reports"
+  if [ "$rc" != 0 ] || [ "$reports" != 0 ]; then
+    failed=$((failed + 1))
+    echo "---- seabed on a device allowing 16 work-items per group: exit $rc"
+    tail -n 5 "$work/seabed_wgsize16.out"
+    head -n 20 "$log" 2>/dev/null
+  fi
+fi
 files=0
 [ -f "$work/kernel_files.txt" ] && files=$(sort -u "$work/kernel_files.txt" | wc -l)
 echo "oclgrind_scenes: ${#scenes[@]} scenes, $kernels_total passes ($files kernel files) checked by Oclgrind, $failed with a report or a failure"
