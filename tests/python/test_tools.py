@@ -47,7 +47,10 @@ def test_compare_gives_the_command_lines_numbers(flat_sea, tmp_path):
     np.save(tmp_path / "b.npy", b.rgb)
     cli = subprocess.run([str(BINARY), "compare", str(tmp_path / "a.npy"), str(tmp_path / "b.npy")],
                          capture_output=True, text=True, check=True).stdout
-    expected = {k: float(v) for k, v in (line.split() for line in cli.splitlines())}
+    # The metric lines are "name value"; the lines after them say which exposure was used and how the
+    # recorded settings differ.
+    expected = {p[0]: float(p[1]) for p in (line.split() for line in cli.splitlines()) if len(p) == 2}
+    assert {"rmse_8bit", "max_abs_8bit", "rel_l2", "hue_sat_distance"} <= expected.keys(), cli
     got = seasim.compare(a, b)
     for key, value in expected.items():
         assert got[key] == pytest.approx(value, rel=1e-4, abs=1e-4), key
