@@ -1,6 +1,7 @@
 #include "device/pocl_cache_check.h"
 
 #include <fcntl.h>
+#include <sys/file.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -191,6 +192,8 @@ std::string poclCacheFileProblem(const std::string& path) {
   return ext == ".so" ? elfProblem(in, size) : bitcodeProblem(in, size);
 }
 
+static const char* const kPoclLockName = ".seasim-lock";
+
 std::string poclCrashMarker(const std::string& dir) { return dir + "/.seasim-crashed"; }
 
 PoclCacheRepair checkPoclCache(const std::string& dir) {
@@ -203,7 +206,8 @@ PoclCacheRepair checkPoclCache(const std::string& dir) {
   if (!fs::is_directory(dir, ec)) return out;
   if (fs::exists(poclCrashMarker(dir), ec)) {
     std::vector<fs::path> entries;
-    for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) entries.push_back(it->path());
+    for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec))
+      if (it->path().filename() != kPoclLockName) entries.push_back(it->path());  // held by this process
     int removed = 0;
     for (const fs::path& entry : entries) {
       std::error_code rm;
@@ -243,10 +247,28 @@ PoclCacheRepair checkPoclCache(const std::string& dir) {
   return out;
 }
 
+// Several seasim processes may share PoCL's cache (a farm node's jobs, ctest -j 2). While one builds
+// a kernel its files are half-written, which the check would take for damage and remove under it
+// (PoCL then aborts: "Final linking of kernel ... failed"). So every process holds a shared flock on
+// <cache>/.seasim-lock for its lifetime, and only a process that gets it exclusively, i.e. the only
+// seasim using the cache, checks and repairs it, before sharing it. Returns whether it was alone.
+static int g_pocl_lock_fd = -1;
+static bool lockPoclCacheAlone(const std::string& dir) {
+  std::error_code ec;
+  fs::create_directories(dir, ec);  // so that the first process's lock covers its own first build
+  g_pocl_lock_fd = ::open((fs::path(dir) / kPoclLockName).c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0666);
+  if (g_pocl_lock_fd < 0) return true;  // no lock to take (a read-only folder): the check says why
+  if (::flock(g_pocl_lock_fd, LOCK_EX | LOCK_NB) == 0) return true;
+  ::flock(g_pocl_lock_fd, LOCK_SH);  // waits while another process checks the cache, then shares it
+  return false;
+}
+
 void preparePoclCache() {
   const std::string dir = poclCacheDir();
-  if (dir.empty() || !g_private_dir.empty()) return;
+  if (dir.empty() || !g_private_dir.empty() || g_pocl_lock_fd >= 0) return;
+  if (!lockPoclCacheAlone(dir)) return;  // in use by another seasim: its files may be half-written
   const PoclCacheRepair repair = checkPoclCache(dir);
+  if (g_pocl_lock_fd >= 0) ::flock(g_pocl_lock_fd, LOCK_SH);  // checked: now shared with later processes
   if (repair.bypass_reason.empty()) return;
   const char* tmp = std::getenv("TMPDIR");
   std::string pattern = std::string(tmp && *tmp ? tmp : "/tmp") + "/seasim-pocl-XXXXXX";
