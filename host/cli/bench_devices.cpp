@@ -16,6 +16,7 @@
 #include "quality/auto_quality.h"
 #include "render/renderer.h"
 #include "util/error.h"
+#include "util/statistics.h"
 
 namespace seasim {
 namespace {
@@ -25,12 +26,6 @@ struct DeviceRun {
   std::map<std::string, std::vector<double>> pass_ms;  // per pass, one value per repetition
   std::vector<double> total_ms;
 };
-
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  return v[v.size() / 2];
-}
 
 DeviceRun timeOnDevice(const std::string& selector, const BenchCmd& cmd, const std::vector<Override>& overrides,
                        std::vector<std::string>& pass_order) {

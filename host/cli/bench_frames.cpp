@@ -18,6 +18,7 @@
 #include "quality/auto_quality.h"
 #include "render/renderer.h"
 #include "util/error.h"
+#include "util/statistics.h"
 
 namespace seasim {
 
@@ -59,10 +60,6 @@ int benchFrames(Device& device, const BenchCmd& cmd, const std::vector<Override>
       kernels.push_back(kernel);
     }
   }
-  auto median = [](std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    return v[v.size() / 2];
-  };
   std::vector<double> sorted = ratios;
   std::sort(sorted.begin(), sorted.end());
   const size_t within = std::count_if(ratios.begin(), ratios.end(), [](double r) { return r <= 1.1; });

@@ -39,6 +39,7 @@
 #include "underwater/underwater_setup.h"
 #include "util/error.h"
 #include "util/paths.h"
+#include "util/statistics.h"
 
 namespace fs = std::filesystem;
 
@@ -58,11 +59,6 @@ std::vector<std::string> split(const std::string& text, char sep) {
   std::istringstream in(text);
   while (std::getline(in, part, sep)) parts.push_back(part);
   return parts;
-}
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v.empty() ? 0.0 : v[v.size() / 2];
 }
 
 // "ref.exr" -> "ref.stderr.exr": the standard-error image beside the reference.

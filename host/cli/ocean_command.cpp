@@ -18,6 +18,7 @@
 #include "passes/ocean_pass.h"
 #include "scene/scene_parser.h"
 #include "util/error.h"
+#include "util/statistics.h"
 
 namespace seasim {
 
@@ -37,11 +38,6 @@ std::string depthLabel(double d) {
   std::ostringstream s;
   s << d;
   return s.str();
-}
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  return v.empty() ? 0.0 : v[v.size() / 2];
 }
 
 int runBench(const OceanCmd& cmd, const OceanConfig& base, Device& device) {

@@ -174,7 +174,7 @@ std::string fastMathOptions(const DeviceInfo& device) {
   return device.is_pocl ? " -cl-fast-relaxed-math" : " -cl-mad-enable -cl-no-signed-zeros";
 }
 
-const BuiltProgram& Device::program(const std::string& kernel_file, const std::vector<std::string>& defines) {
+std::string Device::buildOptions(const std::vector<std::string>& defines) const {
   std::string options = "-cl-std=CL1.2";
   if (info_.has_fp64) options += " -DSEASIM_HAS_FP64=1";
   for (const auto& d : defines) {
@@ -182,6 +182,11 @@ const BuiltProgram& Device::program(const std::string& kernel_file, const std::v
     // quality.fast_math (host/plan): the planner marks each pass's build with this define.
     if (d == "SEASIM_FAST_MATH=1") options += fastMathOptions(info_);
   }
+  return options;
+}
+
+const BuiltProgram& Device::program(const std::string& kernel_file, const std::vector<std::string>& defines) {
+  const std::string options = buildOptions(defines);
   const std::string key = kernel_file + "|" + options;
   if (auto it = programs_.find(key); it != programs_.end()) return it->second;
 
@@ -280,7 +285,6 @@ void Device::noteBuildWarnings(const std::string& kernel_file, const cl::Program
   std::string lowered = log;
   for (char& c : lowered) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   if (lowered.find("warning:") == std::string::npos) return;
-  ++build_warnings_;
   std::fprintf(stderr, "seasim: warning: kernels/%s built with warnings on %s:\n%s\n", kernel_file.c_str(),
                info_.name.c_str(), log.c_str());
 }

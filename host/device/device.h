@@ -63,8 +63,9 @@ class Device {
   // Total build milliseconds spent by program() so far (for report.json).
   double totalBuildMs() const { return total_build_ms_; }
 
-  // Kernel builds from source whose driver log held a compiler warning (each printed on stderr).
-  int buildWarnings() const { return build_warnings_; }
+  // The options kernels/<kernel_file> is built with for `defines` on this device (what program()
+  // passes to the compiler; anything computed by a kernel and cached on disk keys on it).
+  std::string buildOptions(const std::vector<std::string>& defines) const;
 
  private:
   void noteBuildWarnings(const std::string& kernel_file, const cl::Program& program);
@@ -75,7 +76,6 @@ class Device {
   cl::CommandQueue queue_;
   std::map<std::string, BuiltProgram> programs_;
   double total_build_ms_ = 0.0;
-  int build_warnings_ = 0;
 };
 
 // The build options that quality.fast_math's define (SEASIM_FAST_MATH=1) adds on this device:

@@ -168,11 +168,9 @@ SeaSecondPass::SeaSecondPass(Device& device, const Scene& scene, const PassPlan&
       table_key_ = fnv1a64(floor.depth.data(), sizeof(float) * floor.depth.size(), table_key_);
       table_key_ = fnv1a64(assembleKernelSource(plan.kernel_file).text, table_key_);
       table_key_ = fnv1a64(device.info().name + device.info().driver, table_key_);
-      // ... and on how that kernel was built here: its defines and what fast maths means on this driver
-      // (tables computed under another build must not be read back: relaxed maths on Intel's runtime
-      // once put them wrong, and the cache kept them).
-      for (const std::string& d : plan.defines) table_key_ = fnv1a64(d, table_key_);
-      table_key_ = fnv1a64(fastMathOptions(device.info()), table_key_);
+      // ... and on how that kernel was built here (tables computed under another build must not be
+      // read back: relaxed maths on Intel's runtime once put them wrong, and the cache kept them).
+      table_key_ = fnv1a64(device.buildOptions(plan.defines), table_key_);
       if (const auto cached = loadDepthTable(table_key_, table_count)) {
         device.queue().enqueueWriteBuffer(table_, CL_TRUE, 0, sizeof(float) * table_count, cached->data());
         table_ready_ = true;
