@@ -28,7 +28,7 @@ PYTHON_CMAKE_FLAGS = -DSEASIM_PYTHON=ON -DPython_EXECUTABLE=$(abspath $(PYVENV))
 
 demo: build
 	$(BUILD)/seasim run jobs/quickstart.toml --device pocl
-	@echo "images and reports: results/quickstart/"
+	@echo "images and reports: results/quickstart/ (contact sheet: results/quickstart/index.html)"
 
 # The test build adds the Python module (SEASIM_PYTHON), which ctest's python.pytest imports.
 test: test-deps python-venv intel-opencl

@@ -184,6 +184,7 @@ int cmdRun(const std::string& job_arg, const std::string& device, const std::str
   const RunSummary s = runJob(job, options);
   std::printf("job done: %d rendered, %d finished earlier, %d left to other shards, %zu failed -> %s\n", s.rendered,
               s.skipped, s.other_shards, s.failed.size(), s.output_dir.c_str());
+  if (!s.contact_sheet.empty()) std::printf("contact sheet: %s\n", s.contact_sheet.c_str());
   if (s.failed.empty()) return 0;
   std::fprintf(stderr, "seasim: %zu item(s) failed (recorded in %s):\n", s.failed.size(), s.manifest.c_str());
   for (const auto& f : s.failed) std::fprintf(stderr, "  %s: %s\n", f.name.c_str(), f.error.c_str());

@@ -12,6 +12,7 @@
 #include "device/device.h"
 #include "io/atomic_file.h"
 #include "io/data_files.h"
+#include "jobs/contact_sheet.h"
 #include "jobs/farm_items.h"
 #include "jobs/job.h"
 #include "jobs/job_inputs.h"
@@ -207,6 +208,8 @@ RunSummary runJob(const std::string& job_path, const RunOptions& options) {
     finish(item->name, "FAILED: " + firstLine(error));
   }
   if (!options.on_item) progress.done();
+  // A sharded run's items are spread over shards: `farm merge` writes that job's sheet.
+  if (options.shard_count == 1) summary.contact_sheet = writeRunContactSheet(job);
   return summary;
 }
 

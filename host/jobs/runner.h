@@ -33,6 +33,7 @@ struct RunSummary {
   std::vector<FailedItem> failed;  // recorded in the manifest; `--resume` retries them
   std::string output_dir;
   std::string manifest;
+  std::string contact_sheet;  // <output_dir>/index.html (jobs/contact_sheet.h); unsharded runs only
 };
 
 // The manifest of a shard: <output_dir>/manifest.json (or manifest-<i>of<N>.json when sharded),
