@@ -177,7 +177,7 @@ std::vector<SampledKey> readSampledKeys(const TomlSource& src, const toml::table
 }
 
 std::string sampledValue(const SampledKey& k, std::uint64_t seed, std::uint64_t index) {
-  const std::uint64_t key_hash = fnv1a64(k.key);
+  const std::uint64_t key_hash = nameHash(k.key);
   if (k.kind == SampledKey::Kind::Choice)
     return k.choices[weightedIndex(unitOpen(drawBits(seed, index, key_hash, 0)), k.cumulative)];
   std::string text;

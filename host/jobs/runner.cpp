@@ -13,6 +13,7 @@
 #include "io/atomic_file.h"
 #include "io/data_files.h"
 #include "jobs/farm_items.h"
+#include "jobs/item_labels.h"
 #include "jobs/job.h"
 #include "jobs/job_inputs.h"
 #include "jobs/manifest.h"
@@ -88,6 +89,12 @@ nlohmann::json renderOne(Device& device, RendererCache& cache, const RenderItem&
     files[rel] = fileChecksum(output_dir + "/" + rel);
   }
   files[item.name + "/report.json"] = fileChecksum(item_dir + "/report.json");
+  // A dataset item's labels: after the images, before the manifest records the item done, so an
+  // interrupted item is rendered again on --resume (jobs/farm_items.cpp expects the file).
+  if (!item.sampled.empty()) {
+    const std::string rel = item.name + "/" + writeItemLabels(scene, item, item_dir);
+    files[rel] = fileChecksum(output_dir + "/" + rel);
+  }
   kernel_ms = report["kernel_ms_total"].get<double>();
   build_ms = report["kernel_build_ms"].get<double>();
   return files;

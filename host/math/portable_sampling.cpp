@@ -37,9 +37,9 @@ std::uint64_t splitmix64(std::uint64_t x) {
   return x ^ (x >> 31);
 }
 
-std::uint64_t fnv1a64(std::string_view s) {
+std::uint64_t nameHash(std::string_view name) {
   std::uint64_t h = 0xcbf29ce484222325ULL;
-  for (unsigned char c : s) {
+  for (unsigned char c : name) {
     h ^= c;
     h *= 0x100000001b3ULL;
   }

@@ -28,8 +28,9 @@ namespace seasim {
 
 // splitmix64's output function: a bijection of 64-bit words that mixes every bit into every bit.
 std::uint64_t splitmix64(std::uint64_t x);
-// FNV-1a 64 of a string (to key a draw by a scene key's name).
-std::uint64_t fnv1a64(std::string_view s);
+// A key name as a 64-bit word: FNV-1a 64 (offset basis 14695981039346656037). Its own copy, not
+// util/hash.h's checksum hash, so that no change there can change a dataset's draws.
+std::uint64_t nameHash(std::string_view name);
 // The draw for (seed, item, key, component): a chain of splitmix64 over the four words.
 std::uint64_t drawBits(std::uint64_t seed, std::uint64_t item, std::uint64_t key, std::uint64_t component);
 // The top 53 bits as a double in (0, 1): (k + 0.5) / 2^53.
