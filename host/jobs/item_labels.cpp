@@ -3,6 +3,7 @@
 #include <toml++/toml.h>
 
 #include <cmath>
+#include <fstream>
 #include <numbers>
 
 #include "io/atomic_file.h"
@@ -52,9 +53,22 @@ const char* bottomType(BottomDesc::Type t) {
 
 }  // namespace
 
-nlohmann::json itemLabels(const Scene& scene, const RenderItem& item) {
+nlohmann::json sampledJson(const RenderItem& item) {
   nlohmann::json sampled = nlohmann::json::object();
   for (const Override& o : item.sampled) sampled[o.key] = valueJson(o.value_toml);
+  return sampled;
+}
+
+bool labelsRecordOtherDraws(const RenderItem& item, const std::string& dir) {
+  std::ifstream in(dir + "/labels.json", std::ios::binary);
+  if (!in) return false;  // no labels: the manifest check decides (jobs/farm_items.cpp)
+  const nlohmann::json labels = nlohmann::json::parse(in, nullptr, false);
+  if (labels.is_discarded() || !labels.is_object() || !labels.contains("sampled")) return true;
+  return labels["sampled"] != sampledJson(item) || labels.value("seed", nlohmann::json()) != item.sample_seed;
+}
+
+nlohmann::json itemLabels(const Scene& scene, const RenderItem& item) {
+  const nlohmann::json sampled = sampledJson(item);
 
   const SunDesc& sun = scene.sun;
   const Vec3 sun_air{std::sin(sun.zenith) * std::cos(sun.azimuth), std::cos(sun.zenith),

@@ -29,6 +29,13 @@ namespace seasim {
 
 nlohmann::json itemLabels(const Scene& scene, const RenderItem& item);
 
+// labels.json's "sampled": the item's drawn keys and values.
+nlohmann::json sampledJson(const RenderItem& item);
+// True when <dir>/labels.json exists and records other draws than `item` has now (the job's
+// [sample] table was edited since): `--resume` renders such an item again, even where the keys
+// changed are ones report.json's settings do not record (bottom.depth, objects, water.g ...).
+bool labelsRecordOtherDraws(const RenderItem& item, const std::string& dir);
+
 // Writes itemLabels as <dir>/labels.json (atomically) and returns the file's name in `dir`.
 std::string writeItemLabels(const Scene& scene, const RenderItem& item, const std::string& dir);
 

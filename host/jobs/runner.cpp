@@ -144,6 +144,11 @@ RunSummary runJob(const std::string& job_path, const RunOptions& options) {
   // The [quality] knobs are left out: "auto" ones are recorded as the values they resolved to.
   for (const RenderItem* item : mine) {
     if (!finished.count(item->name)) continue;
+    if (!item->sampled.empty() && labelsRecordOtherDraws(*item, job.output_dir + "/" + item->name)) {
+      std::fprintf(stderr, "%s: drawn with other values ([sample] changed): rendering it again\n", item->name.c_str());
+      finished.erase(item->name);
+      continue;
+    }
     const nlohmann::json recorded = reportSettings(job.output_dir + "/" + item->name);
     if (recorded.is_null()) continue;  // a report without settings (older seasim): kept as finished
     for (const SettingsDifference& d : settingsDifferences(settingsJson(loadScene(item->scene_file, item->overrides)), recorded))

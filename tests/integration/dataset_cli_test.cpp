@@ -7,6 +7,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -165,7 +166,7 @@ TEST_F(DatasetCli, LabelsParseAndMatchTheRenderedScene) {
   EXPECT_GE(types.size(), 2u);
 }
 
-TEST_F(DatasetCli, ADamagedOrMissingLabelsFileIsRenderedAgainOnResume) {
+TEST_F(DatasetCli, ResumeRendersAgainWhenLabelsAreDamagedMissingOrDrawnOtherwise) {
   const std::string j = job("out");
   seasim_test::Result r = run("run " + j + " --device pocl");
   ASSERT_EQ(r.code, 0) << r.output;
@@ -181,4 +182,16 @@ TEST_F(DatasetCli, ADamagedOrMissingLabelsFileIsRenderedAgainOnResume) {
   EXPECT_TRUE(contains(r.output, "2 rendered, 6 finished earlier")) << r.output;
   r = run("farm merge " + j);
   EXPECT_EQ(r.code, 0) << r.output;
+
+  // An edited distribution of a key report.json's settings do not record: the labels tell.
+  std::ifstream in(j);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string before = "log_uniform = [4.5, 12]";
+  ASSERT_NE(text.find(before), std::string::npos);
+  text.replace(text.find(before), before.size(), "log_uniform = [6, 12]");
+  std::ofstream(j) << text;
+  r = run("run " + j + " --resume --device pocl");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_TRUE(contains(r.output, "reef_s0000: drawn with other values ([sample] changed): rendering it again")) << r.output;
+  EXPECT_TRUE(contains(r.output, "8 rendered, 0 finished earlier")) << r.output;
 }
