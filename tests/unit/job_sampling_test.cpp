@@ -1,7 +1,8 @@
 // job_sampling_test.cpp — a job's [sample] table: items expand with their keys drawn, the same seed
 // gives the same items (whatever the count, the other keys or the order of the table), bounds hold,
-// a table of bad specs each with the "file:line: key 'KEY'" its message must contain, and the time
-// a 1,000-item job takes to expand and validate.
+// a table of bad specs each with the "file:line: key 'KEY'" its message must contain, the time a
+// 1,000-item job takes to expand and validate, and labels.json's content for a scene without water
+// and one with explicit spectra (tests/integration/dataset_cli_test.cpp renders Jerlov ones).
 #include <gtest/gtest.h>
 
 #include <toml++/toml.h>
@@ -15,7 +16,10 @@
 #include <ostream>
 #include <set>
 
+#include "jobs/item_labels.h"
 #include "jobs/job.h"
+#include "scene/scene_parser.h"
+#include "spectral/jerlov.h"
 #include "util/error.h"
 
 namespace fs = std::filesystem;
@@ -284,3 +288,46 @@ INSTANTIATE_TEST_SUITE_P(Table, BadSampleTest, ::testing::ValuesIn(kBadSamples),
                              n += std::isalnum(static_cast<unsigned char>(*p)) ? *p : '_';
                            return n;
                          });
+
+// ---------------------------------------------------------------------------------------------
+// labels.json's content for scenes the dataset test does not render: no water, explicit spectra.
+
+TEST(ItemLabels, ASceneWithoutWaterAndOneWithExplicitSpectra) {
+  SampleFiles f("labels");
+  std::ofstream(f.dir / "scenes/dry.toml") << "[camera]\nwidth = 64\nheight = 32\nfov_deg = 40\n[sun]\nzenith_deg = 60\n";
+  std::ofstream(f.dir / "scenes/explicit.toml")
+      << "[camera]\nposition = [0, -2, 0]\nlook_at = [0, -2, -10]\n[water]\nwavelengths_nm = [400, 700]\n"
+         "a = [0.1, 0.5]\nb = [0.2, 0.1]\ng = 0.85\n[spectral]\ncount = 3\n[sun]\nzenith_deg = 40\n";
+  const Job job = parseJob("[sample]\nscene = \"scenes/dry.toml\"\nseed = 5\ncount = 2\n[sample.keys]\n"
+                           "\"sun.azimuth_deg\" = { uniform = [0, 90] }\n",
+                           f.job());
+  const RenderItem& item = job.items[1];
+  const nlohmann::json dry = itemLabels(loadScene(item.scene_file, item.overrides), item);
+  EXPECT_EQ(dry["water"]["present"], false);
+  EXPECT_FALSE(dry["water"].contains("a"));
+  EXPECT_EQ(dry["index"], 1);
+  EXPECT_EQ(dry["seed"], 5);
+  EXPECT_NEAR(dry["sun"]["azimuth_deg"].get<double>(), dry["sampled"]["sun.azimuth_deg"].get<double>(), 1e-9);
+  EXPECT_NEAR(dry["camera"]["fov_y_deg"].get<double>(), 40.0, 1e-12);
+  // fov_x from fov_y and the 2:1 aspect: 2 atan(2 tan 20°) = 72.1°.
+  EXPECT_NEAR(dry["camera"]["fov_x_deg"].get<double>(), 72.104777, 1e-5);
+  EXPECT_EQ(dry["camera"]["depth_m"], 0.0);
+  EXPECT_TRUE(dry["camera"]["sensor_file"].is_null());
+  EXPECT_FALSE(labelsRecordOtherDraws(item, (f.dir / "nowhere").string()));
+
+  const Scene wet = loadScene((f.dir / "scenes/explicit.toml").string());
+  const nlohmann::json labels = itemLabels(wet, item);
+  const nlohmann::json& w = labels["water"];
+  EXPECT_TRUE(w["jerlov"].is_null());
+  ASSERT_EQ(w["bands_nm"].size(), 3u);
+  EXPECT_NEAR(w["bands_nm"][1].get<double>(), 550.0, 1e-12);
+  EXPECT_NEAR(w["a"][1].get<double>(), 0.3, 1e-12);  // linear between 400 and 700 nm
+  EXPECT_NEAR(w["c"][1].get<double>(), 0.45, 1e-12);
+  // K_d from a and b (Solonenko & Mobley eq. 3) at the refracted sun's cosine, recorded beside it.
+  const double mu = w["kd_sun_cosine"].get<double>();
+  EXPECT_NEAR(mu, std::cos(std::asin(std::sin(40 * 3.14159265358979323846 / 180) / 1.333)), 1e-12);
+  EXPECT_NEAR(w["kd"][1].get<double>(), kdFromIops(0.3, 0.15, 550.0, mu), 1e-12);
+  EXPECT_EQ(w["phase"]["g"], 0.85);
+  EXPECT_NEAR(labels["camera"]["depth_m"].get<double>(), 2.0, 1e-12);
+  EXPECT_NEAR(labels["sun"]["direction_water"][1].get<double>(), mu, 1e-12);
+}
