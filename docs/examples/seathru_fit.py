@@ -14,7 +14,13 @@ shows how far a constant is from the truth at each distance (Sea-thru's point: �
 The image needs the layers (scene key outputs.layers, or `seasim run ... --output`):
     clear direct backscatter veiling beta_d beta_b range
 image.exr then holds channels R, G, B (the image I) and <layer>.R/.G/.B (range: one channel).
-Needs NumPy, and OpenImageIO's Python module to read the EXR (pip install numpy OpenImageIO).
+beta_d and beta_b come with masks (beta_d_mask, beta_b_mask: 1 where defined), used when present.
+Needs NumPy, and OpenImageIO's Python module (pip install OpenImageIO) or its oiiotool command to
+read the EXR.
+
+The image I is everything the camera saw: direct + forward + backscatter (+ lamps). The formation
+model has no forward-scattering term, so the fit of I folds the point spread into its constants;
+the fit of the layers separates them.
 
 Three fits per channel, on the pixels whose ray ends on a surface (finite range > 0, J > 0):
   full        β_D, β_B, B∞ from I, J and z alone (what a method that knows J and z could recover):
@@ -37,18 +43,61 @@ LAYERS = ("clear", "direct", "backscatter", "veiling", "beta_d", "beta_b")
 MAX_PIXELS = 4000  # pixels a search uses (an even subsample): enough for three constants
 
 
-def load_layers(path: str) -> Dict[str, np.ndarray]:
-    """image.exr's channels as float64 arrays: 'image' and each layer (H, W, 3), 'range' (H, W)."""
+def _read_exr(path: str):
+    """(channel names, pixels (H, W, C) float64): through OpenImageIO's Python module, else through
+    the oiiotool command (the image rewritten as a float FITS file, which NumPy reads directly)."""
     try:
         import OpenImageIO as oiio
     except ImportError:
-        sys.exit("seathru_fit.py: reading EXR needs OpenImageIO's Python module (pip install OpenImageIO)")
-    inp = oiio.ImageInput.open(path)
-    if inp is None:
-        sys.exit(f"seathru_fit.py: cannot open {path}: {oiio.geterror()}")
-    names = list(inp.spec().channelnames)
-    pixels = np.asarray(inp.read_image(format="float"), dtype=np.float64)
-    inp.close()
+        oiio = None
+    if oiio is not None:
+        inp = oiio.ImageInput.open(path)
+        if inp is None:
+            sys.exit(f"seathru_fit.py: cannot open {path}: {oiio.geterror()}")
+        names = list(inp.spec().channelnames)
+        pixels = np.asarray(inp.read_image(format="float"), dtype=np.float64)
+        inp.close()
+        return names, pixels
+    import shutil
+    import subprocess
+    import tempfile
+    if shutil.which("oiiotool") is None:
+        sys.exit("seathru_fit.py: reading EXR needs OpenImageIO's Python module (pip install OpenImageIO) "
+                 "or its oiiotool command (apt install openimageio-tools)")
+    info = subprocess.run(["oiiotool", "--info", "-v", path], capture_output=True, text=True)
+    listed = [line.split(":", 1)[1] for line in info.stdout.splitlines() if "channel list:" in line]
+    if info.returncode != 0 or not listed:
+        sys.exit(f"seathru_fit.py: cannot read {path}: {(info.stdout + info.stderr).strip()}")
+    names = [n.strip() for n in listed[0].split(",")]
+    with tempfile.TemporaryDirectory() as tmp:
+        fits = f"{tmp}/image.fits"
+        subprocess.run(["oiiotool", path, "-d", "float", "-o", fits], check=True, capture_output=True)
+        data = open(fits, "rb").read()
+    # FITS: 80-character header cards in 2880-byte blocks up to END, then big-endian float32 data,
+    # NAXIS1 = channels, NAXIS2 = width, NAXIS3 = height, bottom row first. OpenImageIO 2.4 writes
+    # its data unpadded at the very end of the file, after a header padded to a length that varies
+    # (3264 and 5760 bytes seen), so the data is read as the file's tail.
+    cards, offset_end = {}, 0
+    while offset_end + 80 <= len(data):
+        card = data[offset_end:offset_end + 80].decode("ascii")
+        offset_end += 80
+        if card.startswith("END"):
+            break
+        if "=" in card[:10]:
+            cards[card[:8].strip()] = card[10:].split("/")[0].strip()
+    c, w, h = (int(cards[k]) for k in ("NAXIS1", "NAXIS2", "NAXIS3"))
+    size = c * w * h * 4
+    offset = len(data) - size
+    if offset < offset_end:
+        sys.exit(f"seathru_fit.py: oiiotool wrote a FITS file shorter than its image ({path})")
+    pixels = np.frombuffer(data, dtype=">f4", count=c * w * h, offset=offset).reshape(h, w, c)
+    return names, np.flipud(pixels).astype(np.float64)
+
+
+def load_layers(path: str) -> Dict[str, np.ndarray]:
+    """image.exr's channels as float64 arrays: 'image' and each layer (H, W, 3), 'range' (H, W),
+    and '<layer>_mask' (H, W) where the image has one (beta_d, beta_b: 1 where defined)."""
+    names, pixels = _read_exr(path)
     channel = {n: i for i, n in enumerate(names)}
 
     def rgb(prefix: str) -> np.ndarray:
@@ -62,6 +111,8 @@ def load_layers(path: str) -> Dict[str, np.ndarray]:
     layers = {"image": rgb("")}
     for name in LAYERS:
         layers[name] = rgb(name + ".")
+        if f"{name}_mask" in channel:
+            layers[f"{name}_mask"] = pixels[..., channel[f"{name}_mask"]]
     if "range" not in channel:
         sys.exit(f"seathru_fit.py: {path} has no 'range' channel; add range to outputs.layers")
     layers["range"] = pixels[..., channel["range"]]
@@ -203,7 +254,9 @@ def analyse(layers: Dict[str, np.ndarray], bins: int = 6) -> dict:
         bb_back, binf_back = fit_backscatter(flat["backscatter"][idx, c], zs)
         pix_bd = flat["beta_d"][surface.ravel(), c]
         pix_bb = flat["beta_b"][surface.ravel(), c]
-        d_ok, b_ok = pix_bd > 0, pix_bb > 0  # undefined pixels are written as 0
+        # Undefined pixels are written as 0 with mask 0 (<layer>_mask); without masks, 0 means undefined.
+        d_ok = flat["beta_d_mask"][surface.ravel()] > 0.5 if "beta_d_mask" in flat else pix_bd > 0
+        b_ok = flat["beta_b_mask"][surface.ravel()] > 0.5 if "beta_b_mask" in flat else pix_bb > 0
         out["channels"][name] = {
             "full": {"beta_d": bd, "beta_b": bb, "b_inf": binf},
             "layers": {"beta_d": bd_direct, "beta_b": bb_back, "b_inf": binf_back},

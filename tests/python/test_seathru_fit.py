@@ -1,11 +1,13 @@
 """The docs' Sea-thru fit (docs/examples/seathru_fit.py) on synthetic layers made here with known
 coefficients: the fits recover them, the per-pixel table shows a β_D that varies with range, and
-an EXR with the agreed channel names (<layer>.R/.G/.B, range) is read back when OpenImageIO's Python
-module is there. Needs NumPy only (not the seasim module): `pytest --noconftest` runs it alone."""
+an EXR with the agreed channel names (<layer>.R/.G/.B, <layer>_mask, range) is read back by name and
+the right way up, through OpenImageIO's Python module or else oiiotool. Needs NumPy only (not the seasim module): `pytest --noconftest` runs it alone."""
 from __future__ import annotations
 
 import importlib.util
 import io
+import shutil
+import subprocess
 from pathlib import Path
 
 import numpy as np
@@ -77,16 +79,24 @@ def test_too_few_surface_pixels_is_an_error():
         seathru_fit.analyse(layers)
 
 
-def test_reads_the_agreed_channel_names_from_exr(tmp_path):
-    oiio = pytest.importorskip("OpenImageIO")
-    layers = synthetic_layers(h=20, w=30)
+def _agreed_channels(layers):
+    """The channels seasim's image.exr holds for these layers, in its order, and their pixels."""
     names, planes = list("RGB"), [layers["image"]]
     for name in seathru_fit.LAYERS:
         names += [f"{name}.{c}" for c in "RGB"]
         planes.append(layers[name])
+        if name in ("beta_d", "beta_b"):
+            names.append(f"{name}_mask")
+            planes.append((layers[name][..., :1] > 0).astype(np.float64))
     names.append("range")
     planes.append(layers["range"][..., None])
-    pixels = np.concatenate(planes, axis=-1).astype(np.float32)
+    return names, np.concatenate(planes, axis=-1).astype(np.float32)
+
+
+def test_reads_the_agreed_channel_names_from_exr(tmp_path):
+    oiio = pytest.importorskip("OpenImageIO")
+    layers = synthetic_layers(h=20, w=30)
+    names, pixels = _agreed_channels(layers)
     path = str(tmp_path / "image.exr")
     out = oiio.ImageOutput.create(path)
     spec = oiio.ImageSpec(30, 20, len(names), "float")
@@ -96,5 +106,29 @@ def test_reads_the_agreed_channel_names_from_exr(tmp_path):
     out.close()
     read = seathru_fit.load_layers(path)
     assert np.allclose(read["backscatter"], layers["backscatter"], rtol=1e-6)
+    assert read["beta_d_mask"][0, 0] == 0 and read["beta_d_mask"][5, 5] == 1
     result = seathru_fit.analyse(read)
     assert result["channels"]["G"]["layers"]["beta_d"] == pytest.approx(BETA_D[1], rel=2e-3)
+
+
+def test_reads_exr_channels_by_name_and_the_right_way_up(tmp_path):
+    # An EXR made by oiiotool with the agreed channel names, each channel a gradient with its own
+    # corner values (channel i: i, 100 + i, 200 + i, 300 + i at top left, top right, bottom left,
+    # bottom right). OpenEXR stores channels sorted by name; the reader must map them by name.
+    if shutil.which("oiiotool") is None:
+        pytest.skip("no oiiotool")
+    names, _ = _agreed_channels(synthetic_layers(h=2, w=2))
+    corner = lambda k: ",".join(str(k * 100 + i) for i in range(len(names)))
+    path = str(tmp_path / "image.exr")
+    subprocess.run(["oiiotool", "--pattern",
+                    f"fill:topleft={corner(0)}:topright={corner(1)}:bottomleft={corner(2)}:bottomright={corner(3)}",
+                    "30x20", str(len(names)), "--chnames", ",".join(names), "-d", "float", "-o", path], check=True)
+    read = seathru_fit.load_layers(path)
+    # Channel i reads f(x, y) + i, f the same bilinear gradient for all (R is channel 0).
+    f = read["image"][..., 0]
+    assert f[0, 0] < 50 and 50 < f[0, 29] < 150 and 150 < f[19, 0] < 250 and f[19, 29] > 250  # right way up
+    for layer in ("image", "clear", "direct", "backscatter", "veiling", "beta_d", "beta_b"):
+        first = names.index("R" if layer == "image" else f"{layer}.R")
+        assert np.allclose(read[layer] - f[..., None], [first, first + 1, first + 2], atol=1e-3), layer
+    assert np.allclose(read["range"] - f, names.index("range"), atol=1e-3)
+    assert np.allclose(read["beta_d_mask"] - f, names.index("beta_d_mask"), atol=1e-3)
