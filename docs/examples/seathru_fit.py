@@ -234,19 +234,26 @@ def range_profile(z: np.ndarray, values: np.ndarray, edges: np.ndarray):
     return rows
 
 
-def analyse(layers: Dict[str, np.ndarray], bins: int = 6) -> dict:
-    """The three fits and the per-pixel medians for each channel, and β_D, β_B by range."""
+def analyse(layers: Dict[str, np.ndarray], bins: int = 6, min_transmission: float = 1e-4) -> dict:
+    """The three fits and the per-pixel medians for each channel, and β_D, β_B by range, over the
+    pixels that see a surface through measurable water: finite range > 0, J > 0, and direct / J of
+    at least min_transmission in every channel (far surfaces, e.g. the sea surface at grazing
+    angles hundreds of metres off, would otherwise dominate the least squares with a signal that
+    single precision no longer holds)."""
     z = layers["range"]
     J = layers["clear"]
-    surface = np.isfinite(z) & (z > 0) & np.all(J > 0, axis=-1)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        seen = np.all(layers["direct"] >= min_transmission * J, axis=-1)
+    surface = np.isfinite(z) & (z > 0) & np.all(J > 0, axis=-1) & seen
     if surface.sum() < 10:
-        raise ValueError("fewer than 10 pixels see a surface (finite range, clear > 0): nothing to fit")
+        raise ValueError("fewer than 10 pixels see a surface (finite range, clear > 0, direct/clear >= "
+                         f"{min_transmission:g}): nothing to fit")
     idx = _subsample(surface)
     flat = {k: v.reshape(-1, 3) if v.ndim == 3 else v.reshape(-1) for k, v in layers.items()}
     zs = flat["range"][idx]
     z_all = flat["range"][surface.ravel()]
     edges = np.quantile(z_all, np.linspace(0, 1, bins + 1))  # bins of equal pixel count
-    out = {"pixels": int(surface.sum()), "channels": {}}
+    out = {"pixels": int(surface.sum()), "min_transmission": min_transmission, "channels": {}}
     for c, name in enumerate(RGB):
         I, Jc = flat["image"][idx, c], flat["clear"][idx, c]
         bd, bb, binf = fit_full(I, Jc, zs)
@@ -276,7 +283,7 @@ def _fmt(v: Optional[float]) -> str:
 
 
 def print_report(result: dict, file=sys.stdout) -> None:
-    print(f"{result['pixels']} pixels see a surface\n", file=file)
+    print(f"{result['pixels']} pixels see a surface with direct/clear >= {result['min_transmission']:g}\n", file=file)
     print("channel  what                   beta_D    beta_B      B_inf", file=file)
     for name, ch in result["channels"].items():
         rows = [("fit of I to J, z", ch["full"]["beta_d"], ch["full"]["beta_b"], ch["full"]["b_inf"]),
@@ -298,9 +305,11 @@ def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("image", help="image.exr with the layers clear, direct, backscatter, veiling, beta_d, beta_b, range")
     ap.add_argument("--bins", type=int, default=6, help="range bins of the per-pixel table (default 6)")
+    ap.add_argument("--min-transmission", type=float, default=1e-4,
+                    help="leave out pixels whose direct/clear is below this in any channel (default 1e-4)")
     ap.add_argument("--json", help="also write the numbers to this JSON file")
     args = ap.parse_args(argv)
-    result = analyse(load_layers(args.image), args.bins)
+    result = analyse(load_layers(args.image), args.bins, args.min_transmission)
     print_report(result)
     if args.json:
         with open(args.json, "w") as f:
