@@ -149,8 +149,12 @@ void collect(const TomlSource& src, const toml::table& t, const std::string& pre
       src.fail(&v, where,
                "expected a distribution, e.g. " + std::string(name.str()) +
                    " = { uniform = [lo, hi] }; a fixed value belongs in [sample] overrides");
-    bool is_distribution = false;
-    for (const std::string& kind : kKinds) is_distribution = is_distribution || sub->contains(kind);
+    bool is_distribution = false, kind_ignored = false;
+    for (const std::string& kind : kKinds) {
+      is_distribution = is_distribution || sub->contains(kind);
+      kind_ignored = kind_ignored || src.ignored(where + "." + kind);
+    }
+    if (kind_ignored) continue;  // `validate` looking past an error in this distribution: skip the key
     if (!is_distribution && !sub->empty() && sub->begin()->second.is_table()) {
       collect(src, *sub, key, where, out, seen);
       continue;

@@ -182,6 +182,27 @@ TEST(JobSampling, CountOverTenThousandWidensTheNames) {
   EXPECT_EQ(job.items.back().name, "reef_s11999");
 }
 
+TEST(JobSampling, ValidateLooksPastABadDistributionToTheNextError) {
+  // `seasim validate` parses again with the failing key ignored: the key's whole distribution is
+  // then left out, with no second message about it.
+  SampleFiles f("validate");
+  const std::string text = "[sample]\nscene = \"scenes/uw.toml\"\nseed = 1\ncount = 2\n[sample.keys]\n"
+                           "\"bottom.depth\" = { log_uniform = [0, 3] }\n\"water.g\" = { uniform = [0.5, 0.2] }\n";
+  JobLoadOptions options;
+  options.ignored_keys = {"sample.keys.bottom.depth.log_uniform"};
+  std::string msg;
+  try {
+    parseJob(text, f.job(), options);
+  } catch (const InputError& e) {
+    msg = e.what();
+  }
+  EXPECT_NE(msg.find("job.toml:7: key 'sample.keys.water.g.uniform': lo must be < hi"), std::string::npos) << msg;
+  options.ignored_keys.push_back("sample.keys.water.g.uniform");
+  const Job job = parseJob(text, f.job(), options);
+  EXPECT_EQ(job.items.size(), 2u);
+  EXPECT_TRUE(job.items[0].sampled.empty());
+}
+
 TEST(JobSampling, IsJobFileKnowsSampleTables) {
   SampleFiles f("isjob");
   std::ofstream(f.job()) << sampleJob(1, 2);
