@@ -14,6 +14,7 @@
 #include "io/data_files.h"
 #include "jobs/contact_sheet.h"
 #include "jobs/farm_items.h"
+#include "jobs/item_labels.h"
 #include "jobs/job.h"
 #include "jobs/job_inputs.h"
 #include "jobs/manifest.h"
@@ -89,6 +90,12 @@ nlohmann::json renderOne(Device& device, RendererCache& cache, const RenderItem&
     files[rel] = fileChecksum(output_dir + "/" + rel);
   }
   files[item.name + "/report.json"] = fileChecksum(item_dir + "/report.json");
+  // A dataset item's labels: after the images, before the manifest records the item done, so an
+  // interrupted item is rendered again on --resume (jobs/farm_items.cpp expects the file).
+  if (!item.sampled.empty()) {
+    const std::string rel = item.name + "/" + writeItemLabels(scene, item, item_dir);
+    files[rel] = fileChecksum(output_dir + "/" + rel);
+  }
   kernel_ms = report["kernel_ms_total"].get<double>();
   build_ms = report["kernel_build_ms"].get<double>();
   return files;
@@ -138,6 +145,11 @@ RunSummary runJob(const std::string& job_path, const RunOptions& options) {
   // The [quality] knobs are left out: "auto" ones are recorded as the values they resolved to.
   for (const RenderItem* item : mine) {
     if (!finished.count(item->name)) continue;
+    if (!item->sampled.empty() && labelsRecordOtherDraws(*item, job.output_dir + "/" + item->name)) {
+      std::fprintf(stderr, "%s: drawn with other values ([sample] changed): rendering it again\n", item->name.c_str());
+      finished.erase(item->name);
+      continue;
+    }
     const nlohmann::json recorded = reportSettings(job.output_dir + "/" + item->name);
     if (recorded.is_null()) continue;  // a report without settings (older seasim): kept as finished
     for (const SettingsDifference& d : settingsDifferences(settingsJson(loadScene(item->scene_file, item->overrides)), recorded))
