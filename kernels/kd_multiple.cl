@@ -318,7 +318,7 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
      * tends to). */
     {
       const float y_inf = d.y < 0.0f ? UW_INFINITE : 0.0f;
-      const UwiEnds ends_inf = uwi_ends(&v, p->bottom_depth, UW_INFINITE, y_inf, single && multiple);
+      const UwiEnds ends_inf = uwi_ends(&v, p->bottom_depth, UW_INFINITE, y_inf, single & multiple);
       realb strict_inf;
       const realb l_inf = multiple ? uwi_lanes_multiple(&v, &w, &camera, &ends_inf, phase, p->bottom_depth, UW_INFINITE,
                                                         d.y, single, &strict_inf)

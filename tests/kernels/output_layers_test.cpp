@@ -38,6 +38,30 @@ Scene smallScene(const char* file, std::vector<Override> extra) {
   return loadScene(sceneFile(file), o);
 }
 
+// Deep water under the camera (no bottom: rays going down reach open water) with two objects.
+Scene openWaterScene() {
+  return parseScene(std::string(R"([camera]
+position = [0, -5, 0]
+look_at = [0, -6, -10]
+width = 40
+height = 24
+[water]
+jerlov = "IB"
+[[objects]]
+type = "sphere"
+center = [0, -6, -8]
+radius = 1.5
+albedo = 0.3
+[[objects]]
+type = "box"
+min = [2, -8, -9]
+max = [3, -6, -7]
+albedo = 0.5
+[outputs]
+layers = )") + kAllLayers + "\n",
+                    "open_water.toml");
+}
+
 // image.exr's channels as the render writes them: R, G, B, then the layers.
 struct Layers {
   Image image;
@@ -95,6 +119,7 @@ TEST(OutputLayers, TheSplitSumsToTheImageForEveryUnderwaterModel) {
       {"rov_lights.toml", {}, "rov_lights: lamps"},
   };
   for (const Case& c : cases) expectLayersSumToImage(smallScene(c.file, c.sets), 1e-5, c.what);
+  expectLayersSumToImage(openWaterScene(), 1e-5, "open water, thesis");
 }
 
 TEST(OutputLayers, LampsHaveTheirOwnLayer) {
@@ -155,8 +180,7 @@ TEST(OutputLayers, AnObjectAtTheLensGivesDirectEqualToClearAndNoBackscatter) {
   }
 }
 
-TEST(OutputLayers, RangeAndObjectIdAreTheReferenceRayCasts) {
-  const Scene scene = smallScene("seabed.toml", {});
+void expectRangeAndObjectIdOfTheReference(const Scene& scene, bool open_water) {
   const Layers l = render(scene);
   const WavelengthGrid grid = makeGrid(scene.spectral.count, scene.spectral.min_nm, scene.spectral.max_nm);
   const UnderwaterSetup setup =
@@ -185,14 +209,25 @@ TEST(OutputLayers, RangeAndObjectIdAreTheReferenceRayCasts) {
       objects += id >= 2;
     }
   }
-  EXPECT_LE(mismatched, int(hits.size() / 100));
-  EXPECT_GT(open, 0);
-  EXPECT_GT(objects, 0);
+  EXPECT_LE(mismatched, int(hits.size() / 100)) << scene.name;
+  EXPECT_EQ(open > 0, open_water) << scene.name;
+  EXPECT_GT(objects, 0) << scene.name;
+}
+
+TEST(OutputLayers, RangeAndObjectIdAreTheReferenceRayCasts) {
+  expectRangeAndObjectIdOfTheReference(smallScene("seabed.toml", {}), false);  // bottom, surface, rocks
+  expectRangeAndObjectIdOfTheReference(openWaterScene(), true);
 }
 
 TEST(OutputLayers, NoLayerHoldsNaNAndOnlyOpenWaterIsInfinite) {
-  for (const char* model : {"\"thesis\"", "\"improved\""}) {
-    const Layers l = render(smallScene("seabed.toml", {set("underwater.model", model)}));
+  std::vector<Scene> scenes = {smallScene("seabed.toml", {set("underwater.model", "\"thesis\"")}),
+                               smallScene("seabed.toml", {set("underwater.model", "\"improved\"")}),
+                               openWaterScene()};
+  scenes.push_back(openWaterScene());
+  scenes.back().underwater.model = UnderwaterDesc::Model::Improved;
+  for (const Scene& scene : scenes) {
+    const char* model = scene.underwater.model == UnderwaterDesc::Model::Improved ? "improved" : "thesis";
+    const Layers l = render(scene);
     for (size_t i = 0; i < l.image.pixelCount(); ++i) {
       const bool open = l.at(i, "object_id") == 0.0f && std::isinf(l.at(i, "range"));
       for (int c = 0; c < l.image.channels; ++c) {
