@@ -138,7 +138,15 @@ int cmdRender(const RenderCmd& cmd) {
   // --output names formats and layers alike: a layer adds to the scene's outputs.layers; the
   // formats stay the default (exr, png) when only layers are named.
   std::vector<std::string> formats, layers;
-  for (const auto& o : cmd.formats) (findOutputLayer(o) ? layers : formats).push_back(o);
+  const std::vector<std::string> known_formats = {"exr", "png", "spectral_exr", "npy"};
+  for (const auto& o : cmd.formats) {
+    const bool format = std::find(known_formats.begin(), known_formats.end(), o) != known_formats.end();
+    if (!format && !findOutputLayer(o)) {  // neither: the error names both lists, before anything runs
+      OutputsDesc unknown;
+      addOutputLayers(unknown, {o}, "--output (formats: exr, png, spectral_exr, npy)");
+    }
+    (format ? formats : layers).push_back(o);
+  }
   if (formats.empty()) formats = RenderCmd{}.formats;
   Scene scene = loadScene(cmd.scene, parseSets(cmd.sets));
   addOutputLayers(scene.outputs, layers, "--output");

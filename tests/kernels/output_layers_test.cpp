@@ -11,7 +11,9 @@
 #include <string>
 #include <vector>
 
+#include "device/allocation_count.h"
 #include "jobs/layer_image.h"
+#include "plan/memory_budget.h"
 #include "quality/auto_quality.h"
 #include "reference/pixel_centre_hits.h"
 #include "render/renderer.h"
@@ -244,6 +246,31 @@ TEST(OutputLayers, NoLayerHoldsNaNAndOnlyOpenWaterIsInfinite) {
         EXPECT_GT(l.at(i, "beta_d.G"), 0.0f);  // extinction: direct < clear
       }
     }
+  }
+}
+
+// The layers' device buffers are what their descriptors estimate, byte for byte (the memory budget and
+// `seasim plan` quote them).
+TEST(OutputLayers, TheirDeviceBytesAreTheEstimate) {
+  auto measure = [](const Scene& scene, double* estimate) {
+    *estimate = 0;
+    const uint64_t before = DeviceAllocations::live();
+    DeviceAllocations::resetPeak();
+    {
+      Renderer renderer(test::testDevice(), scene, shippedPasses());
+      for (const BufferEstimate& b : estimateBuffers(scene, renderer.plan()))
+        if (!b.host) *estimate += b.bytes;
+      (void)renderer.render();
+    }
+    return double(DeviceAllocations::peak() - before);
+  };
+  for (const char* model : {"\"thesis\"", "\"improved\""}) {
+    double with_estimate, without_estimate;
+    const double with = measure(smallScene("seabed.toml", {set("underwater.model", model)}), &with_estimate);
+    const double without = measure(
+        smallScene("seabed.toml", {set("underwater.model", model), set("outputs.layers", "[]")}), &without_estimate);
+    EXPECT_EQ(with - without, with_estimate - without_estimate) << model;
+    EXPECT_GT(with - without, 0.0) << model;
   }
 }
 
