@@ -391,23 +391,22 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
 #endif
     if (mat == UW_MAT_SURFACE) {
       const realb sky_l = kd_sky_lanes(band_table, stride, i, sky_shape);
-      L += uw_lanes_surface(sky_l, ms_total, ms_direct, kd, k_beam, c, single, multiple, S, d.y, p->ior,
-                            p->bottom_depth);
+      const realb surface = uw_lanes_surface(sky_l, ms_total, ms_direct, kd, k_beam, c, single, multiple, S, d.y,
+                                             p->ior, p->bottom_depth);
+      L += surface;
 #if SEASIM_LAYER_FORMATION
-      hit = uw_lanes_surface(sky_l, ms_total, ms_direct, kd, k_beam, c, single, multiple, S, d.y, p->ior,
-                             p->bottom_depth);
+      hit = surface;
       clear = uw_lanes_surface(sky_l, ms_total, ms_direct, kd, k_beam, c, single, multiple, 0.0f, d.y, p->ior,
                                p->bottom_depth);
 #endif
     } else if (mat != UW_MAT_NONE) {
       /* Objects read their albedo row; the bottom (UW_MAT_BOTTOM) reads the bottom's. */
-      L += uw_lanes_lambert(LOADB(albedo_row, i), c, kd, k_beam, LOADB(ROW(UW_ROW_E_TOTAL), i),
-                            LOADB(ROW(UW_ROW_E_SUN), i), LOADB(ROW(UW_ROW_E_BEAM), i), single, S, y_hit, n.y,
-                            n_dot_s, vis);
+      const realb lambert = uw_lanes_lambert(LOADB(albedo_row, i), c, kd, k_beam, LOADB(ROW(UW_ROW_E_TOTAL), i),
+                                             LOADB(ROW(UW_ROW_E_SUN), i), LOADB(ROW(UW_ROW_E_BEAM), i), single, S,
+                                             y_hit, n.y, n_dot_s, vis);
+      L += lambert;
 #if SEASIM_LAYER_FORMATION
-      hit = uw_lanes_lambert(LOADB(albedo_row, i), c, kd, k_beam, LOADB(ROW(UW_ROW_E_TOTAL), i),
-                             LOADB(ROW(UW_ROW_E_SUN), i), LOADB(ROW(UW_ROW_E_BEAM), i), single, S, y_hit, n.y,
-                             n_dot_s, vis);
+      hit = lambert;
       clear = uw_lanes_lambert(LOADB(albedo_row, i), c, kd, k_beam, LOADB(ROW(UW_ROW_E_TOTAL), i),
                                LOADB(ROW(UW_ROW_E_SUN), i), LOADB(ROW(UW_ROW_E_BEAM), i), single, 0.0f, y_hit, n.y,
                                n_dot_s, vis);
