@@ -33,7 +33,8 @@ void readLayers(Device& device, const Resources& resources, const Plan& plan, in
     onDevice("reading the layers back", [&] {
       device.queue().enqueueReadBuffer(t->image, CL_TRUE, 0, sizeof(float) * part.size(), part.data());
     });
-    for (size_t i = 0; i < pixels; ++i) std::copy_n(part.data() + i * n, n, result.layers.pixels.data() + i * channels + at);
+    for (size_t i = 0; i < pixels; ++i)
+      std::copy_n(part.data() + i * n, n, result.layers.pixels.data() + i * channels + at);
     at += n;
   }
 }

@@ -45,8 +45,8 @@ const std::vector<OutputLayer>& outputLayers() {
   static const std::vector<OutputLayer> layers = {
       {"range", "metres along the camera ray to the first surface (+inf: open water)", {"range"}, false},
       {"depth", "camera z of the first surface, metres along the optical axis (+inf: open water)", {"depth"}, false},
-      {"normal", "world-space unit normal of the first surface (0 for open water)", {"normal.X", "normal.Y", "normal.Z"},
-       false},
+      {"normal", "world-space unit normal of the first surface (0 for open water)",
+       {"normal.X", "normal.Y", "normal.Z"}, false},
       {"object_id", "0 water (and the surface), 1 bottom, 2... objects in file order", {"object_id"}, false},
       {"albedo", "the first surface's albedo, the sensor's weighted mean over its bands", rgb("albedo"), false},
       {"clear", "radiance leaving the first surface toward the camera, no water between (J)", rgb("clear"), false},
@@ -55,7 +55,8 @@ const std::vector<OutputLayer>& outputLayers() {
       {"forward", "what forward scattering (the point spread) adds to the signal", rgb("forward"), false},
       {"lamps", "the underwater lamps' light in the image", rgb("lamps"), false},
       {"transmission", "T = exp(-c range) along the ray", rgb("transmission"), false},
-      {"veiling", "B_inf: the radiance of an infinitely long water path in the pixel's direction", rgb("veiling"), false},
+      {"veiling", "B_inf: the radiance of an infinitely long water path in the pixel's direction", rgb("veiling"),
+       false},
       {"beta_d", "-ln(direct/clear)/range where defined (else 0, mask 0)", masked("beta_d"), false},
       {"beta_b", "-ln(1 - backscatter/veiling)/range where defined (else 0, mask 0)", masked("beta_b"), false},
   };

@@ -46,7 +46,8 @@ TEST_F(LayersCli, RenderOutputAddsTheLayersChannelsToImageExr) {
   EXPECT_EQ(image.channels, 8);
   EXPECT_TRUE(fs::exists(dir_ / "out" / "image.png"));  // only layers named: the default formats stay
   float largest = 0;
-  for (size_t i = 0; i < image.pixelCount(); ++i) largest = std::max(largest, image.pixels[i * image.channels + channel(image, "range")]);
+  for (size_t i = 0; i < image.pixelCount(); ++i)
+    largest = std::max(largest, image.pixels[i * image.channels + channel(image, "range")]);
   EXPECT_GT(largest, 100.0f);  // a 1 km deep bottom or the surface far away; finite without open water
 }
 
@@ -54,7 +55,8 @@ TEST_F(LayersCli, OpenWaterRangeIsInfiniteInTheFile) {
   const fs::path scene = dir_ / "open.toml";
   std::ofstream(scene) << "[camera]\nposition = [0, -5, 0]\nlook_at = [0, -9, -5]\n[water]\njerlov = \"II\"\n"
                           "[outputs]\nlayers = [\"range\", \"depth\", \"beta_d\"]\n";
-  const auto r = seasim_test::runCommand(kBinary + " render " + scene.string() + " -o " + (dir_ / "out").string() + kSmall);
+  const auto r =
+      seasim_test::runCommand(kBinary + " render " + scene.string() + " -o " + (dir_ / "out").string() + kSmall);
   ASSERT_EQ(r.code, 0) << r.output;
   const seasim::Image image = seasim::readImage((dir_ / "out" / "image.exr").string());
   int infinite = 0;

@@ -135,7 +135,8 @@ TEST(OutputLayersPlan, TheLampsLayerRunsThroughTheLampsPassOnlyWhenAsked) {
 
 TEST(OutputLayersPlan, TheLayersMemoryIsInTheBudgetOnlyWhenAsked) {
   const Scene plain = parseScene(kUnderwater, "layers.toml");
-  const Scene layered = parseScene(std::string(kUnderwater) + "[outputs]\nlayers = [\"range\", \"direct\"]\n", "layers.toml");
+  const Scene layered =
+      parseScene(std::string(kUnderwater) + "[outputs]\nlayers = [\"range\", \"direct\"]\n", "layers.toml");
   double plain_bytes = 0, layered_bytes = 0;
   for (const BufferEstimate& b : estimateBuffers(plain, makePlan(plain))) plain_bytes += b.bytes;
   for (const BufferEstimate& b : estimateBuffers(layered, makePlan(layered))) layered_bytes += b.bytes;
@@ -164,9 +165,13 @@ struct Beta {
   static Real b(Real bs, Real veil, Real z, int* ok);
 };
 template <>
-float Beta<float>::d(float direct, float clear, float z, int* ok) { return kmath_f::layer_beta_d(direct, clear, z, ok); }
+float Beta<float>::d(float direct, float clear, float z, int* ok) {
+  return kmath_f::layer_beta_d(direct, clear, z, ok);
+}
 template <>
-double Beta<double>::d(double direct, double clear, double z, int* ok) { return kmath_d::layer_beta_d(direct, clear, z, ok); }
+double Beta<double>::d(double direct, double clear, double z, int* ok) {
+  return kmath_d::layer_beta_d(direct, clear, z, ok);
+}
 template <>
 float Beta<float>::b(float bs, float veil, float z, int* ok) { return kmath_f::layer_beta_b(bs, veil, z, ok); }
 template <>
@@ -224,7 +229,8 @@ void checkStiffCases() {
   EXPECT_EQ(ok, 0);
   // Denormal light: finite.
   EXPECT_TRUE(std::isfinite(B::d(std::numeric_limits<Real>::denorm_min(), Real(1), Real(1e-30), &ok)));
-  EXPECT_TRUE(std::isfinite(B::b(Real(0.1) * (Real(1) - std::numeric_limits<Real>::epsilon()), Real(0.1), Real(1e-30), &ok)));
+  const Real nearly_saturated = Real(0.1) * (Real(1) - std::numeric_limits<Real>::epsilon());
+  EXPECT_TRUE(std::isfinite(B::b(nearly_saturated, Real(0.1), Real(1e-30), &ok)));
 }
 
 TEST(EffectiveCoefficients, StiffCasesAreFiniteInFloat) { checkStiffCases<float>(); }

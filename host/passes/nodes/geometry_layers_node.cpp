@@ -100,7 +100,8 @@ PassDescriptor geometryLayersDescriptor() {
     const double w = s.camera.width, h = s.camera.height;
     const double bytes = bytesPerPixel(s, p.featuresAs<GeometryLayerFeatures>()) * w * h;
     const std::vector<std::string> keys = {"camera.width", "camera.height", "outputs.layers"};
-    return {{p.name, "geometry layers", bytes, keys, {w, h}}, {p.name, "geometry layers (read back)", bytes, keys, {w, h}, true}};
+    return {{p.name, "geometry layers", bytes, keys, {w, h}},
+            {p.name, "geometry layers (read back)", bytes, keys, {w, h}, true}};
   };
   d.cost = [](const Scene&, const PassPlan&) { return 0.05; };
   d.factory = [](const PassPlan& e, const Plan&, const Scene&, const AutoQuality&) -> std::unique_ptr<Pass> {

@@ -55,7 +55,8 @@ class KdNode : public Pass {
       layer("forward_layer", {"forward.R", "forward.G", "forward.B"}, pass.forwardLayer());
       layer("lamps_layer", {"lamps.R", "lamps.G", "lamps.B"}, pass.lampsLayer());
     }
-    if (pass.veilingLayer()() != nullptr) layer("veiling_layer", {"veiling.R", "veiling.G", "veiling.B"}, pass.veilingLayer());
+    if (pass.veilingLayer()() != nullptr)
+      layer("veiling_layer", {"veiling.R", "veiling.G", "veiling.B"}, pass.veilingLayer());
   }
   void execute(FrameContext& ctx, PassResources& res) override {
     UnderwaterGBuffer& gbuffer = res.read<UnderwaterGBuffer>("gbuffer");

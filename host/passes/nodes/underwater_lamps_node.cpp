@@ -37,8 +37,8 @@ class UnderwaterLampsNode : public Pass {
     UnderwaterPass& gbuffer = *res.read<UnderwaterGBuffer>("gbuffer").pass;
     RadianceTarget& target = res.read<RadianceTarget>("rgb");
     cl::Buffer* spectral = ctx.scene().spectral.spectral_exr ? &target.spectral : nullptr;
-    cl::Buffer* lamps_layer =
-        entry_.featuresAs<UnderwaterLampsFeatures>().lamps_layer ? &res.read<LayerTarget>("lamps_layer").image : nullptr;
+    const bool lamps_layer_on = entry_.featuresAs<UnderwaterLampsFeatures>().lamps_layer;
+    cl::Buffer* lamps_layer = lamps_layer_on ? &res.read<LayerTarget>("lamps_layer").image : nullptr;
     ctx.timings.push_back(
         {"underwater_lamps", pass_->run(gbuffer.geometry(), gbuffer.material(), target.rgb, spectral, lamps_layer)});
   }
