@@ -1,6 +1,7 @@
 #include "jobs/layer_image.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "scene/output_layers.h"
 #include "util/error.h"
@@ -28,11 +29,25 @@ Image imageWithLayers(const FrameResult& frame, const OutputsDesc& outputs) {
   out.resize(frame.rgb.width, frame.rgb.height, static_cast<int>(names.size()));
   out.channel_names = names;
   const size_t pixels = out.pixelCount();
+  // The check pass counts NaN/Inf in the image only: the layers are checked here, where they are
+  // written. +inf is the range and depth of open water; anything else non-finite is a bug.
+  long long nonfinite = 0;
+  std::string first;
   for (size_t i = 0; i < pixels; ++i) {
     float* o = out.pixels.data() + i * names.size();
     std::copy_n(frame.rgb.pixels.data() + i * 3, 3, o);
-    for (size_t c = 0; c < order.size(); ++c) o[3 + c] = frame.layers.pixels[i * frame.layers.channels + order[c]];
+    for (size_t c = 0; c < order.size(); ++c) {
+      const float v = frame.layers.pixels[i * frame.layers.channels + order[c]];
+      const std::string& name = names[3 + c];
+      if (std::isnan(v) || (std::isinf(v) && !(v > 0 && (name == "range" || name == "depth")))) {
+        if (nonfinite++ == 0) first = name;
+      }
+      o[3 + c] = v;
+    }
   }
+  if (nonfinite != 0)
+    throw RuntimeError("the layers hold " + std::to_string(nonfinite) + " NaN/Inf values (first in '" + first +
+                       "'); nothing written; please report it with the scene");
   return out;
 }
 

@@ -12,7 +12,8 @@ namespace seasim {
 
 // frame.rgb with the channels of the layers `outputs` asks for after it (a pass may write more than
 // were asked: kd_multiple writes the whole split); frame.rgb alone when none is asked. RuntimeError
-// when an asked layer's channel was not written (a plan that promised it: a bug).
+// when an asked layer's channel was not written (a plan that promised it: a bug), or when a layer holds
+// NaN or Inf (but +inf in range and depth: open water).
 Image imageWithLayers(const FrameResult& frame, const OutputsDesc& outputs);
 
 // Throws RuntimeError, before anything renders, when the scene asks for layers the outputs cannot

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "jobs/layer_image.h"
 #include "math/kernel_math.h"
 #include "plan/memory_budget.h"
 #include "plan/plan.h"
@@ -248,6 +249,38 @@ TEST(GeometryLayerMaths, ObjectIdsAndDepth) {
   EXPECT_TRUE(kmath_f::layer_hit(1e4f));
   EXPECT_DOUBLE_EQ(kmath_d::layer_weighted_mean(1.0, 0.0), 0.0);
   EXPECT_DOUBLE_EQ(kmath_d::layer_weighted_mean(1.0, 4.0), 0.25);
+}
+
+// image.exr's channels: R, G, B, then the asked layers in the catalogue's order whatever order the
+// passes wrote them in; a layer the passes wrote but nobody asked for is left out; +inf range kept,
+// any other non-finite value refused.
+TEST(LayerImage, OrdersTheAskedLayersAndRefusesNaN) {
+  FrameResult frame;
+  frame.rgb = Image::rgb(2, 1);
+  frame.layers.resize(2, 1, 3);
+  frame.layers.channel_names = {"object_id", "clear.R", "range"};
+  frame.layers.pixels = {2.0f, 0.5f, 3.0f, 0.0f, 0.25f, std::numeric_limits<float>::infinity()};
+  OutputsDesc outputs;
+  outputs.layers = {"range", "object_id"};
+  const Image image = imageWithLayers(frame, outputs);
+  EXPECT_EQ(image.channel_names, (std::vector<std::string>{"R", "G", "B", "range", "object_id"}));
+  EXPECT_EQ(image.at(0, 0, 3), 3.0f);
+  EXPECT_EQ(image.at(0, 0, 4), 2.0f);
+  EXPECT_TRUE(std::isinf(image.at(1, 0, 3)));
+  EXPECT_EQ(imageWithLayers(frame, OutputsDesc{}).channels, 3);
+  frame.layers.pixels[1] = std::numeric_limits<float>::quiet_NaN();
+  outputs.layers = {"clear"};
+  frame.layers.channel_names = {"object_id", "clear.R", "range"};
+  EXPECT_THROW(imageWithLayers(frame, outputs), RuntimeError);  // clear.G and .B missing: a plan's bug
+  frame.layers.resize(2, 1, 4);
+  frame.layers.channel_names = {"clear.R", "clear.G", "clear.B", "range"};
+  frame.layers.pixels[0] = std::numeric_limits<float>::quiet_NaN();
+  try {
+    imageWithLayers(frame, outputs);
+    FAIL();
+  } catch (const RuntimeError& e) {
+    EXPECT_NE(std::string(e.what()).find("NaN/Inf values (first in 'clear.R')"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace
