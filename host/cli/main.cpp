@@ -45,7 +45,11 @@ int main(int argc, char** argv) {
   render->add_option("-o,--out", render_cmd.out_dir, "Output folder")->required();
   render->add_option("--device", render_cmd.device, "cpu, gpu, pocl:0, nvidia:0 or a name substring");
   render->add_option("--set", render_cmd.sets, "Override a scene key: key=value (repeatable)");
-  render->add_option("--output", render_cmd.formats, "Formats: exr png spectral_exr npy")->delimiter(',');
+  render->add_option("--output", render_cmd.formats,
+                     "Formats: exr png spectral_exr npy; and ground-truth layers written into image.exr: range depth "
+                     "normal object_id albedo clear direct backscatter forward lamps transmission veiling beta_d "
+                     "beta_b (docs/layers.md; repeatable or comma-separated)")
+      ->delimiter(',');
   render->add_option("--reference", render_cmd.reference, "Reference EXR: report error against it")
       ->check(kReadableFile);
 
@@ -57,7 +61,11 @@ int main(int argc, char** argv) {
   run->add_option("--device", run_device, "Device selector (overrides the job's)");
   run->add_option("--shard", run_shard, "i/N: render shard i of N (balanced by estimated or measured cost)");
   run->add_flag("--resume", run_resume, "Skip items the manifest records as finished");
-  std::vector<std::string> run_sets;
+  std::vector<std::string> run_sets, run_layers;
+  run->add_option("--output", run_layers,
+                  "Ground-truth layer added to every item's image.exr (docs/layers.md): range, depth, normal, "
+                  "object_id, albedo, clear, direct, ... (repeatable or comma-separated)")
+      ->delimiter(',');
   run->add_option("--set", run_sets,
                   "Override a scene key of every item, after the item's own: key=value (repeatable), e.g. "
                   "--set camera.width=160 --set camera.height=90");
@@ -287,7 +295,7 @@ int main(int argc, char** argv) {
     if (*validate) return seasim::cmdValidate(validate_files);
     if (*plan) return seasim::cmdPlan(plan_scene, plan_sets);
     if (*render) return seasim::cmdRender(render_cmd);
-    if (*run) return seasim::cmdRun(run_job, run_device, run_shard, run_resume, run_output, run_sets);
+    if (*run) return seasim::cmdRun(run_job, run_device, run_shard, run_resume, run_output, run_sets, run_layers);
     if (*compare) return seasim::cmdCompare(cmp_a, cmp_b, cmp_exposure_opt->count() ? std::optional<double>(cmp_exposure) : std::nullopt);
     if (*sweep) return seasim::cmdSweep(sweep_cmd);
     if (*bench) return seasim::cmdBench(bench_cmd);

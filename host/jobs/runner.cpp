@@ -68,8 +68,9 @@ struct RendererCache {
 // Renders one item and returns its manifest files (relative path -> checksum), kernel ms and kernel
 // build ms.
 nlohmann::json renderOne(Device& device, RendererCache& cache, const RenderItem& item, const std::string& output_dir,
-                         double& kernel_ms, double& build_ms) {
+                         const std::vector<std::string>& layers, double& kernel_ms, double& build_ms) {
   Scene scene = loadScene(item.scene_file, item.overrides);
+  addOutputLayers(scene.outputs, layers, "--output");
   scene.files = cache.files;  // read each data file once per job
   // Before any buffer exists: a render too big for the device fails here, naming its settings.
   checkRenderFitsDevice(device, scene, makePlan(scene));
@@ -195,7 +196,7 @@ RunSummary runJob(const std::string& job_path, const RunOptions& options) {
       try {
         double kernel_ms = 0, build_ms = 0;
         const auto t0 = std::chrono::steady_clock::now();
-        const nlohmann::json files = renderOne(*device, renderers, *item, job.output_dir, kernel_ms, build_ms);
+        const nlohmann::json files = renderOne(*device, renderers, *item, job.output_dir, options.layers, kernel_ms, build_ms);
         const double wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
         manifest.recordDone(item->name, files, kernel_ms, wall_ms, build_ms);
         manifest.save(manifest_file);

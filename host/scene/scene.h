@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "scene/output_layers.h"
 #include "math/vec3.h"
 #include "io/tonemap_eq18.h"
 #include "spectral/spectrum.h"
@@ -240,6 +241,7 @@ struct Scene {
   std::vector<ObjectDesc> objects;
   std::vector<SpotlightDesc> spotlights;
   SpectralDesc spectral;
+  OutputsDesc outputs;  // [outputs]: the ground-truth layers to write (scene/output_layers.h)
   DisplayDesc display;  // [display]: the PNG's tone map (io/tonemap.h or 003 eq. 18, io/tonemap_eq18.h)
   // Every known knob with its value or "auto"; defaults filled in by the parser. Keys are documented
   // in scenes/README.md ([quality]).

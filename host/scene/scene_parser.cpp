@@ -56,7 +56,7 @@ constexpr double kDegToRad = std::numbers::pi / 180.0;
 const std::vector<std::string> kTopLevel = {
     "scene",  "camera",  "sun",        "sky",      "water", "air",    "surface",
     "bottom", "objects", "spotlights", "spectral", "sea",   "underwater", "shallow", "quality",
-    "display"};
+    "display", "outputs"};
 
 std::string fmt(double v) { return formatNumber(v); }
 
@@ -122,6 +122,8 @@ class SceneParser {
     }
     quality(section(root, "quality"));
     display(section(root, "display"));
+    TableReader outputs(src_, section(root, "outputs"), "outputs");
+    parseOutputs(outputs, scene_.outputs);
   }
 
  private:
