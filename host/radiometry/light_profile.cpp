@@ -12,9 +12,10 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-// The uniform sky's share the flat surface transmits from air: 1 - 2 ∫ r(μ) μ dμ (midpoint rule; r is
-// smooth from air, the grazing end has weight μ -> 0).
-double skyTransmittance(double ior) {
+}  // namespace
+
+double uniformSkyTransmittance(double ior) {
+  // Midpoint rule: r is smooth from air, and the grazing end has weight μ -> 0.
   const int n = 4000;
   double r = 0;
   for (int i = 0; i < n; ++i) {
@@ -23,8 +24,6 @@ double skyTransmittance(double ior) {
   }
   return 1 - 2 * r / n;
 }
-
-}  // namespace
 
 LightProfile solveLightProfile(const PlaneParallelWater& water, const PhaseFunction& phase,
                                const std::vector<double>& depths, int streams) {
@@ -47,7 +46,7 @@ LightProfile solveLightProfile(const PlaneParallelWater& water, const PhaseFunct
   layer.bottom_albedo = water.bottom_albedo;
   layer.mu_sun = mu_w;
   layer.e_sun0 = water.sun_irradiance * mu_air * (1 - kmath_d::fresnel_reflectance(mu_air, 1.0, water.ior));
-  layer.e_sky0 = water.sky_transmitted >= 0 ? water.sky_transmitted : water.sky_irradiance * skyTransmittance(water.ior);
+  layer.e_sky0 = water.sky_transmitted >= 0 ? water.sky_transmitted : water.sky_irradiance * uniformSkyTransmittance(water.ior);
   layer.moments = phase.legendreMoments(2 * streams + 1);
   const DiscreteOrdinates solver(layer, streams);
 

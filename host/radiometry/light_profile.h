@@ -47,6 +47,9 @@ struct LightProfile {
   double l_w = 0, r_rs = 0;        // water-leaving radiance and remote-sensing reflectance (1/sr)
 };
 
+// The share of a uniform sky's irradiance a flat surface of index ior transmits from air, 1 - 2 ∫ r(μ) μ dμ.
+double uniformSkyTransmittance(double ior);
+
 // streams: the solver's cosines per hemisphere (>= 2), its quality knob. depths >= 0 (m). Throws
 // std::invalid_argument on bad input (negative IOPs, depths, an albedo outside [0, 1]).
 LightProfile solveLightProfile(const PlaneParallelWater& water, const PhaseFunction& phase,
