@@ -228,6 +228,8 @@ int main(int argc, char** argv) {
   profile->add_option("scene", profile_cmd.scene, "Scene file")->required()->check(kReadableFile);
   profile->add_option("--depths", profile_cmd.depths, "Depths, m (default 0,1,5,10)")->delimiter(',');
   profile->add_option("--streams", profile_cmd.streams, "Discrete-ordinates streams per hemisphere (quality knob)");
+  profile->add_option("--solver", profile_cmd.solver, "discrete_ordinates (default) or monte_carlo (reference, standard errors)");
+  profile->add_option("--photons", profile_cmd.photons, "Monte Carlo photons per band");
   profile->add_option("--csv", profile_cmd.csv, "CSV output (default: stdout)");
   profile->add_option("--plot", profile_cmd.plot, "SVG plot output");
   profile->add_option("--set", profile_cmd.sets, "Override a scene key: key=value (repeatable)");
@@ -235,6 +237,7 @@ int main(int argc, char** argv) {
   auto* canonical = app.add_subcommand(
       "canonical-problems", "Mobley et al. 1993 problems 1, 2, 6 against the published codes, by stream count");
   canonical->add_option("--streams", canonical_cmd.streams, "Stream counts (default 4,8,16,32)")->delimiter(',');
+  canonical->add_option("--photons", canonical_cmd.photons, "Monte Carlo photons per problem (0: none)");
   canonical->add_option("--values", canonical_cmd.values, "Published values CSV")->check(kReadableFile);
   canonical->add_option("--out", canonical_cmd.out, "Markdown output (default: stdout)");
 

@@ -9,6 +9,7 @@
 #include <sstream>
 #include <tuple>
 
+#include "radiometry/light_profile_mc.h"
 #include "util/error.h"
 
 namespace seasim {
@@ -96,22 +97,65 @@ std::vector<CanonicalResult> solveCanonicalProblems(const std::vector<CanonicalV
   return out;
 }
 
-std::string canonicalTableMarkdown(const std::vector<CanonicalResult>& results, int streams, double seconds) {
+std::vector<CanonicalResult> monteCarloCanonicalProblems(const std::vector<CanonicalValue>& published,
+                                                         long long photons, double* seconds) {
+  std::map<std::pair<int, double>, std::vector<double>> depths;
+  for (const CanonicalValue& v : published) depths[{v.problem, v.albedo}].push_back(v.optical_depth);
+  const PhaseFunction rayleigh = PhaseFunction::rayleighLike(), petzold = PhaseFunction::petzold();
+  std::map<std::pair<int, double>, LightProfileMc> solved;
+  double total = 0;
+  for (auto& [key, zs] : depths) {
+    std::sort(zs.begin(), zs.end());
+    zs.erase(std::unique(zs.begin(), zs.end()), zs.end());
+    MonteCarloSettings s;
+    s.photons = photons;
+    solved[key] = solveLightProfileMonteCarlo(canonicalWater(key.first, key.second), key.first == 1 ? rayleigh : petzold,
+                                              zs, s);
+    total += solved[key].seconds;
+  }
+  if (seconds) *seconds = total;
+  std::vector<CanonicalResult> out;
+  for (const CanonicalValue& v : published) {
+    const LightProfileMc& p = solved.at({v.problem, v.albedo});
+    size_t k = 0;
+    while (p.mean.rows[k].depth != v.optical_depth) ++k;
+    const LightAtDepth &m = p.mean.rows[k], &e = p.standard_error[k];
+    CanonicalResult r;
+    r.published = v;
+    r.computed = v.quantity == "Ed" ? m.e_d : v.quantity == "E0u" ? m.e_0u : m.l_u;
+    r.standard_error = v.quantity == "Ed" ? e.e_d : v.quantity == "E0u" ? e.e_0u : e.l_u;
+    r.relative_error = r.computed / v.mean - 1;
+    r.pass = std::abs(r.computed - v.mean) <= canonicalTolerance(v) * v.mean + 3 * r.standard_error;
+    out.push_back(r);
+  }
+  return out;
+}
+
+std::string canonicalTableMarkdown(const std::vector<CanonicalResult>& results, const std::string& solver,
+                                   double seconds) {
   std::string s;
-  char buf[256];
+  char buf[320];
   int passed = 0;
-  for (const CanonicalResult& r : results) passed += r.pass;
-  std::snprintf(buf, sizeof buf,
-                "Discrete ordinates, %d streams per hemisphere (all problems: %.3f s). %d of %zu values within the "
-                "rule.\n\n",
-                streams, seconds, passed, results.size());
+  bool mc = false;
+  for (const CanonicalResult& r : results) {
+    passed += r.pass;
+    mc = mc || r.standard_error > 0;
+  }
+  std::snprintf(buf, sizeof buf, "%s (all problems: %.3f s). %d of %zu values within the rule.\n\n", solver.c_str(),
+                seconds, passed, results.size());
   s += buf;
-  s += "| problem | albedo | c z | quantity | published mean | codes' cv | seasim | seasim/mean - 1 | tolerance | pass |\n";
-  s += "|---|---|---|---|---|---|---|---|---|---|\n";
+  s += std::string("| problem | albedo | c z | quantity | published mean | codes' cv | seasim |") +
+       (mc ? " standard error |" : "") + " seasim/mean - 1 | tolerance | pass |\n";
+  s += std::string("|---|---|---|---|---|---|---|") + (mc ? "---|" : "") + "---|---|---|\n";
   for (const CanonicalResult& r : results) {
     const CanonicalValue& v = r.published;
-    std::snprintf(buf, sizeof buf, "| %d | %g | %g | %s | %.4g | %.1f %% | %.4g | %+.1f %% | %.0f %% | %s |\n", v.problem,
-                  v.albedo, v.optical_depth, v.quantity.c_str(), v.mean, 100 * v.cv, r.computed,
+    std::string se;
+    if (mc) {
+      std::snprintf(buf, sizeof buf, " %.1f %% |", r.computed > 0 ? 100 * r.standard_error / r.computed : 100.0);
+      se = buf;
+    }
+    std::snprintf(buf, sizeof buf, "| %d | %g | %g | %s | %.4g | %.1f %% | %.4g |%s %+.1f %% | %.0f %% | %s |\n",
+                  v.problem, v.albedo, v.optical_depth, v.quantity.c_str(), v.mean, 100 * v.cv, r.computed, se.c_str(),
                   100 * r.relative_error, 100 * canonicalTolerance(v), r.pass ? "yes" : "**no**");
     s += buf;
   }

@@ -32,6 +32,7 @@ double canonicalTolerance(const CanonicalValue& v);
 struct CanonicalResult {
   CanonicalValue published;
   double computed = 0;
+  double standard_error = 0;  // the Monte Carlo's (0 for the discrete ordinates)
   double relative_error = 0;  // computed / mean - 1
   bool pass = false;
 };
@@ -41,7 +42,13 @@ struct CanonicalResult {
 std::vector<CanonicalResult> solveCanonicalProblems(const std::vector<CanonicalValue>& published, int streams,
                                                     double* seconds = nullptr);
 
-// A Markdown table of the results (and the rule), for results/.
-std::string canonicalTableMarkdown(const std::vector<CanonicalResult>& results, int streams, double seconds);
+// The same by the Monte Carlo reference (light_profile_mc.h) with `photons` per problem and albedo; a value
+// passes when |computed - mean| <= tolerance mean + 3 standard errors.
+std::vector<CanonicalResult> monteCarloCanonicalProblems(const std::vector<CanonicalValue>& published,
+                                                         long long photons, double* seconds = nullptr);
+
+// A Markdown table of the results; `solver` names them ("Discrete ordinates, 16 streams per hemisphere").
+std::string canonicalTableMarkdown(const std::vector<CanonicalResult>& results, const std::string& solver,
+                                   double seconds);
 
 }  // namespace seasim
