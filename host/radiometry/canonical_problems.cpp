@@ -125,7 +125,8 @@ std::vector<CanonicalResult> monteCarloCanonicalProblems(const std::vector<Canon
     r.computed = v.quantity == "Ed" ? m.e_d : v.quantity == "E0u" ? m.e_0u : m.l_u;
     r.standard_error = v.quantity == "Ed" ? e.e_d : v.quantity == "E0u" ? e.e_0u : e.l_u;
     r.relative_error = r.computed / v.mean - 1;
-    r.pass = std::abs(r.computed - v.mean) <= canonicalTolerance(v) * v.mean + 3 * r.standard_error;
+    r.resolved = r.standard_error <= canonicalTolerance(v) * v.mean;
+    r.pass = r.resolved && std::abs(r.computed - v.mean) <= canonicalTolerance(v) * v.mean + 3 * r.standard_error;
     out.push_back(r);
   }
   return out;
@@ -135,15 +136,19 @@ std::string canonicalTableMarkdown(const std::vector<CanonicalResult>& results, 
                                    double seconds) {
   std::string s;
   char buf[320];
-  int passed = 0;
+  int passed = 0, judged = 0;
   bool mc = false;
   for (const CanonicalResult& r : results) {
     passed += r.pass;
+    judged += r.resolved;
     mc = mc || r.standard_error > 0;
   }
-  std::snprintf(buf, sizeof buf, "%s (all problems: %.3f s). %d of %zu values within the rule.\n\n", solver.c_str(),
-                seconds, passed, results.size());
+  std::snprintf(buf, sizeof buf, "%s (all problems: %.3f s). %d of %d values within the rule", solver.c_str(), seconds,
+                passed, judged);
   s += buf;
+  if (judged < static_cast<int>(results.size()))
+    s += " (" + std::to_string(results.size() - judged) + " not judged: standard error above the tolerance, n/r)";
+  s += ".\n\n";
   s += std::string("| problem | albedo | c z | quantity | published mean | codes' cv | seasim |") +
        (mc ? " standard error |" : "") + " seasim/mean - 1 | tolerance | pass |\n";
   s += std::string("|---|---|---|---|---|---|---|") + (mc ? "---|" : "") + "---|---|---|\n";
@@ -156,7 +161,7 @@ std::string canonicalTableMarkdown(const std::vector<CanonicalResult>& results, 
     }
     std::snprintf(buf, sizeof buf, "| %d | %g | %g | %s | %.4g | %.1f %% | %.4g |%s %+.1f %% | %.0f %% | %s |\n",
                   v.problem, v.albedo, v.optical_depth, v.quantity.c_str(), v.mean, 100 * v.cv, r.computed, se.c_str(),
-                  100 * r.relative_error, 100 * canonicalTolerance(v), r.pass ? "yes" : "**no**");
+                  100 * r.relative_error, 100 * canonicalTolerance(v), !r.resolved ? "n/r" : r.pass ? "yes" : "**no**");
     s += buf;
   }
   return s;
