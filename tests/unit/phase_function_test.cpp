@@ -178,12 +178,12 @@ std::vector<double> logEdges(double lo_deg, double hi_deg, int n) {
 
 TEST(PhaseFunction, TableSamplingMatchesPetzoldByChiSquare) {
   const PhaseFunction p = PhaseFunction::petzold();
-  const std::vector<double> table = p.samplingTable(4096);
+  const std::vector<double> table = p.samplingTable(8192);
   std::vector<float> table_f(table.begin(), table.end());
   const std::vector<double> edges = logEdges(0.01, 179, 60);
-  expectChiSquare(p, edges, [&](double u) { return kd::phase_table_sample_omc(table.data(), 4096, u); }, 400000,
+  expectChiSquare(p, edges, [&](double u) { return kd::phase_table_sample_omc(table.data(), 8192, u); }, 400000,
                   "petzold double");
-  expectChiSquare(p, edges, [&](double u) { return double(kf::phase_table_sample_omc(table_f.data(), 4096, float(u))); },
+  expectChiSquare(p, edges, [&](double u) { return double(kf::phase_table_sample_omc(table_f.data(), 8192, float(u))); },
                   400000, "petzold float");
 }
 
@@ -197,17 +197,17 @@ TEST(PhaseFunction, TableSamplingResolvesATenthOfADegreePeak) {
   EXPECT_GT(peak, 0.8);
   const double independent = sphereIntegral([&](double psi) { return p.evaluate(psi); }, 0, 0.1 * kPi / 180, 20000);
   EXPECT_NEAR(peak, independent, 1e-3 * independent);
-  const std::vector<double> table = p.samplingTable(4096);
+  const std::vector<double> table = p.samplingTable(8192);
   std::vector<float> table_f(table.begin(), table.end());
   std::vector<double> edges = logEdges(0.001, 179, 80);
-  expectChiSquare(p, edges, [&](double u) { return kd::phase_table_sample_omc(table.data(), 4096, u); }, 400000,
+  expectChiSquare(p, edges, [&](double u) { return kd::phase_table_sample_omc(table.data(), 8192, u); }, 400000,
                   "peak double");
-  expectChiSquare(p, edges, [&](double u) { return double(kf::phase_table_sample_omc(table_f.data(), 4096, float(u))); },
+  expectChiSquare(p, edges, [&](double u) { return double(kf::phase_table_sample_omc(table_f.data(), 8192, float(u))); },
                   400000, "peak float");
   // The float sampler keeps ψ inside the peak: 1 - cos(0.05°) = 3.8e-7 is held as such, not rounded to 0.
   int inside = 0;
   for (int i = 0; i < 1000; ++i)
-    if (kf::phase_table_sample_omc(table_f.data(), 4096, (i + 0.5f) / 1000) < float(1 - std::cos(0.1 * kPi / 180)))
+    if (kf::phase_table_sample_omc(table_f.data(), 8192, (i + 0.5f) / 1000) < float(1 - std::cos(0.1 * kPi / 180)))
       ++inside;
   EXPECT_NEAR(inside / 1000.0, peak, 0.01);
 }
@@ -215,8 +215,8 @@ TEST(PhaseFunction, TableSamplingResolvesATenthOfADegreePeak) {
 TEST(PhaseFunction, FournierForandSamplingByChiSquare) {
   for (double bb : {0.001, 0.0183, 0.5}) {
     const PhaseFunction p = PhaseFunction::fournierForand(bb);
-    const std::vector<double> table = p.samplingTable(4096);
-    expectChiSquare(p, logEdges(0.001, 179, 60), [&](double u) { return kd::phase_table_sample_omc(table.data(), 4096, u); },
+    const std::vector<double> table = p.samplingTable(8192);
+    expectChiSquare(p, logEdges(0.001, 179, 60), [&](double u) { return kd::phase_table_sample_omc(table.data(), 8192, u); },
                     200000, "fournier_forand");
   }
 }
