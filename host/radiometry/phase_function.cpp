@@ -210,6 +210,24 @@ std::vector<double> PhaseFunction::legendreMoments(int count) const {
   return chi;
 }
 
+std::vector<double> PhaseFunction::valueTable(int size) const {
+  if (size < 2) throw std::invalid_argument("valueTable: size must be >= 2");
+  std::vector<double> v(size);
+  const double lo = 1e-9, ratio = std::log(2 / lo);
+  for (int i = 0; i < size; ++i) {
+    const double omc = std::min(lo * std::exp(ratio * i / (size - 1)), 2.0);
+    v[i] = evaluate(2 * std::asin(std::sqrt(omc / 2)));  // ψ from 1 - cos ψ without cancellation
+  }
+  return v;
+}
+
+std::vector<float> PhaseFunction::pathTracerTables() const {
+  const std::vector<double> v = valueTable(PHASE_PT_VALUES), u = samplingTable(PHASE_PT_SAMPLES);
+  std::vector<float> out(v.begin(), v.end());
+  out.insert(out.end(), u.begin(), u.end());
+  return out;
+}
+
 double PhaseFunction::asymmetry() const {
   return kind_ == Kind::HenyeyGreenstein ? g_ : legendreMoments(2)[1];
 }

@@ -63,6 +63,11 @@ class PhaseFunction {
   double ffK() const { return ff_k_; }
   // The inverse CDF for phase_table_sample_omc: `size` (>= 2) values of 1 - cos ψ at u_i = i / (size - 1).
   std::vector<double> samplingTable(int size) const;
+  // The values for phase_table_value: `size` (>= 2) values of β̃ at log-spaced 1 - cos ψ (phase.h).
+  std::vector<double> valueTable(int size) const;
+  // The image path tracer's tables (reference.cl): valueTable(PHASE_PT_VALUES) then
+  // samplingTable(PHASE_PT_SAMPLES), in float.
+  std::vector<float> pathTracerTables() const;
   // The probability that ψ lies in [psi0, psi1] (rad), from the quadrature (tests' χ² bins).
   double probabilityBetween(double psi0, double psi1) const;
 

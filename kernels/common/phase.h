@@ -28,6 +28,10 @@
  *     closed form (phase_function.cpp) rather than by sampling the clamp.
  *   δ^ν = exp(ν ln δ) and its inverse: finite for δ >= k 5e-13 > 0.
  *
+ * Tabulated values (the path tracer's next-event weights): a table of size V holds β̃ at 1 - cos ψ =
+ * PHASE_OMC_MIN (2 / PHASE_OMC_MIN)^(i / (V - 1)), i = 0..V-1, log-spaced from 1e-9 (ψ = 2.6e-3°) to 2; between
+ * nodes ln β̃ is linear in ln(1 - cos ψ) (power laws exactly), below the first node the first value holds.
+ *
  * Tabulated inverse CDF (the path tracer's exact sampling of any phase): a table of size T holds
  * 1 - cos ψ at the cumulative probabilities u_i = i / (T - 1), i = 0..T-1 (first 0, last 2), built on the
  * host from the phase's fine quadrature. Between nodes the sample is geometric in 1 - cos ψ (linear in
@@ -37,6 +41,10 @@
  */
 
 #define PHASE_RAYLEIGH_LIKE_A R(0.835)
+#define PHASE_OMC_MIN R(1e-9)
+/* The path tracer's tables (reference.cl): PHASE_PT_VALUES values, then PHASE_PT_SAMPLES inverse-CDF entries. */
+#define PHASE_PT_VALUES 1024
+#define PHASE_PT_SAMPLES 8192
 
 /* Mobley et al. 1993 problem 1's phase at cos ψ. */
 SEASIM_FN real phase_rayleigh_like(real cos_psi) {
@@ -97,5 +105,18 @@ SEASIM_FN real phase_table_sample_omc(SEASIM_GLOBAL const real* table, int size,
   const real t = s - (real)i;
   const real lo = table[i], hi = table[i + 1];
   if (lo > R(0.0) && hi > lo) return lo * exp(t * log(hi / lo));
+  return lo + t * (hi - lo);
+}
+
+/* β̃ at 1 - cos ψ from `table` (size >= 2 values at log-spaced 1 - cos ψ, see the top). */
+SEASIM_FN real phase_table_value(SEASIM_GLOBAL const real* table, int size, real one_minus_cos) {
+  const real omc = clamp(one_minus_cos, PHASE_OMC_MIN, R(2.0));
+  const real s = log(omc / PHASE_OMC_MIN) / log(R(2.0) / PHASE_OMC_MIN) * (real)(size - 1);
+  int i = (int)floor(s);
+  if (i > size - 2) i = size - 2;
+  if (i < 0) i = 0;
+  const real t = clamp(s - (real)i, R(0.0), R(1.0));
+  const real lo = table[i], hi = table[i + 1];
+  if (lo > R(0.0) && hi > R(0.0)) return lo * exp(t * log(hi / lo));
   return lo + t * (hi - lo);
 }

@@ -240,4 +240,21 @@ TEST(PhaseFunction, TableErrorsNameFileAndLine) {
   EXPECT_THROW(PhaseFunction::henyeyGreenstein(1.0), std::invalid_argument);
 }
 
+// The path tracer's value table (phase_table_value) against the phase itself, float and double: within
+// 0.5 % between nodes for every kind at 1024 entries (log-log interpolation of power laws and smooth tails).
+TEST(PhaseFunction, ValueTableFollowsThePhase) {
+  for (const PhaseFunction& p : {PhaseFunction::petzold(), PhaseFunction::fournierForand(0.001),
+                                 PhaseFunction::fournierForand(0.1), PhaseFunction::rayleighLike(),
+                                 PhaseFunction::henyeyGreenstein(0.95)}) {
+    const std::vector<double> t = p.valueTable(1024);
+    const std::vector<float> tf(t.begin(), t.end());
+    for (double deg : {0.01, 0.1, 0.5, 1.0, 3.0, 10.0, 45.0, 90.0, 135.0, 179.0}) {
+      const double psi = deg * kPi / 180, omc = 2 * std::sin(psi / 2) * std::sin(psi / 2);
+      const double exact = p.evaluate(psi);
+      EXPECT_NEAR(kd::phase_table_value(t.data(), 1024, omc), exact, 5e-3 * exact) << p.name() << " " << deg;
+      EXPECT_NEAR(kf::phase_table_value(tf.data(), 1024, float(omc)), exact, 6e-3 * exact) << p.name() << " " << deg;
+    }
+  }
+}
+
 }  // namespace
