@@ -19,6 +19,7 @@ namespace seasim::kmath_f {
 typedef float real;
 #include "common/real3_host.h"
 #include "common/optics.h"
+#include "common/phase.h"
 #include "common/shafts.h"
 #include "common/shafts_intervals.h"
 #include "common/sea_surface.h"
@@ -52,6 +53,7 @@ namespace seasim::kmath_d {
 typedef double real;
 #include "common/real3_host.h"
 #include "common/optics.h"
+#include "common/phase.h"
 #include "common/shafts.h"
 #include "common/shafts_intervals.h"
 #include "common/sea_surface.h"
