@@ -47,6 +47,7 @@ struct SkyDesc {
   double radiance = 0.05;      // scale on D65 radiance (W m^-2 sr^-1 nm^-1 at 560 nm) for uniform
   std::string image;           // environment image (lat-long), resolved absolute path, for Image
   double turbidity = 3.0;      // Preetham: atmospheric turbidity T (1.7 very clear … 10 hazy)
+  bool chromaticity_on_daylight_locus = false;  // Preetham: sky.chromaticity = "daylight_locus" (common/sky.h)
 };
 
 // Water inherent optical properties. Either a Jerlov type (a, b, Kd from data/) or explicit spectra.

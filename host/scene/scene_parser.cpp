@@ -267,6 +267,7 @@ class SceneParser {
       s.turbidity = r.number("turbidity", s.turbidity);
       // Preetham et al. 1999 fitted T in [2, 10]; 1.7 (the clearest skies) is the usual lower limit.
       r.check(s.turbidity >= 1.7 && s.turbidity <= 10, "turbidity", "must be in [1.7, 10], got " + fmt(s.turbidity));
+      s.chromaticity_on_daylight_locus = r.choice("chromaticity", "preetham", {"preetham", "daylight_locus"}) == "daylight_locus";
     }
     r.finish();
   }
