@@ -59,6 +59,7 @@ ReferenceImage renderReference(const Scene& scene, const ReferenceOptions& optio
     if (!scene.underwater.multiple_scattering) settings.max_bounces = 1;
     const UnderwaterLamps lamps = makeUnderwaterLamps(scene, grid);  // [[spotlights]] under water, by NEE
     settings.lamps = &lamps;
+    settings.lamp_mis = options.lamp_mis;
     settings.progress = options.progress;
     UnderwaterReferenceResult r = renderUnderwaterReference(device, setup, settings);
     out.rgb = std::move(r.rgb);

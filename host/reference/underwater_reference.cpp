@@ -63,7 +63,8 @@ UnderwaterReferenceResult renderUnderwaterReference(Device& device, const Underw
     const std::vector<std::string> defines = {
         std::string("SEASIM_HAS_OBJECTS=") + (p.object_count > 0 ? "1" : "0"),
         std::string("SEASIM_PT_ISOTROPIC=") + (settings.isotropic ? "1" : "0"),
-        std::string("SEASIM_PT_JITTER=") + (settings.jitter ? "1" : "0")};
+        std::string("SEASIM_PT_JITTER=") + (settings.jitter ? "1" : "0"),
+        std::string("SEASIM_PT_LAMP_MIS=") + (settings.lamp_mis ? "1" : "0")};
     const BuiltProgram& built = device.program("reference.cl", defines);
     cl::Kernel kernel(built.program, "reference_path_trace");
     cl::Context& ctx = device.context();
