@@ -24,11 +24,19 @@ PYVENV = $(BUILD)/python-venv
 PYTHON_PACKAGES = nanobind scikit-build-core numpy pytest tqdm
 PYTHON_CMAKE_FLAGS = -DSEASIM_PYTHON=ON -DPython_EXECUTABLE=$(abspath $(PYVENV))/bin/python
 
-.PHONY: demo test test-deps intel-opencl validate deps configure build clean fresh-check package install python-venv wheel
+.PHONY: demo gallery test test-deps intel-opencl validate deps configure build clean fresh-check package install python-venv wheel
 
 demo: build
 	$(BUILD)/seasim run jobs/quickstart.toml --device pocl
-	@echo "images and reports: results/quickstart/"
+	@echo "images and reports: results/quickstart/ (contact sheet: results/quickstart/index.html)"
+
+# The README's gallery (docs/images/gallery.png): the quickstart job's images, in job order, on one
+# sheet (OpenImageIO's oiiotool, from openimageio-tools).
+GALLERY = flat_sea_noon flat_sea_evening ocean_noon ocean_sunset stage_shafts seabed_IB seabed_wave_caustics rov_lights \
+          tropical_shallows muddy_coast jerlov_I jerlov_III seabed_3C jerlov_5C jerlov_9C flat_sea_spectral_canon
+gallery: demo
+	oiiotool $(foreach n,$(GALLERY),results/quickstart/$(n)/image.png) --mosaic:fit=320x180:pad=4 4x4 -o docs/images/gallery.png
+	@echo "gallery: docs/images/gallery.png"
 
 # The test build adds the Python module (SEASIM_PYTHON), which ctest's python.pytest imports.
 test: test-deps python-venv intel-opencl

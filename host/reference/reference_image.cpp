@@ -8,6 +8,7 @@
 #include "reference/sea_second_reference.h"
 #include "reference/shafts_reference.h"
 #include "reference/underwater_reference.h"
+#include "scene/water_phase.h"
 #include "spectral/sensor.h"
 #include "spectral/wavelength_grid.h"
 #include "underwater/underwater_setup.h"
@@ -61,6 +62,8 @@ ReferenceImage renderReference(const Scene& scene, const ReferenceOptions& optio
     settings.lamps = &lamps;
     settings.lamp_mis = options.lamp_mis;
     settings.progress = options.progress;
+    // A phase other than HG (`[water] phase`) is traced exactly from its tables; HG keeps its closed form.
+    if (scene.water.phase != "hg") settings.phase_tables = waterPhase(scene.water).pathTracerTables();
     UnderwaterReferenceResult r = renderUnderwaterReference(device, setup, settings);
     out.rgb = std::move(r.rgb);
     out.std_error = std::move(r.std_error);

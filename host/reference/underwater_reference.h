@@ -15,6 +15,7 @@
 // (settings.lamps, as the underwater_lamps pass does), to all orders of scattering.
 #pragma once
 #include <functional>
+#include <vector>
 
 #include "device/device.h"
 #include "io/image.h"
@@ -34,6 +35,9 @@ struct UnderwaterReferenceSettings {
                                // 1 = single scattering of the sun beam only (no surface, sky or objects'
                                // own shading)
   bool isotropic = false;      // phase 1/(4π) instead of Henyey–Greenstein with UwParams.g
+  // The water's phase for next-event weights and sampling (PhaseFunction::pathTracerTables: PHASE_PT_VALUES
+  // values then PHASE_PT_SAMPLES inverse-CDF entries, common/phase.h); empty: HG of UwParams.g.
+  std::vector<float> phase_tables;
   bool jitter = true;          // false: every path through the pixel centre (tests against quadrature)
   unsigned seed = 1;           // the same seed traces the same paths, whatever `batch` is
   bool camera_above = false;   // the camera is above the surface (y > 0): the sea seen from above,
