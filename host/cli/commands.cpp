@@ -653,6 +653,7 @@ std::string writeSceneReference(const Scene& scene, const ReferenceCmd& cmd, con
   options.seed = cmd.seed;
   options.all_orders = cmd.all_orders;
   options.max_bounces = cmd.max_bounces;
+  options.lamp_mis = !cmd.plain_lamp_sampling;
   const bool tty = isatty(fileno(stderr));
   // The path tracer's samples per pixel; its total is known at the first call.
   options.progress = [tty, next = 0](int done, int total) mutable {

@@ -70,6 +70,7 @@ struct ReferenceCmd {
   long long seed = -1;  // under water: the path tracer's seed; -1: not given (seed 1)
   bool all_orders = false;  // the sea seen from above: the path tracer refracting in, not 000's quadrature
   int max_bounces = 0;      // path tracer: scattering vertices per path (0: its default, 64)
+  bool plain_lamp_sampling = false;  // path tracer: lamps by the equiangular sample alone (no MIS)
 };
 int cmdReference(const ReferenceCmd& cmd);
 // The reference of `scene` (the model's brute-force method, as `seasim reference` picks it) written to

@@ -146,6 +146,10 @@ int main(int argc, char** argv) {
                         "validation's max_depth; Russian roulette ends nearly every path before. 64 took up to 40 % "
                         "off deep, strongly forward water with little absorption, e.g. g 0.95 at u = 0.6)")
       ->check(CLI::PositiveNumber);
+  reference->add_flag("--plain-lamp-sampling", ref_cmd.plain_lamp_sampling,
+                      "Path tracer: see spotlights by one equiangular sample per path segment alone, instead of one "
+                      "inside the lamp's cone combined with next-event estimation at the free-flight vertex (both "
+                      "unbiased; for measuring the combination's variance)");
   reference->add_option("--device", ref_cmd.device, "Device for the underwater path tracer");
   reference->add_option("--set", ref_cmd.sets, "Override a scene key: key=value (repeatable)");
 

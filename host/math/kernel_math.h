@@ -45,6 +45,7 @@ typedef float real;
 #include "common/caustic_map.h"
 #include "common/froxel.h"
 #include "common/path_tracer.h"
+#include "common/path_tracer_lamps.h"
 #include "common/fourflow.h"
 #include "common/fourflow_waves.h"
 }  // namespace seasim::kmath_f
@@ -79,6 +80,7 @@ typedef double real;
 #include "common/caustic_map.h"
 #include "common/froxel.h"
 #include "common/path_tracer.h"
+#include "common/path_tracer_lamps.h"
 #include "common/fourflow.h"
 #include "common/fourflow_waves.h"
 }  // namespace seasim::kmath_d

@@ -60,6 +60,7 @@ ReferenceImage renderReference(const Scene& scene, const ReferenceOptions& optio
     if (!scene.underwater.multiple_scattering) settings.max_bounces = 1;
     const UnderwaterLamps lamps = makeUnderwaterLamps(scene, grid);  // [[spotlights]] under water, by NEE
     settings.lamps = &lamps;
+    settings.lamp_mis = options.lamp_mis;
     settings.progress = options.progress;
     // A phase other than HG (`[water] phase`) is traced exactly from its tables; HG keeps its closed form.
     if (scene.water.phase != "hg") settings.phase_tables = waterPhase(scene.water).pathTracerTables();

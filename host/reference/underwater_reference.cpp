@@ -68,6 +68,7 @@ UnderwaterReferenceResult renderUnderwaterReference(Device& device, const Underw
         std::string("SEASIM_HAS_OBJECTS=") + (p.object_count > 0 ? "1" : "0"),
         std::string("SEASIM_PT_ISOTROPIC=") + (settings.isotropic ? "1" : "0"),
         std::string("SEASIM_PT_JITTER=") + (settings.jitter ? "1" : "0"),
+        std::string("SEASIM_PT_LAMP_MIS=") + (settings.lamp_mis ? "1" : "0"),
         std::string("SEASIM_PT_PHASE_TABLE=") + (settings.phase_tables.empty() ? "0" : "1")};
     if (!settings.phase_tables.empty() && settings.phase_tables.size() != PHASE_PT_VALUES + PHASE_PT_SAMPLES)
       throw RuntimeError("underwater reference: the phase tables hold " + std::to_string(settings.phase_tables.size()) +

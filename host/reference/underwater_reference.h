@@ -50,6 +50,11 @@ struct UnderwaterReferenceSettings {
   // The scene's spotlights (underwater/lamps_setup.h: makeUnderwaterLamps), seen by next-event
   // estimation at every vertex; null: no lamps. Must outlive the call.
   const UnderwaterLamps* lamps = nullptr;
+  // How a path segment sees the lamps (common/path_tracer_lamps.h): true, an equiangular sample inside
+  // each lamp's cone and next-event estimation at the free-flight vertex, combined by the balance
+  // heuristic; false, one equiangular sample on the whole segment alone (the plain estimator, kept to
+  // measure the combination's variance against; both are unbiased).
+  bool lamp_mis = true;
   std::function<void(int done, int total)> progress;  // after each launch: samples done, samples asked
 };
 
