@@ -25,9 +25,10 @@ namespace {
 const std::string kBinary = SEASIM_BINARY;
 const std::string kRepo = SEASIM_SOURCE_DIR;
 
-using seasim_test::Result;
+using seasim_test::run;
+using seasim_test::readJson;
 
-Result run(const std::string& args) { return seasim_test::runCommand(kBinary + " " + args); }
+using seasim_test::Result;
 
 class Cli : public ::testing::Test {
  protected:
@@ -53,11 +54,6 @@ class Cli : public ::testing::Test {
   }
   fs::path dir_;
 };
-
-nlohmann::json readJson(const fs::path& p) {
-  std::ifstream in(p);
-  return nlohmann::json::parse(in);
-}
 
 TEST_F(Cli, DevicesListsPocl) {
   const Result r = run("devices");

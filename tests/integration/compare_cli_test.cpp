@@ -17,11 +17,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const std::string kBinary = SEASIM_BINARY;
 const std::string kRepo = SEASIM_SOURCE_DIR;
-const std::string kSmall = " --set camera.width=48 --set camera.height=27";
 
-seasim_test::Result run(const std::string& args) { return seasim_test::runCommand(kBinary + " " + args); }
+using seasim_test::run;
+const std::string kSmall = " --set camera.width=48 --set camera.height=27";
 
 // The number after "KEY " at a line's start in the output; NaN when absent.
 double value(const std::string& output, const std::string& key) {

@@ -22,16 +22,11 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const std::string kBinary = SEASIM_BINARY;
 const std::string kRepo = SEASIM_SOURCE_DIR;
 
-seasim_test::Result run(const std::string& args) { return seasim_test::runCommand(kBinary + " " + args); }
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
-
-nlohmann::json readJson(const fs::path& p) {
-  std::ifstream in(p);
-  return nlohmann::json::parse(in);
-}
+using seasim_test::run;
+using seasim_test::contains;
+using seasim_test::readJson;
 
 class DatasetCli : public ::testing::Test {
  protected:

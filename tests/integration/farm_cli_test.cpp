@@ -16,9 +16,8 @@ namespace {
 const std::string kBinary = SEASIM_BINARY;
 const std::string kRepo = SEASIM_SOURCE_DIR;
 
-seasim_test::Result run(const std::string& args) { return seasim_test::runCommand(kBinary + " " + args); }
-
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+using seasim_test::run;
+using seasim_test::contains;
 
 class FarmCli : public ::testing::Test {
  protected:

@@ -32,18 +32,11 @@ namespace {
 const std::string kBinary = SEASIM_BINARY;
 const std::string kRepo = SEASIM_SOURCE_DIR;
 
+using seasim_test::run;
+using seasim_test::contains;
+using seasim_test::readJson;
+
 using seasim_test::Result;
-
-Result run(const std::string& args, const std::string& env = "") {
-  return seasim_test::runCommand(env + kBinary + " " + args);
-}
-
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
-
-nlohmann::json readJson(const fs::path& p) {
-  std::ifstream in(p);
-  return nlohmann::json::parse(in);
-}
 
 void writeJson(const fs::path& p, const nlohmann::json& j) { std::ofstream(p) << j.dump(2); }
 

@@ -22,7 +22,7 @@ namespace {
 const std::string kBinary = SEASIM_BINARY;
 const std::string kRepo = SEASIM_SOURCE_DIR;
 
-seasim_test::Result run(const std::string& args) { return seasim_test::runCommand(kBinary + " " + args); }
+using seasim_test::run;
 
 class FirstHourCli : public ::testing::Test {
  protected:

@@ -17,12 +17,11 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const std::string kBinary = SEASIM_BINARY;
 const std::string kRepo = SEASIM_SOURCE_DIR;
 
-using seasim_test::Result;
+using seasim_test::run;
 
-Result run(const std::string& args) { return seasim_test::runCommand(kBinary + " " + args); }
+using seasim_test::Result;
 
 class ReferenceCli : public ::testing::Test {
  protected:

@@ -31,19 +31,11 @@ namespace {
 const std::string kBinary = SEASIM_BINARY;
 const std::string kRepo = SEASIM_SOURCE_DIR;
 
+using seasim_test::run;
+using seasim_test::contains;
+using seasim_test::readJson;
+
 using seasim_test::Result;
-
-// Runs seasim through the shell; `env` is a prefix such as "SEASIM_CACHE_DIR=/x ".
-Result run(const std::string& args, const std::string& env = "") {
-  return seasim_test::runCommand(env + kBinary + " " + args);
-}
-
-nlohmann::json readJson(const fs::path& p) {
-  std::ifstream in(p);
-  return nlohmann::json::parse(in);
-}
-
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
 class Reliability : public ::testing::Test {
  protected:

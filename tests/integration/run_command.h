@@ -1,5 +1,5 @@
-// run_command.h — for the CLI tests: a shell command line's exit code and output, a background
-// `seasim run`, and a fresh folder per test.
+// run_command.h — for the CLI tests: a shell command line's exit code and output, `seasim ARGS` run
+// the same way, a background `seasim run`, a fresh folder per test, and reading what a run wrote.
 #pragma once
 #include <fcntl.h>
 #include <spawn.h>
@@ -7,9 +7,11 @@
 #include <unistd.h>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -29,6 +31,19 @@ inline Result runCommand(const std::string& cmd) {
   while (size_t n = fread(buf, 1, sizeof buf, pipe)) out.append(buf, n);
   const int status = pclose(pipe);
   return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
+}
+
+// The seasim binary this test target was built against (SEASIM_BINARY, set by CMake) with `args`,
+// through the shell; `env` is a prefix such as "SEASIM_CACHE_DIR=/x ".
+inline Result run(const std::string& args, const std::string& env = "") {
+  return runCommand(env + SEASIM_BINARY + " " + args);
+}
+
+inline bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+inline nlohmann::json readJson(const std::filesystem::path& p) {
+  std::ifstream in(p);
+  return nlohmann::json::parse(in);
 }
 
 // An empty folder <temp>/<prefix><current test's name>, created afresh (per test, so tests of one
