@@ -73,7 +73,7 @@ build: configure
 configure: deps
 	cmake -S . -B $(BUILD) $(CMAKE_FLAGS)
 
-# Opt-in, not part of `make test`: seasim's references against Mitsuba 3 on matching scenes (issue 13).
+# Opt-in, not part of `make test`: seasim's references against Mitsuba 3 on matching scenes.
 # A Python virtual environment in $(BUILD)/validate-venv with mitsuba and numpy from PyPI (the scalar
 # variants need nothing else); ratio tables into results/validation/: spotlight shafts, the underwater
 # flat-bottom scene (level and through Snell's window), the sea seen from above and a spotlight under

@@ -4,10 +4,10 @@
  * SEASIM_SPECTRAL_OUTPUT asks for them — plus the froxel single scattering (002 eq. 5.2) read at the
  * pixel's depth.
  *
- * Explicit SIMD over the bands (issue 14): SEASIM_BAND_LANES bands per step in floatN vectors
+ * Explicit SIMD over the bands: SEASIM_BAND_LANES bands per step in floatN vectors
  * (common/band_lanes.h, common/underwater_bands.h), since PoCL does not vectorise this kernel across
  * work-items; the band table (common/underwater_band_table.h) holds every per-band value the loop reads.
- * underwater.model = "improved" (SEASIM_UNDERWATER_MODEL == 1, issue 13) runs on the same lanes
+ * underwater.model = "improved" (SEASIM_UNDERWATER_MODEL == 1) runs on the same lanes
  * (common/underwater_improved_bands.h), reading the table's improved rows.
  *
  * Inputs: UwParams, UwBand[band_count] and albedo[object * band_count + band] (the set-up as every
@@ -55,7 +55,7 @@
 #ifndef SEASIM_UNDERWATER_MODEL
 #define SEASIM_UNDERWATER_MODEL 0
 #endif
-#if SEASIM_UNDERWATER_MODEL == 1 /* underwater.model = "improved" (issue 13) on the band lanes */
+#if SEASIM_UNDERWATER_MODEL == 1 /* underwater.model = "improved" on the band lanes */
 #include "common/underwater_improved_params.h"
 /* uwi_mirror_hit: the surface's reflected ray against the objects */
 #include "common/underwater_improved.h"
@@ -87,7 +87,7 @@
     (buffer)[(size_t)pixel * (stride) + (at) + 2] = SUMB(name##_b); \
   } while (0)
 #endif
-#if SEASIM_UWI_SPREAD /* the water's point-spread (issue 13 s11): the forward light kept apart per layer */
+#if SEASIM_UWI_SPREAD /* the water's point-spread: the forward light kept apart per layer */
 #include "common/water_spread_params.h"
 #include "common/water_spread.h"
 #endif

@@ -5,7 +5,7 @@
  * argument is known up front (no chain through exp's latency), and FMA_CHAINS independent FMA chains
  * cover the FMA latency. They are explicitly vectorised (float16: one AVX-512 register, two AVX2
  * ones, and on a GPU 16 independent operations per thread), because PoCL does not vectorise a kernel
- * with a loop across its work items (bench --limits and BENCHMARKS.md say which kernels it does
+ * with a loop across its work items (docs/journal/benchmarks_notes.md says which kernels it does
  * vectorise). Every result reaches `out`, so nothing is dead code.
  */
 #ifndef EXP_PER_ITEM

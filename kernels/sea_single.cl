@@ -23,7 +23,7 @@
  * 0 evaluates eq. 5 exactly; SEASIM_SEA_MODEL (sea.model): 0 paper 000's eq. 5 and 9, 1 "multiple", all
  * orders in closed form (common/sea_multiple.h: QSSA with Lee et al.'s factors, skylight in the water,
  * the bottom lit and seen through forward-scattering water; needs SEASIM_SEA_LUT 0).
- * Band loop (issue 14): sea.model "single" (SEASIM_SEA_MODEL 0, every other variant) runs
+ * Band loop: sea.model "single" (SEASIM_SEA_MODEL 0, every other variant) runs
  * SEASIM_BAND_LANES bands per step in floatN (common/band_lanes.h, common/sea_bands.h), reading the band
  * table (common/sea_band_table.h: SeaBand's fields and the LUT, bands contiguous); the pixel's work
  * (view, Fresnel, sun, bottom hit, LUT taps, whether the reflected ray sees the sun's disk) is done once
@@ -81,7 +81,7 @@
 #error "sea.model = \"multiple\" evaluates eq. 5 exactly (SEASIM_SEA_LUT=0)"
 #endif
 #ifndef SEASIM_SUPERSAMPLE
-#define SEASIM_SUPERSAMPLE 1 /* n: n x n rays per pixel, averaged (the filter's reference, issue 19) */
+#define SEASIM_SUPERSAMPLE 1 /* n: n x n rays per pixel, averaged (the wave filter's reference) */
 #endif
 #if SEASIM_WAVE_FILTER && (!SEASIM_HAS_WAVES || SEASIM_SUPERSAMPLE > 1)
 #error "the wave filter needs waves, and the supersampled reference reads the unfiltered normals"

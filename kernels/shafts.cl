@@ -26,7 +26,7 @@
  * Inputs: ShaftsParams, ShaftsLight[light_count], ShaftsObject[object_count], light maps (RGB
  * floats), F table [table_size] over α ∈ [0, π] and ĥ = s² h table [table_size²] over
  * (s, t) ∈ [0, s_max] × [0, t_max] (table mode). Output: rgb[3 * pixels], linear RGB radiance.
- * Defines: SEASIM_SHAFTS_INTERVALS (issue 14: I_s integrated over the exact lit stretches of the ray,
+ * Defines: SEASIM_SHAFTS_INTERVALS (I_s integrated over the exact lit stretches of the ray,
  * common/shafts_intervals.h, with exact g and no shadow maps; the objects' shadow volumes come in
  * `occluders`), SEASIM_SHAFTS_EXACT (g evaluated exactly, else from the 1-D and 2-D tables of eq. 6),
  * SEASIM_SHAFTS_HG (Henyey–Greenstein phase), SEASIM_HAS_OBJECTS, SEASIM_HAS_LIGHT_MAP.

@@ -1,4 +1,4 @@
-/* water_spread.cl — the water's point-spread (issue 13, s11; common/water_spread.h derives it): the light
+/* water_spread.cl — the water's point-spread (common/water_spread.h derives it): the light
  * kd_multiple.cl kept apart as scattered by small angles, blurred by the phase's small angles and added
  * back into the frame (sensor RGB, or spectral.exr's bands: params->channels per pixel).
  *

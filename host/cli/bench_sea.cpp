@@ -12,6 +12,7 @@
 #include "cli/commands.h"
 #include "io/csv.h"
 #include "passes/sea_second_pass.h"
+#include "plan/pass_descriptor.h"
 #include "plan/plan.h"
 #include "quality/sea_auto.h"
 #include "scene/scene_parser.h"
@@ -39,7 +40,7 @@ int benchSeaSecond(Device& device, const BenchCmd& cmd, const std::vector<Overri
     o.push_back(parseSetOption("sea.second_order=true"));
     const Scene scene = loadScene(cmd.scene, o);
     const Plan plan = makePlan(scene);
-    const PassPlan* second = plan.find("sea_second");
+    const PassPlan* second = plan.find(descriptorFor(PassRole::SeaSecondOrder).name);
     if (!second) throw RuntimeError("--sea-maps: " + cmd.scene + " has no sea second-order pass (no water in view?)");
     const WavelengthGrid grid = makeGrid(scene.spectral.count, scene.spectral.min_nm, scene.spectral.max_nm);
     const Sensor sensor = makeSensor(scene.spectral.sensor, grid, scene.spectral.white_balance, scene.spectral.camera_dir);

@@ -22,6 +22,7 @@
 #include "jobs/recorded_settings.h"
 #include "jobs/render_item.h"
 #include "jobs/runner.h"
+#include "plan/pass_descriptor.h"
 #include "plan/plan.h"
 #include "plan/scene_facts.h"
 #include "quality/auto_quality.h"
@@ -442,7 +443,9 @@ int cmdBench(const BenchCmd& cmd) {
     // Spotlight shafts (001 §5: "cost linear in the number of lights"): the scene with its first k
     // spotlights, ms per frame of the shadow-map and shafts kernels, and a least-squares line.
     const Scene full = loadScene(cmd.scene, parseSets(cmd.sets));
-    CsvWriter table({"lights", "kernel_ms_median", "shadow_maps_ms", "shafts_ms"});
+    const std::string& shadow_maps = descriptorFor(PassRole::ShadowMaps).name;
+    const std::string& shafts_pass = descriptorFor(PassRole::Spotlights).name;
+    CsvWriter table({"lights", "kernel_ms_median", shadow_maps + "_ms", shafts_pass + "_ms"});
     PlotSeries total_series{"shadow maps + shafts", {}, {}}, shafts_series{"shafts kernel", {}, {}};
     std::vector<double> ks, ts;
     for (int k : cmd.lights) {
@@ -460,8 +463,8 @@ int cmdBench(const BenchCmd& cmd) {
         const FrameResult frame = renderer.render();
         double sm = 0, sh = 0;
         for (const auto& t : frame.timings) {
-          if (t.name == "shadow_maps") sm += t.ms;
-          if (t.name == "shafts") sh += t.ms;
+          if (t.name == shadow_maps) sm += t.ms;
+          if (t.name == shafts_pass) sh += t.ms;
         }
         totals.push_back(sm + sh);
         shadow.push_back(sm);
@@ -503,15 +506,20 @@ int cmdBench(const BenchCmd& cmd) {
   // Underwater scenes also time the same G-buffer + K_d shading as a plain C++/oneTBB loop on this CPU
   // (host/underwater/underwater_cpu.cpp, float, no froxel term) in the same run, for the ratio.
   const bool underwater = cameraUnderwater(loadScene(cmd.scene, parseSets(cmd.sets)));
+  const std::string& gbuffer_pass = descriptorFor(PassRole::UnderwaterGBuffer).name;
+  const std::string& froxel_pass = descriptorFor(PassRole::UnderwaterSingleScattering).name;
+  const std::string& kd_pass = descriptorFor(PassRole::UnderwaterShading).name;
+  const std::string& check_pass = descriptorFor(PassRole::Check).name;
   std::vector<std::string> columns = {"wavelengths", "kernel_ms_median", "pixel_wavelengths_per_s"};
   if (underwater) {
-    for (const char* c : {"raycast_ms", "froxel_ms", "kd_multiple_ms", "tbb_gbuffer_kd_ms", "tbb_over_opencl",
-                          "tbb_simd_gbuffer_kd_ms", "tbb_simd_over_opencl"})
+    for (const std::string& c : {gbuffer_pass + "_ms", froxel_pass + "_ms", kd_pass + "_ms",
+                                 std::string("tbb_gbuffer_kd_ms"), std::string("tbb_over_opencl"),
+                                 std::string("tbb_simd_gbuffer_kd_ms"), std::string("tbb_simd_over_opencl")})
       columns.push_back(c);
   }
   CsvWriter table(columns);
   PlotSeries series{underwater ? "all passes (OpenCL)" : "kernels (OpenCL)", {}, {}};
-  PlotSeries kd_series{"raycast + kd_multiple (OpenCL)", {}, {}};
+  PlotSeries kd_series{gbuffer_pass + " + " + kd_pass + " (OpenCL)", {}, {}};
   PlotSeries tbb_series{"same on C++/oneTBB", {}, {}};
   PlotSeries simd_series{"same on C++/oneTBB, vectorised", {}, {}};
   std::vector<double> ns, ts, kd_ts;
@@ -529,14 +537,14 @@ int cmdBench(const BenchCmd& cmd) {
       const FrameResult frame = renderer.render();
       double total = 0;
       for (const auto& t : frame.timings) {
-        if (t.name == "nonfinite_check") continue;
+        if (t.name == check_pass) continue;
         total += t.ms;
         per_pass[t.name].push_back(t.ms);
       }
       samples.push_back(total);
     }
-    // A pass's median ms; a name ending in '*' sums every pass with that prefix (froxel_shadow_map,
-    // froxel_inject, froxel_integrate -> "froxel*").
+    // A pass's median ms; a name ending in '*' sums every timing with that prefix (the froxel pass's
+    // kernels: its name followed by '*').
     auto passMs = [&](std::string name) {
       if (!name.empty() && name.back() == '*') {
         name.pop_back();
@@ -555,18 +563,12 @@ int cmdBench(const BenchCmd& cmd) {
     if (exp_rate > 0) {
       // Each band-loop kernel's own rate (items x bands per second of its time) over the exp bound:
       // the fraction of the bound it reaches if it spent exactly one exp per item and band.
-      const double froxels = scene.quality.count("froxel_x") ? scene.quality.at("froxel_x").value *
-                                                                   scene.quality.at("froxel_y").value *
-                                                                   scene.quality.at("froxel_z").value
-                                                             : 0.0;
-      const int froxel_bands = scene.underwater.injection == UnderwaterDesc::Injection::Spectral ? n : 3;
-      const struct {
-        const char* pass;
-        double items;
-      } loops[] = {{"sea_single", pixels * n}, {"kd_multiple", pixels * n}, {"froxel_integrate", froxels * froxel_bands}};
-      for (const auto& l : loops) {
-        const double pass_ms = passMs(l.pass);
-        if (pass_ms > 0) std::printf("  [%s %.3g of the exp bound]", l.pass, l.items / (pass_ms * 1e-3) / exp_rate);
+      for (PassRole role : {PassRole::SeaShading, PassRole::UnderwaterShading, PassRole::UnderwaterSingleScattering}) {
+        const PassDescriptor& d = descriptorFor(role);
+        const double pass_ms = passMs(d.band_loop_timing);
+        if (pass_ms > 0)
+          std::printf("  [%s %.3g of the exp bound]", d.band_loop_timing.c_str(),
+                      d.band_loop_items(scene, n) / (pass_ms * 1e-3) / exp_rate);
       }
     }
     std::vector<CsvCell> row = {n, ms, rate};
@@ -588,12 +590,13 @@ int cmdBench(const BenchCmd& cmd) {
         (void)renderUnderwaterCpuSimd(setup, options);
         cpu_simd.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - c0).count());
       }
-      const double kd_ms = passMs("raycast") + passMs("kd_multiple"), tbb_ms = median(cpu), simd_ms = median(cpu_simd);
-      std::printf("  [raycast %.3f, froxel %.3f, kd %.3f ms; TBB %.3f ms = %.2fx; TBB vectorised %.3f ms = %.2fx]",
-                  passMs("raycast"), passMs("froxel*"), passMs("kd_multiple"), tbb_ms, tbb_ms / kd_ms, simd_ms,
-                  simd_ms / kd_ms);
-      for (double v : {passMs("raycast"), passMs("froxel*"), passMs("kd_multiple"), tbb_ms, tbb_ms / kd_ms, simd_ms,
-                       simd_ms / kd_ms})
+      const double gbuffer_ms = passMs(gbuffer_pass), froxel_ms = passMs(froxel_pass + "*");
+      const double pass_kd_ms = passMs(kd_pass);
+      const double kd_ms = gbuffer_ms + pass_kd_ms, tbb_ms = median(cpu), simd_ms = median(cpu_simd);
+      std::printf("  [%s %.3f, %s %.3f, kd %.3f ms; TBB %.3f ms = %.2fx; TBB vectorised %.3f ms = %.2fx]",
+                  gbuffer_pass.c_str(), gbuffer_ms, froxel_pass.c_str(), froxel_ms, pass_kd_ms, tbb_ms, tbb_ms / kd_ms,
+                  simd_ms, simd_ms / kd_ms);
+      for (double v : {gbuffer_ms, froxel_ms, pass_kd_ms, tbb_ms, tbb_ms / kd_ms, simd_ms, simd_ms / kd_ms})
         row.push_back(v);
       kd_series.x.push_back(n);
       kd_series.y.push_back(kd_ms);

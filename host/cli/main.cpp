@@ -188,7 +188,7 @@ int main(int argc, char** argv) {
   study->add_option("--device", study_cmd.device, "Device selector");
   study->add_option("--set", study_cmd.sets, "Override a scene key: key=value (repeatable)");
 
-  seasim::UnderwaterRegionsCmd regions_cmd;  // issue 13: the fast underwater model by region vs the path tracer
+  seasim::UnderwaterRegionsCmd regions_cmd;  // the fast underwater model by region vs the path tracer
   auto* regions = app.add_subcommand("underwater-regions",
                                      "Fast underwater model vs the path tracer by region (bottom near/far, water "
                                      "up/down, objects) over one-band waters, g, depths, views and models");

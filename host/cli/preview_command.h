@@ -1,4 +1,4 @@
-// preview_command.h — `seasim preview SCENE`: the live window (issue 16, docs/preview.md). Each frame
+// preview_command.h — `seasim preview SCENE`: the live window (docs/preview.md). Each frame
 // runs the scene's Renderer (render/renderer.h: only passes whose keys changed run again) on the
 // chosen OpenCL device and shows the linear image through the tone map of image.png (io/tonemap.h).
 #pragma once

@@ -14,6 +14,7 @@
 #include "device/device.h"
 #include "io/csv.h"
 #include "io/npy.h"
+#include "plan/pass_descriptor.h"
 #include "plan/plan.h"
 #include "quality/render_frame.h"
 #include "reference/pixel_centre_hits.h"
@@ -124,7 +125,8 @@ int cmdUnderwaterRegions(const UnderwaterRegionsCmd& cmd) {
     cache = (env && *env ? std::string(env) : std::string("build")) + "/underwater_regions";
   }
   fs::create_directories(cache);
-  std::vector<std::string> header = {"a", "b", "g", "depth_m", "view", "model", "kd_multiple_ms", "reference_spp"};
+  const std::string& kd_pass = descriptorFor(PassRole::UnderwaterShading).name;
+  std::vector<std::string> header = {"a", "b", "g", "depth_m", "view", "model", kd_pass + "_ms", "reference_spp"};
   for (int r = 0; r < kUwRegionCount; ++r) {
     const std::string name = uwRegionName(static_cast<UwRegion>(r));
     for (const char* col : {"_pixels", "_ratio", "_ref_rel_se"}) header.push_back(name + col);
@@ -204,7 +206,7 @@ int cmdUnderwaterRegions(const UnderwaterRegionsCmd& cmd) {
             if (frame.nonfinite != 0) throw RuntimeError("underwater-regions: NaN/Inf in a render");
             double kd_ms = 0.0;
             for (const PassTiming& t : frame.timings)
-              if (t.name == "kd_multiple") kd_ms += t.ms;
+              if (t.name == kd_pass) kd_ms += t.ms;
             const auto stats = underwaterRegionStats(regions, frame.rgb, ref, se);
             if (!cmd.dump_dir.empty()) {
               dump.fast.emplace_back(model, frame.rgb);

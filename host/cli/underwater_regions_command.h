@@ -19,8 +19,8 @@ struct UnderwaterRegionsCmd {
   std::vector<std::string> models = {"thesis", "improved"};
   int spp = 2048;         // path tracer samples per pixel
   // false: every reference path through the pixel's centre, the one ray per pixel that the fast models
-  // shade and that underwaterRegions classifies (s8b); true: over the pixel's area, as `seasim reference`
-  // (the tables before s8b), where an object's edge pixels mix in the sand or water beside it.
+  // shade and that underwaterRegions classifies; true: over the pixel's area, as `seasim reference`
+  // does, where an object's edge pixels mix in the sand or water beside it.
   bool jitter = false;
   // > 0: where a region of at least kRegionsJudgedMinPixels pixels has a reference noisier than this
   // (relative standard error) at `spp`, the case is traced again at the path count that noise implies

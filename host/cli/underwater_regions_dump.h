@@ -1,6 +1,6 @@
 // underwater_regions_dump.h — `seasim underwater-regions --dump DIR`: one case's images as a per-pixel
 // CSV, to see where in the frame a region's miss sits and which of the fast model's terms it is in
-// (issue 13). Columns: x, y (pixel, row 0 at the top), region, d_y (the centre ray's vertical direction,
+// Columns: x, y (pixel, row 0 at the top), region, d_y (the centre ray's vertical direction,
 // > 0 towards the surface), cos_sun (its cosine with the direction to the refracted sun), reference and reference_se (the path tracer and its standard error),
 // fast_<model> per model rendered, and with the improved model its terms (reference/
 // underwater_improved_terms.h): every radiance the sum of the three channels; reflected_object 0 or 1;

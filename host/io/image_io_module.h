@@ -1,7 +1,7 @@
 // image_io_module.h — the boundary between the seasim binary and its OpenImageIO module.
 //
 // OpenImageIO pulls in a tree of ~260 shared libraries whose binding costs most of a `seasim --help`
-// or `seasim validate` (issue 14: 0.9 s, 74 % of it the dynamic linker). So image_io_oiio.cpp is built
+// or `seasim validate` (0.9 s, 74 % of it the dynamic linker). So image_io_oiio.cpp is built
 // as a loadable module (libseasim_oiio.so beside the binary) and image_io_dl.cpp, linked into the
 // core, dlopens it the first time an image is read or written. The module exports one C symbol,
 // kImageIoModuleEntry, returning this table of the image_io.h functions. Both sides are built by the

@@ -1,6 +1,6 @@
 // sea_band_table.h — sea_single.cl's band table (kernels/common/sea_band_table.h): SeaBand's per-band
 // values and eq. 5's LUT, one row per quantity with the bands contiguous, so that the kernel's band
-// lanes read several bands with one vector load (issue 14).
+// lanes read several bands with one vector load.
 #pragma once
 #include <vector>
 

@@ -51,7 +51,7 @@ SeaSky makeSeaSky(const SkyDesc& desc, const double sun_dir[3], const Wavelength
     // Preetham: the 18 packed reals in place of texels (common/sky.h), and the scale from its mean
     // luminance (256 x 512 midpoints: the circumsolar peak is sharper than the CIE sky's, and 128 x 256
     // was 0.3 % off; tests/unit/sky_preetham_test.cpp).
-    // Spectral (issue 19): the 18 reals, then the daylight basis's luminance weights; each band takes
+    // Spectral: the 18 reals, then the daylight basis's luminance weights; each band takes
     // the basis S0, S1, S2 over D65 (sky_preetham_daylight), not R, G, B.
     const kd::real3 sun{sun_dir[0], sun_dir[1], sun_dir[2]};
     sky.texels.assign(22, 0.0);

@@ -43,4 +43,10 @@ const PassDescriptor* descriptorOf(const PassPlan& entry) {
   return nullptr;
 }
 
+const PassDescriptor& descriptorFor(PassRole role) {
+  for (const PassDescriptor& d : passDescriptors())
+    if (d.role == role) return d;
+  throw RuntimeError("no pass descriptor has role " + std::to_string(static_cast<int>(role)));
+}
+
 }  // namespace seasim

@@ -34,9 +34,24 @@ struct KnobDefault {
   double value;
 };
 
+// What a pass is to the commands that report on passes by kind (`seasim bench`, the studies), so that
+// they ask for "the underwater shading" and name no model: descriptorFor(PassRole) gives its name.
+enum class PassRole {
+  None,
+  SeaShading,                  // the sea seen from above, per pixel and band
+  SeaSecondOrder,              // the sea's second order of scattering
+  Spotlights,                  // spotlight shafts in air (its timing), after the shadow maps
+  ShadowMaps,                  // the spotlights' shadow maps (their timing)
+  UnderwaterGBuffer,           // the underwater frame's ray cast
+  UnderwaterSingleScattering,  // the froxel single scattering (its kernels' timings start with its name)
+  UnderwaterShading,           // the underwater frame's shading, per pixel and band
+  Check,                       // a check on the frame, not part of its rendering time
+};
+
 struct PassDescriptor {
   std::string name;         // the plan entry's name
   std::string kernel_file;  // relative to kernels/ ("sea_single.cl")
+  PassRole role = PassRole::None;
 
   // The plan rule: the entry this model adds for `scene`, given the passes planned before it
   // (`so_far`, in plan order); nullopt when the scene does not need it. makePlan gives the entry
@@ -54,6 +69,10 @@ struct PassDescriptor {
   // Its cost per pixel and band relative to sea_single's at the default knobs, times how much more
   // the scene's knobs cost (jobs/shard_balance.h). Null: 1.
   std::function<double(const Scene& scene, const PassPlan& entry)> cost;
+  // `seasim bench --limits`: the timing of the pass's band loop (a PassTiming name) and the loop's items
+  // times bands in a frame of `bands` bands. Null: no band loop measured against the exp bound.
+  std::string band_loop_timing;
+  std::function<double(const Scene& scene, int bands)> band_loop_items;
   // Makes the renderer's pass for one entry of `plan` (render/pass_registry.h).
   std::function<std::unique_ptr<Pass>(const PassPlan& entry, const Plan& plan, const Scene& scene,
                                       const AutoQuality& auto_quality)>
@@ -75,5 +94,8 @@ const std::vector<PassDescriptor>& passDescriptors();
 
 // The descriptor that made `entry` (same name and kernel file), or null for an entry built by hand.
 const PassDescriptor* descriptorOf(const PassPlan& entry);
+
+// The first descriptor in plan order with `role`; throws when none has it.
+const PassDescriptor& descriptorFor(PassRole role);
 
 }  // namespace seasim

@@ -1,4 +1,4 @@
-// shafts_method.h — which integrator the spotlight shafts use (issue 14), read by the scene parser,
+// shafts_method.h — which integrator the spotlight shafts use, read by the scene parser,
 // the planner and the shafts pass:
 //   "intervals"  per pixel and lamp, the exact lit stretches of the view ray (analytic shadow volumes,
 //                no shadow maps) integrated in the lamp's angle (kernels/common/shafts_intervals.h);
@@ -13,7 +13,7 @@ namespace seasim {
 // SHAFTS_MAX_PIECES - 1 (kernels/common/shafts_intervals.h): each object's shadow splits at most one stretch.
 constexpr int kShaftsIntervalsMaxObjects = 15;
 // Intervals method defaults: the widest quadrature panel in degrees of the lamp's angle, and in
-// light-map texels (chosen from the error-time sweep in results/BENCHMARKS.md, issue 14).
+// light-map texels (chosen from the error-time sweep in results/BENCHMARKS.md).
 constexpr double kShaftsPanelDegDefault = 4.0;
 constexpr double kShaftsPanelTexelsDefault = 2.0;
 

@@ -1,4 +1,4 @@
-// preview_quality.h — the preview's quality levels and its frame-time budget (issue 16: responsive
+// preview_quality.h — the preview's quality levels and its frame-time budget (responsive
 // while the view moves, then accurate). Level 3 is the scene's own quality; each level below halves
 // the numeric [quality] knobs again (sampling planes, froxel slices, depth planes and directions, map
 // and table sizes; never below a floor, "auto" knobs left alone; the shafts intervals' panel widths

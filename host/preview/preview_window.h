@@ -1,7 +1,7 @@
 // preview_window.h — the preview's window: GLFW and OpenGL 3.3 core live in a module the binary
 // dlopens when `seasim preview` opens a window (libseasim_preview.so beside the binary, built from
 // host/preview/glfw_window.cpp when CMake finds GLFW and OpenGL), so no other command loads GL, X11
-// or GLFW (start-up: image_io_module.h, issue 14). The module knows nothing of scenes: it shows 8-bit
+// or GLFW (start-up: image_io_module.h). The module knows nothing of scenes: it shows 8-bit
 // sRGB images, reports inputs and reads its framebuffer back.
 #pragma once
 #include <cstdint>

@@ -102,7 +102,7 @@ std::string describe(Device& device, const Scene& scene, const ShaftsAutoOptions
     s << "knob " << k << ' ' << (q ? (q->automatic ? std::string("auto") : std::to_string(q->value)) : "-") << '\n';
   }
   const ShaftsRange r = ShaftsPass::rangeFor(scene);
-  s << "method per-lamp cone ranges, far field (issue 13)\n";
+  s << "method per-lamp cone ranges, closed-form far field\n";
   s << "range " << r.t_max << ';' << r.s_max << '\n';
   s << "search " << o.budget_levels << ';' << o.reference_steps << ';' << o.downscale << ';' << o.min_long_side
     << ';' << o.max_long_side << ";n";

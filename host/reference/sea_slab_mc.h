@@ -1,6 +1,6 @@
 // sea_slab_mc.h — a double-precision CPU Monte Carlo of the sea model's geometry (paper 000), split
 // by scattering order: the check of single + second order (000 eq. 5–8) against the full
-// multiple-scattering answer (issue 6, "energy").
+// multiple-scattering answer (energy: the orders' sum may not exceed it).
 //
 // Geometry, the same as kernels/sea_single.cl and sea_second.cl (flat sea, 000 §3): a collimated sun
 // above a flat air–water surface at y = 0 (Fresnel transmission T_i in, Snell refraction), homogeneous

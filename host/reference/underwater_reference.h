@@ -32,8 +32,8 @@ struct UnderwaterReferenceSettings {
   int batch = 8;               // paths per pixel per kernel launch
   int max_bounces = 1000;      // scattering vertices per path (medium, Lambertian, surface reflection);
                                // Russian roulette ends nearly every path long before; 1000 as the
-                               // Mitsuba validation's volpath max_depth. 64 (the default until issue 13's
-                               // s6d) took up to 40 % off deep, clear, strongly forward water;
+                               // Mitsuba validation's volpath max_depth. A cap of 64 took up to 40 % off
+                               // deep, clear, strongly forward water (docs/journal/sea_all_orders.md);
                                // 1 = single scattering of the sun beam only (no surface, sky or objects'
                                // own shading)
   bool isotropic = false;      // phase 1/(4π) instead of Henyey–Greenstein with UwParams.g

@@ -1,5 +1,5 @@
 // underwater_regions.h — an underwater frame split into the regions the fast model is judged by
-// (issue 13): the bottom near and far, the water looking up and down, the objects. Each pixel's centre
+// against the path tracer: the bottom near and far, the water looking up and down, the objects. Each pixel's centre
 // ray is cast in double with the kernels' own geometry (common/underwater.h uw_screen_dir,
 // uw_scene_hit), so the regions are exact and independent of the renders they judge.
 #pragma once

@@ -756,7 +756,7 @@ class SceneParser {
       }
     }
     scene_.quality["fast_math"] = fast;
-    // The shafts method (issue 14): "intervals" (exact lit stretches, kernels/common/shafts_intervals.h)
+    // The shafts method: "intervals" (exact lit stretches, kernels/common/shafts_intervals.h)
     // or "planes" (paper 001's sampling planes, which suit GPU texture units). Absent: the planner's
     // choice (plan.cpp: intervals while the objects fit its per-pixel stretch list). Stored as a knob,
     // 1 = intervals, automatic when absent.

@@ -1,4 +1,4 @@
-// sky_light.h — the one sky interface (issue 19): from a scene's [sky] and [sun], per wavelength band,
+// sky_light.h — the one sky interface of every model: from a scene's [sky] and [sun], per wavelength band,
 // the sky's radiance towards a direction, the irradiance it gives a horizontal surface (above and just
 // below a flat water surface: E_D0's sky part), the sun's irradiance and the radiance of its disk.
 // Every model that lights a scene with the sky reads it here: the sea seen from above (its SeaSky,

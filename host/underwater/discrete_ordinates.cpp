@@ -41,11 +41,11 @@ void gaussLegendreUnit(int n, std::vector<double>& x, std::vector<double>& w) {
 // Gauss-Legendre on [0, μ_c] and on [μ_c, 1] apart, μ_c = √(1 - 1/n²) the edge of Snell's window, beyond
 // which the surface reflects totally. The surface's reflectance rises to 1 there with an infinite slope,
 // which one Gauss rule over (0, 1) integrates poorly: the solution then moved with the node count, by
-// several % in the regions' ratios (BENCHMARKS s12), and with the split it does not (8 streams give the
-// 32's). Jin & Stamnes (1994) give the coupled atmosphere-ocean discrete ordinates separate streams in
-// the region of total reflection for the same reason. Half the nodes on each side (the window's half
-// nearer the vertical holds the field's asymptotic peak: in proportion to the lengths, 5 of 16 there, K∞
-// of isotropic water at ω = 0.5 moved by 1e-4). The split rule integrates polynomials to degree
+// several % in the regions' ratios (docs/journal/underwater_regions_4_*.md), and with the split it does
+// not (8 streams give the 32's). Jin & Stamnes (1994) give the coupled atmosphere-ocean discrete ordinates
+// separate streams in the region of total reflection for the same reason. Half the nodes on each side
+// (the window's half nearer the vertical holds the field's asymptotic peak: in proportion to the lengths,
+// 5 of 16 there, K∞ of isotropic water at ω = 0.5 moved by 1e-4). The split rule integrates polynomials to degree
 // 2 min(n_tir, n_win) - 1 on each hemisphere: where that is short of the phase's moments (the full
 // delta-M order) or ior <= 1, one rule, exact to 2 streams - 1.
 void surfaceQuadrature(int n, double ior, int moments, std::vector<double>& x, std::vector<double>& w) {

@@ -65,7 +65,7 @@ double hgAzimuthMode(double g, int mode, double nu, double mu);
 // Any function of the scattering angle's cosine, f(cos Θ) with cos Θ = ν μ + √(1 - ν²) √(1 - μ²) cos Δφ
 // between downward cosines nu and mu, in azimuth modes 0, 1, 2 as coefficients of cos(m Δφ) (the same
 // convention): the midpoint rule on `azimuths` points over [0, π], f being even in Δφ. For the phases the
-// kernel uses that have no series (its capped TMS phase, the forward peak's aureole; s13).
+// kernel uses that have no series (its capped TMS phase, the forward peak's aureole).
 template <class F>
 std::array<double, 3> azimuthModes(double nu, double mu, int azimuths, F f) {
   std::array<double, 3> m{0, 0, 0};

@@ -1,10 +1,10 @@
 // forward_peak.h — the light of the phase function's forward peak that the improved underwater model's delta-M
-// counts as unscattered (s13; kernels/common/underwater_improved.h uwi_tms_phase and uwi_aureole use it).
+// counts as unscattered (kernels/common/underwater_improved.h uwi_tms_phase and uwi_aureole use it).
 //
 // Delta-M attenuates the sun beam by c' = a + b (1 - f): the beam e^{-c' y/μ_w} carries, besides the
-// unscattered light e^{-c y/μ_w}, the light the peak turned by a few degrees. The kernel's TMS term scattered
-// that beam once more with the whole p_HG, so the peak's light was counted twice towards the sun (results/
-// BENCHMARKS.md s12: 1.26-2.66 of the path tracer at g >= 0.9). Here the HG phase is split into
+// unscattered light e^{-c y/μ_w}, the light the peak turned by a few degrees. A TMS term that scattered
+// that beam once more with the whole p_HG counted the peak's light twice towards the sun
+// (docs/journal/underwater_regions_4_*.md: 1.26-2.66 of the path tracer at g >= 0.9). The HG phase is split into
 //   p_HG = min(p_HG, p_clip) + (p_HG - p_clip)+,
 // the peak (the second part) holding exactly f of the light (p_clip solves ∫ (p_HG - p_clip)+ dΩ = f). The
 // TMS term keeps the first part. The peak's light is drawn as the aureole at the camera: at depth y_c the beam

@@ -12,7 +12,8 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 // The weak source rows' weight against the segment rows (both relative): 0.005-0.02 gave the same regions,
-// 0.1 let the bracket's thin layers pull the far bottom down (0.962 -> 0.937; BENCHMARKS s12).
+// 0.1 let the bracket's thin layers pull the far bottom down (0.962 -> 0.937;
+// docs/journal/underwater_regions_4_*.md).
 constexpr double kSourceRowWeight = 0.01;
 // The mirror rays' rows against the camera's (the surface's reflection, seen at its Fresnel share).
 constexpr double kMirrorRowWeight = 0.5;

@@ -1,11 +1,12 @@
 // ordinates_high_order.h — the view rays' source for underwater.model = "improved", fitted to the radiance of
-// a discrete-ordinates solution at a high delta-M order (underwater.improved_source_streams; s12).
+// a discrete-ordinates solution at a high delta-M order (underwater.improved_source_streams).
 //
 // The kernel attenuates view rays by the delta-M extinction c' of order 3 (f = g³) and adds the delta-M
 // beam's single scattering with the exact phase (TMS). The order-3 field's own in-scatter, in azimuth
 // modes 0-2, misses the azimuthal shape of the light the forward peak spreads around the beam: at 3.8 m,
 // near-horizontal views at g >= 0.9 came out 0.84-1.12 of a 32-stream solution by azimuth, the pattern
-// the path tracer showed (BENCHMARKS s12). Along any ray the high-order radiance L_f obeys
+// the path tracer showed (docs/journal/underwater_regions_4_*.md).
+// Along any ray the high-order radiance L_f obeys
 //   dL_f/ds = -c' L_f + [J_f + SS_f - (c_f - c') L_f]
 // (J_f its in-scatter, SS_f its beam's single scattering with the exact phase, c_f its extinction): so a
 // segment of length S from depth y0 along cosine ν gathers exactly
@@ -51,8 +52,8 @@ struct HighOrderField {
 // Solved at `streams` cosines per hemisphere and the same delta-M order (the split quadrature), in azimuth
 // modes 0..modes-1 (1..3), to depth y_end (the bottom's depth when there is one; without a bottom the grid
 // goes 30 of the solution's optical depths deeper, where rays looking up gather from), in steps of at most
-// half its optical depth and of y_end / 100 (a quarter and y_end / 200: the same regions to 0.001, BENCHMARKS
-// s12), at most 6000 steps.
+// half its optical depth and of y_end / 100 (a quarter and y_end / 200: the same regions to 0.001,
+// docs/journal/underwater_regions_4_*.md), at most 6000 steps.
 HighOrderField solveHighOrderField(const DiscreteOrdinatesLayer& layer, int streams, int modes,
                                    const std::vector<double>& nus, double y_end);
 
@@ -65,7 +66,7 @@ struct SourceTableBasis {
   double view_depth = 0;    // m: the camera's depth
   int samples = 2;          // the depth samples of the weak source rows
   // The kernel's TMS term per unit of e^{-m y} in azimuth modes (the coefficient of cos m Δφ) per table
-  // cosine, which the targets leave out: b e_beam0 min(p_HG, p_clip) (s13, forward_peak.h); empty: the
+  // cosine, which the targets leave out: b e_beam0 min(p_HG, p_clip) (forward_peak.h); empty: the
   // field's beam_phase, the whole p_HG. The kernel's aureole is not taken off: the field has the forward
   // peak's light in the modes the table holds, and the kernel adds only the aureole's higher modes where
   // the fit was taken (UwiBand.aureole_modes, forward_peak.h setAureoleModesHeld, from fit_weight).

@@ -1,6 +1,6 @@
 // underwater_band_table.h — kd_multiple.cl's band table (kernels/common/underwater_band_table.h): the
 // per-band values of a set-up that do not depend on the pixel, one row per quantity so that the kernel
-// reads several bands with one vector load (issue 14).
+// reads several bands with one vector load.
 #pragma once
 #include <vector>
 

@@ -164,7 +164,7 @@ ModeProfiles modeProfiles(const DiscreteOrdinates& field, const DiscreteOrdinate
 
 // The kernel's TMS per unit of e^{-m y} towards the table's cosines nus, as azimuth modes 0-2 (the coefficient
 // of cos m Δφ, Δφ from the beam's azimuth; the midpoint rule on 256 azimuths over [0, π], the phase being even
-// in Δφ): what the high-order fit leaves out (s13). mu_w: the refracted sun's cosine as the kernel reads it.
+// in Δφ): what the high-order fit leaves out. mu_w: the refracted sun's cosine as the kernel reads it.
 void kernelTmsModes(const UwiBand& o, const UwBand& band, double g, double mu_w, const std::vector<double>& nus,
                     SourceTableBasis& basis) {
   for (int mode = 0; mode < 3; ++mode) basis.tms[mode].assign(nus.size(), 0.0);
@@ -292,7 +292,8 @@ UwiBand makeUwiBandFromOrdinates(const UwBand& band, double g, double mu_w, doub
   layer.mu_sun = mu0;
   layer.e_sun0 = e_sun0;
   layer.e_sky0 = e_sky0;
-  // Delta-M to kOrdinatesSourceMoments moments (f = g³; measured against the full order, s9b). A
+  // Delta-M to kOrdinatesSourceMoments moments (f = g³; measured against the full order in
+  // docs/journal/underwater_regions_3_*.md). A
   // backward phase (g < 0) keeps every moment.
   const DiscreteOrdinates field(layer, streams, 0, moments);
   // The cos φ mode only where there is a beam off the zenith and a phase that is not isotropic.
@@ -370,7 +371,8 @@ std::vector<UwiBand> makeUwiBandsFromOrdinates(const UwParams& params, const std
                                                int source_streams) {
   const double view_depth = diffuseViewDepth(params);
   const ForwardPeak peak = forwardPeak(params.g, std::pow(std::max(double(params.g), 0.0), kOrdinatesSourceMoments));
-  // Bands are independent (1.5–1.8 ms each at 16 streams on one core, results/BENCHMARKS.md s9b): in parallel.
+  // Bands are independent (1.5–1.8 ms each at 16 streams on one core,
+  // docs/journal/underwater_regions_3_*.md): in parallel.
   std::vector<UwiBand> out(bands.size());
   tbb::parallel_for(size_t(0), bands.size(), [&](size_t i) {
     out[i] = makeUwiBandFromOrdinates(bands[i], params.g, params.sun_dir_water[1], params.bottom_depth, params.ior,

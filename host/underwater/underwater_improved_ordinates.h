@@ -11,13 +11,13 @@
 // decays faster than its asymptotic K∞). E_d and E_u light the surfaces; E_0 and F_h are kept for the
 // record (the two-stream's first-order source uses its own).
 //
-// The view rays' source (s9b) is the solver's own in-scatter towards UWI_SOURCE_NODES (129) cosines, azimuth
+// The view rays' source is the solver's own in-scatter towards UWI_SOURCE_NODES (129) cosines, azimuth
 // modes 0–2 (DiscreteOrdinates::inscatterProfile), fitted per cosine over the same depths to the same three
 // exponentials: UwiBand.src. The solver runs at the delta-M order kOrdinatesSourceMoments, the one number
 // fitted to the path tracer, and the kernel's delta-M is the solver's (c' its ĉ, m its beam's): the view
 // rays integrate the source in the frame it was computed in. At order 3 the phase has three Legendre
-// terms, so azimuth modes 0–2 are all the in-scatter has, and the table holds it whole. Since s12 (the
-// default, underwater.improved_source_streams) the table is then fitted instead to the radiance of a
+// terms, so azimuth modes 0–2 are all the in-scatter has, and the table holds it whole. By default
+// (underwater.improved_source_streams > 0) the table is then fitted instead to the radiance of a
 // solution at a high delta-M order, carried with the kernel's c' (ordinates_high_order.h), but towards
 // the beam's direction, where the order-3 in-scatter stays.
 //
@@ -37,7 +37,7 @@ struct ForwardPeak;  // forward_peak.h
 
 // The delta-M order (phase moments kept, f = g^M) of the discrete-ordinates solution whose in-scatter is
 // the kernel's source and whose extinction ĉ = a + b (1 - g^M) attenuates the view rays (fitted to the
-// path tracer: results/BENCHMARKS.md, s9b).
+// path tracer: docs/journal/underwater_regions_3_*.md).
 inline constexpr int kOrdinatesSourceMoments = 3;
 
 // How well the exponentials hold the discrete ordinates' field: the largest relative error over the
@@ -48,9 +48,9 @@ struct OrdinatesFitError {
   double tilt = 0;    // the tilted plane's irradiance table's (the same; its end nodes are E_d's and E_u's)
 };
 
-// The streams (and delta-M order) of the solution the view rays' source is fitted to (s12: 16 to 48 gave
+// The streams (and delta-M order) of the solution the view rays' source is fitted to (16 to 48 gave
 // the same regions; ordinates_high_order.h); underwater.improved_source_streams. 0: the order-3 field's
-// own in-scatter (s9b-s11).
+// own in-scatter.
 inline constexpr int kOrdinatesHighOrderStreams = 32;
 
 // One band. mu_w: the refracted sun's cosine (any value in (0, 1] when the sun is off); bottom_depth <= 0:

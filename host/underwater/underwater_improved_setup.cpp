@@ -99,7 +99,7 @@ static double interpolateOnTrainingG(const std::array<double, 4>& values, double
 
 double diffuseAsymptoticShare(double g) {
   // Fitted offline to the path tracer (tests/perf/underwater_regions_fit_depth.sh scans w = 0.1–0.8 on
-  // the training grid of tests/perf/underwater_regions.sh; results/BENCHMARKS.md, s7a, reports them
+  // the training grid of tests/perf/underwater_regions.sh; docs/journal/underwater_regions_2_*.md reports them
   // and the held-out grid): per g of the grid the w with the most region cases within 5 % (ties: the
   // smaller w), linear in g between, held outside [0, 0.95]. Not monotone in g: at g = 0.5 w >= 0.3
   // over-brightens the coastal water's level views (0.4:1.2, 3.8 m); at g = 0.95 the views looking up
@@ -108,7 +108,7 @@ double diffuseAsymptoticShare(double g) {
 }
 
 double diffuseFluxScale(double g) {
-  // Fitted offline to the path tracer (s7c: `--model-set underwater.improved_flux_scale=s` on the
+  // Fitted offline to the path tracer (`--model-set underwater.improved_flux_scale=s` on the
   // training grid of tests/perf/underwater_regions.sh; results/BENCHMARKS.md reports it and the held-out
   // grid): per g of the grid the s with the most region cases within 5 %, linear in g between, held
   // outside [0, 0.95]. At g = 0 g' = 0 and s has no effect. At g = 0.95, 1.0–1.3 tie (25/27, the same

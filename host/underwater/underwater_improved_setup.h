@@ -48,8 +48,8 @@ double asymptoticStreamCosine(double omega);
 // a = 0 (nothing is absorbed: the diffuse light does not decay), 0 for an empty medium.
 double asymptoticDiffuseK(double a, double b_back);
 
-// The diffuse field's attenuation over the depths a frame sees (s7a, results/BENCHMARKS.md): the mean
-// log-slope -ln(E(D)/E(0))/D over [0, D] of a field of two modes, the fast one and the asymptotic
+// The diffuse field's attenuation over the depths a frame sees (docs/journal/underwater_regions_2_*.md):
+// the mean log-slope -ln(E(D)/E(0))/D over [0, D] of a field of two modes, the fast one and the asymptotic
 // e^{-K∞ y}, that holds the share w of E(0) and whose slope at the surface is the two-stream's k:
 //   E(y) = (1 - w) e^{-k_f y} + w e^{-K∞ y},   (1 - w) k_f + w K∞ = k
 //   k(D) = K∞ - ln(w + (1 - w) e^{-(k - K∞) D/(1 - w)}) / D
@@ -62,7 +62,7 @@ double depthMeanDiffuseK(double k_two_stream, double k_inf, double depth, double
 double diffuseAsymptoticShare(double g);
 
 // The scale s(g) of the flux term's asymmetry, g_f = s(g) g' (UwiBand::g_flux): a table fitted to the
-// path tracer on the training grid (see the .cpp); 1 is the first-order phase expansion (before s7c).
+// path tracer on the training grid (see the .cpp); 1 is the first-order phase expansion.
 double diffuseFluxScale(double g);
 
 // Where the scene's depth enters the improved model's k: the depth D over which the diffuse field's
@@ -86,7 +86,7 @@ struct DeltaMMedium {
 DeltaMMedium improvedDeltaM(double a, double b, double g, int power = 2);
 // A band block with the medium's c', b', g' and the flux term's g_f = flux_scale g' set, the rest 0.
 UwiBand uwiBandOfMedium(const DeltaMMedium& medium, double flux_scale);
-// The source table of the first-order phase (the two-stream's; before s9b the discrete ordinates' too):
+// The source table of the first-order phase (the two-stream's):
 // J = b' [E_0 + 3 g_f (ν (E_d - E_u) + √(1 - ν²) cos Δφ F_h)]/(4π) per exponential from the band's o*, d*,
 // u*, h* and g_flux.
 void setFirstOrderSource(UwiBand& band);

@@ -1,5 +1,5 @@
-// water_spread_setup.h — the water's point-spread for underwater.model = "improved" (issue 13, s11;
-// kernels/common/water_spread.h derives it): the spread of one small-angle scattering from the phase,
+// water_spread_setup.h — the water's point-spread for underwater.model = "improved"
+// (kernels/common/water_spread.h derives it): the spread of one small-angle scattering from the phase,
 // in the image's pixels, and the Gaussian taps of kernels/water_spread.cl's layers.
 #pragma once
 #include <vector>

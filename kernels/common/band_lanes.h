@@ -1,4 +1,4 @@
-/* band_lanes.h — several wavelength bands in one value, so that a band loop is explicit SIMD (issue 14).
+/* band_lanes.h — several wavelength bands in one value, so that a band loop is explicit SIMD.
  *
  * PoCL's work-group vectoriser does not vectorise kd_multiple (its loops and calls), but its builtin
  * library has vector exp (kernels/limits.cl reaches ~2e9 exp/s with float16). A band loop written on
@@ -15,7 +15,7 @@
  * Comparisons of a realb with a scalar give a maskb on both sides; a scalar condition must be splat
  * first (SPLATB(s) >= x), since OpenCL's scalar true is 1, not the all-ones a vector mask uses.
  * Width, measured on PoCL 3.1 (AVX-512 CPU; seabed, 256 bands, kd_multiple ms, two rounds): 4 lanes
- * 454/454, 8 lanes 241/253, 16 lanes 142/148 (results/BENCHMARKS.md, issue 14). A GPU, which runs
+ * 454/454, 8 lanes 241/253, 16 lanes 142/148 (docs/journal/benchmarks_notes.md). A GPU, which runs
  * one work-item per lane already, would rather have 1 (not measured: no GPU lent).
  * Needs compat.h; kernels: float only. */
 #if defined(__OPENCL_VERSION__) || defined(__OPENCL_C_VERSION__)

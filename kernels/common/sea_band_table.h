@@ -1,6 +1,6 @@
 /* sea_band_table.h — the layout of sea_single.cl's band table: SeaBand's per-band values and eq. 5's
  * LUT, one row per quantity with the bands contiguous, so that the band lanes (common/sea_bands.h) read
- * SEA_BAND_LANES_MAX bands with one vector load (issue 14). Built once per pass by the host
+ * SEA_BAND_LANES_MAX bands with one vector load. Built once per pass by the host
  * (host/passes/sea_band_table.cpp). Plain C on both sides, included once.
  *
  * Row r holds one value for every band: table[r * stride + band], stride = SEA_BAND_STRIDE(band_count).

@@ -1,5 +1,5 @@
 /* sea_bands.h — sea_single.cl's band terms (paper 000's eq. 5 and 9, the sky and its reflection) for
- * SEASIM_BAND_LANES bands at once (common/band_lanes.h; issue 14), the band loop of sea_single.cl for
+ * SEASIM_BAND_LANES bands at once (common/band_lanes.h), the band loop of sea_single.cl for
  * sea.model "single" (SEASIM_SEA_MODEL 0). The same formulas, in the same order of operations, as
  * sea_surface.h, sea_bottom.h and sea_single.cl's scalar loop (their comments give the physics), on
  * realb because OpenCL C has no templates; the per-band values come from the band table

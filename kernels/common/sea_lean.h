@@ -1,4 +1,4 @@
-/* sea_lean.h — wave normals filtered from the near waves to the horizon (issue 19), for the sea seen
+/* sea_lean.h — wave normals filtered from the near waves to the horizon, for the sea seen
  * from above through the FFT ocean (common/sea_waves.h). Needs compat.h and optics.h.
  *
  * Why: far away a pixel covers many texels of the ocean's normal map. Reading one bilinear normal

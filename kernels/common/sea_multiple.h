@@ -33,8 +33,8 @@
  * the window's cone) and scattered back with b_b spread evenly over the upper hemisphere, b_b/(2π) per sr:
  *   L_sky(deep) = E_sky/μ_sky · b_b/(2π) / (k (1 + μ_v/μ_sky)).
  * orders(u, g) (sea_higher_orders): the higher orders relative to the first, put on top of the exact
- * HG first order; fitted on the uncapped path tracer for HG g = 0-0.95 (issue 13, s6e). Before, it was
- * 1 + 0.6 (1 - e^{-30 u²}) for g = 0.9 on a path tracer capped at 64 vertices, and before that Lee's
+ * HG first order; fitted on the uncapped path tracer for HG g = 0-0.95 (docs/journal/sea_all_orders.md).
+ * Before, it was 1 + 0.6 (1 - e^{-30 u²}) for g = 0.9 on a path tracer capped at 64 vertices, and before that Lee's
  * 1 + 2.02 u ((0.084 + 0.170 u) u over its single-scattering limit 0.084 u, from Hydrolight with a
  * Petzold phase function).
  * Not in papers 000–004: Lee et al.'s D_C, D_B are an outside source (docs/models.md), and the orders'
@@ -82,7 +82,7 @@ SEASIM_FN real sea_sky_backscatter_deep(real e_sky, real mu_sky, real bb, real k
  * g -> 1, smooth in g; g < 0, back-scattering, not met in water, is taken as g = 0's):
  *   orders(u, g) = 1 + 0.52 u (1/2 + u) + 0.636 h u² / (u² + 0.0397)
  * the first part what isotropic-ish water (g = 0) needs, the second what forward water adds and that
- * levels off once u passes about 0.2. Fitted (issue 13, s6e, three numbers, tests/perf/sea_orders_fit_g.py)
+ * levels off once u passes about 0.2. Fitted (three numbers, tests/perf/sea_orders_fit_g.py)
  * on the path tracer of kernels/reference.cl without its bounce cap (--max-bounces 2048; 8192 gave the
  * same image) and without internal reflection over the first order alone (sea.model = "multiple" with
  * orders 1 and no surface return; the sky's reflection subtracted from both), 30 deep one-grey-band
@@ -90,14 +90,14 @@ SEASIM_FN real sea_sky_backscatter_deep(real e_sky, real mu_sky, real bb, real k
  * (tests/perf/sea_orders_fit.sh, results/sea_allorders/orders_fit_g.csv): RMS 1.7 %, worst 5.4 % (g 0.95
  * at u 0.05, where the path tracer needs 0.997, less than the first order; else within 4.2 %); at g 0.9
  * within 1.7 % for u = 0.05-0.7. Checked, not fitted, on uncapped references (results/sea_allorders/
- * README.md, s6e): one grey band, deep, g 0.9, internal reflection included, u 0.35 / 0.45 / 0.62:
- * 0.985 / 1.010 / 1.070 of all orders (the s6c factor 0.968 / 0.924 / 0.854); Jerlov III and 3C at 10 m
- * and deep, I deep, 16 bands: 0.973-1.000 (s6c 0.974-1.004; III closer by 1 %, 3C further by 2 %).
- * Before (s6c) it was 1 + 0.6 (1 - e^{-30 u²}) for g = 0.9 alone, fitted on a path tracer capped at 64
+ * README.md): one grey band, deep, g 0.9, internal reflection included, u 0.35 / 0.45 / 0.62:
+ * 0.985 / 1.010 / 1.070 of all orders (the g = 0.9 factor 0.968 / 0.924 / 0.854); Jerlov III and 3C at 10 m
+ * and deep, I deep, 16 bands: 0.973-1.000 (g = 0.9 factor 0.974-1.004; III closer by 1 %, 3C further by 2 %).
+ * Before, it was 1 + 0.6 (1 - e^{-30 u²}) for g = 0.9 alone, fitted on a path tracer capped at 64
  * scattering vertices, which made the factor level at 1.6: uncapped it rises on, 1.90 at u = 0.6; and
  * before that Lee 1999 eq. 5's 1 + 2.02 u (Hydrolight, Petzold phase function), too bright for u >= 0.35.
  * Exactly 1 at u = 0; rising in u (every term is, for h >= 0); at most 2.39 for u in [0, 1]; one
- * division and no exp (expm1 here made the whole kernel 5x slower on PoCL, measured, issue 13). */
+ * division and no exp (expm1 here made the whole kernel 5x slower on PoCL, measured). */
 SEASIM_FN real sea_higher_orders(real u, real c_f) {
   const real h = fmax(R(2.0) * c_f - R(1.0), R(0.0));
   const real u2 = u * u;
@@ -122,7 +122,7 @@ SEASIM_FN SeaMultipleFactors sea_multiple_factors(real a, real b, real c_f) {
 }
 
 /* The sun's light scattered back towards the eye below the surface (no T_o, no higher orders), the
- * QSSA downwelling split in two (issue 13):
+ * QSSA downwelling split in two:
  *  - the unscattered beam, E_n e^{-c y/μ_s}, scattered into the view with the exact HG phase at the
  *    pixel's angle (the true first order: only unscattered light keeps the sun's direction);
  *  - the light already scattered forwards, E_n (e^{-k y/μ_s} - e^{-c y/μ_s}) (the QSSA's total minus the
@@ -218,7 +218,7 @@ SEASIM_FN real sea_bottom_surface_reflectance(real k, real albedo, real H, real 
 }
 
 /* The light the surface sends back down into the water, and what the water returns of it towards the
- * eye, below the surface (no T_o; issue 13). The surface reflects r_below of the upwelling irradiance
+ * eye, below the surface (no T_o). The surface reflects r_below of the upwelling irradiance
  * E_u(0) (sea_surface_reflectance_below: a uniform upwelling radiance; mostly total internal
  * reflection) down again, with mean cosine mu_ret (sea_reflected_mean_cosine); the water (column and
  * bottom) returns R' = sea_column_reflectance + sea_bottom_surface_reflectance of it at mu_ret, of which

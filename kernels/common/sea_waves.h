@@ -1,6 +1,6 @@
-/* sea_waves.h — the sea seen from above through FFT waves (issue 3's "the ocean surface is used by the
- * sea scenes for surface normals/Fresnel", issue 6's "from the ocean module's normals when the scene
- * has waves"). Needs compat.h and optics.h.
+/* sea_waves.h — the sea seen from above through FFT waves: the ocean
+ * module's normals give the sea scenes their surface normals and Fresnel when the scene has waves.
+ * Needs compat.h and optics.h.
  *
  * The model, and what it leaves out:
  *  - The view ray meets the MEAN surface y = 0; the waves' height and choppy displacement are ignored

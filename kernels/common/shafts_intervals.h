@@ -1,4 +1,4 @@
-/* shafts_intervals.h — the "intervals" method of the spotlight shafts (issue 14): per pixel and
+/* shafts_intervals.h — the "intervals" method of the spotlight shafts: per pixel and
  * lamp, eq. 2 of paper 001 is integrated over the exact lit stretches of the view ray, found in
  * closed form, instead of being sampled by n planes with m shadow-map look-ups each (001 eq. 5–9).
  *

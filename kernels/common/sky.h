@@ -1,5 +1,5 @@
-/* sky.h — sky radiance models for the sea seen from above (issue 6: "a sky model: at least a uniform
- * sky and an environment image; a simple analytic sky is welcome"). kernels/sea_single.cl picks one by
+/* sky.h — sky radiance models for the sea seen from above: a uniform
+ * sky, an environment image and analytic skies. kernels/sea_single.cl picks one by
  * SEASIM_SKY_MODEL (set by host/plan): 0 uniform, 1 analytic, 2 image. Needs compat.h.
  *
  * Every model is a direction-dependent shape times the band's sky radiance L_sky(λ) (the scene's
@@ -218,7 +218,7 @@ SEASIM_FN void sky_daylight_m(real x, real y, real* m1, real* m2) {
  * from the sun, +0.011 at x = 0.248, past the locus's stated range) is left as Preetham has it. */
 SEASIM_FN real sky_daylight_locus_y(real x) { return R(-3.0) * x * x + R(2.870) * x - R(0.275); }
 
-/* The spectral Preetham sky (issue 19): towards unit d, Preetham's Y and x, y, and from x, y the CIE
+/* The spectral Preetham sky: towards unit d, Preetham's Y and x, y, and from x, y the CIE
  * daylight spectrum S(λ) = S0 + M1 S1 + M2 S2 scaled to luminance Y. Returned as the three weights of
  * the basis, (Y, Y M1, Y M2) / N with N = n0 + M1 n1 + M2 n2 the spectrum's luminance, so that a band
  * takes dot(w_λ, shape) with w_λ = S_k(λ) / D65(λ) (host/passes/sea_sky.cpp): linear in the shape

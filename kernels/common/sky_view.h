@@ -1,4 +1,4 @@
-/* sky_view.h — one sky for every model that looks at it (issue 19): the shape of the scene's [sky]
+/* sky_view.h — one sky for every model that looks at it: the shape of the scene's [sky]
  * towards a direction in air, the share of it one band takes, and the direction in air that a ray
  * leaving the water upwards through a flat surface sees (Snell's window). The sea from above reads the
  * same shapes through sea_single.cl's own copy (it keeps its SeaParams); the underwater model

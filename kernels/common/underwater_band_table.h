@@ -58,7 +58,7 @@
 #define UWI_ROW_TILT (UWI_ROW_SRC + UWI_SOURCE_NODES * UWI_SOURCE_TERMS)
 #define UWI_ROW_TILT_BOTTOM (UWI_ROW_TILT + UWI_TILT_NODES * UWI_SOURCE_TERMS) /* UwiBand.tilt_bottom: node j's
                                                                             term q in row + j * 3 + q */
-/* The forward peak (s13; UwiBand.p_clip, aureole_single, aureole): the TMS term's phase ceiling (a
+/* The forward peak (UwiBand.p_clip, aureole_single, aureole): the TMS term's phase ceiling (a
  * large float where UwiBand has none), the aureole's once-scattered part per unit of (p_HG - p_clip)+, its
  * table, node j in row UWI_ROW_AUREOLE + j, and its azimuth modes per source node that the source's table holds. */
 #define UWI_ROW_P_CLIP (UWI_ROW_TILT_BOTTOM + UWI_TILT_NODES * 3)

@@ -1,4 +1,4 @@
-/* underwater_bands.h — underwater.h's band radiance for SEASIM_BAND_LANES bands at once (issue 14), the
+/* underwater_bands.h — underwater.h's band radiance for SEASIM_BAND_LANES bands at once, the
  * band loop of kd_multiple.cl. The same formulas (002 eq. 2.7, 4.7; the comments of underwater.h),
  * rewritten on realb (common/band_lanes.h) because OpenCL C has no templates; the per-band values that
  * do not depend on the pixel come precomputed from the band table (common/underwater_band_table.h):

@@ -12,14 +12,14 @@
  *    peak f counts as unscattered, b' = b (1 - f), c' = a + b'. Light turned by a few degrees goes on:
  *    view rays, surfaces and the sun beam (e^{-m y}, m = c'/μ_w) are attenuated by c', not c. With the
  *    discrete ordinates (the default) f = g³, their delta-M order (kOrdinatesSourceMoments: the one
- *    number fitted to the path tracer, s9b); with the two-stream f = g², g' = g / (1 + g).
+ *    number fitted to the path tracer); with the two-stream f = g², g' = g / (1 + g).
  *  - the diffuse field from the IOPs and g, not a measured K_d, built on the host per band and frame
  *    (underwater.improved_diffuse): by default ("discrete_ordinates", host/underwater/
  *    underwater_improved_ordinates.*) a discrete-ordinates solution of the plane-parallel water (16
  *    streams per hemisphere, the HG phase delta-M scaled to its first three Legendre moments, the sun
  *    beam and the sky through the Fresnel surface, a Lambertian bottom of albedo ρ) whose plane
  *    irradiances E_d, E_u are fitted to three exponentials in depth: e^{-k y}, e^{-k (H - y)} and the
- *    beam's e^{-m y}. Or ("two_stream", before s9a) a two-stream solution over the bottom (quadrature
+ *    beam's e^{-m y}. Or ("two_stream") a two-stream solution over the bottom (quadrature
  *    coefficients γ1 = √3 (2 - ω'(1 + g'))/2, γ2 = √3 ω'(1 - g')/2, the beam's split
  *    γ3 = (2 - 3 g' μ_w)/4, γ4 = 1 - γ3; k the mean slope over the camera's depth of its mode plus a
  *    fitted share of e^{-K∞ y}, depthMeanDiffuseK). Either way the bottom's upwelling light lights the
@@ -27,13 +27,13 @@
  *  - the in-scatter source J(y, ν, Δφ) that view rays gather, tabulated per band in the photon's
  *    direction (UwiBand.src, common/underwater_improved_params.h: ν its cosine with the downward
  *    vertical, Δφ its azimuth from the sun beam's, uwi_cos_azimuth), per exponential of depth. By default
- *    (s12, underwater.improved_source_streams; host/underwater/ordinates_high_order.h) fitted on the host
+ *    (underwater.improved_source_streams; host/underwater/ordinates_high_order.h) fitted on the host
  *    to the light a 32-stream solution's radiance gathers along rays with this kernel's c' (the kernel
- *    reads it as any table), but within 10-20° of the beam's polar angle, where it stays, as before s12,
+ *    reads it as any table), but within 10-20° of the beam's polar angle, where it stays, as without that fit,
  *    the discrete ordinates' own in-scatter: their three-term phase against their radiance in azimuth
  *    modes 0, 1 and 2 (all that phase scatters into) at 129 cosines (a ray reads the nearest), fitted per cosine to the same three
  *    exponentials: DISORT's intensities at user angles (the source-function integration of Stamnes et
- *    al. 1988), exact in that frame but for the fit. Measured (results/BENCHMARKS.md, s9b): the
+ *    al. 1988), exact in that frame but for the fit. Measured (docs/journal/underwater_regions_3_*.md): the
  *    first-order phase 1 + 3 g' cos Θ it replaces goes negative backwards for g' > 1/3, and the water
  *    looking up at g >= 0.9 (the surface mirroring upwelling light) came out 0.89–0.95 of the path
  *    tracer; the solver's full order (f = g^32) leaves light scattered by a few degrees in its field,
@@ -43,13 +43,13 @@
  *    nodes; within half a node's step of ν, 1/128, between them).
  *    Plus the beam scattered once with the exact phase function (Nakajima & Tanaka 1988's TMS
  *    correction: delta-M's truncated phase would overstate the back-scatter), b p_HG(g, cos θ_s)
- *    e_beam0 e^{-m y}, attenuated as the delta-M beam; since s13 with p_HG capped below its forward peak
+ *    e_beam0 e^{-m y}, attenuated as the delta-M beam; with p_HG capped below its forward peak
  *    (uwi_tms_phase), whose light the delta-M beam already carries and uwi_aureole draws at the camera.
  *  - an object's face lit by the diffuse field's irradiance on its own plane (uwi_tilt_irradiance: the
  *    solver's radiance in azimuth modes 0-2 over the half-space the face sees, tabulated per band in the
  *    normal's vertical, UwiBand.tilt), not by uniform hemispheres E_d (1 + n_y)/2 + E_u (1 - n_y)/2 (the
  *    two-stream's table still is); less the light of the sunlit bottom where the sand the face sees is in
- *    shadow (uwi_bottom_visibility, UwiBand.tilt_bottom). Measured (results/BENCHMARKS.md, s10).
+ *    shadow (uwi_bottom_visibility, UwiBand.tilt_bottom). Measured (docs/journal/underwater_regions_3_*.md).
  *  - when the froxel pass adds the strict single scattering b p_HG(g) of the beam e^{-c y/μ_w} (002 eq.
  *    5.2), that term's unshadowed closed form is taken off here, so the sum is the model's total.
  * Along a view ray (depth y(z) = o_d - z d_y; the photon towards the camera has ν = d_y):
@@ -141,9 +141,9 @@ SEASIM_FN real uwi_tilt_irradiance(const SEASIM_GLOBAL UwiBand* ib, real bottom_
  * lit (a ray that meets an object first sees no sand, and the object is darker: 0). 1 without a bottom or
  * when no ray goes down (a face looking up sees no bottom). The model's diffuse field is the plane-parallel
  * water's, whose bottom is sunlit everywhere; the objects shade the sand next to them, which their own lower
- * faces see. Measured (results/BENCHMARKS.md, s10): the objects in clear water over sand were 1.04–1.06 of
- * the path tracer with that light, 0.99–1.00 over a black bottom. Eight rays give the shadow's edge on a
- * face nine steps where the true one is soft (one ray drew it hard). */
+ * faces see. Measured (docs/journal/underwater_regions_3_*.md): the objects in clear water over sand
+ * were 1.04–1.06 of the path tracer with that light, 0.99–1.00 over a black bottom. Eight rays give the
+ * shadow's edge on a face nine steps where the true one is soft (one ray drew it hard). */
 SEASIM_FN real uwi_bottom_visibility(const SEASIM_GLOBAL UwObject* objects, int count, real bottom_depth, real3 p,
                                      real3 n, real3 s_w) {
   if (!(bottom_depth > R(0.0))) return R(1.0);
@@ -179,11 +179,11 @@ SEASIM_FN void uwi_irradiance(const SEASIM_GLOBAL UwiBand* ib, real bottom_depth
   *eu = (real)ib->u1 * e1 + (real)ib->u2 * e2 + (real)ib->up * ep;
 }
 
-/* The phase the TMS term scatters the delta-M beam with (s13): p_HG capped at ib->p_clip, whose part above
+/* The phase the TMS term scatters the delta-M beam with: p_HG capped at ib->p_clip, whose part above
  * the cap holds delta-M's f (host/underwater/forward_peak.h). The delta-M beam e^{-m y} already carries
  * that peak's light (its surplus over the unscattered beam, F0 (e^{-c' y/μ_w} - e^{-c y/μ_w})); scattered
  * once more with the whole p_HG, the light looking towards the sun was counted twice: measured
- * (results/BENCHMARKS.md, s12-s13), the water looking at the refracted sun at g >= 0.9 came out 1.26-2.66
+ * (docs/journal/underwater_regions_4_*.md), the water looking at the refracted sun at g >= 0.9 came out 1.26-2.66
  * of the path tracer. uwi_aureole draws the peak's light instead. p_clip <= 0: no cap. */
 SEASIM_FN real uwi_tms_phase(real phase, real p_clip) {
   return p_clip > R(0.0) ? fmin(phase, p_clip) : phase;
@@ -219,7 +219,7 @@ SEASIM_FN real uwi_aureole_share(real q, real y_c, real y1) {
 
 /* The forward peak's light at the camera towards a view ray d (d_y > 0: looking up; cos_s = d·s_w, phase =
  * p_HG(g, cos_s)) that ends at depth y1 (the surface: 0): the light of the delta-M beam that delta-M counts
- * as unscattered but the peak turned (s13, host/underwater/forward_peak.h). At the camera's depth y_c that
+ * as unscattered but the peak turned (host/underwater/forward_peak.h). At the camera's depth y_c that
  * light is F0 e^{-c' y_c/μ_w} Σ_{k>=1} Poisson(k; n) P_k(θ), n = (c - c') y_c/μ_w its mean count of
  * scatterings by the peak (each turns the light by the peak's own distribution, independently): P_1 the peak
  * (p_HG - p_clip)+ / f itself, P_k for k >= 2 the peak convolved k times on the sphere (its Legendre moments
@@ -229,7 +229,7 @@ SEASIM_FN real uwi_aureole_share(real q, real y_c, real y1) {
  * what an object in front of the sun hides. 0 looking down. uwi_aureole_at_camera is that light whole;
  * uwi_aureole less the azimuth modes 0-2 of it that the source's table already holds at the ray's node
  * (UwiBand.aureole_modes): away from the beam's polar angle the table is fitted to a high-order field, which
- * has the peak's light, in those modes only. Measured (s13, results/BENCHMARKS.md): with the aureole left
+ * has the peak's light, in those modes only. Measured (docs/journal/underwater_regions_5_*.md): with the aureole left
  * out there, the peak's light lost its azimuthal shape (the table has three modes): 0.73-1.18 of the path
  * tracer around the sun at g >= 0.9; taken off the fit's targets instead, the kernel was 2.4-3.5 % off that
  * field 30-70° from the beam in turbid water at g = 0.95 (three exponentials in depth cannot follow its
@@ -286,10 +286,10 @@ SEASIM_FN real uwi_sand_seen_lit(const SEASIM_GLOBAL UwObject* objects, int coun
 }
 
 /* The share of the sunlit sand's light that a view ray from o along d to distance S (finite) gathers where
- * objects do not hide or shade the sand (s13): uwi_sand_seen_lit at UWI_SAND_POINTS points evenly along the
+ * objects do not hide or shade the sand: uwi_sand_seen_lit at UWI_SAND_POINTS points evenly along the
  * ray, weighted by how the bottom's term of the source e^{-k (H - y)} reaches the camera, e^{-c' z - k (H -
  * y(z))} (c', k and the albedos: one band's, the same for every band of the pixel); not above 1. The model's plane-parallel water has
- * sunlit sand everywhere below; measured (results/BENCHMARKS.md, s13) the objects in clear water came out
+ * sunlit sand everywhere below; measured (docs/journal/underwater_regions_5_*.md) the objects in clear water came out
  * 1.04-1.06 of the path tracer, 1.10-1.11 when black, 1.03 with the sand black too; with the share the training
  * and held-out grids are all within 5 % (2 points x 4 rays: 4 x 8 lost a case and cost 81-88 ms where this costs
  * 28-31 ms, kd_multiple at 320x180 and 16 bands). 1 without a bottom or objects. */
@@ -424,13 +424,13 @@ SEASIM_FN UwiMirrorHit uwi_mirror_hit(const SEASIM_GLOBAL UwObject* objects, int
 /* The water surface seen from below along d (d.y > 0): the sky through Snell's window (sky_l, as
  * uw_band_surface_sky) plus F times what the reflected ray sees: its in-scatter down to what it meets,
  * and that: an object (mirror, UwiMirrorHit: lit as uwi_lambert), the bottom (its sunlit, unshadowed
- * radiance) or deep water. The objects in the mirror were left out before s7b: measured
- * (results/BENCHMARKS.md, s7b), the pixels whose reflected ray meets a rock were 1.5–2.4x the path tracer
+ * radiance) or deep water. Without the objects in the mirror, measured
+ * (docs/journal/underwater_regions_2_*.md), the pixels whose reflected ray meets a rock were 1.5–2.4x the path tracer
  * in clear water over a 2 m bottom, the rest within 2 %.
  * The reflected ray's in-scatter keeps the beam's single scattering (its TMS term, uwi_multiple with
  * single_scattering = 0) whether or not the froxel pass runs: that pass integrates along the camera's
  * ray only, so taking its term off here would drop the reflected ray's single scattering altogether.
- * Measured (results/BENCHMARKS.md, s7b): that was the water looking up under total internal reflection
+ * Measured (docs/journal/underwater_regions_2_*.md): that was the water looking up under total internal reflection
  * too dark at g = 0 (clear water 0.86–0.93 of the path tracer). */
 SEASIM_FN real uwi_surface(const SEASIM_GLOBAL UwiBand* ib, const SEASIM_GLOBAL UwBand* band, real g,
                            real bottom_depth, real sky_l, real3 d, real3 s_w, real ior, int multiple,

@@ -1,5 +1,5 @@
 /* underwater_improved_bands.h — underwater.model = "improved" (common/underwater_improved.h) for
- * SEASIM_BAND_LANES bands at once (issue 14/13): the improved model's band loop in kd_multiple.cl
+ * SEASIM_BAND_LANES bands at once: the improved model's band loop in kd_multiple.cl
  * (SEASIM_UNDERWATER_MODEL == 1) on the band lanes of common/band_lanes.h, as the thesis model's
  * (common/underwater_bands.h). The same formulas as underwater_improved.h (its header comment derives
  * them; "uwi" there), rewritten on realb because OpenCL C has no templates, with every pixel-invariant
@@ -21,7 +21,7 @@
  * One exp fewer per lit band than underwater_improved.h: T(S) = e^{-c' S} is folded into the three
  * exps of the irradiance at the hit, e^{-c' S} e^{-k y} = e^{-(k y + c' S)} (the clamps at 0 commute with
  * the positive factor), as underwater_bands.h does for the thesis.
- * Issue 13's budget (<= 2x the thesis per band; four integrals where eq. 4.7 takes two): each integral
+ * The budget (<= 2x the thesis per band; four integrals where eq. 4.7 takes two): each integral
  * is kd_exp_integral_ends_b, which takes no exp of its own. Its start factors e^{-κ o_d} (UwiStart) are
  * per band and frame for the camera's rays (the table's UWI_ROW_EXP_* rows) and 1 or e^{-k H} for the
  * surface's reflected ray (o_d = 0); its far ends e^{-(κ y(S) + c' S)} (UwiEnds) are the exps of the
@@ -29,7 +29,7 @@
  * So a lit hit takes four exps per band (three without froxels) where the thesis's lanes take six, and
  * the surface from below seven with froxels (its T(S) the camera's far end; the reflected ray's three, no
  * froxel term along it) against nine. The source's table adds nine rows' loads per ray and band (its
- * two nearest nodes interpolated took twice the kernel's time per band: s9b).
+ * two nearest nodes interpolated took twice the kernel's time per band: docs/journal/underwater_regions_3_*.md).
  * tests/unit/underwater_improved_bands_test.cpp holds these lanes (one band per step on the host) to
  * uwi_band_radiance in float and double; tests/kernels/underwater_improved_kernel_test.cpp the kernel
  * to the double CPU evaluation of uwi_band_radiance.

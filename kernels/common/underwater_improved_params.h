@@ -12,7 +12,7 @@
  *
  * The in-scatter source J(y, ν, Δφ) that view rays gather (common/underwater_improved.h) is tabulated in
  * the photon's downward cosine ν at UWI_SOURCE_NODES evenly spaced nodes from -1 to 1, per exponential
- * (a ray reads its nearest node: s9b measured the linear interpolation between two at twice the kernel's
+ * (a ray reads its nearest node: the region study measured the linear interpolation between two at twice the kernel's
  * cost per band, for the same accuracy as twice the nodes):
  *   J = Σ_q [T0_q(ν) + cos Δφ T1_q(ν) + cos 2Δφ T2_q(ν)] e_q(y),
  *   e_q: e^{-k y}, e^{-k (H - y)}, e^{-m y},
@@ -53,7 +53,7 @@ typedef struct {
   float dp, up; /* of e^{-m y} (the delta-M beam's diffuse offspring) */
   /* Host-side only (the kernels read src): */
   float g_flux; /* the two-stream's first-order source's flux asymmetry: g' times a scale fitted to the path
-                   tracer (diffuseFluxScale in underwater_improved_setup.h; s7c, results/BENCHMARKS.md) */
+                   tracer (diffuseFluxScale in underwater_improved_setup.h) */
   float o1, o2, op; /* the diffuse scalar irradiance E_0(y) = o1 e^{-k y} + o2 e^{-k (H - y)} + op e^{-m y}:
                        the first-order source's isotropic part */
   float h1, h2, hp; /* the diffuse light's net horizontal flux towards the sun's azimuth, F_h(y), in the
@@ -63,7 +63,7 @@ typedef struct {
   float tilt_bottom[UWI_TILT_NODES * 3];         /* [node * 3 + q]: the part of tilt's A0_q that the bottom's
                                                     reflection of the beam brings: what a face loses where
                                                     the bottom it sees is in shadow */
-  /* The forward peak (s13; host/underwater/forward_peak.h, common/underwater_improved.h uwi_aureole): */
+  /* The forward peak (host/underwater/forward_peak.h, common/underwater_improved.h uwi_aureole): */
   float p_clip;         /* the TMS term's phase ceiling, per sr: it scatters the delta-M beam with
                            min(p_HG, p_clip), the part of p_HG above it holding delta-M's f; 0: none */
   float aureole_single; /* the aureole at the camera scattered by the peak once, per unit of (p_HG - p_clip)+ */
@@ -77,7 +77,7 @@ typedef struct {
   float src_bottom[UWI_SOURCE_NODES * 3]; /* [node * 3 + q]: the part of src's T0_q that the bottom's
                                              reflection of the beam brings (the order-3 field's; 0 without a
                                              bottom): what the water loses where objects hide or shade the sand
-                                             (s13, uwi_sand_share) */
+                                             (uwi_sand_share) */
 } UwiBand;
 
 #endif /* SEASIM_UNDERWATER_IMPROVED_PARAMS_H */

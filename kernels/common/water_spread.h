@@ -1,4 +1,4 @@
-/* water_spread.h — the water's point-spread of the light delta-M counts as unscattered (issue 13, s11).
+/* water_spread.h — the water's point-spread of the light delta-M counts as unscattered.
  *
  * underwater.model = "improved" scales the phase by delta-M (common/underwater_improved.h): the share f
  * of each scattering in the phase's forward peak is taken as not scattered, so a hit's light reaches the
@@ -6,7 +6,8 @@
  *   F = 1 - e^{-(c - c') S} = 1 - e^{-tau},  tau = b f S                                  (1)
  * was in fact scattered by small angles, n >= 1 times (n Poisson with mean tau), and reaches the camera
  * from beside the hit: in the path tracer a bright object's edge spreads over the dark water around it,
- * and the object loses that light (s10: objects 0.926-0.942 at g >= 0.9, the pixels around them 1.05-1.08).
+ * and the object loses that light (without the spread: objects 0.926-0.942 at g >= 0.9, the pixels around
+ * them 1.05-1.08).
  * kd_multiple.cl keeps F of each hit's light apart, and kernels/water_spread.cl puts it back blurred.
  *
  * The spread of one scattering seen from the camera. A photon from the hit at distance S, turned by a
@@ -17,7 +18,7 @@
  * theta from the peak (HG less its delta-M expansion). The host takes sigma_1, per image axis, as the 2-D
  * Gaussian with the median radius of theta v (host/underwater/water_spread_setup.h: 2.9 deg at g = 0.9,
  * 1.7 at 0.95); theta v is peaked at 0 and heavy-tailed, and the Gaussian of its rms, sigma_theta / sqrt(3),
- * spread the light's bulk too wide (s11). n turns add n sigma_1^2. Conditioned on n >= 1 the mean count is
+ * spread the light's bulk too wide (measured). n turns add n sigma_1^2. Conditioned on n >= 1 the mean count is
  *   E[n | n >= 1] = tau / (1 - e^{-tau})                                                  (3)
  * (1 for small tau, tau for large), which sets the pixel's mean variance E sigma_1^2.
  *
@@ -29,7 +30,7 @@
  *   E_in = (c - c') int_0^S x e^{-c' x} dx / (A(c') - A(c)) = (c - c') S^2 phi2(c' S) / (A(c') - A(c)),  (5)
  * phi1(z) = (1 - e^{-z})/z, phi2(z) = (1 - e^{-z}(1 + z))/z^2 (stable forms below). Without it a
  * bright object against the water would spread its light out while the water behind it spread none in
- * (s11: objects in deep water without a bottom 0.94 of the path tracer with the hit's light alone).
+ * (measured: objects in deep water without a bottom 0.94 of the path tracer with the hit's light alone).
  *
  * What the spread can reach. Light from a pixel whose light comes from distance D reaches a neighbour that
  * ends at S' < D (an object in front) only by turning at x < S', in front of the object: for one turn at
@@ -95,7 +96,7 @@ SEASIM_FN realb uws_recip_b(realb z) { return R(1.0) / fmax(z, R(1e-30)); }
  *   F_in x_in = int_0^S x (e^{-c' x} - e^{-c x}) dx / A(c') = S (phi2(c' S) - phi2(c S)) / phi1(c' S).
  * c_dm = c', delta = c - c' >= 0, S the ray's length (finite, >= 0), em = expm1(-delta S) (the hit's).
  * (The whole in-scatter's mean distance instead of its forward part's, one division fewer, brought the
- * objects 0.5-3 % up and cost as much: s11.) */
+ * objects 0.5-3 % up and cost as much.) */
 SEASIM_FN realb uws_inscatter_share_b(realb c_dm, realb delta, real S, realb em, realb* count, realb* depth) {
   const realb z0 = fmax(c_dm, R(0.0)) * S;
   const realb z1 = z0 + fmax(delta, R(0.0)) * S;

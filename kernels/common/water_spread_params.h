@@ -1,4 +1,4 @@
-/* water_spread_params.h — the block of kernels/water_spread.cl (the water's point-spread, issue 13 s11;
+/* water_spread_params.h — the block of kernels/water_spread.cl (the water's point-spread;
  * common/water_spread.h derives it), built on the host (host/underwater/water_spread_setup.*, which
  * static_asserts its layout). Plain C on both sides, no math.
  *

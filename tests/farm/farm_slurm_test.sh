@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# farm_slurm_test.sh — `seasim farm` on a real Slurm scheduler (ctest `farm.slurm`; issue 18).
+# farm_slurm_test.sh — `seasim farm` on a real Slurm scheduler (ctest `farm.slurm`).
 #
 #   tests/farm/farm_slurm_test.sh SEASIM_BINARY WORK_DIR
 #

@@ -113,7 +113,7 @@ TEST_F(Cli, RenderThatCannotBeDoneFailsNamingTheKeyAndWritesNothing) {
 }
 
 TEST_F(Cli, LampAboveTheSurfaceUnderWaterIsRefusedNamingItsPosition) {
-  // Spotlights under water (issue 12) must be in the water: a lamp above y = 0 would light the water
+  // Spotlights under water must be in the water: a lamp above y = 0 would light the water
   // through the refracting surface, which is not modelled. Refused before anything is written.
   const std::string scene = write("lamp_above.toml", "[camera]\nposition = [0, -2, 0]\nwidth = 32\nheight = 24\n"
                                                      "[water]\njerlov = \"IB\"\n[[spotlights]]\n"
@@ -132,7 +132,7 @@ TEST_F(Cli, LampAboveTheSurfaceUnderWaterIsRefusedNamingItsPosition) {
 }
 
 TEST_F(Cli, WavySeaRenderRunsTheOceanBeforeTheSeaPass) {
-  // FFT waves seen from above: the ocean's normals feed sea_single (issue 3).
+  // FFT waves seen from above: the ocean's normals feed sea_single.
   const Result r = run("render " + kRepo + "/scenes/deep_ocean.toml --set 'surface.type=\"fft\"' --set surface.grid=64 "
                        "--set camera.width=48 --set camera.height=27 --device pocl -o " + (dir_ / "deep").string());
   ASSERT_EQ(r.code, 0) << r.output;

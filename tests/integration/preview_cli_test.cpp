@@ -1,4 +1,4 @@
-// preview_cli_test.cpp — `seasim preview` in a real window under Xvfb (issue 16): the screenshot of a
+// preview_cli_test.cpp — `seasim preview` in a real window under Xvfb: the screenshot of a
 // full-quality frame is `seasim render`'s image.png of the same scene and settings; a key script moves
 // the sun and the picture changes in the water, not in the sky; the scene `S` saves renders to the
 // screenshot `S` saved; the frame-time budget shows reduced levels while moving and refines to full.

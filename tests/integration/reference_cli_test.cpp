@@ -83,7 +83,7 @@ TEST_F(ReferenceCli, HelpSaysWhatEachModelsReferenceIs) {
 }
 
 // Deep, clear, strongly forward water (g 0.95, a 0.007, b 1: u = 0.6, ω₀ = 0.993): light needs more
-// than 64 scattering vertices to come back up, so a cap of 64 (the default until issue 13's s6d) darkens
+// than 64 scattering vertices to come back up, so a cap of 64 (the old default) darkens
 // all orders (by 40 % in results/sea_allorders/orders_fit_g.csv's view; 1.85x brighter uncapped here);
 // the default of 1000 is as uncapped, and a small cap darkens more.
 TEST_F(ReferenceCli, AllOrdersDefaultBounceCapDoesNotDarkenForwardWater) {

@@ -1,4 +1,4 @@
-// reliability_cli_test.cpp — issue 15 end to end through the real `seasim` binary: a job with bad
+// reliability_cli_test.cpp — reliability end to end through the real `seasim` binary: a job with bad
 // items among good ones (good ones rendered, exit 1, summary names the bad ones, resume retries
 // only them), a truncated or swapped kernel cache binary (rebuilt with a warning), the same shard
 // run twice at once, a PNG on a full disk, renders too big for the device, and each message case

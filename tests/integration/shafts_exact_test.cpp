@@ -5,7 +5,7 @@
 // which the closed form of Sun et al. 2005 (sunAirlight, itself checked against quadrature in
 // tests/unit/shafts_math_test.cpp) gives over any [0, T]; the cone part [t0, t1] of each ray is found
 // here by bisection on the point-in-cone test, independently of the code under test. `seasim render`
-// with the planes (exact g, n = 4000 planes, m = 1) and with the intervals method (issue 14, default
+// with the planes (exact g, n = 4000 planes, m = 1) and with the intervals method (default
 // panels), and `seasim reference` must match within 1e-3
 // relative at every pixel. The cameras are placed where the former fixed cuts lost airlight: 5 cm
 // from the lamp (a 1 cm near cut), behind the lamp looking down the beam and looking back at it
@@ -136,7 +136,7 @@ TEST_P(ShaftsOpenMedium, RenderAndReferenceMatchTheExactIntegral) {
                    &out),
             0)
       << out;
-  // The intervals method (issue 14) at its default panels.
+  // The intervals method at its default panels.
   ASSERT_EQ(runCli("render " + scene + " -o " + (dir / "i").string() + " --set quality.shafts_method=intervals --device pocl",
                    &out),
             0)

@@ -1,4 +1,4 @@
-// spectral_output_test.cpp — `sensor = "identity"` through the CLI (issue 13): image.exr holds the raw
+// spectral_output_test.cpp — `sensor = "identity"` through the CLI: image.exr holds the raw
 // bands, the same values as spectral.exr, one channel per band; image.png is the grey luminance preview.
 #include <gtest/gtest.h>
 

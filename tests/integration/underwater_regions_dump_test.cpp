@@ -1,4 +1,4 @@
-// underwater_regions_dump_test.cpp — `seasim underwater-regions --dump DIR` (issue 13): one CSV per case
+// underwater_regions_dump_test.cpp — `seasim underwater-regions --dump DIR`: one CSV per case
 // with every pixel's region, ray direction, the reference, each model's render and the improved model's
 // terms, and the terms add up to the model (the render and the reference the files hold are the ones
 // the region ratios were taken from).
@@ -140,7 +140,7 @@ TEST_F(UnderwaterRegionsDump, WritesEveryPixelWithRegionReferenceRendersAndTerms
 }
 
 // The study's reference goes through each pixel's centre, the one ray the fast models shade and the
-// regions are classified by (s8b); `--jitter` traces over the pixel's area as `seasim reference` does.
+// regions are classified by; `--jitter` traces over the pixel's area as `seasim reference` does.
 // On an object's edge a jittered pixel mixes in the sand beside it, which the model's centre ray never
 // sees: there the model misses the jittered reference by far more than the centre one.
 TEST_F(UnderwaterRegionsDump, ReferenceRaysGoThroughThePixelCentreUnlessJittered) {

@@ -104,7 +104,7 @@ TEST(Renderer, ShallowWaterWindRePreparesTheFourFlowPass) {
 }
 
 // A key given twice when the renderer was made (the later one in effect): updating it back to the
-// earlier value is a change, not a no-op (found by the preview, issue 16).
+// earlier value is a change, not a no-op (found by the live preview).
 TEST(Renderer, UpdateComparesWithTheOverrideInEffect) {
   const std::vector<Override> base = small({set("surface.grid", "64"), set("quality.sea_lut_size", "17"),
                                             set("quality.sea_lut_size", "9")});

@@ -1,4 +1,4 @@
-// sea_lean_kernel_test.cpp — the wave filter of kernels/sea_single.cl (SEASIM_WAVE_FILTER, issue 19)
+// sea_lean_kernel_test.cpp — the wave filter of kernels/sea_single.cl (SEASIM_WAVE_FILTER)
 // on PoCL against its reference, the same frame supersampled (quality.sea_supersample: n x n rays per
 // pixel over the unfiltered full-resolution normals), which shares none of the filter's steps (no
 // moments, no mip chain, no Gaussian, no quadrature, the sun as its real disk):

@@ -174,7 +174,7 @@ count = 4
   }
 }
 
-// ---- The band lanes (issue 14: SEASIM_BAND_LANES bands per step, common/sea_bands.h) with band counts
+// ---- The band lanes (SEASIM_BAND_LANES bands per step, common/sea_bands.h) with band counts
 // that do not fill the lanes: 1, 3, 17 and 31 bands (16 lanes by default: one partly filled step, a
 // full step and one of 1, a full step and one of 15), from the LUT and from the exact eq. 5. The RGB
 // must match the double reference (the padding lanes must add nothing), and the spectral buffer, which

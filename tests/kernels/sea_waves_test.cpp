@@ -127,7 +127,7 @@ INSTANTIATE_TEST_SUITE_P(
                                set("sky.image", std::string("\"") + SEASIM_SOURCE_DIR + "/scenes/textures/sky_clear.exr\""),
                                set("quality.sea_lut_size", "1")},
                               5e-4},
-                      // Issue 19's wave filter (common/sea_lean.h) against its double CPU twin: the
+                      // The wave filter (common/sea_lean.h) against its double CPU twin: the
                       // same moments, footprints and quadrature from the double ocean.
                       Variant{"waves_filtered", {set("quality.wave_filter", "true"), set("quality.sea_lut_size", "1")}, 5e-4},
                       Variant{"waves_filtered_analytic_sky",

@@ -1,4 +1,4 @@
-// shafts_intervals_kernel_test.cpp — the intervals method of kernels/shafts.cl (issue 14) on PoCL:
+// shafts_intervals_kernel_test.cpp — the intervals method of kernels/shafts.cl on PoCL:
 //  * the kernel (float) against the same math evaluated in double on the CPU
 //    (kernels/common/shafts_intervals.h through kmath_d), pixel by pixel, on stage (five lamps, a gobo
 //    light map, boxes, spheres and planes casting shadows) with the shafts phase and with

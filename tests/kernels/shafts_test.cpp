@@ -8,7 +8,7 @@
 //    and sub-sample planes reducing the error (m = 6 vs m = 1);
 //  * stiff cases: camera inside a cone, a sample at the lamp (s -> 0), ρκ = 0 and ρκ large, a light
 //    behind the camera, grazing planes (fov 170°): no NaN/Inf, and close to the reference, with both
-//    methods (quality.shafts_method "planes" and "intervals", issue 14).
+//    methods (quality.shafts_method "planes" and "intervals").
 // The planes tests set quality.shafts_method = "planes" (the default is intervals).
 // Reduced resolutions keep the suite to a few seconds.
 #include <gtest/gtest.h>
@@ -200,7 +200,7 @@ TEST_P(ShaftsStiff, FiniteAndNearTheReference) {
   const seasim::Image ref = seasim::renderShaftsReference(seasim::loadScene(kSpotSphere, o), 2000);
   double ref_sum = 0;
   for (float v : ref.pixels) ref_sum += v;
-  // Both methods (issue 14): the sampling planes and the intervals.
+  // Both methods: the sampling planes and the intervals.
   for (const char* method : {"planes", "intervals"}) {
     std::vector<Override> om = o;
     om.push_back(set("quality.shafts_method", std::string("\"") + method + "\""));

@@ -1,5 +1,5 @@
 // sky_fourflow_test.cpp — the shallow-water frame (kernels/fourflow.cl ff_render) with the [sky]
-// models (issue 19: one sky for every model): on PoCL (float) against the same per-pixel steps in
+// models (one sky for every model): on PoCL (float) against the same per-pixel steps in
 // double on the host, where the sky a pixel sees above the horizon, and the one its flat surface
 // reflects (F L_sky(mirrored view), 003 eq. 1), come from the host's sky interface
 // (host/sky/sky_light.*, common/sky_view.h) and the bands' e_sky from its irradiance integral.

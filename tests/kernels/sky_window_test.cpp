@@ -1,5 +1,5 @@
 // sky_window_test.cpp — Snell's window of kd_multiple.cl on PoCL (float) shows the scene's [sky]
-// through common/sky_view.h (issue 19: one sky for every model), against the double evaluation of
+// through common/sky_view.h (one sky for every model), against the double evaluation of
 // the host's sky interface (host/sky/sky_light.*): per pixel looking up from 3 m, with the multiple
 // scattering and the froxel term off, the surface pixels are Σ_λ w(λ) e^{-c S} n² (1 - F) L_sky(λ, a)
 // with a the refracted view in air (and black under total internal reflection). For the uniform,

@@ -1,4 +1,4 @@
-// spectral_lamps_test.cpp — spotlights in air with a spectrum (issue 12): a lamp with temperature_k
+// spectral_lamps_test.cpp — spotlights in air with a spectrum: a lamp with temperature_k
 // renders through the scene's sensor (host/spectral/lamp_spectrum.h). Air is grey, so the frame of a
 // spectral lamp is the frame of an RGB lamp whose colour is the spectrum's sensor RGB: checked to
 // float rounding, and a warm lamp renders warm.

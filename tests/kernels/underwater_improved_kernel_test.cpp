@@ -249,17 +249,17 @@ INSTANTIATE_TEST_SUITE_P(
         Variant{"thirty_one_bands_no_bottom", {set("spectral.count", "31")}, true},
         Variant{"night", {set("sun.zenith_deg", "100")}},
         Variant{"no_multiple", {set("underwater.multiple_scattering", "false")}},
-        Variant{"objects_in_the_mirror",  // a sphere just below the surface, seen in its reflection (s7b)
+        Variant{"objects_in_the_mirror",  // a sphere just below the surface, seen in its reflection
                 {set("camera.position", "[0, -1.5, 0]"), set("camera.look_at", "[0, -0.5, -8]"),
                  set("objects[0].center", "[-1, -1.0, -7]")}},
         // No objects: the set-up holds one placeholder object for OpenCL, and the band table's improved
-        // rows must still follow the scene's object count (they followed the placeholder's before s9b:
-        // 4.4x the thesis's light in make validate's scene).
+        // rows must still follow the scene's object count (following the placeholder's
+        // gave 4.4x the thesis's light in make validate's scene).
         Variant{"no_objects", {}, false, true}, Variant{"no_objects_no_bottom", {}, true, true},
         // The sun ahead of the camera, low: the objects cast their shadows towards it, and the faces it sees
         // look down on that shadowed sand (uwi_bottom_visibility < 1: the tilted table's bottom part taken off).
         Variant{"faces_over_their_shadows", {set("sun.zenith_deg", "55"), set("sun.azimuth_deg", "-90")}},
-        // The sun overhead and the camera looking at it (s13): the forward peak's aureole and the TMS term's
+        // The sun overhead and the camera looking at it: the forward peak's aureole and the TMS term's
         // ceiling at and around the centre pixels, over a bottom and in turbid water without one.
         Variant{"at_the_sun", {set("sun.zenith_deg", "0"), set("camera.look_at", "[0, 10, -0.001]")}},
         Variant{"at_the_sun_turbid", {set("sun.zenith_deg", "0"), set("camera.look_at", "[0, 10, -0.001]"),

@@ -184,7 +184,7 @@ TEST(UnderwaterKdKernel, SpectralOutputMatchesTheRgbSum) {
   }
 }
 
-// spectral.exr holds the whole image (issue 13): with the froxel single scattering on, the bands
+// spectral.exr holds the whole image: with the froxel single scattering on, the bands
 // weighted by the sensor give image.exr's RGB. With spectral injection they differ only in the
 // in-slice fraction (the image's uses the RGB pseudo-bands' extinction, the bands their own c):
 // measured 3.1e-6. With RGB injection the image's froxel term is the three pseudo-bands' cheaper

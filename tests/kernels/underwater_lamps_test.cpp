@@ -1,4 +1,4 @@
-// underwater_lamps_test.cpp — spotlights in water (kernels/underwater_lamps.cl, issue 12) on PoCL:
+// underwater_lamps_test.cpp — spotlights in water (kernels/underwater_lamps.cl) on PoCL:
 //   * the kernel against the double-precision CPU evaluation of the same math (common/underwater_lamps.h
 //     in kmath_d) on a lamp-only scene (sun off, black sky): in-scattering and the lit bottom;
 //   * the path tracer's single-scattering mode with lamps (reference.cl, next-event estimation) against

@@ -540,7 +540,7 @@ TEST(UnderwaterReference, NoNanInTurbidDeepWaterOrWithoutAbsorption) {
   expectFiniteNonNegative(r);
 }
 
-// The camera above the surface (the sea seen from above, issue 13): in single-scattering mode every
+// The camera above the surface (the sea seen from above): in single-scattering mode every
 // pixel is (1 - R)/n² times the in-water single scattering along the refracted ray from the surface
 // point, which the double quadrature gives independently; R and the refraction written out here.
 TEST(UnderwaterReference, CameraAboveSeesTheWaterThroughTheSurfaceByOneMinusROverNSquared) {

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """plane_parallel_dom.py — an independent plane-parallel reference for the improved underwater model's
-diffuse field (issue 13, s9a): discrete ordinates for a homogeneous water layer under a flat Fresnel
+diffuse field: discrete ordinates for a homogeneous water layer under a flat Fresnel
 surface, written apart from host/underwater/discrete_ordinates.cpp and sharing none of its shortcuts:
 
   - the exact Henyey-Greenstein phase averaged over azimuth numerically (no Legendre series, no delta-M),

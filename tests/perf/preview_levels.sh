@@ -1,5 +1,5 @@
 #!/bin/bash
-# preview_levels.sh — the live preview's frame times and quality levels (issue 16; results/BENCHMARKS.md
+# preview_levels.sh — the live preview's frame times and quality levels (results/BENCHMARKS.md
 # "Live preview"). For each example scene at 640x360 under Xvfb, through the real window:
 #   level k (Q preset, k = 0..3): median ms of the frames while the camera orbits (every frame moves
 #     the view, so the passes that depend on the camera run again), and the RMS error of the window's

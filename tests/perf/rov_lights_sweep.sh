@@ -1,5 +1,5 @@
 #!/bin/sh
-# rov_lights_sweep.sh — spotlights under water (issue 12): the lamps' sampling planes against the path
+# rov_lights_sweep.sh — spotlights under water: the lamps' sampling planes against the path
 # tracer, error and time per setting (results/underwater/rov_lights_*.csv, .svg; BENCHMARKS.md).
 # At 96x54, caustics off (the path tracer's surface is flat and still):
 #   single   lamps only (sun off, black sky), black surfaces, plain 001 (quality.lamps_delta_m = false),

@@ -1,5 +1,5 @@
 #!/bin/sh
-# sea_allorders.sh — issue 13: the sea seen from above, a fast model (`seasim render`) against all
+# sea_allorders.sh — the sea seen from above, a fast model (`seasim render`) against all
 # orders of scattering (`seasim reference --all-orders`, the spectral path tracer with the camera above
 # the surface refracting in), for Jerlov I, IB, II, III, 3C over a flat bottom at 2, 5, 10, 20 m and
 # deep water (1000 m). The scene is scenes/flat_sea.toml at 96x54 with the camera 5 m up looking 45°

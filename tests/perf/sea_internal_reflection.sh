@@ -1,5 +1,5 @@
 #!/bin/sh
-# sea_internal_reflection.sh — issue 13: how much of the sea seen from above is light the surface
+# sea_internal_reflection.sh — how much of the sea seen from above is light the surface
 # reflects back down from below (mostly total internal reflection), and how sea.model = "multiple"
 # follows it, by the backscattering ratio u = b_b/(a + b_b). One grey band (explicit a, b; g 0.9) in the
 # view of tests/perf/sea_allorders.sh (scenes/flat_sea.toml at 96x54, camera 5 m up looking 45° down,
@@ -39,7 +39,7 @@ lum() {
   oiiotool "$1" --chsum:weight=2126,7152,722 --printstats | awk '/Stats Avg/ { printf "%.6g", $3 / 1e4 }'
 }
 lum_se() {
-  [ -f "$1" ] || return 0  # s6d's mb2048 images were kept without their standard-error image
+  [ -f "$1" ] || return 0  # the bounce-cap study's mb2048 images were kept without their standard-error image
   oiiotool "$1" --chsum:weight=2126,7152,722 --powc 2 --printstats |
     awk '/Stats Avg/ { printf "%.4g", sqrt($3 / (96 * 54)) / 1e4 }'
 }

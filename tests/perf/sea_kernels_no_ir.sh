@@ -1,4 +1,4 @@
-# sea_kernels_no_ir.sh — sourced by tests/perf/sea_internal_reflection.sh and sea_orders_fit.sh (issue 13):
+# sea_kernels_no_ir.sh — sourced by tests/perf/sea_internal_reflection.sh and sea_orders_fit.sh:
 # kernels_no_ir DIR copies kernels/ to DIR with the path tracer's internal reflection switched off: at the
 # surface from below, a reflected path ends (kernels/reference.cl) instead of mirroring. Exits when the
 # line it patches has changed, so a stale patch never passes for the real path tracer.

@@ -1,5 +1,5 @@
 #!/bin/sh
-# sea_orders_fit.sh — issue 13: the higher orders' factor of sea.model = "multiple"
+# sea_orders_fit.sh — the higher orders' factor of sea.model = "multiple"
 # (kernels/common/sea_multiple.h, sea_higher_orders) against what the path tracer needs, by the
 # backscattering ratio u = b_b/(a + b_b). Deep water, one grey band (explicit a, b; g 0.9), the view of
 # tests/perf/sea_allorders.sh (scenes/flat_sea.toml at 96x54, camera 5 m up looking 45° down, sun 40°,

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""sea_orders_fit_g.py — issue 13: fit sea.model = "multiple"'s higher-orders factor
+"""sea_orders_fit_g.py — fit sea.model = "multiple"'s higher-orders factor
 (kernels/common/sea_multiple.h, sea_higher_orders) as one closed form of u = b_b/(a + b_b) and the HG g,
 to the factor the uncapped path tracer needs (results/sea_allorders/orders_fit_g.csv, made by
 tests/perf/sea_orders_fit.sh with G, U and MAXB). Plain python (no numpy on the build machine).
@@ -7,7 +7,7 @@ tests/perf/sea_orders_fit.sh with G, U and MAXB). Plain python (no numpy on the 
   tests/perf/sea_orders_fit_g.py [orders_fit_g.csv]
 
 Points: per (g, u) the row with the largest cap max_bounces <= 2048 (2048 is uncapped there: 8192 gave the
-same image at g 0.9, u 0.6; where only cap 64 was traced, g 0.5 and g 0.8 at u <= 0.1, s6d found 2048
+same image at g 0.9, u 0.6; where only cap 64 was traced, g 0.5 and g 0.8 at u <= 0.1, the bounce-cap study found 2048
 the same within 0.3 % or no path near the cap). The form, with h = 2 c_f - 1 (c_f = hg_forward_fraction(g),
 what the kernel already has per pixel; 0 at g = 0, -> 1 as g -> 1; g < 0 taken as g = 0):
     orders(u, g) = 1 + p0 u (1/2 + u) + p1 h u^2 / (u^2 + p2)

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# shafts_error_time.sh — error–time curves of the spotlight shafts (issue 14): the intervals method
+# shafts_error_time.sh — error–time curves of the spotlight shafts: the intervals method
 # (quality.shafts_panel_deg), paper 001's sampling planes (n, m) and the CPU ray marcher (`seasim
 # reference --steps N`), each against a converged ray march, in one run.
 #

@@ -1,5 +1,5 @@
 #!/bin/sh
-# shallow_sweep.sh — issue 17's measured tables (results/shallow/): for each shallow scene, the paper's
+# shallow_sweep.sh — shallow water's measured tables (results/shallow/): for each shallow scene, the paper's
 # table path (003 eq. 22) and eq. 24's pre-converted blend against the exact spectral path (eq. 20),
 # by table resolution and γ, with times; and the lake's time per frame by band count.
 #   tests/perf/shallow_sweep.sh [build-dir]     (run from the repository root)

@@ -1,5 +1,5 @@
 #!/bin/sh
-# shallow_vs_pathtracer.sh — issue 17: the four-flow model (paper 003, exact spectral path) against the
+# shallow_vs_pathtracer.sh — the four-flow model (paper 003, exact spectral path) against the
 # spectral Monte Carlo path tracer (`seasim reference --all-orders`, all orders of scattering) for the
 # mountain lake's water over a flat, uniform bottom at several depths (the depth bands), seen from 3 m
 # up and looking down so that every pixel is water. Writes results/shallow/fourflow_vs_pathtracer.csv.

@@ -1,6 +1,6 @@
 #!/bin/sh
 # underwater_improved_lanes.sh — kd_multiple's time per band for underwater.model = "thesis" and
-# "improved" (issue 14/13: the improved model on the band lanes must cost <= 2x the thesis per band),
+# "improved" (the improved model on the band lanes must cost <= 2x the thesis per band),
 # round by round interleaved so that the shared machine's load falls on every variant alike:
 #   seasim bench --scene scenes/seabed.toml --wavelengths 16,64 --repeat 3 --set underwater.caustics="none"
 # per variant (improved_no_spread: the improved model without the water's point-spread, whose forward

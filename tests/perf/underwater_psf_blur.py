@@ -1,15 +1,15 @@
 #!/usr/bin/env python3
 """underwater_psf_blur.py — how far a point-spread of the water would move the improved model's regions
-(issue 13, s10): a measurement on `seasim underwater-regions --dump DIR` files, not a model.
+(docs/journal/underwater_regions_3_*.md): a measurement on `seasim underwater-regions --dump DIR` files, not a model.
 
 Delta-M counts the light scattered by a few degrees as unscattered: the model sends a hit's light on from
 the same point, where the water spreads it over the pixels around (the dump's `forward` column is that
 part, 1 - e^{-(c - c') S} of the hit's light). Here `forward` is taken off each pixel and put back blurred
 by a Gaussian of sigma pixels, and the region ratios against the path tracer are printed per sigma.
 
-The model has done this itself since s11 (underwater.point_spread, the water_spread pass, with widths from
+The model does this itself (underwater.point_spread, the water_spread pass, with widths from
 the phase and the distances): dump with `--set underwater.point_spread=false` to measure from the unspread
-model, as s10 did.
+model.
 
 Usage: tests/perf/underwater_psf_blur.py DUMP_DIR [--sigmas 0,1,2,3] [--width 64 --height 36]
 Needs numpy. The dump's cases must be 64x36 unless --width/--height say otherwise.
@@ -31,7 +31,7 @@ def load(path, width, height):
     if len(rows) != width * height:
         raise SystemExit(f"{path}: {len(rows)} pixels, expected {width}x{height} (--width, --height)")
     if "forward" not in rows[0]:
-        raise SystemExit(f"{path}: no 'forward' column (a dump of the improved model from s10 on)")
+        raise SystemExit(f"{path}: no 'forward' column (not a dump of the improved model)")
     col = lambda k: np.array([float(r[k]) for r in rows]).reshape(height, width)
     region = np.array([r["region"] for r in rows]).reshape(height, width)
     return col("fast_improved"), col("reference"), col("forward"), region

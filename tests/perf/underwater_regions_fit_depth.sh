@@ -1,10 +1,10 @@
 #!/bin/sh
 # underwater_regions_fit_depth.sh — how the "improved" underwater model's asymptotic share w was chosen
-# (The two-stream's tables: run with underwater.improved_diffuse = "two_stream", the model before s9a.)
-# (s7a, issue 13): the diffuse field's k taken as its mean log-slope over the camera's depth, a field
+# (The two-stream's tables: run with underwater.improved_diffuse = "two_stream".)
+# (docs/journal/underwater_regions_2_*.md): the diffuse field's k taken as its mean log-slope over the camera's depth, a field
 # of the two-stream's fast mode and the asymptotic mode e^{-K∞ y} holding the share w of it at the
 # surface (`underwater.improved_asymptotic_share`: depthMeanDiffuseK in
-# host/underwater/underwater_improved_setup.h; 0 = the two-stream's k, the model before s7a). On the
+# host/underwater/underwater_improved_setup.h; 0 = the two-stream's surface k). On the
 # TRAINING grid of tests/perf/underwater_regions.sh only (its references, cached), each w below is set
 # on the fast renders only (`--model-set`, the references untouched); tests/perf/underwater_regions_fit.py
 # prints per g the region cases within 5 % and the RMS of ratio - 1. The held-out grid

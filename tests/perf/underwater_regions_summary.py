@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""underwater_regions_summary.py — summarise `seasim underwater-regions` CSVs (issue 13) as Markdown.
+"""underwater_regions_summary.py — summarise `seasim underwater-regions` CSVs as Markdown.
 
 For each model and region: how many (water, g, depth, view) cases, how many are within 5 % of the path
 tracer, the median and worst |ratio - 1|, and the worst case; then the same by g. Standard library only.

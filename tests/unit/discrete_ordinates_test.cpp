@@ -1,5 +1,5 @@
 // discrete_ordinates_test.cpp — the plane-parallel discrete-ordinates solver behind the improved
-// underwater model's diffuse field (host/underwater/discrete_ordinates.*, issue 13 s9a): against an
+// underwater model's diffuse field (host/underwater/discrete_ordinates.*): against an
 // independent solution (tests/perf/plane_parallel_dom.py: the exact HG phase averaged over azimuth
 // numerically, no delta-M, 100 streams per hemisphere, numpy's general eigen-solver), the isotropic
 // K∞ of the characteristic equation, energy conservation without absorption, the cos φ mode, the
@@ -284,7 +284,7 @@ TEST(DiscreteOrdinates, InscatterClosesTheTransferEquation) {
 // At the kernel's delta-M order (3 moments) the quadrature is split at the edge of Snell's window, half
 // the nodes each side: the cosines fall on either side of μ_c and the weights integrate [0, 1]. With the
 // split the field converges in the streams (one Gauss rule over (0, 1) moved the regions' ratios by
-// several % between 8, 12, 16 and 32 streams, BENCHMARKS s12): the irradiances and the in-scatter
+// several % between 8, 12, 16 and 32 streams, docs/journal/underwater_regions_4_*.md): the irradiances and the in-scatter
 // towards near-horizontal and vertical directions at 8–24 streams against 48.
 TEST(DiscreteOrdinates, SplitQuadratureConvergesInTheStreams) {
   const double mu_c = std::sqrt(1 - 1 / (1.34 * 1.34));

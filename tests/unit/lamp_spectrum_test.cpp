@@ -1,4 +1,4 @@
-// lamp_spectrum_test.cpp — spectral spotlights (issue 12): Planck's law at a colour temperature
+// lamp_spectrum_test.cpp — spectral spotlights: Planck's law at a colour temperature
 // against the textbook formula, a CSV spectrum, the sensor's view of a lamp, and the scene errors of
 // lamps under water (file:line:key).
 #include <gtest/gtest.h>

@@ -1,6 +1,6 @@
 // ordinates_high_order_test.cpp — the improved underwater model's view-ray source fitted to a high-order
-// discrete-ordinates solution (host/underwater/ordinates_high_order.*, underwater.improved_source_streams,
-// issue 13 s12): the exact phase's azimuth modes against quadrature; the field's source-function
+// discrete-ordinates solution (host/underwater/ordinates_high_order.*, underwater.improved_source_streams):
+// the exact phase's azimuth modes against quadrature; the field's source-function
 // integration against the solver's own radiance at its cosines; the kernel's radiance from the fitted
 // table against the field's, away from the beam, beside the order-3 table's.
 #include <gtest/gtest.h>
@@ -102,11 +102,11 @@ TEST(OrdinatesHighOrder, FieldAtTheSolversCosinesIsItsRadiance) {
 // The kernel's radiance (uwi_band_radiance in double: the table along the view with c', the kernel's own
 // surface and bottom at the ray's end, the TMS term) from the camera at 3.8 m, at the table's cosines and
 // five azimuths more than 20° from the beam, against the high-order field's in azimuth modes 0-2 plus the
-// kernel's TMS term above them (what the fit promises): within 2 % (printed: 0.2-0.7 %; 0.2-0.9 % before s13
+// kernel's TMS term above them (what the fit promises): within 2 % (printed: 0.2-0.7 %; 0.2-0.9 % with the whole p_HG
 // capped the TMS term's phase). The order-3 table (source_streams 0) misses the same reference by 5-48 %
 // (printed beside it). Fails (54-100 %) with the kernel's TMS left in the fit's target or the far end's light
 // not attenuated; 2.4-3.5 % in turbid water at g = 0.95 with the kernel's aureole drawn there and taken off the
-// fit's targets (s13).
+// fit's targets.
 TEST(OrdinatesHighOrder, TableCarriesTheFieldsRadiance) {
   struct Case {
     double a, b, g, H;
@@ -146,7 +146,7 @@ TEST(OrdinatesHighOrder, TableCarriesTheFieldsRadiance) {
         // kernel measures it.
         const double cos_dphi = kd::uwi_cos_azimuth(cos_s, d_y, kMuW), cos_2dphi = 2 * cos_dphi * cos_dphi - 1;
         // The table carries modes 0-2; above them the kernel's TMS term (the delta-M beam scattered once
-        // with the exact phase below its peak, s13) and its forward peak's aureole (looking up) carry the
+        // with the exact phase below its peak) and its forward peak's aureole (looking up) carry the
         // beam's azimuthal detail: each less its modes 0-2 (by quadrature over the azimuth).
         const double tms_path = band.b * band.e_beam0 * kd::kd_exp_integral(high.m, high.c_dm, d_y, y, S);
         auto tms = [&](double cs) { return kd::uwi_tms_phase(hg(c.g, cs), high.p_clip); };

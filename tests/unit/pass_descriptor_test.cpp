@@ -16,6 +16,7 @@
 #include "plan/pass_descriptor.h"
 #include "plan/plan.h"
 #include "scene/scene_parser.h"
+#include "scene/set_option.h"
 #include "util/error.h"
 
 namespace {
@@ -146,6 +147,42 @@ TEST(Features, APassReadsItsOwnStructAndRefusesAnother) {
   EXPECT_NE(text.find("-DSEASIM_HAS_BOTTOM=1"), std::string::npos) << text;
   EXPECT_NE(text.find("  | features: reflection=1 single_scattering=1 bottom=1 sun=1"), std::string::npos) << text;
   EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 2);
+}
+
+// The reporting commands (seasim bench, seasim underwater-regions) find passes by role, never by a name
+// of their own: each role is held by exactly one descriptor, the band-loop roles say which timing is
+// their loop and how many items it runs, and the names the CSV columns are built from are unchanged.
+TEST(PassDescriptor, EachReportingRoleIsHeldByExactlyOneDescriptor) {
+  using seasim::PassRole;
+  for (PassRole role : {PassRole::SeaShading, PassRole::SeaSecondOrder, PassRole::Spotlights, PassRole::ShadowMaps,
+                        PassRole::UnderwaterGBuffer, PassRole::UnderwaterSingleScattering,
+                        PassRole::UnderwaterShading, PassRole::Check}) {
+    const auto& all = seasim::passDescriptors();
+    EXPECT_EQ(std::count_if(all.begin(), all.end(), [&](const auto& d) { return d.role == role; }), 1)
+        << "role " << static_cast<int>(role);
+  }
+  const seasim::Scene sea = flatSea();
+  const double pixels = static_cast<double>(sea.camera.width) * sea.camera.height;
+  for (PassRole role : {PassRole::SeaShading, PassRole::UnderwaterShading}) {
+    const seasim::PassDescriptor& d = seasim::descriptorFor(role);
+    EXPECT_EQ(d.band_loop_timing, d.name);
+    ASSERT_TRUE(d.band_loop_items);
+    EXPECT_EQ(d.band_loop_items(sea, 16), pixels * 16);
+  }
+  const seasim::Scene seabed =
+      seasim::loadScene(SEASIM_SOURCE_DIR "/scenes/seabed.toml",
+                        {seasim::parseSetOption("quality.froxel_x=8"), seasim::parseSetOption("quality.froxel_y=4"),
+                         seasim::parseSetOption("quality.froxel_z=16")});
+  const seasim::PassDescriptor& froxel = seasim::descriptorFor(PassRole::UnderwaterSingleScattering);
+  ASSERT_TRUE(froxel.band_loop_items);
+  EXPECT_EQ(froxel.band_loop_timing.rfind(froxel.name, 0), 0u);  // one of the pass's kernels
+  const int injected = seabed.underwater.injection == seasim::UnderwaterDesc::Injection::Spectral ? 16 : 3;
+  EXPECT_EQ(froxel.band_loop_items(seabed, 16), 8.0 * 4 * 16 * injected);
+  EXPECT_EQ(seasim::descriptorFor(PassRole::UnderwaterShading).name + "_ms", "kd_multiple_ms");
+  EXPECT_EQ(seasim::descriptorFor(PassRole::UnderwaterGBuffer).name + "_ms", "raycast_ms");
+  EXPECT_EQ(seasim::descriptorFor(PassRole::UnderwaterSingleScattering).name + "_ms", "froxel_ms");
+  EXPECT_EQ(seasim::descriptorFor(PassRole::ShadowMaps).name + "_ms", "shadow_maps_ms");
+  EXPECT_EQ(seasim::descriptorFor(PassRole::Spotlights).name + "_ms", "shafts_ms");
 }
 
 }  // namespace

@@ -254,7 +254,7 @@ direction = [0, -1, 0]
   EXPECT_FALSE(plan.hasPass("shadow_maps"));
   EXPECT_FALSE(plan.hasPass("sea_single"));
   std::string with_object = std::string(stage) + "[[objects]]\ntype = \"sphere\"\ncenter = [0, 1, 0]\nradius = 0.5\n";
-  // The default method, intervals (issue 14), casts exact shadow volumes: no shadow maps.
+  // The default method, intervals, casts exact shadow volumes: no shadow maps.
   plan = makePlan(parseScene(with_object, "stage.toml"));
   EXPECT_FALSE(plan.hasPass("shadow_maps"));
   EXPECT_TRUE(plan.hasPass("raycast"));
@@ -275,7 +275,7 @@ direction = [0, -1, 0]
   EXPECT_TRUE(plan.hasPass("shadow_maps"));
 }
 
-// Spotlights under water (issue 12): the water's passes and the lamps' pass, which adds into the rgb
+// Spotlights under water: the water's passes and the lamps' pass, which adds into the rgb
 // kd_multiple wrote (so it comes after it), and none of the air shafts' passes.
 TEST(Plan, SpotlightsUnderWaterAddTheLampsPassAfterTheShading) {
   const char* text = R"(

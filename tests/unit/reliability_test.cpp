@@ -1,4 +1,4 @@
-// reliability_test.cpp — the faults of issue 15 that need no device: full disks for every writer
+// reliability_test.cpp — the faults that need no device: full disks for every writer
 // (a real tmpfs, root only), decompression-bomb images, damaged kernel cache entries, manifests of
 // the wrong shape, the shard lock, orphan temporary files, memory budgets and count limits, and
 // the input messages (huge override index, float overflow, NUL bytes, bad output folders,

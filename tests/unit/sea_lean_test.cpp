@@ -1,4 +1,4 @@
-// sea_lean_test.cpp — kernels/common/sea_lean.h (issue 19's filtered wave normals) in float and
+// sea_lean_test.cpp — kernels/common/sea_lean.h (the filtered wave normals) in float and
 // double, each against a brute-force evaluation that shares none of its approximations:
 //  - the slope-moment mip chain and the footprint's statistics on synthetic slope fields, against
 //    direct averages over the footprint's texels;
@@ -269,7 +269,7 @@ TYPED_TEST(SeaLean, FresnelMeanMatchesFineQuadrature) {
 }
 
 // The calm sea, no water colour: the filtered reflection is the sky times the flat Fresnel
-// reflectance (issue 19: within 1e-3), down to 0.5° above the horizon.
+// reflectance (within 1e-3), down to 0.5° above the horizon.
 TYPED_TEST(SeaLean, CalmSeaReflectsSkyTimesFresnel) {
   using T = TypeParam;
   using L = Lean<T>;

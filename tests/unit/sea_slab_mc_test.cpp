@@ -1,7 +1,7 @@
 // sea_slab_mc_test.cpp — host/reference/sea_slab_mc (a per-order Monte Carlo of the flat sea of paper
 // 000) against the model's closed forms and references: order 1 = the exact single-scattering
 // integral, order 2 = the direct integration of L^(2) (host/reference/sea_second_reference), the
-// bottom's direct term = eq. 9, and the energy check of issue 6: single + second order <= all orders
+// bottom's direct term = eq. 9, and the energy check: single + second order <= all orders
 // for an albedo-0.9 medium, with the share of orders >= 3 reported. Stiff: b -> 0, grazing sun and view.
 #include <gtest/gtest.h>
 
@@ -173,7 +173,7 @@ TEST(SeaSlabMc, Order2IsTheSecondOrderReference) {
 }
 
 TEST(SeaSlabMc, EnergyAlbedo09SingleAndSecondBelowAllOrders) {
-  // Issue 6: single + second order <= the full multiple-scattering answer, albedo 0.9, deep water.
+  // Energy: single + second order <= the full multiple-scattering answer, albedo 0.9, deep water.
   SlabMcSetup s = baseSetup();
   s.a = 0.02;
   s.b = 0.18;

@@ -1,4 +1,4 @@
-// sky_daylight_test.cpp — the spectral Preetham sky (issue 19): chromaticity x, y → the CIE daylight
+// sky_daylight_test.cpp — the spectral Preetham sky: chromaticity x, y → the CIE daylight
 // spectrum S0 + M1 S1 + M2 S2 (data/cie_daylight_components.csv, CIE 15:2004 §3.1) → per band.
 //  - at D65's chromaticity the basis gives back the D65 table (data/cie_d65.csv);
 //  - for Preetham's x, y over turbidities, sun elevations and views, the spectrum's own chromaticity

@@ -1,4 +1,4 @@
-// sky_light_test.cpp — the one sky interface (host/sky/sky_light.*, common/sky_view.h; issue 19):
+// sky_light_test.cpp — the one sky interface (host/sky/sky_light.*, common/sky_view.h):
 //  - the uniform sky gives exactly what the underwater and shallow models always used: π L_sky on a
 //    horizontal plane, π L_sky (1 - r̄) just below the surface, radiance L_sky in every direction;
 //  - for the CIE clear, Preetham and image skies, the irradiance integrals against a brute-force

@@ -1,6 +1,6 @@
 // sky_preetham_reference_test.cpp — the Preetham sky of kernels/common/sky.h against an independent
-// public implementation, at a few (sun zenith, turbidity, view) points (issue 19, "check against
-// published values").
+// public implementation, at a few (sun zenith, turbidity, view) points (checked
+// against published values).
 //
 // What it is compared with: Eric Bruneton's clear-sky-models (github.com/ebruneton/clear-sky-models,
 // BSD-3-Clause), atmosphere/model/preetham/preetham.cc at commit 4df2ec6609bc0127a478bd34fff29c94352579cc,

@@ -1,5 +1,5 @@
 // sky_preetham_test.cpp — the Preetham daylight sky of kernels/common/sky.h (SEASIM_SKY_PREETHAM,
-// issue 19) in float and double:
+// the spectral sky) in float and double:
 //  - towards the zenith it gives the zenith chromaticity of Preetham et al. 1999's fit exactly (the
 //    RGB is turned back into x, y by the inverse of the XYZ -> Rec. 709 matrix);
 //  - the sky is blue overhead and whiter towards the horizon and in haze, brightest around the sun;

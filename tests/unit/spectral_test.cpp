@@ -168,7 +168,7 @@ TEST(Sensor, CieD65IsWhiteAndConverges) {
   for (int k = 0; k < 3; ++k) EXPECT_NEAR(c3[static_cast<std::size_t>(k)], 3 * c1[static_cast<std::size_t>(k)], 1e-12);
 }
 
-// White balance on narrow ranges (issue 13): D65 over 10 nm is nearly a spectral colour outside the sRGB
+// White balance on narrow ranges: D65 over 10 nm is nearly a spectral colour outside the sRGB
 // gamut; the sensor then balances X and Z (von Kries) and still maps D65 to (1, 1, 1). Only where a
 // curve sees nothing (z̄ above ~650 nm) does that channel stay unbalanced, finite and with no error.
 TEST(Sensor, CieWhiteBalanceWorksOnNarrowRanges) {

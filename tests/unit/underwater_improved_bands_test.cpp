@@ -258,7 +258,7 @@ TEST(UnderwaterImprovedBands, LanesMatchTheScalarModelInFloatAndDouble) {
             seasim::UnderwaterSetup at_depth = s;
             at_depth.params.cam_pos[1] = float(-o_d);
             const std::vector<float> table = seasim::underwaterBandTable(at_depth);
-            // Rays at the listed verticals, and (s13) along the refracted sun and 2° off it: the forward peak's
+            // Rays at the listed verticals, and along the refracted sun and 2° off it: the forward peak's
             // aureole and its strict single scattering, taken off with froxels.
             std::vector<std::array<double, 3>> dirs;
             for (double d_y : {-1.0, -0.6, -0.2, 0.0, 0.3, 0.7, 1.0}) {

@@ -1,5 +1,5 @@
-// underwater_improved_depth_test.cpp — the improved model's k over the depths a frame sees (s7a, issue
-// 13; host/underwater/underwater_improved_setup.*): the mean log-slope of a two-mode field over
+// underwater_improved_depth_test.cpp — the improved model's k over the depths a frame sees
+// (host/underwater/underwater_improved_setup.*): the mean log-slope of a two-mode field over
 // [0, D] (depthMeanDiffuseK) is the two-stream's k at D = 0 and tends to K∞ deep down, is continuous
 // and monotone, finite at the extremes; the band built with it keeps its boundary conditions, never
 // NaN at a = 0, H = 0 or without a bottom; the set-up takes D from the camera's depth, and the scene

@@ -1,5 +1,5 @@
-// underwater_improved_flux_test.cpp — the improved model's flux term scale (s7c, issue 13;
-// host/underwater/underwater_improved_setup.*): the fitted table s(g), the band's g_flux = s g', the
+// underwater_improved_flux_test.cpp — the improved model's flux term scale
+// (host/underwater/underwater_improved_setup.*): the fitted table s(g), the band's g_flux = s g', the
 // in-scatter source's flux term following g_flux (not the two-stream's g'), the set-up taking s from the
 // table or from underwater.improved_flux_scale, and the key's file:line:key errors.
 #include <gtest/gtest.h>

@@ -1,6 +1,6 @@
 // underwater_improved_ordinates_test.cpp — the improved underwater model's diffuse field from discrete
 // ordinates (underwater.improved_diffuse = "discrete_ordinates", the default; host/underwater/
-// underwater_improved_ordinates.*, issue 13 s9a): the band's exponentials hold the solver's field (E_d,
+// underwater_improved_ordinates.*): the band's exponentials hold the solver's field (E_d,
 // E_u, E_0, F_h) over the depths the frame sees, as the kernel evaluates them in float and double; k
 // keeps away from the beam's m; no horizontal flux where the field has none; degenerate bands stay
 // finite; the source's azimuth factor.

@@ -1,5 +1,5 @@
 // underwater_improved_surface_test.cpp — the water surface seen from below in underwater.model =
-// "improved" (kernels/common/underwater_improved.h uwi_surface, s7b): the froxel pass integrates the
+// "improved" (kernels/common/underwater_improved.h uwi_surface): the froxel pass integrates the
 // beam's single scattering along the camera's ray only, so the surface's reflected ray keeps its own
 // (the TMS term) whether or not that pass runs. Turning the froxel term on must change a surface
 // pixel by exactly the camera ray's closed-form single scattering, in float and double, inside Snell's
@@ -64,7 +64,7 @@ TEST(UnderwaterImprovedSurface, FroxelTermChangesOnlyTheCameraRaysSingleScatteri
       for (double H : {0.0, 2.0, 20.0})
         for (double d_y : {0.05, 0.3, 0.6, 0.9}) {
           const UwBand bd = band(a, b, mu_w);
-          // The camera's depth given: the forward peak's aureole there (s13) holds the strict single
+          // The camera's depth given: the forward peak's aureole there holds the strict single
           // scattering's peak part, which the froxel term takes off with the rest.
           seasim::DiffuseDepth camera;
           camera.depth = o_d;

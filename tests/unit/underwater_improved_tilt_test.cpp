@@ -1,5 +1,5 @@
-// underwater_improved_tilt_test.cpp — how the improved underwater model lights an object's face (issue 13,
-// s10): the diffuse irradiance on a tilted plane from the discrete ordinates' radiance
+// underwater_improved_tilt_test.cpp — how the improved underwater model lights an object's face:
+// the diffuse irradiance on a tilted plane from the discrete ordinates' radiance
 // (DiscreteOrdinates::tiltedIrradianceProfile, its azimuth kernel in closed form), tabulated per band in
 // the normal's vertical (UwiBand.tilt) and read by uwi_tilt_irradiance in float and double; the part of it
 // the sunlit bottom brings (UwiBand.tilt_bottom, DiscreteOrdinatesLayer::bottom_sunlit) and whether a face
@@ -189,7 +189,7 @@ TEST(UnderwaterImprovedTilt, BandTableHoldsTheSolversTiltedIrradiance) {
   for (float v : deep.tilt_bottom) EXPECT_EQ(v, 0.0f);
 }
 
-// The two-stream's table is its uniform hemispheres, E_d (1 + n_y)/2 + E_u (1 - n_y)/2 (as before s10), and
+// The two-stream's table is its uniform hemispheres, E_d (1 + n_y)/2 + E_u (1 - n_y)/2 (as the thesis's), and
 // it has no bottom part.
 TEST(UnderwaterImprovedTilt, TwoStreamTableIsUniformHemispheres) {
   const UwBand band = uwTestBand(0.1, 0.3, 0.146, 0.85, kMuW, 0.35);

@@ -1,4 +1,4 @@
-// underwater_model_option_test.cpp — underwater.model (issue 13): the parser's choice with file:line:key
+// underwater_model_option_test.cpp — underwater.model: the parser's choice with file:line:key
 // errors, the planner's SEASIM_UNDERWATER_MODEL define on kd_multiple, and the set-up's per-band block
 // that only "improved" fills.
 #include <gtest/gtest.h>

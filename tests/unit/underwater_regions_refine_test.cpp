@@ -1,4 +1,4 @@
-// underwater_regions_refine_test.cpp — `seasim underwater-regions --target-noise` (s8b, issue 13): the
+// underwater_regions_refine_test.cpp — `seasim underwater-regions --target-noise`: the
 // path count a too-noisy reference is traced again at. Noise falls as 1/√paths, so reaching the target
 // from `noise` at `spp` needs spp (noise/target)² paths, rounded up to a power-of-two multiple of spp;
 // a case that would need more than max_spp keeps spp (0 says so) rather than spending the budget.

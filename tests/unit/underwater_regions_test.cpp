@@ -1,4 +1,4 @@
-// underwater_regions_test.cpp — the region judge of `seasim underwater-regions` (issue 13) and the
+// underwater_regions_test.cpp — the region judge of `seasim underwater-regions` and the
 // pixel-centre ray cast beneath it (reference/pixel_centre_hits.h): a level camera 2 m above a flat
 // bottom with a sphere straight ahead, whose regions follow from the geometry by hand.
 #include <gtest/gtest.h>

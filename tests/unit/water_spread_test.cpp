@@ -1,4 +1,4 @@
-// water_spread_test.cpp — the water's point-spread's maths (issue 13, s11; kernels/common/water_spread.h,
+// water_spread_test.cpp — the water's point-spread's maths (kernels/common/water_spread.h,
 // host/underwater/water_spread_setup.h) in float and double: the hit's and the in-scatter's share of
 // light scattered by small angles, with its mean count and distance, against quadrature of their
 // definitions, at and near the singular points (S -> 0, c - c' -> 0, the series' switch-overs, S at the

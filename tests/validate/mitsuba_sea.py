@@ -1,4 +1,4 @@
-"""Opt-in validation (make validate, issue 13): the sea seen from above — seasim's all-orders path
+"""Opt-in validation (make validate): the sea seen from above — seasim's all-orders path
 tracer with the camera above the surface (`seasim reference --all-orders`), paper 000's model
 (`sea.model = "paper"`, single scattering eq. 5 and bottom eq. 9, with and without the second order
 eq. 6-8) and `sea.model = "multiple"` (kernels/common/sea_multiple.h) against Mitsuba 3's volpath.

@@ -1,4 +1,4 @@
-"""Opt-in validation (make validate, issue 13): seasim's spotlight-shaft reference and fast method
+"""Opt-in validation (make validate): seasim's spotlight-shaft reference and fast method
 against Mitsuba 3 (volpath, scalar_rgb) on matching scenes. Not part of `make test`.
 
 Mapping of conventions (seasim -> Mitsuba 3):

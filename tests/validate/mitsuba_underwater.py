@@ -1,4 +1,4 @@
-"""Opt-in validation (make validate, issue 13): the underwater flat-bottom scene with a dielectric
+"""Opt-in validation (make validate): the underwater flat-bottom scene with a dielectric
 surface, a uniform sky and the sun — seasim's all-orders path tracer (`seasim reference`) and the fast
 models (`seasim render`: K_d multiple scattering, froxel single scattering; the thesis's eq. 4.7 and
 underwater.model = "improved") against Mitsuba 3's volpath.

@@ -1,4 +1,4 @@
-"""An experiment on the open-air spotlight case of mitsuba_shafts.py (issue 13): is seasim's 1.7 % deficit
+"""An experiment on the open-air spotlight case of mitsuba_shafts.py: is seasim's 1.7 % deficit
 against Mitsuba there (results/validation/README.md), largest in the top rows whose rays pass 0.2-0.4 m
 below the lamp, an effect of the pixel filter? Mitsuba averages radiance over each pixel's area (box
 filter); seasim samples pixel centres, and mitsuba_shafts.py averages 4x4 of them per pixel. Near the

@@ -1,4 +1,4 @@
-"""An experiment on the spotlight scenes with a sphere and a floor in mitsuba_shafts.py (issue 13): they
+"""An experiment on the spotlight scenes with a sphere and a floor in mitsuba_shafts.py: they
 read 0.8-1.2 % low against Mitsuba with seasim's reference at 4x4 pixel centres per pixel, while the
 open-air case agrees (results/validation/README.md). Which term is it? The scene is split into cheap,
 low-noise variants, each rendered by Mitsuba (volpath, max_depth = 2) and by seasim's reference at SS x SS

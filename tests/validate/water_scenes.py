@@ -1,4 +1,4 @@
-"""Matching water scenes for seasim and Mitsuba 3 (make validate, issue 13): one scene description,
+"""Matching water scenes for seasim and Mitsuba 3 (make validate): one scene description,
 written as a seasim TOML and built as a Mitsuba scene, and the comparison by image regions. Used by
 mitsuba_underwater.py (camera under water) and mitsuba_sea.py (the sea seen from above).
 

@@ -38,6 +38,7 @@ PassDescriptor nonfiniteCheckDescriptor() {
   PassDescriptor d;
   d.name = "nonfinite_check";
   d.kernel_file = "check.cl";
+  d.role = PassRole::Check;
   d.rule = [](const Scene&, const Plan&) -> std::optional<PassPlan> {
     return planEntry({"rgb"}, {"status"}, "always: kernels must never emit NaN/Inf");
   };

@@ -50,6 +50,14 @@ PassDescriptor froxelDescriptor() {
   PassDescriptor d;
   d.name = "froxel";
   d.kernel_file = "froxel.cl";
+  d.role = PassRole::UnderwaterSingleScattering;
+  d.band_loop_timing = "froxel_integrate";  // the band loop; RGB injection integrates 3 bands
+  d.band_loop_items = [](const Scene& s, int bands) {
+    const auto& q = s.quality;
+    const double froxels =
+        q.count("froxel_x") ? q.at("froxel_x").value * q.at("froxel_y").value * q.at("froxel_z").value : 0.0;
+    return froxels * (s.underwater.injection == UnderwaterDesc::Injection::Spectral ? bands : 3);
+  };
   d.rule = [](const Scene& scene, const Plan& so_far) -> std::optional<PassPlan> {
     const UnderwaterDesc& uw = scene.underwater;
     if (!cameraUnderwater(scene) || !uw.single_scattering || !sunUp(scene)) return std::nullopt;

@@ -91,6 +91,9 @@ PassDescriptor kdMultipleDescriptor() {
   PassDescriptor d;
   d.name = "kd_multiple";
   d.kernel_file = "kd_multiple.cl";
+  d.role = PassRole::UnderwaterShading;
+  d.band_loop_timing = d.name;
+  d.band_loop_items = [](const Scene& s, int bands) { return double(s.camera.width) * s.camera.height * bands; };
   d.rule = [](const Scene& scene, const Plan& so_far) -> std::optional<PassPlan> {
     if (!cameraUnderwater(scene)) return std::nullopt;
     const bool froxels = so_far.produces("froxel_volume");

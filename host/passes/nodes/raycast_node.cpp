@@ -49,6 +49,7 @@ PassDescriptor raycastDescriptor() {
   PassDescriptor d;
   d.name = "raycast";
   d.kernel_file = "raycast.cl";
+  d.role = PassRole::UnderwaterGBuffer;
   d.rule = [](const Scene& scene, const Plan& so_far) -> std::optional<PassPlan> {
     if (!cameraUnderwater(scene)) return std::nullopt;
     // With caustic maps, after the caustics pass: the sun visibility reads them.

@@ -46,6 +46,7 @@ PassDescriptor seaSecondDescriptor() {
   PassDescriptor d;
   d.name = "sea_second";
   d.kernel_file = "sea_second.cl";
+  d.role = PassRole::SeaSecondOrder;
   d.rule = [](const Scene& scene, const Plan&) -> std::optional<PassPlan> {
     // With "multiple" the second order is inside the closed form: its pass would count it twice.
     if (!seaSeenFromAbove(scene) || scene.shallow.present || !scene.sea.second_order ||

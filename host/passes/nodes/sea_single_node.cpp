@@ -78,6 +78,9 @@ PassDescriptor seaSingleDescriptor() {
   PassDescriptor d;
   d.name = "sea_single";
   d.kernel_file = "sea_single.cl";
+  d.role = PassRole::SeaShading;
+  d.band_loop_timing = d.name;
+  d.band_loop_items = [](const Scene& s, int bands) { return double(s.camera.width) * s.camera.height * bands; };
   d.keys = kSeaSingleKeys;
   d.knobs = {{"sea_supersample", 1}, {"wave_filter", 1}};
   // [shallow] takes the sea model's place for the view from above (fourflow_node.cpp).

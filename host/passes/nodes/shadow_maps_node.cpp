@@ -12,6 +12,7 @@ PassDescriptor shadowMapsDescriptor() {
   PassDescriptor d;
   d.name = "shadow_maps";
   d.kernel_file = "shafts.cl";
+  d.role = PassRole::ShadowMaps;
   d.rule = [](const Scene& scene, const Plan&) -> std::optional<PassPlan> {
     if (!spotlightsInAir(scene) || scene.objects.empty()) return std::nullopt;
     const auto features = shaftsFeatures(scene);

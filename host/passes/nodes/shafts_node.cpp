@@ -103,6 +103,7 @@ PassDescriptor shaftsDescriptor() {
   PassDescriptor d;
   d.name = "shafts";
   d.kernel_file = "shafts.cl";
+  d.role = PassRole::Spotlights;
   d.rule = [](const Scene& scene, const Plan& so_far) -> std::optional<PassPlan> {
     if (spotlightsInAir(scene)) return shaftsInAir(scene, so_far);
     if (seaSeenFromAbove(scene) && !scene.spotlights.empty()) return shaftsOverTheSea(scene);
