@@ -15,6 +15,7 @@
   X(fourFlowDescriptor)                 \
   X(seaSingleDescriptor)                \
   X(seaSecondDescriptor)                \
+  X(whitecapsDescriptor)                \
   X(shaftsDescriptor)                   \
   X(kdMultipleDescriptor)               \
   X(waterSpreadDescriptor)              \
