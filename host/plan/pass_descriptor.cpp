@@ -37,6 +37,21 @@ PassPlan planEntry(std::vector<std::string> reads, std::vector<std::string> writ
   return p;
 }
 
+const std::vector<ModelKey>& modelSceneKeys() {
+  static const std::vector<ModelKey> keys = [] {
+    std::vector<ModelKey> out;
+    for (const PassDescriptor& d : passDescriptors())
+      for (const ModelKey& k : d.scene_keys) {
+        for (const ModelKey& seen : out)
+          if (seen.dotted() == k.dotted())
+            throw RuntimeError("two descriptors declare the scene key " + k.dotted() + " (" + d.name + " is one)");
+        out.push_back(k);
+      }
+    return out;
+  }();
+  return keys;
+}
+
 const PassDescriptor* descriptorOf(const PassPlan& entry) {
   for (const PassDescriptor& d : passDescriptors())
     if (d.name == entry.name && d.kernel_file == entry.kernel_file) return &d;

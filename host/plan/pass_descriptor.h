@@ -3,8 +3,8 @@
 // self-describing plugins: its plan rule, the scene keys it depends on, its quality knobs and their
 // defaults, its buffer estimate, its cost weight and its factory. The planner (makePlan), the memory
 // budget, the shard balancer and the renderer's registry ask the descriptors; none of them names a
-// model. Adding a model = a node with its descriptor, and its declaration and place in the ordered
-// list of host/passes/nodes/pass_list.cpp.
+// model; nor does the scene parser, which reads the scene keys a descriptor declares. Adding a model =
+// a node with its descriptor, and one line in the ordered list of host/passes/nodes/pass_list.cpp.
 #pragma once
 #include <functional>
 #include <memory>
@@ -14,6 +14,7 @@
 
 #include "plan/memory_budget.h"
 #include "plan/plan.h"
+#include "scene/model_keys.h"
 #include "scene/scene.h"
 
 namespace seasim {
@@ -61,6 +62,9 @@ struct PassDescriptor {
   PassKeys keys;
   // Its [quality] knobs; knob() and settledKnob() read only these.
   std::vector<KnobDefault> knobs;
+  // Scene keys of its own (scene/model_keys.h: table, name, type, range, default): the parser reads
+  // them from here, and the model reads them with modelKey(scene, "table.name").
+  std::vector<ModelKey> scene_keys;
   // Whether quality.fast_math builds its kernel with -cl-fast-relaxed-math (false where the error
   // under relaxed maths was not measured, or where finite-only maths would hide what it checks).
   bool fast_math = true;

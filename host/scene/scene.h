@@ -253,6 +253,10 @@ struct Scene {
   // Every known knob with its value or "auto"; defaults filled in by the parser. Keys are documented
   // in scenes/README.md ([quality]).
   std::map<std::string, Knob> quality;
+  // The keys models declare in their descriptors (scene/model_keys.h), by dotted key
+  // ("surface.whitecaps"), every declared key with its value or default; booleans as 0 or 1. Read
+  // through modelKey().
+  std::map<std::string, double> model_keys;
   std::vector<ImageInputRef> images;  // every image file named above, in file order
   // The data files (camera curves, lamp spectra, light maps, sky images, height fields) as read once
   // for this process (io/data_files.h); shared by the copies of a scene. Null: each reader reads the

@@ -9,6 +9,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "scene/model_keys.h"
 #include "scene/toml_reader.h"
 #include "scene/water_phase.h"
 #include "spectral/jerlov.h"
@@ -59,6 +60,11 @@ const std::vector<std::string> kTopLevel = {
     "bottom", "objects", "spotlights", "spectral", "sea",   "underwater", "shallow", "quality",
     "display", "outputs"};
 
+// The tables whose keys a model may declare in its descriptor (scene/model_keys.h): each is read
+// through SceneParser::finish.
+const std::vector<std::string> kModelKeyTables = {"camera", "sun", "sky", "water", "air", "surface", "bottom",
+                                                  "spectral", "sea", "underwater", "shallow", "display", "quality"};
+
 std::string fmt(double v) { return formatNumber(v); }
 
 // ---------------------------------------------------------------------------------------------
@@ -72,6 +78,13 @@ class SceneParser {
     TableReader root(src_, root_table, "");
     for (const auto& name : kTopLevel) root.has(name);
     root.finish();
+    // Every key the models declare, at its default until its table says otherwise.
+    for (const ModelKey& k : modelSceneKeys()) {
+      if (std::find(kModelKeyTables.begin(), kModelKeyTables.end(), k.table) == kModelKeyTables.end())
+        throw RuntimeError("the scene key " + k.dotted() + " is declared in a table whose model keys the parser "
+                           "does not read (scene_parser.cpp, kModelKeyTables)");
+      scene_.model_keys[k.dotted()] = k.default_value;
+    }
 
     scene_.name = fs::path(scene_.file).stem().string();
     if (auto* t = root.subtable("scene")) {
@@ -131,6 +144,25 @@ class SceneParser {
   const TomlSource& src_;
   Scene& scene_;
   toml::table empty_;
+
+  // Reads the keys the models declare for `table` (scene/model_keys.h), then reports every key
+  // still unread as unknown.
+  void finish(TableReader& r, const std::string& table) {
+    for (const ModelKey& k : modelSceneKeys()) {
+      if (k.table != table) continue;
+      double v = k.default_value;
+      if (k.type == ModelKey::Type::Boolean) {
+        v = r.boolean(k.name, k.default_value != 0) ? 1.0 : 0.0;
+      } else {
+        v = r.number(k.name, k.default_value);
+        r.check(v >= k.min && v <= k.max, k.name,
+                "must be in [" + fmt(k.min) + ", " + fmt(k.max) + "]" + (k.unit.empty() ? "" : " " + k.unit) +
+                    ", got " + fmt(v));
+      }
+      scene_.model_keys[k.dotted()] = v;
+    }
+    r.finish();
+  }
 
   const toml::table& section(TableReader& root, const char* name) {
     const toml::table* t = root.subtable(name);
@@ -228,7 +260,7 @@ class SceneParser {
     r.check(length(cross(view, c.up)) > 1e-9 * length(view) * length(c.up), "up",
             "is parallel to the view direction (look_at - position)");
     c.up = normalize(c.up);
-    r.finish();
+    finish(r, "camera");
   }
 
   void sun(const toml::table& t) {
@@ -247,7 +279,7 @@ class SceneParser {
     r.check(radius >= 0 && radius <= 45, "angular_radius_deg",
             "must be in [0, 45] degrees, got " + fmt(radius));
     s.angular_radius = radius * kDegToRad;
-    r.finish();
+    finish(r, "sun");
   }
 
   void sky(const toml::table& t) {
@@ -269,7 +301,7 @@ class SceneParser {
       r.check(s.turbidity >= 1.7 && s.turbidity <= 10, "turbidity", "must be in [1.7, 10], got " + fmt(s.turbidity));
       s.chromaticity_on_daylight_locus = r.choice("chromaticity", "preetham", {"preetham", "daylight_locus"}) == "daylight_locus";
     }
-    r.finish();
+    finish(r, "sky");
   }
 
   // Water: a Jerlov type or explicit spectra. With explicit spectra, c may be given instead of b
@@ -280,7 +312,7 @@ class SceneParser {
     // Unknown keys first: a typo'd "jerlv" should read as a typo, not as "jerlov missing".
     for (const char* k : {"jerlov", "wavelengths_nm", "a", "b", "c", "kd", "g", "ior", "phase", "phase_file", "bb_ratio"})
       r.has(k);
-    r.finish();
+    finish(r, "water");
     WaterDesc& w = scene_.water;
     const char* explicit_keys[] = {"wavelengths_nm", "a", "b", "c", "kd"};
     const char* first_explicit = nullptr;
@@ -365,7 +397,7 @@ class SceneParser {
       a.g = r.number("g", a.g);
       r.check(std::abs(a.g) < 1, "g", "must satisfy |g| < 1, got " + fmt(a.g));
     }
-    r.finish();
+    finish(r, "air");
   }
 
   // The wave keys are read (and ignored) for a flat surface too, so a scene can switch type by
@@ -394,7 +426,7 @@ class SceneParser {
     nonNegative("loop_period", s.loop_period, " s");
     s.time = r.number("time", s.time);
     s.seed = static_cast<unsigned>(r.integerIn("seed", s.seed, 0, 4294967295LL));
-    r.finish();
+    finish(r, "surface");
   }
 
   // Without [bottom] the water is deep (type "none"); a [bottom] table defaults to a flat one.
@@ -424,7 +456,7 @@ class SceneParser {
     } else {
       b.type = BottomDesc::Type::None;
     }
-    r.finish();
+    finish(r, "bottom");
   }
 
   void object(const toml::table& t, size_t index) {
@@ -570,7 +602,7 @@ class SceneParser {
               "must be true with sensor = \"identity\" (its image.exr is the raw bands)");
       s.spectral_exr = true;
     }
-    r.finish();
+    finish(r, "spectral");
   }
 
   void sea(const toml::table& t) {
@@ -582,7 +614,7 @@ class SceneParser {
     s.second_order = r.boolean("second_order", s.second_order);
     s.bottom_caustics = r.boolean("bottom_caustics", s.bottom_caustics);
     s.reflection = r.boolean("reflection", s.reflection);
-    r.finish();
+    finish(r, "sea");
   }
 
   void underwater(const toml::table& t) {
@@ -641,7 +673,7 @@ class SceneParser {
     r.check(u.improved_flux_scale == -1 || (u.improved_flux_scale >= 0 && u.improved_flux_scale <= 3),
             "improved_flux_scale", "must be -1 (the model's own) or a scale in [0, 3], got " +
             fmt(u.improved_flux_scale));
-    r.finish();
+    finish(r, "underwater");
   }
 
   void shallow(const toml::table& t) {
@@ -675,7 +707,7 @@ class SceneParser {
       r.check(scene_.bottom.type != BottomDesc::Type::None, "slope_depths_m",
               "missing: [shallow] needs a bottom: [bottom] type = \"flat\" or \"heightfield\", or slope_depths_m");
     }
-    r.finish();
+    finish(r, "shallow");
   }
 
   // [display] (io/tonemap_eq18.h): the default curve, or 003 eq. 18 with its constants.
@@ -717,7 +749,7 @@ class SceneParser {
         }
       }
     }
-    r.finish();
+    finish(r, "display");
   }
 
   void quality(const toml::table& t) {
@@ -783,7 +815,7 @@ class SceneParser {
     const double budget = r.number("shafts_error_budget", 1.0);
     r.check(budget > 0 && budget <= 255, "shafts_error_budget", "must be in (0, 255] levels, got " + fmt(budget));
     scene_.quality["shafts_error_budget"] = Knob{false, budget};
-    r.finish();
+    finish(r, "quality");
   }
 };
 

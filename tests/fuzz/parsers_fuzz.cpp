@@ -13,9 +13,20 @@
 #include <string>
 
 #include "jobs/job.h"
+#include "scene/model_keys.h"
 #include "scene/scene_parser.h"
 #include "scene/set_option.h"
 #include "util/error.h"
+
+// The parsers alone are linked, not the passes whose descriptors declare the models' scene keys
+// (scene/model_keys.h): the fuzzer declares one key of each type in its place, so that the parser's
+// reading of declared keys is fuzzed too.
+const std::vector<seasim::ModelKey>& seasim::modelSceneKeys() {
+  static const std::vector<ModelKey> keys = {
+      {"surface", "fuzz_switch", ModelKey::Type::Boolean, 0.0, 0.0, 0.0, ""},
+      {"sea", "fuzz_number", ModelKey::Type::Number, 1.0, 0.0, 10.0, "m"}};
+  return keys;
+}
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (size < 1) return 0;

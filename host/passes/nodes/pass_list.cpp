@@ -1,35 +1,39 @@
 // pass_list.cpp — every shipped model's descriptor, in the order its passes run. A new model adds
-// its node file (host/passes/nodes/<model>_node.cpp) and one line here.
+// its node file (host/passes/nodes/<model>_node.cpp, which defines <model>Descriptor()) and one line
+// here, X(<model>Descriptor), at its place in the order.
 #include "plan/pass_descriptor.h"
+
+// Order matters where one pass reads what another writes: the ocean before its caustics, the
+// caustics before the G-buffer that reads them, the shading before what adds into its "rgb".
+#define SEASIM_SHIPPED_PASSES(X)        \
+  X(shaftsRaycastDescriptor)            \
+  X(oceanDescriptor)                    \
+  X(shadowMapsDescriptor)               \
+  X(causticsDescriptor)                 \
+  X(raycastDescriptor)                  \
+  X(froxelDescriptor)                   \
+  X(fourFlowDescriptor)                 \
+  X(seaSingleDescriptor)                \
+  X(seaSecondDescriptor)                \
+  X(whitecapsDescriptor)                \
+  X(shaftsDescriptor)                   \
+  X(kdMultipleDescriptor)               \
+  X(waterSpreadDescriptor)              \
+  X(underwaterLampsDescriptor)          \
+  X(geometryLayersDescriptor)           \
+  X(effectiveCoefficientsDescriptor)    \
+  X(nonfiniteCheckDescriptor)
 
 namespace seasim {
 
-PassDescriptor shaftsRaycastDescriptor();
-PassDescriptor oceanDescriptor();
-PassDescriptor shadowMapsDescriptor();
-PassDescriptor causticsDescriptor();
-PassDescriptor raycastDescriptor();
-PassDescriptor froxelDescriptor();
-PassDescriptor fourFlowDescriptor();
-PassDescriptor seaSingleDescriptor();
-PassDescriptor seaSecondDescriptor();
-PassDescriptor shaftsDescriptor();
-PassDescriptor kdMultipleDescriptor();
-PassDescriptor waterSpreadDescriptor();
-PassDescriptor underwaterLampsDescriptor();
-PassDescriptor geometryLayersDescriptor();
-PassDescriptor effectiveCoefficientsDescriptor();
-PassDescriptor nonfiniteCheckDescriptor();
+#define SEASIM_DECLARE_DESCRIPTOR(make) PassDescriptor make();
+SEASIM_SHIPPED_PASSES(SEASIM_DECLARE_DESCRIPTOR)
+#undef SEASIM_DECLARE_DESCRIPTOR
 
 const std::vector<PassDescriptor>& passDescriptors() {
-  // Order matters where one pass reads what another writes: the ocean before its caustics, the
-  // caustics before the G-buffer that reads them, the shading before what adds into its "rgb".
-  static const std::vector<PassDescriptor> list = {
-      shaftsRaycastDescriptor(), oceanDescriptor(),      shadowMapsDescriptor(),   causticsDescriptor(),
-      raycastDescriptor(),       froxelDescriptor(),     fourFlowDescriptor(),     seaSingleDescriptor(),
-      seaSecondDescriptor(),     shaftsDescriptor(),     kdMultipleDescriptor(),   waterSpreadDescriptor(),
-      underwaterLampsDescriptor(), geometryLayersDescriptor(), effectiveCoefficientsDescriptor(),
-      nonfiniteCheckDescriptor()};
+#define SEASIM_LIST_DESCRIPTOR(make) make(),
+  static const std::vector<PassDescriptor> list = {SEASIM_SHIPPED_PASSES(SEASIM_LIST_DESCRIPTOR)};
+#undef SEASIM_LIST_DESCRIPTOR
   return list;
 }
 
