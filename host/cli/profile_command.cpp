@@ -270,6 +270,9 @@ int cmdCanonicalProblems(const CanonicalProblemsCmd& cmd) {
   }
   if (!mc.empty()) {
     md += sweep + "\n## Monte Carlo reference\n\n" +
+          "The next-event estimator of host/radiometry/light_profile_mc.h (expected scores at every collision,\n"
+          "L_u the mean radiance within 5 deg of the nadir, a weight window in depth); standard errors from 64\n"
+          "independent batches of photons (host/reference/batch_error.h).\n\n" +
           canonicalTableMarkdown(mc, "Monte Carlo, " + std::to_string(cmd.photons) + " photons per problem", mc_seconds) +
           "\n";
     int fails = 0, judged = 0;
