@@ -7,10 +7,12 @@
 
 #include "io/atomic_file.h"
 #include "io/csv.h"
+#include "io/image_io.h"
 #include "io/svg_plot.h"
 #include "radiometry/canonical_problems.h"
 #include "radiometry/light_profile.h"
 #include "radiometry/light_profile_mc.h"
+#include "radiometry/radiance_distribution.h"
 #include "scene/scene_parser.h"
 #include "scene/set_option.h"
 #include "scene/water_phase.h"
@@ -90,6 +92,10 @@ int cmdProfile(const ProfileCmd& cmd) {
   if (!mc && cmd.solver != "discrete_ordinates")
     throw RuntimeError("profile: --solver must be discrete_ordinates or monte_carlo, got '" + cmd.solver + "'");
   if (mc && cmd.photons < 100) throw RuntimeError("profile: --photons must be >= 100");
+  if (!cmd.radiance_exr.empty() && (cmd.radiance_rows < 2 || cmd.radiance_rows % 2 || cmd.radiance_rows > 1800))
+    throw RuntimeError("profile: --radiance-rows must be even, in [2, 1800]");
+  if (!cmd.radiance_exr.empty() && cmd.radiance_photons < 100)
+    throw RuntimeError("profile: --radiance-photons must be >= 100");
   std::vector<Override> overrides;
   for (const std::string& s : cmd.sets) overrides.push_back(parseSetOption(s));
   const Scene scene = loadScene(cmd.scene, overrides);
@@ -115,6 +121,7 @@ int cmdProfile(const ProfileCmd& cmd) {
   const std::vector<double> sky_air = sky.horizontalIrradiance(), sky_water = sky.transmittedIrradiance(scene.water.ior);
 
   std::vector<Channel> bands;
+  std::vector<RadianceDistribution> radiance;  // per band, when the EXR is asked for
   for (size_t i = 0; i < grid.size(); ++i) {
     PlaneParallelWater w;
     w.a = water.a[i];
@@ -150,6 +157,42 @@ int cmdProfile(const ProfileCmd& cmd) {
       c.p = solveLightProfile(w, phase, depths, cmd.streams);
     }
     bands.push_back(std::move(c));
+    if (!cmd.radiance_exr.empty()) {
+      RadianceDistributionSettings rs;
+      rs.n_theta = cmd.radiance_rows;
+      rs.n_phi = 2 * cmd.radiance_rows;
+      rs.photons = cmd.radiance_photons;
+      rs.seed = static_cast<unsigned>(i + 1);
+      radiance.push_back(solveRadianceDistribution(w, phase, depths, rs));
+    }
+  }
+  // The radiance EXR: per depth the sensor's R, G, B and their standard errors (independent bands: the
+  // variances add with the weights squared), layers named z<depth>m and z<depth>m_se.
+  Image radiance_image;
+  if (!radiance.empty()) {
+    const int rows = cmd.radiance_rows, cols = 2 * cmd.radiance_rows;
+    radiance_image.resize(cols, rows, static_cast<int>(6 * depths.size()));
+    for (size_t k = 0; k < depths.size(); ++k) {
+      char layer[48];
+      std::snprintf(layer, sizeof layer, "z%gm", depths[k]);
+      for (const char* ch : {".R", ".G", ".B"}) radiance_image.channel_names.push_back(std::string(layer) + ch);
+      for (const char* ch : {".R", ".G", ".B"}) radiance_image.channel_names.push_back(std::string(layer) + "_se" + ch);
+      const std::vector<double>* weights[3] = {&sensor.to_r, &sensor.to_g, &sensor.to_b};
+      for (int y = 0; y < rows; ++y)
+        for (int x = 0; x < cols; ++x) {
+          const size_t q = static_cast<size_t>(y) * cols + x;
+          for (int ch = 0; ch < 3; ++ch) {
+            double v = 0, var = 0;
+            for (size_t i = 0; i < radiance.size(); ++i) {
+              const double wi = (*weights[ch])[i];
+              v += wi * radiance[i].radiance[k][q];
+              var += wi * wi * radiance[i].standard_error[k][q] * radiance[i].standard_error[k][q];
+            }
+            radiance_image.at(x, y, static_cast<int>(6 * k) + ch) = static_cast<float>(v);
+            radiance_image.at(x, y, static_cast<int>(6 * k) + 3 + ch) = static_cast<float>(std::sqrt(var));
+          }
+        }
+    }
   }
   std::vector<Channel> channels = bands;
   channels.push_back(weighted("sensor_r", bands, sensor.to_r));
@@ -177,6 +220,8 @@ int cmdProfile(const ProfileCmd& cmd) {
       csv.addRow(std::move(row));
     }
   }
+  // Written before the CSV and the plot: a failure here leaves none of them.
+  if (!radiance.empty()) writeExr(cmd.radiance_exr, radiance_image);
   if (!cmd.plot.empty()) {
     PlotSpec spec;
     spec.title = "Light profile of " + cmd.scene + " (" + phase.name() + " phase, " +
