@@ -3,12 +3,14 @@
 // from it, the SVG plot; the Monte Carlo solver's standard-error columns; bad input (a negative depth, an
 // unknown solver, a phase key misused) exits non-zero naming the problem and writes nothing; and images
 // and radiometry agree: the path tracer's camera looking straight down at 3 m (tests/data/radiometry/
-// nadir_view.toml) reads the profile's L_u at 3 m through the same sensor.
+// nadir_view.toml) reads the profile's L_u at 3 m through the same sensor; the radiance EXR's hemisphere
+// integrals; a render writing profile.csv when its scene asks for outputs.profile_depths, and only then.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -123,6 +125,37 @@ TEST_F(ProfileCli, RadianceExrIntegratesToTheIrradiances) {
       }
     EXPECT_TRUE(found) << layer;
   }
+}
+
+// A render whose scene asks for outputs.profile_depths: `seasim plan` shows the light_profile pass, the
+// render writes profile.csv beside the image (the same CSV as `seasim profile`, listed in report.json),
+// and without the key neither appears.
+TEST_F(ProfileCli, RenderWritesTheProfileWhenTheSceneAsks) {
+  const std::string small = " --set camera.width=16 --set camera.height=9 --set spectral.count=3 --device pocl";
+  const std::string asks = " --set 'outputs.profile_depths=[0.0, 2.0, 5.0]'";
+  auto plan = seasim_test::runCommand(kBinary + " plan " + kScene + asks);
+  ASSERT_EQ(plan.code, 0) << plan.output;
+  EXPECT_NE(plan.output.find("light_profile"), std::string::npos) << plan.output;
+  plan = seasim_test::runCommand(kBinary + " plan " + kScene);
+  ASSERT_EQ(plan.code, 0) << plan.output;
+  EXPECT_EQ(plan.output.find("light_profile"), std::string::npos) << plan.output;
+
+  const fs::path out = dir_ / "with", csv = dir_ / "cli.csv";
+  auto r = seasim_test::runCommand(kBinary + " render " + kScene + " -o " + out.string() + small + asks);
+  ASSERT_EQ(r.code, 0) << r.output;
+  ASSERT_TRUE(fs::exists(out / "profile.csv"));
+  std::ifstream report(out / "report.json");
+  const std::string report_text((std::istreambuf_iterator<char>(report)), std::istreambuf_iterator<char>());
+  EXPECT_NE(report_text.find("profile.csv"), std::string::npos);
+  r = seasim_test::runCommand(kBinary + " profile " + kScene + " --depths 0,2,5 --set spectral.count=3 --csv " +
+                              csv.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_EQ(readCsv(out / "profile.csv"), readCsv(csv));
+  EXPECT_EQ(readCsv(csv).size(), 1u + (3 + 3) * 3);
+
+  r = seasim_test::runCommand(kBinary + " render " + kScene + " -o " + (dir_ / "without").string() + small);
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_FALSE(fs::exists(dir_ / "without" / "profile.csv"));
 }
 
 TEST_F(ProfileCli, BadInputWritesNothing) {

@@ -19,6 +19,7 @@ PassDescriptor waterSpreadDescriptor();
 PassDescriptor underwaterLampsDescriptor();
 PassDescriptor geometryLayersDescriptor();
 PassDescriptor effectiveCoefficientsDescriptor();
+PassDescriptor lightProfileDescriptor();
 PassDescriptor nonfiniteCheckDescriptor();
 
 const std::vector<PassDescriptor>& passDescriptors() {
@@ -29,7 +30,7 @@ const std::vector<PassDescriptor>& passDescriptors() {
       raycastDescriptor(),       froxelDescriptor(),     fourFlowDescriptor(),     seaSingleDescriptor(),
       seaSecondDescriptor(),     shaftsDescriptor(),     kdMultipleDescriptor(),   waterSpreadDescriptor(),
       underwaterLampsDescriptor(), geometryLayersDescriptor(), effectiveCoefficientsDescriptor(),
-      nonfiniteCheckDescriptor()};
+      lightProfileDescriptor(),  nonfiniteCheckDescriptor()};
   return list;
 }
 
