@@ -43,7 +43,8 @@
 //   sun's rare deep collisions, which carry most of E_d and E_u there, are sampled often.
 // Where the analog estimator is already good (forward-peaked phase, high albedo: nearly every photon
 // crosses each shallow plane once) the next event's irradiances are no better per photon (Petzold at
-// ω = 0.9: up to 2x the standard error) and each photon costs ~5x the time; its L_u is better everywhere.
+// ω = 0.9: up to 2x the standard error) and each photon costs 3.5-6x the time; its L_u is better everywhere
+// (results/BENCHMARKS.md, "Radiometry").
 // Standard errors from `batches` contiguous, independent blocks of photons (reference/batch_error.h: the
 // spread of the block means; a photon's split copies stay in its block).
 #pragma once
