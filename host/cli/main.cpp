@@ -244,6 +244,10 @@ int main(int argc, char** argv) {
   profile->add_option("--photons", profile_cmd.photons, "Monte Carlo photons per band");
   profile->add_option("--csv", profile_cmd.csv, "CSV output (default: stdout)");
   profile->add_option("--plot", profile_cmd.plot, "SVG plot output");
+  profile->add_option("--radiance-exr", profile_cmd.radiance_exr,
+                      "L(theta, phi) at each depth through the sensor: a layered EXR, theta rows x phi columns (docs/radiometry.md)");
+  profile->add_option("--radiance-rows", profile_cmd.radiance_rows, "The radiance EXR's theta rows (even; columns: twice as many)");
+  profile->add_option("--radiance-photons", profile_cmd.radiance_photons, "Monte Carlo photons per band for the radiance EXR");
   profile->add_option("--set", profile_cmd.sets, "Override a scene key: key=value (repeatable)");
   seasim::CanonicalProblemsCmd canonical_cmd;
   auto* canonical = app.add_subcommand(

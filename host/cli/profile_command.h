@@ -1,7 +1,8 @@
 // profile_command.h — `seasim profile SCENE`: the plane-parallel light field of the scene's water, sky,
 // sun, flat surface and bottom (host/radiometry/light_profile.h) at the depths asked, per wavelength
 // band and through the scene's sensor: E_d, E_u, E_0d, E_0u, L_u, R = E_u/E_d, K_d and K_u between
-// consecutive depths, and L_w, R_rs above the surface. CSV (written atomically) and an SVG plot.
+// consecutive depths, and L_w, R_rs above the surface. CSV (written atomically) and an SVG plot; optionally
+// the radiance distribution L(θ, φ) at each depth as a layered EXR (docs/radiometry.md).
 // `seasim canonical-problems`: Mobley et al. (1993) problems 1, 2 and 6 against the published codes,
 // by the discrete ordinates at each stream count and by the Monte Carlo reference; and the discrete
 // ordinates' difference from the Monte Carlo by stream count with their time (results/canonical_problems/README.md).
@@ -18,6 +19,11 @@ struct ProfileCmd {
   std::string solver = "discrete_ordinates";   // or "monte_carlo" (the reference, with standard errors)
   long long photons = 1000000;                 // monte_carlo only
   std::string csv, plot;
+  // L(θ, φ) at the depths through the sensor as a layered EXR (radiance_distribution.h's grid:
+  // radiance_rows θ rows by 2 radiance_rows φ columns), by radiance_photons per band of 3-D Monte Carlo.
+  std::string radiance_exr;
+  int radiance_rows = 90;
+  long long radiance_photons = 200000;
   std::vector<std::string> sets;  // scene overrides key=value
 };
 

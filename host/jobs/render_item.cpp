@@ -132,6 +132,10 @@ nlohmann::json renderItem(Device& device, Renderer& renderer, const ItemOutputs&
     files.push_back(fs::path(path).filename().string());
     killMidItemIfAsked(fs::path(dir).filename().string());  // tests only (jobs/test_hooks.h)
   }
+  for (const TextOutput& t : frame.texts) {  // the passes' text files (render/text_output.h)
+    writeTextAtomic(dir + "/" + t.file_name, t.text);
+    files.push_back(t.file_name);
+  }
 
   nlohmann::json report = frameReport(device, scene, plan, frame);
   report["outputs"] = files;

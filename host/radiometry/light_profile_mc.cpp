@@ -3,60 +3,106 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "math/kernel_math.h"
+#include "reference/batch_error.h"
 
 namespace seasim {
 namespace {
 
 namespace kd = kmath_d;
 constexpr double kPi = 3.14159265358979323846;
+constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// One batch's sums per depth (W m^-2 per photon weight), in the order of LightAtDepth's fields.
-struct Tally {
-  std::vector<double> e_d, e_u, e_0d, e_0u, l_u;
-  explicit Tally(size_t n) : e_d(n, 0.0), e_u(n, 0.0), e_0d(n, 0.0), e_0u(n, 0.0), l_u(n, 0.0) {}
+// The scored quantities, in the order of LightAtDepth's fields; one photon's scores at [field * depths + k].
+enum Field { kEd, kEu, kE0d, kE0u, kLu, kFields };
+
+struct Geometry {
+  const std::vector<double>& z;  // the depths
+  std::vector<double> lo, hi;    // the E_0 layers [z - Δ, z + Δ] clipped to the water
+  double bottom;                 // m; 0: none
+  double c;
+  double cap_cos, cap_solid;     // L_u's cap: cos of its half-angle, its solid angle
+  // Depths on the bottom: E_0u there is the Lambertian bottom's exactly, 2 E_u (the layer's mean would be
+  // low by ~1.5 %: E_0u falls as E_2(c x) above the bottom, steepest at it).
+  std::vector<char> on_bottom;
+  size_t n() const { return z.size(); }
+  bool layerScores(size_t k, double mu) const { return !(mu < 0 && on_bottom[k]); }
 };
 
-struct Walk {
-  const std::vector<double>& depths;
-  double bottom;                // m; 0: none
-  double layer;                 // Δ, m
-  double cap_cos, cap_solid;    // L_u's cap: cos of its half-angle, its solid angle
-  Tally& t;
+// The analog estimator's scores of what a photon does (light_profile_mc.h).
+struct AnalogWalk {
+  const Geometry& g;
+  std::vector<double>& s;
 
-  // The segment from z0 to z1 travelled with direction cosine mu (> 0 down) by weight w: plane crossings
-  // and track lengths.
+  // The segment from z0 to z1 travelled with direction cosine mu (> 0 down) by weight w.
   void segment(double z0, double z1, double mu, double w) const {
     const double lo = std::min(z0, z1), hi = std::max(z0, z1);
-    for (size_t k = 0; k < depths.size(); ++k) {
-      const double z = depths[k];
+    for (size_t k = 0; k < g.n(); ++k) {
+      const double z = g.z[k];
       // A crossing counts when the plane lies between the start (excluded: leaving a boundary is counted
       // by leaves()) and the end (included: arriving on the surface or the bottom is a crossing).
-      if (mu > 0 ? (z > z0 && z <= z1) : (z >= z1 && z < z0)) {
-        if (mu > 0) t.e_d[k] += w;
-        else {
-          t.e_u[k] += w;
-          if (-mu >= cap_cos) t.l_u[k] += w / (-mu * cap_solid);
-        }
-      }
-      const double a = std::max(z - layer, 0.0), b = bottom > 0 ? std::min(z + layer, bottom) : z + layer;
-      const double overlap = std::min(hi, b) - std::max(lo, a);
-      if (overlap > 0) (mu > 0 ? t.e_0d[k] : t.e_0u[k]) += w * overlap / (std::abs(mu) * (b - a));
+      if (mu > 0 ? (z > z0 && z <= z1) : (z >= z1 && z < z0)) cross(k, mu, w);
+      const double overlap = std::min(hi, g.hi[k]) - std::max(lo, g.lo[k]);
+      if (overlap > 0 && g.layerScores(k, mu)) s[(mu > 0 ? kE0d : kE0u) * g.n() + k] += w * overlap / (std::abs(mu) * (g.hi[k] - g.lo[k]));
     }
   }
   // A photon leaving a boundary plane z_b (0 or the bottom) with direction cosine mu: the planes at z_b.
   void leaves(double z_b, double mu, double w) const {
-    for (size_t k = 0; k < depths.size(); ++k)
-      if (depths[k] == z_b) {
-        if (mu > 0) t.e_d[k] += w;
-        else {
-          t.e_u[k] += w;
-          if (-mu >= cap_cos) t.l_u[k] += w / (-mu * cap_solid);
-        }
+    for (size_t k = 0; k < g.n(); ++k)
+      if (g.z[k] == z_b) {
+        cross(k, mu, w);
+        if (g.on_bottom[k] && mu < 0) s[kE0u * g.n() + k] += 2 * w;  // a Lambertian bottom: E_0u = 2 E_u
       }
   }
+  void cross(size_t k, double mu, double w) const {
+    if (mu > 0) {
+      s[kEd * g.n() + k] += w;
+    } else {
+      s[kEu * g.n() + k] += w;
+      if (-mu >= g.cap_cos) s[kLu * g.n() + k] += w / (-mu * g.cap_solid);
+    }
+  }
+};
+
+// The next-event estimator's expected scores of a flight from z0 with direction cosine mu and weight w,
+// over its exponential free path (P(s) = e^{-c s}) until the surface or the bottom: planes ahead (the
+// start included) their transmittance, layers ahead their expected track length, and, going up within the
+// cap, the radiance each plane sees along it. Adds w times these to s.
+void expectedFlight(const Geometry& g, double z0, double mu, double w, std::vector<double>& s) {
+  if (std::abs(mu) < 1e-12 || w == 0) return;
+  const double s_max = mu > 0 ? (g.bottom > 0 ? (g.bottom - z0) / mu : kInf) : z0 / -mu;
+  const bool in_cap = -mu >= g.cap_cos;
+  const size_t n = g.n();
+  for (size_t k = 0; k < n; ++k) {
+    const double dist = (g.z[k] - z0) / mu;
+    if (dist >= 0 && dist <= s_max) {
+      const double t = std::exp(-g.c * dist);
+      if (mu > 0) {
+        s[kEd * n + k] += w * t;
+      } else {
+        s[kEu * n + k] += w * t;
+        if (in_cap) s[kLu * n + k] += w * t / (-mu * g.cap_solid);
+      }
+    }
+    double sa = mu > 0 ? (g.lo[k] - z0) / mu : (z0 - g.hi[k]) / -mu;
+    double sb = mu > 0 ? (g.hi[k] - z0) / mu : (z0 - g.lo[k]) / -mu;
+    sa = std::max(sa, 0.0);
+    sb = std::min(sb, s_max);
+    if (sb > sa && g.layerScores(k, mu)) {
+      // ∫_{sa}^{sb} e^{-c s} ds without cancellation when the layer is thin.
+      const double track = std::exp(-g.c * sa) * -std::expm1(-g.c * (sb - sa)) / g.c;
+      s[(mu > 0 ? kE0d : kE0u) * n + k] += w * track / (g.hi[k] - g.lo[k]);
+    }
+  }
+}
+
+// One particle of the next-event walk: a photon or a split copy, with its own random stream.
+struct Particle {
+  double z, mu, w;
+  unsigned key, dim;
 };
 
 }  // namespace
@@ -66,15 +112,29 @@ LightProfileMc solveLightProfileMonteCarlo(const PlaneParallelWater& water, cons
   if (s.photons < s.batches || s.batches < 2) throw std::invalid_argument("monte carlo: need photons >= batches >= 2");
   if (!(water.a >= 0 && water.b >= 0 && water.a + water.b > 0))
     throw std::invalid_argument("monte carlo: a, b must be >= 0 with c > 0");
+  if (!(s.cap_deg > 0 && s.cap_deg < 90 && s.local_cap_deg > 0 && s.local_cap_deg < 90))
+    throw std::invalid_argument("monte carlo: cap half-angles must be in (0, 90) degrees");
   for (double z : depths)
     if (!(z >= 0) || (water.bottom_depth > 0 && z > water.bottom_depth))
       throw std::invalid_argument("monte carlo: depths must lie in the water");
   const auto t0 = std::chrono::steady_clock::now();
+  const bool nee = s.estimator == MonteCarloSettings::Estimator::NextEvent;
   const double c = water.a + water.b, omega = water.b / c, n = water.ior;
   const double bottom = water.bottom_depth > 0 ? water.bottom_depth : 0.0;
   double deepest = 0;
   for (double z : depths) deepest = std::max(deepest, z);
   const double z_kill = bottom > 0 ? 2 * bottom + 1 : deepest + 40 / c;  // below it no light returns (e^-40)
+
+  Geometry geo{depths, {}, {}, bottom, c, 0, 0, {}};
+  const double layer = 0.005 / c;
+  for (double z : depths) {
+    geo.on_bottom.push_back(bottom > 0 && z == bottom);
+    geo.lo.push_back(std::max(z - layer, 0.0));
+    geo.hi.push_back(bottom > 0 ? std::min(z + layer, bottom) : z + layer);
+  }
+  geo.cap_cos = std::cos((nee ? s.local_cap_deg : s.cap_deg) * kPi / 180);
+  geo.cap_solid = 2 * kPi * (1 - geo.cap_cos);
+  const size_t nd = depths.size(), nv = kFields * nd;
 
   // The sources just below the surface (as light_profile.cpp's).
   const double mu_air = std::cos(water.sun_zenith);
@@ -83,98 +143,228 @@ LightProfileMc solveLightProfileMonteCarlo(const PlaneParallelWater& water, cons
   const double t_sky = uniformSkyTransmittance(n);
   const double e_sky0 = water.sky_transmitted >= 0 ? water.sky_transmitted : water.sky_irradiance * t_sky;
   const double flux = e_sun0 + e_sky0;
-  const double w0 = flux / static_cast<double>(s.photons) * s.batches;  // one batch's estimate per photon
+  const double w0 = flux;  // each photon's scores are one sample of the estimate
 
   const bool hg = phase.kind() == PhaseFunction::Kind::HenyeyGreenstein;
   const double g = hg ? phase.asymmetry() : 0.0;
-  const int table_size = 8192;
+  const int table_size = 8192, value_size = 4096;
   const std::vector<double> table = hg ? std::vector<double>{} : phase.samplingTable(table_size);
+  const std::vector<double> values = nee ? phase.valueTable(value_size) : std::vector<double>{};
+  auto phase_value = [&](double omc) { return kd::phase_table_value(values.data(), value_size, omc); };
+  // 1 - cos ψ of a phase sample.
+  auto sample_omc = [&](double u) {
+    const double omc = hg ? kd::pt_hg_one_minus_cos(std::abs(g), u) : kd::phase_table_sample_omc(table.data(), table_size, u);
+    return hg && g < 0 ? 2 - omc : omc;
+  };
 
-  std::vector<Tally> batches(s.batches, Tally(depths.size()));
-  const double cap_cos = std::cos(s.cap_deg * kPi / 180);
+  // The bottom's expected scores per unit reflected weight: the flight's over the Lambertian direction,
+  // 2 μ dμ (midpoint rule; the integrands are bounded).
+  std::vector<double> bottom_scores(nv, 0.0);
+  if (nee && bottom > 0) {
+    const int nodes = 20000;
+    for (int i = 0; i < nodes; ++i) {
+      const double mu = (i + 0.5) / nodes;
+      expectedFlight(geo, bottom, -mu, 2 * mu / nodes, bottom_scores);
+    }
+    for (size_t k = 0; k < nd; ++k)
+      if (geo.on_bottom[k]) bottom_scores[kE0u * nd + k] = 2;
+  }
+  // The weight window's target W(z) = w0 e^{-κ min(z, deepest)} (light_profile_mc.h).
+  const double kappa = !nee ? 0.0
+                       : s.importance_per_m >= 0
+                           ? s.importance_per_m
+                           : c * std::min(1.0, std::sqrt(3 * (1 - omega) * (1 - omega * phase.asymmetry())));
+  auto window = [&](double z) { return w0 * std::exp(-kappa * std::min(z, deepest)); };
+  const double spacing = kappa > 0 ? 0.5 / kappa : 0.0;
+  const double plane_limit = bottom > 0 ? std::min(deepest, bottom) : deepest;
+  const int max_split = 16;
+  const size_t max_particles = 1 << 16;  // per photon: beyond it copies are not split (still unbiased)
+
+  BatchMeans batches(nv);
+  std::vector<double> scores(nv), block_mean(nv), block_m2(nv);
+  long long block_n = 0, collisions = 0;
+  int block = 0;
+  std::vector<Particle> stack;
+  const double cap_cos = geo.cap_cos, inv_cap = 1 / geo.cap_solid, inv_sphere = 1 / (4 * kPi);
+
   for (long long i = 0; i < s.photons; ++i) {
-    Tally& tally = batches[i % s.batches];
-    const Walk walk{depths, bottom, 0.005 / c, cap_cos, 2 * kPi * (1 - cap_cos), tally};
+    std::fill(scores.begin(), scores.end(), 0.0);
     const unsigned key = kd::pt_path_key(s.seed, static_cast<unsigned>(i >> 32), static_cast<unsigned>(i));
     unsigned dim = 0;
-    auto u = [&] { return kd::pt_uniform(key, dim++); };
+    auto u0 = [&] { return kd::pt_uniform(key, dim++); };
     double w = w0, mu;
-    if (u() * flux < e_sun0) {
+    if (u0() * flux < e_sun0) {
       mu = mu_w;
     } else {
       // A uniform sky: cosine-distributed in air, weighted by its transmittance relative to the mean, refracted.
-      const double mu_a = std::sqrt(std::max(u(), 1e-300));
+      const double mu_a = std::sqrt(std::max(u0(), 1e-300));
       w *= (1 - kd::fresnel_reflectance(mu_a, 1.0, n)) / t_sky;
       mu = std::sqrt(1 - (1 - mu_a * mu_a) / (n * n));
     }
-    double z = 0;
-    walk.leaves(0, mu, w);
-    for (int step = 0; step < 100000; ++step) {
-      const double dist = kd::pt_sample_distance(c, u());
-      double z1 = z + mu * dist;
-      if (z1 <= 0) {  // the surface from below: Fresnel reflection or escape
-        walk.segment(z, 0, mu, w);
-        if (u() >= kd::fresnel_reflectance(-mu, n, 1.0)) break;
-        mu = -mu;
-        z = 0;
-        walk.leaves(0, mu, w);
-        continue;
+
+    if (!nee) {
+      const AnalogWalk walk{geo, scores};
+      double z = 0;
+      auto u = u0;
+      walk.leaves(0, mu, w);
+      for (int step = 0; step < 100000; ++step) {
+        const double dist = kd::pt_sample_distance(c, u());
+        double z1 = z + mu * dist;
+        if (z1 <= 0) {  // the surface from below: Fresnel reflection or escape
+          walk.segment(z, 0, mu, w);
+          if (u() >= kd::fresnel_reflectance(-mu, n, 1.0)) break;
+          mu = -mu;
+          z = 0;
+          walk.leaves(0, mu, w);
+          continue;
+        }
+        if (bottom > 0 && z1 >= bottom) {  // the Lambertian bottom
+          walk.segment(z, bottom, mu, w);
+          w *= water.bottom_albedo;
+          mu = -std::sqrt(std::max(u(), 1e-300));  // cosine-distributed up
+          z = bottom;
+          walk.leaves(bottom, mu, w);
+        } else {
+          walk.segment(z, z1, mu, w);
+          z = z1;
+          if (z > z_kill) break;
+          ++collisions;
+          w *= omega;
+          // The new direction: 1 - cos ψ from the phase, azimuth uniform; μ' = μ cos ψ + sin θ sin ψ cos φ.
+          const double omc = sample_omc(u());
+          const double sin_psi = std::sqrt(std::max(omc * (2 - omc), 0.0));
+          const double sin_mu = std::sqrt(std::max(1 - mu * mu, 0.0));
+          mu = std::clamp(mu * (1 - omc) + sin_mu * sin_psi * std::cos(2 * kPi * u()), -1.0, 1.0);
+        }
+        if (w < 1e-3 * w0) {  // Russian roulette: unbiased, weight restored on survival
+          if (u() >= 0.1) break;
+          w *= 10;
+        }
+        if (mu == 0) mu = 1e-12;  // a horizontal photon would never cross a plane
       }
-      if (bottom > 0 && z1 >= bottom) {  // the Lambertian bottom
-        walk.segment(z, bottom, mu, w);
-        w *= water.bottom_albedo;
-        mu = -std::sqrt(std::max(u(), 1e-300));  // cosine-distributed up
-        z = bottom;
-        walk.leaves(bottom, mu, w);
-      } else {
-        walk.segment(z, z1, mu, w);
-        z = z1;
-        if (z > z_kill) break;
-        w *= omega;
-        // The new direction: 1 - cos ψ from the phase, azimuth uniform; μ' = μ cos ψ + sin θ sin ψ cos φ.
-        const double omc = hg ? kd::pt_hg_one_minus_cos(std::abs(g), u())
-                              : kd::phase_table_sample_omc(table.data(), table_size, u());
-        const double cos_psi = hg && g < 0 ? omc - 1 : 1 - omc;
-        const double sin_psi = std::sqrt(std::max(omc * (2 - omc), 0.0));
-        const double sin_mu = std::sqrt(std::max(1 - mu * mu, 0.0));
-        mu = std::clamp(mu * cos_psi + sin_mu * sin_psi * std::cos(2 * kPi * u()), -1.0, 1.0);
+    } else {
+      expectedFlight(geo, 0, mu, w, scores);
+      stack.assign(1, Particle{0, mu, w, key, dim});
+      size_t spawned = 1;
+      while (!stack.empty()) {
+        Particle p = stack.back();
+        stack.pop_back();
+        auto u = [&] { return kd::pt_uniform(p.key, p.dim++); };
+        // Splitting or Russian roulette about the window's weight at the particle's depth; false: killed.
+        auto windowed = [&]() {
+          const double target = kappa > 0 ? window(p.z) : 1e-3 * w0;
+          if (kappa > 0 && p.w > 2 * target && spawned < max_particles) {
+            const int copies = std::min(static_cast<int>(p.w / target), max_split);
+            p.w /= copies;
+            for (int j = 1; j < copies; ++j) {
+              const unsigned child = kd::pt_hash(p.key ^ kd::pt_hash(p.dim * 0x9e3779b9u + static_cast<unsigned>(j)));
+              stack.push_back(Particle{p.z, p.mu, p.w, child, 0});
+            }
+            spawned += copies - 1;
+            p.dim++;
+          } else if (p.w < 0.25 * target) {
+            if (u() * target >= p.w) return false;
+            p.w = target;
+          }
+          return true;
+        };
+        for (int step = 0; step < 100000; ++step) {
+          const double z1 = p.z + p.mu * kd::pt_sample_distance(c, u());
+          if (kappa > 0) {
+            // The window's planes every `spacing` down to the deepest depth asked: a flight that reaches one
+            // stops there for the window (the free path is memoryless, so the next flight starts afresh).
+            const double zp = p.mu > 0 ? (std::floor(p.z / spacing + 1e-9) + 1) * spacing
+                                       : (std::ceil(p.z / spacing - 1e-9) - 1) * spacing;
+            if (zp > 0 && zp < plane_limit && (p.mu > 0 ? zp < z1 : zp > z1)) {
+              p.z = zp;
+              if (!windowed()) break;
+              continue;
+            }
+          }
+          if (z1 <= 0) {  // the surface: the reflected share goes on as a weight
+            p.w *= kd::fresnel_reflectance(-p.mu, n, 1.0);
+            p.mu = -p.mu;
+            p.z = 0;
+            expectedFlight(geo, 0, p.mu, p.w, scores);
+            if (p.w == 0 || !windowed()) break;
+            continue;
+          }
+          if (bottom > 0 && z1 >= bottom) {  // the Lambertian bottom: its exact expectation, then a direction
+            p.w *= water.bottom_albedo;
+            for (size_t v = 0; v < nv; ++v) scores[v] += p.w * bottom_scores[v];
+            p.mu = -std::sqrt(std::max(u(), 1e-300));
+            p.z = bottom;
+            if (p.w == 0 || !windowed()) break;
+            continue;
+          }
+          p.z = z1;
+          if (p.z > z_kill) break;
+          ++collisions;
+          // Next-event estimates over the scattered direction: the phase's sample (also the walk's next
+          // direction), a uniform one and one in the cap, by the balance heuristic.
+          const double w_out = p.w * omega;
+          const double sin_mu = std::sqrt(std::max(1 - p.mu * p.mu, 0.0));
+          const double omc = sample_omc(u());
+          const double sin_psi = std::sqrt(std::max(omc * (2 - omc), 0.0));
+          const double mu_next = std::clamp(p.mu * (1 - omc) + sin_mu * sin_psi * std::cos(2 * kPi * u()), -1.0, 1.0);
+          const double mu_sphere = 1 - 2 * u(), phi_sphere = 2 * kPi * u();
+          const double mu_cap = -(1 - u() * (1 - cap_cos)), phi_cap = 2 * kPi * u();
+          auto density = [&](double mu_o, double p_o) {
+            return p_o + inv_sphere + (-mu_o >= cap_cos ? inv_cap : 0.0);
+          };
+          // β̃ towards a direction given by μ_o and the azimuth difference φ: 1 - cos ψ from the two.
+          auto phase_towards = [&](double mu_o, double phi) {
+            const double sin_o = std::sqrt(std::max(1 - mu_o * mu_o, 0.0));
+            return phase_value(1 - (p.mu * mu_o + sin_mu * sin_o * std::cos(phi)));
+          };
+          const double p_next = phase_value(omc);
+          const double p_sphere = phase_towards(mu_sphere, phi_sphere), p_cap = phase_towards(mu_cap, phi_cap);
+          expectedFlight(geo, p.z, mu_next, w_out * p_next / density(mu_next, p_next), scores);
+          expectedFlight(geo, p.z, mu_sphere, w_out * p_sphere / density(mu_sphere, p_sphere), scores);
+          expectedFlight(geo, p.z, mu_cap, w_out * p_cap / density(mu_cap, p_cap), scores);
+          p.w = w_out;
+          p.mu = mu_next == 0 ? 1e-12 : mu_next;
+          if (!windowed()) break;
+        }
       }
-      if (w < 1e-3 * w0) {  // Russian roulette: unbiased, weight restored on survival
-        if (u() >= 0.1) break;
-        w *= 10;
-      }
-      if (mu == 0) mu = 1e-12;  // a horizontal photon would never cross a plane
+    }
+
+    // Welford's update of the block's mean and M2; a block handed over at its last photon.
+    ++block_n;
+    for (size_t v = 0; v < nv; ++v) {
+      const double d = scores[v] - block_mean[v];
+      block_mean[v] += d / static_cast<double>(block_n);
+      block_m2[v] += d * (scores[v] - block_mean[v]);
+    }
+    const long long block_end = (s.photons / s.batches) * (block + 1) + std::min<long long>(block + 1, s.photons % s.batches);
+    if (i + 1 == block_end) {
+      batches.addBlock(block_mean.data(), block_m2.data(), block_n);
+      std::fill(block_mean.begin(), block_mean.end(), 0.0);
+      std::fill(block_m2.begin(), block_m2.end(), 0.0);
+      block_n = 0;
+      ++block;
     }
   }
 
-  // Batch means and standard errors.
   LightProfileMc out;
-  const int nb = s.batches;
-  auto stats = [&](auto field, size_t k, double& mean, double& se) {
-    double sum = 0, sum2 = 0;
-    for (const Tally& t : batches) {
-      const double v = (t.*field)[k];
-      sum += v;
-      sum2 += v * v;
-    }
-    mean = sum / nb;
-    se = std::sqrt(std::max(sum2 / nb - mean * mean, 0.0) / (nb - 1));
-  };
+  out.collisions = collisions;
   out.mean.e_d_air = water.sun_irradiance * mu_air + water.sky_irradiance;
-  for (size_t k = 0; k < depths.size(); ++k) {
+  for (size_t k = 0; k < nd; ++k) {
     LightAtDepth m, e;
     m.depth = e.depth = depths[k];
-    stats(&Tally::e_d, k, m.e_d, e.e_d);
-    stats(&Tally::e_u, k, m.e_u, e.e_u);
-    stats(&Tally::e_0d, k, m.e_0d, e.e_0d);
-    stats(&Tally::e_0u, k, m.e_0u, e.e_0u);
-    stats(&Tally::l_u, k, m.l_u, e.l_u);
+    double LightAtDepth::*fields[kFields] = {&LightAtDepth::e_d, &LightAtDepth::e_u, &LightAtDepth::e_0d,
+                                             &LightAtDepth::e_0u, &LightAtDepth::l_u};
+    for (int f = 0; f < kFields; ++f) {
+      const BatchEstimate b = batches.estimate(f * nd + k);
+      m.*fields[f] = b.mean;
+      e.*fields[f] = b.std_error;
+    }
     out.mean.rows.push_back(m);
     out.standard_error.push_back(e);
   }
   // L_w and R_rs from L_u just below the surface, when depth 0 is among those asked.
   const double t0_up = (1 - kd::fresnel_reflectance(1.0, n, 1.0)) / (n * n);
-  for (size_t k = 0; k < depths.size(); ++k)
+  for (size_t k = 0; k < nd; ++k)
     if (depths[k] == 0) {
       out.mean.l_w = out.mean.rows[k].l_u * t0_up;
       out.l_w_se = out.standard_error[k].l_u * t0_up;

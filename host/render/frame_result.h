@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "io/image.h"
+#include "render/text_output.h"
 
 namespace seasim {
 
@@ -20,6 +21,7 @@ struct FrameResult {
   // The ground-truth layers the plan wrote (render/layer_target.h), each target's channels as it named
   // them, in plan order (jobs/layer_image.h orders the asked ones for image.exr); 0 channels: none.
   Image layers;
+  std::vector<TextOutput> texts;      // the text files the plan's passes made (render/text_output.h)
   std::vector<PassTiming> timings;    // the passes that ran for this frame, in plan order
   long long nonfinite = 0;            // NaN/Inf counted on the device by check.cl
   double build_ms = 0.0;              // kernel build (or cache load) time for this frame

@@ -261,6 +261,9 @@ FrameResult Renderer::render() {
     }
   });
   readLayers(device_, resources_, plan_, scene.camera.width, scene.camera.height, result);
+  for (const PassPlan& p : plan_.passes)
+    for (const auto& w : p.writes)
+      if (resources_.holds<TextOutput>(w)) result.texts.push_back(resources_.get<TextOutput>(w));
   result.build_ms = device_.totalBuildMs() - build_before;
   result.wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return result;

@@ -94,6 +94,12 @@ void parseOutputs(TableReader& r, OutputsDesc& out) {
       add(out, name);
     }
   }
+  out.profile_depths = r.numbers("profile_depths");
+  for (size_t i = 0; i < out.profile_depths.size(); ++i) {
+    const double z = out.profile_depths[i];
+    r.check(z >= 0, "profile_depths", "depths must be >= 0 m (0: just below the surface), got " + std::to_string(z));
+    r.check(i == 0 || z > out.profile_depths[i - 1], "profile_depths", "depths must be ascending and distinct");
+  }
   r.finish();
 }
 

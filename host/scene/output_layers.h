@@ -30,12 +30,16 @@ const OutputLayer* findOutputLayer(const std::string& name);
 // outputs.layers as written (validated, duplicates removed, catalogue order).
 struct OutputsDesc {
   std::vector<std::string> layers;
+  // The plane-parallel light profile (radiometry/scene_profile.h) written beside the image as
+  // profile.csv at these depths (m, >= 0, ascending, distinct); empty: none (the light_profile pass).
+  std::vector<double> profile_depths;
   bool wants(const std::string& layer) const;
   bool wantsAny(const std::vector<std::string>& layers) const;
 };
 
-// Reads [outputs] (the caller's TableReader of that table): `layers`, an array of layer names.
-// An unknown name fails at its element's line with the valid names.
+// Reads [outputs] (the caller's TableReader of that table): `layers`, an array of layer names, and
+// `profile_depths`, an array of depths in metres. An unknown name, or a negative or repeated depth, fails
+// at its line.
 void parseOutputs(TableReader& r, OutputsDesc& out);
 
 // Adds layers named outside the scene file (the CLI's --output) to `out`; RuntimeError naming

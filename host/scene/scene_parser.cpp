@@ -50,6 +50,7 @@ constexpr KnobDefault kQualityKnobs[] = {
     {"reference_spp", 64, "seasim reference under water: paths per pixel (without --steps)"},
     {"reference_steps", 200, "seasim reference, sea and shafts: steps per ray (without --steps)"},
     {"fourflow_table_size", 32, "shallow water: (l, h) table resolution of 003 eq. 22-23"},
+    {"profile_streams", 16, "outputs.profile_depths: discrete-ordinates cosines per hemisphere (>= 2)"},
 };
 constexpr long long kMaxKnob = 1 << 20;  // catches typos such as 1e9 planes
 

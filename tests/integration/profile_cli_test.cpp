@@ -3,12 +3,14 @@
 // from it, the SVG plot; the Monte Carlo solver's standard-error columns; bad input (a negative depth, an
 // unknown solver, a phase key misused) exits non-zero naming the problem and writes nothing; and images
 // and radiometry agree: the path tracer's camera looking straight down at 3 m (tests/data/radiometry/
-// nadir_view.toml) reads the profile's L_u at 3 m through the same sensor.
+// nadir_view.toml) reads the profile's L_u at 3 m through the same sensor; the radiance EXR's hemisphere
+// integrals; a render writing profile.csv when its scene asks for outputs.profile_depths, and only then.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -73,6 +75,87 @@ TEST_F(ProfileCli, MonteCarloHasStandardErrors) {
   ASSERT_EQ(rows.size(), 1u + (3 + 3) * 2);
   EXPECT_EQ(rows[0][14], "E_d_se");
   EXPECT_GT(std::stod(rows[1][14]), 0.0);
+}
+
+// The radiance EXR: a layer per depth (R, G, B and their standard errors) on the θ–φ grid; its downward
+// and upward hemisphere integrals ∫ L |cos θ| dΩ are the plane irradiances E_d and E_u, here against the
+// discrete ordinates' in the CSV of the same run (the Monte Carlo's own agree exactly, unit-tested), within
+// 4 x the integral's standard error plus 2 % (the cells' errors added in quadrature: each crossing lands in
+// one cell, so the cells are nearly independent).
+TEST_F(ProfileCli, RadianceExrIntegratesToTheIrradiances) {
+  const fs::path csv = dir_ / "p.csv", exr = dir_ / "l.exr";
+  const int rows_n = 12, cols_n = 24;
+  const auto r = seasim_test::runCommand(kBinary + " profile " + kScene + " --depths 1,5 --set spectral.count=3 --csv " +
+                                         csv.string() + " --radiance-exr " + exr.string() + " --radiance-rows 12" +
+                                         " --radiance-photons 20000");
+  ASSERT_EQ(r.code, 0) << r.output;
+  const seasim::Image img = seasim::readImage(exr.string());
+  ASSERT_EQ(img.width, cols_n);
+  ASSERT_EQ(img.height, rows_n);
+  ASSERT_EQ(img.channels, 12);
+  const auto rows = readCsv(csv);
+  const double pi = 3.14159265358979323846;
+  for (int k = 0; k < 2; ++k) {
+    const std::string layer = k == 0 ? "z1m" : "z5m";
+    int g = -1, g_se = -1;
+    for (int c = 0; c < img.channels; ++c) {
+      if (img.channel_names[c] == layer + ".G") g = c;
+      if (img.channel_names[c] == layer + "_se.G") g_se = c;
+    }
+    ASSERT_GE(g, 0) << layer;
+    ASSERT_GE(g_se, 0) << layer;
+    double e_d = 0, e_u = 0, se_d = 0, se_u = 0;
+    for (int y = 0; y < rows_n; ++y) {
+      const double s0 = std::sin(y * pi / rows_n), s1 = std::sin((y + 1) * pi / rows_n);
+      const double a = std::abs(s1 * s1 - s0 * s0) / 2 * (2 * pi / cols_n);
+      for (int x = 0; x < cols_n; ++x) {
+        (y < rows_n / 2 ? e_d : e_u) += img.at(x, y, g) * a;
+        (y < rows_n / 2 ? se_d : se_u) += std::pow(img.at(x, y, g_se) * a, 2);
+      }
+    }
+    se_d = std::sqrt(se_d);
+    se_u = std::sqrt(se_u);
+    EXPECT_LT(se_u, 0.2 * e_u) << layer;
+    bool found = false;
+    for (const auto& row : rows)
+      if (row.size() > 4 && row[0] == "sensor_g" && std::stod(row[2]) == (k == 0 ? 1.0 : 5.0)) {
+        found = true;
+        EXPECT_NEAR(e_d, std::stod(row[3]), 4 * se_d + 0.02 * std::stod(row[3])) << layer << " E_d";
+        EXPECT_NEAR(e_u, std::stod(row[4]), 4 * se_u + 0.02 * std::stod(row[4])) << layer << " E_u";
+      }
+    EXPECT_TRUE(found) << layer;
+  }
+}
+
+// A render whose scene asks for outputs.profile_depths: `seasim plan` shows the light_profile pass, the
+// render writes profile.csv beside the image (the same CSV as `seasim profile`, listed in report.json),
+// and without the key neither appears.
+TEST_F(ProfileCli, RenderWritesTheProfileWhenTheSceneAsks) {
+  const std::string small = " --set camera.width=16 --set camera.height=9 --set spectral.count=3 --device pocl";
+  const std::string asks = " --set 'outputs.profile_depths=[0.0, 2.0, 5.0]'";
+  auto plan = seasim_test::runCommand(kBinary + " plan " + kScene + asks);
+  ASSERT_EQ(plan.code, 0) << plan.output;
+  EXPECT_NE(plan.output.find("light_profile"), std::string::npos) << plan.output;
+  plan = seasim_test::runCommand(kBinary + " plan " + kScene);
+  ASSERT_EQ(plan.code, 0) << plan.output;
+  EXPECT_EQ(plan.output.find("light_profile"), std::string::npos) << plan.output;
+
+  const fs::path out = dir_ / "with", csv = dir_ / "cli.csv";
+  auto r = seasim_test::runCommand(kBinary + " render " + kScene + " -o " + out.string() + small + asks);
+  ASSERT_EQ(r.code, 0) << r.output;
+  ASSERT_TRUE(fs::exists(out / "profile.csv"));
+  std::ifstream report(out / "report.json");
+  const std::string report_text((std::istreambuf_iterator<char>(report)), std::istreambuf_iterator<char>());
+  EXPECT_NE(report_text.find("profile.csv"), std::string::npos);
+  r = seasim_test::runCommand(kBinary + " profile " + kScene + " --depths 0,2,5 --set spectral.count=3 --csv " +
+                              csv.string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_EQ(readCsv(out / "profile.csv"), readCsv(csv));
+  EXPECT_EQ(readCsv(csv).size(), 1u + (3 + 3) * 3);
+
+  r = seasim_test::runCommand(kBinary + " render " + kScene + " -o " + (dir_ / "without").string() + small);
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_FALSE(fs::exists(dir_ / "without" / "profile.csv"));
 }
 
 TEST_F(ProfileCli, BadInputWritesNothing) {

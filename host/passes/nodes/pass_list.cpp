@@ -22,6 +22,7 @@
   X(underwaterLampsDescriptor)          \
   X(geometryLayersDescriptor)           \
   X(effectiveCoefficientsDescriptor)    \
+  X(lightProfileDescriptor)             \
   X(nonfiniteCheckDescriptor)
 
 namespace seasim {
