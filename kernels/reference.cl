@@ -44,9 +44,10 @@
  * for a seed whatever the batching. Dimensions: 0, 1 pixel jitter; 2 band; then per event in order.
  *
  * Inputs: UwParams, UwBand[band_count], UwObject[object_count], albedo[object * band_count + band].
- * In/out per pixel: mean (float4: RGB mean, A unused) and m2 (float4: RGB sum of squared deviations
- * from the mean), merged per launch with the batch's own mean/M2 (Chan, Golub, LeVeque 1979), stable in
- * float where a plain Σx² - n mean² would cancel; sample_start samples are already in them.
+ * In/out per pixel: mean (float4: RGB mean, A the number of samples in it) and m2 (float4: RGB sum of
+ * squared deviations from the mean), merged per launch with the launch's own mean/M2 (Chan, Golub,
+ * LeVeque 1979), stable in float where a plain Σx² - n mean² would cancel. sample_start numbers the
+ * paths (the random numbers), A counts what the pair holds: zeroed by the host at each block of paths.
  * Defines: SEASIM_HAS_OBJECTS (0/1), SEASIM_PT_ISOTROPIC (0/1: phase 1/(4π) instead of HG),
  * SEASIM_PT_JITTER (0/1: 0 traces every sample through the pixel centre, for tests against quadrature).
  * Stiff cases: c = 0 (free flight UW_INFINITE; a ray into deep water then ends), a = 0 (albedo 1: only
@@ -306,11 +307,14 @@ __kernel void reference_path_trace(__constant UwParams* p, __global const UwBand
     b_mean += delta / (float)(j + 1);
     b_m2 += delta * (s - b_mean);
   }
-  const float na = (float)sample_start, nb = (float)samples, n = na + nb;
-  const float3 a_mean = mean[pixel].xyz, a_m2 = m2[pixel].xyz;
+  /* mean.w counts the samples already merged: the host zeroes the pair to start a new block of paths
+   * (its independent batches, host/reference/batch_error.h) while sample_start goes on numbering them. */
+  const float4 a = mean[pixel];
+  const float na = a.w, nb = (float)samples, n = na + nb;
+  const float3 a_mean = a.xyz, a_m2 = m2[pixel].xyz;
   const float3 delta = b_mean - a_mean;
-  const float3 new_mean = sample_start > 0 ? a_mean + delta * (nb / n) : b_mean;
-  const float3 new_m2 = sample_start > 0 ? a_m2 + b_m2 + delta * delta * (na * nb / n) : b_m2;
-  mean[pixel] = (float4)(new_mean, 0.0f);
+  const float3 new_mean = na > 0.0f ? a_mean + delta * (nb / n) : b_mean;
+  const float3 new_m2 = na > 0.0f ? a_m2 + b_m2 + delta * delta * (na * nb / n) : b_m2;
+  mean[pixel] = (float4)(new_mean, n);
   m2[pixel] = (float4)(new_m2, 0.0f);
 }

@@ -652,9 +652,11 @@ std::string writeSceneReference(const Scene& scene, const ReferenceCmd& cmd, con
     writeSettingsSidecar(out, scene, "seasim reference (path tracer)");
     std::snprintf(line, sizeof line,
                   "reference %s: %d paths per pixel (%s, seed %u), %.1f ms on %s; noise: mean standard error %.3g "
-                  "(image mean %.3g), per pixel in %s",
+                  "(image mean %.3g +- %.3g; from %d blocks of paths, worth %.0f independent paths per pixel), "
+                  "per pixel in %s",
                   out.c_str(), r.steps, r.max_bounces == 1 ? "single scattering" : "multiple scattering", r.seed, r.ms,
-                  r.device_name.c_str(), r.mean_std_error, r.image_mean, se_path.c_str());
+                  r.device_name.c_str(), r.mean_std_error, r.image_mean, r.image_mean_std_error, r.blocks,
+                  r.effective_samples, se_path.c_str());
     return line;
   }
   if (cmd.seed >= 0) std::fprintf(stderr, "reference: --seed ignored: this reference is deterministic (no random paths)\n");

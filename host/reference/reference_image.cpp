@@ -70,6 +70,9 @@ ReferenceImage renderReference(const Scene& scene, const ReferenceOptions& optio
     out.ms = r.ms;
     out.mean_std_error = r.mean_std_error;
     out.image_mean = r.image_mean;
+    out.image_mean_std_error = r.image_mean_std_error;
+    out.effective_samples = r.effective_samples;
+    out.blocks = r.blocks;
     out.device_name = device.info().name;
     return out;
   }

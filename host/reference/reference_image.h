@@ -22,13 +22,17 @@ struct ReferenceOptions {
 
 struct ReferenceImage {
   Image rgb;
-  Image std_error;         // path tracer: the per-pixel standard error; empty for the deterministic ones
+  Image std_error;         // path tracer: the per-pixel standard error (from independent blocks of
+                           // paths, reference/batch_error.h); empty for the deterministic ones
   std::string method;      // "path tracer", "ray-march" or "quadrature"
   int steps = 0;           // paths per pixel, or ray-march / quadrature steps
   unsigned seed = 0;       // path tracer
   int max_bounces = 0;     // path tracer (1: single scattering)
   double ms = 0.0;
   double mean_std_error = 0.0, image_mean = 0.0;  // path tracer
+  double image_mean_std_error = 0.0;              // path tracer: from the blocks' image means
+  double effective_samples = 0.0;                 // path tracer: paths per pixel the error is worth
+  int blocks = 0;                                 // path tracer: independent blocks of paths
   std::string device_name;                        // path tracer; "" on the CPU
 };
 

@@ -9,6 +9,7 @@
 
 #include "device/enqueue.h"
 #include "math/kernel_math.h"
+#include "reference/batch_error.h"
 #include "util/error.h"
 
 namespace seasim {
@@ -56,9 +57,12 @@ UnderwaterReferenceResult renderUnderwaterReference(Device& device, const Underw
   const UwParams& p = setup.params;
   const size_t pixels = static_cast<size_t>(p.width) * static_cast<size_t>(p.height);
   const int total = settings.samples_per_pixel;
+  const int blocks = std::clamp(settings.blocks, 1, total);
 
   UnderwaterReferenceResult result;
   std::vector<cl_float4> mean(pixels), m2(pixels);
+  BatchMeans per_value(3 * pixels);  // per pixel and channel
+  BatchMeans per_image(1);           // the blocks' image means
   try {
     const std::vector<std::string> defines = {
         std::string("SEASIM_HAS_OBJECTS=") + (p.object_count > 0 ? "1" : "0"),
@@ -77,9 +81,6 @@ UnderwaterReferenceResult renderUnderwaterReference(Device& device, const Underw
     cl::Buffer mean_buf(ctx, CL_MEM_READ_WRITE, sizeof(cl_float4) * pixels);
     cl::Buffer m2_buf(ctx, CL_MEM_READ_WRITE, sizeof(cl_float4) * pixels);
     cl::CommandQueue& queue = device.queue();
-    const cl_float4 zero{};
-    queue.enqueueFillBuffer(mean_buf, zero, 0, sizeof(cl_float4) * pixels);
-    queue.enqueueFillBuffer(m2_buf, zero, 0, sizeof(cl_float4) * pixels);
     kernel.setArg(0, params);
     kernel.setArg(1, bands);
     kernel.setArg(2, objects);
@@ -104,20 +105,35 @@ UnderwaterReferenceResult renderUnderwaterReference(Device& device, const Underw
     const size_t local = 8;
     const cl::NDRange global((static_cast<size_t>(p.width) + local - 1) / local * local,
                              (static_cast<size_t>(p.height) + local - 1) / local * local);
-    for (int done = 0; done < total;) {
-      const int n = std::min(settings.batch, total - done);
-      kernel.setArg(5, static_cast<cl_int>(done));
-      kernel.setArg(6, static_cast<cl_int>(n));
-      cl::Event event;
-      queue.enqueueNDRangeKernel(kernel, cl::NullRange, global, workGroupFor(device, kernel, cl::NDRange(local, local)),
-                                 nullptr, &event);
-      event.wait();  // one launch at a time: bounded kernel length (GPU watchdogs) and live progress
-      result.ms += eventMs(event);
-      done += n;
-      if (settings.progress) settings.progress(done, total);
+    const cl_float4 zero{};
+    int done = 0;
+    for (int block = 0; block < blocks; ++block) {
+      // Block `block` holds paths [total·block/blocks, total·(block+1)/blocks): the same paths for a
+      // seed whatever the blocking, since sample_start numbers them.
+      const int block_end = static_cast<int>(static_cast<long long>(total) * (block + 1) / blocks);
+      const int block_start = done;
+      queue.enqueueFillBuffer(mean_buf, zero, 0, sizeof(cl_float4) * pixels);
+      queue.enqueueFillBuffer(m2_buf, zero, 0, sizeof(cl_float4) * pixels);
+      while (done < block_end) {
+        const int n = std::min(settings.batch, block_end - done);
+        kernel.setArg(5, static_cast<cl_int>(done));
+        kernel.setArg(6, static_cast<cl_int>(n));
+        cl::Event event;
+        queue.enqueueNDRangeKernel(kernel, cl::NullRange, global,
+                                   workGroupFor(device, kernel, cl::NDRange(local, local)), nullptr, &event);
+        event.wait();  // one launch at a time: bounded kernel length (GPU watchdogs) and live progress
+        result.ms += eventMs(event);
+        done += n;
+        if (settings.progress) settings.progress(done, total);
+      }
+      queue.enqueueReadBuffer(mean_buf, CL_TRUE, 0, sizeof(cl_float4) * pixels, mean.data());
+      queue.enqueueReadBuffer(m2_buf, CL_TRUE, 0, sizeof(cl_float4) * pixels, m2.data());
+      per_value.addBlock(&mean[0].s[0], &m2[0].s[0], 4, block_end - block_start);
+      double image = 0.0;
+      for (size_t i = 0; i < pixels; ++i) image += double(mean[i].s[0]) + double(mean[i].s[1]) + double(mean[i].s[2]);
+      image /= 3.0 * static_cast<double>(pixels);
+      per_image.addBlock(&image, nullptr, block_end - block_start);
     }
-    queue.enqueueReadBuffer(mean_buf, CL_TRUE, 0, sizeof(cl_float4) * pixels, mean.data());
-    queue.enqueueReadBuffer(m2_buf, CL_TRUE, 0, sizeof(cl_float4) * pixels, m2.data());
   } catch (const cl::Error& e) {
     throw DeviceError(std::string("underwater reference (reference.cl): ") + e.what() + " " + clErrorName(e.err()));
   }
@@ -127,21 +143,20 @@ UnderwaterReferenceResult renderUnderwaterReference(Device& device, const Underw
   result.rgb.channel_names = {"R", "G", "B"};
   result.std_error.resize(p.width, p.height, 3);
   result.std_error.channel_names = {"R", "G", "B"};
+  result.blocks = blocks;
   long long nonfinite = 0;
-  double sum = 0, sum_se = 0, sum_se2 = 0;
-  const double n = total;
-  for (size_t i = 0; i < pixels; ++i) {
-    for (int ch = 0; ch < 3; ++ch) {
-      const double m = mean[i].s[ch];
-      // Var of the mean = M2 / (n - 1) / n; with one sample it is unknown and reported as 0.
-      const double se = total > 1 ? std::sqrt(std::max(double(m2[i].s[ch]), 0.0) / ((n - 1) * n)) : 0.0;
-      if (!std::isfinite(m) || !std::isfinite(se)) ++nonfinite;
-      result.rgb.pixels[3 * i + ch] = static_cast<float>(m);
-      result.std_error.pixels[3 * i + ch] = static_cast<float>(se);
-      sum += m;
-      sum_se += se;
-      sum_se2 += se * se;
-    }
+  double sum = 0, sum_se = 0, sum_se2 = 0, sum_sample_se2 = 0;
+  for (size_t i = 0; i < 3 * pixels; ++i) {
+    // With one block the spread is unknown: the per-sample estimate stands in (0 with one sample).
+    const BatchEstimate e = per_value.estimate(i);
+    const double m = e.mean, se = blocks > 1 ? e.std_error : e.sample_std_error;
+    if (!std::isfinite(m) || !std::isfinite(se)) ++nonfinite;
+    result.rgb.pixels[i] = static_cast<float>(m);
+    result.std_error.pixels[i] = static_cast<float>(se);
+    sum += m;
+    sum_se += se;
+    sum_se2 += se * se;
+    sum_sample_se2 += e.sample_std_error * e.sample_std_error;
   }
   if (nonfinite > 0) {
     throw RuntimeError("underwater reference: " + std::to_string(nonfinite) +
@@ -151,7 +166,14 @@ UnderwaterReferenceResult renderUnderwaterReference(Device& device, const Underw
   result.image_mean = sum / values;
   result.mean_std_error = sum_se / values;
   result.rms_std_error = std::sqrt(sum_se2 / values);
-  result.image_mean_std_error = std::sqrt(sum_se2) / values;  // independent pixels: variances add
+  result.image_mean_sample_std_error = std::sqrt(sum_sample_se2) / values;  // independent pixels: variances add
+  const BatchEstimate image = per_image.estimate(0);
+  result.image_mean_std_error = blocks > 1 ? image.std_error : result.image_mean_sample_std_error;
+  result.effective_samples =
+      result.image_mean_std_error > 0
+          ? total * (result.image_mean_sample_std_error / result.image_mean_std_error) *
+                (result.image_mean_sample_std_error / result.image_mean_std_error)
+          : total;
   return result;
 }
 

@@ -3,6 +3,8 @@
 //  * renderUnderwaterReference: the spectral Monte Carlo volumetric path tracer on the device, full
 //    multiple scattering (the reference 002 §6.1 validates against), progressive in batches, with the
 //    standard error of every pixel so error numbers can be quoted beside the reference's own noise.
+//    The errors come from independent blocks of paths (reference/batch_error.h), honest under the heavy
+//    tails of dim, absorbing, forward-scattering water where the per-sample variance is too small.
 //    max_bounces = 1 is its single-scattering mode (the sun beam scattered once, what the froxel pass
 //    integrates).
 //  * underwaterSingleScatteringRay / renderUnderwaterSingleScatteringQuadrature: that single
@@ -35,7 +37,10 @@ struct UnderwaterReferenceSettings {
                                // own shading)
   bool isotropic = false;      // phase 1/(4π) instead of Henyey–Greenstein with UwParams.g
   bool jitter = true;          // false: every path through the pixel centre (tests against quadrature)
-  unsigned seed = 1;           // the same seed traces the same paths, whatever `batch` is
+  unsigned seed = 1;           // the same seed traces the same paths, whatever `batch` or `blocks` is
+  int blocks = 32;             // independent blocks of paths (contiguous sample ranges) whose spread
+                               // gives the standard errors (reference/batch_error.h); clamped to
+                               // samples_per_pixel (1 path per block: the per-sample estimate)
   bool camera_above = false;   // the camera is above the surface (y > 0): the sea seen from above,
                                // R L_sky + (1 - R)/n² × the water's paths (reference.cl); else y < 0
   // The scene's spotlights (underwater/lamps_setup.h: makeUnderwaterLamps), seen by next-event
@@ -46,13 +51,21 @@ struct UnderwaterReferenceSettings {
 
 struct UnderwaterReferenceResult {
   Image rgb;                          // mean linear sensor RGB, Σ_bands L(λ_i) w(λ_i) (002 eq. 4.8)
-  Image std_error;                    // standard error of that mean, per pixel and channel
+  Image std_error;                    // standard error of that mean, per pixel and channel, from the
+                                      // spread of the blocks' means (blocks - 1 degrees of freedom)
   double mean_std_error = 0.0;        // mean of std_error over pixels and channels ("reference noise")
   double rms_std_error = 0.0;         // sqrt(mean std_error²): the RMSE the reference's noise alone adds
   double image_mean = 0.0;            // mean of rgb over pixels and channels
-  double image_mean_std_error = 0.0;  // standard error of image_mean (pixels are independent)
+  double image_mean_std_error = 0.0;  // standard error of image_mean from the spread of the blocks'
+                                      // image means (any correlation between pixels included)
+  double image_mean_sample_std_error = 0.0;  // the same from the per-sample variances, pixels taken
+                                             // as independent (the estimate before blocks)
+  double effective_samples = 0.0;     // paths per pixel whose per-sample variance would give
+                                      // image_mean_std_error: samples when that estimate is honest,
+                                      // fewer when a heavy tail makes it too small (batch_error.h)
   double ms = 0.0;                    // kernel time, summed over launches (profiling events)
   int samples = 0;                    // paths per pixel traced
+  int blocks = 0;                     // independent blocks of paths the errors come from
 };
 
 // Throws RuntimeError for settings or scenes it cannot trace (no samples, camera above the surface,

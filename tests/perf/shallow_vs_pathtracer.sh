@@ -21,8 +21,8 @@ for d in 0.5 1 2 4 8 15 30; do
   "$B/seasim" render "$TMP/lake_flat.toml" --set bottom.depth=$d --set 'shallow.path="exact"' --out "$TMP/ff$d" >/dev/null
   t1=$(date +%s%N)
   ref=$("$B/seasim" reference "$TMP/lake_flat.toml" --set bottom.depth=$d --all-orders --steps "$SPP" -o "$TMP/pt$d.exr" 2>&1)
-  # "noise: mean standard error S (image mean M)": the path tracer's own per-pixel noise, S / M.
-  noise=$(echo "$ref" | sed -n 's/.*mean standard error \([0-9.e+-]*\) (image mean \([0-9.e+-]*\)).*/\1 \2/p' | awk '{ if ($2 > 0) printf "%.4f", $1 / $2 }')
+  # "noise: mean standard error S (image mean M +- ...)": the path tracer's own per-pixel noise, S / M.
+  noise=$(echo "$ref" | sed -n 's/.*mean standard error \([0-9.e+-]*\) (image mean \([0-9.e+-]*\)[ )].*/\1 \2/p' | awk '{ if ($2 > 0) printf "%.4f", $1 / $2 }')
   t2=$(date +%s%N)
   cmp=$("$B/seasim" compare "$TMP/ff$d/image.exr" "$TMP/pt$d.exr")
   v() { echo "$cmp" | awk -v k="$1" '$1 == k { print $2 }'; }
