@@ -92,7 +92,7 @@ class ReferenceResult:
     steps: int  #: paths per pixel, or ray-march / quadrature steps
     ms: float  #: time taken
     std_error: Optional[np.ndarray] = None  #: path tracer: per-pixel standard error
-    info: Optional[dict] = None  #: path tracer: seed, max_bounces, mean_std_error, device
+    info: Optional[dict] = None  #: path tracer: seed, max_bounces, mean_std_error, image_mean_std_error, effective_samples, blocks, device
 
 
 def reference(scene: Scene, steps: int = 0, seed: Optional[int] = None, all_orders: bool = False,
@@ -106,7 +106,7 @@ def reference(scene: Scene, steps: int = 0, seed: Optional[int] = None, all_orde
     ``progress(done, total)`` is called as the path tracer's samples finish.
     """
     r = _seasim._reference(scene, steps, -1 if seed is None else seed, all_orders, max_bounces, device, progress)
-    info = {k: r[k] for k in ("seed", "max_bounces", "mean_std_error", "device") if k in r} or None
+    info = {k: r[k] for k in ("seed", "max_bounces", "mean_std_error", "image_mean_std_error", "effective_samples", "blocks", "device") if k in r} or None
     return ReferenceResult(rgb=r["rgb"], method=r["method"], steps=r["steps"], ms=r["ms"],
                            std_error=r.get("std_error"), info=info)
 

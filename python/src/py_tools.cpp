@@ -78,6 +78,9 @@ nb::dict reference(const PyScene& scene, int steps, long long seed, bool all_ord
     d["seed"] = r.seed;
     d["max_bounces"] = r.max_bounces;
     d["mean_std_error"] = r.mean_std_error;
+    d["image_mean_std_error"] = r.image_mean_std_error;
+    d["effective_samples"] = r.effective_samples;
+    d["blocks"] = r.blocks;
     d["device"] = r.device_name;
     d["std_error"] = toArray(std::move(r.std_error));
   }

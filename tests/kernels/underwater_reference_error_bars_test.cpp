@@ -1,9 +1,12 @@
 // underwater_reference_error_bars_test.cpp — are the path tracer's error bars honest where its samples
-// are heavy-tailed? A dim, absorbing case: the camera 25 m down looking 15° up, absorbing and strongly
+// are heavy-tailed? A dim, absorbing case: the camera 12 m down looking 15° up, absorbing and strongly
 // forward-scattering water (a 0.4, b 0.2, g 0.95), a low sun (75° in air) and a dim sky (0.005 of the
 // beam). Many seeds of the same image: the spread of their means is the true standard error; each run's
 // reported error (from its independent blocks of paths, reference/batch_error.h) must match it within
-// 20 %, for the image mean and pixel by pixel. The per-sample estimate is printed beside it.
+// 20 %, for the image mean and pixel by pixel (pooled: Σ reported² against Σ spread² over pixels).
+// The per-sample estimate is printed beside it: measured here (64 seeds, 256 paths in 16 blocks),
+// image mean spread 2.54e-5, from blocks 2.48e-5 (0.98), per-sample 1.64e-5 (0.65: it took R, G and B
+// as independent, and they are one path's light); 5 m down 0.85 and 0.56. About 7 s on PoCL, 2 cores.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -33,7 +36,7 @@ UnderwaterSetup dimAbsorbingCase() {
   const Vec3 sun_w = Vec3{sin_w * 0.5, std::sqrt(1 - sin_w * sin_w), -sin_w * std::sqrt(0.75)};
   const Vec3 f = seasim::normalize(Vec3{0, std::tan(15.0 * M_PI / 180.0), -1});
   const Vec3 r = seasim::normalize(seasim::cross(f, Vec3{0, 1, 0}));
-  set4(p.cam_pos, Vec3{0, -25, 0});
+  set4(p.cam_pos, Vec3{0, -12, 0});
   set4(p.cam_forward, f);
   set4(p.cam_right, r);
   set4(p.cam_up, seasim::cross(r, f));
@@ -102,19 +105,6 @@ TEST(UnderwaterReferenceErrorBars, SpreadOverSeedsMatchesTheReportedErrorInDimAb
               "(ratio %.3f); effective samples %.0f of %d; pixels: reported/spread %.3f; %.0f ms of kernels\n",
               m, seeds, spread, reported, reported / spread, reported_sample, reported_sample / spread, neff,
               settings.samples_per_pixel, pixel_ratio, ms);
-  {
-    settings.blocks = 256;
-    double pr2 = 0, pv2 = 0;
-    std::vector<UnderwaterReferenceResult> b1;
-    for (int s = 0; s < seeds; ++s) { settings.seed = 1000u + unsigned(s); b1.push_back(seasim::renderUnderwaterReference(seasim::test::testDevice(), setup, settings)); }
-    for (size_t i = 0; i < values; ++i) {
-      double pm = 0, pv = 0, pr = 0;
-      for (const auto& r : b1) pm += r.rgb.pixels[i] / seeds;
-      for (const auto& r : b1) { pv += (r.rgb.pixels[i] - pm) * (r.rgb.pixels[i] - pm) / (seeds - 1); pr += double(r.std_error.pixels[i]) * r.std_error.pixels[i] / seeds; }
-      pr2 += pr; pv2 += pv;
-    }
-    std::printf("per-sample pixels: reported/spread %.3f\n", std::sqrt(pr2 / pv2));
-  }
   EXPECT_NEAR(reported / spread, 1.0, 0.2);
   EXPECT_NEAR(pixel_ratio, 1.0, 0.2);
 }
