@@ -2,7 +2,8 @@
 // double-precision CPU evaluation of the same shared math (host/underwater/underwater_cpu.cpp), over
 // an ordinary seabed and its stiff variants (002 eq. 4.7's singular line, camera at the surface and at
 // 1000 m, rays straight up and down, n = 1 and 1000 bands, turbid 9C at long range). No NaN/Inf.
-// The froxel term is off here (single_scattering = false); froxel_test.cpp covers it.
+// The froxel term is off here (single_scattering = false); froxel_test.cpp covers it. The thesis's
+// model, pinned (the default is "improved"; underwater_improved_kernel_test.cpp tests that one).
 #include <gtest/gtest.h>
 
 #include <ostream>
@@ -61,6 +62,7 @@ center = [0.5, -1.5, -6]
 radius = 0.7
 albedo = 0.6
 [underwater]
+model = "thesis"
 single_scattering = false
 caustics = "none"
 [spectral]
