@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "math/kernel_math.h"
+#include "reference/batch_error.h"
 #include "spectral/jerlov.h"
 #include "spectral/sensor.h"
 #include "spectral/wavelength_grid.h"
@@ -191,14 +192,6 @@ void tracePath(const SlabMcSetup& s, const Geometry& geo, const SlabMcSettings& 
   }
 }
 
-SlabMcEstimate estimate(double sum, double sum_sq, int64_t n) {
-  SlabMcEstimate e;
-  e.mean = sum / double(n);
-  const double var = std::max(0.0, sum_sq / double(n) - e.mean * e.mean) * double(n) / double(n - 1);
-  e.std_error = std::sqrt(var / double(n));
-  return e;
-}
-
 }  // namespace
 
 SlabMcResult runSlabMc(const SlabMcSetup& setup, const SlabMcSettings& settings) {
@@ -227,14 +220,32 @@ SlabMcResult runSlabMc(const SlabMcSetup& setup, const SlabMcSettings& settings)
     }
     chunk[ci] = acc;
   });
-  std::array<double, 2 * kTallies> total{};
-  for (const auto& a : chunk)
-    for (int t = 0; t < 2 * kTallies; ++t) total[t] += a[t];
-  for (int o = 0; o < kOrders; ++o) result.order[o] = estimate(total[o], total[kTallies + o], n);
-  result.orders_3plus = estimate(total[kOrders3Plus], total[kTallies + kOrders3Plus], n);
-  result.all_orders = estimate(total[kAll], total[kTallies + kAll], n);
-  result.bottom_direct = estimate(total[kBottomDirect], total[kTallies + kBottomDirect], n);
-  result.bottom_other = estimate(total[kBottomOther], total[kTallies + kBottomOther], n);
+  // The chunks are contiguous ranges of independent paths: the standard errors come from the spread of
+  // their means (reference/batch_error.h), honest where a few rare paths carry the tally.
+  BatchMeans blocks(kTallies);
+  for (int64_t ci = 0; ci < kChunks; ++ci) {
+    const int64_t m = n * (ci + 1) / kChunks - n * ci / kChunks;
+    if (m < 1) continue;
+    double mean[kTallies], m2[kTallies];
+    for (int t = 0; t < kTallies; ++t) {
+      mean[t] = chunk[ci][t] / double(m);
+      m2[t] = std::max(0.0, chunk[ci][kTallies + t] - chunk[ci][t] * mean[t]);
+    }
+    blocks.addBlock(mean, m2, m);
+  }
+  auto estimateOf = [&](int t) {
+    const BatchEstimate b = blocks.estimate(static_cast<size_t>(t));
+    SlabMcEstimate e;
+    e.mean = b.mean;
+    e.std_error = b.blocks > 1 ? b.std_error : b.sample_std_error;
+    e.sample_std_error = b.sample_std_error;
+    return e;
+  };
+  for (int o = 0; o < kOrders; ++o) result.order[o] = estimateOf(o);
+  result.orders_3plus = estimateOf(kOrders3Plus);
+  result.all_orders = estimateOf(kAll);
+  result.bottom_direct = estimateOf(kBottomDirect);
+  result.bottom_other = estimateOf(kBottomOther);
   return result;
 }
 

@@ -70,7 +70,8 @@ struct SlabMcSettings {
 
 struct SlabMcEstimate {
   double mean = 0;
-  double std_error = 0;  // standard error of the mean
+  double std_error = 0;         // standard error of the mean, from the spread of its blocks of paths
+  double sample_std_error = 0;  // the same from the per-path variance (reference/batch_error.h)
 };
 
 struct SlabMcResult {
