@@ -24,11 +24,19 @@ PYVENV = $(BUILD)/python-venv
 PYTHON_PACKAGES = nanobind scikit-build-core numpy pytest tqdm
 PYTHON_CMAKE_FLAGS = -DSEASIM_PYTHON=ON -DPython_EXECUTABLE=$(abspath $(PYVENV))/bin/python
 
-.PHONY: demo test test-deps intel-opencl validate deps configure build clean fresh-check package install python-venv wheel
+.PHONY: demo gallery test test-deps intel-opencl validate deps configure build clean fresh-check package install python-venv wheel
 
 demo: build
 	$(BUILD)/seasim run jobs/quickstart.toml --device pocl
-	@echo "images and reports: results/quickstart/"
+	@echo "images and reports: results/quickstart/ (contact sheet: results/quickstart/index.html)"
+
+# The README's gallery (docs/images/gallery.png): the quickstart job's images, in job order, on one
+# sheet (OpenImageIO's oiiotool, from openimageio-tools).
+GALLERY = flat_sea_noon flat_sea_evening ocean_noon ocean_sunset stage_shafts seabed_IB seabed_wave_caustics rov_lights \
+          tropical_shallows muddy_coast jerlov_I jerlov_III seabed_3C jerlov_5C jerlov_9C flat_sea_spectral_canon
+gallery: demo
+	oiiotool $(foreach n,$(GALLERY),results/quickstart/$(n)/image.png) --mosaic:fit=320x180:pad=4 4x4 -o docs/images/gallery.png
+	@echo "gallery: docs/images/gallery.png"
 
 # The test build adds the Python module (SEASIM_PYTHON), which ctest's python.pytest imports.
 test: test-deps python-venv intel-opencl
@@ -68,8 +76,8 @@ configure: deps
 # Opt-in, not part of `make test`: seasim's references against Mitsuba 3 on matching scenes (issue 13).
 # A Python virtual environment in $(BUILD)/validate-venv with mitsuba and numpy from PyPI (the scalar
 # variants need nothing else); ratio tables into results/validation/: spotlight shafts, the underwater
-# flat-bottom scene (level and through Snell's window) and the sea seen from above (about 30 min on the
-# shared 2-core VM).
+# flat-bottom scene (level and through Snell's window), the sea seen from above and a spotlight under
+# water (about 40 min on the shared 2-core VM).
 validate: build
 	@$(MAKE) --no-print-directory deps DEPS="$(VALIDATE_DEPS)"
 	test -x $(BUILD)/validate-venv/bin/python || python3 -m venv $(BUILD)/validate-venv
@@ -77,6 +85,7 @@ validate: build
 	$(BUILD)/validate-venv/bin/python tests/validate/mitsuba_shafts.py $(BUILD)/seasim results/validation
 	$(BUILD)/validate-venv/bin/python tests/validate/mitsuba_underwater.py $(BUILD)/seasim results/validation
 	$(BUILD)/validate-venv/bin/python tests/validate/mitsuba_sea.py $(BUILD)/seasim results/validation
+	$(BUILD)/validate-venv/bin/python tests/validate/mitsuba_lamps.py $(BUILD)/seasim results/validation 16 512 2048
 
 # Installs only what is missing (apt-get needs root: sudo is used when not root).
 deps:

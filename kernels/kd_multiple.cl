@@ -24,6 +24,13 @@
  * Defines (host/plan): SEASIM_HAS_MULTIPLE (L_MS), SEASIM_HAS_FROXEL (single scattering added here and
  * split off L_MS and L_s), SEASIM_SPECTRAL_OUTPUT, SEASIM_UWI_SPREAD, SEASIM_SKY_MODEL (common/sky.h);
  * SEASIM_BAND_LANES (4, 8 or 16; default 16, common/band_lanes.h).
+ * SEASIM_LAYER_FORMATION (outputs.layers, docs/layers.md): the image split by where its light comes from,
+ * in sensor RGB: formation[pixel][12] = clear (the hit's radiance with S = 0: no water between), direct
+ * (clear e^{-c S} per band), backscatter (the in-scatter and the froxel term), transmission (direct/clear
+ * per channel; the sensor's mean of e^{-c S} where clear is 0), forward_layer[pixel][3] (the hit's light
+ * the water scattered by small angles: what delta-M's c' < c keeps; water_spread.cl adds its blurred part)
+ * and lamps_layer[pixel][3] (0 here, underwater_lamps.cl adds into it); direct + backscatter + forward
+ * + lamps is the image. SEASIM_LAYER_VEILING: veiling[pixel][3], B∞, the in-scatter with S = ∞.
  */
 #include "common/compat.h"
 #include "common/optics.h"
@@ -36,6 +43,7 @@
 #include "common/sky.h"
 #include "common/sky_params.h"
 #include "common/sky_view.h"
+#include "common/output_layers.h"
 #include "common/band_lanes.h"
 #include "common/band_lanes_math.h"
 #include "common/underwater_band_table.h"
@@ -55,6 +63,29 @@
 #endif
 #ifndef SEASIM_UWI_SPREAD
 #define SEASIM_UWI_SPREAD 0
+#endif
+#ifndef SEASIM_LAYER_FORMATION
+#define SEASIM_LAYER_FORMATION 0
+#endif
+#ifndef SEASIM_LAYER_VEILING
+#define SEASIM_LAYER_VEILING 0
+#endif
+#if SEASIM_LAYER_FORMATION || SEASIM_LAYER_VEILING
+/* The layers' sums over bands in sensor RGB: name##_r += value * w_r, ... (002 eq. 4.8, as the image's). */
+#define LAYER_LANES(name) realb name##_r = SPLATB(0.0f), name##_g = SPLATB(0.0f), name##_b = SPLATB(0.0f)
+#define LAYER_ADD(name, value) \
+  do {                         \
+    const realb v_ = (value);  \
+    name##_r += v_ * w_r_band; \
+    name##_g += v_ * w_g_band; \
+    name##_b += v_ * w_b_band; \
+  } while (0)
+#define LAYER_STORE(buffer, stride, at, name)          \
+  do {                                                  \
+    (buffer)[(size_t)pixel * (stride) + (at) + 0] = SUMB(name##_r); \
+    (buffer)[(size_t)pixel * (stride) + (at) + 1] = SUMB(name##_g); \
+    (buffer)[(size_t)pixel * (stride) + (at) + 2] = SUMB(name##_b); \
+  } while (0)
 #endif
 #if SEASIM_UWI_SPREAD /* the water's point-spread (issue 13 s11): the forward light kept apart per layer */
 #include "common/water_spread_params.h"
@@ -90,6 +121,12 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
 #if SEASIM_SPECTRAL_OUTPUT
                           , __global float* forward_spectral
 #endif
+#endif
+#if SEASIM_LAYER_FORMATION
+                          , __global float* formation, __global float* forward_layer, __global float* lamps_layer
+#endif
+#if SEASIM_LAYER_VEILING
+                          , __global float* veiling
 #endif
 ) {
   const int x = get_global_id(0);
@@ -136,6 +173,17 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
 #define ROW(r) (band_table + (r) * stride)
   __global const float* albedo_row = ROW(mat >= 0 ? UW_ROWS + mat : UW_ROW_BOTTOM_ALBEDO);
   realb r_lanes = SPLATB(0.0f), g_lanes = SPLATB(0.0f), b_lanes = SPLATB(0.0f);
+#if SEASIM_LAYER_FORMATION
+  LAYER_LANES(clear);
+  LAYER_LANES(direct);
+  LAYER_LANES(scatter);
+  LAYER_LANES(trans);
+  LAYER_LANES(weight);
+  LAYER_LANES(fwdl);
+#endif
+#if SEASIM_LAYER_VEILING
+  LAYER_LANES(veil);
+#endif
 #if SEASIM_UNDERWATER_MODEL == 1
   /* underwater.model = "improved": its rows follow the objects' albedo rows; the phase of the view and
    * (surface hits) of the reflected ray (d.x, -d.y, d.z) once per pixel. */
@@ -235,6 +283,53 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
       const UwiWeights tilt = uwi_lanes_tilt(band_table, stride, uwi_row0, i, tilt_node, frac, cos_phi_n, vis_b);
       hit = uwi_lanes_lambert(&v, &ends, &tilt, LOADB(albedo_row, i), p->bottom_depth, n_dot_s, vis);
     }
+#if SEASIM_LAYER_FORMATION
+    /* clear: the same hit with S = 0 (its ends at the hit's depth without T; the surface's t_s = 1). */
+    realb clear = SPLATB(0.0f);
+    {
+      const UwiEnds ends0 = uwi_ends(&v, p->bottom_depth, 0.0f, y_hit, 0);
+      if (mat == UW_MAT_SURFACE) {
+        const realb sky_l = kd_sky_lanes(band_table, stride, i, sky_shape);
+        const UwiWeights w_r = uwi_lanes_weights(band_table, stride, uwi_row0, i, node_r, cos_dphi_r);
+        const UwiWeights tilt_m = mirror_object
+                                      ? uwi_lanes_tilt(band_table, stride, uwi_row0, i, tilt_node_m, frac_m, cos_phi_m, 1.0f)
+                                      : uwi_lanes_down(&v);
+        clear = uwi_lanes_surface(&v, &w_r, SPLATB(1.0f), sky_l, LOADB(ROW(uwi_row0 + UWI_ROW_BOTTOM_L), i),
+                                  LOADB(ROW(uwi_row0 + UWI_ROW_EXP_K_H), i), phase_r, p->bottom_depth, d.y, p->ior,
+                                  multiple, mirror.s, LOADB(albedo_m_row, i), &tilt_m, n_m_dot_s, mirror.vis);
+      } else if (mat == UW_MAT_BOTTOM) {
+        const UwiWeights down = uwi_lanes_down(&v);
+        clear = uwi_lanes_lambert(&v, &ends0, &down, LOADB(albedo_row, i), p->bottom_depth, n_dot_s, vis);
+      } else if (mat != UW_MAT_NONE) {
+        const UwiWeights tilt = uwi_lanes_tilt(band_table, stride, uwi_row0, i, tilt_node, frac, cos_phi_n, vis_b);
+        clear = uwi_lanes_lambert(&v, &ends0, &tilt, LOADB(albedo_row, i), p->bottom_depth, n_dot_s, vis);
+      }
+    }
+    /* direct: clear through the whole extinction c (delta-M's c' < c keeps the small-angle light in hit). */
+    const realb trans = exp(-v.c * S);
+    const realb direct = clear * trans;
+    LAYER_ADD(clear, clear);
+    LAYER_ADD(direct, direct);
+    LAYER_ADD(trans, trans);
+    LAYER_ADD(weight, SPLATB(1.0f));
+#endif
+#if SEASIM_LAYER_VEILING
+    /* B∞: the in-scatter of the same ray with S = ∞ (every far end 0; the aureole's end at the depth it
+     * tends to). */
+    {
+      const float y_inf = d.y < 0.0f ? UW_INFINITE : 0.0f;
+      const UwiEnds ends_inf = uwi_ends(&v, p->bottom_depth, UW_INFINITE, y_inf, single & multiple);
+      realb strict_inf;
+      const realb l_inf = multiple ? uwi_lanes_multiple(&v, &w, &camera, &ends_inf, phase, p->bottom_depth, UW_INFINITE,
+                                                        d.y, single, &strict_inf)
+                                   : SPLATB(0.0f);
+      LAYER_ADD(veil, multiple ? fmax(l_inf + uwi_lanes_forward_peak(band_table, stride, uwi_row0, i, &v, aureole_node,
+                                                                     aureole_frac, node, cos_dphi, phase, d.y, o_d, y_inf,
+                                                                     s_w.y, strict_inf),
+                                      SPLATB(0.0f))
+                               : SPLATB(0.0f));
+    }
+#endif
 #if SEASIM_UWI_SPREAD
     /* Its share scattered by small angles (water_spread.h (1), (3)) and the in-scatter's ((4), (5)), kept
      * apart as moments; water_spread.cl puts them back blurred. */
@@ -243,7 +338,8 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
     realb count_in, depth_in;
     const realb share_in = uws_inscatter_share_b(v.c_dm, delta, s_spread, em, &count_in, &depth_in);
     const realb fwd_hit = hit * uws_hit_share_b(em);
-    const realb fwd = fwd_hit + fmin(L * share_in, in_scatter);
+    const realb L_in_share = L * share_in;
+    const realb fwd = fwd_hit + fmin(L_in_share, in_scatter);
     const realb cnt = hit * (delta * s_spread) + L * count_in;
     const realb fwd_depth = fwd_hit * s_spread + L * depth_in;
     fwd_r += fwd * w_r_band;
@@ -254,12 +350,22 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
     cnt_b += cnt * w_b_band;
     fwd_light_depth += fwd_depth * (w_r_band + w_g_band + w_b_band);
     L = in_scatter + hit - fwd;
+#if SEASIM_LAYER_FORMATION
+    /* The small-angle share of the in-scatter leaves the backscatter; water_spread.cl adds it (blurred)
+     * to the forward layer with the hit's. */
+    LAYER_ADD(scatter, in_scatter - fmin(L_in_share, in_scatter));
+    LAYER_ADD(fwdl, hit - fwd_hit - direct);
+#endif
 #if SEASIM_SPECTRAL_OUTPUT
     store_lanes(fwd, forward_spectral + ((size_t)pixel * 2) * band_count + i, band_count - i);
     store_lanes(cnt, forward_spectral + ((size_t)pixel * 2 + 1) * band_count + i, band_count - i);
 #endif
 #else
     L = in_scatter + hit;
+#if SEASIM_LAYER_FORMATION
+    LAYER_ADD(scatter, in_scatter);
+    LAYER_ADD(fwdl, hit - direct);
+#endif
 #endif
 #else
   for (int i = 0; i < band_count; i += SEASIM_BAND_LANES) {
@@ -273,16 +379,46 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
     const realb ms_direct = LOADB(ROW(UW_ROW_MS_DIRECT), i);
     /* L = T(S) L_s + L_MS (002 eq. 2.7 with 4.7), T(S) folded into L_s (common/underwater_bands.h). */
     realb L = multiple ? uw_lanes_multiple(ms_total, ms_direct, kd, k_beam, c, single, d.y, o_d, S) : SPLATB(0.0f);
+#if SEASIM_LAYER_FORMATION
+    /* The in-scatter is the backscatter; the hit, T(S) L_s, the direct light (the thesis has no forward
+     * term); clear is the hit at S = 0, where S enters only T(S). */
+    LAYER_ADD(scatter, L);
+    realb clear = SPLATB(0.0f), hit = SPLATB(0.0f);
+#endif
+#if SEASIM_LAYER_VEILING
+    LAYER_ADD(veil, multiple ? uw_lanes_multiple(ms_total, ms_direct, kd, k_beam, c, single, d.y, o_d, UW_INFINITE)
+                             : SPLATB(0.0f));
+#endif
     if (mat == UW_MAT_SURFACE) {
       const realb sky_l = kd_sky_lanes(band_table, stride, i, sky_shape);
-      L += uw_lanes_surface(sky_l, ms_total, ms_direct, kd, k_beam, c, single, multiple, S, d.y, p->ior,
-                            p->bottom_depth);
+      const realb surface = uw_lanes_surface(sky_l, ms_total, ms_direct, kd, k_beam, c, single, multiple, S, d.y,
+                                             p->ior, p->bottom_depth);
+      L += surface;
+#if SEASIM_LAYER_FORMATION
+      hit = surface;
+      clear = uw_lanes_surface(sky_l, ms_total, ms_direct, kd, k_beam, c, single, multiple, 0.0f, d.y, p->ior,
+                               p->bottom_depth);
+#endif
     } else if (mat != UW_MAT_NONE) {
       /* Objects read their albedo row; the bottom (UW_MAT_BOTTOM) reads the bottom's. */
-      L += uw_lanes_lambert(LOADB(albedo_row, i), c, kd, k_beam, LOADB(ROW(UW_ROW_E_TOTAL), i),
-                            LOADB(ROW(UW_ROW_E_SUN), i), LOADB(ROW(UW_ROW_E_BEAM), i), single, S, y_hit, n.y,
-                            n_dot_s, vis);
+      const realb lambert = uw_lanes_lambert(LOADB(albedo_row, i), c, kd, k_beam, LOADB(ROW(UW_ROW_E_TOTAL), i),
+                                             LOADB(ROW(UW_ROW_E_SUN), i), LOADB(ROW(UW_ROW_E_BEAM), i), single, S,
+                                             y_hit, n.y, n_dot_s, vis);
+      L += lambert;
+#if SEASIM_LAYER_FORMATION
+      hit = lambert;
+      clear = uw_lanes_lambert(LOADB(albedo_row, i), c, kd, k_beam, LOADB(ROW(UW_ROW_E_TOTAL), i),
+                               LOADB(ROW(UW_ROW_E_SUN), i), LOADB(ROW(UW_ROW_E_BEAM), i), single, 0.0f, y_hit, n.y,
+                               n_dot_s, vis);
+#endif
     }
+#if SEASIM_LAYER_FORMATION
+    const realb trans = exp(-c * S);
+    LAYER_ADD(clear, clear);
+    LAYER_ADD(direct, hit);
+    LAYER_ADD(trans, trans);
+    LAYER_ADD(weight, SPLATB(1.0f));
+#endif
 #endif /* SEASIM_UNDERWATER_MODEL */
     /* 002 eq. 4.8. */
     r_lanes += L * w_r_band;
@@ -303,6 +439,41 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
   rgb[3 * pixel + 0] = r;
   rgb[3 * pixel + 1] = gr;
   rgb[3 * pixel + 2] = b;
+#if SEASIM_LAYER_FORMATION
+  LAYER_STORE(formation, 12, 0, clear);
+  LAYER_STORE(formation, 12, 3, direct);
+  LAYER_STORE(formation, 12, 6, scatter);
+  LAYER_STORE(forward_layer, 3, 0, fwdl);
+#if SEASIM_HAS_FROXEL
+  formation[(size_t)pixel * 12 + 6] += ss.x;
+  formation[(size_t)pixel * 12 + 7] += ss.y;
+  formation[(size_t)pixel * 12 + 8] += ss.z;
+#endif
+  {
+    /* transmission per channel: direct/clear (so direct = clear x transmission), or where the hit sends no
+     * light (open water, black objects) the sensor's mean of e^{-c S}. */
+    const float cl[3] = {SUMB(clear_r), SUMB(clear_g), SUMB(clear_b)};
+    const float di[3] = {SUMB(direct_r), SUMB(direct_g), SUMB(direct_b)};
+    const float tw[3] = {SUMB(trans_r), SUMB(trans_g), SUMB(trans_b)};
+    const float ww[3] = {SUMB(weight_r), SUMB(weight_g), SUMB(weight_b)};
+    for (int k = 0; k < 3; ++k)
+      formation[(size_t)pixel * 12 + 9 + k] = fabs(cl[k]) > 1e-30f ? di[k] / cl[k] : layer_weighted_mean(tw[k], ww[k]);
+  }
+  lamps_layer[3 * pixel + 0] = 0.0f;
+  lamps_layer[3 * pixel + 1] = 0.0f;
+  lamps_layer[3 * pixel + 2] = 0.0f;
+#endif
+#if SEASIM_LAYER_VEILING
+#if SEASIM_HAS_FROXEL
+  /* The froxel term of the whole column (froxel_lookup reads S >= z_far at z_far). */
+  const float3 ss_inf = froxel_lookup(fp, froxel_volume, x, y, p->width, p->height, UW_INFINITE);
+#else
+  const float3 ss_inf = (float3)(0.0f, 0.0f, 0.0f);
+#endif
+  veiling[3 * pixel + 0] = SUMB(veil_r) + ss_inf.x;
+  veiling[3 * pixel + 1] = SUMB(veil_g) + ss_inf.y;
+  veiling[3 * pixel + 2] = SUMB(veil_b) + ss_inf.z;
+#endif
 #if SEASIM_UWI_SPREAD
   forward_rgb[6 * pixel + 0] = SUMB(fwd_r);
   forward_rgb[6 * pixel + 1] = SUMB(fwd_g);

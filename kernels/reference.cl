@@ -3,7 +3,8 @@
  * the scene of common/underwater.h, progressive, with a per-pixel variance estimate.
  *
  * Scene (the same as raycast.cl / kd_multiple.cl): homogeneous water below y = 0 (per band a, b,
- * c = a + b), Henyey–Greenstein phase function with g = UwParams.g (isotropic with SEASIM_PT_ISOTROPIC),
+ * c = a + b), Henyey–Greenstein phase function with g = UwParams.g (isotropic with SEASIM_PT_ISOTROPIC, the
+ * water's tabulated phase with SEASIM_PT_PHASE_TABLE),
  * a flat air–water surface with Fresnel reflection/refraction, Lambertian analytic objects and an
  * optional flat Lambertian bottom (uw_scene_hit). Light: the refracted sun beam, a delta in direction
  * along -sun_dir_water with normal irradiance e_beam0 just below the surface (its Fresnel transmission
@@ -33,12 +34,14 @@
  * and a soft edge (shafts_cone_profile) and a spectral intensity I(λ) per band. A point lamp is a delta
  * light, so next-event estimation is the only way a path sees it: on every segment of the path through
  * the water (to the next surface, or to infinity) one distance per lamp sampled equiangularly about the
- * lamp (path_tracer.h), weighted e^{-c t} b p_HG · I P e^{-c s}/s² · V / pdf(t) (this replaces NEE at the
- * free-flight vertices, whose 1/s² near the lamp made the estimate heavy-tailed), and at every
- * Lambertian vertex ρ/π · max(n·w, 0) · I P e^{-c s}/s² · V; V an exact shadow ray to the lamp through the
+ * lamp within the part of the segment inside its cone, weighted e^{-c t} b p_HG · I P e^{-c s}/s² · V /
+ * pdf(t), plus next-event estimation at the segment's free-flight vertex, the two combined by the
+ * balance heuristic (path_tracer_lamps.h, Kulla & Fajardo 2012 §5; SEASIM_PT_LAMP_MIS = 0: the
+ * equiangular sample on the whole segment alone), and at every Lambertian vertex
+ * ρ/π · max(n·w, 0) · I P e^{-c s}/s² · V; V an exact shadow ray to the lamp through the
  * objects, 1/s² clamped at the lamp radius s_min as in the fast pass. The lamps' light then goes on
  * scattering (all orders), which the fast pass (underwater_lamps.cl, single scattering) leaves out.
- * max_bounces = 1 keeps only the first segment's lamp estimate: the lamps' single scattering.
+ * max_bounces = 1 keeps only the first segment's lamp estimates: the lamps' single scattering.
  *
  * Random numbers: common/path_tracer.h, a hash of (seed, pixel, sample index, dimension): reproducible
  * for a seed whatever the batching. Dimensions: 0, 1 pixel jitter; 2 band; then per event in order.
@@ -49,17 +52,22 @@
  * LeVeque 1979), stable in float where a plain Σx² - n mean² would cancel. sample_start numbers the
  * paths (the random numbers), A counts what the pair holds: zeroed by the host at each block of paths.
  * Defines: SEASIM_HAS_OBJECTS (0/1), SEASIM_PT_ISOTROPIC (0/1: phase 1/(4π) instead of HG),
- * SEASIM_PT_JITTER (0/1: 0 traces every sample through the pixel centre, for tests against quadrature).
+ * SEASIM_PT_PHASE_TABLE (0/1: the water's measured or parameterised phase from `phase_tables`, its values
+ * for next-event estimation and its inverse CDF for sampling, common/phase.h; else HG of g),
+ * SEASIM_PT_JITTER (0/1: 0 traces every sample through the pixel centre, for tests against quadrature),
+ * SEASIM_PT_LAMP_MIS (0/1, see the spotlights above).
  * Stiff cases: c = 0 (free flight UW_INFINITE; a ray into deep water then ends), a = 0 (albedo 1: only
  * roulette and the cap end a path), the sun below the horizon (e_beam0 = 0: no NEE), E_beam underflow at
  * great depth (0, never NaN), total internal reflection (F = 1), |g| -> 1 (path_tracer.h).
  */
 #include "common/compat.h"
 #include "common/optics.h"
+#include "common/phase.h"
 #include "common/shafts.h"
 #include "common/underwater_params.h"
 #include "common/underwater.h"
 #include "common/path_tracer.h"
+#include "common/path_tracer_lamps.h"
 #include "common/underwater_lamps_params.h"
 #include "common/underwater_lamps.h"
 
@@ -72,6 +80,35 @@
 #ifndef SEASIM_PT_JITTER
 #define SEASIM_PT_JITTER 1
 #endif
+#ifndef SEASIM_PT_LAMP_MIS
+#define SEASIM_PT_LAMP_MIS 1
+#endif
+
+#ifndef SEASIM_PT_PHASE_TABLE
+#define SEASIM_PT_PHASE_TABLE 0
+#endif
+
+/* The water's phase between travel directions with cos θ between them: isotropic, the table, or HG of g. */
+static inline float pt_phase(const __global float* phase_tables, float g, float cos_theta) {
+#if SEASIM_PT_ISOTROPIC
+  return 1.0f / (4.0f * M_PI_F);
+#elif SEASIM_PT_PHASE_TABLE
+  return phase_table_value(phase_tables, PHASE_PT_VALUES, 1.0f - cos_theta);
+#else
+  return hg_phase(cos_theta, g);
+#endif
+}
+
+/* A new travel direction scattered from d by the same phase (u1, u2 two uniforms). */
+static inline float3 pt_scatter(const __global float* phase_tables, float3 d, float g, float u1, float u2) {
+#if SEASIM_PT_ISOTROPIC
+  return pt_sample_isotropic(u1, u2);
+#elif SEASIM_PT_PHASE_TABLE
+  return pt_direction(d, phase_table_sample_omc(phase_tables + PHASE_PT_VALUES, PHASE_PT_SAMPLES, u1), u2);
+#else
+  return pt_sample_hg(d, g, u1, u2);
+#endif
+}
 
 /* Offset of a ray origin off a surface it leaves: relative to the coordinates' size, so float rounding
  * at large distances cannot put the origin back behind the surface. */
@@ -127,37 +164,78 @@ static inline float lamps_lambert(__constant UwLampParams* lp, const __global Uw
   return L;
 }
 
+/* f(x) of path_tracer_lamps.h for one lamp: the lamp's light scattered at x towards -d, per unit σ_s and
+ * path throughput, p(cos α) I P e^{-c s} V / max(s, s_min)² (0 outside the cone or in shadow). */
+static inline float lamp_inscatter_at(__constant UwLampParams* lp, const __global UwLamp* lamp,
+                                      const __global float* spectrum, const __global UwObject* objects, int count,
+                                      float c, float g, const __global float* phase_tables, float3 x, float3 d) {
+  const float3 pos = (float3)(lamp->position[0], lamp->position[1], lamp->position[2]);
+  const float3 axis = (float3)(lamp->direction[0], lamp->direction[1], lamp->direction[2]);
+  const float prof = uw_lamp_profile(x, pos, axis, lamp->cos_cone, lamp->cos_inner);
+  if (prof <= 0.0f) return 0.0f;
+  const float3 to_lamp = pos - x;
+  const float s = length(to_lamp);
+  if (!(s > 0.0f)) return 0.0f;
+  const float phase = pt_phase(phase_tables, g, dot(-to_lamp / s, -d)); /* lamp -> x, then along -d */
+  const float sc = fmax(s, lp->s_min);
+  const float e = exp(-c * s) * phase * *spectrum * prof / (sc * sc);
+  return e > 0.0f ? e * lamp_visibility(objects, count, x, to_lamp / s, s) : 0.0f;
+}
+
+/* The equiangular range of one lamp on the segment o + t d, t in [0, S): clipped to the lamp's cone
+ * when the estimate is combined with free flight (SEASIM_PT_LAMP_MIS), else all of [0, S). */
+static inline int lamp_range(__constant UwLampParams* lp, const __global UwLamp* lamp, float3 o, float3 d, float S,
+                             PtLampRange* rg) {
+  const float3 pos = (float3)(lamp->position[0], lamp->position[1], lamp->position[2]);
+  const float3 axis = (float3)(lamp->direction[0], lamp->direction[1], lamp->direction[2]);
+  return pt_lamp_range(o, d, S, pos, axis, lamp->cos_cone, lp->s_min, SEASIM_PT_LAMP_MIS, rg);
+}
+
 /* The lamps' light scattered once towards -d along the segment o + t d, t in [0, S) (S may be
- * UW_INFINITE), per unit path throughput: one equiangular sample per lamp (dimension *dim onwards). */
+ * UW_INFINITE), per unit path throughput: one equiangular sample per lamp (dimension *dim onwards),
+ * weighted by the balance heuristic against free flight (path_tracer_lamps.h). */
 static inline float lamps_segment(__constant UwLampParams* lp, const __global UwLamp* lamps,
                                   const __global float* lamp_spectra, const __global UwObject* objects, int count,
-                                  int band, float b, float c, float g, float3 o, float3 d, float S, unsigned int key,
-                                  unsigned int* dim) {
+                                  int band, float b, float c, float g, const __global float* phase_tables, float3 o,
+                                  float3 d, float S, unsigned int key, unsigned int* dim) {
   float L = 0.0f;
   for (int l = 0; l < lp->lamp_count; ++l) {
-    const __global UwLamp* lamp = &lamps[l];
-    const float3 pos = (float3)(lamp->position[0], lamp->position[1], lamp->position[2]);
-    const float3 axis = (float3)(lamp->direction[0], lamp->direction[1], lamp->direction[2]);
     const float u = pt_uniform(key, (*dim)++);
-    float a, h, pdf;
-    shafts_closest_approach(o, d, pos, &a, &h);
-    const float t = pt_sample_equiangular(a, fmax(h, lp->s_min), 0.0f, S, u, &pdf);
+    PtLampRange rg;
+    if (!lamp_range(lp, &lamps[l], o, d, S, &rg)) continue;
+    float pdf;
+    const float t = pt_sample_equiangular(rg.a, rg.r, rg.t0, rg.t1, u, &pdf);
     if (!(pdf > 0.0f)) continue;
-    const float3 x = o + t * d;
-    const float prof = uw_lamp_profile(x, pos, axis, lamp->cos_cone, lamp->cos_inner);
-    if (prof <= 0.0f) continue;
-    const float3 to_lamp = pos - x;
-    const float s = length(to_lamp);
-    if (!(s > 0.0f)) continue;
-#if SEASIM_PT_ISOTROPIC
-    const float phase = 1.0f / (4.0f * M_PI_F);
+#if SEASIM_PT_LAMP_MIS
+    const float w = pt_mis_balance(pdf, pt_distance_pdf(c, t));
 #else
-    const float phase = hg_phase(dot(-to_lamp / s, -d), g); /* lamp -> x, then along -d */
+    const float w = 1.0f;
 #endif
-    const float sc = fmax(s, lp->s_min);
-    const float e = exp(-c * (t + s)) * b * phase * lamp_spectra[l * lp->band_count + band] * prof / (sc * sc * pdf);
-    if (e > 0.0f) L += e * lamp_visibility(objects, count, x, to_lamp / s, s);
+    const float f = lamp_inscatter_at(lp, &lamps[l], &lamp_spectra[l * lp->band_count + band], objects, count, c, g,
+                                      phase_tables, o + t * d, d);
+    if (f > 0.0f) L += w * exp(-c * t) * b * f / pdf;
   }
+  return L;
+}
+
+/* The lamps' light at a free-flight scattering vertex o + t d of the segment [0, S) (the path's weight
+ * already holds σ_s/σ_t there): f with the free-flight strategy's balance weight. Without
+ * SEASIM_PT_LAMP_MIS the segment's equiangular sample alone estimates the lamps (weight 0 here). */
+static inline float lamps_vertex(__constant UwLampParams* lp, const __global UwLamp* lamps,
+                                 const __global float* lamp_spectra, const __global UwObject* objects, int count,
+                                 int band, float c, float g, const __global float* phase_tables, float3 o, float3 d,
+                                 float S, float t) {
+  float L = 0.0f;
+#if SEASIM_PT_LAMP_MIS
+  for (int l = 0; l < lp->lamp_count; ++l) {
+    PtLampRange rg;
+    const float p_e = lamp_range(lp, &lamps[l], o, d, S, &rg) ? pt_lamp_range_pdf(&rg, t) : 0.0f;
+    const float w = pt_mis_balance(pt_distance_pdf(c, t), p_e);
+    if (w > 0.0f)
+      L += w * lamp_inscatter_at(lp, &lamps[l], &lamp_spectra[l * lp->band_count + band], objects, count, c, g,
+                                 phase_tables, o + t * d, d);
+  }
+#endif
   return L;
 }
 
@@ -167,8 +245,8 @@ static inline int single_only_mode(int max_bounces) { return max_bounces == 1; }
 /* One path's radiance in band `band` along the camera ray (o, d); key/dim as path_tracer.h. */
 static inline float trace_path(__constant UwParams* p, const __global UwBand* bn, const __global UwObject* objects,
                                const __global float* albedo, __constant UwLampParams* lp, const __global UwLamp* lamps,
-                               const __global float* lamp_spectra, int band, int max_bounces, unsigned int key,
-                               float3 o, float3 d) {
+                               const __global float* lamp_spectra, const __global float* phase_tables, int band,
+                               int max_bounces, unsigned int key, float3 o, float3 d) {
 #if SEASIM_HAS_OBJECTS
   const int count = p->object_count;
 #else
@@ -188,28 +266,22 @@ static inline float trace_path(__constant UwParams* p, const __global UwBand* bn
     int mat;
     const float S = uw_scene_hit(objects, count, p->bottom_depth, o, d, 0.0f, &n, &mat);
     if (lp->lamp_count > 0 && beta > 0.0f)
-      L += beta * lamps_segment(lp, lamps, lamp_spectra, objects, count, band, bn->b, c, p->g, o, d, S, key, &dim);
+      L += beta * lamps_segment(lp, lamps, lamp_spectra, objects, count, band, bn->b, c, p->g, phase_tables, o, d, S, key, &dim);
     const float t = pt_sample_distance(c, pt_uniform(key, dim++));
     if (t < S) {
       /* A scattering event in the water: weight σ_s/σ_t (free flight pdf c e^{-ct}, transmittance e^{-ct}). */
-      o = o + t * d;
       beta *= scatter_albedo;
+      if (lp->lamp_count > 0 && beta > 0.0f)
+        L += beta * lamps_vertex(lp, lamps, lamp_spectra, objects, count, band, c, p->g, phase_tables, o, d, S, t);
+      o = o + t * d;
       ++vertices;
       if (e_beam0 > 0.0f && beta > 0.0f) {
-#if SEASIM_PT_ISOTROPIC
-        const float phase = 1.0f / (4.0f * M_PI_F);
-#else
-        const float phase = hg_phase(dot(s_w, d), p->g); /* sunlight travels along -s_w, then along -d */
-#endif
+        const float phase = pt_phase(phase_tables, p->g, dot(s_w, d)); /* sunlight along -s_w, then along -d */
         const float e_beam = uw_beam_irradiance(e_beam0, c, mu_w, fmax(-o.y, 0.0f));
         if (e_beam > 0.0f) L += beta * phase * e_beam * sun_visibility(objects, count, o, s_w);
       }
       if (single_only || vertices >= max_bounces) break;
-#if SEASIM_PT_ISOTROPIC
-      d = pt_sample_isotropic(pt_uniform(key, dim), pt_uniform(key, dim + 1));
-#else
-      d = pt_sample_hg(d, p->g, pt_uniform(key, dim), pt_uniform(key, dim + 1));
-#endif
+      d = pt_scatter(phase_tables, d, p->g, pt_uniform(key, dim), pt_uniform(key, dim + 1));
       dim += 2;
     } else if (mat == UW_MAT_NONE || single_only) {
       break; /* into deep water (nothing comes back along it) or, single scattering, past the first hit */
@@ -258,7 +330,7 @@ __kernel void reference_path_trace(__constant UwParams* p, __global const UwBand
                                    __global const UwObject* objects, __global const float* albedo, uint seed,
                                    int sample_start, int samples, int max_bounces, __global float4* mean,
                                    __global float4* m2, __constant UwLampParams* lp, __global const UwLamp* lamps,
-                                   __global const float* lamp_spectra) {
+                                   __global const float* lamp_spectra, __global const float* phase_tables) {
   const int x = get_global_id(0);
   const int y = get_global_id(1);
   if (x >= p->width || y >= p->height) return;
@@ -286,7 +358,7 @@ __kernel void reference_path_trace(__constant UwParams* p, __global const UwBand
     const __global UwBand* bn = &bands[band];
     float L;
     if (eye.y <= 0.0f) {
-      L = trace_path(p, bn, objects, albedo, lp, lamps, lamp_spectra, band, max_bounces, key, eye, d);
+      L = trace_path(p, bn, objects, albedo, lp, lamps, lamp_spectra, phase_tables, band, max_bounces, key, eye, d);
     } else if (d.y >= 0.0f) {
       L = bn->sky_radiance; /* camera above the surface looking up: the uniform sky (no sun disk) */
     } else {
@@ -299,7 +371,7 @@ __kernel void reference_path_trace(__constant UwParams* p, __global const UwBand
       float3 d_w;
       refract_dir(d, (float3)(0.0f, 1.0f, 0.0f), 1.0f / p->ior, &d_w);
       L = R * (single_only_mode(max_bounces) ? 0.0f : bn->sky_radiance) +
-          (1.0f - R) / (p->ior * p->ior) * trace_path(p, bn, objects, albedo, lp, lamps, lamp_spectra, band, max_bounces, key, o, d_w);
+          (1.0f - R) / (p->ior * p->ior) * trace_path(p, bn, objects, albedo, lp, lamps, lamp_spectra, phase_tables, band, max_bounces, key, o, d_w);
     }
     L *= p->band_count;
     const float3 s = L * (float3)(bn->w_r, bn->w_g, bn->w_b);

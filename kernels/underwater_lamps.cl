@@ -11,7 +11,9 @@
  * Inputs: UwParams (camera, g, bottom), UwBand[band_count] (b, c, bottom albedo, sensor weights),
  * albedo[object * band_count + band], UwObject[], the G-buffer of raycast.cl (geom, material),
  * UwLampParams, UwLamp[lamp_count], lamp_spectra[lamp * band_count + band] (W sr⁻¹ nm⁻¹ on the axis).
- * Output: rgb[3 * pixels] (+=), spectral[band_count * pixels] (+=, SEASIM_SPECTRAL_OUTPUT).
+ * Output: rgb[3 * pixels] (+=), spectral[band_count * pixels] (+=, SEASIM_SPECTRAL_OUTPUT), and with
+ * SEASIM_LAYER_LAMPS (outputs.layers) the same light into lamps_layer[3 * pixels] (+=; kd_multiple.cl
+ * zeroed it) so that lamp and sun light can be told apart.
  * Defines: SEASIM_HAS_OBJECTS (shadow rays), SEASIM_SPECTRAL_OUTPUT.
  * Stiff cases: common/underwater_lamps.h; never NaN/Inf (every division is by a clamped distance).
  */
@@ -47,6 +49,9 @@ __kernel void underwater_lamps(__constant UwParams* p, __global const UwBand* ba
                                __global const UwLamp* lamps, __global const float* lamp_spectra, __global float* rgb
 #if SEASIM_SPECTRAL_OUTPUT
                                , __global float* spectral
+#endif
+#if SEASIM_LAYER_LAMPS
+                               , __global float* lamps_layer
 #endif
 ) {
   const int x = get_global_id(0), y = get_global_id(1);
@@ -138,4 +143,9 @@ __kernel void underwater_lamps(__constant UwParams* p, __global const UwBand* ba
   rgb[3 * pixel + 0] += r;
   rgb[3 * pixel + 1] += g;
   rgb[3 * pixel + 2] += b;
+#if SEASIM_LAYER_LAMPS
+  lamps_layer[3 * pixel + 0] += r;
+  lamps_layer[3 * pixel + 1] += g;
+  lamps_layer[3 * pixel + 2] += b;
+#endif
 }

@@ -91,6 +91,14 @@ make_root() {
   # apt inside the root keeps what it downloads (the cache is copied out on exit).
   rm -f "$ROOT/etc/apt/apt.conf.d/docker-clean"
   cp /etc/resolv.conf "$ROOT/etc/resolv.conf"
+  # The machine's network as the root sees it: besides its resolver, the extra certificate
+  # authorities it trusts (an intercepting egress proxy's; a machine behind none has none), which
+  # the root's ca-certificates adds when apt installs it, so pip reaches PyPI from the root too.
+  if compgen -G "/usr/local/share/ca-certificates/*.crt" >/dev/null; then
+    mkdir -p "$ROOT/usr/local/share/ca-certificates"
+    cp /usr/local/share/ca-certificates/*.crt "$ROOT/usr/local/share/ca-certificates/"
+    if [ -x "$ROOT/usr/sbin/update-ca-certificates" ]; then in_root update-ca-certificates >/dev/null; fi
+  fi
 }
 
 copy_source() {

@@ -33,6 +33,7 @@
 #include "reference/shafts_reference.h"
 #include "reference/underwater_reference.h"
 #include "render/renderer.h"
+#include "scene/output_layers.h"
 #include "scene/scene_inputs.h"
 #include "spectral/sensor.h"
 #include "spectral/wavelength_grid.h"
@@ -136,14 +137,28 @@ int cmdPlan(const std::string& scene_file, const std::vector<std::string>& sets)
 }
 
 int cmdRender(const RenderCmd& cmd) {
-  const Scene scene = loadScene(cmd.scene, parseSets(cmd.sets));
+  // --output names formats and layers alike: a layer adds to the scene's outputs.layers; the
+  // formats stay the default (exr, png) when only layers are named.
+  std::vector<std::string> formats, layers;
+  const std::vector<std::string> known_formats = {"exr", "png", "spectral_exr", "npy"};
+  for (const auto& o : cmd.formats) {
+    const bool format = std::find(known_formats.begin(), known_formats.end(), o) != known_formats.end();
+    if (!format && !findOutputLayer(o)) {  // neither: the error names both lists, before anything runs
+      OutputsDesc unknown;
+      addOutputLayers(unknown, {o}, "--output (formats: exr, png, spectral_exr, npy)");
+    }
+    (format ? formats : layers).push_back(o);
+  }
+  if (formats.empty()) formats = RenderCmd{}.formats;
+  Scene scene = loadScene(cmd.scene, parseSets(cmd.sets));
+  addOutputLayers(scene.outputs, layers, "--output");
   checkSceneInputs(scene);
   const std::string out_abs = fs::absolute(cmd.out_dir).lexically_normal().string();
   if (const std::string problem = outputDirProblem(out_abs); !problem.empty())
     throw RuntimeError("-o " + cmd.out_dir + ": cannot write results there: " + problem);
   Device device(chooseDevice(cmd.device));
   ItemOutputs outputs;
-  outputs.formats = cmd.formats;
+  outputs.formats = formats;
   outputs.reference = cmd.reference;
   const auto report = renderItem(device, scene, outputs, cmd.out_dir);
   std::printf("%s: %s kernels %.2f ms (build %.1f ms) on %s\n", scene.name.c_str(), cmd.out_dir.c_str(),
@@ -154,9 +169,13 @@ int cmdRender(const RenderCmd& cmd) {
 }
 
 int cmdRun(const std::string& job_arg, const std::string& device, const std::string& shard, bool resume,
-           const std::string& output_dir, const std::vector<std::string>& sets) {
+           const std::string& output_dir, const std::vector<std::string>& sets,
+           const std::vector<std::string>& layers) {
   RunOptions options;
   options.overrides = parseSets(sets);
+  OutputsDesc asked;  // unknown names fail here, before the job loads
+  addOutputLayers(asked, layers, "--output");
+  options.layers = asked.layers;
   options.device = device;
   options.resume = resume;
   options.output_dir = output_dir;
@@ -186,6 +205,7 @@ int cmdRun(const std::string& job_arg, const std::string& device, const std::str
   const RunSummary s = runJob(job, options);
   std::printf("job done: %d rendered, %d finished earlier, %d left to other shards, %zu failed -> %s\n", s.rendered,
               s.skipped, s.other_shards, s.failed.size(), s.output_dir.c_str());
+  if (!s.contact_sheet.empty()) std::printf("contact sheet: %s\n", s.contact_sheet.c_str());
   if (s.failed.empty()) return 0;
   std::fprintf(stderr, "seasim: %zu item(s) failed (recorded in %s):\n", s.failed.size(), s.manifest.c_str());
   for (const auto& f : s.failed) std::fprintf(stderr, "  %s: %s\n", f.name.c_str(), f.error.c_str());
@@ -635,6 +655,7 @@ std::string writeSceneReference(const Scene& scene, const ReferenceCmd& cmd, con
   options.seed = cmd.seed;
   options.all_orders = cmd.all_orders;
   options.max_bounces = cmd.max_bounces;
+  options.lamp_mis = !cmd.plain_lamp_sampling;
   const bool tty = isatty(fileno(stderr));
   // The path tracer's samples per pixel; its total is known at the first call.
   options.progress = [tty, next = 0](int done, int total) mutable {

@@ -18,13 +18,14 @@ int cmdPlan(const std::string& scene, const std::vector<std::string>& sets);
 struct RenderCmd {
   std::string scene, out_dir, device, reference;
   std::vector<std::string> sets;
-  std::vector<std::string> formats = {"exr", "png"};
+  std::vector<std::string> formats = {"exr", "png"};  // and layer names (scene/output_layers.h)
 };
 int cmdRender(const RenderCmd& cmd);
 
 // `sets` (--set key=value) are applied to every item of the job, after the item's own overrides.
 int cmdRun(const std::string& job, const std::string& device, const std::string& shard, bool resume,
-           const std::string& output_dir = "", const std::vector<std::string>& sets = {});
+           const std::string& output_dir = "", const std::vector<std::string>& sets = {},
+           const std::vector<std::string>& layers = {});
 
 // The tone map's exposure is --exposure when given, else the one recorded with the test image (its
 // render's report.json), else the reference's (REF.settings.json), as `sweep` uses the scene's; 0 when
@@ -69,6 +70,7 @@ struct ReferenceCmd {
   long long seed = -1;  // under water: the path tracer's seed; -1: not given (seed 1)
   bool all_orders = false;  // the sea seen from above: the path tracer refracting in, not 000's quadrature
   int max_bounces = 0;      // path tracer: scattering vertices per path (0: its default, 64)
+  bool plain_lamp_sampling = false;  // path tracer: lamps by the equiangular sample alone (no MIS)
 };
 int cmdReference(const ReferenceCmd& cmd);
 // The reference of `scene` (the model's brute-force method, as `seasim reference` picks it) written to

@@ -11,6 +11,7 @@
 #include "cli/farm_command.h"
 #include "cli/ocean_command.h"
 #include "cli/preview_command.h"
+#include "cli/profile_command.h"
 #include "cli/seashore_study_command.h"
 #include "cli/underwater_regions_command.h"
 #include "cli/underwater_study_command.h"
@@ -45,7 +46,11 @@ int main(int argc, char** argv) {
   render->add_option("-o,--out", render_cmd.out_dir, "Output folder")->required();
   render->add_option("--device", render_cmd.device, "cpu, gpu, pocl:0, nvidia:0 or a name substring");
   render->add_option("--set", render_cmd.sets, "Override a scene key: key=value (repeatable)");
-  render->add_option("--output", render_cmd.formats, "Formats: exr png spectral_exr npy")->delimiter(',');
+  render->add_option("--output", render_cmd.formats,
+                     "Formats: exr png spectral_exr npy; and ground-truth layers written into image.exr: range depth "
+                     "normal object_id albedo clear direct backscatter forward lamps transmission veiling beta_d "
+                     "beta_b (docs/layers.md; repeatable or comma-separated)")
+      ->delimiter(',');
   render->add_option("--reference", render_cmd.reference, "Reference EXR: report error against it")
       ->check(kReadableFile);
 
@@ -57,7 +62,11 @@ int main(int argc, char** argv) {
   run->add_option("--device", run_device, "Device selector (overrides the job's)");
   run->add_option("--shard", run_shard, "i/N: render shard i of N (balanced by estimated or measured cost)");
   run->add_flag("--resume", run_resume, "Skip items the manifest records as finished");
-  std::vector<std::string> run_sets;
+  std::vector<std::string> run_sets, run_layers;
+  run->add_option("--output", run_layers,
+                  "Ground-truth layer added to every item's image.exr (docs/layers.md): range, depth, normal, "
+                  "object_id, albedo, clear, direct, ... (repeatable or comma-separated)")
+      ->delimiter(',');
   run->add_option("--set", run_sets,
                   "Override a scene key of every item, after the item's own: key=value (repeatable), e.g. "
                   "--set camera.width=160 --set camera.height=90");
@@ -137,6 +146,10 @@ int main(int argc, char** argv) {
                         "validation's max_depth; Russian roulette ends nearly every path before. 64 took up to 40 % "
                         "off deep, strongly forward water with little absorption, e.g. g 0.95 at u = 0.6)")
       ->check(CLI::PositiveNumber);
+  reference->add_flag("--plain-lamp-sampling", ref_cmd.plain_lamp_sampling,
+                      "Path tracer: see spotlights by one equiangular sample per path segment alone, instead of one "
+                      "inside the lamp's cone combined with next-event estimation at the free-flight vertex (both "
+                      "unbiased; for measuring the combination's variance)");
   reference->add_option("--device", ref_cmd.device, "Device for the underwater path tracer");
   reference->add_option("--set", ref_cmd.sets, "Override a scene key: key=value (repeatable)");
 
@@ -221,6 +234,25 @@ int main(int argc, char** argv) {
   shore->add_option("--device", shore_cmd.device, "Device selector");
   shore->add_option("--set", shore_cmd.sets, "Override a scene key: key=value (repeatable)");
 
+  seasim::ProfileCmd profile_cmd;
+  auto* profile = app.add_subcommand(
+      "profile", "Plane-parallel light field of a scene's water: E_d, E_u, E_0d, E_0u, L_u, K_d, R, L_w, R_rs (docs/radiometry.md)");
+  profile->add_option("scene", profile_cmd.scene, "Scene file")->required()->check(kReadableFile);
+  profile->add_option("--depths", profile_cmd.depths, "Depths, m (default 0,1,5,10)")->delimiter(',');
+  profile->add_option("--streams", profile_cmd.streams, "Discrete-ordinates streams per hemisphere (quality knob)");
+  profile->add_option("--solver", profile_cmd.solver, "discrete_ordinates (default) or monte_carlo (reference, standard errors)");
+  profile->add_option("--photons", profile_cmd.photons, "Monte Carlo photons per band");
+  profile->add_option("--csv", profile_cmd.csv, "CSV output (default: stdout)");
+  profile->add_option("--plot", profile_cmd.plot, "SVG plot output");
+  profile->add_option("--set", profile_cmd.sets, "Override a scene key: key=value (repeatable)");
+  seasim::CanonicalProblemsCmd canonical_cmd;
+  auto* canonical = app.add_subcommand(
+      "canonical-problems", "Mobley et al. 1993 problems 1, 2, 6 against the published codes, by stream count");
+  canonical->add_option("--streams", canonical_cmd.streams, "Stream counts (default 4,8,16,32)")->delimiter(',');
+  canonical->add_option("--photons", canonical_cmd.photons, "Monte Carlo photons per problem (0: none)");
+  canonical->add_option("--values", canonical_cmd.values, "Published values CSV")->check(kReadableFile);
+  canonical->add_option("--out", canonical_cmd.out, "Markdown output (default: stdout)");
+
   auto* cache = app.add_subcommand("cache", "The on-disk caches: kernel binaries, PoCL's kernels, tables");
   cache->require_subcommand(1);
   auto* cache_clear = cache->add_subcommand("clear", "Remove every cache seasim owns (rebuilt on next use)");
@@ -287,7 +319,7 @@ int main(int argc, char** argv) {
     if (*validate) return seasim::cmdValidate(validate_files);
     if (*plan) return seasim::cmdPlan(plan_scene, plan_sets);
     if (*render) return seasim::cmdRender(render_cmd);
-    if (*run) return seasim::cmdRun(run_job, run_device, run_shard, run_resume, run_output, run_sets);
+    if (*run) return seasim::cmdRun(run_job, run_device, run_shard, run_resume, run_output, run_sets, run_layers);
     if (*compare) return seasim::cmdCompare(cmp_a, cmp_b, cmp_exposure_opt->count() ? std::optional<double>(cmp_exposure) : std::nullopt);
     if (*sweep) return seasim::cmdSweep(sweep_cmd);
     if (*bench) return seasim::cmdBench(bench_cmd);
@@ -303,6 +335,8 @@ int main(int argc, char** argv) {
     if (*regions) return seasim::cmdUnderwaterRegions(regions_cmd);
     if (*shore) return seasim::cmdSeashoreStudy(shore_cmd);
     if (*preview) return seasim::cmdPreview(preview_cmd);
+    if (*profile) return seasim::cmdProfile(profile_cmd);
+    if (*canonical) return seasim::cmdCanonicalProblems(canonical_cmd);
     if (*cache_clear) return seasim::cmdCacheClear();
     if (*cache_verify) return seasim::cmdCacheVerify();
     if (*warm) return seasim::cmdCacheWarm(warm_cmd);

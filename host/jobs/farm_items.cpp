@@ -53,11 +53,12 @@ const char* outputFileName(const std::string& format) {
 }
 
 // The first file the job expects of this item that the manifest's list leaves out ("" when none):
-// report.json and one file per output. A manifest edited by hand, or written by a run whose job
-// asked for fewer outputs, must not make an item count as done.
+// report.json, one file per output, and labels.json for a [sample] item. A manifest edited by
+// hand, or written by a run whose job asked for fewer outputs, must not make an item count as done.
 std::string unlistedFile(const RenderItem& item, const nlohmann::json& files) {
   const std::string dir = item.name + "/";
   if (!files.contains(dir + "report.json")) return dir + "report.json";
+  if (!item.sampled.empty() && !files.contains(dir + "labels.json")) return dir + "labels.json";
   for (const std::string& format : item.outputs) {
     const char* name = outputFileName(format);
     if (!name) continue;  // the job parser accepts no other format

@@ -1,5 +1,6 @@
 // job.h — job files: a list of renders (and sweeps expanded into renders) for the farm.
 #pragma once
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -15,7 +16,12 @@ struct RenderItem {
   std::string reference;             // optional reference EXR (absolute) to report error against
   SourceLoc reference_loc;           // where `reference` was written
   std::string reference_key;         // its dotted key ("render[0].reference"), for messages
-  SourceLoc loc;                     // the [[render]] / [[sweep]] table
+  SourceLoc loc;                     // the [[render]] / [[sweep]] / [sample] table
+  // [sample] items (jobs/job_sampling.h): the keys drawn for this item, also the last of
+  // `overrides`; the job's seed and the item's draw index. The runner writes labels.json for them.
+  std::vector<Override> sampled;
+  std::uint64_t sample_seed = 0;
+  std::uint64_t sample_index = 0;
 };
 
 struct Job {
@@ -37,7 +43,7 @@ struct JobLoadOptions {
 Job loadJob(const std::string& path, const JobLoadOptions& options = {});
 Job parseJob(const std::string& toml_text, const std::string& path, const JobLoadOptions& options = {});
 
-// True when the file looks like a job (has [job], [[render]] or [[sweep]]), for `seasim validate`.
+// True when the file looks like a job (has [job], [[render]], [[sweep]] or [sample]), for `seasim validate`.
 bool isJobFile(const std::string& path);
 
 }  // namespace seasim

@@ -1,13 +1,16 @@
 // job_parser.cpp — TOML job files -> Job: renders, frame ranges and sweeps expanded into a flat
 // list of uniquely named items, each validated with its scene. Format: scenes/README.md ("Job
 // files").
+#include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <fstream>
 #include <map>
 #include <regex>
 #include <sstream>
 
 #include "jobs/job.h"
+#include "jobs/job_sampling.h"
 #include "scene/toml_limits.h"
 #include "scene/toml_reader.h"
 #include "util/error.h"
@@ -71,7 +74,7 @@ class JobParser {
 
   std::vector<PendingItem> parse(const toml::table& root_table) {
     TableReader root(src_, root_table, "");
-    for (const char* k : {"job", "render", "sweep"}) root.has(k);
+    for (const char* k : {"job", "render", "sweep", "sample"}) root.has(k);
     root.finish();
 
     job_.name = fs::path(job_.file).stem().string();
@@ -97,8 +100,9 @@ class JobParser {
     std::vector<PendingItem> items;
     for (const auto& [i, t] : root.arrayOfTables("render")) render(*t, i, items);
     for (const auto& [i, t] : root.arrayOfTables("sweep")) sweep(*t, i, items);
+    if (const toml::table* t = root.subtable("sample")) sample(*t, items);
     if (items.empty())
-      src_.fail(&root_table, "", "the job has no [[render]] or [[sweep]] tables, so nothing to do");
+      src_.fail(&root_table, "", "the job has no [[render]] or [[sweep]] tables (nor [sample]), so nothing to do");
     return items;
   }
 
@@ -255,6 +259,40 @@ class JobParser {
       items.push_back(p);
     }
   }
+
+  // [sample]: `count` items named <name>_s<index>, each with its [sample.keys] drawn for its index
+  // (jobs/job_sampling.h). An override sits at its key's distribution, so a value the scene
+  // rejects is reported on that line.
+  void sample(const toml::table& t, std::vector<PendingItem>& items) {
+    TableReader r(src_, t, "sample");
+    PendingItem base = common(r, t);
+    r.check(r.has("seed"), "seed", "missing: the integer every draw derives from (the same seed gives the same items)");
+    const long long seed = r.integerIn("seed", 0, 0, std::numeric_limits<long long>::max());
+    r.check(r.has("count"), "count", "missing: how many items to draw");
+    const long long count = r.integerIn("count", 1, 1, static_cast<long long>(kMaxJobItems));
+    r.check(items.size() + static_cast<size_t>(count) <= kMaxJobItems, "count", tooMany(items.size(), count));
+    const toml::table* keys = r.subtable("keys");
+    r.check(keys && !keys->empty(), "keys",
+            "missing: [sample.keys] with a distribution per scene key, e.g. \"sun.zenith_deg\" = { uniform = [20, 60] }");
+    const std::vector<SampledKey> sampled = readSampledKeys(src_, *keys, r.path("keys"));
+    r.finish();
+
+    size_t width = 4;  // zero-padded so that item names sort in draw order
+    for (long long n = count - 1; n >= 10000; n /= 10) ++width;
+    for (long long i = 0; i < count; ++i) {
+      PendingItem p = base;
+      const std::string index = std::to_string(i);
+      p.item.name += "_s" + std::string(width > index.size() ? width - index.size() : 0, '0') + index;
+      p.item.sample_seed = static_cast<std::uint64_t>(seed);
+      p.item.sample_index = static_cast<std::uint64_t>(i);
+      for (const SampledKey& k : sampled) {
+        Override o{k.key, sampledValue(k, p.item.sample_seed, p.item.sample_index), k.loc};
+        p.item.overrides.push_back(o);
+        p.item.sampled.push_back(std::move(o));
+      }
+      items.push_back(std::move(p));
+    }
+  }
 };
 
 }  // namespace
@@ -309,10 +347,10 @@ bool isJobFile(const std::string& path) {
   checkTomlLimits(text.str(), path);  // toml++ would recurse into a key of thousands of parts
   try {
     toml::table t = toml::parse(text.str(), std::string_view(path));
-    return t.contains("job") || t.contains("render") || t.contains("sweep");
+    return t.contains("job") || t.contains("render") || t.contains("sweep") || t.contains("sample");
   } catch (const toml::parse_error&) {
     // Broken TOML: decide from the table headers so the right parser reports the syntax error.
-    static const std::regex header(R"(^\s*(\[\s*job\s*\]|\[\[\s*(render|sweep)\s*\]\]))");
+    static const std::regex header(R"(^\s*(\[\s*(job|sample)\s*\]|\[\[\s*(render|sweep)\s*\]\]))");
     std::string line;
     std::istringstream lines(text.str());
     while (std::getline(lines, line))

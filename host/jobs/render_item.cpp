@@ -6,6 +6,7 @@
 #include "io/atomic_file.h"
 #include "io/image_io.h"
 #include "io/tonemap_eq18.h"
+#include "jobs/layer_image.h"
 #include "jobs/recorded_settings.h"
 #include "jobs/test_hooks.h"
 #include "plan/memory_budget.h"
@@ -46,6 +47,7 @@ void checkRenderFitsDevice(Device& device, const Scene& scene, const Plan& plan)
 }
 
 void checkOutputsPossible(const Scene& scene, const Plan& plan, const std::vector<std::string>& formats) {
+  checkLayerOutputs(scene, formats);
   if (std::find(formats.begin(), formats.end(), "spectral_exr") == formats.end()) return;
   if (!scene.spectral.spectral_exr)
     throw RuntimeError("output 'spectral_exr' needs spectral.spectral_exr = true in the scene '" + scene.file +
@@ -98,6 +100,7 @@ nlohmann::json renderItem(Device& device, Renderer& renderer, const ItemOutputs&
       std::find(outputs.formats.begin(), outputs.formats.end(), "spectral_exr") != outputs.formats.end();
   if (wants_spectral && frame.spectral.empty())  // the plan promised it (checkOutputsPossible): a bug
     throw RuntimeError("output 'spectral_exr': the render produced no spectral image; nothing written");
+  const Image exr_image = imageWithLayers(frame, scene.outputs);  // R, G, B and the layers; before any file
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec) throw RuntimeError("cannot create the output folder '" + dir + "': " + ec.message());
@@ -109,7 +112,7 @@ nlohmann::json renderItem(Device& device, Renderer& renderer, const ItemOutputs&
       path = scene.spectral.sensor == "identity" && !frame.spectral.empty()
                  ? writeSpectralExr(dir + "/image.exr", frame.rgb.width, frame.rgb.height, frame.wavelengths_nm,
                                     frame.spectral)
-                 : writeExr(dir + "/image.exr", frame.rgb);
+                 : writeExr(dir + "/image.exr", exr_image);
     } else if (format == "png") {
       if (scene.display.tone_map == DisplayDesc::ToneMap::Eq18) {  // 003 eq. 18 (io/tonemap_eq18.h)
         std::vector<std::uint8_t> bytes;

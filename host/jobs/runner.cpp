@@ -12,7 +12,9 @@
 #include "device/device.h"
 #include "io/atomic_file.h"
 #include "io/data_files.h"
+#include "jobs/contact_sheet.h"
 #include "jobs/farm_items.h"
+#include "jobs/item_labels.h"
 #include "jobs/job.h"
 #include "jobs/job_inputs.h"
 #include "jobs/manifest.h"
@@ -66,8 +68,9 @@ struct RendererCache {
 // Renders one item and returns its manifest files (relative path -> checksum), kernel ms and kernel
 // build ms.
 nlohmann::json renderOne(Device& device, RendererCache& cache, const RenderItem& item, const std::string& output_dir,
-                         double& kernel_ms, double& build_ms) {
+                         const std::vector<std::string>& layers, double& kernel_ms, double& build_ms) {
   Scene scene = loadScene(item.scene_file, item.overrides);
+  addOutputLayers(scene.outputs, layers, "--output");
   scene.files = cache.files;  // read each data file once per job
   // Before any buffer exists: a render too big for the device fails here, naming its settings.
   checkRenderFitsDevice(device, scene, makePlan(scene));
@@ -88,6 +91,12 @@ nlohmann::json renderOne(Device& device, RendererCache& cache, const RenderItem&
     files[rel] = fileChecksum(output_dir + "/" + rel);
   }
   files[item.name + "/report.json"] = fileChecksum(item_dir + "/report.json");
+  // A dataset item's labels: after the images, before the manifest records the item done, so an
+  // interrupted item is rendered again on --resume (jobs/farm_items.cpp expects the file).
+  if (!item.sampled.empty()) {
+    const std::string rel = item.name + "/" + writeItemLabels(scene, item, item_dir);
+    files[rel] = fileChecksum(output_dir + "/" + rel);
+  }
   kernel_ms = report["kernel_ms_total"].get<double>();
   build_ms = report["kernel_build_ms"].get<double>();
   return files;
@@ -137,6 +146,11 @@ RunSummary runJob(const std::string& job_path, const RunOptions& options) {
   // The [quality] knobs are left out: "auto" ones are recorded as the values they resolved to.
   for (const RenderItem* item : mine) {
     if (!finished.count(item->name)) continue;
+    if (!item->sampled.empty() && labelsRecordOtherDraws(*item, job.output_dir + "/" + item->name)) {
+      std::fprintf(stderr, "%s: drawn with other values ([sample] changed): rendering it again\n", item->name.c_str());
+      finished.erase(item->name);
+      continue;
+    }
     const nlohmann::json recorded = reportSettings(job.output_dir + "/" + item->name);
     if (recorded.is_null()) continue;  // a report without settings (older seasim): kept as finished
     for (const SettingsDifference& d : settingsDifferences(settingsJson(loadScene(item->scene_file, item->overrides)), recorded))
@@ -182,7 +196,7 @@ RunSummary runJob(const std::string& job_path, const RunOptions& options) {
       try {
         double kernel_ms = 0, build_ms = 0;
         const auto t0 = std::chrono::steady_clock::now();
-        const nlohmann::json files = renderOne(*device, renderers, *item, job.output_dir, kernel_ms, build_ms);
+        const nlohmann::json files = renderOne(*device, renderers, *item, job.output_dir, options.layers, kernel_ms, build_ms);
         const double wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
         manifest.recordDone(item->name, files, kernel_ms, wall_ms, build_ms);
         manifest.save(manifest_file);
@@ -207,6 +221,8 @@ RunSummary runJob(const std::string& job_path, const RunOptions& options) {
     finish(item->name, "FAILED: " + firstLine(error));
   }
   if (!options.on_item) progress.done();
+  // A sharded run's items are spread over shards: `farm merge` writes that job's sheet.
+  if (options.shard_count == 1) summary.contact_sheet = writeRunContactSheet(job);
   return summary;
 }
 

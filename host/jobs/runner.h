@@ -16,6 +16,7 @@ struct RunOptions {
   bool resume = false;     // skip items the manifest records as finished with intact files
   std::string output_dir;  // replaces the job's output_dir when not empty (-o)
   std::vector<Override> overrides;  // `run --set`: applied to every item after its own overrides
+  std::vector<std::string> layers;  // `run --output LAYER`: added to every item's outputs.layers
   // When set, called after each item (handled so far, items of this shard, item name, outcome) in place
   // of the progress lines on stderr (the Python package draws its own bar).
   std::function<void(int handled, int total, const std::string& item, const std::string& outcome)> on_item;
@@ -33,6 +34,7 @@ struct RunSummary {
   std::vector<FailedItem> failed;  // recorded in the manifest; `--resume` retries them
   std::string output_dir;
   std::string manifest;
+  std::string contact_sheet;  // <output_dir>/index.html (jobs/contact_sheet.h); unsharded runs only
 };
 
 // The manifest of a shard: <output_dir>/manifest.json (or manifest-<i>of<N>.json when sharded),

@@ -19,6 +19,7 @@ namespace seasim::kmath_f {
 typedef float real;
 #include "common/real3_host.h"
 #include "common/optics.h"
+#include "common/phase.h"
 #include "common/shafts.h"
 #include "common/shafts_intervals.h"
 #include "common/sea_surface.h"
@@ -31,6 +32,7 @@ typedef float real;
 #include "common/sea_multiple.h"
 #include "common/ocean_spectrum.h"
 #include "common/underwater.h"
+#include "common/output_layers.h"
 #include "common/band_lanes.h"
 #include "common/band_lanes_math.h"
 #include "common/underwater_bands.h"
@@ -43,6 +45,7 @@ typedef float real;
 #include "common/caustic_map.h"
 #include "common/froxel.h"
 #include "common/path_tracer.h"
+#include "common/path_tracer_lamps.h"
 #include "common/fourflow.h"
 #include "common/fourflow_waves.h"
 }  // namespace seasim::kmath_f
@@ -51,6 +54,7 @@ namespace seasim::kmath_d {
 typedef double real;
 #include "common/real3_host.h"
 #include "common/optics.h"
+#include "common/phase.h"
 #include "common/shafts.h"
 #include "common/shafts_intervals.h"
 #include "common/sea_surface.h"
@@ -63,6 +67,7 @@ typedef double real;
 #include "common/sea_multiple.h"
 #include "common/ocean_spectrum.h"
 #include "common/underwater.h"
+#include "common/output_layers.h"
 #include "common/band_lanes.h"
 #include "common/band_lanes_math.h"
 #include "common/underwater_bands.h"
@@ -75,6 +80,7 @@ typedef double real;
 #include "common/caustic_map.h"
 #include "common/froxel.h"
 #include "common/path_tracer.h"
+#include "common/path_tracer_lamps.h"
 #include "common/fourflow.h"
 #include "common/fourflow_waves.h"
 }  // namespace seasim::kmath_d

@@ -54,10 +54,11 @@ SeaSky makeSeaSky(const SkyDesc& desc, const double sun_dir[3], const Wavelength
     // Spectral (issue 19): the 18 reals, then the daylight basis's luminance weights; each band takes
     // the basis S0, S1, S2 over D65 (sky_preetham_daylight), not R, G, B.
     const kd::real3 sun{sun_dir[0], sun_dir[1], sun_dir[2]};
-    sky.texels.assign(21, 0.0);
+    sky.texels.assign(22, 0.0);
     kd::sky_preetham_pack(sun, desc.turbidity, sky.texels.data());
     const std::array<double, 3> n = daylightLuminanceWeights();
     for (int k = 0; k < 3; ++k) sky.texels[static_cast<size_t>(18 + k)] = n[static_cast<size_t>(k)];
+    sky.texels[21] = desc.chromaticity_on_daylight_locus ? 1.0 : 0.0;  // sky.chromaticity (common/sky.h)
     for (size_t i = 0; i < grid.centers_nm.size(); ++i) sky.band_weights[i] = daylightBandWeights(grid.centers_nm[i]);
     const double mean = kd::sky_preetham_daylight_cosine_mean(sky.texels.data(), sun, 256, 512);
     sky.scale = mean > 0 ? 1.0 / mean : 0.0;

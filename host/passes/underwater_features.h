@@ -37,6 +37,8 @@ struct KdFeatures final : PassFeatures {
   int sky_model = 0;             // Snell's window: common/sky.h's models
   int underwater_model = 0;      // 0 thesis (002 eq. 4.7), 1 discrete ordinates (common/underwater_improved.h)
   bool point_spread = false;     // the forward light kept apart for water_spread
+  bool formation_layers = false;  // outputs.layers clear, direct, backscatter, forward, lamps, transmission
+  bool veiling_layer = false;     // outputs.layers veiling (B∞: the in-scatter with S = ∞)
 
   void list(FeatureList& out) const override {
     out.flag("multiple", "SEASIM_HAS_MULTIPLE", multiple);
@@ -45,16 +47,21 @@ struct KdFeatures final : PassFeatures {
     out.value("sky_model", "SEASIM_SKY_MODEL", sky_model);
     out.value("underwater_model", "SEASIM_UNDERWATER_MODEL", underwater_model);
     out.flag("point_spread", "SEASIM_UWI_SPREAD", point_spread);
+    // Listed only when asked: a plan without layers keeps its defines, and its kernels their cache.
+    if (formation_layers) out.flag("formation_layers", "SEASIM_LAYER_FORMATION", true);
+    if (veiling_layer) out.flag("veiling_layer", "SEASIM_LAYER_VEILING", true);
   }
 };
 
 struct UnderwaterLampsFeatures final : PassFeatures {
   bool objects = false;          // objects shadow the lamps
   bool spectral_output = false;  // the per-band image (spectral.spectral_exr)
+  bool lamps_layer = false;      // outputs.layers: the lamps' light also added into its own layer
 
   void list(FeatureList& out) const override {
     out.flag("objects", "SEASIM_HAS_OBJECTS", objects);
     out.flag("spectral_output", "SEASIM_SPECTRAL_OUTPUT", spectral_output);
+    if (lamps_layer) out.flag("lamps_layer", "SEASIM_LAYER_LAMPS", true);
   }
 };
 

@@ -79,7 +79,8 @@ void UnderwaterLampsPass::update(const UnderwaterSetup& setup) {
   });
 }
 
-double UnderwaterLampsPass::run(cl::Buffer& geom, cl::Buffer& material, cl::Buffer& rgb, cl::Buffer* spectral) {
+double UnderwaterLampsPass::run(cl::Buffer& geom, cl::Buffer& material, cl::Buffer& rgb, cl::Buffer* spectral,
+                                cl::Buffer* lamps_layer) {
   onDevice("underwater_lamps pass", [&] {
     cl_uint arg = 0;
     kernel_.setArg(arg++, params_);
@@ -93,6 +94,7 @@ double UnderwaterLampsPass::run(cl::Buffer& geom, cl::Buffer& material, cl::Buff
     kernel_.setArg(arg++, spectra_);
     kernel_.setArg(arg++, rgb);
     if (spectral) kernel_.setArg(arg++, *spectral);
+    if (lamps_layer) kernel_.setArg(arg++, *lamps_layer);
   });
   return runKernel2d(device_, "underwater_lamps", kernel_, width_, height_);
 }

@@ -34,7 +34,9 @@ class UnderwaterLampsPass {
   UnderwaterLampsPass(Device& device, const Scene& scene, const UnderwaterSetup& setup, const WavelengthGrid& grid,
                       const PassPlan& plan, const Config& config);
   // Adds the lamps into rgb (and spectral when given) for the G-buffer (geom, material); returns ms.
-  double run(cl::Buffer& geom, cl::Buffer& material, cl::Buffer& rgb, cl::Buffer* spectral);
+  // lamps_layer: the "lamps" ground-truth layer (3 floats per pixel) when planned with SEASIM_LAYER_LAMPS.
+  double run(cl::Buffer& geom, cl::Buffer& material, cl::Buffer& rgb, cl::Buffer* spectral,
+             cl::Buffer* lamps_layer = nullptr);
   // Rewrites the underwater parameter blocks (sun, water or time changed; same sizes).
   void update(const UnderwaterSetup& setup);
 

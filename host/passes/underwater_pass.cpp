@@ -52,6 +52,15 @@ UnderwaterPass::UnderwaterPass(Device& device, const UnderwaterSetup& setup, con
         forward_spectral_ =
             cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * pixels * 2 * setup.bands.size());
     }
+    const KdFeatures& kd_features = kd.featuresAs<KdFeatures>();
+    // The ground-truth layers kd_multiple.cl writes (its header gives the layout).
+    if (kd_features.formation_layers) {
+      formation_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * pixels * 12);
+      forward_layer_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * pixels * 3);
+      lamps_layer_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * pixels * 3);
+    }
+    if (kd_features.veiling_layer)
+      veiling_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * pixels * 3);
     raycast_.setArg(0, params_);
     raycast_.setArg(1, objects_);
     raycast_.setArg(2, no_caustics_);
@@ -117,6 +126,12 @@ double UnderwaterPass::runShading(const cl::Buffer* froxel_params, const cl::Buf
       shade_.setArg(arg++, forward_depth_);
       if (spectral_output_) shade_.setArg(arg++, forward_spectral_);
     }
+    if (formation_() != nullptr) {
+      shade_.setArg(arg++, formation_);
+      shade_.setArg(arg++, forward_layer_);
+      shade_.setArg(arg++, lamps_layer_);
+    }
+    if (veiling_() != nullptr) shade_.setArg(arg++, veiling_);
   });
   return enqueue(shade_, "kd_multiple");
 }

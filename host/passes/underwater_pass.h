@@ -32,6 +32,8 @@ class UnderwaterPass {
   cl::Buffer& geometry() { return geom_; }  // float4 (S, n) per pixel
   cl::Buffer& sunVisibility() { return vis_; }  // float per pixel: shadow ray × caustic factor
   cl::Buffer& material() { return material_; }  // int per pixel: object index or UW_MAT_*
+  cl::Buffer& params() { return params_; }      // UwParams, the frame's
+  cl::Buffer& bandTable() { return band_table_; }  // common/underwater_band_table.h, the frame's
   // With the water's point-spread (kd planned with SEASIM_UWI_SPREAD=1, kernels/water_spread.cl): the
   // moments of the forward light kd_multiple kept apart (common/water_spread_params.h), [pixel][2][3] in
   // sensor RGB, [pixel][2] its light-weighted distance and, with spectral output, [pixel][2][band_count];
@@ -40,6 +42,12 @@ class UnderwaterPass {
   cl::Buffer& forwardRgb() { return forward_rgb_; }
   cl::Buffer& forwardSpectral() { return forward_spectral_; }
   cl::Buffer& forwardDepth() { return forward_depth_; }
+  // The ground-truth layers (kd planned with formation_layers / veiling_layer; kernels/kd_multiple.cl's
+  // header gives their layout); null buffers otherwise.
+  cl::Buffer& formationLayers() { return formation_; }  // [pixel][12]: clear, direct, backscatter, transmission
+  cl::Buffer& forwardLayer() { return forward_layer_; }  // [pixel][3], water_spread adds into it
+  cl::Buffer& lampsLayer() { return lamps_layer_; }      // [pixel][3], underwater_lamps adds into it
+  cl::Buffer& veilingLayer() { return veiling_; }        // [pixel][3]
 
  private:
   double enqueue(cl::Kernel& kernel, const char* what);
@@ -48,6 +56,7 @@ class UnderwaterPass {
   bool spectral_output_;
   bool spread_ = false;
   cl::Buffer forward_rgb_, forward_spectral_, forward_depth_;
+  cl::Buffer formation_, forward_layer_, lamps_layer_, veiling_;
   cl::Kernel raycast_, shade_;
   cl::Buffer params_, bands_, objects_, albedo_, geom_, material_, vis_, rgb_, spectral_, no_caustics_;
   cl::Buffer sky_params_, sky_;  // the [sky] for Snell's window (common/sky_view.h)

@@ -79,6 +79,22 @@ double WaterSpreadPass::blur(Channels& ch, const cl::Buffer& geom, const cl::Buf
   return ms;
 }
 
+double WaterSpreadPass::addRgbInto(cl::Buffer& frame) {
+  const size_t local = 8;
+  const cl::NDRange pixels(roundUp(static_cast<size_t>(spread_.params.width), local),
+                           roundUp(static_cast<size_t>(spread_.params.height), local));
+  cl::Event done;
+  onDevice("water spread pass (forward layer)", [&] {
+    expand_.setArg(0, rgb_.params);
+    expand_.setArg(1, rgb_.blurred);
+    expand_.setArg(2, frame);
+    device_.queue().enqueueNDRangeKernel(expand_, cl::NullRange, pixels,
+                                         workGroupFor(device_, expand_, cl::NDRange(local, local)), nullptr, &done);
+    done.wait();
+  });
+  return eventMs(done);
+}
+
 double WaterSpreadPass::run(const cl::Buffer& geom, const cl::Buffer& depth, const cl::Buffer& forward_rgb,
                             cl::Buffer& rgb, const cl::Buffer* forward_spectral, cl::Buffer* spectral) {
   double ms = blur(rgb_, geom, depth, forward_rgb, rgb);

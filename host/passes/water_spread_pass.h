@@ -27,6 +27,9 @@ class WaterSpreadPass {
   // [pixel][2][band_count] (common/water_spread_params.h). Returns the summed kernel ms.
   double run(const cl::Buffer& geom, const cl::Buffer& depth, const cl::Buffer& forward_rgb, cl::Buffer& rgb,
              const cl::Buffer* forward_spectral = nullptr, cl::Buffer* spectral = nullptr);
+  // Adds the RGB blur of the last run() into another 3-channel frame as well (the "forward"
+  // ground-truth layer): the expansion again, nothing blurred twice. Returns its ms.
+  double addRgbInto(cl::Buffer& frame);
   const WaterSpread& spread() const { return spread_; }
 
  private:

@@ -58,6 +58,7 @@ std::string describe(Device& device, const Scene& scene, const SeaAutoOptions& o
   s << "sun " << sun.enabled << ';' << sun.zenith << ';' << sun.azimuth << ';' << sun.irradiance << ';'
     << sun.angular_radius << '\n';
   s << "sky " << int(scene.sky.model) << ';' << scene.sky.radiance << ';' << scene.sky.turbidity << ';'
+    << (scene.sky.chromaticity_on_daylight_locus ? "locus;" : "")
     << (scene.sky.image.empty() ? std::string("-") : fileChecksum(scene.sky.image)) << '\n';
   const SpectralDesc& sp = scene.spectral;
   s << "spectral " << sp.count << ';' << sp.min_nm << ';' << sp.max_nm << ';' << sp.sensor << ';' << sp.white_balance

@@ -8,6 +8,7 @@
 #include "reference/sea_second_reference.h"
 #include "reference/shafts_reference.h"
 #include "reference/underwater_reference.h"
+#include "scene/water_phase.h"
 #include "spectral/sensor.h"
 #include "spectral/wavelength_grid.h"
 #include "underwater/underwater_setup.h"
@@ -59,7 +60,10 @@ ReferenceImage renderReference(const Scene& scene, const ReferenceOptions& optio
     if (!scene.underwater.multiple_scattering) settings.max_bounces = 1;
     const UnderwaterLamps lamps = makeUnderwaterLamps(scene, grid);  // [[spotlights]] under water, by NEE
     settings.lamps = &lamps;
+    settings.lamp_mis = options.lamp_mis;
     settings.progress = options.progress;
+    // A phase other than HG (`[water] phase`) is traced exactly from its tables; HG keeps its closed form.
+    if (scene.water.phase != "hg") settings.phase_tables = waterPhase(scene.water).pathTracerTables();
     UnderwaterReferenceResult r = renderUnderwaterReference(device, setup, settings);
     out.rgb = std::move(r.rgb);
     out.std_error = std::move(r.std_error);

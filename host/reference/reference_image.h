@@ -17,6 +17,7 @@ struct ReferenceOptions {
   long long seed = -1;      // path tracer: its seed; -1: not given (seed 1)
   bool all_orders = false;  // the sea seen from above: the path tracer refracting in, not 000's quadrature
   int max_bounces = 0;      // path tracer: scattering vertices per path (0: its default, 64)
+  bool lamp_mis = true;     // path tracer: UnderwaterReferenceSettings::lamp_mis
   std::function<void(int done, int total)> progress;  // path tracer: samples per pixel done
 };
 

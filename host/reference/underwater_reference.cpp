@@ -67,7 +67,12 @@ UnderwaterReferenceResult renderUnderwaterReference(Device& device, const Underw
     const std::vector<std::string> defines = {
         std::string("SEASIM_HAS_OBJECTS=") + (p.object_count > 0 ? "1" : "0"),
         std::string("SEASIM_PT_ISOTROPIC=") + (settings.isotropic ? "1" : "0"),
-        std::string("SEASIM_PT_JITTER=") + (settings.jitter ? "1" : "0")};
+        std::string("SEASIM_PT_JITTER=") + (settings.jitter ? "1" : "0"),
+        std::string("SEASIM_PT_LAMP_MIS=") + (settings.lamp_mis ? "1" : "0"),
+        std::string("SEASIM_PT_PHASE_TABLE=") + (settings.phase_tables.empty() ? "0" : "1")};
+    if (!settings.phase_tables.empty() && settings.phase_tables.size() != PHASE_PT_VALUES + PHASE_PT_SAMPLES)
+      throw RuntimeError("underwater reference: the phase tables hold " + std::to_string(settings.phase_tables.size()) +
+                         " values, not " + std::to_string(PHASE_PT_VALUES + PHASE_PT_SAMPLES));
     const BuiltProgram& built = device.program("reference.cl", defines);
     cl::Kernel kernel(built.program, "reference_path_trace");
     cl::Context& ctx = device.context();
@@ -102,6 +107,11 @@ UnderwaterReferenceResult renderUnderwaterReference(Device& device, const Underw
     kernel.setArg(10, lamp_params);
     kernel.setArg(11, lamp_buf);
     kernel.setArg(12, lamp_spectra);
+    const std::vector<float> no_phase(1, 0.0f);  // HG: the argument is not read
+    const std::vector<float>& phase = settings.phase_tables.empty() ? no_phase : settings.phase_tables;
+    cl::Buffer phase_buf(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(float) * phase.size(),
+                         const_cast<float*>(phase.data()));
+    kernel.setArg(13, phase_buf);
     const size_t local = 8;
     const cl::NDRange global((static_cast<size_t>(p.width) + local - 1) / local * local,
                              (static_cast<size_t>(p.height) + local - 1) / local * local);

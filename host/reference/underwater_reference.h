@@ -17,6 +17,7 @@
 // (settings.lamps, as the underwater_lamps pass does), to all orders of scattering.
 #pragma once
 #include <functional>
+#include <vector>
 
 #include "device/device.h"
 #include "io/image.h"
@@ -36,6 +37,9 @@ struct UnderwaterReferenceSettings {
                                // 1 = single scattering of the sun beam only (no surface, sky or objects'
                                // own shading)
   bool isotropic = false;      // phase 1/(4π) instead of Henyey–Greenstein with UwParams.g
+  // The water's phase for next-event weights and sampling (PhaseFunction::pathTracerTables: PHASE_PT_VALUES
+  // values then PHASE_PT_SAMPLES inverse-CDF entries, common/phase.h); empty: HG of UwParams.g.
+  std::vector<float> phase_tables;
   bool jitter = true;          // false: every path through the pixel centre (tests against quadrature)
   unsigned seed = 1;           // the same seed traces the same paths, whatever `batch` or `blocks` is
   int blocks = 32;             // independent blocks of paths (contiguous sample ranges) whose spread
@@ -46,6 +50,11 @@ struct UnderwaterReferenceSettings {
   // The scene's spotlights (underwater/lamps_setup.h: makeUnderwaterLamps), seen by next-event
   // estimation at every vertex; null: no lamps. Must outlive the call.
   const UnderwaterLamps* lamps = nullptr;
+  // How a path segment sees the lamps (common/path_tracer_lamps.h): true, an equiangular sample inside
+  // each lamp's cone and next-event estimation at the free-flight vertex, combined by the balance
+  // heuristic; false, one equiangular sample on the whole segment alone (the plain estimator, kept to
+  // measure the combination's variance against; both are unbiased).
+  bool lamp_mis = true;
   std::function<void(int done, int total)> progress;  // after each launch: samples done, samples asked
 };
 

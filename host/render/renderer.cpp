@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "device/enqueue.h"
+#include "render/layer_readback.h"
 #include "render/radiance_target.h"
 #include "util/error.h"
 
@@ -259,6 +260,7 @@ FrameResult Renderer::render() {
                                         result.spectral.data());
     }
   });
+  readLayers(device_, resources_, plan_, scene.camera.width, scene.camera.height, result);
   result.build_ms = device_.totalBuildMs() - build_before;
   result.wall_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return result;

@@ -40,6 +40,12 @@ class Resources {
   // Records that a pass wrote the resource's contents.
   void touch(const std::string& name);
   bool has(const std::string& name) const { return entries_.count(name) != 0; }
+  // Published and of type T.
+  template <class T>
+  bool holds(const std::string& name) const {
+    const auto it = entries_.find(name);
+    return it != entries_.end() && it->second.object && it->second.type == typeid(T);
+  }
   // 0 when the resource has not been published.
   uint64_t generation(const std::string& name) const;
   uint64_t version(const std::string& name) const;

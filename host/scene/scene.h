@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "scene/output_layers.h"
 #include "math/vec3.h"
 #include "io/tonemap_eq18.h"
 #include "spectral/spectrum.h"
@@ -46,6 +47,7 @@ struct SkyDesc {
   double radiance = 0.05;      // scale on D65 radiance (W m^-2 sr^-1 nm^-1 at 560 nm) for uniform
   std::string image;           // environment image (lat-long), resolved absolute path, for Image
   double turbidity = 3.0;      // Preetham: atmospheric turbidity T (1.7 very clear … 10 hazy)
+  bool chromaticity_on_daylight_locus = false;  // Preetham: sky.chromaticity = "daylight_locus" (common/sky.h)
 };
 
 // Water inherent optical properties. Either a Jerlov type (a, b, Kd from data/) or explicit spectra.
@@ -55,8 +57,14 @@ struct WaterDesc {
   Spectrum a;                  // absorption, 1/m
   Spectrum b;                  // scattering, 1/m
   Spectrum kd;                 // diffuse downwelling attenuation, 1/m (optional when explicit)
-  double g = 0.9;              // Henyey–Greenstein asymmetry for single scattering, |g| < 1
+  double g = 0.9;              // Henyey–Greenstein asymmetry for single scattering, |g| < 1; with
+                               // phase other than "hg", the phase's own g (its first moment)
   double ior = 1.333;          // refractive index of water relative to air
+  // The phase function (host/radiometry/phase_function.h): "hg" (of g), "petzold", "fournier_forand"
+  // (of bb_ratio), "rayleigh_like" or "table" (phase_file, resolved).
+  std::string phase = "hg";
+  std::string phase_file;
+  double bb_ratio = 0.0183;    // b_b/b of fournier_forand, in [0.001, 0.5]
 };
 
 struct AirDesc {
@@ -243,6 +251,7 @@ struct Scene {
   std::vector<ObjectDesc> objects;
   std::vector<SpotlightDesc> spotlights;
   SpectralDesc spectral;
+  OutputsDesc outputs;  // [outputs]: the ground-truth layers to write (scene/output_layers.h)
   DisplayDesc display;  // [display]: the PNG's tone map (io/tonemap.h or 003 eq. 18, io/tonemap_eq18.h)
   // Every known knob with its value or "auto"; defaults filled in by the parser. Keys are documented
   // in scenes/README.md ([quality]).

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "scene/toml_reader.h"
+#include "scene/water_phase.h"
 #include "spectral/jerlov.h"
 #include "spectral/sensor.h"
 #include "spectral/von_kries.h"
@@ -56,7 +57,7 @@ constexpr double kDegToRad = std::numbers::pi / 180.0;
 const std::vector<std::string> kTopLevel = {
     "scene",  "camera",  "sun",        "sky",      "water", "air",    "surface",
     "bottom", "objects", "spotlights", "spectral", "sea",   "underwater", "shallow", "quality",
-    "display"};
+    "display", "outputs"};
 
 std::string fmt(double v) { return formatNumber(v); }
 
@@ -122,6 +123,8 @@ class SceneParser {
     }
     quality(section(root, "quality"));
     display(section(root, "display"));
+    TableReader outputs(src_, section(root, "outputs"), "outputs");
+    parseOutputs(outputs, scene_.outputs);
   }
 
  private:
@@ -264,6 +267,7 @@ class SceneParser {
       s.turbidity = r.number("turbidity", s.turbidity);
       // Preetham et al. 1999 fitted T in [2, 10]; 1.7 (the clearest skies) is the usual lower limit.
       r.check(s.turbidity >= 1.7 && s.turbidity <= 10, "turbidity", "must be in [1.7, 10], got " + fmt(s.turbidity));
+      s.chromaticity_on_daylight_locus = r.choice("chromaticity", "preetham", {"preetham", "daylight_locus"}) == "daylight_locus";
     }
     r.finish();
   }
@@ -274,7 +278,8 @@ class SceneParser {
   void water(const toml::table& t) {
     TableReader r(src_, t, "water");
     // Unknown keys first: a typo'd "jerlv" should read as a typo, not as "jerlov missing".
-    for (const char* k : {"jerlov", "wavelengths_nm", "a", "b", "c", "kd", "g", "ior"}) r.has(k);
+    for (const char* k : {"jerlov", "wavelengths_nm", "a", "b", "c", "kd", "g", "ior", "phase", "phase_file", "bb_ratio"})
+      r.has(k);
     r.finish();
     WaterDesc& w = scene_.water;
     const char* explicit_keys[] = {"wavelengths_nm", "a", "b", "c", "kd"};
@@ -338,6 +343,7 @@ class SceneParser {
     }
     w.g = r.number("g", w.g);
     r.check(std::abs(w.g) < 1, "g", "must satisfy |g| < 1, got " + fmt(w.g));
+    readWaterPhase(r, scene_.file, w);
     w.ior = r.number("ior", w.ior);
     r.check(w.ior > 1 && w.ior < 3, "ior",
             "must be in (1, 3) (water is denser than air), got " + fmt(w.ior));

@@ -38,6 +38,9 @@ std::string sceneTextWithOverrides(const std::string& scene_file, const std::vec
   for (const Override& o : overrides) applyOverride(root, o, source);
   const SourceLoc here{"<scene writer>", 0};
   for (const ImageInputRef& image : scene.images) applyOverride(root, {image.key, quoted(image.path), here}, source);
+  // The phase table is a data file too: absolute, so the written scene reads it from any folder.
+  if (!scene.water.phase_file.empty())
+    applyOverride(root, {"water.phase_file", quoted(scene.water.phase_file), here}, source);
   if (const toml::table* spectral = root["spectral"].as_table(); spectral && spectral->contains("camera_dir"))
     applyOverride(root, {"spectral.camera_dir", quoted(scene.spectral.camera_dir), here}, source);
   std::ostringstream text;

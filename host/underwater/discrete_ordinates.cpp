@@ -180,7 +180,12 @@ DiscreteOrdinates::DiscreteOrdinates(const DiscreteOrdinatesLayer& layer, int st
   mode_ = azimuth_mode;
   requireRange(layer.a >= 0 && layer.b >= 0 && std::isfinite(layer.a) && std::isfinite(layer.b),
                "a and b must be finite and >= 0");
-  requireRange(std::abs(layer.g) < 1, "|g| must be < 1");
+  const bool hg = layer.moments.empty();
+  requireRange(!hg || std::abs(layer.g) < 1, "|g| must be < 1");
+  requireRange(hg || (std::abs(layer.moments[0] - 1) < 1e-9 &&
+                      std::all_of(layer.moments.begin(), layer.moments.end(),
+                                  [](double c) { return std::abs(c) <= 1 + 1e-12; })),
+               "the phase's moments must start at 1 and lie in [-1, 1]");
   requireRange(layer.mu_sun > 0 && layer.mu_sun <= 1, "mu_sun must be in (0, 1]");
   requireRange(layer.bottom_albedo >= 0 && layer.bottom_albedo <= 1, "bottom albedo must be in [0, 1]");
   requireRange(layer.bottom_sunlit >= 0 && layer.bottom_sunlit <= 1, "the bottom's sunlit share must be in [0, 1]");
@@ -194,10 +199,15 @@ DiscreteOrdinates::DiscreteOrdinates(const DiscreteOrdinatesLayer& layer, int st
   requireRange(phase_moments >= 0 && phase_moments <= 2 * n, "the phase's moments must be in [0, 2 streams]");
   const int moments = 2 * n, kept = phase_moments > 0 ? phase_moments : moments;
   // An isotropic phase has one moment at any order.
-  surfaceQuadrature(n, layer.ior, layer.g == 0 ? 1 : kept, mu_, w_);
-  const double f = std::pow(layer.g, kept);
+  auto chi_of = [&](int l) {
+    if (hg) return std::pow(layer.g, l);
+    return l < static_cast<int>(layer.moments.size()) ? layer.moments[l] : 0.0;
+  };
+  surfaceQuadrature(n, layer.ior, hg && layer.g == 0 ? 1 : kept, mu_, w_);
+  const double f = chi_of(kept);
+  requireRange(f < 1, "the phase's moment at the delta-M order must be < 1");
   std::vector<double> chi(moments, 0.0);
-  for (int l = 0; l < kept; ++l) chi[l] = (std::pow(layer.g, l) - f) / (1 - f);
+  for (int l = 0; l < kept; ++l) chi[l] = (chi_of(l) - f) / (1 - f);
   const double b_hat = layer.b * (1 - f);
   // A little absorption keeps the conservative limit (a = 0: a mode that does not decay, a linear
   // solution) an exponential; 1e-6 of c changes the light by less than that over 1000 optical depths.
@@ -546,6 +556,8 @@ DiscreteOrdinatesIrradiance DiscreteOrdinates::irradianceFrom(double y, const do
       out.down += 2 * kPi * w_[i] * mu_[i] * down[i];
       out.up += 2 * kPi * w_[i] * mu_[i] * up[i];
       out.scalar += 2 * kPi * w_[i] * (down[i] + up[i]);
+      out.scalar_down += 2 * kPi * w_[i] * down[i];
+      out.scalar_up += 2 * kPi * w_[i] * up[i];
     } else if (mode_ == 1) {  // ∫ L^1(μ) cos φ · √(1 - μ²) cos φ dφ dμ = π ∫ L^1 √(1 - μ²) dμ
       out.horizontal += kPi * w_[i] * std::sqrt(1 - mu_[i] * mu_[i]) * (down[i] + up[i]);
     }

@@ -36,6 +36,9 @@ struct DiscreteOrdinatesLayer {
   double mu_sun = 1;           // the refracted sun's direction cosine with the downward vertical, (0, 1]
   double e_sun0 = 0;           // the beam's irradiance on a horizontal plane just below the surface
   double e_sky0 = 0;           // the sky's transmitted irradiance just below the surface (uniform sky)
+  // Any phase by its Legendre moments χ_0 = 1, χ_1 = g, ... (host/radiometry/phase_function.h); the
+  // moments past the last given are 0. Empty: Henyey-Greenstein of g (χ_l = g^l).
+  std::vector<double> moments;
 };
 
 // The diffuse light at one depth: the radiance without the (delta-M scaled) unscattered beam,
@@ -45,6 +48,7 @@ struct DiscreteOrdinatesLayer {
 // sun's horizontal direction, ∫ L sinθ cos φ dΩ; beam_horizontal the beam's, beam_scalar √(1 - μ_sun²).
 struct DiscreteOrdinatesIrradiance {
   double down = 0, up = 0, scalar = 0, horizontal = 0;
+  double scalar_down = 0, scalar_up = 0;  // the diffuse scalar irradiance of each hemisphere (mode 0)
   double beam_down = 0, beam_scalar = 0, beam_horizontal = 0;
 };
 

@@ -26,11 +26,12 @@ Image renderUnderwaterCpu(const UnderwaterSetup& setup, const UnderwaterCpuOptio
 void forRowBlocks(int height, bool parallel, const std::function<void(int, int)>& rows);
 
 // The same float frame shaped for the compiler's auto-vectoriser, the strong C++ peer of the
-// OpenCL kernels in `seasim bench` (underwater_cpu_simd.cpp, built with -O3 -ffast-math so GCC
-// runs the band loops over 4/8 pixels at a time with libmvec's vector expf): per row, the G-buffer
-// as arrays, the pixels sorted by what their ray hit, then per band one straight loop over each
-// group. options.use_double is ignored (float only); the image matches renderUnderwaterCpu's float
-// one to float rounding (tests/unit/underwater_cpu_simd_test.cpp).
+// OpenCL kernels in `seasim bench` (underwater_cpu_simd.cpp, built with -O3 -ffast-math
+// -fopenmp-simd so GCC runs the band loops over 4/8/16 pixels at a time with libmvec's vector expf;
+// results/underwater/peer_vectorisation.txt): per row, the G-buffer as arrays, the pixels sorted by
+// what their ray hit, then per band straight loops over each group. options.use_double is ignored
+// (float only); the image matches renderUnderwaterCpu's double one within the kernels' tolerance
+// (tests/kernels/underwater_kd_test.cpp).
 Image renderUnderwaterCpuSimd(const UnderwaterSetup& setup, const UnderwaterCpuOptions& options);
 
 }  // namespace seasim

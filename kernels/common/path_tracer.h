@@ -127,7 +127,7 @@ SEASIM_FN int pt_fresnel_reflects(real d_y, real ior, real u) {
 /* Equiangular distance on [t0, t1] (t1 may be UW_INFINITE) of the ray o + t d about a light at closest
  * approach parameter a and distance r > 0 (r = max(h, the light's radius): any r > 0 gives a valid pdf):
  * θ uniform in [θ0, θ1], θ = atan((t - a)/r), t = a + r tan θ; writes pdf(t) = r / ((θ1 - θ0)(r² + (t - a)²)).
- * u < 1 keeps θ < π/2, so t is finite. Returns t; *pdf = 0 when the segment is empty. */
+ * u < 1 keeps θ < π/2, so t is finite. Returns t in [t0, t1]; *pdf = 0 when the segment is empty. */
 SEASIM_FN real pt_sample_equiangular(real a, real r, real t0, real t1, real u, real* pdf) {
   const real th0 = atan((t0 - a) / r);
   const real th1 = t1 >= UW_INFINITE ? R(0.5) * SEASIM_PI : atan((t1 - a) / r);
@@ -138,5 +138,5 @@ SEASIM_FN real pt_sample_equiangular(real a, real r, real t0, real t1, real u, r
   const real th = th0 + u * (th1 - th0);
   const real x = r * tan(th);
   *pdf = r / ((th1 - th0) * (r * r + x * x));
-  return a + x;
+  return clamp(a + x, t0, t1); /* a + r tan(θ0) may round just outside [t0, t1] */
 }

@@ -29,6 +29,7 @@ using std::fabs;
 using std::fmax;
 using std::fmin;
 using std::log;
+using std::log1p;
 using std::pow;
 using std::sin;
 using std::sqrt;

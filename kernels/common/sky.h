@@ -35,7 +35,8 @@
  * as three basis weights that each band mixes by S_k(λ) / D65(λ). (sky_preetham_rgb, x, y, Y → XYZ →
  * linear Rec. 709 RGB with negative primaries clamped to 0, is kept for the zenith chromaticity test
  * and the RGB view of the sky.) The host packs, per quantity (Y, x, y), A…E and zenith / F(0, θ_s)
- * into 18 reals, then the daylight basis's luminance weights n0, n1, n2 (21 in all; the sky buffer). The
+ * into 18 reals, then the daylight basis's luminance weights n0, n1, n2 and the daylight-locus flag
+ * (22 in all; the sky buffer). The
  * fit covers T ∈ [2, 10] and the sun above the horizon: the parser takes T ∈ [1.7, 10], and θ_s is
  * clamped to 90° (a sun below the horizon gives the sky of a sun at the horizon).
  *
@@ -207,18 +208,31 @@ SEASIM_FN void sky_daylight_m(real x, real y, real* m1, real* m2) {
   *m2 = (R(0.0300) - R(31.4424) * x + R(30.0717) * y) / m;
 }
 
+/* The CIE daylight locus, y_D = −3.000 x² + 2.870 x − 0.275 (CIE 15:2004 eq. 3.3; Judd, MacAdam &
+ * Wyszecki 1964 fitted it to measured daylight and skylight spectra), stated for x in [0.250, 0.380]
+ * (25000 K to 4000 K) and used as the same smooth quadratic past its ends. sky.chromaticity =
+ * "daylight_locus" keeps Preetham's x (his correlated colour) and lifts a y below the locus onto it:
+ * near the horizon Preetham's separate Perez fits for x and y put y 0.010–0.017 below the locus
+ * (towards magenta: the pink band of docs/journal/noon_colour.md), which measured daylight does not
+ * show, while overhead they sit on it (within 3e-3). A y above the locus (greener: the blue sky away
+ * from the sun, +0.011 at x = 0.248, past the locus's stated range) is left as Preetham has it. */
+SEASIM_FN real sky_daylight_locus_y(real x) { return R(-3.0) * x * x + R(2.870) * x - R(0.275); }
+
 /* The spectral Preetham sky (issue 19): towards unit d, Preetham's Y and x, y, and from x, y the CIE
  * daylight spectrum S(λ) = S0 + M1 S1 + M2 S2 scaled to luminance Y. Returned as the three weights of
  * the basis, (Y, Y M1, Y M2) / N with N = n0 + M1 n1 + M2 n2 the spectrum's luminance, so that a band
  * takes dot(w_λ, shape) with w_λ = S_k(λ) / D65(λ) (host/passes/sea_sky.cpp): linear in the shape
  * like every model's, and the luminance of the band radiances is exactly Y times the uniform sky's.
  * packed: the 18 reals of sky_preetham_pack, then n0, n1, n2 = ∫ S_k ȳ dλ / ∫ D65 ȳ dλ (the host's,
- * from data/cie_daylight_components.csv). */
+ * from data/cie_daylight_components.csv), then packed[21]: 1 to hold the chromaticity no lower than
+ * the daylight locus (sky_daylight_locus_y), 0 for Preetham's own y (22 reals in all). */
 SEASIM_FN real3 sky_preetham_daylight(const SEASIM_GLOBAL real* packed, real3 d, real3 sun) {
   real v[3];
   sky_preetham_yxy(packed, d, sun, v);
+  /* packed[21] = 1: sky.chromaticity = "daylight_locus", y no lower than the locus (sky_daylight_locus_y). */
+  const real y = packed[21] > R(0.5) ? fmax(v[2], sky_daylight_locus_y(v[1])) : v[2];
   real m1, m2;
-  sky_daylight_m(v[1], v[2], &m1, &m2);
+  sky_daylight_m(v[1], y, &m1, &m2);
   const real n = fmax(packed[18] + m1 * packed[19] + m2 * packed[20], R(1e-6));
   const real k = fmax(v[0], R(0.0)) / n;
   return MAKE_REAL3(k, k * m1, k * m2);

@@ -20,7 +20,7 @@
 #endif
 
 /* The sky's shape towards unit d (grey for the uniform and CIE skies: x = y = z), scale included.
- * sky: the image's texels (model 2) or Preetham's 21 reals (model 3, sky_preetham_daylight); unread
+ * sky: the image's texels (model 2) or Preetham's 22 reals (model 3, sky_preetham_daylight); unread
  * otherwise. */
 SEASIM_FN real3 sky_view_shape(const SEASIM_CONSTANT SkyParams* p, const SEASIM_GLOBAL real* sky, real3 d) {
   const int model = SKY_VIEW_MODEL(p);

@@ -22,9 +22,10 @@ from typing import Callable, Optional, Tuple, Union
 
 import numpy as np
 
-from . import _paths
+from . import _cpu_runtime, _paths
 
 _paths.point_core_at_package()  # before the core first reads its data or loads a module
+_cpu_runtime.register()  # before the core loads oneTBB and the OpenCL loader first looks for platforms
 
 from ._seasim import DeviceInfo, Frame, Renderer, Scene, data_dir, device, devices, version  # noqa: E402
 from . import _seasim  # noqa: E402

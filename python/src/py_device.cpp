@@ -13,7 +13,8 @@ namespace {
 
 const char* kNoPlatform =
     "no OpenCL platform found. seasim needs an OpenCL runtime: on Debian or Ubuntu a CPU one is "
-    "`sudo apt-get install pocl-opencl-icd` (with the loader ocl-icd-libopencl1); on a GPU machine, "
+    "`sudo apt-get install pocl-opencl-icd` (with the loader ocl-icd-libopencl1), or without system "
+    "packages `pip install seasim[cpu]` (Intel's OpenCL CPU runtime from PyPI, found on import); on a GPU machine, "
     "the vendor driver's OpenCL ICD (NVIDIA, AMD ROCm, Intel compute-runtime). An OpenCL loader "
     "finds runtimes through /etc/OpenCL/vendors/*.icd or the OCL_ICD_VENDORS variable.";
 

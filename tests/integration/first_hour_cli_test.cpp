@@ -74,6 +74,14 @@ TEST_F(FirstHourCli, RunSetAppliesToEveryItem) {
     EXPECT_EQ(report["settings"]["wavelength_count"], 4) << e.path();
   }
   EXPECT_GE(items, 2) << q.output;
+  // The run's contact sheet shows every item's PNG, found on disk.
+  EXPECT_NE(q.output.find("contact sheet: " + path("q") + "/index.html"), std::string::npos) << q.output;
+  const std::string sheet = readText(path("q") + "/index.html");
+  for (const auto& e : fs::directory_iterator(path("q")))
+    if (fs::exists(e.path() / "image.png"))
+      EXPECT_NE(sheet.find("<img src=\"" + e.path().filename().string() + "/image.png\""), std::string::npos)
+          << e.path() << "\n" << sheet;
+  EXPECT_NE(sheet.find("all done"), std::string::npos);
   // --resume keeps what was rendered with these settings and renders again what was not.
   const auto same = seasim_test::runCommand(cmd + " --resume");
   ASSERT_EQ(same.code, 0) << same.output;

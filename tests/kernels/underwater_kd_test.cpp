@@ -123,6 +123,14 @@ TEST_P(UnderwaterKdKernel, MatchesDoubleCpuEvaluationWithoutNaN) {
   const seasim::Image simd = seasim::renderUnderwaterCpuSimd(setup, options);
   for (float v : simd.pixels) ASSERT_TRUE(std::isfinite(v) && v >= 0.0f);
   EXPECT_LT(maxRelativeError(simd, ref, 1e-20), GetParam().tolerance) << "vectorised C++";
+  // With the froxel pass's split (the direct beam left out of L_MS and L_s): the peer's other compiled
+  // variants of its band loops against the double evaluation with the same split.
+  options.single_split = true;
+  options.use_double = true;
+  const seasim::Image ref_split = seasim::renderUnderwaterCpu(setup, options);
+  const seasim::Image simd_split = seasim::renderUnderwaterCpuSimd(setup, options);
+  for (float v : simd_split.pixels) ASSERT_TRUE(std::isfinite(v) && v >= 0.0f);
+  EXPECT_LT(maxRelativeError(simd_split, ref_split, 1e-20), GetParam().tolerance) << "vectorised C++, split";
 }
 
 INSTANTIATE_TEST_SUITE_P(

@@ -13,6 +13,7 @@
 #include <set>
 #include <sstream>
 
+#include "jobs/contact_sheet.h"
 #include "jobs/farm_merge.h"
 #include "jobs/farm_slurm.h"
 #include "jobs/farm_status.h"
@@ -323,6 +324,27 @@ TEST_F(Farm, MergeNamesMissingFailedAndDamagedItemsAndWritesTheSummaryAnyway) {
   const std::string html((std::istreambuf_iterator<char>(sheet)), {});
   for (int i = 0; i < 4; ++i)
     EXPECT_NE(html.find("<img src=\"../item" + std::to_string(i) + "/image.png\""), std::string::npos) << html;
+}
+
+TEST_F(Farm, RunContactSheetShowsTheItemsOnDiskAndNamesTheFailedOnes) {
+  const Job j = job({64, 64, 64});
+  fs::create_directories(j.output_dir);
+  Manifest m(j.file);
+  m.recordDone("item0", writeItem(j, "item0"), 1.0, 10.0);
+  m.recordFailed("item1", "no such camera file");
+  m.recordDone("item2", writeItem(j, "item2"), 1.0, 10.0);
+  m.save(manifestPath(j.output_dir, 0, 1));
+  std::ofstream(j.output_dir + "/item2/image.png") << "changed after the run";  // no longer its checksum
+
+  const std::string path = writeRunContactSheet(j);
+  EXPECT_EQ(path, j.output_dir + "/index.html");
+  std::ifstream in(path);
+  const std::string html((std::istreambuf_iterator<char>(in)), {});
+  EXPECT_NE(html.find("<img src=\"item0/image.png\""), std::string::npos) << html;
+  EXPECT_EQ(html.find("item1/image.png"), std::string::npos) << html;
+  EXPECT_NE(html.find("item1 <span class=\"bad\">failed</span>"), std::string::npos) << html;
+  EXPECT_EQ(html.find("item2/image.png"), std::string::npos) << html;  // damaged: not shown as done
+  EXPECT_NE(html.find("incomplete"), std::string::npos) << html;
 }
 
 // ------------------------------------------------------------------------------------------------

@@ -64,7 +64,7 @@ TEST(SkyDaylight, SpectrumReproducesPreethamChromaticity) {
   for (double t : {2.0, 3.0, 6.0, 10.0})
     for (double sun_zenith_deg : {0.0, 30.0, 60.0, 85.0}) {
       const kd::real3 sun = dir(sun_zenith_deg * M_PI / 180, 0.0);
-      double packed[21];
+      double packed[22] = {};
       kd::sky_preetham_pack(sun, t, packed);
       for (int k = 0; k < 3; ++k) packed[18 + k] = n[k];
       for (double vz : {0.0, 20.0, 45.0, 70.0, 89.0})
@@ -92,7 +92,7 @@ TEST(SkyDaylight, SpectrumIsPositiveInsideTheBasisRangeAndHeldAtZeroOutside) {
   for (double t : {1.7, 2.0, 5.0, 10.0})
     for (double sun_zenith_deg : {0.0, 30.0, 60.0, 80.0, 90.0, 100.0}) {
       const kd::real3 sun = dir(sun_zenith_deg * M_PI / 180, 0.5);
-      double packed[21];
+      double packed[22] = {};
       kd::sky_preetham_pack(sun, t, packed);
       for (int k = 0; k < 3; ++k) packed[18 + k] = n[k];
       for (double vz = 0; vz <= 90.0; vz += 7.5)
@@ -116,10 +116,10 @@ TEST(SkyDaylight, SpectrumIsPositiveInsideTheBasisRangeAndHeldAtZeroOutside) {
 TEST(SkyDaylight, FloatMatchesDouble) {
   const std::array<double, 3> n = seasim::daylightLuminanceWeights();
   const kd::real3 sun = dir(0.9, 0.3);
-  double pd[21];
+  double pd[22] = {};
   kd::sky_preetham_pack(sun, 4.0, pd);
   for (int k = 0; k < 3; ++k) pd[18 + k] = n[k];
-  float pf[21];
+  float pf[22] = {};
   for (int k = 0; k < 21; ++k) pf[k] = float(pd[k]);
   for (double vz : {0.0, 0.5, 1.0, 1.5, 1.5707}) {
     const kd::real3 d = dir(vz, 1.0);

@@ -78,7 +78,7 @@ TEST(PreethamAgainstIndependentImplementation, LuminanceAndChromaticity) {
     const double dphi = p.view_azimuth_deg * M_PI / 180;
     const kd::real3 sun{std::sin(ts), std::cos(ts), 0.0};
     const kd::real3 view{std::sin(tv) * std::cos(dphi), std::cos(tv), std::sin(tv) * std::sin(dphi)};
-    double packed[21];
+    double packed[22] = {};
     kd::sky_preetham_pack(sun, p.turbidity, packed);
     const double gamma = std::acos(std::fmin(std::fmax(kd::dot(view, sun), -1.0), 1.0));
     double ours[3];
@@ -101,7 +101,7 @@ TEST(PreethamAgainstIndependentImplementation, SpectralShape) {
     const double dphi = p.view_azimuth_deg * M_PI / 180;
     const kd::real3 sun{std::sin(ts), std::cos(ts), 0.0};
     const kd::real3 view{std::sin(tv) * std::cos(dphi), std::cos(tv), std::sin(tv) * std::sin(dphi)};
-    double packed[21];
+    double packed[22] = {};
     kd::sky_preetham_pack(sun, p.turbidity, packed);
     for (int k = 0; k < 3; ++k) packed[18 + k] = n[k];
     const kd::real3 w = kd::sky_preetham_daylight(packed, view, sun);

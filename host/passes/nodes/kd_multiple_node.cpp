@@ -12,12 +12,20 @@
 #include "plan/pass_descriptor.h"
 #include "plan/scene_facts.h"
 #include "render/pass.h"
+#include "passes/nodes/layer_nodes.h"
+#include "render/layer_target.h"
 #include "render/radiance_target.h"
 #include "util/error.h"
 
 namespace seasim {
 
 namespace {
+
+// The layers kd_multiple.cl's SEASIM_LAYER_FORMATION and SEASIM_LAYER_VEILING give (the effective
+// coefficients are derived from them: nodes/effective_coefficients_node.cpp).
+const std::vector<std::string> kFormationLayers = {"clear",  "direct",       "backscatter", "forward",
+                                                   "lamps",  "transmission", "beta_d",      "beta_b"};
+const std::vector<std::string> kVeilingLayers = {"veiling", "beta_b"};
 
 class KdNode : public Pass {
  public:
@@ -32,6 +40,23 @@ class KdNode : public Pass {
     target->pixels = static_cast<size_t>(ctx.scene().camera.width) * static_cast<size_t>(ctx.scene().camera.height);
     target->bands = ctx.grid().size();
     res.publish("rgb", target);
+    // The ground-truth layers it writes (outputs.layers; kd_multiple.cl's header gives the layout).
+    auto layer = [&](const char* name, std::vector<std::string> channels, cl::Buffer& buffer) {
+      auto t = std::make_shared<LayerTarget>();
+      t->channels = std::move(channels);
+      t->image = buffer;
+      res.publish(name, t);
+    };
+    if (pass.formationLayers()() != nullptr) {
+      std::vector<std::string> channels;
+      for (const char* l : {"clear", "direct", "backscatter", "transmission"})
+        for (const char* c : {".R", ".G", ".B"}) channels.push_back(std::string(l) + c);
+      layer("formation_layers", channels, pass.formationLayers());
+      layer("forward_layer", {"forward.R", "forward.G", "forward.B"}, pass.forwardLayer());
+      layer("lamps_layer", {"lamps.R", "lamps.G", "lamps.B"}, pass.lampsLayer());
+    }
+    if (pass.veilingLayer()() != nullptr)
+      layer("veiling_layer", {"veiling.R", "veiling.G", "veiling.B"}, pass.veilingLayer());
   }
   void execute(FrameContext& ctx, PassResources& res) override {
     UnderwaterGBuffer& gbuffer = res.read<UnderwaterGBuffer>("gbuffer");
@@ -79,21 +104,41 @@ PassDescriptor kdMultipleDescriptor() {
     features->sky_model = skyModelOf(scene.sky);
     features->underwater_model = ordinates ? 1 : 0;
     features->point_spread = underwaterPointSpread(scene);
-    return planEntry(reads, {"rgb"},
+    features->formation_layers = scene.outputs.wantsAny(kFormationLayers);
+    features->veiling_layer = scene.outputs.wantsAny(kVeilingLayers);
+    std::vector<std::string> writes = {"rgb"};
+    if (features->formation_layers) writes.insert(writes.end(), {"formation_layers", "forward_layer", "lamps_layer"});
+    if (features->veiling_layer) writes.push_back("veiling_layer");
+    std::string layers;
+    if (features->formation_layers || features->veiling_layer)
+      layers = "; outputs.layers: " + layerList(askedLayers(scene, kFormationLayers)) +
+               (features->veiling_layer && !scene.outputs.wants("veiling") ? ", veiling (for beta_b)" : "") +
+               layerCostText(scene, 4.0 * ((features->formation_layers ? 18 : 0) + (features->veiling_layer ? 3 : 0)));
+    return planEntry(reads, writes,
                      ordinates ? "camera below the surface: T L_s + L_MS per band, model \"improved\" (delta-M, the "
                                  "diffuse field over the bottom by discrete ordinates or a two-stream, its in-scatter "
                                  "by direction)"
-                               : "camera below the surface: T L_s + L_MS per band (002 eq. 4.7)",
+                                     + layers
+                               : "camera below the surface: T L_s + L_MS per band (002 eq. 4.7)" + layers,
                      features);
   };
   d.keys = {{}, kUnderwaterSetupKeys};
   d.buffers = [](const Scene& s, const PassPlan& p) -> std::vector<BufferEstimate> {
-    if (!p.featuresAs<KdFeatures>().point_spread) return {};
+    const KdFeatures& f = p.featuresAs<KdFeatures>();
+    const double w = s.camera.width, h = s.camera.height, nb = s.spectral.count;
+    std::vector<BufferEstimate> out;
+    // The ground-truth layers (underwater_pass.cpp) and their copies read back on the host.
+    const double layer_floats = (f.formation_layers ? 18 : 0) + (f.veiling_layer ? 3 : 0);
+    if (layer_floats > 0) {
+      const std::vector<std::string> keys = {"camera.width", "camera.height", "outputs.layers"};
+      out.push_back({p.name, "formation layers", 4 * layer_floats * w * h, keys, {w, h}});
+      out.push_back({p.name, "formation layers (read back)", 4 * layer_floats * w * h, keys, {w, h}, true});
+    }
+    if (!f.point_spread) return out;
     // The forward light's moments the point spread blurs (underwater_pass.cpp): F and F E per
     // channel, F D and F per pixel, and per band with spectral output.
-    const double w = s.camera.width, h = s.camera.height, nb = s.spectral.count;
-    std::vector<BufferEstimate> out = {{p.name, "forward light moments (underwater.point_spread)", 4 * 8 * w * h,
-                                        {"camera.width", "camera.height"}, {w, h}}};
+    out.push_back({p.name, "forward light moments (underwater.point_spread)", 4 * 8 * w * h,
+                   {"camera.width", "camera.height"}, {w, h}});
     if (s.spectral.spectral_exr)
       out.push_back({p.name, "forward light moments per band", 4 * 2 * nb * w * h,
                      {"camera.width", "camera.height", "spectral.count"}, {w, h, nb}});

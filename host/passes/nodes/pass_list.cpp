@@ -17,6 +17,8 @@ PassDescriptor shaftsDescriptor();
 PassDescriptor kdMultipleDescriptor();
 PassDescriptor waterSpreadDescriptor();
 PassDescriptor underwaterLampsDescriptor();
+PassDescriptor geometryLayersDescriptor();
+PassDescriptor effectiveCoefficientsDescriptor();
 PassDescriptor nonfiniteCheckDescriptor();
 
 const std::vector<PassDescriptor>& passDescriptors() {
@@ -26,7 +28,8 @@ const std::vector<PassDescriptor>& passDescriptors() {
       shaftsRaycastDescriptor(), oceanDescriptor(),      shadowMapsDescriptor(),   causticsDescriptor(),
       raycastDescriptor(),       froxelDescriptor(),     fourFlowDescriptor(),     seaSingleDescriptor(),
       seaSecondDescriptor(),     shaftsDescriptor(),     kdMultipleDescriptor(),   waterSpreadDescriptor(),
-      underwaterLampsDescriptor(), nonfiniteCheckDescriptor()};
+      underwaterLampsDescriptor(), geometryLayersDescriptor(), effectiveCoefficientsDescriptor(),
+      nonfiniteCheckDescriptor()};
   return list;
 }
 

@@ -9,6 +9,7 @@
 #include "plan/pass_descriptor.h"
 #include "plan/scene_facts.h"
 #include "render/pass.h"
+#include "render/layer_target.h"
 #include "render/radiance_target.h"
 
 namespace seasim {
@@ -36,7 +37,10 @@ class UnderwaterLampsNode : public Pass {
     UnderwaterPass& gbuffer = *res.read<UnderwaterGBuffer>("gbuffer").pass;
     RadianceTarget& target = res.read<RadianceTarget>("rgb");
     cl::Buffer* spectral = ctx.scene().spectral.spectral_exr ? &target.spectral : nullptr;
-    ctx.timings.push_back({"underwater_lamps", pass_->run(gbuffer.geometry(), gbuffer.material(), target.rgb, spectral)});
+    const bool lamps_layer_on = entry_.featuresAs<UnderwaterLampsFeatures>().lamps_layer;
+    cl::Buffer* lamps_layer = lamps_layer_on ? &res.read<LayerTarget>("lamps_layer").image : nullptr;
+    ctx.timings.push_back(
+        {"underwater_lamps", pass_->run(gbuffer.geometry(), gbuffer.material(), target.rgb, spectral, lamps_layer)});
   }
 
  private:
@@ -51,11 +55,18 @@ PassDescriptor underwaterLampsDescriptor() {
   PassDescriptor d;
   d.name = "underwater_lamps";
   d.kernel_file = "underwater_lamps.cl";
-  d.rule = [](const Scene& scene, const Plan&) -> std::optional<PassPlan> {
+  d.rule = [](const Scene& scene, const Plan& so_far) -> std::optional<PassPlan> {
     if (!cameraUnderwater(scene) || scene.spotlights.empty()) return std::nullopt;
     auto features = std::make_shared<UnderwaterLampsFeatures>();
     features->objects = !scene.objects.empty();
     features->spectral_output = scene.spectral.spectral_exr;
+    // The lamps' own layer: kd_multiple zeroed it, this pass adds into it as into "rgb".
+    features->lamps_layer = so_far.produces("lamps_layer");
+    if (features->lamps_layer)
+      return planEntry({"gbuffer", "rgb", "lamps_layer"}, {"rgb", "lamps_layer"},
+                       "[[spotlights]] under water: 001's sampling planes with the water's sigma_s, sigma_t, HG; "
+                       "also into outputs.layers' lamps",
+                       features);
     return planEntry({"gbuffer", "rgb"}, {"rgb"},
                      "[[spotlights]] under water: 001's sampling planes with the water's sigma_s, sigma_t, HG", features);
   };

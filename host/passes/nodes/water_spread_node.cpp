@@ -8,6 +8,7 @@
 #include "plan/pass_descriptor.h"
 #include "plan/scene_facts.h"
 #include "render/pass.h"
+#include "render/layer_target.h"
 #include "render/radiance_target.h"
 #include "underwater/underwater_improved_ordinates.h"  // kOrdinatesSourceMoments
 #include "util/error.h"
@@ -42,6 +43,8 @@ class WaterSpreadNode : public Pass {
     ctx.timings.push_back({"water_spread", pass_->run(gbuffer.geometry(), gbuffer.forwardDepth(), gbuffer.forwardRgb(),
                                                       target.rgb, spectral ? &gbuffer.forwardSpectral() : nullptr,
                                                       spectral ? &target.spectral : nullptr)});
+    if (res.declaresRead("forward_layer"))  // the blurred light is the forward layer's too
+      ctx.timings.push_back({"water_spread_forward_layer", pass_->addRgbInto(res.read<LayerTarget>("forward_layer").image)});
   }
 
  private:
@@ -55,8 +58,13 @@ PassDescriptor waterSpreadDescriptor() {
   PassDescriptor d;
   d.name = "water_spread";
   d.kernel_file = "water_spread.cl";
-  d.rule = [](const Scene& scene, const Plan&) -> std::optional<PassPlan> {
+  d.rule = [](const Scene& scene, const Plan& so_far) -> std::optional<PassPlan> {
     if (!cameraUnderwater(scene) || !underwaterPointSpread(scene)) return std::nullopt;
+    if (so_far.produces("forward_layer"))
+      return planEntry({"gbuffer", "rgb", "forward_layer"}, {"rgb", "forward_layer"},
+                       "underwater.model \"improved\", water.g > 0, underwater.point_spread: the light delta-M "
+                       "counts as unscattered, blurred by the phase's small angles (common/water_spread.h); also "
+                       "into outputs.layers' forward");
     return planEntry({"gbuffer", "rgb"}, {"rgb"},
                      "underwater.model \"improved\", water.g > 0, underwater.point_spread: the light delta-M "
                      "counts as unscattered, blurred by the phase's small angles (common/water_spread.h)");
