@@ -180,19 +180,19 @@ TEST(SeaHeightFieldKernel, ConstantHeightFieldIsTheFlatBottom) {
   const std::vector<seasim::Override> flat = {
       set("bottom", "{ type = \"flat\", depth = 8.0, albedo = 0.35 }"), set("quality.sea_lut_size", "1")};
   for (const std::string& model : kModels)
-  for (bool second : {false, true}) {
-    std::vector<seasim::Override> o = {set("sea.second_order", second ? "true" : "false"),
-                                       set("quality.sea_map_size", "16"), set("quality.sea_nd", "128")};
-    std::vector<seasim::Override> of = o;
-    of.insert(of.end(), flat.begin(), flat.end());
-    const seasim::FrameResult hf = render(parseModel(model, text, o));
-    const seasim::FrameResult fl = render(parseModel(model, text, of));
-    int over = 0;
-    const double worst = maxRelativeError(values(hf), values(fl), 1e-4, &over);
-    std::printf("constant height field vs flat bottom (%s, %s): max rel %.3g\n", model.c_str(),
-                second ? "single + second" : "single", worst);
-    EXPECT_LT(worst, 1e-4);
-  }
+    for (bool second : {false, true}) {
+      std::vector<seasim::Override> o = {set("sea.second_order", second ? "true" : "false"),
+                                         set("quality.sea_map_size", "16"), set("quality.sea_nd", "128")};
+      std::vector<seasim::Override> of = o;
+      of.insert(of.end(), flat.begin(), flat.end());
+      const seasim::FrameResult hf = render(parseModel(model, text, o));
+      const seasim::FrameResult fl = render(parseModel(model, text, of));
+      int over = 0;
+      const double worst = maxRelativeError(values(hf), values(fl), 1e-4, &over);
+      std::printf("constant height field vs flat bottom (%s, %s): max rel %.3g\n", model.c_str(),
+                  second ? "single + second" : "single", worst);
+      EXPECT_LT(worst, 1e-4);
+    }
 }
 
 TEST(SeaHeightFieldKernel, SecondOrderMatchesDirectIntegration) {
@@ -234,20 +234,21 @@ TEST(SeaHeightFieldKernel, FloorAtTheSurfaceAndGrazingViewsStayFinite) {
   // the horizon (the bottom and second-order terms add exactly nothing). Both models.
   const std::string text = sceneText(shoreFloor(true), 0.0, 15.0, 20, 12, 3);
   for (const std::string& model : kModels)
-  for (const auto& extra : std::vector<std::vector<seasim::Override>>{
-           {},
-           {set("camera.look_at", "[0, 6, -100]")},
-           {set("camera.look_at", "[4, 0, 8]")},  // straight down onto the rock
-           {set("sun.zenith_deg", "89.99")},
-           {set("sun.zenith_deg", "100")}}) {
-    std::vector<seasim::Override> o = extra;
-    o.push_back(set("sea.second_order", "true"));
-    o.push_back(set("quality.sea_map_size", "8"));
-    o.push_back(set("quality.sea_nd", "32"));
-    SCOPED_TRACE(model + (extra.empty() ? std::string(", the test's own view") : ", " + extra[0].key + " = " + extra[0].value_toml));
-    const seasim::FrameResult f = render(parseModel(model, text, o));
-    ASSERT_EQ(f.rgb.pixels.size(), size_t(20 * 12 * 3));
-  }
+    for (const auto& extra : std::vector<std::vector<seasim::Override>>{
+             {},
+             {set("camera.look_at", "[0, 6, -100]")},
+             {set("camera.look_at", "[4, 0, 8]")},  // straight down onto the rock
+             {set("sun.zenith_deg", "89.99")},
+             {set("sun.zenith_deg", "100")}}) {
+      std::vector<seasim::Override> o = extra;
+      o.push_back(set("sea.second_order", "true"));
+      o.push_back(set("quality.sea_map_size", "8"));
+      o.push_back(set("quality.sea_nd", "32"));
+      SCOPED_TRACE(model + (extra.empty() ? std::string(", the test's own view")
+                                          : ", " + extra[0].key + " = " + extra[0].value_toml));
+      const seasim::FrameResult f = render(parseModel(model, text, o));
+      ASSERT_EQ(f.rgb.pixels.size(), size_t(20 * 12 * 3));
+    }
   // The shore of the first test with the default model: its bands >= 0 (render's check) where its
   // linear sRGB goes below 0 (render's comment says why).
   {
@@ -279,8 +280,9 @@ TEST(SeaHeightFieldKernel, DepthTablesComeBackFromTheCache) {
   const std::string saved = before ? before : "";
   ::setenv("SEASIM_CACHE_DIR", cache.c_str(), 1);
   const seasim::Scene s = parsePaper(sceneText(shoreFloor(false), 1.0, 15.0, 12, 8, 3),
-                                {set("spectral.spectral_exr", "false"), set("sea.second_order", "true"), set("quality.sea_map_size", "8"),
-                                 set("quality.sea_nd", "32"), set("quality.sea_nz", "4")});
+                                {set("spectral.spectral_exr", "false"), set("sea.second_order", "true"),
+                                 set("quality.sea_map_size", "8"), set("quality.sea_nd", "32"),
+                                 set("quality.sea_nz", "4")});
   const seasim::WavelengthGrid grid = seasim::makeGrid(s.spectral.count, s.spectral.min_nm, s.spectral.max_nm);
   const seasim::Sensor sensor = seasim::makeSensor(s.spectral.sensor, grid, s.spectral.white_balance, s.spectral.camera_dir);
   const seasim::Plan plan = seasim::makePlan(s);

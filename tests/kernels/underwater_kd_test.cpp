@@ -198,8 +198,10 @@ double spectralVsImage(const seasim::Scene& scene, const seasim::FrameResult& fr
   for (size_t p = 0; p < pixels && frame.spectral.size() == pixels * bands; ++p) {
     std::vector<double> v(frame.spectral.begin() + p * bands, frame.spectral.begin() + (p + 1) * bands);
     const auto rgb = sensor.apply(v.data());
-    for (int k = 0; k < 3; ++k)
-      worst = std::max(worst, std::fabs(frame.rgb.pixels[3 * p + k] - rgb[k]) / (1e-6 + std::fabs(frame.rgb.pixels[3 * p + k])));
+    for (int k = 0; k < 3; ++k) {
+      const double image = frame.rgb.pixels[3 * p + k];
+      worst = std::max(worst, std::fabs(image - rgb[k]) / (1e-6 + std::fabs(image)));
+    }
   }
   return worst;
 }
@@ -228,9 +230,9 @@ TEST(UnderwaterKdKernel, SpectralOutputMatchesTheRgbSum) {
 // approximation while spectral.exr integrates every band: measured 3.5e-3 and 3.0e-3 apart. The froxel
 // term's own size, to see that it is there: the frame with it and no other in-scatter
 // (multiple_scattering = false) against the frame with neither, up to 0.052 (thesis) and 0.045
-// (improved) of a pixel; a term missing from spectral.exr would show twice over at the loosest tolerance. (Against the same frame without froxels
-// the improved model differs only by the froxels' shadows: without them it has the unshadowed single
-// scattering in closed form.)
+// (improved) of a pixel; a term missing from spectral.exr would show twice over at the loosest
+// tolerance. (Against the same frame without froxels the improved model differs only by the froxels'
+// shadows: without them it has the unshadowed single scattering in closed form.)
 TEST(UnderwaterKdKernel, SpectralOutputWithFroxelsMatchesTheRgbSum) {
   for (const std::string& m : kModels)
     for (const auto& [injection, tolerance] : {std::pair{"\"spectral\"", 1e-5}, std::pair{"\"rgb\"", 1e-2}}) {
