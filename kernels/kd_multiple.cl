@@ -247,12 +247,16 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
     /* The sensor's weights of these bands (002 eq. 4.8; the padding bands' are 0). */
     const realb w_r_band = LOADB(ROW(UW_ROW_W_R), i), w_g_band = LOADB(ROW(UW_ROW_W_G), i),
                 w_b_band = LOADB(ROW(UW_ROW_W_B), i);
-    const UwiLanes v = uwi_lanes_load(band_table, stride, uwi_row0, i);
+    UwiLanes v;
+    uwi_lanes_load(band_table, stride, uwi_row0, i, &v);
     /* The in-scatter's integrals start at the camera (per-frame rows: o_d is the frame's) and end at the
      * hit, whose exps a Lambertian hit shares. */
-    const UwiStart camera = uwi_start_camera(band_table, stride, uwi_row0, i);
-    const UwiEnds ends = uwi_ends(&v, p->bottom_depth, S, y_hit, single && multiple);
-    UwiWeights w = uwi_lanes_weights(band_table, stride, uwi_row0, i, node, cos_dphi);
+    UwiStart camera;
+    uwi_start_camera(band_table, stride, uwi_row0, i, &camera);
+    UwiEnds ends;
+    uwi_ends(&v, p->bottom_depth, S, y_hit, single & multiple, &ends);
+    UwiWeights w;
+    uwi_lanes_weights(band_table, stride, uwi_row0, i, node, cos_dphi, &w);
     if (v_sand < 1.0f) uwi_lanes_hide_sand(band_table, stride, uwi_row0, i, node, v_sand, &w);
     realb strict;
     realb L = multiple ? uwi_lanes_multiple(&v, &w, &camera, &ends, phase, p->bottom_depth, S, d.y, single, &strict)
@@ -269,39 +273,48 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
     realb hit = SPLATB(0.0f); /* the light of what the ray meets, T(S) included */
     if (mat == UW_MAT_SURFACE) {
       const realb sky_l = kd_sky_lanes(band_table, stride, i, sky_shape);
-      const UwiWeights w_r = uwi_lanes_weights(band_table, stride, uwi_row0, i, node_r, cos_dphi_r);
-      const UwiWeights tilt_m = mirror_object
-                                    ? uwi_lanes_tilt(band_table, stride, uwi_row0, i, tilt_node_m, frac_m, cos_phi_m, 1.0f)
-                                    : uwi_lanes_down(&v);
+      UwiWeights w_r, tilt_m;
+      uwi_lanes_weights(band_table, stride, uwi_row0, i, node_r, cos_dphi_r, &w_r);
+      if (mirror_object)
+        uwi_lanes_tilt(band_table, stride, uwi_row0, i, tilt_node_m, frac_m, cos_phi_m, 1.0f, &tilt_m);
+      else
+        uwi_lanes_down(&v, &tilt_m);
       hit = uwi_lanes_surface(&v, &w_r, ends.k, sky_l, LOADB(ROW(uwi_row0 + UWI_ROW_BOTTOM_L), i),
                              LOADB(ROW(uwi_row0 + UWI_ROW_EXP_K_H), i), phase_r, p->bottom_depth, d.y, p->ior,
                              multiple, mirror.s, LOADB(albedo_m_row, i), &tilt_m, n_m_dot_s, mirror.vis);
     } else if (mat == UW_MAT_BOTTOM) {
-      const UwiWeights down = uwi_lanes_down(&v);
+      UwiWeights down;
+      uwi_lanes_down(&v, &down);
       hit = uwi_lanes_lambert(&v, &ends, &down, LOADB(albedo_row, i), p->bottom_depth, n_dot_s, vis);
     } else if (mat != UW_MAT_NONE) {
-      const UwiWeights tilt = uwi_lanes_tilt(band_table, stride, uwi_row0, i, tilt_node, frac, cos_phi_n, vis_b);
+      UwiWeights tilt;
+      uwi_lanes_tilt(band_table, stride, uwi_row0, i, tilt_node, frac, cos_phi_n, vis_b, &tilt);
       hit = uwi_lanes_lambert(&v, &ends, &tilt, LOADB(albedo_row, i), p->bottom_depth, n_dot_s, vis);
     }
 #if SEASIM_LAYER_FORMATION
     /* clear: the same hit with S = 0 (its ends at the hit's depth without T; the surface's t_s = 1). */
     realb clear = SPLATB(0.0f);
     {
-      const UwiEnds ends0 = uwi_ends(&v, p->bottom_depth, 0.0f, y_hit, 0);
+      UwiEnds ends0;
+      uwi_ends(&v, p->bottom_depth, 0.0f, y_hit, 0, &ends0);
       if (mat == UW_MAT_SURFACE) {
         const realb sky_l = kd_sky_lanes(band_table, stride, i, sky_shape);
-        const UwiWeights w_r = uwi_lanes_weights(band_table, stride, uwi_row0, i, node_r, cos_dphi_r);
-        const UwiWeights tilt_m = mirror_object
-                                      ? uwi_lanes_tilt(band_table, stride, uwi_row0, i, tilt_node_m, frac_m, cos_phi_m, 1.0f)
-                                      : uwi_lanes_down(&v);
+        UwiWeights w_r, tilt_m;
+        uwi_lanes_weights(band_table, stride, uwi_row0, i, node_r, cos_dphi_r, &w_r);
+        if (mirror_object)
+          uwi_lanes_tilt(band_table, stride, uwi_row0, i, tilt_node_m, frac_m, cos_phi_m, 1.0f, &tilt_m);
+        else
+          uwi_lanes_down(&v, &tilt_m);
         clear = uwi_lanes_surface(&v, &w_r, SPLATB(1.0f), sky_l, LOADB(ROW(uwi_row0 + UWI_ROW_BOTTOM_L), i),
                                   LOADB(ROW(uwi_row0 + UWI_ROW_EXP_K_H), i), phase_r, p->bottom_depth, d.y, p->ior,
                                   multiple, mirror.s, LOADB(albedo_m_row, i), &tilt_m, n_m_dot_s, mirror.vis);
       } else if (mat == UW_MAT_BOTTOM) {
-        const UwiWeights down = uwi_lanes_down(&v);
+        UwiWeights down;
+        uwi_lanes_down(&v, &down);
         clear = uwi_lanes_lambert(&v, &ends0, &down, LOADB(albedo_row, i), p->bottom_depth, n_dot_s, vis);
       } else if (mat != UW_MAT_NONE) {
-        const UwiWeights tilt = uwi_lanes_tilt(band_table, stride, uwi_row0, i, tilt_node, frac, cos_phi_n, vis_b);
+        UwiWeights tilt;
+        uwi_lanes_tilt(band_table, stride, uwi_row0, i, tilt_node, frac, cos_phi_n, vis_b, &tilt);
         clear = uwi_lanes_lambert(&v, &ends0, &tilt, LOADB(albedo_row, i), p->bottom_depth, n_dot_s, vis);
       }
     }
@@ -318,7 +331,8 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
      * tends to). */
     {
       const float y_inf = d.y < 0.0f ? UW_INFINITE : 0.0f;
-      const UwiEnds ends_inf = uwi_ends(&v, p->bottom_depth, UW_INFINITE, y_inf, single & multiple);
+      UwiEnds ends_inf;
+      uwi_ends(&v, p->bottom_depth, UW_INFINITE, y_inf, single & multiple, &ends_inf);
       realb strict_inf;
       const realb l_inf = multiple ? uwi_lanes_multiple(&v, &w, &camera, &ends_inf, phase, p->bottom_depth, UW_INFINITE,
                                                         d.y, single, &strict_inf)

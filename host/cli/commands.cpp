@@ -26,6 +26,7 @@
 #include "plan/plan.h"
 #include "plan/scene_facts.h"
 #include "quality/auto_quality.h"
+#include "quality/expected_error.h"
 #include "reference/compare.h"
 #include "reference/reference_image.h"
 #include "reference/sea_reference.h"
@@ -132,6 +133,7 @@ int cmdValidate(const std::vector<std::string>& files) {
 int cmdPlan(const std::string& scene_file, const std::vector<std::string>& sets) {
   const Scene scene = loadScene(scene_file, parseSets(sets));
   std::printf("%s", makePlan(scene).toText().c_str());
+  std::printf("%s", expectedErrorText(expectedErrors(scene)).c_str());
   return 0;
 }
 

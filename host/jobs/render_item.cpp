@@ -12,6 +12,7 @@
 #include "plan/memory_budget.h"
 #include "plan/plan.h"
 #include "quality/auto_quality.h"
+#include "quality/expected_error.h"
 #include "reference/compare.h"
 #include "util/error.h"
 #include "util/paths.h"
@@ -160,6 +161,7 @@ nlohmann::json frameReport(const Device& device, const Scene& scene, const Plan&
             {"name", device.info().name},
             {"driver", device.info().driver}}},
           {"plan", planJson(plan)},
+          {"expected_error", expectedErrorJson(expectedErrors(scene))},
           {"pass_ms", timings},
           {"kernel_ms_total", total},
           {"kernel_build_ms", frame.build_ms},

@@ -151,10 +151,12 @@ struct Knob {
 };
 
 struct SeaDesc {
-  // sea.model: "paper" = 000's eq. 5 (+ eq. 6-8 with second_order) and eq. 9; "multiple" = all orders in
-  // closed form (kernels/common/sea_multiple.h), which leaves out the second-order pass.
+  // sea.model: "multiple" (the default) = all orders in closed form (kernels/common/sea_multiple.h),
+  // which leaves out the second-order pass; "paper" = 000's eq. 5 (+ eq. 6-8 with second_order) and
+  // eq. 9, what a reproduction of paper 000 pins (results/BENCHMARKS.md: 0.97-1.02 of all orders
+  // against the paper's 0.17-1.00).
   enum class Model { Paper, Multiple };
-  Model model = Model::Paper;
+  Model model = Model::Multiple;
   bool single_scattering = true;
   bool second_order = false;
   bool bottom_caustics = false;  // the FFT ocean's caustics on the bottom (needs surface.type = "fft")
@@ -166,7 +168,8 @@ struct UnderwaterDesc {
   enum class Caustics { None, Texture, Map };
   enum class Injection { Spectral, Rgb };
   enum class Model { Thesis, Improved };
-  Model model = Model::Thesis;       // "thesis": 002 eq. 4.7; "improved": common/underwater_improved.h
+  Model model = Model::Improved;     // "improved" (the default): common/underwater_improved.h; "thesis":
+                                     // 002 eq. 4.7, what a reproduction of the thesis pins
   bool multiple_scattering = true;   // L_MS by K_d (002 eq. 4.7)
   bool single_scattering = true;     // froxel single scattering of the sun beam (002 §5)
   Caustics caustics = Caustics::Texture;  // texture: two scrolling textures (002 §5.3); map: caustics.cl

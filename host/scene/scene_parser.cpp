@@ -609,7 +609,7 @@ class SceneParser {
   void sea(const toml::table& t) {
     TableReader r(src_, t, "sea");
     SeaDesc& s = scene_.sea;
-    s.model = r.choice("model", "paper", {"paper", "multiple"}) == "multiple" ? SeaDesc::Model::Multiple
+    s.model = r.choice("model", "multiple", {"paper", "multiple"}) == "multiple" ? SeaDesc::Model::Multiple
                                                                              : SeaDesc::Model::Paper;
     s.single_scattering = r.boolean("single_scattering", s.single_scattering);
     s.second_order = r.boolean("second_order", s.second_order);
@@ -621,7 +621,7 @@ class SceneParser {
   void underwater(const toml::table& t) {
     TableReader r(src_, t, "underwater");
     UnderwaterDesc& u = scene_.underwater;
-    u.model = r.choice("model", "thesis", {"thesis", "improved"}) == "improved" ? UnderwaterDesc::Model::Improved
+    u.model = r.choice("model", "improved", {"thesis", "improved"}) == "improved" ? UnderwaterDesc::Model::Improved
                                                                              : UnderwaterDesc::Model::Thesis;
     u.multiple_scattering = r.boolean("multiple_scattering", u.multiple_scattering);
     u.single_scattering = r.boolean("single_scattering", u.single_scattering);

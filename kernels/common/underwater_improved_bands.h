@@ -34,7 +34,12 @@
  * uwi_band_radiance in float and double; tests/kernels/underwater_improved_kernel_test.cpp the kernel
  * to the double CPU evaluation of uwi_band_radiance.
  * Needs compat.h, band_lanes.h, band_lanes_math.h, optics.h (fresnel_reflectance), underwater.h
- * (UW_INFINITE), underwater_bands.h (kd_exp_integral_ends_b), underwater_band_table.h. */
+ * (UW_INFINITE), underwater_bands.h (kd_exp_integral_ends_b), underwater_band_table.h.
+ * The lanes' structs (UwiLanes, UwiWeights, UwiStart, UwiEnds) come back through an out pointer, not as
+ * return values: a struct return is a `noalias sret` pointer in SPIR, and when Clang 14 inlines such a
+ * function it emits llvm.experimental.noalias.scope.decl, which Oclgrind 21.10 cannot run ("Undefined
+ * external function", and kd_multiple was not created). A plain pointer carries no noalias scope; the
+ * code after inlining is the same (tests/runtimes/oclgrind_scenes.sh renders the improved model). */
 
 /* One step's per-band values: the thesis rows the model shares (σ_t, σ_t/μ_w, e_beam0) and the
  * improved rows. */
@@ -48,7 +53,7 @@ typedef struct {
 
 /* Bands i..i+SEASIM_BAND_LANES-1 of the table (row stride `stride`), the improved rows starting at row
  * uwi_row0 = UW_ROWS + object count. */
-SEASIM_FN UwiLanes uwi_lanes_load(const SEASIM_GLOBAL float* table, int stride, int uwi_row0, int i) {
+SEASIM_FN void uwi_lanes_load(const SEASIM_GLOBAL float* table, int stride, int uwi_row0, int i, UwiLanes* out) {
   UwiLanes v;
 #define UWI_LOAD(row) LOADB(table + (size_t)(row) * (size_t)stride, i)
   v.c = UWI_LOAD(UW_ROW_C);
@@ -63,7 +68,7 @@ SEASIM_FN UwiLanes uwi_lanes_load(const SEASIM_GLOBAL float* table, int stride, 
   v.d2 = UWI_LOAD(uwi_row0 + UWI_ROW_D2);
   v.dp = UWI_LOAD(uwi_row0 + UWI_ROW_DP);
 #undef UWI_LOAD
-  return v;
+  *out = v;
 }
 
 /* The source's weights of the three exponentials (uwi_source_weight) towards one photon direction:
@@ -72,8 +77,8 @@ typedef struct {
   realb w1, w2, wp; /* of e^{-k y}, e^{-k (H - y)}, e^{-m y} */
 } UwiWeights;
 
-SEASIM_FN UwiWeights uwi_lanes_weights(const SEASIM_GLOBAL float* table, int stride, int uwi_row0, int i, int node,
-                                       real cos_dphi) {
+SEASIM_FN void uwi_lanes_weights(const SEASIM_GLOBAL float* table, int stride, int uwi_row0, int i, int node,
+                                 real cos_dphi, UwiWeights* out) {
   const int row = uwi_row0 + UWI_ROW_SRC + node * UWI_SOURCE_TERMS;
 #define UWI_TERM(q) LOADB(table + (size_t)(row + (q)) * (size_t)stride, i)
   const real cos_2dphi = R(2.0) * cos_dphi * cos_dphi - R(1.0);
@@ -82,7 +87,7 @@ SEASIM_FN UwiWeights uwi_lanes_weights(const SEASIM_GLOBAL float* table, int str
   w.w2 = UWI_TERM(1) + cos_dphi * UWI_TERM(4) + cos_2dphi * UWI_TERM(7);
   w.wp = UWI_TERM(2) + cos_dphi * UWI_TERM(5) + cos_2dphi * UWI_TERM(8);
 #undef UWI_TERM
-  return w;
+  *out = w;
 }
 
 /* uwi_multiple_sand's weights: 1 - v_sand (uwi_sand_share, once per pixel) of the sunlit sand's part of the
@@ -99,8 +104,8 @@ SEASIM_FN void uwi_lanes_hide_sand(const SEASIM_GLOBAL float* table, int stride,
 /* The diffuse irradiance's weights of the three exponentials on a tilted plane (uwi_tilt_irradiance):
  * node and frac from uwi_tilt_node of the normal's n_y, cos_phi = uwi_cos_azimuth(n·s_w, n_y, μ_w) and vis_b
  * (uwi_bottom_visibility) once per pixel; the table's two nodes interpolated. */
-SEASIM_FN UwiWeights uwi_lanes_tilt(const SEASIM_GLOBAL float* table, int stride, int uwi_row0, int i, int node,
-                                    real frac, real cos_phi, real vis_b) {
+SEASIM_FN void uwi_lanes_tilt(const SEASIM_GLOBAL float* table, int stride, int uwi_row0, int i, int node,
+                              real frac, real cos_phi, real vis_b, UwiWeights* out) {
   const int row_b = uwi_row0 + UWI_ROW_TILT_BOTTOM + node * 3;
   const int row = uwi_row0 + UWI_ROW_TILT + node * UWI_SOURCE_TERMS;
 #define UWI_TILT(q) LOADB(table + (size_t)(row + (q)) * (size_t)stride, i)
@@ -119,17 +124,17 @@ SEASIM_FN UwiWeights uwi_lanes_tilt(const SEASIM_GLOBAL float* table, int stride
   w.w1 = t[0];
   w.w2 = t[1];
   w.wp = t[2];
-  return w;
+  *out = w;
 }
 
 /* The same for a plane facing straight up (the bottom): E_d's coefficients, which are the tilted table's
  * top node. */
-SEASIM_FN UwiWeights uwi_lanes_down(const UwiLanes* v) {
+SEASIM_FN void uwi_lanes_down(const UwiLanes* v, UwiWeights* out) {
   UwiWeights w;
   w.w1 = v->d1;
   w.w2 = v->d2;
   w.wp = v->dp;
-  return w;
+  *out = w;
 }
 
 /* The start factors e^{-κ o_d} of the integrals along a ray that starts at depth o_d, per band. */
@@ -139,13 +144,13 @@ typedef struct {
 } UwiStart;
 
 /* The camera's (o_d = -cam_pos[1]): the table's per-frame rows. */
-SEASIM_FN UwiStart uwi_start_camera(const SEASIM_GLOBAL float* table, int stride, int uwi_row0, int i) {
+SEASIM_FN void uwi_start_camera(const SEASIM_GLOBAL float* table, int stride, int uwi_row0, int i, UwiStart* out) {
   UwiStart a;
   a.k = LOADB(table + (size_t)(uwi_row0 + UWI_ROW_EXP_K_OD) * (size_t)stride, i);
   a.m = LOADB(table + (size_t)(uwi_row0 + UWI_ROW_EXP_M_OD) * (size_t)stride, i);
   a.beam = LOADB(table + (size_t)(uwi_row0 + UWI_ROW_EXP_BEAM_OD) * (size_t)stride, i);
   a.k_bottom = LOADB(table + (size_t)(uwi_row0 + UWI_ROW_EXP_K_HOD) * (size_t)stride, i);
-  return a;
+  *out = a;
 }
 
 /* The far ends of a ray's integrals, at distance S and depth y = max(y(S), 0) (T(S) = e^{-c' S} folded
@@ -158,14 +163,14 @@ typedef struct {
 
 /* uwi_irradiance's exps at the end of the ray, times T(S): a Lambertian hit's and the integrals' far
  * ends alike. S = UW_INFINITE with y = its depth there: all 0 (deep water). */
-SEASIM_FN UwiEnds uwi_ends(const UwiLanes* v, real bottom_depth, real S, real y, int single_scattering) {
+SEASIM_FN void uwi_ends(const UwiLanes* v, real bottom_depth, real S, real y, int single_scattering, UwiEnds* out) {
   UwiEnds e;
   const realb c_s = v->c_dm * S;
   e.k = exp(-(v->k * y + c_s));
   e.m = exp(-(v->m * y + c_s));
   e.k_bottom = bottom_depth > R(0.0) ? exp(-(v->k * fmax(bottom_depth - y, R(0.0)) + c_s)) : SPLATB(R(0.0));
   e.beam = single_scattering ? exp(-(v->k_beam * y + v->c * S)) : SPLATB(R(0.0));
-  return e;
+  *out = e;
 }
 
 /* uwi_multiple: in-scattered radiance along the ray (d_y) to distance S (UW_INFINITE: deep water),
@@ -261,13 +266,15 @@ SEASIM_FN realb uwi_lanes_surface(const UwiLanes* v, const UwiWeights* w_r, real
   a.beam = SPLATB(R(1.0));
   a.k_bottom = exp_k_h;
   if (s_m < s_r) { /* per pixel: an object in the mirror, at depth s_m dy */
-    const UwiEnds e = uwi_ends(v, bottom_depth, s_m, s_m * dy, 0);
+    UwiEnds e;
+    uwi_ends(v, bottom_depth, s_m, s_m * dy, 0, &e);
     reflected = uwi_lanes_lambert(v, &e, tilt_m, albedo_m, bottom_depth, n_m_dot_s, vis_m);
     realb unused;
     if (multiple) reflected += uwi_lanes_multiple(v, w_r, &a, &e, phase_r, bottom_depth, s_m, -dy, 0, &unused);
   } else if (multiple) {
     /* It ends on the bottom (y = H) or in deep water (S, y = ∞: its ends 0). */
-    const UwiEnds e = uwi_ends(v, bottom_depth, s_r, bottom_depth > R(0.0) ? bottom_depth : UW_INFINITE, 0);
+    UwiEnds e;
+    uwi_ends(v, bottom_depth, s_r, bottom_depth > R(0.0) ? bottom_depth : UW_INFINITE, 0, &e);
     realb unused;
     reflected = uwi_lanes_multiple(v, w_r, &a, &e, phase_r, bottom_depth, s_r, -dy, 0, &unused);
     /* Its far end e^{-(k (H - y) + c' s_r)} at y = H: the same but past s_r = 1e4 (within H/1e4 of

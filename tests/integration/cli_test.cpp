@@ -96,6 +96,10 @@ TEST_F(Cli, PlansDifferBetweenScenes) {
   EXPECT_EQ(flat.output.find("sea_second"), std::string::npos);
   EXPECT_NE(deep.output.find("sea_second"), std::string::npos);
   EXPECT_EQ(flat.output.find("shafts"), std::string::npos);
+  // Each states the error its model was measured to have in the nearest study case: the quickstart's
+  // sea runs "multiple" (the default), deep_ocean pins paper 000's model.
+  EXPECT_NE(flat.output.find("expected error (sea multiple, against all orders)"), std::string::npos) << flat.output;
+  EXPECT_NE(deep.output.find("expected error (sea paper, against all orders)"), std::string::npos) << deep.output;
 }
 
 TEST_F(Cli, RenderThatCannotBeDoneFailsNamingTheKeyAndWritesNothing) {
@@ -166,6 +170,9 @@ TEST_F(Cli, RunWritesImagesReportsAndManifestThenResumeSkipsAndRepairs) {
     EXPECT_GT(report["pass_ms"]["sea_single"].get<double>(), 0.0);
     EXPECT_TRUE(report.contains("kernel_build_ms"));
     EXPECT_EQ(report["plan"][0]["kernel"], "kernels/sea_single.cl");
+    ASSERT_EQ(report["expected_error"].size(), 1u);
+    EXPECT_EQ(report["expected_error"][0]["view"], "sea");
+    EXPECT_TRUE(report["expected_error"][0]["table"].get<std::string>().rfind("results/sea_allorders/", 0) == 0);
   }
   EXPECT_EQ(readJson(dir_ / "out" / "manifest.json")["items"].size(), 3u);
 

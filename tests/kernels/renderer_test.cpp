@@ -207,7 +207,8 @@ TEST(Renderer, CameraCurvesAreReadOnceAcrossUpdates) {
 }
 
 // A froxel knob sets up only the froxel pass; the G-buffer does not run again, the shading that
-// reads the new volume does.
+// reads the new volume does, and the water's point spread (the improved model, the default) that
+// reads the shading.
 TEST(Renderer, FroxelKnobRebuildsOnlyTheFroxelPass) {
   Renderer renderer(test::testDevice(), sceneFile("seabed.toml"), smallSeabed(), shippedPasses());
   (void)renderer.render();
@@ -215,22 +216,25 @@ TEST(Renderer, FroxelKnobRebuildsOnlyTheFroxelPass) {
   const FrameResult f = renderer.render();
   EXPECT_TRUE(has(renderer.lastPrepared(), "froxel"));
   EXPECT_FALSE(has(renderer.lastPrepared(), "raycast"));
-  EXPECT_EQ(models(renderer.lastExecuted()), (std::vector<std::string>{"froxel", "kd_multiple"}));
+  EXPECT_EQ(models(renderer.lastExecuted()), (std::vector<std::string>{"froxel", "kd_multiple", "water_spread"}));
   std::vector<Override> at = smallSeabed();
   at.push_back(set("quality.froxel_z", "24"));
   EXPECT_EQ(f.rgb.pixels, fresh("seabed.toml", at).rgb.pixels);
 }
 
-// A change that changes the plan (the second order switched on) builds the new graph.
+// A change that changes the plan (the second order switched on) builds the new graph. Paper 000's
+// model: "multiple" (the default) holds the second order in its closed form and plans no maps.
 TEST(Renderer, PlanChangeBuildsTheNewGraph) {
-  Renderer renderer(test::testDevice(), sceneFile("flat_sea.toml"), small({}), shippedPasses());
+  Renderer renderer(test::testDevice(), sceneFile("flat_sea.toml"), small({set("sea.model", "\"paper\"")}),
+                    shippedPasses());
   (void)renderer.render();
   EXPECT_FALSE(renderer.plan().hasPass("sea_second"));
   renderer.update({set("sea.second_order", "true"), set("quality.sea_map_size", "8"), set("quality.sea_nz", "4")});
   const FrameResult f = renderer.render();
   EXPECT_TRUE(has(renderer.lastExecuted(), "sea_second"));
   EXPECT_EQ(f.rgb.pixels,
-            fresh("flat_sea.toml", small({set("sea.second_order", "true"), set("quality.sea_map_size", "8"),
+            fresh("flat_sea.toml", small({set("sea.model", "\"paper\""), set("sea.second_order", "true"),
+                                          set("quality.sea_map_size", "8"),
                                           set("quality.sea_nz", "4")}))
                 .rgb.pixels);
 }

@@ -47,8 +47,10 @@ seasim::Device& device() { return seasim::test::testDevice(); }
 
 seasim::Override set(const char* key, const std::string& value) { return {key, value, {"test", 1}}; }
 
+// Paper 000's model, pinned: its second order is what is tested ("multiple", the default, has none).
 seasim::Scene scene(std::vector<seasim::Override> overrides, bool second, bool remove_bottom = false) {
   std::string text = kScene;
+  overrides.insert(overrides.begin(), set("sea.model", "\"paper\""));
   if (remove_bottom) text.erase(text.find("[bottom]"), text.find("[spectral]") - text.find("[bottom]"));
   overrides.push_back(set("sea.second_order", second ? "true" : "false"));
   return seasim::parseScene(text, "test_sea_second.toml", overrides);

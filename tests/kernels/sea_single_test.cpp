@@ -150,7 +150,9 @@ count = 4
   for (const bool bottom : {true, false}) {
     std::string t = text;
     if (!bottom) t.erase(t.find("[bottom]"), t.find("[spectral]") - t.find("[bottom]"));
-    const seasim::Scene scene = seasim::parseScene(t, "n2.toml", {set("spectral.spectral_exr", "true")});
+    // Paper 000's single scattering, pinned: seaUpwellingBelow is its radiance below the surface.
+    const seasim::Scene scene =
+        seasim::parseScene(t, "n2.toml", {set("spectral.spectral_exr", "true"), set("sea.model", "\"paper\"")});
     const seasim::FrameResult frame = seasim::renderFrame(device(), scene, seasim::makePlan(scene));
     const size_t bands = frame.wavelengths_nm.size();
     ASSERT_EQ(bands, 4u);

@@ -6,6 +6,10 @@
 // CIE clear, Preetham (T 3 and 9) and image (scenes/textures/sky_clear.exr) skies. Then the
 // direction of the change: a Preetham sky brightens the
 // window towards the sun and darkens it away from it, where a uniform sky is symmetric.
+// The thesis's model, pinned: the expected value is its window term (the improved model, the default,
+// attenuates the window by delta-M's c', adds the surface's reflection and blurs the forward light, so
+// this closed form is not its own; underwater_improved_kernel_test.cpp checks that one against its
+// double evaluation).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -42,6 +46,7 @@ radiance = 0.05
 [water]
 jerlov = "IB"
 [underwater]
+model = "thesis"
 single_scattering = false
 multiple_scattering = false
 caustics = "none"

@@ -2,7 +2,8 @@
 // double-precision CPU evaluation of the same shared math (host/underwater/underwater_cpu.cpp), over
 // an ordinary seabed and its stiff variants (002 eq. 4.7's singular line, camera at the surface and at
 // 1000 m, rays straight up and down, n = 1 and 1000 bands, turbid 9C at long range). No NaN/Inf.
-// The froxel term is off here (single_scattering = false); froxel_test.cpp covers it.
+// The froxel term is off here (single_scattering = false); froxel_test.cpp covers it. The thesis's
+// model, pinned (the default is "improved"; underwater_improved_kernel_test.cpp tests that one).
 #include <gtest/gtest.h>
 
 #include <ostream>
@@ -61,6 +62,7 @@ center = [0.5, -1.5, -6]
 radius = 0.7
 albedo = 0.6
 [underwater]
+model = "thesis"
 single_scattering = false
 caustics = "none"
 [spectral]
@@ -170,57 +172,124 @@ TEST(UnderwaterKdKernel, ScatteringFreeWaterShowsOnlyTheLitSurfaces) {
   EXPECT_GT(peak, 0.0f);
 }
 
-TEST(UnderwaterKdKernel, SpectralOutputMatchesTheRgbSum) {
-  const seasim::Scene scene =
-      seasim::parseScene(kScene, "test_seabed.toml", {set("spectral.spectral_exr", "true"), set("spectral.count", "5")});
-  const seasim::FrameResult frame = seasim::renderFrame(seasim::test::testDevice(), scene, seasim::makePlan(scene));
-  ASSERT_EQ(frame.spectral.size(), size_t(40 * 24 * 5));
-  const seasim::WavelengthGrid grid = seasim::makeGrid(5, 400, 700);
-  const seasim::Sensor sensor = seasim::makeSensor(scene.spectral.sensor, grid, true);
-  for (size_t p = 0; p < 40 * 24; p += 37) {
-    std::vector<double> bands(frame.spectral.begin() + p * 5, frame.spectral.begin() + p * 5 + 5);
-    const auto rgb = sensor.apply(bands.data());
-    for (int k = 0; k < 3; ++k) EXPECT_NEAR(frame.rgb.pixels[3 * p + k], rgb[k], 1e-5 * (1e-3 + std::fabs(rgb[k])));
-  }
+// Both underwater models: spectral.exr's bands through the sensor are image.exr's RGB. The improved
+// model's point spread (water_spread.cl) is off in these two tests: it splits each RGB channel's forward
+// light between its blur layers by the channel's mean scattering count, and each band by the band's own,
+// a split that is not linear in the light, so with it the two outputs differ by more (the test after
+// these two measures it).
+const std::vector<std::string> kModels = {"thesis", "improved"};
+std::vector<seasim::Override> model(const std::string& name) {
+  std::vector<seasim::Override> o = {set("underwater.model", "\"" + name + "\"")};
+  if (name == "improved") o.push_back(set("underwater.point_spread", "false"));
+  return o;
+}
+std::vector<seasim::Override> with(std::vector<seasim::Override> a, const std::vector<seasim::Override>& b) {
+  a.insert(a.end(), b.begin(), b.end());
+  return a;
 }
 
-// spectral.exr holds the whole image: with the froxel single scattering on, the bands
-// weighted by the sensor give image.exr's RGB. With spectral injection they differ only in the
-// in-slice fraction (the image's uses the RGB pseudo-bands' extinction, the bands their own c):
-// measured 3.1e-6. With RGB injection the image's froxel term is the three pseudo-bands' cheaper
-// approximation while spectral.exr integrates every band: measured 3.3e-3 apart.
-TEST(UnderwaterKdKernel, SpectralOutputWithFroxelsMatchesTheRgbSum) {
-  for (const auto& [injection, tolerance] : {std::pair{"\"spectral\"", 1e-5}, std::pair{"\"rgb\"", 1e-2}}) {
+// Max over pixels and channels of |image - sensor(bands)| / (1e-6 + |image|).
+double spectralVsImage(const seasim::Scene& scene, const seasim::FrameResult& frame, int bands) {
+  const size_t pixels = size_t(scene.camera.width) * size_t(scene.camera.height);
+  EXPECT_EQ(frame.spectral.size(), pixels * bands);
+  const seasim::WavelengthGrid grid = seasim::makeGrid(bands, 400, 700);
+  const seasim::Sensor sensor = seasim::makeSensor(scene.spectral.sensor, grid, true);
+  double worst = 0;
+  for (size_t p = 0; p < pixels && frame.spectral.size() == pixels * bands; ++p) {
+    std::vector<double> v(frame.spectral.begin() + p * bands, frame.spectral.begin() + (p + 1) * bands);
+    const auto rgb = sensor.apply(v.data());
+    for (int k = 0; k < 3; ++k) {
+      const double image = frame.rgb.pixels[3 * p + k];
+      worst = std::max(worst, std::fabs(image - rgb[k]) / (1e-6 + std::fabs(image)));
+    }
+  }
+  return worst;
+}
+
+TEST(UnderwaterKdKernel, SpectralOutputMatchesTheRgbSum) {
+  for (const std::string& m : kModels) {
+    SCOPED_TRACE(m);
     const seasim::Scene scene = seasim::parseScene(
-        kScene, "test_seabed.toml",
-        {set("spectral.spectral_exr", "true"), set("spectral.count", "5"), set("underwater.single_scattering", "true"),
-         set("underwater.froxel_injection", injection)});
-    const seasim::Plan plan = seasim::makePlan(scene);
-    ASSERT_TRUE(plan.hasPass("froxel"));
-    const seasim::FrameResult frame = seasim::renderFrame(seasim::test::testDevice(), scene, plan);
-    EXPECT_EQ(frame.nonfinite, 0);
+        kScene, "test_seabed.toml", with({set("spectral.spectral_exr", "true"), set("spectral.count", "5")}, model(m)));
+    const seasim::FrameResult frame = seasim::renderFrame(seasim::test::testDevice(), scene, seasim::makePlan(scene));
     ASSERT_EQ(frame.spectral.size(), size_t(40 * 24 * 5));
     const seasim::WavelengthGrid grid = seasim::makeGrid(5, 400, 700);
     const seasim::Sensor sensor = seasim::makeSensor(scene.spectral.sensor, grid, true);
-    // The same frame without the froxel term, to see that the term is there and sizeable.
-    const seasim::Scene no_ss = seasim::parseScene(
-        kScene, "test_seabed.toml", {set("spectral.spectral_exr", "true"), set("spectral.count", "5")});
-    const seasim::FrameResult without = seasim::renderFrame(seasim::test::testDevice(), no_ss, seasim::makePlan(no_ss));
-    double worst = 0, ss_share = 0;
-    for (size_t p = 0; p < 40 * 24; ++p) {
+    for (size_t p = 0; p < 40 * 24; p += 37) {
       std::vector<double> bands(frame.spectral.begin() + p * 5, frame.spectral.begin() + p * 5 + 5);
       const auto rgb = sensor.apply(bands.data());
-      for (int k = 0; k < 3; ++k) {
-        const double image = frame.rgb.pixels[3 * p + k];
-        worst = std::max(worst, std::fabs(image - rgb[k]) / (1e-6 + std::fabs(image)));
-        ss_share = std::max(ss_share, std::fabs(image - without.rgb.pixels[3 * p + k]) / (1e-6 + std::fabs(image)));
-      }
+      for (int k = 0; k < 3; ++k) EXPECT_NEAR(frame.rgb.pixels[3 * p + k], rgb[k], 1e-5 * (1e-3 + std::fabs(rgb[k])));
     }
-    std::printf("[ measured ] %s injection: sensor(spectral) vs image.exr, max relative difference %.2g; the "
-                "froxel term is up to %.2g of a pixel\n",
-                injection, worst, ss_share);
-    EXPECT_GT(ss_share, 0.05) << "the froxel term must matter in this scene for the test to mean anything";
-    EXPECT_LT(worst, tolerance);
+  }
+}
+
+// spectral.exr holds the whole image: with the froxel single scattering on, the bands weighted by the
+// sensor give image.exr's RGB. With spectral injection they differ only in the in-slice fraction (the
+// image's uses the RGB pseudo-bands' extinction, the bands their own c): measured 3.3e-6 (thesis) and
+// 3.0e-6 (improved). With RGB injection the image's froxel term is the three pseudo-bands' cheaper
+// approximation while spectral.exr integrates every band: measured 3.5e-3 and 3.0e-3 apart. The froxel
+// term's own size, to see that it is there: the frame with it and no other in-scatter
+// (multiple_scattering = false) against the frame with neither, up to 0.052 (thesis) and 0.045
+// (improved) of a pixel; a term missing from spectral.exr would show twice over at the loosest
+// tolerance. (Against the same frame without froxels the improved model differs only by the froxels'
+// shadows: without them it has the unshadowed single scattering in closed form.)
+TEST(UnderwaterKdKernel, SpectralOutputWithFroxelsMatchesTheRgbSum) {
+  for (const std::string& m : kModels)
+    for (const auto& [injection, tolerance] : {std::pair{"\"spectral\"", 1e-5}, std::pair{"\"rgb\"", 1e-2}}) {
+      SCOPED_TRACE(m);
+      const std::vector<seasim::Override> base =
+          with({set("spectral.spectral_exr", "true"), set("spectral.count", "5"),
+                set("underwater.froxel_injection", injection)},
+               model(m));
+      const seasim::Scene scene =
+          seasim::parseScene(kScene, "test_seabed.toml", with(base, {set("underwater.single_scattering", "true")}));
+      const seasim::Plan plan = seasim::makePlan(scene);
+      ASSERT_TRUE(plan.hasPass("froxel"));
+      const seasim::FrameResult frame = seasim::renderFrame(seasim::test::testDevice(), scene, plan);
+      EXPECT_EQ(frame.nonfinite, 0);
+      ASSERT_EQ(frame.spectral.size(), size_t(40 * 24 * 5));
+      const double worst = spectralVsImage(scene, frame, 5);
+      auto render = [&](const char* single) {
+        const seasim::Scene s = seasim::parseScene(
+            kScene, "test_seabed.toml",
+            with(base, {set("underwater.single_scattering", single), set("underwater.multiple_scattering", "false")}));
+        return seasim::renderFrame(seasim::test::testDevice(), s, seasim::makePlan(s));
+      };
+      const seasim::FrameResult froxel_only = render("true"), neither = render("false");
+      double ss_share = 0;
+      for (size_t i = 0; i < frame.rgb.pixels.size(); ++i)
+        ss_share = std::max(ss_share, std::fabs(froxel_only.rgb.pixels[i] - neither.rgb.pixels[i]) /
+                                          (1e-6 + std::fabs(frame.rgb.pixels[i])));
+      std::printf("[ measured ] %s, %s injection: sensor(spectral) vs image.exr, max relative difference %.2g; the "
+                  "froxel term is up to %.2g of a pixel\n",
+                  m.c_str(), injection, worst, ss_share);
+      EXPECT_GT(ss_share, 2 * 1e-2) << "the froxel term must matter in this scene for the test to mean anything";
+      EXPECT_LT(worst, tolerance);
+    }
+}
+
+// The improved model with its point spread (the default where g > 0): image.exr blurs each RGB
+// channel's forward light in layers split by that channel's mean scattering count (water_spread.h,
+// uws_layer_share), spectral.exr each band's by its own count. The split is piecewise linear in the
+// count, not linear in the light, so sensor(spectral.exr) is not image.exr's RGB exactly. Not fixed:
+// an exact match needs the split per band for the image too (the layers' light per pixel, per band).
+// Measured here: 7.0e-3 without froxels, 6.9e-3 with (spectral injection); bounded at 1e-2.
+TEST(UnderwaterKdKernel, SpectralOutputWithThePointSpreadIsTheRgbSumWithinItsChannelSplit) {
+  for (const char* single : {"false", "true"}) {
+    SCOPED_TRACE(single);
+    const seasim::Scene scene = seasim::parseScene(
+        kScene, "test_seabed.toml",
+        {set("spectral.spectral_exr", "true"), set("spectral.count", "5"), set("underwater.model", "\"improved\""),
+         set("underwater.single_scattering", single)});
+    const seasim::Plan plan = seasim::makePlan(scene);
+    ASSERT_TRUE(plan.hasPass("water_spread"));
+    const seasim::FrameResult frame = seasim::renderFrame(seasim::test::testDevice(), scene, plan);
+    EXPECT_EQ(frame.nonfinite, 0);
+    const double worst = spectralVsImage(scene, frame, 5);
+    std::printf("[ measured ] improved with its point spread, froxels %s: sensor(spectral) vs image.exr, max relative "
+                "difference %.2g\n",
+                single, worst);
+    EXPECT_LT(worst, 1e-2);
   }
 }
 

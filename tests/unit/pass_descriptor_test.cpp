@@ -86,7 +86,7 @@ TEST(PassDescriptor, KnobsAreReadFromTheDescriptorsOwnListWithItsDefaults) {
 }
 
 TEST(PassDescriptor, TheBudgetAndTheShardCostAskTheDescriptors) {
-  seasim::Scene scene = flatSea({{"sea.second_order", "true", {}}});
+  seasim::Scene scene = flatSea({{"sea.second_order", "true", {}}, {"sea.model", "\"paper\"", {}}});
   const seasim::Plan plan = seasim::makePlan(scene);
   ASSERT_TRUE(plan.hasPass("sea_second"));
   const auto buffers = seasim::estimateBuffers(scene, plan);

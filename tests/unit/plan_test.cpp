@@ -57,16 +57,22 @@ TEST(Plan, DeepWaterDropsTheBottomTerm) {
 }
 
 TEST(Plan, SunBelowHorizonStillRendersWithoutSunTerms) {
+  // Paper 000's single scattering is the sun's alone; "multiple" (the default) keeps its column, which
+  // also holds the skylight scattered in the water.
+  const Plan paper = makePlan(parseScene(kFlatSea, "flat.toml",
+                                         {{"sun.enabled", "false", {"cli", 1}}, {"sea.model", "\"paper\"", {"cli", 2}}}));
+  EXPECT_TRUE(hasDefine(paper, "sea_single", "SEASIM_HAS_SUN=0"));
+  EXPECT_TRUE(hasDefine(paper, "sea_single", "SEASIM_HAS_SINGLE_SCATTERING=0"));
   const Plan plan = makePlan(parseScene(kFlatSea, "flat.toml", {{"sun.enabled", "false", {"cli", 1}}}));
   EXPECT_TRUE(hasDefine(plan, "sea_single", "SEASIM_HAS_SUN=0"));
-  EXPECT_TRUE(hasDefine(plan, "sea_single", "SEASIM_HAS_SINGLE_SCATTERING=0"));
+  EXPECT_TRUE(hasDefine(plan, "sea_single", "SEASIM_HAS_SINGLE_SCATTERING=1"));
 }
 
 // quality.fast_math marks every model pass's build (Device::program adds -cl-fast-relaxed-math for
 // it) and shows in `seasim plan`; the NaN/Inf check is never built with finite-only maths.
 TEST(Plan, FastMathMarksEveryModelPassButTheCheck) {
   for (const bool fast : {false, true}) {
-    const Plan plan = makePlan(parseScene(std::string(kFlatSea) + "[sea]\nsecond_order = true\n[quality]\nfast_math = " +
+    const Plan plan = makePlan(parseScene(std::string(kFlatSea) + "[sea]\nmodel = \"paper\"\nsecond_order = true\n[quality]\nfast_math = " +
                                               (fast ? "true" : "false") + "\n",
                                           "flat.toml"));
     ASSERT_TRUE(plan.hasPass("sea_second"));
@@ -95,7 +101,9 @@ TEST(Plan, FastMathAutoIsOffOnlyForWavesSeenFromAbove) {
 }
 
 TEST(Plan, SecondOrderAddsScatteringMapsPass) {
-  const Plan plan = makePlan(parseScene(kFlatSea, "flat.toml", {{"sea.second_order", "true", {"cli", 1}}}));
+  // Paper 000's model; "multiple" holds the second order in its closed form and plans no maps.
+  const Plan plan = makePlan(parseScene(kFlatSea, "flat.toml",
+                                        {{"sea.second_order", "true", {"cli", 1}}, {"sea.model", "\"paper\"", {"cli", 2}}}));
   ASSERT_TRUE(plan.hasPass("sea_second"));
   EXPECT_TRUE(plan.find("sea_second")->implemented);
   // It runs after the single-scattering pass and adds into its image.
@@ -309,13 +317,15 @@ direction = [0, -1, -1]
   EXPECT_FALSE(makePlan(parseScene(no_lamps, "rov.toml")).hasPass("underwater_lamps"));
 }
 
-// rov_lights.toml: ray cast, froxels (sun up, single scattering), K_d shading, the lamps, the check;
+// rov_lights.toml: ray cast, froxels (sun up, single scattering), K_d shading, the water's point spread
+// around the objects (the improved model, the default), the lamps, the check;
 // texture caustics need no ocean and no caustic maps; nothing of the sea seen from above or of air.
 TEST(Plan, RovLightsRunsTheUnderwaterPassesAndTheLampsOnly) {
   const Plan plan = makePlan(seasim::loadScene(std::string(SEASIM_SOURCE_DIR) + "/scenes/rov_lights.toml"));
   std::vector<std::string> order;
   for (const auto& p : plan.passes) order.push_back(p.name);
-  const std::vector<std::string> expected = {"raycast", "froxel", "kd_multiple", "underwater_lamps", "nonfinite_check"};
+  const std::vector<std::string> expected = {"raycast", "froxel", "kd_multiple", "water_spread", "underwater_lamps",
+                                             "nonfinite_check"};
   EXPECT_EQ(order, expected);
   EXPECT_TRUE(hasDefine(plan, "underwater_lamps", "SEASIM_HAS_OBJECTS=1"));
   for (const auto& p : plan.passes) EXPECT_TRUE(p.implemented) << p.name;
@@ -359,7 +369,7 @@ TEST(Plan, HeightFieldBottomDefineOnlyWithAHeightField) {
   { std::FILE* f = std::fopen((dir + "/hf_plan.exr").c_str(), "wb"); ASSERT_NE(f, nullptr); std::fclose(f); }
   std::string hf = kFlatSea;
   hf = hf.substr(0, hf.find("[bottom]")) + "[bottom]\ntype = \"heightfield\"\nheightfield = \"hf_plan.exr\"\n";
-  const auto second = std::vector<seasim::Override>{{"sea.second_order", "true", {"cli", 1}}};
+  const auto second = std::vector<seasim::Override>{{"sea.second_order", "true", {"cli", 1}}, {"sea.model", "\"paper\"", {"cli", 2}}};
   Plan plan = makePlan(parseScene(hf, dir + "/hf.toml", second));
   for (const char* pass : {"sea_single", "sea_second"}) {
     ASSERT_TRUE(plan.hasPass(pass)) << pass;

@@ -273,6 +273,70 @@ TEST(SeaMultiple, DeepBottomTendsToNoBottomAndEverythingStaysFinite) {
   }
 }
 
+// Over a height field the kernel's depth is z_Q = cos θ_ji t_Q, and a view ray that leaves the floor's
+// walk (near the horizon) has t_Q = 1e30: depths up to 1e30 m, with grazing cosines and turbid 9C water
+// (c up to 100/m) the depth factors' exponents reach 1e36, near float's 3.4e38. At and towards that end
+// every term is finite, >= 0 and the no-bottom limit (the bottom's light 0), in float and double; just
+// below the surface (optical depth 1e-6) the column's light tends to 0 and the bottom's to its unattenuated value.
+// The same three terms in float (seasim::kmath_f) or double (kmath_d), the sun and sky of a clear day.
+template <typename Real, typename Column, typename Bottom, typename Return>
+void expectHeightFieldDepthsAreStable(Column column, Bottom bottom, Return ret) {
+  for (Real c : {Real(0.05), Real(2), Real(100)})
+    for (Real cos_v : {Real(1e-4), Real(0.2), Real(1)})
+      for (Real cos_s : {Real(1e-4), Real(0.7)}) {
+        const Real a = c / 4, b = c - a;
+        const Real none = column(a, b, Real(-1), cos_s, cos_v) + ret(a, b, Real(-1), cos_s, cos_v);
+        for (Real H : {Real(1e6), Real(1e20), Real(1e30)}) {
+          const Real col = column(a, b, H, cos_s, cos_v), bot = bottom(a, b, H, cos_s, cos_v),
+                     back = ret(a, b, H, cos_s, cos_v);
+          EXPECT_TRUE(std::isfinite(col) && col >= 0) << H << " " << c << " " << cos_v << " " << cos_s;
+          EXPECT_TRUE(std::isfinite(back) && back >= 0) << H << " " << c << " " << cos_v << " " << cos_s;
+          EXPECT_EQ(bot, Real(0)) << H << " " << c << " " << cos_v << " " << cos_s;
+          EXPECT_NEAR(col + back, none, Real(1e-5) * none) << H << " " << c << " " << cos_v << " " << cos_s;
+        }
+        // A layer of optical depth 1e-6 along the slanter of the two paths.
+        const Real h = Real(1e-6) * std::min(cos_s, cos_v) / c;
+        const Real thin = column(a, b, h, cos_s, cos_v), at_zero = column(a, b, Real(0), cos_s, cos_v);
+        EXPECT_EQ(at_zero, Real(0)) << c << " " << cos_v << " " << cos_s;
+        EXPECT_TRUE(std::isfinite(thin) && thin > 0 && thin <= Real(1e-4) * none) << c << " " << cos_v << " " << cos_s;
+        EXPECT_GT(bottom(a, b, h, cos_s, cos_v), Real(0.9999) * bottom(a, b, Real(0), cos_s, cos_v))
+            << c << " " << cos_v << " " << cos_s;
+      }
+}
+
+TEST(SeaMultiple, HeightFieldDepthsFromZeroToTheUnhitRayStayFiniteAndNonNegative) {
+  {
+    using namespace seasim::kmath_f;
+    const float cf = hg_forward_fraction(0.9f), mu = sea_sky_mean_cosine(1.34f);
+    const float r = sea_surface_reflectance_below(0.066f, 1.34f), mu_ret = sea_reflected_mean_cosine(r, 1.34f);
+    expectHeightFieldDepthsAreStable<float>(
+        [&](float a, float b, float H, float cs, float cv) {
+          return sea_multiple_column(1.0f, 0.97f, 0.3f, a, b, cf, H, cs, cv, 0.05f, mu);
+        },
+        [&](float a, float b, float H, float cs, float cv) {
+          return sea_multiple_bottom(1.0f, 0.97f, 0.3f, a, b, cf, 0.35f, H, cs, cv, mu, 1.0f);
+        },
+        [&](float a, float b, float H, float cs, float cv) {
+          return sea_multiple_surface_return(1.0f, 0.97f, 0.3f, a, b, cf, 0.35f, H, cs, cv, mu, 1.0f, r, mu_ret, 1);
+        });
+  }
+  {
+    using namespace seasim::kmath_d;
+    const double cf = hg_forward_fraction(0.9), mu = sea_sky_mean_cosine(1.34);
+    const double r = sea_surface_reflectance_below(0.066, 1.34), mu_ret = sea_reflected_mean_cosine(r, 1.34);
+    expectHeightFieldDepthsAreStable<double>(
+        [&](double a, double b, double H, double cs, double cv) {
+          return sea_multiple_column(1.0, 0.97, 0.3, a, b, cf, H, cs, cv, 0.05, mu);
+        },
+        [&](double a, double b, double H, double cs, double cv) {
+          return sea_multiple_bottom(1.0, 0.97, 0.3, a, b, cf, 0.35, H, cs, cv, mu, 1.0);
+        },
+        [&](double a, double b, double H, double cs, double cv) {
+          return sea_multiple_surface_return(1.0, 0.97, 0.3, a, b, cf, 0.35, H, cs, cv, mu, 1.0, r, mu_ret, 1);
+        });
+  }
+}
+
 // The mean cosine of what a flat surface reflects down from a uniform upwelling radiance, against
 // ∫F μ dμ / ∫F dμ by quadrature with Fresnel from water to air (1 beyond the critical angle).
 TEST(SeaMultiple, ReflectedMeanCosineMatchesFresnelQuadrature) {

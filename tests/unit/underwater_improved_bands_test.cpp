@@ -91,13 +91,17 @@ struct Ray {
     const int node = ns::uwi_source_node(d.y), node_r = ns::uwi_source_node(-d.y);                         \
     const Real cos_dphi = ns::uwi_cos_azimuth(cos_s, d.y, s_w.y);                                           \
     const Real cos_dphi_r = ns::uwi_cos_azimuth(cos_r, -d.y, s_w.y);                                        \
-    const ns::UwiLanes v = ns::uwi_lanes_load(table.data(), stride, uwi_row0, k);                            \
-    const ns::UwiWeights w = ns::uwi_lanes_weights(table.data(), stride, uwi_row0, k, node, cos_dphi);       \
-    const ns::UwiWeights w_r = ns::uwi_lanes_weights(table.data(), stride, uwi_row0, k, node_r, cos_dphi_r); \
-    const ns::UwiStart a = ns::uwi_start_camera(table.data(), stride, uwi_row0, k);                          \
+    ns::UwiLanes v;                                                                                      \
+    ns::uwi_lanes_load(table.data(), stride, uwi_row0, k, &v);                                           \
+    ns::UwiWeights w, w_r;                                                                               \
+    ns::uwi_lanes_weights(table.data(), stride, uwi_row0, k, node, cos_dphi, &w);                        \
+    ns::uwi_lanes_weights(table.data(), stride, uwi_row0, k, node_r, cos_dphi_r, &w_r);                  \
+    ns::UwiStart a;                                                                                      \
+    ns::uwi_start_camera(table.data(), stride, uwi_row0, k, &a);                                         \
     auto row = [&](int rw) { return Real(table[size_t(rw) * stride + k]); };                                 \
     const Real y = std::max(o_d - S * d.y, Real(0));                                                         \
-    const ns::UwiEnds e = ns::uwi_ends(&v, H, S, y, single);                                                 \
+    ns::UwiEnds e;                                                                                       \
+    ns::uwi_ends(&v, H, S, y, single, &e);                                                               \
     Real strict;                                                                                             \
     Real L = ns::uwi_lanes_multiple(&v, &w, &a, &e, phase, H, S, d.y, single, &strict);                      \
     Real frac_a;                                                                                             \
@@ -110,21 +114,24 @@ struct Ray {
       Real frac_m;                                                                                           \
       const int tilt_node_m = ns::uwi_tilt_node(n_m.y, &frac_m);                                             \
       const Real cos_phi_m = ns::uwi_cos_azimuth(ns::dot(n_m, s_w), n_m.y, s_w.y);                           \
-      const ns::UwiWeights tilt_m =                                                                          \
-          r.s_m < Real(1e29) ? ns::uwi_lanes_tilt(table.data(), stride, uwi_row0, k, tilt_node_m, frac_m, cos_phi_m, Real(1)) \
-                             : ns::uwi_lanes_down(&v);                                                       \
+      ns::UwiWeights tilt_m;                                                                             \
+      if (r.s_m < Real(1e29))                                                                            \
+        ns::uwi_lanes_tilt(table.data(), stride, uwi_row0, k, tilt_node_m, frac_m, cos_phi_m, Real(1), &tilt_m);\
+      else                                                                                               \
+        ns::uwi_lanes_down(&v, &tilt_m);                                                                 \
       L += ns::uwi_lanes_surface(&v, &w_r, e.k, Real(r.sky_l), row(uwi_row0 + UWI_ROW_BOTTOM_L),         \
                                  row(uwi_row0 + UWI_ROW_EXP_K_H), phase_r, H, d.y, Real(s.params.ior), 1,    \
                                  Real(r.s_m), row(UW_ROWS + r.mat_m), &tilt_m, ns::dot(n_m, s_w), Real(r.vis_m)); \
     } else if (r.mat == UW_MAT_BOTTOM) {                                                                     \
-      const ns::UwiWeights down = ns::uwi_lanes_down(&v);                                                    \
+      ns::UwiWeights down;                                                                               \
+      ns::uwi_lanes_down(&v, &down);                                                                     \
       L += ns::uwi_lanes_lambert(&v, &e, &down, row(UW_ROW_BOTTOM_ALBEDO), H, ns::dot(n, s_w), Real(r.vis)); \
     } else if (r.mat != UW_MAT_NONE) {                                                                       \
       Real frac;                                                                                             \
       const int tilt_node = ns::uwi_tilt_node(n.y, &frac);                                                   \
-      const ns::UwiWeights tilt = ns::uwi_lanes_tilt(table.data(), stride, uwi_row0, k, tilt_node, frac,     \
-                                                     ns::uwi_cos_azimuth(ns::dot(n, s_w), n.y, s_w.y),       \
-                                                     Real(r.vis_b));                                         \
+      ns::UwiWeights tilt;                                                                               \
+      ns::uwi_lanes_tilt(table.data(), stride, uwi_row0, k, tilt_node, frac,                             \
+                         ns::uwi_cos_azimuth(ns::dot(n, s_w), n.y, s_w.y), Real(r.vis_b), &tilt);        \
       L += ns::uwi_lanes_lambert(&v, &e, &tilt, row(UW_ROWS + r.mat), H, ns::dot(n, s_w), Real(r.vis));      \
     }                                                                                                        \
     return L;                                                                                                \
@@ -177,7 +184,8 @@ TEST(UnderwaterImprovedBands, TableRowsHoldTheBlockAndPaddingIsWeightless) {
     for (double nu : {-1.0, -0.3, 0.0, 0.7, 1.0})
       for (double cos_dphi : {-0.6, 0.0, 1.0}) {
         const int node = kd::uwi_source_node(nu);
-        const kd::UwiWeights w = kd::uwi_lanes_weights(t.data(), stride, row0, k, node, cos_dphi);
+        kd::UwiWeights w;
+        kd::uwi_lanes_weights(t.data(), stride, row0, k, node, cos_dphi, &w);
         for (int q = 0; q < 3; ++q) {
           const double expect = kd::uwi_source_weight(&ib, node, cos_dphi, q);
           EXPECT_NEAR(q == 0 ? w.w1 : q == 1 ? w.w2 : w.wp, expect, 1e-12 * std::fabs(expect) + 1e-30) << nu;

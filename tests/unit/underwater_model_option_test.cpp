@@ -46,12 +46,15 @@ bool hasDefine(const Plan& plan, const std::string& define) {
   return p && std::find(p->defines.begin(), p->defines.end(), define) != p->defines.end();
 }
 
-TEST(UnderwaterModelOption, DefaultIsTheThesisAndThePlanSaysSo) {
+TEST(UnderwaterModelOption, DefaultIsTheImprovedModelTheThesisByNameAndThePlanSaysSo) {
   const Scene scene = parseScene(kScene, "uw.toml");
-  EXPECT_EQ(scene.underwater.model, UnderwaterDesc::Model::Thesis);
+  EXPECT_EQ(scene.underwater.model, UnderwaterDesc::Model::Improved);
   const Plan plan = makePlan(scene);
-  EXPECT_TRUE(hasDefine(plan, "SEASIM_UNDERWATER_MODEL=0"));
-  EXPECT_FALSE(hasDefine(plan, "SEASIM_UNDERWATER_MODEL=1"));
+  EXPECT_TRUE(hasDefine(plan, "SEASIM_UNDERWATER_MODEL=1"));
+  EXPECT_FALSE(hasDefine(plan, "SEASIM_UNDERWATER_MODEL=0"));
+  const Plan thesis = makePlan(parseScene(withModel("\"thesis\""), "uw.toml"));
+  EXPECT_TRUE(hasDefine(thesis, "SEASIM_UNDERWATER_MODEL=0"));
+  EXPECT_FALSE(hasDefine(thesis, "SEASIM_UNDERWATER_MODEL=1"));
 }
 
 TEST(UnderwaterModelOption, ImprovedSetsTheDefineAndFillsThePerBandBlock) {
@@ -69,7 +72,7 @@ TEST(UnderwaterModelOption, ImprovedSetsTheDefineAndFillsThePerBandBlock) {
     EXPECT_GT(b.k, 0.0f);
   }
   const UnderwaterSetup thesis =
-      makeUnderwaterSetup(parseScene(kScene, "uw.toml"), grid, makeSensor("cie1931", grid, true, ""));
+      makeUnderwaterSetup(parseScene(withModel("\"thesis\""), "uw.toml"), grid, makeSensor("cie1931", grid, true, ""));
   EXPECT_TRUE(thesis.improved.empty());
 }
 

@@ -1,0 +1,154 @@
+#include "quality/expected_error.h"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <limits>
+
+#include "plan/scene_facts.h"
+#include "spectral/csv_table.h"
+#include "util/error.h"
+#include "util/paths.h"
+
+namespace seasim {
+
+namespace {
+
+// The tables each file's `source` column indexes (tests/perf/expected_error_table.py SOURCES).
+std::vector<std::string> tablesOf(const std::string& view, const std::string& model) {
+  if (view == "sea") return {model == "paper" ? "results/sea_allorders/table.csv" : "results/sea_allorders/table_multiple.csv"};
+  return {"results/underwater/regions.csv", "results/underwater/regions_heldout.csv"};
+}
+
+// Share of the water column the view sees before the bottom: 1 - e^{-c depth}, 1 with no bottom.
+double columnSeen(const MeasuredCase& c) {
+  return c.bottom_m < 0 ? 1.0 : -std::expm1(-(c.a + c.b) * c.bottom_m);
+}
+
+// The scene's features that no measured case has (the studies: flat still surface, uniform sky, flat
+// or no bottom, no caustics, no spotlights).
+std::vector<std::string> unmeasuredFeatures(const Scene& scene, bool underwater) {
+  std::vector<std::string> f;
+  if (scene.surface.type != SurfaceDesc::Type::Flat) f.push_back("waves");
+  if (scene.sky.model != SkyDesc::Model::Uniform) f.push_back("a non-uniform sky");
+  if (scene.bottom.type == BottomDesc::Type::HeightField) f.push_back("a height-field bottom");
+  if (!scene.spotlights.empty()) f.push_back("spotlights");
+  if (underwater && scene.underwater.caustics != UnderwaterDesc::Caustics::None) f.push_back("caustics");
+  if (!underwater && scene.sea.bottom_caustics) f.push_back("caustics");
+  return f;
+}
+
+}  // namespace
+
+double regimeDistance(const MeasuredCase& s, const MeasuredCase& c) {
+  const double ln2 = std::log(2.0);
+  auto logStep = [&](double x, double y) {
+    return std::log(std::max(x, 1e-6) / std::max(y, 1e-6)) / ln2;
+  };
+  const double da = logStep(s.a, c.a), db = logStep(s.b, c.b), dg = (s.g - c.g) / 0.1;
+  const double df = (columnSeen(s) - columnSeen(c)) / 0.25, ds = (s.sun_zenith_deg - c.sun_zenith_deg) / 15.0;
+  return std::sqrt(da * da + db * db + dg * dg + df * df + ds * ds);
+}
+
+std::string measuredTable(const std::string& view, const std::string& model, int source) {
+  const std::vector<std::string> t = tablesOf(view, model);
+  return source >= 0 && source < static_cast<int>(t.size()) ? t[static_cast<size_t>(source)] : "unknown";
+}
+
+std::vector<MeasuredCase> loadMeasuredCases(const std::string& view, const std::string& model) {
+  const std::string path = (std::filesystem::path(dataDir()) / "expected_error" / (view + "_" + model + ".csv")).string();
+  const CsvTable t = loadCsv(path);
+  if (!t.empty_cells.empty())
+    throw RuntimeError(path + ":" + std::to_string(t.empty_cells[0].line) + ": an empty cell in a measured case");
+  std::vector<MeasuredCase> cases(t.rows());
+  const auto &a = t.column("a"), &b = t.column("b"), &g = t.column("g"), &bottom = t.column("bottom_m"),
+             &sun = t.column("sun_zenith_deg"), &err = t.column("max_abs_error"), &worst = t.column("worst_ratio"),
+             &se = t.column("reference_rel_se"), &source = t.column("source");
+  for (size_t i = 0; i < cases.size(); ++i)
+    cases[i] = MeasuredCase{a[i], b[i], g[i], bottom[i], sun[i], err[i], worst[i], se[i], static_cast<int>(source[i])};
+  return cases;
+}
+
+ExpectedError lookupExpectedError(const MeasuredCase& regime, const std::string& view, const std::string& model,
+                                  const std::vector<MeasuredCase>& cases, std::vector<std::string> features) {
+  ExpectedError e;
+  e.view = view;
+  e.model = model;
+  e.unmeasured_features = std::move(features);
+  e.distance = std::numeric_limits<double>::infinity();
+  for (const MeasuredCase& c : cases) {
+    const double d = regimeDistance(regime, c);
+    // Equally near (within 1e-9): the larger error, so a tie never hides the worse case.
+    if (d < e.distance - 1e-9 || (std::fabs(d - e.distance) <= 1e-9 && c.max_abs_error > e.nearest.max_abs_error)) {
+      e.distance = d;
+      e.nearest = c;
+    }
+  }
+  if (cases.empty()) return e;
+  e.max_abs_error = e.nearest.max_abs_error;
+  e.worst_ratio = e.nearest.worst_ratio;
+  e.table = measuredTable(view, model, e.nearest.source);
+  e.measured = e.distance <= kExpectedErrorMaxDistance && e.unmeasured_features.empty();
+  return e;
+}
+
+std::vector<ExpectedError> expectedErrors(const Scene& scene) {
+  const bool underwater = cameraUnderwater(scene);
+  const bool sea = !underwater && seaSeenFromAbove(scene) && !scene.shallow.present;
+  if (!scene.water.present || (!underwater && !sea)) return {};
+  MeasuredCase regime;
+  regime.a = scene.water.a.at(550.0);
+  regime.b = scene.water.b.at(550.0);
+  regime.g = scene.water.g;
+  regime.bottom_m = scene.bottom.type == BottomDesc::Type::Flat ? scene.bottom.depth
+                    : scene.bottom.type == BottomDesc::Type::HeightField
+                        ? 0.5 * (scene.bottom.min_depth + scene.bottom.max_depth)
+                        : -1.0;
+  regime.sun_zenith_deg = scene.sun.zenith * 180.0 / M_PI;
+  const std::string view = underwater ? "underwater" : "sea";
+  const std::string model = underwater ? (scene.underwater.model == UnderwaterDesc::Model::Improved ? "improved" : "thesis")
+                                       : (scene.sea.model == SeaDesc::Model::Multiple ? "multiple" : "paper");
+  return {lookupExpectedError(regime, view, model, loadMeasuredCases(view, model), unmeasuredFeatures(scene, underwater))};
+}
+
+nlohmann::json expectedErrorJson(const std::vector<ExpectedError>& errors) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const ExpectedError& e : errors) {
+    const MeasuredCase& c = e.nearest;
+    out.push_back({{"view", e.view},
+                   {"model", e.model},
+                   {"measured", e.measured},
+                   {"status", e.measured ? "measured" : "unmeasured here"},
+                   {"expected_max_abs_error", e.max_abs_error},
+                   {"worst_ratio", e.worst_ratio},
+                   {"distance", e.distance},
+                   {"max_distance", kExpectedErrorMaxDistance},
+                   {"unmeasured_features", e.unmeasured_features},
+                   {"table", e.table},
+                   {"nearest_case",
+                    {{"a", c.a}, {"b", c.b}, {"g", c.g}, {"bottom_m", c.bottom_m}, {"sun_zenith_deg", c.sun_zenith_deg},
+                     {"reference_rel_se", c.reference_rel_se}}}});
+  }
+  return out;
+}
+
+std::string expectedErrorText(const std::vector<ExpectedError>& errors) {
+  std::string out;
+  char line[512];
+  for (const ExpectedError& e : errors) {
+    const MeasuredCase& c = e.nearest;
+    std::string why;
+    if (e.distance > kExpectedErrorMaxDistance) why = "; distance > " + std::to_string(kExpectedErrorMaxDistance).substr(0, 3);
+    for (const std::string& f : e.unmeasured_features) why += "; " + f;
+    std::snprintf(line, sizeof line,
+                  "expected error (%s %s, against all orders): %s%.1f %% (worst ratio %.3f), the nearest measured "
+                  "case a %.3g b %.3g g %.2g bottom %s sun %.0f deg, distance %.2f, in %s%s\n",
+                  e.view.c_str(), e.model.c_str(), e.measured ? "" : "UNMEASURED HERE; for orientation ", 100 * e.max_abs_error,
+                  e.worst_ratio, c.a, c.b, c.g, c.bottom_m < 0 ? "none" : (std::to_string(c.bottom_m).substr(0, 4) + " m").c_str(),
+                  c.sun_zenith_deg, e.distance, e.table.c_str(), why.c_str());
+    out += line;
+  }
+  return out;
+}
+
+}  // namespace seasim

@@ -1,0 +1,86 @@
+#!/usr/bin/env python3
+"""expected_error_table.py — the measured cases that `seasim plan` and report.json look a scene's expected
+error up in (host/quality/expected_error.h), built from the study tables in results/:
+
+  results/sea_allorders/table.csv           sea.model = "paper" (+ second order) against all orders
+  results/sea_allorders/table_multiple.csv  sea.model = "multiple" against all orders
+  results/underwater/regions.csv            underwater "thesis" and "improved", training grid
+  results/underwater/regions_heldout.csv    the same, held-out grid
+
+One file per model, data/expected_error/<view>_<model>.csv (numeric, data/README.md's format), one row
+per measured case: the case's water (a, b at 550 nm, g), bottom depth (-1: none),
+sun zenith in air, and the error against the all-orders path tracer: max |ratio - 1| over the case's
+judged image regions (the sea: its near and far halves; under water: regions with >= 40 pixels and a
+reference noise <= 2 %), the worst ratio, the reference's noise, the judged regions, and `source`: the index of the table it came
+from in SOURCES below (also listed in data/expected_error/README.md).
+
+  python3 tests/perf/expected_error_table.py data/expected_error
+"""
+import csv
+import os
+import sys
+
+ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..")
+
+
+def read(path):
+    with open(os.path.join(ROOT, path), newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def at550(path, jerlov):
+    rows = read(path)
+    for r in rows:
+        if float(r["wavelength_nm"]) == 550.0:
+            return float(r[jerlov])
+    raise SystemExit(f"{path}: no 550 nm row")
+
+
+SOURCES = {
+    ("sea", "paper"): ["results/sea_allorders/table.csv"],
+    ("sea", "multiple"): ["results/sea_allorders/table_multiple.csv"],
+    ("underwater", "thesis"): ["results/underwater/regions.csv", "results/underwater/regions_heldout.csv"],
+    ("underwater", "improved"): ["results/underwater/regions.csv", "results/underwater/regions_heldout.csv"],
+}
+HEADER = ["a", "b", "g", "bottom_m", "sun_zenith_deg", "max_abs_error", "worst_ratio", "reference_rel_se", "regions",
+          "source"]
+
+
+def main():
+    out_dir = sys.argv[1] if len(sys.argv) > 1 else "data/expected_error"
+    rows = {k: [] for k in SOURCES}
+    # The sea seen from above: flat_sea at 96x54, sun 40°, g 0.9 (results/sea_allorders/README.md).
+    for model in ("paper", "multiple"):
+        for r in read(SOURCES[("sea", model)][0]):
+            ratios = [float(r["ratio_near"]), float(r["ratio_far"])]
+            worst = max(ratios, key=lambda x: abs(x - 1))
+            se = max(float(r["ratio_near_se"]), float(r["ratio_far_se"]))
+            bottom = -1 if r["bottom_m"] == "deep" else float(r["bottom_m"])
+            rows[("sea", model)].append([round(at550("data/jerlov_a.csv", r["jerlov"]), 5),
+                                         round(at550("data/jerlov_b.csv", r["jerlov"]), 5), 0.9, bottom, 40,
+                                         round(abs(worst - 1), 4), round(worst, 4), round(se, 4), 2, 0])
+    # Under water: tests/perf/underwater_regions.toml, sun 30°, camera 3.8 m down, one band.
+    regions = ["bottom_near", "bottom_far", "water_up", "water_down", "objects"]
+    for source, table in enumerate(SOURCES[("underwater", "improved")]):
+        for r in read(table):
+            judged = []
+            for g in regions:
+                pix, ratio, se = r[g + "_pixels"], r[g + "_ratio"], r[g + "_ref_rel_se"]
+                if pix and ratio and se and int(pix) >= 40 and float(se) <= 0.02:
+                    judged.append((float(ratio), float(se)))
+            if not judged:
+                continue
+            worst = max(judged, key=lambda x: abs(x[0] - 1))
+            bottom = -1 if r["depth_m"] in ("0", "none", "") or float(r["depth_m"]) == 0 else float(r["depth_m"])
+            rows[("underwater", r["model"])].append([float(r["a"]), float(r["b"]), float(r["g"]), bottom, 30,
+                                                     round(abs(worst[0] - 1), 4), round(worst[0], 4),
+                                                     round(max(s for _, s in judged), 4), len(judged), source])
+    for (view, model), table in rows.items():
+        with open(os.path.join(out_dir, f"{view}_{model}.csv"), "w", newline="") as f:
+            w = csv.writer(f, lineterminator="\n")
+            w.writerow(HEADER)
+            w.writerows(table)
+
+
+if __name__ == "__main__":
+    main()

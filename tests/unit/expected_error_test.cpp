@@ -1,0 +1,143 @@
+// expected_error_test.cpp — the expected error a render states (host/quality/expected_error.h): a scene
+// inside a measured case reports that case and its table; a scene far from every case, or with a
+// feature no case has, says "unmeasured here"; and the lookup's own error, leave-one-out over the
+// shipped tables (printed; docs/error_vs_time.md quotes it).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "quality/expected_error.h"
+#include "scene/scene_parser.h"
+
+namespace {
+
+using seasim::ExpectedError;
+using seasim::MeasuredCase;
+
+// tests/perf/underwater_regions.toml's case a 0.1, b 0.3, g 0.9, bottom 5 m, as a scene file.
+const char* kUnderwater = R"(
+[camera]
+position = [0.0, -3.8, 0.0]
+look_at = [0.0, -4.5, -8.0]
+width = 32
+height = 18
+[sun]
+zenith_deg = 30.0
+[sky]
+model = "uniform"
+radiance = 0.05
+[water]
+wavelengths_nm = [400.0, 700.0]
+a = [0.1, 0.1]
+b = [0.3, 0.3]
+g = 0.9
+[surface]
+type = "flat"
+[bottom]
+type = "flat"
+depth = 5.0
+[underwater]
+caustics = "none"
+)";
+
+seasim::Scene scene(const std::string& text, std::vector<std::pair<std::string, std::string>> sets = {}) {
+  std::vector<seasim::Override> over;
+  for (auto& [k, v] : sets) over.push_back(seasim::Override{k, v, seasim::SourceLoc{"test", 0}});
+  return seasim::parseScene(text, "expected_error_test.toml", over);
+}
+
+TEST(ExpectedError, AMeasuredUnderwaterCaseReportsThatCaseAndItsTable) {
+  const auto errors = seasim::expectedErrors(scene(kUnderwater));
+  ASSERT_EQ(errors.size(), 1u);
+  const ExpectedError& e = errors[0];
+  EXPECT_EQ(e.view, "underwater");
+  EXPECT_EQ(e.model, "improved");  // the default
+  EXPECT_TRUE(e.measured);
+  EXPECT_NEAR(e.distance, 0.0, 1e-9);
+  EXPECT_NEAR(e.nearest.a, 0.1, 1e-9);
+  EXPECT_NEAR(e.nearest.b, 0.3, 1e-9);
+  EXPECT_NEAR(e.nearest.g, 0.9, 1e-9);
+  EXPECT_NEAR(e.nearest.bottom_m, 5.0, 1e-9);
+  EXPECT_EQ(e.table, "results/underwater/regions.csv");
+  EXPECT_LT(e.max_abs_error, 0.05);  // results/BENCHMARKS.md: every improved region within 5 %
+  const auto thesis = seasim::expectedErrors(scene(kUnderwater, {{"underwater.model", "\"thesis\""}}));
+  EXPECT_EQ(thesis[0].model, "thesis");
+  EXPECT_TRUE(thesis[0].measured);
+  EXPECT_GT(thesis[0].max_abs_error, 0.05);
+  const nlohmann::json j = seasim::expectedErrorJson(errors);
+  EXPECT_EQ(j[0]["status"], "measured");
+  EXPECT_EQ(j[0]["table"], "results/underwater/regions.csv");
+}
+
+TEST(ExpectedError, FarFromEveryCaseOrWithAnUnmeasuredFeatureSaysUnmeasured) {
+  // Muddy, isotropic water under a grazing sun: many doublings of a and b from every case.
+  const auto far = seasim::expectedErrors(scene(kUnderwater, {{"water.a", "[3.0, 3.0]"}, {"water.b", "[6.0, 6.0]"},
+                                                              {"water.g", "0.0"}, {"sun.zenith_deg", "80.0"}}));
+  ASSERT_EQ(far.size(), 1u);
+  EXPECT_FALSE(far[0].measured);
+  EXPECT_GT(far[0].distance, seasim::kExpectedErrorMaxDistance);
+  EXPECT_EQ(seasim::expectedErrorJson(far)[0]["status"], "unmeasured here");
+  EXPECT_NE(seasim::expectedErrorText(far).find("UNMEASURED HERE"), std::string::npos);
+  // The measured case itself, with caustics the path tracer does not draw.
+  const auto caustics = seasim::expectedErrors(scene(kUnderwater, {{"underwater.caustics", "\"texture\""}}));
+  EXPECT_FALSE(caustics[0].measured);
+  EXPECT_NEAR(caustics[0].distance, 0.0, 1e-9);
+  ASSERT_EQ(caustics[0].unmeasured_features.size(), 1u);
+  EXPECT_EQ(caustics[0].unmeasured_features[0], "caustics");
+}
+
+TEST(ExpectedError, DistanceIsOneStepPerDoublingTenthOfGAndFifteenDegrees) {
+  MeasuredCase c{0.1, 0.3, 0.9, -1, 30};
+  MeasuredCase s = c;
+  s.a = 0.2;
+  EXPECT_NEAR(seasim::regimeDistance(s, c), 1.0, 1e-12);
+  s = c;
+  s.g = 0.8;
+  EXPECT_NEAR(seasim::regimeDistance(s, c), 1.0, 1e-9);
+  s = c;
+  s.sun_zenith_deg = 45;
+  EXPECT_NEAR(seasim::regimeDistance(s, c), 1.0, 1e-12);
+  s = c;
+  s.bottom_m = 1e4;  // a bottom too deep to see is no bottom
+  EXPECT_NEAR(seasim::regimeDistance(s, c), 0.0, 1e-9);
+}
+
+TEST(ExpectedError, TheLookupsOwnErrorLeaveOneOut) {
+  // Each measured regime predicted from the nearest other regime (cases at distance 0, the other
+  // views of the same regime, left out with it), where that one is within the threshold.
+  for (const char* vm : {"sea/paper", "sea/multiple", "underwater/thesis", "underwater/improved"}) {
+    const std::string view = std::string(vm).substr(0, std::string(vm).find('/'));
+    const std::string model = std::string(vm).substr(view.size() + 1);
+    const std::vector<MeasuredCase> cases = seasim::loadMeasuredCases(view, model);
+    ASSERT_FALSE(cases.empty()) << vm;
+    std::vector<double> miss;
+    int unmeasured = 0;
+    for (const MeasuredCase& c : cases) {
+      std::vector<MeasuredCase> others;
+      for (const MeasuredCase& o : cases)
+        if (seasim::regimeDistance(c, o) > 1e-9) others.push_back(o);
+      const ExpectedError e = seasim::lookupExpectedError(c, view, model, others, {});
+      if (!e.measured) {
+        ++unmeasured;
+        continue;
+      }
+      // The worst region of the regime (the largest error among its views) against the prediction.
+      double actual = 0;
+      for (const MeasuredCase& o : cases)
+        if (seasim::regimeDistance(c, o) <= 1e-9) actual = std::max(actual, o.max_abs_error);
+      miss.push_back(std::fabs(e.max_abs_error - actual));
+    }
+    std::sort(miss.begin(), miss.end());
+    const double median = miss.empty() ? 0 : miss[miss.size() / 2];
+    const double p90 = miss.empty() ? 0 : miss[std::min(miss.size() - 1, miss.size() * 9 / 10)];
+    std::printf("%s: %zu cases, %zu predicted, %d without a neighbour within the threshold; |predicted - measured| "
+                "median %.3f, 90th percentile %.3f\n",
+                vm, cases.size(), miss.size(), unmeasured, median, p90);
+    EXPECT_FALSE(miss.empty()) << vm;
+  }
+}
+
+}  // namespace
