@@ -1,6 +1,9 @@
 #include "render/frame_context.h"
 
+#include <algorithm>
+
 #include "io/data_files.h"
+#include "render/pass.h"
 
 namespace seasim {
 
@@ -8,13 +11,22 @@ FrameContext::FrameContext(Device& device, const Scene& scene) : device_(device)
   if (!scene_.files) scene_.files = std::make_shared<DataFiles>();
 }
 
-void FrameContext::setScene(const Scene& scene, bool spectral_changed) {
+void FrameContext::setScene(const Scene& scene, const std::vector<std::string>& changed_keys) {
   std::shared_ptr<DataFiles> files = scene_.files;
   scene_ = scene;
   if (!scene_.files) scene_.files = std::move(files);  // the data read so far stays read
+  const bool spectral_changed = std::any_of(changed_keys.begin(), changed_keys.end(),
+                                            [](const std::string& k) { return keyMatches("spectral.*", k); });
   if (spectral_changed) {
     grid_.reset();
     sensor_.reset();
+  }
+  const bool time_only = !changed_keys.empty() && std::all_of(changed_keys.begin(), changed_keys.end(),
+                                                              [](const std::string& k) { return k == "surface.time"; });
+  if (time_only && setup_) {
+    setup_->params.time = static_cast<float>(scene_.surface.time);  // as makeUnderwaterSetup sets it
+    ++setup_version_;
+    return;
   }
   setup_.reset();
 }

@@ -26,8 +26,11 @@ class FrameContext {
   const Scene& scene() const { return scene_; }
 
   // spectral.* changes remake the grid and the sensor; any change remakes the underwater setup
-  // (it folds camera, sun, water, objects and knobs into one parameter block).
-  void setScene(const Scene& scene, bool spectral_changed);
+  // (it folds camera, sun, water, objects and knobs into one parameter block), except a change of
+  // surface.time alone: the waves' phase is one number of the block (the caustics' time), while the
+  // rest, the improved model's per-band tables above all, costs about half a second per frame to
+  // remake. setupVersion() still grows, so the passes take the new block.
+  void setScene(const Scene& scene, const std::vector<std::string>& changed_keys);
 
   const WavelengthGrid& grid();
   const Sensor& sensor();

@@ -100,15 +100,14 @@ void Renderer::build() {
 
 void Renderer::update(const Scene& next, const std::vector<std::string>& changed_keys) {
   if (changed_keys.empty()) return;
-  bool spectral = false, unclaimed = false;
+  bool unclaimed = false;
   for (const auto& key : changed_keys) {
-    spectral = spectral || keyMatches("spectral.*", key);
     if (changesNoPass(key)) continue;
     bool claimed = false;
     for (const Node& n : nodes_) claimed = claimed || anyMatch(n.keys.rebuild_on, key) || anyMatch(n.keys.rerun_on, key);
     unclaimed = unclaimed || !claimed;
   }
-  ctx_.setScene(next, spectral);
+  ctx_.setScene(next, changed_keys);
   if (follow_scene_) {
     Plan next_plan = makePlan(next);
     if (next_plan.toText() != plan_.toText()) {

@@ -188,6 +188,25 @@ TEST(Renderer, UnderwaterImprovedCameraMovedInDepthMatchesAFreshFrame) {
   EXPECT_EQ(f.rgb.pixels, fresh("seabed.toml", at).rgb.pixels);
 }
 
+// An underwater animation: surface.time alone changes the waves' phase, which the underwater setup holds
+// as one number (the caustics' time); the frame context patches it instead of remaking the setup (the
+// improved model's per-band tables), and the frame is still the fresh renderer's, bit for bit, in a
+// scene with texture caustics, which read that time.
+TEST(Renderer, UnderwaterSurfaceTimeKeepsTheSetupAndMatchesAFreshFrame) {
+  std::vector<Override> at = smallSeabed();
+  at.push_back(set("underwater.model", "\"improved\""));
+  at.push_back(set("underwater.caustics", "\"texture\""));
+  Renderer renderer(test::testDevice(), sceneFile("seabed.toml"), at, shippedPasses());
+  const FrameResult first = renderer.render();
+  const Override later = set("surface.time", "1.75");
+  renderer.update({later});
+  const FrameResult f = renderer.render();
+  EXPECT_TRUE(has(renderer.lastExecuted(), "kd_multiple"));
+  EXPECT_NE(f.rgb.pixels, first.rgb.pixels);  // the caustics moved
+  at.push_back(later);
+  EXPECT_EQ(f.rgb.pixels, fresh("seabed.toml", at).rgb.pixels);
+}
+
 // Data files are read once per renderer (and per job, which shares them): a change of the band count
 // makes the sensor again from the camera curves already read; a new Renderer on a scene that carries
 // the same DataFiles reads nothing either.
