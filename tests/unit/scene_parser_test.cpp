@@ -294,7 +294,9 @@ TEST(SceneParser, Defaults) {
       {"froxel_y", 90},          {"froxel_z", 64},        {"caustic_map_size", 256}, {"caustic_layers", 8},
       {"reference_spp", 64},     {"reference_steps", 200}, {"shafts_exact", 0},
       {"shafts_error_budget", 1}, {"sea_supersample", 1},  {"wave_filter", 1},
-      {"fourflow_table_size", 32}, {"lamps_delta_m", 1}, {"shafts_panel_deg", 4}, {"shafts_panel_texels", 2}};
+      {"fourflow_table_size", 32}, {"lamps_delta_m", 1}, {"shafts_panel_deg", 4}, {"shafts_panel_texels", 2},
+      {"lamps_model", 1},        {"lamps_orders", 4},     {"lamps_ms_steps", 12}, {"lamps_ms_kappa", 0.75},
+      {"lamps_ms_spread", 0.8}};
   EXPECT_EQ(s.quality.size(), std::size(knobs) + 2);
   EXPECT_TRUE(s.quality.at("fast_math").automatic);  // "auto": the planner decides (fastMathFor)
   EXPECT_TRUE(s.quality.at("shafts_method").automatic);  // the planner decides (plan/shafts_method.h)
