@@ -50,18 +50,19 @@ static inline float lamp_visible(__global const UwObject* objects, int count, fl
 }
 
 #if SEASIM_LAMPS_ORDERS
-/* 1 when the lamp's light leaves it: the first object along its axis is not one it sits inside (a ray
- * from inside leaves through a face whose outward normal points along the ray). A sealed lamp has no
- * multiple scattering either (its single scattering and direct light are 0 by the shadow rays). */
-static inline float lamp_escapes(__global const UwObject* objects, int count, float3 lamp, float3 axis) {
+/* 1 when the lamp's light leaves it: the lamp is inside no sphere or box (a sealed lamp has no multiple
+ * scattering either; its single scattering and direct light are 0 by the shadow rays). */
+static inline float lamp_escapes(__global const UwObject* objects, int count, float3 lamp) {
 #if SEASIM_HAS_OBJECTS
-  float3 n;
-  int mat;
-  uw_scene_hit(objects, count, 0.0f, lamp, axis, 0.0f, &n, &mat);
-  return (mat >= 0 && dot(n, axis) > 0.0f) ? 0.0f : 1.0f;
-#else
-  return 1.0f;
+  for (int k = 0; k < count; ++k) {
+    __global const UwObject* ob = &objects[k];
+    const float3 a = (float3)(ob->a[0], ob->a[1], ob->a[2]);
+    const float3 b = (float3)(ob->b[0], ob->b[1], ob->b[2]);
+    if (ob->type == UW_SPHERE && dot(lamp - a, lamp - a) < ob->a[3] * ob->a[3]) return 0.0f;
+    if (ob->type == UW_BOX && all(lamp > a) && all(lamp < b)) return 0.0f;
+  }
 #endif
+  return 1.0f;
 }
 #endif
 
@@ -120,7 +121,7 @@ __kernel void underwater_lamps(__constant UwParams* p, __global const UwBand* ba
     /* The lamp's direct light on the surface the pixel sees (001 eq. 1, first term). */
 #if SEASIM_LAMPS_ORDERS
     __global const float* ms_rows = ms_table + l * ms_orders * UW_MS_TABLE;
-    const float escapes = lamp_escapes(objects, count, lamp, axis);
+    const float escapes = lamp_escapes(objects, count, lamp);
     if (lit_surface) {
       /* Direct light (exact, shadowed) plus the orders' irradiance (unshadowed: light scattered around
        * an object reaches behind it), both seen through T_view (common/underwater_lamps_ms.h). */
