@@ -690,3 +690,22 @@ INSTANTIATE_TEST_SUITE_P(Table, BadSceneTest, ::testing::ValuesIn(kBadScenes),
                              n += std::isalnum(static_cast<unsigned char>(*p)) ? *p : '_';
                            return n;
                          });
+
+namespace {
+
+TEST(SceneParserLamps, LampsModelByNameWithTheOlderSwitchKept) {
+  using seasim::parseScene;
+  EXPECT_EQ(parseScene("[quality]\nlamps_model = \"orders\"\n", "l.toml").quality.at("lamps_model").value, 2);
+  EXPECT_EQ(parseScene("[quality]\nlamps_model = \"single\"\n", "l.toml").quality.at("lamps_model").value, 0);
+  // The older switch: false is "single", true (the default) "delta_m".
+  EXPECT_EQ(parseScene("[quality]\nlamps_delta_m = false\n", "l.toml").quality.at("lamps_model").value, 0);
+  EXPECT_EQ(parseScene("", "l.toml").quality.at("lamps_model").value, 1);
+  EXPECT_THROW(parseScene("[quality]\nlamps_model = \"bogus\"\n", "l.toml"), seasim::InputError);
+  EXPECT_THROW(parseScene("[quality]\nlamps_model = \"orders\"\nlamps_delta_m = true\n", "l.toml"), seasim::InputError);
+  EXPECT_THROW(parseScene("[quality]\nlamps_orders = 13\n", "l.toml"), seasim::InputError);
+  EXPECT_THROW(parseScene("[quality]\nlamps_ms_steps = 0\n", "l.toml"), seasim::InputError);
+  EXPECT_THROW(parseScene("[quality]\nlamps_ms_spread = 0\n", "l.toml"), seasim::InputError);
+  EXPECT_THROW(parseScene("[quality]\nlamps_ms_kappa = -1\n", "l.toml"), seasim::InputError);
+}
+
+}  // namespace
