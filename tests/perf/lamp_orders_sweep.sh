@@ -7,8 +7,8 @@
 #   FIT      the three waters on which the orders model's two knobs (quality.lamps_ms_spread β = 0.8,
 #            quality.lamps_ms_kappa κ = 0.75) were chosen (lowest RMS log-ratio over their 12 regions,
 #            from β in {1/3, 0.6, 0.8, 1} × κ in {0, 0.5, 0.75, 1});
-#   HELDOUT  cases never looked at while choosing them, spread over the grid: g 0.5–0.95,
-#            b/a 1–10, cones 10–60°, heights 1–10 m.
+#   HELDOUT  cases never looked at while choosing them, spread over the model's grid: g 0.5–0.95,
+#            b/a 1–10, cones 10–60°, heights 1–10 m (the grid the model is meant for).
 # The references (16384 paths per pixel through the pixel centre) are cached in
 # $SEASIM_CACHE_DIR/lamp_regions; a second run only renders the fast models.
 # Usage: tests/perf/lamp_orders_sweep.sh   (about 10 min on 2 loaded cores the first time; nice it)
