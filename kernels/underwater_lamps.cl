@@ -14,7 +14,10 @@
  * Output: rgb[3 * pixels] (+=), spectral[band_count * pixels] (+=, SEASIM_SPECTRAL_OUTPUT), and with
  * SEASIM_LAYER_LAMPS (outputs.layers) the same light into lamps_layer[3 * pixels] (+=; kd_multiple.cl
  * zeroed it) so that lamp and sun light can be told apart.
- * Defines: SEASIM_HAS_OBJECTS (shadow rays), SEASIM_SPECTRAL_OUTPUT.
+ * Defines: SEASIM_HAS_OBJECTS (shadow rays), SEASIM_SPECTRAL_OUTPUT, SEASIM_LAMPS_ORDERS (the "orders"
+ * model, common/underwater_lamps_ms.h: the lamps' light scattered more than once, from ms_table's
+ * blurred profiles, ms_orders orders, ms_steps quadrature steps per view ray, stretch exponent
+ * ms_kappa; the surfaces' light then reaches the eye through T_view instead of e^{-σ_t S}).
  * Stiff cases: common/underwater_lamps.h; never NaN/Inf (every division is by a clamped distance).
  */
 #include "common/compat.h"
@@ -24,6 +27,9 @@
 #include "common/underwater.h"
 #include "common/underwater_lamps_params.h"
 #include "common/underwater_lamps.h"
+#if SEASIM_LAMPS_ORDERS
+#include "common/underwater_lamps_ms.h"
+#endif
 
 #define v3(a) ((float3)((a)[0], (a)[1], (a)[2]))
 
@@ -43,10 +49,31 @@ static inline float lamp_visible(__global const UwObject* objects, int count, fl
 #endif
 }
 
+#if SEASIM_LAMPS_ORDERS
+/* 1 when the lamp's light leaves it: the lamp is inside no sphere or box (a sealed lamp has no multiple
+ * scattering either; its single scattering and direct light are 0 by the shadow rays). */
+static inline float lamp_escapes(__global const UwObject* objects, int count, float3 lamp) {
+#if SEASIM_HAS_OBJECTS
+  for (int k = 0; k < count; ++k) {
+    __global const UwObject* ob = &objects[k];
+    const float3 a = (float3)(ob->a[0], ob->a[1], ob->a[2]);
+    const float3 b = (float3)(ob->b[0], ob->b[1], ob->b[2]);
+    if (ob->type == UW_SPHERE && dot(lamp - a, lamp - a) < ob->a[3] * ob->a[3]) return 0.0f;
+    if (ob->type == UW_BOX && all(lamp > a) && all(lamp < b)) return 0.0f;
+  }
+#endif
+  return 1.0f;
+}
+#endif
+
 __kernel void underwater_lamps(__constant UwParams* p, __global const UwBand* bands, __global const float* albedo,
                                __global const UwObject* objects, __global const float4* geom,
                                __global const int* material, __constant UwLampParams* lp,
-                               __global const UwLamp* lamps, __global const float* lamp_spectra, __global float* rgb
+                               __global const UwLamp* lamps, __global const float* lamp_spectra,
+#if SEASIM_LAMPS_ORDERS
+                               __global const float* ms_table, int ms_orders, int ms_steps, float ms_kappa,
+#endif
+                               __global float* rgb
 #if SEASIM_SPECTRAL_OUTPUT
                                , __global float* spectral
 #endif
@@ -92,6 +119,62 @@ __kernel void underwater_lamps(__constant UwParams* p, __global const UwBand* ba
     __global const float* I = lamp_spectra + l * nb;
     const float3 lamp = v3(L->position), axis = v3(L->direction);
     /* The lamp's direct light on the surface the pixel sees (001 eq. 1, first term). */
+#if SEASIM_LAMPS_ORDERS
+    __global const float* ms_rows = ms_table + l * ms_orders * UW_MS_TABLE;
+    const float escapes = lamp_escapes(objects, count, lamp);
+    if (lit_surface) {
+      /* Direct light (exact, shadowed) plus the orders' irradiance (unshadowed: light scattered around
+       * an object reaches behind it), both seen through T_view (common/underwater_lamps_ms.h). */
+      const float3 P = o + S * d;
+      const float vis = lamp_visible(objects, count, P + 1e-3f * n, lamp);
+      for (int i = 0; i < nb; ++i) {
+        const float direct = vis > 0.0f ? uw_lamp_surface(P, n, 0.0f, lamp, axis, L->cos_cone, L->cos_inner, lp->s_min,
+                                                          bands[i].c, vis)
+                                        : 0.0f;
+        const float ms = escapes * uw_ms_surface(P, n, lamp, axis, lp->s_min, bands[i].a, bands[i].b, p->g, ms_kappa,
+                                                 ms_rows, ms_orders);
+        const float Lo = I[i] * alb[i * alb_stride] * (direct + ms) *
+                         uw_ms_view_transmission(bands[i].a, bands[i].b, p->g, S, ms_orders);
+        LAMP_ADD(i, Lo);
+      }
+    }
+    /* The orders along the view ray: the geometry per step once (distance, the blurred profiles times
+     * HG(g^{n+1}) at the scattering angle), then the bands with their weights. */
+    if (escapes > 0.0f) {
+      float c_min = bands[0].c;
+      for (int i = 1; i < nb; ++i) c_min = fmin(c_min, bands[i].c);
+      UwMsRay q;
+      uw_ms_ray(o, d, lamp, lp->s_min, t_end, uw_ms_ray_cap(c_min), ms_steps, &q);
+      if (q.dv > 0.0f) {
+        float stretch[UW_MS_MAX_ORDERS], geo[UW_MS_MAX_ORDERS];
+        for (int k = 1; k <= ms_orders; ++k) stretch[k - 1] = uw_ms_stretch(p->g, k, ms_kappa);
+        for (int j = 0; j < ms_steps; ++j) {
+          const float t = uw_ms_ray_t(&q, j);
+          float s, c;
+          uw_lamp_at(o, d, lamp, t, &s, &c);
+          const float cos_psi = s > 0.0f ? dot(o + t * d - lamp, axis) / s : 1.0f;
+          const float w = uw_ms_ray_weight(&q, t, s, lp->s_min);
+          int ti;
+          float tf;
+          uw_ms_table_index(cos_psi, &ti, &tf);
+          float gk = p->g;
+          for (int k = 1; k <= ms_orders; ++k) {
+            gk *= p->g;
+            geo[k - 1] = uw_ms_table_lerp(ms_rows + (k - 1) * UW_MS_TABLE, ti, tf) * hg_phase(c, gk);
+          }
+          for (int i = 0; i < nb; ++i) {
+            const float sa = bands[i].a, ss = bands[i].b;
+            if (!(ss > 0.0f)) continue;
+            float sum = 0.0f;
+            for (int k = 1; k <= ms_orders; ++k)
+              if (geo[k - 1] > 0.0f) sum += uw_ms_weight(sa, ss, s, stretch[k - 1], k, ms_orders) * geo[k - 1];
+            const float Lm = I[i] * ss * exp(-(sa + ss) * t) * sum * w;
+            LAMP_ADD(i, Lm);
+          }
+        }
+      }
+    }
+#else
     if (lit_surface) {
       const float3 P = o + S * d;
       const float vis = lamp_visible(objects, count, P + 1e-3f * n, lamp);
@@ -103,6 +186,7 @@ __kernel void underwater_lamps(__constant UwParams* p, __global const UwBand* ba
         }
       }
     }
+#endif
     /* The light it scatters towards the eye (001 eq. 2, 5, 7–9), the planes once, the bands innermost. */
     UwLampSpan sp;
     if (!uw_lamp_span(o, d, lamp, axis, L->cos_cone, lp->s_min, t_end, n_planes, &sp)) continue;

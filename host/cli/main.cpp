@@ -9,6 +9,7 @@
 #include "cli/cache_warm_command.h"
 #include "cli/commands.h"
 #include "cli/farm_command.h"
+#include "cli/lamp_regions_command.h"
 #include "cli/ocean_command.h"
 #include "cli/preview_command.h"
 #include "cli/profile_command.h"
@@ -188,6 +189,22 @@ int main(int argc, char** argv) {
   study->add_option("--device", study_cmd.device, "Device selector");
   study->add_option("--set", study_cmd.sets, "Override a scene key: key=value (repeatable)");
 
+  seasim::LampRegionsCmd lamp_regions_cmd;  // the lamps' fast models by region vs the path tracer
+  auto* lamp_regions = app.add_subcommand("lamp-regions",
+                                          "Spotlights under water: fast lamp models vs the path tracer by region (lit "
+                                          "bottom, beam, outside, whole) over waters, cones and lamp heights");
+  lamp_regions->add_option("scene", lamp_regions_cmd.scene, "One-band lamp scene (tests/perf/lamp_glow.toml)")
+      ->check(kReadableFile);
+  lamp_regions->add_option("--cases", lamp_regions_cmd.cases, "a:b:g:cone_deg:height_m per case")->delimiter(',');
+  lamp_regions->add_option("--models", lamp_regions_cmd.models, "quality.lamps_model values")->delimiter(',');
+  lamp_regions->add_option("--spp", lamp_regions_cmd.spp, "Path-tracer paths per pixel (through its centre)");
+  lamp_regions->add_option("--rounds", lamp_regions_cmd.rounds, "Interleaved timing rounds per case");
+  lamp_regions->add_option("--cache", lamp_regions_cmd.cache_dir, "Folder of cached references");
+  lamp_regions->add_option("--csv", lamp_regions_cmd.csv, "CSV output");
+  lamp_regions->add_option("--device", lamp_regions_cmd.device, "Device selector");
+  lamp_regions->add_option("--set", lamp_regions_cmd.sets, "Override a scene key for every render: key=value");
+  lamp_regions->add_option("--model-set", lamp_regions_cmd.model_sets, "Override a key for the fast renders only");
+
   seasim::UnderwaterRegionsCmd regions_cmd;  // the fast underwater model by region vs the path tracer
   auto* regions = app.add_subcommand("underwater-regions",
                                      "Fast underwater model vs the path tracer by region (bottom near/far, water "
@@ -337,6 +354,7 @@ int main(int argc, char** argv) {
       return seasim::cmdUnderwaterStudy(study_cmd);
     }
     if (*regions) return seasim::cmdUnderwaterRegions(regions_cmd);
+    if (*lamp_regions) return seasim::cmdLampRegions(lamp_regions_cmd);
     if (*shore) return seasim::cmdSeashoreStudy(shore_cmd);
     if (*preview) return seasim::cmdPreview(preview_cmd);
     if (*profile) return seasim::cmdProfile(profile_cmd);

@@ -57,11 +57,13 @@ struct UnderwaterLampsFeatures final : PassFeatures {
   bool objects = false;          // objects shadow the lamps
   bool spectral_output = false;  // the per-band image (spectral.spectral_exr)
   bool lamps_layer = false;      // outputs.layers: the lamps' light also added into its own layer
+  bool orders = false;           // quality.lamps_model = "orders": multiple scattering (underwater_lamps_ms.h)
 
   void list(FeatureList& out) const override {
     out.flag("objects", "SEASIM_HAS_OBJECTS", objects);
     out.flag("spectral_output", "SEASIM_SPECTRAL_OUTPUT", spectral_output);
     if (lamps_layer) out.flag("lamps_layer", "SEASIM_LAYER_LAMPS", true);
+    if (orders) out.flag("orders", "SEASIM_LAMPS_ORDERS", true);
   }
 };
 

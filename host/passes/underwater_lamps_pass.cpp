@@ -3,7 +3,9 @@
 #include <algorithm>
 
 #include "device/enqueue.h"
+#include "underwater/lamps_ms_table.h"
 #include "underwater/lamps_setup.h"
+#include "math/kernel_math.h"
 #include "util/error.h"
 
 namespace seasim {
@@ -22,15 +24,24 @@ UnderwaterLampsPass::Config UnderwaterLampsPass::configFromScene(const Scene& sc
   Config c;
   c.planes = knob(scene, "shafts_planes", 30);
   c.subplanes = knob(scene, "shafts_subplanes", 6);
-  const auto delta_m = scene.quality.find("lamps_delta_m");
-  c.delta_m = delta_m == scene.quality.end() || delta_m->second.value != 0;
+  const auto number = [&](const char* name, double fallback) {
+    const auto it = scene.quality.find(name);
+    return it == scene.quality.end() ? fallback : it->second.value;
+  };
+  // Scenes built in code without the parser's defaults keep the older switch's meaning.
+  const double model = number("lamps_model", number("lamps_delta_m", 1.0) != 0 ? 1.0 : 0.0);
+  c.model = model == 2.0 ? Model::Orders : model == 1.0 ? Model::DeltaM : Model::Single;
+  c.orders = static_cast<int>(number("lamps_orders", c.orders));
+  c.ms_steps = static_cast<int>(number("lamps_ms_steps", c.ms_steps));
+  c.kappa = number("lamps_ms_kappa", c.kappa);
+  c.beta = number("lamps_ms_spread", c.beta);
   return c;
 }
 
 UnderwaterLampsPass::UnderwaterLampsPass(Device& device, const Scene& scene, const UnderwaterSetup& setup,
                                          const WavelengthGrid& grid, const PassPlan& plan, const Config& config)
     : device_(device),
-      delta_m_(config.delta_m),
+      config_(config),
       width_(setup.params.width),
       height_(setup.params.height),
       band_count_(setup.bands.size()),
@@ -38,13 +49,19 @@ UnderwaterLampsPass::UnderwaterLampsPass(Device& device, const Scene& scene, con
       albedo_count_(setup.albedo.size()) {
   if (config.planes < 1 || config.subplanes < 1)
     throw RuntimeError("underwater_lamps: planes and sub-planes must be at least 1");
+  if (config.orders < 1 || config.orders > UW_MS_MAX_ORDERS || config.ms_steps < 1 || config.ms_steps > UW_MS_MAX_STEPS)
+    throw RuntimeError("underwater_lamps: orders must be in [1, 12] and quadrature steps in [1, 64]");
   UnderwaterLamps lamps = makeUnderwaterLamps(scene, grid);
   lamps.params.planes = config.planes;
   lamps.params.subplanes = config.subplanes;
-  // The medium the lamps' light sees: the water, delta-M scaled unless asked not to.
+  // The medium the lamps' light sees: the water, delta-M scaled in that model only.
   UwParams params = setup.params;
   std::vector<UwBand> bands = setup.bands;
-  if (delta_m_) deltaMScale(params, bands);
+  if (config_.model == Model::DeltaM) deltaMScale(params, bands);
+  lamp_list_ = lamps.lamps;
+  lamp_g_ = params.g;
+  const std::vector<float> ms_table =
+      config_.model == Model::Orders ? lampMsTable(lamp_list_, lamp_g_, config_.beta, config_.orders) : std::vector<float>{0.0f};
   UwObject none{};  // OpenCL buffers cannot be empty
   const cl_mem_flags in = CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR;
   onDevice("underwater_lamps pass set-up", [&] {
@@ -57,6 +74,7 @@ UnderwaterLampsPass::UnderwaterLampsPass(Device& device, const Scene& scene, con
     lamp_params_ = cl::Buffer(device.context(), in, sizeof(UwLampParams), &lamps.params);
     lamps_ = cl::Buffer(device.context(), in, sizeof(UwLamp) * lamps.lamps.size(), lamps.lamps.data());
     spectra_ = cl::Buffer(device.context(), in, sizeof(float) * lamps.spectra.size(), lamps.spectra.data());
+    ms_table_ = cl::Buffer(device.context(), in, sizeof(float) * ms_table.size(), const_cast<float*>(ms_table.data()));
   });
 }
 
@@ -67,7 +85,15 @@ void UnderwaterLampsPass::update(const UnderwaterSetup& setup) {
   }
   UwParams params = setup.params;
   std::vector<UwBand> bands = setup.bands;
-  if (delta_m_) deltaMScale(params, bands);
+  if (config_.model == Model::DeltaM) deltaMScale(params, bands);
+  // The orders' table depends on g only: rebuilt when the water's g changed.
+  if (config_.model == Model::Orders && params.g != lamp_g_) {
+    lamp_g_ = params.g;
+    const std::vector<float> ms_table = lampMsTable(lamp_list_, lamp_g_, config_.beta, config_.orders);
+    onDevice("underwater_lamps pass update", [&] {
+      device_.queue().enqueueWriteBuffer(ms_table_, CL_TRUE, 0, sizeof(float) * ms_table.size(), ms_table.data());
+    });
+  }
   onDevice("underwater_lamps pass update", [&] {
     cl::CommandQueue& q = device_.queue();
     q.enqueueWriteBuffer(params_, CL_FALSE, 0, sizeof(UwParams), &params);
@@ -92,6 +118,12 @@ double UnderwaterLampsPass::run(cl::Buffer& geom, cl::Buffer& material, cl::Buff
     kernel_.setArg(arg++, lamp_params_);
     kernel_.setArg(arg++, lamps_);
     kernel_.setArg(arg++, spectra_);
+    if (config_.model == Model::Orders) {
+      kernel_.setArg(arg++, ms_table_);
+      kernel_.setArg(arg++, static_cast<cl_int>(config_.orders));
+      kernel_.setArg(arg++, static_cast<cl_int>(config_.ms_steps));
+      kernel_.setArg(arg++, static_cast<cl_float>(config_.kappa));
+    }
     kernel_.setArg(arg++, rgb);
     if (spectral) kernel_.setArg(arg++, *spectral);
     if (lamps_layer) kernel_.setArg(arg++, *lamps_layer);

@@ -6,8 +6,11 @@
 // G-buffer (hit distance, normal, material), the lamps with their spectra (spectral/lamp_spectrum.h).
 // Writes: += rgb, += spectral. Quality: quality.shafts_planes (n), quality.shafts_subplanes (m), the
 // knobs of the shafts in air; "auto" takes the paper's n = 30, m = 6 (the auto search is for air).
-// quality.lamps_delta_m (default true): the lamps see the water delta-M scaled, so the light forward
-// scattering keeps in the beam is not lost (measured against the path tracer: results/BENCHMARKS.md).
+// quality.lamps_model: "single" (001's single scattering in the water as it is), "delta_m" (the water
+// delta-M scaled, so the light forward scattering keeps in the beam is not lost; also the older
+// quality.lamps_delta_m = true) or "orders" (single scattering plus the orders of multiple scattering of
+// common/underwater_lamps_ms.h, from a table of the lamps' blurred profiles built here:
+// underwater/lamps_ms_table.h). Measured against the path tracer: results/BENCHMARKS.md.
 #pragma once
 #include <CL/opencl.hpp>
 
@@ -17,16 +20,22 @@
 #include "plan/plan.h"
 #include "scene/scene.h"
 #include "spectral/wavelength_grid.h"
+#include "underwater/lamps_setup.h"
 #include "underwater/underwater_setup.h"
 
 namespace seasim {
 
 class UnderwaterLampsPass {
  public:
+  enum class Model { Single = 0, DeltaM = 1, Orders = 2 };
   struct Config {
     int planes = 30;    // n sampling planes per lamp (001 eq. 5)
     int subplanes = 6;  // m sub-samples per interval (001 eq. 7–9)
-    bool delta_m = true;  // quality.lamps_delta_m: the water delta-M scaled (underwater/lamps_setup.h)
+    Model model = Model::DeltaM;  // quality.lamps_model
+    int orders = 4;               // quality.lamps_orders ("orders" model)
+    int ms_steps = 12;            // quality.lamps_ms_steps: quadrature steps per view ray and lamp
+    double kappa = 0.75;          // quality.lamps_ms_kappa: path-stretch exponent
+    double beta = 0.8;            // quality.lamps_ms_spread: β of the landing spread h_n = 1 - β (1 - g^n)
   };
   static Config configFromScene(const Scene& scene);
 
@@ -42,11 +51,13 @@ class UnderwaterLampsPass {
 
  private:
   Device& device_;
-  bool delta_m_;
+  Config config_;
+  float lamp_g_ = 0.0f;  // the g the orders' table was built for
+  std::vector<UwLamp> lamp_list_;
   int width_, height_;
   size_t band_count_, object_count_, albedo_count_;
   cl::Kernel kernel_;
-  cl::Buffer params_, bands_, albedo_, objects_, lamp_params_, lamps_, spectra_;
+  cl::Buffer params_, bands_, albedo_, objects_, lamp_params_, lamps_, spectra_, ms_table_;
 };
 
 }  // namespace seasim

@@ -775,8 +775,27 @@ class SceneParser {
     scene_.quality["shafts_exact"] = Knob{false, r.boolean("shafts_exact", false) ? 1.0 : 0.0};
     // Wave normals filtered over each pixel's footprint (kernels/common/sea_lean.h): on by default.
     scene_.quality["wave_filter"] = Knob{false, r.boolean("wave_filter", true) ? 1.0 : 0.0};
-    // Spotlights under water see the water delta-M scaled (underwater/lamps_setup.h): a switch, 0 or 1.
-    scene_.quality["lamps_delta_m"] = Knob{false, r.boolean("lamps_delta_m", true) ? 1.0 : 0.0};
+    // Spotlights under water: the model (passes/underwater_lamps_pass.h), stored as a knob 0 "single"
+    // (001's single scattering in the water as it is), 1 "delta_m" (the water delta-M scaled), 2
+    // "orders" (single scattering plus the orders of common/underwater_lamps_ms.h). The older switch
+    // lamps_delta_m (true: "delta_m", false: "single") stays, but not beside lamps_model.
+    r.check(!(r.has("lamps_model") && r.has("lamps_delta_m")), "lamps_model",
+            "give lamps_model or the older lamps_delta_m, not both");
+    const bool delta_m = r.boolean("lamps_delta_m", true);
+    const std::string lamps_model = r.choice("lamps_model", delta_m ? "delta_m" : "single", {"single", "delta_m", "orders"});
+    const double lamps_model_id = lamps_model == "single" ? 0.0 : lamps_model == "delta_m" ? 1.0 : 2.0;
+    scene_.quality["lamps_model"] = Knob{false, lamps_model_id};
+    scene_.quality["lamps_delta_m"] = Knob{false, lamps_model_id == 1.0 ? 1.0 : 0.0};
+    // The "orders" model's orders of scattering kept (the last takes all higher ones), its quadrature
+    // steps per view ray and its path-stretch exponent κ (common/underwater_lamps_ms.h).
+    scene_.quality["lamps_orders"] = Knob{false, static_cast<double>(r.integerIn("lamps_orders", 4, 1, 12))};
+    scene_.quality["lamps_ms_steps"] = Knob{false, static_cast<double>(r.integerIn("lamps_ms_steps", 12, 1, 64))};
+    const double kappa = r.number("lamps_ms_kappa", 0.75);
+    r.check(kappa >= 0 && kappa <= 2, "lamps_ms_kappa", "must be in [0, 2], got " + fmt(kappa));
+    scene_.quality["lamps_ms_kappa"] = Knob{false, kappa};
+    const double spread = r.number("lamps_ms_spread", 0.8);
+    r.check(spread > 0 && spread <= 1, "lamps_ms_spread", "must be in (0, 1], got " + fmt(spread));
+    scene_.quality["lamps_ms_spread"] = Knob{false, spread};
     // Kernels built with -cl-fast-relaxed-math: true, false or "auto" (the default), which the planner
     // turns on where the shipped scenes were measured within 0.05 of an 8-bit level of the exact-maths
     // image (fastMathFor in host/plan; results/BENCHMARKS.md has the table).

@@ -113,6 +113,22 @@ TEST(LampsStiffCases, LampInsideAnObjectLightsNothing) {
   EXPECT_GT(sumAbs(moved.traced), 0.0);
 }
 
+TEST(LampsStiffCases, OrdersModelStaysFiniteAndSealedLampsDark) {
+  // The "orders" model: a sealed lamp scatters nothing either; g -> 1, a 0.1° cone and turbid water finite.
+  const Override orders = set("quality.lamps_model", "\"orders\"");
+  const Images sealed = renderBoth(std::string(kScene) + kSphereAroundLamp, {orders});
+  expectFinite(sealed, "orders, lamp in a sphere");
+  EXPECT_EQ(sumAbs(sealed.fast), 0.0);
+  for (const std::vector<Override>& extra :
+       {std::vector<Override>{set("water.g", "0.999999")}, std::vector<Override>{set("spotlights[0].cone_deg", "0.1")},
+        std::vector<Override>{set("water.jerlov", "\"9C\"")}}) {
+    std::vector<Override> over = extra;
+    over.push_back(orders);
+    const Images im = renderBoth(kScene, over);
+    expectFinite(im, "orders");
+  }
+}
+
 TEST(LampsStiffCases, ConeOfATenthOfADegreeStaysFinite) {
   const Images im = renderBoth(kScene, {set("spotlights[0].cone_deg", "0.1")});
   expectFinite(im, "0.1 deg cone");

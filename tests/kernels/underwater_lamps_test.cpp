@@ -23,6 +23,8 @@
 #include "spectral/sensor.h"
 #include "spectral/wavelength_grid.h"
 #include "test_device.h"
+#include "passes/underwater_lamps_pass.h"
+#include "underwater/lamps_ms_table.h"
 #include "underwater/lamps_setup.h"
 #include "underwater/underwater_setup.h"
 
@@ -78,12 +80,16 @@ seasim::FrameResult render(const Scene& scene) {
 // The same lamps in double on the CPU: per pixel the G-buffer hit (bottom only, no objects), then per
 // band I(λ) [in-scattering + ρ_bottom × direct light], through the sensor weights.
 // delta_m: the lamps see the water delta-M scaled, as the pass does with quality.lamps_delta_m = 1.
-seasim::Image cpuDouble(const Scene& scene, int planes, int subplanes, bool delta_m) {
+// orders: the "orders" model (quality.lamps_model = "orders", its default knobs): the plain medium's
+// single scattering plus common/underwater_lamps_ms.h's orders, surfaces seen through T_view.
+seasim::Image cpuDouble(const Scene& scene, int planes, int subplanes, bool delta_m, bool orders = false) {
   const seasim::WavelengthGrid grid = seasim::makeGrid(scene.spectral.count, scene.spectral.min_nm, scene.spectral.max_nm);
   const seasim::Sensor sensor = seasim::makeSensor(scene.spectral.sensor, grid, scene.spectral.white_balance);
   seasim::UnderwaterSetup setup = seasim::makeUnderwaterSetup(scene, grid, sensor);
   if (delta_m) seasim::deltaMScale(setup.params, setup.bands);
   const seasim::UnderwaterLamps lamps = seasim::makeUnderwaterLamps(scene, grid);
+  const seasim::UnderwaterLampsPass::Config cfg = seasim::UnderwaterLampsPass::configFromScene(scene);
+  const std::vector<float> ms_table = seasim::lampMsTable(lamps.lamps, setup.params.g, cfg.beta, cfg.orders);
   const UwParams& p = setup.params;
   seasim::Image img;
   img.width = p.width;
@@ -104,11 +110,24 @@ seasim::Image cpuDouble(const Scene& scene, int planes, int subplanes, bool delt
         const UwLamp& L = lamps.lamps[l];
         const kd::real3 lamp{L.position[0], L.position[1], L.position[2]};
         const kd::real3 axis{L.direction[0], L.direction[1], L.direction[2]};
+        const float* rows = ms_table.data() + static_cast<size_t>(l) * cfg.orders * UW_MS_TABLE;
         for (size_t i = 0; i < setup.bands.size(); ++i) {
           const UwBand& b = setup.bands[i];
           double v = kd::uw_lamp_inscatter(o, d, lamp, axis, L.cos_cone, L.cos_inner, lamps.params.s_min, t_end, b.b,
                                            b.c, p.g, planes, subplanes);
-          if (mat == UW_MAT_BOTTOM)
+          if (orders) {
+            double c_min = setup.bands[0].c;
+            for (const UwBand& other : setup.bands) c_min = std::min(c_min, double(other.c));
+            v += kd::uw_ms_inscatter(o, d, lamp, axis, lamps.params.s_min, t_end, kd::uw_ms_ray_cap(c_min), b.a, b.b,
+                                     p.g, cfg.kappa, rows, cfg.orders, cfg.ms_steps);
+            if (mat == UW_MAT_BOTTOM) {
+              const kd::real3 P = o + S * d;
+              v += b.bottom_albedo *
+                   (kd::uw_lamp_surface(P, n, 0.0, lamp, axis, L.cos_cone, L.cos_inner, lamps.params.s_min, b.c, 1.0) +
+                    kd::uw_ms_surface(P, n, lamp, axis, lamps.params.s_min, b.a, b.b, p.g, cfg.kappa, rows, cfg.orders)) *
+                   kd::uw_ms_view_transmission(b.a, b.b, p.g, S, cfg.orders);
+            }
+          } else if (mat == UW_MAT_BOTTOM)
             v += b.bottom_albedo * kd::uw_lamp_surface(o + S * d, n, S, lamp, axis, L.cos_cone, L.cos_inner,
                                                        lamps.params.s_min, b.c, 1.0);
           v *= lamps.spectra[l * setup.bands.size() + i];
@@ -146,6 +165,37 @@ TEST(UnderwaterLamps, KernelMatchesTheDoubleCpuEvaluation) {
   EXPECT_LT(worst, 2e-3 * peak) << "worst " << worst << " of peak " << peak;
   EXPECT_NEAR(meanOf(frame.rgb), meanOf(cpu), 1e-4 * meanOf(cpu));
   }
+}
+
+TEST(UnderwaterLamps, OrdersKernelMatchesTheDoubleCpuEvaluation) {
+  const Scene scene = lampScene({set("quality.shafts_planes", "30"), set("quality.shafts_subplanes", "6"),
+                                 set("quality.lamps_model", "\"orders\"")});
+  const seasim::FrameResult frame = render(scene);
+  ASSERT_EQ(frame.nonfinite, 0);
+  const seasim::Image cpu = cpuDouble(scene, 30, 6, false, true);
+  const double peak = maxOf(cpu);
+  ASSERT_GT(peak, 0);
+  double worst = 0;
+  for (size_t k = 0; k < cpu.pixels.size(); ++k)
+    worst = std::max(worst, double(std::fabs(frame.rgb.pixels[k] - cpu.pixels[k])));
+  std::printf("orders kernel vs double CPU: max |difference| %.3g of a peak %.4g\n", worst, peak);
+  EXPECT_LT(worst, 2e-3 * peak) << "worst " << worst << " of peak " << peak;
+  EXPECT_NEAR(meanOf(frame.rgb), meanOf(cpu), 1e-4 * meanOf(cpu));
+}
+
+TEST(UnderwaterLamps, OrdersLightTheWaterOutsideTheBeam) {
+  // Single scattering leaves every pixel whose ray misses the cone black; the orders light them all.
+  const seasim::Image single = render(lampScene({set("quality.lamps_model", "\"single\"")})).rgb;
+  const seasim::Image orders = render(lampScene({set("quality.lamps_model", "\"orders\"")})).rgb;
+  int dark = 0, lit = 0;
+  for (size_t k = 0; k < single.pixels.size(); k += 3)
+    if (single.pixels[k] == 0.0f) {
+      ++dark;
+      if (orders.pixels[k] > 0.0f) ++lit;
+    }
+  ASSERT_GT(dark, 0);
+  EXPECT_EQ(lit, dark);
+  EXPECT_GT(meanOf(orders), meanOf(single));
 }
 
 TEST(UnderwaterLamps, DeltaMKeepsTheForwardScatteredLight) {

@@ -295,7 +295,8 @@ TEST(SceneParser, Defaults) {
       {"reference_spp", 64},     {"reference_steps", 200}, {"shafts_exact", 0},
       {"shafts_error_budget", 1}, {"sea_supersample", 1},  {"wave_filter", 1},
       {"fourflow_table_size", 32}, {"lamps_delta_m", 1}, {"shafts_panel_deg", 4}, {"shafts_panel_texels", 2},
-      {"profile_streams", 16}};
+      {"profile_streams", 16}, {"lamps_model", 1},        {"lamps_orders", 4},     {"lamps_ms_steps", 12}, {"lamps_ms_kappa", 0.75},
+      {"lamps_ms_spread", 0.8}};
   EXPECT_EQ(s.quality.size(), std::size(knobs) + 2);
   EXPECT_TRUE(s.quality.at("fast_math").automatic);  // "auto": the planner decides (fastMathFor)
   EXPECT_TRUE(s.quality.at("shafts_method").automatic);  // the planner decides (plan/shafts_method.h)
@@ -689,3 +690,22 @@ INSTANTIATE_TEST_SUITE_P(Table, BadSceneTest, ::testing::ValuesIn(kBadScenes),
                              n += std::isalnum(static_cast<unsigned char>(*p)) ? *p : '_';
                            return n;
                          });
+
+namespace {
+
+TEST(SceneParserLamps, LampsModelByNameWithTheOlderSwitchKept) {
+  using seasim::parseScene;
+  EXPECT_EQ(parseScene("[quality]\nlamps_model = \"orders\"\n", "l.toml").quality.at("lamps_model").value, 2);
+  EXPECT_EQ(parseScene("[quality]\nlamps_model = \"single\"\n", "l.toml").quality.at("lamps_model").value, 0);
+  // The older switch: false is "single", true (the default) "delta_m".
+  EXPECT_EQ(parseScene("[quality]\nlamps_delta_m = false\n", "l.toml").quality.at("lamps_model").value, 0);
+  EXPECT_EQ(parseScene("", "l.toml").quality.at("lamps_model").value, 1);
+  EXPECT_THROW(parseScene("[quality]\nlamps_model = \"bogus\"\n", "l.toml"), seasim::InputError);
+  EXPECT_THROW(parseScene("[quality]\nlamps_model = \"orders\"\nlamps_delta_m = true\n", "l.toml"), seasim::InputError);
+  EXPECT_THROW(parseScene("[quality]\nlamps_orders = 13\n", "l.toml"), seasim::InputError);
+  EXPECT_THROW(parseScene("[quality]\nlamps_ms_steps = 0\n", "l.toml"), seasim::InputError);
+  EXPECT_THROW(parseScene("[quality]\nlamps_ms_spread = 0\n", "l.toml"), seasim::InputError);
+  EXPECT_THROW(parseScene("[quality]\nlamps_ms_kappa = -1\n", "l.toml"), seasim::InputError);
+}
+
+}  // namespace

@@ -17,7 +17,8 @@ namespace seasim {
 namespace {
 
 const PassKeys kLampsKeys = {{"camera.*", "spectral.*", "objects.*", "spotlights.*", "quality.shafts_planes",
-                              "quality.shafts_subplanes", "quality.lamps_delta_m"},
+                              "quality.shafts_subplanes", "quality.lamps_delta_m", "quality.lamps_model",
+                              "quality.lamps_orders", "quality.lamps_ms_steps", "quality.lamps_ms_kappa", "quality.lamps_ms_spread"},
                              kUnderwaterSetupKeys};
 
 class UnderwaterLampsNode : public Pass {
@@ -60,15 +61,18 @@ PassDescriptor underwaterLampsDescriptor() {
     auto features = std::make_shared<UnderwaterLampsFeatures>();
     features->objects = !scene.objects.empty();
     features->spectral_output = scene.spectral.spectral_exr;
+    features->orders = UnderwaterLampsPass::configFromScene(scene).model == UnderwaterLampsPass::Model::Orders;
     // The lamps' own layer: kd_multiple zeroed it, this pass adds into it as into "rgb".
     features->lamps_layer = so_far.produces("lamps_layer");
     if (features->lamps_layer)
       return planEntry({"gbuffer", "rgb", "lamps_layer"}, {"rgb", "lamps_layer"},
-                       "[[spotlights]] under water: 001's sampling planes with the water's sigma_s, sigma_t, HG; "
-                       "also into outputs.layers' lamps",
+                       std::string("[[spotlights]] under water: 001's sampling planes with the water's sigma_s, sigma_t, HG") +
+                           (features->orders ? " + orders of multiple scattering" : "") + "; also into outputs.layers' lamps",
                        features);
     return planEntry({"gbuffer", "rgb"}, {"rgb"},
-                     "[[spotlights]] under water: 001's sampling planes with the water's sigma_s, sigma_t, HG", features);
+                     std::string("[[spotlights]] under water: 001's sampling planes with the water's sigma_s, sigma_t, HG") +
+                         (features->orders ? " + orders of multiple scattering" : ""),
+                     features);
   };
   d.keys = kLampsKeys;
   d.buffers = [](const Scene& s, const PassPlan& p) -> std::vector<BufferEstimate> {

@@ -1,0 +1,56 @@
+#include "underwater/lamps_ms_table.h"
+
+#include <cmath>
+
+#include "math/kernel_math.h"
+
+namespace seasim {
+
+namespace {
+
+// cos β of HG(h) at its CDF value u (the inverse of ∫_{cos β}^{1} 2π p dμ = u from the forward end);
+// uniform in cos β at h = 0.
+double hgInverseCdf(double h, double u) {
+  if (std::fabs(h) < 1e-6) return 1.0 - 2.0 * u;
+  const double f = (1.0 - h * h) / (1.0 + h - 2.0 * h * u);
+  return std::fmax(-1.0, std::fmin(1.0, (1.0 + h * h - f * f) / (2.0 * h)));
+}
+
+}  // namespace
+
+std::vector<float> lampMsProfiles(double cos_cone, double cos_inner, double g, double beta, int orders, int u_steps,
+                                  int phi_steps) {
+  std::vector<float> rows(static_cast<size_t>(orders) * UW_MS_TABLE, 0.0f);
+  for (int n = 1; n <= orders; ++n) {
+    const double h = kmath_d::uw_ms_spread(g, n, beta);
+    for (int i = 0; i < UW_MS_TABLE; ++i) {
+      const double psi = i * M_PI / 180.0;
+      const double cp = std::cos(psi), sp = std::sin(psi);
+      double acc = 0.0;
+      for (int iu = 0; iu < u_steps; ++iu) {
+        const double cb = hgInverseCdf(h, (iu + 0.5) / u_steps);
+        const double sb = std::sqrt(std::fmax(0.0, 1.0 - cb * cb));
+        // The azimuth about the direction ψ: symmetric, so half the circle, midpoints.
+        for (int k = 0; k < phi_steps; ++k) {
+          const double phi = (k + 0.5) * M_PI / phi_steps;
+          const double c = cp * cb + sp * sb * std::cos(phi);
+          acc += kmath_d::shafts_cone_profile(c, cos_cone, cos_inner);
+        }
+      }
+      rows[static_cast<size_t>(n - 1) * UW_MS_TABLE + i] = static_cast<float>(acc / (double(u_steps) * phi_steps));
+    }
+  }
+  return rows;
+}
+
+std::vector<float> lampMsTable(const std::vector<UwLamp>& lamps, double g, double beta, int orders) {
+  std::vector<float> table;
+  for (const UwLamp& L : lamps) {
+    const std::vector<float> rows = lampMsProfiles(L.cos_cone, L.cos_inner, g, beta, orders);
+    table.insert(table.end(), rows.begin(), rows.end());
+  }
+  if (table.empty()) table.push_back(0.0f);
+  return table;
+}
+
+}  // namespace seasim

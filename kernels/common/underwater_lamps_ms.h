@@ -1,0 +1,228 @@
+/* underwater_lamps_ms.h — a spotlight's light scattered more than once in the water ("orders" model of
+ * the lamps under water): the glow around the beam, the beam's forward halo and the bottom lit by it.
+ * Shared by kernels/underwater_lamps.cl (SEASIM_LAMPS_ORDERS), the host's table of blurred profiles
+ * (host/underwater/lamps_ms_table.h), the unit tests (float and double) and the kernel test's double
+ * CPU evaluation. Single scattering stays paper 001's planes with the water as it is
+ * (common/underwater_lamps.h, not delta-M scaled); this header adds orders n >= 1 of the light field.
+ *
+ * Model: orders of scattering along the lamp's rays (the small-angle picture of the beam spread
+ * function; Wells 1973, McLean & Voss 1991), each order's angles taken from the exact HG algebra. A
+ * ray from the lamp that has scattered n times has travelled a path ℓ_n; the number of scatterings on
+ * a path ℓ is Poisson with mean σ_s ℓ, and it survives absorption with e^{-σ_a ℓ}. HG phase functions
+ * compose exactly in their Legendre moments (g₁^l g₂^l = (g₁ g₂)^l), so n scatterings spread its
+ * direction as HG(g^n) about the lamp's ray (Narasimhan & Nayar 2003 use the same moments). Spread
+ * uniformly along the path, the deflections move the point the light reaches by a third of their
+ * mean-square angle, as seen from the lamp: HG(h_n), h_n = 1 - (1 - g^n)/3 (small angles: the
+ * variance of Σ (1 - u_i) δ_i with u_i uniform is n <δ²>/3). So the order-n fluence at x, at distance
+ * s from the lamp and angle ψ from its axis, per unit I, is
+ *   φ_n(x) = W_n(s) P_n(ψ) / s²,    P_n = P ⊛ HG(h_n)   (the lamp's profile blurred on the sphere),
+ *   W_n(s) = (ℓ_n/s) e^{-σ_a ℓ_n} Pois(n; σ_s ℓ_n)       (the last order kept takes all higher ones),
+ * with ℓ_n = s q_n^{-κ}, q_n = (1/(n+1)) Σ_{k=0}^{n} g^k the mean radial progress of a path whose
+ * n + 1 legs have mean cosines g^0 .. g^n (κ = 0: paths as straight as the lamp's ray, exact as
+ * g -> 1; κ = 1: light that turned more lingers longer, ℓ_n/s the density of slower light).
+ * Its radiance at x spreads as HG(g^n) about the lamp's ray, so scattering once more towards the eye
+ * takes the phase function HG(g^{n+1}) at the scattering angle α from the lamp's ray, and a surface of
+ * normal n_s receives E_n = φ_n (g^n max(cos θ_i, 0) + (1 - g^n)/4) (collimated light: φ cos θ_i;
+ * isotropic: φ/4). Along a view ray o + t d up to S:
+ *   L_ms = I ∫_0^S σ_s e^{-σ_t t} Σ_n φ_n(x_t) p_HG(cos α; g^{n+1}) dt,
+ * quadrature in v, t = a + r sinh v (uw_ms_ray), which spreads the steps over the scales of the
+ * distance to the lamp.
+ * A surface's radiance (the lamp's direct light and E_n ρ/π) reaches the eye through the water with
+ * its own orders: light scattered k times on the way whose direction (HG(g^k) about the view ray)
+ * still heads on towards the surface sees the same surface radiance (a lit patch wider than the
+ * blur), so T_view(S) = e^{-σ_a S} Σ_k Pois(k; σ_s S) F(g^k), F(G) the forward-hemisphere share of
+ * HG(G) (F(1) = 1: the unscattered e^{-σ_t S} is the k = 0 term).
+ *
+ * Stiff cases: σ_s -> 0 (every order's weight is 0, T_view = e^{-σ_a S}); g -> 1 (h_n, g^n -> 1,
+ * P_n -> P: the table is built from HG's inverse CDF, no peak to resolve; hg_phase is stable);
+ * s -> 0 (1/s² clamped at s_min, the quadrature's weight is finite); S -> ∞ (capped at 30 optical
+ * depths); large σ ℓ
+ * (weights underflow to 0, never overflow: the Poisson terms are built on e^{-σ_t ℓ}).
+ *
+ * Written against compat.h; needs optics.h, shafts.h and underwater_lamps.h before it.
+ */
+
+#define UW_MS_TABLE 181    /* blurred profile entries over ψ in [0°, 180°], 1° apart */
+#define UW_MS_MAX_ORDERS 12
+#define UW_MS_MAX_STEPS 64
+
+/* g^n (n >= 0) by repeated multiplication (no pow of a negative base). */
+SEASIM_FN real uw_ms_gpow(real g, int n) {
+  real p = R(1.0);
+  for (int k = 0; k < n; ++k) p *= g;
+  return p;
+}
+
+/* h_n = 1 - β (1 - g^n): the HG parameter of where order-n light lands, as the lamp sees it (β = 1/3
+ * for small angles; β is the model's spread knob). */
+SEASIM_FN real uw_ms_spread(real g, int n, real beta) { return R(1.0) - beta * (R(1.0) - uw_ms_gpow(g, n)); }
+
+/* ℓ_n / s = q_n^{-κ}, q_n the mean of max(g, 0)^k over k = 0..n (in (0, 1]; 1 for n = 0 or g = 1). */
+SEASIM_FN real uw_ms_stretch(real g, int n, real kappa) {
+  const real gp = fmax(g, R(0.0));
+  real sum = R(0.0), p = R(1.0);
+  for (int k = 0; k <= n; ++k) {
+    sum += p;
+    p *= gp;
+  }
+  const real q = sum / (real)(n + 1);
+  return kappa == R(0.0) ? R(1.0) : pow(q, -kappa);
+}
+
+/* P(N >= n) for N Poisson with mean x >= 0, n >= 1: summed upwards when x < n + 1 (no cancellation
+ * where it is small), else 1 - the lower terms. */
+SEASIM_FN real uw_ms_poisson_at_least(int n, real x) {
+  if (!(x > R(0.0))) return R(0.0);
+  if (x < (real)(n + 1)) {
+    real term = exp(-x);
+    for (int k = 1; k <= n; ++k) term *= x / (real)k;
+    real sum = R(0.0);
+    for (int k = n; k < n + 60 && term > R(1e-9) * sum; ++k) { /* terms fall at least as x/(n+1) < 1 */
+      sum += term;
+      term *= x / (real)(k + 1);
+    }
+    return fmin(sum, R(1.0));
+  }
+  real term = exp(-x), lower = R(0.0);
+  for (int k = 0; k < n; ++k) {
+    lower += term;
+    term *= x / (real)(k + 1);
+  }
+  return fmax(R(1.0) - lower, R(0.0));
+}
+
+/* W_n(s) of order n (1 <= n <= last) for one band: (ℓ/s) e^{-σ_a ℓ} Pois(n; σ_s ℓ), ℓ = s * stretch;
+ * n == last: Pois(>= n). Built on e^{-σ_t ℓ} times (σ_s ℓ)^n/n!, so nothing overflows. */
+SEASIM_FN real uw_ms_weight(real sigma_a, real sigma_s, real s, real stretch, int n, int last) {
+  const real l = s * stretch;
+  const real x = sigma_s * l;
+  if (!(x > R(0.0))) return R(0.0);
+  if (n >= last) return stretch * exp(-sigma_a * l) * uw_ms_poisson_at_least(n, x);
+  real p = exp(-(sigma_a + sigma_s) * l);
+  for (int k = 1; k <= n; ++k) p *= x / (real)k;
+  return stretch * p;
+}
+
+/* The share of HG(G) in the hemisphere about its own axis: ∫_0^1 2π p_HG(μ) dμ
+ * = (1 + G)/(2G) (1 - (1 - G)/sqrt(1 + G²)); 1/2 at G = 0, 1 at G = 1. */
+SEASIM_FN real uw_ms_forward_share(real G) {
+  /* 1 - (1 - G)/√(1 + G²) = G (1 + G/(√(1 + G²) + 1))/√(1 + G²): no cancellation, no 0/0 at G = 0. */
+  const real q = sqrt(R(1.0) + G * G);
+  return (R(1.0) + G) * (R(1.0) + G / (q + R(1.0))) / (R(2.0) * q);
+}
+
+/* T_view(S) for one band: the surface's radiance seen through S of water, orders up to `last` (the
+ * last takes all higher ones with F(g^last)). e^{-σ_t S} exactly when σ_s = 0 or g = 1 -> e^{-σ_a S}. */
+SEASIM_FN real uw_ms_view_transmission(real sigma_a, real sigma_s, real g, real S, int last) {
+  const real x = sigma_s * S;
+  real term = exp(-(sigma_a + sigma_s) * S); /* k = 0: unscattered */
+  real T = term;
+  if (!(x > R(0.0))) return T;
+  real Gk = R(1.0);
+  for (int k = 1; k < last; ++k) {
+    term *= x / (real)k;
+    Gk *= g;
+    T += term * uw_ms_forward_share(Gk);
+  }
+  Gk *= g;
+  return T + exp(-sigma_a * S) * uw_ms_poisson_at_least(last, x) * uw_ms_forward_share(Gk);
+}
+
+/* Where cos ψ falls in the table (UW_MS_TABLE entries over ψ, 1° apart): entry *i and weight *f of
+ * entry *i + 1. Once per point: every order's row shares it. */
+SEASIM_FN void uw_ms_table_index(real cos_psi, int* i, real* f) {
+  const real deg = acos(clamp(cos_psi, R(-1.0), R(1.0))) * (R(180.0) / SEASIM_PI);
+  *i = (int)deg < UW_MS_TABLE - 2 ? (int)deg : UW_MS_TABLE - 2;
+  *f = clamp(deg - (real)*i, R(0.0), R(1.0));
+}
+
+/* P_n from a table row at (i, f), linear in ψ. */
+SEASIM_FN real uw_ms_table_lerp(const SEASIM_GLOBAL float* row, int i, real f) {
+  return (R(1.0) - f) * (real)row[i] + f * (real)row[i + 1];
+}
+
+/* P_n at cos ψ from a table row. */
+SEASIM_FN real uw_ms_table_at(const SEASIM_GLOBAL float* row, real cos_psi) {
+  int i;
+  real f;
+  uw_ms_table_index(cos_psi, &i, &f);
+  return uw_ms_table_lerp(row, i, f);
+}
+
+/* The surface's irradiance factor of order n: g^n max(cos θ_i, 0) + (1 - g^n)/4. */
+SEASIM_FN real uw_ms_irradiance_factor(real gn, real cos_i) { return gn * fmax(cos_i, R(0.0)) + (R(1.0) - gn) * R(0.25); }
+
+/* The quadrature of the view ray o + t d, t in [0, t_end], about the lamp: `steps` midpoints in v,
+ * t = a + r sinh v (a, r the closest approach, r >= s_min). Order n's integrand grows as s^{n-2} from the
+ * lamp (W_n ∝ (σ_s s)^n), at worst 1/s: dt/s is dv far from the lamp, so v spreads the steps evenly over
+ * the scales of s from r to the ray's end, where the angle map (dt/s² = dθ/r) piles them up at r.
+ * t_end is capped at t_cap (the caller's few tens of optical depths: nothing beyond). */
+typedef struct {
+  real a, r, v0, dv;
+} UwMsRay;
+
+SEASIM_FN void uw_ms_ray(real3 o, real3 d, real3 lamp, real s_min, real t_end, real t_cap, int steps, UwMsRay* q) {
+  real h;
+  shafts_closest_approach(o, d, lamp, &q->a, &h);
+  q->r = fmax(h, s_min);
+  const real t1 = fmin(t_end, t_cap);
+  q->v0 = asinh(-q->a / q->r);
+  q->dv = fmax(asinh((t1 - q->a) / q->r) - q->v0, R(0.0)) / (real)steps;
+}
+
+SEASIM_FN real uw_ms_ray_t(const UwMsRay* q, int j) { return q->a + q->r * sinh(q->v0 + ((real)j + R(0.5)) * q->dv); }
+
+/* dt / max(s, s_min)² at ray parameter t with distance s: dv sqrt(r² + (t - a)²) / max(s, s_min)². */
+SEASIM_FN real uw_ms_ray_weight(const UwMsRay* q, real t, real s, real s_min) {
+  const real x = t - q->a, sc = fmax(s, s_min);
+  return q->dv * sqrt(q->r * q->r + x * x) / (sc * sc);
+}
+
+/* The ray's cap: 30 optical depths of the least extinction (e^{-30} = 1e-13), 1e4 m in clear water. */
+SEASIM_FN real uw_ms_ray_cap(real sigma_t_min) { return sigma_t_min > R(3e-3) ? R(30.0) / sigma_t_min : R(1e4); }
+
+/* L_ms per unit I(λ) for one band along a view ray (no shadows): `table` holds the lamp's P_1..P_orders
+ * rows; orders <= UW_MS_MAX_ORDERS; t_cap the ray's cap (uw_ms_ray_cap of the least σ_t of the bands
+ * that share the steps). The kernel runs the same steps with the bands innermost. */
+SEASIM_FN real uw_ms_inscatter(real3 o, real3 d, real3 lamp, real3 axis, real s_min, real t_end, real t_cap, real sigma_a,
+                               real sigma_s, real g, real kappa, const SEASIM_GLOBAL float* table, int orders, int steps) {
+  UwMsRay q;
+  uw_ms_ray(o, d, lamp, s_min, t_end, t_cap, steps, &q);
+  if (!(q.dv > R(0.0)) || !(sigma_s > R(0.0))) return R(0.0);
+  real acc = R(0.0);
+  for (int j = 0; j < steps; ++j) {
+    const real t = uw_ms_ray_t(&q, j);
+    real s, cos_alpha;
+    uw_lamp_at(o, d, lamp, t, &s, &cos_alpha);
+    const real cos_psi = s > R(0.0) ? dot(o + t * d - lamp, axis) / s : R(1.0);
+    real sum = R(0.0), gn1 = g;
+    for (int n = 1; n <= orders; ++n) {
+      gn1 *= g; /* g^{n+1} */
+      const real P = uw_ms_table_at(table + (n - 1) * UW_MS_TABLE, cos_psi);
+      if (P <= R(0.0)) continue;
+      sum += uw_ms_weight(sigma_a, sigma_s, s, uw_ms_stretch(g, n, kappa), n, orders) * P * hg_phase(cos_alpha, gn1);
+    }
+    acc += sigma_s * exp(-(sigma_a + sigma_s) * t) * sum * uw_ms_ray_weight(&q, t, s, s_min);
+  }
+  return acc;
+}
+
+/* The irradiance orders n >= 1 give a surface point p of normal n_s, per unit I(λ), divided by π (so
+ * times the albedo it is the Lambertian radiance leaving p; T_view not applied). */
+SEASIM_FN real uw_ms_surface(real3 p, real3 n_s, real3 lamp, real3 axis, real s_min, real sigma_a, real sigma_s, real g,
+                             real kappa, const SEASIM_GLOBAL float* table, int orders) {
+  const real3 w = p - lamp;
+  const real s = length(w);
+  if (!(s > R(0.0)) || !(sigma_s > R(0.0))) return R(0.0);
+  const real cos_psi = dot(w, axis) / s;
+  const real cos_i = -dot(w, n_s) / s; /* the lamp's ray arrives along +w; the surface faces -w when lit */
+  const real sc = fmax(s, s_min);
+  real sum = R(0.0), gn = R(1.0);
+  for (int n = 1; n <= orders; ++n) {
+    gn *= g;
+    const real P = uw_ms_table_at(table + (n - 1) * UW_MS_TABLE, cos_psi);
+    if (P <= R(0.0)) continue;
+    sum += uw_ms_weight(sigma_a, sigma_s, s, uw_ms_stretch(g, n, kappa), n, orders) * P * uw_ms_irradiance_factor(gn, cos_i);
+  }
+  return sum / (SEASIM_PI * sc * sc);
+}

@@ -1,0 +1,38 @@
+#!/bin/sh
+# lamp_orders_sweep.sh — the lamps' fast models under water (quality.lamps_model: "single", "delta_m",
+# "orders") against the all-orders path tracer, by region (whole image, lit bottom, water in the beam,
+# outside the beam), on tests/perf/lamp_glow.toml's camera and lamp (`seasim lamp-regions`), with the
+# lamp pass's kernel time (median of 3 interleaved rounds) beside each. Two sets of cases, a:b:g:cone:h
+# (h: the lamp's height above the bottom, m):
+#   FIT      the three waters on which the orders model's two knobs (quality.lamps_ms_spread β = 0.8,
+#            quality.lamps_ms_kappa κ = 0.75) were chosen (lowest RMS log-ratio over their 12 regions,
+#            from β in {1/3, 0.6, 0.8, 1} × κ in {0, 0.5, 0.75, 1});
+#   HELDOUT  cases never looked at while choosing them, spread over the model's grid: g 0.5–0.95,
+#            b/a 1–10, cones 10–60°, heights 1–10 m (the grid the model is meant for).
+# The references (16384 paths per pixel through the pixel centre) are cached in
+# $SEASIM_CACHE_DIR/lamp_regions; a second run only renders the fast models.
+# Usage: tests/perf/lamp_orders_sweep.sh   (about 10 min on 2 loaded cores the first time; nice it)
+# Writes results/underwater/lamp_orders_fit.csv, lamp_orders_heldout.csv; prints a Markdown table.
+B=${B:-build/seasim}
+SPP=${SPP:-16384}
+FIT="0.1:0.3:0.9:20:3,0.1:0.8:0.9:20:3,0.1:0.3:0.5:20:3"
+HELDOUT="0.2:0.2:0.5:10:1,0.2:0.2:0.95:60:6,0.1:0.3:0.7:30:6,0.1:0.3:0.95:10:3,0.05:0.5:0.5:60:3,0.05:0.5:0.95:30:1,\
+0.05:0.5:0.7:10:10,0.1:0.8:0.5:30:10,0.2:0.2:0.7:60:10,0.1:0.3:0.9:45:1,0.05:0.5:0.9:20:6,0.1:0.8:0.95:60:3"
+mkdir -p results/underwater
+$B lamp-regions --cases "$FIT" --models single,delta_m,orders --spp "$SPP" --rounds 3 \
+  --csv results/underwater/lamp_orders_fit.csv > /dev/null || exit 1
+$B lamp-regions --cases "$HELDOUT" --models single,delta_m,orders --spp "$SPP" --rounds 3 \
+  --csv results/underwater/lamp_orders_heldout.csv > /dev/null || exit 1
+echo "| set | a | b | g | cone | h m | model | lamps ms | whole | lit bottom | beam | outside | worst |"
+echo "|---|---|---|---|---|---|---|---:|---:|---:|---:|---:|---:|"
+for SET in fit heldout; do
+  awk -F, -v set=$SET 'NR == 1 { next }
+    function cell(px, r, se) { if (px == 0 || r == "") return "-"; return sprintf("%.3f ± %.3f", r, se) }
+    function dev(px, r) { return (px >= 20 && r != "") ? (r > 1 ? r - 1 : 1 - r) : 0 }
+    {
+      w = dev($9, $10); if (dev($12, $13) > w) w = dev($12, $13); if (dev($15, $16) > w) w = dev($15, $16)
+      if (dev($18, $19) > w) w = dev($18, $19)
+      printf "| %s | %s | %s | %s | %s° | %s | %s | %.2f | %s | %s | %s | %s | %.1f %% |\n", set, $1, $2, $3, $4, $5, $6, $7,
+        cell($9, $10, $11), cell($12, $13, $14), cell($15, $16, $17), cell($18, $19, $20), 100 * w
+    }' results/underwater/lamp_orders_$SET.csv
+done

@@ -1,0 +1,165 @@
+// underwater_lamps_ms_test.cpp — the "orders" model of spotlights under water
+// (kernels/common/underwater_lamps_ms.h, host/underwater/lamps_ms_table.h): the orders' weights
+// conserve the light they share out, the Poisson tail and HG's forward share against direct sums and
+// quadrature, the blurred profiles conserve the lamp's power, the view-ray quadrature converges and
+// float agrees with double; the stiff cases σ_s -> 0, g -> 1, a ray through the lamp, S -> ∞.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "math/kernel_math.h"
+#include "underwater/lamps_ms_table.h"
+
+namespace {
+
+namespace kd = seasim::kmath_d;
+namespace kf = seasim::kmath_f;
+
+double cosDeg(double deg) { return std::cos(deg * M_PI / 180); }
+
+TEST(UnderwaterLampsMs, OrderWeightsShareOutTheScatteredLight) {
+  // κ = 0: paths as long as s, so the unscattered part and orders 1..N (the last taking the rest)
+  // add up to the light absorption leaves, e^{-σ_a s}, in both precisions.
+  for (double s : {0.01, 1.0, 5.0, 30.0})
+    for (double b : {0.05, 0.3, 0.8, 3.0}) {
+      const double a = 0.1;
+      double sum = std::exp(-(a + b) * s);
+      float sum_f = std::exp(-float(a + b) * float(s));
+      for (int n = 1; n <= 8; ++n) {
+        sum += kd::uw_ms_weight(a, b, s, 1.0, n, 8);
+        sum_f += kf::uw_ms_weight(float(a), float(b), float(s), 1.0f, n, 8);
+      }
+      EXPECT_NEAR(sum, std::exp(-a * s), 2e-9) << "s " << s << " b " << b;
+      EXPECT_NEAR(sum_f, std::exp(-a * s), 2e-6) << "s " << s << " b " << b;
+    }
+}
+
+TEST(UnderwaterLampsMs, PoissonTailMatchesTheDirectSumOnBothBranches) {
+  for (int n : {1, 3, 8, 12})
+    for (double x : {1e-6, 0.01, 0.5, 2.0, double(n), n + 0.999, n + 1.0, n + 1.001, 20.0, 80.0}) {
+      double lower = 0, term = std::exp(-x);
+      for (int k = 0; k < n; ++k) {
+        lower += term;
+        term *= x / (k + 1);
+      }
+      double upper = 0;  // the tail summed directly (the reference on both branches)
+      term = std::exp(-x);
+      for (int k = 0; k < 400; ++k) {
+        if (k >= n) upper += term;
+        term *= x / (k + 1);
+      }
+      const double got = kd::uw_ms_poisson_at_least(n, x);
+      EXPECT_NEAR(got, upper, 1e-12 + 2e-9 * upper) << "n " << n << " x " << x;
+      EXPECT_NEAR(kf::uw_ms_poisson_at_least(n, float(x)), upper, 2e-6 + 1e-4 * upper) << "n " << n << " x " << x;
+      EXPECT_NEAR(got + lower, 1.0, 2e-9);  // the upward sum stops at terms below 1e-9 of it
+    }
+  EXPECT_EQ(kd::uw_ms_poisson_at_least(3, 0.0), 0.0);
+}
+
+TEST(UnderwaterLampsMs, ForwardShareOfHgAgainstQuadrature) {
+  for (double G : {-0.5, 0.0, 1e-4, 1e-3, 0.3, 0.9}) {  // (g -> 1: a peak no midpoint grid resolves)
+    double q = 0;
+    const int steps = 200000;
+    for (int i = 0; i < steps; ++i) q += 2 * M_PI * kd::hg_phase((i + 0.5) / steps, G) / steps;
+    EXPECT_NEAR(kd::uw_ms_forward_share(G), q, 2e-6) << "G " << G;
+    EXPECT_NEAR(kf::uw_ms_forward_share(float(G)), q, 2e-6) << "G " << G;
+  }
+  EXPECT_NEAR(kd::uw_ms_forward_share(1.0), 1.0, 1e-15);
+  EXPECT_NEAR(kf::uw_ms_forward_share(1.0f), 1.0f, 1e-7);
+  EXPECT_GT(kd::uw_ms_forward_share(0.999), 0.9995);
+}
+
+TEST(UnderwaterLampsMs, ViewTransmissionBetweenItsLimits) {
+  for (double S : {0.0, 0.5, 3.0, 20.0, 1e4}) {
+    // No scattering, or scattering straight on (g = 1): only absorption.
+    EXPECT_NEAR(kd::uw_ms_view_transmission(0.1, 0.0, 0.9, S, 8), std::exp(-0.1 * S), 1e-15);
+    EXPECT_NEAR(kd::uw_ms_view_transmission(0.1, 0.5, 1.0, S, 8), std::exp(-0.1 * S), 1e-12);
+    for (double g : {0.0, 0.5, 0.9, 0.95}) {
+      const double T = kd::uw_ms_view_transmission(0.1, 0.5, g, S, 8);
+      EXPECT_GE(T, std::exp(-0.6 * S) * (1 - 1e-12));
+      EXPECT_LE(T, std::exp(-0.1 * S) * (1 + 1e-12));
+      const float Tf = kf::uw_ms_view_transmission(0.1f, 0.5f, float(g), float(S), 8);
+      EXPECT_TRUE(std::isfinite(Tf));
+      EXPECT_NEAR(Tf, T, 1e-5 * std::max(T, 1e-30) + 1e-30);
+    }
+  }
+}
+
+TEST(UnderwaterLampsMs, BlurredProfilesConserveTheLampsPower) {
+  // ∫ P_n dΩ = ∫ P dΩ = 2π (1 - cos θ_c) for a hard cone, every order; values in [0, 1].
+  for (double cone : {10.0, 30.0, 60.0})
+    for (double g : {0.5, 0.9, 0.95}) {
+      const std::vector<float> rows = seasim::lampMsProfiles(cosDeg(cone), cosDeg(cone), g, 0.6, 4, 128, 32);
+      for (int n = 1; n <= 4; ++n) {
+        double power = 0;  // trapezoid over ψ in 1° steps
+        for (int i = 0; i + 1 < UW_MS_TABLE; ++i) {
+          const double p0 = rows[(n - 1) * UW_MS_TABLE + i], p1 = rows[(n - 1) * UW_MS_TABLE + i + 1];
+          EXPECT_GE(p0, 0.0);
+          EXPECT_LE(p0, 1.0 + 1e-6);
+          power += 0.5 * (p0 * std::sin(i * M_PI / 180) + p1 * std::sin((i + 1) * M_PI / 180)) * 2 * M_PI * M_PI / 180;
+        }
+        const double cone_power = 2 * M_PI * (1 - cosDeg(cone));
+        EXPECT_NEAR(power / cone_power, 1.0, 0.02) << "cone " << cone << " g " << g << " n " << n;
+      }
+    }
+  // g -> 1: no spread, the profile itself (1 inside, 0 outside, away from the edge).
+  const std::vector<float> sharp = seasim::lampMsProfiles(cosDeg(20), cosDeg(20), 0.99999, 0.6, 2);
+  EXPECT_NEAR(sharp[10], 1.0, 1e-3);
+  EXPECT_NEAR(sharp[30], 0.0, 1e-3);
+}
+
+struct Ray {
+  kd::real3 o, d, lamp, axis;
+  double t_end;
+};
+
+kf::real3 toF(kd::real3 x) { return kf::real3{float(x.x), float(x.y), float(x.z)}; }
+
+TEST(UnderwaterLampsMs, InscatterConvergesAndFloatAgreesWithDouble) {
+  const std::vector<float> table = seasim::lampMsProfiles(cosDeg(20), cosDeg(20), 0.9, 0.6, 8);
+  const kd::real3 axis = kd::normalize(kd::real3{-0.05, -0.5, -1.0});
+  const Ray rays[] = {
+      {{0, -4, 0}, kd::normalize(kd::real3{0, -0.45, -1}), {0.4, -4, -0.3}, axis, 7.0},    // along the beam to the bottom
+      {{0, -4, 0}, kd::normalize(kd::real3{0.6, 0.2, -1}), {0.4, -4, -0.3}, axis, 1e30},   // beside it, to infinity
+      {{0.4, -4, 2}, kd::real3{0, 0, -1}, {0.4, -4, -0.3}, axis, 1e30},                   // through the lamp
+  };
+  for (const Ray& r : rays)
+    for (double kappa : {0.0, 0.5}) {
+      const double fine = kd::uw_ms_inscatter(r.o, r.d, r.lamp, r.axis, 1e-3, r.t_end, 75.0, 0.1, 0.3, 0.9, kappa,
+                                              table.data(), 8, 4096);
+      const double coarse =
+          kd::uw_ms_inscatter(r.o, r.d, r.lamp, r.axis, 1e-3, r.t_end, 75.0, 0.1, 0.3, 0.9, kappa, table.data(), 8, 24);
+      const float coarse_f = kf::uw_ms_inscatter(toF(r.o), toF(r.d), toF(r.lamp), toF(r.axis), 1e-3f,
+                                                 float(std::min(r.t_end, 1e30)), 75.0f, 0.1f, 0.3f, 0.9f, float(kappa),
+                                                 table.data(), 8, 24);
+      ASSERT_GT(fine, 0.0);
+      EXPECT_NEAR(coarse / fine, 1.0, 0.05) << "ray o.x " << r.o.x << " kappa " << kappa;
+      EXPECT_NEAR(coarse_f / coarse, 1.0, 1e-3);
+    }
+}
+
+TEST(UnderwaterLampsMs, StiffCasesStayFinite) {
+  const kd::real3 lamp{0.4, -4, -0.3}, axis = kd::normalize(kd::real3{-0.05, -0.5, -1.0});
+  for (double g : {0.0, 0.5, 0.999999})
+    for (double b : {0.0, 1e-9, 0.3, 50.0}) {
+      const std::vector<float> table = seasim::lampMsProfiles(cosDeg(0.1), cosDeg(0.1), g, 0.6, 8, 64, 16);
+      for (float kappa : {0.0f, 1.0f}) {
+        const float L = kf::uw_ms_inscatter(kf::real3{0.4f, -4, 2}, kf::real3{0, 0, -1}, toF(lamp), toF(axis), 1e-3f,
+                                            1e30f, kf::uw_ms_ray_cap(0.1f + float(b)), 0.1f, float(b), float(g),
+                                            kappa, table.data(), 8, 24);
+        EXPECT_TRUE(std::isfinite(L)) << "g " << g << " b " << b;
+        EXPECT_GE(L, 0.0f);
+        // A surface point at the lamp itself (s = 0) and one just beside it.
+        for (float dx : {0.0f, 1e-6f}) {
+          const float E = kf::uw_ms_surface(kf::real3{0.4f + dx, -4, -0.3f}, kf::real3{0, 1, 0}, toF(lamp), toF(axis),
+                                            1e-3f, 0.1f, float(b), float(g), kappa, table.data(), 8);
+          EXPECT_TRUE(std::isfinite(E));
+          EXPECT_GE(E, 0.0f);
+        }
+        if (b == 0.0) EXPECT_EQ(L, 0.0f);
+      }
+    }
+}
+
+}  // namespace
