@@ -54,7 +54,7 @@ python-venv:
 # and the SKBUILD settings it cached are dropped again, so the folder configures as before.
 wheel: configure python-venv
 	CMAKE_GENERATOR="$$(sed -n 's/^CMAKE_GENERATOR:INTERNAL=//p' $(BUILD)/CMakeCache.txt)" \
-	  $(PYVENV)/bin/pip wheel -q --no-build-isolation --no-deps -w $(BUILD) -C build-dir=$(BUILD) .
+	  $(PYVENV)/bin/pip wheel -q --no-build-isolation --no-deps -w $(BUILD) --config-settings=build-dir=$(BUILD) .
 	cmake -S . -B $(BUILD) -UCMAKE_INSTALL_PREFIX -U'SKBUILD*' > /dev/null
 	@ls $(BUILD)/seasim-*.whl
 

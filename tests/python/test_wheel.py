@@ -27,8 +27,10 @@ print(json.dumps({"data_dir": seasim.data_dir(), "file": seasim.__file__}))
 
 @pytest.fixture(scope="module")
 def wheel() -> Path:
-    subprocess.run(["make", "--no-print-directory", "-C", str(SOURCE_DIR), "wheel", f"BUILD={BUILD_DIR}"], check=True,
-                   capture_output=True)
+    made = subprocess.run(["make", "--no-print-directory", "-C", str(SOURCE_DIR), "wheel", f"BUILD={BUILD_DIR}"],
+                          capture_output=True, text=True)
+    if made.returncode != 0:
+        pytest.fail(f"make wheel failed ({made.returncode}):\n{made.stdout[-4000:]}\n{made.stderr[-4000:]}")
     wheels = sorted(BUILD_DIR.glob("seasim-*.whl"), key=os.path.getmtime)
     assert wheels, "make wheel left no wheel in the build folder"
     return wheels[-1]
