@@ -22,7 +22,8 @@ bool plansWhitecaps(const std::string& args) {
 TEST(WhitecapsCli, PlanShowsThePassOnlyWhenAskedOnAWavySea) {
   EXPECT_TRUE(plansWhitecaps(kScenes + "whitecaps.toml"));
   EXPECT_FALSE(plansWhitecaps(kScenes + "whitecaps.toml --set surface.whitecaps=false"));
-  EXPECT_FALSE(plansWhitecaps(kScenes + "ocean_noon.toml"));
+  EXPECT_FALSE(plansWhitecaps(kScenes + "tropical_lagoon.toml"));
+  EXPECT_TRUE(plansWhitecaps(kScenes + "ocean_noon.toml"));
   EXPECT_FALSE(plansWhitecaps(kScenes + "flat_sea.toml --set surface.whitecaps=true"));
 }
 

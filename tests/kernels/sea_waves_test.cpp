@@ -115,13 +115,15 @@ TEST_P(SeaWavesKernel, MatchesDoubleReference) {
 // PoCL: waves 7.1e-5 (exact and 64-entry LUT alike: the LUT's interpolation error is below the float
 // normals'), no bottom 1.7e-5, analytic sky 1.5e-4, image sky 1.2e-4 (the sky's gradients amplify the
 // normals' rounding); flat analytic 4.3e-5, flat analytic with the sun down 9e-7, flat image 3.4e-6.
-// The bounds leave room for other devices' FFT rounding.
+// The bounds leave room for other devices' FFT rounding. Under sea.model = "multiple" (the default
+// since these were measured): waves 2.2e-4, analytic sky 4.7e-4 on PoCL and 8.6e-4 on Intel's runtime
+// (its bound 1.5e-3), image sky 1.1e-4, filtered 4.9e-5.
 INSTANTIATE_TEST_SUITE_P(
     Scenes, SeaWavesKernel,
     ::testing::Values(Variant{"waves_exact", {set("quality.sea_lut_size", "1")}, 5e-4},
                       Variant{"waves_lut", {}, 5e-4},
                       Variant{"waves_no_bottom", {set("quality.sea_lut_size", "1")}, 5e-4, true},
-                      Variant{"waves_analytic_sky", {set("sky.model", "\"analytic\""), set("quality.sea_lut_size", "1")}, 5e-4},
+                      Variant{"waves_analytic_sky", {set("sky.model", "\"analytic\""), set("quality.sea_lut_size", "1")}, 1.5e-3},
                       Variant{"waves_image_sky",
                               {set("sky.model", "\"image\""),
                                set("sky.image", std::string("\"") + SEASIM_SOURCE_DIR + "/scenes/textures/sky_clear.exr\""),

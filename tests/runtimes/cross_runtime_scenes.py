@@ -39,11 +39,12 @@ WAVE_FILTER = ("the FFT sea's wave filter (quality.wave_filter, kernels/common/s
                "differ by more than 1e-6); with wave_filter = false the same scenes agree to 1.3e-5, so the "
                "FFT ocean itself agrees and the filter has a discontinuity that a last-bit change crosses")
 LOOSER = {
-    "ocean_noon": (1.2e-2, WAVE_FILTER),           # measured 7.9e-3
+    "ocean_noon": (1.2e-2, WAVE_FILTER),           # measured 7.9e-3 (8.5e-3 with its whitecaps)
     "wavy_sea": (1.2e-2, WAVE_FILTER),             # measured 6.0e-3
     "wavy_sea_image_sky": (1.2e-2, WAVE_FILTER),   # measured 5.0e-3
     "tropical_lagoon": (1.2e-2, WAVE_FILTER),      # measured 2.5e-3
-    "stormy_sea": (1.2e-2, WAVE_FILTER),           # measured 6.9e-4
+    "stormy_sea": (1.2e-2, WAVE_FILTER),           # measured 6.9e-4 (1.5e-3 with its whitecaps)
+    "whitecaps": (1.2e-2, WAVE_FILTER),            # measured 1.8e-3; 3.4e-5 with wave_filter = false
 }
 
 

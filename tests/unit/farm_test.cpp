@@ -126,12 +126,12 @@ TEST_F(Farm, EstimatedCostScalesWithPixelsBandsAndPasses) {
   EXPECT_NEAR(double(costWithBands(24) - costWithBands(16)), double(costWithBands(16) - costWithBands(8)), 2.0);
   const Scene base = loadScene(kRepo + "/scenes/flat_sea.toml", {Override{"spectral.count", "8", {}}});
   const Scene second = loadScene(kRepo + "/scenes/flat_sea.toml",
-                                 {Override{"spectral.count", "8", {}}, Override{"sea.second_order", "true", {}}});
+                                 {Override{"spectral.count", "8", {}}, Override{"sea.model", "\"paper\"", {}}, Override{"sea.second_order", "true", {}}});
   ASSERT_TRUE(makePlan(second).hasPass("sea_second"));
   EXPECT_GT(estimateItemCost(second, makePlan(second)), estimateItemCost(base, makePlan(base)));
   // More second-order depth planes cost more.
   const Scene finer = loadScene(kRepo + "/scenes/flat_sea.toml",
-                                {Override{"spectral.count", "8", {}}, Override{"sea.second_order", "true", {}},
+                                {Override{"spectral.count", "8", {}}, Override{"sea.model", "\"paper\"", {}}, Override{"sea.second_order", "true", {}},
                                  Override{"quality.sea_nz", "24", {}}});
   EXPECT_GT(estimateItemCost(finer, makePlan(finer)), estimateItemCost(second, makePlan(second)));
 }
