@@ -12,6 +12,7 @@
 #include "common/sky_params.h"             // plain C struct, used by sky_view.h
 #include "common/underwater_band_table.h"  // plain C layout, used by underwater_bands.h
 #include "common/sea_band_table.h"         // plain C layout, used by sea_bands.h
+#include "common/sea_params.h"             // plain C structs, used by sea_view.h
 #include "common/water_spread_params.h"    // UWS_LAYERS, used by water_spread.h
 
 
@@ -43,6 +44,8 @@ typedef float real;
 #include "common/underwater_lamps.h"
 #include "common/caustic_texture.h"
 #include "common/caustic_map.h"
+#include "common/sea_view.h"
+#include "common/sea_band_terms.h"
 #include "common/froxel.h"
 #include "common/path_tracer.h"
 #include "common/path_tracer_lamps.h"
@@ -78,6 +81,8 @@ typedef double real;
 #include "common/underwater_lamps.h"
 #include "common/caustic_texture.h"
 #include "common/caustic_map.h"
+#include "common/sea_view.h"
+#include "common/sea_band_terms.h"
 #include "common/froxel.h"
 #include "common/path_tracer.h"
 #include "common/path_tracer_lamps.h"
