@@ -13,6 +13,7 @@
 #include "common/underwater_band_table.h"  // plain C layout, used by underwater_bands.h
 #include "common/sea_band_table.h"         // plain C layout, used by sea_bands.h
 #include "common/sea_params.h"             // plain C structs, used by sea_view.h
+#include "common/shafts_params.h"          // plain C structs, used by shafts_render.h
 #include "common/water_spread_params.h"    // UWS_LAYERS, used by water_spread.h
 
 
@@ -23,6 +24,7 @@ typedef float real;
 #include "common/phase.h"
 #include "common/shafts.h"
 #include "common/shafts_intervals.h"
+#include "common/shafts_render.h"
 #include "common/sea_surface.h"
 #include "common/sea_waves.h"
 #include "common/sea_lean.h"
@@ -60,6 +62,7 @@ typedef double real;
 #include "common/phase.h"
 #include "common/shafts.h"
 #include "common/shafts_intervals.h"
+#include "common/shafts_render.h"
 #include "common/sea_surface.h"
 #include "common/sea_waves.h"
 #include "common/sea_lean.h"
