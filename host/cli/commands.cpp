@@ -3,7 +3,6 @@
 #include <toml++/toml.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -22,9 +21,7 @@
 #include "jobs/recorded_settings.h"
 #include "jobs/render_item.h"
 #include "jobs/runner.h"
-#include "plan/pass_descriptor.h"
 #include "plan/plan.h"
-#include "plan/scene_facts.h"
 #include "quality/auto_quality.h"
 #include "reference/compare.h"
 #include "reference/reference_image.h"
@@ -35,10 +32,6 @@
 #include "render/renderer.h"
 #include "scene/output_layers.h"
 #include "scene/scene_inputs.h"
-#include "spectral/sensor.h"
-#include "spectral/wavelength_grid.h"
-#include "underwater/underwater_cpu.h"
-#include "underwater/underwater_setup.h"
 #include "util/error.h"
 #include "util/paths.h"
 #include "util/statistics.h"
@@ -439,212 +432,8 @@ int cmdBench(const BenchCmd& cmd) {
   }
   if (!cmd.sea_maps.empty()) return benchSeaSecond(device, cmd, parseSets(cmd.sets));  // bench_sea.cpp
   if (cmd.frames > 0) return benchFrames(device, cmd, parseSets(cmd.sets));            // bench_frames.cpp
-  if (!cmd.lights.empty()) {
-    // Spotlight shafts (001 §5: "cost linear in the number of lights"): the scene with its first k
-    // spotlights, ms per frame of the shadow-map and shafts kernels, and a least-squares line.
-    const Scene full = loadScene(cmd.scene, parseSets(cmd.sets));
-    const std::string& shadow_maps = descriptorFor(PassRole::ShadowMaps).name;
-    const std::string& shafts_pass = descriptorFor(PassRole::Spotlights).name;
-    CsvWriter table({"lights", "kernel_ms_median", shadow_maps + "_ms", shafts_pass + "_ms"});
-    PlotSeries total_series{"shadow maps + shafts", {}, {}}, shafts_series{"shafts kernel", {}, {}};
-    std::vector<double> ks, ts;
-    for (int k : cmd.lights) {
-      if (k < 1 || k > static_cast<int>(full.spotlights.size())) {
-        throw RuntimeError("--lights " + std::to_string(k) + ": " + cmd.scene + " has " +
-                           std::to_string(full.spotlights.size()) + " spotlights; give counts from 1 to that");
-      }
-      Scene scene = full;
-      scene.spotlights.resize(k);
-      Renderer renderer(device, scene, shippedPasses());
-      (void)renderer.render();  // warm-up (PoCL compiles lazily; auto quality searches once)
-      std::vector<double> totals, shadow, shafts;
-      for (int r = 0; r < std::max(1, cmd.repeat); ++r) {
-        renderer.rerunAll();
-        const FrameResult frame = renderer.render();
-        double sm = 0, sh = 0;
-        for (const auto& t : frame.timings) {
-          if (t.name == shadow_maps) sm += t.ms;
-          if (t.name == shafts_pass) sh += t.ms;
-        }
-        totals.push_back(sm + sh);
-        shadow.push_back(sm);
-        shafts.push_back(sh);
-      }
-      const double ms = median(totals);
-      std::printf("lights = %d  %10.3f ms per frame  [shadow maps %.3f, shafts %.3f ms]\n", k, ms, median(shadow),
-                  median(shafts));
-      table.addRow({k, ms, median(shadow), median(shafts)});
-      total_series.x.push_back(k);
-      total_series.y.push_back(ms);
-      shafts_series.x.push_back(k);
-      shafts_series.y.push_back(median(shafts));
-      ks.push_back(k);
-      ts.push_back(ms);
-    }
-    if (ks.size() >= 2) {  // least squares t(k) = a + b k, and how straight the line is (R²)
-      double mk = 0, mt = 0;
-      for (size_t i = 0; i < ks.size(); ++i) mk += ks[i], mt += ts[i];
-      mk /= ks.size(), mt /= ks.size();
-      double sxy = 0, sxx = 0, syy = 0;
-      for (size_t i = 0; i < ks.size(); ++i)
-        sxy += (ks[i] - mk) * (ts[i] - mt), sxx += (ks[i] - mk) * (ks[i] - mk), syy += (ts[i] - mt) * (ts[i] - mt);
-      const double b = sxx > 0 ? sxy / sxx : 0, a = mt - b * mk;
-      const double r2 = sxx > 0 && syy > 0 ? sxy * sxy / (sxx * syy) : 1.0;
-      std::printf("fit: t(k) = %.4g + %.4g k ms per frame (R^2 = %.4f)\n", a, b, r2);
-    }
-    if (!cmd.csv.empty()) table.write(cmd.csv);
-    if (!cmd.plot.empty()) {
-      PlotSpec spec;
-      spec.title = "Shafts time vs light count: " + fs::path(cmd.scene).stem().string() + " (" + device.info().name + ")";
-      spec.x_label = "spotlights";
-      spec.y_label = "ms per frame";
-      spec.series = {total_series, shafts_series};
-      writeSvgPlot(cmd.plot, spec);
-    }
-    return 0;
-  }
-  // Underwater scenes also time the same G-buffer + K_d shading as a plain C++/oneTBB loop on this CPU
-  // (host/underwater/underwater_cpu.cpp, float, no froxel term) in the same run, for the ratio.
-  const bool underwater = cameraUnderwater(loadScene(cmd.scene, parseSets(cmd.sets)));
-  const std::string& gbuffer_pass = descriptorFor(PassRole::UnderwaterGBuffer).name;
-  const std::string& froxel_pass = descriptorFor(PassRole::UnderwaterSingleScattering).name;
-  const std::string& kd_pass = descriptorFor(PassRole::UnderwaterShading).name;
-  const std::string& check_pass = descriptorFor(PassRole::Check).name;
-  std::vector<std::string> columns = {"wavelengths", "kernel_ms_median", "pixel_wavelengths_per_s"};
-  if (underwater) {
-    for (const std::string& c : {gbuffer_pass + "_ms", froxel_pass + "_ms", kd_pass + "_ms",
-                                 std::string("tbb_gbuffer_kd_ms"), std::string("tbb_over_opencl"),
-                                 std::string("tbb_simd_gbuffer_kd_ms"), std::string("tbb_simd_over_opencl")})
-      columns.push_back(c);
-  }
-  CsvWriter table(columns);
-  PlotSeries series{underwater ? "all passes (OpenCL)" : "kernels (OpenCL)", {}, {}};
-  PlotSeries kd_series{gbuffer_pass + " + " + kd_pass + " (OpenCL)", {}, {}};
-  PlotSeries tbb_series{"same on C++/oneTBB", {}, {}};
-  PlotSeries simd_series{"same on C++/oneTBB, vectorised", {}, {}};
-  std::vector<double> ns, ts, kd_ts;
-  for (int n : cmd.wavelengths) {
-    std::vector<Override> overrides = parseSets(cmd.sets);
-    overrides.push_back(parseSetOption("spectral.count=" + std::to_string(n)));
-    const Scene scene = loadScene(cmd.scene, overrides);
-    Renderer renderer(device, scene, shippedPasses());
-    const Plan& plan = renderer.plan();
-    (void)renderer.render();  // warm-up
-    std::vector<double> samples;
-    std::map<std::string, std::vector<double>> per_pass;
-    for (int r = 0; r < std::max(1, cmd.repeat); ++r) {
-      renderer.rerunAll();
-      const FrameResult frame = renderer.render();
-      double total = 0;
-      for (const auto& t : frame.timings) {
-        if (t.name == check_pass) continue;
-        total += t.ms;
-        per_pass[t.name].push_back(t.ms);
-      }
-      samples.push_back(total);
-    }
-    // A pass's median ms; a name ending in '*' sums every timing with that prefix (the froxel pass's
-    // kernels: its name followed by '*').
-    auto passMs = [&](std::string name) {
-      if (!name.empty() && name.back() == '*') {
-        name.pop_back();
-        double sum = 0;
-        for (auto& [k, v] : per_pass)
-          if (k.rfind(name, 0) == 0) sum += median(v);
-        return sum;
-      }
-      return per_pass.count(name) ? median(per_pass[name]) : 0.0;
-    };
-    const double ms = median(samples);
-    const double pixels = static_cast<double>(scene.camera.width) * scene.camera.height;
-    const double rate = pixels * n / (ms * 1e-3);
-    std::printf("n = %5d  %10.3f ms  %.3e pixel*wavelength/s", n, ms, rate);
-    if (exp_rate > 0) std::printf("  = %.3g x the exp/s bound", rate / exp_rate);
-    if (exp_rate > 0) {
-      // Each band-loop kernel's own rate (items x bands per second of its time) over the exp bound:
-      // the fraction of the bound it reaches if it spent exactly one exp per item and band.
-      for (PassRole role : {PassRole::SeaShading, PassRole::UnderwaterShading, PassRole::UnderwaterSingleScattering}) {
-        const PassDescriptor& d = descriptorFor(role);
-        const double pass_ms = passMs(d.band_loop_timing);
-        if (pass_ms > 0)
-          std::printf("  [%s %.3g of the exp bound]", d.band_loop_timing.c_str(),
-                      d.band_loop_items(scene, n) / (pass_ms * 1e-3) / exp_rate);
-      }
-    }
-    std::vector<CsvCell> row = {n, ms, rate};
-    if (underwater) {
-      const WavelengthGrid grid = makeGrid(scene.spectral.count, scene.spectral.min_nm, scene.spectral.max_nm);
-      const UnderwaterSetup setup =
-          makeUnderwaterSetup(scene, grid, makeSensor(scene.spectral.sensor, grid, scene.spectral.white_balance, scene.spectral.camera_dir));
-      UnderwaterCpuOptions options;
-      options.use_double = false;
-      options.multiple = scene.underwater.multiple_scattering;
-      options.single_split = plan.produces("froxel_volume");
-      // The scalar TBB loop and the vectorised one (underwater_cpu_simd.cpp), interleaved run by run.
-      std::vector<double> cpu, cpu_simd;
-      for (int r = 0; r < std::max(1, cmd.repeat); ++r) {
-        auto c0 = std::chrono::steady_clock::now();
-        (void)renderUnderwaterCpu(setup, options);
-        cpu.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - c0).count());
-        c0 = std::chrono::steady_clock::now();
-        (void)renderUnderwaterCpuSimd(setup, options);
-        cpu_simd.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - c0).count());
-      }
-      const double gbuffer_ms = passMs(gbuffer_pass), froxel_ms = passMs(froxel_pass + "*");
-      const double pass_kd_ms = passMs(kd_pass);
-      const double kd_ms = gbuffer_ms + pass_kd_ms, tbb_ms = median(cpu), simd_ms = median(cpu_simd);
-      std::printf("  [%s %.3f, %s %.3f, kd %.3f ms; TBB %.3f ms = %.2fx; TBB vectorised %.3f ms = %.2fx]",
-                  gbuffer_pass.c_str(), gbuffer_ms, froxel_pass.c_str(), froxel_ms, pass_kd_ms, tbb_ms, tbb_ms / kd_ms,
-                  simd_ms, simd_ms / kd_ms);
-      for (double v : {gbuffer_ms, froxel_ms, pass_kd_ms, tbb_ms, tbb_ms / kd_ms, simd_ms, simd_ms / kd_ms})
-        row.push_back(v);
-      kd_series.x.push_back(n);
-      kd_series.y.push_back(kd_ms);
-      tbb_series.x.push_back(n);
-      tbb_series.y.push_back(tbb_ms);
-      simd_series.x.push_back(n);
-      simd_series.y.push_back(simd_ms);
-      kd_ts.push_back(kd_ms);
-    }
-    std::printf("\n");
-    table.addRow(row);
-    series.x.push_back(n);
-    series.y.push_back(ms);
-    ns.push_back(n);
-    ts.push_back(ms);
-  }
-  auto fit = [&](const std::vector<double>& t, const char* what) {  // least squares t(n) = a + b n (002 §6.3)
-    if (ns.size() < 2 || t.size() != ns.size()) return;
-    double mn = 0, mt = 0;
-    for (size_t i = 0; i < ns.size(); ++i) mn += ns[i], mt += t[i];
-    mn /= ns.size(), mt /= ns.size();
-    double sxy = 0, sxx = 0;
-    for (size_t i = 0; i < ns.size(); ++i) sxy += (ns[i] - mn) * (t[i] - mt), sxx += (ns[i] - mn) * (ns[i] - mn);
-    const double b = sxx > 0 ? sxy / sxx : 0, a = mt - b * mn;
-    std::printf("fit (%s): t(n) = %.4g + %.4g n ms\n", what, a, b);
-  };
-  fit(ts, "all passes");
-  if (underwater) {
-    fit(kd_ts, "raycast + kd_multiple");
-    fit(tbb_series.y, "C++/oneTBB");
-    fit(simd_series.y, "C++/oneTBB vectorised");
-  }
-  if (!cmd.csv.empty()) table.write(cmd.csv);
-  if (!cmd.plot.empty()) {
-    PlotSpec spec;
-    spec.title = "Kernel time vs wavelength count (" + device.info().name + ")";
-    spec.x_label = "wavelength bands";
-    spec.y_label = "ms per frame";
-    spec.log_x = true;
-    spec.series.push_back(series);
-    if (underwater) {
-      spec.series.push_back(kd_series);
-      spec.series.push_back(tbb_series);
-      spec.series.push_back(simd_series);
-    }
-    writeSvgPlot(cmd.plot, spec);
-  }
-  return 0;
+  if (!cmd.lights.empty()) return benchLights(device, cmd, parseSets(cmd.sets));  // bench_lights.cpp
+  return benchWavelengths(device, cmd, parseSets(cmd.sets), exp_rate);              // bench_wavelengths.cpp
 }
 
 // The reference of `scene` written to `out` (with OUT.stderr.exr for the path tracer, and
