@@ -253,19 +253,27 @@ int cmdCompare(const std::string& test, const std::string& reference, std::optio
   return c.nonfinite == 0 ? 0 : 1;
 }
 
-int cmdSweep(const SweepCmd& cmd) {
-  // The grid of all combinations of the --param values.
-  struct Axis {
-    std::string key;
-    std::vector<std::string> values;
-  };
-  std::vector<Axis> axes;
-  for (const auto& p : cmd.params) {
+namespace {
+
+// One --param KEY=v1,v2,... of sweep.
+struct SweepAxis {
+  std::string key;
+  std::vector<std::string> values;
+};
+
+std::vector<SweepAxis> parseSweepAxes(const std::vector<std::string>& params) {
+  std::vector<SweepAxis> axes;
+  for (const auto& p : params) {
     const size_t eq = p.find('=');
     if (eq == std::string::npos) throw RuntimeError("--param expects KEY=v1,v2,...; got '" + p + "'");
     axes.push_back({p.substr(0, eq), split(p.substr(eq + 1), ',')});
     if (axes.back().values.empty()) throw RuntimeError("--param '" + p + "' has no values");
   }
+  return axes;
+}
+
+// The grid of all combinations of the axes' values, the last axis fastest.
+std::vector<std::vector<std::string>> sweepGrid(const std::vector<SweepAxis>& axes) {
   std::vector<std::vector<std::string>> grid = {{}};
   for (const auto& axis : axes) {
     std::vector<std::vector<std::string>> next;
@@ -277,7 +285,83 @@ int cmdSweep(const SweepCmd& cmd) {
       }
     grid = next;
   }
+  return grid;
+}
 
+// --reference, or (what a user running `sweep --param` expects) the scene's own reference, made first
+// beside the CSV.
+std::string sweepReference(const SweepCmd& cmd, const std::vector<Override>& base) {
+  if (!cmd.reference.empty()) return cmd.reference;
+  const fs::path csv(cmd.csv);
+  const std::string path = (csv.parent_path() / (csv.stem().string() + ".reference.exr")).string();
+  ReferenceCmd ref_cmd;
+  ref_cmd.device = cmd.device;
+  std::printf("sweep: no --reference given: making the scene's reference first (seasim reference %s -o %s)\n",
+              cmd.scene.c_str(), path.c_str());
+  std::fflush(stdout);
+  std::printf("%s\n", writeSceneReference(loadScene(cmd.scene, base), ref_cmd, path).c_str());
+  return path;
+}
+
+// The frame of median kernel time of three runs of the whole frame: single timings on a shared machine
+// are noisy. After a warm-up (PoCL compiles lazily; set-up of what changed).
+FrameResult medianFrame(Renderer& renderer) {
+  (void)renderer.render();
+  std::vector<FrameResult> runs;
+  for (int r = 0; r < 3; ++r) {
+    renderer.rerunAll();
+    runs.push_back(renderer.render());
+  }
+  std::sort(runs.begin(), runs.end(), [](const FrameResult& a, const FrameResult& b) { return kernelMs(a) < kernelMs(b); });
+  return runs[1];
+}
+
+// quality.fast_math: the same setting rendered with exact maths, and the fast image's distance from it.
+CompareResult fastVsExact(Device& device, const Scene& scene, const Image& fast_rgb) {
+  Scene exact_scene = scene;
+  exact_scene.quality["fast_math"] = Knob{false, 0.0};
+  Renderer exact_renderer(device, exact_scene, shippedPasses());
+  const FrameResult exact = exact_renderer.render();
+  return compareImages(fast_rgb, exact.rgb, scene.camera.exposure_ev);
+}
+
+std::vector<std::string> sweepColumns(const std::vector<SweepAxis>& axes) {
+  std::vector<std::string> header;
+  for (const auto& a : axes) header.push_back(a.key);
+  for (const char* h : {"kernel_ms", "wall_ms", "rmse_8bit", "max_abs_8bit", "rel_l2", "hue_sat_distance"})
+    header.emplace_back(h);
+  header.emplace_back("max_diff_prev_8bit");  // max |image - previous setting's| (000 §6.1, Fig. 7/8)
+  for (const char* h : {"fast_math", "fast_vs_exact_rmse_8bit", "fast_vs_exact_max_8bit"}) header.emplace_back(h);
+  return header;
+}
+
+// Error against time, and (one numeric axis) the 000 §6.1 plot: difference to the next setting vs the knob.
+void writeSweepPlots(const SweepCmd& cmd, const std::string& axis_key, const PlotSeries& series,
+                     const PlotSeries& steps) {
+  PlotSpec spec;
+  spec.title = "Error vs time: " + fs::path(cmd.scene).stem().string();
+  spec.x_label = "kernel time (ms)";
+  spec.y_label = "RMSE (8-bit levels)";
+  spec.log_y = true;  // errors span decades; a zero error (exact match) is left off the log axis
+  spec.series.push_back(series);
+  writeSvgPlot(cmd.plot, spec);
+  if (steps.x.empty()) return;
+  PlotSpec step_spec;
+  step_spec.title = "Difference to the next setting: " + fs::path(cmd.scene).stem().string();
+  step_spec.x_label = axis_key;
+  step_spec.y_label = "max difference (8-bit levels)";
+  step_spec.log_y = true;
+  step_spec.series.push_back(steps);
+  step_spec.series.push_back({"1 level (1/255)", {steps.x.front(), steps.x.back()}, {1.0, 1.0}});
+  const fs::path plot(cmd.plot);
+  writeSvgPlot((plot.parent_path() / (plot.stem().string() + "_steps.svg")).string(), step_spec);
+}
+
+}  // namespace
+
+int cmdSweep(const SweepCmd& cmd) {
+  const std::vector<SweepAxis> axes = parseSweepAxes(cmd.params);
+  const std::vector<std::vector<std::string>> grid = sweepGrid(axes);
   const std::vector<Override> base = parseSets(cmd.sets);
   // Validate every setting before rendering any, so a typo fails fast.
   std::vector<Scene> scenes;
@@ -286,33 +370,14 @@ int cmdSweep(const SweepCmd& cmd) {
     for (size_t i = 0; i < axes.size(); ++i) overrides.push_back(parseSetOption(axes[i].key + "=" + row[i]));
     scenes.push_back(loadScene(cmd.scene, overrides));
   }
-
-  std::string reference_path = cmd.reference;
-  if (reference_path.empty()) {
-    // What a user running `sweep --param` expects: the error against the scene's own reference.
-    const fs::path csv(cmd.csv);
-    reference_path = (csv.parent_path() / (csv.stem().string() + ".reference.exr")).string();
-    ReferenceCmd ref_cmd;
-    ref_cmd.device = cmd.device;
-    std::printf("sweep: no --reference given: making the scene's reference first (seasim reference %s -o %s)\n",
-                cmd.scene.c_str(), reference_path.c_str());
-    std::fflush(stdout);
-    std::printf("%s\n", writeSceneReference(loadScene(cmd.scene, base), ref_cmd, reference_path).c_str());
-  }
+  const std::string reference_path = sweepReference(cmd, base);
   const Image reference = readImage(reference_path);
   for (const SettingsDifference& d : settingsDifferences(settingsJson(scenes.front()), recordedSettings(reference_path)))
     if (!d.knob)
       std::fprintf(stderr, "seasim: warning: the reference was made with %s = %s, the sweep's scene has %s\n",
                    d.key.c_str(), d.reference.c_str(), d.test.c_str());
   Device device(chooseDevice(cmd.device));
-  std::vector<std::string> header;
-  for (const auto& a : axes) header.push_back(a.key);
-  for (const char* h : {"kernel_ms", "wall_ms", "rmse_8bit", "max_abs_8bit", "rel_l2", "hue_sat_distance"})
-    header.emplace_back(h);
-  header.emplace_back("max_diff_prev_8bit");  // max |image - previous setting's| (000 §6.1, Fig. 7/8)
-  // quality.fast_math: the same setting rendered with exact maths, and the fast image's distance from it.
-  for (const char* h : {"fast_math", "fast_vs_exact_rmse_8bit", "fast_vs_exact_max_8bit"}) header.emplace_back(h);
-  CsvWriter table(header);
+  CsvWriter table(sweepColumns(axes));
   PlotSeries series{"rmse (8-bit levels)", {}, {}};
   PlotSeries steps{"max |L(v) - L(next v)| (8-bit levels)", {}, {}};
   Image previous;
@@ -325,15 +390,7 @@ int cmdSweep(const SweepCmd& cmd) {
         if (grid[k][i] != grid[k - 1][i]) changed.push_back(axes[i].key);
       renderer.update(scenes[k], changed);
     }
-    (void)renderer.render();  // warm-up: PoCL compiles lazily; set-up of what changed
-    // Median kernel time of three runs of the whole frame: single timings on a shared machine are noisy.
-    std::vector<FrameResult> runs;
-    for (int r = 0; r < 3; ++r) {
-      renderer.rerunAll();
-      runs.push_back(renderer.render());
-    }
-    std::sort(runs.begin(), runs.end(), [](const FrameResult& a, const FrameResult& b) { return kernelMs(a) < kernelMs(b); });
-    const FrameResult& frame = runs[1];
+    const FrameResult frame = medianFrame(renderer);
     if (frame.nonfinite) throw RuntimeError("sweep setting produced NaN/Inf values");
     const CompareResult c = compareImages(frame.rgb, reference, scenes[k].camera.exposure_ev);
     std::vector<CsvCell> row(grid[k].begin(), grid[k].end());
@@ -342,14 +399,7 @@ int cmdSweep(const SweepCmd& cmd) {
     const double step = k > 0 ? compareImages(frame.rgb, previous, scenes[k].camera.exposure_ev).max_abs_8bit : 0.0;
     row.emplace_back(step);
     const bool fast = fastMathFor(scenes[k]);
-    CompareResult vs_exact{};
-    if (fast) {
-      Scene exact_scene = scenes[k];
-      exact_scene.quality["fast_math"] = Knob{false, 0.0};
-      Renderer exact_renderer(device, exact_scene, shippedPasses());
-      const FrameResult exact = exact_renderer.render();
-      vs_exact = compareImages(frame.rgb, exact.rgb, scenes[k].camera.exposure_ev);
-    }
+    const CompareResult vs_exact = fast ? fastVsExact(device, scenes[k], frame.rgb) : CompareResult{};
     for (double v : {fast ? 1.0 : 0.0, vs_exact.rmse_8bit, vs_exact.max_abs_8bit}) row.emplace_back(v);
     if (k > 0 && axes.size() == 1) {
       try {
@@ -374,26 +424,7 @@ int cmdSweep(const SweepCmd& cmd) {
     series.labels.push_back(point);
   }
   table.write(cmd.csv);
-  if (!cmd.plot.empty()) {
-    PlotSpec spec;
-    spec.title = "Error vs time: " + fs::path(cmd.scene).stem().string();
-    spec.x_label = "kernel time (ms)";
-    spec.y_label = "RMSE (8-bit levels)";
-    spec.log_y = true;  // errors span decades; a zero error (exact match) is left off the log axis
-    spec.series.push_back(series);
-    writeSvgPlot(cmd.plot, spec);
-    if (!steps.x.empty()) {  // the 000 §6.1 plot: difference to the next setting vs the knob
-      PlotSpec step_spec;
-      step_spec.title = "Difference to the next setting: " + fs::path(cmd.scene).stem().string();
-      step_spec.x_label = axes[0].key;
-      step_spec.y_label = "max difference (8-bit levels)";
-      step_spec.log_y = true;
-      step_spec.series.push_back(steps);
-      step_spec.series.push_back({"1 level (1/255)", {steps.x.front(), steps.x.back()}, {1.0, 1.0}});
-      const fs::path plot(cmd.plot);
-      writeSvgPlot((plot.parent_path() / (plot.stem().string() + "_steps.svg")).string(), step_spec);
-    }
-  }
+  if (!cmd.plot.empty()) writeSweepPlots(cmd, axes.empty() ? "" : axes[0].key, series, steps);
   return 0;
 }
 
