@@ -3,7 +3,6 @@
 #include <toml++/toml.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -22,9 +21,7 @@
 #include "jobs/recorded_settings.h"
 #include "jobs/render_item.h"
 #include "jobs/runner.h"
-#include "plan/pass_descriptor.h"
 #include "plan/plan.h"
-#include "plan/scene_facts.h"
 #include "quality/auto_quality.h"
 #include "quality/expected_error.h"
 #include "reference/compare.h"
@@ -36,10 +33,6 @@
 #include "render/renderer.h"
 #include "scene/output_layers.h"
 #include "scene/scene_inputs.h"
-#include "spectral/sensor.h"
-#include "spectral/wavelength_grid.h"
-#include "underwater/underwater_cpu.h"
-#include "underwater/underwater_setup.h"
 #include "util/error.h"
 #include "util/paths.h"
 #include "util/statistics.h"
@@ -262,19 +255,27 @@ int cmdCompare(const std::string& test, const std::string& reference, std::optio
   return c.nonfinite == 0 ? 0 : 1;
 }
 
-int cmdSweep(const SweepCmd& cmd) {
-  // The grid of all combinations of the --param values.
-  struct Axis {
-    std::string key;
-    std::vector<std::string> values;
-  };
-  std::vector<Axis> axes;
-  for (const auto& p : cmd.params) {
+namespace {
+
+// One --param KEY=v1,v2,... of sweep.
+struct SweepAxis {
+  std::string key;
+  std::vector<std::string> values;
+};
+
+std::vector<SweepAxis> parseSweepAxes(const std::vector<std::string>& params) {
+  std::vector<SweepAxis> axes;
+  for (const auto& p : params) {
     const size_t eq = p.find('=');
     if (eq == std::string::npos) throw RuntimeError("--param expects KEY=v1,v2,...; got '" + p + "'");
     axes.push_back({p.substr(0, eq), split(p.substr(eq + 1), ',')});
     if (axes.back().values.empty()) throw RuntimeError("--param '" + p + "' has no values");
   }
+  return axes;
+}
+
+// The grid of all combinations of the axes' values, the last axis fastest.
+std::vector<std::vector<std::string>> sweepGrid(const std::vector<SweepAxis>& axes) {
   std::vector<std::vector<std::string>> grid = {{}};
   for (const auto& axis : axes) {
     std::vector<std::vector<std::string>> next;
@@ -286,7 +287,83 @@ int cmdSweep(const SweepCmd& cmd) {
       }
     grid = next;
   }
+  return grid;
+}
 
+// --reference, or (what a user running `sweep --param` expects) the scene's own reference, made first
+// beside the CSV.
+std::string sweepReference(const SweepCmd& cmd, const std::vector<Override>& base) {
+  if (!cmd.reference.empty()) return cmd.reference;
+  const fs::path csv(cmd.csv);
+  const std::string path = (csv.parent_path() / (csv.stem().string() + ".reference.exr")).string();
+  ReferenceCmd ref_cmd;
+  ref_cmd.device = cmd.device;
+  std::printf("sweep: no --reference given: making the scene's reference first (seasim reference %s -o %s)\n",
+              cmd.scene.c_str(), path.c_str());
+  std::fflush(stdout);
+  std::printf("%s\n", writeSceneReference(loadScene(cmd.scene, base), ref_cmd, path).c_str());
+  return path;
+}
+
+// The frame of median kernel time of three runs of the whole frame: single timings on a shared machine
+// are noisy. After a warm-up (PoCL compiles lazily; set-up of what changed).
+FrameResult medianFrame(Renderer& renderer) {
+  (void)renderer.render();
+  std::vector<FrameResult> runs;
+  for (int r = 0; r < 3; ++r) {
+    renderer.rerunAll();
+    runs.push_back(renderer.render());
+  }
+  std::sort(runs.begin(), runs.end(), [](const FrameResult& a, const FrameResult& b) { return kernelMs(a) < kernelMs(b); });
+  return runs[1];
+}
+
+// quality.fast_math: the same setting rendered with exact maths, and the fast image's distance from it.
+CompareResult fastVsExact(Device& device, const Scene& scene, const Image& fast_rgb) {
+  Scene exact_scene = scene;
+  exact_scene.quality["fast_math"] = Knob{false, 0.0};
+  Renderer exact_renderer(device, exact_scene, shippedPasses());
+  const FrameResult exact = exact_renderer.render();
+  return compareImages(fast_rgb, exact.rgb, scene.camera.exposure_ev);
+}
+
+std::vector<std::string> sweepColumns(const std::vector<SweepAxis>& axes) {
+  std::vector<std::string> header;
+  for (const auto& a : axes) header.push_back(a.key);
+  for (const char* h : {"kernel_ms", "wall_ms", "rmse_8bit", "max_abs_8bit", "rel_l2", "hue_sat_distance"})
+    header.emplace_back(h);
+  header.emplace_back("max_diff_prev_8bit");  // max |image - previous setting's| (000 §6.1, Fig. 7/8)
+  for (const char* h : {"fast_math", "fast_vs_exact_rmse_8bit", "fast_vs_exact_max_8bit"}) header.emplace_back(h);
+  return header;
+}
+
+// Error against time, and (one numeric axis) the 000 §6.1 plot: difference to the next setting vs the knob.
+void writeSweepPlots(const SweepCmd& cmd, const std::string& axis_key, const PlotSeries& series,
+                     const PlotSeries& steps) {
+  PlotSpec spec;
+  spec.title = "Error vs time: " + fs::path(cmd.scene).stem().string();
+  spec.x_label = "kernel time (ms)";
+  spec.y_label = "RMSE (8-bit levels)";
+  spec.log_y = true;  // errors span decades; a zero error (exact match) is left off the log axis
+  spec.series.push_back(series);
+  writeSvgPlot(cmd.plot, spec);
+  if (steps.x.empty()) return;
+  PlotSpec step_spec;
+  step_spec.title = "Difference to the next setting: " + fs::path(cmd.scene).stem().string();
+  step_spec.x_label = axis_key;
+  step_spec.y_label = "max difference (8-bit levels)";
+  step_spec.log_y = true;
+  step_spec.series.push_back(steps);
+  step_spec.series.push_back({"1 level (1/255)", {steps.x.front(), steps.x.back()}, {1.0, 1.0}});
+  const fs::path plot(cmd.plot);
+  writeSvgPlot((plot.parent_path() / (plot.stem().string() + "_steps.svg")).string(), step_spec);
+}
+
+}  // namespace
+
+int cmdSweep(const SweepCmd& cmd) {
+  const std::vector<SweepAxis> axes = parseSweepAxes(cmd.params);
+  const std::vector<std::vector<std::string>> grid = sweepGrid(axes);
   const std::vector<Override> base = parseSets(cmd.sets);
   // Validate every setting before rendering any, so a typo fails fast.
   std::vector<Scene> scenes;
@@ -295,33 +372,14 @@ int cmdSweep(const SweepCmd& cmd) {
     for (size_t i = 0; i < axes.size(); ++i) overrides.push_back(parseSetOption(axes[i].key + "=" + row[i]));
     scenes.push_back(loadScene(cmd.scene, overrides));
   }
-
-  std::string reference_path = cmd.reference;
-  if (reference_path.empty()) {
-    // What a user running `sweep --param` expects: the error against the scene's own reference.
-    const fs::path csv(cmd.csv);
-    reference_path = (csv.parent_path() / (csv.stem().string() + ".reference.exr")).string();
-    ReferenceCmd ref_cmd;
-    ref_cmd.device = cmd.device;
-    std::printf("sweep: no --reference given: making the scene's reference first (seasim reference %s -o %s)\n",
-                cmd.scene.c_str(), reference_path.c_str());
-    std::fflush(stdout);
-    std::printf("%s\n", writeSceneReference(loadScene(cmd.scene, base), ref_cmd, reference_path).c_str());
-  }
+  const std::string reference_path = sweepReference(cmd, base);
   const Image reference = readImage(reference_path);
   for (const SettingsDifference& d : settingsDifferences(settingsJson(scenes.front()), recordedSettings(reference_path)))
     if (!d.knob)
       std::fprintf(stderr, "seasim: warning: the reference was made with %s = %s, the sweep's scene has %s\n",
                    d.key.c_str(), d.reference.c_str(), d.test.c_str());
   Device device(chooseDevice(cmd.device));
-  std::vector<std::string> header;
-  for (const auto& a : axes) header.push_back(a.key);
-  for (const char* h : {"kernel_ms", "wall_ms", "rmse_8bit", "max_abs_8bit", "rel_l2", "hue_sat_distance"})
-    header.emplace_back(h);
-  header.emplace_back("max_diff_prev_8bit");  // max |image - previous setting's| (000 §6.1, Fig. 7/8)
-  // quality.fast_math: the same setting rendered with exact maths, and the fast image's distance from it.
-  for (const char* h : {"fast_math", "fast_vs_exact_rmse_8bit", "fast_vs_exact_max_8bit"}) header.emplace_back(h);
-  CsvWriter table(header);
+  CsvWriter table(sweepColumns(axes));
   PlotSeries series{"rmse (8-bit levels)", {}, {}};
   PlotSeries steps{"max |L(v) - L(next v)| (8-bit levels)", {}, {}};
   Image previous;
@@ -334,15 +392,7 @@ int cmdSweep(const SweepCmd& cmd) {
         if (grid[k][i] != grid[k - 1][i]) changed.push_back(axes[i].key);
       renderer.update(scenes[k], changed);
     }
-    (void)renderer.render();  // warm-up: PoCL compiles lazily; set-up of what changed
-    // Median kernel time of three runs of the whole frame: single timings on a shared machine are noisy.
-    std::vector<FrameResult> runs;
-    for (int r = 0; r < 3; ++r) {
-      renderer.rerunAll();
-      runs.push_back(renderer.render());
-    }
-    std::sort(runs.begin(), runs.end(), [](const FrameResult& a, const FrameResult& b) { return kernelMs(a) < kernelMs(b); });
-    const FrameResult& frame = runs[1];
+    const FrameResult frame = medianFrame(renderer);
     if (frame.nonfinite) throw RuntimeError("sweep setting produced NaN/Inf values");
     const CompareResult c = compareImages(frame.rgb, reference, scenes[k].camera.exposure_ev);
     std::vector<CsvCell> row(grid[k].begin(), grid[k].end());
@@ -351,14 +401,7 @@ int cmdSweep(const SweepCmd& cmd) {
     const double step = k > 0 ? compareImages(frame.rgb, previous, scenes[k].camera.exposure_ev).max_abs_8bit : 0.0;
     row.emplace_back(step);
     const bool fast = fastMathFor(scenes[k]);
-    CompareResult vs_exact{};
-    if (fast) {
-      Scene exact_scene = scenes[k];
-      exact_scene.quality["fast_math"] = Knob{false, 0.0};
-      Renderer exact_renderer(device, exact_scene, shippedPasses());
-      const FrameResult exact = exact_renderer.render();
-      vs_exact = compareImages(frame.rgb, exact.rgb, scenes[k].camera.exposure_ev);
-    }
+    const CompareResult vs_exact = fast ? fastVsExact(device, scenes[k], frame.rgb) : CompareResult{};
     for (double v : {fast ? 1.0 : 0.0, vs_exact.rmse_8bit, vs_exact.max_abs_8bit}) row.emplace_back(v);
     if (k > 0 && axes.size() == 1) {
       try {
@@ -383,26 +426,7 @@ int cmdSweep(const SweepCmd& cmd) {
     series.labels.push_back(point);
   }
   table.write(cmd.csv);
-  if (!cmd.plot.empty()) {
-    PlotSpec spec;
-    spec.title = "Error vs time: " + fs::path(cmd.scene).stem().string();
-    spec.x_label = "kernel time (ms)";
-    spec.y_label = "RMSE (8-bit levels)";
-    spec.log_y = true;  // errors span decades; a zero error (exact match) is left off the log axis
-    spec.series.push_back(series);
-    writeSvgPlot(cmd.plot, spec);
-    if (!steps.x.empty()) {  // the 000 §6.1 plot: difference to the next setting vs the knob
-      PlotSpec step_spec;
-      step_spec.title = "Difference to the next setting: " + fs::path(cmd.scene).stem().string();
-      step_spec.x_label = axes[0].key;
-      step_spec.y_label = "max difference (8-bit levels)";
-      step_spec.log_y = true;
-      step_spec.series.push_back(steps);
-      step_spec.series.push_back({"1 level (1/255)", {steps.x.front(), steps.x.back()}, {1.0, 1.0}});
-      const fs::path plot(cmd.plot);
-      writeSvgPlot((plot.parent_path() / (plot.stem().string() + "_steps.svg")).string(), step_spec);
-    }
-  }
+  if (!cmd.plot.empty()) writeSweepPlots(cmd, axes.empty() ? "" : axes[0].key, series, steps);
   return 0;
 }
 
@@ -441,212 +465,8 @@ int cmdBench(const BenchCmd& cmd) {
   }
   if (!cmd.sea_maps.empty()) return benchSeaSecond(device, cmd, parseSets(cmd.sets));  // bench_sea.cpp
   if (cmd.frames > 0) return benchFrames(device, cmd, parseSets(cmd.sets));            // bench_frames.cpp
-  if (!cmd.lights.empty()) {
-    // Spotlight shafts (001 §5: "cost linear in the number of lights"): the scene with its first k
-    // spotlights, ms per frame of the shadow-map and shafts kernels, and a least-squares line.
-    const Scene full = loadScene(cmd.scene, parseSets(cmd.sets));
-    const std::string& shadow_maps = descriptorFor(PassRole::ShadowMaps).name;
-    const std::string& shafts_pass = descriptorFor(PassRole::Spotlights).name;
-    CsvWriter table({"lights", "kernel_ms_median", shadow_maps + "_ms", shafts_pass + "_ms"});
-    PlotSeries total_series{"shadow maps + shafts", {}, {}}, shafts_series{"shafts kernel", {}, {}};
-    std::vector<double> ks, ts;
-    for (int k : cmd.lights) {
-      if (k < 1 || k > static_cast<int>(full.spotlights.size())) {
-        throw RuntimeError("--lights " + std::to_string(k) + ": " + cmd.scene + " has " +
-                           std::to_string(full.spotlights.size()) + " spotlights; give counts from 1 to that");
-      }
-      Scene scene = full;
-      scene.spotlights.resize(k);
-      Renderer renderer(device, scene, shippedPasses());
-      (void)renderer.render();  // warm-up (PoCL compiles lazily; auto quality searches once)
-      std::vector<double> totals, shadow, shafts;
-      for (int r = 0; r < std::max(1, cmd.repeat); ++r) {
-        renderer.rerunAll();
-        const FrameResult frame = renderer.render();
-        double sm = 0, sh = 0;
-        for (const auto& t : frame.timings) {
-          if (t.name == shadow_maps) sm += t.ms;
-          if (t.name == shafts_pass) sh += t.ms;
-        }
-        totals.push_back(sm + sh);
-        shadow.push_back(sm);
-        shafts.push_back(sh);
-      }
-      const double ms = median(totals);
-      std::printf("lights = %d  %10.3f ms per frame  [shadow maps %.3f, shafts %.3f ms]\n", k, ms, median(shadow),
-                  median(shafts));
-      table.addRow({k, ms, median(shadow), median(shafts)});
-      total_series.x.push_back(k);
-      total_series.y.push_back(ms);
-      shafts_series.x.push_back(k);
-      shafts_series.y.push_back(median(shafts));
-      ks.push_back(k);
-      ts.push_back(ms);
-    }
-    if (ks.size() >= 2) {  // least squares t(k) = a + b k, and how straight the line is (R²)
-      double mk = 0, mt = 0;
-      for (size_t i = 0; i < ks.size(); ++i) mk += ks[i], mt += ts[i];
-      mk /= ks.size(), mt /= ks.size();
-      double sxy = 0, sxx = 0, syy = 0;
-      for (size_t i = 0; i < ks.size(); ++i)
-        sxy += (ks[i] - mk) * (ts[i] - mt), sxx += (ks[i] - mk) * (ks[i] - mk), syy += (ts[i] - mt) * (ts[i] - mt);
-      const double b = sxx > 0 ? sxy / sxx : 0, a = mt - b * mk;
-      const double r2 = sxx > 0 && syy > 0 ? sxy * sxy / (sxx * syy) : 1.0;
-      std::printf("fit: t(k) = %.4g + %.4g k ms per frame (R^2 = %.4f)\n", a, b, r2);
-    }
-    if (!cmd.csv.empty()) table.write(cmd.csv);
-    if (!cmd.plot.empty()) {
-      PlotSpec spec;
-      spec.title = "Shafts time vs light count: " + fs::path(cmd.scene).stem().string() + " (" + device.info().name + ")";
-      spec.x_label = "spotlights";
-      spec.y_label = "ms per frame";
-      spec.series = {total_series, shafts_series};
-      writeSvgPlot(cmd.plot, spec);
-    }
-    return 0;
-  }
-  // Underwater scenes also time the same G-buffer + K_d shading as a plain C++/oneTBB loop on this CPU
-  // (host/underwater/underwater_cpu.cpp, float, no froxel term) in the same run, for the ratio.
-  const bool underwater = cameraUnderwater(loadScene(cmd.scene, parseSets(cmd.sets)));
-  const std::string& gbuffer_pass = descriptorFor(PassRole::UnderwaterGBuffer).name;
-  const std::string& froxel_pass = descriptorFor(PassRole::UnderwaterSingleScattering).name;
-  const std::string& kd_pass = descriptorFor(PassRole::UnderwaterShading).name;
-  const std::string& check_pass = descriptorFor(PassRole::Check).name;
-  std::vector<std::string> columns = {"wavelengths", "kernel_ms_median", "pixel_wavelengths_per_s"};
-  if (underwater) {
-    for (const std::string& c : {gbuffer_pass + "_ms", froxel_pass + "_ms", kd_pass + "_ms",
-                                 std::string("tbb_gbuffer_kd_ms"), std::string("tbb_over_opencl"),
-                                 std::string("tbb_simd_gbuffer_kd_ms"), std::string("tbb_simd_over_opencl")})
-      columns.push_back(c);
-  }
-  CsvWriter table(columns);
-  PlotSeries series{underwater ? "all passes (OpenCL)" : "kernels (OpenCL)", {}, {}};
-  PlotSeries kd_series{gbuffer_pass + " + " + kd_pass + " (OpenCL)", {}, {}};
-  PlotSeries tbb_series{"same on C++/oneTBB", {}, {}};
-  PlotSeries simd_series{"same on C++/oneTBB, vectorised", {}, {}};
-  std::vector<double> ns, ts, kd_ts;
-  for (int n : cmd.wavelengths) {
-    std::vector<Override> overrides = parseSets(cmd.sets);
-    overrides.push_back(parseSetOption("spectral.count=" + std::to_string(n)));
-    const Scene scene = loadScene(cmd.scene, overrides);
-    Renderer renderer(device, scene, shippedPasses());
-    const Plan& plan = renderer.plan();
-    (void)renderer.render();  // warm-up
-    std::vector<double> samples;
-    std::map<std::string, std::vector<double>> per_pass;
-    for (int r = 0; r < std::max(1, cmd.repeat); ++r) {
-      renderer.rerunAll();
-      const FrameResult frame = renderer.render();
-      double total = 0;
-      for (const auto& t : frame.timings) {
-        if (t.name == check_pass) continue;
-        total += t.ms;
-        per_pass[t.name].push_back(t.ms);
-      }
-      samples.push_back(total);
-    }
-    // A pass's median ms; a name ending in '*' sums every timing with that prefix (the froxel pass's
-    // kernels: its name followed by '*').
-    auto passMs = [&](std::string name) {
-      if (!name.empty() && name.back() == '*') {
-        name.pop_back();
-        double sum = 0;
-        for (auto& [k, v] : per_pass)
-          if (k.rfind(name, 0) == 0) sum += median(v);
-        return sum;
-      }
-      return per_pass.count(name) ? median(per_pass[name]) : 0.0;
-    };
-    const double ms = median(samples);
-    const double pixels = static_cast<double>(scene.camera.width) * scene.camera.height;
-    const double rate = pixels * n / (ms * 1e-3);
-    std::printf("n = %5d  %10.3f ms  %.3e pixel*wavelength/s", n, ms, rate);
-    if (exp_rate > 0) std::printf("  = %.3g x the exp/s bound", rate / exp_rate);
-    if (exp_rate > 0) {
-      // Each band-loop kernel's own rate (items x bands per second of its time) over the exp bound:
-      // the fraction of the bound it reaches if it spent exactly one exp per item and band.
-      for (PassRole role : {PassRole::SeaShading, PassRole::UnderwaterShading, PassRole::UnderwaterSingleScattering}) {
-        const PassDescriptor& d = descriptorFor(role);
-        const double pass_ms = passMs(d.band_loop_timing);
-        if (pass_ms > 0)
-          std::printf("  [%s %.3g of the exp bound]", d.band_loop_timing.c_str(),
-                      d.band_loop_items(scene, n) / (pass_ms * 1e-3) / exp_rate);
-      }
-    }
-    std::vector<CsvCell> row = {n, ms, rate};
-    if (underwater) {
-      const WavelengthGrid grid = makeGrid(scene.spectral.count, scene.spectral.min_nm, scene.spectral.max_nm);
-      const UnderwaterSetup setup =
-          makeUnderwaterSetup(scene, grid, makeSensor(scene.spectral.sensor, grid, scene.spectral.white_balance, scene.spectral.camera_dir));
-      UnderwaterCpuOptions options;
-      options.use_double = false;
-      options.multiple = scene.underwater.multiple_scattering;
-      options.single_split = plan.produces("froxel_volume");
-      // The scalar TBB loop and the vectorised one (underwater_cpu_simd.cpp), interleaved run by run.
-      std::vector<double> cpu, cpu_simd;
-      for (int r = 0; r < std::max(1, cmd.repeat); ++r) {
-        auto c0 = std::chrono::steady_clock::now();
-        (void)renderUnderwaterCpu(setup, options);
-        cpu.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - c0).count());
-        c0 = std::chrono::steady_clock::now();
-        (void)renderUnderwaterCpuSimd(setup, options);
-        cpu_simd.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - c0).count());
-      }
-      const double gbuffer_ms = passMs(gbuffer_pass), froxel_ms = passMs(froxel_pass + "*");
-      const double pass_kd_ms = passMs(kd_pass);
-      const double kd_ms = gbuffer_ms + pass_kd_ms, tbb_ms = median(cpu), simd_ms = median(cpu_simd);
-      std::printf("  [%s %.3f, %s %.3f, kd %.3f ms; TBB %.3f ms = %.2fx; TBB vectorised %.3f ms = %.2fx]",
-                  gbuffer_pass.c_str(), gbuffer_ms, froxel_pass.c_str(), froxel_ms, pass_kd_ms, tbb_ms, tbb_ms / kd_ms,
-                  simd_ms, simd_ms / kd_ms);
-      for (double v : {gbuffer_ms, froxel_ms, pass_kd_ms, tbb_ms, tbb_ms / kd_ms, simd_ms, simd_ms / kd_ms})
-        row.push_back(v);
-      kd_series.x.push_back(n);
-      kd_series.y.push_back(kd_ms);
-      tbb_series.x.push_back(n);
-      tbb_series.y.push_back(tbb_ms);
-      simd_series.x.push_back(n);
-      simd_series.y.push_back(simd_ms);
-      kd_ts.push_back(kd_ms);
-    }
-    std::printf("\n");
-    table.addRow(row);
-    series.x.push_back(n);
-    series.y.push_back(ms);
-    ns.push_back(n);
-    ts.push_back(ms);
-  }
-  auto fit = [&](const std::vector<double>& t, const char* what) {  // least squares t(n) = a + b n (002 §6.3)
-    if (ns.size() < 2 || t.size() != ns.size()) return;
-    double mn = 0, mt = 0;
-    for (size_t i = 0; i < ns.size(); ++i) mn += ns[i], mt += t[i];
-    mn /= ns.size(), mt /= ns.size();
-    double sxy = 0, sxx = 0;
-    for (size_t i = 0; i < ns.size(); ++i) sxy += (ns[i] - mn) * (t[i] - mt), sxx += (ns[i] - mn) * (ns[i] - mn);
-    const double b = sxx > 0 ? sxy / sxx : 0, a = mt - b * mn;
-    std::printf("fit (%s): t(n) = %.4g + %.4g n ms\n", what, a, b);
-  };
-  fit(ts, "all passes");
-  if (underwater) {
-    fit(kd_ts, "raycast + kd_multiple");
-    fit(tbb_series.y, "C++/oneTBB");
-    fit(simd_series.y, "C++/oneTBB vectorised");
-  }
-  if (!cmd.csv.empty()) table.write(cmd.csv);
-  if (!cmd.plot.empty()) {
-    PlotSpec spec;
-    spec.title = "Kernel time vs wavelength count (" + device.info().name + ")";
-    spec.x_label = "wavelength bands";
-    spec.y_label = "ms per frame";
-    spec.log_x = true;
-    spec.series.push_back(series);
-    if (underwater) {
-      spec.series.push_back(kd_series);
-      spec.series.push_back(tbb_series);
-      spec.series.push_back(simd_series);
-    }
-    writeSvgPlot(cmd.plot, spec);
-  }
-  return 0;
+  if (!cmd.lights.empty()) return benchLights(device, cmd, parseSets(cmd.sets));  // bench_lights.cpp
+  return benchWavelengths(device, cmd, parseSets(cmd.sets), exp_rate);              // bench_wavelengths.cpp
 }
 
 // The reference of `scene` written to `out` (with OUT.stderr.exr for the path tracer, and

@@ -62,6 +62,11 @@ int benchSeaSecond(Device& device, const BenchCmd& cmd, const std::vector<Overri
 int benchFrames(Device& device, const BenchCmd& cmd, const std::vector<Override>& overrides);
 // The --devices mode of bench (host/cli/bench_devices.cpp): one table of per-pass times and ratios.
 int benchDevices(const BenchCmd& cmd, const std::vector<Override>& overrides);
+// The --lights mode of bench (host/cli/bench_lights.cpp): shafts time against spotlight count.
+int benchLights(Device& device, const BenchCmd& cmd, const std::vector<Override>& overrides);
+// bench's default mode (host/cli/bench_wavelengths.cpp): time against wavelength count; exp_rate > 0
+// (from --limits) adds each band loop's share of the exp/s bound.
+int benchWavelengths(Device& device, const BenchCmd& cmd, const std::vector<Override>& overrides, double exp_rate);
 
 struct ReferenceCmd {
   std::string scene, out, device;

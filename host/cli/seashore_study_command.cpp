@@ -67,6 +67,47 @@ std::vector<double> floorDepths(const Scene &scene, const HeightField &floor) {
   return z;
 }
 
+// The pixels' sums per bin of floor depth z_Q (edges: increasing; pixels outside them left out): the
+// images' parts as luminance, the water-leaving colour without and with L^(2), and the 8-bit difference.
+struct DepthBin {
+  long pixels = 0;
+  double z = 0, y1 = 0, yb = 0, y2 = 0, yr = 0, levels = 0;
+  double water1[3] = {0, 0, 0}, water2[3] = {0, 0, 0};  // water-leaving colour without / with L^(2)
+};
+
+std::vector<DepthBin> binByFloorDepth(const std::vector<double> &edges, const std::vector<double> &z_q,
+                                      const Image &full, const Image &single, const Image &scatter,
+                                      const Image &reflect, const std::vector<std::uint8_t> &full8,
+                                      const std::vector<std::uint8_t> &single8) {
+  const size_t bins = edges.size() - 1;
+  std::vector<DepthBin> bin(bins);
+  for (size_t p = 0; p < z_q.size(); ++p) {
+    if (z_q[p] < edges.front() || z_q[p] > edges.back()) continue;
+    size_t b = std::upper_bound(edges.begin(), edges.end(), z_q[p]) - edges.begin() - 1;
+    b = std::min(b, bins - 1);
+    const float *f2 = &full.pixels[3 * p];
+    const float *f1 = &single.pixels[3 * p];
+    const float *s = &scatter.pixels[3 * p];
+    const float *r = &reflect.pixels[3 * p];
+    DepthBin &B = bin[b];
+    ++B.pixels;
+    B.z += z_q[p];
+    float l2[3], lb[3];
+    for (int c = 0; c < 3; ++c) {
+      l2[c] = f2[c] - f1[c];
+      lb[c] = f1[c] - s[c] - r[c];  // eq. 9: what the floor adds
+      B.water1[c] += s[c] + lb[c];
+      B.water2[c] += s[c] + lb[c] + l2[c];
+      B.levels += std::fabs(double(full8[3 * p + c]) - double(single8[3 * p + c])) / 3.0;
+    }
+    B.y1 += luma(s);
+    B.yb += luma(lb);
+    B.y2 += luma(l2);
+    B.yr += luma(r);
+  }
+  return bin;
+}
+
 }  // namespace
 
 int cmdSeashoreStudy(const SeashoreStudyCmd &cmd) {
@@ -126,36 +167,7 @@ int cmdSeashoreStudy(const SeashoreStudyCmd &cmd) {
     toneMapImage8(single, scene.camera.exposure_ev, single8);
 
     const size_t bins = cmd.edges.size() - 1;
-    struct Bin {
-      long pixels = 0;
-      double z = 0, y1 = 0, yb = 0, y2 = 0, yr = 0, levels = 0;
-      double water1[3] = {0, 0, 0}, water2[3] = {0, 0, 0};  // water-leaving colour without / with L^(2)
-    };
-    std::vector<Bin> bin(bins);
-    for (size_t p = 0; p < z_q.size(); ++p) {
-      if (z_q[p] < cmd.edges.front() || z_q[p] > cmd.edges.back()) continue;
-      size_t b = std::upper_bound(cmd.edges.begin(), cmd.edges.end(), z_q[p]) - cmd.edges.begin() - 1;
-      b = std::min(b, bins - 1);
-      const float *f2 = &full.pixels[3 * p];
-      const float *f1 = &single.pixels[3 * p];
-      const float *s = &scatter.pixels[3 * p];
-      const float *r = &reflect.pixels[3 * p];
-      Bin &B = bin[b];
-      ++B.pixels;
-      B.z += z_q[p];
-      float l2[3], lb[3];
-      for (int c = 0; c < 3; ++c) {
-        l2[c] = f2[c] - f1[c];
-        lb[c] = f1[c] - s[c] - r[c];  // eq. 9: what the floor adds
-        B.water1[c] += s[c] + lb[c];
-        B.water2[c] += s[c] + lb[c] + l2[c];
-        B.levels += std::fabs(double(full8[3 * p + c]) - double(single8[3 * p + c])) / 3.0;
-      }
-      B.y1 += luma(s);
-      B.yb += luma(lb);
-      B.y2 += luma(l2);
-      B.yr += luma(r);
-    }
+    const std::vector<DepthBin> bin = binByFloorDepth(cmd.edges, z_q, full, single, scatter, reflect, full8, single8);
 
     PlotSeries ratio{"L2/L1, floor to " + std::string(max_text) + " m", {}, {}};
     PlotSeries share{"L2 share of water-leaving, floor to " + std::string(max_text) + " m", {}, {}};
@@ -163,7 +175,7 @@ int cmdSeashoreStudy(const SeashoreStudyCmd &cmd) {
         "\n  z_Q (m)     pixels  L2/L1   L2 share  hue 1 -> 1+2 (deg)  "
         "|d| 8-bit\n");
     for (size_t b = 0; b < bins; ++b) {
-      const Bin &B = bin[b];
+      const DepthBin &B = bin[b];
       if (B.pixels == 0) continue;
       const double n = double(B.pixels);
       const double r = B.y2 / std::max(B.y1, 1e-30), sh = B.y2 / std::max(B.y1 + B.yb + B.y2, 1e-30);

@@ -102,6 +102,31 @@ nlohmann::json renderOne(Device& device, RendererCache& cache, const RenderItem&
   return files;
 }
 
+// The items of `mine` a resumed run keeps as finished. An item finished with other settings (a
+// `run --set` since, or an edited job) is rendered again. The [quality] knobs are left out: "auto"
+// ones are recorded as the values they resolved to.
+std::set<std::string> finishedAsTheyAreNow(const Job& job, const std::vector<const RenderItem*>& mine) {
+  std::set<std::string> finished = finishedItems(job, job.output_dir);
+  for (const RenderItem* item : mine) {
+    if (!finished.count(item->name)) continue;
+    if (!item->sampled.empty() && labelsRecordOtherDraws(*item, job.output_dir + "/" + item->name)) {
+      std::fprintf(stderr, "%s: drawn with other values ([sample] changed): rendering it again\n", item->name.c_str());
+      finished.erase(item->name);
+      continue;
+    }
+    const nlohmann::json recorded = reportSettings(job.output_dir + "/" + item->name);
+    if (recorded.is_null()) continue;  // a report without settings (older seasim): kept as finished
+    for (const SettingsDifference& d : settingsDifferences(settingsJson(loadScene(item->scene_file, item->overrides)), recorded))
+      if (d.key.rfind("quality.", 0) != 0) {
+        std::fprintf(stderr, "%s: rendered with %s = %s, now %s: rendering it again\n", item->name.c_str(),
+                     d.key.c_str(), d.reference.c_str(), d.test.c_str());
+        finished.erase(item->name);
+        break;
+      }
+  }
+  return finished;
+}
+
 }  // namespace
 
 RunSummary runJob(const std::string& job_path, const RunOptions& options) {
@@ -141,26 +166,7 @@ RunSummary runJob(const std::string& job_path, const RunOptions& options) {
   for (const RenderItem* item : mine) orphans += removeTempFiles(job.output_dir + "/" + item->name);
   if (orphans > 0) std::fprintf(stderr, "removed %d temporary file(s) left by an interrupted run\n", orphans);
 
-  std::set<std::string> finished = options.resume ? finishedItems(job, job.output_dir) : std::set<std::string>{};
-  // An item finished with other settings (a `run --set` since, or an edited job) is rendered again.
-  // The [quality] knobs are left out: "auto" ones are recorded as the values they resolved to.
-  for (const RenderItem* item : mine) {
-    if (!finished.count(item->name)) continue;
-    if (!item->sampled.empty() && labelsRecordOtherDraws(*item, job.output_dir + "/" + item->name)) {
-      std::fprintf(stderr, "%s: drawn with other values ([sample] changed): rendering it again\n", item->name.c_str());
-      finished.erase(item->name);
-      continue;
-    }
-    const nlohmann::json recorded = reportSettings(job.output_dir + "/" + item->name);
-    if (recorded.is_null()) continue;  // a report without settings (older seasim): kept as finished
-    for (const SettingsDifference& d : settingsDifferences(settingsJson(loadScene(item->scene_file, item->overrides)), recorded))
-      if (d.key.rfind("quality.", 0) != 0) {
-        std::fprintf(stderr, "%s: rendered with %s = %s, now %s: rendering it again\n", item->name.c_str(),
-                     d.key.c_str(), d.reference.c_str(), d.test.c_str());
-        finished.erase(item->name);
-        break;
-      }
-  }
+  const std::set<std::string> finished = options.resume ? finishedAsTheyAreNow(job, mine) : std::set<std::string>{};
   Manifest manifest = options.resume ? Manifest::load(manifest_file, job.file) : Manifest(job.file);
 
   // Inputs checkable before rendering (images decode, references match the render size).

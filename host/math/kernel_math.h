@@ -12,6 +12,8 @@
 #include "common/sky_params.h"             // plain C struct, used by sky_view.h
 #include "common/underwater_band_table.h"  // plain C layout, used by underwater_bands.h
 #include "common/sea_band_table.h"         // plain C layout, used by sea_bands.h
+#include "common/sea_params.h"             // plain C structs, used by sea_view.h
+#include "common/shafts_params.h"          // plain C structs, used by shafts_render.h
 #include "common/water_spread_params.h"    // UWS_LAYERS, used by water_spread.h
 
 
@@ -22,6 +24,7 @@ typedef float real;
 #include "common/phase.h"
 #include "common/shafts.h"
 #include "common/shafts_intervals.h"
+#include "common/shafts_render.h"
 #include "common/sea_surface.h"
 #include "common/sea_waves.h"
 #include "common/sea_lean.h"
@@ -44,6 +47,8 @@ typedef float real;
 #include "common/underwater_lamps_ms.h"
 #include "common/caustic_texture.h"
 #include "common/caustic_map.h"
+#include "common/sea_view.h"
+#include "common/sea_band_terms.h"
 #include "common/froxel.h"
 #include "common/path_tracer.h"
 #include "common/path_tracer_lamps.h"
@@ -58,6 +63,7 @@ typedef double real;
 #include "common/phase.h"
 #include "common/shafts.h"
 #include "common/shafts_intervals.h"
+#include "common/shafts_render.h"
 #include "common/sea_surface.h"
 #include "common/sea_waves.h"
 #include "common/sea_lean.h"
@@ -80,6 +86,8 @@ typedef double real;
 #include "common/underwater_lamps_ms.h"
 #include "common/caustic_texture.h"
 #include "common/caustic_map.h"
+#include "common/sea_view.h"
+#include "common/sea_band_terms.h"
 #include "common/froxel.h"
 #include "common/path_tracer.h"
 #include "common/path_tracer_lamps.h"

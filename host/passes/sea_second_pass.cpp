@@ -56,6 +56,39 @@ SeaSecondPass::Config SeaSecondPass::configFromScene(const Scene& scene) {
   return c;
 }
 
+namespace {
+
+// The bands' fields the second order reads (SeaBand): the sun, the water, the sensor's weights.
+std::vector<SeaBand> secondOrderBands(const std::vector<double>& sun_e, const BandOptics& water, const Sensor& sensor) {
+  std::vector<SeaBand> bands(sun_e.size());
+  for (size_t i = 0; i < bands.size(); ++i) {
+    SeaBand& b = bands[i];
+    b.sun_irradiance = static_cast<float>(sun_e[i]);
+    b.a = static_cast<float>(water.a[i]);
+    b.b = static_cast<float>(water.b[i]);
+    b.c = static_cast<float>(water.c[i]);
+    b.w_r = static_cast<float>(sensor.to_r[i]);
+    b.w_g = static_cast<float>(sensor.to_g[i]);
+    b.w_b = static_cast<float>(sensor.to_b[i]);
+  }
+  return bands;
+}
+
+// The height field's depth tables' cache key: the floor, the camera's map rays, the directions and the
+// table nodes (all in p), the kernel that computes them, the device, and how that kernel was built here
+// (tables computed under another build must not be read back: relaxed maths on Intel's runtime once
+// put them wrong, and the cache kept them).
+uint64_t depthTableKey(Device& device, const PassPlan& plan, const SeaSecondParams& p, const HeightField& floor) {
+  uint64_t key = fnv1a64(&p, sizeof p);
+  key = fnv1a64(&floor.params, sizeof floor.params, key);
+  key = fnv1a64(floor.depth.data(), sizeof(float) * floor.depth.size(), key);
+  key = fnv1a64(assembleKernelSource(plan.kernel_file).text, key);
+  key = fnv1a64(device.info().name + device.info().driver, key);
+  return fnv1a64(device.buildOptions(plan.defines), key);
+}
+
+}  // namespace
+
 SeaSecondPass::SeaSecondPass(Device& device, const Scene& scene, const PassPlan& plan, const Config& config,
                              const WavelengthGrid& grid, const Sensor& sensor, cl::Buffer& rgb, cl::Buffer* spectral)
     : device_(device), config_(config), width_(scene.camera.width), height_(scene.camera.height) {
@@ -105,17 +138,7 @@ SeaSecondPass::SeaSecondPass(Device& device, const Scene& scene, const PassPlan&
     p.table_c = static_cast<float>(std::max(c_min, 1e-6));
   }
   const std::vector<double> sun_e = sunIrradianceBands(grid, scene.sun.irradiance);
-  std::vector<SeaBand> bands(grid.centers_nm.size());
-  for (size_t i = 0; i < bands.size(); ++i) {
-    SeaBand& b = bands[i];
-    b.sun_irradiance = static_cast<float>(sun_e[i]);
-    b.a = static_cast<float>(water.a[i]);
-    b.b = static_cast<float>(water.b[i]);
-    b.c = static_cast<float>(water.c[i]);
-    b.w_r = static_cast<float>(sensor.to_r[i]);
-    b.w_g = static_cast<float>(sensor.to_g[i]);
-    b.w_b = static_cast<float>(sensor.to_b[i]);
-  }
+  std::vector<SeaBand> bands = secondOrderBands(sun_e, water, sensor);
 
   const size_t n_d = static_cast<size_t>(config_.n_theta) * config_.n_phi;
   const size_t M = static_cast<size_t>(config_.map_size);
@@ -163,14 +186,7 @@ SeaSecondPass::SeaSecondPass(Device& device, const Scene& scene, const PassPlan&
       accumulate_kernel_.setArg(args - 1, hf_depth_);
       // The tables depend on the floor, the camera's map rays, the directions and the table nodes
       // (all in p), and on the kernel that computes them: computed once, cached on disk by that key.
-      table_key_ = fnv1a64(&p, sizeof p);
-      table_key_ = fnv1a64(&floor.params, sizeof floor.params, table_key_);
-      table_key_ = fnv1a64(floor.depth.data(), sizeof(float) * floor.depth.size(), table_key_);
-      table_key_ = fnv1a64(assembleKernelSource(plan.kernel_file).text, table_key_);
-      table_key_ = fnv1a64(device.info().name + device.info().driver, table_key_);
-      // ... and on how that kernel was built here (tables computed under another build must not be
-      // read back: relaxed maths on Intel's runtime once put them wrong, and the cache kept them).
-      table_key_ = fnv1a64(device.buildOptions(plan.defines), table_key_);
+      table_key_ = depthTableKey(device, plan, p, floor);
       if (const auto cached = loadDepthTable(table_key_, table_count)) {
         device.queue().enqueueWriteBuffer(table_, CL_TRUE, 0, sizeof(float) * table_count, cached->data());
         table_ready_ = true;

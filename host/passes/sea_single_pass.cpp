@@ -63,29 +63,19 @@ double lutRead(const std::vector<double>& lut, double x) {
   return p1 + 0.5 * t * (p2 - p0 + t * (2 * p0 - 5 * p1 + 4 * p2 - p3 + t * (3 * (p1 - p2) + p3 - p0)));
 }
 
-}  // namespace
+// Sun direction from zenith and azimuth (azimuth from +x towards +z).
+Vec3 sunDirection(const Scene& scene) {
+  return Vec3{std::sin(scene.sun.zenith) * std::cos(scene.sun.azimuth), std::cos(scene.sun.zenith),
+              std::sin(scene.sun.zenith) * std::sin(scene.sun.azimuth)};
+}
 
-SeaSinglePass::SeaSinglePass(Device& device, const Scene& scene, const PassPlan& plan,
-                             const WavelengthGrid& grid, const Sensor& sensor, OceanPass* ocean,
-                             const SeaBottomCaustics* bottom_caustics)
-    : device_(device), width_(scene.camera.width), height_(scene.camera.height) {
-  const SeaSingleFeatures& features = plan.featuresAs<SeaSingleFeatures>();
-  const bool caustics = features.bottom_caustics;
-  if (caustics && !bottom_caustics) {
-    throw RuntimeError("sea_single pass: the plan has bottom caustics (SEASIM_BOTTOM_CAUSTICS=1) but no caustic map "
-                       "was given (the renderer makes it with seaBottomCaustics)");
-  }
-  const bool waves = features.waves;
-  if (waves && !ocean) {
-    throw RuntimeError("sea_single pass: the plan has FFT waves (SEASIM_HAS_WAVES=1) but no ocean normal map was "
-                       "given; run the ocean_fft pass first (the renderer does)");
-  }
+// The kernel's parameters but the sky's and the LUT's (ocean: the FFT waves, null without; bottom_caustics:
+// the caustic map, null without).
+SeaParams seaParams(const Scene& scene, const WavelengthGrid& grid, const Vec3& sun, OceanPass* ocean,
+                    const SeaBottomCaustics* bottom_caustics) {
   const CameraDesc& cam = scene.camera;
   SeaParams p{};
   setKernelCamera(p, cam);
-  // Sun direction from zenith and azimuth (azimuth from +x towards +z).
-  Vec3 sun{std::sin(scene.sun.zenith) * std::cos(scene.sun.azimuth), std::cos(scene.sun.zenith),
-           std::sin(scene.sun.zenith) * std::sin(scene.sun.azimuth)};
   set4(p.sun_dir, sun);
   p.tan_half_fov_y = static_cast<float>(std::tan(cam.fov_y / 2));
   p.aspect = static_cast<float>(cam.width) / static_cast<float>(cam.height);
@@ -100,22 +90,20 @@ SeaSinglePass::SeaSinglePass(Device& device, const Scene& scene, const PassPlan&
   p.width = cam.width;
   p.height = cam.height;
   p.band_count = static_cast<int>(grid.centers_nm.size());
-  p.ocean_patch = waves ? static_cast<float>(ocean->patchSize()) : 1.0f;
-  p.ocean_n = waves ? ocean->n() : 1;
-  if (caustics) {
+  p.ocean_patch = ocean ? static_cast<float>(ocean->patchSize()) : 1.0f;
+  p.ocean_n = ocean ? ocean->n() : 1;
+  if (bottom_caustics) {
     p.caustic_map_size = bottom_caustics->map_size;
     p.caustic_extent = static_cast<float>(bottom_caustics->extent);
     p.caustic_origin = static_cast<float>(bottom_caustics->origin);
   }
-  // The sky through the one sky interface (host/sky): its shape for the kernel, its level per band.
-  const SkyLight light = makeSkyLight(scene, grid);
-  const SeaSky& sky = light.shape;
-  p.sky_width = sky.width;
-  p.sky_height = sky.height;
-  p.sky_scale = static_cast<float>(sky.scale);
+  return p;
+}
 
-  const BandOptics water = resolveWater(scene.water, grid);
-  const std::vector<double> sun_e = sunIrradianceBands(grid, scene.sun.irradiance);
+// Each band's radiometry, water and sensor weights (SeaBand), from the sky's level and shape.
+std::vector<SeaBand> seaBands(const Scene& scene, const WavelengthGrid& grid, const Sensor& sensor,
+                              const BandOptics& water, const std::vector<double>& sun_e, const SkyLight& light) {
+  const SeaSky& sky = light.shape;
   const std::vector<double>& sky_l = light.level;  // the uniform level: D65 shape
   std::vector<SeaBand> bands(grid.centers_nm.size());
   for (size_t i = 0; i < bands.size(); ++i) {
@@ -134,62 +122,98 @@ SeaSinglePass::SeaSinglePass(Device& device, const Scene& scene, const PassPlan&
     b.sky_w_b = static_cast<float>(sky.band_weights[i][2]);
   }
 
-  // The LUT over theta_jo (theta_ji with waves) of 000 eq. 5 (quality.sea_lut_size). The parser takes positive sizes or
-  // "auto": auto doubles the size from 16 until the interpolation is within 1e-4 (relative to the
-  // band's largest entry) of the exact factors everywhere; size 1 asks for the exact evaluation
-  // (SEASIM_SEA_LUT=0), as a one-entry table could not follow theta_jo at all.
-  std::vector<float> lut_values(1, 0.0f);
-  int lut_size = 1;
-  {
-    const auto knob = scene.quality.find("sea_lut_size");
-    // 000 §5.4: over a height-field bottom z_Q changes from pixel to pixel, so eq. 5 is evaluated
-    // exactly (a table over the angle alone cannot hold it).
-    const bool height_field = scene.bottom.type == BottomDesc::Type::HeightField;
-    // sea.model = "multiple" evaluates eq. 5 exactly too: its depth factor is not eq. 5's.
-    const bool exact = height_field || scene.sea.model == SeaDesc::Model::Multiple;
-    const bool automatic = !exact && knob != scene.quality.end() && knob->second.automatic;
-    lut_size = exact ? 1
-               : automatic  ? 16
-                            : (knob != scene.quality.end() ? static_cast<int>(knob->second.value) : 64);
-    const kd::real3 sun_d{sun.x, sun.y, sun.z};
-    double t_in = 0, cos_io = 1, e_h = 0;
-    if (sun.y > 0) {
-      t_in = 1 - kd::fresnel_reflectance(sun.y, 1.0, scene.water.ior);
-      e_h = sun.y;
-      kd::real3 sun_in_water{};
-      kd::refract_dir(-sun_d, kd::real3{0, 1, 0}, 1.0 / scene.water.ior, &sun_in_water);
-      cos_io = std::max(-sun_in_water.y, 1e-4);
-    }
-    const double c_f = kd::hg_forward_fraction(scene.water.g);
-    const double z_d = scene.bottom.type == BottomDesc::Type::Flat ? scene.bottom.depth : -1.0;
-    auto build = [&](int n) {
-      std::vector<std::vector<double>> per_band;
-      for (size_t i = 0; i < bands.size(); ++i) {
-        const double c = water.c[i], albedo = c > 0 ? water.b[i] / c : 0.0;
-        per_band.push_back(
-            singleScatteringLut(n, sun_e[i] * e_h, t_in, c, albedo, c_f, cos_io, z_d, scene.water.ior, waves));
-      }
-      return per_band;
-    };
-    std::vector<std::vector<double>> tables = lut_size > 1 ? build(lut_size) : std::vector<std::vector<double>>{};
-    while (automatic && lut_size < 4096) {
-      double worst = 0;
-      const std::vector<std::vector<double>> fine = build(4 * (lut_size - 1) + 1);  // 3 points between entries
-      for (size_t i = 0; i < tables.size(); ++i) {
-        const double peak = *std::max_element(tables[i].begin(), tables[i].end());
-        for (size_t q = 0; q < fine[i].size(); ++q)
-          worst = std::max(worst, std::fabs(lutRead(tables[i], q / 4.0) - fine[i][q]) / std::max(peak, 1e-30));
-      }
-      if (worst < 1e-4) break;
-      lut_size = 2 * (lut_size - 1) + 1;
-      tables = build(lut_size);
-    }
-    if (lut_size > 1) {
-      lut_values.clear();
-      for (const auto& t : tables)
-        for (double v : t) lut_values.push_back(static_cast<float>(v));
-    }
+  return bands;
+}
+
+// The LUT over theta_jo (theta_ji with waves) of 000 eq. 5 (quality.sea_lut_size), its entries per band
+// into lut_values; returns its size. The parser takes positive sizes or "auto": auto doubles the size from
+// 16 until the interpolation is within 1e-4 (relative to the band's largest entry) of the exact factors
+// everywhere; size 1 asks for the exact evaluation (SEASIM_SEA_LUT=0), as a one-entry table could not
+// follow theta_jo at all.
+int singleScatteringTable(const Scene& scene, const WavelengthGrid& grid, const Vec3& sun, const BandOptics& water,
+                          const std::vector<double>& sun_e, bool waves, std::vector<float>& lut_values) {
+  const auto knob = scene.quality.find("sea_lut_size");
+  // 000 §5.4: over a height-field bottom z_Q changes from pixel to pixel, so eq. 5 is evaluated
+  // exactly (a table over the angle alone cannot hold it).
+  const bool height_field = scene.bottom.type == BottomDesc::Type::HeightField;
+  // sea.model = "multiple" evaluates eq. 5 exactly too: its depth factor is not eq. 5's.
+  const bool exact = height_field || scene.sea.model == SeaDesc::Model::Multiple;
+  const bool automatic = !exact && knob != scene.quality.end() && knob->second.automatic;
+  int lut_size = exact ? 1
+                 : automatic  ? 16
+                              : (knob != scene.quality.end() ? static_cast<int>(knob->second.value) : 64);
+  const kd::real3 sun_d{sun.x, sun.y, sun.z};
+  double t_in = 0, cos_io = 1, e_h = 0;
+  if (sun.y > 0) {
+    t_in = 1 - kd::fresnel_reflectance(sun.y, 1.0, scene.water.ior);
+    e_h = sun.y;
+    kd::real3 sun_in_water{};
+    kd::refract_dir(-sun_d, kd::real3{0, 1, 0}, 1.0 / scene.water.ior, &sun_in_water);
+    cos_io = std::max(-sun_in_water.y, 1e-4);
   }
+  const double c_f = kd::hg_forward_fraction(scene.water.g);
+  const double z_d = scene.bottom.type == BottomDesc::Type::Flat ? scene.bottom.depth : -1.0;
+  auto build = [&](int n) {
+    std::vector<std::vector<double>> per_band;
+    for (size_t i = 0; i < grid.centers_nm.size(); ++i) {
+      const double c = water.c[i], albedo = c > 0 ? water.b[i] / c : 0.0;
+      per_band.push_back(
+          singleScatteringLut(n, sun_e[i] * e_h, t_in, c, albedo, c_f, cos_io, z_d, scene.water.ior, waves));
+    }
+    return per_band;
+  };
+  std::vector<std::vector<double>> tables = lut_size > 1 ? build(lut_size) : std::vector<std::vector<double>>{};
+  while (automatic && lut_size < 4096) {
+    double worst = 0;
+    const std::vector<std::vector<double>> fine = build(4 * (lut_size - 1) + 1);  // 3 points between entries
+    for (size_t i = 0; i < tables.size(); ++i) {
+      const double peak = *std::max_element(tables[i].begin(), tables[i].end());
+      for (size_t q = 0; q < fine[i].size(); ++q)
+        worst = std::max(worst, std::fabs(lutRead(tables[i], q / 4.0) - fine[i][q]) / std::max(peak, 1e-30));
+    }
+    if (worst < 1e-4) break;
+    lut_size = 2 * (lut_size - 1) + 1;
+    tables = build(lut_size);
+  }
+  if (lut_size > 1) {
+    lut_values.clear();
+    for (const auto& t : tables)
+      for (double v : t) lut_values.push_back(static_cast<float>(v));
+  }
+  return lut_size;
+}
+
+}  // namespace
+
+SeaSinglePass::SeaSinglePass(Device& device, const Scene& scene, const PassPlan& plan,
+                             const WavelengthGrid& grid, const Sensor& sensor, OceanPass* ocean,
+                             const SeaBottomCaustics* bottom_caustics)
+    : device_(device), width_(scene.camera.width), height_(scene.camera.height) {
+  const SeaSingleFeatures& features = plan.featuresAs<SeaSingleFeatures>();
+  const bool caustics = features.bottom_caustics;
+  if (caustics && !bottom_caustics) {
+    throw RuntimeError("sea_single pass: the plan has bottom caustics (SEASIM_BOTTOM_CAUSTICS=1) but no caustic map "
+                       "was given (the renderer makes it with seaBottomCaustics)");
+  }
+  const bool waves = features.waves;
+  if (waves && !ocean) {
+    throw RuntimeError("sea_single pass: the plan has FFT waves (SEASIM_HAS_WAVES=1) but no ocean normal map was "
+                       "given; run the ocean_fft pass first (the renderer does)");
+  }
+  const Vec3 sun = sunDirection(scene);
+  SeaParams p = seaParams(scene, grid, sun, waves ? ocean : nullptr, caustics ? bottom_caustics : nullptr);
+  // The sky through the one sky interface (host/sky): its shape for the kernel, its level per band.
+  const SkyLight light = makeSkyLight(scene, grid);
+  const SeaSky& sky = light.shape;
+  p.sky_width = sky.width;
+  p.sky_height = sky.height;
+  p.sky_scale = static_cast<float>(sky.scale);
+
+  const BandOptics water = resolveWater(scene.water, grid);
+  const std::vector<double> sun_e = sunIrradianceBands(grid, scene.sun.irradiance);
+  std::vector<SeaBand> bands = seaBands(scene, grid, sensor, water, sun_e, light);
+  std::vector<float> lut_values(1, 0.0f);
+  const int lut_size = singleScatteringTable(scene, grid, sun, water, sun_e, waves, lut_values);
   p.lut_size = lut_size;
   // SEASIM_SEA_LUT is set here rather than by the planner: it follows a quality knob of this pass.
   std::vector<std::string> defines = plan.defines;

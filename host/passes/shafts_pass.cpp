@@ -43,6 +43,126 @@ int knob(const Scene& scene, const char* name, int fallback) {
   return static_cast<int>(it->second.value);
 }
 
+ShaftsParams shaftsParams(const Scene& scene, const ShaftsPass::Config& config, const ShaftsRange& range,
+                          int light_count) {
+  const CameraDesc& cam = scene.camera;
+  ShaftsParams p{};
+  setKernelCamera(p, cam);
+  p.tan_half_fov_y = static_cast<float>(std::tan(cam.fov_y / 2));
+  p.aspect = static_cast<float>(cam.width) / static_cast<float>(cam.height);
+  const double rho = scene.air.density, sigma_t = scene.air.density * scene.air.extinction;
+  p.rho = static_cast<float>(rho);
+  p.sigma_t = static_cast<float>(sigma_t);
+  p.hg_g = static_cast<float>(scene.air.g);
+  p.s_min = static_cast<float>(kShaftsLampRadius);
+  p.table_s_max = static_cast<float>(range.s_max);
+  p.table_t_max = static_cast<float>(range.t_max);
+  p.panel_rad = static_cast<float>(config.panel_deg * M_PI / 180);
+  p.map_panel_texels = static_cast<float>(config.panel_texels);
+  p.width = cam.width;
+  p.height = cam.height;
+  p.light_count = light_count;
+  p.object_count = static_cast<int>(scene.objects.size());
+  p.planes = config.planes;
+  p.subplanes = config.subplanes;
+  p.shadow_map_size = config.shadow_map_size;
+  p.table_size = config.table_size;
+  return p;
+}
+
+// The lights, their light maps (appended to maps, one float RGB buffer) and shadow-map offsets.
+std::vector<ShaftsLight> shaftsLights(const Scene& scene, int shadow_map_size, std::vector<float>& maps) {
+  std::vector<ShaftsLight> lights(scene.spotlights.size());
+  for (size_t i = 0; i < lights.size(); ++i) {
+    const SpotlightDesc& l = scene.spotlights[i];
+    ShaftsLight& L = lights[i];
+    Vec3 lr, lu;
+    shaftsLightBasis(l, lr, lu);
+    set4(L.position, l.position);
+    set4(L.direction, normalize(l.direction));
+    set4(L.right, lr);
+    set4(L.up, lu);
+    set4(L.color, shaftsLampRgb(l, scene.spectral, scene.files.get()));  // spectral/lamp_spectrum.h
+    L.cos_cone = static_cast<float>(std::cos(l.cone));
+    L.cos_inner = static_cast<float>(std::cos(std::max(0.0, l.cone - l.falloff)));
+    L.tan_cone = static_cast<float>(std::tan(l.cone));
+    L.light_map_offset = -1;
+    if (!l.light_map.empty()) {
+      const LightMap map = loadLightMap(l.light_map, scene.files.get());
+      L.light_map_offset = static_cast<int>(maps.size());
+      L.light_map_width = map.width;
+      L.light_map_height = map.height;
+      maps.insert(maps.end(), map.rgb.begin(), map.rgb.end());
+    }
+    L.shadow_offset = static_cast<int>(i) * shadow_map_size * shadow_map_size;
+  }
+  return lights;
+}
+
+std::vector<ShaftsObject> shaftsObjects(const Scene& scene) {
+  std::vector<ShaftsObject> objects;
+  for (const ObjectDesc& o : scene.objects) {
+    ShaftsObject ob{};
+    set4(ob.albedo, objectAlbedoRgb(o));
+    if (o.type == ObjectDesc::Type::Sphere) {
+      ob.type = SHAFTS_SPHERE;
+      set4(ob.a, o.center, o.radius);
+    } else if (o.type == ObjectDesc::Type::Box) {
+      ob.type = SHAFTS_BOX;
+      set4(ob.a, o.box_min);
+      set4(ob.b, o.box_max);
+    } else if (o.type == ObjectDesc::Type::Plane) {
+      ob.type = SHAFTS_PLANE;
+      set4(ob.a, o.point);
+      set4(ob.b, normalize(o.normal));
+    } else {
+      throw RuntimeError(o.loc.file + ":" + std::to_string(o.loc.line) +
+                         ": height-field objects are not supported in spotlight (shafts) scenes yet");
+    }
+    objects.push_back(ob);
+  }
+  return objects;
+}
+
+// Intervals method: each object's shadow volume from each lamp, in double, then float
+// (kernels/common/shafts_intervals.h), indexed [light * object_count + object].
+std::vector<ShaftsOccluder> shaftsOccluders(const Scene& scene) {
+  std::vector<ShaftsOccluder> occluders(scene.spotlights.size() * scene.objects.size(), ShaftsOccluder{});
+  for (size_t i = 0; i < scene.spotlights.size(); ++i) {
+    const kmath_d::real3 lamp = toReal3(scene.spotlights[i].position);
+    for (size_t k = 0; k < scene.objects.size(); ++k) {
+      const ObjectDesc& o = scene.objects[k];
+      kmath_d::ShaftsShadowVolume v;
+      if (o.type == ObjectDesc::Type::Sphere) v = kmath_d::shafts_sphere_shadow(lamp, toReal3(o.center), o.radius);
+      else if (o.type == ObjectDesc::Type::Box) v = kmath_d::shafts_box_shadow(lamp, toReal3(o.box_min), toReal3(o.box_max));
+      else v = kmath_d::shafts_plane_shadow(lamp, toReal3(o.point), toReal3(normalize(o.normal)));
+      ShaftsOccluder& oc = occluders[i * scene.objects.size() + k];
+      for (int j = 0; j < v.plane_count; ++j)
+        set4(oc.planes[j], Vec3{v.n[j].x, v.n[j].y, v.n[j].z}, v.b[j]);
+      set4(oc.apex, Vec3{v.apex.x, v.apex.y, v.apex.z});
+      set4(oc.axis, Vec3{v.axis.x, v.axis.y, v.axis.z}, v.cos_cone);
+      oc.plane_count = v.plane_count;
+      oc.has_cone = v.has_cone;
+      oc.always = v.always;
+    }
+  }
+  return occluders;
+}
+
+// 001 eq. 6 tables: F over α ∈ [0, π]; ĥ = s² h = ρ exp(-ρκ(s + t)) over [0, s_max] x [0, t_max].
+void shaftsTables(int n, const ShaftsRange& range, double rho, double sigma_t, bool use_hg, double g,
+                  std::vector<float>& f_table, std::vector<float>& h_table) {
+  for (int i = 0; i < n; ++i) {
+    const double alpha = M_PI * i / (n - 1);
+    f_table[i] = static_cast<float>(kmath_d::shafts_phase_fn(std::cos(alpha), use_hg, g));
+  }
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const double s = range.s_max * i / (n - 1), t = range.t_max * j / (n - 1);
+      h_table[size_t(j) * n + i] = static_cast<float>(kmath_d::shafts_h_scaled(s, t, rho, sigma_t));
+    }
+}
+
 }  // namespace
 
 ShaftsPass::Config ShaftsPass::configFromScene(const Scene& scene) {
@@ -85,121 +205,21 @@ ShaftsPass::ShaftsPass(Device& device, const Scene& scene, const PassPlan& plan,
     throw RuntimeError("shafts: panel width and panel texels must be positive");
   }
 
-  const CameraDesc& cam = scene.camera;
-  ShaftsParams p{};
-  setKernelCamera(p, cam);
-  p.tan_half_fov_y = static_cast<float>(std::tan(cam.fov_y / 2));
-  p.aspect = static_cast<float>(cam.width) / static_cast<float>(cam.height);
-  const double rho = scene.air.density, sigma_t = scene.air.density * scene.air.extinction;
-  p.rho = static_cast<float>(rho);
-  p.sigma_t = static_cast<float>(sigma_t);
-  p.hg_g = static_cast<float>(scene.air.g);
-  p.s_min = static_cast<float>(kShaftsLampRadius);
-  p.table_s_max = static_cast<float>(range_.s_max);
-  p.table_t_max = static_cast<float>(range_.t_max);
-  p.panel_rad = static_cast<float>(config.panel_deg * M_PI / 180);
-  p.map_panel_texels = static_cast<float>(config.panel_texels);
-  p.width = cam.width;
-  p.height = cam.height;
-  p.light_count = light_count_;
-  p.object_count = static_cast<int>(scene.objects.size());
-  p.planes = config.planes;
-  p.subplanes = config.subplanes;
-  p.shadow_map_size = config.shadow_map_size;
-  p.table_size = config.table_size;
-
-  // Lights, their light maps (one float RGB buffer) and shadow-map offsets.
-  std::vector<ShaftsLight> lights(scene.spotlights.size());
-  std::vector<float> maps;
-  for (size_t i = 0; i < lights.size(); ++i) {
-    const SpotlightDesc& l = scene.spotlights[i];
-    ShaftsLight& L = lights[i];
-    Vec3 lr, lu;
-    shaftsLightBasis(l, lr, lu);
-    set4(L.position, l.position);
-    set4(L.direction, normalize(l.direction));
-    set4(L.right, lr);
-    set4(L.up, lu);
-    set4(L.color, shaftsLampRgb(l, scene.spectral, scene.files.get()));  // spectral/lamp_spectrum.h
-    L.cos_cone = static_cast<float>(std::cos(l.cone));
-    L.cos_inner = static_cast<float>(std::cos(std::max(0.0, l.cone - l.falloff)));
-    L.tan_cone = static_cast<float>(std::tan(l.cone));
-    L.light_map_offset = -1;
-    if (!l.light_map.empty()) {
-      const LightMap map = loadLightMap(l.light_map, scene.files.get());
-      L.light_map_offset = static_cast<int>(maps.size());
-      L.light_map_width = map.width;
-      L.light_map_height = map.height;
-      maps.insert(maps.end(), map.rgb.begin(), map.rgb.end());
-    }
-    L.shadow_offset = static_cast<int>(i) * config.shadow_map_size * config.shadow_map_size;
-  }
+  const ShaftsParams p = shaftsParams(scene, config, range_, light_count_);
+  std::vector<float> maps;  // the light maps, one float RGB buffer
+  const std::vector<ShaftsLight> lights = shaftsLights(scene, config.shadow_map_size, maps);
   if (!maps.empty() && !features.light_map) {
     throw RuntimeError("shafts: the plan has no light_map feature (SEASIM_HAS_LIGHT_MAP) but a spotlight has a light map");
   }
-
-  std::vector<ShaftsObject> objects;
-  for (const ObjectDesc& o : scene.objects) {
-    ShaftsObject ob{};
-    set4(ob.albedo, objectAlbedoRgb(o));
-    if (o.type == ObjectDesc::Type::Sphere) {
-      ob.type = SHAFTS_SPHERE;
-      set4(ob.a, o.center, o.radius);
-    } else if (o.type == ObjectDesc::Type::Box) {
-      ob.type = SHAFTS_BOX;
-      set4(ob.a, o.box_min);
-      set4(ob.b, o.box_max);
-    } else if (o.type == ObjectDesc::Type::Plane) {
-      ob.type = SHAFTS_PLANE;
-      set4(ob.a, o.point);
-      set4(ob.b, normalize(o.normal));
-    } else {
-      throw RuntimeError(o.loc.file + ":" + std::to_string(o.loc.line) +
-                         ": height-field objects are not supported in spotlight (shafts) scenes yet");
-    }
-    objects.push_back(ob);
-  }
-
-  // Intervals method: each object's shadow volume from each lamp, in double, then float
-  // (kernels/common/shafts_intervals.h), indexed [light * object_count + object].
-  std::vector<ShaftsOccluder> occluders(1, ShaftsOccluder{});
-  if (intervals_ && !scene.objects.empty()) {
-    occluders.assign(scene.spotlights.size() * scene.objects.size(), ShaftsOccluder{});
-    for (size_t i = 0; i < scene.spotlights.size(); ++i) {
-      const kmath_d::real3 lamp = toReal3(scene.spotlights[i].position);
-      for (size_t k = 0; k < scene.objects.size(); ++k) {
-        const ObjectDesc& o = scene.objects[k];
-        kmath_d::ShaftsShadowVolume v;
-        if (o.type == ObjectDesc::Type::Sphere) v = kmath_d::shafts_sphere_shadow(lamp, toReal3(o.center), o.radius);
-        else if (o.type == ObjectDesc::Type::Box) v = kmath_d::shafts_box_shadow(lamp, toReal3(o.box_min), toReal3(o.box_max));
-        else v = kmath_d::shafts_plane_shadow(lamp, toReal3(o.point), toReal3(normalize(o.normal)));
-        ShaftsOccluder& oc = occluders[i * scene.objects.size() + k];
-        for (int j = 0; j < v.plane_count; ++j)
-          set4(oc.planes[j], Vec3{v.n[j].x, v.n[j].y, v.n[j].z}, v.b[j]);
-        set4(oc.apex, Vec3{v.apex.x, v.apex.y, v.apex.z});
-        set4(oc.axis, Vec3{v.axis.x, v.axis.y, v.axis.z}, v.cos_cone);
-        oc.plane_count = v.plane_count;
-        oc.has_cone = v.has_cone;
-        oc.always = v.always;
-      }
-    }
-  }
-
-  // 001 eq. 6 tables: F over α ∈ [0, π]; ĥ = s² h = ρ exp(-ρκ(s + t)) over [0, s_max] x [0, t_max].
+  const std::vector<ShaftsObject> objects = shaftsObjects(scene);
+  const std::vector<ShaftsOccluder> occluders =
+      intervals_ && !scene.objects.empty() ? shaftsOccluders(scene) : std::vector<ShaftsOccluder>(1, ShaftsOccluder{});
+  // 001 eq. 6 tables: the intervals method evaluates g exactly.
+  const bool tables = !exact && !intervals_;
   const int n = config.table_size;
-  const bool tables = !exact && !intervals_;  // the intervals method evaluates g exactly
   std::vector<float> f_table(tables ? n : 1), h_table(tables ? size_t(n) * n : 1);
-  if (tables) {
-    for (int i = 0; i < n; ++i) {
-      const double alpha = M_PI * i / (n - 1);
-      f_table[i] = static_cast<float>(kmath_d::shafts_phase_fn(std::cos(alpha), use_hg, scene.air.g));
-    }
-    for (int j = 0; j < n; ++j)
-      for (int i = 0; i < n; ++i) {
-        const double s = range_.s_max * i / (n - 1), t = range_.t_max * j / (n - 1);
-        h_table[size_t(j) * n + i] = static_cast<float>(kmath_d::shafts_h_scaled(s, t, rho, sigma_t));
-      }
-  }
+  if (tables) shaftsTables(n, range_, scene.air.density, scene.air.density * scene.air.extinction, use_hg, scene.air.g,
+                           f_table, h_table);
 
   const size_t pixels = static_cast<size_t>(width_) * static_cast<size_t>(height_);
   const size_t shadow_texels = has_objects_ && !intervals_ ? size_t(light_count_) * shadow_size_ * shadow_size_ : 1;

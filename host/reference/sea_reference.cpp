@@ -64,6 +64,295 @@ double qualityValue(const Scene& scene, const char* name, double fallback) {
 
 }  // namespace
 
+namespace {
+
+// What every pixel of the reference shares: the scene's bands, camera, sun, floor, waves and sky.
+struct SeaReferenceScene {
+  const Scene* scene = nullptr;
+  int steps = 0;
+  WavelengthGrid grid;
+  Sensor sensor;
+  BandOptics water;
+  std::vector<double> sun_e, sky_l;  // the sky's uniform level: D65 shape
+  size_t bands = 0;
+  Vec3 fwd, right, up;
+  double tan_half = 0, aspect = 1;
+  k::real3 sun{};
+  bool has_sun = false;
+  double cos_sun_radius = 1, sun_solid_angle = 0, ior = 1, g = 0;
+  bool bottom = false, height_field = false;
+  HeightField floor;
+  double floor_step = 0;
+  bool waves = false, filter = false, multiple = false;
+  std::vector<double> normals, mips;
+  OceanConfig ocean_config;
+  int supersample = 1;
+  double pixel_angle = 0, sun_slope_variance = 0;
+  SeaSky sea_sky;
+  double sky_fresnel = 0, mu_sky = 0, r_below = 0, mu_ret = 0;
+
+  // The sky's shape towards d (common/sky.h).
+  k::real3 shape(k::real3 d) const {
+    if (sea_sky.model == 1) {
+      const double s = sea_sky.scale * k::sky_cie_clear_shape(d, sun);
+      return {s, s, s};
+    }
+    if (sea_sky.model == 2) return k::sky_latlong_rgb(sea_sky.texels.data(), sea_sky.width, sea_sky.height, d) * sea_sky.scale;
+    if (sea_sky.model == 3) return k::sky_preetham_daylight(sea_sky.texels.data(), d, sun) * sea_sky.scale;
+    return {1, 1, 1};
+  }
+  // Band i's sky radiance for shape s, then with the sun's disk along d.
+  double skyOnly(size_t i, k::real3 s) const {
+    const auto& w = sea_sky.band_weights[i];
+    return sea_sky.model >= 2 ? sky_l[i] * std::max(w[0] * s.x + w[1] * s.y + w[2] * s.z, 0.0) : sky_l[i] * s.x;
+  }
+  double sky(size_t i, k::real3 s, k::real3 d) const {
+    double L = skyOnly(i, s);
+    if (has_sun && sun_solid_angle > 0 && k::dot(d, sun) >= cos_sun_radius) L += sun_e[i] / sun_solid_angle;
+    return L;
+  }
+};
+
+SeaReferenceScene seaReferenceScene(const Scene& scene, int steps) {
+  SeaReferenceScene r;
+  r.scene = &scene;
+  r.steps = steps;
+  r.grid = makeGrid(scene.spectral.count, scene.spectral.min_nm, scene.spectral.max_nm);
+  r.sensor = makeSensor(scene.spectral.sensor, r.grid, scene.spectral.white_balance, scene.spectral.camera_dir);
+  r.water = resolveWater(scene.water, r.grid);
+  r.sun_e = sunIrradianceBands(r.grid, scene.sun.irradiance);
+  r.sky_l = sunIrradianceBands(r.grid, scene.sky.radiance);
+  r.bands = r.grid.centers_nm.size();
+  const CameraDesc& cam = scene.camera;
+  r.fwd = normalize(cam.look_at - cam.position);
+  r.right = normalize(cross(r.fwd, cam.up));
+  r.up = cross(r.right, r.fwd);
+  r.tan_half = std::tan(cam.fov_y / 2), r.aspect = double(cam.width) / cam.height;
+  r.sun = k::real3{std::sin(scene.sun.zenith) * std::cos(scene.sun.azimuth), std::cos(scene.sun.zenith),
+                   std::sin(scene.sun.zenith) * std::sin(scene.sun.azimuth)};
+  r.has_sun = scene.sun.enabled && scene.sun.irradiance > 0;
+  r.cos_sun_radius = std::cos(scene.sun.angular_radius);
+  r.sun_solid_angle = 2 * M_PI * (1 - r.cos_sun_radius);
+  r.ior = scene.water.ior, r.g = scene.water.g;
+  r.bottom = scene.bottom.type == BottomDesc::Type::Flat;
+  // 000 §5.4: a height-field floor, met by a fine march (sea_floor_reference.h) independent of the
+  // kernels' cell walk, in steps of 1/64 of a cell.
+  r.height_field = scene.bottom.type == BottomDesc::Type::HeightField;
+  if (r.height_field) {
+    r.floor = loadHeightField(scene.bottom, scene.files.get());
+    r.floor_step = r.floor.params.extent / std::max(r.floor.params.nx, r.floor.params.ny) / 64.0;
+  }
+  // FFT waves: the same ocean evaluated on the CPU in double (ocean_cpu.h), its normal map read as the
+  // kernel reads OceanPass's (common/sea_waves.h: mean-surface hit, bilinear, wrap-around).
+  r.waves = scene.surface.type == SurfaceDesc::Type::Fft;
+  if (r.waves) {
+    r.ocean_config = oceanConfigFromSurface(scene.surface);
+    OceanCpu ocean(r.ocean_config, OceanCpu::Precision::Double);
+    ocean.run(scene.surface.time);
+    r.normals = ocean.normal();
+  }
+  // The wave filter (common/sea_lean.h) as the kernel runs it, or its reference: n x n rays per pixel.
+  r.supersample = static_cast<int>(qualityValue(scene, "sea_supersample", 1));
+  r.filter = r.waves && qualityValue(scene, "wave_filter", 1) != 0 && r.supersample == 1;
+  if (r.filter) r.mips = slopeMomentMips(r.normals, r.ocean_config.grid);
+  r.pixel_angle = 2 * r.tan_half / cam.height;
+  r.sun_slope_variance = scene.sun.angular_radius * scene.sun.angular_radius / 16;
+  const double sun_dir[3] = {r.sun.x, r.sun.y, r.sun.z};
+  r.sea_sky = makeSeaSky(scene.sky, sun_dir, r.grid, scene.files.get());
+  r.multiple = scene.sea.model == SeaDesc::Model::Multiple;
+  r.sky_fresnel = skyFresnelMean(r.ior), r.mu_sky = k::sea_sky_mean_cosine(r.ior);
+  r.r_below = k::sea_surface_reflectance_below(r.sky_fresnel, r.ior);
+  r.mu_ret = k::sea_reflected_mean_cosine(r.r_below, r.ior);
+  return r;
+}
+
+// One ray below the horizon: where it meets the surface, the sun's entry and the floor.
+struct SeaReferenceRay {
+  k::real3 n{0, 1, 0};
+  double R_view = 0, cos_ji = 0, glint = 0;
+  k::real3 reflected{}, view_in_water{}, reflected_shape{};
+  std::vector<k::real3> node_dirs;  // the filter's facets: reflected directions and Fresnel weights
+  std::vector<double> node_weights;
+  double t_in = 0, cos_io = 1, cos_alpha = 1, e_h = 0, phase = 0, c_f = 0, t_out = 0;
+  double z_floor = -1, cos_gamma = 1;
+};
+
+// The filter: the footprint's statistics, the facets' Fresnel-weighted sky (3 x 3 nodes) and the glint,
+// as kernels/sea_single.cl with SEASIM_WAVE_FILTER; returns R_mean.
+double filteredFacets(const SeaReferenceScene& r, k::real3 d, SeaReferenceRay& ray) {
+  const CameraDesc& cam = r.scene->camera;
+  const double t_hit = k::sea_mean_surface_distance(cam.position.y, d);
+  const k::real3 fw{r.fwd.x, r.fwd.y, r.fwd.z};
+  const double minor = t_hit * r.pixel_angle * std::max(k::dot(d, fw), 0.1);
+  const double major = minor / std::max(-d.y, 1e-6);
+  const double horizontal = std::sqrt(d.x * d.x + d.z * d.z);
+  const double dir_x = horizontal > 1e-6 ? d.x / horizontal : 1.0, dir_z = horizontal > 1e-6 ? d.z / horizontal : 0.0;
+  double st[SEA_LEAN_STRIDE];
+  k::sea_lean_footprint(r.mips.data(), r.ocean_config.grid, r.ocean_config.patch_size, cam.position.x + t_hit * d.x,
+                        cam.position.z + t_hit * d.z, dir_x, dir_z, minor, major, st);
+  double cxx, czz, cxz, l11, l21, l22;
+  k::sea_lean_covariance(st[2], st[3], st[4], r.sun_slope_variance, &cxx, &czz, &cxz, &l11, &l21, &l22);
+  ray.n = k::sea_facing_normal(d, k::sea_lean_normal(st[0], st[1]));
+  const k::SeaLeanRule rule = k::sea_lean_rule(d, st[0], st[1], l11, l21, l22);
+  double R_mean = rule.back;  // facets turned away: F = 1 towards the horizon's sky
+  ray.node_weights.push_back(rule.back);
+  ray.node_dirs.push_back(k::sea_sky_direction(d));
+  for (int q = 0; q < k::sea_lean_rule_nodes(&rule); ++q) {
+    double sx, sz;
+    const double w = k::sea_lean_rule_node(&rule, q, &sx, &sz);
+    const k::real3 nk = k::sea_facing_normal(d, k::sea_lean_normal(sx, sz));
+    const double wf = w * k::fresnel_reflectance(-k::dot(d, nk), 1.0, r.ior);
+    R_mean += wf;
+    ray.node_weights.push_back(wf);
+    ray.node_dirs.push_back(k::sea_sky_direction(k::reflect_dir(d, nk)));
+  }
+  if (r.has_sun && r.sun.y > 0 && r.sun_solid_angle > 0)
+    ray.glint = k::sea_lean_glint(d, r.sun, r.ior, st[0], st[1], cxx, czz, cxz);
+  return R_mean;
+}
+
+// The floor along the refracted view ray: z_Q and cos(gamma) (000 §5.4); flat: z_d, cos_io.
+void floorAlong(const SeaReferenceScene& r, k::real3 d, SeaReferenceRay& ray) {
+  const CameraDesc& cam = r.scene->camera;
+  ray.z_floor = r.bottom ? r.scene->bottom.depth : -1.0, ray.cos_gamma = ray.cos_io;
+  if (!r.height_field) return;
+  const double t_p = cam.position.y / -d.y;  // P on the mean surface
+  const double o[3] = {cam.position.x + t_p * d.x, 0.0, cam.position.z + t_p * d.z};
+  const double v[3] = {ray.view_in_water.x, ray.view_in_water.y, ray.view_in_water.z};
+  const double t_q = ray.view_in_water.y < 0 ? fineMarchFloor(r.floor, o, v, 1e30, r.floor_step) : 0.0;
+  ray.z_floor = std::max(-ray.view_in_water.y, 0.0) * std::max(t_q, 0.0);
+  double nq[3];
+  floorNormalAt(r.floor, o[0] + t_q * v[0], o[2] + t_q * v[2], nq);
+  ray.cos_gamma = 0;
+  if (ray.e_h > 0) {
+    k::real3 sun_travel{};
+    k::refract_dir(-r.sun, k::real3{0, 1, 0}, 1.0 / r.ior, &sun_travel);
+    ray.cos_gamma = std::max(-(nq[0] * sun_travel.x + nq[1] * sun_travel.y + nq[2] * sun_travel.z), 0.0);
+  }
+}
+
+SeaReferenceRay traceBelowHorizon(const SeaReferenceScene& r, k::real3 d) {
+  const CameraDesc& cam = r.scene->camera;
+  SeaReferenceRay ray;
+  double R_mean = 0;
+  if (r.filter) {
+    R_mean = filteredFacets(r, d, ray);
+  } else if (r.waves) {
+    const double t_hit = k::sea_mean_surface_distance(cam.position.y, d);
+    ray.n = k::sea_facing_normal(d, k::sea_wave_normal(r.normals.data(), r.ocean_config.grid, r.ocean_config.patch_size,
+                                                       cam.position.x + t_hit * d.x, cam.position.z + t_hit * d.z));
+  }
+  ray.cos_ji = k::sea_view_interaction(d, ray.n, r.ior, &ray.R_view, &ray.reflected, &ray.view_in_water);
+  if (r.filter) ray.R_view = R_mean;
+  ray.reflected_shape = r.shape(ray.reflected);
+  const k::real3 flat_n{0, 1, 0};  // sunlight enters through the flat mean surface (000 §3)
+  if (r.has_sun && r.sun.y > 0) {
+    ray.t_in = 1 - k::fresnel_reflectance(r.sun.y, 1.0, r.ior);
+    ray.e_h = r.sun.y;
+    k::real3 sun_in_water{};
+    k::refract_dir(-r.sun, flat_n, 1.0 / r.ior, &sun_in_water);
+    ray.cos_io = std::max(-sun_in_water.y, 1e-4);
+    ray.cos_alpha = k::dot(sun_in_water, -ray.view_in_water);
+  }
+  ray.phase = k::hg_phase(ray.cos_alpha, r.g);
+  ray.c_f = k::hg_forward_fraction(r.g);
+  // Water-leaving radiance reaches the air as L_w (1 - R) / n²: radiance / n² is conserved across
+  // the surface (docs/radiometry.md).
+  ray.t_out = (1 - ray.R_view) / (r.ior * r.ior);
+  floorAlong(r, d, ray);
+  return ray;
+}
+
+// sea.model = "multiple": the closed form in double (common/sea_multiple.h), the kernel's float
+// evaluation is tested against it (tests/kernels/sea_multiple_kernel_test.cpp). Added to L, term by term.
+double addMultipleBand(const SeaReferenceScene& r, size_t i, const SeaReferenceRay& ray, double L) {
+  const Scene& scene = *r.scene;
+  const double z_floor = ray.z_floor, t_out = ray.t_out;
+  const double e_sky = M_PI * r.skyOnly(i, k::real3{1, 1, 1}) * (1 - r.sky_fresnel);
+  const double e_sun = r.sun_e[i] * ray.e_h;
+  if (scene.sea.single_scattering) {
+    L += t_out * k::sea_multiple_column(e_sun, ray.t_in, e_sky, r.water.a[i], r.water.b[i], ray.c_f, z_floor,
+                                        ray.cos_io, ray.cos_ji, ray.phase, r.mu_sky);
+  }
+  if (z_floor >= 0) {
+    L += t_out * k::sea_multiple_bottom(e_sun, ray.t_in, e_sky, r.water.a[i], r.water.b[i], ray.c_f,
+                                        scene.bottom.albedo.at(r.grid.centers_nm[i]), z_floor, ray.cos_io, ray.cos_ji,
+                                        r.mu_sky, 1.0);
+  }
+  if (scene.sea.single_scattering || z_floor >= 0) {
+    const double albedo = z_floor >= 0 ? scene.bottom.albedo.at(r.grid.centers_nm[i]) : 0.0;
+    L += t_out * k::sea_multiple_surface_return(e_sun, ray.t_in, e_sky, r.water.a[i], r.water.b[i], ray.c_f, albedo,
+                                                z_floor, ray.cos_io, ray.cos_ji, r.mu_sky, 1.0, r.r_below, r.mu_ret,
+                                                scene.sea.single_scattering ? 1 : 0);
+  }
+  return L;
+}
+
+// Band i's radiance along a ray below the horizon: the reflected sky, then single scattering (midpoint
+// rule over depth) and the bottom (eq. 9), or sea.model "multiple".
+double bandBelowHorizon(const SeaReferenceScene& r, size_t i, const SeaReferenceRay& ray) {
+  const Scene& scene = *r.scene;
+  double L = 0;
+  if (scene.sea.reflection && r.filter) {
+    for (size_t q = 0; q < ray.node_dirs.size(); ++q) L += ray.node_weights[q] * r.skyOnly(i, r.shape(ray.node_dirs[q]));
+    L += ray.glint * r.sun_e[i];
+  } else if (scene.sea.reflection) {
+    L += ray.R_view * r.sky(i, ray.reflected_shape, ray.reflected);
+  }
+  const double c = r.water.c[i], albedo = c > 0 ? r.water.b[i] / c : 0.0;
+  const double kk = c * (1 - albedo * ray.c_f);  // 000 eq. 5's effective attenuation
+  const double z_floor = ray.z_floor;
+  if (r.multiple) {
+    L = addMultipleBand(r, i, ray, L);
+  } else if (scene.sea.single_scattering && ray.e_h > 0) {
+    // Beam irradiance in the water E T_i / cos_io, scattered by beta into the view ray,
+    // attenuated down and back up; midpoint rule over depth.
+    const double sec_sum = 1 / ray.cos_io + 1 / ray.cos_ji;
+    // Below 40 optical depths (down and back) the integrand is < e^-40 of its surface value.
+    const double z_optical = 40.0 / std::max(kk * sec_sum, 1e-12);
+    const double z_end = z_floor >= 0 ? std::min(z_floor, z_optical) : z_optical;
+    const double dz = z_end / r.steps;
+    double sum = 0;
+    for (int s = 0; s < r.steps; ++s) sum += std::exp(-kk * (s + 0.5) * dz * sec_sum);
+    const double beam = r.sun_e[i] * ray.e_h * ray.t_in / ray.cos_io;
+    L += beam * r.water.b[i] * ray.phase * ray.t_out * sum * dz / ray.cos_ji;
+  }
+  if (!r.multiple && z_floor >= 0 && ray.e_h > 0) {  // cos_gamma = cos_io on a flat floor: eq. 9 as it stands
+    L += k::sea_bottom_reflection_tilted(r.sun_e[i] * ray.e_h, ray.t_in, ray.t_out,
+                                         scene.bottom.albedo.at(r.grid.centers_nm[i]), c, z_floor, ray.cos_io,
+                                         ray.cos_ji, ray.cos_gamma);
+  }
+  return L;
+}
+
+// Pixel (x, y): its n x n sub-pixel rays' radiance, band by band into sensor RGB.
+void seaReferencePixel(const SeaReferenceScene& r, int x, int y, double rgb[3]) {
+  const CameraDesc& cam = r.scene->camera;
+  const int supersample = r.supersample;
+  const double sub_weight = 1.0 / (supersample * supersample);
+  for (int sub = 0; sub < supersample * supersample; ++sub) {
+    const double ox = (sub % supersample + 0.5) / supersample, oy = (sub / supersample + 0.5) / supersample;
+    const double u = (2.0 * (x + ox) / cam.width - 1.0) * r.tan_half * r.aspect;
+    const double v = (1.0 - 2.0 * (y + oy) / cam.height) * r.tan_half;
+    const Vec3 dv = normalize(r.fwd + r.right * u + r.up * v);
+    const k::real3 d{dv.x, dv.y, dv.z};
+    auto add = [&](size_t i, double L) {
+      rgb[0] += sub_weight * L * r.sensor.to_r[i];
+      rgb[1] += sub_weight * L * r.sensor.to_g[i];
+      rgb[2] += sub_weight * L * r.sensor.to_b[i];
+    };
+    if (d.y >= 0) {
+      const k::real3 s = r.shape(d);
+      for (size_t i = 0; i < r.bands; ++i) add(i, r.sky(i, s, d));
+      continue;
+    }
+    const SeaReferenceRay ray = traceBelowHorizon(r, d);
+    for (size_t i = 0; i < r.bands; ++i) add(i, bandBelowHorizon(r, i, ray));
+  }
+}
+
+}  // namespace
+
 Image renderSeaReference(const Scene& scene, int steps) {
   if (!scene.water.present || scene.camera.position.y <= 0) {
     throw RuntimeError("the sea reference renders scenes seen from above the water only");
@@ -74,79 +363,8 @@ Image renderSeaReference(const Scene& scene, int steps) {
                        "with --set sea.bottom_caustics=false (tests/kernels/sea_bottom_caustics_test.cpp checks the "
                        "caustic term on its own)");
   }
-  const WavelengthGrid grid = makeGrid(scene.spectral.count, scene.spectral.min_nm, scene.spectral.max_nm);
-  const Sensor sensor = makeSensor(scene.spectral.sensor, grid, scene.spectral.white_balance, scene.spectral.camera_dir);
-  const BandOptics water = resolveWater(scene.water, grid);
-  const std::vector<double> sun_e = sunIrradianceBands(grid, scene.sun.irradiance);
-  const std::vector<double> sky_l = sunIrradianceBands(grid, scene.sky.radiance);  // uniform sky: D65 shape
-  const size_t bands = grid.centers_nm.size();
-
+  const SeaReferenceScene r = seaReferenceScene(scene, steps);
   const CameraDesc& cam = scene.camera;
-  const Vec3 fwd = normalize(cam.look_at - cam.position);
-  const Vec3 right = normalize(cross(fwd, cam.up));
-  const Vec3 up = cross(right, fwd);
-  const double tan_half = std::tan(cam.fov_y / 2), aspect = double(cam.width) / cam.height;
-  const k::real3 sun{std::sin(scene.sun.zenith) * std::cos(scene.sun.azimuth), std::cos(scene.sun.zenith),
-                     std::sin(scene.sun.zenith) * std::sin(scene.sun.azimuth)};
-  const bool has_sun = scene.sun.enabled && scene.sun.irradiance > 0;
-  const double cos_sun_radius = std::cos(scene.sun.angular_radius);
-  const double sun_solid_angle = 2 * M_PI * (1 - cos_sun_radius);
-  const double ior = scene.water.ior, g = scene.water.g;
-  const bool bottom = scene.bottom.type == BottomDesc::Type::Flat;
-  // 000 §5.4: a height-field floor, met by a fine march (sea_floor_reference.h) independent of the
-  // kernels' cell walk, in steps of 1/64 of a cell.
-  const bool height_field = scene.bottom.type == BottomDesc::Type::HeightField;
-  HeightField floor;
-  double floor_step = 0;
-  if (height_field) {
-    floor = loadHeightField(scene.bottom, scene.files.get());
-    floor_step = floor.params.extent / std::max(floor.params.nx, floor.params.ny) / 64.0;
-  }
-
-  // FFT waves: the same ocean evaluated on the CPU in double (ocean_cpu.h), its normal map read as the
-  // kernel reads OceanPass's (common/sea_waves.h: mean-surface hit, bilinear, wrap-around).
-  const bool waves = scene.surface.type == SurfaceDesc::Type::Fft;
-  std::vector<double> normals;
-  OceanConfig ocean_config;
-  if (waves) {
-    ocean_config = oceanConfigFromSurface(scene.surface);
-    OceanCpu ocean(ocean_config, OceanCpu::Precision::Double);
-    ocean.run(scene.surface.time);
-    normals = ocean.normal();
-  }
-  // The wave filter (common/sea_lean.h) as the kernel runs it, or its reference: n x n rays per pixel.
-  const int supersample = static_cast<int>(qualityValue(scene, "sea_supersample", 1));
-  const bool filter = waves && qualityValue(scene, "wave_filter", 1) != 0 && supersample == 1;
-  const std::vector<double> mips = filter ? slopeMomentMips(normals, ocean_config.grid) : std::vector<double>{};
-  const double pixel_angle = 2 * tan_half / cam.height;
-  const double sun_slope_variance = scene.sun.angular_radius * scene.sun.angular_radius / 16;
-  const double sun_dir[3] = {sun.x, sun.y, sun.z};
-  const SeaSky sea_sky = makeSeaSky(scene.sky, sun_dir, grid, scene.files.get());
-  const bool multiple = scene.sea.model == SeaDesc::Model::Multiple;
-  const double sky_fresnel = skyFresnelMean(ior), mu_sky = k::sea_sky_mean_cosine(ior);
-  const double r_below = k::sea_surface_reflectance_below(sky_fresnel, ior);
-  const double mu_ret = k::sea_reflected_mean_cosine(r_below, ior);
-
-  // The sky's shape towards d (common/sky.h), then one band's radiance with the sun's disk.
-  auto shape = [&](k::real3 d) -> k::real3 {
-    if (sea_sky.model == 1) {
-      const double s = sea_sky.scale * k::sky_cie_clear_shape(d, sun);
-      return {s, s, s};
-    }
-    if (sea_sky.model == 2) return k::sky_latlong_rgb(sea_sky.texels.data(), sea_sky.width, sea_sky.height, d) * sea_sky.scale;
-    if (sea_sky.model == 3) return k::sky_preetham_daylight(sea_sky.texels.data(), d, sun) * sea_sky.scale;
-    return {1, 1, 1};
-  };
-  auto sky_only = [&](size_t i, k::real3 s) {
-    const auto& w = sea_sky.band_weights[i];
-    return sea_sky.model >= 2 ? sky_l[i] * std::max(w[0] * s.x + w[1] * s.y + w[2] * s.z, 0.0) : sky_l[i] * s.x;
-  };
-  auto sky = [&](size_t i, k::real3 s, k::real3 d) {
-    double L = sky_only(i, s);
-    if (has_sun && sun_solid_angle > 0 && k::dot(d, sun) >= cos_sun_radius) L += sun_e[i] / sun_solid_angle;
-    return L;
-  };
-
   Image img;
   img.width = cam.width;
   img.height = cam.height;
@@ -156,149 +374,7 @@ Image renderSeaReference(const Scene& scene, int steps) {
   tbb::parallel_for(0, cam.height, [&](int y) {
     for (int x = 0; x < cam.width; ++x) {
       double rgb[3] = {0, 0, 0};
-      const double sub_weight = 1.0 / (supersample * supersample);
-      for (int sub = 0; sub < supersample * supersample; ++sub) {
-      const double ox = (sub % supersample + 0.5) / supersample, oy = (sub / supersample + 0.5) / supersample;
-      const double u = (2.0 * (x + ox) / cam.width - 1.0) * tan_half * aspect;
-      const double v = (1.0 - 2.0 * (y + oy) / cam.height) * tan_half;
-      const Vec3 dv = normalize(fwd + right * u + up * v);
-      const k::real3 d{dv.x, dv.y, dv.z};
-      auto add = [&](size_t i, double L) {
-        rgb[0] += sub_weight * L * sensor.to_r[i];
-        rgb[1] += sub_weight * L * sensor.to_g[i];
-        rgb[2] += sub_weight * L * sensor.to_b[i];
-      };
-      if (d.y >= 0) {
-        const k::real3 s = shape(d);
-        for (size_t i = 0; i < bands; ++i) add(i, sky(i, s, d));
-      } else {
-        k::real3 n{0, 1, 0};
-        // The filter: the footprint's statistics, the facets' Fresnel-weighted sky (3 x 3 nodes) and
-        // the glint, as kernels/sea_single.cl with SEASIM_WAVE_FILTER.
-        double R_mean = 0, glint = 0;
-        std::vector<k::real3> node_dirs;
-        std::vector<double> node_weights;
-        if (filter) {
-          const double t_hit = k::sea_mean_surface_distance(cam.position.y, d);
-          const k::real3 fw{fwd.x, fwd.y, fwd.z};
-          const double minor = t_hit * pixel_angle * std::max(k::dot(d, fw), 0.1);
-          const double major = minor / std::max(-d.y, 1e-6);
-          const double horizontal = std::sqrt(d.x * d.x + d.z * d.z);
-          const double dir_x = horizontal > 1e-6 ? d.x / horizontal : 1.0, dir_z = horizontal > 1e-6 ? d.z / horizontal : 0.0;
-          double st[SEA_LEAN_STRIDE];
-          k::sea_lean_footprint(mips.data(), ocean_config.grid, ocean_config.patch_size, cam.position.x + t_hit * d.x,
-                                cam.position.z + t_hit * d.z, dir_x, dir_z, minor, major, st);
-          double cxx, czz, cxz, l11, l21, l22;
-          k::sea_lean_covariance(st[2], st[3], st[4], sun_slope_variance, &cxx, &czz, &cxz, &l11, &l21, &l22);
-          n = k::sea_facing_normal(d, k::sea_lean_normal(st[0], st[1]));
-          const k::SeaLeanRule rule = k::sea_lean_rule(d, st[0], st[1], l11, l21, l22);
-          R_mean = rule.back;  // facets turned away: F = 1 towards the horizon's sky
-          node_weights.push_back(rule.back);
-          node_dirs.push_back(k::sea_sky_direction(d));
-          for (int q = 0; q < k::sea_lean_rule_nodes(&rule); ++q) {
-            double sx, sz;
-            const double w = k::sea_lean_rule_node(&rule, q, &sx, &sz);
-            const k::real3 nk = k::sea_facing_normal(d, k::sea_lean_normal(sx, sz));
-            const double wf = w * k::fresnel_reflectance(-k::dot(d, nk), 1.0, ior);
-            R_mean += wf;
-            node_weights.push_back(wf);
-            node_dirs.push_back(k::sea_sky_direction(k::reflect_dir(d, nk)));
-          }
-          if (has_sun && sun.y > 0 && sun_solid_angle > 0) glint = k::sea_lean_glint(d, sun, ior, st[0], st[1], cxx, czz, cxz);
-        } else if (waves) {
-          const double t_hit = k::sea_mean_surface_distance(cam.position.y, d);
-          n = k::sea_facing_normal(d, k::sea_wave_normal(normals.data(), ocean_config.grid, ocean_config.patch_size,
-                                                         cam.position.x + t_hit * d.x, cam.position.z + t_hit * d.z));
-        }
-        double R_view = 0;
-        k::real3 reflected{}, view_in_water{};
-        const double cos_ji = k::sea_view_interaction(d, n, ior, &R_view, &reflected, &view_in_water);
-        if (filter) R_view = R_mean;
-        const k::real3 reflected_shape = shape(reflected);
-        const k::real3 flat_n{0, 1, 0};  // sunlight enters through the flat mean surface (000 §3)
-        double t_in = 0, cos_io = 1, cos_alpha = 1, e_h = 0;
-        if (has_sun && sun.y > 0) {
-          t_in = 1 - k::fresnel_reflectance(sun.y, 1.0, ior);
-          e_h = sun.y;
-          k::real3 sun_in_water{};
-          k::refract_dir(-sun, flat_n, 1.0 / ior, &sun_in_water);
-          cos_io = std::max(-sun_in_water.y, 1e-4);
-          cos_alpha = k::dot(sun_in_water, -view_in_water);
-        }
-        const double phase = k::hg_phase(cos_alpha, g);
-        const double c_f = k::hg_forward_fraction(g);
-        // Water-leaving radiance reaches the air as L_w (1 - R) / n²: radiance / n² is conserved across
-        // the surface (docs/radiometry.md).
-        const double t_out = (1 - R_view) / (ior * ior);
-        // The floor along the refracted view ray: z_Q and cos(gamma) (000 §5.4); flat: z_d, cos_io.
-        double z_floor = bottom ? scene.bottom.depth : -1.0, cos_gamma = cos_io;
-        if (height_field) {
-          const double t_p = cam.position.y / -d.y;  // P on the mean surface
-          const double o[3] = {cam.position.x + t_p * d.x, 0.0, cam.position.z + t_p * d.z};
-          const double v[3] = {view_in_water.x, view_in_water.y, view_in_water.z};
-          const double t_q = view_in_water.y < 0 ? fineMarchFloor(floor, o, v, 1e30, floor_step) : 0.0;
-          z_floor = std::max(-view_in_water.y, 0.0) * std::max(t_q, 0.0);
-          double nq[3];
-          floorNormalAt(floor, o[0] + t_q * v[0], o[2] + t_q * v[2], nq);
-          cos_gamma = 0;
-          if (e_h > 0) {
-            k::real3 sun_travel{};
-            k::refract_dir(-sun, flat_n, 1.0 / ior, &sun_travel);
-            cos_gamma = std::max(-(nq[0] * sun_travel.x + nq[1] * sun_travel.y + nq[2] * sun_travel.z), 0.0);
-          }
-        }
-        for (size_t i = 0; i < bands; ++i) {
-          double L = 0;
-          if (scene.sea.reflection && filter) {
-            for (size_t q = 0; q < node_dirs.size(); ++q) L += node_weights[q] * sky_only(i, shape(node_dirs[q]));
-            L += glint * sun_e[i];
-          } else if (scene.sea.reflection) {
-            L += R_view * sky(i, reflected_shape, reflected);
-          }
-          const double c = water.c[i], albedo = c > 0 ? water.b[i] / c : 0.0;
-          const double kk = c * (1 - albedo * c_f);  // 000 eq. 5's effective attenuation
-          if (multiple) {
-            // sea.model = "multiple": the closed form in double (common/sea_multiple.h), the kernel's
-            // float evaluation is tested against it (tests/kernels/sea_multiple_kernel_test.cpp).
-            const double e_sky = M_PI * sky_only(i, k::real3{1, 1, 1}) * (1 - sky_fresnel);
-            const double e_sun = sun_e[i] * e_h;
-            if (scene.sea.single_scattering) {
-              L += t_out * k::sea_multiple_column(e_sun, t_in, e_sky, water.a[i], water.b[i], c_f, z_floor, cos_io,
-                                                  cos_ji, phase, mu_sky);
-            }
-            if (z_floor >= 0) {
-              L += t_out * k::sea_multiple_bottom(e_sun, t_in, e_sky, water.a[i], water.b[i], c_f,
-                                                  scene.bottom.albedo.at(grid.centers_nm[i]), z_floor, cos_io, cos_ji,
-                                                  mu_sky, 1.0);
-            }
-            if (scene.sea.single_scattering || z_floor >= 0) {
-              const double albedo = z_floor >= 0 ? scene.bottom.albedo.at(grid.centers_nm[i]) : 0.0;
-              L += t_out * k::sea_multiple_surface_return(e_sun, t_in, e_sky, water.a[i], water.b[i], c_f, albedo,
-                                                          z_floor, cos_io, cos_ji, mu_sky, 1.0, r_below, mu_ret,
-                                                          scene.sea.single_scattering ? 1 : 0);
-            }
-          } else if (scene.sea.single_scattering && e_h > 0) {
-            // Beam irradiance in the water E T_i / cos_io, scattered by beta into the view ray,
-            // attenuated down and back up; midpoint rule over depth.
-            const double sec_sum = 1 / cos_io + 1 / cos_ji;
-            // Below 40 optical depths (down and back) the integrand is < e^-40 of its surface value.
-            const double z_optical = 40.0 / std::max(kk * sec_sum, 1e-12);
-            const double z_end = z_floor >= 0 ? std::min(z_floor, z_optical) : z_optical;
-            const double dz = z_end / steps;
-            double sum = 0;
-            for (int s = 0; s < steps; ++s) sum += std::exp(-kk * (s + 0.5) * dz * sec_sum);
-            const double beam = sun_e[i] * e_h * t_in / cos_io;
-            L += beam * water.b[i] * phase * t_out * sum * dz / cos_ji;
-          }
-          if (!multiple && z_floor >= 0 && e_h > 0) {  // cos_gamma = cos_io on a flat floor: eq. 9 as it stands
-            L += k::sea_bottom_reflection_tilted(sun_e[i] * e_h, t_in, t_out,
-                                                 scene.bottom.albedo.at(grid.centers_nm[i]), c, z_floor, cos_io,
-                                                 cos_ji, cos_gamma);
-          }
-          add(i, L);
-        }
-      }
-      }  // sub-pixel rays
+      seaReferencePixel(r, x, y, rgb);
       float* px = &img.pixels[(static_cast<size_t>(y) * cam.width + x) * 3];
       for (int ch = 0; ch < 3; ++ch) px[ch] = static_cast<float>(rgb[ch]);
     }

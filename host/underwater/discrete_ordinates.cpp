@@ -173,11 +173,11 @@ double hgAzimuthMode(double g, int mode, double nu, double mu) {
   return (mode == 0 ? 1.0 : 2.0) * sum / (4 * kPi);
 }
 
-DiscreteOrdinates::DiscreteOrdinates(const DiscreteOrdinatesLayer& layer, int streams, int azimuth_mode,
-                                     int phase_moments) {
+namespace {
+
+void requireValidLayer(const DiscreteOrdinatesLayer& layer, int streams, int azimuth_mode) {
   requireRange(streams >= 2, "at least 2 streams per hemisphere");
   requireRange(azimuth_mode >= 0 && azimuth_mode <= 2, "the azimuth mode must be 0, 1 or 2");
-  mode_ = azimuth_mode;
   requireRange(layer.a >= 0 && layer.b >= 0 && std::isfinite(layer.a) && std::isfinite(layer.b),
                "a and b must be finite and >= 0");
   const bool hg = layer.moments.empty();
@@ -190,6 +190,139 @@ DiscreteOrdinates::DiscreteOrdinates(const DiscreteOrdinatesLayer& layer, int st
   requireRange(layer.bottom_albedo >= 0 && layer.bottom_albedo <= 1, "bottom albedo must be in [0, 1]");
   requireRange(layer.bottom_sunlit >= 0 && layer.bottom_sunlit <= 1, "the bottom's sunlit share must be in [0, 1]");
   requireRange(layer.e_sun0 >= 0 && layer.e_sky0 >= 0, "irradiances must be >= 0");
+}
+
+// The azimuth mode's phase between the quadrature's cosines: same hemisphere (pp) and opposite (pm),
+// p^m(μ, μ') = Σ_l (2l + 1) χ_l q_l(μ) q_l(μ') / (4π) (azimuthLegendre; P_l^m(-μ) = (-1)^{l+m} P_l^m(μ)),
+// and towards the sun's cosine. Mode 0 is the azimuth average; mode 1 the cos φ part (φ from the
+// sun's azimuth), whose in-scatter has the same 2π ∫ dμ' form (Chandrasekhar 1960, §48).
+struct ModePhase {
+  std::vector<double> pp, pm;          // N x N
+  std::vector<double> q_plus, q_minus; // N: the beam's scattering towards ±μ_i
+};
+
+ModePhase modePhase(int mode, const std::vector<double>& chi, const std::vector<double>& mu, double mu_sun,
+                    double b_hat, double e_sun0) {
+  const int n = static_cast<int>(mu.size()), moments = static_cast<int>(chi.size());
+  std::vector<std::vector<double>> pl(n);
+  for (int i = 0; i < n; ++i) pl[i] = azimuthLegendre(mode, moments, mu[i]);
+  const std::vector<double> pl_sun = azimuthLegendre(mode, moments, mu_sun);
+  ModePhase ph{std::vector<double>(n * n), std::vector<double>(n * n), std::vector<double>(n), std::vector<double>(n)};
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) {
+      double s_pp = 0, s_pm = 0;
+      for (int l = 0; l < moments; ++l) {
+        const double t = (2 * l + 1) * chi[l] * pl[i][l] * pl[j][l];
+        s_pp += t;
+        s_pm += ((l + mode) % 2 ? -t : t);
+      }
+      ph.pp[i * n + j] = s_pp / (4 * kPi);
+      ph.pm[i * n + j] = s_pm / (4 * kPi);
+    }
+    double s_down = 0, s_up = 0;
+    for (int l = 0; l < moments; ++l) {
+      const double t = (2 * l + 1) * chi[l] * pl[i][l] * pl_sun[l];
+      s_down += t;
+      s_up += ((l + mode) % 2 ? -t : t);
+    }
+    // The beam's scattering towards ±μ_i: b̂ p^m F0 (twice that for m = 1: the cos φ term of the
+    // addition theorem), F0 = e_sun0 / μ_sun its normal irradiance.
+    const double fourier = mode == 0 ? 1.0 : 2.0;
+    ph.q_plus[i] = fourier * b_hat * s_down / (4 * kPi) * e_sun0 / mu_sun;
+    ph.q_minus[i] = fourier * b_hat * s_up / (4 * kPi) * e_sun0 / mu_sun;
+  }
+  return ph;
+}
+
+// dL+/dy = A L+ + B L-, dL-/dy = -B L+ - A L-, A = M^-1 (-ĉ + 2π b̂ Pp W), B = M^-1 2π b̂ Pm W. The
+// modes e^{σ y} have σ² the eigenvalues of (A - B)(A + B) = W^-1 T^½ (Y1 Y2) T^-½ W, T = W M^-1,
+// Y1,2 = T^½ (ĉ W^-1 - 2π b̂ (Pp ∓ Pm)) T^½ symmetric positive definite (a > 0): with Y2 = C Cᵀ the
+// symmetric Cᵀ Y1 C has the same eigenvalues (sigma2), and its eigenvector z gives Y1 Y2's as Y1 C z.
+struct ModeEigen {
+  std::vector<double> sigma2, z, y1c;  // N, N x N (columns), N x N (Y1 C)
+};
+
+ModeEigen modeEigen(const std::vector<double>& mu, const std::vector<double>& w, double c_hat, double b_hat,
+                    const ModePhase& ph) {
+  const int n = static_cast<int>(mu.size());
+  std::vector<double> y1(n * n), y2(n * n);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const double tij = std::sqrt(w[i] / mu[i] * w[j] / mu[j]);
+      const double diag = i == j ? c_hat / w[i] : 0.0;
+      y1[i * n + j] = tij * (diag - 2 * kPi * b_hat * (ph.pp[i * n + j] - ph.pm[i * n + j]));
+      y2[i * n + j] = tij * (diag - 2 * kPi * b_hat * (ph.pp[i * n + j] + ph.pm[i * n + j]));
+    }
+  std::vector<double> chol(n * n, 0.0);  // lower C, Y2 = C Cᵀ
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j <= i; ++j) {
+      double s = y2[i * n + j];
+      for (int k = 0; k < j; ++k) s -= chol[i * n + k] * chol[j * n + k];
+      if (i == j) {
+        if (!(s > 0)) throw std::runtime_error("discrete ordinates: the medium's matrix is not positive definite");
+        chol[i * n + i] = std::sqrt(s);
+      } else {
+        chol[i * n + j] = s / chol[j * n + j];
+      }
+    }
+  ModeEigen e;
+  e.y1c.assign(n * n, 0.0);
+  std::vector<double> sym(n * n, 0.0);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      double s = 0;
+      for (int k = j; k < n; ++k) s += y1[i * n + k] * chol[k * n + j];
+      e.y1c[i * n + j] = s;
+    }
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      double s = 0;
+      for (int k = i; k < n; ++k) s += chol[k * n + i] * e.y1c[k * n + j];
+      sym[i * n + j] = s;
+    }
+  for (int i = 0; i < n; ++i)  // symmetric up to rounding: make it exactly so for Jacobi
+    for (int j = i + 1; j < n; ++j) sym[i * n + j] = sym[j * n + i] = 0.5 * (sym[i * n + j] + sym[j * n + i]);
+  symmetricEigen(sym, n, e.sigma2, e.z);
+  return e;
+}
+
+// The beam's particular solution Z e^{-m y}: [A + m, B; -B, -A + m] Z = [-M^-1 Q+; M^-1 Q-], solved into
+// z_plus, z_minus (zero without a beam). At a mode's λ = m it resonates: m is moved by 1e-7 of itself (its
+// solution changes by about as much); returns the m used.
+double particularSolution(const std::vector<double>& mu, const std::vector<double>& w, double c_hat, double b_hat,
+                          double m_beam, const std::vector<double>& lambda, const ModePhase& ph, bool has_beam,
+                          std::vector<double>& z_plus, std::vector<double>& z_minus) {
+  const int n = static_cast<int>(mu.size());
+  double m = m_beam;
+  for (double lam : lambda)
+    if (std::abs(lam - m) < 1e-7 * m) m = lam + (m >= lam ? 1e-7 : -1e-7) * m_beam;
+  const int n2 = 2 * n;
+  std::vector<double> sys(n2 * n2, 0.0), rhs(n2, 0.0);
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) {
+      const double a_ij = (2 * kPi * b_hat * ph.pp[i * n + j] * w[j] - (i == j ? c_hat : 0.0)) / mu[i];
+      const double b_ij = 2 * kPi * b_hat * ph.pm[i * n + j] * w[j] / mu[i];
+      sys[i * n2 + j] = a_ij + (i == j ? m : 0.0);
+      sys[i * n2 + n + j] = b_ij;
+      sys[(n + i) * n2 + j] = -b_ij;
+      sys[(n + i) * n2 + n + j] = -a_ij + (i == j ? m : 0.0);
+    }
+    rhs[i] = -ph.q_plus[i] / mu[i];
+    rhs[n + i] = ph.q_minus[i] / mu[i];
+  }
+  if (has_beam) solveOrThrow(sys, rhs, n2);
+  z_plus.assign(rhs.begin(), rhs.begin() + n);
+  z_minus.assign(rhs.begin() + n, rhs.end());
+  return m;
+}
+
+}  // namespace
+
+DiscreteOrdinates::DiscreteOrdinates(const DiscreteOrdinatesLayer& layer, int streams, int azimuth_mode,
+                                     int phase_moments) {
+  requireValidLayer(layer, streams, azimuth_mode);
+  mode_ = azimuth_mode;
+  const bool hg = layer.moments.empty();
   const int n = n_ = streams;
   bottom_ = layer.bottom_depth > 0 ? layer.bottom_depth : 0;
   mu_sun_ = layer.mu_sun;
@@ -218,133 +351,42 @@ DiscreteOrdinates::DiscreteOrdinates(const DiscreteOrdinatesLayer& layer, int st
   c_hat_ = c_hat;
   chi_ = chi;
 
-  // The azimuth mode's phase between the quadrature's cosines: same hemisphere (pp) and opposite (pm),
-  // p^m(μ, μ') = Σ_l (2l + 1) χ_l q_l(μ) q_l(μ') / (4π) (azimuthLegendre; P_l^m(-μ) = (-1)^{l+m} P_l^m(μ)),
-  // and towards the sun's cosine. Mode 0 is the azimuth average; mode 1 the cos φ part (φ from the
-  // sun's azimuth), whose in-scatter has the same 2π ∫ dμ' form (Chandrasekhar 1960, §48).
-  std::vector<std::vector<double>> pl(n);
-  for (int i = 0; i < n; ++i) pl[i] = azimuthLegendre(mode_, moments, mu_[i]);
-  const std::vector<double> pl_sun = azimuthLegendre(mode_, moments, mu_sun_);
-  std::vector<double> pp(n * n), pm(n * n), q_plus(n), q_minus(n);
-  for (int i = 0; i < n; ++i) {
-    for (int j = 0; j < n; ++j) {
-      double s_pp = 0, s_pm = 0;
-      for (int l = 0; l < moments; ++l) {
-        const double t = (2 * l + 1) * chi[l] * pl[i][l] * pl[j][l];
-        s_pp += t;
-        s_pm += ((l + mode_) % 2 ? -t : t);
-      }
-      pp[i * n + j] = s_pp / (4 * kPi);
-      pm[i * n + j] = s_pm / (4 * kPi);
-    }
-    double s_down = 0, s_up = 0;
-    for (int l = 0; l < moments; ++l) {
-      const double t = (2 * l + 1) * chi[l] * pl[i][l] * pl_sun[l];
-      s_down += t;
-      s_up += ((l + mode_) % 2 ? -t : t);
-    }
-    // The beam's scattering towards ±μ_i: b̂ p^m F0 (twice that for m = 1: the cos φ term of the
-    // addition theorem), F0 = e_sun0 / μ_sun its normal irradiance.
-    const double fourier = mode_ == 0 ? 1.0 : 2.0;
-    q_plus[i] = fourier * b_hat * s_down / (4 * kPi) * e_sun0_ / mu_sun_;
-    q_minus[i] = fourier * b_hat * s_up / (4 * kPi) * e_sun0_ / mu_sun_;
-  }
-
-  // dL+/dy = A L+ + B L-, dL-/dy = -B L+ - A L-, A = M^-1 (-ĉ + 2π b̂ Pp W), B = M^-1 2π b̂ Pm W. The
-  // modes e^{σ y} have σ² the eigenvalues of (A - B)(A + B) = W^-1 T^½ (Y1 Y2) T^-½ W, T = W M^-1,
-  // Y1,2 = T^½ (ĉ W^-1 - 2π b̂ (Pp ∓ Pm)) T^½ symmetric positive definite (a > 0): with Y2 = C Cᵀ the
-  // symmetric Cᵀ Y1 C has the same eigenvalues, and its eigenvector z gives Y1 Y2's as Y1 C z.
-  std::vector<double> y1(n * n), y2(n * n);
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) {
-      const double tij = std::sqrt(w_[i] / mu_[i] * w_[j] / mu_[j]);
-      const double diag = i == j ? c_hat / w_[i] : 0.0;
-      y1[i * n + j] = tij * (diag - 2 * kPi * b_hat * (pp[i * n + j] - pm[i * n + j]));
-      y2[i * n + j] = tij * (diag - 2 * kPi * b_hat * (pp[i * n + j] + pm[i * n + j]));
-    }
-  std::vector<double> chol(n * n, 0.0);  // lower C, Y2 = C Cᵀ
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j <= i; ++j) {
-      double s = y2[i * n + j];
-      for (int k = 0; k < j; ++k) s -= chol[i * n + k] * chol[j * n + k];
-      if (i == j) {
-        if (!(s > 0)) throw std::runtime_error("discrete ordinates: the medium's matrix is not positive definite");
-        chol[i * n + i] = std::sqrt(s);
-      } else {
-        chol[i * n + j] = s / chol[j * n + j];
-      }
-    }
-  std::vector<double> y1c(n * n, 0.0), sym(n * n, 0.0);
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) {
-      double s = 0;
-      for (int k = j; k < n; ++k) s += y1[i * n + k] * chol[k * n + j];
-      y1c[i * n + j] = s;
-    }
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) {
-      double s = 0;
-      for (int k = i; k < n; ++k) s += chol[k * n + i] * y1c[k * n + j];
-      sym[i * n + j] = s;
-    }
-  for (int i = 0; i < n; ++i)  // symmetric up to rounding: make it exactly so for Jacobi
-    for (int j = i + 1; j < n; ++j) sym[i * n + j] = sym[j * n + i] = 0.5 * (sym[i * n + j] + sym[j * n + i]);
-  std::vector<double> sigma2, z;
-  symmetricEigen(sym, n, sigma2, z);
-
+  const ModePhase ph = modePhase(mode_, chi, mu_, mu_sun_, b_hat, e_sun0_);
+  const ModeEigen eig = modeEigen(mu_, w_, c_hat, b_hat, ph);
   lambda_.assign(n, 0.0);
   x_plus_.assign(n * n, 0.0);
   x_minus_.assign(n * n, 0.0);
   k_min_ = 0;
   for (int j = 0; j < n; ++j) {
-    const double lam = std::sqrt(std::max(sigma2[j], 0.0));
+    const double lam = std::sqrt(std::max(eig.sigma2[j], 0.0));
     lambda_[j] = lam;
     // S = W^-1 T^½ Y1 C z; D = (A + B) S / σ with σ = -λ (the mode that decays downwards).
     std::vector<double> s(n);
     for (int i = 0; i < n; ++i) {
       double v = 0;
-      for (int k = 0; k < n; ++k) v += y1c[i * n + k] * z[k * n + j];
+      for (int k = 0; k < n; ++k) v += eig.y1c[i * n + k] * eig.z[k * n + j];
       s[i] = std::sqrt(w_[i] / mu_[i]) / w_[i] * v;
     }
     for (int i = 0; i < n; ++i) {
       double apb = -c_hat * s[i];
-      for (int k = 0; k < n; ++k) apb += 2 * kPi * b_hat * (pp[i * n + k] + pm[i * n + k]) * w_[k] * s[k];
+      for (int k = 0; k < n; ++k) apb += 2 * kPi * b_hat * (ph.pp[i * n + k] + ph.pm[i * n + k]) * w_[k] * s[k];
       const double d = -(apb / mu_[i]) / lam;
       x_plus_[i * n + j] = 0.5 * (s[i] + d);
       x_minus_[i * n + j] = 0.5 * (s[i] - d);
     }
     k_min_ = j == 0 ? lam : std::min(k_min_, lam);
   }
+  m_particular_ = particularSolution(mu_, w_, c_hat, b_hat, m_, lambda_, ph, e_sun0_ > 0, z_plus_, z_minus_);
+  solveBoundaries(layer);
+}
 
-  // The beam's particular solution Z e^{-m y}: [A + m, B; -B, -A + m] Z = [-M^-1 Q+; M^-1 Q-]. At a
-  // mode's λ = m it resonates: m is moved by 1e-7 of itself (its solution changes by about as much).
-  double m = m_;
-  for (double lam : lambda_)
-    if (std::abs(lam - m) < 1e-7 * m) m = lam + (m >= lam ? 1e-7 : -1e-7) * m_;
-  {
-    const int n2 = 2 * n;
-    std::vector<double> sys(n2 * n2, 0.0), rhs(n2, 0.0);
-    for (int i = 0; i < n; ++i) {
-      for (int j = 0; j < n; ++j) {
-        const double a_ij = (2 * kPi * b_hat * pp[i * n + j] * w_[j] - (i == j ? c_hat : 0.0)) / mu_[i];
-        const double b_ij = 2 * kPi * b_hat * pm[i * n + j] * w_[j] / mu_[i];
-        sys[i * n2 + j] = a_ij + (i == j ? m : 0.0);
-        sys[i * n2 + n + j] = b_ij;
-        sys[(n + i) * n2 + j] = -b_ij;
-        sys[(n + i) * n2 + n + j] = -a_ij + (i == j ? m : 0.0);
-      }
-      rhs[i] = -q_plus[i] / mu_[i];
-      rhs[n + i] = q_minus[i] / mu_[i];
-    }
-    if (e_sun0_ > 0) solveOrThrow(sys, rhs, n2);
-    z_plus_.assign(rhs.begin(), rhs.begin() + n);
-    z_minus_.assign(rhs.begin() + n, rhs.end());
-  }
-
-  // Boundary conditions. Top: L+(0) = R L-(0) + the sky through the window, (1 - R) n² L_sky, scaled to
-  // e_sky0. Bottom: L-(H) = (ρ/π) (E_d(H) + s e_sun0 e^{-m H}), s the share of the beam it reflects. The
-  // uniform sky and the Lambertian bottom have no cos φ part: mode 1 sees neither (the surface reflects it
-  // as any radiance).
+// Boundary conditions. Top: L+(0) = R L-(0) + the sky through the window, (1 - R) n² L_sky, scaled to
+// e_sky0. Bottom: L-(H) = (ρ/π) (E_d(H) + s e_sun0 e^{-m H}), s the share of the beam it reflects. The
+// uniform sky and the Lambertian bottom have no cos φ part: mode 1 sees neither (the surface reflects it
+// as any radiance).
+void DiscreteOrdinates::solveBoundaries(const DiscreteOrdinatesLayer& layer) {
+  const int n = n_;
+  const double m = m_particular_;
   std::vector<double> refl(n), sky(n);
   double sky_unit = 0;
   for (int i = 0; i < n; ++i) {
@@ -357,44 +399,7 @@ DiscreteOrdinates::DiscreteOrdinates(const DiscreteOrdinatesLayer& layer, int st
   c_grow_.assign(n, 0.0);
   c_decay_bottom_.assign(n, 0.0);
   c_grow_bottom_.assign(n, 0.0);
-  if (bottom_ > 0) {
-    const int n2 = 2 * n;
-    const double rho = mode_ == 0 ? layer.bottom_albedo : 0.0, em = std::exp(-m_ * bottom_), ep = std::exp(-m * bottom_);
-    // Σ_k w_k μ_k of each mode's and the particular solution's down radiance (E_d / 2π at H, before the
-    // modes' exponentials): the same for every row of the bottom's condition.
-    std::vector<double> flux_dec(n, 0.0), flux_grow(n, 0.0);
-    double flux_p = 0;
-    for (int k = 0; k < n; ++k) {
-      for (int j = 0; j < n; ++j) {
-        flux_dec[j] += w_[k] * mu_[k] * x_plus_[k * n + j];
-        flux_grow[j] += w_[k] * mu_[k] * x_minus_[k * n + j];
-      }
-      flux_p += w_[k] * mu_[k] * z_plus_[k];
-    }
-    // Two right-hand sides, one elimination: column 0 the whole field; column 1 the part the bottom's
-    // reflection of the whole beam brings, that source alone (tiltedIrradianceProfile's bottom_beam; the
-    // field is linear in bottom_sunlit).
-    std::vector<double> sys(n2 * n2, 0.0), rhs(n2 * 2, 0.0);
-    for (int i = 0; i < n; ++i) {
-      for (int j = 0; j < n; ++j) {
-        const double e = std::exp(-lambda_[j] * bottom_);
-        sys[i * n2 + j] = x_plus_[i * n + j] - refl[i] * x_minus_[i * n + j];
-        sys[i * n2 + n + j] = e * (x_minus_[i * n + j] - refl[i] * x_plus_[i * n + j]);
-        sys[(n + i) * n2 + j] = e * (x_minus_[i * n + j] - 2 * rho * flux_dec[j]);
-        sys[(n + i) * n2 + n + j] = x_plus_[i * n + j] - 2 * rho * flux_grow[j];
-      }
-      rhs[2 * i] = sky[i] - (z_plus_[i] - refl[i] * z_minus_[i]);
-      rhs[2 * (n + i)] = rho / kPi * layer.bottom_sunlit * e_sun0_ * em - ep * (z_minus_[i] - 2 * rho * flux_p);
-      rhs[2 * (n + i) + 1] = rho / kPi * e_sun0_ * em;
-    }
-    solveOrThrow(sys, rhs, n2, 2);
-    for (int j = 0; j < n; ++j) {
-      c_decay_[j] = rhs[2 * j];
-      c_grow_[j] = rhs[2 * (n + j)];
-      c_decay_bottom_[j] = rhs[2 * j + 1];
-      c_grow_bottom_[j] = rhs[2 * (n + j) + 1];
-    }
-  } else {
+  if (!(bottom_ > 0)) {
     std::vector<double> sys(n * n, 0.0), rhs(n, 0.0);
     for (int i = 0; i < n; ++i) {
       for (int j = 0; j < n; ++j) sys[i * n + j] = x_plus_[i * n + j] - refl[i] * x_minus_[i * n + j];
@@ -402,8 +407,44 @@ DiscreteOrdinates::DiscreteOrdinates(const DiscreteOrdinatesLayer& layer, int st
     }
     solveOrThrow(sys, rhs, n);
     c_decay_ = rhs;
+    return;
   }
-  m_particular_ = m;
+  const int n2 = 2 * n;
+  const double rho = mode_ == 0 ? layer.bottom_albedo : 0.0, em = std::exp(-m_ * bottom_), ep = std::exp(-m * bottom_);
+  // Σ_k w_k μ_k of each mode's and the particular solution's down radiance (E_d / 2π at H, before the
+  // modes' exponentials): the same for every row of the bottom's condition.
+  std::vector<double> flux_dec(n, 0.0), flux_grow(n, 0.0);
+  double flux_p = 0;
+  for (int k = 0; k < n; ++k) {
+    for (int j = 0; j < n; ++j) {
+      flux_dec[j] += w_[k] * mu_[k] * x_plus_[k * n + j];
+      flux_grow[j] += w_[k] * mu_[k] * x_minus_[k * n + j];
+    }
+    flux_p += w_[k] * mu_[k] * z_plus_[k];
+  }
+  // Two right-hand sides, one elimination: column 0 the whole field; column 1 the part the bottom's
+  // reflection of the whole beam brings, that source alone (tiltedIrradianceProfile's bottom_beam; the
+  // field is linear in bottom_sunlit).
+  std::vector<double> sys(n2 * n2, 0.0), rhs(n2 * 2, 0.0);
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) {
+      const double e = std::exp(-lambda_[j] * bottom_);
+      sys[i * n2 + j] = x_plus_[i * n + j] - refl[i] * x_minus_[i * n + j];
+      sys[i * n2 + n + j] = e * (x_minus_[i * n + j] - refl[i] * x_plus_[i * n + j]);
+      sys[(n + i) * n2 + j] = e * (x_minus_[i * n + j] - 2 * rho * flux_dec[j]);
+      sys[(n + i) * n2 + n + j] = x_plus_[i * n + j] - 2 * rho * flux_grow[j];
+    }
+    rhs[2 * i] = sky[i] - (z_plus_[i] - refl[i] * z_minus_[i]);
+    rhs[2 * (n + i)] = rho / kPi * layer.bottom_sunlit * e_sun0_ * em - ep * (z_minus_[i] - 2 * rho * flux_p);
+    rhs[2 * (n + i) + 1] = rho / kPi * e_sun0_ * em;
+  }
+  solveOrThrow(sys, rhs, n2, 2);
+  for (int j = 0; j < n; ++j) {
+    c_decay_[j] = rhs[2 * j];
+    c_grow_[j] = rhs[2 * (n + j)];
+    c_decay_bottom_[j] = rhs[2 * j + 1];
+    c_grow_bottom_[j] = rhs[2 * (n + j) + 1];
+  }
 }
 
 double DiscreteOrdinates::exponentialsAt(double depth, std::vector<double>& e_dec, std::vector<double>& e_grow) const {

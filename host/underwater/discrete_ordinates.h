@@ -124,6 +124,8 @@ class DiscreteOrdinates {
                                               bool bottom_beam = false) const;
 
  private:
+  // The modes' amplitudes from the surface's and the bottom's conditions (the constructor's last step).
+  void solveBoundaries(const DiscreteOrdinatesLayer& layer);
   // The irradiances at depth y from the modes' exponentials there (e_grow: e^{-λ (H - y)}, 0 without a bottom).
   DiscreteOrdinatesIrradiance irradianceFrom(double y, const double* e_dec, const double* e_grow) const;
   // The depth clamped to the layer, and each mode's e^{-λ y} (e_dec) and e^{-λ (H - y)} (e_grow, 0 without

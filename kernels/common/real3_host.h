@@ -19,6 +19,7 @@ SEASIM_FN real length(real3 a) { return std::sqrt(dot(a, a)); }
 SEASIM_FN real3 normalize(real3 a) { return a / length(a); }
 SEASIM_FN real clamp(real x, real lo, real hi) { return x < lo ? lo : (x > hi ? hi : x); }
 SEASIM_FN real mix(real a, real b, real t) { return a + (b - a) * t; }
+SEASIM_FN real3 mix(real3 a, real3 b, real t) { return a + (b - a) * t; }
 SEASIM_FN real3 exp(real3 a) { return real3{std::exp(a.x), std::exp(a.y), std::exp(a.z)}; }
 using std::acos;
 using std::atan2;

@@ -1,7 +1,7 @@
 /* sea_bands.h — sea_single.cl's band terms (paper 000's eq. 5 and 9, the sky and its reflection) for
  * SEASIM_BAND_LANES bands at once (common/band_lanes.h), the band loop of sea_single.cl for
  * sea.model "single" (SEASIM_SEA_MODEL 0). The same formulas, in the same order of operations, as
- * sea_surface.h, sea_bottom.h and sea_single.cl's scalar loop (their comments give the physics), on
+ * sea_surface.h, sea_bottom.h and sea_band_terms.h's one-band step (their comments give the physics), on
  * realb because OpenCL C has no templates; the per-band values come from the band table
  * (common/sea_band_table.h), whose eq. 5 LUT is band-contiguous, so the LUT's four Catmull–Rom taps
  * are found once per pixel and read as four vector loads. tests/unit/sea_bands_test.cpp holds these to
@@ -45,7 +45,7 @@ SEASIM_FN realb sea_bottom_reflection_b(realb sun_irradiance, real t_in, real t_
   return t_out * sun_irradiance * t_in * (bottom_albedo / SEASIM_PI) * attenuation;
 }
 
-/* The lanes' sky radiance for one shape (sea_single.cl's sky_band): the uniform level times the band's
+/* The lanes' sky radiance for one shape (sea_view.h's sea_sky_band): the uniform level times the band's
  * share of the shape (sky_view_band_b), model = SEASIM_SKY_MODEL. */
 SEASIM_FN realb sea_sky_band_b(int model, realb sky_radiance, realb w_r, realb w_g, realb w_b, real3 shape) {
   return sky_radiance * sky_view_band_b(model, w_r, w_g, w_b, shape);

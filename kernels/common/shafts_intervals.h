@@ -239,7 +239,7 @@ typedef struct {
 } ShaftsLamp;
 
 /* The light map's RGB at the light-frame point q (q.z > 0), bilinear between texel centres and
- * clamped at the border, as kernels/shafts.cl's lamp_emission (001 §4.2). */
+ * clamped at the border, as common/shafts_render.h's shafts_lamp_emission (001 §4.2). */
 SEASIM_FN real3 shafts_light_map_rgb(ShaftsLamp L, SEASIM_GLOBAL const float* map, real3 q) {
   const real inv = R(1.0) / (q.z * L.tan_cone);
   const real fu = (R(0.5) * (q.x * inv + R(1.0))) * (real)L.map_w - R(0.5);

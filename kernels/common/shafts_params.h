@@ -1,6 +1,8 @@
 /* shafts_params.h — the parameter blocks of kernels/shafts.cl, shared with host/passes/shafts_pass.cpp
  * (which static_asserts their layout). No float3 inside (16 bytes in OpenCL C): vectors are float[4].
- * Included as plain C on both sides (not through kernel_math.h: it holds no math). */
+ * Included as plain C on both sides; kernel_math.h includes it for common/shafts_render.h. */
+#ifndef SEASIM_SHAFTS_PARAMS_H
+#define SEASIM_SHAFTS_PARAMS_H
 
 /* Object types (ShaftsObject.type). */
 #define SHAFTS_SPHERE 0
@@ -71,3 +73,5 @@ typedef struct {
   int always;
   int pad;
 } ShaftsOccluder;
+
+#endif /* SEASIM_SHAFTS_PARAMS_H */

@@ -1,0 +1,107 @@
+/* sea_band_terms.h — one step of sea_single.cl's band loop: the radiance of SEASIM_BAND_LANES bands
+ * (sea.model "single", paper 000's eq. 5 and 9 plus the reflected sky and sun, on the lanes of
+ * common/sea_bands.h, reading the band table of common/sea_band_table.h), of the sky above the horizon,
+ * and of one band for sea.model "multiple" (common/sea_multiple.h's closed form, which has no lanes
+ * version). The pixel's terms come from common/sea_view.h's SeaPixel; the operations are those of the
+ * kernel's former single body, in the same order. tests/unit/sea_view_test.cpp holds these in float
+ * and double; tests/kernels/sea_single_test.cpp the kernel to the double CPU reference.
+ * Needs sea_view.h, band_lanes.h, band_lanes_math.h, sea_band_table.h, sea_bands.h. */
+
+/* Bands i .. i + SEASIM_BAND_LANES - 1 of the band table's row `row` (stride: SEA_BAND_STRIDE). */
+#define SEA_TABLE_LANES(table, stride, row, i) LOADB((table) + (size_t)(row) * (stride), i)
+
+/* The sky's radiance seen along a view above the horizon with shape sea_sky_shape, and the sun's disk
+ * when the view sees it (sea_sees_sun). */
+SEASIM_FN realb sea_sky_lanes_b(int sky_model, const SEASIM_GLOBAL real* table, int stride, int i, real3 shape,
+                                int sees_sun, real sun_solid_angle) {
+  const realb sky_l = sea_sky_band_b(sky_model, SEA_TABLE_LANES(table, stride, SEA_ROW_SKY, i),
+                                     SEA_TABLE_LANES(table, stride, SEA_ROW_SKY_W_R, i),
+                                     SEA_TABLE_LANES(table, stride, SEA_ROW_SKY_W_G, i),
+                                     SEA_TABLE_LANES(table, stride, SEA_ROW_SKY_W_B, i), shape);
+  return sees_sun ? sky_l + SEA_TABLE_LANES(table, stride, SEA_ROW_SUN, i) / sun_solid_angle : sky_l;
+}
+
+/* The reflected sky and sun: R times the sky (and the sun's disk where the reflected view sees it);
+ * filtered, the Fresnel-weighted sky and the glint, R already in both. */
+SEASIM_FN realb sea_reflection_lanes_b(SeaFeatures f, const SEASIM_GLOBAL real* table, int stride, int i,
+                                       const SeaPixel* px, realb sun_e, real sun_solid_angle) {
+  const realb sky_l = sea_sky_band_b(f.sky_model, SEA_TABLE_LANES(table, stride, SEA_ROW_SKY, i),
+                                     SEA_TABLE_LANES(table, stride, SEA_ROW_SKY_W_R, i),
+                                     SEA_TABLE_LANES(table, stride, SEA_ROW_SKY_W_G, i),
+                                     SEA_TABLE_LANES(table, stride, SEA_ROW_SKY_W_B, i), px->reflected_shape);
+  if (f.wave_filter) return sky_l + px->glint * sun_e;
+  if (f.sun) return px->R_view * (px->reflects_sun ? sky_l + sun_e / sun_solid_angle : sky_l);
+  return px->R_view * sky_l;
+}
+
+/* 000 eq. 5 through the surface: from the LUT (SEASIM_SEA_LUT, without beta and T_o, Catmull–Rom over
+ * the pixel's taps) or exactly (sea_single_scattering_b, z_d from the bottom view). */
+SEASIM_FN realb sea_scattering_lanes_b(SeaFeatures f, const SEASIM_GLOBAL real* table, int stride, int i,
+                                       const SeaPixel* px, realb sun_e) {
+  const realb scattering = SEA_TABLE_LANES(table, stride, SEA_ROW_B, i);
+  if (f.lut)
+    return scattering * px->phase * px->t_out *
+           sea_lut_read_b(SEA_TABLE_LANES(table, stride, SEA_ROW_LUT + px->lut_jm, i),
+                          SEA_TABLE_LANES(table, stride, SEA_ROW_LUT + px->lut_j, i),
+                          SEA_TABLE_LANES(table, stride, SEA_ROW_LUT + px->lut_j + 1, i),
+                          SEA_TABLE_LANES(table, stride, SEA_ROW_LUT + px->lut_jp, i), px->lut_t);
+  const realb c = SEA_TABLE_LANES(table, stride, SEA_ROW_C, i);
+  const realb albedo = SELECTB(c > R(0.0), scattering / c, SPLATB(R(0.0)));
+  return sea_single_scattering_b(sun_e * px->sun_horizontal, px->t_in, px->t_out, scattering * px->phase, c, albedo,
+                                 px->c_f, px->cos_io, px->cos_ji, px->z_d);
+}
+
+/* 000 eq. 9, times the caustics' focus; on a height field tilted by the floor's normal
+ * (sea_bottom_reflection_tilted). */
+SEASIM_FN realb sea_bottom_lanes_b(SeaFeatures f, const SEASIM_GLOBAL real* table, int stride, int i, const SeaPixel* px,
+                                   realb sun_e) {
+  const realb bottom = sea_bottom_reflection_b(sun_e * px->sun_horizontal, px->t_in, px->t_out,
+                                               SEA_TABLE_LANES(table, stride, SEA_ROW_BOTTOM_ALBEDO, i),
+                                               SEA_TABLE_LANES(table, stride, SEA_ROW_C, i), px->z_d, px->cos_io,
+                                               px->cos_ji);
+  if (f.bottom_heightfield) return px->focus * (bottom * (px->cos_gamma / px->cos_io));
+  return px->focus * bottom;
+}
+
+/* The water-leaving and reflected radiance of bands i .. i + SEASIM_BAND_LANES - 1 (sea.model "single"). */
+SEASIM_FN realb sea_band_lanes_b(SeaFeatures f, const SEASIM_GLOBAL real* table, int stride, int i, const SeaPixel* px,
+                                 real sun_solid_angle) {
+  const realb sun_e = SEA_TABLE_LANES(table, stride, SEA_ROW_SUN, i);
+  realb L = SPLATB(R(0.0));
+  if (f.reflection) L += sea_reflection_lanes_b(f, table, stride, i, px, sun_e, sun_solid_angle);
+  if (f.single_scattering) L += sea_scattering_lanes_b(f, table, stride, i, px, sun_e);
+  if (f.bottom) L += sea_bottom_lanes_b(f, table, stride, i, px, sun_e);
+  return L;
+}
+
+/* One band's radiance for sea.model "multiple": the reflected sky (and sun), then all orders in closed
+ * form through the surface with T_o = (1 - R)/n² (sea_multiple.h). The sky's irradiance below the
+ * surface: π L_sky (1 - r̄), L_sky the band's cosine-weighted mean sky radiance (the shape is
+ * normalised to mean 1). */
+SEASIM_FN real sea_multiple_band(SeaFeatures f, SEASIM_CONSTANT const SeaParams* p, SEASIM_GLOBAL const SeaBand* band,
+                                 const SeaPixel* px) {
+  real L = R(0.0);
+  if (f.reflection && f.wave_filter) {
+    L += sea_sky_band(f.sky_model, band, px->reflected_shape) + px->glint * band->sun_irradiance; /* R in both */
+  } else if (f.reflection) {
+    real sky_l = sea_sky_band(f.sky_model, band, px->reflected_shape);
+    if (sea_sees_sun(f.sun, p, px->reflected)) sky_l += band->sun_irradiance / p->sun_solid_angle;
+    L += px->R_view * sky_l;
+  }
+  const real e_sky =
+      SEASIM_PI * sea_sky_band(f.sky_model, band, MAKE_REAL3(R(1.0), R(1.0), R(1.0))) * (R(1.0) - p->sky_fresnel_mean);
+  const real e_sun = band->sun_irradiance * px->sun_horizontal;
+  if (f.single_scattering)
+    L += px->t_out * sea_multiple_column(e_sun, px->t_in, e_sky, band->a, band->b, px->c_f, px->z_d, px->cos_io,
+                                         px->cos_ji, px->phase, px->mu_sky);
+  if (f.bottom)
+    L += px->t_out * sea_multiple_bottom(e_sun, px->t_in, e_sky, band->a, band->b, px->c_f, band->bottom_albedo,
+                                         px->z_d, px->cos_io, px->cos_ji, px->mu_sky, px->focus);
+  /* What the surface reflects back down of the upwelling light, returned by the water (z_d < 0: no
+   * bottom, so its albedo is unused). */
+  if (f.single_scattering || f.bottom)
+    L += px->t_out * sea_multiple_surface_return(e_sun, px->t_in, e_sky, band->a, band->b, px->c_f,
+                                                 band->bottom_albedo, px->z_d, px->cos_io, px->cos_ji, px->mu_sky,
+                                                 px->focus, px->r_below, px->mu_ret, f.single_scattering);
+  return L;
+}
