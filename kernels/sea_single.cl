@@ -185,7 +185,8 @@ __kernel void sea_single(__constant SeaParams* p, __global const SeaBand* bands,
       }
       continue;
     }
-    const SeaPixel px = sea_pixel(f, p, normals, slope_mips, sky, bottom_caustics, hf, hf_depth, d);
+    SeaPixel px;
+    sea_pixel(f, p, normals, slope_mips, sky, bottom_caustics, hf, hf_depth, d, &px);
 #if SEASIM_SEA_MODEL == 0 /* the band lanes (common/sea_bands.h), SEASIM_BAND_LANES bands per step */
     for (int i = 0; i < band_count; i += SEASIM_BAND_LANES) {
       const realb L = sea_band_lanes_b(f, table, stride, i, &px, p->sun_solid_angle);

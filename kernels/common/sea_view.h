@@ -204,11 +204,13 @@ SEASIM_FN void sea_bottom_view(SeaFeatures f, SEASIM_CONSTANT const SeaParams* p
   }
 }
 
-/* Everything of the pixel's ray d (below the horizon) that is the same for every band. */
-SEASIM_FN SeaPixel sea_pixel(SeaFeatures f, SEASIM_CONSTANT const SeaParams* p, const SEASIM_GLOBAL real* normals,
-                             const SEASIM_GLOBAL real* slope_mips, const SEASIM_GLOBAL real* sky,
-                             SEASIM_GLOBAL const float* caustics, SEASIM_CONSTANT const SeaHeightField* hf,
-                             SEASIM_GLOBAL const float* hf_depth, real3 d) {
+/* Everything of the pixel's ray d (below the horizon) that is the same for every band, into *out. An
+ * output pointer, not a struct return: Clang 14 marks a returned struct noalias and, inlining it, emits
+ * llvm.experimental.noalias.scope.decl, which Oclgrind 21.10 cannot run (underwater_improved_bands.h). */
+SEASIM_FN void sea_pixel(SeaFeatures f, SEASIM_CONSTANT const SeaParams* p, const SEASIM_GLOBAL real* normals,
+                         const SEASIM_GLOBAL real* slope_mips, const SEASIM_GLOBAL real* sky,
+                         SEASIM_GLOBAL const float* caustics, SEASIM_CONSTANT const SeaHeightField* hf,
+                         SEASIM_GLOBAL const float* hf_depth, real3 d, SeaPixel* out) {
   SeaPixel px;
   if (f.wave_filter) sea_view_filtered(f, p, slope_mips, sky, d, &px);
   else sea_view_unfiltered(f, p, normals, sky, d, &px);
@@ -234,5 +236,5 @@ SEASIM_FN SeaPixel sea_pixel(SeaFeatures f, SEASIM_CONSTANT const SeaParams* p, 
     px.lut_t = sea_lut_taps(p->lut_size, lut_angle * (p->lut_size - 1) * (R(2.0) / SEASIM_PI), &px.lut_jm, &px.lut_j,
                             &px.lut_jp);
   }
-  return px;
+  *out = px;
 }

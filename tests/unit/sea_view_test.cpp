@@ -116,7 +116,9 @@ void checkFlatPixel(double sun_zenith_deg, bool bottom, double tol) {
       return K::sea_camera_ray(p, x, y, sub, n);                                                                    \
     }                                                                                                               \
     static K::SeaPixel pixel(K::SeaFeatures f, const SeaParams* p, K::real3 d) {                                       \
-      return K::sea_pixel(f, p, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, d);                           \
+      K::SeaPixel px;                                                                                               \
+      K::sea_pixel(f, p, nullptr, nullptr, nullptr, nullptr, nullptr, nullptr, d, &px);                             \
+      return px;                                                                                                    \
     }                                                                                                               \
     static double fresnel(double c, double n1, double n2) {                                                         \
       return K::fresnel_reflectance(static_cast<real>(c), static_cast<real>(n1), static_cast<real>(n2));            \
