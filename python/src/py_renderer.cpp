@@ -9,6 +9,7 @@
 
 #include <memory>
 
+#include "jobs/layer_image.h"
 #include "jobs/render_item.h"
 #include "plan/plan.h"
 #include "py_convert.h"
@@ -27,7 +28,36 @@ namespace {
 struct PyFrame {
   FrameResult frame;
   nlohmann::json report;
+  // R, G, B and the asked layers' channels, as image.exr holds them (jobs/layer_image.h); the image
+  // alone when the scene asks for no layers.
+  Image with_layers;
 };
+
+// The asked layers by name: one (H, W) array for a one-channel layer ("range", "object_id"), an
+// (H, W, k) array for "<layer>.R/.G/.B" or "normal.X/.Y/.Z", and a mask channel ("beta_d_mask") under
+// its own name. Copies: the arrays outlive the frame.
+nb::dict layerArrays(const Image& image) {
+  std::vector<std::pair<std::string, std::vector<int>>> groups;  // name -> channel indices, in file order
+  for (int c = 3; c < image.channels; ++c) {
+    const std::string& channel = image.channel_names[c];
+    const size_t dot = channel.find('.');
+    const std::string name = channel.substr(0, dot);
+    if (groups.empty() || groups.back().first != name) groups.push_back({name, {}});
+    groups.back().second.push_back(c);
+  }
+  const size_t h = image.height, w = image.width, pixels = h * w;
+  nb::dict out;
+  for (const auto& [name, channels] : groups) {
+    const size_t k = channels.size();
+    std::vector<float> values(pixels * k);
+    for (size_t i = 0; i < pixels; ++i)
+      for (size_t j = 0; j < k; ++j) values[i * k + j] = image.pixels[i * image.channels + channels[j]];
+    const bool scalar = k == 1 && image.channel_names[channels[0]].find('.') == std::string::npos;
+    out[name.c_str()] = scalar ? nb::cast(ownedArray(std::move(values), {h, w}), nb::rv_policy::automatic)
+                               : nb::cast(ownedArray(std::move(values), {h, w, k}), nb::rv_policy::automatic);
+  }
+  return out;
+}
 
 struct PyRenderer {
   std::unique_ptr<Device> device;
@@ -53,6 +83,8 @@ struct PyRenderer {
                          std::to_string(out.frame.nonfinite) + " NaN/Inf values. Check the scene for extreme values "
                          "(huge irradiance, scattering or intensity); if they are physical, please report it with the scene");
     }
+    // As the job runner: a layer with NaN/Inf (but open water's +inf range) is never handed back.
+    out.with_layers = imageWithLayers(out.frame, renderer->scene().outputs);
     out.report = frameReport(*device, renderer->scene(), renderer->plan(), out.frame);
     return out;
   }
@@ -100,6 +132,12 @@ void bindRenderer(nb::module_& m) {
           nb::for_getter(nb::sig("def spectral(self, /) -> NDArray[numpy.float32] | None")),
           "Per-band radiance, float32 (height, width, bands), when the scene sets spectral.spectral_exr = true; "
           "else None.")
+      .def_prop_ro("layers", [](const PyFrame& f) { return layerArrays(f.with_layers); },
+                   nb::for_getter(nb::sig("def layers(self, /) -> dict[str, NDArray[numpy.float32]]")),
+                   "The ground-truth layers the scene asks for (outputs.layers; docs/layers.md), by name, float32: "
+                   "(height, width) for range, depth and object_id and for each mask ('beta_d_mask'), "
+                   "(height, width, 3) for the RGB layers and the normal; the same values as the channels of "
+                   "image.exr. Empty when the scene asks for none. Copies, made on each read.")
       .def_prop_ro("wavelengths_nm", [](const PyFrame& f) {
         std::vector<double> nm = f.frame.wavelengths_nm;
         const size_t n = nm.size();

@@ -116,3 +116,36 @@ def test_the_gil_is_released_while_the_kernels_run():
     longest_pause = float(np.max(np.diff([t0, *during, t1])))
     assert t1 - t0 > 0.05, "the render is too short to tell"
     assert longest_pause < 0.5 * (t1 - t0), f"no tick for {longest_pause:.3f} s of a {t1 - t0:.3f} s render"
+
+
+def test_layers_are_image_exrs_channels_by_name_and_split_the_image(tmp_path):
+    layers = ["range", "object_id", "normal", "clear", "direct", "backscatter", "forward", "lamps", "beta_d"]
+    overrides = {**SMALL, "outputs.layers": layers}
+    frame = seasim.Renderer(seasim.Scene.load(scene_path("seabed.toml"), overrides=overrides)).render()
+    got = frame.layers
+    assert set(got) == set(layers) | {"beta_d_mask"}
+    assert got["range"].shape == (36, 64) and got["range"].dtype == np.float32
+    assert got["object_id"].shape == (36, 64) and got["beta_d_mask"].shape == (36, 64)
+    assert got["normal"].shape == (36, 64, 3) and got["direct"].shape == (36, 64, 3)
+    ids = got["object_id"]  # 0 water, 1 the bottom, 2... the scene's objects
+    assert np.array_equal(ids, np.rint(ids)) and ids.min() >= 0 and np.any(ids == 1) and np.any(ids >= 2)
+    # The split sums to the image (docs/layers.md), as in the kernel tests.
+    total = got["direct"] + got["backscatter"] + got["forward"] + got["lamps"]
+    scale = np.maximum(frame.rgb.max(axis=2, keepdims=True), 1e-30)
+    assert np.max(np.abs(total - frame.rgb) / scale) < 1e-5
+    # The same numbers as the command line's image.exr channels.
+    out = tmp_path / "cli"
+    sets = [arg for key, value in SMALL.items() for arg in ("--set", f"{key}={value}")]
+    subprocess.run([str(BINARY), "render", str(scene_path("seabed.toml")), *sets, *[f"--output={l}" for l in layers],
+                    "-o", str(out)], check=True, capture_output=True)
+    exr = seasim.read_image(out / "image.exr")
+    assert exr.shape == (36, 64, 3 + 1 + 1 + 3 * 7 + 1)
+    assert np.array_equal(exr[:, :, :3], frame.rgb)
+    # EXR keeps channels sorted by name, so match each layer channel to a channel of the file.
+    columns = [got[name][..., None] if got[name].ndim == 2 else got[name] for name in got]
+    for column in np.concatenate(columns, axis=2).transpose(2, 0, 1):
+        assert any(np.array_equal(column, exr[:, :, c]) for c in range(3, exr.shape[2]))
+
+
+def test_no_layers_asked_gives_an_empty_dict(flat_sea_frame):
+    assert flat_sea_frame.layers == {}
