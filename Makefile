@@ -40,7 +40,7 @@ gallery: demo
 
 # The test build adds the Python module (SEASIM_PYTHON), which ctest's python.pytest imports.
 test: test-deps python-venv intel-opencl
-	@$(MAKE) --no-print-directory build CMAKE_FLAGS="$(CMAKE_FLAGS) $(PYTHON_CMAKE_FLAGS)"
+	@$(MAKE) --no-print-directory build CMAKE_FLAGS="$(CMAKE_FLAGS) -DSEASIM_TESTS=ON $(PYTHON_CMAKE_FLAGS)"
 	cd $(BUILD) && ctest --output-on-failure -j 2
 
 python-venv:
@@ -52,7 +52,11 @@ python-venv:
 # A wheel of the Python package into $(BUILD)/, built by scikit-build-core in the build folder itself
 # (so only the module is compiled anew), with that folder's CMake generator; then the install prefix
 # and the SKBUILD settings it cached are dropped again, so the folder configures as before.
+# scikit-build-core deletes CMakeCache.txt and CMakeFiles/ (every object file, and with the cache the
+# folder's SEASIM_TESTS) when its record .skbuild-info.json names another interpreter's
+# scikit-build-core; the folder is ours, so that record goes first.
 wheel: configure python-venv
+	rm -f $(BUILD)/.skbuild-info.json
 	CMAKE_GENERATOR="$$(sed -n 's/^CMAKE_GENERATOR:INTERNAL=//p' $(BUILD)/CMakeCache.txt)" \
 	  $(PYVENV)/bin/pip wheel -q --no-build-isolation --no-deps -w $(BUILD) --config-settings=build-dir=$(BUILD) .
 	cmake -S . -B $(BUILD) -UCMAKE_INSTALL_PREFIX -U'SKBUILD*' > /dev/null

@@ -25,12 +25,25 @@ print(json.dumps({"data_dir": seasim.data_dir(), "file": seasim.__file__}))
 """
 
 
+def cached(name: str) -> str:
+    """A setting of the build folder's CMakeCache.txt ('' when absent)."""
+    for line in (BUILD_DIR / "CMakeCache.txt").read_text().splitlines():
+        if line.startswith(name + ":"):
+            return line.split("=", 1)[1]
+    return ""
+
+
 @pytest.fixture(scope="module")
 def wheel() -> Path:
+    # scikit-build-core wipes a build folder whose record names another interpreter's install; make wheel
+    # drops the record, so the folder keeps its cache (its test suites) and its object files.
+    tests_before = cached("SEASIM_TESTS")
+    (BUILD_DIR / ".skbuild-info.json").write_text(json.dumps({"source_dir": "/elsewhere", "skbuild_path": "/elsewhere"}))
     made = subprocess.run(["make", "--no-print-directory", "-C", str(SOURCE_DIR), "wheel", f"BUILD={BUILD_DIR}"],
                           capture_output=True, text=True)
     if made.returncode != 0:
         pytest.fail(f"make wheel failed ({made.returncode}):\n{made.stdout[-4000:]}\n{made.stderr[-4000:]}")
+    assert cached("SEASIM_TESTS") == tests_before, "make wheel reset the build folder's CMake cache"
     wheels = sorted(BUILD_DIR.glob("seasim-*.whl"), key=os.path.getmtime)
     assert wheels, "make wheel left no wheel in the build folder"
     return wheels[-1]
