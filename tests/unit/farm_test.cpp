@@ -136,6 +136,23 @@ TEST_F(Farm, EstimatedCostScalesWithPixelsBandsAndPasses) {
   EXPECT_GT(estimateItemCost(finer, makePlan(finer)), estimateItemCost(second, makePlan(second)));
 }
 
+// Under water the estimate follows the model and the layers kd_multiple computes: the improved model
+// costs about 4x the thesis's per pixel-band in kd_multiple, and the split and veiling layers add a
+// second and third evaluation; geometry layers alone barely change it.
+TEST_F(Farm, EstimatedUnderwaterCostFollowsModelAndLayers) {
+  const auto cost = [](const std::string& model, const std::string& layers) {
+    const Scene s = loadScene(kRepo + "/scenes/seabed.toml",
+                              {Override{"underwater.model", "\"" + model + "\"", {}},
+                               Override{"underwater.single_scattering", "false", {}}, Override{"outputs.layers", layers, {}}});
+    return double(estimateItemCost(s, makePlan(s)));
+  };
+  EXPECT_GT(cost("improved", "[]"), 2.0 * cost("thesis", "[]"));
+  EXPECT_GT(cost("thesis", R"(["direct"])"), 1.1 * cost("thesis", "[]"));
+  EXPECT_GT(cost("thesis", R"(["beta_b"])"), cost("thesis", R"(["direct"])"));
+  EXPECT_GT(cost("improved", R"(["beta_b"])"), cost("improved", "[]"));
+  EXPECT_LT(cost("thesis", R"(["range"])"), 1.05 * cost("thesis", "[]"));
+}
+
 // Shafts: the cost follows the lamps and the integrator the planner picks (the measured weights in
 // host/jobs/shard_balance.cpp): stage's five lamps cost more than spot_sphere's one at the same size,
 // and the paper's planes more than twice the intervals.
