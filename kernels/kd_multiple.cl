@@ -105,6 +105,45 @@ realb kd_sky_lanes(__global const float* band_table, int stride, int i, float3 s
 #endif
 }
 
+#if SEASIM_UNDERWATER_MODEL == 1
+/* What the improved model needs of a pixel's first surface to give its light (uwi_lanes_hit): set once
+ * per pixel, read per step of bands. */
+typedef struct {
+  int mat, mirror_object, node_r, tilt_node, tilt_node_m, multiple;
+  float3 sky_shape;
+  float cos_dphi_r, frac, frac_m, cos_phi_n, cos_phi_m, phase_r, d_y, ior, bottom_depth;
+  float n_dot_s, n_m_dot_s, vis, vis_b, mirror_s, mirror_vis;
+} UwiHitPixel;
+
+/* The light leaving the pixel's first surface towards the camera for SEASIM_BAND_LANES bands: the water
+ * surface seen from below (its transmittance t_s), the bottom or an object (their ends `e`). The image
+ * takes it with the hit's ends and t_s = T(S); the clear layer with the ends at S = 0 and t_s = 1. */
+realb uwi_lanes_hit(const UwiHitPixel* h, __global const float* band_table, int stride, int uwi_row0, int i,
+                    const UwiLanes* v, const UwiEnds* e, realb t_s, realb albedo, realb albedo_m) {
+  if (h->mat == UW_MAT_SURFACE) {
+    const realb sky_l = kd_sky_lanes(band_table, stride, i, h->sky_shape);
+    UwiWeights w_r, tilt_m;
+    uwi_lanes_weights(band_table, stride, uwi_row0, i, h->node_r, h->cos_dphi_r, &w_r);
+    if (h->mirror_object)
+      uwi_lanes_tilt(band_table, stride, uwi_row0, i, h->tilt_node_m, h->frac_m, h->cos_phi_m, 1.0f, &tilt_m);
+    else
+      uwi_lanes_down(v, &tilt_m);
+    return uwi_lanes_surface(v, &w_r, t_s, sky_l, LOADB(band_table + (uwi_row0 + UWI_ROW_BOTTOM_L) * stride, i),
+                             LOADB(band_table + (uwi_row0 + UWI_ROW_EXP_K_H) * stride, i), h->phase_r, h->bottom_depth,
+                             h->d_y, h->ior, h->multiple, h->mirror_s, albedo_m, &tilt_m, h->n_m_dot_s, h->mirror_vis);
+  }
+  if (h->mat == UW_MAT_BOTTOM) {
+    UwiWeights down;
+    uwi_lanes_down(v, &down);
+    return uwi_lanes_lambert(v, e, &down, albedo, h->bottom_depth, h->n_dot_s, h->vis);
+  }
+  if (h->mat == UW_MAT_NONE) return SPLATB(0.0f);
+  UwiWeights tilt;
+  uwi_lanes_tilt(band_table, stride, uwi_row0, i, h->tilt_node, h->frac, h->cos_phi_n, h->vis_b, &tilt);
+  return uwi_lanes_lambert(v, e, &tilt, albedo, h->bottom_depth, h->n_dot_s, h->vis);
+}
+#endif
+
 __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, __global const float* albedo,
                           __global const float* band_table, __global const UwObject* objects,
                           __global const float4* geom, __global const int* material, __global const float* sun_vis,
@@ -235,6 +274,12 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
                                                        (float3)(p->cam_pos[0], p->cam_pos[1], p->cam_pos[2]) + S * d,
                                                        n, s_w)
                                : 1.0f;
+  const UwiHitPixel hp = {.mat = mat, .mirror_object = mirror_object, .node_r = node_r, .tilt_node = tilt_node,
+                          .tilt_node_m = tilt_node_m, .multiple = multiple, .sky_shape = sky_shape,
+                          .cos_dphi_r = cos_dphi_r, .frac = frac, .frac_m = frac_m, .cos_phi_n = cos_phi_n,
+                          .cos_phi_m = cos_phi_m, .phase_r = phase_r, .d_y = d.y, .ior = p->ior,
+                          .bottom_depth = p->bottom_depth, .n_dot_s = n_dot_s, .n_m_dot_s = n_m_dot_s, .vis = vis,
+                          .vis_b = vis_b, .mirror_s = mirror.s, .mirror_vis = mirror.vis};
 #if SEASIM_UWI_SPREAD
   /* The light scattered by small angles, its moments (common/water_spread.h) in sensor RGB: F, F E, and
    * the sums over bands of (w_r + w_g + w_b) F D and (w_r + w_g + w_b) F. */
@@ -270,54 +315,15 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
                                                                          s_w.y, strict),
                                              SPLATB(0.0f))
                                       : SPLATB(0.0f);
-    realb hit = SPLATB(0.0f); /* the light of what the ray meets, T(S) included */
-    if (mat == UW_MAT_SURFACE) {
-      const realb sky_l = kd_sky_lanes(band_table, stride, i, sky_shape);
-      UwiWeights w_r, tilt_m;
-      uwi_lanes_weights(band_table, stride, uwi_row0, i, node_r, cos_dphi_r, &w_r);
-      if (mirror_object)
-        uwi_lanes_tilt(band_table, stride, uwi_row0, i, tilt_node_m, frac_m, cos_phi_m, 1.0f, &tilt_m);
-      else
-        uwi_lanes_down(&v, &tilt_m);
-      hit = uwi_lanes_surface(&v, &w_r, ends.k, sky_l, LOADB(ROW(uwi_row0 + UWI_ROW_BOTTOM_L), i),
-                             LOADB(ROW(uwi_row0 + UWI_ROW_EXP_K_H), i), phase_r, p->bottom_depth, d.y, p->ior,
-                             multiple, mirror.s, LOADB(albedo_m_row, i), &tilt_m, n_m_dot_s, mirror.vis);
-    } else if (mat == UW_MAT_BOTTOM) {
-      UwiWeights down;
-      uwi_lanes_down(&v, &down);
-      hit = uwi_lanes_lambert(&v, &ends, &down, LOADB(albedo_row, i), p->bottom_depth, n_dot_s, vis);
-    } else if (mat != UW_MAT_NONE) {
-      UwiWeights tilt;
-      uwi_lanes_tilt(band_table, stride, uwi_row0, i, tilt_node, frac, cos_phi_n, vis_b, &tilt);
-      hit = uwi_lanes_lambert(&v, &ends, &tilt, LOADB(albedo_row, i), p->bottom_depth, n_dot_s, vis);
-    }
+    /* the light of what the ray meets, T(S) included */
+    const realb hit = uwi_lanes_hit(&hp, band_table, stride, uwi_row0, i, &v, &ends, ends.k, LOADB(albedo_row, i),
+                                    LOADB(albedo_m_row, i));
 #if SEASIM_LAYER_FORMATION
     /* clear: the same hit with S = 0 (its ends at the hit's depth without T; the surface's t_s = 1). */
-    realb clear = SPLATB(0.0f);
-    {
-      UwiEnds ends0;
-      uwi_ends(&v, p->bottom_depth, 0.0f, y_hit, 0, &ends0);
-      if (mat == UW_MAT_SURFACE) {
-        const realb sky_l = kd_sky_lanes(band_table, stride, i, sky_shape);
-        UwiWeights w_r, tilt_m;
-        uwi_lanes_weights(band_table, stride, uwi_row0, i, node_r, cos_dphi_r, &w_r);
-        if (mirror_object)
-          uwi_lanes_tilt(band_table, stride, uwi_row0, i, tilt_node_m, frac_m, cos_phi_m, 1.0f, &tilt_m);
-        else
-          uwi_lanes_down(&v, &tilt_m);
-        clear = uwi_lanes_surface(&v, &w_r, SPLATB(1.0f), sky_l, LOADB(ROW(uwi_row0 + UWI_ROW_BOTTOM_L), i),
-                                  LOADB(ROW(uwi_row0 + UWI_ROW_EXP_K_H), i), phase_r, p->bottom_depth, d.y, p->ior,
-                                  multiple, mirror.s, LOADB(albedo_m_row, i), &tilt_m, n_m_dot_s, mirror.vis);
-      } else if (mat == UW_MAT_BOTTOM) {
-        UwiWeights down;
-        uwi_lanes_down(&v, &down);
-        clear = uwi_lanes_lambert(&v, &ends0, &down, LOADB(albedo_row, i), p->bottom_depth, n_dot_s, vis);
-      } else if (mat != UW_MAT_NONE) {
-        UwiWeights tilt;
-        uwi_lanes_tilt(band_table, stride, uwi_row0, i, tilt_node, frac, cos_phi_n, vis_b, &tilt);
-        clear = uwi_lanes_lambert(&v, &ends0, &tilt, LOADB(albedo_row, i), p->bottom_depth, n_dot_s, vis);
-      }
-    }
+    UwiEnds ends0;
+    uwi_ends(&v, p->bottom_depth, 0.0f, y_hit, 0, &ends0);
+    const realb clear = uwi_lanes_hit(&hp, band_table, stride, uwi_row0, i, &v, &ends0, SPLATB(1.0f),
+                                      LOADB(albedo_row, i), LOADB(albedo_m_row, i));
     /* direct: clear through the whole extinction c (delta-M's c' < c keeps the small-angle light in hit). */
     const realb trans = exp(-v.c * S);
     const realb direct = clear * trans;
