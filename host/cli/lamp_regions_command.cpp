@@ -14,6 +14,7 @@
 #include "io/csv.h"
 #include "io/npy.h"
 #include "math/kernel_math.h"
+#include "plan/pass_descriptor.h"
 #include "plan/plan.h"
 #include "quality/render_frame.h"
 #include "reference/pixel_centre_hits.h"
@@ -155,6 +156,7 @@ int cmdLampRegions(const LampRegionsCmd& cmd) {
     // The fast models, rendered in interleaved rounds (the machine's load falls on each alike).
     std::vector<Image> images(cmd.models.size());
     std::vector<std::vector<double>> ms(cmd.models.size());
+    const std::string& lamps_pass = descriptorFor(PassRole::UnderwaterLamps).name;
     for (int round = 0; round < std::max(1, cmd.rounds); ++round)
       for (size_t m = 0; m < cmd.models.size(); ++m) {
         std::vector<Override> over = base;
@@ -165,7 +167,7 @@ int cmdLampRegions(const LampRegionsCmd& cmd) {
         if (frame.nonfinite != 0) throw RuntimeError("lamp-regions: NaN/Inf in a render");
         double t = 0;
         for (const PassTiming& pt : frame.timings)
-          if (pt.name == "underwater_lamps") t += pt.ms;
+          if (pt.name == lamps_pass) t += pt.ms;
         ms[m].push_back(t);
         images[m] = frame.rgb;
       }

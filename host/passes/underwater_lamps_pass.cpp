@@ -6,24 +6,17 @@
 #include "underwater/lamps_ms_table.h"
 #include "underwater/lamps_setup.h"
 #include "math/kernel_math.h"
+#include "plan/pass_descriptor.h"
+#include "scene/model_keys.h"
 #include "util/error.h"
 
 namespace seasim {
 
-namespace {
-
-int knob(const Scene& scene, const char* name, int fallback) {
-  const auto it = scene.quality.find(name);
-  if (it == scene.quality.end() || it->second.automatic) return fallback;
-  return static_cast<int>(it->second.value);
-}
-
-}  // namespace
-
 UnderwaterLampsPass::Config UnderwaterLampsPass::configFromScene(const Scene& scene) {
+  const PassDescriptor& d = descriptorFor(PassRole::UnderwaterLamps);
   Config c;
-  c.planes = knob(scene, "shafts_planes", 30);
-  c.subplanes = knob(scene, "shafts_subplanes", 6);
+  c.planes = static_cast<int>(d.settledKnob(scene, "shafts_planes"));
+  c.subplanes = static_cast<int>(d.settledKnob(scene, "shafts_subplanes"));
   const auto number = [&](const char* name, double fallback) {
     const auto it = scene.quality.find(name);
     return it == scene.quality.end() ? fallback : it->second.value;
@@ -31,10 +24,10 @@ UnderwaterLampsPass::Config UnderwaterLampsPass::configFromScene(const Scene& sc
   // Scenes built in code without the parser's defaults keep the older switch's meaning.
   const double model = number("lamps_model", number("lamps_delta_m", 1.0) != 0 ? 1.0 : 0.0);
   c.model = model == 2.0 ? Model::Orders : model == 1.0 ? Model::DeltaM : Model::Single;
-  c.orders = static_cast<int>(number("lamps_orders", c.orders));
-  c.ms_steps = static_cast<int>(number("lamps_ms_steps", c.ms_steps));
-  c.kappa = number("lamps_ms_kappa", c.kappa);
-  c.beta = number("lamps_ms_spread", c.beta);
+  c.orders = static_cast<int>(modelKey(scene, "quality.lamps_orders"));
+  c.ms_steps = static_cast<int>(modelKey(scene, "quality.lamps_ms_steps"));
+  c.kappa = modelKey(scene, "quality.lamps_ms_kappa");
+  c.beta = modelKey(scene, "quality.lamps_ms_spread");
   return c;
 }
 

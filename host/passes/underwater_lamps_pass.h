@@ -28,14 +28,16 @@ namespace seasim {
 class UnderwaterLampsPass {
  public:
   enum class Model { Single = 0, DeltaM = 1, Orders = 2 };
+  // The scene's settings (configFromScene; their defaults are the pass descriptor's,
+  // passes/nodes/underwater_lamps_node.cpp).
   struct Config {
-    int planes = 30;    // n sampling planes per lamp (001 eq. 5)
-    int subplanes = 6;  // m sub-samples per interval (001 eq. 7–9)
-    Model model = Model::DeltaM;  // quality.lamps_model
-    int orders = 4;               // quality.lamps_orders ("orders" model)
-    int ms_steps = 12;            // quality.lamps_ms_steps: quadrature steps per view ray and lamp
-    double kappa = 0.75;          // quality.lamps_ms_kappa: path-stretch exponent
-    double beta = 0.8;            // quality.lamps_ms_spread: β of the landing spread h_n = 1 - β (1 - g^n)
+    int planes = 0;                // n sampling planes per lamp (001 eq. 5): quality.shafts_planes
+    int subplanes = 0;             // m sub-samples per interval (001 eq. 7–9): quality.shafts_subplanes
+    Model model = Model::DeltaM;   // quality.lamps_model
+    int orders = 0;                // quality.lamps_orders ("orders" model)
+    int ms_steps = 0;              // quality.lamps_ms_steps: quadrature steps per view ray and lamp
+    double kappa = 0.0;            // quality.lamps_ms_kappa: path-stretch exponent
+    double beta = 0.0;             // quality.lamps_ms_spread: β of the landing spread h_n = 1 - β (1 - g^n)
   };
   static Config configFromScene(const Scene& scene);
 

@@ -1,5 +1,7 @@
 #include "plan/pass_descriptor.h"
 
+#include <algorithm>
+
 #include "util/error.h"
 
 namespace seasim {
@@ -50,6 +52,26 @@ const std::vector<ModelKey>& modelSceneKeys() {
     return out;
   }();
   return keys;
+}
+
+const std::vector<KnobDefault>& qualityCountKnobs() {
+  static const std::vector<KnobDefault> knobs = [] {
+    std::vector<KnobDefault> out;
+    for (const PassDescriptor& d : passDescriptors())
+      for (const KnobDefault& k : d.knobs) {
+        if (k.is_switch) continue;
+        const auto seen = std::find_if(out.begin(), out.end(),
+                                       [&](const KnobDefault& o) { return std::string(o.name) == k.name; });
+        if (seen == out.end()) {
+          out.push_back(k);
+        } else if (seen->value != k.value) {
+          throw RuntimeError(std::string("two descriptors give the knob quality.") + k.name +
+                             " different defaults (" + d.name + " is one)");
+        }
+      }
+    return out;
+  }();
+  return knobs;
 }
 
 const PassDescriptor* descriptorOf(const PassPlan& entry) {

@@ -30,10 +30,6 @@ struct PassKeys {
 };
 
 // A [quality] knob a model reads, with the default it plans, estimates and costs with.
-struct KnobDefault {
-  const char* name;  // without "quality."
-  double value;
-};
 
 // What a pass is to the commands that report on passes by kind (`seasim bench`, the studies), so that
 // they ask for "the underwater shading" and name no model: descriptorFor(PassRole) gives its name.
@@ -46,6 +42,7 @@ enum class PassRole {
   UnderwaterGBuffer,           // the underwater frame's ray cast
   UnderwaterSingleScattering,  // the froxel single scattering (its kernels' timings start with its name)
   UnderwaterShading,           // the underwater frame's shading, per pixel and band
+  UnderwaterLamps,             // the lamps' light in the water, added to the underwater frame
   Check,                       // a check on the frame, not part of its rendering time
 };
 

@@ -25,32 +25,12 @@ namespace fs = std::filesystem;
 namespace seasim {
 namespace {
 
-// The [quality] knobs and their defaults: positive integers, or "auto" (the method picks the
-// cheapest setting under its error budget). scenes/README.md [quality] lists the same table.
-struct KnobDefault {
-  const char* name;
-  int value;
-  const char* meaning;
-};
-constexpr KnobDefault kQualityKnobs[] = {
-    {"sea_lut_size", 64, "sea single scattering: LUT size over theta_jo (000 eq. 5)"},
-    {"sea_supersample", 1, "sea from above: n x n rays per pixel over unfiltered wave normals (the wave filter's reference)"},
-    {"sea_nz", 12, "sea second order: depth planes n_z (000 eq. 6-8)"},
-    {"sea_nd", 128, "sea second order: directions n_d"},
-    {"sea_map_size", 32, "sea second order: scattering map resolution"},
-    {"shafts_planes", 30, "shafts: sampling planes n (001)"},
-    {"shafts_subplanes", 6, "shafts: sub-planes m per plane"},
-    {"shafts_table_size", 256, "shafts: integral table size"},
-    {"shadow_map_size", 512, "shafts: shadow map size"},
-    {"froxel_x", 160, "underwater froxel grid x (002 §5)"},
-    {"froxel_y", 90, "froxel grid y"},
-    {"froxel_z", 64, "froxel grid z (depth slices)"},
-    {"caustic_map_size", 256, "caustic map size"},
-    {"caustic_layers", 8, "underwater caustic map: depth layers (caustic_map.h)"},
-    {"reference_spp", 64, "seasim reference under water: paths per pixel (without --steps)"},
-    {"reference_steps", 200, "seasim reference, sea and shafts: steps per ray (without --steps)"},
-    {"fourflow_table_size", 32, "shallow water: (l, h) table resolution of 003 eq. 22-23"},
-    {"profile_streams", 16, "outputs.profile_depths: discrete-ordinates cosines per hemisphere (>= 2)"},
+// The path tracer's and quadrature reference's [quality] knobs (host/reference: not a pass, so not in
+// a descriptor); the passes' own count knobs are their descriptors' (qualityCountKnobs()).
+// scenes/README.md [quality] lists them all.
+const KnobDefault kReferenceKnobs[] = {
+    {"reference_spp", 64},     // seasim reference under water: paths per pixel (without --steps)
+    {"reference_steps", 200},  // seasim reference, sea and shafts: steps per ray (without --steps)
 };
 constexpr long long kMaxKnob = 1 << 20;  // catches typos such as 1e9 planes
 
@@ -154,11 +134,14 @@ class SceneParser {
       double v = k.default_value;
       if (k.type == ModelKey::Type::Boolean) {
         v = r.boolean(k.name, k.default_value != 0) ? 1.0 : 0.0;
+      } else if (k.type == ModelKey::Type::Integer) {
+        v = static_cast<double>(r.integerIn(k.name, static_cast<long long>(k.default_value),
+                                            static_cast<long long>(k.min), static_cast<long long>(k.max)));
       } else {
         v = r.number(k.name, k.default_value);
-        r.check(v >= k.min && v <= k.max, k.name,
-                "must be in [" + fmt(k.min) + ", " + fmt(k.max) + "]" + (k.unit.empty() ? "" : " " + k.unit) +
-                    ", got " + fmt(v));
+        r.check((k.min_open ? v > k.min : v >= k.min) && v <= k.max, k.name,
+                "must be in " + std::string(k.min_open ? "(" : "[") + fmt(k.min) + ", " + fmt(k.max) + "]" +
+                    (k.unit.empty() ? "" : " " + k.unit) + ", got " + fmt(v));
       }
       scene_.model_keys[k.dotted()] = v;
     }
@@ -755,8 +738,10 @@ class SceneParser {
 
   void quality(const toml::table& t) {
     TableReader r(src_, t, "quality");
-    for (const KnobDefault& k : kQualityKnobs) {
-      Knob knob{false, static_cast<double>(k.value)};
+    std::vector<KnobDefault> counts(std::begin(kReferenceKnobs), std::end(kReferenceKnobs));
+    for (const KnobDefault& k : qualityCountKnobs()) counts.push_back(k);
+    for (const KnobDefault& k : counts) {
+      Knob knob{false, k.value};
       if (const toml::node* n = r.get(k.name)) {
         if (auto* s = n->as_string()) {
           r.check(s->get() == "auto", k.name,
@@ -765,7 +750,7 @@ class SceneParser {
         } else {
           r.check(n->is_integer(), k.name,
                   "expected a positive integer or \"auto\", got " + typeName(*n));
-          knob.value = static_cast<double>(r.integerIn(k.name, k.value, 1, kMaxKnob));
+          knob.value = static_cast<double>(r.integerIn(k.name, static_cast<long long>(k.value), 1, kMaxKnob));
         }
       }
       scene_.quality[k.name] = knob;
@@ -786,16 +771,6 @@ class SceneParser {
     const double lamps_model_id = lamps_model == "single" ? 0.0 : lamps_model == "delta_m" ? 1.0 : 2.0;
     scene_.quality["lamps_model"] = Knob{false, lamps_model_id};
     scene_.quality["lamps_delta_m"] = Knob{false, lamps_model_id == 1.0 ? 1.0 : 0.0};
-    // The "orders" model's orders of scattering kept (the last takes all higher ones), its quadrature
-    // steps per view ray and its path-stretch exponent κ (common/underwater_lamps_ms.h).
-    scene_.quality["lamps_orders"] = Knob{false, static_cast<double>(r.integerIn("lamps_orders", 4, 1, 12))};
-    scene_.quality["lamps_ms_steps"] = Knob{false, static_cast<double>(r.integerIn("lamps_ms_steps", 12, 1, 64))};
-    const double kappa = r.number("lamps_ms_kappa", 0.75);
-    r.check(kappa >= 0 && kappa <= 2, "lamps_ms_kappa", "must be in [0, 2], got " + fmt(kappa));
-    scene_.quality["lamps_ms_kappa"] = Knob{false, kappa};
-    const double spread = r.number("lamps_ms_spread", 0.8);
-    r.check(spread > 0 && spread <= 1, "lamps_ms_spread", "must be in (0, 1], got " + fmt(spread));
-    scene_.quality["lamps_ms_spread"] = Knob{false, spread};
     // Kernels built with -cl-fast-relaxed-math: true, false or "auto" (the default), which the planner
     // turns on where the shipped scenes were measured within 0.05 of an 8-bit level of the exact-maths
     // image (fastMathFor in host/plan; results/BENCHMARKS.md has the table).

@@ -24,8 +24,16 @@
 const std::vector<seasim::ModelKey>& seasim::modelSceneKeys() {
   static const std::vector<ModelKey> keys = {
       {"surface", "fuzz_switch", ModelKey::Type::Boolean, 0.0, 0.0, 0.0, ""},
-      {"sea", "fuzz_number", ModelKey::Type::Number, 1.0, 0.0, 10.0, "m"}};
+      {"sea", "fuzz_number", ModelKey::Type::Number, 1.0, 0.0, 10.0, "m"},
+      {"quality", "fuzz_integer", ModelKey::Type::Integer, 4.0, 1.0, 12.0, ""},
+      {"quality", "fuzz_open", ModelKey::Type::Number, 0.5, 0.0, 1.0, "", true}};
   return keys;
+}
+
+// The same for the passes' [quality] count knobs (plan/pass_descriptor.cpp gives the shipped ones).
+const std::vector<seasim::KnobDefault>& seasim::qualityCountKnobs() {
+  static const std::vector<KnobDefault> knobs = {{"fuzz_count", 8}};
+  return knobs;
 }
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {

@@ -156,7 +156,7 @@ TEST(PassDescriptor, EachReportingRoleIsHeldByExactlyOneDescriptor) {
   using seasim::PassRole;
   for (PassRole role : {PassRole::SeaShading, PassRole::SeaSecondOrder, PassRole::Spotlights, PassRole::ShadowMaps,
                         PassRole::UnderwaterGBuffer, PassRole::UnderwaterSingleScattering,
-                        PassRole::UnderwaterShading, PassRole::Check}) {
+                        PassRole::UnderwaterShading, PassRole::UnderwaterLamps, PassRole::Check}) {
     const auto& all = seasim::passDescriptors();
     EXPECT_EQ(std::count_if(all.begin(), all.end(), [&](const auto& d) { return d.role == role; }), 1)
         << "role " << static_cast<int>(role);

@@ -12,6 +12,7 @@
 
 #include <unistd.h>
 
+#include "scene/model_keys.h"
 #include "scene/scene_parser.h"
 #include "spectral/sensor.h"
 #include "spectral/wavelength_grid.h"
@@ -295,8 +296,7 @@ TEST(SceneParser, Defaults) {
       {"reference_spp", 64},     {"reference_steps", 200}, {"shafts_exact", 0},
       {"shafts_error_budget", 1}, {"sea_supersample", 1},  {"wave_filter", 1},
       {"fourflow_table_size", 32}, {"lamps_delta_m", 1}, {"shafts_panel_deg", 4}, {"shafts_panel_texels", 2},
-      {"profile_streams", 16}, {"lamps_model", 1},        {"lamps_orders", 4},     {"lamps_ms_steps", 12}, {"lamps_ms_kappa", 0.75},
-      {"lamps_ms_spread", 0.8}};
+      {"profile_streams", 16}, {"lamps_model", 1}};
   EXPECT_EQ(s.quality.size(), std::size(knobs) + 2);
   EXPECT_TRUE(s.quality.at("fast_math").automatic);  // "auto": the planner decides (fastMathFor)
   EXPECT_TRUE(s.quality.at("shafts_method").automatic);  // the planner decides (plan/shafts_method.h)
@@ -305,6 +305,15 @@ TEST(SceneParser, Defaults) {
     EXPECT_FALSE(s.quality.at(name).automatic) << name;
     EXPECT_DOUBLE_EQ(s.quality.at(name).value, value) << name;
   }
+  // The passes' count knobs are read from their descriptors, with the descriptors' defaults.
+  for (const seasim::KnobDefault& k : seasim::qualityCountKnobs()) {
+    ASSERT_TRUE(s.quality.count(k.name)) << k.name;
+    EXPECT_DOUBLE_EQ(s.quality.at(k.name).value, k.value) << k.name;
+  }
+  // The lamps' "orders" settings are the underwater_lamps descriptor's scene keys.
+  const std::pair<const char*, double> lamp_keys[] = {{"quality.lamps_orders", 4}, {"quality.lamps_ms_steps", 12},
+                                                      {"quality.lamps_ms_kappa", 0.75}, {"quality.lamps_ms_spread", 0.8}};
+  for (const auto& [key, value] : lamp_keys) EXPECT_DOUBLE_EQ(seasim::modelKey(s, key), value) << key;
 
   // A [bottom] table without type is a flat bottom at the default depth; water defaults.
   Scene b = parseScene("[water]\njerlov = \"IB\"\n[bottom]\n", "b.toml");
@@ -702,10 +711,21 @@ TEST(SceneParserLamps, LampsModelByNameWithTheOlderSwitchKept) {
   EXPECT_EQ(parseScene("", "l.toml").quality.at("lamps_model").value, 1);
   EXPECT_THROW(parseScene("[quality]\nlamps_model = \"bogus\"\n", "l.toml"), seasim::InputError);
   EXPECT_THROW(parseScene("[quality]\nlamps_model = \"orders\"\nlamps_delta_m = true\n", "l.toml"), seasim::InputError);
-  EXPECT_THROW(parseScene("[quality]\nlamps_orders = 13\n", "l.toml"), seasim::InputError);
-  EXPECT_THROW(parseScene("[quality]\nlamps_ms_steps = 0\n", "l.toml"), seasim::InputError);
-  EXPECT_THROW(parseScene("[quality]\nlamps_ms_spread = 0\n", "l.toml"), seasim::InputError);
-  EXPECT_THROW(parseScene("[quality]\nlamps_ms_kappa = -1\n", "l.toml"), seasim::InputError);
+  const auto error = [](const std::string& text) -> std::string {
+    try {
+      parseScene(text, "l.toml");
+    } catch (const seasim::InputError& e) {
+      return e.what();
+    }
+    return "";
+  };
+  EXPECT_NE(error("[quality]\nlamps_orders = 13\n").find("l.toml:2: key 'quality.lamps_orders'"), std::string::npos);
+  EXPECT_NE(error("[quality]\nlamps_orders = 2.5\n").find("quality.lamps_orders"), std::string::npos);
+  EXPECT_NE(error("[quality]\nlamps_ms_steps = 0\n").find("quality.lamps_ms_steps"), std::string::npos);
+  EXPECT_NE(error("[quality]\nlamps_ms_spread = 0\n").find("must be in (0, 1], got 0"), std::string::npos);
+  EXPECT_EQ(error("[quality]\nlamps_ms_spread = 1\n"), "");
+  EXPECT_NE(error("[quality]\nlamps_ms_kappa = -1\n").find("must be in [0, 2], got -1"), std::string::npos);
+  EXPECT_DOUBLE_EQ(seasim::modelKey(parseScene("[quality]\nlamps_orders = 7\n", "l.toml"), "quality.lamps_orders"), 7);
 }
 
 }  // namespace

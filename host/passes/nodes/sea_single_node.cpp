@@ -82,7 +82,7 @@ PassDescriptor seaSingleDescriptor() {
   d.band_loop_timing = d.name;
   d.band_loop_items = [](const Scene& s, int bands) { return double(s.camera.width) * s.camera.height * bands; };
   d.keys = kSeaSingleKeys;
-  d.knobs = {{"sea_supersample", 1}, {"wave_filter", 1}};
+  d.knobs = {{"sea_supersample", 1}, {"wave_filter", 1, true}};
   // [shallow] takes the sea model's place for the view from above (fourflow_node.cpp).
   d.rule = [d](const Scene& scene, const Plan&) -> std::optional<PassPlan> {
     if (!seaSeenFromAbove(scene) || scene.shallow.present) return std::nullopt;

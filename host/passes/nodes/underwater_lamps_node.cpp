@@ -7,6 +7,7 @@
 #include "passes/underwater_features.h"
 #include "passes/underwater_lamps_pass.h"
 #include "plan/pass_descriptor.h"
+#include "scene/model_keys.h"
 #include "plan/scene_facts.h"
 #include "render/pass.h"
 #include "render/layer_target.h"
@@ -56,6 +57,15 @@ PassDescriptor underwaterLampsDescriptor() {
   PassDescriptor d;
   d.name = "underwater_lamps";
   d.kernel_file = "underwater_lamps.cl";
+  d.role = PassRole::UnderwaterLamps;
+  // The lamps' interval integral takes the shafts' sampling planes (001 eq. 5, 7-9).
+  d.knobs = {{"shafts_planes", 30}, {"shafts_subplanes", 6}};
+  // The "orders" model's orders of scattering kept (the last takes all higher ones), its quadrature steps
+  // per view ray, its path-stretch exponent κ and the spread β of its landing (common/underwater_lamps_ms.h).
+  d.scene_keys = {{"quality", "lamps_orders", ModelKey::Type::Integer, 4.0, 1.0, 12.0, ""},
+                  {"quality", "lamps_ms_steps", ModelKey::Type::Integer, 12.0, 1.0, 64.0, ""},
+                  {"quality", "lamps_ms_kappa", ModelKey::Type::Number, 0.75, 0.0, 2.0, ""},
+                  {"quality", "lamps_ms_spread", ModelKey::Type::Number, 0.8, 0.0, 1.0, "", true}};
   d.rule = [](const Scene& scene, const Plan& so_far) -> std::optional<PassPlan> {
     if (!cameraUnderwater(scene) || scene.spotlights.empty()) return std::nullopt;
     auto features = std::make_shared<UnderwaterLampsFeatures>();
