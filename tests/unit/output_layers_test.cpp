@@ -18,28 +18,14 @@
 #include "scene/output_layers.h"
 #include "scene/scene_parser.h"
 #include "util/error.h"
+#include "small_underwater_scene.h"
 
 namespace seasim {
 namespace {
 
-const char* kUnderwater = R"([camera]
-position = [0, -4, 0]
-look_at = [0, -5, -8]
-[water]
-jerlov = "IB"
-[bottom]
-type = "flat"
-depth = 6
-)";
+const char* kUnderwater = kSmallUnderwaterScene;
 
-std::string errorOf(const std::string& text) {
-  try {
-    parseScene(text, "layers.toml");
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
+std::string errorOf(const std::string& text) { return parseErrorOf(text, "layers.toml"); }
 
 bool hasDefine(const Plan& plan, const std::string& pass, const std::string& define) {
   const PassPlan* p = plan.find(pass);

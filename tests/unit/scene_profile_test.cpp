@@ -12,28 +12,14 @@
 #include "radiometry/scene_profile.h"
 #include "scene/scene_parser.h"
 #include "util/error.h"
+#include "small_underwater_scene.h"
 
 namespace seasim {
 namespace {
 
-const char* kUnderwater = R"([camera]
-position = [0, -4, 0]
-look_at = [0, -5, -8]
-[water]
-jerlov = "IB"
-[bottom]
-type = "flat"
-depth = 6
-)";
+const char* kUnderwater = kSmallUnderwaterScene;
 
-std::string errorOf(const std::string& text) {
-  try {
-    parseScene(text, "profile.toml");
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "";
-}
+std::string errorOf(const std::string& text) { return parseErrorOf(text, "profile.toml"); }
 
 TEST(LightProfilePass, AbsentUnlessAsked) {
   const Plan plan = makePlan(parseScene(kUnderwater, "profile.toml"));
