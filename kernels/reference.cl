@@ -51,6 +51,11 @@
  * squared deviations from the mean), merged per launch with the launch's own mean/M2 (Chan, Golub,
  * LeVeque 1979), stable in float where a plain Σx² - n mean² would cancel. sample_start numbers the
  * paths (the random numbers), A counts what the pair holds: zeroed by the host at each block of paths.
+ * direct_mean and direct_m2 hold the same for the unscattered part of each sample: the light a path
+ * gathers from the first surface its camera ray reaches without scattering in the water (0 for a path
+ * that scatters first or meets nothing), so that the image splits into the paths that reached a surface
+ * unscattered and those that scattered, as the fast model's direct layer against backscatter + forward
+ * (docs/layers.md). Camera above the surface: 0.
  * Defines: SEASIM_HAS_OBJECTS (0/1), SEASIM_PT_ISOTROPIC (0/1: phase 1/(4π) instead of HG),
  * SEASIM_PT_PHASE_TABLE (0/1: the water's measured or parameterised phase from `phase_tables`, its values
  * for next-event estimation and its inverse CDF for sampling, common/phase.h; else HG of g),
@@ -246,7 +251,7 @@ static inline int single_only_mode(int max_bounces) { return max_bounces == 1; }
 static inline float trace_path(__constant UwParams* p, const __global UwBand* bn, const __global UwObject* objects,
                                const __global float* albedo, __constant UwLampParams* lp, const __global UwLamp* lamps,
                                const __global float* lamp_spectra, const __global float* phase_tables, int band,
-                               int max_bounces, unsigned int key, float3 o, float3 d) {
+                               int max_bounces, unsigned int key, float3 o, float3 d, float* direct) {
 #if SEASIM_HAS_OBJECTS
   const int count = p->object_count;
 #else
@@ -261,6 +266,11 @@ static inline float trace_path(__constant UwParams* p, const __global UwBand* bn
   float beta = 1.0f;    /* path throughput divided by its pdf */
   float L = 0.0f;
   int vertices = 0;
+  /* The unscattered part: what the path gathers after its first event when that event is a surface
+   * (the water surface, an object, the bottom) reached without scattering; L_before the light gathered
+   * before it (the camera ray's in-scatter of lamp light). -1: the path scattered first, or hit nothing. */
+  float L_before = -1.0f;
+  int segment = 0;
   for (;;) {
     float3 n;
     int mat;
@@ -268,6 +278,7 @@ static inline float trace_path(__constant UwParams* p, const __global UwBand* bn
     if (lp->lamp_count > 0 && beta > 0.0f)
       L += beta * lamps_segment(lp, lamps, lamp_spectra, objects, count, band, bn->b, c, p->g, phase_tables, o, d, S, key, &dim);
     const float t = pt_sample_distance(c, pt_uniform(key, dim++));
+    if (segment == 0 && t >= S && mat != UW_MAT_NONE) L_before = L;
     if (t < S) {
       /* A scattering event in the water: weight σ_s/σ_t (free flight pdf c e^{-ct}, transmittance e^{-ct}). */
       beta *= scatter_albedo;
@@ -313,6 +324,7 @@ static inline float trace_path(__constant UwParams* p, const __global UwBand* bn
       dim += 2;
       o = x;
     }
+    ++segment;
     if (!(beta > 0.0f)) break; /* absorbed (b = 0) or a black surface: nothing more can arrive */
     /* Russian roulette from the 3rd vertex on: a path below weight 1 survives with probability β and
      * then carries weight 1, so weights never grow (a fixed survival probability q < 1 would multiply
@@ -323,6 +335,7 @@ static inline float trace_path(__constant UwParams* p, const __global UwBand* bn
       beta = 1.0f;
     }
   }
+  *direct = L_before >= 0.0f ? L - L_before : 0.0f;
   return L;
 }
 
@@ -330,7 +343,8 @@ __kernel void reference_path_trace(__constant UwParams* p, __global const UwBand
                                    __global const UwObject* objects, __global const float* albedo, uint seed,
                                    int sample_start, int samples, int max_bounces, __global float4* mean,
                                    __global float4* m2, __constant UwLampParams* lp, __global const UwLamp* lamps,
-                                   __global const float* lamp_spectra, __global const float* phase_tables) {
+                                   __global const float* lamp_spectra, __global const float* phase_tables,
+                                   __global float4* direct_mean, __global float4* direct_m2) {
   const int x = get_global_id(0);
   const int y = get_global_id(1);
   if (x >= p->width || y >= p->height) return;
@@ -343,6 +357,7 @@ __kernel void reference_path_trace(__constant UwParams* p, __global const UwBand
 
   /* This batch's mean and M2 by Welford's update, then merged into the running pair. */
   float3 b_mean = (float3)(0.0f), b_m2 = (float3)(0.0f);
+  float3 bd_mean = (float3)(0.0f), bd_m2 = (float3)(0.0f); /* the unscattered part's (trace_path) */
   for (int j = 0; j < samples; ++j) {
     const unsigned int key = pt_path_key(seed, (unsigned int)pixel, (unsigned int)(sample_start + j));
 #if SEASIM_PT_JITTER
@@ -356,9 +371,10 @@ __kernel void reference_path_trace(__constant UwParams* p, __global const UwBand
     const float3 d = normalize(forward + u * right + v * up);
     const int band = min((int)(pt_uniform(key, 2) * p->band_count), p->band_count - 1);
     const __global UwBand* bn = &bands[band];
-    float L;
+    float L, L_direct = 0.0f;
     if (eye.y <= 0.0f) {
-      L = trace_path(p, bn, objects, albedo, lp, lamps, lamp_spectra, phase_tables, band, max_bounces, key, eye, d);
+      L = trace_path(p, bn, objects, albedo, lp, lamps, lamp_spectra, phase_tables, band, max_bounces, key, eye, d,
+                     &L_direct);
     } else if (d.y >= 0.0f) {
       L = bn->sky_radiance; /* camera above the surface looking up: the uniform sky (no sun disk) */
     } else {
@@ -370,14 +386,18 @@ __kernel void reference_path_trace(__constant UwParams* p, __global const UwBand
       const float R = fresnel_reflectance(-d.y, 1.0f, p->ior);
       float3 d_w;
       refract_dir(d, (float3)(0.0f, 1.0f, 0.0f), 1.0f / p->ior, &d_w);
+      float unused;
       L = R * (single_only_mode(max_bounces) ? 0.0f : bn->sky_radiance) +
-          (1.0f - R) / (p->ior * p->ior) * trace_path(p, bn, objects, albedo, lp, lamps, lamp_spectra, phase_tables, band, max_bounces, key, o, d_w);
+          (1.0f - R) / (p->ior * p->ior) * trace_path(p, bn, objects, albedo, lp, lamps, lamp_spectra, phase_tables, band, max_bounces, key, o, d_w, &unused);
     }
     L *= p->band_count;
-    const float3 s = L * (float3)(bn->w_r, bn->w_g, bn->w_b);
-    const float3 delta = s - b_mean;
+    L_direct *= p->band_count;
+    const float3 s = L * (float3)(bn->w_r, bn->w_g, bn->w_b), s_d = L_direct * (float3)(bn->w_r, bn->w_g, bn->w_b);
+    const float3 delta = s - b_mean, delta_d = s_d - bd_mean;
     b_mean += delta / (float)(j + 1);
     b_m2 += delta * (s - b_mean);
+    bd_mean += delta_d / (float)(j + 1);
+    bd_m2 += delta_d * (s_d - bd_mean);
   }
   /* mean.w counts the samples already merged: the host zeroes the pair to start a new block of paths
    * (its independent batches, host/reference/batch_error.h) while sample_start goes on numbering them. */
@@ -389,4 +409,8 @@ __kernel void reference_path_trace(__constant UwParams* p, __global const UwBand
   const float3 new_m2 = na > 0.0f ? a_m2 + b_m2 + delta * delta * (na * nb / n) : b_m2;
   mean[pixel] = (float4)(new_mean, n);
   m2[pixel] = (float4)(new_m2, 0.0f);
+  const float3 ad_mean = direct_mean[pixel].xyz, ad_m2 = direct_m2[pixel].xyz;
+  const float3 delta_d = bd_mean - ad_mean;
+  direct_mean[pixel] = (float4)(na > 0.0f ? ad_mean + delta_d * (nb / n) : bd_mean, n);
+  direct_m2[pixel] = (float4)(na > 0.0f ? ad_m2 + bd_m2 + delta_d * delta_d * (na * nb / n) : bd_m2, 0.0f);
 }

@@ -57,11 +57,13 @@ std::vector<std::string> split(const std::string& text, char sep) {
   return parts;
 }
 
-// "ref.exr" -> "ref.stderr.exr": the standard-error image beside the reference.
-std::string stderrPath(const std::string& out) {
+// "ref.exr" -> "ref<suffix>.exr" beside it: ".stderr" (the standard-error image), ".direct".
+std::string besidePath(const std::string& out, const std::string& suffix) {
   const fs::path p(out);
-  return (p.parent_path() / (p.stem().string() + ".stderr" + p.extension().string())).string();
+  return (p.parent_path() / (p.stem().string() + suffix + p.extension().string())).string();
 }
+
+std::string stderrPath(const std::string& out) { return besidePath(out, ".stderr"); }
 
 double kernelMs(const FrameResult& frame) {
   double total = 0;
@@ -495,6 +497,12 @@ std::string writeSceneReference(const Scene& scene, const ReferenceCmd& cmd, con
   writeExr(out, r.rgb);
   if (r.method == "path tracer") {
     const std::string se_path = writeExr(stderrPath(out), r.std_error);
+    // Under water the unscattered part too (docs/layers.md: the fast model's direct layer's reference).
+    if (!r.direct.pixels.empty()) {
+      const std::string direct_path = besidePath(out, ".direct");
+      writeExr(direct_path, r.direct);
+      writeExr(stderrPath(direct_path), r.direct_std_error);
+    }
     writeSettingsSidecar(out, scene, "seasim reference (path tracer)");
     std::snprintf(line, sizeof line,
                   "reference %s: %d paths per pixel (%s, seed %u), %.1f ms on %s; noise: mean standard error %.3g "

@@ -67,6 +67,10 @@ ReferenceImage renderReference(const Scene& scene, const ReferenceOptions& optio
     UnderwaterReferenceResult r = renderUnderwaterReference(device, setup, settings);
     out.rgb = std::move(r.rgb);
     out.std_error = std::move(r.std_error);
+    if (!above) {
+      out.direct = std::move(r.direct);
+      out.direct_std_error = std::move(r.direct_std_error);
+    }
     out.method = "path tracer";
     out.steps = r.samples;
     out.seed = settings.seed;

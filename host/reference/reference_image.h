@@ -25,6 +25,10 @@ struct ReferenceImage {
   Image rgb;
   Image std_error;         // path tracer: the per-pixel standard error (from independent blocks of
                            // paths, reference/batch_error.h); empty for the deterministic ones
+  // Path tracer under water: the part of rgb from paths whose camera ray reached a surface unscattered
+  // (UnderwaterReferenceResult::direct: the fast models' direct layer) and its standard error; empty
+  // for the others.
+  Image direct, direct_std_error;
   std::string method;      // "path tracer", "ray-march" or "quadrature"
   int steps = 0;           // paths per pixel, or ray-march / quadrature steps
   unsigned seed = 0;       // path tracer

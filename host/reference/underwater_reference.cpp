@@ -60,8 +60,9 @@ UnderwaterReferenceResult renderUnderwaterReference(Device& device, const Underw
   const int blocks = std::clamp(settings.blocks, 1, total);
 
   UnderwaterReferenceResult result;
-  std::vector<cl_float4> mean(pixels), m2(pixels);
-  BatchMeans per_value(3 * pixels);  // per pixel and channel
+  std::vector<cl_float4> mean(pixels), m2(pixels), direct_mean(pixels), direct_m2(pixels);
+  BatchMeans per_value(3 * pixels);   // per pixel and channel
+  BatchMeans per_direct(3 * pixels);  // the unscattered part, the same way
   BatchMeans per_image(1);           // the blocks' image means
   try {
     const std::vector<std::string> defines = {
@@ -85,6 +86,8 @@ UnderwaterReferenceResult renderUnderwaterReference(Device& device, const Underw
                       const_cast<float*>(setup.albedo.data()));
     cl::Buffer mean_buf(ctx, CL_MEM_READ_WRITE, sizeof(cl_float4) * pixels);
     cl::Buffer m2_buf(ctx, CL_MEM_READ_WRITE, sizeof(cl_float4) * pixels);
+    cl::Buffer direct_mean_buf(ctx, CL_MEM_READ_WRITE, sizeof(cl_float4) * pixels);
+    cl::Buffer direct_m2_buf(ctx, CL_MEM_READ_WRITE, sizeof(cl_float4) * pixels);
     cl::CommandQueue& queue = device.queue();
     kernel.setArg(0, params);
     kernel.setArg(1, bands);
@@ -112,6 +115,8 @@ UnderwaterReferenceResult renderUnderwaterReference(Device& device, const Underw
     cl::Buffer phase_buf(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(float) * phase.size(),
                          const_cast<float*>(phase.data()));
     kernel.setArg(13, phase_buf);
+    kernel.setArg(14, direct_mean_buf);
+    kernel.setArg(15, direct_m2_buf);
     const size_t local = 8;
     const cl::NDRange global((static_cast<size_t>(p.width) + local - 1) / local * local,
                              (static_cast<size_t>(p.height) + local - 1) / local * local);
@@ -124,6 +129,8 @@ UnderwaterReferenceResult renderUnderwaterReference(Device& device, const Underw
       const int block_start = done;
       queue.enqueueFillBuffer(mean_buf, zero, 0, sizeof(cl_float4) * pixels);
       queue.enqueueFillBuffer(m2_buf, zero, 0, sizeof(cl_float4) * pixels);
+      queue.enqueueFillBuffer(direct_mean_buf, zero, 0, sizeof(cl_float4) * pixels);
+      queue.enqueueFillBuffer(direct_m2_buf, zero, 0, sizeof(cl_float4) * pixels);
       while (done < block_end) {
         const int n = std::min(settings.batch, block_end - done);
         kernel.setArg(5, static_cast<cl_int>(done));
@@ -138,7 +145,10 @@ UnderwaterReferenceResult renderUnderwaterReference(Device& device, const Underw
       }
       queue.enqueueReadBuffer(mean_buf, CL_TRUE, 0, sizeof(cl_float4) * pixels, mean.data());
       queue.enqueueReadBuffer(m2_buf, CL_TRUE, 0, sizeof(cl_float4) * pixels, m2.data());
+      queue.enqueueReadBuffer(direct_mean_buf, CL_TRUE, 0, sizeof(cl_float4) * pixels, direct_mean.data());
+      queue.enqueueReadBuffer(direct_m2_buf, CL_TRUE, 0, sizeof(cl_float4) * pixels, direct_m2.data());
       per_value.addBlock(&mean[0].s[0], &m2[0].s[0], 4, block_end - block_start);
+      per_direct.addBlock(&direct_mean[0].s[0], &direct_m2[0].s[0], 4, block_end - block_start);
       double image = 0.0;
       for (size_t i = 0; i < pixels; ++i) image += double(mean[i].s[0]) + double(mean[i].s[1]) + double(mean[i].s[2]);
       image /= 3.0 * static_cast<double>(pixels);
@@ -154,6 +164,10 @@ UnderwaterReferenceResult renderUnderwaterReference(Device& device, const Underw
   result.std_error.resize(p.width, p.height, 3);
   result.std_error.channel_names = {"R", "G", "B"};
   result.blocks = blocks;
+  result.direct.resize(p.width, p.height, 3);
+  result.direct.channel_names = {"R", "G", "B"};
+  result.direct_std_error.resize(p.width, p.height, 3);
+  result.direct_std_error.channel_names = {"R", "G", "B"};
   long long nonfinite = 0;
   double sum = 0, sum_se = 0, sum_se2 = 0, sum_sample_se2 = 0;
   for (size_t i = 0; i < 3 * pixels; ++i) {
@@ -167,6 +181,11 @@ UnderwaterReferenceResult renderUnderwaterReference(Device& device, const Underw
     sum_se += se;
     sum_se2 += se * se;
     sum_sample_se2 += e.sample_std_error * e.sample_std_error;
+    const BatchEstimate ed = per_direct.estimate(i);
+    const double md = ed.mean, sed = blocks > 1 ? ed.std_error : ed.sample_std_error;
+    if (!std::isfinite(md) || !std::isfinite(sed)) ++nonfinite;
+    result.direct.pixels[i] = static_cast<float>(md);
+    result.direct_std_error.pixels[i] = static_cast<float>(sed);
   }
   if (nonfinite > 0) {
     throw RuntimeError("underwater reference: " + std::to_string(nonfinite) +

@@ -62,6 +62,12 @@ struct UnderwaterReferenceResult {
   Image rgb;                          // mean linear sensor RGB, Σ_bands L(λ_i) w(λ_i) (002 eq. 4.8)
   Image std_error;                    // standard error of that mean, per pixel and channel, from the
                                       // spread of the blocks' means (blocks - 1 degrees of freedom)
+  // The part of rgb from paths whose camera ray reached a surface (the water surface, an object, the
+  // bottom) without scattering: all the light they gather from there on (reference.cl). It is the
+  // fast models' direct layer; rgb - direct is their backscatter + forward + lamps (docs/layers.md).
+  // Camera above the surface: 0.
+  Image direct;
+  Image direct_std_error;             // its standard error, from the blocks as std_error
   double mean_std_error = 0.0;        // mean of std_error over pixels and channels ("reference noise")
   double rms_std_error = 0.0;         // sqrt(mean std_error²): the RMSE the reference's noise alone adds
   double image_mean = 0.0;            // mean of rgb over pixels and channels

@@ -93,6 +93,10 @@ class ReferenceResult:
     steps: int  #: paths per pixel, or ray-march / quadrature steps
     ms: float  #: time taken
     std_error: Optional[np.ndarray] = None  #: path tracer: per-pixel standard error
+    #: path tracer under water: the part of rgb from paths whose camera ray reached a surface unscattered
+    #: (the fast model's ``frame.layers["direct"]``; rgb - direct is backscatter + forward + lamps)
+    direct: Optional[np.ndarray] = None
+    direct_std_error: Optional[np.ndarray] = None  #: its per-pixel standard error
     info: Optional[dict] = None  #: path tracer: seed, max_bounces, mean_std_error, image_mean_std_error, effective_samples, blocks, device
 
 
@@ -109,7 +113,8 @@ def reference(scene: Scene, steps: int = 0, seed: Optional[int] = None, all_orde
     r = _seasim._reference(scene, steps, -1 if seed is None else seed, all_orders, max_bounces, device, progress)
     info = {k: r[k] for k in ("seed", "max_bounces", "mean_std_error", "image_mean_std_error", "effective_samples", "blocks", "device") if k in r} or None
     return ReferenceResult(rgb=r["rgb"], method=r["method"], steps=r["steps"], ms=r["ms"],
-                           std_error=r.get("std_error"), info=info)
+                           std_error=r.get("std_error"), direct=r.get("direct"),
+                           direct_std_error=r.get("direct_std_error"), info=info)
 
 
 def _progress_bar() -> Callable[[int, int, str, str], None]:

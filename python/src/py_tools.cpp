@@ -83,6 +83,10 @@ nb::dict reference(const PyScene& scene, int steps, long long seed, bool all_ord
     d["blocks"] = r.blocks;
     d["device"] = r.device_name;
     d["std_error"] = toArray(std::move(r.std_error));
+    if (!r.direct.pixels.empty()) {
+      d["direct"] = toArray(std::move(r.direct));
+      d["direct_std_error"] = toArray(std::move(r.direct_std_error));
+    }
   }
   d["rgb"] = toArray(std::move(r.rgb));
   return d;

@@ -144,6 +144,10 @@ def test_underwater_reference_is_the_path_tracer_of_seasim_reference(tmp_path):
                     "-o", str(out)], check=True, capture_output=True)
     assert np.array_equal(seasim.read_image(out), ref.rgb)
     assert np.array_equal(seasim.read_image(tmp_path / "ref.stderr.exr"), ref.std_error)
+    # The unscattered part (docs/layers.md), with its standard error, beside it.
+    assert ref.direct.shape == ref.rgb.shape and ref.direct.max() > 0
+    assert np.array_equal(seasim.read_image(tmp_path / "ref.direct.exr"), ref.direct)
+    assert np.array_equal(seasim.read_image(tmp_path / "ref.direct.stderr.exr"), ref.direct_std_error)
 
 
 def test_a_progress_callback_that_raises_stops_the_job_and_the_item_stays_done(tmp_path):
