@@ -40,6 +40,57 @@ void validate(const UnderwaterSetup& setup, bool camera_above) {
   if (!(std::fabs(p.g) < 1.0f)) throw RuntimeError("underwater reference: |g| must be < 1, got " + std::to_string(p.g));
 }
 
+// The image, its direct part and their standard errors from the blocks (a single block: the
+// per-sample estimate), and the image-wide noise figures; result.samples and .blocks already set.
+void summariseBlocks(const BatchMeans& per_value, const BatchMeans& per_direct, const BatchMeans& per_image, int width,
+                     int height, UnderwaterReferenceResult& result) {
+  const size_t pixels = static_cast<size_t>(width) * static_cast<size_t>(height);
+  const int blocks = result.blocks, total = result.samples;
+  result.rgb.resize(width, height, 3);
+  result.rgb.channel_names = {"R", "G", "B"};
+  result.std_error.resize(width, height, 3);
+  result.std_error.channel_names = {"R", "G", "B"};
+  result.direct.resize(width, height, 3);
+  result.direct.channel_names = {"R", "G", "B"};
+  result.direct_std_error.resize(width, height, 3);
+  result.direct_std_error.channel_names = {"R", "G", "B"};
+  long long nonfinite = 0;
+  double sum = 0, sum_se = 0, sum_se2 = 0, sum_sample_se2 = 0;
+  for (size_t i = 0; i < 3 * pixels; ++i) {
+    // With one block the spread is unknown: the per-sample estimate stands in (0 with one sample).
+    const BatchEstimate e = per_value.estimate(i);
+    const double m = e.mean, se = blocks > 1 ? e.std_error : e.sample_std_error;
+    if (!std::isfinite(m) || !std::isfinite(se)) ++nonfinite;
+    result.rgb.pixels[i] = static_cast<float>(m);
+    result.std_error.pixels[i] = static_cast<float>(se);
+    sum += m;
+    sum_se += se;
+    sum_se2 += se * se;
+    sum_sample_se2 += e.sample_std_error * e.sample_std_error;
+    const BatchEstimate ed = per_direct.estimate(i);
+    const double md = ed.mean, sed = blocks > 1 ? ed.std_error : ed.sample_std_error;
+    if (!std::isfinite(md) || !std::isfinite(sed)) ++nonfinite;
+    result.direct.pixels[i] = static_cast<float>(md);
+    result.direct_std_error.pixels[i] = static_cast<float>(sed);
+  }
+  if (nonfinite > 0) {
+    throw RuntimeError("underwater reference: " + std::to_string(nonfinite) +
+                       " non-finite pixel values (a bug in reference.cl; please report the scene)");
+  }
+  const double values = 3.0 * static_cast<double>(pixels);
+  result.image_mean = sum / values;
+  result.mean_std_error = sum_se / values;
+  result.rms_std_error = std::sqrt(sum_se2 / values);
+  result.image_mean_sample_std_error = std::sqrt(sum_sample_se2) / values;  // independent pixels: variances add
+  const BatchEstimate image = per_image.estimate(0);
+  result.image_mean_std_error = blocks > 1 ? image.std_error : result.image_mean_sample_std_error;
+  result.effective_samples =
+      result.image_mean_std_error > 0
+          ? total * (result.image_mean_sample_std_error / result.image_mean_std_error) *
+                (result.image_mean_sample_std_error / result.image_mean_std_error)
+          : total;
+}
+
 }  // namespace
 
 Vec3 underwaterPixelDirection(const UwParams& p, double x, double y) {
@@ -159,50 +210,8 @@ UnderwaterReferenceResult renderUnderwaterReference(Device& device, const Underw
   }
 
   result.samples = total;
-  result.rgb.resize(p.width, p.height, 3);
-  result.rgb.channel_names = {"R", "G", "B"};
-  result.std_error.resize(p.width, p.height, 3);
-  result.std_error.channel_names = {"R", "G", "B"};
   result.blocks = blocks;
-  result.direct.resize(p.width, p.height, 3);
-  result.direct.channel_names = {"R", "G", "B"};
-  result.direct_std_error.resize(p.width, p.height, 3);
-  result.direct_std_error.channel_names = {"R", "G", "B"};
-  long long nonfinite = 0;
-  double sum = 0, sum_se = 0, sum_se2 = 0, sum_sample_se2 = 0;
-  for (size_t i = 0; i < 3 * pixels; ++i) {
-    // With one block the spread is unknown: the per-sample estimate stands in (0 with one sample).
-    const BatchEstimate e = per_value.estimate(i);
-    const double m = e.mean, se = blocks > 1 ? e.std_error : e.sample_std_error;
-    if (!std::isfinite(m) || !std::isfinite(se)) ++nonfinite;
-    result.rgb.pixels[i] = static_cast<float>(m);
-    result.std_error.pixels[i] = static_cast<float>(se);
-    sum += m;
-    sum_se += se;
-    sum_se2 += se * se;
-    sum_sample_se2 += e.sample_std_error * e.sample_std_error;
-    const BatchEstimate ed = per_direct.estimate(i);
-    const double md = ed.mean, sed = blocks > 1 ? ed.std_error : ed.sample_std_error;
-    if (!std::isfinite(md) || !std::isfinite(sed)) ++nonfinite;
-    result.direct.pixels[i] = static_cast<float>(md);
-    result.direct_std_error.pixels[i] = static_cast<float>(sed);
-  }
-  if (nonfinite > 0) {
-    throw RuntimeError("underwater reference: " + std::to_string(nonfinite) +
-                       " non-finite pixel values (a bug in reference.cl; please report the scene)");
-  }
-  const double values = 3.0 * static_cast<double>(pixels);
-  result.image_mean = sum / values;
-  result.mean_std_error = sum_se / values;
-  result.rms_std_error = std::sqrt(sum_se2 / values);
-  result.image_mean_sample_std_error = std::sqrt(sum_sample_se2) / values;  // independent pixels: variances add
-  const BatchEstimate image = per_image.estimate(0);
-  result.image_mean_std_error = blocks > 1 ? image.std_error : result.image_mean_sample_std_error;
-  result.effective_samples =
-      result.image_mean_std_error > 0
-          ? total * (result.image_mean_sample_std_error / result.image_mean_std_error) *
-                (result.image_mean_sample_std_error / result.image_mean_std_error)
-          : total;
+  summariseBlocks(per_value, per_direct, per_image, p.width, p.height, result);
   return result;
 }
 
