@@ -31,6 +31,10 @@
  * the water scattered by small angles: what delta-M's c' < c keeps; water_spread.cl adds its blurred part)
  * and lamps_layer[pixel][3] (0 here, underwater_lamps.cl adds into it); direct + backscatter + forward
  * + lamps is the image. SEASIM_LAYER_VEILING: veiling[pixel][3], B∞, the in-scatter with S = ∞.
+ * SEASIM_LAYER_BANDS (with SEASIM_LAYER_FORMATION and SEASIM_SPECTRAL_OUTPUT: the split per band in
+ * spectral.exr): layer_bands[pixel][5][band_count] = clear, direct, backscatter, lamps (0 here;
+ * underwater_lamps.cl adds into it), transmission e^{-c S}, and forward_bands[pixel][band_count] (water_spread.cl
+ * adds its blurred part); per band direct + backscatter + forward + lamps is spectral's value.
  */
 #include "common/compat.h"
 #include "common/optics.h"
@@ -69,6 +73,18 @@
 #endif
 #ifndef SEASIM_LAYER_VEILING
 #define SEASIM_LAYER_VEILING 0
+#endif
+#ifndef SEASIM_LAYER_BANDS
+#define SEASIM_LAYER_BANDS 0
+#endif
+#if SEASIM_LAYER_BANDS
+/* The split per band: slot k of layer_bands (see above), or forward_bands, for the step's lanes. */
+#define BAND_LAYER(slot, value) \
+  store_lanes((value), layer_bands + ((size_t)pixel * 5 + (slot)) * band_count + i, band_count - i)
+#define BAND_FORWARD(value) store_lanes((value), forward_bands + (size_t)pixel * band_count + i, band_count - i)
+#else
+#define BAND_LAYER(slot, value)
+#define BAND_FORWARD(value)
 #endif
 #if SEASIM_LAYER_FORMATION || SEASIM_LAYER_VEILING
 /* The layers' sums over bands in sensor RGB: name##_r += value * w_r, ... (002 eq. 4.8, as the image's). */
@@ -166,6 +182,9 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
 #endif
 #if SEASIM_LAYER_VEILING
                           , __global float* veiling
+#endif
+#if SEASIM_LAYER_BANDS
+                          , __global float* layer_bands, __global float* forward_bands
 #endif
 ) {
   const int x = get_global_id(0);
@@ -331,6 +350,10 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
     LAYER_ADD(direct, direct);
     LAYER_ADD(trans, trans);
     LAYER_ADD(weight, SPLATB(1.0f));
+    BAND_LAYER(0, clear);
+    BAND_LAYER(1, direct);
+    BAND_LAYER(3, SPLATB(0.0f));
+    BAND_LAYER(4, trans);
 #endif
 #if SEASIM_LAYER_VEILING
     /* B∞: the in-scatter of the same ray with S = ∞ (every far end 0; the aureole's end at the depth it
@@ -375,6 +398,8 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
      * to the forward layer with the hit's. */
     LAYER_ADD(scatter, in_scatter - fmin(L_in_share, in_scatter));
     LAYER_ADD(fwdl, hit - fwd_hit - direct);
+    BAND_LAYER(2, in_scatter - fmin(L_in_share, in_scatter));
+    BAND_FORWARD(hit - fwd_hit - direct);
 #endif
 #if SEASIM_SPECTRAL_OUTPUT
     store_lanes(fwd, forward_spectral + ((size_t)pixel * 2) * band_count + i, band_count - i);
@@ -385,6 +410,8 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
 #if SEASIM_LAYER_FORMATION
     LAYER_ADD(scatter, in_scatter);
     LAYER_ADD(fwdl, hit - direct);
+    BAND_LAYER(2, in_scatter);
+    BAND_FORWARD(hit - direct);
 #endif
 #endif
 #else
@@ -403,6 +430,7 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
     /* The in-scatter is the backscatter; the hit, T(S) L_s, the direct light (the thesis has no forward
      * term); clear is the hit at S = 0, where S enters only T(S). */
     LAYER_ADD(scatter, L);
+    BAND_LAYER(2, L);
     realb clear = SPLATB(0.0f), hit = SPLATB(0.0f);
 #endif
 #if SEASIM_LAYER_VEILING
@@ -438,6 +466,11 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
     LAYER_ADD(direct, hit);
     LAYER_ADD(trans, trans);
     LAYER_ADD(weight, SPLATB(1.0f));
+    BAND_LAYER(0, clear);
+    BAND_LAYER(1, hit);
+    BAND_LAYER(3, SPLATB(0.0f));
+    BAND_LAYER(4, trans);
+    BAND_FORWARD(SPLATB(0.0f)); /* the thesis has no forward term */
 #endif
 #endif /* SEASIM_UNDERWATER_MODEL */
     /* 002 eq. 4.8. */

@@ -13,7 +13,8 @@
  * UwLampParams, UwLamp[lamp_count], lamp_spectra[lamp * band_count + band] (W sr⁻¹ nm⁻¹ on the axis).
  * Output: rgb[3 * pixels] (+=), spectral[band_count * pixels] (+=, SEASIM_SPECTRAL_OUTPUT), and with
  * SEASIM_LAYER_LAMPS (outputs.layers) the same light into lamps_layer[3 * pixels] (+=; kd_multiple.cl
- * zeroed it) so that lamp and sun light can be told apart.
+ * zeroed it) so that lamp and sun light can be told apart; with SEASIM_LAYER_BANDS as well per band into
+ * layer_bands[pixel][5][band_count]'s slot 3 (kd_multiple.cl's layout; spectral.exr's lamps layer).
  * Defines: SEASIM_HAS_OBJECTS (shadow rays), SEASIM_SPECTRAL_OUTPUT, SEASIM_LAMPS_ORDERS (the "orders"
  * model, common/underwater_lamps_ms.h: the lamps' light scattered more than once, from ms_table's
  * blurred profiles, ms_orders orders, ms_steps quadrature steps per view ray, stretch exponent
@@ -80,6 +81,9 @@ __kernel void underwater_lamps(__constant UwParams* p, __global const UwBand* ba
 #if SEASIM_LAYER_LAMPS
                                , __global float* lamps_layer
 #endif
+#if SEASIM_LAYER_BANDS
+                               , __global float* layer_bands
+#endif
 ) {
   const int x = get_global_id(0), y = get_global_id(1);
   if (x >= p->width || y >= p->height) return;
@@ -102,7 +106,14 @@ __kernel void underwater_lamps(__constant UwParams* p, __global const UwBand* ba
   const int alb_stride = mat >= 0 ? 1 : (int)(sizeof(UwBand) / sizeof(float));
 
   float r = 0.0f, g = 0.0f, b = 0.0f;
-#if SEASIM_SPECTRAL_OUTPUT
+#if SEASIM_LAYER_BANDS
+#define LAMP_ADD(i, L)                                     \
+  r += (L) * bands[i].w_r;                                 \
+  g += (L) * bands[i].w_g;                                 \
+  b += (L) * bands[i].w_b;                                 \
+  spectral[(size_t)pixel * nb + (i)] += (L);               \
+  layer_bands[((size_t)pixel * 5 + 3) * nb + (i)] += (L)
+#elif SEASIM_SPECTRAL_OUTPUT
 #define LAMP_ADD(i, L)                                     \
   r += (L) * bands[i].w_r;                                 \
   g += (L) * bands[i].w_g;                                 \

@@ -46,8 +46,11 @@ std::string writePngBytes(const std::string& path, int width, int height, int ch
 // Stokes component 0, decimal comma), e.g. "S0.550,000000nm", and the header attributes
 // spectralLayoutVersion = "1.0" and emissiveUnits = "W.m^-2.sr^-1". `data` is pixel-major:
 // data[(y * width + x) * n + i] is band i (wavelengths_nm[i]) of pixel (x, y), top row first.
+// `layers` (same size; null: none): more channels after the bands under their own names, the per-band
+// ground-truth layers "<layer>.S0.<nm>" (io/spectral_layout.h spectralLayerChannelName).
 std::string writeSpectralExr(const std::string& path, int width, int height,
-                             const std::vector<double>& wavelengths_nm, const std::vector<float>& data);
+                             const std::vector<double>& wavelengths_nm, const std::vector<float>& data,
+                             const Image* layers = nullptr);
 
 // Reads only the header of an image file (or .npy): its size and channel count. Throws
 // RuntimeError naming the file when it cannot be opened, is not an image, or has more than

@@ -52,8 +52,8 @@ std::string writePngBytes(const std::string& path, int width, int height, int ch
 }
 
 std::string writeSpectralExr(const std::string& path, int width, int height, const std::vector<double>& wavelengths_nm,
-                             const std::vector<float>& data) {
-  return module().writeSpectralExr(path, width, height, wavelengths_nm, data);
+                             const std::vector<float>& data, const Image* layers) {
+  return module().writeSpectralExr(path, width, height, wavelengths_nm, data, layers);
 }
 
 ImageHeader readImageHeader(const std::string& path) {

@@ -15,8 +15,8 @@
 
 namespace seasim {
 
-constexpr int kImageIoModuleVersion = 3;
-#define SEASIM_IMAGE_IO_MODULE_ENTRY "seasim_image_io_module_v3"
+constexpr int kImageIoModuleVersion = 4;
+#define SEASIM_IMAGE_IO_MODULE_ENTRY "seasim_image_io_module_v4"
 #define SEASIM_IMAGE_IO_MODULE_FILE "libseasim_oiio.so"
 
 struct ImageIoModule {
@@ -26,7 +26,8 @@ struct ImageIoModule {
   std::string (*writePngBytes)(const std::string& path, int width, int height, int channels,
                                const std::vector<std::uint8_t>& bytes);
   std::string (*writeSpectralExr)(const std::string& path, int width, int height,
-                                  const std::vector<double>& wavelengths_nm, const std::vector<float>& data);
+                                  const std::vector<double>& wavelengths_nm, const std::vector<float>& data,
+                                  const Image* layers);
   ImageHeader (*readImageHeader)(const std::string& path);
   Image (*readImage)(const std::string& path);
   std::string (*readImageAttribute)(const std::string& path, const std::string& name);

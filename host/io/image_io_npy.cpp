@@ -67,7 +67,8 @@ std::string writePngBytes(const std::string& path, int width, int height, int ch
 }
 
 std::string writeSpectralExr(const std::string& path, int width, int height,
-                             const std::vector<double>& wavelengths_nm, const std::vector<float>& data) {
+                             const std::vector<double>& wavelengths_nm, const std::vector<float>& data,
+                             const Image* layers) {
   const std::size_t n = wavelengths_nm.size();
   if (width <= 0 || height <= 0 || n == 0 || data.size() != sz(width) * sz(height) * n)
     throw RuntimeError("cannot write '" + path + "': spectral data does not match " + std::to_string(width) +
@@ -87,7 +88,20 @@ std::string writeSpectralExr(const std::string& path, int width, int height,
   const std::string out = npyPathFor(path);
   // Wavelengths first: the data file is what marks the output as finished.
   writeNpyArray(wavelengthsPathFor(out), NpyType::Float64, {n}, wavelengths_nm.data());
-  writeNpyArray(out, NpyType::Float32, {sz(height), sz(width), n}, data.data());
+  if (layers && layers->channels > 0) {  // the layers' channels after the bands, as in the EXR
+    const std::size_t k = sz(layers->channels), pixels = sz(width) * sz(height);
+    if (layers->width != width || layers->height != height)
+      throw RuntimeError("cannot write '" + path + "': its layers are not " + std::to_string(width) + "x" +
+                         std::to_string(height));
+    std::vector<float> all(pixels * (n + k));
+    for (std::size_t i = 0; i < pixels; ++i) {
+      std::copy_n(data.data() + i * n, n, all.data() + i * (n + k));
+      std::copy_n(layers->pixels.data() + i * k, k, all.data() + i * (n + k) + n);
+    }
+    writeNpyArray(out, NpyType::Float32, {sz(height), sz(width), n + k}, all.data());
+  } else {
+    writeNpyArray(out, NpyType::Float32, {sz(height), sz(width), n}, data.data());
+  }
   return out;
 }
 

@@ -179,7 +179,8 @@ std::string writePngBytes(const std::string& path, int width, int height, int ch
 }
 
 std::string writeSpectralExr(const std::string& path, int width, int height,
-                             const std::vector<double>& wavelengths_nm, const std::vector<float>& data) {
+                             const std::vector<double>& wavelengths_nm, const std::vector<float>& data,
+                             const Image* layers) {
   const std::size_t n = wavelengths_nm.size();
   if (width <= 0 || height <= 0 || n == 0)
     throw RuntimeError("cannot write '" + path + "': empty spectral image (" + std::to_string(width) + "x" +
@@ -188,7 +189,11 @@ std::string writeSpectralExr(const std::string& path, int width, int height,
     throw RuntimeError("cannot write '" + path + "': spectral data holds " + std::to_string(data.size()) +
                        " values, " + std::to_string(width) + "x" + std::to_string(height) + "x" +
                        std::to_string(n) + " needed");
-  OIIO::ImageSpec spec(width, height, static_cast<int>(n), OIIO::TypeDesc::FLOAT);
+  const std::size_t k = layers ? static_cast<std::size_t>(layers->channels) : 0;
+  if (layers && (layers->width != width || layers->height != height || layers->channel_names.size() != k))
+    throw RuntimeError("cannot write '" + path + "': its layers are not a " + std::to_string(width) + "x" +
+                       std::to_string(height) + " image with named channels");
+  OIIO::ImageSpec spec(width, height, static_cast<int>(n + k), OIIO::TypeDesc::FLOAT);
   std::set<std::string> seen;
   for (std::size_t i = 0; i < n; ++i) {
     try {
@@ -200,12 +205,26 @@ std::string writeSpectralExr(const std::string& path, int width, int height,
       throw RuntimeError("cannot write '" + path + "': two bands share the channel name '" +
                          spec.channelnames[i] + "'");
   }
+  for (std::size_t c = 0; c < k; ++c) {
+    spec.channelnames[n + c] = layers->channel_names[c];
+    if (!seen.insert(spec.channelnames[n + c]).second)
+      throw RuntimeError("cannot write '" + path + "': two channels are named '" + spec.channelnames[n + c] + "'");
+  }
   spec.alpha_channel = -1;
   spec.attribute("compression", "zip");
   spec.attribute("spectralLayoutVersion", kSpectralLayoutVersion);
   spec.attribute("emissiveUnits", kSpectralEmissiveUnits);
+  std::vector<float> all;  // the bands, then the layers' channels, per pixel
+  if (k > 0) {
+    const std::size_t pixels = static_cast<std::size_t>(width) * height;
+    all.resize(pixels * (n + k));
+    for (std::size_t i = 0; i < pixels; ++i) {
+      std::copy_n(data.data() + i * n, n, all.data() + i * (n + k));
+      std::copy_n(layers->pixels.data() + i * k, k, all.data() + i * (n + k) + n);
+    }
+  }
   writeFileAtomic(path, [&](const std::string& temp) {
-    writeWithOiio(temp, "openexr", spec, OIIO::TypeDesc::FLOAT, data.data());
+    writeWithOiio(temp, "openexr", spec, OIIO::TypeDesc::FLOAT, k > 0 ? all.data() : data.data());
   });
   return path;
 }
@@ -287,7 +306,7 @@ SpectralImage readSpectralExr(const std::string& path) {
 }  // namespace seasim
 
 // The module's one entry point (image_io_module.h).
-extern "C" __attribute__((visibility("default"))) const seasim::ImageIoModule* seasim_image_io_module_v3() {
+extern "C" __attribute__((visibility("default"))) const seasim::ImageIoModule* seasim_image_io_module_v4() {
   static const seasim::ImageIoModule table{seasim::kImageIoModuleVersion, &seasim::writeExr,
                                            &seasim::writePng,              &seasim::writePngBytes,
                                            &seasim::writeSpectralExr,

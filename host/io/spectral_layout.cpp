@@ -22,6 +22,10 @@ std::string spectralChannelName(double wavelength_nm) {
   return "S0." + value + "nm";
 }
 
+std::string spectralLayerChannelName(const std::string& layer, double wavelength_nm) {
+  return layer + "." + spectralChannelName(wavelength_nm);
+}
+
 bool parseSpectralChannelName(const std::string& name, double& wavelength_nm) {
   std::string_view s(name);
   if (s.substr(0, 3) != "S0.") return false;

@@ -15,6 +15,10 @@ inline constexpr const char* kSpectralEmissiveUnits = "W.m^-2.sr^-1";
 // "S0.550,000000nm" for 550. Throws RuntimeError for a non-finite or non-positive wavelength.
 std::string spectralChannelName(double wavelength_nm);
 
+// A per-band ground-truth layer's channel (scene/output_layers.h): "direct.S0.550,000000nm" (the dot
+// makes "direct" an OpenEXR layer holding that band).
+std::string spectralLayerChannelName(const std::string& layer, double wavelength_nm);
+
 // True for an emissive Stokes-0 channel name ("S0.<value><prefix>m" or "...Hz"); sets the
 // wavelength in nm (frequencies converted with c = 299792458 m/s). False for anything else
 // (R, G, B, S1..S3 polarisation, reflective "T." channels).

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "io/spectral_layout.h"
 #include "scene/output_layers.h"
 #include "util/error.h"
 
@@ -48,6 +49,40 @@ Image imageWithLayers(const FrameResult& frame, const OutputsDesc& outputs) {
   if (nonfinite != 0)
     throw RuntimeError("the layers hold " + std::to_string(nonfinite) + " NaN/Inf values (first in '" + first +
                        "'); nothing written; please report it with the scene");
+  return out;
+}
+
+Image bandLayersImage(const FrameResult& frame, const OutputsDesc& outputs) {
+  Image out;
+  if (frame.spectral.empty()) return out;
+  std::vector<int> order;
+  std::vector<std::string> names;
+  const auto& have = frame.layers.channel_names;
+  for (const OutputLayer& layer : outputLayers()) {
+    if (!layer.per_band || !outputs.wants(layer.name)) continue;
+    for (double nm : frame.wavelengths_nm) {
+      const std::string channel = spectralLayerChannelName(layer.name, nm);
+      const auto it = std::find(have.begin(), have.end(), channel);
+      if (it == have.end())
+        throw RuntimeError(std::string("layer '") + layer.name + "': the render wrote no channel '" + channel +
+                           "' for spectral.exr (the plan promised it); nothing written");
+      order.push_back(static_cast<int>(it - have.begin()));
+      names.push_back(channel);
+    }
+  }
+  if (names.empty()) return out;
+  out.resize(frame.rgb.width, frame.rgb.height, static_cast<int>(names.size()));
+  out.channel_names = names;
+  long long nonfinite = 0;
+  for (size_t i = 0; i < out.pixelCount(); ++i)
+    for (size_t c = 0; c < order.size(); ++c) {
+      const float v = frame.layers.pixels[i * frame.layers.channels + order[c]];
+      if (!std::isfinite(v)) ++nonfinite;
+      out.pixels[i * names.size() + c] = v;
+    }
+  if (nonfinite != 0)
+    throw RuntimeError("the layers per band hold " + std::to_string(nonfinite) +
+                       " NaN/Inf values; nothing written; please report it with the scene");
   return out;
 }
 

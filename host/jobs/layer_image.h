@@ -16,6 +16,11 @@ namespace seasim {
 // NaN or Inf (but +inf in range and depth: open water).
 Image imageWithLayers(const FrameResult& frame, const OutputsDesc& outputs);
 
+// The asked layers that have bands (OutputLayer::per_band), per band, for spectral.exr after its bands:
+// "<layer>.S0.<nm>" for each of frame.wavelengths_nm, in the catalogue's order. No channels when the frame
+// has no spectral image or no such layer is asked. RuntimeError as imageWithLayers.
+Image bandLayersImage(const FrameResult& frame, const OutputsDesc& outputs);
+
 // Throws RuntimeError, before anything renders, when the scene asks for layers the outputs cannot
 // hold: layers are channels of image.exr, so `formats` must include "exr" (and sensor = "identity",
 // whose image.exr holds the bands, has no RGB layers).

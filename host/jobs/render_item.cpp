@@ -101,6 +101,7 @@ nlohmann::json renderItem(Device& device, Renderer& renderer, const ItemOutputs&
   if (wants_spectral && frame.spectral.empty())  // the plan promised it (checkOutputsPossible): a bug
     throw RuntimeError("output 'spectral_exr': the render produced no spectral image; nothing written");
   const Image exr_image = imageWithLayers(frame, scene.outputs);  // R, G, B and the layers; before any file
+  const Image band_layers = bandLayersImage(frame, scene.outputs);  // spectral.exr's layers per band
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec) throw RuntimeError("cannot create the output folder '" + dir + "': " + ec.message());
@@ -126,7 +127,7 @@ nlohmann::json renderItem(Device& device, Renderer& renderer, const ItemOutputs&
       writeNpy(path, frame.rgb);
     } else if (format == "spectral_exr") {
       path = writeSpectralExr(dir + "/spectral.exr", frame.rgb.width, frame.rgb.height, frame.wavelengths_nm,
-                              frame.spectral);
+                              frame.spectral, band_layers.channels > 0 ? &band_layers : nullptr);
     } else {
       throw RuntimeError("unknown output format '" + format + "'");
     }

@@ -39,6 +39,7 @@ struct KdFeatures final : PassFeatures {
   bool point_spread = false;     // the forward light kept apart for water_spread
   bool formation_layers = false;  // outputs.layers clear, direct, backscatter, forward, lamps, transmission
   bool veiling_layer = false;     // outputs.layers veiling (B∞: the in-scatter with S = ∞)
+  bool band_layers = false;       // the split also per band in spectral.exr (formation_layers + spectral_output)
 
   void list(FeatureList& out) const override {
     out.flag("multiple", "SEASIM_HAS_MULTIPLE", multiple);
@@ -50,6 +51,7 @@ struct KdFeatures final : PassFeatures {
     // Listed only when asked: a plan without layers keeps its defines, and its kernels their cache.
     if (formation_layers) out.flag("formation_layers", "SEASIM_LAYER_FORMATION", true);
     if (veiling_layer) out.flag("veiling_layer", "SEASIM_LAYER_VEILING", true);
+    if (band_layers) out.flag("band_layers", "SEASIM_LAYER_BANDS", true);
   }
 };
 
@@ -57,12 +59,14 @@ struct UnderwaterLampsFeatures final : PassFeatures {
   bool objects = false;          // objects shadow the lamps
   bool spectral_output = false;  // the per-band image (spectral.spectral_exr)
   bool lamps_layer = false;      // outputs.layers: the lamps' light also added into its own layer
+  bool band_layers = false;      // and per band into kd_multiple's band layers (spectral.exr)
   bool orders = false;           // quality.lamps_model = "orders": multiple scattering (underwater_lamps_ms.h)
 
   void list(FeatureList& out) const override {
     out.flag("objects", "SEASIM_HAS_OBJECTS", objects);
     out.flag("spectral_output", "SEASIM_SPECTRAL_OUTPUT", spectral_output);
     if (lamps_layer) out.flag("lamps_layer", "SEASIM_LAYER_LAMPS", true);
+    if (band_layers) out.flag("band_layers", "SEASIM_LAYER_BANDS", true);
     if (orders) out.flag("orders", "SEASIM_LAMPS_ORDERS", true);
   }
 };

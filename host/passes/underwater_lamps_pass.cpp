@@ -99,7 +99,7 @@ void UnderwaterLampsPass::update(const UnderwaterSetup& setup) {
 }
 
 double UnderwaterLampsPass::run(cl::Buffer& geom, cl::Buffer& material, cl::Buffer& rgb, cl::Buffer* spectral,
-                                cl::Buffer* lamps_layer) {
+                                cl::Buffer* lamps_layer, cl::Buffer* band_layers) {
   onDevice("underwater_lamps pass", [&] {
     cl_uint arg = 0;
     kernel_.setArg(arg++, params_);
@@ -120,6 +120,7 @@ double UnderwaterLampsPass::run(cl::Buffer& geom, cl::Buffer& material, cl::Buff
     kernel_.setArg(arg++, rgb);
     if (spectral) kernel_.setArg(arg++, *spectral);
     if (lamps_layer) kernel_.setArg(arg++, *lamps_layer);
+    if (band_layers) kernel_.setArg(arg++, *band_layers);
   });
   return runKernel2d(device_, "underwater_lamps", kernel_, width_, height_);
 }

@@ -45,9 +45,10 @@ class UnderwaterLampsPass {
   UnderwaterLampsPass(Device& device, const Scene& scene, const UnderwaterSetup& setup, const WavelengthGrid& grid,
                       const PassPlan& plan, const Config& config);
   // Adds the lamps into rgb (and spectral when given) for the G-buffer (geom, material); returns ms.
-  // lamps_layer: the "lamps" ground-truth layer (3 floats per pixel) when planned with SEASIM_LAYER_LAMPS.
+  // lamps_layer: the "lamps" ground-truth layer (3 floats per pixel) when planned with SEASIM_LAYER_LAMPS;
+  // band_layers: kd_multiple's split per band ([pixel][5][band], slot 3 the lamps) with SEASIM_LAYER_BANDS.
   double run(cl::Buffer& geom, cl::Buffer& material, cl::Buffer& rgb, cl::Buffer* spectral,
-             cl::Buffer* lamps_layer = nullptr);
+             cl::Buffer* lamps_layer = nullptr, cl::Buffer* band_layers = nullptr);
   // Rewrites the underwater parameter blocks (sun, water or time changed; same sizes).
   void update(const UnderwaterSetup& setup);
 

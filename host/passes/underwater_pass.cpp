@@ -61,6 +61,10 @@ UnderwaterPass::UnderwaterPass(Device& device, const UnderwaterSetup& setup, con
     }
     if (kd_features.veiling_layer)
       veiling_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * pixels * 3);
+    if (kd_features.band_layers) {
+      band_layers_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * pixels * 5 * setup.bands.size());
+      forward_bands_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * pixels * setup.bands.size());
+    }
     raycast_.setArg(0, params_);
     raycast_.setArg(1, objects_);
     raycast_.setArg(2, no_caustics_);
@@ -132,6 +136,10 @@ double UnderwaterPass::runShading(const cl::Buffer* froxel_params, const cl::Buf
       shade_.setArg(arg++, lamps_layer_);
     }
     if (veiling_() != nullptr) shade_.setArg(arg++, veiling_);
+    if (band_layers_() != nullptr) {
+      shade_.setArg(arg++, band_layers_);
+      shade_.setArg(arg++, forward_bands_);
+    }
   });
   return enqueue(shade_, "kd_multiple");
 }

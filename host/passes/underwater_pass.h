@@ -48,6 +48,10 @@ class UnderwaterPass {
   cl::Buffer& forwardLayer() { return forward_layer_; }  // [pixel][3], water_spread adds into it
   cl::Buffer& lampsLayer() { return lamps_layer_; }      // [pixel][3], underwater_lamps adds into it
   cl::Buffer& veilingLayer() { return veiling_; }        // [pixel][3]
+  // The split per band (band_layers): [pixel][5][band] clear, direct, backscatter, lamps, transmission,
+  // and the forward light [pixel][band] (water_spread adds into it).
+  cl::Buffer& bandLayers() { return band_layers_; }
+  cl::Buffer& forwardBands() { return forward_bands_; }
 
  private:
   double enqueue(cl::Kernel& kernel, const char* what);
@@ -56,7 +60,7 @@ class UnderwaterPass {
   bool spectral_output_;
   bool spread_ = false;
   cl::Buffer forward_rgb_, forward_spectral_, forward_depth_;
-  cl::Buffer formation_, forward_layer_, lamps_layer_, veiling_;
+  cl::Buffer formation_, forward_layer_, lamps_layer_, veiling_, band_layers_, forward_bands_;
   cl::Kernel raycast_, shade_;
   cl::Buffer params_, bands_, objects_, albedo_, geom_, material_, vis_, rgb_, spectral_, no_caustics_;
   cl::Buffer sky_params_, sky_;  // the [sky] for Snell's window (common/sky_view.h)

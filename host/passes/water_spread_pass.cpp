@@ -79,14 +79,21 @@ double WaterSpreadPass::blur(Channels& ch, const cl::Buffer& geom, const cl::Buf
   return ms;
 }
 
-double WaterSpreadPass::addRgbInto(cl::Buffer& frame) {
+double WaterSpreadPass::addRgbInto(cl::Buffer& frame) { return expandInto(rgb_, frame); }
+
+double WaterSpreadPass::addBandsInto(cl::Buffer& frame) {
+  if (band_count_ <= 0) throw RuntimeError("water spread: the forward layer per band needs the pass set up with bands");
+  return expandInto(spectral_, frame);
+}
+
+double WaterSpreadPass::expandInto(Channels& ch, cl::Buffer& frame) {
   const size_t local = 8;
   const cl::NDRange pixels(roundUp(static_cast<size_t>(spread_.params.width), local),
                            roundUp(static_cast<size_t>(spread_.params.height), local));
   cl::Event done;
   onDevice("water spread pass (forward layer)", [&] {
-    expand_.setArg(0, rgb_.params);
-    expand_.setArg(1, rgb_.blurred);
+    expand_.setArg(0, ch.params);
+    expand_.setArg(1, ch.blurred);
     expand_.setArg(2, frame);
     device_.queue().enqueueNDRangeKernel(expand_, cl::NullRange, pixels,
                                          workGroupFor(device_, expand_, cl::NDRange(local, local)), nullptr, &done);

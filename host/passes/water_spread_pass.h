@@ -30,6 +30,8 @@ class WaterSpreadPass {
   // Adds the RGB blur of the last run() into another 3-channel frame as well (the "forward"
   // ground-truth layer): the expansion again, nothing blurred twice. Returns its ms.
   double addRgbInto(cl::Buffer& frame);
+  // The same for the per-band blur, into a [pixel][band_count] frame (the forward layer per band).
+  double addBandsInto(cl::Buffer& frame);
   const WaterSpread& spread() const { return spread_; }
 
  private:
@@ -38,6 +40,7 @@ class WaterSpreadPass {
     cl::Buffer params, layers, rows, blurred;
   };
   Channels makeChannels(int channels);
+  double expandInto(Channels& ch, cl::Buffer& frame);
   double blur(Channels& ch, const cl::Buffer& geom, const cl::Buffer& depth, const cl::Buffer& forward,
               cl::Buffer& frame);
   Device& device_;

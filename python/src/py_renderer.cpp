@@ -31,7 +31,24 @@ struct PyFrame {
   // R, G, B and the asked layers' channels, as image.exr holds them (jobs/layer_image.h); the image
   // alone when the scene asks for no layers.
   Image with_layers;
+  // The asked layers per band for spectral.exr (bandLayersImage); no channels without them.
+  Image band_layers;
 };
+
+// Per-band layers by name: (H, W, bands) for each, from "<layer>.S0.<nm>" channels in band order.
+nb::dict bandLayerArrays(const Image& image, size_t bands) {
+  nb::dict out;
+  const size_t h = image.height, w = image.width, pixels = h * w;
+  for (size_t first = 0; bands > 0 && first + bands <= static_cast<size_t>(image.channels); first += bands) {
+    const std::string& channel = image.channel_names[first];
+    std::vector<float> values(pixels * bands);
+    for (size_t i = 0; i < pixels; ++i)
+      for (size_t b = 0; b < bands; ++b) values[i * bands + b] = image.pixels[i * image.channels + first + b];
+    out[channel.substr(0, channel.find('.')).c_str()] =
+        nb::cast(ownedArray(std::move(values), {h, w, bands}), nb::rv_policy::automatic);
+  }
+  return out;
+}
 
 // The asked layers by name: one (H, W) array for a one-channel layer ("range", "object_id"), an
 // (H, W, k) array for "<layer>.R/.G/.B" or "normal.X/.Y/.Z", and a mask channel ("beta_d_mask") under
@@ -85,6 +102,7 @@ struct PyRenderer {
     }
     // As the job runner: a layer with NaN/Inf (but open water's +inf range) is never handed back.
     out.with_layers = imageWithLayers(out.frame, renderer->scene().outputs);
+    out.band_layers = bandLayersImage(out.frame, renderer->scene().outputs);
     out.report = frameReport(*device, renderer->scene(), renderer->plan(), out.frame);
     return out;
   }
@@ -138,6 +156,12 @@ void bindRenderer(nb::module_& m) {
                    "(height, width) for range, depth and object_id and for each mask ('beta_d_mask'), "
                    "(height, width, 3) for the RGB layers and the normal; the same values as the channels of "
                    "image.exr. Empty when the scene asks for none. Copies, made on each read.")
+      .def_prop_ro("band_layers",
+                   [](const PyFrame& f) { return bandLayerArrays(f.band_layers, f.frame.wavelengths_nm.size()); },
+                   nb::for_getter(nb::sig("def band_layers(self, /) -> dict[str, NDArray[numpy.float32]]")),
+                   "The asked layers that have bands (clear, direct, backscatter, forward, lamps, transmission), "
+                   "per band: (height, width, bands) float32 by name, as spectral.exr's '<layer>.S0.<nm>' channels. "
+                   "Empty without spectral.spectral_exr or such layers. Copies, made on each read.")
       .def_prop_ro("wavelengths_nm", [](const PyFrame& f) {
         std::vector<double> nm = f.frame.wavelengths_nm;
         const size_t n = nm.size();

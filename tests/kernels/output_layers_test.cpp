@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "device/allocation_count.h"
+#include "io/spectral_layout.h"
 #include "jobs/layer_image.h"
 #include "plan/memory_budget.h"
 #include "quality/auto_quality.h"
@@ -122,6 +123,76 @@ TEST(OutputLayers, TheSplitSumsToTheImageForEveryUnderwaterModel) {
   };
   for (const Case& c : cases) expectLayersSumToImage(smallScene(c.file, c.sets), 1e-5, c.what);
   expectLayersSumToImage(openWaterScene(), 1e-5, "open water, thesis");
+}
+
+// spectral.exr's split per band (bandLayersImage): per pixel and band, direct + backscatter + forward +
+// lamps is the spectral image's value (within `rel` of the pixel's largest band), direct is clear x
+// transmission, and the transmission is e^{-c range} of that band.
+void expectBandLayersSplitTheSpectralImage(const Scene& scene, const char* what) {
+  Renderer renderer(test::testDevice(), scene, shippedPasses());
+  const FrameResult frame = renderer.render();
+  ASSERT_EQ(frame.nonfinite, 0) << what;
+  const Image bands = bandLayersImage(frame, scene.outputs);
+  const Image rgb_layers = imageWithLayers(frame, scene.outputs);
+  const size_t nb = frame.wavelengths_nm.size();
+  ASSERT_EQ(static_cast<size_t>(bands.channels), 6 * nb) << what;  // clear ... transmission, per band
+  const WavelengthGrid grid = makeGrid(static_cast<int>(nb), scene.spectral.min_nm, scene.spectral.max_nm);
+  const UnderwaterSetup setup =
+      makeUnderwaterSetup(scene, grid, makeSensor(scene.spectral.sensor, grid, scene.spectral.white_balance));
+  const auto at = [&](size_t pixel, const char* layer, size_t band) {
+    const std::string name = spectralLayerChannelName(layer, frame.wavelengths_nm[band]);
+    for (int c = 0; c < bands.channels; ++c)
+      if (bands.channel_names[c] == name) return double(bands.pixels[pixel * bands.channels + c]);
+    ADD_FAILURE() << "no channel " << name;
+    return 0.0;
+  };
+  const int range_channel = static_cast<int>(std::find(rgb_layers.channel_names.begin(), rgb_layers.channel_names.end(),
+                                                       "range") - rgb_layers.channel_names.begin());
+  double worst_sum = 0, worst_direct = 0, worst_t = 0;
+  for (size_t i = 0; i < bands.pixelCount(); ++i) {
+    double scale = 1e-30;
+    for (size_t b = 0; b < nb; ++b) scale = std::max(scale, std::fabs(double(frame.spectral[i * nb + b])));
+    const double range = rgb_layers.pixels[i * rgb_layers.channels + range_channel];
+    for (size_t b = 0; b < nb; ++b) {
+      const double sum = at(i, "direct", b) + at(i, "backscatter", b) + at(i, "forward", b) + at(i, "lamps", b);
+      worst_sum = std::max(worst_sum, std::fabs(sum - frame.spectral[i * nb + b]) / scale);
+      const double clear = at(i, "clear", b), t = at(i, "transmission", b);
+      worst_direct = std::max(worst_direct, std::fabs(at(i, "direct", b) - clear * t) / std::max(std::fabs(clear), 1e-30));
+      if (std::isfinite(range))
+        worst_t = std::max(worst_t, std::fabs(t - std::exp(-double(setup.bands[b].c) * range)));
+    }
+  }
+  EXPECT_LE(worst_sum, 1e-5) << what;
+  EXPECT_LE(worst_direct, 1e-5) << what;
+  EXPECT_LE(worst_t, 2e-6) << what;
+}
+
+TEST(OutputLayers, TheSplitPerBandSumsToTheSpectralImage) {
+  const std::vector<Override> spectral = {set("spectral.count", "5"), set("spectral.spectral_exr", "true"),
+                                          set("outputs.layers", kAllLayers)};
+  const auto with = [&](std::vector<Override> extra) {
+    extra.insert(extra.begin(), spectral.begin(), spectral.end());
+    return extra;
+  };
+  expectBandLayersSplitTheSpectralImage(smallScene("seabed.toml", with({set("underwater.model", "\"improved\"")})),
+                                        "improved, froxels, point spread");
+  expectBandLayersSplitTheSpectralImage(
+      smallScene("seabed.toml", with({set("underwater.model", "\"improved\""), set("underwater.single_scattering", "false")})),
+      "improved, no froxels");
+  expectBandLayersSplitTheSpectralImage(smallScene("seabed.toml", with({set("underwater.model", "\"thesis\"")})),
+                                        "thesis, froxels");
+  expectBandLayersSplitTheSpectralImage(smallScene("rov_lights.toml", with({})), "rov_lights: lamps");
+}
+
+TEST(OutputLayers, NoBandLayersWithoutSpectralOutput) {
+  const Scene scene = smallScene("seabed.toml", {});
+  const Plan plan = makePlan(scene);
+  EXPECT_FALSE(plan.produces("band_layers"));
+  const PassPlan* kd = plan.find("kd_multiple");
+  ASSERT_NE(kd, nullptr);
+  EXPECT_EQ(std::find(kd->defines.begin(), kd->defines.end(), "SEASIM_LAYER_BANDS=1"), kd->defines.end());
+  const Scene spectral = smallScene("seabed.toml", {set("spectral.spectral_exr", "true")});
+  EXPECT_TRUE(makePlan(spectral).produces("band_layers"));
 }
 
 TEST(OutputLayers, LampsHaveTheirOwnLayer) {
@@ -271,6 +342,17 @@ TEST(OutputLayers, TheirDeviceBytesAreTheEstimate) {
         smallScene("seabed.toml", {set("underwater.model", model), set("outputs.layers", "[]")}), &without_estimate);
     EXPECT_EQ(with - without, with_estimate - without_estimate) << model;
     EXPECT_GT(with - without, 0.0) << model;
+    // With spectral.exr the split per band too. Froxels off: the per-band froxel term's transient
+    // buffers (FroxelPass::addBandsToSpectral) would move the peak this compares.
+    const std::vector<Override> bands = {set("spectral.spectral_exr", "true"), set("spectral.count", "5"),
+                                         set("underwater.single_scattering", "false")};
+    std::vector<Override> with_bands = bands, without_bands = bands;
+    with_bands.push_back(set("underwater.model", model));
+    without_bands.insert(without_bands.end(), {set("underwater.model", model), set("outputs.layers", "[]")});
+    const double with_b = measure(smallScene("seabed.toml", with_bands), &with_estimate);
+    const double without_b = measure(smallScene("seabed.toml", without_bands), &without_estimate);
+    EXPECT_EQ(with_b - without_b, with_estimate - without_estimate) << model << ", per band";
+    EXPECT_GT(with_b - without_b, with - without) << model << ", per band";
   }
 }
 

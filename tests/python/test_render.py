@@ -149,3 +149,16 @@ def test_layers_are_image_exrs_channels_by_name_and_split_the_image(tmp_path):
 
 def test_no_layers_asked_gives_an_empty_dict(flat_sea_frame):
     assert flat_sea_frame.layers == {}
+
+
+def test_band_layers_split_the_spectral_image_per_band():
+    overrides = {**SMALL, "spectral.count": 4, "spectral.spectral_exr": True,
+                 "outputs.layers": ["direct", "backscatter", "forward", "lamps"]}
+    frame = seasim.Renderer(seasim.Scene.load(scene_path("seabed.toml"), overrides=overrides)).render()
+    bands = frame.band_layers
+    assert set(bands) == {"direct", "backscatter", "forward", "lamps"}
+    assert all(b.shape == (36, 64, 4) and b.dtype == np.float32 for b in bands.values())
+    total = bands["direct"] + bands["backscatter"] + bands["forward"] + bands["lamps"]
+    scale = np.maximum(np.abs(frame.spectral).max(axis=2, keepdims=True), 1e-30)
+    assert np.max(np.abs(total - frame.spectral) / scale) < 1e-5
+    assert frame.layers["direct"].shape == (36, 64, 3)  # the RGB layers as before

@@ -13,6 +13,7 @@
 #include "plan/scene_facts.h"
 #include "render/pass.h"
 #include "passes/nodes/layer_nodes.h"
+#include "io/spectral_layout.h"
 #include "render/layer_target.h"
 #include "render/radiance_target.h"
 #include "util/error.h"
@@ -26,6 +27,29 @@ namespace {
 const std::vector<std::string> kFormationLayers = {"clear",  "direct",       "backscatter", "forward",
                                                    "lamps",  "transmission", "beta_d",      "beta_b"};
 const std::vector<std::string> kVeilingLayers = {"veiling", "beta_b"};
+
+// kd_multiple.cl's band layers, slot by slot (its header gives the layout).
+const char* const kBandLayerSlots[] = {"clear", "direct", "backscatter", "lamps", "transmission"};
+
+// The froxel term per band into the backscatter slot of the band layers, as into spectral.exr.
+void addFroxelBandsToBackscatter(FrameContext& ctx, UnderwaterPass& pass, FroxelPass& froxels) {
+  const Scene& scene = ctx.scene();
+  const size_t pixels = static_cast<size_t>(scene.camera.width) * static_cast<size_t>(scene.camera.height);
+  const size_t bands = ctx.grid().size(), slots = std::size(kBandLayerSlots);
+  std::vector<float> all(pixels * slots * bands), backscatter(pixels * bands);
+  cl::CommandQueue& queue = ctx.device().queue();
+  onDevice("froxel band layers", [&] {
+    queue.enqueueReadBuffer(pass.bandLayers(), CL_TRUE, 0, sizeof(float) * all.size(), all.data());
+    for (size_t i = 0; i < pixels; ++i)
+      std::copy_n(all.data() + (i * slots + 2) * bands, bands, backscatter.data() + i * bands);
+    const double ms = froxels.addBandsToSpectral(ctx.underwaterSetup(), pass.geometry(), scene.camera.width,
+                                                 scene.camera.height, backscatter);
+    for (size_t i = 0; i < pixels; ++i)
+      std::copy_n(backscatter.data() + i * bands, bands, all.data() + (i * slots + 2) * bands);
+    queue.enqueueWriteBuffer(pass.bandLayers(), CL_TRUE, 0, sizeof(float) * all.size(), all.data());
+    ctx.timings.push_back({"froxel_band_layers", ms});
+  });
+}
 
 class KdNode : public Pass {
  public:
@@ -57,6 +81,14 @@ class KdNode : public Pass {
     }
     if (pass.veilingLayer()() != nullptr)
       layer("veiling_layer", {"veiling.R", "veiling.G", "veiling.B"}, pass.veilingLayer());
+    if (pass.bandLayers()() != nullptr) {  // the split per band: "<layer>.S0.<nm>" (output_layers.h)
+      std::vector<std::string> channels, forward;
+      for (const char* l : kBandLayerSlots)
+        for (double nm : ctx.grid().centers_nm) channels.push_back(spectralLayerChannelName(l, nm));
+      for (double nm : ctx.grid().centers_nm) forward.push_back(spectralLayerChannelName("forward", nm));
+      layer("band_layers", channels, pass.bandLayers());
+      layer("forward_band_layer", forward, pass.forwardBands());
+    }
   }
   void execute(FrameContext& ctx, PassResources& res) override {
     UnderwaterGBuffer& gbuffer = res.read<UnderwaterGBuffer>("gbuffer");
@@ -78,6 +110,7 @@ class KdNode : public Pass {
         queue.enqueueWriteBuffer(gbuffer.pass->spectral(), CL_TRUE, 0, sizeof(float) * spectral.size(), spectral.data());
         ctx.timings.push_back({"froxel_spectral_bands", ms});
       });
+      if (gbuffer.pass->bandLayers()() != nullptr) addFroxelBandsToBackscatter(ctx, *gbuffer.pass, *froxels);
     }
   }
 
@@ -109,14 +142,18 @@ PassDescriptor kdMultipleDescriptor() {
     features->point_spread = underwaterPointSpread(scene);
     features->formation_layers = scene.outputs.wantsAny(kFormationLayers);
     features->veiling_layer = scene.outputs.wantsAny(kVeilingLayers);
+    features->band_layers = features->formation_layers && features->spectral_output;
     std::vector<std::string> writes = {"rgb"};
     if (features->formation_layers) writes.insert(writes.end(), {"formation_layers", "forward_layer", "lamps_layer"});
     if (features->veiling_layer) writes.push_back("veiling_layer");
+    if (features->band_layers) writes.insert(writes.end(), {"band_layers", "forward_band_layer"});
     std::string layers;
     if (features->formation_layers || features->veiling_layer)
       layers = "; outputs.layers: " + layerList(askedLayers(scene, kFormationLayers)) +
                (features->veiling_layer && !scene.outputs.wants("veiling") ? ", veiling (for beta_b)" : "") +
-               layerCostText(scene, 4.0 * ((features->formation_layers ? 18 : 0) + (features->veiling_layer ? 3 : 0)));
+               (features->band_layers ? ", per band in spectral.exr" : "") +
+               layerCostText(scene, 4.0 * ((features->formation_layers ? 18 : 0) + (features->veiling_layer ? 3 : 0) +
+                                           (features->band_layers ? 6 * scene.spectral.count : 0)));
     return planEntry(reads, writes,
                      ordinates ? "camera below the surface: T L_s + L_MS per band, model \"improved\" (delta-M, the "
                                  "diffuse field over the bottom by discrete ordinates or a two-stream, its in-scatter "
@@ -136,6 +173,11 @@ PassDescriptor kdMultipleDescriptor() {
       const std::vector<std::string> keys = {"camera.width", "camera.height", "outputs.layers"};
       out.push_back({p.name, "formation layers", 4 * layer_floats * w * h, keys, {w, h}});
       out.push_back({p.name, "formation layers (read back)", 4 * layer_floats * w * h, keys, {w, h}, true});
+    }
+    if (f.band_layers) {  // five slots and the forward light, per band (kd_multiple.cl)
+      const std::vector<std::string> keys = {"camera.width", "camera.height", "spectral.count", "outputs.layers"};
+      out.push_back({p.name, "formation layers per band", 4 * 6 * nb * w * h, keys, {w, h, nb}});
+      out.push_back({p.name, "formation layers per band (read back)", 4 * 6 * nb * w * h, keys, {w, h, nb}, true});
     }
     if (!f.point_spread) return out;
     // The forward light's moments the point spread blurs (underwater_pass.cpp): F and F E per

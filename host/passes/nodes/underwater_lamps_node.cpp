@@ -41,8 +41,10 @@ class UnderwaterLampsNode : public Pass {
     cl::Buffer* spectral = ctx.scene().spectral.spectral_exr ? &target.spectral : nullptr;
     const bool lamps_layer_on = entry_.featuresAs<UnderwaterLampsFeatures>().lamps_layer;
     cl::Buffer* lamps_layer = lamps_layer_on ? &res.read<LayerTarget>("lamps_layer").image : nullptr;
-    ctx.timings.push_back(
-        {"underwater_lamps", pass_->run(gbuffer.geometry(), gbuffer.material(), target.rgb, spectral, lamps_layer)});
+    const bool bands_on = entry_.featuresAs<UnderwaterLampsFeatures>().band_layers;
+    cl::Buffer* band_layers = bands_on ? &res.read<LayerTarget>("band_layers").image : nullptr;
+    ctx.timings.push_back({"underwater_lamps", pass_->run(gbuffer.geometry(), gbuffer.material(), target.rgb, spectral,
+                                                          lamps_layer, band_layers)});
   }
 
  private:
@@ -74,6 +76,13 @@ PassDescriptor underwaterLampsDescriptor() {
     features->orders = UnderwaterLampsPass::configFromScene(scene).model == UnderwaterLampsPass::Model::Orders;
     // The lamps' own layer: kd_multiple zeroed it, this pass adds into it as into "rgb".
     features->lamps_layer = so_far.produces("lamps_layer");
+    features->band_layers = so_far.produces("band_layers");
+    if (features->band_layers)
+      return planEntry({"gbuffer", "rgb", "lamps_layer", "band_layers"}, {"rgb", "lamps_layer", "band_layers"},
+                       std::string("[[spotlights]] under water: 001's sampling planes with the water's sigma_s, sigma_t, HG") +
+                           (features->orders ? " + orders of multiple scattering" : "") +
+                           "; also into outputs.layers' lamps, per band too",
+                       features);
     if (features->lamps_layer)
       return planEntry({"gbuffer", "rgb", "lamps_layer"}, {"rgb", "lamps_layer"},
                        std::string("[[spotlights]] under water: 001's sampling planes with the water's sigma_s, sigma_t, HG") +

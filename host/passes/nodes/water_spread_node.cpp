@@ -45,6 +45,9 @@ class WaterSpreadNode : public Pass {
                                                       spectral ? &target.spectral : nullptr)});
     if (res.declaresRead("forward_layer"))  // the blurred light is the forward layer's too
       ctx.timings.push_back({"water_spread_forward_layer", pass_->addRgbInto(res.read<LayerTarget>("forward_layer").image)});
+    if (res.declaresRead("forward_band_layer"))  // and, per band, spectral.exr's
+      ctx.timings.push_back(
+          {"water_spread_forward_layer", pass_->addBandsInto(res.read<LayerTarget>("forward_band_layer").image)});
   }
 
  private:
@@ -60,6 +63,12 @@ PassDescriptor waterSpreadDescriptor() {
   d.kernel_file = "water_spread.cl";
   d.rule = [](const Scene& scene, const Plan& so_far) -> std::optional<PassPlan> {
     if (!cameraUnderwater(scene) || !underwaterPointSpread(scene)) return std::nullopt;
+    if (so_far.produces("forward_band_layer"))
+      return planEntry({"gbuffer", "rgb", "forward_layer", "forward_band_layer"},
+                       {"rgb", "forward_layer", "forward_band_layer"},
+                       "underwater.model \"improved\", water.g > 0, underwater.point_spread: the light delta-M "
+                       "counts as unscattered, blurred by the phase's small angles (common/water_spread.h); also "
+                       "into outputs.layers' forward, per band too");
     if (so_far.produces("forward_layer"))
       return planEntry({"gbuffer", "rgb", "forward_layer"}, {"rgb", "forward_layer"},
                        "underwater.model \"improved\", water.g > 0, underwater.point_spread: the light delta-M "
