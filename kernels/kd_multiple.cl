@@ -35,6 +35,8 @@
  * spectral.exr): layer_bands[pixel][5][band_count] = clear, direct, backscatter, lamps (0 here;
  * underwater_lamps.cl adds into it), transmission e^{-c S}, and forward_bands[pixel][band_count] (water_spread.cl
  * adds its blurred part); per band direct + backscatter + forward + lamps is spectral's value.
+ * SEASIM_LAYER_VEILING_BANDS (with SEASIM_LAYER_VEILING and SEASIM_SPECTRAL_OUTPUT): veiling_bands[pixel][band_count],
+ * B∞ per band (the froxel term per band is added on the host, as to spectral).
  */
 #include "common/compat.h"
 #include "common/optics.h"
@@ -76,6 +78,14 @@
 #endif
 #ifndef SEASIM_LAYER_BANDS
 #define SEASIM_LAYER_BANDS 0
+#endif
+#ifndef SEASIM_LAYER_VEILING_BANDS
+#define SEASIM_LAYER_VEILING_BANDS 0
+#endif
+#if SEASIM_LAYER_VEILING_BANDS
+#define BAND_VEILING(value) store_lanes((value), veiling_bands + (size_t)pixel * band_count + i, band_count - i)
+#else
+#define BAND_VEILING(value)
 #endif
 #if SEASIM_LAYER_BANDS
 /* The split per band: slot k of layer_bands (see above), or forward_bands, for the step's lanes. */
@@ -185,6 +195,9 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
 #endif
 #if SEASIM_LAYER_BANDS
                           , __global float* layer_bands, __global float* forward_bands
+#endif
+#if SEASIM_LAYER_VEILING_BANDS
+                          , __global float* veiling_bands
 #endif
 ) {
   const int x = get_global_id(0);
@@ -366,11 +379,13 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
       const realb l_inf = multiple ? uwi_lanes_multiple(&v, &w, &camera, &ends_inf, phase, p->bottom_depth, UW_INFINITE,
                                                         d.y, single, &strict_inf)
                                    : SPLATB(0.0f);
-      LAYER_ADD(veil, multiple ? fmax(l_inf + uwi_lanes_forward_peak(band_table, stride, uwi_row0, i, &v, aureole_node,
-                                                                     aureole_frac, node, cos_dphi, phase, d.y, o_d, y_inf,
-                                                                     s_w.y, strict_inf),
-                                      SPLATB(0.0f))
-                               : SPLATB(0.0f));
+      const realb veil = multiple ? fmax(l_inf + uwi_lanes_forward_peak(band_table, stride, uwi_row0, i, &v, aureole_node,
+                                                                        aureole_frac, node, cos_dphi, phase, d.y, o_d,
+                                                                        y_inf, s_w.y, strict_inf),
+                                         SPLATB(0.0f))
+                                  : SPLATB(0.0f);
+      LAYER_ADD(veil, veil);
+      BAND_VEILING(veil);
     }
 #endif
 #if SEASIM_UWI_SPREAD
@@ -434,8 +449,12 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
     realb clear = SPLATB(0.0f), hit = SPLATB(0.0f);
 #endif
 #if SEASIM_LAYER_VEILING
-    LAYER_ADD(veil, multiple ? uw_lanes_multiple(ms_total, ms_direct, kd, k_beam, c, single, d.y, o_d, UW_INFINITE)
-                             : SPLATB(0.0f));
+    {
+      const realb veil =
+          multiple ? uw_lanes_multiple(ms_total, ms_direct, kd, k_beam, c, single, d.y, o_d, UW_INFINITE) : SPLATB(0.0f);
+      LAYER_ADD(veil, veil);
+      BAND_VEILING(veil);
+    }
 #endif
     if (mat == UW_MAT_SURFACE) {
       const realb sky_l = kd_sky_lanes(band_table, stride, i, sky_shape);

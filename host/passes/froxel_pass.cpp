@@ -148,8 +148,13 @@ double FroxelPass::integrateOnce() { return runKernel2d(device_, "froxel", integ
 
 double FroxelPass::addBandsToSpectral(const UnderwaterSetup& setup, const cl::Buffer& geom, int width, int height,
                                       std::vector<float>& spectral) {
+  return addBandsTo(setup, width, height, {BandTarget{&geom, &spectral}});
+}
+
+double FroxelPass::addBandsTo(const UnderwaterSetup& setup, int width, int height, const std::vector<BandTarget>& targets) {
   const size_t bands = setup.bands.size(), pixels = size_t(width) * size_t(height);
-  if (spectral.size() != pixels * bands) throw RuntimeError("froxel pass: spectral buffer size mismatch");
+  for (const BandTarget& t : targets)
+    if (t.values->size() != pixels * bands) throw RuntimeError("froxel pass: spectral buffer size mismatch");
   const cl_mem_flags in = CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR;
   const bool spectral_injection =
       std::find(defines_.begin(), defines_.end(), "SEASIM_SPECTRAL_INJECTION=1") != defines_.end();
@@ -180,11 +185,13 @@ double FroxelPass::addBandsToSpectral(const UnderwaterSetup& setup, const cl::Bu
       integrate_kernel_.setArg(3, factor_buffer);
       ms += integrateOnce();
       resolve_kernel_.setArg(0, fparams);
-      ms += resolve(geom, width, height, rgb_buffer);
-      device_.queue().enqueueReadBuffer(rgb_buffer, CL_TRUE, 0, sizeof(float) * rgb.size(), rgb.data());
-      for (size_t px = 0; px < pixels; ++px) {
-        if (!std::isfinite(rgb[3 * px])) throw DeviceError("froxel pass: a non-finite value in band " + std::to_string(b));
-        spectral[px * bands + b] += rgb[3 * px];
+      for (const BandTarget& t : targets) {
+        ms += resolve(*t.geom, width, height, rgb_buffer);
+        device_.queue().enqueueReadBuffer(rgb_buffer, CL_TRUE, 0, sizeof(float) * rgb.size(), rgb.data());
+        for (size_t px = 0; px < pixels; ++px) {
+          if (!std::isfinite(rgb[3 * px])) throw DeviceError("froxel pass: a non-finite value in band " + std::to_string(b));
+          (*t.values)[px * bands + b] += rgb[3 * px];
+        }
       }
     }
     // Back to the frame's own set-up, and the frame's volume integrated again from the same injected

@@ -52,6 +52,14 @@ class FroxelPass {
   // that restores volume() to the frame's own. Returns the summed kernel ms.
   double addBandsToSpectral(const UnderwaterSetup& setup, const cl::Buffer& geom, int width, int height,
                             std::vector<float>& spectral);
+  // The same into several per-band images at once, each resolved at its own distances (the image and
+  // its backscatter layer at the G-buffer's, the veiling layer's at infinity): one integration per band
+  // for all of them.
+  struct BandTarget {
+    const cl::Buffer* geom;       // float4 per pixel, S first
+    std::vector<float>* values;   // band_count floats per pixel, added into
+  };
+  double addBandsTo(const UnderwaterSetup& setup, int width, int height, const std::vector<BandTarget>& targets);
 
   cl::Buffer& volume() { return volume_; }
   cl::Buffer& paramsBuffer() { return fparams_; }  // FroxelParams on the device (kd_multiple.cl's fp)

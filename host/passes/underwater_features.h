@@ -40,6 +40,7 @@ struct KdFeatures final : PassFeatures {
   bool formation_layers = false;  // outputs.layers clear, direct, backscatter, forward, lamps, transmission
   bool veiling_layer = false;     // outputs.layers veiling (B∞: the in-scatter with S = ∞)
   bool band_layers = false;       // the split also per band in spectral.exr (formation_layers + spectral_output)
+  bool veiling_bands = false;     // the veiling also per band in spectral.exr (veiling_layer + spectral_output)
 
   void list(FeatureList& out) const override {
     out.flag("multiple", "SEASIM_HAS_MULTIPLE", multiple);
@@ -52,6 +53,7 @@ struct KdFeatures final : PassFeatures {
     if (formation_layers) out.flag("formation_layers", "SEASIM_LAYER_FORMATION", true);
     if (veiling_layer) out.flag("veiling_layer", "SEASIM_LAYER_VEILING", true);
     if (band_layers) out.flag("band_layers", "SEASIM_LAYER_BANDS", true);
+    if (veiling_bands) out.flag("veiling_bands", "SEASIM_LAYER_VEILING_BANDS", true);
   }
 };
 

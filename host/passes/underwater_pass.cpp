@@ -65,6 +65,8 @@ UnderwaterPass::UnderwaterPass(Device& device, const UnderwaterSetup& setup, con
       band_layers_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * pixels * 5 * setup.bands.size());
       forward_bands_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * pixels * setup.bands.size());
     }
+    if (kd_features.veiling_bands)
+      veiling_bands_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * pixels * setup.bands.size());
     raycast_.setArg(0, params_);
     raycast_.setArg(1, objects_);
     raycast_.setArg(2, no_caustics_);
@@ -140,6 +142,7 @@ double UnderwaterPass::runShading(const cl::Buffer* froxel_params, const cl::Buf
       shade_.setArg(arg++, band_layers_);
       shade_.setArg(arg++, forward_bands_);
     }
+    if (veiling_bands_() != nullptr) shade_.setArg(arg++, veiling_bands_);
   });
   return enqueue(shade_, "kd_multiple");
 }

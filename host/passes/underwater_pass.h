@@ -52,6 +52,7 @@ class UnderwaterPass {
   // and the forward light [pixel][band] (water_spread adds into it).
   cl::Buffer& bandLayers() { return band_layers_; }
   cl::Buffer& forwardBands() { return forward_bands_; }
+  cl::Buffer& veilingBands() { return veiling_bands_; }  // [pixel][band] (veiling_bands)
 
  private:
   double enqueue(cl::Kernel& kernel, const char* what);
@@ -60,7 +61,7 @@ class UnderwaterPass {
   bool spectral_output_;
   bool spread_ = false;
   cl::Buffer forward_rgb_, forward_spectral_, forward_depth_;
-  cl::Buffer formation_, forward_layer_, lamps_layer_, veiling_, band_layers_, forward_bands_;
+  cl::Buffer formation_, forward_layer_, lamps_layer_, veiling_, band_layers_, forward_bands_, veiling_bands_;
   cl::Kernel raycast_, shade_;
   cl::Buffer params_, bands_, objects_, albedo_, geom_, material_, vis_, rgb_, spectral_, no_caustics_;
   cl::Buffer sky_params_, sky_;  // the [sky] for Snell's window (common/sky_view.h)

@@ -56,7 +56,7 @@ const std::vector<OutputLayer>& outputLayers() {
       {"lamps", "the underwater lamps' light in the image", rgb("lamps"), true},
       {"transmission", "T = exp(-c range) along the ray", rgb("transmission"), true},
       {"veiling", "B_inf: the radiance of an infinitely long water path in the pixel's direction", rgb("veiling"),
-       false},
+       true},
       {"beta_d", "-ln(direct/clear)/range where defined (else 0, mask 0)", masked("beta_d"), false},
       {"beta_b", "-ln(1 - backscatter/veiling)/range where defined (else 0, mask 0)", masked("beta_b"), false},
   };

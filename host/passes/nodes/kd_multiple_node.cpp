@@ -31,23 +31,45 @@ const std::vector<std::string> kVeilingLayers = {"veiling", "beta_b"};
 // kd_multiple.cl's band layers, slot by slot (its header gives the layout).
 const char* const kBandLayerSlots[] = {"clear", "direct", "backscatter", "lamps", "transmission"};
 
-// The froxel term per band into the backscatter slot of the band layers, as into spectral.exr.
-void addFroxelBandsToBackscatter(FrameContext& ctx, UnderwaterPass& pass, FroxelPass& froxels) {
+// spectral.exr holds the whole image: kd_multiple wrote T L_s + L_MS per band, and the froxel term per
+// band is added here from the same injected light (FroxelPass::addBandsTo), into the spectral image,
+// the backscatter slot of the band layers and, resolved at infinity, the veiling per band.
+void addFroxelBands(FrameContext& ctx, UnderwaterPass& pass, FroxelPass& froxels) {
   const Scene& scene = ctx.scene();
   const size_t pixels = static_cast<size_t>(scene.camera.width) * static_cast<size_t>(scene.camera.height);
   const size_t bands = ctx.grid().size(), slots = std::size(kBandLayerSlots);
-  std::vector<float> all(pixels * slots * bands), backscatter(pixels * bands);
+  const bool layers = pass.bandLayers()() != nullptr, veiling = pass.veilingBands()() != nullptr;
+  std::vector<float> spectral(pixels * bands), all, backscatter, veil;
   cl::CommandQueue& queue = ctx.device().queue();
-  onDevice("froxel band layers", [&] {
-    queue.enqueueReadBuffer(pass.bandLayers(), CL_TRUE, 0, sizeof(float) * all.size(), all.data());
-    for (size_t i = 0; i < pixels; ++i)
-      std::copy_n(all.data() + (i * slots + 2) * bands, bands, backscatter.data() + i * bands);
-    const double ms = froxels.addBandsToSpectral(ctx.underwaterSetup(), pass.geometry(), scene.camera.width,
-                                                 scene.camera.height, backscatter);
-    for (size_t i = 0; i < pixels; ++i)
-      std::copy_n(backscatter.data() + i * bands, bands, all.data() + (i * slots + 2) * bands);
-    queue.enqueueWriteBuffer(pass.bandLayers(), CL_TRUE, 0, sizeof(float) * all.size(), all.data());
-    ctx.timings.push_back({"froxel_band_layers", ms});
+  onDevice("froxel spectral bands", [&] {
+    std::vector<FroxelPass::BandTarget> targets = {{&pass.geometry(), &spectral}};
+    queue.enqueueReadBuffer(pass.spectral(), CL_TRUE, 0, sizeof(float) * spectral.size(), spectral.data());
+    if (layers) {
+      all.resize(pixels * slots * bands);
+      backscatter.resize(pixels * bands);
+      queue.enqueueReadBuffer(pass.bandLayers(), CL_TRUE, 0, sizeof(float) * all.size(), all.data());
+      for (size_t i = 0; i < pixels; ++i)
+        std::copy_n(all.data() + (i * slots + 2) * bands, bands, backscatter.data() + i * bands);
+      targets.push_back({&pass.geometry(), &backscatter});
+    }
+    cl::Buffer at_infinity;  // every pixel's distance infinite: the whole column, as kd_multiple's ss_inf
+    if (veiling) {
+      veil.resize(pixels * bands);
+      queue.enqueueReadBuffer(pass.veilingBands(), CL_TRUE, 0, sizeof(float) * veil.size(), veil.data());
+      std::vector<cl_float4> far(pixels, cl_float4{{1e30f, 0.0f, 0.0f, 0.0f}});
+      at_infinity = cl::Buffer(ctx.device().context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+                               sizeof(cl_float4) * far.size(), far.data());
+      targets.push_back({&at_infinity, &veil});
+    }
+    const double ms = froxels.addBandsTo(ctx.underwaterSetup(), scene.camera.width, scene.camera.height, targets);
+    queue.enqueueWriteBuffer(pass.spectral(), CL_TRUE, 0, sizeof(float) * spectral.size(), spectral.data());
+    if (layers) {
+      for (size_t i = 0; i < pixels; ++i)
+        std::copy_n(backscatter.data() + i * bands, bands, all.data() + (i * slots + 2) * bands);
+      queue.enqueueWriteBuffer(pass.bandLayers(), CL_TRUE, 0, sizeof(float) * all.size(), all.data());
+    }
+    if (veiling) queue.enqueueWriteBuffer(pass.veilingBands(), CL_TRUE, 0, sizeof(float) * veil.size(), veil.data());
+    ctx.timings.push_back({"froxel_spectral_bands", ms});
   });
 }
 
@@ -89,6 +111,11 @@ class KdNode : public Pass {
       layer("band_layers", channels, pass.bandLayers());
       layer("forward_band_layer", forward, pass.forwardBands());
     }
+    if (pass.veilingBands()() != nullptr) {
+      std::vector<std::string> veiling;
+      for (double nm : ctx.grid().centers_nm) veiling.push_back(spectralLayerChannelName("veiling", nm));
+      layer("veiling_band_layer", veiling, pass.veilingBands());
+    }
   }
   void execute(FrameContext& ctx, PassResources& res) override {
     UnderwaterGBuffer& gbuffer = res.read<UnderwaterGBuffer>("gbuffer");
@@ -96,22 +123,7 @@ class KdNode : public Pass {
     FroxelPass* froxels = res.declaresRead("froxel_volume") ? &res.read<FroxelPass>("froxel_volume") : nullptr;
     ctx.timings.push_back({"kd_multiple", gbuffer.pass->runShading(froxels ? &froxels->paramsBuffer() : nullptr,
                                                                    froxels ? &froxels->volume() : nullptr)});
-    // spectral.exr holds the whole image: kd_multiple wrote T L_s + L_MS per band; the froxel term per
-    // band is added from the same injected light, into the buffer the renderer reads back.
-    if (froxels && ctx.scene().spectral.spectral_exr) {
-      const Scene& scene = ctx.scene();
-      const size_t pixels = static_cast<size_t>(scene.camera.width) * static_cast<size_t>(scene.camera.height);
-      std::vector<float> spectral(pixels * ctx.grid().size());
-      cl::CommandQueue& queue = ctx.device().queue();
-      onDevice("froxel spectral bands", [&] {
-        queue.enqueueReadBuffer(gbuffer.pass->spectral(), CL_TRUE, 0, sizeof(float) * spectral.size(), spectral.data());
-        const double ms = froxels->addBandsToSpectral(ctx.underwaterSetup(), gbuffer.pass->geometry(), scene.camera.width,
-                                                      scene.camera.height, spectral);
-        queue.enqueueWriteBuffer(gbuffer.pass->spectral(), CL_TRUE, 0, sizeof(float) * spectral.size(), spectral.data());
-        ctx.timings.push_back({"froxel_spectral_bands", ms});
-      });
-      if (gbuffer.pass->bandLayers()() != nullptr) addFroxelBandsToBackscatter(ctx, *gbuffer.pass, *froxels);
-    }
+    if (froxels && ctx.scene().spectral.spectral_exr) addFroxelBands(ctx, *gbuffer.pass, *froxels);
   }
 
  private:
@@ -143,17 +155,20 @@ PassDescriptor kdMultipleDescriptor() {
     features->formation_layers = scene.outputs.wantsAny(kFormationLayers);
     features->veiling_layer = scene.outputs.wantsAny(kVeilingLayers);
     features->band_layers = features->formation_layers && features->spectral_output;
+    features->veiling_bands = features->veiling_layer && features->spectral_output;
     std::vector<std::string> writes = {"rgb"};
     if (features->formation_layers) writes.insert(writes.end(), {"formation_layers", "forward_layer", "lamps_layer"});
     if (features->veiling_layer) writes.push_back("veiling_layer");
     if (features->band_layers) writes.insert(writes.end(), {"band_layers", "forward_band_layer"});
+    if (features->veiling_bands) writes.push_back("veiling_band_layer");
     std::string layers;
     if (features->formation_layers || features->veiling_layer)
       layers = "; outputs.layers: " + layerList(askedLayers(scene, kFormationLayers)) +
                (features->veiling_layer && !scene.outputs.wants("veiling") ? ", veiling (for beta_b)" : "") +
-               (features->band_layers ? ", per band in spectral.exr" : "") +
+               (features->band_layers || features->veiling_bands ? ", per band in spectral.exr" : "") +
                layerCostText(scene, 4.0 * ((features->formation_layers ? 18 : 0) + (features->veiling_layer ? 3 : 0) +
-                                           (features->band_layers ? 6 * scene.spectral.count : 0)));
+                                           (features->band_layers ? 6 * scene.spectral.count : 0) +
+                                           (features->veiling_bands ? scene.spectral.count : 0)));
     return planEntry(reads, writes,
                      ordinates ? "camera below the surface: T L_s + L_MS per band, model \"improved\" (delta-M, the "
                                  "diffuse field over the bottom by discrete ordinates or a two-stream, its in-scatter "
@@ -174,10 +189,12 @@ PassDescriptor kdMultipleDescriptor() {
       out.push_back({p.name, "formation layers", 4 * layer_floats * w * h, keys, {w, h}});
       out.push_back({p.name, "formation layers (read back)", 4 * layer_floats * w * h, keys, {w, h}, true});
     }
-    if (f.band_layers) {  // five slots and the forward light, per band (kd_multiple.cl)
+    // Per band (kd_multiple.cl): five slots and the forward light; the veiling.
+    const double band_floats = (f.band_layers ? 6 : 0) + (f.veiling_bands ? 1 : 0);
+    if (band_floats > 0) {
       const std::vector<std::string> keys = {"camera.width", "camera.height", "spectral.count", "outputs.layers"};
-      out.push_back({p.name, "formation layers per band", 4 * 6 * nb * w * h, keys, {w, h, nb}});
-      out.push_back({p.name, "formation layers per band (read back)", 4 * 6 * nb * w * h, keys, {w, h, nb}, true});
+      out.push_back({p.name, "layers per band", 4 * band_floats * nb * w * h, keys, {w, h, nb}});
+      out.push_back({p.name, "layers per band (read back)", 4 * band_floats * nb * w * h, keys, {w, h, nb}, true});
     }
     if (!f.point_spread) return out;
     // The forward light's moments the point spread blurs (underwater_pass.cpp): F and F E per
