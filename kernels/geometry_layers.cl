@@ -9,7 +9,8 @@
  * Built without -cl-fast-relaxed-math (its infinity must survive).
  * Defines (host/plan, LayerGeometryFeatures): SEASIM_LAYER_CHANNELS and each layer's channel offset,
  * -1 when not asked: SEASIM_LAYER_RANGE, SEASIM_LAYER_DEPTH, SEASIM_LAYER_NORMAL, SEASIM_LAYER_OBJECT_ID,
- * SEASIM_LAYER_ALBEDO.
+ * SEASIM_LAYER_ALBEDO; SEASIM_LAYER_ALBEDO_BANDS (with the albedo and spectral.exr): albedo_bands[pixel][band],
+ * the albedo per band.
  */
 #include "common/compat.h"
 #include "common/optics.h"
@@ -18,9 +19,16 @@
 #include "common/underwater.h"
 #include "common/underwater_band_table.h"
 #include "common/output_layers.h"
+#ifndef SEASIM_LAYER_ALBEDO_BANDS
+#define SEASIM_LAYER_ALBEDO_BANDS 0
+#endif
 
 __kernel void geometry_layers(__constant UwParams* p, __global const float4* geom, __global const int* material,
-                              __global const float* band_table, __global float* out) {
+                              __global const float* band_table, __global float* out
+#if SEASIM_LAYER_ALBEDO_BANDS
+                              , __global float* albedo_bands
+#endif
+) {
   const int x = get_global_id(0);
   const int y = get_global_id(1);
   if (x >= p->width || y >= p->height) return;
@@ -54,6 +62,9 @@ __kernel void geometry_layers(__constant UwParams* p, __global const float4* geo
   float aw_r = 0.0f, aw_g = 0.0f, aw_b = 0.0f, w_r = 0.0f, w_g = 0.0f, w_b = 0.0f;
   for (int i = 0; i < n; ++i) {
     const float albedo = lambert ? a[i] : 0.0f;
+#if SEASIM_LAYER_ALBEDO_BANDS
+    albedo_bands[(size_t)pixel * n + i] = albedo;
+#endif
     const float wr = band_table[UW_ROW_W_R * stride + i], wg = band_table[UW_ROW_W_G * stride + i],
                 wb = band_table[UW_ROW_W_B * stride + i];
     aw_r += albedo * wr;

@@ -12,7 +12,8 @@ namespace seasim {
 // geometry_layers.cl: each asked layer's first channel in the output's pixel (-1: not asked).
 struct GeometryLayerFeatures final : PassFeatures {
   int range = -1, depth = -1, normal = -1, object_id = -1, albedo = -1;
-  int channels = 0;  // floats per pixel
+  int channels = 0;            // floats per pixel
+  bool albedo_bands = false;   // the albedo also per band (spectral.exr)
 
   void list(FeatureList& out) const override {
     out.value("range", "SEASIM_LAYER_RANGE", range);
@@ -21,6 +22,7 @@ struct GeometryLayerFeatures final : PassFeatures {
     out.value("object_id", "SEASIM_LAYER_OBJECT_ID", object_id);
     out.value("albedo", "SEASIM_LAYER_ALBEDO", albedo);
     out.value("channels", "SEASIM_LAYER_CHANNELS", channels);
+    if (albedo_bands) out.flag("albedo_bands", "SEASIM_LAYER_ALBEDO_BANDS", true);
   }
 };
 

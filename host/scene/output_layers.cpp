@@ -48,7 +48,7 @@ const std::vector<OutputLayer>& outputLayers() {
       {"normal", "world-space unit normal of the first surface (0 for open water)",
        {"normal.X", "normal.Y", "normal.Z"}, false},
       {"object_id", "0 water (and the surface), 1 bottom, 2... objects in file order", {"object_id"}, false},
-      {"albedo", "the first surface's albedo, the sensor's weighted mean over its bands", rgb("albedo"), false},
+      {"albedo", "the first surface's albedo, the sensor's weighted mean over its bands", rgb("albedo"), true},
       {"clear", "radiance leaving the first surface toward the camera, no water between (J)", rgb("clear"), true},
       {"direct", "clear attenuated along the ray: J T", rgb("direct"), true},
       {"backscatter", "light the water scatters into the ray between camera and surface", rgb("backscatter"), true},

@@ -159,7 +159,7 @@ void bindRenderer(nb::module_& m) {
       .def_prop_ro("band_layers",
                    [](const PyFrame& f) { return bandLayerArrays(f.band_layers, f.frame.wavelengths_nm.size()); },
                    nb::for_getter(nb::sig("def band_layers(self, /) -> dict[str, NDArray[numpy.float32]]")),
-                   "The asked layers that have bands (clear, direct, backscatter, forward, lamps, transmission, veiling), "
+                   "The asked layers that have bands (albedo, clear, direct, backscatter, forward, lamps, transmission, veiling), "
                    "per band: (height, width, bands) float32 by name, as spectral.exr's '<layer>.S0.<nm>' channels. "
                    "Empty without spectral.spectral_exr or such layers. Copies, made on each read.")
       .def_prop_ro("wavelengths_nm", [](const PyFrame& f) {

@@ -128,8 +128,9 @@ TEST(OutputLayers, TheSplitSumsToTheImageForEveryUnderwaterModel) {
 
 // spectral.exr's split per band (bandLayersImage): per pixel and band, direct + backscatter + forward +
 // lamps is the spectral image's value (within 1e-5 of the pixel's largest band), direct is clear x
-// transmission, the transmission is e^{-c range} of that band, and the veiling per band through the
-// sensor's weights is the RGB veiling (its froxel term per band from each band's own integration).
+// transmission, the transmission is e^{-c range} of that band, the veiling per band through the
+// sensor's weights is the RGB veiling (its froxel term per band from each band's own integration), and
+// the albedo per band is the first surface's spectrum at the band.
 void expectBandLayersSplitTheSpectralImage(const Scene& scene, const char* what) {
   Renderer renderer(test::testDevice(), scene, shippedPasses());
   const FrameResult frame = renderer.render();
@@ -137,7 +138,7 @@ void expectBandLayersSplitTheSpectralImage(const Scene& scene, const char* what)
   const Image bands = bandLayersImage(frame, scene.outputs);
   const Image rgb_layers = imageWithLayers(frame, scene.outputs);
   const size_t nb = frame.wavelengths_nm.size();
-  ASSERT_EQ(static_cast<size_t>(bands.channels), 7 * nb) << what;  // clear ... veiling, per band
+  ASSERT_EQ(static_cast<size_t>(bands.channels), 8 * nb) << what;  // albedo, clear ... veiling, per band
   const WavelengthGrid grid = makeGrid(static_cast<int>(nb), scene.spectral.min_nm, scene.spectral.max_nm);
   const UnderwaterSetup setup =
       makeUnderwaterSetup(scene, grid, makeSensor(scene.spectral.sensor, grid, scene.spectral.white_balance));
@@ -152,14 +153,18 @@ void expectBandLayersSplitTheSpectralImage(const Scene& scene, const char* what)
     return static_cast<int>(std::find(rgb_layers.channel_names.begin(), rgb_layers.channel_names.end(), name) -
                             rgb_layers.channel_names.begin());
   };
-  const int range_channel = rgb_channel("range");
+  const int range_channel = rgb_channel("range"), id_channel = rgb_channel("object_id");
   const int veiling_channel[3] = {rgb_channel("veiling.R"), rgb_channel("veiling.G"), rgb_channel("veiling.B")};
-  double worst_sum = 0, worst_direct = 0, worst_t = 0, worst_veiling = 0;
+  double worst_sum = 0, worst_direct = 0, worst_t = 0, worst_veiling = 0, worst_albedo = 0;
   for (size_t i = 0; i < bands.pixelCount(); ++i) {
     double scale = 1e-30;
     for (size_t b = 0; b < nb; ++b) scale = std::max(scale, std::fabs(double(frame.spectral[i * nb + b])));
     const double range = rgb_layers.pixels[i * rgb_layers.channels + range_channel];
+    const int id = static_cast<int>(rgb_layers.pixels[i * rgb_layers.channels + id_channel]);
     for (size_t b = 0; b < nb; ++b) {
+      // The albedo per band: the bottom's or the object's spectrum at the band, 0 for water.
+      const double albedo = id == 1 ? setup.bands[b].bottom_albedo : id >= 2 ? setup.albedo[(id - 2) * nb + b] : 0.0;
+      worst_albedo = std::max(worst_albedo, std::fabs(at(i, "albedo", b) - albedo));
       const double sum = at(i, "direct", b) + at(i, "backscatter", b) + at(i, "forward", b) + at(i, "lamps", b);
       worst_sum = std::max(worst_sum, std::fabs(sum - frame.spectral[i * nb + b]) / scale);
       const double clear = at(i, "clear", b), t = at(i, "transmission", b);
@@ -186,6 +191,7 @@ void expectBandLayersSplitTheSpectralImage(const Scene& scene, const char* what)
   EXPECT_LE(worst_direct, 1e-5) << what;
   EXPECT_LE(worst_t, 2e-6) << what;
   EXPECT_LE(worst_veiling, 1e-5) << what;  // measured up to 2.8e-7 (PoCL)
+  EXPECT_EQ(worst_albedo, 0.0) << what;
 }
 
 TEST(OutputLayers, TheSplitPerBandSumsToTheSpectralImage) {

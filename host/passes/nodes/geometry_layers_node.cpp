@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "device/enqueue.h"
+#include "io/spectral_layout.h"
 #include "passes/layer_features.h"
 #include "passes/nodes/layer_nodes.h"
 #include "passes/nodes/underwater_frame.h"
@@ -34,12 +35,21 @@ class GeometryLayersNode : public Pass {
       const OutputLayer& layer = *findOutputLayer(name);
       target->channels.insert(target->channels.end(), layer.channels.begin(), layer.channels.end());
     }
+    std::shared_ptr<LayerTarget> bands;
+    if (f.albedo_bands) {  // "albedo.S0.<nm>" (output_layers.h)
+      bands = std::make_shared<LayerTarget>();
+      for (double nm : ctx.grid().centers_nm) bands->channels.push_back(spectralLayerChannelName("albedo", nm));
+    }
     onDevice("geometry_layers pass set-up", [&] {
       kernel_ = cl::Kernel(ctx.device().program(entry_.kernel_file, entry_.defines).program, "geometry_layers");
       target->image = cl::Buffer(ctx.device().context(), CL_MEM_READ_WRITE, sizeof(float) * f.channels * pixels);
+      if (bands)
+        bands->image = cl::Buffer(ctx.device().context(), CL_MEM_READ_WRITE, sizeof(float) * ctx.grid().size() * pixels);
     });
     target_ = target;
+    bands_ = bands;
     res.publish("geometry_layers", target);
+    if (bands) res.publish("albedo_band_layer", bands);
   }
   void execute(FrameContext& ctx, PassResources& res) override {
     UnderwaterGBuffer& gbuffer = res.read<UnderwaterGBuffer>("gbuffer");
@@ -52,6 +62,7 @@ class GeometryLayersNode : public Pass {
       kernel_.setArg(arg++, g.material());
       kernel_.setArg(arg++, g.bandTable());
       kernel_.setArg(arg++, target_->image);
+      if (bands_) kernel_.setArg(arg++, bands_->image);
     });
     const Scene& scene = ctx.scene();
     ctx.timings.push_back({"geometry_layers", runKernel2d(ctx.device(), "geometry_layers", kernel_,
@@ -61,10 +72,12 @@ class GeometryLayersNode : public Pass {
  private:
   const PassPlan& entry_;
   cl::Kernel kernel_;
-  std::shared_ptr<LayerTarget> target_;
+  std::shared_ptr<LayerTarget> target_, bands_;
 };
 
-double bytesPerPixel(const Scene&, const GeometryLayerFeatures& f) { return 4.0 * f.channels; }
+double bytesPerPixel(const Scene& s, const GeometryLayerFeatures& f) {
+  return 4.0 * (f.channels + (f.albedo_bands ? s.spectral.count : 0));
+}
 
 }  // namespace
 
@@ -88,8 +101,12 @@ PassDescriptor geometryLayersDescriptor() {
       next += static_cast<int>(findOutputLayer(name)->channels.size());
     }
     f->channels = next;
-    return planEntry({"gbuffer"}, {"geometry_layers"},
+    f->albedo_bands = f->albedo >= 0 && scene.spectral.spectral_exr;
+    std::vector<std::string> writes = {"geometry_layers"};
+    if (f->albedo_bands) writes.push_back("albedo_band_layer");
+    return planEntry({"gbuffer"}, writes,
                      "outputs.layers: " + layerList(asked) + " from the G-buffer" +
+                         (f->albedo_bands ? ", the albedo per band in spectral.exr" : "") +
                          layerCostText(scene, bytesPerPixel(scene, *f)),
                      f);
   };
