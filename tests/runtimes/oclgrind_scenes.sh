@@ -20,6 +20,9 @@ small=(camera.width=16 camera.height=9
        quality.shafts_planes=4 quality.shafts_subplanes=2 quality.shafts_table_size=32 quality.shadow_map_size=32
        quality.froxel_x=8 quality.froxel_y=6 quality.froxel_z=8 quality.caustic_map_size=16 quality.caustic_layers=2
        quality.fourflow_table_size=8)
+# OCLGRIND_EXTRA_SETS: more key=value overrides (space-separated), e.g. the ground-truth layers per band.
+read -r -a extra <<<"${OCLGRIND_EXTRA_SETS:-}"
+small+=("${extra[@]}")
 
 rm -rf "$work"
 mkdir -p "$work"
@@ -60,7 +63,7 @@ for scene in "${scenes[@]}"; do
 done
 # A device that allows fewer work-items per group than the passes' 8 x 8 (as a GPU may for a
 # register-heavy kernel): the launches must fall back to a size the driver chooses, not fail.
-if [ $# -eq 0 ] || printf '%s\n' "$@" | grep -q seabed; then
+if [ -z "${OCLGRIND_EXTRA_SETS:-}" ] && { [ $# -eq 0 ] || printf '%s\n' "$@" | grep -q seabed; }; then
   small_group_scene="$scenes_dir/seabed.toml"
   args=()
   for kv in "${small[@]}"; do args+=(--set "$kv"); done
