@@ -77,20 +77,16 @@ PassDescriptor underwaterLampsDescriptor() {
     // The lamps' own layer: kd_multiple zeroed it, this pass adds into it as into "rgb".
     features->lamps_layer = so_far.produces("lamps_layer");
     features->band_layers = so_far.produces("band_layers");
-    if (features->band_layers)
-      return planEntry({"gbuffer", "rgb", "lamps_layer", "band_layers"}, {"rgb", "lamps_layer", "band_layers"},
-                       std::string("[[spotlights]] under water: 001's sampling planes with the water's sigma_s, sigma_t, HG") +
-                           (features->orders ? " + orders of multiple scattering" : "") +
-                           "; also into outputs.layers' lamps, per band too",
-                       features);
-    if (features->lamps_layer)
-      return planEntry({"gbuffer", "rgb", "lamps_layer"}, {"rgb", "lamps_layer"},
-                       std::string("[[spotlights]] under water: 001's sampling planes with the water's sigma_s, sigma_t, HG") +
-                           (features->orders ? " + orders of multiple scattering" : "") + "; also into outputs.layers' lamps",
-                       features);
-    return planEntry({"gbuffer", "rgb"}, {"rgb"},
+    std::vector<std::string> targets = {"rgb"};
+    if (features->lamps_layer) targets.push_back("lamps_layer");
+    if (features->band_layers) targets.push_back("band_layers");
+    std::vector<std::string> reads = {"gbuffer"};
+    reads.insert(reads.end(), targets.begin(), targets.end());
+    return planEntry(reads, targets,
                      std::string("[[spotlights]] under water: 001's sampling planes with the water's sigma_s, sigma_t, HG") +
-                         (features->orders ? " + orders of multiple scattering" : ""),
+                         (features->orders ? " + orders of multiple scattering" : "") +
+                         (features->lamps_layer ? "; also into outputs.layers' lamps" : "") +
+                         (features->band_layers ? ", per band too" : ""),
                      features);
   };
   d.keys = kLampsKeys;

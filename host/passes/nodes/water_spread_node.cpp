@@ -63,20 +63,18 @@ PassDescriptor waterSpreadDescriptor() {
   d.kernel_file = "water_spread.cl";
   d.rule = [](const Scene& scene, const Plan& so_far) -> std::optional<PassPlan> {
     if (!cameraUnderwater(scene) || !underwaterPointSpread(scene)) return std::nullopt;
-    if (so_far.produces("forward_band_layer"))
-      return planEntry({"gbuffer", "rgb", "forward_layer", "forward_band_layer"},
-                       {"rgb", "forward_layer", "forward_band_layer"},
-                       "underwater.model \"improved\", water.g > 0, underwater.point_spread: the light delta-M "
-                       "counts as unscattered, blurred by the phase's small angles (common/water_spread.h); also "
-                       "into outputs.layers' forward, per band too");
-    if (so_far.produces("forward_layer"))
-      return planEntry({"gbuffer", "rgb", "forward_layer"}, {"rgb", "forward_layer"},
-                       "underwater.model \"improved\", water.g > 0, underwater.point_spread: the light delta-M "
-                       "counts as unscattered, blurred by the phase's small angles (common/water_spread.h); also "
-                       "into outputs.layers' forward");
-    return planEntry({"gbuffer", "rgb"}, {"rgb"},
-                     "underwater.model \"improved\", water.g > 0, underwater.point_spread: the light delta-M "
-                     "counts as unscattered, blurred by the phase's small angles (common/water_spread.h)");
+    // The blurred light also goes into the forward layer, and its per-band blur into the layer per band.
+    std::vector<std::string> targets = {"rgb"};
+    for (const char* layer : {"forward_layer", "forward_band_layer"})
+      if (so_far.produces(layer)) targets.push_back(layer);
+    std::vector<std::string> reads = {"gbuffer"};
+    reads.insert(reads.end(), targets.begin(), targets.end());
+    return planEntry(reads, targets,
+                     std::string("underwater.model \"improved\", water.g > 0, underwater.point_spread: the light "
+                                 "delta-M counts as unscattered, blurred by the phase's small angles "
+                                 "(common/water_spread.h)") +
+                         (targets.size() > 1 ? "; also into outputs.layers' forward" : "") +
+                         (targets.size() > 2 ? ", per band too" : ""));
   };
   d.keys = kWaterSpreadKeys;
   d.buffers = [](const Scene&, const PassPlan&) { return std::vector<BufferEstimate>{}; };
