@@ -116,6 +116,32 @@ int refinedPathCount(int spp, double noise, double target, int max_spp) {
   return n <= max_spp ? static_cast<int>(n) : 0;
 }
 
+namespace {
+
+// One case's reference, from the cache or traced at --spp; with --target-noise traced again with the most
+// paths a judged region within reach of --max-spp needs (a region that would need more does not hold the
+// others back). Returns the paths per pixel of the reference in `ref` and `se`.
+int caseReference(Device& device, const UnderwaterRegionsCmd& cmd, const std::string& cache,
+                  const std::vector<Override>& base, const UnderwaterSetup& setup, const std::vector<UwRegion>& regions,
+                  Image& ref, Image& se) {
+  int spp = cmd.spp;
+  loadOrTraceReference(device, setup, cache + "/" + cacheKey(cmd.scene, base, spp, cmd.jitter), spp, cmd.jitter, ref,
+                       se);
+  if (cmd.target_noise <= 0) return spp;
+  int refined = spp;
+  for (const UwRegionStat& s : underwaterRegionStats(regions, ref, ref, se))
+    if (s.pixels >= kRegionsJudgedMinPixels)
+      refined = std::max(refined, refinedPathCount(spp, s.relNoise(), cmd.target_noise, cmd.max_spp));
+  if (refined == spp) return spp;
+  std::printf("(a judged region's reference noise is above %g at %d paths: traced again at %d)\n", cmd.target_noise,
+              spp, refined);
+  loadOrTraceReference(device, setup, cache + "/" + cacheKey(cmd.scene, base, refined, cmd.jitter), refined, cmd.jitter,
+                       ref, se);
+  return refined;
+}
+
+}  // namespace
+
 int cmdUnderwaterRegions(const UnderwaterRegionsCmd& cmd) {
   Device device(chooseDevice(cmd.device));
   std::printf("device: %s\n", device.info().label().c_str());
@@ -167,25 +193,8 @@ int cmdUnderwaterRegions(const UnderwaterRegionsCmd& cmd) {
               ref_scene, grid,
               makeSensor(ref_scene.spectral.sensor, grid, ref_scene.spectral.white_balance, ref_scene.spectral.camera_dir));
           const std::vector<UwRegion> regions = underwaterRegions(ref_setup);
-          int spp = cmd.spp;
           Image ref, se;
-          loadOrTraceReference(device, ref_setup, cache + "/" + cacheKey(cmd.scene, base, spp, cmd.jitter), spp,
-                               cmd.jitter, ref, se);
-          if (cmd.target_noise > 0) {
-            // The most paths that a judged region within reach of max_spp needs (a region that would
-            // need more than max_spp does not hold the others back).
-            int refined = spp;
-            for (const UwRegionStat& s : underwaterRegionStats(regions, ref, ref, se))
-              if (s.pixels >= kRegionsJudgedMinPixels)
-                refined = std::max(refined, refinedPathCount(spp, s.relNoise(), cmd.target_noise, cmd.max_spp));
-            if (refined > spp) {
-              std::printf("(a judged region's reference noise is above %g at %d paths: traced again at %d)\n",
-                          cmd.target_noise, spp, refined);
-              spp = refined;
-              loadOrTraceReference(device, ref_setup, cache + "/" + cacheKey(cmd.scene, base, spp, cmd.jitter), spp,
-                                   cmd.jitter, ref, se);
-            }
-          }
+          const int spp = caseReference(device, cmd, cache, base, ref_setup, regions, ref, se);
           UnderwaterRegionsDump dump;  // --dump: the case's pixels
           if (!cmd.dump_dir.empty()) {
             dump.regions = regions;
