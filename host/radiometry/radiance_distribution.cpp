@@ -53,9 +53,10 @@ double RadianceDistribution::hemisphereIrradiance(size_t k, bool down) const {
   return sum;
 }
 
-RadianceDistribution solveRadianceDistribution(const PlaneParallelWater& water, const PhaseFunction& phase,
-                                               const std::vector<double>& depths,
-                                               const RadianceDistributionSettings& s) {
+namespace {
+
+void checkSettings(const PlaneParallelWater& water, const std::vector<double>& depths,
+                   const RadianceDistributionSettings& s) {
   if (s.n_theta < 2 || s.n_theta % 2 != 0 || s.n_theta > 1800 || s.n_phi < 1 || s.n_phi > 3600)
     throw std::invalid_argument("radiance distribution: n_theta must be even in [2, 1800], n_phi in [1, 3600]");
   if (s.photons < s.batches || s.batches < 2)
@@ -65,6 +66,45 @@ RadianceDistribution solveRadianceDistribution(const PlaneParallelWater& water, 
   for (double z : depths)
     if (!(z >= 0) || (water.bottom_depth > 0 && z > water.bottom_depth))
       throw std::invalid_argument("radiance distribution: depths must lie in the water");
+}
+
+// The radiance per cell (the crossing weight over the cell's projected solid angle) and E_d, E_u per depth,
+// each with its standard error from the batches (values: the cells of every depth, then E_d, E_u per depth).
+RadianceDistribution fromBatches(const BatchMeans& batches, const std::vector<double>& depths,
+                                 const RadianceDistributionSettings& s) {
+  RadianceDistribution out;
+  out.n_theta = s.n_theta;
+  out.n_phi = s.n_phi;
+  out.depths = depths;
+  const size_t nd = depths.size(), cells = static_cast<size_t>(s.n_theta) * s.n_phi, ne = nd * cells;
+  for (size_t k = 0; k < nd; ++k) {
+    std::vector<double> l(cells), e(cells);
+    for (int i = 0; i < s.n_theta; ++i) {
+      const double a = out.cellProjectedSolidAngle(i);
+      for (int j = 0; j < s.n_phi; ++j) {
+        const size_t q = static_cast<size_t>(i) * s.n_phi + j;
+        const BatchEstimate b = batches.estimate(k * cells + q);
+        l[q] = b.mean / a;
+        e[q] = b.std_error / a;
+      }
+    }
+    out.radiance.push_back(std::move(l));
+    out.standard_error.push_back(std::move(e));
+    const BatchEstimate ed = batches.estimate(ne + 2 * k), eu = batches.estimate(ne + 2 * k + 1);
+    out.e_d.push_back(ed.mean);
+    out.e_u.push_back(eu.mean);
+    out.e_d_se.push_back(ed.std_error);
+    out.e_u_se.push_back(eu.std_error);
+  }
+  return out;
+}
+
+}  // namespace
+
+RadianceDistribution solveRadianceDistribution(const PlaneParallelWater& water, const PhaseFunction& phase,
+                                               const std::vector<double>& depths,
+                                               const RadianceDistributionSettings& s) {
+  checkSettings(water, depths, s);
   const auto t0 = std::chrono::steady_clock::now();
   const double c = water.a + water.b, omega = water.b / c, n = water.ior;
   const double bottom = water.bottom_depth > 0 ? water.bottom_depth : 0.0;
@@ -169,29 +209,7 @@ RadianceDistribution solveRadianceDistribution(const PlaneParallelWater& water, 
     }
   }
 
-  RadianceDistribution out;
-  out.n_theta = s.n_theta;
-  out.n_phi = s.n_phi;
-  out.depths = depths;
-  for (size_t k = 0; k < nd; ++k) {
-    std::vector<double> l(cells), e(cells);
-    for (int i = 0; i < s.n_theta; ++i) {
-      const double a = out.cellProjectedSolidAngle(i);
-      for (int j = 0; j < s.n_phi; ++j) {
-        const size_t q = static_cast<size_t>(i) * s.n_phi + j;
-        const BatchEstimate b = batches.estimate(k * cells + q);
-        l[q] = b.mean / a;
-        e[q] = b.std_error / a;
-      }
-    }
-    out.radiance.push_back(std::move(l));
-    out.standard_error.push_back(std::move(e));
-    const BatchEstimate ed = batches.estimate(ne + 2 * k), eu = batches.estimate(ne + 2 * k + 1);
-    out.e_d.push_back(ed.mean);
-    out.e_u.push_back(eu.mean);
-    out.e_d_se.push_back(ed.std_error);
-    out.e_u_se.push_back(eu.std_error);
-  }
+  RadianceDistribution out = fromBatches(batches, depths, s);
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return out;
 }
