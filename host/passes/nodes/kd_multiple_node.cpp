@@ -30,6 +30,7 @@ const std::vector<std::string> kVeilingLayers = {"veiling", "beta_b"};
 
 // kd_multiple.cl's band layers, slot by slot (its header gives the layout).
 const char* const kBandLayerSlots[] = {"clear", "direct", "backscatter", "lamps", "transmission"};
+constexpr size_t kBackscatterSlot = 2;
 
 // spectral.exr holds the whole image: kd_multiple wrote T L_s + L_MS per band, and the froxel term per
 // band is added here from the same injected light (FroxelPass::addBandsTo), into the spectral image,
@@ -49,10 +50,10 @@ void addFroxelBands(FrameContext& ctx, UnderwaterPass& pass, FroxelPass& froxels
       backscatter.resize(pixels * bands);
       queue.enqueueReadBuffer(pass.bandLayers(), CL_TRUE, 0, sizeof(float) * all.size(), all.data());
       for (size_t i = 0; i < pixels; ++i)
-        std::copy_n(all.data() + (i * slots + 2) * bands, bands, backscatter.data() + i * bands);
+        std::copy_n(all.data() + (i * slots + kBackscatterSlot) * bands, bands, backscatter.data() + i * bands);
       targets.push_back({&pass.geometry(), &backscatter});
     }
-    cl::Buffer at_infinity;  // every pixel's distance infinite: the whole column, as kd_multiple's ss_inf
+    cl::Buffer at_infinity;  // every pixel's distance UW_INFINITE (1e30): the whole column, as kd_multiple's ss_inf
     if (veiling) {
       veil.resize(pixels * bands);
       queue.enqueueReadBuffer(pass.veilingBands(), CL_TRUE, 0, sizeof(float) * veil.size(), veil.data());
@@ -65,7 +66,7 @@ void addFroxelBands(FrameContext& ctx, UnderwaterPass& pass, FroxelPass& froxels
     queue.enqueueWriteBuffer(pass.spectral(), CL_TRUE, 0, sizeof(float) * spectral.size(), spectral.data());
     if (layers) {
       for (size_t i = 0; i < pixels; ++i)
-        std::copy_n(backscatter.data() + i * bands, bands, all.data() + (i * slots + 2) * bands);
+        std::copy_n(backscatter.data() + i * bands, bands, all.data() + (i * slots + kBackscatterSlot) * bands);
       queue.enqueueWriteBuffer(pass.bandLayers(), CL_TRUE, 0, sizeof(float) * all.size(), all.data());
     }
     if (veiling) queue.enqueueWriteBuffer(pass.veilingBands(), CL_TRUE, 0, sizeof(float) * veil.size(), veil.data());
