@@ -93,11 +93,7 @@ std::string writeSpectralExr(const std::string& path, int width, int height,
     if (layers->width != width || layers->height != height)
       throw RuntimeError("cannot write '" + path + "': its layers are not " + std::to_string(width) + "x" +
                          std::to_string(height));
-    std::vector<float> all(pixels * (n + k));
-    for (std::size_t i = 0; i < pixels; ++i) {
-      std::copy_n(data.data() + i * n, n, all.data() + i * (n + k));
-      std::copy_n(layers->pixels.data() + i * k, k, all.data() + i * (n + k) + n);
-    }
+    const std::vector<float> all = bandsThenLayers(data, n, layers->pixels, k, pixels);
     writeNpyArray(out, NpyType::Float32, {sz(height), sz(width), n + k}, all.data());
   } else {
     writeNpyArray(out, NpyType::Float32, {sz(height), sz(width), n}, data.data());

@@ -214,15 +214,8 @@ std::string writeSpectralExr(const std::string& path, int width, int height,
   spec.attribute("compression", "zip");
   spec.attribute("spectralLayoutVersion", kSpectralLayoutVersion);
   spec.attribute("emissiveUnits", kSpectralEmissiveUnits);
-  std::vector<float> all;  // the bands, then the layers' channels, per pixel
-  if (k > 0) {
-    const std::size_t pixels = static_cast<std::size_t>(width) * height;
-    all.resize(pixels * (n + k));
-    for (std::size_t i = 0; i < pixels; ++i) {
-      std::copy_n(data.data() + i * n, n, all.data() + i * (n + k));
-      std::copy_n(layers->pixels.data() + i * k, k, all.data() + i * (n + k) + n);
-    }
-  }
+  const std::vector<float> all =
+      k > 0 ? bandsThenLayers(data, n, layers->pixels, k, static_cast<std::size_t>(width) * height) : std::vector<float>{};
   writeFileAtomic(path, [&](const std::string& temp) {
     writeWithOiio(temp, "openexr", spec, OIIO::TypeDesc::FLOAT, k > 0 ? all.data() : data.data());
   });

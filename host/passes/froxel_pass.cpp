@@ -146,11 +146,6 @@ double FroxelPass::resolve(const cl::Buffer& geom, int width, int height, cl::Bu
 
 double FroxelPass::integrateOnce() { return runKernel2d(device_, "froxel", integrate_kernel_, fp_.nx, fp_.ny); }
 
-double FroxelPass::addBandsToSpectral(const UnderwaterSetup& setup, const cl::Buffer& geom, int width, int height,
-                                      std::vector<float>& spectral) {
-  return addBandsTo(setup, width, height, {BandTarget{&geom, &spectral}});
-}
-
 double FroxelPass::addBandsTo(const UnderwaterSetup& setup, int width, int height, const std::vector<BandTarget>& targets) {
   const size_t bands = setup.bands.size(), pixels = size_t(width) * size_t(height);
   for (const BandTarget& t : targets)

@@ -44,17 +44,14 @@ class FroxelPass {
   // pixel, the G-buffer of raycast.cl) into rgb (3 floats per pixel, written). Returns ms.
   double resolve(const cl::Buffer& geom, int width, int height, cl::Buffer& rgb);
 
-  // The froxel term per wavelength band, added into `spectral` (band_count floats per pixel, band-major
-  // per pixel, as kd_multiple.cl writes it), so spectral.exr holds the whole image. The volume holds
-  // sensor RGB only, so each band is integrated again from the same injected light (V·C, band-free)
-  // as a one-band volume with its own c for the in-slice fraction, then resolved at geom's distances.
-  // Costs one integration and one resolve per band (opt-in: spectral_exr only), then one integration
-  // that restores volume() to the frame's own. Returns the summed kernel ms.
-  double addBandsToSpectral(const UnderwaterSetup& setup, const cl::Buffer& geom, int width, int height,
-                            std::vector<float>& spectral);
-  // The same into several per-band images at once, each resolved at its own distances (the image and
-  // its backscatter layer at the G-buffer's, the veiling layer's at infinity): one integration per band
-  // for all of them.
+  // The froxel term per wavelength band, added into per-band images (band_count floats per pixel,
+  // band-major per pixel, as kd_multiple.cl writes spectral), so spectral.exr and its layers hold the
+  // whole image. The volume holds sensor RGB only, so each band is integrated again from the same
+  // injected light (V·C, band-free) as a one-band volume with its own c for the in-slice fraction, then
+  // resolved at each target's distances (the image and its backscatter layer at the G-buffer's, the
+  // veiling layer's at infinity). Costs one integration per band and one resolve per band and target
+  // (opt-in: spectral_exr only), then one integration that restores volume() to the frame's own.
+  // Returns the summed kernel ms.
   struct BandTarget {
     const cl::Buffer* geom;       // float4 per pixel, S first
     std::vector<float>* values;   // band_count floats per pixel, added into

@@ -378,7 +378,7 @@ TEST(OutputLayers, TheirDeviceBytesAreTheEstimate) {
     EXPECT_EQ(with - without, with_estimate - without_estimate) << model;
     EXPECT_GT(with - without, 0.0) << model;
     // With spectral.exr the split per band too. Froxels off: the per-band froxel term's transient
-    // buffers (FroxelPass::addBandsToSpectral) would move the peak this compares.
+    // buffers (FroxelPass::addBandsTo) would move the peak this compares.
     const std::vector<Override> bands = {set("spectral.spectral_exr", "true"), set("spectral.count", "5"),
                                          set("underwater.single_scattering", "false")};
     std::vector<Override> with_bands = bands, without_bands = bands;
