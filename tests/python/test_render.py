@@ -162,3 +162,24 @@ def test_band_layers_split_the_spectral_image_per_band():
     scale = np.maximum(np.abs(frame.spectral).max(axis=2, keepdims=True), 1e-30)
     assert np.max(np.abs(total - frame.spectral) / scale) < 1e-5
     assert frame.layers["direct"].shape == (36, 64, 3)  # the RGB layers as before
+
+
+def test_spectral_exr_holds_the_layers_per_band_by_name(tmp_path):
+    sets = {**SMALL, "spectral.count": 4, "spectral.spectral_exr": "true"}
+    args = [a for k, v in sets.items() for a in ("--set", f"{k}={v}")]
+    out = tmp_path / "cli"
+    subprocess.run([str(BINARY), "render", str(scene_path("seabed.toml")), *args, "--set", 'outputs.layers=["direct"]',
+                    "--output", "exr", "--output", "spectral_exr", "-o", str(out)], check=True, capture_output=True)
+    info = subprocess.run(["oiiotool", "--info", "-v", str(out / "spectral.exr")], check=True, capture_output=True,
+                          text=True).stdout
+    # Names hold decimal commas ("S0.437,500000nm"): the list is separated by ", ".
+    names = [n.strip() for n in info.split("channel list:")[1].splitlines()[0].split(", ")]
+    values = seasim.read_image(out / "spectral.exr")
+    assert values.shape == (36, 64, len(names)) and len(names) == 8  # 4 bands, then direct per band
+    frame = seasim.Renderer(seasim.Scene.load(scene_path("seabed.toml"), overrides={
+        **SMALL, "spectral.count": 4, "spectral.spectral_exr": True, "outputs.layers": ["direct"]})).render()
+    nm = frame.wavelengths_nm
+    for b in range(4):
+        band = f"S0.{nm[b]:.6f}".replace(".", ",").replace("S0,", "S0.") + "nm"
+        assert np.array_equal(values[:, :, names.index(band)], frame.spectral[:, :, b])
+        assert np.array_equal(values[:, :, names.index("direct." + band)], frame.band_layers["direct"][:, :, b])
