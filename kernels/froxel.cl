@@ -160,3 +160,17 @@ __kernel void froxel_resolve(__constant FroxelParams* fp, __global const float* 
   rgb[3 * pixel + 1] = ss.y;
   rgb[3 * pixel + 2] = ss.z;
 }
+
+// The froxel term of one wavelength band (a volume integrated for that band alone, its value in R)
+// added into a per-band image: values[pixel * stride + offset] += the volume read at geom[pixel].x.
+// The stride and offset pick the band's slot in the spectral image or a layer's slot of the band
+// layers (kd_multiple.cl's header gives their layouts).
+__kernel void froxel_resolve_add(__constant FroxelParams* fp, __global const float* volume,
+                                 __global const float4* geom, int width, int height, int stride, int offset,
+                                 __global float* values) {
+  const int x = get_global_id(0), y = get_global_id(1);
+  if (x >= width || y >= height) return;
+  const int pixel = y * width + x;
+  const float3 ss = froxel_lookup(fp, volume, x, y, width, height, geom[pixel].x);
+  values[(size_t)pixel * (size_t)stride + (size_t)offset] += ss.x;
+}

@@ -27,7 +27,7 @@ namespace {
 nlohmann::json planJson(const Plan& plan) {
   nlohmann::json passes = nlohmann::json::array();
   for (const auto& p : plan.passes) {
-    passes.push_back({{"name", p.name}, {"kernel", "kernels/" + p.kernel_file}, {"defines", p.defines},
+    passes.push_back({{"name", p.name}, {"kernel", p.kernel_file.empty() ? "" : "kernels/" + p.kernel_file}, {"defines", p.defines},
                       {"reads", p.reads}, {"writes", p.writes}});
   }
   return passes;

@@ -144,62 +144,6 @@ double FroxelPass::resolve(const cl::Buffer& geom, int width, int height, cl::Bu
   return runKernel2d(device_, "froxel", resolve_kernel_, size_t(width), size_t(height));
 }
 
-double FroxelPass::integrateOnce() { return runKernel2d(device_, "froxel", integrate_kernel_, fp_.nx, fp_.ny); }
-
-double FroxelPass::addBandsTo(const UnderwaterSetup& setup, int width, int height, const std::vector<BandTarget>& targets) {
-  const size_t bands = setup.bands.size(), pixels = size_t(width) * size_t(height);
-  for (const BandTarget& t : targets)
-    if (t.values->size() != pixels * bands) throw RuntimeError("froxel pass: spectral buffer size mismatch");
-  const cl_mem_flags in = CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR;
-  const bool spectral_injection =
-      std::find(defines_.begin(), defines_.end(), "SEASIM_SPECTRAL_INJECTION=1") != defines_.end();
-  double ms = 0;
-  std::vector<float> rgb(3 * pixels);
-  onDevice("froxel pass: spectral bands", [&] {
-    cl::Buffer rgb_buffer(device_.context(), CL_MEM_WRITE_ONLY, sizeof(float) * rgb.size());
-    for (size_t b = 0; b < bands; ++b) {
-      // One band, weight 1 into R (and two zero-weight copies for the RGB-injection kernel, which
-      // always reads three pseudo-bands); band_count 1 for the spectral-injection kernel.
-      UwParams p = setup.params;
-      p.band_count = 1;
-      UwBand one[3] = {setup.bands[b], setup.bands[b], setup.bands[b]};
-      one[0].w_r = 1, one[0].w_g = 0, one[0].w_b = 0;
-      for (int k = 1; k < 3; ++k) one[k].w_r = one[k].w_g = one[k].w_b = 0;
-      FroxelParams fp = fp_;
-      for (int k = 0; k < 3; ++k) fp.sigma_t_rgb[k] = setup.bands[b].c;  // in-slice fraction of this band
-      cl::Buffer params(device_.context(), in, sizeof p, &p), band_buffer(device_.context(), in, sizeof one, one);
-      cl::Buffer fparams(device_.context(), in, sizeof fp, &fp);
-      // This band's (band, slice) factors: the kernel reads 1 band (spectral injection) or 3 pseudo-bands.
-      const int kernel_bands = spectral_injection ? 1 : 3;
-      std::vector<float> factors(size_t(fp.nz) * kernel_bands);
-      kmath_f::froxel_fill_slice_factors(&fp, one, kernel_bands, factors.data());
-      cl::Buffer factor_buffer(device_.context(), in, sizeof(float) * factors.size(), factors.data());
-      integrate_kernel_.setArg(0, params);
-      integrate_kernel_.setArg(1, fparams);
-      integrate_kernel_.setArg(2, band_buffer);
-      integrate_kernel_.setArg(3, factor_buffer);
-      ms += integrateOnce();
-      resolve_kernel_.setArg(0, fparams);
-      for (const BandTarget& t : targets) {
-        ms += resolve(*t.geom, width, height, rgb_buffer);
-        device_.queue().enqueueReadBuffer(rgb_buffer, CL_TRUE, 0, sizeof(float) * rgb.size(), rgb.data());
-        for (size_t px = 0; px < pixels; ++px) {
-          if (!std::isfinite(rgb[3 * px])) throw DeviceError("froxel pass: a non-finite value in band " + std::to_string(b));
-          (*t.values)[px * bands + b] += rgb[3 * px];
-        }
-      }
-    }
-    // Back to the frame's own set-up, and the frame's volume integrated again from the same injected
-    // light: a renderer that later reruns only the shading must find the volume it had.
-    integrate_kernel_.setArg(0, params_);
-    integrate_kernel_.setArg(1, fparams_);
-    integrate_kernel_.setArg(2, bands_);
-    integrate_kernel_.setArg(3, slice_factors_);
-    resolve_kernel_.setArg(0, fparams_);
-    ms += integrateOnce();
-  });
-  return ms;
-}
 
 void FroxelPass::read(cl::Buffer& buffer, size_t floats, std::vector<float>& out, const char* what) {
   out.resize(floats);

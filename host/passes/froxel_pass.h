@@ -20,6 +20,15 @@
 
 namespace seasim {
 
+// "froxel_volume": what the froxel pass gives the passes after it (kd_multiple reads the volume, the
+// band term integrates the light again per band: passes/froxel_band_term.h).
+struct FroxelVolume {
+  cl::Buffer params;   // FroxelParams on the device (kd_multiple.cl's fp)
+  cl::Buffer volume;   // 4 floats per froxel: RGB single scattering to the end of each slice, transmittance
+  cl::Buffer light;    // the injected light V·C per froxel
+  FroxelParams fp{};   // the host copy of `params`
+};
+
 class FroxelPass {
  public:
   // defines: the plan's "froxel" pass defines (SEASIM_HAS_OBJECTS, SEASIM_CAUSTICS,
@@ -44,21 +53,8 @@ class FroxelPass {
   // pixel, the G-buffer of raycast.cl) into rgb (3 floats per pixel, written). Returns ms.
   double resolve(const cl::Buffer& geom, int width, int height, cl::Buffer& rgb);
 
-  // The froxel term per wavelength band, added into per-band images (band_count floats per pixel,
-  // band-major per pixel, as kd_multiple.cl writes spectral), so spectral.exr and its layers hold the
-  // whole image. The volume holds sensor RGB only, so each band is integrated again from the same
-  // injected light (V·C, band-free) as a one-band volume with its own c for the in-slice fraction, then
-  // resolved at each target's distances (the image and its backscatter layer at the G-buffer's, the
-  // veiling layer's at infinity). Costs one integration per band and one resolve per band and target
-  // (opt-in: spectral_exr only), then one integration that restores volume() to the frame's own.
-  // Returns the summed kernel ms.
-  struct BandTarget {
-    const cl::Buffer* geom;       // float4 per pixel, S first
-    std::vector<float>* values;   // band_count floats per pixel, added into
-  };
-  double addBandsTo(const UnderwaterSetup& setup, int width, int height, const std::vector<BandTarget>& targets);
-
   cl::Buffer& volume() { return volume_; }
+  cl::Buffer& light() { return light_; }  // the injected light V·C per froxel, band-free
   cl::Buffer& paramsBuffer() { return fparams_; }  // FroxelParams on the device (kd_multiple.cl's fp)
   const FroxelParams& params() const { return fp_; }
   const std::vector<std::string>& defines() const { return defines_; }
@@ -69,8 +65,6 @@ class FroxelPass {
   void readShadowMap(std::vector<float>& out);  // empty without a map
 
  private:
-  // One froxel_integrate over the columns with the kernel's current arguments; its kernel ms.
-  double integrateOnce();
   void read(cl::Buffer& buffer, size_t floats, std::vector<float>& out, const char* what);
   Device& device_;
   FroxelParams fp_{};

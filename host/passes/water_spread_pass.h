@@ -4,7 +4,7 @@
 // kernels and their times.
 //
 // Reads: the G-buffer and the moments of the forward light kd_multiple.cl kept apart
-// (UnderwaterPass::geometry, forwardDepth, forwardRgb, forwardSpectral). Writes: adds the light, blurred,
+// (the "gbuffer" geometry and the "forward_light" moments, nodes/underwater_frame.h). Writes: adds the light, blurred,
 // into the frame's rgb (and spectral) buffers.
 #pragma once
 #include <CL/opencl.hpp>

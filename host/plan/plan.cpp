@@ -28,10 +28,17 @@ bool Plan::produces(const std::string& resource) const {
   return false;
 }
 
+const PassPlan* Plan::writerOf(const std::string& resource) const {
+  for (const auto& p : passes)
+    if (std::find(p.writes.begin(), p.writes.end(), resource) != p.writes.end()) return &p;
+  return nullptr;
+}
+
 std::vector<std::string> Plan::kernelFiles() const {
   std::vector<std::string> files;
   for (const auto& p : passes)
-    if (std::find(files.begin(), files.end(), p.kernel_file) == files.end()) files.push_back(p.kernel_file);
+    if (!p.kernel_file.empty() && std::find(files.begin(), files.end(), p.kernel_file) == files.end())
+      files.push_back(p.kernel_file);
   return files;
 }
 
@@ -39,7 +46,7 @@ std::string Plan::toText() const {
   std::ostringstream s;
   int i = 1;
   for (const auto& p : passes) {
-    s << i++ << ". " << p.name << "  kernels/" << p.kernel_file << " ";
+    s << i++ << ". " << p.name << "  " << (p.kernel_file.empty() ? "(host only)" : "kernels/" + p.kernel_file) << " ";
     if (p.defines.empty()) s << " (no defines)";
     for (const auto& d : p.defines) s << " -D" << d;
     // The typed features the defines were generated from (plan/features.h).

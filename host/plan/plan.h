@@ -36,7 +36,8 @@ struct Plan {
   std::vector<PassPlan> passes;
   bool hasPass(const std::string& name) const;
   const PassPlan* find(const std::string& name) const;
-  bool produces(const std::string& resource) const;  // some pass writes it ("caustic_map")
+  bool produces(const std::string& resource) const;          // some pass writes it ("caustic_map")
+  const PassPlan* writerOf(const std::string& resource) const;  // the first pass that writes it, or null
   std::vector<std::string> kernelFiles() const;  // distinct, in pass order
   std::string toText() const;                    // one pass per line
 };

@@ -21,14 +21,7 @@ void FrameContext::setScene(const Scene& scene, const std::vector<std::string>& 
     grid_.reset();
     sensor_.reset();
   }
-  const bool time_only = !changed_keys.empty() && std::all_of(changed_keys.begin(), changed_keys.end(),
-                                                              [](const std::string& k) { return k == "surface.time"; });
-  if (time_only && setup_) {
-    setup_->params.time = static_cast<float>(scene_.surface.time);  // as makeUnderwaterSetup sets it
-    ++setup_version_;
-    return;
-  }
-  setup_.reset();
+  changed_keys_.insert(changed_keys_.end(), changed_keys.begin(), changed_keys.end());
 }
 
 const WavelengthGrid& FrameContext::grid() {
@@ -42,14 +35,6 @@ const Sensor& FrameContext::sensor() {
                          scene_.files.get());
   }
   return *sensor_;
-}
-
-const UnderwaterSetup& FrameContext::underwaterSetup() {
-  if (!setup_) {
-    setup_ = makeUnderwaterSetup(scene_, grid(), sensor());
-    ++setup_version_;
-  }
-  return *setup_;
 }
 
 }  // namespace seasim

@@ -235,6 +235,7 @@ FrameResult Renderer::render() {
     }
   }
   nonfinite_ = ctx_.nonfinite;
+  ctx_.frameDone();
 
   FrameResult result;
   result.timings = ctx_.timings;

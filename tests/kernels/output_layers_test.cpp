@@ -377,8 +377,8 @@ TEST(OutputLayers, TheirDeviceBytesAreTheEstimate) {
         smallScene("seabed.toml", {set("underwater.model", model), set("outputs.layers", "[]")}), &without_estimate);
     EXPECT_EQ(with - without, with_estimate - without_estimate) << model;
     EXPECT_GT(with - without, 0.0) << model;
-    // With spectral.exr the split per band too. Froxels off: the per-band froxel term's transient
-    // buffers (FroxelPass::addBandsTo) would move the peak this compares.
+    // With spectral.exr the split per band too. Froxels off: the per-band froxel term's parameter
+    // blocks, made per band (FroxelBandTerm), could move the peak this compares.
     const std::vector<Override> bands = {set("spectral.spectral_exr", "true"), set("spectral.count", "5"),
                                          set("underwater.single_scattering", "false")};
     std::vector<Override> with_bands = bands, without_bands = bands;

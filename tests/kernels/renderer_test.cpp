@@ -189,7 +189,7 @@ TEST(Renderer, UnderwaterImprovedCameraMovedInDepthMatchesAFreshFrame) {
 }
 
 // An underwater animation: surface.time alone changes the waves' phase, which the underwater setup holds
-// as one number (the caustics' time); the frame context patches it instead of remaking the setup (the
+// as one number (the caustics' time); the set-up pass patches it instead of remaking the setup (the
 // improved model's per-band tables), and the frame is still the fresh renderer's, bit for bit, in a
 // scene with texture caustics, which read that time.
 TEST(Renderer, UnderwaterSurfaceTimeKeepsTheSetupAndMatchesAFreshFrame) {
@@ -204,6 +204,22 @@ TEST(Renderer, UnderwaterSurfaceTimeKeepsTheSetupAndMatchesAFreshFrame) {
   EXPECT_TRUE(has(renderer.lastExecuted(), "kd_multiple"));
   EXPECT_NE(f.rgb.pixels, first.rgb.pixels);  // the caustics moved
   at.push_back(later);
+  EXPECT_EQ(f.rgb.pixels, fresh("seabed.toml", at).rgb.pixels);
+}
+
+// Two updates before one frame, the sun and then the time: the set-up pass sees both (the keys changed
+// since the last frame, not the last update's), so it remakes the setup rather than patching the time.
+TEST(Renderer, UpdatesBetweenTwoFramesAllReachTheUnderwaterSetup) {
+  std::vector<Override> at = smallSeabed();
+  at.push_back(set("underwater.caustics", "\"texture\""));
+  Renderer renderer(test::testDevice(), sceneFile("seabed.toml"), at, shippedPasses());
+  (void)renderer.render();
+  const Override sun = set("sun.zenith_deg", "50"), later = set("surface.time", "1.75");
+  renderer.update({sun});
+  renderer.update({later});
+  const FrameResult f = renderer.render();
+  EXPECT_FALSE(has(renderer.lastPrepared(), "raycast"));  // same sizes: the same buffers
+  at.insert(at.end(), {sun, later});
   EXPECT_EQ(f.rgb.pixels, fresh("seabed.toml", at).rgb.pixels);
 }
 

@@ -15,7 +15,8 @@
 #include "passes/caustic_stack.h"
 #include "passes/froxel_pass.h"
 #include "quality/render_frame.h"
-#include "passes/underwater_pass.h"
+#include "device/enqueue.h"
+#include "passes/underwater_setup_buffers.h"
 #include "plan/plan.h"
 #include "reference/froxel_reference.h"
 #include "scene/scene_parser.h"
@@ -112,13 +113,22 @@ TEST(UnderwaterCausticMap, RaycastReadsTheMapsAsTheCpuDoes) {
   const seasim::Plan plan = seasim::makePlan(f.scene);
   seasim::Device& device = seasim::test::testDevice();
   seasim::CausticStack stack(device, f.scene, f.setup);
-  seasim::UnderwaterPass pass(device, f.setup, *plan.find("raycast"), *plan.find("kd_multiple"), false);
-  pass.runRaycast(&stack.maps());
+  const seasim::UnderwaterSetupBuffers setup(device, f.setup);
+  const seasim::PassPlan& raycast = *plan.find("raycast");
   const int w = f.setup.params.width, h = f.setup.params.height;
   std::vector<cl_float4> geom(size_t(w) * h);
   std::vector<float> vis(size_t(w) * h);
-  device.queue().enqueueReadBuffer(pass.geometry(), CL_TRUE, 0, sizeof(cl_float4) * geom.size(), geom.data());
-  device.queue().enqueueReadBuffer(pass.sunVisibility(), CL_TRUE, 0, sizeof(float) * vis.size(), vis.data());
+  cl::Kernel kernel(device.program(raycast.kernel_file, raycast.defines).program, "raycast");
+  cl::Buffer geom_buffer(device.context(), CL_MEM_READ_WRITE, sizeof(cl_float4) * geom.size());
+  cl::Buffer material_buffer(device.context(), CL_MEM_READ_WRITE, sizeof(cl_int) * geom.size());
+  cl::Buffer vis_buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * vis.size());
+  int arg = 0;
+  for (const cl::Buffer* b : std::initializer_list<const cl::Buffer*>{&setup.params, &setup.objects, &stack.maps(),
+                                                                      &geom_buffer, &material_buffer, &vis_buffer})
+    kernel.setArg(arg++, *b);
+  seasim::runKernel2d(device, "raycast", kernel, w, h);
+  device.queue().enqueueReadBuffer(geom_buffer, CL_TRUE, 0, sizeof(cl_float4) * geom.size(), geom.data());
+  device.queue().enqueueReadBuffer(vis_buffer, CL_TRUE, 0, sizeof(float) * vis.size(), vis.data());
 
   namespace kd = seasim::kmath_d;
   const UwParams& p = f.setup.params;

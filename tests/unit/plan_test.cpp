@@ -40,7 +40,7 @@ TEST(Plan, FlatSeaNeedsOnlyTheSeaPassAndTheCheck) {
   EXPECT_EQ(plan.passes[0].name, "sea_single");
   EXPECT_EQ(plan.passes[1].name, "nonfinite_check");
   for (const char* absent : {"shafts", "shadow_maps", "ocean_fft", "caustics", "froxel", "kd_multiple", "sea_second",
-                             "raycast"}) {
+                             "raycast", "underwater_setup", "froxel_bands"}) {
     EXPECT_FALSE(plan.hasPass(absent)) << absent;
   }
   EXPECT_TRUE(hasDefine(plan, "sea_single", "SEASIM_HAS_BOTTOM=1"));
@@ -193,7 +193,7 @@ TEST(Plan, UnderwaterLeavesOutWhatTheSceneTurnsOff) {
                                   {at("camera.position", "[0, -5, 0]"), at("underwater.single_scattering", "false")}));
   EXPECT_FALSE(plan.hasPass("froxel"));
   EXPECT_TRUE(hasDefine(plan, "kd_multiple", "SEASIM_HAS_FROXEL=0"));
-  EXPECT_EQ(plan.find("kd_multiple")->reads, std::vector<std::string>{"gbuffer"});
+  EXPECT_EQ(plan.find("kd_multiple")->reads, (std::vector<std::string>{"underwater_setup", "gbuffer"}));
   // Night: no sun, so no froxels, no shadow rays, no caustics.
   plan = makePlan(parseScene(kFlatSea, "flat.toml", {at("camera.position", "[0, -5, 0]"), at("sun.zenith_deg", "95")}));
   EXPECT_FALSE(plan.hasPass("froxel"));
@@ -219,7 +219,7 @@ TEST(Plan, WaterSpreadOnlyForTheImprovedModelWithAForwardPhase) {
                                    at("water.g", "0.9")}));
   ASSERT_TRUE(plan.hasPass("water_spread"));
   EXPECT_TRUE(hasDefine(plan, "kd_multiple", "SEASIM_UWI_SPREAD=1"));
-  EXPECT_EQ(plan.find("water_spread")->reads, (std::vector<std::string>{"gbuffer", "rgb"}));
+  EXPECT_EQ(plan.find("water_spread")->reads, (std::vector<std::string>{"underwater_setup", "gbuffer", "forward_light", "rgb"}));
   // After the shading that writes "rgb", before the check that reads it.
   const auto index = [&](const char* name) {
     return std::find_if(plan.passes.begin(), plan.passes.end(), [&](const auto& p) { return p.name == name; }) -
@@ -324,11 +324,43 @@ TEST(Plan, RovLightsRunsTheUnderwaterPassesAndTheLampsOnly) {
   const Plan plan = makePlan(seasim::loadScene(std::string(SEASIM_SOURCE_DIR) + "/scenes/rov_lights.toml"));
   std::vector<std::string> order;
   for (const auto& p : plan.passes) order.push_back(p.name);
-  const std::vector<std::string> expected = {"raycast", "froxel", "kd_multiple", "water_spread", "underwater_lamps",
-                                             "nonfinite_check"};
+  const std::vector<std::string> expected = {"underwater_setup", "raycast",          "froxel",         "kd_multiple",
+                                             "water_spread",     "underwater_lamps", "nonfinite_check"};
   EXPECT_EQ(order, expected);
   EXPECT_TRUE(hasDefine(plan, "underwater_lamps", "SEASIM_HAS_OBJECTS=1"));
   for (const auto& p : plan.passes) EXPECT_TRUE(p.implemented) << p.name;
+}
+
+// The underwater set-up is a pass of its own, first, with no kernel; the froxels' term per band is
+// planned only where spectral.exr asks for it, after the shading it adds into, and builds froxel.cl
+// with the froxel pass's defines.
+TEST(Plan, UnderwaterSetupComesFirstAndTheFroxelBandsOnlyWithSpectralOutput) {
+  const std::string seabed = std::string(SEASIM_SOURCE_DIR) + "/scenes/seabed.toml";
+  const Plan plan = makePlan(seasim::loadScene(seabed));
+  ASSERT_FALSE(plan.passes.empty());
+  EXPECT_EQ(plan.passes[0].name, "underwater_setup");
+  EXPECT_EQ(plan.passes[0].kernel_file, "");
+  EXPECT_TRUE(plan.passes[0].defines.empty());
+  EXPECT_NE(plan.toText().find("underwater_setup  (host only)"), std::string::npos);
+  for (const std::string& file : plan.kernelFiles()) EXPECT_FALSE(file.empty());
+  EXPECT_TRUE(plan.hasPass("froxel"));
+  EXPECT_FALSE(plan.hasPass("froxel_bands"));
+
+  const Plan spectral = makePlan(seasim::loadScene(seabed, {at("spectral.spectral_exr", "true")}));
+  const seasim::PassPlan* bands = spectral.find("froxel_bands");
+  ASSERT_NE(bands, nullptr);
+  EXPECT_EQ(bands->defines, spectral.find("froxel")->defines);
+  EXPECT_EQ(bands->writes, std::vector<std::string>{"rgb"});
+  size_t kd = 0, term = 0;
+  for (size_t i = 0; i < spectral.passes.size(); ++i) {
+    if (spectral.passes[i].name == "kd_multiple") kd = i;
+    if (spectral.passes[i].name == "froxel_bands") term = i;
+  }
+  EXPECT_EQ(term, kd + 1);
+
+  const Plan no_froxels = makePlan(seasim::loadScene(
+      seabed, {at("spectral.spectral_exr", "true"), at("underwater.single_scattering", "false")}));
+  EXPECT_FALSE(no_froxels.hasPass("froxel_bands"));
 }
 
 // Spotlights with the camera above the water are not composed: the plan holds a shafts pass marked

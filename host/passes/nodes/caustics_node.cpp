@@ -10,6 +10,7 @@
 #include "passes/caustic_stack.h"
 #include "passes/nodes/standard_passes.h"
 #include "passes/nodes/underwater_frame.h"
+#include "passes/underwater_setup_buffers.h"
 #include "plan/pass_descriptor.h"
 #include "plan/scene_facts.h"
 #include "util/error.h"
@@ -63,7 +64,8 @@ class UnderwaterCausticsNode : public Pass {
   PassKeys keys() const override { return {{}, kCausticKeys}; }
   void prepare(FrameContext&, PassResources&) override {}
   void execute(FrameContext& ctx, PassResources& res) override {
-    CausticStack stack(ctx.device(), ctx.scene(), ctx.underwaterSetup(), &res.read<OceanPass>("ocean_maps"));
+    CausticStack stack(ctx.device(), ctx.scene(), res.read<UnderwaterSetupBuffers>("underwater_setup").setup,
+                       &res.read<OceanPass>("ocean_maps"));
     for (const PassTiming& t : stack.timings()) ctx.timings.push_back(t);
     if (kept_ && copyInto(ctx.device(), stack.maps(), kept_->maps, sizeof(float) * stack.hostMaps().size())) return;
     kept_ = std::make_shared<UnderwaterCausticMaps>(UnderwaterCausticMaps{stack.maps()});
@@ -88,7 +90,7 @@ PassDescriptor causticsDescriptor() {
   d.kernel_file = "caustics.cl";
   d.rule = [](const Scene& scene, const Plan&) -> std::optional<PassPlan> {
     if (oceanForUnderwaterCaustics(scene))
-      return planEntry({"ocean_maps"}, {"caustic_map"},
+      return planEntry({"underwater_setup", "ocean_maps"}, {"caustic_map"},
                        "camera below an FFT surface, underwater.caustics = \"map\" (004 §5.2.1)");
     if (seaBottomCausticsPlanned(scene))
       return planEntry({"ocean_maps"}, {"caustic_map"},

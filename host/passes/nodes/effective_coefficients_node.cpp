@@ -46,12 +46,12 @@ class EffectiveCoefficientsNode : public Pass {
   }
   void execute(FrameContext& ctx, PassResources& res) override {
     const Scene& scene = ctx.scene();
-    UnderwaterPass& g = *res.read<UnderwaterGBuffer>("gbuffer").pass;
+    const UnderwaterGBuffer& g = res.read<UnderwaterGBuffer>("gbuffer");
     onDevice("effective_coefficients pass", [&] {
       int arg = 0;
       kernel_.setArg(arg++, scene.camera.width);
       kernel_.setArg(arg++, scene.camera.height);
-      kernel_.setArg(arg++, g.geometry());
+      kernel_.setArg(arg++, g.geometry);
       kernel_.setArg(arg++, res.read<LayerTarget>("formation_layers").image);
       if (entry_.featuresAs<EffectiveCoefficientsFeatures>().beta_b >= 0)
         kernel_.setArg(arg++, res.read<LayerTarget>("veiling_layer").image);

@@ -1,11 +1,13 @@
 // froxel_node.cpp — "froxel": single scattering of the sun beam in the underwater frame (002 §5,
-// froxel.cl, passes/froxel_pass.h), published as "froxel_volume" for kd_multiple.
+// froxel.cl, passes/froxel_pass.h); its buffers are published as "froxel_volume" for kd_multiple and
+// the band term (nodes/froxel_bands_node.cpp).
 #include <algorithm>
 #include <memory>
 
 #include "passes/froxel_pass.h"
 #include "passes/nodes/underwater_frame.h"
 #include "passes/underwater_features.h"
+#include "passes/underwater_setup_buffers.h"
 #include "plan/pass_descriptor.h"
 #include "plan/scene_facts.h"
 #include "render/pass.h"
@@ -28,20 +30,25 @@ class FroxelNode : public Pass {
   explicit FroxelNode(const PassPlan& entry) : entry_(entry) {}
   PassKeys keys() const override { return froxelKeys(); }
   void prepare(FrameContext& ctx, PassResources& res) override {
-    res.publish("froxel_volume",
-                std::make_shared<FroxelPass>(ctx.device(), ctx.scene(), ctx.underwaterSetup(), entry_.defines));
+    froxels_ = std::make_unique<FroxelPass>(ctx.device(), ctx.scene(),
+                                            res.read<UnderwaterSetupBuffers>("underwater_setup").setup, entry_.defines);
+    auto volume = std::make_shared<FroxelVolume>();
+    volume->params = froxels_->paramsBuffer();
+    volume->volume = froxels_->volume();
+    volume->light = froxels_->light();
+    volume->fp = froxels_->params();
+    res.publish("froxel_volume", volume);
   }
   void execute(FrameContext& ctx, PassResources& res) override {
-    FroxelPass& froxels = res.read<FroxelPass>("froxel_volume");
     // With the G-buffer, only the froxels that kd_multiple's reads need are evaluated.
-    const cl::Buffer* geom =
-        res.declaresRead("gbuffer") ? &res.read<UnderwaterGBuffer>("gbuffer").pass->geometry() : nullptr;
-    froxels.run(underwaterCausticMaps(res), geom, ctx.scene().camera.width, ctx.scene().camera.height);
-    for (const PassTiming& t : froxels.timings()) ctx.timings.push_back(t);
+    const cl::Buffer* geom = res.declaresRead("gbuffer") ? &res.read<UnderwaterGBuffer>("gbuffer").geometry : nullptr;
+    froxels_->run(underwaterCausticMaps(res), geom, ctx.scene().camera.width, ctx.scene().camera.height);
+    for (const PassTiming& t : froxels_->timings()) ctx.timings.push_back(t);
   }
 
  private:
   const PassPlan& entry_;
+  std::unique_ptr<FroxelPass> froxels_;
 };
 
 }  // namespace
@@ -61,7 +68,7 @@ PassDescriptor froxelDescriptor() {
   d.rule = [](const Scene& scene, const Plan& so_far) -> std::optional<PassPlan> {
     const UnderwaterDesc& uw = scene.underwater;
     if (!cameraUnderwater(scene) || !uw.single_scattering || !sunUp(scene)) return std::nullopt;
-    std::vector<std::string> reads = {"scene", "gbuffer"};  // gbuffer: which froxels are read
+    std::vector<std::string> reads = {"underwater_setup", "gbuffer"};  // gbuffer: which froxels are read
     if (so_far.produces("caustic_map")) reads.push_back("caustic_map");
     auto features = std::make_shared<FroxelFeatures>();
     features->objects = !scene.objects.empty();

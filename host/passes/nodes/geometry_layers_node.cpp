@@ -8,6 +8,7 @@
 #include "passes/layer_features.h"
 #include "passes/nodes/layer_nodes.h"
 #include "passes/nodes/underwater_frame.h"
+#include "passes/underwater_setup_buffers.h"
 #include "plan/pass_descriptor.h"
 #include "plan/scene_facts.h"
 #include "render/layer_target.h"
@@ -52,15 +53,14 @@ class GeometryLayersNode : public Pass {
     if (bands) res.publish("albedo_band_layer", bands);
   }
   void execute(FrameContext& ctx, PassResources& res) override {
-    UnderwaterGBuffer& gbuffer = res.read<UnderwaterGBuffer>("gbuffer");
-    gbuffer.sync(ctx);
-    UnderwaterPass& g = *gbuffer.pass;
+    const UnderwaterSetupBuffers& setup = res.read<UnderwaterSetupBuffers>("underwater_setup");
+    const UnderwaterGBuffer& g = res.read<UnderwaterGBuffer>("gbuffer");
     onDevice("geometry_layers pass", [&] {
       int arg = 0;
-      kernel_.setArg(arg++, g.params());
-      kernel_.setArg(arg++, g.geometry());
-      kernel_.setArg(arg++, g.material());
-      kernel_.setArg(arg++, g.bandTable());
+      kernel_.setArg(arg++, setup.params);
+      kernel_.setArg(arg++, g.geometry);
+      kernel_.setArg(arg++, g.material);
+      kernel_.setArg(arg++, setup.band_table);
       kernel_.setArg(arg++, target_->image);
       if (bands_) kernel_.setArg(arg++, bands_->image);
     });
@@ -104,7 +104,7 @@ PassDescriptor geometryLayersDescriptor() {
     f->albedo_bands = f->albedo >= 0 && scene.spectral.spectral_exr;
     std::vector<std::string> writes = {"geometry_layers"};
     if (f->albedo_bands) writes.push_back("albedo_band_layer");
-    return planEntry({"gbuffer"}, writes,
+    return planEntry({"underwater_setup", "gbuffer"}, writes,
                      "outputs.layers: " + layerList(asked) + " from the G-buffer" +
                          (f->albedo_bands ? ", the albedo per band in spectral.exr" : "") +
                          layerCostText(scene, bytesPerPixel(scene, *f)),

@@ -1,14 +1,15 @@
 // kd_multiple_node.cpp — "kd_multiple": the underwater frame's per-band shading (002 eq. 4.7-4.8,
-// or the discrete-ordinates model of common/underwater_improved.h), run by the G-buffer's
-// UnderwaterPass; it publishes the frame's "rgb".
+// or the discrete-ordinates model of common/underwater_improved.h; passes/underwater_shading.h). It
+// reads the set-up's and the G-buffer's buffers and publishes the frame's "rgb", the forward light for
+// the point-spread and the ground-truth layers it writes.
 #include <memory>
 #include <vector>
 
-#include "device/enqueue.h"
 #include "device/device.h"
 #include "passes/froxel_pass.h"
 #include "passes/nodes/underwater_frame.h"
 #include "passes/underwater_features.h"
+#include "passes/underwater_shading.h"
 #include "plan/pass_descriptor.h"
 #include "plan/scene_facts.h"
 #include "render/pass.h"
@@ -16,7 +17,6 @@
 #include "io/spectral_layout.h"
 #include "render/layer_target.h"
 #include "render/radiance_target.h"
-#include "util/error.h"
 
 namespace seasim {
 
@@ -30,63 +30,27 @@ const std::vector<std::string> kVeilingLayers = {"veiling", "beta_b"};
 
 // kd_multiple.cl's band layers, slot by slot (its header gives the layout).
 const char* const kBandLayerSlots[] = {"clear", "direct", "backscatter", "lamps", "transmission"};
-constexpr size_t kBackscatterSlot = 2;
-
-// spectral.exr holds the whole image: kd_multiple wrote T L_s + L_MS per band, and the froxel term per
-// band is added here from the same injected light (FroxelPass::addBandsTo), into the spectral image,
-// the backscatter slot of the band layers and, resolved at infinity, the veiling per band.
-void addFroxelBands(FrameContext& ctx, UnderwaterPass& pass, FroxelPass& froxels) {
-  const Scene& scene = ctx.scene();
-  const size_t pixels = static_cast<size_t>(scene.camera.width) * static_cast<size_t>(scene.camera.height);
-  const size_t bands = ctx.grid().size(), slots = std::size(kBandLayerSlots);
-  const bool layers = pass.bandLayers()() != nullptr, veiling = pass.veilingBands()() != nullptr;
-  std::vector<float> spectral(pixels * bands), all, backscatter, veil;
-  cl::CommandQueue& queue = ctx.device().queue();
-  onDevice("froxel spectral bands", [&] {
-    std::vector<FroxelPass::BandTarget> targets = {{&pass.geometry(), &spectral}};
-    queue.enqueueReadBuffer(pass.spectral(), CL_TRUE, 0, sizeof(float) * spectral.size(), spectral.data());
-    if (layers) {
-      all.resize(pixels * slots * bands);
-      backscatter.resize(pixels * bands);
-      queue.enqueueReadBuffer(pass.bandLayers(), CL_TRUE, 0, sizeof(float) * all.size(), all.data());
-      for (size_t i = 0; i < pixels; ++i)
-        std::copy_n(all.data() + (i * slots + kBackscatterSlot) * bands, bands, backscatter.data() + i * bands);
-      targets.push_back({&pass.geometry(), &backscatter});
-    }
-    cl::Buffer at_infinity;  // every pixel's distance UW_INFINITE (1e30): the whole column, as kd_multiple's ss_inf
-    if (veiling) {
-      veil.resize(pixels * bands);
-      queue.enqueueReadBuffer(pass.veilingBands(), CL_TRUE, 0, sizeof(float) * veil.size(), veil.data());
-      std::vector<cl_float4> far(pixels, cl_float4{{1e30f, 0.0f, 0.0f, 0.0f}});
-      at_infinity = cl::Buffer(ctx.device().context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
-                               sizeof(cl_float4) * far.size(), far.data());
-      targets.push_back({&at_infinity, &veil});
-    }
-    const double ms = froxels.addBandsTo(ctx.underwaterSetup(), scene.camera.width, scene.camera.height, targets);
-    queue.enqueueWriteBuffer(pass.spectral(), CL_TRUE, 0, sizeof(float) * spectral.size(), spectral.data());
-    if (layers) {
-      for (size_t i = 0; i < pixels; ++i)
-        std::copy_n(backscatter.data() + i * bands, bands, all.data() + (i * slots + kBackscatterSlot) * bands);
-      queue.enqueueWriteBuffer(pass.bandLayers(), CL_TRUE, 0, sizeof(float) * all.size(), all.data());
-    }
-    if (veiling) queue.enqueueWriteBuffer(pass.veilingBands(), CL_TRUE, 0, sizeof(float) * veil.size(), veil.data());
-    ctx.timings.push_back({"froxel_spectral_bands", ms});
-  });
-}
 
 class KdNode : public Pass {
  public:
+  explicit KdNode(const PassPlan& entry) : entry_(entry) {}
   PassKeys keys() const override { return {{}, kUnderwaterSetupKeys}; }
   void prepare(FrameContext& ctx, PassResources& res) override {
-    UnderwaterPass& pass = *res.read<UnderwaterGBuffer>("gbuffer").pass;
-    if (&pass == published_for_) return;  // a new froxel volume only: the same image buffers
-    published_for_ = &pass;
+    const UnderwaterSetupBuffers& setup = res.read<UnderwaterSetupBuffers>("underwater_setup");
+    const UnderwaterGBuffer& gbuffer = res.read<UnderwaterGBuffer>("gbuffer");
+    if (shading_ && &setup == setup_ && &gbuffer == gbuffer_) return;  // a new froxel volume only
+    setup_ = &setup;
+    gbuffer_ = &gbuffer;
+    shading_ = std::make_unique<UnderwaterShading>(ctx.device(), entry_, setup, gbuffer);
+    UnderwaterShading& s = *shading_;
     auto target = std::make_shared<RadianceTarget>();
-    target->rgb = pass.rgb();
-    target->spectral = pass.spectral();
+    target->rgb = s.rgb();
+    target->spectral = s.spectral();
     target->pixels = static_cast<size_t>(ctx.scene().camera.width) * static_cast<size_t>(ctx.scene().camera.height);
     target->bands = ctx.grid().size();
     res.publish("rgb", target);
+    if (entry_.featuresAs<KdFeatures>().point_spread)
+      res.publish("forward_light", std::make_shared<UnderwaterForwardLight>(s.forwardLight()));
     // The ground-truth layers it writes (outputs.layers; kd_multiple.cl's header gives the layout).
     auto layer = [&](const char* name, std::vector<std::string> channels, cl::Buffer& buffer) {
       auto t = std::make_shared<LayerTarget>();
@@ -94,41 +58,40 @@ class KdNode : public Pass {
       t->image = buffer;
       res.publish(name, t);
     };
-    if (pass.formationLayers()() != nullptr) {
+    if (s.formationLayers()() != nullptr) {
       std::vector<std::string> channels;
       for (const char* l : {"clear", "direct", "backscatter", "transmission"})
         for (const char* c : {".R", ".G", ".B"}) channels.push_back(std::string(l) + c);
-      layer("formation_layers", channels, pass.formationLayers());
-      layer("forward_layer", {"forward.R", "forward.G", "forward.B"}, pass.forwardLayer());
-      layer("lamps_layer", {"lamps.R", "lamps.G", "lamps.B"}, pass.lampsLayer());
+      layer("formation_layers", channels, s.formationLayers());
+      layer("forward_layer", {"forward.R", "forward.G", "forward.B"}, s.forwardLayer());
+      layer("lamps_layer", {"lamps.R", "lamps.G", "lamps.B"}, s.lampsLayer());
     }
-    if (pass.veilingLayer()() != nullptr)
-      layer("veiling_layer", {"veiling.R", "veiling.G", "veiling.B"}, pass.veilingLayer());
-    if (pass.bandLayers()() != nullptr) {  // the split per band: "<layer>.S0.<nm>" (output_layers.h)
+    if (s.veilingLayer()() != nullptr) layer("veiling_layer", {"veiling.R", "veiling.G", "veiling.B"}, s.veilingLayer());
+    if (s.bandLayers()() != nullptr) {  // the split per band: "<layer>.S0.<nm>" (output_layers.h)
       std::vector<std::string> channels, forward;
       for (const char* l : kBandLayerSlots)
         for (double nm : ctx.grid().centers_nm) channels.push_back(spectralLayerChannelName(l, nm));
       for (double nm : ctx.grid().centers_nm) forward.push_back(spectralLayerChannelName("forward", nm));
-      layer("band_layers", channels, pass.bandLayers());
-      layer("forward_band_layer", forward, pass.forwardBands());
+      layer("band_layers", channels, s.bandLayers());
+      layer("forward_band_layer", forward, s.forwardBands());
     }
-    if (pass.veilingBands()() != nullptr) {
+    if (s.veilingBands()() != nullptr) {
       std::vector<std::string> veiling;
       for (double nm : ctx.grid().centers_nm) veiling.push_back(spectralLayerChannelName("veiling", nm));
-      layer("veiling_band_layer", veiling, pass.veilingBands());
+      layer("veiling_band_layer", veiling, s.veilingBands());
     }
   }
   void execute(FrameContext& ctx, PassResources& res) override {
-    UnderwaterGBuffer& gbuffer = res.read<UnderwaterGBuffer>("gbuffer");
-    gbuffer.sync(ctx);
-    FroxelPass* froxels = res.declaresRead("froxel_volume") ? &res.read<FroxelPass>("froxel_volume") : nullptr;
-    ctx.timings.push_back({"kd_multiple", gbuffer.pass->runShading(froxels ? &froxels->paramsBuffer() : nullptr,
-                                                                   froxels ? &froxels->volume() : nullptr)});
-    if (froxels && ctx.scene().spectral.spectral_exr) addFroxelBands(ctx, *gbuffer.pass, *froxels);
+    FroxelVolume* froxels = res.declaresRead("froxel_volume") ? &res.read<FroxelVolume>("froxel_volume") : nullptr;
+    ctx.timings.push_back(
+        {"kd_multiple", shading_->run(froxels ? &froxels->params : nullptr, froxels ? &froxels->volume : nullptr)});
   }
 
  private:
-  const UnderwaterPass* published_for_ = nullptr;
+  const PassPlan& entry_;
+  const UnderwaterSetupBuffers* setup_ = nullptr;
+  const UnderwaterGBuffer* gbuffer_ = nullptr;
+  std::unique_ptr<UnderwaterShading> shading_;
 };
 
 }  // namespace
@@ -144,7 +107,7 @@ PassDescriptor kdMultipleDescriptor() {
     if (!cameraUnderwater(scene)) return std::nullopt;
     const bool froxels = so_far.produces("froxel_volume");
     const bool ordinates = scene.underwater.model == UnderwaterDesc::Model::Improved;
-    std::vector<std::string> reads = {"gbuffer"};
+    std::vector<std::string> reads = {"underwater_setup", "gbuffer"};
     if (froxels) reads.push_back("froxel_volume");
     auto features = std::make_shared<KdFeatures>();
     features->multiple = scene.underwater.multiple_scattering;
@@ -158,6 +121,7 @@ PassDescriptor kdMultipleDescriptor() {
     features->band_layers = features->formation_layers && features->spectral_output;
     features->veiling_bands = features->veiling_layer && features->spectral_output;
     std::vector<std::string> writes = {"rgb"};
+    if (features->point_spread) writes.push_back("forward_light");
     if (features->formation_layers) writes.insert(writes.end(), {"formation_layers", "forward_layer", "lamps_layer"});
     if (features->veiling_layer) writes.push_back("veiling_layer");
     if (features->band_layers) writes.insert(writes.end(), {"band_layers", "forward_band_layer"});
@@ -216,8 +180,8 @@ PassDescriptor kdMultipleDescriptor() {
     const KdFeatures& f = p.featuresAs<KdFeatures>();
     return (f.underwater_model == 1 ? 6.3 : 1.5) + (f.formation_layers ? 0.7 : 0.0) + (f.veiling_layer ? 0.8 : 0.0);
   };
-  d.factory = [](const PassPlan&, const Plan&, const Scene&, const AutoQuality&) -> std::unique_ptr<Pass> {
-    return std::make_unique<KdNode>();
+  d.factory = [](const PassPlan& e, const Plan&, const Scene&, const AutoQuality&) -> std::unique_ptr<Pass> {
+    return std::make_unique<KdNode>(e);
   };
   return d;
 }

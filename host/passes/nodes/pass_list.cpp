@@ -4,10 +4,12 @@
 #include "plan/pass_descriptor.h"
 
 // Order matters where one pass reads what another writes: the ocean before its caustics, the
-// caustics before the G-buffer that reads them, the shading before what adds into its "rgb".
+// underwater set-up before every underwater pass, the caustics before the G-buffer that reads them,
+// the shading before what adds into its "rgb".
 #define SEASIM_SHIPPED_PASSES(X)        \
   X(shaftsRaycastDescriptor)            \
   X(oceanDescriptor)                    \
+  X(underwaterSetupDescriptor)          \
   X(shadowMapsDescriptor)               \
   X(causticsDescriptor)                 \
   X(raycastDescriptor)                  \
@@ -18,6 +20,7 @@
   X(whitecapsDescriptor)                \
   X(shaftsDescriptor)                   \
   X(kdMultipleDescriptor)               \
+  X(froxelBandsDescriptor)              \
   X(waterSpreadDescriptor)              \
   X(underwaterLampsDescriptor)          \
   X(geometryLayersDescriptor)           \

@@ -1,12 +1,14 @@
 // raycast_node.cpp — "raycast" of raycast.cl: the underwater frame's G-buffer (002 §4.3.2: hit
-// distance, normal, material, sun visibility). raycast.cl and kd_multiple.cl share one
-// UnderwaterPass (passes/underwater_pass.h), published as "gbuffer". A change of sun, water, time or
-// knobs rewrites its parameter blocks in place (UnderwaterPass::update) and runs the kernels again;
-// only the camera, the objects or the band count set it up again.
+// distance, normal, material, sun visibility), published as "gbuffer" (passes/nodes/underwater_frame.h)
+// from the parameter blocks of "underwater_setup". A change of sun, water, time or knobs rewrites those
+// blocks in place and runs the kernel again; only the camera or the objects make new buffers.
 #include <memory>
 
+#include "device/enqueue.h"
+#include "passes/caustic_stack.h"
 #include "passes/nodes/underwater_frame.h"
 #include "passes/underwater_features.h"
+#include "passes/underwater_setup_buffers.h"
 #include "plan/pass_descriptor.h"
 #include "plan/scene_facts.h"
 #include "render/pass.h"
@@ -16,31 +18,43 @@ namespace seasim {
 
 namespace {
 
-// Sizes (image, bands, objects) and the kernels' defines come from the first list. sky.model and
-// sky.image: kd_multiple's SEASIM_SKY_MODEL and the size of its sky buffer.
-const PassKeys kRaycastKeys = {{"camera.*", "spectral.*", "objects.*", "sky.model", "sky.image"},
-                               kUnderwaterSetupKeys};
+// Sizes (image, objects) and the kernel's defines come from the first list.
+const PassKeys kRaycastKeys = {{"camera.*", "objects.*"}, {}};
 
 class RaycastNode : public Pass {
  public:
-  RaycastNode(const PassPlan& entry, const PassPlan& kd) : entry_(entry), kd_(kd) {}
+  explicit RaycastNode(const PassPlan& entry) : entry_(entry) {}
   PassKeys keys() const override { return kRaycastKeys; }
   void prepare(FrameContext& ctx, PassResources& res) override {
-    auto gbuffer = std::make_shared<UnderwaterGBuffer>();
-    gbuffer->pass = std::make_unique<UnderwaterPass>(ctx.device(), ctx.underwaterSetup(), entry_, kd_,
-                                                     ctx.scene().spectral.spectral_exr);
-    gbuffer->setup_version = ctx.setupVersion();
-    res.publish("gbuffer", gbuffer);
+    const UnderwaterSetupBuffers& setup = res.read<UnderwaterSetupBuffers>("underwater_setup");
+    const size_t pixels = size_t(ctx.scene().camera.width) * size_t(ctx.scene().camera.height);
+    gbuffer_ = std::make_shared<UnderwaterGBuffer>();
+    onDevice("raycast pass set-up", [&] {
+      kernel_ = cl::Kernel(ctx.device().program(entry_.kernel_file, entry_.defines).program, "raycast");
+      gbuffer_->geometry = cl::Buffer(ctx.device().context(), CL_MEM_READ_WRITE, sizeof(cl_float4) * pixels);
+      gbuffer_->material = cl::Buffer(ctx.device().context(), CL_MEM_READ_WRITE, sizeof(cl_int) * pixels);
+      gbuffer_->visibility = cl::Buffer(ctx.device().context(), CL_MEM_READ_WRITE, sizeof(float) * pixels);
+      no_caustics_ = noCausticMap(ctx.device());
+      kernel_.setArg(0, setup.params);
+      kernel_.setArg(1, setup.objects);
+      kernel_.setArg(3, gbuffer_->geometry);
+      kernel_.setArg(4, gbuffer_->material);
+      kernel_.setArg(5, gbuffer_->visibility);
+    });
+    res.publish("gbuffer", gbuffer_);
   }
   void execute(FrameContext& ctx, PassResources& res) override {
-    UnderwaterGBuffer& gbuffer = res.read<UnderwaterGBuffer>("gbuffer");
-    gbuffer.sync(ctx);
-    ctx.timings.push_back({"raycast", gbuffer.pass->runRaycast(underwaterCausticMaps(res))});
+    const cl::Buffer* caustic_maps = underwaterCausticMaps(res);
+    onDevice("raycast arguments", [&] { kernel_.setArg(2, caustic_maps ? *caustic_maps : no_caustics_); });
+    ctx.timings.push_back(
+        {"raycast", runKernel2d(ctx.device(), "raycast", kernel_, ctx.scene().camera.width, ctx.scene().camera.height)});
   }
 
  private:
   const PassPlan& entry_;
-  const PassPlan& kd_;
+  cl::Kernel kernel_;
+  cl::Buffer no_caustics_;
+  std::shared_ptr<UnderwaterGBuffer> gbuffer_;
 };
 
 }  // namespace
@@ -53,7 +67,7 @@ PassDescriptor raycastDescriptor() {
   d.rule = [](const Scene& scene, const Plan& so_far) -> std::optional<PassPlan> {
     if (!cameraUnderwater(scene)) return std::nullopt;
     // With caustic maps, after the caustics pass: the sun visibility reads them.
-    std::vector<std::string> reads = {"scene"};
+    std::vector<std::string> reads = {"underwater_setup"};
     if (so_far.produces("caustic_map")) reads.push_back("caustic_map");
     auto features = std::make_shared<UnderwaterRaycastFeatures>();
     features->objects = !scene.objects.empty();
@@ -71,10 +85,8 @@ PassDescriptor raycastDescriptor() {
             {p.name, "G-buffer sun visibility", 4 * w * h, wh, {w, h}}};
   };
   d.cost = [](const Scene&, const PassPlan&) { return 0.7; };
-  d.factory = [](const PassPlan& e, const Plan& plan, const Scene&, const AutoQuality&) -> std::unique_ptr<Pass> {
-    const PassPlan* kd = plan.find("kd_multiple");
-    if (!kd) throw RuntimeError("plan: the underwater raycast pass needs a kd_multiple pass in the same plan");
-    return std::make_unique<RaycastNode>(e, *kd);
+  d.factory = [](const PassPlan& e, const Plan&, const Scene&, const AutoQuality&) -> std::unique_ptr<Pass> {
+    return std::make_unique<RaycastNode>(e);
   };
   return d;
 }

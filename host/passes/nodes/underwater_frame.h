@@ -1,30 +1,29 @@
-// underwater_frame.h — what the underwater frame's nodes share (paper 002): the "gbuffer" resource
-// that raycast.cl and kd_multiple.cl's UnderwaterPass publishes, the scene keys the underwater set-up
-// folds in, and the "caustic_map" buffer the caustics node writes under water.
+// underwater_frame.h — what the underwater frame's nodes share (paper 002): the resources they publish
+// as buffers ("gbuffer" of raycast.cl, "forward_light" of kd_multiple.cl; "underwater_setup" is
+// passes/underwater_setup_buffers.h), the scene keys the underwater set-up folds in, and the
+// "caustic_map" buffer the caustics node writes under water.
 #pragma once
 #include <CL/opencl.hpp>
 
-#include <cstdint>
-#include <memory>
 #include <string>
 #include <vector>
 
-#include "passes/underwater_pass.h"
-#include "render/frame_context.h"
 #include "render/resources.h"
 
 namespace seasim {
 
+// raycast.cl's G-buffer, per pixel of the camera's image.
 struct UnderwaterGBuffer {
-  std::unique_ptr<UnderwaterPass> pass;
-  uint64_t setup_version = 0;  // FrameContext::setupVersion() its parameter blocks hold
-  // Brings the parameter blocks up to the context's setup.
-  void sync(FrameContext& ctx) {
-    const UnderwaterSetup& setup = ctx.underwaterSetup();
-    if (setup_version == ctx.setupVersion()) return;
-    pass->update(setup);
-    setup_version = ctx.setupVersion();
-  }
+  cl::Buffer geometry;    // float4 (S, n): hit distance and normal
+  cl::Buffer material;    // int: object index or UW_MAT_*
+  cl::Buffer visibility;  // float: shadow ray × caustic factor
+};
+
+// The forward light kd_multiple.cl keeps apart for the water's point-spread (kernels/water_spread.cl;
+// layouts in common/water_spread_params.h): [pixel][2][3] in sensor RGB, [pixel][2] its light-weighted
+// distance and, with spectral output, [pixel][2][band_count] (else a null buffer).
+struct UnderwaterForwardLight {
+  cl::Buffer rgb, depth, spectral;
 };
 
 // Everything the underwater setup folds in: a change reruns the kernels with new parameter blocks.

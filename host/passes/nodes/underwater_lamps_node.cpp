@@ -6,6 +6,7 @@
 #include "passes/nodes/underwater_frame.h"
 #include "passes/underwater_features.h"
 #include "passes/underwater_lamps_pass.h"
+#include "passes/underwater_setup_buffers.h"
 #include "plan/pass_descriptor.h"
 #include "scene/model_keys.h"
 #include "plan/scene_facts.h"
@@ -26,31 +27,30 @@ class UnderwaterLampsNode : public Pass {
  public:
   explicit UnderwaterLampsNode(const PassPlan& entry) : entry_(entry) {}
   PassKeys keys() const override { return kLampsKeys; }
-  void prepare(FrameContext& ctx, PassResources&) override {
-    pass_ = std::make_unique<UnderwaterLampsPass>(ctx.device(), ctx.scene(), ctx.underwaterSetup(), ctx.grid(), entry_,
-                                                  UnderwaterLampsPass::configFromScene(ctx.scene()));
-    setup_version_ = ctx.setupVersion();
+  void prepare(FrameContext& ctx, PassResources& res) override {
+    pass_ = std::make_unique<UnderwaterLampsPass>(ctx.device(), ctx.scene(),
+                                                  res.read<UnderwaterSetupBuffers>("underwater_setup").setup, ctx.grid(),
+                                                  entry_, UnderwaterLampsPass::configFromScene(ctx.scene()));
+    fresh_ = true;
   }
   void execute(FrameContext& ctx, PassResources& res) override {
-    if (setup_version_ != ctx.setupVersion()) {
-      pass_->update(ctx.underwaterSetup());
-      setup_version_ = ctx.setupVersion();
-    }
-    UnderwaterPass& gbuffer = *res.read<UnderwaterGBuffer>("gbuffer").pass;
+    if (!fresh_) pass_->update(res.read<UnderwaterSetupBuffers>("underwater_setup").setup);  // sun, water, time
+    fresh_ = false;
+    UnderwaterGBuffer& gbuffer = res.read<UnderwaterGBuffer>("gbuffer");
     RadianceTarget& target = res.read<RadianceTarget>("rgb");
     cl::Buffer* spectral = ctx.scene().spectral.spectral_exr ? &target.spectral : nullptr;
     const bool lamps_layer_on = entry_.featuresAs<UnderwaterLampsFeatures>().lamps_layer;
     cl::Buffer* lamps_layer = lamps_layer_on ? &res.read<LayerTarget>("lamps_layer").image : nullptr;
     const bool bands_on = entry_.featuresAs<UnderwaterLampsFeatures>().band_layers;
     cl::Buffer* band_layers = bands_on ? &res.read<LayerTarget>("band_layers").image : nullptr;
-    ctx.timings.push_back({"underwater_lamps", pass_->run(gbuffer.geometry(), gbuffer.material(), target.rgb, spectral,
+    ctx.timings.push_back({"underwater_lamps", pass_->run(gbuffer.geometry, gbuffer.material, target.rgb, spectral,
                                                           lamps_layer, band_layers)});
   }
 
  private:
   const PassPlan& entry_;
   std::unique_ptr<UnderwaterLampsPass> pass_;
-  uint64_t setup_version_ = 0;
+  bool fresh_ = false;
 };
 
 }  // namespace
@@ -80,7 +80,7 @@ PassDescriptor underwaterLampsDescriptor() {
     std::vector<std::string> targets = {"rgb"};
     if (features->lamps_layer) targets.push_back("lamps_layer");
     if (features->band_layers) targets.push_back("band_layers");
-    std::vector<std::string> reads = {"gbuffer"};
+    std::vector<std::string> reads = {"underwater_setup", "gbuffer"};
     reads.insert(reads.end(), targets.begin(), targets.end());
     return planEntry(reads, targets,
                      std::string("[[spotlights]] under water: 001's sampling planes with the water's sigma_s, sigma_t, HG") +

@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "passes/nodes/underwater_frame.h"
+#include "passes/underwater_setup_buffers.h"
 #include "passes/water_spread_pass.h"
 #include "plan/pass_descriptor.h"
 #include "plan/scene_facts.h"
@@ -24,9 +25,9 @@ class WaterSpreadNode : public Pass {
  public:
   explicit WaterSpreadNode(const PassPlan& entry) : entry_(entry) {}
   PassKeys keys() const override { return kWaterSpreadKeys; }
-  void prepare(FrameContext& ctx, PassResources&) override {
+  void prepare(FrameContext& ctx, PassResources& res) override {
     const Scene& scene = ctx.scene();
-    const UwParams& p = ctx.underwaterSetup().params;
+    const UwParams& p = res.read<UnderwaterSetupBuffers>("underwater_setup").setup.params;
     const int order = scene.underwater.improved_diffuse == UnderwaterDesc::Diffuse::DiscreteOrdinates
                           ? kOrdinatesSourceMoments
                           : 2;  // the two-stream's f = g² (improvedDeltaM)
@@ -35,13 +36,12 @@ class WaterSpreadNode : public Pass {
                                               scene.spectral.spectral_exr ? p.band_count : 0);
   }
   void execute(FrameContext& ctx, PassResources& res) override {
-    UnderwaterPass& gbuffer = *res.read<UnderwaterGBuffer>("gbuffer").pass;
-    if (!gbuffer.spread())
-      throw RuntimeError("plan: the water_spread pass needs kd_multiple planned with its point_spread feature");
+    UnderwaterGBuffer& gbuffer = res.read<UnderwaterGBuffer>("gbuffer");
+    UnderwaterForwardLight& forward = res.read<UnderwaterForwardLight>("forward_light");
     RadianceTarget& target = res.read<RadianceTarget>("rgb");
     const bool spectral = ctx.scene().spectral.spectral_exr;
-    ctx.timings.push_back({"water_spread", pass_->run(gbuffer.geometry(), gbuffer.forwardDepth(), gbuffer.forwardRgb(),
-                                                      target.rgb, spectral ? &gbuffer.forwardSpectral() : nullptr,
+    ctx.timings.push_back({"water_spread", pass_->run(gbuffer.geometry, forward.depth, forward.rgb, target.rgb,
+                                                      spectral ? &forward.spectral : nullptr,
                                                       spectral ? &target.spectral : nullptr)});
     if (res.declaresRead("forward_layer"))  // the blurred light is the forward layer's too
       ctx.timings.push_back({"water_spread_forward_layer", pass_->addRgbInto(res.read<LayerTarget>("forward_layer").image)});
@@ -67,7 +67,7 @@ PassDescriptor waterSpreadDescriptor() {
     std::vector<std::string> targets = {"rgb"};
     for (const char* layer : {"forward_layer", "forward_band_layer"})
       if (so_far.produces(layer)) targets.push_back(layer);
-    std::vector<std::string> reads = {"gbuffer"};
+    std::vector<std::string> reads = {"underwater_setup", "gbuffer", "forward_light"};
     reads.insert(reads.end(), targets.begin(), targets.end());
     return planEntry(reads, targets,
                      std::string("underwater.model \"improved\", water.g > 0, underwater.point_spread: the light "

@@ -1,0 +1,80 @@
+// underwater_setup_node.cpp — "underwater_setup": the underwater frame's shared set-up, made once per
+// change of the scene and published as "underwater_setup" (passes/underwater_setup_buffers.h): the
+// camera, sun, water, bands, objects and sky of makeUnderwaterSetup on the host, and their parameter
+// blocks on the device. The passes of the frame read it; none of them builds it. No kernel.
+#include <algorithm>
+#include <memory>
+
+#include "passes/nodes/underwater_frame.h"
+#include "passes/underwater_setup_buffers.h"
+#include "plan/pass_descriptor.h"
+#include "plan/scene_facts.h"
+#include "render/pass.h"
+
+namespace seasim {
+
+namespace {
+
+// The sizes of its buffers (image, bands, objects, sky) follow the first list; every other key it
+// folds in rewrites the same buffers.
+const PassKeys kSetupKeys = {{"camera.*", "spectral.*", "objects.*", "sky.model", "sky.image"}, kUnderwaterSetupKeys};
+
+class UnderwaterSetupNode : public Pass {
+ public:
+  PassKeys keys() const override { return kSetupKeys; }
+  void prepare(FrameContext& ctx, PassResources& res) override {
+    buffers_ = std::make_shared<UnderwaterSetupBuffers>(ctx.device(),
+                                                        makeUnderwaterSetup(ctx.scene(), ctx.grid(), ctx.sensor()));
+    res.publish("underwater_setup", buffers_);
+    fresh_ = true;
+  }
+  void execute(FrameContext& ctx, PassResources& res) override {
+    if (fresh_) {
+      fresh_ = false;
+      return;
+    }
+    // A change of surface.time alone moves the waves' phase, one number of the block (the caustics'
+    // time); remaking the rest, the improved model's per-band tables above all, would cost about
+    // half a second per frame.
+    const std::vector<std::string>& changed = ctx.changedKeys();
+    const bool time_only = !changed.empty() && std::all_of(changed.begin(), changed.end(),
+                                                           [](const std::string& k) { return k == "surface.time"; });
+    UnderwaterSetup next = buffers_->setup;
+    if (time_only)
+      next.params.time = static_cast<float>(ctx.scene().surface.time);  // as makeUnderwaterSetup sets it
+    else
+      next = makeUnderwaterSetup(ctx.scene(), ctx.grid(), ctx.sensor());
+    if (buffers_->update(ctx.device(), std::move(next))) return;
+    prepare(ctx, res);  // other sizes: new buffers, and the readers set up again
+    fresh_ = false;
+  }
+
+ private:
+  std::shared_ptr<UnderwaterSetupBuffers> buffers_;
+  bool fresh_ = false;
+};
+
+}  // namespace
+
+PassDescriptor underwaterSetupDescriptor() {
+  PassDescriptor d;
+  d.name = "underwater_setup";
+  d.kernel_file = "";  // host only: tables and their upload
+  d.rule = [](const Scene& scene, const Plan&) -> std::optional<PassPlan> {
+    if (!cameraUnderwater(scene)) return std::nullopt;
+    return planEntry({"scene"}, {"underwater_setup"},
+                     "camera below the surface: camera, sun, water, bands, objects and sky as the underwater "
+                     "passes' parameter blocks");
+  };
+  d.keys = kSetupKeys;
+  d.fast_math = false;  // no kernel
+  // Parameter blocks of a few kB per band: below the estimate's resolution.
+  d.buffers = [](const Scene&, const PassPlan&) { return std::vector<BufferEstimate>{}; };
+  d.cost = [](const Scene&, const PassPlan&) { return 0.0; };  // per frame, not per pixel
+  d.factory = [](const PassPlan&, const Plan&, const Scene&, const AutoQuality&) -> std::unique_ptr<Pass> {
+    return std::make_unique<UnderwaterSetupNode>();
+  };
+  return d;
+}
+
+}  // namespace seasim
