@@ -7,17 +7,17 @@
  * Explicit SIMD over the bands: SEASIM_BAND_LANES bands per step in floatN vectors
  * (common/band_lanes.h, common/underwater_bands.h), since PoCL does not vectorise this kernel across
  * work-items; the band table (common/underwater_band_table.h) holds every per-band value the loop reads.
- * underwater.model = "improved" (SEASIM_UNDERWATER_MODEL == 1) runs on the same lanes
- * (common/underwater_improved_bands.h), reading the table's improved rows.
+ * underwater.model = "discrete_ordinates" (SEASIM_UNDERWATER_MODEL == 1) runs on the same lanes
+ * (common/underwater_ordinates_bands.h), reading the table's discrete-ordinates rows.
  *
  * Inputs: UwParams, UwBand[band_count] and albedo[object * band_count + band] (the set-up as every
- * underwater pass gets it; the band loop reads their values from band_table), the objects (the improved
+ * underwater pass gets it; the band loop reads their values from band_table), the objects (the discrete-ordinates
  * model traces the surface's reflected ray against them, once per surface pixel), the G-buffer of raycast.cl
  * (geom, material, sun_vis), with SEASIM_HAS_FROXEL the integrated froxel volume (froxel.cl) and its
  * FroxelParams. Output: rgb[3 * pixels]; spectral[band_count * pixels] (band-major per pixel) with
  * SEASIM_SPECTRAL_OUTPUT, holding T L_s + L_MS per band (the froxel term is integrated in RGB).
  * SkyParams and the sky buffer: the [sky] Snell's window shows (common/sky_view.h, host/sky).
- * With SEASIM_UWI_SPREAD (the improved model, g > 0, underwater.point_spread): the light scattered by
+ * With SEASIM_UWI_SPREAD (the discrete-ordinates model, g > 0, underwater.point_spread): the light scattered by
  * small angles (common/water_spread.h) is left out of rgb and spectral and kept apart as its moments,
  * forward_rgb [pixel][2][3], forward_depth [pixel][2] and, with SEASIM_SPECTRAL_OUTPUT, forward_spectral
  * [pixel][2][band_count] (common/water_spread_params.h), for water_spread.cl to add back blurred.
@@ -61,11 +61,11 @@
 #ifndef SEASIM_UNDERWATER_MODEL
 #define SEASIM_UNDERWATER_MODEL 0
 #endif
-#if SEASIM_UNDERWATER_MODEL == 1 /* underwater.model = "improved" on the band lanes */
-#include "common/underwater_improved_params.h"
+#if SEASIM_UNDERWATER_MODEL == 1 /* underwater.model = "discrete_ordinates" on the band lanes */
+#include "common/underwater_ordinates_params.h"
 /* uwi_mirror_hit: the surface's reflected ray against the objects */
-#include "common/underwater_improved.h"
-#include "common/underwater_improved_bands.h"
+#include "common/underwater_ordinates.h"
+#include "common/underwater_ordinates_bands.h"
 #endif
 #ifndef SEASIM_UWI_SPREAD
 #define SEASIM_UWI_SPREAD 0
@@ -132,7 +132,7 @@ realb kd_sky_lanes(__global const float* band_table, int stride, int i, float3 s
 }
 
 #if SEASIM_UNDERWATER_MODEL == 1
-/* What the improved model needs of a pixel's first surface to give its light (uwi_lanes_hit): set once
+/* What the discrete-ordinates model needs of a pixel's first surface to give its light (uwi_lanes_hit): set once
  * per pixel, read per step of bands. */
 typedef struct {
   int mat, mirror_object, node_r, tilt_node, tilt_node_m, multiple;
@@ -230,7 +230,7 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
    * reading the pixel-invariant per-band values from the band table with vector loads. The material
    * test stays in the loop: it is the same for every step of a pixel, one predictable branch per
    * SEASIM_BAND_LANES bands, and the lanes themselves are branch-free. Both models share this; the
-   * improved one's lanes are common/underwater_improved_bands.h, the thesis's common/underwater_bands.h. */
+   * discrete-ordinates one's lanes are common/underwater_ordinates_bands.h, the thesis's common/underwater_bands.h. */
 #if SEASIM_SKY_MODEL != SEASIM_SKY_UNIFORM
   const float3 sky_shape = mat == UW_MAT_SURFACE ? sky_view_shape(sky_params, sky, sky_window_air_dir(d, p->ior))
                                                  : (float3)(0.0f, 0.0f, 0.0f);
@@ -256,7 +256,7 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
   LAYER_LANES(veil);
 #endif
 #if SEASIM_UNDERWATER_MODEL == 1
-  /* underwater.model = "improved": its rows follow the objects' albedo rows; the phase of the view and
+  /* underwater.model = "discrete_ordinates": its rows follow the objects' albedo rows; the phase of the view and
    * (surface hits) of the reflected ray (d.x, -d.y, d.z) once per pixel. */
   const int uwi_row0 = UW_ROWS + p->object_count;
   const float cos_s = dot(d, s_w);

@@ -235,7 +235,7 @@ int main(int argc, char** argv) {
                       "Override a key of the fast models' renders only, the references kept: key=value (repeatable)");
   regions->add_option("--dump", regions_cmd.dump_dir,
                       "Folder for one CSV per case: every pixel's region, d_y, reference, fast renders and the "
-                      "improved model's terms");
+                      "discrete-ordinates model's terms");
 
   seasim::SeashoreStudyCmd shore_cmd;
   auto* shore = app.add_subcommand(

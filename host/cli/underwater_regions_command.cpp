@@ -18,7 +18,7 @@
 #include "plan/plan.h"
 #include "quality/render_frame.h"
 #include "reference/pixel_centre_hits.h"
-#include "reference/underwater_improved_terms.h"
+#include "reference/underwater_ordinates_terms.h"
 #include "reference/underwater_reference.h"
 #include "reference/underwater_regions.h"
 #include "scene/scene_parser.h"
@@ -220,7 +220,7 @@ int cmdUnderwaterRegions(const UnderwaterRegionsCmd& cmd) {
             if (!cmd.dump_dir.empty()) {
               dump.fast.emplace_back(model, frame.rgb);
               if (model == "improved")
-                dump.improved_terms = improvedModelTerms(
+                dump.ordinates_terms = ordinatesModelTerms(
                     makeUnderwaterSetup(scene, grid,
                                         makeSensor(scene.spectral.sensor, grid, scene.spectral.white_balance,
                                                    scene.spectral.camera_dir)),

@@ -29,9 +29,9 @@ std::vector<std::string> underwaterRegionsDumpHeader(const std::vector<std::stri
 
 void writeUnderwaterRegionsDump(const std::string& path, const UnderwaterRegionsDump& d) {
   const size_t n = d.regions.size();
-  const bool terms = !d.improved_terms.empty();
+  const bool terms = !d.ordinates_terms.empty();
   bool sizes_agree = d.dir_y.size() == n && d.cos_sun.size() == n && d.reference.pixelCount() == n && d.reference_se.pixelCount() == n &&
-                     (!terms || d.improved_terms.size() == n) && d.reference.channels == 3 &&
+                     (!terms || d.ordinates_terms.size() == n) && d.reference.channels == 3 &&
                      d.reference_se.channels == 3;
   for (const auto& [name, im] : d.fast) sizes_agree = sizes_agree && im.pixelCount() == n && im.channels == 3;
   if (!sizes_agree) throw RuntimeError("underwater-regions --dump: the images and the region map disagree in size");
@@ -44,7 +44,7 @@ void writeUnderwaterRegionsDump(const std::string& path, const UnderwaterRegions
                                 sum3(d.reference, i), sum3(d.reference_se, i)};
     for (const auto& f : d.fast) row.push_back(sum3(f.second, i));
     if (terms) {
-      const UwiPixelTerms& t = d.improved_terms[i];
+      const UwiPixelTerms& t = d.ordinates_terms[i];
       for (double v : {t.inscatter_modes, t.inscatter_beam, t.inscatter_tms, t.aureole, t.froxel_ss, t.window,
                        t.reflected_inscatter, t.reflected_bottom, t.reflected_froxel_ss, t.reflected_object, t.lambert,
                        t.total, t.forward})

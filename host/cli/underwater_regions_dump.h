@@ -2,8 +2,8 @@
 // CSV, to see where in the frame a region's miss sits and which of the fast model's terms it is in
 // Columns: x, y (pixel, row 0 at the top), region, d_y (the centre ray's vertical direction,
 // > 0 towards the surface), cos_sun (its cosine with the direction to the refracted sun), reference and reference_se (the path tracer and its standard error),
-// fast_<model> per model rendered, and with the improved model its terms (reference/
-// underwater_improved_terms.h): every radiance the sum of the three channels; reflected_object 0 or 1;
+// fast_<model> per model rendered, and with the discrete-ordinates model its terms (reference/
+// underwater_ordinates_terms.h): every radiance the sum of the three channels; reflected_object 0 or 1;
 // forward, the part of the hit's light that delta-M counts as unscattered (not a part of model_total).
 #pragma once
 #include <string>
@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "io/image.h"
-#include "reference/underwater_improved_terms.h"
+#include "reference/underwater_ordinates_terms.h"
 #include "reference/underwater_regions.h"
 
 namespace seasim {
@@ -21,7 +21,7 @@ struct UnderwaterRegionsDump {
   std::vector<double> dir_y, cos_sun;                  // per pixel
   Image reference, reference_se;
   std::vector<std::pair<std::string, Image>> fast;     // model name, its render
-  std::vector<UwiPixelTerms> improved_terms;           // empty: no improved model in the case
+  std::vector<UwiPixelTerms> ordinates_terms;           // empty: no discrete-ordinates model in the case
 };
 
 // The CSV's header, in column order (the terms' columns only with_terms).

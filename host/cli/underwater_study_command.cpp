@@ -66,7 +66,7 @@ int cmdUnderwaterStudy(const UnderwaterStudyCmd& cmd) {
       std::map<std::string, double> sum_rmse, sum_hsv;
       for (const std::string& camera : cmd.cameras) {
         std::vector<Override> base = seabedAt(depth);
-        // The thesis's §6.1 study: its model, pinned (the default is "improved"); --set may change it.
+        // The thesis's §6.1 study: its model, pinned (the default is "discrete_ordinates"); --set may change it.
         base.push_back(set("underwater.model", "\"thesis\""));
         for (const std::string& s : cmd.sets) base.push_back(parseSetOption(s));
         base.push_back(set("water.jerlov", "\"" + water + "\""));

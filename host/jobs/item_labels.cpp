@@ -129,7 +129,7 @@ nlohmann::json itemLabels(const Scene& scene, const RenderItem& item) {
                       {"sensor_file", curve.empty() ? nlohmann::json(nullptr) : nlohmann::json(curve)},
                       {"white_balance", scene.spectral.white_balance}};
   labels["bottom"] = {{"type", bottomType(scene.bottom.type)}, {"depth_m", scene.bottom.depth}};
-  labels["underwater_model"] = scene.underwater.model == UnderwaterDesc::Model::Improved ? "improved" : "thesis";
+  labels["underwater_model"] = scene.underwater.model == UnderwaterDesc::Model::DiscreteOrdinates ? "discrete_ordinates" : "thesis";
   return labels;
 }
 

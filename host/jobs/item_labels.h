@@ -16,7 +16,7 @@
 //                    fov_y_deg, fov_x_deg, width, height, exposure_ev, sensor, sensor_file (the
 //                    camera curve CSV, null for cie1931/identity), white_balance
 //   bottom           type ("none", "flat", "heightfield"), depth_m
-//   underwater_model "thesis" or "improved"
+//   underwater_model "thesis" or "discrete_ordinates"
 #pragma once
 #include <nlohmann/json.hpp>
 

@@ -4,7 +4,7 @@
 #pragma once
 #include "common/compat.h"
 #include "common/underwater_params.h"  // plain C structs, used by underwater.h
-#include "common/underwater_improved_params.h"  // plain C struct, used by underwater_improved.h
+#include "common/underwater_ordinates_params.h"  // plain C struct, used by underwater_ordinates.h
 #include "common/froxel_params.h"      // plain C struct, used by froxel.h
 #include "common/sea_bottom_params.h"  // plain C struct, used by sea_bottom.h
 #include "common/fourflow_params.h"    // plain C structs, used by fourflow.h
@@ -40,8 +40,8 @@ typedef float real;
 #include "common/band_lanes_math.h"
 #include "common/underwater_bands.h"
 #include "common/sea_bands.h"
-#include "common/underwater_improved.h"
-#include "common/underwater_improved_bands.h"
+#include "common/underwater_ordinates.h"
+#include "common/underwater_ordinates_bands.h"
 #include "common/water_spread.h"
 #include "common/underwater_lamps.h"
 #include "common/underwater_lamps_ms.h"
@@ -79,8 +79,8 @@ typedef double real;
 #include "common/band_lanes_math.h"
 #include "common/underwater_bands.h"
 #include "common/sea_bands.h"
-#include "common/underwater_improved.h"
-#include "common/underwater_improved_bands.h"
+#include "common/underwater_ordinates.h"
+#include "common/underwater_ordinates_bands.h"
 #include "common/water_spread.h"
 #include "common/underwater_lamps.h"
 #include "common/underwater_lamps_ms.h"

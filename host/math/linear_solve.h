@@ -1,5 +1,5 @@
 // linear_solve.h — a small dense linear system a x = rhs by Gaussian elimination with partial pivoting
-// (the discrete-ordinates solver's boundary and particular systems, the improved model's 3x3 fits).
+// (the discrete-ordinates solver's boundary and particular systems, the discrete-ordinates model's 3x3 fits).
 #pragma once
 #include <vector>
 

@@ -35,7 +35,7 @@ struct KdFeatures final : PassFeatures {
   bool froxel = false;           // the froxel volume's single scattering is added
   bool spectral_output = false;  // the per-band image (spectral.spectral_exr)
   int sky_model = 0;             // Snell's window: common/sky.h's models
-  int underwater_model = 0;      // 0 thesis (002 eq. 4.7), 1 discrete ordinates (common/underwater_improved.h)
+  int underwater_model = 0;      // 0 thesis (002 eq. 4.7), 1 discrete ordinates (common/underwater_ordinates.h)
   bool point_spread = false;     // the forward light kept apart for water_spread
   bool formation_layers = false;  // outputs.layers clear, direct, backscatter, forward, lamps, transmission
   bool veiling_layer = false;     // outputs.layers veiling (B∞: the in-scatter with S = ∞)

@@ -27,7 +27,7 @@ bool UnderwaterSetupBuffers::update(Device& device, UnderwaterSetup newer) {
   if (newer.bands.size() != setup.bands.size() || newer.objects.size() != setup.objects.size() ||
       newer.albedo.size() != setup.albedo.size() || newer.sky_buffer.size() != setup.sky_buffer.size() ||
       newer.params.width != setup.params.width || newer.params.height != setup.params.height ||
-      newer.improved.empty() != setup.improved.empty())
+      newer.ordinates.empty() != setup.ordinates.empty())
     return false;
   setup = std::move(newer);
   const std::vector<float> table = underwaterBandTable(setup);  // same size: same bands and rows

@@ -1,5 +1,5 @@
 // underwater_shading.h — host side of kernels/kd_multiple.cl, the underwater frame's per-band deferred
-// shading (002 eq. 4.7–4.8, or the discrete-ordinates model of common/underwater_improved.h): its
+// shading (002 eq. 4.7–4.8, or the discrete-ordinates model of common/underwater_ordinates.h): its
 // kernel, the buffers it writes (the image, spectral image, forward light and ground-truth layers) and
 // their arguments. It reads the "underwater_setup" and "gbuffer" resources' buffers.
 #pragma once

@@ -1,5 +1,5 @@
 // water_spread_pass.h — host side of kernels/water_spread.cl (the water's point-spread for
-// underwater.model = "improved"; kernels/common/water_spread.h derives it): its parameter
+// underwater.model = "discrete_ordinates"; kernels/common/water_spread.h derives it): its parameter
 // blocks (sensor RGB and, with spectral output, the bands), the layers' taps, the grid's buffers, the four
 // kernels and their times.
 //

@@ -39,7 +39,7 @@ bool seaBottomCausticsPlanned(const Scene& scene) {
 }
 
 bool underwaterPointSpread(const Scene& scene) {
-  return scene.underwater.model == UnderwaterDesc::Model::Improved && scene.underwater.point_spread &&
+  return scene.underwater.model == UnderwaterDesc::Model::DiscreteOrdinates && scene.underwater.point_spread &&
          scene.water.g > 0;
 }
 

@@ -106,7 +106,7 @@ std::vector<ExpectedError> expectedErrors(const Scene& scene) {
                         : -1.0;
   regime.sun_zenith_deg = scene.sun.zenith * 180.0 / M_PI;
   const std::string view = underwater ? "underwater" : "sea";
-  const std::string model = underwater ? (scene.underwater.model == UnderwaterDesc::Model::Improved ? "improved" : "thesis")
+  const std::string model = underwater ? (scene.underwater.model == UnderwaterDesc::Model::DiscreteOrdinates ? "discrete_ordinates" : "thesis")
                                        : (scene.sea.model == SeaDesc::Model::Multiple ? "multiple" : "paper");
   return {lookupExpectedError(regime, view, model, loadMeasuredCases(view, model), unmeasuredFeatures(scene, underwater))};
 }

@@ -33,7 +33,7 @@ struct MeasuredCase {
 
 struct ExpectedError {
   std::string view;   // "sea" (seen from above) or "underwater"
-  std::string model;  // "paper", "multiple", "thesis", "improved"
+  std::string model;  // "paper", "multiple", "thesis", "discrete_ordinates"
   bool measured = false;
   double max_abs_error = 0, worst_ratio = 1, distance = 0;
   MeasuredCase nearest;

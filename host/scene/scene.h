@@ -167,8 +167,8 @@ struct SeaDesc {
 struct UnderwaterDesc {
   enum class Caustics { None, Texture, Map };
   enum class Injection { Spectral, Rgb };
-  enum class Model { Thesis, Improved };
-  Model model = Model::Improved;     // "improved" (the default): common/underwater_improved.h; "thesis":
+  enum class Model { Thesis, DiscreteOrdinates };
+  Model model = Model::DiscreteOrdinates;     // "discrete_ordinates" (the default): common/underwater_ordinates.h; "thesis":
                                      // 002 eq. 4.7, what a reproduction of the thesis pins
   bool multiple_scattering = true;   // L_MS by K_d (002 eq. 4.7)
   bool single_scattering = true;     // froxel single scattering of the sun beam (002 §5)
@@ -178,31 +178,31 @@ struct UnderwaterDesc {
   Injection injection = Injection::Spectral;  // froxel light injection per band or in sensor RGB
   double froxel_near = 0.1;          // m, first froxel slice (file: froxel_near_m)
   double froxel_far = 60.0;          // m, last froxel slice (file: froxel_far_m)
-  // "improved" only: how its diffuse field is solved (underwater_improved_ordinates.h): "discrete_ordinates"
+  // "discrete_ordinates" only: how its diffuse field is solved (underwater_ordinates_solver.h): "discrete_ordinates"
   // (the default) or "two_stream" (the two-stream with its fitted tables, below). file: improved_diffuse
   enum class Diffuse { DiscreteOrdinates, TwoStream };
-  // "improved" only: the light delta-M counts as unscattered is put back blurred by the phase's small
+  // "discrete_ordinates" only: the light delta-M counts as unscattered is put back blurred by the phase's small
   // angles (the water_spread pass, kernels/common/water_spread.h). file: point_spread
   bool point_spread = true;
   Diffuse improved_diffuse = Diffuse::DiscreteOrdinates;
-  // "improved", discrete_ordinates only: the streams (and delta-M order) of the solution the view rays'
+  // "discrete_ordinates", discrete_ordinates only: the streams (and delta-M order) of the solution the view rays'
   // source table is fitted to (underwater/ordinates_high_order.h); 0: the order-3 field's own in-scatter.
   // Even, 8-64, or 0 (default kOrdinatesHighOrderStreams). file: improved_source_streams
   int improved_source_streams = 32;
-  // "improved", two_stream only: the diffuse streams' mean cosines in its in-scatter source; 0 = the fitted table
-  // (diffuseMeanCosines, underwater_improved_setup.h). Set to refit it (tests/perf/underwater_regions_fit.sh).
+  // "discrete_ordinates", two_stream only: the diffuse streams' mean cosines in its in-scatter source; 0 = the fitted table
+  // (diffuseMeanCosines, underwater_ordinates_setup.h). Set to refit it (tests/perf/underwater_regions_fit.sh).
   double improved_mean_cosine_down = 0.0;  // file: improved_mean_cosine_down
   double improved_mean_cosine_up = 0.0;    // file: improved_mean_cosine_up
   double improved_beam_mean_cosine_down = 0.0;  // file: improved_beam_mean_cosine_down (the beam's offspring)
   double improved_beam_mean_cosine_up = 0.0;    // file: improved_beam_mean_cosine_up
-  // "improved" only: the two-stream's closure (TwoStreamClosure, underwater_improved_setup.h); Default:
+  // "discrete_ordinates" only: the two-stream's closure (TwoStreamClosure, underwater_ordinates_setup.h); Default:
   // the model's own (diffuseMeanCosines' table). For refitting. file: improved_two_stream
   enum class TwoStream { Default, Quadrature, Asymptotic };
   TwoStream improved_two_stream = TwoStream::Default;
-  // "improved" only: the asymptotic mode's share w in the diffuse k over the camera's depth
+  // "discrete_ordinates" only: the asymptotic mode's share w in the diffuse k over the camera's depth
   // (depthMeanDiffuseK); < 0: the model's own (diffuseAsymptoticShare). file: improved_asymptotic_share
   double improved_asymptotic_share = -1.0;
-  // "improved", "two_stream" only: the scale of its first-order in-scatter's flux term
+  // "discrete_ordinates", "two_stream" only: the scale of its first-order in-scatter's flux term
   // (diffuseFluxScale); < 0: the model's own. For refitting. file: improved_flux_scale
   double improved_flux_scale = -1.0;
 };

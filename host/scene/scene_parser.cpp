@@ -604,8 +604,10 @@ class SceneParser {
   void underwater(const toml::table& t) {
     TableReader r(src_, t, "underwater");
     UnderwaterDesc& u = scene_.underwater;
-    u.model = r.choice("model", "improved", {"thesis", "improved"}) == "improved" ? UnderwaterDesc::Model::Improved
-                                                                             : UnderwaterDesc::Model::Thesis;
+    // "improved" is the discrete-ordinates model's earlier name, still accepted.
+    u.model = r.choice("model", "discrete_ordinates", {"thesis", "discrete_ordinates", "improved"}) == "thesis"
+                  ? UnderwaterDesc::Model::Thesis
+                  : UnderwaterDesc::Model::DiscreteOrdinates;
     u.multiple_scattering = r.boolean("multiple_scattering", u.multiple_scattering);
     u.single_scattering = r.boolean("single_scattering", u.single_scattering);
     const std::string caustics = r.choice("caustics", "texture", {"none", "texture", "map"});

@@ -1,8 +1,8 @@
 // discrete_ordinates.h — the diffuse light of a plane-parallel water layer by discrete ordinates
 // (Chandrasekhar 1960; the eigen-solution of Stamnes & Swanson 1981, as DISORT solves it), for
-// underwater.model = "improved": the depth profiles of the diffuse plane irradiances E_d, E_u and the
+// underwater.model = "discrete_ordinates": the depth profiles of the diffuse plane irradiances E_d, E_u and the
 // scalar irradiance E_0, and the in-scatter towards any direction, that the model's closed form is fitted
-// to (underwater_improved_ordinates.*).
+// to (underwater_ordinates_solver.*).
 //
 // The layer: homogeneous water (absorption a, scattering b, Henyey-Greenstein g) from the flat surface
 // (y = 0) to a Lambertian bottom of albedo rho at depth H, or without a bottom (semi-infinite). Lit by the

@@ -1,5 +1,5 @@
-// forward_peak.h — the light of the phase function's forward peak that the improved underwater model's delta-M
-// counts as unscattered (kernels/common/underwater_improved.h uwi_tms_phase and uwi_aureole use it).
+// forward_peak.h — the light of the phase function's forward peak that the discrete-ordinates underwater model's delta-M
+// counts as unscattered (kernels/common/underwater_ordinates.h uwi_tms_phase and uwi_aureole use it).
 //
 // Delta-M attenuates the sun beam by c' = a + b (1 - f): the beam e^{-c' y/μ_w} carries, besides the
 // unscattered light e^{-c y/μ_w}, the light the peak turned by a few degrees. A TMS term that scattered
@@ -21,7 +21,7 @@
 
 extern "C" {
 #include "common/underwater_params.h"
-#include "common/underwater_improved_params.h"
+#include "common/underwater_ordinates_params.h"
 }
 
 namespace seasim {

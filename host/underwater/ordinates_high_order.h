@@ -1,4 +1,4 @@
-// ordinates_high_order.h — the view rays' source for underwater.model = "improved", fitted to the radiance of
+// ordinates_high_order.h — the view rays' source for underwater.model = "discrete_ordinates", fitted to the radiance of
 // a discrete-ordinates solution at a high delta-M order (underwater.improved_source_streams).
 //
 // The kernel attenuates view rays by the delta-M extinction c' of order 3 (f = g³) and adds the delta-M
@@ -57,7 +57,7 @@ struct HighOrderField {
 HighOrderField solveHighOrderField(const DiscreteOrdinatesLayer& layer, int streams, int modes,
                                    const std::vector<double>& nus, double y_end);
 
-// The kernel's view-ray source basis (common/underwater_improved.h: e^{-k y}, e^{-k (H - y)} with a bottom,
+// The kernel's view-ray source basis (common/underwater_ordinates.h: e^{-k y}, e^{-k (H - y)} with a bottom,
 // e^{-m y}; extinction c_kernel) and where its rays start.
 struct SourceTableBasis {
   double k = 0, m = 0, c_kernel = 0;

@@ -14,9 +14,9 @@ std::vector<float> underwaterBandTable(const UnderwaterSetup& setup) {
   // holds one placeholder when there is none, since OpenCL buffers cannot be empty).
   const int objects = setup.params.object_count;
   const int stride = UW_BAND_STRIDE(std::max(bands, 1));
-  const bool improved = !setup.improved.empty();
+  const bool ordinates_rows = !setup.ordinates.empty();
   const int uwi_row0 = UW_ROWS + objects;
-  std::vector<float> table(static_cast<size_t>(uwi_row0 + (improved ? UWI_ROWS : 0)) * stride, 0.0f);
+  std::vector<float> table(static_cast<size_t>(uwi_row0 + (ordinates_rows ? UWI_ROWS : 0)) * stride, 0.0f);
   if (bands == 0) return table;
   auto at = [&](int row, int band) -> float& { return table[static_cast<size_t>(row) * stride + band]; };
   // The same clamp of μ_w as kd_multiple_scattering and uw_beam_irradiance (common/underwater.h).
@@ -46,8 +46,8 @@ std::vector<float> underwaterBandTable(const UnderwaterSetup& setup) {
       const size_t a = static_cast<size_t>(o) * bands + k;
       at(UW_ROWS + o, i) = a < setup.albedo.size() ? setup.albedo[a] : 0.0f;
     }
-    if (improved && k < static_cast<int>(setup.improved.size())) {
-      const UwiBand& ib = setup.improved[k];
+    if (ordinates_rows && k < static_cast<int>(setup.ordinates.size())) {
+      const UwiBand& ib = setup.ordinates[k];
       auto uwi = [&](int row, double v) { at(uwi_row0 + row, i) = static_cast<float>(v); };
       uwi(UWI_ROW_C_DM, ib.c_dm);
       uwi(UWI_ROW_K, ib.k);

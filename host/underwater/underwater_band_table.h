@@ -12,8 +12,8 @@ extern "C" {
 
 namespace seasim {
 
-// (UW_ROWS + objects) rows of UW_BAND_STRIDE(bands) floats, and UWI_ROWS more when setup.improved is
-// filled (underwater.model = "improved"); padding bands weigh 0 and repeat the last band's other values.
+// (UW_ROWS + objects) rows of UW_BAND_STRIDE(bands) floats, and UWI_ROWS more when setup.ordinates is
+// filled (underwater.model = "discrete_ordinates"); padding bands weigh 0 and repeat the last band's other values.
 // Empty set-up (no bands): one padded band of zeros.
 std::vector<float> underwaterBandTable(const UnderwaterSetup& setup);
 

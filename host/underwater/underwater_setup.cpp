@@ -7,8 +7,8 @@
 #include "geometry/kernel_camera.h"
 #include "math/kernel_math.h"
 #include "spectral/jerlov.h"
-#include "underwater/underwater_improved_ordinates.h"
-#include "underwater/underwater_improved_setup.h"
+#include "underwater/underwater_ordinates_solver.h"
+#include "underwater/underwater_ordinates_setup.h"
 #include "util/error.h"
 
 namespace seasim {
@@ -142,7 +142,7 @@ UnderwaterSetup makeUnderwaterSetup(const Scene& scene, const WavelengthGrid& gr
     s.objects.push_back(u);
     for (size_t i = 0; i < grid.size(); ++i) s.albedo.push_back(static_cast<float>(o.albedo.at(grid.centers_nm[i])));
   }
-  if (uw.model == UnderwaterDesc::Model::Improved) {
+  if (uw.model == UnderwaterDesc::Model::DiscreteOrdinates) {
     DiffuseMeanCosines mean = diffuseMeanCosines(p.g);
     if (uw.improved_mean_cosine_down > 0) mean.down = uw.improved_mean_cosine_down;
     if (uw.improved_mean_cosine_up > 0) mean.up = uw.improved_mean_cosine_up;
@@ -154,7 +154,7 @@ UnderwaterSetup makeUnderwaterSetup(const Scene& scene, const WavelengthGrid& gr
                                          ? TwoStreamClosure::Asymptotic
                                          : twoStreamClosure();
     // The camera's depth enters k here (diffuseViewDepth): set per frame, with the camera.
-    s.improved = uw.improved_diffuse == UnderwaterDesc::Diffuse::TwoStream
+    s.ordinates = uw.improved_diffuse == UnderwaterDesc::Diffuse::TwoStream
                      ? makeUwiBands(p, s.bands, mean, closure, uw.improved_asymptotic_share, uw.improved_flux_scale)
                      : makeUwiBandsFromOrdinates(p, s.bands, uw.improved_source_streams);
   }

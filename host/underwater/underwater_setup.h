@@ -13,7 +13,7 @@
 
 extern "C" {
 #include "common/underwater_params.h"
-#include "common/underwater_improved_params.h"
+#include "common/underwater_ordinates_params.h"
 }
 
 namespace seasim {
@@ -29,7 +29,7 @@ struct UnderwaterSetup {
   SkyParams sky_params{};        // the [sky] for Snell's window in kd_multiple.cl (common/sky_view.h)
   std::vector<float> sky_buffer; // its image texels or Preetham's reals; at least one entry
   bool single_scattering = true; // the froxel pass runs (L_MS and L_s then leave out the direct beam)
-  std::vector<UwiBand> improved; // underwater.model = "improved": one per band (underwater_improved_setup.h); else empty
+  std::vector<UwiBand> ordinates; // underwater.model = "discrete_ordinates": one per band (underwater_ordinates_setup.h); else empty
 };
 
 // RuntimeError for what the underwater passes cannot render (a height-field object, naming it).

@@ -1,4 +1,4 @@
-// water_spread_setup.h — the water's point-spread for underwater.model = "improved"
+// water_spread_setup.h — the water's point-spread for underwater.model = "discrete_ordinates"
 // (kernels/common/water_spread.h derives it): the spread of one small-angle scattering from the phase,
 // in the image's pixels, and the Gaussian taps of kernels/water_spread.cl's layers.
 #pragma once

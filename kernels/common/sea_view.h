@@ -206,7 +206,7 @@ SEASIM_FN void sea_bottom_view(SeaFeatures f, SEASIM_CONSTANT const SeaParams* p
 
 /* Everything of the pixel's ray d (below the horizon) that is the same for every band, into *out. An
  * output pointer, not a struct return: Clang 14 marks a returned struct noalias and, inlining it, emits
- * llvm.experimental.noalias.scope.decl, which Oclgrind 21.10 cannot run (underwater_improved_bands.h). */
+ * llvm.experimental.noalias.scope.decl, which Oclgrind 21.10 cannot run (underwater_ordinates_bands.h). */
 SEASIM_FN void sea_pixel(SeaFeatures f, SEASIM_CONSTANT const SeaParams* p, const SEASIM_GLOBAL real* normals,
                          const SEASIM_GLOBAL real* slope_mips, const SEASIM_GLOBAL real* sky,
                          SEASIM_GLOBAL const float* caustics, SEASIM_CONSTANT const SeaHeightField* hf,

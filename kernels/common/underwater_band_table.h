@@ -7,8 +7,8 @@
  * UW_BAND_STRIDE(band_count). The padding bands have sensor weight 0 and copy the last band's other
  * values (finite, so the lanes they fill cost nothing and add nothing). After the UW_ROWS rows of the
  * water and light, one row of albedo per object (UW_ROWS + object index); with underwater.model =
- * "improved", UWI_ROWS more after those (row UW_ROWS + object count + UWI_ROW_*), read by
- * common/underwater_improved_bands.h.
+ * "discrete_ordinates", UWI_ROWS more after those (row UW_ROWS + object count + UWI_ROW_*), read by
+ * common/underwater_ordinates_bands.h.
  */
 #ifndef SEASIM_UNDERWATER_BAND_TABLE_H
 #define SEASIM_UNDERWATER_BAND_TABLE_H
@@ -34,8 +34,8 @@
 #define UW_ROW_BOTTOM_ALBEDO 15
 #define UW_ROWS 16
 
-/* underwater.model = "improved" (common/underwater_improved_bands.h): UwiBand's values
- * (common/underwater_improved_params.h) and what the model makes of them without the pixel. */
+/* underwater.model = "discrete_ordinates" (common/underwater_ordinates_bands.h): UwiBand's values
+ * (common/underwater_ordinates_params.h) and what the model makes of them without the pixel. */
 #define UWI_ROW_C_DM 0         /* delta-M extinction c', 1/m: view rays */
 #define UWI_ROW_K 1            /* the diffuse field's attenuation k, 1/m */
 #define UWI_ROW_M 2            /* the delta-M beam's attenuation with depth c'/μ_w, 1/m */
@@ -44,7 +44,7 @@
 #define UWI_ROW_D2 5
 #define UWI_ROW_DP 6
 #define UWI_ROW_BOTTOM_L 7     /* the bottom's sunlit, unshadowed radiance (uwi_lambert at y = H, n up) */
-/* The start factors of the camera's integrals (UwiStart, common/underwater_improved_bands.h): every primary
+/* The start factors of the camera's integrals (UwiStart, common/underwater_ordinates_bands.h): every primary
  * ray starts at the camera's depth o_d = -cam_pos[1], the same for the whole frame. */
 #define UWI_ROW_EXP_K_OD 8     /* e^{-k o_d} */
 #define UWI_ROW_EXP_M_OD 9     /* e^{-m o_d} */
@@ -52,7 +52,7 @@
 #define UWI_ROW_EXP_K_HOD 11   /* e^{-k max(H - o_d, 0)}: the bottom's term, whose integral runs from the bottom */
 #define UWI_ROW_EXP_K_H 12     /* e^{-k H}: the same for the surface's reflected ray (o_d = 0); 1 without a bottom */
 /* The source's table (UwiBand.src): node j's term q in row UWI_ROW_SRC + j * UWI_SOURCE_TERMS + q
- * (common/underwater_improved_params.h); then the tilted plane's irradiance table (UwiBand.tilt) the same
+ * (common/underwater_ordinates_params.h); then the tilted plane's irradiance table (UwiBand.tilt) the same
  * way from UWI_ROW_TILT. */
 #define UWI_ROW_SRC 13
 #define UWI_ROW_TILT (UWI_ROW_SRC + UWI_SOURCE_NODES * UWI_SOURCE_TERMS)

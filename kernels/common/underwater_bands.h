@@ -24,7 +24,7 @@ SEASIM_FN realb kd_exp_integral_b(realb k, realb c, real d_y, real o_d, real S) 
 /* kd_exp_integral_b with both ends of the integrand given: a = e^{-k o_d} where the ray starts (per band
  * and frame for the camera's rays, whose depth o_d is the frame's: common/underwater_band_table.h) and
  * b = e^{-(k y(S) + c S)} where it ends (the exp that a hit's irradiance takes anyway, so shared with
- * it: common/underwater_improved_bands.h). No exp of its own. With x = k d_y - c and t = x S,
+ * it: common/underwater_ordinates_bands.h). No exp of its own. With x = k d_y - c and t = x S,
  *   e^{-k o_d} ∫_0^S e^{x z} dz = (b - a) / x          (b = e^{t - k o_d}: y(S) = o_d - S d_y)
  * and a S φ(t) (the series of expm1_over_x) where |t| < 0.5 and the difference would cancel. No
  * overflow: a, b <= 1 for a ray in the water. A camera so deep that a underflows (k o_d > 87 in float)

@@ -1,6 +1,6 @@
 /* water_spread.h — the water's point-spread of the light delta-M counts as unscattered.
  *
- * underwater.model = "improved" scales the phase by delta-M (common/underwater_improved.h): the share f
+ * underwater.model = "discrete_ordinates" scales the phase by delta-M (common/underwater_ordinates.h): the share f
  * of each scattering in the phase's forward peak is taken as not scattered, so a hit's light reaches the
  * camera along its own ray as T(S) = e^{-c' S}, c' = c - b f. Of that light, the part
  *   F = 1 - e^{-(c - c') S} = 1 - e^{-tau},  tau = b f S                                  (1)

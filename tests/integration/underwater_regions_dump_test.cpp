@@ -1,5 +1,5 @@
 // underwater_regions_dump_test.cpp — `seasim underwater-regions --dump DIR`: one CSV per case
-// with every pixel's region, ray direction, the reference, each model's render and the improved model's
+// with every pixel's region, ray direction, the reference, each model's render and the discrete-ordinates model's
 // terms, and the terms add up to the model (the render and the reference the files hold are the ones
 // the region ratios were taken from).
 #include <gtest/gtest.h>

@@ -1,6 +1,6 @@
 // output_layers_test.cpp — the ground-truth layers (scene/output_layers.h) rendered on the test device:
 // the geometry layers against the reference's own ray cast in double (reference/pixel_centre_hits.h),
-// and the image's split per underwater model (thesis and improved, froxels on and off, the point
+// and the image's split per underwater model (thesis and discrete-ordinates, froxels on and off, the point
 // spread on and off, lamps): direct + backscatter + forward + lamps is the image per pixel, direct is
 // clear x transmission, an object at the lens gives direct = clear and no backscatter, and no layer
 // holds NaN (range and depth hold +inf for open water, and only there). Small images for PoCL's time.
@@ -117,11 +117,11 @@ TEST(OutputLayers, TheSplitSumsToTheImageForEveryUnderwaterModel) {
       {"seabed.toml", {set("underwater.model", "\"thesis\"")}, "thesis, froxels"},
       {"seabed.toml", {set("underwater.model", "\"thesis\""), set("underwater.single_scattering", "false")},
        "thesis, no froxels"},
-      {"seabed.toml", {set("underwater.model", "\"improved\"")}, "improved, froxels, point spread"},
-      {"seabed.toml", {set("underwater.model", "\"improved\""), set("underwater.point_spread", "false")},
-       "improved, froxels, no point spread"},
-      {"seabed.toml", {set("underwater.model", "\"improved\""), set("underwater.single_scattering", "false")},
-       "improved, no froxels"},
+      {"seabed.toml", {set("underwater.model", "\"discrete_ordinates\"")}, "discrete-ordinates, froxels, point spread"},
+      {"seabed.toml", {set("underwater.model", "\"discrete_ordinates\""), set("underwater.point_spread", "false")},
+       "discrete-ordinates, froxels, no point spread"},
+      {"seabed.toml", {set("underwater.model", "\"discrete_ordinates\""), set("underwater.single_scattering", "false")},
+       "discrete-ordinates, no froxels"},
       {"rov_lights.toml", {}, "rov_lights: lamps"},
   };
   for (const Case& c : cases) expectLayersSumToImage(smallScene(c.file, c.sets), 1e-5, c.what);
@@ -203,11 +203,11 @@ TEST(OutputLayers, TheSplitPerBandSumsToTheSpectralImage) {
     extra.insert(extra.begin(), spectral.begin(), spectral.end());
     return extra;
   };
-  expectBandLayersSplitTheSpectralImage(smallScene("seabed.toml", with({set("underwater.model", "\"improved\"")})),
-                                        "improved, froxels, point spread");
+  expectBandLayersSplitTheSpectralImage(smallScene("seabed.toml", with({set("underwater.model", "\"discrete_ordinates\"")})),
+                                        "discrete-ordinates, froxels, point spread");
   expectBandLayersSplitTheSpectralImage(
-      smallScene("seabed.toml", with({set("underwater.model", "\"improved\""), set("underwater.single_scattering", "false")})),
-      "improved, no froxels");
+      smallScene("seabed.toml", with({set("underwater.model", "\"discrete_ordinates\""), set("underwater.single_scattering", "false")})),
+      "discrete-ordinates, no froxels");
   expectBandLayersSplitTheSpectralImage(smallScene("seabed.toml", with({set("underwater.model", "\"thesis\"")})),
                                         "thesis, froxels");
   expectBandLayersSplitTheSpectralImage(smallScene("rov_lights.toml", with({})), "rov_lights: lamps");
@@ -237,7 +237,7 @@ TEST(OutputLayers, LampsHaveTheirOwnLayer) {
 }
 
 TEST(OutputLayers, DirectIsClearTimesTransmission) {
-  for (const char* model : {"\"thesis\"", "\"improved\""}) {
+  for (const char* model : {"\"thesis\"", "\"discrete_ordinates\""}) {
     // One band: the transmission is e^{-c range} of that band, direct = clear x that, per pixel.
     const Scene scene = smallScene("seabed.toml", {set("underwater.model", model), set("spectral.count", "1")});
     const Layers l = render(scene);
@@ -264,7 +264,7 @@ TEST(OutputLayers, DirectIsClearTimesTransmission) {
 // A box just in front of the lens fills the view: range ~1 mm, so direct = clear e^{-c 0.001} and the
 // backscatter gathered over 1 mm is ~1e-3 of the in-scatter of metres.
 TEST(OutputLayers, AnObjectAtTheLensGivesDirectEqualToClearAndNoBackscatter) {
-  for (const char* model : {"\"thesis\"", "\"improved\""}) {
+  for (const char* model : {"\"thesis\"", "\"discrete_ordinates\""}) {
     const Scene scene = smallScene(
         "seabed.toml", {set("underwater.model", model), set("objects[1].min", "[-1.0, -4.8, -0.002]"),
                         set("objects[1].max", "[1.0, -2.8, -0.001]"), set("camera.look_at", "[0.0, -3.8, -8.0]")});
@@ -323,12 +323,12 @@ TEST(OutputLayers, RangeAndObjectIdAreTheReferenceRayCasts) {
 
 TEST(OutputLayers, NoLayerHoldsNaNAndOnlyOpenWaterIsInfinite) {
   std::vector<Scene> scenes = {smallScene("seabed.toml", {set("underwater.model", "\"thesis\"")}),
-                               smallScene("seabed.toml", {set("underwater.model", "\"improved\"")}),
+                               smallScene("seabed.toml", {set("underwater.model", "\"discrete_ordinates\"")}),
                                openWaterScene()};
   scenes.push_back(openWaterScene());
-  scenes.back().underwater.model = UnderwaterDesc::Model::Improved;
+  scenes.back().underwater.model = UnderwaterDesc::Model::DiscreteOrdinates;
   for (const Scene& scene : scenes) {
-    const char* model = scene.underwater.model == UnderwaterDesc::Model::Improved ? "improved" : "thesis";
+    const char* model = scene.underwater.model == UnderwaterDesc::Model::DiscreteOrdinates ? "discrete_ordinates" : "thesis";
     const Layers l = render(scene);
     for (size_t i = 0; i < l.image.pixelCount(); ++i) {
       const bool open = l.at(i, "object_id") == 0.0f && std::isinf(l.at(i, "range"));
@@ -370,7 +370,7 @@ TEST(OutputLayers, TheirDeviceBytesAreTheEstimate) {
     }
     return double(DeviceAllocations::peak() - before);
   };
-  for (const char* model : {"\"thesis\"", "\"improved\""}) {
+  for (const char* model : {"\"thesis\"", "\"discrete_ordinates\""}) {
     double with_estimate, without_estimate;
     const double with = measure(smallScene("seabed.toml", {set("underwater.model", model)}), &with_estimate);
     const double without = measure(

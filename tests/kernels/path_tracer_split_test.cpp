@@ -65,7 +65,7 @@ ReferenceImage pathTrace(const Scene& scene, int spp) {
 }
 
 TEST(PathTracerSplit, WithoutScatteringEveryPathIsUnscattered) {
-  const ReferenceImage r = pathTrace(splitScene("[0, 0]", "improved"), 16);
+  const ReferenceImage r = pathTrace(splitScene("[0, 0]", "discrete_ordinates"), 16);
   ASSERT_EQ(r.direct.pixels.size(), r.rgb.pixels.size());
   double lit = 0;
   for (size_t i = 0; i < r.rgb.pixels.size(); ++i) {
@@ -118,11 +118,11 @@ void compareSplit(const ReferenceImage& r, const char* model, double direct_tol,
 
 TEST(PathTracerSplit, EachLayerOfTheFastModelsHasItsOwnError) {
   // The path tracer does not depend on the fast model: one run serves both.
-  const ReferenceImage r = pathTrace(splitScene("[0.4, 0.3]", "improved"), 4096);
-  // Measured (PoCL, 4096 paths, seed 1): improved direct +0.021 (path tracer +- 0.020), backscatter +
+  const ReferenceImage r = pathTrace(splitScene("[0.4, 0.3]", "discrete_ordinates"), 4096);
+  // Measured (PoCL, 4096 paths, seed 1): discrete-ordinates direct +0.021 (path tracer +- 0.020), backscatter +
   // forward -0.002 (+- 0.004); thesis direct +0.41 (its bottom light ignores g: K_d alone), the rest
   // +0.061. Bounds: the measured error plus three standard errors.
-  compareSplit(r, "improved", 0.08, 0.015);
+  compareSplit(r, "discrete_ordinates", 0.08, 0.015);
   compareSplit(r, "thesis", 0.47, 0.075);
 }
 

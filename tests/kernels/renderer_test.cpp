@@ -170,13 +170,13 @@ TEST(Renderer, UnderwaterSunDoesNotRebuildTheRaycast) {
   EXPECT_EQ(f.rgb.pixels, fresh("seabed.toml", at).rgb.pixels);
 }
 
-// underwater.model = "improved": the band table holds the start factors of the camera's integrals
+// underwater.model = "discrete_ordinates": the band table holds the start factors of the camera's integrals
 // (e^{-k o_d} and its kin at the camera's depth, UWI_ROW_EXP_*), so a frame after the camera moved in
 // depth (camera.* sets the G-buffer pass up again, band table included) is the frame a new renderer
 // makes there.
-TEST(Renderer, UnderwaterImprovedCameraMovedInDepthMatchesAFreshFrame) {
+TEST(Renderer, UnderwaterOrdinatesCameraMovedInDepthMatchesAFreshFrame) {
   std::vector<Override> at = smallSeabed();
-  at.push_back(set("underwater.model", "\"improved\""));
+  at.push_back(set("underwater.model", "\"discrete_ordinates\""));
   Renderer renderer(test::testDevice(), sceneFile("seabed.toml"), at, shippedPasses());
   const FrameResult first = renderer.render();
   const Override moved = set("camera.position", "[0.0, -2.0, 0.0]");
@@ -190,11 +190,11 @@ TEST(Renderer, UnderwaterImprovedCameraMovedInDepthMatchesAFreshFrame) {
 
 // An underwater animation: surface.time alone changes the waves' phase, which the underwater setup holds
 // as one number (the caustics' time); the set-up pass patches it instead of remaking the setup (the
-// improved model's per-band tables), and the frame is still the fresh renderer's, bit for bit, in a
+// discrete-ordinates model's per-band tables), and the frame is still the fresh renderer's, bit for bit, in a
 // scene with texture caustics, which read that time.
 TEST(Renderer, UnderwaterSurfaceTimeKeepsTheSetupAndMatchesAFreshFrame) {
   std::vector<Override> at = smallSeabed();
-  at.push_back(set("underwater.model", "\"improved\""));
+  at.push_back(set("underwater.model", "\"discrete_ordinates\""));
   at.push_back(set("underwater.caustics", "\"texture\""));
   Renderer renderer(test::testDevice(), sceneFile("seabed.toml"), at, shippedPasses());
   const FrameResult first = renderer.render();
@@ -242,7 +242,7 @@ TEST(Renderer, CameraCurvesAreReadOnceAcrossUpdates) {
 }
 
 // A froxel knob sets up only the froxel pass; the G-buffer does not run again, the shading that
-// reads the new volume does, and the water's point spread (the improved model, the default) that
+// reads the new volume does, and the water's point spread (the discrete-ordinates model, the default) that
 // reads the shading.
 TEST(Renderer, FroxelKnobRebuildsOnlyTheFroxelPass) {
   Renderer renderer(test::testDevice(), sceneFile("seabed.toml"), smallSeabed(), shippedPasses());

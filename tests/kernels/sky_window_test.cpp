@@ -6,9 +6,9 @@
 // CIE clear, Preetham (T 3 and 9) and image (scenes/textures/sky_clear.exr) skies. Then the
 // direction of the change: a Preetham sky brightens the
 // window towards the sun and darkens it away from it, where a uniform sky is symmetric.
-// The thesis's model, pinned: the expected value is its window term (the improved model, the default,
+// The thesis's model, pinned: the expected value is its window term (the discrete-ordinates model, the default,
 // attenuates the window by delta-M's c', adds the surface's reflection and blurs the forward light, so
-// this closed form is not its own; underwater_improved_kernel_test.cpp checks that one against its
+// this closed form is not its own; underwater_ordinates_kernel_test.cpp checks that one against its
 // double evaluation).
 #include <gtest/gtest.h>
 

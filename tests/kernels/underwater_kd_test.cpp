@@ -3,7 +3,7 @@
 // an ordinary seabed and its stiff variants (002 eq. 4.7's singular line, camera at the surface and at
 // 1000 m, rays straight up and down, n = 1 and 1000 bands, turbid 9C at long range). No NaN/Inf.
 // The froxel term is off here (single_scattering = false); froxel_test.cpp covers it. The thesis's
-// model, pinned (the default is "improved"; underwater_improved_kernel_test.cpp tests that one).
+// model, pinned (the default is "discrete_ordinates"; underwater_ordinates_kernel_test.cpp tests that one).
 #include <gtest/gtest.h>
 
 #include <ostream>
@@ -172,15 +172,15 @@ TEST(UnderwaterKdKernel, ScatteringFreeWaterShowsOnlyTheLitSurfaces) {
   EXPECT_GT(peak, 0.0f);
 }
 
-// Both underwater models: spectral.exr's bands through the sensor are image.exr's RGB. The improved
+// Both underwater models: spectral.exr's bands through the sensor are image.exr's RGB. The discrete-ordinates
 // model's point spread (water_spread.cl) is off in these two tests: it splits each RGB channel's forward
 // light between its blur layers by the channel's mean scattering count, and each band by the band's own,
 // a split that is not linear in the light, so with it the two outputs differ by more (the test after
 // these two measures it).
-const std::vector<std::string> kModels = {"thesis", "improved"};
+const std::vector<std::string> kModels = {"thesis", "discrete_ordinates"};
 std::vector<seasim::Override> model(const std::string& name) {
   std::vector<seasim::Override> o = {set("underwater.model", "\"" + name + "\"")};
-  if (name == "improved") o.push_back(set("underwater.point_spread", "false"));
+  if (name == "discrete_ordinates") o.push_back(set("underwater.point_spread", "false"));
   return o;
 }
 std::vector<seasim::Override> with(std::vector<seasim::Override> a, const std::vector<seasim::Override>& b) {
@@ -226,12 +226,12 @@ TEST(UnderwaterKdKernel, SpectralOutputMatchesTheRgbSum) {
 // spectral.exr holds the whole image: with the froxel single scattering on, the bands weighted by the
 // sensor give image.exr's RGB. With spectral injection they differ only in the in-slice fraction (the
 // image's uses the RGB pseudo-bands' extinction, the bands their own c): measured 3.3e-6 (thesis) and
-// 3.0e-6 (improved). With RGB injection the image's froxel term is the three pseudo-bands' cheaper
+// 3.0e-6 (discrete ordinates). With RGB injection the image's froxel term is the three pseudo-bands' cheaper
 // approximation while spectral.exr integrates every band: measured 3.5e-3 and 3.0e-3 apart. The froxel
 // term's own size, to see that it is there: the frame with it and no other in-scatter
 // (multiple_scattering = false) against the frame with neither, up to 0.052 (thesis) and 0.045
-// (improved) of a pixel; a term missing from spectral.exr would show twice over at the loosest
-// tolerance. (Against the same frame without froxels the improved model differs only by the froxels'
+// (discrete ordinates) of a pixel; a term missing from spectral.exr would show twice over at the loosest
+// tolerance. (Against the same frame without froxels the discrete-ordinates model differs only by the froxels'
 // shadows: without them it has the unshadowed single scattering in closed form.)
 TEST(UnderwaterKdKernel, SpectralOutputWithFroxelsMatchesTheRgbSum) {
   for (const std::string& m : kModels)
@@ -268,7 +268,7 @@ TEST(UnderwaterKdKernel, SpectralOutputWithFroxelsMatchesTheRgbSum) {
     }
 }
 
-// The improved model with its point spread (the default where g > 0): image.exr blurs each RGB
+// The discrete-ordinates model with its point spread (the default where g > 0): image.exr blurs each RGB
 // channel's forward light in layers split by that channel's mean scattering count (water_spread.h,
 // uws_layer_share), spectral.exr each band's by its own count. The split is piecewise linear in the
 // count, not linear in the light, so sensor(spectral.exr) is not image.exr's RGB exactly. Not fixed:
@@ -279,14 +279,14 @@ TEST(UnderwaterKdKernel, SpectralOutputWithThePointSpreadIsTheRgbSumWithinItsCha
     SCOPED_TRACE(single);
     const seasim::Scene scene = seasim::parseScene(
         kScene, "test_seabed.toml",
-        {set("spectral.spectral_exr", "true"), set("spectral.count", "5"), set("underwater.model", "\"improved\""),
+        {set("spectral.spectral_exr", "true"), set("spectral.count", "5"), set("underwater.model", "\"discrete_ordinates\""),
          set("underwater.single_scattering", single)});
     const seasim::Plan plan = seasim::makePlan(scene);
     ASSERT_TRUE(plan.hasPass("water_spread"));
     const seasim::FrameResult frame = seasim::renderFrame(seasim::test::testDevice(), scene, plan);
     EXPECT_EQ(frame.nonfinite, 0);
     const double worst = spectralVsImage(scene, frame, 5);
-    std::printf("[ measured ] improved with its point spread, froxels %s: sensor(spectral) vs image.exr, max relative "
+    std::printf("[ measured ] discrete-ordinates with its point spread, froxels %s: sensor(spectral) vs image.exr, max relative "
                 "difference %.2g\n",
                 single, worst);
     EXPECT_LT(worst, 1e-2);

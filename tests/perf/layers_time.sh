@@ -6,7 +6,7 @@
 # geometry, ..., none, geometry, ...) so that a shared machine's load falls on every variant alike.
 # Prints one CSV row per round and variant, then per variant the medians over rounds and kd_multiple's
 # ratio to "none" in the same round (the ratio is the figure to quote on a loaded machine).
-# Usage: tests/perf/layers_time.sh [SCENE]   (ROUNDS=5, SEASIM=build/seasim, MODEL=thesis|improved)
+# Usage: tests/perf/layers_time.sh [SCENE]   (ROUNDS=5, SEASIM=build/seasim, MODEL=thesis|discrete_ordinates)
 SCENE=${1:-scenes/seabed.toml}
 ROUNDS=${ROUNDS:-5}
 SEASIM=${SEASIM:-build/seasim}

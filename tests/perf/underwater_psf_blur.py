@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""underwater_psf_blur.py — how far a point-spread of the water would move the improved model's regions
+"""underwater_psf_blur.py — how far a point-spread of the water would move the discrete-ordinates model's regions
 (docs/journal/underwater_regions_3_*.md): a measurement on `seasim underwater-regions --dump DIR` files, not a model.
 
 Delta-M counts the light scattered by a few degrees as unscattered: the model sends a hit's light on from
@@ -31,7 +31,7 @@ def load(path, width, height):
     if len(rows) != width * height:
         raise SystemExit(f"{path}: {len(rows)} pixels, expected {width}x{height} (--width, --height)")
     if "forward" not in rows[0]:
-        raise SystemExit(f"{path}: no 'forward' column (not a dump of the improved model)")
+        raise SystemExit(f"{path}: no 'forward' column (not a dump of the discrete-ordinates model)")
     col = lambda k: np.array([float(r[k]) for r in rows]).reshape(height, width)
     region = np.array([r["region"] for r in rows]).reshape(height, width)
     return col("fast_improved"), col("reference"), col("forward"), region

@@ -1,7 +1,7 @@
 #!/bin/sh
 # underwater_regions_fit.sh — how the "improved" underwater model's table of diffuse mean cosines
 # (The two-stream's tables: run with underwater.improved_diffuse = "two_stream".)
-# (diffuseMeanCosines in host/underwater/underwater_improved_setup.cpp) was fitted: on the TRAINING grid
+# (diffuseMeanCosines in host/underwater/underwater_ordinates_setup.cpp) was fitted: on the TRAINING grid
 # of tests/perf/underwater_regions.sh (its references, cached), every pair (μ̄_down, μ̄_up) below is set
 # on the fast renders only (`--model-set`, the references untouched), and
 # tests/perf/underwater_regions_fit.py prints per g how many region cases are within 5 % and the RMS of

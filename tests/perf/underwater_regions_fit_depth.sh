@@ -4,7 +4,7 @@
 # (docs/journal/underwater_regions_2_*.md): the diffuse field's k taken as its mean log-slope over the camera's depth, a field
 # of the two-stream's fast mode and the asymptotic mode e^{-K∞ y} holding the share w of it at the
 # surface (`underwater.improved_asymptotic_share`: depthMeanDiffuseK in
-# host/underwater/underwater_improved_setup.h; 0 = the two-stream's surface k). On the
+# host/underwater/underwater_ordinates_setup.h; 0 = the two-stream's surface k). On the
 # TRAINING grid of tests/perf/underwater_regions.sh only (its references, cached), each w below is set
 # on the fast renders only (`--model-set`, the references untouched); tests/perf/underwater_regions_fit.py
 # prints per g the region cases within 5 % and the RMS of ratio - 1. The held-out grid

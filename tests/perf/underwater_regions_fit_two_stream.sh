@@ -2,7 +2,7 @@
 # underwater_regions_fit_two_stream.sh — how the "improved" underwater model's two-stream closure and
 # (The two-stream's tables: run with underwater.improved_diffuse = "two_stream".)
 # mean cosines per mode were chosen (docs/journal/underwater_regions_2_*.md): the closure (`underwater.improved_two_stream`,
-# quadrature or asymptotic: TwoStreamClosure in host/underwater/underwater_improved_setup.h), the mean
+# quadrature or asymptotic: TwoStreamClosure in host/underwater/underwater_ordinates_setup.h), the mean
 # cosines of the two-stream's own modes e^{-k y}, e^{-k (H - y)} (μ̄_down, μ̄_up) and of the sun beam's
 # diffuse offspring e^{-m y} (μ̄_beam_down, μ̄_beam_up). On the TRAINING grid of
 # tests/perf/underwater_regions.sh only (its references, cached), each combination below is set on the

@@ -3,7 +3,7 @@
 # (`--views sun`: the camera of tests/perf/underwater_regions.sh turned to the sun's direction in the
 # water; the whole frame is water looking up, Snell's window and the beam's forward peak), which neither
 # grid looks at: the training grid's waters and g, a 5 m bottom and none. Not part of the fit or of the
-# training and held-out counts: it shows where the improved model's TMS term counts the forward peak twice
+# training and held-out counts: it shows where the discrete-ordinates model's TMS term counts the forward peak twice
 # (docs/journal/underwater_regions_4_*.md). 2048 paths per pixel through the pixel's centre, up to 16384 where a region is noisier
 # than 1.8 %; the references cached.
 # Usage: tests/perf/underwater_regions_sun.sh [csv, default results/underwater/regions_sun.csv]

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """underwater_regions_terms.py — the per-pixel CSVs of `seasim underwater-regions --dump DIR` summed by
 region, and the water looking up split at Snell's window (d_y above or below cos 48.6°): per part the
-reference, the improved model's render and its terms (reference/underwater_improved_terms.h), each as a
+reference, the discrete-ordinates model's render and its terms (reference/underwater_ordinates_terms.h), each as a
 fraction of the reference, so a miss shows which term it is in; refl_obj: the fraction of the
 part's pixels whose reflected ray meets an object (which the model does not trace).
 Usage: tests/perf/underwater_regions_terms.py DIR/*.csv"""

@@ -1,7 +1,7 @@
 #!/bin/sh
 # underwater_sun_aureole.sh — the radiance around the refracted sun (`underwater-regions --views sun`, the
 # study's camera turned to the sun over a 5 m bottom) in the and coastal water at g = 0.9 and 0.95,
-# the thesis and improved models against the path tracer, binned by the angle to the sun:
+# the thesis and discrete-ordinates models against the path tracer, binned by the angle to the sun:
 # results/underwater/sun_aureole.csv and .svg (tests/perf/underwater_sun_aureole.py). The references are
 # those of tests/perf/underwater_regions_sun.sh (cached).
 # Usage: tests/perf/underwater_sun_aureole.sh [out prefix, default results/underwater/sun_aureole]

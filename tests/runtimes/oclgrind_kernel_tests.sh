@@ -5,8 +5,8 @@
 #   tests/runtimes/oclgrind_kernel_tests.sh KERNEL_TEST_BINARY WORK_DIR GTEST_FILTER
 # Left out (measured with a 30 s cap per suite): the suites that take longer on Oclgrind; Device.* and
 # DeviceCache.*, which test PoCL's own device selection and cache; and all but two cases of the
-# improved underwater kernel (its 23 take 285 s on Oclgrind; the ordinary seabed and three bands, 5 s,
-# are in; common/underwater_improved_bands.h says why its lanes return through out pointers: Oclgrind
+# discrete-ordinates underwater kernel (its 23 take 285 s on Oclgrind; the ordinary seabed and three bands, 5 s,
+# are in; common/underwater_ordinates_bands.h says why its lanes return through out pointers: Oclgrind
 # 21.10 cannot run the llvm.experimental.noalias.scope.decl that an inlined struct return brings).
 set -uo pipefail
 binary=${1:?usage: oclgrind_kernel_tests.sh KERNEL_TEST_BINARY WORK_DIR GTEST_FILTER}

@@ -1,4 +1,4 @@
-// discrete_ordinates_test.cpp — the plane-parallel discrete-ordinates solver behind the improved
+// discrete_ordinates_test.cpp — the plane-parallel discrete-ordinates solver behind the discrete-ordinates
 // underwater model's diffuse field (host/underwater/discrete_ordinates.*): against an
 // independent solution (tests/perf/plane_parallel_dom.py: the exact HG phase averaged over azimuth
 // numerically, no delta-M, 100 streams per hemisphere, numpy's general eigen-solver), the isotropic
@@ -14,7 +14,7 @@
 #include <stdexcept>
 
 #include "underwater/discrete_ordinates.h"
-#include "underwater/underwater_improved_setup.h"
+#include "underwater/underwater_ordinates_setup.h"
 
 namespace {
 

@@ -54,7 +54,7 @@ TEST(ExpectedError, AMeasuredUnderwaterCaseReportsThatCaseAndItsTable) {
   ASSERT_EQ(errors.size(), 1u);
   const ExpectedError& e = errors[0];
   EXPECT_EQ(e.view, "underwater");
-  EXPECT_EQ(e.model, "improved");  // the default
+  EXPECT_EQ(e.model, "discrete_ordinates");  // the default
   EXPECT_TRUE(e.measured);
   EXPECT_NEAR(e.distance, 0.0, 1e-9);
   EXPECT_NEAR(e.nearest.a, 0.1, 1e-9);
@@ -62,7 +62,7 @@ TEST(ExpectedError, AMeasuredUnderwaterCaseReportsThatCaseAndItsTable) {
   EXPECT_NEAR(e.nearest.g, 0.9, 1e-9);
   EXPECT_NEAR(e.nearest.bottom_m, 5.0, 1e-9);
   EXPECT_EQ(e.table, "results/underwater/regions.csv");
-  EXPECT_LT(e.max_abs_error, 0.05);  // results/BENCHMARKS.md: every improved region within 5 %
+  EXPECT_LT(e.max_abs_error, 0.05);  // results/BENCHMARKS.md: every discrete-ordinates region within 5 %
   const auto thesis = seasim::expectedErrors(scene(kUnderwater, {{"underwater.model", "\"thesis\""}}));
   EXPECT_EQ(thesis[0].model, "thesis");
   EXPECT_TRUE(thesis[0].measured);
@@ -108,7 +108,7 @@ TEST(ExpectedError, DistanceIsOneStepPerDoublingTenthOfGAndFifteenDegrees) {
 TEST(ExpectedError, TheLookupsOwnErrorLeaveOneOut) {
   // Each measured regime predicted from the nearest other regime (cases at distance 0, the other
   // views of the same regime, left out with it), where that one is within the threshold.
-  for (const char* vm : {"sea/paper", "sea/multiple", "underwater/thesis", "underwater/improved"}) {
+  for (const char* vm : {"sea/paper", "sea/multiple", "underwater/thesis", "underwater/discrete_ordinates"}) {
     const std::string view = std::string(vm).substr(0, std::string(vm).find('/'));
     const std::string model = std::string(vm).substr(view.size() + 1);
     const std::vector<MeasuredCase> cases = seasim::loadMeasuredCases(view, model);

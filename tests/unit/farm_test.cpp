@@ -136,7 +136,7 @@ TEST_F(Farm, EstimatedCostScalesWithPixelsBandsAndPasses) {
   EXPECT_GT(estimateItemCost(finer, makePlan(finer)), estimateItemCost(second, makePlan(second)));
 }
 
-// Under water the estimate follows the model and the layers kd_multiple computes: the improved model
+// Under water the estimate follows the model and the layers kd_multiple computes: the discrete-ordinates model
 // costs about 4x the thesis's per pixel-band in kd_multiple, and the split and veiling layers add a
 // second and third evaluation; geometry layers alone barely change it.
 TEST_F(Farm, EstimatedUnderwaterCostFollowsModelAndLayers) {
@@ -146,10 +146,10 @@ TEST_F(Farm, EstimatedUnderwaterCostFollowsModelAndLayers) {
                                Override{"underwater.single_scattering", "false", {}}, Override{"outputs.layers", layers, {}}});
     return double(estimateItemCost(s, makePlan(s)));
   };
-  EXPECT_GT(cost("improved", "[]"), 2.0 * cost("thesis", "[]"));
+  EXPECT_GT(cost("discrete_ordinates", "[]"), 2.0 * cost("thesis", "[]"));
   EXPECT_GT(cost("thesis", R"(["direct"])"), 1.1 * cost("thesis", "[]"));
   EXPECT_GT(cost("thesis", R"(["beta_b"])"), cost("thesis", R"(["direct"])"));
-  EXPECT_GT(cost("improved", R"(["beta_b"])"), cost("improved", "[]"));
+  EXPECT_GT(cost("discrete_ordinates", R"(["beta_b"])"), cost("discrete_ordinates", "[]"));
   EXPECT_LT(cost("thesis", R"(["range"])"), 1.05 * cost("thesis", "[]"));
 }
 

@@ -153,7 +153,7 @@ TEST_F(FaultLimits, CgroupLimitsAreReadForV1AndV2AndTheTightestLevelWins) {
 TEST_F(FaultLimits, UnderwaterShadowMapAndForwardMomentsAreInTheBudget) {
   const Scene seabed = loadScene(std::string(SEASIM_SOURCE_DIR) + "/scenes/seabed.toml",
                                  {{"quality.shadow_map_size", "4096", {"t", 1}},
-                                  {"underwater.model", "\"improved\"", {"t", 2}},
+                                  {"underwater.model", "\"discrete_ordinates\"", {"t", 2}},
                                   {"underwater.point_spread", "true", {"t", 3}},
                                   {"camera.width", "100", {"t", 4}},
                                   {"camera.height", "50", {"t", 5}}});

@@ -1,5 +1,5 @@
-// The forward peak of the improved underwater model (host/underwater/forward_peak.h and
-// common/underwater_improved.h's uwi_tms_phase, uwi_aureole, uwi_aureole_share, uwi_forward_peak): the
+// The forward peak of the discrete-ordinates underwater model (host/underwater/forward_peak.h and
+// common/underwater_ordinates.h's uwi_tms_phase, uwi_aureole, uwi_aureole_share, uwi_forward_peak): the
 // ceiling takes exactly delta-M's f off the phase, the peak's Legendre moments are its own, and the aureole
 // at the camera holds the delta-M beam's surplus over the unscattered beam, in
 // float and double, at and near the singular inputs (no peak, g -> 1, n -> 0, a camera at the surface); the
@@ -11,7 +11,7 @@
 
 #include "math/kernel_math.h"
 #include "underwater/forward_peak.h"
-#include "underwater_improved_fixtures.h"
+#include "underwater_ordinates_fixtures.h"
 
 namespace {
 
@@ -215,7 +215,7 @@ TEST(ForwardPeak, AureoleHoldsTheBeamsSurplusInFloatAndDouble) {
 
 namespace {
 
-// The sand the objects hide or shade (common/underwater_improved.h uwi_sand_seen_lit, uwi_sand_share): the share of the sunlit
+// The sand the objects hide or shade (common/underwater_ordinates.h uwi_sand_seen_lit, uwi_sand_share): the share of the sunlit
 // sand's light a water point gets, against objects whose answer is known, in float and double.
 using seasim::testing::uwTestBox;
 

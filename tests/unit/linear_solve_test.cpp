@@ -1,5 +1,5 @@
 // linear_solve_test.cpp — the dense Gaussian elimination behind the discrete-ordinates solver and the
-// improved model's fits (host/math/linear_solve.*): a system that needs its rows swapped, and singular
+// discrete-ordinates model's fits (host/math/linear_solve.*): a system that needs its rows swapped, and singular
 // ones reported rather than divided by.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// ordinates_high_order_test.cpp — the improved underwater model's view-ray source fitted to a high-order
+// ordinates_high_order_test.cpp — the discrete-ordinates underwater model's view-ray source fitted to a high-order
 // discrete-ordinates solution (host/underwater/ordinates_high_order.*, underwater.improved_source_streams):
 // the exact phase's azimuth modes against quadrature; the field's source-function
 // integration against the solver's own radiance at its cosines; the kernel's radiance from the fitted
@@ -13,9 +13,9 @@
 #include "math/kernel_math.h"
 #include "underwater/discrete_ordinates.h"
 #include "underwater/ordinates_high_order.h"
-#include "underwater/underwater_improved_ordinates.h"
+#include "underwater/underwater_ordinates_solver.h"
 
-#include "underwater_improved_fixtures.h"
+#include "underwater_ordinates_fixtures.h"
 
 namespace {
 

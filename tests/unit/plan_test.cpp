@@ -212,10 +212,10 @@ TEST(Plan, UnderwaterLeavesOutWhatTheSceneTurnsOff) {
   for (const char* absent : {"raycast", "froxel", "kd_multiple"}) EXPECT_FALSE(plan.hasPass(absent)) << absent;
 }
 
-TEST(Plan, WaterSpreadOnlyForTheImprovedModelWithAForwardPhase) {
-  // The improved model scales by delta-M: with g > 0 its forward light is kept apart and spread.
+TEST(Plan, WaterSpreadOnlyForTheOrdinatesModelWithAForwardPhase) {
+  // The discrete-ordinates model scales by delta-M: with g > 0 its forward light is kept apart and spread.
   Plan plan = makePlan(parseScene(kFlatSea, "flat.toml",
-                                  {at("camera.position", "[0, -5, 0]"), at("underwater.model", "\"improved\""),
+                                  {at("camera.position", "[0, -5, 0]"), at("underwater.model", "\"discrete_ordinates\""),
                                    at("water.g", "0.9")}));
   ASSERT_TRUE(plan.hasPass("water_spread"));
   EXPECT_TRUE(hasDefine(plan, "kd_multiple", "SEASIM_UWI_SPREAD=1"));
@@ -230,8 +230,8 @@ TEST(Plan, WaterSpreadOnlyForTheImprovedModelWithAForwardPhase) {
   // The thesis's model, an isotropic phase, or the spread turned off: neither the pass nor the define.
   for (const std::vector<seasim::Override>& off :
        {std::vector<seasim::Override>{at("underwater.model", "\"thesis\""), at("water.g", "0.9")},
-        std::vector<seasim::Override>{at("underwater.model", "\"improved\""), at("water.g", "0.0")},
-        std::vector<seasim::Override>{at("underwater.model", "\"improved\""), at("water.g", "0.9"),
+        std::vector<seasim::Override>{at("underwater.model", "\"discrete_ordinates\""), at("water.g", "0.0")},
+        std::vector<seasim::Override>{at("underwater.model", "\"discrete_ordinates\""), at("water.g", "0.9"),
                                       at("underwater.point_spread", "false")}}) {
     std::vector<seasim::Override> overrides = off;
     overrides.push_back(at("camera.position", "[0, -5, 0]"));
@@ -241,7 +241,7 @@ TEST(Plan, WaterSpreadOnlyForTheImprovedModelWithAForwardPhase) {
     EXPECT_TRUE(hasDefine(plan, "kd_multiple", "SEASIM_UWI_SPREAD=0"));
   }
   // Above the water there is nothing to spread.
-  plan = makePlan(parseScene(kFlatSea, "flat.toml", {at("underwater.model", "\"improved\""), at("water.g", "0.9")}));
+  plan = makePlan(parseScene(kFlatSea, "flat.toml", {at("underwater.model", "\"discrete_ordinates\""), at("water.g", "0.9")}));
   EXPECT_FALSE(plan.hasPass("water_spread"));
 }
 
@@ -318,7 +318,7 @@ direction = [0, -1, -1]
 }
 
 // rov_lights.toml: ray cast, froxels (sun up, single scattering), K_d shading, the water's point spread
-// around the objects (the improved model, the default), the lamps, the check;
+// around the objects (the discrete-ordinates model, the default), the lamps, the check;
 // texture caustics need no ocean and no caustic maps; nothing of the sea seen from above or of air.
 TEST(Plan, RovLightsRunsTheUnderwaterPassesAndTheLampsOnly) {
   const Plan plan = makePlan(seasim::loadScene(std::string(SEASIM_SOURCE_DIR) + "/scenes/rov_lights.toml"));

@@ -108,7 +108,7 @@ TEST(UnderwaterBands, Expm1OverXLanesIsTheScalarFunction) {
   }
 }
 
-// kd_exp_integral_ends_b (no exp: its start factor e^{-k o_d} given, as the improved model's rows give
+// kd_exp_integral_ends_b (no exp: its start factor e^{-k o_d} given, as the discrete-ordinates model's rows give
 // it, and its far end e^{-(k y(S) + c S)}, as the hit's irradiance takes it) against the general
 // kd_exp_integral in double: across its switch to the series at |t| = 0.5, on
 // the singular line k d_y = c (and 1e-7 off it), deep water (S = ∞), a camera at 1000 m looking up

@@ -1,6 +1,6 @@
 // underwater_model_option_test.cpp — underwater.model: the parser's choice with file:line:key
 // errors, the planner's SEASIM_UNDERWATER_MODEL define on kd_multiple, and the set-up's per-band block
-// that only "improved" fills.
+// that only "discrete_ordinates" fills.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -10,11 +10,11 @@
 #include "scene/scene_parser.h"
 #include "spectral/sensor.h"
 #include "spectral/wavelength_grid.h"
-#include "underwater/underwater_improved_setup.h"
+#include "underwater/underwater_ordinates_setup.h"
 #include "underwater/underwater_setup.h"
 #include "util/error.h"
 
-#include "underwater_improved_fixtures.h"
+#include "underwater_ordinates_fixtures.h"
 
 namespace {
 
@@ -46,9 +46,9 @@ bool hasDefine(const Plan& plan, const std::string& define) {
   return p && std::find(p->defines.begin(), p->defines.end(), define) != p->defines.end();
 }
 
-TEST(UnderwaterModelOption, DefaultIsTheImprovedModelTheThesisByNameAndThePlanSaysSo) {
+TEST(UnderwaterModelOption, DefaultIsTheDiscreteOrdinatesModelTheThesisByNameAndThePlanSaysSo) {
   const Scene scene = parseScene(kScene, "uw.toml");
-  EXPECT_EQ(scene.underwater.model, UnderwaterDesc::Model::Improved);
+  EXPECT_EQ(scene.underwater.model, UnderwaterDesc::Model::DiscreteOrdinates);
   const Plan plan = makePlan(scene);
   EXPECT_TRUE(hasDefine(plan, "SEASIM_UNDERWATER_MODEL=1"));
   EXPECT_FALSE(hasDefine(plan, "SEASIM_UNDERWATER_MODEL=0"));
@@ -57,23 +57,39 @@ TEST(UnderwaterModelOption, DefaultIsTheImprovedModelTheThesisByNameAndThePlanSa
   EXPECT_FALSE(hasDefine(thesis, "SEASIM_UNDERWATER_MODEL=1"));
 }
 
-TEST(UnderwaterModelOption, ImprovedSetsTheDefineAndFillsThePerBandBlock) {
-  const Scene scene = parseScene(withModel("\"improved\""), "uw.toml");
-  EXPECT_EQ(scene.underwater.model, UnderwaterDesc::Model::Improved);
+// "improved", the discrete-ordinates model's earlier name, still reads as that model, with the same
+// plan; any other name is refused naming the key and the names allowed.
+TEST(UnderwaterModelOption, TheEarlierNameImprovedIsTheDiscreteOrdinatesModel) {
+  const Scene alias = parseScene(withModel("\"improved\""), "uw.toml");
+  EXPECT_EQ(alias.underwater.model, UnderwaterDesc::Model::DiscreteOrdinates);
+  EXPECT_EQ(makePlan(alias).toText(), makePlan(parseScene(withModel("\"discrete_ordinates\""), "uw.toml")).toText());
+  try {
+    (void)parseScene(withModel("\"better\""), "uw.toml");
+    FAIL() << "an unknown model was accepted";
+  } catch (const std::exception& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("model"), std::string::npos) << what;
+    EXPECT_NE(what.find("discrete_ordinates"), std::string::npos) << what;
+  }
+}
+
+TEST(UnderwaterModelOption, OrdinatesModelSetsTheDefineAndFillsThePerBandBlock) {
+  const Scene scene = parseScene(withModel("\"discrete_ordinates\""), "uw.toml");
+  EXPECT_EQ(scene.underwater.model, UnderwaterDesc::Model::DiscreteOrdinates);
   const Plan plan = makePlan(scene);
   EXPECT_TRUE(hasDefine(plan, "SEASIM_UNDERWATER_MODEL=1"));
-  EXPECT_NE(plan.find("kd_multiple")->why.find("improved"), std::string::npos);
+  EXPECT_NE(plan.find("kd_multiple")->why.find("discrete_ordinates"), std::string::npos);
   const WavelengthGrid grid = makeGrid(4, 400, 700);
-  const UnderwaterSetup improved = makeUnderwaterSetup(scene, grid, makeSensor("cie1931", grid, true, ""));
-  ASSERT_EQ(improved.improved.size(), 4u);
-  for (const UwiBand& b : improved.improved) {
+  const UnderwaterSetup ordinates = makeUnderwaterSetup(scene, grid, makeSensor("cie1931", grid, true, ""));
+  ASSERT_EQ(ordinates.ordinates.size(), 4u);
+  for (const UwiBand& b : ordinates.ordinates) {
     EXPECT_GT(b.c_dm, 0.0f);
-    EXPECT_LT(b.c_dm, improved.bands[0].c + 10.0f);
+    EXPECT_LT(b.c_dm, ordinates.bands[0].c + 10.0f);
     EXPECT_GT(b.k, 0.0f);
   }
   const UnderwaterSetup thesis =
       makeUnderwaterSetup(parseScene(withModel("\"thesis\""), "uw.toml"), grid, makeSensor("cie1931", grid, true, ""));
-  EXPECT_TRUE(thesis.improved.empty());
+  EXPECT_TRUE(thesis.ordinates.empty());
 }
 
 TEST(UnderwaterModelOption, BadValuesNameFileLineAndKey) {
@@ -91,7 +107,7 @@ TEST(UnderwaterModelOption, BadValuesNameFileLineAndKey) {
     parseScene(kScene, "uw.toml", {{"underwater.model", "\"improv\"", {"command line", 0}}});
     ADD_FAILURE() << "accepted --set underwater.model=\"improv\"";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("did you mean 'improved'"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("did you mean 'discrete_ordinates'"), std::string::npos) << e.what();
   }
 }
 
@@ -100,7 +116,7 @@ TEST(UnderwaterModelOption, MeanCosineKeysOverrideTheFittedTableOrAreRejectedWit
   const Sensor sensor = makeSensor("cie1931", grid, true, "");
   // With the two-stream's diffuse field, default: the fitted table at the water's g (jerlov IB's default
   // g); the scalar irradiance of each exponential is its plane irradiances over the streams' mean cosines.
-  const std::string two = "\"improved\"\nimproved_diffuse = \"two_stream\"";
+  const std::string two = "\"discrete_ordinates\"\nimproved_diffuse = \"two_stream\"";
   const Scene plain = parseScene(withModel(two), "uw.toml");
   const DiffuseMeanCosines table = diffuseMeanCosines(plain.water.g);
   const UnderwaterSetup a = makeUnderwaterSetup(plain, grid, sensor);
@@ -109,25 +125,25 @@ TEST(UnderwaterModelOption, MeanCosineKeysOverrideTheFittedTableOrAreRejectedWit
     EXPECT_FLOAT_EQ(ib.o2, float(ib.d2 / down + ib.u2 / up));
     EXPECT_FLOAT_EQ(ib.op, float(ib.dp / beam_down + ib.up / beam_up));
   };
-  scalar(a.improved[0], table.down, table.up, table.beam_down, table.beam_up);
+  scalar(a.ordinates[0], table.down, table.up, table.beam_down, table.beam_up);
   // Set: each key replaces its stream's value only.
   const Scene set = parseScene(withModel(two + "\nimproved_mean_cosine_down = 0.8"), "uw.toml");
   const UnderwaterSetup b = makeUnderwaterSetup(set, grid, sensor);
-  scalar(b.improved[1], 0.8, table.up, table.beam_down, table.beam_up);
+  scalar(b.ordinates[1], 0.8, table.up, table.beam_down, table.beam_up);
   // The beam's offspring's keys replace its pair only.
   const Scene beam = parseScene(withModel(two + "\nimproved_beam_mean_cosine_down = 0.9\n"
                                                 "improved_beam_mean_cosine_up = 0.45"), "uw.toml");
   const UnderwaterSetup c = makeUnderwaterSetup(beam, grid, sensor);
-  scalar(c.improved[1], table.down, table.up, 0.9, 0.45);
+  scalar(c.ordinates[1], table.down, table.up, 0.9, 0.45);
   // The closure key: "asymptotic" lowers k below the default (quadrature) one's; "quadrature" is it.
   const Scene asym = parseScene(withModel(two + "\nimproved_two_stream = \"asymptotic\""), "uw.toml");
   const Scene quad = parseScene(withModel(two + "\nimproved_two_stream = \"quadrature\""), "uw.toml");
-  EXPECT_LT(makeUnderwaterSetup(asym, grid, sensor).improved[1].k, 0.95f * a.improved[1].k);
-  EXPECT_EQ(makeUnderwaterSetup(quad, grid, sensor).improved[1].k, a.improved[1].k);
+  EXPECT_LT(makeUnderwaterSetup(asym, grid, sensor).ordinates[1].k, 0.95f * a.ordinates[1].k);
+  EXPECT_EQ(makeUnderwaterSetup(quad, grid, sensor).ordinates[1].k, a.ordinates[1].k);
   for (const std::string bad : {"improved_mean_cosine_up = 0.05", "improved_mean_cosine_down = 1.5",
                                 "improved_beam_mean_cosine_down = 1.5", "improved_beam_mean_cosine_up = -0.2",
                                 "improved_two_stream = \"cubic\"", "improved_diffuse = \"four_stream\""})
-    seasim::testing::expectImprovedSceneRejects(bad, "underwater." + bad.substr(0, bad.find(' ')));
+    seasim::testing::expectOrdinatesSceneRejects(bad, "underwater." + bad.substr(0, bad.find(' ')));
 }
 
 }  // namespace

@@ -1,7 +1,7 @@
 """Opt-in validation (make validate): the underwater flat-bottom scene with a dielectric
 surface, a uniform sky and the sun — seasim's all-orders path tracer (`seasim reference`) and the fast
 models (`seasim render`: K_d multiple scattering, froxel single scattering; the thesis's eq. 4.7 and
-underwater.model = "improved") against Mitsuba 3's volpath.
+underwater.model = "discrete_ordinates") against Mitsuba 3's volpath.
 Writes underwater_vs_mitsuba.md. The mapping of conventions is in water_scenes.py's docstring:
 one band at 560 nm (grey), water a, b -> sigma_t = a + b, albedo = b / (a + b), HG g; a dielectric
 rectangle at y = 0 with the water inside; a diffuse bottom; a `constant` sky; the sun as a
@@ -82,7 +82,7 @@ def compare(binary, s, region_fn, seeds, spp, paths, title):
         pt = ws.read_band(os.path.join(tmp, "pt.exr"))
         pt_se = ws.read_band(os.path.join(tmp, "pt.stderr.exr"))
         models = [("render (K_d + froxels)", []), ("render, no froxels", ["--set", "underwater.single_scattering=false"]),
-                  ("render, improved", ["--set", 'underwater.model="improved"'])]
+                  ("render, discrete-ordinates", ["--set", 'underwater.model="discrete_ordinates"'])]
         fast = []
         for _, extra in models:
             ws.seasim(binary, ["render", toml_ss, "-o", os.path.join(tmp, "r"), "--device", "pocl"] + extra, cache)

@@ -1,5 +1,5 @@
 // kd_multiple_node.cpp — "kd_multiple": the underwater frame's per-band shading (002 eq. 4.7-4.8,
-// or the discrete-ordinates model of common/underwater_improved.h; passes/underwater_shading.h). It
+// or the discrete-ordinates model of common/underwater_ordinates.h; passes/underwater_shading.h). It
 // reads the set-up's and the G-buffer's buffers and publishes the frame's "rgb", the forward light for
 // the point-spread and the ground-truth layers it writes.
 #include <memory>
@@ -106,7 +106,7 @@ PassDescriptor kdMultipleDescriptor() {
   d.rule = [](const Scene& scene, const Plan& so_far) -> std::optional<PassPlan> {
     if (!cameraUnderwater(scene)) return std::nullopt;
     const bool froxels = so_far.produces("froxel_volume");
-    const bool ordinates = scene.underwater.model == UnderwaterDesc::Model::Improved;
+    const bool ordinates = scene.underwater.model == UnderwaterDesc::Model::DiscreteOrdinates;
     std::vector<std::string> reads = {"underwater_setup", "gbuffer"};
     if (froxels) reads.push_back("froxel_volume");
     auto features = std::make_shared<KdFeatures>();
@@ -135,7 +135,7 @@ PassDescriptor kdMultipleDescriptor() {
                                            (features->band_layers ? 6 * scene.spectral.count : 0) +
                                            (features->veiling_bands ? scene.spectral.count : 0)));
     return planEntry(reads, writes,
-                     ordinates ? "camera below the surface: T L_s + L_MS per band, model \"improved\" (delta-M, the "
+                     ordinates ? "camera below the surface: T L_s + L_MS per band, model \"discrete_ordinates\" (delta-M, the "
                                  "diffuse field over the bottom by discrete ordinates or a two-stream, its in-scatter "
                                  "by direction)"
                                      + layers
@@ -172,7 +172,7 @@ PassDescriptor kdMultipleDescriptor() {
     return out;
   };
   // Per pixel and band, in units of sea_single: the thesis model 1.5x (seabed against flat_sea;
-  // results/BENCHMARKS.md "Farm shards"); the improved model 4.2x the thesis's kd_multiple, the split
+  // results/BENCHMARKS.md "Farm shards"); the discrete-ordinates model 4.2x the thesis's kd_multiple, the split
   // layers' second evaluation of the hit +0.7 and the veiling's in-scatter to infinity +0.8 of those
   // units for either model (kd_multiple's own ms at 320x180, 3 bands, three rounds:
   // BENCHMARKS "Ground-truth layers").

@@ -34,7 +34,7 @@ class UnderwaterSetupNode : public Pass {
       return;
     }
     // A change of surface.time alone moves the waves' phase, one number of the block (the caustics'
-    // time); remaking the rest, the improved model's per-band tables above all, would cost about
+    // time); remaking the rest, the discrete-ordinates model's per-band tables above all, would cost about
     // half a second per frame.
     const std::vector<std::string>& changed = ctx.changedKeys();
     const bool time_only = !changed.empty() && std::all_of(changed.begin(), changed.end(),

@@ -11,7 +11,7 @@
 #include "render/pass.h"
 #include "render/layer_target.h"
 #include "render/radiance_target.h"
-#include "underwater/underwater_improved_ordinates.h"  // kOrdinatesSourceMoments
+#include "underwater/underwater_ordinates_solver.h"  // kOrdinatesSourceMoments
 #include "util/error.h"
 
 namespace seasim {
@@ -30,7 +30,7 @@ class WaterSpreadNode : public Pass {
     const UwParams& p = res.read<UnderwaterSetupBuffers>("underwater_setup").setup.params;
     const int order = scene.underwater.improved_diffuse == UnderwaterDesc::Diffuse::DiscreteOrdinates
                           ? kOrdinatesSourceMoments
-                          : 2;  // the two-stream's f = g² (improvedDeltaM)
+                          : 2;  // the two-stream's f = g² (ordinatesDeltaM)
     pass_ = std::make_unique<WaterSpreadPass>(ctx.device(), entry_,
                                               makeWaterSpread(p.g, order, p.tan_half_fov_y, p.width, p.height),
                                               scene.spectral.spectral_exr ? p.band_count : 0);
@@ -70,7 +70,7 @@ PassDescriptor waterSpreadDescriptor() {
     std::vector<std::string> reads = {"underwater_setup", "gbuffer", "forward_light"};
     reads.insert(reads.end(), targets.begin(), targets.end());
     return planEntry(reads, targets,
-                     std::string("underwater.model \"improved\", water.g > 0, underwater.point_spread: the light "
+                     std::string("underwater.model \"discrete_ordinates\", water.g > 0, underwater.point_spread: the light "
                                  "delta-M counts as unscattered, blurred by the phase's small angles "
                                  "(common/water_spread.h)") +
                          (targets.size() > 1 ? "; also into outputs.layers' forward" : "") +

@@ -1,6 +1,6 @@
-// underwater_improved_ordinates_test.cpp — the improved underwater model's diffuse field from discrete
+// underwater_ordinates_solver_test.cpp — the discrete-ordinates underwater model's diffuse field from discrete
 // ordinates (underwater.improved_diffuse = "discrete_ordinates", the default; host/underwater/
-// underwater_improved_ordinates.*): the band's exponentials hold the solver's field (E_d,
+// underwater_ordinates_solver.*): the band's exponentials hold the solver's field (E_d,
 // E_u, E_0, F_h) over the depths the frame sees, as the kernel evaluates them in float and double; k
 // keeps away from the beam's m; no horizontal flux where the field has none; degenerate bands stay
 // finite; the source's azimuth factor.
@@ -13,9 +13,9 @@
 
 #include "math/kernel_math.h"
 #include "underwater/discrete_ordinates.h"
-#include "underwater/underwater_improved_ordinates.h"
+#include "underwater/underwater_ordinates_solver.h"
 
-#include "underwater_improved_fixtures.h"
+#include "underwater_ordinates_fixtures.h"
 
 namespace {
 
@@ -36,7 +36,7 @@ DiscreteOrdinatesLayer layerOf(const UwBand& b, double g, double H) { return sea
 // kOrdinatesSourceMoments), over the bottom's whole depth: within 4 %. The fit's own largest errors,
 // printed: 0.01–0.2 % in clear water, up to 3.6 % (E_0) at 8 optical depths, where three exponentials no
 // longer hold the field near both ends; the source table's 0.6–8.6 %.
-TEST(UnderwaterImprovedOrdinates, BandHoldsTheSolversIrradiance) {
+TEST(UnderwaterOrdinatesSolver, BandHoldsTheSolversIrradiance) {
   struct Case {
     double a, b, g, H;
   };
@@ -74,7 +74,7 @@ TEST(UnderwaterImprovedOrdinates, BandHoldsTheSolversIrradiance) {
 
 // The band's scalar irradiance and horizontal flux: E_0 within 2.5 % of the solver's less the beam's; F_h
 // 0 at g = 0 and with the sun at the zenith; without a bottom the second exponential is unused.
-TEST(UnderwaterImprovedOrdinates, ScalarIrradianceAndHorizontalFlux) {
+TEST(UnderwaterOrdinatesSolver, ScalarIrradianceAndHorizontalFlux) {
   const UwBand band = uwTestBand(0.1, 0.3, 0.146, 0.85, kMuW, 0.35);
   const UwiBand ib = makeUwiBandFromOrdinates(band, 0.9, kMuW, 5, 1.34, 3.8);
   const DiscreteOrdinates field(layerOf(band, 0.9, 5), 16), field_h(layerOf(band, 0.9, 5), 16, 1);
@@ -108,7 +108,7 @@ TEST(UnderwaterImprovedOrdinates, ScalarIrradianceAndHorizontalFlux) {
 
 // No medium, no light, no absorption, no scattering, a black bottom 1 mm down: every coefficient and the
 // source's table finite, and no light gives no field and no source.
-TEST(UnderwaterImprovedOrdinates, DegenerateBandsStayFinite) {
+TEST(UnderwaterOrdinatesSolver, DegenerateBandsStayFinite) {
   auto finite = [](const UwiBand& b) {
     for (float v : {b.c_dm, b.k, b.m, b.d1, b.u1, b.d2, b.u2, b.dp, b.up, b.o1, b.o2, b.op, b.h1, b.h2, b.hp})
       if (!std::isfinite(v)) return false;
@@ -134,7 +134,7 @@ TEST(UnderwaterImprovedOrdinates, DegenerateBandsStayFinite) {
 // cos Δφ from the cosines: ±1 in the sun's vertical plane, along and against the beam's azimuth, 0 across
 // it, any azimuth in between; 0 with the sun at the zenith or a vertical photon, and within [-1, 1] where
 // rounding would take it past; float as double.
-TEST(UnderwaterImprovedOrdinates, CosAzimuth) {
+TEST(UnderwaterOrdinatesSolver, CosAzimuth) {
   const double mu_w = 0.8, s_w = std::sqrt(1 - mu_w * mu_w);
   for (double nu : {-0.6, 0.0, 0.3, 0.999}) {
     const double sn = std::sqrt(1 - nu * nu);
@@ -165,7 +165,7 @@ namespace {
 // interpolation in ν lose: within 5 % (the worst printed: 4.0 %, 4.7 % before the split quadrature; the
 // dimmest views down into deep water lit by the sky alone at g = 0.9). Would fail with the table's cosines reversed,
 // the source integrated with another extinction than the solver's, or a mode of the table left out.
-TEST(UnderwaterImprovedOrdinates, SourceTableGivesTheSolversRadiance) {
+TEST(UnderwaterOrdinatesSolver, SourceTableGivesTheSolversRadiance) {
   struct Light {
     double g, e_sky0, e_sun0;
   };

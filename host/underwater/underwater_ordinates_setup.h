@@ -1,5 +1,5 @@
-// underwater_improved_setup.h — the per-band coefficients of underwater.model = "improved"
-// (kernels/common/underwater_improved.h, whose comment gives the model): delta-M scaled IOPs and the
+// underwater_ordinates_setup.h — the per-band coefficients of underwater.model = "discrete_ordinates"
+// (kernels/common/underwater_ordinates.h, whose comment gives the model): delta-M scaled IOPs and the
 // two-stream solution for the diffuse plane irradiances E_d(y), E_u(y) in a layer over a Lambertian
 // bottom, solved in double on the host once per frame.
 #pragma once
@@ -7,7 +7,7 @@
 
 extern "C" {
 #include "common/underwater_params.h"
-#include "common/underwater_improved_params.h"
+#include "common/underwater_ordinates_params.h"
 }
 
 namespace seasim {
@@ -33,7 +33,7 @@ DiffuseMeanCosines diffuseMeanCosines(double g);
 // which k is the exact asymptotic diffuse attenuation K∞ of the similarity-scaled medium (isotropic
 // scattering b' (1 - g'), absorption a; asymptoticStreamCosine), k = √(a (a + b' (1 - g'))) / μ1.
 enum class TwoStreamClosure { Quadrature, Asymptotic };
-// The improved model's closure (fitted with diffuseMeanCosines; see the .cpp).
+// The discrete-ordinates model's closure (fitted with diffuseMeanCosines; see the .cpp).
 TwoStreamClosure twoStreamClosure();
 
 // κ = K∞ / c of an isotropically scattering medium of single-scattering albedo omega in [0, 1]: the
@@ -65,7 +65,7 @@ double diffuseAsymptoticShare(double g);
 // path tracer on the training grid (see the .cpp); 1 is the first-order phase expansion.
 double diffuseFluxScale(double g);
 
-// Where the scene's depth enters the improved model's k: the depth D over which the diffuse field's
+// Where the scene's depth enters the discrete-ordinates model's k: the depth D over which the diffuse field's
 // mean slope is taken (the camera's depth, within [0, H] over a bottom; set per frame, so the band
 // table follows a moving camera) and the asymptotic share w.
 struct DiffuseDepth {
@@ -76,14 +76,14 @@ struct DiffuseDepth {
 // The camera's depth -cam_pos[1], clamped to [0, bottom_depth] when there is a bottom (> 0).
 double diffuseViewDepth(const UwParams& params);
 
-// The improved model's delta-M medium (Wiscombe 1977; as deltaMScale in underwater/lamps_setup.h): the
+// The discrete-ordinates model's delta-M medium (Wiscombe 1977; as deltaMScale in underwater/lamps_setup.h): the
 // forward peak f = g^power counts as unscattered, b' = b (1 - f), c' = a + b', g' = (g - f)/(1 - f) (at the
 // two-stream's power 2, g / (1 + g), without its 0/0 at g = 1); g < 0 is left unscaled. Both diffuse
 // solvers' bands start from it: the two-stream at power 2, the discrete ordinates at their own order.
 struct DeltaMMedium {
   double b_dm = 0, c_dm = 0, g_dm = 0;
 };
-DeltaMMedium improvedDeltaM(double a, double b, double g, int power = 2);
+DeltaMMedium ordinatesDeltaM(double a, double b, double g, int power = 2);
 // A band block with the medium's c', b', g' and the flux term's g_f = flux_scale g' set, the rest 0.
 UwiBand uwiBandOfMedium(const DeltaMMedium& medium, double flux_scale);
 // The source table of the first-order phase (the two-stream's):

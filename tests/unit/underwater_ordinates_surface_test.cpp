@@ -1,5 +1,5 @@
-// underwater_improved_surface_test.cpp — the water surface seen from below in underwater.model =
-// "improved" (kernels/common/underwater_improved.h uwi_surface): the froxel pass integrates the
+// underwater_ordinates_surface_test.cpp — the water surface seen from below in underwater.model =
+// "discrete_ordinates" (kernels/common/underwater_ordinates.h uwi_surface): the froxel pass integrates the
 // beam's single scattering along the camera's ray only, so the surface's reflected ray keeps its own
 // (the TMS term) whether or not that pass runs. Turning the froxel term on must change a surface
 // pixel by exactly the camera ray's closed-form single scattering, in float and double, inside Snell's
@@ -11,9 +11,9 @@
 #include <cstdio>
 
 #include "math/kernel_math.h"
-#include "underwater/underwater_improved_setup.h"
+#include "underwater/underwater_ordinates_setup.h"
 
-#include "underwater_improved_fixtures.h"
+#include "underwater_ordinates_fixtures.h"
 
 namespace {
 
@@ -56,7 +56,7 @@ struct Kf {
   }
 };
 
-TEST(UnderwaterImprovedSurface, FroxelTermChangesOnlyTheCameraRaysSingleScattering) {
+TEST(UnderwaterOrdinatesSurface, FroxelTermChangesOnlyTheCameraRaysSingleScattering) {
   const double mu_w = 0.93, o_d = 0.8;
   int tir = 0, window = 0, clamped = 0;
   for (double g : {0.0, 0.5, 0.9})
@@ -97,7 +97,7 @@ TEST(UnderwaterImprovedSurface, FroxelTermChangesOnlyTheCameraRaysSingleScatteri
   std::printf("froxel term: %d of 72 rays clamped at 0\n", clamped);
 }
 
-TEST(UnderwaterImprovedSurface, ReflectedRayKeepsTheBeamsSingleScatteringUnderTotalInternalReflection) {
+TEST(UnderwaterOrdinatesSurface, ReflectedRayKeepsTheBeamsSingleScatteringUnderTotalInternalReflection) {
   // g = 0: delta-M leaves the beam as it is (m = c/μ_w), so the reflected ray's TMS term is exactly the
   // strict single scattering along it; under total internal reflection the surface term without the
   // sky is e^{-c S} (that ray's in-scatter), which must hold it: no bottom, clear water, a grazing ray.
@@ -128,7 +128,7 @@ TEST(UnderwaterImprovedSurface, ReflectedRayKeepsTheBeamsSingleScatteringUnderTo
 
 namespace {
 
-TEST(UnderwaterImprovedSurface, ObjectInTheMirrorEndsTheReflectedRayAndIsLitThere) {
+TEST(UnderwaterOrdinatesSurface, ObjectInTheMirrorEndsTheReflectedRayAndIsLitThere) {
   // A sphere below the surface point, on the reflected ray, nearer than the 5 m bottom: the surface
   // shows F times the in-scatter to the sphere plus the sphere's Lambertian radiance attenuated by c';
   // beyond the bottom (or with none in the way) the bottom as before.

@@ -1,5 +1,5 @@
-// underwater_improved_test.cpp — underwater.model = "improved" (kernels/common/underwater_improved.h,
-// host/underwater/underwater_improved_setup.*) in float and double: the two-stream coefficients solve
+// underwater_ordinates_test.cpp — underwater.model = "discrete_ordinates" (kernels/common/underwater_ordinates.h,
+// host/underwater/underwater_ordinates_setup.*) in float and double: the two-stream coefficients solve
 // their differential equations and boundary conditions (finite differences), net flux is conserved
 // without absorption, the view-ray closed form matches quadrature of its source along the ray, the
 // resonance k = m and the extremes stay finite, and b = 0 leaves only the attenuated beam.
@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "math/kernel_math.h"
-#include "underwater/underwater_improved_setup.h"
+#include "underwater/underwater_ordinates_setup.h"
 
-#include "underwater_improved_fixtures.h"
+#include "underwater_ordinates_fixtures.h"
 
 namespace {
 
@@ -35,7 +35,7 @@ std::vector<Case> cases() {
   return out;
 }
 
-// The two-stream coefficients as underwater_improved_setup.cpp documents them (the closure's streams
+// The two-stream coefficients as underwater_ordinates_setup.cpp documents them (the closure's streams
 // at ±μ1 on the delta-M medium; the beam's b' split by Eddington's γ3).
 struct TwoStream {
   double a1, a2, s_up, s_down, m;
@@ -55,7 +55,7 @@ TwoStream twoStream(const Case& c, const UwiBand& ib, TwoStreamClosure closure =
   return t;
 }
 
-TEST(UnderwaterImproved, TwoStreamSolvesItsEquationsAndBoundaries) {
+TEST(UnderwaterOrdinates, TwoStreamSolvesItsEquationsAndBoundaries) {
   const double ior = 1.34, rs = seasim::internalDiffuseReflectance(ior);
   for (TwoStreamClosure closure : {TwoStreamClosure::Quadrature, TwoStreamClosure::Asymptotic})
   for (const Case& c : cases()) {
@@ -94,7 +94,7 @@ TEST(UnderwaterImproved, TwoStreamSolvesItsEquationsAndBoundaries) {
   }
 }
 
-TEST(UnderwaterImproved, NoAbsorptionConservesNetFlux) {
+TEST(UnderwaterOrdinates, NoAbsorptionConservesNetFlux) {
   // a = 0: nothing is absorbed, so the net downward flux E_d - E_u + e_sun0 e^{-m y} is the same at
   // every depth (here the bottom reflects all of it: 0 net flux with ρ = 1 would be degenerate, so ρ = 0.5
   // and no bottom are checked; k is held at >= 1e-3 c', a 1e-3-sized departure).
@@ -140,7 +140,7 @@ long double multipleQuadrature(const UwiBand& ib, const UwBand& bd, double g, do
   return sum * h / 3.0L;
 }
 
-TEST(UnderwaterImproved, ViewRayClosedFormMatchesQuadrature) {
+TEST(UnderwaterOrdinates, ViewRayClosedFormMatchesQuadrature) {
   int checked = 0;
   for (const Case& c : cases()) {
     const UwBand bd = uwTestBand(c.a, c.b, 0.3, 1.0, c.mu_w, c.rho);
@@ -168,7 +168,7 @@ TEST(UnderwaterImproved, ViewRayClosedFormMatchesQuadrature) {
   EXPECT_GT(checked, 700);
 }
 
-TEST(UnderwaterImproved, ResonanceAndExtremesStayFiniteAndContinuous) {
+TEST(UnderwaterOrdinates, ResonanceAndExtremesStayFiniteAndContinuous) {
   // k = m: c'√3 √((1 - ω')(1 - ω' g')) = c'/μ_w. With g = 0, a = 1, b = 0.2 (ω' = 1/6):
   // k = √3 √1.2 = 1.897 and c' = 1.2, so μ_w = 0.6325 resonates. E_d at 3 m across it must be smooth.
   std::vector<double> e;
@@ -204,7 +204,7 @@ TEST(UnderwaterImproved, ResonanceAndExtremesStayFiniteAndContinuous) {
   }
 }
 
-TEST(UnderwaterImproved, NoScatteringLeavesTheBeamAndSkyAttenuatedByAbsorption) {
+TEST(UnderwaterOrdinates, NoScatteringLeavesTheBeamAndSkyAttenuatedByAbsorption) {
   // b = 0: no in-scatter; a horizontal Lambertian point at depth y sees ρ/π (E_d + e_sun0 e^{-a y/μ_w}),
   // E_d the sky's light decaying as e^{-√3·... } (two-stream diffusivity 2·(√3/2) = √3) without a bottom.
   const double a = 0.2, mu = 0.8, y = 4.0;
@@ -217,8 +217,8 @@ TEST(UnderwaterImproved, NoScatteringLeavesTheBeamAndSkyAttenuatedByAbsorption) 
   EXPECT_NEAR(l / expect, 1.0, 1e-5);
 }
 
-TEST(UnderwaterImproved, DiffuseMeanCosinesFollowTheirTableAndReachTheKernel) {
-  // The fitted table (underwater_improved_setup.cpp): the up stream at 0.52 for every g; the down stream
+TEST(UnderwaterOrdinates, DiffuseMeanCosinesFollowTheirTableAndReachTheKernel) {
+  // The fitted table (underwater_ordinates_setup.cpp): the up stream at 0.52 for every g; the down stream
   // at the quadrature's 1/√3 up to g = 0.5, linear to 0.72 at g = 0.9, held above it (and below g = 0).
   const double q = 1.0 / std::sqrt(3.0);
   for (double g : {-0.3, 0.0, 0.3, 0.5}) {
@@ -264,7 +264,7 @@ TEST(UnderwaterImproved, DiffuseMeanCosinesFollowTheirTableAndReachTheKernel) {
   EXPECT_EQ(kd::uwi_source_node(2.0), UWI_SOURCE_NODES - 1);
 }
 
-TEST(UnderwaterImproved, AsymptoticClosureDecaysAtTheIsotropicEigenvalue) {
+TEST(UnderwaterOrdinates, AsymptoticClosureDecaysAtTheIsotropicEigenvalue) {
   // κ = K∞/c of isotropic scattering, the root of ω atanh(κ) = κ: Case & Zweifel's tabulated
   // 1/ν0 (ω = 0.5: ν0 = 1.04438; 0.9: 1.90320; 0.99: 5.79672), and its ends (at ω = 1e-6, 1 - κ =
   // 2 e^{-2/ω} is below the double spacing).
@@ -309,7 +309,7 @@ TEST(UnderwaterImproved, AsymptoticClosureDecaysAtTheIsotropicEigenvalue) {
   }
 }
 
-TEST(UnderwaterImproved, InternalDiffuseReflectance) {
+TEST(UnderwaterOrdinates, InternalDiffuseReflectance) {
   // 2 ∫ F μ dμ from below: 1 - (1 - r_ext)/n² by reciprocity (r_ext the external hemispherical
   // reflectance of a uniform sky, integrated here independently in double).
   for (double n : {1.33, 1.34, 1.5}) {

@@ -1,10 +1,10 @@
-/* underwater_improved.h — underwater.model = "improved": a closed form per band for the light that
+/* underwater_ordinates.h — underwater.model = "discrete_ordinates": a closed form per band for the light that
  * 002's eq. 4.7 ("thesis", common/underwater.h) models by an isotropic b/(4π) E(y) with a measured K_d.
  * The scalar form, one band per call: the host's (kmath_f / kmath_d, unit-tested in float and double)
  * and the reference that kd_multiple.cl's band lanes (SEASIM_UNDERWATER_MODEL == 1,
- * common/underwater_improved_bands.h) are tested against; needs optics.h, underwater_params.h, underwater.h and
- * underwater_improved_params.h before it. Coefficients per band: host/underwater/underwater_improved_ordinates.*
- * (and underwater_improved_setup.* for the two-stream)
+ * common/underwater_ordinates_bands.h) are tested against; needs optics.h, underwater_params.h, underwater.h and
+ * underwater_ordinates_params.h before it. Coefficients per band: host/underwater/underwater_ordinates_solver.*
+ * (and underwater_ordinates_setup.* for the two-stream)
  *
  * What it changes against eq. 4.7, each measured in results/BENCHMARKS.md ("A better fast underwater
  * model"):
@@ -15,7 +15,7 @@
  *    number fitted to the path tracer); with the two-stream f = g², g' = g / (1 + g).
  *  - the diffuse field from the IOPs and g, not a measured K_d, built on the host per band and frame
  *    (underwater.improved_diffuse): by default ("discrete_ordinates", host/underwater/
- *    underwater_improved_ordinates.*) a discrete-ordinates solution of the plane-parallel water (16
+ *    underwater_ordinates_solver.*) a discrete-ordinates solution of the plane-parallel water (16
  *    streams per hemisphere, the HG phase delta-M scaled to its first three Legendre moments, the sun
  *    beam and the sky through the Fresnel surface, a Lambertian bottom of albedo ρ) whose plane
  *    irradiances E_d, E_u are fitted to three exponentials in depth: e^{-k y}, e^{-k (H - y)} and the
@@ -25,7 +25,7 @@
  *    fitted share of e^{-K∞ y}, depthMeanDiffuseK). Either way the bottom's upwelling light lights the
  *    water and the objects' undersides.
  *  - the in-scatter source J(y, ν, Δφ) that view rays gather, tabulated per band in the photon's
- *    direction (UwiBand.src, common/underwater_improved_params.h: ν its cosine with the downward
+ *    direction (UwiBand.src, common/underwater_ordinates_params.h: ν its cosine with the downward
  *    vertical, Δφ its azimuth from the sun beam's, uwi_cos_azimuth), per exponential of depth. By default
  *    (underwater.improved_source_streams; host/underwater/ordinates_high_order.h) fitted on the host
  *    to the light a 32-stream solution's radiance gathers along rays with this kernel's c' (the kernel
@@ -168,7 +168,7 @@ SEASIM_FN real uwi_bottom_visibility(const SEASIM_GLOBAL UwObject* objects, int 
   return down > R(0.0) ? lit / down : R(1.0);
 }
 
-/* E_d(y) and E_u(y), the diffuse plane irradiances at depth y (common/underwater_improved_params.h),
+/* E_d(y) and E_u(y), the diffuse plane irradiances at depth y (common/underwater_ordinates_params.h),
  * not clamped (the host's solution is positive; callers clamp what they shade with). */
 SEASIM_FN void uwi_irradiance(const SEASIM_GLOBAL UwiBand* ib, real bottom_depth, real y, real* ed, real* eu) {
   const real e1 = exp(-(real)ib->k * y);

@@ -1,5 +1,5 @@
-// underwater_improved_ordinates.h — underwater.model = "improved" with underwater.improved_diffuse =
-// "discrete_ordinates": one band's coefficients (UwiBand, common/underwater_improved_params.h) from a
+// underwater_ordinates_solver.h — underwater.model = "discrete_ordinates" with underwater.improved_diffuse =
+// "discrete_ordinates": one band's coefficients (UwiBand, common/underwater_ordinates_params.h) from a
 // discrete-ordinates solution of the plane-parallel water (discrete_ordinates.h), not the two-stream.
 //
 // The kernel's diffuse field is three exponentials in depth, e^{-k y}, e^{-k (H - y)} and the delta-M
@@ -28,7 +28,7 @@
 
 extern "C" {
 #include "common/underwater_params.h"
-#include "common/underwater_improved_params.h"
+#include "common/underwater_ordinates_params.h"
 }
 
 namespace seasim {

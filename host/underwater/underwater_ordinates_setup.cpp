@@ -1,4 +1,4 @@
-#include "underwater/underwater_improved_setup.h"
+#include "underwater/underwater_ordinates_setup.h"
 
 #include <algorithm>
 #include <array>
@@ -12,7 +12,7 @@ namespace seasim {
 
 static_assert(sizeof(UwiBand) == (18 + (UWI_SOURCE_NODES + UWI_TILT_NODES) * UWI_SOURCE_TERMS + UWI_TILT_NODES * 3 + 2 +
                                    UWI_AUREOLE_NODES + UWI_SOURCE_NODES * 6) * 4,
-              "UwiBand layout changed: update underwater_improved_params.h users");
+              "UwiBand layout changed: update underwater_ordinates_params.h users");
 static_assert(offsetof(UwiBand, d1) == 20 && offsetof(UwiBand, up) == 40 && offsetof(UwiBand, g_flux) == 44 &&
               offsetof(UwiBand, o1) == 48 && offsetof(UwiBand, op) == 56 && offsetof(UwiBand, h1) == 60 &&
               offsetof(UwiBand, hp) == 68 && offsetof(UwiBand, src) == 72 &&
@@ -124,7 +124,7 @@ double diffuseViewDepth(const UwParams& params) {
   return params.bottom_depth > 0 ? std::min(depth, static_cast<double>(params.bottom_depth)) : depth;
 }
 
-DeltaMMedium improvedDeltaM(double a, double b, double g, int power) {
+DeltaMMedium ordinatesDeltaM(double a, double b, double g, int power) {
   const double gp = std::max(g, 0.0);
   const double f = std::pow(gp, power);
   DeltaMMedium m;
@@ -150,7 +150,7 @@ UwiBand makeUwiBand(const UwBand& band, double g, double mu_w, double bottom_dep
 UwiBand makeUwiBand(const UwBand& band, double g, double mu_w, double bottom_depth, double ior,
                     DiffuseMeanCosines mean, TwoStreamClosure closure, DiffuseDepth view, const ForwardPeak* peak) {
   const double a = band.a, b = band.b;
-  const DeltaMMedium medium = improvedDeltaM(a, b, g);
+  const DeltaMMedium medium = ordinatesDeltaM(a, b, g);
   const double b_dm = medium.b_dm, c_dm = medium.c_dm, g_dm = medium.g_dm;
   const double mu0 = std::clamp(mu_w, 1e-3, 1.0);
   UwiBand o = uwiBandOfMedium(medium, view.flux_scale);

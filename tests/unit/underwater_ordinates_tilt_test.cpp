@@ -1,4 +1,4 @@
-// underwater_improved_tilt_test.cpp — how the improved underwater model lights an object's face:
+// underwater_ordinates_tilt_test.cpp — how the discrete-ordinates underwater model lights an object's face:
 // the diffuse irradiance on a tilted plane from the discrete ordinates' radiance
 // (DiscreteOrdinates::tiltedIrradianceProfile, its azimuth kernel in closed form), tabulated per band in
 // the normal's vertical (UwiBand.tilt) and read by uwi_tilt_irradiance in float and double; the part of it
@@ -14,10 +14,10 @@
 
 #include "math/kernel_math.h"
 #include "underwater/discrete_ordinates.h"
-#include "underwater/underwater_improved_ordinates.h"
-#include "underwater/underwater_improved_setup.h"
+#include "underwater/underwater_ordinates_solver.h"
+#include "underwater/underwater_ordinates_setup.h"
 
-#include "underwater_improved_fixtures.h"
+#include "underwater_ordinates_fixtures.h"
 
 namespace {
 
@@ -33,7 +33,7 @@ DiscreteOrdinatesLayer layerOf(const UwBand& b, double g, double H) { return sea
 
 // The closed form of ∫ max(0, ν n_y + √((1 - ν²)(1 - n_y²)) cos ψ) cos(m ψ) dψ against the midpoint rule,
 // at and near its corners (ν, n_y = ±1, 0; the plane edge-on to the direction).
-TEST(UnderwaterImprovedTilt, AzimuthKernelIsTheIntegral) {
+TEST(UnderwaterOrdinatesTilt, AzimuthKernelIsTheIntegral) {
   const int steps = 200000;
   double worst = 0;
   for (int mode = 0; mode <= 2; ++mode)
@@ -58,7 +58,7 @@ TEST(UnderwaterImprovedTilt, AzimuthKernelIsTheIntegral) {
 
 // The solver's tilted irradiance: facing straight up it is E_d, straight down E_u (mode 0); edge-on,
 // its cos φ part is half the horizontal flux (mode 1); over 0–5 m of the water.
-TEST(UnderwaterImprovedTilt, SolversTiltedIrradianceEndsAreItsPlaneIrradiances) {
+TEST(UnderwaterOrdinatesTilt, SolversTiltedIrradianceEndsAreItsPlaneIrradiances) {
   const UwBand band = uwTestBand(0.1, 0.3, 0.146, 0.85, kMuW, 0.35);
   const DiscreteOrdinatesLayer layer = layerOf(band, 0.9, 5.0);
   const DiscreteOrdinates m0(layer, 16, 0, 3), m1(layer, 16, 1, 3);
@@ -76,7 +76,7 @@ TEST(UnderwaterImprovedTilt, SolversTiltedIrradianceEndsAreItsPlaneIrradiances) 
 
 // The bottom reflects the share bottom_sunlit of the beam: E_u(H) = ρ (E_d(H) + s e_sun0 e^{-m H}), and
 // the field is linear in s. Shares outside [0, 1] are rejected.
-TEST(UnderwaterImprovedTilt, BottomSunlitShareScalesTheBeamTheBottomReflects) {
+TEST(UnderwaterOrdinatesTilt, BottomSunlitShareScalesTheBeamTheBottomReflects) {
   const UwBand band = uwTestBand(0.1, 0.3, 0.146, 0.85, kMuW, 0.35);
   DiscreteOrdinatesLayer layer = layerOf(band, 0.9, 5.0);
   std::vector<seasim::DiscreteOrdinatesIrradiance> at_h(3);
@@ -128,11 +128,11 @@ double solverTilted(const DiscreteOrdinatesLayer& layer, double n_y, double cos_
 // irradiance at normals between the nodes, three azimuths and three depths, relative to the irradiance on
 // a vertical face: within 3 % (the fit's and the interpolation's error), 5 % near the surface of a 20 m
 // water and 8 % in turbid water 8 optical depths deep, where three exponentials in depth hold the field
-// less well (as E_d's and E_u's, UnderwaterImprovedOrdinates.BandHoldsTheSolversIrradiance); its ends are
+// less well (as E_d's and E_u's, UnderwaterOrdinatesSolver.BandHoldsTheSolversIrradiance); its ends are
 // E_d's and E_u's own fits; with
 // vis_b = 0 it is the field over a bottom that reflects none of the beam; without a bottom there is no
 // bottom part.
-TEST(UnderwaterImprovedTilt, BandTableHoldsTheSolversTiltedIrradiance) {
+TEST(UnderwaterOrdinatesTilt, BandTableHoldsTheSolversTiltedIrradiance) {
   struct Case {
     double a, b, g, H, tolerance;
   };
@@ -191,7 +191,7 @@ TEST(UnderwaterImprovedTilt, BandTableHoldsTheSolversTiltedIrradiance) {
 
 // The two-stream's table is its uniform hemispheres, E_d (1 + n_y)/2 + E_u (1 - n_y)/2 (as the thesis's), and
 // it has no bottom part.
-TEST(UnderwaterImprovedTilt, TwoStreamTableIsUniformHemispheres) {
+TEST(UnderwaterOrdinatesTilt, TwoStreamTableIsUniformHemispheres) {
   const UwBand band = uwTestBand(0.1, 0.3, 0.146, 0.85, kMuW, 0.35);
   const UwiBand ib = seasim::makeUwiBand(band, 0.9, kMuW, 5.0, 1.34);
   for (float v : ib.tilt_bottom) EXPECT_EQ(v, 0.0f);
@@ -246,7 +246,7 @@ struct Kf {
   }
 };
 
-TEST(UnderwaterImprovedTilt, BottomVisibilityFollowsTheShadowsOnTheSand) {
+TEST(UnderwaterOrdinatesTilt, BottomVisibilityFollowsTheShadowsOnTheSand) {
   checkBottomVisibility<Kd>();
   checkBottomVisibility<Kf>();
 }

@@ -1,4 +1,4 @@
-#include "reference/underwater_improved_terms.h"
+#include "reference/underwater_ordinates_terms.h"
 
 #include <algorithm>
 #include <cmath>
@@ -12,7 +12,7 @@ namespace kd = kmath_d;
 
 namespace {
 
-// uwi_multiple's sum before its clamp, term by term (common/underwater_improved.h).
+// uwi_multiple's sum before its clamp, term by term (common/underwater_ordinates.h).
 struct InScatter {
   double modes = 0, beam = 0, tms = 0, froxel_ss = 0;
 };
@@ -42,10 +42,10 @@ InScatter inScatterTerms(const UwiBand& ib, const UwBand& band, double g, double
 
 }  // namespace
 
-std::vector<UwiPixelTerms> improvedModelTerms(const UnderwaterSetup& s, bool multiple_scattering) {
+std::vector<UwiPixelTerms> ordinatesModelTerms(const UnderwaterSetup& s, bool multiple_scattering) {
   const UwParams& p = s.params;
-  if (s.improved.size() != s.bands.size() || s.bands.empty())
-    throw RuntimeError("improved model terms: the setup has no improved model (underwater.model = \"improved\")");
+  if (s.ordinates.size() != s.bands.size() || s.bands.empty())
+    throw RuntimeError("discrete-ordinates model terms: the setup has no discrete-ordinates model (underwater.model = \"discrete_ordinates\")");
   std::vector<UwiPixelTerms> out(size_t(p.width) * p.height);
   const kd::real3 o{p.cam_pos[0], p.cam_pos[1], p.cam_pos[2]};
   const kd::real3 s_w{p.sun_dir_water[0], p.sun_dir_water[1], p.sun_dir_water[2]};
@@ -71,12 +71,12 @@ std::vector<UwiPixelTerms> improvedModelTerms(const UnderwaterSetup& s, bool mul
       t.reflected_object = object_in_mirror ? 1.0 : 0.0;
       // kd_multiple.cl's share of the sunlit sand's light the ray gathers unhidden and unshaded.
       const double v_sand =
-          multiple ? kd::uwi_sand_share(s.objects.data(), p.object_count, H, o, d, S, s.improved[0].c_dm, s.improved[0].k,
+          multiple ? kd::uwi_sand_share(s.objects.data(), p.object_count, H, o, d, S, s.ordinates[0].c_dm, s.ordinates[0].k,
                                         s_w, s.albedo.data(), p.band_count, s.bands[0].bottom_albedo)
                    : 1.0;
       for (int i = 0; i < p.band_count; ++i) {
         const UwBand& b = s.bands[i];
-        const UwiBand& ib = s.improved[i];
+        const UwiBand& ib = s.ordinates[i];
         const double w = double(b.w_r) + b.w_g + b.w_b;
         const double albedo =
             mat >= 0 ? s.albedo[size_t(mat) * p.band_count + i] : mat == UW_MAT_BOTTOM ? b.bottom_albedo : 0.0;

@@ -1,11 +1,11 @@
-// underwater_improved_bands_test.cpp — underwater.model = "improved" on the band lanes
-// (kernels/common/underwater_improved_bands.h, one band per lane on the host) with its rows of the band
+// underwater_ordinates_bands_test.cpp — underwater.model = "discrete_ordinates" on the band lanes
+// (kernels/common/underwater_ordinates_bands.h, one band per lane on the host) with its rows of the band
 // table (host/underwater/underwater_band_table.cpp), against the scalar uwi_band_radiance of
-// common/underwater_improved.h, in float and double: every material (none, surface, bottom, object), g
+// common/underwater_ordinates.h, in float and double: every material (none, surface, bottom, object), g
 // from 0 to 0.95, clear to turbid water, no absorption (k at its floor), no scattering, the two-stream's
 // resonance k = m, with and without a bottom, the sun high, low and at the horizon, the camera at the
 // surface and at 1000 m, rays straight up and down, with and without the froxel split.
-// tests/kernels/underwater_improved_kernel_test.cpp runs the lanes on PoCL in floatN.
+// tests/kernels/underwater_ordinates_kernel_test.cpp runs the lanes on PoCL in floatN.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -16,8 +16,8 @@
 
 #include "math/kernel_math.h"
 #include "underwater/underwater_band_table.h"
-#include "underwater/underwater_improved_setup.h"
-#include "underwater/underwater_improved_ordinates.h"
+#include "underwater/underwater_ordinates_setup.h"
+#include "underwater/underwater_ordinates_solver.h"
 
 namespace {
 
@@ -42,7 +42,7 @@ seasim::UnderwaterSetup makeSetup(double g, double H, double mu_w, double a0, do
     v.a = float(a0 * (1 + 0.3 * k));
     v.b = float(b0 * (1 - 0.1 * k));
     v.c = v.a + v.b;
-    v.kd = 0.2f;  // the thesis's; unused by the improved model
+    v.kd = 0.2f;  // the thesis's; unused by the discrete-ordinates model
     v.e_sky0 = float(0.3 + 0.05 * k);
     v.e_sun0 = float(1.0 - 0.1 * k);
     v.e_beam0 = float(v.e_sun0 / mu_w);
@@ -56,7 +56,7 @@ seasim::UnderwaterSetup makeSetup(double g, double H, double mu_w, double a0, do
   s.objects.resize(2);
   for (int o = 0; o < 2; ++o)
     for (int k = 0; k < kBands; ++k) s.albedo.push_back(float(0.1 + 0.2 * o + 0.05 * k));
-  s.improved = ordinates ? seasim::makeUwiBandsFromOrdinates(s.params, s.bands)
+  s.ordinates = ordinates ? seasim::makeUwiBandsFromOrdinates(s.params, s.bands)
                          : seasim::makeUwiBands(s.params, s.bands, seasim::diffuseMeanCosines(g));
   return s;
 }
@@ -73,7 +73,7 @@ struct Ray {
   double vis_b = 1.0;  // the share of the sand an object's face sees that is sunlit (uwi_bottom_visibility)
 };
 
-// kd_multiple.cl's improved band loop for band k (real = float or double): the per-pixel phases, the
+// kd_multiple.cl's discrete-ordinates band loop for band k (real = float or double): the per-pixel phases, the
 // lanes, the material chosen per pixel.
 #define LANES_RADIANCE(NS, Real)                                                                              \
   Real lanes_##NS(const std::vector<float>& table, const seasim::UnderwaterSetup& s, int k, const Ray& r,    \
@@ -146,7 +146,7 @@ double scalarRadiance(const seasim::UnderwaterSetup& s, int k, const Ray& r, int
   const kd::real3 d{r.d[0], r.d[1], r.d[2]}, n{r.n[0], r.n[1], r.n[2]}, s_w{r.s_w[0], r.s_w[1], r.s_w[2]};
   const kd::UwiMirrorHit m{r.s_m, kd::real3{r.n_m[0], r.n_m[1], r.n_m[2]}, s.albedo[size_t(r.mat_m) * kBands + k],
                            r.vis_m};
-  return kd::uwi_band_radiance(&s.improved[k], &b, s.params.g, r.mat, r.S, n, d, r.o_d, s_w, albedo, r.vis, r.vis_b, r.sky_l,
+  return kd::uwi_band_radiance(&s.ordinates[k], &b, s.params.g, r.mat, r.S, n, d, r.o_d, s_w, albedo, r.vis, r.vis_b, r.sky_l,
                                s.params.ior, s.params.bottom_depth, single, 1, m);
 }
 
@@ -157,19 +157,19 @@ float scalarRadianceFloat(const seasim::UnderwaterSetup& s, int k, const Ray& r,
   const kf::real3 s_w{float(r.s_w[0]), float(r.s_w[1]), float(r.s_w[2])};
   const kf::UwiMirrorHit m{float(r.s_m), kf::real3{float(r.n_m[0]), float(r.n_m[1]), float(r.n_m[2])},
                            s.albedo[size_t(r.mat_m) * kBands + k], float(r.vis_m)};
-  return kf::uwi_band_radiance(&s.improved[k], &b, s.params.g, r.mat, float(r.S), n, d, float(r.o_d), s_w, albedo,
+  return kf::uwi_band_radiance(&s.ordinates[k], &b, s.params.g, r.mat, float(r.S), n, d, float(r.o_d), s_w, albedo,
                                float(r.vis), float(r.vis_b), float(r.sky_l), s.params.ior, s.params.bottom_depth, single,
                                1, m);
 }
 
-TEST(UnderwaterImprovedBands, TableRowsHoldTheBlockAndPaddingIsWeightless) {
+TEST(UnderwaterOrdinatesBands, TableRowsHoldTheBlockAndPaddingIsWeightless) {
   const seasim::UnderwaterSetup s = makeSetup(0.9, 5.0, 0.8, 0.1, 0.3);
   const std::vector<float> t = seasim::underwaterBandTable(s);
   const int stride = UW_BAND_STRIDE(kBands), row0 = UW_ROWS + 2;
   ASSERT_EQ(t.size(), size_t(row0 + UWI_ROWS) * stride);
   auto at = [&](int row, int k) { return t[size_t(row) * stride + k]; };
   for (int k = 0; k < stride; ++k) {
-    const UwiBand& ib = s.improved[std::min(k, kBands - 1)];
+    const UwiBand& ib = s.ordinates[std::min(k, kBands - 1)];
     EXPECT_EQ(at(UW_ROW_W_G, k), k < kBands ? 0.5f : 0.0f);
     EXPECT_EQ(at(row0 + UWI_ROW_K, k), ib.k);
     EXPECT_EQ(at(row0 + UWI_ROW_D2, k), ib.d2);
@@ -194,18 +194,18 @@ TEST(UnderwaterImprovedBands, TableRowsHoldTheBlockAndPaddingIsWeightless) {
     for (int r = 0; r < UWI_ROWS; ++r) EXPECT_TRUE(std::isfinite(at(row0 + r, k))) << r;
   }
   EXPECT_GT(at(row0 + UWI_ROW_BOTTOM_L, 0), 0.0f);
-  // No bottom: no bottom radiance; the thesis model: no improved rows.
+  // No bottom: no bottom radiance; the thesis model: no discrete-ordinates rows.
   EXPECT_EQ(seasim::underwaterBandTable(makeSetup(0.9, 0.0, 0.8, 0.1, 0.3))[size_t(row0 + UWI_ROW_BOTTOM_L) * stride],
             0.0f);
   seasim::UnderwaterSetup thesis = s;
-  thesis.improved.clear();
+  thesis.ordinates.clear();
   EXPECT_EQ(seasim::underwaterBandTable(thesis).size(), size_t(row0) * stride);
 }
 
 // The start factors of the camera's integrals are taken at the camera's depth and follow it: at the
 // surface 1 (the bottom's e^{-k H}), at 3 m e^{-κ 3}, below the bottom's depth the bottom's factor clamps
 // at 1, and at 1000 m they underflow to 0 without turning into NaN or Inf; e^{-k H} does not move.
-TEST(UnderwaterImprovedBands, CameraRowsAreTheStartFactorsAtTheCamerasDepth) {
+TEST(UnderwaterOrdinatesBands, CameraRowsAreTheStartFactorsAtTheCamerasDepth) {
   const int stride = UW_BAND_STRIDE(kBands), row0 = UW_ROWS + 2;
   for (double o_d : {0.0, 3.0, 6.0, 1000.0})
     for (double mu_w : {0.8, 1e-3}) {
@@ -214,7 +214,7 @@ TEST(UnderwaterImprovedBands, CameraRowsAreTheStartFactorsAtTheCamerasDepth) {
       const std::vector<float> t = seasim::underwaterBandTable(s);
       auto at = [&](int row, int k) { return double(t[size_t(row) * stride + k]); };
       for (int k = 0; k < stride; ++k) {
-        const UwiBand& ib = s.improved[std::min(k, kBands - 1)];
+        const UwiBand& ib = s.ordinates[std::min(k, kBands - 1)];
         const double k_beam = at(UW_ROW_K_BEAM, k);
         const double expect[][2] = {{UWI_ROW_EXP_K_OD, std::exp(-double(ib.k) * o_d)},
                                     {UWI_ROW_EXP_M_OD, std::exp(-double(ib.m) * o_d)},
@@ -233,7 +233,7 @@ TEST(UnderwaterImprovedBands, CameraRowsAreTheStartFactorsAtTheCamerasDepth) {
     }
 }
 
-TEST(UnderwaterImprovedBands, LanesMatchTheScalarModelInFloatAndDouble) {
+TEST(UnderwaterOrdinatesBands, LanesMatchTheScalarModelInFloatAndDouble) {
   struct Water {
     double a, b;
   };
@@ -252,7 +252,7 @@ TEST(UnderwaterImprovedBands, LanesMatchTheScalarModelInFloatAndDouble) {
           // (without absorption k sits at its floor and the bottom's pair e^{-k y}, e^{-k (H - y)}
           // carries large coefficients of opposite sign), against which rounding is measured.
           seasim::UnderwaterSetup magnitude = s;
-          for (UwiBand& ib : magnitude.improved) {
+          for (UwiBand& ib : magnitude.ordinates) {
             for (float* v : {&ib.d1, &ib.u1, &ib.d2, &ib.u2, &ib.dp, &ib.up})
               *v = std::fabs(*v);
             for (float& v : ib.src) v = std::fabs(v);
@@ -310,7 +310,7 @@ TEST(UnderwaterImprovedBands, LanesMatchTheScalarModelInFloatAndDouble) {
                       // the float rounding of an exponent of size x moves e^x by x ε.
                       const double size = std::fabs(ref) + scalarRadiance(magnitude, k, r, 0);
                       const double scale = (size + 1e-9 * (s.bands[k].e_sky0 + s.bands[k].e_sun0)) *
-                                           (1 + s.bands[k].c * std::min(r.S, 1e3) + s.improved[k].k * o_d);
+                                           (1 + s.bands[k].c * std::min(r.S, 1e3) + s.ordinates[k].k * o_d);
                       worst_d = std::max(worst_d, std::fabs(ld - ref) / scale);
                       worst_f = std::max(worst_f, std::fabs(lf - ref) / scale);
                       worst_ff = std::max(worst_ff, std::fabs(double(rf) - ref) / scale);
@@ -327,7 +327,7 @@ TEST(UnderwaterImprovedBands, LanesMatchTheScalarModelInFloatAndDouble) {
           }
         }
   EXPECT_GT(checked, 20000);
-  std::printf("improved lanes vs scalar uwi_band_radiance (double): lanes double %.2e, lanes float %.2e, scalar "
+  std::printf("discrete-ordinates lanes vs scalar uwi_band_radiance (double): lanes double %.2e, lanes float %.2e, scalar "
               "float %.2e (relative, per unit exponent; %d values)\n",
               worst_d, worst_f, worst_ff, checked);
 }

@@ -1,5 +1,5 @@
-// underwater_improved_depth_test.cpp — the improved model's k over the depths a frame sees
-// (host/underwater/underwater_improved_setup.*): the mean log-slope of a two-mode field over
+// underwater_ordinates_depth_test.cpp — the discrete-ordinates model's k over the depths a frame sees
+// (host/underwater/underwater_ordinates_setup.*): the mean log-slope of a two-mode field over
 // [0, D] (depthMeanDiffuseK) is the two-stream's k at D = 0 and tends to K∞ deep down, is continuous
 // and monotone, finite at the extremes; the band built with it keeps its boundary conditions, never
 // NaN at a = 0, H = 0 or without a bottom; the set-up takes D from the camera's depth, and the scene
@@ -13,10 +13,10 @@
 #include "scene/scene_parser.h"
 #include "spectral/sensor.h"
 #include "spectral/wavelength_grid.h"
-#include "underwater/underwater_improved_setup.h"
+#include "underwater/underwater_ordinates_setup.h"
 #include "underwater/underwater_setup.h"
 
-#include "underwater_improved_fixtures.h"
+#include "underwater_ordinates_fixtures.h"
 
 namespace {
 
@@ -34,7 +34,7 @@ double twoModeSlope(double k, double k_inf, double depth, double w) {
   return -std::log((1 - w) * std::exp(-k_fast * depth) + w * std::exp(-k_inf * depth)) / depth;
 }
 
-TEST(UnderwaterImprovedDepth, MeanSlopeOfTwoModes) {
+TEST(UnderwaterOrdinatesDepth, MeanSlopeOfTwoModes) {
   const double k = 0.35, k_inf = 0.3;
   for (double w : {0.05, 0.2, 0.5, 0.9}) {
     // D = 0 (and D < 0): the two-stream's k exactly; deep: K∞ + ln(1/w)/D, so within 1e-4 at D = 1e5.
@@ -72,7 +72,7 @@ TEST(UnderwaterImprovedDepth, MeanSlopeOfTwoModes) {
   EXPECT_NEAR(depthMeanDiffuseK(100.0, 1.0, 1e4, 0.2), 1.0 + std::log(5.0) / 1e4, 1e-12);
 }
 
-TEST(UnderwaterImprovedDepth, AsymptoticK) {
+TEST(UnderwaterOrdinatesDepth, AsymptoticK) {
   // The similarity medium's K∞ = c_s κ(ω_s); isotropic ω = 0.75 (a = 0.1, 2 b_back = 0.3): 0.77552 c.
   EXPECT_NEAR(seasim::asymptoticDiffuseK(0.1, 0.15), 0.4 * 0.77552, 1e-4);
   EXPECT_NEAR(seasim::asymptoticDiffuseK(0.2, 0.0), 0.2, 1e-12);  // no scattering: the absorption
@@ -105,7 +105,7 @@ bool finite(const UwiBand& ib) {
   return true;
 }
 
-TEST(UnderwaterImprovedDepth, BandTakesTheDepthsK) {
+TEST(UnderwaterOrdinatesDepth, BandTakesTheDepthsK) {
   const double mu = 0.8, ior = 1.34;
   for (double g : {0.0, 0.5, 0.9}) {
     for (double H : {0.0, 5.0, 20.0}) {
@@ -149,7 +149,7 @@ TEST(UnderwaterImprovedDepth, BandTakesTheDepthsK) {
   }
 }
 
-TEST(UnderwaterImprovedDepth, ViewDepthIsTheCamerasWithinTheWater) {
+TEST(UnderwaterOrdinatesDepth, ViewDepthIsTheCamerasWithinTheWater) {
   UwParams p{};
   p.cam_pos[1] = -3.8f;
   EXPECT_FLOAT_EQ(float(seasim::diffuseViewDepth(p)), 3.8f);  // no bottom
@@ -159,12 +159,12 @@ TEST(UnderwaterImprovedDepth, ViewDepthIsTheCamerasWithinTheWater) {
   EXPECT_EQ(seasim::diffuseViewDepth(p), 0.0);  // above the surface
 }
 
-using seasim::testing::kImprovedScene;
+using seasim::testing::kOrdinatesScene;
 
 // With the two-stream's diffuse field (improved_diffuse = "two_stream"), the set-up takes D from the
 // camera (so a camera moved in depth changes k: the renderer builds the set-up again and the band table
 // follows, tests/kernels/renderer_test.cpp), w from the key or, by default, from the fitted share.
-TEST(UnderwaterImprovedDepth, SetUpTakesTheCamerasDepthAndTheKey) {
+TEST(UnderwaterOrdinatesDepth, SetUpTakesTheCamerasDepthAndTheKey) {
   using namespace seasim;
   const WavelengthGrid grid = makeGrid(4, 400, 700);
   const Sensor sensor = makeSensor("cie1931", grid, true, "");
@@ -174,12 +174,12 @@ TEST(UnderwaterImprovedDepth, SetUpTakesTheCamerasDepthAndTheKey) {
   deep.camera.position.y = -20;
   const UnderwaterSetup s = makeUnderwaterSetup(shallow, grid, sensor);
   const UnderwaterSetup d = makeUnderwaterSetup(deep, grid, sensor);
-  EXPECT_LT(d.improved[1].k, s.improved[1].k * 0.999f);
+  EXPECT_LT(d.ordinates[1].k, s.ordinates[1].k * 0.999f);
   Scene off = parseScene(seasim::testing::twoStreamScene() + "improved_asymptotic_share = 0\n", "uw.toml");
   const UnderwaterSetup o = makeUnderwaterSetup(off, grid, sensor);
-  EXPECT_GT(o.improved[1].k, s.improved[1].k);
+  EXPECT_GT(o.ordinates[1].k, s.ordinates[1].k);
   off.camera.position.y = -20;
-  EXPECT_EQ(makeUnderwaterSetup(off, grid, sensor).improved[1].k, o.improved[1].k);  // w = 0: no depth
+  EXPECT_EQ(makeUnderwaterSetup(off, grid, sensor).ordinates[1].k, o.ordinates[1].k);  // w = 0: no depth
   // Default (-1): the fitted share at the water's g.
   const Scene plain = parseScene(seasim::testing::twoStreamScene(), "uw.toml");
   EXPECT_EQ(plain.underwater.improved_asymptotic_share, -1.0);
@@ -187,9 +187,9 @@ TEST(UnderwaterImprovedDepth, SetUpTakesTheCamerasDepthAndTheKey) {
   const UwiBand expected = makeUwiBand(p.bands[1], p.params.g, p.params.sun_dir_water[1], p.params.bottom_depth,
                                        p.params.ior, diffuseMeanCosines(p.params.g), twoStreamClosure(),
                                        {3.0, diffuseAsymptoticShare(p.params.g)});
-  EXPECT_EQ(p.improved[1].k, expected.k);
+  EXPECT_EQ(p.ordinates[1].k, expected.k);
   for (const char* bad : {"improved_asymptotic_share = 1.5", "improved_asymptotic_share = -0.5"}) {
-    seasim::testing::expectImprovedSceneRejects(bad, "underwater.improved_asymptotic_share");
+    seasim::testing::expectOrdinatesSceneRejects(bad, "underwater.improved_asymptotic_share");
   }
 }
 

@@ -1,4 +1,4 @@
-#include "underwater/underwater_improved_ordinates.h"
+#include "underwater/underwater_ordinates_solver.h"
 
 #include <algorithm>
 #include <array>
@@ -12,7 +12,7 @@
 #include "underwater/discrete_ordinates.h"
 #include "underwater/forward_peak.h"
 #include "underwater/ordinates_high_order.h"
-#include "underwater/underwater_improved_setup.h"
+#include "underwater/underwater_ordinates_setup.h"
 
 namespace seasim {
 namespace {
@@ -267,7 +267,7 @@ UwiBand makeUwiBandFromOrdinates(const UwBand& band, double g, double mu_w, doub
   // The kernel's delta-M is the solver's (kOrdinatesSourceMoments: f = g³ for g > 0), its beam
   // e_beam0 e^{-m y}, m = c'/μ_w: the view rays' source is the solver's in-scatter in that frame.
   const int moments = g > 0 ? kOrdinatesSourceMoments : 0;
-  const DeltaMMedium medium = improvedDeltaM(a, b, g, kOrdinatesSourceMoments);
+  const DeltaMMedium medium = ordinatesDeltaM(a, b, g, kOrdinatesSourceMoments);
   const double c_dm = medium.c_dm;
   const double mu0 = std::clamp(mu_w, 1e-3, 1.0);
   UwiBand o = uwiBandOfMedium(medium, 1.0);  // g_flux = g': the first-order source's, unused here

@@ -1,13 +1,13 @@
 #!/bin/sh
-# underwater_improved_lanes.sh — kd_multiple's time per band for underwater.model = "thesis" and
-# "improved" (the improved model on the band lanes must cost <= 2x the thesis per band),
+# underwater_ordinates_lanes.sh — kd_multiple's time per band for underwater.model = "thesis" and
+# "improved" (the discrete-ordinates model on the band lanes must cost <= 2x the thesis per band),
 # round by round interleaved so that the shared machine's load falls on every variant alike:
 #   seasim bench --scene scenes/seabed.toml --wavelengths 16,64 --repeat 3 --set underwater.caustics="none"
-# per variant (improved_no_spread: the improved model without the water's point-spread, whose forward
-# light kd_multiple then does not keep apart; optionally also BEFORE, another binary's improved model, e.g. a copy of main's), and
+# per variant (improved_no_spread: the discrete-ordinates model without the water's point-spread, whose forward
+# light kd_multiple then does not keep apart; optionally also BEFORE, another binary's discrete-ordinates model, e.g. a copy of main's), and
 # per band = (kd at n = 64 - kd at n = 16) / 48, the fixed per-pixel cost cancelling (N1, N2 change the
 # two band counts: a wider gap measures the per-band cost above the machine's noise).
-# Usage: tests/perf/underwater_improved_lanes.sh [BEFORE_BINARY]   (ROUNDS=2, SEASIM=build/seasim, N1=16, N2=64)
+# Usage: tests/perf/underwater_ordinates_lanes.sh [BEFORE_BINARY]   (ROUNDS=2, SEASIM=build/seasim, N1=16, N2=64)
 ROUNDS=${ROUNDS:-2}
 N1=${N1:-16}
 N2=${N2:-64}
@@ -25,9 +25,9 @@ while [ "$r" -le "$ROUNDS" ]; do
   for v in thesis improved improved_no_spread before; do
     case $v in
     thesis) t=$(kd_ms "$SEASIM" --set underwater.model=\"thesis\") ;;
-    improved) t=$(kd_ms "$SEASIM" --set underwater.model=\"improved\") ;;
-    improved_no_spread) t=$(kd_ms "$SEASIM" --set underwater.model=\"improved\" --set underwater.point_spread=false) ;;
-    before) [ -n "$BEFORE" ] || continue; t=$(kd_ms "$BEFORE" --set underwater.model=\"improved\") ;;
+    improved) t=$(kd_ms "$SEASIM" --set underwater.model=\"discrete_ordinates\") ;;
+    improved_no_spread) t=$(kd_ms "$SEASIM" --set underwater.model=\"discrete_ordinates\" --set underwater.point_spread=false) ;;
+    before) [ -n "$BEFORE" ] || continue; t=$(kd_ms "$BEFORE" --set underwater.model=\"discrete_ordinates\") ;;
     esac
     echo "$t" | awk -v r="$r" -v v="$v" -v dn=$((N2 - N1)) '{printf "%d,%s,%.2f,%.2f,%.4f\n", r, v, $1, $2, ($2 - $1) / dn}'
   done

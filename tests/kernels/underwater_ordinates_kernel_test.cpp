@@ -1,5 +1,5 @@
-// underwater_improved_kernel_test.cpp — kd_multiple.cl with underwater.model = "improved"
-// (SEASIM_UNDERWATER_MODEL == 1, common/underwater_improved.h) on PoCL in float, against the same
+// underwater_ordinates_kernel_test.cpp — kd_multiple.cl with underwater.model = "discrete_ordinates"
+// (SEASIM_UNDERWATER_MODEL == 1, common/underwater_ordinates.h) on PoCL in float, against the same
 // shared maths evaluated per pixel in double on the CPU (ray cast, shadow ray, band loop, sensor
 // weights), over an ordinary seabed and its extremes: no bottom, g = 0 and 0.95, a camera 1000 m down,
 // straight up and down, turbid 9C, night, and band counts that are not a multiple of the kernel's 16
@@ -21,7 +21,7 @@
 #include "spectral/sensor.h"
 #include "spectral/wavelength_grid.h"
 #include "test_device.h"
-#include "underwater/underwater_improved_ordinates.h"
+#include "underwater/underwater_ordinates_solver.h"
 #include "underwater/underwater_setup.h"
 #include "water_spread_cpu.h"
 
@@ -31,7 +31,7 @@ namespace kd = seasim::kmath_d;
 
 const char* kScene = R"(
 [scene]
-name = "test_improved"
+name = "test_ordinates"
 [camera]
 position = [0, -4, 0]
 look_at = [0, -4.5, -8]
@@ -61,7 +61,7 @@ min = [0.8, -5, -7.5]
 max = [2.2, -3.8, -6.3]
 albedo = 0.4
 [underwater]
-model = "improved"
+model = "discrete_ordinates"
 single_scattering = false
 caustics = "none"
 point_spread = false
@@ -79,13 +79,13 @@ struct ForwardMoments {
   std::vector<double> s, depth, rgb, spectral;
 };
 
-// The frame by the shared maths in double (kd_multiple.cl's improved block, raycast.cl's shadow ray);
+// The frame by the shared maths in double (kd_multiple.cl's discrete-ordinates block, raycast.cl's shadow ray);
 // with spectral, also every band's radiance (band-major per pixel, as spectral.exr).
 // mirror_hits: counts the surface pixels whose reflected ray meets an object (uwi_mirror_hit).
 // shaded_faces: counts the object pixels whose face sees sand in shadow (uwi_bottom_visibility < 1).
 // forward: the frame and the bands leave out the light scattered by small angles, returned there
 // (common/water_spread.h: the hit's and the in-scatter's shares, by uwi_multiple apart from the hit).
-seasim::Image cpuImproved(const seasim::UnderwaterSetup& s, bool multiple, std::vector<double>* spectral = nullptr,
+seasim::Image cpuOrdinates(const seasim::UnderwaterSetup& s, bool multiple, std::vector<double>* spectral = nullptr,
                           int* mirror_hits = nullptr, int* shaded_faces = nullptr, ForwardMoments* forward = nullptr) {
   const UwParams& p = s.params;
   seasim::Image out = seasim::Image::rgb(p.width, p.height);
@@ -123,32 +123,32 @@ seasim::Image cpuImproved(const seasim::UnderwaterSetup& s, bool multiple, std::
       // The share of the sunlit sand's light the ray gathers unhidden and unshaded (kd_multiple.cl's, with the
       // first band's c', k and albedos).
       const double v_sand =
-          multiple ? kd::uwi_sand_share(s.objects.data(), p.object_count, p.bottom_depth, o, d, S, s.improved[0].c_dm,
-                                        s.improved[0].k, s_w, s.albedo.data(), p.band_count, s.bands[0].bottom_albedo)
+          multiple ? kd::uwi_sand_share(s.objects.data(), p.object_count, p.bottom_depth, o, d, S, s.ordinates[0].c_dm,
+                                        s.ordinates[0].k, s_w, s.albedo.data(), p.band_count, s.bands[0].bottom_albedo)
                    : 1.0;
       for (int i = 0; i < p.band_count; ++i) {
         if (mat_m >= 0) mirror.albedo = s.albedo[size_t(mat_m) * p.band_count + i];
         const UwBand& b = s.bands[i];
         const double albedo = mat >= 0 ? s.albedo[size_t(mat) * p.band_count + i] : mat == UW_MAT_BOTTOM ? b.bottom_albedo : 0.0;
-        double L = kd::uwi_band_radiance_sand(&s.improved[i], &b, p.g, mat, S, n, d, -o.y, s_w, albedo, vis, vis_b,
+        double L = kd::uwi_band_radiance_sand(&s.ordinates[i], &b, p.g, mat, S, n, d, -o.y, s_w, albedo, vis, vis_b,
                                               b.sky_radiance, p.ior, p.bottom_depth, 0, multiple ? 1 : 0, mirror, v_sand);
         if (forward) {
           const size_t px = size_t(y) * p.width + x;
-          const double l_in = kd::uwi_multiple_sand(&s.improved[i], &b, p.g, p.bottom_depth, S, d.y, -o.y,
+          const double l_in = kd::uwi_multiple_sand(&s.ordinates[i], &b, p.g, p.bottom_depth, S, d.y, -o.y,
                                                     kd::dot(d, s_w), s_w.y, 0, multiple ? 1 : 0, v_sand);
           // The in-scatter with the forward peak's light (uwi_forward_peak), which the spread leaves alone
           // (kd_multiple.cl): the rest of L is the hit's.
           const double y1 = mat == UW_MAT_SURFACE ? 0.0 : std::max(-o.y - S * d.y, 0.0);
           const double l_total_in =
-              multiple ? std::max(l_in + kd::uwi_forward_peak(&s.improved[i], &b, p.g, S, d.y, -o.y, y1,
+              multiple ? std::max(l_in + kd::uwi_forward_peak(&s.ordinates[i], &b, p.g, S, d.y, -o.y, y1,
                                                               kd::dot(d, s_w), s_w.y, 0),
                                   0.0)
                        : 0.0;
           const double hit = L - l_total_in;
-          const double s_spread = std::min(S, 1e4), delta = double(b.c) - double(s.improved[i].c_dm);
+          const double s_spread = std::min(S, 1e4), delta = double(b.c) - double(s.ordinates[i].c_dm);
           const double em = kd::uws_expm1_neg_b(delta * s_spread);
           double count_in = 0, depth_in = 0;
-          const double share_in = kd::uws_inscatter_share_b(s.improved[i].c_dm, delta, s_spread, em, &count_in, &depth_in);
+          const double share_in = kd::uws_inscatter_share_b(s.ordinates[i].c_dm, delta, s_spread, em, &count_in, &depth_in);
           const double fwd = hit * kd::uws_hit_share_b(em) + std::min(l_in * share_in, l_total_in);
           const double cnt = hit * delta * s_spread + l_in * count_in;
           const double w[3] = {b.w_r, b.w_g, b.w_b};
@@ -189,7 +189,7 @@ seasim::Scene variantScene(const Variant& v, const std::vector<seasim::Override>
   if (v.remove_objects) text.erase(text.find("[[objects]]"), text.find("[underwater]") - text.find("[[objects]]"));
   std::vector<seasim::Override> overrides = v.overrides;
   overrides.insert(overrides.end(), extra.begin(), extra.end());
-  return seasim::parseScene(text, "test_improved.toml", overrides);
+  return seasim::parseScene(text, "test_ordinates.toml", overrides);
 }
 
 // The set-up the renderer shaded the scene from (its grid and sensor).
@@ -199,9 +199,9 @@ seasim::UnderwaterSetup setupOf(const seasim::Scene& scene) {
       scene, grid, seasim::makeSensor(scene.spectral.sensor, grid, scene.spectral.white_balance, scene.spectral.camera_dir));
 }
 
-class UnderwaterImprovedKernel : public ::testing::TestWithParam<Variant> {};
+class UnderwaterOrdinatesKernel : public ::testing::TestWithParam<Variant> {};
 
-TEST_P(UnderwaterImprovedKernel, MatchesDoubleCpuEvaluationWithoutNaN) {
+TEST_P(UnderwaterOrdinatesKernel, MatchesDoubleCpuEvaluationWithoutNaN) {
   const seasim::Scene scene = variantScene(GetParam());
   const seasim::Plan plan = seasim::makePlan(scene);
   ASSERT_TRUE(plan.hasPass("kd_multiple"));
@@ -210,9 +210,9 @@ TEST_P(UnderwaterImprovedKernel, MatchesDoubleCpuEvaluationWithoutNaN) {
   EXPECT_EQ(frame.nonfinite, 0);
   for (float v : frame.rgb.pixels) ASSERT_TRUE(std::isfinite(v) && v >= 0.0f);
   const seasim::UnderwaterSetup setup = setupOf(scene);
-  ASSERT_EQ(setup.improved.size(), setup.bands.size());
+  ASSERT_EQ(setup.ordinates.size(), setup.bands.size());
   int mirror_hits = 0, shaded_faces = 0;
-  const seasim::Image ref = cpuImproved(setup, scene.underwater.multiple_scattering, nullptr, &mirror_hits, &shaded_faces);
+  const seasim::Image ref = cpuOrdinates(setup, scene.underwater.multiple_scattering, nullptr, &mirror_hits, &shaded_faces);
   if (std::string(GetParam().name) == "objects_in_the_mirror") EXPECT_GT(mirror_hits, 20) << "the sphere in the mirror";
   if (std::string(GetParam().name) == "faces_over_their_shadows") EXPECT_GT(shaded_faces, 15) << "faces over shadow";
   float peak = 0;
@@ -234,7 +234,7 @@ TEST_P(UnderwaterImprovedKernel, MatchesDoubleCpuEvaluationWithoutNaN) {
 }
 
 INSTANTIATE_TEST_SUITE_P(
-    Scenes, UnderwaterImprovedKernel,
+    Scenes, UnderwaterOrdinatesKernel,
     ::testing::Values(
         Variant{"ordinary", {}}, Variant{"no_bottom", {}, true}, Variant{"g0", {set("water.g", "0.0")}},
         Variant{"g095", {set("water.g", "0.95")}},
@@ -252,7 +252,7 @@ INSTANTIATE_TEST_SUITE_P(
         Variant{"objects_in_the_mirror",  // a sphere just below the surface, seen in its reflection
                 {set("camera.position", "[0, -1.5, 0]"), set("camera.look_at", "[0, -0.5, -8]"),
                  set("objects[0].center", "[-1, -1.0, -7]")}},
-        // No objects: the set-up holds one placeholder object for OpenCL, and the band table's improved
+        // No objects: the set-up holds one placeholder object for OpenCL, and the band table's discrete-ordinates
         // rows must still follow the scene's object count (following the placeholder's
         // gave 4.4x the thesis's light in make validate's scene).
         Variant{"no_objects", {}, false, true}, Variant{"no_objects_no_bottom", {}, true, true},
@@ -268,13 +268,13 @@ INSTANTIATE_TEST_SUITE_P(
 
 // spectral.exr's bands from the lanes' store_lanes, 17 bands (one full step of 16 and one of 1), each
 // band against the double CPU evaluation.
-TEST(UnderwaterImprovedKernel, SpectralOutputHoldsEveryBand) {
-  const seasim::Scene scene = seasim::parseScene(kScene, "test_improved.toml",
+TEST(UnderwaterOrdinatesKernel, SpectralOutputHoldsEveryBand) {
+  const seasim::Scene scene = seasim::parseScene(kScene, "test_ordinates.toml",
                                                  {set("spectral.spectral_exr", "true"), set("spectral.count", "17")});
   const seasim::FrameResult frame = seasim::renderFrame(seasim::test::testDevice(), scene, seasim::makePlan(scene));
   const seasim::UnderwaterSetup setup = setupOf(scene);
   std::vector<double> ref;
-  cpuImproved(setup, true, &ref);
+  cpuOrdinates(setup, true, &ref);
   ASSERT_EQ(frame.spectral.size(), ref.size());
   double peak = 0;
   for (double v : ref) peak = std::max(peak, std::fabs(v));
@@ -291,9 +291,9 @@ TEST(UnderwaterImprovedKernel, SpectralOutputHoldsEveryBand) {
 // water_spread.cl puts it back blurred. The frame against the double CPU evaluation of both (the moments
 // above, then tests/kernels/water_spread_cpu.h's passes), and the spread must move light: the frame
 // differs from the one without it by more than the float noise, and keeps at least 90 % of its light.
-class UnderwaterImprovedSpread : public ::testing::TestWithParam<Variant> {};
+class UnderwaterOrdinatesSpread : public ::testing::TestWithParam<Variant> {};
 
-TEST_P(UnderwaterImprovedSpread, MatchesDoubleCpuEvaluation) {
+TEST_P(UnderwaterOrdinatesSpread, MatchesDoubleCpuEvaluation) {
   const seasim::Scene scene = variantScene(GetParam(), {set("underwater.point_spread", "true")});
   const seasim::Plan plan = seasim::makePlan(scene);
   ASSERT_TRUE(plan.hasPass("water_spread"));
@@ -302,7 +302,7 @@ TEST_P(UnderwaterImprovedSpread, MatchesDoubleCpuEvaluation) {
   for (float v : frame.rgb.pixels) ASSERT_TRUE(std::isfinite(v) && v >= 0.0f);
   const seasim::UnderwaterSetup setup = setupOf(scene);
   ForwardMoments fm;
-  const seasim::Image direct = cpuImproved(setup, scene.underwater.multiple_scattering, nullptr, nullptr, nullptr, &fm);
+  const seasim::Image direct = cpuOrdinates(setup, scene.underwater.multiple_scattering, nullptr, nullptr, nullptr, &fm);
   const UwParams& p = setup.params;
   const seasim::WaterSpread spread =
       seasim::makeWaterSpread(p.g, seasim::kOrdinatesSourceMoments, p.tan_half_fov_y, p.width, p.height);
@@ -338,7 +338,7 @@ TEST_P(UnderwaterImprovedSpread, MatchesDoubleCpuEvaluation) {
 }
 
 INSTANTIATE_TEST_SUITE_P(
-    Scenes, UnderwaterImprovedSpread,
+    Scenes, UnderwaterOrdinatesSpread,
     ::testing::Values(Variant{"ordinary", {}}, Variant{"no_bottom", {}, true}, Variant{"g095", {set("water.g", "0.95")}},
                       Variant{"g05_wide", {set("water.g", "0.5")}},
                       Variant{"turbid_9C_long_range", {set("water.jerlov", "\"9C\""), set("camera.look_at", "[0, -4.2, -8]")}, true},
@@ -353,9 +353,9 @@ INSTANTIATE_TEST_SUITE_P(
 // spectral.exr with the spread: every band blurred as the frame is (its bands split between the layers by
 // their own mean count, the frame's channels by theirs), so the bands' sensor-weighted sum is the frame
 // to within that split's difference, and the light is the same.
-TEST(UnderwaterImprovedSpread, SpectralOutputHoldsTheSpread) {
+TEST(UnderwaterOrdinatesSpread, SpectralOutputHoldsTheSpread) {
   const seasim::Scene scene = seasim::parseScene(
-      kScene, "test_improved.toml",
+      kScene, "test_ordinates.toml",
       {set("spectral.spectral_exr", "true"), set("spectral.count", "17"), set("underwater.point_spread", "true")});
   const seasim::FrameResult frame = seasim::renderFrame(seasim::test::testDevice(), scene, seasim::makePlan(scene));
   const seasim::UnderwaterSetup setup = setupOf(scene);
@@ -365,7 +365,7 @@ TEST(UnderwaterImprovedSpread, SpectralOutputHoldsTheSpread) {
   // The bands against the double CPU evaluation, band by band.
   ForwardMoments fm;
   std::vector<double> ref_bands;
-  cpuImproved(setup, true, &ref_bands, nullptr, nullptr, &fm);
+  cpuOrdinates(setup, true, &ref_bands, nullptr, nullptr, &fm);
   const UwParams& p = setup.params;
   seasim::test::waterSpreadCpu(
       seasim::makeWaterSpread(p.g, seasim::kOrdinatesSourceMoments, p.tan_half_fov_y, p.width, p.height), bands, fm.s,
@@ -397,12 +397,12 @@ TEST(UnderwaterImprovedSpread, SpectralOutputHoldsTheSpread) {
   EXPECT_LT(worst, 0.02);
 }
 
-TEST(UnderwaterImprovedKernel, WithFroxelsTheFrameIsFiniteAndDiffersFromTheThesis) {
-  const seasim::Scene improved =
-      seasim::parseScene(kScene, "test_improved.toml", {set("underwater.single_scattering", "true")});
+TEST(UnderwaterOrdinatesKernel, WithFroxelsTheFrameIsFiniteAndDiffersFromTheThesis) {
+  const seasim::Scene ordinates =
+      seasim::parseScene(kScene, "test_ordinates.toml", {set("underwater.single_scattering", "true")});
   const seasim::Scene thesis = seasim::parseScene(
-      kScene, "test_improved.toml", {set("underwater.single_scattering", "true"), set("underwater.model", "\"thesis\"")});
-  const seasim::FrameResult a = seasim::renderFrame(seasim::test::testDevice(), improved, seasim::makePlan(improved));
+      kScene, "test_ordinates.toml", {set("underwater.single_scattering", "true"), set("underwater.model", "\"thesis\"")});
+  const seasim::FrameResult a = seasim::renderFrame(seasim::test::testDevice(), ordinates, seasim::makePlan(ordinates));
   const seasim::FrameResult b = seasim::renderFrame(seasim::test::testDevice(), thesis, seasim::makePlan(thesis));
   EXPECT_EQ(a.nonfinite, 0);
   double sa = 0, sb = 0;

@@ -1,9 +1,9 @@
-/* underwater_improved_bands.h — underwater.model = "improved" (common/underwater_improved.h) for
- * SEASIM_BAND_LANES bands at once: the improved model's band loop in kd_multiple.cl
+/* underwater_ordinates_bands.h — underwater.model = "discrete_ordinates" (common/underwater_ordinates.h) for
+ * SEASIM_BAND_LANES bands at once: the discrete-ordinates model's band loop in kd_multiple.cl
  * (SEASIM_UNDERWATER_MODEL == 1) on the band lanes of common/band_lanes.h, as the thesis model's
- * (common/underwater_bands.h). The same formulas as underwater_improved.h (its header comment derives
+ * (common/underwater_bands.h). The same formulas as underwater_ordinates.h (its header comment derives
  * them; "uwi" there), rewritten on realb because OpenCL C has no templates, with every pixel-invariant
- * per-band value precomputed in the band table's improved rows (UWI_ROW_*, common/underwater_band_table.h,
+ * per-band value precomputed in the band table's discrete-ordinates rows (UWI_ROW_*, common/underwater_band_table.h,
  * filled by host/underwater/underwater_band_table.cpp):
  *  - the in-scatter source's table (UwiBand.src) in the band table's rows UWI_ROW_SRC + …: the pixel's
  *    nearest node in ν and its cos Δφ (uwi_source_node, uwi_cos_azimuth) once per pixel, then one row per
@@ -18,7 +18,7 @@
  *    which are that table's top node.
  * The material, the phase functions and the reflected ray's direction are per pixel (kd_multiple.cl);
  * bottom_depth is the scene's (one uniform test per step). The lanes are branch-free otherwise.
- * One exp fewer per lit band than underwater_improved.h: T(S) = e^{-c' S} is folded into the three
+ * One exp fewer per lit band than underwater_ordinates.h: T(S) = e^{-c' S} is folded into the three
  * exps of the irradiance at the hit, e^{-c' S} e^{-k y} = e^{-(k y + c' S)} (the clamps at 0 commute with
  * the positive factor), as underwater_bands.h does for the thesis.
  * The budget (<= 2x the thesis per band; four integrals where eq. 4.7 takes two): each integral
@@ -30,8 +30,8 @@
  * the surface from below seven with froxels (its T(S) the camera's far end; the reflected ray's three, no
  * froxel term along it) against nine. The source's table adds nine rows' loads per ray and band (its
  * two nearest nodes interpolated took twice the kernel's time per band: docs/journal/underwater_regions_3_*.md).
- * tests/unit/underwater_improved_bands_test.cpp holds these lanes (one band per step on the host) to
- * uwi_band_radiance in float and double; tests/kernels/underwater_improved_kernel_test.cpp the kernel
+ * tests/unit/underwater_ordinates_bands_test.cpp holds these lanes (one band per step on the host) to
+ * uwi_band_radiance in float and double; tests/kernels/underwater_ordinates_kernel_test.cpp the kernel
  * to the double CPU evaluation of uwi_band_radiance.
  * Needs compat.h, band_lanes.h, band_lanes_math.h, optics.h (fresnel_reflectance), underwater.h
  * (UW_INFINITE), underwater_bands.h (kd_exp_integral_ends_b), underwater_band_table.h.
@@ -39,10 +39,10 @@
  * return values: a struct return is a `noalias sret` pointer in SPIR, and when Clang 14 inlines such a
  * function it emits llvm.experimental.noalias.scope.decl, which Oclgrind 21.10 cannot run ("Undefined
  * external function", and kd_multiple was not created). A plain pointer carries no noalias scope; the
- * code after inlining is the same (tests/runtimes/oclgrind_scenes.sh renders the improved model). */
+ * code after inlining is the same (tests/runtimes/oclgrind_scenes.sh renders the discrete-ordinates model). */
 
 /* One step's per-band values: the thesis rows the model shares (σ_t, σ_t/μ_w, e_beam0) and the
- * improved rows. */
+ * discrete-ordinates rows. */
 typedef struct {
   realb c, k_beam, e_beam; /* σ_t; σ_t / max(μ_w, 1e-4) (the froxel term's beam); e_beam0 */
   realb c_dm, k, m;        /* delta-M extinction c', the diffuse field's k, the delta-M beam's c'/μ_w */
@@ -51,7 +51,7 @@ typedef struct {
   realb d1, d2, dp;        /* E_d's coefficients (UwiBand): the bottom's light */
 } UwiLanes;
 
-/* Bands i..i+SEASIM_BAND_LANES-1 of the table (row stride `stride`), the improved rows starting at row
+/* Bands i..i+SEASIM_BAND_LANES-1 of the table (row stride `stride`), the discrete-ordinates rows starting at row
  * uwi_row0 = UW_ROWS + object count. */
 SEASIM_FN void uwi_lanes_load(const SEASIM_GLOBAL float* table, int stride, int uwi_row0, int i, UwiLanes* out) {
   UwiLanes v;

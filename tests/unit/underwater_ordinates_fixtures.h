@@ -1,10 +1,10 @@
-// underwater_improved_fixtures.h — what the improved underwater model's unit tests share
-// (underwater_improved_test, _depth_test, _flux_test, _surface_test, _tilt_test, underwater_model_option_test,
+// underwater_ordinates_fixtures.h — what the discrete-ordinates underwater model's unit tests share
+// (underwater_ordinates_test, _depth_test, _flux_test, _surface_test, _tilt_test, underwater_model_option_test,
 // forward_peak_test):
-// one band's block as the set-up would fill it, and a small improved-model scene whose [underwater]
+// one band's block as the set-up would fill it, and a small discrete-ordinates-model scene whose [underwater]
 // table a test may extend, with its file:line:key rejection check.
-#ifndef SEASIM_TESTS_UNDERWATER_IMPROVED_FIXTURES_H
-#define SEASIM_TESTS_UNDERWATER_IMPROVED_FIXTURES_H
+#ifndef SEASIM_TESTS_UNDERWATER_ORDINATES_FIXTURES_H
+#define SEASIM_TESTS_UNDERWATER_ORDINATES_FIXTURES_H
 
 #include <gtest/gtest.h>
 
@@ -66,7 +66,7 @@ inline DiscreteOrdinatesLayer uwTestLayer(const UwBand& b, double g, double H) {
 }
 
 // Jerlov IB over a 25 m bottom, the camera at 3 m; ends inside [underwater], so keys may be appended.
-inline constexpr const char* kImprovedScene = R"([scene]
+inline constexpr const char* kOrdinatesScene = R"([scene]
 name = "uw"
 [camera]
 position = [0, -3, 0]
@@ -80,17 +80,17 @@ type = "flat"
 depth = 25
 [underwater]
 caustics = "none"
-model = "improved"
+model = "discrete_ordinates"
 )";
 
-// The improved model with the two-stream's diffuse field (its fitted tables), keys may be appended.
-inline std::string twoStreamScene() { return std::string(kImprovedScene) + "improved_diffuse = \"two_stream\"\n"; }
+// The discrete-ordinates model with the two-stream's diffuse field (its fitted tables), keys may be appended.
+inline std::string twoStreamScene() { return std::string(kOrdinatesScene) + "improved_diffuse = \"two_stream\"\n"; }
 
-// kImprovedScene with `line` appended (its line 16) must be rejected with an error naming that file:line
+// kOrdinatesScene with `line` appended (its line 16) must be rejected with an error naming that file:line
 // and `key` (underwater.…).
-inline void expectImprovedSceneRejects(const std::string& line, const std::string& key) {
+inline void expectOrdinatesSceneRejects(const std::string& line, const std::string& key) {
   try {
-    parseScene(std::string(kImprovedScene) + line + "\n", "uw.toml");
+    parseScene(std::string(kOrdinatesScene) + line + "\n", "uw.toml");
     ADD_FAILURE() << "accepted " << line;
   } catch (const InputError& e) {
     const std::string m = e.what();
@@ -101,4 +101,4 @@ inline void expectImprovedSceneRejects(const std::string& line, const std::strin
 
 }  // namespace seasim::testing
 
-#endif  // SEASIM_TESTS_UNDERWATER_IMPROVED_FIXTURES_H
+#endif  // SEASIM_TESTS_UNDERWATER_ORDINATES_FIXTURES_H

@@ -1,4 +1,4 @@
-// underwater_improved_terms.h — underwater.model = "improved" (common/underwater_improved.h) split into
+// underwater_ordinates_terms.h — underwater.model = "discrete_ordinates" (common/underwater_ordinates.h) split into
 // its terms per pixel, for diagnosis (which term a miss against the path tracer is in). Each
 // pixel's centre ray is cast in double with the kernels' own geometry and shaded by the scalar model in
 // double, one term at a time; the terms add up to the model's radiance (uwi_band_radiance) plus the
@@ -44,10 +44,10 @@ struct UwiPixelTerms {
   double total = 0;
 };
 
-// Row-major, width × height of setup.params. setup.improved must hold one UwiBand per band
-// (underwater.model = "improved"; RuntimeError otherwise). multiple_scattering: the scene's
+// Row-major, width × height of setup.params. setup.ordinates must hold one UwiBand per band
+// (underwater.model = "discrete_ordinates"; RuntimeError otherwise). multiple_scattering: the scene's
 // underwater.multiple_scattering (false leaves every in-scatter term out, as the kernel does).
 // A uniform sky (the surface's window takes each band's sky_radiance).
-std::vector<UwiPixelTerms> improvedModelTerms(const UnderwaterSetup& setup, bool multiple_scattering);
+std::vector<UwiPixelTerms> ordinatesModelTerms(const UnderwaterSetup& setup, bool multiple_scattering);
 
 }  // namespace seasim

@@ -1,5 +1,5 @@
-// underwater_improved_flux_test.cpp — the improved model's flux term scale
-// (host/underwater/underwater_improved_setup.*): the fitted table s(g), the band's g_flux = s g', the
+// underwater_ordinates_flux_test.cpp — the discrete-ordinates model's flux term scale
+// (host/underwater/underwater_ordinates_setup.*): the fitted table s(g), the band's g_flux = s g', the
 // in-scatter source's flux term following g_flux (not the two-stream's g'), the set-up taking s from the
 // table or from underwater.improved_flux_scale, and the key's file:line:key errors.
 #include <gtest/gtest.h>
@@ -11,11 +11,11 @@
 #include "scene/scene_parser.h"
 #include "spectral/sensor.h"
 #include "spectral/wavelength_grid.h"
-#include "underwater/underwater_improved_ordinates.h"
-#include "underwater/underwater_improved_setup.h"
+#include "underwater/underwater_ordinates_solver.h"
+#include "underwater/underwater_ordinates_setup.h"
 #include "underwater/underwater_setup.h"
 
-#include "underwater_improved_fixtures.h"
+#include "underwater_ordinates_fixtures.h"
 
 namespace {
 
@@ -28,7 +28,7 @@ UwBand band(double a, double b) { return seasim::testing::uwTestBand(a, b, 0.3, 
 
 // The table at its knots, linear between, held outside; >= 1 and finite everywhere (the first-order
 // expansion is the lower bound the fit never went under).
-TEST(UnderwaterImprovedFlux, TableAtKnotsBetweenAndOutside) {
+TEST(UnderwaterOrdinatesFlux, TableAtKnotsBetweenAndOutside) {
   EXPECT_DOUBLE_EQ(diffuseFluxScale(0.0), 1.0);
   EXPECT_DOUBLE_EQ(diffuseFluxScale(0.5), 1.3);
   EXPECT_DOUBLE_EQ(diffuseFluxScale(0.9), 1.6);
@@ -47,7 +47,7 @@ TEST(UnderwaterImprovedFlux, TableAtKnotsBetweenAndOutside) {
 
 // g_flux = s g'; g_dm (which the two-stream and the tests of it use) stays g / (1 + g); the two-stream's
 // solution does not depend on s.
-TEST(UnderwaterImprovedFlux, BandCarriesTheScaledAsymmetryOnly) {
+TEST(UnderwaterOrdinatesFlux, BandCarriesTheScaledAsymmetryOnly) {
   const UwBand b = band(0.1, 0.3);
   const auto mean = seasim::diffuseMeanCosines(0.9);
   const UwiBand one = makeUwiBand(b, 0.9, 0.8, 5.0, 1.34, mean, seasim::twoStreamClosure(), DiffuseDepth{3.0, 0.4, 1.0});
@@ -66,7 +66,7 @@ TEST(UnderwaterImprovedFlux, BandCarriesTheScaledAsymmetryOnly) {
 
 // The source's flux term, its odd part in ν, is 3 g_flux ν (D - U) b'/(4π): scaling s scales it, the
 // even part (the scalar irradiance) is unchanged. Would fail if the kernel's formula kept g'.
-TEST(UnderwaterImprovedFlux, SourceFluxTermFollowsTheScale) {
+TEST(UnderwaterOrdinatesFlux, SourceFluxTermFollowsTheScale) {
   const UwBand b = band(0.4, 1.2);
   const auto mean = seasim::diffuseMeanCosines(0.9);
   for (double s : {1.0, 1.6, 2.5}) {
@@ -83,15 +83,15 @@ TEST(UnderwaterImprovedFlux, SourceFluxTermFollowsTheScale) {
   }
 }
 
-using seasim::testing::kImprovedScene;
+using seasim::testing::kOrdinatesScene;
 
 // The set-up takes s from the table at the water's g by default, or from the key; bad values name the
 // file, line and key.
-TEST(UnderwaterImprovedFlux, SetUpTakesTheTableOrTheKey) {
+TEST(UnderwaterOrdinatesFlux, SetUpTakesTheTableOrTheKey) {
   using namespace seasim;
   const WavelengthGrid grid = makeGrid(4, 400, 700);
   const Sensor sensor = makeSensor("cie1931", grid, true, "");
-  const Scene plain = parseScene(kImprovedScene, "uw.toml");
+  const Scene plain = parseScene(kOrdinatesScene, "uw.toml");
   EXPECT_EQ(plain.underwater.improved_flux_scale, -1.0);
   const UnderwaterSetup p = makeUnderwaterSetup(plain, grid, sensor);
   ASSERT_GT(p.params.g, 0.0f);
@@ -99,18 +99,18 @@ TEST(UnderwaterImprovedFlux, SetUpTakesTheTableOrTheKey) {
   // The two-stream's flux term takes its table's s(g), or the key's.
   const std::string two_stream = seasim::testing::twoStreamScene();
   const UnderwaterSetup t = makeUnderwaterSetup(parseScene(two_stream, "uw.toml"), grid, sensor);
-  EXPECT_FLOAT_EQ(t.improved[1].g_flux, float(diffuseFluxScale(p.params.g) * g_dm));
+  EXPECT_FLOAT_EQ(t.ordinates[1].g_flux, float(diffuseFluxScale(p.params.g) * g_dm));
   const UnderwaterSetup tk = makeUnderwaterSetup(parseScene(two_stream + "improved_flux_scale = 2\n", "uw.toml"), grid, sensor);
-  EXPECT_FLOAT_EQ(tk.improved[1].g_flux, float(2 * g_dm));
-  EXPECT_EQ(tk.improved[1].k, t.improved[1].k);
-  EXPECT_NE(tk.improved[1].src[0], t.improved[1].src[0]);
+  EXPECT_FLOAT_EQ(tk.ordinates[1].g_flux, float(2 * g_dm));
+  EXPECT_EQ(tk.ordinates[1].k, t.ordinates[1].k);
+  EXPECT_NE(tk.ordinates[1].src[0], t.ordinates[1].src[0]);
   // The discrete ordinates (the default) have no flux term to scale: their source is their own
   // in-scatter, the same with the key.
   const UnderwaterSetup dk =
-      makeUnderwaterSetup(parseScene(std::string(kImprovedScene) + "improved_flux_scale = 2\n", "uw.toml"), grid, sensor);
-  for (int q = 0; q < UWI_SOURCE_NODES * UWI_SOURCE_TERMS; ++q) ASSERT_EQ(dk.improved[1].src[q], p.improved[1].src[q]) << q;
+      makeUnderwaterSetup(parseScene(std::string(kOrdinatesScene) + "improved_flux_scale = 2\n", "uw.toml"), grid, sensor);
+  for (int q = 0; q < UWI_SOURCE_NODES * UWI_SOURCE_TERMS; ++q) ASSERT_EQ(dk.ordinates[1].src[q], p.ordinates[1].src[q]) << q;
   for (const char* bad : {"improved_flux_scale = 3.5", "improved_flux_scale = -0.5"}) {
-    seasim::testing::expectImprovedSceneRejects(bad, "underwater.improved_flux_scale");
+    seasim::testing::expectOrdinatesSceneRejects(bad, "underwater.improved_flux_scale");
   }
 }
 

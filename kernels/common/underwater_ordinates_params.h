@@ -1,5 +1,5 @@
-/* underwater_improved_params.h — the per-band block of underwater.model = "improved"
- * (common/underwater_improved.h), built on the host (host/underwater/underwater_improved_setup.*,
+/* underwater_ordinates_params.h — the per-band block of underwater.model = "discrete_ordinates"
+ * (common/underwater_ordinates.h), built on the host (host/underwater/underwater_ordinates_setup.*,
  * which static_asserts its layout) and read by kd_multiple.cl with SEASIM_UNDERWATER_MODEL == 1.
  * Plain C on both sides, no math.
  *
@@ -10,7 +10,7 @@
  * The host builds them from a discrete-ordinates solution (underwater.improved_diffuse =
  * "discrete_ordinates") or from the two-stream (o from the streams' mean cosines, no F_h).
  *
- * The in-scatter source J(y, ν, Δφ) that view rays gather (common/underwater_improved.h) is tabulated in
+ * The in-scatter source J(y, ν, Δφ) that view rays gather (common/underwater_ordinates.h) is tabulated in
  * the photon's downward cosine ν at UWI_SOURCE_NODES evenly spaced nodes from -1 to 1, per exponential
  * (a ray reads its nearest node: the region study measured the linear interpolation between two at twice the kernel's
  * cost per band, for the same accuracy as twice the nodes):
@@ -21,7 +21,7 @@
  *
  * The diffuse irradiance on a tilted plane (the objects' faces) is tabulated the same way in the upward
  * vertical n_y of the plane's normal n, at UWI_TILT_NODES evenly spaced nodes from -1 to 1, read with
- * linear interpolation (common/underwater_improved.h uwi_tilt_irradiance):
+ * linear interpolation (common/underwater_ordinates.h uwi_tilt_irradiance):
  *   E(y, n) = Σ_q [A0_q(n_y) + cos φ_n A1_q(n_y) + cos 2φ_n A2_q(n_y)] e_q(y),
  * φ_n the azimuth of -n from the sun beam's; tilt[node * UWI_SOURCE_TERMS + q + 3 m] = Am_q. At n_y = 1 it
  * is E_d, at -1 E_u. The two-stream's is E_d (1 + n_y)/2 + E_u (1 - n_y)/2 (hemispheres of uniform
@@ -31,8 +31,8 @@
  * of tilt_bottom, the part of E(y, n) the beam reflected by the bottom brings (Lambertian, so azimuth mode
  * 0 only); 0 with the two-stream. */
 
-#ifndef SEASIM_UNDERWATER_IMPROVED_PARAMS_H
-#define SEASIM_UNDERWATER_IMPROVED_PARAMS_H
+#ifndef SEASIM_UNDERWATER_ORDINATES_PARAMS_H
+#define SEASIM_UNDERWATER_ORDINATES_PARAMS_H
 
 #define UWI_SOURCE_NODES 129
 #define UWI_SOURCE_TERMS 9
@@ -45,15 +45,15 @@ typedef struct {
   float b_dm;   /* delta-M scattering b' = b (1 - f), 1/m */
   float g_dm;   /* delta-M asymmetry g' = (g - f)/(1 - f) (g / (1 + g) at f = g²) */
   float k;      /* the diffuse field's attenuation, 1/m: fitted with the coefficients to the discrete
-                   ordinates' field (underwater_improved_ordinates.h), or the two-stream's mean slope over
-                   the camera's depth (depthMeanDiffuseK, underwater_improved_setup.h) */
+                   ordinates' field (underwater_ordinates_solver.h), or the two-stream's mean slope over
+                   the camera's depth (depthMeanDiffuseK, underwater_ordinates_setup.h) */
   float m;      /* the delta-M sun beam's attenuation with depth, c' / μ_w, 1/m */
   float d1, u1; /* E_d, E_u coefficients of e^{-k y} */
   float d2, u2; /* of e^{-k (H - y)} (light the bottom sends up, and its back-scatter) */
   float dp, up; /* of e^{-m y} (the delta-M beam's diffuse offspring) */
   /* Host-side only (the kernels read src): */
   float g_flux; /* the two-stream's first-order source's flux asymmetry: g' times a scale fitted to the path
-                   tracer (diffuseFluxScale in underwater_improved_setup.h) */
+                   tracer (diffuseFluxScale in underwater_ordinates_setup.h) */
   float o1, o2, op; /* the diffuse scalar irradiance E_0(y) = o1 e^{-k y} + o2 e^{-k (H - y)} + op e^{-m y}:
                        the first-order source's isotropic part */
   float h1, h2, hp; /* the diffuse light's net horizontal flux towards the sun's azimuth, F_h(y), in the
@@ -63,7 +63,7 @@ typedef struct {
   float tilt_bottom[UWI_TILT_NODES * 3];         /* [node * 3 + q]: the part of tilt's A0_q that the bottom's
                                                     reflection of the beam brings: what a face loses where
                                                     the bottom it sees is in shadow */
-  /* The forward peak (host/underwater/forward_peak.h, common/underwater_improved.h uwi_aureole): */
+  /* The forward peak (host/underwater/forward_peak.h, common/underwater_ordinates.h uwi_aureole): */
   float p_clip;         /* the TMS term's phase ceiling, per sr: it scatters the delta-M beam with
                            min(p_HG, p_clip), the part of p_HG above it holding delta-M's f; 0: none */
   float aureole_single; /* the aureole at the camera scattered by the peak once, per unit of (p_HG - p_clip)+ */
@@ -80,4 +80,4 @@ typedef struct {
                                              (uwi_sand_share) */
 } UwiBand;
 
-#endif /* SEASIM_UNDERWATER_IMPROVED_PARAMS_H */
+#endif /* SEASIM_UNDERWATER_ORDINATES_PARAMS_H */
