@@ -133,7 +133,7 @@ int cmdOcean(const OceanCmd& cmd) {
   cc.ior = scene.water.ior;
   cc.attenuation = cmd.attenuation;
   cc.supersample = cmd.caustic_supersample;
-  CausticsPass caustics(device, ocean, cc);
+  CausticsPass caustics(device, ocean.maps(), cc);
   std::vector<std::vector<float>> caustic_maps;
   std::vector<double> caustic_ms;
   for (double d : cmd.caustic_depths) {

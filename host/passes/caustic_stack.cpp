@@ -50,7 +50,7 @@ cl::Buffer upload(Device& device, const std::vector<float>& values, const char* 
 CausticStack::CausticStack(Device& device, const Scene& scene, const UnderwaterSetup& setup)
     : CausticStack(device, scene, setup, nullptr) {}
 
-CausticStack::CausticStack(Device& device, const Scene& scene, const UnderwaterSetup& setup, OceanPass* ocean) {
+CausticStack::CausticStack(Device& device, const Scene& scene, const UnderwaterSetup& setup, const OceanMaps* ocean) {
   const UwParams& p = setup.params;
   layers_ = p.caustic_layers;
   if (layers_ < 1 || layers_ > 64) throw RuntimeError("quality.caustic_layers must be in 1..64");
@@ -61,10 +61,12 @@ CausticStack::CausticStack(Device& device, const Scene& scene, const UnderwaterS
 
   if (setup.sun_air.y > 0) {
     std::unique_ptr<OceanPass> own;
+    OceanMaps own_maps;
     if (!ocean) {
       own = std::make_unique<OceanPass>(device, ocean_config);
       timings_.push_back({"ocean_fft", own->run(scene.surface.time)});
-      ocean = own.get();
+      own_maps = own->maps();
+      ocean = &own_maps;
     }
     CausticsPass splat(device, *ocean, splatConfig(scene, map_size_));
     double ms = 0;
@@ -79,7 +81,7 @@ CausticStack::CausticStack(Device& device, const Scene& scene, const UnderwaterS
   maps_ = upload(device, host_, "caustic map");
 }
 
-SeaBottomCaustics seaBottomCaustics(Device& device, const Scene& scene, OceanPass& ocean) {
+SeaBottomCaustics seaBottomCaustics(Device& device, const Scene& scene, const OceanMaps& ocean) {
   const auto start = std::chrono::steady_clock::now();
   SeaBottomCaustics out;
   const auto size = scene.quality.find("caustic_map_size");

@@ -21,7 +21,7 @@ class CausticStack {
   CausticStack(Device& device, const Scene& scene, const UnderwaterSetup& setup);
   // The same from an ocean that has already run at scene.surface.time (the renderer's ocean_fft
   // pass); timings() then holds the splats only.
-  CausticStack(Device& device, const Scene& scene, const UnderwaterSetup& setup, OceanPass* ocean);
+  CausticStack(Device& device, const Scene& scene, const UnderwaterSetup& setup, const OceanMaps* ocean);
 
   cl::Buffer& maps() { return maps_; }                 // layers × m² floats, normalised to mean 1
   const std::vector<float>& hostMaps() const { return host_; }
@@ -51,7 +51,7 @@ struct SeaBottomCaustics {
   bool periodic = true;
   double ms = 0.0;                    // wall ms of the splat and normalisation
 };
-SeaBottomCaustics seaBottomCaustics(Device& device, const Scene& scene, OceanPass& ocean);
+SeaBottomCaustics seaBottomCaustics(Device& device, const Scene& scene, const OceanMaps& ocean);
 
 // A one-float buffer for the kernels' caustic-map argument when the scene has no caustic map.
 cl::Buffer noCausticMap(Device& device);

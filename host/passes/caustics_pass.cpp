@@ -20,7 +20,7 @@ static_assert(sizeof(CausticsParams) == 16 + 8 * 4, "CausticsParams layout chang
 static_assert(offsetof(CausticsParams, patch_size) == 16);
 static_assert(offsetof(CausticsParams, n) == 36);
 
-CausticsPass::CausticsPass(Device& device, OceanPass& ocean, const CausticsConfig& config)
+CausticsPass::CausticsPass(Device& device, const OceanMaps& ocean, const CausticsConfig& config)
     : device_(device), ocean_(ocean), config_(config), map_size_(config.map_size > 0 ? config.map_size : ocean.n()) {
   if (map_size_ < 1 || map_size_ > 8192) throw RuntimeError("caustics: map_size must be in 1..8192");
   if (config_.supersample < 1 || config_.supersample > 16) throw RuntimeError("caustics: supersample must be in 1..16");
@@ -34,7 +34,7 @@ CausticsPass::CausticsPass(Device& device, OceanPass& ocean, const CausticsConfi
     params_ = cl::Buffer(device.context(), CL_MEM_READ_ONLY, sizeof(CausticsParams));
     map_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * map_size_ * map_size_);
     splat_.setArg(0, params_);
-    splat_.setArg(1, ocean_.fields());
+    splat_.setArg(1, ocean_.fields);
     splat_.setArg(2, map_);
   });
 }
@@ -47,7 +47,7 @@ double CausticsPass::run(double plane_depth) {
 
 namespace {
 
-CausticsParams makeParams(const CausticsConfig& config, const OceanPass& ocean, int map_size) {
+CausticsParams makeParams(const CausticsConfig& config, const OceanMaps& ocean, int map_size) {
   CausticsParams p{};
   const double sz = config.sun_zenith, sa = config.sun_azimuth;
   p.sun_dir[0] = static_cast<float>(std::sin(sz) * std::cos(sa));
@@ -57,7 +57,7 @@ CausticsParams makeParams(const CausticsConfig& config, const OceanPass& ocean, 
   p.plane_depth = static_cast<float>(config.plane_depth);
   p.ior = static_cast<float>(config.ior);
   p.attenuation = static_cast<float>(config.attenuation);
-  p.choppiness = static_cast<float>(ocean.config().choppiness);
+  p.choppiness = static_cast<float>(ocean.config.choppiness);
   p.n = ocean.n();
   p.map_size = map_size;
   p.supersample = config.supersample;
@@ -103,7 +103,7 @@ double CausticsPass::runFloor(const HeightField& field) {
     if (p.sun_dir[1] > 1e-6f) {
       cl_uint arg = 0;
       splat_floor_.setArg(arg++, params_);
-      splat_floor_.setArg(arg++, ocean_.fields());
+      splat_floor_.setArg(arg++, ocean_.fields);
       splat_floor_.setArg(arg++, hf.params);
       splat_floor_.setArg(arg++, hf.depth);
       splat_floor_.setArg(arg++, tiles);

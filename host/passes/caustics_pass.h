@@ -25,8 +25,8 @@ struct CausticsConfig {
 
 class CausticsPass {
  public:
-  // `ocean` must outlive this pass. Throws RuntimeError on bad values.
-  CausticsPass(Device& device, OceanPass& ocean, const CausticsConfig& config);
+  // Reads `ocean`'s field buffer as it stands at each run. Throws RuntimeError on bad values.
+  CausticsPass(Device& device, const OceanMaps& ocean, const CausticsConfig& config);
 
   // Splats the ocean's current surface onto the plane; waits; returns wall milliseconds.
   double run();
@@ -49,7 +49,7 @@ class CausticsPass {
 
  private:
   Device& device_;
-  OceanPass& ocean_;
+  OceanMaps ocean_;
   CausticsConfig config_;
   int map_size_;
   cl::Kernel splat_, splat_floor_;

@@ -157,6 +157,14 @@ std::vector<float> OceanPass::readSlope() { return read(slope_, 2 * texelsOf(con
 std::vector<float> OceanPass::readDisplacement() { return read(displacement_, 4 * texelsOf(config_)); }
 std::vector<float> OceanPass::readNormal() { return read(normal_, 4 * texelsOf(config_)); }
 std::vector<float> OceanPass::readJacobian() { return read(jacobian_, texelsOf(config_)); }
+
+std::vector<float> readJacobian(Device& device, const OceanMaps& maps) {
+  std::vector<float> out(texelsOf(maps.config));
+  onDevice("ocean Jacobian read-back", [&] {
+    device.queue().enqueueReadBuffer(maps.jacobian, CL_TRUE, 0, sizeof(float) * out.size(), out.data());
+  });
+  return out;
+}
 std::vector<float> OceanPass::readFolding() { return read(folding_, 4 * texelsOf(config_)); }
 std::vector<float> OceanPass::readFields() { return read(fields_, 8 * texelsOf(config_)); }
 

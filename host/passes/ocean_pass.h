@@ -47,6 +47,18 @@ OceanConfig oceanConfigFromSurface(const SurfaceDesc& surface);
 // 16..2048, L <= 0, V < 0, g <= 0, ...).
 void validateOceanConfig(const OceanConfig& config);
 
+// "ocean_maps": the maps of an ocean that has run, as the passes that read the ocean take them
+// (caustics, sea_single's normals, whitecaps' Jacobian): buffers and the config they were made with.
+struct OceanMaps {
+  OceanConfig config;
+  cl::Buffer height, slope, displacement, normal, jacobian, folding, fields;
+  int n() const { return config.grid; }
+  double patchSize() const { return config.patch_size; }
+};
+
+// The Jacobian map's N² floats read back (blocking).
+std::vector<float> readJacobian(Device& device, const OceanMaps& maps);
+
 class OceanPass {
  public:
   // Compiles ocean.cl, plans the FFT and computes h̃0 on the device.
@@ -57,6 +69,10 @@ class OceanPass {
   double run(double time_s);
 
   const OceanConfig& config() const { return config_; }
+  // Its buffers and config, for the passes that read the ocean.
+  OceanMaps maps() const {
+    return {config_, height_, slope_, displacement_, normal_, jacobian_, folding_, fields_};
+  }
   int n() const { return config_.grid; }
   double patchSize() const { return config_.patch_size; }
 

@@ -71,7 +71,7 @@ Vec3 sunDirection(const Scene& scene) {
 
 // The kernel's parameters but the sky's and the LUT's (ocean: the FFT waves, null without; bottom_caustics:
 // the caustic map, null without).
-SeaParams seaParams(const Scene& scene, const WavelengthGrid& grid, const Vec3& sun, OceanPass* ocean,
+SeaParams seaParams(const Scene& scene, const WavelengthGrid& grid, const Vec3& sun, const OceanMaps* ocean,
                     const SeaBottomCaustics* bottom_caustics) {
   const CameraDesc& cam = scene.camera;
   SeaParams p{};
@@ -186,7 +186,7 @@ int singleScatteringTable(const Scene& scene, const WavelengthGrid& grid, const 
 }  // namespace
 
 SeaSinglePass::SeaSinglePass(Device& device, const Scene& scene, const PassPlan& plan,
-                             const WavelengthGrid& grid, const Sensor& sensor, OceanPass* ocean,
+                             const WavelengthGrid& grid, const Sensor& sensor, const OceanMaps* ocean,
                              const SeaBottomCaustics* bottom_caustics)
     : device_(device), width_(scene.camera.width), height_(scene.camera.height) {
   const SeaSingleFeatures& features = plan.featuresAs<SeaSingleFeatures>();
@@ -232,7 +232,7 @@ SeaSinglePass::SeaSinglePass(Device& device, const Scene& scene, const PassPlan&
                         const_cast<float*>(table.data()));
     // One dummy float4 stands in for a map the kernel's defines do not read.
     std::vector<float> dummy(4, 0.0f);
-    normals_ = waves ? ocean->normal()
+    normals_ = waves ? ocean->normal
                      : cl::Buffer(device.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(float) * 4, dummy.data());
     std::vector<float> sky_texels(sky.texels.begin(), sky.texels.end());
     sky_ = cl::Buffer(device.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(float) * sky_texels.size(),

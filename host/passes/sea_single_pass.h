@@ -20,12 +20,12 @@ namespace seasim {
 class SeaSinglePass {
  public:
   // Output buffers are allocated here: rgb (3 floats per pixel) and, with spectral output,
-  // band_count floats per pixel. ocean: the run OceanPass whose normal() the kernel reads; required
+  // band_count floats per pixel. ocean: the maps of a run ocean, whose normal map the kernel reads; required
   // when the plan defines SEASIM_HAS_WAVES=1 (RuntimeError otherwise), ignored without waves. The
   // kernel reads the buffer when run() is called, so the ocean must outlive run(). bottom_caustics:
   // required when the plan defines SEASIM_BOTTOM_CAUSTICS=1 (the ocean's caustics on the bottom).
   SeaSinglePass(Device& device, const Scene& scene, const PassPlan& plan, const WavelengthGrid& grid,
-                const Sensor& sensor, OceanPass* ocean = nullptr, const SeaBottomCaustics* bottom_caustics = nullptr);
+                const Sensor& sensor, const OceanMaps* ocean = nullptr, const SeaBottomCaustics* bottom_caustics = nullptr);
   // Enqueues the kernel; returns its profiled time in ms (waits for it).
   double run();
   cl::Buffer& rgb() { return rgb_; }

@@ -68,7 +68,7 @@ double mean(const std::vector<float>& v) {
 TEST(CausticsFloor, LevelFloorEqualsThePlaneMap) {
   OceanPass ocean(device(), sea(7.0));
   ocean.run(1.5);
-  CausticsPass splat(device(), ocean, sun(30));
+  CausticsPass splat(device(), ocean.maps(), sun(30));
   splat.run(6.0);
   const std::vector<float> plane = splat.readMap();
   // The floor spans exactly one patch, centred at the origin: floor texel i sits at plane texel i + M/2.
@@ -90,7 +90,7 @@ TEST(CausticsFloor, CalmSeaOverASlopeIsUniform) {
   OceanPass ocean(device(), sea(0.0));
   ocean.run(0.0);
   const double c = 0.1, zenith = 40 * std::numbers::pi / 180, ior = 1.333;
-  CausticsPass splat(device(), ocean, sun(40, c));
+  CausticsPass splat(device(), ocean.maps(), sun(40, c));
   // A floor sloping from 2 m to 20 m across 60 m, with a bump.
   splat.runFloor(floorOf(60.0, 31, [](double x, double z) {
     return 11.0 + 0.3 * x + 2.0 * std::exp(-(x * x + z * z) / 50.0);
@@ -122,7 +122,7 @@ TEST(CausticsFloor, CalmSeaOverASlopeIsUniform) {
 TEST(CausticsFloor, WavesMoveLightButKeepTheMean) {
   OceanPass ocean(device(), sea(8.0));
   ocean.run(2.0);
-  CausticsPass splat(device(), ocean, sun(25));
+  CausticsPass splat(device(), ocean.maps(), sun(25));
   splat.run(8.0);
   const double plane_mean = mean(splat.readMap());
   splat.runFloor(floorOf(64.0, 17, [](double x, double) { return 8.0 + 0.1 * x; }));  // 4.8 .. 11.2 m
@@ -146,11 +146,11 @@ TEST(CausticsFloor, SteepWavesGrazingSunAndShallowFloorStayFinite) {
   OceanPass ocean(device(), rough);
   ocean.run(3.0);
   for (double zenith : {10.0, 89.0}) {
-    CausticsPass splat(device(), ocean, sun(zenith, 0.2));
+    CausticsPass splat(device(), ocean.maps(), sun(zenith, 0.2));
     splat.runFloor(floorOf(40.0, 11, [](double x, double) { return std::max(0.0, 0.5 + 0.2 * x); }));
     for (float v : splat.readFloorMap()) ASSERT_TRUE(std::isfinite(v) && v >= 0) << zenith;
   }
-  CausticsPass below(device(), ocean, sun(95));
+  CausticsPass below(device(), ocean.maps(), sun(95));
   below.runFloor(floorOf(40.0, 11, [](double, double) { return 5.0; }));
   for (float v : below.readFloorMap()) ASSERT_EQ(v, 0.0f);
 }
@@ -158,7 +158,7 @@ TEST(CausticsFloor, SteepWavesGrazingSunAndShallowFloorStayFinite) {
 TEST(CausticsFloor, AFloorTooLargeForTheSurfaceGridIsAClearError) {
   OceanPass ocean(device(), sea(7.0));
   ocean.run(0.0);
-  CausticsPass splat(device(), ocean, sun(30));
+  CausticsPass splat(device(), ocean.maps(), sun(30));
   // 64 texels × 2 rays over a 32 m patch: a 20 km floor needs > 65536 rays per side.
   try {
     splat.runFloor(floorOf(20000.0, 3, [](double, double) { return 5.0; }));

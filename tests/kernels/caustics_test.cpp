@@ -95,7 +95,7 @@ TEST(Caustics, FlatSurfaceGivesUniformMap) {
   cc.sun_azimuth = 0.4;
   cc.attenuation = 0.1;
   cc.plane_depth = 5.0;
-  CausticsPass caustics(device(), ocean, cc);
+  CausticsPass caustics(device(), ocean.maps(), cc);
   caustics.run();
   const auto map = caustics.readMap();
   const double cos_i = std::cos(cc.sun_zenith);
@@ -116,7 +116,7 @@ TEST(Caustics, FluxIsConserved) {
   const auto fields = ocean.readFields();
   for (double depth : {2.0, 10.0}) {
     cc.plane_depth = depth;
-    CausticsPass caustics(device(), ocean, cc);
+    CausticsPass caustics(device(), ocean.maps(), cc);
     caustics.run();
     const auto map = caustics.readMap();
     double through = 0, arriving = 0;
@@ -134,7 +134,7 @@ TEST(Caustics, WavesFocusLightMoreWithDepthAndPdfIsNormalised) {
   OceanPass ocean(device(), oc);
   ocean.run(0.0);
   CausticsConfig cc;
-  CausticsPass caustics(device(), ocean, cc);
+  CausticsPass caustics(device(), ocean.maps(), cc);
   auto contrast = [&](double depth) {
     caustics.run(depth);
     const auto map = caustics.readMap();
@@ -159,7 +159,7 @@ TEST(Caustics, SunBelowHorizonGivesNoLight) {
   ocean.run(0.0);
   CausticsConfig cc;
   cc.sun_zenith = 95.0 * std::numbers::pi / 180;
-  CausticsPass caustics(device(), ocean, cc);
+  CausticsPass caustics(device(), ocean.maps(), cc);
   caustics.run();
   for (float v : caustics.readMap()) ASSERT_EQ(v, 0.0f);
 }

@@ -118,7 +118,7 @@ TEST(SeaBottomCaustics, HostMapsAreNormalised) {
   const seasim::Scene scene = seasim::parseScene(kShallow, "bottom_caustics.toml");
   seasim::OceanPass ocean(seasim::test::testDevice(), seasim::oceanConfigFromSurface(scene.surface));
   ocean.run(scene.surface.time);
-  const seasim::SeaBottomCaustics c = seasim::seaBottomCaustics(seasim::test::testDevice(), scene, ocean);
+  const seasim::SeaBottomCaustics c = seasim::seaBottomCaustics(seasim::test::testDevice(), scene, ocean.maps());
   ASSERT_EQ(c.map_size, 128);
   EXPECT_TRUE(c.periodic);
   EXPECT_DOUBLE_EQ(c.extent, 16.0);

@@ -37,7 +37,7 @@ class SeaBottomCausticsNode : public Pass {
   PassKeys keys() const override { return {{}, kCausticKeys}; }
   void prepare(FrameContext&, PassResources&) override {}
   void execute(FrameContext& ctx, PassResources& res) override {
-    SeaBottomCaustics fresh = seaBottomCaustics(ctx.device(), ctx.scene(), res.read<OceanPass>("ocean_maps"));
+    SeaBottomCaustics fresh = seaBottomCaustics(ctx.device(), ctx.scene(), res.read<OceanMaps>("ocean_maps"));
     ctx.timings.push_back({"caustics", fresh.ms});
     if (kept_ && kept_->map_size == fresh.map_size &&
         copyInto(ctx.device(), fresh.map, kept_->map, sizeof(float) * fresh.host.size())) {
@@ -65,7 +65,7 @@ class UnderwaterCausticsNode : public Pass {
   void prepare(FrameContext&, PassResources&) override {}
   void execute(FrameContext& ctx, PassResources& res) override {
     CausticStack stack(ctx.device(), ctx.scene(), res.read<UnderwaterSetupBuffers>("underwater_setup").setup,
-                       &res.read<OceanPass>("ocean_maps"));
+                       &res.read<OceanMaps>("ocean_maps"));
     for (const PassTiming& t : stack.timings()) ctx.timings.push_back(t);
     if (kept_ && copyInto(ctx.device(), stack.maps(), kept_->maps, sizeof(float) * stack.hostMaps().size())) return;
     kept_ = std::make_shared<UnderwaterCausticMaps>(UnderwaterCausticMaps{stack.maps()});

@@ -22,11 +22,15 @@ class OceanNode : public Pass {
  public:
   PassKeys keys() const override { return kOceanKeys; }
   void prepare(FrameContext& ctx, PassResources& res) override {
-    res.publish("ocean_maps", std::make_shared<OceanPass>(ctx.device(), oceanConfigFromSurface(ctx.scene().surface)));
+    ocean_ = std::make_unique<OceanPass>(ctx.device(), oceanConfigFromSurface(ctx.scene().surface));
+    res.publish("ocean_maps", std::make_shared<OceanMaps>(ocean_->maps()));
   }
-  void execute(FrameContext& ctx, PassResources& res) override {
-    ctx.timings.push_back({"ocean_fft", res.read<OceanPass>("ocean_maps").run(ctx.scene().surface.time)});
+  void execute(FrameContext& ctx, PassResources&) override {
+    ctx.timings.push_back({"ocean_fft", ocean_->run(ctx.scene().surface.time)});
   }
+
+ private:
+  std::unique_ptr<OceanPass> ocean_;
 };
 
 }  // namespace

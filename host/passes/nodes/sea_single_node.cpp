@@ -31,7 +31,7 @@ class SeaSingleNode : public Pass {
   explicit SeaSingleNode(const PassPlan& entry) : entry_(entry) {}
   PassKeys keys() const override { return kSeaSingleKeys; }
   void prepare(FrameContext& ctx, PassResources& res) override {
-    OceanPass* ocean = res.declaresRead("ocean_maps") ? &res.read<OceanPass>("ocean_maps") : nullptr;
+    const OceanMaps* ocean = res.declaresRead("ocean_maps") ? &res.read<OceanMaps>("ocean_maps") : nullptr;
     const SeaBottomCaustics* caustics =
         res.declaresRead("caustic_map") ? &res.read<SeaBottomCaustics>("caustic_map") : nullptr;
     pass_ = std::make_unique<SeaSinglePass>(ctx.device(), ctx.scene(), entry_, ctx.grid(), ctx.sensor(), ocean, caustics);

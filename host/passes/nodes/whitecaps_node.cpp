@@ -30,16 +30,16 @@ class WhitecapsNode : public Pass {
   explicit WhitecapsNode(const PassPlan& entry) : entry_(entry) {}
   PassKeys keys() const override { return kWhitecapsKeys; }
   void prepare(FrameContext& ctx, PassResources& res) override {
-    OceanPass& ocean = res.read<OceanPass>("ocean_maps");
+    const OceanMaps& ocean = res.read<OceanMaps>("ocean_maps");
     pass_ = std::make_unique<WhitecapsPass>(ctx.device(), ctx.scene(), entry_, ctx.grid(), ctx.sensor(), ocean.n(),
                                             ocean.patchSize());
   }
   void execute(FrameContext& ctx, PassResources& res) override {
-    OceanPass& ocean = res.read<OceanPass>("ocean_maps");
+    const OceanMaps& ocean = res.read<OceanMaps>("ocean_maps");
     RadianceTarget& target = res.read<RadianceTarget>("rgb");
     const double coverage = whitecaps_d::whitecaps_coverage(ctx.scene().surface.wind_speed);
-    const WhitecapsFoamLevels levels = whitecapsFoamLevels(ocean.readJacobian(), coverage);
-    ctx.timings.push_back({"whitecaps", pass_->run(ocean.jacobian(), levels, target.rgb,
+    const WhitecapsFoamLevels levels = whitecapsFoamLevels(readJacobian(ctx.device(), ocean), coverage);
+    ctx.timings.push_back({"whitecaps", pass_->run(ocean.jacobian, levels, target.rgb,
                                                    target.hasSpectral() ? &target.spectral : nullptr)});
   }
 
