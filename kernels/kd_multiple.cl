@@ -36,7 +36,7 @@
  * underwater_lamps.cl adds into it), transmission e^{-c S}, and forward_bands[pixel][band_count] (water_spread.cl
  * adds its blurred part); per band direct + backscatter + forward + lamps is spectral's value.
  * SEASIM_LAYER_VEILING_BANDS (with SEASIM_LAYER_VEILING and SEASIM_SPECTRAL_OUTPUT): veiling_bands[pixel][band_count],
- * B∞ per band (the froxel term per band is added on the host, as to spectral).
+ * B∞ per band (the froxel term per band is added by the froxel_bands pass, as to spectral).
  */
 #include "common/compat.h"
 #include "common/optics.h"
@@ -82,37 +82,137 @@
 #ifndef SEASIM_LAYER_VEILING_BANDS
 #define SEASIM_LAYER_VEILING_BANDS 0
 #endif
+/* The pixel's sums over bands in sensor RGB (002 eq. 4.8): the image's and, with the layers and the
+ * point-spread, theirs. Each step of bands adds its lanes; the kernel's end stores their sums. */
+typedef struct {
+  realb r, g, b;
+#if SEASIM_LAYER_FORMATION
+  realb clear_r, clear_g, clear_b, direct_r, direct_g, direct_b, scatter_r, scatter_g, scatter_b;
+  realb trans_r, trans_g, trans_b, weight_r, weight_g, weight_b, fwdl_r, fwdl_g, fwdl_b;
+#endif
+#if SEASIM_LAYER_VEILING
+  realb veil_r, veil_g, veil_b;
+#endif
+#if SEASIM_UWI_SPREAD
+  /* The light scattered by small angles, its moments (common/water_spread.h) in sensor RGB: F, F E, and
+   * the sums over bands of (w_r + w_g + w_b) F D and (w_r + w_g + w_b) F. */
+  realb fwd_r, fwd_g, fwd_b, cnt_r, cnt_g, cnt_b, fwd_light_depth;
+#endif
+} KdSums;
+
+#define KD_ZERO3(s, name) (s).name##_r = (s).name##_g = (s).name##_b = SPLATB(0.0f)
+
+/* A step of SEASIM_BAND_LANES bands from band i: the sensor's weights of its lanes (002 eq. 4.8; the
+ * padding bands' are 0) and the per-band buffers its values go to, at the pixel's slots (null when the
+ * plan does not write them). */
+typedef struct {
+  int pixel, band_count, i;
+  realb w_r, w_g, w_b;
+  __global float* forward_spectral;
+  __global float* layer_bands;
+  __global float* forward_bands;
+  __global float* veiling_bands;
+} KdStep;
+
+/* In the functions of a step: `s` is the pixel's KdSums, `st` the KdStep. */
+#if SEASIM_LAYER_FORMATION || SEASIM_LAYER_VEILING
+/* A layer's lanes into its sums: name##_r += value * w_r, ... (as the image's). */
+#define LAYER_ADD(name, value)   \
+  do {                           \
+    const realb v_ = (value);    \
+    s->name##_r += v_ * st->w_r; \
+    s->name##_g += v_ * st->w_g; \
+    s->name##_b += v_ * st->w_b; \
+  } while (0)
+#define LAYER_STORE(buffer, stride, at, name)                          \
+  do {                                                                 \
+    (buffer)[(size_t)pixel * (stride) + (at) + 0] = SUMB(s->name##_r); \
+    (buffer)[(size_t)pixel * (stride) + (at) + 1] = SUMB(s->name##_g); \
+    (buffer)[(size_t)pixel * (stride) + (at) + 2] = SUMB(s->name##_b); \
+  } while (0)
+#endif
 #if SEASIM_LAYER_VEILING_BANDS
-#define BAND_VEILING(value) store_lanes((value), veiling_bands + (size_t)pixel * band_count + i, band_count - i)
+#define BAND_VEILING(value) \
+  store_lanes((value), st->veiling_bands + (size_t)st->pixel * st->band_count + st->i, st->band_count - st->i)
 #else
 #define BAND_VEILING(value)
 #endif
 #if SEASIM_LAYER_BANDS
 /* The split per band: slot k of layer_bands (see above), or forward_bands, for the step's lanes. */
-#define BAND_LAYER(slot, value) \
-  store_lanes((value), layer_bands + ((size_t)pixel * 5 + (slot)) * band_count + i, band_count - i)
-#define BAND_FORWARD(value) store_lanes((value), forward_bands + (size_t)pixel * band_count + i, band_count - i)
+#define BAND_LAYER(slot, value)                                                                      \
+  store_lanes((value), st->layer_bands + ((size_t)st->pixel * 5 + (slot)) * st->band_count + st->i, \
+              st->band_count - st->i)
+#define BAND_FORWARD(value) \
+  store_lanes((value), st->forward_bands + (size_t)st->pixel * st->band_count + st->i, st->band_count - st->i)
 #else
 #define BAND_LAYER(slot, value)
 #define BAND_FORWARD(value)
 #endif
-#if SEASIM_LAYER_FORMATION || SEASIM_LAYER_VEILING
-/* The layers' sums over bands in sensor RGB: name##_r += value * w_r, ... (002 eq. 4.8, as the image's). */
-#define LAYER_LANES(name) realb name##_r = SPLATB(0.0f), name##_g = SPLATB(0.0f), name##_b = SPLATB(0.0f)
-#define LAYER_ADD(name, value) \
-  do {                         \
-    const realb v_ = (value);  \
-    name##_r += v_ * w_r_band; \
-    name##_g += v_ * w_g_band; \
-    name##_b += v_ * w_b_band; \
-  } while (0)
-#define LAYER_STORE(buffer, stride, at, name)          \
-  do {                                                  \
-    (buffer)[(size_t)pixel * (stride) + (at) + 0] = SUMB(name##_r); \
-    (buffer)[(size_t)pixel * (stride) + (at) + 1] = SUMB(name##_g); \
-    (buffer)[(size_t)pixel * (stride) + (at) + 2] = SUMB(name##_b); \
-  } while (0)
+
+/* What both models read of a pixel once, for every step of bands: its G-buffer and view. */
+typedef struct {
+  int mat, single, multiple;
+  float S, y_hit, d_y, o_d, n_y, n_dot_s, vis;
+  float3 sky_shape;
+  __global const float* albedo_row; /* the band table's albedo row of what the ray meets */
+} KdPixel;
+
+/* The defines as values: the froxel pass runs (L_MS and L_s then leave out the direct beam), L_MS. */
+#if SEASIM_HAS_FROXEL
+#define KD_SINGLE 1
+#else
+#define KD_SINGLE 0
 #endif
+#if SEASIM_HAS_MULTIPLE
+#define KD_MULTIPLE 1
+#else
+#define KD_MULTIPLE 0
+#endif
+/* The kernel's per-band buffers a KdStep holds, null where the plan does not write them. */
+#if SEASIM_SPECTRAL_OUTPUT && SEASIM_UWI_SPREAD
+#define KD_FORWARD_SPECTRAL forward_spectral
+#else
+#define KD_FORWARD_SPECTRAL 0
+#endif
+#if SEASIM_LAYER_BANDS
+#define KD_LAYER_BANDS layer_bands
+#define KD_FORWARD_BANDS forward_bands
+#else
+#define KD_LAYER_BANDS 0
+#define KD_FORWARD_BANDS 0
+#endif
+#if SEASIM_LAYER_VEILING_BANDS
+#define KD_VEILING_BANDS veiling_bands
+#else
+#define KD_VEILING_BANDS 0
+#endif
+/* The froxel term of the pixel's whole column (froxel_lookup reads S >= z_far at z_far), for B∞. */
+#if SEASIM_HAS_FROXEL
+#define KD_FROXEL_AT_INFINITY froxel_lookup(fp, froxel_volume, x, y, p->width, p->height, UW_INFINITE)
+#else
+#define KD_FROXEL_AT_INFINITY ((float3)(0.0f, 0.0f, 0.0f))
+#endif
+
+void kd_sums_zero(KdSums* s) {
+  s->r = s->g = s->b = SPLATB(0.0f);
+#if SEASIM_LAYER_FORMATION
+  KD_ZERO3(*s, clear);
+  KD_ZERO3(*s, direct);
+  KD_ZERO3(*s, scatter);
+  KD_ZERO3(*s, trans);
+  KD_ZERO3(*s, weight);
+  KD_ZERO3(*s, fwdl);
+#endif
+#if SEASIM_LAYER_VEILING
+  KD_ZERO3(*s, veil);
+#endif
+#if SEASIM_UWI_SPREAD
+  KD_ZERO3(*s, fwd);
+  KD_ZERO3(*s, cnt);
+  s->fwd_light_depth = SPLATB(0.0f);
+#endif
+}
+
 #if SEASIM_UWI_SPREAD /* the water's point-spread: the forward light kept apart per layer */
 #include "common/water_spread_params.h"
 #include "common/water_spread.h"
@@ -170,6 +270,325 @@ realb uwi_lanes_hit(const UwiHitPixel* h, __global const float* band_table, int 
 }
 #endif
 
+#if SEASIM_UNDERWATER_MODEL == 1
+/* What the discrete-ordinates model reads of a pixel once besides KdPixel: the phase of the view and
+ * (surface hits) of the reflected ray, the source table's and the aureole's nodes, the sand's share,
+ * the mirrored object, the tilted plane table's nodes (uwi_pixel). */
+typedef struct {
+  UwiHitPixel hit;
+  int row0, node, aureole_node;
+  float phase, cos_dphi, aureole_frac, aureole_end, v_sand, s_w_y;
+  __global const float* albedo_m_row;
+#if SEASIM_UWI_SPREAD
+  float s_spread;
+#endif
+} UwiPixel;
+
+void uwi_pixel(__constant UwParams* p, __global const float* band_table, int stride, __global const UwObject* objects,
+               const KdPixel* k, float3 d, float3 n, float3 s_w, UwiPixel* q) {
+  const int mat = k->mat;
+  const float S = k->S;
+  /* Its rows follow the objects' albedo rows; the phase of the view and (surface hits) of the reflected
+   * ray (d.x, -d.y, d.z) once per pixel. */
+  const int uwi_row0 = UW_ROWS + p->object_count;
+  q->row0 = uwi_row0;
+  q->s_w_y = s_w.y;
+  const float cos_s = dot(d, s_w);
+  q->phase = hg_phase(cos_s, p->g);
+  const float cos_r = cos_s - 2.0f * d.y * s_w.y;
+  const float phase_r = mat == UW_MAT_SURFACE ? hg_phase(cos_r, p->g) : 0.0f;
+  /* The source table's nearest node in ν and the azimuth's cosine from the sun's, of the camera's ray's
+   * photon (ν = d.y) and the reflected ray's (ν = -d.y). */
+  q->node = uwi_source_node(d.y);
+  const int node_r = uwi_source_node(-d.y);
+  q->cos_dphi = uwi_cos_azimuth(cos_s, d.y, s_w.y);
+  const float cos_dphi_r = uwi_cos_azimuth(cos_r, -d.y, s_w.y);
+  /* The forward peak's aureole (uwi_aureole) of a ray looking up: its table's node, and where the ray ends
+   * (the surface: 0, where every band's share is 1). */
+  q->aureole_node = uwi_aureole_node(cos_s, &q->aureole_frac);
+  q->aureole_end = mat == UW_MAT_SURFACE ? 0.0f : k->y_hit;
+  const float3 cam = (float3)(p->cam_pos[0], p->cam_pos[1], p->cam_pos[2]);
+  /* The share of the sunlit sand's light the ray gathers that no object hides or shades (uwi_sand_share,
+   * with the first band's c' and k). */
+  q->v_sand = k->multiple ? uwi_sand_share(objects, p->object_count, p->bottom_depth, cam, d, S,
+                                           band_table[(uwi_row0 + UWI_ROW_C_DM) * stride],
+                                           band_table[(uwi_row0 + UWI_ROW_K) * stride], s_w,
+                                           band_table + UW_ROWS * stride, stride,
+                                           band_table[UW_ROW_BOTTOM_ALBEDO * stride])
+                          : 1.0f;
+  /* The object the reflected ray meets first, if any (surface hits; uwi_mirror_hit). */
+  int mat_m = UW_MAT_NONE;
+  const UwiMirrorHit mirror =
+      mat == UW_MAT_SURFACE ? uwi_mirror_hit(objects, p->object_count, cam, d, S, s_w, &mat_m) : uwi_no_mirror_object();
+  q->albedo_m_row = band_table + (mat_m >= 0 ? UW_ROWS + mat_m : UW_ROW_BOTTOM_ALBEDO) * stride;
+  const float n_m_dot_s = dot(mirror.n, s_w);
+  /* The tilted plane table's node and azimuth of the object hit's normal and of the mirrored object's
+   * (uwi_tilt_node, uwi_tilt_irradiance); the bottom reads E_d. */
+  float frac, frac_m;
+  const int tilt_node = uwi_tilt_node(n.y, &frac);
+  const int tilt_node_m = uwi_tilt_node(mirror.n.y, &frac_m);
+  const float cos_phi_n = uwi_cos_azimuth(k->n_dot_s, n.y, s_w.y);
+  const float cos_phi_m = uwi_cos_azimuth(n_m_dot_s, mirror.n.y, s_w.y);
+  /* The share of the sand an object's face sees that is sunlit (uwi_bottom_visibility; the mirrored
+   * object's is taken as 1). */
+  const float vis_b = mat >= 0 ? uwi_bottom_visibility(objects, p->object_count, p->bottom_depth, cam + S * d, n, s_w)
+                               : 1.0f;
+  const UwiHitPixel hp = {.mat = mat, .mirror_object = mat_m >= 0, .node_r = node_r, .tilt_node = tilt_node,
+                          .tilt_node_m = tilt_node_m, .multiple = k->multiple, .sky_shape = k->sky_shape,
+                          .cos_dphi_r = cos_dphi_r, .frac = frac, .frac_m = frac_m, .cos_phi_n = cos_phi_n,
+                          .cos_phi_m = cos_phi_m, .phase_r = phase_r, .d_y = d.y, .ior = p->ior,
+                          .bottom_depth = p->bottom_depth, .n_dot_s = k->n_dot_s, .n_m_dot_s = n_m_dot_s,
+                          .vis = k->vis, .vis_b = vis_b, .mirror_s = mirror.s, .mirror_vis = mirror.vis};
+  q->hit = hp;
+#if SEASIM_UWI_SPREAD
+  q->s_spread = fmin(S, 1e4f);
+#endif
+}
+
+/* The in-scatter of the view ray to distance S_end (y_end its depth there; aureole_end the aureole's end)
+ * for the step's lanes: L_MS by the discrete ordinates and the forward peak's light (uwi_forward_peak),
+ * as uwi_band_radiance sums it. *multiple_part: L_MS alone, the share the point-spread divides. */
+realb uwi_step_inscatter(__constant UwParams* p, __global const float* band_table, int stride, const KdPixel* k,
+                         const UwiPixel* q, int i, const UwiLanes* v, const UwiWeights* w, const UwiStart* camera,
+                         float S_end, float y_end, float aureole_end, realb* multiple_part) {
+  UwiEnds ends;
+  uwi_ends(v, p->bottom_depth, S_end, y_end, k->single & k->multiple, &ends);
+  realb strict;
+  const realb L = k->multiple ? uwi_lanes_multiple(v, w, camera, &ends, q->phase, p->bottom_depth, S_end, k->d_y,
+                                                   k->single, &strict)
+                              : SPLATB(0.0f);
+  *multiple_part = L;
+  return k->multiple ? fmax(L + uwi_lanes_forward_peak(band_table, stride, q->row0, i, v, q->aureole_node,
+                                                       q->aureole_frac, q->node, q->cos_dphi, q->phase, k->d_y, k->o_d,
+                                                       aureole_end, q->s_w_y, strict),
+                            SPLATB(0.0f))
+                     : SPLATB(0.0f);
+}
+
+#if SEASIM_UWI_SPREAD
+/* The step's share scattered by small angles (water_spread.h (1), (3)) and the in-scatter's ((4), (5)),
+ * kept apart as moments for water_spread.cl to put back blurred; returns the light that stays in the
+ * pixel. L: L_MS, the share the in-scatter's part is taken from. */
+realb uwi_step_spread(const UwiPixel* q, const UwiLanes* v, realb L, realb in_scatter, realb hit, realb direct,
+                      const KdStep* st, KdSums* s) {
+  const realb delta = v->c - v->c_dm;
+  const realb em = uws_expm1_neg_b(delta * q->s_spread);
+  realb count_in, depth_in;
+  const realb share_in = uws_inscatter_share_b(v->c_dm, delta, q->s_spread, em, &count_in, &depth_in);
+  const realb fwd_hit = hit * uws_hit_share_b(em);
+  const realb L_in_share = L * share_in;
+  const realb fwd = fwd_hit + fmin(L_in_share, in_scatter);
+  const realb cnt = hit * (delta * q->s_spread) + L * count_in;
+  const realb fwd_depth = fwd_hit * q->s_spread + L * depth_in;
+  s->fwd_r += fwd * st->w_r;
+  s->fwd_g += fwd * st->w_g;
+  s->fwd_b += fwd * st->w_b;
+  s->cnt_r += cnt * st->w_r;
+  s->cnt_g += cnt * st->w_g;
+  s->cnt_b += cnt * st->w_b;
+  s->fwd_light_depth += fwd_depth * (st->w_r + st->w_g + st->w_b);
+#if SEASIM_LAYER_FORMATION
+  /* The small-angle share of the in-scatter leaves the backscatter; water_spread.cl adds it (blurred)
+   * to the forward layer with the hit's. */
+  LAYER_ADD(scatter, in_scatter - fmin(L_in_share, in_scatter));
+  LAYER_ADD(fwdl, hit - fwd_hit - direct);
+  BAND_LAYER(2, in_scatter - fmin(L_in_share, in_scatter));
+  BAND_FORWARD(hit - fwd_hit - direct);
+#endif
+#if SEASIM_SPECTRAL_OUTPUT
+  store_lanes(fwd, st->forward_spectral + ((size_t)st->pixel * 2) * st->band_count + st->i, st->band_count - st->i);
+  store_lanes(cnt, st->forward_spectral + ((size_t)st->pixel * 2 + 1) * st->band_count + st->i, st->band_count - st->i);
+#endif
+  return in_scatter + hit - fwd;
+}
+#endif
+
+/* One step of bands of the discrete-ordinates model: T L_s + L_MS per band (without the light the
+ * point-spread keeps apart), the layers' lanes added into `s`. */
+realb uwi_step(__constant UwParams* p, __global const float* band_table, int stride, const KdPixel* k,
+               const UwiPixel* q, const KdStep* st, KdSums* s) {
+  const int i = st->i;
+  UwiLanes v;
+  uwi_lanes_load(band_table, stride, q->row0, i, &v);
+  /* The in-scatter's integrals start at the camera (per-frame rows: o_d is the frame's) and end at the
+   * hit, whose exps a Lambertian hit shares. */
+  UwiStart camera;
+  uwi_start_camera(band_table, stride, q->row0, i, &camera);
+  UwiEnds ends;
+  uwi_ends(&v, p->bottom_depth, k->S, k->y_hit, k->single & k->multiple, &ends);
+  UwiWeights w;
+  uwi_lanes_weights(band_table, stride, q->row0, i, q->node, q->cos_dphi, &w);
+  if (q->v_sand < 1.0f) uwi_lanes_hide_sand(band_table, stride, q->row0, i, q->node, q->v_sand, &w);
+  realb L;
+  const realb in_scatter =
+      uwi_step_inscatter(p, band_table, stride, k, q, i, &v, &w, &camera, k->S, k->y_hit, q->aureole_end, &L);
+  /* the light of what the ray meets, T(S) included */
+  const realb hit = uwi_lanes_hit(&q->hit, band_table, stride, q->row0, i, &v, &ends, ends.k, LOADB(k->albedo_row, i),
+                                  LOADB(q->albedo_m_row, i));
+  realb direct = SPLATB(0.0f);
+#if SEASIM_LAYER_FORMATION
+  /* clear: the same hit with S = 0 (its ends at the hit's depth without T; the surface's t_s = 1). */
+  UwiEnds ends0;
+  uwi_ends(&v, p->bottom_depth, 0.0f, k->y_hit, 0, &ends0);
+  const realb clear = uwi_lanes_hit(&q->hit, band_table, stride, q->row0, i, &v, &ends0, SPLATB(1.0f),
+                                    LOADB(k->albedo_row, i), LOADB(q->albedo_m_row, i));
+  /* direct: clear through the whole extinction c (delta-M's c' < c keeps the small-angle light in hit). */
+  const realb trans = exp(-v.c * k->S);
+  direct = clear * trans;
+  LAYER_ADD(clear, clear);
+  LAYER_ADD(direct, direct);
+  LAYER_ADD(trans, trans);
+  LAYER_ADD(weight, SPLATB(1.0f));
+  BAND_LAYER(0, clear);
+  BAND_LAYER(1, direct);
+  BAND_LAYER(3, SPLATB(0.0f));
+  BAND_LAYER(4, trans);
+#endif
+#if SEASIM_LAYER_VEILING
+  {
+    /* B∞: the in-scatter of the same ray with S = ∞ (every far end 0; the aureole's end at the depth it
+     * tends to). */
+    const float y_inf = k->d_y < 0.0f ? UW_INFINITE : 0.0f;
+    realb l_inf;
+    const realb veil =
+        uwi_step_inscatter(p, band_table, stride, k, q, i, &v, &w, &camera, UW_INFINITE, y_inf, y_inf, &l_inf);
+    LAYER_ADD(veil, veil);
+    BAND_VEILING(veil);
+  }
+#endif
+#if SEASIM_UWI_SPREAD
+  return uwi_step_spread(q, &v, L, in_scatter, hit, direct, st, s);
+#else
+#if SEASIM_LAYER_FORMATION
+  LAYER_ADD(scatter, in_scatter);
+  LAYER_ADD(fwdl, hit - direct);
+  BAND_LAYER(2, in_scatter);
+  BAND_FORWARD(hit - direct);
+#endif
+  return in_scatter + hit;
+#endif
+}
+#endif /* SEASIM_UNDERWATER_MODEL == 1 */
+
+/* One step of bands of the thesis's model: L = T(S) L_s + L_MS (002 eq. 2.7 with 4.7, T(S) folded into
+ * L_s: common/underwater_bands.h), the layers' lanes added into `s`. */
+realb kd_thesis_step(__constant UwParams* p, __global const float* band_table, int stride, const KdPixel* k,
+                     const KdStep* st, KdSums* s) {
+  const int i = st->i;
+#define ROW(r) (band_table + (r) * stride)
+  const realb c = LOADB(ROW(UW_ROW_C), i);
+  const realb kd = LOADB(ROW(UW_ROW_KD), i);
+  const realb k_beam = LOADB(ROW(UW_ROW_K_BEAM), i);
+  const realb ms_total = LOADB(ROW(UW_ROW_MS_TOTAL), i);
+  const realb ms_direct = LOADB(ROW(UW_ROW_MS_DIRECT), i);
+  const int single = k->single, multiple = k->multiple;
+  const float S = k->S;
+  realb L = multiple ? uw_lanes_multiple(ms_total, ms_direct, kd, k_beam, c, single, k->d_y, k->o_d, S) : SPLATB(0.0f);
+#if SEASIM_LAYER_FORMATION
+  /* The in-scatter is the backscatter; the hit, T(S) L_s, the direct light (the thesis has no forward
+   * term); clear is the hit at S = 0, where S enters only T(S). */
+  LAYER_ADD(scatter, L);
+  BAND_LAYER(2, L);
+  realb clear = SPLATB(0.0f), hit = SPLATB(0.0f);
+#endif
+#if SEASIM_LAYER_VEILING
+  {
+    const realb veil =
+        multiple ? uw_lanes_multiple(ms_total, ms_direct, kd, k_beam, c, single, k->d_y, k->o_d, UW_INFINITE)
+                 : SPLATB(0.0f);
+    LAYER_ADD(veil, veil);
+    BAND_VEILING(veil);
+  }
+#endif
+  if (k->mat == UW_MAT_SURFACE) {
+    const realb sky_l = kd_sky_lanes(band_table, stride, i, k->sky_shape);
+    const realb surface = uw_lanes_surface(sky_l, ms_total, ms_direct, kd, k_beam, c, single, multiple, S, k->d_y,
+                                           p->ior, p->bottom_depth);
+    L += surface;
+#if SEASIM_LAYER_FORMATION
+    hit = surface;
+    clear = uw_lanes_surface(sky_l, ms_total, ms_direct, kd, k_beam, c, single, multiple, 0.0f, k->d_y, p->ior,
+                             p->bottom_depth);
+#endif
+  } else if (k->mat != UW_MAT_NONE) {
+    /* Objects read their albedo row; the bottom (UW_MAT_BOTTOM) reads the bottom's. */
+    const realb lambert = uw_lanes_lambert(LOADB(k->albedo_row, i), c, kd, k_beam, LOADB(ROW(UW_ROW_E_TOTAL), i),
+                                           LOADB(ROW(UW_ROW_E_SUN), i), LOADB(ROW(UW_ROW_E_BEAM), i), single, S,
+                                           k->y_hit, k->n_y, k->n_dot_s, k->vis);
+    L += lambert;
+#if SEASIM_LAYER_FORMATION
+    hit = lambert;
+    clear = uw_lanes_lambert(LOADB(k->albedo_row, i), c, kd, k_beam, LOADB(ROW(UW_ROW_E_TOTAL), i),
+                             LOADB(ROW(UW_ROW_E_SUN), i), LOADB(ROW(UW_ROW_E_BEAM), i), single, 0.0f, k->y_hit, k->n_y,
+                             k->n_dot_s, k->vis);
+#endif
+  }
+#undef ROW
+#if SEASIM_LAYER_FORMATION
+  const realb trans = exp(-c * S);
+  LAYER_ADD(clear, clear);
+  LAYER_ADD(direct, hit);
+  LAYER_ADD(trans, trans);
+  LAYER_ADD(weight, SPLATB(1.0f));
+  BAND_LAYER(0, clear);
+  BAND_LAYER(1, hit);
+  BAND_LAYER(3, SPLATB(0.0f));
+  BAND_LAYER(4, trans);
+  BAND_FORWARD(SPLATB(0.0f)); /* the thesis has no forward term */
+#endif
+  return L;
+}
+
+#if SEASIM_LAYER_FORMATION
+/* The formation layers' sums into formation[pixel][12] (clear, direct, backscatter with the froxel term
+ * ss, transmission) and forward_layer; lamps_layer starts at 0 (underwater_lamps.cl adds into it). */
+void kd_store_formation(const KdSums* s, int pixel, float3 ss, __global float* formation,
+                        __global float* forward_layer, __global float* lamps_layer) {
+  LAYER_STORE(formation, 12, 0, clear);
+  LAYER_STORE(formation, 12, 3, direct);
+  LAYER_STORE(formation, 12, 6, scatter);
+  LAYER_STORE(forward_layer, 3, 0, fwdl);
+#if SEASIM_HAS_FROXEL
+  formation[(size_t)pixel * 12 + 6] += ss.x;
+  formation[(size_t)pixel * 12 + 7] += ss.y;
+  formation[(size_t)pixel * 12 + 8] += ss.z;
+#endif
+  /* transmission per channel: direct/clear (so direct = clear x transmission), or where the hit sends no
+   * light (open water, black objects) the sensor's mean of e^{-c S}. */
+  const float cl[3] = {SUMB(s->clear_r), SUMB(s->clear_g), SUMB(s->clear_b)};
+  const float di[3] = {SUMB(s->direct_r), SUMB(s->direct_g), SUMB(s->direct_b)};
+  const float tw[3] = {SUMB(s->trans_r), SUMB(s->trans_g), SUMB(s->trans_b)};
+  const float ww[3] = {SUMB(s->weight_r), SUMB(s->weight_g), SUMB(s->weight_b)};
+  for (int k = 0; k < 3; ++k)
+    formation[(size_t)pixel * 12 + 9 + k] = fabs(cl[k]) > 1e-30f ? di[k] / cl[k] : layer_weighted_mean(tw[k], ww[k]);
+  lamps_layer[3 * pixel + 0] = 0.0f;
+  lamps_layer[3 * pixel + 1] = 0.0f;
+  lamps_layer[3 * pixel + 2] = 0.0f;
+}
+#endif
+
+#if SEASIM_UWI_SPREAD
+void kd_store_forward(const KdSums* s, int pixel, __global float* forward_rgb, __global float* forward_depth) {
+  forward_rgb[6 * pixel + 0] = SUMB(s->fwd_r);
+  forward_rgb[6 * pixel + 1] = SUMB(s->fwd_g);
+  forward_rgb[6 * pixel + 2] = SUMB(s->fwd_b);
+  forward_rgb[6 * pixel + 3] = SUMB(s->cnt_r);
+  forward_rgb[6 * pixel + 4] = SUMB(s->cnt_g);
+  forward_rgb[6 * pixel + 5] = SUMB(s->cnt_b);
+  forward_depth[2 * pixel + 0] = SUMB(s->fwd_light_depth);
+  forward_depth[2 * pixel + 1] = SUMB(s->fwd_r) + SUMB(s->fwd_g) + SUMB(s->fwd_b); /* the sum of (w_r + w_g + w_b) F */
+}
+#endif
+
+#if SEASIM_LAYER_VEILING
+/* B∞ in sensor RGB: the in-scatter's sums with S = ∞ and the froxel term of the whole column. */
+void kd_store_veiling(const KdSums* s, int pixel, float3 ss_inf, __global float* veiling) {
+  veiling[3 * pixel + 0] = SUMB(s->veil_r) + ss_inf.x;
+  veiling[3 * pixel + 1] = SUMB(s->veil_g) + ss_inf.y;
+  veiling[3 * pixel + 2] = SUMB(s->veil_b) + ss_inf.z;
+}
+#endif
+
 __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, __global const float* albedo,
                           __global const float* band_table, __global const UwObject* objects,
                           __global const float4* geom, __global const int* material, __global const float* sun_vis,
@@ -204,356 +623,68 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
   const int y = get_global_id(1);
   if (x >= p->width || y >= p->height) return;
   const int pixel = y * p->width + x;
-
   const float3 d = uw_screen_dir(p, (x + 0.5f) / p->width, (y + 0.5f) / p->height);
   const float3 s_w = (float3)(p->sun_dir_water[0], p->sun_dir_water[1], p->sun_dir_water[2]);
-  const float o_d = -p->cam_pos[1];
-
   const float4 g = geom[pixel];
-  const float S = g.x;
   const float3 n = (float3)(g.y, g.z, g.w);
-  const int mat = material[pixel];
-  const float vis = sun_vis[pixel];
-
-#if SEASIM_HAS_FROXEL
-  const int single = 1;
-#else
-  const int single = 0;
-#endif
-#if SEASIM_HAS_MULTIPLE
-  const int multiple = 1;
-#else
-  const int multiple = 0;
-#endif
-
-  /* Sky and geometry once per pixel; then SEASIM_BAND_LANES bands per step (common/band_lanes.h),
-   * reading the pixel-invariant per-band values from the band table with vector loads. The material
-   * test stays in the loop: it is the same for every step of a pixel, one predictable branch per
-   * SEASIM_BAND_LANES bands, and the lanes themselves are branch-free. Both models share this; the
-   * discrete-ordinates one's lanes are common/underwater_ordinates_bands.h, the thesis's common/underwater_bands.h. */
+  /* Sky and geometry once per pixel, then SEASIM_BAND_LANES bands per step (common/band_lanes.h), the
+   * per-band values read from the band table with vector loads (uwi_step, kd_thesis_step). */
+  const int stride = UW_BAND_STRIDE(p->band_count);
+  KdPixel k = {.mat = material[pixel], .single = KD_SINGLE, .multiple = KD_MULTIPLE, .S = g.x, .d_y = d.y,
+               .o_d = -p->cam_pos[1], .n_y = n.y, .n_dot_s = dot(n, s_w), .vis = sun_vis[pixel]};
+  k.y_hit = fmax(k.o_d - k.S * d.y, 0.0f);
 #if SEASIM_SKY_MODEL != SEASIM_SKY_UNIFORM
-  const float3 sky_shape = mat == UW_MAT_SURFACE ? sky_view_shape(sky_params, sky, sky_window_air_dir(d, p->ior))
-                                                 : (float3)(0.0f, 0.0f, 0.0f);
+  k.sky_shape = k.mat == UW_MAT_SURFACE ? sky_view_shape(sky_params, sky, sky_window_air_dir(d, p->ior))
+                                        : (float3)(0.0f, 0.0f, 0.0f);
 #else
-  const float3 sky_shape = (float3)(1.0f, 1.0f, 1.0f); /* unused: a uniform sky is the band's radiance */
+  k.sky_shape = (float3)(1.0f, 1.0f, 1.0f); /* unused: a uniform sky is the band's radiance */
 #endif
-  const float y_hit = fmax(o_d - S * d.y, 0.0f);
-  const float n_dot_s = dot(n, s_w);
-  const int band_count = p->band_count;
-  const int stride = UW_BAND_STRIDE(band_count);
-#define ROW(r) (band_table + (r) * stride)
-  __global const float* albedo_row = ROW(mat >= 0 ? UW_ROWS + mat : UW_ROW_BOTTOM_ALBEDO);
-  realb r_lanes = SPLATB(0.0f), g_lanes = SPLATB(0.0f), b_lanes = SPLATB(0.0f);
-#if SEASIM_LAYER_FORMATION
-  LAYER_LANES(clear);
-  LAYER_LANES(direct);
-  LAYER_LANES(scatter);
-  LAYER_LANES(trans);
-  LAYER_LANES(weight);
-  LAYER_LANES(fwdl);
-#endif
-#if SEASIM_LAYER_VEILING
-  LAYER_LANES(veil);
-#endif
+  k.albedo_row = band_table + (k.mat >= 0 ? UW_ROWS + k.mat : UW_ROW_BOTTOM_ALBEDO) * stride;
 #if SEASIM_UNDERWATER_MODEL == 1
-  /* underwater.model = "discrete_ordinates": its rows follow the objects' albedo rows; the phase of the view and
-   * (surface hits) of the reflected ray (d.x, -d.y, d.z) once per pixel. */
-  const int uwi_row0 = UW_ROWS + p->object_count;
-  const float cos_s = dot(d, s_w);
-  const float phase = hg_phase(cos_s, p->g);
-  const float cos_r = cos_s - 2.0f * d.y * s_w.y;
-  const float phase_r = mat == UW_MAT_SURFACE ? hg_phase(cos_r, p->g) : 0.0f;
-  /* The source table's nearest node in ν and the azimuth's cosine from the sun's, of the camera's ray's
-   * photon (ν = d.y) and the reflected ray's (ν = -d.y). */
-  const int node = uwi_source_node(d.y);
-  const int node_r = uwi_source_node(-d.y);
-  const float cos_dphi = uwi_cos_azimuth(cos_s, d.y, s_w.y);
-  const float cos_dphi_r = uwi_cos_azimuth(cos_r, -d.y, s_w.y);
-  /* The forward peak's aureole (uwi_aureole) of a ray looking up: its table's node, and where the ray ends
-   * (the surface: 0, where every band's share is 1). */
-  float aureole_frac;
-  const int aureole_node = uwi_aureole_node(cos_s, &aureole_frac);
-  const float aureole_end = mat == UW_MAT_SURFACE ? 0.0f : y_hit;
-  /* The share of the sunlit sand's light the ray gathers that no object hides or shades (uwi_sand_share,
-   * with the first band's c' and k). */
-  const float v_sand = multiple ? uwi_sand_share(objects, p->object_count, p->bottom_depth,
-                                                 (float3)(p->cam_pos[0], p->cam_pos[1], p->cam_pos[2]), d, S,
-                                                 band_table[(uwi_row0 + UWI_ROW_C_DM) * stride],
-                                                 band_table[(uwi_row0 + UWI_ROW_K) * stride], s_w,
-                                                 band_table + UW_ROWS * stride, stride,
-                                                 band_table[UW_ROW_BOTTOM_ALBEDO * stride])
-                                : 1.0f;
-  /* The object the reflected ray meets first, if any (surface hits; uwi_mirror_hit). */
-  int mat_m = UW_MAT_NONE;
-  const UwiMirrorHit mirror =
-      mat == UW_MAT_SURFACE
-          ? uwi_mirror_hit(objects, p->object_count, (float3)(p->cam_pos[0], p->cam_pos[1], p->cam_pos[2]), d, S, s_w,
-                           &mat_m)
-          : uwi_no_mirror_object();
-  __global const float* albedo_m_row = ROW(mat_m >= 0 ? UW_ROWS + mat_m : UW_ROW_BOTTOM_ALBEDO);
-  const float n_m_dot_s = dot(mirror.n, s_w);
-  /* The tilted plane table's node and azimuth of the object hit's normal and of the mirrored object's
-   * (uwi_tilt_node, uwi_tilt_irradiance); the bottom reads E_d. */
-  float frac, frac_m;
-  const int tilt_node = uwi_tilt_node(n.y, &frac);
-  const int tilt_node_m = uwi_tilt_node(mirror.n.y, &frac_m);
-  const float cos_phi_n = uwi_cos_azimuth(n_dot_s, n.y, s_w.y);
-  const float cos_phi_m = uwi_cos_azimuth(n_m_dot_s, mirror.n.y, s_w.y);
-  const int mirror_object = mat_m >= 0;
-  /* The share of the sand an object's face sees that is sunlit (uwi_bottom_visibility; the mirrored
-   * object's is taken as 1). */
-  const float vis_b = mat >= 0 ? uwi_bottom_visibility(objects, p->object_count, p->bottom_depth,
-                                                       (float3)(p->cam_pos[0], p->cam_pos[1], p->cam_pos[2]) + S * d,
-                                                       n, s_w)
-                               : 1.0f;
-  const UwiHitPixel hp = {.mat = mat, .mirror_object = mirror_object, .node_r = node_r, .tilt_node = tilt_node,
-                          .tilt_node_m = tilt_node_m, .multiple = multiple, .sky_shape = sky_shape,
-                          .cos_dphi_r = cos_dphi_r, .frac = frac, .frac_m = frac_m, .cos_phi_n = cos_phi_n,
-                          .cos_phi_m = cos_phi_m, .phase_r = phase_r, .d_y = d.y, .ior = p->ior,
-                          .bottom_depth = p->bottom_depth, .n_dot_s = n_dot_s, .n_m_dot_s = n_m_dot_s, .vis = vis,
-                          .vis_b = vis_b, .mirror_s = mirror.s, .mirror_vis = mirror.vis};
-#if SEASIM_UWI_SPREAD
-  /* The light scattered by small angles, its moments (common/water_spread.h) in sensor RGB: F, F E, and
-   * the sums over bands of (w_r + w_g + w_b) F D and (w_r + w_g + w_b) F. */
-  realb fwd_r = SPLATB(0.0f), fwd_g = SPLATB(0.0f), fwd_b = SPLATB(0.0f);
-  realb cnt_r = SPLATB(0.0f), cnt_g = SPLATB(0.0f), cnt_b = SPLATB(0.0f);
-  realb fwd_light_depth = SPLATB(0.0f);
-  const float s_spread = fmin(S, 1e4f);
+  UwiPixel q;
+  uwi_pixel(p, band_table, stride, objects, &k, d, n, s_w, &q);
 #endif
-  for (int i = 0; i < band_count; i += SEASIM_BAND_LANES) {
-    /* The sensor's weights of these bands (002 eq. 4.8; the padding bands' are 0). */
-    const realb w_r_band = LOADB(ROW(UW_ROW_W_R), i), w_g_band = LOADB(ROW(UW_ROW_W_G), i),
-                w_b_band = LOADB(ROW(UW_ROW_W_B), i);
-    UwiLanes v;
-    uwi_lanes_load(band_table, stride, uwi_row0, i, &v);
-    /* The in-scatter's integrals start at the camera (per-frame rows: o_d is the frame's) and end at the
-     * hit, whose exps a Lambertian hit shares. */
-    UwiStart camera;
-    uwi_start_camera(band_table, stride, uwi_row0, i, &camera);
-    UwiEnds ends;
-    uwi_ends(&v, p->bottom_depth, S, y_hit, single & multiple, &ends);
-    UwiWeights w;
-    uwi_lanes_weights(band_table, stride, uwi_row0, i, node, cos_dphi, &w);
-    if (v_sand < 1.0f) uwi_lanes_hide_sand(band_table, stride, uwi_row0, i, node, v_sand, &w);
-    realb strict;
-    realb L = multiple ? uwi_lanes_multiple(&v, &w, &camera, &ends, phase, p->bottom_depth, S, d.y, single, &strict)
-                       : SPLATB(0.0f);
-    /* The in-scatter with the forward peak's light (uwi_forward_peak), as uwi_band_radiance sums it; the
-     * point-spread below takes its share of the rest alone: the aureole is the light's spread at the
-     * camera already. */
-    const realb in_scatter = multiple ? fmax(L + uwi_lanes_forward_peak(band_table, stride, uwi_row0, i, &v, aureole_node,
-                                                                         aureole_frac, node, cos_dphi, phase, d.y, o_d,
-                                                                         aureole_end,
-                                                                         s_w.y, strict),
-                                             SPLATB(0.0f))
-                                      : SPLATB(0.0f);
-    /* the light of what the ray meets, T(S) included */
-    const realb hit = uwi_lanes_hit(&hp, band_table, stride, uwi_row0, i, &v, &ends, ends.k, LOADB(albedo_row, i),
-                                    LOADB(albedo_m_row, i));
-#if SEASIM_LAYER_FORMATION
-    /* clear: the same hit with S = 0 (its ends at the hit's depth without T; the surface's t_s = 1). */
-    UwiEnds ends0;
-    uwi_ends(&v, p->bottom_depth, 0.0f, y_hit, 0, &ends0);
-    const realb clear = uwi_lanes_hit(&hp, band_table, stride, uwi_row0, i, &v, &ends0, SPLATB(1.0f),
-                                      LOADB(albedo_row, i), LOADB(albedo_m_row, i));
-    /* direct: clear through the whole extinction c (delta-M's c' < c keeps the small-angle light in hit). */
-    const realb trans = exp(-v.c * S);
-    const realb direct = clear * trans;
-    LAYER_ADD(clear, clear);
-    LAYER_ADD(direct, direct);
-    LAYER_ADD(trans, trans);
-    LAYER_ADD(weight, SPLATB(1.0f));
-    BAND_LAYER(0, clear);
-    BAND_LAYER(1, direct);
-    BAND_LAYER(3, SPLATB(0.0f));
-    BAND_LAYER(4, trans);
-#endif
-#if SEASIM_LAYER_VEILING
-    /* B∞: the in-scatter of the same ray with S = ∞ (every far end 0; the aureole's end at the depth it
-     * tends to). */
-    {
-      const float y_inf = d.y < 0.0f ? UW_INFINITE : 0.0f;
-      UwiEnds ends_inf;
-      uwi_ends(&v, p->bottom_depth, UW_INFINITE, y_inf, single & multiple, &ends_inf);
-      realb strict_inf;
-      const realb l_inf = multiple ? uwi_lanes_multiple(&v, &w, &camera, &ends_inf, phase, p->bottom_depth, UW_INFINITE,
-                                                        d.y, single, &strict_inf)
-                                   : SPLATB(0.0f);
-      const realb veil = multiple ? fmax(l_inf + uwi_lanes_forward_peak(band_table, stride, uwi_row0, i, &v, aureole_node,
-                                                                        aureole_frac, node, cos_dphi, phase, d.y, o_d,
-                                                                        y_inf, s_w.y, strict_inf),
-                                         SPLATB(0.0f))
-                                  : SPLATB(0.0f);
-      LAYER_ADD(veil, veil);
-      BAND_VEILING(veil);
-    }
-#endif
-#if SEASIM_UWI_SPREAD
-    /* Its share scattered by small angles (water_spread.h (1), (3)) and the in-scatter's ((4), (5)), kept
-     * apart as moments; water_spread.cl puts them back blurred. */
-    const realb delta = v.c - v.c_dm;
-    const realb em = uws_expm1_neg_b(delta * s_spread);
-    realb count_in, depth_in;
-    const realb share_in = uws_inscatter_share_b(v.c_dm, delta, s_spread, em, &count_in, &depth_in);
-    const realb fwd_hit = hit * uws_hit_share_b(em);
-    const realb L_in_share = L * share_in;
-    const realb fwd = fwd_hit + fmin(L_in_share, in_scatter);
-    const realb cnt = hit * (delta * s_spread) + L * count_in;
-    const realb fwd_depth = fwd_hit * s_spread + L * depth_in;
-    fwd_r += fwd * w_r_band;
-    fwd_g += fwd * w_g_band;
-    fwd_b += fwd * w_b_band;
-    cnt_r += cnt * w_r_band;
-    cnt_g += cnt * w_g_band;
-    cnt_b += cnt * w_b_band;
-    fwd_light_depth += fwd_depth * (w_r_band + w_g_band + w_b_band);
-    L = in_scatter + hit - fwd;
-#if SEASIM_LAYER_FORMATION
-    /* The small-angle share of the in-scatter leaves the backscatter; water_spread.cl adds it (blurred)
-     * to the forward layer with the hit's. */
-    LAYER_ADD(scatter, in_scatter - fmin(L_in_share, in_scatter));
-    LAYER_ADD(fwdl, hit - fwd_hit - direct);
-    BAND_LAYER(2, in_scatter - fmin(L_in_share, in_scatter));
-    BAND_FORWARD(hit - fwd_hit - direct);
-#endif
-#if SEASIM_SPECTRAL_OUTPUT
-    store_lanes(fwd, forward_spectral + ((size_t)pixel * 2) * band_count + i, band_count - i);
-    store_lanes(cnt, forward_spectral + ((size_t)pixel * 2 + 1) * band_count + i, band_count - i);
-#endif
+  KdSums s;
+  kd_sums_zero(&s);
+  KdStep st = {.pixel = pixel, .band_count = p->band_count, .forward_spectral = KD_FORWARD_SPECTRAL,
+               .layer_bands = KD_LAYER_BANDS, .forward_bands = KD_FORWARD_BANDS, .veiling_bands = KD_VEILING_BANDS};
+  for (int i = 0; i < st.band_count; i += SEASIM_BAND_LANES) {
+    st.i = i;
+    st.w_r = LOADB(band_table + UW_ROW_W_R * stride, i);
+    st.w_g = LOADB(band_table + UW_ROW_W_G * stride, i);
+    st.w_b = LOADB(band_table + UW_ROW_W_B * stride, i);
+#if SEASIM_UNDERWATER_MODEL == 1
+    const realb L = uwi_step(p, band_table, stride, &k, &q, &st, &s);
 #else
-    L = in_scatter + hit;
-#if SEASIM_LAYER_FORMATION
-    LAYER_ADD(scatter, in_scatter);
-    LAYER_ADD(fwdl, hit - direct);
-    BAND_LAYER(2, in_scatter);
-    BAND_FORWARD(hit - direct);
+    const realb L = kd_thesis_step(p, band_table, stride, &k, &st, &s);
 #endif
-#endif
-#else
-  for (int i = 0; i < band_count; i += SEASIM_BAND_LANES) {
-    /* The sensor's weights of these bands (002 eq. 4.8; the padding bands' are 0). */
-    const realb w_r_band = LOADB(ROW(UW_ROW_W_R), i), w_g_band = LOADB(ROW(UW_ROW_W_G), i),
-                w_b_band = LOADB(ROW(UW_ROW_W_B), i);
-    const realb c = LOADB(ROW(UW_ROW_C), i);
-    const realb kd = LOADB(ROW(UW_ROW_KD), i);
-    const realb k_beam = LOADB(ROW(UW_ROW_K_BEAM), i);
-    const realb ms_total = LOADB(ROW(UW_ROW_MS_TOTAL), i);
-    const realb ms_direct = LOADB(ROW(UW_ROW_MS_DIRECT), i);
-    /* L = T(S) L_s + L_MS (002 eq. 2.7 with 4.7), T(S) folded into L_s (common/underwater_bands.h). */
-    realb L = multiple ? uw_lanes_multiple(ms_total, ms_direct, kd, k_beam, c, single, d.y, o_d, S) : SPLATB(0.0f);
-#if SEASIM_LAYER_FORMATION
-    /* The in-scatter is the backscatter; the hit, T(S) L_s, the direct light (the thesis has no forward
-     * term); clear is the hit at S = 0, where S enters only T(S). */
-    LAYER_ADD(scatter, L);
-    BAND_LAYER(2, L);
-    realb clear = SPLATB(0.0f), hit = SPLATB(0.0f);
-#endif
-#if SEASIM_LAYER_VEILING
-    {
-      const realb veil =
-          multiple ? uw_lanes_multiple(ms_total, ms_direct, kd, k_beam, c, single, d.y, o_d, UW_INFINITE) : SPLATB(0.0f);
-      LAYER_ADD(veil, veil);
-      BAND_VEILING(veil);
-    }
-#endif
-    if (mat == UW_MAT_SURFACE) {
-      const realb sky_l = kd_sky_lanes(band_table, stride, i, sky_shape);
-      const realb surface = uw_lanes_surface(sky_l, ms_total, ms_direct, kd, k_beam, c, single, multiple, S, d.y,
-                                             p->ior, p->bottom_depth);
-      L += surface;
-#if SEASIM_LAYER_FORMATION
-      hit = surface;
-      clear = uw_lanes_surface(sky_l, ms_total, ms_direct, kd, k_beam, c, single, multiple, 0.0f, d.y, p->ior,
-                               p->bottom_depth);
-#endif
-    } else if (mat != UW_MAT_NONE) {
-      /* Objects read their albedo row; the bottom (UW_MAT_BOTTOM) reads the bottom's. */
-      const realb lambert = uw_lanes_lambert(LOADB(albedo_row, i), c, kd, k_beam, LOADB(ROW(UW_ROW_E_TOTAL), i),
-                                             LOADB(ROW(UW_ROW_E_SUN), i), LOADB(ROW(UW_ROW_E_BEAM), i), single, S,
-                                             y_hit, n.y, n_dot_s, vis);
-      L += lambert;
-#if SEASIM_LAYER_FORMATION
-      hit = lambert;
-      clear = uw_lanes_lambert(LOADB(albedo_row, i), c, kd, k_beam, LOADB(ROW(UW_ROW_E_TOTAL), i),
-                               LOADB(ROW(UW_ROW_E_SUN), i), LOADB(ROW(UW_ROW_E_BEAM), i), single, 0.0f, y_hit, n.y,
-                               n_dot_s, vis);
-#endif
-    }
-#if SEASIM_LAYER_FORMATION
-    const realb trans = exp(-c * S);
-    LAYER_ADD(clear, clear);
-    LAYER_ADD(direct, hit);
-    LAYER_ADD(trans, trans);
-    LAYER_ADD(weight, SPLATB(1.0f));
-    BAND_LAYER(0, clear);
-    BAND_LAYER(1, hit);
-    BAND_LAYER(3, SPLATB(0.0f));
-    BAND_LAYER(4, trans);
-    BAND_FORWARD(SPLATB(0.0f)); /* the thesis has no forward term */
-#endif
-#endif /* SEASIM_UNDERWATER_MODEL */
     /* 002 eq. 4.8. */
-    r_lanes += L * w_r_band;
-    g_lanes += L * w_g_band;
-    b_lanes += L * w_b_band;
+    s.r += L * st.w_r;
+    s.g += L * st.w_g;
+    s.b += L * st.w_b;
 #if SEASIM_SPECTRAL_OUTPUT
-    store_lanes(L, spectral + (size_t)pixel * band_count + i, band_count - i);
+    store_lanes(L, spectral + (size_t)pixel * st.band_count + i, st.band_count - i);
 #endif
   }
-#undef ROW
-  float r = SUMB(r_lanes), gr = SUMB(g_lanes), b = SUMB(b_lanes);
+  float r = SUMB(s.r), gr = SUMB(s.g), b = SUMB(s.b);
 #if SEASIM_HAS_FROXEL
-  const float3 ss = froxel_lookup(fp, froxel_volume, x, y, p->width, p->height, S);
+  const float3 ss = froxel_lookup(fp, froxel_volume, x, y, p->width, p->height, k.S);
   r += ss.x;
   gr += ss.y;
   b += ss.z;
+#else
+  const float3 ss = (float3)(0.0f, 0.0f, 0.0f); /* no froxel term */
 #endif
   rgb[3 * pixel + 0] = r;
   rgb[3 * pixel + 1] = gr;
   rgb[3 * pixel + 2] = b;
 #if SEASIM_LAYER_FORMATION
-  LAYER_STORE(formation, 12, 0, clear);
-  LAYER_STORE(formation, 12, 3, direct);
-  LAYER_STORE(formation, 12, 6, scatter);
-  LAYER_STORE(forward_layer, 3, 0, fwdl);
-#if SEASIM_HAS_FROXEL
-  formation[(size_t)pixel * 12 + 6] += ss.x;
-  formation[(size_t)pixel * 12 + 7] += ss.y;
-  formation[(size_t)pixel * 12 + 8] += ss.z;
-#endif
-  {
-    /* transmission per channel: direct/clear (so direct = clear x transmission), or where the hit sends no
-     * light (open water, black objects) the sensor's mean of e^{-c S}. */
-    const float cl[3] = {SUMB(clear_r), SUMB(clear_g), SUMB(clear_b)};
-    const float di[3] = {SUMB(direct_r), SUMB(direct_g), SUMB(direct_b)};
-    const float tw[3] = {SUMB(trans_r), SUMB(trans_g), SUMB(trans_b)};
-    const float ww[3] = {SUMB(weight_r), SUMB(weight_g), SUMB(weight_b)};
-    for (int k = 0; k < 3; ++k)
-      formation[(size_t)pixel * 12 + 9 + k] = fabs(cl[k]) > 1e-30f ? di[k] / cl[k] : layer_weighted_mean(tw[k], ww[k]);
-  }
-  lamps_layer[3 * pixel + 0] = 0.0f;
-  lamps_layer[3 * pixel + 1] = 0.0f;
-  lamps_layer[3 * pixel + 2] = 0.0f;
+  kd_store_formation(&s, pixel, ss, formation, forward_layer, lamps_layer);
 #endif
 #if SEASIM_LAYER_VEILING
-#if SEASIM_HAS_FROXEL
-  /* The froxel term of the whole column (froxel_lookup reads S >= z_far at z_far). */
-  const float3 ss_inf = froxel_lookup(fp, froxel_volume, x, y, p->width, p->height, UW_INFINITE);
-#else
-  const float3 ss_inf = (float3)(0.0f, 0.0f, 0.0f);
-#endif
-  veiling[3 * pixel + 0] = SUMB(veil_r) + ss_inf.x;
-  veiling[3 * pixel + 1] = SUMB(veil_g) + ss_inf.y;
-  veiling[3 * pixel + 2] = SUMB(veil_b) + ss_inf.z;
+  kd_store_veiling(&s, pixel, KD_FROXEL_AT_INFINITY, veiling);
 #endif
 #if SEASIM_UWI_SPREAD
-  forward_rgb[6 * pixel + 0] = SUMB(fwd_r);
-  forward_rgb[6 * pixel + 1] = SUMB(fwd_g);
-  forward_rgb[6 * pixel + 2] = SUMB(fwd_b);
-  forward_rgb[6 * pixel + 3] = SUMB(cnt_r);
-  forward_rgb[6 * pixel + 4] = SUMB(cnt_g);
-  forward_rgb[6 * pixel + 5] = SUMB(cnt_b);
-  forward_depth[2 * pixel + 0] = SUMB(fwd_light_depth);
-  forward_depth[2 * pixel + 1] = SUMB(fwd_r) + SUMB(fwd_g) + SUMB(fwd_b); /* the sum of (w_r + w_g + w_b) F */
+  kd_store_forward(&s, pixel, forward_rgb, forward_depth);
 #endif
 }

@@ -163,7 +163,7 @@ TEST_F(FaultLimits, UnderwaterShadowMapAndForwardMomentsAreInTheBudget) {
     if (b.pass == "kd_multiple" && b.what == "forward light moments (underwater.point_spread)") moments = b.bytes;
   }
   EXPECT_EQ(shadow, 4.0 * 4096 * 4096);  // one float per texel (froxel_pass.cpp)
-  EXPECT_EQ(moments, 4.0 * 8 * 100 * 50);  // 2 x 3 channel moments + 2 per pixel (underwater_pass.cpp)
+  EXPECT_EQ(moments, 4.0 * 8 * 100 * 50);  // 2 x 3 channel moments + 2 per pixel (underwater_shading.cpp)
 }
 
 TEST_F(FaultLimits, ShardLocksOfDifferentLayoutsExcludeEachOther) {

@@ -94,6 +94,87 @@ class KdNode : public Pass {
   std::unique_ptr<UnderwaterShading> shading_;
 };
 
+std::shared_ptr<KdFeatures> kdFeatures(const Scene& scene, bool froxels) {
+  auto f = std::make_shared<KdFeatures>();
+  f->multiple = scene.underwater.multiple_scattering;
+  f->froxel = froxels;
+  f->spectral_output = scene.spectral.spectral_exr;
+  f->sky_model = skyModelOf(scene.sky);
+  f->underwater_model = scene.underwater.model == UnderwaterDesc::Model::DiscreteOrdinates ? 1 : 0;
+  f->point_spread = underwaterPointSpread(scene);
+  f->formation_layers = scene.outputs.wantsAny(kFormationLayers);
+  f->veiling_layer = scene.outputs.wantsAny(kVeilingLayers);
+  f->band_layers = f->formation_layers && f->spectral_output;
+  f->veiling_bands = f->veiling_layer && f->spectral_output;
+  return f;
+}
+
+// The resources it publishes: the image, the forward light for the point-spread, the layers asked.
+std::vector<std::string> kdWrites(const KdFeatures& f) {
+  std::vector<std::string> writes = {"rgb"};
+  if (f.point_spread) writes.push_back("forward_light");
+  if (f.formation_layers) writes.insert(writes.end(), {"formation_layers", "forward_layer", "lamps_layer"});
+  if (f.veiling_layer) writes.push_back("veiling_layer");
+  if (f.band_layers) writes.insert(writes.end(), {"band_layers", "forward_band_layer"});
+  if (f.veiling_bands) writes.push_back("veiling_band_layer");
+  return writes;
+}
+
+// The plan's "why": the model, and the layers with their cost.
+std::string kdWhy(const Scene& scene, const KdFeatures& f) {
+  std::string layers;
+  if (f.formation_layers || f.veiling_layer)
+    layers = "; outputs.layers: " + layerList(askedLayers(scene, kFormationLayers)) +
+             (f.veiling_layer && !scene.outputs.wants("veiling") ? ", veiling (for beta_b)" : "") +
+             (f.band_layers || f.veiling_bands ? ", per band in spectral.exr" : "") +
+             layerCostText(scene, 4.0 * ((f.formation_layers ? 18 : 0) + (f.veiling_layer ? 3 : 0) +
+                                         (f.band_layers ? 6 * scene.spectral.count : 0) +
+                                         (f.veiling_bands ? scene.spectral.count : 0)));
+  if (f.underwater_model == 1)
+    return "camera below the surface: T L_s + L_MS per band, model \"discrete_ordinates\" (delta-M, the diffuse "
+           "field over the bottom by discrete ordinates or a two-stream, its in-scatter by direction)" +
+           layers;
+  return "camera below the surface: T L_s + L_MS per band (002 eq. 4.7)" + layers;
+}
+
+std::optional<PassPlan> kdRule(const Scene& scene, const Plan& so_far) {
+  if (!cameraUnderwater(scene)) return std::nullopt;
+  const bool froxels = so_far.produces("froxel_volume");
+  std::vector<std::string> reads = {"underwater_setup", "gbuffer"};
+  if (froxels) reads.push_back("froxel_volume");
+  const std::shared_ptr<KdFeatures> features = kdFeatures(scene, froxels);
+  return planEntry(reads, kdWrites(*features), kdWhy(scene, *features), features);
+}
+
+std::vector<BufferEstimate> kdBuffers(const Scene& s, const PassPlan& p) {
+  const KdFeatures& f = p.featuresAs<KdFeatures>();
+  const double w = s.camera.width, h = s.camera.height, nb = s.spectral.count;
+  std::vector<BufferEstimate> out;
+  // The ground-truth layers (underwater_shading.cpp) and their copies read back on the host.
+  const double layer_floats = (f.formation_layers ? 18 : 0) + (f.veiling_layer ? 3 : 0);
+  if (layer_floats > 0) {
+    const std::vector<std::string> keys = {"camera.width", "camera.height", "outputs.layers"};
+    out.push_back({p.name, "formation layers", 4 * layer_floats * w * h, keys, {w, h}});
+    out.push_back({p.name, "formation layers (read back)", 4 * layer_floats * w * h, keys, {w, h}, true});
+  }
+  // Per band (kd_multiple.cl): five slots and the forward light; the veiling.
+  const double band_floats = (f.band_layers ? 6 : 0) + (f.veiling_bands ? 1 : 0);
+  if (band_floats > 0) {
+    const std::vector<std::string> keys = {"camera.width", "camera.height", "spectral.count", "outputs.layers"};
+    out.push_back({p.name, "layers per band", 4 * band_floats * nb * w * h, keys, {w, h, nb}});
+    out.push_back({p.name, "layers per band (read back)", 4 * band_floats * nb * w * h, keys, {w, h, nb}, true});
+  }
+  if (!f.point_spread) return out;
+  // The forward light's moments the point spread blurs (underwater_shading.cpp): F and F E per
+  // channel, F D and F per pixel, and per band with spectral output.
+  out.push_back({p.name, "forward light moments (underwater.point_spread)", 4 * 8 * w * h,
+                 {"camera.width", "camera.height"}, {w, h}});
+  if (s.spectral.spectral_exr)
+    out.push_back({p.name, "forward light moments per band", 4 * 2 * nb * w * h,
+                   {"camera.width", "camera.height", "spectral.count"}, {w, h, nb}});
+  return out;
+}
+
 }  // namespace
 
 PassDescriptor kdMultipleDescriptor() {
@@ -103,74 +184,9 @@ PassDescriptor kdMultipleDescriptor() {
   d.role = PassRole::UnderwaterShading;
   d.band_loop_timing = d.name;
   d.band_loop_items = [](const Scene& s, int bands) { return double(s.camera.width) * s.camera.height * bands; };
-  d.rule = [](const Scene& scene, const Plan& so_far) -> std::optional<PassPlan> {
-    if (!cameraUnderwater(scene)) return std::nullopt;
-    const bool froxels = so_far.produces("froxel_volume");
-    const bool ordinates = scene.underwater.model == UnderwaterDesc::Model::DiscreteOrdinates;
-    std::vector<std::string> reads = {"underwater_setup", "gbuffer"};
-    if (froxels) reads.push_back("froxel_volume");
-    auto features = std::make_shared<KdFeatures>();
-    features->multiple = scene.underwater.multiple_scattering;
-    features->froxel = froxels;
-    features->spectral_output = scene.spectral.spectral_exr;
-    features->sky_model = skyModelOf(scene.sky);
-    features->underwater_model = ordinates ? 1 : 0;
-    features->point_spread = underwaterPointSpread(scene);
-    features->formation_layers = scene.outputs.wantsAny(kFormationLayers);
-    features->veiling_layer = scene.outputs.wantsAny(kVeilingLayers);
-    features->band_layers = features->formation_layers && features->spectral_output;
-    features->veiling_bands = features->veiling_layer && features->spectral_output;
-    std::vector<std::string> writes = {"rgb"};
-    if (features->point_spread) writes.push_back("forward_light");
-    if (features->formation_layers) writes.insert(writes.end(), {"formation_layers", "forward_layer", "lamps_layer"});
-    if (features->veiling_layer) writes.push_back("veiling_layer");
-    if (features->band_layers) writes.insert(writes.end(), {"band_layers", "forward_band_layer"});
-    if (features->veiling_bands) writes.push_back("veiling_band_layer");
-    std::string layers;
-    if (features->formation_layers || features->veiling_layer)
-      layers = "; outputs.layers: " + layerList(askedLayers(scene, kFormationLayers)) +
-               (features->veiling_layer && !scene.outputs.wants("veiling") ? ", veiling (for beta_b)" : "") +
-               (features->band_layers || features->veiling_bands ? ", per band in spectral.exr" : "") +
-               layerCostText(scene, 4.0 * ((features->formation_layers ? 18 : 0) + (features->veiling_layer ? 3 : 0) +
-                                           (features->band_layers ? 6 * scene.spectral.count : 0) +
-                                           (features->veiling_bands ? scene.spectral.count : 0)));
-    return planEntry(reads, writes,
-                     ordinates ? "camera below the surface: T L_s + L_MS per band, model \"discrete_ordinates\" (delta-M, the "
-                                 "diffuse field over the bottom by discrete ordinates or a two-stream, its in-scatter "
-                                 "by direction)"
-                                     + layers
-                               : "camera below the surface: T L_s + L_MS per band (002 eq. 4.7)" + layers,
-                     features);
-  };
+  d.rule = kdRule;
   d.keys = {{}, kUnderwaterSetupKeys};
-  d.buffers = [](const Scene& s, const PassPlan& p) -> std::vector<BufferEstimate> {
-    const KdFeatures& f = p.featuresAs<KdFeatures>();
-    const double w = s.camera.width, h = s.camera.height, nb = s.spectral.count;
-    std::vector<BufferEstimate> out;
-    // The ground-truth layers (underwater_pass.cpp) and their copies read back on the host.
-    const double layer_floats = (f.formation_layers ? 18 : 0) + (f.veiling_layer ? 3 : 0);
-    if (layer_floats > 0) {
-      const std::vector<std::string> keys = {"camera.width", "camera.height", "outputs.layers"};
-      out.push_back({p.name, "formation layers", 4 * layer_floats * w * h, keys, {w, h}});
-      out.push_back({p.name, "formation layers (read back)", 4 * layer_floats * w * h, keys, {w, h}, true});
-    }
-    // Per band (kd_multiple.cl): five slots and the forward light; the veiling.
-    const double band_floats = (f.band_layers ? 6 : 0) + (f.veiling_bands ? 1 : 0);
-    if (band_floats > 0) {
-      const std::vector<std::string> keys = {"camera.width", "camera.height", "spectral.count", "outputs.layers"};
-      out.push_back({p.name, "layers per band", 4 * band_floats * nb * w * h, keys, {w, h, nb}});
-      out.push_back({p.name, "layers per band (read back)", 4 * band_floats * nb * w * h, keys, {w, h, nb}, true});
-    }
-    if (!f.point_spread) return out;
-    // The forward light's moments the point spread blurs (underwater_pass.cpp): F and F E per
-    // channel, F D and F per pixel, and per band with spectral output.
-    out.push_back({p.name, "forward light moments (underwater.point_spread)", 4 * 8 * w * h,
-                   {"camera.width", "camera.height"}, {w, h}});
-    if (s.spectral.spectral_exr)
-      out.push_back({p.name, "forward light moments per band", 4 * 2 * nb * w * h,
-                     {"camera.width", "camera.height", "spectral.count"}, {w, h, nb}});
-    return out;
-  };
+  d.buffers = kdBuffers;
   // Per pixel and band, in units of sea_single: the thesis model 1.5x (seabed against flat_sea;
   // results/BENCHMARKS.md "Farm shards"); the discrete-ordinates model 4.2x the thesis's kd_multiple, the split
   // layers' second evaluation of the hit +0.7 and the veiling's in-scatter to infinity +0.8 of those
