@@ -67,6 +67,155 @@ static inline float lamp_escapes(__global const UwObject* objects, int count, fl
 }
 #endif
 
+/* The pixel's lamp light so far, in sensor RGB (002 eq. 4.8), and where its per-band values go. */
+typedef struct {
+  float r, g, b;
+  int pixel, nb;
+  __global float* spectral;    /* SEASIM_SPECTRAL_OUTPUT */
+  __global float* layer_bands; /* SEASIM_LAYER_BANDS: slot 3 (lamps) of kd_multiple.cl's layout */
+} LampSums;
+
+/* Band i's light L into the sums and the per-band images. */
+static inline void lamp_add(LampSums* o, __global const UwBand* bands, int i, float L) {
+  o->r += L * bands[i].w_r;
+  o->g += L * bands[i].w_g;
+  o->b += L * bands[i].w_b;
+#if SEASIM_SPECTRAL_OUTPUT
+  o->spectral[(size_t)o->pixel * o->nb + i] += L;
+#endif
+#if SEASIM_LAYER_BANDS
+  o->layer_bands[((size_t)o->pixel * 5 + 3) * o->nb + i] += L;
+#endif
+}
+
+/* The view ray and its first surface, as every lamp sees them. */
+typedef struct {
+  float3 o, d, n;
+  float S, t_end;
+  int lit_surface;
+  __global const float* alb; /* the surface's albedo per band, every alb_stride floats */
+  int alb_stride;
+} LampRay;
+
+#if SEASIM_LAMPS_ORDERS
+/* The "orders" model's light of one lamp (common/underwater_lamps_ms.h): on the surface, the direct
+ * light (exact, shadowed) plus the orders' irradiance (unshadowed: light scattered around an object
+ * reaches behind it), both seen through T_view; along the view ray, the orders' in-scatter, the geometry
+ * per step once (distance, the blurred profiles times HG(g^{n+1}) at the scattering angle), then the
+ * bands with their weights. */
+void lamp_orders(__constant UwParams* p, __global const UwBand* bands, __global const UwObject* objects, int count,
+                 __constant UwLampParams* lp, __global const UwLamp* L, __global const float* I,
+                 __global const float* ms_rows, int ms_orders, int ms_steps, float ms_kappa, const LampRay* v,
+                 LampSums* o) {
+  const int nb = lp->band_count;
+  const float3 lamp = v3(L->position), axis = v3(L->direction);
+  const float escapes = lamp_escapes(objects, count, lamp);
+  if (v->lit_surface) {
+    const float3 P = v->o + v->S * v->d;
+    const float vis = lamp_visible(objects, count, P + 1e-3f * v->n, lamp);
+    for (int i = 0; i < nb; ++i) {
+      const float direct = vis > 0.0f ? uw_lamp_surface(P, v->n, 0.0f, lamp, axis, L->cos_cone, L->cos_inner,
+                                                        lp->s_min, bands[i].c, vis)
+                                      : 0.0f;
+      const float ms = escapes * uw_ms_surface(P, v->n, lamp, axis, lp->s_min, bands[i].a, bands[i].b, p->g, ms_kappa,
+                                               ms_rows, ms_orders);
+      const float Lo = I[i] * v->alb[i * v->alb_stride] * (direct + ms) *
+                       uw_ms_view_transmission(bands[i].a, bands[i].b, p->g, v->S, ms_orders);
+      lamp_add(o, bands, i, Lo);
+    }
+  }
+  if (!(escapes > 0.0f)) return;
+  float c_min = bands[0].c;
+  for (int i = 1; i < nb; ++i) c_min = fmin(c_min, bands[i].c);
+  UwMsRay q;
+  uw_ms_ray(v->o, v->d, lamp, lp->s_min, v->t_end, uw_ms_ray_cap(c_min), ms_steps, &q);
+  if (!(q.dv > 0.0f)) return;
+  float stretch[UW_MS_MAX_ORDERS], geo[UW_MS_MAX_ORDERS];
+  for (int k = 1; k <= ms_orders; ++k) stretch[k - 1] = uw_ms_stretch(p->g, k, ms_kappa);
+  for (int j = 0; j < ms_steps; ++j) {
+    const float t = uw_ms_ray_t(&q, j);
+    float s, c;
+    uw_lamp_at(v->o, v->d, lamp, t, &s, &c);
+    const float cos_psi = s > 0.0f ? dot(v->o + t * v->d - lamp, axis) / s : 1.0f;
+    const float w = uw_ms_ray_weight(&q, t, s, lp->s_min);
+    int ti;
+    float tf;
+    uw_ms_table_index(cos_psi, &ti, &tf);
+    float gk = p->g;
+    for (int k = 1; k <= ms_orders; ++k) {
+      gk *= p->g;
+      geo[k - 1] = uw_ms_table_lerp(ms_rows + (k - 1) * UW_MS_TABLE, ti, tf) * hg_phase(c, gk);
+    }
+    for (int i = 0; i < nb; ++i) {
+      const float sa = bands[i].a, ss = bands[i].b;
+      if (!(ss > 0.0f)) continue;
+      float sum = 0.0f;
+      for (int k = 1; k <= ms_orders; ++k)
+        if (geo[k - 1] > 0.0f) sum += uw_ms_weight(sa, ss, s, stretch[k - 1], k, ms_orders) * geo[k - 1];
+      const float Lm = I[i] * ss * exp(-(sa + ss) * t) * sum * w;
+      lamp_add(o, bands, i, Lm);
+    }
+  }
+}
+#else
+/* The lamp's direct light on the surface the pixel sees (001 eq. 1, first term). */
+void lamp_surface(__global const UwBand* bands, __global const UwObject* objects, int count,
+                  __constant UwLampParams* lp, __global const UwLamp* L, __global const float* I, const LampRay* v,
+                  LampSums* o) {
+  if (!v->lit_surface) return;
+  const float3 lamp = v3(L->position), axis = v3(L->direction);
+  const float3 P = v->o + v->S * v->d;
+  const float vis = lamp_visible(objects, count, P + 1e-3f * v->n, lamp);
+  if (!(vis > 0.0f)) return;
+  for (int i = 0; i < lp->band_count; ++i) {
+    const float Lo = I[i] * v->alb[i * v->alb_stride] *
+                     uw_lamp_surface(P, v->n, v->S, lamp, axis, L->cos_cone, L->cos_inner, lp->s_min, bands[i].c, vis);
+    lamp_add(o, bands, i, Lo);
+  }
+}
+#endif
+
+/* The light one lamp scatters towards the eye (001 eq. 2, 5, 7–9): the planes once, the bands
+ * innermost, then the closed-form tail beyond the last plane. */
+void lamp_beam(__constant UwParams* p, __global const UwBand* bands, __global const UwObject* objects, int count,
+               __constant UwLampParams* lp, __global const UwLamp* L, __global const float* I, const LampRay* v,
+               LampSums* o) {
+  const int nb = lp->band_count, n_planes = lp->planes, m = lp->subplanes;
+  const float3 lamp = v3(L->position), axis = v3(L->direction);
+  UwLampSpan sp;
+  if (!uw_lamp_span(v->o, v->d, lamp, axis, L->cos_cone, lp->s_min, v->t_end, n_planes, &sp)) return;
+  for (int k = 0; k < n_planes && sp.dt > 0.0f; ++k) {
+    float J = 0.0f;
+    for (int j = 0; j < m; ++j) {
+      const float3 P = v->o + uw_lamp_subsample_t(&sp, k, j, m) * v->d;
+      const float prof = uw_lamp_profile(P, lamp, axis, L->cos_cone, L->cos_inner);
+      if (prof > 0.0f) J += prof * lamp_visible(objects, count, P, lamp);
+    }
+    if (J <= 0.0f) continue;
+    J *= sp.dt / m;
+    float s, c;
+    const float t = sp.ta + (k + 0.5f) * sp.dt;
+    uw_lamp_at(v->o, v->d, lamp, t, &s, &c);
+    for (int i = 0; i < nb; ++i) {
+      const float Ls = I[i] * J * uw_lamp_plane_g(bands[i].b, bands[i].c, p->g, s, t, c, lp->s_min);
+      lamp_add(o, bands, i, Ls);
+    }
+  }
+  if (!sp.tail) return;
+  float J = 0.0f;
+  for (int j = 0; j < m; ++j) {
+    const float3 P = v->o + uw_lamp_tail_t(&sp, j, m) * v->d;
+    const float prof = uw_lamp_profile(P, lamp, axis, L->cos_cone, L->cos_inner);
+    if (prof > 0.0f) J += prof * lamp_visible(objects, count, P, lamp);
+  }
+  if (!(J > 0.0f)) return;
+  J *= hg_phase(uw_lamp_tail_cos(&sp, v->o, v->d, lamp), p->g) / m;
+  for (int i = 0; i < nb; ++i) {
+    const float Ls = I[i] * J * uw_lamp_tail(&sp, bands[i].b, bands[i].c);
+    lamp_add(o, bands, i, Ls);
+  }
+}
+
 __kernel void underwater_lamps(__constant UwParams* p, __global const UwBand* bands, __global const float* albedo,
                                __global const UwObject* objects, __global const float4* geom,
                                __global const int* material, __constant UwLampParams* lp,
@@ -88,159 +237,43 @@ __kernel void underwater_lamps(__constant UwParams* p, __global const UwBand* ba
   const int x = get_global_id(0), y = get_global_id(1);
   if (x >= p->width || y >= p->height) return;
   const int pixel = y * p->width + x;
-  const int nb = lp->band_count, n_planes = lp->planes, m = lp->subplanes;
+  const int nb = lp->band_count;
 #if SEASIM_HAS_OBJECTS
   const int count = p->object_count;
 #else
   const int count = 0;
 #endif
-  const float3 o = v3(p->cam_pos);
-  const float3 d = uw_screen_dir(p, (x + 0.5f) / p->width, (y + 0.5f) / p->height);
   const float4 gb = geom[pixel];
-  const float S = gb.x;
-  const float3 n = (float3)(gb.y, gb.z, gb.w);
   const int mat = material[pixel];
-  const int lit_surface = mat >= 0 || mat == UW_MAT_BOTTOM;
-  const float t_end = S >= UW_INFINITE ? SHAFTS_T_INF : S;
-  __global const float* alb = mat >= 0 ? albedo + mat * nb : &bands[0].bottom_albedo;
-  const int alb_stride = mat >= 0 ? 1 : (int)(sizeof(UwBand) / sizeof(float));
-
-  float r = 0.0f, g = 0.0f, b = 0.0f;
+  LampRay v = {.o = v3(p->cam_pos), .d = uw_screen_dir(p, (x + 0.5f) / p->width, (y + 0.5f) / p->height),
+               .n = (float3)(gb.y, gb.z, gb.w), .S = gb.x, .lit_surface = mat >= 0 || mat == UW_MAT_BOTTOM};
+  v.t_end = v.S >= UW_INFINITE ? SHAFTS_T_INF : v.S;
+  v.alb = mat >= 0 ? albedo + mat * nb : &bands[0].bottom_albedo;
+  v.alb_stride = mat >= 0 ? 1 : (int)(sizeof(UwBand) / sizeof(float));
+  LampSums o = {.r = 0.0f, .g = 0.0f, .b = 0.0f, .pixel = pixel, .nb = nb};
+#if SEASIM_SPECTRAL_OUTPUT
+  o.spectral = spectral;
+#endif
 #if SEASIM_LAYER_BANDS
-#define LAMP_ADD(i, L)                                     \
-  r += (L) * bands[i].w_r;                                 \
-  g += (L) * bands[i].w_g;                                 \
-  b += (L) * bands[i].w_b;                                 \
-  spectral[(size_t)pixel * nb + (i)] += (L);               \
-  layer_bands[((size_t)pixel * 5 + 3) * nb + (i)] += (L)
-#elif SEASIM_SPECTRAL_OUTPUT
-#define LAMP_ADD(i, L)                                     \
-  r += (L) * bands[i].w_r;                                 \
-  g += (L) * bands[i].w_g;                                 \
-  b += (L) * bands[i].w_b;                                 \
-  spectral[(size_t)pixel * nb + (i)] += (L)
-#else
-#define LAMP_ADD(i, L)      \
-  r += (L) * bands[i].w_r;  \
-  g += (L) * bands[i].w_g;  \
-  b += (L) * bands[i].w_b
+  o.layer_bands = layer_bands;
 #endif
   for (int l = 0; l < lp->lamp_count; ++l) {
     __global const UwLamp* L = &lamps[l];
     __global const float* I = lamp_spectra + l * nb;
-    const float3 lamp = v3(L->position), axis = v3(L->direction);
-    /* The lamp's direct light on the surface the pixel sees (001 eq. 1, first term). */
 #if SEASIM_LAMPS_ORDERS
-    __global const float* ms_rows = ms_table + l * ms_orders * UW_MS_TABLE;
-    const float escapes = lamp_escapes(objects, count, lamp);
-    if (lit_surface) {
-      /* Direct light (exact, shadowed) plus the orders' irradiance (unshadowed: light scattered around
-       * an object reaches behind it), both seen through T_view (common/underwater_lamps_ms.h). */
-      const float3 P = o + S * d;
-      const float vis = lamp_visible(objects, count, P + 1e-3f * n, lamp);
-      for (int i = 0; i < nb; ++i) {
-        const float direct = vis > 0.0f ? uw_lamp_surface(P, n, 0.0f, lamp, axis, L->cos_cone, L->cos_inner, lp->s_min,
-                                                          bands[i].c, vis)
-                                        : 0.0f;
-        const float ms = escapes * uw_ms_surface(P, n, lamp, axis, lp->s_min, bands[i].a, bands[i].b, p->g, ms_kappa,
-                                                 ms_rows, ms_orders);
-        const float Lo = I[i] * alb[i * alb_stride] * (direct + ms) *
-                         uw_ms_view_transmission(bands[i].a, bands[i].b, p->g, S, ms_orders);
-        LAMP_ADD(i, Lo);
-      }
-    }
-    /* The orders along the view ray: the geometry per step once (distance, the blurred profiles times
-     * HG(g^{n+1}) at the scattering angle), then the bands with their weights. */
-    if (escapes > 0.0f) {
-      float c_min = bands[0].c;
-      for (int i = 1; i < nb; ++i) c_min = fmin(c_min, bands[i].c);
-      UwMsRay q;
-      uw_ms_ray(o, d, lamp, lp->s_min, t_end, uw_ms_ray_cap(c_min), ms_steps, &q);
-      if (q.dv > 0.0f) {
-        float stretch[UW_MS_MAX_ORDERS], geo[UW_MS_MAX_ORDERS];
-        for (int k = 1; k <= ms_orders; ++k) stretch[k - 1] = uw_ms_stretch(p->g, k, ms_kappa);
-        for (int j = 0; j < ms_steps; ++j) {
-          const float t = uw_ms_ray_t(&q, j);
-          float s, c;
-          uw_lamp_at(o, d, lamp, t, &s, &c);
-          const float cos_psi = s > 0.0f ? dot(o + t * d - lamp, axis) / s : 1.0f;
-          const float w = uw_ms_ray_weight(&q, t, s, lp->s_min);
-          int ti;
-          float tf;
-          uw_ms_table_index(cos_psi, &ti, &tf);
-          float gk = p->g;
-          for (int k = 1; k <= ms_orders; ++k) {
-            gk *= p->g;
-            geo[k - 1] = uw_ms_table_lerp(ms_rows + (k - 1) * UW_MS_TABLE, ti, tf) * hg_phase(c, gk);
-          }
-          for (int i = 0; i < nb; ++i) {
-            const float sa = bands[i].a, ss = bands[i].b;
-            if (!(ss > 0.0f)) continue;
-            float sum = 0.0f;
-            for (int k = 1; k <= ms_orders; ++k)
-              if (geo[k - 1] > 0.0f) sum += uw_ms_weight(sa, ss, s, stretch[k - 1], k, ms_orders) * geo[k - 1];
-            const float Lm = I[i] * ss * exp(-(sa + ss) * t) * sum * w;
-            LAMP_ADD(i, Lm);
-          }
-        }
-      }
-    }
+    lamp_orders(p, bands, objects, count, lp, L, I, ms_table + l * ms_orders * UW_MS_TABLE, ms_orders, ms_steps,
+                ms_kappa, &v, &o);
 #else
-    if (lit_surface) {
-      const float3 P = o + S * d;
-      const float vis = lamp_visible(objects, count, P + 1e-3f * n, lamp);
-      if (vis > 0.0f) {
-        for (int i = 0; i < nb; ++i) {
-          const float Lo = I[i] * alb[i * alb_stride] *
-                           uw_lamp_surface(P, n, S, lamp, axis, L->cos_cone, L->cos_inner, lp->s_min, bands[i].c, vis);
-          LAMP_ADD(i, Lo);
-        }
-      }
-    }
+    lamp_surface(bands, objects, count, lp, L, I, &v, &o);
 #endif
-    /* The light it scatters towards the eye (001 eq. 2, 5, 7–9), the planes once, the bands innermost. */
-    UwLampSpan sp;
-    if (!uw_lamp_span(o, d, lamp, axis, L->cos_cone, lp->s_min, t_end, n_planes, &sp)) continue;
-    for (int k = 0; k < n_planes && sp.dt > 0.0f; ++k) {
-      float J = 0.0f;
-      for (int j = 0; j < m; ++j) {
-        const float3 P = o + uw_lamp_subsample_t(&sp, k, j, m) * d;
-        const float prof = uw_lamp_profile(P, lamp, axis, L->cos_cone, L->cos_inner);
-        if (prof > 0.0f) J += prof * lamp_visible(objects, count, P, lamp);
-      }
-      if (J <= 0.0f) continue;
-      J *= sp.dt / m;
-      float s, c;
-      const float t = sp.ta + (k + 0.5f) * sp.dt;
-      uw_lamp_at(o, d, lamp, t, &s, &c);
-      for (int i = 0; i < nb; ++i) {
-        const float Ls = I[i] * J * uw_lamp_plane_g(bands[i].b, bands[i].c, p->g, s, t, c, lp->s_min);
-        LAMP_ADD(i, Ls);
-      }
-    }
-    if (sp.tail) {
-      float J = 0.0f;
-      for (int j = 0; j < m; ++j) {
-        const float3 P = o + uw_lamp_tail_t(&sp, j, m) * d;
-        const float prof = uw_lamp_profile(P, lamp, axis, L->cos_cone, L->cos_inner);
-        if (prof > 0.0f) J += prof * lamp_visible(objects, count, P, lamp);
-      }
-      if (J > 0.0f) {
-        J *= hg_phase(uw_lamp_tail_cos(&sp, o, d, lamp), p->g) / m;
-        for (int i = 0; i < nb; ++i) {
-          const float Ls = I[i] * J * uw_lamp_tail(&sp, bands[i].b, bands[i].c);
-          LAMP_ADD(i, Ls);
-        }
-      }
-    }
+    lamp_beam(p, bands, objects, count, lp, L, I, &v, &o);
   }
-#undef LAMP_ADD
-  rgb[3 * pixel + 0] += r;
-  rgb[3 * pixel + 1] += g;
-  rgb[3 * pixel + 2] += b;
+  rgb[3 * pixel + 0] += o.r;
+  rgb[3 * pixel + 1] += o.g;
+  rgb[3 * pixel + 2] += o.b;
 #if SEASIM_LAYER_LAMPS
-  lamps_layer[3 * pixel + 0] += r;
-  lamps_layer[3 * pixel + 1] += g;
-  lamps_layer[3 * pixel + 2] += b;
+  lamps_layer[3 * pixel + 0] += o.r;
+  lamps_layer[3 * pixel + 1] += o.g;
+  lamps_layer[3 * pixel + 2] += o.b;
 #endif
 }
