@@ -179,32 +179,32 @@ struct UnderwaterDesc {
   double froxel_near = 0.1;          // m, first froxel slice (file: froxel_near_m)
   double froxel_far = 60.0;          // m, last froxel slice (file: froxel_far_m)
   // "discrete_ordinates" only: how its diffuse field is solved (underwater_ordinates_solver.h): "discrete_ordinates"
-  // (the default) or "two_stream" (the two-stream with its fitted tables, below). file: improved_diffuse
+  // (the default) or "two_stream" (the two-stream with its fitted tables, below). file: diffuse
   enum class Diffuse { DiscreteOrdinates, TwoStream };
   // "discrete_ordinates" only: the light delta-M counts as unscattered is put back blurred by the phase's small
   // angles (the water_spread pass, kernels/common/water_spread.h). file: point_spread
   bool point_spread = true;
-  Diffuse improved_diffuse = Diffuse::DiscreteOrdinates;
-  // "discrete_ordinates", discrete_ordinates only: the streams (and delta-M order) of the solution the view rays'
+  Diffuse diffuse = Diffuse::DiscreteOrdinates;
+  // "discrete_ordinates" with diffuse = "discrete_ordinates" only: the streams (and delta-M order) of the solution the view rays'
   // source table is fitted to (underwater/ordinates_high_order.h); 0: the order-3 field's own in-scatter.
-  // Even, 8-64, or 0 (default kOrdinatesHighOrderStreams). file: improved_source_streams
-  int improved_source_streams = 32;
-  // "discrete_ordinates", two_stream only: the diffuse streams' mean cosines in its in-scatter source; 0 = the fitted table
+  // Even, 8-64, or 0 (default kOrdinatesHighOrderStreams). file: source_streams
+  int source_streams = 32;
+  // "discrete_ordinates" with diffuse = "two_stream" only: the diffuse streams' mean cosines in its in-scatter source; 0 = the fitted table
   // (diffuseMeanCosines, underwater_ordinates_setup.h). Set to refit it (tests/perf/underwater_regions_fit.sh).
-  double improved_mean_cosine_down = 0.0;  // file: improved_mean_cosine_down
-  double improved_mean_cosine_up = 0.0;    // file: improved_mean_cosine_up
-  double improved_beam_mean_cosine_down = 0.0;  // file: improved_beam_mean_cosine_down (the beam's offspring)
-  double improved_beam_mean_cosine_up = 0.0;    // file: improved_beam_mean_cosine_up
+  double mean_cosine_down = 0.0;  // file: mean_cosine_down
+  double mean_cosine_up = 0.0;    // file: mean_cosine_up
+  double beam_mean_cosine_down = 0.0;  // file: beam_mean_cosine_down (the beam's offspring)
+  double beam_mean_cosine_up = 0.0;    // file: beam_mean_cosine_up
   // "discrete_ordinates" only: the two-stream's closure (TwoStreamClosure, underwater_ordinates_setup.h); Default:
-  // the model's own (diffuseMeanCosines' table). For refitting. file: improved_two_stream
+  // the model's own (diffuseMeanCosines' table). For refitting. file: two_stream_closure
   enum class TwoStream { Default, Quadrature, Asymptotic };
-  TwoStream improved_two_stream = TwoStream::Default;
+  TwoStream two_stream_closure = TwoStream::Default;
   // "discrete_ordinates" only: the asymptotic mode's share w in the diffuse k over the camera's depth
-  // (depthMeanDiffuseK); < 0: the model's own (diffuseAsymptoticShare). file: improved_asymptotic_share
-  double improved_asymptotic_share = -1.0;
-  // "discrete_ordinates", "two_stream" only: the scale of its first-order in-scatter's flux term
-  // (diffuseFluxScale); < 0: the model's own. For refitting. file: improved_flux_scale
-  double improved_flux_scale = -1.0;
+  // (depthMeanDiffuseK); < 0: the model's own (diffuseAsymptoticShare). file: asymptotic_share
+  double asymptotic_share = -1.0;
+  // "discrete_ordinates" with diffuse = "two_stream" only: the scale of its first-order in-scatter's flux term
+  // (diffuseFluxScale); < 0: the model's own. For refitting. file: flux_scale
+  double flux_scale = -1.0;
 };
 
 // [shallow]: shallow water with a visible bottom by the four-flow model (paper 003), seen from above a

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <numbers>
 #include <sstream>
+#include <tuple>
 
 #include "scene/model_keys.h"
 #include "scene/toml_reader.h"
@@ -50,6 +51,43 @@ std::string fmt(double v) { return formatNumber(v); }
 
 // ---------------------------------------------------------------------------------------------
 // The parser
+
+// The discrete-ordinates model's research keys of [underwater] (scenes/README.md, "Research keys"). Each
+// is also read under its earlier name, improved_<key>.
+void discreteOrdinatesKeys(TableReader& r, UnderwaterDesc& u) {
+  const std::string_view diffuse = r.renamed("diffuse", "improved_diffuse");
+  u.diffuse = r.choice(diffuse, "discrete_ordinates", {"discrete_ordinates", "two_stream"}) == "two_stream"
+                  ? UnderwaterDesc::Diffuse::TwoStream
+                  : UnderwaterDesc::Diffuse::DiscreteOrdinates;
+  const std::string_view streams = r.renamed("source_streams", "improved_source_streams");
+  u.source_streams = static_cast<int>(r.integerIn(streams, u.source_streams, 0, 64));
+  r.check(u.source_streams == 0 || (u.source_streams >= 8 && u.source_streams % 2 == 0), streams,
+          "must be 0 (the order-3 field's own in-scatter) or an even number of streams in [8, 64], got " +
+              std::to_string(u.source_streams));
+  for (auto [name, earlier, value] :
+       {std::tuple{"mean_cosine_down", "improved_mean_cosine_down", &u.mean_cosine_down},
+        std::tuple{"mean_cosine_up", "improved_mean_cosine_up", &u.mean_cosine_up},
+        std::tuple{"beam_mean_cosine_down", "improved_beam_mean_cosine_down", &u.beam_mean_cosine_down},
+        std::tuple{"beam_mean_cosine_up", "improved_beam_mean_cosine_up", &u.beam_mean_cosine_up}}) {
+    const std::string_view key = r.renamed(name, earlier);
+    *value = r.number(key, *value);
+    r.check(*value == 0 || (*value >= 0.1 && *value <= 1), key,
+            "must be 0 (the fitted table) or a mean cosine in [0.1, 1], got " + fmt(*value));
+  }
+  const std::string closure =
+      r.choice(r.renamed("two_stream_closure", "improved_two_stream"), "default", {"default", "quadrature", "asymptotic"});
+  u.two_stream_closure = closure == "quadrature"   ? UnderwaterDesc::TwoStream::Quadrature
+                         : closure == "asymptotic" ? UnderwaterDesc::TwoStream::Asymptotic
+                                                   : UnderwaterDesc::TwoStream::Default;
+  const std::string_view share = r.renamed("asymptotic_share", "improved_asymptotic_share");
+  u.asymptotic_share = r.number(share, u.asymptotic_share);
+  r.check(u.asymptotic_share == -1 || (u.asymptotic_share >= 0 && u.asymptotic_share <= 1), share,
+          "must be -1 (the model's own) or a share in [0, 1], got " + fmt(u.asymptotic_share));
+  const std::string_view scale = r.renamed("flux_scale", "improved_flux_scale");
+  u.flux_scale = r.number(scale, u.flux_scale);
+  r.check(u.flux_scale == -1 || (u.flux_scale >= 0 && u.flux_scale <= 3), scale,
+          "must be -1 (the model's own) or a scale in [0, 3], got " + fmt(u.flux_scale));
+}
 
 class SceneParser {
  public:
@@ -628,37 +666,8 @@ class SceneParser {
     u.froxel_far = r.number("froxel_far_m", u.froxel_far);
     r.check(u.froxel_far > u.froxel_near && u.froxel_far <= 1e4, "froxel_far_m",
             "must be > froxel_near_m (" + fmt(u.froxel_near) + ") and <= 10000 m, got " + fmt(u.froxel_far));
-    u.improved_diffuse = r.choice("improved_diffuse", "discrete_ordinates", {"discrete_ordinates", "two_stream"}) ==
-                                 "two_stream"
-                             ? UnderwaterDesc::Diffuse::TwoStream
-                             : UnderwaterDesc::Diffuse::DiscreteOrdinates;
     u.point_spread = r.boolean("point_spread", u.point_spread);
-    u.improved_source_streams =
-        static_cast<int>(r.integerIn("improved_source_streams", u.improved_source_streams, 0, 64));
-    r.check(u.improved_source_streams == 0 || (u.improved_source_streams >= 8 && u.improved_source_streams % 2 == 0),
-            "improved_source_streams",
-            "must be 0 (the order-3 field's own in-scatter) or an even number of streams in [8, 64], got " +
-                std::to_string(u.improved_source_streams));
-    for (auto [key, value] : {std::pair{"improved_mean_cosine_down", &u.improved_mean_cosine_down},
-                              std::pair{"improved_mean_cosine_up", &u.improved_mean_cosine_up},
-                              std::pair{"improved_beam_mean_cosine_down", &u.improved_beam_mean_cosine_down},
-                              std::pair{"improved_beam_mean_cosine_up", &u.improved_beam_mean_cosine_up}}) {
-      *value = r.number(key, *value);
-      r.check(*value == 0 || (*value >= 0.1 && *value <= 1), key,
-              "must be 0 (the fitted table) or a mean cosine in [0.1, 1], got " + fmt(*value));
-    }
-    const std::string two_stream = r.choice("improved_two_stream", "default", {"default", "quadrature", "asymptotic"});
-    u.improved_two_stream = two_stream == "quadrature"   ? UnderwaterDesc::TwoStream::Quadrature
-                            : two_stream == "asymptotic" ? UnderwaterDesc::TwoStream::Asymptotic
-                                                         : UnderwaterDesc::TwoStream::Default;
-    u.improved_asymptotic_share = r.number("improved_asymptotic_share", u.improved_asymptotic_share);
-    r.check(u.improved_asymptotic_share == -1 || (u.improved_asymptotic_share >= 0 && u.improved_asymptotic_share <= 1),
-            "improved_asymptotic_share", "must be -1 (the model's own) or a share in [0, 1], got " +
-            fmt(u.improved_asymptotic_share));
-    u.improved_flux_scale = r.number("improved_flux_scale", u.improved_flux_scale);
-    r.check(u.improved_flux_scale == -1 || (u.improved_flux_scale >= 0 && u.improved_flux_scale <= 3),
-            "improved_flux_scale", "must be -1 (the model's own) or a scale in [0, 3], got " +
-            fmt(u.improved_flux_scale));
+    discreteOrdinatesKeys(r, u);
     finish(r, "underwater");
   }
 

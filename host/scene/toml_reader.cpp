@@ -317,6 +317,13 @@ const toml::node* TableReader::get(std::string_view key) {
   return table_.get(key);
 }
 
+std::string_view TableReader::renamed(std::string_view key, std::string_view earlier) {
+  const bool now = get(key) != nullptr, before = get(earlier) != nullptr;
+  if (now && before)
+    fail(earlier, "is the earlier name of '" + std::string(key) + "'; give the value once, as '" + std::string(key) + "'");
+  return before ? earlier : key;
+}
+
 void TableReader::fail(std::string_view key, const std::string& message) const {
   const toml::node* n = table_.get(key);
   source_.fail(n ? n : &table_, path(key), message);

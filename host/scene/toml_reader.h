@@ -59,6 +59,9 @@ class TableReader {
 
   const toml::node* get(std::string_view key);  // null when absent
   bool has(std::string_view key) { return get(key) != nullptr; }
+  // The key to read a renamed value under: `key`, or `earlier` (its former name, still accepted) when
+  // only that one is given; both given is an error naming the two.
+  std::string_view renamed(std::string_view key, std::string_view earlier);
   std::string path(std::string_view key) const;
   const toml::table& table() const { return table_; }
   const TomlSource& source() const { return source_; }

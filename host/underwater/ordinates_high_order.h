@@ -1,5 +1,5 @@
 // ordinates_high_order.h — the view rays' source for underwater.model = "discrete_ordinates", fitted to the radiance of
-// a discrete-ordinates solution at a high delta-M order (underwater.improved_source_streams).
+// a discrete-ordinates solution at a high delta-M order (underwater.source_streams).
 //
 // The kernel attenuates view rays by the delta-M extinction c' of order 3 (f = g³) and adds the delta-M
 // beam's single scattering with the exact phase (TMS). The order-3 field's own in-scatter, in azimuth

@@ -108,7 +108,7 @@ double diffuseAsymptoticShare(double g) {
 }
 
 double diffuseFluxScale(double g) {
-  // Fitted offline to the path tracer (`--model-set underwater.improved_flux_scale=s` on the
+  // Fitted offline to the path tracer (`--model-set underwater.flux_scale=s` on the
   // training grid of tests/perf/underwater_regions.sh; results/BENCHMARKS.md reports it and the held-out
   // grid): per g of the grid the s with the most region cases within 5 %, linear in g between, held
   // outside [0, 0.95]. At g = 0 g' = 0 and s has no effect. At g = 0.95, 1.0–1.3 tie (25/27, the same

@@ -1,4 +1,4 @@
-// underwater_ordinates_solver.h — underwater.model = "discrete_ordinates" with underwater.improved_diffuse =
+// underwater_ordinates_solver.h — underwater.model = "discrete_ordinates" with underwater.diffuse =
 // "discrete_ordinates": one band's coefficients (UwiBand, common/underwater_ordinates_params.h) from a
 // discrete-ordinates solution of the plane-parallel water (discrete_ordinates.h), not the two-stream.
 //
@@ -17,7 +17,7 @@
 // fitted to the path tracer, and the kernel's delta-M is the solver's (c' its ĉ, m its beam's): the view
 // rays integrate the source in the frame it was computed in. At order 3 the phase has three Legendre
 // terms, so azimuth modes 0–2 are all the in-scatter has, and the table holds it whole. By default
-// (underwater.improved_source_streams > 0) the table is then fitted instead to the radiance of a
+// (underwater.source_streams > 0) the table is then fitted instead to the radiance of a
 // solution at a high delta-M order, carried with the kernel's c' (ordinates_high_order.h), but towards
 // the beam's direction, where the order-3 in-scatter stays.
 //
@@ -49,7 +49,7 @@ struct OrdinatesFitError {
 };
 
 // The streams (and delta-M order) of the solution the view rays' source is fitted to (16 to 48 gave
-// the same regions; ordinates_high_order.h); underwater.improved_source_streams. 0: the order-3 field's
+// the same regions; ordinates_high_order.h); underwater.source_streams. 0: the order-3 field's
 // own in-scatter.
 inline constexpr int kOrdinatesHighOrderStreams = 32;
 

@@ -144,19 +144,19 @@ UnderwaterSetup makeUnderwaterSetup(const Scene& scene, const WavelengthGrid& gr
   }
   if (uw.model == UnderwaterDesc::Model::DiscreteOrdinates) {
     DiffuseMeanCosines mean = diffuseMeanCosines(p.g);
-    if (uw.improved_mean_cosine_down > 0) mean.down = uw.improved_mean_cosine_down;
-    if (uw.improved_mean_cosine_up > 0) mean.up = uw.improved_mean_cosine_up;
-    if (uw.improved_beam_mean_cosine_down > 0) mean.beam_down = uw.improved_beam_mean_cosine_down;
-    if (uw.improved_beam_mean_cosine_up > 0) mean.beam_up = uw.improved_beam_mean_cosine_up;
-    const TwoStreamClosure closure = uw.improved_two_stream == UnderwaterDesc::TwoStream::Quadrature
+    if (uw.mean_cosine_down > 0) mean.down = uw.mean_cosine_down;
+    if (uw.mean_cosine_up > 0) mean.up = uw.mean_cosine_up;
+    if (uw.beam_mean_cosine_down > 0) mean.beam_down = uw.beam_mean_cosine_down;
+    if (uw.beam_mean_cosine_up > 0) mean.beam_up = uw.beam_mean_cosine_up;
+    const TwoStreamClosure closure = uw.two_stream_closure == UnderwaterDesc::TwoStream::Quadrature
                                          ? TwoStreamClosure::Quadrature
-                                     : uw.improved_two_stream == UnderwaterDesc::TwoStream::Asymptotic
+                                     : uw.two_stream_closure == UnderwaterDesc::TwoStream::Asymptotic
                                          ? TwoStreamClosure::Asymptotic
                                          : twoStreamClosure();
     // The camera's depth enters k here (diffuseViewDepth): set per frame, with the camera.
-    s.ordinates = uw.improved_diffuse == UnderwaterDesc::Diffuse::TwoStream
-                     ? makeUwiBands(p, s.bands, mean, closure, uw.improved_asymptotic_share, uw.improved_flux_scale)
-                     : makeUwiBandsFromOrdinates(p, s.bands, uw.improved_source_streams);
+    s.ordinates = uw.diffuse == UnderwaterDesc::Diffuse::TwoStream
+                     ? makeUwiBands(p, s.bands, mean, closure, uw.asymptotic_share, uw.flux_scale)
+                     : makeUwiBandsFromOrdinates(p, s.bands, uw.source_streams);
   }
   p.object_count = static_cast<int>(s.objects.size());
   if (s.objects.empty()) s.objects.push_back(UwObject{});  // OpenCL buffers cannot be empty

@@ -14,7 +14,7 @@
  *    discrete ordinates (the default) f = g³, their delta-M order (kOrdinatesSourceMoments: the one
  *    number fitted to the path tracer); with the two-stream f = g², g' = g / (1 + g).
  *  - the diffuse field from the IOPs and g, not a measured K_d, built on the host per band and frame
- *    (underwater.improved_diffuse): by default ("discrete_ordinates", host/underwater/
+ *    (underwater.diffuse): by default ("discrete_ordinates", host/underwater/
  *    underwater_ordinates_solver.*) a discrete-ordinates solution of the plane-parallel water (16
  *    streams per hemisphere, the HG phase delta-M scaled to its first three Legendre moments, the sun
  *    beam and the sky through the Fresnel surface, a Lambertian bottom of albedo ρ) whose plane
@@ -27,7 +27,7 @@
  *  - the in-scatter source J(y, ν, Δφ) that view rays gather, tabulated per band in the photon's
  *    direction (UwiBand.src, common/underwater_ordinates_params.h: ν its cosine with the downward
  *    vertical, Δφ its azimuth from the sun beam's, uwi_cos_azimuth), per exponential of depth. By default
- *    (underwater.improved_source_streams; host/underwater/ordinates_high_order.h) fitted on the host
+ *    (underwater.source_streams; host/underwater/ordinates_high_order.h) fitted on the host
  *    to the light a 32-stream solution's radiance gathers along rays with this kernel's c' (the kernel
  *    reads it as any table), but within 10-20° of the beam's polar angle, where it stays, as without that fit,
  *    the discrete ordinates' own in-scatter: their three-term phase against their radiance in azimuth

@@ -7,7 +7,7 @@
  * plane irradiances (W m^-2 nm^-1), downwelling E_d and upwelling E_u, are sums of three exponentials:
  *   E_d(y) = d1 e^{-k y} + d2 e^{-k (H - y)} + dp e^{-m y},   E_u(y) = u1 e^{-k y} + u2 e^{-k (H - y)} + up e^{-m y}
  * (d2 = u2 = 0 without a bottom); so are the scalar irradiance E_0 (o*) and the horizontal flux F_h (h*).
- * The host builds them from a discrete-ordinates solution (underwater.improved_diffuse =
+ * The host builds them from a discrete-ordinates solution (underwater.diffuse =
  * "discrete_ordinates") or from the two-stream (o from the streams' mean cosines, no F_h).
  *
  * The in-scatter source J(y, ν, Δφ) that view rays gather (common/underwater_ordinates.h) is tabulated in

@@ -1,6 +1,6 @@
 #!/bin/sh
 # underwater_regions_fit.sh — how the "improved" underwater model's table of diffuse mean cosines
-# (The two-stream's tables: run with underwater.improved_diffuse = "two_stream".)
+# (The two-stream's tables: run with underwater.diffuse = "two_stream".)
 # (diffuseMeanCosines in host/underwater/underwater_ordinates_setup.cpp) was fitted: on the TRAINING grid
 # of tests/perf/underwater_regions.sh (its references, cached), every pair (μ̄_down, μ̄_up) below is set
 # on the fast renders only (`--model-set`, the references untouched), and
@@ -17,7 +17,7 @@ for down in 0.45 0.5 0.55 0.577 0.62 0.67 0.72 0.77; do
     $B underwater-regions tests/perf/underwater_regions.toml --waters 0.03:0.05,0.1:0.3,0.4:1.2 \
       --g 0,0.5,0.9,0.95 --depths 2,5,20,0 --views level,up --models improved --spp 2048 \
       --target-noise 0.018 --max-spp 16384 \
-      --model-set underwater.improved_diffuse='"two_stream"' --model-set underwater.improved_mean_cosine_down=$down --model-set underwater.improved_mean_cosine_up=$up \
+      --model-set underwater.diffuse='"two_stream"' --model-set underwater.mean_cosine_down=$down --model-set underwater.mean_cosine_up=$up \
       --csv "$DIR/fit_${down}_${up}.csv" > /dev/null || exit 1
   done
 done

@@ -1,5 +1,5 @@
 // ordinates_high_order_test.cpp — the discrete-ordinates underwater model's view-ray source fitted to a high-order
-// discrete-ordinates solution (host/underwater/ordinates_high_order.*, underwater.improved_source_streams):
+// discrete-ordinates solution (host/underwater/ordinates_high_order.*, underwater.source_streams):
 // the exact phase's azimuth modes against quadrature; the field's source-function
 // integration against the solver's own radiance at its cosines; the kernel's radiance from the fitted
 // table against the field's, away from the beam, beside the order-3 table's.

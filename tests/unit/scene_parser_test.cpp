@@ -507,13 +507,17 @@ const BadScene kBadScenes[] = {
      "bad.toml:2: key 'underwater.point_spread': expected true or false, got a string"},
     {"typo in point_spread", "[underwater]\npoint_spred = false\n",
      "bad.toml:2: key 'underwater.point_spred': unknown key; did you mean 'point_spread'?"},
-    {"odd source streams", "[underwater]\nimproved_source_streams = 17\n",
-     "bad.toml:2: key 'underwater.improved_source_streams': must be 0 (the order-3 field's own in-scatter) or an even "
+    {"odd source streams", "[underwater]\nsource_streams = 17\n",
+     "bad.toml:2: key 'underwater.source_streams': must be 0 (the order-3 field's own in-scatter) or an even "
      "number of streams in [8, 64], got 17"},
-    {"too many source streams", "[underwater]\nimproved_source_streams = 128\n",
-     "bad.toml:2: key 'underwater.improved_source_streams'"},
-    {"source streams as a string", "[underwater]\nimproved_source_streams = \"32\"\n",
-     "bad.toml:2: key 'underwater.improved_source_streams'"},
+    {"too many source streams", "[underwater]\nsource_streams = 128\n",
+     "bad.toml:2: key 'underwater.source_streams'"},
+    {"source streams as a string", "[underwater]\nsource_streams = \"32\"\n",
+     "bad.toml:2: key 'underwater.source_streams'"},
+    {"a research key under both its names", "[underwater]\nflux_scale = 1.0\nimproved_flux_scale = 1.0\n",
+     "bad.toml:3: key 'underwater.improved_flux_scale': is the earlier name of 'flux_scale'"},
+    {"odd source streams under the earlier name", "[underwater]\nimproved_source_streams = 17\n",
+     "bad.toml:2: key 'underwater.improved_source_streams': must be 0"},
     {"typo in [underwater]", "[underwater]\nsingle_scatering = false\n",
      "bad.toml:2: key 'underwater.single_scatering': unknown key; did you mean 'single_scattering'?"},
     {"typo'd key", "[sun]\nzenith_dg = 40\n",
@@ -701,6 +705,36 @@ INSTANTIATE_TEST_SUITE_P(Table, BadSceneTest, ::testing::ValuesIn(kBadScenes),
                          });
 
 namespace {
+
+// The discrete-ordinates model's research keys had the prefix improved_; a scene written with those
+// names reads as one written with the new ones.
+TEST(SceneParser, ResearchKeysReadUnderTheirEarlierNames) {
+  const std::string now =
+      "[underwater]\ndiffuse = \"two_stream\"\nsource_streams = 16\nmean_cosine_down = 0.7\nmean_cosine_up = 0.4\n"
+      "beam_mean_cosine_down = 0.8\nbeam_mean_cosine_up = 0.3\ntwo_stream_closure = \"quadrature\"\n"
+      "asymptotic_share = 0.25\nflux_scale = 1.5\n";
+  std::string before = now;
+  for (const char* key : {"diffuse", "source_streams", "mean_cosine_down", "mean_cosine_up", "beam_mean_cosine_down",
+                          "beam_mean_cosine_up", "asymptotic_share", "flux_scale"}) {
+    const std::string line = "\n" + std::string(key) + " =";
+    before.replace(before.find(line), line.size(), "\nimproved_" + std::string(key) + " =");
+  }
+  before.replace(before.find("two_stream_closure"), 18, "improved_two_stream");
+  const seasim::UnderwaterDesc a = seasim::parseScene(now, "now.toml").underwater;
+  const seasim::UnderwaterDesc b = seasim::parseScene(before, "before.toml").underwater;
+  EXPECT_EQ(a.diffuse, seasim::UnderwaterDesc::Diffuse::TwoStream);
+  EXPECT_EQ(b.diffuse, a.diffuse);
+  EXPECT_EQ(b.source_streams, 16);
+  EXPECT_EQ(b.mean_cosine_down, 0.7);
+  EXPECT_EQ(b.mean_cosine_up, 0.4);
+  EXPECT_EQ(b.beam_mean_cosine_down, 0.8);
+  EXPECT_EQ(b.beam_mean_cosine_up, 0.3);
+  EXPECT_EQ(b.two_stream_closure, seasim::UnderwaterDesc::TwoStream::Quadrature);
+  EXPECT_EQ(b.asymptotic_share, 0.25);
+  EXPECT_EQ(b.flux_scale, 1.5);
+  EXPECT_EQ(a.two_stream_closure, b.two_stream_closure);
+  EXPECT_EQ(a.flux_scale, b.flux_scale);
+}
 
 TEST(SceneParserLamps, LampsModelByNameWithTheOlderSwitchKept) {
   using seasim::parseScene;

@@ -58,7 +58,7 @@ std::vector<PlotSpec> commandPlots(const std::string& device) {
   plots.push_back(sweep);
   PlotSpec steps;
   steps.title = "Difference to the next setting: underwater_regions_open_water_with_objects";
-  steps.x_label = "quality.improved_source_streams";
+  steps.x_label = "quality.source_streams";
   steps.y_label = "max difference (8-bit levels)";
   steps.log_y = true;
   steps.series = {line("max |L(v) - L(next v)| (8-bit levels)", 4, 1), {"1 level (1/255)", {3, 24}, {1, 1}}};

@@ -116,7 +116,7 @@ TEST(UnderwaterModelOption, MeanCosineKeysOverrideTheFittedTableOrAreRejectedWit
   const Sensor sensor = makeSensor("cie1931", grid, true, "");
   // With the two-stream's diffuse field, default: the fitted table at the water's g (jerlov IB's default
   // g); the scalar irradiance of each exponential is its plane irradiances over the streams' mean cosines.
-  const std::string two = "\"discrete_ordinates\"\nimproved_diffuse = \"two_stream\"";
+  const std::string two = "\"discrete_ordinates\"\ndiffuse = \"two_stream\"";
   const Scene plain = parseScene(withModel(two), "uw.toml");
   const DiffuseMeanCosines table = diffuseMeanCosines(plain.water.g);
   const UnderwaterSetup a = makeUnderwaterSetup(plain, grid, sensor);
@@ -127,22 +127,22 @@ TEST(UnderwaterModelOption, MeanCosineKeysOverrideTheFittedTableOrAreRejectedWit
   };
   scalar(a.ordinates[0], table.down, table.up, table.beam_down, table.beam_up);
   // Set: each key replaces its stream's value only.
-  const Scene set = parseScene(withModel(two + "\nimproved_mean_cosine_down = 0.8"), "uw.toml");
+  const Scene set = parseScene(withModel(two + "\nmean_cosine_down = 0.8"), "uw.toml");
   const UnderwaterSetup b = makeUnderwaterSetup(set, grid, sensor);
   scalar(b.ordinates[1], 0.8, table.up, table.beam_down, table.beam_up);
   // The beam's offspring's keys replace its pair only.
-  const Scene beam = parseScene(withModel(two + "\nimproved_beam_mean_cosine_down = 0.9\n"
-                                                "improved_beam_mean_cosine_up = 0.45"), "uw.toml");
+  const Scene beam = parseScene(withModel(two + "\nbeam_mean_cosine_down = 0.9\n"
+                                                "beam_mean_cosine_up = 0.45"), "uw.toml");
   const UnderwaterSetup c = makeUnderwaterSetup(beam, grid, sensor);
   scalar(c.ordinates[1], table.down, table.up, 0.9, 0.45);
   // The closure key: "asymptotic" lowers k below the default (quadrature) one's; "quadrature" is it.
-  const Scene asym = parseScene(withModel(two + "\nimproved_two_stream = \"asymptotic\""), "uw.toml");
-  const Scene quad = parseScene(withModel(two + "\nimproved_two_stream = \"quadrature\""), "uw.toml");
+  const Scene asym = parseScene(withModel(two + "\ntwo_stream_closure = \"asymptotic\""), "uw.toml");
+  const Scene quad = parseScene(withModel(two + "\ntwo_stream_closure = \"quadrature\""), "uw.toml");
   EXPECT_LT(makeUnderwaterSetup(asym, grid, sensor).ordinates[1].k, 0.95f * a.ordinates[1].k);
   EXPECT_EQ(makeUnderwaterSetup(quad, grid, sensor).ordinates[1].k, a.ordinates[1].k);
-  for (const std::string bad : {"improved_mean_cosine_up = 0.05", "improved_mean_cosine_down = 1.5",
-                                "improved_beam_mean_cosine_down = 1.5", "improved_beam_mean_cosine_up = -0.2",
-                                "improved_two_stream = \"cubic\"", "improved_diffuse = \"four_stream\""})
+  for (const std::string bad : {"mean_cosine_up = 0.05", "mean_cosine_down = 1.5",
+                                "beam_mean_cosine_down = 1.5", "beam_mean_cosine_up = -0.2",
+                                "two_stream_closure = \"cubic\"", "diffuse = \"four_stream\""})
     seasim::testing::expectOrdinatesSceneRejects(bad, "underwater." + bad.substr(0, bad.find(' ')));
 }
 

@@ -27,7 +27,7 @@ namespace kf = seasim::kmath_f;
 constexpr int kBands = 5;
 
 // Five bands of one water type family, g, bottom depth H (0: none) and sun cosine in water mu_w; the
-// two-stream's bands, or (ordinates) the discrete ordinates' (the default improved_diffuse).
+// two-stream's bands, or (ordinates) the discrete ordinates' (the default diffuse).
 seasim::UnderwaterSetup makeSetup(double g, double H, double mu_w, double a0, double b0, bool ordinates = false) {
   seasim::UnderwaterSetup s;
   s.params.g = float(g);

@@ -161,35 +161,35 @@ TEST(UnderwaterOrdinatesDepth, ViewDepthIsTheCamerasWithinTheWater) {
 
 using seasim::testing::kOrdinatesScene;
 
-// With the two-stream's diffuse field (improved_diffuse = "two_stream"), the set-up takes D from the
+// With the two-stream's diffuse field (diffuse = "two_stream"), the set-up takes D from the
 // camera (so a camera moved in depth changes k: the renderer builds the set-up again and the band table
 // follows, tests/kernels/renderer_test.cpp), w from the key or, by default, from the fitted share.
 TEST(UnderwaterOrdinatesDepth, SetUpTakesTheCamerasDepthAndTheKey) {
   using namespace seasim;
   const WavelengthGrid grid = makeGrid(4, 400, 700);
   const Sensor sensor = makeSensor("cie1931", grid, true, "");
-  const std::string share = "improved_asymptotic_share = 0.4\n";
+  const std::string share = "asymptotic_share = 0.4\n";
   Scene shallow = parseScene(seasim::testing::twoStreamScene() + share, "uw.toml");
   Scene deep = shallow;
   deep.camera.position.y = -20;
   const UnderwaterSetup s = makeUnderwaterSetup(shallow, grid, sensor);
   const UnderwaterSetup d = makeUnderwaterSetup(deep, grid, sensor);
   EXPECT_LT(d.ordinates[1].k, s.ordinates[1].k * 0.999f);
-  Scene off = parseScene(seasim::testing::twoStreamScene() + "improved_asymptotic_share = 0\n", "uw.toml");
+  Scene off = parseScene(seasim::testing::twoStreamScene() + "asymptotic_share = 0\n", "uw.toml");
   const UnderwaterSetup o = makeUnderwaterSetup(off, grid, sensor);
   EXPECT_GT(o.ordinates[1].k, s.ordinates[1].k);
   off.camera.position.y = -20;
   EXPECT_EQ(makeUnderwaterSetup(off, grid, sensor).ordinates[1].k, o.ordinates[1].k);  // w = 0: no depth
   // Default (-1): the fitted share at the water's g.
   const Scene plain = parseScene(seasim::testing::twoStreamScene(), "uw.toml");
-  EXPECT_EQ(plain.underwater.improved_asymptotic_share, -1.0);
+  EXPECT_EQ(plain.underwater.asymptotic_share, -1.0);
   const UnderwaterSetup p = makeUnderwaterSetup(plain, grid, sensor);
   const UwiBand expected = makeUwiBand(p.bands[1], p.params.g, p.params.sun_dir_water[1], p.params.bottom_depth,
                                        p.params.ior, diffuseMeanCosines(p.params.g), twoStreamClosure(),
                                        {3.0, diffuseAsymptoticShare(p.params.g)});
   EXPECT_EQ(p.ordinates[1].k, expected.k);
-  for (const char* bad : {"improved_asymptotic_share = 1.5", "improved_asymptotic_share = -0.5"}) {
-    seasim::testing::expectOrdinatesSceneRejects(bad, "underwater.improved_asymptotic_share");
+  for (const char* bad : {"asymptotic_share = 1.5", "asymptotic_share = -0.5"}) {
+    seasim::testing::expectOrdinatesSceneRejects(bad, "underwater.asymptotic_share");
   }
 }
 

@@ -84,7 +84,7 @@ model = "discrete_ordinates"
 )";
 
 // The discrete-ordinates model with the two-stream's diffuse field (its fitted tables), keys may be appended.
-inline std::string twoStreamScene() { return std::string(kOrdinatesScene) + "improved_diffuse = \"two_stream\"\n"; }
+inline std::string twoStreamScene() { return std::string(kOrdinatesScene) + "diffuse = \"two_stream\"\n"; }
 
 // kOrdinatesScene with `line` appended (its line 16) must be rejected with an error naming that file:line
 // and `key` (underwater.…).

@@ -1,7 +1,7 @@
 // underwater_ordinates_flux_test.cpp — the discrete-ordinates model's flux term scale
 // (host/underwater/underwater_ordinates_setup.*): the fitted table s(g), the band's g_flux = s g', the
 // in-scatter source's flux term following g_flux (not the two-stream's g'), the set-up taking s from the
-// table or from underwater.improved_flux_scale, and the key's file:line:key errors.
+// table or from underwater.flux_scale, and the key's file:line:key errors.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -92,7 +92,7 @@ TEST(UnderwaterOrdinatesFlux, SetUpTakesTheTableOrTheKey) {
   const WavelengthGrid grid = makeGrid(4, 400, 700);
   const Sensor sensor = makeSensor("cie1931", grid, true, "");
   const Scene plain = parseScene(kOrdinatesScene, "uw.toml");
-  EXPECT_EQ(plain.underwater.improved_flux_scale, -1.0);
+  EXPECT_EQ(plain.underwater.flux_scale, -1.0);
   const UnderwaterSetup p = makeUnderwaterSetup(plain, grid, sensor);
   ASSERT_GT(p.params.g, 0.0f);
   const double g_dm = p.params.g / (1.0 + p.params.g);
@@ -100,17 +100,17 @@ TEST(UnderwaterOrdinatesFlux, SetUpTakesTheTableOrTheKey) {
   const std::string two_stream = seasim::testing::twoStreamScene();
   const UnderwaterSetup t = makeUnderwaterSetup(parseScene(two_stream, "uw.toml"), grid, sensor);
   EXPECT_FLOAT_EQ(t.ordinates[1].g_flux, float(diffuseFluxScale(p.params.g) * g_dm));
-  const UnderwaterSetup tk = makeUnderwaterSetup(parseScene(two_stream + "improved_flux_scale = 2\n", "uw.toml"), grid, sensor);
+  const UnderwaterSetup tk = makeUnderwaterSetup(parseScene(two_stream + "flux_scale = 2\n", "uw.toml"), grid, sensor);
   EXPECT_FLOAT_EQ(tk.ordinates[1].g_flux, float(2 * g_dm));
   EXPECT_EQ(tk.ordinates[1].k, t.ordinates[1].k);
   EXPECT_NE(tk.ordinates[1].src[0], t.ordinates[1].src[0]);
   // The discrete ordinates (the default) have no flux term to scale: their source is their own
   // in-scatter, the same with the key.
   const UnderwaterSetup dk =
-      makeUnderwaterSetup(parseScene(std::string(kOrdinatesScene) + "improved_flux_scale = 2\n", "uw.toml"), grid, sensor);
+      makeUnderwaterSetup(parseScene(std::string(kOrdinatesScene) + "flux_scale = 2\n", "uw.toml"), grid, sensor);
   for (int q = 0; q < UWI_SOURCE_NODES * UWI_SOURCE_TERMS; ++q) ASSERT_EQ(dk.ordinates[1].src[q], p.ordinates[1].src[q]) << q;
-  for (const char* bad : {"improved_flux_scale = 3.5", "improved_flux_scale = -0.5"}) {
-    seasim::testing::expectOrdinatesSceneRejects(bad, "underwater.improved_flux_scale");
+  for (const char* bad : {"flux_scale = 3.5", "flux_scale = -0.5"}) {
+    seasim::testing::expectOrdinatesSceneRejects(bad, "underwater.flux_scale");
   }
 }
 

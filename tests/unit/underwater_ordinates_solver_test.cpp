@@ -1,5 +1,5 @@
 // underwater_ordinates_solver_test.cpp — the discrete-ordinates underwater model's diffuse field from discrete
-// ordinates (underwater.improved_diffuse = "discrete_ordinates", the default; host/underwater/
+// ordinates (underwater.diffuse = "discrete_ordinates", the default; host/underwater/
 // underwater_ordinates_solver.*): the band's exponentials hold the solver's field (E_d,
 // E_u, E_0, F_h) over the depths the frame sees, as the kernel evaluates them in float and double; k
 // keeps away from the beam's m; no horizontal flux where the field has none; degenerate bands stay

@@ -28,7 +28,7 @@ class WaterSpreadNode : public Pass {
   void prepare(FrameContext& ctx, PassResources& res) override {
     const Scene& scene = ctx.scene();
     const UwParams& p = res.read<UnderwaterSetupBuffers>("underwater_setup").setup.params;
-    const int order = scene.underwater.improved_diffuse == UnderwaterDesc::Diffuse::DiscreteOrdinates
+    const int order = scene.underwater.diffuse == UnderwaterDesc::Diffuse::DiscreteOrdinates
                           ? kOrdinatesSourceMoments
                           : 2;  // the two-stream's f = g² (ordinatesDeltaM)
     pass_ = std::make_unique<WaterSpreadPass>(ctx.device(), entry_,
