@@ -22,6 +22,7 @@
 #include "scene/scene_parser.h"
 #include "spectral/sensor.h"
 #include "spectral/wavelength_grid.h"
+#include "seabed_objects_scene.h"
 #include "test_device.h"
 #include "underwater/underwater_setup.h"
 #include "util/error.h"
@@ -30,46 +31,8 @@ namespace {
 
 namespace kf = seasim::kmath_f;
 
-// 32×18 pixels, camera 4 m down looking slightly down; the sun 30° from the zenith behind the camera's
-// left; a sphere above the view (x = 0.5, y = -1.5) whose shadow the view rays cross, a rock and a box
-// in view, a flat bottom at 6 m.
-const char* kScene = R"(
-[scene]
-name = "test_froxel"
-[camera]
-position = [0, -4, 0]
-look_at = [0, -4.5, -8]
-fov_deg = 70
-width = 32
-height = 18
-[sun]
-zenith_deg = 30
-azimuth_deg = 60
-[sky]
-radiance = 0.05
-[water]
-jerlov = "II"
-g = 0.8
-[bottom]
-type = "flat"
-depth = 6
-albedo = 0.3
-[[objects]]
-type = "sphere"
-center = [-1, -4.5, -5]
-radius = 0.8
-albedo = 0.2
-[[objects]]
-type = "box"
-min = [0.8, -5, -7.5]
-max = [2.2, -3.8, -6.3]
-albedo = 0.4
-[[objects]]
-type = "sphere"
-center = [0.5, -1.5, -6]
-radius = 0.7
-albedo = 0.6
-[underwater]
+// 32×18 pixels over the tests' seabed (seabed_objects_scene.h) with g = 0.8 and the bottom at 6 m.
+const char* kFroxelTables = R"([underwater]
 caustics = "none"
 froxel_near_m = 0.05
 froxel_far_m = 200
@@ -83,9 +46,15 @@ froxel_z = 64
 shadow_map_size = 256
 )";
 
+seasim::test::SeabedObjectsScene froxelScene() {
+  return {.name = "test_froxel", .width = 32, .height = 18, .g = 0.8, .bottom_depth = 6, .rest = kFroxelTables};
+}
+
+const std::string kScene = seasim::test::seabedObjectsScene(froxelScene());
+
 seasim::Override set(const char* key, const std::string& value) { return {key, value, {"test", 1}}; }
 
-seasim::Scene scene(const std::vector<seasim::Override>& overrides = {}, const char* text = kScene) {
+seasim::Scene scene(const std::vector<seasim::Override>& overrides = {}, const std::string& text = kScene) {
   return seasim::parseScene(text, "test_froxel.toml", overrides);
 }
 
@@ -220,11 +189,13 @@ TEST(FroxelKernelExact, HorizontalRayOneAndManySlices) {
   // One pixel looking horizontally at 5 m with no bottom or objects: E_beam is constant along the ray,
   //   L_SS = Σ_bands w b p(θ) E_beam(5 m) (1 - e^{-c z_far}) / c   exactly (S = ∞ reads at z_far),
   // for 1 slice and for 256 (the slice integral is exact for constant in-scatter).
-  std::string text = kScene;
-  text.erase(text.find("[bottom]"), text.find("[underwater]") - text.find("[bottom]"));
+  seasim::test::SeabedObjectsScene open_water = froxelScene();
+  open_water.bottom_depth = 0;
+  open_water.objects = open_water.shadow_sphere = false;
+  const std::string text = seasim::test::seabedObjectsScene(open_water);
   const seasim::Scene s = scene({set("camera.position", "[0, -5, 0]"), set("camera.look_at", "[0, -5, -10]"),
                                  set("camera.width", "1"), set("camera.height", "1"), set("camera.fov_deg", "1")},
-                                text.c_str());
+                                text);
   const seasim::UnderwaterSetup setup = setupOf(s);
   const UwParams& p = setup.params;
   const double mu = p.sun_dir_water[1];
@@ -285,15 +256,12 @@ TEST(FroxelKernelError, ShadowingSphereReducesSingleScattering) {
   // travels towards -z) falls over the camera and the first metres of the view rays, where most of
   // L_SS comes from: the same pixels and distances, less light. The froxel image and the brute force
   // agree on the loss. (The scene's own sphere at y = -1.5 is in view and is taken out here.)
-  const char* sphere = "[[objects]]\ntype = \"sphere\"\ncenter = [0.5, -1.5, -6]";
-  std::string without = kScene;
-  const size_t at = without.find(sphere);
-  ASSERT_NE(at, std::string::npos);
-  without.erase(at, without.find("[underwater]") - at);
-  std::string with = without;
-  with.insert(with.find("[underwater]"),
-              "[[objects]]\ntype = \"sphere\"\ncenter = [1.2, -1, 0.5]\nradius = 0.8\nalbedo = 0.5\n");
-  const seasim::Scene with_s = scene({}, with.c_str()), without_s = scene({}, without.c_str());
+  seasim::test::SeabedObjectsScene without = froxelScene();
+  without.shadow_sphere = false;
+  seasim::test::SeabedObjectsScene with = without;
+  with.more_objects = "[[objects]]\ntype = \"sphere\"\ncenter = [1.2, -1, 0.5]\nradius = 0.8\nalbedo = 0.5\n";
+  const seasim::Scene with_s = scene({}, seasim::test::seabedObjectsScene(with)),
+                      without_s = scene({}, seasim::test::seabedObjectsScene(without));
   const seasim::UnderwaterSetup a = setupOf(with_s), b = setupOf(without_s);
   const KernelRun ka = runKernel(a, seasim::froxelConfigFromScene(with_s));
   const KernelRun kb = runKernel(b, seasim::froxelConfigFromScene(without_s));

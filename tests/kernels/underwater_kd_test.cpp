@@ -20,48 +20,15 @@
 #include "scene/scene_parser.h"
 #include "spectral/sensor.h"
 #include "spectral/wavelength_grid.h"
+#include "seabed_objects_scene.h"
 #include "test_device.h"
 #include "underwater/underwater_cpu.h"
 #include "underwater/underwater_setup.h"
 
 namespace {
 
-const char* kScene = R"(
-[scene]
-name = "test_seabed"
-[camera]
-position = [0, -4, 0]
-look_at = [0, -4.5, -8]
-fov_deg = 70
-width = 40
-height = 24
-[sun]
-zenith_deg = 30
-azimuth_deg = 60
-[sky]
-radiance = 0.05
-[water]
-jerlov = "II"
-[bottom]
-type = "flat"
-depth = 5
-albedo = 0.3
-[[objects]]
-type = "sphere"
-center = [-1, -4.5, -5]
-radius = 0.8
-albedo = 0.2
-[[objects]]
-type = "box"
-min = [0.8, -5, -7.5]
-max = [2.2, -3.8, -6.3]
-albedo = 0.4
-[[objects]]
-type = "sphere"
-center = [0.5, -1.5, -6]
-radius = 0.7
-albedo = 0.6
-[underwater]
+// The tests' seabed (seabed_objects_scene.h), the thesis's model, no froxels.
+const char* kKdTables = R"([underwater]
 model = "thesis"
 single_scattering = false
 caustics = "none"
@@ -69,6 +36,10 @@ caustics = "none"
 count = 8
 sensor = "nikon_d5100_npl"
 )";
+
+seasim::test::SeabedObjectsScene kdScene() { return {.name = "test_seabed", .rest = kKdTables}; }
+
+const std::string kScene = seasim::test::seabedObjectsScene(kdScene());
 
 seasim::Override set(const char* key, const std::string& value) { return {key, value, {"test", 1}}; }
 
@@ -97,8 +68,9 @@ void PrintTo(const Variant& c, std::ostream* os) { *os << c.name; }
 class UnderwaterKdKernel : public ::testing::TestWithParam<Variant> {};
 
 TEST_P(UnderwaterKdKernel, MatchesDoubleCpuEvaluationWithoutNaN) {
-  std::string text = kScene;
-  if (GetParam().remove_bottom) text.erase(text.find("[bottom]"), text.find("[[objects]]") - text.find("[bottom]"));
+  seasim::test::SeabedObjectsScene variant = kdScene();
+  if (GetParam().remove_bottom) variant.bottom_depth = 0;
+  const std::string text = seasim::test::seabedObjectsScene(variant);
   const seasim::Scene scene = seasim::parseScene(text, "test_seabed.toml", GetParam().overrides);
   const seasim::Plan plan = seasim::makePlan(scene);
   ASSERT_TRUE(plan.hasPass("kd_multiple"));

@@ -20,6 +20,7 @@
 #include "scene/scene_parser.h"
 #include "spectral/sensor.h"
 #include "spectral/wavelength_grid.h"
+#include "seabed_objects_scene.h"
 #include "test_device.h"
 #include "underwater/underwater_ordinates_solver.h"
 #include "underwater/underwater_setup.h"
@@ -29,38 +30,8 @@ namespace {
 
 namespace kd = seasim::kmath_d;
 
-const char* kScene = R"(
-[scene]
-name = "test_ordinates"
-[camera]
-position = [0, -4, 0]
-look_at = [0, -4.5, -8]
-fov_deg = 70
-width = 40
-height = 24
-[sun]
-zenith_deg = 30
-azimuth_deg = 60
-[sky]
-radiance = 0.05
-[water]
-jerlov = "II"
-g = 0.9
-[bottom]
-type = "flat"
-depth = 5
-albedo = 0.3
-[[objects]]
-type = "sphere"
-center = [-1, -4.5, -5]
-radius = 0.8
-albedo = 0.2
-[[objects]]
-type = "box"
-min = [0.8, -5, -7.5]
-max = [2.2, -3.8, -6.3]
-albedo = 0.4
-[underwater]
+// The tests' seabed (seabed_objects_scene.h) with g = 0.9 and no sphere above the view.
+const char* kOrdinatesTables = R"([underwater]
 model = "discrete_ordinates"
 single_scattering = false
 caustics = "none"
@@ -69,6 +40,12 @@ point_spread = false
 count = 8
 sensor = "nikon_d5100_npl"
 )";
+
+seasim::test::SeabedObjectsScene ordinatesScene() {
+  return {.name = "test_ordinates", .g = 0.9, .shadow_sphere = false, .rest = kOrdinatesTables};
+}
+
+const std::string kScene = seasim::test::seabedObjectsScene(ordinatesScene());
 
 seasim::Override set(const char* key, const std::string& value) { return {key, value, {"test", 1}}; }
 
@@ -184,9 +161,10 @@ void PrintTo(const Variant& c, std::ostream* os) { *os << c.name; }
 
 // The variant's scene: kScene less its bottom or objects, with its overrides and `extra`.
 seasim::Scene variantScene(const Variant& v, const std::vector<seasim::Override>& extra = {}) {
-  std::string text = kScene;
-  if (v.remove_bottom) text.erase(text.find("[bottom]"), text.find("[[objects]]") - text.find("[bottom]"));
-  if (v.remove_objects) text.erase(text.find("[[objects]]"), text.find("[underwater]") - text.find("[[objects]]"));
+  seasim::test::SeabedObjectsScene variant = ordinatesScene();
+  if (v.remove_bottom) variant.bottom_depth = 0;
+  if (v.remove_objects) variant.objects = false;
+  const std::string text = seasim::test::seabedObjectsScene(variant);
   std::vector<seasim::Override> overrides = v.overrides;
   overrides.insert(overrides.end(), extra.begin(), extra.end());
   return seasim::parseScene(text, "test_ordinates.toml", overrides);
