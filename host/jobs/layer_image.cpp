@@ -9,6 +9,21 @@
 
 namespace seasim {
 
+namespace {
+
+// The index in frame.layers of the channel `channel` of layer `layer`; a channel the plan promised and
+// the render did not write is an error (`where`: "" for image.exr, " for spectral.exr").
+int layerChannelIndex(const FrameResult& frame, const char* layer, const std::string& channel, const char* where) {
+  const auto& have = frame.layers.channel_names;
+  const auto it = std::find(have.begin(), have.end(), channel);
+  if (it == have.end())
+    throw RuntimeError(std::string("layer '") + layer + "': the render wrote no channel '" + channel + "'" + where +
+                       " (the plan promised it); nothing written");
+  return static_cast<int>(it - have.begin());
+}
+
+}  // namespace
+
 Image imageWithLayers(const FrameResult& frame, const OutputsDesc& outputs) {
   if (outputs.layers.empty()) return frame.rgb;
   // Each written channel's index in frame.layers, in the catalogue's order.
@@ -17,12 +32,7 @@ Image imageWithLayers(const FrameResult& frame, const OutputsDesc& outputs) {
   for (const OutputLayer& layer : outputLayers()) {
     if (!outputs.wants(layer.name)) continue;
     for (const auto& channel : layer.channels) {
-      const auto& have = frame.layers.channel_names;
-      const auto it = std::find(have.begin(), have.end(), channel);
-      if (it == have.end())
-        throw RuntimeError(std::string("layer '") + layer.name + "': the render wrote no channel '" + channel +
-                           "' (the plan promised it); nothing written");
-      order.push_back(static_cast<int>(it - have.begin()));
+      order.push_back(layerChannelIndex(frame, layer.name, channel, ""));
       names.push_back(channel);
     }
   }
@@ -57,16 +67,11 @@ Image bandLayersImage(const FrameResult& frame, const OutputsDesc& outputs) {
   if (frame.spectral.empty()) return out;
   std::vector<int> order;
   std::vector<std::string> names;
-  const auto& have = frame.layers.channel_names;
   for (const OutputLayer& layer : outputLayers()) {
     if (!layer.per_band || !outputs.wants(layer.name)) continue;
     for (double nm : frame.wavelengths_nm) {
       const std::string channel = spectralLayerChannelName(layer.name, nm);
-      const auto it = std::find(have.begin(), have.end(), channel);
-      if (it == have.end())
-        throw RuntimeError(std::string("layer '") + layer.name + "': the render wrote no channel '" + channel +
-                           "' for spectral.exr (the plan promised it); nothing written");
-      order.push_back(static_cast<int>(it - have.begin()));
+      order.push_back(layerChannelIndex(frame, layer.name, channel, " for spectral.exr"));
       names.push_back(channel);
     }
   }
