@@ -642,8 +642,11 @@ class SceneParser {
   void underwater(const toml::table& t) {
     TableReader r(src_, t, "underwater");
     UnderwaterDesc& u = scene_.underwater;
-    // "improved" is the discrete-ordinates model's earlier name, still accepted.
-    u.model = r.choice("model", "discrete_ordinates", {"thesis", "discrete_ordinates", "improved"}) == "thesis"
+    // "improved" is the discrete-ordinates model's earlier name, still read as it (and not offered in
+    // the messages).
+    const toml::node* model = r.get("model");
+    const bool earlier_name = model && model->value<std::string>() == "improved";
+    u.model = !earlier_name && r.choice("model", "discrete_ordinates", {"thesis", "discrete_ordinates"}) == "thesis"
                   ? UnderwaterDesc::Model::Thesis
                   : UnderwaterDesc::Model::DiscreteOrdinates;
     u.multiple_scattering = r.boolean("multiple_scattering", u.multiple_scattering);

@@ -70,6 +70,7 @@ TEST(UnderwaterModelOption, TheEarlierNameImprovedIsTheDiscreteOrdinatesModel) {
     const std::string what = e.what();
     EXPECT_NE(what.find("model"), std::string::npos) << what;
     EXPECT_NE(what.find("discrete_ordinates"), std::string::npos) << what;
+    EXPECT_EQ(what.find("'improved'"), std::string::npos) << what;  // the earlier name is not offered
   }
 }
 
@@ -104,8 +105,8 @@ TEST(UnderwaterModelOption, BadValuesNameFileLineAndKey) {
     }
   }
   try {
-    parseScene(kScene, "uw.toml", {{"underwater.model", "\"improv\"", {"command line", 0}}});
-    ADD_FAILURE() << "accepted --set underwater.model=\"improv\"";
+    parseScene(kScene, "uw.toml", {{"underwater.model", "\"discrete_ordinate\"", {"command line", 0}}});
+    ADD_FAILURE() << "accepted --set underwater.model=\"discrete_ordinate\"";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("did you mean 'discrete_ordinates'"), std::string::npos) << e.what();
   }
