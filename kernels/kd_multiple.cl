@@ -193,7 +193,7 @@ typedef struct {
 #define KD_FROXEL_AT_INFINITY ((float3)(0.0f, 0.0f, 0.0f))
 #endif
 
-void kd_sums_zero(KdSums* s) {
+static inline void kd_sums_zero(KdSums* s) {
   s->r = s->g = s->b = SPLATB(0.0f);
 #if SEASIM_LAYER_FORMATION
   KD_ZERO3(*s, clear);
@@ -284,8 +284,9 @@ typedef struct {
 #endif
 } UwiPixel;
 
-void uwi_pixel(__constant UwParams* p, __global const float* band_table, int stride, __global const UwObject* objects,
-               const KdPixel* k, float3 d, float3 n, float3 s_w, UwiPixel* q) {
+static inline void uwi_pixel(__constant UwParams* p, __global const float* band_table, int stride,
+                             __global const UwObject* objects, const KdPixel* k, float3 d, float3 n, float3 s_w,
+                             UwiPixel* q) {
   const int mat = k->mat;
   const float S = k->S;
   /* Its rows follow the objects' albedo rows; the phase of the view and (surface hits) of the reflected
@@ -348,9 +349,10 @@ void uwi_pixel(__constant UwParams* p, __global const float* band_table, int str
 /* The in-scatter of the view ray to distance S_end (y_end its depth there; aureole_end the aureole's end)
  * for the step's lanes: L_MS by the discrete ordinates and the forward peak's light (uwi_forward_peak),
  * as uwi_band_radiance sums it. *multiple_part: L_MS alone, the share the point-spread divides. */
-realb uwi_step_inscatter(__constant UwParams* p, __global const float* band_table, int stride, const KdPixel* k,
-                         const UwiPixel* q, int i, const UwiLanes* v, const UwiWeights* w, const UwiStart* camera,
-                         float S_end, float y_end, float aureole_end, realb* multiple_part) {
+static inline realb uwi_step_inscatter(__constant UwParams* p, __global const float* band_table, int stride,
+                                       const KdPixel* k, const UwiPixel* q, int i, const UwiLanes* v,
+                                       const UwiWeights* w, const UwiStart* camera, float S_end, float y_end,
+                                       float aureole_end, realb* multiple_part) {
   UwiEnds ends;
   uwi_ends(v, p->bottom_depth, S_end, y_end, k->single & k->multiple, &ends);
   realb strict;
@@ -369,8 +371,8 @@ realb uwi_step_inscatter(__constant UwParams* p, __global const float* band_tabl
 /* The step's share scattered by small angles (water_spread.h (1), (3)) and the in-scatter's ((4), (5)),
  * kept apart as moments for water_spread.cl to put back blurred; returns the light that stays in the
  * pixel. L: L_MS, the share the in-scatter's part is taken from. */
-realb uwi_step_spread(const UwiPixel* q, const UwiLanes* v, realb L, realb in_scatter, realb hit, realb direct,
-                      const KdStep* st, KdSums* s) {
+static inline realb uwi_step_spread(const UwiPixel* q, const UwiLanes* v, realb L, realb in_scatter, realb hit,
+                                    realb direct, const KdStep* st, KdSums* s) {
   const realb delta = v->c - v->c_dm;
   const realb em = uws_expm1_neg_b(delta * q->s_spread);
   realb count_in, depth_in;
@@ -405,8 +407,8 @@ realb uwi_step_spread(const UwiPixel* q, const UwiLanes* v, realb L, realb in_sc
 
 /* One step of bands of the discrete-ordinates model: T L_s + L_MS per band (without the light the
  * point-spread keeps apart), the layers' lanes added into `s`. */
-realb uwi_step(__constant UwParams* p, __global const float* band_table, int stride, const KdPixel* k,
-               const UwiPixel* q, const KdStep* st, KdSums* s) {
+static inline realb uwi_step(__constant UwParams* p, __global const float* band_table, int stride, const KdPixel* k,
+                             const UwiPixel* q, const KdStep* st, KdSums* s) {
   const int i = st->i;
   UwiLanes v;
   uwi_lanes_load(band_table, stride, q->row0, i, &v);
@@ -472,8 +474,8 @@ realb uwi_step(__constant UwParams* p, __global const float* band_table, int str
 
 /* One step of bands of the thesis's model: L = T(S) L_s + L_MS (002 eq. 2.7 with 4.7, T(S) folded into
  * L_s: common/underwater_bands.h), the layers' lanes added into `s`. */
-realb kd_thesis_step(__constant UwParams* p, __global const float* band_table, int stride, const KdPixel* k,
-                     const KdStep* st, KdSums* s) {
+static inline realb kd_thesis_step(__constant UwParams* p, __global const float* band_table, int stride,
+                                   const KdPixel* k, const KdStep* st, KdSums* s) {
   const int i = st->i;
 #define ROW(r) (band_table + (r) * stride)
   const realb c = LOADB(ROW(UW_ROW_C), i);
@@ -542,8 +544,8 @@ realb kd_thesis_step(__constant UwParams* p, __global const float* band_table, i
 #if SEASIM_LAYER_FORMATION
 /* The formation layers' sums into formation[pixel][12] (clear, direct, backscatter with the froxel term
  * ss, transmission) and forward_layer; lamps_layer starts at 0 (underwater_lamps.cl adds into it). */
-void kd_store_formation(const KdSums* s, int pixel, float3 ss, __global float* formation,
-                        __global float* forward_layer, __global float* lamps_layer) {
+static inline void kd_store_formation(const KdSums* s, int pixel, float3 ss, __global float* formation,
+                                      __global float* forward_layer, __global float* lamps_layer) {
   LAYER_STORE(formation, 12, 0, clear);
   LAYER_STORE(formation, 12, 3, direct);
   LAYER_STORE(formation, 12, 6, scatter);
@@ -568,7 +570,8 @@ void kd_store_formation(const KdSums* s, int pixel, float3 ss, __global float* f
 #endif
 
 #if SEASIM_UWI_SPREAD
-void kd_store_forward(const KdSums* s, int pixel, __global float* forward_rgb, __global float* forward_depth) {
+static inline void kd_store_forward(const KdSums* s, int pixel, __global float* forward_rgb,
+                                    __global float* forward_depth) {
   forward_rgb[6 * pixel + 0] = SUMB(s->fwd_r);
   forward_rgb[6 * pixel + 1] = SUMB(s->fwd_g);
   forward_rgb[6 * pixel + 2] = SUMB(s->fwd_b);
@@ -582,7 +585,7 @@ void kd_store_forward(const KdSums* s, int pixel, __global float* forward_rgb, _
 
 #if SEASIM_LAYER_VEILING
 /* B∞ in sensor RGB: the in-scatter's sums with S = ∞ and the froxel term of the whole column. */
-void kd_store_veiling(const KdSums* s, int pixel, float3 ss_inf, __global float* veiling) {
+static inline void kd_store_veiling(const KdSums* s, int pixel, float3 ss_inf, __global float* veiling) {
   veiling[3 * pixel + 0] = SUMB(s->veil_r) + ss_inf.x;
   veiling[3 * pixel + 1] = SUMB(s->veil_g) + ss_inf.y;
   veiling[3 * pixel + 2] = SUMB(s->veil_b) + ss_inf.z;

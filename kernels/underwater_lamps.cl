@@ -103,10 +103,10 @@ typedef struct {
  * reaches behind it), both seen through T_view; along the view ray, the orders' in-scatter, the geometry
  * per step once (distance, the blurred profiles times HG(g^{n+1}) at the scattering angle), then the
  * bands with their weights. */
-void lamp_orders(__constant UwParams* p, __global const UwBand* bands, __global const UwObject* objects, int count,
-                 __constant UwLampParams* lp, __global const UwLamp* L, __global const float* I,
-                 __global const float* ms_rows, int ms_orders, int ms_steps, float ms_kappa, const LampRay* v,
-                 LampSums* o) {
+static inline void lamp_orders(__constant UwParams* p, __global const UwBand* bands, __global const UwObject* objects,
+                               int count, __constant UwLampParams* lp, __global const UwLamp* L,
+                               __global const float* I, __global const float* ms_rows, int ms_orders, int ms_steps,
+                               float ms_kappa, const LampRay* v, LampSums* o) {
   const int nb = lp->band_count;
   const float3 lamp = v3(L->position), axis = v3(L->direction);
   const float escapes = lamp_escapes(objects, count, lamp);
@@ -159,9 +159,9 @@ void lamp_orders(__constant UwParams* p, __global const UwBand* bands, __global 
 }
 #else
 /* The lamp's direct light on the surface the pixel sees (001 eq. 1, first term). */
-void lamp_surface(__global const UwBand* bands, __global const UwObject* objects, int count,
-                  __constant UwLampParams* lp, __global const UwLamp* L, __global const float* I, const LampRay* v,
-                  LampSums* o) {
+static inline void lamp_surface(__global const UwBand* bands, __global const UwObject* objects, int count,
+                                __constant UwLampParams* lp, __global const UwLamp* L, __global const float* I,
+                                const LampRay* v, LampSums* o) {
   if (!v->lit_surface) return;
   const float3 lamp = v3(L->position), axis = v3(L->direction);
   const float3 P = v->o + v->S * v->d;
@@ -177,9 +177,9 @@ void lamp_surface(__global const UwBand* bands, __global const UwObject* objects
 
 /* The light one lamp scatters towards the eye (001 eq. 2, 5, 7–9): the planes once, the bands
  * innermost, then the closed-form tail beyond the last plane. */
-void lamp_beam(__constant UwParams* p, __global const UwBand* bands, __global const UwObject* objects, int count,
-               __constant UwLampParams* lp, __global const UwLamp* L, __global const float* I, const LampRay* v,
-               LampSums* o) {
+static inline void lamp_beam(__constant UwParams* p, __global const UwBand* bands, __global const UwObject* objects,
+                             int count, __constant UwLampParams* lp, __global const UwLamp* L, __global const float* I,
+                             const LampRay* v, LampSums* o) {
   const int nb = lp->band_count, n_planes = lp->planes, m = lp->subplanes;
   const float3 lamp = v3(L->position), axis = v3(L->direction);
   UwLampSpan sp;

@@ -5,7 +5,8 @@
 # when the bytes agree or, for EXR (whose header holds the time of writing), every channel of every
 # part does (idiff -fail 0); else the largest relative L2 over its channels. A refactor that must not change an image shows "identical" on every line.
 # Usage: tests/perf/scenes_identical.sh BINARY_A BINARY_B   (SIZE="96 54", SCENES="scenes/*.toml";
-# KERNELS_B=DIR: B reads its kernels from DIR, as SEASIM_KERNEL_DIR; SET="key=value ...": more --set
+# KERNELS_B=DIR: B reads its kernels from DIR, as SEASIM_KERNEL_DIR; DATA_A=DIR: A reads its data
+# files from DIR, as SEASIM_DATA_DIR (an older binary with the data folder of its own tree); SET="key=value ...": more --set
 # for both, e.g. SET=quality.fast_math=false: kernels built without relaxed maths, whose compiler may
 # contract and reorder differently once a kernel's code is moved between functions)
 set -eu
@@ -42,7 +43,14 @@ differ=0
 for scene in ${SCENES:-scenes/*.toml}; do
   name=$(basename "$scene" .toml)
   for v in A B; do
-    if [ $v = A ]; then bin=$A; unset SEASIM_KERNEL_DIR; else bin=$B; [ -n "${KERNELS_B:-}" ] && export SEASIM_KERNEL_DIR=$KERNELS_B; fi
+    unset SEASIM_KERNEL_DIR SEASIM_DATA_DIR
+    if [ $v = A ]; then
+      bin=$A
+      [ -n "${DATA_A:-}" ] && export SEASIM_DATA_DIR=$DATA_A
+    else
+      bin=$B
+      [ -n "${KERNELS_B:-}" ] && export SEASIM_KERNEL_DIR=$KERNELS_B
+    fi
     out="$T/$name.$v"
     # Layers are for the camera under water and spectral.exr for the spectral models: a scene that
     # refuses them renders with fewer outputs (the log of the last try is kept).
