@@ -6,13 +6,16 @@
 # and with the veiling too; one or more binaries, rounds interleaved (binary, variant) so that a shared
 # machine's load falls on every one alike. Prints a CSV row per round, then the medians per binary and
 # variant.
-# Usage: tests/perf/spectral_layers_time.sh NAME=BINARY ...   (ROUNDS=3, SCENE=scenes/seabed.toml)
+# Usage: tests/perf/spectral_layers_time.sh NAME=BINARY[=DATA_DIR] ...   (ROUNDS=3, SCENE=scenes/seabed.toml;
+# DATA_DIR: the binary's SEASIM_DATA_DIR, for an older binary with the data folder of its own tree)
 SCENE=${SCENE:-scenes/seabed.toml}
 ROUNDS=${ROUNDS:-3}
 OUT=$(mktemp -d)
 trap 'rm -rf "$OUT"' EXIT
-frame_ms() {  # $1 binary, $2 outputs.layers (TOML array); prints "kernel_ms,kd_ms,froxel_bands_ms"
-  "$1" render "$SCENE" -o "$OUT/r" --output exr,spectral_exr --set camera.width=640 --set camera.height=360 \
+frame_ms() {  # $1 binary[=data dir], $2 outputs.layers (TOML array); prints "kernel_ms,kd_ms,froxel_bands_ms"
+  bin=${1%%=*}
+  if [ "$bin" != "$1" ]; then export SEASIM_DATA_DIR="${1#*=}"; else unset SEASIM_DATA_DIR; fi
+  "$bin" render "$SCENE" -o "$OUT/r" --output exr,spectral_exr --set camera.width=640 --set camera.height=360 \
     --set spectral.count=16 --set spectral.spectral_exr=true --set "outputs.layers=$2" >/dev/null 2>&1 ||
     { echo nan,nan,nan; return; }
   python3 -c 'import json,sys

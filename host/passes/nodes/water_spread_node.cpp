@@ -1,6 +1,7 @@
 // water_spread_node.cpp — "water_spread": the water's point-spread (passes/water_spread_pass.h):
 // adds the forward light kd_multiple kept apart, blurred by the phase's small angles, into the "rgb"
 // it wrote.
+#include <cmath>
 #include <memory>
 
 #include "passes/nodes/underwater_frame.h"
@@ -19,6 +20,13 @@ namespace seasim {
 namespace {
 
 // The blur follows the image's size and field of view and the phase's g (and the model's delta-M order).
+WaterSpread spreadOf(const Scene& scene, double g, double tan_half_fov_y) {
+  const int order = scene.underwater.diffuse == UnderwaterDesc::Diffuse::DiscreteOrdinates
+                        ? kOrdinatesSourceMoments
+                        : 2;  // the two-stream's f = g² (ordinatesDeltaM)
+  return makeWaterSpread(g, order, tan_half_fov_y, scene.camera.width, scene.camera.height);
+}
+
 const PassKeys kWaterSpreadKeys = {{"camera.*", "spectral.*", "water.*", "underwater.*"}, kUnderwaterSetupKeys};
 
 class WaterSpreadNode : public Pass {
@@ -28,11 +36,7 @@ class WaterSpreadNode : public Pass {
   void prepare(FrameContext& ctx, PassResources& res) override {
     const Scene& scene = ctx.scene();
     const UwParams& p = res.read<UnderwaterSetupBuffers>("underwater_setup").setup.params;
-    const int order = scene.underwater.diffuse == UnderwaterDesc::Diffuse::DiscreteOrdinates
-                          ? kOrdinatesSourceMoments
-                          : 2;  // the two-stream's f = g² (ordinatesDeltaM)
-    pass_ = std::make_unique<WaterSpreadPass>(ctx.device(), entry_,
-                                              makeWaterSpread(p.g, order, p.tan_half_fov_y, p.width, p.height),
+    pass_ = std::make_unique<WaterSpreadPass>(ctx.device(), entry_, spreadOf(scene, p.g, p.tan_half_fov_y),
                                               scene.spectral.spectral_exr ? p.band_count : 0);
   }
   void execute(FrameContext& ctx, PassResources& res) override {
@@ -77,7 +81,19 @@ PassDescriptor waterSpreadDescriptor() {
                          (targets.size() > 2 ? ", per band too" : ""));
   };
   d.keys = kWaterSpreadKeys;
-  d.buffers = [](const Scene&, const PassPlan&) { return std::vector<BufferEstimate>{}; };
+  // The blur's grid (water_spread_pass.cpp): per channel its layers, their rows and the blurred
+  // result, 2 UWS_LAYERS + 1 floats per cell, for RGB and, with spectral.exr, every band; the grid's
+  // distances, 2 floats per cell. The grid is the image's at the factor makeWaterSpread picks from g
+  // and the field of view (with the set-up's float g and tan, as the pass gets them).
+  d.buffers = [](const Scene& s, const PassPlan& p) -> std::vector<BufferEstimate> {
+    const WaterSpread spread =
+        spreadOf(s, static_cast<float>(s.water.g), static_cast<float>(std::tan(s.camera.fov_y / 2)));
+    const double cells = double(spread.params.low_width) * spread.params.low_height;
+    const double channels = 3 + (s.spectral.spectral_exr ? s.spectral.count : 0);
+    return {{p.name, "point-spread grid (layers, rows, blurred)", 4 * (2 * UWS_LAYERS + 1) * channels * cells,
+             {"channels (RGB and spectral.count)", "grid cells (camera, water.g)"}, {channels, cells}},
+            {p.name, "point-spread grid distances", 4 * 2 * cells, {"grid cells (camera, water.g)"}, {cells}}};
+  };
   d.cost = [](const Scene&, const PassPlan&) { return 1.0; };
   d.factory = [](const PassPlan& e, const Plan&, const Scene&, const AutoQuality&) -> std::unique_ptr<Pass> {
     return std::make_unique<WaterSpreadNode>(e);
