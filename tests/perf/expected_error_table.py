@@ -4,7 +4,8 @@ error up in (host/quality/expected_error.h), built from the study tables in resu
 
   results/sea_allorders/table.csv           sea.model = "paper" (+ second order) against all orders
   results/sea_allorders/table_multiple.csv  sea.model = "multiple" against all orders
-  results/underwater/regions.csv            underwater "thesis" and "improved", training grid
+  results/underwater/regions.csv            underwater "thesis" and "discrete_ordinates" (the study's
+                                            "improved", the model's earlier name), training grid
   results/underwater/regions_heldout.csv    the same, held-out grid
 
 One file per model, data/expected_error/<view>_<model>.csv (numeric, data/README.md's format), one row
@@ -40,7 +41,7 @@ SOURCES = {
     ("sea", "paper"): ["results/sea_allorders/table.csv"],
     ("sea", "multiple"): ["results/sea_allorders/table_multiple.csv"],
     ("underwater", "thesis"): ["results/underwater/regions.csv", "results/underwater/regions_heldout.csv"],
-    ("underwater", "improved"): ["results/underwater/regions.csv", "results/underwater/regions_heldout.csv"],
+    ("underwater", "discrete_ordinates"): ["results/underwater/regions.csv", "results/underwater/regions_heldout.csv"],
 }
 HEADER = ["a", "b", "g", "bottom_m", "sun_zenith_deg", "max_abs_error", "worst_ratio", "reference_rel_se", "regions",
           "source"]
@@ -61,7 +62,7 @@ def main():
                                          round(abs(worst - 1), 4), round(worst, 4), round(se, 4), 2, 0])
     # Under water: tests/perf/underwater_regions.toml, sun 30°, camera 3.8 m down, one band.
     regions = ["bottom_near", "bottom_far", "water_up", "water_down", "objects"]
-    for source, table in enumerate(SOURCES[("underwater", "improved")]):
+    for source, table in enumerate(SOURCES[("underwater", "discrete_ordinates")]):
         for r in read(table):
             judged = []
             for g in regions:
@@ -72,7 +73,9 @@ def main():
                 continue
             worst = max(judged, key=lambda x: abs(x[0] - 1))
             bottom = -1 if r["depth_m"] in ("0", "none", "") or float(r["depth_m"]) == 0 else float(r["depth_m"])
-            rows[("underwater", r["model"])].append([float(r["a"]), float(r["b"]), float(r["g"]), bottom, 30,
+            # The study's tables name the discrete-ordinates model by its earlier name.
+            model = "discrete_ordinates" if r["model"] == "improved" else r["model"]
+            rows[("underwater", model)].append([float(r["a"]), float(r["b"]), float(r["g"]), bottom, 30,
                                                      round(abs(worst[0] - 1), 4), round(worst[0], 4),
                                                      round(max(s for _, s in judged), 4), len(judged), source])
     for (view, model), table in rows.items():

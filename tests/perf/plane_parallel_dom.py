@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""plane_parallel_dom.py — an independent plane-parallel reference for the improved underwater model's
+"""plane_parallel_dom.py — an independent plane-parallel reference for the discrete-ordinates underwater model's
 diffuse field: discrete ordinates for a homogeneous water layer under a flat Fresnel
 surface, written apart from host/underwater/discrete_ordinates.cpp and sharing none of its shortcuts:
 

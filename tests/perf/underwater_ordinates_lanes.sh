@@ -1,6 +1,6 @@
 #!/bin/sh
 # underwater_ordinates_lanes.sh — kd_multiple's time per band for underwater.model = "thesis" and
-# "improved" (the discrete-ordinates model on the band lanes must cost <= 2x the thesis per band),
+# "ordinates" (the discrete-ordinates model on the band lanes must cost <= 2x the thesis per band),
 # round by round interleaved so that the shared machine's load falls on every variant alike:
 #   seasim bench --scene scenes/seabed.toml --wavelengths 16,64 --repeat 3 --set underwater.caustics="none"
 # per variant (ordinates_no_spread: the discrete-ordinates model without the water's point-spread, whose forward
@@ -22,10 +22,10 @@ kd_ms() {  # $1 binary, then --set overrides; prints "kd16 kd64"
 echo "round,variant,kd_ms_n$N1,kd_ms_n$N2,ms_per_band"
 r=1
 while [ "$r" -le "$ROUNDS" ]; do
-  for v in thesis improved ordinates_no_spread before; do
+  for v in thesis ordinates ordinates_no_spread before; do
     case $v in
     thesis) t=$(kd_ms "$SEASIM" --set underwater.model=\"thesis\") ;;
-    improved) t=$(kd_ms "$SEASIM" --set underwater.model=\"discrete_ordinates\") ;;
+    ordinates) t=$(kd_ms "$SEASIM" --set underwater.model=\"discrete_ordinates\") ;;
     ordinates_no_spread) t=$(kd_ms "$SEASIM" --set underwater.model=\"discrete_ordinates\" --set underwater.point_spread=false) ;;
     before) [ -n "$BEFORE" ] || continue; t=$(kd_ms "$BEFORE" --set underwater.model=\"discrete_ordinates\") ;;
     esac

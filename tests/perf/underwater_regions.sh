@@ -2,7 +2,7 @@
 # underwater_regions.sh — the fast underwater model by region against the path tracer:
 # `seasim underwater-regions` over one-band waters (a:b, Jerlov-like: clear 0.03:0.05, the issue's
 # 0.1:0.3, coastal 0.4:1.2), g = 0, 0.5, 0.9, 0.95, bottom at 2, 5, 20 m and none (0), the seabed view
-# ("level") and a view 30° up, for underwater.model = "thesis" and "improved"; 64x36 at 2048 paths per
+# ("level") and a view 30° up, for underwater.model = "thesis" and the discrete-ordinates model (--models thesis,improved); 64x36 at 2048 paths per
 # pixel through each pixel's centre (the ray the fast models shade), traced again at up to 16384
 # where a region of >= 40 pixels is noisier than 1.8 % (--target-noise; the CSV's reference_spp says
 # which). Region noise is printed beside each ratio. The references are cached in $SEASIM_CACHE_DIR

@@ -1,5 +1,5 @@
 #!/bin/sh
-# underwater_regions_fit.sh — how the "improved" underwater model's table of diffuse mean cosines
+# underwater_regions_fit.sh — how the discrete-ordinates underwater model's ("improved" in the study's --models) table of diffuse mean cosines
 # (The two-stream's tables: run with underwater.diffuse = "two_stream".)
 # (diffuseMeanCosines in host/underwater/underwater_ordinates_setup.cpp) was fitted: on the TRAINING grid
 # of tests/perf/underwater_regions.sh (its references, cached), every pair (μ̄_down, μ̄_up) below is set

@@ -1,5 +1,5 @@
 #!/bin/sh
-# underwater_regions_fit_depth.sh — how the "improved" underwater model's asymptotic share w was chosen
+# underwater_regions_fit_depth.sh — how the discrete-ordinates underwater model's ("improved" in the study's --models) asymptotic share w was chosen
 # (The two-stream's tables: run with underwater.diffuse = "two_stream".)
 # (docs/journal/underwater_regions_2_*.md): the diffuse field's k taken as its mean log-slope over the camera's depth, a field
 # of the two-stream's fast mode and the asymptotic mode e^{-K∞ y} holding the share w of it at the

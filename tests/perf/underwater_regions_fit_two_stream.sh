@@ -1,5 +1,5 @@
 #!/bin/sh
-# underwater_regions_fit_two_stream.sh — how the "improved" underwater model's two-stream closure and
+# underwater_regions_fit_two_stream.sh — how the discrete-ordinates underwater model's ("improved" in the study's --models) two-stream closure and
 # (The two-stream's tables: run with underwater.diffuse = "two_stream".)
 # mean cosines per mode were chosen (docs/journal/underwater_regions_2_*.md): the closure (`underwater.two_stream_closure`,
 # quadrature or asymptotic: TwoStreamClosure in host/underwater/underwater_ordinates_setup.h), the mean
