@@ -125,6 +125,42 @@ void checkRenderMemory(const std::vector<BufferEstimate>& buffers, unsigned long
   checkMemoryBudget(host, process.available_bytes, 0, "the host side of this process", true, process.source);
 }
 
+namespace {
+
+bool bySize(const BufferEstimate& a, const BufferEstimate& b) { return a.bytes < b.bytes; }
+
+// The largest device buffer against the device's one-allocation limit (max_alloc_bytes; 0: none).
+void checkLargestAllocation(const std::vector<BufferEstimate>& buffers, unsigned long long max_alloc_bytes,
+                            const std::string& device_label) {
+  std::vector<BufferEstimate> device_only;
+  for (const auto& b : buffers)
+    if (!b.host) device_only.push_back(b);
+  const auto largest = std::max_element(device_only.begin(), device_only.end(), bySize);
+  if (largest == device_only.end() || max_alloc_bytes == 0 || largest->bytes <= static_cast<double>(max_alloc_bytes))
+    return;
+  throw RuntimeError("not enough device memory: the " + largest->pass + " pass's " + largest->what + " need " +
+                     mib(largest->bytes) + " in one buffer, more than the device's largest allocation (" +
+                     mib(static_cast<double>(max_alloc_bytes)) + ", CL_DEVICE_MAX_MEM_ALLOC_SIZE of " + device_label +
+                     ")" + whatFits(*largest, static_cast<double>(max_alloc_bytes)) + "; nothing was allocated");
+}
+
+// The buffers that depend on every setting of `largest` (all the per-pixel images with the camera
+// size), summed into one estimate: shrinking those settings shrinks all of them, so what fits is
+// computed over their sum.
+BufferEstimate scalingWith(const std::vector<BufferEstimate>& buffers, const BufferEstimate& largest) {
+  BufferEstimate scaling = largest;
+  scaling.bytes = 0;
+  for (const auto& b : buffers) {
+    bool depends = true;
+    for (const auto& key : largest.settings)
+      depends = depends && std::find(b.settings.begin(), b.settings.end(), key) != b.settings.end();
+    if (depends) scaling.bytes += b.bytes;
+  }
+  return scaling;
+}
+
+}  // namespace
+
 void checkMemoryBudget(const std::vector<BufferEstimate>& all, unsigned long long global_mem_bytes,
                        unsigned long long max_alloc_bytes, const std::string& device_label,
                        bool host_shares_memory, const std::string& total_limit_name) {
@@ -133,44 +169,20 @@ void checkMemoryBudget(const std::vector<BufferEstimate>& all, unsigned long lon
     if (!b.host || host_shares_memory) buffers.push_back(b);
   if (buffers.empty()) return;
   // One allocation limit applies to device buffers only.
-  std::vector<BufferEstimate> device_only;
-  for (const auto& b : buffers)
-    if (!b.host) device_only.push_back(b);
-  const auto by_size = [](const BufferEstimate& a, const BufferEstimate& b) { return a.bytes < b.bytes; };
-  const auto largest_device = std::max_element(device_only.begin(), device_only.end(), by_size);
-  if (largest_device != device_only.end() && max_alloc_bytes > 0 &&
-      largest_device->bytes > static_cast<double>(max_alloc_bytes)) {
-    const BufferEstimate* largest = &*largest_device;
-    throw RuntimeError("not enough device memory: the " + largest->pass + " pass's " + largest->what + " need " +
-                       mib(largest->bytes) + " in one buffer, more than the device's largest allocation (" +
-                       mib(static_cast<double>(max_alloc_bytes)) + ", CL_DEVICE_MAX_MEM_ALLOC_SIZE of " +
-                       device_label + ")" + whatFits(*largest, static_cast<double>(max_alloc_bytes)) +
-                       "; nothing was allocated");
-  }
-  const auto largest = std::max_element(buffers.begin(), buffers.end(), by_size);
+  checkLargestAllocation(buffers, max_alloc_bytes, device_label);
   double total = 0;
   for (const auto& b : buffers) total += b.bytes;
   // A tenth kept for the small buffers, kernels and the driver's own use.
   const double usable = 0.9 * static_cast<double>(global_mem_bytes);
-  if (global_mem_bytes > 0 && total > usable) {
-    std::string list;
-    for (const auto& b : buffers) list += "\n  " + b.pass + ": " + b.what + " " + mib(b.bytes);
-    // Shrinking the largest buffer's settings shrinks every buffer that depends on all of them
-    // (all the per-pixel images with the camera size): what fits is computed over their sum.
-    BufferEstimate scaling = *largest;
-    scaling.bytes = 0;
-    for (const auto& b : buffers) {
-      bool depends = true;
-      for (const auto& key : largest->settings)
-        depends = depends && std::find(b.settings.begin(), b.settings.end(), key) != b.settings.end();
-      if (depends) scaling.bytes += b.bytes;
-    }
-    throw RuntimeError("not enough device memory: this render needs about " + mib(total) + ", more than 90% of " +
-                       device_label + "'s " + mib(static_cast<double>(global_mem_bytes)) +
-                       " (" + total_limit_name + "). The largest is the " + largest->pass + " pass's " +
-                       largest->what + whatFits(scaling, usable - (total - scaling.bytes)) +
-                       "; nothing was allocated. Buffers:" + list);
-  }
+  if (global_mem_bytes == 0 || total <= usable) return;
+  std::string list;
+  for (const auto& b : buffers) list += "\n  " + b.pass + ": " + b.what + " " + mib(b.bytes);
+  const BufferEstimate& largest = *std::max_element(buffers.begin(), buffers.end(), bySize);
+  const BufferEstimate scaling = scalingWith(buffers, largest);
+  throw RuntimeError("not enough device memory: this render needs about " + mib(total) + ", more than 90% of " +
+                     device_label + "'s " + mib(static_cast<double>(global_mem_bytes)) + " (" + total_limit_name +
+                     "). The largest is the " + largest.pass + " pass's " + largest.what +
+                     whatFits(scaling, usable - (total - scaling.bytes)) + "; nothing was allocated. Buffers:" + list);
 }
 
 }  // namespace seasim
