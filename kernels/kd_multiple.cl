@@ -270,6 +270,22 @@ realb uwi_lanes_hit(const UwiHitPixel* h, __global const float* band_table, int 
 }
 #endif
 
+#if SEASIM_LAYER_FORMATION
+/* A step's layers of the hit, both models: clear, direct and the transmission e^{-c S} into the sums
+ * (with the weight the transmission's fallback mean needs) and into the split per band, whose lamps
+ * slot starts at 0 (underwater_lamps.cl adds into it). */
+static inline void kd_add_hit_layers(realb clear, realb direct, realb trans, const KdStep* st, KdSums* s) {
+  LAYER_ADD(clear, clear);
+  LAYER_ADD(direct, direct);
+  LAYER_ADD(trans, trans);
+  LAYER_ADD(weight, SPLATB(1.0f));
+  BAND_LAYER(0, clear);
+  BAND_LAYER(1, direct);
+  BAND_LAYER(3, SPLATB(0.0f));
+  BAND_LAYER(4, trans);
+}
+#endif
+
 #if SEASIM_UNDERWATER_MODEL == 1
 /* What the discrete-ordinates model reads of a pixel once besides KdPixel: the phase of the view and
  * (surface hits) of the reflected ray, the source table's and the aureole's nodes, the sand's share,
@@ -437,14 +453,7 @@ static inline realb uwi_step(__constant UwParams* p, __global const float* band_
   /* direct: clear through the whole extinction c (delta-M's c' < c keeps the small-angle light in hit). */
   const realb trans = exp(-v.c * k->S);
   direct = clear * trans;
-  LAYER_ADD(clear, clear);
-  LAYER_ADD(direct, direct);
-  LAYER_ADD(trans, trans);
-  LAYER_ADD(weight, SPLATB(1.0f));
-  BAND_LAYER(0, clear);
-  BAND_LAYER(1, direct);
-  BAND_LAYER(3, SPLATB(0.0f));
-  BAND_LAYER(4, trans);
+  kd_add_hit_layers(clear, direct, trans, st, s);
 #endif
 #if SEASIM_LAYER_VEILING
   {
@@ -528,14 +537,7 @@ static inline realb kd_thesis_step(__constant UwParams* p, __global const float*
 #undef ROW
 #if SEASIM_LAYER_FORMATION
   const realb trans = exp(-c * S);
-  LAYER_ADD(clear, clear);
-  LAYER_ADD(direct, hit);
-  LAYER_ADD(trans, trans);
-  LAYER_ADD(weight, SPLATB(1.0f));
-  BAND_LAYER(0, clear);
-  BAND_LAYER(1, hit);
-  BAND_LAYER(3, SPLATB(0.0f));
-  BAND_LAYER(4, trans);
+  kd_add_hit_layers(clear, hit, trans, st, s);
   BAND_FORWARD(SPLATB(0.0f)); /* the thesis has no forward term */
 #endif
   return L;
