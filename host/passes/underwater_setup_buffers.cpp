@@ -23,7 +23,7 @@ UnderwaterSetupBuffers::UnderwaterSetupBuffers(Device& device, UnderwaterSetup m
   });
 }
 
-bool UnderwaterSetupBuffers::update(Device& device, UnderwaterSetup newer) {
+bool UnderwaterSetupBuffers::update(Device& device, UnderwaterSetup&& newer) {
   if (newer.bands.size() != setup.bands.size() || newer.objects.size() != setup.objects.size() ||
       newer.albedo.size() != setup.albedo.size() || newer.sky_buffer.size() != setup.sky_buffer.size() ||
       newer.params.width != setup.params.width || newer.params.height != setup.params.height ||

@@ -14,10 +14,10 @@ namespace seasim {
 
 struct UnderwaterSetupBuffers {
   UnderwaterSetupBuffers(Device& device, UnderwaterSetup setup);
-  // Writes a newer setup into the same buffers (a change of sun, water, time or knobs); false, and
-  // nothing written, when a size differs (bands, objects, sky, image or the band table's rows): make
-  // new buffers then.
-  bool update(Device& device, UnderwaterSetup newer);
+  // Writes a newer setup into the same buffers (a change of sun, water, time or knobs) and takes it;
+  // false, with `newer` and the buffers untouched, when a size differs (bands, objects, sky, image or
+  // the band table's rows): make new buffers from it then.
+  bool update(Device& device, UnderwaterSetup&& newer);
 
   UnderwaterSetup setup;
   cl::Buffer params;      // UwParams

@@ -23,9 +23,7 @@ class UnderwaterSetupNode : public Pass {
  public:
   PassKeys keys() const override { return kSetupKeys; }
   void prepare(FrameContext& ctx, PassResources& res) override {
-    buffers_ = std::make_shared<UnderwaterSetupBuffers>(ctx.device(),
-                                                        makeUnderwaterSetup(ctx.scene(), ctx.grid(), ctx.sensor()));
-    res.publish("underwater_setup", buffers_);
+    publish(res, ctx.device(), makeUnderwaterSetup(ctx.scene(), ctx.grid(), ctx.sensor()));
     fresh_ = true;
   }
   void execute(FrameContext& ctx, PassResources& res) override {
@@ -39,17 +37,17 @@ class UnderwaterSetupNode : public Pass {
     const std::vector<std::string>& changed = ctx.changedKeys();
     const bool time_only = !changed.empty() && std::all_of(changed.begin(), changed.end(),
                                                            [](const std::string& k) { return k == "surface.time"; });
-    UnderwaterSetup next = buffers_->setup;
-    if (time_only)
-      next.params.time = static_cast<float>(ctx.scene().surface.time);  // as makeUnderwaterSetup sets it
-    else
-      next = makeUnderwaterSetup(ctx.scene(), ctx.grid(), ctx.sensor());
+    UnderwaterSetup next = time_only ? buffers_->setup : makeUnderwaterSetup(ctx.scene(), ctx.grid(), ctx.sensor());
+    if (time_only) next.params.time = static_cast<float>(ctx.scene().surface.time);  // as makeUnderwaterSetup sets it
     if (buffers_->update(ctx.device(), std::move(next))) return;
-    prepare(ctx, res);  // other sizes: new buffers, and the readers set up again
-    fresh_ = false;
+    publish(res, ctx.device(), std::move(next));  // other sizes: new buffers, and the readers set up again
   }
 
  private:
+  void publish(PassResources& res, Device& device, UnderwaterSetup setup) {
+    buffers_ = std::make_shared<UnderwaterSetupBuffers>(device, std::move(setup));
+    res.publish("underwater_setup", buffers_);
+  }
   std::shared_ptr<UnderwaterSetupBuffers> buffers_;
   bool fresh_ = false;
 };
