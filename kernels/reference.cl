@@ -8,8 +8,13 @@
  * a flat air–water surface with Fresnel reflection/refraction, Lambertian analytic objects and an
  * optional flat Lambertian bottom (uw_scene_hit). Light: the refracted sun beam, a delta in direction
  * along -sun_dir_water with normal irradiance e_beam0 just below the surface (its Fresnel transmission
- * is inside e_beam0), so E_beam(y) = e_beam0 e^{-c y/μ_w}; and the uniform sky, which a path reaches by
- * refracting out through Snell's window: n² (1 - F) L_sky below the surface. Flat surface: no caustics.
+ * is inside e_beam0), so E_beam(y) = e_beam0 e^{-c y/μ_w}; and the scene's sky, which a path reaches by
+ * refracting out through Snell's window: n² (1 - F) L_sky(a) below the surface, a the direction in air
+ * the path leaves along (Snell). L_sky(a) is the fast models' own sky (common/sky_view.h: the uniform
+ * level times the [sky] model's shape towards a, uniform, CIE clear, image or Preetham, and the band's
+ * share of it), so a non-uniform sky is integrated by the paths themselves over Snell's window, the
+ * downwelling light and the reflections, where the fast models use its precomputed integrals.
+ * Flat surface: no caustics.
  *
  * Estimator, one path per sample: one wavelength band chosen uniformly (weight band_count; the sample's
  * RGB is band_count L(λ_i) (w_r, w_g, w_b)_i, whose mean is Σ_i L(λ_i) w(λ_i), the sensor RGB of
@@ -18,7 +23,7 @@
  * (b/c · p(θ) · E_beam(y) · V, 002 eq. 5.1's integrand) and every Lambertian vertex
  * (ρ/π · max(n·s_w, 0) · E_beam(y) · V), V an exact shadow ray along sun_dir_water through the objects
  * to the surface — the only way to see a delta light. At the surface from below: reflect with
- * probability F, else escape and add n² L_sky. Continue by sampling the phase function / the cosine
+ * probability F, else escape and add n² L_sky(a). Continue by sampling the phase function / the cosine
  * lobe (weight 1 / albedo); Russian roulette from the 3rd vertex on; at most max_bounces vertices
  * (medium, Lambertian or surface reflection).
  * max_bounces = 1 is the single-scattering mode: only the sun NEE at the first medium vertex, no surface,
@@ -27,7 +32,7 @@
  * what the froxel integrator computes.
  *
  * Camera above the surface (y > 0; the sea seen from above, for paper 000's model): a ray up sees the
- * uniform sky; a ray down meets the flat surface, which adds R L_sky and (1 - R)/n² times the path
+ * sky; a ray down meets the flat surface, which adds R L_sky(mirrored ray) and (1 - R)/n² times the path
  * traced from there along the refracted ray (deterministic split; no sun glint, no caustics).
  *
  * Spotlights (UwLampParams.lamp_count > 0; common/underwater_lamps_params.h): point lamps with a cone
@@ -46,7 +51,8 @@
  * Random numbers: common/path_tracer.h, a hash of (seed, pixel, sample index, dimension): reproducible
  * for a seed whatever the batching. Dimensions: 0, 1 pixel jitter; 2 band; then per event in order.
  *
- * Inputs: UwParams, UwBand[band_count], UwObject[object_count], albedo[object * band_count + band].
+ * Inputs: UwParams, UwBand[band_count], UwObject[object_count], albedo[object * band_count + band], SkyParams
+ * and the sky's buffer (image texels or Preetham's reals, common/sky_view.h).
  * In/out per pixel: mean (float4: RGB mean, A the number of samples in it) and m2 (float4: RGB sum of
  * squared deviations from the mean), merged per launch with the launch's own mean/M2 (Chan, Golub,
  * LeVeque 1979), stable in float where a plain Σx² - n mean² would cancel. sample_start numbers the
@@ -56,7 +62,8 @@
  * that scatters first or meets nothing), so that the image splits into the paths that reached a surface
  * unscattered and those that scattered, as the fast model's direct layer against backscatter + forward
  * (docs/layers.md). Camera above the surface: 0.
- * Defines: SEASIM_HAS_OBJECTS (0/1), SEASIM_PT_ISOTROPIC (0/1: phase 1/(4π) instead of HG),
+ * Defines: SEASIM_SKY_MODEL (common/sky.h: 0 uniform, the default, 1 CIE clear, 2 image, 3 Preetham),
+ * SEASIM_HAS_OBJECTS (0/1), SEASIM_PT_ISOTROPIC (0/1: phase 1/(4π) instead of HG),
  * SEASIM_PT_PHASE_TABLE (0/1: the water's measured or parameterised phase from `phase_tables`, its values
  * for next-event estimation and its inverse CDF for sampling, common/phase.h; else HG of g),
  * SEASIM_PT_JITTER (0/1: 0 traces every sample through the pixel centre, for tests against quadrature),
@@ -75,6 +82,12 @@
 #include "common/path_tracer_lamps.h"
 #include "common/underwater_lamps_params.h"
 #include "common/underwater_lamps.h"
+#ifndef SEASIM_SKY_MODEL
+#define SEASIM_SKY_MODEL 0
+#endif
+#include "common/sky.h"
+#include "common/sky_params.h"
+#include "common/sky_view.h"
 
 #ifndef SEASIM_HAS_OBJECTS
 #define SEASIM_HAS_OBJECTS 1
@@ -118,6 +131,19 @@ static inline float3 pt_scatter(const __global float* phase_tables, float3 d, fl
 /* Offset of a ray origin off a surface it leaves: relative to the coordinates' size, so float rounding
  * at large distances cannot put the origin back behind the surface. */
 static inline float surface_offset(float3 x) { return 1e-4f * fmax(1.0f, fmax(fabs(x.x), fmax(fabs(x.y), fabs(x.z)))); }
+
+/* The band's sky radiance in air towards the unit direction a (a.y >= 0): its uniform level times the
+ * [sky]'s shape and the band's share of it, as kd_multiple.cl's Snell's window and sea_single.cl's
+ * reflected sky read it (common/sky_view.h). Exactly the level for the uniform sky. */
+static inline float pt_sky(const __global UwBand* bn, __constant SkyParams* sky_params, const __global float* sky,
+                           float3 a) {
+#if SEASIM_SKY_MODEL == SEASIM_SKY_UNIFORM
+  return bn->sky_radiance;
+#else
+  const float3 w = (float3)(bn->sky_w_r, bn->sky_w_g, bn->sky_w_b);
+  return bn->sky_radiance * sky_view_band(SEASIM_SKY_MODEL, w, sky_view_shape(sky_params, sky, a));
+#endif
+}
 
 /* Visibility of the sun from x (below the surface): 1 unless an object blocks the shadow ray along s_w
  * before the surface (the bottom cannot: the ray goes up). */
@@ -250,7 +276,8 @@ static inline int single_only_mode(int max_bounces) { return max_bounces == 1; }
 /* One path's radiance in band `band` along the camera ray (o, d); key/dim as path_tracer.h. */
 static inline float trace_path(__constant UwParams* p, const __global UwBand* bn, const __global UwObject* objects,
                                const __global float* albedo, __constant UwLampParams* lp, const __global UwLamp* lamps,
-                               const __global float* lamp_spectra, const __global float* phase_tables, int band,
+                               const __global float* lamp_spectra, const __global float* phase_tables,
+                               __constant SkyParams* sky_params, const __global float* sky, int band,
                                int max_bounces, unsigned int key, float3 o, float3 d, float* direct) {
 #if SEASIM_HAS_OBJECTS
   const int count = p->object_count;
@@ -300,7 +327,8 @@ static inline float trace_path(__constant UwParams* p, const __global UwBand* bn
       o = o + S * d;
       o.y = 0.0f;
       if (!pt_fresnel_reflects(d.y, p->ior, pt_uniform(key, dim++))) {
-        L += beta * p->ior * p->ior * bn->sky_radiance; /* n² L_sky; 1 - F is the choice's probability */
+        /* n² L_sky(a), a the refracted direction in air; 1 - F is the choice's probability */
+        L += beta * p->ior * p->ior * pt_sky(bn, sky_params, sky, sky_window_air_dir(d, p->ior));
         break;
       }
       if (++vertices >= max_bounces) break;
@@ -344,7 +372,8 @@ __kernel void reference_path_trace(__constant UwParams* p, __global const UwBand
                                    int sample_start, int samples, int max_bounces, __global float4* mean,
                                    __global float4* m2, __constant UwLampParams* lp, __global const UwLamp* lamps,
                                    __global const float* lamp_spectra, __global const float* phase_tables,
-                                   __global float4* direct_mean, __global float4* direct_m2) {
+                                   __global float4* direct_mean, __global float4* direct_m2,
+                                   __constant SkyParams* sky_params, __global const float* sky) {
   const int x = get_global_id(0);
   const int y = get_global_id(1);
   if (x >= p->width || y >= p->height) return;
@@ -373,13 +402,13 @@ __kernel void reference_path_trace(__constant UwParams* p, __global const UwBand
     const __global UwBand* bn = &bands[band];
     float L, L_direct = 0.0f;
     if (eye.y <= 0.0f) {
-      L = trace_path(p, bn, objects, albedo, lp, lamps, lamp_spectra, phase_tables, band, max_bounces, key, eye, d,
-                     &L_direct);
+      L = trace_path(p, bn, objects, albedo, lp, lamps, lamp_spectra, phase_tables, sky_params, sky, band,
+                     max_bounces, key, eye, d, &L_direct);
     } else if (d.y >= 0.0f) {
-      L = bn->sky_radiance; /* camera above the surface looking up: the uniform sky (no sun disk) */
+      L = pt_sky(bn, sky_params, sky, d); /* camera above the surface looking up: the sky (no sun disk) */
     } else {
       /* Camera above the surface (the sea seen from above, paper 000's view): the flat surface reflects
-       * the uniform sky with R and lets (1 - R)/n² of the water's radiance out (radiance/n² is
+       * the sky along the mirrored ray with R and lets (1 - R)/n² of the water's radiance out (radiance/n² is
        * conserved; docs/radiometry.md), both taken deterministically; the water side is the same
        * all-orders path from the surface point along the refracted ray. The sun's glint is not drawn. */
       const float3 o = (float3)(eye.x + eye.y / -d.y * d.x, 0.0f, eye.z + eye.y / -d.y * d.z);
@@ -387,8 +416,11 @@ __kernel void reference_path_trace(__constant UwParams* p, __global const UwBand
       float3 d_w;
       refract_dir(d, (float3)(0.0f, 1.0f, 0.0f), 1.0f / p->ior, &d_w);
       float unused;
-      L = R * (single_only_mode(max_bounces) ? 0.0f : bn->sky_radiance) +
-          (1.0f - R) / (p->ior * p->ior) * trace_path(p, bn, objects, albedo, lp, lamps, lamp_spectra, phase_tables, band, max_bounces, key, o, d_w, &unused);
+      const float sky_reflected =
+          single_only_mode(max_bounces) ? 0.0f : pt_sky(bn, sky_params, sky, (float3)(d.x, -d.y, d.z));
+      L = R * sky_reflected + (1.0f - R) / (p->ior * p->ior) *
+                                 trace_path(p, bn, objects, albedo, lp, lamps, lamp_spectra, phase_tables, sky_params,
+                                            sky, band, max_bounces, key, o, d_w, &unused);
     }
     L *= p->band_count;
     L_direct *= p->band_count;

@@ -38,10 +38,9 @@ ReferenceImage renderReference(const Scene& scene, const ReferenceOptions& optio
   if (above && (cameraUnderwater(scene) || !scene.water.present || !(scene.camera.position.y > 0))) {
     throw RuntimeError("reference --all-orders: for the sea seen from above only (a [water] scene, camera y > 0)");
   }
-  if (above && (scene.sky.model != SkyDesc::Model::Uniform || scene.surface.type != SurfaceDesc::Type::Flat ||
-                scene.bottom.type == BottomDesc::Type::HeightField)) {
-    throw RuntimeError("reference --all-orders: the path tracer models a uniform sky, a flat surface and a flat "
-                       "bottom; set sky.model = \"uniform\", surface.type = \"flat\" and a flat or no bottom");
+  if (above && (scene.surface.type != SurfaceDesc::Type::Flat || scene.bottom.type == BottomDesc::Type::HeightField)) {
+    throw RuntimeError("reference --all-orders: the path tracer models a flat surface and a flat bottom; set "
+                       "surface.type = \"flat\" and a flat or no bottom");
   }
   ReferenceImage out;
   if (above || cameraUnderwater(scene)) {

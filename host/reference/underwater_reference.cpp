@@ -121,7 +121,8 @@ UnderwaterReferenceResult renderUnderwaterReference(Device& device, const Underw
         std::string("SEASIM_PT_ISOTROPIC=") + (settings.isotropic ? "1" : "0"),
         std::string("SEASIM_PT_JITTER=") + (settings.jitter ? "1" : "0"),
         std::string("SEASIM_PT_LAMP_MIS=") + (settings.lamp_mis ? "1" : "0"),
-        std::string("SEASIM_PT_PHASE_TABLE=") + (settings.phase_tables.empty() ? "0" : "1")};
+        std::string("SEASIM_PT_PHASE_TABLE=") + (settings.phase_tables.empty() ? "0" : "1"),
+        "SEASIM_SKY_MODEL=" + std::to_string(setup.sky_params.model)};
     if (!settings.phase_tables.empty() && settings.phase_tables.size() != PHASE_PT_VALUES + PHASE_PT_SAMPLES)
       throw RuntimeError("underwater reference: the phase tables hold " + std::to_string(settings.phase_tables.size()) +
                          " values, not " + std::to_string(PHASE_PT_VALUES + PHASE_PT_SAMPLES));
@@ -168,6 +169,15 @@ UnderwaterReferenceResult renderUnderwaterReference(Device& device, const Underw
     kernel.setArg(13, phase_buf);
     kernel.setArg(14, direct_mean_buf);
     kernel.setArg(15, direct_m2_buf);
+    // The scene's sky, as kd_multiple.cl's Snell's window reads it (an empty buffer is one zero entry).
+    const std::vector<float> no_sky(1, 0.0f);
+    const std::vector<float>& sky = setup.sky_buffer.empty() ? no_sky : setup.sky_buffer;
+    cl::Buffer sky_params(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(SkyParams),
+                          const_cast<SkyParams*>(&setup.sky_params));
+    cl::Buffer sky_buf(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(float) * sky.size(),
+                       const_cast<float*>(sky.data()));
+    kernel.setArg(16, sky_params);
+    kernel.setArg(17, sky_buf);
     const size_t local = 8;
     const cl::NDRange global((static_cast<size_t>(p.width) + local - 1) / local * local,
                              (static_cast<size_t>(p.height) + local - 1) / local * local);

@@ -6,6 +6,8 @@
 //   * single-scattering mode (max_bounces = 1) against the L_SS quadrature, without objects (also
 //     against its closed form) and with an occluding sphere (exact shadow rays in double);
 //   * Snell's window with b = 0: n² (1 - F) L_sky e^{-c S}, zero under total internal reflection;
+//     under a Preetham sky L_sky(a) towards the refracted direction a in air, and the camera above
+//     seeing that sky directly and mirrored by R, against the host's sky module (host/sky) in double;
 //   * the ocean's white furnace: a = 0, no sun, albedo-1 objects and bottom under a uniform sky give
 //     n² L_sky everywhere, whatever b and g (uniform radiance solves the RTE and every boundary);
 //   * more bounces never lower a pixel (same seed), the same seed gives the same image whatever the
@@ -16,6 +18,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -25,6 +28,9 @@
 #include "passes/froxel_pass.h"
 #include "reference/froxel_reference.h"
 #include "reference/underwater_reference.h"
+#include "scene/scene_parser.h"
+#include "sky/sky_light.h"
+#include "spectral/wavelength_grid.h"
 #include "test_device.h"
 #include "util/error.h"
 
@@ -417,6 +423,90 @@ TEST(UnderwaterReference, SnellsWindowWithoutScattering) {
   const UnderwaterReferenceResult r = seasim::renderUnderwaterReference(device(), s, set);
   expectFiniteNonNegative(r);
   expectAgrees(r, ref, "Snell's window");
+}
+
+// A Preetham sky (sun 50° from the zenith, azimuth 60°) on two bands of 400–700 nm, put into a hand-built
+// set-up as makeUnderwaterSetup puts the scene's sky: level, band shares, kernel parameters and buffer.
+seasim::SkyLight preethamSky() {
+  const seasim::Scene scene = seasim::parseScene(
+      "[sun]\nzenith_deg = 50.0\nazimuth_deg = 60.0\n[sky]\nmodel = \"preetham\"\nradiance = 0.05\n", "sky.toml");
+  return seasim::makeSkyLight(scene, seasim::makeGrid(2, 400.0, 700.0));
+}
+
+void putSky(const seasim::SkyLight& sky, UnderwaterSetup& s) {
+  s.sky_params = sky.params;
+  s.sky_buffer = sky.kernelBuffer();
+  for (size_t i = 0; i < s.bands.size(); ++i) {
+    s.bands[i].sky_radiance = float(sky.level[i]);
+    s.bands[i].sky_w_r = float(sky.shape.band_weights[i][0]);
+    s.bands[i].sky_w_g = float(sky.shape.band_weights[i][1]);
+    s.bands[i].sky_w_b = float(sky.shape.band_weights[i][2]);
+  }
+}
+
+// Snell's law from below, in double and on its own: the direction in air of the upward unit d in
+// water (the sky seen through the window), or false under total internal reflection.
+bool airDirection(kd::real3 d, double ior, std::array<double, 3>& a) {
+  const double h = std::sqrt(d.x * d.x + d.z * d.z), sin_air = ior * h;
+  if (sin_air >= 1.0) return false;
+  const double k = h > 0 ? sin_air / h : 0.0;
+  a = {k * d.x, std::sqrt(1.0 - sin_air * sin_air), k * d.z};
+  return true;
+}
+
+TEST(UnderwaterReference, SnellsWindowShowsAPreethamSkyTowardsTheRefractedDirection) {
+  SceneSpec spec;
+  spec.eye = {0, -3, 0};
+  spec.forward = {0.3, 1, -0.2};
+  spec.up_hint = {0, 0, -1};
+  spec.fov_y_deg = 110;
+  spec.bands = {{0.1, 0.0, 1.0, 0.0, 0.0, {kW1[0], kW1[1], kW1[2]}}, {0.6, 0.0, 1.0, 0.0, 0.0, {kW2[0], kW2[1], kW2[2]}}};
+  UnderwaterSetup s = build(spec);
+  const seasim::SkyLight sky = preethamSky();
+  putSky(sky, s);
+  const double n = s.params.ior;
+  const Image ref = perPixel(s, [&](int i, kd::real3 d) {
+    std::array<double, 3> a{};
+    if (!airDirection(d, n, a)) return 0.0;
+    return std::exp(-s.bands[i].c * 3.0 / d.y) * kd::uw_window_radiance(d.y, n, sky.radiance(i, a), 0.0);
+  });
+  // The sky is not uniform across the window: its brightest pixel at least 1.5× its dimmest lit one.
+  double lo = 1e30, hi = 0;
+  for (float v : ref.pixels)
+    if (v > 0) lo = std::min(lo, double(v)), hi = std::max(hi, double(v));
+  EXPECT_GT(hi, 1.5 * lo);
+  UnderwaterReferenceSettings set;
+  set.samples_per_pixel = 64;
+  set.jitter = false;
+  const UnderwaterReferenceResult r = seasim::renderUnderwaterReference(device(), s, set);
+  expectFiniteNonNegative(r);
+  expectAgrees(r, ref, "Snell's window, Preetham sky");
+}
+
+TEST(UnderwaterReference, CameraAboveSeesAPreethamSkyDirectlyAndMirroredByR) {
+  SceneSpec spec;
+  spec.eye = {0, 3, 0};
+  spec.forward = {0.2, -0.1, -1};
+  spec.fov_y_deg = 70;  // the horizon across the image: sky above it, the surface below
+  // Black water (a = 1000/m): the surface shows R L_sky of the mirrored ray and nothing from below.
+  spec.bands = {{1000, 0.0, 1.0, 0.0, 0.0, {kW1[0], kW1[1], kW1[2]}}, {1000, 0.0, 1.0, 0.0, 0.0, {kW3[0], kW3[1], kW3[2]}}};
+  UnderwaterSetup s = build(spec);
+  const seasim::SkyLight sky = preethamSky();
+  putSky(sky, s);
+  const double n = s.params.ior;
+  const Image ref = perPixel(s, [&](int i, kd::real3 d) {
+    if (d.y >= 0) return sky.radiance(i, {d.x, d.y, d.z});
+    const double ci = -d.y, st = std::sqrt(1 - ci * ci) / n, ct = std::sqrt(1 - st * st);
+    const double rs = (ci - n * ct) / (ci + n * ct), rp = (ct - n * ci) / (ct + n * ci);
+    return 0.5 * (rs * rs + rp * rp) * sky.radiance(i, {d.x, -d.y, d.z});
+  });
+  UnderwaterReferenceSettings set;
+  set.samples_per_pixel = 256;  // the band is drawn per path: its spread is the only noise
+  set.jitter = false;
+  set.camera_above = true;
+  const UnderwaterReferenceResult r = seasim::renderUnderwaterReference(device(), s, set);
+  expectFiniteNonNegative(r);
+  expectAgrees(r, ref, "camera above, Preetham sky");
 }
 
 TEST(UnderwaterReference, WhiteFurnaceIsUniformSkyRadianceTimesIorSquared) {
