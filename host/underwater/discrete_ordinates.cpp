@@ -381,9 +381,9 @@ DiscreteOrdinates::DiscreteOrdinates(const DiscreteOrdinatesLayer& layer, int st
 }
 
 // Boundary conditions. Top: L+(0) = R L-(0) + the sky through the window, (1 - R) n² L_sky, scaled to
-// e_sky0. Bottom: L-(H) = (ρ/π) (E_d(H) + s e_sun0 e^{-m H}), s the share of the beam it reflects. The
-// uniform sky and the Lambertian bottom have no cos φ part: mode 1 sees neither (the surface reflects it
-// as any radiance).
+// e_sky0 (a shaped sky: (1 - R) S_m(μ) in mode m, scaled by mode 0's flux). Bottom: L-(H) = (ρ/π) (E_d(H)
+// + s e_sun0 e^{-m H}), s the share of the beam it reflects. The uniform sky and the Lambertian bottom have
+// no cos φ part: modes 1, 2 see neither (the surface reflects them as any radiance).
 void DiscreteOrdinates::solveBoundaries(const DiscreteOrdinatesLayer& layer) {
   const int n = n_;
   const double m = m_particular_;
@@ -391,10 +391,12 @@ void DiscreteOrdinates::solveBoundaries(const DiscreteOrdinatesLayer& layer) {
   double sky_unit = 0;
   for (int i = 0; i < n; ++i) {
     refl[i] = kmath_d::fresnel_reflectance(mu_[i], layer.ior, 1.0);
-    sky[i] = 1 - refl[i];
-    sky_unit += 2 * kPi * w_[i] * mu_[i] * sky[i];
+    const std::array<double, 3> shape =
+        layer.sky_shape ? layer.sky_shape(mu_[i]) : std::array<double, 3>{1.0, 0.0, 0.0};
+    sky[i] = (1 - refl[i]) * shape[mode_];
+    sky_unit += 2 * kPi * w_[i] * mu_[i] * (1 - refl[i]) * shape[0];
   }
-  for (int i = 0; i < n; ++i) sky[i] = sky_unit > 0 && mode_ == 0 ? sky[i] * layer.e_sky0 / sky_unit : 0.0;
+  for (int i = 0; i < n; ++i) sky[i] = sky_unit > 0 ? sky[i] * layer.e_sky0 / sky_unit : 0.0;
   c_decay_.assign(n, 0.0);
   c_grow_.assign(n, 0.0);
   c_decay_bottom_.assign(n, 0.0);

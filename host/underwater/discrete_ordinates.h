@@ -7,7 +7,8 @@
 // The layer: homogeneous water (absorption a, scattering b, Henyey-Greenstein g) from the flat surface
 // (y = 0) to a Lambertian bottom of albedo rho at depth H, or without a bottom (semi-infinite). Lit by the
 // refracted sun beam (horizontal irradiance e_sun0 just below the surface, direction cosine mu_sun) and
-// a uniform sky seen through Snell's window (transmitted irradiance e_sky0). The surface reflects the
+// the sky seen through Snell's window (transmitted irradiance e_sky0; uniform, or its zenith and
+// azimuth shape by mode, sky_shape). The surface reflects the
 // upwelling light back down by Fresnel's law (total internal reflection outside the window).
 //
 // One azimuth mode of the radiance: the average (m = 0, all that plane irradiances and the scalar
@@ -22,6 +23,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 #include <vector>
 
 namespace seasim {
@@ -35,7 +37,12 @@ struct DiscreteOrdinatesLayer {
   double ior = 1.34;           // the water's refractive index (the surface's Fresnel reflection)
   double mu_sun = 1;           // the refracted sun's direction cosine with the downward vertical, (0, 1]
   double e_sun0 = 0;           // the beam's irradiance on a horizontal plane just below the surface
-  double e_sky0 = 0;           // the sky's transmitted irradiance just below the surface (uniform sky)
+  double e_sky0 = 0;           // the sky's transmitted irradiance just below the surface
+  // The sky's shape below the surface by azimuth mode (S_0, S_1, S_2 of its radiance along the downward
+  // cosine μ in water, φ from the sun beam's azimuth; underwater/sky_window_modes.h), any scale: the
+  // surface's boundary is then (1 − R) S_m(μ), scaled so that mode 0 carries e_sky0. Empty: a uniform
+  // sky (S_0 = 1, no azimuth modes).
+  std::function<std::array<double, 3>(double mu)> sky_shape;
   // Any phase by its Legendre moments χ_0 = 1, χ_1 = g, ... (host/radiometry/phase_function.h); the
   // moments past the last given are 0. Empty: Henyey-Greenstein of g (χ_l = g^l).
   std::vector<double> moments;

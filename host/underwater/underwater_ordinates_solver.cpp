@@ -12,6 +12,7 @@
 #include "underwater/discrete_ordinates.h"
 #include "underwater/forward_peak.h"
 #include "underwater/ordinates_high_order.h"
+#include "underwater/sky_window_modes.h"
 #include "underwater/underwater_ordinates_setup.h"
 
 namespace seasim {
@@ -262,7 +263,7 @@ double fitTiltTable(const DiscreteOrdinates& field, const DiscreteOrdinates* fie
 
 UwiBand makeUwiBandFromOrdinates(const UwBand& band, double g, double mu_w, double bottom_depth, double ior,
                                  double view_depth, int streams, OrdinatesFitError* fit, int source_streams,
-                                 const ForwardPeak* peak) {
+                                 const ForwardPeak* peak, const SkyWindowModes* sky) {
   const double a = band.a, b = band.b;
   // The kernel's delta-M is the solver's (kOrdinatesSourceMoments: f = g³ for g > 0), its beam
   // e_beam0 e^{-m y}, m = c'/μ_w: the view rays' source is the solver's in-scatter in that frame.
@@ -292,6 +293,10 @@ UwiBand makeUwiBandFromOrdinates(const UwBand& band, double g, double mu_w, doub
   layer.mu_sun = mu0;
   layer.e_sun0 = e_sun0;
   layer.e_sky0 = e_sky0;
+  if (sky) {
+    const std::array<double, 3> w{band.sky_w_r, band.sky_w_g, band.sky_w_b};
+    layer.sky_shape = [sky, w](double mu) { return sky->at(mu, w); };
+  }
   // Delta-M to kOrdinatesSourceMoments moments (f = g³; measured against the full order in
   // docs/journal/underwater_regions_3_*.md). A
   // backward phase (g < 0) keeps every moment.
@@ -368,7 +373,7 @@ UwiBand makeUwiBandFromOrdinates(const UwBand& band, double g, double mu_w, doub
 }
 
 std::vector<UwiBand> makeUwiBandsFromOrdinates(const UwParams& params, const std::vector<UwBand>& bands,
-                                               int source_streams) {
+                                               int source_streams, const SkyWindowModes* sky) {
   const double view_depth = diffuseViewDepth(params);
   const ForwardPeak peak = forwardPeak(params.g, std::pow(std::max(double(params.g), 0.0), kOrdinatesSourceMoments));
   // Bands are independent (1.5–1.8 ms each at 16 streams on one core,
@@ -376,7 +381,7 @@ std::vector<UwiBand> makeUwiBandsFromOrdinates(const UwParams& params, const std
   std::vector<UwiBand> out(bands.size());
   tbb::parallel_for(size_t(0), bands.size(), [&](size_t i) {
     out[i] = makeUwiBandFromOrdinates(bands[i], params.g, params.sun_dir_water[1], params.bottom_depth, params.ior,
-                                      view_depth, 16, nullptr, source_streams, &peak);
+                                      view_depth, 16, nullptr, source_streams, &peak, sky);
   });
   return out;
 }

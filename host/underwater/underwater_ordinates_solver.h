@@ -33,7 +33,8 @@ extern "C" {
 
 namespace seasim {
 
-struct ForwardPeak;  // forward_peak.h
+struct ForwardPeak;     // forward_peak.h
+struct SkyWindowModes;  // sky_window_modes.h
 
 // The delta-M order (phase moments kept, f = g^M) of the discrete-ordinates solution whose in-scatter is
 // the kernel's source and whose extinction ĉ = a + b (1 - g^M) attenuates the view rays (fitted to the
@@ -58,13 +59,16 @@ inline constexpr int kOrdinatesHighOrderStreams = 32;
 // cosines per hemisphere. fit (optional): the fit's errors (the source's: of the order-3 field's own
 // in-scatter). source_streams: kOrdinatesHighOrderStreams' meaning.
 // peak: the forward peak of g and f = g³ (forward_peak.h), the same for every band; null: computed here.
+// sky: the sky's shape below the surface (DiscreteOrdinatesLayer::sky_shape); null: a uniform sky.
 UwiBand makeUwiBandFromOrdinates(const UwBand& band, double g, double mu_w, double bottom_depth, double ior,
                                  double view_depth, int streams = 16, OrdinatesFitError* fit = nullptr,
-                                 int source_streams = kOrdinatesHighOrderStreams, const ForwardPeak* peak = nullptr);
+                                 int source_streams = kOrdinatesHighOrderStreams, const ForwardPeak* peak = nullptr,
+                                 const SkyWindowModes* sky = nullptr);
 
 // All bands of a set-up (params.g, bottom_depth, ior, sun_dir_water[1], the camera's depth of
-// diffuseViewDepth).
+// diffuseViewDepth); sky as above, each band taking its share (UwBand::sky_w_*).
 std::vector<UwiBand> makeUwiBandsFromOrdinates(const UwParams& params, const std::vector<UwBand>& bands,
-                                               int source_streams = kOrdinatesHighOrderStreams);
+                                               int source_streams = kOrdinatesHighOrderStreams,
+                                               const SkyWindowModes* sky = nullptr);
 
 }  // namespace seasim

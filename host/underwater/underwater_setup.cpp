@@ -9,6 +9,7 @@
 #include "spectral/jerlov.h"
 #include "underwater/underwater_ordinates_solver.h"
 #include "underwater/underwater_ordinates_setup.h"
+#include "underwater/sky_window_modes.h"
 #include "util/error.h"
 
 namespace seasim {
@@ -143,6 +144,9 @@ UnderwaterSetup makeUnderwaterSetup(const Scene& scene, const WavelengthGrid& gr
     for (size_t i = 0; i < grid.size(); ++i) s.albedo.push_back(static_cast<float>(o.albedo.at(grid.centers_nm[i])));
   }
   if (uw.model == UnderwaterDesc::Model::DiscreteOrdinates) {
+    // A sky that is not uniform keeps its shape at the solver's surface (sky_window_modes.h).
+    const SkyWindowModes window_sky =
+        sky.shape.model == SEASIM_SKY_UNIFORM ? SkyWindowModes{} : makeSkyWindowModes(sky, scene.water.ior);
     DiffuseMeanCosines mean = diffuseMeanCosines(p.g);
     if (uw.mean_cosine_down > 0) mean.down = uw.mean_cosine_down;
     if (uw.mean_cosine_up > 0) mean.up = uw.mean_cosine_up;
@@ -156,7 +160,8 @@ UnderwaterSetup makeUnderwaterSetup(const Scene& scene, const WavelengthGrid& gr
     // The camera's depth enters k here (diffuseViewDepth): set per frame, with the camera.
     s.ordinates = uw.diffuse == UnderwaterDesc::Diffuse::TwoStream
                      ? makeUwiBands(p, s.bands, mean, closure, uw.asymptotic_share, uw.flux_scale)
-                     : makeUwiBandsFromOrdinates(p, s.bands, uw.source_streams);
+                     : makeUwiBandsFromOrdinates(p, s.bands, uw.source_streams,
+                                                 sky.shape.model == SEASIM_SKY_UNIFORM ? nullptr : &window_sky);
   }
   p.object_count = static_cast<int>(s.objects.size());
   if (s.objects.empty()) s.objects.push_back(UwObject{});  // OpenCL buffers cannot be empty
