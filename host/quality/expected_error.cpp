@@ -1,8 +1,10 @@
 #include "quality/expected_error.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <limits>
 
 #include "plan/scene_facts.h"
@@ -14,10 +16,20 @@ namespace seasim {
 
 namespace {
 
-// The tables each file's `source` column indexes (tests/perf/expected_error_table.py SOURCES).
-std::vector<std::string> tablesOf(const std::string& view, const std::string& model) {
-  if (view == "sea") return {model == "paper" ? "results/sea_allorders/table.csv" : "results/sea_allorders/table_multiple.csv"};
-  return {"results/underwater/regions.csv", "results/underwater/regions_heldout.csv"};
+// SEASIM_SKY_* (common/sky.h) of a scene's sky, as the measured cases' `sky` column.
+int skyCode(const SkyDesc& sky) {
+  switch (sky.model) {
+    case SkyDesc::Model::Uniform: return 0;
+    case SkyDesc::Model::Analytic: return 1;
+    case SkyDesc::Model::Image: return 2;
+    case SkyDesc::Model::Preetham: return 3;
+  }
+  return 0;
+}
+
+const char* skyName(int code) {
+  static const char* names[] = {"uniform", "CIE clear", "image", "Preetham"};
+  return code >= 0 && code < 4 ? names[code] : "unknown";
 }
 
 // Share of the water column the view sees before the bottom: 1 - e^{-c depth}, 1 with no bottom.
@@ -25,12 +37,11 @@ double columnSeen(const MeasuredCase& c) {
   return c.bottom_m < 0 ? 1.0 : -std::expm1(-(c.a + c.b) * c.bottom_m);
 }
 
-// The scene's features that no measured case has (the studies: flat still surface, uniform sky, flat
-// or no bottom, no caustics, no spotlights).
+// The scene's features that no measured case has (the studies: flat still surface, flat or no bottom,
+// no caustics, no spotlights; the sky is a case's own column, lookupExpectedError).
 std::vector<std::string> unmeasuredFeatures(const Scene& scene, bool underwater) {
   std::vector<std::string> f;
   if (scene.surface.type != SurfaceDesc::Type::Flat) f.push_back("waves");
-  if (scene.sky.model != SkyDesc::Model::Uniform) f.push_back("a non-uniform sky");
   if (scene.bottom.type == BottomDesc::Type::HeightField) f.push_back("a height-field bottom");
   if (!scene.spotlights.empty()) f.push_back("spotlights");
   if (underwater && scene.underwater.caustics != UnderwaterDesc::Caustics::None) f.push_back("caustics");
@@ -51,8 +62,13 @@ double regimeDistance(const MeasuredCase& s, const MeasuredCase& c) {
 }
 
 std::string measuredTable(const std::string& view, const std::string& model, int source) {
-  const std::vector<std::string> t = tablesOf(view, model);
-  return source >= 0 && source < static_cast<int>(t.size()) ? t[static_cast<size_t>(source)] : "unknown";
+  // <view>_<model>.tables beside the cases: the study tables in `source` order, one per line
+  // (tests/perf/expected_error_table.py writes both).
+  std::ifstream in(std::filesystem::path(dataDir()) / "expected_error" / (view + "_" + model + ".tables"));
+  std::string line;
+  for (int i = 0; std::getline(in, line); ++i)
+    if (i == source) return line;
+  return "unknown";
 }
 
 std::vector<MeasuredCase> loadMeasuredCases(const std::string& view, const std::string& model) {
@@ -62,10 +78,11 @@ std::vector<MeasuredCase> loadMeasuredCases(const std::string& view, const std::
     throw RuntimeError(path + ":" + std::to_string(t.empty_cells[0].line) + ": an empty cell in a measured case");
   std::vector<MeasuredCase> cases(t.rows());
   const auto &a = t.column("a"), &b = t.column("b"), &g = t.column("g"), &bottom = t.column("bottom_m"),
-             &sun = t.column("sun_zenith_deg"), &err = t.column("max_abs_error"), &worst = t.column("worst_ratio"),
-             &se = t.column("reference_rel_se"), &source = t.column("source");
+             &sun = t.column("sun_zenith_deg"), &sky = t.column("sky"), &err = t.column("max_abs_error"),
+             &worst = t.column("worst_ratio"), &se = t.column("reference_rel_se"), &source = t.column("source");
   for (size_t i = 0; i < cases.size(); ++i)
-    cases[i] = MeasuredCase{a[i], b[i], g[i], bottom[i], sun[i], err[i], worst[i], se[i], static_cast<int>(source[i])};
+    cases[i] = MeasuredCase{a[i], b[i], g[i], bottom[i], sun[i], static_cast<int>(sky[i]), err[i], worst[i], se[i],
+                            static_cast<int>(source[i])};
   return cases;
 }
 
@@ -76,7 +93,14 @@ ExpectedError lookupExpectedError(const MeasuredCase& regime, const std::string&
   e.model = model;
   e.unmeasured_features = std::move(features);
   e.distance = std::numeric_limits<double>::infinity();
+  // The cases measured under the scene's sky, when there are any; else every case, and the sky is a
+  // feature no case has.
+  const bool sky_measured =
+      std::any_of(cases.begin(), cases.end(), [&](const MeasuredCase& c) { return c.sky == regime.sky; });
+  if (!sky_measured && !cases.empty())
+    e.unmeasured_features.push_back(std::string("the sky (") + skyName(regime.sky) + ")");
   for (const MeasuredCase& c : cases) {
+    if (sky_measured && c.sky != regime.sky) continue;
     const double d = regimeDistance(regime, c);
     // Equally near (within 1e-9): the larger error, so a tie never hides the worse case.
     if (d < e.distance - 1e-9 || (std::fabs(d - e.distance) <= 1e-9 && c.max_abs_error > e.nearest.max_abs_error)) {
@@ -105,6 +129,7 @@ std::vector<ExpectedError> expectedErrors(const Scene& scene) {
                         ? 0.5 * (scene.bottom.min_depth + scene.bottom.max_depth)
                         : -1.0;
   regime.sun_zenith_deg = scene.sun.zenith * 180.0 / M_PI;
+  regime.sky = skyCode(scene.sky);
   const std::string view = underwater ? "underwater" : "sea";
   const std::string model = underwater ? (scene.underwater.model == UnderwaterDesc::Model::DiscreteOrdinates ? "discrete_ordinates" : "thesis")
                                        : (scene.sea.model == SeaDesc::Model::Multiple ? "multiple" : "paper");
@@ -127,7 +152,7 @@ nlohmann::json expectedErrorJson(const std::vector<ExpectedError>& errors) {
                    {"table", e.table},
                    {"nearest_case",
                     {{"a", c.a}, {"b", c.b}, {"g", c.g}, {"bottom_m", c.bottom_m}, {"sun_zenith_deg", c.sun_zenith_deg},
-                     {"reference_rel_se", c.reference_rel_se}}}});
+                     {"sky", skyName(c.sky)}, {"reference_rel_se", c.reference_rel_se}}}});
   }
   return out;
 }
@@ -142,10 +167,10 @@ std::string expectedErrorText(const std::vector<ExpectedError>& errors) {
     for (const std::string& f : e.unmeasured_features) why += "; " + f;
     std::snprintf(line, sizeof line,
                   "expected error (%s %s, against all orders): %s%.1f %% (worst ratio %.3f), the nearest measured "
-                  "case a %.3g b %.3g g %.2g bottom %s sun %.0f deg, distance %.2f, in %s%s\n",
+                  "case a %.3g b %.3g g %.2g bottom %s sun %.0f deg %s sky, distance %.2f, in %s%s\n",
                   e.view.c_str(), e.model.c_str(), e.measured ? "" : "UNMEASURED HERE; for orientation ", 100 * e.max_abs_error,
                   e.worst_ratio, c.a, c.b, c.g, c.bottom_m < 0 ? "none" : (std::to_string(c.bottom_m).substr(0, 4) + " m").c_str(),
-                  c.sun_zenith_deg, e.distance, e.table.c_str(), why.c_str());
+                  c.sun_zenith_deg, skyName(c.sky), e.distance, e.table.c_str(), why.c_str());
     out += line;
   }
   return out;

@@ -7,10 +7,15 @@ error up in (host/quality/expected_error.h), built from the study tables in resu
   results/underwater/regions.csv            underwater "thesis" and "discrete_ordinates" (the study's
                                             "improved", the model's earlier name), training grid
   results/underwater/regions_heldout.csv    the same, held-out grid
+  results/sea_allorders/table_*_preetham.csv, results/underwater/regions_sky_*.csv
+                                            the same models under Preetham's sky and a sky image
+  results/sea_allorders/widened*/, results/underwater/widened/
+                                            one axis at a time beyond those grids (sun, g, view; sun
+                                            azimuth, sky level, bottom albedo)
 
 One file per model, data/expected_error/<view>_<model>.csv (numeric, data/README.md's format), one row
 per measured case: the case's water (a, b at 550 nm, g), bottom depth (-1: none),
-sun zenith in air, and the error against the all-orders path tracer: max |ratio - 1| over the case's
+sun zenith in air, the sky (common/sky.h's SEASIM_SKY_*: 0 uniform, 2 image, 3 Preetham), and the error against the all-orders path tracer: max |ratio - 1| over the case's
 judged image regions (the sea: its near and far halves; under water: regions with >= 40 pixels and a
 reference noise <= 2 %), the worst ratio, the reference's noise, the judged regions, and `source`: the index of the table it came
 from in SOURCES below (also listed in data/expected_error/README.md).
@@ -37,14 +42,41 @@ def at550(path, jerlov):
     raise SystemExit(f"{path}: no 550 nm row")
 
 
+# Per view and model, its tables in order (a row's `source` is the index; written beside the cases as
+# <view>_<model>.tables, one path per line, which host/quality/expected_error.cpp reads), each with the
+# sun's zenith and the sky its cases were measured under, and for the sea its g (the under-water tables
+# carry theirs). The widened tables vary an axis the regime's distance does not see (the sun's azimuth,
+# the sky's level, the bottom's albedo, the view's tilt): their cases sit at the distance of the case
+# they vary, and the lookup takes the largest error among equally near cases.
+WIDENED = "results/underwater/widened/"
+UNDERWATER = [("results/underwater/regions.csv", 30, 0), ("results/underwater/regions_heldout.csv", 30, 0),
+              ("results/underwater/regions_sky_preetham_sun30.csv", 30, 3),
+              ("results/underwater/regions_sky_preetham_sun60.csv", 60, 3),
+              ("results/underwater/regions_sky_image_sun30.csv", 30, 2),
+              ("results/underwater/regions_sky_image_sun60.csv", 60, 2),
+              (WIDENED + "sun_facing.csv", 30, 0), (WIDENED + "sun_side.csv", 30, 0),
+              (WIDENED + "sun_low.csv", 75, 0), (WIDENED + "sky_bright.csv", 30, 0),
+              (WIDENED + "sky_dim.csv", 30, 0), (WIDENED + "bottom_dark.csv", 30, 0),
+              (WIDENED + "bottom_bright.csv", 30, 0)]
+
+
+def sea_tables(model):
+    own = "results/sea_allorders/table.csv" if model == "paper" else "results/sea_allorders/table_multiple.csv"
+    widened = "results/sea_allorders/widened" + ("_paper/" if model == "paper" else "/")
+    return [(own, 40, 0, 0.9), (f"results/sea_allorders/table_{model}_preetham.csv", 40, 3, 0.9),
+            (widened + "sun_high.csv", 20, 0, 0.9), (widened + "sun_low.csv", 65, 0, 0.9),
+            (widened + "g_080.csv", 40, 0, 0.8), (widened + "g_095.csv", 40, 0, 0.95),
+            (widened + "view_steep.csv", 40, 0, 0.9), (widened + "view_grazing.csv", 40, 0, 0.9)]
+
+
 SOURCES = {
-    ("sea", "paper"): ["results/sea_allorders/table.csv"],
-    ("sea", "multiple"): ["results/sea_allorders/table_multiple.csv"],
-    ("underwater", "thesis"): ["results/underwater/regions.csv", "results/underwater/regions_heldout.csv"],
-    ("underwater", "discrete_ordinates"): ["results/underwater/regions.csv", "results/underwater/regions_heldout.csv"],
+    ("sea", "paper"): sea_tables("paper"),
+    ("sea", "multiple"): sea_tables("multiple"),
+    ("underwater", "thesis"): UNDERWATER,
+    ("underwater", "discrete_ordinates"): UNDERWATER,
 }
-HEADER = ["a", "b", "g", "bottom_m", "sun_zenith_deg", "max_abs_error", "worst_ratio", "reference_rel_se", "regions",
-          "source"]
+HEADER = ["a", "b", "g", "bottom_m", "sun_zenith_deg", "sky", "max_abs_error", "worst_ratio", "reference_rel_se",
+          "regions", "source"]
 
 
 def main():
@@ -52,17 +84,18 @@ def main():
     rows = {k: [] for k in SOURCES}
     # The sea seen from above: flat_sea at 96x54, sun 40°, g 0.9 (results/sea_allorders/README.md).
     for model in ("paper", "multiple"):
-        for r in read(SOURCES[("sea", model)][0]):
-            ratios = [float(r["ratio_near"]), float(r["ratio_far"])]
-            worst = max(ratios, key=lambda x: abs(x - 1))
-            se = max(float(r["ratio_near_se"]), float(r["ratio_far_se"]))
-            bottom = -1 if r["bottom_m"] == "deep" else float(r["bottom_m"])
-            rows[("sea", model)].append([round(at550("data/jerlov_a.csv", r["jerlov"]), 5),
-                                         round(at550("data/jerlov_b.csv", r["jerlov"]), 5), 0.9, bottom, 40,
-                                         round(abs(worst - 1), 4), round(worst, 4), round(se, 4), 2, 0])
-    # Under water: tests/perf/underwater_regions.toml, sun 30°, camera 3.8 m down, one band.
+        for source, (table, sun, sky, g) in enumerate(SOURCES[("sea", model)]):
+            for r in read(table):
+                ratios = [float(r["ratio_near"]), float(r["ratio_far"])]
+                worst = max(ratios, key=lambda x: abs(x - 1))
+                se = max(float(r["ratio_near_se"]), float(r["ratio_far_se"]))
+                bottom = -1 if r["bottom_m"] == "deep" else float(r["bottom_m"])
+                rows[("sea", model)].append([round(at550("data/jerlov_a.csv", r["jerlov"]), 5),
+                                             round(at550("data/jerlov_b.csv", r["jerlov"]), 5), g, bottom, sun, sky,
+                                             round(abs(worst - 1), 4), round(worst, 4), round(se, 4), 2, source])
+    # Under water: tests/perf/underwater_regions.toml, camera 3.8 m down, one band.
     regions = ["bottom_near", "bottom_far", "water_up", "water_down", "objects"]
-    for source, table in enumerate(SOURCES[("underwater", "discrete_ordinates")]):
+    for source, (table, sun, sky) in enumerate(UNDERWATER):
         for r in read(table):
             judged = []
             for g in regions:
@@ -75,14 +108,16 @@ def main():
             bottom = -1 if r["depth_m"] in ("0", "none", "") or float(r["depth_m"]) == 0 else float(r["depth_m"])
             # The study's tables name the discrete-ordinates model by its earlier name.
             model = "discrete_ordinates" if r["model"] == "improved" else r["model"]
-            rows[("underwater", model)].append([float(r["a"]), float(r["b"]), float(r["g"]), bottom, 30,
-                                                     round(abs(worst[0] - 1), 4), round(worst[0], 4),
-                                                     round(max(s for _, s in judged), 4), len(judged), source])
+            rows[("underwater", model)].append([float(r["a"]), float(r["b"]), float(r["g"]), bottom, sun, sky,
+                                                round(abs(worst[0] - 1), 4), round(worst[0], 4),
+                                                round(max(s for _, s in judged), 4), len(judged), source])
     for (view, model), table in rows.items():
         with open(os.path.join(out_dir, f"{view}_{model}.csv"), "w", newline="") as f:
             w = csv.writer(f, lineterminator="\n")
             w.writerow(HEADER)
             w.writerows(table)
+        with open(os.path.join(out_dir, f"{view}_{model}.tables"), "w") as f:
+            f.write("".join(t[0] + "\n" for t in SOURCES[(view, model)]))
 
 
 if __name__ == "__main__":

@@ -89,6 +89,24 @@ TEST(ExpectedError, FarFromEveryCaseOrWithAnUnmeasuredFeatureSaysUnmeasured) {
   EXPECT_EQ(caustics[0].unmeasured_features[0], "caustics");
 }
 
+TEST(ExpectedError, ASkyIsLookedUpAmongTheCasesMeasuredUnderIt) {
+  // Preetham's sky: the cases of tests/perf/underwater_regions_sky.sh, not the uniform sky's.
+  const auto preetham = seasim::expectedErrors(scene(kUnderwater, {{"sky.model", "\"preetham\""}}));
+  ASSERT_EQ(preetham.size(), 1u);
+  EXPECT_TRUE(preetham[0].measured);
+  EXPECT_EQ(preetham[0].nearest.sky, 3);
+  EXPECT_EQ(preetham[0].table, "results/underwater/regions_sky_preetham_sun30.csv");
+  EXPECT_EQ(seasim::expectedErrorJson(preetham)[0]["nearest_case"]["sky"], "Preetham");
+  EXPECT_NE(seasim::expectedErrorText(preetham).find("Preetham sky"), std::string::npos);
+  // The uniform sky keeps its own cases.
+  EXPECT_EQ(seasim::expectedErrors(scene(kUnderwater))[0].nearest.sky, 0);
+  // The CIE clear sky was never measured: the nearest case for orientation, flagged.
+  const auto cie = seasim::expectedErrors(scene(kUnderwater, {{"sky.model", "\"analytic\""}}));
+  EXPECT_FALSE(cie[0].measured);
+  ASSERT_EQ(cie[0].unmeasured_features.size(), 1u);
+  EXPECT_EQ(cie[0].unmeasured_features[0], "the sky (CIE clear)");
+}
+
 TEST(ExpectedError, DistanceIsOneStepPerDoublingTenthOfGAndFifteenDegrees) {
   MeasuredCase c{0.1, 0.3, 0.9, -1, 30};
   MeasuredCase s = c;
@@ -118,7 +136,7 @@ TEST(ExpectedError, TheLookupsOwnErrorLeaveOneOut) {
     for (const MeasuredCase& c : cases) {
       std::vector<MeasuredCase> others;
       for (const MeasuredCase& o : cases)
-        if (seasim::regimeDistance(c, o) > 1e-9) others.push_back(o);
+        if (seasim::regimeDistance(c, o) > 1e-9 || o.sky != c.sky) others.push_back(o);
       const ExpectedError e = seasim::lookupExpectedError(c, view, model, others, {});
       if (!e.measured) {
         ++unmeasured;
@@ -127,7 +145,7 @@ TEST(ExpectedError, TheLookupsOwnErrorLeaveOneOut) {
       // The worst region of the regime (the largest error among its views) against the prediction.
       double actual = 0;
       for (const MeasuredCase& o : cases)
-        if (seasim::regimeDistance(c, o) <= 1e-9) actual = std::max(actual, o.max_abs_error);
+        if (seasim::regimeDistance(c, o) <= 1e-9 && o.sky == c.sky) actual = std::max(actual, o.max_abs_error);
       miss.push_back(std::fabs(e.max_abs_error - actual));
     }
     std::sort(miss.begin(), miss.end());
