@@ -15,6 +15,8 @@
 # default 1000, the CLI's), always passed and named in the image (pt_mb<MAXB>_...), so images traced under
 # the old default cap of 64 (names without it) are never reused; table.csv was traced with MAXB=64.
 # JERLOV and DEPTHS (space-separated) pick a subset of the cases, e.g. JERLOV="II III" DEPTHS="5 1000".
+# SCENE_SET: --set arguments for both renderers (the scene itself, e.g. SCENE_SET='--set sky.model="preetham"'),
+# with SCENE_TAG naming the path tracer's kept images for it (required with SCENE_SET).
 # Columns: image-mean luminance (0.2126 R + 0.7152 G + 0.0722 B of linear sensor RGB) of the model and
 # of the path tracer, the standard error of the path tracer's mean (from its per-pixel standard-error
 # image), their ratio, per-pixel rel. L2 and RMSE (8-bit levels, `seasim compare`), the model's kernel
@@ -27,6 +29,9 @@ SPP=${2:-2048}
 OUT=${3:-results/sea_allorders/table.csv}
 [ $# -ge 3 ] && shift 3 || shift $#
 PT_DIR=${PT_DIR:-$B/sea_allorders_pt}
+SCENE_SET=${SCENE_SET:-}
+SCENE_TAG=${SCENE_TAG:-}
+if [ -n "$SCENE_SET" ] && [ -z "$SCENE_TAG" ]; then echo "sea_allorders.sh: SCENE_SET needs a SCENE_TAG" >&2; exit 2; fi
 MAXB=${MAXB:-1000}
 TMP=$(mktemp -d)
 trap 'rm -rf "$TMP"' EXIT
@@ -59,9 +64,9 @@ NEAR="${W}x$((H - HALF))+0+$HALF"
 echo "jerlov,bottom_m,model_lum,pt_lum,pt_lum_se,ratio,rel_l2,rmse_8bit,model_ms,pt_ms,ratio_far,ratio_far_se,ratio_near,ratio_near_se" > "$OUT"
 for j in ${JERLOV:-I IB II III 3C}; do
   for d in ${DEPTHS:-2 5 10 20 1000}; do
-    set_case="--set water.jerlov=\"$j\" --set bottom.depth=$d"
-    pt="$PT_DIR/pt_mb${MAXB}_${j}_${d}_${SPP}.exr"
-    pt_ms_file="$PT_DIR/pt_mb${MAXB}_${j}_${d}_${SPP}.ms"
+    set_case="--set water.jerlov=\"$j\" --set bottom.depth=$d $SCENE_SET"
+    pt="$PT_DIR/pt_mb${MAXB}${SCENE_TAG:+_$SCENE_TAG}_${j}_${d}_${SPP}.exr"
+    pt_ms_file="${pt%.exr}.ms"
     if [ ! -f "$pt" ] || [ ! -f "$pt_ms_file" ]; then
       t0=$(date +%s%N)
       eval "\"$B/seasim\" reference \"$TMP/sea.toml\" $set_case --all-orders --max-bounces $MAXB --steps $SPP --seed 1 -o \"$TMP/pt.exr\"" \
