@@ -1,7 +1,7 @@
 """Opt-in validation (make validate): the sea seen from above — seasim's all-orders path
 tracer with the camera above the surface (`seasim reference --all-orders`), paper 000's model
 (`sea.model = "paper"`, single scattering eq. 5 and bottom eq. 9, with and without the second order
-eq. 6-8) and `sea.model = "multiple"` (kernels/common/sea_multiple.h) against Mitsuba 3's volpath.
+eq. 6-8) and `sea.model = "multiple"` (kernels/common/sea_multiple.h) against Mitsuba 3's volpathmis. "multiple" is the default.
 Writes sea_vs_mitsuba.md. The mapping of conventions is in water_scenes.py's docstring: one band at
 560 nm (grey), water a, b -> sigma_t = a + b, albedo = b / (a + b), HG g; a dielectric rectangle at y = 0
 with the water inside (Mitsuba's dielectric and seasim both carry radiance/n² across it: the water's
@@ -32,9 +32,9 @@ BASE = {"camera": (0.0, 5.0, 0.0), "look_at": (0.0, 0.0, -5.0), "fov": 60.0, "wi
 CASES = [dict(BASE, name="sea_turbid_bottom5", a=0.1, b=0.3, bottom_depth=5.0),
          dict(BASE, name="sea_turbid_deep", a=0.1, b=0.3, bottom_depth=None),
          dict(BASE, name="sea_clear_deep", a=0.05, b=0.05, bottom_depth=None)]
-MODELS = [("paper (eq. 5, 9)", ["--set", 'sea.model="paper"']),
-          ("paper + 2nd order", ["--set", 'sea.model="paper"', "--set", "sea.second_order=true"]),
-          ("multiple", ["--set", 'sea.model="multiple"'])]
+MODELS = [("multiple (the default)", ["--set", 'sea.model="multiple"']),
+          ("paper (eq. 5, 9)", ["--set", 'sea.model="paper"']),
+          ("paper + 2nd order", ["--set", 'sea.model="paper"', "--set", "sea.second_order=true"])]
 
 
 def main():
@@ -44,7 +44,7 @@ def main():
     paths = int(sys.argv[5]) if len(sys.argv) > 5 else 4096
     cache = os.path.dirname(os.path.abspath(binary))
     os.makedirs(out, exist_ok=True)
-    lines = ["# The sea seen from above: seasim / Mitsuba 3 (volpath)", "",
+    lines = ["# The sea seen from above: seasim / Mitsuba 3 (volpathmis)", "",
              f"Camera {BASE['camera']} -> {BASE['look_at']}, fov {BASE['fov']}°, {BASE['width']}x{BASE['height']}; "
              f"sun {BASE['sun_zenith']}° (E⊥ {BASE['sun_irradiance']}) behind the camera, sky {BASE['sky_radiance']}, "
              f"g {BASE['g']}, n {BASE['ior']}. Mitsuba {ws.mi.__version__} (scalar_rgb): {seeds} seeds x {spp} spp (sky and sun images); seasim "

@@ -34,8 +34,10 @@ Mapping of conventions (seasim -> Mitsuba 3, variant scalar_rgb; docs/radiometry
   pixel filter            seasim's path tracer jitters each path over the pixel, as Mitsuba's box
                           filter; `seasim render` samples pixel centres, so it is rendered at SS x SS
                           the resolution and block-averaged.
-  all orders              volpath, max_depth = 1000 (Russian roulette from depth 5); seasim's path
-                          tracer: 64 vertices and roulette from the 3rd.
+  all orders              volpathmis, max_depth = 1000 (Russian roulette from depth 5; volpath's
+                          spectral MIS, right where the extinction differs between channels: prbvolpath
+                          is not, Mitsuba issue 1846); seasim's path tracer: 1000 vertices and roulette
+                          from the 3rd.
 Noise: Mitsuba's from the spread of its seeds (spaced by SEED_STRIDE: consecutive seeds are correlated),
 seasim's path tracer's from its standard-error image;
 a ratio's ± is twice the standard error of both together.
@@ -58,7 +60,7 @@ SEED_STRIDE = 1000003
 
 
 class SunPassDielectric(mi.BSDF):
-    """A smooth dielectric for paths, transparent to shadow rays: lets volpath's next-event estimation
+    """A smooth dielectric for paths, transparent to shadow rays: lets volpathmis's next-event estimation
     reach the sun's refracted beam, a directional emitter in the water, as seasim's path tracer does."""
 
     def __init__(self, props):
@@ -161,7 +163,7 @@ def mitsuba_scene(s, part, seed, spp):
               "sampler": {"type": "independent", "sample_count": spp, "seed": seed}}
     if s["camera"][1] < 0:
         sensor["medium"] = {"type": "ref", "id": "water"}
-    d = {"type": "scene", "integrator": {"type": "volpath", "max_depth": 1000}, "water": water, "sensor": sensor,
+    d = {"type": "scene", "integrator": {"type": "volpathmis", "max_depth": 1000}, "water": water, "sensor": sensor,
          "surface": {"type": "rectangle", "to_world": T().rotate([1, 0, 0], -90).scale([1000, 1000, 1]),
                      "bsdf": surface_bsdf, "interior": {"type": "ref", "id": "water"}}}
     if s["bottom_depth"]:
