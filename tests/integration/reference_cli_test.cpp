@@ -4,6 +4,8 @@
 // error is written beside the reference as OUT.stderr.exr.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -80,6 +82,29 @@ TEST_F(ReferenceCli, HelpSaysWhatEachModelsReferenceIs) {
   EXPECT_NE(r.output.find("paths per"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("--seed"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("quality.reference_spp"), std::string::npos) << r.output;
+}
+
+// --all-orders traces the scene's sky (reference.cl: Preetham's here, brighter towards the sun and the
+// horizon than the uniform sky of the same level), and refuses the waves it does not model, by name.
+TEST_F(ReferenceCli, AllOrdersTracesTheScenesSkyAndRefusesWaves) {
+  const std::string scene = kRepo + "/scenes/flat_sea.toml --set camera.width=16 --set camera.height=9" +
+                            " --device pocl --all-orders --steps 16 --seed 1";
+  auto mean = [](const std::string& file) {
+    const seasim::Image im = seasim::readImage(file);
+    double sum = 0;
+    for (float v : im.pixels) sum += v;
+    return sum / double(im.pixels.size());
+  };
+  const std::string uniform = (dir_ / "uniform.exr").string(), preetham = (dir_ / "preetham.exr").string();
+  Result r = run("reference " + scene + " -o " + uniform);
+  ASSERT_EQ(r.code, 0) << r.output;
+  r = run("reference " + scene + " --set 'sky.model=\"preetham\"' -o " + preetham);
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_GT(std::fabs(mean(preetham) / mean(uniform) - 1), 0.02);  // the sky near the horizon differs
+  r = run("reference " + scene + " --set 'surface.type=\"fft\"' -o " + (dir_ / "waves.exr").string());
+  EXPECT_NE(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("surface.type"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir_ / "waves.exr"));
 }
 
 // Deep, clear, strongly forward water (g 0.95, a 0.007, b 1: u = 0.6, ω₀ = 0.993): light needs more
