@@ -69,11 +69,15 @@ def sea_tables(model):
             (widened + "view_steep.csv", 40, 0, 0.9), (widened + "view_grazing.csv", 40, 0, 0.9)]
 
 
+# Shipped scenes measured as they are (tests/perf/scene_vs_pathtracer.sh: whole image and halves), each
+# with its regime: Jerlov type, g, bottom depth, sun zenith, sky.
+UNDERWATER_SCENES = [("results/underwater/snells_window_vs_pathtracer.csv", "IB", 0.9, 8.0, 40, 3)]
+
 SOURCES = {
     ("sea", "paper"): sea_tables("paper"),
     ("sea", "multiple"): sea_tables("multiple"),
-    ("underwater", "thesis"): UNDERWATER,
-    ("underwater", "discrete_ordinates"): UNDERWATER,
+    ("underwater", "thesis"): UNDERWATER + UNDERWATER_SCENES,
+    ("underwater", "discrete_ordinates"): UNDERWATER + UNDERWATER_SCENES,
 }
 HEADER = ["a", "b", "g", "bottom_m", "sun_zenith_deg", "sky", "max_abs_error", "worst_ratio", "reference_rel_se",
           "regions", "source"]
@@ -111,6 +115,17 @@ def main():
             rows[("underwater", model)].append([float(r["a"]), float(r["b"]), float(r["g"]), bottom, sun, sky,
                                                 round(abs(worst[0] - 1), 4), round(worst[0], 4),
                                                 round(max(s for _, s in judged), 4), len(judged), source])
+    for i, (table, jerlov, g, bottom, sun, sky) in enumerate(UNDERWATER_SCENES):
+        by_model = {}
+        for r in read(table):
+            by_model.setdefault(r["model"], []).append((float(r["ratio"]), float(r["ratio_se"])))
+        for model, judged in by_model.items():
+            worst = max(judged, key=lambda x: abs(x[0] - 1))
+            rows[("underwater", model)].append([round(at550("data/jerlov_a.csv", jerlov), 5),
+                                                round(at550("data/jerlov_b.csv", jerlov), 5), g, bottom, sun, sky,
+                                                round(abs(worst[0] - 1), 4), round(worst[0], 4),
+                                                round(max(e for _, e in judged), 4), len(judged),
+                                                len(UNDERWATER) + i])
     for (view, model), table in rows.items():
         with open(os.path.join(out_dir, f"{view}_{model}.csv"), "w", newline="") as f:
             w = csv.writer(f, lineterminator="\n")
