@@ -62,6 +62,10 @@
  * that scatters first or meets nothing), so that the image splits into the paths that reached a surface
  * unscattered and those that scattered, as the fast model's direct layer against backscatter + forward
  * (docs/layers.md). Camera above the surface: 0.
+ * Height-field floor (SEASIM_PT_HEIGHT_FIELD = 1; the sea's [bottom] type = "heightfield", 000 §5.4): the floor of
+ * common/sea_bottom.h (bilinear patches, exact first intersection, sea_hf_intersect) in place of the flat bottom
+ * (UwParams.bottom_depth 0), met by every path segment and blocking the shadow rays to the sun; its local
+ * normal for the Lambertian terms. SeaHeightField and its depth nodes are arguments 18 and 19.
  * Defines: SEASIM_SKY_MODEL (common/sky.h: 0 uniform, the default, 1 CIE clear, 2 image, 3 Preetham),
  * SEASIM_HAS_OBJECTS (0/1), SEASIM_PT_ISOTROPIC (0/1: phase 1/(4π) instead of HG),
  * SEASIM_PT_PHASE_TABLE (0/1: the water's measured or parameterised phase from `phase_tables`, its values
@@ -88,6 +92,14 @@
 #include "common/sky.h"
 #include "common/sky_params.h"
 #include "common/sky_view.h"
+#include "common/sea_surface.h"
+#include "common/sea_bottom_params.h"
+#include "common/sea_second.h"
+#include "common/sea_bottom.h"
+
+#ifndef SEASIM_PT_HEIGHT_FIELD
+#define SEASIM_PT_HEIGHT_FIELD 0
+#endif
 
 #ifndef SEASIM_HAS_OBJECTS
 #define SEASIM_HAS_OBJECTS 1
@@ -145,17 +157,41 @@ static inline float pt_sky(const __global UwBand* bn, __constant SkyParams* sky_
 #endif
 }
 
-/* Visibility of the sun from x (below the surface): 1 unless an object blocks the shadow ray along s_w
- * before the surface (the bottom cannot: the ray goes up). */
-static inline float sun_visibility(const __global UwObject* objects, int count, float3 x, float3 s_w) {
+/* The scene's geometry for a path: objects, the surface and the flat bottom (uw_scene_hit), and with
+ * SEASIM_PT_HEIGHT_FIELD the height-field floor where it comes first (UW_MAT_BOTTOM, its normal). */
+static inline float pt_scene_hit(const __global UwObject* objects, int count, float bottom_depth,
+                                 __constant SeaHeightField* hf, const __global float* hf_depth, float3 o, float3 d,
+                                 float3* n, int* mat) {
+  float S = uw_scene_hit(objects, count, bottom_depth, o, d, 0.0f, n, mat);
+#if SEASIM_PT_HEIGHT_FIELD
+  float t_floor;
+  float3 n_floor;
+  if (sea_hf_intersect(hf, hf_depth, o, d, fmin(S, 1.0e6f), &t_floor, &n_floor) && t_floor < S) {
+    S = t_floor;
+    *n = n_floor;
+    *mat = UW_MAT_BOTTOM;
+  }
+#endif
+  return S;
+}
+
+/* Visibility of the sun from x (below the surface): 1 unless an object (or the height-field floor) blocks
+ * the shadow ray along s_w before the surface (the flat bottom cannot: the ray goes up). */
+static inline float sun_visibility(const __global UwObject* objects, int count, __constant SeaHeightField* hf,
+                                   const __global float* hf_depth, float3 x, float3 s_w) {
 #if SEASIM_HAS_OBJECTS
   float3 n;
   int mat;
   uw_scene_hit(objects, count, 0.0f, x, s_w, 0.0f, &n, &mat);
-  return mat >= 0 ? 0.0f : 1.0f;
-#else
-  return 1.0f;
+  if (mat >= 0) return 0.0f;
 #endif
+#if SEASIM_PT_HEIGHT_FIELD
+  float t_floor;
+  float3 n_floor;
+  const float to_surface = s_w.y > 0.0f ? -x.y / s_w.y : 1.0e6f;
+  if (sea_hf_intersect(hf, hf_depth, x, s_w, fmin(to_surface, 1.0e6f), &t_floor, &n_floor)) return 0.0f;
+#endif
+  return 1.0f;
 }
 
 /* Visibility of a lamp at distance s along the unit direction w from x: 1 unless an object blocks it. */
@@ -277,7 +313,8 @@ static inline int single_only_mode(int max_bounces) { return max_bounces == 1; }
 static inline float trace_path(__constant UwParams* p, const __global UwBand* bn, const __global UwObject* objects,
                                const __global float* albedo, __constant UwLampParams* lp, const __global UwLamp* lamps,
                                const __global float* lamp_spectra, const __global float* phase_tables,
-                               __constant SkyParams* sky_params, const __global float* sky, int band,
+                               __constant SkyParams* sky_params, const __global float* sky,
+                               __constant SeaHeightField* hf, const __global float* hf_depth, int band,
                                int max_bounces, unsigned int key, float3 o, float3 d, float* direct) {
 #if SEASIM_HAS_OBJECTS
   const int count = p->object_count;
@@ -301,7 +338,7 @@ static inline float trace_path(__constant UwParams* p, const __global UwBand* bn
   for (;;) {
     float3 n;
     int mat;
-    const float S = uw_scene_hit(objects, count, p->bottom_depth, o, d, 0.0f, &n, &mat);
+    const float S = pt_scene_hit(objects, count, p->bottom_depth, hf, hf_depth, o, d, &n, &mat);
     if (lp->lamp_count > 0 && beta > 0.0f)
       L += beta * lamps_segment(lp, lamps, lamp_spectra, objects, count, band, bn->b, c, p->g, phase_tables, o, d, S, key, &dim);
     const float t = pt_sample_distance(c, pt_uniform(key, dim++));
@@ -316,7 +353,7 @@ static inline float trace_path(__constant UwParams* p, const __global UwBand* bn
       if (e_beam0 > 0.0f && beta > 0.0f) {
         const float phase = pt_phase(phase_tables, p->g, dot(s_w, d)); /* sunlight along -s_w, then along -d */
         const float e_beam = uw_beam_irradiance(e_beam0, c, mu_w, fmax(-o.y, 0.0f));
-        if (e_beam > 0.0f) L += beta * phase * e_beam * sun_visibility(objects, count, o, s_w);
+        if (e_beam > 0.0f) L += beta * phase * e_beam * sun_visibility(objects, count, hf, hf_depth, o, s_w);
       }
       if (single_only || vertices >= max_bounces) break;
       d = pt_scatter(phase_tables, d, p->g, pt_uniform(key, dim), pt_uniform(key, dim + 1));
@@ -342,7 +379,8 @@ static inline float trace_path(__constant UwParams* p, const __global UwBand* bn
       const float cos_sun = dot(n, s_w);
       if (e_beam0 > 0.0f && cos_sun > 0.0f && rho > 0.0f) {
         const float e_beam = uw_beam_irradiance(e_beam0, c, mu_w, fmax(-o.y, 0.0f));
-        if (e_beam > 0.0f) L += beta * rho * M_1_PI_F * cos_sun * e_beam * sun_visibility(objects, count, x, s_w);
+        if (e_beam > 0.0f)
+          L += beta * rho * M_1_PI_F * cos_sun * e_beam * sun_visibility(objects, count, hf, hf_depth, x, s_w);
       }
       if (lp->lamp_count > 0 && rho > 0.0f)
         L += beta * rho * lamps_lambert(lp, lamps, lamp_spectra, objects, count, band, c, x, n);
@@ -373,7 +411,8 @@ __kernel void reference_path_trace(__constant UwParams* p, __global const UwBand
                                    __global float4* m2, __constant UwLampParams* lp, __global const UwLamp* lamps,
                                    __global const float* lamp_spectra, __global const float* phase_tables,
                                    __global float4* direct_mean, __global float4* direct_m2,
-                                   __constant SkyParams* sky_params, __global const float* sky) {
+                                   __constant SkyParams* sky_params, __global const float* sky,
+                                   __constant SeaHeightField* hf, __global const float* hf_depth) {
   const int x = get_global_id(0);
   const int y = get_global_id(1);
   if (x >= p->width || y >= p->height) return;
@@ -402,8 +441,8 @@ __kernel void reference_path_trace(__constant UwParams* p, __global const UwBand
     const __global UwBand* bn = &bands[band];
     float L, L_direct = 0.0f;
     if (eye.y <= 0.0f) {
-      L = trace_path(p, bn, objects, albedo, lp, lamps, lamp_spectra, phase_tables, sky_params, sky, band,
-                     max_bounces, key, eye, d, &L_direct);
+      L = trace_path(p, bn, objects, albedo, lp, lamps, lamp_spectra, phase_tables, sky_params, sky, hf, hf_depth,
+                     band, max_bounces, key, eye, d, &L_direct);
     } else if (d.y >= 0.0f) {
       L = pt_sky(bn, sky_params, sky, d); /* camera above the surface looking up: the sky (no sun disk) */
     } else {
@@ -420,7 +459,7 @@ __kernel void reference_path_trace(__constant UwParams* p, __global const UwBand
           single_only_mode(max_bounces) ? 0.0f : pt_sky(bn, sky_params, sky, (float3)(d.x, -d.y, d.z));
       L = R * sky_reflected + (1.0f - R) / (p->ior * p->ior) *
                                  trace_path(p, bn, objects, albedo, lp, lamps, lamp_spectra, phase_tables, sky_params,
-                                            sky, band, max_bounces, key, o, d_w, &unused);
+                                            sky, hf, hf_depth, band, max_bounces, key, o, d_w, &unused);
     }
     L *= p->band_count;
     L_direct *= p->band_count;

@@ -141,7 +141,8 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0LL, 4294967295LL));
   reference->add_flag("--all-orders", ref_cmd.all_orders,
                       "Sea seen from above: all orders of scattering by the path tracer (camera above the surface, "
-                      "refracting in; the scene's sky, flat surface, no sun glint), instead of paper 000's own terms by quadrature");
+                      "refracting in; the scene's sky and floor, a flat surface, no sun glint), instead of paper "
+                      "000's own terms by quadrature");
   reference->add_option("--max-bounces", ref_cmd.max_bounces,
                         "Path tracer: at most this many scattering vertices per path (default 1000, as the Mitsuba "
                         "validation's max_depth; Russian roulette ends nearly every path before. 64 took up to 40 % "

@@ -1,6 +1,7 @@
 #include "reference/reference_image.h"
 
 #include <chrono>
+#include <optional>
 
 #include "device/device.h"
 #include "plan/scene_facts.h"
@@ -38,9 +39,8 @@ ReferenceImage renderReference(const Scene& scene, const ReferenceOptions& optio
   if (above && (cameraUnderwater(scene) || !scene.water.present || !(scene.camera.position.y > 0))) {
     throw RuntimeError("reference --all-orders: for the sea seen from above only (a [water] scene, camera y > 0)");
   }
-  if (above && (scene.surface.type != SurfaceDesc::Type::Flat || scene.bottom.type == BottomDesc::Type::HeightField)) {
-    throw RuntimeError("reference --all-orders: the path tracer models a flat surface and a flat bottom; set "
-                       "surface.type = \"flat\" and a flat or no bottom");
+  if (above && scene.surface.type != SurfaceDesc::Type::Flat) {
+    throw RuntimeError("reference --all-orders: the path tracer models a flat surface; set surface.type = \"flat\"");
   }
   ReferenceImage out;
   if (above || cameraUnderwater(scene)) {
@@ -59,6 +59,12 @@ ReferenceImage renderReference(const Scene& scene, const ReferenceOptions& optio
     if (!scene.underwater.multiple_scattering) settings.max_bounces = 1;
     const UnderwaterLamps lamps = makeUnderwaterLamps(scene, grid);  // [[spotlights]] under water, by NEE
     settings.lamps = &lamps;
+    // The sea's height-field floor (000 §5.4), met exactly by every path (common/sea_bottom.h).
+    std::optional<HeightField> floor;
+    if (scene.bottom.type == BottomDesc::Type::HeightField) {
+      floor = loadHeightField(scene.bottom, scene.files.get());
+      settings.height_field = &*floor;
+    }
     settings.lamp_mis = options.lamp_mis;
     settings.progress = options.progress;
     // A phase other than HG (`[water] phase`) is traced exactly from its tables; HG keeps its closed form.

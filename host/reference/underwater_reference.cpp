@@ -122,7 +122,10 @@ UnderwaterReferenceResult renderUnderwaterReference(Device& device, const Underw
         std::string("SEASIM_PT_JITTER=") + (settings.jitter ? "1" : "0"),
         std::string("SEASIM_PT_LAMP_MIS=") + (settings.lamp_mis ? "1" : "0"),
         std::string("SEASIM_PT_PHASE_TABLE=") + (settings.phase_tables.empty() ? "0" : "1"),
-        "SEASIM_SKY_MODEL=" + std::to_string(setup.sky_params.model)};
+        "SEASIM_SKY_MODEL=" + std::to_string(setup.sky_params.model),
+        std::string("SEASIM_PT_HEIGHT_FIELD=") + (settings.height_field ? "1" : "0")};
+    if (settings.height_field && p.bottom_depth > 0)
+      throw RuntimeError("underwater reference: a height-field floor and a flat bottom at once");
     if (!settings.phase_tables.empty() && settings.phase_tables.size() != PHASE_PT_VALUES + PHASE_PT_SAMPLES)
       throw RuntimeError("underwater reference: the phase tables hold " + std::to_string(settings.phase_tables.size()) +
                          " values, not " + std::to_string(PHASE_PT_VALUES + PHASE_PT_SAMPLES));
@@ -178,6 +181,15 @@ UnderwaterReferenceResult renderUnderwaterReference(Device& device, const Underw
                        const_cast<float*>(sky.data()));
     kernel.setArg(16, sky_params);
     kernel.setArg(17, sky_buf);
+    // The height-field floor's block and depth nodes (a 2 x 2 flat placeholder when there is none: unread).
+    const HeightField no_floor = makeHeightField(2, 2, 1.0, std::vector<float>(4, 1.0f));
+    const HeightField& floor = settings.height_field ? *settings.height_field : no_floor;
+    cl::Buffer hf_params(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(SeaHeightField),
+                         const_cast<SeaHeightField*>(&floor.params));
+    cl::Buffer hf_depth(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(float) * floor.depth.size(),
+                        const_cast<float*>(floor.depth.data()));
+    kernel.setArg(18, hf_params);
+    kernel.setArg(19, hf_depth);
     const size_t local = 8;
     const cl::NDRange global((static_cast<size_t>(p.width) + local - 1) / local * local,
                              (static_cast<size_t>(p.height) + local - 1) / local * local);

@@ -22,6 +22,7 @@
 #include "device/device.h"
 #include "io/image.h"
 #include "math/vec3.h"
+#include "passes/sea_heightfield.h"
 #include "underwater/lamps_setup.h"
 #include "underwater/underwater_setup.h"
 
@@ -55,6 +56,9 @@ struct UnderwaterReferenceSettings {
   // heuristic; false, one equiangular sample on the whole segment alone (the plain estimator, kept to
   // measure the combination's variance against; both are unbiased).
   bool lamp_mis = true;
+  // A height-field floor (the sea's [bottom] type = "heightfield": passes/sea_heightfield.h) in place of
+  // the flat bottom (UwParams.bottom_depth must be 0); null: none. Must outlive the call.
+  const HeightField* height_field = nullptr;
   std::function<void(int done, int total)> progress;  // after each launch: samples done, samples asked
 };
 

@@ -5,6 +5,8 @@
 //     e^{-c S} ρ/π E_beam(y) max(n·s_w, 0) V;
 //   * single-scattering mode (max_bounces = 1) against the L_SS quadrature, without objects (also
 //     against its closed form) and with an occluding sphere (exact shadow rays in double);
+//   * a height-field floor (the sea's, common/sea_bottom.h): a sloping plane lit by the sun without
+//     scattering against its closed form, and a floor of one depth as the flat bottom at that depth;
 //   * Snell's window with b = 0: n² (1 - F) L_sky e^{-c S}, zero under total internal reflection;
 //     under a Preetham sky L_sky(a) towards the refracted direction a in air, and the camera above
 //     seeing that sky directly and mirrored by R, against the host's sky module (host/sky) in double;
@@ -292,6 +294,107 @@ SceneSpec singleScatteringScene() {
   spec.g = 0.8;
   spec.bands = {{0.05, 0.3, 2.0, 0.3, 0.0, {kW1[0], kW1[1], kW1[2]}}, {0.3, 0.6, 1.0, 0.3, 0.0, {kW3[0], kW3[1], kW3[2]}}};
   return spec;
+}
+
+// A floor of 21 x 21 nodes over 40 m whose depth is depth0 + slope z (a plane: bilinear patches of a
+// linear function are exact).
+seasim::HeightField rampFloor(double depth0, double slope) {
+  std::vector<float> depth(21 * 21);
+  for (int j = 0; j < 21; ++j)
+    for (int i = 0; i < 21; ++i) depth[j * 21 + i] = float(depth0 + slope * (-20.0 + 2.0 * j));
+  return seasim::makeHeightField(21, 21, 40.0, depth);
+}
+
+TEST(UnderwaterReference, HeightFieldFloorIsLitByTheSunAsItsPlane) {
+  // b = 0, no sky: the sloping floor's direct sun, e^{-c S} ρ/π E_beam(y) max(n·s_w, 0), n ∝ (0, 1, slope)
+  // (depth grows along +z: the floor y = -(5 + 0.2 z) rises towards -z, where the camera looks).
+  SceneSpec spec;
+  spec.eye = {0, -2, 0};
+  spec.forward = {0, -0.5, -1};
+  spec.fov_y_deg = 40;
+  spec.sun_water = seasim::normalize(Vec3{0.2, 0.9, 0.3});
+  spec.bands = {{0.08, 0.0, 2.0, 0.0, 0.5, {kW1[0], kW1[1], kW1[2]}}};
+  const UnderwaterSetup s = build(spec);
+  const seasim::HeightField floor = rampFloor(5.0, 0.2);
+  const UwParams& p = s.params;
+  const kd::real3 sw{p.sun_dir_water[0], p.sun_dir_water[1], p.sun_dir_water[2]};
+  const kd::real3 n = kd::normalize(kd::real3{0.0, 1.0, 0.2});
+  const Image ref = perPixel(s, [&](int i, kd::real3 d) {
+    const kd::real3 o = eyeOf(s);
+    const double t = -(5.0 + 0.2 * o.z + o.y) / (d.y + 0.2 * d.z);  // o + t d on y = -(5 + 0.2 z)
+    const kd::real3 x = o + t * d;
+    const UwBand& b = s.bands[i];
+    return std::exp(-b.c * t) * b.bottom_albedo / M_PI * kd::uw_beam_irradiance(b.e_beam0, b.c, sw.y, -x.y) *
+           std::max(kd::dot(n, sw), 0.0);
+  });
+  UnderwaterReferenceSettings set;
+  set.samples_per_pixel = 64;
+  set.jitter = false;
+  set.max_bounces = 2;  // the floor's first hit: its light mirrored back down by the surface is not in ref
+  set.height_field = &floor;
+  const UnderwaterReferenceResult r = seasim::renderUnderwaterReference(device(), s, set);
+  expectFiniteNonNegative(r);
+  expectAgrees(r, ref, "height-field ramp, direct sun");
+}
+
+TEST(UnderwaterReference, HeightFieldShelfShadowsTheSunBeam) {
+  // Single scattering along a level view 10 m down, the sun beam travelling down towards -z at 45°: a
+  // shelf 1 m deep over z >= 0 shades the first 3 m of the view ray (from z = -6 to -9), so the image is
+  // e^{-3c} of the one over a floor 30 m deep everywhere (L_SS = ∫ e^{-c t} b p E_beam V dt, E_beam the
+  // same all along a level ray).
+  SceneSpec spec;
+  spec.width = 4, spec.height = 4;
+  spec.eye = {0, -10, -6};
+  spec.forward = {0, 0, -1};
+  spec.fov_y_deg = 0.5;
+  spec.sun_water = seasim::normalize(Vec3{0, 1, 1});
+  spec.g = 0.5;
+  const double c = 0.2;
+  spec.bands = {{0.1, 0.1, 1.0, 0.0, 0.3, {1, 1, 1}}};
+  const UnderwaterSetup s = build(spec);
+  std::vector<float> shelf(21 * 21), deep(21 * 21, 30.0f);
+  for (int j = 0; j < 21; ++j)
+    for (int i = 0; i < 21; ++i) shelf[j * 21 + i] = -20.0 + 2.0 * j >= 0 ? 1.0f : 30.0f;
+  const seasim::HeightField with_shelf = seasim::makeHeightField(21, 21, 40.0, shelf);
+  const seasim::HeightField without = seasim::makeHeightField(21, 21, 40.0, deep);
+  UnderwaterReferenceSettings set;
+  set.samples_per_pixel = 8192;
+  set.batch = 1024;
+  set.max_bounces = 1;
+  set.jitter = false;
+  set.height_field = &with_shelf;
+  const UnderwaterReferenceResult shaded = seasim::renderUnderwaterReference(device(), s, set);
+  set.height_field = &without;
+  const UnderwaterReferenceResult open = seasim::renderUnderwaterReference(device(), s, set);
+  const double ratio = shaded.image_mean / open.image_mean;
+  std::printf("[height-field shelf] shaded / open %.4f, e^{-3c} %.4f\n", ratio, std::exp(-3 * c));
+  EXPECT_NEAR(ratio, std::exp(-3 * c), 0.02);
+}
+
+TEST(UnderwaterReference, HeightFieldFloorOfOneDepthIsTheFlatBottom) {
+  // All orders in scattering water: a floor 6 m down everywhere traces the flat bottom at 6 m's image
+  // (the same paths but for rounding in the hit distance).
+  SceneSpec spec = singleScatteringScene();
+  spec.forward = {0, -0.4, -1};
+  spec.bottom_depth = 6.0;
+  const UnderwaterSetup flat = build(spec);
+  spec.bottom_depth = 0.0;
+  const UnderwaterSetup none = build(spec);
+  const seasim::HeightField floor = rampFloor(6.0, 0.0);
+  UnderwaterReferenceSettings set;
+  set.samples_per_pixel = 256;
+  set.batch = 64;
+  const UnderwaterReferenceResult a = seasim::renderUnderwaterReference(device(), flat, set);
+  set.height_field = &floor;
+  const UnderwaterReferenceResult b = seasim::renderUnderwaterReference(device(), none, set);
+  expectFiniteNonNegative(b);
+  std::printf("[height field of one depth] image mean %.6g against the flat bottom's %.6g (se %.3g)\n", b.image_mean,
+              a.image_mean, a.image_mean_std_error);
+  EXPECT_NEAR(b.image_mean, a.image_mean, 1e-3 * a.image_mean);
+  set.height_field = nullptr;  // without the floor the image differs: the test sees the floor
+  EXPECT_GT(std::fabs(seasim::renderUnderwaterReference(device(), none, set).image_mean / a.image_mean - 1), 0.1);
+  set.height_field = &floor;  // a floor and a flat bottom at once is refused
+  EXPECT_THROW(seasim::renderUnderwaterReference(device(), flat, set), seasim::RuntimeError);
 }
 
 TEST(UnderwaterReference, SingleScatteringModeMatchesQuadratureWithoutObjects) {
