@@ -456,6 +456,10 @@ class SceneParser {
     TableReader probe(src_, t, "bottom");
     std::string type =
         probe.choice("type", present ? "flat" : "none", {"none", "flat", "heightfield"});
+    // The underwater models have no height-field floor (their set-up takes a flat bottom or none).
+    probe.check(type != "heightfield" || !scene_.water.present || !(scene_.camera.position.y < 0), "type",
+                "\"heightfield\" is drawn from above the water (the sea and shallow water); with the camera under "
+                "the surface use type = \"flat\" or \"none\"");
     TableReader r(src_, t, "bottom", "not used with type = '" + type + "'");
     r.has("type");
     BottomDesc& b = scene_.bottom;

@@ -763,3 +763,21 @@ TEST(SceneParserLamps, LampsModelByNameWithTheOlderSwitchKept) {
 }
 
 }  // namespace
+
+namespace {
+
+// The underwater models have no height-field floor: with the camera under the surface the key is refused
+// by line, where before the floor was silently left out of the render.
+TEST(SceneParser, HeightFieldBottomUnderWaterIsRefusedByLine) {
+  const std::string floor = "[bottom]\ntype = \"heightfield\"\nheightfield = \"rock.png\"\n";
+  const std::string under = "[camera]\nposition = [0, -3, 0]\nlook_at = [0, -4, -8]\n[water]\njerlov = \"IB\"\n";
+  const std::string msg = errorOf(under + floor, {}, "uw.toml");
+  EXPECT_NE(msg.find("uw.toml:7"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("bottom.type"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("under"), std::string::npos) << msg;
+  // From above (the sea, shallow water) it stays a floor.
+  const std::string above = "[camera]\nposition = [0, 5, 0]\nlook_at = [0, 0, -8]\n[water]\njerlov = \"IB\"\n";
+  EXPECT_EQ(errorOf(above + floor, {}, "sea.toml").find("bottom.type"), std::string::npos);
+}
+
+}  // namespace
