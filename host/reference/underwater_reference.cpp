@@ -91,6 +91,77 @@ void summariseBlocks(const BatchMeans& per_value, const BatchMeans& per_direct, 
           : total;
 }
 
+// The kernel's defines: objects, phase, pixel sampling, lamp estimator, sky model, height-field floor.
+// Throws for settings it cannot trace (phase tables of the wrong size, a floor and a flat bottom at once).
+std::vector<std::string> tracerDefines(const UnderwaterSetup& setup, const UnderwaterReferenceSettings& settings) {
+  if (settings.height_field && setup.params.bottom_depth > 0)
+    throw RuntimeError("underwater reference: a height-field floor and a flat bottom at once");
+  if (!settings.phase_tables.empty() && settings.phase_tables.size() != PHASE_PT_VALUES + PHASE_PT_SAMPLES)
+    throw RuntimeError("underwater reference: the phase tables hold " + std::to_string(settings.phase_tables.size()) +
+                       " values, not " + std::to_string(PHASE_PT_VALUES + PHASE_PT_SAMPLES));
+  return {std::string("SEASIM_HAS_OBJECTS=") + (setup.params.object_count > 0 ? "1" : "0"),
+          std::string("SEASIM_PT_ISOTROPIC=") + (settings.isotropic ? "1" : "0"),
+          std::string("SEASIM_PT_JITTER=") + (settings.jitter ? "1" : "0"),
+          std::string("SEASIM_PT_LAMP_MIS=") + (settings.lamp_mis ? "1" : "0"),
+          std::string("SEASIM_PT_PHASE_TABLE=") + (settings.phase_tables.empty() ? "0" : "1"),
+          "SEASIM_SKY_MODEL=" + std::to_string(setup.sky_params.model),
+          std::string("SEASIM_PT_HEIGHT_FIELD=") + (settings.height_field ? "1" : "0")};
+}
+
+// The scene's read-only inputs on the device, in the kernel's argument order (an absent input is one
+// zero entry: lamps, the phase tables for HG, the sky's texels, a 2 x 2 floor; the kernel does not read it).
+struct SceneBuffers {
+  cl::Buffer params, bands, objects, albedo, lamp_params, lamps, lamp_spectra, phase, sky_params, sky, hf_params,
+      hf_depth;
+
+  void bind(cl::Kernel& kernel) const {
+    kernel.setArg(0, params);
+    kernel.setArg(1, bands);
+    kernel.setArg(2, objects);
+    kernel.setArg(3, albedo);
+    kernel.setArg(10, lamp_params);
+    kernel.setArg(11, lamps);
+    kernel.setArg(12, lamp_spectra);
+    kernel.setArg(13, phase);
+    kernel.setArg(16, sky_params);
+    kernel.setArg(17, sky);
+    kernel.setArg(18, hf_params);
+    kernel.setArg(19, hf_depth);
+  }
+};
+
+template <typename T>
+cl::Buffer readOnly(cl::Context& ctx, const T* data, size_t count) {
+  return cl::Buffer(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(T) * count, const_cast<T*>(data));
+}
+
+SceneBuffers makeSceneBuffers(cl::Context& ctx, const UnderwaterSetup& setup,
+                              const UnderwaterReferenceSettings& settings) {
+  UnderwaterLamps no_lamps;  // lamp_count 0
+  no_lamps.lamps.push_back(UwLamp{});
+  no_lamps.spectra.push_back(0.0f);
+  const UnderwaterLamps& lamps = settings.lamps ? *settings.lamps : no_lamps;
+  const std::vector<float> none(1, 0.0f);
+  const std::vector<float>& phase = settings.phase_tables.empty() ? none : settings.phase_tables;
+  const std::vector<float>& sky = setup.sky_buffer.empty() ? none : setup.sky_buffer;
+  const HeightField no_floor = makeHeightField(2, 2, 1.0, std::vector<float>(4, 1.0f));
+  const HeightField& floor = settings.height_field ? *settings.height_field : no_floor;
+  SceneBuffers b;
+  b.params = readOnly(ctx, &setup.params, 1);
+  b.bands = readOnly(ctx, setup.bands.data(), setup.bands.size());
+  b.objects = readOnly(ctx, setup.objects.data(), setup.objects.size());
+  b.albedo = readOnly(ctx, setup.albedo.data(), setup.albedo.size());
+  b.lamp_params = readOnly(ctx, &lamps.params, 1);
+  b.lamps = readOnly(ctx, lamps.lamps.data(), lamps.lamps.size());
+  b.lamp_spectra = readOnly(ctx, lamps.spectra.data(), lamps.spectra.size());
+  b.phase = readOnly(ctx, phase.data(), phase.size());
+  b.sky_params = readOnly(ctx, &setup.sky_params, 1);
+  b.sky = readOnly(ctx, sky.data(), sky.size());
+  b.hf_params = readOnly(ctx, &floor.params, 1);
+  b.hf_depth = readOnly(ctx, floor.depth.data(), floor.depth.size());
+  return b;
+}
+
 }  // namespace
 
 Vec3 underwaterPixelDirection(const UwParams& p, double x, double y) {
@@ -116,80 +187,22 @@ UnderwaterReferenceResult renderUnderwaterReference(Device& device, const Underw
   BatchMeans per_direct(3 * pixels);  // the unscattered part, the same way
   BatchMeans per_image(1);           // the blocks' image means
   try {
-    const std::vector<std::string> defines = {
-        std::string("SEASIM_HAS_OBJECTS=") + (p.object_count > 0 ? "1" : "0"),
-        std::string("SEASIM_PT_ISOTROPIC=") + (settings.isotropic ? "1" : "0"),
-        std::string("SEASIM_PT_JITTER=") + (settings.jitter ? "1" : "0"),
-        std::string("SEASIM_PT_LAMP_MIS=") + (settings.lamp_mis ? "1" : "0"),
-        std::string("SEASIM_PT_PHASE_TABLE=") + (settings.phase_tables.empty() ? "0" : "1"),
-        "SEASIM_SKY_MODEL=" + std::to_string(setup.sky_params.model),
-        std::string("SEASIM_PT_HEIGHT_FIELD=") + (settings.height_field ? "1" : "0")};
-    if (settings.height_field && p.bottom_depth > 0)
-      throw RuntimeError("underwater reference: a height-field floor and a flat bottom at once");
-    if (!settings.phase_tables.empty() && settings.phase_tables.size() != PHASE_PT_VALUES + PHASE_PT_SAMPLES)
-      throw RuntimeError("underwater reference: the phase tables hold " + std::to_string(settings.phase_tables.size()) +
-                         " values, not " + std::to_string(PHASE_PT_VALUES + PHASE_PT_SAMPLES));
-    const BuiltProgram& built = device.program("reference.cl", defines);
+    const BuiltProgram& built = device.program("reference.cl", tracerDefines(setup, settings));
     cl::Kernel kernel(built.program, "reference_path_trace");
     cl::Context& ctx = device.context();
-    cl::Buffer params(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(UwParams), const_cast<UwParams*>(&p));
-    cl::Buffer bands(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(UwBand) * setup.bands.size(),
-                     const_cast<UwBand*>(setup.bands.data()));
-    cl::Buffer objects(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(UwObject) * setup.objects.size(),
-                       const_cast<UwObject*>(setup.objects.data()));
-    cl::Buffer albedo(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(float) * setup.albedo.size(),
-                      const_cast<float*>(setup.albedo.data()));
+    const SceneBuffers scene = makeSceneBuffers(ctx, setup, settings);
+    scene.bind(kernel);
     cl::Buffer mean_buf(ctx, CL_MEM_READ_WRITE, sizeof(cl_float4) * pixels);
     cl::Buffer m2_buf(ctx, CL_MEM_READ_WRITE, sizeof(cl_float4) * pixels);
     cl::Buffer direct_mean_buf(ctx, CL_MEM_READ_WRITE, sizeof(cl_float4) * pixels);
     cl::Buffer direct_m2_buf(ctx, CL_MEM_READ_WRITE, sizeof(cl_float4) * pixels);
     cl::CommandQueue& queue = device.queue();
-    kernel.setArg(0, params);
-    kernel.setArg(1, bands);
-    kernel.setArg(2, objects);
-    kernel.setArg(3, albedo);
     kernel.setArg(4, static_cast<cl_uint>(settings.seed));
     kernel.setArg(7, static_cast<cl_int>(settings.max_bounces));
     kernel.setArg(8, mean_buf);
     kernel.setArg(9, m2_buf);
-    UnderwaterLamps no_lamps;  // lamp_count 0, one zero entry per buffer
-    no_lamps.lamps.push_back(UwLamp{});
-    no_lamps.spectra.push_back(0.0f);
-    const UnderwaterLamps& lamps = settings.lamps ? *settings.lamps : no_lamps;
-    cl::Buffer lamp_params(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(UwLampParams),
-                           const_cast<UwLampParams*>(&lamps.params));
-    cl::Buffer lamp_buf(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(UwLamp) * lamps.lamps.size(),
-                        const_cast<UwLamp*>(lamps.lamps.data()));
-    cl::Buffer lamp_spectra(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(float) * lamps.spectra.size(),
-                            const_cast<float*>(lamps.spectra.data()));
-    kernel.setArg(10, lamp_params);
-    kernel.setArg(11, lamp_buf);
-    kernel.setArg(12, lamp_spectra);
-    const std::vector<float> no_phase(1, 0.0f);  // HG: the argument is not read
-    const std::vector<float>& phase = settings.phase_tables.empty() ? no_phase : settings.phase_tables;
-    cl::Buffer phase_buf(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(float) * phase.size(),
-                         const_cast<float*>(phase.data()));
-    kernel.setArg(13, phase_buf);
     kernel.setArg(14, direct_mean_buf);
     kernel.setArg(15, direct_m2_buf);
-    // The scene's sky, as kd_multiple.cl's Snell's window reads it (an empty buffer is one zero entry).
-    const std::vector<float> no_sky(1, 0.0f);
-    const std::vector<float>& sky = setup.sky_buffer.empty() ? no_sky : setup.sky_buffer;
-    cl::Buffer sky_params(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(SkyParams),
-                          const_cast<SkyParams*>(&setup.sky_params));
-    cl::Buffer sky_buf(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(float) * sky.size(),
-                       const_cast<float*>(sky.data()));
-    kernel.setArg(16, sky_params);
-    kernel.setArg(17, sky_buf);
-    // The height-field floor's block and depth nodes (a 2 x 2 flat placeholder when there is none: unread).
-    const HeightField no_floor = makeHeightField(2, 2, 1.0, std::vector<float>(4, 1.0f));
-    const HeightField& floor = settings.height_field ? *settings.height_field : no_floor;
-    cl::Buffer hf_params(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(SeaHeightField),
-                         const_cast<SeaHeightField*>(&floor.params));
-    cl::Buffer hf_depth(ctx, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(float) * floor.depth.size(),
-                        const_cast<float*>(floor.depth.data()));
-    kernel.setArg(18, hf_params);
-    kernel.setArg(19, hf_depth);
     const size_t local = 8;
     const cl::NDRange global((static_cast<size_t>(p.width) + local - 1) / local * local,
                              (static_cast<size_t>(p.height) + local - 1) / local * local);
