@@ -37,12 +37,11 @@ double columnSeen(const MeasuredCase& c) {
   return c.bottom_m < 0 ? 1.0 : -std::expm1(-(c.a + c.b) * c.bottom_m);
 }
 
-// The scene's features that no measured case has (the studies: flat still surface, flat or no bottom,
-// no caustics, no spotlights; the sky is a case's own column, lookupExpectedError).
+// The scene's features that no measured case has (the studies: flat still surface, no caustics, no
+// spotlights; the sky and the floor's kind are the cases' own columns, lookupExpectedError).
 std::vector<std::string> unmeasuredFeatures(const Scene& scene, bool underwater) {
   std::vector<std::string> f;
   if (scene.surface.type != SurfaceDesc::Type::Flat) f.push_back("waves");
-  if (scene.bottom.type == BottomDesc::Type::HeightField) f.push_back("a height-field bottom");
   if (!scene.spotlights.empty()) f.push_back("spotlights");
   if (underwater && scene.underwater.caustics != UnderwaterDesc::Caustics::None) f.push_back("caustics");
   if (!underwater && scene.sea.bottom_caustics) f.push_back("caustics");
@@ -78,11 +77,12 @@ std::vector<MeasuredCase> loadMeasuredCases(const std::string& view, const std::
     throw RuntimeError(path + ":" + std::to_string(t.empty_cells[0].line) + ": an empty cell in a measured case");
   std::vector<MeasuredCase> cases(t.rows());
   const auto &a = t.column("a"), &b = t.column("b"), &g = t.column("g"), &bottom = t.column("bottom_m"),
-             &sun = t.column("sun_zenith_deg"), &sky = t.column("sky"), &err = t.column("max_abs_error"),
-             &worst = t.column("worst_ratio"), &se = t.column("reference_rel_se"), &source = t.column("source");
+             &sun = t.column("sun_zenith_deg"), &sky = t.column("sky"), &floor = t.column("floor"),
+             &err = t.column("max_abs_error"), &worst = t.column("worst_ratio"), &se = t.column("reference_rel_se"),
+             &source = t.column("source");
   for (size_t i = 0; i < cases.size(); ++i)
-    cases[i] = MeasuredCase{a[i], b[i], g[i], bottom[i], sun[i], static_cast<int>(sky[i]), err[i], worst[i], se[i],
-                            static_cast<int>(source[i])};
+    cases[i] = MeasuredCase{a[i],   b[i],     g[i],  bottom[i], sun[i], static_cast<int>(sky[i]), static_cast<int>(floor[i]),
+                            err[i], worst[i], se[i], static_cast<int>(source[i])};
   return cases;
 }
 
@@ -93,14 +93,19 @@ ExpectedError lookupExpectedError(const MeasuredCase& regime, const std::string&
   e.model = model;
   e.unmeasured_features = std::move(features);
   e.distance = std::numeric_limits<double>::infinity();
-  // The cases measured under the scene's sky, when there are any; else every case, and the sky is a
-  // feature no case has.
+  // The cases measured under the scene's sky, when there are any, and among them those over its kind of
+  // floor, when there are any; what no case has is a feature, by name.
   const bool sky_measured =
       std::any_of(cases.begin(), cases.end(), [&](const MeasuredCase& c) { return c.sky == regime.sky; });
   if (!sky_measured && !cases.empty())
     e.unmeasured_features.push_back(std::string("the sky (") + skyName(regime.sky) + ")");
+  auto sky_fits = [&](const MeasuredCase& c) { return !sky_measured || c.sky == regime.sky; };
+  const bool floor_measured = std::any_of(cases.begin(), cases.end(), [&](const MeasuredCase& c) {
+    return sky_fits(c) && c.floor == regime.floor;
+  });
+  if (!floor_measured && !cases.empty() && regime.floor != 0) e.unmeasured_features.push_back("a height-field bottom");
   for (const MeasuredCase& c : cases) {
-    if (sky_measured && c.sky != regime.sky) continue;
+    if (!sky_fits(c) || (floor_measured && c.floor != regime.floor)) continue;
     const double d = regimeDistance(regime, c);
     // Equally near (within 1e-9): the larger error, so a tie never hides the worse case.
     if (d < e.distance - 1e-9 || (std::fabs(d - e.distance) <= 1e-9 && c.max_abs_error > e.nearest.max_abs_error)) {
@@ -130,6 +135,7 @@ std::vector<ExpectedError> expectedErrors(const Scene& scene) {
                         : -1.0;
   regime.sun_zenith_deg = scene.sun.zenith * 180.0 / M_PI;
   regime.sky = skyCode(scene.sky);
+  regime.floor = scene.bottom.type == BottomDesc::Type::HeightField ? 1 : 0;
   const std::string view = underwater ? "underwater" : "sea";
   const std::string model = underwater ? (scene.underwater.model == UnderwaterDesc::Model::DiscreteOrdinates ? "discrete_ordinates" : "thesis")
                                        : (scene.sea.model == SeaDesc::Model::Multiple ? "multiple" : "paper");
@@ -152,7 +158,8 @@ nlohmann::json expectedErrorJson(const std::vector<ExpectedError>& errors) {
                    {"table", e.table},
                    {"nearest_case",
                     {{"a", c.a}, {"b", c.b}, {"g", c.g}, {"bottom_m", c.bottom_m}, {"sun_zenith_deg", c.sun_zenith_deg},
-                     {"sky", skyName(c.sky)}, {"reference_rel_se", c.reference_rel_se}}}});
+                     {"sky", skyName(c.sky)}, {"floor", c.floor ? "height field" : "flat or none"},
+                     {"reference_rel_se", c.reference_rel_se}}}});
   }
   return out;
 }

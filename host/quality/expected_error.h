@@ -26,6 +26,7 @@ struct MeasuredCase {
   double bottom_m = -1;        // -1: no bottom
   double sun_zenith_deg = 0;
   int sky = 0;                 // the sky it was measured under: SEASIM_SKY_* (0 uniform, 1 CIE, 2 image, 3 Preetham)
+  int floor = 0;               // its bottom: 0 flat or none, 1 a height field (bottom_m its mean depth)
   double max_abs_error = 0;    // worst judged region, |model / all orders - 1|
   double worst_ratio = 1;
   double reference_rel_se = 0;  // the path tracer's relative noise in that region

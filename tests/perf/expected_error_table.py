@@ -70,17 +70,19 @@ def sea_tables(model):
 
 
 # Shipped scenes measured as they are (tests/perf/scene_vs_pathtracer.sh: whole image and halves), each
-# with its regime: Jerlov type, g, bottom depth, sun zenith, sky.
-UNDERWATER_SCENES = [("results/underwater/snells_window_vs_pathtracer.csv", "IB", 0.9, 8.0, 40, 3)]
+# with its regime: Jerlov type, g, bottom depth (a height field's mean), sun zenith, sky, floor (1: height
+# field), and the model names its CSV uses.
+UNDERWATER_SCENES = [("results/underwater/snells_window_vs_pathtracer.csv", "IB", 0.9, 8.0, 40, 3, 0)]
+SEA_SCENES = [("results/sea_allorders/seashore_vs_pathtracer.csv", "1C", 0.9, 20.5, 40, 0, 1)]
 
 SOURCES = {
-    ("sea", "paper"): sea_tables("paper"),
-    ("sea", "multiple"): sea_tables("multiple"),
+    ("sea", "paper"): sea_tables("paper") + SEA_SCENES,
+    ("sea", "multiple"): sea_tables("multiple") + SEA_SCENES,
     ("underwater", "thesis"): UNDERWATER + UNDERWATER_SCENES,
     ("underwater", "discrete_ordinates"): UNDERWATER + UNDERWATER_SCENES,
 }
-HEADER = ["a", "b", "g", "bottom_m", "sun_zenith_deg", "sky", "max_abs_error", "worst_ratio", "reference_rel_se",
-          "regions", "source"]
+HEADER = ["a", "b", "g", "bottom_m", "sun_zenith_deg", "sky", "floor", "max_abs_error", "worst_ratio",
+          "reference_rel_se", "regions", "source"]
 
 
 def main():
@@ -88,14 +90,14 @@ def main():
     rows = {k: [] for k in SOURCES}
     # The sea seen from above: flat_sea at 96x54, sun 40°, g 0.9 (results/sea_allorders/README.md).
     for model in ("paper", "multiple"):
-        for source, (table, sun, sky, g) in enumerate(SOURCES[("sea", model)]):
+        for source, (table, sun, sky, g) in enumerate(sea_tables(model)):
             for r in read(table):
                 ratios = [float(r["ratio_near"]), float(r["ratio_far"])]
                 worst = max(ratios, key=lambda x: abs(x - 1))
                 se = max(float(r["ratio_near_se"]), float(r["ratio_far_se"]))
                 bottom = -1 if r["bottom_m"] == "deep" else float(r["bottom_m"])
                 rows[("sea", model)].append([round(at550("data/jerlov_a.csv", r["jerlov"]), 5),
-                                             round(at550("data/jerlov_b.csv", r["jerlov"]), 5), g, bottom, sun, sky,
+                                             round(at550("data/jerlov_b.csv", r["jerlov"]), 5), g, bottom, sun, sky, 0,
                                              round(abs(worst - 1), 4), round(worst, 4), round(se, 4), 2, source])
     # Under water: tests/perf/underwater_regions.toml, camera 3.8 m down, one band.
     regions = ["bottom_near", "bottom_far", "water_up", "water_down", "objects"]
@@ -112,20 +114,21 @@ def main():
             bottom = -1 if r["depth_m"] in ("0", "none", "") or float(r["depth_m"]) == 0 else float(r["depth_m"])
             # The study's tables name the discrete-ordinates model by its earlier name.
             model = "discrete_ordinates" if r["model"] == "improved" else r["model"]
-            rows[("underwater", model)].append([float(r["a"]), float(r["b"]), float(r["g"]), bottom, sun, sky,
+            rows[("underwater", model)].append([float(r["a"]), float(r["b"]), float(r["g"]), bottom, sun, sky, 0,
                                                 round(abs(worst[0] - 1), 4), round(worst[0], 4),
                                                 round(max(s for _, s in judged), 4), len(judged), source])
-    for i, (table, jerlov, g, bottom, sun, sky) in enumerate(UNDERWATER_SCENES):
-        by_model = {}
-        for r in read(table):
-            by_model.setdefault(r["model"], []).append((float(r["ratio"]), float(r["ratio_se"])))
-        for model, judged in by_model.items():
-            worst = max(judged, key=lambda x: abs(x[0] - 1))
-            rows[("underwater", model)].append([round(at550("data/jerlov_a.csv", jerlov), 5),
-                                                round(at550("data/jerlov_b.csv", jerlov), 5), g, bottom, sun, sky,
-                                                round(abs(worst[0] - 1), 4), round(worst[0], 4),
-                                                round(max(e for _, e in judged), 4), len(judged),
-                                                len(UNDERWATER) + i])
+    for view, scenes, first in (("underwater", UNDERWATER_SCENES, len(UNDERWATER)),
+                                ("sea", SEA_SCENES, len(sea_tables("multiple")))):
+        for i, (table, jerlov, g, bottom, sun, sky, floor) in enumerate(scenes):
+            by_model = {}
+            for r in read(table):
+                by_model.setdefault(r["model"], []).append((float(r["ratio"]), float(r["ratio_se"])))
+            for model, judged in by_model.items():
+                worst = max(judged, key=lambda x: abs(x[0] - 1))
+                rows[(view, model)].append([round(at550("data/jerlov_a.csv", jerlov), 5),
+                                            round(at550("data/jerlov_b.csv", jerlov), 5), g, bottom, sun, sky, floor,
+                                            round(abs(worst[0] - 1), 4), round(worst[0], 4),
+                                            round(max(e for _, e in judged), 4), len(judged), first + i])
     for (view, model), table in rows.items():
         with open(os.path.join(out_dir, f"{view}_{model}.csv"), "w", newline="") as f:
             w = csv.writer(f, lineterminator="\n")

@@ -107,6 +107,31 @@ TEST(ExpectedError, ASkyIsLookedUpAmongTheCasesMeasuredUnderIt) {
   EXPECT_EQ(cie[0].unmeasured_features[0], "the sky (CIE clear)");
 }
 
+TEST(ExpectedError, AHeightFieldFloorIsLookedUpAmongTheFloorsMeasured) {
+  MeasuredCase flat{0.1, 0.3, 0.9, 20.0, 40};
+  flat.max_abs_error = 0.01;
+  MeasuredCase floor = flat;  // a shipped scene's, farther in the water than the flat one
+  floor.b = 0.6;
+  floor.floor = 1;
+  floor.max_abs_error = 0.05;
+  MeasuredCase regime = flat;
+  regime.floor = 1;
+  const ExpectedError e = seasim::lookupExpectedError(regime, "sea", "multiple", {flat, floor}, {});
+  EXPECT_EQ(e.nearest.floor, 1);
+  EXPECT_DOUBLE_EQ(e.max_abs_error, 0.05);
+  EXPECT_TRUE(e.unmeasured_features.empty());
+  const ExpectedError none = seasim::lookupExpectedError(regime, "sea", "multiple", {flat}, {});
+  ASSERT_EQ(none.unmeasured_features.size(), 1u);
+  EXPECT_EQ(none.unmeasured_features[0], "a height-field bottom");
+  EXPECT_FALSE(none.measured);
+  // seashore itself: its own measurement (tests/perf/scene_vs_pathtracer.sh), not the flat grid's.
+  const auto shore =
+      seasim::expectedErrors(seasim::loadScene(std::string(SEASIM_SOURCE_DIR) + "/scenes/seashore.toml"));
+  ASSERT_EQ(shore.size(), 1u);
+  EXPECT_TRUE(shore[0].measured);
+  EXPECT_EQ(shore[0].table, "results/sea_allorders/seashore_vs_pathtracer.csv");
+}
+
 TEST(ExpectedError, DistanceIsOneStepPerDoublingTenthOfGAndFifteenDegrees) {
   MeasuredCase c{0.1, 0.3, 0.9, -1, 30};
   MeasuredCase s = c;
