@@ -48,6 +48,29 @@ std::vector<std::string> unmeasuredFeatures(const Scene& scene, bool underwater)
   return f;
 }
 
+// Which cases a regime is looked up in: those measured under its sky, when there are any, and among
+// them those over its kind of floor, when there are any. What no case has is added to `features`, by name.
+struct CaseFilter {
+  const MeasuredCase& regime;
+  bool sky = false, floor = false;  // restrict to the regime's sky / floor kind
+  bool fits(const MeasuredCase& c) const {
+    return (!sky || c.sky == regime.sky) && (!floor || c.floor == regime.floor);
+  }
+};
+
+CaseFilter caseFilter(const MeasuredCase& regime, const std::vector<MeasuredCase>& cases,
+                      std::vector<std::string>& features) {
+  CaseFilter f{regime};
+  if (cases.empty()) return f;
+  f.sky = std::any_of(cases.begin(), cases.end(), [&](const MeasuredCase& c) { return c.sky == regime.sky; });
+  if (!f.sky) features.push_back(std::string("the sky (") + skyName(regime.sky) + ")");
+  f.floor = std::any_of(cases.begin(), cases.end(), [&](const MeasuredCase& c) {
+    return (!f.sky || c.sky == regime.sky) && c.floor == regime.floor;
+  });
+  if (!f.floor && regime.floor != 0) features.push_back("a height-field bottom");
+  return f;
+}
+
 }  // namespace
 
 double regimeDistance(const MeasuredCase& s, const MeasuredCase& c) {
@@ -81,8 +104,9 @@ std::vector<MeasuredCase> loadMeasuredCases(const std::string& view, const std::
              &err = t.column("max_abs_error"), &worst = t.column("worst_ratio"), &se = t.column("reference_rel_se"),
              &source = t.column("source");
   for (size_t i = 0; i < cases.size(); ++i)
-    cases[i] = MeasuredCase{a[i],   b[i],     g[i],  bottom[i], sun[i], static_cast<int>(sky[i]), static_cast<int>(floor[i]),
-                            err[i], worst[i], se[i], static_cast<int>(source[i])};
+    cases[i] = MeasuredCase{a[i], b[i], g[i], bottom[i], sun[i],
+                            static_cast<int>(sky[i]), static_cast<int>(floor[i]), err[i], worst[i], se[i],
+                            static_cast<int>(source[i])};
   return cases;
 }
 
@@ -93,19 +117,9 @@ ExpectedError lookupExpectedError(const MeasuredCase& regime, const std::string&
   e.model = model;
   e.unmeasured_features = std::move(features);
   e.distance = std::numeric_limits<double>::infinity();
-  // The cases measured under the scene's sky, when there are any, and among them those over its kind of
-  // floor, when there are any; what no case has is a feature, by name.
-  const bool sky_measured =
-      std::any_of(cases.begin(), cases.end(), [&](const MeasuredCase& c) { return c.sky == regime.sky; });
-  if (!sky_measured && !cases.empty())
-    e.unmeasured_features.push_back(std::string("the sky (") + skyName(regime.sky) + ")");
-  auto sky_fits = [&](const MeasuredCase& c) { return !sky_measured || c.sky == regime.sky; };
-  const bool floor_measured = std::any_of(cases.begin(), cases.end(), [&](const MeasuredCase& c) {
-    return sky_fits(c) && c.floor == regime.floor;
-  });
-  if (!floor_measured && !cases.empty() && regime.floor != 0) e.unmeasured_features.push_back("a height-field bottom");
+  const CaseFilter eligible = caseFilter(regime, cases, e.unmeasured_features);
   for (const MeasuredCase& c : cases) {
-    if (!sky_fits(c) || (floor_measured && c.floor != regime.floor)) continue;
+    if (!eligible.fits(c)) continue;
     const double d = regimeDistance(regime, c);
     // Equally near (within 1e-9): the larger error, so a tie never hides the worse case.
     if (d < e.distance - 1e-9 || (std::fabs(d - e.distance) <= 1e-9 && c.max_abs_error > e.nearest.max_abs_error)) {
