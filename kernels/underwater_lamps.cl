@@ -15,6 +15,16 @@
  * SEASIM_LAYER_LAMPS (outputs.layers) the same light into lamps_layer[3 * pixels] (+=; kd_multiple.cl
  * zeroed it) so that lamp and sun light can be told apart; with SEASIM_LAYER_BANDS as well per band into
  * layer_bands[pixel][5][band_count]'s slot 3 (kd_multiple.cl's layout; spectral.exr's lamps layer).
+ * SEASIM_LAYER_LAMPS_SPLIT (outputs.layers lamps_single, lamps_multiple; kd_multiple zeroed the buffer):
+ * lamps_split[split_stride * pixel + split_single_at + channel] += the light scattered at most once in the
+ * water (the lit surface seen unscattered, e^{-c S}, and the beam's planes and tail: 001's single
+ * scattering with the water's own σ_s, σ_t and g), and at split_multiple_at the rest of the model's light
+ * (an offset < 0: not asked). The "single" model's rest is 0; the "orders" model's is its orders of
+ * multiple scattering and the surfaces' light scattered on its way to the eye (T_view - e^{-c S}). The
+ * "delta_m" model has no single-scattering term of its own (its whole light comes from the scaled
+ * medium): with single_apart = 1 the single part's band factors are evaluated once more in plain_bands
+ * with plain_g, the water as it is (on the same shadow rays), and the rest is delta-M's light minus it (it can be negative where delta-M's scaled phase
+ * puts less light than the unscaled one, at small scattering angles).
  * Defines: SEASIM_HAS_OBJECTS (shadow rays), SEASIM_SPECTRAL_OUTPUT, SEASIM_LAMPS_ORDERS (the "orders"
  * model, common/underwater_lamps_ms.h: the lamps' light scattered more than once, from ms_table's
  * blurred profiles, ms_orders orders, ms_steps quadrature steps per view ray, stretch exponent
@@ -70,23 +80,50 @@ static inline float lamp_escapes(__global const UwObject* objects, int count, fl
 /* The pixel's lamp light so far, in sensor RGB (002 eq. 4.8), and where its per-band values go. */
 typedef struct {
   float r, g, b;
+  float single_r, single_g, single_b; /* SEASIM_LAYER_LAMPS_SPLIT: the part scattered at most once */
+  int to_single;                       /* whether lamp_add's terms are single scattering too */
   int pixel, nb;
   __global float* spectral;    /* SEASIM_SPECTRAL_OUTPUT */
   __global float* layer_bands; /* SEASIM_LAYER_BANDS: slot 3 (lamps) of kd_multiple.cl's layout */
 } LampSums;
 
-/* Band i's light L into the sums and the per-band images. */
-static inline void lamp_add(LampSums* o, __global const UwBand* bands, int i, float L) {
-  o->r += L * bands[i].w_r;
-  o->g += L * bands[i].w_g;
-  o->b += L * bands[i].w_b;
+/* Band i's light L into the image's sums and per-band images (to_image) and into the single-scattering
+ * sums (to_single). */
+static inline void lamp_add_to(LampSums* o, __global const UwBand* bands, int i, float L, int to_image, int to_single) {
+  if (to_image) {
+    o->r += L * bands[i].w_r;
+    o->g += L * bands[i].w_g;
+    o->b += L * bands[i].w_b;
 #if SEASIM_SPECTRAL_OUTPUT
-  o->spectral[(size_t)o->pixel * o->nb + i] += L;
+    o->spectral[(size_t)o->pixel * o->nb + i] += L;
 #endif
 #if SEASIM_LAYER_BANDS
-  o->layer_bands[((size_t)o->pixel * 5 + 3) * o->nb + i] += L;
+    o->layer_bands[((size_t)o->pixel * 5 + 3) * o->nb + i] += L;
+#endif
+  }
+#if SEASIM_LAYER_LAMPS_SPLIT
+  if (to_single) {
+    o->single_r += L * bands[i].w_r;
+    o->single_g += L * bands[i].w_g;
+    o->single_b += L * bands[i].w_b;
+  }
 #endif
 }
+
+static inline void lamp_add(LampSums* o, __global const UwBand* bands, int i, float L) {
+  lamp_add_to(o, bands, i, L, 1, o->to_single);
+}
+
+/* The media the lamps' light crosses: the image's (the water, delta-M scaled in that model) and, with
+ * single_apart (SEASIM_LAYER_LAMPS_SPLIT, the delta-M model), the water as it is, whose single scattering
+ * goes into lamps_single alone. The shadow rays are the same for both: only the band factors differ. */
+typedef struct {
+  __global const UwBand* bands;
+  float g;
+  __global const UwBand* plain;
+  float plain_g;
+  int single_apart;
+} LampMedia;
 
 /* The view ray and its first surface, as every lamp sees them. */
 typedef struct {
@@ -121,7 +158,9 @@ static inline void lamp_orders(__constant UwParams* p, __global const UwBand* ba
                                                ms_rows, ms_orders);
       const float Lo = I[i] * v->alb[i * v->alb_stride] * (direct + ms) *
                        uw_ms_view_transmission(bands[i].a, bands[i].b, p->g, v->S, ms_orders);
-      lamp_add(o, bands, i, Lo);
+      lamp_add_to(o, bands, i, Lo, 1, 0);
+      /* Its part scattered at most once: the direct light seen unscattered (T_view's first term). */
+      lamp_add_to(o, bands, i, I[i] * v->alb[i * v->alb_stride] * direct * exp(-bands[i].c * v->S), 0, 1);
     }
   }
   if (!(escapes > 0.0f)) return;
@@ -153,13 +192,13 @@ static inline void lamp_orders(__constant UwParams* p, __global const UwBand* ba
       for (int k = 1; k <= ms_orders; ++k)
         if (geo[k - 1] > 0.0f) sum += uw_ms_weight(sa, ss, s, stretch[k - 1], k, ms_orders) * geo[k - 1];
       const float Lm = I[i] * ss * exp(-(sa + ss) * t) * sum * w;
-      lamp_add(o, bands, i, Lm);
+      lamp_add_to(o, bands, i, Lm, 1, 0);
     }
   }
 }
 #else
 /* The lamp's direct light on the surface the pixel sees (001 eq. 1, first term). */
-static inline void lamp_surface(__global const UwBand* bands, __global const UwObject* objects, int count,
+static inline void lamp_surface(const LampMedia* md, __global const UwObject* objects, int count,
                                 __constant UwLampParams* lp, __global const UwLamp* L, __global const float* I,
                                 const LampRay* v, LampSums* o) {
   if (!v->lit_surface) return;
@@ -168,19 +207,26 @@ static inline void lamp_surface(__global const UwBand* bands, __global const UwO
   const float vis = lamp_visible(objects, count, P + 1e-3f * v->n, lamp);
   if (!(vis > 0.0f)) return;
   for (int i = 0; i < lp->band_count; ++i) {
-    const float Lo = I[i] * v->alb[i * v->alb_stride] *
-                     uw_lamp_surface(P, v->n, v->S, lamp, axis, L->cos_cone, L->cos_inner, lp->s_min, bands[i].c, vis);
-    lamp_add(o, bands, i, Lo);
+    const float E = I[i] * v->alb[i * v->alb_stride];
+    lamp_add(o, md->bands, i,
+             E * uw_lamp_surface(P, v->n, v->S, lamp, axis, L->cos_cone, L->cos_inner, lp->s_min, md->bands[i].c, vis));
+#if SEASIM_LAYER_LAMPS_SPLIT
+    if (md->single_apart)
+      lamp_add_to(o, md->bands, i,
+                  E * uw_lamp_surface(P, v->n, v->S, lamp, axis, L->cos_cone, L->cos_inner, lp->s_min, md->plain[i].c, vis),
+                  0, 1);
+#endif
   }
 }
 #endif
 
 /* The light one lamp scatters towards the eye (001 eq. 2, 5, 7–9): the planes once, the bands
  * innermost, then the closed-form tail beyond the last plane. */
-static inline void lamp_beam(__constant UwParams* p, __global const UwBand* bands, __global const UwObject* objects,
-                             int count, __constant UwLampParams* lp, __global const UwLamp* L, __global const float* I,
+static inline void lamp_beam(const LampMedia* md, __global const UwObject* objects, int count,
+                             __constant UwLampParams* lp, __global const UwLamp* L, __global const float* I,
                              const LampRay* v, LampSums* o) {
   const int nb = lp->band_count, n_planes = lp->planes, m = lp->subplanes;
+  __global const UwBand* bands = md->bands;
   const float3 lamp = v3(L->position), axis = v3(L->direction);
   UwLampSpan sp;
   if (!uw_lamp_span(v->o, v->d, lamp, axis, L->cos_cone, lp->s_min, v->t_end, n_planes, &sp)) return;
@@ -197,8 +243,12 @@ static inline void lamp_beam(__constant UwParams* p, __global const UwBand* band
     const float t = sp.ta + (k + 0.5f) * sp.dt;
     uw_lamp_at(v->o, v->d, lamp, t, &s, &c);
     for (int i = 0; i < nb; ++i) {
-      const float Ls = I[i] * J * uw_lamp_plane_g(bands[i].b, bands[i].c, p->g, s, t, c, lp->s_min);
-      lamp_add(o, bands, i, Ls);
+      lamp_add(o, bands, i, I[i] * J * uw_lamp_plane_g(bands[i].b, bands[i].c, md->g, s, t, c, lp->s_min));
+#if SEASIM_LAYER_LAMPS_SPLIT
+      if (md->single_apart)
+        lamp_add_to(o, bands, i, I[i] * J * uw_lamp_plane_g(md->plain[i].b, md->plain[i].c, md->plain_g, s, t, c, lp->s_min),
+                    0, 1);
+#endif
     }
   }
   if (!sp.tail) return;
@@ -209,10 +259,15 @@ static inline void lamp_beam(__constant UwParams* p, __global const UwBand* band
     if (prof > 0.0f) J += prof * lamp_visible(objects, count, P, lamp);
   }
   if (!(J > 0.0f)) return;
-  J *= hg_phase(uw_lamp_tail_cos(&sp, v->o, v->d, lamp), p->g) / m;
+  const float cos_tail = uw_lamp_tail_cos(&sp, v->o, v->d, lamp);
+  const float Jg = J * hg_phase(cos_tail, md->g) / m;
   for (int i = 0; i < nb; ++i) {
-    const float Ls = I[i] * J * uw_lamp_tail(&sp, bands[i].b, bands[i].c);
-    lamp_add(o, bands, i, Ls);
+    lamp_add(o, bands, i, I[i] * Jg * uw_lamp_tail(&sp, bands[i].b, bands[i].c));
+#if SEASIM_LAYER_LAMPS_SPLIT
+    if (md->single_apart)
+      lamp_add_to(o, bands, i, I[i] * J * hg_phase(cos_tail, md->plain_g) / m * uw_lamp_tail(&sp, md->plain[i].b, md->plain[i].c),
+                  0, 1);
+#endif
   }
 }
 
@@ -233,6 +288,10 @@ __kernel void underwater_lamps(__constant UwParams* p, __global const UwBand* ba
 #if SEASIM_LAYER_BANDS
                                , __global float* layer_bands
 #endif
+#if SEASIM_LAYER_LAMPS_SPLIT
+                               , __global float* lamps_split, int split_stride, int split_single_at,
+                               int split_multiple_at, __global const UwBand* plain_bands, float plain_g, int single_apart
+#endif
 ) {
   const int x = get_global_id(0), y = get_global_id(1);
   if (x >= p->width || y >= p->height) return;
@@ -250,7 +309,15 @@ __kernel void underwater_lamps(__constant UwParams* p, __global const UwBand* ba
   v.t_end = v.S >= UW_INFINITE ? SHAFTS_T_INF : v.S;
   v.alb = mat >= 0 ? albedo + mat * nb : &bands[0].bottom_albedo;
   v.alb_stride = mat >= 0 ? 1 : (int)(sizeof(UwBand) / sizeof(float));
-  LampSums o = {.r = 0.0f, .g = 0.0f, .b = 0.0f, .pixel = pixel, .nb = nb};
+  LampSums o = {.r = 0.0f, .g = 0.0f, .b = 0.0f, .single_r = 0.0f, .single_g = 0.0f, .single_b = 0.0f,
+                .to_single = 1, .pixel = pixel, .nb = nb};
+  LampMedia md = {.bands = bands, .g = p->g, .plain = bands, .plain_g = p->g, .single_apart = 0};
+#if SEASIM_LAYER_LAMPS_SPLIT
+  md.plain = plain_bands;
+  md.plain_g = plain_g;
+  md.single_apart = single_apart;
+  o.to_single = !single_apart;
+#endif
 #if SEASIM_SPECTRAL_OUTPUT
   o.spectral = spectral;
 #endif
@@ -264,9 +331,9 @@ __kernel void underwater_lamps(__constant UwParams* p, __global const UwBand* ba
     lamp_orders(p, bands, objects, count, lp, L, I, ms_table + l * ms_orders * UW_MS_TABLE, ms_orders, ms_steps,
                 ms_kappa, &v, &o);
 #else
-    lamp_surface(bands, objects, count, lp, L, I, &v, &o);
+    lamp_surface(&md, objects, count, lp, L, I, &v, &o);
 #endif
-    lamp_beam(p, bands, objects, count, lp, L, I, &v, &o);
+    lamp_beam(&md, objects, count, lp, L, I, &v, &o);
   }
   rgb[3 * pixel + 0] += o.r;
   rgb[3 * pixel + 1] += o.g;
@@ -275,5 +342,18 @@ __kernel void underwater_lamps(__constant UwParams* p, __global const UwBand* ba
   lamps_layer[3 * pixel + 0] += o.r;
   lamps_layer[3 * pixel + 1] += o.g;
   lamps_layer[3 * pixel + 2] += o.b;
+#endif
+#if SEASIM_LAYER_LAMPS_SPLIT
+  __global float* split = lamps_split + (size_t)split_stride * pixel;
+  if (split_single_at >= 0) {
+    split[split_single_at + 0] += o.single_r;
+    split[split_single_at + 1] += o.single_g;
+    split[split_single_at + 2] += o.single_b;
+  }
+  if (split_multiple_at >= 0) {
+    split[split_multiple_at + 0] += o.r - o.single_r;
+    split[split_multiple_at + 1] += o.g - o.single_g;
+    split[split_multiple_at + 2] += o.b - o.single_b;
+  }
 #endif
 }

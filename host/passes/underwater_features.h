@@ -41,6 +41,10 @@ struct KdFeatures final : PassFeatures {
   bool veiling_layer = false;     // outputs.layers veiling (B∞: the in-scatter with S = ∞)
   bool band_layers = false;       // the split also per band in spectral.exr (formation_layers + spectral_output)
   bool veiling_bands = false;     // the veiling also per band in spectral.exr (veiling_layer + spectral_output)
+  // How many of outputs.layers lamps_single, lamps_multiple were asked (3 floats per pixel each): their
+  // buffer is zeroed before the kernel (no define: the kernel does not touch it), underwater_lamps adds
+  // into it.
+  int lamps_split_layers = 0;
 
   void list(FeatureList& out) const override {
     out.flag("multiple", "SEASIM_HAS_MULTIPLE", multiple);
@@ -63,6 +67,7 @@ struct UnderwaterLampsFeatures final : PassFeatures {
   bool lamps_layer = false;      // outputs.layers: the lamps' light also added into its own layer
   bool band_layers = false;      // and per band into kd_multiple's band layers (spectral.exr)
   bool orders = false;           // quality.lamps_model = "orders": multiple scattering (underwater_lamps_ms.h)
+  bool lamps_split = false;      // outputs.layers lamps_single / lamps_multiple (kd_multiple's lamps_split_layer)
 
   void list(FeatureList& out) const override {
     out.flag("objects", "SEASIM_HAS_OBJECTS", objects);
@@ -70,6 +75,7 @@ struct UnderwaterLampsFeatures final : PassFeatures {
     if (lamps_layer) out.flag("lamps_layer", "SEASIM_LAYER_LAMPS", true);
     if (band_layers) out.flag("band_layers", "SEASIM_LAYER_BANDS", true);
     if (orders) out.flag("orders", "SEASIM_LAMPS_ORDERS", true);
+    if (lamps_split) out.flag("lamps_split", "SEASIM_LAYER_LAMPS_SPLIT", true);
   }
 };
 

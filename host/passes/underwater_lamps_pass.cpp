@@ -68,7 +68,12 @@ UnderwaterLampsPass::UnderwaterLampsPass(Device& device, const Scene& scene, con
     lamps_ = cl::Buffer(device.context(), in, sizeof(UwLamp) * lamps.lamps.size(), lamps.lamps.data());
     spectra_ = cl::Buffer(device.context(), in, sizeof(float) * lamps.spectra.size(), lamps.spectra.data());
     ms_table_ = cl::Buffer(device.context(), in, sizeof(float) * ms_table.size(), const_cast<float*>(ms_table.data()));
+    plain_bands_ = config_.model == Model::DeltaM
+                       ? cl::Buffer(device.context(), in, sizeof(UwBand) * setup.bands.size(),
+                                    const_cast<UwBand*>(setup.bands.data()))
+                       : bands_;
   });
+  plain_g_ = setup.params.g;
 }
 
 void UnderwaterLampsPass::update(const UnderwaterSetup& setup) {
@@ -79,6 +84,7 @@ void UnderwaterLampsPass::update(const UnderwaterSetup& setup) {
   UwParams params = setup.params;
   std::vector<UwBand> bands = setup.bands;
   if (config_.model == Model::DeltaM) deltaMScale(params, bands);
+  plain_g_ = setup.params.g;
   // The orders' table depends on g only: rebuilt when the water's g changed.
   if (config_.model == Model::Orders && params.g != lamp_g_) {
     lamp_g_ = params.g;
@@ -94,12 +100,14 @@ void UnderwaterLampsPass::update(const UnderwaterSetup& setup) {
     if (object_count_ > 0)
       q.enqueueWriteBuffer(objects_, CL_FALSE, 0, sizeof(UwObject) * object_count_, setup.objects.data());
     q.enqueueWriteBuffer(albedo_, CL_FALSE, 0, sizeof(float) * albedo_count_, setup.albedo.data());
+    if (config_.model == Model::DeltaM)
+      q.enqueueWriteBuffer(plain_bands_, CL_FALSE, 0, sizeof(UwBand) * band_count_, setup.bands.data());
     q.finish();
   });
 }
 
 double UnderwaterLampsPass::run(cl::Buffer& geom, cl::Buffer& material, cl::Buffer& rgb, cl::Buffer* spectral,
-                                cl::Buffer* lamps_layer, cl::Buffer* band_layers) {
+                                cl::Buffer* lamps_layer, cl::Buffer* band_layers, const LampSplitLayers& split) {
   onDevice("underwater_lamps pass", [&] {
     cl_uint arg = 0;
     kernel_.setArg(arg++, params_);
@@ -121,6 +129,15 @@ double UnderwaterLampsPass::run(cl::Buffer& geom, cl::Buffer& material, cl::Buff
     if (spectral) kernel_.setArg(arg++, *spectral);
     if (lamps_layer) kernel_.setArg(arg++, *lamps_layer);
     if (band_layers) kernel_.setArg(arg++, *band_layers);
+    if (split.buffer) {
+      kernel_.setArg(arg++, *split.buffer);
+      kernel_.setArg(arg++, static_cast<cl_int>(split.stride));
+      kernel_.setArg(arg++, static_cast<cl_int>(split.single_at));
+      kernel_.setArg(arg++, static_cast<cl_int>(split.multiple_at));
+      kernel_.setArg(arg++, plain_bands_);
+      kernel_.setArg(arg++, static_cast<cl_float>(plain_g_));
+      kernel_.setArg(arg++, static_cast<cl_int>(config_.model == Model::DeltaM));
+    }
   });
   return runKernel2d(device_, "underwater_lamps", kernel_, width_, height_);
 }

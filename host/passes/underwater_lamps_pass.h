@@ -25,6 +25,13 @@
 
 namespace seasim {
 
+// The lamps_single / lamps_multiple layers (SEASIM_LAYER_LAMPS_SPLIT): stride floats per pixel, each
+// layer's R at its offset (-1: not asked).
+struct LampSplitLayers {
+  cl::Buffer* buffer = nullptr;
+  int stride = 0, single_at = -1, multiple_at = -1;
+};
+
 class UnderwaterLampsPass {
  public:
   enum class Model { Single = 0, DeltaM = 1, Orders = 2 };
@@ -48,7 +55,7 @@ class UnderwaterLampsPass {
   // lamps_layer: the "lamps" ground-truth layer (3 floats per pixel) when planned with SEASIM_LAYER_LAMPS;
   // band_layers: kd_multiple's split per band ([pixel][5][band], slot 3 the lamps) with SEASIM_LAYER_BANDS.
   double run(cl::Buffer& geom, cl::Buffer& material, cl::Buffer& rgb, cl::Buffer* spectral,
-             cl::Buffer* lamps_layer = nullptr, cl::Buffer* band_layers = nullptr);
+             cl::Buffer* lamps_layer = nullptr, cl::Buffer* band_layers = nullptr, const LampSplitLayers& split = {});
   // Rewrites the underwater parameter blocks (sun, water or time changed; same sizes).
   void update(const UnderwaterSetup& setup);
 
@@ -61,6 +68,9 @@ class UnderwaterLampsPass {
   size_t band_count_, object_count_, albedo_count_;
   cl::Kernel kernel_;
   cl::Buffer params_, bands_, albedo_, objects_, lamp_params_, lamps_, spectra_, ms_table_;
+  // The water as it is, for the single-scattering layer of the delta-M model (which scales bands_).
+  cl::Buffer plain_bands_;
+  float plain_g_ = 0.0f;
 };
 
 }  // namespace seasim

@@ -28,6 +28,8 @@ UnderwaterShading::UnderwaterShading(Device& device, const PassPlan& kd, const U
       lamps_layer_ = buffer(pixels * 3);
     }
     if (features_.veiling_layer) veiling_ = buffer(pixels * 3);
+    lamps_split_floats_ = pixels * 3 * static_cast<size_t>(features_.lamps_split_layers);
+    if (lamps_split_floats_ > 0) lamps_split_ = buffer(lamps_split_floats_);
     if (features_.band_layers) {
       band_layers_ = buffer(pixels * 5 * bands);
       forward_bands_ = buffer(pixels * bands);
@@ -37,6 +39,10 @@ UnderwaterShading::UnderwaterShading(Device& device, const PassPlan& kd, const U
 }
 
 double UnderwaterShading::run(const cl::Buffer* froxel_params, const cl::Buffer* froxel_volume) {
+  if (lamps_split_floats_ > 0)  // underwater_lamps adds into it (and leaves it 0 without lamps)
+    onDevice("zeroing the lamps' split layers", [&] {
+      device_.queue().enqueueFillBuffer(lamps_split_, 0.0f, 0, sizeof(float) * lamps_split_floats_);
+    });
   onDevice("kd_multiple arguments", [&] {
     cl_uint arg = 0;
     kernel_.setArg(arg++, setup_.params);

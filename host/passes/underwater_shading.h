@@ -33,6 +33,9 @@ class UnderwaterShading {
   cl::Buffer& forwardLayer() { return forward_layer_; }  // [pixel][3], water_spread adds into it
   cl::Buffer& lampsLayer() { return lamps_layer_; }      // [pixel][3], underwater_lamps adds into it
   cl::Buffer& veilingLayer() { return veiling_; }        // [pixel][3]
+  // lamps_single and/or lamps_multiple, 3 floats each per pixel (lamps_split_layers): zeroed by run(),
+  // underwater_lamps adds into it.
+  cl::Buffer& lampsSplitLayer() { return lamps_split_; }
   // The split per band (band_layers): [pixel][5][band] clear, direct, backscatter, lamps, transmission,
   // and the forward light [pixel][band] (water_spread adds into it).
   cl::Buffer& bandLayers() { return band_layers_; }
@@ -49,6 +52,8 @@ class UnderwaterShading {
   cl::Buffer rgb_, spectral_;
   UnderwaterForwardLight forward_;
   cl::Buffer formation_, forward_layer_, lamps_layer_, veiling_, band_layers_, forward_bands_, veiling_bands_;
+  cl::Buffer lamps_split_;
+  size_t lamps_split_floats_ = 0;
 };
 
 }  // namespace seasim

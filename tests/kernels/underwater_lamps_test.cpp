@@ -19,6 +19,7 @@
 #include "quality/auto_quality.h"
 #include "reference/underwater_reference.h"
 #include "render/renderer.h"
+#include "jobs/layer_image.h"
 #include "scene/scene_parser.h"
 #include "spectral/sensor.h"
 #include "spectral/wavelength_grid.h"
@@ -229,6 +230,46 @@ TEST(UnderwaterLamps, SpectralOutputHoldsTheLampsBands) {
   EXPECT_LT(worst, 1e-5 * peak + 1e-9);
 }
 
+// The lamps' layers of a render: per pixel lamps, lamps_single and lamps_multiple (R, G, B each).
+struct LampLayers {
+  std::vector<std::array<double, 3>> lamps, single, multiple;
+};
+
+LampLayers lampLayers(const std::string& model, std::vector<Override> extra = {}) {
+  extra.push_back(set("quality.lamps_model", "\"" + model + "\""));
+  extra.push_back(set("outputs.layers", "[\"lamps\", \"lamps_single\", \"lamps_multiple\"]"));
+  const Scene scene = lampScene(extra);
+  const seasim::FrameResult frame = render(scene);
+  EXPECT_EQ(frame.nonfinite, 0);
+  const seasim::Image img = seasim::imageWithLayers(frame, scene.outputs);
+  auto channel = [&](const std::string& name) {
+    const auto it = std::find(img.channel_names.begin(), img.channel_names.end(), name);
+    EXPECT_NE(it, img.channel_names.end()) << name;
+    return static_cast<size_t>(it - img.channel_names.begin());
+  };
+  LampLayers out;
+  for (size_t i = 0; i < img.pixelCount(); ++i) {
+    std::array<double, 3> l{}, s{}, m{};
+    int c = 0;
+    for (const char* rgb : {".R", ".G", ".B"}) {
+      l[c] = img.pixels[i * img.channels + channel(std::string("lamps") + rgb)];
+      s[c] = img.pixels[i * img.channels + channel(std::string("lamps_single") + rgb)];
+      m[c] = img.pixels[i * img.channels + channel(std::string("lamps_multiple") + rgb)];
+      ++c;
+    }
+    out.lamps.push_back(l);
+    out.single.push_back(s);
+    out.multiple.push_back(m);
+  }
+  return out;
+}
+
+double sumOf(const std::vector<std::array<double, 3>>& v) {
+  double s = 0;
+  for (const auto& p : v) s += p[0] + p[1] + p[2];
+  return s;
+}
+
 TEST(UnderwaterLamps, PathTracerSingleScatteringAgreesWithThePass) {
   // Black bottom: the frame is the lamp's single scattering, what the tracer's max_bounces = 1 estimates.
   // The lamp behind the camera, out of view: no view ray passes near it, where next-event estimation's
@@ -256,9 +297,56 @@ TEST(UnderwaterLamps, PathTracerSingleScatteringAgreesWithThePass) {
   ASSERT_LT(ref.image_mean_std_error, 0.03 * fast);  // the comparison below is tight enough to mean something
   EXPECT_NEAR(ref.image_mean, fast, 4 * ref.image_mean_std_error + 0.01 * fast)
       << "standard error " << ref.image_mean_std_error;
+  // The models with multiple scattering keep this single scattering apart in their lamps_single layer.
+  for (const char* model : {"delta_m", "orders"}) {
+    std::vector<Override> o = {set("bottom.albedo", "0.0"), set("quality.shafts_planes", "200"),
+                               set("quality.shafts_subplanes", "16"), set("spotlights[0].position", "[0.3, -3.5, 1.0]"),
+                               set("spotlights[0].direction", "[-0.05, -0.4, -1.0]")};
+    const LampLayers l = lampLayers(model, o);
+    const double single = sumOf(l.single) / (3.0 * l.single.size());
+    EXPECT_NEAR(ref.image_mean, single, 4 * ref.image_mean_std_error + 0.01 * fast) << model;
+    EXPECT_GT(sumOf(l.lamps) / (3.0 * l.lamps.size()), 1.2 * single) << model;
+  }
   // Without lamps the tracer sees nothing in this scene: the lamps are what it measured.
   settings.lamps = nullptr;
   EXPECT_EQ(seasim::renderUnderwaterReference(seasim::test::testDevice(), setup, settings).image_mean, 0.0);
+}
+
+TEST(UnderwaterLamps, LayersSplitTheLampsIntoSingleAndMultipleScattering) {
+  // Every model: lamps_single + lamps_multiple = lamps per pixel; lamps_single is 001's single scattering
+  // in the water as it is (the plain model's whole light), the same whatever the model; the "single"
+  // model has no multiple part, the other two a large one (3C water, g 0.85: multiple scattering is
+  // several times the single).
+  const LampLayers plain = lampLayers("single");
+  double peak = 0;
+  for (const auto& p : plain.lamps) peak = std::max({peak, p[0], p[1], p[2]});
+  ASSERT_GT(peak, 0);
+  for (const char* model : {"single", "delta_m", "orders"}) {
+    const LampLayers l = lampLayers(model);
+    double split = 0, single = 0, plain_multiple = 0;
+    for (size_t i = 0; i < l.lamps.size(); ++i)
+      for (int c = 0; c < 3; ++c) {
+        split = std::max(split, std::fabs(l.single[i][c] + l.multiple[i][c] - l.lamps[i][c]));
+        single = std::max(single, std::fabs(l.single[i][c] - plain.lamps[i][c]));
+        plain_multiple = std::max(plain_multiple, std::fabs(plain.multiple[i][c]));
+      }
+    EXPECT_LE(split, 1e-5 * peak) << model;
+    EXPECT_LE(single, 1e-4 * peak) << model;
+    EXPECT_EQ(plain_multiple, 0.0);
+    std::printf("%s: lamps_multiple / lamps_single %.3f\n", model, sumOf(l.multiple) / sumOf(l.single));
+    if (std::string(model) != "single") EXPECT_GT(sumOf(l.multiple), 0.5 * sumOf(l.single)) << model;
+  }
+}
+
+TEST(UnderwaterLamps, SingleLayerAloneIsWrittenWhenOnlyItIsAsked) {
+  const Scene scene = lampScene({set("outputs.layers", "[\"lamps_single\"]")});
+  const seasim::FrameResult frame = render(scene);
+  const seasim::Image img = seasim::imageWithLayers(frame, scene.outputs);
+  const std::vector<std::string> want = {"R", "G", "B", "lamps_single.R", "lamps_single.G", "lamps_single.B"};
+  EXPECT_EQ(img.channel_names, want);
+  double sum = 0;
+  for (size_t i = 0; i < img.pixelCount(); ++i) sum += img.pixels[i * img.channels + 4];
+  EXPECT_GT(sum, 0);
 }
 
 TEST(UnderwaterLamps, LampInsideAnObjectAddsNothing) {

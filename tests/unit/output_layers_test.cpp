@@ -118,6 +118,28 @@ TEST(OutputLayersPlan, TheLampsLayerRunsThroughTheLampsPassOnlyWhenAsked) {
   EXPECT_FALSE(anyLayerDefine(without));
   const Plan with = makePlan(parseScene(lamps + "[outputs]\nlayers = [\"lamps\"]\n", "layers.toml"));
   EXPECT_TRUE(hasDefine(with, "underwater_lamps", "SEASIM_LAYER_LAMPS=1"));
+  EXPECT_FALSE(hasDefine(with, "underwater_lamps", "SEASIM_LAYER_LAMPS_SPLIT=1"));
+}
+
+TEST(OutputLayersPlan, TheLampsSplitIsItsOwnLayerOfTheAskedPartsOnly) {
+  const std::string lamps = std::string(kUnderwater) +
+                            "[[spotlights]]\nposition = [0, -4, 0]\ndirection = [0, -0.2, -1]\n";
+  const Plan single = makePlan(parseScene(lamps + "[outputs]\nlayers = [\"lamps_single\"]\n", "layers.toml"));
+  EXPECT_TRUE(hasDefine(single, "underwater_lamps", "SEASIM_LAYER_LAMPS_SPLIT=1"));
+  // Neither the image's formation split nor the lamps' own total layer is computed for it.
+  EXPECT_FALSE(hasDefine(single, "underwater_lamps", "SEASIM_LAYER_LAMPS=1"));
+  EXPECT_FALSE(hasDefine(single, "kd_multiple", "SEASIM_LAYER_FORMATION=1"));
+  EXPECT_NE(single.find("kd_multiple")->why.find("outputs.layers: lamps_single (12 B/pixel"), std::string::npos)
+      << single.toText();
+  const Plan both =
+      makePlan(parseScene(lamps + "[outputs]\nlayers = [\"lamps_multiple\", \"lamps_single\"]\n", "layers.toml"));
+  EXPECT_NE(both.find("kd_multiple")->why.find("lamps_single, lamps_multiple (24 B/pixel"), std::string::npos)
+      << both.toText();
+  // Without lamps the layers are still written (zero): kd_multiple owns them.
+  const Plan dark = makePlan(parseScene(std::string(kUnderwater) + "[outputs]\nlayers = [\"lamps_single\"]\n", "layers.toml"));
+  EXPECT_FALSE(dark.hasPass("underwater_lamps"));
+  const auto& writes = dark.find("kd_multiple")->writes;
+  EXPECT_NE(std::find(writes.begin(), writes.end(), "lamps_split_layer"), writes.end());
 }
 
 TEST(OutputLayersPlan, TheLayersMemoryIsInTheBudgetOnlyWhenAsked) {

@@ -19,8 +19,9 @@ namespace {
 
 const std::vector<std::string> kCoefficientLayers = {"beta_d", "beta_b"};
 // Every layer of the image's split (kd_multiple.cl), for the not-under-water entry.
-const std::vector<std::string> kSplitLayers = {"clear", "direct",       "backscatter", "forward", "lamps",
-                                               "transmission", "veiling", "beta_d", "beta_b"};
+const std::vector<std::string> kSplitLayers = {"clear",        "direct",         "backscatter",  "forward",
+                                               "lamps",        "lamps_single",   "lamps_multiple", "transmission",
+                                               "veiling",      "beta_d",         "beta_b"};
 
 const PassKeys kCoefficientKeys = {{"camera.*", "outputs.*"}, {}};
 

@@ -27,6 +27,8 @@ namespace {
 const std::vector<std::string> kFormationLayers = {"clear",  "direct",       "backscatter", "forward",
                                                    "lamps",  "transmission", "beta_d",      "beta_b"};
 const std::vector<std::string> kVeilingLayers = {"veiling", "beta_b"};
+// The lamps' light split by scattering order: zeroed here, written by underwater_lamps.
+const std::vector<std::string> kLampSplitLayers = {"lamps_single", "lamps_multiple"};
 
 // kd_multiple.cl's band layers, slot by slot (its header gives the layout).
 const char* const kBandLayerSlots[] = {"clear", "direct", "backscatter", "lamps", "transmission"};
@@ -67,6 +69,12 @@ class KdNode : public Pass {
       layer("lamps_layer", {"lamps.R", "lamps.G", "lamps.B"}, s.lampsLayer());
     }
     if (s.veilingLayer()() != nullptr) layer("veiling_layer", {"veiling.R", "veiling.G", "veiling.B"}, s.veilingLayer());
+    if (s.lampsSplitLayer()() != nullptr) {
+      std::vector<std::string> channels;
+      for (const auto& name : askedLayers(ctx.scene(), kLampSplitLayers))
+        for (const char* c : {".R", ".G", ".B"}) channels.push_back(name + c);
+      layer("lamps_split_layer", channels, s.lampsSplitLayer());
+    }
     if (s.bandLayers()() != nullptr) {  // the split per band: "<layer>.S0.<nm>" (output_layers.h)
       std::vector<std::string> channels, forward;
       for (const char* l : kBandLayerSlots)
@@ -106,6 +114,7 @@ std::shared_ptr<KdFeatures> kdFeatures(const Scene& scene, bool froxels) {
   f->veiling_layer = scene.outputs.wantsAny(kVeilingLayers);
   f->band_layers = f->formation_layers && f->spectral_output;
   f->veiling_bands = f->veiling_layer && f->spectral_output;
+  f->lamps_split_layers = static_cast<int>(askedLayers(scene, kLampSplitLayers).size());
   return f;
 }
 
@@ -115,6 +124,7 @@ std::vector<std::string> kdWrites(const KdFeatures& f) {
   if (f.point_spread) writes.push_back("forward_light");
   if (f.formation_layers) writes.insert(writes.end(), {"formation_layers", "forward_layer", "lamps_layer"});
   if (f.veiling_layer) writes.push_back("veiling_layer");
+  if (f.lamps_split_layers > 0) writes.push_back("lamps_split_layer");
   if (f.band_layers) writes.insert(writes.end(), {"band_layers", "forward_band_layer"});
   if (f.veiling_bands) writes.push_back("veiling_band_layer");
   return writes;
@@ -123,11 +133,13 @@ std::vector<std::string> kdWrites(const KdFeatures& f) {
 // The plan's "why": the model, and the layers with their cost.
 std::string kdWhy(const Scene& scene, const KdFeatures& f) {
   std::string layers;
-  if (f.formation_layers || f.veiling_layer)
-    layers = "; outputs.layers: " + layerList(askedLayers(scene, kFormationLayers)) +
+  std::vector<std::string> asked = askedLayers(scene, kFormationLayers);
+  for (const auto& l : askedLayers(scene, kLampSplitLayers)) asked.push_back(l);
+  if (f.formation_layers || f.veiling_layer || f.lamps_split_layers > 0)
+    layers = "; outputs.layers: " + layerList(asked) +
              (f.veiling_layer && !scene.outputs.wants("veiling") ? ", veiling (for beta_b)" : "") +
              (f.band_layers || f.veiling_bands ? ", per band in spectral.exr" : "") +
-             layerCostText(scene, 4.0 * ((f.formation_layers ? 18 : 0) + (f.veiling_layer ? 3 : 0) +
+             layerCostText(scene, 4.0 * ((f.formation_layers ? 18 : 0) + (f.veiling_layer ? 3 : 0) + 3 * f.lamps_split_layers +
                                          (f.band_layers ? 6 * scene.spectral.count : 0) +
                                          (f.veiling_bands ? scene.spectral.count : 0)));
   if (f.underwater_model == 1)
@@ -151,7 +163,7 @@ std::vector<BufferEstimate> kdBuffers(const Scene& s, const PassPlan& p) {
   const double w = s.camera.width, h = s.camera.height, nb = s.spectral.count;
   std::vector<BufferEstimate> out;
   // The ground-truth layers (underwater_shading.cpp) and their copies read back on the host.
-  const double layer_floats = (f.formation_layers ? 18 : 0) + (f.veiling_layer ? 3 : 0);
+  const double layer_floats = (f.formation_layers ? 18 : 0) + (f.veiling_layer ? 3 : 0) + 3 * f.lamps_split_layers;
   if (layer_floats > 0) {
     const std::vector<std::string> keys = {"camera.width", "camera.height", "outputs.layers"};
     out.push_back({p.name, "formation layers", 4 * layer_floats * w * h, keys, {w, h}});

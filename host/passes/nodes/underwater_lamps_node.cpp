@@ -23,6 +23,18 @@ const PassKeys kLampsKeys = {{"camera.*", "spectral.*", "objects.*", "spotlights
                               "quality.lamps_orders", "quality.lamps_ms_steps", "quality.lamps_ms_kappa", "quality.lamps_ms_spread"},
                              kUnderwaterSetupKeys};
 
+// Where lamps_single and lamps_multiple sit in kd_multiple's split layer (the channels it was given).
+LampSplitLayers splitLayers(LayerTarget& t) {
+  LampSplitLayers s;
+  s.buffer = &t.image;
+  s.stride = static_cast<int>(t.channels.size());
+  for (size_t i = 0; i < t.channels.size(); ++i) {
+    if (t.channels[i] == "lamps_single.R") s.single_at = static_cast<int>(i);
+    if (t.channels[i] == "lamps_multiple.R") s.multiple_at = static_cast<int>(i);
+  }
+  return s;
+}
+
 class UnderwaterLampsNode : public Pass {
  public:
   explicit UnderwaterLampsNode(const PassPlan& entry) : entry_(entry) {}
@@ -43,8 +55,10 @@ class UnderwaterLampsNode : public Pass {
     cl::Buffer* lamps_layer = lamps_layer_on ? &res.read<LayerTarget>("lamps_layer").image : nullptr;
     const bool bands_on = entry_.featuresAs<UnderwaterLampsFeatures>().band_layers;
     cl::Buffer* band_layers = bands_on ? &res.read<LayerTarget>("band_layers").image : nullptr;
+    LampSplitLayers split;
+    if (entry_.featuresAs<UnderwaterLampsFeatures>().lamps_split) split = splitLayers(res.read<LayerTarget>("lamps_split_layer"));
     ctx.timings.push_back({"underwater_lamps", pass_->run(gbuffer.geometry, gbuffer.material, target.rgb, spectral,
-                                                          lamps_layer, band_layers)});
+                                                          lamps_layer, band_layers, split)});
   }
 
  private:
@@ -77,16 +91,19 @@ PassDescriptor underwaterLampsDescriptor() {
     // The lamps' own layer: kd_multiple zeroed it, this pass adds into it as into "rgb".
     features->lamps_layer = so_far.produces("lamps_layer");
     features->band_layers = so_far.produces("band_layers");
+    features->lamps_split = so_far.produces("lamps_split_layer");
     std::vector<std::string> targets = {"rgb"};
     if (features->lamps_layer) targets.push_back("lamps_layer");
     if (features->band_layers) targets.push_back("band_layers");
+    if (features->lamps_split) targets.push_back("lamps_split_layer");
     std::vector<std::string> reads = {"underwater_setup", "gbuffer"};
     reads.insert(reads.end(), targets.begin(), targets.end());
     return planEntry(reads, targets,
                      std::string("[[spotlights]] under water: 001's sampling planes with the water's sigma_s, sigma_t, HG") +
                          (features->orders ? " + orders of multiple scattering" : "") +
                          (features->lamps_layer ? "; also into outputs.layers' lamps" : "") +
-                         (features->band_layers ? ", per band too" : ""),
+                         (features->band_layers ? ", per band too" : "") +
+                         (features->lamps_split ? "; split into lamps_single and lamps_multiple" : ""),
                      features);
   };
   d.keys = kLampsKeys;
