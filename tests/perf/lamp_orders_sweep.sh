@@ -36,3 +36,6 @@ for SET in fit heldout; do
         cell($9, $10, $11), cell($12, $13, $14), cell($15, $16, $17), cell($18, $19, $20), 100 * w
     }' results/underwater/lamp_orders_$SET.csv
 done
+# The picture: ratios by region and the worst region's error against the lamp pass's time.
+python3 tests/perf/lamp_orders_plot.py results/underwater/lamp_orders.svg results/underwater/lamp_orders_fit.csv \
+  results/underwater/lamp_orders_heldout.csv
