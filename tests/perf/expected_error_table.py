@@ -57,7 +57,8 @@ UNDERWATER = [("results/underwater/regions.csv", 30, 0), ("results/underwater/re
               (WIDENED + "sun_facing.csv", 30, 0), (WIDENED + "sun_side.csv", 30, 0),
               (WIDENED + "sun_low.csv", 75, 0), (WIDENED + "sky_bright.csv", 30, 0),
               (WIDENED + "sky_dim.csv", 30, 0), (WIDENED + "bottom_dark.csv", 30, 0),
-              (WIDENED + "bottom_bright.csv", 30, 0)]
+              (WIDENED + "bottom_bright.csv", 30, 0), (WIDENED + "camera_shallow.csv", 30, 0),
+              (WIDENED + "camera_deep.csv", 30, 0)]
 
 
 def sea_tables(model):

@@ -3,7 +3,9 @@
 # axes every earlier grid held fixed (sun 30° at azimuth 60°, behind the camera's left; sky radiance 0.05;
 # bottom albedo 0.35; camera 1.2 m above the bottom): one axis at a time, on three waters the fits never
 # used alone (a:b 0.1:0.3, 0.05:0.15, 0.2:0.5), g 0.9, bottoms at 3 and 10 m and none, views level, up
-# and down. The same scene and judging as tests/perf/underwater_regions.sh; 2048 paths per pixel
+# and down. The camera axes move the camera alone (1 m and 8 m down): the views still aim where they
+# aim from 1.2 m above the bottom, so they tilt too (from 1 m down over a 10 m bottom, "level" looks 46°
+# down). The same scene and judging as tests/perf/underwater_regions.sh; 2048 paths per pixel
 # through the pixel centre, up to 16384 where a region is noisier than 1.8 %; no constant refitted.
 # Usage: tests/perf/underwater_regions_widened.sh [folder, default results/underwater/widened]
 #   writes <axis>.csv there, one per line of the list below; AXES="name ..." runs a subset.
@@ -21,6 +23,8 @@ sky_bright|3,10,0|sky.radiance=0.2
 sky_dim|3,10,0|sky.radiance=0.01
 bottom_dark|3,10|bottom.albedo=0.1
 bottom_bright|3,10|bottom.albedo=0.8
+camera_shallow|3,10,0|camera.position=[0.0, -1.0, 0.0]
+camera_deep|10,0|camera.position=[0.0, -8.0, 0.0]
 "
 echo "$AXES_ALL" | while IFS='|' read -r name depths sets; do
   [ -z "$name" ] && continue
