@@ -66,6 +66,17 @@
  * common/sea_bottom.h (bilinear patches, exact first intersection, sea_hf_intersect) in place of the flat bottom
  * (UwParams.bottom_depth 0), met by every path segment and blocking the shadow rays to the sun; its local
  * normal for the Lambertian terms. SeaHeightField and its depth nodes are arguments 18 and 19.
+ * FFT waves seen from above (SEASIM_PT_WAVES = 1; the sea's surface.type = "fft"): the surface the fast sea
+ * model sees (common/sea_waves.h), met where its camera ray is: the mean surface y = 0 with the ocean's
+ * normal map there (wave_normals, wave_n texels a side over wave_patch metres, arguments 20–22), bilinear
+ * and periodic, read at every path's own jittered point of the pixel, so the pixel averages the
+ * unfiltered normals over its footprint (what the fast model's wave filter, common/sea_lean.h,
+ * approximates); its Fresnel split, mirrored sky and refracted ray (sea_view_interaction). Below it the water
+ * is 000 §3's: sunlight through the flat mean surface, paths that come back up leave through y = 0.
+ * So what is shared with the fast model is the surface's geometry; what it checks is the water's light to
+ * all orders along each refracted ray, and the footprint's average. The sun is a disk of cos radius
+ * sun_cos_radius (argument 23) in the facets' mirror: radiance E/Ω where a path's reflected ray falls in
+ * it, the glitter the fast model's filter spreads over its Gaussian slopes (common/sea_lean.h).
  * Defines: SEASIM_SKY_MODEL (common/sky.h: 0 uniform, the default, 1 CIE clear, 2 image, 3 Preetham),
  * SEASIM_HAS_OBJECTS (0/1), SEASIM_PT_ISOTROPIC (0/1: phase 1/(4π) instead of HG),
  * SEASIM_PT_PHASE_TABLE (0/1: the water's measured or parameterised phase from `phase_tables`, its values
@@ -96,9 +107,13 @@
 #include "common/sea_bottom_params.h"
 #include "common/sea_second.h"
 #include "common/sea_bottom.h"
+#include "common/sea_waves.h"
 
 #ifndef SEASIM_PT_HEIGHT_FIELD
 #define SEASIM_PT_HEIGHT_FIELD 0
+#endif
+#ifndef SEASIM_PT_WAVES
+#define SEASIM_PT_WAVES 0
 #endif
 
 #ifndef SEASIM_HAS_OBJECTS
@@ -412,7 +427,9 @@ __kernel void reference_path_trace(__constant UwParams* p, __global const UwBand
                                    __global const float* lamp_spectra, __global const float* phase_tables,
                                    __global float4* direct_mean, __global float4* direct_m2,
                                    __constant SkyParams* sky_params, __global const float* sky,
-                                   __constant SeaHeightField* hf, __global const float* hf_depth) {
+                                   __constant SeaHeightField* hf, __global const float* hf_depth,
+                                   __global const float* wave_normals, int wave_n, float wave_patch,
+                                   float sun_cos_radius) {
   const int x = get_global_id(0);
   const int y = get_global_id(1);
   if (x >= p->width || y >= p->height) return;
@@ -451,12 +468,27 @@ __kernel void reference_path_trace(__constant UwParams* p, __global const UwBand
        * conserved; docs/radiometry.md), both taken deterministically; the water side is the same
        * all-orders path from the surface point along the refracted ray. The sun's glint is not drawn. */
       const float3 o = (float3)(eye.x + eye.y / -d.y * d.x, 0.0f, eye.z + eye.y / -d.y * d.z);
-      const float R = fresnel_reflectance(-d.y, 1.0f, p->ior);
-      float3 d_w;
-      refract_dir(d, (float3)(0.0f, 1.0f, 0.0f), 1.0f / p->ior, &d_w);
+#if SEASIM_PT_WAVES
+      const float3 n = sea_facing_normal(d, sea_wave_normal(wave_normals, wave_n, wave_patch, o.x, o.z));
+#else
+      const float3 n = (float3)(0.0f, 1.0f, 0.0f);
+#endif
+      float R;
+      float3 d_w, sky_dir;
+      sea_view_interaction(d, n, p->ior, &R, &sky_dir, &d_w);
+      /* A refracted ray along or above the surface (a wave tilted far towards the eye): just below it,
+       * as the fast model's cos θ_ji >= 1e-4. */
+      if (d_w.y > -1e-4f) d_w = normalize((float3)(d_w.x, -1e-4f, d_w.z));
       float unused;
-      const float sky_reflected =
-          single_only_mode(max_bounces) ? 0.0f : pt_sky(bn, sky_params, sky, (float3)(d.x, -d.y, d.z));
+      float sky_reflected = single_only_mode(max_bounces) ? 0.0f : pt_sky(bn, sky_params, sky, sky_dir);
+#if SEASIM_PT_WAVES
+      /* The sun's disk in the facet's mirror (the glitter): E/Ω within angular radius ρ of the sun, E the
+       * sun's normal irradiance in air (e_sun0 = E cos θ_s (1 - R(θ_s)) just below the surface). */
+      const float3 sun_air = (float3)(p->sun_dir_air[0], p->sun_dir_air[1], p->sun_dir_air[2]);
+      const float t_sun = sun_air.y * (1.0f - fresnel_reflectance(sun_air.y, 1.0f, p->ior));
+      if (!single_only_mode(max_bounces) && t_sun > 0.0f && dot(reflect_dir(d, n), sun_air) >= sun_cos_radius)
+        sky_reflected += bn->e_sun0 / t_sun / (2.0f * M_PI_F * (1.0f - sun_cos_radius));
+#endif
       L = R * sky_reflected + (1.0f - R) / (p->ior * p->ior) *
                                  trace_path(p, bn, objects, albedo, lp, lamps, lamp_spectra, phase_tables, sky_params,
                                             sky, hf, hf_depth, band, max_bounces, key, o, d_w, &unused);

@@ -129,7 +129,8 @@ int main(int argc, char** argv) {
       "    pixel, --seed picks the paths; writes the per-pixel standard error as OUT.stderr.exr beside OUT.\n"
       "  --all-orders, the sea seen from above: the same path tracer with the camera above the surface,\n"
       "    refracting in (--steps = paths per pixel): all orders of scattering, against which paper 000's\n"
-      "    single + second order is measured.\n"
+      "    single + second order is measured; FFT waves as the fast model has them (sea_waves.h), with the\n"
+      "    sun's disk in the facets' mirror.\n"
       "  Without --steps: quality.reference_steps (default 200) or, for the path tracer, quality.reference_spp (64).");
   reference->add_option("scene", ref_cmd.scene, "Scene file")->required()->check(kReadableFile);
   reference->add_option("-o,--out", ref_cmd.out, "Output EXR")->required();

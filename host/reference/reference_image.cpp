@@ -4,6 +4,8 @@
 #include <optional>
 
 #include "device/device.h"
+#include "ocean/ocean_cpu.h"
+#include "passes/ocean_pass.h"
 #include "plan/scene_facts.h"
 #include "reference/sea_reference.h"
 #include "reference/sea_second_reference.h"
@@ -33,14 +35,26 @@ int referenceSteps(const Scene& scene, int steps, const char* knob) {
 
 }  // namespace
 
+namespace {
+
+WaveNormalMap waveNormalMap(const SurfaceDesc& surface) {
+  const OceanConfig config = oceanConfigFromSurface(surface);
+  OceanCpu ocean(config, OceanCpu::Precision::Double);
+  ocean.run(surface.time);
+  WaveNormalMap map;
+  map.grid = config.grid;
+  map.patch = config.patch_size;
+  for (double v : ocean.normal()) map.normals.push_back(static_cast<float>(v));
+  return map;
+}
+
+}  // namespace
+
 ReferenceImage renderReference(const Scene& scene, const ReferenceOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
   const bool above = options.all_orders;
   if (above && (cameraUnderwater(scene) || !scene.water.present || !(scene.camera.position.y > 0))) {
     throw RuntimeError("reference --all-orders: for the sea seen from above only (a [water] scene, camera y > 0)");
-  }
-  if (above && scene.surface.type != SurfaceDesc::Type::Flat) {
-    throw RuntimeError("reference --all-orders: the path tracer models a flat surface; set surface.type = \"flat\"");
   }
   ReferenceImage out;
   if (above || cameraUnderwater(scene)) {
@@ -65,6 +79,12 @@ ReferenceImage renderReference(const Scene& scene, const ReferenceOptions& optio
       floor = loadHeightField(scene.bottom, scene.files.get());
       settings.height_field = &*floor;
     }
+    // FFT waves seen from above: the ocean at surface.time in double on the CPU (ocean_cpu.h), its normal
+    // map traced as the fast sea model reads the ocean pass's (common/sea_waves.h; kernels/reference.cl).
+    std::optional<WaveNormalMap> waves;
+    if (above && scene.surface.type == SurfaceDesc::Type::Fft) waves = waveNormalMap(scene.surface);
+    settings.waves = waves ? &*waves : nullptr;
+    settings.sun_angular_radius = scene.sun.angular_radius;
     settings.lamp_mis = options.lamp_mis;
     settings.progress = options.progress;
     // A phase other than HG (`[water] phase`) is traced exactly from its tables; HG keeps its closed form.

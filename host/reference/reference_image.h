@@ -16,7 +16,7 @@ struct ReferenceOptions {
   int steps = 0;            // 0: the scene's quality.reference_spp (under water) or quality.reference_steps
   long long seed = -1;      // path tracer: its seed; -1: not given (seed 1)
   bool all_orders = false;  // the sea seen from above: the path tracer refracting in, not 000's quadrature
-                            // (a flat surface; the scene's sky and its flat or height-field floor)
+                            // (the scene's sky, its flat or height-field floor, FFT waves as sea_waves.h)
   int max_bounces = 0;      // path tracer: scattering vertices per path (0: its default, 64)
   bool lamp_mis = true;     // path tracer: UnderwaterReferenceSettings::lamp_mis
   std::function<void(int done, int total)> progress;  // path tracer: samples per pixel done

@@ -96,6 +96,11 @@ void summariseBlocks(const BatchMeans& per_value, const BatchMeans& per_direct, 
 std::vector<std::string> tracerDefines(const UnderwaterSetup& setup, const UnderwaterReferenceSettings& settings) {
   if (settings.height_field && setup.params.bottom_depth > 0)
     throw RuntimeError("underwater reference: a height-field floor and a flat bottom at once");
+  if (settings.waves && !settings.camera_above)
+    throw RuntimeError("underwater reference: FFT waves are traced for a camera above the surface only");
+  if (settings.waves && (settings.waves->grid < 1 || !(settings.waves->patch > 0) ||
+                         settings.waves->normals.size() != 4 * static_cast<size_t>(settings.waves->grid) * settings.waves->grid))
+    throw RuntimeError("underwater reference: the waves' normal map is not grid x grid texels of 4 floats over a patch > 0");
   if (!settings.phase_tables.empty() && settings.phase_tables.size() != PHASE_PT_VALUES + PHASE_PT_SAMPLES)
     throw RuntimeError("underwater reference: the phase tables hold " + std::to_string(settings.phase_tables.size()) +
                        " values, not " + std::to_string(PHASE_PT_VALUES + PHASE_PT_SAMPLES));
@@ -105,14 +110,18 @@ std::vector<std::string> tracerDefines(const UnderwaterSetup& setup, const Under
           std::string("SEASIM_PT_LAMP_MIS=") + (settings.lamp_mis ? "1" : "0"),
           std::string("SEASIM_PT_PHASE_TABLE=") + (settings.phase_tables.empty() ? "0" : "1"),
           "SEASIM_SKY_MODEL=" + std::to_string(setup.sky_params.model),
-          std::string("SEASIM_PT_HEIGHT_FIELD=") + (settings.height_field ? "1" : "0")};
+          std::string("SEASIM_PT_HEIGHT_FIELD=") + (settings.height_field ? "1" : "0"),
+          std::string("SEASIM_PT_WAVES=") + (settings.waves ? "1" : "0")};
 }
 
 // The scene's read-only inputs on the device, in the kernel's argument order (an absent input is one
 // zero entry: lamps, the phase tables for HG, the sky's texels, a 2 x 2 floor; the kernel does not read it).
 struct SceneBuffers {
   cl::Buffer params, bands, objects, albedo, lamp_params, lamps, lamp_spectra, phase, sky_params, sky, hf_params,
-      hf_depth;
+      hf_depth, wave_normals;
+  int wave_grid = 1;
+  float wave_patch = 1.0f;
+  float sun_cos_radius = 1.0f;
 
   void bind(cl::Kernel& kernel) const {
     kernel.setArg(0, params);
@@ -127,6 +136,10 @@ struct SceneBuffers {
     kernel.setArg(17, sky);
     kernel.setArg(18, hf_params);
     kernel.setArg(19, hf_depth);
+    kernel.setArg(20, wave_normals);
+    kernel.setArg(21, static_cast<cl_int>(wave_grid));
+    kernel.setArg(22, static_cast<cl_float>(wave_patch));
+    kernel.setArg(23, static_cast<cl_float>(sun_cos_radius));
   }
 };
 
@@ -159,6 +172,14 @@ SceneBuffers makeSceneBuffers(cl::Context& ctx, const UnderwaterSetup& setup,
   b.sky = readOnly(ctx, sky.data(), sky.size());
   b.hf_params = readOnly(ctx, &floor.params, 1);
   b.hf_depth = readOnly(ctx, floor.depth.data(), floor.depth.size());
+  const std::vector<float> flat = {0.0f, 1.0f, 0.0f, 0.0f};
+  const std::vector<float>& normals = settings.waves ? settings.waves->normals : flat;
+  b.wave_normals = readOnly(ctx, normals.data(), normals.size());
+  if (settings.waves) {
+    b.wave_grid = settings.waves->grid;
+    b.wave_patch = static_cast<float>(settings.waves->patch);
+    b.sun_cos_radius = static_cast<float>(std::cos(settings.sun_angular_radius));
+  }
   return b;
 }
 

@@ -28,6 +28,15 @@
 
 namespace seasim {
 
+// The ocean's normal map the sea seen from above is traced through (kernels/reference.cl,
+// common/sea_waves.h): 4 floats per texel (nx, ny, nz, unused), grid x grid texels over patch metres,
+// row j along z, x fastest.
+struct WaveNormalMap {
+  std::vector<float> normals;
+  int grid = 0;
+  double patch = 0.0;
+};
+
 struct UnderwaterReferenceSettings {
   int samples_per_pixel = 64;  // paths per pixel in all (the last launch may trace fewer than `batch`)
   int batch = 8;               // paths per pixel per kernel launch
@@ -59,6 +68,10 @@ struct UnderwaterReferenceSettings {
   // A height-field floor (the sea's [bottom] type = "heightfield": passes/sea_heightfield.h) in place of
   // the flat bottom (UwParams.bottom_depth must be 0); null: none. Must outlive the call.
   const HeightField* height_field = nullptr;
+  // FFT waves seen from above (camera_above only): the surface's normal map; null: the flat surface.
+  // Must outlive the call.
+  const WaveNormalMap* waves = nullptr;
+  double sun_angular_radius = 0.004654;  // radians: the sun's disk in the waves' mirror (with waves only)
   std::function<void(int done, int total)> progress;  // after each launch: samples done, samples asked
 };
 

@@ -612,6 +612,114 @@ TEST(UnderwaterReference, CameraAboveSeesAPreethamSkyDirectlyAndMirroredByR) {
   expectAgrees(r, ref, "camera above, Preetham sky");
 }
 
+// A normal map of one normal everywhere (grid x grid texels over a 10 m patch), for the waves from above.
+seasim::WaveNormalMap constantWaves(Vec3 n, int grid = 4) {
+  seasim::WaveNormalMap w;
+  w.grid = grid;
+  w.patch = 10.0;
+  const Vec3 u = seasim::normalize(n);
+  for (int i = 0; i < grid * grid; ++i) w.normals.insert(w.normals.end(), {float(u.x), float(u.y), float(u.z), 0.0f});
+  return w;
+}
+
+// The camera above black water under a Preetham sky: the surface shows R L_sky of the mirrored ray.
+UnderwaterSetup blackWaterFromAbove(const seasim::SkyLight& sky) {
+  SceneSpec spec;
+  spec.eye = {0, 3, 0};
+  spec.forward = {0.2, -1, -1};
+  spec.fov_y_deg = 40;  // every ray meets the surface, 20-70 degrees below the horizon
+  spec.bands = {{1000, 0.0, 1.0, 0.0, 0.0, {kW1[0], kW1[1], kW1[2]}}, {1000, 0.0, 1.0, 0.0, 0.0, {kW3[0], kW3[1], kW3[2]}}};
+  UnderwaterSetup s = build(spec);
+  putSky(sky, s);
+  return s;
+}
+
+TEST(UnderwaterReference, WavesOfTheFlatNormalAreTheFlatSurface) {
+  const seasim::SkyLight sky = preethamSky();
+  const UnderwaterSetup s = blackWaterFromAbove(sky);
+  UnderwaterReferenceSettings set;
+  set.samples_per_pixel = 64;
+  set.camera_above = true;
+  const UnderwaterReferenceResult flat = seasim::renderUnderwaterReference(device(), s, set);
+  const seasim::WaveNormalMap waves = constantWaves({0, 1, 0});
+  set.waves = &waves;
+  set.sun_angular_radius = 0.0;  // no sun's disk in the mirror: the flat tracer draws none
+  const UnderwaterReferenceResult wavy = seasim::renderUnderwaterReference(device(), s, set);
+  EXPECT_EQ(wavy.rgb.pixels, flat.rgb.pixels);
+  // A map that is not grid x grid texels is refused before anything is traced.
+  seasim::WaveNormalMap torn = waves;
+  torn.normals.pop_back();
+  set.waves = &torn;
+  EXPECT_THROW(seasim::renderUnderwaterReference(device(), s, set), seasim::RuntimeError);
+}
+
+TEST(UnderwaterReference, WavesTiltTheMirroredSkyAndTheFresnelSplit) {
+  // Every facet tilted 8 degrees towards +x: R and the mirrored sky of that normal, written out here
+  // (the reflected ray stays above the horizon for every pixel of this view).
+  const seasim::SkyLight sky = preethamSky();
+  const UnderwaterSetup s = blackWaterFromAbove(sky);
+  const double tilt = 8.0 * M_PI / 180;
+  const Vec3 n{std::sin(tilt), std::cos(tilt), 0.0};
+  const double ior = s.params.ior;
+  const Image ref = perPixel(s, [&](int i, kd::real3 d) {
+    const double ci = -(d.x * n.x + d.y * n.y + d.z * n.z), st = std::sqrt(1 - ci * ci) / ior, ct = std::sqrt(1 - st * st);
+    const double rs = (ci - ior * ct) / (ci + ior * ct), rp = (ct - ior * ci) / (ct + ior * ci);
+    const Vec3 r{d.x + 2 * ci * n.x, d.y + 2 * ci * n.y, d.z + 2 * ci * n.z};
+    EXPECT_GT(r.y, 0.0);
+    return 0.5 * (rs * rs + rp * rp) * sky.radiance(i, {r.x, r.y, r.z});
+  });
+  const seasim::WaveNormalMap waves = constantWaves(n);
+  UnderwaterReferenceSettings set;
+  set.samples_per_pixel = 256;
+  set.jitter = false;
+  set.camera_above = true;
+  set.waves = &waves;
+  set.sun_angular_radius = 0.0;
+  const UnderwaterReferenceResult r = seasim::renderUnderwaterReference(device(), s, set);
+  expectFiniteNonNegative(r);
+  expectAgrees(r, ref, "camera above, tilted facets, Preetham sky");
+}
+
+TEST(UnderwaterReference, WavesMirrorTheSunsDiskWithItsIrradianceTimesR) {
+  // A flat normal map, black water and a black sky: the image is the sun's disk (radius 1 degree) in
+  // the mirror, radiance R E / Ω. Summed over the pixels' solid angles it is R E per sensor weight,
+  // whatever the disk's size.
+  SceneSpec spec;
+  spec.width = spec.height = 48;
+  const Vec3 sun = seasim::normalize(Vec3{0, 0.8, -0.6});
+  spec.eye = {0, 3, 0};
+  spec.forward = {0, -sun.y, sun.z};  // at the sun's mirror point
+  spec.fov_y_deg = 4;
+  spec.bands = {{1000, 0.0, 1.0, 0.0, 0.0, {kW1[0], kW1[1], kW1[2]}}};
+  UnderwaterSetup s = build(spec);
+  set4(s.params.sun_dir_air, sun);
+  const double ior = s.params.ior;
+  const double R_sun = kd::fresnel_reflectance(sun.y, 1.0, ior);
+  const double E = 2.0;  // the sun's normal irradiance in air
+  s.bands[0].e_sun0 = float(E * sun.y * (1 - R_sun));
+  const seasim::WaveNormalMap waves = constantWaves({0, 1, 0});
+  UnderwaterReferenceSettings set;
+  set.samples_per_pixel = 256;
+  set.camera_above = true;
+  set.waves = &waves;
+  set.sun_angular_radius = M_PI / 180;
+  const UnderwaterReferenceResult r = seasim::renderUnderwaterReference(device(), s, set);
+  expectFiniteNonNegative(r);
+  const double t = std::tan(spec.fov_y_deg * M_PI / 360);
+  double flux[3] = {0, 0, 0};
+  for (int y = 0; y < spec.height; ++y)
+    for (int x = 0; x < spec.width; ++x) {
+      const double u = (2.0 * (x + 0.5) / spec.width - 1) * t, v = (1 - 2.0 * (y + 0.5) / spec.height) * t;
+      const double omega = (2 * t / spec.height) * (2 * t / spec.height) / std::pow(1 + u * u + v * v, 1.5);
+      for (int c = 0; c < 3; ++c) flux[c] += r.rgb.at(x, y, c) * omega;
+    }
+  // The mirror's incidence is the sun's own angle (cos 0.8).
+  const double R_view = kd::fresnel_reflectance(sun.y, 1.0, ior);
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(flux[c], R_view * E * kW1[c], 0.02 * R_view * E * kW1[c]) << c;
+  // The corners lie outside the disk: black.
+  EXPECT_EQ(r.rgb.at(0, 0, 1), 0.0f);
+}
+
 TEST(UnderwaterReference, WhiteFurnaceIsUniformSkyRadianceTimesIorSquared) {
   // a = 0, no sun, white (albedo 1) sphere, box and bottom under a uniform sky: L = n² L_sky is the
   // solution (scattering conserves it, the surface sends n²(1-F) L_sky + F L_up = n² L_sky down inside
