@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "plan/scene_facts.h"
+#include "scene/model_keys.h"
 #include "spectral/csv_table.h"
 #include "util/error.h"
 #include "util/paths.h"
@@ -37,24 +38,26 @@ double columnSeen(const MeasuredCase& c) {
   return c.bottom_m < 0 ? 1.0 : -std::expm1(-(c.a + c.b) * c.bottom_m);
 }
 
-// The scene's features that no measured case has (the studies: flat still surface, no caustics, no
-// spotlights; the sky and the floor's kind are the cases' own columns, lookupExpectedError).
+// The scene's features that no measured case has (the studies: no caustics, spotlights or foam; the sky, the
+// floor's kind and the surface's are the cases' own columns, lookupExpectedError).
 std::vector<std::string> unmeasuredFeatures(const Scene& scene, bool underwater) {
   std::vector<std::string> f;
-  if (scene.surface.type != SurfaceDesc::Type::Flat) f.push_back("waves");
   if (!scene.spotlights.empty()) f.push_back("spotlights");
   if (underwater && scene.underwater.caustics != UnderwaterDesc::Caustics::None) f.push_back("caustics");
   if (!underwater && scene.sea.bottom_caustics) f.push_back("caustics");
+  if (modelKey(scene, "surface.whitecaps") != 0) f.push_back("whitecaps");  // foam: no path-traced counterpart
   return f;
 }
 
-// Which cases a regime is looked up in: those measured under its sky, when there are any, and among
-// them those over its kind of floor, when there are any. What no case has is added to `features`, by name.
+// Which cases a regime is looked up in: those measured under its sky, when there are any, among them
+// those over its kind of floor, and among those its kind of surface, each when there are any. What no
+// case has is added to `features`, by name.
 struct CaseFilter {
   const MeasuredCase& regime;
-  bool sky = false, floor = false;  // restrict to the regime's sky / floor kind
+  bool sky = false, floor = false, surface = false;  // restrict to the regime's sky / floor / surface kind
   bool fits(const MeasuredCase& c) const {
-    return (!sky || c.sky == regime.sky) && (!floor || c.floor == regime.floor);
+    return (!sky || c.sky == regime.sky) && (!floor || c.floor == regime.floor) &&
+           (!surface || c.surface == regime.surface);
   }
 };
 
@@ -68,6 +71,10 @@ CaseFilter caseFilter(const MeasuredCase& regime, const std::vector<MeasuredCase
     return (!f.sky || c.sky == regime.sky) && c.floor == regime.floor;
   });
   if (!f.floor && regime.floor != 0) features.push_back("a height-field bottom");
+  f.surface = std::any_of(cases.begin(), cases.end(), [&](const MeasuredCase& c) {
+    return (!f.sky || c.sky == regime.sky) && (!f.floor || c.floor == regime.floor) && c.surface == regime.surface;
+  });
+  if (!f.surface && regime.surface != 0) features.push_back("waves");
   return f;
 }
 
@@ -101,11 +108,13 @@ std::vector<MeasuredCase> loadMeasuredCases(const std::string& view, const std::
   std::vector<MeasuredCase> cases(t.rows());
   const auto &a = t.column("a"), &b = t.column("b"), &g = t.column("g"), &bottom = t.column("bottom_m"),
              &sun = t.column("sun_zenith_deg"), &sky = t.column("sky"), &floor = t.column("floor"),
+             &surface = t.column("surface"),
              &err = t.column("max_abs_error"), &worst = t.column("worst_ratio"), &se = t.column("reference_rel_se"),
              &source = t.column("source");
   for (size_t i = 0; i < cases.size(); ++i)
     cases[i] = MeasuredCase{a[i], b[i], g[i], bottom[i], sun[i],
-                            static_cast<int>(sky[i]), static_cast<int>(floor[i]), err[i], worst[i], se[i],
+                            static_cast<int>(sky[i]), static_cast<int>(floor[i]), static_cast<int>(surface[i]),
+                            err[i], worst[i], se[i],
                             static_cast<int>(source[i])};
   return cases;
 }
@@ -150,6 +159,7 @@ std::vector<ExpectedError> expectedErrors(const Scene& scene) {
   regime.sun_zenith_deg = scene.sun.zenith * 180.0 / M_PI;
   regime.sky = skyCode(scene.sky);
   regime.floor = scene.bottom.type == BottomDesc::Type::HeightField ? 1 : 0;
+  regime.surface = scene.surface.type == SurfaceDesc::Type::Fft ? 1 : 0;
   const std::string view = underwater ? "underwater" : "sea";
   const std::string model = underwater ? (scene.underwater.model == UnderwaterDesc::Model::DiscreteOrdinates ? "discrete_ordinates" : "thesis")
                                        : (scene.sea.model == SeaDesc::Model::Multiple ? "multiple" : "paper");
@@ -173,6 +183,7 @@ nlohmann::json expectedErrorJson(const std::vector<ExpectedError>& errors) {
                    {"nearest_case",
                     {{"a", c.a}, {"b", c.b}, {"g", c.g}, {"bottom_m", c.bottom_m}, {"sun_zenith_deg", c.sun_zenith_deg},
                      {"sky", skyName(c.sky)}, {"floor", c.floor ? "height field" : "flat or none"},
+                     {"surface", c.surface ? "FFT waves" : "flat"},
                      {"reference_rel_se", c.reference_rel_se}}}});
   }
   return out;
@@ -188,10 +199,11 @@ std::string expectedErrorText(const std::vector<ExpectedError>& errors) {
     for (const std::string& f : e.unmeasured_features) why += "; " + f;
     std::snprintf(line, sizeof line,
                   "expected error (%s %s, against all orders): %s%.1f %% (worst ratio %.3f), the nearest measured "
-                  "case a %.3g b %.3g g %.2g bottom %s sun %.0f deg %s sky, distance %.2f, in %s%s\n",
+                  "case a %.3g b %.3g g %.2g bottom %s sun %.0f deg %s sky%s, distance %.2f, in %s%s\n",
                   e.view.c_str(), e.model.c_str(), e.measured ? "" : "UNMEASURED HERE; for orientation ", 100 * e.max_abs_error,
                   e.worst_ratio, c.a, c.b, c.g, c.bottom_m < 0 ? "none" : (std::to_string(c.bottom_m).substr(0, 4) + " m").c_str(),
-                  c.sun_zenith_deg, skyName(c.sky), e.distance, e.table.c_str(), why.c_str());
+                  c.sun_zenith_deg, skyName(c.sky), c.surface ? ", FFT waves" : "", e.distance, e.table.c_str(),
+                  why.c_str());
     out += line;
   }
   return out;

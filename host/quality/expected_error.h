@@ -27,6 +27,7 @@ struct MeasuredCase {
   double sun_zenith_deg = 0;
   int sky = 0;                 // the sky it was measured under: SEASIM_SKY_* (0 uniform, 1 CIE, 2 image, 3 Preetham)
   int floor = 0;               // its bottom: 0 flat or none, 1 a height field (bottom_m its mean depth)
+  int surface = 0;             // the water's surface: 0 flat, 1 FFT waves
   double max_abs_error = 0;    // worst judged region, |model / all orders - 1|
   double worst_ratio = 1;
   double reference_rel_se = 0;  // the path tracer's relative noise in that region

@@ -71,10 +71,22 @@ def sea_tables(model):
 
 
 # Shipped scenes measured as they are (tests/perf/scene_vs_pathtracer.sh: whole image and halves), each
-# with its regime: Jerlov type, g, bottom depth (a height field's mean), sun zenith, sky, floor (1: height
-# field), and the model names its CSV uses.
-UNDERWATER_SCENES = [("results/underwater/snells_window_vs_pathtracer.csv", "IB", 0.9, 8.0, 40, 3, 0)]
-SEA_SCENES = [("results/sea_allorders/seashore_vs_pathtracer.csv", "1C", 0.9, 20.5, 40, 0, 1)]
+# with the `scene` column's value its rows have (None: every row) and its regime: Jerlov type, g, bottom
+# depth (a height field's mean; -1: none), sun zenith, sky, floor (1: height field), surface (1: FFT
+# waves). The wave scenes whose sun's glitter is in view come from the longer run (more paths, fewer
+# pixels: tests/perf/sea_waves_vs_pathtracer.sh's note).
+WAVES = "results/sea_allorders/waves_vs_pathtracer.csv"
+GLITTER = "results/sea_allorders/waves_vs_pathtracer_glitter.csv"
+UNDERWATER_SCENES = [("results/underwater/snells_window_vs_pathtracer.csv", None, "IB", 0.9, 8.0, 40, 3, 0, 0)]
+SEA_SCENES = [("results/sea_allorders/seashore_vs_pathtracer.csv", None, "1C", 0.9, 20.5, 40, 0, 1, 0),
+              (GLITTER, "wavy_sea", "IB", 0.9, -1, 50, 0, 0, 1),
+              (WAVES, "wavy_sea_sun_side", "IB", 0.9, -1, 50, 0, 0, 1),
+              (WAVES, "wavy_sea_sun_behind", "IB", 0.9, -1, 50, 0, 0, 1),
+              (GLITTER, "wavy_sea_image_sky", "IB", 0.9, -1, 50, 2, 0, 1),
+              (GLITTER, "ocean_noon", "IB", 0.9, -1, 35, 3, 0, 1),
+              (GLITTER, "ocean_sunset", "IB", 0.9, -1, 85, 3, 0, 1),
+              (WAVES, "stormy_sea", "3C", 0.9, -1, 70, 0, 0, 1),
+              (WAVES, "tropical_lagoon", "I", 0.9, 4.0, 20, 3, 0, 1)]
 
 SOURCES = {
     ("sea", "paper"): sea_tables("paper") + SEA_SCENES,
@@ -82,8 +94,15 @@ SOURCES = {
     ("underwater", "thesis"): UNDERWATER + UNDERWATER_SCENES,
     ("underwater", "discrete_ordinates"): UNDERWATER + UNDERWATER_SCENES,
 }
-HEADER = ["a", "b", "g", "bottom_m", "sun_zenith_deg", "sky", "floor", "max_abs_error", "worst_ratio",
+HEADER = ["a", "b", "g", "bottom_m", "sun_zenith_deg", "sky", "floor", "surface", "max_abs_error", "worst_ratio",
           "reference_rel_se", "regions", "source"]
+
+
+def label(source):
+    """A source's line in the .tables file: its path, and for a scene's rows of a shared table the scene."""
+    if len(source) == 9 and source[1] is not None:
+        return f"{source[0]} ({source[1]})"
+    return source[0]
 
 
 def main():
@@ -98,7 +117,7 @@ def main():
                 se = max(float(r["ratio_near_se"]), float(r["ratio_far_se"]))
                 bottom = -1 if r["bottom_m"] == "deep" else float(r["bottom_m"])
                 rows[("sea", model)].append([round(at550("data/jerlov_a.csv", r["jerlov"]), 5),
-                                             round(at550("data/jerlov_b.csv", r["jerlov"]), 5), g, bottom, sun, sky, 0,
+                                             round(at550("data/jerlov_b.csv", r["jerlov"]), 5), g, bottom, sun, sky, 0, 0,
                                              round(abs(worst - 1), 4), round(worst, 4), round(se, 4), 2, source])
     # Under water: tests/perf/underwater_regions.toml, camera 3.8 m down, one band.
     regions = ["bottom_near", "bottom_far", "water_up", "water_down", "objects"]
@@ -115,19 +134,20 @@ def main():
             bottom = -1 if r["depth_m"] in ("0", "none", "") or float(r["depth_m"]) == 0 else float(r["depth_m"])
             # The study's tables name the discrete-ordinates model by its earlier name.
             model = "discrete_ordinates" if r["model"] == "improved" else r["model"]
-            rows[("underwater", model)].append([float(r["a"]), float(r["b"]), float(r["g"]), bottom, sun, sky, 0,
+            rows[("underwater", model)].append([float(r["a"]), float(r["b"]), float(r["g"]), bottom, sun, sky, 0, 0,
                                                 round(abs(worst[0] - 1), 4), round(worst[0], 4),
                                                 round(max(s for _, s in judged), 4), len(judged), source])
     for view, scenes, first in (("underwater", UNDERWATER_SCENES, len(UNDERWATER)),
                                 ("sea", SEA_SCENES, len(sea_tables("multiple")))):
-        for i, (table, jerlov, g, bottom, sun, sky, floor) in enumerate(scenes):
+        for i, (table, scene, jerlov, g, bottom, sun, sky, floor, surface) in enumerate(scenes):
             by_model = {}
             for r in read(table):
-                by_model.setdefault(r["model"], []).append((float(r["ratio"]), float(r["ratio_se"])))
+                if scene is None or r["scene"] == scene:
+                    by_model.setdefault(r["model"], []).append((float(r["ratio"]), float(r["ratio_se"])))
             for model, judged in by_model.items():
                 worst = max(judged, key=lambda x: abs(x[0] - 1))
                 rows[(view, model)].append([round(at550("data/jerlov_a.csv", jerlov), 5),
-                                            round(at550("data/jerlov_b.csv", jerlov), 5), g, bottom, sun, sky, floor,
+                                            round(at550("data/jerlov_b.csv", jerlov), 5), g, bottom, sun, sky, floor, surface,
                                             round(abs(worst[0] - 1), 4), round(worst[0], 4),
                                             round(max(e for _, e in judged), 4), len(judged), first + i])
     for (view, model), table in rows.items():
@@ -136,7 +156,7 @@ def main():
             w.writerow(HEADER)
             w.writerows(table)
         with open(os.path.join(out_dir, f"{view}_{model}.tables"), "w") as f:
-            f.write("".join(t[0] + "\n" for t in SOURCES[(view, model)]))
+            f.write("".join(label(t) + "\n" for t in SOURCES[(view, model)]))
 
 
 if __name__ == "__main__":

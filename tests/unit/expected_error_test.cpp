@@ -132,6 +132,45 @@ TEST(ExpectedError, AHeightFieldFloorIsLookedUpAmongTheFloorsMeasured) {
   EXPECT_EQ(shore[0].table, "results/sea_allorders/seashore_vs_pathtracer.csv");
 }
 
+TEST(ExpectedError, WavesAreLookedUpAmongTheWaveScenesMeasured) {
+  MeasuredCase flat{0.1, 0.3, 0.9, -1.0, 40};
+  flat.max_abs_error = 0.01;
+  MeasuredCase wavy = flat;  // a wave scene's, under another sun than the flat case
+  wavy.sun_zenith_deg = 70;
+  wavy.surface = 1;
+  wavy.max_abs_error = 0.03;
+  MeasuredCase regime = flat;
+  regime.surface = 1;
+  const ExpectedError e = seasim::lookupExpectedError(regime, "sea", "multiple", {flat, wavy}, {});
+  EXPECT_EQ(e.nearest.surface, 1);
+  EXPECT_DOUBLE_EQ(e.max_abs_error, 0.03);
+  EXPECT_TRUE(e.unmeasured_features.empty());
+  EXPECT_EQ(seasim::expectedErrorJson({e})[0]["nearest_case"]["surface"], "FFT waves");
+  const ExpectedError none = seasim::lookupExpectedError(regime, "sea", "multiple", {flat}, {});
+  ASSERT_EQ(none.unmeasured_features.size(), 1u);
+  EXPECT_EQ(none.unmeasured_features[0], "waves");
+  EXPECT_FALSE(none.measured);
+  // The shipped wave scenes seen from above: each its own measurement (tests/perf/sea_waves_vs_pathtracer.sh).
+  for (const char* name : {"wavy_sea", "wavy_sea_image_sky", "tropical_lagoon"}) {
+    const auto s = seasim::expectedErrors(seasim::loadScene(std::string(SEASIM_SOURCE_DIR) + "/scenes/" + name + ".toml"));
+    ASSERT_EQ(s.size(), 1u);
+    EXPECT_TRUE(s[0].measured) << name;
+    EXPECT_EQ(s[0].nearest.surface, 1) << name;
+    EXPECT_NE(s[0].table.find(std::string("(") + name + ")"), std::string::npos) << name << ": " << s[0].table;
+  }
+  // Foam has no counterpart in the path tracer: whitecaps stays unmeasured.
+  const auto foam = seasim::expectedErrors(seasim::loadScene(std::string(SEASIM_SOURCE_DIR) + "/scenes/whitecaps.toml"));
+  ASSERT_EQ(foam.size(), 1u);
+  EXPECT_FALSE(foam[0].measured);
+  EXPECT_EQ(foam[0].unmeasured_features, std::vector<std::string>{"whitecaps"});
+  // Under water no wave case was measured: the waves stay a feature there.
+  const auto below = seasim::expectedErrors(scene(kUnderwater, {{"surface.type", "\"fft\""}}));
+  ASSERT_EQ(below.size(), 1u);
+  EXPECT_FALSE(below[0].measured);
+  EXPECT_NE(std::find(below[0].unmeasured_features.begin(), below[0].unmeasured_features.end(), "waves"),
+            below[0].unmeasured_features.end());
+}
+
 TEST(ExpectedError, DistanceIsOneStepPerDoublingTenthOfGAndFifteenDegrees) {
   MeasuredCase c{0.1, 0.3, 0.9, -1, 30};
   MeasuredCase s = c;
