@@ -4,8 +4,10 @@ BUILD ?= build
 JOBS ?= $(shell nproc)
 CMAKE_FLAGS ?= -DCMAKE_BUILD_TYPE=RelWithDebInfo
 # file: CPack reads the binaries with it to declare the .deb's shared-library dependencies (make package).
+# Images: libopenexr-dev and libpng-dev write EXR and PNG, libopenimageio-dev reads them (and compares).
 DEPS = build-essential cmake pkgconf pocl-opencl-icd ocl-icd-opencl-dev opencl-c-headers \
-       opencl-clhpp-headers clinfo libfftw3-dev libvkfft-dev libopenimageio-dev openimageio-tools libtbb-dev \
+       opencl-clhpp-headers clinfo libfftw3-dev libvkfft-dev libopenexr-dev libpng-dev libopenimageio-dev \
+       openimageio-tools libtbb-dev \
        libcli11-dev libtomlplusplus-dev nlohmann-json3-dev libgtest-dev file libglfw3-dev libgl-dev libopengl-dev
 # `make test` also needs a display for the preview's tests (Xvfb, xauth and Mesa's llvmpipe,
 # libgl1-mesa-dri), for the farm test (tests/farm/) a real Slurm controller and node on localhost,

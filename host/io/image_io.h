@@ -1,6 +1,8 @@
 // image_io.h — image files. Two implementations, CMake compiles exactly one:
-//   image_io_oiio.cpp  (SEASIM_IMAGE_IO=ON, the default): OpenImageIO — EXR, PNG, spectral EXR,
-//                      reading any format OpenImageIO knows. The only file that includes OIIO.
+//   SEASIM_IMAGE_IO=ON (the default): the writers in image_write.cpp, EXR and spectral EXR through
+//                      OpenEXR's library (exr_write.h), PNG through libpng (png_write.h); the readers
+//                      through OpenImageIO (image_io_oiio.cpp, a module dlopened on the first read:
+//                      any format OpenImageIO knows). The only file that includes OIIO.
 //   image_io_npy.cpp   (SEASIM_IMAGE_IO=OFF, builds carried to GPU machines, docs/gpu.md):
 //                      every writer writes NumPy arrays beside the requested name instead:
 //                        writeExr(p)         -> p + ".npy"  float32 (h, w, c), linear
@@ -25,7 +27,7 @@
 
 namespace seasim {
 
-// True when this build has OpenImageIO (real EXR/PNG files), false for the .npy fallback.
+// True when this build writes and reads real EXR/PNG files, false for the .npy fallback.
 bool imageIoAvailable();
 
 // Linear float EXR, zip compression, 32-bit float channels. Channel names: the image's

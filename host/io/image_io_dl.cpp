@@ -1,5 +1,6 @@
-// image_io_dl.cpp — image_io.h in builds with OpenImageIO: forwards to libseasim_oiio.so, loaded on
-// the first image read or write (image_io_module.h says why). `.npy` paths never load it.
+// image_io_dl.cpp — image_io.h's readers in builds with OpenImageIO: forwards to libseasim_oiio.so,
+// loaded on the first image read (image_io_module.h says why). `.npy` paths never load it; the writers
+// are image_write.cpp's and never load it either.
 #include <filesystem>
 #include <mutex>
 
@@ -39,22 +40,6 @@ const ImageIoModule& module() {
 }  // namespace
 
 bool imageIoAvailable() { return true; }
-
-std::string writeExr(const std::string& path, const Image& image) { return module().writeExr(path, image); }
-
-std::string writePng(const std::string& path, const Image& linear_rgb, double exposure_ev) {
-  return module().writePng(path, linear_rgb, exposure_ev);
-}
-
-std::string writePngBytes(const std::string& path, int width, int height, int channels,
-                          const std::vector<std::uint8_t>& bytes) {
-  return module().writePngBytes(path, width, height, channels, bytes);
-}
-
-std::string writeSpectralExr(const std::string& path, int width, int height, const std::vector<double>& wavelengths_nm,
-                             const std::vector<float>& data, const Image* layers) {
-  return module().writeSpectralExr(path, width, height, wavelengths_nm, data, layers);
-}
 
 ImageHeader readImageHeader(const std::string& path) {
   if (isNpy(path)) return readNpyHeader(path);  // as the module would, without loading it

@@ -23,7 +23,7 @@ std::string spectralChannelName(double wavelength_nm);
 std::string spectralLayerChannelName(const std::string& layer, double wavelength_nm);
 
 // The file's values per pixel: the n bands of `bands`, then the k values of `layers` (the per-band layers'
-// channels), for `pixels` pixels; both pixel-major. Inline: the image module and the .npy writer share it.
+// channels), for `pixels` pixels; both pixel-major (the .npy writer's array).
 inline std::vector<float> bandsThenLayers(const std::vector<float>& bands, std::size_t n,
                                           const std::vector<float>& layers, std::size_t k, std::size_t pixels) {
   std::vector<float> all(pixels * (n + k));

@@ -1,10 +1,13 @@
 // io_test.cpp — host/io: atomic writes, tone map, .npy, CSV, EXR/PNG/spectral EXR round trips.
-// Built with OpenImageIO (SEASIM_IMAGE_IO=1) the round trips go through real EXR/PNG files; without
-// it they go through the .npy files that stand in for them (image_io.h).
+// Built with image I/O (SEASIM_IMAGE_IO=1) the round trips go through real EXR/PNG files (written by
+// OpenEXR's library and libpng, read by OpenImageIO); without it they go through the .npy files that
+// stand in for them (image_io.h).
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -310,6 +313,118 @@ TEST_F(IoTest, ExrRoundTripIsBitExact) {
   for (std::size_t i = 0; i < depth.pixels.size(); ++i) EXPECT_TRUE(bitEqual(dback.pixels[i], depth.pixels[i]));
 #endif
   EXPECT_THROW(readImage(path("missing.exr")), RuntimeError);
+}
+
+// Fills rows [0, rows) of every channel with random bit patterns (no NaN or Inf): values that zlib cannot
+// shrink, so those ZIP blocks are stored raw, beside rows that it can.
+void fillWithNoise(std::vector<float>& values, std::size_t count, std::uint32_t seed) {
+  for (std::size_t i = 0; i < count; ++i) {
+    seed = seed * 1664525u + 1013904223u;
+    std::uint32_t bits = seed;
+    if ((bits & 0x7f800000u) == 0x7f800000u) bits &= ~0x00800000u;
+    std::memcpy(&values[i], &bits, sizeof bits);
+  }
+}
+
+TEST_F(IoTest, ExrOfManyBlocksAndChannelsRoundTripsBitExact) {
+  // 37 x 41: three full 16-line ZIP blocks and a short one; noise in the top 20 rows next to a smooth
+  // ramp; channels given out of name order (OpenEXR stores them sorted), one name longer than 31 bytes
+  // (the file then needs OpenEXR's long-names flag). Real files only: the .npy stand-in keeps no names.
+#if SEASIM_IMAGE_IO
+  Image img = rampImage(37, 41, 5);
+  fillWithNoise(img.pixels, 20 * 37 * 5, 12345);
+  img.channel_names = {"z.depth", "B", "a_channel_name_longer_than_31_bytes", "A", "normal.x"};
+  writeExr(path("many.exr"), img);
+  EXPECT_EQ(listing(), std::vector<std::string>{"many.exr"});
+  EXPECT_EQ(readImageAttribute(path("many.exr"), "compression"), "zip");
+  const Image back = readImage(path("many.exr"));
+  ASSERT_EQ(back.width, 37);
+  ASSERT_EQ(back.height, 41);
+  ASSERT_EQ(back.channels, 5);
+  for (int c = 0; c < 5; ++c) {
+    const auto at = std::find(back.channel_names.begin(), back.channel_names.end(), img.channel_names[c]);
+    ASSERT_NE(at, back.channel_names.end()) << img.channel_names[c];
+    const int k = static_cast<int>(at - back.channel_names.begin());
+    for (int y = 0; y < 41; ++y)
+      for (int x = 0; x < 37; ++x)
+        ASSERT_TRUE(bitEqual(back.at(x, y, k), img.at(x, y, c))) << img.channel_names[c] << " " << x << "," << y;
+  }
+  img.channel_names = {"R", "G", "R", "A", "B"};  // a repeated name: refused, nothing written
+  EXPECT_THROW(writeExr(path("dup.exr"), img), RuntimeError);
+  img.channel_names = {"R", "G", "", "A", "B"};  // an empty one
+  EXPECT_THROW(writeExr(path("empty.exr"), img), RuntimeError);
+  img.channel_names = {"R", "G", std::string(256, 'x'), "A", "B"};  // longer than OpenEXR keeps
+  EXPECT_THROW(writeExr(path("long.exr"), img), RuntimeError);
+  EXPECT_EQ(listing(), std::vector<std::string>{"many.exr"});
+#endif
+}
+
+TEST_F(IoTest, SpectralExrWithLayersOfManyBlocksRoundTripsBitExact) {
+  // A render's spectral.exr: 31 bands (400..700 nm) and two per-band ground-truth layers, 93 channels,
+  // 23 x 35 pixels (two full ZIP blocks and a short one). Every channel comes back bit for bit under its
+  // name; readSpectralExr takes the bands and leaves the layers' "<layer>.S0.<nm>" channels alone. Real
+  // files only: the .npy stand-in keeps no names.
+#if SEASIM_IMAGE_IO
+  std::vector<double> wl;
+  for (int nm = 400; nm <= 700; nm += 10) wl.push_back(nm);
+  const int w = 23, h = 35;
+  const std::size_t n = wl.size(), pixels = static_cast<std::size_t>(w) * h;
+  std::vector<float> data(pixels * n);
+  for (std::size_t i = 0; i < data.size(); ++i) data[i] = 0.001f * static_cast<float>(i % 977) + 1.0f / 7.0f;
+  fillWithNoise(data, pixels * n / 3, 777);
+  Image layers;
+  layers.resize(w, h, static_cast<int>(2 * n));
+  for (const char* layer : {"direct", "backscatter"})
+    for (double nm : wl) layers.channel_names.push_back(spectralLayerChannelName(layer, nm));
+  fillWithNoise(layers.pixels, layers.pixels.size(), 4242);
+  writeSpectralExr(path("spectral.exr"), w, h, wl, data, &layers);
+  const SpectralImage bands = readSpectralExr(path("spectral.exr"));
+  ASSERT_EQ(bands.wavelengths_nm, wl);
+  ASSERT_EQ(bands.data.size(), data.size());
+  for (std::size_t i = 0; i < data.size(); ++i) ASSERT_TRUE(bitEqual(bands.data[i], data[i])) << i;
+  EXPECT_EQ(readImageAttribute(path("spectral.exr"), "spectralLayoutVersion"), "1.0");
+  EXPECT_EQ(readImageAttribute(path("spectral.exr"), "emissiveUnits"), "W.m^-2.sr^-1");
+  EXPECT_EQ(readImageAttribute(path("spectral.exr"), "compression"), "zip");
+  const Image back = readImage(path("spectral.exr"));
+  ASSERT_EQ(back.channels, static_cast<int>(3 * n));
+  for (std::size_t c = 0; c < 2 * n; ++c) {
+    const auto at = std::find(back.channel_names.begin(), back.channel_names.end(), layers.channel_names[c]);
+    ASSERT_NE(at, back.channel_names.end()) << layers.channel_names[c];
+    const int k = static_cast<int>(at - back.channel_names.begin());
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+        ASSERT_TRUE(bitEqual(back.at(x, y, k), layers.at(x, y, static_cast<int>(c))))
+            << layers.channel_names[c] << " " << x << "," << y;
+  }
+  // A layer named like a band: refused, nothing written.
+  layers.channel_names[5] = spectralChannelName(wl[2]);
+  EXPECT_THROW(writeSpectralExr(path("clash.exr"), w, h, wl, data, &layers), RuntimeError);
+  EXPECT_EQ(listing(), std::vector<std::string>{"spectral.exr"});
+#endif
+}
+
+TEST_F(IoTest, PngBytesRoundTripForOneToFourChannels) {
+  for (int channels = 1; channels <= 4; ++channels) {
+    const int w = 9, h = 7;
+    std::vector<std::uint8_t> bytes(w * h * channels);
+    for (std::size_t i = 0; i < bytes.size(); ++i) bytes[i] = static_cast<std::uint8_t>(i * 37 + channels);
+    // Opaque alpha: OpenImageIO's reader premultiplies colour by alpha, the file holds them unassociated.
+    if (channels % 2 == 0)
+      for (std::size_t i = channels - 1; i < bytes.size(); i += channels) bytes[i] = 255;
+    const std::string name = "shot" + std::to_string(channels) + ".png";
+    writePngBytes(path(name), w, h, channels, bytes);
+    const Image back = readImage(path(name));
+    ASSERT_EQ(back.width, w);
+    ASSERT_EQ(back.height, h);
+    ASSERT_EQ(back.channels, channels);
+    const double to_byte = SEASIM_IMAGE_IO ? 255.0 : 1.0;
+    for (std::size_t i = 0; i < bytes.size(); ++i) ASSERT_EQ(std::lround(back.pixels[i] * to_byte), bytes[i]) << i;
+#if SEASIM_IMAGE_IO
+    EXPECT_EQ(readImageAttribute(path(name), "oiio:ColorSpace"), "sRGB");  // the file's sRGB chunk
+#endif
+  }
+  EXPECT_THROW(writePngBytes(path("bad.png"), 2, 2, 5, std::vector<std::uint8_t>(20)), RuntimeError);
+  EXPECT_FALSE(fs::exists(path("bad.png")) || fs::exists(path("bad.png.npy")));
 }
 
 TEST_F(IoTest, PngHoldsTheToneMappedBytes) {
