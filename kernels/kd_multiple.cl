@@ -23,7 +23,10 @@
  * [pixel][2][band_count] (common/water_spread_params.h), for water_spread.cl to add back blurred.
  * Defines (host/plan): SEASIM_HAS_MULTIPLE (L_MS), SEASIM_HAS_FROXEL (single scattering added here and
  * split off L_MS and L_s), SEASIM_SPECTRAL_OUTPUT, SEASIM_UWI_SPREAD, SEASIM_SKY_MODEL (common/sky.h);
- * SEASIM_BAND_LANES (4, 8 or 16; default 16, common/band_lanes.h).
+ * SEASIM_BAND_LANES (4, 8 or 16; default 16, common/band_lanes.h). SEASIM_SAND_SHARE_MAP (the
+ * discrete-ordinates model with objects over a bottom, quality.sand_share_step > 1): the sand's share
+ * interpolated from sand_share.cl's lattice (sand_map, sand_w x sand_h, every sand_step-th pixel) where
+ * its hits see the pixel's surface, evaluated here elsewhere.
  * SEASIM_LAYER_FORMATION (outputs.layers, docs/layers.md): the image split by where its light comes from,
  * in sensor RGB: formation[pixel][12] = clear (the hit's radiance with S = 0: no water between), direct
  * (clear e^{-c S} per band), backscatter (the in-scatter and the froxel term), transmission (direct/clear
@@ -60,6 +63,9 @@
 #endif
 #ifndef SEASIM_UNDERWATER_MODEL
 #define SEASIM_UNDERWATER_MODEL 0
+#endif
+#ifndef SEASIM_SAND_SHARE_MAP
+#define SEASIM_SAND_SHARE_MAP 0
 #endif
 #if SEASIM_UNDERWATER_MODEL == 1 /* underwater.model = "discrete_ordinates" on the band lanes */
 #include "common/underwater_ordinates_params.h"
@@ -287,6 +293,38 @@ static inline void kd_add_hit_layers(realb clear, realb direct, realb trans, con
 #endif
 
 #if SEASIM_UNDERWATER_MODEL == 1
+/* sand_share.cl's lattice (SEASIM_SAND_SHARE_MAP): every step-th pixel's share, w x h of them, and where
+ * this pixel is; its G-buffer distances tell which lattice pixels see the same surface. */
+typedef struct {
+  __global const float* map;
+  int w, h, step;
+  __global const float4* geom;
+  int x, y;
+} SandShareAt;
+
+#if SEASIM_SAND_SHARE_MAP
+/* The sand's share at the pixel from the lattice: the (up to) four lattice pixels around it whose hit lies
+ * within 5 % of the pixel's own distance S (the same surface), weighted bilinearly by position; -1 when
+ * none does (a silhouette: the caller evaluates the pixel itself). A lattice pixel reads its own value,
+ * so there the share is the per-pixel one exactly. Open water: 1, as uwi_sand_share. */
+static inline float sand_share_from_map(const SandShareAt* a, __constant UwParams* p, float S) {
+  if (!(S < 1.0e6f)) return 1.0f;
+  const int i0 = a->x / a->step, j0 = a->y / a->step;
+  const float fx = (float)(a->x - i0 * a->step) / a->step, fy = (float)(a->y - j0 * a->step) / a->step;
+  float sum = 0.0f, wsum = 0.0f;
+  for (int dj = 0; dj <= 1; ++dj)
+    for (int di = 0; di <= 1; ++di) {
+      const float w = (di ? fx : 1.0f - fx) * (dj ? fy : 1.0f - fy);
+      const int i = min(i0 + di, a->w - 1), j = min(j0 + dj, a->h - 1);
+      const float Sq = a->geom[min(j * a->step, p->height - 1) * p->width + min(i * a->step, p->width - 1)].x;
+      if (!(w > 0.0f) || !(Sq < 1.0e6f) || fabs(Sq - S) > 0.05f * S) continue;
+      sum += w * a->map[j * a->w + i];
+      wsum += w;
+    }
+  return wsum > 0.0f ? sum / wsum : -1.0f;
+}
+#endif
+
 /* What the discrete-ordinates model reads of a pixel once besides KdPixel: the phase of the view and
  * (surface hits) of the reflected ray, the source table's and the aureole's nodes, the sand's share,
  * the mirrored object, the tilted plane table's nodes (uwi_pixel). */
@@ -301,8 +339,8 @@ typedef struct {
 } UwiPixel;
 
 static inline void uwi_pixel(__constant UwParams* p, __global const float* band_table, int stride,
-                             __global const UwObject* objects, const KdPixel* k, float3 d, float3 n, float3 s_w,
-                             UwiPixel* q) {
+                             __global const UwObject* objects, const SandShareAt* sand, const KdPixel* k, float3 d,
+                             float3 n, float3 s_w, UwiPixel* q) {
   const int mat = k->mat;
   const float S = k->S;
   /* Its rows follow the objects' albedo rows; the phase of the view and (surface hits) of the reflected
@@ -326,13 +364,13 @@ static inline void uwi_pixel(__constant UwParams* p, __global const float* band_
   q->aureole_end = mat == UW_MAT_SURFACE ? 0.0f : k->y_hit;
   const float3 cam = (float3)(p->cam_pos[0], p->cam_pos[1], p->cam_pos[2]);
   /* The share of the sunlit sand's light the ray gathers that no object hides or shades (uwi_sand_share,
-   * with the first band's c' and k). */
-  q->v_sand = k->multiple ? uwi_sand_share(objects, p->object_count, p->bottom_depth, cam, d, S,
-                                           band_table[(uwi_row0 + UWI_ROW_C_DM) * stride],
-                                           band_table[(uwi_row0 + UWI_ROW_K) * stride], s_w,
-                                           band_table + UW_ROWS * stride, stride,
-                                           band_table[UW_ROW_BOTTOM_ALBEDO * stride])
-                          : 1.0f;
+   * with the first band's c' and k): from sand_share.cl's lattice where it can be, else here. */
+#if SEASIM_SAND_SHARE_MAP
+  const float v_map = k->multiple ? sand_share_from_map(sand, p, S) : 1.0f;
+  q->v_sand = v_map >= 0.0f ? v_map : uwi_view_sand_share(p, objects, band_table, stride, d, S);
+#else
+  q->v_sand = k->multiple ? uwi_view_sand_share(p, objects, band_table, stride, d, S) : 1.0f;
+#endif
   /* The object the reflected ray meets first, if any (surface hits; uwi_mirror_hit). */
   int mat_m = UW_MAT_NONE;
   const UwiMirrorHit mirror =
@@ -601,6 +639,9 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
 #if SEASIM_HAS_FROXEL
                           __constant FroxelParams* fp, __global const float* froxel_volume,
 #endif
+#if SEASIM_SAND_SHARE_MAP
+                          __global const float* sand_map, int sand_w, int sand_h, int sand_step,
+#endif
                           __global float* rgb
 #if SEASIM_SPECTRAL_OUTPUT
                           , __global float* spectral
@@ -647,7 +688,14 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
   k.albedo_row = band_table + (k.mat >= 0 ? UW_ROWS + k.mat : UW_ROW_BOTTOM_ALBEDO) * stride;
 #if SEASIM_UNDERWATER_MODEL == 1
   UwiPixel q;
-  uwi_pixel(p, band_table, stride, objects, &k, d, n, s_w, &q);
+  SandShareAt sand = {.geom = geom, .x = x, .y = y};
+#if SEASIM_SAND_SHARE_MAP
+  sand.map = sand_map;
+  sand.w = sand_w;
+  sand.h = sand_h;
+  sand.step = sand_step;
+#endif
+  uwi_pixel(p, band_table, stride, objects, &sand, &k, d, n, s_w, &q);
 #endif
   KdSums s;
   kd_sums_zero(&s);

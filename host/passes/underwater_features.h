@@ -45,6 +45,7 @@ struct KdFeatures final : PassFeatures {
   // buffer is zeroed before the kernel (no define: the kernel does not touch it), underwater_lamps adds
   // into it.
   int lamps_split_layers = 0;
+  bool sand_map = false;  // the sand's share from sand_share.cl's lattice (quality.sand_share_step > 1)
 
   void list(FeatureList& out) const override {
     out.flag("multiple", "SEASIM_HAS_MULTIPLE", multiple);
@@ -58,6 +59,7 @@ struct KdFeatures final : PassFeatures {
     if (veiling_layer) out.flag("veiling_layer", "SEASIM_LAYER_VEILING", true);
     if (band_layers) out.flag("band_layers", "SEASIM_LAYER_BANDS", true);
     if (veiling_bands) out.flag("veiling_bands", "SEASIM_LAYER_VEILING_BANDS", true);
+    if (sand_map) out.flag("sand_map", "SEASIM_SAND_SHARE_MAP", true);
   }
 };
 

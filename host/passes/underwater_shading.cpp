@@ -1,6 +1,7 @@
 #include "passes/underwater_shading.h"
 
 #include "device/enqueue.h"
+#include "util/error.h"
 
 namespace seasim {
 
@@ -38,7 +39,8 @@ UnderwaterShading::UnderwaterShading(Device& device, const PassPlan& kd, const U
   });
 }
 
-double UnderwaterShading::run(const cl::Buffer* froxel_params, const cl::Buffer* froxel_volume) {
+double UnderwaterShading::run(const cl::Buffer* froxel_params, const cl::Buffer* froxel_volume,
+                              const UnderwaterSandShare* sand) {
   if (lamps_split_floats_ > 0)  // underwater_lamps adds into it (and leaves it 0 without lamps)
     onDevice("zeroing the lamps' split layers", [&] {
       device_.queue().enqueueFillBuffer(lamps_split_, 0.0f, 0, sizeof(float) * lamps_split_floats_);
@@ -58,6 +60,13 @@ double UnderwaterShading::run(const cl::Buffer* froxel_params, const cl::Buffer*
     if (froxel_params && froxel_volume) {
       kernel_.setArg(arg++, *froxel_params);
       kernel_.setArg(arg++, *froxel_volume);
+    }
+    if (features_.sand_map) {
+      if (!sand) throw RuntimeError("kd_multiple: planned with the sand's share lattice, run without it");
+      kernel_.setArg(arg++, sand->map);
+      kernel_.setArg(arg++, static_cast<cl_int>(sand->width));
+      kernel_.setArg(arg++, static_cast<cl_int>(sand->height));
+      kernel_.setArg(arg++, static_cast<cl_int>(sand->step));
     }
     kernel_.setArg(arg++, rgb_);
     if (features_.spectral_output) kernel_.setArg(arg++, spectral_);

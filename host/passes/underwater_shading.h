@@ -20,8 +20,10 @@ class UnderwaterShading {
   UnderwaterShading(Device& device, const PassPlan& kd, const UnderwaterSetupBuffers& setup,
                     const UnderwaterGBuffer& gbuffer);
   // Runs kd_multiple; returns its profiled ms. froxel_params / froxel_volume: the froxel pass's
-  // volume when kd was planned with its froxel feature (else null).
-  double run(const cl::Buffer* froxel_params, const cl::Buffer* froxel_volume);
+  // volume when kd was planned with its froxel feature (else null); sand: sand_share.cl's lattice when
+  // planned with its sand_map feature (else null).
+  double run(const cl::Buffer* froxel_params, const cl::Buffer* froxel_volume,
+             const UnderwaterSandShare* sand = nullptr);
 
   cl::Buffer& rgb() { return rgb_; }
   cl::Buffer& spectral() { return spectral_; }  // band_count floats per pixel; null without spectral output

@@ -309,6 +309,19 @@ SEASIM_FN real uwi_sand_share(const SEASIM_GLOBAL UwObject* objects, int count, 
   return den > R(0.0) ? fmin(num / den, R(1.0)) : R(1.0);
 }
 
+/* uwi_sand_share of a view ray from the camera along d to its hit S, with the band table's
+ * (common/underwater_band_table.h) first band: c', k, the objects' albedo rows and the sand's albedo.
+ * kd_multiple.cl per pixel, and sand_share.cl on a coarser lattice of pixels. */
+SEASIM_FN real uwi_view_sand_share(SEASIM_CONSTANT const UwParams* p, const SEASIM_GLOBAL UwObject* objects,
+                                   const SEASIM_GLOBAL float* band_table, int stride, real3 d, real S) {
+  const int row0 = UW_ROWS + p->object_count;
+  const real3 cam = MAKE_REAL3(p->cam_pos[0], p->cam_pos[1], p->cam_pos[2]);
+  const real3 s_w = MAKE_REAL3(p->sun_dir_water[0], p->sun_dir_water[1], p->sun_dir_water[2]);
+  return uwi_sand_share(objects, p->object_count, p->bottom_depth, cam, d, S, band_table[(row0 + UWI_ROW_C_DM) * stride],
+                        band_table[(row0 + UWI_ROW_K) * stride], s_w, band_table + UW_ROWS * stride, stride,
+                        band_table[UW_ROW_BOTTOM_ALBEDO * stride]);
+}
+
 /* In-scattered radiance along a view ray from depth o_d along d (d_y its vertical component) to
  * distance S (UW_INFINITE: deep water); cos_s = d·s_w. g: the water's own asymmetry (for the froxel
  * term taken off when single_scattering). Never negative. The forward peak's aureole is not in it

@@ -23,6 +23,7 @@
 #include "seabed_objects_scene.h"
 #include "test_device.h"
 #include "underwater/underwater_ordinates_solver.h"
+#include "reference/underwater_reference.h"
 #include "underwater/underwater_setup.h"
 #include "water_spread_cpu.h"
 
@@ -39,6 +40,8 @@ point_spread = false
 [spectral]
 count = 8
 sensor = "nikon_d5100_npl"
+[quality]
+sand_share_step = 1  # every pixel's own share of the sand, as the double evaluation computes it
 )";
 
 seasim::test::SeabedObjectsScene ordinatesScene() {
@@ -390,6 +393,52 @@ TEST(UnderwaterOrdinatesKernel, WithFroxelsTheFrameIsFiniteAndDiffersFromTheThes
   }
   for (float v : b.rgb.pixels) sb += v;
   EXPECT_GT(std::fabs(sa / sb - 1.0), 0.01);  // the model switch reaches the kernel
+}
+
+// The sand's share from sand_share.cl's lattice (quality.sand_share_step 2, the default) against every
+// pixel's own (1): the lattice pixels read their own value, the pixels between interpolate it along their
+// surface or evaluate it themselves at silhouettes; the image and the objects' pixels (where the share
+// is below 1) agree within the 0.5 % the region studies allow.
+TEST(UnderwaterOrdinatesKernel, SandShareLatticeGivesEveryPixelsOwnShareWithinHalfAPercent) {
+  const seasim::Scene own = seasim::parseScene(kScene, "test_ordinates.toml");
+  const seasim::Scene lattice = seasim::parseScene(kScene, "test_ordinates.toml", {set("quality.sand_share_step", "2")});
+  ASSERT_FALSE(seasim::makePlan(own).hasPass("sand_share"));
+  ASSERT_TRUE(seasim::makePlan(lattice).hasPass("sand_share"));
+  const seasim::FrameResult a = seasim::renderFrame(seasim::test::testDevice(), own, seasim::makePlan(own));
+  const seasim::FrameResult b = seasim::renderFrame(seasim::test::testDevice(), lattice, seasim::makePlan(lattice));
+  ASSERT_EQ(b.nonfinite, 0);
+  const int w = own.camera.width, h = own.camera.height;
+  // Which pixels see an object: the raycast's material, from the double evaluation's hits.
+  const seasim::UnderwaterSetup setup = setupOf(own);
+  double sum_a = 0, sum_b = 0, obj_a = 0, obj_b = 0, worst_lattice = 0, worst = 0;
+  int objects = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const seasim::Vec3 dv = seasim::underwaterPixelDirection(setup.params, x + 0.5, y + 0.5);
+      kd::real3 n;
+      int mat;
+      kd::uw_scene_hit(setup.objects.data(), setup.params.object_count, setup.params.bottom_depth,
+                       kd::real3{setup.params.cam_pos[0], setup.params.cam_pos[1], setup.params.cam_pos[2]},
+                       kd::real3{dv.x, dv.y, dv.z}, 0.0, &n, &mat);
+      for (int c = 0; c < 3; ++c) {
+        const size_t i = 3 * (static_cast<size_t>(y) * w + x) + c;
+        const double va = a.rgb.pixels[i], vb = b.rgb.pixels[i];
+        sum_a += va;
+        sum_b += vb;
+        if (mat >= 0) obj_a += va, obj_b += vb;
+        const double rel = std::fabs(vb - va) / std::max(std::fabs(va), 1e-6);
+        worst = std::max(worst, rel);
+        if (x % 2 == 0 && y % 2 == 0) worst_lattice = std::max(worst_lattice, rel);
+      }
+      objects += mat >= 0;
+    }
+  ASSERT_GT(objects, 20);
+  std::printf("[ numbers  ] lattice / own: image %.5f, objects %.5f; worst pixel %.3g, worst lattice pixel %.3g\n",
+              sum_b / sum_a, obj_b / obj_a, worst, worst_lattice);
+  EXPECT_NEAR(sum_b / sum_a, 1.0, 0.005);
+  EXPECT_NEAR(obj_b / obj_a, 1.0, 0.005);
+  EXPECT_LT(worst_lattice, 1e-4);
+  EXPECT_LT(worst, 0.05);
 }
 
 }  // namespace

@@ -324,11 +324,29 @@ TEST(Plan, RovLightsRunsTheUnderwaterPassesAndTheLampsOnly) {
   const Plan plan = makePlan(seasim::loadScene(std::string(SEASIM_SOURCE_DIR) + "/scenes/rov_lights.toml"));
   std::vector<std::string> order;
   for (const auto& p : plan.passes) order.push_back(p.name);
-  const std::vector<std::string> expected = {"underwater_setup", "raycast",          "froxel",         "kd_multiple",
-                                             "water_spread",     "underwater_lamps", "nonfinite_check"};
+  const std::vector<std::string> expected = {"underwater_setup", "raycast",      "froxel",
+                                             "sand_share",       "kd_multiple",  "water_spread",
+                                             "underwater_lamps", "nonfinite_check"};
   EXPECT_EQ(order, expected);
   EXPECT_TRUE(hasDefine(plan, "underwater_lamps", "SEASIM_HAS_OBJECTS=1"));
   for (const auto& p : plan.passes) EXPECT_TRUE(p.implemented) << p.name;
+}
+
+// The sand's share lattice only where the share can be below 1: the discrete-ordinates model with
+// objects over a bottom and a step above 1 (seabed); not for the thesis's model, open water, no multiple
+// scattering, step 1, or the sea seen from above.
+TEST(Plan, SandShareLatticeOnlyForObjectsOverABottomInTheOrdinatesModel) {
+  const std::string seabed = std::string(SEASIM_SOURCE_DIR) + "/scenes/seabed.toml";
+  auto plan = [&](std::vector<seasim::Override> o) { return makePlan(seasim::loadScene(seabed, o)); };
+  auto set = [](const char* k, const char* v) { return seasim::Override{k, v, {"test", 1}}; };
+  const Plan with = plan({});
+  ASSERT_TRUE(with.hasPass("sand_share"));
+  EXPECT_TRUE(hasDefine(with, "kd_multiple", "SEASIM_SAND_SHARE_MAP=1"));
+  EXPECT_FALSE(plan({set("underwater.model", "\"thesis\"")}).hasPass("sand_share"));
+  EXPECT_FALSE(plan({set("quality.sand_share_step", "1")}).hasPass("sand_share"));
+  EXPECT_FALSE(hasDefine(plan({set("quality.sand_share_step", "1")}), "kd_multiple", "SEASIM_SAND_SHARE_MAP=1"));
+  EXPECT_FALSE(plan({set("underwater.multiple_scattering", "false")}).hasPass("sand_share"));
+  EXPECT_FALSE(makePlan(seasim::loadScene(std::string(SEASIM_SOURCE_DIR) + "/scenes/flat_sea.toml")).hasPass("sand_share"));
 }
 
 // The underwater set-up is a pass of its own, first, with no kernel; the froxels' term per band is

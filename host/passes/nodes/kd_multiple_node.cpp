@@ -91,8 +91,10 @@ class KdNode : public Pass {
   }
   void execute(FrameContext& ctx, PassResources& res) override {
     FroxelVolume* froxels = res.declaresRead("froxel_volume") ? &res.read<FroxelVolume>("froxel_volume") : nullptr;
-    ctx.timings.push_back(
-        {"kd_multiple", shading_->run(froxels ? &froxels->params : nullptr, froxels ? &froxels->volume : nullptr)});
+    const UnderwaterSandShare* sand =
+        res.declaresRead("sand_share") ? &res.read<UnderwaterSandShare>("sand_share") : nullptr;
+    ctx.timings.push_back({"kd_multiple", shading_->run(froxels ? &froxels->params : nullptr,
+                                                        froxels ? &froxels->volume : nullptr, sand)});
   }
 
  private:
@@ -102,7 +104,7 @@ class KdNode : public Pass {
   std::unique_ptr<UnderwaterShading> shading_;
 };
 
-std::shared_ptr<KdFeatures> kdFeatures(const Scene& scene, bool froxels) {
+std::shared_ptr<KdFeatures> kdFeatures(const Scene& scene, bool froxels, bool sand_map) {
   auto f = std::make_shared<KdFeatures>();
   f->multiple = scene.underwater.multiple_scattering;
   f->froxel = froxels;
@@ -115,6 +117,7 @@ std::shared_ptr<KdFeatures> kdFeatures(const Scene& scene, bool froxels) {
   f->band_layers = f->formation_layers && f->spectral_output;
   f->veiling_bands = f->veiling_layer && f->spectral_output;
   f->lamps_split_layers = static_cast<int>(askedLayers(scene, kLampSplitLayers).size());
+  f->sand_map = sand_map;
   return f;
 }
 
@@ -152,9 +155,11 @@ std::string kdWhy(const Scene& scene, const KdFeatures& f) {
 std::optional<PassPlan> kdRule(const Scene& scene, const Plan& so_far) {
   if (!cameraUnderwater(scene)) return std::nullopt;
   const bool froxels = so_far.produces("froxel_volume");
+  const bool sand_map = so_far.produces("sand_share");
   std::vector<std::string> reads = {"underwater_setup", "gbuffer"};
   if (froxels) reads.push_back("froxel_volume");
-  const std::shared_ptr<KdFeatures> features = kdFeatures(scene, froxels);
+  if (sand_map) reads.push_back("sand_share");
+  const std::shared_ptr<KdFeatures> features = kdFeatures(scene, froxels, sand_map);
   return planEntry(reads, kdWrites(*features), kdWhy(scene, *features), features);
 }
 

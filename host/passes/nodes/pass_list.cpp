@@ -14,6 +14,7 @@
   X(causticsDescriptor)                 \
   X(raycastDescriptor)                  \
   X(froxelDescriptor)                   \
+  X(sandShareDescriptor)                \
   X(fourFlowDescriptor)                 \
   X(seaSingleDescriptor)                \
   X(seaSecondDescriptor)                \

@@ -31,6 +31,13 @@ inline const std::vector<std::string> kUnderwaterSetupKeys = {
     "sun.*",     "sky.*",     "water.*",  "bottom.*", "surface.*", "underwater.*",
     "objects.*", "quality.caustic_map_size", "quality.caustic_layers"};
 
+// sand_share.cl's lattice: the discrete-ordinates model's share of the sunlit sand at every step-th
+// pixel in x and y, width x height of them (kd_multiple.cl interpolates it).
+struct UnderwaterSandShare {
+  cl::Buffer map;
+  int width = 0, height = 0, step = 1;
+};
+
 // The "caustic_map" buffer of the caustics pass when `res` declares reading it, else null.
 const cl::Buffer* underwaterCausticMaps(PassResources& res);
 
