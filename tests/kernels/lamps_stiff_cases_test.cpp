@@ -7,6 +7,7 @@
 // tests of finiteness, not of accuracy.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -17,6 +18,7 @@
 #include "scene/scene_parser.h"
 #include "spectral/sensor.h"
 #include "spectral/wavelength_grid.h"
+#include "jobs/layer_image.h"
 #include "test_device.h"
 #include "underwater/lamps_setup.h"
 #include "underwater/underwater_setup.h"
@@ -163,6 +165,42 @@ TEST(LampsStiffCases, LampJustUnderTheSurfaceStaysFinite) {
     // through a mirror: no path reaches it by next-event estimation), so that image is black.
     if (std::string(dir) != "[0.0, 1.0, 0.0]") EXPECT_GT(sumAbs(im.traced), 0.0) << dir;
   }
+}
+
+// The lamps' split layers (lamps_single, lamps_multiple) in every stiff case and model: finite, and
+// their sum is the lamps layer.
+TEST(LampsStiffCases, SplitLayersStayFiniteAndSumToTheLamps) {
+  const std::vector<std::pair<std::string, std::vector<Override>>> cases = {
+      {std::string(kScene) + kSphereAroundLamp, {}},
+      {kScene, {set("water.g", "0.999999")}},
+      {kScene, {set("spotlights[0].cone_deg", "0.1")}},
+      {kScene, {set("water.jerlov", "\"9C\"")}},
+      {kScene, {set("spotlights[0].position", "[0.4, -0.0001, -0.3]"), set("spotlights[0].direction", "[0.0, 1.0, 0.0]")}}};
+  for (const char* model : {"single", "delta_m", "orders"})
+    for (const auto& [text, extra] : cases) {
+      std::vector<Override> over = extra;
+      over.push_back(set("quality.lamps_model", std::string("\"") + model + "\""));
+      over.push_back(set("outputs.layers", "[\"lamps\", \"lamps_single\", \"lamps_multiple\"]"));
+      const Scene scene = seasim::parseScene(text, "lamps_stiff.toml", over);
+      seasim::Renderer renderer(seasim::test::testDevice(), scene, seasim::shippedPasses());
+      const seasim::FrameResult frame = renderer.render();
+      EXPECT_EQ(frame.nonfinite, 0) << model;
+      const seasim::Image img = seasim::imageWithLayers(frame, scene.outputs);
+      auto at = [&](size_t pixel, const std::string& name) {
+        const auto it = std::find(img.channel_names.begin(), img.channel_names.end(), name);
+        return double(img.pixels[pixel * img.channels + static_cast<size_t>(it - img.channel_names.begin())]);
+      };
+      double peak = 0, worst = 0;
+      for (size_t i = 0; i < img.pixelCount(); ++i)
+        for (const char* c : {".R", ".G", ".B"}) {
+          const double l = at(i, std::string("lamps") + c), sgl = at(i, std::string("lamps_single") + c),
+                       mul = at(i, std::string("lamps_multiple") + c);
+          ASSERT_TRUE(std::isfinite(l) && std::isfinite(sgl) && std::isfinite(mul)) << model;
+          peak = std::max(peak, std::fabs(l));
+          worst = std::max(worst, std::fabs(sgl + mul - l));
+        }
+      EXPECT_LE(worst, 1e-5 * peak + 1e-20) << model;
+    }
 }
 
 }  // namespace
