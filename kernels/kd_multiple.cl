@@ -302,6 +302,13 @@ typedef struct {
   int x, y;
 } SandShareAt;
 
+/* The kernel's lattice arguments, where it has them. */
+#if SEASIM_SAND_SHARE_MAP
+#define KD_SAND_MAP .map = sand_map, .w = sand_w, .h = sand_h, .step = sand_step
+#else
+#define KD_SAND_MAP .map = 0
+#endif
+
 #if SEASIM_SAND_SHARE_MAP
 /* The sand's share at the pixel from the lattice: the (up to) four lattice pixels around it whose hit lies
  * within 5 % of the pixel's own distance S (the same surface), weighted bilinearly by position; -1 when
@@ -665,8 +672,7 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
                           , __global float* veiling_bands
 #endif
 ) {
-  const int x = get_global_id(0);
-  const int y = get_global_id(1);
+  const int x = get_global_id(0), y = get_global_id(1);
   if (x >= p->width || y >= p->height) return;
   const int pixel = y * p->width + x;
   const float3 d = uw_screen_dir(p, (x + 0.5f) / p->width, (y + 0.5f) / p->height);
@@ -688,13 +694,7 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
   k.albedo_row = band_table + (k.mat >= 0 ? UW_ROWS + k.mat : UW_ROW_BOTTOM_ALBEDO) * stride;
 #if SEASIM_UNDERWATER_MODEL == 1
   UwiPixel q;
-  SandShareAt sand = {.geom = geom, .x = x, .y = y};
-#if SEASIM_SAND_SHARE_MAP
-  sand.map = sand_map;
-  sand.w = sand_w;
-  sand.h = sand_h;
-  sand.step = sand_step;
-#endif
+  const SandShareAt sand = {.geom = geom, .x = x, .y = y, KD_SAND_MAP};
   uwi_pixel(p, band_table, stride, objects, &sand, &k, d, n, s_w, &q);
 #endif
   KdSums s;
@@ -719,18 +719,16 @@ __kernel void kd_multiple(__constant UwParams* p, __global const UwBand* bands, 
     store_lanes(L, spectral + (size_t)pixel * st.band_count + i, st.band_count - i);
 #endif
   }
-  float r = SUMB(s.r), gr = SUMB(s.g), b = SUMB(s.b);
+  float3 c = (float3)(SUMB(s.r), SUMB(s.g), SUMB(s.b));
 #if SEASIM_HAS_FROXEL
   const float3 ss = froxel_lookup(fp, froxel_volume, x, y, p->width, p->height, k.S);
-  r += ss.x;
-  gr += ss.y;
-  b += ss.z;
+  c += ss;
 #else
   const float3 ss = (float3)(0.0f, 0.0f, 0.0f); /* no froxel term */
 #endif
-  rgb[3 * pixel + 0] = r;
-  rgb[3 * pixel + 1] = gr;
-  rgb[3 * pixel + 2] = b;
+  rgb[3 * pixel + 0] = c.x;
+  rgb[3 * pixel + 1] = c.y;
+  rgb[3 * pixel + 2] = c.z;
 #if SEASIM_LAYER_FORMATION
   kd_store_formation(&s, pixel, ss, formation, forward_layer, lamps_layer);
 #endif
