@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "device/enqueue.h"
+#include "passes/underwater_features.h"
 #include "underwater/lamps_ms_table.h"
 #include "underwater/lamps_setup.h"
 #include "math/kernel_math.h"
@@ -39,7 +40,8 @@ UnderwaterLampsPass::UnderwaterLampsPass(Device& device, const Scene& scene, con
       height_(setup.params.height),
       band_count_(setup.bands.size()),
       object_count_(setup.objects.size()),
-      albedo_count_(setup.albedo.size()) {
+      albedo_count_(setup.albedo.size()),
+      single_apart_(config.model == Model::DeltaM && plan.featuresAs<UnderwaterLampsFeatures>().lamps_split) {
   if (config.planes < 1 || config.subplanes < 1)
     throw RuntimeError("underwater_lamps: planes and sub-planes must be at least 1");
   if (config.orders < 1 || config.orders > UW_MS_MAX_ORDERS || config.ms_steps < 1 || config.ms_steps > UW_MS_MAX_STEPS)
@@ -68,7 +70,7 @@ UnderwaterLampsPass::UnderwaterLampsPass(Device& device, const Scene& scene, con
     lamps_ = cl::Buffer(device.context(), in, sizeof(UwLamp) * lamps.lamps.size(), lamps.lamps.data());
     spectra_ = cl::Buffer(device.context(), in, sizeof(float) * lamps.spectra.size(), lamps.spectra.data());
     ms_table_ = cl::Buffer(device.context(), in, sizeof(float) * ms_table.size(), const_cast<float*>(ms_table.data()));
-    plain_bands_ = config_.model == Model::DeltaM
+    plain_bands_ = single_apart_
                        ? cl::Buffer(device.context(), in, sizeof(UwBand) * setup.bands.size(),
                                     const_cast<UwBand*>(setup.bands.data()))
                        : bands_;
@@ -100,7 +102,7 @@ void UnderwaterLampsPass::update(const UnderwaterSetup& setup) {
     if (object_count_ > 0)
       q.enqueueWriteBuffer(objects_, CL_FALSE, 0, sizeof(UwObject) * object_count_, setup.objects.data());
     q.enqueueWriteBuffer(albedo_, CL_FALSE, 0, sizeof(float) * albedo_count_, setup.albedo.data());
-    if (config_.model == Model::DeltaM)
+    if (single_apart_)
       q.enqueueWriteBuffer(plain_bands_, CL_FALSE, 0, sizeof(UwBand) * band_count_, setup.bands.data());
     q.finish();
   });
@@ -136,7 +138,7 @@ double UnderwaterLampsPass::run(cl::Buffer& geom, cl::Buffer& material, cl::Buff
       kernel_.setArg(arg++, static_cast<cl_int>(split.multiple_at));
       kernel_.setArg(arg++, plain_bands_);
       kernel_.setArg(arg++, static_cast<cl_float>(plain_g_));
-      kernel_.setArg(arg++, static_cast<cl_int>(config_.model == Model::DeltaM));
+      kernel_.setArg(arg++, static_cast<cl_int>(single_apart_));
     }
   });
   return runKernel2d(device_, "underwater_lamps", kernel_, width_, height_);

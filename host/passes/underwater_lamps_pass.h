@@ -68,7 +68,9 @@ class UnderwaterLampsPass {
   size_t band_count_, object_count_, albedo_count_;
   cl::Kernel kernel_;
   cl::Buffer params_, bands_, albedo_, objects_, lamp_params_, lamps_, spectra_, ms_table_;
-  // The water as it is, for the single-scattering layer of the delta-M model (which scales bands_).
+  // The delta-M model with the lamps' split layers: its single-scattering part is evaluated apart, in
+  // the water as it is (plain_bands_; otherwise plain_bands_ is bands_ and the kernel does not read it).
+  bool single_apart_ = false;
   cl::Buffer plain_bands_;
   float plain_g_ = 0.0f;
 };
