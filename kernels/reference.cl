@@ -486,7 +486,9 @@ __kernel void reference_path_trace(__constant UwParams* p, __global const UwBand
        * sun's normal irradiance in air (e_sun0 = E cos θ_s (1 - R(θ_s)) just below the surface). */
       const float3 sun_air = (float3)(p->sun_dir_air[0], p->sun_dir_air[1], p->sun_dir_air[2]);
       const float t_sun = sun_air.y * (1.0f - fresnel_reflectance(sun_air.y, 1.0f, p->ior));
-      if (!single_only_mode(max_bounces) && t_sun > 0.0f && dot(reflect_dir(d, n), sun_air) >= sun_cos_radius)
+      /* A disk of no size (cos radius 1) has no solid angle to divide by: no glitter. */
+      if (!single_only_mode(max_bounces) && t_sun > 0.0f && sun_cos_radius < 1.0f &&
+          dot(reflect_dir(d, n), sun_air) >= sun_cos_radius)
         sky_reflected += bn->e_sun0 / t_sun / (2.0f * M_PI_F * (1.0f - sun_cos_radius));
 #endif
       L = R * sky_reflected + (1.0f - R) / (p->ior * p->ior) *

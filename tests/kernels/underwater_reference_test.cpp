@@ -680,6 +680,28 @@ TEST(UnderwaterReference, WavesTiltTheMirroredSkyAndTheFresnelSplit) {
   expectAgrees(r, ref, "camera above, tilted facets, Preetham sky");
 }
 
+TEST(UnderwaterReference, WavesMirrorASunOfNoSizeAsNothingFinite) {
+  // A sun of angular radius 0 straight above a camera looking straight down at a flat map: the view's
+  // mirror is the sun's direction exactly, and a disk of no solid angle adds nothing (not E/0).
+  SceneSpec spec;
+  spec.width = spec.height = 1;
+  spec.eye = {0, 3, 0};
+  spec.forward = {0, -1, 0};
+  spec.up_hint = {0, 0, -1};
+  spec.bands = {{1000, 0.0, 1.0, 0.0, 0.0, {kW1[0], kW1[1], kW1[2]}}};
+  const UnderwaterSetup s = build(spec);  // the sun in air straight up
+  const seasim::WaveNormalMap waves = constantWaves({0, 1, 0});
+  UnderwaterReferenceSettings set;
+  set.samples_per_pixel = 4;
+  set.jitter = false;
+  set.camera_above = true;
+  set.waves = &waves;
+  set.sun_angular_radius = 0.0;
+  const UnderwaterReferenceResult r = seasim::renderUnderwaterReference(device(), s, set);
+  expectFiniteNonNegative(r);
+  EXPECT_EQ(r.rgb.pixels[1], 0.0f);
+}
+
 TEST(UnderwaterReference, WavesMirrorTheSunsDiskWithItsIrradianceTimesR) {
   // A flat normal map, black water and a black sky: the image is the sun's disk (radius 1 degree) in
   // the mirror, radiance R E / Ω. Summed over the pixels' solid angles it is R E per sensor weight,
