@@ -762,6 +762,22 @@ TEST(SceneParserLamps, LampsModelByNameWithTheOlderSwitchKept) {
   EXPECT_DOUBLE_EQ(seasim::modelKey(parseScene("[quality]\nlamps_orders = 7\n", "l.toml"), "quality.lamps_orders"), 7);
 }
 
+TEST(SceneParserSandShare, StepIsAWholeNumberFromOneToEight) {
+  const auto error = [](const std::string& text) -> std::string {
+    try {
+      parseScene(text, "s.toml");
+    } catch (const seasim::InputError& e) {
+      return e.what();
+    }
+    return "";
+  };
+  EXPECT_DOUBLE_EQ(seasim::modelKey(parseScene("", "s.toml"), "quality.sand_share_step"), 2);
+  EXPECT_NE(error("[quality]\nsand_share_step = 0\n").find("s.toml:2: key 'quality.sand_share_step'"), std::string::npos);
+  EXPECT_NE(error("[quality]\nsand_share_step = 9\n").find("quality.sand_share_step"), std::string::npos);
+  EXPECT_NE(error("[quality]\nsand_share_step = 1.5\n").find("quality.sand_share_step"), std::string::npos);
+  EXPECT_EQ(error("[quality]\nsand_share_step = 1\n"), "");
+}
+
 }  // namespace
 
 namespace {
