@@ -17,18 +17,17 @@
  *                      surface; the caustic is not evaluated where V = 0.
  *   froxel_column_extent  (before froxel_inject, when the pass is given the G-buffer) per pixel, the last
  *                      slice its read needs in each column it reads: froxels beyond are not evaluated.
- *   froxel_integrate   per column, front to back (002 eq. 5.2, common/froxel.h): per band
- *                      L_i = σ_s p E_beam(y) V C at each froxel centre, integrated exactly over the
- *                      slice's transmittance, accumulated into sensor RGB with the band's w_r, w_g, w_b;
- *                      the (band, slice) factors come from a table the host fills once
- *                      (froxel_fill_slice_factors), leaving one exp per band and froxel.
+ *   froxel_integrate   per column, front to back (002 eq. 5.2, common/froxel.h): per band and slice
+ *                      σ_s p V C e_beam0 e^{-σ_t P} integrated exactly over the slice (P the light's
+ *                      path from the surface to the camera, linear along the column; V·C from
+ *                      froxel_inject), accumulated into sensor RGB with the band's w_r, w_g, w_b.
  *   froxel_resolve     per pixel, the volume read at the pixel's G-buffer distance (froxel_lookup);
  *                      kd_multiple.cl does the same read inline, this kernel serves tests and tools.
  *
  * Inputs: UwParams, FroxelParams, UwObject[object_count], bands: UwBand[band_count] (spectral
  * injection) or the three RGB pseudo-bands (host/reference/froxel_reference.h). Outputs: light (1 float
  * per froxel), volume (4 floats per froxel, common/froxel_params.h), rgb (3 floats per pixel).
- * slice_factors: nz × band_count floats (froxel_fill_slice_factors). caustic_table: CAUSTIC_TABLE_REALS
+ * caustic_table: CAUSTIC_TABLE_REALS
  * floats (common/caustic_texture.h caustic_fill_table), read only with SEASIM_CAUSTICS == UW_CAUSTICS_TEXTURE.
  * column_last: 1 int per column (froxel_column_extent).
  * Defines (host/plan): SEASIM_HAS_OBJECTS, SEASIM_CAUSTICS (UW_CAUSTICS_*), SEASIM_SPECTRAL_INJECTION
@@ -72,19 +71,21 @@ __kernel void froxel_shadow_map(__constant UwParams* p, __constant FroxelParams*
 /* V·C of one froxel with centre q (see the top): 0 above the surface. */
 float froxel_injected(__constant UwParams* p, __constant FroxelParams* fp, __global const UwObject* objects,
                       __global const float* map, __global const float* caustic_maps,
-                      __global const float* caustic_table, float3 s_w, float3 q) {
+                      __global const float* caustic_table, float3 s_w, float3 q, float caustic_rho) {
   if (q.y > 0.0f) return 0.0f; /* above the surface: no water, no beam */
   float v = 1.0f;
 #if SEASIM_HAS_OBJECTS
   v = froxel_shadow_visibility(fp, map, s_w, q) * froxel_plane_visibility(objects, p->object_count, s_w, q);
 #endif
 #if SEASIM_CAUSTICS == UW_CAUSTICS_TEXTURE
-  /* Where the refracted sun ray through q crossed the surface (as raycast.cl does for surfaces); a
-   * shadowed froxel (v = 0) stays 0 without it. */
-  if (v > 0.0f) {
+  /* Where the refracted sun ray through q crossed the surface (as raycast.cl does for surfaces), kept
+   * by rho where the froxel stands for the texture's mean over many cells (froxel_caustic_correlation);
+   * not evaluated where v = 0 or where rho leaves less than 1/64 of its deviation. */
+  if (v > 0.0f && caustic_rho >= 1.0f / 64.0f) {
     const float t_up = -q.y / fmax(s_w.y, 1e-4f);
-    v *= caustic_modulation_table(q.x + t_up * s_w.x, q.z + t_up * s_w.z, p->time, p->caustic_period,
-                                  p->caustic_speed, caustic_table);
+    const float c = caustic_modulation_table(q.x + t_up * s_w.x, q.z + t_up * s_w.z, p->time, p->caustic_period,
+                                             p->caustic_speed, caustic_table);
+    v *= 1.0f + caustic_rho * (c - 1.0f);
   }
 #endif
 #if SEASIM_CAUSTICS == UW_CAUSTICS_MAP
@@ -95,17 +96,25 @@ float froxel_injected(__constant UwParams* p, __constant FroxelParams* fp, __glo
 }
 
 /* Per pixel of the G-buffer (raycast.cl's geom: S in .x): raises column_last of the up to four columns
- * its froxel_lookup reads (froxel_pixel_column) to the slice it reads there (froxel_read_slice). The
+ * its froxel_lookup reads (froxel_pixel_column) to the slice it reads there (froxel_read_slice; the last
+ * slice for a ray to the surface, which reads its columns whole). The
  * host sets column_last to -1 first; atomic_max makes the result independent of the order. */
-__kernel void froxel_column_extent(__constant FroxelParams* fp, __global const float4* geom, int width, int height,
-                                   __global int* column_last) {
+__kernel void froxel_column_extent(__constant UwParams* p, __constant FroxelParams* fp, __global const float4* geom,
+                                   int width, int height, __global int* column_last) {
   const int x = get_global_id(0), y = get_global_id(1);
   if (x >= width || y >= height) return;
-  const int k = froxel_read_slice(fp, geom[y * width + x].x);
-  if (k < 0) return;
   const int nx = fp->nx, ny = fp->ny;
-  const int i0 = (int)froxel_pixel_column(x, width, nx), j0 = (int)froxel_pixel_column(y, height, ny);
+  const float gx = froxel_pixel_column(x, width, nx), gy = froxel_pixel_column(y, height, ny);
+  const int i0 = (int)gx, j0 = (int)gy;
   const int i1 = i0 + 1 < nx ? i0 + 1 : nx - 1, j1 = j0 + 1 < ny ? j0 + 1 : ny - 1;
+  const float S = geom[y * width + x].x;
+  /* froxel_lookup's test for a ray to the surface, with twice its tolerance: every pixel it reads
+   * whole is marked whole here, whatever the last bit of d_y. */
+  const float d_y = froxel_pixel_dy(froxel_column_dir(p, fp, i0, j0).y, froxel_column_dir(p, fp, i1, j0).y,
+                                    froxel_column_dir(p, fp, i0, j1).y, froxel_column_dir(p, fp, i1, j1).y,
+                                    gx - (float)i0, gy - (float)j0);
+  const int k = S > 0.0f && froxel_reads_whole_columns(fp, d_y, S, 2e-3f) ? fp->nz - 1 : froxel_read_slice(fp, S);
+  if (k < 0) return;
   atomic_max(&column_last[j0 * nx + i0], k);
   atomic_max(&column_last[j0 * nx + i1], k);
   atomic_max(&column_last[j1 * nx + i0], k);
@@ -113,7 +122,7 @@ __kernel void froxel_column_extent(__constant FroxelParams* fp, __global const f
 }
 
 /* One work-item per column (i, j), front to back: the column's ray and each slice end are computed
- * once (slice k starts where k - 1 ended), the same centres as froxel_center. Froxels past
+ * once (slice k starts where k - 1 ended), V·C at the same points as froxel_center. Froxels past
  * column_last[j nx + i] + 1 are written 0 without evaluating them: no pixel reads them, not even
  * through the running integral (froxel_column_extent; one slice of margin against a rounding
  * difference between froxel_read_slice here and in kd_multiple.cl). column_last = nz - 1 everywhere:
@@ -127,19 +136,25 @@ __kernel void froxel_inject(__constant UwParams* p, __constant FroxelParams* fp,
   const float3 s_w = SUN_DIR_WATER(p);
   const float3 o = (float3)(p->cam_pos[0], p->cam_pos[1], p->cam_pos[2]);
   const float3 d = froxel_column_dir(p, fp, i, j);
+  const float t_surface = froxel_surface_distance(-p->cam_pos[1], d.y);
   float t0 = 0.0f;
   for (int k = 0; k < fp->nz; ++k) {
     const float t1 = froxel_slice_end(k, fp->nz, fp->z_near, fp->z_far, fp->log_far_near);
-    const float t = 0.5f * (t0 + t1);
+    const float t = froxel_sample_t(t0, t1, t_surface);
+#if SEASIM_CAUSTICS == UW_CAUSTICS_TEXTURE
+    const float rho = froxel_caustic_correlation(p, fp, d, s_w, t0, fmax(t0, fmin(t1, t_surface)),
+                                                 caustic_integral_scale(p->caustic_period));
+#else
+    const float rho = 1.0f;
+#endif
     light[(k * fp->ny + j) * fp->nx + i] =
-        k <= last ? froxel_injected(p, fp, objects, map, caustic_maps, caustic_table, s_w, o + t * d) : 0.0f;
+        k <= last ? froxel_injected(p, fp, objects, map, caustic_maps, caustic_table, s_w, o + t * d, rho) : 0.0f;
     t0 = t1;
   }
 }
 
 __kernel void froxel_integrate(__constant UwParams* p, __constant FroxelParams* fp, __global const UwBand* bands,
-                               __global const float* slice_factors, __global const float* light,
-                               __global float* volume) {
+                               __global const float* light, __global float* volume) {
   const int i = get_global_id(0), j = get_global_id(1);
   if (i >= fp->nx || j >= fp->ny) return;
 #if SEASIM_SPECTRAL_INJECTION
@@ -147,7 +162,7 @@ __kernel void froxel_integrate(__constant UwParams* p, __constant FroxelParams* 
 #else
   const int band_count = 3;
 #endif
-  froxel_integrate_column(p, fp, bands, band_count, slice_factors, light, volume, i, j);
+  froxel_integrate_column(p, fp, bands, band_count, light, volume, i, j);
 }
 
 __kernel void froxel_resolve(__constant FroxelParams* fp, __global const float* volume, __global const float4* geom,

@@ -481,6 +481,7 @@ std::string writeSceneReference(const Scene& scene, const ReferenceCmd& cmd, con
   options.all_orders = cmd.all_orders;
   options.max_bounces = cmd.max_bounces;
   options.lamp_mis = !cmd.plain_lamp_sampling;
+  options.sun_single_subpixels = cmd.sun_single_quadrature ? cmd.subpixels : 0;
   const bool tty = isatty(fileno(stderr));
   // The path tracer's samples per pixel; its total is known at the first call.
   options.progress = [tty, next = 0](int done, int total) mutable {

@@ -131,6 +131,9 @@ int main(int argc, char** argv) {
       "    refracting in (--steps = paths per pixel): all orders of scattering, against which paper 000's\n"
       "    single + second order is measured; FFT waves as the fast model has them (sea_waves.h), with the\n"
       "    sun's disk in the facets' mirror.\n"
+      "  --sun-single-quadrature, under water with underwater.multiple_scattering = false: the sun beam's\n"
+      "    single scattering (the froxel pass's term) by deterministic quadrature on the CPU, --subpixels²\n"
+      "    rays per pixel, --steps points per ray, exact shadow rays and caustic texture; no noise.\n"
       "  Without --steps: quality.reference_steps (default 200) or, for the path tracer, quality.reference_spp (64).");
   reference->add_option("scene", ref_cmd.scene, "Scene file")->required()->check(kReadableFile);
   reference->add_option("-o,--out", ref_cmd.out, "Output EXR")->required();
@@ -153,6 +156,12 @@ int main(int argc, char** argv) {
                       "Path tracer: see spotlights by one equiangular sample per path segment alone, instead of one "
                       "inside the lamp's cone combined with next-event estimation at the free-flight vertex (both "
                       "unbiased; for measuring the combination's variance)");
+  reference->add_flag("--sun-single-quadrature", ref_cmd.sun_single_quadrature,
+                      "Under water with underwater.multiple_scattering = false: the sun beam's single scattering by "
+                      "deterministic quadrature (CPU, double) over each pixel's area instead of the path tracer");
+  reference->add_option("--subpixels", ref_cmd.subpixels,
+                        "With --sun-single-quadrature: N x N rays per pixel (default 4)")
+      ->check(CLI::Range(1, 64));
   reference->add_option("--device", ref_cmd.device, "Device for the underwater path tracer");
   reference->add_option("--set", ref_cmd.sets, "Override a scene key: key=value (repeatable)");
 

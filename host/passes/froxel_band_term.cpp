@@ -3,13 +3,11 @@
 #include <string>
 
 #include "device/enqueue.h"
-#include "math/kernel_math.h"
-#include "passes/underwater_features.h"
 
 namespace seasim {
 
 FroxelBandTerm::FroxelBandTerm(Device& device, const PassPlan& entry, const FroxelVolume& volume)
-    : device_(device), volume_(volume), spectral_injection_(entry.featuresAs<FroxelFeatures>().spectral_injection) {
+    : device_(device), volume_(volume) {
   const size_t froxels = size_t(volume.fp.nx) * volume.fp.ny * volume.fp.nz;
   onDevice("froxel band term set-up", [&] {
     const BuiltProgram& built = device.program(entry.kernel_file, entry.defines);
@@ -33,19 +31,13 @@ double FroxelBandTerm::addTo(const UnderwaterSetup& setup, int width, int height
       for (int k = 1; k < 3; ++k) one[k].w_r = one[k].w_g = one[k].w_b = 0;
       FroxelParams fp = volume_.fp;
       for (int k = 0; k < 3; ++k) fp.sigma_t_rgb[k] = setup.bands[b].c;  // in-slice fraction of this band
-      // This band's (band, slice) factors: the kernel reads 1 band (spectral injection) or 3 pseudo-bands.
-      const int kernel_bands = spectral_injection_ ? 1 : 3;
-      std::vector<float> factors(size_t(fp.nz) * kernel_bands);
-      kmath_f::froxel_fill_slice_factors(&fp, one, kernel_bands, factors.data());
       cl::Buffer params(device_.context(), in, sizeof p, &p), band_buffer(device_.context(), in, sizeof one, one);
       cl::Buffer fparams(device_.context(), in, sizeof fp, &fp);
-      cl::Buffer factor_buffer(device_.context(), in, sizeof(float) * factors.size(), factors.data());
       integrate_.setArg(0, params);
       integrate_.setArg(1, fparams);
       integrate_.setArg(2, band_buffer);
-      integrate_.setArg(3, factor_buffer);
-      integrate_.setArg(4, volume_.light);
-      integrate_.setArg(5, band_volume_);
+      integrate_.setArg(3, volume_.light);
+      integrate_.setArg(4, band_volume_);
       ms += runKernel2d(device_, "froxel", integrate_, size_t(fp.nx), size_t(fp.ny));
       resolve_add_.setArg(0, fparams);
       resolve_add_.setArg(1, band_volume_);

@@ -36,7 +36,6 @@ class FroxelBandTerm {
  private:
   Device& device_;
   const FroxelVolume& volume_;
-  bool spectral_injection_;
   cl::Kernel integrate_, resolve_add_;
   cl::Buffer band_volume_;
 };

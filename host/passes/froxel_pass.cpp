@@ -51,10 +51,6 @@ FroxelPass::FroxelPass(Device& device, const UnderwaterSetup& setup, const Froxe
   requireDefine(defines_, "SEASIM_SPECTRAL_INJECTION", config.rgb_injection ? 0 : 1);
 
   const std::vector<UwBand> bands = froxelIntegrationBands(setup, fp_);
-  // The (band, slice) factors of the column integral, once (common/froxel.h): the same float formula
-  // the kernels would run, evaluated here because they do not change from frame to frame.
-  std::vector<float> slice_factors(size_t(fp_.nz) * bands.size());
-  kmath_f::froxel_fill_slice_factors(&fp_, bands.data(), static_cast<int>(bands.size()), slice_factors.data());
   const size_t froxels = size_t(fp_.nx) * fp_.ny * fp_.nz;
   const size_t texels = fp_.shadow_size > 0 ? size_t(fp_.shadow_size) * fp_.shadow_size : 1;
   const cl_mem_flags in = CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR;
@@ -70,7 +66,6 @@ FroxelPass::FroxelPass(Device& device, const UnderwaterSetup& setup, const Froxe
     objects_ = cl::Buffer(device.context(), in, sizeof(UwObject) * setup.objects.size(),
                           const_cast<UwObject*>(setup.objects.data()));
     bands_ = cl::Buffer(device.context(), in, sizeof(UwBand) * bands.size(), const_cast<UwBand*>(bands.data()));
-    slice_factors_ = cl::Buffer(device.context(), in, sizeof(float) * slice_factors.size(), slice_factors.data());
     map_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * texels);
     no_caustics_ = noCausticMap(device);
     // The caustic textures' feature points (common/caustic_texture.h): constant, so filled here once.
@@ -92,14 +87,14 @@ FroxelPass::FroxelPass(Device& device, const UnderwaterSetup& setup, const Froxe
     inject_kernel_.setArg(5, light_);
     inject_kernel_.setArg(6, caustic_table_);
     inject_kernel_.setArg(7, column_last_);
-    extent_kernel_.setArg(0, fparams_);
-    extent_kernel_.setArg(4, column_last_);
+    extent_kernel_.setArg(0, params_);
+    extent_kernel_.setArg(1, fparams_);
+    extent_kernel_.setArg(5, column_last_);
     integrate_kernel_.setArg(0, params_);
     integrate_kernel_.setArg(1, fparams_);
     integrate_kernel_.setArg(2, bands_);
-    integrate_kernel_.setArg(3, slice_factors_);
-    integrate_kernel_.setArg(4, light_);
-    integrate_kernel_.setArg(5, volume_);
+    integrate_kernel_.setArg(3, light_);
+    integrate_kernel_.setArg(4, volume_);
     resolve_kernel_.setArg(0, fparams_);
     resolve_kernel_.setArg(1, volume_);
   });
@@ -116,9 +111,9 @@ double FroxelPass::run(const cl::Buffer* caustic_maps, const cl::Buffer* geom, i
     const cl_int all = geom ? -1 : fp_.nz - 1;
     device_.queue().enqueueFillBuffer(column_last_, all, 0, sizeof(cl_int) * size_t(fp_.nx) * fp_.ny);
     if (geom) {
-      extent_kernel_.setArg(1, *geom);
-      extent_kernel_.setArg(2, width);
-      extent_kernel_.setArg(3, height);
+      extent_kernel_.setArg(2, *geom);
+      extent_kernel_.setArg(3, width);
+      extent_kernel_.setArg(4, height);
       enqueue(extent_kernel_, cl::NDRange(roundUp(size_t(width), 8), roundUp(size_t(height), 8)), cl::NDRange(8, 8),
               "froxel_column_extent");
     }

@@ -70,7 +70,7 @@ class FroxelPass {
   FroxelParams fp_{};
   std::vector<std::string> defines_;
   cl::Kernel shadow_kernel_, inject_kernel_, extent_kernel_, integrate_kernel_, resolve_kernel_;
-  cl::Buffer params_, fparams_, objects_, bands_, slice_factors_, map_, light_, volume_, no_caustics_,
+  cl::Buffer params_, fparams_, objects_, bands_, map_, light_, volume_, no_caustics_,
       caustic_table_, column_last_;
   std::vector<PassTiming> timings_;
 };

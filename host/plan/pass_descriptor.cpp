@@ -64,7 +64,7 @@ const std::vector<KnobDefault>& qualityCountKnobs() {
                                        [&](const KnobDefault& o) { return std::string(o.name) == k.name; });
         if (seen == out.end()) {
           out.push_back(k);
-        } else if (seen->value != k.value) {
+        } else if (seen->value != k.value || seen->automatic != k.automatic) {
           throw RuntimeError(std::string("two descriptors give the knob quality.") + k.name +
                              " different defaults (" + d.name + " is one)");
         }

@@ -55,4 +55,11 @@ double froxelBruteForceRay(const UnderwaterSetup& setup, int band, Vec3 o, Vec3 
 // The brute-force L_SS through every pixel centre as sensor RGB (3 per pixel), oneTBB over rows.
 std::vector<double> froxelBruteForce(const UnderwaterSetup& setup, int steps);
 
+// The same integral averaged over each pixel's area: subpixels × subpixels rays through the centres of
+// a regular grid of sub-pixels, each to its own first hit (what a pixel of the image integrates; the
+// path tracer jitters over the same area). All bands share one set of points per ray, the midpoint
+// rule in u = 1 - e^{-c z} of the band with the smallest c (so the shadow ray and the caustic are
+// evaluated once per point): `steps` points per ray. Sensor RGB, 3 per pixel, oneTBB over rows.
+std::vector<double> froxelBruteForcePixelArea(const UnderwaterSetup& setup, int steps, int subpixels);
+
 }  // namespace seasim

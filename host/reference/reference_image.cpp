@@ -7,6 +7,7 @@
 #include "ocean/ocean_cpu.h"
 #include "passes/ocean_pass.h"
 #include "plan/scene_facts.h"
+#include "reference/froxel_reference.h"
 #include "reference/sea_reference.h"
 #include "reference/sea_second_reference.h"
 #include "reference/shafts_reference.h"
@@ -48,6 +49,30 @@ WaveNormalMap waveNormalMap(const SurfaceDesc& surface) {
   return map;
 }
 
+// Under water, single scattering only: the froxel pass's term by deterministic quadrature over each
+// pixel's area (froxel_reference.h froxelBruteForcePixelArea). The scene's surfaces are lit as well in
+// a render: compare the term alone with black surfaces and a dark sky (results/BENCHMARKS.md).
+ReferenceImage sunSingleQuadrature(const Scene& scene, const ReferenceOptions& options) {
+  const auto t0 = std::chrono::steady_clock::now();
+  if (!cameraUnderwater(scene) || scene.underwater.multiple_scattering || !scene.spotlights.empty())
+    throw RuntimeError("reference --sun-single-quadrature: for an underwater camera with "
+                       "underwater.multiple_scattering = false and no spotlights (the sun beam's single scattering)");
+  if (scene.underwater.caustics == UnderwaterDesc::Caustics::Map)
+    throw RuntimeError("reference --sun-single-quadrature: underwater.caustics = \"map\" is not modelled; use "
+                       "\"texture\" or \"none\"");
+  const WavelengthGrid grid = makeGrid(scene.spectral.count, scene.spectral.min_nm, scene.spectral.max_nm);
+  const UnderwaterSetup setup = makeUnderwaterSetup(
+      scene, grid, makeSensor(scene.spectral.sensor, grid, scene.spectral.white_balance, scene.spectral.camera_dir));
+  ReferenceImage out;
+  out.steps = referenceSteps(scene, options.steps, "reference_steps");
+  const std::vector<double> rgb = froxelBruteForcePixelArea(setup, out.steps, options.sun_single_subpixels);
+  out.rgb.resize(setup.params.width, setup.params.height, 3);
+  for (size_t i = 0; i < rgb.size(); ++i) out.rgb.pixels[i] = static_cast<float>(rgb[i]);
+  out.method = "quadrature";
+  out.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  return out;
+}
+
 }  // namespace
 
 ReferenceImage renderReference(const Scene& scene, const ReferenceOptions& options) {
@@ -57,6 +82,7 @@ ReferenceImage renderReference(const Scene& scene, const ReferenceOptions& optio
     throw RuntimeError("reference --all-orders: for the sea seen from above only (a [water] scene, camera y > 0)");
   }
   ReferenceImage out;
+  if (options.sun_single_subpixels > 0) return sunSingleQuadrature(scene, options);
   if (above || cameraUnderwater(scene)) {
     // Under water: the spectral path tracer on the device, `steps` paths per pixel. With
     // underwater.multiple_scattering = false it traces single scattering of the sun beam only, the

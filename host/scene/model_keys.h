@@ -33,6 +33,8 @@ struct KnobDefault {
   const char* name;  // without "quality."
   double value;
   bool is_switch = false;
+  bool automatic = false;  // "auto" unless the scene gives a number: the pass sizes it from the scene
+                           // (value is then only a placeholder)
 };
 
 // Every pass's count knobs, each once, in plan order: the descriptors' knobs that are not switches

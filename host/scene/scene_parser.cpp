@@ -759,7 +759,7 @@ class SceneParser {
     std::vector<KnobDefault> counts(std::begin(kReferenceKnobs), std::end(kReferenceKnobs));
     for (const KnobDefault& k : qualityCountKnobs()) counts.push_back(k);
     for (const KnobDefault& k : counts) {
-      Knob knob{false, k.value};
+      Knob knob{k.automatic, k.value};
       if (const toml::node* n = r.get(k.name)) {
         if (auto* s = n->as_string()) {
           r.check(s->get() == "auto", k.name,
@@ -769,6 +769,7 @@ class SceneParser {
           r.check(n->is_integer(), k.name,
                   "expected a positive integer or \"auto\", got " + typeName(*n));
           knob.value = static_cast<double>(r.integerIn(k.name, static_cast<long long>(k.value), 1, kMaxKnob));
+          knob.automatic = false;
         }
       }
       scene_.quality[k.name] = knob;

@@ -18,14 +18,29 @@ int knob(const Scene& scene, const char* name, int fallback) {
   return static_cast<int>(it->second.value);
 }
 
+// The most columns an "auto" grid has: 320 × 180, four times what the froxel sweep needed at 320×180
+// pixels (results/BENCHMARKS.md "Froxel single scattering"); and the fewest across the image's wider
+// side, 80 (0.75° apart at seabed's 60° field): coarser columns interpolate the light of rays rising to
+// the surface too low (2 % at 24 columns over 96×54 pixels).
+constexpr double kMaxAutoColumns = 320.0 * 180.0;
+constexpr int kMinAutoColumns = 80;
+
 Vec3 sunWater(const UwParams& p) { return {p.sun_dir_water[0], p.sun_dir_water[1], p.sun_dir_water[2]}; }
 
 }  // namespace
 
 FroxelConfig froxelConfigFromScene(const Scene& scene) {
   FroxelConfig c;
-  c.nx = knob(scene, "froxel_x", c.nx);
-  c.ny = knob(scene, "froxel_y", c.ny);
+  // froxel_pixels per column side, but at least kMinAutoColumns across the wider side (every pixel a
+  // column in a smaller image) and at most kMaxAutoColumns in all: past 1280×720 the columns widen with
+  // the image, so the volume stays within 57600 × froxel_z froxels (37 MB at 32 slices).
+  const int w = std::max(scene.camera.width, 1), h = std::max(scene.camera.height, 1);
+  const double area = double(w) * h;
+  const int finest = std::max(1, std::max(w, h) / kMinAutoColumns);
+  const int pixels = std::max(std::min(std::max(1, knob(scene, "froxel_pixels", 4)), finest),
+                              static_cast<int>(std::ceil(std::sqrt(area / kMaxAutoColumns))));
+  c.nx = knob(scene, "froxel_x", (w + pixels - 1) / pixels);
+  c.ny = knob(scene, "froxel_y", (h + pixels - 1) / pixels);
   c.nz = knob(scene, "froxel_z", c.nz);
   c.shadow_map_size = knob(scene, "shadow_map_size", c.shadow_map_size);
   c.z_near = scene.underwater.froxel_near;
@@ -87,6 +102,8 @@ FroxelParams makeFroxelParams(const UnderwaterSetup& setup, const FroxelConfig& 
   fp.z_far = static_cast<float>(config.z_far);
   fp.log_far_near = static_cast<float>(std::log(config.z_far / config.z_near));
   fp.injection = config.rgb_injection ? FROXEL_INJECTION_RGB : FROXEL_INJECTION_SPECTRAL;
+  fp.mu_w = std::max(setup.params.sun_dir_water[1], 1e-4f);
+  fp.cam_depth = -setup.params.cam_pos[1];
   const std::vector<UwBand> rgb = froxelRgbPseudoBands(setup);
   for (int k = 0; k < 3; ++k) {
     fp.sigma_t_rgb[k] = rgb[k].c;

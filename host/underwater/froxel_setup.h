@@ -14,15 +14,18 @@ extern "C" {
 namespace seasim {
 
 struct FroxelConfig {
-  int nx = 160, ny = 90, nz = 64;  // froxel grid: quality froxel_x, froxel_y, froxel_z
+  int nx = 80, ny = 45, nz = 32;   // froxel grid: quality froxel_x, froxel_y, froxel_z
   double z_near = 0.1;             // m, underwater.froxel_near_m (end of the first slice: see froxel.h)
   double z_far = 60.0;             // m, underwater.froxel_far_m
   int shadow_map_size = 512;       // texels per side of the sun shadow map: quality shadow_map_size
   bool rgb_injection = false;      // underwater.froxel_injection = "rgb"
 };
 
-// The scene's settings. "auto" knobs take the defaults above (160×90×64 is the thesis-scale grid at
-// 16:9; no error-driven choice yet).
+// The scene's settings. The columns follow the image: froxel_x and froxel_y are "auto" unless the
+// scene gives them, ⌈width / froxel_pixels⌉ × ⌈height / froxel_pixels⌉ (80×45 at 320×180 with the
+// default 4 pixels per column side), at least 80 columns across the wider side (or one per pixel) and
+// at most 320×180 columns (wider columns past 1280×720); froxel_z slices (32). The defaults are the froxel sweep's choice
+// against the quadrature reference (results/BENCHMARKS.md "Froxel single scattering").
 FroxelConfig froxelConfigFromScene(const Scene& scene);
 
 // The RGB pseudo-bands (002 eq. 5.3–5.4 in spirit): for channel k with non-negative weights

@@ -18,25 +18,30 @@
  * exactly a ray and a pixel's S indexes it directly. Exponential slicing: slice k covers
  * (z_k, z_{k+1}], z_{k+1} = z_near (z_far/z_near)^{(k+1)/nz}, z_0 = 0 (slice 0 starts at the camera).
  *
- * Integration (002 eq. 5.2, the rectangle rule, done stably): L_i is held at its value at the
- * slice's midpoint; the slice's transmittance-weighted length is integrated exactly,
- *   ∫_{z_k}^{z_k + d} e^{-σ_t z} dz = e^{-σ_t z_k} d φ(-σ_t d),   φ(x) = expm1(x)/x = expm1_over_x,
- * so a slice of any optical depth (1 m of 9C water, σ_t d = 11) neither loses its light (the plain
- * rule's d e^{-σ_t z} at one point) nor overshoots. The medium is homogeneous, so the transmittance to
- * the slice's start is e^{-σ_t z_k} directly (froxel_slice_integral; froxel_beam_slice fuses it with
- * E_beam's exponential); froxel_integrate_step is the same step in the running form
- * ΔL = T L_i d φ(-σ_t d), T *= e^{-σ_t d}.
- * Slices are the same distances along every column, so σ_s e_beam0 e^{-σ_t z_k} d φ(-σ_t d) depends on
- * (band, slice) only: froxel_fill_slice_factors tabulates it once per set-up, and the column loop
- * (froxel_integrate_column) is left with one exp per band and froxel, E_beam's e^{-σ_t y/μ_w}.
+ * Integration (002 eq. 5.2, done exactly for the beam): V·C is held at its value at the slice's
+ * midpoint; the rest of the integrand is integrated exactly. The light reaching the camera from distance
+ * t has travelled P(t) = y(t)/μ_w down from the surface along the beam and t to the camera, so
+ *   e^{-σ_t t} L_i(t) = σ_s p V C e_beam0 e^{-σ_t P(t)},   P(t) = t + y(t)/μ_w,   y(t) = y_cam - t d_y,
+ * and P is linear in t with slope r = 1 - d_y/μ_w (the column's `rate`, r > 0 unless the view rises
+ * more steeply than the refracted sun). Over [t0, t1]:
+ *   ∫ = σ_s p V C e_beam0 (t1 - t0) e^{-σ_t min(P0, P1)} φ(-σ_t |P1 - P0|),   φ(x) = expm1(x)/x,
+ * both factors <= 1 for any optical depth (froxel_beam_segment): a slice 1 m long in 9C water (σ_t d =
+ * 11) and a view towards the surface (P falling with t) neither lose light nor overflow. Held at the
+ * midpoint, E_beam's exponential alone errs by (σ_t r d)²/24 relative in a slice of length d: the
+ * rectangle rule this replaces needed 64 slices where 24 now reach the same error on seabed.
+ * A slice that reaches the surface (a view rising to y = 0 at t_s = y_cam/d_y) is integrated over its
+ * part below it, [t0, min(t1, t_s)], and V·C is taken at the middle of that part (froxel_sample_t).
  *
  * Read (froxel_lookup): the volume holds the integral to the END of each slice; a pixel at distance S
  * in slice k reads L(z_k) + f (L(z_{k+1}) - L(z_k)), f the fraction of that slice's light gathered by
- * S when L_i is constant in it, f = x φ(-τ x)/φ(-τ) with x = (S - z_k)/d and τ = σ̄_t d per channel
- * (σ̄_t = FroxelParams.sigma_t_rgb), which is (1 - e^{-τx})/(1 - e^{-τ}) written without 0/0 at τ = 0.
+ * S, f = (1 - e^{-τx})/(1 - e^{-τ}) with x = (S - z_k)/d and τ = σ̄_t r d per channel (σ̄_t =
+ * FroxelParams.sigma_t_rgb, r = 1 - d_y/μ_w the column's rate), exact for one band; written without
+ * 0/0 at τ = 0 and without overflow for τ < 0 (froxel_partial). d is the slice's part below the
+ * surface in that column (the volume's 4th float holds the column's d_y).
  * Columns: bilinear between the four columns around the pixel (clamped at the border). S >= z_far
  * (deep water, UW_INFINITE) reads the value at z_far: light beyond z_far is lost, part of the froxel
- * method's error.
+ * method's error. A pixel whose ray ends at the surface reads each column whole, to its own surface
+ * (froxel_reads_whole_columns).
  */
 
 
@@ -71,62 +76,74 @@ SEASIM_FN real3 froxel_column_dir(const SEASIM_CONSTANT UwParams* p, const SEASI
   return uw_screen_dir(p, ((real)i + R(0.5)) / (real)fp->nx, ((real)j + R(0.5)) / (real)fp->ny);
 }
 
-/* The centre of froxel (i, j, k): the column ray at the slice's midpoint distance. */
+/* Where a view ray from a camera at depth y_cam (> 0 below the surface) with vertical direction d_y leaves
+ * the water (y = 0): y_cam/d_y for a rising ray, UW_INFINITE otherwise. */
+SEASIM_FN real froxel_surface_distance(real y_cam, real d_y) {
+  return d_y > R(0.0) ? fmax(y_cam, R(0.0)) / d_y : (real)UW_INFINITE;
+}
+
+/* The distance along the column where slice [t0, t1] samples V·C: the middle of its part below the
+ * surface (t_surface: froxel_surface_distance), the slice's midpoint when it lies wholly below. */
+SEASIM_FN real froxel_sample_t(real t0, real t1, real t_surface) {
+  return R(0.5) * (t0 + fmax(t0, fmin(t1, t_surface)));
+}
+
+/* The point of froxel (i, j, k) where V·C is sampled: the column ray at froxel_sample_t. */
 SEASIM_FN real3 froxel_center(const SEASIM_CONSTANT UwParams* p, const SEASIM_CONSTANT FroxelParams* fp, int i, int j,
                               int k) {
-  const real t = R(0.5) * (froxel_slice_start(k, fp->nz, fp->z_near, fp->z_far, fp->log_far_near) +
-                           froxel_slice_end(k, fp->nz, fp->z_near, fp->z_far, fp->log_far_near));
+  const real3 d = froxel_column_dir(p, fp, i, j);
+  const real t = froxel_sample_t(froxel_slice_start(k, fp->nz, fp->z_near, fp->z_far, fp->log_far_near),
+                                 froxel_slice_end(k, fp->nz, fp->z_near, fp->z_far, fp->log_far_near),
+                                 froxel_surface_distance(-p->cam_pos[1], d.y));
   const real3 o = MAKE_REAL3(p->cam_pos[0], p->cam_pos[1], p->cam_pos[2]);
-  return o + t * froxel_column_dir(p, fp, i, j);
+  return o + t * d;
 }
 
-/* 002 eq. 5.2 for one slice [t0, t0 + d] of a homogeneous medium with constant in-scatter l_i:
- * ∫ e^{-σ_t z} l_i dz = e^{-σ_t t0} l_i d φ(-σ_t d). Finite for every σ_t, t0, d >= 0 (each factor <= 1
- * except l_i d). */
-SEASIM_FN real froxel_slice_integral(real l_i, real sigma_t, real t0, real d) {
-  return exp(-sigma_t * t0) * l_i * d * expm1_over_x(-sigma_t * d);
+/* ---- the caustic texture over a froxel ---- */
+
+/* How much of a texture's deviation from its mean one point sample may keep when it stands for the mean
+ * over a footprint l_along × l_across: for a texture whose autocorrelation along a line integrates to
+ * λ (its integral scale), the regression of the footprint's mean on the centre value is about
+ * min(1, λ/l) per axis (measured for the caustic texture: FroxelMath.CausticShrinkFollowsItsIntegralScale).
+ * The froxel keeps 1 + ρ (C - 1): the best linear estimate of the mean the pixel integrates from its
+ * one sample, which point sampling (ρ = 1) overstates by the texture's whole variance where a slice or
+ * the spacing of the columns spans many caustic cells. In [0, 1]; 1 at λ >= l. */
+SEASIM_FN real froxel_footprint_correlation(real lambda, real l_along, real l_across) {
+  return lambda / fmax(l_along, lambda) * (lambda / fmax(l_across, lambda));
 }
 
-/* The same step in running form: returns ΔL = T l_i d φ(-σ_t d) and updates *T *= e^{-σ_t d}. */
-SEASIM_FN real froxel_integrate_step(real l_i, real sigma_t, real d, real* T) {
-  const real tau = sigma_t * d;
-  const real dl = *T * l_i * d * expm1_over_x(-tau);
-  *T *= exp(-tau);
-  return dl;
+/* ρ of froxel_footprint_correlation for the slice part [t0, s1] of column direction d (s1 its end below
+ * the surface): the caustic at a point is the texture at the surface point its refracted sun ray came
+ * from, so a segment of the column maps to the surface at |d_h - (d_y/s_w,y) s_w,h| per metre (h: x and
+ * z), and the columns lie t × (their angular spacing) apart across it. lambda: the texture's integral
+ * scale in metres. */
+SEASIM_FN real froxel_caustic_correlation(const SEASIM_CONSTANT UwParams* p, const SEASIM_CONSTANT FroxelParams* fp,
+                                          real3 d, real3 s_w, real t0, real s1, real lambda) {
+  const real k = d.y / fmax(s_w.y, R(1e-4));
+  const real ux = d.x - k * s_w.x, uz = d.z - k * s_w.z;
+  const real along = (s1 - t0) * sqrt(ux * ux + uz * uz);
+  const real spacing = R(2.0) * p->tan_half_fov_y * fmax(p->aspect / (real)fp->nx, R(1.0) / (real)fp->ny);
+  const real across = R(0.5) * (t0 + s1) * spacing;
+  return froxel_footprint_correlation(lambda, along, across);
 }
 
-/* One band's share of 002 eq. 5.2 over a slice [t0, t0 + d] at the froxel-centre depth y:
- * σ_s p V C e_beam0 e^{-σ_t y/μ_w} · e^{-σ_t t0} d φ(-σ_t d) (froxel_slice_integral with
- * L_i = σ_s p V C E_beam(y)), the two decaying exponentials in one exp (both exponents <= 0: no
- * overflow, underflow to 0 at depth). scale = σ_s p V C. */
-SEASIM_FN real froxel_beam_slice(real scale, real e_beam0, real sigma_t, real mu_w, real y, real t0, real d) {
-  return scale * e_beam0 * exp(-sigma_t * (t0 + y / mu_w)) * d * expm1_over_x(-sigma_t * d);
+/* One band's single scattering over the part [t0, t0 + len] of a view ray with constant V·C (see the
+ * top): scale e_beam0 len e^{-σ_t min(P0, P1)} φ(-σ_t |P1 - P0|), scale = σ_s p V C, P the light's path
+ * from the surface to the camera through the segment's ends. The exponent of the first factor and the
+ * argument of φ are <= 0, so each factor is in [0, 1]: no overflow, underflow to 0 at depth. */
+SEASIM_FN real froxel_beam_segment(real scale, real e_beam0, real sigma_t, real p0, real p1, real len) {
+  return scale * e_beam0 * len * exp(-sigma_t * fmin(p0, p1)) * expm1_over_x(-sigma_t * fabs(p1 - p0));
 }
 
-/* The (band, slice) part of froxel_beam_slice: σ_s e_beam0 e^{-σ_t t0} d φ(-σ_t d) for the slice
- * [t0, t0 + d] (froxel_integrate_column multiplies by p V C and E_beam(y)). Both exponents are <= 0;
- * a factor underflows to 0 only where its product with E_beam (<= 1) would too. */
-SEASIM_FN real froxel_slice_factor(real b, real e_beam0, real sigma_t, real t0, real d) {
-  return b * e_beam0 * exp(-sigma_t * t0) * d * expm1_over_x(-sigma_t * d);
-}
-
-/* factors[k * band_count + b] = froxel_slice_factor of slice k < fp->nz and band b: the table
- * froxel_integrate_column reads (nz × band_count values, computed where the bands are set up). */
-SEASIM_FN void froxel_fill_slice_factors(const SEASIM_CONSTANT FroxelParams* fp, const SEASIM_GLOBAL UwBand* bands,
-                                         int band_count, SEASIM_GLOBAL real* factors) {
-  real t0 = R(0.0);
-  for (int k = 0; k < fp->nz; ++k) {
-    const real t1 = froxel_slice_end(k, fp->nz, fp->z_near, fp->z_far, fp->log_far_near);
-    for (int b = 0; b < band_count; ++b)
-      factors[k * band_count + b] = froxel_slice_factor(bands[b].b, bands[b].e_beam0, bands[b].c, t0, t1 - t0);
-    t0 = t1;
-  }
-}
-
-/* Fraction of a slice's light (constant L_i, optical depth tau >= 0) gathered over the first fraction
- * x in [0, 1] of its length: (1 - e^{-τx})/(1 - e^{-τ}) = x φ(-τx)/φ(-τ); x at τ = 0, → 1 as τ → ∞. */
+/* Fraction of a slice's light gathered over the first fraction x in [0, 1] of its length when its
+ * integrand falls as e^{-τ x} (τ = σ_t r d, of either sign: a view towards the surface gathers more
+ * light further on): (1 - e^{-τx})/(1 - e^{-τ}) = x φ(-τx)/φ(-τ) for τ >= 0 (x at τ = 0, -> 1 as
+ * τ -> ∞) and, the same quotient divided through by e^{|τ|}, e^{-|τ|(1-x)} x φ(-|τ|x)/φ(-|τ|) for τ < 0
+ * (-> 0 for x < 1 as τ -> -∞), so neither form overflows. */
 SEASIM_FN real froxel_partial(real x, real tau) {
-  return x * expm1_over_x(-tau * x) / expm1_over_x(-tau);
+  const real a = fabs(tau);
+  const real q = x * expm1_over_x(-a * x) / expm1_over_x(-a);
+  return tau >= R(0.0) ? q : exp(-a * (R(1.0) - x)) * q;
 }
 
 /* ---- the sun shadow map: orthographic along the beam (-s_w), over the bounded objects ---- */
@@ -208,36 +225,35 @@ SEASIM_FN real froxel_plane_visibility(const SEASIM_GLOBAL UwObject* objects, in
 
 /* ---- integration and read ---- */
 
-/* One column front to back (002 eq. 5.2). light: V·C per froxel (the band-independent part of L_i,
- * layout of the volume, 1 float each); bands: the wavelength bands (spectral injection) or the three
- * RGB pseudo-bands (w = unit vectors); slice_factors: froxel_fill_slice_factors of the same bands.
- * Writes the volume's 4 floats per froxel of the column. */
+/* One column front to back (002 eq. 5.2, integrated as at the top). light: V·C per froxel (the
+ * band-independent part of L_i, layout of the volume, 1 float each); bands: the wavelength bands
+ * (spectral injection) or the three RGB pseudo-bands (w = unit vectors). Writes the volume's 4 floats
+ * per froxel of the column: R, G, B to the slice's end and the column's d_y (for froxel_lookup). */
 SEASIM_FN void froxel_integrate_column(const SEASIM_CONSTANT UwParams* p, const SEASIM_CONSTANT FroxelParams* fp,
                                        const SEASIM_GLOBAL UwBand* bands, int band_count,
-                                       const SEASIM_GLOBAL real* slice_factors, const SEASIM_GLOBAL float* light,
-                                       SEASIM_GLOBAL float* volume, int i, int j) {
+                                       const SEASIM_GLOBAL float* light, SEASIM_GLOBAL float* volume, int i, int j) {
   const int nx = fp->nx, ny = fp->ny, nz = fp->nz;
   const real3 d = froxel_column_dir(p, fp, i, j);
   const real3 s_w = MAKE_REAL3(p->sun_dir_water[0], p->sun_dir_water[1], p->sun_dir_water[2]);
-  const real mu_w = fmax(s_w.y, R(1e-4));
+  const real mu_w = fp->mu_w;
   const real phase = hg_phase(dot(s_w, d), p->g);
-  const real o_d = -p->cam_pos[1];
-  const real sigma_g = fp->sigma_t_rgb[1];
+  const real y_cam = fp->cam_depth;
+  const real t_surface = froxel_surface_distance(y_cam, d.y);
   real acc_r = R(0.0), acc_g = R(0.0), acc_b = R(0.0);
   real t0 = R(0.0);
   for (int k = 0; k < nz; ++k) {
     const real t1 = froxel_slice_end(k, nz, fp->z_near, fp->z_far, fp->log_far_near);
-    const real y = o_d - R(0.5) * (t0 + t1) * d.y; /* depth of the froxel centre */
+    const real s1 = fmin(t1, t_surface); /* the slice's part below the surface is [t0, s1] */
     const int idx = (k * ny + j) * nx + i;
     const real vc = light[idx];
-    if (vc > R(0.0) && y >= R(0.0)) {
+    if (vc > R(0.0) && s1 > t0) {
       const real scale = phase * vc;
-      const real y_beam = y / mu_w; /* the beam's path from the surface to the froxel centre */
-      const SEASIM_GLOBAL real* factor = slice_factors + k * band_count;
+      /* P at both ends; y clamped at 0 against rounding at the surface */
+      const real p0 = t0 + fmax(y_cam - t0 * d.y, R(0.0)) / mu_w;
+      const real p1 = s1 + fmax(y_cam - s1 * d.y, R(0.0)) / mu_w;
       for (int b = 0; b < band_count; ++b) {
         const SEASIM_GLOBAL UwBand* band = &bands[b];
-        /* froxel_beam_slice(scale σ_s, e_beam0, σ_t, μ_w, y, t0, len) with its (band, slice) part tabulated */
-        const real dl = scale * factor[b] * exp(-band->c * y_beam);
+        const real dl = froxel_beam_segment(scale * band->b, band->e_beam0, band->c, p0, p1, s1 - t0);
         acc_r += dl * band->w_r;
         acc_g += dl * band->w_g;
         acc_b += dl * band->w_b;
@@ -246,7 +262,7 @@ SEASIM_FN void froxel_integrate_column(const SEASIM_CONSTANT UwParams* p, const 
     volume[4 * idx + 0] = acc_r;
     volume[4 * idx + 1] = acc_g;
     volume[4 * idx + 2] = acc_b;
-    volume[4 * idx + 3] = exp(-sigma_g * t1);
+    volume[4 * idx + 3] = d.y;
     t0 = t1;
   }
 }
@@ -267,31 +283,54 @@ SEASIM_FN int froxel_read_slice(const SEASIM_CONSTANT FroxelParams* fp, real S) 
   return froxel_slice_index(t, fp->nz, fp->z_near, fp->z_far, fp->log_far_near);
 }
 
+/* The vertical direction of pixel (x, y)'s ray, bilinear between its four columns' d_y (the weights of
+ * froxel_lookup): d00, d10, d01, d11 at (i0, j0), (i1, j0), (i0, j1), (i1, j1). */
+SEASIM_FN real froxel_pixel_dy(real d00, real d10, real d01, real d11, real ax, real ay) {
+  return (R(1.0) - ay) * ((R(1.0) - ax) * d00 + ax * d10) + ay * ((R(1.0) - ax) * d01 + ax * d11);
+}
+
+/* Whether a pixel whose ray has vertical direction d_y and ends at S reads its columns whole: its ray
+ * reaches the surface (S within `tolerance` of the distance where it leaves the water) or z_far. Its
+ * four columns leave the water at other distances (y_cam/d_y differs most near the horizon), and the
+ * light gathers fastest just below the surface, so each column is read to its own end, not to the
+ * pixel's S: read at S, a column rising less steeply would stop short of its brightest metres. */
+SEASIM_FN int froxel_reads_whole_columns(const SEASIM_CONSTANT FroxelParams* fp, real d_y, real S, real tolerance) {
+  return S >= (real)fp->z_far || S >= froxel_surface_distance(fp->cam_depth, d_y) * (R(1.0) - tolerance);
+}
+
 /* In-scattered sensor RGB from the camera to distance S along pixel (x, y) of a width × height image
  * (see the top: bilinear over columns, in-slice fraction by σ̄_t per channel, S clamped to z_far). */
 SEASIM_FN real3 froxel_lookup(const SEASIM_CONSTANT FroxelParams* fp, const SEASIM_GLOBAL float* volume, int x, int y,
                               int width, int height, real S) {
   const int nx = fp->nx, ny = fp->ny, nz = fp->nz;
-  const int k = froxel_read_slice(fp, S);
-  if (k < 0) return MAKE_REAL3(0, 0, 0);
-  const real t = fmin(S, (real)fp->z_far);
-  const real t0 = froxel_slice_start(k, nz, fp->z_near, fp->z_far, fp->log_far_near);
-  const real len = froxel_slice_end(k, nz, fp->z_near, fp->z_far, fp->log_far_near) - t0;
-  const real xf = len > R(0.0) ? clamp((t - t0) / len, R(0.0), R(1.0)) : R(1.0);
-  const real f_r = froxel_partial(xf, fp->sigma_t_rgb[0] * len);
-  const real f_g = froxel_partial(xf, fp->sigma_t_rgb[1] * len);
-  const real f_b = froxel_partial(xf, fp->sigma_t_rgb[2] * len);
   /* Continuous column coordinates of the pixel centre; column i's centre sits at i. */
   const real gx = froxel_pixel_column(x, width, nx);
   const real gy = froxel_pixel_column(y, height, ny);
   const int i0 = (int)gx, j0 = (int)gy;
   const int i1 = i0 + 1 < nx ? i0 + 1 : nx - 1, j1 = j0 + 1 < ny ? j0 + 1 : ny - 1;
   const real ax = gx - (real)i0, ay = gy - (real)j0;
+  /* Every slice holds its column's d_y; slice 0's are read. A ray to the surface reads whole columns. */
+  const real d_y = froxel_pixel_dy(volume[4 * (j0 * nx + i0) + 3], volume[4 * (j0 * nx + i1) + 3],
+                                   volume[4 * (j1 * nx + i0) + 3], volume[4 * (j1 * nx + i1) + 3], ax, ay);
+  if (S > R(0.0) && froxel_reads_whole_columns(fp, d_y, S, R(1e-3))) S = (real)fp->z_far;
+  const int k = froxel_read_slice(fp, S);
+  if (k < 0) return MAKE_REAL3(0, 0, 0);
+  const real t = fmin(S, (real)fp->z_far);
+  const real t0 = froxel_slice_start(k, nz, fp->z_near, fp->z_far, fp->log_far_near);
+  const real t1 = froxel_slice_end(k, nz, fp->z_near, fp->z_far, fp->log_far_near);
   real r = R(0.0), g = R(0.0), b = R(0.0);
   for (int c = 0; c < 4; ++c) {
     const int i = (c & 1) ? i1 : i0, j = (c & 2) ? j1 : j0;
     const real w = ((c & 1) ? ax : R(1.0) - ax) * ((c & 2) ? ay : R(1.0) - ay);
     const int end = 4 * ((k * ny + j) * nx + i);
+    /* The slice's part below the surface in this column, and how far into it S reaches. */
+    const real d_y = (real)volume[end + 3];
+    const real len = fmin(t1, froxel_surface_distance(fp->cam_depth, d_y)) - t0;
+    const real xf = len > R(0.0) ? clamp((t - t0) / len, R(0.0), R(1.0)) : R(1.0);
+    const real tau = (R(1.0) - d_y / fp->mu_w) * fmax(len, R(0.0));
+    const real f_r = froxel_partial(xf, fp->sigma_t_rgb[0] * tau);
+    const real f_g = froxel_partial(xf, fp->sigma_t_rgb[1] * tau);
+    const real f_b = froxel_partial(xf, fp->sigma_t_rgb[2] * tau);
     real r0 = R(0.0), g0 = R(0.0), b0 = R(0.0);
     if (k > 0) {
       const int start = 4 * (((k - 1) * ny + j) * nx + i);

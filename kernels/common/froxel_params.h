@@ -9,8 +9,9 @@
  * its centre; nz slices along that ray (distance along the ray, not camera depth), slice k ending at
  * z_{k+1} = z_near (z_far/z_near)^{(k+1)/nz}, slice 0 starting at 0.
  * Volume (froxel.cl output): 4 floats per froxel at ((k ny + j) nx + i): R, G, B single scattering
- * integrated from the camera to the END of slice k (sensor RGB, 002 eq. 4.8), and the transmittance
- * e^{-σ̄_t,G z_{k+1}} of the green pseudo-band (not needed by the lookup).
+ * integrated from the camera to the END of slice k (sensor RGB, 002 eq. 4.8), and the column's
+ * vertical direction d_y (froxel_lookup's in-slice fraction needs where the column leaves the water and
+ * its rate 1 - d_y/μ_w).
  */
 
 #ifndef SEASIM_FROXEL_PARAMS_H /* also included by host/math/kernel_math.h */
@@ -26,7 +27,7 @@ typedef struct {
   float shadow_right[4];   /* unit, ⊥ sun_dir_water: texel x */
   float shadow_up[4];      /* unit, ⊥ sun_dir_water and shadow_right: texel y */
   float sigma_t_rgb[4];    /* 1/m, R,G,B pseudo-band extinction: RGB injection, and the in-slice
-                              weighting of froxel_lookup in both modes */
+                              weighting of froxel_lookup in both modes (times the column's rate) */
   float sigma_s_rgb[4];    /* 1/m, R,G,B pseudo-band scattering; with e_beam_rgb for reports only: */
   float e_beam_rgb[4];     /* sensor R,G,B of the beam just below the surface; froxel_integrate reads
                               the pseudo-bands from its band buffer (froxelRgbPseudoBands) */
@@ -35,7 +36,9 @@ typedef struct {
   float log_far_near;      /* log(z_far / z_near), computed once in double: host and device slice alike */
   float shadow_half_extent;/* m, the map covers [-h, h]² around shadow_origin in (right, up) */
   float shadow_bias;       /* m, a point is shadowed when it lies this far beyond the occluder */
-  float pad0, pad1, pad2;
+  float mu_w;              /* the refracted sun's cosine to the vertical, >= 1e-4 (froxel_integrate_column's) */
+  float cam_depth;         /* m, the camera's depth below the surface (-cam_pos.y): where a column leaves the water */
+  float pad2;
   int nx, ny, nz;          /* froxel grid */
   int shadow_size;         /* texels per side of the shadow map; 0: no bounded objects (no map) */
   int injection;           /* FROXEL_INJECTION_* */

@@ -1,10 +1,9 @@
 // froxel_math_test.cpp — the froxel single scattering math (kernels/common/froxel.h, 002 §5.1 eq. 5.2)
 // and the scrolling caustic textures (kernels/common/caustic_texture.h, 002 §5.3) in float and double:
-// slice boundaries and look-up of the exponential slicing, the per-slice step against the exact
-// integral of a uniform medium (a horizontal ray: constant in-scatter, exact for any slice count; a
-// vertical ray: in-scatter e^{-c(y0+z)/μ}, a closed form the midpoint-per-slice rule approaches as
-// O(1/nz²)), the in-slice read, stiff optical depths, and the caustic modulation's periodicity,
-// unit mean, range and finiteness.
+// slice boundaries and look-up of the exponential slicing, the per-slice integral against the exact
+// one of a uniform medium (rays level, down and rising to the surface: exact for any slice count), the
+// in-slice read, stiff optical depths, the caustic modulation's periodicity, unit mean, range and
+// finiteness, and the footprint filter on its integral scale.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -279,64 +278,51 @@ TEST(FroxelMath, ExponentialSlices) {
   }
 }
 
-TEST(FroxelMath, StepAndPartialAreStable) {
-  // Running form and closed form agree slice by slice, including a slice 1 m long in 9C-like water.
-  double T = 1.0, L = 0.0;
-  const double c = 11.0, li = 2.5;
-  double t0 = 0.0;
-  for (double d : {0.01, 0.1, 1.0, 50.0, 1e4}) {
-    const double a = kd::froxel_slice_integral(li, c, t0, d);
-    const double b = kd::froxel_integrate_step(li, c, d, &T);
-    EXPECT_NEAR(a, b, 1e-12 * (std::fabs(a) + 1e-300));
-    EXPECT_TRUE(std::isfinite(a) && a >= 0);
-    L += b;
-    t0 += d;
-  }
-  EXPECT_NEAR(L, li * (1 - std::exp(-c * t0)) / c, 1e-12);  // the slices add up to the exact integral
-  // The fused form the column loop runs equals the slice integral of L_i = scale E_beam(y).
-  for (double y : {0.0, 3.0, 800.0}) {
-    const double e = kd::uw_beam_irradiance(1.3, 0.4, 0.8, y);
-    EXPECT_NEAR(kd::froxel_beam_slice(0.7, 1.3, 0.4, 0.8, y, 2.0, 0.5), kd::froxel_slice_integral(0.7 * e, 0.4, 2.0, 0.5),
-                1e-14 * (1 + e));
-    EXPECT_TRUE(std::isfinite(kf::froxel_beam_slice(0.7f, 1.3f, 11.0f, 0.7f, float(y), 1e3f, 1e3f)));
-  }
-  // Float at enormous optical depth: 0, never NaN.
-  EXPECT_EQ(kf::froxel_slice_integral(1.0f, 11.0f, 1e4f, 1e4f), 0.0f);
-  float Tf = 1.0f;
-  EXPECT_TRUE(std::isfinite(kf::froxel_integrate_step(1.0f, 100.0f, 1e4f, &Tf)));
-  EXPECT_EQ(Tf, 0.0f);
-  // Partial fraction: x at τ = 0, (1 - e^{-τx})/(1 - e^{-τ}) elsewhere, → 1 for τ → ∞ (x > 0).
-  for (double x : {0.0, 1e-6, 0.3, 0.5, 1.0}) {
-    EXPECT_NEAR(kd::froxel_partial(x, 0.0), x, 1e-15);
-    for (double tau : {1e-8, 1e-3, 0.5, 3.0, 40.0}) {
-      EXPECT_NEAR(kd::froxel_partial(x, tau), -std::expm1(-tau * x) / -std::expm1(-tau), 1e-12);
-      EXPECT_NEAR(kf::froxel_partial(float(x), float(tau)), -std::expm1(-tau * x) / -std::expm1(-tau), 2e-6);
-    }
-  }
-  EXPECT_NEAR(kf::froxel_partial(0.5f, 1e6f), 1.0f, 1e-6f);
-  EXPECT_TRUE(std::isfinite(kf::froxel_partial(0.0f, 1e30f)));
-}
-
-// The column loop's split of froxel_beam_slice: the tabulated (band, slice) factor times the beam's
-// e^{-σ_t y/μ_w} is the fused form, in double and float, from clear to turbid water; deep slices
-// underflow to 0, never NaN.
-TEST(FroxelMath, SliceFactorTimesBeamIsTheFusedSlice) {
-  for (double c : {0.0, 1e-4, 0.05, 0.4, 3.0, 11.0}) {
-    for (double t0 : {0.0, 0.1, 2.0, 35.0}) {
-      for (double d : {1e-3, 0.2, 1.0, 8.0}) {
-        for (double y : {0.0, 0.5, 12.0}) {
-          const double b = 0.3, e0 = 1.7, mu = 0.8, scale = 0.9;
-          const double fused = kd::froxel_beam_slice(scale * b, e0, c, mu, y, t0, d);
-          const double split = scale * kd::froxel_slice_factor(b, e0, c, t0, d) * std::exp(-c * (y / mu));
-          EXPECT_NEAR(split, fused, 1e-14 * fused + 1e-300) << "c=" << c << " t0=" << t0 << " d=" << d << " y=" << y;
-          const float splitf = float(scale) * kf::froxel_slice_factor(float(b), float(e0), float(c), float(t0), float(d)) *
-                               std::exp(-float(c) * (float(y) / float(mu)));
-          EXPECT_NEAR(splitf, fused, 2e-6 * fused + 1e-37) << "c=" << c << " t0=" << t0 << " d=" << d << " y=" << y;
+TEST(FroxelMath, BeamSegmentIsTheExactIntegralAndStable) {
+  // scale e0 ∫_0^len e^{-c P(t)} dt with P linear from p0 to p1, against the difference of the two ends'
+  // exponentials over the slope in long double, (e^{-c p0} - e^{-c p1}) len / (c (p1 - p0)), for P
+  // rising (a view down or level) and falling (a view rising more steeply than the sun).
+  for (double c : {1e-4, 0.05, 0.4, 3.0, 11.0}) {
+    for (double p0 : {0.0, 0.7, 12.0}) {
+      for (double rate : {-0.5, 0.0, 0.3, 1.0, 2.4}) {
+        for (double len : {1e-3, 0.2, 1.0, 8.0}) {
+          const double p1 = std::max(0.0, p0 + rate * len);
+          const long double e0 = std::exp(-(long double)c * p0), e1 = std::exp(-(long double)c * p1);
+          const long double mean = p1 == p0 ? e0 : (e0 - e1) / ((long double)c * (p1 - p0));
+          const double exact = static_cast<double>(0.9L * 1.7L * len * mean);
+          const double got = kd::froxel_beam_segment(0.9, 1.7, c, p0, p1, len);
+          EXPECT_NEAR(got, exact, 1e-9 * exact + 1e-300) << c << " " << p0 << " " << rate << " " << len;
+          const float gotf = kf::froxel_beam_segment(0.9f, 1.7f, float(c), float(p0), float(p1), float(len));
+          EXPECT_NEAR(gotf, exact, 3e-6 * exact + 1e-37) << c << " " << p0 << " " << rate << " " << len;
         }
       }
     }
   }
-  EXPECT_EQ(kf::froxel_slice_factor(1.0f, 1.0f, 11.0f, 1e3f, 1.0f), 0.0f);
+  // Stiff: 1 km of 9C water underflows to 0; a steep rise over 1 km (P falling by 500 m) stays finite and
+  // below scale e0 len; never NaN.
+  EXPECT_EQ(kf::froxel_beam_segment(1.0f, 1.0f, 11.0f, 1e3f, 2e3f, 1e3f), 0.0f);
+  const float rise = kf::froxel_beam_segment(1.0f, 1.0f, 11.0f, 600.0f, 100.0f, 1e3f);
+  EXPECT_TRUE(std::isfinite(rise));
+  EXPECT_LE(rise, 1e3f);
+  EXPECT_EQ(kf::froxel_beam_segment(1.0f, 1.0f, 11.0f, 0.0f, 0.0f, 0.0f), 0.0f);
+}
+
+TEST(FroxelMath, PartialIsStableForBothSignsOfTau) {
+  // (1 - e^{-τx})/(1 - e^{-τ}): x at τ = 0, → 1 as τ → ∞ and → 0 (x < 1) as τ → -∞ (a rising view
+  // gathers its slice's light at the far end); never NaN.
+  for (double x : {0.0, 1e-6, 0.3, 0.5, 1.0}) {
+    EXPECT_NEAR(kd::froxel_partial(x, 0.0), x, 1e-15);
+    for (double tau : {-40.0, -3.0, -0.5, -1e-3, -1e-8, 1e-8, 1e-3, 0.5, 3.0, 40.0}) {
+      const double exact = -std::expm1(-tau * x) / -std::expm1(-tau);
+      EXPECT_NEAR(kd::froxel_partial(x, tau), exact, 1e-12) << x << " " << tau;
+      EXPECT_NEAR(kf::froxel_partial(float(x), float(tau)), exact, 2e-6) << x << " " << tau;
+    }
+  }
+  EXPECT_NEAR(kf::froxel_partial(0.5f, 1e6f), 1.0f, 1e-6f);
+  EXPECT_EQ(kf::froxel_partial(0.5f, -1e6f), 0.0f);
+  EXPECT_EQ(kf::froxel_partial(1.0f, -1e6f), 1.0f);
+  EXPECT_TRUE(std::isfinite(kf::froxel_partial(0.0f, 1e30f)));
+  EXPECT_TRUE(std::isfinite(kf::froxel_partial(0.3f, -1e30f)));
 }
 
 // A one-column grid along `forward` (the column's ray is the screen centre: exactly `forward`), one
@@ -371,6 +357,8 @@ struct Column {
     fp.z_near = float(near);
     fp.z_far = float(far);
     fp.log_far_near = float(std::log(far / near));
+    fp.mu_w = float(std::max(sun_water.y, 1e-4));
+    fp.cam_depth = float(cam_depth);
     for (int k = 0; k < 3; ++k) fp.sigma_t_rgb[k] = float(c);
     band.b = float(b);
     band.c = float(c);
@@ -383,14 +371,10 @@ struct Column {
   // Integrated L_SS to distance S, by the double or float code.
   double run(double S, bool use_float) {
     if (use_float) {
-      std::vector<float> factors(fp.nz);
-      kf::froxel_fill_slice_factors(&fp, &band, 1, factors.data());
-      kf::froxel_integrate_column(&p, &fp, &band, 1, factors.data(), light.data(), volume.data(), 0, 0);
+      kf::froxel_integrate_column(&p, &fp, &band, 1, light.data(), volume.data(), 0, 0);
       return kf::froxel_lookup(&fp, volume.data(), 0, 0, 1, 1, float(S)).y;
     }
-    std::vector<double> factors(fp.nz);
-    kd::froxel_fill_slice_factors(&fp, &band, 1, factors.data());
-    kd::froxel_integrate_column(&p, &fp, &band, 1, factors.data(), light.data(), volume.data(), 0, 0);
+    kd::froxel_integrate_column(&p, &fp, &band, 1, light.data(), volume.data(), 0, 0);
     return kd::froxel_lookup(&fp, volume.data(), 0, 0, 1, 1, S).y;
   }
 };
@@ -428,31 +412,72 @@ TEST(FroxelMath, PhaseScattersTheBeamTowardsTheSunwardView) {
   EXPECT_GT(ratio, 3.0);  // g = 0.8, the views 58° and 122° from the sun direction: 3.9
 }
 
-TEST(FroxelMath, VerticalRayConvergesToClosedForm) {
-  // Looking straight down from y0 under an oblique sun (μ = 0.8): L_i(z) = b p e0 e^{-c (y0 + z)/μ},
-  //   L_SS(S) = b p e0 e^{-c y0/μ} (1 - e^{-k S})/k,   k = c (1 + 1/μ).
-  // The slice holds L_i at its midpoint: exact for one slice only as S → 0; the error falls as 1/nz².
-  const double y0 = 2.0, b = 0.5, c = 0.6, e0 = 1.0, S = 30.0, mu = 0.8;
+TEST(FroxelMath, SlopedRaysAreExactForAnySliceCount) {
+  // The beam's exponential is integrated exactly in each slice, so with V·C = 1 a ray at any slope is
+  // exact for one slice or 256, and so is a read inside a slice (one band: the in-slice fraction is
+  // exact). With P(t) = t + (y0 - t d_y)/μ of slope r = 1 - d_y/μ:
+  //   L_SS(S) = b p e0 e^{-c y0/μ} (1 - e^{-c r S})/(c r),
+  // S up to where a rising ray leaves the water, y0/d_y (beyond it: no water, no light).
+  const double y0 = 2.0, b = 0.5, c = 0.6, e0 = 1.0, far = 30.0, mu = 0.8;
   const kd::real3 sun{0.6, mu, 0.0};
-  const kd::real3 fwd{0, -1, 0};
-  const double phase = kd::hg_phase(kd::dot(sun, fwd), 0.8);
-  const double k = c * (1 + 1 / mu);
-  const double exact = b * phase * e0 * std::exp(-c * y0 / mu) * -std::expm1(-k * S) / k;
-  double previous = 1e30;
-  std::printf("vertical ray, S = 30 m, c = 0.6/m: relative error of the froxel integral\n");
-  for (int nz : {1, 4, 16, 64, 256}) {
-    Column col(y0, fwd, sun, nz, 0.05, S, b, c, e0);
-    const double err = std::fabs(col.run(S, false) / exact - 1);
-    const double errf = std::fabs(col.run(S, true) / exact - 1);
-    std::printf("  nz = %3d: double %.3e  float %.3e\n", nz, err, errf);
-    EXPECT_LT(err, previous);
-    if (nz >= 64) EXPECT_GT(previous / err, 12.0);  // second order: 16x per 4x slices
-    EXPECT_NEAR(errf, err, 2e-5);
-    previous = err;
+  const kd::real3 views[] = {{0, -1, 0}, kd::normalize(kd::real3{0.3, -0.4, -1}), kd::normalize(kd::real3{-0.2, 0.25, -1}),
+                             kd::normalize(kd::real3{0.6, 0.95, 0.1})};  // down, down-ahead, rising, rising steeply (r < 0)
+  for (const kd::real3& fwd : views) {
+    const double phase = kd::hg_phase(kd::dot(sun, fwd), 0.8);
+    const double r = 1 - fwd.y / mu;
+    const double t_surface = fwd.y > 0 ? y0 / fwd.y : 1e300;
+    auto exact = [&](double S) {
+      const double s = std::min({S, far, t_surface});
+      const double k = c * r;
+      const double integral = std::fabs(k) < 1e-12 ? s : -std::expm1(-k * s) / k;
+      return b * phase * e0 * std::exp(-c * y0 / mu) * integral;
+    };
+    for (int nz : {1, 4, 64, 256}) {
+      for (double S : {0.3, 1.7, 4.0, 29.0, 1e30}) {
+        if (S < 1e29 && S > t_surface) continue;  // a pixel's surface lies at t_surface
+        Column col(y0, fwd, sun, nz, 0.05, far, b, c, e0);
+        const double want = exact(S);
+        EXPECT_NEAR(col.run(S, false) / want, 1.0, 2e-6) << "d_y " << fwd.y << " nz " << nz << " S " << S;
+        EXPECT_NEAR(col.run(S, true) / want, 1.0, 3e-5) << "d_y " << fwd.y << " nz " << nz << " S " << S;
+      }
+    }
   }
-  // Measured: 1.0 at nz = 1 (the one midpoint, 15 m down, sees e^{-13} of the beam at the camera),
-  // 0.155, 1.06e-2, 6.8e-4, 5.3e-5 at nz = 4, 16, 64, 256.
-  EXPECT_LT(previous, 1e-4);
+}
+
+// The caustic texture's integral scale (caustic_texture.h) and the footprint filter built on it
+// (froxel.h froxel_footprint_correlation): the regression of a segment's mean on its centre value is
+// about λ/L once the segment is a few λ long, and 1 for a point.
+TEST(FroxelMath, CausticShrinkFollowsItsIntegralScale) {
+  const double period = 4.0, time = 0.7, lambda = kd::caustic_integral_scale(period);
+  EXPECT_NEAR(lambda, 0.032, 1e-3);
+  auto c = [&](double x, double z) { return kd::caustic_modulation(x, z, time, period, 0.5); };
+  unsigned state = 12345u;
+  auto uniform = [&] {  // a fixed LCG: the test draws the same lines everywhere
+    state = state * 1664525u + 1013904223u;
+    return (state >> 8) * (1.0 / 16777216.0);
+  };
+  for (double L : {4 * lambda, 12 * lambda}) {
+    double sxy = 0, sxx = 0;
+    for (int k = 0; k < 3000; ++k) {
+      const double x0 = 100 * uniform(), z0 = 100 * uniform(), a = 6.283185307179586 * uniform();
+      double mean = 0;
+      const int steps = 120;
+      for (int i = 0; i < steps; ++i) {
+        const double s = ((i + 0.5) / steps - 0.5) * L;
+        mean += c(x0 + s * std::cos(a), z0 + s * std::sin(a)) / steps;
+      }
+      const double c0 = c(x0, z0);
+      sxy += (c0 - 1) * (mean - 1);
+      sxx += (c0 - 1) * (c0 - 1);
+    }
+    const double rho = sxy / sxx;
+    std::printf("segment %.3f m (%.0f lambda): regression of its mean on the centre %.4f, the filter's %.4f\n", L,
+                L / lambda, rho, kd::froxel_footprint_correlation(lambda, L, 0.0));
+    EXPECT_NEAR(rho / kd::froxel_footprint_correlation(lambda, L, 0.0), 1.0, 0.2) << L;
+  }
+  EXPECT_EQ(kd::froxel_footprint_correlation(lambda, 0.0, 0.0), 1.0);
+  EXPECT_NEAR(kd::froxel_footprint_correlation(lambda, 10 * lambda, 10 * lambda), 0.01, 1e-12);
+  EXPECT_EQ(kf::froxel_footprint_correlation(0.032f, 0.0f, 0.0f), 1.0f);
 }
 
 }  // namespace

@@ -84,8 +84,8 @@ PassDescriptor froxelBandsDescriptor() {
   };
   d.keys = {{"camera.*", "spectral.*"}, {}};
   d.buffers = [](const Scene& s, const PassPlan& p) -> std::vector<BufferEstimate> {
-    const PassDescriptor& froxel = descriptorFor(PassRole::UnderwaterSingleScattering);  // the grid's knobs
-    const double fx = froxel.knob(s, "froxel_x"), fy = froxel.knob(s, "froxel_y"), fz = froxel.knob(s, "froxel_z");
+    const FroxelConfig c = froxelConfigFromScene(s);
+    const double fx = c.nx, fy = c.ny, fz = c.nz;
     std::vector<BufferEstimate> out = {{p.name, "one-band froxel volume", 16 * fx * fy * fz,
                                         {"quality.froxel_x", "quality.froxel_y", "quality.froxel_z"}, {fx, fy, fz}}};
     if (std::find(p.reads.begin(), p.reads.end(), "veiling_band_layer") != p.reads.end()) {

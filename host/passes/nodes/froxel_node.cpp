@@ -20,7 +20,7 @@ namespace {
 PassKeys froxelKeys() {
   std::vector<std::string> rebuild = kUnderwaterSetupKeys;
   for (const char* key : {"camera.*", "spectral.*", "quality.froxel_x", "quality.froxel_y", "quality.froxel_z",
-                          "quality.shadow_map_size"})
+                          "quality.froxel_pixels", "quality.shadow_map_size"})
     rebuild.push_back(key);
   return {rebuild, {}};
 }
@@ -60,9 +60,8 @@ PassDescriptor froxelDescriptor() {
   d.role = PassRole::UnderwaterSingleScattering;
   d.band_loop_timing = "froxel_integrate";  // the band loop; RGB injection integrates 3 bands
   d.band_loop_items = [](const Scene& s, int bands) {
-    const auto& q = s.quality;
-    const double froxels =
-        q.count("froxel_x") ? q.at("froxel_x").value * q.at("froxel_y").value * q.at("froxel_z").value : 0.0;
+    const FroxelConfig c = froxelConfigFromScene(s);
+    const double froxels = double(c.nx) * c.ny * c.nz;
     return froxels * (s.underwater.injection == UnderwaterDesc::Injection::Spectral ? bands : 3);
   };
   d.rule = [](const Scene& scene, const Plan& so_far) -> std::optional<PassPlan> {
@@ -78,10 +77,13 @@ PassDescriptor froxelDescriptor() {
                      features);
   };
   d.keys = froxelKeys();
-  d.knobs = {{"froxel_x", 160},         {"froxel_y", 90},      {"froxel_z", 64},
-             {"caustic_map_size", 256}, {"caustic_layers", 8}, {"shadow_map_size", 512}};
+  // froxel_x, froxel_y: "auto", from the image and froxel_pixels (froxelConfigFromScene).
+  d.knobs = {{"froxel_x", 0, false, true},  {"froxel_y", 0, false, true}, {"froxel_z", 32},
+             {"froxel_pixels", 4},          {"caustic_map_size", 256},    {"caustic_layers", 8},
+             {"shadow_map_size", 512}};
   d.buffers = [d](const Scene& s, const PassPlan& p) -> std::vector<BufferEstimate> {
-    const double fx = d.knob(s, "froxel_x"), fy = d.knob(s, "froxel_y"), fz = d.knob(s, "froxel_z");
+    const FroxelConfig c = froxelConfigFromScene(s);
+    const double fx = c.nx, fy = c.ny, fz = c.nz;
     std::vector<BufferEstimate> out = {{p.name, "froxel volume", 20 * fx * fy * fz,
                                         {"quality.froxel_x", "quality.froxel_y", "quality.froxel_z"}, {fx, fy, fz}}};
     // The sun's shadow map over the spheres and boxes (froxel_setup.cpp), one float per texel.
@@ -98,11 +100,13 @@ PassDescriptor froxelDescriptor() {
                    {"quality.caustic_layers", "quality.caustic_map_size", "quality.caustic_map_size"}, {L, C, C}});
     return out;
   };
-  // 16x sea_single per pixel and band at the default grid (seabed against flat_sea, 3 rounds;
-  // results/BENCHMARKS.md "Farm shards"), in proportion to the froxel count.
-  d.cost = [d](const Scene& s, const PassPlan&) {
-    return 16.0 * (d.settledKnob(s, "froxel_x") * d.settledKnob(s, "froxel_y") * d.settledKnob(s, "froxel_z") /
-                   (160.0 * 90 * 64));
+  // 16x sea_single per pixel and band at the grid of 160×90×64 froxels for 320×180 pixels (seabed
+  // against flat_sea, 3 rounds; results/BENCHMARKS.md "Farm shards"), in proportion to the froxels per
+  // pixel.
+  d.cost = [](const Scene& s, const PassPlan&) {
+    const FroxelConfig c = froxelConfigFromScene(s);
+    const double per_pixel = double(c.nx) * c.ny * c.nz / std::max(1.0, double(s.camera.width) * s.camera.height);
+    return 16.0 * per_pixel / (160.0 * 90 * 64 / (320.0 * 180));
   };
   d.factory = [](const PassPlan& e, const Plan&, const Scene&, const AutoQuality&) -> std::unique_ptr<Pass> {
     return std::make_unique<FroxelNode>(e);
