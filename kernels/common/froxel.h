@@ -35,9 +35,9 @@
  * Read (froxel_lookup): the volume holds the integral to the END of each slice; a pixel at distance S
  * in slice k reads L(z_k) + f (L(z_{k+1}) - L(z_k)), f the fraction of that slice's light gathered by
  * S, f = (1 - e^{-τx})/(1 - e^{-τ}) with x = (S - z_k)/d and τ = σ̄_t r d per channel (σ̄_t =
- * FroxelParams.sigma_t_rgb, r = 1 - d_y/μ_w the column's rate), exact for one band; written without
- * 0/0 at τ = 0 and without overflow for τ < 0 (froxel_partial). d is the slice's part below the
- * surface in that column (the volume's 4th float holds the column's d_y).
+ * FroxelParams.sigma_t_rgb, r = 1 - d_y/μ_w the rate), exact for one band; written without 0/0 at
+ * τ = 0 and without overflow for τ < 0 (froxel_partial). d is the slice's part below the surface; d_y
+ * is the pixel's, bilinear between its columns' (the volume's 4th float holds each column's d_y).
  * Columns: bilinear between the four columns around the pixel (clamped at the border). S >= z_far
  * (deep water, UW_INFINITE) reads the value at z_far: light beyond z_far is lost, part of the froxel
  * method's error. A pixel whose ray ends at the surface reads each column whole, to its own surface
@@ -318,19 +318,19 @@ SEASIM_FN real3 froxel_lookup(const SEASIM_CONSTANT FroxelParams* fp, const SEAS
   const real t = fmin(S, (real)fp->z_far);
   const real t0 = froxel_slice_start(k, nz, fp->z_near, fp->z_far, fp->log_far_near);
   const real t1 = froxel_slice_end(k, nz, fp->z_near, fp->z_far, fp->log_far_near);
+  /* The slice's part below the surface along the pixel's ray, how far into it S reaches, and the
+   * fraction of its light gathered there per channel. */
+  const real len = fmin(t1, froxel_surface_distance(fp->cam_depth, d_y)) - t0;
+  const real xf = len > R(0.0) ? clamp((t - t0) / len, R(0.0), R(1.0)) : R(1.0);
+  const real tau = (R(1.0) - d_y / fp->mu_w) * fmax(len, R(0.0));
+  const real f_r = froxel_partial(xf, fp->sigma_t_rgb[0] * tau);
+  const real f_g = froxel_partial(xf, fp->sigma_t_rgb[1] * tau);
+  const real f_b = froxel_partial(xf, fp->sigma_t_rgb[2] * tau);
   real r = R(0.0), g = R(0.0), b = R(0.0);
   for (int c = 0; c < 4; ++c) {
     const int i = (c & 1) ? i1 : i0, j = (c & 2) ? j1 : j0;
     const real w = ((c & 1) ? ax : R(1.0) - ax) * ((c & 2) ? ay : R(1.0) - ay);
     const int end = 4 * ((k * ny + j) * nx + i);
-    /* The slice's part below the surface in this column, and how far into it S reaches. */
-    const real d_y = (real)volume[end + 3];
-    const real len = fmin(t1, froxel_surface_distance(fp->cam_depth, d_y)) - t0;
-    const real xf = len > R(0.0) ? clamp((t - t0) / len, R(0.0), R(1.0)) : R(1.0);
-    const real tau = (R(1.0) - d_y / fp->mu_w) * fmax(len, R(0.0));
-    const real f_r = froxel_partial(xf, fp->sigma_t_rgb[0] * tau);
-    const real f_g = froxel_partial(xf, fp->sigma_t_rgb[1] * tau);
-    const real f_b = froxel_partial(xf, fp->sigma_t_rgb[2] * tau);
     real r0 = R(0.0), g0 = R(0.0), b0 = R(0.0);
     if (k > 0) {
       const int start = 4 * (((k - 1) * ny + j) * nx + i);
