@@ -29,7 +29,8 @@
  * per froxel), volume (4 floats per froxel, common/froxel_params.h), rgb (3 floats per pixel).
  * caustic_table: CAUSTIC_TABLE_REALS
  * floats (common/caustic_texture.h caustic_fill_table), read only with SEASIM_CAUSTICS == UW_CAUSTICS_TEXTURE.
- * column_last: 1 int per column (froxel_column_extent).
+ * column_last: 1 int per column (froxel_column_extent). column_dy: 1 float per column, its ray's d_y
+ * (froxelColumnDy, filled by the host).
  * Defines (host/plan): SEASIM_HAS_OBJECTS, SEASIM_CAUSTICS (UW_CAUSTICS_*), SEASIM_SPECTRAL_INJECTION
  * (1: the n wavelength bands, p->band_count of them; 0: the three RGB pseudo-bands).
  * Stiff cases: E_beam and the transmittance underflow to 0 at great depth and distance (camera at
@@ -99,8 +100,8 @@ float froxel_injected(__constant UwParams* p, __constant FroxelParams* fp, __glo
  * its froxel_lookup reads (froxel_pixel_column) to the slice it reads there (froxel_read_slice; the last
  * slice for a ray to the surface, which reads its columns whole). The
  * host sets column_last to -1 first; atomic_max makes the result independent of the order. */
-__kernel void froxel_column_extent(__constant UwParams* p, __constant FroxelParams* fp, __global const float4* geom,
-                                   int width, int height, __global int* column_last) {
+__kernel void froxel_column_extent(__constant FroxelParams* fp, __global const float* column_dy,
+                                   __global const float4* geom, int width, int height, __global int* column_last) {
   const int x = get_global_id(0), y = get_global_id(1);
   if (x >= width || y >= height) return;
   const int nx = fp->nx, ny = fp->ny;
@@ -108,11 +109,11 @@ __kernel void froxel_column_extent(__constant UwParams* p, __constant FroxelPara
   const int i0 = (int)gx, j0 = (int)gy;
   const int i1 = i0 + 1 < nx ? i0 + 1 : nx - 1, j1 = j0 + 1 < ny ? j0 + 1 : ny - 1;
   const float S = geom[y * width + x].x;
-  /* froxel_lookup's test for a ray to the surface, with twice its tolerance: every pixel it reads
-   * whole is marked whole here, whatever the last bit of d_y. */
-  const float d_y = froxel_pixel_dy(froxel_column_dir(p, fp, i0, j0).y, froxel_column_dir(p, fp, i1, j0).y,
-                                    froxel_column_dir(p, fp, i0, j1).y, froxel_column_dir(p, fp, i1, j1).y,
-                                    gx - (float)i0, gy - (float)j0);
+  /* froxel_lookup's test for a ray to the surface on the same columns' d_y (the table the volume
+   * stores), with twice its tolerance: every pixel it reads whole is marked whole here, whatever the
+   * rounding of the bilinear weights. */
+  const float d_y = froxel_pixel_dy(column_dy[j0 * nx + i0], column_dy[j0 * nx + i1], column_dy[j1 * nx + i0],
+                                    column_dy[j1 * nx + i1], gx - (float)i0, gy - (float)j0);
   const int k = S > 0.0f && froxel_reads_whole_columns(fp, d_y, S, 2e-3f) ? fp->nz - 1 : froxel_read_slice(fp, S);
   if (k < 0) return;
   atomic_max(&column_last[j0 * nx + i0], k);
@@ -154,7 +155,7 @@ __kernel void froxel_inject(__constant UwParams* p, __constant FroxelParams* fp,
 }
 
 __kernel void froxel_integrate(__constant UwParams* p, __constant FroxelParams* fp, __global const UwBand* bands,
-                               __global const float* light, __global float* volume) {
+                               __global const float* light, __global float* volume, __global const float* column_dy) {
   const int i = get_global_id(0), j = get_global_id(1);
   if (i >= fp->nx || j >= fp->ny) return;
 #if SEASIM_SPECTRAL_INJECTION
@@ -162,7 +163,7 @@ __kernel void froxel_integrate(__constant UwParams* p, __constant FroxelParams* 
 #else
   const int band_count = 3;
 #endif
-  froxel_integrate_column(p, fp, bands, band_count, light, volume, i, j);
+  froxel_integrate_column(p, fp, bands, band_count, light, volume, column_dy[j * fp->nx + i], i, j);
 }
 
 __kernel void froxel_resolve(__constant FroxelParams* fp, __global const float* volume, __global const float4* geom,

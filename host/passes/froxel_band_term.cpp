@@ -38,6 +38,7 @@ double FroxelBandTerm::addTo(const UnderwaterSetup& setup, int width, int height
       integrate_.setArg(2, band_buffer);
       integrate_.setArg(3, volume_.light);
       integrate_.setArg(4, band_volume_);
+      integrate_.setArg(5, volume_.column_dy);
       ms += runKernel2d(device_, "froxel", integrate_, size_t(fp.nx), size_t(fp.ny));
       resolve_add_.setArg(0, fparams);
       resolve_add_.setArg(1, band_volume_);

@@ -51,6 +51,7 @@ FroxelPass::FroxelPass(Device& device, const UnderwaterSetup& setup, const Froxe
   requireDefine(defines_, "SEASIM_SPECTRAL_INJECTION", config.rgb_injection ? 0 : 1);
 
   const std::vector<UwBand> bands = froxelIntegrationBands(setup, fp_);
+  const std::vector<float> column_dy = froxelColumnDy(setup, fp_);
   const size_t froxels = size_t(fp_.nx) * fp_.ny * fp_.nz;
   const size_t texels = fp_.shadow_size > 0 ? size_t(fp_.shadow_size) * fp_.shadow_size : 1;
   const cl_mem_flags in = CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR;
@@ -74,6 +75,7 @@ FroxelPass::FroxelPass(Device& device, const UnderwaterSetup& setup, const Froxe
     caustic_table_ = cl::Buffer(device.context(), in, sizeof(float) * caustic_table.size(), caustic_table.data());
     light_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * froxels);
     column_last_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(cl_int) * size_t(fp_.nx) * fp_.ny);
+    column_dy_ = cl::Buffer(device.context(), in, sizeof(float) * column_dy.size(), const_cast<float*>(column_dy.data()));
     volume_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * 4 * froxels);
     shadow_kernel_.setArg(0, params_);
     shadow_kernel_.setArg(1, fparams_);
@@ -87,14 +89,15 @@ FroxelPass::FroxelPass(Device& device, const UnderwaterSetup& setup, const Froxe
     inject_kernel_.setArg(5, light_);
     inject_kernel_.setArg(6, caustic_table_);
     inject_kernel_.setArg(7, column_last_);
-    extent_kernel_.setArg(0, params_);
-    extent_kernel_.setArg(1, fparams_);
+    extent_kernel_.setArg(0, fparams_);
+    extent_kernel_.setArg(1, column_dy_);
     extent_kernel_.setArg(5, column_last_);
     integrate_kernel_.setArg(0, params_);
     integrate_kernel_.setArg(1, fparams_);
     integrate_kernel_.setArg(2, bands_);
     integrate_kernel_.setArg(3, light_);
     integrate_kernel_.setArg(4, volume_);
+    integrate_kernel_.setArg(5, column_dy_);
     resolve_kernel_.setArg(0, fparams_);
     resolve_kernel_.setArg(1, volume_);
   });

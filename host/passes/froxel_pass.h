@@ -4,7 +4,7 @@
 // buffers, the three kernels (sun shadow map, injection, front-to-back integration) and their times.
 //
 // Reads: scene (UnderwaterSetup: camera, sun, bands, objects). Writes: froxel_volume (4 floats per
-// froxel: RGB single scattering integrated to the end of each slice, green transmittance), read per
+// froxel: RGB single scattering integrated to the end of each slice, the column's d_y), read per
 // pixel by kd_multiple.cl through froxel_lookup with paramsBuffer().
 #pragma once
 #include <CL/opencl.hpp>
@@ -24,7 +24,8 @@ namespace seasim {
 // band term integrates the light again per band: passes/froxel_band_term.h).
 struct FroxelVolume {
   cl::Buffer params;   // FroxelParams on the device (kd_multiple.cl's fp)
-  cl::Buffer volume;   // 4 floats per froxel: RGB single scattering to the end of each slice, transmittance
+  cl::Buffer column_dy;  // d_y of every column's ray (froxelColumnDy), what froxel_integrate stores
+  cl::Buffer volume;   // 4 floats per froxel: RGB single scattering to the end of each slice, the column's d_y
   cl::Buffer light;    // the injected light V·C per froxel
   FroxelParams fp{};   // the host copy of `params`
 };
@@ -55,7 +56,8 @@ class FroxelPass {
 
   cl::Buffer& volume() { return volume_; }
   cl::Buffer& light() { return light_; }  // the injected light V·C per froxel, band-free
-  cl::Buffer& paramsBuffer() { return fparams_; }  // FroxelParams on the device (kd_multiple.cl's fp)
+  cl::Buffer& paramsBuffer() { return fparams_; }
+  cl::Buffer& columnDy() { return column_dy_; }  // froxelColumnDy on the device  // FroxelParams on the device (kd_multiple.cl's fp)
   const FroxelParams& params() const { return fp_; }
   const std::vector<std::string>& defines() const { return defines_; }
 
@@ -71,7 +73,7 @@ class FroxelPass {
   std::vector<std::string> defines_;
   cl::Kernel shadow_kernel_, inject_kernel_, extent_kernel_, integrate_kernel_, resolve_kernel_;
   cl::Buffer params_, fparams_, objects_, bands_, map_, light_, volume_, no_caustics_,
-      caustic_table_, column_last_;
+      caustic_table_, column_last_, column_dy_;
   std::vector<PassTiming> timings_;
 };
 

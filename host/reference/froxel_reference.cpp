@@ -69,12 +69,13 @@ FroxelCpuVolume froxelEvaluateCpu(const UnderwaterSetup& setup, const FroxelPara
   });
 
   const std::vector<UwBand> bands = froxelIntegrationBands(setup, fp);
+  const std::vector<float> column_dy = froxelColumnDy(setup, fp);
   out.volume.assign(4 * froxels, 0.0f);
   tbb::parallel_for(tbb::blocked_range<int>(0, fp.ny), [&](const tbb::blocked_range<int>& r) {
     for (int j = r.begin(); j < r.end(); ++j)
       for (int i = 0; i < fp.nx; ++i)
         kd::froxel_integrate_column(&p, &fp, bands.data(), static_cast<int>(bands.size()), out.light.data(),
-                                    out.volume.data(), i, j);
+                                    out.volume.data(), column_dy[size_t(j) * fp.nx + i], i, j);
   });
   return out;
 }

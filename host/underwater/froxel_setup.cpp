@@ -147,6 +147,14 @@ FroxelParams makeFroxelParams(const UnderwaterSetup& setup, const FroxelConfig& 
   return fp;
 }
 
+std::vector<float> froxelColumnDy(const UnderwaterSetup& setup, const FroxelParams& params) {
+  std::vector<float> out(size_t(params.nx) * params.ny);
+  for (int j = 0; j < params.ny; ++j)
+    for (int i = 0; i < params.nx; ++i)
+      out[size_t(j) * params.nx + i] = kmath_f::froxel_column_dir(&setup.params, &params, i, j).y;
+  return out;
+}
+
 std::vector<UwBand> froxelIntegrationBands(const UnderwaterSetup& setup, const FroxelParams& params) {
   return params.injection == FROXEL_INJECTION_RGB ? froxelRgbPseudoBands(setup) : setup.bands;
 }

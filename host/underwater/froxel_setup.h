@@ -45,6 +45,11 @@ std::vector<UwBand> froxelRgbPseudoBands(const UnderwaterSetup& setup);
 // there are no spheres or boxes. RuntimeError for a grid of < 1 or > 2^29 froxels or bad near/far.
 FroxelParams makeFroxelParams(const UnderwaterSetup& setup, const FroxelConfig& config);
 
+// The vertical direction d_y of every column's ray (common/froxel.h froxel_column_dir in float), row-major
+// nx × ny: the one table froxel_column_extent and froxel_integrate (hence froxel_lookup) read, so the
+// marking of the columns a read needs and the read itself agree on which rays reach the surface.
+std::vector<float> froxelColumnDy(const UnderwaterSetup& setup, const FroxelParams& params);
+
 // The bands froxel_integrate reads: setup.bands (spectral injection) or froxelRgbPseudoBands.
 std::vector<UwBand> froxelIntegrationBands(const UnderwaterSetup& setup, const FroxelParams& params);
 

@@ -228,10 +228,13 @@ SEASIM_FN real froxel_plane_visibility(const SEASIM_GLOBAL UwObject* objects, in
 /* One column front to back (002 eq. 5.2, integrated as at the top). light: V·C per froxel (the
  * band-independent part of L_i, layout of the volume, 1 float each); bands: the wavelength bands
  * (spectral injection) or the three RGB pseudo-bands (w = unit vectors). Writes the volume's 4 floats
- * per froxel of the column: R, G, B to the slice's end and the column's d_y (for froxel_lookup). */
+ * per froxel of the column: R, G, B to the slice's end and column_dy, the column's d_y as the host
+ * tabulated it (froxel_column_extent reads the same table: both decide alike which rays reach the
+ * surface, froxel_reads_whole_columns). */
 SEASIM_FN void froxel_integrate_column(const SEASIM_CONSTANT UwParams* p, const SEASIM_CONSTANT FroxelParams* fp,
                                        const SEASIM_GLOBAL UwBand* bands, int band_count,
-                                       const SEASIM_GLOBAL float* light, SEASIM_GLOBAL float* volume, int i, int j) {
+                                       const SEASIM_GLOBAL float* light, SEASIM_GLOBAL float* volume, float column_dy,
+                                       int i, int j) {
   const int nx = fp->nx, ny = fp->ny, nz = fp->nz;
   const real3 d = froxel_column_dir(p, fp, i, j);
   const real3 s_w = MAKE_REAL3(p->sun_dir_water[0], p->sun_dir_water[1], p->sun_dir_water[2]);
@@ -262,7 +265,7 @@ SEASIM_FN void froxel_integrate_column(const SEASIM_CONSTANT UwParams* p, const 
     volume[4 * idx + 0] = acc_r;
     volume[4 * idx + 1] = acc_g;
     volume[4 * idx + 2] = acc_b;
-    volume[4 * idx + 3] = d.y;
+    volume[4 * idx + 3] = column_dy;
     t0 = t1;
   }
 }

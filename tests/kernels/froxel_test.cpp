@@ -368,8 +368,15 @@ TEST(FroxelKernelCulling, UnreadFroxelsAreSkippedAndTheImageIsBitIdentical) {
   // Given the G-buffer, froxel_inject leaves 0 the froxels past the last slice any pixel's read needs
   // in their column (froxel_column_extent): every froxel a read uses is the same float, so the image is
   // the same bit for bit, and the froxels behind the bottom and the rocks are not evaluated.
-  for (const char* look_at : {"[0, -4.5, -8]", "[0, 4, -8]"}) {
-    const seasim::Scene s = scene({set("underwater.caustics", "\"texture\""), set("camera.look_at", look_at)});
+  // The test scene (a column per pixel) looking down and up, and the shipped seabed at 320×180 looking up
+  // with its "auto" grid (4 pixels per column, the border columns clamped): rays rising to the surface
+  // read their columns whole, and froxel_column_extent must have marked them so.
+  const char* kSeabedUp = "seabed 320x180 [0, 4, -8]";
+  for (const char* look_at : {"[0, -4.5, -8]", "[0, 4, -8]", kSeabedUp}) {
+    const bool seabed = look_at == kSeabedUp;
+    const seasim::Scene s =
+        seabed ? seasim::loadScene(SEASIM_SOURCE_DIR "/scenes/seabed.toml", {set("camera.look_at", "[0, 4, -8]")})
+               : scene({set("underwater.caustics", "\"texture\""), set("camera.look_at", look_at)});
     const seasim::UnderwaterSetup setup = setupOf(s);
     seasim::Device& device = seasim::test::testDevice();
     const int w = setup.params.width, h = setup.params.height;
@@ -399,7 +406,7 @@ TEST(FroxelKernelCulling, UnreadFroxelsAreSkippedAndTheImageIsBitIdentical) {
       ASSERT_EQ(light[1][i], 0.0f) << i;
       ++skipped;
     }
-    for (int y = 0; y < h; ++y) {
+    for (int y = 0; y < h && !seabed; ++y) {  // (the test scene: no ray reads its columns whole)
       for (int x = 0; x < w; ++x) {
         const int k = kf::froxel_read_slice(&fp, geom[4 * (size_t(y) * w + x)]);
         const int i0 = int(kf::froxel_pixel_column(x, w, fp.nx)), j0 = int(kf::froxel_pixel_column(y, h, fp.ny));
@@ -416,6 +423,7 @@ TEST(FroxelKernelCulling, UnreadFroxelsAreSkippedAndTheImageIsBitIdentical) {
     // Looking down, the froxels behind the bottom and the rocks (measured 20 %); looking up at the
     // surface, next to none (the froxels above it are 0 already).
     if (look_at[4] == '-') EXPECT_GT(skipped, lit / 10) << look_at;
+    if (seabed) EXPECT_EQ(fp.nx, 80);
   }
 }
 

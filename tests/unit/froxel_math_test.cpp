@@ -371,10 +371,10 @@ struct Column {
   // Integrated L_SS to distance S, by the double or float code.
   double run(double S, bool use_float) {
     if (use_float) {
-      kf::froxel_integrate_column(&p, &fp, &band, 1, light.data(), volume.data(), 0, 0);
+      kf::froxel_integrate_column(&p, &fp, &band, 1, light.data(), volume.data(), kf::froxel_column_dir(&p, &fp, 0, 0).y, 0, 0);
       return kf::froxel_lookup(&fp, volume.data(), 0, 0, 1, 1, float(S)).y;
     }
-    kd::froxel_integrate_column(&p, &fp, &band, 1, light.data(), volume.data(), 0, 0);
+    kd::froxel_integrate_column(&p, &fp, &band, 1, light.data(), volume.data(), float(kd::froxel_column_dir(&p, &fp, 0, 0).y), 0, 0);
     return kd::froxel_lookup(&fp, volume.data(), 0, 0, 1, 1, S).y;
   }
 };

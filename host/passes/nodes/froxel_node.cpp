@@ -36,6 +36,7 @@ class FroxelNode : public Pass {
     volume->params = froxels_->paramsBuffer();
     volume->volume = froxels_->volume();
     volume->light = froxels_->light();
+    volume->column_dy = froxels_->columnDy();
     volume->fp = froxels_->params();
     res.publish("froxel_volume", volume);
   }
