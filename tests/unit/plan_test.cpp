@@ -9,6 +9,7 @@
 
 #include "plan/plan.h"
 #include "scene/scene_parser.h"
+#include "underwater/froxel_setup.h"
 
 namespace {
 
@@ -347,6 +348,31 @@ TEST(Plan, SandShareLatticeOnlyForObjectsOverABottomInTheOrdinatesModel) {
   EXPECT_FALSE(hasDefine(plan({set("quality.sand_share_step", "1")}), "kd_multiple", "SEASIM_SAND_SHARE_MAP=1"));
   EXPECT_FALSE(plan({set("underwater.multiple_scattering", "false")}).hasPass("sand_share"));
   EXPECT_FALSE(makePlan(seasim::loadScene(std::string(SEASIM_SOURCE_DIR) + "/scenes/flat_sea.toml")).hasPass("sand_share"));
+}
+
+// The froxel grid follows the image (froxel_setup.h): 4 pixels per column with at least 80 columns
+// across and at most 320×180; `seasim plan` names it.
+TEST(Plan, FroxelGridFollowsTheImageAndThePlanNamesIt) {
+  const std::string seabed = std::string(SEASIM_SOURCE_DIR) + "/scenes/seabed.toml";
+  auto at_size = [&](const char* w, const char* h, std::vector<seasim::Override> more = {}) {
+    more.push_back({"camera.width", w, {"test", 1}});
+    more.push_back({"camera.height", h, {"test", 1}});
+    return seasim::loadScene(seabed, more);
+  };
+  auto grid = [](const seasim::Scene& s) {
+    const seasim::FroxelConfig c = seasim::froxelConfigFromScene(s);
+    return std::to_string(c.nx) + "x" + std::to_string(c.ny) + "x" + std::to_string(c.nz);
+  };
+  EXPECT_EQ(grid(at_size("320", "180")), "80x45x32");
+  EXPECT_EQ(grid(at_size("640", "360")), "160x90x32");
+  EXPECT_EQ(grid(at_size("96", "54")), "96x54x32");      // every pixel a column below 80 across
+  EXPECT_EQ(grid(at_size("160", "90")), "80x45x32");     // 2 pixels per column: 80 across
+  EXPECT_EQ(grid(at_size("3840", "2160")), "320x180x32");  // at most 320×180 columns
+  EXPECT_EQ(grid(at_size("320", "180", {{"quality.froxel_pixels", "2", {"test", 1}}})), "160x90x32");
+  EXPECT_EQ(grid(at_size("320", "180", {{"quality.froxel_x", "33", {"test", 1}}})), "33x45x32");
+  const seasim::PassPlan* froxel = makePlan(at_size("320", "180")).find("froxel");
+  ASSERT_NE(froxel, nullptr);
+  EXPECT_NE(froxel->why.find("grid 80x45x32"), std::string::npos) << froxel->why;
 }
 
 // The underwater set-up is a pass of its own, first, with no kernel; the froxels' term per band is
