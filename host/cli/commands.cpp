@@ -21,6 +21,7 @@
 #include "jobs/recorded_settings.h"
 #include "jobs/render_item.h"
 #include "jobs/runner.h"
+#include "plan/memory_budget.h"
 #include "plan/plan.h"
 #include "quality/auto_quality.h"
 #include "quality/expected_error.h"
@@ -33,6 +34,7 @@
 #include "render/renderer.h"
 #include "scene/output_layers.h"
 #include "scene/scene_inputs.h"
+#include "scene/toml_reader.h"
 #include "util/error.h"
 #include "util/paths.h"
 #include "util/statistics.h"
@@ -127,7 +129,17 @@ int cmdValidate(const std::vector<std::string>& files) {
 
 int cmdPlan(const std::string& scene_file, const std::vector<std::string>& sets) {
   const Scene scene = loadScene(scene_file, parseSets(sets));
-  std::printf("%s", makePlan(scene).toText().c_str());
+  const Plan plan = makePlan(scene);
+  std::printf("%s", plan.toText().c_str());
+  // The big buffers with the settings that size them (the froxel grid as the image sizes it, the maps).
+  for (const BufferEstimate& b : estimateBuffers(scene, plan)) {
+    if (b.host) continue;
+    std::string sizes;
+    for (size_t i = 0; i < b.settings.size() && i < b.values.size(); ++i)
+      sizes += (i ? ", " : "") + b.settings[i] + " " + formatNumber(b.values[i]);
+    std::printf("buffer: %s: %s, %.1f MiB (%s)\n", b.pass.c_str(), b.what.c_str(), b.bytes / (1024.0 * 1024.0),
+                sizes.c_str());
+  }
   std::printf("%s", expectedErrorText(expectedErrors(scene)).c_str());
   return 0;
 }

@@ -48,11 +48,36 @@ Vec3 sunInWater(const Scene& scene) {
   return normalize(Vec3{-in_water.x, -in_water.y, -in_water.z});
 }
 
+namespace {
+
+// Every field of the set-up that follows the camera (moveUnderwaterCamera relies on this list being
+// whole): its frame, field of view, image size, and where no bottom bounds the caustic layers, their
+// depth from the camera's. The camera's depth also enters the discrete-ordinates tables (s.ordinates,
+// diffuseViewDepth), which makeUnderwaterSetup builds below.
+void setUnderwaterCamera(UwParams& p, const CameraDesc& cam) {
+  setKernelCamera(p, cam);
+  p.tan_half_fov_y = static_cast<float>(std::tan(cam.fov_y / 2));
+  p.aspect = static_cast<float>(cam.width) / static_cast<float>(cam.height);
+  p.width = cam.width;
+  p.height = cam.height;
+  p.caustic_depth_max = p.bottom_depth > 0 ? p.bottom_depth
+                                           : static_cast<float>(std::max(20.0, -2.0 * cam.position.y));
+}
+
+}  // namespace
+
+bool moveUnderwaterCamera(UnderwaterSetup& setup, const Scene& scene) {
+  UwParams& p = setup.params;
+  const float depth = static_cast<float>(cameraFrame(scene.camera).eye.y);
+  if (depth != p.cam_pos[1]) return false;
+  setUnderwaterCamera(p, scene.camera);
+  return true;
+}
+
 UnderwaterSetup makeUnderwaterSetup(const Scene& scene, const WavelengthGrid& grid, const Sensor& sensor) {
   UnderwaterSetup s;
   UwParams& p = s.params;
   const CameraDesc& cam = scene.camera;
-  setKernelCamera(p, cam);
 
   const Vec3 sun = sunInAir(scene);
   const bool sun_up = sunIsUp(scene, sun);
@@ -61,18 +86,15 @@ UnderwaterSetup makeUnderwaterSetup(const Scene& scene, const WavelengthGrid& gr
   const double t_sun = sun_up ? 1.0 - kd::fresnel_reflectance(sun.y, 1.0, scene.water.ior) : 0.0;
   set4(p.sun_dir_air, s.sun_air);
   set4(p.sun_dir_water, s.sun_water);
-  p.tan_half_fov_y = static_cast<float>(std::tan(cam.fov_y / 2));
-  p.aspect = static_cast<float>(cam.width) / static_cast<float>(cam.height);
   p.ior = static_cast<float>(scene.water.ior);
   p.g = static_cast<float>(scene.water.g);
   p.bottom_depth = scene.bottom.type == BottomDesc::Type::Flat ? static_cast<float>(scene.bottom.depth) : 0.0f;
+  setUnderwaterCamera(p, cam);
   p.time = static_cast<float>(scene.surface.time);
   const UnderwaterDesc& uw = scene.underwater;
   p.caustic_period = static_cast<float>(uw.caustic_period);
   p.caustic_speed = static_cast<float>(uw.caustic_speed);
   p.caustic_extent = static_cast<float>(scene.surface.patch_size);
-  p.width = cam.width;
-  p.height = cam.height;
   p.band_count = static_cast<int>(grid.size());
   p.caustic_mode = uw.caustics == UnderwaterDesc::Caustics::None      ? UW_CAUSTICS_NONE
                    : uw.caustics == UnderwaterDesc::Caustics::Texture ? UW_CAUSTICS_TEXTURE
@@ -81,9 +103,6 @@ UnderwaterSetup makeUnderwaterSetup(const Scene& scene, const WavelengthGrid& gr
   p.caustic_map_size = map_size != scene.quality.end() ? static_cast<int>(map_size->second.value) : 256;
   const auto layers = scene.quality.find("caustic_layers");
   p.caustic_layers = layers != scene.quality.end() ? static_cast<int>(layers->second.value) : 8;
-  // The layers reach the bottom; in deep water, as deep as the view is likely to resolve the pattern.
-  p.caustic_depth_max = p.bottom_depth > 0 ? p.bottom_depth
-                                           : static_cast<float>(std::max(20.0, -2.0 * cam.position.y));
   s.single_scattering = uw.single_scattering && sun_up;
 
   // Per band: IOPs, the light just below the surface, sensor weights.

@@ -35,6 +35,13 @@ struct UnderwaterSetup {
 // RuntimeError for what the underwater passes cannot render (a height-field object, naming it).
 UnderwaterSetup makeUnderwaterSetup(const Scene& scene, const WavelengthGrid& grid, const Sensor& sensor);
 
+// The set-up of `scene` made from `setup`, made before for the same scene but another camera, when the
+// camera's depth is the same: only the camera's fields change (its frame, field of view and image
+// size), as makeUnderwaterSetup would set them; the per-band tables, which follow the camera's depth
+// alone, are kept. Returns false, changing nothing, when the depth differs: make the set-up again.
+// (A camera orbiting at one depth, as the preview's, costs no discrete-ordinates solve per frame.)
+bool moveUnderwaterCamera(UnderwaterSetup& setup, const Scene& scene);
+
 // The unit direction towards the sun after refraction into the water at the flat surface (004 eq. 40–44);
 // (0, 1, 0) when the sun is off or below the horizon. UnderwaterSetup::sun_water.
 Vec3 sunInWater(const Scene& scene);

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -18,7 +19,10 @@
 #include "render/radiance_target.h"
 #include "render/renderer.h"
 #include "scene/scene_parser.h"
+#include "spectral/sensor.h"
+#include "spectral/wavelength_grid.h"
 #include "test_device.h"
+#include "underwater/underwater_setup.h"
 
 namespace seasim {
 namespace {
@@ -186,6 +190,42 @@ TEST(Renderer, UnderwaterOrdinatesCameraMovedInDepthMatchesAFreshFrame) {
   EXPECT_NE(f.rgb.pixels, first.rgb.pixels);
   at.push_back(moved);
   EXPECT_EQ(f.rgb.pixels, fresh("seabed.toml", at).rgb.pixels);
+}
+
+// The preview's orbit: the camera moves and turns at one depth. The set-up pass moves the camera in the
+// setup it has (moveUnderwaterCamera) instead of solving the discrete ordinates again, and the frame is a
+// new renderer's there, bit for bit; so is the set-up itself, field for field.
+TEST(Renderer, UnderwaterCameraMovedAtOneDepthKeepsTheTablesAndMatchesAFreshFrame) {
+  std::vector<Override> at = smallSeabed();
+  at.push_back(set("underwater.caustics", "\"texture\""));
+  Renderer renderer(test::testDevice(), sceneFile("seabed.toml"), at, shippedPasses());
+  const FrameResult first = renderer.render();
+  const Override moved = set("camera.position", "[0.4, -3.8, -0.3]"), turned = set("camera.look_at", "[1.0, -4.0, -8.0]"),
+                 wider = set("camera.fov_deg", "70");
+  renderer.update({moved, turned, wider});
+  const FrameResult f = renderer.render();
+  EXPECT_FALSE(has(renderer.lastPrepared(), "underwater_setup"));
+  EXPECT_TRUE(has(renderer.lastExecuted(), "kd_multiple"));
+  EXPECT_NE(f.rgb.pixels, first.rgb.pixels);
+  std::vector<Override> after = at;
+  after.insert(after.end(), {moved, turned, wider});
+  EXPECT_EQ(f.rgb.pixels, fresh("seabed.toml", after).rgb.pixels);
+
+  const Scene a = loadScene(sceneFile("seabed.toml"), at);
+  const Scene b = loadScene(sceneFile("seabed.toml"), after);
+  const WavelengthGrid grid = makeGrid(a.spectral.count, a.spectral.min_nm, a.spectral.max_nm);
+  const Sensor sensor = makeSensor(a.spectral.sensor, grid, a.spectral.white_balance, a.spectral.camera_dir);
+  UnderwaterSetup setup = makeUnderwaterSetup(a, grid, sensor);
+  ASSERT_FALSE(setup.ordinates.empty());
+  ASSERT_TRUE(moveUnderwaterCamera(setup, b));
+  const UnderwaterSetup made = makeUnderwaterSetup(b, grid, sensor);
+  EXPECT_EQ(std::memcmp(&setup.params, &made.params, sizeof(UwParams)), 0);
+  ASSERT_EQ(setup.ordinates.size(), made.ordinates.size());
+  EXPECT_EQ(std::memcmp(setup.ordinates.data(), made.ordinates.data(), sizeof(UwiBand) * made.ordinates.size()), 0);
+  // Another depth: the tables follow it, so the setup is made again.
+  const Scene deeper = loadScene(sceneFile("seabed.toml"), {set("camera.position", "[0.0, -2.0, 0.0]")});
+  EXPECT_FALSE(moveUnderwaterCamera(setup, deeper));
+  EXPECT_EQ(std::memcmp(&setup.params, &made.params, sizeof(UwParams)), 0);  // unchanged
 }
 
 // An underwater animation: surface.time alone changes the waves' phase, which the underwater setup holds

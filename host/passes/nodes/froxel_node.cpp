@@ -74,11 +74,7 @@ PassDescriptor froxelDescriptor() {
     features->objects = !scene.objects.empty();
     features->caustics = underwaterCausticsMode(scene);
     features->spectral_injection = uw.injection == UnderwaterDesc::Injection::Spectral;
-    const FroxelConfig grid = froxelConfigFromScene(scene);
-    return planEntry(reads, {"froxel_volume"},
-                     "camera below the surface, sun up, underwater.single_scattering; grid " + std::to_string(grid.nx) +
-                         "x" + std::to_string(grid.ny) + "x" + std::to_string(grid.nz) +
-                         " (quality.froxel_pixels, froxel_z)",
+    return planEntry(reads, {"froxel_volume"}, "camera below the surface, sun up, underwater.single_scattering",
                      features);
   };
   d.keys = froxelKeys();

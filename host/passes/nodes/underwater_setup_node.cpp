@@ -16,8 +16,14 @@ namespace seasim {
 namespace {
 
 // The sizes of its buffers (image, bands, objects, sky) follow the first list; every other key it
-// folds in rewrites the same buffers.
-const PassKeys kSetupKeys = {{"camera.*", "spectral.*", "objects.*", "sky.model", "sky.image"}, kUnderwaterSetupKeys};
+// folds in rewrites the same buffers (the camera's frame and field of view among them).
+const std::vector<std::string> kSetupRerunKeys = [] {
+  std::vector<std::string> keys = kUnderwaterSetupKeys;
+  keys.push_back("camera.*");
+  return keys;
+}();
+const PassKeys kSetupKeys = {{"camera.width", "camera.height", "spectral.*", "objects.*", "sky.model", "sky.image"},
+                             kSetupRerunKeys};
 
 class UnderwaterSetupNode : public Pass {
  public:
@@ -34,11 +40,17 @@ class UnderwaterSetupNode : public Pass {
     // A change of surface.time alone moves the waves' phase, one number of the block (the caustics'
     // time); remaking the rest, the discrete-ordinates model's per-band tables above all, would cost about
     // half a second per frame.
+    // A camera moved at the same depth (the preview's orbit) keeps the tables too (moveUnderwaterCamera).
     const std::vector<std::string>& changed = ctx.changedKeys();
-    const bool time_only = !changed.empty() && std::all_of(changed.begin(), changed.end(),
-                                                           [](const std::string& k) { return k == "surface.time"; });
-    UnderwaterSetup next = time_only ? buffers_->setup : makeUnderwaterSetup(ctx.scene(), ctx.grid(), ctx.sensor());
-    if (time_only) next.params.time = static_cast<float>(ctx.scene().surface.time);  // as makeUnderwaterSetup sets it
+    auto only = [&](auto&& pred) { return !changed.empty() && std::all_of(changed.begin(), changed.end(), pred); };
+    const bool time_only = only([](const std::string& k) { return k == "surface.time"; });
+    const bool camera_only = only([](const std::string& k) { return k.rfind("camera.", 0) == 0; });
+    UnderwaterSetup next = buffers_->setup;
+    if (time_only) {
+      next.params.time = static_cast<float>(ctx.scene().surface.time);  // as makeUnderwaterSetup sets it
+    } else if (!camera_only || !moveUnderwaterCamera(next, ctx.scene())) {
+      next = makeUnderwaterSetup(ctx.scene(), ctx.grid(), ctx.sensor());
+    }
     if (buffers_->update(ctx.device(), std::move(next))) return;
     publish(res, ctx.device(), std::move(next));  // other sizes: new buffers, and the readers set up again
   }
