@@ -101,16 +101,20 @@ class ReferenceResult:
 
 
 def reference(scene: Scene, steps: int = 0, seed: Optional[int] = None, all_orders: bool = False,
-              max_bounces: int = 0, device: str = "",
+              max_bounces: int = 0, device: str = "", sun_single_quadrature: bool = False, subpixels: int = 4,
               progress: Optional[Callable[[int, int], None]] = None) -> ReferenceResult:
     """The scene's brute-force reference, as ``seasim reference`` computes it.
 
     Under water (and with ``all_orders`` the sea seen from above) the spectral path tracer on the
     device, ``steps`` paths per pixel (0: quality.reference_spp), ``seed`` (default 1); spotlights
     in air the shafts ray marcher; else the sea's quadrature (``steps`` 0: quality.reference_steps).
+    ``sun_single_quadrature`` (under water with underwater.multiple_scattering = false): the sun beam's
+    single scattering, the froxel pass's term, by deterministic quadrature over each pixel's area,
+    ``subpixels``² rays per pixel and ``steps`` points per ray (``--sun-single-quadrature``).
     ``progress(done, total)`` is called as the path tracer's samples finish.
     """
-    r = _seasim._reference(scene, steps, -1 if seed is None else seed, all_orders, max_bounces, device, progress)
+    r = _seasim._reference(scene, steps, -1 if seed is None else seed, all_orders, max_bounces, device,
+                           subpixels if sun_single_quadrature else 0, progress)
     info = {k: r[k] for k in ("seed", "max_bounces", "mean_std_error", "image_mean_std_error", "effective_samples", "blocks", "device") if k in r} or None
     return ReferenceResult(rgb=r["rgb"], method=r["method"], steps=r["steps"], ms=r["ms"],
                            std_error=r.get("std_error"), direct=r.get("direct"),

@@ -52,13 +52,14 @@ nb::dict compare(const ImageArray& test, const ImageArray& reference, double exp
 }
 
 nb::dict reference(const PyScene& scene, int steps, long long seed, bool all_orders, int max_bounces,
-                   const std::string& device, nb::object progress) {
+                   const std::string& device, int sun_single_subpixels, nb::object progress) {
   ReferenceOptions options;
   options.device = device;
   options.steps = steps;
   options.seed = seed;
   options.all_orders = all_orders;
   options.max_bounces = max_bounces;
+  options.sun_single_subpixels = sun_single_subpixels;
   if (!progress.is_none()) {
     options.progress = [progress](int done, int total) {
       nb::gil_scoped_acquire locked;
@@ -177,7 +178,7 @@ void bindTools(nb::module_& m) {
     return toArray(std::move(img));
   }, nb::arg("path"));
   m.def("_reference", &reference, nb::arg("scene"), nb::arg("steps"), nb::arg("seed"), nb::arg("all_orders"),
-        nb::arg("max_bounces"), nb::arg("device"), nb::arg("progress").none());
+        nb::arg("max_bounces"), nb::arg("device"), nb::arg("sun_single_subpixels"), nb::arg("progress").none());
   m.def("_run_job", &runJob, nb::arg("job"), nb::arg("shard_index"), nb::arg("shard_count"), nb::arg("resume"),
         nb::arg("device"), nb::arg("output_dir"), nb::arg("on_item").none());
   m.def("_display", [](const ImageArray& linear, double exposure_ev) {

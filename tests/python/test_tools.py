@@ -150,6 +150,24 @@ def test_underwater_reference_is_the_path_tracer_of_seasim_reference(tmp_path):
     assert np.array_equal(seasim.read_image(tmp_path / "ref.direct.stderr.exr"), ref.direct_std_error)
 
 
+def test_sun_single_quadrature_is_the_one_of_seasim_reference(tmp_path):
+    # The froxel term's deterministic reference: the same image as the command's, and the froxel render
+    # of the term alone within the error the froxel sweep measures (results/BENCHMARKS.md: 1-2.5 %).
+    dark = {"camera.width": 48, "camera.height": 27, "underwater.multiple_scattering": False, "sky.radiance": 0,
+            "bottom.albedo": 0, "objects[0].albedo": 0, "objects[1].albedo": 0, "objects[2].albedo": 0}
+    scene = seasim.Scene.load(scene_path("seabed.toml"), overrides=dark)
+    ref = seasim.reference(scene, steps=200, sun_single_quadrature=True, subpixels=2)
+    assert ref.method == "quadrature" and ref.steps == 200 and ref.std_error is None
+    out = tmp_path / "ss.exr"
+    sets = [a for k, v in dark.items() for a in ("--set", f"{k}={str(v).lower()}")]
+    subprocess.run([str(BINARY), "reference", str(scene_path("seabed.toml")), *sets, "--sun-single-quadrature",
+                    "--subpixels", "2", "--steps", "200", "-o", str(out)], check=True, capture_output=True)
+    assert np.array_equal(seasim.read_image(out), ref.rgb)
+    frame = seasim.Renderer(scene).render()
+    rel = np.sqrt(((frame.rgb - ref.rgb) ** 2).sum() / (ref.rgb ** 2).sum())
+    assert ref.rgb.max() > 0 and rel < 0.04, rel
+
+
 def test_a_progress_callback_that_raises_stops_the_job_and_the_item_stays_done(tmp_path):
     job = write_job(tmp_path)
 
