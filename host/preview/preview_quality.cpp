@@ -17,17 +17,17 @@ const std::vector<std::pair<std::string, int>>& scaledKnobs() {
   static const std::vector<std::pair<std::string, int>> knobs = {
       {"sea_lut_size", 16},   {"sea_nz", 3},          {"sea_nd", 16},         {"sea_map_size", 8},
       {"shafts_planes", 6},   {"shafts_subplanes", 1}, {"shafts_table_size", 64}, {"shadow_map_size", 128},
-      {"froxel_x", 20},       {"froxel_y", 12},       {"froxel_z", 8},        {"caustic_map_size", 64},
+      {"froxel_x", 20},       {"froxel_y", 12},       {"froxel_z", 8},        {"froxel_columns", 20},
+      {"caustic_map_size", 64},
       {"caustic_layers", 2}};
   return knobs;
 }
 
-// The intervals method's knobs (plan/shafts_method.h) and the froxel columns' size in pixels work the
-// other way: a wider quadrature panel or column is cheaper, so a level doubles them, up to a ceiling
-// well inside the parser's range.
+// The intervals method's knobs (plan/shafts_method.h) work the other way: a wider quadrature panel is
+// cheaper, so a level doubles them, up to a ceiling well inside the parser's range.
 const std::vector<std::pair<std::string, double>>& widenedKnobs() {
   static const std::vector<std::pair<std::string, double>> knobs = {
-      {"shafts_panel_deg", 32.0}, {"shafts_panel_texels", 16.0}, {"froxel_pixels", 16.0}};
+      {"shafts_panel_deg", 32.0}, {"shafts_panel_texels", 16.0}};
   return knobs;
 }
 
@@ -51,8 +51,7 @@ std::vector<Override> qualityLevelOverrides(const Scene& scene, int level) {
     const auto it = scene.quality.find(name);
     if (it == scene.quality.end() || it->second.automatic) continue;
     const double full = it->second.value, widened = std::max(full, std::min(ceiling, std::ldexp(full, halvings)));
-    const bool count = name == "froxel_pixels";  // a count knob: an integer
-    out.push_back({"quality." + name, count ? std::to_string(std::lround(widened)) : floatText(widened), at});
+    out.push_back({"quality." + name, floatText(widened), at});
   }
   add("camera.width", std::max(16, scene.camera.width >> size_shift));
   add("camera.height", std::max(9, scene.camera.height >> size_shift));

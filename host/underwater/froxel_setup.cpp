@@ -18,29 +18,21 @@ int knob(const Scene& scene, const char* name, int fallback) {
   return static_cast<int>(it->second.value);
 }
 
-// The most columns an "auto" grid has: 320 × 180, four times what the froxel sweep needed at 320×180
-// pixels (results/BENCHMARKS.md "Froxel single scattering"); and the fewest across the image's wider
-// side, 80 (0.75° apart at seabed's 60° field): coarser columns interpolate the light of rays rising to
-// the surface too low (2 % at 24 columns over 96×54 pixels).
-constexpr double kMaxAutoColumns = 320.0 * 180.0;
-constexpr int kMinAutoColumns = 80;
-
 Vec3 sunWater(const UwParams& p) { return {p.sun_dir_water[0], p.sun_dir_water[1], p.sun_dir_water[2]}; }
 
 }  // namespace
 
 FroxelConfig froxelConfigFromScene(const Scene& scene) {
   FroxelConfig c;
-  // froxel_pixels per column side, but at least kMinAutoColumns across the wider side (every pixel a
-  // column in a smaller image) and at most kMaxAutoColumns in all: past 1280×720 the columns widen with
-  // the image, so the volume stays within 57600 × froxel_z froxels (37 MB at 32 slices).
+  // froxel_columns across the image's wider side (at most one per pixel), the other side in proportion:
+  // the error is the columns' angular spacing, not pixels per column (seabed with caustics: 2.16 % at
+  // 320×180 and 2.37 % at 640×360 with 80×45 columns; results/BENCHMARKS.md), so the grid does not grow
+  // with the image.
   const int w = std::max(scene.camera.width, 1), h = std::max(scene.camera.height, 1);
-  const double area = double(w) * h;
-  const int finest = std::max(1, std::max(w, h) / kMinAutoColumns);
-  const int pixels = std::max(std::min(std::max(1, knob(scene, "froxel_pixels", 4)), finest),
-                              static_cast<int>(std::ceil(std::sqrt(area / kMaxAutoColumns))));
-  c.nx = knob(scene, "froxel_x", (w + pixels - 1) / pixels);
-  c.ny = knob(scene, "froxel_y", (h + pixels - 1) / pixels);
+  const int across = std::min(std::max(w, h), std::max(1, knob(scene, "froxel_columns", 80)));
+  const double per_column = double(std::max(w, h)) / across;  // pixels per column side, >= 1
+  c.nx = knob(scene, "froxel_x", std::max(1, static_cast<int>(std::lround(w / per_column))));
+  c.ny = knob(scene, "froxel_y", std::max(1, static_cast<int>(std::lround(h / per_column))));
   c.nz = knob(scene, "froxel_z", c.nz);
   c.shadow_map_size = knob(scene, "shadow_map_size", c.shadow_map_size);
   c.z_near = scene.underwater.froxel_near;

@@ -21,11 +21,11 @@ struct FroxelConfig {
   bool rgb_injection = false;      // underwater.froxel_injection = "rgb"
 };
 
-// The scene's settings. The columns follow the image: froxel_x and froxel_y are "auto" unless the
-// scene gives them, ⌈width / froxel_pixels⌉ × ⌈height / froxel_pixels⌉ (80×45 at 320×180 with the
-// default 4 pixels per column side), at least 80 columns across the wider side (or one per pixel) and
-// at most 320×180 columns (wider columns past 1280×720); froxel_z slices (32). The defaults are the froxel sweep's choice
-// against the quadrature reference (results/BENCHMARKS.md "Froxel single scattering").
+// The scene's settings. The columns are set by their angular spacing: froxel_x and froxel_y are "auto"
+// unless the scene gives them, quality.froxel_columns (80) across the image's wider side, at most one
+// per pixel, the other side in proportion (80×45 at 16:9); froxel_z slices (32). The defaults are the
+// froxel sweep's choice against the quadrature reference (results/BENCHMARKS.md "Froxel single
+// scattering").
 FroxelConfig froxelConfigFromScene(const Scene& scene);
 
 // The RGB pseudo-bands (002 eq. 5.3–5.4 in spirit): for channel k with non-negative weights

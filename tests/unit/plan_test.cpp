@@ -351,8 +351,8 @@ TEST(Plan, SandShareLatticeOnlyForObjectsOverABottomInTheOrdinatesModel) {
   EXPECT_FALSE(makePlan(seasim::loadScene(std::string(SEASIM_SOURCE_DIR) + "/scenes/flat_sea.toml")).hasPass("sand_share"));
 }
 
-// The froxel grid follows the image (froxel_setup.h): 4 pixels per column with at least 80 columns
-// across and at most 320×180; the buffer estimate `seasim plan` prints names it. (The plan's own text
+// The froxel grid is set by its angular spacing (froxel_setup.h): 80 columns across the wider side, at
+// most one per pixel, the other side in proportion; the buffer estimate `seasim plan` prints names it. (The plan's own text
 // does not: a knob there would make every change of it build a new graph.)
 TEST(Plan, FroxelGridFollowsTheImageAndThePlanNamesIt) {
   const std::string seabed = std::string(SEASIM_SOURCE_DIR) + "/scenes/seabed.toml";
@@ -366,11 +366,12 @@ TEST(Plan, FroxelGridFollowsTheImageAndThePlanNamesIt) {
     return std::to_string(c.nx) + "x" + std::to_string(c.ny) + "x" + std::to_string(c.nz);
   };
   EXPECT_EQ(grid(at_size("320", "180")), "80x45x32");
-  EXPECT_EQ(grid(at_size("640", "360")), "160x90x32");
-  EXPECT_EQ(grid(at_size("96", "54")), "96x54x32");      // every pixel a column below 80 across
-  EXPECT_EQ(grid(at_size("160", "90")), "80x45x32");     // 2 pixels per column: 80 across
-  EXPECT_EQ(grid(at_size("3840", "2160")), "320x180x32");  // at most 320×180 columns
-  EXPECT_EQ(grid(at_size("320", "180", {{"quality.froxel_pixels", "2", {"test", 1}}})), "160x90x32");
+  EXPECT_EQ(grid(at_size("640", "360")), "80x45x32");
+  EXPECT_EQ(grid(at_size("3840", "2160")), "80x45x32");
+  EXPECT_EQ(grid(at_size("96", "54")), "80x45x32");
+  EXPECT_EQ(grid(at_size("64", "36")), "64x36x32");      // at most one column per pixel
+  EXPECT_EQ(grid(at_size("180", "320")), "45x80x32");    // across the wider side
+  EXPECT_EQ(grid(at_size("320", "180", {{"quality.froxel_columns", "160", {"test", 1}}})), "160x90x32");
   EXPECT_EQ(grid(at_size("320", "180", {{"quality.froxel_x", "33", {"test", 1}}})), "33x45x32");
   const seasim::Scene s = at_size("320", "180");
   bool named = false;

@@ -410,10 +410,9 @@ TEST_F(Reliability, MemoryBudgetNamesTheSettingsAndWhatFits) {
   msg = errorOf([&] { checkMemoryBudget(buffers, 8 * gib, 8 * gib, "test device"); });
   EXPECT_NE(msg.find("CL_DEVICE_GLOBAL_MEM_SIZE"), std::string::npos) << msg;
   // All device per-pixel buffers (12 + 16 + 4 + 4 = 36 bytes a pixel) shrink with the image; the
-  // froxel volume (238 x 238 x 32 froxels: at most 320 x 180 columns), caustic and sun shadow maps
-  // (about 39 MiB) stay: 0.9 x 8 GiB minus those over 36 bytes is 213.6M pixels, 14616^2 at this
-  // aspect ratio.
-  EXPECT_NE(msg.find("or 14616 x 14616 at this aspect ratio"), std::string::npos) << msg;
+  // froxel volume (80 x 45 x 32 froxels at any image size), caustic and sun shadow maps (a few MiB)
+  // stay: 0.9 x 8 GiB minus those over 36 bytes is 214.5M pixels, 14647^2 at this aspect ratio.
+  EXPECT_NE(msg.find("or 14647 x 14647 at this aspect ratio"), std::string::npos) << msg;
   EXPECT_EQ(errorOf([&] { checkMemoryBudget(buffers, 64 * gib, 8 * gib, "test device"); }), "");
   // On a CPU device the host copies of the frame share the same memory and count too.
   EXPECT_EQ(errorOf([&] { checkMemoryBudget(buffers, 12 * gib, 8 * gib, "gpu", false); }), "");

@@ -292,14 +292,14 @@ TEST(SceneParser, Defaults) {
       {"sea_lut_size", 64},      {"sea_nz", 12},          {"sea_nd", 128},
       {"sea_map_size", 32},      {"shafts_planes", 30},   {"shafts_subplanes", 6},
       {"shafts_table_size", 256}, {"shadow_map_size", 512}, {"froxel_z", 32},
-      {"froxel_pixels", 4},      {"caustic_map_size", 256}, {"caustic_layers", 8},
+      {"froxel_columns", 80},    {"caustic_map_size", 256}, {"caustic_layers", 8},
       {"reference_spp", 64},     {"reference_steps", 200}, {"shafts_exact", 0},
       {"shafts_error_budget", 1}, {"sea_supersample", 1},  {"wave_filter", 1},
       {"fourflow_table_size", 32}, {"lamps_delta_m", 1}, {"shafts_panel_deg", 4}, {"shafts_panel_texels", 2},
       {"profile_streams", 16}, {"lamps_model", 1}};
   EXPECT_EQ(s.quality.size(), std::size(knobs) + 4);
   EXPECT_TRUE(s.quality.at("fast_math").automatic);  // "auto": the planner decides (fastMathFor)
-  EXPECT_TRUE(s.quality.at("froxel_x").automatic);   // "auto": ⌈width / froxel_pixels⌉ (froxel_setup.h)
+  EXPECT_TRUE(s.quality.at("froxel_x").automatic);   // "auto": from froxel_columns (froxel_setup.h)
   EXPECT_TRUE(s.quality.at("froxel_y").automatic);
   EXPECT_TRUE(s.quality.at("shafts_method").automatic);  // the planner decides (plan/shafts_method.h)
   for (const auto& [name, value] : knobs) {

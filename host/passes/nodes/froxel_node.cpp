@@ -20,7 +20,7 @@ namespace {
 PassKeys froxelKeys() {
   std::vector<std::string> rebuild = kUnderwaterSetupKeys;
   for (const char* key : {"camera.*", "spectral.*", "quality.froxel_x", "quality.froxel_y", "quality.froxel_z",
-                          "quality.froxel_pixels", "quality.shadow_map_size"})
+                          "quality.froxel_columns", "quality.shadow_map_size"})
     rebuild.push_back(key);
   return {rebuild, {}};
 }
@@ -78,9 +78,9 @@ PassDescriptor froxelDescriptor() {
                      features);
   };
   d.keys = froxelKeys();
-  // froxel_x, froxel_y: "auto", from the image and froxel_pixels (froxelConfigFromScene).
+  // froxel_x, froxel_y: "auto", from froxel_columns and the image's aspect (froxelConfigFromScene).
   d.knobs = {{"froxel_x", 0, false, true},  {"froxel_y", 0, false, true}, {"froxel_z", 32},
-             {"froxel_pixels", 4},          {"caustic_map_size", 256},    {"caustic_layers", 8},
+             {"froxel_columns", 80},        {"caustic_map_size", 256},    {"caustic_layers", 8},
              {"shadow_map_size", 512}};
   d.buffers = [d](const Scene& s, const PassPlan& p) -> std::vector<BufferEstimate> {
     const FroxelConfig c = froxelConfigFromScene(s);
