@@ -27,7 +27,7 @@ typedef struct {
   float shadow_right[4];   /* unit, ⊥ sun_dir_water: texel x */
   float shadow_up[4];      /* unit, ⊥ sun_dir_water and shadow_right: texel y */
   float sigma_t_rgb[4];    /* 1/m, R,G,B pseudo-band extinction: RGB injection, and the in-slice
-                              weighting of froxel_lookup in both modes (times the column's rate) */
+                              weighting of froxel_lookup in both modes (times the rate 1 - d_y/μ_w) */
   float sigma_s_rgb[4];    /* 1/m, R,G,B pseudo-band scattering; with e_beam_rgb for reports only: */
   float e_beam_rgb[4];     /* sensor R,G,B of the beam just below the surface; froxel_integrate reads
                               the pseudo-bands from its band buffer (froxelRgbPseudoBands) */
