@@ -622,6 +622,19 @@ seasim::WaveNormalMap constantWaves(Vec3 n, int grid = 4) {
   return w;
 }
 
+// The path tracer with the camera above, through `waves` (common/sea_waves.h), the sun's disk of angular
+// radius `sun_radius` mirrored in its facets.
+UnderwaterReferenceSettings aboveWaves(const seasim::WaveNormalMap& waves, int samples_per_pixel, double sun_radius,
+                                       bool jitter) {
+  UnderwaterReferenceSettings set;
+  set.samples_per_pixel = samples_per_pixel;
+  set.jitter = jitter;
+  set.camera_above = true;
+  set.waves = &waves;
+  set.sun_angular_radius = sun_radius;
+  return set;
+}
+
 // The camera above black water under a Preetham sky: the surface shows R L_sky of the mirrored ray.
 UnderwaterSetup blackWaterFromAbove(const seasim::SkyLight& sky) {
   SceneSpec spec;
@@ -669,13 +682,8 @@ TEST(UnderwaterReference, WavesTiltTheMirroredSkyAndTheFresnelSplit) {
     return 0.5 * (rs * rs + rp * rp) * sky.radiance(i, {r.x, r.y, r.z});
   });
   const seasim::WaveNormalMap waves = constantWaves(n);
-  UnderwaterReferenceSettings set;
-  set.samples_per_pixel = 256;
-  set.jitter = false;
-  set.camera_above = true;
-  set.waves = &waves;
-  set.sun_angular_radius = 0.0;
-  const UnderwaterReferenceResult r = seasim::renderUnderwaterReference(device(), s, set);
+  const UnderwaterReferenceResult r =
+      seasim::renderUnderwaterReference(device(), s, aboveWaves(waves, 256, 0.0, false));
   expectFiniteNonNegative(r);
   expectAgrees(r, ref, "camera above, tilted facets, Preetham sky");
 }
@@ -691,13 +699,7 @@ TEST(UnderwaterReference, WavesMirrorASunOfNoSizeAsNothingFinite) {
   spec.bands = {{1000, 0.0, 1.0, 0.0, 0.0, {kW1[0], kW1[1], kW1[2]}}};
   const UnderwaterSetup s = build(spec);  // the sun in air straight up
   const seasim::WaveNormalMap waves = constantWaves({0, 1, 0});
-  UnderwaterReferenceSettings set;
-  set.samples_per_pixel = 4;
-  set.jitter = false;
-  set.camera_above = true;
-  set.waves = &waves;
-  set.sun_angular_radius = 0.0;
-  const UnderwaterReferenceResult r = seasim::renderUnderwaterReference(device(), s, set);
+  const UnderwaterReferenceResult r = seasim::renderUnderwaterReference(device(), s, aboveWaves(waves, 4, 0.0, false));
   expectFiniteNonNegative(r);
   EXPECT_EQ(r.rgb.pixels[1], 0.0f);
 }
@@ -720,12 +722,8 @@ TEST(UnderwaterReference, WavesMirrorTheSunsDiskWithItsIrradianceTimesR) {
   const double E = 2.0;  // the sun's normal irradiance in air
   s.bands[0].e_sun0 = float(E * sun.y * (1 - R_sun));
   const seasim::WaveNormalMap waves = constantWaves({0, 1, 0});
-  UnderwaterReferenceSettings set;
-  set.samples_per_pixel = 256;
-  set.camera_above = true;
-  set.waves = &waves;
-  set.sun_angular_radius = M_PI / 180;
-  const UnderwaterReferenceResult r = seasim::renderUnderwaterReference(device(), s, set);
+  const UnderwaterReferenceResult r =
+      seasim::renderUnderwaterReference(device(), s, aboveWaves(waves, 256, M_PI / 180, true));
   expectFiniteNonNegative(r);
   const double t = std::tan(spec.fov_y_deg * M_PI / 360);
   double flux[3] = {0, 0, 0};

@@ -747,14 +747,7 @@ TEST(SceneParserLamps, LampsModelByNameWithTheOlderSwitchKept) {
   EXPECT_EQ(parseScene("", "l.toml").quality.at("lamps_model").value, 1);
   EXPECT_THROW(parseScene("[quality]\nlamps_model = \"bogus\"\n", "l.toml"), seasim::InputError);
   EXPECT_THROW(parseScene("[quality]\nlamps_model = \"orders\"\nlamps_delta_m = true\n", "l.toml"), seasim::InputError);
-  const auto error = [](const std::string& text) -> std::string {
-    try {
-      parseScene(text, "l.toml");
-    } catch (const seasim::InputError& e) {
-      return e.what();
-    }
-    return "";
-  };
+  const auto error = [](const std::string& text) { return errorOf(text, {}, "l.toml"); };
   EXPECT_NE(error("[quality]\nlamps_orders = 13\n").find("l.toml:2: key 'quality.lamps_orders'"), std::string::npos);
   EXPECT_NE(error("[quality]\nlamps_orders = 2.5\n").find("quality.lamps_orders"), std::string::npos);
   EXPECT_NE(error("[quality]\nlamps_ms_steps = 0\n").find("quality.lamps_ms_steps"), std::string::npos);
@@ -765,14 +758,7 @@ TEST(SceneParserLamps, LampsModelByNameWithTheOlderSwitchKept) {
 }
 
 TEST(SceneParserSandShare, StepIsAWholeNumberFromOneToEight) {
-  const auto error = [](const std::string& text) -> std::string {
-    try {
-      parseScene(text, "s.toml");
-    } catch (const seasim::InputError& e) {
-      return e.what();
-    }
-    return "";
-  };
+  const auto error = [](const std::string& text) { return errorOf(text, {}, "s.toml"); };
   EXPECT_DOUBLE_EQ(seasim::modelKey(parseScene("", "s.toml"), "quality.sand_share_step"), 2);
   EXPECT_NE(error("[quality]\nsand_share_step = 0\n").find("s.toml:2: key 'quality.sand_share_step'"), std::string::npos);
   EXPECT_NE(error("[quality]\nsand_share_step = 9\n").find("quality.sand_share_step"), std::string::npos);
