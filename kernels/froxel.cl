@@ -81,12 +81,12 @@ float froxel_injected(__constant UwParams* p, __constant FroxelParams* fp, __glo
 #if SEASIM_CAUSTICS == UW_CAUSTICS_TEXTURE
   /* Where the refracted sun ray through q crossed the surface (as raycast.cl does for surfaces), kept
    * by rho where the froxel stands for the texture's mean over many cells (froxel_caustic_correlation);
-   * not evaluated where v = 0 or where rho leaves less than 1/64 of its deviation. */
-  if (v > 0.0f && caustic_rho >= 1.0f / 64.0f) {
+   * not evaluated where v = 0 or rho is too small (froxel_caustic_evaluated). */
+  if (v > 0.0f && froxel_caustic_evaluated(caustic_rho)) {
     const float t_up = -q.y / fmax(s_w.y, 1e-4f);
-    const float c = caustic_modulation_table(q.x + t_up * s_w.x, q.z + t_up * s_w.z, p->time, p->caustic_period,
-                                             p->caustic_speed, caustic_table);
-    v *= 1.0f + caustic_rho * (c - 1.0f);
+    v *= froxel_kept_caustic(caustic_modulation_table(q.x + t_up * s_w.x, q.z + t_up * s_w.z, p->time,
+                                                      p->caustic_period, p->caustic_speed, caustic_table),
+                             caustic_rho);
   }
 #endif
 #if SEASIM_CAUSTICS == UW_CAUSTICS_MAP

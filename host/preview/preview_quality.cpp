@@ -26,8 +26,8 @@ const std::vector<std::pair<std::string, int>>& scaledKnobs() {
 // The intervals method's knobs (plan/shafts_method.h) work the other way: a wider quadrature panel is
 // cheaper, so a level doubles them, up to a ceiling well inside the parser's range.
 const std::vector<std::pair<std::string, double>>& widenedKnobs() {
-  static const std::vector<std::pair<std::string, double>> knobs = {
-      {"shafts_panel_deg", 32.0}, {"shafts_panel_texels", 16.0}};
+  static const std::vector<std::pair<std::string, double>> knobs = {{"shafts_panel_deg", 32.0},
+                                                                    {"shafts_panel_texels", 16.0}};
   return knobs;
 }
 
@@ -50,8 +50,8 @@ std::vector<Override> qualityLevelOverrides(const Scene& scene, int level) {
   for (const auto& [name, ceiling] : widenedKnobs()) {
     const auto it = scene.quality.find(name);
     if (it == scene.quality.end() || it->second.automatic) continue;
-    const double full = it->second.value, widened = std::max(full, std::min(ceiling, std::ldexp(full, halvings)));
-    out.push_back({"quality." + name, floatText(widened), at});
+    const double full = it->second.value;
+    out.push_back({"quality." + name, floatText(std::max(full, std::min(ceiling, std::ldexp(full, halvings)))), at});
   }
   add("camera.width", std::max(16, scene.camera.width >> size_shift));
   add("camera.height", std::max(9, scene.camera.height >> size_shift));

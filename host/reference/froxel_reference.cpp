@@ -57,9 +57,10 @@ FroxelCpuVolume froxelEvaluateCpu(const UnderwaterSetup& setup, const FroxelPara
             const double rho = kd::froxel_caustic_correlation(&p, &fp, d, s_w, t0, s1,
                                                                kd::caustic_integral_scale(p.caustic_period));
             const double t_up = -q.y / std::max(s_w.y, 1e-4);
-            if (v > 0 && rho >= 1.0 / 64.0)
-              v *= 1.0 + rho * (kd::caustic_modulation(q.x + t_up * s_w.x, q.z + t_up * s_w.z, p.time, p.caustic_period,
-                                                       p.caustic_speed) - 1.0);
+            if (v > 0 && kd::froxel_caustic_evaluated(rho))
+              v *= kd::froxel_kept_caustic(kd::caustic_modulation(q.x + t_up * s_w.x, q.z + t_up * s_w.z, p.time,
+                                                                  p.caustic_period, p.caustic_speed),
+                                           rho);
           }
           if (maps)
             v *= kd::caustic_map_sample(caustic_maps->data(), p.caustic_map_size, p.caustic_layers, p.caustic_extent,
@@ -98,65 +99,6 @@ std::vector<double> froxelResolveCpu(const FroxelParams& fp, const std::vector<f
       out[3 * pixel + 1] = v.y;
       out[3 * pixel + 2] = v.z;
     }
-  return out;
-}
-
-double froxelBruteForceRay(const UnderwaterSetup& setup, int band_index, Vec3 origin, Vec3 dir, double S, int steps) {
-  const UwParams& p = setup.params;
-  const UwBand& band = setup.bands.at(band_index);
-  const double b = band.b, c = band.c;
-  if (b <= 0 || c <= 0 || steps < 1 || !(S > 0)) return 0.0;
-  const kd::real3 s_w = toReal3(sunWater(p));
-  const double mu_w = std::max(s_w.y, 1e-4);
-  const kd::real3 o = toReal3(origin), d = toReal3(dir);
-  const double phase = kd::hg_phase(kd::dot(s_w, d), p.g);
-  const bool caustics = p.caustic_mode == UW_CAUSTICS_TEXTURE;
-  // u = 1 - e^{-c z}: dz e^{-c z} = du / c, z = -log(1 - u)/c, u over [0, 1 - e^{-c S}].
-  const double u_max = S >= 1e30 ? 1.0 : -std::expm1(-c * S);
-  double sum = 0;
-  for (int k = 0; k < steps; ++k) {
-    const double u = (k + 0.5) / steps * u_max;
-    const double z = -std::log1p(-u) / c;
-    const kd::real3 x = o + z * d;
-    const double y = -x.y;
-    if (y < 0) continue;
-    const double e = kd::uw_beam_irradiance(band.e_beam0, c, mu_w, y);
-    if (e <= 0) continue;
-    double v = 1.0;
-    if (p.object_count > 0) {  // exact shadow ray along s_w to the surface through the objects
-      kd::real3 n{};
-      int mat = 0;
-      kd::uw_scene_hit(setup.objects.data(), p.object_count, 0.0, x, s_w, 0.0, &n, &mat);
-      if (mat >= 0) continue;
-    }
-    if (caustics) {
-      const double t_up = y / mu_w;
-      v = kd::caustic_modulation(x.x + t_up * s_w.x, x.z + t_up * s_w.z, p.time, p.caustic_period, p.caustic_speed);
-    }
-    sum += e * v;
-  }
-  return b * phase * sum * u_max / steps / c;
-}
-
-std::vector<double> froxelBruteForce(const UnderwaterSetup& setup, int steps) {
-  const UwParams& p = setup.params;
-  const std::vector<double> S = froxelPixelDistances(setup);
-  std::vector<double> out(size_t(3) * p.width * p.height, 0.0);
-  const Vec3 o{p.cam_pos[0], p.cam_pos[1], p.cam_pos[2]};
-  tbb::parallel_for(tbb::blocked_range<int>(0, p.height), [&](const tbb::blocked_range<int>& r) {
-    for (int y = r.begin(); y < r.end(); ++y)
-      for (int x = 0; x < p.width; ++x) {
-        const kd::real3 dk = kd::uw_screen_dir(&p, (x + 0.5) / p.width, (y + 0.5) / p.height);
-        const Vec3 d{dk.x, dk.y, dk.z};
-        const size_t pixel = size_t(y) * p.width + x;
-        for (size_t i = 0; i < setup.bands.size(); ++i) {
-          const double l = froxelBruteForceRay(setup, static_cast<int>(i), o, d, S[pixel], steps);
-          out[3 * pixel + 0] += l * setup.bands[i].w_r;
-          out[3 * pixel + 1] += l * setup.bands[i].w_g;
-          out[3 * pixel + 2] += l * setup.bands[i].w_b;
-        }
-      }
-  });
   return out;
 }
 

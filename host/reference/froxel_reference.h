@@ -4,10 +4,10 @@
 //  * froxelEvaluateCpu: the same froxel algorithm in double (kmath_d, the same common/froxel.h code):
 //    shadow map, injection, front-to-back integration; froxelResolveCpu reads it per pixel as
 //    kd_multiple.cl does. The kernels are tested against it.
-//  * froxelBruteForce: the single-scattering integral along each pixel's centre ray,
+//  * froxelBruteForcePixelArea: the single-scattering integral along N×N rays per pixel,
 //      L_SS = ∫_0^S e^{-c z} b p(θ) E_beam(y(z)) V(x_z) C(x_z) dz,   E_beam(y) = e_beam0 e^{-c y/μ_w},
-//    per wavelength band by the midpoint rule in u = 1 - e^{-c z} (the transmittance is the measure:
-//    no truncation in deep water), an exact shadow ray along sun_dir_water to the surface through the
+//    every band on one set of points, the midpoint rule in u = 1 - e^{-c_min z} (the slowest band's
+//    transmittance is the measure: no truncation in deep water), an exact shadow ray along sun_dir_water to the surface through the
 //    objects at every step, the caustic texture when the scene has it, S the true first hit of
 //    uw_scene_hit (not clamped to froxel_far: the froxel method's truncation is part of its error),
 //    accumulated to sensor RGB with the bands' w_r, w_g, w_b (002 eq. 4.8). Always spectral: it is the
@@ -48,16 +48,9 @@ std::vector<double> froxelPixelDistances(const UnderwaterSetup& setup);
 std::vector<double> froxelResolveCpu(const FroxelParams& params, const std::vector<float>& volume,
                                      const std::vector<double>& distances, int width, int height);
 
-// The brute-force L_SS of one band along o + z d up to S (S >= UW_INFINITE: deep water), `steps`
-// midpoint steps in u = 1 - e^{-c z}. 0 when b = 0 or c = 0.
-double froxelBruteForceRay(const UnderwaterSetup& setup, int band, Vec3 o, Vec3 d, double S, int steps);
-
-// The brute-force L_SS through every pixel centre as sensor RGB (3 per pixel), oneTBB over rows.
-std::vector<double> froxelBruteForce(const UnderwaterSetup& setup, int steps);
-
-// The same integral averaged over each pixel's area: subpixels × subpixels rays through the centres of
-// a regular grid of sub-pixels, each to its own first hit (what a pixel of the image integrates; the
-// path tracer jitters over the same area). All bands share one set of points per ray, the midpoint
+// The brute-force L_SS averaged over each pixel's area: subpixels × subpixels rays through the centres
+// of a regular grid of sub-pixels, each to its own first hit (what a pixel of the image integrates; the
+// path tracer jitters over the same area; subpixels = 1: the pixel centre's ray). All bands share one set of points per ray, the midpoint
 // rule in u = 1 - e^{-c z} of the band with the smallest c (so the shadow ray and the caustic are
 // evaluated once per point): `steps` points per ray. Sensor RGB, 3 per pixel, oneTBB over rows.
 std::vector<double> froxelBruteForcePixelArea(const UnderwaterSetup& setup, int steps, int subpixels);

@@ -68,8 +68,7 @@ void setUnderwaterCamera(UwParams& p, const CameraDesc& cam) {
 
 bool moveUnderwaterCamera(UnderwaterSetup& setup, const Scene& scene) {
   UwParams& p = setup.params;
-  const float depth = static_cast<float>(cameraFrame(scene.camera).eye.y);
-  if (depth != p.cam_pos[1]) return false;
+  if (static_cast<float>(scene.camera.position.y) != p.cam_pos[1]) return false;  // the tables follow the depth
   setUnderwaterCamera(p, scene.camera);
   return true;
 }

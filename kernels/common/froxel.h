@@ -113,6 +113,13 @@ SEASIM_FN real froxel_footprint_correlation(real lambda, real l_along, real l_ac
   return lambda / fmax(l_along, lambda) * (lambda / fmax(l_across, lambda));
 }
 
+/* Whether a froxel with this ρ evaluates the texture: below 1/64 it would keep less than 1/64 of the
+ * texture's deviation, and takes its mean, 1. */
+SEASIM_FN int froxel_caustic_evaluated(real rho) { return rho >= R(0.015625); }
+
+/* The caustic a froxel keeps from its sample c: 1 + ρ (c - 1) (froxel_footprint_correlation). */
+SEASIM_FN real froxel_kept_caustic(real c, real rho) { return R(1.0) + rho * (c - R(1.0)); }
+
 /* ρ of froxel_footprint_correlation for the slice part [t0, s1] of column direction d (s1 its end below
  * the surface): the caustic at a point is the texture at the surface point its refracted sun ray came
  * from, so a segment of the column maps to the surface at |d_h - (d_y/s_w,y) s_w,h| per metre (h: x and

@@ -235,11 +235,11 @@ TEST(FroxelKernelExact, HorizontalRayOneAndManySlices) {
 
 TEST(FroxelKernelError, ShrinksWithSliceCountAgainstBruteForce) {
   // Froxel columns = pixels (32×18), so the error is the depth discretisation (and the 256² shadow
-  // map's PCF), measured against the brute-force integral (2000 midpoint steps in 1 - e^{-cz} per band
-  // and pixel, exact shadow rays).
+  // map's PCF), measured against the brute-force integral through the pixel centres (2000 midpoint
+  // steps in 1 - e^{-c_min z} per pixel, exact shadow rays).
   const seasim::Scene s = scene();
   const seasim::UnderwaterSetup setup = setupOf(s);
-  const std::vector<double> ref = seasim::froxelBruteForce(setup, 2000);
+  const std::vector<double> ref = seasim::froxelBruteForcePixelArea(setup, 2000, 1);
   ASSERT_GT(mean(ref), 0.0);
   std::printf("froxel L_SS vs brute force, 32x18 px, grid 32x18xnz, near 0.05 m, far 200 m, 8 bands:\n");
   std::printf("   nz   rel.L2 (spectral)   max rel   rel.L2 (rgb injection)\n");
@@ -277,7 +277,8 @@ TEST(FroxelKernelError, ShadowingSphereReducesSingleScattering) {
   const seasim::UnderwaterSetup a = setupOf(with_s), b = setupOf(without_s);
   const KernelRun ka = runKernel(a, seasim::froxelConfigFromScene(with_s));
   const KernelRun kb = runKernel(b, seasim::froxelConfigFromScene(without_s));
-  const std::vector<double> ra = seasim::froxelBruteForce(a, 1000), rb = seasim::froxelBruteForce(b, 1000);
+  const std::vector<double> ra = seasim::froxelBruteForcePixelArea(a, 1000, 1),
+                            rb = seasim::froxelBruteForcePixelArea(b, 1000, 1);
   const double froxel_loss = 1 - mean(ka.rgb) / mean(kb.rgb), exact_loss = 1 - mean(ra) / mean(rb);
   std::printf("shadow of the sphere: mean L_SS loss froxel %.4f, brute force %.4f\n", froxel_loss, exact_loss);
   EXPECT_GT(exact_loss, 0.01);
@@ -301,7 +302,7 @@ TEST(FroxelKernelError, TurbidWaterLongRangeAndDeepCamera) {
   const KernelRun k = runKernel(setup, seasim::froxelConfigFromScene(turbid));
   expectFiniteNonNegative(k.rgb, "turbid rgb");
   expectVolumeValid(k.volume, "turbid volume");
-  const std::vector<double> ref = seasim::froxelBruteForce(setup, 2000);
+  const std::vector<double> ref = seasim::froxelBruteForcePixelArea(setup, 2000, 1);
   const double err = relativeL2(k.rgb, ref);
   std::printf("turbid 9C-like, far 1000 m, 64 slices: rel.L2 vs brute force %.3e\n", err);
   EXPECT_LT(err, 0.02);
@@ -328,7 +329,7 @@ TEST(FroxelKernelError, CausticsMoveLightButKeepTheMean) {
     biggest = std::max(biggest, std::fabs(double(b.rgb[i]) / std::max(double(a.rgb[i]), 1e-30) - 1));
   const double ratio = mean(b.rgb) / mean(a.rgb);
   // The brute force with the same texture: what the froxels' point samples of it should average to.
-  const std::vector<double> ref_on = seasim::froxelBruteForce(setupOf(on), 1000);
+  const std::vector<double> ref_on = seasim::froxelBruteForcePixelArea(setupOf(on), 1000, 1);
   std::printf("caustics: largest pixel change %.3f, image mean on/off %.4f, rel.L2 vs brute force %.3e\n", biggest,
               ratio, relativeL2(b.rgb, ref_on));
   EXPECT_GT(biggest, 0.05);           // the image changes
