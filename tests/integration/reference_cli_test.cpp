@@ -12,6 +12,7 @@
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <utility>
 
 #include "io/image_io.h"
 #include "run_command.h"
@@ -75,6 +76,37 @@ TEST_F(ReferenceCli, SeaTakesQualityReferenceStepsAndRefusesAuto) {
   EXPECT_NE(r.code, 0) << r.output;
   EXPECT_NE(r.output.find("reference_steps"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(dir_ / "u.exr"));
+}
+
+// The froxel term's quadrature: the term alone (no multiple scattering) writes a deterministic image; a
+// scene it does not model is refused by what to change, nothing written; --subpixels outside 1..64 too.
+TEST_F(ReferenceCli, SunSingleQuadratureTakesTheTermAloneAndRefusesTheRest) {
+  const std::string single = kSmallUnderwater + " --set underwater.multiple_scattering=false";
+  const std::string a = (dir_ / "q.exr").string(), b = (dir_ / "q2.exr").string();
+  Result r = run("reference " + single + " --sun-single-quadrature --subpixels 2 --steps 50 -o " + a);
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("50 quadrature steps"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir_ / "q.stderr.exr"));  // no noise to write
+  r = run("reference " + single + " --sun-single-quadrature --subpixels 2 --steps 50 -o " + b);
+  ASSERT_EQ(r.code, 0) << r.output;
+  const seasim::Image ia = seasim::readImage(a), ib = seasim::readImage(b);
+  EXPECT_EQ(ia.pixels, ib.pixels) << "deterministic";
+  EXPECT_GT(*std::max_element(ia.pixels.begin(), ia.pixels.end()), 0.0f);
+
+  const std::pair<std::string, std::string> refused[] = {
+      {kSmallUnderwater, "underwater.multiple_scattering = false"},
+      {kRepo + "/scenes/flat_sea.toml --set camera.width=16 --set camera.height=9", "underwater camera"},
+      {single + " --set underwater.caustics='\"map\"' --set surface.type='\"fft\"'", "caustics = \"map\""}};
+  for (const auto& [scene, says] : refused) {
+    r = run("reference " + scene + " --sun-single-quadrature --steps 10 -o " + (dir_ / "x.exr").string());
+    EXPECT_NE(r.code, 0) << scene;
+    EXPECT_NE(r.output.find(says), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(dir_ / "x.exr")) << scene;
+  }
+  r = run("reference " + single + " --sun-single-quadrature --subpixels 0 -o " + (dir_ / "y.exr").string());
+  EXPECT_NE(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("--subpixels"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(dir_ / "y.exr"));
 }
 
 TEST_F(ReferenceCli, HelpSaysWhatEachModelsReferenceIs) {

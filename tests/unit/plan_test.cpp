@@ -11,6 +11,7 @@
 #include "plan/plan.h"
 #include "scene/scene_parser.h"
 #include "underwater/froxel_setup.h"
+#include "util/error.h"
 
 namespace {
 
@@ -372,6 +373,8 @@ TEST(Plan, FroxelGridFollowsTheImageAndThePlanNamesIt) {
   EXPECT_EQ(grid(at_size("64", "36")), "64x36x32");      // at most one column per pixel
   EXPECT_EQ(grid(at_size("180", "320")), "45x80x32");    // across the wider side
   EXPECT_EQ(grid(at_size("320", "180", {{"quality.froxel_columns", "160", {"test", 1}}})), "160x90x32");
+  for (const char* bad : {"0", "1.5", "\"many\""})  // a count: a whole number >= 1 or "auto"
+    EXPECT_THROW((void)at_size("320", "180", {{"quality.froxel_columns", bad, {"test", 1}}}), seasim::InputError) << bad;
   EXPECT_EQ(grid(at_size("320", "180", {{"quality.froxel_x", "33", {"test", 1}}})), "33x45x32");
   const seasim::Scene s = at_size("320", "180");
   bool named = false;
