@@ -154,6 +154,27 @@ SEASIM_FN real froxel_partial(real x, real tau) {
   return tau >= R(0.0) ? q : exp(-a * (R(1.0) - x)) * q;
 }
 
+/* froxel_partial of the three channels' τ at one x. A kernel evaluates them as the lanes of one real3
+ * (one vector exp for three scalar calls: froxel_lookup's three partials were half its cost); the host
+ * calls froxel_partial per channel, so the double evaluation checks the lanes. */
+#if defined(__OPENCL_VERSION__) || defined(__OPENCL_C_VERSION__)
+SEASIM_FN real3 froxel_expm1_over_x3(real3 x) {
+  const real3 series = SEASIM_EXPM1_OVER_X_SERIES(x);
+  const real3 switch_at = MAKE_REAL3(0.5, 0.5, 0.5), one = MAKE_REAL3(1.0, 1.0, 1.0);
+  const real3 xs = select(x, one, isless(fabs(x), switch_at));
+  return select((exp(xs) - R(1.0)) / xs, series, isless(fabs(x), switch_at));
+}
+SEASIM_FN real3 froxel_partial3(real x, real3 tau) {
+  const real3 a = fabs(tau);
+  const real3 q = x * froxel_expm1_over_x3(-a * x) / froxel_expm1_over_x3(-a);
+  return select(exp(-a * (R(1.0) - x)) * q, q, isgreaterequal(tau, MAKE_REAL3(0.0, 0.0, 0.0)));
+}
+#else
+SEASIM_FN real3 froxel_partial3(real x, real3 tau) {
+  return MAKE_REAL3(froxel_partial(x, tau.x), froxel_partial(x, tau.y), froxel_partial(x, tau.z));
+}
+#endif
+
 /* ---- the sun shadow map: orthographic along the beam (-s_w), over the bounded objects ---- */
 
 /* First hit of a sphere or box (planes skipped: unbounded, tested exactly instead) along o + t dir,
@@ -294,6 +315,33 @@ SEASIM_FN int froxel_read_slice(const SEASIM_CONSTANT FroxelParams* fp, real S) 
   return froxel_slice_index(t, fp->nz, fp->z_near, fp->z_far, fp->log_far_near);
 }
 
+/* froxel_read_slice with the slice's ends [*t0, *t1]: the same slice as froxel_slice_index, settled on
+ * the same boundaries, whose two ends it computes once (the lookup's slice took six exp and log calls). */
+SEASIM_FN int froxel_read_slice_bounds(const SEASIM_CONSTANT FroxelParams* fp, real S, real* t0, real* t1) {
+  const real t = fmin(S, (real)fp->z_far);
+  if (!(t > R(0.0))) return -1;
+  const int nz = fp->nz;
+  const real z_near = (real)fp->z_near, z_far = (real)fp->z_far, lfn = (real)fp->log_far_near;
+  int k = nz - 1;
+  if (t < z_far && nz > 1) {
+    k = (int)ceil((real)nz * log(t / z_near) / lfn) - 1;
+    k = k < 0 ? 0 : (k > nz - 1 ? nz - 1 : k);
+  }
+  real lo = froxel_slice_start(k, nz, z_near, z_far, lfn), hi = froxel_slice_end(k, nz, z_near, z_far, lfn);
+  if (k < nz - 1 && t > hi) {
+    k += 1;
+    lo = hi;
+    hi = froxel_slice_end(k, nz, z_near, z_far, lfn);
+  } else if (k > 0 && t <= lo) {
+    k -= 1;
+    hi = lo;
+    lo = froxel_slice_start(k, nz, z_near, z_far, lfn);
+  }
+  *t0 = lo;
+  *t1 = hi;
+  return k;
+}
+
 /* The vertical direction of pixel (x, y)'s ray, bilinear between its four columns' d_y (the weights of
  * froxel_lookup): d00, d10, d01, d11 at (i0, j0), (i1, j0), (i0, j1), (i1, j1). */
 SEASIM_FN real froxel_pixel_dy(real d00, real d10, real d01, real d11, real ax, real ay) {
@@ -313,7 +361,7 @@ SEASIM_FN int froxel_reads_whole_columns(const SEASIM_CONSTANT FroxelParams* fp,
  * (see the top: bilinear over columns, in-slice fraction by σ̄_t per channel, S clamped to z_far). */
 SEASIM_FN real3 froxel_lookup(const SEASIM_CONSTANT FroxelParams* fp, const SEASIM_GLOBAL float* volume, int x, int y,
                               int width, int height, real S) {
-  const int nx = fp->nx, ny = fp->ny, nz = fp->nz;
+  const int nx = fp->nx, ny = fp->ny;
   /* Continuous column coordinates of the pixel centre; column i's centre sits at i. */
   const real gx = froxel_pixel_column(x, width, nx);
   const real gy = froxel_pixel_column(y, height, ny);
@@ -324,19 +372,17 @@ SEASIM_FN real3 froxel_lookup(const SEASIM_CONSTANT FroxelParams* fp, const SEAS
   const real d_y = froxel_pixel_dy(volume[4 * (j0 * nx + i0) + 3], volume[4 * (j0 * nx + i1) + 3],
                                    volume[4 * (j1 * nx + i0) + 3], volume[4 * (j1 * nx + i1) + 3], ax, ay);
   if (S > R(0.0) && froxel_reads_whole_columns(fp, d_y, S, R(1e-3))) S = (real)fp->z_far;
-  const int k = froxel_read_slice(fp, S);
+  real t0, t1;
+  const int k = froxel_read_slice_bounds(fp, S, &t0, &t1);
   if (k < 0) return MAKE_REAL3(0, 0, 0);
   const real t = fmin(S, (real)fp->z_far);
-  const real t0 = froxel_slice_start(k, nz, fp->z_near, fp->z_far, fp->log_far_near);
-  const real t1 = froxel_slice_end(k, nz, fp->z_near, fp->z_far, fp->log_far_near);
   /* The slice's part below the surface along the pixel's ray, how far into it S reaches, and the
    * fraction of its light gathered there per channel. */
   const real len = fmin(t1, froxel_surface_distance(fp->cam_depth, d_y)) - t0;
   const real xf = len > R(0.0) ? clamp((t - t0) / len, R(0.0), R(1.0)) : R(1.0);
   const real tau = (R(1.0) - d_y / fp->mu_w) * fmax(len, R(0.0));
-  const real f_r = froxel_partial(xf, fp->sigma_t_rgb[0] * tau);
-  const real f_g = froxel_partial(xf, fp->sigma_t_rgb[1] * tau);
-  const real f_b = froxel_partial(xf, fp->sigma_t_rgb[2] * tau);
+  const real3 f = froxel_partial3(xf, MAKE_REAL3(fp->sigma_t_rgb[0], fp->sigma_t_rgb[1], fp->sigma_t_rgb[2]) * tau);
+  const real f_r = f.x, f_g = f.y, f_b = f.z;
   real r = R(0.0), g = R(0.0), b = R(0.0);
   for (int c = 0; c < 4; ++c) {
     const int i = (c & 1) ? i1 : i0, j = (c & 2) ? j1 : j0;

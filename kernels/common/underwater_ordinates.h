@@ -135,6 +135,16 @@ SEASIM_FN real uwi_tilt_irradiance(const SEASIM_GLOBAL UwiBand* ib, real bottom_
 
 #define UWI_BOTTOM_RAYS 8
 
+/* cos and sin of the golden angle π(3 − √5): the rays' azimuths k × that angle advance by this rotation,
+ * without a sin and cos per ray (PoCL's reduction of their growing arguments cost a sixth of sand_share). */
+#define UWI_GOLDEN_COS R(-0.7373688780783201)
+#define UWI_GOLDEN_SIN R(0.6754902942615235)
+SEASIM_FN void uwi_golden_advance(real* c, real* s) {
+  const real c1 = *c * UWI_GOLDEN_COS - *s * UWI_GOLDEN_SIN;
+  *s = *s * UWI_GOLDEN_COS + *c * UWI_GOLDEN_SIN;
+  *c = c1;
+}
+
 /* The share of the bottom that a face at p (unit normal n) sees that is sunlit, in [0, 1]: UWI_BOTTOM_RAYS
  * rays from p, cosine-weighted about n (a fixed golden-angle pattern in the face's tangent frame, as a
  * Lambertian face weighs what it sees), and of those going down, the share whose sand a shadow ray finds
@@ -153,11 +163,12 @@ SEASIM_FN real uwi_bottom_visibility(const SEASIM_GLOBAL UwObject* objects, int 
   const real3 b = cross(n, t);
   const real3 o = p + R(1e-3) * n;
   real lit = R(0.0), down = R(0.0);
+  real cos_phi = R(1.0), sin_phi = R(0.0); /* azimuth k × the golden angle */
   for (int k = 0; k < UWI_BOTTOM_RAYS; ++k) {
     const real u = ((real)k + R(0.5)) / (real)UWI_BOTTOM_RAYS;
-    const real phi = R(2.39996322972865332) * (real)k; /* the golden angle */
     const real r = sqrt(u);
-    const real3 d = (r * cos(phi)) * t + (r * sin(phi)) * b + sqrt(R(1.0) - u) * n;
+    const real3 d = (r * cos_phi) * t + (r * sin_phi) * b + sqrt(R(1.0) - u) * n;
+    uwi_golden_advance(&cos_phi, &sin_phi);
     if (!(d.y < R(0.0))) continue;
     down += R(1.0);
     real3 nb = MAKE_REAL3(0, 1, 0);
@@ -266,11 +277,12 @@ SEASIM_FN real uwi_sand_seen_lit(const SEASIM_GLOBAL UwObject* objects, int coun
                                  real3 s_w, const SEASIM_GLOBAL float* object_albedo, int albedo_stride,
                                  real sand_albedo) {
   real lit = R(0.0);
+  real cos_phi = R(1.0), sin_phi = R(0.0); /* azimuth k × the golden angle */
   for (int k = 0; k < UWI_SAND_RAYS; ++k) {
     const real u = ((real)k + R(0.5)) / (real)UWI_SAND_RAYS;
-    const real phi = R(2.39996322972865332) * (real)k; /* the golden angle */
     const real r = sqrt(u);
-    const real3 dir = MAKE_REAL3(r * cos(phi), -sqrt(R(1.0) - u), r * sin(phi));
+    const real3 dir = MAKE_REAL3(r * cos_phi, -sqrt(R(1.0) - u), r * sin_phi);
+    uwi_golden_advance(&cos_phi, &sin_phi);
     real3 nb = MAKE_REAL3(0, 1, 0);
     int mat = UW_MAT_NONE;
     const real t = uw_scene_hit(objects, count, bottom_depth, x, dir, R(0.0), &nb, &mat);

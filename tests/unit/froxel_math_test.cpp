@@ -278,6 +278,45 @@ TEST(FroxelMath, ExponentialSlices) {
   }
 }
 
+// froxel_read_slice_bounds (the lookup's slice and its ends, computed once) against froxel_read_slice
+// and the slice's own start and end: the same slice at and next to every boundary, below z_near, at and
+// beyond z_far, for S <= 0 and NaN, in both precisions.
+template <typename Real, typename ReadSlice, typename Bounds, typename Start, typename End>
+void checkReadSliceBounds(ReadSlice read_slice, Bounds bounds, Start start, End end) {
+  for (int nz : {1, 2, 8, 32, 64, 256}) {
+    FroxelParams fp{};
+    fp.nx = 80, fp.ny = 45, fp.nz = nz;
+    fp.z_near = 0.1f, fp.z_far = 60.0f, fp.log_far_near = float(std::log(600.0));
+    const Real zn = Real(fp.z_near), zf = Real(fp.z_far), lg = Real(fp.log_far_near);
+    std::vector<Real> ts = {Real(-1), Real(0), Real(NAN), Real(1e-30), Real(1e-3), zf, Real(1e30)};
+    for (int k = 0; k < nz; ++k) {
+      const Real e = end(k, nz, zn, zf, lg);
+      ts.insert(ts.end(), {e, std::nextafter(e, Real(0)), std::nextafter(e, Real(1e30)), e * Real(0.999)});
+    }
+    for (Real t : ts) {
+      Real t0 = Real(-7), t1 = Real(-7);
+      const int k = bounds(&fp, t, &t0, &t1);
+      ASSERT_EQ(k, read_slice(&fp, t)) << nz << " " << t;
+      if (k < 0) continue;
+      EXPECT_EQ(t0, start(k, nz, zn, zf, lg)) << nz << " " << t;
+      EXPECT_EQ(t1, end(k, nz, zn, zf, lg)) << nz << " " << t;
+    }
+  }
+}
+
+TEST(FroxelMath, ReadSliceBoundsIsTheReadSliceAndItsEnds) {
+  checkReadSliceBounds<float>([](const FroxelParams* fp, float t) { return kf::froxel_read_slice(fp, t); },
+                              [](const FroxelParams* fp, float t, float* a, float* b) {
+                                return kf::froxel_read_slice_bounds(fp, t, a, b);
+                              },
+                              kf::froxel_slice_start, kf::froxel_slice_end);
+  checkReadSliceBounds<double>([](const FroxelParams* fp, double t) { return kd::froxel_read_slice(fp, t); },
+                               [](const FroxelParams* fp, double t, double* a, double* b) {
+                                 return kd::froxel_read_slice_bounds(fp, t, a, b);
+                               },
+                               kd::froxel_slice_start, kd::froxel_slice_end);
+}
+
 TEST(FroxelMath, BeamSegmentIsTheExactIntegralAndStable) {
   // scale e0 ∫_0^len e^{-c P(t)} dt with P linear from p0 to p1, against the difference of the two ends'
   // exponentials over the slope in long double, (e^{-c p0} - e^{-c p1}) len / (c (p1 - p0)), for P

@@ -325,4 +325,20 @@ TEST(UnderwaterOrdinates, InternalDiffuseReflectance) {
   EXPECT_NEAR(seasim::internalDiffuseReflectance(1.34), 0.47, 0.02);
 }
 
+// The rays' azimuths k × the golden angle π(3 − √5), advanced by rotation, against cos and sin of the
+// angle itself for every ray of uwi_bottom_visibility and uwi_sand_seen_lit.
+TEST(UnderwaterOrdinates, GoldenAngleRotationGivesEachRaysAzimuth) {
+  const double golden = M_PI * (3.0 - std::sqrt(5.0));
+  double cd = 1.0, sd = 0.0;
+  float cf = 1.0f, sf = 0.0f;
+  for (int k = 0; k < 2 * UWI_BOTTOM_RAYS; ++k) {
+    EXPECT_NEAR(cd, std::cos(golden * k), 1e-14) << k;
+    EXPECT_NEAR(sd, std::sin(golden * k), 1e-14) << k;
+    EXPECT_NEAR(cf, std::cos(golden * k), 2e-6) << k;
+    EXPECT_NEAR(sf, std::sin(golden * k), 2e-6) << k;
+    kd::uwi_golden_advance(&cd, &sd);
+    kf::uwi_golden_advance(&cf, &sf);
+  }
+}
+
 }  // namespace
