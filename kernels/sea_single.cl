@@ -4,8 +4,8 @@
  * wavelength band and accumulated straight into sensor RGB (002 eq. 4.8), never storing the spectrum
  * unless SEASIM_SPECTRAL_OUTPUT asks for it.
  *
- * Inputs: SeaParams (camera, sun, water ior/g, bottom depth, ocean and sky sizes), SeaBand[band_count]
- * (the scalar loop), the band table (the lanes: SeaBand's fields and the LUT, bands contiguous,
+ * Inputs: SeaParams (camera, sun, water ior/g, bottom depth, ocean and sky sizes), the band table
+ * (SeaBand's fields and the LUT, bands contiguous,
  * common/sea_band_table.h), the ocean's normal map (N x N float4, SEASIM_HAS_WAVES; one dummy texel
  * otherwise) and the environment image (float4 texels, SEASIM_SKY_MODEL 2; one dummy texel otherwise),
  * the bottom's caustic map (SEASIM_BOTTOM_CAUSTICS: the FFT ocean's flux-conservation caustics on the
@@ -23,13 +23,13 @@
  * 0 evaluates eq. 5 exactly; SEASIM_SEA_MODEL (sea.model): 0 paper 000's eq. 5 and 9, 1 "multiple", all
  * orders in closed form (common/sea_multiple.h: QSSA with Lee et al.'s factors, skylight in the water,
  * the bottom lit and seen through forward-scattering water; needs SEASIM_SEA_LUT 0).
- * Band loop: sea.model "single" (SEASIM_SEA_MODEL 0, every other variant) runs
- * SEASIM_BAND_LANES bands per step in floatN (common/band_lanes.h, common/sea_bands.h), reading the band
- * table (common/sea_band_table.h: SeaBand's fields and the LUT, bands contiguous); the pixel's work
- * (view, Fresnel, sun, bottom hit, LUT taps, whether the reflected ray sees the sun's disk) is done once
- * before it. sea.model "multiple" stays on the scalar loop over SeaBand (sea_multiple.h's closed form
- * has no lanes version); the sky above the horizon takes the lanes for both. The lanes add the bands
- * into RGB in another order than one band at a time (per lane, then across lanes): float rounding only.
+ * Band loop: SEASIM_BAND_LANES bands per step in floatN (common/band_lanes.h), reading the band table
+ * (common/sea_band_table.h: SeaBand's fields and the LUT, bands contiguous): sea.model "paper"
+ * (SEASIM_SEA_MODEL 0) through common/sea_bands.h, "multiple" (SEASIM_SEA_MODEL 1) through
+ * common/sea_multiple_bands.h (sea_multiple.h's closed form on the lanes), the sky above the horizon the
+ * same for both; the pixel's work (view, Fresnel, sun, bottom hit, LUT taps, whether the reflected ray
+ * sees the sun's disk) is done once before it. The lanes add the bands into RGB in another order than one
+ * band at a time (per lane, then across lanes): float rounding only.
  * LUT: row SEA_ROW_LUT + j of the table holds, for every band, eq. 5 without beta and T_o (T_o is
  * already computed per pixel for the reflection) at angle j/(lut_size - 1) * pi/2, built by the host
  * in double; the angle is theta_jo on a flat sea (the paper's table) and the refracted view's theta_ji
@@ -58,6 +58,7 @@
 #include "common/band_lanes_math.h"
 #include "common/sea_band_table.h"
 #include "common/sea_bands.h"
+#include "common/sea_multiple_bands.h"
 #include "common/sea_view.h"
 #include "common/sea_band_terms.h"
 
@@ -121,7 +122,7 @@ static inline void add_lanes(realb v, __global float* dst, int count) {
 
 /* The per-pixel terms are common/sea_view.h's, the band steps common/sea_band_terms.h's; this entry
  * point picks the sub-pixel rays and sums the bands into RGB (and the spectrum when it is asked for). */
-__kernel void sea_single(__constant SeaParams* p, __global const SeaBand* bands, __global const float* table,
+__kernel void sea_single(__constant SeaParams* p, __global const float* table,
                          __global const float* normals, __global const float* slope_mips, __global const float* sky,
                          __global const float* bottom_caustics, __global float* rgb
 #if SEASIM_SPECTRAL_OUTPUT
@@ -144,7 +145,6 @@ __kernel void sea_single(__constant SeaParams* p, __global const SeaBand* bands,
                          SEASIM_BOTTOM_CAUSTICS, SEASIM_BOTTOM_HEIGHTFIELD, SEASIM_SEA_MODEL};
   const int band_count = p->band_count;
   const int stride = SEA_BAND_STRIDE(band_count);
-  float r = 0.0f, g = 0.0f, b = 0.0f;                                     /* the scalar loop's sums */
   realb r_lanes = SPLATB(0.0f), g_lanes = SPLATB(0.0f), b_lanes = SPLATB(0.0f); /* the lanes' sums */
 #if SEASIM_SUPERSAMPLE > 1
   /* The reference of the wave filter: n x n rays on a regular grid over the pixel, averaged. */
@@ -152,11 +152,9 @@ __kernel void sea_single(__constant SeaParams* p, __global const SeaBand* bands,
 #if SEASIM_SPECTRAL_OUTPUT
   for (int i = 0; i < p->band_count; ++i) spectral[(size_t)pixel * p->band_count + i] = 0.0f;
 #endif
-#define SPECTRAL_STORE(i, L) spectral[(size_t)pixel * p->band_count + (i)] += (L) * sub_weight
 #define SPECTRAL_LANES(i, L) add_lanes((L) * sub_weight, spectral + (size_t)pixel * band_count + (i), band_count - (i))
 #else
   const float sub_weight = 1.0f;
-#define SPECTRAL_STORE(i, L) spectral[(size_t)pixel * p->band_count + (i)] = (L)
 #define SPECTRAL_LANES(i, L) store_lanes((L), spectral + (size_t)pixel * band_count + (i), band_count - (i))
 #endif
 #if SEASIM_SPECTRAL_OUTPUT
@@ -192,27 +190,19 @@ __kernel void sea_single(__constant SeaParams* p, __global const SeaBand* bands,
       const realb L = sea_band_lanes_b(f, table, stride, i, &px, p->sun_solid_angle);
       ADD_LANES(i, L);
     }
-#else /* SEASIM_SEA_MODEL 1: one band per step over SeaBand */
-    for (int i = 0; i < band_count; ++i) {
-      const float L = sea_multiple_band(f, p, &bands[i], &px);
-      const float Lw = L * sub_weight;
-      r += Lw * bands[i].w_r; g += Lw * bands[i].w_g; b += Lw * bands[i].w_b;
-#if SEASIM_SPECTRAL_OUTPUT
-      SPECTRAL_STORE(i, L);
-#endif
+#else /* SEASIM_SEA_MODEL 1: the closed form on the band lanes (common/sea_multiple_bands.h) */
+    for (int i = 0; i < band_count; i += SEASIM_BAND_LANES) {
+      const realb L = sea_multiple_lanes_b(f, p, table, stride, i, &px);
+      ADD_LANES(i, L);
     }
 #endif
   } /* sub-pixel rays */
-#undef SPECTRAL_STORE
 #undef SPECTRAL_LANES
 #undef SPECTRAL_LANES_IF_ASKED
 #undef ADD_LANES
-  r += SUMB(r_lanes);
-  g += SUMB(g_lanes);
-  b += SUMB(b_lanes);
-  rgb[3 * pixel + 0] = r;
-  rgb[3 * pixel + 1] = g;
-  rgb[3 * pixel + 2] = b;
+  rgb[3 * pixel + 0] = SUMB(r_lanes);
+  rgb[3 * pixel + 1] = SUMB(g_lanes);
+  rgb[3 * pixel + 2] = SUMB(b_lanes);
 }
 
 #if SEASIM_WAVE_FILTER

@@ -224,8 +224,6 @@ SeaSinglePass::SeaSinglePass(Device& device, const Scene& scene, const PassPlan&
     const BuiltProgram& built = device.program(plan.kernel_file, defines);
     kernel_ = cl::Kernel(built.program, "sea_single");
     params_ = cl::Buffer(device.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof p, &p);
-    bands_ = cl::Buffer(device.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(SeaBand) * bands.size(),
-                        bands.data());
     // The band lanes' table (kernels/common/sea_band_table.h): the bands' fields and the LUT, bands contiguous.
     const std::vector<float> table = seaBandTable(bands, lut_values, lut_size);
     table_ = cl::Buffer(device.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(float) * table.size(),
@@ -243,9 +241,8 @@ SeaSinglePass::SeaSinglePass(Device& device, const Scene& scene, const PassPlan&
     rgb_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE,  // sea_second adds into it
                        sizeof(float) * 3 * pixels);
     kernel_.setArg(0, params_);
-    kernel_.setArg(1, bands_);
-    kernel_.setArg(2, table_);
-    kernel_.setArg(3, normals_);
+    kernel_.setArg(1, table_);
+    kernel_.setArg(2, normals_);
     // The wave filter's slope-moment mip chain (common/sea_lean.h), rebuilt from the normal map each run.
     const bool filter = features.waves && features.wave_filter;
     if (filter) {
@@ -264,13 +261,13 @@ SeaSinglePass::SeaSinglePass(Device& device, const Scene& scene, const PassPlan&
     } else {
       mips_ = cl::Buffer(device.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(float) * 4, dummy.data());
     }
-    kernel_.setArg(4, mips_);
-    kernel_.setArg(5, sky_);
-    kernel_.setArg(6, caustics_);
-    kernel_.setArg(7, rgb_);
+    kernel_.setArg(3, mips_);
+    kernel_.setArg(4, sky_);
+    kernel_.setArg(5, caustics_);
+    kernel_.setArg(6, rgb_);
     if (scene.spectral.spectral_exr) {
       spectral_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * pixels * bands.size());
-      kernel_.setArg(8, spectral_);
+      kernel_.setArg(7, spectral_);
     }
     if (scene.bottom.type == BottomDesc::Type::HeightField) {  // 000 §5.4: the kernel's last two arguments
       const HeightFieldBuffers hf = uploadHeightField(device, loadHeightField(scene.bottom, scene.files.get()));

@@ -36,7 +36,7 @@ class SeaSinglePass {
   cl::Kernel kernel_;
   cl::Kernel moments_, cells_, downsample_;  // the wave filter's slope-moment mips (SEASIM_WAVE_FILTER)
   int ocean_n_ = 0;                  // > 0 when the filter runs: the normal map's side
-  cl::Buffer params_, bands_, table_, normals_, mips_, sky_, caustics_, rgb_, spectral_;
+  cl::Buffer params_, table_, normals_, mips_, sky_, caustics_, rgb_, spectral_;
   cl::Buffer hf_params_, hf_depth_;  // height-field bottom (000 §5.4), SEASIM_BOTTOM_HEIGHTFIELD
   int width_, height_;
 };

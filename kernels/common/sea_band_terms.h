@@ -1,11 +1,11 @@
 /* sea_band_terms.h — one step of sea_single.cl's band loop: the radiance of SEASIM_BAND_LANES bands
  * (sea.model "single", paper 000's eq. 5 and 9 plus the reflected sky and sun, on the lanes of
- * common/sea_bands.h, reading the band table of common/sea_band_table.h), of the sky above the horizon,
- * and of one band for sea.model "multiple" (common/sea_multiple.h's closed form, which has no lanes
- * version). The pixel's terms come from common/sea_view.h's SeaPixel; the operations are those of the
+ * common/sea_bands.h; sea.model "multiple", common/sea_multiple.h's closed form on the lanes of
+ * common/sea_multiple_bands.h; both reading the band table of common/sea_band_table.h), of the sky above
+ * the horizon, and of one band for sea.model "multiple" over SeaBand (the CPU evaluation's loop). The pixel's terms come from common/sea_view.h's SeaPixel; the operations are those of the
  * kernel's former single body, in the same order. tests/unit/sea_view_test.cpp holds these in float
  * and double; tests/kernels/sea_single_test.cpp the kernel to the double CPU reference.
- * Needs sea_view.h, band_lanes.h, band_lanes_math.h, sea_band_table.h, sea_bands.h. */
+ * Needs sea_view.h, band_lanes.h, band_lanes_math.h, sea_band_table.h, sea_bands.h, sea_multiple_bands.h. */
 
 /* Bands i .. i + SEASIM_BAND_LANES - 1 of the band table's row `row` (stride: SEA_BAND_STRIDE). */
 #define SEA_TABLE_LANES(table, stride, row, i) LOADB((table) + (size_t)(row) * (stride), i)
@@ -103,5 +103,36 @@ SEASIM_FN real sea_multiple_band(SeaFeatures f, SEASIM_CONSTANT const SeaParams*
     L += px->t_out * sea_multiple_surface_return(e_sun, px->t_in, e_sky, band->a, band->b, px->c_f,
                                                  band->bottom_albedo, px->z_d, px->cos_io, px->cos_ji, px->mu_sky,
                                                  px->focus, px->r_below, px->mu_ret, f.single_scattering);
+  return L;
+}
+
+/* sea_multiple_band for bands i .. i + SEASIM_BAND_LANES - 1 from the band table: the reflection as
+ * sea.model "single" has it (the sun's disk where px->reflects_sun), then the column, the bottom and the
+ * surface's return with the bands' factors computed once. */
+SEASIM_FN realb sea_multiple_lanes_b(SeaFeatures f, SEASIM_CONSTANT const SeaParams* p, const SEASIM_GLOBAL real* table,
+                                     int stride, int i, const SeaPixel* px) {
+  const realb sun = SEA_TABLE_LANES(table, stride, SEA_ROW_SUN, i);
+  realb L = SPLATB(R(0.0));
+  if (f.reflection) L += sea_reflection_lanes_b(f, table, stride, i, px, sun, p->sun_solid_angle);
+  if (!f.single_scattering && !f.bottom) return L;
+  const realb e_sky = SEASIM_PI *
+                      sea_sky_band_b(f.sky_model, SEA_TABLE_LANES(table, stride, SEA_ROW_SKY, i),
+                                     SEA_TABLE_LANES(table, stride, SEA_ROW_SKY_W_R, i),
+                                     SEA_TABLE_LANES(table, stride, SEA_ROW_SKY_W_G, i),
+                                     SEA_TABLE_LANES(table, stride, SEA_ROW_SKY_W_B, i), MAKE_REAL3(1.0, 1.0, 1.0)) *
+                      (R(1.0) - p->sky_fresnel_mean);
+  const realb e_sun = sun * px->sun_horizontal;
+  const realb a = SEA_TABLE_LANES(table, stride, SEA_ROW_A, i), b = SEA_TABLE_LANES(table, stride, SEA_ROW_B, i);
+  const realb albedo = SEA_TABLE_LANES(table, stride, SEA_ROW_BOTTOM_ALBEDO, i);
+  const SeaMultipleFactorsB factors = sea_multiple_factors_b(a, b, px->c_f);
+  if (f.single_scattering)
+    L += px->t_out * sea_multiple_column_b(&factors, e_sun, px->t_in, e_sky, a, b, px->z_d, px->cos_io, px->cos_ji,
+                                           px->phase, px->mu_sky);
+  if (f.bottom)
+    L += px->t_out * sea_multiple_bottom_b(&factors, e_sun, px->t_in, e_sky, albedo, px->z_d, px->cos_io, px->cos_ji,
+                                           px->mu_sky, px->focus);
+  L += px->t_out * sea_multiple_surface_return_b(&factors, e_sun, px->t_in, e_sky, albedo, px->z_d, px->cos_io,
+                                                 px->cos_ji, px->mu_sky, px->focus, px->r_below, px->mu_ret,
+                                                 f.single_scattering);
   return L;
 }
