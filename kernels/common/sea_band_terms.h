@@ -1,10 +1,11 @@
 /* sea_band_terms.h — one step of sea_single.cl's band loop: the radiance of SEASIM_BAND_LANES bands
- * (sea.model "single", paper 000's eq. 5 and 9 plus the reflected sky and sun, on the lanes of
+ * (sea.model "paper", paper 000's eq. 5 and 9 plus the reflected sky and sun, on the lanes of
  * common/sea_bands.h; sea.model "multiple", common/sea_multiple.h's closed form on the lanes of
  * common/sea_multiple_bands.h; both reading the band table of common/sea_band_table.h), of the sky above
- * the horizon, and of one band for sea.model "multiple" over SeaBand (the CPU evaluation's loop). The pixel's terms come from common/sea_view.h's SeaPixel; the operations are those of the
- * kernel's former single body, in the same order. tests/unit/sea_view_test.cpp holds these in float
- * and double; tests/kernels/sea_single_test.cpp the kernel to the double CPU reference.
+ * the horizon, and of one band for sea.model "multiple" over SeaBand (the CPU evaluation's loop). The
+ * pixel's terms come from common/sea_view.h's SeaPixel; the operations are those of the kernel's former
+ * single body, in the same order. tests/unit/sea_view_test.cpp holds these in float and double;
+ * tests/kernels/sea_single_test.cpp the kernel to the double CPU reference.
  * Needs sea_view.h, band_lanes.h, band_lanes_math.h, sea_band_table.h, sea_bands.h, sea_multiple_bands.h. */
 
 /* Bands i .. i + SEASIM_BAND_LANES - 1 of the band table's row `row` (stride: SEA_BAND_STRIDE). */

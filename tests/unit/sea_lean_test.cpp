@@ -12,6 +12,7 @@
 
 #include <cmath>
 #include <random>
+#include <type_traits>
 #include <vector>
 
 #include "math/kernel_math.h"
@@ -136,6 +137,37 @@ TYPED_TEST(SeaLean, LevelsAndOffsets) {
   EXPECT_EQ(L::offset(4, 1), 5 * 32);
   EXPECT_EQ(L::offset(4, 2), 5 * 36);
   EXPECT_EQ(L::offset(4, 3), 5 * 37);  // the whole chain
+}
+
+// A level's read wraps periodically: at u and u ± whole periods (negative texel coordinates included)
+// it reads the same bilinear moments, and at whole texels it reads that texel's stored values.
+TYPED_TEST(SeaLean, LevelReadWrapsPeriodicallyInBothDirections) {
+  using Real = TypeParam;
+  constexpr int nl = 8;
+  std::vector<Real> level(SEA_LEAN_STRIDE * nl * nl);
+  for (size_t i = 0; i < level.size(); ++i) level[i] = Real(std::sin(0.37 * double(i)) + 0.1 * double(i % 7));
+  auto read = [&](Real u, Real v) {
+    std::vector<Real> m(SEA_LEAN_STRIDE);
+    if constexpr (std::is_same_v<Real, float>) kf::sea_lean_read_level(level.data(), nl, u, v, m.data());
+    else kd::sea_lean_read_level(level.data(), nl, u, v, m.data());
+    return m;
+  };
+  for (double u : {0.0, 0.3, 3.75, 7.5, 7.99}) {
+    for (double v : {0.0, 1.6, 6.25, 7.7}) {
+      const std::vector<Real> base = read(Real(u), Real(v));
+      for (int pu : {-3, -1, 1, 2})
+        for (int pv : {-2, 0, 1}) {
+          const std::vector<Real> m = read(Real(u + pu * nl), Real(v + pv * nl));
+          for (int k = 0; k < SEA_LEAN_STRIDE; ++k)
+            EXPECT_NEAR(m[k], base[k], 1e-5) << u << " " << v << " " << pu << " " << pv;
+        }
+    }
+  }
+  for (int i : {0, 5, 7})
+    for (int j : {0, 3, 7}) {
+      const std::vector<Real> m = read(Real(i - nl), Real(j - 2 * nl));
+      for (int k = 0; k < SEA_LEAN_STRIDE; ++k) EXPECT_NEAR(m[k], level[SEA_LEAN_STRIDE * (j * nl + i) + k], 1e-6);
+    }
 }
 
 TYPED_TEST(SeaLean, SlopeOfNormalRoundTripsAndCapsVerticalFacets) {
