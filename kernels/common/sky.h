@@ -134,12 +134,17 @@ SEASIM_FN void sky_preetham_coefficients(real t, real c[15]) {
   for (int k = 0; k < 15; ++k) c[k] = slope[k] * t + offset[k];
 }
 
-/* Perez's F(θ, γ) from cos θ of the view (clamped at the horizon, as the CIE sky's) and γ, the angle
- * between the view and the sun; c: A…E. */
-SEASIM_FN real sky_perez(const real* c, real cos_theta, real gamma) {
+/* Perez's F(θ, γ) from cos θ of the view (clamped at the horizon, as the CIE sky's), γ, the angle
+ * between the view and the sun, and its cosine cos_gamma (which a caller that found γ by acos has:
+ * PoCL's cos of γ, with its argument reduction, was a tenth of a filtered sea's frame); c: A…E. */
+SEASIM_FN real sky_perez_cos(const real* c, real cos_theta, real gamma, real cos_gamma) {
   const real ct = fmax(cos_theta, R(1e-4));
-  const real cg = cos(gamma);
-  return (R(1.0) + c[0] * exp(c[1] / ct)) * (R(1.0) + c[2] * exp(c[3] * gamma) + c[4] * cg * cg);
+  return (R(1.0) + c[0] * exp(c[1] / ct)) * (R(1.0) + c[2] * exp(c[3] * gamma) + c[4] * cos_gamma * cos_gamma);
+}
+
+/* sky_perez_cos with the cosine of γ computed here. */
+SEASIM_FN real sky_perez(const real* c, real cos_theta, real gamma) {
+  return sky_perez_cos(c, cos_theta, gamma, cos(gamma));
 }
 
 /* Zenith chromaticity x_z, y_z (1999, Appendix A.2) for sun zenith angle theta_s (radians) and
@@ -177,12 +182,28 @@ SEASIM_FN void sky_preetham_yxy(const SEASIM_GLOBAL real* packed, real3 d, real3
     const real h = sqrt(s.x * s.x + s.z * s.z);
     s = h > R(1e-12) ? MAKE_REAL3(s.x / h, R(0.0), s.z / h) : MAKE_REAL3(R(1.0), R(0.0), R(0.0));
   }
-  const real gamma = acos(clamp(dot(d, s), R(-1.0), R(1.0)));
+  const real cos_gamma = clamp(dot(d, s), R(-1.0), R(1.0));
+  const real gamma = acos(cos_gamma);
+#if defined(__OPENCL_VERSION__) || defined(__OPENCL_C_VERSION__)
+  /* sky_perez_cos for Y, x and y as the lanes of one real3: two vector exps for six scalar ones (the
+   * sky was a third of a filtered sea's frame under Preetham's sky); the host's loop below checks it. */
+#define SKY_PREETHAM_LANES(k) MAKE_REAL3(packed[(k)], packed[6 + (k)], packed[12 + (k)])
+  const real ct = fmax(d.y, R(1e-4));
+  const real3 f = (R(1.0) + SKY_PREETHAM_LANES(0) * exp(SKY_PREETHAM_LANES(1) / ct)) *
+                  (R(1.0) + SKY_PREETHAM_LANES(2) * exp(SKY_PREETHAM_LANES(3) * gamma) +
+                   SKY_PREETHAM_LANES(4) * (cos_gamma * cos_gamma));
+  const real3 yxy = SKY_PREETHAM_LANES(5) * f;
+#undef SKY_PREETHAM_LANES
+  v[0] = yxy.x;
+  v[1] = yxy.y;
+  v[2] = yxy.z;
+#else
   for (int q = 0; q < 3; ++q) {
     real c[5];
     for (int k = 0; k < 5; ++k) c[k] = packed[6 * q + k];
-    v[q] = packed[6 * q + 5] * sky_perez(c, d.y, gamma);
+    v[q] = packed[6 * q + 5] * sky_perez_cos(c, d.y, gamma, cos_gamma);
   }
+#endif
 }
 
 /* Linear Rec. 709 RGB (relative) of the Preetham sky towards unit d; sun: unit, towards the sun,
