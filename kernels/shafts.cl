@@ -28,7 +28,8 @@
  * (s, t) ∈ [0, s_max] × [0, t_max] (table mode). Output: rgb[3 * pixels], linear RGB radiance.
  * Defines: SEASIM_SHAFTS_INTERVALS (I_s integrated over the exact lit stretches of the ray,
  * common/shafts_intervals.h, with exact g and no shadow maps; the objects' shadow volumes come in
- * `occluders`), SEASIM_SHAFTS_EXACT (g evaluated exactly, else from the 1-D and 2-D tables of eq. 6),
+ * `occluders`), SEASIM_SHAFTS_MARCH (I_s by ShaftsParams.march_steps midpoint steps in the lamp's angle
+ * with an exact shadow ray at each, common/shafts_render.h shafts_lamp_march), SEASIM_SHAFTS_EXACT (g evaluated exactly, else from the 1-D and 2-D tables of eq. 6),
  * SEASIM_SHAFTS_HG (Henyey–Greenstein phase), SEASIM_HAS_OBJECTS, SEASIM_HAS_LIGHT_MAP.
  * Stiff cases: see common/shafts.h (s -> 0, ρκ = 0 and large, grazing planes); rays that hit
  * nothing have T = ∞ and no I_o term (so ρκ = 0 never forms 0·∞).
@@ -61,6 +62,9 @@ __kernel void shafts_shadow_map(__constant ShaftsParams* p, __global const Shaft
 #ifndef SEASIM_SHAFTS_INTERVALS
 #define SEASIM_SHAFTS_INTERVALS 0
 #endif
+#ifndef SEASIM_SHAFTS_MARCH
+#define SEASIM_SHAFTS_MARCH 0
+#endif
 #ifndef SEASIM_SHAFTS_EXACT
 #define SEASIM_SHAFTS_EXACT 0
 #endif
@@ -75,7 +79,7 @@ __kernel void shafts_shadow_map(__constant ShaftsParams* p, __global const Shaft
 #endif
 
 /* Per pixel: the eye ray, I_o at the first surface (common/shafts_render.h, shafts_surface_radiance),
- * then I_s lamp by lamp (shafts_lamp_intervals or shafts_lamp_planes) up to that surface. */
+ * then I_s lamp by lamp (shafts_lamp_intervals, shafts_lamp_march or shafts_lamp_planes) up to that surface. */
 __kernel void shafts_render(__constant ShaftsParams* p, __global const ShaftsLight* lights,
                             __global const ShaftsObject* objects, __global const float* shadow,
                             __global const float* light_maps, __global const float* F_table,
@@ -105,6 +109,9 @@ __kernel void shafts_render(__constant ShaftsParams* p, __global const ShaftsLig
 #if SEASIM_SHAFTS_INTERVALS
     result += shafts_lamp_intervals(SEASIM_HAS_OBJECTS, SEASIM_HAS_LIGHT_MAP, SEASIM_SHAFTS_HG, p, &lights[l], l,
                                     occluders, light_maps, eye, d, t_end);
+#elif SEASIM_SHAFTS_MARCH
+    result += shafts_lamp_march(SEASIM_HAS_OBJECTS, SEASIM_HAS_LIGHT_MAP, SEASIM_SHAFTS_HG, p, &lights[l], objects,
+                                light_maps, eye, d, t_end, p->march_steps);
 #else
     result += shafts_lamp_planes(SEASIM_HAS_OBJECTS, SEASIM_HAS_LIGHT_MAP, SEASIM_SHAFTS_EXACT, SEASIM_SHAFTS_HG, p,
                                  &lights[l], shadow, light_maps, F_table, h_tab, eye, d, t_end);

@@ -7,6 +7,7 @@ namespace seasim {
 
 struct ShaftsFeatures final : PassFeatures {
   bool intervals = false;          // exact lit stretches and shadow volumes (plan/shafts_method.h)
+  bool march = false;              // midpoint steps in the lamp's angle with exact shadow rays
   bool exact = false;              // quality.shafts_exact: the exact integral per plane
   bool henyey_greenstein = false;  // air.phase = HG
   bool objects = false;            // analytic objects cast per pixel
@@ -14,6 +15,7 @@ struct ShaftsFeatures final : PassFeatures {
 
   void list(FeatureList& out) const override {
     out.flag("intervals", "SEASIM_SHAFTS_INTERVALS", intervals);
+    out.flag("march", "SEASIM_SHAFTS_MARCH", march);
     out.flag("exact", "SEASIM_SHAFTS_EXACT", exact);
     out.flag("henyey_greenstein", "SEASIM_SHAFTS_HG", henyey_greenstein);
     out.flag("objects", "SEASIM_HAS_OBJECTS", objects);

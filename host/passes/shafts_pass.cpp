@@ -21,7 +21,7 @@ extern "C" {
 namespace seasim {
 
 // The kernel reads these structs with OpenCL C layout; float/int are 4 bytes on both sides.
-static_assert(sizeof(ShaftsParams) == 4 * 16 + 12 * 4 + 8 * 4, "ShaftsParams layout changed: update shafts.cl users");
+static_assert(sizeof(ShaftsParams) == 4 * 16 + 11 * 4 + 9 * 4, "ShaftsParams layout changed: update shafts.cl users");
 static_assert(offsetof(ShaftsParams, tan_half_fov_y) == 64);
 static_assert(offsetof(ShaftsParams, width) == 112);
 static_assert(offsetof(ShaftsParams, table_size) == 140);
@@ -58,6 +58,7 @@ ShaftsParams shaftsParams(const Scene& scene, const ShaftsPass::Config& config, 
   p.table_s_max = static_cast<float>(range.s_max);
   p.table_t_max = static_cast<float>(range.t_max);
   p.panel_rad = static_cast<float>(config.panel_deg * M_PI / 180);
+  p.march_steps = config.march_steps;
   p.map_panel_texels = static_cast<float>(config.panel_texels);
   p.width = cam.width;
   p.height = cam.height;
@@ -177,6 +178,7 @@ ShaftsPass::Config ShaftsPass::configFromScene(const Scene& scene) {
   };
   c.panel_deg = real_knob("shafts_panel_deg", kShaftsPanelDegDefault);
   c.panel_texels = real_knob("shafts_panel_texels", kShaftsPanelTexelsDefault);
+  c.march_steps = knob(scene, "shafts_march_steps", kShaftsMarchStepsDefault);
   return c;
 }
 
@@ -204,6 +206,8 @@ ShaftsPass::ShaftsPass(Device& device, const Scene& scene, const PassPlan& plan,
   if (intervals_ && !(config.panel_deg > 0 && config.panel_texels > 0)) {
     throw RuntimeError("shafts: panel width and panel texels must be positive");
   }
+  march_ = features.march;
+  if (march_ && config.march_steps < 1) throw RuntimeError("shafts: the march needs at least 1 step");
 
   const ShaftsParams p = shaftsParams(scene, config, range_, light_count_);
   std::vector<float> maps;  // the light maps, one float RGB buffer
@@ -214,15 +218,16 @@ ShaftsPass::ShaftsPass(Device& device, const Scene& scene, const PassPlan& plan,
   const std::vector<ShaftsObject> objects = shaftsObjects(scene);
   const std::vector<ShaftsOccluder> occluders =
       intervals_ && !scene.objects.empty() ? shaftsOccluders(scene) : std::vector<ShaftsOccluder>(1, ShaftsOccluder{});
-  // 001 eq. 6 tables: the intervals method evaluates g exactly.
-  const bool tables = !exact && !intervals_;
+  // 001 eq. 6 tables: the intervals and march methods evaluate g exactly.
+  const bool tables = !exact && !intervals_ && !march_;
   const int n = config.table_size;
   std::vector<float> f_table(tables ? n : 1), h_table(tables ? size_t(n) * n : 1);
   if (tables) shaftsTables(n, range_, scene.air.density, scene.air.density * scene.air.extinction, use_hg, scene.air.g,
                            f_table, h_table);
 
   const size_t pixels = static_cast<size_t>(width_) * static_cast<size_t>(height_);
-  const size_t shadow_texels = has_objects_ && !intervals_ ? size_t(light_count_) * shadow_size_ * shadow_size_ : 1;
+  const size_t shadow_texels =
+      has_objects_ && !intervals_ && !march_ ? size_t(light_count_) * shadow_size_ * shadow_size_ : 1;
   auto upload = [&](const void* data, size_t bytes) {
     return cl::Buffer(device.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, bytes, const_cast<void*>(data));
   };
@@ -262,7 +267,7 @@ ShaftsPass::ShaftsPass(Device& device, const Scene& scene, const PassPlan& plan,
 double ShaftsPass::run() {
   const size_t local = 8;
   shadow_ms_ = 0;
-  if (has_objects_ && light_count_ > 0 && !intervals_) {
+  if (has_objects_ && light_count_ > 0 && !intervals_ && !march_) {
     const size_t side = roundUp(static_cast<size_t>(shadow_size_), local);
     shadow_ms_ = runKernel(device_, "shadow_maps", shadow_kernel_, cl::NDRange(side, side, light_count_),
                            cl::NDRange(local, local, 1));

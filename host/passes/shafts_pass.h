@@ -28,6 +28,7 @@ class ShaftsPass {
     int table_size = 256;       // F table entries; h table is table_size² (table mode)
     double panel_deg = 4.0;     // intervals: widest quadrature panel, degrees of the lamp's angle
     double panel_texels = 2.0;  // intervals: widest panel over a light map, its texels
+    int march_steps = 20;       // march: midpoint steps per ray and lamp
   };
   // The quality knobs of the scene ([quality] shafts_planes, shafts_subplanes, shadow_map_size,
   // shafts_table_size); "auto" takes the paper's setting n = 30, m = 6 here. The per-scene search
@@ -55,6 +56,7 @@ class ShaftsPass {
   int width_, height_, light_count_, shadow_size_;
   bool has_objects_;
   bool intervals_ = false;  // SEASIM_SHAFTS_INTERVALS: no shadow maps
+  bool march_ = false;      // SEASIM_SHAFTS_MARCH: exact shadow rays, no shadow maps
   double shadow_ms_ = 0, shafts_ms_ = 0;
   ShaftsRange range_;
 };

@@ -2,7 +2,10 @@
 // the planner and the shafts pass:
 //   "intervals"  per pixel and lamp, the exact lit stretches of the view ray (analytic shadow volumes,
 //                no shadow maps) integrated in the lamp's angle (kernels/common/shafts_intervals.h);
-//   "planes"     paper 001's sampling planes with shadow-map sub-samples, which suit GPU texture units.
+//   "planes"     paper 001's sampling planes with shadow-map sub-samples, which suit GPU texture units;
+//   "march"      per pixel and lamp, quality.shafts_march_steps midpoint steps in the lamp's angle with an
+//                exact shadow ray at each (the CPU reference's method, host/reference/shafts_reference.h,
+//                in the kernel's float; kernels/common/shafts_render.h shafts_lamp_march).
 // quality.shafts_method absent: intervals while the scene's objects fit the kernel's per-pixel list of
 // lit stretches, else planes.
 #pragma once
@@ -16,12 +19,19 @@ constexpr int kShaftsIntervalsMaxObjects = 15;
 // light-map texels (chosen from the error-time sweep in results/BENCHMARKS.md).
 constexpr double kShaftsPanelDegDefault = 4.0;
 constexpr double kShaftsPanelTexelsDefault = 2.0;
+// March method: steps per ray and lamp (results/BENCHMARKS.md "Spotlight shafts in air").
+constexpr int kShaftsMarchStepsDefault = 20;
 
-inline bool shaftsUseIntervals(const Scene& scene) {
+// The integrator, as quality.shafts_method stores it (Knob.value).
+enum class ShaftsMethod { Planes = 0, Intervals = 1, March = 2 };
+
+inline ShaftsMethod shaftsMethod(const Scene& scene) {
   const auto it = scene.quality.find("shafts_method");
   if (it == scene.quality.end() || it->second.automatic)
-    return static_cast<int>(scene.objects.size()) <= kShaftsIntervalsMaxObjects;
-  return it->second.value != 0;
+    return static_cast<int>(scene.objects.size()) <= kShaftsIntervalsMaxObjects ? ShaftsMethod::Intervals
+                                                                                  : ShaftsMethod::Planes;
+  return static_cast<ShaftsMethod>(static_cast<int>(it->second.value));
 }
+
 
 }  // namespace seasim

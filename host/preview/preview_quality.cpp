@@ -19,7 +19,7 @@ const std::vector<std::pair<std::string, int>>& scaledKnobs() {
       {"shafts_planes", 6},   {"shafts_subplanes", 1}, {"shafts_table_size", 64}, {"shadow_map_size", 128},
       {"froxel_x", 20},       {"froxel_y", 12},       {"froxel_z", 8},        {"froxel_columns", 20},
       {"caustic_map_size", 64},
-      {"caustic_layers", 2}};
+      {"caustic_layers", 2},  {"shafts_march_steps", 5}};
   return knobs;
 }
 

@@ -802,17 +802,21 @@ class SceneParser {
       }
     }
     scene_.quality["fast_math"] = fast;
-    // The shafts method: "intervals" (exact lit stretches, kernels/common/shafts_intervals.h)
-    // or "planes" (paper 001's sampling planes, which suit GPU texture units). Absent: the planner's
-    // choice (plan.cpp: intervals while the objects fit its per-pixel stretch list). Stored as a knob,
-    // 1 = intervals, automatic when absent.
+    // The shafts method: "intervals" (exact lit stretches, kernels/common/shafts_intervals.h),
+    // "planes" (paper 001's sampling planes, which suit GPU texture units) or "march" (steps in the
+    // lamp's angle with exact shadow rays). Absent: the planner's choice (plan/shafts_method.h:
+    // intervals while the objects fit its per-pixel stretch list). Stored as a knob holding
+    // ShaftsMethod, automatic when absent.
     if (r.has("shafts_method")) {
-      const std::string method = r.choice("shafts_method", "intervals", {"planes", "intervals"});
-      r.check(method == "planes" || static_cast<int>(scene_.objects.size()) <= kShaftsIntervalsMaxObjects,
+      const std::string method = r.choice("shafts_method", "intervals", {"planes", "intervals", "march"});
+      r.check(method != "intervals" || static_cast<int>(scene_.objects.size()) <= kShaftsIntervalsMaxObjects,
               "shafts_method",
               "\"intervals\" handles at most " + std::to_string(kShaftsIntervalsMaxObjects) + " objects, the scene has " +
-                  std::to_string(scene_.objects.size()) + "; use \"planes\"");
-      scene_.quality["shafts_method"] = Knob{false, method == "intervals" ? 1.0 : 0.0};
+                  std::to_string(scene_.objects.size()) + "; use \"planes\" or \"march\"");
+      const ShaftsMethod chosen = method == "intervals" ? ShaftsMethod::Intervals
+                                  : method == "march"   ? ShaftsMethod::March
+                                                        : ShaftsMethod::Planes;
+      scene_.quality["shafts_method"] = Knob{false, static_cast<double>(static_cast<int>(chosen))};
     } else {
       scene_.quality["shafts_method"] = Knob{true, 1.0};
     }

@@ -24,7 +24,8 @@ typedef struct {
   float s_min;           /* m, smallest light distance used in 1/s² (the lamp's radius) */
   float table_s_max;     /* m, range of the h(s,t) table over s (table mode): every plane's s */
   float table_t_max;     /* m, range over t: every plane's t (the far field does not use the table) */
-  float pad0, pad1;
+  int march_steps;       /* march method: midpoint steps per ray and lamp, uniform in the lamp's angle */
+  float pad1;
   int width;
   int height;
   int light_count;

@@ -180,6 +180,48 @@ SEASIM_FN real3 shafts_lamp_intervals(int has_objects, int has_light_map, int us
                                                           p->map_panel_texels);
 }
 
+/* One lamp's I_s by ray marching, the method of the CPU reference (host/reference/shafts_reference.h,
+ * renderShaftsReference) in the kernel's precision: `steps` midpoint steps uniform in the lamp's angle
+ * φ = atan((t - a)/r) over the cone's part of [0, t_end] (a: the ray parameter of the closest approach to
+ * the lamp, r = max(its distance, s_min); t = ∞ is φ = π/2, so an unbounded ray is a finite interval and
+ * the integrand g dt/dφ = g r sec²φ stays bounded), at each the lamp's emission, an exact shadow ray to the
+ * lamp (has_objects) and g = F h (001 eq. 2–4). It converges to the exact I_s as steps grows and shares
+ * neither planes, tables nor shadow maps with the other methods. */
+SEASIM_FN real3 shafts_lamp_march(int has_objects, int has_light_map, int use_hg, SEASIM_CONSTANT const ShaftsParams* p,
+                                  SEASIM_GLOBAL const ShaftsLight* L, SEASIM_GLOBAL const ShaftsObject* objects,
+                                  SEASIM_GLOBAL const float* light_maps, real3 eye, real3 d, real t_end, int steps) {
+  const real3 none = MAKE_REAL3(R(0.0), R(0.0), R(0.0));
+  const real3 pos = SHAFTS_V3(L->position);
+  real ta = R(0.0), tb = R(0.0);
+  if (!shafts_cone_interval(eye, d, pos, SHAFTS_V3(L->direction), L->cos_cone, &ta, &tb)) return none;
+  const int unbounded = tb >= SHAFTS_T_INF && t_end >= SHAFTS_T_INF;
+  tb = fmin(tb, t_end);
+  if (!(tb > ta) || steps < 1) return none;
+  real a = R(0.0), h = R(0.0);
+  shafts_closest_approach(eye, d, pos, &a, &h);
+  const real r = fmax(h, (real)p->s_min);
+  const real phi_a = atan((ta - a) / r);
+  const real phi_b = unbounded ? R(0.5) * SEASIM_PI : atan((tb - a) / r);
+  const real dphi = (phi_b - phi_a) / (real)steps;
+  real3 sum = none;
+  for (int i = 0; i < steps; ++i) {
+    const real tan_phi = tan(phi_a + ((real)i + R(0.5)) * dphi);
+    const real t = a + r * tan_phi;
+    const real3 P = eye + t * d;
+    const real3 w = P - pos;
+    const real s = length(w);
+    const real3 e = shafts_lamp_emission(has_light_map, L, light_maps, shafts_to_light(L, P), s);
+    if (!(e.x + e.y + e.z > R(0.0))) continue;
+    if (has_objects && s > R(0.0) && shafts_scene_hit(objects, p->object_count, P, -(w / s), R(0.0), s, 0, 0) > R(0.0))
+      continue; /* H = 0 */
+    const real cos_alpha = s > R(0.0) ? dot(w, -d) / s : R(1.0);
+    const real g = shafts_phase_fn(cos_alpha, use_hg, (real)p->hg_g) * shafts_h(s, t, (real)p->rho, (real)p->sigma_t,
+                                                                               (real)p->s_min); /* 001 eq. 3 */
+    sum = sum + e * (g * r * (R(1.0) + tan_phi * tan_phi) * dphi);
+  }
+  return sum;
+}
+
 /* The sum of H I_l over m points eye + t d (001 eq. 9's J, not yet divided by m). t of point j:
  * t0 + (j + 0.5) dt in a plane interval, or in the far field a + r tan(phi_p + (j + 0.5) (phi_b - phi_p) / m). */
 SEASIM_FN real3 shafts_lit_sum(int has_objects, int has_light_map, SEASIM_CONSTANT const ShaftsParams* p,

@@ -7,8 +7,10 @@
 //    reference with exact shadow rays: RMS in 8-bit levels under the paper's 2.6 % of 256 levels,
 //    and sub-sample planes reducing the error (m = 6 vs m = 1);
 //  * stiff cases: camera inside a cone, a sample at the lamp (s -> 0), ρκ = 0 and ρκ large, a light
-//    behind the camera, grazing planes (fov 170°): no NaN/Inf, and close to the reference, with both
-//    methods (quality.shafts_method "planes" and "intervals").
+//    behind the camera, grazing planes (fov 170°): no NaN/Inf, and close to the reference, with every
+//    method (quality.shafts_method "planes", "intervals" and "march");
+//  * the march (quality.shafts_method "march") against the reference at the same steps: the same
+//    quadrature in float and double, so equal to rounding, and converging with the steps.
 // The planes tests set quality.shafts_method = "planes" (the default is intervals).
 // Reduced resolutions keep the suite to a few seconds.
 #include <gtest/gtest.h>
@@ -56,13 +58,17 @@ struct SunCase {
   double lamp[3];
   double sigma_t;
   bool exact;
+  bool march = false;  // quality.shafts_method = "march" at 4000 steps instead of 4000 planes
 };
 // The case as gtest prints it (its name, not the struct's bytes).
-void PrintTo(const SunCase& c, std::ostream* os) { *os << "lamp (" << c.lamp[0] << ", " << c.lamp[1] << ", " << c.lamp[2] << "), sigma_t " << c.sigma_t << (c.exact ? ", exact" : ", planes"); }
+void PrintTo(const SunCase& c, std::ostream* os) {
+  *os << "lamp (" << c.lamp[0] << ", " << c.lamp[1] << ", " << c.lamp[2] << "), sigma_t " << c.sigma_t
+      << (c.march ? ", march" : c.exact ? ", exact" : ", planes");
+}
 
 class ShaftsVsSun : public ::testing::TestWithParam<SunCase> {};
 
-TEST_P(ShaftsVsSun, FinePlanesAndTheFarFieldMatchTheClosedFormToInfinity) {
+TEST_P(ShaftsVsSun, FinePlanesTheFarFieldAndTheMarchMatchTheClosedFormToInfinity) {
   const SunCase c = GetParam();
   const double rho = 0.1;  // scattering coefficient, 1/m
   char text[1024];
@@ -88,10 +94,11 @@ direction = [0, 0, -1]
 intensity = 40
 [quality]
 shafts_exact = %s
-shafts_method = "planes"
+shafts_method = "%s"
+shafts_march_steps = 4000
 )",
                 rho, c.sigma_t / rho, c.lamp[0], c.lamp[1], c.lamp[2], c.lamp[0], c.lamp[1], c.lamp[2],
-                c.exact ? "true" : "false");
+                c.exact ? "true" : "false", c.march ? "march" : "planes");
   seasim::Scene scene = seasim::parseScene(text, "sun.toml");
   for (auto& l : scene.spotlights) {
     l.cone = M_PI / 2;
@@ -100,6 +107,7 @@ shafts_method = "planes"
   seasim::ShaftsPass::Config config;
   config.planes = 4000;
   config.subplanes = 1;
+  config.march_steps = 4000;
   const seasim::Image img = renderWith(scene, config);
 
   const double tan_half = std::tan(M_PI / 6), aspect = 1.5;
@@ -118,7 +126,7 @@ shafts_method = "planes"
       worst = std::max(worst, std::fabs(got - expected) / expected);
     }
   std::printf("[ measured ] lamp (%g, %g, %g), rho kappa = %g, %s: max relative error %.3g\n", c.lamp[0], c.lamp[1],
-              c.lamp[2], c.sigma_t, c.exact ? "exact g" : "tables", worst);
+              c.lamp[2], c.sigma_t, c.march ? "march" : c.exact ? "exact g" : "tables", worst);
   EXPECT_LT(worst, 1e-3);  // measured 6e-6 ... 5e-4 (tables, and the 90° half-space edge through the lamp)
 }
 
@@ -128,7 +136,8 @@ INSTANTIATE_TEST_SUITE_P(
                       SunCase{{0.5, 0.3, -5}, 0.5, true}, SunCase{{0.5, 0.3, -5}, 0.1, false},
                       SunCase{{6, -1, -3}, 0.1, true}, SunCase{{6, -1, -3}, 0.0, false},
                       SunCase{{0.5, 1, 4}, 0.1, true}, SunCase{{0.5, 1, 4}, 0.5, false},
-                      SunCase{{-0.2, -0.7, -12}, 0.02, true}));
+                      SunCase{{-0.2, -0.7, -12}, 0.02, true}, SunCase{{0.5, 0.3, -5}, 0.1, true, true},
+                      SunCase{{6, -1, -3}, 0.0, true, true}, SunCase{{0.5, 1, 4}, 0.5, true, true}));
 
 // ---- spot_sphere against the ray-marched reference.
 double rmsVsReference(const seasim::Scene& scene, const seasim::Image& ref, int n, int m) {
@@ -181,6 +190,60 @@ TEST(ShaftsVsReference, RenderFrameRunsThePlannedPasses) {
   EXPECT_GT(sum, 0);
 }
 
+// ---- the march: the reference's quadrature in the kernel.
+seasim::Scene marchScene(const std::string& file, int width, int height, int steps) {
+  return seasim::loadScene(file, {set("camera.width", std::to_string(width)), set("camera.height", std::to_string(height)),
+                                  set("quality.shafts_method", "\"march\""),
+                                  set("quality.shafts_march_steps", std::to_string(steps))});
+}
+
+// spot_sphere (a sphere's shadow) and stage (five lamps, a gobo light map, boxes): the kernel's march at
+// N steps is the CPU reference at N steps (the same midpoint rule in the lamp's angle, the same exact
+// shadow rays), float against double; and more steps come nearer the 2000-step reference.
+TEST(ShaftsMarch, IsTheReferencesQuadratureAndConverges) {
+  const std::string stage = std::string(SEASIM_SOURCE_DIR) + "/scenes/stage.toml";
+  for (const std::string& file : {kSpotSphere, stage}) {
+    const seasim::Image fine = seasim::renderShaftsReference(marchScene(file, 96, 64, 1), 2000);
+    double previous = 1e30;
+    for (int steps : {5, 20, 80}) {
+      const seasim::Scene scene = marchScene(file, 96, 64, steps);
+      const seasim::Plan plan = seasim::makePlan(scene);
+      const seasim::FrameResult frame = seasim::renderFrame(device(), scene, plan);
+      EXPECT_EQ(frame.nonfinite, 0);
+      const seasim::Image same = seasim::renderShaftsReference(scene, steps);
+      const seasim::CompareResult c = seasim::compareImages(frame.rgb, same, scene.camera.exposure_ev);
+      const seasim::CompareResult f = seasim::compareImages(frame.rgb, fine, scene.camera.exposure_ev);
+      std::printf("[ measured ] %s march %d steps: against the reference at %d steps RMS %.4f levels, rel L2 %.2g; "
+                  "against 2000 steps RMS %.3f levels\n",
+                  file.substr(file.rfind('/') + 1).c_str(), steps, steps, c.rmse_8bit, c.rel_l2, f.rmse_8bit);
+      EXPECT_LT(c.rel_l2, 1e-3) << steps;
+      EXPECT_LT(c.rmse_8bit, 0.05) << steps;
+      EXPECT_LT(f.rmse_8bit, previous) << steps;
+      previous = f.rmse_8bit;
+    }
+  }
+}
+
+// The march plans no shadow maps (its shadow rays are exact), says so, and compiles its own variant.
+TEST(ShaftsMarch, PlansNoShadowMapsAndNamesItsSteps) {
+  const seasim::Scene scene = marchScene(kSpotSphere, 64, 40, 12);
+  const seasim::Plan plan = seasim::makePlan(scene);
+  EXPECT_EQ(plan.find("shadow_maps"), nullptr);
+  const seasim::PassPlan* shafts = plan.find("shafts");
+  ASSERT_NE(shafts, nullptr);
+  EXPECT_NE(shafts->why.find("method march"), std::string::npos) << shafts->why;
+  bool march_define = false, intervals_define = false;
+  for (const std::string& d : shafts->defines) {
+    march_define = march_define || d == "SEASIM_SHAFTS_MARCH=1";
+    intervals_define = intervals_define || d == "SEASIM_SHAFTS_INTERVALS=1";
+  }
+  EXPECT_TRUE(march_define);
+  EXPECT_FALSE(intervals_define);
+  const seasim::FrameResult frame = seasim::renderFrame(device(), scene, plan);
+  ASSERT_EQ(frame.timings.size(), 2u);  // shafts and the NaN/Inf check
+  EXPECT_EQ(frame.timings[0].name, "shafts");
+}
+
 // ---- stiff cases: no NaN/Inf, and the fast method still near the reference.
 struct Stiff {
   const char* name;
@@ -200,8 +263,8 @@ TEST_P(ShaftsStiff, FiniteAndNearTheReference) {
   const seasim::Image ref = seasim::renderShaftsReference(seasim::loadScene(kSpotSphere, o), 2000);
   double ref_sum = 0;
   for (float v : ref.pixels) ref_sum += v;
-  // Both methods: the sampling planes and the intervals.
-  for (const char* method : {"planes", "intervals"}) {
+  // Every method: the sampling planes, the intervals and the march (at its default steps).
+  for (const char* method : {"planes", "intervals", "march"}) {
     std::vector<Override> om = o;
     om.push_back(set("quality.shafts_method", std::string("\"") + method + "\""));
     const seasim::Scene scene = seasim::loadScene(kSpotSphere, om);

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # shafts_error_time.sh — error–time curves of the spotlight shafts: the intervals method
-# (quality.shafts_panel_deg), paper 001's sampling planes (n, m) and the CPU ray marcher (`seasim
-# reference --steps N`), each against a converged ray march, in one run.
+# (quality.shafts_panel_deg), paper 001's sampling planes (n, m), the device's march
+# (quality.shafts_march_steps) and the CPU ray marcher (`seasim reference --steps N`), each against a
+# converged ray march, in one run.
 #
 # Usage: tests/perf/shafts_error_time.sh BUILD_DIR SCENE.toml LIGHTS REFERENCE.exr OUT.csv
 #   LIGHTS: the scene's spotlight count (bench --lights).
@@ -11,7 +12,8 @@
 # taken out by difference: a fast-method frame is (CPU of `bench --repeat 6` - CPU of `bench
 # --repeat 1`) / 5; a ray march is CPU of `reference --steps N` - CPU of `reference --steps 1`.
 # Error: `seasim compare` RMS in 8-bit levels of one rendered frame against REFERENCE.exr.
-# RM_STEPS (environment): the ray-march step counts, default "10 20 50 100 200 400 800 1600".
+# RM_STEPS (environment): the CPU ray-march step counts, default "10 20 50 100 200 400 800 1600";
+# MARCH_STEPS: the device march's, default "5 10 20 40 80 160".
 # Plot: tests/perf/shafts_error_time_plot.py OUT.csv OUT.svg
 set -euo pipefail
 build=$1 scene=$2 lights=$3 ref=$4 csv=$5
@@ -47,6 +49,9 @@ done
 for nm in "10 2" "30 6" "60 12"; do
   set -- $nm
   fast planes "n=$1 m=$2" --set quality.shafts_method=planes --set quality.shafts_planes=$1 --set quality.shafts_subplanes=$2
+done
+for steps in ${MARCH_STEPS:-5 10 20 40 80 160}; do
+  fast march "steps=$steps" --set quality.shafts_method=march --set quality.shafts_march_steps=$steps
 done
 base=$(cpu "$seasim" reference "$scene" --steps 1 -o "$work/r1.exr")
 for steps in ${RM_STEPS:-10 20 50 100 200 400 800 1600}; do

@@ -165,6 +165,11 @@ TEST_F(Farm, EstimatedShaftsCostFollowsLampsAndMethod) {
   EXPECT_GT(cost("stage.toml", "intervals"), 2.0 * cost("spot_sphere.toml", "intervals"));
   EXPECT_GT(cost("stage.toml", "planes"), 1.8 * cost("stage.toml", "intervals"));
   EXPECT_GT(cost("spot_sphere.toml", "planes"), 1.5 * cost("spot_sphere.toml", "intervals"));
+  // The march at its default 20 steps costs about the intervals; twice the steps, twice the cost.
+  EXPECT_GT(cost("stage.toml", "march"), 0.5 * cost("stage.toml", "intervals"));
+  const Scene fine = loadScene(kRepo + "/scenes/stage.toml", {Override{"quality.shafts_method", "\"march\"", {}},
+                                                             Override{"quality.shafts_march_steps", "40", {}}});
+  EXPECT_GT(double(estimateItemCost(fine, makePlan(fine))), 1.5 * cost("stage.toml", "march"));
 }
 
 TEST_F(Farm, MeasuredCostsLeaveOutKernelBuilds) {

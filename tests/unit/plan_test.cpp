@@ -278,6 +278,12 @@ direction = [0, -1, 0]
   EXPECT_TRUE(plan.hasPass("raycast"));
   const auto& planes_defines = plan.find("shafts")->defines;
   EXPECT_NE(std::find(planes_defines.begin(), planes_defines.end(), "SEASIM_SHAFTS_INTERVALS=0"), planes_defines.end());
+  // The march casts exact shadow rays: no shadow maps, its own define.
+  plan = makePlan(parseScene(with_object + "[quality]\nshafts_method = \"march\"\n", "stage.toml"));
+  EXPECT_FALSE(plan.hasPass("shadow_maps"));
+  const auto& march_defines = plan.find("shafts")->defines;
+  EXPECT_NE(std::find(march_defines.begin(), march_defines.end(), "SEASIM_SHAFTS_MARCH=1"), march_defines.end());
+  EXPECT_NE(std::find(march_defines.begin(), march_defines.end(), "SEASIM_SHAFTS_INTERVALS=0"), march_defines.end());
   // More objects than the intervals kernel's stretch list holds: the planner falls back to planes.
   std::string many = stage;
   for (int i = 0; i < 16; ++i)

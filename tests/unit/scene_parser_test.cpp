@@ -296,7 +296,7 @@ TEST(SceneParser, Defaults) {
       {"reference_spp", 64},     {"reference_steps", 200}, {"shafts_exact", 0},
       {"shafts_error_budget", 1}, {"sea_supersample", 1},  {"wave_filter", 1},
       {"fourflow_table_size", 32}, {"lamps_delta_m", 1}, {"shafts_panel_deg", 4}, {"shafts_panel_texels", 2},
-      {"profile_streams", 16}, {"lamps_model", 1}};
+      {"profile_streams", 16}, {"lamps_model", 1}, {"shafts_march_steps", 20}};
   EXPECT_EQ(s.quality.size(), std::size(knobs) + 4);
   EXPECT_TRUE(s.quality.at("fast_math").automatic);  // "auto": the planner decides (fastMathFor)
   EXPECT_TRUE(s.quality.at("froxel_x").automatic);   // "auto": from froxel_columns (froxel_setup.h)
@@ -668,7 +668,10 @@ const BadScene kBadScenes[] = {
      "bad.toml:4: key 'sea.model': 'multi' is not one of 'paper', 'multiple'"},
     {"sea model not a string", "[water]\njerlov = \"I\"\n[sea]\nmodel = 2\n", "bad.toml:4: key 'sea.model'"},
     {"shafts method unknown", "[quality]\nshafts_method = \"rays\"\n",
-     "bad.toml:2: key 'quality.shafts_method': 'rays' is not one of 'planes', 'intervals'"},
+     "bad.toml:2: key 'quality.shafts_method': 'rays' is not one of 'planes', 'intervals', 'march'"},
+    {"shafts march without steps", "[quality]\nshafts_march_steps = 0\n", "bad.toml:2: key 'quality.shafts_march_steps'"},
+    {"shafts march steps fractional", "[quality]\nshafts_march_steps = 2.5\n",
+     "bad.toml:2: key 'quality.shafts_march_steps'"},
     {"shafts method not a string", "[quality]\nshafts_method = 1\n", "bad.toml:2: key 'quality.shafts_method'"},
     {"shafts panel 0", "[quality]\nshafts_panel_deg = 0\n",
      "bad.toml:2: key 'quality.shafts_panel_deg': must be in [0.05, 90] degrees, got 0"},
@@ -681,7 +684,8 @@ const BadScene kBadScenes[] = {
      "[[objects]]\ntype = \"sphere\"\n[[objects]]\ntype = \"sphere\"\n[[objects]]\ntype = \"sphere\"\n"
      "[[objects]]\ntype = \"sphere\"\n[[objects]]\ntype = \"sphere\"\n[[objects]]\ntype = \"sphere\"\n"
      "[[objects]]\ntype = \"sphere\"\n[quality]\nshafts_method = \"intervals\"\n",
-     "bad.toml:34: key 'quality.shafts_method': \"intervals\" handles at most 15 objects, the scene has 16"},
+     "bad.toml:34: key 'quality.shafts_method': \"intervals\" handles at most 15 objects, the scene has 16; use "
+     "\"planes\" or \"march\""},
     {"TOML syntax error", "[camera]\nwidth = \n", "bad.toml:2: TOML syntax error"},
     {"duplicate key", "[sun]\nzenith_deg = 10\nzenith_deg = 20\n", "bad.toml:3: TOML syntax error"},
 };

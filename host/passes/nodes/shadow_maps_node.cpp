@@ -1,5 +1,6 @@
 // shadow_maps_node.cpp — "shadow_maps" of shafts.cl: one shadow map per spotlight for the planes
-// method when objects cast shadows (the intervals method casts exact shadow volumes instead); run by
+// method when objects cast shadows (the intervals method casts exact shadow volumes, the march exact
+// shadow rays instead); run by
 // the shafts node (shafts_frame.h).
 #include <memory>
 
@@ -16,7 +17,7 @@ PassDescriptor shadowMapsDescriptor() {
   d.rule = [](const Scene& scene, const Plan&) -> std::optional<PassPlan> {
     if (!spotlightsInAir(scene) || scene.objects.empty()) return std::nullopt;
     const auto features = shaftsFeatures(scene);
-    if (features->intervals) return std::nullopt;
+    if (features->intervals || features->march) return std::nullopt;  // exact shadow volumes or rays
     return planEntry({"scene"}, {"shadow_maps"}, "spotlights and objects that cast shadows", features);
   };
   d.keys = kShaftsKeys;

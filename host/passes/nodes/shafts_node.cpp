@@ -18,7 +18,9 @@ namespace seasim {
 
 std::shared_ptr<ShaftsFeatures> shaftsFeatures(const Scene& scene) {
   auto f = std::make_shared<ShaftsFeatures>();
-  f->intervals = shaftsUseIntervals(scene);  // plan/shafts_method.h
+  const ShaftsMethod method = shaftsMethod(scene);  // plan/shafts_method.h
+  f->intervals = method == ShaftsMethod::Intervals;
+  f->march = method == ShaftsMethod::March;
   const auto exact = scene.quality.find("shafts_exact");
   f->exact = exact != scene.quality.end() && exact->second.value != 0;
   f->henyey_greenstein = scene.air.phase == AirDesc::Phase::HenyeyGreenstein;
@@ -68,6 +70,9 @@ std::optional<PassPlan> shaftsInAir(const Scene& scene, const Plan& so_far) {
       features->intervals
           ? std::string("spotlights in air; method intervals: exact lit stretches, analytic shadow volumes, no "
                         "shadow maps (quality.shafts_method)")
+      : features->march
+          ? std::string("spotlights in air; method march: steps in the lamp's angle with exact shadow rays, no "
+                        "shadow maps (quality.shafts_method, quality.shafts_march_steps)")
           : std::string("spotlights in air; method planes (001's sampling planes)") +
                 (automatic(scene, "shafts_planes") || automatic(scene, "shafts_subplanes")
                      ? "; n, m \"auto\": the cheapest under quality.shafts_error_budget (searched once, cached)"
@@ -92,7 +97,11 @@ PassPlan shaftsOverTheSea(const Scene& scene) {
 // (stage: -22 % from 4 to 32 degrees), so it is left out.
 double shaftsCost(const PassDescriptor& d, const Scene& scene) {
   const double lamps = std::max<double>(1.0, static_cast<double>(scene.spotlights.size()));
-  if (shaftsUseIntervals(scene)) return lamps * 9.0;
+  const ShaftsMethod method = shaftsMethod(scene);
+  if (method == ShaftsMethod::Intervals) return lamps * 9.0;
+  // The march: per step one emission and one shadow ray (stage and spot_sphere at 20 steps measured about
+  // the intervals' cost: results/BENCHMARKS.md "Spotlight shafts in air").
+  if (method == ShaftsMethod::March) return lamps * 9.0 * d.settledKnob(scene, "shafts_march_steps") / 20.0;
   return lamps * 22.0 * (d.settledKnob(scene, "shafts_planes") / 30.0) *
          (d.settledKnob(scene, "shafts_subplanes") / 6.0);
 }
@@ -110,7 +119,8 @@ PassDescriptor shaftsDescriptor() {
     return std::nullopt;
   };
   d.keys = kShaftsKeys;
-  d.knobs = {{"shafts_table_size", 256}, {"shafts_planes", 30}, {"shafts_subplanes", 6}};
+  d.knobs = {{"shafts_table_size", 256}, {"shafts_planes", 30}, {"shafts_subplanes", 6},
+             {"shafts_march_steps", kShaftsMarchStepsDefault}};
   d.buffers = [d](const Scene& s, const PassPlan& p) -> std::vector<BufferEstimate> {
     const double n = d.knob(s, "shafts_table_size");
     // Built on the host in float and uploaded (an oversized one threw bad_alloc on the host).
