@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """shafts_error_time_plot.py — one SVG of the error–time curves that tests/perf/shafts_error_time.sh
 writes: RMS error in 8-bit levels against CPU ms per frame, log–log, one series per method (intervals,
-planes, ray march), points in increasing time, and the issue's 1-level budget as a dashed line.
+planes, the device's march, the CPU ray march), points in increasing time, and the issue's 1-level budget as a dashed line.
 
 Usage: tests/perf/shafts_error_time_plot.py OUT.csv OUT.svg "title"
 Plain SVG, no plotting library (none is in the project's dependencies).
@@ -10,7 +10,7 @@ import csv
 import math
 import sys
 
-COLOURS = {"intervals": "#1f77b4", "planes": "#2ca02c", "ray march": "#d62728"}
+COLOURS = {"intervals": "#1f77b4", "planes": "#2ca02c", "march": "#9467bd", "ray march": "#d62728"}
 W, H, L, R, T, B = 720, 460, 80, 170, 40, 60
 
 
