@@ -6,8 +6,11 @@
 //   "march"      per pixel and lamp, quality.shafts_march_steps midpoint steps in the lamp's angle with an
 //                exact shadow ray at each (the CPU reference's method, host/reference/shafts_reference.h,
 //                in the kernel's float; kernels/common/shafts_render.h shafts_lamp_march).
-// quality.shafts_method absent: intervals while the scene's objects fit the kernel's per-pixel list of
-// lit stretches, else planes.
+// quality.shafts_method absent or "auto": intervals while the scene's objects fit the kernel's per-pixel
+// list of lit stretches, else planes. Measured on PoCL (results/BENCHMARKS.md "Spotlight shafts in air":
+// spot_sphere, stage and tests/perf/shafts_many_objects.toml), that rule takes the cheapest method at
+// every error the three reach; the march is never the cheapest there (its place: any object count,
+// no shadow maps, and convergence with its steps).
 #pragma once
 #include "scene/scene.h"
 

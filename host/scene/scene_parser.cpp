@@ -804,11 +804,11 @@ class SceneParser {
     scene_.quality["fast_math"] = fast;
     // The shafts method: "intervals" (exact lit stretches, kernels/common/shafts_intervals.h),
     // "planes" (paper 001's sampling planes, which suit GPU texture units) or "march" (steps in the
-    // lamp's angle with exact shadow rays). Absent: the planner's choice (plan/shafts_method.h:
-    // intervals while the objects fit its per-pixel stretch list). Stored as a knob holding
-    // ShaftsMethod, automatic when absent.
-    if (r.has("shafts_method")) {
-      const std::string method = r.choice("shafts_method", "intervals", {"planes", "intervals", "march"});
+    // lamp's angle with exact shadow rays). Absent or "auto": the planner's choice (plan/shafts_method.h:
+    // intervals while the objects fit its per-pixel stretch list, else planes). Stored as a knob holding
+    // ShaftsMethod, automatic for "auto".
+    if (r.has("shafts_method") && r.choice("shafts_method", "auto", {"planes", "intervals", "march", "auto"}) != "auto") {
+      const std::string method = r.choice("shafts_method", "intervals", {"planes", "intervals", "march", "auto"});
       r.check(method != "intervals" || static_cast<int>(scene_.objects.size()) <= kShaftsIntervalsMaxObjects,
               "shafts_method",
               "\"intervals\" handles at most " + std::to_string(kShaftsIntervalsMaxObjects) + " objects, the scene has " +

@@ -290,6 +290,13 @@ direction = [0, -1, 0]
     many += "[[objects]]\ntype = \"sphere\"\ncenter = [" + std::to_string(i) + ", 1, 0]\nradius = 0.2\n";
   plan = makePlan(parseScene(many, "stage.toml"));
   EXPECT_TRUE(plan.hasPass("shadow_maps"));
+  // "auto" written out is the same choice as leaving the key out, on either side of the limit.
+  plan = makePlan(parseScene(many + "[quality]\nshafts_method = \"auto\"\n", "stage.toml"));
+  EXPECT_TRUE(plan.hasPass("shadow_maps"));
+  EXPECT_NE(plan.find("shafts")->why.find("method planes"), std::string::npos);
+  plan = makePlan(parseScene(with_object + "[quality]\nshafts_method = \"auto\"\n", "stage.toml"));
+  EXPECT_FALSE(plan.hasPass("shadow_maps"));
+  EXPECT_NE(plan.find("shafts")->why.find("intervals"), std::string::npos);
 }
 
 // Spotlights under water: the water's passes and the lamps' pass, which adds into the rgb

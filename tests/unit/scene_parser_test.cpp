@@ -668,7 +668,7 @@ const BadScene kBadScenes[] = {
      "bad.toml:4: key 'sea.model': 'multi' is not one of 'paper', 'multiple'"},
     {"sea model not a string", "[water]\njerlov = \"I\"\n[sea]\nmodel = 2\n", "bad.toml:4: key 'sea.model'"},
     {"shafts method unknown", "[quality]\nshafts_method = \"rays\"\n",
-     "bad.toml:2: key 'quality.shafts_method': 'rays' is not one of 'planes', 'intervals', 'march'"},
+     "bad.toml:2: key 'quality.shafts_method': 'rays' is not one of 'planes', 'intervals', 'march', 'auto'"},
     {"shafts march without steps", "[quality]\nshafts_march_steps = 0\n", "bad.toml:2: key 'quality.shafts_march_steps'"},
     {"shafts march steps fractional", "[quality]\nshafts_march_steps = 2.5\n",
      "bad.toml:2: key 'quality.shafts_march_steps'"},
