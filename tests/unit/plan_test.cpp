@@ -290,6 +290,17 @@ direction = [0, -1, 0]
     many += "[[objects]]\ntype = \"sphere\"\ncenter = [" + std::to_string(i) + ", 1, 0]\nradius = 0.2\n";
   plan = makePlan(parseScene(many, "stage.toml"));
   EXPECT_TRUE(plan.hasPass("shadow_maps"));
+  // Only the planes without shafts_exact build 001 eq. 6's table: the estimate counts it for them alone.
+  const auto has_table = [](const std::string& text) {
+    const seasim::Scene s = parseScene(text, "stage.toml");
+    for (const seasim::BufferEstimate& b : seasim::estimateBuffers(s, makePlan(s)))
+      if (b.what == "shafts integral table") return true;
+    return false;
+  };
+  EXPECT_FALSE(has_table(with_object));
+  EXPECT_FALSE(has_table(with_object + "[quality]\nshafts_method = \"march\"\n"));
+  EXPECT_TRUE(has_table(with_object + "[quality]\nshafts_method = \"planes\"\n"));
+  EXPECT_FALSE(has_table(with_object + "[quality]\nshafts_method = \"planes\"\nshafts_exact = true\n"));
   // "auto" written out is the same choice as leaving the key out, on either side of the limit.
   plan = makePlan(parseScene(many + "[quality]\nshafts_method = \"auto\"\n", "stage.toml"));
   EXPECT_TRUE(plan.hasPass("shadow_maps"));

@@ -122,6 +122,10 @@ PassDescriptor shaftsDescriptor() {
   d.knobs = {{"shafts_table_size", 256}, {"shafts_planes", 30}, {"shafts_subplanes", 6},
              {"shafts_march_steps", kShaftsMarchStepsDefault}};
   d.buffers = [d](const Scene& s, const PassPlan& p) -> std::vector<BufferEstimate> {
+    // Only the planes read 001 eq. 6's tables, and only without shafts_exact (ShaftsPass: the intervals
+    // and the march evaluate g exactly).
+    const ShaftsFeatures& f = p.featuresAs<ShaftsFeatures>();
+    if (f.intervals || f.march || f.exact) return {};
     const double n = d.knob(s, "shafts_table_size");
     // Built on the host in float and uploaded (an oversized one threw bad_alloc on the host).
     return {{p.name, "shafts integral table", 4 * n * n, {"quality.shafts_table_size", "quality.shafts_table_size"},
