@@ -7,6 +7,7 @@
 #include <memory>
 #include <utility>
 
+#include "common/shafts_params.h"
 #include "passes/nodes/shafts_frame.h"
 #include "passes/nodes/standard_passes.h"
 #include "passes/shafts_pass.h"
@@ -122,14 +123,31 @@ PassDescriptor shaftsDescriptor() {
   d.knobs = {{"shafts_table_size", 256}, {"shafts_planes", 30}, {"shafts_subplanes", 6},
              {"shafts_march_steps", kShaftsMarchStepsDefault}};
   d.buffers = [d](const Scene& s, const PassPlan& p) -> std::vector<BufferEstimate> {
+    std::vector<BufferEstimate> out;
+    // The lamps, the objects, the light maps (RGB floats; read through the scene's data files, as the
+    // pass reads them) and, for the intervals, each lamp's shadow volume of each object (ShaftsPass).
+    const double lamps = static_cast<double>(s.spotlights.size());
+    const double objects = std::max<double>(1.0, static_cast<double>(s.objects.size()));
+    double texels = 0;
+    for (const SpotlightDesc& l : s.spotlights)
+      if (!l.light_map.empty()) {
+        const LightMap map = loadLightMap(l.light_map, s.files.get());
+        texels += static_cast<double>(map.width) * map.height;
+      }
+    const ShaftsFeatures& f = p.featuresAs<ShaftsFeatures>();
+    const double occluders = f.intervals ? lamps * objects : 1.0;
+    out.push_back({p.name, "lamps, objects, light maps and shadow volumes",
+                   sizeof(ShaftsParams) + sizeof(ShaftsLight) * lamps + sizeof(ShaftsObject) * objects +
+                       12 * texels + sizeof(ShaftsOccluder) * occluders + 4 * 4,
+                   {"spotlights (count)", "objects (count)", "light-map texels"}, {lamps, objects, texels}});
     // Only the planes read 001 eq. 6's tables, and only without shafts_exact (ShaftsPass: the intervals
     // and the march evaluate g exactly).
-    const ShaftsFeatures& f = p.featuresAs<ShaftsFeatures>();
-    if (f.intervals || f.march || f.exact) return {};
+    if (f.intervals || f.march || f.exact) return out;
     const double n = d.knob(s, "shafts_table_size");
     // Built on the host in float and uploaded (an oversized one threw bad_alloc on the host).
-    return {{p.name, "shafts integral table", 4 * n * n, {"quality.shafts_table_size", "quality.shafts_table_size"},
-             {n, n}}};
+    out.push_back({p.name, "shafts integral table", 4 * n * n + 4 * n,
+                   {"quality.shafts_table_size", "quality.shafts_table_size"}, {n, n}});
+    return out;
   };
   d.cost = [d](const Scene& s, const PassPlan&) { return shaftsCost(d, s); };
   d.factory = [](const PassPlan& e, const Plan& plan, const Scene&, const AutoQuality& auto_quality)
