@@ -13,6 +13,10 @@ struct ShaftsFeatures final : PassFeatures {
   bool objects = false;            // analytic objects cast per pixel
   bool light_map = false;          // a spotlight has a light map
 
+  // Paper 001's sampling planes: the one method that reads shadow maps and the eq. 6 tables (the intervals
+  // and the march take exact shadows and g).
+  bool planes() const { return !intervals && !march; }
+
   void list(FeatureList& out) const override {
     out.flag("intervals", "SEASIM_SHAFTS_INTERVALS", intervals);
     out.flag("march", "SEASIM_SHAFTS_MARCH", march);

@@ -198,16 +198,16 @@ ShaftsPass::ShaftsPass(Device& device, const Scene& scene, const PassPlan& plan,
   const ShaftsFeatures& features = plan.featuresAs<ShaftsFeatures>();
   const bool exact = features.exact;
   const bool use_hg = features.henyey_greenstein;
-  intervals_ = features.intervals;
-  if (intervals_ && static_cast<int>(scene.objects.size()) > kShaftsIntervalsMaxObjects) {
+  const bool intervals = features.intervals;
+  planes_ = features.planes();
+  if (intervals && static_cast<int>(scene.objects.size()) > kShaftsIntervalsMaxObjects) {
     throw RuntimeError("shafts: the intervals method handles at most " + std::to_string(kShaftsIntervalsMaxObjects) +
                        " objects (quality.shafts_method = \"planes\" has no such limit)");
   }
-  if (intervals_ && !(config.panel_deg > 0 && config.panel_texels > 0)) {
+  if (intervals && !(config.panel_deg > 0 && config.panel_texels > 0)) {
     throw RuntimeError("shafts: panel width and panel texels must be positive");
   }
-  march_ = features.march;
-  if (march_ && config.march_steps < 1) throw RuntimeError("shafts: the march needs at least 1 step");
+  if (features.march && config.march_steps < 1) throw RuntimeError("shafts: the march needs at least 1 step");
 
   const ShaftsParams p = shaftsParams(scene, config, range_, light_count_);
   std::vector<float> maps;  // the light maps, one float RGB buffer
@@ -217,9 +217,9 @@ ShaftsPass::ShaftsPass(Device& device, const Scene& scene, const PassPlan& plan,
   }
   const std::vector<ShaftsObject> objects = shaftsObjects(scene);
   const std::vector<ShaftsOccluder> occluders =
-      intervals_ && !scene.objects.empty() ? shaftsOccluders(scene) : std::vector<ShaftsOccluder>(1, ShaftsOccluder{});
+      intervals && !scene.objects.empty() ? shaftsOccluders(scene) : std::vector<ShaftsOccluder>(1, ShaftsOccluder{});
   // 001 eq. 6 tables: the intervals and march methods evaluate g exactly.
-  const bool tables = !exact && !intervals_ && !march_;
+  const bool tables = !exact && planes_;
   const int n = config.table_size;
   std::vector<float> f_table(tables ? n : 1), h_table(tables ? size_t(n) * n : 1);
   if (tables) shaftsTables(n, range_, scene.air.density, scene.air.density * scene.air.extinction, use_hg, scene.air.g,
@@ -227,7 +227,7 @@ ShaftsPass::ShaftsPass(Device& device, const Scene& scene, const PassPlan& plan,
 
   const size_t pixels = static_cast<size_t>(width_) * static_cast<size_t>(height_);
   const size_t shadow_texels =
-      has_objects_ && !intervals_ && !march_ ? size_t(light_count_) * shadow_size_ * shadow_size_ : 1;
+      has_objects_ && planes_ ? size_t(light_count_) * shadow_size_ * shadow_size_ : 1;
   auto upload = [&](const void* data, size_t bytes) {
     return cl::Buffer(device.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, bytes, const_cast<void*>(data));
   };
@@ -267,7 +267,7 @@ ShaftsPass::ShaftsPass(Device& device, const Scene& scene, const PassPlan& plan,
 double ShaftsPass::run() {
   const size_t local = 8;
   shadow_ms_ = 0;
-  if (has_objects_ && light_count_ > 0 && !intervals_ && !march_) {
+  if (has_objects_ && light_count_ > 0 && planes_) {
     const size_t side = roundUp(static_cast<size_t>(shadow_size_), local);
     shadow_ms_ = runKernel(device_, "shadow_maps", shadow_kernel_, cl::NDRange(side, side, light_count_),
                            cl::NDRange(local, local, 1));

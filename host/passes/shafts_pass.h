@@ -55,8 +55,7 @@ class ShaftsPass {
   cl::Buffer params_, lights_, objects_, shadow_, light_maps_, f_table_, h_table_, occluders_, rgb_;
   int width_, height_, light_count_, shadow_size_;
   bool has_objects_;
-  bool intervals_ = false;  // SEASIM_SHAFTS_INTERVALS: no shadow maps
-  bool march_ = false;      // SEASIM_SHAFTS_MARCH: exact shadow rays, no shadow maps
+  bool planes_ = false;  // paper 001's planes: shadow maps and the eq. 6 tables (the intervals and march use neither)
   double shadow_ms_ = 0, shafts_ms_ = 0;
   ShaftsRange range_;
 };

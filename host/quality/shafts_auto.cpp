@@ -284,8 +284,7 @@ ShaftsPass::Config shaftsConfigWithAuto(Device& device, const Scene& scene, cons
   if (!automatic("shafts_planes") && !automatic("shafts_subplanes")) return c;
   // n and m are the planes method's knobs: the intervals and march methods (plan/shafts_method.h) have none
   // to search.
-  const ShaftsFeatures& features = plan.featuresAs<ShaftsFeatures>();
-  if (features.intervals || features.march) return c;
+  if (!plan.featuresAs<ShaftsFeatures>().planes()) return c;
   ShaftsAutoOptions options;
   const auto budget = scene.quality.find("shafts_error_budget");
   if (budget != scene.quality.end()) options.budget_levels = budget->second.value;

@@ -807,8 +807,8 @@ class SceneParser {
     // lamp's angle with exact shadow rays). Absent or "auto": the planner's choice (plan/shafts_method.h:
     // intervals while the objects fit its per-pixel stretch list, else planes). Stored as a knob holding
     // ShaftsMethod, automatic for "auto".
-    if (r.has("shafts_method") && r.choice("shafts_method", "auto", {"planes", "intervals", "march", "auto"}) != "auto") {
-      const std::string method = r.choice("shafts_method", "intervals", {"planes", "intervals", "march", "auto"});
+    const std::string method = r.choice("shafts_method", "auto", {"planes", "intervals", "march", "auto"});
+    if (method != "auto") {
       r.check(method != "intervals" || static_cast<int>(scene_.objects.size()) <= kShaftsIntervalsMaxObjects,
               "shafts_method",
               "\"intervals\" handles at most " + std::to_string(kShaftsIntervalsMaxObjects) + " objects, the scene has " +

@@ -59,16 +59,36 @@ SEASIM_FN real froxel_slice_start(int k, int nz, real z_near, real z_far, real l
   return k <= 0 ? R(0.0) : froxel_slice_end(k - 1, nz, z_near, z_far, log_far_near);
 }
 
-/* The slice holding distance t: slice k holds (start_k, end_k]; t <= 0 gives 0, t >= z_far gives nz-1. */
-SEASIM_FN int froxel_slice_index(real t, int nz, real z_near, real z_far, real log_far_near) {
-  if (nz <= 1 || t <= froxel_slice_end(0, nz, z_near, z_far, log_far_near)) return 0;
-  if (t >= z_far) return nz - 1;
-  int k = (int)ceil((real)nz * log(t / z_near) / log_far_near) - 1;
-  k = k < 0 ? 0 : (k > nz - 1 ? nz - 1 : k);
+/* The slice holding distance t, with its ends [*t0, *t1]: slice k holds (start_k, end_k]; t <= 0 (and NaN)
+ * gives 0, t >= z_far gives nz-1. Each end is computed once (the froxel read took six exp and log calls
+ * when it asked for the slice and then for its ends). */
+SEASIM_FN int froxel_slice_and_ends(real t, int nz, real z_near, real z_far, real log_far_near, real* t0, real* t1) {
+  int k = nz - 1;
+  if (nz > 1 && t < z_far) {
+    k = t > R(0.0) ? (int)ceil((real)nz * log(t / z_near) / log_far_near) - 1 : 0;
+    k = k < 0 ? 0 : (k > nz - 1 ? nz - 1 : k);
+  }
+  real lo = froxel_slice_start(k, nz, z_near, z_far, log_far_near);
+  real hi = froxel_slice_end(k, nz, z_near, z_far, log_far_near);
   /* log/exp rounding can put t one slice off near a boundary: settle it on the same boundaries. */
-  if (k < nz - 1 && t > froxel_slice_end(k, nz, z_near, z_far, log_far_near)) k += 1;
-  else if (k > 0 && t <= froxel_slice_end(k - 1, nz, z_near, z_far, log_far_near)) k -= 1;
+  if (k < nz - 1 && t > hi) {
+    k += 1;
+    lo = hi;
+    hi = froxel_slice_end(k, nz, z_near, z_far, log_far_near);
+  } else if (k > 0 && t <= lo) {
+    k -= 1;
+    hi = lo;
+    lo = froxel_slice_start(k, nz, z_near, z_far, log_far_near);
+  }
+  *t0 = lo;
+  *t1 = hi;
   return k;
+}
+
+/* The slice holding distance t (froxel_slice_and_ends without its ends). */
+SEASIM_FN int froxel_slice_index(real t, int nz, real z_near, real z_far, real log_far_near) {
+  real t0, t1;
+  return froxel_slice_and_ends(t, nz, z_near, z_far, log_far_near, &t0, &t1);
 }
 
 /* The ray of froxel column (i, j). */
@@ -315,31 +335,11 @@ SEASIM_FN int froxel_read_slice(const SEASIM_CONSTANT FroxelParams* fp, real S) 
   return froxel_slice_index(t, fp->nz, fp->z_near, fp->z_far, fp->log_far_near);
 }
 
-/* froxel_read_slice with the slice's ends [*t0, *t1]: the same slice as froxel_slice_index, settled on
- * the same boundaries, whose two ends it computes once (the lookup's slice took six exp and log calls). */
+/* froxel_read_slice with the slice's ends [*t0, *t1] (froxel_slice_and_ends). */
 SEASIM_FN int froxel_read_slice_bounds(const SEASIM_CONSTANT FroxelParams* fp, real S, real* t0, real* t1) {
   const real t = fmin(S, (real)fp->z_far);
   if (!(t > R(0.0))) return -1;
-  const int nz = fp->nz;
-  const real z_near = (real)fp->z_near, z_far = (real)fp->z_far, lfn = (real)fp->log_far_near;
-  int k = nz - 1;
-  if (t < z_far && nz > 1) {
-    k = (int)ceil((real)nz * log(t / z_near) / lfn) - 1;
-    k = k < 0 ? 0 : (k > nz - 1 ? nz - 1 : k);
-  }
-  real lo = froxel_slice_start(k, nz, z_near, z_far, lfn), hi = froxel_slice_end(k, nz, z_near, z_far, lfn);
-  if (k < nz - 1 && t > hi) {
-    k += 1;
-    lo = hi;
-    hi = froxel_slice_end(k, nz, z_near, z_far, lfn);
-  } else if (k > 0 && t <= lo) {
-    k -= 1;
-    hi = lo;
-    lo = froxel_slice_start(k, nz, z_near, z_far, lfn);
-  }
-  *t0 = lo;
-  *t1 = hi;
-  return k;
+  return froxel_slice_and_ends(t, fp->nz, fp->z_near, fp->z_far, fp->log_far_near, t0, t1);
 }
 
 /* The vertical direction of pixel (x, y)'s ray, bilinear between its four columns' d_y (the weights of

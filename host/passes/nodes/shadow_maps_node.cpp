@@ -17,7 +17,7 @@ PassDescriptor shadowMapsDescriptor() {
   d.rule = [](const Scene& scene, const Plan&) -> std::optional<PassPlan> {
     if (!spotlightsInAir(scene) || scene.objects.empty()) return std::nullopt;
     const auto features = shaftsFeatures(scene);
-    if (features->intervals || features->march) return std::nullopt;  // exact shadow volumes or rays
+    if (!features->planes()) return std::nullopt;  // exact shadow volumes or rays
     return planEntry({"scene"}, {"shadow_maps"}, "spotlights and objects that cast shadows", features);
   };
   d.keys = kShaftsKeys;

@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "common/shafts_params.h"
+#include "io/image_io.h"
 #include "passes/nodes/shafts_frame.h"
 #include "passes/nodes/standard_passes.h"
 #include "passes/shafts_pass.h"
@@ -124,14 +125,14 @@ PassDescriptor shaftsDescriptor() {
              {"shafts_march_steps", kShaftsMarchStepsDefault}};
   d.buffers = [d](const Scene& s, const PassPlan& p) -> std::vector<BufferEstimate> {
     std::vector<BufferEstimate> out;
-    // The lamps, the objects, the light maps (RGB floats; read through the scene's data files, as the
-    // pass reads them) and, for the intervals, each lamp's shadow volume of each object (ShaftsPass).
+    // The lamps, the objects, the light maps (RGB floats; their size from the image's header, not a decode)
+    // and, for the intervals, each lamp's shadow volume of each object (ShaftsPass).
     const double lamps = static_cast<double>(s.spotlights.size());
     const double objects = std::max<double>(1.0, static_cast<double>(s.objects.size()));
     double texels = 0;
     for (const SpotlightDesc& l : s.spotlights)
       if (!l.light_map.empty()) {
-        const LightMap map = loadLightMap(l.light_map, s.files.get());
+        const ImageHeader map = readImageHeader(l.light_map);
         texels += static_cast<double>(map.width) * map.height;
       }
     const ShaftsFeatures& f = p.featuresAs<ShaftsFeatures>();
@@ -142,7 +143,7 @@ PassDescriptor shaftsDescriptor() {
                    {"spotlights (count)", "objects (count)", "light-map texels"}, {lamps, objects, texels}});
     // Only the planes read 001 eq. 6's tables, and only without shafts_exact (ShaftsPass: the intervals
     // and the march evaluate g exactly).
-    if (f.intervals || f.march || f.exact) return out;
+    if (!f.planes() || f.exact) return out;
     const double n = d.knob(s, "shafts_table_size");
     // Built on the host in float and uploaded (an oversized one threw bad_alloc on the host).
     out.push_back({p.name, "shafts integral table", 4 * n * n + 4 * n,
