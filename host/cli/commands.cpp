@@ -25,6 +25,7 @@
 #include "plan/plan.h"
 #include "quality/auto_quality.h"
 #include "quality/expected_error.h"
+#include "quality/shafts_method_auto.h"
 #include "reference/compare.h"
 #include "reference/reference_image.h"
 #include "reference/sea_reference.h"
@@ -127,8 +128,39 @@ int cmdValidate(const std::vector<std::string>& files) {
   return failures == 0 ? 0 : 1;
 }
 
+namespace {
+
+// quality.shafts_method = "auto": the method cached for the default device when one was measured
+// (then the plan is that method's), else the rule's, with a line saying which.
+Scene withCachedShaftsMethod(const Scene& scene) {
+  if (!shaftsMethodMeasured(scene)) return scene;
+  std::string where = "no OpenCL device";
+  try {
+    Device device(chooseDevice(""));
+    where = device.info().label();
+    ShaftsMethodOptions options;
+    options.search = false;
+    const auto budget = scene.quality.find("shafts_error_budget");
+    if (budget != scene.quality.end()) options.budget_levels = budget->second.value;
+    if (const std::optional<ShaftsMethodChoice> c = chooseShaftsMethod(device, scene, options)) {
+      std::printf("shafts method \"auto\": %s, measured on %s (RMS %.3f levels at %dx%d, budget %g%s; %s)\n",
+                  describeShaftsSetting(c->chosen).c_str(), where.c_str(), c->chosen.rmse_8bit, c->search_width,
+                  c->search_height, c->budget_levels, c->met_budget ? "" : ", not met", c->cache_file.c_str());
+      return withShaftsMethod(scene, c->chosen);
+    }
+  } catch (const std::exception&) {
+    // No device to key the cache: the rule's plan, as below.
+  }
+  std::printf("shafts method \"auto\": not measured yet on %s; the first render measures it (the plan below "
+              "shows the rule's method)\n",
+              where.c_str());
+  return scene;
+}
+
+}  // namespace
+
 int cmdPlan(const std::string& scene_file, const std::vector<std::string>& sets) {
-  const Scene scene = loadScene(scene_file, parseSets(sets));
+  const Scene scene = withCachedShaftsMethod(loadScene(scene_file, parseSets(sets)));
   const Plan plan = makePlan(scene);
   std::printf("%s", plan.toText().c_str());
   // The big buffers with the settings that size them (the froxel grid as the image sizes it, the maps).

@@ -12,6 +12,7 @@
 #include "io/tonemap.h"
 #include "io/tonemap_eq18.h"
 #include "quality/auto_quality.h"
+#include "quality/shafts_method_auto.h"
 #include "preview/preview_quality.h"
 #include "preview/preview_settings.h"
 #include "preview/preview_window.h"
@@ -80,8 +81,8 @@ int cmdPreview(const PreviewCmd& cmd) {
   // The command line's settings: --set, then --size. The preview's own settings go on top.
   std::vector<Override> sets;
   for (const std::string& s : cmd.sets) sets.push_back(parseSetOption(s));
-  const std::vector<Override> base = concat(concat({}, sets), sizeOverrides(cmd.size));
-  const Scene scene = loadScene(cmd.scene, base);
+  std::vector<Override> base = concat(concat({}, sets), sizeOverrides(cmd.size));
+  Scene scene = loadScene(cmd.scene, base);
   checkSceneInputs(scene);
   const std::vector<PreviewInput> script = parseKeyScript(cmd.script);
   if (cmd.frames > 0 && script.size() > static_cast<size_t>(cmd.frames))
@@ -90,6 +91,12 @@ int cmdPreview(const PreviewCmd& cmd) {
   const std::string save_prefix = cmd.save_prefix.empty() ? scene.name + "_preview" : cmd.save_prefix;
 
   Device device(chooseDevice(cmd.device));
+  // quality.shafts_method = "auto": measured once at full quality and then held as given settings, so the
+  // reduced levels scale the chosen method's knobs instead of searching again at each level's size.
+  if (const std::optional<ShaftsMethodCandidate> chosen = measuredShaftsMethod(device, scene)) {
+    base = concat(base, shaftsMethodOverrides(*chosen));
+    scene = loadScene(cmd.scene, base);
+  }
   PreviewWindow window(scene.camera.width, scene.camera.height, "seasim preview: " + scene.name);
   // CL/GL sharing would let the kernels write the texture; no device this was measured on has it
   // (PoCL does not), so the image is tone-mapped on the host and uploaded (docs/preview.md).

@@ -36,8 +36,8 @@ nlohmann::json planJson(const Plan& plan) {
 }  // namespace
 
 nlohmann::json renderItem(Device& device, const Scene& scene, const ItemOutputs& outputs, const std::string& dir) {
-  checkRenderFitsDevice(device, scene, makePlan(scene));
-  Renderer renderer(device, scene, shippedPasses());
+  Renderer renderer(device, scene, shippedPasses());  // plans (and makes its measured choices); allocates nothing
+  checkRenderFitsDevice(device, renderer.scene(), renderer.plan());
   return renderItem(device, renderer, outputs, dir);
 }
 

@@ -72,12 +72,19 @@ nlohmann::json renderOne(Device& device, RendererCache& cache, const RenderItem&
   Scene scene = loadScene(item.scene_file, item.overrides);
   addOutputLayers(scene.outputs, layers, "--output");
   scene.files = cache.files;  // read each data file once per job
-  // Before any buffer exists: a render too big for the device fails here, naming its settings.
-  checkRenderFitsDevice(device, scene, makePlan(scene));
   if (cache.renderer && cache.previous && cache.previous->scene_file == item.scene_file) {
     cache.renderer->update(scene, changedKeys(cache.previous->overrides, item.overrides));
   } else {
     cache.renderer = std::make_unique<Renderer>(device, scene, shippedPasses());
+  }
+  // Planned (with its measured choices), before any buffer exists: a render too big for the device
+  // fails here, naming its settings. The renderer now holds that scene: the next item starts afresh.
+  try {
+    checkRenderFitsDevice(device, cache.renderer->scene(), cache.renderer->plan());
+  } catch (...) {
+    cache.renderer.reset();
+    cache.previous = nullptr;
+    throw;
   }
   cache.previous = &item;
   ItemOutputs outputs;

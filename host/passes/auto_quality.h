@@ -5,6 +5,7 @@
 // (ShaftsPass::configFromScene: n = 30, m = 6; SeaSecondPass::configFromScene: n_z = 8, n_d = 512).
 #pragma once
 #include <functional>
+#include <optional>
 
 #include "device/device.h"
 #include "passes/sea_second_pass.h"
@@ -19,6 +20,8 @@ struct AutoQuality {
   std::function<ShaftsPass::Config(Device&, const Scene&, const PassPlan&)> shafts;
   // The sea second-order settings for `scene` with its "auto" knobs chosen.
   std::function<SeaSecondPass::Config(Device&, const Scene&)> sea_second;
+  // The scene with the choices its plan leaves to measurement made (PassRegistry::PlanChoices).
+  std::function<std::optional<Scene>(Device&, const Scene&)> plan_choices;
 
   ShaftsPass::Config shaftsConfig(Device& device, const Scene& scene, const PassPlan& plan) const {
     return shafts ? shafts(device, scene, plan) : ShaftsPass::configFromScene(scene);

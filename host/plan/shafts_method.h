@@ -6,11 +6,14 @@
 //   "march"      per pixel and lamp, quality.shafts_march_steps midpoint steps in the lamp's angle with an
 //                exact shadow ray at each (the CPU reference's method, host/reference/shafts_reference.h,
 //                in the kernel's float; kernels/common/shafts_render.h shafts_lamp_march).
-// quality.shafts_method absent or "auto": intervals while the scene's objects fit the kernel's per-pixel
+// quality.shafts_method absent: the rule — intervals while the scene's objects fit the kernel's per-pixel
 // list of lit stretches, else planes. Measured on PoCL (results/BENCHMARKS.md "Spotlight shafts in air":
-// spot_sphere, stage and tests/perf/shafts_many_objects.toml), that rule is within 18 % of the cheapest
-// method for errors up to about 0.3 levels; it does not read quality.shafts_error_budget, and for a budget near 1
-// level the march at a few steps is 2.2-2.5x cheaper on two of the three scenes.
+// spot_sphere, stage and tests/perf/shafts_many_objects.toml), that rule gives the methods' shared error
+// floor within 18 % of the cheapest setting for errors up to about 0.3 levels; it does not read
+// quality.shafts_error_budget, and for a budget near 1 level the march at a few steps is 2.2-2.5x
+// cheaper on two of the three scenes. "auto": the method is measured on the device at that budget
+// (host/quality/shafts_method_auto.h) and written into the scene before it is planned; a scene planned
+// before that (`seasim plan` with nothing cached) gets the rule.
 #pragma once
 #include "scene/scene.h"
 

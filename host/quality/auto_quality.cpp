@@ -3,6 +3,7 @@
 #include "passes/nodes/standard_passes.h"
 #include "quality/sea_auto.h"
 #include "quality/shafts_auto.h"
+#include "quality/shafts_method_auto.h"
 
 namespace seasim {
 
@@ -10,6 +11,7 @@ AutoQuality searchedAutoQuality() {
   AutoQuality q;
   q.shafts = shaftsConfigWithAuto;
   q.sea_second = seaSecondConfigWithAuto;
+  q.plan_choices = sceneWithMeasuredShaftsMethod;
   return q;
 }
 

@@ -8,7 +8,8 @@
 
 namespace seasim {
 
-// shaftsConfigWithAuto and seaSecondConfigWithAuto, as the passes' hook.
+// shaftsConfigWithAuto and seaSecondConfigWithAuto, as the passes' hook; sceneWithMeasuredShaftsMethod
+// as the Renderer's plan choice.
 AutoQuality searchedAutoQuality();
 
 // standardPasses(searchedAutoQuality()): what every command renders with.

@@ -7,6 +7,8 @@
 
 #include "io/atomic_file.h"
 #include "util/error.h"
+#include "util/hash.h"
+#include "util/paths.h"
 
 namespace seasim {
 
@@ -18,6 +20,12 @@ void searchResolution(const CameraDesc& camera, int downscale, int min_long_side
   const double s = double(std::min(target, L)) / L;
   width = std::max(1, static_cast<int>(std::lround(W * s)));
   height = std::max(1, static_cast<int>(std::lround(H * s)));
+}
+
+std::string searchCacheFile(const std::string& dir, const std::string& subfolder, const std::string& prefix,
+                            const std::string& description) {
+  const std::string folder = dir.empty() ? cacheDir(subfolder) : dir;
+  return folder.empty() ? std::string() : folder + "/" + prefix + hex64(fnv1a64(description)) + ".txt";
 }
 
 std::map<std::string, std::string> readCacheEntries(const std::string& path) {

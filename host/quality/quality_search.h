@@ -14,6 +14,11 @@ namespace seasim {
 void searchResolution(const CameraDesc& camera, int downscale, int min_long_side, int max_long_side, int& width,
                       int& height);
 
+// A search's cache file for the inputs `description`: folder/PREFIX<hex FNV-1a 64 of description>.txt,
+// folder = `dir`, or when empty the cache folder `subfolder` (util/paths.h cacheDir); "" when there is none.
+std::string searchCacheFile(const std::string& dir, const std::string& subfolder, const std::string& prefix,
+                            const std::string& description);
+
 // The "key value" lines of a cache file; empty when it cannot be read.
 std::map<std::string, std::string> readCacheEntries(const std::string& path);
 

@@ -181,15 +181,12 @@ SeaAutoResult chooseSeaSecondQuality(Device& device, const Scene& scene, const S
   SeaAutoResult result;
   std::string description, cache_file;
   if (options.use_cache) {
-    const std::string dir = options.cache_dir.empty() ? cacheDir("sea_auto") : options.cache_dir;
-    if (!dir.empty()) {
-      description = describe(device, scene, options);
-      cache_file = dir + "/" + hex64(fnv1a64(description)) + ".txt";
-      if (readCache(cache_file, result)) {
-        result.from_cache = true;
-        result.cache_file = cache_file;
-        return result;
-      }
+    description = describe(device, scene, options);
+    cache_file = searchCacheFile(options.cache_dir, "sea_auto", "", description);
+    if (!cache_file.empty() && readCache(cache_file, result)) {
+      result.from_cache = true;
+      result.cache_file = cache_file;
+      return result;
     }
   }
 

@@ -55,19 +55,21 @@ std::vector<int> ladder(const Scene& scene, const char* name, const std::vector<
   return v;
 }
 
-// Everything the decision depends on, as text (%.17g: exact doubles).
-std::string describe(Device& device, const Scene& scene, const ShaftsAutoOptions& o) {
+}  // namespace
+
+std::string shaftsSearchInputs(Device& device, const Scene& scene, bool camera_pose) {
   std::ostringstream s;
   s.precision(17);
   auto v3 = [&](Vec3 v) { s << v.x << ',' << v.y << ',' << v.z << ';'; };
-  s << kAutoVersion << '\n';
   s << "device " << device.info().platform_name << '|' << device.info().name << '|' << device.info().driver << '\n';
   s << "kernel " << hex64(fnv1a64(assembleKernelSource("shafts.cl").text)) << '\n';
   const CameraDesc& c = scene.camera;
   s << "camera ";
-  v3(c.position);
-  v3(c.look_at);
-  v3(c.up);
+  if (camera_pose) {
+    v3(c.position);
+    v3(c.look_at);
+    v3(c.up);
+  }
   s << c.fov_y << ';' << c.width << ';' << c.height << ';' << c.exposure_ev << '\n';
   const AirDesc& a = scene.air;
   s << "air " << a.present << ';' << a.density << ';' << a.extinction << ';' << int(a.phase) << ';' << a.g << '\n';
@@ -101,9 +103,22 @@ std::string describe(Device& device, const Scene& scene, const ShaftsAutoOptions
     const Knob* q = findKnob(scene, k);
     s << "knob " << k << ' ' << (q ? (q->automatic ? std::string("auto") : std::to_string(q->value)) : "-") << '\n';
   }
-  const ShaftsRange r = ShaftsPass::rangeFor(scene);
-  s << "method per-lamp cone ranges, closed-form far field\n";
-  s << "range " << r.t_max << ';' << r.s_max << '\n';
+  // The planes' table ranges follow from the camera's pose (the lamps' distances to it).
+  if (camera_pose) {
+    const ShaftsRange r = ShaftsPass::rangeFor(scene);
+    s << "method per-lamp cone ranges, closed-form far field\n";
+    s << "range " << r.t_max << ';' << r.s_max << '\n';
+  }
+  return s.str();
+}
+
+namespace {
+
+// Everything the decision depends on, as text (%.17g: exact doubles).
+std::string describe(Device& device, const Scene& scene, const ShaftsAutoOptions& o) {
+  std::ostringstream s;
+  s.precision(17);
+  s << kAutoVersion << '\n' << shaftsSearchInputs(device, scene, true);
   s << "search " << o.budget_levels << ';' << o.reference_steps << ';' << o.downscale << ';' << o.min_long_side
     << ';' << o.max_long_side << ";n";
   for (int n : o.planes) s << ',' << n;
@@ -140,10 +155,6 @@ void writeCache(const std::string& path, const ShaftsAutoResult& r, const std::s
   for (const auto& c : r.candidates) s << "# " << c.planes << ' ' << c.subplanes << ' ' << c.rmse_8bit << ' ' << c.ms << '\n';
   writeCacheEntries(path, "seasim shafts auto quality (host/quality/shafts_auto.h)", description, s.str());
 }
-
-// Other work on a shared machine only ever adds time to a kernel: the least of three runs is the
-// best estimate of its own cost (the median still moved 3x under load on a 2-core PoCL box).
-double min3(double a, double b, double c) { return std::min({a, b, c}); }
 
 }  // namespace
 
@@ -191,16 +202,13 @@ ShaftsAutoResult chooseShaftsQuality(Device& device, const Scene& scene, const P
 
   std::string description, cache_file;
   if (options.use_cache) {
-    const std::string dir = options.cache_dir.empty() ? cacheDir("shafts_auto") : options.cache_dir;
-    if (!dir.empty()) {
-      description = describe(device, scene, options);
-      cache_file = dir + "/" + hex64(fnv1a64(description)) + ".txt";
-      if (readCache(cache_file, result)) {
-        result.from_cache = true;
-        result.cache_file = cache_file;
-        result.budget_levels = options.budget_levels;
-        return result;
-      }
+    description = describe(device, scene, options);
+    cache_file = searchCacheFile(options.cache_dir, "shafts_auto", "", description);
+    if (!cache_file.empty() && readCache(cache_file, result)) {
+      result.from_cache = true;
+      result.cache_file = cache_file;
+      result.budget_levels = options.budget_levels;
+      return result;
     }
   }
 
@@ -249,8 +257,11 @@ ShaftsAutoResult chooseShaftsQuality(Device& device, const Scene& scene, const P
     }
     c.rmse_8bit = cmp.rmse_8bit;
     if (c.rmse_8bit <= options.budget_levels) {
-      const double a = pass.run(), b = pass.run();  // the times that decide: least of three
-      c.ms = min3(c.ms, a, b);
+      // The times that decide: least of three. Other work on a shared machine only ever adds time to a
+      // kernel, so the least is the best estimate of its own cost (the median moved 3x under load on a
+      // 2-core PoCL box).
+      const double a = pass.run(), b = pass.run();
+      c.ms = std::min({c.ms, a, b});
       if (best_work == 0 || c.ms < best_ms) {
         best_work = work(s.n, s.m);
         best_ms = c.ms;

@@ -90,6 +90,12 @@ ShaftsAutoResult chooseShaftsQuality(Device& device, const Scene& scene, const P
 // a warning when nothing met the budget.
 ShaftsPass::Config shaftsConfigWithAuto(Device& device, const Scene& scene, const PassPlan& plan);
 
+// What every shafts search's decision depends on besides its own settings, as text for its cache key:
+// the device and driver, the kernel source, the camera, the air, the lights with their light maps' and
+// spectra's checksums, the objects, the shafts knobs and the planes' table ranges — the camera's pose
+// and the ranges (which follow from it) only when camera_pose.
+std::string shaftsSearchInputs(Device& device, const Scene& scene, bool camera_pose);
+
 // The cache key of the search (hex FNV-1a 64 of the inputs listed above), for tests and reports.
 std::string shaftsAutoKey(Device& device, const Scene& scene, const ShaftsAutoOptions& options);
 

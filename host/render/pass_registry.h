@@ -5,10 +5,13 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "device/device.h"
 #include "render/pass.h"
+#include "scene/scene.h"
 
 namespace seasim {
 
@@ -26,8 +29,18 @@ class PassRegistry {
   std::unique_ptr<Pass> make(const PassPlan& entry, const Plan& plan, const Scene& scene) const;
   std::vector<std::string> names() const;
 
+  // The scene with the choices its plan leaves to a measurement on the device made (the shafts'
+  // quality.shafts_method = "auto", host/quality/shafts_method_auto.h); nullopt: nothing to choose.
+  // The Renderer plans the scene this returns.
+  using PlanChoices = std::function<std::optional<Scene>(Device&, const Scene&)>;
+  void setPlanChoices(PlanChoices choices) { plan_choices_ = std::move(choices); }
+  std::optional<Scene> planChoices(Device& device, const Scene& scene) const {
+    return plan_choices_ ? plan_choices_(device, scene) : std::nullopt;
+  }
+
  private:
   std::map<std::string, Factory> factories_;  // by "name" or "name@kernel_file"
+  PlanChoices plan_choices_;
 };
 
 }  // namespace seasim

@@ -36,8 +36,12 @@ bool changesNoPass(const std::string& key) {
 }  // namespace
 
 Renderer::Renderer(Device& device, const Scene& scene, PassRegistry registry)
-    : device_(device), registry_(std::move(registry)), follow_scene_(true), plan_(makePlan(scene)),
-      ctx_(device, scene) {}
+    : Renderer(device, registry.planChoices(device, scene), scene, std::move(registry)) {}
+
+// `registry` is a reference so that the choice above is made before the registry moves into the member.
+Renderer::Renderer(Device& device, const std::optional<Scene>& chosen, const Scene& scene, PassRegistry&& registry)
+    : device_(device), registry_(std::move(registry)), follow_scene_(true), plan_(makePlan(chosen ? *chosen : scene)),
+      ctx_(device, chosen ? *chosen : scene) {}
 
 Renderer::Renderer(Device& device, const Scene& scene, Plan plan, PassRegistry registry)
     : device_(device), registry_(std::move(registry)), follow_scene_(false), plan_(std::move(plan)),
@@ -107,9 +111,12 @@ void Renderer::update(const Scene& next, const std::vector<std::string>& changed
     for (const Node& n : nodes_) claimed = claimed || anyMatch(n.keys.rebuild_on, key) || anyMatch(n.keys.rerun_on, key);
     unclaimed = unclaimed || !claimed;
   }
-  ctx_.setScene(next, changed_keys);
+  // The plan's measured choices are made again for the next scene: one decision per scene as its
+  // search keys it (the shafts' method leaves the camera's pose out, so a moving camera reads the cache).
+  const std::optional<Scene> chosen = follow_scene_ ? registry_.planChoices(device_, next) : std::nullopt;
+  ctx_.setScene(chosen ? *chosen : next, changed_keys);
   if (follow_scene_) {
-    Plan next_plan = makePlan(next);
+    Plan next_plan = makePlan(ctx_.scene());
     if (next_plan.toText() != plan_.toText()) {
       plan_ = std::move(next_plan);
       nodes_.clear();  // a different graph: build() makes it on the next render

@@ -12,6 +12,7 @@
 #pragma once
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -29,7 +30,8 @@ namespace seasim {
 
 class Renderer {
  public:
-  // The plan is makePlan(scene), made again when an update changes it.
+  // The plan is makePlan(scene) — of the scene with the registry's plan choices made (a measured
+  // shafts method) — made again when an update changes it.
   Renderer(Device& device, const Scene& scene, PassRegistry registry);
   // A fixed plan (tests build one by hand); update() keeps it.
   Renderer(Device& device, const Scene& scene, Plan plan, PassRegistry registry);
@@ -62,6 +64,8 @@ class Renderer {
   const std::vector<std::string>& lastExecuted() const { return last_executed_; }
 
  private:
+  Renderer(Device& device, const std::optional<Scene>& chosen, const Scene& scene, PassRegistry&& registry);
+
   struct Node {
     const PassPlan* entry = nullptr;
     std::unique_ptr<Pass> pass;

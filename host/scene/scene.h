@@ -148,6 +148,9 @@ struct SpectralDesc {
 struct Knob {
   bool automatic = false;
   double value = 0.0;
+  // Written in the scene or by --set, not the default. The count knobs and quality.shafts_method set
+  // it: an "auto" search keeps a knob the user gave fixed and searches the defaulted ones.
+  bool given = false;
 };
 
 struct SeaDesc {

@@ -761,6 +761,7 @@ class SceneParser {
     for (const KnobDefault& k : counts) {
       Knob knob{k.automatic, k.value};
       if (const toml::node* n = r.get(k.name)) {
+        knob.given = true;
         if (auto* s = n->as_string()) {
           r.check(s->get() == "auto", k.name,
                   "expected a positive integer or \"auto\", got '" + s->get() + "'");
@@ -804,9 +805,10 @@ class SceneParser {
     scene_.quality["fast_math"] = fast;
     // The shafts method: "intervals" (exact lit stretches, kernels/common/shafts_intervals.h),
     // "planes" (paper 001's sampling planes, which suit GPU texture units) or "march" (steps in the
-    // lamp's angle with exact shadow rays). Absent or "auto": the planner's choice (plan/shafts_method.h:
-    // intervals while the objects fit its per-pixel stretch list, else planes). Stored as a knob holding
-    // ShaftsMethod, automatic for "auto".
+    // lamp's angle with exact shadow rays). Absent: the planner's rule (plan/shafts_method.h: intervals
+    // while the objects fit its per-pixel stretch list, else planes). "auto": measured on the device at
+    // quality.shafts_error_budget before the first render (host/quality/shafts_method_auto.h), the rule
+    // until then. Stored as a knob holding ShaftsMethod, automatic for both, given for "auto".
     const std::string method = r.choice("shafts_method", "auto", {"planes", "intervals", "march", "auto"});
     if (method != "auto") {
       r.check(method != "intervals" || static_cast<int>(scene_.objects.size()) <= kShaftsIntervalsMaxObjects,
@@ -816,9 +818,9 @@ class SceneParser {
       const ShaftsMethod chosen = method == "intervals" ? ShaftsMethod::Intervals
                                   : method == "march"   ? ShaftsMethod::March
                                                         : ShaftsMethod::Planes;
-      scene_.quality["shafts_method"] = Knob{false, static_cast<double>(static_cast<int>(chosen))};
+      scene_.quality["shafts_method"] = Knob{false, static_cast<double>(static_cast<int>(chosen)), true};
     } else {
-      scene_.quality["shafts_method"] = Knob{true, 1.0};
+      scene_.quality["shafts_method"] = Knob{true, 1.0, r.has("shafts_method")};
     }
     // Intervals method: the widest quadrature panel in degrees of the lamp's angle, and over a light
     // map in its texels (the error-time knobs of `seasim sweep`).

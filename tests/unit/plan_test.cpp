@@ -301,13 +301,18 @@ direction = [0, -1, 0]
   EXPECT_FALSE(has_table(with_object + "[quality]\nshafts_method = \"march\"\n"));
   EXPECT_TRUE(has_table(with_object + "[quality]\nshafts_method = \"planes\"\n"));
   EXPECT_FALSE(has_table(with_object + "[quality]\nshafts_method = \"planes\"\nshafts_exact = true\n"));
-  // "auto" written out is the same choice as leaving the key out, on either side of the limit.
+  // "auto" written out is measured on the device before the Renderer plans (host/quality/
+  // shafts_method_auto.h); a plan made before that is the rule's, on either side of the limit, and says so.
   plan = makePlan(parseScene(many + "[quality]\nshafts_method = \"auto\"\n", "stage.toml"));
   EXPECT_TRUE(plan.hasPass("shadow_maps"));
   EXPECT_NE(plan.find("shafts")->why.find("method planes"), std::string::npos);
+  EXPECT_NE(plan.find("shafts")->why.find("method \"auto\": measured"), std::string::npos);
   plan = makePlan(parseScene(with_object + "[quality]\nshafts_method = \"auto\"\n", "stage.toml"));
   EXPECT_FALSE(plan.hasPass("shadow_maps"));
   EXPECT_NE(plan.find("shafts")->why.find("intervals"), std::string::npos);
+  EXPECT_NE(plan.find("shafts")->why.find("measured"), std::string::npos);
+  plan = makePlan(parseScene(with_object, "stage.toml"));  // the key absent: the rule, nothing measured
+  EXPECT_EQ(plan.find("shafts")->why.find("measured"), std::string::npos);
 }
 
 // Spotlights under water: the water's passes and the lamps' pass, which adds into the rgb

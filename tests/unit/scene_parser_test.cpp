@@ -302,6 +302,7 @@ TEST(SceneParser, Defaults) {
   EXPECT_TRUE(s.quality.at("froxel_x").automatic);   // "auto": from froxel_columns (froxel_setup.h)
   EXPECT_TRUE(s.quality.at("froxel_y").automatic);
   EXPECT_TRUE(s.quality.at("shafts_method").automatic);  // the planner decides (plan/shafts_method.h)
+  for (const auto& [name, knob] : s.quality) EXPECT_FALSE(knob.given) << name;  // nothing written: all defaults
   for (const auto& [name, value] : knobs) {
     ASSERT_TRUE(s.quality.count(name)) << name;
     EXPECT_FALSE(s.quality.at(name).automatic) << name;
@@ -324,6 +325,28 @@ TEST(SceneParser, Defaults) {
   EXPECT_DOUBLE_EQ(b.bottom.albedo.at(500), 0.3);
   EXPECT_DOUBLE_EQ(b.water.g, 0.9);
   EXPECT_DOUBLE_EQ(b.water.ior, 1.333);
+}
+
+// "auto" written for the shafts' method asks for a measurement (host/quality/shafts_method_auto.h);
+// absent, the planner's rule. Both are automatic; only the written one is given. A count knob written
+// as a number or as "auto" is given, so the method's search keeps a number fixed.
+TEST(SceneParser, WrittenKnobsAreGiven) {
+  const Scene absent = parseScene("", "a.toml");
+  EXPECT_TRUE(absent.quality.at("shafts_method").automatic);
+  EXPECT_FALSE(absent.quality.at("shafts_method").given);
+  const Scene written = parseScene("[quality]\nshafts_method = \"auto\"\nshafts_march_steps = 40\n"
+                                   "shafts_planes = \"auto\"\n", "w.toml");
+  EXPECT_TRUE(written.quality.at("shafts_method").automatic);
+  EXPECT_TRUE(written.quality.at("shafts_method").given);
+  EXPECT_TRUE(written.quality.at("shafts_march_steps").given);
+  EXPECT_FALSE(written.quality.at("shafts_march_steps").automatic);
+  EXPECT_DOUBLE_EQ(written.quality.at("shafts_march_steps").value, 40);
+  EXPECT_TRUE(written.quality.at("shafts_planes").given);
+  EXPECT_TRUE(written.quality.at("shafts_planes").automatic);
+  EXPECT_FALSE(written.quality.at("shafts_subplanes").given);
+  const Scene fixed = parseScene("[quality]\nshafts_method = \"march\"\n", "f.toml");
+  EXPECT_FALSE(fixed.quality.at("shafts_method").automatic);
+  EXPECT_TRUE(fixed.quality.at("shafts_method").given);
 }
 
 TEST(SceneParser, JerlovSpectraFromData) {

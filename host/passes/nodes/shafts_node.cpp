@@ -66,6 +66,13 @@ bool automatic(const Scene& scene, const char* knob) {
 
 std::optional<PassPlan> shaftsInAir(const Scene& scene, const Plan& so_far) {
   const auto features = shaftsFeatures(scene);
+  const auto method = scene.quality.find("shafts_method");
+  // "auto" as written: the Renderer measures the method before it plans (host/quality/shafts_method_auto.h);
+  // a plan made before that shows the rule's method.
+  const std::string measured = method != scene.quality.end() && method->second.automatic && method->second.given
+                                   ? "; method \"auto\": measured on the device at quality.shafts_error_budget "
+                                     "before the first render (until then the rule's choice)"
+                                   : "";
   std::vector<std::string> reads = {"scene"};
   if (so_far.produces("shadow_maps")) reads.push_back("shadow_maps");
   const std::string why =
@@ -79,7 +86,7 @@ std::optional<PassPlan> shaftsInAir(const Scene& scene, const Plan& so_far) {
                 (automatic(scene, "shafts_planes") || automatic(scene, "shafts_subplanes")
                      ? "; n, m \"auto\": the cheapest under quality.shafts_error_budget (searched once, cached)"
                      : "");
-  return planEntry(reads, {"rgb"}, why, features);
+  return planEntry(reads, {"rgb"}, why + measured, features);
 }
 
 PassPlan shaftsOverTheSea(const Scene& scene) {

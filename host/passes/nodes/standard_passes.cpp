@@ -12,6 +12,7 @@ PassRegistry standardPasses(const AutoQuality& auto_quality) {
                    return factory(entry, plan, scene, auto_quality);
                  });
   }
+  if (auto_quality.plan_choices) registry.setPlanChoices(auto_quality.plan_choices);
   return registry;
 }
 
