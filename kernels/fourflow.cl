@@ -20,6 +20,7 @@
 #define SEASIM_SKY_MODEL 0
 #endif
 #if SEASIM_SKY_MODEL != 0 /* the [sky] model (host/sky): one sky for every model, common/sky_view.h */
+#include "common/polynomial_trig.h"
 #include "common/sky.h"
 #include "common/sky_params.h"
 #include "common/sky_view.h"

@@ -100,6 +100,7 @@
 #ifndef SEASIM_SKY_MODEL
 #define SEASIM_SKY_MODEL 0
 #endif
+#include "common/polynomial_trig.h"
 #include "common/sky.h"
 #include "common/sky_params.h"
 #include "common/sky_view.h"

@@ -48,6 +48,7 @@
 #include "common/sea_surface.h"
 #include "common/sea_waves.h"
 #include "common/sea_lean.h"
+#include "common/polynomial_trig.h"
 #include "common/sky.h"
 #include "common/sea_bottom_params.h"
 #include "common/sea_second.h"
