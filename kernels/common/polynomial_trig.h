@@ -8,8 +8,11 @@
  *   4.4.46  acos x = sqrt(1 - x) (a0 + a1 x + … + a7 x^7),  0 <= x <= 1;  A&S bound 2e-8, measured 2.2e-8
  * (measured on 2,000,001 points of [0, 1] in double). Outside [0, 1] by the identities
  * atan x = π/2 - atan(1/x), acos(-x) = π - acos x, and atan2's quadrants. A&S print 10 digits, so the
- * double evaluation carries the same 2e-8 rad: these functions are checked against the library's, not
- * used to check it. */
+ * polynomials carry 2e-8 rad in double too: the lookups call lookup_atan2 and lookup_acos, which are
+ * the polynomials in kernels and the library's functions on the host, so the host's double evaluation
+ * stays the exact reference the kernels are tested against (the difference is ≤ 1e-7 relative, inside
+ * every kernel test's float tolerance); tests/unit/polynomial_trig_test.cpp checks the polynomials
+ * themselves in float and double. */
 
 /* atan2(y, x) in [-π, π]; atan2(0, 0) = 0 as the library's. The sign of a zero is not kept
  * (atan2(-0, -1) = π here, -π in the library; atan2(0, -0) = 0 here, π there): the same direction. */
@@ -46,4 +49,21 @@ SEASIM_FN real polynomial_acos(real x) {
   p = p * ax + R(1.5707963050);
   const real a = sqrt(fmax(R(1.0) - ax, R(0.0))) * p;
   return x < R(0.0) ? SEASIM_PI - a : a;
+}
+
+/* The sky lookups' angles: the polynomials above in kernels, the library on the host (header). */
+SEASIM_FN real lookup_atan2(real y, real x) {
+#if defined(__OPENCL_VERSION__) || defined(__OPENCL_C_VERSION__)
+  return polynomial_atan2(y, x);
+#else
+  return atan2(y, x);
+#endif
+}
+
+SEASIM_FN real lookup_acos(real x) {
+#if defined(__OPENCL_VERSION__) || defined(__OPENCL_C_VERSION__)
+  return polynomial_acos(x);
+#else
+  return acos(x);
+#endif
 }

@@ -95,13 +95,13 @@ SEASIM_FN real sky_cie_clear_cosine_mean(real3 sun, int n_s, int n_phi) {
   return sum / ((real)n_s * (real)n_phi);
 }
 
-/* Bilinear RGB of a latitude–longitude image (layout above) towards unit direction d. The angles come
- * from polynomial_trig.h (within 2.2e-8 rad of the library's: 1e-4 of a texel of a 4096-wide image),
- * which needs no library call per read. */
+/* Bilinear RGB of a latitude–longitude image (layout above) towards unit direction d. In kernels the
+ * angles come from polynomial_trig.h (within 2.2e-8 rad of the library's: 1e-4 of a texel of a
+ * 4096-wide image), which needs no library call per read. */
 SEASIM_FN real3 sky_latlong_rgb(const SEASIM_GLOBAL real* texels, int w, int h, real3 d) {
-  real u = polynomial_atan2(d.z, d.x) / (R(2.0) * SEASIM_PI); /* [-1/2, 1/2] */
+  real u = lookup_atan2(d.z, d.x) / (R(2.0) * SEASIM_PI); /* [-1/2, 1/2] */
   u = u - floor(u);                                  /* [0, 1]; 1 only by rounding, handled by the wrap */
-  const real v = polynomial_acos(clamp(d.y, R(-1.0), R(1.0))) / SEASIM_PI;
+  const real v = lookup_acos(clamp(d.y, R(-1.0), R(1.0))) / SEASIM_PI;
   const real fx = u * (real)w - R(0.5);
   const real fy = clamp(v * (real)h - R(0.5), R(0.0), (real)(h - 1));
   int x0 = (int)floor(fx);
@@ -185,7 +185,9 @@ SEASIM_FN void sky_preetham_yxy(const SEASIM_GLOBAL real* packed, real3 d, real3
     s = h > R(1e-12) ? MAKE_REAL3(s.x / h, R(0.0), s.z / h) : MAKE_REAL3(R(1.0), R(0.0), R(0.0));
   }
   const real cos_gamma = clamp(dot(d, s), R(-1.0), R(1.0));
-  const real gamma = acos(cos_gamma);
+  /* polynomial_trig.h's acos in kernels (2.2e-8 rad: 7e-8 relative in exp(D γ) for |D| <= 3): PoCL's
+   * acosf was 9 % of a filtered sea's frame under this sky. */
+  const real gamma = lookup_acos(cos_gamma);
 #if defined(__OPENCL_VERSION__) || defined(__OPENCL_C_VERSION__)
   /* sky_perez_cos for Y, x and y as the lanes of one real3: two vector exps for six scalar ones (the
    * sky was a third of a filtered sea's frame under Preetham's sky); the host's loop below checks it. */
