@@ -5,7 +5,7 @@
 // cache only holds the OpenCL program. Running each distinct plan once at its real size is the one
 // way to hit every (kernel, defines, local size) the renders will, including the passes' own extra
 // defines (sea_single's LUT switch, the froxel pass's) and the `auto` quality searches, which cache
-// their choice too. Renders that differ only in time, sun, camera pose or other values that change no
+// their choice too (the shafts' measured method before the plan is made, as the Renderer does). Renders that differ only in time, sun, camera pose or other values that change no
 // kernel build share one warm-up.
 #include "cli/cache_warm_command.h"
 
@@ -18,6 +18,7 @@
 #include "device/device.h"
 #include "jobs/job.h"
 #include "quality/render_frame.h"
+#include "quality/shafts_method_auto.h"
 #include "plan/plan.h"
 #include "scene/scene_parser.h"
 
@@ -67,10 +68,13 @@ int cmdCacheWarm(const CacheWarmCmd& cmd) {
   const auto t0 = std::chrono::steady_clock::now();
   int warmed = 0;
   for (const Item& item : items) {
-    const Plan plan = makePlan(item.scene);
-    if (!done.insert(buildKey(item.scene, plan)).second) continue;  // same builds as one already warmed
+    // The plan a render will make: with quality.shafts_method = "auto" measured first (which also caches
+    // the choice, so the node's renders search nothing).
+    const Scene scene = sceneWithMeasuredShaftsMethod(device, item.scene).value_or(item.scene);
+    const Plan plan = makePlan(scene);
+    if (!done.insert(buildKey(scene, plan)).second) continue;  // same builds as one already warmed
     const double build_before = device.totalBuildMs();
-    const FrameResult frame = renderFrame(device, item.scene, plan);
+    const FrameResult frame = renderFrame(device, scene, plan);
     ++warmed;
     std::printf("warm %-40s %4zu passes  frame %9.1f ms  (program builds/cache loads %8.1f ms)\n",
                 item.label.c_str(), plan.passes.size(), frame.wall_ms, device.totalBuildMs() - build_before);

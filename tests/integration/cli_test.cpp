@@ -345,6 +345,39 @@ TEST_F(Cli, CacheWarmBuildsEachDistinctPlanOnceIntoTheCaches) {
   EXPECT_FALSE(fs::exists(dir_ / "out"));
 }
 
+// quality.shafts_method = "auto": `cache warm` measures the method (and caches it), `plan` then shows the
+// measured method, and a render reads the cache instead of searching.
+TEST_F(Cli, CacheWarmMeasuresTheShaftsMethodForPlanAndRender) {
+  const fs::path seasim_cache = dir_ / "seasim_cache", pocl_cache = dir_ / "pocl_cache";
+  const std::string env = "SEASIM_CACHE_DIR=" + seasim_cache.string() + " POCL_CACHE_DIR=" + pocl_cache.string() + " ";
+  const std::string sets =
+      " --set 'quality.shafts_method=\"auto\"' --set camera.width=96 --set camera.height=64 2>&1";
+  auto shell = [&](const std::string& args) {
+    FILE* pipe = popen((env + kBinary + " " + args + sets).c_str(), "r");
+    std::string out;
+    char buf[4096];
+    while (size_t n = fread(buf, 1, sizeof buf, pipe)) out.append(buf, n);
+    const int status = pclose(pipe);
+    EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << args << "\n" << out;
+    return out;
+  };
+  const std::string scene = kRepo + "/scenes/spot_sphere.toml";
+  const std::string planned_before = shell("plan " + scene);
+  EXPECT_NE(planned_before.find("not measured yet"), std::string::npos) << planned_before;
+  const std::string warm = shell("cache warm " + scene);
+  EXPECT_NE(warm.find("shafts: method auto:"), std::string::npos) << warm;  // searched here
+  int entries = 0;
+  for (const auto& e : fs::directory_iterator(seasim_cache / "shafts_auto"))
+    entries += e.path().filename().string().rfind("method_", 0) == 0;
+  EXPECT_EQ(entries, 1);
+  const std::string planned = shell("plan " + scene);
+  EXPECT_NE(planned.find("measured on"), std::string::npos) << planned;
+  EXPECT_EQ(planned.find("not measured yet"), std::string::npos) << planned;
+  const std::string rendered = shell("render " + scene + " -o " + (dir_ / "out").string());
+  EXPECT_EQ(rendered.find("shafts: method auto:"), std::string::npos) << rendered;  // read from the cache
+  EXPECT_TRUE(fs::exists(dir_ / "out" / "image.exr"));
+}
+
 // The preview itself runs under Xvfb in preview_cli_test.cpp; here only what needs no display.
 TEST_F(Cli, PreviewNeedsAScene) {
   const Result r = run("preview");
