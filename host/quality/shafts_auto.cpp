@@ -22,7 +22,7 @@ namespace seasim {
 namespace {
 
 // Bump when the search or its pick rule changes meaning, so old cache entries are not reused.
-constexpr const char* kAutoVersion = "shafts-auto 1";
+constexpr const char* kAutoVersion = "shafts-auto 2";  // 2: the error floor's pick
 
 // Work per pixel of a setting, up to a constant: each of the n planes evaluates g once and H I_l at
 // m sub-sample planes. Measured on PoCL: t ≈ b n (m + r) with r ≈ 1–1.2 (spot_sphere, stage).
@@ -159,32 +159,25 @@ void writeCache(const std::string& path, const ShaftsAutoResult& r, const std::s
 }  // namespace
 
 int pickShaftsCandidate(const std::vector<ShaftsAutoCandidate>& cands, double budget) {
+  if (cands.empty()) return -1;
+  double least = cands.front().rmse_8bit;
+  for (const auto& c : cands) least = std::min(least, c.rmse_8bit);
+  const double bar = least <= budget ? budget : errorFloorBar(least);  // none in budget: the floor
   int best = -1;
-  bool best_in = false;
   for (int i = 0; i < static_cast<int>(cands.size()); ++i) {
     const ShaftsAutoCandidate& c = cands[i];
-    const bool in = c.rmse_8bit <= budget;
+    if (!(c.rmse_8bit <= bar)) continue;
     if (best < 0) {
       best = i;
-      best_in = in;
       continue;
     }
     const ShaftsAutoCandidate& b = cands[best];
-    bool better;
-    if (in != best_in) {
-      better = in;
-    } else if (in) {  // both in budget: cheapest, then less work, then more accurate
-      better = c.ms != b.ms ? c.ms < b.ms
-               : work(c.planes, c.subplanes) != work(b.planes, b.subplanes)
-                   ? work(c.planes, c.subplanes) < work(b.planes, b.subplanes)
-                   : c.rmse_8bit < b.rmse_8bit;
-    } else {  // none in budget so far: most accurate, then cheapest
-      better = c.rmse_8bit != b.rmse_8bit ? c.rmse_8bit < b.rmse_8bit : c.ms < b.ms;
-    }
-    if (better) {
-      best = i;
-      best_in = in;
-    }
+    // Cheapest, then less work, then more accurate.
+    const bool better = c.ms != b.ms ? c.ms < b.ms
+                        : work(c.planes, c.subplanes) != work(b.planes, b.subplanes)
+                            ? work(c.planes, c.subplanes) < work(b.planes, b.subplanes)
+                            : c.rmse_8bit < b.rmse_8bit;
+    if (better) best = i;
   }
   return best;
 }
@@ -232,8 +225,9 @@ ShaftsAutoResult chooseShaftsQuality(Device& device, const Scene& scene, const P
 
   ShaftsPass::Config config = ShaftsPass::configFromScene(scene);
   bool warmed_up = false;
-  double best_work = 0;  // work of the cheapest in-budget candidate so far (0: none yet)
+  double best_work = 0;  // work of the cheapest candidate that settled so far (0: none yet)
   double best_ms = 0;
+  double least_error = -1;  // of the candidates so far (-1: none yet)
   for (const Setting& s : settings) {
     if (best_work > 0 && work(s.n, s.m) > kWorkMargin * best_work) break;  // sorted: the rest are slower
     config.planes = s.n;
@@ -256,7 +250,11 @@ ShaftsAutoResult chooseShaftsQuality(Device& device, const Scene& scene, const P
                          " produced NaN/Inf values");
     }
     c.rmse_8bit = cmp.rmse_8bit;
-    if (c.rmse_8bit <= options.budget_levels) {
+    // A setting within budget, or at the error floor of those before it, settles the ladder (work beyond
+    // kWorkMargin of it cannot be cheaper, and past the floor buys nothing).
+    const bool at_floor = atErrorFloor(c.rmse_8bit, least_error);
+    least_error = least_error < 0 ? c.rmse_8bit : std::min(least_error, c.rmse_8bit);
+    if (c.rmse_8bit <= options.budget_levels || at_floor) {
       // The times that decide: least of three. Other work on a shared machine only ever adds time to a
       // kernel, so the least is the best estimate of its own cost (the median moved 3x under load on a
       // 2-core PoCL box).
@@ -312,7 +310,7 @@ ShaftsPass::Config shaftsConfigWithAuto(Device& device, const Scene& scene, cons
   }
   if (!r.met_budget) {
     std::fprintf(stderr,
-                 "shafts: warning: no (n, m) reaches RMS %g levels on '%s'; using the most accurate, n = %d, m = %d "
+                 "shafts: warning: no (n, m) reaches RMS %g levels on '%s'; using the cheapest at the error floor, n = %d, m = %d "
                  "(%.3f levels). The floor comes from quality.shadow_map_size / shafts_table_size, or raise "
                  "quality.shafts_error_budget\n",
                  r.budget_levels, scene.name.c_str(), r.planes, r.subplanes, r.rmse_8bit);

@@ -22,7 +22,8 @@
 // measured once, and three times (the least: load only adds time) when it meets the budget, since
 // those times decide.
 // When no candidate meets the budget (the error floor is set by shadow_map_size or the table
-// size, not by n and m), the most accurate one is taken and met_budget is false.
+// size, not by n and m), the cheapest at the floor (within 2 % of the least error, quality_search.h)
+// is taken and met_budget is false; the ladder stops at the floor as at the budget.
 //
 // The decision is cached on disk, keyed by a hash of everything that changes it: the scene as the
 // shafts pass sees it (camera, air, lights with their light-map bytes, objects, the other shafts
@@ -65,7 +66,7 @@ struct ShaftsAutoResult {
   int planes = 30, subplanes = 6;
   double rmse_8bit = 0, ms = 0;   // of the chosen setting, at the search resolution
   double budget_levels = 1.0;
-  bool met_budget = false;        // false: nothing met the budget; the most accurate was taken
+  bool met_budget = false;        // false: nothing met the budget; the cheapest at the floor was taken
   bool from_cache = false;        // true: read from the cache, no rendering done
   int search_width = 0, search_height = 0;
   double search_ms = 0;           // wall time of the search (0 from the cache)
@@ -74,8 +75,9 @@ struct ShaftsAutoResult {
 };
 
 // The pick rule on a table of evaluated candidates: the lowest ms among those with
-// rmse_8bit <= budget; when none qualifies, the lowest rmse_8bit. Ties: fewer n (m + 1), then
-// lower error. Returns the index; -1 for an empty table.
+// rmse_8bit <= budget; when none qualifies, among those at the error floor (errorFloorBar of the
+// least error, quality_search.h). Ties: fewer n (m + 1), then lower error. Returns the index; -1 for
+// an empty table.
 int pickShaftsCandidate(const std::vector<ShaftsAutoCandidate>& candidates, double budget_levels);
 
 // Searches (or reads from the cache) the cheapest (n, m) for `scene` under options.budget_levels.

@@ -127,7 +127,7 @@ class MethodSearch {
 
   // Renders `c` (method and setting filled in), fills its error and times, keeps it; returns whether it
   // settles its method's ladder: within budget, or at the error floor — no better than the best
-  // candidate before it by more than kShaftsFloorTolerance (more work there buys nothing the floor allows).
+  // candidate before it by more than kErrorFloorTolerance (more work there buys nothing the floor allows).
   bool measure(ShaftsMethodCandidate& c) {
     const Scene scene = withShaftsMethod(small_, c);
     const Plan plan = makePlan(scene);
@@ -149,8 +149,7 @@ class MethodSearch {
     if (cmp.nonfinite > 0)
       throw RuntimeError("shafts method search: " + describeShaftsSetting(c) + " produced NaN/Inf values");
     c.rmse_8bit = cmp.rmse_8bit;
-    const bool at_floor = least_error_ >= 0 && shaftsErrorFloorBar(c.rmse_8bit) >= least_error_ &&
-                          c.rmse_8bit <= shaftsErrorFloorBar(least_error_);
+    const bool at_floor = atErrorFloor(c.rmse_8bit, least_error_);
     least_error_ = least_error_ < 0 ? c.rmse_8bit : std::min(least_error_, c.rmse_8bit);
     const bool settles = c.rmse_8bit <= budget_ || at_floor;
     if (settles) {
@@ -191,7 +190,7 @@ void timeFinalistsAtFullSize(Device& device, const Scene& scene, double budget,
   if (candidates.empty()) return;
   double least = candidates.front().rmse_8bit;
   for (const auto& c : candidates) least = std::min(least, c.rmse_8bit);
-  const double bar = least <= budget ? budget : shaftsErrorFloorBar(least);
+  const double bar = least <= budget ? budget : errorFloorBar(least);
   std::vector<ShaftsMethodCandidate*> admitted;
   for (auto& c : candidates)
     if (c.rmse_8bit <= bar) admitted.push_back(&c);
@@ -235,13 +234,11 @@ std::string describeShaftsSetting(const ShaftsMethodCandidate& c) {
   return "intervals";
 }
 
-double shaftsErrorFloorBar(double least_error) { return least_error * (1.0 + kShaftsFloorTolerance); }
-
 int pickShaftsMethod(const std::vector<ShaftsMethodCandidate>& candidates, double budget) {
   if (candidates.empty()) return -1;
   double least = candidates.front().rmse_8bit;
   for (const auto& c : candidates) least = std::min(least, c.rmse_8bit);
-  const double bar = least <= budget ? budget : shaftsErrorFloorBar(least);
+  const double bar = least <= budget ? budget : errorFloorBar(least);
   int best = -1;
   for (int i = 0; i < static_cast<int>(candidates.size()); ++i) {
     const ShaftsMethodCandidate& c = candidates[i];

@@ -83,16 +83,9 @@ const char* shaftsMethodName(ShaftsMethod method);
 // One line naming the method and its setting: "march, 5 steps", "planes, n = 10, m = 2", "intervals".
 std::string describeShaftsSetting(const ShaftsMethodCandidate& c);
 
-// When no candidate meets the budget, the error floor (the shadow-map, table or texel limits every
-// method shares, or the search size's own) is the least error found, and candidates within this
-// fraction of it count as at the floor: on stage at a 0.25-level budget the intervals are 0.3846 levels
-// at the search size and the planes at n = 80, m = 12 0.3844, for 13x the time.
-constexpr double kShaftsFloorTolerance = 0.02;
-double shaftsErrorFloorBar(double least_error);
-
 // The pick rule: the least predicted_ms among candidates with rmse_8bit <= budget (ties: the lower
-// error); when none meets the budget, the same among those within kShaftsFloorTolerance of the least
-// error. -1 for an empty table.
+// error); when none meets the budget, the same among those at the error floor (within
+// kErrorFloorTolerance of the least error, quality_search.h). -1 for an empty table.
 int pickShaftsMethod(const std::vector<ShaftsMethodCandidate>& candidates, double budget_levels);
 
 // quality.shafts_method is "auto" as written (not absent) and the shafts light air (the only scenes

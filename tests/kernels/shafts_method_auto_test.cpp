@@ -19,6 +19,7 @@
 #include "passes/shafts_pass.h"
 #include "plan/plan.h"
 #include "quality/auto_quality.h"
+#include "quality/quality_search.h"
 #include "quality/shafts_method_auto.h"
 #include "reference/compare.h"
 #include "reference/shafts_reference.h"
@@ -119,9 +120,9 @@ TEST(ShaftsMethodAuto, AnUnreachableBudgetTakesTheCheapestAtTheErrorFloor) {
   EXPECT_FALSE(r->met_budget);
   double least = r->candidates.front().rmse_8bit;
   for (const auto& c : r->candidates) least = std::min(least, c.rmse_8bit);
-  EXPECT_LE(r->chosen.rmse_8bit, least * (1 + seasim::kShaftsFloorTolerance));
+  EXPECT_LE(r->chosen.rmse_8bit, least * (1 + seasim::kErrorFloorTolerance));
   for (const auto& c : r->candidates)
-    if (c.rmse_8bit <= least * (1 + seasim::kShaftsFloorTolerance))
+    if (c.rmse_8bit <= least * (1 + seasim::kErrorFloorTolerance))
       EXPECT_GE(c.predicted_ms, r->chosen.predicted_ms) << seasim::describeShaftsSetting(c);
 }
 
