@@ -67,6 +67,16 @@ std::vector<Override> concat(std::vector<Override> a, const std::vector<Override
   return a;
 }
 
+// quality.shafts_method = "auto": measured once at full quality and then held as given settings (added
+// to `base`, `scene` parsed again with them), so the reduced levels scale the chosen method's knobs
+// instead of searching again at each level's size.
+void holdMeasuredChoices(Device& device, const std::string& scene_file, std::vector<Override>& base, Scene& scene) {
+  if (const std::optional<ShaftsMethodCandidate> chosen = measuredShaftsMethod(device, scene)) {
+    base = concat(base, shaftsMethodOverrides(*chosen));
+    scene = loadScene(scene_file, base);
+  }
+}
+
 bool hasGlSharing(Device& device) {
   const std::string extensions = device.device().getInfo<CL_DEVICE_EXTENSIONS>();
   return extensions.find("cl_khr_gl_sharing") != std::string::npos;
@@ -91,12 +101,7 @@ int cmdPreview(const PreviewCmd& cmd) {
   const std::string save_prefix = cmd.save_prefix.empty() ? scene.name + "_preview" : cmd.save_prefix;
 
   Device device(chooseDevice(cmd.device));
-  // quality.shafts_method = "auto": measured once at full quality and then held as given settings, so the
-  // reduced levels scale the chosen method's knobs instead of searching again at each level's size.
-  if (const std::optional<ShaftsMethodCandidate> chosen = measuredShaftsMethod(device, scene)) {
-    base = concat(base, shaftsMethodOverrides(*chosen));
-    scene = loadScene(cmd.scene, base);
-  }
+  holdMeasuredChoices(device, cmd.scene, base, scene);
   PreviewWindow window(scene.camera.width, scene.camera.height, "seasim preview: " + scene.name);
   // CL/GL sharing would let the kernels write the texture; no device this was measured on has it
   // (PoCL does not), so the image is tone-mapped on the host and uploaded (docs/preview.md).
