@@ -18,7 +18,9 @@
 // size is its shadow maps' time (they do not scale with the image) plus its per-pixel kernel's time
 // times the ratio of pixels; the least of three runs for candidates within budget. The finalists (up to
 // 4 admitted candidates predicted within 1.5x the least) are then timed at the scene's own size, where
-// small images' per-launch costs no longer distort the ranking, and those times decide.
+// small images' per-launch costs no longer distort the ranking, and those times decide: the search costs
+// one reference at the reduced size plus at most 16 full-size frames of settings within 1.5x the fastest
+// (measured: 0.8 s on spot_sphere, 1.3-1.5 s with 21 objects, 3.7-5.6 s on stage's 5 lamps).
 // When nothing meets the budget, the cheapest candidate at the error floor is taken (within 2 % of the
 // least error; pickShaftsMethod) and met_budget is false; a ladder stops at the floor as at the budget.
 //

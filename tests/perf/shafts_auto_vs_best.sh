@@ -10,7 +10,7 @@
 # the search would otherwise keep), its search in a fresh cache folder (so it runs here, once per budget).
 # Time: `bench --repeat 5` kernel ms per frame (median of 5), the least over ROUNDS rounds (default 2)
 # that visit every setting and every "auto" in turn; error: `seasim compare` RMS in 8-bit levels of one
-# frame against REFERENCE.exr. Summary: tests/perf/shafts_auto_vs_best.py OUT.csv.
+# frame against REFERENCE.exr. Summary and plot: tests/perf/shafts_auto_vs_best.py OUT.csv ... --svg PLOT.svg.
 set -euo pipefail
 build=$1 scene=$2 lights=$3 ref=$4 csv=$5
 seasim="$build/seasim"
