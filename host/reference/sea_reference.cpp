@@ -207,7 +207,9 @@ double filteredFacets(const SeaReferenceScene& r, k::real3 d, SeaReferenceRay& r
     ray.node_dirs.push_back(k::sea_sky_direction(k::reflect_dir(d, nk)));
   }
   if (r.has_sun && r.sun.y > 0 && r.sun_solid_angle > 0)
-    ray.glint = k::sea_lean_glint(d, r.sun, r.ior, st[0], st[1], cxx, czz, cxz);
+    ray.glint = k::sea_lean_pixel_glint(d, fw, r.pixel_angle * k::real3{r.right.x, r.right.y, r.right.z},
+                                        -r.pixel_angle * k::real3{r.up.x, r.up.y, r.up.z}, r.sun, r.ior, st[0], st[1], cxx,
+                                        czz, cxz);
   return R_mean;
 }
 

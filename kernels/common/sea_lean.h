@@ -42,7 +42,8 @@
  *      L_glint = E F(−d·h) p(s_h) / (4 (−d·h) cos³θ_h),
  *    independent of Ω. The disk's own size is added to Σ as the slope variance of a uniform disk of
  *    half-vector radius ρ/2: ρ²/16 per axis (ρ the sun's angular radius), so a calm sea shows the
- *    sun's disk as a finite spot, not a spike.
+ *    sun's disk as a finite spot, not a spike. The pixel averages it over its solid angle where it
+ *    changes across the pixel (3 x 3 directions, sea_lean_pixel_glint): under a low sun it changes fast.
  * With no waves (Σ → the floor, m = 0) the sky term is exactly F L_sky of the flat sea (test:
  * tests/unit/sea_lean_test.cpp).
  *
@@ -292,4 +293,66 @@ SEASIM_FN real sea_lean_glint(real3 d, real3 sun, real ior, real mx, real mz, re
   const real pdf = exp(R(-0.5) * q) / (R(2.0) * SEASIM_PI * sqrt(det));
   const real c = fmax(-dot(d, h), R(1e-4));
   return fresnel_reflectance(c, R(1.0), ior) * pdf / (R(4.0) * c * h.y * h.y * h.y);
+}
+
+/* The half vector's slope for view d and the sun, and the cosine c = −d·h; 0 when there is none (as
+ * sea_lean_glint: no half vector, or one at or below the horizon). */
+SEASIM_FN int sea_lean_half_slope(real3 d, real3 sun, real* sx, real* sz, real* c) {
+  const real3 sum = sun - d;
+  const real len = length(sum);
+  if (len < R(1e-6)) return 0;
+  const real3 h = sum / len;
+  if (h.y <= R(1e-4)) return 0;
+  *sx = -h.x / h.y;
+  *sz = -h.z / h.y;
+  *c = -dot(d, h);
+  return 1;
+}
+
+/* The glitter over the pixel's solid angle. Under a low sun the glint changes fast across one pixel — on
+ * ocean_sunset (sun 5° up, 64 x 36) the half vector's slope moves by up to one standard deviation across
+ * it — and the centre's value was 8–32 % off the pixel's mean near the horizon (docs/journal/
+ * waves_reference.md). Where the glint's argument moves across the pixel — the half vector's slope by more
+ * than 0.2 of the footprint's standard deviation (Mahalanobis, from the centre to half a pixel along either
+ * image axis) or c by more than 2 %, and the pixel comes within 6 σ of the facets' mean — the glint is averaged over 3 x 3 Gauss–Legendre directions (0 and
+ * ±√(3/5)/2 of a pixel on each axis, weights 8/18 and 5/18: within 1 % of 64 x 64 of them, tests/unit/
+ * sea_lean_test.cpp; 2 x 2 still missed by 4 % two degrees under the horizon); elsewhere the centre's
+ * value is the mean within about 1 % and is used alone (nine glints for every pixel cost ocean_noon 25 %
+ * of its frame). d: the pixel's centre (unit, going down); fwd: the camera's forward axis; du, dv: one pixel
+ * along the image's x and y on the image plane at distance 1. A direction at or above the horizon adds
+ * nothing (it sees the sky, not the sea). */
+SEASIM_FN real sea_lean_pixel_glint(real3 d, real3 fwd, real3 du, real3 dv, real3 sun, real ior, real mx, real mz,
+                                    real cxx, real czz, real cxz) {
+  const real centre_glint = sea_lean_glint(d, sun, ior, mx, mz, cxx, czz, cxz);
+  const real3 centre = d / fmax(dot(d, fwd), R(1e-6)); /* the pixel's centre on the image plane */
+  real sx, sz, c;
+  int centre_only = sea_lean_half_slope(d, sun, &sx, &sz, &c) && d.y < R(0.0);
+  const real det = cxx * czz - cxz * cxz;
+  real shift = R(0.0); /* the half vector's slope from the centre to half a pixel along du, plus along dv, in σ */
+  int slow = 1;        /* ... each below 0.2 σ, and c within 2 % */
+  for (int axis = 0; axis < 2 && centre_only; ++axis) {
+    real ex, ez, ec;
+    centre_only = sea_lean_half_slope(normalize(centre + R(0.5) * (axis == 0 ? du : dv)), sun, &ex, &ez, &ec);
+    const real dx = ex - sx, dz = ez - sz;
+    const real m2 = (czz * dx * dx - R(2.0) * cxz * dx * dz + cxx * dz * dz) / det;
+    shift += sqrt(m2);
+    slow = slow && m2 < R(0.04) && fabs(ec - c) < R(0.02) * c;
+  }
+  /* The centre suffices where the glint is slow across the pixel, or where even the pixel's nearest corner
+   * lies more than 6 σ from the facets' mean (the glint there is below e^-18 of its peak). */
+  const real cx = sx - mx, cz = sz - mz;
+  const real far = sqrt(fmax((czz * cx * cx - R(2.0) * cxz * cx * cz + cxx * cz * cz) / det, R(0.0))) - shift;
+  if (centre_only && (slow || far > R(6.0))) return centre_glint;
+  const real node[3] = {R(-0.38729833462074170), R(0.0), R(0.38729833462074170)};
+  const real weight[3] = {R(5.0) / R(18.0), R(8.0) / R(18.0), R(5.0) / R(18.0)};
+  real sum = R(0.0);
+  for (int k = 0; k < 9; ++k) {
+    if (k == 4) {
+      sum += weight[1] * weight[1] * (d.y < R(0.0) ? centre_glint : R(0.0));
+      continue;
+    }
+    const real3 dk = normalize(centre + node[k % 3] * du + node[k / 3] * dv);
+    if (dk.y < R(0.0)) sum += weight[k % 3] * weight[k / 3] * sea_lean_glint(dk, sun, ior, mx, mz, cxx, czz, cxz);
+  }
+  return sum;
 }

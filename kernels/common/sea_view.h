@@ -141,7 +141,9 @@ SEASIM_FN void sea_view_filtered(SeaFeatures f, SEASIM_CONSTANT const SeaParams*
   const real3 sun = sea_sun_dir(p);
   px->glint = R(0.0);
   if (f.sun && sun.y > R(0.0) && p->sun_solid_angle > R(0.0))
-    px->glint = sea_lean_glint(d, sun, p->ior, stats[0], stats[1], cxx, czz, cxz);
+    px->glint = sea_lean_pixel_glint(d, fwd, p->pixel_angle * MAKE_REAL3(p->cam_right[0], p->cam_right[1], p->cam_right[2]),
+                                     -p->pixel_angle * MAKE_REAL3(p->cam_up[0], p->cam_up[1], p->cam_up[2]), sun, p->ior,
+                                     stats[0], stats[1], cxx, czz, cxz);
   real R_center;
   px->cos_ji = sea_view_interaction(d, n, p->ior, &R_center, &px->reflected, &px->view_in_water);
   px->R_view = R_mean;
