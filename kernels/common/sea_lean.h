@@ -278,25 +278,8 @@ SEASIM_FN real sea_lean_rule_node(const SeaLeanRule* r, int k, real* sx, real* s
   return weight;
 }
 
-/* The glitter (header): radiance reflected from a sun of irradiance 1 (normal to its beam) towards
- * the eye along d (unit, going down), by the footprint's facets of mean (mx, mz) and covariance
- * (cxx, czz, cxz) (already floored: sea_lean_covariance). */
-SEASIM_FN real sea_lean_glint(real3 d, real3 sun, real ior, real mx, real mz, real cxx, real czz, real cxz) {
-  const real3 sum = sun - d;
-  const real len = length(sum);
-  if (len < R(1e-6)) return R(0.0);
-  const real3 h = sum / len;
-  if (h.y <= R(1e-4)) return R(0.0);
-  const real dx = -h.x / h.y - mx, dz = -h.z / h.y - mz;
-  const real det = cxx * czz - cxz * cxz;
-  const real q = (czz * dx * dx - R(2.0) * cxz * dx * dz + cxx * dz * dz) / det;
-  const real pdf = exp(R(-0.5) * q) / (R(2.0) * SEASIM_PI * sqrt(det));
-  const real c = fmax(-dot(d, h), R(1e-4));
-  return fresnel_reflectance(c, R(1.0), ior) * pdf / (R(4.0) * c * h.y * h.y * h.y);
-}
-
-/* The half vector's slope for view d and the sun, and the cosine c = −d·h; 0 when there is none (as
- * sea_lean_glint: no half vector, or one at or below the horizon). */
+/* The half vector's slope for view d and the sun, and the cosine c = −d·h; 0 when there is none (no half
+ * vector, or one at or below the horizon: no glint). */
 SEASIM_FN int sea_lean_half_slope(real3 d, real3 sun, real* sx, real* sz, real* c) {
   const real3 sum = sun - d;
   const real len = length(sum);
@@ -307,6 +290,21 @@ SEASIM_FN int sea_lean_half_slope(real3 d, real3 sun, real* sx, real* sz, real* 
   *sz = -h.z / h.y;
   *c = -dot(d, h);
   return 1;
+}
+
+/* The glitter (header): radiance reflected from a sun of irradiance 1 (normal to its beam) towards
+ * the eye along d (unit, going down), by the footprint's facets of mean (mx, mz) and covariance
+ * (cxx, czz, cxz) (already floored: sea_lean_covariance). */
+SEASIM_FN real sea_lean_glint(real3 d, real3 sun, real ior, real mx, real mz, real cxx, real czz, real cxz) {
+  real sx, sz, c;
+  if (!sea_lean_half_slope(d, sun, &sx, &sz, &c)) return R(0.0);
+  const real dx = sx - mx, dz = sz - mz;
+  const real det = cxx * czz - cxz * cxz;
+  const real q = (czz * dx * dx - R(2.0) * cxz * dx * dz + cxx * dz * dz) / det;
+  const real pdf = exp(R(-0.5) * q) / (R(2.0) * SEASIM_PI * sqrt(det));
+  const real hy = R(1.0) / sqrt(R(1.0) + sx * sx + sz * sz); /* cos θ_h */
+  c = fmax(c, R(1e-4));
+  return fresnel_reflectance(c, R(1.0), ior) * pdf / (R(4.0) * c * hy * hy * hy);
 }
 
 /* The glitter over the pixel's solid angle. Under a low sun the glint changes fast across one pixel — on
