@@ -28,7 +28,8 @@
  * Defines: SEASIM_HAS_OBJECTS (shadow rays), SEASIM_SPECTRAL_OUTPUT, SEASIM_LAMPS_ORDERS (the "orders"
  * model, common/underwater_lamps_ms.h: the lamps' light scattered more than once, from ms_table's
  * blurred profiles, ms_orders orders, ms_steps quadrature steps per view ray, stretch exponent
- * ms_kappa; the surfaces' light then reaches the eye through T_view instead of e^{-σ_t S}).
+ * ms_kappa; the surfaces' light then reaches the eye through T_view instead of e^{-σ_t S}; and the lit
+ * bottom's glow from ms_glow, 4 + 2 band_count floats per lamp, host/underwater/lamps_bottom_glow.h).
  * Stiff cases: common/underwater_lamps.h; never NaN/Inf (every division is by a clamped distance).
  */
 #include "common/compat.h"
@@ -135,6 +136,64 @@ typedef struct {
 } LampRay;
 
 #if SEASIM_LAMPS_ORDERS
+/* The bottom's glow under one lamp (common/underwater_lamps_ms.h): the lit patch as a Lambertian source
+ * at glow[0..2] of radius glow[3], strengths glow[4 + i] (all the lamp's light on the bottom) and
+ * glow[4 + nb + i] (its direct light alone); on the surface the pixel sees (through T_view) and along
+ * the view ray, orders 0..ms_orders, the geometry per step once and the bands innermost. Order 0 of the
+ * direct light is light scattered once in the water (lamps_single); the rest is multiple. */
+static inline void lamp_bottom_glow(__constant UwParams* p, __global const UwBand* bands, __global const float* glow,
+                                    int ms_orders, int ms_steps, float c_min,
+                                    __global const float* I, const LampRay* v, LampSums* o) {
+  const int nb = p->band_count;
+  const float radius = glow[3];
+  if (!(radius > 0.0f)) return;
+  const float3 c = (float3)(glow[0], glow[1], glow[2]), up = (float3)(0.0f, 1.0f, 0.0f);
+  __global const float* J = glow + 4;
+  __global const float* J_direct = glow + 4 + nb;
+  if (v->lit_surface) {
+    const float3 P = v->o + v->S * v->d;
+    for (int i = 0; i < nb; ++i) {
+      float first;
+      const float E = uw_ms_glow_surface(P, v->n, c, up, radius, bands[i].a, bands[i].b, p->g, ms_orders, &first);
+      if (!(E > 0.0f)) continue;
+      const float alb = I[i] * v->alb[i * v->alb_stride];
+      lamp_add_to(o, bands, i, alb * J[i] * E * uw_ms_view_transmission(bands[i].a, bands[i].b, p->g, v->S, ms_orders), 1, 0);
+      lamp_add_to(o, bands, i, alb * J_direct[i] * first * exp(-bands[i].c * v->S), 0, 1);
+    }
+  }
+  UwMsRay q;
+  const int steps = uw_ms_glow_steps(ms_steps);
+  uw_ms_ray(v->o, v->d, c, radius, v->t_end, uw_ms_ray_cap(c_min), steps, &q);
+  if (!(q.dv > 0.0f)) return;
+  float geo[UW_MS_MAX_ORDERS + 1];
+  for (int j = 0; j < steps; ++j) {
+    const float t = uw_ms_ray_t(&q, j);
+    float s, ca;
+    uw_lamp_at(v->o, v->d, c, t, &s, &ca);
+    const float cos_psi = s > 0.0f ? dot(v->o + t * v->d - c, up) / s : 0.0f;
+    if (!(cos_psi > 0.0f)) continue;
+    const float w = cos_psi * uw_ms_glow_ray_weight(&q, t, s, radius);
+    float gk = p->g;
+    geo[0] = uw_ms_glow_phase(ca, gk);
+    for (int k = 1; k <= ms_orders; ++k) {
+      gk *= p->g;
+      geo[k] = uw_ms_glow_phase(ca, gk);
+    }
+    for (int i = 0; i < nb; ++i) {
+      const float sa = bands[i].a, ss = bands[i].b;
+      if (!(ss > 0.0f)) continue;
+      float wn[UW_MS_MAX_ORDERS + 1];
+      uw_ms_glow_weights(sa, ss, s, ms_orders, wn);
+      const float first = wn[0] * geo[0];
+      float sum = first;
+      for (int k = 1; k <= ms_orders; ++k) sum += wn[k] * geo[k];
+      const float f = I[i] * ss * exp(-(sa + ss) * t) * w;
+      lamp_add_to(o, bands, i, f * J[i] * sum, 1, 0);
+      lamp_add_to(o, bands, i, f * J_direct[i] * first, 0, 1);
+    }
+  }
+}
+
 /* The "orders" model's light of one lamp (common/underwater_lamps_ms.h): on the surface, the direct
  * light (exact, shadowed) plus the orders' irradiance (unshadowed: light scattered around an object
  * reaches behind it), both seen through T_view; along the view ray, the orders' in-scatter, the geometry
@@ -142,8 +201,8 @@ typedef struct {
  * bands with their weights. */
 static inline void lamp_orders(__constant UwParams* p, __global const UwBand* bands, __global const UwObject* objects,
                                int count, __constant UwLampParams* lp, __global const UwLamp* L,
-                               __global const float* I, __global const float* ms_rows, int ms_orders, int ms_steps,
-                               float ms_kappa, const LampRay* v, LampSums* o) {
+                               __global const float* I, __global const float* ms_rows, __global const float* glow,
+                               int ms_orders, int ms_steps, float ms_kappa, const LampRay* v, LampSums* o) {
   const int nb = lp->band_count;
   const float3 lamp = v3(L->position), axis = v3(L->direction);
   const float escapes = lamp_escapes(objects, count, lamp);
@@ -166,12 +225,12 @@ static inline void lamp_orders(__constant UwParams* p, __global const UwBand* ba
   if (!(escapes > 0.0f)) return;
   float c_min = bands[0].c;
   for (int i = 1; i < nb; ++i) c_min = fmin(c_min, bands[i].c);
-  UwMsRay q;
-  uw_ms_ray(v->o, v->d, lamp, lp->s_min, v->t_end, uw_ms_ray_cap(c_min), ms_steps, &q);
-  if (!(q.dv > 0.0f)) return;
   float stretch[UW_MS_MAX_ORDERS], geo[UW_MS_MAX_ORDERS];
   for (int k = 1; k <= ms_orders; ++k) stretch[k - 1] = uw_ms_stretch(p->g, k, ms_kappa);
-  for (int j = 0; j < ms_steps; ++j) {
+  lamp_bottom_glow(p, bands, glow, ms_orders, ms_steps, c_min, I, v, o);
+  UwMsRay q;
+  uw_ms_ray(v->o, v->d, lamp, lp->s_min, v->t_end, uw_ms_ray_cap(c_min), ms_steps, &q);
+  for (int j = 0; j < ms_steps && q.dv > 0.0f; ++j) {
     const float t = uw_ms_ray_t(&q, j);
     float s, c;
     uw_lamp_at(v->o, v->d, lamp, t, &s, &c);
@@ -276,7 +335,8 @@ __kernel void underwater_lamps(__constant UwParams* p, __global const UwBand* ba
                                __global const int* material, __constant UwLampParams* lp,
                                __global const UwLamp* lamps, __global const float* lamp_spectra,
 #if SEASIM_LAMPS_ORDERS
-                               __global const float* ms_table, int ms_orders, int ms_steps, float ms_kappa,
+                               __global const float* ms_table, __global const float* ms_glow, int ms_orders,
+                               int ms_steps, float ms_kappa,
 #endif
                                __global float* rgb
 #if SEASIM_SPECTRAL_OUTPUT
@@ -328,8 +388,8 @@ __kernel void underwater_lamps(__constant UwParams* p, __global const UwBand* ba
     __global const UwLamp* L = &lamps[l];
     __global const float* I = lamp_spectra + l * nb;
 #if SEASIM_LAMPS_ORDERS
-    lamp_orders(p, bands, objects, count, lp, L, I, ms_table + l * ms_orders * UW_MS_TABLE, ms_orders, ms_steps,
-                ms_kappa, &v, &o);
+    lamp_orders(p, bands, objects, count, lp, L, I, ms_table + l * ms_orders * UW_MS_TABLE, ms_glow + l * (4 + 2 * nb),
+                ms_orders, ms_steps, ms_kappa, &v, &o);
 #else
     lamp_surface(&md, objects, count, lp, L, I, &v, &o);
 #endif

@@ -1,9 +1,11 @@
 #include "passes/underwater_lamps_pass.h"
 
 #include <algorithm>
+#include <cstring>
 
 #include "device/enqueue.h"
 #include "passes/underwater_features.h"
+#include "underwater/lamps_bottom_glow.h"
 #include "underwater/lamps_ms_table.h"
 #include "underwater/lamps_setup.h"
 #include "math/kernel_math.h"
@@ -55,8 +57,12 @@ UnderwaterLampsPass::UnderwaterLampsPass(Device& device, const Scene& scene, con
   if (config_.model == Model::DeltaM) deltaMScale(params, bands);
   lamp_list_ = lamps.lamps;
   lamp_g_ = params.g;
-  const std::vector<float> ms_table =
-      config_.model == Model::Orders ? lampMsTable(lamp_list_, lamp_g_, config_.beta, config_.orders) : std::vector<float>{0.0f};
+  lamp_s_min_ = lamps.params.s_min;
+  if (config_.model == Model::Orders) ms_table_host_ = lampMsTable(lamp_list_, lamp_g_, config_.beta, config_.orders);
+  const std::vector<float>& ms_table = config_.model == Model::Orders ? ms_table_host_ : std::vector<float>{0.0f};
+  const std::vector<float> ms_glow = config_.model == Model::Orders ? bottomGlow(params, bands) : std::vector<float>{0.0f};
+  glow_bands_ = bands;
+  glow_depth_ = params.bottom_depth;
   UwObject none{};  // OpenCL buffers cannot be empty
   const cl_mem_flags in = CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR;
   onDevice("underwater_lamps pass set-up", [&] {
@@ -70,6 +76,7 @@ UnderwaterLampsPass::UnderwaterLampsPass(Device& device, const Scene& scene, con
     lamps_ = cl::Buffer(device.context(), in, sizeof(UwLamp) * lamps.lamps.size(), lamps.lamps.data());
     spectra_ = cl::Buffer(device.context(), in, sizeof(float) * lamps.spectra.size(), lamps.spectra.data());
     ms_table_ = cl::Buffer(device.context(), in, sizeof(float) * ms_table.size(), const_cast<float*>(ms_table.data()));
+    ms_glow_ = cl::Buffer(device.context(), in, sizeof(float) * ms_glow.size(), const_cast<float*>(ms_glow.data()));
     plain_bands_ = single_apart_
                        ? cl::Buffer(device.context(), in, sizeof(UwBand) * setup.bands.size(),
                                     const_cast<UwBand*>(setup.bands.data()))
@@ -90,10 +97,22 @@ void UnderwaterLampsPass::update(const UnderwaterSetup& setup) {
   // The orders' table depends on g only: rebuilt when the water's g changed.
   if (config_.model == Model::Orders && params.g != lamp_g_) {
     lamp_g_ = params.g;
-    const std::vector<float> ms_table = lampMsTable(lamp_list_, lamp_g_, config_.beta, config_.orders);
+    ms_table_host_ = lampMsTable(lamp_list_, lamp_g_, config_.beta, config_.orders);
     onDevice("underwater_lamps pass update", [&] {
-      device_.queue().enqueueWriteBuffer(ms_table_, CL_TRUE, 0, sizeof(float) * ms_table.size(), ms_table.data());
+      device_.queue().enqueueWriteBuffer(ms_table_, CL_TRUE, 0, sizeof(float) * ms_table_host_.size(), ms_table_host_.data());
     });
+    glow_bands_.clear();  // the glow follows the new profiles
+  }
+  // The bottom's glow depends on the water, the bottom and the profiles: rebuilt when they changed.
+  const bool same_glow = glow_depth_ == params.bottom_depth && glow_bands_.size() == bands.size() &&
+                         std::memcmp(glow_bands_.data(), bands.data(), sizeof(UwBand) * bands.size()) == 0;
+  if (config_.model == Model::Orders && !same_glow) {
+    const std::vector<float> ms_glow = bottomGlow(params, bands);
+    onDevice("underwater_lamps pass update", [&] {
+      device_.queue().enqueueWriteBuffer(ms_glow_, CL_TRUE, 0, sizeof(float) * ms_glow.size(), ms_glow.data());
+    });
+    glow_bands_ = bands;
+    glow_depth_ = params.bottom_depth;
   }
   onDevice("underwater_lamps pass update", [&] {
     cl::CommandQueue& q = device_.queue();
@@ -123,6 +142,7 @@ double UnderwaterLampsPass::run(cl::Buffer& geom, cl::Buffer& material, cl::Buff
     kernel_.setArg(arg++, spectra_);
     if (config_.model == Model::Orders) {
       kernel_.setArg(arg++, ms_table_);
+      kernel_.setArg(arg++, ms_glow_);
       kernel_.setArg(arg++, static_cast<cl_int>(config_.orders));
       kernel_.setArg(arg++, static_cast<cl_int>(config_.ms_steps));
       kernel_.setArg(arg++, static_cast<cl_float>(config_.kappa));
@@ -142,6 +162,14 @@ double UnderwaterLampsPass::run(cl::Buffer& geom, cl::Buffer& material, cl::Buff
     }
   });
   return runKernel2d(device_, "underwater_lamps", kernel_, width_, height_);
+}
+
+std::vector<float> UnderwaterLampsPass::bottomGlow(const UwParams& params, const std::vector<UwBand>& bands) const {
+  LampGlowModel model;
+  model.g = params.g;
+  model.kappa = config_.kappa;
+  model.orders = config_.orders;
+  return lampBottomGlowTable(lamp_list_, params, bands, ms_table_host_, lamp_s_min_, model);
 }
 
 }  // namespace seasim

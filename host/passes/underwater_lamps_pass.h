@@ -58,16 +58,23 @@ class UnderwaterLampsPass {
              cl::Buffer* lamps_layer = nullptr, cl::Buffer* band_layers = nullptr, const LampSplitLayers& split = {});
   // Rewrites the underwater parameter blocks (sun, water or time changed; same sizes).
   void update(const UnderwaterSetup& setup);
+  // The orders model's bottom glow for these water bands (host/underwater/lamps_bottom_glow.h).
+  std::vector<float> bottomGlow(const UwParams& params, const std::vector<UwBand>& bands) const;
 
  private:
   Device& device_;
   Config config_;
   float lamp_g_ = 0.0f;  // the g the orders' table was built for
   std::vector<UwLamp> lamp_list_;
+  float lamp_s_min_ = 0.0f;
+  std::vector<float> ms_table_host_;  // the orders' blurred profiles, as on the device
+  // What the bottom's glow was built from (water and bottom per band, bottom depth): rebuilt when they change.
+  std::vector<UwBand> glow_bands_;
+  float glow_depth_ = 0.0f;
   int width_, height_;
   size_t band_count_, object_count_, albedo_count_;
   cl::Kernel kernel_;
-  cl::Buffer params_, bands_, albedo_, objects_, lamp_params_, lamps_, spectra_, ms_table_;
+  cl::Buffer params_, bands_, albedo_, objects_, lamp_params_, lamps_, spectra_, ms_table_, ms_glow_;
   // The delta-M model with the lamps' split layers: its single-scattering part is evaluated apart, in
   // the water as it is (plain_bands_; otherwise plain_bands_ is bands_ and the kernel does not read it).
   bool single_apart_ = false;

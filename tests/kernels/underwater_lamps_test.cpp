@@ -25,6 +25,7 @@
 #include "spectral/wavelength_grid.h"
 #include "test_device.h"
 #include "passes/underwater_lamps_pass.h"
+#include "underwater/lamps_bottom_glow.h"
 #include "underwater/lamps_ms_table.h"
 #include "underwater/lamps_setup.h"
 #include "underwater/underwater_setup.h"
@@ -91,6 +92,13 @@ seasim::Image cpuDouble(const Scene& scene, int planes, int subplanes, bool delt
   const seasim::UnderwaterLamps lamps = seasim::makeUnderwaterLamps(scene, grid);
   const seasim::UnderwaterLampsPass::Config cfg = seasim::UnderwaterLampsPass::configFromScene(scene);
   const std::vector<float> ms_table = seasim::lampMsTable(lamps.lamps, setup.params.g, cfg.beta, cfg.orders);
+  seasim::LampGlowModel glow_model;
+  glow_model.g = setup.params.g;
+  glow_model.kappa = cfg.kappa;
+  glow_model.orders = cfg.orders;
+  const std::vector<float> glow =
+      seasim::lampBottomGlowTable(lamps.lamps, setup.params, setup.bands, ms_table, lamps.params.s_min, glow_model);
+  const int glow_stride = seasim::lampGlowStride(static_cast<int>(setup.bands.size()));
   const UwParams& p = setup.params;
   seasim::Image img;
   img.width = p.width;
@@ -121,6 +129,12 @@ seasim::Image cpuDouble(const Scene& scene, int planes, int subplanes, bool delt
             for (const UwBand& other : setup.bands) c_min = std::min(c_min, double(other.c));
             v += kd::uw_ms_inscatter(o, d, lamp, axis, lamps.params.s_min, t_end, kd::uw_ms_ray_cap(c_min), b.a, b.b,
                                      p.g, cfg.kappa, rows, cfg.orders, cfg.ms_steps);
+            // The bottom's glow (on the bottom itself its light is 0: the source's cos ψ there).
+            const float* gl = glow.data() + static_cast<size_t>(l) * glow_stride;
+            if (gl[3] > 0.0f)
+              v += gl[4 + i] * kd::uw_ms_glow_inscatter(o, d, kd::real3{gl[0], gl[1], gl[2]}, kd::real3{0.0, 1.0, 0.0},
+                                                        gl[3], t_end, kd::uw_ms_ray_cap(c_min), b.a, b.b, p.g,
+                                                        cfg.orders, kd::uw_ms_glow_steps(cfg.ms_steps), nullptr);
             if (mat == UW_MAT_BOTTOM) {
               const kd::real3 P = o + S * d;
               v += b.bottom_albedo *
@@ -182,6 +196,22 @@ TEST(UnderwaterLamps, OrdersKernelMatchesTheDoubleCpuEvaluation) {
   std::printf("orders kernel vs double CPU: max |difference| %.3g of a peak %.4g\n", worst, peak);
   EXPECT_LT(worst, 2e-3 * peak) << "worst " << worst << " of peak " << peak;
   EXPECT_NEAR(meanOf(frame.rgb), meanOf(cpu), 1e-4 * meanOf(cpu));
+}
+
+TEST(UnderwaterLamps, OrdersBottomGlowLightsTheWaterAboveTheLitBottom) {
+  // The top row looks up into open water, past the bottom: only the lit bottom's glow there depends on
+  // the bottom's albedo. A black bottom sends nothing back.
+  const Scene grey = lampScene({set("quality.lamps_model", "\"orders\"")});
+  const Scene black = lampScene({set("quality.lamps_model", "\"orders\""), set("bottom.albedo", "0.0")});
+  const seasim::Image lit = render(grey).rgb, dark = render(black).rgb;
+  double glow = 0.0, water = 0.0;
+  for (int x = 0; x < lit.width; ++x) {
+    EXPECT_GT(lit.at(x, 0, 1), dark.at(x, 0, 1)) << "x " << x;
+    glow += lit.at(x, 0, 1) - dark.at(x, 0, 1);
+    water += dark.at(x, 0, 1);
+  }
+  std::printf("the bottom's glow in the top row: %.3g of the lamp's light there\n", glow / water);
+  EXPECT_GT(glow, 0.01 * water);
 }
 
 TEST(UnderwaterLamps, OrdersLightTheWaterOutsideTheBeam) {

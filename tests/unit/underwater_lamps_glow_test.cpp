@@ -1,0 +1,197 @@
+// underwater_lamps_glow_test.cpp — the bottom's glow under a spotlight in the "orders" model
+// (kernels/common/underwater_lamps_ms.h "The bottom's glow", host/underwater/lamps_bottom_glow.h): the
+// lit patch's strength, centre and radius against closed forms in clear water, its strength against an
+// independent area integral in scattering water, no glow without a bottom, the glow's phase function
+// without its forward peak, and the glow along a view ray and on a surface in float and double, finite
+// at its stiff points (a ray through the centre, σ_s -> 0, G -> 1).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "math/kernel_math.h"
+#include "underwater/lamps_bottom_glow.h"
+#include "underwater/lamps_ms_table.h"
+
+namespace {
+
+namespace kd = seasim::kmath_d;
+namespace kf = seasim::kmath_f;
+
+double cosDeg(double deg) { return std::cos(deg * M_PI / 180); }
+
+UwLamp lampAt(double x, double y, double z, kd::real3 dir, double cone_deg) {
+  UwLamp L{};
+  L.position[0] = float(x);
+  L.position[1] = float(y);
+  L.position[2] = float(z);
+  const kd::real3 d = kd::normalize(dir);
+  L.direction[0] = float(d.x);
+  L.direction[1] = float(d.y);
+  L.direction[2] = float(d.z);
+  L.cos_cone = float(cosDeg(cone_deg));
+  L.cos_inner = L.cos_cone;
+  return L;
+}
+
+UwBand band(double a, double b, double albedo) {
+  UwBand B{};
+  B.a = float(a);
+  B.b = float(b);
+  B.c = float(a + b);
+  B.bottom_albedo = float(albedo);
+  return B;
+}
+
+UwParams bottomAt(double depth, double g) {
+  UwParams p{};
+  p.bottom_depth = float(depth);
+  p.g = float(g);
+  return p;
+}
+
+TEST(UnderwaterLampsGlow, ClearWaterPatchAgainstClosedForms) {
+  // A lamp straight down, a hard cone θc, h above the bottom, no scattering, absorption a: the patch's
+  // strength is ρ/π ∫_cone e^{-a h / cos θ} dω; without absorption ρ 2 (1 - cos θc), its centre the foot
+  // point and its RMS radius² h² (1/cos θc + cos θc - 2)/(1 - cos θc) (E ∝ cos³θ, r = h tan θ).
+  const seasim::LampGlowModel model;
+  for (double cone : {10.0, 30.0, 60.0})
+    for (double h : {1.0, 4.0}) {
+      const UwLamp L = lampAt(0.3, -2.0, -1.0, {0.0, -1.0, 0.0}, cone);
+      const std::vector<UwBand> bands = {band(0.0, 0.0, 0.5), band(0.2, 0.0, 0.25)};
+      const std::vector<float> rows = seasim::lampMsProfiles(L.cos_cone, L.cos_inner, 0.9, 0.8, model.orders, 32, 8);
+      // The centre and radius from the clear band alone (the absorbing one weights the patch otherwise).
+      const std::vector<float> g = seasim::lampBottomGlow(L, bottomAt(2.0 + h, 0.9), {bands[0]}, rows.data(), 0.02, model);
+      const std::vector<float> both = seasim::lampBottomGlow(L, bottomAt(2.0 + h, 0.9), bands, rows.data(), 0.02, model);
+      ASSERT_EQ(both.size(), size_t(seasim::lampGlowStride(2)));
+      const double c = cosDeg(cone);
+      EXPECT_NEAR(g[0], 0.3, 1e-4);
+      EXPECT_NEAR(g[1], -(2.0 + h), 1e-6);
+      EXPECT_NEAR(g[2], -1.0, 1e-4);
+      EXPECT_NEAR(g[3], h * std::sqrt((1.0 / c + c - 2.0) / (1.0 - c)), 1e-3 * h) << "cone " << cone;
+      EXPECT_NEAR(both[4], 0.5 * 2.0 * (1.0 - c), 1e-5) << "all light, clear";
+      EXPECT_FLOAT_EQ(both[6], both[4]) << "no scattering: all of it is direct";
+      // With absorption: ∫_c^1 e^{-a h/μ} dμ by Simpson's rule on 2000 intervals.
+      double acc = 0.0;
+      const int n = 2000;
+      for (int k = 0; k <= n; ++k) {
+        const double mu = c + (1.0 - c) * k / n;
+        acc += (k == 0 || k == n ? 1 : (k % 2 ? 4 : 2)) * std::exp(-0.2 * h / mu);
+      }
+      acc *= (1.0 - c) / (3.0 * n);
+      EXPECT_NEAR(both[5], 0.25 * 2.0 * acc, 2e-5 * 0.5) << "cone " << cone << " h " << h;
+    }
+}
+
+TEST(UnderwaterLampsGlow, ScatteringWaterStrengthAgainstACartesianAreaIntegral) {
+  // The orders' light over the bottom summed on a plain Cartesian grid (another quadrature than the
+  // pass's polar asinh one) plus the direct light on the same grid: the strengths agree within 1 %.
+  seasim::LampGlowModel model;
+  model.g = 0.8;
+  const UwLamp L = lampAt(0.0, -3.0, 0.0, {0.3, -1.0, 0.2}, 25.0);
+  const double depth = 5.0, s_min = 0.02;
+  const UwBand B = band(0.1, 0.4, 0.5);
+  const std::vector<float> rows = seasim::lampMsProfiles(L.cos_cone, L.cos_inner, model.g, 0.8, model.orders);
+  const std::vector<float> g = seasim::lampBottomGlow(L, bottomAt(depth, model.g), {B}, rows.data(), s_min, model);
+  const kd::real3 lamp{L.position[0], L.position[1], L.position[2]}, axis{L.direction[0], L.direction[1], L.direction[2]};
+  const kd::real3 up{0.0, 1.0, 0.0};
+  double total = 0.0;
+  const double half = 25.0, dx = 0.05;  // 0.5 m^-1 extinction: e^{-12} at the edge
+  for (double x = -half + dx / 2; x < half; x += dx)
+    for (double z = -half + dx / 2; z < half; z += dx) {
+      const kd::real3 p{x, -depth, z};
+      total += dx * dx * B.bottom_albedo *
+               (kd::uw_lamp_surface(p, up, 0.0, lamp, axis, L.cos_cone, L.cos_inner, s_min, B.c, 1.0) +
+                kd::uw_ms_surface(p, up, lamp, axis, s_min, B.a, B.b, model.g, model.kappa, rows.data(), model.orders));
+    }
+  EXPECT_NEAR(g[4], total, 0.01 * total);
+  EXPECT_GT(g[4], 1.2 * g[5]) << "the orders add to the direct light";
+}
+
+TEST(UnderwaterLampsGlow, NoGlowWithoutABottomUnderTheLamp) {
+  const seasim::LampGlowModel model;
+  const UwLamp L = lampAt(0.0, -3.0, 0.0, {0.0, -1.0, 0.0}, 20.0);
+  const std::vector<float> rows = seasim::lampMsProfiles(L.cos_cone, L.cos_inner, 0.9, 0.8, model.orders, 16, 8);
+  for (double depth : {0.0, -1.0, 2.0, 3.0}) {  // no bottom, deep water, the lamp under or on the bottom
+    const std::vector<float> g = seasim::lampBottomGlow(L, bottomAt(depth, 0.9), {band(0.1, 0.3, 0.5)}, rows.data(), 0.02, model);
+    EXPECT_EQ(g[3], 0.0f) << "depth " << depth;
+    EXPECT_EQ(g[4], 0.0f) << "depth " << depth;
+  }
+  // A lamp pointing up still lights the bottom through its orders.
+  const UwLamp up = lampAt(0.0, -3.0, 0.0, {0.0, 1.0, 0.0}, 20.0);
+  const std::vector<float> rows_up = seasim::lampMsProfiles(up.cos_cone, up.cos_inner, 0.9, 0.8, model.orders, 16, 8);
+  const std::vector<float> g = seasim::lampBottomGlow(up, bottomAt(5.0, 0.9), {band(0.1, 0.3, 0.5)}, rows_up.data(), 0.02, model);
+  EXPECT_GT(g[3], 0.0f);
+  EXPECT_GT(g[4], 0.0f);
+  EXPECT_EQ(g[5], 0.0f) << "no direct light reaches the bottom";
+}
+
+TEST(UnderwaterLampsGlow, PhaseWithoutItsForwardPeak) {
+  // ∫ 4π... over the sphere: 2π ∫ p dμ = 1 - G² (the peak's share G² left out), finite as G -> 1.
+  for (double G : {0.0, 0.5, 0.9, 0.99, 1.0}) {
+    double acc = 0.0;
+    const int n = 20000;
+    for (int k = 0; k < n; ++k) acc += 2.0 * M_PI * kd::uw_ms_glow_phase(-1.0 + (k + 0.5) * 2.0 / n, G) * 2.0 / n;
+    EXPECT_NEAR(acc, 1.0 - G * G, 1e-4) << "G " << G;
+    EXPECT_TRUE(std::isfinite(kf::uw_ms_glow_phase(1.0f, float(G))));
+    EXPECT_NEAR(kf::uw_ms_glow_phase(0.3f, float(G)), kd::uw_ms_glow_phase(0.3, G), 1e-6);
+  }
+}
+
+TEST(UnderwaterLampsGlow, AlongAViewRayFloatAgreesWithDoubleAndStiffPointsStayFinite) {
+  const kd::real3 c{0.2, -6.0, -3.0}, up{0.0, 1.0, 0.0};
+  const kd::real3 o{0.0, -3.0, 0.0};
+  const kf::real3 cf{0.2f, -6.0f, -3.0f}, upf{0.0f, 1.0f, 0.0f}, of{0.0f, -3.0f, 0.0f};
+  for (const kd::real3 aim : {kd::real3{0.2, -6.0, -3.0}, kd::real3{1.0, -6.0, -5.0}, kd::real3{0.0, -4.0, -8.0}}) {
+    const kd::real3 d = kd::normalize(aim - o);
+    const kf::real3 df{float(d.x), float(d.y), float(d.z)};
+    const double t_end = 1e30;
+    double first_d;
+    float first_f;
+    const double v = kd::uw_ms_glow_inscatter(o, d, c, up, 0.5, t_end, kd::uw_ms_ray_cap(0.4), 0.1, 0.3, 0.9, 8, 24, &first_d);
+    const float vf = kf::uw_ms_glow_inscatter(of, df, cf, upf, 0.5f, 1e30f, kf::uw_ms_ray_cap(0.4f), 0.1f, 0.3f, 0.9f, 8,
+                                              24, &first_f);
+    EXPECT_TRUE(std::isfinite(vf));
+    EXPECT_GE(v, first_d);
+    EXPECT_GE(first_d, 0.0);
+    EXPECT_NEAR(vf, v, 1e-4 * v + 1e-12);
+    EXPECT_NEAR(first_f, first_d, 1e-4 * first_d + 1e-12);
+    // The quadrature converges: the kernel's 12 steps (uw_ms_glow_steps of the default 24) and 24 against
+    // 256; a ray aimed at the centre is the hardest.
+    const double fine = kd::uw_ms_glow_inscatter(o, d, c, up, 0.5, t_end, kd::uw_ms_ray_cap(0.4), 0.1, 0.3, 0.9, 8, 256, nullptr);
+    const double coarse = kd::uw_ms_glow_inscatter(o, d, c, up, 0.5, t_end, kd::uw_ms_ray_cap(0.4), 0.1, 0.3, 0.9, 8,
+                                                   kd::uw_ms_glow_steps(24), nullptr);
+    std::printf("glow along a ray: 12 steps %.4f, 24 steps %.4f of 256\n", coarse / fine, v / fine);
+    EXPECT_NEAR(v, fine, 0.02 * fine);
+    EXPECT_NEAR(coarse, fine, 0.025 * fine);
+  }
+  // No scattering: no glow in the water; a ray ending before it starts; the radius at its floor.
+  const kd::real3 d = kd::normalize(kd::real3{0.2, -3.0, -3.0});
+  EXPECT_EQ(kd::uw_ms_glow_inscatter(o, d, c, up, 0.5, 1e30, 100.0, 0.1, 0.0, 0.9, 8, 24, nullptr), 0.0);
+  EXPECT_EQ(kd::uw_ms_glow_inscatter(o, d, c, up, 0.5, 0.0, 100.0, 0.1, 0.3, 0.9, 8, 24, nullptr), 0.0);
+  EXPECT_TRUE(std::isfinite(kf::uw_ms_glow_inscatter(of, kf::real3{0.0f, -1.0f, 0.0f}, kf::real3{0.0f, -6.0f, 0.0f}, upf, 1e-3f,
+                                                     3.0f, 100.0f, 0.1f, 0.3f, 1.0f, 12, 64, nullptr)));
+}
+
+TEST(UnderwaterLampsGlow, OnASurfaceItsUnscatteredPartIsTheSoftenedLambertianSource) {
+  // σ_s = 0: J cos ψ cos θ_i e^{-σ_a s} / (π (s² + R²)) exactly; below the bottom's plane nothing; with
+  // scattering the orders add light.
+  const kd::real3 c{0.0, -5.0, 0.0}, up{0.0, 1.0, 0.0};
+  const kd::real3 p{1.0, -3.0, 0.5}, n = kd::normalize(kd::real3{-0.2, -1.0, 0.1});
+  const kd::real3 w = p - c;
+  const double s = kd::length(w), R = 0.7;
+  const double expect = (kd::dot(w, up) / s) * (-kd::dot(w, n) / s) * std::exp(-0.1 * s) / (M_PI * (s * s + R * R));
+  double first;
+  EXPECT_NEAR(kd::uw_ms_glow_surface(p, n, c, up, R, 0.1, 0.0, 0.9, 8, &first), expect, 1e-12);
+  EXPECT_NEAR(first, expect, 1e-12);
+  EXPECT_GT(kd::uw_ms_glow_surface(p, n, c, up, R, 0.1, 0.3, 0.9, 8, nullptr), 0.0);
+  EXPECT_EQ(kd::uw_ms_glow_surface(kd::real3{1.0, -5.0, 0.0}, up, c, up, R, 0.1, 0.3, 0.9, 8, nullptr), 0.0);
+  EXPECT_EQ(kd::uw_ms_glow_surface(c, up, c, up, R, 0.1, 0.3, 0.9, 8, nullptr), 0.0);
+  EXPECT_NEAR(kf::uw_ms_glow_surface(kf::real3{1.0f, -3.0f, 0.5f}, kf::real3{float(n.x), float(n.y), float(n.z)},
+                                     kf::real3{0.0f, -5.0f, 0.0f}, kf::real3{0.0f, 1.0f, 0.0f}, 0.7f, 0.1f, 0.3f, 0.9f, 8,
+                                     nullptr),
+              kd::uw_ms_glow_surface(p, n, c, up, R, 0.1, 0.3, 0.9, 8, nullptr), 1e-5 * expect * 10);
+}
+
+}  // namespace
