@@ -157,11 +157,15 @@ TEST(UnderwaterLampsGlow, AlongAViewRayFloatAgreesWithDoubleAndStiffPointsStayFi
     EXPECT_GE(first_d, 0.0);
     EXPECT_NEAR(vf, v, 1e-4 * v + 1e-12);
     EXPECT_NEAR(first_f, first_d, 1e-4 * first_d + 1e-12);
-    // The quadrature converges: the kernel's 12 steps (uw_ms_glow_steps of the default 24) and 24 against
-    // 256; a ray aimed at the centre is the hardest.
+    // The quadrature converges: the kernel's 12 steps (uw_ms_glow_steps of the default lamps_ms_steps 12
+    // and of 24) and 24 against 256; a ray aimed at the centre is the hardest.
     const double fine = kd::uw_ms_glow_inscatter(o, d, c, up, 0.5, t_end, kd::uw_ms_ray_cap(0.4), 0.1, 0.3, 0.9, 8, 256, nullptr);
     const double coarse = kd::uw_ms_glow_inscatter(o, d, c, up, 0.5, t_end, kd::uw_ms_ray_cap(0.4), 0.1, 0.3, 0.9, 8,
-                                                   kd::uw_ms_glow_steps(24), nullptr);
+                                                   kd::uw_ms_glow_steps(12), nullptr);
+    EXPECT_EQ(kd::uw_ms_glow_steps(12), 12);
+    EXPECT_EQ(kd::uw_ms_glow_steps(24), 12);
+    EXPECT_EQ(kd::uw_ms_glow_steps(64), 32);
+    EXPECT_EQ(kd::uw_ms_glow_steps(4), 4);
     std::printf("glow along a ray: 12 steps %.4f, 24 steps %.4f of 256\n", coarse / fine, v / fine);
     EXPECT_NEAR(v, fine, 0.02 * fine);
     EXPECT_NEAR(coarse, fine, 0.025 * fine);
