@@ -28,7 +28,8 @@
  * Defines: SEASIM_HAS_OBJECTS (shadow rays), SEASIM_SPECTRAL_OUTPUT, SEASIM_LAMPS_ORDERS (the "orders"
  * model, common/underwater_lamps_ms.h: the lamps' light scattered more than once, from ms_table's
  * blurred profiles, ms_orders orders, ms_steps quadrature steps per view ray, stretch exponent
- * ms_kappa; the surfaces' light then reaches the eye through T_view instead of e^{-σ_t S}; and the lit
+ * ms_kappa; the surfaces' light then reaches the eye through T_view instead of e^{-σ_t S}, the bottom's
+ * direct light blurred in its terms k >= 1 (uw_ms_blurred_bottom); and the lit
  * bottom's glow from ms_glow, 4 + 2 band_count floats per lamp, host/underwater/lamps_bottom_glow.h).
  * Stiff cases: common/underwater_lamps.h; never NaN/Inf (every division is by a clamped distance).
  */
@@ -40,6 +41,7 @@
 #include "common/underwater_lamps_params.h"
 #include "common/underwater_lamps.h"
 #if SEASIM_LAMPS_ORDERS
+#include "common/path_tracer.h"
 #include "common/underwater_lamps_ms.h"
 #endif
 
@@ -131,6 +133,7 @@ typedef struct {
   float3 o, d, n;
   float S, t_end;
   int lit_surface;
+  int bottom; /* the surface is the flat bottom (its lamp light is blurred on the way to the eye) */
   __global const float* alb; /* the surface's albedo per band, every alb_stride floats */
   int alb_stride;
 } LampRay;
@@ -209,14 +212,27 @@ static inline void lamp_orders(__constant UwParams* p, __global const UwBand* ba
   if (v->lit_surface) {
     const float3 P = v->o + v->S * v->d;
     const float vis = lamp_visible(objects, count, P + 1e-3f * v->n, lamp);
+    UwMsBlur blur[UW_MS_MAX_ORDERS];
+    if (v->bottom)
+      for (int k = 1; k <= ms_orders; ++k)
+        blur[k - 1] = uw_ms_blurred_bottom(v->o, v->d, p->bottom_depth, lamp, axis, L->cos_cone, L->cos_inner, lp->s_min,
+                                           uw_ms_spread(p->g, k, UW_MS_VIEW_BETA));
     for (int i = 0; i < nb; ++i) {
       const float direct = vis > 0.0f ? uw_lamp_surface(P, v->n, 0.0f, lamp, axis, L->cos_cone, L->cos_inner,
                                                         lp->s_min, bands[i].c, vis)
                                       : 0.0f;
       const float ms = escapes * uw_ms_surface(P, v->n, lamp, axis, lp->s_min, bands[i].a, bands[i].b, p->g, ms_kappa,
                                                ms_rows, ms_orders);
-      const float Lo = I[i] * v->alb[i * v->alb_stride] * (direct + ms) *
-                       uw_ms_view_transmission(bands[i].a, bands[i].b, p->g, v->S, ms_orders);
+      const float T = uw_ms_view_transmission(bands[i].a, bands[i].b, p->g, v->S, ms_orders);
+      float Lo = I[i] * v->alb[i * v->alb_stride] * (direct + ms) * T;
+      if (v->bottom) {
+        /* The bottom's direct light blurred on its way to the eye: T_view's terms k >= 1 see the spread. */
+        float blurred = 0.0f;
+        for (int k = 1; k <= ms_orders; ++k)
+          blurred += uw_ms_view_term(bands[i].a, bands[i].b, p->g, v->S, k, ms_orders) *
+                     (blur[k - 1].geometry * exp(-bands[i].c * blur[k - 1].s_mean) - direct);
+        Lo += escapes * I[i] * v->alb[i * v->alb_stride] * blurred; /* unshadowed, but not from a sealed lamp */
+      }
       lamp_add_to(o, bands, i, Lo, 1, 0);
       /* Its part scattered at most once: the direct light seen unscattered (T_view's first term). */
       lamp_add_to(o, bands, i, I[i] * v->alb[i * v->alb_stride] * direct * exp(-bands[i].c * v->S), 0, 1);
@@ -365,7 +381,8 @@ __kernel void underwater_lamps(__constant UwParams* p, __global const UwBand* ba
   const float4 gb = geom[pixel];
   const int mat = material[pixel];
   LampRay v = {.o = v3(p->cam_pos), .d = uw_screen_dir(p, (x + 0.5f) / p->width, (y + 0.5f) / p->height),
-               .n = (float3)(gb.y, gb.z, gb.w), .S = gb.x, .lit_surface = mat >= 0 || mat == UW_MAT_BOTTOM};
+               .n = (float3)(gb.y, gb.z, gb.w), .S = gb.x, .lit_surface = mat >= 0 || mat == UW_MAT_BOTTOM,
+               .bottom = mat == UW_MAT_BOTTOM};
   v.t_end = v.S >= UW_INFINITE ? SHAFTS_T_INF : v.S;
   v.alb = mat >= 0 ? albedo + mat * nb : &bands[0].bottom_albedo;
   v.alb_stride = mat >= 0 ? 1 : (int)(sizeof(UwBand) / sizeof(float));

@@ -3,7 +3,8 @@
 // lit patch's strength, centre and radius against closed forms in clear water, its strength against an
 // independent area integral in scattering water, no glow without a bottom, the glow's phase function
 // without its forward peak, and the glow along a view ray and on a surface in float and double, finite
-// at its stiff points (a ray through the centre, σ_s -> 0, G -> 1).
+// at its stiff points (a ray through the centre, σ_s -> 0, G -> 1); the lit bottom blurred on its way to
+// the eye (T_view by terms, the blur between its limits).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -196,6 +197,57 @@ TEST(UnderwaterLampsGlow, OnASurfaceItsUnscatteredPartIsTheSoftenedLambertianSou
                                      kf::real3{0.0f, -5.0f, 0.0f}, kf::real3{0.0f, 1.0f, 0.0f}, 0.7f, 0.1f, 0.3f, 0.9f, 8,
                                      nullptr),
               kd::uw_ms_glow_surface(p, n, c, up, R, 0.1, 0.3, 0.9, 8, nullptr), 1e-5 * expect * 10);
+}
+
+}  // namespace
+
+namespace {
+
+TEST(UnderwaterLampsBlur, ViewTermsAddUpToTheViewTransmission) {
+  for (double S : {0.0, 0.5, 3.0, 20.0})
+    for (double g : {0.0, 0.5, 0.9, 1.0})
+      for (int last : {1, 4, 8}) {
+        double sum = 0.0;
+        for (int k = 0; k <= last; ++k) sum += kd::uw_ms_view_term(0.1, 0.4, g, S, k, last);
+        EXPECT_NEAR(sum, kd::uw_ms_view_transmission(0.1, 0.4, g, S, last), 1e-12) << S << " " << g << " " << last;
+      }
+}
+
+TEST(UnderwaterLampsBlur, BlurredBottomBetweenItsLimits) {
+  // A narrow spread (h -> 1) gives the light at the ray's end; under a lamp lighting the whole bottom
+  // evenly near the ray's end a narrow spread keeps it within 5 %; a ray aimed up misses the bottom with
+  // every narrow direction; float agrees with double; h = 0 (isotropic) stays finite.
+  const UwLamp L = lampAt(0.0, -2.0, 0.0, {0.0, -1.0, 0.0}, 80.0);
+  const kd::real3 lamp{0.0, -2.0, 0.0}, axis{0.0, -1.0, 0.0}, up{0.0, 1.0, 0.0};
+  const kd::real3 o{0.5, -1.0, 0.3};
+  const double depth = 5.0;
+  const kd::real3 d = kd::normalize(kd::real3{0.6, -4.0, -0.5});
+  const kd::real3 P = o + ((-depth - o.y) / d.y) * d;
+  const double at_end = kd::uw_lamp_surface(P, up, 0.0, lamp, axis, L.cos_cone, L.cos_inner, 0.02, 0.0, 1.0);
+  const kd::UwMsBlur sharp = kd::uw_ms_blurred_bottom(o, d, depth, lamp, axis, L.cos_cone, L.cos_inner, 0.02, 0.99999);
+  EXPECT_NEAR(sharp.geometry, at_end, 1e-3 * at_end);
+  EXPECT_NEAR(sharp.s_mean, kd::length(P - lamp), 1e-3);
+  const kd::UwMsBlur wide = kd::uw_ms_blurred_bottom(o, d, depth, lamp, axis, L.cos_cone, L.cos_inner, 0.02, 0.99);
+  EXPECT_NEAR(wide.geometry, at_end, 0.05 * at_end);
+  const kd::UwMsBlur miss =
+      kd::uw_ms_blurred_bottom(o, kd::real3{0.0, 1.0, 0.0}, depth, lamp, axis, L.cos_cone, L.cos_inner, 0.02, 0.999);
+  EXPECT_EQ(miss.geometry, 0.0);
+  const kf::UwMsBlur wide_f = kf::uw_ms_blurred_bottom(kf::real3{0.5f, -1.0f, 0.3f}, kf::real3{float(d.x), float(d.y), float(d.z)},
+                                                       5.0f, kf::real3{0.0f, -2.0f, 0.0f}, kf::real3{0.0f, -1.0f, 0.0f},
+                                                       L.cos_cone, L.cos_inner, 0.02f, 0.99f);
+  EXPECT_NEAR(wide_f.geometry, wide.geometry, 1e-4 * wide.geometry);
+  const kf::UwMsBlur iso = kf::uw_ms_blurred_bottom(kf::real3{0.5f, -1.0f, 0.3f}, kf::real3{float(d.x), float(d.y), float(d.z)},
+                                                    5.0f, kf::real3{0.0f, -2.0f, 0.0f}, kf::real3{0.0f, -1.0f, 0.0f},
+                                                    L.cos_cone, L.cos_inner, 0.02f, 0.0f);
+  EXPECT_TRUE(std::isfinite(iso.geometry) && std::isfinite(iso.s_mean));
+  // Beside a hard-edged patch the blur brings light where the ray's end has none (the halo).
+  const UwLamp narrow = lampAt(0.0, -2.0, 0.0, {0.0, -1.0, 0.0}, 10.0);
+  const kd::real3 beside_d = kd::normalize(kd::real3{1.2, -4.0, 0.0} - o);  // ends 1.2 m from the axis, outside 10° at 3 m
+  EXPECT_EQ(kd::uw_lamp_surface(o + ((-depth - o.y) / beside_d.y) * beside_d, up, 0.0, lamp, axis, narrow.cos_cone,
+                                narrow.cos_inner, 0.02, 0.0, 1.0),
+            0.0);
+  EXPECT_GT(kd::uw_ms_blurred_bottom(o, beside_d, depth, lamp, axis, narrow.cos_cone, narrow.cos_inner, 0.02, 0.9).geometry,
+            0.0);
 }
 
 }  // namespace
