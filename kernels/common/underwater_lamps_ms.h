@@ -365,12 +365,18 @@ SEASIM_FN UwMsBlur uw_ms_blurred_bottom(real3 o, real3 d, real depth, real3 lamp
   const real3 e2 = cross(d, e1);
   const real3 up = MAKE_REAL3(0.0, 1.0, 0.0);
   real sum = R(0.0), sum_s = R(0.0);
+  /* The azimuths' midpoints by rotation: cos and sin once per call, not per direction. */
+  const real step = (R(2.0) * SEASIM_PI) / (real)UW_MS_BLUR_PHI;
+  const real c_step = cos(step), s_step = sin(step), c0 = cos(R(0.5) * step), s0 = sin(R(0.5) * step);
   for (int iu = 0; iu < UW_MS_BLUR_U; ++iu) {
     const real omc = pt_hg_one_minus_cos(fmax(h, R(0.0)), ((real)iu + R(0.5)) / (real)UW_MS_BLUR_U);
     const real cb = R(1.0) - omc, sb = sqrt(fmax(omc * (R(2.0) - omc), R(0.0)));
+    real cp = c0, sp = s0;
     for (int ip = 0; ip < UW_MS_BLUR_PHI; ++ip) {
-      const real phi = (R(2.0) * SEASIM_PI) * (((real)ip + R(0.5)) / (real)UW_MS_BLUR_PHI);
-      const real3 w = cb * d + (sb * cos(phi)) * e1 + (sb * sin(phi)) * e2;
+      const real3 w = cb * d + (sb * cp) * e1 + (sb * sp) * e2;
+      const real next_c = cp * c_step - sp * s_step;
+      sp = sp * c_step + cp * s_step;
+      cp = next_c;
       if (!(w.y < R(0.0))) continue;
       const real t = (-depth - o.y) / w.y;
       if (!(t > R(0.0))) continue;
