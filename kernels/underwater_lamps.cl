@@ -223,14 +223,14 @@ static inline void lamp_orders(__constant UwParams* p, __global const UwBand* ba
                                       : 0.0f;
       const float ms = escapes * uw_ms_surface(P, v->n, lamp, axis, lp->s_min, bands[i].a, bands[i].b, p->g, ms_kappa,
                                                ms_rows, ms_orders);
-      const float T = uw_ms_view_transmission(bands[i].a, bands[i].b, p->g, v->S, ms_orders);
+      float view[UW_MS_MAX_ORDERS + 1];
+      const float T = uw_ms_view_terms(bands[i].a, bands[i].b, p->g, v->S, ms_orders, view);
       float Lo = I[i] * v->alb[i * v->alb_stride] * (direct + ms) * T;
       if (v->bottom) {
         /* The bottom's direct light blurred on its way to the eye: T_view's terms k >= 1 see the spread. */
         float blurred = 0.0f;
         for (int k = 1; k <= ms_orders; ++k)
-          blurred += uw_ms_view_term(bands[i].a, bands[i].b, p->g, v->S, k, ms_orders) *
-                     (blur[k - 1].geometry * exp(-bands[i].c * blur[k - 1].s_mean) - direct);
+          blurred += view[k] * (blur[k - 1].geometry * exp(-bands[i].c * blur[k - 1].s_mean) - direct);
         Lo += escapes * I[i] * v->alb[i * v->alb_stride] * blurred; /* unshadowed, but not from a sealed lamp */
       }
       lamp_add_to(o, bands, i, Lo, 1, 0);

@@ -58,8 +58,8 @@ UnderwaterLampsPass::UnderwaterLampsPass(Device& device, const Scene& scene, con
   lamp_list_ = lamps.lamps;
   lamp_g_ = params.g;
   lamp_s_min_ = lamps.params.s_min;
-  if (config_.model == Model::Orders) ms_table_host_ = lampMsTable(lamp_list_, lamp_g_, config_.beta, config_.orders);
-  const std::vector<float>& ms_table = config_.model == Model::Orders ? ms_table_host_ : std::vector<float>{0.0f};
+  ms_table_host_ = config_.model == Model::Orders ? lampMsTable(lamp_list_, lamp_g_, config_.beta, config_.orders)
+                                                  : std::vector<float>{0.0f};
   const std::vector<float> ms_glow = config_.model == Model::Orders ? bottomGlow(params, bands) : std::vector<float>{0.0f};
   glow_bands_ = bands;
   glow_depth_ = params.bottom_depth;
@@ -75,7 +75,7 @@ UnderwaterLampsPass::UnderwaterLampsPass(Device& device, const Scene& scene, con
     lamp_params_ = cl::Buffer(device.context(), in, sizeof(UwLampParams), &lamps.params);
     lamps_ = cl::Buffer(device.context(), in, sizeof(UwLamp) * lamps.lamps.size(), lamps.lamps.data());
     spectra_ = cl::Buffer(device.context(), in, sizeof(float) * lamps.spectra.size(), lamps.spectra.data());
-    ms_table_ = cl::Buffer(device.context(), in, sizeof(float) * ms_table.size(), const_cast<float*>(ms_table.data()));
+    ms_table_ = cl::Buffer(device.context(), in, sizeof(float) * ms_table_host_.size(), ms_table_host_.data());
     ms_glow_ = cl::Buffer(device.context(), in, sizeof(float) * ms_glow.size(), const_cast<float*>(ms_glow.data()));
     plain_bands_ = single_apart_
                        ? cl::Buffer(device.context(), in, sizeof(UwBand) * setup.bands.size(),

@@ -28,13 +28,6 @@ struct GlowSums {
   }
 };
 
-// An orthonormal frame (u, v) about the unit vector a.
-void frameAbout(const real3& a, real3* u, real3* v) {
-  const real3 helper = std::fabs(a.y) < 0.9 ? real3{0.0, 1.0, 0.0} : real3{1.0, 0.0, 0.0};
-  *u = kmath_d::normalize(kmath_d::cross(helper, a));
-  *v = kmath_d::cross(a, *u);
-}
-
 // The direct light over the lamp's solid angle: dA cos θ_i / s² = dω, so ∫ E/π dA = ∫ P e^{-σ_t s}/π dω
 // over the directions that reach the bottom (s = h / -ω_y). Midpoints in cos θ over the cone (hard or
 // soft edge) and in azimuth.
@@ -43,7 +36,7 @@ void addDirect(const UwLamp& L, const std::vector<UwBand>& bands, double depth, 
   const real3 axis{L.direction[0], L.direction[1], L.direction[2]};
   const double h = lamp.y + depth;
   real3 u, v;
-  frameAbout(axis, &u, &v);
+  kmath_d::pt_basis(axis, &u, &v);
   constexpr int kTheta = 256, kPhi = 256;
   const double c0 = std::clamp(double(L.cos_cone), -1.0, 1.0);
   const double d_cos = (1.0 - c0) / kTheta, d_phi = 2.0 * M_PI / kPhi;

@@ -124,21 +124,35 @@ SEASIM_FN real uw_ms_forward_share(real G) {
   return (R(1.0) + G) * (R(1.0) + G / (q + R(1.0))) / (R(2.0) * q);
 }
 
-/* T_view(S) for one band: the surface's radiance seen through S of water, orders up to `last` (the
- * last takes all higher ones with F(g^last)). e^{-σ_t S} exactly when σ_s = 0 or g = 1 -> e^{-σ_a S}. */
-SEASIM_FN real uw_ms_view_transmission(real sigma_a, real sigma_s, real g, real S, int last) {
+/* T_view(S)'s terms for one band: terms[k], k = 0..last, the surface's radiance seen through S of water
+ * by light scattered k times (the last takes all higher ones with F(g^last)); returns their sum, T_view.
+ * e^{-σ_t S} alone when σ_s = 0 (every other term 0); g = 1 -> e^{-σ_a S}. */
+SEASIM_FN real uw_ms_view_terms(real sigma_a, real sigma_s, real g, real S, int last, real* terms) {
   const real x = sigma_s * S;
   real term = exp(-(sigma_a + sigma_s) * S); /* k = 0: unscattered */
+  terms[0] = term;
   real T = term;
-  if (!(x > R(0.0))) return T;
+  if (!(x > R(0.0))) {
+    for (int k = 1; k <= last; ++k) terms[k] = R(0.0);
+    return T;
+  }
   real Gk = R(1.0);
   for (int k = 1; k < last; ++k) {
     term *= x / (real)k;
     Gk *= g;
-    T += term * uw_ms_forward_share(Gk);
+    terms[k] = term * uw_ms_forward_share(Gk);
+    T += terms[k];
   }
   Gk *= g;
-  return T + exp(-sigma_a * S) * uw_ms_poisson_at_least(last, x) * uw_ms_forward_share(Gk);
+  terms[last] = exp(-sigma_a * S) * uw_ms_poisson_at_least(last, x) * uw_ms_forward_share(Gk);
+  return T + terms[last];
+}
+
+/* T_view(S) for one band: the surface's radiance seen through S of water, orders up to `last` (the
+ * last takes all higher ones with F(g^last)). e^{-σ_t S} exactly when σ_s = 0 or g = 1 -> e^{-σ_a S}. */
+SEASIM_FN real uw_ms_view_transmission(real sigma_a, real sigma_s, real g, real S, int last) {
+  real terms[UW_MS_MAX_ORDERS + 1];
+  return uw_ms_view_terms(sigma_a, sigma_s, g, S, last, terms);
 }
 
 /* Where cos ψ falls in the table (UW_MS_TABLE entries over ψ, 1° apart): entry *i and weight *f of
@@ -360,6 +374,8 @@ typedef struct {
 
 SEASIM_FN UwMsBlur uw_ms_blurred_bottom(real3 o, real3 d, real depth, real3 lamp, real3 axis, real cos_cone, real cos_inner,
                                        real s_min, real h) {
+  /* Not pt_basis: its frame turns the 24 directions' azimuths, and this coarse a set then misses a 10°
+   * patch beside the ray that the frame below sees (tests/unit/underwater_lamps_glow_test.cpp). */
   const real3 helper = fabs(d.y) < R(0.9) ? MAKE_REAL3(0.0, 1.0, 0.0) : MAKE_REAL3(1.0, 0.0, 0.0);
   const real3 e1 = normalize(cross(helper, d));
   const real3 e2 = cross(d, e1);
@@ -391,17 +407,4 @@ SEASIM_FN UwMsBlur uw_ms_blurred_bottom(real3 o, real3 d, real depth, real3 lamp
   b.geometry = sum / (real)(UW_MS_BLUR_U * UW_MS_BLUR_PHI);
   b.s_mean = sum > R(0.0) ? sum_s / sum : R(0.0);
   return b;
-}
-
-/* T_view's term k alone (0 <= k <= last; the last takes all higher ones): Σ_k of these is
- * uw_ms_view_transmission. */
-SEASIM_FN real uw_ms_view_term(real sigma_a, real sigma_s, real g, real S, int k, int last) {
-  const real x = sigma_s * S;
-  if (k == 0) return exp(-(sigma_a + sigma_s) * S);
-  if (!(x > R(0.0))) return R(0.0);
-  const real G = uw_ms_gpow(g, k);
-  if (k >= last) return exp(-sigma_a * S) * uw_ms_poisson_at_least(last, x) * uw_ms_forward_share(G);
-  real term = exp(-(sigma_a + sigma_s) * S);
-  for (int n = 1; n <= k; ++n) term *= x / (real)n;
-  return term * uw_ms_forward_share(G);
 }

@@ -139,15 +139,16 @@ seasim::Image cpuDouble(const Scene& scene, int planes, int subplanes, bool delt
               const kd::real3 P = o + S * d;
               const double direct =
                   kd::uw_lamp_surface(P, n, 0.0, lamp, axis, L.cos_cone, L.cos_inner, lamps.params.s_min, b.c, 1.0);
+              double view[UW_MS_MAX_ORDERS + 1];
               v += b.bottom_albedo *
                    (direct + kd::uw_ms_surface(P, n, lamp, axis, lamps.params.s_min, b.a, b.b, p.g, cfg.kappa, rows, cfg.orders)) *
-                   kd::uw_ms_view_transmission(b.a, b.b, p.g, S, cfg.orders);
+                   kd::uw_ms_view_terms(b.a, b.b, p.g, S, cfg.orders, view);
               // The direct light blurred on its way to the eye in T_view's terms k >= 1.
               for (int k = 1; k <= cfg.orders; ++k) {
                 const kd::UwMsBlur blur =
                     kd::uw_ms_blurred_bottom(o, d, p.bottom_depth, lamp, axis, L.cos_cone, L.cos_inner, lamps.params.s_min,
                                              kd::uw_ms_spread(p.g, k, UW_MS_VIEW_BETA));
-                v += b.bottom_albedo * kd::uw_ms_view_term(b.a, b.b, p.g, S, k, cfg.orders) *
+                v += b.bottom_albedo * view[k] *
                      (blur.geometry * std::exp(-double(b.c) * blur.s_mean) - direct);
               }
             }

@@ -4,7 +4,7 @@
 // independent area integral in scattering water, no glow without a bottom, the glow's phase function
 // without its forward peak, and the glow along a view ray and on a surface in float and double, finite
 // at its stiff points (a ray through the centre, σ_s -> 0, G -> 1); the lit bottom blurred on its way to
-// the eye (T_view by terms, the blur between its limits).
+// the eye (T_view's terms against the Poisson law, the blur between its limits).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -203,13 +203,29 @@ TEST(UnderwaterLampsGlow, OnASurfaceItsUnscatteredPartIsTheSoftenedLambertianSou
 
 namespace {
 
-TEST(UnderwaterLampsBlur, ViewTermsAddUpToTheViewTransmission) {
+TEST(UnderwaterLampsBlur, ViewTermsAreThePoissonOrdersSeenForward) {
+  // Each term against the Poisson law summed directly (k < last: Pois(k; σ_s S) e^{-σ_a S} F(g^k); the
+  // last: the tail from 400 direct terms), and the returned sum is theirs.
   for (double S : {0.0, 0.5, 3.0, 20.0})
     for (double g : {0.0, 0.5, 0.9, 1.0})
       for (int last : {1, 4, 8}) {
-        double sum = 0.0;
-        for (int k = 0; k <= last; ++k) sum += kd::uw_ms_view_term(0.1, 0.4, g, S, k, last);
-        EXPECT_NEAR(sum, kd::uw_ms_view_transmission(0.1, 0.4, g, S, last), 1e-12) << S << " " << g << " " << last;
+        const double a = 0.1, b = 0.4, x = b * S;
+        double terms[UW_MS_MAX_ORDERS + 1];
+        const double T = kd::uw_ms_view_terms(a, b, g, S, last, terms);
+        double sum = 0.0, pois = std::exp(-x), tail = 0.0;
+        for (int k = 0; k < 400; ++k) {
+          if (k >= last) tail += pois;
+          else
+            EXPECT_NEAR(terms[k], std::exp(-a * S) * pois * (k == 0 ? 1.0 : kd::uw_ms_forward_share(std::pow(g, k))), 1e-13)
+                << "S " << S << " g " << g << " k " << k;
+          pois *= x / (k + 1);
+        }
+        EXPECT_NEAR(terms[last], last == 0 ? 0.0 : std::exp(-a * S) * tail * kd::uw_ms_forward_share(std::pow(g, last)),
+                    1e-9 * std::exp(-a * S))
+            << "S " << S << " g " << g << " last " << last;
+        for (int k = 0; k <= last; ++k) sum += terms[k];
+        EXPECT_NEAR(T, sum, 1e-14);
+        EXPECT_EQ(T, kd::uw_ms_view_transmission(a, b, g, S, last));
       }
 }
 
