@@ -38,11 +38,17 @@ double columnSeen(const MeasuredCase& c) {
   return c.bottom_m < 0 ? 1.0 : -std::expm1(-(c.a + c.b) * c.bottom_m);
 }
 
-// The scene's features that no measured case has (the studies: no caustics, spotlights or foam; the sky, the
-// floor's kind and the surface's are the cases' own columns, lookupExpectedError).
+// Share of a lamp's light the water takes before its axis meets the bottom: 1 - e^{-c l}, 1 with none.
+double beamSeen(const MeasuredCase& c) {
+  return c.lamp_bottom_m < 0 ? 1.0 : -std::expm1(-(c.a + c.b) * c.lamp_bottom_m);
+}
+
+// The scene's features that no measured daylight case has (the studies: no caustics or foam, and spotlights
+// only under water, in their own entry; the sky, the floor's kind and the surface's are the cases' own
+// columns, lookupExpectedError).
 std::vector<std::string> unmeasuredFeatures(const Scene& scene, bool underwater) {
   std::vector<std::string> f;
-  if (!scene.spotlights.empty()) f.push_back("spotlights");
+  if (!scene.spotlights.empty() && !underwater) f.push_back("spotlights");
   if (underwater && scene.underwater.caustics != UnderwaterDesc::Caustics::None) f.push_back("caustics");
   if (!underwater && scene.sea.bottom_caustics) f.push_back("caustics");
   if (modelKey(scene, "surface.whitecaps") != 0) f.push_back("whitecaps");  // foam: no path-traced counterpart
@@ -87,7 +93,12 @@ double regimeDistance(const MeasuredCase& s, const MeasuredCase& c) {
   };
   const double da = logStep(s.a, c.a), db = logStep(s.b, c.b), dg = (s.g - c.g) / 0.1;
   const double df = (columnSeen(s) - columnSeen(c)) / 0.25, ds = (s.sun_zenith_deg - c.sun_zenith_deg) / 15.0;
-  return std::sqrt(da * da + db * db + dg * dg + df * df + ds * ds);
+  double lamp2 = 0;  // a lamp's cone and beam, when both are lamps' regimes
+  if (s.cone_deg > 0 && c.cone_deg > 0) {
+    const double dc = logStep(s.cone_deg, c.cone_deg), dl = (beamSeen(s) - beamSeen(c)) / 0.25;
+    lamp2 = dc * dc + dl * dl;
+  }
+  return std::sqrt(da * da + db * db + dg * dg + df * df + ds * ds + lamp2);
 }
 
 std::string measuredTable(const std::string& view, const std::string& model, int source) {
@@ -108,13 +119,13 @@ std::vector<MeasuredCase> loadMeasuredCases(const std::string& view, const std::
   std::vector<MeasuredCase> cases(t.rows());
   const auto &a = t.column("a"), &b = t.column("b"), &g = t.column("g"), &bottom = t.column("bottom_m"),
              &sun = t.column("sun_zenith_deg"), &sky = t.column("sky"), &floor = t.column("floor"),
-             &surface = t.column("surface"),
+             &surface = t.column("surface"), &cone = t.column("cone_deg"), &lamp_bottom = t.column("lamp_bottom_m"),
              &err = t.column("max_abs_error"), &worst = t.column("worst_ratio"), &se = t.column("reference_rel_se"),
              &source = t.column("source");
   for (size_t i = 0; i < cases.size(); ++i)
     cases[i] = MeasuredCase{a[i], b[i], g[i], bottom[i], sun[i],
                             static_cast<int>(sky[i]), static_cast<int>(floor[i]), static_cast<int>(surface[i]),
-                            err[i], worst[i], se[i],
+                            cone[i], lamp_bottom[i], err[i], worst[i], se[i],
                             static_cast<int>(source[i])};
   return cases;
 }
@@ -144,6 +155,56 @@ ExpectedError lookupExpectedError(const MeasuredCase& regime, const std::string&
   return e;
 }
 
+namespace {
+
+const char* lampsModelName(const Scene& scene) {
+  const auto k = scene.quality.find("lamps_model");
+  const int id = k == scene.quality.end() ? 1 : static_cast<int>(k->second.value);
+  return id == 0 ? "single" : id == 1 ? "delta_m" : "orders";
+}
+
+// One lamp's regime: the water, the lamp's cone and the distance along its axis to the bottom (a height
+// field's mean plane), with what no lamp case has (one bare lamp in the water over a flat bottom) as
+// features.
+MeasuredCase lampRegime(const Scene& scene, const SpotlightDesc& lamp, std::vector<std::string>& features) {
+  MeasuredCase r;
+  r.a = scene.water.a.at(550.0);
+  r.b = scene.water.b.at(550.0);
+  r.g = scene.water.g;
+  r.floor = scene.bottom.type == BottomDesc::Type::HeightField ? 1 : 0;
+  r.cone_deg = lamp.cone * 180.0 / M_PI;
+  const double depth = scene.bottom.type == BottomDesc::Type::Flat ? scene.bottom.depth
+                       : scene.bottom.type == BottomDesc::Type::HeightField
+                           ? 0.5 * (scene.bottom.min_depth + scene.bottom.max_depth)
+                           : -1.0;
+  const double height = lamp.position.y + depth;  // the bottom lies at y = -depth
+  if (depth > 0 && height > 0 && lamp.direction.y < 0) r.lamp_bottom_m = height / -lamp.direction.y;
+  if (lamp.position.y >= 0) features.push_back("a lamp out of the water");
+  if (!lamp.light_map.empty()) features.push_back("a lamp's light map");
+  if (!scene.objects.empty()) features.push_back("objects in the lamps' light");
+  return r;
+}
+
+// The lamps' entry: each lamp looked up, the worst kept (one not measured before a measured one, then the
+// larger error), since each lamp's light carries its own error and the image's is at most the worst.
+ExpectedError lampsExpectedError(const Scene& scene) {
+  const std::string model = lampsModelName(scene);
+  const std::vector<MeasuredCase> cases = loadMeasuredCases("lamps", model);
+  ExpectedError worst;
+  for (size_t i = 0; i < scene.spotlights.size(); ++i) {
+    std::vector<std::string> features;
+    const MeasuredCase regime = lampRegime(scene, scene.spotlights[i], features);
+    ExpectedError e = lookupExpectedError(regime, "lamps", model, cases, std::move(features));
+    e.subject = "spotlights[" + std::to_string(i) + "]";
+    const bool worse = i == 0 || (worst.measured && !e.measured) ||
+                       (worst.measured == e.measured && e.max_abs_error > worst.max_abs_error);
+    if (worse) worst = std::move(e);
+  }
+  return worst;
+}
+
+}  // namespace
+
 std::vector<ExpectedError> expectedErrors(const Scene& scene) {
   const bool underwater = cameraUnderwater(scene);
   const bool sea = !underwater && seaSeenFromAbove(scene) && !scene.shallow.present;
@@ -163,13 +224,24 @@ std::vector<ExpectedError> expectedErrors(const Scene& scene) {
   const std::string view = underwater ? "underwater" : "sea";
   const std::string model = underwater ? (scene.underwater.model == UnderwaterDesc::Model::DiscreteOrdinates ? "discrete_ordinates" : "thesis")
                                        : (scene.sea.model == SeaDesc::Model::Multiple ? "multiple" : "paper");
-  return {lookupExpectedError(regime, view, model, loadMeasuredCases(view, model), unmeasuredFeatures(scene, underwater))};
+  std::vector<ExpectedError> out = {
+      lookupExpectedError(regime, view, model, loadMeasuredCases(view, model), unmeasuredFeatures(scene, underwater))};
+  if (underwater && !scene.spotlights.empty()) out.push_back(lampsExpectedError(scene));
+  return out;
 }
 
 nlohmann::json expectedErrorJson(const std::vector<ExpectedError>& errors) {
   nlohmann::json out = nlohmann::json::array();
   for (const ExpectedError& e : errors) {
     const MeasuredCase& c = e.nearest;
+    nlohmann::json nearest = {{"a", c.a}, {"b", c.b}, {"g", c.g}, {"bottom_m", c.bottom_m},
+                              {"sun_zenith_deg", c.sun_zenith_deg}, {"sky", skyName(c.sky)},
+                              {"floor", c.floor ? "height field" : "flat or none"},
+                              {"surface", c.surface ? "FFT waves" : "flat"}, {"reference_rel_se", c.reference_rel_se}};
+    if (c.cone_deg > 0) {
+      nearest["cone_deg"] = c.cone_deg;
+      nearest["lamp_bottom_m"] = c.lamp_bottom_m;
+    }
     out.push_back({{"view", e.view},
                    {"model", e.model},
                    {"measured", e.measured},
@@ -180,11 +252,8 @@ nlohmann::json expectedErrorJson(const std::vector<ExpectedError>& errors) {
                    {"max_distance", kExpectedErrorMaxDistance},
                    {"unmeasured_features", e.unmeasured_features},
                    {"table", e.table},
-                   {"nearest_case",
-                    {{"a", c.a}, {"b", c.b}, {"g", c.g}, {"bottom_m", c.bottom_m}, {"sun_zenith_deg", c.sun_zenith_deg},
-                     {"sky", skyName(c.sky)}, {"floor", c.floor ? "height field" : "flat or none"},
-                     {"surface", c.surface ? "FFT waves" : "flat"},
-                     {"reference_rel_se", c.reference_rel_se}}}});
+                   {"nearest_case", nearest}});
+    if (!e.subject.empty()) out.back()["subject"] = e.subject;
   }
   return out;
 }
@@ -197,6 +266,17 @@ std::string expectedErrorText(const std::vector<ExpectedError>& errors) {
     std::string why;
     if (e.distance > kExpectedErrorMaxDistance) why = "; distance > " + std::to_string(kExpectedErrorMaxDistance).substr(0, 3);
     for (const std::string& f : e.unmeasured_features) why += "; " + f;
+    if (c.cone_deg > 0) {
+      std::snprintf(line, sizeof line,
+                    "expected error (%s %s, %s, against all orders): %s%.1f %% (worst ratio %.3f), the nearest measured "
+                    "case a %.3g b %.3g g %.2g cone %.0f deg, %s to the bottom along the axis, distance %.2f, in %s%s\n",
+                    e.view.c_str(), e.model.c_str(), e.subject.c_str(), e.measured ? "" : "UNMEASURED HERE; for orientation ",
+                    100 * e.max_abs_error, e.worst_ratio, c.a, c.b, c.g, c.cone_deg,
+                    c.lamp_bottom_m < 0 ? "no bottom" : (std::to_string(c.lamp_bottom_m).substr(0, 4) + " m").c_str(),
+                    e.distance, e.table.c_str(), why.c_str());
+      out += line;
+      continue;
+    }
     std::snprintf(line, sizeof line,
                   "expected error (%s %s, against all orders): %s%.1f %% (worst ratio %.3f), the nearest measured "
                   "case a %.3g b %.3g g %.2g bottom %s sun %.0f deg %s sky%s, distance %.2f, in %s%s\n",

@@ -12,10 +12,14 @@ error up in (host/quality/expected_error.h), built from the study tables in resu
   results/sea_allorders/widened*/, results/underwater/widened/
                                             one axis at a time beyond those grids (sun, g, view; sun
                                             azimuth, sky level, bottom albedo)
+  results/underwater/lamp_orders_{fit,heldout,near}.csv
+                                            the lamps under water (quality.lamps_model "single",
+                                            "delta_m", "orders") against all orders, one lamp, no daylight
 
 One file per model, data/expected_error/<view>_<model>.csv (numeric, data/README.md's format), one row
 per measured case: the case's water (a, b at 550 nm, g), bottom depth (-1: none),
-sun zenith in air, the sky (common/sky.h's SEASIM_SKY_*: 0 uniform, 2 image, 3 Preetham), and the error against the all-orders path tracer: max |ratio - 1| over the case's
+sun zenith in air, the sky (common/sky.h's SEASIM_SKY_*: 0 uniform, 2 image, 3 Preetham), for a lamp its
+cone's half angle and its distance along its axis to the bottom (0 and -1 for the daylight views), and the error against the all-orders path tracer: max |ratio - 1| over the case's
 judged image regions (the sea: its near and far halves; under water: regions with >= 40 pixels and a
 reference noise <= 2 %), the worst ratio, the reference's noise, the judged regions, and `source`: the index of the table it came
 from in SOURCES below (also listed in data/expected_error/README.md).
@@ -94,8 +98,24 @@ SOURCES = {
     ("underwater", "thesis"): UNDERWATER + UNDERWATER_SCENES,
     ("underwater", "discrete_ordinates"): UNDERWATER + UNDERWATER_SCENES,
 }
-HEADER = ["a", "b", "g", "bottom_m", "sun_zenith_deg", "sky", "floor", "surface", "max_abs_error", "worst_ratio",
-          "reference_rel_se", "regions", "source"]
+# The lamps under water: tests/perf/lamp_orders_sweep.sh's cases on tests/perf/lamp_glow.toml (one hard-edged
+# lamp, no sun or sky), by quality.lamps_model. A region is judged with >= 20 pixels and a reference noise
+# <= 10 % (the strongly forward-scattering cases' references are noisier than the daylight ones').
+LAMPS = ["results/underwater/lamp_orders_fit.csv", "results/underwater/lamp_orders_heldout.csv",
+         "results/underwater/lamp_orders_near.csv"]
+LAMP_MODELS = ["single", "delta_m", "orders"]
+SOURCES.update({("lamps", m): [(t,) for t in LAMPS] for m in LAMP_MODELS})
+HEADER = ["a", "b", "g", "bottom_m", "sun_zenith_deg", "sky", "floor", "surface", "cone_deg", "lamp_bottom_m",
+          "max_abs_error", "worst_ratio", "reference_rel_se", "regions", "source"]
+
+
+def lamp_glow_axis_slope():
+    """The lamp's downward share of its axis in tests/perf/lamp_glow.toml: its axis meets the bottom at
+    height / slope (the sweep's `height` is the lamp's height above the bottom)."""
+    import tomllib
+    with open(os.path.join(ROOT, "tests/perf/lamp_glow.toml"), "rb") as f:
+        d = tomllib.load(f)["spotlights"][0]["direction"]
+    return -d[1] / (d[0] ** 2 + d[1] ** 2 + d[2] ** 2) ** 0.5
 
 
 def label(source):
@@ -118,7 +138,7 @@ def main():
                 bottom = -1 if r["bottom_m"] == "deep" else float(r["bottom_m"])
                 rows[("sea", model)].append([round(at550("data/jerlov_a.csv", r["jerlov"]), 5),
                                              round(at550("data/jerlov_b.csv", r["jerlov"]), 5), g, bottom, sun, sky, 0, 0,
-                                             round(abs(worst - 1), 4), round(worst, 4), round(se, 4), 2, source])
+                                             0, -1, round(abs(worst - 1), 4), round(worst, 4), round(se, 4), 2, source])
     # Under water: tests/perf/underwater_regions.toml, camera 3.8 m down, one band.
     regions = ["bottom_near", "bottom_far", "water_up", "water_down", "objects"]
     for source, (table, sun, sky) in enumerate(UNDERWATER):
@@ -134,7 +154,7 @@ def main():
             bottom = -1 if r["depth_m"] in ("0", "none", "") or float(r["depth_m"]) == 0 else float(r["depth_m"])
             # The study's tables name the discrete-ordinates model by its earlier name.
             model = "discrete_ordinates" if r["model"] == "improved" else r["model"]
-            rows[("underwater", model)].append([float(r["a"]), float(r["b"]), float(r["g"]), bottom, sun, sky, 0, 0,
+            rows[("underwater", model)].append([float(r["a"]), float(r["b"]), float(r["g"]), bottom, sun, sky, 0, 0, 0, -1,
                                                 round(abs(worst[0] - 1), 4), round(worst[0], 4),
                                                 round(max(s for _, s in judged), 4), len(judged), source])
     for view, scenes, first in (("underwater", UNDERWATER_SCENES, len(UNDERWATER)),
@@ -148,8 +168,23 @@ def main():
                 worst = max(judged, key=lambda x: abs(x[0] - 1))
                 rows[(view, model)].append([round(at550("data/jerlov_a.csv", jerlov), 5),
                                             round(at550("data/jerlov_b.csv", jerlov), 5), g, bottom, sun, sky, floor, surface,
-                                            round(abs(worst[0] - 1), 4), round(worst[0], 4),
+                                            0, -1, round(abs(worst[0] - 1), 4), round(worst[0], 4),
                                             round(max(e for _, e in judged), 4), len(judged), first + i])
+    slope = lamp_glow_axis_slope()
+    for source, table in enumerate(LAMPS):
+        for r in read(table):
+            judged = []
+            for g in ("whole", "lit_bottom", "beam", "outside"):
+                pix, ratio, se = r[g + "_pixels"], r[g + "_ratio"], r[g + "_ref_rel_se"]
+                if pix and ratio and se and int(pix) >= 20 and float(se) <= 0.10:
+                    judged.append((float(ratio), float(se)))
+            worst = max(judged, key=lambda x: abs(x[0] - 1))
+            # No bottom depth or sun: the lamp's layer is measured in the dark; its geometry is the cone and
+            # the distance along the axis to the bottom.
+            rows[("lamps", r["model"])].append([float(r["a"]), float(r["b"]), float(r["g"]), -1, 0, 0, 0, 0,
+                                                float(r["cone_deg"]), round(float(r["height_m"]) / slope, 4),
+                                                round(abs(worst[0] - 1), 4), round(worst[0], 4),
+                                                round(max(s for _, s in judged), 4), len(judged), source])
     for (view, model), table in rows.items():
         with open(os.path.join(out_dir, f"{view}_{model}.csv"), "w", newline="") as f:
             w = csv.writer(f, lineterminator="\n")

@@ -8,24 +8,32 @@
 #            quality.lamps_ms_kappa κ = 0.75) were chosen (lowest RMS log-ratio over their 12 regions,
 #            from β in {1/3, 0.6, 0.8, 1} × κ in {0, 0.5, 0.75, 1});
 #   HELDOUT  cases never looked at while choosing them, spread over the model's grid: g 0.5–0.95,
-#            b/a 1–10, cones 10–60°, heights 1–10 m (the grid the model is meant for).
+#            b/a 1–10, cones 10–60°, heights 1–10 m (the grid the model is meant for);
+#   NEAR     one step from a FIT or HELDOUT case along one axis (a, b, g, the cone or the height), also never
+#            fitted on: what the expected error's lookup (data/expected_error/lamps_*.csv) is checked with,
+#            leave-one-out, since the other cases lie more than one step apart.
 # The references (16384 paths per pixel through the pixel centre) are cached in
 # $SEASIM_CACHE_DIR/lamp_regions; a second run only renders the fast models.
 # Usage: tests/perf/lamp_orders_sweep.sh   (about 10 min on 2 loaded cores the first time; nice it)
-# Writes results/underwater/lamp_orders_fit.csv, lamp_orders_heldout.csv; prints a Markdown table.
+# Writes results/underwater/lamp_orders_{fit,heldout,near}.csv; prints a Markdown table.
 B=${B:-build/seasim}
 SPP=${SPP:-16384}
 FIT="0.1:0.3:0.9:20:3,0.1:0.8:0.9:20:3,0.1:0.3:0.5:20:3"
 HELDOUT="0.2:0.2:0.5:10:1,0.2:0.2:0.95:60:6,0.1:0.3:0.7:30:6,0.1:0.3:0.95:10:3,0.05:0.5:0.5:60:3,0.05:0.5:0.95:30:1,\
 0.05:0.5:0.7:10:10,0.1:0.8:0.5:30:10,0.2:0.2:0.7:60:10,0.1:0.3:0.9:45:1,0.05:0.5:0.9:20:6,0.1:0.8:0.95:60:3"
+NEAR="0.1:0.3:0.8:20:3,0.1:0.3:0.9:30:3,0.16:0.3:0.9:20:3,0.1:0.3:0.6:20:3,0.1:0.3:0.5:20:6,0.1:0.5:0.9:20:3,\
+0.2:0.2:0.5:15:1,0.1:0.3:0.7:30:3,0.07:0.3:0.7:30:6,0.05:0.5:0.9:30:1,0.1:0.3:0.9:45:1.5,0.1:0.8:0.6:30:10,\
+0.05:0.5:0.7:15:10,0.2:0.2:0.9:60:6"
 mkdir -p results/underwater
 $B lamp-regions --cases "$FIT" --models single,delta_m,orders --spp "$SPP" --rounds 3 \
   --csv results/underwater/lamp_orders_fit.csv > /dev/null || exit 1
 $B lamp-regions --cases "$HELDOUT" --models single,delta_m,orders --spp "$SPP" --rounds 3 \
   --csv results/underwater/lamp_orders_heldout.csv > /dev/null || exit 1
+$B lamp-regions --cases "$NEAR" --models single,delta_m,orders --spp "$SPP" --rounds 3 \
+  --csv results/underwater/lamp_orders_near.csv > /dev/null || exit 1
 echo "| set | a | b | g | cone | h m | model | lamps ms | whole | lit bottom | beam | outside | worst |"
 echo "|---|---|---|---|---|---|---|---:|---:|---:|---:|---:|---:|"
-for SET in fit heldout; do
+for SET in fit heldout near; do
   awk -F, -v set=$SET 'NR == 1 { next }
     function cell(px, r, se) { if (px == 0 || r == "") return "-"; return sprintf("%.3f ± %.3f", r, se) }
     function dev(px, r) { return (px >= 20 && r != "") ? (r > 1 ? r - 1 : 1 - r) : 0 }
@@ -38,4 +46,4 @@ for SET in fit heldout; do
 done
 # The picture: ratios by region and the worst region's error against the lamp pass's time.
 python3 tests/perf/lamp_orders_plot.py results/underwater/lamp_orders.svg results/underwater/lamp_orders_fit.csv \
-  results/underwater/lamp_orders_heldout.csv
+  results/underwater/lamp_orders_heldout.csv results/underwater/lamp_orders_near.csv

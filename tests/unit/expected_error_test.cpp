@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -42,6 +44,15 @@ depth = 5.0
 [underwater]
 caustics = "none"
 )";
+
+// tests/perf/lamp_glow.toml itself, the lamps' study scene: a 0.1, b 0.3, g 0.9, a 20° cone 3 m above the
+// bottom (the lamp at y = -4, the bottom at 7 m), no daylight: the lamps' measured case.
+std::string lampGlowText() {
+  std::ifstream in(std::string(SEASIM_SOURCE_DIR) + "/tests/perf/lamp_glow.toml");
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
 
 seasim::Scene scene(const std::string& text, std::vector<std::pair<std::string, std::string>> sets = {}) {
   std::vector<seasim::Override> over;
@@ -187,10 +198,91 @@ TEST(ExpectedError, DistanceIsOneStepPerDoublingTenthOfGAndFifteenDegrees) {
   EXPECT_NEAR(seasim::regimeDistance(s, c), 0.0, 1e-9);
 }
 
+TEST(ExpectedError, LampsUnderWaterHaveTheirOwnEntryPerModel) {
+  const auto errors = seasim::expectedErrors(scene(lampGlowText()));
+  ASSERT_EQ(errors.size(), 2u);
+  // The daylight view no longer flags the lamps: they have their own entry.
+  EXPECT_EQ(errors[0].view, "underwater");
+  EXPECT_TRUE(errors[0].unmeasured_features.empty());
+  const ExpectedError& lamps = errors[1];
+  EXPECT_EQ(lamps.view, "lamps");
+  EXPECT_EQ(lamps.model, "delta_m");  // the default
+  EXPECT_EQ(lamps.subject, "spotlights[0]");
+  EXPECT_TRUE(lamps.measured);
+  EXPECT_NEAR(lamps.distance, 0.0, 1e-3);
+  EXPECT_NEAR(lamps.nearest.cone_deg, 20.0, 1e-9);
+  EXPECT_NEAR(lamps.nearest.lamp_bottom_m, 3.0 * std::sqrt(0.05 * 0.05 + 0.25 + 1.0) / 0.5, 1e-3);
+  EXPECT_EQ(lamps.table, "results/underwater/lamp_orders_fit.csv");
+  // Delta-M sends no light outside the cone: that region is all missing (results/underwater/lamp_orders_fit.csv).
+  EXPECT_DOUBLE_EQ(lamps.max_abs_error, 1.0);
+  EXPECT_DOUBLE_EQ(lamps.worst_ratio, 0.0);
+  // The orders model's worst region there is the beam, 0.944 of all orders.
+  const auto orders = seasim::expectedErrors(scene(lampGlowText(), {{"quality.lamps_model", "\"orders\""}}));
+  EXPECT_EQ(orders[1].model, "orders");
+  EXPECT_TRUE(orders[1].measured);
+  EXPECT_NEAR(orders[1].max_abs_error, 0.0555, 1e-4);
+  const nlohmann::json j = seasim::expectedErrorJson(orders);
+  EXPECT_EQ(j[1]["view"], "lamps");
+  EXPECT_EQ(j[1]["subject"], "spotlights[0]");
+  EXPECT_EQ(j[1]["nearest_case"]["cone_deg"], 20.0);
+  EXPECT_FALSE(j[0].contains("subject"));
+  EXPECT_NE(seasim::expectedErrorText(orders).find("lamps orders, spotlights[0]"), std::string::npos);
+  EXPECT_NE(seasim::expectedErrorText(orders).find("cone 20 deg"), std::string::npos);
+}
+
+TEST(ExpectedError, ALampsRegimeFlagsWhatNoLampCaseHasAndKeepsTheWorstLamp) {
+  // Objects in the light: the glow and the blur ignore their shadows, and no case has any.
+  const auto rocks = seasim::expectedErrors(scene(lampGlowText() + R"(
+[[objects]]
+type = "sphere"
+center = [0.0, -6.0, -3.0]
+radius = 0.3
+)"));
+  EXPECT_FALSE(rocks[1].measured);
+  EXPECT_EQ(rocks[1].unmeasured_features, std::vector<std::string>{"objects in the lamps' light"});
+  // A lamp pointing up never meets the bottom: its beam is the open water's, f_l = 1, a share e^{-c l} of a
+  // step from the measured case whose bottom is l = 6.71 m along the axis.
+  const auto up = seasim::expectedErrors(scene(lampGlowText(), {{"spotlights[0].direction", "[0.0, 1.0, 0.0]"}}));
+  const auto here = seasim::expectedErrors(scene(lampGlowText()));
+  EXPECT_NEAR(up[1].distance, std::exp(-0.4 * here[1].nearest.lamp_bottom_m) / 0.25, 1e-3);
+  // Two lamps: the entry is the worse one's. A 60° cone in the same water is a doubling and a half away.
+  const auto two = seasim::expectedErrors(scene(lampGlowText() + R"(
+[[spotlights]]
+position = [-0.4, -4.0, -0.3]
+direction = [0.05, -0.5, -1.0]
+cone_deg = 60.0
+intensity = 10.0
+)", {{"quality.lamps_model", "\"orders\""}}));
+  ASSERT_EQ(two.size(), 2u);
+  const auto first = seasim::expectedErrors(scene(lampGlowText(), {{"quality.lamps_model", "\"orders\""}}));
+  EXPECT_GE(two[1].max_abs_error, first[1].max_abs_error);
+  EXPECT_TRUE(two[1].subject == "spotlights[0]" || two[1].subject == "spotlights[1]");
+  if (two[1].measured == first[1].measured && two[1].max_abs_error > first[1].max_abs_error)
+    EXPECT_EQ(two[1].subject, "spotlights[1]");
+  // A lamp's cone: one step per doubling; its beam: one step per quarter of the light taken before the bottom.
+  MeasuredCase c{0.1, 0.3, 0.9, -1, 0};
+  c.cone_deg = 20;
+  c.lamp_bottom_m = -1;
+  MeasuredCase s = c;
+  s.cone_deg = 40;
+  EXPECT_NEAR(seasim::regimeDistance(s, c), 1.0, 1e-12);
+  s = c;
+  s.lamp_bottom_m = -std::log(0.25) / 0.4;  // 75 % taken: a quarter from none
+  EXPECT_NEAR(seasim::regimeDistance(s, c), 1.0, 1e-12);
+  s.cone_deg = 0;  // a daylight regime against a lamp's case: no lamp terms
+  EXPECT_NEAR(seasim::regimeDistance(s, c), 0.0, 1e-12);
+  // Seen from above the lamps have no entry and stay a feature of the sea's.
+  const auto above = seasim::expectedErrors(scene(lampGlowText(), {{"camera.position", "[0.0, 5.0, 0.0]"},
+                                                          {"spotlights[0].position", "[0.4, 4.0, -0.3]"}}));
+  ASSERT_EQ(above.size(), 1u);
+  EXPECT_EQ(above[0].unmeasured_features, std::vector<std::string>{"spotlights"});
+}
+
 TEST(ExpectedError, TheLookupsOwnErrorLeaveOneOut) {
   // Each measured regime predicted from the nearest other regime (cases at distance 0, the other
   // views of the same regime, left out with it), where that one is within the threshold.
-  for (const char* vm : {"sea/paper", "sea/multiple", "underwater/thesis", "underwater/discrete_ordinates"}) {
+  for (const char* vm : {"sea/paper", "sea/multiple", "underwater/thesis", "underwater/discrete_ordinates",
+                         "lamps/single", "lamps/delta_m", "lamps/orders"}) {
     const std::string view = std::string(vm).substr(0, std::string(vm).find('/'));
     const std::string model = std::string(vm).substr(view.size() + 1);
     const std::vector<MeasuredCase> cases = seasim::loadMeasuredCases(view, model);
