@@ -27,8 +27,8 @@
  * puts less light than the unscaled one, at small scattering angles).
  * Defines: SEASIM_HAS_OBJECTS (shadow rays), SEASIM_SPECTRAL_OUTPUT, SEASIM_LAMPS_ORDERS (the "orders"
  * model, common/underwater_lamps_ms.h: the lamps' light scattered more than once, from ms_table's
- * blurred profiles, ms_orders orders, ms_steps quadrature steps per view ray, stretch exponent
- * ms_kappa; the surfaces' light then reaches the eye through T_view instead of e^{-σ_t S}, the bottom's
+ * blurred profiles, ms_orders orders, ms_steps quadrature steps per view ray, the orders' weights per
+ * band from ms_weights (host/underwater/lamps_ms_weights.h; the stretch exponent κ is in it); the surfaces' light then reaches the eye through T_view instead of e^{-σ_t S}, the bottom's
  * direct light blurred in its terms k >= 1 (uw_ms_blurred_bottom); and the lit
  * bottom's glow from ms_glow, 4 + 2 band_count floats per lamp, host/underwater/lamps_bottom_glow.h).
  * Stiff cases: common/underwater_lamps.h; never NaN/Inf (every division is by a clamped distance).
@@ -145,7 +145,7 @@ typedef struct {
  * the view ray, orders 0..ms_orders, the geometry per step once and the bands innermost. Order 0 of the
  * direct light is light scattered once in the water (lamps_single); the rest is multiple. */
 static inline void lamp_bottom_glow(__constant UwParams* p, __global const UwBand* bands, __global const float* glow,
-                                    int ms_orders, int ms_steps, float c_min,
+                                    __global const float* ms_weights, int ms_orders, int ms_steps, float c_min,
                                     __global const float* I, const LampRay* v, LampSums* o) {
   const int nb = p->band_count;
   const float radius = glow[3];
@@ -153,11 +153,16 @@ static inline void lamp_bottom_glow(__constant UwParams* p, __global const UwBan
   const float3 c = (float3)(glow[0], glow[1], glow[2]), up = (float3)(0.0f, 1.0f, 0.0f);
   __global const float* J = glow + 4;
   __global const float* J_direct = glow + 4 + nb;
+  __global const float* glow_rows = uw_ms_glow_weight_rows(ms_weights, nb, ms_orders);
   if (v->lit_surface) {
     const float3 P = v->o + v->S * v->d;
+    int wj;
+    float wf;
+    uw_ms_weight_index(ms_weights, length(P - c), &wj, &wf);
     for (int i = 0; i < nb; ++i) {
-      float first;
-      const float E = uw_ms_glow_surface(P, v->n, c, up, radius, bands[i].a, bands[i].b, p->g, ms_orders, &first);
+      float first, wn[UW_MS_MAX_ORDERS + 1];
+      uw_ms_weights_at(glow_rows, i, ms_orders + 1, wj, wf, wn);
+      const float E = uw_ms_glow_surface_weighted(P, v->n, c, up, radius, p->g, ms_orders, wn, &first);
       if (!(E > 0.0f)) continue;
       const float alb = I[i] * v->alb[i * v->alb_stride];
       lamp_add_to(o, bands, i, alb * J[i] * E * uw_ms_view_transmission(bands[i].a, bands[i].b, p->g, v->S, ms_orders), 1, 0);
@@ -176,6 +181,9 @@ static inline void lamp_bottom_glow(__constant UwParams* p, __global const UwBan
     const float cos_psi = s > 0.0f ? dot(v->o + t * v->d - c, up) / s : 0.0f;
     if (!(cos_psi > 0.0f)) continue;
     const float w = cos_psi * uw_ms_glow_ray_weight(&q, t, s, radius);
+    int wj;
+    float wf;
+    uw_ms_weight_index(ms_weights, s, &wj, &wf);
     float gk = p->g;
     geo[0] = uw_ms_glow_phase(ca, gk);
     for (int k = 1; k <= ms_orders; ++k) {
@@ -186,7 +194,7 @@ static inline void lamp_bottom_glow(__constant UwParams* p, __global const UwBan
       const float sa = bands[i].a, ss = bands[i].b;
       if (!(ss > 0.0f)) continue;
       float wn[UW_MS_MAX_ORDERS + 1];
-      uw_ms_glow_weights(sa, ss, s, ms_orders, wn);
+      uw_ms_weights_at(glow_rows, i, ms_orders + 1, wj, wf, wn);
       const float first = wn[0] * geo[0];
       float sum = first;
       for (int k = 1; k <= ms_orders; ++k) sum += wn[k] * geo[k];
@@ -205,7 +213,8 @@ static inline void lamp_bottom_glow(__constant UwParams* p, __global const UwBan
 static inline void lamp_orders(__constant UwParams* p, __global const UwBand* bands, __global const UwObject* objects,
                                int count, __constant UwLampParams* lp, __global const UwLamp* L,
                                __global const float* I, __global const float* ms_rows, __global const float* glow,
-                               int ms_orders, int ms_steps, float ms_kappa, const LampRay* v, LampSums* o) {
+                               __global const float* ms_weights, int ms_orders, int ms_steps, const LampRay* v,
+                               LampSums* o) {
   const int nb = lp->band_count;
   const float3 lamp = v3(L->position), axis = v3(L->direction);
   const float escapes = lamp_escapes(objects, count, lamp);
@@ -213,6 +222,9 @@ static inline void lamp_orders(__constant UwParams* p, __global const UwBand* ba
     const float3 P = v->o + v->S * v->d;
     const float vis = lamp_visible(objects, count, P + 1e-3f * v->n, lamp);
     UwMsBlur blur[UW_MS_MAX_ORDERS];
+    int wj;
+    float wf;
+    uw_ms_weight_index(ms_weights, length(P - lamp), &wj, &wf);
     if (v->bottom)
       for (int k = 1; k <= ms_orders; ++k)
         blur[k - 1] = uw_ms_blurred_bottom(v->o, v->d, p->bottom_depth, lamp, axis, L->cos_cone, L->cos_inner, lp->s_min,
@@ -221,8 +233,11 @@ static inline void lamp_orders(__constant UwParams* p, __global const UwBand* ba
       const float direct = vis > 0.0f ? uw_lamp_surface(P, v->n, 0.0f, lamp, axis, L->cos_cone, L->cos_inner,
                                                         lp->s_min, bands[i].c, vis)
                                       : 0.0f;
-      const float ms = escapes * uw_ms_surface(P, v->n, lamp, axis, lp->s_min, bands[i].a, bands[i].b, p->g, ms_kappa,
-                                               ms_rows, ms_orders);
+      float wn[UW_MS_MAX_ORDERS];
+      uw_ms_weights_at(ms_weights + UW_MS_WEIGHT_HEADER, i, ms_orders, wj, wf, wn);
+      const float ms = bands[i].b > 0.0f
+                           ? escapes * uw_ms_surface_weighted(P, v->n, lamp, axis, lp->s_min, p->g, ms_rows, ms_orders, wn)
+                           : 0.0f;
       float view[UW_MS_MAX_ORDERS + 1];
       const float T = uw_ms_view_terms(bands[i].a, bands[i].b, p->g, v->S, ms_orders, view);
       float Lo = I[i] * v->alb[i * v->alb_stride] * (direct + ms) * T;
@@ -241,9 +256,8 @@ static inline void lamp_orders(__constant UwParams* p, __global const UwBand* ba
   if (!(escapes > 0.0f)) return;
   float c_min = bands[0].c;
   for (int i = 1; i < nb; ++i) c_min = fmin(c_min, bands[i].c);
-  float stretch[UW_MS_MAX_ORDERS], geo[UW_MS_MAX_ORDERS];
-  for (int k = 1; k <= ms_orders; ++k) stretch[k - 1] = uw_ms_stretch(p->g, k, ms_kappa);
-  lamp_bottom_glow(p, bands, glow, ms_orders, ms_steps, c_min, I, v, o);
+  float geo[UW_MS_MAX_ORDERS];
+  lamp_bottom_glow(p, bands, glow, ms_weights, ms_orders, ms_steps, c_min, I, v, o);
   UwMsRay q;
   uw_ms_ray(v->o, v->d, lamp, lp->s_min, v->t_end, uw_ms_ray_cap(c_min), ms_steps, &q);
   for (int j = 0; j < ms_steps && q.dv > 0.0f; ++j) {
@@ -252,9 +266,10 @@ static inline void lamp_orders(__constant UwParams* p, __global const UwBand* ba
     uw_lamp_at(v->o, v->d, lamp, t, &s, &c);
     const float cos_psi = s > 0.0f ? dot(v->o + t * v->d - lamp, axis) / s : 1.0f;
     const float w = uw_ms_ray_weight(&q, t, s, lp->s_min);
-    int ti;
-    float tf;
+    int ti, wj;
+    float tf, wf;
     uw_ms_table_index(cos_psi, &ti, &tf);
+    uw_ms_weight_index(ms_weights, s, &wj, &wf);
     float gk = p->g;
     for (int k = 1; k <= ms_orders; ++k) {
       gk *= p->g;
@@ -263,9 +278,10 @@ static inline void lamp_orders(__constant UwParams* p, __global const UwBand* ba
     for (int i = 0; i < nb; ++i) {
       const float sa = bands[i].a, ss = bands[i].b;
       if (!(ss > 0.0f)) continue;
-      float sum = 0.0f;
+      float wn[UW_MS_MAX_ORDERS], sum = 0.0f;
+      uw_ms_weights_at(ms_weights + UW_MS_WEIGHT_HEADER, i, ms_orders, wj, wf, wn);
       for (int k = 1; k <= ms_orders; ++k)
-        if (geo[k - 1] > 0.0f) sum += uw_ms_weight(sa, ss, s, stretch[k - 1], k, ms_orders) * geo[k - 1];
+        if (geo[k - 1] > 0.0f) sum += wn[k - 1] * geo[k - 1];
       const float Lm = I[i] * ss * exp(-(sa + ss) * t) * sum * w;
       lamp_add_to(o, bands, i, Lm, 1, 0);
     }
@@ -351,8 +367,8 @@ __kernel void underwater_lamps(__constant UwParams* p, __global const UwBand* ba
                                __global const int* material, __constant UwLampParams* lp,
                                __global const UwLamp* lamps, __global const float* lamp_spectra,
 #if SEASIM_LAMPS_ORDERS
-                               __global const float* ms_table, __global const float* ms_glow, int ms_orders,
-                               int ms_steps, float ms_kappa,
+                               __global const float* ms_table, __global const float* ms_glow,
+                               __global const float* ms_weights, int ms_orders, int ms_steps,
 #endif
                                __global float* rgb
 #if SEASIM_SPECTRAL_OUTPUT
@@ -406,7 +422,7 @@ __kernel void underwater_lamps(__constant UwParams* p, __global const UwBand* ba
     __global const float* I = lamp_spectra + l * nb;
 #if SEASIM_LAMPS_ORDERS
     lamp_orders(p, bands, objects, count, lp, L, I, ms_table + l * ms_orders * UW_MS_TABLE, ms_glow + l * (4 + 2 * nb),
-                ms_orders, ms_steps, ms_kappa, &v, &o);
+                ms_weights, ms_orders, ms_steps, &v, &o);
 #else
     lamp_surface(&md, objects, count, lp, L, I, &v, &o);
 #endif

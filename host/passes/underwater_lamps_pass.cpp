@@ -7,6 +7,7 @@
 #include "passes/underwater_features.h"
 #include "underwater/lamps_bottom_glow.h"
 #include "underwater/lamps_ms_table.h"
+#include "underwater/lamps_ms_weights.h"
 #include "underwater/lamps_setup.h"
 #include "math/kernel_math.h"
 #include "plan/pass_descriptor.h"
@@ -61,6 +62,9 @@ UnderwaterLampsPass::UnderwaterLampsPass(Device& device, const Scene& scene, con
   ms_table_host_ = config_.model == Model::Orders ? lampMsTable(lamp_list_, lamp_g_, config_.beta, config_.orders)
                                                   : std::vector<float>{0.0f};
   const std::vector<float> ms_glow = config_.model == Model::Orders ? bottomGlow(params, bands) : std::vector<float>{0.0f};
+  const std::vector<float> ms_weights = config_.model == Model::Orders
+                                            ? lampMsWeights(bands, params.g, config_.kappa, config_.orders)
+                                            : std::vector<float>{0.0f};
   glow_bands_ = bands;
   glow_depth_ = params.bottom_depth;
   UwObject none{};  // OpenCL buffers cannot be empty
@@ -77,6 +81,7 @@ UnderwaterLampsPass::UnderwaterLampsPass(Device& device, const Scene& scene, con
     spectra_ = cl::Buffer(device.context(), in, sizeof(float) * lamps.spectra.size(), lamps.spectra.data());
     ms_table_ = cl::Buffer(device.context(), in, sizeof(float) * ms_table_host_.size(), ms_table_host_.data());
     ms_glow_ = cl::Buffer(device.context(), in, sizeof(float) * ms_glow.size(), const_cast<float*>(ms_glow.data()));
+    ms_weights_ = cl::Buffer(device.context(), in, sizeof(float) * ms_weights.size(), const_cast<float*>(ms_weights.data()));
     plain_bands_ = single_apart_
                        ? cl::Buffer(device.context(), in, sizeof(UwBand) * setup.bands.size(),
                                     const_cast<UwBand*>(setup.bands.data()))
@@ -103,13 +108,16 @@ void UnderwaterLampsPass::update(const UnderwaterSetup& setup) {
     });
     glow_bands_.clear();  // the glow follows the new profiles
   }
-  // The bottom's glow depends on the water, the bottom and the profiles: rebuilt when they changed.
+  // The bottom's glow depends on the water, the bottom and the profiles, the orders' weights on the water:
+  // both rebuilt when those changed.
   const bool same_glow = glow_depth_ == params.bottom_depth && glow_bands_.size() == bands.size() &&
                          std::memcmp(glow_bands_.data(), bands.data(), sizeof(UwBand) * bands.size()) == 0;
   if (config_.model == Model::Orders && !same_glow) {
     const std::vector<float> ms_glow = bottomGlow(params, bands);
+    const std::vector<float> ms_weights = lampMsWeights(bands, params.g, config_.kappa, config_.orders);
     onDevice("underwater_lamps pass update", [&] {
       device_.queue().enqueueWriteBuffer(ms_glow_, CL_TRUE, 0, sizeof(float) * ms_glow.size(), ms_glow.data());
+      device_.queue().enqueueWriteBuffer(ms_weights_, CL_TRUE, 0, sizeof(float) * ms_weights.size(), ms_weights.data());
     });
     glow_bands_ = bands;
     glow_depth_ = params.bottom_depth;
@@ -143,9 +151,9 @@ double UnderwaterLampsPass::run(cl::Buffer& geom, cl::Buffer& material, cl::Buff
     if (config_.model == Model::Orders) {
       kernel_.setArg(arg++, ms_table_);
       kernel_.setArg(arg++, ms_glow_);
+      kernel_.setArg(arg++, ms_weights_);
       kernel_.setArg(arg++, static_cast<cl_int>(config_.orders));
       kernel_.setArg(arg++, static_cast<cl_int>(config_.ms_steps));
-      kernel_.setArg(arg++, static_cast<cl_float>(config_.kappa));
     }
     kernel_.setArg(arg++, rgb);
     if (spectral) kernel_.setArg(arg++, *spectral);

@@ -74,7 +74,7 @@ class UnderwaterLampsPass {
   int width_, height_;
   size_t band_count_, object_count_, albedo_count_;
   cl::Kernel kernel_;
-  cl::Buffer params_, bands_, albedo_, objects_, lamp_params_, lamps_, spectra_, ms_table_, ms_glow_;
+  cl::Buffer params_, bands_, albedo_, objects_, lamp_params_, lamps_, spectra_, ms_table_, ms_glow_, ms_weights_;
   // The delta-M model with the lamps' split layers: its single-scattering part is evaluated apart, in
   // the water as it is (plain_bands_; otherwise plain_bands_ is bands_ and the kernel does not read it).
   bool single_apart_ = false;

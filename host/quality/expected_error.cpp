@@ -164,8 +164,8 @@ const char* lampsModelName(const Scene& scene) {
 }
 
 // One lamp's regime: the water, the lamp's cone and the distance along its axis to the bottom (a height
-// field's mean plane), with what no lamp case has (one bare lamp in the water over a flat bottom) as
-// features.
+// field's mean plane), with what no lamp case has (one lamp in open water over a flat bottom) as features.
+// A lamp out of the water or with a light map never gets here: the parser refuses both under water.
 MeasuredCase lampRegime(const Scene& scene, const SpotlightDesc& lamp, std::vector<std::string>& features) {
   MeasuredCase r;
   r.a = scene.water.a.at(550.0);
@@ -179,8 +179,6 @@ MeasuredCase lampRegime(const Scene& scene, const SpotlightDesc& lamp, std::vect
                            : -1.0;
   const double height = lamp.position.y + depth;  // the bottom lies at y = -depth
   if (depth > 0 && height > 0 && lamp.direction.y < 0) r.lamp_bottom_m = height / -lamp.direction.y;
-  if (lamp.position.y >= 0) features.push_back("a lamp out of the water");
-  if (!lamp.light_map.empty()) features.push_back("a lamp's light map");
   if (!scene.objects.empty()) features.push_back("objects in the lamps' light");
   return r;
 }

@@ -116,6 +116,41 @@ SEASIM_FN real uw_ms_weight(real sigma_a, real sigma_s, real s, real stretch, in
   return stretch * p;
 }
 
+/* The orders' weights tabulated: the kernel's way past the exps and the last order's Poisson tail per
+ * step, band and order (host/underwater/lamps_ms_weights.h builds the table in double from uw_ms_weight
+ * and uw_ms_glow_weights). Each row holds UW_MS_WEIGHT_STEPS entries uniform in u = ln(1 + s/s0) over
+ * [0, ln(1 + S_MAX/s0)], s0 = 1/σ_t of the most extinguishing band: a step is about a hundredth of
+ * that band's optical depth near the lamp and about 1 % of s far from it, so linear interpolation stays
+ * within ~1e-4 of every weight's peak (tests/unit/underwater_lamps_weights_test.cpp). Layout: [0] = 1/s0,
+ * [1] = entries per unit of u; from UW_MS_WEIGHT_HEADER the lamp's section, band i's order n (1..orders)
+ * at (i orders + n - 1) UW_MS_WEIGHT_STEPS; after it (uw_ms_glow_weight_rows) the bottom glow's, band
+ * i's order n (0..orders) at (i (orders + 1) + n) UW_MS_WEIGHT_STEPS. Beyond S_MAX (twice the view
+ * ray's longest cap, uw_ms_ray_cap) the last entry holds. */
+#define UW_MS_WEIGHT_STEPS 1024
+#define UW_MS_WEIGHT_HEADER 2
+#define UW_MS_WEIGHT_S_MAX 2e4
+
+/* Where s falls in the weight table: entry *j and weight *f of entry *j + 1 (once per point: every band
+ * and order shares it). */
+SEASIM_FN void uw_ms_weight_index(const SEASIM_GLOBAL float* table, real s, int* j, real* f) {
+  const real u = clamp(log1p(fmax(s, R(0.0)) * (real)table[0]) * (real)table[1], R(0.0),
+                       (real)(UW_MS_WEIGHT_STEPS - 1));
+  *j = (int)u < UW_MS_WEIGHT_STEPS - 2 ? (int)u : UW_MS_WEIGHT_STEPS - 2;
+  *f = u - (real)*j;
+}
+
+/* The glow's section of the table (bands nb, the lamp's orders). */
+SEASIM_FN const SEASIM_GLOBAL float* uw_ms_glow_weight_rows(const SEASIM_GLOBAL float* table, int nb, int orders) {
+  return table + UW_MS_WEIGHT_HEADER + nb * orders * UW_MS_WEIGHT_STEPS;
+}
+
+/* `count` weights of one band at (j, f) into w[0 .. count - 1], from a section whose bands hold `count`
+ * rows each (the lamp's: table + UW_MS_WEIGHT_HEADER, count = orders; the glow's: count = orders + 1). */
+SEASIM_FN void uw_ms_weights_at(const SEASIM_GLOBAL float* rows, int band, int count, int j, real f, real* w) {
+  const SEASIM_GLOBAL float* row = rows + band * count * UW_MS_WEIGHT_STEPS;
+  for (int n = 0; n < count; ++n, row += UW_MS_WEIGHT_STEPS) w[n] = (R(1.0) - f) * (real)row[j] + f * (real)row[j + 1];
+}
+
 /* The share of HG(G) in the hemisphere about its own axis: ∫_0^1 2π p_HG(μ) dμ
  * = (1 + G)/(2G) (1 - (1 - G)/sqrt(1 + G²)); 1/2 at G = 0, 1 at G = 1. */
 SEASIM_FN real uw_ms_forward_share(real G) {
@@ -241,12 +276,13 @@ SEASIM_FN real uw_ms_inscatter(real3 o, real3 d, real3 lamp, real3 axis, real s_
 }
 
 /* The irradiance orders n >= 1 give a surface point p of normal n_s, per unit I(λ), divided by π (so
- * times the albedo it is the Lambertian radiance leaving p; T_view not applied). */
-SEASIM_FN real uw_ms_surface(real3 p, real3 n_s, real3 lamp, real3 axis, real s_min, real sigma_a, real sigma_s, real g,
-                             real kappa, const SEASIM_GLOBAL float* table, int orders) {
+ * times the albedo it is the Lambertian radiance leaving p; T_view not applied), given the orders'
+ * weights at s = |p - lamp|, wn[n - 1] = W_n(s) (exact: uw_ms_surface; the kernel: its table). */
+SEASIM_FN real uw_ms_surface_weighted(real3 p, real3 n_s, real3 lamp, real3 axis, real s_min, real g,
+                                      const SEASIM_GLOBAL float* table, int orders, const real* wn) {
   const real3 w = p - lamp;
   const real s = length(w);
-  if (!(s > R(0.0)) || !(sigma_s > R(0.0))) return R(0.0);
+  if (!(s > R(0.0))) return R(0.0);
   const real cos_psi = dot(w, axis) / s;
   const real cos_i = -dot(w, n_s) / s; /* the lamp's ray arrives along +w; the surface faces -w when lit */
   const real sc = fmax(s, s_min);
@@ -255,9 +291,19 @@ SEASIM_FN real uw_ms_surface(real3 p, real3 n_s, real3 lamp, real3 axis, real s_
     gn *= g;
     const real P = uw_ms_table_at(table + (n - 1) * UW_MS_TABLE, cos_psi);
     if (P <= R(0.0)) continue;
-    sum += uw_ms_weight(sigma_a, sigma_s, s, uw_ms_stretch(g, n, kappa), n, orders) * P * uw_ms_irradiance_factor(gn, cos_i);
+    sum += wn[n - 1] * P * uw_ms_irradiance_factor(gn, cos_i);
   }
   return sum / (SEASIM_PI * sc * sc);
+}
+
+/* The same with every weight from uw_ms_weight. */
+SEASIM_FN real uw_ms_surface(real3 p, real3 n_s, real3 lamp, real3 axis, real s_min, real sigma_a, real sigma_s, real g,
+                             real kappa, const SEASIM_GLOBAL float* table, int orders) {
+  const real s = length(p - lamp);
+  if (!(s > R(0.0)) || !(sigma_s > R(0.0))) return R(0.0);
+  real wn[UW_MS_MAX_ORDERS];
+  for (int n = 1; n <= orders; ++n) wn[n - 1] = uw_ms_weight(sigma_a, sigma_s, s, uw_ms_stretch(g, n, kappa), n, orders);
+  return uw_ms_surface_weighted(p, n_s, lamp, axis, s_min, g, table, orders, wn);
 }
 
 /* The glow's phase function: HG(G) without its forward peak (delta-M: the share G² scatters straight
@@ -277,20 +323,18 @@ SEASIM_FN int uw_ms_glow_steps(int lamp_steps) {
 }
 
 /* The glow's weights of orders 0..orders at distance s for one band, paths as long as s (no stretch:
- * the glow's source is already diffuse, and one exp serves every order): w_0 = e^{-σ_t s} (unscattered),
- * w_n = e^{-σ_t s} (σ_s s)^n / n!, the last order all higher ones, e^{-σ_a s} P(N >= orders). Two exps per
- * band and point, where the lamp's stretched orders take one per order. */
+ * the glow's source is already diffuse): w_0 = e^{-σ_t s} (unscattered), w_n = e^{-σ_t s} (σ_s s)^n / n!,
+ * the last order all higher ones, e^{-σ_a s} P(N >= orders) (the Poisson tail summed where it is small:
+ * 1 - the lower terms left rounding noise of ~1e-7 in float where the tail is 1e-30). The kernel reads
+ * them from its table (UW_MS_WEIGHT_*). */
 SEASIM_FN void uw_ms_glow_weights(real sigma_a, real sigma_s, real s, int orders, real* w) {
   const real x = sigma_s * s, keep = exp(-sigma_a * s);
-  real scatter_free = exp(-x);
-  real term = keep * scatter_free, below = R(0.0);
+  real term = keep * exp(-x);
   for (int n = 0; n < orders; ++n) {
     w[n] = term;
-    below += scatter_free;
-    scatter_free *= x / (real)(n + 1); /* now e^{-x} x^{n+1}/(n+1)! */
-    term = keep * scatter_free;
+    term *= x / (real)(n + 1); /* now e^{-σ_t s} x^{n+1}/(n+1)! */
   }
-  w[orders] = keep * fmax(R(1.0) - below, R(0.0)); /* P(N >= orders) = 1 - Σ_{k<orders} Pois(k) */
+  w[orders] = keep * uw_ms_poisson_at_least(orders, x);
 }
 
 /* The bottom's glow along a view ray o + t d, t in [0, t_end], per unit J for one band: the lit patch's
@@ -327,9 +371,10 @@ SEASIM_FN real uw_ms_glow_inscatter(real3 o, real3 d, real3 c, real3 up, real ra
 }
 
 /* The bottom's glow on a surface point p of normal n_s, per unit J, divided by π (times the surface's
- * albedo: its Lambertian radiance); *order0 (may be 0) receives the unscattered part alone. */
-SEASIM_FN real uw_ms_glow_surface(real3 p, real3 n_s, real3 c, real3 up, real radius, real sigma_a, real sigma_s, real g,
-                                  int orders, real* order0) {
+ * albedo: its Lambertian radiance), given the glow's weights at s = |p - c|, wn[0..orders] (exact:
+ * uw_ms_glow_surface; the kernel: its table); *order0 (may be 0) receives the unscattered part alone. */
+SEASIM_FN real uw_ms_glow_surface_weighted(real3 p, real3 n_s, real3 c, real3 up, real radius, real g, int orders,
+                                           const real* wn, real* order0) {
   const real3 w = p - c;
   const real s = length(w);
   real sum = R(0.0), first = R(0.0);
@@ -337,8 +382,6 @@ SEASIM_FN real uw_ms_glow_surface(real3 p, real3 n_s, real3 c, real3 up, real ra
   if (s > R(0.0) && dot(w, up) > R(1e-4) * s) {
     const real cos_psi = dot(w, up) / s, cos_i = -dot(w, n_s) / s;
     const real k = cos_psi / (SEASIM_PI * (s * s + radius * radius));
-    real wn[UW_MS_MAX_ORDERS + 1];
-    uw_ms_glow_weights(sigma_a, sigma_s, s, orders, wn);
     first = k * wn[0] * fmax(cos_i, R(0.0));
     sum = first;
     real gn = R(1.0);
@@ -349,6 +392,14 @@ SEASIM_FN real uw_ms_glow_surface(real3 p, real3 n_s, real3 c, real3 up, real ra
   }
   if (order0) *order0 = first;
   return sum;
+}
+
+/* The same with the weights from uw_ms_glow_weights. */
+SEASIM_FN real uw_ms_glow_surface(real3 p, real3 n_s, real3 c, real3 up, real radius, real sigma_a, real sigma_s, real g,
+                                  int orders, real* order0) {
+  real wn[UW_MS_MAX_ORDERS + 1];
+  uw_ms_glow_weights(sigma_a, sigma_s, length(p - c), orders, wn);
+  return uw_ms_glow_surface_weighted(p, n_s, c, up, radius, g, orders, wn, order0);
 }
 
 /* The lit bottom blurred on its way to the eye. T_view's k-th term sees the surface through light

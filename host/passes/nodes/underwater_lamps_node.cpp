@@ -13,6 +13,7 @@
 #include "render/pass.h"
 #include "render/layer_target.h"
 #include "render/radiance_target.h"
+#include "underwater/lamps_ms_weights.h"
 
 namespace seasim {
 
@@ -110,8 +111,15 @@ PassDescriptor underwaterLampsDescriptor() {
   d.buffers = [](const Scene& s, const PassPlan& p) -> std::vector<BufferEstimate> {
     const double lights = static_cast<double>(s.spotlights.size()), nb = s.spectral.count;
     // Its own copies of the underwater parameter blocks are per band, not per pixel: only the spectra.
-    return {{p.name, "lamp spectra (one per spotlight and band)", 4 * lights * nb,
-             {"spotlights (count)", "spectral.count"}, {lights, nb}}};
+    std::vector<BufferEstimate> out = {{p.name, "lamp spectra (one per spotlight and band)", 4 * lights * nb,
+                                        {"spotlights (count)", "spectral.count"}, {lights, nb}}};
+    if (p.featuresAs<UnderwaterLampsFeatures>().orders) {
+      const double orders = modelKey(s, "quality.lamps_orders");
+      out.push_back({p.name, "the orders' weights per band, order and distance (underwater/lamps_ms_weights.h)",
+                     4.0 * lampMsWeightsSize(s.spectral.count, static_cast<int>(orders)),
+                     {"spectral.count", "quality.lamps_orders"}, {nb, orders}});
+    }
+    return out;
   };
   d.cost = [](const Scene&, const PassPlan&) { return 1.0; };
   d.factory = [](const PassPlan& e, const Plan&, const Scene&, const AutoQuality&) -> std::unique_ptr<Pass> {

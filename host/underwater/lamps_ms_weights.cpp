@@ -1,0 +1,44 @@
+#include "underwater/lamps_ms_weights.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "math/kernel_math.h"
+
+namespace seasim {
+
+std::size_t lampMsWeightsSize(std::size_t bands, int orders) {
+  // The lamp's orders 1..orders and the glow's 0..orders per band.
+  return UW_MS_WEIGHT_HEADER + bands * (2 * orders + 1) * static_cast<std::size_t>(UW_MS_WEIGHT_STEPS);
+}
+
+std::vector<float> lampMsWeights(const std::vector<UwBand>& bands, double g, double kappa, int orders) {
+  // s0 = 1/σ_t of the most extinguishing band: the grid's steps are finest where any band's weights turn
+  // fastest (σ_t at least 1e-3 /m, so a water without extinction still gets a grid).
+  double c_max = 1e-3;
+  for (const UwBand& b : bands) c_max = std::max(c_max, static_cast<double>(b.a) + b.b);
+  const double s0 = 1.0 / c_max, u_max = std::log1p(UW_MS_WEIGHT_S_MAX / s0);
+  const int steps = UW_MS_WEIGHT_STEPS;
+  std::vector<float> table(lampMsWeightsSize(bands.size(), orders), 0.0f);
+  table[0] = static_cast<float>(1.0 / s0);
+  table[1] = static_cast<float>((steps - 1) / u_max);
+  const auto at = [&](int j) { return s0 * std::expm1(j * u_max / (steps - 1)); };
+  for (size_t i = 0; i < bands.size(); ++i)
+    for (int n = 1; n <= orders; ++n) {
+      const double stretch = kmath_d::uw_ms_stretch(g, n, kappa);
+      float* row = table.data() + UW_MS_WEIGHT_HEADER + (i * orders + n - 1) * static_cast<size_t>(steps);
+      for (int j = 0; j < steps; ++j)
+        row[j] = static_cast<float>(kmath_d::uw_ms_weight(bands[i].a, bands[i].b, at(j), stretch, n, orders));
+    }
+  float* glow = table.data() + UW_MS_WEIGHT_HEADER + bands.size() * orders * static_cast<size_t>(steps);
+  std::vector<double> w(orders + 1);
+  for (size_t i = 0; i < bands.size(); ++i)
+    for (int j = 0; j < steps; ++j) {
+      kmath_d::uw_ms_glow_weights(bands[i].a, bands[i].b, at(j), orders, w.data());
+      for (int n = 0; n <= orders; ++n)
+        glow[(i * (orders + 1) + n) * static_cast<size_t>(steps) + j] = static_cast<float>(w[n]);
+    }
+  return table;
+}
+
+}  // namespace seasim
