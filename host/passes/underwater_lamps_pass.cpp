@@ -11,6 +11,7 @@
 #include "underwater/lamps_setup.h"
 #include "math/kernel_math.h"
 #include "plan/pass_descriptor.h"
+#include "plan/scene_facts.h"
 #include "scene/model_keys.h"
 #include "util/error.h"
 
@@ -21,13 +22,8 @@ UnderwaterLampsPass::Config UnderwaterLampsPass::configFromScene(const Scene& sc
   Config c;
   c.planes = static_cast<int>(d.settledKnob(scene, "shafts_planes"));
   c.subplanes = static_cast<int>(d.settledKnob(scene, "shafts_subplanes"));
-  const auto number = [&](const char* name, double fallback) {
-    const auto it = scene.quality.find(name);
-    return it == scene.quality.end() ? fallback : it->second.value;
-  };
-  // Scenes built in code without the parser's defaults keep the older switch's meaning.
-  const double model = number("lamps_model", number("lamps_delta_m", 1.0) != 0 ? 1.0 : 0.0);
-  c.model = model == 2.0 ? Model::Orders : model == 1.0 ? Model::DeltaM : Model::Single;
+  const std::string model = underwaterLampsModel(scene);
+  c.model = model == "orders" ? Model::Orders : model == "delta_m" ? Model::DeltaM : Model::Single;
   c.orders = static_cast<int>(modelKey(scene, "quality.lamps_orders"));
   c.ms_steps = static_cast<int>(modelKey(scene, "quality.lamps_ms_steps"));
   c.kappa = modelKey(scene, "quality.lamps_ms_kappa");

@@ -14,6 +14,14 @@ bool spotlightsInAir(const Scene& scene) {
   return !scene.spotlights.empty() && scene.air.present && !scene.water.present;
 }
 
+const char* underwaterLampsModel(const Scene& scene) {
+  const auto model = scene.quality.find("lamps_model"), older = scene.quality.find("lamps_delta_m");
+  const double id = model != scene.quality.end()   ? model->second.value
+                    : older != scene.quality.end() ? (older->second.value != 0 ? 1.0 : 0.0)
+                                                   : 2.0;
+  return id == 0.0 ? "single" : id == 1.0 ? "delta_m" : "orders";
+}
+
 bool sunUp(const Scene& scene) {
   return scene.sun.enabled && scene.sun.irradiance > 0 && scene.sun.zenith < M_PI / 2;
 }

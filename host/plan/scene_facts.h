@@ -27,6 +27,10 @@ bool seaBottomCausticsPlanned(const Scene& scene);
 // The discrete-ordinates underwater model's point-spread: the light delta-M counts as unscattered,
 // put back blurred. Only that model scales by delta-M, and only a forward phase (g > 0) has a peak.
 bool underwaterPointSpread(const Scene& scene);
+// The model of the lamps under water, quality.lamps_model: "single", "delta_m" or "orders" (the parser's
+// default). A scene built in code without it keeps its older switch lamps_delta_m's meaning where that is
+// there, else the parser's default.
+const char* underwaterLampsModel(const Scene& scene);
 // SEASIM_SKY_MODEL (common/sky.h): 0 uniform, 1 analytic (CIE clear sky), 2 lat-long image, 3 Preetham.
 int skyModelOf(const SkyDesc& sky);
 

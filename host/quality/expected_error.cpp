@@ -157,12 +157,6 @@ ExpectedError lookupExpectedError(const MeasuredCase& regime, const std::string&
 
 namespace {
 
-const char* lampsModelName(const Scene& scene) {
-  const auto k = scene.quality.find("lamps_model");
-  const int id = k == scene.quality.end() ? 1 : static_cast<int>(k->second.value);
-  return id == 0 ? "single" : id == 1 ? "delta_m" : "orders";
-}
-
 // One lamp's regime: the water, the lamp's cone and the distance along its axis to the bottom (a height
 // field's mean plane), with what no lamp case has (one lamp in open water over a flat bottom) as features.
 // A lamp out of the water or with a light map never gets here: the parser refuses both under water.
@@ -186,7 +180,7 @@ MeasuredCase lampRegime(const Scene& scene, const SpotlightDesc& lamp, std::vect
 // The lamps' entry: each lamp looked up, the worst kept (one not measured before a measured one, then the
 // larger error), since each lamp's light carries its own error and the image's is at most the worst.
 ExpectedError lampsExpectedError(const Scene& scene) {
-  const std::string model = lampsModelName(scene);
+  const std::string model = underwaterLampsModel(scene);
   const std::vector<MeasuredCase> cases = loadMeasuredCases("lamps", model);
   ExpectedError worst;
   for (size_t i = 0; i < scene.spotlights.size(); ++i) {

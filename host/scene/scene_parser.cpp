@@ -782,12 +782,13 @@ class SceneParser {
     scene_.quality["wave_filter"] = Knob{false, r.boolean("wave_filter", true) ? 1.0 : 0.0};
     // Spotlights under water: the model (passes/underwater_lamps_pass.h), stored as a knob 0 "single"
     // (001's single scattering in the water as it is), 1 "delta_m" (the water delta-M scaled), 2
-    // "orders" (single scattering plus the orders of common/underwater_lamps_ms.h). The older switch
-    // lamps_delta_m (true: "delta_m", false: "single") stays, but not beside lamps_model.
+    // "orders" (single scattering plus the orders of common/underwater_lamps_ms.h; the default, the most
+    // accurate of the three against all orders: results/BENCHMARKS.md). The older switch lamps_delta_m
+    // (true: "delta_m", false: "single") stays, but not beside lamps_model.
     r.check(!(r.has("lamps_model") && r.has("lamps_delta_m")), "lamps_model",
             "give lamps_model or the older lamps_delta_m, not both");
-    const bool delta_m = r.boolean("lamps_delta_m", true);
-    const std::string lamps_model = r.choice("lamps_model", delta_m ? "delta_m" : "single", {"single", "delta_m", "orders"});
+    const std::string older = r.has("lamps_delta_m") ? (r.boolean("lamps_delta_m", true) ? "delta_m" : "single") : "orders";
+    const std::string lamps_model = r.choice("lamps_model", older, {"single", "delta_m", "orders"});
     const double lamps_model_id = lamps_model == "single" ? 0.0 : lamps_model == "delta_m" ? 1.0 : 2.0;
     scene_.quality["lamps_model"] = Knob{false, lamps_model_id};
     scene_.quality["lamps_delta_m"] = Knob{false, lamps_model_id == 1.0 ? 1.0 : 0.0};

@@ -433,7 +433,7 @@ TEST(UnderwaterLamps, ConeOfATenthOfADegreeMatchesTheDoubleEvaluation) {
   };
   const Scene scene = lampScene({set("spotlights[0].position", vec(lamp)), set("spotlights[0].direction", vec(axis)),
                                  set("spotlights[0].cone_deg", "0.1"), set("spotlights[0].falloff_deg", "0.05"),
-                                 set("quality.fast_math", "false")});
+                                 set("quality.fast_math", "false"), set("quality.lamps_model", "\"delta_m\"")});
   const seasim::FrameResult f = render(scene);
   EXPECT_EQ(f.nonfinite, 0);
   for (float v : f.rgb.pixels) ASSERT_TRUE(std::isfinite(v));

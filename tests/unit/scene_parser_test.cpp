@@ -12,6 +12,7 @@
 
 #include <unistd.h>
 
+#include "plan/scene_facts.h"
 #include "scene/model_keys.h"
 #include "scene/scene_parser.h"
 #include "spectral/sensor.h"
@@ -295,8 +296,8 @@ TEST(SceneParser, Defaults) {
       {"froxel_columns", 80},    {"caustic_map_size", 256}, {"caustic_layers", 8},
       {"reference_spp", 64},     {"reference_steps", 200}, {"shafts_exact", 0},
       {"shafts_error_budget", 1}, {"sea_supersample", 1},  {"wave_filter", 1},
-      {"fourflow_table_size", 32}, {"lamps_delta_m", 1}, {"shafts_panel_deg", 4}, {"shafts_panel_texels", 2},
-      {"profile_streams", 16}, {"lamps_model", 1}, {"shafts_march_steps", 20}};
+      {"fourflow_table_size", 32}, {"lamps_delta_m", 0}, {"shafts_panel_deg", 4}, {"shafts_panel_texels", 2},
+      {"profile_streams", 16}, {"lamps_model", 2}, {"shafts_march_steps", 20}};
   EXPECT_EQ(s.quality.size(), std::size(knobs) + 4);
   EXPECT_TRUE(s.quality.at("fast_math").automatic);  // "auto": the planner decides (fastMathFor)
   EXPECT_TRUE(s.quality.at("froxel_x").automatic);   // "auto": from froxel_columns (froxel_setup.h)
@@ -769,9 +770,11 @@ TEST(SceneParserLamps, LampsModelByNameWithTheOlderSwitchKept) {
   using seasim::parseScene;
   EXPECT_EQ(parseScene("[quality]\nlamps_model = \"orders\"\n", "l.toml").quality.at("lamps_model").value, 2);
   EXPECT_EQ(parseScene("[quality]\nlamps_model = \"single\"\n", "l.toml").quality.at("lamps_model").value, 0);
-  // The older switch: false is "single", true (the default) "delta_m".
+  // The older switch: false is "single", true "delta_m"; neither given, "orders" (the default).
   EXPECT_EQ(parseScene("[quality]\nlamps_delta_m = false\n", "l.toml").quality.at("lamps_model").value, 0);
-  EXPECT_EQ(parseScene("", "l.toml").quality.at("lamps_model").value, 1);
+  EXPECT_EQ(parseScene("[quality]\nlamps_delta_m = true\n", "l.toml").quality.at("lamps_model").value, 1);
+  EXPECT_EQ(parseScene("", "l.toml").quality.at("lamps_model").value, 2);
+  EXPECT_EQ(parseScene("", "l.toml").quality.at("lamps_delta_m").value, 0);
   EXPECT_THROW(parseScene("[quality]\nlamps_model = \"bogus\"\n", "l.toml"), seasim::InputError);
   EXPECT_THROW(parseScene("[quality]\nlamps_model = \"orders\"\nlamps_delta_m = true\n", "l.toml"), seasim::InputError);
   const auto error = [](const std::string& text) { return errorOf(text, {}, "l.toml"); };
@@ -782,6 +785,19 @@ TEST(SceneParserLamps, LampsModelByNameWithTheOlderSwitchKept) {
   EXPECT_EQ(error("[quality]\nlamps_ms_spread = 1\n"), "");
   EXPECT_NE(error("[quality]\nlamps_ms_kappa = -1\n").find("must be in [0, 2], got -1"), std::string::npos);
   EXPECT_DOUBLE_EQ(seasim::modelKey(parseScene("[quality]\nlamps_orders = 7\n", "l.toml"), "quality.lamps_orders"), 7);
+}
+
+TEST(SceneParserLamps, AModelForScenesBuiltInCodeToo) {
+  // Without the parser's quality map: the older switch where it is set, else the parser's default.
+  seasim::Scene s;
+  EXPECT_STREQ(seasim::underwaterLampsModel(s), "orders");
+  s.quality["lamps_delta_m"] = seasim::Knob{false, 1.0};
+  EXPECT_STREQ(seasim::underwaterLampsModel(s), "delta_m");
+  s.quality["lamps_delta_m"] = seasim::Knob{false, 0.0};
+  EXPECT_STREQ(seasim::underwaterLampsModel(s), "single");
+  s.quality["lamps_model"] = seasim::Knob{false, 2.0};  // the name wins over the older switch
+  EXPECT_STREQ(seasim::underwaterLampsModel(s), "orders");
+  EXPECT_STREQ(seasim::underwaterLampsModel(seasim::parseScene("", "l.toml")), "orders");
 }
 
 TEST(SceneParserSandShare, StepIsAWholeNumberFromOneToEight) {
