@@ -1,13 +1,9 @@
 #include "passes/underwater_lamps_pass.h"
 
 #include <algorithm>
-#include <cstring>
 
 #include "device/enqueue.h"
 #include "passes/underwater_features.h"
-#include "underwater/lamps_bottom_glow.h"
-#include "underwater/lamps_ms_table.h"
-#include "underwater/lamps_ms_weights.h"
 #include "underwater/lamps_setup.h"
 #include "math/kernel_math.h"
 #include "plan/pass_descriptor.h"
@@ -32,7 +28,8 @@ UnderwaterLampsPass::Config UnderwaterLampsPass::configFromScene(const Scene& sc
 }
 
 UnderwaterLampsPass::UnderwaterLampsPass(Device& device, const Scene& scene, const UnderwaterSetup& setup,
-                                         const WavelengthGrid& grid, const PassPlan& plan, const Config& config)
+                                         const WavelengthGrid& grid, const PassPlan& plan, const Config& config,
+                                         LampsOrdersTables* tables)
     : device_(device),
       config_(config),
       width_(setup.params.width),
@@ -53,16 +50,12 @@ UnderwaterLampsPass::UnderwaterLampsPass(Device& device, const Scene& scene, con
   std::vector<UwBand> bands = setup.bands;
   if (config_.model == Model::DeltaM) deltaMScale(params, bands);
   lamp_list_ = lamps.lamps;
-  lamp_g_ = params.g;
   lamp_s_min_ = lamps.params.s_min;
-  ms_table_host_ = config_.model == Model::Orders ? lampMsTable(lamp_list_, lamp_g_, config_.beta, config_.orders)
-                                                  : std::vector<float>{0.0f};
-  const std::vector<float> ms_glow = config_.model == Model::Orders ? bottomGlow(params, bands) : std::vector<float>{0.0f};
-  const std::vector<float> ms_weights = config_.model == Model::Orders
-                                            ? lampMsWeights(bands, params.g, config_.kappa, config_.orders)
-                                            : std::vector<float>{0.0f};
-  glow_bands_ = bands;
-  glow_depth_ = params.bottom_depth;
+  if (!tables) {
+    own_tables_ = std::make_unique<LampsOrdersTables>();
+    tables = own_tables_.get();
+  }
+  tables_ = tables;
   UwObject none{};  // OpenCL buffers cannot be empty
   const cl_mem_flags in = CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR;
   onDevice("underwater_lamps pass set-up", [&] {
@@ -75,15 +68,33 @@ UnderwaterLampsPass::UnderwaterLampsPass(Device& device, const Scene& scene, con
     lamp_params_ = cl::Buffer(device.context(), in, sizeof(UwLampParams), &lamps.params);
     lamps_ = cl::Buffer(device.context(), in, sizeof(UwLamp) * lamps.lamps.size(), lamps.lamps.data());
     spectra_ = cl::Buffer(device.context(), in, sizeof(float) * lamps.spectra.size(), lamps.spectra.data());
-    ms_table_ = cl::Buffer(device.context(), in, sizeof(float) * ms_table_host_.size(), ms_table_host_.data());
-    ms_glow_ = cl::Buffer(device.context(), in, sizeof(float) * ms_glow.size(), const_cast<float*>(ms_glow.data()));
-    ms_weights_ = cl::Buffer(device.context(), in, sizeof(float) * ms_weights.size(), const_cast<float*>(ms_weights.data()));
     plain_bands_ = single_apart_
                        ? cl::Buffer(device.context(), in, sizeof(UwBand) * setup.bands.size(),
                                     const_cast<UwBand*>(setup.bands.data()))
                        : bands_;
   });
+  if (config_.model == Model::Orders) orderTables(params, bands, true);
   plain_g_ = setup.params.g;
+}
+
+void UnderwaterLampsPass::orderTables(const UwParams& params, const std::vector<UwBand>& bands, bool create) {
+  const LampsOrdersTables::Table& profiles = tables_->profiles(lamp_list_, params.g, config_.beta, config_.orders);
+  const LampsOrdersTables::Table& glow =
+      tables_->glow(lamp_list_, params, bands, lamp_s_min_, params.g, config_.kappa, config_.orders);
+  const LampsOrdersTables::Table& weights = tables_->weights(bands, params.g, config_.kappa, config_.orders);
+  onDevice("underwater_lamps pass tables", [&] {
+    const auto upload = [&](cl::Buffer& buffer, const LampsOrdersTables::Table& t, int& on_device) {
+      if (create)
+        buffer = cl::Buffer(device_.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(float) * t.values.size(),
+                            const_cast<float*>(t.values.data()));
+      else if (t.generation != on_device)
+        device_.queue().enqueueWriteBuffer(buffer, CL_TRUE, 0, sizeof(float) * t.values.size(), t.values.data());
+      on_device = t.generation;
+    };
+    upload(ms_table_, profiles, profiles_on_device_);
+    upload(ms_glow_, glow, glow_on_device_);
+    upload(ms_weights_, weights, weights_on_device_);
+  });
 }
 
 void UnderwaterLampsPass::update(const UnderwaterSetup& setup) {
@@ -95,29 +106,8 @@ void UnderwaterLampsPass::update(const UnderwaterSetup& setup) {
   std::vector<UwBand> bands = setup.bands;
   if (config_.model == Model::DeltaM) deltaMScale(params, bands);
   plain_g_ = setup.params.g;
-  // The orders' table depends on g only: rebuilt when the water's g changed.
-  if (config_.model == Model::Orders && params.g != lamp_g_) {
-    lamp_g_ = params.g;
-    ms_table_host_ = lampMsTable(lamp_list_, lamp_g_, config_.beta, config_.orders);
-    onDevice("underwater_lamps pass update", [&] {
-      device_.queue().enqueueWriteBuffer(ms_table_, CL_TRUE, 0, sizeof(float) * ms_table_host_.size(), ms_table_host_.data());
-    });
-    glow_bands_.clear();  // the glow follows the new profiles
-  }
-  // The bottom's glow depends on the water, the bottom and the profiles, the orders' weights on the water:
-  // both rebuilt when those changed.
-  const bool same_glow = glow_depth_ == params.bottom_depth && glow_bands_.size() == bands.size() &&
-                         std::memcmp(glow_bands_.data(), bands.data(), sizeof(UwBand) * bands.size()) == 0;
-  if (config_.model == Model::Orders && !same_glow) {
-    const std::vector<float> ms_glow = bottomGlow(params, bands);
-    const std::vector<float> ms_weights = lampMsWeights(bands, params.g, config_.kappa, config_.orders);
-    onDevice("underwater_lamps pass update", [&] {
-      device_.queue().enqueueWriteBuffer(ms_glow_, CL_TRUE, 0, sizeof(float) * ms_glow.size(), ms_glow.data());
-      device_.queue().enqueueWriteBuffer(ms_weights_, CL_TRUE, 0, sizeof(float) * ms_weights.size(), ms_weights.data());
-    });
-    glow_bands_ = bands;
-    glow_depth_ = params.bottom_depth;
-  }
+  // The orders' tables follow the water (g, a and b per band) and the bottom: rebuilt and written where those changed.
+  if (config_.model == Model::Orders) orderTables(params, bands, false);
   onDevice("underwater_lamps pass update", [&] {
     cl::CommandQueue& q = device_.queue();
     q.enqueueWriteBuffer(params_, CL_FALSE, 0, sizeof(UwParams), &params);
@@ -166,14 +156,6 @@ double UnderwaterLampsPass::run(cl::Buffer& geom, cl::Buffer& material, cl::Buff
     }
   });
   return runKernel2d(device_, "underwater_lamps", kernel_, width_, height_);
-}
-
-std::vector<float> UnderwaterLampsPass::bottomGlow(const UwParams& params, const std::vector<UwBand>& bands) const {
-  LampGlowModel model;
-  model.g = params.g;
-  model.kappa = config_.kappa;
-  model.orders = config_.orders;
-  return lampBottomGlowTable(lamp_list_, params, bands, ms_table_host_, lamp_s_min_, model);
 }
 
 }  // namespace seasim

@@ -16,7 +16,10 @@
 
 #include <vector>
 
+#include <memory>
+
 #include "device/device.h"
+#include "passes/underwater_lamps_tables.h"
 #include "plan/plan.h"
 #include "scene/scene.h"
 #include "spectral/wavelength_grid.h"
@@ -48,9 +51,10 @@ class UnderwaterLampsPass {
   };
   static Config configFromScene(const Scene& scene);
 
-  // `plan`: the "underwater_lamps" entry (its defines). RuntimeError for n or m < 1.
+  // `plan`: the "underwater_lamps" entry (its defines). RuntimeError for n or m < 1. `tables`: the orders
+  // model's host tables kept by the caller across passes (none: the pass keeps its own).
   UnderwaterLampsPass(Device& device, const Scene& scene, const UnderwaterSetup& setup, const WavelengthGrid& grid,
-                      const PassPlan& plan, const Config& config);
+                      const PassPlan& plan, const Config& config, LampsOrdersTables* tables = nullptr);
   // Adds the lamps into rgb (and spectral when given) for the G-buffer (geom, material); returns ms.
   // lamps_layer: the "lamps" ground-truth layer (3 floats per pixel) when planned with SEASIM_LAYER_LAMPS;
   // band_layers: kd_multiple's split per band ([pixel][5][band], slot 3 the lamps) with SEASIM_LAYER_BANDS.
@@ -58,19 +62,19 @@ class UnderwaterLampsPass {
              cl::Buffer* lamps_layer = nullptr, cl::Buffer* band_layers = nullptr, const LampSplitLayers& split = {});
   // Rewrites the underwater parameter blocks (sun, water or time changed; same sizes).
   void update(const UnderwaterSetup& setup);
-  // The orders model's bottom glow for these water bands (host/underwater/lamps_bottom_glow.h).
-  std::vector<float> bottomGlow(const UwParams& params, const std::vector<UwBand>& bands) const;
 
  private:
   Device& device_;
   Config config_;
-  float lamp_g_ = 0.0f;  // the g the orders' table was built for
   std::vector<UwLamp> lamp_list_;
   float lamp_s_min_ = 0.0f;
-  std::vector<float> ms_table_host_;  // the orders' blurred profiles, as on the device
-  // What the bottom's glow was built from (water and bottom per band, bottom depth): rebuilt when they change.
-  std::vector<UwBand> glow_bands_;
-  float glow_depth_ = 0.0f;
+  std::unique_ptr<LampsOrdersTables> own_tables_;
+  LampsOrdersTables* tables_ = nullptr;
+  // The generations of the orders' tables on the device (LampsOrdersTables::Table::generation).
+  int profiles_on_device_ = 0, glow_on_device_ = 0, weights_on_device_ = 0;
+  // Builds (where their inputs changed) the orders' tables for this water and writes what is new to the
+  // device (buffers made when `create`).
+  void orderTables(const UwParams& params, const std::vector<UwBand>& bands, bool create);
   int width_, height_;
   size_t band_count_, object_count_, albedo_count_;
   cl::Kernel kernel_;

@@ -461,6 +461,20 @@ TEST(UnderwaterLamps, RovLightsComposesLampsWithTheSunsPasses) {
   const seasim::FrameResult without = dark.render();
   for (size_t k = 0; k < with.rgb.pixels.size(); ++k) ASSERT_GE(with.rgb.pixels[k], without.rgb.pixels[k]) << k;
   EXPECT_GT(meanOf(with.rgb), 1.2 * meanOf(without.rgb));
+  // A moved camera sets the lamps' pass up again, keeping the orders' host tables (nothing in them depends
+  // on the camera): the frame is the one a renderer made afresh at that camera gives.
+  {
+    seasim::Renderer moved(seasim::test::testDevice(), file, small, seasim::shippedPasses());
+    (void)moved.render();
+    moved.update({set("camera.position", "[0.3, -8.0, 0.2]")});
+    const seasim::FrameResult again = moved.render();
+    std::vector<Override> there = small;
+    there.push_back(set("camera.position", "[0.3, -8.0, 0.2]"));
+    seasim::Renderer fresh(seasim::test::testDevice(), file, there, seasim::shippedPasses());
+    const seasim::FrameResult made = fresh.render();
+    ASSERT_EQ(again.rgb.pixels.size(), made.rgb.pixels.size());
+    for (size_t k = 0; k < made.rgb.pixels.size(); ++k) ASSERT_EQ(again.rgb.pixels[k], made.rgb.pixels[k]) << k;
+  }
   // A change of the sun reruns the lamps' pass (it adds into the frame kd_multiple rewrote) but does not
   // set it up again.
   renderer.update({set("sun.zenith_deg", "50.0")});

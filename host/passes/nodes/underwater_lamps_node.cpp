@@ -43,7 +43,7 @@ class UnderwaterLampsNode : public Pass {
   void prepare(FrameContext& ctx, PassResources& res) override {
     pass_ = std::make_unique<UnderwaterLampsPass>(ctx.device(), ctx.scene(),
                                                   res.read<UnderwaterSetupBuffers>("underwater_setup").setup, ctx.grid(),
-                                                  entry_, UnderwaterLampsPass::configFromScene(ctx.scene()));
+                                                  entry_, UnderwaterLampsPass::configFromScene(ctx.scene()), &tables_);
     fresh_ = true;
   }
   void execute(FrameContext& ctx, PassResources& res) override {
@@ -64,6 +64,9 @@ class UnderwaterLampsNode : public Pass {
 
  private:
   const PassPlan& entry_;
+  // The orders model's host tables outlive the passes a moved camera makes anew (prepare): only what
+  // the camera does not change is in them, so the preview does not rebuild them per frame.
+  LampsOrdersTables tables_;
   std::unique_ptr<UnderwaterLampsPass> pass_;
   bool fresh_ = false;
 };
