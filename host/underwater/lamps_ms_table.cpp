@@ -21,6 +21,9 @@ double hgInverseCdf(double h, double u) {
 std::vector<float> lampMsProfiles(double cos_cone, double cos_inner, double g, double beta, int orders, int u_steps,
                                   int phi_steps) {
   std::vector<float> rows(static_cast<size_t>(orders) * UW_MS_TABLE, 0.0f);
+  // The azimuth about the direction ψ: symmetric, so half the circle, midpoints; their cosines once.
+  std::vector<double> cos_phi(phi_steps);
+  for (int k = 0; k < phi_steps; ++k) cos_phi[k] = std::cos((k + 0.5) * M_PI / phi_steps);
   for (int n = 1; n <= orders; ++n) {
     const double h = kmath_d::uw_ms_spread(g, n, beta);
     for (int i = 0; i < UW_MS_TABLE; ++i) {
@@ -30,10 +33,8 @@ std::vector<float> lampMsProfiles(double cos_cone, double cos_inner, double g, d
       for (int iu = 0; iu < u_steps; ++iu) {
         const double cb = hgInverseCdf(h, (iu + 0.5) / u_steps);
         const double sb = std::sqrt(std::fmax(0.0, 1.0 - cb * cb));
-        // The azimuth about the direction ψ: symmetric, so half the circle, midpoints.
         for (int k = 0; k < phi_steps; ++k) {
-          const double phi = (k + 0.5) * M_PI / phi_steps;
-          const double c = cp * cb + sp * sb * std::cos(phi);
+          const double c = cp * cb + sp * sb * cos_phi[k];
           acc += kmath_d::shafts_cone_profile(c, cos_cone, cos_inner);
         }
       }
@@ -45,8 +46,16 @@ std::vector<float> lampMsProfiles(double cos_cone, double cos_inner, double g, d
 
 std::vector<float> lampMsTable(const std::vector<UwLamp>& lamps, double g, double beta, int orders) {
   std::vector<float> table;
-  for (const UwLamp& L : lamps) {
-    const std::vector<float> rows = lampMsProfiles(L.cos_cone, L.cos_inner, g, beta, orders);
+  const size_t stride = static_cast<size_t>(orders) * UW_MS_TABLE;
+  for (size_t l = 0; l < lamps.size(); ++l) {
+    // Lamps of the same cone share their rows (an ROV's pair of lamps).
+    size_t same = 0;
+    while (same < l && !(lamps[same].cos_cone == lamps[l].cos_cone && lamps[same].cos_inner == lamps[l].cos_inner)) ++same;
+    if (same < l) {
+      table.insert(table.end(), table.begin() + same * stride, table.begin() + (same + 1) * stride);
+      continue;
+    }
+    const std::vector<float> rows = lampMsProfiles(lamps[l].cos_cone, lamps[l].cos_inner, g, beta, orders);
     table.insert(table.end(), rows.begin(), rows.end());
   }
   if (table.empty()) table.push_back(0.0f);
