@@ -1,7 +1,7 @@
 """Opt-in validation (make validate): a spotlight under water — seasim's all-orders path tracer
 (`seasim reference`, lamps by equiangular sampling in the cone combined with next-event estimation) and
 the fast lamp pass (`seasim render`, each quality.lamps_model by name: paper 001's planes in the water
-delta-M scaled (the default), with the orders of multiple scattering, and plain) against Mitsuba 3's
+delta-M scaled, with the orders of multiple scattering (the default), and plain) against Mitsuba 3's
 volpathmis. Writes lamps_vs_mitsuba.md.
 
 Mapping (water_scenes.py's docstring for the water, bottom, camera and pixel filter): one grey band at
@@ -118,7 +118,7 @@ def compare(binary, s, lamp, seeds, spp, paths):
         t_pt = time.time() - t0
         pt = ws.read_band(os.path.join(tmp, "pt.exr"))
         pt_se = ws.read_band(os.path.join(tmp, "pt.stderr.exr"))
-        # Each lamps model pinned by name (delta_m is the default; orders adds the glow outside the cone).
+        # Each lamps model pinned by name (orders, the default, adds the glow outside the cone).
         models = [("fast, delta-M", ["--set", 'quality.lamps_model="delta_m"']),
                   ("fast, orders", ["--set", 'quality.lamps_model="orders"']),
                   ("fast, plain 001", ["--set", 'quality.lamps_model="single"'])]
