@@ -17,7 +17,8 @@
 //   + (ln(ψ/ψ_c)/ln 2)² + ((f_l - f_lc)/0.25)²,   f_l = 1 - e^{-(a + b) l},
 // ψ the cone's half angle and l the distance along the lamp's axis to the bottom (f_l = 1 when the axis
 // meets no bottom): one step per doubling of the cone and per quarter of the beam's light that the water
-// takes before the bottom. The scene's entry is its worst lamp's.
+// takes before the bottom. The scene's entry is its worst lamp's. A scene with objects is looked up among
+// the cases with objects (rov_lights' own measurement) where there are any, as a sky among its own.
 #pragma once
 #include <string>
 #include <vector>
@@ -35,6 +36,7 @@ struct MeasuredCase {
   int sky = 0;                 // the sky it was measured under: SEASIM_SKY_* (0 uniform, 1 CIE, 2 image, 3 Preetham)
   int floor = 0;               // its bottom: 0 flat or none, 1 a height field (bottom_m its mean depth)
   int surface = 0;             // the water's surface: 0 flat, 1 FFT waves
+  int objects = 0;             // a lamp's case: 1 with objects in the lamps' light (a shipped scene's own case)
   double cone_deg = 0;         // a lamp's case: its cone's half angle (0: a daylight case)
   double lamp_bottom_m = -1;   // a lamp's case: the distance along its axis to the bottom (-1: none)
   double max_abs_error = 0;    // worst judged region, |model / all orders - 1|

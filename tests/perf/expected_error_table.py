@@ -105,8 +105,14 @@ LAMPS = ["results/underwater/lamp_orders_fit.csv", "results/underwater/lamp_orde
          "results/underwater/lamp_orders_near.csv"]
 LAMP_MODELS = ["single", "delta_m", "orders"]
 SOURCES.update({("lamps", m): [(t,) for t in LAMPS] for m in LAMP_MODELS})
-HEADER = ["a", "b", "g", "bottom_m", "sun_zenith_deg", "sky", "floor", "surface", "cone_deg", "lamp_bottom_m",
-          "max_abs_error", "worst_ratio", "reference_rel_se", "regions", "source"]
+# The shipped lamp scene measured as it is (tests/perf/rov_lights_tiles.sh: its lamps alone, the whole image and
+# 3 x 3 tiles), with its Jerlov type and g; its lamp's cone and axis come from the scene file, and it has
+# objects (rocks) in the lamps' light.
+LAMP_SCENES = [("results/underwater/rov_lights_lamps_tiles.csv", "rov_lights", "1C", 0.9)]
+SOURCES.update({("lamps", m): [(t,) for t in LAMPS] + [(t, scene) for t, scene, _, _ in LAMP_SCENES]
+                for m in LAMP_MODELS})
+HEADER = ["a", "b", "g", "bottom_m", "sun_zenith_deg", "sky", "floor", "surface", "objects", "cone_deg",
+          "lamp_bottom_m", "max_abs_error", "worst_ratio", "reference_rel_se", "regions", "source"]
 
 
 def lamp_glow_axis_slope():
@@ -120,7 +126,7 @@ def lamp_glow_axis_slope():
 
 def label(source):
     """A source's line in the .tables file: its path, and for a scene's rows of a shared table the scene."""
-    if len(source) == 9 and source[1] is not None:
+    if len(source) in (2, 9) and source[1] is not None:
         return f"{source[0]} ({source[1]})"
     return source[0]
 
@@ -138,7 +144,7 @@ def main():
                 bottom = -1 if r["bottom_m"] == "deep" else float(r["bottom_m"])
                 rows[("sea", model)].append([round(at550("data/jerlov_a.csv", r["jerlov"]), 5),
                                              round(at550("data/jerlov_b.csv", r["jerlov"]), 5), g, bottom, sun, sky, 0, 0,
-                                             0, -1, round(abs(worst - 1), 4), round(worst, 4), round(se, 4), 2, source])
+                                             0, 0, -1, round(abs(worst - 1), 4), round(worst, 4), round(se, 4), 2, source])
     # Under water: tests/perf/underwater_regions.toml, camera 3.8 m down, one band.
     regions = ["bottom_near", "bottom_far", "water_up", "water_down", "objects"]
     for source, (table, sun, sky) in enumerate(UNDERWATER):
@@ -154,7 +160,7 @@ def main():
             bottom = -1 if r["depth_m"] in ("0", "none", "") or float(r["depth_m"]) == 0 else float(r["depth_m"])
             # The study's tables name the discrete-ordinates model by its earlier name.
             model = "discrete_ordinates" if r["model"] == "improved" else r["model"]
-            rows[("underwater", model)].append([float(r["a"]), float(r["b"]), float(r["g"]), bottom, sun, sky, 0, 0, 0, -1,
+            rows[("underwater", model)].append([float(r["a"]), float(r["b"]), float(r["g"]), bottom, sun, sky, 0, 0, 0, 0, -1,
                                                 round(abs(worst[0] - 1), 4), round(worst[0], 4),
                                                 round(max(s for _, s in judged), 4), len(judged), source])
     for view, scenes, first in (("underwater", UNDERWATER_SCENES, len(UNDERWATER)),
@@ -168,7 +174,7 @@ def main():
                 worst = max(judged, key=lambda x: abs(x[0] - 1))
                 rows[(view, model)].append([round(at550("data/jerlov_a.csv", jerlov), 5),
                                             round(at550("data/jerlov_b.csv", jerlov), 5), g, bottom, sun, sky, floor, surface,
-                                            0, -1, round(abs(worst[0] - 1), 4), round(worst[0], 4),
+                                            0, 0, -1, round(abs(worst[0] - 1), 4), round(worst[0], 4),
                                             round(max(e for _, e in judged), 4), len(judged), first + i])
     slope = lamp_glow_axis_slope()
     for source, table in enumerate(LAMPS):
@@ -181,10 +187,27 @@ def main():
             worst = max(judged, key=lambda x: abs(x[0] - 1))
             # No bottom depth or sun: the lamp's layer is measured in the dark; its geometry is the cone and
             # the distance along the axis to the bottom.
-            rows[("lamps", r["model"])].append([float(r["a"]), float(r["b"]), float(r["g"]), -1, 0, 0, 0, 0,
+            rows[("lamps", r["model"])].append([float(r["a"]), float(r["b"]), float(r["g"]), -1, 0, 0, 0, 0, 0,
                                                 float(r["cone_deg"]), round(float(r["height_m"]) / slope, 4),
                                                 round(abs(worst[0] - 1), 4), round(worst[0], 4),
                                                 round(max(s for _, s in judged), 4), len(judged), source])
+    for i, (table, scene, jerlov, g) in enumerate(LAMP_SCENES):
+        import tomllib
+        with open(os.path.join(ROOT, "scenes", scene + ".toml"), "rb") as f:
+            spec = tomllib.load(f)
+        lamp = spec["spotlights"][0]
+        d = lamp["direction"]
+        down = -d[1] / (d[0] ** 2 + d[1] ** 2 + d[2] ** 2) ** 0.5
+        axis = (lamp["position"][1] + spec["bottom"]["depth"]) / down
+        regions = read(table)
+        for model in LAMP_MODELS:
+            judged = [(float(r[model]), float(r["reference_rel_se"])) for r in regions]
+            worst = max(judged, key=lambda x: abs(x[0] - 1))
+            rows[("lamps", model)].append([round(at550("data/jerlov_a.csv", jerlov), 5),
+                                           round(at550("data/jerlov_b.csv", jerlov), 5), g, -1, 0, 0, 0, 0, 1,
+                                           float(lamp["cone_deg"]), round(axis, 4), round(abs(worst[0] - 1), 4),
+                                           round(worst[0], 4), round(max(s for _, s in judged), 4), len(judged),
+                                           len(LAMPS) + i])
     for (view, model), table in rows.items():
         with open(os.path.join(out_dir, f"{view}_{model}.csv"), "w", newline="") as f:
             w = csv.writer(f, lineterminator="\n")

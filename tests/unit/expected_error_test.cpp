@@ -231,16 +231,37 @@ TEST(ExpectedError, LampsUnderWaterHaveTheirOwnEntryPerModel) {
   EXPECT_NE(seasim::expectedErrorText(orders).find("cone 20 deg"), std::string::npos);
 }
 
-TEST(ExpectedError, ALampsRegimeFlagsWhatNoLampCaseHasAndKeepsTheWorstLamp) {
-  // Objects in the light: the glow and the blur ignore their shadows, and no case has any.
+TEST(ExpectedError, ALampsRegimeWithObjectsIsLookedUpAmongTheCasesWithObjects) {
+  // Objects in the light (the glow and the blur ignore their shadows): the only lamp case with objects is
+  // rov_lights' own measurement (tests/perf/rov_lights_tiles.sh), so the scene itself is measured there...
+  const auto rov = seasim::expectedErrors(seasim::loadScene(std::string(SEASIM_SOURCE_DIR) + "/scenes/rov_lights.toml"));
+  ASSERT_EQ(rov.size(), 2u);
+  EXPECT_EQ(rov[1].model, "orders");
+  EXPECT_TRUE(rov[1].measured);
+  EXPECT_NEAR(rov[1].distance, 0.0, 1e-3);
+  EXPECT_EQ(rov[1].nearest.objects, 1);
+  EXPECT_EQ(rov[1].table, "results/underwater/rov_lights_lamps_tiles.csv (rov_lights)");
+  EXPECT_NEAR(rov[1].worst_ratio, 0.567, 1e-3);  // the far water above the beams (results/BENCHMARKS.md)
+  // ...and lamp_glow's water with a rock is looked up there too, not among the cases without objects.
   const auto rocks = seasim::expectedErrors(scene(lampGlowText() + R"(
 [[objects]]
 type = "sphere"
 center = [0.0, -6.0, -3.0]
 radius = 0.3
 )"));
-  EXPECT_FALSE(rocks[1].measured);
-  EXPECT_EQ(rocks[1].unmeasured_features, std::vector<std::string>{"objects in the lamps' light"});
+  EXPECT_EQ(rocks[1].nearest.objects, 1);
+  EXPECT_TRUE(rocks[1].unmeasured_features.empty());
+  // Where no case has objects, they are a feature by name.
+  MeasuredCase bare{0.1, 0.3, 0.9, -1, 0};
+  bare.cone_deg = 20;
+  MeasuredCase regime = bare;
+  regime.objects = 1;
+  const ExpectedError none = seasim::lookupExpectedError(regime, "lamps", "orders", {bare}, {});
+  EXPECT_FALSE(none.measured);
+  EXPECT_EQ(none.unmeasured_features, std::vector<std::string>{"objects in the lamps' light"});
+}
+
+TEST(ExpectedError, ALampsRegimeFollowsItsBeamAndKeepsTheWorstLamp) {
   // A lamp pointing up never meets the bottom: its beam is the open water's, f_l = 1, a share e^{-c l} of a
   // step from the measured case whose bottom is l = 6.71 m along the axis.
   const auto up = seasim::expectedErrors(scene(lampGlowText(), {{"spotlights[0].direction", "[0.0, 1.0, 0.0]"}}));
