@@ -28,8 +28,9 @@
  * Defines: SEASIM_HAS_OBJECTS (shadow rays), SEASIM_SPECTRAL_OUTPUT, SEASIM_LAMPS_ORDERS (the "orders"
  * model, common/underwater_lamps_ms.h: the lamps' light scattered more than once, from ms_table's
  * blurred profiles, ms_orders orders, ms_steps quadrature steps per view ray, the orders' weights per
- * band from ms_weights (host/underwater/lamps_ms_weights.h; the stretch exponent κ is in it); the surfaces' light then reaches the eye through T_view instead of e^{-σ_t S}, the bottom's
- * direct light blurred in its terms k >= 1 (uw_ms_blurred_bottom); and the lit
+ * band from ms_weights (host/underwater/lamps_ms_weights.h; the stretch exponent κ is in it); the
+ * surfaces' light then reaches the eye through T_view instead of e^{-σ_t S}, the bottom's direct light
+ * blurred in its terms k >= 1 (uw_ms_blurred_bottom); and the lit
  * bottom's glow from ms_glow, 4 + 2 band_count floats per lamp, host/underwater/lamps_bottom_glow.h).
  * Stiff cases: common/underwater_lamps.h; never NaN/Inf (every division is by a clamped distance).
  */
@@ -250,7 +251,7 @@ static inline void lamp_orders(__constant UwParams* p, __global const UwBand* ba
       }
       lamp_add_to(o, bands, i, Lo, 1, 0);
       /* Its part scattered at most once: the direct light seen unscattered (T_view's first term). */
-      lamp_add_to(o, bands, i, I[i] * v->alb[i * v->alb_stride] * direct * exp(-bands[i].c * v->S), 0, 1);
+      lamp_add_to(o, bands, i, I[i] * v->alb[i * v->alb_stride] * direct * view[0], 0, 1);
     }
   }
   if (!(escapes > 0.0f)) return;

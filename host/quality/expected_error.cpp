@@ -38,6 +38,25 @@ double columnSeen(const MeasuredCase& c) {
   return c.bottom_m < 0 ? 1.0 : -std::expm1(-(c.a + c.b) * c.bottom_m);
 }
 
+// The bottom's depth as a regime sees it: a flat bottom's, a height field's mean; -1 with none.
+double bottomDepth(const Scene& scene) {
+  switch (scene.bottom.type) {
+    case BottomDesc::Type::Flat: return scene.bottom.depth;
+    case BottomDesc::Type::HeightField: return 0.5 * (scene.bottom.min_depth + scene.bottom.max_depth);
+    default: return -1.0;
+  }
+}
+
+// A regime's water (a and b at 550 nm, g) and its floor's kind, which the daylight and the lamps' share.
+MeasuredCase waterRegime(const Scene& scene) {
+  MeasuredCase r;
+  r.a = scene.water.a.at(550.0);
+  r.b = scene.water.b.at(550.0);
+  r.g = scene.water.g;
+  r.floor = scene.bottom.type == BottomDesc::Type::HeightField ? 1 : 0;
+  return r;
+}
+
 // Share of a lamp's light the water takes before its axis meets the bottom: 1 - e^{-c l}, 1 with none.
 double beamSeen(const MeasuredCase& c) {
   return c.lamp_bottom_m < 0 ? 1.0 : -std::expm1(-(c.a + c.b) * c.lamp_bottom_m);
@@ -166,16 +185,9 @@ namespace {
 // field's mean plane), and whether objects stand in the lamps' light (the glow and the blur ignore them).
 // A lamp out of the water or with a light map never gets here: the parser refuses both under water.
 MeasuredCase lampRegime(const Scene& scene, const SpotlightDesc& lamp) {
-  MeasuredCase r;
-  r.a = scene.water.a.at(550.0);
-  r.b = scene.water.b.at(550.0);
-  r.g = scene.water.g;
-  r.floor = scene.bottom.type == BottomDesc::Type::HeightField ? 1 : 0;
+  MeasuredCase r = waterRegime(scene);
   r.cone_deg = lamp.cone * 180.0 / M_PI;
-  const double depth = scene.bottom.type == BottomDesc::Type::Flat ? scene.bottom.depth
-                       : scene.bottom.type == BottomDesc::Type::HeightField
-                           ? 0.5 * (scene.bottom.min_depth + scene.bottom.max_depth)
-                           : -1.0;
+  const double depth = bottomDepth(scene);
   const double height = lamp.position.y + depth;  // the bottom lies at y = -depth
   if (depth > 0 && height > 0 && lamp.direction.y < 0) r.lamp_bottom_m = height / -lamp.direction.y;
   r.objects = scene.objects.empty() ? 0 : 1;
@@ -204,17 +216,10 @@ std::vector<ExpectedError> expectedErrors(const Scene& scene) {
   const bool underwater = cameraUnderwater(scene);
   const bool sea = !underwater && seaSeenFromAbove(scene) && !scene.shallow.present;
   if (!scene.water.present || (!underwater && !sea)) return {};
-  MeasuredCase regime;
-  regime.a = scene.water.a.at(550.0);
-  regime.b = scene.water.b.at(550.0);
-  regime.g = scene.water.g;
-  regime.bottom_m = scene.bottom.type == BottomDesc::Type::Flat ? scene.bottom.depth
-                    : scene.bottom.type == BottomDesc::Type::HeightField
-                        ? 0.5 * (scene.bottom.min_depth + scene.bottom.max_depth)
-                        : -1.0;
+  MeasuredCase regime = waterRegime(scene);
+  regime.bottom_m = bottomDepth(scene);
   regime.sun_zenith_deg = scene.sun.zenith * 180.0 / M_PI;
   regime.sky = skyCode(scene.sky);
-  regime.floor = scene.bottom.type == BottomDesc::Type::HeightField ? 1 : 0;
   regime.surface = scene.surface.type == SurfaceDesc::Type::Fft ? 1 : 0;
   const std::string view = underwater ? "underwater" : "sea";
   const std::string model = underwater ? (scene.underwater.model == UnderwaterDesc::Model::DiscreteOrdinates ? "discrete_ordinates" : "thesis")
