@@ -32,6 +32,13 @@
  * surfaces' light then reaches the eye through T_view instead of e^{-σ_t S}, the bottom's direct light
  * blurred in its terms k >= 1 (uw_ms_blurred_bottom); and the lit
  * bottom's glow from ms_glow, 4 + 2 band_count floats per lamp, host/underwater/lamps_bottom_glow.h).
+ * SEASIM_LAMPS_MS_LATTICE (quality.lamps_ms_step = ms_step > 1): the part of the orders model that varies
+ * smoothly across the image (lamp_orders_smooth: the orders and the glow along the view ray, the
+ * orders' light on the surfaces, the bottom's blur) is evaluated first by underwater_lamps_lattice on
+ * every ms_step-th pixel in x and y, per band into ms_lattice (ms_map_w x ms_map_h entries), and read by
+ * underwater_lamps bilinearly from the lattice pixels on the same surface (lamp_lattice_read); a pixel
+ * at a silhouette, at the lit patch's edge or near a lamp in view evaluates it itself. The direct
+ * light and 001's planes stay per pixel.
  * Stiff cases: common/underwater_lamps.h; never NaN/Inf (every division is by a clamped distance).
  */
 #include "common/compat.h"
@@ -89,11 +96,21 @@ typedef struct {
   int pixel, nb;
   __global float* spectral;    /* SEASIM_SPECTRAL_OUTPUT */
   __global float* layer_bands; /* SEASIM_LAYER_BANDS: slot 3 (lamps) of kd_multiple.cl's layout */
+  __global float* band_sums;   /* SEASIM_LAMPS_MS_LATTICE, the lattice's kernel: per band instead (see there) */
 } LampSums;
 
 /* Band i's light L into the image's sums and per-band images (to_image) and into the single-scattering
  * sums (to_single). */
 static inline void lamp_add_to(LampSums* o, __global const UwBand* bands, int i, float L, int to_image, int to_single) {
+#if SEASIM_LAMPS_MS_LATTICE
+  if (o->band_sums) {
+    if (to_image) o->band_sums[i] += L;
+#if SEASIM_LAYER_LAMPS_SPLIT
+    if (to_single) o->band_sums[o->nb + i] += L;
+#endif
+    return;
+  }
+#endif
   if (to_image) {
     o->r += L * bands[i].w_r;
     o->g += L * bands[i].w_g;
@@ -142,12 +159,38 @@ typedef struct {
 #if SEASIM_LAMPS_ORDERS
 /* The bottom's glow under one lamp (common/underwater_lamps_ms.h): the lit patch as a Lambertian source
  * at glow[0..2] of radius glow[3], strengths glow[4 + i] (all the lamp's light on the bottom) and
- * glow[4 + nb + i] (its direct light alone); on the surface the pixel sees (through T_view) and along
- * the view ray, orders 0..ms_orders, the geometry per step once and the bands innermost. Order 0 of the
- * direct light is light scattered once in the water (lamps_single); the rest is multiple. */
-static inline void lamp_bottom_glow(__constant UwParams* p, __global const UwBand* bands, __global const float* glow,
-                                    __global const float* ms_weights, int ms_orders, int ms_steps, float c_min,
-                                    __global const float* I, const LampRay* v, LampSums* o) {
+ * glow[4 + nb + i] (its direct light alone), on the surface the pixel sees (through T_view), orders
+ * 0..ms_orders. Order 0 of the direct light is light scattered once in the water (lamps_single); the
+ * rest is multiple. */
+static inline void lamp_glow_surface(__constant UwParams* p, __global const UwBand* bands, __global const float* glow,
+                                     __global const float* ms_weights, int ms_orders, __global const float* I,
+                                     const LampRay* v, LampSums* o) {
+  const int nb = p->band_count;
+  const float radius = glow[3];
+  if (!(radius > 0.0f) || !v->lit_surface) return;
+  const float3 c = (float3)(glow[0], glow[1], glow[2]), up = (float3)(0.0f, 1.0f, 0.0f);
+  __global const float* J = glow + 4;
+  __global const float* J_direct = glow + 4 + nb;
+  __global const float* glow_rows = uw_ms_glow_weight_rows(ms_weights, nb, ms_orders);
+  const float3 P = v->o + v->S * v->d;
+  int wj;
+  float wf;
+  uw_ms_weight_index(ms_weights, length(P - c), &wj, &wf);
+  for (int i = 0; i < nb; ++i) {
+    float first, wn[UW_MS_MAX_ORDERS + 1];
+    uw_ms_weights_at(glow_rows, i, ms_orders + 1, wj, wf, wn);
+    const float E = uw_ms_glow_surface_weighted(P, v->n, c, up, radius, p->g, ms_orders, wn, &first);
+    if (!(E > 0.0f)) continue;
+    const float alb = I[i] * v->alb[i * v->alb_stride];
+    lamp_add_to(o, bands, i, alb * J[i] * E * uw_ms_view_transmission(bands[i].a, bands[i].b, p->g, v->S, ms_orders), 1, 0);
+    lamp_add_to(o, bands, i, alb * J_direct[i] * first * exp(-bands[i].c * v->S), 0, 1);
+  }
+}
+
+/* The same glow along the view ray: the geometry per step once and the bands innermost. */
+static inline void lamp_glow_ray(__constant UwParams* p, __global const UwBand* bands, __global const float* glow,
+                                 __global const float* ms_weights, int ms_orders, int ms_steps, float c_min,
+                                 __global const float* I, const LampRay* v, LampSums* o) {
   const int nb = p->band_count;
   const float radius = glow[3];
   if (!(radius > 0.0f)) return;
@@ -155,21 +198,6 @@ static inline void lamp_bottom_glow(__constant UwParams* p, __global const UwBan
   __global const float* J = glow + 4;
   __global const float* J_direct = glow + 4 + nb;
   __global const float* glow_rows = uw_ms_glow_weight_rows(ms_weights, nb, ms_orders);
-  if (v->lit_surface) {
-    const float3 P = v->o + v->S * v->d;
-    int wj;
-    float wf;
-    uw_ms_weight_index(ms_weights, length(P - c), &wj, &wf);
-    for (int i = 0; i < nb; ++i) {
-      float first, wn[UW_MS_MAX_ORDERS + 1];
-      uw_ms_weights_at(glow_rows, i, ms_orders + 1, wj, wf, wn);
-      const float E = uw_ms_glow_surface_weighted(P, v->n, c, up, radius, p->g, ms_orders, wn, &first);
-      if (!(E > 0.0f)) continue;
-      const float alb = I[i] * v->alb[i * v->alb_stride];
-      lamp_add_to(o, bands, i, alb * J[i] * E * uw_ms_view_transmission(bands[i].a, bands[i].b, p->g, v->S, ms_orders), 1, 0);
-      lamp_add_to(o, bands, i, alb * J_direct[i] * first * exp(-bands[i].c * v->S), 0, 1);
-    }
-  }
   UwMsRay q;
   const int steps = uw_ms_glow_steps(ms_steps);
   uw_ms_ray(v->o, v->d, c, radius, v->t_end, uw_ms_ray_cap(c_min), steps, &q);
@@ -206,22 +234,52 @@ static inline void lamp_bottom_glow(__constant UwParams* p, __global const UwBan
   }
 }
 
-/* The "orders" model's light of one lamp (common/underwater_lamps_ms.h): on the surface, the direct
- * light (exact, shadowed) plus the orders' irradiance (unshadowed: light scattered around an object
- * reaches behind it), both seen through T_view; along the view ray, the orders' in-scatter, the geometry
- * per step once (distance, the blurred profiles times HG(g^{n+1}) at the scattering angle), then the
- * bands with their weights. */
-static inline void lamp_orders(__constant UwParams* p, __global const UwBand* bands, __global const UwObject* objects,
-                               int count, __constant UwLampParams* lp, __global const UwLamp* L,
-                               __global const float* I, __global const float* ms_rows, __global const float* glow,
-                               __global const float* ms_weights, int ms_orders, int ms_steps, const LampRay* v,
-                               LampSums* o) {
+/* The "orders" model's direct light of one lamp on the surface the pixel sees (common/underwater_lamps_ms.h):
+ * exact and shadowed, seen through T_view (its first term, e^{-c S}, is the part scattered at most
+ * once). On the flat bottom only that first term: the rest there is lamp_orders_smooth's, which blurs it.
+ * That split is exact: the bottom's light is I ρ [(E_direct + E_ms) T_view + Σ_{k>=1} view_k (B_k − E_direct)]
+ * with its blurred terms B_k, and T_view − Σ_{k>=1} view_k = view_0 = e^{-c S} (a lamp sealed in an
+ * object has E_direct = 0 and no escaping light, so its terms vanish either way). */
+static inline void lamp_orders_surface(__constant UwParams* p, __global const UwBand* bands,
+                                       __global const UwObject* objects, int count, __constant UwLampParams* lp,
+                                       __global const UwLamp* L, __global const float* I, int ms_orders, const LampRay* v,
+                                       LampSums* o) {
+  if (!v->lit_surface) return;
   const int nb = lp->band_count;
   const float3 lamp = v3(L->position), axis = v3(L->direction);
-  const float escapes = lamp_escapes(objects, count, lamp);
+  const float3 P = v->o + v->S * v->d;
+  const float vis = lamp_visible(objects, count, P + 1e-3f * v->n, lamp);
+  if (!(vis > 0.0f)) return;
+  for (int i = 0; i < nb; ++i) {
+    const float E = I[i] * v->alb[i * v->alb_stride] *
+                    uw_lamp_surface(P, v->n, 0.0f, lamp, axis, L->cos_cone, L->cos_inner, lp->s_min, bands[i].c, vis);
+    if (v->bottom) {
+      lamp_add_to(o, bands, i, E * exp(-bands[i].c * v->S), 1, 1);
+      continue;
+    }
+    float view[UW_MS_MAX_ORDERS + 1];
+    lamp_add_to(o, bands, i, E * uw_ms_view_terms(bands[i].a, bands[i].b, p->g, v->S, ms_orders, view), 1, 0);
+    lamp_add_to(o, bands, i, E * view[0], 0, 1);
+  }
+}
+
+/* The rest of the "orders" model's light of one lamp, which varies smoothly from pixel to pixel along a
+ * surface (the quantities SEASIM_LAMPS_MS_LATTICE evaluates on a lattice): on the flat bottom, the
+ * orders' irradiance seen through T_view, the direct light blurred on its way to the eye (T_view's
+ * terms k >= 1 see the spread, uw_ms_blurred_bottom) and the glow; along the view ray, the glow's and
+ * the orders' in-scatter, the geometry per step once (distance, the blurred profiles times HG(g^{n+1})
+ * at the scattering angle), then the bands with their weights. Light scattered around an object reaches
+ * behind it: nothing here is shadowed, but nothing leaves a sealed lamp. */
+static inline void lamp_orders_smooth(__constant UwParams* p, __global const UwBand* bands,
+                                      __global const UwObject* objects, int count, __constant UwLampParams* lp,
+                                      __global const UwLamp* L, __global const float* I, __global const float* ms_rows,
+                                      __global const float* glow, __global const float* ms_weights, int ms_orders,
+                                      int ms_steps, const LampRay* v, LampSums* o) {
+  const int nb = lp->band_count;
+  const float3 lamp = v3(L->position), axis = v3(L->direction);
+  if (!(lamp_escapes(objects, count, lamp) > 0.0f)) return;
   if (v->lit_surface) {
     const float3 P = v->o + v->S * v->d;
-    const float vis = lamp_visible(objects, count, P + 1e-3f * v->n, lamp);
     UwMsBlur blur[UW_MS_MAX_ORDERS];
     int wj;
     float wf;
@@ -231,34 +289,24 @@ static inline void lamp_orders(__constant UwParams* p, __global const UwBand* ba
         blur[k - 1] = uw_ms_blurred_bottom(v->o, v->d, p->bottom_depth, lamp, axis, L->cos_cone, L->cos_inner, lp->s_min,
                                            uw_ms_spread(p->g, k, UW_MS_VIEW_BETA));
     for (int i = 0; i < nb; ++i) {
-      const float direct = vis > 0.0f ? uw_lamp_surface(P, v->n, 0.0f, lamp, axis, L->cos_cone, L->cos_inner,
-                                                        lp->s_min, bands[i].c, vis)
-                                      : 0.0f;
       float wn[UW_MS_MAX_ORDERS];
       uw_ms_weights_at(ms_weights + UW_MS_WEIGHT_HEADER, i, ms_orders, wj, wf, wn);
-      const float ms = bands[i].b > 0.0f
-                           ? escapes * uw_ms_surface_weighted(P, v->n, lamp, axis, lp->s_min, p->g, ms_rows, ms_orders, wn)
-                           : 0.0f;
+      const float ms =
+          bands[i].b > 0.0f ? uw_ms_surface_weighted(P, v->n, lamp, axis, lp->s_min, p->g, ms_rows, ms_orders, wn) : 0.0f;
       float view[UW_MS_MAX_ORDERS + 1];
       const float T = uw_ms_view_terms(bands[i].a, bands[i].b, p->g, v->S, ms_orders, view);
-      float Lo = I[i] * v->alb[i * v->alb_stride] * (direct + ms) * T;
-      if (v->bottom) {
-        /* The bottom's direct light blurred on its way to the eye: T_view's terms k >= 1 see the spread. */
-        float blurred = 0.0f;
-        for (int k = 1; k <= ms_orders; ++k)
-          blurred += view[k] * (blur[k - 1].geometry * exp(-bands[i].c * blur[k - 1].s_mean) - direct);
-        Lo += escapes * I[i] * v->alb[i * v->alb_stride] * blurred; /* unshadowed, but not from a sealed lamp */
-      }
-      lamp_add_to(o, bands, i, Lo, 1, 0);
-      /* Its part scattered at most once: the direct light seen unscattered (T_view's first term). */
-      lamp_add_to(o, bands, i, I[i] * v->alb[i * v->alb_stride] * direct * view[0], 0, 1);
+      /* The bottom's direct light blurred on its way to the eye: T_view's terms k >= 1 see the spread. */
+      float blurred = 0.0f;
+      if (v->bottom)
+        for (int k = 1; k <= ms_orders; ++k) blurred += view[k] * blur[k - 1].geometry * exp(-bands[i].c * blur[k - 1].s_mean);
+      lamp_add_to(o, bands, i, I[i] * v->alb[i * v->alb_stride] * (ms * T + blurred), 1, 0);
     }
+    lamp_glow_surface(p, bands, glow, ms_weights, ms_orders, I, v, o);
   }
-  if (!(escapes > 0.0f)) return;
   float c_min = bands[0].c;
   for (int i = 1; i < nb; ++i) c_min = fmin(c_min, bands[i].c);
+  lamp_glow_ray(p, bands, glow, ms_weights, ms_orders, ms_steps, c_min, I, v, o);
   float geo[UW_MS_MAX_ORDERS];
-  lamp_bottom_glow(p, bands, glow, ms_weights, ms_orders, ms_steps, c_min, I, v, o);
   UwMsRay q;
   uw_ms_ray(v->o, v->d, lamp, lp->s_min, v->t_end, uw_ms_ray_cap(c_min), ms_steps, &q);
   for (int j = 0; j < ms_steps && q.dv > 0.0f; ++j) {
@@ -363,6 +411,147 @@ static inline void lamp_beam(const LampMedia* md, __global const UwObject* objec
   }
 }
 
+/* The view ray of pixel (x, y) and the surface the G-buffer (raycast.cl) found on it. */
+static inline LampRay lamp_ray(__constant UwParams* p, __global const UwBand* bands, __global const float* albedo,
+                               __global const float4* geom, __global const int* material, int x, int y) {
+  const int pixel = y * p->width + x;
+  const float4 gb = geom[pixel];
+  const int mat = material[pixel];
+  LampRay v = {.o = v3(p->cam_pos), .d = uw_screen_dir(p, (x + 0.5f) / p->width, (y + 0.5f) / p->height),
+               .n = (float3)(gb.y, gb.z, gb.w), .S = gb.x, .lit_surface = mat >= 0 || mat == UW_MAT_BOTTOM,
+               .bottom = mat == UW_MAT_BOTTOM};
+  v.t_end = v.S >= UW_INFINITE ? SHAFTS_T_INF : v.S;
+  v.alb = mat >= 0 ? albedo + mat * p->band_count : &bands[0].bottom_albedo;
+  v.alb_stride = mat >= 0 ? 1 : (int)(sizeof(UwBand) / sizeof(float));
+  return v;
+}
+
+#if SEASIM_LAMPS_MS_LATTICE
+/* The lattice of lamp_orders_smooth (quality.lamps_ms_step = step > 1): the pixel (i step, j step),
+ * clamped to the image's last row and column, at lattice[(j map_w + i) stride ...], per band the light
+ * of every lamp into the image, then (SEASIM_LAYER_LAMPS_SPLIT) its part scattered at most once. */
+#ifndef LAMP_LATTICE_NEAR
+#define LAMP_LATTICE_NEAR 8.0f
+#endif
+#if SEASIM_LAYER_LAMPS_SPLIT
+#define LAMP_LATTICE_STRIDE(nb) (2 * (nb))
+#else
+#define LAMP_LATTICE_STRIDE(nb) (nb)
+#endif
+
+/* Whether a lamp lies within the angle whose cosine is cos_near of the view ray o + t d (in front of the
+ * eye): near a lamp its light along the ray peaks like 1/h, h the ray's distance from it, faster than
+ * a lattice's bilinear weights can follow. */
+static inline int lamp_near_view(__constant UwLampParams* lp, __global const UwLamp* lamps, float3 o, float3 d,
+                                 float cos_near) {
+  for (int l = 0; l < lp->lamp_count; ++l) {
+    const float3 w = v3(lamps[l].position) - o;
+    const float s = length(w);
+    if (!(s > 0.0f) || dot(w, d) >= cos_near * s) return 1;
+  }
+  return 0;
+}
+
+/* Whether every lamp's cone profile (uw_lamp_profile) at the bottom point q is within 10 % of its peak
+ * of the profile at P: the bottom's direct light blurred on its way to the eye (uw_ms_blurred_bottom)
+ * is nearly as sharp as the lit patch's edge in forward-scattering water. */
+static inline int lamp_profiles_alike(__constant UwLampParams* lp, __global const UwLamp* lamps, float3 P, float3 q) {
+  for (int l = 0; l < lp->lamp_count; ++l) {
+    __global const UwLamp* L = &lamps[l];
+    const float3 lamp = v3(L->position), axis = v3(L->direction);
+    if (fabs(uw_lamp_profile(P, lamp, axis, L->cos_cone, L->cos_inner) -
+             uw_lamp_profile(q, lamp, axis, L->cos_cone, L->cos_inner)) > 0.1f)
+      return 0;
+  }
+  return 1;
+}
+
+/* lamp_orders_smooth of the pixel from the (up to) four lattice pixels around it that see the same
+ * surface (the flat bottom, the water's surface from below, open water, or the same object), weighted
+ * bilinearly by position, added into o; 0 when none does (a silhouette, where the light jumps) or where
+ * the light varies within the cell faster than a bilinear read follows: the caller then evaluates the
+ * pixel itself. Those places: an object whose lattice neighbour lies more than 5 % further or nearer or
+ * turns its normal by more than 5.7° (its light follows the normal), and the bottom across the edge of a
+ * lamp's lit patch (lamp_profiles_alike). The bottom, the surface and open water are one plane each, or
+ * nothing, so elsewhere their light varies smoothly across the image however fast S does towards the
+ * horizon. A lattice pixel reads its own value. */
+static inline int lamp_lattice_read(__constant UwParams* p, __global const UwBand* bands, __global const float4* geom,
+                                    __global const int* material, __constant UwLampParams* lp,
+                                    __global const UwLamp* lamps, __global const float* lattice, int step, int map_w,
+                                    int map_h, int x, int y, const LampRay* v, LampSums* o) {
+  const int i0 = x / step, j0 = y / step, nb = p->band_count;
+  const float fx = (float)(x - i0 * step) / step, fy = (float)(y - j0 * step) / step;
+  const int mat = material[y * p->width + x];
+  float w[4];
+  int at[4];
+  float wsum = 0.0f;
+  for (int c = 0; c < 4; ++c) {
+    const int di = c & 1, dj = c >> 1;
+    const int i = min(i0 + di, map_w - 1), j = min(j0 + dj, map_h - 1);
+    const float w_c = (di ? fx : 1.0f - fx) * (dj ? fy : 1.0f - fy);
+    const int q = min(j * step, p->height - 1) * p->width + min(i * step, p->width - 1);
+    const int mq = material[q];
+    const float4 gq = geom[q];
+    const int same = mq == mat;
+    /* The same object turning away (its light follows the normal) or behind itself: the pixel
+     * evaluates itself, as at the lit patch's edge below. */
+    if (same && mat >= 0 && w_c > 0.0f &&
+        !(fabs(gq.x - v->S) <= 0.05f * v->S && dot((float3)(gq.y, gq.z, gq.w), v->n) >= 0.995f))
+      return 0;
+    /* The lit patch's edge in the cell: the pixel evaluates itself (its neighbours on one side of the edge
+     * alone would carry that side's light across it). */
+    if (same && v->bottom && w_c > 0.0f) {
+      const float3 dq = uw_screen_dir(p, (min(i * step, p->width - 1) + 0.5f) / p->width,
+                                      (min(j * step, p->height - 1) + 0.5f) / p->height);
+      if (!lamp_profiles_alike(lp, lamps, v->o + v->S * v->d, v->o + gq.x * dq)) return 0;
+    }
+    w[c] = same ? w_c : 0.0f;
+    at[c] = (j * map_w + i) * LAMP_LATTICE_STRIDE(nb);
+    wsum += w[c];
+  }
+  if (!(wsum > 0.0f)) return 0;
+  for (int c = 0; c < 4; ++c) w[c] /= wsum;
+  for (int i = 0; i < nb; ++i) {
+    float L = 0.0f;
+    for (int c = 0; c < 4; ++c) L += w[c] * lattice[at[c] + i];
+    lamp_add_to(o, bands, i, L, 1, 0);
+#if SEASIM_LAYER_LAMPS_SPLIT
+    float Ls = 0.0f;
+    for (int c = 0; c < 4; ++c) Ls += w[c] * lattice[at[c] + nb + i];
+    lamp_add_to(o, bands, i, Ls, 0, 1);
+#endif
+  }
+  return 1;
+}
+
+/* One lattice pixel per work-item (map_w x map_h): every lamp's lamp_orders_smooth, per band. */
+__kernel void underwater_lamps_lattice(__constant UwParams* p, __global const UwBand* bands,
+                                       __global const float* albedo, __global const UwObject* objects,
+                                       __global const float4* geom, __global const int* material,
+                                       __constant UwLampParams* lp, __global const UwLamp* lamps,
+                                       __global const float* lamp_spectra, __global const float* ms_table,
+                                       __global const float* ms_glow, __global const float* ms_weights, int ms_orders,
+                                       int ms_steps, int step, int map_w, int map_h, __global float* lattice) {
+  const int i = get_global_id(0), j = get_global_id(1);
+  if (i >= map_w || j >= map_h) return;
+  const int nb = lp->band_count;
+#if SEASIM_HAS_OBJECTS
+  const int count = p->object_count;
+#else
+  const int count = 0;
+#endif
+  const LampRay v = lamp_ray(p, bands, albedo, geom, material, min(i * step, p->width - 1), min(j * step, p->height - 1));
+  __global float* sums = lattice + (size_t)(j * map_w + i) * LAMP_LATTICE_STRIDE(nb);
+  for (int k = 0; k < LAMP_LATTICE_STRIDE(nb); ++k) sums[k] = 0.0f;
+  LampSums o = {.r = 0.0f, .g = 0.0f, .b = 0.0f, .single_r = 0.0f, .single_g = 0.0f, .single_b = 0.0f,
+                .to_single = 0, .pixel = 0, .nb = nb, .band_sums = sums};
+  for (int l = 0; l < lp->lamp_count; ++l)
+    lamp_orders_smooth(p, bands, objects, count, lp, &lamps[l], lamp_spectra + l * nb,
+                       ms_table + l * ms_orders * UW_MS_TABLE, ms_glow + l * (4 + 2 * nb), ms_weights, ms_orders,
+                       ms_steps, &v, &o);
+}
+#endif
+
 __kernel void underwater_lamps(__constant UwParams* p, __global const UwBand* bands, __global const float* albedo,
                                __global const UwObject* objects, __global const float4* geom,
                                __global const int* material, __constant UwLampParams* lp,
@@ -370,6 +559,9 @@ __kernel void underwater_lamps(__constant UwParams* p, __global const UwBand* ba
 #if SEASIM_LAMPS_ORDERS
                                __global const float* ms_table, __global const float* ms_glow,
                                __global const float* ms_weights, int ms_orders, int ms_steps,
+#endif
+#if SEASIM_LAMPS_MS_LATTICE
+                               __global const float* ms_lattice, int ms_step, int ms_map_w, int ms_map_h,
 #endif
                                __global float* rgb
 #if SEASIM_SPECTRAL_OUTPUT
@@ -395,16 +587,9 @@ __kernel void underwater_lamps(__constant UwParams* p, __global const UwBand* ba
 #else
   const int count = 0;
 #endif
-  const float4 gb = geom[pixel];
-  const int mat = material[pixel];
-  LampRay v = {.o = v3(p->cam_pos), .d = uw_screen_dir(p, (x + 0.5f) / p->width, (y + 0.5f) / p->height),
-               .n = (float3)(gb.y, gb.z, gb.w), .S = gb.x, .lit_surface = mat >= 0 || mat == UW_MAT_BOTTOM,
-               .bottom = mat == UW_MAT_BOTTOM};
-  v.t_end = v.S >= UW_INFINITE ? SHAFTS_T_INF : v.S;
-  v.alb = mat >= 0 ? albedo + mat * nb : &bands[0].bottom_albedo;
-  v.alb_stride = mat >= 0 ? 1 : (int)(sizeof(UwBand) / sizeof(float));
+  const LampRay v = lamp_ray(p, bands, albedo, geom, material, x, y);
   LampSums o = {.r = 0.0f, .g = 0.0f, .b = 0.0f, .single_r = 0.0f, .single_g = 0.0f, .single_b = 0.0f,
-                .to_single = 1, .pixel = pixel, .nb = nb};
+                .to_single = 1, .pixel = pixel, .nb = nb, .band_sums = 0};
   LampMedia md = {.bands = bands, .g = p->g, .plain = bands, .plain_g = p->g, .single_apart = 0};
 #if SEASIM_LAYER_LAMPS_SPLIT
   md.plain = plain_bands;
@@ -418,12 +603,23 @@ __kernel void underwater_lamps(__constant UwParams* p, __global const UwBand* ba
 #if SEASIM_LAYER_BANDS
   o.layer_bands = layer_bands;
 #endif
+#if SEASIM_LAMPS_MS_LATTICE
+  /* Within LAMP_LATTICE_NEAR lattice cells of a lamp in view every pixel evaluates itself. */
+  const float cell = LAMP_LATTICE_NEAR * ms_step * length(uw_screen_dir(p, (x + 1.5f) / p->width, (y + 0.5f) / p->height) - v.d);
+  const int smooth_done = !lamp_near_view(lp, lamps, v.o, v.d, cos(fmin(cell, 1.5f))) &&
+                          lamp_lattice_read(p, bands, geom, material, lp, lamps, ms_lattice, ms_step, ms_map_w, ms_map_h, x, y, &v, &o);
+#else
+  const int smooth_done = 0;
+#endif
   for (int l = 0; l < lp->lamp_count; ++l) {
     __global const UwLamp* L = &lamps[l];
     __global const float* I = lamp_spectra + l * nb;
 #if SEASIM_LAMPS_ORDERS
-    lamp_orders(p, bands, objects, count, lp, L, I, ms_table + l * ms_orders * UW_MS_TABLE, ms_glow + l * (4 + 2 * nb),
-                ms_weights, ms_orders, ms_steps, &v, &o);
+    __global const float* ms_rows = ms_table + l * ms_orders * UW_MS_TABLE;
+    __global const float* glow = ms_glow + l * (4 + 2 * nb);
+    lamp_orders_surface(p, bands, objects, count, lp, L, I, ms_orders, &v, &o);
+    if (!smooth_done)
+      lamp_orders_smooth(p, bands, objects, count, lp, L, I, ms_rows, glow, ms_weights, ms_orders, ms_steps, &v, &o);
 #else
     lamp_surface(&md, objects, count, lp, L, I, &v, &o);
 #endif

@@ -167,7 +167,7 @@ int cmdLampRegions(const LampRegionsCmd& cmd) {
         if (frame.nonfinite != 0) throw RuntimeError("lamp-regions: NaN/Inf in a render");
         double t = 0;
         for (const PassTiming& pt : frame.timings)
-          if (pt.name == lamps_pass) t += pt.ms;
+          if (pt.name.rfind(lamps_pass, 0) == 0) t += pt.ms;  // and its lattice, underwater_lamps_lattice
         ms[m].push_back(t);
         images[m] = frame.rgb;
       }

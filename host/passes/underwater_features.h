@@ -70,6 +70,7 @@ struct UnderwaterLampsFeatures final : PassFeatures {
   bool band_layers = false;      // and per band into kd_multiple's band layers (spectral.exr)
   bool orders = false;           // quality.lamps_model = "orders": multiple scattering (underwater_lamps_ms.h)
   bool lamps_split = false;      // outputs.layers lamps_single / lamps_multiple (kd_multiple's lamps_split_layer)
+  bool ms_lattice = false;       // the orders' smooth part on a lattice (quality.lamps_ms_cell_deg over 2 pixels)
 
   void list(FeatureList& out) const override {
     out.flag("objects", "SEASIM_HAS_OBJECTS", objects);
@@ -78,6 +79,7 @@ struct UnderwaterLampsFeatures final : PassFeatures {
     if (band_layers) out.flag("band_layers", "SEASIM_LAYER_BANDS", true);
     if (orders) out.flag("orders", "SEASIM_LAMPS_ORDERS", true);
     if (lamps_split) out.flag("lamps_split", "SEASIM_LAYER_LAMPS_SPLIT", true);
+    if (ms_lattice) out.flag("ms_lattice", "SEASIM_LAMPS_MS_LATTICE", true);
   }
 };
 

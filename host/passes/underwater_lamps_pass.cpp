@@ -1,8 +1,11 @@
 #include "passes/underwater_lamps_pass.h"
 
 #include <algorithm>
+#include <cmath>
+#include <numbers>
 
 #include "device/enqueue.h"
+#include "passes/pixel_lattice.h"
 #include "passes/underwater_features.h"
 #include "underwater/lamps_setup.h"
 #include "math/kernel_math.h"
@@ -12,6 +15,12 @@
 #include "util/error.h"
 
 namespace seasim {
+
+int lampsMsLatticeStep(const Scene& scene) {
+  const double cell_deg = modelKey(scene, "quality.lamps_ms_cell_deg");
+  const double pixel_deg = scene.camera.fov_y * 180.0 / std::numbers::pi / std::max(1, scene.camera.height);
+  return std::max(1, static_cast<int>(std::floor(cell_deg / pixel_deg)));
+}
 
 UnderwaterLampsPass::Config UnderwaterLampsPass::configFromScene(const Scene& scene) {
   const PassDescriptor& d = descriptorFor(PassRole::UnderwaterLamps);
@@ -24,6 +33,7 @@ UnderwaterLampsPass::Config UnderwaterLampsPass::configFromScene(const Scene& sc
   c.ms_steps = static_cast<int>(modelKey(scene, "quality.lamps_ms_steps"));
   c.kappa = modelKey(scene, "quality.lamps_ms_kappa");
   c.beta = modelKey(scene, "quality.lamps_ms_spread");
+  c.ms_step = lampsMsLatticeStep(scene);
   return c;
 }
 
@@ -75,6 +85,16 @@ UnderwaterLampsPass::UnderwaterLampsPass(Device& device, const Scene& scene, con
   });
   if (config_.model == Model::Orders) orderTables(params, bands, true);
   plain_g_ = setup.params.g;
+  if (plan.featuresAs<UnderwaterLampsFeatures>().ms_lattice) {
+    lattice_w_ = pixelLatticeSize(width_, config_.ms_step);
+    lattice_h_ = pixelLatticeSize(height_, config_.ms_step);
+    const size_t stride = band_count_ * (plan.featuresAs<UnderwaterLampsFeatures>().lamps_split ? 2 : 1);
+    onDevice("underwater_lamps lattice set-up", [&] {
+      lattice_kernel_ = cl::Kernel(device.program(plan.kernel_file, plan.defines).program, "underwater_lamps_lattice");
+      lattice_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE,
+                            sizeof(float) * stride * static_cast<size_t>(lattice_w_) * static_cast<size_t>(lattice_h_));
+    });
+  }
 }
 
 void UnderwaterLampsPass::orderTables(const UwParams& params, const std::vector<UwBand>& bands, bool create) {
@@ -121,8 +141,25 @@ void UnderwaterLampsPass::update(const UnderwaterSetup& setup) {
   });
 }
 
-double UnderwaterLampsPass::run(cl::Buffer& geom, cl::Buffer& material, cl::Buffer& rgb, cl::Buffer* spectral,
-                                cl::Buffer* lamps_layer, cl::Buffer* band_layers, const LampSplitLayers& split) {
+void UnderwaterLampsPass::run(std::vector<PassTiming>& timings, cl::Buffer& geom, cl::Buffer& material, cl::Buffer& rgb,
+                              cl::Buffer* spectral, cl::Buffer* lamps_layer, cl::Buffer* band_layers,
+                              const LampSplitLayers& split) {
+  if (lattice_w_ > 0) {
+    onDevice("underwater_lamps lattice", [&] {
+      cl_uint arg = 0;
+      for (cl::Buffer* b : {&params_, &bands_, &albedo_, &objects_, &geom, &material, &lamp_params_, &lamps_, &spectra_,
+                            &ms_table_, &ms_glow_, &ms_weights_})
+        lattice_kernel_.setArg(arg++, *b);
+      lattice_kernel_.setArg(arg++, static_cast<cl_int>(config_.orders));
+      lattice_kernel_.setArg(arg++, static_cast<cl_int>(config_.ms_steps));
+      lattice_kernel_.setArg(arg++, static_cast<cl_int>(config_.ms_step));
+      lattice_kernel_.setArg(arg++, static_cast<cl_int>(lattice_w_));
+      lattice_kernel_.setArg(arg++, static_cast<cl_int>(lattice_h_));
+      lattice_kernel_.setArg(arg++, lattice_);
+    });
+    timings.push_back({"underwater_lamps_lattice",
+                       runKernel2d(device_, "underwater_lamps_lattice", lattice_kernel_, lattice_w_, lattice_h_)});
+  }
   onDevice("underwater_lamps pass", [&] {
     cl_uint arg = 0;
     kernel_.setArg(arg++, params_);
@@ -141,6 +178,12 @@ double UnderwaterLampsPass::run(cl::Buffer& geom, cl::Buffer& material, cl::Buff
       kernel_.setArg(arg++, static_cast<cl_int>(config_.orders));
       kernel_.setArg(arg++, static_cast<cl_int>(config_.ms_steps));
     }
+    if (lattice_w_ > 0) {
+      kernel_.setArg(arg++, lattice_);
+      kernel_.setArg(arg++, static_cast<cl_int>(config_.ms_step));
+      kernel_.setArg(arg++, static_cast<cl_int>(lattice_w_));
+      kernel_.setArg(arg++, static_cast<cl_int>(lattice_h_));
+    }
     kernel_.setArg(arg++, rgb);
     if (spectral) kernel_.setArg(arg++, *spectral);
     if (lamps_layer) kernel_.setArg(arg++, *lamps_layer);
@@ -155,7 +198,7 @@ double UnderwaterLampsPass::run(cl::Buffer& geom, cl::Buffer& material, cl::Buff
       kernel_.setArg(arg++, static_cast<cl_int>(single_apart_));
     }
   });
-  return runKernel2d(device_, "underwater_lamps", kernel_, width_, height_);
+  timings.push_back({"underwater_lamps", runKernel2d(device_, "underwater_lamps", kernel_, width_, height_)});
 }
 
 }  // namespace seasim

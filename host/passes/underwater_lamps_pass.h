@@ -21,6 +21,7 @@
 #include "device/device.h"
 #include "passes/underwater_lamps_tables.h"
 #include "plan/plan.h"
+#include "render/frame_result.h"
 #include "scene/scene.h"
 #include "spectral/wavelength_grid.h"
 #include "underwater/lamps_setup.h"
@@ -35,6 +36,11 @@ struct LampSplitLayers {
   int stride = 0, single_at = -1, multiple_at = -1;
 };
 
+// The "orders" model's lattice step in pixels: as many pixels as fit in quality.lamps_ms_cell_deg along
+// the image's height (at least 1: every pixel), so that the lattice's error, which follows the cell's
+// angle, is the same at every image size.
+int lampsMsLatticeStep(const Scene& scene);
+
 class UnderwaterLampsPass {
  public:
   enum class Model { Single = 0, DeltaM = 1, Orders = 2 };
@@ -48,6 +54,7 @@ class UnderwaterLampsPass {
     int ms_steps = 0;              // quality.lamps_ms_steps: quadrature steps per view ray and lamp
     double kappa = 0.0;            // quality.lamps_ms_kappa: path-stretch exponent
     double beta = 0.0;             // quality.lamps_ms_spread: β of the landing spread h_n = 1 - β (1 - g^n)
+    int ms_step = 1;               // the smooth part on every ms_step-th pixel (1: all): lampsMsLatticeStep
   };
   static Config configFromScene(const Scene& scene);
 
@@ -55,11 +62,13 @@ class UnderwaterLampsPass {
   // model's host tables kept by the caller across passes (none: the pass keeps its own).
   UnderwaterLampsPass(Device& device, const Scene& scene, const UnderwaterSetup& setup, const WavelengthGrid& grid,
                       const PassPlan& plan, const Config& config, LampsOrdersTables* tables = nullptr);
-  // Adds the lamps into rgb (and spectral when given) for the G-buffer (geom, material); returns ms.
+  // Adds the lamps into rgb (and spectral when given) for the G-buffer (geom, material); appends the
+  // kernels' ms to `timings` (the lattice's, with ms_step > 1, then the pixels').
   // lamps_layer: the "lamps" ground-truth layer (3 floats per pixel) when planned with SEASIM_LAYER_LAMPS;
   // band_layers: kd_multiple's split per band ([pixel][5][band], slot 3 the lamps) with SEASIM_LAYER_BANDS.
-  double run(cl::Buffer& geom, cl::Buffer& material, cl::Buffer& rgb, cl::Buffer* spectral,
-             cl::Buffer* lamps_layer = nullptr, cl::Buffer* band_layers = nullptr, const LampSplitLayers& split = {});
+  void run(std::vector<PassTiming>& timings, cl::Buffer& geom, cl::Buffer& material, cl::Buffer& rgb,
+           cl::Buffer* spectral, cl::Buffer* lamps_layer = nullptr, cl::Buffer* band_layers = nullptr,
+           const LampSplitLayers& split = {});
   // Rewrites the underwater parameter blocks (sun, water or time changed; same sizes).
   void update(const UnderwaterSetup& setup);
 
@@ -78,6 +87,10 @@ class UnderwaterLampsPass {
   int width_, height_;
   size_t band_count_, object_count_, albedo_count_;
   cl::Kernel kernel_;
+  // The orders model's smooth part on a lattice (ms_step > 1; kernels/underwater_lamps.cl).
+  cl::Kernel lattice_kernel_;
+  cl::Buffer lattice_;
+  int lattice_w_ = 0, lattice_h_ = 0;
   cl::Buffer params_, bands_, albedo_, objects_, lamp_params_, lamps_, spectra_, ms_table_, ms_glow_, ms_weights_;
   // The delta-M model with the lamps' split layers: its single-scattering part is evaluated apart, in
   // the water as it is (plain_bands_; otherwise plain_bands_ is bands_ and the kernel does not read it).

@@ -193,8 +193,9 @@ TEST(UnderwaterLamps, KernelMatchesTheDoubleCpuEvaluation) {
 }
 
 TEST(UnderwaterLamps, OrdersKernelMatchesTheDoubleCpuEvaluation) {
+  // Every pixel evaluated (no lattice): the double evaluation below is per pixel.
   const Scene scene = lampScene({set("quality.shafts_planes", "30"), set("quality.shafts_subplanes", "6"),
-                                 set("quality.lamps_model", "\"orders\"")});
+                                 set("quality.lamps_model", "\"orders\""), set("quality.lamps_ms_cell_deg", "0")});
   const seasim::FrameResult frame = render(scene);
   ASSERT_EQ(frame.nonfinite, 0);
   const seasim::Image cpu = cpuDouble(scene, 30, 6, false, true);
@@ -206,6 +207,57 @@ TEST(UnderwaterLamps, OrdersKernelMatchesTheDoubleCpuEvaluation) {
   std::printf("orders kernel vs double CPU: max |difference| %.3g of a peak %.4g\n", worst, peak);
   EXPECT_LT(worst, 2e-3 * peak) << "worst " << worst << " of peak " << peak;
   EXPECT_NEAR(meanOf(frame.rgb), meanOf(cpu), 1e-4 * meanOf(cpu));
+}
+
+// The orders model's smooth part on a lattice of every step-th pixel (quality.lamps_ms_cell_deg), against
+// every pixel evaluated (step 1), on the lamp scene with a sphere and a box in the beam: a lattice pixel
+// reads its own value; a pixel between reads its neighbours on the same surface and evaluates itself at
+// a silhouette (where interpolating the bottom's light into a sphere's pixel, or open water's into the
+// bottom's, would be off by far more than the bound), so every pixel stays close.
+TEST(UnderwaterLamps, OrdersOnALatticeFollowEveryPixelAcrossSilhouettes) {
+  const std::string objects = std::string(kLampScene) + R"(
+[[objects]]
+type = "sphere"
+center = [0.2, -6.2, -5.0]
+radius = 0.6
+albedo = 0.6
+[[objects]]
+type = "box"
+min = [-1.6, -7.0, -6.5]
+max = [-0.7, -5.6, -5.5]
+albedo = 0.3
+)";
+  const auto frame = [&](int step) {
+    const Scene scene = seasim::parseScene(objects, "lamp_objects.toml",
+                                           {set("quality.lamps_model", "\"orders\""),
+                                            // 60° over 48 rows: 1.25° per pixel
+                                            set("quality.lamps_ms_cell_deg", std::to_string(1.25 * step + 0.01)),
+                                            set("camera.width", "80"), set("camera.height", "48")});
+    const seasim::FrameResult f = render(scene);
+    EXPECT_EQ(f.nonfinite, 0);
+    return f.rgb;
+  };
+  const seasim::Image every = frame(1);
+  const double peak = maxOf(every);
+  ASSERT_GT(peak, 0);
+  for (const int step : {2, 4}) {
+    const seasim::Image lattice = frame(step);
+    double own = 0, worst = 0, d2 = 0, e2 = 0;
+    for (int y = 0; y < every.height; ++y)
+      for (int x = 0; x < every.width; ++x)
+        for (int c = 0; c < 3; ++c) {
+          const double a = every.at(x, y, c), b = lattice.at(x, y, c), d = std::fabs(b - a);
+          if (x % step == 0 && y % step == 0) own = std::max(own, d);
+          worst = std::max(worst, d / (std::fabs(a) + 0.02 * peak));
+          d2 += d * d;
+          e2 += a * a;
+        }
+    std::printf("lattice step %d: its own pixels within %.3g of a peak %.4g; worst pixel %.3g of its value "
+                "(+ 2 %% of the peak); image rel. L2 %.3g\n", step, own, peak, worst, std::sqrt(d2 / e2));
+    EXPECT_LT(own, 1e-5 * peak);
+    EXPECT_LT(worst, 0.08);  // measured 0.030 (step 2) and 0.045 (step 4); 0.12-0.15 with no silhouette test
+    EXPECT_LT(std::sqrt(d2 / e2), 0.01);  // 0.0023 and 0.0028; 0.045 with no lamp test
+  }
 }
 
 TEST(UnderwaterLamps, OrdersBottomGlowLightsTheWaterAboveTheLitBottom) {
@@ -357,12 +409,17 @@ TEST(UnderwaterLamps, LayersSplitTheLampsIntoSingleAndMultipleScattering) {
   // in the water as it is (the plain model's whole light), the same whatever the model; the "single"
   // model has no multiple part, the other two a large one (3C water, g 0.85: multiple scattering is
   // several times the single).
-  const LampLayers plain = lampLayers("single");
-  double peak = 0;
-  for (const auto& p : plain.lamps) peak = std::max({peak, p[0], p[1], p[2]});
-  ASSERT_GT(peak, 0);
-  for (const char* model : {"single", "delta_m", "orders"}) {
-    const LampLayers l = lampLayers(model);
+  // The orders model also on its lattice, at 80x48 (1.25° per pixel; 2.6° cells: every second pixel).
+  const std::vector<Override> larger = {set("camera.width", "80"), set("camera.height", "48")};
+  std::vector<Override> lattice_on = larger;
+  lattice_on.push_back(set("quality.lamps_ms_cell_deg", "2.6"));
+  for (const std::string model : {"single", "delta_m", "orders", "orders on a lattice"}) {
+    const bool lattice = model == "orders on a lattice";
+    const LampLayers plain = lampLayers("single", lattice ? larger : std::vector<Override>{});
+    double peak = 0;
+    for (const auto& p : plain.lamps) peak = std::max({peak, p[0], p[1], p[2]});
+    ASSERT_GT(peak, 0);
+    const LampLayers l = lattice ? lampLayers("orders", lattice_on) : lampLayers(model);
     double split = 0, single = 0, plain_multiple = 0;
     for (size_t i = 0; i < l.lamps.size(); ++i)
       for (int c = 0; c < 3; ++c) {
@@ -373,8 +430,8 @@ TEST(UnderwaterLamps, LayersSplitTheLampsIntoSingleAndMultipleScattering) {
     EXPECT_LE(split, 1e-5 * peak) << model;
     EXPECT_LE(single, 1e-4 * peak) << model;
     EXPECT_EQ(plain_multiple, 0.0);
-    std::printf("%s: lamps_multiple / lamps_single %.3f\n", model, sumOf(l.multiple) / sumOf(l.single));
-    if (std::string(model) != "single") EXPECT_GT(sumOf(l.multiple), 0.5 * sumOf(l.single)) << model;
+    std::printf("%s: lamps_multiple / lamps_single %.3f\n", model.c_str(), sumOf(l.multiple) / sumOf(l.single));
+    if (model != "single") EXPECT_GT(sumOf(l.multiple), 0.5 * sumOf(l.single)) << model;
   }
 }
 

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "passes/underwater_lamps_pass.h"
 #include "plan/memory_budget.h"
 #include "plan/plan.h"
 #include "scene/scene_parser.h"
@@ -347,6 +348,42 @@ direction = [0, -1, -1]
   // Without lamps the same water has no lamps pass.
   const std::string no_lamps = std::string(text).substr(0, std::string(text).find("[[spotlights]]"));
   EXPECT_FALSE(makePlan(parseScene(no_lamps, "rov.toml")).hasPass("underwater_lamps"));
+}
+
+// The orders model's lattice (quality.lamps_ms_cell_deg): planned where a cell holds at least two pixels
+// of the image's height, with as many pixels per cell as fit; absent where the pixels are wider, at 0,
+// and for the single and delta-M models, which have no smooth part.
+TEST(Plan, TheLampsLatticeFollowsTheCellsAngleAndTheModel) {
+  const char* text = R"(
+[camera]
+position = [0, -2, 0]
+look_at = [0, -3, -10]
+fov_deg = 60.0
+width = 320
+height = 180
+[water]
+jerlov = "IB"
+[[spotlights]]
+position = [0, -1, 0]
+direction = [0, -1, -1]
+)";
+  const auto scene = [&](std::vector<seasim::Override> over) { return parseScene(text, "rov.toml", over); };
+  const auto set = [](const std::string& k, const std::string& v) { return seasim::Override{k, v, {"test", 1}}; };
+  // 60° over 180 rows: 1/3° per pixel.
+  EXPECT_EQ(seasim::lampsMsLatticeStep(scene({})), 3);
+  EXPECT_EQ(seasim::lampsMsLatticeStep(scene({set("quality.lamps_ms_cell_deg", "0.7")})), 2);
+  EXPECT_EQ(seasim::lampsMsLatticeStep(scene({set("quality.lamps_ms_cell_deg", "0.5")})), 1);
+  EXPECT_EQ(seasim::lampsMsLatticeStep(scene({set("quality.lamps_ms_cell_deg", "0")})), 1);
+  EXPECT_EQ(seasim::lampsMsLatticeStep(scene({set("camera.height", "45")})), 1);  // 1.33° pixels
+  EXPECT_EQ(seasim::lampsMsLatticeStep(scene({set("camera.height", "720")})), 12);
+  EXPECT_TRUE(hasDefine(makePlan(scene({})), "underwater_lamps", "SEASIM_LAMPS_MS_LATTICE=1"));
+  for (const auto& off : {scene({set("quality.lamps_ms_cell_deg", "0.5")}), scene({set("camera.height", "45")}),
+                          scene({set("quality.lamps_model", "\"delta_m\"")}),
+                          scene({set("quality.lamps_model", "\"single\"")})}) {
+    const Plan plan = makePlan(off);
+    ASSERT_TRUE(plan.hasPass("underwater_lamps"));
+    EXPECT_FALSE(hasDefine(plan, "underwater_lamps", "SEASIM_LAMPS_MS_LATTICE=1"));
+  }
 }
 
 // rov_lights.toml: ray cast, froxels (sun up, single scattering), K_d shading, the water's point spread

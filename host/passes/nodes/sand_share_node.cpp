@@ -8,6 +8,7 @@
 
 #include "device/enqueue.h"
 #include "passes/nodes/underwater_frame.h"
+#include "passes/pixel_lattice.h"
 #include "passes/underwater_setup_buffers.h"
 #include "plan/pass_descriptor.h"
 #include "plan/scene_facts.h"
@@ -21,7 +22,6 @@ namespace {
 // The lattice's size follows the image and the step; its values the camera, objects, sun and water.
 const PassKeys kSandShareKeys = {{"camera.*", "objects.*", "quality.sand_share_step"}, kUnderwaterSetupKeys};
 
-int latticeSize(int pixels, int step) { return (pixels + step - 1) / step; }
 
 class SandShareNode : public Pass {
  public:
@@ -31,8 +31,8 @@ class SandShareNode : public Pass {
     const Scene& scene = ctx.scene();
     share_ = std::make_shared<UnderwaterSandShare>();
     share_->step = static_cast<int>(modelKey(scene, "quality.sand_share_step"));
-    share_->width = latticeSize(scene.camera.width, share_->step);
-    share_->height = latticeSize(scene.camera.height, share_->step);
+    share_->width = pixelLatticeSize(scene.camera.width, share_->step);
+    share_->height = pixelLatticeSize(scene.camera.height, share_->step);
     onDevice("sand_share pass set-up", [&] {
       kernel_ = cl::Kernel(ctx.device().program(entry_.kernel_file, entry_.defines).program, "sand_share");
       share_->map = cl::Buffer(ctx.device().context(), CL_MEM_READ_WRITE,
@@ -87,8 +87,8 @@ PassDescriptor sandShareDescriptor() {
   d.keys = kSandShareKeys;
   d.buffers = [](const Scene& s, const PassPlan& p) -> std::vector<BufferEstimate> {
     const double step = modelKey(s, "quality.sand_share_step");
-    const double w = latticeSize(s.camera.width, static_cast<int>(step));
-    const double h = latticeSize(s.camera.height, static_cast<int>(step));
+    const double w = pixelLatticeSize(s.camera.width, static_cast<int>(step));
+    const double h = pixelLatticeSize(s.camera.height, static_cast<int>(step));
     return {{p.name, "the sand's share on the lattice", 4 * w * h, {"camera.width", "camera.height", "quality.sand_share_step"}, {w, h}}};
   };
   d.cost = [](const Scene& s, const PassPlan&) {

@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "passes/nodes/underwater_frame.h"
+#include "passes/pixel_lattice.h"
 #include "passes/underwater_features.h"
 #include "passes/underwater_lamps_pass.h"
 #include "passes/underwater_setup_buffers.h"
@@ -21,7 +22,8 @@ namespace {
 
 const PassKeys kLampsKeys = {{"camera.*", "spectral.*", "objects.*", "spotlights.*", "quality.shafts_planes",
                               "quality.shafts_subplanes", "quality.lamps_delta_m", "quality.lamps_model",
-                              "quality.lamps_orders", "quality.lamps_ms_steps", "quality.lamps_ms_kappa", "quality.lamps_ms_spread"},
+                              "quality.lamps_orders", "quality.lamps_ms_steps", "quality.lamps_ms_kappa", "quality.lamps_ms_spread",
+                              "quality.lamps_ms_cell_deg"},
                              kUnderwaterSetupKeys};
 
 // Where lamps_single and lamps_multiple sit in kd_multiple's split layer (the channels it was given).
@@ -58,8 +60,7 @@ class UnderwaterLampsNode : public Pass {
     cl::Buffer* band_layers = bands_on ? &res.read<LayerTarget>("band_layers").image : nullptr;
     LampSplitLayers split;
     if (entry_.featuresAs<UnderwaterLampsFeatures>().lamps_split) split = splitLayers(res.read<LayerTarget>("lamps_split_layer"));
-    ctx.timings.push_back({"underwater_lamps", pass_->run(gbuffer.geometry, gbuffer.material, target.rgb, spectral,
-                                                          lamps_layer, band_layers, split)});
+    pass_->run(ctx.timings, gbuffer.geometry, gbuffer.material, target.rgb, spectral, lamps_layer, band_layers, split);
   }
 
  private:
@@ -85,13 +86,18 @@ PassDescriptor underwaterLampsDescriptor() {
   d.scene_keys = {{"quality", "lamps_orders", ModelKey::Type::Integer, 4.0, 1.0, 12.0, ""},
                   {"quality", "lamps_ms_steps", ModelKey::Type::Integer, 12.0, 1.0, 64.0, ""},
                   {"quality", "lamps_ms_kappa", ModelKey::Type::Number, 0.75, 0.0, 2.0, ""},
-                  {"quality", "lamps_ms_spread", ModelKey::Type::Number, 0.8, 0.0, 1.0, "", true}};
+                  {"quality", "lamps_ms_spread", ModelKey::Type::Number, 0.8, 0.0, 1.0, "", true},
+                  {"quality", "lamps_ms_cell_deg", ModelKey::Type::Number, 1.0, 0.0, 10.0, ""}};
   d.rule = [](const Scene& scene, const Plan& so_far) -> std::optional<PassPlan> {
     if (!cameraUnderwater(scene) || scene.spotlights.empty()) return std::nullopt;
     auto features = std::make_shared<UnderwaterLampsFeatures>();
     features->objects = !scene.objects.empty();
     features->spectral_output = scene.spectral.spectral_exr;
-    features->orders = UnderwaterLampsPass::configFromScene(scene).model == UnderwaterLampsPass::Model::Orders;
+    const UnderwaterLampsPass::Config config = UnderwaterLampsPass::configFromScene(scene);
+    features->orders = config.model == UnderwaterLampsPass::Model::Orders;
+    // The orders' smooth part (its multiple scattering along the view ray and on the bottom) on a lattice
+    // of every ms_step-th pixel, interpolated where the lattice sees the same surface.
+    features->ms_lattice = features->orders && config.ms_step > 1;
     // The lamps' own layer: kd_multiple zeroed it, this pass adds into it as into "rgb".
     features->lamps_layer = so_far.produces("lamps_layer");
     features->band_layers = so_far.produces("band_layers");
@@ -105,6 +111,9 @@ PassDescriptor underwaterLampsDescriptor() {
     return planEntry(reads, targets,
                      std::string("[[spotlights]] under water: 001's sampling planes with the water's sigma_s, sigma_t, HG") +
                          (features->orders ? " + orders of multiple scattering" : "") +
+                         (features->ms_lattice ? " (its smooth part on a lattice of every " + std::to_string(config.ms_step) +
+                                                     " pixels, quality.lamps_ms_cell_deg)"
+                                               : "") +
                          (features->lamps_layer ? "; also into outputs.layers' lamps" : "") +
                          (features->band_layers ? ", per band too" : "") +
                          (features->lamps_split ? "; split into lamps_single and lamps_multiple" : ""),
@@ -121,6 +130,15 @@ PassDescriptor underwaterLampsDescriptor() {
       out.push_back({p.name, "the orders' weights per band, order and distance (underwater/lamps_ms_weights.h)",
                      4.0 * lampMsWeightsSize(s.spectral.count, static_cast<int>(orders)),
                      {"spectral.count", "quality.lamps_orders"}, {nb, orders}});
+    }
+    if (p.featuresAs<UnderwaterLampsFeatures>().ms_lattice) {
+      const int step = lampsMsLatticeStep(s);
+      const double w = pixelLatticeSize(s.camera.width, step), h = pixelLatticeSize(s.camera.height, step);
+      const double per = p.featuresAs<UnderwaterLampsFeatures>().lamps_split ? 2.0 : 1.0;
+      out.push_back({p.name, "the orders' smooth part per band on the lattice", 4.0 * per * nb * w * h,
+                     {"camera.width", "camera.height", "quality.lamps_ms_cell_deg", "spectral.count"},
+                     {static_cast<double>(s.camera.width), static_cast<double>(s.camera.height),
+                      modelKey(s, "quality.lamps_ms_cell_deg"), nb}});
     }
     return out;
   };
