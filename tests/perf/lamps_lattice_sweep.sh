@@ -6,8 +6,8 @@
 #   2. the lamps study's 29 cases (tests/perf/lamp_orders_sweep.sh's FIT, HELDOUT, NEAR) at 192x108,
 #      every region's fast / reference ratio with the lattice over the ratio without (the reference is
 #      the same render, 16 paths per pixel, and cancels: only the lattice's change is measured); cells
-#      of 1.1, 1.7 and 2.2 degrees are every 2, 3 and 4 pixels there.
-# Writes results/underwater/lamps_lattice_{320,640}.csv and prints the regions' summary.
+#      of 1.15, 1.7 and 2.25 degrees are every 2, 3 and 4 pixels there (0.556 degrees per pixel).
+# Writes results/underwater/lamps_lattice_{320,640}.{csv,svg} and prints the regions' summary.
 # Usage: tests/perf/lamps_lattice_sweep.sh [work folder, default /tmp/lamps_lattice]   (about 5 min)
 B=${B:-build/seasim}
 W=${1:-/tmp/lamps_lattice}
@@ -17,20 +17,21 @@ for size in 320x180 640x360; do
   S="--set camera.width=$w --set camera.height=$h"
   $B render scenes/rov_lights.toml $S --set quality.lamps_ms_cell_deg=0 -o "$W/every$w" > /dev/null || exit 1
   $B sweep scenes/rov_lights.toml $S --param quality.lamps_ms_cell_deg=0.34,0.67,1,1.34,2 \
-    --reference "$W/every$w/image.exr" --csv results/underwater/lamps_lattice_$w.csv || exit 1
+    --reference "$W/every$w/image.exr" --csv results/underwater/lamps_lattice_$w.csv \
+    --plot results/underwater/lamps_lattice_$w.svg || exit 1
 done
 eval "$(sed -n '/^FIT=/,/^0.05:0.5:0.7:15:10/p' tests/perf/lamp_orders_sweep.sh)"
-for cell in 0 1.1 1.7 2.2; do
+for cell in 0 1.15 1.7 2.25; do
   $B lamp-regions --cases "$FIT,$HELDOUT,$NEAR" --models orders --spp 16 --rounds 1 --set camera.width=192 \
     --set camera.height=108 --model-set quality.lamps_ms_cell_deg=$cell --csv "$W/regions_$cell.csv" > /dev/null || exit 1
 done
 python3 - "$W" <<'PY'
 import csv, sys
 w = sys.argv[1]
-rows = {c: list(csv.reader(open(f"{w}/regions_{c}.csv")))[1:] for c in ("0", "1.1", "1.7", "2.2")}
+rows = {c: list(csv.reader(open(f"{w}/regions_{c}.csv")))[1:] for c in ("0", "1.15", "1.7", "2.25")}
 print("| cell | regions | median change | 90th percentile | largest |")
 print("|---:|---:|---:|---:|---:|")
-for c in ("1.1", "1.7", "2.2"):
+for c in ("1.15", "1.7", "2.25"):
     d = []
     for a, b in zip(rows["0"], rows[c]):
         for px in (8, 11, 14, 17):  # whole, lit bottom, beam, outside: pixels, then ratio
