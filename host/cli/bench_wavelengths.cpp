@@ -102,6 +102,22 @@ std::pair<double, double> timeUnderwaterCpu(const Scene& scene, const Plan& plan
   return {median(cpu), median(cpu_simd)};
 }
 
+// What the OpenCL side of the comparison does that the C++ peers do not (they cast their own rays without
+// caustics and leave the froxels' single scattering out): the ratios compare like with like only without it.
+void printPeerScope(const Scene& scene) {
+  const Plan plan = makePlan(scene);
+  std::string extra;
+  if (underwaterCausticsMode(scene) != 0) extra += std::string(extra.empty() ? "" : ",") + " the caustics at each hit";
+  if (plan.produces("froxel_volume")) extra += std::string(extra.empty() ? "" : ",") + " the froxel volume's read per pixel";
+  if (extra.empty())
+    std::printf("peer: the same work as %s + %s\n", descriptorFor(PassRole::UnderwaterGBuffer).name.c_str(),
+                descriptorFor(PassRole::UnderwaterShading).name.c_str());
+  else
+    std::printf("peer: not the same work (OpenCL also evaluates%s); the same work: --set 'underwater.caustics=\"none\"' "
+                "--set underwater.single_scattering=false\n",
+                extra.c_str());
+}
+
 void printFit(const std::vector<double>& n, const std::vector<double>& t, const char* what) {
   if (n.size() < 2 || t.size() != n.size()) return;
   const LineFit fit = fitLine(n, t);
@@ -172,6 +188,7 @@ int benchWavelengths(Device& device, const BenchCmd& cmd, const std::vector<Over
     printFit(s.all.x, s.kd.y, "raycast + kd_multiple");
     printFit(s.all.x, s.tbb.y, "C++/oneTBB");
     printFit(s.all.x, s.simd.y, "C++/oneTBB vectorised");
+    printPeerScope(loadScene(cmd.scene, overrides));
   }
   if (!cmd.csv.empty()) table.write(cmd.csv);
   if (!cmd.plot.empty()) {

@@ -117,6 +117,24 @@ TEST_F(FirstHourCli, SubmitWithoutSlurmConfigurationSaysHowToStartALocalCluster)
   EXPECT_NE(env.output.find("export SLURM_CONF=" + path("cluster") + "/slurm.conf"), std::string::npos) << env.output;
 }
 
+// `bench` under water times raycast + kd_multiple against the C++ peers and says whether they did the same
+// work: the peers cast their own rays without caustics and leave the froxels' single scattering out.
+TEST_F(FirstHourCli, BenchUnderWaterSaysWhetherThePeerDidTheSameWork) {
+  const std::string seabed = kRepo + "/scenes/seabed.toml";
+  const std::string small = " --set camera.width=32 --set camera.height=18 --set 'underwater.model=\"thesis\"'";
+  auto r = run("bench --scene " + seabed + " --wavelengths 3,8 --repeat 1" + small);
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("fit (C++/oneTBB vectorised)"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("peer: not the same work (OpenCL also evaluates the caustics at each hit, the froxel "
+                          "volume's read per pixel)"),
+            std::string::npos)
+      << r.output;
+  r = run("bench --scene " + seabed + " --wavelengths 3,8 --repeat 1" + small +
+          " --set 'underwater.caustics=\"none\"' --set underwater.single_scattering=false");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("peer: the same work as raycast + kd_multiple"), std::string::npos) << r.output;
+}
+
 TEST_F(FirstHourCli, EveryTextOfEveryPlotTheCommandsWriteLiesInsideTheCanvas) {
   const std::string flat = kRepo + "/scenes/flat_sea.toml";
   const std::string small = " --set camera.width=32 --set camera.height=18";
