@@ -12,7 +12,7 @@ error up in (host/quality/expected_error.h), built from the study tables in resu
   results/sea_allorders/widened*/, results/underwater/widened/
                                             one axis at a time beyond those grids (sun, g, view; sun
                                             azimuth, sky level, bottom albedo)
-  results/underwater/lamp_orders_{fit,heldout,near}.csv
+  results/underwater/lamp_orders_{fit,heldout,near,fresh}.csv
                                             the lamps under water (quality.lamps_model "single",
                                             "delta_m", "orders") against all orders, one lamp, no daylight
 
@@ -102,7 +102,7 @@ SOURCES = {
 # lamp, no sun or sky), by quality.lamps_model. A region is judged with >= 20 pixels and a reference noise
 # <= 10 % (the strongly forward-scattering cases' references are noisier than the daylight ones').
 LAMPS = ["results/underwater/lamp_orders_fit.csv", "results/underwater/lamp_orders_heldout.csv",
-         "results/underwater/lamp_orders_near.csv"]
+         "results/underwater/lamp_orders_near.csv", "results/underwater/lamp_orders_fresh.csv"]
 LAMP_MODELS = ["single", "delta_m", "orders"]
 SOURCES.update({("lamps", m): [(t,) for t in LAMPS] for m in LAMP_MODELS})
 # The shipped lamp scene measured as it is (tests/perf/rov_lights_tiles.sh: its lamps alone, the whole image and

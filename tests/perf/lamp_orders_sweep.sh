@@ -2,20 +2,21 @@
 # lamp_orders_sweep.sh — the lamps' fast models under water (quality.lamps_model: "single", "delta_m",
 # "orders") against the all-orders path tracer, by region (whole image, lit bottom, water in the beam,
 # outside the beam), on tests/perf/lamp_glow.toml's camera and lamp (`seasim lamp-regions`), with the
-# lamp pass's kernel time (median of 3 interleaved rounds) beside each. Two sets of cases, a:b:g:cone:h
+# lamp pass's kernel time (median of 3 interleaved rounds) beside each. Four sets of cases, a:b:g:cone:h
 # (h: the lamp's height above the bottom, m):
-#   FIT      the three waters on which the orders model's two knobs (quality.lamps_ms_spread β = 0.8,
-#            quality.lamps_ms_kappa κ = 0.75) were chosen (lowest RMS log-ratio over their 12 regions,
-#            from β in {1/3, 0.6, 0.8, 1} × κ in {0, 0.5, 0.75, 1});
-#   HELDOUT  cases never looked at while choosing them, spread over the model's grid: g 0.5–0.95,
-#            b/a 1–10, cones 10–60°, heights 1–10 m (the grid the model is meant for);
-#   NEAR     one step from a FIT or HELDOUT case along one axis (a, b, g, the cone or the height), also never
+#   FIT      three waters the orders model's two knobs were first chosen on (β = 0.8, κ = 0.75);
+#   HELDOUT  twelve cases spread over the model's grid: g 0.5–0.95, b/a 1–10, cones 10–60°, heights 1–10 m
+#            (the grid the model is meant for). With FIT, what the knobs are now chosen on
+#            (quality.lamps_ms_spread β = 0.6, quality.lamps_ms_kappa κ = 0.75: the lowest RMS log-ratio over
+#            their 54 regions from β in {0.5, 0.6, 0.7, 0.8} × κ in {0.5, 0.75, 1});
+#   NEAR     one step from a FIT or HELDOUT case along one axis (a, b, g, the cone or the height), never
 #            fitted on: what the expected error's lookup (data/expected_error/lamps_*.csv) is checked with,
-#            leave-one-out, since the other cases lie more than one step apart.
+#            leave-one-out, since the other cases lie more than one step apart;
+#   FRESH    eight cases off every earlier node, never looked at while choosing anything.
 # The references (16384 paths per pixel through the pixel centre) are cached in
 # $SEASIM_CACHE_DIR/lamp_regions; a second run only renders the fast models.
 # Usage: tests/perf/lamp_orders_sweep.sh   (about 10 min on 2 loaded cores the first time; nice it)
-# Writes results/underwater/lamp_orders_{fit,heldout,near}.csv; prints a Markdown table.
+# Writes results/underwater/lamp_orders_{fit,heldout,near,fresh}.csv; prints a Markdown table.
 B=${B:-build/seasim}
 SPP=${SPP:-16384}
 FIT="0.1:0.3:0.9:20:3,0.1:0.8:0.9:20:3,0.1:0.3:0.5:20:3"
@@ -24,6 +25,8 @@ HELDOUT="0.2:0.2:0.5:10:1,0.2:0.2:0.95:60:6,0.1:0.3:0.7:30:6,0.1:0.3:0.95:10:3,0
 NEAR="0.1:0.3:0.8:20:3,0.1:0.3:0.9:30:3,0.16:0.3:0.9:20:3,0.1:0.3:0.6:20:3,0.1:0.3:0.5:20:6,0.1:0.5:0.9:20:3,\
 0.2:0.2:0.5:15:1,0.1:0.3:0.7:30:3,0.07:0.3:0.7:30:6,0.05:0.5:0.9:30:1,0.1:0.3:0.9:45:1.5,0.1:0.8:0.6:30:10,\
 0.05:0.5:0.7:15:10,0.2:0.2:0.9:60:6"
+FRESH="0.15:0.45:0.85:40:2,0.08:0.6:0.6:25:4,0.12:0.25:0.75:50:8,0.06:0.35:0.55:15:5,0.18:0.7:0.92:35:2.5,\
+0.04:0.2:0.8:45:7,0.1:0.6:0.65:12:1.2,0.14:0.4:0.95:25:4"
 mkdir -p results/underwater
 $B lamp-regions --cases "$FIT" --models single,delta_m,orders --spp "$SPP" --rounds 3 \
   --csv results/underwater/lamp_orders_fit.csv > /dev/null || exit 1
@@ -31,9 +34,11 @@ $B lamp-regions --cases "$HELDOUT" --models single,delta_m,orders --spp "$SPP" -
   --csv results/underwater/lamp_orders_heldout.csv > /dev/null || exit 1
 $B lamp-regions --cases "$NEAR" --models single,delta_m,orders --spp "$SPP" --rounds 3 \
   --csv results/underwater/lamp_orders_near.csv > /dev/null || exit 1
+$B lamp-regions --cases "$FRESH" --models single,delta_m,orders --spp "$SPP" --rounds 3 \
+  --csv results/underwater/lamp_orders_fresh.csv > /dev/null || exit 1
 echo "| set | a | b | g | cone | h m | model | lamps ms | whole | lit bottom | beam | outside | worst |"
 echo "|---|---|---|---|---|---|---|---:|---:|---:|---:|---:|---:|"
-for SET in fit heldout near; do
+for SET in fit heldout near fresh; do
   awk -F, -v set=$SET 'NR == 1 { next }
     function cell(px, r, se) { if (px == 0 || r == "") return "-"; return sprintf("%.3f ± %.3f", r, se) }
     function dev(px, r) { return (px >= 20 && r != "") ? (r > 1 ? r - 1 : 1 - r) : 0 }
@@ -46,4 +51,4 @@ for SET in fit heldout near; do
 done
 # The picture: ratios by region and the worst region's error against the lamp pass's time.
 python3 tests/perf/lamp_orders_plot.py results/underwater/lamp_orders.svg results/underwater/lamp_orders_fit.csv \
-  results/underwater/lamp_orders_heldout.csv results/underwater/lamp_orders_near.csv
+  results/underwater/lamp_orders_heldout.csv results/underwater/lamp_orders_near.csv results/underwater/lamp_orders_fresh.csv
