@@ -32,13 +32,13 @@
  * surfaces' light then reaches the eye through T_view instead of e^{-σ_t S}, the bottom's direct light
  * blurred in its terms k >= 1 (uw_ms_blurred_bottom); and the lit
  * bottom's glow from ms_glow, 4 + 2 band_count floats per lamp, host/underwater/lamps_bottom_glow.h).
- * SEASIM_LAMPS_MS_LATTICE (quality.lamps_ms_step = ms_step > 1): the part of the orders model that varies
- * smoothly across the image (lamp_orders_smooth: the orders and the glow along the view ray, the
- * orders' light on the surfaces, the bottom's blur) is evaluated first by underwater_lamps_lattice on
- * every ms_step-th pixel in x and y, per band into ms_lattice (ms_map_w x ms_map_h entries), and read by
- * underwater_lamps bilinearly from the lattice pixels on the same surface (lamp_lattice_read); a pixel
- * at a silhouette, at the lit patch's edge or near a lamp in view evaluates it itself. The direct
- * light and 001's planes stay per pixel.
+ * SEASIM_LAMPS_MS_LATTICE (ms_step > 1 pixels in a quality.lamps_ms_cell_deg cell): the part of the
+ * orders model that varies smoothly across the image (lamp_orders_smooth: the orders and the glow along
+ * the view ray, the orders' light on the surfaces, the bottom's blur) is evaluated first by
+ * underwater_lamps_lattice on every ms_step-th pixel in x and y, per band into ms_lattice (ms_map_w x
+ * ms_map_h entries), and read by underwater_lamps bilinearly from the lattice pixels on the same surface
+ * (lamp_lattice_read); a pixel at a silhouette, at the lit patch's edge or near a lamp in view evaluates
+ * it itself. The direct light and 001's planes stay per pixel.
  * Stiff cases: common/underwater_lamps.h; never NaN/Inf (every division is by a clamped distance).
  */
 #include "common/compat.h"
@@ -427,9 +427,10 @@ static inline LampRay lamp_ray(__constant UwParams* p, __global const UwBand* ba
 }
 
 #if SEASIM_LAMPS_MS_LATTICE
-/* The lattice of lamp_orders_smooth (quality.lamps_ms_step = step > 1): the pixel (i step, j step),
- * clamped to the image's last row and column, at lattice[(j map_w + i) stride ...], per band the light
- * of every lamp into the image, then (SEASIM_LAYER_LAMPS_SPLIT) its part scattered at most once. */
+/* The lattice of lamp_orders_smooth (step > 1: lampsMsLatticeStep, host/passes/underwater_lamps_pass.h):
+ * the pixel (i step, j step), clamped to the image's last row and column, at lattice[(j map_w + i)
+ * stride ...], per band the light of every lamp into the image, then (SEASIM_LAYER_LAMPS_SPLIT) its part
+ * scattered at most once. */
 #ifndef LAMP_LATTICE_NEAR
 #define LAMP_LATTICE_NEAR 8.0f
 #endif
