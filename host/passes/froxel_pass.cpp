@@ -37,6 +37,23 @@ void requireDefine(std::vector<std::string>& defines, const std::string& name, i
 }
 
 
+// What froxel_shadow_map reads, as bytes: the sun's direction in the water and the object count
+// (UwParams), the map's frame, extent, bias and size (FroxelParams), and the objects.
+std::string shadowMapInputs(const UnderwaterSetup& setup, const FroxelParams& fp) {
+  std::string key;
+  const auto put = [&](const void* data, size_t bytes) { key.append(static_cast<const char*>(data), bytes); };
+  put(setup.params.sun_dir_water, sizeof(setup.params.sun_dir_water));
+  put(&setup.params.object_count, sizeof(setup.params.object_count));
+  put(fp.shadow_origin, sizeof(fp.shadow_origin));
+  put(fp.shadow_right, sizeof(fp.shadow_right));
+  put(fp.shadow_up, sizeof(fp.shadow_up));
+  put(&fp.shadow_half_extent, sizeof(fp.shadow_half_extent));
+  put(&fp.shadow_bias, sizeof(fp.shadow_bias));
+  put(&fp.shadow_size, sizeof(fp.shadow_size));
+  put(setup.objects.data(), sizeof(UwObject) * setup.objects.size());
+  return key;
+}
+
 }  // namespace
 
 FroxelPass::FroxelPass(Device& device, const Scene& scene, const UnderwaterSetup& setup,
@@ -50,6 +67,7 @@ FroxelPass::FroxelPass(Device& device, const UnderwaterSetup& setup, const Froxe
   requireDefine(defines_, "SEASIM_CAUSTICS", setup.params.caustic_mode);
   requireDefine(defines_, "SEASIM_SPECTRAL_INJECTION", config.rgb_injection ? 0 : 1);
 
+  shadow_key_ = shadowMapInputs(setup, fp_);
   const std::vector<UwBand> bands = froxelIntegrationBands(setup, fp_);
   const std::vector<float> column_dy = froxelColumnDy(setup, fp_);
   const size_t froxels = size_t(fp_.nx) * fp_.ny * fp_.nz;
@@ -120,9 +138,10 @@ double FroxelPass::run(const cl::Buffer* caustic_maps, const cl::Buffer* geom, i
       enqueue(extent_kernel_, cl::NDRange(roundUp(size_t(width), 8), roundUp(size_t(height), 8)), cl::NDRange(8, 8),
               "froxel_column_extent");
     }
-    if (fp_.shadow_size > 0) {
+    if (fp_.shadow_size > 0 && !shadow_map_ready_) {
       const size_t n = roundUp(size_t(fp_.shadow_size), 8);
       enqueue(shadow_kernel_, cl::NDRange(n, n), cl::NDRange(8, 8), "froxel_shadow_map");
+      shadow_map_ready_ = true;
     }
     enqueue(inject_kernel_, cl::NDRange(roundUp(fp_.nx, 8), roundUp(fp_.ny, 8)), cl::NDRange(8, 8), "froxel_inject");
     enqueue(integrate_kernel_, cl::NDRange(roundUp(fp_.nx, 8), roundUp(fp_.ny, 8)), cl::NDRange(8, 8), "froxel_integrate");
@@ -155,6 +174,17 @@ void FroxelPass::readVolume(std::vector<float>& out) {
 }
 
 void FroxelPass::readLight(std::vector<float>& out) { read(light_, size_t(fp_.nx) * fp_.ny * fp_.nz, out, "light"); }
+
+std::string FroxelPass::shadowMapKey() const { return shadow_key_; }
+
+void FroxelPass::adoptShadowMap(const cl::Buffer& map) {
+  onDevice("froxel pass: the kept shadow map", [&] {
+    map_ = map;
+    shadow_kernel_.setArg(3, map_);
+    inject_kernel_.setArg(3, map_);
+  });
+  shadow_map_ready_ = true;
+}
 
 void FroxelPass::readShadowMap(std::vector<float>& out) {
   read(map_, fp_.shadow_size > 0 ? size_t(fp_.shadow_size) * fp_.shadow_size : 0, out, "shadow map");

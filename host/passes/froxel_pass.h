@@ -54,6 +54,13 @@ class FroxelPass {
   // pixel, the G-buffer of raycast.cl) into rgb (3 floats per pixel, written). Returns ms.
   double resolve(const cl::Buffer& geom, int width, int height, cl::Buffer& rgb);
 
+  // The sun's shadow map depends on the objects, the sun and the map's own knobs, not on the camera: a
+  // pass made anew for a moved camera takes the last one's map (adoptShadowMap) when their keys agree
+  // and then does not compute it again. The key: the bytes of everything froxel_shadow_map reads.
+  std::string shadowMapKey() const;
+  cl::Buffer& shadowMap() { return map_; }
+  void adoptShadowMap(const cl::Buffer& map);
+
   cl::Buffer& volume() { return volume_; }
   cl::Buffer& light() { return light_; }  // the injected light V·C per froxel, band-free
   cl::Buffer& paramsBuffer() { return fparams_; }
@@ -75,6 +82,8 @@ class FroxelPass {
   cl::Buffer params_, fparams_, objects_, bands_, map_, light_, volume_, no_caustics_,
       caustic_table_, column_last_, column_dy_;
   std::vector<PassTiming> timings_;
+  std::string shadow_key_;
+  bool shadow_map_ready_ = false;  // map_ holds this pass's shadow map (computed, or adopted)
 };
 
 }  // namespace seasim

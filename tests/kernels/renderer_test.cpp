@@ -297,6 +297,31 @@ TEST(Renderer, FroxelKnobRebuildsOnlyTheFroxelPass) {
   EXPECT_EQ(f.rgb.pixels, fresh("seabed.toml", at).rgb.pixels);
 }
 
+// The froxel pass's sun shadow map depends on the objects and the sun, not on the camera: a moved camera
+// (or a new time) sets the froxel pass up again but keeps the map; a moved object or a new sun computes
+// it again. Every frame equals a fresh renderer's at the same settings.
+TEST(Renderer, FroxelShadowMapIsKeptWhileOnlyTheCameraMoves) {
+  const auto ran = [](const FrameResult& f, const char* name) {
+    return std::any_of(f.timings.begin(), f.timings.end(), [&](const PassTiming& t) { return t.name == name; });
+  };
+  Renderer renderer(test::testDevice(), sceneFile("seabed.toml"), smallSeabed(), shippedPasses());
+  EXPECT_TRUE(ran(renderer.render(), "froxel_shadow_map"));
+  std::vector<Override> at = smallSeabed();
+  const auto step = [&](const Override& change, bool map_again) {
+    renderer.update({change});
+    at.push_back(change);
+    const FrameResult f = renderer.render();
+    EXPECT_TRUE(has(renderer.lastPrepared(), "froxel")) << change.key;
+    EXPECT_EQ(ran(f, "froxel_shadow_map"), map_again) << change.key;
+    EXPECT_EQ(f.rgb.pixels, fresh("seabed.toml", at).rgb.pixels) << change.key;
+  };
+  step(set("camera.position", "[0.3, -3.5, 1.0]"), false);
+  step(set("surface.time", "1.5"), false);
+  step(set("objects[0].center", "[-1.0, -4.4, -5.5]"), true);
+  step(set("camera.look_at", "[0.5, -4.8, -8.0]"), false);
+  step(set("sun.zenith_deg", "40.0"), true);
+}
+
 // A change that changes the plan (the second order switched on) builds the new graph. Paper 000's
 // model: "multiple" (the default) holds the second order in its closed form and plans no maps.
 TEST(Renderer, PlanChangeBuildsTheNewGraph) {

@@ -350,6 +350,25 @@ direction = [0, -1, -1]
   EXPECT_FALSE(makePlan(parseScene(no_lamps, "rov.toml")).hasPass("underwater_lamps"));
 }
 
+// The froxel pass reads the G-buffer (to skip the froxels no pixel reads) only for a grid of at least 8
+// froxels per pixel: seabed's defaults (80x45x32 at 320x180, 2 per pixel) evaluate them all.
+TEST(Plan, FroxelCullingOnlyForGridsMuchFinerThanTheImage) {
+  const auto reads_gbuffer = [](const Plan& plan) {
+    const seasim::PassPlan* f = plan.find("froxel");
+    EXPECT_NE(f, nullptr);
+    return f && std::find(f->reads.begin(), f->reads.end(), "gbuffer") != f->reads.end();
+  };
+  const std::string seabed = std::string(SEASIM_SOURCE_DIR) + "/scenes/seabed.toml";
+  EXPECT_FALSE(reads_gbuffer(makePlan(seasim::loadScene(seabed))));
+  const auto set = [](const std::string& k, const std::string& v) { return seasim::Override{k, v, {"test", 1}}; };
+  // 160x90x64 at 320x180: 16 per pixel; 160x90x32: 8.
+  EXPECT_TRUE(reads_gbuffer(
+      makePlan(seasim::loadScene(seabed, {set("quality.froxel_columns", "160"), set("quality.froxel_z", "64")}))));
+  EXPECT_TRUE(reads_gbuffer(makePlan(seasim::loadScene(seabed, {set("quality.froxel_columns", "160")}))));
+  EXPECT_FALSE(reads_gbuffer(makePlan(seasim::loadScene(
+      seabed, {set("quality.froxel_columns", "160"), set("camera.width", "640"), set("camera.height", "360")}))));
+}
+
 // The orders model's lattice (quality.lamps_ms_cell_deg): planned where a cell holds at least two pixels
 // of the image's height, with as many pixels per cell as fit; absent where the pixels are wider, at 0,
 // and for the single and delta-M models, which have no smooth part.

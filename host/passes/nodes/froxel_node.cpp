@@ -16,6 +16,9 @@ namespace seasim {
 
 namespace {
 
+// The froxels per pixel from which the pass skips the froxels no pixel reads.
+constexpr double kFroxelCullingPerPixel = 8.0;
+
 // FroxelPass folds the whole setup into its tables at set-up.
 PassKeys froxelKeys() {
   std::vector<std::string> rebuild = kUnderwaterSetupKeys;
@@ -32,6 +35,8 @@ class FroxelNode : public Pass {
   void prepare(FrameContext& ctx, PassResources& res) override {
     froxels_ = std::make_unique<FroxelPass>(ctx.device(), ctx.scene(),
                                             res.read<UnderwaterSetupBuffers>("underwater_setup").setup, entry_.defines);
+    // A moved camera (or a new time: caustics) leaves the sun's shadow map as it was.
+    if (kept_map_ && kept_key_ == froxels_->shadowMapKey()) froxels_->adoptShadowMap(*kept_map_);
     auto volume = std::make_shared<FroxelVolume>();
     volume->params = froxels_->paramsBuffer();
     volume->volume = froxels_->volume();
@@ -44,12 +49,18 @@ class FroxelNode : public Pass {
     // With the G-buffer, only the froxels that kd_multiple's reads need are evaluated.
     const cl::Buffer* geom = res.declaresRead("gbuffer") ? &res.read<UnderwaterGBuffer>("gbuffer").geometry : nullptr;
     froxels_->run(underwaterCausticMaps(res), geom, ctx.scene().camera.width, ctx.scene().camera.height);
+    kept_key_ = froxels_->shadowMapKey();  // computed (or adopted) by now
+    kept_map_ = std::make_unique<cl::Buffer>(froxels_->shadowMap());
     for (const PassTiming& t : froxels_->timings()) ctx.timings.push_back(t);
   }
 
  private:
   const PassPlan& entry_;
   std::unique_ptr<FroxelPass> froxels_;
+  // The last sun shadow map a pass ran with, outliving the passes a moved camera makes anew, and what it
+  // was made from.
+  std::string kept_key_;
+  std::unique_ptr<cl::Buffer> kept_map_;
 };
 
 }  // namespace
@@ -68,13 +79,23 @@ PassDescriptor froxelDescriptor() {
   d.rule = [](const Scene& scene, const Plan& so_far) -> std::optional<PassPlan> {
     const UnderwaterDesc& uw = scene.underwater;
     if (!cameraUnderwater(scene) || !uw.single_scattering || !sunUp(scene)) return std::nullopt;
-    std::vector<std::string> reads = {"underwater_setup", "gbuffer"};  // gbuffer: which froxels are read
+    std::vector<std::string> reads = {"underwater_setup"};
+    // The G-buffer says which froxels the pixels read (froxel_column_extent), so that the others are not
+    // evaluated. That pays only for a grid much finer than the image: at 2 froxels per pixel (seabed's
+    // defaults) finding them costs more than evaluating them all, at 8 and 16 as much (results/BENCHMARKS.md).
+    const FroxelConfig grid = froxelConfigFromScene(scene);
+    const double froxels = double(grid.nx) * grid.ny * grid.nz;
+    const double pixels = double(scene.camera.width) * scene.camera.height;
+    const bool culled = froxels >= kFroxelCullingPerPixel * pixels;
+    if (culled) reads.push_back("gbuffer");
     if (so_far.produces("caustic_map")) reads.push_back("caustic_map");
     auto features = std::make_shared<FroxelFeatures>();
     features->objects = !scene.objects.empty();
     features->caustics = underwaterCausticsMode(scene);
     features->spectral_injection = uw.injection == UnderwaterDesc::Injection::Spectral;
-    return planEntry(reads, {"froxel_volume"}, "camera below the surface, sun up, underwater.single_scattering",
+    return planEntry(reads, {"froxel_volume"},
+                     std::string("camera below the surface, sun up, underwater.single_scattering") +
+                         (culled ? "; only the froxels the pixels read (the grid >= 8 froxels per pixel)" : ""),
                      features);
   };
   d.keys = froxelKeys();
