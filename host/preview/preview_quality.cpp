@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "preview/preview_settings.h"
+#include "scene/model_keys.h"
 #include "scene/toml_reader.h"
 #include "util/error.h"
 
@@ -31,6 +32,11 @@ const std::vector<std::pair<std::string, double>>& widenedKnobs() {
   return knobs;
 }
 
+// The widest lattice cell a level gives the lamps' orders model (quality.lamps_ms_cell_deg): 4°, where
+// a region of the lamp study moves by a few per cent (results/BENCHMARKS.md), well inside a reduced
+// level's own error against full quality; larger cells cost more again (more pixels evaluate themselves).
+constexpr double kLampsCellCeilingDeg = 4.0;
+
 }  // namespace
 
 std::vector<Override> qualityLevelOverrides(const Scene& scene, int level) {
@@ -52,6 +58,15 @@ std::vector<Override> qualityLevelOverrides(const Scene& scene, int level) {
     if (it == scene.quality.end() || it->second.automatic) continue;
     const double full = it->second.value;
     out.push_back({"quality." + name, floatText(std::max(full, std::min(ceiling, std::ldexp(full, halvings)))), at});
+  }
+  // The lamps' orders model evaluates its smooth part on cells of lamps_ms_cell_deg: a level that renders a
+  // smaller image widens them by as much as its pixels, so that the lattice keeps its step in pixels (at
+  // 1° a 160x90 image would evaluate every pixel). 0 (every pixel) stays 0.
+  if (!scene.spotlights.empty()) {
+    const double cell = modelKey(scene, "quality.lamps_ms_cell_deg");
+    if (cell > 0)
+      out.push_back({"quality.lamps_ms_cell_deg",
+                     floatText(std::max(cell, std::min(kLampsCellCeilingDeg, std::ldexp(cell, size_shift)))), at});
   }
   add("camera.width", std::max(16, scene.camera.width >> size_shift));
   add("camera.height", std::max(9, scene.camera.height >> size_shift));

@@ -4,6 +4,7 @@
 
 #include <map>
 
+#include "passes/underwater_lamps_pass.h"
 #include "preview/preview_quality.h"
 #include "scene/scene_parser.h"
 
@@ -93,6 +94,25 @@ TEST(PreviewQuality, IntervalPanelsWidenPerLevelUpToACeiling) {
   EXPECT_EQ(w0.at("quality.shafts_panel_deg"), "45.5");      // past the ceiling: left as it is
   EXPECT_EQ(w0.at("quality.shafts_panel_texels"), "2.0");    // 0.25 x 2^3
   EXPECT_NO_THROW(parseScene("", "t.toml", qualityLevelOverrides(wide, 0)));
+}
+
+// The lamps' orders model's lattice cell widens as a level's image shrinks (up to 4°), so that the lattice
+// keeps its step in pixels; every pixel (0) stays so, and a scene without lamps gets no such override.
+TEST(PreviewQuality, LampsLatticeCellsWidenPerLevel) {
+  const Scene scene = seasim::loadScene(std::string(SEASIM_SOURCE_DIR) + "/scenes/rov_lights.toml");
+  EXPECT_EQ(asMap(qualityLevelOverrides(scene, kPreviewFullLevel)).at("quality.lamps_ms_cell_deg"), "1.0");
+  EXPECT_EQ(asMap(qualityLevelOverrides(scene, 2)).at("quality.lamps_ms_cell_deg"), "1.0");  // full size
+  EXPECT_EQ(asMap(qualityLevelOverrides(scene, 1)).at("quality.lamps_ms_cell_deg"), "2.0");  // half
+  EXPECT_EQ(asMap(qualityLevelOverrides(scene, 0)).at("quality.lamps_ms_cell_deg"), "4.0");  // a quarter
+  // Level 0 of its 320x180 is 80x45 at 60°: 1.33° per pixel, so 4° cells are every 3 pixels, as 1° cells
+  // are at full size (1° cells would be every pixel there).
+  const Scene l0 = seasim::loadScene(std::string(SEASIM_SOURCE_DIR) + "/scenes/rov_lights.toml",
+                                     qualityLevelOverrides(scene, 0));
+  EXPECT_EQ(seasim::lampsMsLatticeStep(l0), 3);
+  const Scene every = parseScene("[quality]\nlamps_ms_cell_deg = 0\n[[spotlights]]\nposition = [0, 1, 0]\n"
+                                 "direction = [0, -1, 0]\n", "t.toml");
+  EXPECT_EQ(asMap(qualityLevelOverrides(every, 0)).count("quality.lamps_ms_cell_deg"), 0u);
+  EXPECT_EQ(asMap(qualityLevelOverrides(parseScene("", "t.toml"), 0)).count("quality.lamps_ms_cell_deg"), 0u);
 }
 
 TEST(PreviewQuality, KnobsBelowTheirFloorStayAsTheyAre) {
