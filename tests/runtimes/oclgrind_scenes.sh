@@ -81,6 +81,28 @@ if [ -z "${OCLGRIND_EXTRA_SETS:-}" ] && { [ $# -eq 0 ] || printf '%s\n' "$@" | g
     head -n 20 "$log" 2>/dev/null
   fi
 fi
+# The lamps' orders model on its lattice (underwater_lamps_lattice and the lattice's reads): at 16x9 a
+# pixel is wider than any cell, so rov_lights again at 32x18 (3.3 degrees per pixel) with 10-degree cells,
+# every third pixel.
+if [ -z "${OCLGRIND_EXTRA_SETS:-}" ] && { [ $# -eq 0 ] || printf '%s\n' "$@" | grep -q rov_lights; }; then
+  args=()
+  for kv in "${small[@]}"; do args+=(--set "$kv"); done
+  args+=(--set camera.width=32 --set camera.height=18 --set quality.lamps_ms_cell_deg=10 --set spectral.count=4)
+  log="$work/rov_lights_lattice.oclgrind.log"
+  oclgrind --check-api --data-races --num-threads 1 --log "$log" "$seasim" render "$scenes_dir/rov_lights.toml" \
+    -o "$work/rov_lights_lattice" --device oclgrind "${args[@]}" >"$work/rov_lights_lattice.out" 2>&1
+  rc=$?
+  reports=0
+  [ -s "$log" ] && reports=$(grep -c '^[^[:space:]]' "$log")
+  lattice=$(grep -c '"underwater_lamps_lattice"' "$work/rov_lights_lattice/report.json" 2>/dev/null)
+  printf '%-22s %6s %8s %7s %s\n' "rov_lights, lattice" "$rc" "-" "${lattice:-0}" "$reports"
+  if [ "$rc" != 0 ] || [ "$reports" != 0 ] || [ "${lattice:-0}" = 0 ]; then
+    failed=$((failed + 1))
+    echo "---- rov_lights with its lamps' lattice: exit $rc, $reports report(s), lattice kernel timed ${lattice:-0} time(s)"
+    tail -n 5 "$work/rov_lights_lattice.out"
+    head -n 20 "$log" 2>/dev/null
+  fi
+fi
 files=0
 [ -f "$work/kernel_files.txt" ] && files=$(sort -u "$work/kernel_files.txt" | wc -l)
 echo "oclgrind_scenes: ${#scenes[@]} scenes, $kernels_total passes ($files kernel files) checked by Oclgrind, $failed with a report or a failure"
