@@ -242,8 +242,8 @@ static inline void lamp_glow_ray(__constant UwParams* p, __global const UwBand* 
  * object has E_direct = 0 and no escaping light, so its terms vanish either way). */
 static inline void lamp_orders_surface(__constant UwParams* p, __global const UwBand* bands,
                                        __global const UwObject* objects, int count, __constant UwLampParams* lp,
-                                       __global const UwLamp* L, __global const float* I, int ms_orders, const LampRay* v,
-                                       LampSums* o) {
+                                       __global const UwLamp* L, __global const float* I, int ms_orders,
+                                       const LampRay* v, LampSums* o) {
   if (!v->lit_surface) return;
   const int nb = lp->band_count;
   const float3 lamp = v3(L->position), axis = v3(L->direction);

@@ -106,15 +106,17 @@ std::pair<double, double> timeUnderwaterCpu(const Scene& scene, const Plan& plan
 // caustics and leave the froxels' single scattering out): the ratios compare like with like only without it.
 void printPeerScope(const Scene& scene) {
   const Plan plan = makePlan(scene);
+  std::vector<std::string> parts;
+  if (underwaterCausticsMode(scene) != 0) parts.emplace_back(" the caustics at each hit");
+  if (plan.produces("froxel_volume")) parts.emplace_back(" the froxel volume's read per pixel");
   std::string extra;
-  if (underwaterCausticsMode(scene) != 0) extra += std::string(extra.empty() ? "" : ",") + " the caustics at each hit";
-  if (plan.produces("froxel_volume")) extra += std::string(extra.empty() ? "" : ",") + " the froxel volume's read per pixel";
+  for (const std::string& part : parts) extra += (extra.empty() ? "" : ",") + part;
   if (extra.empty())
     std::printf("peer: the same work as %s + %s\n", descriptorFor(PassRole::UnderwaterGBuffer).name.c_str(),
                 descriptorFor(PassRole::UnderwaterShading).name.c_str());
   else
-    std::printf("peer: not the same work (OpenCL also evaluates%s); the same work: --set 'underwater.caustics=\"none\"' "
-                "--set underwater.single_scattering=false\n",
+    std::printf("peer: not the same work (OpenCL also evaluates%s); the same work: "
+                "--set 'underwater.caustics=\"none\"' --set underwater.single_scattering=false\n",
                 extra.c_str());
 }
 

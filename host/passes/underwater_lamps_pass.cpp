@@ -19,7 +19,8 @@ namespace seasim {
 int lampsMsLatticeStep(const Scene& scene) {
   const double cell_deg = modelKey(scene, "quality.lamps_ms_cell_deg");
   const double pixel_deg = scene.camera.fov_y * 180.0 / std::numbers::pi / std::max(1, scene.camera.height);
-  return std::max(1, static_cast<int>(std::floor(cell_deg / pixel_deg + 1e-6)));  // 1e-6: a whole number of pixels stays whole
+  // 1e-6: a cell of a whole number of pixels stays whole against the rounding of the division.
+  return std::max(1, static_cast<int>(std::floor(cell_deg / pixel_deg + 1e-6)));
 }
 
 UnderwaterLampsPass::Config UnderwaterLampsPass::configFromScene(const Scene& scene) {

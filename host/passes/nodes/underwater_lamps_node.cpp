@@ -111,8 +111,8 @@ PassDescriptor underwaterLampsDescriptor() {
     return planEntry(reads, targets,
                      std::string("[[spotlights]] under water: 001's sampling planes with the water's sigma_s, sigma_t, HG") +
                          (features->orders ? " + orders of multiple scattering" : "") +
-                         (features->ms_lattice ? " (its smooth part on a lattice of every " + std::to_string(config.ms_step) +
-                                                     " pixels, quality.lamps_ms_cell_deg)"
+                         (features->ms_lattice ? " (its smooth part on a lattice of every " +
+                                                     std::to_string(config.ms_step) + " pixels, quality.lamps_ms_cell_deg)"
                                                : "") +
                          (features->lamps_layer ? "; also into outputs.layers' lamps" : "") +
                          (features->band_layers ? ", per band too" : "") +
