@@ -411,6 +411,15 @@ static inline void lamp_beam(const LampMedia* md, __global const UwObject* objec
   }
 }
 
+/* The objects the shadow rays test: none without SEASIM_HAS_OBJECTS. */
+static inline int lamp_object_count(__constant UwParams* p) {
+#if SEASIM_HAS_OBJECTS
+  return p->object_count;
+#else
+  return 0;
+#endif
+}
+
 /* The view ray of pixel (x, y) and the surface the G-buffer (raycast.cl) found on it. */
 static inline LampRay lamp_ray(__constant UwParams* p, __global const UwBand* bands, __global const float* albedo,
                                __global const float4* geom, __global const int* material, int x, int y) {
@@ -453,16 +462,17 @@ static inline int lamp_near_view(__constant UwLampParams* lp, __global const UwL
   return 0;
 }
 
-/* Whether every lamp's cone profile (uw_lamp_profile) at the bottom point q is within 10 % of its peak
- * of the profile at P: the bottom's direct light blurred on its way to the eye (uw_ms_blurred_bottom)
- * is nearly as sharp as the lit patch's edge in forward-scattering water. */
-static inline int lamp_profiles_alike(__constant UwLampParams* lp, __global const UwLamp* lamps, float3 P, float3 q) {
+/* Whether every lamp's cone profile (uw_lamp_profile) at each of the n bottom points q[k] is within 10 % of
+ * its peak of the profile at P: the bottom's direct light blurred on its way to the eye
+ * (uw_ms_blurred_bottom) is nearly as sharp as the lit patch's edge in forward-scattering water. */
+static inline int lamp_profiles_alike(__constant UwLampParams* lp, __global const UwLamp* lamps, float3 P,
+                                      const float3* q, int n) {
   for (int l = 0; l < lp->lamp_count; ++l) {
     __global const UwLamp* L = &lamps[l];
     const float3 lamp = v3(L->position), axis = v3(L->direction);
-    if (fabs(uw_lamp_profile(P, lamp, axis, L->cos_cone, L->cos_inner) -
-             uw_lamp_profile(q, lamp, axis, L->cos_cone, L->cos_inner)) > 0.1f)
-      return 0;
+    const float at_P = uw_lamp_profile(P, lamp, axis, L->cos_cone, L->cos_inner);
+    for (int k = 0; k < n; ++k)
+      if (fabs(at_P - uw_lamp_profile(q[k], lamp, axis, L->cos_cone, L->cos_inner)) > 0.1f) return 0;
   }
   return 1;
 }
@@ -485,31 +495,31 @@ static inline int lamp_lattice_read(__constant UwParams* p, __global const UwBan
   const int mat = material[y * p->width + x];
   float w[4];
   int at[4];
+  float3 bottom_points[4]; /* the bottom neighbours' hits, for the lit patch's edge */
+  int bottoms = 0;
   float wsum = 0.0f;
   for (int c = 0; c < 4; ++c) {
     const int di = c & 1, dj = c >> 1;
     const int i = min(i0 + di, map_w - 1), j = min(j0 + dj, map_h - 1);
+    const int xq = min(i * step, p->width - 1), yq = min(j * step, p->height - 1);
     const float w_c = (di ? fx : 1.0f - fx) * (dj ? fy : 1.0f - fy);
-    const int q = min(j * step, p->height - 1) * p->width + min(i * step, p->width - 1);
-    const int mq = material[q];
+    const int q = yq * p->width + xq;
     const float4 gq = geom[q];
-    const int same = mq == mat;
+    const int same = material[q] == mat;
     /* The same object turning away (its light follows the normal) or behind itself: the pixel
      * evaluates itself, as at the lit patch's edge below. */
     if (same && mat >= 0 && w_c > 0.0f &&
         !(fabs(gq.x - v->S) <= 0.05f * v->S && dot((float3)(gq.y, gq.z, gq.w), v->n) >= 0.995f))
       return 0;
-    /* The lit patch's edge in the cell: the pixel evaluates itself (its neighbours on one side of the edge
-     * alone would carry that side's light across it). */
-    if (same && v->bottom && w_c > 0.0f) {
-      const float3 dq = uw_screen_dir(p, (min(i * step, p->width - 1) + 0.5f) / p->width,
-                                      (min(j * step, p->height - 1) + 0.5f) / p->height);
-      if (!lamp_profiles_alike(lp, lamps, v->o + v->S * v->d, v->o + gq.x * dq)) return 0;
-    }
+    if (same && v->bottom && w_c > 0.0f)
+      bottom_points[bottoms++] = v->o + gq.x * uw_screen_dir(p, (xq + 0.5f) / p->width, (yq + 0.5f) / p->height);
     w[c] = same ? w_c : 0.0f;
     at[c] = (j * map_w + i) * LAMP_LATTICE_STRIDE(nb);
     wsum += w[c];
   }
+  /* The lit patch's edge in the cell: the pixel evaluates itself (its neighbours on one side of the edge
+   * alone would carry that side's light across it). */
+  if (bottoms > 0 && !lamp_profiles_alike(lp, lamps, v->o + v->S * v->d, bottom_points, bottoms)) return 0;
   if (!(wsum > 0.0f)) return 0;
   for (int c = 0; c < 4; ++c) w[c] /= wsum;
   for (int i = 0; i < nb; ++i) {
@@ -536,11 +546,7 @@ __kernel void underwater_lamps_lattice(__constant UwParams* p, __global const Uw
   const int i = get_global_id(0), j = get_global_id(1);
   if (i >= map_w || j >= map_h) return;
   const int nb = lp->band_count;
-#if SEASIM_HAS_OBJECTS
-  const int count = p->object_count;
-#else
-  const int count = 0;
-#endif
+  const int count = lamp_object_count(p);
   const LampRay v = lamp_ray(p, bands, albedo, geom, material, min(i * step, p->width - 1), min(j * step, p->height - 1));
   __global float* sums = lattice + (size_t)(j * map_w + i) * LAMP_LATTICE_STRIDE(nb);
   for (int k = 0; k < LAMP_LATTICE_STRIDE(nb); ++k) sums[k] = 0.0f;
@@ -583,11 +589,7 @@ __kernel void underwater_lamps(__constant UwParams* p, __global const UwBand* ba
   if (x >= p->width || y >= p->height) return;
   const int pixel = y * p->width + x;
   const int nb = lp->band_count;
-#if SEASIM_HAS_OBJECTS
-  const int count = p->object_count;
-#else
-  const int count = 0;
-#endif
+  const int count = lamp_object_count(p);
   const LampRay v = lamp_ray(p, bands, albedo, geom, material, x, y);
   LampSums o = {.r = 0.0f, .g = 0.0f, .b = 0.0f, .single_r = 0.0f, .single_g = 0.0f, .single_b = 0.0f,
                 .to_single = 1, .pixel = pixel, .nb = nb, .band_sums = 0};

@@ -316,10 +316,8 @@ direction = [0, -1, 0]
   EXPECT_EQ(plan.find("shafts")->why.find("measured"), std::string::npos);
 }
 
-// Spotlights under water: the water's passes and the lamps' pass, which adds into the rgb
-// kd_multiple wrote (so it comes after it), and none of the air shafts' passes.
-TEST(Plan, SpotlightsUnderWaterAddTheLampsPassAfterTheShading) {
-  const char* text = R"(
+// A lamp under water, beneath a camera in Jerlov IB water (the camera's defaults: 60°, 640x360).
+const char* kLampUnderWater = R"(
 [camera]
 position = [0, -2, 0]
 look_at = [0, -3, -10]
@@ -329,6 +327,11 @@ jerlov = "IB"
 position = [0, -1, 0]
 direction = [0, -1, -1]
 )";
+
+// Spotlights under water: the water's passes and the lamps' pass, which adds into the rgb
+// kd_multiple wrote (so it comes after it), and none of the air shafts' passes.
+TEST(Plan, SpotlightsUnderWaterAddTheLampsPassAfterTheShading) {
+  const char* text = kLampUnderWater;
   const Plan plan = makePlan(parseScene(text, "rov.toml"));
   const seasim::PassPlan* lamps = plan.find("underwater_lamps");
   ASSERT_NE(lamps, nullptr);
@@ -373,21 +376,11 @@ TEST(Plan, FroxelCullingOnlyForGridsMuchFinerThanTheImage) {
 // of the image's height, with as many pixels per cell as fit; absent where the pixels are wider, at 0,
 // and for the single and delta-M models, which have no smooth part.
 TEST(Plan, TheLampsLatticeFollowsTheCellsAngleAndTheModel) {
-  const char* text = R"(
-[camera]
-position = [0, -2, 0]
-look_at = [0, -3, -10]
-fov_deg = 60.0
-width = 320
-height = 180
-[water]
-jerlov = "IB"
-[[spotlights]]
-position = [0, -1, 0]
-direction = [0, -1, -1]
-)";
-  const auto scene = [&](std::vector<seasim::Override> over) { return parseScene(text, "rov.toml", over); };
   const auto set = [](const std::string& k, const std::string& v) { return seasim::Override{k, v, {"test", 1}}; };
+  const auto scene = [&](std::vector<seasim::Override> over) {
+    over.insert(over.begin(), {set("camera.fov_deg", "60"), set("camera.width", "320"), set("camera.height", "180")});
+    return parseScene(kLampUnderWater, "rov.toml", over);
+  };
   // 60° over 180 rows: 1/3° per pixel.
   EXPECT_EQ(seasim::lampsMsLatticeStep(scene({})), 3);
   EXPECT_EQ(seasim::lampsMsLatticeStep(scene({set("quality.lamps_ms_cell_deg", "0.7")})), 2);

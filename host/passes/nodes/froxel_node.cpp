@@ -36,7 +36,7 @@ class FroxelNode : public Pass {
     froxels_ = std::make_unique<FroxelPass>(ctx.device(), ctx.scene(),
                                             res.read<UnderwaterSetupBuffers>("underwater_setup").setup, entry_.defines);
     // A moved camera (or a new time: caustics) leaves the sun's shadow map as it was.
-    if (kept_map_ && kept_key_ == froxels_->shadowMapKey()) froxels_->adoptShadowMap(*kept_map_);
+    if (kept_map_() && kept_key_ == froxels_->shadowMapKey()) froxels_->adoptShadowMap(kept_map_);
     auto volume = std::make_shared<FroxelVolume>();
     volume->params = froxels_->paramsBuffer();
     volume->volume = froxels_->volume();
@@ -50,7 +50,7 @@ class FroxelNode : public Pass {
     const cl::Buffer* geom = res.declaresRead("gbuffer") ? &res.read<UnderwaterGBuffer>("gbuffer").geometry : nullptr;
     froxels_->run(underwaterCausticMaps(res), geom, ctx.scene().camera.width, ctx.scene().camera.height);
     kept_key_ = froxels_->shadowMapKey();  // computed (or adopted) by now
-    kept_map_ = std::make_unique<cl::Buffer>(froxels_->shadowMap());
+    kept_map_ = froxels_->shadowMap();
     for (const PassTiming& t : froxels_->timings()) ctx.timings.push_back(t);
   }
 
@@ -60,7 +60,7 @@ class FroxelNode : public Pass {
   // The last sun shadow map a pass ran with, outliving the passes a moved camera makes anew, and what it
   // was made from.
   std::string kept_key_;
-  std::unique_ptr<cl::Buffer> kept_map_;
+  cl::Buffer kept_map_;  // none (null) before the first frame
 };
 
 }  // namespace
