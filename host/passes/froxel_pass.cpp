@@ -175,8 +175,6 @@ void FroxelPass::readVolume(std::vector<float>& out) {
 
 void FroxelPass::readLight(std::vector<float>& out) { read(light_, size_t(fp_.nx) * fp_.ny * fp_.nz, out, "light"); }
 
-std::string FroxelPass::shadowMapKey() const { return shadow_key_; }
-
 void FroxelPass::adoptShadowMap(const cl::Buffer& map) {
   onDevice("froxel pass: the kept shadow map", [&] {
     map_ = map;

@@ -57,7 +57,7 @@ class FroxelPass {
   // The sun's shadow map depends on the objects, the sun and the map's own knobs, not on the camera: a
   // pass made anew for a moved camera takes the last one's map (adoptShadowMap) when their keys agree
   // and then does not compute it again. The key: the bytes of everything froxel_shadow_map reads.
-  std::string shadowMapKey() const;
+  const std::string& shadowMapKey() const { return shadow_key_; }
   cl::Buffer& shadowMap() { return map_; }
   void adoptShadowMap(const cl::Buffer& map);
 
