@@ -117,17 +117,23 @@ TEST(LampsStiffCases, LampInsideAnObjectLightsNothing) {
 
 TEST(LampsStiffCases, OrdersModelStaysFiniteAndSealedLampsDark) {
   // The "orders" model: a sealed lamp scatters nothing either; g -> 1, a 0.1° cone and turbid water finite.
-  const Override orders = set("quality.lamps_model", "\"orders\"");
-  const Images sealed = renderBoth(std::string(kScene) + kSphereAroundLamp, {orders});
-  expectFinite(sealed, "orders, lamp in a sphere");
-  EXPECT_EQ(sumAbs(sealed.fast), 0.0);
-  for (const std::vector<Override>& extra :
-       {std::vector<Override>{set("water.g", "0.999999")}, std::vector<Override>{set("spotlights[0].cone_deg", "0.1")},
-        std::vector<Override>{set("water.jerlov", "\"9C\"")}}) {
-    std::vector<Override> over = extra;
-    over.push_back(orders);
-    const Images im = renderBoth(kScene, over);
-    expectFinite(im, "orders");
+  // Each also on its lattice at its widest cell: 10° at 32x20 (3° per pixel) is every third pixel.
+  const std::vector<Override> every = {set("quality.lamps_model", "\"orders\"")};
+  const std::vector<Override> lattice = {set("quality.lamps_model", "\"orders\""), set("camera.width", "32"),
+                                         set("camera.height", "20"), set("quality.lamps_ms_cell_deg", "10")};
+  for (const std::vector<Override>& orders : {every, lattice}) {
+    const std::string how = orders.size() > 1 ? "orders on a lattice" : "orders";
+    const Images sealed = renderBoth(std::string(kScene) + kSphereAroundLamp, orders);
+    expectFinite(sealed, (how + ", lamp in a sphere").c_str());
+    EXPECT_EQ(sumAbs(sealed.fast), 0.0) << how;
+    for (const std::vector<Override>& extra :
+         {std::vector<Override>{set("water.g", "0.999999")}, std::vector<Override>{set("spotlights[0].cone_deg", "0.1")},
+          std::vector<Override>{set("water.jerlov", "\"9C\"")}}) {
+      std::vector<Override> over = extra;
+      over.insert(over.end(), orders.begin(), orders.end());
+      const Images im = renderBoth(kScene, over);
+      expectFinite(im, how.c_str());
+    }
   }
 }
 

@@ -316,7 +316,8 @@ TEST(SceneParser, Defaults) {
   }
   // The lamps' "orders" settings are the underwater_lamps descriptor's scene keys.
   const std::pair<const char*, double> lamp_keys[] = {{"quality.lamps_orders", 4}, {"quality.lamps_ms_steps", 12},
-                                                      {"quality.lamps_ms_kappa", 0.75}, {"quality.lamps_ms_spread", 0.6}};
+                                                      {"quality.lamps_ms_kappa", 0.75}, {"quality.lamps_ms_spread", 0.6},
+                                                      {"quality.lamps_ms_cell_deg", 1.0}};
   for (const auto& [key, value] : lamp_keys) EXPECT_DOUBLE_EQ(seasim::modelKey(s, key), value) << key;
 
   // A [bottom] table without type is a flat bottom at the default depth; water defaults.
@@ -784,6 +785,11 @@ TEST(SceneParserLamps, LampsModelByNameWithTheOlderSwitchKept) {
   EXPECT_NE(error("[quality]\nlamps_ms_spread = 0\n").find("must be in (0, 1], got 0"), std::string::npos);
   EXPECT_EQ(error("[quality]\nlamps_ms_spread = 1\n"), "");
   EXPECT_NE(error("[quality]\nlamps_ms_kappa = -1\n").find("must be in [0, 2], got -1"), std::string::npos);
+  // The lattice's cell: 0 (every pixel) to 10 degrees.
+  EXPECT_NE(error("[quality]\nlamps_ms_cell_deg = -0.5\n").find("l.toml:2: key 'quality.lamps_ms_cell_deg'"),
+            std::string::npos);
+  EXPECT_NE(error("[quality]\nlamps_ms_cell_deg = 11\n").find("quality.lamps_ms_cell_deg"), std::string::npos);
+  EXPECT_EQ(error("[quality]\nlamps_ms_cell_deg = 0\n"), "");
   EXPECT_DOUBLE_EQ(seasim::modelKey(parseScene("[quality]\nlamps_orders = 7\n", "l.toml"), "quality.lamps_orders"), 7);
 }
 
