@@ -31,7 +31,8 @@
  * band from ms_weights (host/underwater/lamps_ms_weights.h; the stretch exponent κ is in it); the
  * surfaces' light then reaches the eye through T_view instead of e^{-σ_t S}, the bottom's direct light
  * blurred in its terms k >= 1 (uw_ms_blurred_bottom); and the lit
- * bottom's glow from ms_glow, 4 + 2 band_count floats per lamp, host/underwater/lamps_bottom_glow.h).
+ * bottom's glow from ms_glow, 4 + band_count floats per lamp, host/underwater/lamps_bottom_glow.h; the
+ * bottom's halo, the orders' light on the bottom sent back up, from the weight table's halo rows).
  * SEASIM_LAMPS_MS_LATTICE (ms_step > 1 pixels in a quality.lamps_ms_cell_deg cell): the part of the
  * orders model that varies smoothly across the image (lamp_orders_smooth: the orders and the glow along
  * the view ray, the orders' light on the surfaces, the bottom's blur) is evaluated first by
@@ -158,10 +159,9 @@ typedef struct {
 
 #if SEASIM_LAMPS_ORDERS
 /* The bottom's glow under one lamp (common/underwater_lamps_ms.h): the lit patch as a Lambertian source
- * at glow[0..2] of radius glow[3], strengths glow[4 + i] (all the lamp's light on the bottom) and
- * glow[4 + nb + i] (its direct light alone), on the surface the pixel sees (through T_view), orders
- * 0..ms_orders. Order 0 of the direct light is light scattered once in the water (lamps_single); the
- * rest is multiple. */
+ * at glow[0..2] of radius glow[3], strengths glow[4 + i] (the lamp's direct light on the bottom; its
+ * orders' light there is lamp_halo_ray's), on the surface the pixel sees (through T_view), orders
+ * 0..ms_orders. Order 0 is light scattered once in the water (lamps_single); the rest is multiple. */
 static inline void lamp_glow_surface(__constant UwParams* p, __global const UwBand* bands, __global const float* glow,
                                      __global const float* ms_weights, int ms_orders, __global const float* I,
                                      const LampRay* v, LampSums* o) {
@@ -170,7 +170,6 @@ static inline void lamp_glow_surface(__constant UwParams* p, __global const UwBa
   if (!(radius > 0.0f) || !v->lit_surface) return;
   const float3 c = (float3)(glow[0], glow[1], glow[2]), up = (float3)(0.0f, 1.0f, 0.0f);
   __global const float* J = glow + 4;
-  __global const float* J_direct = glow + 4 + nb;
   __global const float* glow_rows = uw_ms_glow_weight_rows(ms_weights, nb, ms_orders);
   const float3 P = v->o + v->S * v->d;
   int wj;
@@ -183,7 +182,7 @@ static inline void lamp_glow_surface(__constant UwParams* p, __global const UwBa
     if (!(E > 0.0f)) continue;
     const float alb = I[i] * v->alb[i * v->alb_stride];
     lamp_add_to(o, bands, i, alb * J[i] * E * uw_ms_view_transmission(bands[i].a, bands[i].b, p->g, v->S, ms_orders), 1, 0);
-    lamp_add_to(o, bands, i, alb * J_direct[i] * first * exp(-bands[i].c * v->S), 0, 1);
+    lamp_add_to(o, bands, i, alb * J[i] * first * exp(-bands[i].c * v->S), 0, 1);
   }
 }
 
@@ -196,7 +195,6 @@ static inline void lamp_glow_ray(__constant UwParams* p, __global const UwBand* 
   if (!(radius > 0.0f)) return;
   const float3 c = (float3)(glow[0], glow[1], glow[2]), up = (float3)(0.0f, 1.0f, 0.0f);
   __global const float* J = glow + 4;
-  __global const float* J_direct = glow + 4 + nb;
   __global const float* glow_rows = uw_ms_glow_weight_rows(ms_weights, nb, ms_orders);
   UwMsRay q;
   const int steps = uw_ms_glow_steps(ms_steps);
@@ -229,7 +227,63 @@ static inline void lamp_glow_ray(__constant UwParams* p, __global const UwBand* 
       for (int k = 1; k <= ms_orders; ++k) sum += wn[k] * geo[k];
       const float f = I[i] * ss * exp(-(sa + ss) * t) * w;
       lamp_add_to(o, bands, i, f * J[i] * sum, 1, 0);
-      lamp_add_to(o, bands, i, f * J_direct[i] * first, 0, 1);
+      lamp_add_to(o, bands, i, f * J[i] * first, 0, 1);
+    }
+  }
+}
+
+/* The bottom's halo along the view ray (common/underwater_lamps_ms.h, uw_ms_halo_inscatter): the orders'
+ * light on the bottom right below each step, sent back up as from a uniform Lambertian plane and
+ * scattered towards the eye as the glow's light is (F from the weight table's halo rows). Per step the
+ * foot's geometry once (its blurred profiles times the irradiance factor over π s²) and F's height
+ * entry, then the bands with their weights at the foot. */
+static inline void lamp_halo_ray(__constant UwParams* p, __global const UwBand* bands, __constant UwLampParams* lp,
+                                 __global const UwLamp* L, __global const float* I, __global const float* ms_rows,
+                                 __global const float* ms_weights, int ms_orders, int ms_steps, float c_min,
+                                 const LampRay* v, LampSums* o) {
+  const float depth = p->bottom_depth;
+  if (!(depth > 0.0f)) return;
+  const int nb = lp->band_count;
+  const float3 lamp = v3(L->position), axis = v3(L->direction);
+  const int steps = uw_ms_glow_steps(ms_steps);
+  UwMsRay q;
+  uw_ms_ray(v->o, v->d, (float3)(lamp.x, -depth, lamp.z), lp->s_min, v->t_end, uw_ms_ray_cap(c_min), steps, &q);
+  if (!(q.dv > 0.0f)) return;
+  __global const float* halo_rows = uw_ms_halo_rows(ms_weights, nb, ms_orders);
+  int hm;
+  float hf;
+  uw_ms_halo_dir_index(-v->d.y, &hm, &hf);
+  float geo[UW_MS_MAX_ORDERS];
+  for (int j = 0; j < steps; ++j) {
+    const float t = uw_ms_ray_t(&q, j);
+    const float3 x = v->o + t * v->d;
+    const float z = x.y + depth;
+    if (!(z >= 0.0f)) continue;
+    const float3 w = (float3)(x.x, -depth, x.z) - lamp;
+    const float s = length(w);
+    if (!(s > 0.0f)) continue;
+    const float sc = fmax(s, lp->s_min), cos_i = -w.y / s;
+    const float dt = q.dv * sqrt(q.r * q.r + (t - q.a) * (t - q.a));
+    int ti, wj, zj;
+    float tf, wf, zf;
+    uw_ms_table_index(dot(w, axis) / s, &ti, &tf);
+    uw_ms_weight_index(ms_weights, s, &wj, &wf);
+    uw_ms_halo_z_index(ms_weights, z, &zj, &zf);
+    float gk = 1.0f;
+    for (int k = 1; k <= ms_orders; ++k) {
+      gk *= p->g;
+      geo[k - 1] = uw_ms_table_lerp(ms_rows + (k - 1) * UW_MS_TABLE, ti, tf) * uw_ms_irradiance_factor(gk, cos_i) /
+                   (SEASIM_PI * sc * sc);
+    }
+    for (int i = 0; i < nb; ++i) {
+      const float sa = bands[i].a, ss = bands[i].b, rho = bands[i].bottom_albedo;
+      if (!(ss > 0.0f) || !(rho > 0.0f)) continue;
+      float wn[UW_MS_MAX_ORDERS], E = 0.0f;
+      uw_ms_weights_at(ms_weights + UW_MS_WEIGHT_HEADER, i, ms_orders, wj, wf, wn);
+      for (int k = 1; k <= ms_orders; ++k)
+        if (geo[k - 1] > 0.0f) E += wn[k - 1] * geo[k - 1];
+      const float F = uw_ms_halo_at(halo_rows, i, hm, hf, zj, zf);
+      lamp_add_to(o, bands, i, I[i] * rho * exp(-(sa + ss) * t) * dt * E * F, 1, 0);
     }
   }
 }
@@ -306,6 +360,7 @@ static inline void lamp_orders_smooth(__constant UwParams* p, __global const UwB
   float c_min = bands[0].c;
   for (int i = 1; i < nb; ++i) c_min = fmin(c_min, bands[i].c);
   lamp_glow_ray(p, bands, glow, ms_weights, ms_orders, ms_steps, c_min, I, v, o);
+  lamp_halo_ray(p, bands, lp, L, I, ms_rows, ms_weights, ms_orders, ms_steps, c_min, v, o);
   float geo[UW_MS_MAX_ORDERS];
   UwMsRay q;
   uw_ms_ray(v->o, v->d, lamp, lp->s_min, v->t_end, uw_ms_ray_cap(c_min), ms_steps, &q);
@@ -554,7 +609,7 @@ __kernel void underwater_lamps_lattice(__constant UwParams* p, __global const Uw
                 .to_single = 0, .pixel = 0, .nb = nb, .band_sums = sums};
   for (int l = 0; l < lp->lamp_count; ++l)
     lamp_orders_smooth(p, bands, objects, count, lp, &lamps[l], lamp_spectra + l * nb,
-                       ms_table + l * ms_orders * UW_MS_TABLE, ms_glow + l * (4 + 2 * nb), ms_weights, ms_orders,
+                       ms_table + l * ms_orders * UW_MS_TABLE, ms_glow + l * (4 + nb), ms_weights, ms_orders,
                        ms_steps, &v, &o);
 }
 #endif
@@ -619,7 +674,7 @@ __kernel void underwater_lamps(__constant UwParams* p, __global const UwBand* ba
     __global const float* I = lamp_spectra + l * nb;
 #if SEASIM_LAMPS_ORDERS
     __global const float* ms_rows = ms_table + l * ms_orders * UW_MS_TABLE;
-    __global const float* glow = ms_glow + l * (4 + 2 * nb);
+    __global const float* glow = ms_glow + l * (4 + nb);
     lamp_orders_surface(p, bands, objects, count, lp, L, I, ms_orders, &v, &o);
     if (!smooth_done)
       lamp_orders_smooth(p, bands, objects, count, lp, L, I, ms_rows, glow, ms_weights, ms_orders, ms_steps, &v, &o);

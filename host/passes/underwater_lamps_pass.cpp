@@ -100,8 +100,7 @@ UnderwaterLampsPass::UnderwaterLampsPass(Device& device, const Scene& scene, con
 
 void UnderwaterLampsPass::orderTables(const UwParams& params, const std::vector<UwBand>& bands, bool create) {
   const LampsOrdersTables::Table& profiles = tables_->profiles(lamp_list_, params.g, config_.beta, config_.orders);
-  const LampsOrdersTables::Table& glow =
-      tables_->glow(lamp_list_, params, bands, lamp_s_min_, params.g, config_.kappa, config_.orders);
+  const LampsOrdersTables::Table& glow = tables_->glow(lamp_list_, params, bands, lamp_s_min_);
   const LampsOrdersTables::Table& weights = tables_->weights(bands, params.g, config_.kappa, config_.orders);
   onDevice("underwater_lamps pass tables", [&] {
     const auto upload = [&](cl::Buffer& buffer, const LampsOrdersTables::Table& t, int& on_device) {

@@ -43,20 +43,13 @@ const LampsOrdersTables::Table& LampsOrdersTables::profiles(const std::vector<Uw
 }
 
 const LampsOrdersTables::Table& LampsOrdersTables::glow(const std::vector<UwLamp>& lamps, const UwParams& params,
-                                                        const std::vector<UwBand>& bands, double s_min, double g,
-                                                        double kappa, int orders) {
-  std::string key = profiles_key_;  // the profiles it integrates
+                                                        const std::vector<UwBand>& bands, double s_min) {
+  std::string key;
+  put(key, lamps);
   put(key, params.bottom_depth);
   put(key, bands);
   put(key, s_min);
-  put(key, kappa);
-  refresh(glow_, glow_key_, std::move(key), [&] {
-    LampGlowModel model;
-    model.g = g;
-    model.kappa = kappa;
-    model.orders = orders;
-    return lampBottomGlowTable(lamps, params, bands, profiles_.values, s_min, model);
-  });
+  refresh(glow_, glow_key_, std::move(key), [&] { return lampBottomGlowTable(lamps, params, bands, s_min); });
   return glow_;
 }
 

@@ -22,9 +22,9 @@ class LampsOrdersTables {
   };
   // lampMsTable(lamps, g, beta, orders).
   const Table& profiles(const std::vector<UwLamp>& lamps, double g, double beta, int orders);
-  // lampBottomGlowTable over the current profiles (call profiles() first with the same lamps and g).
+  // lampBottomGlowTable(lamps, params, bands, s_min).
   const Table& glow(const std::vector<UwLamp>& lamps, const UwParams& params, const std::vector<UwBand>& bands,
-                    double s_min, double g, double kappa, int orders);
+                    double s_min);
   // lampMsWeights(bands, g, kappa, orders).
   const Table& weights(const std::vector<UwBand>& bands, double g, double kappa, int orders);
 

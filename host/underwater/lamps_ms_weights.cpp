@@ -7,9 +7,42 @@
 
 namespace seasim {
 
+namespace {
+
+// The bottom halo's F(z, μ_e) per band (uw_ms_halo_plane_from's sums, arranged so that the orders' weights
+// at each height and μ are computed once per band and the azimuthal phase integrals once per direction).
+void addHaloPlane(const std::vector<UwBand>& bands, double g, int orders, double s0, double u_max, float* out) {
+  constexpr int kMu = UW_MS_HALO_QUAD_MU, kDirs = UW_MS_HALO_DIRS, kZ = UW_MS_HALO_Z;
+  const int per_mu = orders + 1;
+  std::vector<double> az(static_cast<size_t>(kDirs) * kMu * per_mu);
+  for (int m = 0; m < kDirs; ++m) kmath_d::uw_ms_halo_azimuths(-1.0 + 2.0 * m / (kDirs - 1), g, orders, az.data() + m * kMu * per_mu);
+  std::vector<double> w(static_cast<size_t>(kZ) * kMu * per_mu);
+  for (size_t i = 0; i < bands.size(); ++i) {
+    const double sa = bands[i].a, ss = bands[i].b;
+    float* band = out + i * static_cast<size_t>(kDirs) * kZ;
+    if (!(ss > 0.0)) continue;  // F = 0 (the table starts zeroed)
+    for (int j = 0; j < kZ; ++j) {
+      const double z = s0 * std::expm1(j * u_max / (kZ - 1));
+      for (int k = 0; k < kMu; ++k)
+        kmath_d::uw_ms_glow_weights(sa, ss, z / ((k + 0.5) / kMu), orders, w.data() + (j * kMu + k) * per_mu);
+    }
+    for (int m = 0; m < kDirs; ++m)
+      for (int j = 0; j < kZ; ++j) {
+        double sum = 0.0;
+        const double* wj = w.data() + static_cast<size_t>(j) * kMu * per_mu;
+        const double* am = az.data() + static_cast<size_t>(m) * kMu * per_mu;
+        for (int e = 0; e < kMu * per_mu; ++e) sum += wj[e] * am[e];
+        band[m * kZ + j] = static_cast<float>(ss * sum / kMu);
+      }
+  }
+}
+
+}  // namespace
+
 std::size_t lampMsWeightsSize(std::size_t bands, int orders) {
-  // The lamp's orders 1..orders and the glow's 0..orders per band.
-  return UW_MS_WEIGHT_HEADER + bands * (2 * orders + 1) * static_cast<std::size_t>(UW_MS_WEIGHT_STEPS);
+  // The lamp's orders 1..orders and the glow's 0..orders per band, then the bottom halo's F per band.
+  return UW_MS_WEIGHT_HEADER + bands * (2 * orders + 1) * static_cast<std::size_t>(UW_MS_WEIGHT_STEPS) +
+         bands * static_cast<std::size_t>(UW_MS_HALO_DIRS) * UW_MS_HALO_Z;
 }
 
 std::vector<float> lampMsWeights(const std::vector<UwBand>& bands, double g, double kappa, int orders) {
@@ -38,6 +71,7 @@ std::vector<float> lampMsWeights(const std::vector<UwBand>& bands, double g, dou
       for (int n = 0; n <= orders; ++n)
         glow[(i * (orders + 1) + n) * static_cast<size_t>(steps) + j] = static_cast<float>(w[n]);
     }
+  addHaloPlane(bands, g, orders, s0, u_max, glow + bands.size() * (orders + 1) * static_cast<size_t>(steps));
   return table;
 }
 

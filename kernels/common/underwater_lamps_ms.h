@@ -35,10 +35,11 @@
  *
  * The bottom's glow. The lit bottom sends the lamp's light back into the water, where it scatters
  * towards the eye (with the lamp 1 m over a bottom of albedo 0.5 the beam's water without it was
- * 0.80-0.86 of the path tracer, 0.92-0.97 over a black bottom). The lit patch is taken as one
- * Lambertian source at its irradiance-weighted centre c, of intensity J cos ψ about the bottom's normal
- * (J = ∫ ρ E/π dA, ψ from the normal), softened by the patch's RMS radius R: 1/(s² + R²) instead of
- * 1/s² (exact on the axis of a uniformly lit disk). Its light scatters in orders along straight paths
+ * 0.80-0.86 of the path tracer, 0.92-0.97 over a black bottom). The patch the lamp's direct light lights
+ * is taken as one Lambertian source at its irradiance-weighted centre c, of intensity J cos ψ about the
+ * bottom's normal (J = ∫ ρ E_direct/π dA, ψ from the normal), softened by the patch's RMS radius R:
+ * 1/(s² + R²) instead of 1/s² (exact on the axis of a uniformly lit disk). The orders' light on the
+ * bottom spreads far wider than the patch; it is the bottom's halo below, taken where it lands. Its light scatters in orders along straight paths
  * (W_n with ℓ = s: the source is already diffuse, its cosine lobe left unblurred), order 0 included:
  *   φ_glow(x) = J cos ψ Σ_{n>=0} w_n(s) / (s² + R²),
  * scattered towards the eye by HG(g^{n+1}) without its forward peak (delta-M: that light, from the
@@ -400,6 +401,138 @@ SEASIM_FN real uw_ms_glow_surface(real3 p, real3 n_s, real3 c, real3 up, real ra
   real wn[UW_MS_MAX_ORDERS + 1];
   uw_ms_glow_weights(sigma_a, sigma_s, length(p - c), orders, wn);
   return uw_ms_glow_surface_weighted(p, n_s, c, up, radius, g, orders, wn, order0);
+}
+
+/* E₂(x) = ∫_1^∞ e^{-x t}/t² dt = ∫_0^1 e^{-x/μ} dμ (A&S 5.1.4), x >= 0; E₂(0) = 1. From E₁ by
+ * E₂ = e^{-x} − x E₁ (A&S 5.1.14): for x < 1, E₁ = −ln x + A&S 5.1.53's polynomial (|ε| < 2e-7); for
+ * x >= 1, x e^x E₁ = A&S 5.1.56's rational (|ε| < 2e-8), so E₂ = e^{-x} (den − num)/den with den − num's
+ * coefficients b_k − a_k taken exactly (no cancellation of 1 − x e^x E₁ at large x), written in 1/x so
+ * that nothing overflows. */
+SEASIM_FN real uw_ms_expint2(real x) {
+  if (!(x > R(0.0))) return R(1.0);
+  if (x < R(1.0)) {
+    const real e1 = -log(x) + (R(-0.57721566) +
+                               x * (R(0.99999193) + x * (R(-0.24991055) + x * (R(0.05519968) + x * (R(-0.00976004) + x * R(0.00107857))))));
+    return exp(-x) - x * e1;
+  }
+  const real y = R(1.0) / x;
+  const real num = R(0.9999936053) + y * (R(7.5739391756) + y * (R(12.4648921902) + y * R(3.6907231885)));
+  const real den = R(1.0) + y * (R(9.5733223454) + y * (R(25.6329561486) + y * (R(21.0996530827) + y * R(3.9584969228))));
+  return exp(-x) * y * num / den;
+}
+
+/* The bottom's halo seen from the water above it. The orders' light lands on the bottom well beyond the
+ * lit patch; that sand sends it back up, and the water above it scatters it towards the eye. Lumped
+ * into the glow's one source at the patch's centre, it came from metres away (1/s², e^{-σ_a s}):
+ * rov_lights' far water above the sand was 6.5 times too dark (docs/journal/lamps_orders.md). So the
+ * glow's source is the patch's direct light alone, and the halo's light is taken where it is: the water
+ * at x, height z over the bottom, sees the bottom as a uniform Lambertian plane of its foot f's radiance
+ * ρ Ê(f) (per unit I; Ê = uw_ms_surface's E/π, orders n >= 1), whose light reaches x as the glow's
+ * does, in orders along straight paths (uw_ms_glow_weights) scattered towards the eye by the glow's
+ * phase (uw_ms_glow_phase: HG(g^{n+1}) without its forward peak). Over the plane, with μ = z/s the
+ * cosine of the light's path to the vertical and φ its azimuth (dA cos θ/s² = dμ dφ):
+ *   F(z, μ_e) = σ_s ∫_0^1 dμ Σ_{n>=0} w_n(z/μ) ∫_0^{2π} p_glow(cos α; g^{n+1}) dφ,
+ *   cos α = μ μ_e + √(1 − μ²) √(1 − μ_e²) cos φ   (μ_e: the vertical cosine of the light's way to the eye),
+ *   L_halo = I ∫_0^S e^{-σ_t t} ρ Ê(f_t) F(z_t, μ_e) dt.
+ * No knob: the plane shares the glow's model, nothing fitted. F is finite at z = 0 (w_0 = 1 there) and
+ * falls as the orders' weights far above the bottom. With g = 0 every phase is 1/(4π) and the orders'
+ * weights sum to e^{-σ_a s}, so F = σ_s E₂(σ_a z)/2 (A&S 5.1.4): the unit test's closed form. */
+#define UW_MS_HALO_QUAD_MU 64  /* midpoints in μ over [0, 1] */
+#define UW_MS_HALO_QUAD_PHI 32 /* midpoints in φ over [0, π] (the integrand is even in φ) */
+
+/* ∫_0^{2π} p_glow(cos α; G) dφ at μ, μ_e. G ≤ 1 puts the glow's HG at G/(1 + G) ≤ 1/2: smooth in φ. */
+SEASIM_FN real uw_ms_halo_azimuth(real mu, real mu_e, real G) {
+  const real ss = sqrt(fmax(R(1.0) - mu * mu, R(0.0)) * fmax(R(1.0) - mu_e * mu_e, R(0.0)));
+  const real dphi = SEASIM_PI / (real)UW_MS_HALO_QUAD_PHI;
+  real sum = R(0.0);
+  for (int k = 0; k < UW_MS_HALO_QUAD_PHI; ++k)
+    sum += uw_ms_glow_phase(clamp(mu * mu_e + ss * cos(((real)k + R(0.5)) * dphi), R(-1.0), R(1.0)), G);
+  return R(2.0) * dphi * sum;
+}
+
+/* Every μ midpoint's azimuthal phase integrals at μ_e, az[k (orders + 1) + n] for order n's G = g^{n+1}
+ * (they do not depend on the band: done once per direction). */
+SEASIM_FN void uw_ms_halo_azimuths(real mu_e, real g, int orders, real* az) {
+  for (int k = 0; k < UW_MS_HALO_QUAD_MU; ++k) {
+    const real mu = ((real)k + R(0.5)) / (real)UW_MS_HALO_QUAD_MU;
+    real G = g;
+    for (int n = 0; n <= orders; ++n, G *= g) az[k * (orders + 1) + n] = uw_ms_halo_azimuth(mu, mu_e, G);
+  }
+}
+
+/* F(z, μ_e) of one band from uw_ms_halo_azimuths' az. */
+SEASIM_FN real uw_ms_halo_plane_from(real z, real sigma_a, real sigma_s, int orders, const real* az) {
+  if (!(sigma_s > R(0.0))) return R(0.0);
+  real w[UW_MS_MAX_ORDERS + 1];
+  const real dmu = R(1.0) / (real)UW_MS_HALO_QUAD_MU;
+  real sum = R(0.0);
+  for (int k = 0; k < UW_MS_HALO_QUAD_MU; ++k) {
+    const real mu = ((real)k + R(0.5)) * dmu;
+    uw_ms_glow_weights(sigma_a, sigma_s, fmax(z, R(0.0)) / mu, orders, w);
+    for (int n = 0; n <= orders; ++n) sum += w[n] * az[k * (orders + 1) + n];
+  }
+  return sigma_s * dmu * sum;
+}
+
+/* L_halo per unit I(λ) for one band (the bottom at y = -depth, albedo ρ), from F evaluated exactly at
+ * every step: the double reference of the kernel's lamp_halo_ray, which reads F from its table and takes
+ * the same steps (t = a + r sinh v about the lamp, the glow's count, uw_ms_ray). */
+SEASIM_FN real uw_ms_halo_inscatter(real3 o, real3 d, real depth, real albedo, real3 lamp, real3 axis, real s_min, real t_end,
+                                    real t_cap, real sigma_a, real sigma_s, real g, real kappa,
+                                    const SEASIM_GLOBAL float* table, int orders, int steps) {
+  if (!(depth > R(0.0)) || !(sigma_s > R(0.0)) || !(albedo > R(0.0))) return R(0.0);
+  UwMsRay q;
+  uw_ms_ray(o, d, MAKE_REAL3(lamp.x, -depth, lamp.z), s_min, t_end, t_cap, steps, &q);
+  if (!(q.dv > R(0.0))) return R(0.0);
+  real az[UW_MS_HALO_QUAD_MU * (UW_MS_MAX_ORDERS + 1)];
+  uw_ms_halo_azimuths(-d.y, g, orders, az);
+  const real3 up = MAKE_REAL3(0.0, 1.0, 0.0);
+  real acc = R(0.0);
+  for (int j = 0; j < steps; ++j) {
+    const real t = uw_ms_ray_t(&q, j);
+    const real3 x = o + t * d;
+    const real z = x.y + depth;
+    if (!(z >= R(0.0))) continue;
+    const real dt = q.dv * sqrt(q.r * q.r + (t - q.a) * (t - q.a));
+    const real E = uw_ms_surface(MAKE_REAL3(x.x, -depth, x.z), up, lamp, axis, s_min, sigma_a, sigma_s, g, kappa, table, orders);
+    acc += exp(-(sigma_a + sigma_s) * t) * dt * E * uw_ms_halo_plane_from(z, sigma_a, sigma_s, orders, az);
+  }
+  return albedo * acc;
+}
+
+/* The kernel's table of F: after the glow's weights in the orders' weight table (UW_MS_WEIGHT_*), per
+ * band UW_MS_HALO_DIRS rows over μ_e in [-1, 1] (uniform), each UW_MS_HALO_Z heights uniform in
+ * u = ln(1 + z/s0) over the weights' own range (s0 and the range from the table's header). F is smooth in
+ * both: a height step is ~2 % of z far up, ~s0/20 near the bottom. */
+#define UW_MS_HALO_DIRS 33
+#define UW_MS_HALO_Z 256
+
+SEASIM_FN const SEASIM_GLOBAL float* uw_ms_halo_rows(const SEASIM_GLOBAL float* table, int nb, int orders) {
+  return uw_ms_glow_weight_rows(table, nb, orders) + nb * (orders + 1) * UW_MS_WEIGHT_STEPS;
+}
+
+/* The row of direction μ_e: index *m and weight *f of row *m + 1 (once per view ray). */
+SEASIM_FN void uw_ms_halo_dir_index(real mu_e, int* m, real* f) {
+  const real u = clamp((mu_e + R(1.0)) * R(0.5) * (real)(UW_MS_HALO_DIRS - 1), R(0.0), (real)(UW_MS_HALO_DIRS - 1));
+  *m = (int)u < UW_MS_HALO_DIRS - 2 ? (int)u : UW_MS_HALO_DIRS - 2;
+  *f = u - (real)*m;
+}
+
+/* The entry of height z: index *j and weight *f of entry *j + 1 (the weights' u, scaled to UW_MS_HALO_Z). */
+SEASIM_FN void uw_ms_halo_z_index(const SEASIM_GLOBAL float* table, real z, int* j, real* f) {
+  const real per_u = (real)table[1] * (real)(UW_MS_HALO_Z - 1) / (real)(UW_MS_WEIGHT_STEPS - 1);
+  const real u = clamp(log1p(fmax(z, R(0.0)) * (real)table[0]) * per_u, R(0.0), (real)(UW_MS_HALO_Z - 1));
+  *j = (int)u < UW_MS_HALO_Z - 2 ? (int)u : UW_MS_HALO_Z - 2;
+  *f = u - (real)*j;
+}
+
+/* F of band i from the table, bilinear. */
+SEASIM_FN real uw_ms_halo_at(const SEASIM_GLOBAL float* rows, int band, int m, real fm, int j, real fz) {
+  const SEASIM_GLOBAL float* r0 = rows + (band * UW_MS_HALO_DIRS + m) * UW_MS_HALO_Z;
+  const SEASIM_GLOBAL float* r1 = r0 + UW_MS_HALO_Z;
+  const real a = (R(1.0) - fz) * (real)r0[j] + fz * (real)r0[j + 1];
+  const real b = (R(1.0) - fz) * (real)r1[j] + fz * (real)r1[j + 1];
+  return (R(1.0) - fm) * a + fm * b;
 }
 
 /* The lit bottom blurred on its way to the eye. T_view's k-th term sees the surface through light

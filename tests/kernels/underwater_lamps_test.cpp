@@ -92,12 +92,7 @@ seasim::Image cpuDouble(const Scene& scene, int planes, int subplanes, bool delt
   const seasim::UnderwaterLamps lamps = seasim::makeUnderwaterLamps(scene, grid);
   const seasim::UnderwaterLampsPass::Config cfg = seasim::UnderwaterLampsPass::configFromScene(scene);
   const std::vector<float> ms_table = seasim::lampMsTable(lamps.lamps, setup.params.g, cfg.beta, cfg.orders);
-  seasim::LampGlowModel glow_model;
-  glow_model.g = setup.params.g;
-  glow_model.kappa = cfg.kappa;
-  glow_model.orders = cfg.orders;
-  const std::vector<float> glow =
-      seasim::lampBottomGlowTable(lamps.lamps, setup.params, setup.bands, ms_table, lamps.params.s_min, glow_model);
+  const std::vector<float> glow = seasim::lampBottomGlowTable(lamps.lamps, setup.params, setup.bands, lamps.params.s_min);
   const int glow_stride = seasim::lampGlowStride(static_cast<int>(setup.bands.size()));
   const UwParams& p = setup.params;
   seasim::Image img;
@@ -135,6 +130,10 @@ seasim::Image cpuDouble(const Scene& scene, int planes, int subplanes, bool delt
               v += gl[4 + i] * kd::uw_ms_glow_inscatter(o, d, kd::real3{gl[0], gl[1], gl[2]}, kd::real3{0.0, 1.0, 0.0},
                                                         gl[3], t_end, kd::uw_ms_ray_cap(c_min), b.a, b.b, p.g,
                                                         cfg.orders, kd::uw_ms_glow_steps(cfg.ms_steps), nullptr);
+            // The bottom's halo: its F exact at every step (the kernel reads it from its table).
+            v += kd::uw_ms_halo_inscatter(o, d, p.bottom_depth, b.bottom_albedo, lamp, axis, lamps.params.s_min, t_end,
+                                          kd::uw_ms_ray_cap(c_min), b.a, b.b, p.g, cfg.kappa, rows, cfg.orders,
+                                          kd::uw_ms_glow_steps(cfg.ms_steps));
             if (mat == UW_MAT_BOTTOM) {
               const kd::real3 P = o + S * d;
               const double direct =

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "passes/underwater_lamps_tables.h"
+#include "underwater/lamps_bottom_glow.h"
 #include "underwater/lamps_ms_table.h"
 #include "underwater/lamps_ms_weights.h"
 
@@ -37,7 +38,7 @@ TEST(UnderwaterLampsTables, EachTableIsBuiltAgainOnlyWhenItsInputsChange) {
   p.bottom_depth = 7.0f;
   const auto build = [&](double g) {
     const int a = t.profiles(lamps, g, 0.8, 4).generation;
-    const int b = t.glow(lamps, p, bands, 0.01, g, 0.75, 4).generation;
+    const int b = t.glow(lamps, p, bands, 0.01).generation;
     const int c = t.weights(bands, g, 0.75, 4).generation;
     return std::vector<int>{a, b, c};
   };
@@ -52,11 +53,12 @@ TEST(UnderwaterLampsTables, EachTableIsBuiltAgainOnlyWhenItsInputsChange) {
   bands[1].b = 0.5f;
   bands[1].c = 0.7f;
   EXPECT_EQ(build(0.9), (std::vector<int>{1, 3, 2}));
-  // Another g: all three.
-  EXPECT_EQ(build(0.8), (std::vector<int>{2, 4, 3}));
+  // Another g: the profiles and the weights (the glow is the direct light alone: g does not enter it).
+  EXPECT_EQ(build(0.8), (std::vector<int>{2, 3, 3}));
   // What they hold is what the builders make.
   EXPECT_EQ(t.profiles(lamps, 0.8, 0.8, 4).values, seasim::lampMsTable(lamps, 0.8, 0.8, 4));
   EXPECT_EQ(t.weights(bands, 0.8, 0.75, 4).values, seasim::lampMsWeights(bands, 0.8, 0.75, 4));
+  EXPECT_EQ(t.glow(lamps, p, bands, 0.01).values, seasim::lampBottomGlowTable(lamps, p, bands, 0.01));
 }
 
 }  // namespace
