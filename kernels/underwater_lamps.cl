@@ -517,17 +517,24 @@ static inline int lamp_near_view(__constant UwLampParams* lp, __global const UwL
   return 0;
 }
 
-/* Whether every lamp's cone profile (uw_lamp_profile) at each of the n bottom points q[k] is within 10 % of
- * its peak of the profile at P: the bottom's direct light blurred on its way to the eye
- * (uw_ms_blurred_bottom) is nearly as sharp as the lit patch's edge in forward-scattering water. */
+/* Whether every lamp's cone profile (uw_lamp_profile) at P is within 5 % of its peak of the bilinear read
+ * (weights wq) of the profiles at the n bottom points q[k]: the bottom's direct light blurred on its way
+ * to the eye (uw_ms_blurred_bottom) is nearly as sharp as the lit patch's edge in forward-scattering
+ * water, so where the profile bends within the cell (a hard edge, the ends of a soft edge's ramp) a
+ * bilinear read of the light would not follow it either. Along a soft edge's ramp it does: asking only
+ * that the neighbours' profiles be alike (within 10 %) sent the whole ramp to per-pixel evaluation,
+ * 9.5 % of rov_lights' pixels, for 0.01 % of rel. L2. */
 static inline int lamp_profiles_alike(__constant UwLampParams* lp, __global const UwLamp* lamps, float3 P,
-                                      const float3* q, int n) {
+                                      const float3* q, const float* wq, int n) {
+  float wsum = 0.0f;
+  for (int k = 0; k < n; ++k) wsum += wq[k];
   for (int l = 0; l < lp->lamp_count; ++l) {
     __global const UwLamp* L = &lamps[l];
     const float3 lamp = v3(L->position), axis = v3(L->direction);
     const float at_P = uw_lamp_profile(P, lamp, axis, L->cos_cone, L->cos_inner);
-    for (int k = 0; k < n; ++k)
-      if (fabs(at_P - uw_lamp_profile(q[k], lamp, axis, L->cos_cone, L->cos_inner)) > 0.1f) return 0;
+    float interp = 0.0f;
+    for (int k = 0; k < n; ++k) interp += wq[k] * uw_lamp_profile(q[k], lamp, axis, L->cos_cone, L->cos_inner);
+    if (fabs(at_P - interp / wsum) > 0.05f) return 0;
   }
   return 1;
 }
@@ -551,6 +558,7 @@ static inline int lamp_lattice_read(__constant UwParams* p, __global const UwBan
   float w[4];
   int at[4];
   float3 bottom_points[4]; /* the bottom neighbours' hits, for the lit patch's edge */
+  float bottom_w[4];
   int bottoms = 0;
   float wsum = 0.0f;
   for (int c = 0; c < 4; ++c) {
@@ -567,14 +575,17 @@ static inline int lamp_lattice_read(__constant UwParams* p, __global const UwBan
         !(fabs(gq.x - v->S) <= 0.05f * v->S && dot((float3)(gq.y, gq.z, gq.w), v->n) >= 0.995f))
       return 0;
     if (same && v->bottom && w_c > 0.0f)
+    {
+      bottom_w[bottoms] = w_c;
       bottom_points[bottoms++] = v->o + gq.x * uw_screen_dir(p, (xq + 0.5f) / p->width, (yq + 0.5f) / p->height);
+    }
     w[c] = same ? w_c : 0.0f;
     at[c] = (j * map_w + i) * LAMP_LATTICE_STRIDE(nb);
     wsum += w[c];
   }
   /* The lit patch's edge in the cell: the pixel evaluates itself (its neighbours on one side of the edge
    * alone would carry that side's light across it). */
-  if (bottoms > 0 && !lamp_profiles_alike(lp, lamps, v->o + v->S * v->d, bottom_points, bottoms)) return 0;
+  if (bottoms > 0 && !lamp_profiles_alike(lp, lamps, v->o + v->S * v->d, bottom_points, bottom_w, bottoms)) return 0;
   if (!(wsum > 0.0f)) return 0;
   for (int c = 0; c < 4; ++c) w[c] /= wsum;
   for (int i = 0; i < nb; ++i) {
