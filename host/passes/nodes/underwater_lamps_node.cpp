@@ -127,7 +127,9 @@ PassDescriptor underwaterLampsDescriptor() {
                                         {"spotlights (count)", "spectral.count"}, {lights, nb}}};
     if (p.featuresAs<UnderwaterLampsFeatures>().orders) {
       const double orders = modelKey(s, "quality.lamps_orders");
-      out.push_back({p.name, "the orders' weights per band, order and distance (underwater/lamps_ms_weights.h)",
+      out.push_back({p.name,
+                     "the orders' weights per band, order and distance, and the bottom halo's light per band, height "
+                     "and direction (underwater/lamps_ms_weights.h)",
                      4.0 * lampMsWeightsSize(s.spectral.count, static_cast<int>(orders)),
                      {"spectral.count", "quality.lamps_orders"}, {nb, orders}});
     }
