@@ -525,6 +525,7 @@ std::string writeSceneReference(const Scene& scene, const ReferenceCmd& cmd, con
   options.all_orders = cmd.all_orders;
   options.max_bounces = cmd.max_bounces;
   options.lamp_mis = !cmd.plain_lamp_sampling;
+  options.pixel_centre = cmd.pixel_centre;
   options.sun_single_subpixels = cmd.sun_single_quadrature ? cmd.subpixels : 0;
   const bool tty = isatty(fileno(stderr));
   // The path tracer's samples per pixel; its total is known at the first call.
@@ -550,10 +551,11 @@ std::string writeSceneReference(const Scene& scene, const ReferenceCmd& cmd, con
     }
     writeSettingsSidecar(out, scene, "seasim reference (path tracer)");
     std::snprintf(line, sizeof line,
-                  "reference %s: %d paths per pixel (%s, seed %u), %.1f ms on %s; noise: mean standard error %.3g "
+                  "reference %s: %d paths per pixel%s (%s, seed %u), %.1f ms on %s; noise: mean standard error %.3g "
                   "(image mean %.3g +- %.3g; from %d blocks of paths, worth %.0f independent paths per pixel), "
                   "per pixel in %s",
-                  out.c_str(), r.steps, r.max_bounces == 1 ? "single scattering" : "multiple scattering", r.seed, r.ms,
+                  out.c_str(), r.steps, cmd.pixel_centre ? " through its centre" : "",
+                  r.max_bounces == 1 ? "single scattering" : "multiple scattering", r.seed, r.ms,
                   r.device_name.c_str(), r.mean_std_error, r.image_mean, r.image_mean_std_error, r.blocks,
                   r.effective_samples, se_path.c_str());
     return line;

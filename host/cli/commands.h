@@ -76,6 +76,7 @@ struct ReferenceCmd {
   bool all_orders = false;  // the sea seen from above: the path tracer refracting in, not 000's quadrature
   int max_bounces = 0;      // path tracer: scattering vertices per path (0: its default, 64)
   bool plain_lamp_sampling = false;  // path tracer: lamps by the equiangular sample alone (no MIS)
+  bool pixel_centre = false;         // path tracer: every path through the pixel's centre
   bool sun_single_quadrature = false;  // under water: the sun beam's single scattering by quadrature
   int subpixels = 4;                   // its rays per pixel: subpixels²
 };

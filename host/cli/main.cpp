@@ -156,6 +156,10 @@ int main(int argc, char** argv) {
                       "Path tracer: see spotlights by one equiangular sample per path segment alone, instead of one "
                       "inside the lamp's cone combined with next-event estimation at the free-flight vertex (both "
                       "unbiased; for measuring the combination's variance)");
+  reference->add_flag("--pixel-centre", ref_cmd.pixel_centre,
+                      "Path tracer: every path through the pixel's centre instead of over its area (to compare "
+                      "with a fast model pixel by pixel where the image changes within a pixel, as `lamp-regions` "
+                      "does)");
   reference->add_flag("--sun-single-quadrature", ref_cmd.sun_single_quadrature,
                       "Under water with underwater.multiple_scattering = false: the sun beam's single scattering by "
                       "deterministic quadrature (CPU, double) over each pixel's area instead of the path tracer");

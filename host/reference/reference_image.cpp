@@ -112,6 +112,7 @@ ReferenceImage renderReference(const Scene& scene, const ReferenceOptions& optio
     settings.waves = waves ? &*waves : nullptr;
     settings.sun_angular_radius = scene.sun.angular_radius;
     settings.lamp_mis = options.lamp_mis;
+    settings.jitter = !options.pixel_centre;
     settings.progress = options.progress;
     // A phase other than HG (`[water] phase`) is traced exactly from its tables; HG keeps its closed form.
     if (scene.water.phase != "hg") settings.phase_tables = waterPhase(scene.water).pathTracerTables();

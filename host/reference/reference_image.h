@@ -19,6 +19,7 @@ struct ReferenceOptions {
                             // (the scene's sky, its flat or height-field floor, FFT waves as sea_waves.h)
   int max_bounces = 0;      // path tracer: scattering vertices per path (0: its default, 64)
   bool lamp_mis = true;     // path tracer: UnderwaterReferenceSettings::lamp_mis
+  bool pixel_centre = false;  // path tracer: every path through the pixel's centre (no jitter over its area)
   int sun_single_subpixels = 0;  // > 0, under water without multiple scattering: the sun beam's single
                                  // scattering by quadrature (froxelBruteForcePixelArea), this many² rays per
                                  // pixel, instead of the path tracer
