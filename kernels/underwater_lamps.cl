@@ -235,8 +235,8 @@ static inline void lamp_glow_ray(__constant UwParams* p, __global const UwBand* 
 /* The bottom's halo along the view ray (common/underwater_lamps_ms.h, uw_ms_halo_inscatter): the orders'
  * light on the bottom right below each step, sent back up as from a uniform Lambertian plane and
  * scattered towards the eye as the glow's light is (F from the weight table's halo rows). Per step the
- * foot's geometry once (its blurred profiles times the irradiance factor over π s²) and F's height
- * entry, then the bands with their weights at the foot. */
+ * foot's geometry once (uw_ms_surface_geometry) and F's height entry, then the bands with their weights
+ * at the foot. */
 static inline void lamp_halo_ray(__constant UwParams* p, __global const UwBand* bands, __constant UwLampParams* lp,
                                  __global const UwLamp* L, __global const float* I, __global const float* ms_rows,
                                  __global const float* ms_weights, int ms_orders, int ms_steps, float c_min,
@@ -244,7 +244,7 @@ static inline void lamp_halo_ray(__constant UwParams* p, __global const UwBand* 
   const float depth = p->bottom_depth;
   if (!(depth > 0.0f)) return;
   const int nb = lp->band_count;
-  const float3 lamp = v3(L->position), axis = v3(L->direction);
+  const float3 lamp = v3(L->position), axis = v3(L->direction), up = (float3)(0.0f, 1.0f, 0.0f);
   const int steps = uw_ms_glow_steps(ms_steps);
   UwMsRay q;
   uw_ms_ray(v->o, v->d, (float3)(lamp.x, -depth, lamp.z), lp->s_min, v->t_end, uw_ms_ray_cap(c_min), steps, &q);
@@ -259,29 +259,20 @@ static inline void lamp_halo_ray(__constant UwParams* p, __global const UwBand* 
     const float3 x = v->o + t * v->d;
     const float z = x.y + depth;
     if (!(z >= 0.0f)) continue;
-    const float3 w = (float3)(x.x, -depth, x.z) - lamp;
-    const float s = length(w);
+    const float s = uw_ms_surface_geometry((float3)(x.x, -depth, x.z), up, lamp, axis, lp->s_min, p->g, ms_rows,
+                                           ms_orders, geo);
     if (!(s > 0.0f)) continue;
-    const float sc = fmax(s, lp->s_min), cos_i = -w.y / s;
-    const float dt = q.dv * sqrt(q.r * q.r + (t - q.a) * (t - q.a));
-    int ti, wj, zj;
-    float tf, wf, zf;
-    uw_ms_table_index(dot(w, axis) / s, &ti, &tf);
+    const float dt = uw_ms_ray_dt(&q, t);
+    int wj, zj;
+    float wf, zf;
     uw_ms_weight_index(ms_weights, s, &wj, &wf);
     uw_ms_halo_z_index(ms_weights, z, &zj, &zf);
-    float gk = 1.0f;
-    for (int k = 1; k <= ms_orders; ++k) {
-      gk *= p->g;
-      geo[k - 1] = uw_ms_table_lerp(ms_rows + (k - 1) * UW_MS_TABLE, ti, tf) * uw_ms_irradiance_factor(gk, cos_i) /
-                   (SEASIM_PI * sc * sc);
-    }
     for (int i = 0; i < nb; ++i) {
       const float sa = bands[i].a, ss = bands[i].b, rho = bands[i].bottom_albedo;
       if (!(ss > 0.0f) || !(rho > 0.0f)) continue;
-      float wn[UW_MS_MAX_ORDERS], E = 0.0f;
+      float wn[UW_MS_MAX_ORDERS];
       uw_ms_weights_at(ms_weights + UW_MS_WEIGHT_HEADER, i, ms_orders, wj, wf, wn);
-      for (int k = 1; k <= ms_orders; ++k)
-        if (geo[k - 1] > 0.0f) E += wn[k - 1] * geo[k - 1];
+      const float E = uw_ms_surface_sum(geo, wn, ms_orders);
       const float F = uw_ms_halo_at(halo_rows, i, hm, hf, zj, zf);
       lamp_add_to(o, bands, i, I[i] * rho * exp(-(sa + ss) * t) * dt * E * F, 1, 0);
     }
@@ -335,9 +326,11 @@ static inline void lamp_orders_smooth(__constant UwParams* p, __global const UwB
   if (v->lit_surface) {
     const float3 P = v->o + v->S * v->d;
     UwMsBlur blur[UW_MS_MAX_ORDERS];
+    float geo[UW_MS_MAX_ORDERS];
+    const float s_P = uw_ms_surface_geometry(P, v->n, lamp, axis, lp->s_min, p->g, ms_rows, ms_orders, geo);
     int wj;
     float wf;
-    uw_ms_weight_index(ms_weights, length(P - lamp), &wj, &wf);
+    uw_ms_weight_index(ms_weights, s_P, &wj, &wf);
     if (v->bottom)
       for (int k = 1; k <= ms_orders; ++k)
         blur[k - 1] = uw_ms_blurred_bottom(v->o, v->d, p->bottom_depth, lamp, axis, L->cos_cone, L->cos_inner, lp->s_min,
@@ -345,8 +338,7 @@ static inline void lamp_orders_smooth(__constant UwParams* p, __global const UwB
     for (int i = 0; i < nb; ++i) {
       float wn[UW_MS_MAX_ORDERS];
       uw_ms_weights_at(ms_weights + UW_MS_WEIGHT_HEADER, i, ms_orders, wj, wf, wn);
-      const float ms =
-          bands[i].b > 0.0f ? uw_ms_surface_weighted(P, v->n, lamp, axis, lp->s_min, p->g, ms_rows, ms_orders, wn) : 0.0f;
+      const float ms = bands[i].b > 0.0f && s_P > 0.0f ? uw_ms_surface_sum(geo, wn, ms_orders) : 0.0f;
       float view[UW_MS_MAX_ORDERS + 1];
       const float T = uw_ms_view_terms(bands[i].a, bands[i].b, p->g, v->S, ms_orders, view);
       /* The bottom's direct light blurred on its way to the eye: T_view's terms k >= 1 see the spread. */
@@ -574,8 +566,7 @@ static inline int lamp_lattice_read(__constant UwParams* p, __global const UwBan
     if (same && mat >= 0 && w_c > 0.0f &&
         !(fabs(gq.x - v->S) <= 0.05f * v->S && dot((float3)(gq.y, gq.z, gq.w), v->n) >= 0.995f))
       return 0;
-    if (same && v->bottom && w_c > 0.0f)
-    {
+    if (same && v->bottom && w_c > 0.0f) {
       bottom_w[bottoms] = w_c;
       bottom_points[bottoms++] = v->o + gq.x * uw_screen_dir(p, (xq + 0.5f) / p->width, (yq + 0.5f) / p->height);
     }

@@ -235,16 +235,21 @@ SEASIM_FN void uw_ms_ray(real3 o, real3 d, real3 lamp, real s_min, real t_end, r
 
 SEASIM_FN real uw_ms_ray_t(const UwMsRay* q, int j) { return q->a + q->r * sinh(q->v0 + ((real)j + R(0.5)) * q->dv); }
 
-/* dt / max(s, s_min)² at ray parameter t with distance s: dv sqrt(r² + (t - a)²) / max(s, s_min)². */
+/* The step's dt at ray parameter t: dv dt/dv = dv sqrt(r² + (t - a)²). */
+SEASIM_FN real uw_ms_ray_dt(const UwMsRay* q, real t) {
+  const real x = t - q->a;
+  return q->dv * sqrt(q->r * q->r + x * x);
+}
+
+/* dt / max(s, s_min)² at ray parameter t with distance s. */
 SEASIM_FN real uw_ms_ray_weight(const UwMsRay* q, real t, real s, real s_min) {
-  const real x = t - q->a, sc = fmax(s, s_min);
-  return q->dv * sqrt(q->r * q->r + x * x) / (sc * sc);
+  const real sc = fmax(s, s_min);
+  return uw_ms_ray_dt(q, t) / (sc * sc);
 }
 
 /* dt / (s² + R²) at ray parameter t: the bottom glow's softened source (radius R). */
 SEASIM_FN real uw_ms_glow_ray_weight(const UwMsRay* q, real t, real s, real radius) {
-  const real x = t - q->a;
-  return q->dv * sqrt(q->r * q->r + x * x) / (s * s + radius * radius);
+  return uw_ms_ray_dt(q, t) / (s * s + radius * radius);
 }
 
 /* The ray's cap: 30 optical depths of the least extinction (e^{-30} = 1e-13), 1e4 m in clear water. */
@@ -276,25 +281,44 @@ SEASIM_FN real uw_ms_inscatter(real3 o, real3 d, real3 lamp, real3 axis, real s_
   return acc;
 }
 
-/* The irradiance orders n >= 1 give a surface point p of normal n_s, per unit I(λ), divided by π (so
- * times the albedo it is the Lambertian radiance leaving p; T_view not applied), given the orders'
- * weights at s = |p - lamp|, wn[n - 1] = W_n(s) (exact: uw_ms_surface; the kernel: its table). */
-SEASIM_FN real uw_ms_surface_weighted(real3 p, real3 n_s, real3 lamp, real3 axis, real s_min, real g,
-                                      const SEASIM_GLOBAL float* table, int orders, const real* wn) {
+/* The band-independent part of the irradiance orders n >= 1 give a surface point p of normal n_s, per
+ * unit I(λ), divided by π: geo[n - 1] = P_n(ψ) (g^n max(cos θ_i, 0) + (1 - g^n)/4) / (π max(s, s_min)²)
+ * (0 where the profile is). Returns s = |p - lamp|; at the lamp (s = 0) nothing is written. */
+SEASIM_FN real uw_ms_surface_geometry(real3 p, real3 n_s, real3 lamp, real3 axis, real s_min, real g,
+                                      const SEASIM_GLOBAL float* table, int orders, real* geo) {
   const real3 w = p - lamp;
   const real s = length(w);
   if (!(s > R(0.0))) return R(0.0);
   const real cos_psi = dot(w, axis) / s;
   const real cos_i = -dot(w, n_s) / s; /* the lamp's ray arrives along +w; the surface faces -w when lit */
-  const real sc = fmax(s, s_min);
-  real sum = R(0.0), gn = R(1.0);
+  const real sc = fmax(s, s_min), k = R(1.0) / (SEASIM_PI * sc * sc);
+  int i;
+  real f;
+  uw_ms_table_index(cos_psi, &i, &f);
+  real gn = R(1.0);
   for (int n = 1; n <= orders; ++n) {
     gn *= g;
-    const real P = uw_ms_table_at(table + (n - 1) * UW_MS_TABLE, cos_psi);
-    if (P <= R(0.0)) continue;
-    sum += wn[n - 1] * P * uw_ms_irradiance_factor(gn, cos_i);
+    const real P = uw_ms_table_lerp(table + (n - 1) * UW_MS_TABLE, i, f);
+    geo[n - 1] = P > R(0.0) ? P * uw_ms_irradiance_factor(gn, cos_i) * k : R(0.0);
   }
-  return sum / (SEASIM_PI * sc * sc);
+  return s;
+}
+
+/* One band's orders summed over that geometry with its weights at s, wn[n - 1] = W_n(s). */
+SEASIM_FN real uw_ms_surface_sum(const real* geo, const real* wn, int orders) {
+  real sum = R(0.0);
+  for (int n = 1; n <= orders; ++n) sum += wn[n - 1] * geo[n - 1];
+  return sum;
+}
+
+/* The irradiance orders n >= 1 give a surface point p of normal n_s, per unit I(λ), divided by π (so
+ * times the albedo it is the Lambertian radiance leaving p; T_view not applied), given the orders'
+ * weights at s = |p - lamp|, wn[n - 1] = W_n(s) (exact: uw_ms_surface; the kernel: its table). */
+SEASIM_FN real uw_ms_surface_weighted(real3 p, real3 n_s, real3 lamp, real3 axis, real s_min, real g,
+                                      const SEASIM_GLOBAL float* table, int orders, const real* wn) {
+  real geo[UW_MS_MAX_ORDERS];
+  if (!(uw_ms_surface_geometry(p, n_s, lamp, axis, s_min, g, table, orders, geo) > R(0.0))) return R(0.0);
+  return uw_ms_surface_sum(geo, wn, orders);
 }
 
 /* The same with every weight from uw_ms_weight. */
@@ -493,7 +517,7 @@ SEASIM_FN real uw_ms_halo_inscatter(real3 o, real3 d, real depth, real albedo, r
     const real3 x = o + t * d;
     const real z = x.y + depth;
     if (!(z >= R(0.0))) continue;
-    const real dt = q.dv * sqrt(q.r * q.r + (t - q.a) * (t - q.a));
+    const real dt = uw_ms_ray_dt(&q, t);
     const real E = uw_ms_surface(MAKE_REAL3(x.x, -depth, x.z), up, lamp, axis, s_min, sigma_a, sigma_s, g, kappa, table, orders);
     acc += exp(-(sigma_a + sigma_s) * t) * dt * E * uw_ms_halo_plane_from(z, sigma_a, sigma_s, orders, az);
   }
