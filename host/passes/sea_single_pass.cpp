@@ -69,22 +69,27 @@ Vec3 sunDirection(const Scene& scene) {
               std::sin(scene.sun.zenith) * std::sin(scene.sun.azimuth)};
 }
 
+// The camera's pose and field of view: what a camera moved at the same image size changes.
+void setSeaCamera(SeaParams& p, const CameraDesc& cam) {
+  setKernelCamera(p, cam);
+  p.tan_half_fov_y = static_cast<float>(std::tan(cam.fov_y / 2));
+  p.pixel_angle = static_cast<float>(2 * std::tan(cam.fov_y / 2) / cam.height);
+}
+
 // The kernel's parameters but the sky's and the LUT's (ocean: the FFT waves, null without; bottom_caustics:
 // the caustic map, null without).
 SeaParams seaParams(const Scene& scene, const WavelengthGrid& grid, const Vec3& sun, const OceanMaps* ocean,
                     const SeaBottomCaustics* bottom_caustics) {
   const CameraDesc& cam = scene.camera;
   SeaParams p{};
-  setKernelCamera(p, cam);
+  setSeaCamera(p, cam);
   set4(p.sun_dir, sun);
-  p.tan_half_fov_y = static_cast<float>(std::tan(cam.fov_y / 2));
   p.aspect = static_cast<float>(cam.width) / static_cast<float>(cam.height);
   p.ior = static_cast<float>(scene.water.ior);
   p.g = static_cast<float>(scene.water.g);
   p.bottom_depth = static_cast<float>(scene.bottom.depth);
   p.cos_sun_radius = static_cast<float>(std::cos(scene.sun.angular_radius));
   p.sun_solid_angle = static_cast<float>(2 * M_PI * (1 - std::cos(scene.sun.angular_radius)));
-  p.pixel_angle = static_cast<float>(2 * std::tan(cam.fov_y / 2) / cam.height);
   p.sun_slope_variance = static_cast<float>(scene.sun.angular_radius * scene.sun.angular_radius / 16);
   p.sky_fresnel_mean = static_cast<float>(skyFresnelMean(scene.water.ior));
   p.width = cam.width;
@@ -224,6 +229,7 @@ SeaSinglePass::SeaSinglePass(Device& device, const Scene& scene, const PassPlan&
     const BuiltProgram& built = device.program(plan.kernel_file, defines);
     kernel_ = cl::Kernel(built.program, "sea_single");
     params_ = cl::Buffer(device.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof p, &p);
+    host_params_ = p;
     // The band lanes' table (kernels/common/sea_band_table.h): the bands' fields and the LUT, bands contiguous.
     const std::vector<float> table = seaBandTable(bands, lut_values, lut_size);
     table_ = cl::Buffer(device.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(float) * table.size(),
@@ -278,6 +284,15 @@ SeaSinglePass::SeaSinglePass(Device& device, const Scene& scene, const PassPlan&
       kernel_.setArg(args - 1, hf_depth_);
     }
   });
+}
+
+bool SeaSinglePass::moveCamera(const CameraDesc& cam) {
+  if (cam.width != width_ || cam.height != height_) return false;
+  setSeaCamera(host_params_, cam);
+  onDevice("sea_single pass (moving the camera)", [&] {
+    device_.queue().enqueueWriteBuffer(params_, CL_TRUE, 0, sizeof host_params_, &host_params_);
+  });
+  return true;
 }
 
 double SeaSinglePass::run() {

@@ -15,6 +15,10 @@
 #include "spectral/sensor.h"
 #include "spectral/wavelength_grid.h"
 
+extern "C" {
+#include "common/sea_params.h"
+}
+
 namespace seasim {
 
 class SeaSinglePass {
@@ -26,6 +30,10 @@ class SeaSinglePass {
   // required when the plan defines SEASIM_BOTTOM_CAUSTICS=1 (the ocean's caustics on the bottom).
   SeaSinglePass(Device& device, const Scene& scene, const PassPlan& plan, const WavelengthGrid& grid,
                 const Sensor& sensor, const OceanMaps* ocean = nullptr, const SeaBottomCaustics* bottom_caustics = nullptr);
+  // A camera moved or turned, or its field of view changed, at the same image size: only the
+  // parameter block's camera changes (the sky, the bands and the LUT do not depend on it). False for
+  // another image size, which needs a new pass (its output buffers).
+  bool moveCamera(const CameraDesc& cam);
   // Enqueues the kernel; returns its profiled time in ms (waits for it).
   double run();
   cl::Buffer& rgb() { return rgb_; }
@@ -36,6 +44,7 @@ class SeaSinglePass {
   cl::Kernel kernel_;
   cl::Kernel moments_, cells_, downsample_;  // the wave filter's slope-moment mips (SEASIM_WAVE_FILTER)
   int ocean_n_ = 0;                  // > 0 when the filter runs: the normal map's side
+  SeaParams host_params_{};  // what params_ holds
   cl::Buffer params_, table_, normals_, mips_, sky_, caustics_, rgb_, spectral_;
   cl::Buffer hf_params_, hf_depth_;  // height-field bottom (000 §5.4), SEASIM_BOTTOM_HEIGHTFIELD
   int width_, height_;

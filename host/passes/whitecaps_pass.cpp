@@ -19,6 +19,17 @@ static_assert(offsetof(WhitecapsParams, tan_half_fov_y) == 80);
 static_assert(offsetof(WhitecapsParams, ocean_n) == 96);
 static_assert(offsetof(WhitecapsParams, band_count) == 108);
 
+namespace {
+
+// The camera's pose and field of view: what a camera moved at the same image size changes.
+void setWhitecapsCamera(WhitecapsParams& p, const CameraDesc& cam) {
+  setKernelCamera(p, cam);
+  p.tan_half_fov_y = static_cast<float>(std::tan(cam.fov_y / 2));
+  p.pixel_angle = static_cast<float>(2 * std::tan(cam.fov_y / 2) / cam.height);
+}
+
+}  // namespace
+
 std::vector<double> foamRadianceBands(const Scene& scene, const WavelengthGrid& grid) {
   const SkyLight light = makeSkyLight(scene, grid);
   const std::vector<double> sky = light.horizontalIrradiance();
@@ -36,10 +47,8 @@ WhitecapsPass::WhitecapsPass(Device& device, const Scene& scene, const PassPlan&
     : device_(device), spectral_output_(plan.featuresAs<WhitecapsFeatures>().spectral_output) {
   const CameraDesc& cam = scene.camera;
   WhitecapsParams& p = params_;
-  setKernelCamera(p, cam);
-  p.tan_half_fov_y = static_cast<float>(std::tan(cam.fov_y / 2));
+  setWhitecapsCamera(p, cam);
   p.aspect = static_cast<float>(cam.width) / static_cast<float>(cam.height);
-  p.pixel_angle = static_cast<float>(2 * std::tan(cam.fov_y / 2) / cam.height);
   p.ocean_patch = static_cast<float>(ocean_patch);
   p.ocean_n = ocean_n;
   p.width = cam.width;
@@ -64,11 +73,22 @@ WhitecapsPass::WhitecapsPass(Device& device, const Scene& scene, const PassPlan&
   });
 }
 
+bool WhitecapsPass::moveCamera(const CameraDesc& cam) {
+  if (cam.width != params_.width || cam.height != params_.height) return false;
+  setWhitecapsCamera(params_, cam);
+  onDevice("whitecaps pass (moving the camera)", [&] {
+    device_.queue().enqueueWriteBuffer(params_buffer_, CL_TRUE, 0, sizeof params_, &params_);
+  });
+  return true;
+}
+
 double WhitecapsPass::run(const cl::Buffer& jacobian, const WhitecapsFoamLevels& levels, cl::Buffer& rgb,
                           cl::Buffer* spectral) {
-  if (spectral_output_ && !spectral)
-    throw RuntimeError("whitecaps pass: the plan has spectral output (SEASIM_SPECTRAL_OUTPUT=1) but no spectral image "
-                       "was given");
+  const double ms = updateFoam(jacobian, levels);
+  return ms + composite(rgb, spectral);
+}
+
+double WhitecapsPass::updateFoam(const cl::Buffer& jacobian, const WhitecapsFoamLevels& levels) {
   const size_t n = static_cast<size_t>(params_.ocean_n);
   double ms = 0;
   onDevice("whitecaps pass", [&] {
@@ -90,6 +110,13 @@ double WhitecapsPass::run(const cl::Buffer& jacobian, const WhitecapsFoamLevels&
     const size_t m = n >> (level + 1);
     ms += runKernel2d(device_, "whitecaps pass", downsample_, m, m);
   }
+  return ms;
+}
+
+double WhitecapsPass::composite(cl::Buffer& rgb, cl::Buffer* spectral) {
+  if (spectral_output_ && !spectral)
+    throw RuntimeError("whitecaps pass: the plan has spectral output (SEASIM_SPECTRAL_OUTPUT=1) but no spectral image "
+                       "was given");
   onDevice("whitecaps pass", [&] {
     over_sea_.setArg(0, params_buffer_);
     over_sea_.setArg(1, mips_);
@@ -98,9 +125,8 @@ double WhitecapsPass::run(const cl::Buffer& jacobian, const WhitecapsFoamLevels&
     // Without spectral output the kernel does not touch its last argument: the rgb buffer stands in.
     over_sea_.setArg(4, spectral_output_ ? *spectral : rgb);
   });
-  ms += runKernel2d(device_, "whitecaps pass", over_sea_, static_cast<size_t>(params_.width),
-                    static_cast<size_t>(params_.height));
-  return ms;
+  return runKernel2d(device_, "whitecaps pass", over_sea_, static_cast<size_t>(params_.width),
+                     static_cast<size_t>(params_.height));
 }
 
 std::vector<float> WhitecapsPass::readMips() {

@@ -37,6 +37,13 @@ class WhitecapsPass {
   // (and spectral, when the plan has spectral output and it is given). Returns the summed kernel ms.
   double run(const cl::Buffer& jacobian, const WhitecapsFoamLevels& levels, cl::Buffer& rgb,
              cl::Buffer* spectral = nullptr);
+  // run()'s two halves: the foam's opacity and its mips from the ocean (unchanged while only the
+  // camera moves), and the foam over the sea's radiance as seen by the camera. Each returns kernel ms.
+  double updateFoam(const cl::Buffer& jacobian, const WhitecapsFoamLevels& levels);
+  double composite(cl::Buffer& rgb, cl::Buffer* spectral = nullptr);
+  // A camera moved or turned, or its field of view changed, at the same image size: only the
+  // parameter block's camera changes. False for another image size (a new pass).
+  bool moveCamera(const CameraDesc& cam);
 
   const WhitecapsParams& params() const { return params_; }
   const std::vector<float>& foamBands() const { return foam_bands_; }

@@ -21,6 +21,8 @@ namespace seasim {
 // Scene keys as written in files and --set: "sun.zenith_deg", "objects[1].center". A pattern is a
 // key ("surface.time") or a section with ".*" ("sun.*"; "objects.*" covers every objects[i] key).
 bool keyMatches(const std::string& pattern, const std::string& key);
+// Whether any of `keys` (FrameContext::changedKeys) matches `pattern`.
+bool anyKeyMatches(const std::string& pattern, const std::vector<std::string>& keys);
 
 class Pass {
  public:

@@ -17,6 +17,12 @@ bool keyMatches(const std::string& pattern, const std::string& key) {
   return pattern == key || pattern == normal;
 }
 
+bool anyKeyMatches(const std::string& pattern, const std::vector<std::string>& keys) {
+  for (const std::string& key : keys)
+    if (keyMatches(pattern, key)) return true;
+  return false;
+}
+
 void PassRegistry::add(const std::string& name, Factory factory) { factories_[name] = std::move(factory); }
 
 void PassRegistry::add(const std::string& name, const std::string& kernel_file, Factory factory) {

@@ -92,6 +92,12 @@ class PassResources {
     all_.publish(name, std::move(object));
   }
   bool declaresRead(const std::string& name) const;
+  // A declared read's version (Resources::version): bumped each time a pass writes it, so a reader
+  // can keep what it made from the contents while they stay the same.
+  uint64_t version(const std::string& name) const {
+    check(name, true);
+    return all_.version(name);
+  }
 
  private:
   void check(const std::string& name, bool reading) const;

@@ -228,6 +228,39 @@ TEST(Renderer, UnderwaterCameraMovedAtOneDepthKeepsTheTablesAndMatchesAFreshFram
   EXPECT_EQ(std::memcmp(&setup.params, &made.params, sizeof(UwParams)), 0);  // unchanged
 }
 
+// The preview's orbit above water: a camera moved, turned or widened at one image size keeps sea_single's
+// and the foam's set-up (the sky's cosine means, the bands, the LUT) and the foam's mask while the ocean
+// is unchanged; only their parameter blocks' camera changes. Each frame is a new renderer's, bit for
+// bit; a new image size and a new ocean frame still set up and mask again.
+TEST(Renderer, SeaCameraMovedKeepsTheSetupAndTheFoamMaskAndMatchesAFreshFrame) {
+  const auto ran = [](const FrameResult& f, const char* name) {
+    return std::any_of(f.timings.begin(), f.timings.end(), [&](const PassTiming& t) { return t.name == name; });
+  };
+  std::vector<Override> at = small({set("surface.grid", "64")});
+  Renderer renderer(test::testDevice(), sceneFile("whitecaps.toml"), at, shippedPasses());
+  ASSERT_TRUE(renderer.plan().hasPass("whitecaps"));
+  const FrameResult first = renderer.render();
+  EXPECT_TRUE(ran(first, "whitecaps_mask"));
+  const auto step = [&](const Override& change, bool set_up_again, bool ocean_again) {
+    renderer.update({change});
+    at.push_back(change);
+    const FrameResult f = renderer.render();
+    EXPECT_EQ(has(renderer.lastPrepared(), "sea_single"), set_up_again) << change.key;
+    EXPECT_EQ(has(renderer.lastPrepared(), "whitecaps"), set_up_again) << change.key;
+    EXPECT_TRUE(has(renderer.lastExecuted(), "whitecaps")) << change.key;
+    EXPECT_EQ(ran(f, "ocean_fft"), ocean_again) << change.key;
+    EXPECT_EQ(ran(f, "whitecaps_mask"), ocean_again || set_up_again) << change.key;
+    EXPECT_NE(f.rgb.pixels, first.rgb.pixels) << change.key;
+    EXPECT_EQ(f.rgb.pixels, fresh("whitecaps.toml", at).rgb.pixels) << change.key;
+  };
+  step(set("camera.position", "[2.0, 14.0, 1.0]"), false, false);
+  step(set("camera.look_at", "[6.0, 0.0, -40.0]"), false, false);
+  step(set("camera.fov_deg", "50"), false, false);
+  step(set("surface.time", "2.0"), false, true);  // a new ocean frame: the foam masked again
+  step(set("camera.position", "[1.0, 15.0, 0.0]"), false, false);
+  step(set("camera.width", "40"), true, false);
+}
+
 // An underwater animation: surface.time alone changes the waves' phase, which the underwater setup holds
 // as one number (the caustics' time); the set-up pass patches it instead of remaking the setup (the
 // discrete-ordinates model's per-band tables), and the frame is still the fresh renderer's, bit for bit, in a

@@ -15,16 +15,22 @@ extern "C" {
 #include "plan/scene_facts.h"
 #include "math/kernel_math.h"
 #include "passes/sea_heightfield.h"
+#include "render/pass.h"
 #include "render/radiance_target.h"
+#include "util/error.h"
 
 namespace seasim {
 
 namespace {
 
-// The ocean and the caustic map come in as resources: a new one sets this pass up again.
-const PassKeys kSeaSingleKeys = {{"camera.*", "sun.*", "sky.*", "water.*", "bottom.*", "sea.*", "spectral.*",
-                                  "quality.sea_lut_size", "quality.sea_supersample", "quality.wave_filter"},
-                                 {}};
+// The ocean and the caustic map come in as resources: a new one sets this pass up again. A camera
+// moved at the same image size (the preview's orbit) changes only the parameter block's camera: the
+// sky's shape and level, the bands and the LUT do not depend on it, and remaking them (the sky's
+// cosine means above all) cost more than the kernel's own time per frame.
+const PassKeys kSeaSingleKeys = {{"camera.width", "camera.height", "sun.*", "sky.*", "water.*", "bottom.*", "sea.*",
+                                  "spectral.*", "quality.sea_lut_size", "quality.sea_supersample",
+                                  "quality.wave_filter"},
+                                 {"camera.*"}};
 
 class SeaSingleNode : public Pass {
  public:
@@ -41,12 +47,21 @@ class SeaSingleNode : public Pass {
     target->pixels = static_cast<size_t>(ctx.scene().camera.width) * static_cast<size_t>(ctx.scene().camera.height);
     target->bands = ctx.grid().size();
     res.publish("rgb", target);
+    fresh_ = true;
   }
-  void execute(FrameContext& ctx, PassResources&) override { ctx.timings.push_back({"sea_single", pass_->run()}); }
+  void execute(FrameContext& ctx, PassResources&) override {
+    if (!fresh_ && anyKeyMatches("camera.*", ctx.changedKeys()) && !pass_->moveCamera(ctx.scene().camera)) {
+      throw RuntimeError("sea_single pass: the image size changed without a new set-up (camera.width and "
+                         "camera.height are among the keys that set this pass up again)");
+    }
+    fresh_ = false;
+    ctx.timings.push_back({"sea_single", pass_->run()});
+  }
 
  private:
   const PassPlan& entry_;
   std::unique_ptr<SeaSinglePass> pass_;
+  bool fresh_ = false;  // set up for this frame's scene: nothing to move
 };
 
 std::shared_ptr<SeaSingleFeatures> seaSingleFeatures(const PassDescriptor& d, const Scene& scene) {

@@ -12,6 +12,7 @@
 #include "passes/whitecaps_threshold.h"
 #include "plan/pass_descriptor.h"
 #include "plan/scene_facts.h"
+#include "render/pass.h"
 #include "render/radiance_target.h"
 #include "scene/model_keys.h"
 #include "util/error.h"
@@ -22,8 +23,12 @@ namespace {
 
 // The foam's radiance follows the light and the sensor, its footprints the camera, its coverage the
 // wind; a new ocean (its keys) or a new frame of it is a new "ocean_maps", which sets up or reruns it.
+// A camera moved at the same image size changes only the parameter block's camera, and an ocean not
+// written since the last frame keeps its foam mask (the Jacobian's read-back, its quantile and the
+// mask's mips): the preview's orbit recomposites the foam alone.
 const PassKeys kWhitecapsKeys = {
-    {"camera.*", "sun.*", "sky.*", "spectral.*", "surface.whitecaps", "surface.wind_speed"}, {}};
+    {"camera.width", "camera.height", "sun.*", "sky.*", "spectral.*", "surface.whitecaps", "surface.wind_speed"},
+    {"camera.*"}};
 
 class WhitecapsNode : public Pass {
  public:
@@ -33,19 +38,31 @@ class WhitecapsNode : public Pass {
     const OceanMaps& ocean = res.read<OceanMaps>("ocean_maps");
     pass_ = std::make_unique<WhitecapsPass>(ctx.device(), ctx.scene(), entry_, ctx.grid(), ctx.sensor(), ocean.n(),
                                             ocean.patchSize());
+    fresh_ = true;
+    foam_ocean_version_ = 0;
   }
   void execute(FrameContext& ctx, PassResources& res) override {
+    if (!fresh_ && anyKeyMatches("camera.*", ctx.changedKeys()) && !pass_->moveCamera(ctx.scene().camera)) {
+      throw RuntimeError("whitecaps pass: the image size changed without a new set-up (camera.width and "
+                         "camera.height are among the keys that set this pass up again)");
+    }
+    fresh_ = false;
     const OceanMaps& ocean = res.read<OceanMaps>("ocean_maps");
     RadianceTarget& target = res.read<RadianceTarget>("rgb");
-    const double coverage = whitecaps_d::whitecaps_coverage(ctx.scene().surface.wind_speed);
-    const WhitecapsFoamLevels levels = whitecapsFoamLevels(readJacobian(ctx.device(), ocean), coverage);
-    ctx.timings.push_back({"whitecaps", pass_->run(ocean.jacobian, levels, target.rgb,
-                                                   target.hasSpectral() ? &target.spectral : nullptr)});
+    if (res.version("ocean_maps") != foam_ocean_version_) {
+      const double coverage = whitecaps_d::whitecaps_coverage(ctx.scene().surface.wind_speed);
+      const WhitecapsFoamLevels levels = whitecapsFoamLevels(readJacobian(ctx.device(), ocean), coverage);
+      ctx.timings.push_back({"whitecaps_mask", pass_->updateFoam(ocean.jacobian, levels)});
+      foam_ocean_version_ = res.version("ocean_maps");
+    }
+    ctx.timings.push_back({"whitecaps", pass_->composite(target.rgb, target.hasSpectral() ? &target.spectral : nullptr)});
   }
 
  private:
   const PassPlan& entry_;
   std::unique_ptr<WhitecapsPass> pass_;
+  bool fresh_ = false;                 // set up for this frame's scene: nothing to move
+  uint64_t foam_ocean_version_ = 0;    // the ocean's version the foam mask was made from (0: none yet)
 };
 
 }  // namespace
