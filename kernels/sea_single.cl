@@ -22,7 +22,9 @@
  * pass, from quality.sea_lut_size): 1 reads eq. 5's factors from the look-up table the paper uses,
  * 0 evaluates eq. 5 exactly; SEASIM_SEA_MODEL (sea.model): 0 paper 000's eq. 5 and 9, 1 "multiple", all
  * orders in closed form (common/sea_multiple.h: QSSA with Lee et al.'s factors, skylight in the water,
- * the bottom lit and seen through forward-scattering water; needs SEASIM_SEA_LUT 0).
+ * the bottom lit and seen through forward-scattering water; needs SEASIM_SEA_LUT 0); SEASIM_SEA_SKY_TABLE
+ * (quality.sea_sky_table, an analytic sky): n > 0 reads the reflected sky from the n x n table the pass
+ * appends to the sky buffer (common/sky_table.h), 0 evaluates the sky model at every reflected direction.
  * Band loop: SEASIM_BAND_LANES bands per step in floatN (common/band_lanes.h), reading the band table
  * (common/sea_band_table.h: SeaBand's fields and the LUT, bands contiguous): sea.model "paper"
  * (SEASIM_SEA_MODEL 0) through common/sea_bands.h, "multiple" (SEASIM_SEA_MODEL 1) through
@@ -50,6 +52,7 @@
 #include "common/sea_lean.h"
 #include "common/polynomial_trig.h"
 #include "common/sky.h"
+#include "common/sky_table.h"
 #include "common/sea_bottom_params.h"
 #include "common/sea_second.h"
 #include "common/sea_bottom.h"
@@ -95,6 +98,9 @@
 #endif
 #ifndef SEASIM_WAVE_FILTER
 #define SEASIM_WAVE_FILTER 0 /* 1: wave normals filtered over the pixel's footprint (common/sea_lean.h) */
+#endif
+#ifndef SEASIM_SEA_SKY_TABLE
+#define SEASIM_SEA_SKY_TABLE 0
 #endif
 #ifndef SEASIM_SEA_MODEL
 #define SEASIM_SEA_MODEL 0 /* 0: paper 000's eq. 5 and 9; 1: sea.model = "multiple" (common/sea_multiple.h) */
@@ -143,7 +149,7 @@ __kernel void sea_single(__constant SeaParams* p, __global const float* table,
 #endif
   const SeaFeatures f = {SEASIM_HAS_REFLECTION, SEASIM_HAS_SINGLE_SCATTERING, SEASIM_HAS_BOTTOM, SEASIM_HAS_SUN,
                          SEASIM_HAS_WAVES, SEASIM_WAVE_FILTER, SEASIM_SKY_MODEL, SEASIM_SEA_LUT,
-                         SEASIM_BOTTOM_CAUSTICS, SEASIM_BOTTOM_HEIGHTFIELD, SEASIM_SEA_MODEL};
+                         SEASIM_BOTTOM_CAUSTICS, SEASIM_BOTTOM_HEIGHTFIELD, SEASIM_SEA_MODEL, SEASIM_SEA_SKY_TABLE};
   const int band_count = p->band_count;
   const int stride = SEA_BAND_STRIDE(band_count);
   realb r_lanes = SPLATB(0.0f), g_lanes = SPLATB(0.0f), b_lanes = SPLATB(0.0f); /* the lanes' sums */

@@ -18,6 +18,7 @@ struct SeaSingleFeatures final : PassFeatures {
   bool bottom_height_field = false;  // 000 §5.4: z_Q per pixel
   bool wave_filter = false;        // wave normals filtered over the pixel's footprint (common/sea_lean.h)
   int supersample = 1;             // n x n rays per pixel over the unfiltered normals (the filter's reference)
+  int sky_table = 0;               // n: the reflected analytic sky from an n x n table (common/sky_table.h); 0 exact
 
   void list(FeatureList& out) const override {
     out.flag("reflection", "SEASIM_HAS_REFLECTION", reflection);
@@ -32,6 +33,7 @@ struct SeaSingleFeatures final : PassFeatures {
     if (bottom_height_field) out.flag("bottom_height_field", "SEASIM_BOTTOM_HEIGHTFIELD", true);
     if (waves) out.flag("wave_filter", "SEASIM_WAVE_FILTER", wave_filter);
     if (supersample > 1) out.value("supersample", "SEASIM_SUPERSAMPLE", supersample);
+    if (sky_table > 0) out.value("sky_table", "SEASIM_SEA_SKY_TABLE", sky_table);
   }
 };
 

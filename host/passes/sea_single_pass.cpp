@@ -239,6 +239,11 @@ SeaSinglePass::SeaSinglePass(Device& device, const Scene& scene, const PassPlan&
     normals_ = waves ? ocean->normal
                      : cl::Buffer(device.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(float) * 4, dummy.data());
     std::vector<float> sky_texels(sky.texels.begin(), sky.texels.end());
+    if (features.sky_table > 0) {  // the reflected sky's table after the model's reals (common/sky_table.h)
+      const std::vector<double> t = seaSkyTable(sky, features.sky_table);
+      sky_texels.resize(SKY_TABLE_OFFSET, 0.0f);
+      sky_texels.insert(sky_texels.end(), t.begin(), t.end());
+    }
     sky_ = cl::Buffer(device.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(float) * sky_texels.size(),
                       sky_texels.data());
     caustics_ = caustics ? bottom_caustics->map

@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <string>
+
+#include <tbb/parallel_for.h>
 
 #include "io/data_files.h"
 #include "io/image_io.h"
@@ -86,6 +89,30 @@ SeaSky makeSeaSky(const SkyDesc& desc, const double sun_dir[3], const Wavelength
     sky.scale = mean > 0 ? 1.0 / mean : 0.0;
   }
   return sky;
+}
+
+std::vector<double> seaSkyTable(const SeaSky& sky, int n) {
+  if (n < 2) throw RuntimeError("sea sky table: needs at least 2 x 2 nodes, got " + std::to_string(n));
+  if (sky.model != 1 && sky.model != 3)
+    throw RuntimeError("sea sky table: only the analytic skies (CIE clear, Preetham) depend on the view through "
+                       "cos theta and cos gamma alone");
+  std::vector<double> table(static_cast<size_t>(SKY_TABLE_STRIDE) * n * n, 0.0);
+  // 16,384 evaluations of Preetham's model at the default 128: rows on threads.
+  tbb::parallel_for(0, n, [&](int i) {
+    for (int j = 0; j < n; ++j) {
+      double ct, cg;
+      kd::sky_table_node(i, j, n, &ct, &cg);
+      double v[3];
+      if (sky.model == 1) {
+        v[0] = v[1] = v[2] = kd::sky_cie_gradation(ct) * kd::sky_cie_indicatrix(cg);
+      } else {
+        kd::sky_preetham_yxy_cos(sky.texels.data(), ct, cg, v);
+      }
+      double* t = table.data() + static_cast<size_t>(SKY_TABLE_STRIDE) * (static_cast<size_t>(i) * n + j);
+      for (int c = 0; c < 3; ++c) t[c] = v[c];
+    }
+  });
+  return table;
 }
 
 }  // namespace seasim

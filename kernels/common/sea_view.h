@@ -8,7 +8,7 @@
  * the kernel's former single body, in the same order, so the images are unchanged.
  * tests/unit/sea_view_test.cpp holds these in float and double; tests/kernels/sea_single_test.cpp the
  * kernel to the double CPU reference.
- * Needs compat.h, optics.h, sea_params.h, sea_surface.h, sea_waves.h, sea_lean.h, sky.h,
+ * Needs compat.h, optics.h, sea_params.h, sea_surface.h, sea_waves.h, sea_lean.h, sky.h, sky_table.h,
  * sea_bottom_params.h, sea_bottom.h, caustic_map.h, sea_multiple.h, sea_bands.h. */
 
 /* The kernel's compile-time choices (sea_single.cl's SEASIM_* defines, chosen by host/plan). */
@@ -24,6 +24,8 @@ typedef struct {
   int bottom_caustics;    /* SEASIM_BOTTOM_CAUSTICS */
   int bottom_heightfield; /* SEASIM_BOTTOM_HEIGHTFIELD */
   int model;              /* SEASIM_SEA_MODEL: 0 paper 000's eq. 5 and 9, 1 "multiple" */
+  int sky_table;          /* SEASIM_SEA_SKY_TABLE: the reflected sky read from an n x n table (sky_table.h) in
+                             the sky buffer from SKY_TABLE_OFFSET; 0 evaluates the model */
 } SeaFeatures;
 
 /* What the band loop needs of one pixel's ray below the horizon. */
@@ -75,6 +77,18 @@ SEASIM_FN real3 sea_sky_shape(int model, SEASIM_CONSTANT const SeaParams* p, con
   return MAKE_REAL3(R(1.0), R(1.0), R(1.0));
 }
 
+/* The sky's shape towards a reflected direction d: read from the table when the plan made one (an
+ * analytic sky under the wave filter's facets), else sea_sky_shape. The sky seen directly keeps the
+ * exact model. */
+SEASIM_FN real3 sea_reflected_sky_shape(SeaFeatures f, SEASIM_CONSTANT const SeaParams* p, const SEASIM_GLOBAL real* sky,
+                                        real3 d) {
+  if (f.sky_table > 0) {
+    const real3 sun = f.sky_model == SEASIM_SKY_PREETHAM ? sky_preetham_sun(sea_sun_dir(p)) : sea_sun_dir(p);
+    return sky_table_shape(f.sky_model, sky, sky + SKY_TABLE_OFFSET, f.sky_table, p->sky_scale, d.y, dot(d, sun));
+  }
+  return sea_sky_shape(f.sky_model, p, sky, d);
+}
+
 /* Whether direction d sees the sun's disk; a point sun (radius 0) has none. */
 SEASIM_FN int sea_sees_sun(int has_sun, SEASIM_CONSTANT const SeaParams* p, real3 d) {
   return has_sun && p->sun_solid_angle > R(0.0) && dot(d, sea_sun_dir(p)) >= p->cos_sun_radius;
@@ -103,7 +117,7 @@ SEASIM_FN void sea_view_unfiltered(SeaFeatures f, SEASIM_CONSTANT const SeaParam
   px->cos_ji = sea_view_interaction(d, n, p->ior, &px->R_view, &px->reflected, &px->view_in_water);
   px->glint = R(0.0);
   px->reflected_shape = MAKE_REAL3(R(0.0), R(0.0), R(0.0));
-  if (f.reflection) px->reflected_shape = sea_sky_shape(f.sky_model, p, sky, px->reflected);
+  if (f.reflection) px->reflected_shape = sea_reflected_sky_shape(f, p, sky, px->reflected);
   px->reflects_sun = f.reflection && sea_sees_sun(f.sun, p, px->reflected);
 }
 
@@ -128,7 +142,7 @@ SEASIM_FN void sea_view_filtered(SeaFeatures f, SEASIM_CONSTANT const SeaParams*
   const real3 n = sea_facing_normal(d, sea_lean_normal(stats[0], stats[1]));
   const SeaLeanRule rule = sea_lean_rule(d, stats[0], stats[1], l11, l21, l22);
   real R_mean = rule.back;
-  real3 reflected_shape = rule.back * sea_sky_shape(f.sky_model, p, sky, sea_sky_direction(d));
+  real3 reflected_shape = rule.back * sea_reflected_sky_shape(f, p, sky, sea_sky_direction(d));
   const int nodes = sea_lean_rule_nodes(&rule);
   for (int k = 0; k < nodes; ++k) {
     real sx, sz;
@@ -136,7 +150,7 @@ SEASIM_FN void sea_view_filtered(SeaFeatures f, SEASIM_CONSTANT const SeaParams*
     const real3 nk = sea_facing_normal(d, sea_lean_normal(sx, sz));
     const real wf = w * fresnel_reflectance(-dot(d, nk), R(1.0), p->ior);
     R_mean += wf;
-    reflected_shape = reflected_shape + wf * sea_sky_shape(f.sky_model, p, sky, sea_sky_direction(reflect_dir(d, nk)));
+    reflected_shape = reflected_shape + wf * sea_reflected_sky_shape(f, p, sky, sea_sky_direction(reflect_dir(d, nk)));
   }
   const real3 sun = sea_sun_dir(p);
   px->glint = R(0.0);

@@ -176,15 +176,18 @@ SEASIM_FN void sky_preetham_pack(real3 sun, real t, real packed[18]) {
   }
 }
 
-/* Preetham's Y, x, y towards unit d (v[0], v[1], v[2]); packed: the 18 reals of sky_preetham_pack;
- * sun: unit, towards the sun, held at the horizon when below it. */
-SEASIM_FN void sky_preetham_yxy(const SEASIM_GLOBAL real* packed, real3 d, real3 sun, real* v) {
-  real3 s = sun;
-  if (s.y < R(0.0)) {
-    const real h = sqrt(s.x * s.x + s.z * s.z);
-    s = h > R(1e-12) ? MAKE_REAL3(s.x / h, R(0.0), s.z / h) : MAKE_REAL3(R(1.0), R(0.0), R(0.0));
-  }
-  const real cos_gamma = clamp(dot(d, s), R(-1.0), R(1.0));
+/* The sun Preetham's model sees: held at the horizon when below it (the fit's range). */
+SEASIM_FN real3 sky_preetham_sun(real3 sun) {
+  if (sun.y >= R(0.0)) return sun;
+  const real h = sqrt(sun.x * sun.x + sun.z * sun.z);
+  return h > R(1e-12) ? MAKE_REAL3(sun.x / h, R(0.0), sun.z / h) : MAKE_REAL3(R(1.0), R(0.0), R(0.0));
+}
+
+/* Preetham's Y, x, y (v[0], v[1], v[2]) of a view at cos θ = cos_theta to the zenith and cos γ =
+ * cos_gamma to sky_preetham_sun's sun: the model depends on the view through these two alone.
+ * packed: the 18 reals of sky_preetham_pack. */
+SEASIM_FN void sky_preetham_yxy_cos(const SEASIM_GLOBAL real* packed, real cos_theta, real cos_gamma, real* v) {
+  cos_gamma = clamp(cos_gamma, R(-1.0), R(1.0));
   /* polynomial_trig.h's acos in kernels (2.2e-8 rad: 7e-8 relative in exp(D γ) for |D| <= 3): PoCL's
    * acosf was 9 % of a filtered sea's frame under this sky. */
   const real gamma = lookup_acos(cos_gamma);
@@ -192,7 +195,7 @@ SEASIM_FN void sky_preetham_yxy(const SEASIM_GLOBAL real* packed, real3 d, real3
   /* sky_perez_cos for Y, x and y as the lanes of one real3: two vector exps for six scalar ones (the
    * sky was a third of a filtered sea's frame under Preetham's sky); the host's loop below checks it. */
 #define SKY_PREETHAM_LANES(k) MAKE_REAL3(packed[(k)], packed[6 + (k)], packed[12 + (k)])
-  const real ct = fmax(d.y, R(1e-4));
+  const real ct = fmax(cos_theta, R(1e-4));
   const real3 f = (R(1.0) + SKY_PREETHAM_LANES(0) * exp(SKY_PREETHAM_LANES(1) / ct)) *
                   (R(1.0) + SKY_PREETHAM_LANES(2) * exp(SKY_PREETHAM_LANES(3) * gamma) +
                    SKY_PREETHAM_LANES(4) * (cos_gamma * cos_gamma));
@@ -205,9 +208,15 @@ SEASIM_FN void sky_preetham_yxy(const SEASIM_GLOBAL real* packed, real3 d, real3
   for (int q = 0; q < 3; ++q) {
     real c[5];
     for (int k = 0; k < 5; ++k) c[k] = packed[6 * q + k];
-    v[q] = packed[6 * q + 5] * sky_perez_cos(c, d.y, gamma, cos_gamma);
+    v[q] = packed[6 * q + 5] * sky_perez_cos(c, cos_theta, gamma, cos_gamma);
   }
 #endif
+}
+
+/* Preetham's Y, x, y towards unit d (v[0], v[1], v[2]); packed: the 18 reals of sky_preetham_pack;
+ * sun: unit, towards the sun, held at the horizon when below it. */
+SEASIM_FN void sky_preetham_yxy(const SEASIM_GLOBAL real* packed, real3 d, real3 sun, real* v) {
+  sky_preetham_yxy_cos(packed, d.y, dot(d, sky_preetham_sun(sun)), v);
 }
 
 /* Linear Rec. 709 RGB (relative) of the Preetham sky towards unit d; sun: unit, towards the sun,
@@ -243,7 +252,7 @@ SEASIM_FN void sky_daylight_m(real x, real y, real* m1, real* m2) {
  * from the sun, +0.011 at x = 0.248, past the locus's stated range) is left as Preetham has it. */
 SEASIM_FN real sky_daylight_locus_y(real x) { return R(-3.0) * x * x + R(2.870) * x - R(0.275); }
 
-/* The spectral Preetham sky: towards unit d, Preetham's Y and x, y, and from x, y the CIE
+/* The spectral Preetham sky from Preetham's Y and x, y of a view (v[0], v[1], v[2]): from x, y the CIE
  * daylight spectrum S(λ) = S0 + M1 S1 + M2 S2 scaled to luminance Y. Returned as the three weights of
  * the basis, (Y, Y M1, Y M2) / N with N = n0 + M1 n1 + M2 n2 the spectrum's luminance, so that a band
  * takes dot(w_λ, shape) with w_λ = S_k(λ) / D65(λ) (host/passes/sea_sky.cpp): linear in the shape
@@ -251,9 +260,7 @@ SEASIM_FN real sky_daylight_locus_y(real x) { return R(-3.0) * x * x + R(2.870) 
  * packed: the 18 reals of sky_preetham_pack, then n0, n1, n2 = ∫ S_k ȳ dλ / ∫ D65 ȳ dλ (the host's,
  * from data/cie_daylight_components.csv), then packed[21]: 1 to hold the chromaticity no lower than
  * the daylight locus (sky_daylight_locus_y), 0 for Preetham's own y (22 reals in all). */
-SEASIM_FN real3 sky_preetham_daylight(const SEASIM_GLOBAL real* packed, real3 d, real3 sun) {
-  real v[3];
-  sky_preetham_yxy(packed, d, sun, v);
+SEASIM_FN real3 sky_preetham_daylight_of_yxy(const SEASIM_GLOBAL real* packed, const real* v) {
   /* packed[21] = 1: sky.chromaticity = "daylight_locus", y no lower than the locus (sky_daylight_locus_y). */
   const real y = packed[21] > R(0.5) ? fmax(v[2], sky_daylight_locus_y(v[1])) : v[2];
   real m1, m2;
@@ -261,6 +268,18 @@ SEASIM_FN real3 sky_preetham_daylight(const SEASIM_GLOBAL real* packed, real3 d,
   const real n = fmax(packed[18] + m1 * packed[19] + m2 * packed[20], R(1e-6));
   const real k = fmax(v[0], R(0.0)) / n;
   return MAKE_REAL3(k, k * m1, k * m2);
+}
+
+/* The same from the view's cos θ to the zenith and cos γ to sky_preetham_sun's sun. */
+SEASIM_FN real3 sky_preetham_daylight_cos(const SEASIM_GLOBAL real* packed, real cos_theta, real cos_gamma) {
+  real v[3];
+  sky_preetham_yxy_cos(packed, cos_theta, cos_gamma, v);
+  return sky_preetham_daylight_of_yxy(packed, v);
+}
+
+/* The same towards unit d, sun: unit, towards the sun (held at the horizon when below it). */
+SEASIM_FN real3 sky_preetham_daylight(const SEASIM_GLOBAL real* packed, real3 d, real3 sun) {
+  return sky_preetham_daylight_cos(packed, d.y, dot(d, sky_preetham_sun(sun)));
 }
 
 /* (1/π) ∫_{upper hemisphere} Y cos θ dω of the spectral Preetham sky (its luminance, Y of each view),

@@ -72,6 +72,24 @@ TEST(Plan, SunBelowHorizonStillRendersWithoutSunTerms) {
   EXPECT_TRUE(hasDefine(plan, "sea_single", "SEASIM_HAS_SINGLE_SCATTERING=1"));
 }
 
+// The reflected sky comes from a table only for the analytic skies (the CIE clear sky and Preetham's,
+// which depend on a view through cos theta and gamma alone) seen in a reflection; the uniform sky
+// needs none, the image sky is a table already, and quality.sea_sky_table = 1 asks for the exact model.
+TEST(Plan, ReflectedSkyTableOnlyForAnAnalyticSkyInAReflection) {
+  const auto plan = [](std::vector<seasim::Override> o) { return makePlan(parseScene(kFlatSea, "flat.toml", o)); };
+  const auto set = [](const char* k, const char* v) { return seasim::Override{k, v, {"cli", 1}}; };
+  EXPECT_TRUE(hasDefine(plan({set("sky.model", "\"preetham\"")}), "sea_single", "SEASIM_SEA_SKY_TABLE=256"));
+  EXPECT_TRUE(hasDefine(plan({set("sky.model", "\"analytic\"")}), "sea_single", "SEASIM_SEA_SKY_TABLE=256"));
+  EXPECT_TRUE(hasDefine(plan({set("sky.model", "\"preetham\""), set("quality.sea_sky_table", "64")}), "sea_single",
+                        "SEASIM_SEA_SKY_TABLE=64"));
+  for (const Plan& p : {plan({}), plan({set("sky.model", "\"preetham\""), set("quality.sea_sky_table", "1")}),
+                        plan({set("sky.model", "\"preetham\""), set("sea.reflection", "false")})}) {
+    const auto* e = p.find("sea_single");
+    ASSERT_NE(e, nullptr);
+    for (const std::string& d : e->defines) EXPECT_EQ(d.rfind("SEASIM_SEA_SKY_TABLE", 0), std::string::npos) << d;
+  }
+}
+
 // quality.fast_math marks every model pass's build (Device::program adds -cl-fast-relaxed-math for
 // it) and shows in `seasim plan`; the NaN/Inf check is never built with finite-only maths.
 TEST(Plan, FastMathMarksEveryModelPassButTheCheck) {

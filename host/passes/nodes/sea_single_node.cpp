@@ -29,7 +29,7 @@ namespace {
 // cosine means above all) cost more than the kernel's own time per frame.
 const PassKeys kSeaSingleKeys = {{"camera.width", "camera.height", "sun.*", "sky.*", "water.*", "bottom.*", "sea.*",
                                   "spectral.*", "quality.sea_lut_size", "quality.sea_supersample",
-                                  "quality.wave_filter"},
+                                  "quality.wave_filter", "quality.sea_sky_table"},
                                  {"camera.*"}};
 
 class SeaSingleNode : public Pass {
@@ -84,6 +84,12 @@ std::shared_ptr<SeaSingleFeatures> seaSingleFeatures(const PassDescriptor& d, co
   // replaced by its reference, n x n rays per pixel over the unfiltered normals.
   f->supersample = static_cast<int>(d.knob(scene, "sea_supersample"));
   f->wave_filter = d.knob(scene, "wave_filter") != 0 && f->supersample == 1;
+  // The reflected sky of an analytic model (CIE clear, Preetham) from a table over sqrt(cos theta) and
+  // gamma (common/sky_table.h); quality.sea_sky_table = 1 evaluates the model at every reflected
+  // direction.
+  const bool analytic_sky = f->sky_model == 1 || f->sky_model == 3;
+  const int table = static_cast<int>(d.knob(scene, "sea_sky_table"));
+  f->sky_table = f->reflection && analytic_sky && table > 1 ? table : 0;
   return f;
 }
 
@@ -97,7 +103,7 @@ PassDescriptor seaSingleDescriptor() {
   d.band_loop_timing = d.name;
   d.band_loop_items = [](const Scene& s, int bands) { return double(s.camera.width) * s.camera.height * bands; };
   d.keys = kSeaSingleKeys;
-  d.knobs = {{"sea_supersample", 1}, {"wave_filter", 1, true}};
+  d.knobs = {{"sea_supersample", 1}, {"wave_filter", 1, true}, {"sea_sky_table", 256}};
   // [shallow] takes the sea model's place for the view from above (fourflow_node.cpp).
   d.rule = [d](const Scene& scene, const Plan&) -> std::optional<PassPlan> {
     if (!seaSeenFromAbove(scene) || scene.shallow.present) return std::nullopt;
@@ -140,6 +146,11 @@ PassDescriptor seaSingleDescriptor() {
       out.push_back({p.name, "wave filter's slope-moment mips",
                      4.0 * kmath_d::sea_lean_level_offset(n, kmath_d::sea_lean_levels(n)),
                      {"surface.grid", "surface.grid"}, {N, N}});
+    }
+    if (f.sky_table > 0) {
+      const double n = f.sky_table;
+      out.push_back({p.name, "reflected sky's table", 4.0 * SKY_TABLE_STRIDE * n * n,
+                     {"quality.sea_sky_table", "quality.sea_sky_table"}, {n, n}});
     }
     return out;
   };
