@@ -297,7 +297,7 @@ TEST(SceneParser, Defaults) {
       {"reference_spp", 64},     {"reference_steps", 200}, {"shafts_exact", 0},
       {"shafts_error_budget", 1}, {"sea_supersample", 1},  {"wave_filter", 1},
       {"fourflow_table_size", 32}, {"lamps_delta_m", 0}, {"shafts_panel_deg", 4}, {"shafts_panel_texels", 2},
-      {"profile_streams", 16}, {"lamps_model", 2}, {"shafts_march_steps", 20}};
+      {"profile_streams", 16}, {"lamps_model", 2}, {"shafts_march_steps", 20}, {"sea_sky_table", 256}};
   EXPECT_EQ(s.quality.size(), std::size(knobs) + 4);
   EXPECT_TRUE(s.quality.at("fast_math").automatic);  // "auto": the planner decides (fastMathFor)
   EXPECT_TRUE(s.quality.at("froxel_x").automatic);   // "auto": from froxel_columns (froxel_setup.h)
