@@ -126,8 +126,8 @@ SEASIM_FN real whitecaps_level_coord(real x, real cell, int level) {
 SEASIM_FN real whitecaps_read_level(const SEASIM_GLOBAL real* level, int nl, real u, real v) {
   const real fu = floor(u), fv = floor(v);
   const real tu = u - fu, tv = v - fv;
-  const real size = (real)nl;
-  int i0 = (int)(fu - size * floor(fu / size)), j0 = (int)(fv - size * floor(fv / size));
+  const real size = (real)nl, inv_size = R(1.0) / size; /* nl a power of two: 1 / nl is exact */
+  int i0 = (int)(fu - size * floor(fu * inv_size)), j0 = (int)(fv - size * floor(fv * inv_size));
   i0 = i0 >= nl ? i0 - nl : i0; /* rounding of fu / size just below an integer */
   j0 = j0 >= nl ? j0 - nl : j0;
   const int i1 = i0 + 1 < nl ? i0 + 1 : 0, j1 = j0 + 1 < nl ? j0 + 1 : 0;
@@ -136,34 +136,54 @@ SEASIM_FN real whitecaps_read_level(const SEASIM_GLOBAL real* level, int nl, rea
   return near_row + tv * (far_row - near_row);
 }
 
-/* The foam fraction around (x, z) m for a square tap of side `size` m: trilinear between the two
- * levels whose cells bracket WHITECAPS_FOOTPRINT_SCALE × size (level 0, bilinear, when it is smaller). */
-SEASIM_FN real whitecaps_read(const SEASIM_GLOBAL real* mips, int n, real patch, real x, real z, real size) {
+/* The two mip levels and the weight between them for a square tap of side `size` m: the levels whose
+ * cells bracket WHITECAPS_FOOTPRINT_SCALE × size (level 0, bilinear, when it is smaller). */
+SEASIM_FN void whitecaps_tap_levels(int n, real patch, real size, int* l0, int* l1, real* t) {
   const int levels = whitecaps_levels(n);
   const real cell = patch / (real)n;
   const real ratio = size / cell * R(WHITECAPS_FOOTPRINT_SCALE);
   const real lod = clamp(log2(fmax(ratio, R(1.0))), R(0.0), (real)(levels - 1));
-  const int l0 = (int)floor(lod);
-  const int l1 = l0 + 1 < levels ? l0 + 1 : l0;
-  const real t = lod - (real)l0;
+  *l0 = (int)floor(lod);
+  *l1 = *l0 + 1 < levels ? *l0 + 1 : *l0;
+  *t = lod - (real)*l0;
+}
+
+/* The foam fraction around (x, z) m between levels l0 and l1 with weight t (whitecaps_tap_levels). */
+SEASIM_FN real whitecaps_read_levels(const SEASIM_GLOBAL real* mips, int n, real patch, real x, real z, int l0, int l1,
+                                     real t) {
+  const real cell = patch / (real)n;
   const real f0 = whitecaps_read_level(mips + whitecaps_level_offset(n, l0), n >> l0,
                                        whitecaps_level_coord(x, cell, l0), whitecaps_level_coord(z, cell, l0));
+  if (l1 == l0) return f0;
   const real f1 = whitecaps_read_level(mips + whitecaps_level_offset(n, l1), n >> l1,
                                        whitecaps_level_coord(x, cell, l1), whitecaps_level_coord(z, cell, l1));
   return f0 + t * (f1 - f0);
 }
 
+/* The foam fraction around (x, z) m for a square tap of side `size` m: trilinear between the two
+ * levels whose cells bracket WHITECAPS_FOOTPRINT_SCALE × size (level 0, bilinear, when it is smaller). */
+SEASIM_FN real whitecaps_read(const SEASIM_GLOBAL real* mips, int n, real patch, real x, real z, real size) {
+  int l0, l1;
+  real t;
+  whitecaps_tap_levels(n, patch, size, &l0, &l1, &t);
+  return whitecaps_read_levels(mips, n, patch, x, z, l0, l1, t);
+}
+
 /* The foam fraction of a footprint centred at (x, z) m, `minor` m across and `major` m along the unit
- * horizontal direction (dir_x, dir_z): up to WHITECAPS_MAX_TAPS square taps along the major axis. */
+ * horizontal direction (dir_x, dir_z): up to WHITECAPS_MAX_TAPS square taps along the major axis, all
+ * of one size (so their levels are found once). */
 SEASIM_FN real whitecaps_footprint(const SEASIM_GLOBAL real* mips, int n, real patch, real x, real z, real dir_x,
                                    real dir_z, real minor, real major) {
   const real ratio = major / fmax(minor, R(1e-30));
   const int taps = ratio >= (real)WHITECAPS_MAX_TAPS ? WHITECAPS_MAX_TAPS : (int)ceil(fmax(ratio, R(1.0)));
   const real tap_size = fmax(minor, major / (real)taps);
+  int l0, l1;
+  real t;
+  whitecaps_tap_levels(n, patch, tap_size, &l0, &l1, &t);
   real sum = R(0.0);
   for (int k = 0; k < taps; ++k) {
     const real offset = major * (((real)k + R(0.5)) / (real)taps - R(0.5));
-    sum += whitecaps_read(mips, n, patch, x + offset * dir_x, z + offset * dir_z, tap_size);
+    sum += whitecaps_read_levels(mips, n, patch, x + offset * dir_x, z + offset * dir_z, l0, l1, t);
   }
   return clamp(sum / (real)taps, R(0.0), R(1.0));
 }
