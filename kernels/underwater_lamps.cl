@@ -369,7 +369,9 @@ static inline void lamp_orders_smooth(__constant UwParams* p, __global const UwB
     float gk = p->g;
     for (int k = 1; k <= ms_orders; ++k) {
       gk *= p->g;
-      geo[k - 1] = uw_ms_table_lerp(ms_rows + (k - 1) * UW_MS_TABLE, ti, tf) * hg_phase(c, gk);
+      const float phase =
+          k == 1 ? uw_ms_order1_phase(v->o + t * v->d, lamp, axis, L->cos_cone, p->g, c_min, -v->d) : hg_phase(c, gk);
+      geo[k - 1] = uw_ms_table_lerp(ms_rows + (k - 1) * UW_MS_TABLE, ti, tf) * phase;
     }
     for (int i = 0; i < nb; ++i) {
       const float sa = bands[i].a, ss = bands[i].b;

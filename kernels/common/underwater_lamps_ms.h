@@ -21,7 +21,9 @@
  * n + 1 legs have mean cosines g^0 .. g^n (κ = 0: paths as straight as the lamp's ray, exact as
  * g -> 1; κ = 1: light that turned more lingers longer, ℓ_n/s the density of slower light).
  * Its radiance at x spreads as HG(g^n) about the lamp's ray, so scattering once more towards the eye
- * takes the phase function HG(g^{n+1}) at the scattering angle α from the lamp's ray, and a surface of
+ * takes the phase function HG(g^{n+1}) at the scattering angle α from the lamp's ray — except order 1
+ * outside the cone, whose light comes in from the beam: its phase is averaged over the light of the
+ * cone's nearest edge line (uw_ms_order1_phase) — and a surface of
  * normal n_s receives E_n = φ_n (g^n max(cos θ_i, 0) + (1 - g^n)/4) (collimated light: φ cos θ_i;
  * isotropic: φ/4). Along a view ray o + t d up to S:
  *   L_ms = I ∫_0^S σ_s e^{-σ_t t} Σ_n φ_n(x_t) p_HG(cos α; g^{n+1}) dt,
@@ -255,11 +257,60 @@ SEASIM_FN real uw_ms_glow_ray_weight(const UwMsRay* q, real t, real s, real radi
 /* The ray's cap: 30 optical depths of the least extinction (e^{-30} = 1e-13), 1e4 m in clear water. */
 SEASIM_FN real uw_ms_ray_cap(real sigma_t_min) { return sigma_t_min > R(3e-3) ? R(30.0) / sigma_t_min : R(1e4); }
 
+/* Order 1's phase towards the eye at a point x outside the cone. Light scattered once reaches x from the
+ * beam, in the plane of the axis and x, not along the lamp's radial direction (a kernel copy that
+ * integrated order 1 exactly over a hard cone reproduced the path tracer where HG(g²) about the radial
+ * direction was 13-22 % low at g = 0.9: docs/journal/lamps_orders.md). Taken from the cone's edge line
+ * nearest to x: e from the lamp at θc off the axis, in that plane. Light scattered at y = lamp + u e
+ * reaches x along ω(δ) = cos δ e + sin δ n (n ⊥ e towards x), δ its deflection; with h = s sin(ψ − θc)
+ * x's distance from the line, r = h / sin δ and du = h dδ / sin²δ, the line's light at x per dδ is
+ * p_HG(cos δ; g) e^{-c(u + r)} / h, so the phase averaged over it is
+ *   D₁ = ∫_{ψ−θc}^{π} p(cos δ) e^{-c(u + r − s)} p(ω(δ) · to_eye) dδ / ∫_{ψ−θc}^{π} p(cos δ) e^{-c(u + r − s)} dδ,
+ * p = p_HG(·; g), by UW_MS_EDGE_NODES midpoints quadratic in δ from ψ − θc (the HG peak at the small
+ * deflections). c: one extinction for every band (the kernel's least, so the bands share the nodes).
+ * Inside the cone, and where x lies on the axis or on the edge line itself (no plane, h = 0), it is
+ * HG(g²) about the radial direction, the orders' own rule (header). g = 0 gives 1/4π exactly. */
+#define UW_MS_EDGE_NODES 12
+SEASIM_FN real uw_ms_order1_phase(real3 x, real3 lamp, real3 axis, real cos_cone, real g, real c, real3 to_eye) {
+  const real3 w = x - lamp;
+  const real s = length(w);
+  const real3 rad = s > R(0.0) ? w * (R(1.0) / s) : axis;
+  const real cos_psi = dot(rad, axis);
+  const real cos_alpha = dot(rad, to_eye);
+  if (!(s > R(0.0)) || cos_psi >= cos_cone) return hg_phase(cos_alpha, g * g);
+  real3 perp = rad - cos_psi * axis;
+  const real pl = length(perp);
+  if (!(pl > R(1e-6))) return hg_phase(cos_alpha, g * g);
+  perp = perp * (R(1.0) / pl);
+  const real sin_cone = sqrt(fmax(R(1.0) - cos_cone * cos_cone, R(0.0)));
+  const real3 e = cos_cone * axis + sin_cone * perp;
+  const real ce = clamp(dot(rad, e), R(-1.0), R(1.0));
+  const real d_min = acos(ce), h = s * sin(d_min), u0 = s * ce;
+  real3 n = rad - ce * e;
+  const real nl = length(n);
+  if (!(nl > R(1e-6)) || !(h > R(0.0))) return hg_phase(cos_alpha, g * g);
+  n = n * (R(1.0) / nl);
+  real num = R(0.0), den = R(0.0);
+  for (int k = 0; k < UW_MS_EDGE_NODES; ++k) {
+    const real q = ((real)k + R(0.5)) / (real)UW_MS_EDGE_NODES;
+    const real delta = d_min + (SEASIM_PI - d_min) * q * q;
+    const real jac = (SEASIM_PI - d_min) * R(2.0) * q / (real)UW_MS_EDGE_NODES;
+    const real sd = fmax(sin(delta), R(1e-6)), cd = cos(delta);
+    const real r = h / sd, u = fmax(u0 - h * cd / sd, R(0.0));
+    const real wgt = hg_phase(cd, g) * exp(-c * fmax(u + r - s, R(0.0))) * jac;
+    num += wgt * hg_phase(dot(cd * e + sd * n, to_eye), g);
+    den += wgt;
+  }
+  return den > R(0.0) ? num / den : hg_phase(cos_alpha, g * g);
+}
+
 /* L_ms per unit I(λ) for one band along a view ray (no shadows): `table` holds the lamp's P_1..P_orders
  * rows; orders <= UW_MS_MAX_ORDERS; t_cap the ray's cap (uw_ms_ray_cap of the least σ_t of the bands
- * that share the steps). The kernel runs the same steps with the bands innermost. */
-SEASIM_FN real uw_ms_inscatter(real3 o, real3 d, real3 lamp, real3 axis, real s_min, real t_end, real t_cap, real sigma_a,
-                               real sigma_s, real g, real kappa, const SEASIM_GLOBAL float* table, int orders, int steps) {
+ * that share the steps); order 1's phase from uw_ms_order1_phase with the cone cos_cone and the
+ * extinction c_dir (the kernel's least σ_t too). The kernel runs the same steps with the bands innermost. */
+SEASIM_FN real uw_ms_inscatter(real3 o, real3 d, real3 lamp, real3 axis, real cos_cone, real s_min, real t_end, real t_cap,
+                               real sigma_a, real sigma_s, real g, real kappa, real c_dir, const SEASIM_GLOBAL float* table,
+                               int orders, int steps) {
   UwMsRay q;
   uw_ms_ray(o, d, lamp, s_min, t_end, t_cap, steps, &q);
   if (!(q.dv > R(0.0)) || !(sigma_s > R(0.0))) return R(0.0);
@@ -274,7 +325,8 @@ SEASIM_FN real uw_ms_inscatter(real3 o, real3 d, real3 lamp, real3 axis, real s_
       gn1 *= g; /* g^{n+1} */
       const real P = uw_ms_table_at(table + (n - 1) * UW_MS_TABLE, cos_psi);
       if (P <= R(0.0)) continue;
-      sum += uw_ms_weight(sigma_a, sigma_s, s, uw_ms_stretch(g, n, kappa), n, orders) * P * hg_phase(cos_alpha, gn1);
+      const real phase = n == 1 ? uw_ms_order1_phase(o + t * d, lamp, axis, cos_cone, g, c_dir, -d) : hg_phase(cos_alpha, gn1);
+      sum += uw_ms_weight(sigma_a, sigma_s, s, uw_ms_stretch(g, n, kappa), n, orders) * P * phase;
     }
     acc += sigma_s * exp(-(sigma_a + sigma_s) * t) * sum * uw_ms_ray_weight(&q, t, s, s_min);
   }

@@ -122,8 +122,8 @@ seasim::Image cpuDouble(const Scene& scene, int planes, int subplanes, bool delt
           if (orders) {
             double c_min = setup.bands[0].c;
             for (const UwBand& other : setup.bands) c_min = std::min(c_min, double(other.c));
-            v += kd::uw_ms_inscatter(o, d, lamp, axis, lamps.params.s_min, t_end, kd::uw_ms_ray_cap(c_min), b.a, b.b,
-                                     p.g, cfg.kappa, rows, cfg.orders, cfg.ms_steps);
+            v += kd::uw_ms_inscatter(o, d, lamp, axis, L.cos_cone, lamps.params.s_min, t_end, kd::uw_ms_ray_cap(c_min),
+                                     b.a, b.b, p.g, cfg.kappa, c_min, rows, cfg.orders, cfg.ms_steps);
             // The bottom's glow (on the bottom itself its light is 0: the source's cos ψ there).
             const float* gl = glow.data() + static_cast<size_t>(l) * glow_stride;
             if (gl[3] > 0.0f)

@@ -7,8 +7,9 @@
 #   FIT      three waters the orders model's two knobs were first chosen on (β = 0.8, κ = 0.75);
 #   HELDOUT  twelve cases spread over the model's grid: g 0.5–0.95, b/a 1–10, cones 10–60°, heights 1–10 m
 #            (the grid the model is meant for). With FIT, what the knobs are now chosen on
-#            (quality.lamps_ms_spread β = 0.6, quality.lamps_ms_kappa κ = 0.75: the lowest RMS log-ratio over
-#            their 54 regions from β in {0.5, 0.6, 0.7, 0.8} × κ in {0.5, 0.75, 1});
+#            (quality.lamps_ms_spread β = 0.6: the lowest RMS log-ratio over their 54 regions from β in
+#            {0.5, 0.6, 0.7, 0.8} × κ in {0.5, 0.75, 1}; quality.lamps_ms_kappa κ = 0.6, chosen again on them
+#            from {0.25, 0.4, 0.5, 0.6, 0.75} once order 1's direction came from the cone's edge line);
 #   NEAR     one step from a FIT or HELDOUT case along one axis (a, b, g, the cone or the height), never
 #            fitted on: what the expected error's lookup (data/expected_error/lamps_*.csv) is checked with,
 #            leave-one-out, since the other cases lie more than one step apart;

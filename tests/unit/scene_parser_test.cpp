@@ -316,7 +316,7 @@ TEST(SceneParser, Defaults) {
   }
   // The lamps' "orders" settings are the underwater_lamps descriptor's scene keys.
   const std::pair<const char*, double> lamp_keys[] = {{"quality.lamps_orders", 4}, {"quality.lamps_ms_steps", 12},
-                                                      {"quality.lamps_ms_kappa", 0.75}, {"quality.lamps_ms_spread", 0.6},
+                                                      {"quality.lamps_ms_kappa", 0.6}, {"quality.lamps_ms_spread", 0.6},
                                                       {"quality.lamps_ms_cell_deg", 1.0}};
   for (const auto& [key, value] : lamp_keys) EXPECT_DOUBLE_EQ(seasim::modelKey(s, key), value) << key;
 

@@ -85,7 +85,7 @@ PassDescriptor underwaterLampsDescriptor() {
   // per view ray, its path-stretch exponent κ and the spread β of its landing (common/underwater_lamps_ms.h).
   d.scene_keys = {{"quality", "lamps_orders", ModelKey::Type::Integer, 4.0, 1.0, 12.0, ""},
                   {"quality", "lamps_ms_steps", ModelKey::Type::Integer, 12.0, 1.0, 64.0, ""},
-                  {"quality", "lamps_ms_kappa", ModelKey::Type::Number, 0.75, 0.0, 2.0, ""},
+                  {"quality", "lamps_ms_kappa", ModelKey::Type::Number, 0.6, 0.0, 2.0, ""},
                   {"quality", "lamps_ms_spread", ModelKey::Type::Number, 0.6, 0.0, 1.0, "", true},
                   {"quality", "lamps_ms_cell_deg", ModelKey::Type::Number, 1.0, 0.0, 10.0, ""}};
   d.rule = [](const Scene& scene, const Plan& so_far) -> std::optional<PassPlan> {
