@@ -51,6 +51,7 @@
 #include "common/underwater_lamps.h"
 #if SEASIM_LAMPS_ORDERS
 #include "common/path_tracer.h"
+#include "common/polynomial_trig.h"
 #include "common/underwater_lamps_ms.h"
 #endif
 

@@ -54,8 +54,8 @@
  * depths); large σ ℓ
  * (weights underflow to 0, never overflow: the Poisson terms are built on e^{-σ_t ℓ}).
  *
- * Written against compat.h; needs optics.h, shafts.h, underwater_lamps.h and path_tracer.h (HG's inverse
- * CDF) before it.
+ * Written against compat.h; needs optics.h, shafts.h, underwater_lamps.h, path_tracer.h (HG's inverse
+ * CDF) and polynomial_trig.h before it.
  */
 
 #define UW_MS_TABLE 181    /* blurred profile entries over ψ in [0°, 180°], 1° apart */
@@ -285,9 +285,9 @@ SEASIM_FN real uw_ms_order1_phase(real3 x, real3 lamp, real3 axis, real cos_cone
   const real sin_cone = sqrt(fmax(R(1.0) - cos_cone * cos_cone, R(0.0)));
   const real3 e = cos_cone * axis + sin_cone * perp;
   const real ce = clamp(dot(rad, e), R(-1.0), R(1.0));
-  const real d_min = acos(ce), h = s * sin(d_min), u0 = s * ce;
   real3 n = rad - ce * e;
-  const real nl = length(n);
+  const real nl = length(n); /* sin(ψ − θc), from the geometry: acos near 1 loses it under relaxed maths */
+  const real d_min = lookup_atan2(nl, ce), h = s * nl, u0 = s * ce;
   if (!(nl > R(1e-6)) || !(h > R(0.0))) return hg_phase(cos_alpha, g * g);
   n = n * (R(1.0) / nl);
   real num = R(0.0), den = R(0.0);
