@@ -3,6 +3,8 @@
 // cam_right, cam_up and cam_forward. Every pass that casts camera rays on the device sets its frame
 // here, so the kernels and the references (which call cameraFrame) see one camera.
 #pragma once
+#include <cmath>
+
 
 #include "geometry/shafts_geometry.h"
 #include "math/vec3.h"
@@ -24,6 +26,15 @@ void setKernelCamera(KernelParams& p, const CameraDesc& cam) {
   set4(p.cam_right, f.right);
   set4(p.cam_up, f.up);
   set4(p.cam_forward, f.fwd);
+}
+
+// The frame, tan of half the vertical field of view and one pixel's angle (2 tan(fov/2) / height): what
+// a camera moved at one image size changes in a struct that has these fields (the sea and the foam).
+template <class KernelParams>
+void setKernelCameraView(KernelParams& p, const CameraDesc& cam) {
+  setKernelCamera(p, cam);
+  p.tan_half_fov_y = static_cast<float>(std::tan(cam.fov_y / 2));
+  p.pixel_angle = static_cast<float>(2 * std::tan(cam.fov_y / 2) / cam.height);
 }
 
 }  // namespace seasim

@@ -69,20 +69,13 @@ Vec3 sunDirection(const Scene& scene) {
               std::sin(scene.sun.zenith) * std::sin(scene.sun.azimuth)};
 }
 
-// The camera's pose and field of view: what a camera moved at the same image size changes.
-void setSeaCamera(SeaParams& p, const CameraDesc& cam) {
-  setKernelCamera(p, cam);
-  p.tan_half_fov_y = static_cast<float>(std::tan(cam.fov_y / 2));
-  p.pixel_angle = static_cast<float>(2 * std::tan(cam.fov_y / 2) / cam.height);
-}
-
 // The kernel's parameters but the sky's and the LUT's (ocean: the FFT waves, null without; bottom_caustics:
 // the caustic map, null without).
 SeaParams seaParams(const Scene& scene, const WavelengthGrid& grid, const Vec3& sun, const OceanMaps* ocean,
                     const SeaBottomCaustics* bottom_caustics) {
   const CameraDesc& cam = scene.camera;
   SeaParams p{};
-  setSeaCamera(p, cam);
+  setKernelCameraView(p, cam);
   set4(p.sun_dir, sun);
   p.aspect = static_cast<float>(cam.width) / static_cast<float>(cam.height);
   p.ior = static_cast<float>(scene.water.ior);
@@ -291,13 +284,15 @@ SeaSinglePass::SeaSinglePass(Device& device, const Scene& scene, const PassPlan&
   });
 }
 
-bool SeaSinglePass::moveCamera(const CameraDesc& cam) {
-  if (cam.width != width_ || cam.height != height_) return false;
-  setSeaCamera(host_params_, cam);
+void SeaSinglePass::moveCamera(const CameraDesc& cam) {
+  if (cam.width != width_ || cam.height != height_) {
+    throw RuntimeError("sea_single pass: the image size changed without a new set-up (camera.width and "
+                       "camera.height are among the keys that set this pass up again)");
+  }
+  setKernelCameraView(host_params_, cam);
   onDevice("sea_single pass (moving the camera)", [&] {
     device_.queue().enqueueWriteBuffer(params_, CL_TRUE, 0, sizeof host_params_, &host_params_);
   });
-  return true;
 }
 
 double SeaSinglePass::run() {

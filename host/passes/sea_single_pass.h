@@ -31,9 +31,9 @@ class SeaSinglePass {
   SeaSinglePass(Device& device, const Scene& scene, const PassPlan& plan, const WavelengthGrid& grid,
                 const Sensor& sensor, const OceanMaps* ocean = nullptr, const SeaBottomCaustics* bottom_caustics = nullptr);
   // A camera moved or turned, or its field of view changed, at the same image size: only the
-  // parameter block's camera changes (the sky, the bands and the LUT do not depend on it). False for
-  // another image size, which needs a new pass (its output buffers).
-  bool moveCamera(const CameraDesc& cam);
+  // parameter block's camera changes (the sky, the bands and the LUT do not depend on it).
+  // RuntimeError for another image size, which needs a new pass (its output buffers).
+  void moveCamera(const CameraDesc& cam);
   // Enqueues the kernel; returns its profiled time in ms (waits for it).
   double run();
   cl::Buffer& rgb() { return rgb_; }

@@ -93,17 +93,17 @@ SeaSky makeSeaSky(const SkyDesc& desc, const double sun_dir[3], const Wavelength
 
 std::vector<double> seaSkyTable(const SeaSky& sky, int n) {
   if (n < 2) throw RuntimeError("sea sky table: needs at least 2 x 2 nodes, got " + std::to_string(n));
-  if (sky.model != 1 && sky.model != 3)
+  if (sky.model != SEASIM_SKY_ANALYTIC && sky.model != SEASIM_SKY_PREETHAM)
     throw RuntimeError("sea sky table: only the analytic skies (CIE clear, Preetham) depend on the view through "
                        "cos theta and cos gamma alone");
   std::vector<double> table(static_cast<size_t>(SKY_TABLE_STRIDE) * n * n, 0.0);
-  // 16,384 evaluations of Preetham's model at the default 128: rows on threads.
+  // 65,536 evaluations of Preetham's model at the default 256: rows on threads.
   tbb::parallel_for(0, n, [&](int i) {
     for (int j = 0; j < n; ++j) {
       double ct, cg;
       kd::sky_table_node(i, j, n, &ct, &cg);
       double v[3];
-      if (sky.model == 1) {
+      if (sky.model == SEASIM_SKY_ANALYTIC) {
         v[0] = v[1] = v[2] = kd::sky_cie_gradation(ct) * kd::sky_cie_indicatrix(cg);
       } else {
         kd::sky_preetham_yxy_cos(sky.texels.data(), ct, cg, v);

@@ -30,10 +30,10 @@ int skyModelDefine(const SkyDesc& sky);
 // files: read the sky image through it (io/data_files.h), or directly when null.
 SeaSky makeSeaSky(const SkyDesc& sky, const double sun_dir[3], const WavelengthGrid& grid, DataFiles* files = nullptr);
 
-// The reflected sky's n x n table (common/sky_table.h: nodes in cos theta and sin(gamma / 2),
+// The reflected sky's n x n table (common/sky_table.h: nodes in sqrt(cos theta) and gamma,
 // SKY_TABLE_STRIDE reals each): the analytic sky's own quantities at each node (sky_table_shape turns a
-// read into the scaled shape). RuntimeError for n < 2
-// or a sky that is not analytic (CIE clear or Preetham).
+// read into the scaled shape). RuntimeError for n < 2 or a sky that is not analytic (CIE clear or
+// Preetham).
 std::vector<double> seaSkyTable(const SeaSky& sky, int n);
 
 }  // namespace seasim

@@ -19,17 +19,6 @@ static_assert(offsetof(WhitecapsParams, tan_half_fov_y) == 80);
 static_assert(offsetof(WhitecapsParams, ocean_n) == 96);
 static_assert(offsetof(WhitecapsParams, band_count) == 108);
 
-namespace {
-
-// The camera's pose and field of view: what a camera moved at the same image size changes.
-void setWhitecapsCamera(WhitecapsParams& p, const CameraDesc& cam) {
-  setKernelCamera(p, cam);
-  p.tan_half_fov_y = static_cast<float>(std::tan(cam.fov_y / 2));
-  p.pixel_angle = static_cast<float>(2 * std::tan(cam.fov_y / 2) / cam.height);
-}
-
-}  // namespace
-
 std::vector<double> foamRadianceBands(const Scene& scene, const WavelengthGrid& grid) {
   const SkyLight light = makeSkyLight(scene, grid);
   const std::vector<double> sky = light.horizontalIrradiance();
@@ -47,7 +36,7 @@ WhitecapsPass::WhitecapsPass(Device& device, const Scene& scene, const PassPlan&
     : device_(device), spectral_output_(plan.featuresAs<WhitecapsFeatures>().spectral_output) {
   const CameraDesc& cam = scene.camera;
   WhitecapsParams& p = params_;
-  setWhitecapsCamera(p, cam);
+  setKernelCameraView(p, cam);
   p.aspect = static_cast<float>(cam.width) / static_cast<float>(cam.height);
   p.ocean_patch = static_cast<float>(ocean_patch);
   p.ocean_n = ocean_n;
@@ -73,13 +62,15 @@ WhitecapsPass::WhitecapsPass(Device& device, const Scene& scene, const PassPlan&
   });
 }
 
-bool WhitecapsPass::moveCamera(const CameraDesc& cam) {
-  if (cam.width != params_.width || cam.height != params_.height) return false;
-  setWhitecapsCamera(params_, cam);
+void WhitecapsPass::moveCamera(const CameraDesc& cam) {
+  if (cam.width != params_.width || cam.height != params_.height) {
+    throw RuntimeError("whitecaps pass: the image size changed without a new set-up (camera.width and "
+                       "camera.height are among the keys that set this pass up again)");
+  }
+  setKernelCameraView(params_, cam);
   onDevice("whitecaps pass (moving the camera)", [&] {
     device_.queue().enqueueWriteBuffer(params_buffer_, CL_TRUE, 0, sizeof params_, &params_);
   });
-  return true;
 }
 
 double WhitecapsPass::run(const cl::Buffer& jacobian, const WhitecapsFoamLevels& levels, cl::Buffer& rgb,

@@ -42,8 +42,8 @@ class WhitecapsPass {
   double updateFoam(const cl::Buffer& jacobian, const WhitecapsFoamLevels& levels);
   double composite(cl::Buffer& rgb, cl::Buffer* spectral = nullptr);
   // A camera moved or turned, or its field of view changed, at the same image size: only the
-  // parameter block's camera changes. False for another image size (a new pass).
-  bool moveCamera(const CameraDesc& cam);
+  // parameter block's camera changes. RuntimeError for another image size (a new pass).
+  void moveCamera(const CameraDesc& cam);
 
   const WhitecapsParams& params() const { return params_; }
   const std::vector<float>& foamBands() const { return foam_bands_; }

@@ -17,7 +17,6 @@ extern "C" {
 #include "passes/sea_heightfield.h"
 #include "render/pass.h"
 #include "render/radiance_target.h"
-#include "util/error.h"
 
 namespace seasim {
 
@@ -50,10 +49,7 @@ class SeaSingleNode : public Pass {
     fresh_ = true;
   }
   void execute(FrameContext& ctx, PassResources&) override {
-    if (!fresh_ && anyKeyMatches("camera.*", ctx.changedKeys()) && !pass_->moveCamera(ctx.scene().camera)) {
-      throw RuntimeError("sea_single pass: the image size changed without a new set-up (camera.width and "
-                         "camera.height are among the keys that set this pass up again)");
-    }
+    if (!fresh_ && anyKeyMatches("camera.*", ctx.changedKeys())) pass_->moveCamera(ctx.scene().camera);
     fresh_ = false;
     ctx.timings.push_back({"sea_single", pass_->run()});
   }
@@ -87,7 +83,7 @@ std::shared_ptr<SeaSingleFeatures> seaSingleFeatures(const PassDescriptor& d, co
   // The reflected sky of an analytic model (CIE clear, Preetham) from a table over sqrt(cos theta) and
   // gamma (common/sky_table.h); quality.sea_sky_table = 1 evaluates the model at every reflected
   // direction.
-  const bool analytic_sky = f->sky_model == 1 || f->sky_model == 3;
+  const bool analytic_sky = f->sky_model == SEASIM_SKY_ANALYTIC || f->sky_model == SEASIM_SKY_PREETHAM;
   const int table = static_cast<int>(d.knob(scene, "sea_sky_table"));
   f->sky_table = f->reflection && analytic_sky && table > 1 ? table : 0;
   return f;

@@ -42,10 +42,7 @@ class WhitecapsNode : public Pass {
     foam_ocean_version_ = 0;
   }
   void execute(FrameContext& ctx, PassResources& res) override {
-    if (!fresh_ && anyKeyMatches("camera.*", ctx.changedKeys()) && !pass_->moveCamera(ctx.scene().camera)) {
-      throw RuntimeError("whitecaps pass: the image size changed without a new set-up (camera.width and "
-                         "camera.height are among the keys that set this pass up again)");
-    }
+    if (!fresh_ && anyKeyMatches("camera.*", ctx.changedKeys())) pass_->moveCamera(ctx.scene().camera);
     fresh_ = false;
     const OceanMaps& ocean = res.read<OceanMaps>("ocean_maps");
     RadianceTarget& target = res.read<RadianceTarget>("rgb");
