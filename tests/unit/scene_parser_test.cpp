@@ -670,6 +670,8 @@ const BadScene kBadScenes[] = {
     {"[objects] as a plain table", "[objects]\ntype = \"sphere\"\n",
      "bad.toml:1: key 'objects': expected an array of tables ([[objects]])"},
     {"knob 0", "[quality]\nsea_nz = 0\n", "bad.toml:2: key 'quality.sea_nz': must be an integer in [1, 1048576], got 0"},
+    {"sky table 0", "[quality]\nsea_sky_table = 0\n",
+     "bad.toml:2: key 'quality.sea_sky_table': must be an integer in [1, 1048576], got 0"},
     {"knob bad string", "[quality]\nsea_nd = \"fast\"\n", "bad.toml:2: key 'quality.sea_nd': expected a positive integer or \"auto\", got 'fast'"},
     {"knob float", "[quality]\nshafts_planes = 30.5\n", "bad.toml:2: key 'quality.shafts_planes': expected a positive integer or \"auto\""},
     {"unknown knob", "[quality]\nshaft_planes = 10\n", "bad.toml:2: key 'quality.shaft_planes': unknown key; did you mean 'shafts_planes'?"},
