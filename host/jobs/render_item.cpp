@@ -106,6 +106,7 @@ nlohmann::json renderItem(Device& device, Renderer& renderer, const ItemOutputs&
   fs::create_directories(dir, ec);
   if (ec) throw RuntimeError("cannot create the output folder '" + dir + "': " + ec.message());
   nlohmann::json files = nlohmann::json::array();
+  holdItemIfAsked(fs::path(dir).filename().string());  // tests only (jobs/test_hooks.h)
   for (const auto& format : outputs.formats) {
     std::string path;  // what the writer really wrote (a .npy beside it in builds without OpenImageIO)
     if (format == "exr") {

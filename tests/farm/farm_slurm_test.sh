@@ -5,9 +5,10 @@
 #
 # Starts a private single-node Slurm (tests/farm/slurm_localhost.sh, state under WORK_DIR), then:
 #  A. submits a real 4-task array of a small 8-item job plus its merge, with one task SIGKILLed in
-#     the middle of a frame (SEASIM_TEST_KILL_MID_ITEM); samples `seasim farm status` while the
-#     array runs; checks the task retried, the merge passed, and every output equals a
-#     single-machine `seasim run` of the same job (PNG and NPY byte for byte, EXR pixels and
+#     the middle of a frame (SEASIM_TEST_KILL_MID_ITEM) and one item held until released
+#     (SEASIM_TEST_HOLD_ITEM, so a sample sees it running however fast the items render); samples
+#     `seasim farm status` while the array runs; checks the task retried, the merge passed, and
+#     every output equals a single-machine `seasim run` of the same job (PNG and NPY byte for byte, EXR pixels and
 #     channels by idiff: its header's DateTime differs), and that nothing half-written was recorded;
 #  B. submits a job with an item that fails for good: the afterok merge is cancelled, the afternotok
 #     merge runs and fails naming the missing item.
@@ -80,9 +81,11 @@ submitted_id() { sed -n "s/^$1=//p" "$2"; }
 # ---------------------------------------------------------------- A: kill mid-frame, retry, merge
 OUT=$RUN/farm
 export SEASIM_TEST_KILL_MID_ITEM="item5:$RUN/item5.killed"
+RELEASE=$RUN/item1.release
+export SEASIM_TEST_HOLD_ITEM="item1:$RELEASE"
 "$BIN" farm slurm "$JOB" --tasks 4 --retries 2 --device pocl -o "$OUT" --submit >"$RUN/submit_a.log" 2>&1 \
   || { cat "$RUN/submit_a.log"; fail "farm slurm --submit"; }
-unset SEASIM_TEST_KILL_MID_ITEM
+unset SEASIM_TEST_KILL_MID_ITEM SEASIM_TEST_HOLD_ITEM
 ARRAY=$(submitted_id array_job_id "$RUN/submit_a.log")
 MERGE=$(submitted_id merge_job_id "$RUN/submit_a.log")
 MERGE_FAIL=$(submitted_id merge_after_failure_job_id "$RUN/submit_a.log")
@@ -90,7 +93,8 @@ SUBMITTED+=("$ARRAY" "$MERGE" "$MERGE_FAIL")
 log "A: array $ARRAY, merge $MERGE, merge-after-failure $MERGE_FAIL"
 
 # Sample `farm status` while the array runs: every sample accounts for all 8 items, done never
-# goes down, and at least one sample catches a shard running with items left.
+# goes down, and at least one sample catches a shard running with items left. item1 is held until a
+# sample has seen that (on a fast machine the whole array otherwise ends between two samples).
 samples=0; saw_running=0; last_done=0
 while [ -n "$(squeue -h -j "$ARRAY" 2>/dev/null)" ]; do
   read -r d r f l < <("$BIN" farm status "$JOB" -o "$OUT" | awk '$1 == "all" { print $2, $3, $4, $5 }')
@@ -98,7 +102,7 @@ while [ -n "$(squeue -h -j "$ARRAY" 2>/dev/null)" ]; do
   [ $((d + r + f + l)) = 8 ] || fail "status sample $samples: done $d + running $r + failed $f + left $l != 8"
   [ "$d" -ge "$last_done" ] || fail "status sample $samples: done went down from $last_done to $d"
   last_done=$d
-  if [ "$r" -ge 1 ] && [ "$d" -lt 8 ]; then saw_running=1; fi
+  if [ "$r" -ge 1 ] && [ "$d" -lt 8 ]; then saw_running=1; touch "$RELEASE"; fi
   [ $(( $(date +%s) - T0 )) -lt 120 ] || fail "array still running 120 s after the test started"
   sleep 0.3
 done
@@ -110,6 +114,7 @@ read -r d r f l < <(awk '$1 == "all" { print $2, $3, $4, $5 }' "$RUN/status_a_fi
 [ "$d $r $f $l" = "8 0 0 0" ] || fail "final status: done $d running $r failed $f left $l, expected 8 0 0 0"
 
 [ -e "$RUN/item5.killed" ] || fail "the kill hook did not fire"
+grep -l "holding item 'item1'" "$OUT"/farm/logs/task-*.log >/dev/null || fail "the hold hook did not fire"
 grep -l "killing this process in the middle of item 'item5'" "$OUT"/farm/logs/task-*.log >/dev/null \
   || fail "no task log shows the kill"
 grep -h "attempt 2 of 3" "$OUT"/farm/logs/task-*.log | grep -q . || fail "the killed task was not retried"
