@@ -299,6 +299,9 @@ int main(int argc, char** argv) {
   warm->add_option("files", warm_cmd.files, "Scene or job TOML files")->required()->check(kReadableFile);
   warm->add_option("--device", warm_cmd.device, "cpu, gpu, pocl:0, nvidia:0 or a name substring");
   warm->add_option("--set", warm_cmd.sets, "Override a scene key: key=value (repeatable)");
+  warm->add_option("--store", warm_cmd.store,
+                   "Warm fresh private caches instead and write them into this kernel store folder, to ship "
+                   "with an install (beside the binary, or named by SEASIM_KERNEL_STORE at run time)");
 
   auto* farm = app.add_subcommand("farm", "A job on a Slurm cluster: submit its shards, merge them, show progress");
   farm->require_subcommand(1);

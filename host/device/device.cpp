@@ -14,6 +14,7 @@
 #include "device/kernel_cache.h"
 #include "device/pocl_cache_check.h"
 #include "device/kernel_source.h"
+#include "device/kernel_store.h"
 #include "util/error.h"
 #include "util/hash.h"
 #include "util/paths.h"
@@ -162,6 +163,8 @@ Device::Device(const DeviceInfo& info) : info_(info) {
   }
 }
 
+std::string Device::deviceId() const { return info_.platform_name + "|" + info_.name + "|" + info_.driver; }
+
 // What quality.fast_math asks of the driver. -cl-fast-relaxed-math lets a driver use approximate
 // maths functions and assume no NaN/Inf, and drivers differ in how far they go: PoCL's images moved by
 // at most 0.0002 of an 8-bit level on every shipped scene where it is on (results/BENCHMARKS.md), but
@@ -192,7 +195,7 @@ const BuiltProgram& Device::program(const std::string& kernel_file, const std::v
 
   const auto t0 = std::chrono::steady_clock::now();
   KernelSource source = assembleKernelSource(kernel_file);
-  const std::string device_id = info_.platform_name + "|" + info_.name + "|" + info_.driver;
+  const std::string device_id = deviceId();
   const uint64_t hash = fnv1a64(device_id + "|" + options, fnv1a64(source.text));
   const std::string dir = kernelCacheDir();
   const std::string cache_file = dir.empty() ? std::string() : kernelCachePath(dir, hash);
@@ -228,6 +231,7 @@ const BuiltProgram& Device::program(const std::string& kernel_file, const std::v
       fs::remove_all(cache_file, ec);  // a folder put in its place goes too
     }
   }
+  if (!built.from_cache) loadFromKernelStore(hash, device_id, options, kernel_file, built);
   if (!built.from_cache) {
     // A build that fails on a source that built before is most often a damaged driver cache.
     const std::string pocl_hint =
@@ -267,8 +271,53 @@ const BuiltProgram& Device::program(const std::string& kernel_file, const std::v
     }
   }
   built.build_ms = msSince(t0);
+  built.cache_key = hash;
   total_build_ms_ += built.build_ms;
   return programs_.emplace(key, std::move(built)).first->second;
+}
+
+// The kernel store (kernel_store.h) is read-only: an entry it lacks or that is unusable
+// is compiled as if there were no store (and cached as usual); a damaged one is named once.
+void Device::loadFromKernelStore(uint64_t key, const std::string& device_id, const std::string& options,
+                                 const std::string& kernel_file, BuiltProgram& built) {
+  const std::string store = kernelStoreDir();
+  if (store.empty()) return;
+  const std::string path = kernelCachePath(store, key);
+  std::vector<unsigned char> bytes;
+  std::string why;
+  if (readKernelCacheEntry(path, key, device_id, bytes, why)) {
+    // PoCL files a program loaded from this binary under the entry the binary names: the store has it,
+    // with the work-group functions specialised at the first enqueues (kernel_store.h).
+    if (info_.is_pocl) seedPoclEntry(poclStoreDir(store, device_id), poclEntryOfBinary(bytes), poclCacheDir());
+    try {
+      cl::Program::Binaries bins{bytes};
+      cl::Program p(context_, {device_}, bins);
+      p.build({device_}, options.c_str());
+      built.program = p;
+      built.from_cache = built.from_store = true;
+      return;
+    } catch (const cl::Error& e) {
+      why = std::string("the driver rejected it (") + clErrorName(e.err()) + ")";
+    }
+  }
+  if (!why.empty())
+    std::fprintf(stderr, "seasim: warning: kernel store entry '%s' for kernels/%s is unusable: %s; building it\n",
+                 path.c_str(), kernel_file.c_str(), why.c_str());
+}
+
+int Device::writeCompiledKernels(const std::string& dir) {
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) throw RuntimeError("cannot create the kernel folder '" + dir + "': " + ec.message());
+  const std::string device_id = deviceId();
+  int written = 0;
+  for (const auto& [name, built] : programs_) {
+    const std::vector<std::vector<unsigned char>> bins = built.program.getInfo<CL_PROGRAM_BINARIES>();
+    if (bins.empty() || bins[0].empty()) continue;  // a driver that gives no binary
+    writeKernelCacheEntry(kernelCachePath(dir, built.cache_key), built.cache_key, device_id, bins[0]);
+    ++written;
+  }
+  return written;
 }
 
 // A kernel must build cleanly on every driver: a warning on one is often an error on another (an

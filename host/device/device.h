@@ -3,6 +3,7 @@
 #pragma once
 #include <CL/opencl.hpp>
 
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <string>
@@ -39,7 +40,9 @@ DeviceInfo chooseDevice(const std::string& selector);
 struct BuiltProgram {
   cl::Program program;
   double build_ms = 0.0;
-  bool from_cache = false;
+  bool from_cache = false;  // from seasim's cache or the kernel store
+  bool from_store = false;  // from the kernel store (kernel_cache.h kernelStoreDir)
+  uint64_t cache_key = 0;   // the entry's key in the cache and the store
 };
 
 // The one context per run: device, context, in-order queue with profiling, program cache.
@@ -47,6 +50,8 @@ class Device {
  public:
   explicit Device(const DeviceInfo& info);
   const DeviceInfo& info() const { return info_; }
+  // "<platform>|<device>|<driver>": what keys this device's kernel cache and store entries.
+  std::string deviceId() const;
   cl::Context& context() { return context_; }
   cl::CommandQueue& queue() { return queue_; }
   cl::Device& device() { return device_; }
@@ -63,12 +68,19 @@ class Device {
   // Total build milliseconds spent by program() so far (for report.json).
   double totalBuildMs() const { return total_build_ms_; }
 
+  // Writes every program built or loaded so far to `dir` as kernel cache entries (kernel_cache.h), for
+  // the kernel store (kernel_store.h). Returns how many; throws RuntimeError naming a file that cannot
+  // be written.
+  int writeCompiledKernels(const std::string& dir);
+
   // The options kernels/<kernel_file> is built with for `defines` on this device (what program()
   // passes to the compiler; anything computed by a kernel and cached on disk keys on it).
   std::string buildOptions(const std::vector<std::string>& defines) const;
 
  private:
   void noteBuildWarnings(const std::string& kernel_file, const cl::Program& program);
+  void loadFromKernelStore(uint64_t key, const std::string& device_id, const std::string& options,
+                           const std::string& kernel_file, BuiltProgram& built);
 
   DeviceInfo info_;
   cl::Device device_;

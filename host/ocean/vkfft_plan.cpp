@@ -8,6 +8,8 @@
 
 #include <string>
 
+#include "device/kernel_cache.h"
+#include "device/kernel_store.h"
 #include "util/error.h"
 
 namespace seasim {
@@ -42,6 +44,11 @@ VkfftPlan::VkfftPlan(Device& device, const cl::Buffer& buffer, int n, int batche
   m.context = device.context()();
   m.queue = device.queue()();
   m.buffer = buffer();
+  // VkFFT builds its programs from generated source, past Device::program: PoCL finds them compiled in its
+  // cache when the kernel store has them (device/kernel_store.h).
+  if (device.info().is_pocl)
+    if (const std::string store = kernelStoreDir(); !store.empty())
+      seedPoclCache(vkfftStoreDir(store, device.deviceId()), poclCacheDir());
   checkCl(clGetDeviceInfo(m.device, CL_DEVICE_PLATFORM, sizeof m.platform, &m.platform, nullptr),
           "clGetDeviceInfo(CL_DEVICE_PLATFORM) for VkFFT");
   m.buffer_bytes = static_cast<uint64_t>(n) * static_cast<uint64_t>(n) * static_cast<uint64_t>(batches) * 8u;

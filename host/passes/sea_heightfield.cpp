@@ -8,6 +8,7 @@
 #include <fstream>
 
 #include "device/enqueue.h"
+#include "device/kernel_store.h"
 #include "io/atomic_file.h"
 #include "io/data_files.h"
 #include "io/image_io.h"
@@ -86,11 +87,16 @@ fs::path tableDir() { return fs::path(cacheDir("sea_depth_tables")); }
 }  // namespace
 
 std::optional<std::vector<float>> loadDepthTable(uint64_t key, size_t count) {
-  const fs::path dir = tableDir();
-  if (dir.empty()) return std::nullopt;
-  const fs::path p = dir / (hex64(key) + ".f32");
+  // The cache first, then the kernel store (device/kernel_store.h: the shipped scenes' tables).
+  const std::string name = hex64(key) + ".f32";
   std::error_code ec;
-  if (!fs::exists(p, ec) || fs::file_size(p, ec) != count * sizeof(float)) return std::nullopt;
+  fs::path p;
+  for (const std::string& dir : {tableDir().string(), storedDepthTableDir()})
+    if (!dir.empty() && fs::exists(fs::path(dir) / name, ec)) {
+      p = fs::path(dir) / name;
+      break;
+    }
+  if (p.empty() || fs::file_size(p, ec) != count * sizeof(float)) return std::nullopt;
   std::vector<float> table(count);
   std::ifstream in(p, std::ios::binary);
   if (!in.read(reinterpret_cast<char*>(table.data()), static_cast<std::streamsize>(count * sizeof(float)))) {

@@ -47,8 +47,9 @@ double heightFieldBytes(const HeightField& field);
 // The second-order depth tables are a pure function of their inputs (floor, camera, map and
 // direction settings, table nodes, kernel source), so they are cached on disk under
 // $SEASIM_CACHE_DIR/sea_depth_tables/<key>.f32 (else $XDG_CACHE_HOME/seasim, ~/.cache/seasim) and
-// computed once per scene. `key` hashes everything they depend on. Best effort: a missing or
-// unwritable cache only costs the computation.
+// computed once per scene; the shipped scenes' tables also come with the kernel store
+// (device/kernel_store.h), read when the cache lacks them. `key` hashes everything they depend on.
+// Best effort: a missing or unwritable cache only costs the computation.
 std::optional<std::vector<float>> loadDepthTable(uint64_t key, size_t count);
 void storeDepthTable(uint64_t key, const std::vector<float>& table);
 
