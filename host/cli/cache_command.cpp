@@ -5,6 +5,7 @@
 #include <string>
 
 #include "device/kernel_cache.h"
+#include "device/kernel_store.h"
 #include "util/error.h"
 #include "util/paths.h"
 
@@ -55,12 +56,10 @@ int cmdCacheClear() {
   return 0;
 }
 
-int cmdCacheVerify() {
-  const std::string dir = kernelCacheDir();
-  if (dir.empty() || !fs::is_directory(dir)) {
-    std::printf("no cache folder: nothing to verify\n");
-    return 0;
-  }
+namespace {
+
+// Verifies the kernel entries of `dir`, printing each damaged one and a summary line; the damaged count.
+int verifyFolder(const std::string& dir, const char* what, const char* damaged_then) {
   int good = 0, bad = 0;
   for (const auto& entry : fs::directory_iterator(dir)) {
     if (!entry.is_regular_file() || entry.path().extension() != ".bin") continue;
@@ -72,8 +71,22 @@ int cmdCacheVerify() {
       std::printf("damaged: %s: %s\n", entry.path().string().c_str(), why.c_str());
     }
   }
-  std::printf("%s: %d kernel entries good, %d damaged%s\n", dir.c_str(), good, bad,
-              bad ? " (each is rebuilt on its next use; `seasim cache clear` removes them now)" : "");
+  std::printf("%s %s: %d kernel entries good, %d damaged%s\n", what, dir.c_str(), good, bad, bad ? damaged_then : "");
+  return bad;
+}
+
+}  // namespace
+
+int cmdCacheVerify() {
+  int bad = 0;
+  const std::string dir = kernelCacheDir();
+  if (dir.empty() || !fs::is_directory(dir))
+    std::printf("no cache folder: nothing to verify\n");
+  else
+    bad += verifyFolder(dir, "cache", " (each is rebuilt on its next use; `seasim cache clear` removes them now)");
+  // The kernel store (device/kernel_store.h) is read-only: a damaged entry is compiled instead, each run.
+  if (const std::string store = kernelStoreDir(); !store.empty() && fs::is_directory(store))
+    bad += verifyFolder(store, "kernel store", " (each is compiled instead on every use: make the store again)");
   return bad == 0 ? 0 : 1;
 }
 

@@ -292,7 +292,7 @@ int main(int argc, char** argv) {
   auto* cache = app.add_subcommand("cache", "The on-disk caches: kernel binaries, PoCL's kernels, tables");
   cache->require_subcommand(1);
   auto* cache_clear = cache->add_subcommand("clear", "Remove every cache seasim owns (rebuilt on next use)");
-  auto* cache_verify = cache->add_subcommand("verify", "Check each kernel binary's header, length and checksum");
+  auto* cache_verify = cache->add_subcommand("verify", "Check each kernel binary's header, length and checksum (the cache's and the kernel store's)");
   seasim::CacheWarmCmd warm_cmd;
   auto* warm = cache->add_subcommand(
       "warm", "Build every kernel program and work-group function the scenes' or jobs' renders need (one frame each)");

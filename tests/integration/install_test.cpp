@@ -97,4 +97,28 @@ TEST_F(Install, RunsAnInstalledExampleFromAnEmptyFolder) {
   EXPECT_NE(missing.output.find("job file not found: jobs/no_such_job.toml"), std::string::npos) << missing.output;
 }
 
+// A kernel store under <prefix>/share/seasim/kernel-store (where `make install` puts `make kernel-store`'s)
+// is the installed binary's without any environment variable: `cache verify` reports it, and a render
+// with empty caches compiles nothing (no entry written into its cache).
+TEST_F(Install, FindsTheInstalledKernelStore) {
+  const std::string bin = (prefix_ / "bin" / "seasim").string();
+  const fs::path store = prefix_ / "share" / "seasim" / "kernel-store";
+  const std::string scene = (prefix_ / "share" / "seasim" / "scenes" / "flat_sea.toml").string() +
+                            " --set camera.width=24 --set camera.height=16 --device pocl";
+  fs::remove_all(store);  // the build's own, when `make kernel-store` made one
+  const Result made = shell("env -u SEASIM_KERNEL_STORE " + bin + " cache warm " + scene + " --store " + store.string());
+  ASSERT_EQ(made.code, 0) << made.output;
+  const fs::path caches = prefix_ / "fresh_caches";
+  const std::string env = "env -u SEASIM_KERNEL_STORE SEASIM_CACHE_DIR=" + caches.string() +
+                          " POCL_CACHE_DIR=" + (caches / "pocl").string() + " ";
+  const Result verify = shell(env + bin + " cache verify");
+  EXPECT_EQ(verify.code, 0) << verify.output;
+  EXPECT_NE(verify.output.find("kernel store " + store.string() + ": "), std::string::npos) << verify.output;
+  const Result r = shell(env + bin + " render " + scene + " -o " + (prefix_ / "store_out").string());
+  ASSERT_EQ(r.code, 0) << r.output;
+  int written = 0;
+  for (const auto& e : fs::directory_iterator(caches)) written += e.path().extension() == ".bin";
+  EXPECT_EQ(written, 0) << "a program was compiled although the installed store has it";
+}
+
 }  // namespace

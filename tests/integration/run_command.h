@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -18,6 +19,11 @@
 extern char** environ;
 
 namespace seasim_test {
+
+// The binary runs without a kernel store (build/kernel-store, which `make demo` makes beside it) unless a
+// test names one: what the tests check of the caches assumes each program is compiled or cached (ctest
+// sets the same; this keeps a test binary run by hand alike).
+inline const bool kWithoutKernelStore = [] { return ::setenv("SEASIM_KERNEL_STORE", "", 0) == 0; }();
 
 struct Result {
   int code;
