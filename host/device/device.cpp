@@ -294,7 +294,7 @@ void Device::loadFromKernelStore(uint64_t key, const std::string& device_id, con
       cl::Program p(context_, {device_}, bins);
       p.build({device_}, options.c_str());
       built.program = p;
-      built.from_cache = built.from_store = true;
+      built.from_cache = true;
       return;
     } catch (const cl::Error& e) {
       why = std::string("the driver rejected it (") + clErrorName(e.err()) + ")";

@@ -40,8 +40,7 @@ DeviceInfo chooseDevice(const std::string& selector);
 struct BuiltProgram {
   cl::Program program;
   double build_ms = 0.0;
-  bool from_cache = false;  // from seasim's cache or the kernel store
-  bool from_store = false;  // from the kernel store (kernel_cache.h kernelStoreDir)
+  bool from_cache = false;  // from seasim's cache or the kernel store (kernel_store.h)
   uint64_t cache_key = 0;   // the entry's key in the cache and the store
 };
 
