@@ -213,6 +213,7 @@ const BuiltProgram& Device::program(const std::string& kernel_file, const std::v
     std::vector<unsigned char> bytes;
     std::string why;
     if (readKernelCacheEntry(cache_file, hash, device_id, bytes, why)) {
+      seedPoclEntryFromStore(bytes);  // PoCL's own cache may have been emptied since
       try {
         cl::Program::Binaries bins{bytes};
         cl::Program p(context_, {device_}, bins);
@@ -286,9 +287,7 @@ void Device::loadFromKernelStore(uint64_t key, const std::string& device_id, con
   std::vector<unsigned char> bytes;
   std::string why;
   if (readKernelCacheEntry(path, key, device_id, bytes, why)) {
-    // PoCL files a program loaded from this binary under the entry the binary names: the store has it,
-    // with the work-group functions specialised at the first enqueues (kernel_store.h).
-    if (info_.is_pocl) seedPoclEntry(poclStoreDir(store, device_id), poclEntryOfBinary(bytes), poclCacheDir());
+    seedPoclEntryFromStore(bytes);
     try {
       cl::Program::Binaries bins{bytes};
       cl::Program p(context_, {device_}, bins);
@@ -303,6 +302,15 @@ void Device::loadFromKernelStore(uint64_t key, const std::string& device_id, con
   if (!why.empty())
     std::fprintf(stderr, "seasim: warning: kernel store entry '%s' for kernels/%s is unusable: %s; building it\n",
                  path.c_str(), kernel_file.c_str(), why.c_str());
+}
+
+// PoCL files a program loaded from a binary under the entry the binary names; when the kernel store has
+// that entry, with the work-group functions specialised at the first enqueues (kernel_store.h), it is
+// copied into PoCL's cache first, so that nothing is compiled at those enqueues.
+void Device::seedPoclEntryFromStore(const std::vector<unsigned char>& binary) {
+  if (!info_.is_pocl) return;
+  if (const std::string store = kernelStoreDir(); !store.empty())
+    seedPoclEntry(poclStoreDir(store, deviceId()), poclEntryOfBinary(binary), poclCacheDir());
 }
 
 int Device::writeCompiledKernels(const std::string& dir) {

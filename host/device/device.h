@@ -80,6 +80,7 @@ class Device {
   void noteBuildWarnings(const std::string& kernel_file, const cl::Program& program);
   void loadFromKernelStore(uint64_t key, const std::string& device_id, const std::string& options,
                            const std::string& kernel_file, BuiltProgram& built);
+  void seedPoclEntryFromStore(const std::vector<unsigned char>& binary);
 
   DeviceInfo info_;
   cl::Device device_;

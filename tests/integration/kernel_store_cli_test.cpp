@@ -103,6 +103,13 @@ TEST_F(KernelStore, RendersFromTheStoreBuildNothingAndMatchRendersCompiledFromSo
     EXPECT_TRUE(contains(b.output, "Writing program.bc") && contains(b.output, "Generating an object file"))
         << tag << ": PoCL's log no longer says when it compiles";
     EXPECT_EQ(readBytes(fed / "image.npy"), readBytes(compiled / "image.npy")) << tag;
+    // seasim's cache kept, PoCL's emptied (its own clean-up, another POCL_CACHE_DIR): the programs come
+    // from seasim's cache and their work-group functions, again, from the store.
+    fs::remove_all(dir_ / ("compiled_" + tag) / "pocl");
+    const auto c = run("render " + scene + " --device pocl --output npy -o " + (dir_ / ("again_" + tag)).string(),
+                       debug + env("compiled_" + tag, store.string()));
+    ASSERT_EQ(c.code, 0) << c.output;
+    EXPECT_FALSE(contains(c.output, "Generating an object file")) << tag << ": PoCL compiled a work-group function";
   }
 }
 
