@@ -11,13 +11,14 @@
 
 #include <stdlib.h>
 
+#include <cerrno>
 #include <chrono>
 #include <cstdio>
+#include <cstring>
+#include <filesystem>
 #include <set>
 #include <sstream>
-#include <filesystem>
 #include <string>
-#include <vector>
 
 #include "cli/commands.h"
 #include "device/device.h"
@@ -49,12 +50,9 @@ std::string buildKey(const Scene& scene, const Plan& plan) {
 // With --store, the warm-up compiles into fresh private caches (no store read), so that after it they
 // hold exactly what these renders need: returns their folder, removed again by the caller.
 std::string usePrivateCaches() {
-  const char* tmp = std::getenv("TMPDIR");
-  std::string pattern = std::string(tmp && *tmp ? tmp : "/tmp") + "/seasim-store-XXXXXX";
-  std::vector<char> name(pattern.begin(), pattern.end());
-  name.push_back('\0');
-  if (!::mkdtemp(name.data())) throw RuntimeError("cannot create a folder for the kernel store's caches under " + pattern);
-  const std::string dir = name.data();
+  const std::string dir = makeTempFolder("seasim-store");
+  if (dir.empty())
+    throw RuntimeError(std::string("cannot create a folder for the kernel store's caches: ") + std::strerror(errno));
   ::setenv("SEASIM_CACHE_DIR", dir.c_str(), 1);
   ::setenv("POCL_CACHE_DIR", (dir + "/pocl").c_str(), 1);
   ::setenv("SEASIM_KERNEL_STORE", "", 1);

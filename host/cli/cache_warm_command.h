@@ -1,7 +1,7 @@
 // cache_warm_command.h — `seasim cache warm SCENE|JOB`: compile, before the first frame, every kernel
 // program and every PoCL work-group function the scene's or job's plans will need, so that a farm node
 // pays the compile once (into $SEASIM_CACHE_DIR and $POCL_CACHE_DIR) instead of in its first frame;
-// with --store DIR, also a kernel store (device/kernel_cache.h kernelStoreDir) to ship with an install.
+// with --store DIR, also a kernel store (device/kernel_store.h) to ship with an install.
 #pragma once
 #include <string>
 #include <vector>

@@ -210,21 +210,8 @@ const BuiltProgram& Device::program(const std::string& kernel_file, const std::v
       info_.is_pocl && !poclCacheDir().empty() ? poclCrashMarker(poclCacheDir()) : "");
   BuiltProgram built;
   if (!cache_file.empty()) {
-    std::vector<unsigned char> bytes;
     std::string why;
-    if (readKernelCacheEntry(cache_file, hash, device_id, bytes, why)) {
-      seedPoclEntryFromStore(bytes);  // PoCL's own cache may have been emptied since
-      try {
-        cl::Program::Binaries bins{bytes};
-        cl::Program p(context_, {device_}, bins);
-        p.build({device_}, options.c_str());
-        built.program = p;
-        built.from_cache = true;
-      } catch (const cl::Error& e) {
-        why = std::string("the driver rejected it (") + clErrorName(e.err()) + ")";
-      }
-    }
-    if (!built.from_cache && !why.empty()) {
+    if (!loadProgramEntry(cache_file, hash, options, built, why) && !why.empty()) {
       // A bad entry costs one rebuild, never a failed run.
       std::fprintf(stderr, "seasim: warning: kernel cache entry '%s' for kernels/%s is unusable: %s; rebuilding it\n",
                    cache_file.c_str(), kernel_file.c_str(), why.c_str());
@@ -232,7 +219,7 @@ const BuiltProgram& Device::program(const std::string& kernel_file, const std::v
       fs::remove_all(cache_file, ec);  // a folder put in its place goes too
     }
   }
-  if (!built.from_cache) loadFromKernelStore(hash, device_id, options, kernel_file, built);
+  if (!built.from_cache) loadFromKernelStore(hash, options, kernel_file, built);
   if (!built.from_cache) {
     // A build that fails on a source that built before is most often a damaged driver cache.
     const std::string pocl_hint =
@@ -277,40 +264,42 @@ const BuiltProgram& Device::program(const std::string& kernel_file, const std::v
   return programs_.emplace(key, std::move(built)).first->second;
 }
 
-// The kernel store (kernel_store.h) is read-only: an entry it lacks or that is unusable
-// is compiled as if there were no store (and cached as usual); a damaged one is named once.
-void Device::loadFromKernelStore(uint64_t key, const std::string& device_id, const std::string& options,
-                                 const std::string& kernel_file, BuiltProgram& built) {
+// A program from the kernel entry at `path` (the cache's or the store's): false with `why` set when the
+// entry is damaged, foreign or rejected by the driver ("" when there is no file). PoCL files a program
+// loaded from a binary under the entry the binary names; when the kernel store has that entry, with the
+// work-group functions specialised at the first enqueues (kernel_store.h), it is copied into PoCL's cache
+// first (PoCL's cache may lack it even when seasim's has the binary), so nothing is compiled at them.
+bool Device::loadProgramEntry(const std::string& path, uint64_t key, const std::string& options, BuiltProgram& built,
+                              std::string& why) {
+  std::vector<unsigned char> bytes;
+  if (!readKernelCacheEntry(path, key, deviceId(), bytes, why)) return false;
+  if (info_.is_pocl)
+    if (const std::string store = kernelStoreDir(); !store.empty())
+      seedPoclEntry(poclStoreDir(store, deviceId()), poclEntryOfBinary(bytes), poclCacheDir());
+  try {
+    cl::Program::Binaries bins{bytes};
+    cl::Program p(context_, {device_}, bins);
+    p.build({device_}, options.c_str());
+    built.program = p;
+    built.from_cache = true;
+    return true;
+  } catch (const cl::Error& e) {
+    why = std::string("the driver rejected it (") + clErrorName(e.err()) + ")";
+    return false;
+  }
+}
+
+// The kernel store (kernel_store.h) is read-only: an entry it lacks or that is unusable is compiled as if
+// there were no store (and cached as usual), with a warning naming an unusable one.
+void Device::loadFromKernelStore(uint64_t key, const std::string& options, const std::string& kernel_file,
+                                 BuiltProgram& built) {
   const std::string store = kernelStoreDir();
   if (store.empty()) return;
   const std::string path = kernelCachePath(store, key);
-  std::vector<unsigned char> bytes;
   std::string why;
-  if (readKernelCacheEntry(path, key, device_id, bytes, why)) {
-    seedPoclEntryFromStore(bytes);
-    try {
-      cl::Program::Binaries bins{bytes};
-      cl::Program p(context_, {device_}, bins);
-      p.build({device_}, options.c_str());
-      built.program = p;
-      built.from_cache = true;
-      return;
-    } catch (const cl::Error& e) {
-      why = std::string("the driver rejected it (") + clErrorName(e.err()) + ")";
-    }
-  }
-  if (!why.empty())
+  if (!loadProgramEntry(path, key, options, built, why) && !why.empty())
     std::fprintf(stderr, "seasim: warning: kernel store entry '%s' for kernels/%s is unusable: %s; building it\n",
                  path.c_str(), kernel_file.c_str(), why.c_str());
-}
-
-// PoCL files a program loaded from a binary under the entry the binary names; when the kernel store has
-// that entry, with the work-group functions specialised at the first enqueues (kernel_store.h), it is
-// copied into PoCL's cache first, so that nothing is compiled at those enqueues.
-void Device::seedPoclEntryFromStore(const std::vector<unsigned char>& binary) {
-  if (!info_.is_pocl) return;
-  if (const std::string store = kernelStoreDir(); !store.empty())
-    seedPoclEntry(poclStoreDir(store, deviceId()), poclEntryOfBinary(binary), poclCacheDir());
 }
 
 int Device::writeCompiledKernels(const std::string& dir) {

@@ -78,9 +78,10 @@ class Device {
 
  private:
   void noteBuildWarnings(const std::string& kernel_file, const cl::Program& program);
-  void loadFromKernelStore(uint64_t key, const std::string& device_id, const std::string& options,
-                           const std::string& kernel_file, BuiltProgram& built);
-  void seedPoclEntryFromStore(const std::vector<unsigned char>& binary);
+  bool loadProgramEntry(const std::string& path, uint64_t key, const std::string& options, BuiltProgram& built,
+                        std::string& why);
+  void loadFromKernelStore(uint64_t key, const std::string& options, const std::string& kernel_file,
+                           BuiltProgram& built);
 
   DeviceInfo info_;
   cl::Device device_;

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "device/kernel_cache.h"
+#include "util/paths.h"
 
 namespace fs = std::filesystem;
 
@@ -270,16 +271,13 @@ void preparePoclCache() {
   const PoclCacheRepair repair = checkPoclCache(dir);
   if (g_pocl_lock_fd >= 0) ::flock(g_pocl_lock_fd, LOCK_SH);  // checked: now shared with later processes
   if (repair.bypass_reason.empty()) return;
-  const char* tmp = std::getenv("TMPDIR");
-  std::string pattern = std::string(tmp && *tmp ? tmp : "/tmp") + "/seasim-pocl-XXXXXX";
-  std::vector<char> name(pattern.begin(), pattern.end());
-  name.push_back('\0');
-  if (!::mkdtemp(name.data())) {
+  const std::string private_dir = makeTempFolder("seasim-pocl");
+  if (private_dir.empty()) {
     std::fprintf(stderr, "seasim: warning: %s, and no private folder could be made instead (%s)\n",
                  repair.bypass_reason.c_str(), std::strerror(errno));
     return;
   }
-  g_private_dir = name.data();
+  g_private_dir = private_dir;
   std::atexit(removePrivateDir);
   ::setenv("POCL_CACHE_DIR", g_private_dir.c_str(), 1);
   std::fprintf(stderr,

@@ -70,6 +70,14 @@ std::string cameraFile(const std::string& name, const std::string& scene_camera_
   return "";
 }
 
+std::string makeTempFolder(const std::string& stem) {
+  const char* tmp = std::getenv("TMPDIR");
+  const std::string pattern = std::string(tmp && *tmp ? tmp : "/tmp") + "/" + stem + "-XXXXXX";
+  std::vector<char> name(pattern.begin(), pattern.end());
+  name.push_back('\0');
+  return ::mkdtemp(name.data()) ? std::string(name.data()) : std::string();
+}
+
 std::string resolveRelativeTo(const std::string& anchor_file, const std::string& path) {
   fs::path p(path);
   if (p.is_absolute()) return p.lexically_normal();

@@ -30,6 +30,10 @@ std::string cameraFile(const std::string& name, const std::string& scene_camera_
 // $XDG_CACHE_HOME/seasim/<sub>, else $HOME/.cache/seasim/<sub>; "" when none of those is set.
 std::string cacheDir(const std::string& sub);
 
+// A new private folder "$TMPDIR/<stem>-XXXXXX" (/tmp without TMPDIR), made by mkdtemp; "" when it
+// cannot be made (errno says why).
+std::string makeTempFolder(const std::string& stem);
+
 // Absolute, lexically normal form of `path` relative to the folder of `anchor_file`.
 std::string resolveRelativeTo(const std::string& anchor_file, const std::string& path);
 
