@@ -99,6 +99,9 @@ int cmdCacheWarm(const CacheWarmCmd& cmd) {
     }
   }
 
+  if (!cmd.store.empty())  // before any compile
+    if (const std::string problem = outputDirProblem(cmd.store); !problem.empty())
+      throw RuntimeError("cache warm --store '" + cmd.store + "': " + problem);
   struct RemovedAtExit {
     std::string dir;
     ~RemovedAtExit() {

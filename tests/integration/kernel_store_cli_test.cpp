@@ -129,4 +129,19 @@ TEST_F(KernelStore, DamagedStoreEntryIsCompiledWithAWarning) {
   EXPECT_EQ(countFiles(dir_ / "fed", ".bin"), 1) << "exactly the damaged entry is compiled and cached";
 }
 
+// A store folder that cannot be written is a clear error naming it, with a non-zero exit, before anything is
+// compiled: no private caches are made.
+TEST_F(KernelStore, UnwritableStoreFolderIsAClearError) {
+  const fs::path file = dir_ / "a_file";
+  std::ofstream(file) << "not a folder";
+  const fs::path tmp = dir_ / "tmp";
+  fs::create_directories(tmp);
+  const auto r = run("cache warm " + kWavy + " --device pocl --store " + (file / "store").string(),
+                     "TMPDIR=" + tmp.string() + " " + env("warm", ""));
+  EXPECT_NE(r.code, 0) << r.output;
+  EXPECT_TRUE(contains(r.output, (file / "store").string())) << r.output;
+  EXPECT_FALSE(contains(r.output, "device: ")) << "it opened the device before checking the folder: " << r.output;
+  EXPECT_TRUE(fs::is_empty(tmp)) << "private caches were made or left behind";
+}
+
 }  // namespace
