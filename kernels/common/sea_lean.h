@@ -126,31 +126,53 @@ SEASIM_FN void sea_lean_read_level(const SEASIM_GLOBAL real* level, int nl, real
   }
 }
 
-/* Moments at (x, z) metres for a square tap of side `size` metres (header): trilinear over the cell
- * levels from one cell up, blended with the point map's slope below one cell. */
-SEASIM_FN void sea_lean_read(const SEASIM_GLOBAL real* mips, int n, real patch, real x, real z, real size,
-                             real m[SEA_LEAN_STRIDE]) {
+/* The mip levels a square tap of side `size` metres reads (header): the two cell levels whose cells
+ * bracket SEA_LEAN_FOOTPRINT_SCALE × size, trilinear between them by t, and below one cell the blend with
+ * the point map by ratio. Found once for all the taps of a footprint (they are one size). The texel
+ * coordinates stay divisions by the cell's size: the glint under a low sun (its variance E[s²] − m², which
+ * cancels) moved by up to 8× in some dim pixels of ocean_sunset when they were multiplications by its
+ * inverse. */
+typedef struct {
+  const SEASIM_GLOBAL real* level0;
+  const SEASIM_GLOBAL real* level1;
+  int n0, n1;           /* the two levels' sides */
+  real size0, size1;    /* their cells' sides, 2^l cell: level l cell i is centred at x = (i + 1/2) size_l */
+  real t;               /* the weight of level1 */
+  real ratio;           /* the tap in cells (× the footprint scale): below 1 the point map is blended in */
+  real cell;
+} SeaLeanTapLevels;
+
+SEASIM_FN SeaLeanTapLevels sea_lean_tap_levels(const SEASIM_GLOBAL real* mips, int n, real patch, real size) {
+  SeaLeanTapLevels lv;
   const int levels = sea_lean_levels(n);
-  const real cell = patch / (real)n;
-  const real ratio = size / cell * SEA_LEAN_FOOTPRINT_SCALE;
-  const real lod = clamp(log2(fmax(ratio, R(1.0))), R(0.0), (real)(levels - 1));
+  lv.cell = patch / (real)n;
+  lv.ratio = size / lv.cell * SEA_LEAN_FOOTPRINT_SCALE;
+  const real lod = clamp(log2(fmax(lv.ratio, R(1.0))), R(0.0), (real)(levels - 1));
   const int l0 = (int)floor(lod);
   const int l1 = l0 + 1 < levels ? l0 + 1 : l0;
-  const real t = lod - (real)l0;
+  lv.t = lod - (real)l0;
+  lv.level0 = mips + sea_lean_level_offset(n, l0);
+  lv.level1 = mips + sea_lean_level_offset(n, l1);
+  lv.n0 = n >> l0;
+  lv.n1 = n >> l1;
+  lv.size0 = lv.cell * (real)(1 << l0);
+  lv.size1 = lv.cell * (real)(1 << l1);
+  return lv;
+}
+
+/* Moments at (x, z) metres for a tap on the levels lv (header): trilinear over the cell levels, blended
+ * with the point map's slope below one cell. */
+SEASIM_FN void sea_lean_read(const SEASIM_GLOBAL real* mips, int n, const SeaLeanTapLevels* lv, real x, real z,
+                             real m[SEA_LEAN_STRIDE]) {
   real m0[SEA_LEAN_STRIDE], m1[SEA_LEAN_STRIDE];
-  for (int pass = 0; pass < 2; ++pass) {
-    const int l = pass == 0 ? l0 : l1;
-    const real scale = (real)(1 << l);
-    /* level l cell i is centred at x = (i + 1/2) 2^l cell */
-    sea_lean_read_level(mips + sea_lean_level_offset(n, l), n >> l, x / (cell * scale) - R(0.5),
-                        z / (cell * scale) - R(0.5), pass == 0 ? m0 : m1);
-  }
-  for (int k = 0; k < SEA_LEAN_STRIDE; ++k) m[k] = m0[k] + t * (m1[k] - m0[k]);
-  if (ratio < R(1.0)) {
+  sea_lean_read_level(lv->level0, lv->n0, x / lv->size0 - R(0.5), z / lv->size0 - R(0.5), m0);
+  sea_lean_read_level(lv->level1, lv->n1, x / lv->size1 - R(0.5), z / lv->size1 - R(0.5), m1);
+  for (int k = 0; k < SEA_LEAN_STRIDE; ++k) m[k] = m0[k] + lv->t * (m1[k] - m0[k]);
+  if (lv->ratio < R(1.0)) {
     real point[SEA_LEAN_STRIDE];
-    sea_lean_read_level(mips, n, x / cell, z / cell, point); /* the point map: texel i at x = i cell */
+    sea_lean_read_level(mips, n, x / lv->cell, z / lv->cell, point); /* the point map: texel i at x = i cell */
     const real sx = point[0], sz = point[1];
-    const real w = ratio, wp = R(1.0) - ratio;
+    const real w = lv->ratio, wp = R(1.0) - lv->ratio;
     m[0] = wp * sx + w * m[0];
     m[1] = wp * sz + w * m[1];
     m[2] = wp * sx * sx + w * m[2];
@@ -167,11 +189,12 @@ SEASIM_FN void sea_lean_footprint(const SEASIM_GLOBAL real* mips, int n, real pa
   const real ratio = major / fmax(minor, R(1e-30));
   const int taps = ratio >= (real)SEA_LEAN_MAX_TAPS ? SEA_LEAN_MAX_TAPS : (int)ceil(fmax(ratio, R(1.0)));
   const real tap_size = fmax(minor, major / (real)taps);
+  const SeaLeanTapLevels lv = sea_lean_tap_levels(mips, n, patch, tap_size);
   real sum[SEA_LEAN_STRIDE] = {R(0.0), R(0.0), R(0.0), R(0.0), R(0.0)};
   for (int k = 0; k < taps; ++k) {
     const real offset = major * (((real)k + R(0.5)) / (real)taps - R(0.5));
     real m[SEA_LEAN_STRIDE];
-    sea_lean_read(mips, n, patch, x + offset * dir_x, z + offset * dir_z, tap_size, m);
+    sea_lean_read(mips, n, &lv, x + offset * dir_x, z + offset * dir_z, m);
     for (int q = 0; q < SEA_LEAN_STRIDE; ++q) sum[q] += m[q];
   }
   const real mx = sum[0] / (real)taps, mz = sum[1] / (real)taps;
@@ -213,7 +236,7 @@ typedef struct {
   real e1u, e1v;              /* unit vector in u along q (the split rule's t axis) */
   real lo, hi;                /* the facing facets' t interval (split rule) */
   real back;                  /* Φ(β): the back-facing facets' share (0 for the plain rule) */
-  real scale;                 /* (1 − back) / Σ of the split rule's t weights */
+  real t[8], tw[8];           /* the split rule's t nodes and their weights, φ(t) and the normalisation in */
   int split;                  /* 0: 3 × 3 Gauss–Hermite; 1: 8 × 3 split rule */
 } SeaLeanRule;
 
@@ -233,7 +256,8 @@ SEASIM_FN real sea_lean_gh3_node(int j, real* weight) {
 SEASIM_FN SeaLeanRule sea_lean_rule(real3 d, real mx, real mz, real l11, real l21, real l22) {
   SeaLeanRule r;
   r.mx = mx, r.mz = mz, r.l11 = l11, r.l21 = l21, r.l22 = l22;
-  r.e1u = R(1.0), r.e1v = R(0.0), r.lo = R(0.0), r.hi = R(0.0), r.back = R(0.0), r.scale = R(1.0);
+  r.e1u = R(1.0), r.e1v = R(0.0), r.lo = R(0.0), r.hi = R(0.0), r.back = R(0.0);
+  for (int i = 0; i < 8; ++i) r.t[i] = r.tw[i] = R(0.0);
   r.split = 0;
   const real qu = d.x * l11 + d.z * l21, qv = d.z * l22;
   const real qn = sqrt(qu * qu + qv * qv);
@@ -248,10 +272,12 @@ SEASIM_FN SeaLeanRule sea_lean_rule(real3 d, real mx, real mz, real l11, real l2
   real mass = R(0.0);
   for (int i = 0; i < 8; ++i) {
     real w;
-    const real t = r.lo + (r.hi - r.lo) * R(0.5) * (sea_lean_gl8_node(i, &w) + R(1.0));
-    mass += w * exp(R(-0.5) * t * t);
+    r.t[i] = r.lo + (r.hi - r.lo) * R(0.5) * (sea_lean_gl8_node(i, &w) + R(1.0));
+    r.tw[i] = w * exp(R(-0.5) * r.t[i] * r.t[i]);
+    mass += r.tw[i];
   }
-  r.scale = mass > R(1e-30) ? (R(1.0) - r.back) / mass : R(0.0);
+  const real scale = mass > R(1e-30) ? (R(1.0) - r.back) / mass : R(0.0);
+  for (int i = 0; i < 8; ++i) r.tw[i] *= scale;
   return r;
 }
 
@@ -266,12 +292,12 @@ SEASIM_FN real sea_lean_rule_node(const SeaLeanRule* r, int k, real* sx, real* s
     u2 = sea_lean_gh3_node(k % 3, &wb);
     weight = wa * wb;
   } else {
-    real wt, wv;
-    const real t = r->lo + (r->hi - r->lo) * R(0.5) * (sea_lean_gl8_node(k / 3, &wt) + R(1.0));
+    real wv;
+    const real t = r->t[k / 3];
     const real v = sea_lean_gh3_node(k % 3, &wv);
     u1 = t * r->e1u - v * r->e1v;
     u2 = t * r->e1v + v * r->e1u;
-    weight = r->scale * wt * exp(R(-0.5) * t * t) * wv;
+    weight = r->tw[k / 3] * wv;
   }
   *sx = r->mx + r->l11 * u1;
   *sz = r->mz + r->l21 * u1 + r->l22 * u2;
@@ -323,13 +349,13 @@ SEASIM_FN real sea_lean_pixel_glint(real3 d, real3 fwd, real3 du, real3 dv, real
                                     real cxx, real czz, real cxz) {
   const real centre_glint = sea_lean_glint(d, sun, ior, mx, mz, cxx, czz, cxz);
   const real3 centre = d / fmax(dot(d, fwd), R(1e-6)); /* the pixel's centre on the image plane */
-  real sx, sz, c;
+  real sx = R(0.0), sz = R(0.0), c = R(0.0); /* left as they are where there is no half vector */
   int centre_only = sea_lean_half_slope(d, sun, &sx, &sz, &c) && d.y < R(0.0);
   const real det = cxx * czz - cxz * cxz;
   real shift = R(0.0); /* the half vector's slope from the centre to half a pixel along du, plus along dv, in σ */
   int slow = 1;        /* ... each below 0.2 σ, and c within 2 % */
   for (int axis = 0; axis < 2 && centre_only; ++axis) {
-    real ex, ez, ec;
+    real ex = R(0.0), ez = R(0.0), ec = R(0.0);
     centre_only = sea_lean_half_slope(normalize(centre + R(0.5) * (axis == 0 ? du : dv)), sun, &ex, &ez, &ec);
     const real dx = ex - sx, dz = ez - sz;
     const real m2 = (czz * dx * dx - R(2.0) * cxz * dx * dz + cxx * dz * dz) / det;

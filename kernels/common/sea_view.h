@@ -142,7 +142,8 @@ SEASIM_FN void sea_view_filtered(SeaFeatures f, SEASIM_CONSTANT const SeaParams*
   const real3 n = sea_facing_normal(d, sea_lean_normal(stats[0], stats[1]));
   const SeaLeanRule rule = sea_lean_rule(d, stats[0], stats[1], l11, l21, l22);
   real R_mean = rule.back;
-  real3 reflected_shape = rule.back * sea_reflected_sky_shape(f, p, sky, sea_sky_direction(d));
+  real3 reflected_shape = MAKE_REAL3(R(0.0), R(0.0), R(0.0));
+  if (rule.split) reflected_shape = rule.back * sea_reflected_sky_shape(f, p, sky, sea_sky_direction(d));
   const int nodes = sea_lean_rule_nodes(&rule);
   for (int k = 0; k < nodes; ++k) {
     real sx, sz;

@@ -115,13 +115,6 @@ SEASIM_FN int whitecaps_level_offset(int n, int level) {
 /* The mean of a 2 × 2 block, in one fixed order (the kernel and its double evaluation agree). */
 SEASIM_FN real whitecaps_box(real a, real b, real c, real e) { return R(0.25) * ((a + b) + (c + e)); }
 
-/* Level-l texel coordinate of x (m): level 0 texel i sits at x = i·cell; level l texel k is the mean
- * of level-0 texels k 2^l … k 2^l + 2^l − 1, centred at (k 2^l + (2^l − 1)/2)·cell. */
-SEASIM_FN real whitecaps_level_coord(real x, real cell, int level) {
-  const real s = (real)(1 << level);
-  return x / (cell * s) - (s - R(1.0)) / (R(2.0) * s);
-}
-
 /* Bilinear read of an nl × nl level at texel coordinates (u, v), wrapping around the tile. */
 SEASIM_FN real whitecaps_read_level(const SEASIM_GLOBAL real* level, int nl, real u, real v) {
   const real fu = floor(u), fv = floor(v);
@@ -136,54 +129,70 @@ SEASIM_FN real whitecaps_read_level(const SEASIM_GLOBAL real* level, int nl, rea
   return near_row + tv * (far_row - near_row);
 }
 
-/* The two mip levels and the weight between them for a square tap of side `size` m: the levels whose
- * cells bracket WHITECAPS_FOOTPRINT_SCALE × size (level 0, bilinear, when it is smaller). */
-SEASIM_FN void whitecaps_tap_levels(int n, real patch, real size, int* l0, int* l1, real* t) {
+/* The two mip levels a square tap of side `size` m reads: those whose cells bracket
+ * WHITECAPS_FOOTPRINT_SCALE × size (level 0, bilinear, when it is smaller), trilinear between them by t.
+ * Level 0 texel i sits at x = i·cell; level l texel k is the mean of level-0 texels k 2^l … k 2^l + 2^l − 1,
+ * centred at (k 2^l + (2^l − 1)/2)·cell, so x's level-l texel coordinate is x · inv_l − bias_l. Found once
+ * for all the taps of a footprint (they are one size). */
+typedef struct {
+  const SEASIM_GLOBAL real* level0;
+  const SEASIM_GLOBAL real* level1;
+  int n0, n1;         /* the two levels' sides */
+  real inv0, inv1;    /* 1 / (2^l cell) */
+  real bias0, bias1;  /* (2^l − 1) / 2^(l+1) */
+  real t;             /* the weight of level1 */
+  int same;           /* level1 is level0 (the top of the chain) */
+} WhitecapsTapLevels;
+
+SEASIM_FN WhitecapsTapLevels whitecaps_tap_levels(const SEASIM_GLOBAL real* mips, int n, real patch, real size) {
+  WhitecapsTapLevels lv;
   const int levels = whitecaps_levels(n);
   const real cell = patch / (real)n;
   const real ratio = size / cell * R(WHITECAPS_FOOTPRINT_SCALE);
   const real lod = clamp(log2(fmax(ratio, R(1.0))), R(0.0), (real)(levels - 1));
-  *l0 = (int)floor(lod);
-  *l1 = *l0 + 1 < levels ? *l0 + 1 : *l0;
-  *t = lod - (real)*l0;
+  const int l0 = (int)floor(lod);
+  const int l1 = l0 + 1 < levels ? l0 + 1 : l0;
+  const real s0 = (real)(1 << l0), s1 = (real)(1 << l1);
+  lv.t = lod - (real)l0;
+  lv.same = l1 == l0;
+  lv.level0 = mips + whitecaps_level_offset(n, l0);
+  lv.level1 = mips + whitecaps_level_offset(n, l1);
+  lv.n0 = n >> l0;
+  lv.n1 = n >> l1;
+  lv.inv0 = R(1.0) / (cell * s0);
+  lv.inv1 = R(1.0) / (cell * s1);
+  lv.bias0 = (s0 - R(1.0)) / (R(2.0) * s0);
+  lv.bias1 = (s1 - R(1.0)) / (R(2.0) * s1);
+  return lv;
 }
 
-/* The foam fraction around (x, z) m between levels l0 and l1 with weight t (whitecaps_tap_levels). */
-SEASIM_FN real whitecaps_read_levels(const SEASIM_GLOBAL real* mips, int n, real patch, real x, real z, int l0, int l1,
-                                     real t) {
-  const real cell = patch / (real)n;
-  const real f0 = whitecaps_read_level(mips + whitecaps_level_offset(n, l0), n >> l0,
-                                       whitecaps_level_coord(x, cell, l0), whitecaps_level_coord(z, cell, l0));
-  if (l1 == l0) return f0;
-  const real f1 = whitecaps_read_level(mips + whitecaps_level_offset(n, l1), n >> l1,
-                                       whitecaps_level_coord(x, cell, l1), whitecaps_level_coord(z, cell, l1));
-  return f0 + t * (f1 - f0);
+/* The foam fraction around (x, z) m on the levels lv. */
+SEASIM_FN real whitecaps_read_tap(const WhitecapsTapLevels* lv, real x, real z) {
+  const real f0 = whitecaps_read_level(lv->level0, lv->n0, x * lv->inv0 - lv->bias0, z * lv->inv0 - lv->bias0);
+  if (lv->same) return f0;
+  const real f1 = whitecaps_read_level(lv->level1, lv->n1, x * lv->inv1 - lv->bias1, z * lv->inv1 - lv->bias1);
+  return f0 + lv->t * (f1 - f0);
 }
 
-/* The foam fraction around (x, z) m for a square tap of side `size` m: trilinear between the two
- * levels whose cells bracket WHITECAPS_FOOTPRINT_SCALE × size (level 0, bilinear, when it is smaller). */
+/* The foam fraction around (x, z) m for a square tap of side `size` m. */
 SEASIM_FN real whitecaps_read(const SEASIM_GLOBAL real* mips, int n, real patch, real x, real z, real size) {
-  int l0, l1;
-  real t;
-  whitecaps_tap_levels(n, patch, size, &l0, &l1, &t);
-  return whitecaps_read_levels(mips, n, patch, x, z, l0, l1, t);
+  const WhitecapsTapLevels lv = whitecaps_tap_levels(mips, n, patch, size);
+  return whitecaps_read_tap(&lv, x, z);
 }
 
 /* The foam fraction of a footprint centred at (x, z) m, `minor` m across and `major` m along the unit
  * horizontal direction (dir_x, dir_z): up to WHITECAPS_MAX_TAPS square taps along the major axis, all
- * of one size (so their levels are found once). */
+ * of one size. */
 SEASIM_FN real whitecaps_footprint(const SEASIM_GLOBAL real* mips, int n, real patch, real x, real z, real dir_x,
                                    real dir_z, real minor, real major) {
   const real ratio = major / fmax(minor, R(1e-30));
   const int taps = ratio >= (real)WHITECAPS_MAX_TAPS ? WHITECAPS_MAX_TAPS : (int)ceil(fmax(ratio, R(1.0)));
   const real tap_size = fmax(minor, major / (real)taps);
-  int l0, l1;
-  real t;
-  whitecaps_tap_levels(n, patch, tap_size, &l0, &l1, &t);
+  const WhitecapsTapLevels lv = whitecaps_tap_levels(mips, n, patch, tap_size);
   real sum = R(0.0);
   for (int k = 0; k < taps; ++k) {
     const real offset = major * (((real)k + R(0.5)) / (real)taps - R(0.5));
-    sum += whitecaps_read_levels(mips, n, patch, x + offset * dir_x, z + offset * dir_z, l0, l1, t);
+    sum += whitecaps_read_tap(&lv, x + offset * dir_x, z + offset * dir_z);
   }
   return clamp(sum / (real)taps, R(0.0), R(1.0));
 }
