@@ -349,7 +349,8 @@ int main(int argc, char** argv) {
   preview->add_option("--frames", preview_cmd.frames, "Stop after N frames (0: when the window closes)");
   preview->add_option("--screenshot", preview_cmd.screenshot, "Save the last frame's framebuffer as this PNG (needs --frames)");
   preview->add_option("--script", preview_cmd.script, "Key script, one input per frame: \"UP*3 ORBIT:40,0 WAIT S\"");
-  preview->add_option("--budget-ms", preview_cmd.budget_ms, "Frame-time budget while the view moves (0: always full quality)");
+  preview->add_option("--budget-ms", preview_cmd.budget_ms, "Frame-time budget while the view moves, ms (0: always full quality)")
+      ->capture_default_str();
   preview->add_option("--save-prefix", preview_cmd.save_prefix, "The S key writes PREFIX_<n>.png and PREFIX_<n>.toml");
 
   CLI11_PARSE(app, argc, argv);

@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "preview/preview_quality.h"
+
 namespace seasim {
 
 struct PreviewCmd {
@@ -15,7 +17,7 @@ struct PreviewCmd {
   int frames = 0;                  // > 0: stop after this many frames (headless runs, tests)
   std::string screenshot;          // PNG of the last frame's framebuffer (glReadPixels), written atomically
   std::string script;              // key script, one input per frame (preview/preview_settings.h)
-  double budget_ms = 100.0;        // frame-time budget while the view moves; 0 = always full quality
+  double budget_ms = kPreviewMovingBudgetMs;  // frame-time budget while the view moves; 0 = always full quality
   std::string save_prefix;         // `S` writes <prefix>_<n>.png and <prefix>_<n>.toml; "" = ./<scene name>_preview
 };
 

@@ -37,6 +37,10 @@ const std::vector<std::pair<std::string, double>>& widenedKnobs() {
 // level's own error against full quality; larger cells cost more again (more pixels evaluate themselves).
 constexpr double kLampsCellCeilingDeg = 4.0;
 
+// The fewest steps a level gives the orders model's view-ray sum (quality.lamps_ms_steps, 12 at full
+// quality): the ray's glow, halo and orders in-scatter, about two thirds of rov_lights' lamp pass at level 0.
+constexpr long kLampsStepsFloor = 3;
+
 }  // namespace
 
 std::vector<Override> qualityLevelOverrides(const Scene& scene, int level) {
@@ -67,6 +71,10 @@ std::vector<Override> qualityLevelOverrides(const Scene& scene, int level) {
     if (cell > 0)
       out.push_back({"quality.lamps_ms_cell_deg",
                      floatText(std::max(cell, std::min(kLampsCellCeilingDeg, std::ldexp(cell, size_shift)))), at});
+  }
+  if (!scene.spotlights.empty()) {
+    const long steps = std::lround(modelKey(scene, "quality.lamps_ms_steps"));
+    add("quality.lamps_ms_steps", std::max(std::min(steps, kLampsStepsFloor), steps >> halvings));
   }
   add("camera.width", std::max(16, scene.camera.width >> size_shift));
   add("camera.height", std::max(9, scene.camera.height >> size_shift));

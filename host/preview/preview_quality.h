@@ -18,6 +18,9 @@ namespace seasim {
 
 constexpr int kPreviewLevels = 4;
 constexpr int kPreviewFullLevel = kPreviewLevels - 1;
+// The default frame-time budget while the view moves: 25 frames a second, the rate at which a moving
+// view reads as motion rather than as a slide show. Full quality follows when the view stops.
+constexpr double kPreviewMovingBudgetMs = 40.0;
 
 // The overrides that render `scene` at `level` (0..3). Every level names the same keys, so going back
 // to level 3 sets them to the scene's own values.

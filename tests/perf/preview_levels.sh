@@ -5,17 +5,18 @@
 #     the view, so the passes that depend on the camera run again), and the RMS error of the window's
 #     screenshot against level 3's, in 8-bit levels (oiiotool --diff; levels 0 and 1 are rendered
 #     smaller and scaled up by the window, which is part of their error);
-#   budget: the same orbit with the automatic choice (--budget-ms, default 100): levels shown, median ms.
+#   budget: the same orbit with the automatic choice (--budget-ms, default 40): levels shown, median ms.
 # Prints a markdown table. Usage: tests/perf/preview_levels.sh [scene.toml ...]   (default scenes/*.toml)
 # Env: B (binary, build/seasim), DEVICE (pocl), SIZE (640x360), MOVES (orbit frames per level, 5),
-# BUDGET_MOVES (orbit frames of the budget run, 16: the budget forgets a time after 8 frames), BUDGET (100).
+# BUDGET_MOVES (orbit frames of the budget run, 16: the budget forgets a time after 8 frames), BUDGET (40, the
+# preview's default).
 set -euo pipefail
 B=${B:-build/seasim}
 DEVICE=${DEVICE:-pocl}
 SIZE=${SIZE:-640x360}
 MOVES=${MOVES:-5}
 BUDGET_MOVES=${BUDGET_MOVES:-16}
-BUDGET=${BUDGET:-100}
+BUDGET=${BUDGET:-40}
 T=$(mktemp -d /tmp/seasim_preview_levels.XXXXXX)
 trap 'rm -rf "$T"' EXIT
 scenes=("$@")

@@ -115,6 +115,21 @@ TEST(PreviewQuality, LampsLatticeCellsWidenPerLevel) {
   EXPECT_EQ(asMap(qualityLevelOverrides(parseScene("", "t.toml"), 0)).count("quality.lamps_ms_cell_deg"), 0u);
 }
 
+// The orders model's view-ray steps halve per level down to 3; a scene that asks for fewer keeps them, and a
+// scene without lamps gets no such override.
+TEST(PreviewQuality, LampsViewRayStepsHalvePerLevelDownToAFloor) {
+  const Scene scene = seasim::loadScene(std::string(SEASIM_SOURCE_DIR) + "/scenes/rov_lights.toml");
+  EXPECT_EQ(asMap(qualityLevelOverrides(scene, kPreviewFullLevel)).at("quality.lamps_ms_steps"), "12");
+  EXPECT_EQ(asMap(qualityLevelOverrides(scene, 2)).at("quality.lamps_ms_steps"), "6");
+  EXPECT_EQ(asMap(qualityLevelOverrides(scene, 1)).at("quality.lamps_ms_steps"), "3");
+  EXPECT_EQ(asMap(qualityLevelOverrides(scene, 0)).at("quality.lamps_ms_steps"), "3");
+  const Scene few = parseScene("[quality]\nlamps_ms_steps = 2\n[[spotlights]]\nposition = [0, 1, 0]\n"
+                               "direction = [0, -1, 0]\n", "t.toml");
+  EXPECT_EQ(asMap(qualityLevelOverrides(few, 0)).at("quality.lamps_ms_steps"), "2");
+  EXPECT_NO_THROW(seasim::loadScene(std::string(SEASIM_SOURCE_DIR) + "/scenes/rov_lights.toml", qualityLevelOverrides(scene, 0)));
+  EXPECT_EQ(asMap(qualityLevelOverrides(parseScene("", "t.toml"), 0)).count("quality.lamps_ms_steps"), 0u);
+}
+
 TEST(PreviewQuality, KnobsBelowTheirFloorStayAsTheyAre) {
   const Scene scene = parseScene("[quality]\nshafts_planes = 4\n[spectral]\ncount = 1\n", "t.toml");
   const auto l0 = asMap(qualityLevelOverrides(scene, 0));
@@ -148,6 +163,17 @@ TEST(QualityBudget, MovingPicksTheHighestLevelWithinTheBudget) {
   steady(b, 0, 10);
   steady(b, 1, 140);  // now even level 1 is over: level 0
   EXPECT_EQ(b.next(true), 0);
+}
+
+// The preview's default budget keeps a moving view at 25 frames a second or more: a level measured at
+// 75 ms (ocean_noon's level 2 at 640x360 on two cores) is not chosen while moving, its 20 ms level 1 is.
+TEST(QualityBudget, DefaultBudgetMovesAtTwentyFiveFramesASecond) {
+  EXPECT_LE(kPreviewMovingBudgetMs, 1000.0 / 25.0);
+  QualityBudget b(kPreviewMovingBudgetMs);
+  steady(b, 1, 20);
+  steady(b, 2, 75);
+  EXPECT_EQ(b.next(true), 1);
+  EXPECT_EQ(b.next(false), kPreviewFullLevel);  // the view stopped: one level above the last shown (2)
 }
 
 TEST(QualityBudget, AnOldTimeIsTriedAgain) {
