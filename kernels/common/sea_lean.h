@@ -336,9 +336,13 @@ SEASIM_FN real sea_lean_glint(real3 d, real3 sun, real ior, real mx, real mz, re
 /* The glitter over the pixel's solid angle. Under a low sun the glint changes fast across one pixel — on
  * ocean_sunset (sun 5° up, 64 x 36) the half vector's slope moves by up to one standard deviation across
  * it — and the centre's value was 8–32 % off the pixel's mean near the horizon (docs/journal/
- * waves_reference.md). Where the glint's argument moves across the pixel — the half vector's slope by more
- * than 0.2 of the footprint's standard deviation (Mahalanobis, from the centre to half a pixel along either
- * image axis) or c by more than 2 %, and the pixel comes within 6 σ of the facets' mean — the glint is averaged over 3 x 3 Gauss–Legendre directions (0 and
+ * waves_reference.md). The glint is exp(−q/2) times slow factors, q = |u|² the half vector's slope in σ
+ * (Mahalanobis) from the facets' mean; half a pixel moves u by δ, so ln glint moves by about d δ + δ²/2,
+ * d = |u| at the centre. Where the glint's argument moves across the pixel — δ above 0.2 (from the centre to
+ * half a pixel along either image axis), d δ above 0.2 (in the tail a small δ is a large factor: where δ
+ * alone decided, the centre was up to 11 % off the pixel's mean at 4–5 σ and 19 % at 5–6 σ, against 48 x 48
+ * directions; tests/unit/sea_lean_test.cpp), or c by more than 2 % — and the pixel comes
+ * within 6 σ of the facets' mean, the glint is averaged over 3 x 3 Gauss–Legendre directions (0 and
  * ±√(3/5)/2 of a pixel on each axis, weights 8/18 and 5/18: within 1 % of 64 x 64 of them, tests/unit/
  * sea_lean_test.cpp; 2 x 2 still missed by 4 % two degrees under the horizon); elsewhere the centre's
  * value is the mean within about 1 % and is used alone (nine glints for every pixel cost ocean_noon 25 %
@@ -353,19 +357,20 @@ SEASIM_FN real sea_lean_pixel_glint(real3 d, real3 fwd, real3 du, real3 dv, real
   int centre_only = sea_lean_half_slope(d, sun, &sx, &sz, &c) && d.y < R(0.0);
   const real det = cxx * czz - cxz * cxz;
   real shift = R(0.0); /* the half vector's slope from the centre to half a pixel along du, plus along dv, in σ */
-  int slow = 1;        /* ... each below 0.2 σ, and c within 2 % */
+  int slow = 1;        /* ... each below 0.2 σ and below 0.2 / d, and c within 2 % */
+  const real cx = sx - mx, cz = sz - mz;
+  const real d2 = fmax((czz * cx * cx - R(2.0) * cxz * cx * cz + cxx * cz * cz) / det, R(0.0)); /* d² */
   for (int axis = 0; axis < 2 && centre_only; ++axis) {
     real ex = R(0.0), ez = R(0.0), ec = R(0.0);
     centre_only = sea_lean_half_slope(normalize(centre + R(0.5) * (axis == 0 ? du : dv)), sun, &ex, &ez, &ec);
     const real dx = ex - sx, dz = ez - sz;
     const real m2 = (czz * dx * dx - R(2.0) * cxz * dx * dz + cxx * dz * dz) / det;
     shift += sqrt(m2);
-    slow = slow && m2 < R(0.04) && fabs(ec - c) < R(0.02) * c;
+    slow = slow && m2 < R(0.04) && d2 * m2 < R(0.04) && fabs(ec - c) < R(0.02) * c;
   }
   /* The centre suffices where the glint is slow across the pixel, or where even the pixel's nearest corner
    * lies more than 6 σ from the facets' mean (the glint there is below e^-18 of its peak). */
-  const real cx = sx - mx, cz = sz - mz;
-  const real far = sqrt(fmax((czz * cx * cx - R(2.0) * cxz * cx * cz + cxx * cz * cz) / det, R(0.0))) - shift;
+  const real far = sqrt(d2) - shift;
   if (centre_only && (slow || far > R(6.0))) return centre_glint;
   const real node[3] = {R(-0.38729833462074170), R(0.0), R(0.38729833462074170)};
   const real weight[3] = {R(5.0) / R(18.0), R(8.0) / R(18.0), R(5.0) / R(18.0)};
