@@ -98,11 +98,16 @@ SEASIM_FN real3 sea_sky_direction(real3 r) {
  * sea_facing_normal): writes the Fresnel reflectance R of the view (004 eq. 43–44; T_o = 1 − R in
  * 000 eq. 5, 9), the sky direction of its reflection (004 eq. 37, clamped to the horizon) and the
  * refracted direction in the water (004 eq. 41–42; air to water never reflects totally). Returns
- * cos θ_ji = −refracted.y, clamped to >= 1e-4 (000 eq. 5's sec θ_ji stays finite). */
+ * cos θ_ji = −refracted.y, clamped to >= 1e-4 (000 eq. 5's sec θ_ji stays finite). n faces the eye, so
+ * cos θ_jo = −d·n is taken as at least 0: a normal bent to grazing keeps −d·n = ±1e-17 (double) to 2e-5
+ * (float) of rounding, and refract_dir, which turns a normal that faces away, sent a fifth of such views
+ * up into the air (cos θ_ji then clamped to 1e-4, and the water's forward phase at them: bright specks on
+ * rough seas near the horizon). */
 SEASIM_FN real sea_view_interaction(real3 d, real3 n, real ior, real* fresnel, real3* sky_dir, real3* view_in_water) {
-  const real cos_jo = -dot(d, n);
+  const real cos_jo = clamp(-dot(d, n), R(0.0), R(1.0));
+  const real eta = R(1.0) / ior;
   *fresnel = fresnel_reflectance(cos_jo, R(1.0), ior);
-  refract_dir(d, n, R(1.0) / ior, view_in_water);
+  *view_in_water = eta * d + (eta * cos_jo - sqrt(snell_cos_t2(cos_jo, eta))) * n; /* 004 eq. 41–42 */
   *sky_dir = sea_sky_direction(reflect_dir(d, n));
   return fmax(-(*view_in_water).y, R(1e-4));
 }
