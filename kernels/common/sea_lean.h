@@ -128,25 +128,22 @@ SEASIM_FN void sea_lean_read_level(const SEASIM_GLOBAL real* level, int nl, real
 
 /* The mip levels a square tap of side `size` metres reads (header): the two cell levels whose cells
  * bracket SEA_LEAN_FOOTPRINT_SCALE × size, trilinear between them by t, and below one cell the blend with
- * the point map by ratio. Found once for all the taps of a footprint (they are one size). The texel
- * coordinates stay divisions by the cell's size: the glint under a low sun (its variance E[s²] − m², which
- * cancels) moved by up to 8× in some dim pixels of ocean_sunset when they were multiplications by its
- * inverse. */
+ * the point map by ratio. Found once for all the taps of a footprint (they are one size). */
 typedef struct {
   const SEASIM_GLOBAL real* level0;
   const SEASIM_GLOBAL real* level1;
   int n0, n1;           /* the two levels' sides */
-  real size0, size1;    /* their cells' sides, 2^l cell: level l cell i is centred at x = (i + 1/2) size_l */
+  real inv0, inv1;      /* 1 / (2^l cell): level l cell i is centred at x = (i + 1/2) 2^l cell */
   real t;               /* the weight of level1 */
   real ratio;           /* the tap in cells (× the footprint scale): below 1 the point map is blended in */
-  real cell;
+  real inv_cell;
 } SeaLeanTapLevels;
 
 SEASIM_FN SeaLeanTapLevels sea_lean_tap_levels(const SEASIM_GLOBAL real* mips, int n, real patch, real size) {
   SeaLeanTapLevels lv;
   const int levels = sea_lean_levels(n);
-  lv.cell = patch / (real)n;
-  lv.ratio = size / lv.cell * SEA_LEAN_FOOTPRINT_SCALE;
+  const real cell = patch / (real)n;
+  lv.ratio = size / cell * SEA_LEAN_FOOTPRINT_SCALE;
   const real lod = clamp(log2(fmax(lv.ratio, R(1.0))), R(0.0), (real)(levels - 1));
   const int l0 = (int)floor(lod);
   const int l1 = l0 + 1 < levels ? l0 + 1 : l0;
@@ -155,8 +152,9 @@ SEASIM_FN SeaLeanTapLevels sea_lean_tap_levels(const SEASIM_GLOBAL real* mips, i
   lv.level1 = mips + sea_lean_level_offset(n, l1);
   lv.n0 = n >> l0;
   lv.n1 = n >> l1;
-  lv.size0 = lv.cell * (real)(1 << l0);
-  lv.size1 = lv.cell * (real)(1 << l1);
+  lv.inv0 = R(1.0) / (cell * (real)(1 << l0));
+  lv.inv1 = R(1.0) / (cell * (real)(1 << l1));
+  lv.inv_cell = R(1.0) / cell;
   return lv;
 }
 
@@ -165,12 +163,12 @@ SEASIM_FN SeaLeanTapLevels sea_lean_tap_levels(const SEASIM_GLOBAL real* mips, i
 SEASIM_FN void sea_lean_read(const SEASIM_GLOBAL real* mips, int n, const SeaLeanTapLevels* lv, real x, real z,
                              real m[SEA_LEAN_STRIDE]) {
   real m0[SEA_LEAN_STRIDE], m1[SEA_LEAN_STRIDE];
-  sea_lean_read_level(lv->level0, lv->n0, x / lv->size0 - R(0.5), z / lv->size0 - R(0.5), m0);
-  sea_lean_read_level(lv->level1, lv->n1, x / lv->size1 - R(0.5), z / lv->size1 - R(0.5), m1);
+  sea_lean_read_level(lv->level0, lv->n0, x * lv->inv0 - R(0.5), z * lv->inv0 - R(0.5), m0);
+  sea_lean_read_level(lv->level1, lv->n1, x * lv->inv1 - R(0.5), z * lv->inv1 - R(0.5), m1);
   for (int k = 0; k < SEA_LEAN_STRIDE; ++k) m[k] = m0[k] + lv->t * (m1[k] - m0[k]);
   if (lv->ratio < R(1.0)) {
     real point[SEA_LEAN_STRIDE];
-    sea_lean_read_level(mips, n, x / lv->cell, z / lv->cell, point); /* the point map: texel i at x = i cell */
+    sea_lean_read_level(mips, n, x * lv->inv_cell, z * lv->inv_cell, point); /* the point map: texel i at x = i cell */
     const real sx = point[0], sz = point[1];
     const real w = lv->ratio, wp = R(1.0) - lv->ratio;
     m[0] = wp * sx + w * m[0];
