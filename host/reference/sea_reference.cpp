@@ -193,7 +193,8 @@ double filteredFacets(const SeaReferenceScene& r, k::real3 d, SeaReferenceRay& r
   double cxx, czz, cxz, l11, l21, l22;
   k::sea_lean_covariance(st[2], st[3], st[4], r.sun_slope_variance, &cxx, &czz, &cxz, &l11, &l21, &l22);
   ray.n = k::sea_facing_normal(d, k::sea_lean_normal(st[0], st[1]));
-  const k::SeaLeanRule rule = k::sea_lean_rule(d, st[0], st[1], l11, l21, l22);
+  k::SeaLeanRule rule;
+  k::sea_lean_rule(d, st[0], st[1], l11, l21, l22, &rule);
   double R_mean = rule.back;  // facets turned away: F = 1 towards the horizon's sky
   ray.node_weights.push_back(rule.back);
   ray.node_dirs.push_back(k::sea_sky_direction(d));

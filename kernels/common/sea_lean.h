@@ -251,32 +251,32 @@ SEASIM_FN real sea_lean_gh3_node(int j, real* weight) {
   return (real)(j - 1) * R(1.7320508075688772);
 }
 
-SEASIM_FN SeaLeanRule sea_lean_rule(real3 d, real mx, real mz, real l11, real l21, real l22) {
-  SeaLeanRule r;
-  r.mx = mx, r.mz = mz, r.l11 = l11, r.l21 = l21, r.l22 = l22;
-  r.e1u = R(1.0), r.e1v = R(0.0), r.lo = R(0.0), r.hi = R(0.0), r.back = R(0.0);
-  for (int i = 0; i < 8; ++i) r.t[i] = r.tw[i] = R(0.0);
-  r.split = 0;
+/* Fills *r through a pointer: returned by value, the rule (with its arrays) made clang emit
+ * llvm.experimental.noalias.scope.decl, which Oclgrind cannot run. */
+SEASIM_FN void sea_lean_rule(real3 d, real mx, real mz, real l11, real l21, real l22, SeaLeanRule* r) {
+  r->mx = mx, r->mz = mz, r->l11 = l11, r->l21 = l21, r->l22 = l22;
+  r->e1u = R(1.0), r->e1v = R(0.0), r->lo = R(0.0), r->hi = R(0.0), r->back = R(0.0);
+  for (int i = 0; i < 8; ++i) r->t[i] = r->tw[i] = R(0.0);
+  r->split = 0;
   const real qu = d.x * l11 + d.z * l21, qv = d.z * l22;
   const real qn = sqrt(qu * qu + qv * qv);
-  if (qn <= R(1e-20)) return r; /* a vertical view: no facet faces away */
+  if (qn <= R(1e-20)) return; /* a vertical view: no facet faces away */
   const real beta = (d.y - (d.x * mx + d.z * mz)) / qn;
-  if (beta < SEA_LEAN_SPLIT_BETA) return r;
-  r.split = 1;
-  r.e1u = qu / qn, r.e1v = qv / qn;
-  r.lo = beta;
-  r.hi = fmax(R(5.0), beta + R(1.0));
-  r.back = R(0.5) * erfc(-beta * R(0.70710678118654752));
+  if (beta < SEA_LEAN_SPLIT_BETA) return;
+  r->split = 1;
+  r->e1u = qu / qn, r->e1v = qv / qn;
+  r->lo = beta;
+  r->hi = fmax(R(5.0), beta + R(1.0));
+  r->back = R(0.5) * erfc(-beta * R(0.70710678118654752));
   real mass = R(0.0);
   for (int i = 0; i < 8; ++i) {
     real w;
-    r.t[i] = r.lo + (r.hi - r.lo) * R(0.5) * (sea_lean_gl8_node(i, &w) + R(1.0));
-    r.tw[i] = w * exp(R(-0.5) * r.t[i] * r.t[i]);
-    mass += r.tw[i];
+    r->t[i] = r->lo + (r->hi - r->lo) * R(0.5) * (sea_lean_gl8_node(i, &w) + R(1.0));
+    r->tw[i] = w * exp(R(-0.5) * r->t[i] * r->t[i]);
+    mass += r->tw[i];
   }
-  const real scale = mass > R(1e-30) ? (R(1.0) - r.back) / mass : R(0.0);
-  for (int i = 0; i < 8; ++i) r.tw[i] *= scale;
-  return r;
+  const real scale = mass > R(1e-30) ? (R(1.0) - r->back) / mass : R(0.0);
+  for (int i = 0; i < 8; ++i) r->tw[i] *= scale;
 }
 
 SEASIM_FN int sea_lean_rule_nodes(const SeaLeanRule* r) { return r->split ? 24 : 9; }

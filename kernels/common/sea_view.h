@@ -140,7 +140,8 @@ SEASIM_FN void sea_view_filtered(SeaFeatures f, SEASIM_CONSTANT const SeaParams*
   real cxx, czz, cxz, l11, l21, l22;
   sea_lean_covariance(stats[2], stats[3], stats[4], p->sun_slope_variance, &cxx, &czz, &cxz, &l11, &l21, &l22);
   const real3 n = sea_facing_normal(d, sea_lean_normal(stats[0], stats[1]));
-  const SeaLeanRule rule = sea_lean_rule(d, stats[0], stats[1], l11, l21, l22);
+  SeaLeanRule rule;
+  sea_lean_rule(d, stats[0], stats[1], l11, l21, l22, &rule);
   real R_mean = rule.back;
   real3 reflected_shape = MAKE_REAL3(R(0.0), R(0.0), R(0.0));
   if (rule.split) reflected_shape = rule.back * sea_reflected_sky_shape(f, p, sky, sea_sky_direction(d));

@@ -46,7 +46,8 @@ struct Lean;
     }                                                                                                            \
     /* E[F] over the facets by the header's rule; back-facing facets count F = 1 (bent to grazing). */        \
     static T fresnelMean(V d, T mx, T mz, T l11, T l21, T l22, T ior, bool* split) {                             \
-      const NS::SeaLeanRule r = NS::sea_lean_rule(d, mx, mz, l11, l21, l22);                                    \
+      NS::SeaLeanRule r;                                                                                         \
+      NS::sea_lean_rule(d, mx, mz, l11, l21, l22, &r);                                                           \
       *split = r.split != 0;                                                                                     \
       T sum = r.back;                                                                                            \
       for (int k = 0; k < NS::sea_lean_rule_nodes(&r); ++k) {                                                    \
