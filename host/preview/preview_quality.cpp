@@ -71,8 +71,6 @@ std::vector<Override> qualityLevelOverrides(const Scene& scene, int level) {
     if (cell > 0)
       out.push_back({"quality.lamps_ms_cell_deg",
                      floatText(std::max(cell, std::min(kLampsCellCeilingDeg, std::ldexp(cell, size_shift)))), at});
-  }
-  if (!scene.spotlights.empty()) {
     const long steps = std::lround(modelKey(scene, "quality.lamps_ms_steps"));
     add("quality.lamps_ms_steps", std::max(std::min(steps, kLampsStepsFloor), steps >> halvings));
   }

@@ -64,14 +64,10 @@ SEASIM_FN real3 reflect_dir(real3 d, real3 n) { return d - (R(2.0) * dot(d, n)) 
  * Returns 1 and writes t to *out; on total internal reflection returns 0 and writes the mirror
  * direction instead, so *out is always a valid direction.
  */
-SEASIM_FN int refract_dir(real3 incident, real3 normal, real eta, real3* out) {
-  real cos_i = -dot(incident, normal);
-  real3 n = normal;
-  if (cos_i < R(0.0)) {
-    n = -normal;
-    cos_i = -cos_i;
-  }
-  cos_i = fmin(cos_i, R(1.0));
+/* The same through a normal n already facing the incoming light, cos_i = -incident·n in [0, 1] given: a
+ * caller whose normal faces by construction (a normal bent to grazing, sea_waves.h) passes its own
+ * cos_i, clamped at 0, so that rounding cannot turn n over. */
+SEASIM_FN int refract_facing_dir(real3 incident, real3 n, real cos_i, real eta, real3* out) {
   real cos_t2 = snell_cos_t2(cos_i, eta);
   if (cos_t2 < R(0.0)) {
     *out = reflect_dir(incident, n);
@@ -80,6 +76,16 @@ SEASIM_FN int refract_dir(real3 incident, real3 normal, real eta, real3* out) {
   real cos_t = sqrt(cos_t2);
   *out = eta * incident + (eta * cos_i - cos_t) * n;
   return 1;
+}
+
+SEASIM_FN int refract_dir(real3 incident, real3 normal, real eta, real3* out) {
+  real cos_i = -dot(incident, normal);
+  real3 n = normal;
+  if (cos_i < R(0.0)) {
+    n = -normal;
+    cos_i = -cos_i;
+  }
+  return refract_facing_dir(incident, n, fmin(cos_i, R(1.0)), eta, out);
 }
 
 /* ---------------------------------------------------------------------------------------------

@@ -105,9 +105,8 @@ SEASIM_FN real3 sea_sky_direction(real3 r) {
  * rough seas near the horizon). */
 SEASIM_FN real sea_view_interaction(real3 d, real3 n, real ior, real* fresnel, real3* sky_dir, real3* view_in_water) {
   const real cos_jo = clamp(-dot(d, n), R(0.0), R(1.0));
-  const real eta = R(1.0) / ior;
   *fresnel = fresnel_reflectance(cos_jo, R(1.0), ior);
-  *view_in_water = eta * d + (eta * cos_jo - sqrt(snell_cos_t2(cos_jo, eta))) * n; /* 004 eq. 41–42 */
+  refract_facing_dir(d, n, cos_jo, R(1.0) / ior, view_in_water);
   *sky_dir = sea_sky_direction(reflect_dir(d, n));
   return fmax(-(*view_in_water).y, R(1e-4));
 }
