@@ -196,7 +196,7 @@ SEASIM_FN real uw_ms_view_transmission(real sigma_a, real sigma_s, real g, real 
 /* Where cos ψ falls in the table (UW_MS_TABLE entries over ψ, 1° apart): entry *i and weight *f of
  * entry *i + 1. Once per point: every order's row shares it. */
 SEASIM_FN void uw_ms_table_index(real cos_psi, int* i, real* f) {
-  const real deg = acos(clamp(cos_psi, R(-1.0), R(1.0))) * (R(180.0) / SEASIM_PI);
+  const real deg = lookup_acos(clamp(cos_psi, R(-1.0), R(1.0))) * (R(180.0) / SEASIM_PI);
   *i = (int)deg < UW_MS_TABLE - 2 ? (int)deg : UW_MS_TABLE - 2;
   *f = clamp(deg - (real)*i, R(0.0), R(1.0));
 }
@@ -295,7 +295,8 @@ SEASIM_FN real uw_ms_order1_phase(real3 x, real3 lamp, real3 axis, real cos_cone
     const real q = ((real)k + R(0.5)) / (real)UW_MS_EDGE_NODES;
     const real delta = d_min + (SEASIM_PI - d_min) * q * q;
     const real jac = (SEASIM_PI - d_min) * R(2.0) * q / (real)UW_MS_EDGE_NODES;
-    const real sd = fmax(sin(delta), R(1e-6)), cd = cos(delta);
+    real cd;
+    const real sd = fmax(kernel_sincos_0_pi(delta, &cd), R(1e-6)); /* delta in [0, π] */
     const real r = h / sd, u = fmax(u0 - h * cd / sd, R(0.0));
     const real wgt = hg_phase(cd, g) * exp(-c * fmax(u + r - s, R(0.0))) * jac;
     num += wgt * hg_phase(dot(cd * e + sd * n, to_eye), g);

@@ -1,6 +1,7 @@
 // polynomial_trig_test.cpp — kernels/common/polynomial_trig.h against the C library, in float and
 // double: A&S 4.4.49 and 4.4.46 within their bounds over every quadrant and at the singular points
-// (the origin, the axes, the diagonal, ±1 for acos, tiny and huge arguments), never NaN or Inf.
+// (the origin, the axes, the diagonal, ±1 for acos, tiny and huge arguments), never NaN or Inf; sin and
+// cos on [0, π] within their truncation, exact at the ends and at π/2.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -77,6 +78,38 @@ TEST(PolynomialTrig, AcosWithinTheBoundAndAtTheEnds) {
   }
   EXPECT_NEAR(kd::polynomial_acos(1.0), 0.0, 1e-15);
   EXPECT_NEAR(kd::polynomial_acos(-1.0), M_PI, kDoubleTol);
+}
+
+TEST(PolynomialTrig, SinCosOnZeroToPiWithinTheTruncation) {
+  // The series' first terms left out: 6.4e-9 (cos y, i.e. sin x) and 6.7e-10 (sin y) at the ends; float
+  // adds its rounding of x up to π (ulp 2.4e-7), which moves sin and cos by as much.
+  double worst_d = 0, worst_f = 0;
+  const int n = 200000;
+  for (int i = 0; i <= n; ++i) {
+    const double x = M_PI * i / n;
+    double c_d;
+    const double s_d = kd::polynomial_sincos_0_pi(x, &c_d);
+    worst_d = std::max({worst_d, std::fabs(s_d - std::sin(x)), std::fabs(c_d - std::cos(x))});
+    const float xf = static_cast<float>(x);
+    float c_f;
+    const float s_f = kf::polynomial_sincos_0_pi(xf, &c_f);
+    ASSERT_TRUE(std::isfinite(s_f) && std::isfinite(c_f)) << x;
+    worst_f = std::max({worst_f, std::fabs(s_f - std::sin(double(xf))), std::fabs(c_f - std::cos(double(xf)))});
+  }
+  std::printf("[ measured ] sin, cos on [0, pi]: max error %.2e (double), %.2e (float)\n", worst_d, worst_f);
+  EXPECT_LE(worst_d, 7.5e-9);
+  EXPECT_LE(worst_f, 6e-7);
+  // The ends and the middle: sin 0 = sin π = 0 and cos π/2 = 0 to the truncation; |sin|, |cos| <= 1.
+  double c;
+  EXPECT_NEAR(kd::polynomial_sincos_0_pi(0.0, &c), 0.0, 7.5e-9);
+  EXPECT_NEAR(c, 1.0, 1e-9);
+  EXPECT_NEAR(kd::polynomial_sincos_0_pi(M_PI, &c), 0.0, 7.5e-9);
+  EXPECT_NEAR(c, -1.0, 1e-9);
+  EXPECT_NEAR(kd::polynomial_sincos_0_pi(M_PI / 2, &c), 1.0, 1e-15);
+  EXPECT_NEAR(c, 0.0, 1e-15);
+  // The host's switch is the library (the double evaluation the kernels are tested against).
+  EXPECT_EQ(kd::kernel_sincos_0_pi(1.25, &c), std::sin(1.25));
+  EXPECT_EQ(c, std::cos(1.25));
 }
 
 }  // namespace
