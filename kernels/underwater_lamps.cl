@@ -64,10 +64,7 @@ static inline float lamp_visible(__global const UwObject* objects, int count, fl
   const float3 w = lamp - p;
   const float s = length(w);
   if (!(s > 0.0f)) return 1.0f;
-  float3 n;
-  int mat;
-  const float t = uw_scene_hit(objects, count, 0.0f, p, w / s, 0.0f, &n, &mat);
-  return (mat >= 0 && t < s) ? 0.0f : 1.0f;
+  return uw_objects_block(objects, count, p, w / s, 0.0f, s) ? 0.0f : 1.0f;
 #else
   return 1.0f;
 #endif

@@ -151,13 +151,29 @@ SEASIM_FN real uw_scene_hit(const SEASIM_GLOBAL UwObject* objects, int count, re
   return best;
 }
 
+/* Whether any object lies on the ray o + t d (d unit) for t in (t_min, t_max): a shadow ray's test, which
+ * needs neither the nearest hit nor its normal, so it stops at the first object in the way. The surface
+ * and the bottom are not tested (the caller's t_max stops before them). */
+SEASIM_FN int uw_objects_block(const SEASIM_GLOBAL UwObject* objects, int count, real3 o, real3 d, real t_min, real t_max) {
+  for (int k = 0; k < count; ++k) {
+    const SEASIM_GLOBAL UwObject* ob = &objects[k];
+    const real3 a = MAKE_REAL3(ob->a[0], ob->a[1], ob->a[2]);
+    const real3 b = MAKE_REAL3(ob->b[0], ob->b[1], ob->b[2]);
+    int axis;
+    const real t = ob->type == UW_SPHERE ? ray_sphere(o, d, a, (real)ob->a[3], t_min, t_max)
+                   : ob->type == UW_BOX  ? ray_box(o, d, a, b, t_min, t_max, &axis)
+                                         : ray_plane(o, d, a, b, t_min, t_max);
+    if (t > R(0.0)) return 1;
+  }
+  return 0;
+}
+
 /* The direct sun's visibility at a hit point with unit normal n: a shadow ray towards the sun (s_w) up
  * to the surface, offset along the normal against self-hits; 0 if an object is in the way, else 1. */
 SEASIM_FN real uw_sun_visibility(const SEASIM_GLOBAL UwObject* objects, int count, real3 hit, real3 n, real3 s_w) {
-  real3 sn;
-  int smat = UW_MAT_NONE;
-  uw_scene_hit(objects, count, R(0.0), hit + R(1e-3) * n, s_w, R(0.0), &sn, &smat);
-  return smat >= 0 ? R(0.0) : R(1.0);
+  const real3 o = hit + R(1e-3) * n;
+  const real t_surface = s_w.y > R(0.0) && -o.y / s_w.y > R(0.0) ? -o.y / s_w.y : UW_INFINITE; /* it leaves there */
+  return uw_objects_block(objects, count, o, s_w, R(0.0), t_surface) ? R(0.0) : R(1.0);
 }
 
 /* Radiance the surface sends down along -d to a point below it, d the upward view direction (d.y > 0):

@@ -170,6 +170,49 @@ TEST(UnderwaterMath, SceneHitFindsSurfaceBottomAndObjects) {
   EXPECT_GE(t, 1e30);
 }
 
+// The shadow rays' test (uw_objects_block: any object in (t_min, t_max), first one found) against the
+// nearest hit of uw_scene_hit: blocked exactly when an object is the nearest hit before t_max, over random
+// segments among a sphere, a box and a tilted plane, from inside, outside and on their surfaces' sides.
+TEST(UnderwaterMath, ObjectsBlockASegmentExactlyWhenTheNearestHitIsAnObjectBeforeItsEnd) {
+  UwObject objs[3]{};
+  objs[0].type = UW_SPHERE;
+  objs[0].a[0] = 0.3f, objs[0].a[1] = -5.0f, objs[0].a[2] = -2.0f, objs[0].a[3] = 0.7f;
+  objs[1].type = UW_BOX;
+  objs[1].a[0] = -1.5f, objs[1].a[1] = -6.0f, objs[1].a[2] = -1.0f;
+  objs[1].b[0] = -0.5f, objs[1].b[1] = -5.2f, objs[1].b[2] = 0.5f;
+  objs[2].type = UW_PLANE;
+  objs[2].a[0] = 0.0f, objs[2].a[1] = -7.5f, objs[2].a[2] = 0.0f;
+  const double nl = std::sqrt(0.2 * 0.2 + 1.0 + 0.1 * 0.1);
+  objs[2].b[0] = float(0.2 / nl), objs[2].b[1] = float(1.0 / nl), objs[2].b[2] = float(0.1 / nl);
+  unsigned state = 12345u;
+  auto uniform = [&state](double lo, double hi) {
+    state = state * 1664525u + 1013904223u;
+    return lo + (hi - lo) * (state >> 8) / double(1u << 24);
+  };
+  int blocked = 0, open = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const kd::real3 p{uniform(-2.5, 2.5), uniform(-8.0, -3.0), uniform(-3.5, 1.5)};
+    const kd::real3 q{uniform(-2.5, 2.5), uniform(-8.0, -3.0), uniform(-3.5, 1.5)};
+    const kd::real3 w = q - p;
+    const double s = kd::length(w);
+    if (!(s > 1e-6)) continue;
+    const kd::real3 d = w * (1.0 / s);
+    kd::real3 n{};
+    int mat = UW_MAT_NONE;
+    const double t = kd::uw_scene_hit(objs, 3, 0.0, p, d, 0.0, &n, &mat);
+    const bool nearest = mat >= 0 && t < s;
+    const bool any = kd::uw_objects_block(objs, 3, p, d, 0.0, s) != 0;
+    ASSERT_EQ(any, nearest) << i << " t " << t << " s " << s;
+    (any ? blocked : open)++;
+    const kf::real3 pf{float(p.x), float(p.y), float(p.z)}, df{float(d.x), float(d.y), float(d.z)};
+    if (std::fabs(t - s) > 1e-3 && (mat < 0 || t > 1e-3)) EXPECT_EQ(kf::uw_objects_block(objs, 3, pf, df, 0.0f, float(s)) != 0, nearest) << i;
+  }
+  EXPECT_GT(blocked, 2000);  // both outcomes well covered
+  EXPECT_GT(open, 2000);
+  // No objects: nothing blocks.
+  EXPECT_EQ(kd::uw_objects_block(objs, 0, kd::real3{0, -5, 0}, kd::real3{0, 0, -1}, 0.0, 100.0), 0);
+}
+
 TEST(UnderwaterMath, SnellWindowAndBandRadiance) {
   // Looking straight up through a clear (b = 0) water column of 5 m: n² (1 - F(0)) L_sky e^{-a 5}.
   UwBand band{};
