@@ -58,13 +58,15 @@
 #define v3(a) ((float3)((a)[0], (a)[1], (a)[2]))
 
 /* H: 1 when nothing lies between the point p and the lamp (objects only: the bottom and the surface
- * cannot come between two points under water above the bottom). */
-static inline float lamp_visible(__global const UwObject* objects, int count, float3 p, float3 lamp) {
+ * cannot come between two points under water above the bottom); only the candidates are tested
+ * (uw_objects_block: UW_ALL_OBJECTS, or those near the fan of shadow rays, uw_objects_near_triangle). */
+static inline float lamp_visible(__global const UwObject* objects, int count, unsigned int candidates, float3 p,
+                                 float3 lamp) {
 #if SEASIM_HAS_OBJECTS
   const float3 w = lamp - p;
   const float s = length(w);
   if (!(s > 0.0f)) return 1.0f;
-  return uw_objects_block(objects, count, p, w / s, 0.0f, s) ? 0.0f : 1.0f;
+  return uw_objects_block(objects, count, candidates, p, w / s, 0.0f, s) ? 0.0f : 1.0f;
 #else
   return 1.0f;
 #endif
@@ -291,7 +293,7 @@ static inline void lamp_orders_surface(__constant UwParams* p, __global const Uw
   const int nb = lp->band_count;
   const float3 lamp = v3(L->position), axis = v3(L->direction);
   const float3 P = v->o + v->S * v->d;
-  const float vis = lamp_visible(objects, count, P + 1e-3f * v->n, lamp);
+  const float vis = lamp_visible(objects, count, UW_ALL_OBJECTS, P + 1e-3f * v->n, lamp);
   if (!(vis > 0.0f)) return;
   for (int i = 0; i < nb; ++i) {
     const float E = I[i] * v->alb[i * v->alb_stride] *
@@ -391,7 +393,7 @@ static inline void lamp_surface(const LampMedia* md, __global const UwObject* ob
   if (!v->lit_surface) return;
   const float3 lamp = v3(L->position), axis = v3(L->direction);
   const float3 P = v->o + v->S * v->d;
-  const float vis = lamp_visible(objects, count, P + 1e-3f * v->n, lamp);
+  const float vis = lamp_visible(objects, count, UW_ALL_OBJECTS, P + 1e-3f * v->n, lamp);
   if (!(vis > 0.0f)) return;
   for (int i = 0; i < lp->band_count; ++i) {
     const float E = I[i] * v->alb[i * v->alb_stride];
@@ -417,12 +419,16 @@ static inline void lamp_beam(const LampMedia* md, __global const UwObject* objec
   const float3 lamp = v3(L->position), axis = v3(L->direction);
   UwLampSpan sp;
   if (!uw_lamp_span(v->o, v->d, lamp, axis, L->cos_cone, lp->s_min, v->t_end, n_planes, &sp)) return;
+  /* The planes' shadow rays fan out from the lamp to the ray's span [ta, tp]: only objects near that
+   * triangle can be in their way. */
+  const unsigned int near =
+      count > 0 ? uw_objects_near_triangle(objects, count, lamp, v->o + sp.ta * v->d, v->o + sp.tp * v->d) : 0u;
   for (int k = 0; k < n_planes && sp.dt > 0.0f; ++k) {
     float J = 0.0f;
     for (int j = 0; j < m; ++j) {
       const float3 P = v->o + uw_lamp_subsample_t(&sp, k, j, m) * v->d;
       const float prof = uw_lamp_profile(P, lamp, axis, L->cos_cone, L->cos_inner);
-      if (prof > 0.0f) J += prof * lamp_visible(objects, count, P, lamp);
+      if (prof > 0.0f) J += prof * lamp_visible(objects, count, near, P, lamp);
     }
     if (J <= 0.0f) continue;
     J *= sp.dt / m;
@@ -443,7 +449,7 @@ static inline void lamp_beam(const LampMedia* md, __global const UwObject* objec
   for (int j = 0; j < m; ++j) {
     const float3 P = v->o + uw_lamp_tail_t(&sp, j, m) * v->d;
     const float prof = uw_lamp_profile(P, lamp, axis, L->cos_cone, L->cos_inner);
-    if (prof > 0.0f) J += prof * lamp_visible(objects, count, P, lamp);
+    if (prof > 0.0f) J += prof * lamp_visible(objects, count, UW_ALL_OBJECTS, P, lamp);
   }
   if (!(J > 0.0f)) return;
   const float cos_tail = uw_lamp_tail_cos(&sp, v->o, v->d, lamp);

@@ -151,11 +151,17 @@ SEASIM_FN real uw_scene_hit(const SEASIM_GLOBAL UwObject* objects, int count, re
   return best;
 }
 
+/* Every object a candidate for uw_objects_block. */
+#define UW_ALL_OBJECTS 0xffffffffu
+
 /* Whether any object lies on the ray o + t d (d unit) for t in (t_min, t_max): a shadow ray's test, which
- * needs neither the nearest hit nor its normal, so it stops at the first object in the way. The surface
- * and the bottom are not tested (the caller's t_max stops before them). */
-SEASIM_FN int uw_objects_block(const SEASIM_GLOBAL UwObject* objects, int count, real3 o, real3 d, real t_min, real t_max) {
+ * needs neither the nearest hit nor its normal, so it stops at the first object in the way. Only the
+ * candidates are tested: bit k of `candidates` for object k < 32 (uw_objects_near_triangle), every
+ * object from 32 on. The surface and the bottom are not tested (the caller's t_max stops before them). */
+SEASIM_FN int uw_objects_block(const SEASIM_GLOBAL UwObject* objects, int count, unsigned int candidates, real3 o,
+                               real3 d, real t_min, real t_max) {
   for (int k = 0; k < count; ++k) {
+    if (k < 32 && !((candidates >> k) & 1u)) continue;
     const SEASIM_GLOBAL UwObject* ob = &objects[k];
     const real3 a = MAKE_REAL3(ob->a[0], ob->a[1], ob->a[2]);
     const real3 b = MAKE_REAL3(ob->b[0], ob->b[1], ob->b[2]);
@@ -168,12 +174,65 @@ SEASIM_FN int uw_objects_block(const SEASIM_GLOBAL UwObject* objects, int count,
   return 0;
 }
 
+/* The squared distance from p to the triangle (a, b, c): its closest point by the Voronoi regions of
+ * the vertices, edges and face (Ericson, Real-Time Collision Detection, 2005, §5.1.5). A degenerate
+ * triangle (a line: a view ray through the lamp) gives NaN in the face's region; the caller treats that
+ * as near. */
+SEASIM_FN real uw_point_triangle_distance2(real3 p, real3 a, real3 b, real3 c) {
+  const real3 ab = b - a, ac = c - a, ap = p - a;
+  const real d1 = dot(ab, ap), d2 = dot(ac, ap);
+  real3 q;
+  if (d1 <= R(0.0) && d2 <= R(0.0)) {
+    q = a;
+  } else {
+    const real3 bp = p - b;
+    const real d3 = dot(ab, bp), d4 = dot(ac, bp);
+    const real3 cp = p - c;
+    const real d5 = dot(ab, cp), d6 = dot(ac, cp);
+    const real vc = d1 * d4 - d3 * d2, vb = d5 * d2 - d1 * d6, va = d3 * d6 - d5 * d4;
+    if (d3 >= R(0.0) && d4 <= d3) q = b;
+    else if (d6 >= R(0.0) && d5 <= d6) q = c;
+    else if (vc <= R(0.0) && d1 >= R(0.0) && d3 <= R(0.0)) q = a + (d1 / (d1 - d3)) * ab;
+    else if (vb <= R(0.0) && d2 >= R(0.0) && d6 <= R(0.0)) q = a + (d2 / (d2 - d6)) * ac;
+    else if (va <= R(0.0) && d4 - d3 >= R(0.0) && d5 - d6 >= R(0.0))
+      q = b + ((d4 - d3) / ((d4 - d3) + (d5 - d6))) * (c - b);
+    else {
+      const real inv = R(1.0) / (va + vb + vc);
+      q = a + (vb * inv) * ab + (vc * inv) * ac;
+    }
+  }
+  const real3 e = p - q;
+  return dot(e, e);
+}
+
+/* The candidates (uw_objects_block) among objects 0..31 for the shadow rays from the points of the segment
+ * p1 p2 to p0 (a lamp): those whose bounding sphere comes within its radius of the triangle (p0, p1, p2),
+ * which holds every such ray. Conservative: 1 cm of margin for rounding, planes always, and a degenerate
+ * triangle keeps every object. */
+SEASIM_FN unsigned int uw_objects_near_triangle(const SEASIM_GLOBAL UwObject* objects, int count, real3 p0, real3 p1,
+                                                real3 p2) {
+  unsigned int near = 0u;
+  for (int k = 0; k < count && k < 32; ++k) {
+    const SEASIM_GLOBAL UwObject* ob = &objects[k];
+    const real3 a = MAKE_REAL3(ob->a[0], ob->a[1], ob->a[2]);
+    const real3 b = MAKE_REAL3(ob->b[0], ob->b[1], ob->b[2]);
+    if (ob->type != UW_SPHERE && ob->type != UW_BOX) {
+      near |= 1u << k;
+      continue;
+    }
+    const real3 centre = ob->type == UW_SPHERE ? a : R(0.5) * (a + b);
+    const real radius = (ob->type == UW_SPHERE ? (real)ob->a[3] : R(0.5) * length(b - a)) + R(0.01);
+    if (!(uw_point_triangle_distance2(centre, p0, p1, p2) > radius * radius)) near |= 1u << k;
+  }
+  return near;
+}
+
 /* The direct sun's visibility at a hit point with unit normal n: a shadow ray towards the sun (s_w) up
  * to the surface, offset along the normal against self-hits; 0 if an object is in the way, else 1. */
 SEASIM_FN real uw_sun_visibility(const SEASIM_GLOBAL UwObject* objects, int count, real3 hit, real3 n, real3 s_w) {
   const real3 o = hit + R(1e-3) * n;
   const real t_surface = s_w.y > R(0.0) && -o.y / s_w.y > R(0.0) ? -o.y / s_w.y : UW_INFINITE; /* it leaves there */
-  return uw_objects_block(objects, count, o, s_w, R(0.0), t_surface) ? R(0.0) : R(1.0);
+  return uw_objects_block(objects, count, UW_ALL_OBJECTS, o, s_w, R(0.0), t_surface) ? R(0.0) : R(1.0);
 }
 
 /* Radiance the surface sends down along -d to a point below it, d the upward view direction (d.y > 0):

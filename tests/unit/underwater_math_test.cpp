@@ -201,16 +201,78 @@ TEST(UnderwaterMath, ObjectsBlockASegmentExactlyWhenTheNearestHitIsAnObjectBefor
     int mat = UW_MAT_NONE;
     const double t = kd::uw_scene_hit(objs, 3, 0.0, p, d, 0.0, &n, &mat);
     const bool nearest = mat >= 0 && t < s;
-    const bool any = kd::uw_objects_block(objs, 3, p, d, 0.0, s) != 0;
+    const bool any = kd::uw_objects_block(objs, 3, UW_ALL_OBJECTS, p, d, 0.0, s) != 0;
     ASSERT_EQ(any, nearest) << i << " t " << t << " s " << s;
     (any ? blocked : open)++;
     const kf::real3 pf{float(p.x), float(p.y), float(p.z)}, df{float(d.x), float(d.y), float(d.z)};
-    if (std::fabs(t - s) > 1e-3 && (mat < 0 || t > 1e-3)) EXPECT_EQ(kf::uw_objects_block(objs, 3, pf, df, 0.0f, float(s)) != 0, nearest) << i;
+    if (std::fabs(t - s) > 1e-3 && (mat < 0 || t > 1e-3)) EXPECT_EQ(kf::uw_objects_block(objs, 3, UW_ALL_OBJECTS, pf, df, 0.0f, float(s)) != 0, nearest) << i;
   }
   EXPECT_GT(blocked, 2000);  // both outcomes well covered
   EXPECT_GT(open, 2000);
   // No objects: nothing blocks.
-  EXPECT_EQ(kd::uw_objects_block(objs, 0, kd::real3{0, -5, 0}, kd::real3{0, 0, -1}, 0.0, 100.0), 0);
+  EXPECT_EQ(kd::uw_objects_block(objs, 0, UW_ALL_OBJECTS, kd::real3{0, -5, 0}, kd::real3{0, 0, -1}, 0.0, 100.0), 0);
+}
+
+// The shadow rays' cull (uw_objects_near_triangle): an object left out is in the way of no shadow ray from a
+// point of the segment p1 p2 to p0 (checked with 64 rays per triangle), over random triangles near a
+// sphere, a box and a plane, and a degenerate one (p0 on the segment's line). The point-triangle distance
+// against a dense sampling of the triangle.
+TEST(UnderwaterMath, ObjectsLeftOutOfAShadowFanBlockNoneOfItsRays) {
+  UwObject objs[3]{};
+  objs[0].type = UW_SPHERE;
+  objs[0].a[0] = 0.3f, objs[0].a[1] = -5.0f, objs[0].a[2] = -2.0f, objs[0].a[3] = 0.7f;
+  objs[1].type = UW_BOX;
+  objs[1].a[0] = -1.5f, objs[1].a[1] = -6.0f, objs[1].a[2] = -1.0f;
+  objs[1].b[0] = -0.5f, objs[1].b[1] = -5.2f, objs[1].b[2] = 0.5f;
+  objs[2].type = UW_PLANE;
+  objs[2].a[1] = -9.5f;
+  objs[2].b[1] = 1.0f;
+  unsigned state = 777u;
+  auto uniform = [&state](double lo, double hi) {
+    state = state * 1664525u + 1013904223u;
+    return lo + (hi - lo) * (state >> 8) / double(1u << 24);
+  };
+  auto point = [&] { return kd::real3{uniform(-3.0, 3.0), uniform(-9.0, -2.0), uniform(-4.0, 2.0)}; };
+  int culled = 0, kept = 0;
+  for (int i = 0; i < 4000; ++i) {
+    const kd::real3 p0 = point(), p1 = point(), p2 = point();
+    const unsigned near = kd::uw_objects_near_triangle(objs, 3, p0, p1, p2);
+    const unsigned near_f = kf::uw_objects_near_triangle(objs, 3, kf::real3{float(p0.x), float(p0.y), float(p0.z)},
+                                                         kf::real3{float(p1.x), float(p1.y), float(p1.z)},
+                                                         kf::real3{float(p2.x), float(p2.y), float(p2.z)});
+    ASSERT_TRUE(near & 4u) << "a plane is always a candidate";
+    for (int k = 0; k < 2; ++k) {
+      ((near >> k) & 1u ? kept : culled)++;
+      if ((near >> k) & 1u && (near_f >> k) & 1u) continue;
+      for (int j = 0; j <= 63; ++j) {  // every shadow ray of the fan misses an object culled in either precision
+        const kd::real3 p = p1 + (j / 63.0) * (p2 - p1), w = p0 - p;
+        const double s = kd::length(w);
+        ASSERT_EQ(kd::uw_objects_block(&objs[k], 1, UW_ALL_OBJECTS, p, w * (1.0 / s), 0.0, s), 0) << i << " " << k;
+      }
+    }
+    // The distance against the triangle sampled on a 200 x 200 grid of barycentric points: never above it.
+    if (i < 200) {
+      const kd::real3 c{0.3, -5.0, -2.0};
+      double best = 1e30;
+      for (int u = 0; u <= 200; ++u)
+        for (int v = 0; u + v <= 200; ++v) {
+          const kd::real3 q = p0 + (u / 200.0) * (p1 - p0) + (v / 200.0) * (p2 - p0);
+          best = std::min(best, kd::dot(c - q, c - q));
+        }
+      const double d2 = kd::uw_point_triangle_distance2(c, p0, p1, p2);
+      EXPECT_LE(d2, best + 1e-12) << i;
+      EXPECT_GE(std::sqrt(d2), std::sqrt(best) - 0.05) << i;  // the grid's spacing
+    }
+  }
+  EXPECT_GT(culled, 1000);  // both outcomes well covered
+  EXPECT_GT(kept, 1000);
+  // Degenerate (the lamp on the segment's line: a view ray through the lamp): the fan is that line, and
+  // the sphere it crosses stays a candidate; the box, 1.2 m beside it, does not.
+  const kd::real3 lamp{0.3, -5.0, 2.0}, s1{0.3, -5.0, -6.0}, s2{0.3, -5.0, -8.0};
+  EXPECT_EQ(kd::uw_objects_near_triangle(objs, 3, lamp, s1, s2), 1u | 4u);
+  EXPECT_EQ(kf::uw_objects_near_triangle(objs, 3, kf::real3{0.3f, -5.0f, 2.0f}, kf::real3{0.3f, -5.0f, -6.0f},
+                                         kf::real3{0.3f, -5.0f, -8.0f}),
+            1u | 4u);
 }
 
 TEST(UnderwaterMath, SnellWindowAndBandRadiance) {
