@@ -58,6 +58,10 @@
 #ifndef SEASIM_BOTTOM_HEIGHTFIELD
 #define SEASIM_BOTTOM_HEIGHTFIELD 0
 #endif
+#if SEASIM_BOTTOM_HEIGHTFIELD
+#include "common/band_lanes.h"
+#include "common/sea_bottom_lanes.h"
+#endif
 
 #define SEA_SECOND_CHUNK 32 /* bands accumulated per pass over the directions (private registers) */
 
@@ -194,6 +198,7 @@ __kernel void sea_second_scattering_map(__constant SeaSecondParams* p, __global 
 #if SEASIM_BOTTOM_HEIGHTFIELD
     /* Per band: its plane's optical depth and the table nodes around its geometric depth. */
     float tau_k[SEA_SECOND_CHUNK], node_w[SEA_SECOND_CHUNK], source[SEA_SECOND_CHUNK], c_band[SEA_SECOND_CHUNK];
+    float a_band[SEA_SECOND_CHUNK], near_band[SEA_SECOND_CHUNK]; /* tau_k sec(theta_io) and its e^{-a} */
     int node[SEA_SECOND_CHUNK];
     for (int c = 0; c < count; ++c) {
       const __global SeaBand* band = &bands[b0 + c];
@@ -203,12 +208,41 @@ __kernel void sea_second_scattering_map(__constant SeaSecondParams* p, __global 
       node[c] = sea_table_node_interval(z_k, p->n_z, p->cos_io, p->table_c, p->bottom_depth, &node_w[c]);
       source[c] = band->sun_irradiance * p->sun_beam * (band->c > 0.0f ? band->b / band->c : 0.0f);
       c_band[c] = band->c;
+      a_band[c] = tau_k[c] / p->cos_io;
+      near_band[c] = exp(-a_band[c]);
     }
     const float3 sun = (float3)(p->sun_in_water[0], p->sun_in_water[1], p->sun_in_water[2]);
     const size_t node_stride = (size_t)M * M * n_d;
     const __global float* ends = table + ((size_t)j * M + i) * n_d;
 #endif
+#if SEASIM_BOTTOM_HEIGHTFIELD
+    /* The directions in runs of SEASIM_BAND_LANES: their band-free factors once per run (the VSF towards
+     * the eye times the weight and the sun's phase, and κ), then per band one vector load of each table
+     * node's row and eq. 7 for the run at once (sea_bottom_lanes.h); the directions past the last whole
+     * run go one by one below. */
+    const int n_runs = n_d - n_d % SEASIM_BAND_LANES;
+    for (int m0 = 0; m0 < n_runs; m0 += SEASIM_BAND_LANES) {
+      float run_w[SEASIM_BAND_LANES], run_kappa[SEASIM_BAND_LANES];
+      for (int q = 0; q < SEASIM_BAND_LANES; ++q) {
+        const float4 dw = dirs[m0 + q];
+        const float t = sea_vsf_param(dw.x * v.x + dw.y * v.y + dw.z * v.z) * (p->vsf_size - 1);
+        const int t0 = min((int)t, p->vsf_size - 2);
+        const float f = t - (float)t0;
+        run_w[q] = (vsf[t0] + f * (vsf[t0 + 1] - vsf[t0])) * dw.w * hg_phase(dot(sun, -(float3)(dw.x, dw.y, dw.z)), p->g);
+        run_kappa[q] = (p->cos_io - dw.y) / p->cos_io; /* 1 - sec(theta_io) cos(theta) */
+      }
+      const realb w_run = LOADB(run_w, 0), kappa_run = LOADB(run_kappa, 0);
+      for (int c = 0; c < count; ++c) {
+        const __global float* row = ends + node[c] * node_stride + m0;
+        const realb l0 = LOADB(row, 0), l1 = LOADB(row + node_stride, 0);
+        const realb l = fmax(c_band[c] * (l0 + node_w[c] * (l1 - l0)), R(0.0));
+        acc[c] += source[c] * SUMB(w_run * sea_path_integral_finite_b(near_band[c], a_band[c], kappa_run, l));
+      }
+    }
+    for (int m = n_runs; m < n_d; ++m) {
+#else
     for (int m = 0; m < n_d; ++m) {
+#endif
       const float4 dw = dirs[m];
       /* Second scattering: light travelling -omega turned towards the eye (-v): cos alpha' = omega.v */
       const float t = sea_vsf_param(dw.x * v.x + dw.y * v.y + dw.z * v.z) * (p->vsf_size - 1);

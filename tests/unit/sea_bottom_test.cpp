@@ -294,6 +294,30 @@ TEST(SeaBottom, TablePathRadianceIsTheFlatRadianceMap) {
   EXPECT_EQ(kf::sea_radiance_map_path(1.5f, 0.7f, 0.25f, 0.8f, -0.5f, 1.0f, -1e-3f), 0.0f);
 }
 
+// The scattering map's vector lanes (sea_bottom_lanes.h, one lane per direction on the host) against the
+// scalar sea_path_integral's finite path: across the switch at |κ l| = 1/2, at κ l = 0 (cos θ = cos θ_io),
+// deep planes where e^{-a} underflows, and long paths towards the surface (κ < 0).
+TEST(SeaBottom, PathIntegralLanesAreTheScalarFinitePath) {
+  double worst_d = 0, worst_f = 0;
+  for (double a : {0.0, 0.01, 0.7, 5.0, 40.0, 95.0}) {
+    for (double kappa : {-2.5, -0.5, -0.02, 0.0, 1e-7, 0.3, 0.5, 1.0, 2.0}) {
+      for (double l : {0.0, 1e-6, 0.2, 0.999, 1.0, 1.001, 3.0, 30.0}) {
+        if (a + kappa * l < 0) continue;  // the path's far end above the surface: not a sampling ray
+        const double ref = kd::sea_path_integral(a, kappa, l);
+        const double d = kd::sea_path_integral_finite_b(std::exp(-a), a, kappa, l);
+        const float f = kf::sea_path_integral_finite_b(std::exp(-float(a)), float(a), float(kappa), float(l));
+        ASSERT_TRUE(std::isfinite(d) && std::isfinite(f) && f >= 0) << a << " " << kappa << " " << l;
+        worst_d = std::max(worst_d, std::fabs(d - ref) / (ref + 1e-300));
+        if (ref > 1e-30) worst_f = std::max(worst_f, std::fabs(f - ref) / ref);
+        else EXPECT_LE(f, 1e-30);
+      }
+    }
+  }
+  std::printf("[ measured ] path integral, lanes vs scalar: max rel %.2e (double), %.2e (float)\n", worst_d, worst_f);
+  EXPECT_LE(worst_d, 1e-13);
+  EXPECT_LE(worst_f, 2e-5);
+}
+
 TEST(SeaBottom, TableNodesSpanTheWaterAndInvert) {
   for (double c_ref : {1e-6, 0.05, 0.5, 5.0}) {
     for (int n_z : {1, 4, 12}) {
