@@ -423,12 +423,19 @@ static inline void lamp_beam(const LampMedia* md, __global const UwObject* objec
    * triangle can be in their way. */
   const unsigned int near =
       count > 0 ? uw_objects_near_triangle(objects, count, lamp, v->o + sp.ta * v->d, v->o + sp.tp * v->d) : 0u;
+  const int shadowed = near != 0u || count > 32; /* else every plane's shadow ray is clear */
+  /* The profile at the planes' interval ends: where both ends of an interval lie in the inner cone (convex),
+   * so does every sub-sample between them, and its profile is 1. */
+  float prof_start = uw_lamp_profile(v->o + sp.ta * v->d, lamp, axis, L->cos_cone, L->cos_inner);
   for (int k = 0; k < n_planes && sp.dt > 0.0f; ++k) {
+    const float prof_end = uw_lamp_profile(v->o + (sp.ta + (k + 1) * sp.dt) * v->d, lamp, axis, L->cos_cone, L->cos_inner);
+    const int inner = prof_start >= 1.0f && prof_end >= 1.0f;
+    prof_start = prof_end;
     float J = 0.0f;
     for (int j = 0; j < m; ++j) {
       const float3 P = v->o + uw_lamp_subsample_t(&sp, k, j, m) * v->d;
-      const float prof = uw_lamp_profile(P, lamp, axis, L->cos_cone, L->cos_inner);
-      if (prof > 0.0f) J += prof * lamp_visible(objects, count, near, P, lamp);
+      const float prof = inner ? 1.0f : uw_lamp_profile(P, lamp, axis, L->cos_cone, L->cos_inner);
+      if (prof > 0.0f) J += shadowed ? prof * lamp_visible(objects, count, near, P, lamp) : prof;
     }
     if (J <= 0.0f) continue;
     J *= sp.dt / m;

@@ -176,8 +176,8 @@ SEASIM_FN int uw_objects_block(const SEASIM_GLOBAL UwObject* objects, int count,
 
 /* The squared distance from p to the triangle (a, b, c): its closest point by the Voronoi regions of
  * the vertices, edges and face (Ericson, Real-Time Collision Detection, 2005, §5.1.5). A degenerate
- * triangle (a line: a view ray through the lamp) gives NaN in the face's region; the caller treats that
- * as near. */
+ * triangle (a line: a view ray through the lamp) gives the distance to its segment from the vertex and
+ * edge regions, or NaN (0/0) in the face's; the caller counts NaN as near. */
 SEASIM_FN real uw_point_triangle_distance2(real3 p, real3 a, real3 b, real3 c) {
   const real3 ab = b - a, ac = c - a, ap = p - a;
   const real d1 = dot(ab, ap), d2 = dot(ac, ap);
@@ -207,8 +207,8 @@ SEASIM_FN real uw_point_triangle_distance2(real3 p, real3 a, real3 b, real3 c) {
 
 /* The candidates (uw_objects_block) among objects 0..31 for the shadow rays from the points of the segment
  * p1 p2 to p0 (a lamp): those whose bounding sphere comes within its radius of the triangle (p0, p1, p2),
- * which holds every such ray. Conservative: 1 cm of margin for rounding, planes always, and a degenerate
- * triangle keeps every object. */
+ * which holds every such ray. Conservative: 1 cm of margin for rounding, planes always, and an object
+ * whose distance comes out NaN (a degenerate triangle) kept. */
 SEASIM_FN unsigned int uw_objects_near_triangle(const SEASIM_GLOBAL UwObject* objects, int count, real3 p0, real3 p1,
                                                 real3 p2) {
   unsigned int near = 0u;
