@@ -295,9 +295,11 @@ static inline void lamp_orders_surface(__constant UwParams* p, __global const Uw
   const float3 P = v->o + v->S * v->d;
   const float vis = lamp_visible(objects, count, UW_ALL_OBJECTS, P + 1e-3f * v->n, lamp);
   if (!(vis > 0.0f)) return;
+  float s;
+  const float geometry = uw_lamp_surface_geometry(P, v->n, lamp, axis, L->cos_cone, L->cos_inner, lp->s_min, vis, &s);
+  if (!(geometry > 0.0f)) return;
   for (int i = 0; i < nb; ++i) {
-    const float E = I[i] * v->alb[i * v->alb_stride] *
-                    uw_lamp_surface(P, v->n, 0.0f, lamp, axis, L->cos_cone, L->cos_inner, lp->s_min, bands[i].c, vis);
+    const float E = I[i] * v->alb[i * v->alb_stride] * geometry * exp(-bands[i].c * s); /* uw_lamp_surface, S = 0 */
     if (v->bottom) {
       lamp_add_to(o, bands, i, E * exp(-bands[i].c * v->S), 1, 1);
       continue;
@@ -395,15 +397,14 @@ static inline void lamp_surface(const LampMedia* md, __global const UwObject* ob
   const float3 P = v->o + v->S * v->d;
   const float vis = lamp_visible(objects, count, UW_ALL_OBJECTS, P + 1e-3f * v->n, lamp);
   if (!(vis > 0.0f)) return;
-  for (int i = 0; i < lp->band_count; ++i) {
-    const float E = I[i] * v->alb[i * v->alb_stride];
-    lamp_add(o, md->bands, i,
-             E * uw_lamp_surface(P, v->n, v->S, lamp, axis, L->cos_cone, L->cos_inner, lp->s_min, md->bands[i].c, vis));
+  float s;
+  const float geometry = uw_lamp_surface_geometry(P, v->n, lamp, axis, L->cos_cone, L->cos_inner, lp->s_min, vis, &s);
+  if (!(geometry > 0.0f)) return;
+  for (int i = 0; i < lp->band_count; ++i) { /* uw_lamp_surface: the geometry once, e^{-σ_t (s + S)} per band */
+    const float E = I[i] * v->alb[i * v->alb_stride] * geometry;
+    lamp_add(o, md->bands, i, E * exp(-(md->bands[i].c * (s + v->S))));
 #if SEASIM_LAYER_LAMPS_SPLIT
-    if (md->single_apart)
-      lamp_add_to(o, md->bands, i,
-                  E * uw_lamp_surface(P, v->n, v->S, lamp, axis, L->cos_cone, L->cos_inner, lp->s_min, md->plain[i].c, vis),
-                  0, 1);
+    if (md->single_apart) lamp_add_to(o, md->bands, i, E * exp(-(md->plain[i].c * (s + v->S))), 0, 1);
 #endif
   }
 }

@@ -133,18 +133,29 @@ SEASIM_FN real uw_lamp_inscatter(real3 o, real3 d, real3 lamp, real3 axis, real 
   return acc;
 }
 
-/* The lamp's direct light on a Lambertian point at distance S from the eye, per unit I(λ) and albedo:
- * P H cos θ_n e^{-σ_t (s + S)} / (π max(s, s_min)²), cos θ_n the cosine between the normal and the
- * lamp (0 when the lamp is behind the surface). `vis` is H. */
-SEASIM_FN real uw_lamp_surface(real3 p, real3 n, real S, real3 lamp, real3 axis, real cos_cone, real cos_inner,
-                               real s_min, real sigma_t, real vis) {
+/* The band-free part of uw_lamp_surface: P H cos θ_n / (π max(s, s_min)²), with the lamp's distance s
+ * into *s_out (0 and 0 where no light arrives). A band loop takes it once and one exp per band. */
+SEASIM_FN real uw_lamp_surface_geometry(real3 p, real3 n, real3 lamp, real3 axis, real cos_cone, real cos_inner,
+                                        real s_min, real vis, real* s_out) {
   const real3 to_lamp = lamp - p;
   const real s = length(to_lamp);
+  *s_out = R(0.0);
   if (!(s > R(0.0)) || vis <= R(0.0)) return R(0.0);
   const real cos_n = dot(n, to_lamp) / s;
   if (cos_n <= R(0.0)) return R(0.0);
   const real profile = uw_lamp_profile(p, lamp, axis, cos_cone, cos_inner);
   if (profile <= R(0.0)) return R(0.0);
   const real sc = fmax(s, s_min);
-  return vis * profile * cos_n * exp(-(sigma_t * (s + S))) / (SEASIM_PI * sc * sc);
+  *s_out = s;
+  return vis * profile * cos_n / (SEASIM_PI * sc * sc);
+}
+
+/* The lamp's direct light on a Lambertian point at distance S from the eye, per unit I(λ) and albedo:
+ * P H cos θ_n e^{-σ_t (s + S)} / (π max(s, s_min)²), cos θ_n the cosine between the normal and the
+ * lamp (0 when the lamp is behind the surface). `vis` is H. */
+SEASIM_FN real uw_lamp_surface(real3 p, real3 n, real S, real3 lamp, real3 axis, real cos_cone, real cos_inner,
+                               real s_min, real sigma_t, real vis) {
+  real s;
+  const real geometry = uw_lamp_surface_geometry(p, n, lamp, axis, cos_cone, cos_inner, s_min, vis, &s);
+  return geometry > R(0.0) ? geometry * exp(-(sigma_t * (s + S))) : R(0.0);
 }
