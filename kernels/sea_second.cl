@@ -58,10 +58,11 @@
 #ifndef SEASIM_BOTTOM_HEIGHTFIELD
 #define SEASIM_BOTTOM_HEIGHTFIELD 0
 #endif
-#if SEASIM_BOTTOM_HEIGHTFIELD
+#include "common/polynomial_trig.h"
+#include "common/sky.h"
 #include "common/band_lanes.h"
+#include "common/band_lanes_math.h"
 #include "common/sea_bottom_lanes.h"
-#endif
 
 #define SEA_SECOND_CHUNK 32 /* bands accumulated per pass over the directions (private registers) */
 
@@ -314,7 +315,35 @@ __kernel void sea_second_accumulate(__constant SeaSecondParams* p, __global cons
   const int nb = p->band_count;
 
   float r = 0.0f, g = 0.0f, b = 0.0f;
-  for (int i = 0; i < nb; ++i) {
+  /* The bands in runs of SEASIM_BAND_LANES (a map point's bands are contiguous), the rest one by one below. */
+  const int nb_runs = nb - nb % SEASIM_BAND_LANES;
+  for (int b0 = 0; b0 < nb_runs; b0 += SEASIM_BAND_LANES) {
+    float run_c[SEASIM_BAND_LANES], run_r[SEASIM_BAND_LANES], run_g[SEASIM_BAND_LANES], run_b[SEASIM_BAND_LANES];
+    for (int q = 0; q < SEASIM_BAND_LANES; ++q) {
+      const __global SeaBand* band = &bands[b0 + q];
+      run_c[q] = band->c, run_r[q] = band->w_r, run_g[q] = band->w_g, run_b[q] = band->w_b;
+    }
+    const realb c = LOADB(run_c, 0);
+    realb sum = SPLATB(0.0f);
+    for (int k = 0; k < p->n_z; ++k) { /* plane by plane, front to back */
+#if SEASIM_BOTTOM_HEIGHTFIELD
+      const realb w = LOADB(plane_w + k * nb, b0) * sea_plane_share_above_b(k, p->n_z, p->cos_io, c * p->bottom_depth, c * z_q);
+#else
+      const realb w = LOADB(plane_w + k * nb, b0);
+#endif
+      const __global float* map = maps + (size_t)k * M * M * nb + b0;
+      const realb a00 = LOADB(map, ((size_t)j0 * M + i0) * nb), a10 = LOADB(map, ((size_t)j0 * M + i0 + di) * nb);
+      const realb a01 = LOADB(map, ((size_t)(j0 + di) * M + i0) * nb), a11 = LOADB(map, ((size_t)(j0 + di) * M + i0 + di) * nb);
+      const realb top = a00 + fx * (a10 - a00), bottom = a01 + fx * (a11 - a01);
+      sum += (top + fy * (bottom - top)) * w;
+    }
+    const realb L = t_out * sum / cos_ji; /* dz sec(theta_ji) = dtau sec(theta_ji) / c */
+    r += SUMB(L * LOADB(run_r, 0)), g += SUMB(L * LOADB(run_g, 0)), b += SUMB(L * LOADB(run_b, 0));
+#if SEASIM_SPECTRAL_OUTPUT
+    store_lanes(LOADB(spectral + (size_t)pixel * nb, b0) + L, spectral + (size_t)pixel * nb + b0, SEASIM_BAND_LANES);
+#endif
+  }
+  for (int i = nb_runs; i < nb; ++i) {
     const __global SeaBand* band = &bands[i];
     float sum = 0.0f;
     for (int k = 0; k < p->n_z; ++k) { /* plane by plane, front to back */

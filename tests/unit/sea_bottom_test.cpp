@@ -318,6 +318,28 @@ TEST(SeaBottom, PathIntegralLanesAreTheScalarFinitePath) {
   EXPECT_LE(worst_f, 2e-5);
 }
 
+// The accumulation's vector lanes (sea_bottom_lanes.h, one lane per band on the host) against the scalar
+// sea_plane_share_above: floors above, inside and below each plane's cell, at the surface, and no water.
+TEST(SeaBottom, PlaneShareLanesAreTheScalarShare) {
+  for (int n_z : {1, 5, 12}) {
+    for (int k = 0; k < n_z; ++k) {
+      for (double cos_io : {1.0, 0.8, 0.66}) {
+        for (double tau_d : {0.0, 1e-6, 0.3, 4.0, 60.0}) {
+          for (double frac : {0.0, 1e-4, 0.2, 0.5, 0.93, 1.0, 3.0}) {
+            const double tau_q = frac * tau_d;
+            const double ref = kd::sea_plane_share_above(k, n_z, cos_io, tau_d, tau_q);
+            EXPECT_NEAR(kd::sea_plane_share_above_b(k, n_z, cos_io, tau_d, tau_q), ref, 1e-12);
+            const float f = kf::sea_plane_share_above_b(k, n_z, float(cos_io), float(tau_d), float(tau_q));
+            EXPECT_NEAR(f, kf::sea_plane_share_above(k, n_z, float(cos_io), float(tau_d), float(tau_q)), 1e-6);
+            EXPECT_TRUE(f >= 0.0f && f <= 1.0f);
+          }
+        }
+      }
+    }
+  }
+  EXPECT_EQ(kd::sea_plane_share_above_b(3, 12, 0.8, 0.0, 0.0), 0.0);  // no water: the planes weigh nothing
+}
+
 TEST(SeaBottom, TableNodesSpanTheWaterAndInvert) {
   for (double c_ref : {1e-6, 0.05, 0.5, 5.0}) {
     for (int n_z : {1, 4, 12}) {
