@@ -422,9 +422,9 @@ static inline void lamp_beam(const LampMedia* md, __global const UwObject* objec
   if (!uw_lamp_span(v->o, v->d, lamp, axis, L->cos_cone, lp->s_min, v->t_end, n_planes, &sp)) return;
   /* The planes' shadow rays fan out from the lamp to the ray's span [ta, tp]: only objects near that
    * triangle can be in their way. */
-  const unsigned int near =
+  const unsigned int fan_objects =
       count > 0 ? uw_objects_near_triangle(objects, count, lamp, v->o + sp.ta * v->d, v->o + sp.tp * v->d) : 0u;
-  const int shadowed = near != 0u || count > 32; /* else every plane's shadow ray is clear */
+  const int shadowed = fan_objects != 0u || count > 32; /* else every plane's shadow ray is clear */
   /* The profile at the planes' interval ends: where both ends of an interval lie in the inner cone (convex),
    * so does every sub-sample between them, and its profile is 1. */
   float prof_start = uw_lamp_profile(v->o + sp.ta * v->d, lamp, axis, L->cos_cone, L->cos_inner);
@@ -436,7 +436,7 @@ static inline void lamp_beam(const LampMedia* md, __global const UwObject* objec
     for (int j = 0; j < m; ++j) {
       const float3 P = v->o + uw_lamp_subsample_t(&sp, k, j, m) * v->d;
       const float prof = inner ? 1.0f : uw_lamp_profile(P, lamp, axis, L->cos_cone, L->cos_inner);
-      if (prof > 0.0f) J += shadowed ? prof * lamp_visible(objects, count, near, P, lamp) : prof;
+      if (prof > 0.0f) J += shadowed ? prof * lamp_visible(objects, count, fan_objects, P, lamp) : prof;
     }
     if (J <= 0.0f) continue;
     J *= sp.dt / m;

@@ -211,20 +211,20 @@ SEASIM_FN real uw_point_triangle_distance2(real3 p, real3 a, real3 b, real3 c) {
  * whose distance comes out NaN (a degenerate triangle) kept. */
 SEASIM_FN unsigned int uw_objects_near_triangle(const SEASIM_GLOBAL UwObject* objects, int count, real3 p0, real3 p1,
                                                 real3 p2) {
-  unsigned int near = 0u;
+  unsigned int candidates = 0u;
   for (int k = 0; k < count && k < 32; ++k) {
     const SEASIM_GLOBAL UwObject* ob = &objects[k];
     const real3 a = MAKE_REAL3(ob->a[0], ob->a[1], ob->a[2]);
     const real3 b = MAKE_REAL3(ob->b[0], ob->b[1], ob->b[2]);
     if (ob->type != UW_SPHERE && ob->type != UW_BOX) {
-      near |= 1u << k;
+      candidates |= 1u << k;
       continue;
     }
     const real3 centre = ob->type == UW_SPHERE ? a : R(0.5) * (a + b);
     const real radius = (ob->type == UW_SPHERE ? (real)ob->a[3] : R(0.5) * length(b - a)) + R(0.01);
-    if (!(uw_point_triangle_distance2(centre, p0, p1, p2) > radius * radius)) near |= 1u << k;
+    if (!(uw_point_triangle_distance2(centre, p0, p1, p2) > radius * radius)) candidates |= 1u << k;
   }
-  return near;
+  return candidates;
 }
 
 /* The direct sun's visibility at a hit point with unit normal n: a shadow ray towards the sun (s_w) up
