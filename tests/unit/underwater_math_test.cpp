@@ -4,6 +4,7 @@
 // turbid water at long range), the surface terms and the scene ray cast.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -170,25 +171,35 @@ TEST(UnderwaterMath, SceneHitFindsSurfaceBottomAndObjects) {
   EXPECT_GE(t, 1e30);
 }
 
-// The shadow rays' test (uw_objects_block: any object in (t_min, t_max), first one found) against the
-// nearest hit of uw_scene_hit: blocked exactly when an object is the nearest hit before t_max, over random
-// segments among a sphere, a box and a tilted plane, from inside, outside and on their surfaces' sides.
-TEST(UnderwaterMath, ObjectsBlockASegmentExactlyWhenTheNearestHitIsAnObjectBeforeItsEnd) {
-  UwObject objs[3]{};
+// A sphere, a box and a plane through (0, plane_y, 0) with the unit normal n: the shadow rays' objects.
+std::array<UwObject, 3> shadowTestObjects(float plane_y, kd::real3 n) {
+  std::array<UwObject, 3> objs{};
   objs[0].type = UW_SPHERE;
   objs[0].a[0] = 0.3f, objs[0].a[1] = -5.0f, objs[0].a[2] = -2.0f, objs[0].a[3] = 0.7f;
   objs[1].type = UW_BOX;
   objs[1].a[0] = -1.5f, objs[1].a[1] = -6.0f, objs[1].a[2] = -1.0f;
   objs[1].b[0] = -0.5f, objs[1].b[1] = -5.2f, objs[1].b[2] = 0.5f;
   objs[2].type = UW_PLANE;
-  objs[2].a[0] = 0.0f, objs[2].a[1] = -7.5f, objs[2].a[2] = 0.0f;
-  const double nl = std::sqrt(0.2 * 0.2 + 1.0 + 0.1 * 0.1);
-  objs[2].b[0] = float(0.2 / nl), objs[2].b[1] = float(1.0 / nl), objs[2].b[2] = float(0.1 / nl);
-  unsigned state = 12345u;
-  auto uniform = [&state](double lo, double hi) {
+  objs[2].a[1] = plane_y;
+  objs[2].b[0] = float(n.x), objs[2].b[1] = float(n.y), objs[2].b[2] = float(n.z);
+  return objs;
+}
+
+// Uniform numbers in [lo, hi) from a linear congruential sequence started at `seed` (repeatable).
+auto uniformFrom(unsigned seed) {
+  return [state = seed](double lo, double hi) mutable {
     state = state * 1664525u + 1013904223u;
     return lo + (hi - lo) * (state >> 8) / double(1u << 24);
   };
+}
+
+// The shadow rays' test (uw_objects_block: any object in (t_min, t_max), first one found) against the
+// nearest hit of uw_scene_hit: blocked exactly when an object is the nearest hit before t_max, over random
+// segments among a sphere, a box and a tilted plane, from inside, outside and on their surfaces' sides.
+TEST(UnderwaterMath, ObjectsBlockASegmentExactlyWhenTheNearestHitIsAnObjectBeforeItsEnd) {
+  const std::array<UwObject, 3> all = shadowTestObjects(-7.5f, kd::normalize(kd::real3{0.2, 1.0, 0.1}));
+  const UwObject* objs = all.data();
+  auto uniform = uniformFrom(12345u);
   int blocked = 0, open = 0;
   for (int i = 0; i < 20000; ++i) {
     const kd::real3 p{uniform(-2.5, 2.5), uniform(-8.0, -3.0), uniform(-3.5, 1.5)};
@@ -218,20 +229,9 @@ TEST(UnderwaterMath, ObjectsBlockASegmentExactlyWhenTheNearestHitIsAnObjectBefor
 // sphere, a box and a plane, and a degenerate one (p0 on the segment's line). The point-triangle distance
 // against a dense sampling of the triangle.
 TEST(UnderwaterMath, ObjectsLeftOutOfAShadowFanBlockNoneOfItsRays) {
-  UwObject objs[3]{};
-  objs[0].type = UW_SPHERE;
-  objs[0].a[0] = 0.3f, objs[0].a[1] = -5.0f, objs[0].a[2] = -2.0f, objs[0].a[3] = 0.7f;
-  objs[1].type = UW_BOX;
-  objs[1].a[0] = -1.5f, objs[1].a[1] = -6.0f, objs[1].a[2] = -1.0f;
-  objs[1].b[0] = -0.5f, objs[1].b[1] = -5.2f, objs[1].b[2] = 0.5f;
-  objs[2].type = UW_PLANE;
-  objs[2].a[1] = -9.5f;
-  objs[2].b[1] = 1.0f;
-  unsigned state = 777u;
-  auto uniform = [&state](double lo, double hi) {
-    state = state * 1664525u + 1013904223u;
-    return lo + (hi - lo) * (state >> 8) / double(1u << 24);
-  };
+  const std::array<UwObject, 3> all = shadowTestObjects(-9.5f, kd::real3{0.0, 1.0, 0.0});
+  const UwObject* objs = all.data();
+  auto uniform = uniformFrom(777u);
   auto point = [&] { return kd::real3{uniform(-3.0, 3.0), uniform(-9.0, -2.0), uniform(-4.0, 2.0)}; };
   int culled = 0, kept = 0;
   for (int i = 0; i < 4000; ++i) {
