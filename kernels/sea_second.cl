@@ -34,7 +34,7 @@
  *   0. sea_second_depth_table (once per scene; the pass caches it on disk) walks, from the sampling
  *      point of every map ray (i, j) at each of n_z + 1 table-node depths, every sampling direction
  *      to where it leaves the water (the floor, or the surface) and stores that distance in metres
- *                                                                   [(n_z + 1) x M x M x n_d];
+ *                                       [(n_z + 1) x M x M x n_d, rows padded: sea_second_params.h];
  *   2. the radiance map is then per sampling point: the scattering-map kernel evaluates eq. 7 for
  *      each point, direction and band from the table, read linearly in depth between the nodes
  *      around the band's plane (the paper's interpolation between P_s and P'_s);
@@ -95,7 +95,11 @@ __kernel void sea_second_radiance_map(__constant SeaSecondParams* p, __global co
   const int m = get_global_id(0);
   const int k = get_global_id(1);
   const int n_d = p->n_theta * p->n_phi;
-  if (m >= n_d || k >= p->n_z) return;
+  if (m >= SEA_SECOND_STRIDE(n_d) || k >= p->n_z) return;
+  if (m >= n_d) { /* a padded direction: weight 0 */
+    if (k == 0) dirs[m] = (float4)(0.0f, 1.0f, 0.0f, 0.0f);
+    return;
+  }
   float3 omega;
   const float weight = sea_direction(m, p->n_theta, p->n_phi, &omega);
   if (k == 0) dirs[m] = (float4)(omega.x, omega.y, omega.z, weight);
@@ -107,10 +111,12 @@ __kernel void sea_second_radiance_map(__constant SeaSecondParams* p, __global co
     const float tau_d = optical_bottom(band, p);
     float w;
     const float tau_k = sea_plane_depth(k, p->n_z, p->cos_io, tau_d, &w);
-    if (m == 0) plane_w[k * p->band_count + i] = w; /* d tau of plane k, for the accumulation */
+    if (m == 0) plane_w[k * SEA_SECOND_STRIDE(p->band_count) + i] = w; /* d tau of plane k, for the accumulation */
     radiance[((size_t)k * n_d + m) * p->band_count + i] =
         sea_radiance_map(band->sun_irradiance * p->sun_beam, albedo, phase, p->cos_io, omega.y, tau_k, tau_d);
   }
+  if (m == 0)
+    for (int i = p->band_count; i < SEA_SECOND_STRIDE(p->band_count); ++i) plane_w[k * SEA_SECOND_STRIDE(p->band_count) + i] = 0.0f;
 }
 
 /* World view direction of map sampling point (i, j), lowered just below the horizon when above it. */
@@ -139,7 +145,7 @@ static inline float3 surface_point(__constant SeaSecondParams* p, float3 d) {
   return (float3)(p->cam_pos[0] + t * d.x, 0.0f, p->cam_pos[2] + t * d.z);
 }
 
-/* 000 §5.4's depth tables: table[((t * M + j) * M + i) * n_d + m] = the distance (m) from map ray
+/* 000 §5.4's depth tables: table[((t * M + j) * M + i) * SEA_SECOND_STRIDE(n_d) + m] = the distance (m) from map ray
  * (i, j)'s sampling point at table-node depth z_t along sampling direction m to where it leaves the
  * water: the floor, or the surface when nothing is in the way. */
 __kernel void sea_second_depth_table(__constant SeaSecondParams* p, __constant SeaHeightField* hf,
@@ -162,7 +168,9 @@ __kernel void sea_second_depth_table(__constant SeaSecondParams* p, __constant S
   const float z_max_here = fmax(z_q - 2e-4f * fmax(1.0f, z_q), 0.0f);
   const float z_node = fmin(sea_table_node_depth(t, p->n_z, p->cos_io, p->table_c, p->bottom_depth), z_max_here);
   const float3 Ps = P + (z_node / dz) * v;
-  __global float* out = table + (((size_t)t * M + j) * M + i) * n_d;
+  const int n_rows = SEA_SECOND_STRIDE(n_d);
+  __global float* out = table + (((size_t)t * M + j) * M + i) * n_rows;
+  for (int m = n_d; m < n_rows; ++m) out[m] = 0.0f; /* padded directions: no water */
   for (int m = 0; m < n_d; ++m) {
     float3 omega;
     sea_direction(m, p->n_theta, p->n_phi, &omega);
@@ -191,7 +199,8 @@ __kernel void sea_second_scattering_map(__constant SeaSecondParams* p, __global 
   const int nb = p->band_count;
   float cos_ji;
   const float3 v = map_view_in_water(p, i, j, &cos_ji);
-  const size_t out = (((size_t)k * M + j) * M + i) * nb;
+  const size_t out = (((size_t)k * M + j) * M + i) * SEA_SECOND_STRIDE(nb);
+  for (int b = nb; b < SEA_SECOND_STRIDE(nb); ++b) maps[out + b] = 0.0f; /* padded bands */
   for (int b0 = 0; b0 < nb; b0 += SEA_SECOND_CHUNK) {
     const int count = min(SEA_SECOND_CHUNK, nb - b0);
     float acc[SEA_SECOND_CHUNK];
@@ -213,16 +222,14 @@ __kernel void sea_second_scattering_map(__constant SeaSecondParams* p, __global 
       near_band[c] = exp(-a_band[c]);
     }
     const float3 sun = (float3)(p->sun_in_water[0], p->sun_in_water[1], p->sun_in_water[2]);
-    const size_t node_stride = (size_t)M * M * n_d;
-    const __global float* ends = table + ((size_t)j * M + i) * n_d;
-#endif
-#if SEASIM_BOTTOM_HEIGHTFIELD
-    /* The directions in runs of SEASIM_BAND_LANES: their band-free factors once per run (the VSF towards
-     * the eye times the weight and the sun's phase, and κ), then per band one vector load of each table
-     * node's row and eq. 7 for the run at once (sea_bottom_lanes.h); the directions past the last whole
-     * run go one by one below. */
-    const int n_runs = n_d - n_d % SEASIM_BAND_LANES;
-    for (int m0 = 0; m0 < n_runs; m0 += SEASIM_BAND_LANES) {
+    const int n_rows = SEA_SECOND_STRIDE(n_d);
+    const size_t node_stride = (size_t)M * M * n_rows;
+    const __global float* ends = table + ((size_t)j * M + i) * n_rows;
+    /* The directions in runs of SEASIM_BAND_LANES (the rows padded with directions of weight 0): their
+     * band-free factors once per run (the VSF towards the eye times the weight and the sun's phase, and
+     * κ), then per band one vector load of each table node's row and eq. 7 for the run at once
+     * (sea_bottom_lanes.h). */
+    for (int m0 = 0; m0 < n_rows; m0 += SEASIM_BAND_LANES) {
       float run_w[SEASIM_BAND_LANES], run_kappa[SEASIM_BAND_LANES];
       for (int q = 0; q < SEASIM_BAND_LANES; ++q) {
         const float4 dw = dirs[m0 + q];
@@ -240,29 +247,18 @@ __kernel void sea_second_scattering_map(__constant SeaSecondParams* p, __global 
         acc[c] += source[c] * SUMB(w_run * sea_path_integral_finite_b(near_band[c], a_band[c], kappa_run, l));
       }
     }
-    for (int m = n_runs; m < n_d; ++m) {
 #else
     for (int m = 0; m < n_d; ++m) {
-#endif
       const float4 dw = dirs[m];
       /* Second scattering: light travelling -omega turned towards the eye (-v): cos alpha' = omega.v */
       const float t = sea_vsf_param(dw.x * v.x + dw.y * v.y + dw.z * v.z) * (p->vsf_size - 1);
       const int t0 = min((int)t, p->vsf_size - 2);
       const float f = t - (float)t0;
       const float pw = (vsf[t0] + f * (vsf[t0 + 1] - vsf[t0])) * dw.w;
-#if SEASIM_BOTTOM_HEIGHTFIELD
-      /* 000 §5.4: eq. 7 at this sampling point, the sampling ray ending where the depth table says. */
-      const float phase = hg_phase(dot(sun, -(float3)(dw.x, dw.y, dw.z)), p->g);
-      for (int c = 0; c < count; ++c) {
-        const float l0 = ends[node[c] * node_stride + m], l1 = ends[(node[c] + 1) * node_stride + m];
-        acc[c] += pw * sea_radiance_map_path(source[c], 1.0f, phase, p->cos_io, dw.y, tau_k[c],
-                                             c_band[c] * (l0 + node_w[c] * (l1 - l0)));
-      }
-#else
       const __global float* L1 = radiance + ((size_t)k * n_d + m) * nb + b0;
       for (int c = 0; c < count; ++c) acc[c] += pw * L1[c];
-#endif
     }
+#endif
     for (int c = 0; c < count; ++c) {
       const __global SeaBand* band = &bands[b0 + c];
       const float albedo = band->c > 0.0f ? band->b / band->c : 0.0f;
@@ -315,9 +311,10 @@ __kernel void sea_second_accumulate(__constant SeaSecondParams* p, __global cons
   const int nb = p->band_count;
 
   float r = 0.0f, g = 0.0f, b = 0.0f;
-  /* The bands in runs of SEASIM_BAND_LANES (a map point's bands are contiguous), the rest one by one below. */
-  const int nb_runs = nb - nb % SEASIM_BAND_LANES;
-  for (int b0 = 0; b0 < nb_runs; b0 += SEASIM_BAND_LANES) {
+  /* The bands in runs of SEASIM_BAND_LANES: a map point's bands are contiguous, the rows padded with
+   * bands of c = 0 and no sensor weight. */
+  const int stride = SEA_SECOND_STRIDE(nb);
+  for (int b0 = 0; b0 < stride; b0 += SEASIM_BAND_LANES) {
     float run_c[SEASIM_BAND_LANES], run_r[SEASIM_BAND_LANES], run_g[SEASIM_BAND_LANES], run_b[SEASIM_BAND_LANES];
     for (int q = 0; q < SEASIM_BAND_LANES; ++q) {
       const __global SeaBand* band = &bands[b0 + q];
@@ -327,42 +324,22 @@ __kernel void sea_second_accumulate(__constant SeaSecondParams* p, __global cons
     realb sum = SPLATB(0.0f);
     for (int k = 0; k < p->n_z; ++k) { /* plane by plane, front to back */
 #if SEASIM_BOTTOM_HEIGHTFIELD
-      const realb w = LOADB(plane_w + k * nb, b0) * sea_plane_share_above_b(k, p->n_z, p->cos_io, c * p->bottom_depth, c * z_q);
+      const realb w = LOADB(plane_w + k * stride, b0) * sea_plane_share_above_b(k, p->n_z, p->cos_io, c * p->bottom_depth, c * z_q);
 #else
-      const realb w = LOADB(plane_w + k * nb, b0);
+      const realb w = LOADB(plane_w + k * stride, b0);
 #endif
-      const __global float* map = maps + (size_t)k * M * M * nb + b0;
-      const realb a00 = LOADB(map, ((size_t)j0 * M + i0) * nb), a10 = LOADB(map, ((size_t)j0 * M + i0 + di) * nb);
-      const realb a01 = LOADB(map, ((size_t)(j0 + di) * M + i0) * nb), a11 = LOADB(map, ((size_t)(j0 + di) * M + i0 + di) * nb);
+      const __global float* map = maps + (size_t)k * M * M * stride + b0;
+      const realb a00 = LOADB(map, ((size_t)j0 * M + i0) * stride), a10 = LOADB(map, ((size_t)j0 * M + i0 + di) * stride);
+      const realb a01 = LOADB(map, ((size_t)(j0 + di) * M + i0) * stride), a11 = LOADB(map, ((size_t)(j0 + di) * M + i0 + di) * stride);
       const realb top = a00 + fx * (a10 - a00), bottom = a01 + fx * (a11 - a01);
       sum += (top + fy * (bottom - top)) * w;
     }
     const realb L = t_out * sum / cos_ji; /* dz sec(theta_ji) = dtau sec(theta_ji) / c */
     r += SUMB(L * LOADB(run_r, 0)), g += SUMB(L * LOADB(run_g, 0)), b += SUMB(L * LOADB(run_b, 0));
 #if SEASIM_SPECTRAL_OUTPUT
-    store_lanes(LOADB(spectral + (size_t)pixel * nb, b0) + L, spectral + (size_t)pixel * nb + b0, SEASIM_BAND_LANES);
-#endif
-  }
-  for (int i = nb_runs; i < nb; ++i) {
-    const __global SeaBand* band = &bands[i];
-    float sum = 0.0f;
-    for (int k = 0; k < p->n_z; ++k) { /* plane by plane, front to back */
-#if SEASIM_BOTTOM_HEIGHTFIELD
-      const float w = plane_w[k * nb + i] * sea_plane_share_above(k, p->n_z, p->cos_io, optical_bottom(band, p),
-                                                                  band->c * z_q);
-#else
-      const float w = plane_w[k * nb + i];
-#endif
-      const __global float* map = maps + (size_t)k * M * M * nb + i;
-      const float a00 = map[((size_t)j0 * M + i0) * nb], a10 = map[((size_t)j0 * M + i0 + di) * nb];
-      const float a01 = map[((size_t)(j0 + di) * M + i0) * nb], a11 = map[((size_t)(j0 + di) * M + i0 + di) * nb];
-      const float top = a00 + fx * (a10 - a00), bottom = a01 + fx * (a11 - a01);
-      sum += (top + fy * (bottom - top)) * w;
-    }
-    const float L = t_out * sum / cos_ji; /* dz sec(theta_ji) = dtau sec(theta_ji) / c */
-    r += L * band->w_r; g += L * band->w_g; b += L * band->w_b;
-#if SEASIM_SPECTRAL_OUTPUT
-    spectral[(size_t)pixel * nb + i] += L;
+    __global float* out = spectral + (size_t)pixel * nb + b0; /* spectral.exr's rows are not padded */
+    const int count = min(SEASIM_BAND_LANES, nb - b0);
+    store_lanes(load_lanes(out, count) + L, out, count);
 #endif
   }
   rgb[3 * pixel + 0] += r;

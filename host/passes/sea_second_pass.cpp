@@ -139,10 +139,15 @@ SeaSecondPass::SeaSecondPass(Device& device, const Scene& scene, const PassPlan&
   }
   const std::vector<double> sun_e = sunIrradianceBands(grid, scene.sun.irradiance);
   std::vector<SeaBand> bands = secondOrderBands(sun_e, water, sensor);
+  const size_t nb = bands.size();
+  // The kernels read bands and directions in rows padded to a multiple of their lanes
+  // (sea_second_params.h): the padded bands are zero (c = 0, no sensor weight), so they add nothing.
+  const size_t band_stride = SEA_SECOND_STRIDE(nb);
+  bands.resize(std::max<size_t>(band_stride, 1), SeaBand{});
 
   const size_t n_d = static_cast<size_t>(config_.n_theta) * config_.n_phi;
+  const size_t dir_stride = SEA_SECOND_STRIDE(n_d);
   const size_t M = static_cast<size_t>(config_.map_size);
-  const size_t nb = bands.size();
   onDevice("sea_second pass set-up", [&] {
     const BuiltProgram& built = device.program(plan.kernel_file, plan.defines);
     vsf_kernel_ = cl::Kernel(built.program, "sea_second_vsf_map");
@@ -150,12 +155,13 @@ SeaSecondPass::SeaSecondPass(Device& device, const Scene& scene, const PassPlan&
     maps_kernel_ = cl::Kernel(built.program, "sea_second_scattering_map");
     accumulate_kernel_ = cl::Kernel(built.program, "sea_second_accumulate");
     params_ = cl::Buffer(device.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof p, &p);
-    bands_ = cl::Buffer(device.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(SeaBand) * nb, bands.data());
+    bands_ = cl::Buffer(device.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(SeaBand) * bands.size(),
+                        bands.data());
     vsf_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * config_.vsf_size);
-    dirs_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * 4 * n_d);
+    dirs_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * 4 * dir_stride);
     radiance_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * config_.n_z * n_d * nb);
-    plane_w_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * config_.n_z * nb);
-    maps_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * config_.n_z * M * M * nb);
+    plane_w_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * config_.n_z * band_stride);
+    maps_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * config_.n_z * M * M * band_stride);
     vsf_kernel_.setArg(0, params_);
     vsf_kernel_.setArg(1, vsf_);
     radiance_kernel_.setArg(0, params_);
@@ -173,7 +179,7 @@ SeaSecondPass::SeaSecondPass(Device& device, const Scene& scene, const PassPlan&
       const HeightFieldBuffers hf = uploadHeightField(device, floor);
       hf_params_ = hf.params;
       hf_depth_ = hf.depth;
-      const size_t table_count = (static_cast<size_t>(config_.n_z) + 1) * M * M * n_d;
+      const size_t table_count = (static_cast<size_t>(config_.n_z) + 1) * M * M * dir_stride;
       table_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * table_count);
       table_kernel_ = cl::Kernel(built.program, "sea_second_depth_table");
       table_kernel_.setArg(0, params_);
@@ -206,7 +212,7 @@ SeaSecondPass::SeaSecondPass(Device& device, const Scene& scene, const PassPlan&
 
 double SeaSecondPass::run() {
   cl::Event vsf_done, radiance_done, maps_done, accumulate_done;
-  const size_t n_d = static_cast<size_t>(config_.n_theta) * config_.n_phi;
+  const size_t dir_stride = SEA_SECOND_STRIDE(static_cast<size_t>(config_.n_theta) * config_.n_phi);
   const size_t M = static_cast<size_t>(config_.map_size);
   onDevice("sea_second pass", [&] {
     cl::CommandQueue& q = device_.queue();  // in order: each kernel sees the previous one's output
@@ -216,14 +222,14 @@ double SeaSecondPass::run() {
                              &table_done);
       table_done.wait();
       depth_table_ms_ = eventMs(table_done);
-      std::vector<float> table((static_cast<size_t>(config_.n_z) + 1) * M * M * n_d);
+      std::vector<float> table((static_cast<size_t>(config_.n_z) + 1) * M * M * dir_stride);
       q.enqueueReadBuffer(table_, CL_TRUE, 0, sizeof(float) * table.size(), table.data());
       storeDepthTable(table_key_, table);
       table_ready_ = true;
     }
     q.enqueueNDRangeKernel(vsf_kernel_, cl::NullRange, cl::NDRange(config_.vsf_size), cl::NullRange, nullptr,
                            &vsf_done);
-    q.enqueueNDRangeKernel(radiance_kernel_, cl::NullRange, cl::NDRange(n_d, config_.n_z), cl::NullRange, nullptr,
+    q.enqueueNDRangeKernel(radiance_kernel_, cl::NullRange, cl::NDRange(dir_stride, config_.n_z), cl::NullRange, nullptr,
                            &radiance_done);
     q.enqueueNDRangeKernel(maps_kernel_, cl::NullRange, cl::NDRange(M, M, config_.n_z), cl::NullRange, nullptr,
                            &maps_done);

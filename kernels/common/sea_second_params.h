@@ -25,3 +25,12 @@ typedef struct {
   int map_size;          /* scattering-map sampling points per side (map_size^2 per plane) */
   int vsf_size;          /* entries of the volume-scattering-function map */
 } SeaSecondParams;
+
+/* Rows of bands (the scattering maps, the planes' weights, the bands themselves) and of sampling
+ * directions (the height field's depth tables and the direction table) are padded to a multiple of the
+ * widest band lanes (common/band_lanes.h), so that a lane loop reads every band or direction in whole
+ * vector steps. A padded band is zero (the host pads the bands: c = 0, no sensor weight; the kernels
+ * write 0 into the maps' and the weights' padding), a padded direction has weight 0 and distance 0, so
+ * each adds exactly 0. */
+#define SEA_SECOND_LANES_MAX 16
+#define SEA_SECOND_STRIDE(n) ((((n) + SEA_SECOND_LANES_MAX - 1) / SEA_SECOND_LANES_MAX) * SEA_SECOND_LANES_MAX)

@@ -180,7 +180,7 @@ TEST(SeaHeightFieldKernel, ConstantHeightFieldIsTheFlatBottom) {
   const std::vector<seasim::Override> flat = {
       set("bottom", "{ type = \"flat\", depth = 8.0, albedo = 0.35 }"), set("quality.sea_lut_size", "1")};
   // 128 directions are 8 whole runs of the scattering map's vector lanes (sea_bottom_lanes.h); 50 (5 x 10)
-  // leave 2 for its one-by-one loop.
+  // are padded to 64, the last run 2 directions and 14 of weight 0.
   struct Case {
     bool second;
     const char* nd;
@@ -212,7 +212,7 @@ TEST(SeaHeightFieldKernel, SecondOrderMatchesDirectIntegration) {
   // fields). n_d = 512 -> 2048 moves the mean ratio to 0.995 (the azimuthal sampling near the
   // horizon row); the reference itself moves by 0.3% from 16 to 32 angle steps.
   // 19 bands as well: the accumulation's vector lanes (16, with the planes' shares above the floor per
-  // lane) and 3 bands one by one.
+  // lane) over bands padded to 32, the last run 3 bands and 13 of padding.
   for (const int bands : {3, 19}) {
     std::vector<seasim::Override> o = {set("quality.sea_nd", "512"), set("quality.sea_nz", "16"),
                                        set("quality.sea_map_size", "16")};

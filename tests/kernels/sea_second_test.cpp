@@ -132,8 +132,9 @@ INSTANTIATE_TEST_SUITE_P(
                       Variant{"isotropic_turbid", {set("water.g", "0"), set("water.jerlov", "\"5C\"")}, false, 0.01},
                       Variant{"sun_overhead_clear", {set("sun.zenith_deg", "0"), set("water.jerlov", "\"I\"")},
                               true, 0.01, "8192"},
-                      // 19 bands: a whole run of the accumulation's vector lanes (16) and 3 one by one. Its
-                      // 1.104 % is the maps' own (the scalar loop over every band gave 1.104 % too).
+                      // 19 bands: the accumulation's vector lanes over bands padded to 32 (a whole run, then 3
+                      // bands and 13 of padding). Its 1.104 % is the maps' own (a scalar loop over every band
+                      // gave 1.104 % too).
                       Variant{"nineteen_bands", {set("spectral.count", "19")}, false, 0.012}),
     [](const ::testing::TestParamInfo<Variant>& info) { return std::string(info.param.name); });
 

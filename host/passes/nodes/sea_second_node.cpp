@@ -63,24 +63,26 @@ PassDescriptor seaSecondDescriptor() {
   d.buffers = [d](const Scene& s, const PassPlan& p) -> std::vector<BufferEstimate> {
     const double n_z = d.knob(s, "sea_nz"), n_d = d.knob(s, "sea_nd"), M = d.knob(s, "sea_map_size");
     const double nb = s.spectral.count;
+    // Rows of bands and directions padded to the kernels' lanes (sea_second_params.h).
+    const double nb_rows = SEA_SECOND_STRIDE(s.spectral.count), n_d_rows = SEA_SECOND_STRIDE(static_cast<int>(n_d));
     std::vector<BufferEstimate> out = {
-        {p.name, "scattering maps", 4 * n_z * M * M * nb,
-         {"quality.sea_nz", "quality.sea_map_size", "quality.sea_map_size", "spectral.count"}, {n_z, M, M, nb}},
+        {p.name, "scattering maps", 4 * n_z * M * M * nb_rows,
+         {"quality.sea_nz", "quality.sea_map_size", "quality.sea_map_size", "spectral.count"}, {n_z, M, M, nb_rows}},
         {p.name, "radiance maps", 4 * n_z * n_d * nb, {"quality.sea_nz", "quality.sea_nd", "spectral.count"},
          {n_z, n_d, nb}}};
     // The parameter block, the bands, the VSF map, the directions and the planes' weights.
     const double vsf = SeaSecondPass::Config{}.vsf_size;
     out.push_back({p.name, "parameter block, bands, VSF map, directions, plane weights",
-                   double(sizeof(SeaSecondParams)) + double(sizeof(SeaBand)) * nb + 4 * vsf + 16 * n_d + 4 * n_z * nb,
+                   double(sizeof(SeaSecondParams)) + double(sizeof(SeaBand)) * nb_rows + 4 * vsf + 16 * n_d_rows + 4 * n_z * nb_rows,
                    {}, {}});
     if (s.bottom.type == BottomDesc::Type::HeightField) {
       const double bytes = heightFieldBytes(loadHeightField(s.bottom, s.files.get()));
       out.push_back({p.name, "bottom height field", bytes, {}, {}});
     }
     if (s.bottom.type == BottomDesc::Type::HeightField)
-      out.push_back({p.name, "height-field depth table", 4 * (n_z + 1) * M * M * n_d,
+      out.push_back({p.name, "height-field depth table", 4 * (n_z + 1) * M * M * n_d_rows,
                      {"quality.sea_nz", "quality.sea_map_size", "quality.sea_map_size", "quality.sea_nd"},
-                     {n_z + 1, M, M, n_d}});
+                     {n_z + 1, M, M, n_d_rows}});
     return out;
   };
   // 1.6x sea_single per pixel and band, 18x over a height-field floor (results/BENCHMARKS.md "Farm
