@@ -56,6 +56,7 @@
 #include "common/output_layers.h"
 #include "common/band_lanes.h"
 #include "common/band_lanes_math.h"
+#include "common/sky_view_lanes.h"
 #include "common/underwater_band_table.h"
 #include "common/underwater_bands.h"
 #if SEASIM_HAS_FROXEL

@@ -58,8 +58,6 @@
 #ifndef SEASIM_BOTTOM_HEIGHTFIELD
 #define SEASIM_BOTTOM_HEIGHTFIELD 0
 #endif
-#include "common/polynomial_trig.h"
-#include "common/sky.h"
 #include "common/band_lanes.h"
 #include "common/band_lanes_math.h"
 #include "common/sea_bottom_lanes.h"

@@ -60,6 +60,7 @@
 #include "common/sea_multiple.h"
 #include "common/band_lanes.h"
 #include "common/band_lanes_math.h"
+#include "common/sky_view_lanes.h"
 #include "common/sea_band_table.h"
 #include "common/sea_bands.h"
 #include "common/sea_multiple_bands.h"

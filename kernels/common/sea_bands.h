@@ -7,7 +7,7 @@
  * are found once per pixel and read as four vector loads. tests/unit/sea_bands_test.cpp holds these to
  * the scalar functions in float and double; tests/kernels/sea_single_test.cpp the kernel to the double
  * CPU reference, with band counts that do not fill the lanes.
- * Needs compat.h, band_lanes.h, band_lanes_math.h, optics.h, sea_surface.h. */
+ * Needs compat.h, band_lanes.h, band_lanes_math.h, sky_view_lanes.h, optics.h, sea_surface.h. */
 
 /* The taps of sea_single.cl's Catmull–Rom read of an n-entry LUT (n >= 2) at fractional index x in
  * [0, n-1], indices mirrored at both ends (the factors are even about 0 and pi/2): entries jm, j, j+1,

@@ -8,7 +8,7 @@
  * One exp fewer than underwater.h per lit band: T(S) = e^{-σ_t S} is folded into the exps of the
  * irradiance at depth, e^{-σ_t S} e^{-k y} = e^{-(k y + σ_t S)} (and the clamp at 0 commutes with the
  * positive factor).
- * Needs compat.h, band_lanes.h, band_lanes_math.h (expm1_over_x_b, sky_view_band_b), optics.h
+ * Needs compat.h, band_lanes.h, band_lanes_math.h (expm1_over_x_b), sky_view_lanes.h (sky_view_band_b), optics.h
  * (fresnel), underwater_band_table.h, underwater.h (UW_INFINITE). */
 
 /* kd_exp_integral of underwater.h for the lanes' attenuations k and extinctions c, on one ray
