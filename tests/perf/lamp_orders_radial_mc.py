@@ -10,8 +10,12 @@ fluence equal). A cone lamp's sphere-averaged order-n fluence equals the isotrop
 power (the medium is rotation-invariant), so this checks W_n apart from the landing profile P_n.
 The model (kernels/common/underwater_lamps_ms.h, uw_ms_weight): W_n = st e^{-ℓ} ℓ^n / n!, ℓ = τ st,
 st = q_n^{-κ}, κ = quality.lamps_ms_kappa (0.6).
+Then where the light lands: a pencil beam's order-n collisions binned by radius and by the angle ψ from
+its axis give the landing density per unit solid angle at a distance, against the model's HG(h_n),
+h_n = 1 - β (1 - g^n), β = quality.lamps_ms_spread (0.6), which does not depend on the distance.
 Usage: tests/perf/lamp_orders_radial_mc.py [photons, default 1000000]  (about 10 s per g per million)
-Prints model / exact at τ = 0.1, 0.3, 1, 3 for orders 1–4 and g 0.5, 0.7, 0.9, 0.95.
+Prints model / exact W_n at τ = 0.1, 0.3, 1, 3 for orders 1–4 and g 0.5, 0.7, 0.9, 0.95, then the landing
+densities at ψ = 30°, 60°, 90°, 135° for orders 1–3 at τ 0.2–0.4, 0.8–1.25 and 2.5–3.5, g 0.5 and 0.9.
 """
 import math
 import sys
@@ -21,6 +25,24 @@ import numpy as np
 TAUS = [0.1, 0.3, 1.0, 3.0]
 ORDERS = 4
 EDGES = np.concatenate([[0.0], np.geomspace(1e-3, 400.0, 200)])
+
+
+def turn(d, g, rng):
+    """Each direction in d turned by HG(g) (its inverse CDF), uniform in azimuth."""
+    n = len(d)
+    s = (1 - g * g) / (1 - g + 2 * g * rng.random(n))
+    mu = np.clip((1 + g * g - s * s) / (2 * g), -1.0, 1.0)
+    phi = 2 * np.pi * rng.random(n)
+    axis = np.zeros_like(d)
+    near_z = np.abs(d[:, 2]) < 0.9
+    axis[near_z, 2] = 1.0
+    axis[~near_z, 0] = 1.0
+    t1 = np.cross(d, axis)
+    t1 /= np.linalg.norm(t1, axis=1, keepdims=True)
+    t2 = np.cross(d, t1)
+    st = np.sqrt(np.maximum(0.0, 1 - mu * mu))
+    d = mu[:, None] * d + (st * np.cos(phi))[:, None] * t1 + (st * np.sin(phi))[:, None] * t2
+    return d / np.linalg.norm(d, axis=1, keepdims=True)
 
 
 def exact_weights(g, photons, rng):
@@ -35,21 +57,29 @@ def exact_weights(g, photons, rng):
         for k in range(ORDERS + 1):
             pos += rng.exponential(1.0, n)[:, None] * d
             table[k] += np.histogram(np.sqrt(np.einsum("ij,ij->i", pos, pos)), bins=EDGES)[0]
-            # Turn by HG(g) about d (its inverse CDF), uniform in azimuth.
-            s = (1 - g * g) / (1 - g + 2 * g * rng.random(n))
-            mu = np.clip((1 + g * g - s * s) / (2 * g), -1.0, 1.0)
-            phi = 2 * np.pi * rng.random(n)
-            axis = np.zeros_like(d)
-            near_z = np.abs(d[:, 2]) < 0.9
-            axis[near_z, 2] = 1.0
-            axis[~near_z, 0] = 1.0
-            t1 = np.cross(d, axis)
-            t1 /= np.linalg.norm(t1, axis=1, keepdims=True)
-            t2 = np.cross(d, t1)
-            st = np.sqrt(np.maximum(0.0, 1 - mu * mu))
-            d = mu[:, None] * d + (st * np.cos(phi))[:, None] * t1 + (st * np.sin(phi))[:, None] * t2
-            d /= np.linalg.norm(d, axis=1, keepdims=True)
+            d = turn(d, g, rng)
     return table / (photons * np.diff(EDGES)[None, :])
+
+
+LANDING_TAUS = [0.2, 0.4, 0.8, 1.25, 2.5, 3.5]  # three shells: [0.2, 0.4), [0.8, 1.25), [2.5, 3.5)
+LANDING_MU = np.linspace(-1.0, 1.0, 41)
+
+
+def landing(g, photons, rng):
+    """A pencil beam along +z: per order 1..3 and shell, the landing density per unit solid angle over ψ."""
+    counts = np.zeros((4, len(LANDING_TAUS) - 1, len(LANDING_MU) - 1))
+    pos = np.zeros((photons, 3))
+    d = np.tile([0.0, 0.0, 1.0], (photons, 1))
+    for k in range(4):
+        pos += rng.exponential(1.0, photons)[:, None] * d
+        r = np.linalg.norm(pos, axis=1)
+        counts[k] += np.histogram2d(r, pos[:, 2] / np.maximum(r, 1e-12), bins=[LANDING_TAUS, LANDING_MU])[0]
+        d = turn(d, g, rng)
+    return counts / np.maximum(counts.sum(axis=2, keepdims=True), 1) / (2 * np.pi * np.diff(LANDING_MU))
+
+
+def hg(g, mu):
+    return (1 - g * g) / (4 * np.pi * (1 + g * g - 2 * g * mu) ** 1.5)
 
 
 def model_weight(g, n, tau, kappa=0.6):
@@ -68,9 +98,22 @@ def main():
         table = exact_weights(g, photons, rng)[:, 1:]
         cells = []
         for n in range(1, ORDERS + 1):
-            ratios = [model_weight(g, n, t) / np.interp(math.log(t), np.log(centres), table[n]) for t in TAUS]
-            cells.append(f"n {n}: " + " ".join(f"{r:.2f}" for r in ratios))
+            exact = [np.interp(math.log(t), np.log(centres), table[n]) for t in TAUS]
+            # No collision in reach (a high order near the source at too few photons): no ratio.
+            cells.append(f"n {n}: " + " ".join(f"{model_weight(g, n, t) / e:.2f}" if e > 0 else "-"
+                                               for t, e in zip(TAUS, exact)))
         print(f"g {g}: " + " | ".join(cells), flush=True)
+    centres = 0.5 * (LANDING_MU[1:] + LANDING_MU[:-1])
+    angles = [30, 60, 90, 135]
+    picks = [int(np.argmin(abs(centres - math.cos(math.radians(a))))) for a in angles]
+    print("landing density per sr at ψ = " + ", ".join(f"{a}°" for a in angles) + ": exact by shell, then HG(h_n), β = 0.6")
+    for g in [0.5, 0.9]:
+        dens = landing(g, photons, rng)
+        for n in range(1, 4):
+            h = 1 - 0.6 * (1 - g ** n)
+            shells = [" ".join(f"{dens[n, j, p]:.3f}" for p in picks) for j in (0, 2, 4)]
+            print(f"g {g} n {n}: τ 0.2–0.4 {shells[0]} | 0.8–1.25 {shells[1]} | 2.5–3.5 {shells[2]} | model "
+                  + " ".join(f"{hg(h, centres[p]):.3f}" for p in picks), flush=True)
 
 
 if __name__ == "__main__":
