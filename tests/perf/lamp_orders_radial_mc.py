@@ -13,6 +13,9 @@ st = q_n^{-κ}, κ = quality.lamps_ms_kappa (0.6).
 Then where the light lands: a pencil beam's order-n collisions binned by radius and by the angle ψ from
 its axis give the landing density per unit solid angle at a distance, against the model's HG(h_n),
 h_n = 1 - β (1 - g^n), β = quality.lamps_ms_spread (0.6), which does not depend on the distance.
+Last, the in-scatter's angular factor at a point: the mean of p_g(d · e) over the pencil's photons there (d
+their directions) for e towards the lamp (-r̂) and towards the axis (-ê_ψ), against the model's HG(g^{n+1})
+about r̂ (order 1 outside the cone takes the edge line in the model instead).
 Usage: tests/perf/lamp_orders_radial_mc.py [photons, default 1000000]  (about 10 s per g per million)
 Prints model / exact W_n at τ = 0.1, 0.3, 1, 3 for orders 1–4 and g 0.5, 0.7, 0.9, 0.95, then the landing
 densities at ψ = 30°, 60°, 90°, 135° for orders 1–3 at τ 0.2–0.4, 0.8–1.25 and 2.5–3.5, g 0.5 and 0.9.
@@ -82,6 +85,36 @@ def hg(g, mu):
     return (1 - g * g) / (4 * np.pi * (1 + g * g - 2 * g * mu) ** 1.5)
 
 
+FACTOR_SHELLS = [(0.2, 0.4), (0.8, 1.25), (2.5, 3.5)]
+FACTOR_CONES = [(40.0, 50.0), (85.0, 95.0)]
+
+
+def angular_factor(g, photons, rng):
+    """Per order 1..4, shell and cone of ψ: the photons' mean p_g(d · e) for e = -r̂ and e = -ê_ψ, and their count."""
+    sums = np.zeros((5, len(FACTOR_SHELLS), len(FACTOR_CONES), 2))
+    counts = np.zeros((5, len(FACTOR_SHELLS), len(FACTOR_CONES)))
+    pos = np.zeros((photons, 3))
+    d = np.tile([0.0, 0.0, 1.0], (photons, 1))
+    for k in range(5):
+        pos += rng.exponential(1.0, photons)[:, None] * d
+        r = np.sqrt(np.einsum("ij,ij->i", pos, pos))
+        r_hat = pos / np.maximum(r, 1e-12)[:, None]
+        cos_psi = np.clip(r_hat[:, 2], -1.0, 1.0)
+        sin_psi = np.sqrt(np.maximum(1 - cos_psi * cos_psi, 1e-12))
+        e_psi = (r_hat * cos_psi[:, None] - np.array([0.0, 0.0, 1.0])) / sin_psi[:, None]
+        psi = np.degrees(np.arccos(cos_psi))
+        back = hg(g, -np.einsum("ij,ij->i", d, r_hat))
+        side = hg(g, -np.einsum("ij,ij->i", d, e_psi))
+        for a, (lo, hi) in enumerate(FACTOR_SHELLS):
+            for b, (p0, p1) in enumerate(FACTOR_CONES):
+                sel = (r >= lo) & (r < hi) & (psi >= p0) & (psi < p1)
+                counts[k, a, b] += sel.sum()
+                sums[k, a, b, 0] += back[sel].sum()
+                sums[k, a, b, 1] += side[sel].sum()
+        d = turn(d, g, rng)
+    return sums / np.maximum(counts, 1)[..., None], counts
+
+
 def model_weight(g, n, tau, kappa=0.6):
     q = sum(max(g, 0.0) ** k for k in range(n + 1)) / (n + 1)
     stretch = q ** (-kappa)
@@ -114,6 +147,17 @@ def main():
             shells = [" ".join(f"{dens[n, j, p]:.3f}" for p in picks) for j in (0, 2, 4)]
             print(f"g {g} n {n}: τ 0.2–0.4 {shells[0]} | 0.8–1.25 {shells[1]} | 2.5–3.5 {shells[2]} | model "
                   + " ".join(f"{hg(h, centres[p]):.3f}" for p in picks), flush=True)
+    print("model / exact angular factor towards the lamp | towards the axis, ψ 40–50° then 85–95°, by shell")
+    for g in [0.5, 0.9]:
+        factor, counts = angular_factor(g, photons, rng)
+        for n in range(1, 5):
+            model = (hg(g ** (n + 1), -1.0), hg(g ** (n + 1), 0.0))
+            cells = []
+            for a, (lo, hi) in enumerate(FACTOR_SHELLS):
+                pair = [f"{model[0] / factor[n, a, b, 0]:.2f}|{model[1] / factor[n, a, b, 1]:.2f}"
+                        if counts[n, a, b] >= 500 else "-|-" for b in range(len(FACTOR_CONES))]
+                cells.append(f"τ {lo}–{hi}: " + " ".join(pair))
+            print(f"g {g} n {n}: " + "  ".join(cells), flush=True)
 
 
 if __name__ == "__main__":
