@@ -103,18 +103,19 @@ __kernel void sea_second_radiance_map(__constant SeaSecondParams* p, __global co
   if (k == 0) dirs[m] = (float4)(omega.x, omega.y, omega.z, weight);
   const float3 sun = (float3)(p->sun_in_water[0], p->sun_in_water[1], p->sun_in_water[2]);
   const float phase = hg_phase(dot(sun, -omega), p->g); /* first scattering: sun beam -> -omega */
+  __global float* w_row = plane_w + k * SEA_SECOND_STRIDE(p->band_count); /* d tau of plane k, for the accumulation */
   for (int i = 0; i < p->band_count; ++i) {
     const __global SeaBand* band = &bands[i];
     const float albedo = band->c > 0.0f ? band->b / band->c : 0.0f;
     const float tau_d = optical_bottom(band, p);
     float w;
     const float tau_k = sea_plane_depth(k, p->n_z, p->cos_io, tau_d, &w);
-    if (m == 0) plane_w[k * SEA_SECOND_STRIDE(p->band_count) + i] = w; /* d tau of plane k, for the accumulation */
+    if (m == 0) w_row[i] = w;
     radiance[((size_t)k * n_d + m) * p->band_count + i] =
         sea_radiance_map(band->sun_irradiance * p->sun_beam, albedo, phase, p->cos_io, omega.y, tau_k, tau_d);
   }
   if (m == 0)
-    for (int i = p->band_count; i < SEA_SECOND_STRIDE(p->band_count); ++i) plane_w[k * SEA_SECOND_STRIDE(p->band_count) + i] = 0.0f;
+    for (int i = p->band_count; i < SEA_SECOND_STRIDE(p->band_count); ++i) w_row[i] = 0.0f; /* padded bands */
 }
 
 /* World view direction of map sampling point (i, j), lowered just below the horizon when above it. */
@@ -336,8 +337,7 @@ __kernel void sea_second_accumulate(__constant SeaSecondParams* p, __global cons
     r += SUMB(L * LOADB(run_r, 0)), g += SUMB(L * LOADB(run_g, 0)), b += SUMB(L * LOADB(run_b, 0));
 #if SEASIM_SPECTRAL_OUTPUT
     __global float* out = spectral + (size_t)pixel * nb + b0; /* spectral.exr's rows are not padded */
-    const int count = min(SEASIM_BAND_LANES, nb - b0);
-    store_lanes(load_lanes(out, count) + L, out, count);
+    store_lanes(load_lanes(out, nb - b0) + L, out, nb - b0);
 #endif
   }
   rgb[3 * pixel + 0] += r;
