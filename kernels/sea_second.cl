@@ -5,7 +5,8 @@
  *   1. sea_second_vsf_map        the volume-scattering-function map: HG phase over the phase angle
  *                                 (parameter t = sin(alpha/2), common/sea_second.h)       [vsf_size]
  *   2. sea_second_radiance_map   the radiance map L^(1)(z_k, theta_m, phi_m) of eq. 7 per plane,
- *                                 direction and band, the direction table (omega, weight) and the
+ *                                 direction and band, the direction table (omega, weight; over a
+ *                                 height field the weight times the sun's phase) and the
  *                                 planes' depth weights d tau_k per band
  *                                                                          [n_z x n_d x bands]
  *   3. sea_second_scattering_map per plane k and sampling point s: G(z_k) sum_m beta(alpha'_m)
@@ -58,6 +59,10 @@
 #ifndef SEASIM_BOTTOM_HEIGHTFIELD
 #define SEASIM_BOTTOM_HEIGHTFIELD 0
 #endif
+
+/* Directions per block of the height field's scattering map: a multiple of SEASIM_BAND_LANES (and of the
+ * rows' padding), its band-free factors held in two private arrays of this size. */
+#define SEA_SECOND_DIR_BLOCK (8 * SEASIM_BAND_LANES)
 #include "common/band_lanes.h"
 #include "common/band_lanes_math.h"
 #include "common/sea_bottom_lanes.h"
@@ -100,9 +105,10 @@ __kernel void sea_second_radiance_map(__constant SeaSecondParams* p, __global co
   }
   float3 omega;
   const float weight = sea_direction(m, p->n_theta, p->n_phi, &omega);
-  if (k == 0) dirs[m] = (float4)(omega.x, omega.y, omega.z, weight);
   const float3 sun = (float3)(p->sun_in_water[0], p->sun_in_water[1], p->sun_in_water[2]);
   const float phase = hg_phase(dot(sun, -omega), p->g); /* first scattering: sun beam -> -omega */
+  /* Over a height field the scattering map evaluates eq. 7 itself and takes the sun's phase with the weight. */
+  if (k == 0) dirs[m] = (float4)(omega.x, omega.y, omega.z, SEASIM_BOTTOM_HEIGHTFIELD ? weight * phase : weight);
   __global float* w_row = plane_w + k * SEA_SECOND_STRIDE(p->band_count); /* d tau of plane k, for the accumulation */
   for (int i = 0; i < p->band_count; ++i) {
     const __global SeaBand* band = &bands[i];
@@ -220,30 +226,35 @@ __kernel void sea_second_scattering_map(__constant SeaSecondParams* p, __global 
       a_band[c] = tau_k[c] / p->cos_io;
       near_band[c] = exp(-a_band[c]);
     }
-    const float3 sun = (float3)(p->sun_in_water[0], p->sun_in_water[1], p->sun_in_water[2]);
     const int n_rows = SEA_SECOND_STRIDE(n_d);
     const size_t node_stride = (size_t)M * M * n_rows;
     const __global float* ends = table + ((size_t)j * M + i) * n_rows;
-    /* The directions in runs of SEASIM_BAND_LANES (the rows padded with directions of weight 0): their
-     * band-free factors once per run (the VSF towards the eye times the weight and the sun's phase, and
-     * κ), then per band one vector load of each table node's row and eq. 7 for the run at once
-     * (sea_bottom_lanes.h). */
-    for (int m0 = 0; m0 < n_rows; m0 += SEASIM_BAND_LANES) {
-      float run_w[SEASIM_BAND_LANES], run_kappa[SEASIM_BAND_LANES];
-      for (int q = 0; q < SEASIM_BAND_LANES; ++q) {
+    /* The directions in blocks of SEA_SECOND_DIR_BLOCK (the rows padded with directions of weight 0): their
+     * band-free factors once per block (the VSF towards the eye times the weight and the sun's phase, which
+     * the direction table holds, and κ), then per band eq. 7 for SEASIM_BAND_LANES directions at a time
+     * (sea_bottom_lanes.h), one vector load of each table node's row, summed across the block's runs in the
+     * lanes and only then across them (one horizontal sum per band and block, not per run). */
+    for (int m0 = 0; m0 < n_rows; m0 += SEA_SECOND_DIR_BLOCK) {
+      const int m_count = min(SEA_SECOND_DIR_BLOCK, n_rows - m0);
+      float blk_w[SEA_SECOND_DIR_BLOCK] __attribute__((aligned(4 * SEASIM_BAND_LANES)));
+      float blk_kappa[SEA_SECOND_DIR_BLOCK] __attribute__((aligned(4 * SEASIM_BAND_LANES)));
+      for (int q = 0; q < m_count; ++q) {
         const float4 dw = dirs[m0 + q];
         const float t = sea_vsf_param(dw.x * v.x + dw.y * v.y + dw.z * v.z) * (p->vsf_size - 1);
         const int t0 = min((int)t, p->vsf_size - 2);
         const float f = t - (float)t0;
-        run_w[q] = (vsf[t0] + f * (vsf[t0 + 1] - vsf[t0])) * dw.w * hg_phase(dot(sun, -(float3)(dw.x, dw.y, dw.z)), p->g);
-        run_kappa[q] = (p->cos_io - dw.y) / p->cos_io; /* 1 - sec(theta_io) cos(theta) */
+        blk_w[q] = (vsf[t0] + f * (vsf[t0 + 1] - vsf[t0])) * dw.w;
+        blk_kappa[q] = (p->cos_io - dw.y) / p->cos_io; /* 1 - sec(theta_io) cos(theta) */
       }
-      const realb w_run = LOADB(run_w, 0), kappa_run = LOADB(run_kappa, 0);
       for (int c = 0; c < count; ++c) {
         const __global float* row = ends + node[c] * node_stride + m0;
-        const realb l0 = LOADB(row, 0), l1 = LOADB(row + node_stride, 0);
-        const realb l = fmax(c_band[c] * (l0 + node_w[c] * (l1 - l0)), R(0.0));
-        acc[c] += source[c] * SUMB(w_run * sea_path_integral_finite_b(near_band[c], a_band[c], kappa_run, l));
+        realb sum = SPLATB(R(0.0));
+        for (int r = 0; r < m_count; r += SEASIM_BAND_LANES) {
+          const realb l0 = LOADB(row, r), l1 = LOADB(row + node_stride, r);
+          const realb l = fmax(c_band[c] * (l0 + node_w[c] * (l1 - l0)), R(0.0));
+          sum += LOADB(blk_w, r) * sea_path_integral_finite_b(near_band[c], a_band[c], LOADB(blk_kappa, r), l);
+        }
+        acc[c] += source[c] * SUMB(sum);
       }
     }
 #else
