@@ -124,11 +124,8 @@ SEASIM_FN int sea_hf_intersect(SEASIM_CONSTANT const SeaHeightField* hf, SEASIM_
           if (tm > R(0.0) && tm < L) ts = tm;
         }
         if (f0 + ts * (f1 + ts * f2) <= R(0.0)) { /* bracketed: f(0) > 0 >= f(ts), monotone between */
-          /* Halvings to the working precision's resolution of ts: 24 in float (2^-24 ts, below an ulp of
-           * t + tau once t >= ts, and 3e-8 m in a 0.5 m cell before), 48 in double. */
-          const int halvings = sizeof(real) == sizeof(float) ? 24 : 48;
           real lo = R(0.0), hi = ts;
-          for (int it = 0; it < halvings; ++it) {
+          for (int it = 0; it < 48; ++it) {
             const real mid = R(0.5) * (lo + hi);
             if (f0 + mid * (f1 + mid * f2) > R(0.0)) lo = mid;
             else hi = mid;
