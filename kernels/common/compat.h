@@ -5,6 +5,11 @@
  *   R(x)                   a literal in the real type: R(0.5)
  *   MAKE_REAL3(x, y, z)    a real3 value
  *   SEASIM_FN              'static inline' on both sides
+ *   SEASIM_FN_INLINED      SEASIM_FN that a kernel compiler must inline (always_inline in kernels): for a
+ *                          function with pointer out-parameters that several kernels of one program call.
+ *                          Intel's CPU compiler, keeping sea_hf_intersect out of line, gave sea_second.cl's
+ *                          depth tables the surface node's distances at every depth (PoCL and the inlined
+ *                          form right; docs/journal/sea_second_order.md)
  *   SEASIM_GLOBAL          '__global' in kernels, nothing on the host (pointer arguments to buffers)
  *   SEASIM_CONSTANT        '__constant' in kernels, nothing on the host (parameter blocks)
  *   dot, cross, length, normalize, clamp, mix, +,-,* on real3 — OpenCL built-ins; C++ versions below
@@ -33,6 +38,7 @@ typedef float3 real3;
 #define MAKE_REAL3(x, y, z) ((float3)((x), (y), (z)))
 #endif
 #define SEASIM_FN static inline
+#define SEASIM_FN_INLINED static inline __attribute__((always_inline))
 #define SEASIM_GLOBAL __global
 #define SEASIM_CONSTANT __constant
 #define SEASIM_PI R(3.14159265358979323846)
@@ -43,6 +49,7 @@ typedef float3 real3;
 #define SEASIM_COMPAT_HOST_ONCE
 #include <cmath>
 #define SEASIM_FN static inline
+#define SEASIM_FN_INLINED static inline
 #define SEASIM_GLOBAL
 #define SEASIM_CONSTANT
 #define R(x) (static_cast<real>(x))

@@ -68,13 +68,33 @@ SEASIM_FN real3 sea_hf_normal_at(SEASIM_CONSTANT const SeaHeightField* hf, SEASI
   return normalize(MAKE_REAL3(dhdu * sx, R(1.0), dhdv * sz));
 }
 
+/* The root of f(tau) = f0 + tau (f1 + tau f2) in [0, ts] where f(0) = f0 > 0 >= f(ts) and f is monotone on
+ * [0, ts] (a ray entering a bilinear patch from above: sea_hf_intersect), on or just under the floor
+ * (f <= 0), or -1 when rounding leaves the closed form above it or outside [0, ts] (the caller bisects). The quadratic's roots in
+ * the stable form q = -(f1 + sign(f1) sqrt(f1^2 - 4 f0 f2))/2, q/f2 and f0/q (f0/q is -f0/f1 as f2 -> 0,
+ * where q/f2 runs off), the smaller one in [0, ts]; if rounding leaves f just above 0 there, one step of
+ * 2^-20 of the bracket onwards (2^-48 in double). In place of a 48-step bisection of the bracket (the hit within 2^-48 ts): the
+ * same point to the working precision, for one square root. */
+SEASIM_FN real sea_hf_patch_root(real f0, real f1, real f2, real ts) {
+  const real disc = fmax(f1 * f1 - R(4.0) * f0 * f2, R(0.0));
+  const real q = R(-0.5) * (f1 + (f1 >= R(0.0) ? sqrt(disc) : -sqrt(disc)));
+  const real r_a = q != R(0.0) ? f0 / q : R(-1.0);
+  const real r_b = f2 != R(0.0) ? q / f2 : R(-1.0);
+  const int a_in = r_a >= R(0.0) && r_a <= ts, b_in = r_b >= R(0.0) && r_b <= ts;
+  if (!a_in && !b_in) return R(-1.0);
+  real tau = a_in && b_in ? fmin(r_a, r_b) : a_in ? r_a : r_b;
+  if (f0 + tau * (f1 + tau * f2) > R(0.0)) /* 2^-20 of the bracket onwards in float, 2^-48 in double */
+    tau = fmin(tau + ts * (sizeof(real) == sizeof(float) ? R(9.5367431640625e-7) : R(3.552713678800501e-15)), ts);
+  return f0 + tau * (f1 + tau * f2) <= R(0.0) ? tau : R(-1.0);
+}
+
 /* First point where the ray o + t dir (world metres, unit dir, o in the water: o.y <= 0) meets the floor
  * coming from above, for t in [0, t_max]. Returns 1 with *t_hit and the floor's unit normal *normal
  * there (pointing up), or 0 when the ray leaves [0, t_max] (or runs out of max_cells) first, with
  * *t_hit = t_max (or where the walk stopped) and *normal = +y. A start on or under the floor is a hit
  * at t = 0. */
-SEASIM_FN int sea_hf_intersect(SEASIM_CONSTANT const SeaHeightField* hf, SEASIM_GLOBAL const float* depth, real3 o,
-                               real3 dir, real t_max, real* t_hit, real3* normal) {
+SEASIM_FN_INLINED int sea_hf_intersect(SEASIM_CONSTANT const SeaHeightField* hf, SEASIM_GLOBAL const float* depth,
+                                       real3 o, real3 dir, real t_max, real* t_hit, real3* normal) {
   const real sx = R(hf->nx - 1) / hf->extent, sz = R(hf->ny - 1) / hf->extent;
   const real half_ext = R(0.5) * hf->extent;
   const real d0 = -o.y, dd = -dir.y; /* ray depth d0 + dd t */
@@ -124,13 +144,16 @@ SEASIM_FN int sea_hf_intersect(SEASIM_CONSTANT const SeaHeightField* hf, SEASIM_
           if (tm > R(0.0) && tm < L) ts = tm;
         }
         if (f0 + ts * (f1 + ts * f2) <= R(0.0)) { /* bracketed: f(0) > 0 >= f(ts), monotone between */
-          real lo = R(0.0), hi = ts;
-          for (int it = 0; it < 48; ++it) {
-            const real mid = R(0.5) * (lo + hi);
-            if (f0 + mid * (f1 + mid * f2) > R(0.0)) lo = mid;
-            else hi = mid;
+          tau = sea_hf_patch_root(f0, f1, f2, ts);
+          if (tau < R(0.0)) { /* rounding left the closed form's root above the floor: bisect */
+            real lo = R(0.0), hi = ts;
+            for (int it = 0; it < 48; ++it) {
+              const real mid = R(0.5) * (lo + hi);
+              if (f0 + mid * (f1 + mid * f2) > R(0.0)) lo = mid;
+              else hi = mid;
+            }
+            tau = hi; /* on or just under the floor */
           }
-          tau = hi; /* on or just under the floor */
         }
       }
       if (tau >= R(0.0)) {

@@ -375,6 +375,79 @@ TEST(SeaBottom, TableNodesSpanTheWaterAndInvert) {
   }
 }
 
+// The patch root's closed form against a long double bisection of the same (rounded) quadratic: random
+// brackets as sea_hf_intersect makes them (f(0) > 0 >= f(ts), monotone on [0, ts]), with f2 = 0, both signs of
+// f2, roots at either end of the bracket and a near-double root just past it (a grazing ray). The answer must be on
+// or just under the floor (f <= 0) and as close to the root as the precision's own 48-step bisection comes, or
+// within `step` of the bracket (near a double root, where neither method is well-conditioned, by their worst
+// cases); -1 (the caller bisects) must be rare.
+template <class Real, class Root>
+void patchRootMatchesBisection(const char* name, Root root, double step) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  int fallbacks = 0, n = 0;
+  double worst = 0, worst_bisect = 0, worst_near = 0, worst_near_bisect = 0;
+  for (int c = 0; c < 20000; ++c) {
+    const double ts = 0.01 + 2.0 * u(rng), r = ts * (c % 50 == 0 ? 1.0 : c % 50 == 1 ? 1e-6 : u(rng));
+    // f(tau) = k (tau - r)(tau - s) with s outside [0, ts] (monotone on it), or f2 = 0 (every eighth).
+    const int kind = c % 8;
+    const double k = 0.1 + 5 * u(rng);
+    double f0, f1, f2;
+    if (kind == 0) {
+      f2 = 0, f1 = -k, f0 = k * r;
+    } else {
+      const double s = kind == 1 ? -1e6 : kind == 2 ? ts * (1 + 1e-3) : kind % 2 ? -ts * (0.01 + 3 * u(rng))
+                                                                               : ts * (1.01 + 3 * u(rng));
+      const double sign = s > ts ? 1.0 : -1.0;  // f(0) = k r s > 0 needs k of the sign of s
+      f2 = sign * k, f1 = -sign * k * (r + s), f0 = sign * k * r * s;
+    }
+    const Real F0 = Real(f0), F1 = Real(f1), F2 = Real(f2), TS = Real(ts);
+    auto f = [&](long double t) { return (long double)F0 + t * ((long double)F1 + t * (long double)F2); };
+    if (!(F0 > 0) || f(TS) > 0) continue;  // rounding of the coefficients left the bracket open
+    long double lo = 0, hi = TS;
+    for (int it = 0; it < 200; ++it) {
+      const long double mid = (lo + hi) / 2;
+      (f(mid) > 0 ? lo : hi) = mid;
+    }
+    Real b_lo = 0, b_hi = TS;  // the working precision's own bisection, as sea_hf_intersect did it
+    for (int it = 0; it < 48; ++it) {
+      const Real mid = Real(0.5) * (b_lo + b_hi);
+      (F0 + mid * (F1 + mid * F2) > 0 ? b_lo : b_hi) = mid;
+    }
+    ++n;
+    const double e_bisect = std::fabs(double(b_hi) - double(hi)) / ts;
+    worst_bisect = std::max(worst_bisect, e_bisect);
+    const Real tau = root(F0, F1, F2, TS);
+    if (tau < 0) {
+      ++fallbacks;
+      continue;
+    }
+    EXPECT_LE(double(F0 + tau * (F1 + tau * F2)), 0.0) << name << " case " << c;
+    const double e = std::fabs(double(tau) - double(hi)) / ts;
+    if (kind == 2) {  // a near-double root: ill-conditioned, for either method; compared by the worst case below
+      worst_near = std::max(worst_near, e);
+      worst_near_bisect = std::max(worst_near_bisect, e_bisect);
+    } else {
+      EXPECT_LE(e, std::max(step, 2 * e_bisect)) << name << " case " << c << " kind " << kind;
+    }
+    worst = std::max(worst, e);
+  }
+  EXPECT_LE(worst_near, 1.5 * worst_near_bisect) << name;
+  std::printf("%s: %d brackets, %d to bisect, max |tau - root| = %.3g of the bracket (the 48-step bisection's %.3g)\n",
+              name, n, fallbacks, worst, worst_bisect);
+  EXPECT_GT(n, 15000);
+  EXPECT_LT(fallbacks, n / 100);
+}
+
+TEST(SeaBottom, PatchRootIsTheBracketsRootOnOrUnderTheFloor) {
+  patchRootMatchesBisection<double>("double", [](double a, double b, double c, double t) {
+    return kd::sea_hf_patch_root(a, b, c, t);
+  }, 2e-13);
+  patchRootMatchesBisection<float>("float", [](float a, float b, float c, float t) {
+    return kf::sea_hf_patch_root(a, b, c, t);
+  }, 2e-6);
+}
+
 TEST(SeaBottom, PlaneSharesAboveTheFloor) {
   const int n_z = 12;
   const double cos_io = 0.8, tau_d = 6.0;
