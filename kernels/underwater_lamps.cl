@@ -43,6 +43,7 @@
  * Stiff cases: common/underwater_lamps.h; never NaN/Inf (every division is by a clamped distance).
  */
 #include "common/compat.h"
+#include "common/band_lanes.h"
 #include "common/optics.h"
 #include "common/shafts.h"
 #include "common/underwater_params.h"
@@ -412,6 +413,30 @@ static inline void lamp_surface(const LampMedia* md, __global const UwObject* ob
 
 /* The light one lamp scatters towards the eye (001 eq. 2, 5, 7–9): the planes once, the bands
  * innermost, then the closed-form tail beyond the last plane. */
+/* Planes per block of the beam: each plane's band-free factor (its H P sum, the HG phase, 1/s² and the spacing:
+ * 001's h(s, t) without σ_s e^{-σ_t (s + t)}) and path length s + t in private arrays, then each run of
+ * SEASIM_BAND_LANES bands sums the block's planes in its lanes, one vector exp per plane, and adds the sum to
+ * each band once per block (not once per plane). */
+#define LAMP_PLANE_BLOCK 32
+
+/* Adds to every band i, through lamp_add_to with the image's sensor weights (bands), the block's
+ * I(λ) σ_s(λ) sum_u w[u] e^{-σ_t(λ) x[u]} with σ_s, σ_t from coef (the image's medium or the plain water). */
+static inline void lamp_beam_block(LampSums* o, __global const UwBand* bands, __global const UwBand* coef,
+                                   __global const float* I, int nb, const float* w, const float* x, int used,
+                                   int to_image, int to_single) {
+  for (int b0 = 0; b0 < nb; b0 += SEASIM_BAND_LANES) {
+    const int count = min(SEASIM_BAND_LANES, nb - b0);
+    float lanes[SEASIM_BAND_LANES] __attribute__((aligned(4 * SEASIM_BAND_LANES)));
+    for (int q = 0; q < SEASIM_BAND_LANES; ++q) lanes[q] = q < count ? coef[b0 + q].c : 0.0f;
+    const realb sigma_t = LOADB(lanes, 0);
+    realb sum = SPLATB(0.0f);
+    for (int u = 0; u < used; ++u) sum += w[u] * exp(-(sigma_t * x[u])); /* shafts_h_scaled over σ_s, in lanes */
+    *(realb*)lanes = sum;
+    for (int q = 0; q < count; ++q)
+      lamp_add_to(o, bands, b0 + q, I[b0 + q] * coef[b0 + q].b * lanes[q], to_image, to_single);
+  }
+}
+
 static inline void lamp_beam(const LampMedia* md, __global const UwObject* objects, int count,
                              __constant UwLampParams* lp, __global const UwLamp* L, __global const float* I,
                              const LampRay* v, LampSums* o) {
@@ -428,29 +453,39 @@ static inline void lamp_beam(const LampMedia* md, __global const UwObject* objec
   /* The profile at the planes' interval ends: where both ends of an interval lie in the inner cone (convex),
    * so does every sub-sample between them, and its profile is 1. */
   float prof_start = uw_lamp_profile(v->o + sp.ta * v->d, lamp, axis, L->cos_cone, L->cos_inner);
-  for (int k = 0; k < n_planes && sp.dt > 0.0f; ++k) {
-    const float prof_end = uw_lamp_profile(v->o + (sp.ta + (k + 1) * sp.dt) * v->d, lamp, axis, L->cos_cone, L->cos_inner);
-    const int inner = prof_start >= 1.0f && prof_end >= 1.0f;
-    prof_start = prof_end;
-    float J = 0.0f;
-    for (int j = 0; j < m; ++j) {
-      const float3 P = v->o + uw_lamp_subsample_t(&sp, k, j, m) * v->d;
-      const float prof = inner ? 1.0f : uw_lamp_profile(P, lamp, axis, L->cos_cone, L->cos_inner);
-      if (prof > 0.0f) J += shadowed ? prof * lamp_visible(objects, count, fan_objects, P, lamp) : prof;
-    }
-    if (J <= 0.0f) continue;
-    J *= sp.dt / m;
-    float s, c;
-    const float t = sp.ta + (k + 0.5f) * sp.dt;
-    uw_lamp_at(v->o, v->d, lamp, t, &s, &c);
-    for (int i = 0; i < nb; ++i) {
-      lamp_add(o, bands, i, I[i] * J * uw_lamp_plane_g(bands[i].b, bands[i].c, md->g, s, t, c, lp->s_min));
+  for (int k0 = 0; k0 < n_planes && sp.dt > 0.0f; k0 += LAMP_PLANE_BLOCK) {
+    float w[LAMP_PLANE_BLOCK], x[LAMP_PLANE_BLOCK];
 #if SEASIM_LAYER_LAMPS_SPLIT
-      if (md->single_apart)
-        lamp_add_to(o, bands, i, I[i] * J * uw_lamp_plane_g(md->plain[i].b, md->plain[i].c, md->plain_g, s, t, c, lp->s_min),
-                    0, 1);
+    float w_plain[LAMP_PLANE_BLOCK];
 #endif
+    int used = 0;
+    for (int k = k0; k < min(k0 + LAMP_PLANE_BLOCK, n_planes); ++k) {
+      const float prof_end =
+          uw_lamp_profile(v->o + (sp.ta + (k + 1) * sp.dt) * v->d, lamp, axis, L->cos_cone, L->cos_inner);
+      const int inner = prof_start >= 1.0f && prof_end >= 1.0f;
+      prof_start = prof_end;
+      float J = 0.0f;
+      for (int j = 0; j < m; ++j) {
+        const float3 P = v->o + uw_lamp_subsample_t(&sp, k, j, m) * v->d;
+        const float prof = inner ? 1.0f : uw_lamp_profile(P, lamp, axis, L->cos_cone, L->cos_inner);
+        if (prof > 0.0f) J += shadowed ? prof * lamp_visible(objects, count, fan_objects, P, lamp) : prof;
+      }
+      if (J <= 0.0f) continue;
+      J *= sp.dt / m;
+      float s, c;
+      const float t = sp.ta + (k + 0.5f) * sp.dt;
+      uw_lamp_at(v->o, v->d, lamp, t, &s, &c);
+      w[used] = J * uw_lamp_plane_weight(md->g, s, c, lp->s_min);
+#if SEASIM_LAYER_LAMPS_SPLIT
+      w_plain[used] = J * uw_lamp_plane_weight(md->plain_g, s, c, lp->s_min);
+#endif
+      x[used++] = s + t;
     }
+    if (used == 0) continue;
+    lamp_beam_block(o, bands, bands, I, nb, w, x, used, 1, o->to_single);
+#if SEASIM_LAYER_LAMPS_SPLIT
+    if (md->single_apart) lamp_beam_block(o, bands, md->plain, I, nb, w_plain, x, used, 0, 1);
+#endif
   }
   if (!sp.tail) return;
   float J = 0.0f;

@@ -89,9 +89,16 @@ SEASIM_FN void uw_lamp_at(real3 o, real3 d, real3 lamp, real t, real* s, real* c
   *cos_alpha = *s > R(0.0) ? dot(w, -d) / *s : R(1.0);
 }
 
+/* The band-free part of uw_lamp_plane_g (001 eq. 3's g): p_HG(cos α) / max(s, s_min)², so
+ * that a kernel can sum the planes of all bands at once (kernels/underwater_lamps.cl, lamp_beam_block). */
+SEASIM_FN real uw_lamp_plane_weight(real hg_g, real s, real cos_alpha, real s_min) {
+  const real sc = fmax(s, s_min);
+  return hg_phase(cos_alpha, hg_g) / (sc * sc);
+}
+
 /* g of 001 eq. 3 in water for one band: σ_s p_HG(cos α) e^{-σ_t (s + t)} / max(s, s_min)², sr⁻¹ m⁻³. */
 SEASIM_FN real uw_lamp_plane_g(real sigma_s, real sigma_t, real hg_g, real s, real t, real cos_alpha, real s_min) {
-  return hg_phase(cos_alpha, hg_g) * shafts_h(s, t, sigma_s, sigma_t, s_min);
+  return uw_lamp_plane_weight(hg_g, s, cos_alpha, s_min) * shafts_h_scaled(s, t, sigma_s, sigma_t);
 }
 
 /* The far field per unit H P p_HG for one band (common/shafts.h, shafts_tail_from). */
