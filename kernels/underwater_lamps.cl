@@ -5,8 +5,9 @@
  * Per pixel, per lamp: the part of the view ray inside the cone up to the G-buffer's hit (S), n planes
  * with m sub-samples each (H P by exact shadow rays against the objects), the closed-form far field
  * beyond K r; the bands in vector lanes over blocks of planes (lamp_beam_block), each with its own σ_s,
- * σ_t (002: Jerlov/IOP data) and the lamp's I(λ). A hit object or bottom adds the lamp's direct light. Bands go to RGB through the sensor
- * weights (002 eq. 4.8), added to rgb (and to spectral with SEASIM_SPECTRAL_OUTPUT).
+ * σ_t (002: Jerlov/IOP data) and the lamp's I(λ). A hit object or bottom adds the lamp's direct light.
+ * Bands go to RGB through the sensor weights (002 eq. 4.8), added to rgb (and to spectral with
+ * SEASIM_SPECTRAL_OUTPUT).
  *
  * Inputs: UwParams (camera, g, bottom), UwBand[band_count] (b, c, bottom albedo, sensor weights),
  * albedo[object * band_count + band], UwObject[], the G-buffer of raycast.cl (geom, material),
@@ -411,8 +412,6 @@ static inline void lamp_surface(const LampMedia* md, __global const UwObject* ob
 }
 #endif
 
-/* The light one lamp scatters towards the eye (001 eq. 2, 5, 7–9): the planes once, the bands
- * innermost, then the closed-form tail beyond the last plane. */
 /* Planes per block of the beam: each plane's band-free factor (its H P sum, the HG phase, 1/s² and the spacing:
  * 001's h(s, t) without σ_s e^{-σ_t (s + t)}) and path length s + t in private arrays, then each run of
  * SEASIM_BAND_LANES bands sums the block's planes in its lanes, one vector exp per plane, and adds the sum to
@@ -437,6 +436,8 @@ static inline void lamp_beam_block(LampSums* o, __global const UwBand* bands, __
   }
 }
 
+/* The light one lamp scatters towards the eye (001 eq. 2, 5, 7–9): the planes once, in blocks whose bands
+ * run in vector lanes (lamp_beam_block), then the closed-form tail beyond the last plane. */
 static inline void lamp_beam(const LampMedia* md, __global const UwObject* objects, int count,
                              __constant UwLampParams* lp, __global const UwLamp* L, __global const float* I,
                              const LampRay* v, LampSums* o) {

@@ -70,11 +70,12 @@ SEASIM_FN real3 sea_hf_normal_at(SEASIM_CONSTANT const SeaHeightField* hf, SEASI
 
 /* The root of f(tau) = f0 + tau (f1 + tau f2) in [0, ts] where f(0) = f0 > 0 >= f(ts) and f is monotone on
  * [0, ts] (a ray entering a bilinear patch from above: sea_hf_intersect), on or just under the floor
- * (f <= 0), or -1 when rounding leaves the closed form above it or outside [0, ts] (the caller bisects). The quadratic's roots in
- * the stable form q = -(f1 + sign(f1) sqrt(f1^2 - 4 f0 f2))/2, q/f2 and f0/q (f0/q is -f0/f1 as f2 -> 0,
- * where q/f2 runs off), the smaller one in [0, ts]; if rounding leaves f just above 0 there, one step of
- * 2^-20 of the bracket onwards (2^-48 in double). In place of a 48-step bisection of the bracket (the hit within 2^-48 ts): the
- * same point to the working precision, for one square root. */
+ * (f <= 0), or -1 when rounding leaves the closed form above it or outside [0, ts] (the caller bisects).
+ * The quadratic's roots in the stable form q = -(f1 + sign(f1) sqrt(f1^2 - 4 f0 f2))/2, q/f2 and f0/q
+ * (f0/q is -f0/f1 as f2 -> 0, where q/f2 runs off), the smaller one in [0, ts]; if rounding leaves f just
+ * above 0 there, one step of 2^-20 of the bracket onwards (2^-48 in double). In place of a 48-step
+ * bisection of the bracket (the hit within 2^-48 ts): the same point to the working precision, for one
+ * square root. */
 SEASIM_FN real sea_hf_patch_root(real f0, real f1, real f2, real ts) {
   const real disc = fmax(f1 * f1 - R(4.0) * f0 * f2, R(0.0));
   const real q = R(-0.5) * (f1 + (f1 >= R(0.0) ? sqrt(disc) : -sqrt(disc)));

@@ -191,6 +191,24 @@ TEST(UnderwaterLamps, KernelMatchesTheDoubleCpuEvaluation) {
   }
 }
 
+TEST(UnderwaterLamps, PlanesBeyondOneBlockMatchTheDoubleCpuEvaluation) {
+  // The kernel sums the planes in blocks of 32 (underwater_lamps.cl, LAMP_PLANE_BLOCK): 45 planes take a full
+  // block and a part of a second, whose first plane's profile carries on from the first block's last.
+  const Scene scene = lampScene({set("quality.shafts_planes", "45"), set("quality.shafts_subplanes", "3"),
+                                 set("quality.lamps_delta_m", "false")});
+  const seasim::FrameResult frame = render(scene);
+  ASSERT_EQ(frame.nonfinite, 0);
+  const seasim::Image cpu = cpuDouble(scene, 45, 3, false);
+  const double peak = maxOf(cpu);
+  ASSERT_GT(peak, 0);
+  double worst = 0;
+  for (size_t k = 0; k < cpu.pixels.size(); ++k)
+    worst = std::max(worst, double(std::fabs(frame.rgb.pixels[k] - cpu.pixels[k])));
+  std::printf("kernel vs double CPU, 45 planes: max |difference| %.3g of a peak %.4g\n", worst, peak);
+  EXPECT_LT(worst, 2e-3 * peak) << "worst " << worst << " of peak " << peak;
+  EXPECT_NEAR(meanOf(frame.rgb), meanOf(cpu), 1e-4 * meanOf(cpu));
+}
+
 TEST(UnderwaterLamps, OrdersKernelMatchesTheDoubleCpuEvaluation) {
   // Every pixel evaluated (no lattice): the double evaluation below is per pixel.
   const Scene scene = lampScene({set("quality.shafts_planes", "30"), set("quality.shafts_subplanes", "6"),

@@ -11,8 +11,9 @@ import csv
 import os
 import sys
 
-REGIONS = ["bottom_near", "bottom_far", "water_up", "water_down", "objects"]
-MIN_PIXELS, MAX_NOISE, WITHIN = 40, 0.02, 0.05
+from underwater_regions_summary import REGIONS, judged  # the summary's regions and its judging rule
+
+WITHIN = 0.05
 
 
 def load(path):
@@ -39,8 +40,7 @@ def main(argv):
             n = before = after = 0
             for key, r in sorted(old.items()):
                 for reg in REGIONS:
-                    if (not r[reg + "_ratio"] or int(r[reg + "_pixels"]) < MIN_PIXELS
-                            or float(r[reg + "_ref_rel_se"]) > MAX_NOISE):
+                    if not judged(r, reg):
                         continue
                     o = float(r[reg + "_ratio"])
                     change = float(variant[key][reg + "_ratio"]) / float(today[key][reg + "_ratio"])
