@@ -24,9 +24,9 @@
  * Defines (host/plan): SEASIM_HAS_MULTIPLE (L_MS), SEASIM_HAS_FROXEL (single scattering added here and
  * split off L_MS and L_s), SEASIM_SPECTRAL_OUTPUT, SEASIM_UWI_SPREAD, SEASIM_SKY_MODEL (common/sky.h);
  * SEASIM_BAND_LANES (4, 8 or 16; default 16, common/band_lanes.h). SEASIM_SAND_SHARE_MAP (the
- * discrete-ordinates model with objects over a bottom, quality.sand_share_step > 1): the sand's share
- * interpolated from sand_share.cl's lattice (sand_map, sand_w x sand_h, every sand_step-th pixel) where
- * its hits see the pixel's surface, evaluated here elsewhere.
+ * discrete-ordinates model with objects over a bottom, quality.sand_share_step > 1): the sand's shares
+ * (sunlit, diffusely lit) interpolated from sand_share.cl's lattice (sand_map, two planes of sand_w x
+ * sand_h, every sand_step-th pixel) where its hits see the pixel's surface, evaluated here elsewhere.
  * SEASIM_LAYER_FORMATION (outputs.layers, docs/layers.md): the image split by where its light comes from,
  * in sensor RGB: formation[pixel][12] = clear (the hit's radiance with S = 0: no water between), direct
  * (clear e^{-c S} per band), backscatter (the in-scatter and the froxel term), transmission (direct/clear
@@ -312,25 +312,28 @@ typedef struct {
 #endif
 
 #if SEASIM_SAND_SHARE_MAP
-/* The sand's share at the pixel from the lattice: the (up to) four lattice pixels around it whose hit lies
- * within 5 % of the pixel's own distance S (the same surface), weighted bilinearly by position; -1 when
- * none does (a silhouette: the caller evaluates the pixel itself). A lattice pixel reads its own value,
- * so there the share is the per-pixel one exactly. Open water: 1, as uwi_sand_share. */
-static inline float sand_share_from_map(const SandShareAt* a, __constant UwParams* p, float S) {
-  if (!(S < 1.0e6f)) return 1.0f;
+/* The sand's shares at the pixel from the lattice, (sunlit, diffusely lit): the (up to) four lattice pixels
+ * around it whose hit lies within 5 % of the pixel's own distance S (the same surface), weighted bilinearly
+ * by position; -1 when none does (a silhouette: the caller evaluates the pixel itself). A lattice pixel
+ * reads its own values, so there the shares are the per-pixel ones exactly. Open water: 1, as
+ * uwi_sand_share. */
+static inline float2 sand_share_from_map(const SandShareAt* a, __constant UwParams* p, float S) {
+  if (!(S < 1.0e6f)) return (float2)(1.0f, 1.0f);
   const int i0 = a->x / a->step, j0 = a->y / a->step;
   const float fx = (float)(a->x - i0 * a->step) / a->step, fy = (float)(a->y - j0 * a->step) / a->step;
-  float sum = 0.0f, wsum = 0.0f;
+  const int plane = a->w * a->h;
+  float2 sum = (float2)(0.0f, 0.0f);
+  float wsum = 0.0f;
   for (int dj = 0; dj <= 1; ++dj)
     for (int di = 0; di <= 1; ++di) {
       const float w = (di ? fx : 1.0f - fx) * (dj ? fy : 1.0f - fy);
       const int i = min(i0 + di, a->w - 1), j = min(j0 + dj, a->h - 1);
       const float Sq = a->geom[min(j * a->step, p->height - 1) * p->width + min(i * a->step, p->width - 1)].x;
       if (!(w > 0.0f) || !(Sq < 1.0e6f) || fabs(Sq - S) > 0.05f * S) continue;
-      sum += w * a->map[j * a->w + i];
+      sum += w * (float2)(a->map[j * a->w + i], a->map[plane + j * a->w + i]);
       wsum += w;
     }
-  return wsum > 0.0f ? sum / wsum : -1.0f;
+  return wsum > 0.0f ? sum / wsum : (float2)(-1.0f, -1.0f);
 }
 #endif
 
@@ -340,7 +343,7 @@ static inline float sand_share_from_map(const SandShareAt* a, __constant UwParam
 typedef struct {
   UwiHitPixel hit;
   int row0, node, aureole_node;
-  float phase, cos_dphi, aureole_frac, aureole_end, v_sand, s_w_y;
+  float phase, cos_dphi, aureole_frac, aureole_end, v_sand, v_diffuse, s_w_y;
   __global const float* albedo_m_row;
 #if SEASIM_UWI_SPREAD
   float s_spread;
@@ -372,14 +375,17 @@ static inline void uwi_pixel(__constant UwParams* p, __global const float* band_
   q->aureole_node = uwi_aureole_node(cos_s, &q->aureole_frac);
   q->aureole_end = mat == UW_MAT_SURFACE ? 0.0f : k->y_hit;
   const float3 cam = (float3)(p->cam_pos[0], p->cam_pos[1], p->cam_pos[2]);
-  /* The share of the sunlit sand's light the ray gathers that no object hides or shades (uwi_sand_share,
-   * with the first band's c' and k): from sand_share.cl's lattice where it can be, else here. */
+  /* The shares of the sunlit and of the diffusely lit sand's light the ray gathers that no object hides or
+   * shades (uwi_sand_shares, with the first band's c' and k): from sand_share.cl's
+   * lattice where it can be, else here. */
 #if SEASIM_SAND_SHARE_MAP
-  const float v_map = k->multiple ? sand_share_from_map(sand, p, S) : 1.0f;
-  q->v_sand = v_map >= 0.0f ? v_map : uwi_view_sand_share(p, objects, band_table, stride, d, S);
+  const float2 v_map = k->multiple ? sand_share_from_map(sand, p, S) : (float2)(1.0f, 1.0f);
 #else
-  q->v_sand = k->multiple ? uwi_view_sand_share(p, objects, band_table, stride, d, S) : 1.0f;
+  const float2 v_map = k->multiple ? (float2)(-1.0f, -1.0f) : (float2)(1.0f, 1.0f);
 #endif
+  q->v_sand = v_map.x;
+  q->v_diffuse = v_map.y;
+  if (v_map.x < 0.0f) q->v_sand = uwi_view_sand_shares(p, objects, band_table, stride, d, S, &q->v_diffuse);
   /* The object the reflected ray meets first, if any (surface hits; uwi_mirror_hit). */
   int mat_m = UW_MAT_NONE;
   const UwiMirrorHit mirror =
@@ -484,6 +490,7 @@ static inline realb uwi_step(__constant UwParams* p, __global const float* band_
   UwiWeights w;
   uwi_lanes_weights(band_table, stride, q->row0, i, q->node, q->cos_dphi, &w);
   if (q->v_sand < 1.0f) uwi_lanes_hide_sand(band_table, stride, q->row0, i, q->node, q->v_sand, &w);
+  if (q->v_diffuse < 1.0f) uwi_lanes_hide_diffuse_sand(band_table, stride, q->row0, i, q->node, q->v_diffuse, &w);
   realb L;
   const realb in_scatter =
       uwi_step_inscatter(p, band_table, stride, k, q, i, &v, &w, &camera, k->S, k->y_hit, q->aureole_end, &L);

@@ -1,14 +1,15 @@
-/* sand_share.cl — the discrete-ordinates model's share of the sunlit sand that the objects leave a view
- * ray (common/underwater_ordinates.h, uwi_view_sand_share) on a lattice of every `step`-th pixel in x
- * and y, the pixel (i step, j step) at map[j * map_w + i] (clamped to the image's last row and column).
+/* sand_share.cl — the discrete-ordinates model's shares of the sunlit and of the diffusely lit sand that the
+ * objects leave a view ray (common/underwater_ordinates.h, uwi_view_sand_shares)
+ * on a lattice of every `step`-th pixel in x and y, the pixel (i step, j step) at map[j * map_w + i] and
+ * map[map_w * map_h + j * map_w + i] (clamped to the image's last row and column).
  * kd_multiple.cl (SEASIM_SAND_SHARE_MAP) interpolates it to the pixels between, where the lattice's hits
  * lie at the pixel's own distance, and evaluates the rest itself: the share is smooth along a surface and
- * jumps at its silhouettes. Its rays (UWI_SAND_POINTS points x UWI_SAND_RAYS rays and their shadow
- * rays against every object) are the model's fixed cost per pixel; a lattice of step 2 pays about a
+ * jumps at its silhouettes. Its rays (UWI_SAND_POINTS points x UWI_SAND_RAYS rays, their shadow rays and
+ * the diffuse share's up-rays, against every object) are the model's fixed cost per pixel; a lattice of step 2 pays about a
  * quarter of it (results/BENCHMARKS.md).
  *
  * Inputs: UwParams, the band table (the first band's c', k, albedos), the objects, raycast.cl's G-buffer
- * distances (geom.x). Output: map[map_w * map_h].
+ * distances (geom.x). Output: map[2 * map_w * map_h].
  */
 #include "common/compat.h"
 #include "common/optics.h"
@@ -25,6 +26,9 @@ __kernel void sand_share(__constant UwParams* p, __global const float* band_tabl
   if (i >= map_w || j >= map_h) return;
   const int x = min(i * step, p->width - 1), y = min(j * step, p->height - 1);
   const float3 d = uw_screen_dir(p, (x + 0.5f) / p->width, (y + 0.5f) / p->height);
-  map[j * map_w + i] = uwi_view_sand_share(p, objects, band_table, UW_BAND_STRIDE(p->band_count), d,
-                                           geom[y * p->width + x].x);
+  const int stride = UW_BAND_STRIDE(p->band_count);
+  const float S = geom[y * p->width + x].x;
+  float v_diffuse;
+  map[j * map_w + i] = uwi_view_sand_shares(p, objects, band_table, stride, d, S, &v_diffuse);
+  map[map_w * map_h + j * map_w + i] = v_diffuse;
 }

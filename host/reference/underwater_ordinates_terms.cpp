@@ -17,16 +17,19 @@ struct InScatter {
   double modes = 0, beam = 0, tms = 0, froxel_ss = 0;
 };
 
-// v_sand: the share of the sunlit sand's part of the source kept (uwi_sand_share; uwi_multiple_sand).
+// v_sand, v_diffuse: the shares of the sunlit and of the diffusely lit sand's parts of the source kept
+// (uwi_sand_shares; uwi_multiple_sand).
 InScatter inScatterTerms(const UwiBand& ib, const UwBand& band, double g, double bottom_depth, double S, double d_y,
-                         double o_d, double cos_s, double mu_w, double v_sand = 1.0) {
+                         double o_d, double cos_s, double mu_w, double v_sand, double v_diffuse) {
   InScatter t;
   const int node = kd::uwi_source_node(d_y);
   const double cos_dphi = kd::uwi_cos_azimuth(cos_s, d_y, mu_w);
-  const double hidden = 1 - v_sand;
-  const double w1 = kd::uwi_source_weight(&ib, node, cos_dphi, 0) - hidden * ib.src_bottom[3 * node];
-  const double w2 = kd::uwi_source_weight(&ib, node, cos_dphi, 1) - hidden * ib.src_bottom[3 * node + 1];
-  const double wp = kd::uwi_source_weight(&ib, node, cos_dphi, 2) - hidden * ib.src_bottom[3 * node + 2];
+  const double hidden = 1 - v_sand, shaded = 1 - v_diffuse;
+  const float* sand = ib.src_bottom + 3 * node;
+  const float* open = ib.src_bottom_diffuse + 3 * node;
+  const double w1 = kd::uwi_source_weight(&ib, node, cos_dphi, 0) - hidden * sand[0] - shaded * open[0];
+  const double w2 = kd::uwi_source_weight(&ib, node, cos_dphi, 1) - hidden * sand[1] - shaded * open[1];
+  const double wp = kd::uwi_source_weight(&ib, node, cos_dphi, 2) - hidden * sand[2] - shaded * open[2];
   const double p_hg = kd::hg_phase(cos_s, g);
   const double phase = double(band.b) * p_hg * band.e_beam0;
   const double tms_phase = double(band.b) * kd::uwi_tms_phase(p_hg, ib.p_clip) * band.e_beam0;
@@ -69,10 +72,13 @@ std::vector<UwiPixelTerms> ordinatesModelTerms(const UnderwaterSetup& s, bool mu
                                     : kd::uwi_no_mirror_object();
       const bool object_in_mirror = mat_m >= 0 && !(H > 0 && mirror.s >= H / std::max(d.y, 1e-6));
       t.reflected_object = object_in_mirror ? 1.0 : 0.0;
-      // kd_multiple.cl's share of the sunlit sand's light the ray gathers unhidden and unshaded.
+      // kd_multiple.cl's shares of the sunlit and of the diffusely lit sand's light the ray gathers unhidden
+      // and unshaded.
+      double v_diffuse = 1.0;
       const double v_sand =
-          multiple ? kd::uwi_sand_share(s.objects.data(), p.object_count, H, o, d, S, s.ordinates[0].c_dm, s.ordinates[0].k,
-                                        s_w, s.albedo.data(), p.band_count, s.bands[0].bottom_albedo)
+          multiple ? kd::uwi_sand_shares(s.objects.data(), p.object_count, H, o, d, S, s.ordinates[0].c_dm,
+                                         s.ordinates[0].k, s_w, s.albedo.data(), p.band_count,
+                                         s.bands[0].bottom_albedo, &v_diffuse)
                    : 1.0;
       for (int i = 0; i < p.band_count; ++i) {
         const UwBand& b = s.bands[i];
@@ -81,7 +87,7 @@ std::vector<UwiPixelTerms> ordinatesModelTerms(const UnderwaterSetup& s, bool mu
         const double albedo =
             mat >= 0 ? s.albedo[size_t(mat) * p.band_count + i] : mat == UW_MAT_BOTTOM ? b.bottom_albedo : 0.0;
         if (multiple) {
-          const InScatter v = inScatterTerms(ib, b, p.g, H, S, d.y, o_d, kd::dot(d, s_w), mu_w, v_sand);
+          const InScatter v = inScatterTerms(ib, b, p.g, H, S, d.y, o_d, kd::dot(d, s_w), mu_w, v_sand, v_diffuse);
           t.inscatter_modes += w * v.modes;
           t.inscatter_beam += w * v.beam;
           t.inscatter_tms += w * v.tms;
@@ -115,15 +121,15 @@ std::vector<UwiPixelTerms> ordinatesModelTerms(const UnderwaterSetup& s, bool mu
           t.forward += w * small_angle * T * (p.ior * p.ior * (1 - f) * b.sky_radiance + f * (l_ms + l_bottom));
           if (froxels && multiple)
             t.reflected_froxel_ss +=
-                w * T * f * inScatterTerms(ib, b, p.g, H, s_r, -dy, 0.0, cos_r, mu_w).froxel_ss;
+                w * T * f * inScatterTerms(ib, b, p.g, H, s_r, -dy, 0.0, cos_r, mu_w, 1.0, 1.0).froxel_ss;
         } else if (mat != UW_MAT_NONE) {
           const double lambert = T * kd::uwi_lambert(&ib, &b, H, std::max(o_d - S * d.y, 0.0), n, s_w, albedo, vis, vis_b);
           t.lambert += w * lambert;
           t.forward += w * small_angle * lambert;
         }
         t.total += w * (kd::uwi_band_radiance_sand(&ib, &b, p.g, mat, S, n, d, o_d, s_w, albedo, vis, vis_b,
-                                                   b.sky_radiance, p.ior, H, froxels, multiple, mirror, v_sand) +
-                        (froxels && multiple ? inScatterTerms(ib, b, p.g, H, S, d.y, o_d, kd::dot(d, s_w), mu_w).froxel_ss
+                                                   b.sky_radiance, p.ior, H, froxels, multiple, mirror, v_sand, v_diffuse) +
+                        (froxels && multiple ? inScatterTerms(ib, b, p.g, H, S, d.y, o_d, kd::dot(d, s_w), mu_w, 1.0, 1.0).froxel_ss
                                              : 0.0));
       }
     }

@@ -401,6 +401,8 @@ void DiscreteOrdinates::solveBoundaries(const DiscreteOrdinatesLayer& layer) {
   c_grow_.assign(n, 0.0);
   c_decay_bottom_.assign(n, 0.0);
   c_grow_bottom_.assign(n, 0.0);
+  c_decay_diffuse_.assign(n, 0.0);
+  c_grow_diffuse_.assign(n, 0.0);
   if (!(bottom_ > 0)) {
     std::vector<double> sys(n * n, 0.0), rhs(n, 0.0);
     for (int i = 0; i < n; ++i) {
@@ -424,28 +426,54 @@ void DiscreteOrdinates::solveBoundaries(const DiscreteOrdinatesLayer& layer) {
     }
     flux_p += w_[k] * mu_[k] * z_plus_[k];
   }
-  // Two right-hand sides, one elimination: column 0 the whole field; column 1 the part the bottom's
-  // reflection of the whole beam brings, that source alone (tiltedIrradianceProfile's bottom_beam; the
-  // field is linear in bottom_sunlit).
-  std::vector<double> sys(n2 * n2, 0.0), rhs(n2 * 2, 0.0);
-  for (int i = 0; i < n; ++i) {
-    for (int j = 0; j < n; ++j) {
-      const double e = std::exp(-lambda_[j] * bottom_);
-      sys[i * n2 + j] = x_plus_[i * n + j] - refl[i] * x_minus_[i * n + j];
-      sys[i * n2 + n + j] = e * (x_minus_[i * n + j] - refl[i] * x_plus_[i * n + j]);
-      sys[(n + i) * n2 + j] = e * (x_minus_[i * n + j] - 2 * rho * flux_dec[j]);
-      sys[(n + i) * n2 + n + j] = x_plus_[i * n + j] - 2 * rho * flux_grow[j];
+  // The system for bottom albedo rho (the bottom's rows reflect rho/π E_d).
+  const auto system = [&](double albedo) {
+    std::vector<double> sys(n2 * n2, 0.0);
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j) {
+        const double e = std::exp(-lambda_[j] * bottom_);
+        sys[i * n2 + j] = x_plus_[i * n + j] - refl[i] * x_minus_[i * n + j];
+        sys[i * n2 + n + j] = e * (x_minus_[i * n + j] - refl[i] * x_plus_[i * n + j]);
+        sys[(n + i) * n2 + j] = e * (x_minus_[i * n + j] - 2 * albedo * flux_dec[j]);
+        sys[(n + i) * n2 + n + j] = x_plus_[i * n + j] - 2 * albedo * flux_grow[j];
+      }
+    return sys;
+  };
+  // E_d at the bottom over a black one, divided by 2π: the diffuse light the bottom would reflect first.
+  double flux_black = 0;
+  if (rho > 0) {
+    std::vector<double> sys = system(0.0), rhs(n2, 0.0);
+    for (int i = 0; i < n; ++i) {
+      rhs[i] = sky[i] - (z_plus_[i] - refl[i] * z_minus_[i]);
+      rhs[n + i] = -ep * z_minus_[i];
     }
-    rhs[2 * i] = sky[i] - (z_plus_[i] - refl[i] * z_minus_[i]);
-    rhs[2 * (n + i)] = rho / kPi * layer.bottom_sunlit * e_sun0_ * em - ep * (z_minus_[i] - 2 * rho * flux_p);
-    rhs[2 * (n + i) + 1] = rho / kPi * e_sun0_ * em;
+    solveOrThrow(sys, rhs, n2);
+    flux_black = flux_p * ep;
+    for (int j = 0; j < n; ++j)
+      flux_black += rhs[j] * flux_dec[j] * std::exp(-lambda_[j] * bottom_) + rhs[n + j] * flux_grow[j];
   }
-  solveOrThrow(sys, rhs, n2, 2);
+  // Three right-hand sides, one elimination: column 0 the whole field; column 1 the part the bottom's
+  // reflection of the whole beam brings, that source alone (FieldPart::bottom_beam; the field is linear in
+  // bottom_sunlit); column 2 the part its reflection of the diffuse light brings (FieldPart::bottom_diffuse:
+  // rho/π E_d(H) of the field over a black bottom, with what it then sends back and forth). The whole field
+  // is the black bottom's plus bottom_sunlit times column 1 plus column 2.
+  std::vector<double> sys = system(rho), rhs(n2 * 3, 0.0);
+  for (int i = 0; i < n; ++i) {
+    rhs[3 * i] = sky[i] - (z_plus_[i] - refl[i] * z_minus_[i]);
+    rhs[3 * (n + i)] = rho / kPi * layer.bottom_sunlit * e_sun0_ * em - ep * (z_minus_[i] - 2 * rho * flux_p);
+    rhs[3 * (n + i) + 1] = rho / kPi * e_sun0_ * em;
+    rhs[3 * (n + i) + 2] = 2 * rho * flux_black;
+  }
+  solveOrThrow(sys, rhs, n2, 3);
+  c_decay_diffuse_.assign(n, 0.0);
+  c_grow_diffuse_.assign(n, 0.0);
   for (int j = 0; j < n; ++j) {
-    c_decay_[j] = rhs[2 * j];
-    c_grow_[j] = rhs[2 * (n + j)];
-    c_decay_bottom_[j] = rhs[2 * j + 1];
-    c_grow_bottom_[j] = rhs[2 * (n + j) + 1];
+    c_decay_[j] = rhs[3 * j];
+    c_grow_[j] = rhs[3 * (n + j)];
+    c_decay_bottom_[j] = rhs[3 * j + 1];
+    c_grow_bottom_[j] = rhs[3 * (n + j) + 1];
+    c_decay_diffuse_[j] = rhs[3 * j + 2];
+    c_grow_diffuse_[j] = rhs[3 * (n + j) + 2];
   }
 }
 
@@ -509,7 +537,7 @@ std::vector<DiscreteOrdinatesIrradiance> DiscreteOrdinates::profile(double depth
 }
 
 std::vector<double> DiscreteOrdinates::inscatterProfile(const std::vector<double>& nus, double depth_end,
-                                                        int samples, bool bottom_beam) const {
+                                                        int samples, FieldPart part) const {
   const int n = n_, moments = static_cast<int>(chi_.size()), nu_count = static_cast<int>(nus.size());
   samples = std::max(samples, 2);
   // 2π b̂ w_j p^m(ν, ±μ_j): the phase's addition-theorem sum between each user cosine and each node.
@@ -533,7 +561,7 @@ std::vector<double> DiscreteOrdinates::inscatterProfile(const std::vector<double
   const double step = sampleExponentials(depth_end, samples, dec, grow);
   std::vector<double> out(size_t(samples) * nu_count, 0.0), down(n), up(n);
   for (int s = 0; s < samples; ++s) {
-    radiancesFrom(s * step, &dec[size_t(s) * n], &grow[size_t(s) * n], down.data(), up.data(), bottom_beam);
+    radiancesFrom(s * step, &dec[size_t(s) * n], &grow[size_t(s) * n], down.data(), up.data(), part);
     for (int u = 0; u < nu_count; ++u) {
       double j_in = 0;
       for (int j = 0; j < n; ++j) j_in += to_down[size_t(u) * n + j] * down[j] + to_up[size_t(u) * n + j] * up[j];
@@ -544,7 +572,7 @@ std::vector<double> DiscreteOrdinates::inscatterProfile(const std::vector<double
 }
 
 std::vector<double> DiscreteOrdinates::tiltedIrradianceProfile(const std::vector<double>& n_ys, double depth_end,
-                                                               int samples, bool bottom_beam) const {
+                                                               int samples, FieldPart part) const {
   const int n = n_, count = static_cast<int>(n_ys.size());
   samples = std::max(samples, 2);
   // w_j K_m(±μ_j, n_y): the quadrature's weight of each stream on each plane (∫ dμ over a hemisphere is
@@ -561,7 +589,7 @@ std::vector<double> DiscreteOrdinates::tiltedIrradianceProfile(const std::vector
   const double step = sampleExponentials(depth_end, samples, dec, grow);
   std::vector<double> out(size_t(samples) * count, 0.0), down(n), up(n);
   for (int s = 0; s < samples; ++s) {
-    radiancesFrom(s * step, &dec[size_t(s) * n], &grow[size_t(s) * n], down.data(), up.data(), bottom_beam);
+    radiancesFrom(s * step, &dec[size_t(s) * n], &grow[size_t(s) * n], down.data(), up.data(), part);
     for (int u = 0; u < count; ++u) {
       double e = 0;
       for (int j = 0; j < n; ++j) e += from_down[size_t(u) * n + j] * down[j] + from_up[size_t(u) * n + j] * up[j];
@@ -572,12 +600,17 @@ std::vector<double> DiscreteOrdinates::tiltedIrradianceProfile(const std::vector
 }
 
 void DiscreteOrdinates::radiancesFrom(double y, const double* e_dec, const double* e_grow, double* down,
-                                      double* up, bool bottom_beam) const {
+                                      double* up, FieldPart part) const {
   const int n = n_;
-  // The bottom's reflection of the beam alone is a homogeneous solution: no particular part.
-  const double ep = bottom_beam ? 0.0 : std::exp(-m_particular_ * y);
-  const std::vector<double>& c_dec = bottom_beam ? c_decay_bottom_ : c_decay_;
-  const std::vector<double>& c_gro = bottom_beam ? c_grow_bottom_ : c_grow_;
+  // The bottom's reflection of the beam or of the diffuse light alone is a homogeneous solution: no
+  // particular part.
+  const double ep = part == FieldPart::whole ? std::exp(-m_particular_ * y) : 0.0;
+  const std::vector<double>& c_dec = part == FieldPart::bottom_beam      ? c_decay_bottom_
+                                     : part == FieldPart::bottom_diffuse ? c_decay_diffuse_
+                                                                         : c_decay_;
+  const std::vector<double>& c_gro = part == FieldPart::bottom_beam      ? c_grow_bottom_
+                                     : part == FieldPart::bottom_diffuse ? c_grow_diffuse_
+                                                                         : c_grow_;
   for (int i = 0; i < n; ++i) {
     double d = z_plus_[i] * ep, u = z_minus_[i] * ep;
     for (int j = 0; j < n; ++j) {

@@ -85,6 +85,12 @@ std::array<double, 3> azimuthModes(double nu, double mu, int azimuths, F f) {
   return m;
 }
 
+// Which light of the field a profile holds: all of it; or only what the bottom's reflection of the whole
+// beam brings (whatever bottom_sunlit is), or of the diffuse light (rho/π E_d(H) of the field over a black
+// bottom), each with what it then sends back and forth between the bottom and the surface (0 without a bottom
+// and in modes 1, 2). The whole field is the black bottom's + bottom_sunlit × bottom_beam + bottom_diffuse.
+enum class FieldPart { whole, bottom_beam, bottom_diffuse };
+
 class DiscreteOrdinates {
  public:
   // streams: cosines per hemisphere, >= 2. azimuth_mode: 0 the azimuth-averaged radiance (down, up,
@@ -116,19 +122,18 @@ class DiscreteOrdinates {
   // radiance; the beam's own scattering left out: the caller adds it with the exact phase, Nakajima &
   // Tanaka 1988's TMS). Mode 1's is the coefficient of cos φ, φ from the sun's azimuth. Integrated along
   // a ray with extinction() it gives the radiance at any angle (the source-function integration of
-  // DISORT's user angles). Row-major, samples x nus.size(). bottom_beam: only the in-scatter of the light the
-  // bottom's reflection of the whole beam brings (as tiltedIrradianceProfile's; 0 in modes 1, 2).
+  // DISORT's user angles). Row-major, samples x nus.size(). part: the whole field's in-scatter, or only that of
+  // the light the bottom's reflection of the whole beam or of the diffuse light brings (FieldPart).
   std::vector<double> inscatterProfile(const std::vector<double>& nus, double depth_end, int samples,
-                                       bool bottom_beam = false) const;
+                                       FieldPart part = FieldPart::whole) const;
   // The diffuse light's irradiance on a plane whose unit normal has the upward vertical component n_y (in
   // [-1, 1]) at `samples` (>= 2) evenly spaced depths from 0 to depth_end: this azimuth mode's
   // ∫ L^m(ω) cos(m φ) max(0, -ω·n) dΩ with the normal's azimuth φ_n at 0, so the coefficient of cos(m φ_n),
   // φ_n the azimuth of -n from the sun beam's (tiltedIrradianceKernel). n_y = 1 gives E_d (mode 0), -1 E_u;
-  // at n_y = 0 mode 1 gives half the horizontal flux. Row-major, samples x n_ys.size(). bottom_beam: only the
-  // part the bottom's reflection of the whole beam brings (what a face seeing the bottom in shadow lacks; 0
-  // without a bottom and in modes 1, 2), whatever bottom_sunlit is.
+  // at n_y = 0 mode 1 gives half the horizontal flux. Row-major, samples x n_ys.size(). part: the whole
+  // field's, or only the part a FieldPart brings (bottom_beam: what a face seeing the bottom in shadow lacks).
   std::vector<double> tiltedIrradianceProfile(const std::vector<double>& n_ys, double depth_end, int samples,
-                                              bool bottom_beam = false) const;
+                                              FieldPart part = FieldPart::whole) const;
 
  private:
   // The modes' amplitudes from the surface's and the bottom's conditions (the constructor's last step).
@@ -139,9 +144,9 @@ class DiscreteOrdinates {
   // a bottom) there.
   double exponentialsAt(double depth, std::vector<double>& e_dec, std::vector<double>& e_grow) const;
   // The quadrature's radiances at depth y, down (L+) and up (L-), from the modes' exponentials there
-  // (bottom_beam: the part the bottom's reflection of the whole beam brings).
+  // (part: the whole field's, or the part a FieldPart brings).
   void radiancesFrom(double y, const double* e_dec, const double* e_grow, double* down, double* up,
-                     bool bottom_beam = false) const;
+                     FieldPart part = FieldPart::whole) const;
   // The depths of profile(depth_end, samples) (clamped to the layer) and each mode's e^{-λ y_s} (dec) and
   // e^{-λ (H - y_s)} (grow, 0 without a bottom), samples x N, as geometric sequences.
   double sampleExponentials(double depth_end, int samples, std::vector<double>& dec, std::vector<double>& grow) const;
@@ -155,6 +160,7 @@ class DiscreteOrdinates {
   std::vector<double> z_plus_, z_minus_;       // N: the particular solution's down and up radiances
   std::vector<double> c_decay_, c_grow_;       // N each: the modes' amplitudes
   std::vector<double> c_decay_bottom_, c_grow_bottom_;  // N each: those of the bottom's reflection of the beam
+  std::vector<double> c_decay_diffuse_, c_grow_diffuse_;  // N each: those of its reflection of the diffuse light
 };
 
 }  // namespace seasim

@@ -62,6 +62,7 @@ std::vector<float> underwaterBandTable(const UnderwaterSetup& setup) {
       for (int j = 0; j < UWI_AUREOLE_NODES; ++j) uwi(UWI_ROW_AUREOLE + j, ib.aureole[j]);
       for (int j = 0; j < UWI_SOURCE_NODES * 3; ++j) uwi(UWI_ROW_AUREOLE_M + j, ib.aureole_modes[j]);
       for (int j = 0; j < UWI_SOURCE_NODES * 3; ++j) uwi(UWI_ROW_SRC_BOTTOM + j, ib.src_bottom[j]);
+      for (int j = 0; j < UWI_SOURCE_NODES * 3; ++j) uwi(UWI_ROW_SRC_DIFFUSE + j, ib.src_bottom_diffuse[j]);
       uwi(UWI_ROW_D1, ib.d1);
       uwi(UWI_ROW_D2, ib.d2);
       uwi(UWI_ROW_DP, ib.dp);

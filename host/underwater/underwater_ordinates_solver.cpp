@@ -193,18 +193,21 @@ double fitSourceTable(const DiscreteOrdinates& field, const DiscreteOrdinates* f
     return f.inscatterProfile(nus, depth_end, kDepthSamples);
   });
   const double error = fitModeTable(profiles, UWI_SOURCE_NODES, depth_end, k, m, bottom, o.src);
-  // The part of it the bottom's reflection of the beam brings (azimuth mode 0; over a lit bottom), fitted the
-  // same way: UwiBand.src_bottom, what the kernel takes off where objects hide or shade the sand
-  // (uwi_sand_share).
+  // The parts of it the bottom's reflection of the beam and of the diffuse light bring (azimuth mode 0; over
+  // a bottom), fitted the same way: UwiBand.src_bottom and src_bottom_diffuse, what the kernel takes off where
+  // objects hide or shade the sand (uwi_sand_shares).
   if (bottom) {
-    ModeProfiles lit;
-    lit[0] = field.inscatterProfile(nus, depth_end, kDepthSamples, true);
-    if (std::any_of(lit[0].begin(), lit[0].end(), [](double v) { return v != 0.0; })) {
+    const auto fitPart = [&](FieldPart part, float* out) {
+      ModeProfiles lit;
+      lit[0] = field.inscatterProfile(nus, depth_end, kDepthSamples, part);
+      if (std::none_of(lit[0].begin(), lit[0].end(), [](double v) { return v != 0.0; })) return;
       std::vector<float> table(UWI_SOURCE_NODES * UWI_SOURCE_TERMS);
       fitModeTable(lit, UWI_SOURCE_NODES, depth_end, k, m, bottom, table.data());
       for (int j = 0; j < UWI_SOURCE_NODES; ++j)
-        for (int q = 0; q < 3; ++q) o.src_bottom[j * 3 + q] = table[j * UWI_SOURCE_TERMS + q];
-    }
+        for (int q = 0; q < 3; ++q) out[j * 3 + q] = table[j * UWI_SOURCE_TERMS + q];
+    };
+    fitPart(FieldPart::bottom_beam, o.src_bottom);
+    fitPart(FieldPart::bottom_diffuse, o.src_bottom_diffuse);
   }
   if (source_streams > 0) {
     const int modes = field_h ? 3 : 1;
@@ -236,7 +239,7 @@ double fitTiltTable(const DiscreteOrdinates& field, const DiscreteOrdinates* fie
   std::vector<double> n_ys(UWI_TILT_NODES);
   for (int j = 0; j < UWI_TILT_NODES; ++j) n_ys[j] = kmath_d::uwi_tilt_node_cosine(j);
   ModeProfiles lit;
-  if (bottom) lit[0] = field.tiltedIrradianceProfile(n_ys, depth_end, kDepthSamples, true);
+  if (bottom) lit[0] = field.tiltedIrradianceProfile(n_ys, depth_end, kDepthSamples, FieldPart::bottom_beam);
   // None where the bottom reflects no beam (black, no sun): tilt_bottom stays 0.
   if (std::any_of(lit[0].begin(), lit[0].end(), [](double v) { return v != 0.0; })) {
     std::vector<float> table(UWI_TILT_NODES * UWI_SOURCE_TERMS);

@@ -68,6 +68,8 @@
                                                                    in row + j * 3 + m */
 /* UwiBand.src_bottom: source node j's term q in row UWI_ROW_SRC_BOTTOM + j * 3 + q. */
 #define UWI_ROW_SRC_BOTTOM (UWI_ROW_AUREOLE_M + UWI_SOURCE_NODES * 3)
-#define UWI_ROWS (UWI_ROW_SRC_BOTTOM + UWI_SOURCE_NODES * 3)
+/* UwiBand.src_bottom_diffuse: the same from UWI_ROW_SRC_DIFFUSE. */
+#define UWI_ROW_SRC_DIFFUSE (UWI_ROW_SRC_BOTTOM + UWI_SOURCE_NODES * 3)
+#define UWI_ROWS (UWI_ROW_SRC_DIFFUSE + UWI_SOURCE_NODES * 3)
 
 #endif /* SEASIM_UNDERWATER_BAND_TABLE_H */

@@ -267,71 +267,113 @@ SEASIM_FN real uwi_aureole(const SEASIM_GLOBAL UwiBand* ib, const SEASIM_GLOBAL 
 #define UWI_SAND_POINTS 2
 #define UWI_SAND_RAYS 4
 
-/* The sunlit sand's light a water point x gets from below, as a share of what the plane-parallel model's
- * sand everywhere would send: UWI_SAND_RAYS rays cosine-weighted about the downward vertical (the
- * golden-angle pattern of uwi_bottom_visibility). A ray that meets the bottom counts 1 where a shadow ray
- * from there finds the sun; one that meets an object counts that face's reflection of the beam against the
- * sand's, albedo_j max(n·s_w, 0) / (sand_albedo μ_w) where it is sunlit (object_albedo[j * albedo_stride]:
- * one band's). 1 without objects. */
-SEASIM_FN real uwi_sand_seen_lit(const SEASIM_GLOBAL UwObject* objects, int count, real bottom_depth, real3 x,
-                                 real3 s_w, const SEASIM_GLOBAL float* object_albedo, int albedo_stride,
-                                 real sand_albedo) {
-  real lit = R(0.0);
-  real cos_phi = R(1.0), sin_phi = R(0.0); /* azimuth k × the golden angle */
-  for (int k = 0; k < UWI_SAND_RAYS; ++k) {
-    const real u = ((real)k + R(0.5)) / (real)UWI_SAND_RAYS;
+/* The sand's light a water point x gets from below, as shares of what the plane-parallel model's open,
+ * sunlit sand everywhere would send: UWI_SAND_RAYS rays cosine-weighted about the downward vertical (the
+ * golden-angle pattern of uwi_bottom_visibility). Returned, the sunlit sand's share: a ray that meets the
+ * bottom counts 1 where a shadow ray from there finds the sun; one that meets an object counts that face's
+ * reflection of the beam against the sand's, albedo_j max(n·s_w, 0) / (sand_albedo μ_w) where it is sunlit
+ * (object_albedo[j * albedo_stride]: one band's). In *open, the diffusely lit sand's share: a ray that meets
+ * the bottom counts the share of the water above that point no object hides (UWI_SAND_RAYS up-rays
+ * cosine-weighted about the vertical: the sand reflects the diffuse light it gets from there, most of it
+ * from above); one that meets an object counts that face's reflection of the diffuse light against the
+ * sand's, albedo_j (1 + n_y) / (2 sand_albedo) e^{k (H - y_j)} (a plane of normal n under uniform light from
+ * above gets (1 + n_y)/2 of E_d, and E_d at the face's depth y_j is e^{k (H - y_j)} of the sand's). Both 1
+ * without objects. */
+SEASIM_FN real uwi_sand_seen(const SEASIM_GLOBAL UwObject* objects, int count, real bottom_depth, real3 x, real3 s_w,
+                             const SEASIM_GLOBAL float* object_albedo, int albedo_stride, real sand_albedo, real k,
+                             real* open) {
+  real lit = R(0.0), seen_open = R(0.0);
+  real cos_phi = R(1.0), sin_phi = R(0.0); /* azimuth ray × the golden angle */
+  for (int ray = 0; ray < UWI_SAND_RAYS; ++ray) {
+    const real u = ((real)ray + R(0.5)) / (real)UWI_SAND_RAYS;
     const real r = sqrt(u);
     const real3 dir = MAKE_REAL3(r * cos_phi, -sqrt(R(1.0) - u), r * sin_phi);
     uwi_golden_advance(&cos_phi, &sin_phi);
     real3 nb = MAKE_REAL3(0, 1, 0);
     int mat = UW_MAT_NONE;
     const real t = uw_scene_hit(objects, count, bottom_depth, x, dir, R(0.0), &nb, &mat);
+    const real3 hit = x + t * dir;
     if (mat == UW_MAT_BOTTOM) {
-      lit += uw_sun_visibility(objects, count, x + t * dir, MAKE_REAL3(0, 1, 0), s_w);
+      lit += uw_sun_visibility(objects, count, hit, MAKE_REAL3(0, 1, 0), s_w);
+      /* The up-rays start just above the sand, as uw_sun_visibility's shadow rays. */
+      const real3 above = hit + MAKE_REAL3(0, R(1e-3), 0);
+      real c2 = R(1.0), s2 = R(0.0), unhidden = R(0.0);
+      for (int j = 0; j < UWI_SAND_RAYS; ++j) {
+        const real u2 = ((real)j + R(0.5)) / (real)UWI_SAND_RAYS;
+        const real r2 = sqrt(u2);
+        const real3 up = MAKE_REAL3(r2 * c2, sqrt(R(1.0) - u2), r2 * s2);
+        uwi_golden_advance(&c2, &s2);
+        real3 n2 = MAKE_REAL3(0, 1, 0);
+        int m2 = UW_MAT_NONE;
+        uw_scene_hit(objects, count, bottom_depth, above, up, R(0.0), &n2, &m2);
+        if (m2 < 0) unhidden += R(1.0);
+      }
+      seen_open += unhidden / (real)UWI_SAND_RAYS;
     } else if (mat >= 0 && sand_albedo > R(0.0)) {
-      const real face = (real)object_albedo[mat * albedo_stride] * fmax(dot(nb, s_w), R(0.0)) /
-                        (sand_albedo * fmax(s_w.y, R(1e-3)));
-      if (face > R(0.0)) lit += face * uw_sun_visibility(objects, count, x + t * dir, nb, s_w);
+      const real ratio = (real)object_albedo[mat * albedo_stride] / sand_albedo;
+      const real face = ratio * fmax(dot(nb, s_w), R(0.0)) / fmax(s_w.y, R(1e-3));
+      if (face > R(0.0)) lit += face * uw_sun_visibility(objects, count, hit, nb, s_w);
+      const real y_j = clamp(-hit.y, R(0.0), bottom_depth);
+      seen_open += ratio * R(0.5) * (R(1.0) + nb.y) * exp(k * (bottom_depth - y_j));
     }
   }
+  *open = seen_open / (real)UWI_SAND_RAYS;
   return lit / (real)UWI_SAND_RAYS;
 }
 
-/* The share of the sunlit sand's light that a view ray from o along d to distance S (finite) gathers where
- * objects do not hide or shade the sand: uwi_sand_seen_lit at UWI_SAND_POINTS points evenly along the
- * ray, weighted by how the bottom's term of the source e^{-k (H - y)} reaches the camera, e^{-c' z - k (H -
- * y(z))} (c', k and the albedos: one band's, the same for every band of the pixel); not above 1. The model's plane-parallel water has
- * sunlit sand everywhere below; measured (docs/journal/underwater_regions_5_*.md) the objects in clear water came out
- * 1.04-1.06 of the path tracer, 1.10-1.11 when black, 1.03 with the sand black too; with the share the training
- * and held-out grids are all within 5 % (2 points x 4 rays: 4 x 8 lost a case and cost 81-88 ms where this costs
- * 28-31 ms, kd_multiple at 320x180 and 16 bands). 1 without a bottom or objects. */
-SEASIM_FN real uwi_sand_share(const SEASIM_GLOBAL UwObject* objects, int count, real bottom_depth, real3 o, real3 d,
-                              real S, real c_dm, real k, real3 s_w, const SEASIM_GLOBAL float* object_albedo,
-                              int albedo_stride, real sand_albedo) {
+/* The shares of the sunlit sand's light and (in *v_diffuse) of the diffusely lit sand's that a view ray from o
+ * along d to distance S (finite) gathers where objects do not hide or shade the sand: uwi_sand_seen at
+ * UWI_SAND_POINTS points evenly along the ray, weighted by how the bottom's term of the source e^{-k (H - y)}
+ * reaches the camera, e^{-c' z - k (H - y(z))} (c', k and the albedos: one band's, the same for every band of
+ * the pixel); not above 1. The model's plane-parallel water has sunlit, open sand everywhere below; measured
+ * (docs/journal/underwater_regions_5_*.md) the objects in clear water came out 1.04-1.06 of the path tracer,
+ * 1.10-1.11 when black, 1.03 with the sand black too; with the sunlit share the training and held-out grids
+ * are all within 5 % (2 points x 4 rays: 4 x 8 lost a case and cost 81-88 ms where this costs 28-31 ms,
+ * kd_multiple at 320x180 and 16 bands). The diffuse share takes the bright bottom's objects 0.5-0.8 % down
+ * (docs/journal/beyond_the_grids.md). 1 without a bottom or objects. */
+SEASIM_FN real uwi_sand_shares(const SEASIM_GLOBAL UwObject* objects, int count, real bottom_depth, real3 o, real3 d,
+                               real S, real c_dm, real k, real3 s_w, const SEASIM_GLOBAL float* object_albedo,
+                               int albedo_stride, real sand_albedo, real* v_diffuse) {
+  *v_diffuse = R(1.0);
   if (!(bottom_depth > R(0.0)) || count <= 0 || !(S < R(1e6))) return R(1.0);
-  real num = R(0.0), den = R(0.0);
+  real lit = R(0.0), open = R(0.0), den = R(0.0);
   for (int q = 0; q < UWI_SAND_POINTS; ++q) {
     const real z = S * ((real)q + R(0.5)) / (real)UWI_SAND_POINTS;
     const real3 x = o + z * d;
     const real y = clamp(-x.y, R(0.0), bottom_depth);
     const real w = exp(-c_dm * z - k * (bottom_depth - y));
-    num += w * uwi_sand_seen_lit(objects, count, bottom_depth, x, s_w, object_albedo, albedo_stride, sand_albedo);
+    real open_q;
+    lit += w * uwi_sand_seen(objects, count, bottom_depth, x, s_w, object_albedo, albedo_stride, sand_albedo, k,
+                             &open_q);
+    open += w * open_q;
     den += w;
   }
-  return den > R(0.0) ? fmin(num / den, R(1.0)) : R(1.0);
+  if (!(den > R(0.0))) return R(1.0);
+  *v_diffuse = fmin(open / den, R(1.0));
+  return fmin(lit / den, R(1.0));
 }
 
-/* uwi_sand_share of a view ray from the camera along d to its hit S, with the band table's
+/* uwi_sand_shares without the diffuse share. */
+SEASIM_FN real uwi_sand_share(const SEASIM_GLOBAL UwObject* objects, int count, real bottom_depth, real3 o, real3 d,
+                              real S, real c_dm, real k, real3 s_w, const SEASIM_GLOBAL float* object_albedo,
+                              int albedo_stride, real sand_albedo) {
+  real v_diffuse;
+  return uwi_sand_shares(objects, count, bottom_depth, o, d, S, c_dm, k, s_w, object_albedo, albedo_stride,
+                         sand_albedo, &v_diffuse);
+}
+
+/* uwi_sand_shares of a view ray from the camera along d to its hit S, with the band table's
  * (common/underwater_band_table.h) first band: c', k, the objects' albedo rows and the sand's albedo.
  * kd_multiple.cl per pixel, and sand_share.cl on a coarser lattice of pixels. */
-SEASIM_FN real uwi_view_sand_share(SEASIM_CONSTANT const UwParams* p, const SEASIM_GLOBAL UwObject* objects,
-                                   const SEASIM_GLOBAL float* band_table, int stride, real3 d, real S) {
+SEASIM_FN real uwi_view_sand_shares(SEASIM_CONSTANT const UwParams* p, const SEASIM_GLOBAL UwObject* objects,
+                                    const SEASIM_GLOBAL float* band_table, int stride, real3 d, real S,
+                                    real* v_diffuse) {
   const int row0 = UW_ROWS + p->object_count;
   const real3 cam = MAKE_REAL3(p->cam_pos[0], p->cam_pos[1], p->cam_pos[2]);
   const real3 s_w = MAKE_REAL3(p->sun_dir_water[0], p->sun_dir_water[1], p->sun_dir_water[2]);
-  return uwi_sand_share(objects, p->object_count, p->bottom_depth, cam, d, S, band_table[(row0 + UWI_ROW_C_DM) * stride],
-                        band_table[(row0 + UWI_ROW_K) * stride], s_w, band_table + UW_ROWS * stride, stride,
-                        band_table[UW_ROW_BOTTOM_ALBEDO * stride]);
+  return uwi_sand_shares(objects, p->object_count, p->bottom_depth, cam, d, S, band_table[(row0 + UWI_ROW_C_DM) * stride],
+                         band_table[(row0 + UWI_ROW_K) * stride], s_w, band_table + UW_ROWS * stride, stride,
+                         band_table[UW_ROW_BOTTOM_ALBEDO * stride], v_diffuse);
 }
 
 /* In-scattered radiance along a view ray from depth o_d along d (d_y its vertical component) to
@@ -339,22 +381,24 @@ SEASIM_FN real uwi_view_sand_share(SEASIM_CONSTANT const UwParams* p, const SEAS
  * term taken off when single_scattering). Never negative. The forward peak's aureole is not in it
  * (uwi_aureole: the water's point-spread, common/water_spread.h, spreads this light, not that).
  * uwi_multiple_sand: with v_sand (uwi_sand_share) of the sunlit sand's part of the source (UwiBand.src_bottom)
- * kept, 1 - v_sand taken off. */
+ * kept, 1 - v_sand taken off, and v_diffuse (uwi_sand_shares) of the diffusely lit sand's part
+ * (UwiBand.src_bottom_diffuse). */
 SEASIM_FN real uwi_multiple_sand(const SEASIM_GLOBAL UwiBand* ib, const SEASIM_GLOBAL UwBand* band, real g,
                                  real bottom_depth, real S, real d_y, real o_d, real cos_s, real mu_w,
-                                 int single_scattering, int multiple, real v_sand) {
+                                 int single_scattering, int multiple, real v_sand, real v_diffuse) {
   if (!multiple) return R(0.0);
   const real c_dm = ib->c_dm, k = ib->k;
   const int node = uwi_source_node(d_y);
   const real cos_dphi = uwi_cos_azimuth(cos_s, d_y, mu_w);
   const SEASIM_GLOBAL float* sand = ib->src_bottom + 3 * node;
-  const real hidden = R(1.0) - v_sand;
-  const real w1 = uwi_source_weight(ib, node, cos_dphi, 0) - hidden * (real)sand[0];
-  const real w2 = uwi_source_weight(ib, node, cos_dphi, 1) - hidden * (real)sand[1];
+  const SEASIM_GLOBAL float* open = ib->src_bottom_diffuse + 3 * node;
+  const real hidden = R(1.0) - v_sand, shaded = R(1.0) - v_diffuse;
+  const real w1 = uwi_source_weight(ib, node, cos_dphi, 0) - hidden * (real)sand[0] - shaded * (real)open[0];
+  const real w2 = uwi_source_weight(ib, node, cos_dphi, 1) - hidden * (real)sand[1] - shaded * (real)open[1];
   /* The beam's diffuse offspring, and the beam scattered once with the exact phase function below its
    * peak (TMS; uwi_tms_phase). */
   const real phase = hg_phase(cos_s, g);
-  const real wp = uwi_source_weight(ib, node, cos_dphi, 2) - hidden * (real)sand[2] +
+  const real wp = uwi_source_weight(ib, node, cos_dphi, 2) - hidden * (real)sand[2] - shaded * (real)open[2] +
                   (real)band->b * uwi_tms_phase(phase, (real)ib->p_clip) * (real)band->e_beam0;
   const real i1 = kd_exp_integral(k, c_dm, d_y, o_d, S);
   /* e^{-k (H - y(z))} = e^{-k (H - o_d)} e^{-k d_y z}: the same integral seen from the bottom. */
@@ -371,7 +415,8 @@ SEASIM_FN real uwi_multiple_sand(const SEASIM_GLOBAL UwiBand* ib, const SEASIM_G
 SEASIM_FN real uwi_multiple(const SEASIM_GLOBAL UwiBand* ib, const SEASIM_GLOBAL UwBand* band, real g,
                             real bottom_depth, real S, real d_y, real o_d, real cos_s, real mu_w,
                             int single_scattering, int multiple) {
-  return uwi_multiple_sand(ib, band, g, bottom_depth, S, d_y, o_d, cos_s, mu_w, single_scattering, multiple, R(1.0));
+  return uwi_multiple_sand(ib, band, g, bottom_depth, S, d_y, o_d, cos_s, mu_w, single_scattering, multiple, R(1.0),
+                           R(1.0));
 }
 
 /* The forward peak's light along a view ray from depth o_d along d (d_y, cos_s = d·s_w) to distance S,
@@ -484,13 +529,13 @@ SEASIM_FN real uwi_surface(const SEASIM_GLOBAL UwiBand* ib, const SEASIM_GLOBAL 
 SEASIM_FN real uwi_band_radiance_sand(const SEASIM_GLOBAL UwiBand* ib, const SEASIM_GLOBAL UwBand* band, real g,
                                       int mat, real S, real3 n, real3 d, real o_d, real3 s_w, real albedo, real vis,
                                       real vis_b, real sky_l, real ior, real bottom_depth, int single_scattering,
-                                      int multiple, UwiMirrorHit mirror, real v_sand) {
+                                      int multiple, UwiMirrorHit mirror, real v_sand, real v_diffuse) {
   const real cos_s = dot(d, s_w);
   /* The aureole to where the ray ends (the surface: 0, as kd_multiple.cl takes it). */
   const real y1 = mat == UW_MAT_SURFACE ? R(0.0) : fmax(o_d - S * d.y, R(0.0));
   const real l_ms =
       multiple ? fmax(uwi_multiple_sand(ib, band, g, bottom_depth, S, d.y, o_d, cos_s, s_w.y, single_scattering,
-                                        multiple, v_sand) +
+                                        multiple, v_sand, v_diffuse) +
                           uwi_forward_peak(ib, band, g, S, d.y, o_d, y1, cos_s, s_w.y, single_scattering),
                       R(0.0))
                : R(0.0);
@@ -501,11 +546,11 @@ SEASIM_FN real uwi_band_radiance_sand(const SEASIM_GLOBAL UwiBand* ib, const SEA
   return exp(-(real)ib->c_dm * S) * l_s + l_ms;
 }
 
-/* The same with every sand lit and seen (v_sand = 1). */
+/* The same with every sand lit and seen (v_sand = v_diffuse = 1). */
 SEASIM_FN real uwi_band_radiance(const SEASIM_GLOBAL UwiBand* ib, const SEASIM_GLOBAL UwBand* band, real g, int mat,
                                  real S, real3 n, real3 d, real o_d, real3 s_w, real albedo, real vis, real vis_b,
                                  real sky_l, real ior, real bottom_depth, int single_scattering, int multiple,
                                  UwiMirrorHit mirror) {
   return uwi_band_radiance_sand(ib, band, g, mat, S, n, d, o_d, s_w, albedo, vis, vis_b, sky_l, ior, bottom_depth,
-                                single_scattering, multiple, mirror, R(1.0));
+                                single_scattering, multiple, mirror, R(1.0), R(1.0));
 }

@@ -101,6 +101,17 @@ SEASIM_FN void uwi_lanes_hide_sand(const SEASIM_GLOBAL float* table, int stride,
   w->wp -= hidden * LOADB(row + 2 * (size_t)stride, i);
 }
 
+/* The same for the diffusely lit sand's part (UwiBand.src_bottom_diffuse) and its share v_diffuse
+ * (uwi_sand_shares). */
+SEASIM_FN void uwi_lanes_hide_diffuse_sand(const SEASIM_GLOBAL float* table, int stride, int uwi_row0, int i,
+                                           int node, real v_diffuse, UwiWeights* w) {
+  const real hidden = R(1.0) - v_diffuse;
+  const SEASIM_GLOBAL float* row = table + (size_t)(uwi_row0 + UWI_ROW_SRC_DIFFUSE + 3 * node) * (size_t)stride;
+  w->w1 -= hidden * LOADB(row, i);
+  w->w2 -= hidden * LOADB(row + stride, i);
+  w->wp -= hidden * LOADB(row + 2 * (size_t)stride, i);
+}
+
 /* The diffuse irradiance's weights of the three exponentials on a tilted plane (uwi_tilt_irradiance):
  * node and frac from uwi_tilt_node of the normal's n_y, cos_phi = uwi_cos_azimuth(n·s_w, n_y, μ_w) and vis_b
  * (uwi_bottom_visibility) once per pixel; the table's two nodes interpolated. */

@@ -78,6 +78,10 @@ typedef struct {
                                              reflection of the beam brings (the order-3 field's; 0 without a
                                              bottom): what the water loses where objects hide or shade the sand
                                              (uwi_sand_share) */
+  float src_bottom_diffuse[UWI_SOURCE_NODES * 3]; /* [node * 3 + q]: the part of src's T0_q that the bottom's
+                                                     reflection of the diffuse light brings (the same field's):
+                                                     what the water loses where objects hide the sand or shade
+                                                     it from the water above (uwi_sand_shares) */
 } UwiBand;
 
 #endif /* SEASIM_UNDERWATER_ORDINATES_PARAMS_H */

@@ -100,22 +100,26 @@ seasim::Image cpuOrdinates(const seasim::UnderwaterSetup& s, bool multiple, std:
                                     : kd::uwi_no_mirror_object();
       if (mirror_hits && mat_m >= 0 && mirror.s < p.bottom_depth / std::max(d.y, 1e-6)) ++*mirror_hits;
       double rgb[3] = {0, 0, 0};
-      // The share of the sunlit sand's light the ray gathers unhidden and unshaded (kd_multiple.cl's, with the
-      // first band's c', k and albedos).
+      // The shares of the sunlit and of the diffusely lit sand's light the ray gathers unhidden and unshaded
+      // (kd_multiple.cl's, with the first band's c', k and albedos).
+      double v_diffuse = 1.0;
       const double v_sand =
-          multiple ? kd::uwi_sand_share(s.objects.data(), p.object_count, p.bottom_depth, o, d, S, s.ordinates[0].c_dm,
-                                        s.ordinates[0].k, s_w, s.albedo.data(), p.band_count, s.bands[0].bottom_albedo)
+          multiple ? kd::uwi_sand_shares(s.objects.data(), p.object_count, p.bottom_depth, o, d, S, s.ordinates[0].c_dm,
+                                         s.ordinates[0].k, s_w, s.albedo.data(), p.band_count,
+                                         s.bands[0].bottom_albedo, &v_diffuse)
                    : 1.0;
       for (int i = 0; i < p.band_count; ++i) {
         if (mat_m >= 0) mirror.albedo = s.albedo[size_t(mat_m) * p.band_count + i];
         const UwBand& b = s.bands[i];
         const double albedo = mat >= 0 ? s.albedo[size_t(mat) * p.band_count + i] : mat == UW_MAT_BOTTOM ? b.bottom_albedo : 0.0;
         double L = kd::uwi_band_radiance_sand(&s.ordinates[i], &b, p.g, mat, S, n, d, -o.y, s_w, albedo, vis, vis_b,
-                                              b.sky_radiance, p.ior, p.bottom_depth, 0, multiple ? 1 : 0, mirror, v_sand);
+                                              b.sky_radiance, p.ior, p.bottom_depth, 0, multiple ? 1 : 0, mirror, v_sand,
+                                              v_diffuse);
         if (forward) {
           const size_t px = size_t(y) * p.width + x;
           const double l_in = kd::uwi_multiple_sand(&s.ordinates[i], &b, p.g, p.bottom_depth, S, d.y, -o.y,
-                                                    kd::dot(d, s_w), s_w.y, 0, multiple ? 1 : 0, v_sand);
+                                                    kd::dot(d, s_w), s_w.y, 0, multiple ? 1 : 0, v_sand,
+                                                    v_diffuse);
           // The in-scatter with the forward peak's light (uwi_forward_peak), which the spread leaves alone
           // (kd_multiple.cl): the rest of L is the hit's.
           const double y1 = mat == UW_MAT_SURFACE ? 0.0 : std::max(-o.y - S * d.y, 0.0);

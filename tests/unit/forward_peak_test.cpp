@@ -215,44 +215,61 @@ TEST(ForwardPeak, AureoleHoldsTheBeamsSurplusInFloatAndDouble) {
 
 namespace {
 
-// The sand the objects hide or shade (common/underwater_ordinates.h uwi_sand_seen_lit, uwi_sand_share): the share of the sunlit
-// sand's light a water point gets, against objects whose answer is known, in float and double.
+// The sand the objects hide or shade (common/underwater_ordinates.h uwi_sand_seen, uwi_sand_shares): the shares
+// of the sunlit and of the diffusely lit sand's light a water point gets, against objects whose answer is
+// known, in float and double.
 using seasim::testing::uwTestBox;
 
 TEST(SandShare, KnownAnswersInFloatAndDouble) {
   const double H = 5.0;
   const kd::real3 x{0, -2, 0}, sun_up{0, 1, 0};
   const kf::real3 xf{0, -2, 0}, sun_up_f{0, 1, 0};
+  double open = -1;
+  float open_f = -1;
   // A slab under the point, wider than every ray's reach to the sand: all the sand hidden.
   const UwObject slab[1] = {uwTestBox(-100, -4, -100, 100, -3, 100)};
   const float black[1] = {0.0f}, sand_like[1] = {0.3f};
-  EXPECT_EQ(kd::uwi_sand_seen_lit(slab, 1, H, x, sun_up, black, 1, 0.3), 0.0);
-  EXPECT_EQ(kf::uwi_sand_seen_lit(slab, 1, float(H), xf, sun_up_f, black, 1, 0.3f), 0.0f);
-  // The same slab as bright as the sand, the sun overhead: its top sends what the sand would.
-  EXPECT_NEAR(kd::uwi_sand_seen_lit(slab, 1, H, x, sun_up, sand_like, 1, 0.3), 1.0, 1e-6);  // 0.3f against 0.3
-  EXPECT_NEAR(kf::uwi_sand_seen_lit(slab, 1, float(H), xf, sun_up_f, sand_like, 1, 0.3f), 1.0f, 1e-6f);
-  // Nothing below the point (the slab above it): every ray reaches sunlit sand... but the slab above shades
-  // the sand from the sun overhead, so none of it is lit.
+  EXPECT_EQ(kd::uwi_sand_seen(slab, 1, H, x, sun_up, black, 1, 0.3, 0.1, &open), 0.0);
+  EXPECT_EQ(open, 0.0);
+  EXPECT_EQ(kf::uwi_sand_seen(slab, 1, float(H), xf, sun_up_f, black, 1, 0.3f, 0.1f, &open_f), 0.0f);
+  EXPECT_EQ(open_f, 0.0f);
+  // The same slab as bright as the sand, the sun overhead: its top sends what the sand would of the beam,
+  // and of the diffuse light what its 2 m shallower top gets, e^{k 2} of the sand's.
+  EXPECT_NEAR(kd::uwi_sand_seen(slab, 1, H, x, sun_up, sand_like, 1, 0.3, 0.1, &open), 1.0, 1e-6);  // 0.3f against 0.3
+  EXPECT_NEAR(open, std::exp(0.2), 1e-6);
+  EXPECT_NEAR(kf::uwi_sand_seen(slab, 1, float(H), xf, sun_up_f, sand_like, 1, 0.3f, 0.1f, &open_f), 1.0f, 1e-6f);
+  EXPECT_NEAR(open_f, std::exp(0.2), 1e-6);
+  // Nothing below the point (the slab above it): every ray reaches the sand, but the slab above shades it
+  // from the sun overhead and hides the water above it from every up-ray: none of it lit either way.
   const UwObject roof[1] = {uwTestBox(-100, -1.5f, -100, 100, -1, 100)};
-  EXPECT_EQ(kd::uwi_sand_seen_lit(roof, 1, H, x, sun_up, black, 1, 0.3), 0.0);
+  EXPECT_EQ(kd::uwi_sand_seen(roof, 1, H, x, sun_up, black, 1, 0.3, 0.1, &open), 0.0);
+  EXPECT_EQ(open, 0.0);
   // A small box far to the side: no ray meets it, no shadow falls under the point: 1.
   const UwObject aside[1] = {uwTestBox(50, -4, 50, 51, -3, 51)};
-  EXPECT_EQ(kd::uwi_sand_seen_lit(aside, 1, H, x, sun_up, black, 1, 0.3), 1.0);
+  EXPECT_EQ(kd::uwi_sand_seen(aside, 1, H, x, sun_up, black, 1, 0.3, 0.1, &open), 1.0);
+  EXPECT_EQ(open, 1.0);
   // No objects, or no bottom: the plane-parallel model's own answer, 1.
   const kd::real3 d{0, 0, -1};
-  EXPECT_EQ(kd::uwi_sand_share(aside, 0, H, x, d, 10.0, 0.1, 0.05, sun_up, black, 1, 0.3), 1.0);
-  EXPECT_EQ(kd::uwi_sand_share(slab, 1, 0.0, x, d, 10.0, 0.1, 0.05, sun_up, black, 1, 0.3), 1.0);
-  EXPECT_EQ(kd::uwi_sand_share(slab, 1, H, x, d, 1e30, 0.1, 0.05, sun_up, black, 1, 0.3), 1.0);  // deep water
+  for (const auto& [objects, count, depth, S] : {std::tuple{aside, 0, H, 10.0}, std::tuple{slab, 1, 0.0, 10.0},
+                                                 std::tuple{slab, 1, H, 1e30}}) {  // the last: deep water
+    EXPECT_EQ(kd::uwi_sand_shares(objects, count, depth, x, d, S, 0.1, 0.05, sun_up, black, 1, 0.3, &open), 1.0);
+    EXPECT_EQ(open, 1.0);
+  }
   // Along a level ray over the black slab: every point's sand hidden.
-  EXPECT_EQ(kd::uwi_sand_share(slab, 1, H, x, d, 10.0, 0.1, 0.05, sun_up, black, 1, 0.3), 0.0);
-  // Over a slab that covers half the ray's points (x < 0 from z = -5): the weights of its points.
+  EXPECT_EQ(kd::uwi_sand_shares(slab, 1, H, x, d, 10.0, 0.1, 0.05, sun_up, black, 1, 0.3, &open), 0.0);
+  EXPECT_EQ(open, 0.0);
+  // Over a slab that covers half the ray's points (x < 0 from z = -5): the weights of its points; the
+  // diffusely lit sand beside the slab also loses the water the slab hides from it.
   const UwObject half[1] = {uwTestBox(-100, -4, -100, 100, -3, -5)};
-  const double v = kd::uwi_sand_share(half, 1, H, x, d, 10.0, 0.0, 0.0, sun_up, black, 1, 0.3);
+  const double v = kd::uwi_sand_shares(half, 1, H, x, d, 10.0, 0.0, 0.0, sun_up, black, 1, 0.3, &open);
   EXPECT_GT(v, 0.3);
   EXPECT_LT(v, 0.7);
-  const float vf = kf::uwi_sand_share(half, 1, float(H), xf, kf::real3{0, 0, -1}, 10.0f, 0.0f, 0.0f, sun_up_f, black,
-                                      1, 0.3f);
+  EXPECT_GT(open, 0.2);
+  EXPECT_LT(open, v);
+  const float vf = kf::uwi_sand_shares(half, 1, float(H), xf, kf::real3{0, 0, -1}, 10.0f, 0.0f, 0.0f, sun_up_f, black,
+                                       1, 0.3f, &open_f);
   EXPECT_NEAR(vf, v, 1e-6);
+  EXPECT_NEAR(open_f, open, 1e-6);
 }
 
 }  // namespace

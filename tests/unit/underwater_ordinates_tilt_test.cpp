@@ -25,6 +25,7 @@ namespace kd = seasim::kmath_d;
 namespace kf = seasim::kmath_f;
 using seasim::DiscreteOrdinates;
 using seasim::DiscreteOrdinatesLayer;
+using seasim::FieldPart;
 using seasim::testing::uwTestBand;
 
 constexpr double kMuW = seasim::testing::kUwTestMuW;
@@ -101,7 +102,8 @@ TEST(UnderwaterOrdinatesTilt, BottomSunlitShareScalesTheBeamTheBottomReflects) {
   std::vector<std::vector<double>> tilted;
   for (double share : {0.0, 1.0, 0.3}) {
     layer.bottom_sunlit = share;
-    tilted.push_back(DiscreteOrdinates(layer, 16, 0, 3).tiltedIrradianceProfile(n_ys, 5.0, 4, share == 0.3));
+    tilted.push_back(DiscreteOrdinates(layer, 16, 0, 3).tiltedIrradianceProfile(
+        n_ys, 5.0, 4, share == 0.3 ? FieldPart::bottom_beam : FieldPart::whole));
   }
   for (size_t i = 0; i < tilted[0].size(); ++i)
     EXPECT_NEAR(tilted[2][i], tilted[1][i] - tilted[0][i], 1e-7 * tilted[1][i]) << i;
@@ -109,6 +111,43 @@ TEST(UnderwaterOrdinatesTilt, BottomSunlitShareScalesTheBeamTheBottomReflects) {
   for (double bad : {-0.1, 1.1}) {
     layer.bottom_sunlit = bad;
     EXPECT_THROW(DiscreteOrdinates(layer, 16, 0, 3), std::invalid_argument) << bad;
+  }
+}
+
+// The bottom's reflection of the diffuse light, as the solver gives it apart, is what is left of the field
+// over the bottom of albedo ρ once the field over a black bottom and the beam's reflection are taken off:
+// in the tilted irradiance and in the in-scatter, at every depth, in clear and turbid water, with the bottom
+// partly sunlit. It is positive (the bottom only adds light), none without a bottom, none in mode 1.
+TEST(UnderwaterOrdinatesTilt, BottomsDiffuseReflectionIsTheFieldLessTheBlackBottomsAndTheBeams) {
+  const std::vector<double> n_ys = {-1.0, -0.4, 0.0, 0.6, 1.0};
+  const std::vector<double> nus = {-0.95, -0.5, -0.1, 0.2, 0.7, 1.0};
+  for (const auto& [a, b] : {std::pair{0.1, 0.3}, std::pair{0.03, 0.05}, std::pair{0.2, 2.0}}) {
+    const UwBand band = uwTestBand(a, b, 0.146, 0.85, kMuW, 0.35);
+    DiscreteOrdinatesLayer layer = layerOf(band, 0.9, 5.0);
+    layer.bottom_sunlit = 0.6;
+    const DiscreteOrdinates whole(layer, 16, 0, 3);
+    DiscreteOrdinatesLayer black = layer;
+    black.bottom_albedo = 0.0;
+    const DiscreteOrdinates dark(black, 16, 0, 3);
+    const auto parts = [&](auto profile) {
+      const std::vector<double> w = profile(whole, FieldPart::whole), k = profile(dark, FieldPart::whole);
+      const std::vector<double> beam = profile(whole, FieldPart::bottom_beam);
+      const std::vector<double> diffuse = profile(whole, FieldPart::bottom_diffuse);
+      for (size_t i = 0; i < w.size(); ++i) {
+        const double expect = w[i] - k[i] - 0.6 * beam[i];
+        EXPECT_NEAR(diffuse[i], expect, 1e-9 * std::fabs(w[i]) + 1e-15) << a << " " << b << " " << i;
+        EXPECT_GT(diffuse[i], 0.0) << a << " " << b << " " << i;
+      }
+    };
+    parts([&](const DiscreteOrdinates& f, FieldPart part) { return f.tiltedIrradianceProfile(n_ys, 5.0, 4, part); });
+    parts([&](const DiscreteOrdinates& f, FieldPart part) { return f.inscatterProfile(nus, 5.0, 4, part); });
+    // Modes 1 and 2 see no Lambertian bottom; nor does open water.
+    for (const auto& p : DiscreteOrdinates(layer, 16, 1, 3).inscatterProfile(nus, 5.0, 4, FieldPart::bottom_diffuse))
+      EXPECT_EQ(p, 0.0);
+    DiscreteOrdinatesLayer open = layer;
+    open.bottom_depth = 0.0;
+    for (const auto& p : DiscreteOrdinates(open, 16, 0, 3).inscatterProfile(nus, 5.0, 4, FieldPart::bottom_diffuse))
+      EXPECT_EQ(p, 0.0);
   }
 }
 

@@ -1,6 +1,6 @@
-// sand_share_node.cpp — "sand_share" of sand_share.cl: the discrete-ordinates model's share of the
-// sunlit sand the objects leave a view ray (common/underwater_ordinates.h, uwi_view_sand_share), on a
-// lattice of every quality.sand_share_step-th pixel, published as "sand_share" (UnderwaterSandShare) for
+// sand_share_node.cpp — "sand_share" of sand_share.cl: the discrete-ordinates model's shares of the
+// sunlit and of the diffusely lit sand the objects leave a view ray (common/underwater_ordinates.h,
+// uwi_view_sand_shares), on a lattice of every quality.sand_share_step-th pixel, published as "sand_share" (UnderwaterSandShare) for
 // kd_multiple to interpolate between lattice pixels on the same surface. Planned only where the share
 // is not 1 everywhere: the discrete-ordinates model with multiple scattering, objects and a bottom,
 // and a step above 1 (1: kd_multiple evaluates every pixel itself).
@@ -36,7 +36,7 @@ class SandShareNode : public Pass {
     onDevice("sand_share pass set-up", [&] {
       kernel_ = cl::Kernel(ctx.device().program(entry_.kernel_file, entry_.defines).program, "sand_share");
       share_->map = cl::Buffer(ctx.device().context(), CL_MEM_READ_WRITE,
-                               sizeof(float) * static_cast<size_t>(share_->width) * static_cast<size_t>(share_->height));
+                               2 * sizeof(float) * static_cast<size_t>(share_->width) * static_cast<size_t>(share_->height));
     });
     res.publish("sand_share", share_);
   }

@@ -31,8 +31,8 @@ inline const std::vector<std::string> kUnderwaterSetupKeys = {
     "sun.*",     "sky.*",     "water.*",  "bottom.*", "surface.*", "underwater.*",
     "objects.*", "quality.caustic_map_size", "quality.caustic_layers"};
 
-// sand_share.cl's lattice: the discrete-ordinates model's share of the sunlit sand at every step-th
-// pixel in x and y, width x height of them (kd_multiple.cl interpolates it).
+// sand_share.cl's lattice: the discrete-ordinates model's shares of the sunlit and of the diffusely lit sand
+// at every step-th pixel in x and y, two planes of width x height (kd_multiple.cl interpolates them).
 struct UnderwaterSandShare {
   cl::Buffer map;
   int width = 0, height = 0, step = 1;
