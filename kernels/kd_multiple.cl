@@ -489,8 +489,8 @@ static inline realb uwi_step(__constant UwParams* p, __global const float* band_
   uwi_ends(&v, p->bottom_depth, k->S, k->y_hit, k->single & k->multiple, &ends);
   UwiWeights w;
   uwi_lanes_weights(band_table, stride, q->row0, i, q->node, q->cos_dphi, &w);
-  if (q->v_sand < 1.0f) uwi_lanes_hide_sand(band_table, stride, q->row0, i, q->node, q->v_sand, &w);
-  if (q->v_diffuse < 1.0f) uwi_lanes_hide_diffuse_sand(band_table, stride, q->row0, i, q->node, q->v_diffuse, &w);
+  if (q->v_sand < 1.0f || q->v_diffuse < 1.0f)
+    uwi_lanes_hide_sand(band_table, stride, q->row0, i, q->node, q->v_sand, q->v_diffuse, &w);
   realb L;
   const realb in_scatter =
       uwi_step_inscatter(p, band_table, stride, k, q, i, &v, &w, &camera, k->S, k->y_hit, q->aureole_end, &L);

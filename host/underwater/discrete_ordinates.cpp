@@ -399,10 +399,9 @@ void DiscreteOrdinates::solveBoundaries(const DiscreteOrdinatesLayer& layer) {
   for (int i = 0; i < n; ++i) sky[i] = sky_unit > 0 ? sky[i] * layer.e_sky0 / sky_unit : 0.0;
   c_decay_.assign(n, 0.0);
   c_grow_.assign(n, 0.0);
-  c_decay_bottom_.assign(n, 0.0);
-  c_grow_bottom_.assign(n, 0.0);
-  c_decay_diffuse_.assign(n, 0.0);
-  c_grow_diffuse_.assign(n, 0.0);
+  c_decay_sand_.assign(n, 0.0);
+  c_grow_sand_.assign(n, 0.0);
+  sand_beam_ = sand_diffuse_ = 0;
   if (!(bottom_ > 0)) {
     std::vector<double> sys(n * n, 0.0), rhs(n, 0.0);
     for (int i = 0; i < n; ++i) {
@@ -439,7 +438,7 @@ void DiscreteOrdinates::solveBoundaries(const DiscreteOrdinatesLayer& layer) {
       }
     return sys;
   };
-  // E_d at the bottom over a black one, divided by 2π: the diffuse light the bottom would reflect first.
+  // E_d at the bottom over a black one, divided by 2π: the diffuse light the bottom reflects first.
   double flux_black = 0;
   if (rho > 0) {
     std::vector<double> sys = system(0.0), rhs(n2, 0.0);
@@ -452,28 +451,26 @@ void DiscreteOrdinates::solveBoundaries(const DiscreteOrdinatesLayer& layer) {
     for (int j = 0; j < n; ++j)
       flux_black += rhs[j] * flux_dec[j] * std::exp(-lambda_[j] * bottom_) + rhs[n + j] * flux_grow[j];
   }
-  // Three right-hand sides, one elimination: column 0 the whole field; column 1 the part the bottom's
-  // reflection of the whole beam brings, that source alone (FieldPart::bottom_beam; the field is linear in
-  // bottom_sunlit); column 2 the part its reflection of the diffuse light brings (FieldPart::bottom_diffuse:
-  // rho/π E_d(H) of the field over a black bottom, with what it then sends back and forth). The whole field
-  // is the black bottom's plus bottom_sunlit times column 1 plus column 2.
-  std::vector<double> sys = system(rho), rhs(n2 * 3, 0.0);
+  // Two right-hand sides, one elimination: column 0 the whole field; column 1 the light a Lambertian bottom
+  // sends per unit of the irradiance it reflects first, rho/π, with what that then sends back and forth
+  // (FieldPart::sand_unit). The field is linear in what the bottom reflects: the whole field is the black
+  // bottom's plus (bottom_sunlit sand_beam_ + sand_diffuse_) times column 1.
+  std::vector<double> sys = system(rho), rhs(n2 * 2, 0.0);
   for (int i = 0; i < n; ++i) {
-    rhs[3 * i] = sky[i] - (z_plus_[i] - refl[i] * z_minus_[i]);
-    rhs[3 * (n + i)] = rho / kPi * layer.bottom_sunlit * e_sun0_ * em - ep * (z_minus_[i] - 2 * rho * flux_p);
-    rhs[3 * (n + i) + 1] = rho / kPi * e_sun0_ * em;
-    rhs[3 * (n + i) + 2] = 2 * rho * flux_black;
+    rhs[2 * i] = sky[i] - (z_plus_[i] - refl[i] * z_minus_[i]);
+    rhs[2 * (n + i)] = rho / kPi * layer.bottom_sunlit * e_sun0_ * em - ep * (z_minus_[i] - 2 * rho * flux_p);
+    rhs[2 * (n + i) + 1] = rho / kPi;
   }
-  solveOrThrow(sys, rhs, n2, 3);
-  c_decay_diffuse_.assign(n, 0.0);
-  c_grow_diffuse_.assign(n, 0.0);
+  solveOrThrow(sys, rhs, n2, 2);
   for (int j = 0; j < n; ++j) {
-    c_decay_[j] = rhs[3 * j];
-    c_grow_[j] = rhs[3 * (n + j)];
-    c_decay_bottom_[j] = rhs[3 * j + 1];
-    c_grow_bottom_[j] = rhs[3 * (n + j) + 1];
-    c_decay_diffuse_[j] = rhs[3 * j + 2];
-    c_grow_diffuse_[j] = rhs[3 * (n + j) + 2];
+    c_decay_[j] = rhs[2 * j];
+    c_grow_[j] = rhs[2 * (n + j)];
+    c_decay_sand_[j] = rhs[2 * j + 1];
+    c_grow_sand_[j] = rhs[2 * (n + j) + 1];
+  }
+  if (rho > 0) {
+    sand_beam_ = e_sun0_ * em;
+    sand_diffuse_ = 2 * kPi * flux_black;
   }
 }
 
@@ -602,15 +599,11 @@ std::vector<double> DiscreteOrdinates::tiltedIrradianceProfile(const std::vector
 void DiscreteOrdinates::radiancesFrom(double y, const double* e_dec, const double* e_grow, double* down,
                                       double* up, FieldPart part) const {
   const int n = n_;
-  // The bottom's reflection of the beam or of the diffuse light alone is a homogeneous solution: no
-  // particular part.
-  const double ep = part == FieldPart::whole ? std::exp(-m_particular_ * y) : 0.0;
-  const std::vector<double>& c_dec = part == FieldPart::bottom_beam      ? c_decay_bottom_
-                                     : part == FieldPart::bottom_diffuse ? c_decay_diffuse_
-                                                                         : c_decay_;
-  const std::vector<double>& c_gro = part == FieldPart::bottom_beam      ? c_grow_bottom_
-                                     : part == FieldPart::bottom_diffuse ? c_grow_diffuse_
-                                                                         : c_grow_;
+  // The bottom's reflection alone is a homogeneous solution: no particular part.
+  const bool whole = part == FieldPart::whole;
+  const double ep = whole ? std::exp(-m_particular_ * y) : 0.0;
+  const std::vector<double>& c_dec = whole ? c_decay_ : c_decay_sand_;
+  const std::vector<double>& c_gro = whole ? c_grow_ : c_grow_sand_;
   for (int i = 0; i < n; ++i) {
     double d = z_plus_[i] * ep, u = z_minus_[i] * ep;
     for (int j = 0; j < n; ++j) {

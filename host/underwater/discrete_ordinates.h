@@ -85,11 +85,11 @@ std::array<double, 3> azimuthModes(double nu, double mu, int azimuths, F f) {
   return m;
 }
 
-// Which light of the field a profile holds: all of it; or only what the bottom's reflection of the whole
-// beam brings (whatever bottom_sunlit is), or of the diffuse light (rho/π E_d(H) of the field over a black
-// bottom), each with what it then sends back and forth between the bottom and the surface (0 without a bottom
-// and in modes 1, 2). The whole field is the black bottom's + bottom_sunlit × bottom_beam + bottom_diffuse.
-enum class FieldPart { whole, bottom_beam, bottom_diffuse };
+// Which light of the field a profile holds: all of it; or only the light a Lambertian bottom sends per unit
+// of the irradiance it reflects first (W m^-2 on the sand; its albedo/π), with what that then sends back and
+// forth between the bottom and the surface (0 without a bottom, over a black one and in modes 1, 2). The
+// whole field is the black bottom's plus (bottom_sunlit sandBeam() + sandDiffuse()) times sand_unit.
+enum class FieldPart { whole, sand_unit };
 
 class DiscreteOrdinates {
  public:
@@ -123,7 +123,7 @@ class DiscreteOrdinates {
   // Tanaka 1988's TMS). Mode 1's is the coefficient of cos φ, φ from the sun's azimuth. Integrated along
   // a ray with extinction() it gives the radiance at any angle (the source-function integration of
   // DISORT's user angles). Row-major, samples x nus.size(). part: the whole field's in-scatter, or only that of
-  // the light the bottom's reflection of the whole beam or of the diffuse light brings (FieldPart).
+  // the light the bottom reflects, per unit of what it reflects first (FieldPart).
   std::vector<double> inscatterProfile(const std::vector<double>& nus, double depth_end, int samples,
                                        FieldPart part = FieldPart::whole) const;
   // The diffuse light's irradiance on a plane whose unit normal has the upward vertical component n_y (in
@@ -131,9 +131,15 @@ class DiscreteOrdinates {
   // ∫ L^m(ω) cos(m φ) max(0, -ω·n) dΩ with the normal's azimuth φ_n at 0, so the coefficient of cos(m φ_n),
   // φ_n the azimuth of -n from the sun beam's (tiltedIrradianceKernel). n_y = 1 gives E_d (mode 0), -1 E_u;
   // at n_y = 0 mode 1 gives half the horizontal flux. Row-major, samples x n_ys.size(). part: the whole
-  // field's, or only the part a FieldPart brings (bottom_beam: what a face seeing the bottom in shadow lacks).
+  // field's, or only the bottom's per unit of what it reflects first (FieldPart; times sandBeam(): what a face
+  // seeing the bottom in shadow lacks).
   std::vector<double> tiltedIrradianceProfile(const std::vector<double>& n_ys, double depth_end, int samples,
                                               FieldPart part = FieldPart::whole) const;
+  // The irradiance the bottom reflects first, W m^-2 on the sand (0 without a bottom, over a black one and in
+  // modes 1, 2): of the whole beam, whatever bottom_sunlit is (e_sun0 e^{-m H}); of the diffuse light, E_d(H)
+  // of the field over a black bottom.
+  double sandBeam() const { return sand_beam_; }
+  double sandDiffuse() const { return sand_diffuse_; }
 
  private:
   // The modes' amplitudes from the surface's and the bottom's conditions (the constructor's last step).
@@ -159,8 +165,8 @@ class DiscreteOrdinates {
   std::vector<double> x_plus_, x_minus_;       // N x N: mode j's down (x_plus_) and up radiances at cosine i
   std::vector<double> z_plus_, z_minus_;       // N: the particular solution's down and up radiances
   std::vector<double> c_decay_, c_grow_;       // N each: the modes' amplitudes
-  std::vector<double> c_decay_bottom_, c_grow_bottom_;  // N each: those of the bottom's reflection of the beam
-  std::vector<double> c_decay_diffuse_, c_grow_diffuse_;  // N each: those of its reflection of the diffuse light
+  std::vector<double> c_decay_sand_, c_grow_sand_;  // N each: those of FieldPart::sand_unit
+  double sand_beam_ = 0, sand_diffuse_ = 0;         // sandBeam(), sandDiffuse()
 };
 
 }  // namespace seasim

@@ -61,8 +61,9 @@ std::vector<float> underwaterBandTable(const UnderwaterSetup& setup) {
       uwi(UWI_ROW_AUREOLE_1, ib.aureole_single);
       for (int j = 0; j < UWI_AUREOLE_NODES; ++j) uwi(UWI_ROW_AUREOLE + j, ib.aureole[j]);
       for (int j = 0; j < UWI_SOURCE_NODES * 3; ++j) uwi(UWI_ROW_AUREOLE_M + j, ib.aureole_modes[j]);
-      for (int j = 0; j < UWI_SOURCE_NODES * 3; ++j) uwi(UWI_ROW_SRC_BOTTOM + j, ib.src_bottom[j]);
-      for (int j = 0; j < UWI_SOURCE_NODES * 3; ++j) uwi(UWI_ROW_SRC_DIFFUSE + j, ib.src_bottom_diffuse[j]);
+      for (int j = 0; j < UWI_SOURCE_NODES * 3; ++j) uwi(UWI_ROW_SRC_SAND + j, ib.src_sand[j]);
+      uwi(UWI_ROW_SAND_BEAM, ib.sand_beam);
+      uwi(UWI_ROW_SAND_DIFFUSE, ib.sand_diffuse);
       uwi(UWI_ROW_D1, ib.d1);
       uwi(UWI_ROW_D2, ib.d2);
       uwi(UWI_ROW_DP, ib.dp);

@@ -11,7 +11,7 @@
 namespace seasim {
 
 static_assert(sizeof(UwiBand) == (18 + (UWI_SOURCE_NODES + UWI_TILT_NODES) * UWI_SOURCE_TERMS + UWI_TILT_NODES * 3 + 2 +
-                                   UWI_AUREOLE_NODES + UWI_SOURCE_NODES * 9) * 4,
+                                   UWI_AUREOLE_NODES + UWI_SOURCE_NODES * 6 + 2) * 4,
               "UwiBand layout changed: update underwater_ordinates_params.h users");
 static_assert(offsetof(UwiBand, d1) == 20 && offsetof(UwiBand, up) == 40 && offsetof(UwiBand, g_flux) == 44 &&
               offsetof(UwiBand, o1) == 48 && offsetof(UwiBand, op) == 56 && offsetof(UwiBand, h1) == 60 &&
@@ -21,8 +21,9 @@ static_assert(offsetof(UwiBand, d1) == 20 && offsetof(UwiBand, up) == 40 && offs
               offsetof(UwiBand, p_clip) == offsetof(UwiBand, tilt_bottom) + UWI_TILT_NODES * 3 * 4 &&
               offsetof(UwiBand, aureole) == offsetof(UwiBand, p_clip) + 2 * 4 &&
               offsetof(UwiBand, aureole_modes) == offsetof(UwiBand, aureole) + UWI_AUREOLE_NODES * 4 &&
-              offsetof(UwiBand, src_bottom) == offsetof(UwiBand, aureole_modes) + UWI_SOURCE_NODES * 3 * 4 &&
-              offsetof(UwiBand, src_bottom_diffuse) == offsetof(UwiBand, src_bottom) + UWI_SOURCE_NODES * 3 * 4);
+              offsetof(UwiBand, src_sand) == offsetof(UwiBand, aureole_modes) + UWI_SOURCE_NODES * 3 * 4 &&
+              offsetof(UwiBand, sand_beam) == offsetof(UwiBand, src_sand) + UWI_SOURCE_NODES * 3 * 4 &&
+              offsetof(UwiBand, sand_diffuse) == offsetof(UwiBand, sand_beam) + 4);
 
 double internalDiffuseReflectance(double ior) {
   // Midpoint rule in μ: F jumps to 1 at the critical angle, so a fine uniform grid (error ~1e-5).

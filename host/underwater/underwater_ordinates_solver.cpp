@@ -193,21 +193,21 @@ double fitSourceTable(const DiscreteOrdinates& field, const DiscreteOrdinates* f
     return f.inscatterProfile(nus, depth_end, kDepthSamples);
   });
   const double error = fitModeTable(profiles, UWI_SOURCE_NODES, depth_end, k, m, bottom, o.src);
-  // The parts of it the bottom's reflection of the beam and of the diffuse light bring (azimuth mode 0; over
-  // a bottom), fitted the same way: UwiBand.src_bottom and src_bottom_diffuse, what the kernel takes off where
-  // objects hide or shade the sand (uwi_sand_shares).
+  // The part of it the bottom brings per unit of the irradiance it reflects first (azimuth mode 0; over a
+  // bottom), fitted the same way, and that irradiance of the beam and of the diffuse light: UwiBand.src_sand,
+  // sand_beam and sand_diffuse, what the kernel takes off where objects hide or shade the sand
+  // (uwi_sand_shares).
   if (bottom) {
-    const auto fitPart = [&](FieldPart part, float* out) {
-      ModeProfiles lit;
-      lit[0] = field.inscatterProfile(nus, depth_end, kDepthSamples, part);
-      if (std::none_of(lit[0].begin(), lit[0].end(), [](double v) { return v != 0.0; })) return;
+    ModeProfiles lit;
+    lit[0] = field.inscatterProfile(nus, depth_end, kDepthSamples, FieldPart::sand_unit);
+    if (std::any_of(lit[0].begin(), lit[0].end(), [](double v) { return v != 0.0; })) {
       std::vector<float> table(UWI_SOURCE_NODES * UWI_SOURCE_TERMS);
       fitModeTable(lit, UWI_SOURCE_NODES, depth_end, k, m, bottom, table.data());
       for (int j = 0; j < UWI_SOURCE_NODES; ++j)
-        for (int q = 0; q < 3; ++q) out[j * 3 + q] = table[j * UWI_SOURCE_TERMS + q];
-    };
-    fitPart(FieldPart::bottom_beam, o.src_bottom);
-    fitPart(FieldPart::bottom_diffuse, o.src_bottom_diffuse);
+        for (int q = 0; q < 3; ++q) o.src_sand[j * 3 + q] = table[j * UWI_SOURCE_TERMS + q];
+      o.sand_beam = static_cast<float>(field.sandBeam());
+      o.sand_diffuse = static_cast<float>(field.sandDiffuse());
+    }
   }
   if (source_streams > 0) {
     const int modes = field_h ? 3 : 1;
@@ -231,15 +231,18 @@ double fitSourceTable(const DiscreteOrdinates& field, const DiscreteOrdinates* f
 // The discrete ordinates' irradiance on tilted planes (azimuth modes 0, 1, 2) at the table's normals,
 // fitted per normal: UwiBand.tilt. Its end nodes (a plane facing straight up, straight down) are E_d's and
 // E_u's own fits (o.d*, o.u*), so the bottom, lit by E_d, reads the same from either. The part of the
-// azimuth average that the bottom's reflection of the beam brings (field's bottom_beam; over a lit bottom),
-// fitted the same way: UwiBand.tilt_bottom.
+// azimuth average that the bottom's reflection of the beam brings (FieldPart::sand_unit times sandBeam(); over
+// a lit bottom), fitted the same way: UwiBand.tilt_bottom.
 double fitTiltTable(const DiscreteOrdinates& field, const DiscreteOrdinates* field_h,
                     const DiscreteOrdinates* field_h2, double depth_end, double k, double m, bool bottom,
                     UwiBand& o) {
   std::vector<double> n_ys(UWI_TILT_NODES);
   for (int j = 0; j < UWI_TILT_NODES; ++j) n_ys[j] = kmath_d::uwi_tilt_node_cosine(j);
   ModeProfiles lit;
-  if (bottom) lit[0] = field.tiltedIrradianceProfile(n_ys, depth_end, kDepthSamples, FieldPart::bottom_beam);
+  if (bottom) {
+    lit[0] = field.tiltedIrradianceProfile(n_ys, depth_end, kDepthSamples, FieldPart::sand_unit);
+    for (double& e : lit[0]) e *= field.sandBeam();
+  }
   // None where the bottom reflects no beam (black, no sun): tilt_bottom stays 0.
   if (std::any_of(lit[0].begin(), lit[0].end(), [](double v) { return v != 0.0; })) {
     std::vector<float> table(UWI_TILT_NODES * UWI_SOURCE_TERMS);

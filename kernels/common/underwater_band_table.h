@@ -66,10 +66,10 @@
 #define UWI_ROW_AUREOLE (UWI_ROW_AUREOLE_1 + 1)
 #define UWI_ROW_AUREOLE_M (UWI_ROW_AUREOLE + UWI_AUREOLE_NODES) /* UwiBand.aureole_modes: source node j's mode m
                                                                    in row + j * 3 + m */
-/* UwiBand.src_bottom: source node j's term q in row UWI_ROW_SRC_BOTTOM + j * 3 + q. */
-#define UWI_ROW_SRC_BOTTOM (UWI_ROW_AUREOLE_M + UWI_SOURCE_NODES * 3)
-/* UwiBand.src_bottom_diffuse: the same from UWI_ROW_SRC_DIFFUSE. */
-#define UWI_ROW_SRC_DIFFUSE (UWI_ROW_SRC_BOTTOM + UWI_SOURCE_NODES * 3)
-#define UWI_ROWS (UWI_ROW_SRC_DIFFUSE + UWI_SOURCE_NODES * 3)
+/* UwiBand.src_sand: source node j's term q in row UWI_ROW_SRC_SAND + j * 3 + q; then sand_beam, sand_diffuse. */
+#define UWI_ROW_SRC_SAND (UWI_ROW_AUREOLE_M + UWI_SOURCE_NODES * 3)
+#define UWI_ROW_SAND_BEAM (UWI_ROW_SRC_SAND + UWI_SOURCE_NODES * 3)
+#define UWI_ROW_SAND_DIFFUSE (UWI_ROW_SAND_BEAM + 1)
+#define UWI_ROWS (UWI_ROW_SAND_DIFFUSE + 1)
 
 #endif /* SEASIM_UNDERWATER_BAND_TABLE_H */

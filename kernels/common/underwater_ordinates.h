@@ -376,13 +376,19 @@ SEASIM_FN real uwi_view_sand_shares(SEASIM_CONSTANT const UwParams* p, const SEA
                          band_table[UW_ROW_BOTTOM_ALBEDO * stride], v_diffuse);
 }
 
+/* The irradiance on the sand whose light the water does not get, W m^-2, where the shares v_sand of the sunlit
+ * and v_diffuse of the diffusely lit sand's light are kept (uwi_sand_shares): times UwiBand.src_sand, the
+ * part of the source that is taken off. */
+SEASIM_FN real uwi_sand_lost(real v_sand, real v_diffuse, real sand_beam, real sand_diffuse) {
+  return (R(1.0) - v_sand) * sand_beam + (R(1.0) - v_diffuse) * sand_diffuse;
+}
+
 /* In-scattered radiance along a view ray from depth o_d along d (d_y its vertical component) to
  * distance S (UW_INFINITE: deep water); cos_s = d·s_w. g: the water's own asymmetry (for the froxel
  * term taken off when single_scattering). Never negative. The forward peak's aureole is not in it
  * (uwi_aureole: the water's point-spread, common/water_spread.h, spreads this light, not that).
- * uwi_multiple_sand: with v_sand (uwi_sand_share) of the sunlit sand's part of the source (UwiBand.src_bottom)
- * kept, 1 - v_sand taken off, and v_diffuse (uwi_sand_shares) of the diffusely lit sand's part
- * (UwiBand.src_bottom_diffuse). */
+ * uwi_multiple_sand: with v_sand and v_diffuse (uwi_sand_shares) of the sunlit and of the diffusely lit sand's
+ * parts of the source kept (uwi_sand_lost). */
 SEASIM_FN real uwi_multiple_sand(const SEASIM_GLOBAL UwiBand* ib, const SEASIM_GLOBAL UwBand* band, real g,
                                  real bottom_depth, real S, real d_y, real o_d, real cos_s, real mu_w,
                                  int single_scattering, int multiple, real v_sand, real v_diffuse) {
@@ -390,15 +396,14 @@ SEASIM_FN real uwi_multiple_sand(const SEASIM_GLOBAL UwiBand* ib, const SEASIM_G
   const real c_dm = ib->c_dm, k = ib->k;
   const int node = uwi_source_node(d_y);
   const real cos_dphi = uwi_cos_azimuth(cos_s, d_y, mu_w);
-  const SEASIM_GLOBAL float* sand = ib->src_bottom + 3 * node;
-  const SEASIM_GLOBAL float* open = ib->src_bottom_diffuse + 3 * node;
-  const real hidden = R(1.0) - v_sand, shaded = R(1.0) - v_diffuse;
-  const real w1 = uwi_source_weight(ib, node, cos_dphi, 0) - hidden * (real)sand[0] - shaded * (real)open[0];
-  const real w2 = uwi_source_weight(ib, node, cos_dphi, 1) - hidden * (real)sand[1] - shaded * (real)open[1];
+  const SEASIM_GLOBAL float* sand = ib->src_sand + 3 * node;
+  const real lost = uwi_sand_lost(v_sand, v_diffuse, (real)ib->sand_beam, (real)ib->sand_diffuse);
+  const real w1 = uwi_source_weight(ib, node, cos_dphi, 0) - lost * (real)sand[0];
+  const real w2 = uwi_source_weight(ib, node, cos_dphi, 1) - lost * (real)sand[1];
   /* The beam's diffuse offspring, and the beam scattered once with the exact phase function below its
    * peak (TMS; uwi_tms_phase). */
   const real phase = hg_phase(cos_s, g);
-  const real wp = uwi_source_weight(ib, node, cos_dphi, 2) - hidden * (real)sand[2] - shaded * (real)open[2] +
+  const real wp = uwi_source_weight(ib, node, cos_dphi, 2) - lost * (real)sand[2] +
                   (real)band->b * uwi_tms_phase(phase, (real)ib->p_clip) * (real)band->e_beam0;
   const real i1 = kd_exp_integral(k, c_dm, d_y, o_d, S);
   /* e^{-k (H - y(z))} = e^{-k (H - o_d)} e^{-k d_y z}: the same integral seen from the bottom. */

@@ -90,26 +90,17 @@ SEASIM_FN void uwi_lanes_weights(const SEASIM_GLOBAL float* table, int stride, i
   *out = w;
 }
 
-/* uwi_multiple_sand's weights: 1 - v_sand (uwi_sand_share, once per pixel) of the sunlit sand's part of the
- * source at the node (UwiBand.src_bottom) taken off w. */
+/* uwi_multiple_sand's weights: the sand's part of the source at the node (UwiBand.src_sand) times the
+ * irradiance whose light the shares v_sand and v_diffuse (uwi_sand_shares, once per pixel) leave out
+ * (uwi_sand_lost) taken off w. */
 SEASIM_FN void uwi_lanes_hide_sand(const SEASIM_GLOBAL float* table, int stride, int uwi_row0, int i, int node,
-                                   real v_sand, UwiWeights* w) {
-  const real hidden = R(1.0) - v_sand;
-  const SEASIM_GLOBAL float* row = table + (size_t)(uwi_row0 + UWI_ROW_SRC_BOTTOM + 3 * node) * (size_t)stride;
-  w->w1 -= hidden * LOADB(row, i);
-  w->w2 -= hidden * LOADB(row + stride, i);
-  w->wp -= hidden * LOADB(row + 2 * (size_t)stride, i);
-}
-
-/* The same for the diffusely lit sand's part (UwiBand.src_bottom_diffuse) and its share v_diffuse
- * (uwi_sand_shares). */
-SEASIM_FN void uwi_lanes_hide_diffuse_sand(const SEASIM_GLOBAL float* table, int stride, int uwi_row0, int i,
-                                           int node, real v_diffuse, UwiWeights* w) {
-  const real hidden = R(1.0) - v_diffuse;
-  const SEASIM_GLOBAL float* row = table + (size_t)(uwi_row0 + UWI_ROW_SRC_DIFFUSE + 3 * node) * (size_t)stride;
-  w->w1 -= hidden * LOADB(row, i);
-  w->w2 -= hidden * LOADB(row + stride, i);
-  w->wp -= hidden * LOADB(row + 2 * (size_t)stride, i);
+                                   real v_sand, real v_diffuse, UwiWeights* w) {
+  const realb lost = (R(1.0) - v_sand) * LOADB(table + (size_t)(uwi_row0 + UWI_ROW_SAND_BEAM) * (size_t)stride, i) +
+                     (R(1.0) - v_diffuse) * LOADB(table + (size_t)(uwi_row0 + UWI_ROW_SAND_DIFFUSE) * (size_t)stride, i);
+  const SEASIM_GLOBAL float* row = table + (size_t)(uwi_row0 + UWI_ROW_SRC_SAND + 3 * node) * (size_t)stride;
+  w->w1 -= lost * LOADB(row, i);
+  w->w2 -= lost * LOADB(row + stride, i);
+  w->wp -= lost * LOADB(row + 2 * (size_t)stride, i);
 }
 
 /* The diffuse irradiance's weights of the three exponentials on a tilted plane (uwi_tilt_irradiance):

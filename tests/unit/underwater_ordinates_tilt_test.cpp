@@ -96,14 +96,17 @@ TEST(UnderwaterOrdinatesTilt, BottomSunlitShareScalesTheBeamTheBottomReflects) {
     EXPECT_NEAR(profiles[1][s].down, 0.5 * (profiles[0][s].down + profiles[2][s].down), 1e-9 * profiles[2][s].down);
     EXPECT_NEAR(profiles[1][s].up, 0.5 * (profiles[0][s].up + profiles[2][s].up), 1e-9 * profiles[2][s].up);
   }
-  // The bottom's reflection of the whole beam, as the solver gives it apart, is the difference between
-  // the sunlit and the shaded bottom, whatever the share it was built with.
+  // The bottom's reflection of the whole beam, as the solver gives it apart (its light per unit of what it
+  // reflects first, times the beam's irradiance there), is the difference between the sunlit and the shaded
+  // bottom, whatever the share it was built with.
   const std::vector<double> n_ys = {-1.0, -0.4, 0.0, 0.6, 1.0};
   std::vector<std::vector<double>> tilted;
   for (double share : {0.0, 1.0, 0.3}) {
     layer.bottom_sunlit = share;
-    tilted.push_back(DiscreteOrdinates(layer, 16, 0, 3).tiltedIrradianceProfile(
-        n_ys, 5.0, 4, share == 0.3 ? FieldPart::bottom_beam : FieldPart::whole));
+    const DiscreteOrdinates field(layer, 16, 0, 3);
+    tilted.push_back(field.tiltedIrradianceProfile(n_ys, 5.0, 4, share == 0.3 ? FieldPart::sand_unit : FieldPart::whole));
+    if (share == 0.3)
+      for (double& e : tilted.back()) e *= field.sandBeam();
   }
   for (size_t i = 0; i < tilted[0].size(); ++i)
     EXPECT_NEAR(tilted[2][i], tilted[1][i] - tilted[0][i], 1e-7 * tilted[1][i]) << i;
@@ -114,11 +117,12 @@ TEST(UnderwaterOrdinatesTilt, BottomSunlitShareScalesTheBeamTheBottomReflects) {
   }
 }
 
-// The bottom's reflection of the diffuse light, as the solver gives it apart, is what is left of the field
-// over the bottom of albedo ρ once the field over a black bottom and the beam's reflection are taken off:
-// in the tilted irradiance and in the in-scatter, at every depth, in clear and turbid water, with the bottom
-// partly sunlit. It is positive (the bottom only adds light), none without a bottom, none in mode 1.
-TEST(UnderwaterOrdinatesTilt, BottomsDiffuseReflectionIsTheFieldLessTheBlackBottomsAndTheBeams) {
+// The field over a bottom of albedo ρ is the field over a black one plus the bottom's light per unit of what
+// it reflects first (FieldPart::sand_unit) times what it reflects first: the share bottom_sunlit of the beam
+// (sandBeam) and the black bottom's E_d (sandDiffuse). In the tilted irradiance and in the in-scatter, at
+// every depth, in clear and turbid water, with the bottom partly sunlit. The bottom's light is positive (it
+// only adds light); none without a bottom, none in mode 1.
+TEST(UnderwaterOrdinatesTilt, FieldIsTheBlackBottomsPlusWhatTheSandReflects) {
   const std::vector<double> n_ys = {-1.0, -0.4, 0.0, 0.6, 1.0};
   const std::vector<double> nus = {-0.95, -0.5, -0.1, 0.2, 0.7, 1.0};
   for (const auto& [a, b] : {std::pair{0.1, 0.3}, std::pair{0.03, 0.05}, std::pair{0.2, 2.0}}) {
@@ -129,24 +133,25 @@ TEST(UnderwaterOrdinatesTilt, BottomsDiffuseReflectionIsTheFieldLessTheBlackBott
     DiscreteOrdinatesLayer black = layer;
     black.bottom_albedo = 0.0;
     const DiscreteOrdinates dark(black, 16, 0, 3);
+    EXPECT_NEAR(whole.sandDiffuse(), dark.at(5.0).down, 1e-12 * whole.sandDiffuse());
+    EXPECT_NEAR(whole.sandBeam(), band.e_sun0 * std::exp(-whole.beamK() * 5.0), 1e-12 * whole.sandBeam());
+    const double reflected = 0.6 * whole.sandBeam() + whole.sandDiffuse();
     const auto parts = [&](auto profile) {
       const std::vector<double> w = profile(whole, FieldPart::whole), k = profile(dark, FieldPart::whole);
-      const std::vector<double> beam = profile(whole, FieldPart::bottom_beam);
-      const std::vector<double> diffuse = profile(whole, FieldPart::bottom_diffuse);
+      const std::vector<double> unit = profile(whole, FieldPart::sand_unit);
       for (size_t i = 0; i < w.size(); ++i) {
-        const double expect = w[i] - k[i] - 0.6 * beam[i];
-        EXPECT_NEAR(diffuse[i], expect, 1e-9 * std::fabs(w[i]) + 1e-15) << a << " " << b << " " << i;
-        EXPECT_GT(diffuse[i], 0.0) << a << " " << b << " " << i;
+        EXPECT_NEAR(k[i] + reflected * unit[i], w[i], 1e-9 * std::fabs(w[i]) + 1e-15) << a << " " << b << " " << i;
+        EXPECT_GT(unit[i], 0.0) << a << " " << b << " " << i;
       }
     };
     parts([&](const DiscreteOrdinates& f, FieldPart part) { return f.tiltedIrradianceProfile(n_ys, 5.0, 4, part); });
     parts([&](const DiscreteOrdinates& f, FieldPart part) { return f.inscatterProfile(nus, 5.0, 4, part); });
     // Modes 1 and 2 see no Lambertian bottom; nor does open water.
-    for (const auto& p : DiscreteOrdinates(layer, 16, 1, 3).inscatterProfile(nus, 5.0, 4, FieldPart::bottom_diffuse))
+    for (const auto& p : DiscreteOrdinates(layer, 16, 1, 3).inscatterProfile(nus, 5.0, 4, FieldPart::sand_unit))
       EXPECT_EQ(p, 0.0);
     DiscreteOrdinatesLayer open = layer;
     open.bottom_depth = 0.0;
-    for (const auto& p : DiscreteOrdinates(open, 16, 0, 3).inscatterProfile(nus, 5.0, 4, FieldPart::bottom_diffuse))
+    for (const auto& p : DiscreteOrdinates(open, 16, 0, 3).inscatterProfile(nus, 5.0, 4, FieldPart::sand_unit))
       EXPECT_EQ(p, 0.0);
   }
 }
