@@ -93,8 +93,12 @@ __kernel void sea_second_vsf_map(__constant SeaSecondParams* p, __global float* 
   vsf[i] = sea_vsf_value((float)i / (float)(p->vsf_size - 1), p->g);
 }
 
+/* Over a height field it also writes, per plane k and band, what the scattering map needs of them at every map
+ * point: plane_bands[k * SEA_SECOND_STRIDE(band_count) + band] = (τ_k, the table node's interpolation weight, the
+ * node, e^{-τ_k sec θ_io}); four log1p per band that each of the map's points would otherwise repeat. */
 __kernel void sea_second_radiance_map(__constant SeaSecondParams* p, __global const SeaBand* bands,
-                                      __global float4* dirs, __global float* radiance, __global float* plane_w) {
+                                      __global float4* dirs, __global float* radiance, __global float* plane_w,
+                                      __global float4* plane_bands) {
   const int m = get_global_id(0);
   const int k = get_global_id(1);
   const int n_d = p->n_theta * p->n_phi;
@@ -117,11 +121,22 @@ __kernel void sea_second_radiance_map(__constant SeaSecondParams* p, __global co
     float w;
     const float tau_k = sea_plane_depth(k, p->n_z, p->cos_io, tau_d, &w);
     if (m == 0) w_row[i] = w;
+#if SEASIM_BOTTOM_HEIGHTFIELD
+    if (m == 0) {
+      const float z_k = band->c > 0.0f ? tau_k / band->c : 0.0f;
+      float node_w;
+      const int node = sea_table_node_interval(z_k, p->n_z, p->cos_io, p->table_c, p->bottom_depth, &node_w);
+      plane_bands[k * SEA_SECOND_STRIDE(p->band_count) + i] = (float4)(tau_k, node_w, (float)node, exp(-tau_k / p->cos_io));
+    }
+#endif
     radiance[((size_t)k * n_d + m) * p->band_count + i] =
         sea_radiance_map(band->sun_irradiance * p->sun_beam, albedo, phase, p->cos_io, omega.y, tau_k, tau_d);
   }
   if (m == 0)
-    for (int i = p->band_count; i < SEA_SECOND_STRIDE(p->band_count); ++i) w_row[i] = 0.0f; /* padded bands */
+    for (int i = p->band_count; i < SEA_SECOND_STRIDE(p->band_count); ++i) { /* padded bands */
+      w_row[i] = 0.0f;
+      plane_bands[k * SEA_SECOND_STRIDE(p->band_count) + i] = (float4)(0.0f, 0.0f, 0.0f, 1.0f);
+    }
 }
 
 /* World view direction of map sampling point (i, j), lowered just below the horizon when above it. */
@@ -192,7 +207,7 @@ __kernel void sea_second_scattering_map(__constant SeaSecondParams* p, __global 
                                         __global const float4* dirs, __global const float* vsf,
                                         __global const float* radiance, __global float* maps
 #if SEASIM_BOTTOM_HEIGHTFIELD
-                                        , __global const float* table
+                                        , __global const float* table, __global const float4* plane_bands
 #endif
 ) {
   const int i = get_global_id(0);
@@ -211,20 +226,19 @@ __kernel void sea_second_scattering_map(__constant SeaSecondParams* p, __global 
     float acc[SEA_SECOND_CHUNK];
     for (int c = 0; c < count; ++c) acc[c] = 0.0f;
 #if SEASIM_BOTTOM_HEIGHTFIELD
-    /* Per band: its plane's optical depth and the table nodes around its geometric depth. */
-    float tau_k[SEA_SECOND_CHUNK], node_w[SEA_SECOND_CHUNK], source[SEA_SECOND_CHUNK], c_band[SEA_SECOND_CHUNK];
+    /* Per band: its plane's optical depth and the table nodes around its geometric depth (plane_bands). */
+    float node_w[SEA_SECOND_CHUNK], source[SEA_SECOND_CHUNK], c_band[SEA_SECOND_CHUNK];
     float a_band[SEA_SECOND_CHUNK], near_band[SEA_SECOND_CHUNK]; /* tau_k sec(theta_io) and its e^{-a} */
     int node[SEA_SECOND_CHUNK];
     for (int c = 0; c < count; ++c) {
       const __global SeaBand* band = &bands[b0 + c];
-      float w;
-      tau_k[c] = sea_plane_depth(k, p->n_z, p->cos_io, optical_bottom(band, p), &w);
-      const float z_k = band->c > 0.0f ? tau_k[c] / band->c : 0.0f;
-      node[c] = sea_table_node_interval(z_k, p->n_z, p->cos_io, p->table_c, p->bottom_depth, &node_w[c]);
+      const float4 plane = plane_bands[k * SEA_SECOND_STRIDE(nb) + b0 + c];
+      node_w[c] = plane.y;
+      node[c] = (int)plane.z;
       source[c] = band->sun_irradiance * p->sun_beam * (band->c > 0.0f ? band->b / band->c : 0.0f);
       c_band[c] = band->c;
-      a_band[c] = tau_k[c] / p->cos_io;
-      near_band[c] = exp(-a_band[c]);
+      a_band[c] = plane.x / p->cos_io;
+      near_band[c] = plane.w;
     }
     const int n_rows = SEA_SECOND_STRIDE(n_d);
     const size_t node_stride = (size_t)M * M * n_rows;
@@ -238,6 +252,7 @@ __kernel void sea_second_scattering_map(__constant SeaSecondParams* p, __global 
       const int m_count = min(SEA_SECOND_DIR_BLOCK, n_rows - m0);
       float blk_w[SEA_SECOND_DIR_BLOCK] __attribute__((aligned(4 * SEASIM_BAND_LANES)));
       float blk_kappa[SEA_SECOND_DIR_BLOCK] __attribute__((aligned(4 * SEASIM_BAND_LANES)));
+      float blk_inv_kappa[SEA_SECOND_DIR_BLOCK] __attribute__((aligned(4 * SEASIM_BAND_LANES)));
       for (int q = 0; q < m_count; ++q) {
         const float4 dw = dirs[m0 + q];
         const float t = sea_vsf_param(dw.x * v.x + dw.y * v.y + dw.z * v.z) * (p->vsf_size - 1);
@@ -245,6 +260,7 @@ __kernel void sea_second_scattering_map(__constant SeaSecondParams* p, __global 
         const float f = t - (float)t0;
         blk_w[q] = (vsf[t0] + f * (vsf[t0 + 1] - vsf[t0])) * dw.w;
         blk_kappa[q] = (p->cos_io - dw.y) / p->cos_io; /* 1 - sec(theta_io) cos(theta) */
+        blk_inv_kappa[q] = blk_kappa[q] != 0.0f ? 1.0f / blk_kappa[q] : 0.0f;
       }
       for (int c = 0; c < count; ++c) {
         const __global float* row = ends + node[c] * node_stride + m0;
@@ -252,7 +268,8 @@ __kernel void sea_second_scattering_map(__constant SeaSecondParams* p, __global 
         for (int r = 0; r < m_count; r += SEASIM_BAND_LANES) {
           const realb l0 = LOADB(row, r), l1 = LOADB(row + node_stride, r);
           const realb l = fmax(c_band[c] * (l0 + node_w[c] * (l1 - l0)), R(0.0));
-          sum += LOADB(blk_w, r) * sea_path_integral_finite_b(near_band[c], a_band[c], LOADB(blk_kappa, r), l);
+          sum += LOADB(blk_w, r) *
+                 sea_path_integral_finite_b(near_band[c], a_band[c], LOADB(blk_kappa, r), LOADB(blk_inv_kappa, r), l);
         }
         acc[c] += source[c] * SUMB(sum);
       }
@@ -272,8 +289,12 @@ __kernel void sea_second_scattering_map(__constant SeaSecondParams* p, __global 
     for (int c = 0; c < count; ++c) {
       const __global SeaBand* band = &bands[b0 + c];
       const float albedo = band->c > 0.0f ? band->b / band->c : 0.0f;
+#if SEASIM_BOTTOM_HEIGHTFIELD
+      const float tau_k = plane_bands[k * SEA_SECOND_STRIDE(nb) + b0 + c].x;
+#else
       float w;
       const float tau_k = sea_plane_depth(k, p->n_z, p->cos_io, optical_bottom(band, p), &w);
+#endif
       maps[out + b0 + c] = sea_attenuation(tau_k, cos_ji) * albedo * acc[c]; /* eq. 8 / c */
     }
   }

@@ -161,6 +161,7 @@ SeaSecondPass::SeaSecondPass(Device& device, const Scene& scene, const PassPlan&
     dirs_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * 4 * dir_stride);
     radiance_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * config_.n_z * n_d * nb);
     plane_w_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * config_.n_z * band_stride);
+    plane_bands_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * 4 * config_.n_z * band_stride);
     maps_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE, sizeof(float) * config_.n_z * M * M * band_stride);
     vsf_kernel_.setArg(0, params_);
     vsf_kernel_.setArg(1, vsf_);
@@ -169,6 +170,7 @@ SeaSecondPass::SeaSecondPass(Device& device, const Scene& scene, const PassPlan&
     radiance_kernel_.setArg(2, dirs_);
     radiance_kernel_.setArg(3, radiance_);
     radiance_kernel_.setArg(4, plane_w_);
+    radiance_kernel_.setArg(5, plane_bands_);
     maps_kernel_.setArg(0, params_);
     maps_kernel_.setArg(1, bands_);
     maps_kernel_.setArg(2, dirs_);
@@ -187,6 +189,7 @@ SeaSecondPass::SeaSecondPass(Device& device, const Scene& scene, const PassPlan&
       table_kernel_.setArg(2, hf_depth_);
       table_kernel_.setArg(3, table_);
       maps_kernel_.setArg(6, table_);
+      maps_kernel_.setArg(7, plane_bands_);
       const cl_uint args = accumulate_kernel_.getInfo<CL_KERNEL_NUM_ARGS>();
       accumulate_kernel_.setArg(args - 2, hf_params_);
       accumulate_kernel_.setArg(args - 1, hf_depth_);

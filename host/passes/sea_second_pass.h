@@ -51,7 +51,7 @@ class SeaSecondPass {
   Device& device_;
   Config config_;
   cl::Kernel vsf_kernel_, radiance_kernel_, maps_kernel_, accumulate_kernel_;
-  cl::Buffer params_, bands_, vsf_, dirs_, radiance_, plane_w_, maps_;
+  cl::Buffer params_, bands_, vsf_, dirs_, radiance_, plane_w_, plane_bands_, maps_;
   // Height-field floor (SEASIM_BOTTOM_HEIGHTFIELD): the floor and the depth tables of 000 §5.4.
   cl::Kernel table_kernel_;
   cl::Buffer hf_params_, hf_depth_, table_;

@@ -14,14 +14,15 @@
  * l e^{-a} φ(-x) in both signs (e^{-x} φ(x) = φ(-x)). For |x| >= 1/2 that is l (e^{-a} - e^{-(a + x)}) / x,
  * whose difference loses at most e^{1/2}/(1 - e^{-1/2}) ≈ 4 ulp, and below it e_near l φ(-x) by the series:
  * one exp per lane instead of two. a + x, the optical depth where the path ends plus its length, is >= 0,
- * so no exp overflows. */
-SEASIM_FN realb sea_path_integral_finite_b(real e_near, real a, realb kappa, realb l) {
+ * so no exp overflows. inv_kappa: 1/κ where κ != 0 (any finite value where κ = 0, whose x takes the series),
+ * which the caller has per direction: the finite path l (e^{-a} - e^{-(a + x)}) / x is (e^{-a} - e^{-(a + x)})
+ * / κ, one product per lane where a division was the loop's dearest step after the exp. */
+SEASIM_FN realb sea_path_integral_finite_b(real e_near, real a, realb kappa, realb inv_kappa, realb l) {
   const realb x = kappa * l;
   const maskb small = fabs(x) < R(0.5);
-  const realb xs = SELECTB(small, SPLATB(R(1.0)), x);
-  const realb direct = (e_near - exp(-(a + x))) / xs;
-  const realb series = e_near * SEASIM_EXPM1_OVER_X_SERIES(-x);
-  return l * SELECTB(small, series, direct);
+  const realb direct = (e_near - exp(-(a + x))) * inv_kappa;
+  const realb series = l * e_near * SEASIM_EXPM1_OVER_X_SERIES(-x);
+  return SELECTB(small, series, direct);
 }
 
 /* sea_plane_share_above (sea_bottom.h) for lanes of bands: tau_d >= 0 (a floor) and tau_q per lane. */

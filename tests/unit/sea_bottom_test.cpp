@@ -304,8 +304,9 @@ TEST(SeaBottom, PathIntegralLanesAreTheScalarFinitePath) {
       for (double l : {0.0, 1e-6, 0.2, 0.999, 1.0, 1.001, 3.0, 30.0}) {
         if (a + kappa * l < 0) continue;  // the path's far end above the surface: not a sampling ray
         const double ref = kd::sea_path_integral(a, kappa, l);
-        const double d = kd::sea_path_integral_finite_b(std::exp(-a), a, kappa, l);
-        const float f = kf::sea_path_integral_finite_b(std::exp(-float(a)), float(a), float(kappa), float(l));
+        const double d = kd::sea_path_integral_finite_b(std::exp(-a), a, kappa, kappa != 0 ? 1 / kappa : 0.0, l);
+        const float f = kf::sea_path_integral_finite_b(std::exp(-float(a)), float(a), float(kappa),
+                                                       kappa != 0 ? 1 / float(kappa) : 0.0f, float(l));
         ASSERT_TRUE(std::isfinite(d) && std::isfinite(f) && f >= 0) << a << " " << kappa << " " << l;
         worst_d = std::max(worst_d, std::fabs(d - ref) / (ref + 1e-300));
         if (ref > 1e-30) worst_f = std::max(worst_f, std::fabs(f - ref) / ref);
