@@ -80,7 +80,7 @@ PassDescriptor sandShareDescriptor() {
         !bottom || modelKey(scene, "quality.sand_share_step") <= 1 || !so_far.produces("gbuffer"))
       return std::nullopt;
     return planEntry({"underwater_setup", "gbuffer"}, {"sand_share"},
-                     "discrete ordinates with objects over a bottom: the sand's share on a lattice every " +
+                     "discrete ordinates with objects over a bottom: the sand's shares on a lattice every " +
                          std::to_string(static_cast<int>(modelKey(scene, "quality.sand_share_step"))) +
                          " pixels (quality.sand_share_step), interpolated by kd_multiple");
   };
@@ -89,7 +89,8 @@ PassDescriptor sandShareDescriptor() {
     const double step = modelKey(s, "quality.sand_share_step");
     const double w = pixelLatticeSize(s.camera.width, static_cast<int>(step));
     const double h = pixelLatticeSize(s.camera.height, static_cast<int>(step));
-    return {{p.name, "the sand's share on the lattice", 4 * w * h, {"camera.width", "camera.height", "quality.sand_share_step"}, {w, h}}};
+    return {{p.name, "the sand's two shares on the lattice", 2 * 4 * w * h,
+             {"camera.width", "camera.height", "quality.sand_share_step"}, {w, h}}};
   };
   d.cost = [](const Scene& s, const PassPlan&) {
     const double step = modelKey(s, "quality.sand_share_step");

@@ -70,10 +70,12 @@ PassDescriptor seaSecondDescriptor() {
          {"quality.sea_nz", "quality.sea_map_size", "quality.sea_map_size", "spectral.count"}, {n_z, M, M, nb_rows}},
         {p.name, "radiance maps", 4 * n_z * n_d * nb, {"quality.sea_nz", "quality.sea_nd", "spectral.count"},
          {n_z, n_d, nb}}};
-    // The parameter block, the bands, the VSF map, the directions and the planes' weights.
+    // The parameter block, the bands, the VSF map, the directions, the planes' weights and their per-band values
+    // (plane_bands, 4 floats per plane and band).
     const double vsf = SeaSecondPass::Config{}.vsf_size;
-    out.push_back({p.name, "parameter block, bands, VSF map, directions, plane weights",
-                   double(sizeof(SeaSecondParams)) + double(sizeof(SeaBand)) * nb_rows + 4 * vsf + 16 * n_d_rows + 4 * n_z * nb_rows,
+    out.push_back({p.name, "parameter block, bands, VSF map, directions, plane weights and values",
+                   double(sizeof(SeaSecondParams)) + double(sizeof(SeaBand)) * nb_rows + 4 * vsf + 16 * n_d_rows +
+                       (4 + 16) * n_z * nb_rows,
                    {}, {}});
     if (s.bottom.type == BottomDesc::Type::HeightField) {
       const double bytes = heightFieldBytes(loadHeightField(s.bottom, s.files.get()));
