@@ -23,8 +23,9 @@ extern "C" {
 namespace seasim {
 
 // The kernel reads these structs with OpenCL C layout; float/int are 4 bytes on both sides.
-static_assert(sizeof(SeaParams) == 5 * 16 + 8 * 4 + 4 * 4 + 10 * 4, "SeaParams layout changed: update sea_params.h users");
+static_assert(sizeof(SeaParams) == 5 * 16 + 8 * 4 + 4 * 4 + 10 * 4 + 16, "SeaParams layout changed: update sea_params.h users");
 static_assert(offsetof(SeaParams, sky_fresnel_mean) == 164);
+static_assert(offsetof(SeaParams, column_hemisphere) == 168);
 static_assert(offsetof(SeaParams, pixel_angle) == 108);
 static_assert(offsetof(SeaParams, sun_slope_variance) == 160);
 static_assert(offsetof(SeaParams, tan_half_fov_y) == 80);
@@ -85,6 +86,22 @@ SeaParams seaParams(const Scene& scene, const WavelengthGrid& grid, const Vec3& 
   p.sun_solid_angle = static_cast<float>(2 * M_PI * (1 - std::cos(scene.sun.angular_radius)));
   p.sun_slope_variance = static_cast<float>(scene.sun.angular_radius * scene.sun.angular_radius / 16);
   p.sky_fresnel_mean = static_cast<float>(skyFresnelMean(scene.water.ior));
+  // sea_pixel's cos_io (the sun refracted through the flat mean surface: sea_sun_entry; 1 with the sun down),
+  // mu_sky and mu_ret, in float as the kernel has them, each through sea_column_hemisphere once per frame.
+  {
+    namespace kf = kmath_f;
+    const float ior = p.ior, s = static_cast<float>(sun.y);
+    float cos_io = 1.0f;
+    if (s > 0.0f) {
+      const float sin_w = std::sqrt(std::max(1.0f - s * s, 0.0f)) / ior;
+      cos_io = std::max(std::sqrt(std::max(1.0f - sin_w * sin_w, 0.0f)), 1e-4f);
+    }
+    const float mu_sky = kf::sea_sky_mean_cosine(ior);
+    const float mu_ret = kf::sea_reflected_mean_cosine(kf::sea_surface_reflectance_below(p.sky_fresnel_mean, ior), ior);
+    p.column_hemisphere[0] = kf::sea_column_hemisphere(cos_io);
+    p.column_hemisphere[1] = kf::sea_column_hemisphere(mu_sky);
+    p.column_hemisphere[2] = kf::sea_column_hemisphere(mu_ret);
+  }
   p.width = cam.width;
   p.height = cam.height;
   p.band_count = static_cast<int>(grid.centers_nm.size());

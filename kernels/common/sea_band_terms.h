@@ -134,6 +134,6 @@ SEASIM_FN realb sea_multiple_lanes_b(SeaFeatures f, SEASIM_CONSTANT const SeaPar
                                            px->mu_sky, px->focus);
   L += px->t_out * sea_multiple_surface_return_b(&factors, e_sun, px->t_in, e_sky, albedo, px->z_d, px->cos_io,
                                                  px->cos_ji, px->mu_sky, px->focus, px->r_below, px->mu_ret,
-                                                 f.single_scattering);
+                                                 f.single_scattering, px->hemisphere);
   return L;
 }

@@ -202,12 +202,16 @@ SEASIM_FN real sea_reflected_mean_cosine(real r_below, real ior) {
 /* The column's irradiance reflectance E_u(0)/E_d(0) just below the surface for a downwelling
  * irradiance of mean cosine mu, in this model's own terms: its radiance back up per unit E_d is
  * b_b/(2π k (μ + μ_v)) × orders (as sea_sky_backscatter_deep), whose integral over the upper
- * hemisphere, ∫ 2π μ_v dμ_v, is u orders (1 - μ ln(1 + 1/μ)) (0.333 u orders for the sun at μ = 0.875:
+ * hemisphere, ∫ 2π μ_v dμ_v, is u orders (1 - μ ln(1 + 1/μ)) (sea_column_hemisphere; 0.333 u orders for the sun at μ = 0.875:
  * Gordon's 0.33 b_b/(a + b_b)); over a bottom at H (< 0: none) times the depth factor with the upwelling
  * light's mean secant 2, as the bottom's diffuse light (sea_bottom_surface_reflectance). */
+SEASIM_FN real sea_column_hemisphere(real mu) {
+  const real m = fmax(mu, R(1e-4));
+  return R(1.0) - m * log1p(R(1.0) / m);
+}
 SEASIM_FN real sea_column_reflectance(SeaMultipleFactors f, real H, real mu) {
   const real m = fmax(mu, R(1e-4));
-  return f.u * f.orders * (R(1.0) - m * log1p(R(1.0) / m)) * sea_depth_factor(f.k, H, R(1.0) / m + R(2.0));
+  return f.u * f.orders * sea_column_hemisphere(mu) * sea_depth_factor(f.k, H, R(1.0) / m + R(2.0));
 }
 
 /* The bottom's share of E_u(0)/E_d(0) for a downwelling irradiance of mean cosine mu: ρ e^{-k H/μ} down

@@ -76,11 +76,11 @@ SEASIM_FN realb sea_multiple_bottom_b(const SeaMultipleFactorsB* f, realb e_sun,
   return H < R(0.0) ? SPLATB(R(0.0)) : v;
 }
 
-/* sea_column_reflectance for the lanes' factors at one mean cosine. */
-SEASIM_FN realb sea_column_reflectance_b(const SeaMultipleFactorsB* f, real H, real mu) {
+/* sea_column_reflectance for the lanes' factors at one mean cosine, whose sea_column_hemisphere the caller has
+ * (once per frame: SeaParams.column_hemisphere; a scalar log1p call per pixel was a fifth of flat_sea's frame). */
+SEASIM_FN realb sea_column_reflectance_b(const SeaMultipleFactorsB* f, real H, real mu, real hemisphere) {
   const real m = fmax(mu, R(1e-4));
-  return f->u * f->orders * (R(1.0) - m * log1p(R(1.0) / m)) *
-         sea_depth_factor_b(f->k, H, SPLATB(R(1.0) / m + R(2.0)));
+  return f->u * f->orders * hemisphere * sea_depth_factor_b(f->k, H, SPLATB(R(1.0) / m + R(2.0)));
 }
 
 /* sea_bottom_surface_reflectance for the lanes' k and albedo. */
@@ -89,17 +89,17 @@ SEASIM_FN realb sea_bottom_surface_reflectance_b(realb k, realb albedo, real H, 
   return H < R(0.0) ? SPLATB(R(0.0)) : albedo * exp(-k * depth * (R(1.0) / fmax(mu, R(1e-4)) + R(2.0)));
 }
 
-/* sea_multiple_surface_return for the lanes. */
+/* sea_multiple_surface_return for the lanes; hemisphere: sea_column_hemisphere of cos_io, mu_sky and mu_ret. */
 SEASIM_FN realb sea_multiple_surface_return_b(const SeaMultipleFactorsB* f, realb e_sun, real t_in, realb e_sky,
                                               realb albedo, real H, real cos_io, real cos_ji, real mu_sky, real focus,
-                                              real r_below, real mu_ret, int with_column) {
+                                              real r_below, real mu_ret, int with_column, const real* hemisphere) {
   const real col = with_column ? R(1.0) : R(0.0);
-  const realb e_up = e_sun * t_in * (col * sea_column_reflectance_b(f, H, cos_io) +
+  const realb e_up = e_sun * t_in * (col * sea_column_reflectance_b(f, H, cos_io, hemisphere[0]) +
                                      focus * sea_bottom_surface_reflectance_b(f->k, albedo, H, cos_io)) +
-                     e_sky * (col * sea_column_reflectance_b(f, H, mu_sky) +
+                     e_sky * (col * sea_column_reflectance_b(f, H, mu_sky, hemisphere[1]) +
                               sea_bottom_surface_reflectance_b(f->k, albedo, H, mu_sky));
-  const realb r_water =
-      col * sea_column_reflectance_b(f, H, mu_ret) + sea_bottom_surface_reflectance_b(f->k, albedo, H, mu_ret);
+  const realb r_water = col * sea_column_reflectance_b(f, H, mu_ret, hemisphere[2]) +
+                        sea_bottom_surface_reflectance_b(f->k, albedo, H, mu_ret);
   const realb e_down = r_below * e_up / (R(1.0) - fmin(r_below * r_water, R(0.999)));
   const realb column = col * sea_sky_backscatter_deep_b(SPLATB(R(1.0)), mu_ret, f->bb, f->k, cos_ji) *
                        sea_depth_factor_b(f->k, H, R(1.0) / mu_ret + f->d_c / cos_ji) * f->orders;

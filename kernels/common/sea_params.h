@@ -31,6 +31,9 @@ typedef struct {
   float caustic_origin;  /* m, its corner on x and z: 0 (periodic ocean patch) or -extent/2 (height field) */
   float sun_slope_variance; /* the sun disk's slope variance per axis, rho^2 / 16 (common/sea_lean.h) */
   float sky_fresnel_mean; /* r̄: the uniform sky's cosine-weighted Fresnel reflectance (sea.model "multiple") */
+  float column_hemisphere[4]; /* sea.model "multiple": sea_column_hemisphere (common/sea_multiple.h) of the
+                                 refracted sun's cosine, the sky's and the returned light's mean cosines, as
+                                 sea_pixel has them (once per frame); [3] unused */
 } SeaParams;
 
 /* One wavelength band: radiometry and water IOPs at the band centre, and the sensor weights that

@@ -46,6 +46,7 @@ typedef struct {
   int lut_jm, lut_j, lut_jp; /* SEASIM_SEA_LUT: the Catmull–Rom taps (sea_lut_taps) */
   real lut_t;
   real mu_sky, r_below, mu_ret; /* sea.model "multiple": skylight's and the returned light's mean cosines */
+  real hemisphere[3];            /* and sea_column_hemisphere of cos_io, mu_sky, mu_ret (SeaParams's) */
 } SeaPixel;
 
 SEASIM_FN real3 sea_sun_dir(SEASIM_CONSTANT const SeaParams* p) {
@@ -240,10 +241,12 @@ SEASIM_FN void sea_pixel(SeaFeatures f, SEASIM_CONSTANT const SeaParams* p, cons
   px.c_f = hg_forward_fraction(p->g);
   px.phase = hg_phase(px.cos_alpha, p->g);
   px.mu_sky = px.r_below = px.mu_ret = R(0.0);
+  px.hemisphere[0] = px.hemisphere[1] = px.hemisphere[2] = R(0.0);
   if (f.model == 1) {
     px.mu_sky = sea_sky_mean_cosine(p->ior);
     px.r_below = sea_surface_reflectance_below(p->sky_fresnel_mean, p->ior); /* the surface's light back down */
     px.mu_ret = sea_reflected_mean_cosine(px.r_below, p->ior);
+    for (int q = 0; q < 3; ++q) px.hemisphere[q] = (real)p->column_hemisphere[q];
   }
   sea_bottom_view(f, p, caustics, hf, hf_depth, d, &px);
   /* eq. 5's LUT over theta_ji with waves, theta_jo (cos_jo = -d.y) on a flat sea. */

@@ -58,14 +58,17 @@ Terms lanesTerms(const Case& c) {
   const Real mu_ret = K::sea_reflected_mean_cosine(r_below, Real(kIor));
   const auto f = K::sea_multiple_factors_b(Real(c.a), Real(c.b), c_f);
   const Real H = Real(c.H), cos_io = Real(c.cos_io), cos_ji = Real(c.cos_ji), focus = Real(c.focus);
+  // The hemisphere factors the kernel has from SeaParams, once per frame.
+  const Real hemisphere[3] = {K::sea_column_hemisphere(cos_io), K::sea_column_hemisphere(mu_sky),
+                              K::sea_column_hemisphere(mu_ret)};
   return {K::sea_multiple_column_b(&f, Real(kSun), Real(kTin), Real(kSky), Real(c.a), Real(c.b), H, cos_io, cos_ji,
                                    Real(c.phase), mu_sky),
           K::sea_multiple_bottom_b(&f, Real(kSun), Real(kTin), Real(kSky), Real(c.albedo), H, cos_io, cos_ji, mu_sky,
                                    focus),
           K::sea_multiple_surface_return_b(&f, Real(kSun), Real(kTin), Real(kSky), Real(c.albedo), H, cos_io, cos_ji,
-                                           mu_sky, focus, r_below, mu_ret, 1),
+                                           mu_sky, focus, r_below, mu_ret, 1, hemisphere),
           K::sea_multiple_surface_return_b(&f, Real(kSun), Real(kTin), Real(kSky), Real(c.albedo), H, cos_io, cos_ji,
-                                           mu_sky, focus, r_below, mu_ret, 0)};
+                                           mu_sky, focus, r_below, mu_ret, 0, hemisphere)};
 }
 
 struct KF {
@@ -73,6 +76,7 @@ struct KF {
   static float sea_sky_mean_cosine(float n) { return kf::sea_sky_mean_cosine(n); }
   static float sea_surface_reflectance_below(float r, float n) { return kf::sea_surface_reflectance_below(r, n); }
   static float sea_reflected_mean_cosine(float r, float n) { return kf::sea_reflected_mean_cosine(r, n); }
+  static float sea_column_hemisphere(float mu) { return kf::sea_column_hemisphere(mu); }
   static auto sea_multiple_factors_b(float a, float b, float c_f) { return kf::sea_multiple_factors_b(a, b, c_f); }
   template <typename... A>
   static float sea_multiple_column_b(A... a) { return kf::sea_multiple_column_b(a...); }
@@ -86,6 +90,7 @@ struct KD {
   static double sea_sky_mean_cosine(double n) { return kd::sea_sky_mean_cosine(n); }
   static double sea_surface_reflectance_below(double r, double n) { return kd::sea_surface_reflectance_below(r, n); }
   static double sea_reflected_mean_cosine(double r, double n) { return kd::sea_reflected_mean_cosine(r, n); }
+  static double sea_column_hemisphere(double mu) { return kd::sea_column_hemisphere(mu); }
   static auto sea_multiple_factors_b(double a, double b, double c_f) { return kd::sea_multiple_factors_b(a, b, c_f); }
   template <typename... A>
   static double sea_multiple_column_b(A... a) { return kd::sea_multiple_column_b(a...); }
