@@ -78,9 +78,11 @@ std::array<double, 3> azimuthModes(double nu, double mu, int azimuths, F f) {
   std::array<double, 3> m{0, 0, 0};
   const double sin_nu = std::sqrt(std::max(1 - nu * nu, 0.0)), sin_mu = std::sqrt(std::max(1 - mu * mu, 0.0));
   for (int i = 0; i < azimuths; ++i) {
-    const double dphi = 3.14159265358979323846 * (i + 0.5) / azimuths;
-    const double v = f(std::clamp(nu * mu + sin_nu * sin_mu * std::cos(dphi), -1.0, 1.0));
-    for (int mode = 0; mode < 3; ++mode) m[mode] += (mode == 0 ? 1.0 : 2.0) * std::cos(mode * dphi) * v / azimuths;
+    const double c1 = std::cos(3.14159265358979323846 * (i + 0.5) / azimuths);
+    const double v = f(std::clamp(nu * mu + sin_nu * sin_mu * c1, -1.0, 1.0));
+    // cos(m Δφ) for m = 0, 1, 2 from the one cosine (the host's set-up spent a tenth of a frame in cos here).
+    const double cos_m[3] = {1.0, c1, 2 * c1 * c1 - 1};
+    for (int mode = 0; mode < 3; ++mode) m[mode] += (mode == 0 ? 1.0 : 2.0) * cos_m[mode] * v / azimuths;
   }
   return m;
 }
