@@ -316,7 +316,7 @@ typedef struct {
  * around it whose hit lies within 5 % of the pixel's own distance S (the same surface), weighted bilinearly
  * by position; -1 when none does (a silhouette: the caller evaluates the pixel itself). A lattice pixel
  * reads its own values, so there the shares are the per-pixel ones exactly. Open water: 1, as
- * uwi_sand_share. */
+ * uwi_sand_shares. */
 static inline float2 sand_share_from_map(const SandShareAt* a, __constant UwParams* p, float S) {
   if (!(S < 1.0e6f)) return (float2)(1.0f, 1.0f);
   const int i0 = a->x / a->step, j0 = a->y / a->step;

@@ -86,19 +86,16 @@ SeaParams seaParams(const Scene& scene, const WavelengthGrid& grid, const Vec3& 
   p.sun_solid_angle = static_cast<float>(2 * M_PI * (1 - std::cos(scene.sun.angular_radius)));
   p.sun_slope_variance = static_cast<float>(scene.sun.angular_radius * scene.sun.angular_radius / 16);
   p.sky_fresnel_mean = static_cast<float>(skyFresnelMean(scene.water.ior));
-  // sea_pixel's cos_io (the sun refracted through the flat mean surface: sea_sun_entry; 1 with the sun down),
-  // mu_sky and mu_ret, in float as the kernel has them, each through sea_column_hemisphere once per frame.
+  // sea_pixel's cos_io (sea_sun_entry: the sun refracted through the flat mean surface; 1 with the sun down),
+  // mu_sky and mu_ret, by the kernel's own float functions, each through sea_column_hemisphere once per frame.
   {
     namespace kf = kmath_f;
-    const float ior = p.ior, s = static_cast<float>(sun.y);
-    float cos_io = 1.0f;
-    if (s > 0.0f) {
-      const float sin_w = std::sqrt(std::max(1.0f - s * s, 0.0f)) / ior;
-      cos_io = std::max(std::sqrt(std::max(1.0f - sin_w * sin_w, 0.0f)), 1e-4f);
-    }
-    const float mu_sky = kf::sea_sky_mean_cosine(ior);
-    const float mu_ret = kf::sea_reflected_mean_cosine(kf::sea_surface_reflectance_below(p.sky_fresnel_mean, ior), ior);
-    p.column_hemisphere[0] = kf::sea_column_hemisphere(cos_io);
+    kf::SeaPixel px{};
+    kf::sea_sun_entry(1, &p, &px);
+    const float mu_sky = kf::sea_sky_mean_cosine(p.ior);
+    const float mu_ret =
+        kf::sea_reflected_mean_cosine(kf::sea_surface_reflectance_below(p.sky_fresnel_mean, p.ior), p.ior);
+    p.column_hemisphere[0] = kf::sea_column_hemisphere(px.cos_io);
     p.column_hemisphere[1] = kf::sea_column_hemisphere(mu_sky);
     p.column_hemisphere[2] = kf::sea_column_hemisphere(mu_ret);
   }

@@ -145,6 +145,15 @@ SEASIM_FN void uwi_golden_advance(real* c, real* s) {
   *c = c1;
 }
 
+/* Ray k of n cosine-weighted about a unit axis, in that axis's frame: (r cos φ, √(1 − u), r sin φ) with u = (k +
+ * 1/2)/n, r = √u and (cos φ, sin φ) the ray's azimuth (k × the golden angle: uwi_golden_advance); y along the
+ * axis. */
+SEASIM_FN real3 uwi_cosine_ray(int k, int n, real cos_phi, real sin_phi) {
+  const real u = ((real)k + R(0.5)) / (real)n;
+  const real r = sqrt(u);
+  return MAKE_REAL3(r * cos_phi, sqrt(R(1.0) - u), r * sin_phi);
+}
+
 /* The share of the bottom that a face at p (unit normal n) sees that is sunlit, in [0, 1]: UWI_BOTTOM_RAYS
  * rays from p, cosine-weighted about n (a fixed golden-angle pattern in the face's tangent frame, as a
  * Lambertian face weighs what it sees), and of those going down, the share whose sand a shadow ray finds
@@ -165,9 +174,8 @@ SEASIM_FN real uwi_bottom_visibility(const SEASIM_GLOBAL UwObject* objects, int 
   real lit = R(0.0), down = R(0.0);
   real cos_phi = R(1.0), sin_phi = R(0.0); /* azimuth k × the golden angle */
   for (int k = 0; k < UWI_BOTTOM_RAYS; ++k) {
-    const real u = ((real)k + R(0.5)) / (real)UWI_BOTTOM_RAYS;
-    const real r = sqrt(u);
-    const real3 d = (r * cos_phi) * t + (r * sin_phi) * b + sqrt(R(1.0) - u) * n;
+    const real3 l = uwi_cosine_ray(k, UWI_BOTTOM_RAYS, cos_phi, sin_phi);
+    const real3 d = l.x * t + l.z * b + l.y * n;
     uwi_golden_advance(&cos_phi, &sin_phi);
     if (!(d.y < R(0.0))) continue;
     down += R(1.0);
@@ -285,9 +293,8 @@ SEASIM_FN real uwi_sand_seen(const SEASIM_GLOBAL UwObject* objects, int count, r
   real lit = R(0.0), seen_open = R(0.0);
   real cos_phi = R(1.0), sin_phi = R(0.0); /* azimuth ray × the golden angle */
   for (int ray = 0; ray < UWI_SAND_RAYS; ++ray) {
-    const real u = ((real)ray + R(0.5)) / (real)UWI_SAND_RAYS;
-    const real r = sqrt(u);
-    const real3 dir = MAKE_REAL3(r * cos_phi, -sqrt(R(1.0) - u), r * sin_phi);
+    const real3 l = uwi_cosine_ray(ray, UWI_SAND_RAYS, cos_phi, sin_phi);
+    const real3 dir = MAKE_REAL3(l.x, -l.y, l.z); /* about the downward vertical */
     uwi_golden_advance(&cos_phi, &sin_phi);
     real3 nb = MAKE_REAL3(0, 1, 0);
     int mat = UW_MAT_NONE;
@@ -299,9 +306,7 @@ SEASIM_FN real uwi_sand_seen(const SEASIM_GLOBAL UwObject* objects, int count, r
       const real3 above = hit + MAKE_REAL3(0, R(1e-3), 0);
       real c2 = R(1.0), s2 = R(0.0), unhidden = R(0.0);
       for (int j = 0; j < UWI_SAND_RAYS; ++j) {
-        const real u2 = ((real)j + R(0.5)) / (real)UWI_SAND_RAYS;
-        const real r2 = sqrt(u2);
-        const real3 up = MAKE_REAL3(r2 * c2, sqrt(R(1.0) - u2), r2 * s2);
+        const real3 up = uwi_cosine_ray(j, UWI_SAND_RAYS, c2, s2);
         uwi_golden_advance(&c2, &s2);
         real3 n2 = MAKE_REAL3(0, 1, 0);
         int m2 = UW_MAT_NONE;
@@ -351,15 +356,6 @@ SEASIM_FN real uwi_sand_shares(const SEASIM_GLOBAL UwObject* objects, int count,
   if (!(den > R(0.0))) return R(1.0);
   *v_diffuse = fmin(open / den, R(1.0));
   return fmin(lit / den, R(1.0));
-}
-
-/* uwi_sand_shares without the diffuse share. */
-SEASIM_FN real uwi_sand_share(const SEASIM_GLOBAL UwObject* objects, int count, real bottom_depth, real3 o, real3 d,
-                              real S, real c_dm, real k, real3 s_w, const SEASIM_GLOBAL float* object_albedo,
-                              int albedo_stride, real sand_albedo) {
-  real v_diffuse;
-  return uwi_sand_shares(objects, count, bottom_depth, o, d, S, c_dm, k, s_w, object_albedo, albedo_stride,
-                         sand_albedo, &v_diffuse);
 }
 
 /* uwi_sand_shares of a view ray from the camera along d to its hit S, with the band table's

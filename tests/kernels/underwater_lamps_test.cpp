@@ -173,21 +173,26 @@ double meanOf(const seasim::Image& img) {
   return s / img.pixels.size();
 }
 
-TEST(UnderwaterLamps, KernelMatchesTheDoubleCpuEvaluation) {
-  for (const bool delta_m : {false, true}) {
-  const Scene scene = lampScene({set("quality.shafts_planes", "30"), set("quality.shafts_subplanes", "6"),
-                                 set("quality.lamps_delta_m", delta_m ? "true" : "false")});
+// The kernel's frame of `scene` against the double CPU evaluation `cpu`: finite, every pixel within 2e-3 of the
+// peak, and the image means within 1e-4.
+void expectKernelMatchesCpu(const Scene& scene, const seasim::Image& cpu, const char* what) {
   const seasim::FrameResult frame = render(scene);
   ASSERT_EQ(frame.nonfinite, 0);
-  const seasim::Image cpu = cpuDouble(scene, 30, 6, delta_m);
   const double peak = maxOf(cpu);
   ASSERT_GT(peak, 0);
   double worst = 0;
   for (size_t k = 0; k < cpu.pixels.size(); ++k)
     worst = std::max(worst, double(std::fabs(frame.rgb.pixels[k] - cpu.pixels[k])));
-  std::printf("kernel vs double CPU (delta-M %d): max |difference| %.3g of a peak %.4g\n", int(delta_m), worst, peak);
-  EXPECT_LT(worst, 2e-3 * peak) << "worst " << worst << " of peak " << peak;
-  EXPECT_NEAR(meanOf(frame.rgb), meanOf(cpu), 1e-4 * meanOf(cpu));
+  std::printf("%s vs double CPU: max |difference| %.3g of a peak %.4g\n", what, worst, peak);
+  EXPECT_LT(worst, 2e-3 * peak) << what << ": worst " << worst << " of peak " << peak;
+  EXPECT_NEAR(meanOf(frame.rgb), meanOf(cpu), 1e-4 * meanOf(cpu)) << what;
+}
+
+TEST(UnderwaterLamps, KernelMatchesTheDoubleCpuEvaluation) {
+  for (const bool delta_m : {false, true}) {
+    const Scene scene = lampScene({set("quality.shafts_planes", "30"), set("quality.shafts_subplanes", "6"),
+                                   set("quality.lamps_delta_m", delta_m ? "true" : "false")});
+    expectKernelMatchesCpu(scene, cpuDouble(scene, 30, 6, delta_m), delta_m ? "kernel (delta-M)" : "kernel");
   }
 }
 
@@ -196,34 +201,14 @@ TEST(UnderwaterLamps, PlanesBeyondOneBlockMatchTheDoubleCpuEvaluation) {
   // block and a part of a second, whose first plane's profile carries on from the first block's last.
   const Scene scene = lampScene({set("quality.shafts_planes", "45"), set("quality.shafts_subplanes", "3"),
                                  set("quality.lamps_delta_m", "false")});
-  const seasim::FrameResult frame = render(scene);
-  ASSERT_EQ(frame.nonfinite, 0);
-  const seasim::Image cpu = cpuDouble(scene, 45, 3, false);
-  const double peak = maxOf(cpu);
-  ASSERT_GT(peak, 0);
-  double worst = 0;
-  for (size_t k = 0; k < cpu.pixels.size(); ++k)
-    worst = std::max(worst, double(std::fabs(frame.rgb.pixels[k] - cpu.pixels[k])));
-  std::printf("kernel vs double CPU, 45 planes: max |difference| %.3g of a peak %.4g\n", worst, peak);
-  EXPECT_LT(worst, 2e-3 * peak) << "worst " << worst << " of peak " << peak;
-  EXPECT_NEAR(meanOf(frame.rgb), meanOf(cpu), 1e-4 * meanOf(cpu));
+  expectKernelMatchesCpu(scene, cpuDouble(scene, 45, 3, false), "kernel, 45 planes");
 }
 
 TEST(UnderwaterLamps, OrdersKernelMatchesTheDoubleCpuEvaluation) {
   // Every pixel evaluated (no lattice): the double evaluation below is per pixel.
   const Scene scene = lampScene({set("quality.shafts_planes", "30"), set("quality.shafts_subplanes", "6"),
                                  set("quality.lamps_model", "\"orders\""), set("quality.lamps_ms_cell_deg", "0")});
-  const seasim::FrameResult frame = render(scene);
-  ASSERT_EQ(frame.nonfinite, 0);
-  const seasim::Image cpu = cpuDouble(scene, 30, 6, false, true);
-  const double peak = maxOf(cpu);
-  ASSERT_GT(peak, 0);
-  double worst = 0;
-  for (size_t k = 0; k < cpu.pixels.size(); ++k)
-    worst = std::max(worst, double(std::fabs(frame.rgb.pixels[k] - cpu.pixels[k])));
-  std::printf("orders kernel vs double CPU: max |difference| %.3g of a peak %.4g\n", worst, peak);
-  EXPECT_LT(worst, 2e-3 * peak) << "worst " << worst << " of peak " << peak;
-  EXPECT_NEAR(meanOf(frame.rgb), meanOf(cpu), 1e-4 * meanOf(cpu));
+  expectKernelMatchesCpu(scene, cpuDouble(scene, 30, 6, false, true), "orders kernel");
 }
 
 // The orders model's smooth part on a lattice of every step-th pixel (quality.lamps_ms_cell_deg), against
