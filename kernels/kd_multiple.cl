@@ -312,28 +312,30 @@ typedef struct {
 #endif
 
 #if SEASIM_SAND_SHARE_MAP
-/* The sand's shares at the pixel from the lattice, (sunlit, diffusely lit): the (up to) four lattice pixels
- * around it whose hit lies within 5 % of the pixel's own distance S (the same surface), weighted bilinearly
- * by position; -1 when none does (a silhouette: the caller evaluates the pixel itself). A lattice pixel
- * reads its own values, so there the shares are the per-pixel ones exactly. Open water: 1, as
- * uwi_sand_shares. */
-static inline float2 sand_share_from_map(const SandShareAt* a, __constant UwParams* p, float S) {
-  if (!(S < 1.0e6f)) return (float2)(1.0f, 1.0f);
+/* The objects' shares at the pixel from the lattice, (the sunlit sand's, the diffusely lit sand's, the light
+ * from above's): the (up to) four lattice pixels around it whose hit lies within 5 % of the pixel's own
+ * distance S (the same surface; open water: those without a hit either), weighted bilinearly by position;
+ * -1 when none does (a silhouette: the caller evaluates the pixel itself). A lattice pixel reads its own
+ * values, so there the shares are the per-pixel ones exactly. */
+static inline float3 sand_share_from_map(const SandShareAt* a, __constant UwParams* p, float S) {
+  const int open = !(S < 1.0e6f);
   const int i0 = a->x / a->step, j0 = a->y / a->step;
   const float fx = (float)(a->x - i0 * a->step) / a->step, fy = (float)(a->y - j0 * a->step) / a->step;
   const int plane = a->w * a->h;
-  float2 sum = (float2)(0.0f, 0.0f);
+  float3 sum = (float3)(0.0f, 0.0f, 0.0f);
   float wsum = 0.0f;
   for (int dj = 0; dj <= 1; ++dj)
     for (int di = 0; di <= 1; ++di) {
       const float w = (di ? fx : 1.0f - fx) * (dj ? fy : 1.0f - fy);
       const int i = min(i0 + di, a->w - 1), j = min(j0 + dj, a->h - 1);
       const float Sq = a->geom[min(j * a->step, p->height - 1) * p->width + min(i * a->step, p->width - 1)].x;
-      if (!(w > 0.0f) || !(Sq < 1.0e6f) || fabs(Sq - S) > 0.05f * S) continue;
-      sum += w * (float2)(a->map[j * a->w + i], a->map[plane + j * a->w + i]);
+      const int same = open ? !(Sq < 1.0e6f) : Sq < 1.0e6f && fabs(Sq - S) <= 0.05f * S;
+      if (!(w > 0.0f) || !same) continue;
+      const int at = j * a->w + i;
+      sum += w * (float3)(a->map[at], a->map[plane + at], a->map[2 * plane + at]);
       wsum += w;
     }
-  return wsum > 0.0f ? sum / wsum : (float2)(-1.0f, -1.0f);
+  return wsum > 0.0f ? sum / wsum : (float3)(-1.0f, -1.0f, -1.0f);
 }
 #endif
 
@@ -343,7 +345,7 @@ static inline float2 sand_share_from_map(const SandShareAt* a, __constant UwPara
 typedef struct {
   UwiHitPixel hit;
   int row0, node, aureole_node;
-  float phase, cos_dphi, aureole_frac, aureole_end, v_sand, v_diffuse, s_w_y;
+  float phase, cos_dphi, aureole_frac, aureole_end, v_sand, v_diffuse, v_above, s_w_y;
   __global const float* albedo_m_row;
 #if SEASIM_UWI_SPREAD
   float s_spread;
@@ -376,16 +378,21 @@ static inline void uwi_pixel(__constant UwParams* p, __global const float* band_
   q->aureole_end = mat == UW_MAT_SURFACE ? 0.0f : k->y_hit;
   const float3 cam = (float3)(p->cam_pos[0], p->cam_pos[1], p->cam_pos[2]);
   /* The shares of the sunlit and of the diffusely lit sand's light the ray gathers that no object hides or
-   * shades (uwi_sand_shares, with the first band's c' and k): from sand_share.cl's
-   * lattice where it can be, else here. */
+   * shades (uwi_sand_shares), and of the light from above that the objects leave its in-scatter
+   * (uwi_above_share; both with the first band's c' and k): from sand_share.cl's lattice where it can be,
+   * else here. */
 #if SEASIM_SAND_SHARE_MAP
-  const float2 v_map = k->multiple ? sand_share_from_map(sand, p, S) : (float2)(1.0f, 1.0f);
+  const float3 v_map = k->multiple ? sand_share_from_map(sand, p, S) : (float3)(1.0f, 1.0f, 1.0f);
 #else
-  const float2 v_map = k->multiple ? (float2)(-1.0f, -1.0f) : (float2)(1.0f, 1.0f);
+  const float3 v_map = k->multiple ? (float3)(-1.0f, -1.0f, -1.0f) : (float3)(1.0f, 1.0f, 1.0f);
 #endif
   q->v_sand = v_map.x;
   q->v_diffuse = v_map.y;
-  if (v_map.x < 0.0f) q->v_sand = uwi_view_sand_shares(p, objects, band_table, stride, d, S, &q->v_diffuse);
+  q->v_above = v_map.z;
+  if (v_map.x < 0.0f) {
+    q->v_sand = uwi_view_sand_shares(p, objects, band_table, stride, d, S, &q->v_diffuse);
+    q->v_above = uwi_view_above_share(p, objects, band_table, stride, d, S);
+  }
   /* The object the reflected ray meets first, if any (surface hits; uwi_mirror_hit). */
   int mat_m = UW_MAT_NONE;
   const UwiMirrorHit mirror =
@@ -491,6 +498,9 @@ static inline realb uwi_step(__constant UwParams* p, __global const float* band_
   uwi_lanes_weights(band_table, stride, q->row0, i, q->node, q->cos_dphi, &w);
   if (q->v_sand < 1.0f || q->v_diffuse < 1.0f)
     uwi_lanes_hide_sand(band_table, stride, q->row0, i, q->node, q->v_sand, q->v_diffuse, &w);
+  /* The source from above, both of its terms (uwi_multiple_sand). */
+  w.w1 *= q->v_above;
+  w.wp *= q->v_above;
   realb L;
   const realb in_scatter =
       uwi_step_inscatter(p, band_table, stride, k, q, i, &v, &w, &camera, k->S, k->y_hit, q->aureole_end, &L);

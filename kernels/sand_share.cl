@@ -1,15 +1,16 @@
-/* sand_share.cl — the discrete-ordinates model's shares of the sunlit and of the diffusely lit sand that the
- * objects leave a view ray (common/underwater_ordinates.h, uwi_view_sand_shares)
- * on a lattice of every `step`-th pixel in x and y, the pixel (i step, j step) at map[j * map_w + i] and
- * map[map_w * map_h + j * map_w + i] (clamped to the image's last row and column).
+/* sand_share.cl — the discrete-ordinates model's shares that the objects leave a view ray: of the sunlit and of
+ * the diffusely lit sand's light (common/underwater_ordinates.h, uwi_view_sand_shares) and of the light from
+ * above in its in-scatter (uwi_view_above_share), on a lattice of every `step`-th pixel in x and y, the pixel
+ * (i step, j step) at map[k map_w map_h + j map_w + i], plane k = 0, 1, 2 (clamped to the image's last row
+ * and column).
  * kd_multiple.cl (SEASIM_SAND_SHARE_MAP) interpolates it to the pixels between, where the lattice's hits
  * lie at the pixel's own distance, and evaluates the rest itself: the share is smooth along a surface and
  * jumps at its silhouettes. Its rays (UWI_SAND_POINTS points x UWI_SAND_RAYS rays, their shadow rays and
- * the diffuse share's up-rays, against every object) are the model's fixed cost per pixel; a lattice of step 2 pays about a
+ * the diffuse share's up-rays; UWI_ABOVE_POINTS x UWI_ABOVE_RAYS up-rays; against every object) are the model's fixed cost per pixel; a lattice of step 2 pays about a
  * quarter of it (results/BENCHMARKS.md).
  *
  * Inputs: UwParams, the band table (the first band's c', k, albedos), the objects, raycast.cl's G-buffer
- * distances (geom.x). Output: map[2 * map_w * map_h].
+ * distances (geom.x). Output: map[3 * map_w * map_h].
  */
 #include "common/compat.h"
 #include "common/optics.h"
@@ -29,6 +30,8 @@ __kernel void sand_share(__constant UwParams* p, __global const float* band_tabl
   const int stride = UW_BAND_STRIDE(p->band_count);
   const float S = geom[y * p->width + x].x;
   float v_diffuse;
+  const int plane = map_w * map_h;
   map[j * map_w + i] = uwi_view_sand_shares(p, objects, band_table, stride, d, S, &v_diffuse);
-  map[map_w * map_h + j * map_w + i] = v_diffuse;
+  map[plane + j * map_w + i] = v_diffuse;
+  map[2 * plane + j * map_w + i] = uwi_view_above_share(p, objects, band_table, stride, d, S);
 }

@@ -45,7 +45,7 @@ struct KdFeatures final : PassFeatures {
   // buffer is zeroed before the kernel (no define: the kernel does not touch it), underwater_lamps adds
   // into it.
   int lamps_split_layers = 0;
-  bool sand_map = false;  // the sand's share from sand_share.cl's lattice (quality.sand_share_step > 1)
+  bool sand_map = false;  // the objects' shares from sand_share.cl's lattice (quality.sand_share_step > 1)
 
   void list(FeatureList& out) const override {
     out.flag("multiple", "SEASIM_HAS_MULTIPLE", multiple);

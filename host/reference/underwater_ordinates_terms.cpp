@@ -18,17 +18,18 @@ struct InScatter {
 };
 
 // v_sand, v_diffuse: the shares of the sunlit and of the diffusely lit sand's parts of the source kept
-// (uwi_sand_shares; uwi_multiple_sand).
+// (uwi_sand_shares); v_above: the share of the source from above that the objects leave (uwi_above_share;
+// both as uwi_multiple_sand takes them).
 InScatter inScatterTerms(const UwiBand& ib, const UwBand& band, double g, double bottom_depth, double S, double d_y,
-                         double o_d, double cos_s, double mu_w, double v_sand, double v_diffuse) {
+                         double o_d, double cos_s, double mu_w, double v_sand, double v_diffuse, double v_above) {
   InScatter t;
   const int node = kd::uwi_source_node(d_y);
   const double cos_dphi = kd::uwi_cos_azimuth(cos_s, d_y, mu_w);
   const double lost = kd::uwi_sand_lost(v_sand, v_diffuse, ib.sand_beam, ib.sand_diffuse);
   const float* sand = ib.src_sand + 3 * node;
-  const double w1 = kd::uwi_source_weight(&ib, node, cos_dphi, 0) - lost * sand[0];
+  const double w1 = (kd::uwi_source_weight(&ib, node, cos_dphi, 0) - lost * sand[0]) * v_above;
   const double w2 = kd::uwi_source_weight(&ib, node, cos_dphi, 1) - lost * sand[1];
-  const double wp = kd::uwi_source_weight(&ib, node, cos_dphi, 2) - lost * sand[2];
+  const double wp = (kd::uwi_source_weight(&ib, node, cos_dphi, 2) - lost * sand[2]) * v_above;
   const double p_hg = kd::hg_phase(cos_s, g);
   const double phase = double(band.b) * p_hg * band.e_beam0;
   const double tms_phase = double(band.b) * kd::uwi_tms_phase(p_hg, ib.p_clip) * band.e_beam0;
@@ -79,6 +80,10 @@ std::vector<UwiPixelTerms> ordinatesModelTerms(const UnderwaterSetup& s, bool mu
                                          s.ordinates[0].k, s_w, s.albedo.data(), p.band_count,
                                          s.bands[0].bottom_albedo, &v_diffuse)
                    : 1.0;
+      // and the share of the source from above that the objects leave it.
+      const double v_above = multiple ? kd::uwi_above_share(s.objects.data(), p.object_count, H, o, d, S,
+                                                            s.ordinates[0].c_dm, s.ordinates[0].k)
+                                      : 1.0;
       for (int i = 0; i < p.band_count; ++i) {
         const UwBand& b = s.bands[i];
         const UwiBand& ib = s.ordinates[i];
@@ -86,7 +91,7 @@ std::vector<UwiPixelTerms> ordinatesModelTerms(const UnderwaterSetup& s, bool mu
         const double albedo =
             mat >= 0 ? s.albedo[size_t(mat) * p.band_count + i] : mat == UW_MAT_BOTTOM ? b.bottom_albedo : 0.0;
         if (multiple) {
-          const InScatter v = inScatterTerms(ib, b, p.g, H, S, d.y, o_d, kd::dot(d, s_w), mu_w, v_sand, v_diffuse);
+          const InScatter v = inScatterTerms(ib, b, p.g, H, S, d.y, o_d, kd::dot(d, s_w), mu_w, v_sand, v_diffuse, v_above);
           t.inscatter_modes += w * v.modes;
           t.inscatter_beam += w * v.beam;
           t.inscatter_tms += w * v.tms;
@@ -120,15 +125,16 @@ std::vector<UwiPixelTerms> ordinatesModelTerms(const UnderwaterSetup& s, bool mu
           t.forward += w * small_angle * T * (p.ior * p.ior * (1 - f) * b.sky_radiance + f * (l_ms + l_bottom));
           if (froxels && multiple)
             t.reflected_froxel_ss +=
-                w * T * f * inScatterTerms(ib, b, p.g, H, s_r, -dy, 0.0, cos_r, mu_w, 1.0, 1.0).froxel_ss;
+                w * T * f * inScatterTerms(ib, b, p.g, H, s_r, -dy, 0.0, cos_r, mu_w, 1.0, 1.0, 1.0).froxel_ss;
         } else if (mat != UW_MAT_NONE) {
           const double lambert = T * kd::uwi_lambert(&ib, &b, H, std::max(o_d - S * d.y, 0.0), n, s_w, albedo, vis, vis_b);
           t.lambert += w * lambert;
           t.forward += w * small_angle * lambert;
         }
         t.total += w * (kd::uwi_band_radiance_sand(&ib, &b, p.g, mat, S, n, d, o_d, s_w, albedo, vis, vis_b,
-                                                   b.sky_radiance, p.ior, H, froxels, multiple, mirror, v_sand, v_diffuse) +
-                        (froxels && multiple ? inScatterTerms(ib, b, p.g, H, S, d.y, o_d, kd::dot(d, s_w), mu_w, 1.0, 1.0).froxel_ss
+                                                   b.sky_radiance, p.ior, H, froxels, multiple, mirror, v_sand, v_diffuse,
+                                                   v_above) +
+                        (froxels && multiple ? inScatterTerms(ib, b, p.g, H, S, d.y, o_d, kd::dot(d, s_w), mu_w, 1.0, 1.0, 1.0).froxel_ss
                                              : 0.0));
       }
     }

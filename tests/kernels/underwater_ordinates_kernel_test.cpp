@@ -108,18 +108,22 @@ seasim::Image cpuOrdinates(const seasim::UnderwaterSetup& s, bool multiple, std:
                                          s.ordinates[0].k, s_w, s.albedo.data(), p.band_count,
                                          s.bands[0].bottom_albedo, &v_diffuse)
                    : 1.0;
+      // The share of the source from above that the objects leave the ray (kd_multiple.cl's uwi_above_share).
+      const double v_above = multiple ? kd::uwi_above_share(s.objects.data(), p.object_count, p.bottom_depth, o, d, S,
+                                                            s.ordinates[0].c_dm, s.ordinates[0].k)
+                                      : 1.0;
       for (int i = 0; i < p.band_count; ++i) {
         if (mat_m >= 0) mirror.albedo = s.albedo[size_t(mat_m) * p.band_count + i];
         const UwBand& b = s.bands[i];
         const double albedo = mat >= 0 ? s.albedo[size_t(mat) * p.band_count + i] : mat == UW_MAT_BOTTOM ? b.bottom_albedo : 0.0;
         double L = kd::uwi_band_radiance_sand(&s.ordinates[i], &b, p.g, mat, S, n, d, -o.y, s_w, albedo, vis, vis_b,
                                               b.sky_radiance, p.ior, p.bottom_depth, 0, multiple ? 1 : 0, mirror, v_sand,
-                                              v_diffuse);
+                                              v_diffuse, v_above);
         if (forward) {
           const size_t px = size_t(y) * p.width + x;
           const double l_in = kd::uwi_multiple_sand(&s.ordinates[i], &b, p.g, p.bottom_depth, S, d.y, -o.y,
                                                     kd::dot(d, s_w), s_w.y, 0, multiple ? 1 : 0, v_sand,
-                                                    v_diffuse);
+                                                    v_diffuse, v_above);
           // The in-scatter with the forward peak's light (uwi_forward_peak), which the spread leaves alone
           // (kd_multiple.cl): the rest of L is the hit's.
           const double y1 = mat == UW_MAT_SURFACE ? 0.0 : std::max(-o.y - S * d.y, 0.0);
@@ -399,13 +403,23 @@ TEST(UnderwaterOrdinatesKernel, WithFroxelsTheFrameIsFiniteAndDiffersFromTheThes
   EXPECT_GT(std::fabs(sa / sb - 1.0), 0.01);  // the model switch reaches the kernel
 }
 
-// The sand's share from sand_share.cl's lattice (quality.sand_share_step 2, the default) against every
-// pixel's own (1): the lattice pixels read their own value, the pixels between interpolate it along their
-// surface or evaluate it themselves at silhouettes; the image and the objects' pixels (where the share
-// is below 1) agree within the 0.5 % the region studies allow.
-TEST(UnderwaterOrdinatesKernel, SandShareLatticeGivesEveryPixelsOwnShareWithinHalfAPercent) {
-  const seasim::Scene own = seasim::parseScene(kScene, "test_ordinates.toml");
-  const seasim::Scene lattice = seasim::parseScene(kScene, "test_ordinates.toml", {set("quality.sand_share_step", "2")});
+// The objects' shares from sand_share.cl's lattice (quality.sand_share_step 2, the default) against every
+// pixel's own (1), over the bottom and in open water: the lattice pixels read their own values, the pixels
+// between interpolate them along their surface (or among the rays without a hit) or evaluate them
+// themselves at silhouettes; the image and the objects' pixels (where the shares are below 1) agree within
+// the 0.5 % the region studies allow. A pixel's own share of the light from above takes 8 rays, so it
+// steps by 1/8 where one of them crosses an object's edge and the lattice's steps elsewhere: over the
+// bottom, where that light is a small part of the pixel's, one pixel may differ by up to a tenth and few by
+// more than 2 %; in open water, where it is most of the light of the water under the objects, up to a fifth
+// (measured 0.156, 7.6 % of the pixels off by more than 2 %).
+class SandShareLattice : public ::testing::TestWithParam<bool> {};
+
+TEST_P(SandShareLattice, GivesEveryPixelsOwnSharesWithinHalfAPercent) {
+  Variant open_water{"open water", {}, true};
+  const seasim::Scene own = GetParam() ? variantScene(open_water) : seasim::parseScene(kScene, "test_ordinates.toml");
+  const seasim::Scene lattice = GetParam() ? variantScene(open_water, {set("quality.sand_share_step", "2")})
+                                           : seasim::parseScene(kScene, "test_ordinates.toml",
+                                                                {set("quality.sand_share_step", "2")});
   ASSERT_FALSE(seasim::makePlan(own).hasPass("sand_share"));
   ASSERT_TRUE(seasim::makePlan(lattice).hasPass("sand_share"));
   const seasim::FrameResult a = seasim::renderFrame(seasim::test::testDevice(), own, seasim::makePlan(own));
@@ -415,7 +429,7 @@ TEST(UnderwaterOrdinatesKernel, SandShareLatticeGivesEveryPixelsOwnShareWithinHa
   // Which pixels see an object: the raycast's material, from the double evaluation's hits.
   const seasim::UnderwaterSetup setup = setupOf(own);
   double sum_a = 0, sum_b = 0, obj_a = 0, obj_b = 0, worst_lattice = 0, worst = 0;
-  int objects = 0;
+  int objects = 0, off = 0;
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
       const seasim::Vec3 dv = seasim::underwaterPixelDirection(setup.params, x + 0.5, y + 0.5);
@@ -432,17 +446,23 @@ TEST(UnderwaterOrdinatesKernel, SandShareLatticeGivesEveryPixelsOwnShareWithinHa
         if (mat >= 0) obj_a += va, obj_b += vb;
         const double rel = std::fabs(vb - va) / std::max(std::fabs(va), 1e-6);
         worst = std::max(worst, rel);
+        off += rel > 0.02;
         if (x % 2 == 0 && y % 2 == 0) worst_lattice = std::max(worst_lattice, rel);
       }
       objects += mat >= 0;
     }
   ASSERT_GT(objects, 20);
-  std::printf("[ numbers  ] lattice / own: image %.5f, objects %.5f; worst pixel %.3g, worst lattice pixel %.3g\n",
-              sum_b / sum_a, obj_b / obj_a, worst, worst_lattice);
+  const double off_share = double(off) / (3.0 * w * h);
+  std::printf("[ numbers  ] lattice / own: image %.5f, objects %.5f; worst pixel %.3g, worst lattice pixel %.3g, "
+              "pixel channels off by > 2 %%: %.4f\n",
+              sum_b / sum_a, obj_b / obj_a, worst, worst_lattice, off_share);
   EXPECT_NEAR(sum_b / sum_a, 1.0, 0.005);
   EXPECT_NEAR(obj_b / obj_a, 1.0, 0.005);
   EXPECT_LT(worst_lattice, 1e-4);
-  EXPECT_LT(worst, 0.05);
+  EXPECT_LT(worst, GetParam() ? 0.2 : 0.1);
+  EXPECT_LT(off_share, GetParam() ? 0.1 : 0.02);
 }
+
+INSTANTIATE_TEST_SUITE_P(OverTheBottomAndInOpenWater, SandShareLattice, ::testing::Bool());
 
 }  // namespace

@@ -272,4 +272,61 @@ TEST(SandShare, KnownAnswersInFloatAndDouble) {
   EXPECT_NEAR(open_f, open, 1e-6);
 }
 
+// The in-scatter's quantiles along a view ray (uwi_inscatter_quantile): the weight e^{-r z} on [0, S] up to z
+// is u of the whole, for light fading along the ray (r > 0, also to infinity), growing (r < 0: a ray looking
+// up), and r = 0 and near it; finite and in [0, S] where e^{|r| S} overflows a float.
+TEST(AboveShare, InscatterQuantileSplitsTheWeightAtAndNearItsLimits) {
+  auto share = [](double r, double S, double z) {  // ∫_0^z e^{-r t} dt / ∫_0^S e^{-r t} dt
+    if (r == 0) return z / S;
+    return std::isinf(S) ? -std::expm1(-r * z) : std::expm1(-r * z) / std::expm1(-r * S);
+  };
+  for (const double r : {0.3, 1e-3, 1e-7, 0.0, -1e-7, -1e-3, -0.3})
+    for (const double S : {0.5, 10.0, 200.0})
+      for (const double u : {0.01, 0.25, 0.5, 0.75, 0.99}) {
+        const double z = kd::uwi_inscatter_quantile(r, S, u);
+        EXPECT_NEAR(share(r, S, z), u, 1e-6) << "r " << r << " S " << S << " u " << u;
+        const float zf = kf::uwi_inscatter_quantile(float(r), float(S), float(u));
+        EXPECT_NEAR(share(r, S, zf), u, 2e-4) << "float: r " << r << " S " << S << " u " << u;
+      }
+  for (const double u : {0.25, 0.75}) {
+    EXPECT_NEAR(share(0.2, INFINITY, kd::uwi_inscatter_quantile(0.2, 1e30, u)), u, 1e-9);  // deep water
+    EXPECT_NEAR(share(0.2, INFINITY, kf::uwi_inscatter_quantile(0.2f, 1e30f, float(u))), u, 1e-5);
+    for (const double r : {-5.0, 5.0}) {  // e^{5 · 100} is no float
+      const float zf = kf::uwi_inscatter_quantile(float(r), 100.0f, float(u));
+      EXPECT_TRUE(std::isfinite(zf) && zf >= 0.0f && zf <= 100.0f) << r;
+      EXPECT_NEAR(zf, kd::uwi_inscatter_quantile(r, 100.0, u), 1e-4) << r;
+    }
+  }
+}
+
+// The light from above that objects leave the in-scatter of a view ray (uwi_above_share), against objects
+// whose answer is known, in float and double: none, one below the ray, a roof over all of it, a roof over
+// its farther point alone, a small box over one point.
+TEST(AboveShare, KnownAnswersInFloatAndDouble) {
+  const double H = 5.0, c_dm = 0.1, k = 0.05;  // a level ray: r = c' = 0.1, points at 1.72 m and 6.42 m over S = 10
+  const kd::real3 o{0, -2, 0}, d{0, 0, -1};
+  const kf::real3 of{0, -2, 0}, df{0, 0, -1};
+  const UwObject slab[1] = {uwTestBox(-100, -4, -100, 100, -3, 100)};
+  const UwObject roof[1] = {uwTestBox(-100, -1.5f, -100, 100, -1, 100)};
+  // The roof from z = -5 on: the near point is 3.3 m from its edge, 1 m under it, farther than the widest
+  // of the four up-rays reaches (69° from the vertical: 2.6 m); the far point is under it.
+  const UwObject half_roof[1] = {uwTestBox(-100, -1.5f, -100, 100, -1, -5)};
+  for (const double S : {10.0, 1e30}) {  // a hit 10 m away, and deep water
+    EXPECT_EQ(kd::uwi_above_share(slab, 0, H, o, d, S, c_dm, k), 1.0);
+    EXPECT_EQ(kd::uwi_above_share(slab, 1, H, o, d, S, c_dm, k), 1.0);
+    EXPECT_EQ(kd::uwi_above_share(roof, 1, H, o, d, S, c_dm, k), 0.0);
+    EXPECT_EQ(kf::uwi_above_share(roof, 1, float(H), of, df, float(S), float(c_dm), float(k)), 0.0f);
+    EXPECT_EQ(kd::uwi_above_share(slab, 1, 0.0, o, d, S, c_dm, k), 1.0);  // no bottom either
+  }
+  EXPECT_NEAR(kd::uwi_above_share(half_roof, 1, H, o, d, 10.0, c_dm, k), 0.5, 1e-12);
+  EXPECT_NEAR(kf::uwi_above_share(half_roof, 1, float(H), of, df, 10.0f, float(c_dm), float(k)), 0.5f, 1e-6f);
+  // A 1 m box 1 m over the far point: it holds off the steeper of the point's up-rays, not all of them.
+  const UwObject box[1] = {uwTestBox(-0.5f, -1, -6.92f, 0.5f, 0, -5.92f)};
+  const double v = kd::uwi_above_share(box, 1, H, o, d, 10.0, c_dm, k);
+  EXPECT_GT(v, 0.5);
+  EXPECT_LT(v, 1.0);
+  EXPECT_NEAR(kf::uwi_above_share(box, 1, float(H), of, df, 10.0f, float(c_dm), float(k)), v, 1e-6);
+}
+
+
 }  // namespace

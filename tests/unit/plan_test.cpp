@@ -431,16 +431,21 @@ TEST(Plan, RovLightsRunsTheUnderwaterPassesAndTheLampsOnly) {
   for (const auto& p : plan.passes) EXPECT_TRUE(p.implemented) << p.name;
 }
 
-// The sand's share lattice only where the share can be below 1: the discrete-ordinates model with
-// objects over a bottom and a step above 1 (seabed); not for the thesis's model, open water, no multiple
-// scattering, step 1, or the sea seen from above.
-TEST(Plan, SandShareLatticeOnlyForObjectsOverABottomInTheOrdinatesModel) {
+// The objects' share lattice only where a share can be below 1: the discrete-ordinates model with objects
+// (over a bottom, or in open water for the light from above they hold off) and a step above 1 (seabed); not
+// for the thesis's model, water without objects, no multiple scattering, step 1, or the sea seen from above.
+TEST(Plan, SandShareLatticeOnlyForObjectsInTheOrdinatesModel) {
   const std::string seabed = std::string(SEASIM_SOURCE_DIR) + "/scenes/seabed.toml";
   auto plan = [&](std::vector<seasim::Override> o) { return makePlan(seasim::loadScene(seabed, o)); };
   auto set = [](const char* k, const char* v) { return seasim::Override{k, v, {"test", 1}}; };
   const Plan with = plan({});
   ASSERT_TRUE(with.hasPass("sand_share"));
   EXPECT_TRUE(hasDefine(with, "kd_multiple", "SEASIM_SAND_SHARE_MAP=1"));
+  // The regions study's scene (seabed's rocks) in open water.
+  EXPECT_TRUE(makePlan(seasim::loadScene(std::string(SEASIM_SOURCE_DIR) + "/tests/perf/underwater_regions.toml",
+                                         {set("bottom.type", "\"none\"")}))
+                  .hasPass("sand_share"));
+  EXPECT_FALSE(plan({set("objects", "[]")}).hasPass("sand_share"));
   EXPECT_FALSE(plan({set("underwater.model", "\"thesis\"")}).hasPass("sand_share"));
   EXPECT_FALSE(plan({set("quality.sand_share_step", "1")}).hasPass("sand_share"));
   EXPECT_FALSE(hasDefine(plan({set("quality.sand_share_step", "1")}), "kd_multiple", "SEASIM_SAND_SHARE_MAP=1"));

@@ -1,9 +1,10 @@
-// sand_share_node.cpp — "sand_share" of sand_share.cl: the discrete-ordinates model's shares of the
-// sunlit and of the diffusely lit sand the objects leave a view ray (common/underwater_ordinates.h,
-// uwi_view_sand_shares), on a lattice of every quality.sand_share_step-th pixel, published as "sand_share" (UnderwaterSandShare) for
-// kd_multiple to interpolate between lattice pixels on the same surface. Planned only where the share
-// is not 1 everywhere: the discrete-ordinates model with multiple scattering, objects and a bottom,
-// and a step above 1 (1: kd_multiple evaluates every pixel itself).
+// sand_share_node.cpp — "sand_share" of sand_share.cl: the discrete-ordinates model's shares the objects
+// leave a view ray, of the sunlit and of the diffusely lit sand's light (common/underwater_ordinates.h,
+// uwi_view_sand_shares) and of the light from above in its in-scatter (uwi_view_above_share), on a lattice
+// of every quality.sand_share_step-th pixel, published as "sand_share" (UnderwaterSandShare) for
+// kd_multiple to interpolate between lattice pixels on the same surface. Planned only where the shares
+// are not 1 everywhere: the discrete-ordinates model with multiple scattering and objects, and a step
+// above 1 (1: kd_multiple evaluates every pixel itself).
 #include <memory>
 
 #include "device/enqueue.h"
@@ -36,7 +37,7 @@ class SandShareNode : public Pass {
     onDevice("sand_share pass set-up", [&] {
       kernel_ = cl::Kernel(ctx.device().program(entry_.kernel_file, entry_.defines).program, "sand_share");
       share_->map = cl::Buffer(ctx.device().context(), CL_MEM_READ_WRITE,
-                               2 * sizeof(float) * static_cast<size_t>(share_->width) * static_cast<size_t>(share_->height));
+                               3 * sizeof(float) * static_cast<size_t>(share_->width) * static_cast<size_t>(share_->height));
     });
     res.publish("sand_share", share_);
   }
@@ -75,12 +76,11 @@ PassDescriptor sandShareDescriptor() {
   d.scene_keys = {{"quality", "sand_share_step", ModelKey::Type::Integer, 2.0, 1.0, 8.0, ""}};
   d.rule = [](const Scene& scene, const Plan& so_far) -> std::optional<PassPlan> {
     const bool ordinates = scene.underwater.model == UnderwaterDesc::Model::DiscreteOrdinates;
-    const bool bottom = scene.bottom.type == BottomDesc::Type::Flat && scene.bottom.depth > 0;
     if (!cameraUnderwater(scene) || !ordinates || !scene.underwater.multiple_scattering || scene.objects.empty() ||
-        !bottom || modelKey(scene, "quality.sand_share_step") <= 1 || !so_far.produces("gbuffer"))
+        modelKey(scene, "quality.sand_share_step") <= 1 || !so_far.produces("gbuffer"))
       return std::nullopt;
     return planEntry({"underwater_setup", "gbuffer"}, {"sand_share"},
-                     "discrete ordinates with objects over a bottom: the sand's shares on a lattice every " +
+                     "discrete ordinates with objects: their shares of the sand's light and of the light from above on a lattice every " +
                          std::to_string(static_cast<int>(modelKey(scene, "quality.sand_share_step"))) +
                          " pixels (quality.sand_share_step), interpolated by kd_multiple");
   };
@@ -89,7 +89,7 @@ PassDescriptor sandShareDescriptor() {
     const double step = modelKey(s, "quality.sand_share_step");
     const double w = pixelLatticeSize(s.camera.width, static_cast<int>(step));
     const double h = pixelLatticeSize(s.camera.height, static_cast<int>(step));
-    return {{p.name, "the sand's two shares on the lattice", 2 * 4 * w * h,
+    return {{p.name, "the objects' three shares on the lattice", 3 * 4 * w * h,
              {"camera.width", "camera.height", "quality.sand_share_step"}, {w, h}}};
   };
   d.cost = [](const Scene& s, const PassPlan&) {

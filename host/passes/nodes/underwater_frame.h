@@ -31,8 +31,9 @@ inline const std::vector<std::string> kUnderwaterSetupKeys = {
     "sun.*",     "sky.*",     "water.*",  "bottom.*", "surface.*", "underwater.*",
     "objects.*", "quality.caustic_map_size", "quality.caustic_layers"};
 
-// sand_share.cl's lattice: the discrete-ordinates model's shares of the sunlit and of the diffusely lit sand
-// at every step-th pixel in x and y, two planes of width x height (kd_multiple.cl interpolates them).
+// sand_share.cl's lattice: the discrete-ordinates model's shares that the objects leave, of the sunlit and of
+// the diffusely lit sand's light and of the light from above, at every step-th pixel in x and y, three planes
+// of width x height (kd_multiple.cl interpolates them).
 struct UnderwaterSandShare {
   cl::Buffer map;
   int width = 0, height = 0, step = 1;
