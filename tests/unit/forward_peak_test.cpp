@@ -326,6 +326,15 @@ TEST(AboveShare, KnownAnswersInFloatAndDouble) {
   EXPECT_GT(v, 0.5);
   EXPECT_LT(v, 1.0);
   EXPECT_NEAR(kf::uwi_above_share(box, 1, float(H), of, df, 10.0f, float(c_dm), float(k)), v, 1e-6);
+  // Stiff: a camera inside a rock (every up-ray meets its inside: all the light from above held off), and water
+  // that neither scatters nor absorbs (r = 0) looking into deep water: finite, in [0, 1].
+  const UwObject rock[1] = {uwTestBox(-50, -4, -50, 50, -1, 50)};
+  EXPECT_EQ(kd::uwi_above_share(rock, 1, H, o, d, 1e30, c_dm, k), 0.0);
+  EXPECT_EQ(kf::uwi_above_share(rock, 1, float(H), of, df, 1e30f, float(c_dm), float(k)), 0.0f);
+  for (const double S : {10.0, 1e30}) {
+    const float vf0 = kf::uwi_above_share(box, 1, float(H), of, df, float(S), 0.0f, 0.0f);
+    EXPECT_TRUE(std::isfinite(vf0) && vf0 >= 0.0f && vf0 <= 1.0f) << S;
+  }
 }
 
 
