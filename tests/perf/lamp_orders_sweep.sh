@@ -18,8 +18,14 @@
 # $SEASIM_CACHE_DIR/lamp_regions; a second run only renders the fast models.
 # Usage: tests/perf/lamp_orders_sweep.sh   (about 10 min on 2 loaded cores the first time; nice it)
 # Writes results/underwater/lamp_orders_{fit,heldout,near,fresh}.csv; prints a Markdown table.
+# Env: MODELS (default single,delta_m,orders), ROUNDS (timing rounds, default 3), OUT (default results/underwater).
+# With the references cached, MODELS=orders ROUNDS=1 OUT=build/lamps/variant re-renders all 37 cases in seconds:
+# the loop for a kernel copy (SEASIM_KERNEL_DIR) against today's tables, region by region.
 B=${B:-build/seasim}
 SPP=${SPP:-16384}
+MODELS=${MODELS:-single,delta_m,orders}
+ROUNDS=${ROUNDS:-3}
+OUT=${OUT:-results/underwater}
 FIT="0.1:0.3:0.9:20:3,0.1:0.8:0.9:20:3,0.1:0.3:0.5:20:3"
 HELDOUT="0.2:0.2:0.5:10:1,0.2:0.2:0.95:60:6,0.1:0.3:0.7:30:6,0.1:0.3:0.95:10:3,0.05:0.5:0.5:60:3,0.05:0.5:0.95:30:1,\
 0.05:0.5:0.7:10:10,0.1:0.8:0.5:30:10,0.2:0.2:0.7:60:10,0.1:0.3:0.9:45:1,0.05:0.5:0.9:20:6,0.1:0.8:0.95:60:3"
@@ -28,15 +34,15 @@ NEAR="0.1:0.3:0.8:20:3,0.1:0.3:0.9:30:3,0.16:0.3:0.9:20:3,0.1:0.3:0.6:20:3,0.1:0
 0.05:0.5:0.7:15:10,0.2:0.2:0.9:60:6"
 FRESH="0.15:0.45:0.85:40:2,0.08:0.6:0.6:25:4,0.12:0.25:0.75:50:8,0.06:0.35:0.55:15:5,0.18:0.7:0.92:35:2.5,\
 0.04:0.2:0.8:45:7,0.1:0.6:0.65:12:1.2,0.14:0.4:0.95:25:4"
-mkdir -p results/underwater
-$B lamp-regions --cases "$FIT" --models single,delta_m,orders --spp "$SPP" --rounds 3 \
-  --csv results/underwater/lamp_orders_fit.csv > /dev/null || exit 1
-$B lamp-regions --cases "$HELDOUT" --models single,delta_m,orders --spp "$SPP" --rounds 3 \
-  --csv results/underwater/lamp_orders_heldout.csv > /dev/null || exit 1
-$B lamp-regions --cases "$NEAR" --models single,delta_m,orders --spp "$SPP" --rounds 3 \
-  --csv results/underwater/lamp_orders_near.csv > /dev/null || exit 1
-$B lamp-regions --cases "$FRESH" --models single,delta_m,orders --spp "$SPP" --rounds 3 \
-  --csv results/underwater/lamp_orders_fresh.csv > /dev/null || exit 1
+mkdir -p "$OUT"
+$B lamp-regions --cases "$FIT" --models "$MODELS" --spp "$SPP" --rounds "$ROUNDS" \
+  --csv "$OUT/lamp_orders_fit.csv" > /dev/null || exit 1
+$B lamp-regions --cases "$HELDOUT" --models "$MODELS" --spp "$SPP" --rounds "$ROUNDS" \
+  --csv "$OUT/lamp_orders_heldout.csv" > /dev/null || exit 1
+$B lamp-regions --cases "$NEAR" --models "$MODELS" --spp "$SPP" --rounds "$ROUNDS" \
+  --csv "$OUT/lamp_orders_near.csv" > /dev/null || exit 1
+$B lamp-regions --cases "$FRESH" --models "$MODELS" --spp "$SPP" --rounds "$ROUNDS" \
+  --csv "$OUT/lamp_orders_fresh.csv" > /dev/null || exit 1
 echo "| set | a | b | g | cone | h m | model | lamps ms | whole | lit bottom | beam | outside | worst |"
 echo "|---|---|---|---|---|---|---|---:|---:|---:|---:|---:|---:|"
 for SET in fit heldout near fresh; do
@@ -48,8 +54,8 @@ for SET in fit heldout near fresh; do
       if (dev($18, $19) > w) w = dev($18, $19)
       printf "| %s | %s | %s | %s | %s° | %s | %s | %.2f | %s | %s | %s | %s | %.1f %% |\n", set, $1, $2, $3, $4, $5, $6, $7,
         cell($9, $10, $11), cell($12, $13, $14), cell($15, $16, $17), cell($18, $19, $20), 100 * w
-    }' results/underwater/lamp_orders_$SET.csv
+    }' "$OUT/lamp_orders_$SET.csv"
 done
 # The picture: ratios by region and the worst region's error against the lamp pass's time.
-python3 tests/perf/lamp_orders_plot.py results/underwater/lamp_orders.svg results/underwater/lamp_orders_fit.csv \
-  results/underwater/lamp_orders_heldout.csv results/underwater/lamp_orders_near.csv results/underwater/lamp_orders_fresh.csv
+python3 tests/perf/lamp_orders_plot.py "$OUT/lamp_orders.svg" "$OUT/lamp_orders_fit.csv" \
+  "$OUT/lamp_orders_heldout.csv" "$OUT/lamp_orders_near.csv" "$OUT/lamp_orders_fresh.csv"
