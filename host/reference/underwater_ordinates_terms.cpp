@@ -25,11 +25,9 @@ InScatter inScatterTerms(const UwiBand& ib, const UwBand& band, double g, double
   InScatter t;
   const int node = kd::uwi_source_node(d_y);
   const double cos_dphi = kd::uwi_cos_azimuth(cos_s, d_y, mu_w);
-  const double lost = kd::uwi_sand_lost(v_sand, v_diffuse, ib.sand_beam, ib.sand_diffuse);
-  const float* sand = ib.src_sand + 3 * node;
-  const double w1 = (kd::uwi_source_weight(&ib, node, cos_dphi, 0) - lost * sand[0]) * v_above;
-  const double w2 = kd::uwi_source_weight(&ib, node, cos_dphi, 1) - lost * sand[1];
-  const double wp = (kd::uwi_source_weight(&ib, node, cos_dphi, 2) - lost * sand[2]) * v_above;
+  double w[3];
+  kd::uwi_shaded_weights(&ib, node, cos_dphi, v_sand, v_diffuse, v_above, w);
+  const double w1 = w[0], w2 = w[1], wp = w[2];
   const double p_hg = kd::hg_phase(cos_s, g);
   const double phase = double(band.b) * p_hg * band.e_beam0;
   const double tms_phase = double(band.b) * kd::uwi_tms_phase(p_hg, ib.p_clip) * band.e_beam0;

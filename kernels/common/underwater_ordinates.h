@@ -437,6 +437,19 @@ SEASIM_FN real uwi_sand_lost(real v_sand, real v_diffuse, real sand_beam, real s
   return (R(1.0) - v_sand) * sand_beam + (R(1.0) - v_diffuse) * sand_diffuse;
 }
 
+/* The source's weights of its three terms (e^{-k y}, e^{-k (H - y)}, e^{-m y}: uwi_source_weight at the node and
+ * azimuth) less what the objects take off: the sand's part (UwiBand.src_sand) times the irradiance the shares
+ * v_sand and v_diffuse leave out (uwi_sand_lost), and the two terms from above scaled by v_above
+ * (uwi_above_share). kd_multiple.cl's lanes do the same per band block (uwi_lanes_hide_sand). */
+SEASIM_FN void uwi_shaded_weights(const SEASIM_GLOBAL UwiBand* ib, int node, real cos_dphi, real v_sand,
+                                  real v_diffuse, real v_above, real* w) {
+  const SEASIM_GLOBAL float* sand = ib->src_sand + 3 * node;
+  const real lost = uwi_sand_lost(v_sand, v_diffuse, (real)ib->sand_beam, (real)ib->sand_diffuse);
+  w[0] = (uwi_source_weight(ib, node, cos_dphi, 0) - lost * (real)sand[0]) * v_above;
+  w[1] = uwi_source_weight(ib, node, cos_dphi, 1) - lost * (real)sand[1];
+  w[2] = (uwi_source_weight(ib, node, cos_dphi, 2) - lost * (real)sand[2]) * v_above;
+}
+
 /* In-scattered radiance along a view ray from depth o_d along d (d_y its vertical component) to
  * distance S (UW_INFINITE: deep water); cos_s = d·s_w. g: the water's own asymmetry (for the froxel
  * term taken off when single_scattering). Never negative. The forward peak's aureole is not in it
@@ -450,15 +463,13 @@ SEASIM_FN real uwi_multiple_sand(const SEASIM_GLOBAL UwiBand* ib, const SEASIM_G
   const real c_dm = ib->c_dm, k = ib->k;
   const int node = uwi_source_node(d_y);
   const real cos_dphi = uwi_cos_azimuth(cos_s, d_y, mu_w);
-  const SEASIM_GLOBAL float* sand = ib->src_sand + 3 * node;
-  const real lost = uwi_sand_lost(v_sand, v_diffuse, (real)ib->sand_beam, (real)ib->sand_diffuse);
-  const real w1 = (uwi_source_weight(ib, node, cos_dphi, 0) - lost * (real)sand[0]) * v_above;
-  const real w2 = uwi_source_weight(ib, node, cos_dphi, 1) - lost * (real)sand[1];
+  real w[3];
+  uwi_shaded_weights(ib, node, cos_dphi, v_sand, v_diffuse, v_above, w);
+  const real w1 = w[0], w2 = w[1];
   /* The beam's diffuse offspring, and the beam scattered once with the exact phase function below its
    * peak (TMS; uwi_tms_phase). */
   const real phase = hg_phase(cos_s, g);
-  const real wp = (uwi_source_weight(ib, node, cos_dphi, 2) - lost * (real)sand[2]) * v_above +
-                  (real)band->b * uwi_tms_phase(phase, (real)ib->p_clip) * (real)band->e_beam0;
+  const real wp = w[2] + (real)band->b * uwi_tms_phase(phase, (real)ib->p_clip) * (real)band->e_beam0;
   const real i1 = kd_exp_integral(k, c_dm, d_y, o_d, S);
   /* e^{-k (H - y(z))} = e^{-k (H - o_d)} e^{-k d_y z}: the same integral seen from the bottom. */
   const real i2 = bottom_depth > R(0.0) ? kd_exp_integral(k, c_dm, -d_y, fmax(bottom_depth - o_d, R(0.0)), S) : R(0.0);
