@@ -13,6 +13,7 @@
  * table lookup clamps (l, h) to the table's range.
  */
 #include "common/compat.h"
+#include "common/gauss_legendre.h"
 #include "common/optics.h"
 #include "common/fourflow_params.h"
 #include "common/fourflow.h"

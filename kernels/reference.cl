@@ -88,6 +88,7 @@
  * great depth (0, never NaN), total internal reflection (F = 1), |g| -> 1 (path_tracer.h).
  */
 #include "common/compat.h"
+#include "common/gauss_legendre.h"
 #include "common/optics.h"
 #include "common/phase.h"
 #include "common/shafts.h"

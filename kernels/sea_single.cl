@@ -45,6 +45,7 @@
  * back-facing and folded wave normals, reflections pointing below the horizon (common/sea_waves.h).
  */
 #include "common/compat.h"
+#include "common/gauss_legendre.h"
 #include "common/optics.h"
 #include "common/sea_params.h"
 #include "common/sea_surface.h"

@@ -44,6 +44,7 @@
  * Stiff cases: common/underwater_lamps.h; never NaN/Inf (every division is by a clamped distance).
  */
 #include "common/compat.h"
+#include "common/gauss_legendre.h"
 #include "common/band_lanes.h"
 #include "common/optics.h"
 #include "common/shafts.h"
@@ -318,16 +319,22 @@ static inline void lamp_orders_surface(__constant UwParams* p, __global const Uw
  * terms k >= 1 see the spread, uw_ms_blurred_bottom) and the glow; along the view ray, the glow's and
  * the orders' in-scatter, the geometry per step once (distance, the blurred profiles times HG(g^{n+1})
  * at the scattering angle), then the bands with their weights. Light scattered around an object reaches
- * behind it: nothing here is shadowed, but nothing leaves a sealed lamp. */
+ * behind it: nothing here is shadowed, but nothing leaves a sealed lamp. parts: LAMP_SMOOTH_SURFACE (the
+ * light on the surface the pixel sees, which follows its normal and the lit patch's edge) and
+ * LAMP_SMOOTH_RAY (the in-scatter along the view ray up to it, which follows only the ray and its end),
+ * so that a lattice read can leave to the pixel just the part that varies too fast to interpolate. */
+#define LAMP_SMOOTH_SURFACE 1
+#define LAMP_SMOOTH_RAY 2
+#define LAMP_SMOOTH_ALL 3
 static inline void lamp_orders_smooth(__constant UwParams* p, __global const UwBand* bands,
                                       __global const UwObject* objects, int count, __constant UwLampParams* lp,
                                       __global const UwLamp* L, __global const float* I, __global const float* ms_rows,
                                       __global const float* glow, __global const float* ms_weights, int ms_orders,
-                                      int ms_steps, const LampRay* v, LampSums* o) {
+                                      int ms_steps, int parts, const LampRay* v, LampSums* o) {
   const int nb = lp->band_count;
   const float3 lamp = v3(L->position), axis = v3(L->direction);
   if (!(lamp_escapes(objects, count, lamp) > 0.0f)) return;
-  if (v->lit_surface) {
+  if ((parts & LAMP_SMOOTH_SURFACE) && v->lit_surface) {
     const float3 P = v->o + v->S * v->d;
     UwMsBlur blur[UW_MS_MAX_ORDERS];
     float geo[UW_MS_MAX_ORDERS];
@@ -353,6 +360,7 @@ static inline void lamp_orders_smooth(__constant UwParams* p, __global const UwB
     }
     lamp_glow_surface(p, bands, glow, ms_weights, ms_orders, I, v, o);
   }
+  if (!(parts & LAMP_SMOOTH_RAY)) return;
   float c_min = bands[0].c;
   for (int i = 1; i < nb; ++i) c_min = fmin(c_min, bands[i].c);
   lamp_glow_ray(p, bands, glow, ms_weights, ms_orders, ms_steps, c_min, I, v, o);
@@ -489,23 +497,31 @@ static inline void lamp_beam(const LampMedia* md, __global const UwObject* objec
 #endif
   }
   if (!sp.tail) return;
-  float J = 0.0f;
-  for (int j = 0; j < m; ++j) {
-    const float3 P = v->o + uw_lamp_tail_t(&sp, j, m) * v->d;
-    const float prof = uw_lamp_profile(P, lamp, axis, L->cos_cone, L->cos_inner);
-    if (prof > 0.0f) J += prof * lamp_visible(objects, count, UW_ALL_OBJECTS, P, lamp);
-  }
-  if (!(J > 0.0f)) return;
-  const float cos_tail = uw_lamp_tail_cos(&sp, v->o, v->d, lamp);
-  const float Jg = J * hg_phase(cos_tail, md->g) / m;
-  for (int i = 0; i < nb; ++i) {
-    lamp_add(o, bands, i, I[i] * Jg * uw_lamp_tail(&sp, bands[i].b, bands[i].c));
+  /* The far field's samples (uw_lamp_tail_weight) as one more block: their shadow rays may leave the fan. */
+  float w[UW_LAMP_TAIL_SAMPLES], x[UW_LAMP_TAIL_SAMPLES];
 #if SEASIM_LAYER_LAMPS_SPLIT
-    if (md->single_apart)
-      lamp_add_to(o, bands, i, I[i] * J * hg_phase(cos_tail, md->plain_g) / m * uw_lamp_tail(&sp, md->plain[i].b, md->plain[i].c),
-                  0, 1);
+  float w_plain[UW_LAMP_TAIL_SAMPLES];
 #endif
+  int used = 0;
+  for (int j = 0; j < UW_LAMP_TAIL_SAMPLES; ++j) {
+    float t;
+    const float weight = uw_lamp_tail_weight(&sp, j, md->g, v->o, v->d, lamp, &t, &x[used]);
+    const float3 P = v->o + t * v->d;
+    float H = uw_lamp_profile(P, lamp, axis, L->cos_cone, L->cos_inner);
+    if (H > 0.0f && count > 0) H *= lamp_visible(objects, count, UW_ALL_OBJECTS, P, lamp);
+    if (!(H > 0.0f)) continue;
+    w[used] = H * weight;
+#if SEASIM_LAYER_LAMPS_SPLIT
+    float t_plain, x_plain;
+    w_plain[used] = H * uw_lamp_tail_weight(&sp, j, md->plain_g, v->o, v->d, lamp, &t_plain, &x_plain);
+#endif
+    ++used;
   }
+  if (used == 0) return;
+  lamp_beam_block(o, bands, bands, I, nb, w, x, used, 1, o->to_single);
+#if SEASIM_LAYER_LAMPS_SPLIT
+  if (md->single_apart) lamp_beam_block(o, bands, md->plain, I, nb, w_plain, x, used, 0, 1);
+#endif
 }
 
 /* The objects the shadow rays test: none without SEASIM_HAS_OBJECTS. */
@@ -545,6 +561,9 @@ static inline LampRay lamp_ray(__constant UwParams* p, __global const UwBand* ba
 #else
 #define LAMP_LATTICE_STRIDE(nb) (nb)
 #endif
+/* A lattice pixel's entry: the surface's part (LAMP_SMOOTH_SURFACE), then the view ray's (LAMP_SMOOTH_RAY),
+ * LAMP_LATTICE_STRIDE floats each (host: lampsMsLatticeFloats). */
+#define LAMP_LATTICE_ENTRY(nb) (2 * LAMP_LATTICE_STRIDE(nb))
 
 /* Whether a lamp lies within the angle whose cosine is cos_near of the view ray o + t d (in front of the
  * eye): near a lamp its light along the ray peaks like 1/h, h the ray's distance from it, faster than
@@ -583,13 +602,15 @@ static inline int lamp_profiles_alike(__constant UwLampParams* lp, __global cons
 
 /* lamp_orders_smooth of the pixel from the (up to) four lattice pixels around it that see the same
  * surface (the flat bottom, the water's surface from below, open water, or the same object), weighted
- * bilinearly by position, added into o; 0 when none does (a silhouette, where the light jumps) or where
- * the light varies within the cell faster than a bilinear read follows: the caller then evaluates the
- * pixel itself. Those places: an object whose lattice neighbour lies more than 5 % further or nearer or
- * turns its normal by more than 5.7° (its light follows the normal), and the bottom across the edge of a
- * lamp's lit patch (lamp_profiles_alike). The bottom, the surface and open water are one plane each, or
- * nothing, so elsewhere their light varies smoothly across the image however fast S does towards the
- * horizon. A lattice pixel reads its own value. */
+ * bilinearly by position, added into o, part by part: returns the parts it added (LAMP_SMOOTH_SURFACE,
+ * LAMP_SMOOTH_RAY); the caller evaluates the others itself. Neither where no neighbour sees the same
+ * surface (a silhouette, where the light jumps) or where an object's lattice neighbour lies more than
+ * 5 % further or nearer (the view ray's end jumps with it). The ray's part alone where the surface's
+ * light varies within the cell faster than a bilinear read follows: an object's neighbour turning its
+ * normal by more than 5.7° (its light follows the normal), and the bottom across the edge of a lamp's
+ * lit patch (lamp_profiles_alike); the in-scatter along the ray sees neither. The bottom, the surface and
+ * open water are one plane each, or nothing, so elsewhere their light varies smoothly across the image
+ * however fast S does towards the horizon. A lattice pixel reads its own value. */
 static inline int lamp_lattice_read(__constant UwParams* p, __global const UwBand* bands, __global const float4* geom,
                                     __global const int* material, __constant UwLampParams* lp,
                                     __global const UwLamp* lamps, __global const float* lattice, int step, int map_w,
@@ -601,7 +622,7 @@ static inline int lamp_lattice_read(__constant UwParams* p, __global const UwBan
   int at[4];
   float3 bottom_points[4]; /* the bottom neighbours' hits, for the lit patch's edge */
   float bottom_w[4];
-  int bottoms = 0;
+  int bottoms = 0, parts = LAMP_SMOOTH_ALL;
   float wsum = 0.0f;
   for (int c = 0; c < 4; ++c) {
     const int di = c & 1, dj = c >> 1;
@@ -611,35 +632,42 @@ static inline int lamp_lattice_read(__constant UwParams* p, __global const UwBan
     const int q = yq * p->width + xq;
     const float4 gq = geom[q];
     const int same = material[q] == mat;
-    /* The same object turning away (its light follows the normal) or behind itself: the pixel
-     * evaluates itself, as at the lit patch's edge below. */
-    if (same && mat >= 0 && w_c > 0.0f &&
-        !(fabs(gq.x - v->S) <= 0.05f * v->S && dot((float3)(gq.y, gq.z, gq.w), v->n) >= 0.995f))
-      return 0;
+    /* The same object behind itself (the pixel evaluates both parts) or turning away (its light follows
+     * the normal: the surface's part), as at the lit patch's edge below. */
+    if (same && mat >= 0 && w_c > 0.0f) {
+      if (!(fabs(gq.x - v->S) <= 0.05f * v->S)) return 0;
+      if (!(dot((float3)(gq.y, gq.z, gq.w), v->n) >= 0.995f)) parts &= ~LAMP_SMOOTH_SURFACE;
+    }
     if (same && v->bottom && w_c > 0.0f) {
       bottom_w[bottoms] = w_c;
       bottom_points[bottoms++] = v->o + gq.x * uw_screen_dir(p, (xq + 0.5f) / p->width, (yq + 0.5f) / p->height);
     }
     w[c] = same ? w_c : 0.0f;
-    at[c] = (j * map_w + i) * LAMP_LATTICE_STRIDE(nb);
+    at[c] = (j * map_w + i) * LAMP_LATTICE_ENTRY(nb);
     wsum += w[c];
   }
-  /* The lit patch's edge in the cell: the pixel evaluates itself (its neighbours on one side of the edge
-   * alone would carry that side's light across it). */
-  if (bottoms > 0 && !lamp_profiles_alike(lp, lamps, v->o + v->S * v->d, bottom_points, bottom_w, bottoms)) return 0;
   if (!(wsum > 0.0f)) return 0;
+  /* The lit patch's edge in the cell: the pixel evaluates the surface's part itself (its neighbours on one
+   * side of the edge alone would carry that side's light across it). */
+  if ((parts & LAMP_SMOOTH_SURFACE) && bottoms > 0 &&
+      !lamp_profiles_alike(lp, lamps, v->o + v->S * v->d, bottom_points, bottom_w, bottoms))
+    parts &= ~LAMP_SMOOTH_SURFACE;
   for (int c = 0; c < 4; ++c) w[c] /= wsum;
-  for (int i = 0; i < nb; ++i) {
-    float L = 0.0f;
-    for (int c = 0; c < 4; ++c) L += w[c] * lattice[at[c] + i];
-    lamp_add_to(o, bands, i, L, 1, 0);
+  for (int part = 0; part < 2; ++part) {
+    if (!(parts & (part == 0 ? LAMP_SMOOTH_SURFACE : LAMP_SMOOTH_RAY))) continue;
+    const int from = part * LAMP_LATTICE_STRIDE(nb);
+    for (int i = 0; i < nb; ++i) {
+      float L = 0.0f;
+      for (int c = 0; c < 4; ++c) L += w[c] * lattice[at[c] + from + i];
+      lamp_add_to(o, bands, i, L, 1, 0);
 #if SEASIM_LAYER_LAMPS_SPLIT
-    float Ls = 0.0f;
-    for (int c = 0; c < 4; ++c) Ls += w[c] * lattice[at[c] + nb + i];
-    lamp_add_to(o, bands, i, Ls, 0, 1);
+      float Ls = 0.0f;
+      for (int c = 0; c < 4; ++c) Ls += w[c] * lattice[at[c] + from + nb + i];
+      lamp_add_to(o, bands, i, Ls, 0, 1);
 #endif
+    }
   }
-  return 1;
+  return parts;
 }
 
 /* One lattice pixel per work-item (map_w x map_h): every lamp's lamp_orders_smooth, per band. */
@@ -655,14 +683,17 @@ __kernel void underwater_lamps_lattice(__constant UwParams* p, __global const Uw
   const int nb = lp->band_count;
   const int count = lamp_object_count(p);
   const LampRay v = lamp_ray(p, bands, albedo, geom, material, min(i * step, p->width - 1), min(j * step, p->height - 1));
-  __global float* sums = lattice + (size_t)(j * map_w + i) * LAMP_LATTICE_STRIDE(nb);
-  for (int k = 0; k < LAMP_LATTICE_STRIDE(nb); ++k) sums[k] = 0.0f;
+  __global float* sums = lattice + (size_t)(j * map_w + i) * LAMP_LATTICE_ENTRY(nb);
+  for (int k = 0; k < LAMP_LATTICE_ENTRY(nb); ++k) sums[k] = 0.0f;
   LampSums o = {.r = 0.0f, .g = 0.0f, .b = 0.0f, .single_r = 0.0f, .single_g = 0.0f, .single_b = 0.0f,
                 .to_single = 0, .pixel = 0, .nb = nb, .band_sums = sums};
-  for (int l = 0; l < lp->lamp_count; ++l)
-    lamp_orders_smooth(p, bands, objects, count, lp, &lamps[l], lamp_spectra + l * nb,
-                       ms_table + l * ms_orders * UW_MS_TABLE, ms_glow + l * (4 + nb), ms_weights, ms_orders,
-                       ms_steps, &v, &o);
+  for (int part = 0; part < 2; ++part) {
+    o.band_sums = sums + part * LAMP_LATTICE_STRIDE(nb);
+    for (int l = 0; l < lp->lamp_count; ++l)
+      lamp_orders_smooth(p, bands, objects, count, lp, &lamps[l], lamp_spectra + l * nb,
+                         ms_table + l * ms_orders * UW_MS_TABLE, ms_glow + l * (4 + nb), ms_weights, ms_orders,
+                         ms_steps, part == 0 ? LAMP_SMOOTH_SURFACE : LAMP_SMOOTH_RAY, &v, &o);
+  }
 }
 #endif
 
@@ -716,10 +747,13 @@ __kernel void underwater_lamps(__constant UwParams* p, __global const UwBand* ba
 #if SEASIM_LAMPS_MS_LATTICE
   /* Within LAMP_LATTICE_NEAR lattice cells of a lamp in view every pixel evaluates itself. */
   const float cell = LAMP_LATTICE_NEAR * ms_step * length(uw_screen_dir(p, (x + 1.5f) / p->width, (y + 0.5f) / p->height) - v.d);
-  const int smooth_done = !lamp_near_view(lp, lamps, v.o, v.d, cos(fmin(cell, 1.5f))) &&
-                          lamp_lattice_read(p, bands, geom, material, lp, lamps, ms_lattice, ms_step, ms_map_w, ms_map_h, x, y, &v, &o);
-#else
-  const int smooth_done = 0;
+  const int smooth_left =
+      lamp_near_view(lp, lamps, v.o, v.d, cos(fmin(cell, 1.5f)))
+          ? LAMP_SMOOTH_ALL
+          : LAMP_SMOOTH_ALL & ~lamp_lattice_read(p, bands, geom, material, lp, lamps, ms_lattice, ms_step, ms_map_w,
+                                                 ms_map_h, x, y, &v, &o);
+#elif SEASIM_LAMPS_ORDERS
+  const int smooth_left = LAMP_SMOOTH_ALL;
 #endif
   for (int l = 0; l < lp->lamp_count; ++l) {
     __global const UwLamp* L = &lamps[l];
@@ -728,8 +762,9 @@ __kernel void underwater_lamps(__constant UwParams* p, __global const UwBand* ba
     __global const float* ms_rows = ms_table + l * ms_orders * UW_MS_TABLE;
     __global const float* glow = ms_glow + l * (4 + nb);
     lamp_orders_surface(p, bands, objects, count, lp, L, I, ms_orders, &v, &o);
-    if (!smooth_done)
-      lamp_orders_smooth(p, bands, objects, count, lp, L, I, ms_rows, glow, ms_weights, ms_orders, ms_steps, &v, &o);
+    if (smooth_left)
+      lamp_orders_smooth(p, bands, objects, count, lp, L, I, ms_rows, glow, ms_weights, ms_orders, ms_steps,
+                         smooth_left, &v, &o);
 #else
     lamp_surface(&md, objects, count, lp, L, I, &v, &o);
 #endif

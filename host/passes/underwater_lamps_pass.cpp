@@ -23,11 +23,18 @@ int lampsMsLatticeStep(const Scene& scene) {
   return std::max(1, static_cast<int>(std::floor(cell_deg / pixel_deg + 1e-6)));
 }
 
+size_t lampsMsLatticeFloats(int band_count, bool lamps_split) {
+  return 2 * static_cast<size_t>(band_count) * (lamps_split ? 2 : 1);
+}
+
 UnderwaterLampsPass::Config UnderwaterLampsPass::configFromScene(const Scene& scene) {
   const PassDescriptor& d = descriptorFor(PassRole::UnderwaterLamps);
   Config c;
   c.planes = static_cast<int>(d.settledKnob(scene, "shafts_planes"));
-  c.subplanes = static_cast<int>(d.settledKnob(scene, "shafts_subplanes"));
+  const auto m = scene.quality.find("shafts_subplanes");
+  c.subplanes = m != scene.quality.end() && m->second.given && !m->second.automatic && m->second.value > 0
+                    ? static_cast<int>(m->second.value)
+                    : kSubplanesInWater;
   const std::string model = underwaterLampsModel(scene);
   c.model = model == "orders" ? Model::Orders : model == "delta_m" ? Model::DeltaM : Model::Single;
   c.orders = static_cast<int>(modelKey(scene, "quality.lamps_orders"));
@@ -89,7 +96,7 @@ UnderwaterLampsPass::UnderwaterLampsPass(Device& device, const Scene& scene, con
   if (plan.featuresAs<UnderwaterLampsFeatures>().ms_lattice) {
     lattice_w_ = pixelLatticeSize(width_, config_.ms_step);
     lattice_h_ = pixelLatticeSize(height_, config_.ms_step);
-    const size_t stride = band_count_ * (plan.featuresAs<UnderwaterLampsFeatures>().lamps_split ? 2 : 1);
+    const size_t stride = lampsMsLatticeFloats(band_count_, plan.featuresAs<UnderwaterLampsFeatures>().lamps_split);
     onDevice("underwater_lamps lattice set-up", [&] {
       lattice_kernel_ = cl::Kernel(device.program(plan.kernel_file, plan.defines).program, "underwater_lamps_lattice");
       lattice_ = cl::Buffer(device.context(), CL_MEM_READ_WRITE,

@@ -5,7 +5,8 @@
 // Reads: the underwater set-up (camera, bands with IOPs and sensor weights, objects, albedo), the
 // G-buffer (hit distance, normal, material), the lamps with their spectra (spectral/lamp_spectrum.h).
 // Writes: += rgb, += spectral. Quality: quality.shafts_planes (n), quality.shafts_subplanes (m), the
-// knobs of the shafts in air; "auto" takes the paper's n = 30, m = 6 (the auto search is for air).
+// knobs of the shafts in air; their defaults here, and what "auto" takes, are n = 30, m = 2 (the pass
+// descriptor's; the auto search is for air).
 // quality.lamps_model: "single" (001's single scattering in the water as it is), "delta_m" (the water
 // delta-M scaled, so the light forward scattering keeps in the beam is not lost; also the older
 // quality.lamps_delta_m = true) or "orders" (single scattering plus the orders of multiple scattering of
@@ -41,6 +42,10 @@ struct LampSplitLayers {
 // angle, is the same at every image size.
 int lampsMsLatticeStep(const Scene& scene);
 
+// Floats per lattice pixel (kernels/underwater_lamps.cl, LAMP_LATTICE_ENTRY): the surface's part and the view
+// ray's, each per band, and each again for the part scattered at most once when the lamps' layers are split.
+size_t lampsMsLatticeFloats(int band_count, bool lamps_split);
+
 class UnderwaterLampsPass {
  public:
   enum class Model { Single = 0, DeltaM = 1, Orders = 2 };
@@ -57,6 +62,11 @@ class UnderwaterLampsPass {
     int ms_step = 1;               // the smooth part on every ms_step-th pixel (1: all): lampsMsLatticeStep
   };
   static Config configFromScene(const Scene& scene);
+  // m where quality.shafts_subplanes is absent or "auto": 2, not the paper's 6 (the shafts in air keep 6).
+  // In the water the planes span the cone's exact interval, so the sub-samples only follow a soft edge's
+  // ramp and the objects' shadows: on rov_lights at 640x360 m = 2 is within 1e-5 (rel. L2) of m = 6,
+  // both measured against planes converged at n = 240, m = 24, for 0.8x the pass (results/BENCHMARKS.md).
+  static constexpr int kSubplanesInWater = 2;
 
   // `plan`: the "underwater_lamps" entry (its defines). RuntimeError for n or m < 1. `tables`: the orders
   // model's host tables kept by the caller across passes (none: the pass keeps its own).

@@ -1,7 +1,7 @@
 /* fourflow.h — the four-flow light field of shallow water (paper 003, Belyaev, "Real-time rendering
  * of shallow water"), per wavelength band, shared by kernels and host (kmath_f / kmath_d, unit-tested
  * in float and double against a numerical boundary-value solve of the ODEs in tests/unit/).
- * Needs optics.h (fresnel_reflectance, expm1_over_x) before it.
+ * Needs optics.h (fresnel_reflectance, expm1_over_x) and gauss_legendre.h before it.
  *
  * The model (003 eq. 4), optical depth τ = ε z downwards from the surface, ε = χ + σ:
  *   dG+/dτ = -λ G+                       dG-/dτ =  λ G-                         λ = k + S1 + S2
@@ -182,12 +182,10 @@ SEASIM_FN void ff_beam_gaps(real t0, real l, real l0, real E, real* gap_e, real*
     *gap_p = fmax(t0 * expm1_over_x(-l * t0) - phi, R(0.0));
     return;
   }
-  const real xg[4] = {R(0.1834346424956498), R(0.5255324099163290), R(0.7966664774136267), R(0.9602898564975363)};
-  const real wg[4] = {R(0.3626837833783620), R(0.3137066458778873), R(0.2223810344533745), R(0.1012285362903763)};
   real se = R(0.0), sp = R(0.0);
   for (int i = 0; i < 8; ++i) {
-    const real y = R(0.5) * t0 * (R(1.0) + (i < 4 ? xg[i] : -xg[i - 4]));
-    const real w = wg[i < 4 ? i : i - 4];
+    real w;
+    const real y = R(0.5) * t0 * (R(1.0) + gauss_legendre8_node(i, &w));
     const real z = t0 - y;
     /* sinh(λ0 y) = λ0 y (1 + e^{-2λ0 y})/2 ... written as e^{λ0 y} λ0 y φ(-2λ0 y) (no cancellation). */
     se += w * (exp(l0 * y) * l0 * y * expm1_over_x(-R(2.0) * l0 * y) + exp(-l0 * y) * l * z * expm1_over_x(-l * z));

@@ -1,5 +1,5 @@
 /* sea_lean.h — wave normals filtered from the near waves to the horizon, for the sea seen
- * from above through the FFT ocean (common/sea_waves.h). Needs compat.h and optics.h.
+ * from above through the FFT ocean (common/sea_waves.h). Needs compat.h, gauss_legendre.h and optics.h.
  *
  * Why: far away a pixel covers many texels of the ocean's normal map. Reading one bilinear normal
  * there (sea_waves.h) picks one facet at random: the sea aliases into noise, the sun's glitter is a
@@ -238,14 +238,6 @@ typedef struct {
   int split;                  /* 0: 3 × 3 Gauss–Hermite; 1: 8 × 3 split rule */
 } SeaLeanRule;
 
-SEASIM_FN real sea_lean_gl8_node(int i, real* weight) {
-  const real x[4] = {R(0.1834346424956498), R(0.5255324099163290), R(0.7966664774136267), R(0.9602898564975363)};
-  const real w[4] = {R(0.3626837833783620), R(0.3137066458778873), R(0.2223810344533745), R(0.1012285362903763)};
-  const int k = i < 4 ? 3 - i : i - 4; /* nodes in increasing order */
-  *weight = w[k];
-  return i < 4 ? -x[k] : x[k];
-}
-
 SEASIM_FN real sea_lean_gh3_node(int j, real* weight) {
   *weight = j == 1 ? R(2.0) / R(3.0) : R(1.0) / R(6.0);
   return (real)(j - 1) * R(1.7320508075688772);
@@ -271,7 +263,7 @@ SEASIM_FN void sea_lean_rule(real3 d, real mx, real mz, real l11, real l21, real
   real mass = R(0.0);
   for (int i = 0; i < 8; ++i) {
     real w;
-    r->t[i] = r->lo + (r->hi - r->lo) * R(0.5) * (sea_lean_gl8_node(i, &w) + R(1.0));
+    r->t[i] = r->lo + (r->hi - r->lo) * R(0.5) * (gauss_legendre8_node(i, &w) + R(1.0));
     r->tw[i] = w * exp(R(-0.5) * r->t[i] * r->t[i]);
     mass += r->tw[i];
   }

@@ -262,6 +262,44 @@ albedo = 0.3
   }
 }
 
+// In the water the planes span the cone's exact interval, so their m sub-samples only follow the soft edge's
+// ramp and the objects' shadows: the default m there is 2 (UnderwaterLampsPass::kSubplanesInWater), not the
+// shafts' 6, unless the scene gives m. On the lamp scene with a soft edge and a sphere in the beam, against
+// m = 24: m = 2 errs by 7.9e-5 (rel. L2; m = 6 by 7e-6, m = 1 by 5.9e-4), well under the lattice's own error
+// (0.3 %, the test above).
+TEST(UnderwaterLamps, TwoSubSamplesInTheWaterAreSixsImage) {
+  EXPECT_EQ(seasim::UnderwaterLampsPass::configFromScene(lampScene()).subplanes, 2);
+  EXPECT_EQ(seasim::UnderwaterLampsPass::configFromScene(lampScene({set("quality.shafts_subplanes", "\"auto\"")})).subplanes, 2);
+  EXPECT_EQ(seasim::UnderwaterLampsPass::configFromScene(lampScene({set("quality.shafts_subplanes", "5")})).subplanes, 5);
+  const std::string sphere = std::string(kLampScene) + R"(
+[[objects]]
+type = "sphere"
+center = [0.1, -5.6, -4.5]
+radius = 0.5
+albedo = 0.5
+)";
+  const auto frame = [&](const std::string& m) {
+    std::vector<Override> o = {set("quality.lamps_model", "\"single\""), set("camera.width", "80"), set("camera.height", "48")};
+    if (!m.empty()) o.push_back(set("quality.shafts_subplanes", m));
+    const seasim::FrameResult f = render(seasim::parseScene(sphere, "lamp_sphere.toml", o));
+    EXPECT_EQ(f.nonfinite, 0);
+    return f.rgb;
+  };
+  const seasim::Image converged = frame("24"), six = frame("6"), two = frame(""), one = frame("1");
+  const auto relL2 = [&](const seasim::Image& a) {
+    double d2 = 0, e2 = 0;
+    for (size_t i = 0; i < a.pixels.size(); ++i) {
+      d2 += (a.pixels[i] - converged.pixels[i]) * (a.pixels[i] - converged.pixels[i]);
+      e2 += converged.pixels[i] * converged.pixels[i];
+    }
+    return std::sqrt(d2 / e2);
+  };
+  std::printf("against m = 24, rel. L2: m = 6 %.3g, m = 2 (default) %.3g, m = 1 %.3g\n", relL2(six), relL2(two), relL2(one));
+  EXPECT_LT(relL2(two), 3e-4);
+  EXPECT_LT(relL2(six), relL2(two));
+  EXPECT_LT(relL2(two), relL2(one));
+}
+
 TEST(UnderwaterLamps, OrdersBottomGlowLightsTheWaterAboveTheLitBottom) {
   // The top row looks up into open water, past the bottom: only the lit bottom's glow there depends on
   // the bottom's albedo. A black bottom sends nothing back.

@@ -5,7 +5,9 @@
 // the stiff cases: a cone of 0.1°, turbid water, a ray through the lamp, g -> 1.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "math/kernel_math.h"
 #include "underwater/lamps_setup.h"
@@ -93,7 +95,7 @@ TEST(UnderwaterLampsMath, EndsAtTheFirstSurfaceAndFarFieldClosesTheRay) {
   c.t_end = 4.0;  // a rock at 4 m
   const double ref = bruteForce(c, 1e-3, 400000);
   EXPECT_NEAR(planesD(c, 400, 16), ref, 1e-3 * ref);
-  // A ray along the beam that never leaves it: the far field's closed form to infinity.
+  // A ray along the beam that never leaves it: the far field's samples to infinity.
   Case along = crossing();
   along.o = {0, -5, 0};
   along.lamp = {0, -4.8, 0.5};
@@ -101,6 +103,67 @@ TEST(UnderwaterLampsMath, EndsAtTheFirstSurfaceAndFarFieldClosesTheRay) {
   along.axis = along.d;
   const double ref_along = bruteForce(along, 1e-3, 400000);
   EXPECT_NEAR(planesD(along, 400, 16), ref_along, 2e-3 * ref_along);
+}
+
+// The far field's samples (uw_lamp_tail_weight: 8-point Gauss–Legendre in the lamp's angle) against air's
+// closed form over the same span (shafts_tail_from: exponential integrals, another derivation), where the
+// two integrands are the same: an isotropic phase (g = 0; the closed form freezes the phase) and no
+// profile. Finite and infinite spans, clear to turbid water and none (σ_t = 0); judged against the whole
+// ray's in-scatter (the planes' part before it as well), since where the far field is far off in relative
+// terms it is a vanishing part of the ray. Float against double.
+TEST(UnderwaterLampsMath, FarFieldSamplesMatchTheClosedFormUnderAConstantPhase) {
+  Case along = crossing();
+  along.lamp = {0, -4.8, 0.5};
+  along.axis = along.d;
+  auto v = [](kd::real3 x) { return kf::real3{float(x.x), float(x.y), float(x.z)}; };
+  for (const Case& base : {crossing(), along})
+    for (const double t_end : {4.0, 12.0, double(INFINITY)})
+      for (const double sigma_t : {0.0, 0.05, 0.8, 5.0}) {
+        kd::UwLampSpan sp;
+        if (!kd::uw_lamp_span(base.o, base.d, base.lamp, base.axis, cosDeg(80), 1e-3, std::isinf(t_end) ? 1e30 : t_end,
+                              30, &sp) ||
+            !sp.tail)
+          continue;
+        double samples = 0;
+        for (int j = 0; j < UW_LAMP_TAIL_SAMPLES; ++j) {
+          double t, x;
+          samples += kd::uw_lamp_tail_weight(&sp, j, 0.0, base.o, base.d, base.lamp, &t, &x) * std::exp(-sigma_t * x);
+        }
+        double closed = kd::shafts_tail_from(sp.tp - sp.a, sp.a, sp.h, 1.0, sigma_t);
+        if (!sp.infinite) closed -= kd::shafts_tail_from(sp.tb - sp.a, sp.a, sp.h, 1.0, sigma_t);
+        closed /= 4 * M_PI;
+        ASSERT_GT(closed, 0);
+        double planes = 0;  // the same integrand over [ta, tp] (30 planes), for the whole ray's scale
+        for (int i = 0; i < 30; ++i) {
+          double s, c;
+          const double t = sp.ta + (i + 0.5) * sp.dt;
+          kd::uw_lamp_at(base.o, base.d, base.lamp, t, &s, &c);
+          planes += kd::uw_lamp_plane_g(1.0, sigma_t, 0.0, s, t, c, 1e-3) * sp.dt;
+        }
+        const double whole = planes + closed;
+        std::printf("t_end %g, sigma_t %g: the far field %.2e of the ray; its samples off by %.2e of it, %.2e of the ray\n",
+                    t_end, sigma_t, closed / whole, samples / closed - 1, (samples - closed) / whole);
+        EXPECT_NEAR(samples, closed, 5e-4 * whole) << t_end << " " << sigma_t;
+        if (closed > 0.01 * whole) EXPECT_NEAR(samples, closed, 1e-3 * closed) << t_end << " " << sigma_t;
+        if (sigma_t > 0) continue;  // the weights and path lengths do not depend on the water
+        kf::UwLampSpan spf;
+        ASSERT_TRUE(kf::uw_lamp_span(v(base.o), v(base.d), v(base.lamp), v(base.axis), float(cosDeg(80)), 1e-3f,
+                                     std::isinf(t_end) ? 1e30f : float(t_end), 30, &spf));
+        // Float's tan near π/2 (the infinite ray's last nodes) loses digits as 1/(π/2 - φ): those samples
+        // are the farthest and weigh least.
+        double worst_w = 0, worst_x = 0;
+        for (int j = 0; j < UW_LAMP_TAIL_SAMPLES; ++j) {
+          float tf, xf;
+          double td, xd;
+          const float wf = kf::uw_lamp_tail_weight(&spf, j, 0.9f, v(base.o), v(base.d), v(base.lamp), &tf, &xf);
+          const double wd = kd::uw_lamp_tail_weight(&sp, j, 0.9, base.o, base.d, base.lamp, &td, &xd);
+          worst_w = std::max(worst_w, std::fabs(wf / wd - 1));
+          worst_x = std::max(worst_x, std::fabs(xf / xd - 1));
+        }
+        std::printf("  float against double: weights %.2e, path lengths %.2e\n", worst_w, worst_x);
+        EXPECT_LT(worst_w, 1e-4);
+        EXPECT_LT(worst_x, 1e-4);
+      }
 }
 
 TEST(UnderwaterLampsMath, FloatMatchesDouble) {

@@ -79,8 +79,9 @@ PassDescriptor underwaterLampsDescriptor() {
   d.name = "underwater_lamps";
   d.kernel_file = "underwater_lamps.cl";
   d.role = PassRole::UnderwaterLamps;
-  // The lamps' interval integral takes the shafts' sampling planes (001 eq. 5, 7-9).
-  d.knobs = {{"shafts_planes", 30}, {"shafts_subplanes", 6}};
+  // The lamps' interval integral takes the shafts' sampling planes (001 eq. 5, 7-9); their sub-samples
+  // default otherwise here (UnderwaterLampsPass::kSubplanesInWater), so the knob is the air's.
+  d.knobs = {{"shafts_planes", 30}};
   // The "orders" model's orders of scattering kept (the last takes all higher ones), its quadrature steps
   // per view ray, its path-stretch exponent κ and the spread β of its landing (common/underwater_lamps_ms.h).
   d.scene_keys = {{"quality", "lamps_orders", ModelKey::Type::Integer, 4.0, 1.0, 12.0, ""},
@@ -136,8 +137,10 @@ PassDescriptor underwaterLampsDescriptor() {
     if (p.featuresAs<UnderwaterLampsFeatures>().ms_lattice) {
       const int step = lampsMsLatticeStep(s);
       const double w = pixelLatticeSize(s.camera.width, step), h = pixelLatticeSize(s.camera.height, step);
-      const double per = p.featuresAs<UnderwaterLampsFeatures>().lamps_split ? 2.0 : 1.0;
-      out.push_back({p.name, "the orders' smooth part per band on the lattice", 4.0 * per * nb * w * h,
+      const double per = static_cast<double>(
+          lampsMsLatticeFloats(static_cast<int>(nb), p.featuresAs<UnderwaterLampsFeatures>().lamps_split));
+      out.push_back({p.name, "the orders' smooth part on the lattice, the surface's and the view ray's per band",
+                     4.0 * per * w * h,
                      {"camera.width", "camera.height", "quality.lamps_ms_cell_deg", "spectral.count"},
                      {static_cast<double>(s.camera.width), static_cast<double>(s.camera.height),
                       modelKey(s, "quality.lamps_ms_cell_deg"), nb}});
