@@ -3,8 +3,9 @@
  * (sun K_d multiple scattering, froxels, caustics). The math and its derivation: common/underwater_lamps.h.
  *
  * Per pixel, per lamp: the part of the view ray inside the cone up to the G-buffer's hit (S), n planes
- * with m sub-samples each (H P by exact shadow rays against the objects), the closed-form far field
- * beyond K r; the bands in vector lanes over blocks of planes (lamp_beam_block), each with its own σ_s,
+ * with m sub-samples each (H P by exact shadow rays against the objects), the far field beyond K r by 8
+ * Gauss–Legendre samples in the lamp's angle; the bands in vector lanes over blocks of planes and samples
+ * (lamp_beam_block), each with its own σ_s,
  * σ_t (002: Jerlov/IOP data) and the lamp's I(λ). A hit object or bottom adds the lamp's direct light.
  * Bands go to RGB through the sensor weights (002 eq. 4.8), added to rgb (and to spectral with
  * SEASIM_SPECTRAL_OUTPUT).
