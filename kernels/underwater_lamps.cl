@@ -48,6 +48,7 @@
 #include "common/gauss_legendre.h"
 #include "common/band_lanes.h"
 #include "common/optics.h"
+#include "common/band_lanes_math.h"
 #include "common/shafts.h"
 #include "common/underwater_params.h"
 #include "common/underwater.h"

@@ -13,6 +13,7 @@
  *   SELECTB(m, a, b)       per lane: m ? a : b (m from a comparison of realb values, combined with &)
  *   SUMB(v)                the sum of the lanes
  *   load_lanes, store_lanes the first count lanes of a row that is not padded (the others read as 0)
+ *   lane_offsets()         0, 1, …, N - 1 (a node loop run in lanes: node k0 + lane)
  * Comparisons of a realb with a scalar give a maskb on both sides; a scalar condition must be splat
  * first (SPLATB(s) >= x), since OpenCL's scalar true is 1, not the all-ones a vector mask uses.
  * Width, measured on PoCL 3.1 (AVX-512 CPU; seabed, 256 bands, kd_multiple ms, two rounds): 4 lanes
@@ -55,6 +56,13 @@ SEASIM_FN void store_lanes(realb v, __global float* dst, int count) {
   for (int j = 0; j < count && j < SEASIM_BAND_LANES; ++j) dst[j] = lanes[j];
 }
 
+/* 0, 1, ..., SEASIM_BAND_LANES - 1: lane j's index, so that a loop over nodes can run them in lanes too. */
+SEASIM_FN realb lane_offsets(void) {
+  float lanes[SEASIM_BAND_LANES] __attribute__((aligned(4 * SEASIM_BAND_LANES)));
+  for (int j = 0; j < SEASIM_BAND_LANES; ++j) lanes[j] = (float)j;
+  return *(realb*)lanes;
+}
+
 /* The first count lanes from src, the rest 0 (a row that is not padded to a multiple of the lanes). */
 SEASIM_FN realb load_lanes(const __global float* src, int count) {
   float lanes[SEASIM_BAND_LANES] __attribute__((aligned(4 * SEASIM_BAND_LANES)));
@@ -77,5 +85,6 @@ SEASIM_FN void store_lanes(realb v, float* dst, int count) {
   if (count > 0) dst[0] = static_cast<float>(v);
 }
 SEASIM_FN realb load_lanes(const float* src, int count) { return count > 0 ? static_cast<realb>(src[0]) : realb(0); }
+SEASIM_FN realb lane_offsets() { return realb(0); }
 
 #endif

@@ -54,8 +54,8 @@
  * depths); large σ ℓ
  * (weights underflow to 0, never overflow: the Poisson terms are built on e^{-σ_t ℓ}).
  *
- * Written against compat.h; needs optics.h, shafts.h, underwater_lamps.h, path_tracer.h (HG's inverse
- * CDF) and polynomial_trig.h before it.
+ * Written against compat.h; needs optics.h, band_lanes.h, band_lanes_math.h, shafts.h, underwater_lamps.h,
+ * path_tracer.h (HG's inverse CDF) and polynomial_trig.h before it.
  */
 
 #define UW_MS_TABLE 181    /* blurred profile entries over ψ in [0°, 180°], 1° apart */
@@ -290,19 +290,23 @@ SEASIM_FN real uw_ms_order1_phase(real3 x, real3 lamp, real3 axis, real cos_cone
   const real d_min = lookup_atan2(nl, ce), h = s * nl, u0 = s * ce;
   if (!(nl > R(1e-6)) || !(h > R(0.0))) return hg_phase(cos_alpha, g * g);
   n = n * (R(1.0) / nl);
-  real num = R(0.0), den = R(0.0);
-  for (int k = 0; k < UW_MS_EDGE_NODES; ++k) {
-    const real q = ((real)k + R(0.5)) / (real)UW_MS_EDGE_NODES;
-    const real delta = d_min + (SEASIM_PI - d_min) * q * q;
-    const real jac = (SEASIM_PI - d_min) * R(2.0) * q / (real)UW_MS_EDGE_NODES;
-    real cd;
-    const real sd = fmax(kernel_sincos_0_pi(delta, &cd), R(1e-6)); /* delta in [0, π] */
-    const real r = h / sd, u = fmax(u0 - h * cd / sd, R(0.0));
-    const real wgt = hg_phase(cd, g) * exp(-c * fmax(u + r - s, R(0.0))) * jac;
-    num += wgt * hg_phase(dot(cd * e + sd * n, to_eye), g);
+  /* The nodes in lanes (band_lanes.h; one at a time on the host), the ones past the last weighted 0. */
+  const real e_eye = dot(e, to_eye), n_eye = dot(n, to_eye);
+  realb num = SPLATB(R(0.0)), den = SPLATB(R(0.0));
+  for (int k0 = 0; k0 < UW_MS_EDGE_NODES; k0 += SEASIM_BAND_LANES) {
+    const realb k = lane_offsets() + (real)k0;
+    const realb q = (k + R(0.5)) * (R(1.0) / (real)UW_MS_EDGE_NODES);
+    const realb delta = d_min + (SEASIM_PI - d_min) * q * q;
+    const realb jac = (SEASIM_PI - d_min) * R(2.0) / (real)UW_MS_EDGE_NODES * q;
+    const realb cd = cos(delta), sd = fmax(sin(delta), R(1e-6)); /* delta in [0, π] on the nodes */
+    const realb r = h / sd, u = fmax(u0 - h * cd / sd, R(0.0));
+    const realb wgt = SELECTB(k < SPLATB((real)UW_MS_EDGE_NODES),
+                              hg_phase_b(cd, g) * exp(-c * fmax(u + r - s, R(0.0))) * jac, SPLATB(R(0.0)));
+    num += wgt * hg_phase_b(cd * e_eye + sd * n_eye, g);
     den += wgt;
   }
-  return den > R(0.0) ? num / den : hg_phase(cos_alpha, g * g);
+  const real num_sum = SUMB(num), den_sum = SUMB(den);
+  return den_sum > R(0.0) ? num_sum / den_sum : hg_phase(cos_alpha, g * g);
 }
 
 /* L_ms per unit I(λ) for one band along a view ray (no shadows): `table` holds the lamp's P_1..P_orders
