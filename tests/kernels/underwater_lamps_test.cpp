@@ -257,8 +257,9 @@ albedo = 0.3
     std::printf("lattice step %d: its own pixels within %.3g of a peak %.4g; worst pixel %.3g of its value "
                 "(+ 2 %% of the peak); image rel. L2 %.3g\n", step, own, peak, worst, std::sqrt(d2 / e2));
     EXPECT_LT(own, 1e-5 * peak);
-    EXPECT_LT(worst, 0.08);  // measured 0.030 (step 2) and 0.045 (step 4); 0.12-0.15 with no silhouette test
-    EXPECT_LT(std::sqrt(d2 / e2), 0.01);  // 0.0023 and 0.0028; 0.045 with no lamp test
+    EXPECT_LT(worst, 0.08);  // measured 0.037 (step 2) and 0.062 (step 4); 0.29-0.41 reading the surface's part
+                             // where the normal turns, 0.12-0.15 with no silhouette test
+    EXPECT_LT(std::sqrt(d2 / e2), 0.01);  // 0.0037 and 0.0038; 0.045 with no lamp test
   }
 }
 
