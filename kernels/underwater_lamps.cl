@@ -422,6 +422,27 @@ static inline void lamp_surface(const LampMedia* md, __global const UwObject* ob
 }
 #endif
 
+/* The lamp's profile (uw_lamp_profile, shafts_cone_profile) at SEASIM_BAND_LANES points of the view ray, each
+ * u past the closest approach (see lamp_beam), from the sine of the angle off the axis rather than its
+ * cosine: q = u d + h⃗ the lamp-to-point vector, |q|² = h² + u², its part off the axis q × axis = u D + E
+ * (D = d × axis, E = h⃗ × axis), sin² = |u D + E|² / |q|². With cos − cos_cone = (sin²_cone − sin²) / (cos +
+ * cos_cone), the smoothstep's argument (cos − cos_cone) / (cos_inner − cos_cone) is
+ *   (sin²_cone − sin²) / (sin²_cone − sin²_inner) · (cos_inner + cos_cone) / (cos + cos_cone),
+ * well conditioned for a narrow cone, where the cosines all round to within a few ulp of 1 (a 0.1° cone
+ * with a 0.05° falloff is 1.1e-6 wide in cosine). 0 behind the lamp (q·axis <= 0) and outside the cone, 1
+ * inside the inner cone; a hard edge (sin²_inner >= sin²_cone) a step. */
+static inline realb lamp_profile_lanes(realb u, float h2, float3 D, float3 E, float d_axis, float offset_axis,
+                                       __global const UwLamp* L) {
+  const realb px = u * D.x + E.x, py = u * D.y + E.y, pz = u * D.z + E.z;
+  const realb sin2 = (px * px + py * py + pz * pz) / fmax(h2 + u * u, 1e-30f);
+  const maskb front = u * d_axis + offset_axis > SPLATB(0.0f);
+  const float width = L->sin2_cone - L->sin2_inner;
+  if (!(width > 0.0f)) return SELECTB(front & (sin2 < SPLATB(L->sin2_cone)), SPLATB(1.0f), SPLATB(0.0f));
+  const realb cos_axis = sqrt(fmax(1.0f - sin2, 0.0f));
+  const realb f = clamp((L->sin2_cone - sin2) / width * ((L->cos_inner + L->cos_cone) / (cos_axis + L->cos_cone)), 0.0f, 1.0f);
+  return SELECTB(front, f * f * (3.0f - 2.0f * f), SPLATB(0.0f));
+}
+
 /* Planes per block of the beam: each plane's band-free factor (its H P sum, the HG phase, 1/s² and the spacing:
  * 001's h(s, t) without σ_s e^{-σ_t (s + t)}) and path length s + t in private arrays, then each run of
  * SEASIM_BAND_LANES bands sums the block's planes in its lanes, one vector exp per plane, and adds the sum to
@@ -446,8 +467,11 @@ static inline void lamp_beam_block(LampSums* o, __global const UwBand* bands, __
   }
 }
 
-/* The light one lamp scatters towards the eye (001 eq. 2, 5, 7–9): the planes once, in blocks whose bands
- * run in vector lanes (lamp_beam_block), then the closed-form tail beyond the last plane. */
+/* The light one lamp scatters towards the eye (001 eq. 2, 5, 7–9): the planes' geometry (profile at the
+ * sub-samples, distance, phase) SEASIM_BAND_LANES planes at a time in vector lanes, the shadow rays lane by
+ * lane, then blocks of planes whose bands run in vector lanes (lamp_beam_block); then the far field's
+ * Gauss–Legendre samples beyond the last plane (uw_lamp_tail_weight). The host's double evaluation
+ * (uw_lamp_inscatter) takes the same planes one at a time. */
 static inline void lamp_beam(const LampMedia* md, __global const UwObject* objects, int count,
                              __constant UwLampParams* lp, __global const UwLamp* L, __global const float* I,
                              const LampRay* v, LampSums* o) {
@@ -461,36 +485,67 @@ static inline void lamp_beam(const LampMedia* md, __global const UwObject* objec
   const unsigned int fan_objects =
       count > 0 ? uw_objects_near_triangle(objects, count, lamp, v->o + sp.ta * v->d, v->o + sp.tp * v->d) : 0u;
   const int shadowed = fan_objects != 0u || count > 32; /* else every plane's shadow ray is clear */
-  /* The profile at the planes' interval ends: where both ends of an interval lie in the inner cone (convex),
-   * so does every sub-sample between them, and its profile is 1. */
-  float prof_start = uw_lamp_profile(v->o + sp.ta * v->d, lamp, axis, L->cos_cone, L->cos_inner);
+  /* The planes' geometry in lanes, SEASIM_BAND_LANES planes at a time: along the ray, with u = t - a the
+   * distance past the closest approach, s = sqrt(h² + u²), cos α = -u / s and the cosine to the lamp's axis
+   * (u d·axis + h⃗·axis) / s, h⃗ = o - lamp + a d the closest approach's offset (no cancellation near the
+   * lamp). Where both ends of an interval lie in the inner cone (convex), so does every sub-sample between
+   * them, and its profile is 1. */
+  const float3 offset = v->o - lamp + sp.a * v->d;
+  const float h2 = sp.h * sp.h, d_axis = dot(v->d, axis), offset_axis = dot(offset, axis);
+  const float3 D = cross(v->d, axis), E = cross(offset, axis);
+  const float sub = sp.dt / m;
   for (int k0 = 0; k0 < n_planes && sp.dt > 0.0f; k0 += LAMP_PLANE_BLOCK) {
     float w[LAMP_PLANE_BLOCK], x[LAMP_PLANE_BLOCK];
 #if SEASIM_LAYER_LAMPS_SPLIT
     float w_plain[LAMP_PLANE_BLOCK];
 #endif
     int used = 0;
-    for (int k = k0; k < min(k0 + LAMP_PLANE_BLOCK, n_planes); ++k) {
-      const float prof_end =
-          uw_lamp_profile(v->o + (sp.ta + (k + 1) * sp.dt) * v->d, lamp, axis, L->cos_cone, L->cos_inner);
-      const int inner = prof_start >= 1.0f && prof_end >= 1.0f;
-      prof_start = prof_end;
-      float J = 0.0f;
+    for (int l0 = k0; l0 < min(k0 + LAMP_PLANE_BLOCK, n_planes); l0 += SEASIM_BAND_LANES) {
+      const realb k = lane_offsets() + (float)l0;
+      const realb t0 = sp.ta + k * sp.dt;
+      const maskb inner = (lamp_profile_lanes(t0 - sp.a, h2, D, E, d_axis, offset_axis, L) >= 1.0f) &
+                          (lamp_profile_lanes(t0 + sp.dt - sp.a, h2, D, E, d_axis, offset_axis, L) >= 1.0f);
+      float J_lanes[SEASIM_BAND_LANES] __attribute__((aligned(4 * SEASIM_BAND_LANES)));
+      realb J = SPLATB(0.0f);
       for (int j = 0; j < m; ++j) {
-        const float3 P = v->o + uw_lamp_subsample_t(&sp, k, j, m) * v->d;
-        const float prof = inner ? 1.0f : uw_lamp_profile(P, lamp, axis, L->cos_cone, L->cos_inner);
-        if (prof > 0.0f) J += shadowed ? prof * lamp_visible(objects, count, fan_objects, P, lamp) : prof;
+        const realb t = t0 + (j + 0.5f) * sub;
+        const realb prof = SELECTB(inner, SPLATB(1.0f),
+                                   lamp_profile_lanes(t - sp.a, h2, D, E, d_axis, offset_axis, L));
+        if (!shadowed) {
+          J += prof;
+          continue;
+        }
+        /* Shadow rays, lane by lane: exact tests against the fan's objects. */
+        float prof_lanes[SEASIM_BAND_LANES] __attribute__((aligned(4 * SEASIM_BAND_LANES)));
+        float t_lanes[SEASIM_BAND_LANES] __attribute__((aligned(4 * SEASIM_BAND_LANES)));
+        *(realb*)prof_lanes = prof;
+        *(realb*)t_lanes = t;
+        for (int q = 0; q < SEASIM_BAND_LANES; ++q)
+          if (prof_lanes[q] > 0.0f) prof_lanes[q] *= lamp_visible(objects, count, fan_objects, v->o + t_lanes[q] * v->d, lamp);
+        J += *(realb*)prof_lanes;
       }
-      if (J <= 0.0f) continue;
-      J *= sp.dt / m;
-      float s, c;
-      const float t = sp.ta + (k + 0.5f) * sp.dt;
-      uw_lamp_at(v->o, v->d, lamp, t, &s, &c);
-      w[used] = J * uw_lamp_plane_weight(md->g, s, c, lp->s_min);
+      const realb u = t0 + 0.5f * sp.dt - sp.a;
+      const realb s = sqrt(h2 + u * u);
+      const realb cos_alpha = -u / fmax(s, 1e-30f);
+      const realb sc = fmax(s, lp->s_min);
+      const realb geometry = J * sub / (sc * sc);
+      float w_lanes[SEASIM_BAND_LANES] __attribute__((aligned(4 * SEASIM_BAND_LANES)));
+      float x_lanes[SEASIM_BAND_LANES] __attribute__((aligned(4 * SEASIM_BAND_LANES)));
+      *(realb*)w_lanes = geometry * hg_phase_b(cos_alpha, md->g);
+      *(realb*)x_lanes = s + u + sp.a;
+      *(realb*)J_lanes = J;
 #if SEASIM_LAYER_LAMPS_SPLIT
-      w_plain[used] = J * uw_lamp_plane_weight(md->plain_g, s, c, lp->s_min);
+      float w_plain_lanes[SEASIM_BAND_LANES] __attribute__((aligned(4 * SEASIM_BAND_LANES)));
+      *(realb*)w_plain_lanes = geometry * hg_phase_b(cos_alpha, md->plain_g);
 #endif
-      x[used++] = s + t;
+      for (int q = 0; q < min(SEASIM_BAND_LANES, n_planes - l0); ++q) {
+        if (!(J_lanes[q] > 0.0f)) continue;
+        w[used] = w_lanes[q];
+#if SEASIM_LAYER_LAMPS_SPLIT
+        w_plain[used] = w_plain_lanes[q];
+#endif
+        x[used++] = x_lanes[q];
+      }
     }
     if (used == 0) continue;
     lamp_beam_block(o, bands, bands, I, nb, w, x, used, 1, o->to_single);

@@ -12,6 +12,7 @@ namespace seasim {
 // The kernels read these structs with OpenCL C layout; float/int are 4 bytes on both sides.
 static_assert(sizeof(UwLamp) == 2 * 16 + 4 * 4, "UwLamp must stay 48 bytes");
 static_assert(offsetof(UwLamp, cos_cone) == 32);
+static_assert(offsetof(UwLamp, sin2_cone) == 40 && offsetof(UwLamp, sin2_inner) == 44);
 static_assert(sizeof(UwLampParams) == 8 * 4, "UwLampParams must stay 32 bytes");
 static_assert(offsetof(UwLampParams, lamp_count) == 16);
 static_assert(offsetof(UwLampParams, band_count) == 28);
@@ -31,6 +32,8 @@ UnderwaterLamps makeUnderwaterLamps(const Scene& scene, const WavelengthGrid& gr
     }
     L.cos_cone = static_cast<float>(std::cos(l.cone));
     L.cos_inner = static_cast<float>(std::cos(l.cone - l.falloff));
+    L.sin2_cone = static_cast<float>(std::sin(l.cone) * std::sin(l.cone));
+    L.sin2_inner = static_cast<float>(std::sin(l.cone - l.falloff) * std::sin(l.cone - l.falloff));
     out.lamps.push_back(L);
     for (double v : lampSpectralIntensity(l, grid, scene.files.get())) out.spectra.push_back(static_cast<float>(v));
   }
