@@ -486,10 +486,10 @@ static inline void lamp_beam(const LampMedia* md, __global const UwObject* objec
       count > 0 ? uw_objects_near_triangle(objects, count, lamp, v->o + sp.ta * v->d, v->o + sp.tp * v->d) : 0u;
   const int shadowed = fan_objects != 0u || count > 32; /* else every plane's shadow ray is clear */
   /* The planes' geometry in lanes, SEASIM_BAND_LANES planes at a time: along the ray, with u = t - a the
-   * distance past the closest approach, s = sqrt(h² + u²), cos α = -u / s and the cosine to the lamp's axis
-   * (u d·axis + h⃗·axis) / s, h⃗ = o - lamp + a d the closest approach's offset (no cancellation near the
-   * lamp). Where both ends of an interval lie in the inner cone (convex), so does every sub-sample between
-   * them, and its profile is 1. */
+   * distance past the closest approach, s = sqrt(h² + u²) and cos α = -u / s; the profile from the sine off
+   * the lamp's axis (lamp_profile_lanes), with h⃗ = o - lamp + a d the closest approach's offset. Where both
+   * ends of an interval lie in the inner cone (convex), so does every sub-sample between them, and its
+   * profile is 1. Lanes past the last plane are computed and dropped. */
   const float3 offset = v->o - lamp + sp.a * v->d;
   const float h2 = sp.h * sp.h, d_axis = dot(v->d, axis), offset_axis = dot(offset, axis);
   const float3 D = cross(v->d, axis), E = cross(offset, axis);
@@ -520,7 +520,7 @@ static inline void lamp_beam(const LampMedia* md, __global const UwObject* objec
         float t_lanes[SEASIM_BAND_LANES] __attribute__((aligned(4 * SEASIM_BAND_LANES)));
         *(realb*)prof_lanes = prof;
         *(realb*)t_lanes = t;
-        for (int q = 0; q < SEASIM_BAND_LANES; ++q)
+        for (int q = 0; q < min(SEASIM_BAND_LANES, n_planes - l0); ++q)
           if (prof_lanes[q] > 0.0f) prof_lanes[q] *= lamp_visible(objects, count, fan_objects, v->o + t_lanes[q] * v->d, lamp);
         J += *(realb*)prof_lanes;
       }
