@@ -65,6 +65,7 @@
 #include "common/sea_band_table.h"
 #include "common/sea_bands.h"
 #include "common/sea_multiple_bands.h"
+#include "common/sea_ordinates.h"
 #include "common/sea_view.h"
 #include "common/sea_band_terms.h"
 

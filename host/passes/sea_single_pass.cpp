@@ -9,6 +9,7 @@
 #include "math/kernel_math.h"
 #include "passes/sea_band_table.h"
 #include "passes/sea_heightfield.h"
+#include "passes/sea_ordinates_table.h"
 #include "passes/sea_single_features.h"
 #include "passes/sea_sky.h"
 #include "sky/sky_light.h"
@@ -227,6 +228,20 @@ SeaSinglePass::SeaSinglePass(Device& device, const Scene& scene, const PassPlan&
   std::vector<float> lut_values(1, 0.0f);
   const int lut_size = singleScatteringTable(scene, grid, sun, water, sun_e, waves, lut_values);
   p.lut_size = lut_size;
+  // sea.model "multiple": its factor κ from the discrete-ordinates solution of the flat layer
+  // (common/sea_ordinates.h), at the depth nodes the scene's bottom reaches.
+  std::vector<double> ordinates;
+  if (features.sea_model == 1) {
+    const Vec3 sun_lit = features.sun ? sun : Vec3{0, -1, 0};
+    const SeaOrdinatesLight ord_light =
+        seaOrdinatesLight(scene, sun_lit, p.sky_fresnel_mean, features.single_scattering, features.bottom);
+    std::vector<SeaOrdinatesBand> ord_bands;
+    for (const SeaBand& b : bands) {
+      const double sky = kd::sea_sky_band(features.sky_model, &b, kd::real3{1, 1, 1});
+      ord_bands.push_back({b.a, b.b, b.sun_irradiance, M_PI * sky * (1 - p.sky_fresnel_mean), b.bottom_albedo});
+    }
+    ordinates = seaOrdinatesTable(ord_light, ord_bands);
+  }
   // SEASIM_SEA_LUT is set here rather than by the planner: it follows a quality knob of this pass.
   std::vector<std::string> defines = plan.defines;
   defines.push_back(std::string("SEASIM_SEA_LUT=") + (lut_size > 1 ? "1" : "0"));
@@ -238,7 +253,7 @@ SeaSinglePass::SeaSinglePass(Device& device, const Scene& scene, const PassPlan&
     params_ = cl::Buffer(device.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof p, &p);
     host_params_ = p;
     // The band lanes' table (kernels/common/sea_band_table.h): the bands' fields and the LUT, bands contiguous.
-    const std::vector<float> table = seaBandTable(bands, lut_values, lut_size);
+    const std::vector<float> table = seaBandTable(bands, lut_values, lut_size, ordinates);
     table_ = cl::Buffer(device.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(float) * table.size(),
                         const_cast<float*>(table.data()));
     // One dummy float4 stands in for a map the kernel's defines do not read.

@@ -8,6 +8,7 @@
 #include "math/kernel_math.h"
 #include "ocean/ocean_cpu.h"
 #include "passes/sea_heightfield.h"
+#include "passes/sea_ordinates_table.h"
 #include "passes/sea_sky.h"
 #include "reference/sea_floor_reference.h"
 #include "spectral/jerlov.h"
@@ -90,6 +91,7 @@ struct SeaReferenceScene {
   double pixel_angle = 0, sun_slope_variance = 0;
   SeaSky sea_sky;
   double sky_fresnel = 0, mu_sky = 0, r_below = 0, mu_ret = 0;
+  std::vector<double> ordinates;  // sea.model "multiple": κ (passes/sea_ordinates_table.h), node-major
 
   // The sky's shape towards d (common/sky.h).
   k::real3 shape(k::real3 d) const {
@@ -163,6 +165,16 @@ SeaReferenceScene seaReferenceScene(const Scene& scene, int steps) {
   r.sky_fresnel = skyFresnelMean(r.ior), r.mu_sky = k::sea_sky_mean_cosine(r.ior);
   r.r_below = k::sea_surface_reflectance_below(r.sky_fresnel, r.ior);
   r.mu_ret = k::sea_reflected_mean_cosine(r.r_below, r.ior);
+  if (r.multiple) {
+    const Vec3 sun = r.has_sun ? Vec3{r.sun.x, r.sun.y, r.sun.z} : Vec3{0, -1, 0};
+    const SeaOrdinatesLight light = seaOrdinatesLight(scene, sun, r.sky_fresnel, scene.sea.single_scattering, true);
+    std::vector<SeaOrdinatesBand> bands;
+    for (size_t i = 0; i < r.bands; ++i)
+      bands.push_back({r.water.a[i], r.water.b[i], r.sun_e[i],
+                       M_PI * r.skyOnly(i, k::real3{1, 1, 1}) * (1 - r.sky_fresnel),
+                       scene.bottom.albedo.at(r.grid.centers_nm[i])});
+    r.ordinates = seaOrdinatesTable(light, bands);
+  }
   return r;
 }
 
@@ -273,22 +285,27 @@ double addMultipleBand(const SeaReferenceScene& r, size_t i, const SeaReferenceR
   const double z_floor = ray.z_floor, t_out = ray.t_out;
   const double e_sky = M_PI * r.skyOnly(i, k::real3{1, 1, 1}) * (1 - r.sky_fresnel);
   const double e_sun = r.sun_e[i] * ray.e_h;
+  double below = 0;
   if (scene.sea.single_scattering) {
-    L += t_out * k::sea_multiple_column(e_sun, ray.t_in, e_sky, r.water.a[i], r.water.b[i], ray.c_f, z_floor,
-                                        ray.cos_io, ray.cos_ji, ray.phase, r.mu_sky);
+    below += k::sea_multiple_column(e_sun, ray.t_in, e_sky, r.water.a[i], r.water.b[i], ray.c_f, z_floor, ray.cos_io,
+                                    ray.cos_ji, ray.phase, r.mu_sky);
   }
   if (z_floor >= 0) {
-    L += t_out * k::sea_multiple_bottom(e_sun, ray.t_in, e_sky, r.water.a[i], r.water.b[i], ray.c_f,
-                                        scene.bottom.albedo.at(r.grid.centers_nm[i]), z_floor, ray.cos_io, ray.cos_ji,
-                                        r.mu_sky, 1.0);
+    below += k::sea_multiple_bottom(e_sun, ray.t_in, e_sky, r.water.a[i], r.water.b[i], ray.c_f,
+                                    scene.bottom.albedo.at(r.grid.centers_nm[i]), z_floor, ray.cos_io, ray.cos_ji,
+                                    r.mu_sky, 1.0);
   }
   if (scene.sea.single_scattering || z_floor >= 0) {
     const double albedo = z_floor >= 0 ? scene.bottom.albedo.at(r.grid.centers_nm[i]) : 0.0;
-    L += t_out * k::sea_multiple_surface_return(e_sun, ray.t_in, e_sky, r.water.a[i], r.water.b[i], ray.c_f, albedo,
-                                                z_floor, ray.cos_io, ray.cos_ji, r.mu_sky, 1.0, r.r_below, r.mu_ret,
-                                                scene.sea.single_scattering ? 1 : 0);
+    below += k::sea_multiple_surface_return(e_sun, ray.t_in, e_sky, r.water.a[i], r.water.b[i], ray.c_f, albedo,
+                                            z_floor, ray.cos_io, ray.cos_ji, r.mu_sky, 1.0, r.r_below, r.mu_ret,
+                                            scene.sea.single_scattering ? 1 : 0);
   }
-  return L;
+  // Held to the flat layer's discrete-ordinates solution (common/sea_ordinates.h), as the kernel.
+  const double cos_phi = k::sea_ord_azimuth_cosine(ray.view_in_water.x, ray.view_in_water.z, r.sun.x, r.sun.z);
+  const double kappa =
+      seaOrdinatesFactor(r.ordinates, static_cast<int>(r.bands), static_cast<int>(i), z_floor, ray.cos_ji, cos_phi);
+  return L + t_out * kappa * below;
 }
 
 // Band i's radiance along a ray below the horizon: the reflected sky, then single scattering (midpoint

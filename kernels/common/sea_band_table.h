@@ -8,6 +8,7 @@
  * they fill cost nothing and add nothing). After the SEA_ROWS rows of SeaBand's fields come the
  * lut_size rows of eq. 5's LUT (SEASIM_SEA_LUT): row SEA_ROW_LUT + j holds entry j of every band's
  * table (the host's per-band LUT transposed; the angle, hence j, is the same for every band of a pixel).
+ * sea.model "multiple" has no LUT; its rows from SEA_ROW_ORDINATES hold κ, one row per node.
  */
 #ifndef SEASIM_SEA_BAND_TABLE_H
 #define SEASIM_SEA_BAND_TABLE_H
@@ -29,5 +30,8 @@
 #define SEA_ROW_SKY_W_B 11
 #define SEA_ROWS 12
 #define SEA_ROW_LUT SEA_ROWS     /* + j: eq. 5's LUT entry j (SEASIM_SEA_LUT; lut_size rows) */
+#define SEA_ROW_ORDINATES SEA_ROWS /* + node: sea.model "multiple"'s factor κ at node SEA_ORD_ROW (common/
+                                    * sea_ordinates.h; SEA_ORD_LAYER rows, SEA_ORD_NODES over a height field;
+                                    * in place of the LUT it never has) */
 
 #endif /* SEASIM_SEA_BAND_TABLE_H */

@@ -1,12 +1,13 @@
 /* sea_band_terms.h — one step of sea_single.cl's band loop: the radiance of SEASIM_BAND_LANES bands
  * (sea.model "paper", paper 000's eq. 5 and 9 plus the reflected sky and sun, on the lanes of
  * common/sea_bands.h; sea.model "multiple", common/sea_multiple.h's closed form on the lanes of
- * common/sea_multiple_bands.h; both reading the band table of common/sea_band_table.h), of the sky above
- * the horizon, and of one band for sea.model "multiple" over SeaBand (the CPU evaluation's loop). The
+ * common/sea_multiple_bands.h held to the plane-parallel solution by common/sea_ordinates.h's κ; both
+ * reading the band table of common/sea_band_table.h), and of the sky above the horizon. The
  * pixel's terms come from common/sea_view.h's SeaPixel; the operations are those of the kernel's former
  * single body, in the same order. tests/unit/sea_view_test.cpp holds these in float and double;
  * tests/kernels/sea_single_test.cpp the kernel to the double CPU reference.
- * Needs sea_view.h, band_lanes.h, band_lanes_math.h, sea_band_table.h, sea_bands.h, sea_multiple_bands.h. */
+ * Needs sea_view.h, band_lanes.h, band_lanes_math.h, sea_band_table.h, sea_bands.h, sea_multiple_bands.h,
+ * sea_ordinates.h. */
 
 /* Bands i .. i + SEASIM_BAND_LANES - 1 of the band table's row `row` (stride: SEA_BAND_STRIDE). */
 #define SEA_TABLE_LANES(table, stride, row, i) LOADB((table) + (size_t)(row) * (stride), i)
@@ -75,41 +76,31 @@ SEASIM_FN realb sea_band_lanes_b(SeaFeatures f, const SEASIM_GLOBAL real* table,
   return L;
 }
 
-/* One band's radiance for sea.model "multiple": the reflected sky (and sun), then all orders in closed
- * form through the surface with T_o = (1 - R)/n² (sea_multiple.h). The sky's irradiance below the
- * surface: π L_sky (1 - r̄), L_sky the band's cosine-weighted mean sky radiance (the shape is
- * normalised to mean 1). */
-SEASIM_FN real sea_multiple_band(SeaFeatures f, SEASIM_CONSTANT const SeaParams* p, SEASIM_GLOBAL const SeaBand* band,
-                                 const SeaPixel* px) {
-  real L = R(0.0);
-  if (f.reflection && f.wave_filter) {
-    L += sea_sky_band(f.sky_model, band, px->reflected_shape) + px->glint * band->sun_irradiance; /* R in both */
-  } else if (f.reflection) {
-    real sky_l = sea_sky_band(f.sky_model, band, px->reflected_shape);
-    if (sea_sees_sun(f.sun, p, px->reflected)) sky_l += band->sun_irradiance / p->sun_solid_angle;
-    L += px->R_view * sky_l;
-  }
-  const real e_sky =
-      SEASIM_PI * sea_sky_band(f.sky_model, band, MAKE_REAL3(R(1.0), R(1.0), R(1.0))) * (R(1.0) - p->sky_fresnel_mean);
-  const real e_sun = band->sun_irradiance * px->sun_horizontal;
-  if (f.single_scattering)
-    L += px->t_out * sea_multiple_column(e_sun, px->t_in, e_sky, band->a, band->b, px->c_f, px->z_d, px->cos_io,
-                                         px->cos_ji, px->phase, px->mu_sky);
-  if (f.bottom)
-    L += px->t_out * sea_multiple_bottom(e_sun, px->t_in, e_sky, band->a, band->b, px->c_f, band->bottom_albedo,
-                                         px->z_d, px->cos_io, px->cos_ji, px->mu_sky, px->focus);
-  /* What the surface reflects back down of the upwelling light, returned by the water (z_d < 0: no
-   * bottom, so its albedo is unused). */
-  if (f.single_scattering || f.bottom)
-    L += px->t_out * sea_multiple_surface_return(e_sun, px->t_in, e_sky, band->a, band->b, px->c_f,
-                                                 band->bottom_albedo, px->z_d, px->cos_io, px->cos_ji, px->mu_sky,
-                                                 px->focus, px->r_below, px->mu_ret, f.single_scattering);
-  return L;
+/* The lanes' κ (common/sea_ordinates.h) bilinear in zenith and azimuth on the depth layer from `row`. */
+SEASIM_FN realb sea_ordinates_layer_b(const SEASIM_GLOBAL real* table, int stride, int i, int row, real tz, real ta) {
+  const int r = SEA_ROW_ORDINATES + row;
+  const realb near_zenith =
+      (R(1.0) - ta) * SEA_TABLE_LANES(table, stride, r, i) + ta * SEA_TABLE_LANES(table, stride, r + 1, i);
+  const realb next_zenith = (R(1.0) - ta) * SEA_TABLE_LANES(table, stride, r + SEA_ORD_AZIMUTHS, i) +
+                            ta * SEA_TABLE_LANES(table, stride, r + SEA_ORD_AZIMUTHS + 1, i);
+  return (R(1.0) - tz) * near_zenith + tz * next_zenith;
 }
 
-/* sea_multiple_band for bands i .. i + SEASIM_BAND_LANES - 1 from the band table: the reflection as
- * sea.model "single" has it (the sun's disk where px->reflects_sun), then the column, the bottom and the
- * surface's return with the bands' factors computed once. */
+/* The lanes' factor κ at the pixel: one layer, or two blended in depth over a height field (depth_grid). */
+SEASIM_FN realb sea_ordinates_factor_b(const SEASIM_GLOBAL real* table, int stride, int i, const SeaPixel* px,
+                                       int depth_grid) {
+  const realb kappa = sea_ordinates_layer_b(table, stride, i, px->ord_row0, px->ord_tz, px->ord_ta);
+  if (!depth_grid) return kappa;
+  return (R(1.0) - px->ord_td) * kappa +
+         px->ord_td * sea_ordinates_layer_b(table, stride, i, px->ord_row1, px->ord_tz, px->ord_ta);
+}
+
+/* Bands i .. i + SEASIM_BAND_LANES - 1 of sea.model "multiple" from the band table: the reflection as
+ * sea.model "paper" has it (the sun's disk where px->reflects_sun), then all orders in closed form
+ * (sea_multiple.h: the column, the bottom and the surface's return, with the bands' factors computed
+ * once) held to the plane-parallel solution by κ (sea_ordinates.h), through the surface with T_o =
+ * (1 - R)/n². The sky's irradiance below the surface: π L_sky (1 - r̄), L_sky the band's cosine-weighted
+ * mean sky radiance (the shape is normalised to mean 1). */
 SEASIM_FN realb sea_multiple_lanes_b(SeaFeatures f, SEASIM_CONSTANT const SeaParams* p, const SEASIM_GLOBAL real* table,
                                      int stride, int i, const SeaPixel* px) {
   const realb sun = SEA_TABLE_LANES(table, stride, SEA_ROW_SUN, i);
@@ -126,14 +117,15 @@ SEASIM_FN realb sea_multiple_lanes_b(SeaFeatures f, SEASIM_CONSTANT const SeaPar
   const realb a = SEA_TABLE_LANES(table, stride, SEA_ROW_A, i), b = SEA_TABLE_LANES(table, stride, SEA_ROW_B, i);
   const realb albedo = SEA_TABLE_LANES(table, stride, SEA_ROW_BOTTOM_ALBEDO, i);
   const SeaMultipleFactorsB factors = sea_multiple_factors_b(a, b, px->c_f);
+  realb below = SPLATB(R(0.0));
   if (f.single_scattering)
-    L += px->t_out * sea_multiple_column_b(&factors, e_sun, px->t_in, e_sky, a, b, px->z_d, px->cos_io, px->cos_ji,
-                                           px->phase, px->mu_sky);
+    below += sea_multiple_column_b(&factors, e_sun, px->t_in, e_sky, a, b, px->z_d, px->cos_io, px->cos_ji, px->phase,
+                                   px->mu_sky);
   if (f.bottom)
-    L += px->t_out * sea_multiple_bottom_b(&factors, e_sun, px->t_in, e_sky, albedo, px->z_d, px->cos_io, px->cos_ji,
-                                           px->mu_sky, px->focus);
-  L += px->t_out * sea_multiple_surface_return_b(&factors, e_sun, px->t_in, e_sky, albedo, px->z_d, px->cos_io,
-                                                 px->cos_ji, px->mu_sky, px->focus, px->r_below, px->mu_ret,
-                                                 f.single_scattering, px->hemisphere);
-  return L;
+    below += sea_multiple_bottom_b(&factors, e_sun, px->t_in, e_sky, albedo, px->z_d, px->cos_io, px->cos_ji,
+                                   px->mu_sky, px->focus);
+  below += sea_multiple_surface_return_b(&factors, e_sun, px->t_in, e_sky, albedo, px->z_d, px->cos_io, px->cos_ji,
+                                         px->mu_sky, px->focus, px->r_below, px->mu_ret, f.single_scattering,
+                                         px->hemisphere);
+  return L + px->t_out * sea_ordinates_factor_b(table, stride, i, px, f.bottom_heightfield) * below;
 }

@@ -47,6 +47,8 @@ typedef struct {
   real lut_t;
   real mu_sky, r_below, mu_ret; /* sea.model "multiple": skylight's and the returned light's mean cosines */
   real hemisphere[3];            /* and sea_column_hemisphere of cos_io, mu_sky, mu_ret (SeaParams's) */
+  int ord_row0, ord_row1;        /* and where it reads its factor κ (common/sea_ordinates.h, sea_ord_corner) */
+  real ord_td, ord_tz, ord_ta;
 } SeaPixel;
 
 SEASIM_FN real3 sea_sun_dir(SEASIM_CONSTANT const SeaParams* p) {
@@ -249,6 +251,16 @@ SEASIM_FN void sea_pixel(SeaFeatures f, SEASIM_CONSTANT const SeaParams* p, cons
     for (int q = 0; q < 3; ++q) px.hemisphere[q] = (real)p->column_hemisphere[q];
   }
   sea_bottom_view(f, p, caustics, hf, hf_depth, d, &px);
+  px.ord_row0 = px.ord_row1 = 0;
+  px.ord_td = px.ord_tz = px.ord_ta = R(0.0);
+  if (f.model == 1) {
+    /* The view as a whole vector, then its parts: reading px.view_in_water.x and .z in place made Clang
+     * split the struct into integer pieces (an i128 load cut to i96) that Oclgrind 21.10 cannot run. */
+    const real3 view = px.view_in_water;
+    const real cos_phi = sea_ord_azimuth_cosine(view.x, view.z, (real)p->sun_dir[0], (real)p->sun_dir[2]);
+    sea_ord_corner(px.z_d, f.bottom_heightfield, px.cos_ji, cos_phi, &px.ord_row0, &px.ord_row1, &px.ord_td,
+                   &px.ord_tz, &px.ord_ta);
+  }
   /* eq. 5's LUT over theta_ji with waves, theta_jo (cos_jo = -d.y) on a flat sea. */
   px.lut_jm = px.lut_j = px.lut_jp = 0;
   px.lut_t = R(0.0);

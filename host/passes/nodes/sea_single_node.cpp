@@ -118,12 +118,15 @@ PassDescriptor seaSingleDescriptor() {
   d.buffers = [d](const Scene& s, const PassPlan& p) -> std::vector<BufferEstimate> {
     const SeaSingleFeatures& f = p.featuresAs<SeaSingleFeatures>();
     const double nb = s.spectral.count;
-    // The LUT's rows (SeaSinglePass): none to follow over a height field or with "multiple" (one
-    // placeholder row), 16 to start an "auto" search from, else the knob.
+    // The LUT's rows (SeaSinglePass): "multiple" has κ's rows in their place (common/sea_ordinates.h: a
+    // depth grid over a height field, else one layer), none over a height field (one placeholder row), 16 to
+    // start an "auto" search from, else the knob.
     const auto lut_knob = s.quality.find("sea_lut_size");
-    const double lut = f.bottom_height_field || f.sea_model == 1                  ? 1.0
+    const double ordinates = f.bottom_height_field ? SEA_ORD_NODES : SEA_ORD_LAYER;
+    const double lut = f.sea_model == 1                                              ? ordinates
+                       : f.bottom_height_field                                       ? 1.0
                        : lut_knob != s.quality.end() && lut_knob->second.automatic ? 16.0
-                                                                                 : d.knob(s, "sea_lut_size");
+                                                                                   : d.knob(s, "sea_lut_size");
     // The parameter block, the bands, their lanes' table with the LUT (common/sea_band_table.h),
     // the sky's texels and the one-float4 stand-ins for maps the defines do not read.
     std::vector<BufferEstimate> out = {
