@@ -7,7 +7,7 @@
  *
  * Why: the closed form's back-scatter of the light already scattered forwards is isotropic (b_b/2π per sr)
  * and its higher orders one factor of u and g. In deep turbid water that misses the HG phase's rise
- * from 180° towards 150°, and the all-orders radiance near the nadir was 0.92–0.94 of the path tracer
+ * from 180° towards 150°: near the nadir its radiance was 0.92–0.94 of the all-orders path tracer's
  * (Jerlov II, III, 3C deep, docs/journal/beyond_the_grids.md). The discrete-ordinates solution of the
  * same flat layer (host/underwater/ordinates_high_order.h: 16 streams, azimuth modes 0–2, the beam's
  * single scattering with the exact phase, the surface's Fresnel reflection from below, a Lambertian
