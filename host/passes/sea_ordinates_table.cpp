@@ -120,14 +120,9 @@ SeaOrdinatesLight seaOrdinatesLight(const Scene& scene, const Vec3& sun, double 
   return light;
 }
 
-double seaClosedFormBelow(const SeaOrdinatesLight& light, const SeaOrdinatesBand& band, double H, double cos_up,
-                          double cos_phi) {
+double seaClosedFormBelowAlong(const SeaOrdinatesLight& light, const SeaOrdinatesBand& band, double H, double cos_ji,
+                               double phase) {
   const double c_f = k::hg_forward_fraction(light.g);
-  const double cos_ji = std::max(cos_up, 1e-4);
-  const double sin_up = std::sqrt(std::max(1 - cos_up * cos_up, 0.0));
-  const double sin_io = std::sqrt(std::max(1 - light.cos_io * light.cos_io, 0.0));
-  // The beam travels along (sin_io, -cos_io, 0), the light towards the eye along (sin_up cos φ, cos_up, ...).
-  const double phase = k::hg_phase(sin_io * sin_up * cos_phi - light.cos_io * cos_up, light.g);
   const double e_sun = band.e_sun * std::max(light.sun_up, 0.0);
   const double t_in = light.sun_up > 0 ? light.t_in : 0.0;
   const double mu_sky = k::sea_sky_mean_cosine(light.ior);
@@ -143,6 +138,15 @@ double seaClosedFormBelow(const SeaOrdinatesLight& light, const SeaOrdinatesBand
   L += k::sea_multiple_surface_return(e_sun, t_in, band.e_sky, band.a, band.b, c_f, albedo, H, light.cos_io, cos_ji,
                                       mu_sky, 1.0, r_below, mu_ret, light.column ? 1 : 0);
   return L;
+}
+
+double seaClosedFormBelow(const SeaOrdinatesLight& light, const SeaOrdinatesBand& band, double H, double cos_up,
+                          double cos_phi) {
+  const double sin_up = std::sqrt(std::max(1 - cos_up * cos_up, 0.0));
+  const double sin_io = std::sqrt(std::max(1 - light.cos_io * light.cos_io, 0.0));
+  // The beam travels along (sin_io, -cos_io, 0), the light towards the eye along (sin_up cos φ, cos_up, ...).
+  const double phase = k::hg_phase(sin_io * sin_up * cos_phi - light.cos_io * cos_up, light.g);
+  return seaClosedFormBelowAlong(light, band, H, std::max(cos_up, 1e-4), phase);
 }
 
 std::vector<double> seaOrdinatesTable(const SeaOrdinatesLight& light, const std::vector<SeaOrdinatesBand>& bands) {

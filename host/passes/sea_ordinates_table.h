@@ -47,8 +47,13 @@ SeaOrdinatesLight seaOrdinatesLight(const Scene& scene, const Vec3& sun, double 
 std::vector<double> seaOrdinatesTable(const SeaOrdinatesLight& light, const std::vector<SeaOrdinatesBand>& bands);
 
 // The closed form's radiance just below the surface towards the eye (column, bottom and surface return as
-// the kernel adds them; no T_o) at bottom depth H (< 0: none), for upwelling light at cosine cos_up with
-// the zenith and azimuth cosine cos_phi from the refracted sun's travel.
+// the kernel adds them; no T_o) at bottom depth H (< 0: none), along the refracted view of cosine cos_ji with
+// the vertical, the sun's beam scattered into it with the HG phase `phase`. The double reference's sum.
+double seaClosedFormBelowAlong(const SeaOrdinatesLight& light, const SeaOrdinatesBand& band, double H, double cos_ji,
+                               double phase);
+
+// The same for upwelling light at cosine cos_up with the zenith and azimuth cosine cos_phi from the
+// refracted sun's travel (the phase from the flat surface's geometry).
 double seaClosedFormBelow(const SeaOrdinatesLight& light, const SeaOrdinatesBand& band, double H, double cos_up,
                           double cos_phi);
 

@@ -91,7 +91,11 @@ struct SeaReferenceScene {
   double pixel_angle = 0, sun_slope_variance = 0;
   SeaSky sea_sky;
   double sky_fresnel = 0, mu_sky = 0, r_below = 0, mu_ret = 0;
-  std::vector<double> ordinates;  // sea.model "multiple": κ (passes/sea_ordinates_table.h), node-major
+  // sea.model "multiple": the light and bands of its closed form and κ (passes/sea_ordinates_table.h),
+  // node-major.
+  SeaOrdinatesLight ordinate_light;
+  std::vector<SeaOrdinatesBand> ordinate_bands;
+  std::vector<double> ordinates;
 
   // The sky's shape towards d (common/sky.h).
   k::real3 shape(k::real3 d) const {
@@ -167,13 +171,12 @@ SeaReferenceScene seaReferenceScene(const Scene& scene, int steps) {
   r.mu_ret = k::sea_reflected_mean_cosine(r.r_below, r.ior);
   if (r.multiple) {
     const Vec3 sun = r.has_sun ? Vec3{r.sun.x, r.sun.y, r.sun.z} : Vec3{0, -1, 0};
-    const SeaOrdinatesLight light = seaOrdinatesLight(scene, sun, r.sky_fresnel, scene.sea.single_scattering, true);
-    std::vector<SeaOrdinatesBand> bands;
+    r.ordinate_light = seaOrdinatesLight(scene, sun, r.sky_fresnel, scene.sea.single_scattering, true);
     for (size_t i = 0; i < r.bands; ++i)
-      bands.push_back({r.water.a[i], r.water.b[i], r.sun_e[i],
-                       M_PI * r.skyOnly(i, k::real3{1, 1, 1}) * (1 - r.sky_fresnel),
-                       scene.bottom.albedo.at(r.grid.centers_nm[i])});
-    r.ordinates = seaOrdinatesTable(light, bands);
+      r.ordinate_bands.push_back({r.water.a[i], r.water.b[i], r.sun_e[i],
+                                  M_PI * r.skyOnly(i, k::real3{1, 1, 1}) * (1 - r.sky_fresnel),
+                                  scene.bottom.albedo.at(r.grid.centers_nm[i])});
+    r.ordinates = seaOrdinatesTable(r.ordinate_light, r.ordinate_bands);
   }
   return r;
 }
@@ -279,28 +282,12 @@ SeaReferenceRay traceBelowHorizon(const SeaReferenceScene& r, k::real3 d) {
 }
 
 // sea.model = "multiple": the closed form in double (common/sea_multiple.h), the kernel's float
-// evaluation is tested against it (tests/kernels/sea_multiple_kernel_test.cpp). Added to L, term by term.
+// evaluation is tested against it (tests/kernels/sea_multiple_kernel_test.cpp): the column, the bottom and the
+// return below the surface (seaClosedFormBelowAlong), times κ and T_o, added to L.
 double addMultipleBand(const SeaReferenceScene& r, size_t i, const SeaReferenceRay& ray, double L) {
-  const Scene& scene = *r.scene;
   const double z_floor = ray.z_floor, t_out = ray.t_out;
-  const double e_sky = M_PI * r.skyOnly(i, k::real3{1, 1, 1}) * (1 - r.sky_fresnel);
-  const double e_sun = r.sun_e[i] * ray.e_h;
-  double below = 0;
-  if (scene.sea.single_scattering) {
-    below += k::sea_multiple_column(e_sun, ray.t_in, e_sky, r.water.a[i], r.water.b[i], ray.c_f, z_floor, ray.cos_io,
-                                    ray.cos_ji, ray.phase, r.mu_sky);
-  }
-  if (z_floor >= 0) {
-    below += k::sea_multiple_bottom(e_sun, ray.t_in, e_sky, r.water.a[i], r.water.b[i], ray.c_f,
-                                    scene.bottom.albedo.at(r.grid.centers_nm[i]), z_floor, ray.cos_io, ray.cos_ji,
-                                    r.mu_sky, 1.0);
-  }
-  if (scene.sea.single_scattering || z_floor >= 0) {
-    const double albedo = z_floor >= 0 ? scene.bottom.albedo.at(r.grid.centers_nm[i]) : 0.0;
-    below += k::sea_multiple_surface_return(e_sun, ray.t_in, e_sky, r.water.a[i], r.water.b[i], ray.c_f, albedo,
-                                            z_floor, ray.cos_io, ray.cos_ji, r.mu_sky, 1.0, r.r_below, r.mu_ret,
-                                            scene.sea.single_scattering ? 1 : 0);
-  }
+  const double below =
+      seaClosedFormBelowAlong(r.ordinate_light, r.ordinate_bands[i], z_floor, ray.cos_ji, ray.phase);
   // Held to the flat layer's discrete-ordinates solution (common/sea_ordinates.h), as the kernel.
   const double cos_phi = k::sea_ord_azimuth_cosine(ray.view_in_water.x, ray.view_in_water.z, r.sun.x, r.sun.z);
   const double kappa =
