@@ -141,6 +141,33 @@ static inline void lamp_add(LampSums* o, __global const UwBand* bands, int i, fl
   lamp_add_to(o, bands, i, L, 1, o->to_single);
 }
 
+/* Bands b0 .. b0 + count - 1 of L in lanes, added band by band (lamp_add_to). */
+static inline void lamp_add_lanes(LampSums* o, __global const UwBand* bands, int b0, int count, realb L, int to_image,
+                                  int to_single) {
+  float lanes[SEASIM_BAND_LANES] __attribute__((aligned(4 * SEASIM_BAND_LANES)));
+  *(realb*)lanes = L;
+  for (int q = 0; q < count; ++q) lamp_add_to(o, bands, b0 + q, lanes[q], to_image, to_single);
+}
+
+/* The water's a and b, the bottom's albedo and a lamp's I for bands b0 .. b0 + count - 1 in lanes (0 in
+ * the lanes past count). */
+typedef struct {
+  realb a, b, rho, I;
+} LampBandLanes;
+
+static inline LampBandLanes lamp_band_lanes(__global const UwBand* bands, __global const float* I, int b0, int count) {
+  float a[SEASIM_BAND_LANES] __attribute__((aligned(4 * SEASIM_BAND_LANES)));
+  float b[SEASIM_BAND_LANES] __attribute__((aligned(4 * SEASIM_BAND_LANES)));
+  float rho[SEASIM_BAND_LANES] __attribute__((aligned(4 * SEASIM_BAND_LANES)));
+  for (int q = 0; q < SEASIM_BAND_LANES; ++q) {
+    a[q] = q < count ? bands[b0 + q].a : 0.0f;
+    b[q] = q < count ? bands[b0 + q].b : 0.0f;
+    rho[q] = q < count ? bands[b0 + q].bottom_albedo : 0.0f;
+  }
+  LampBandLanes l = {.a = *(realb*)a, .b = *(realb*)b, .rho = *(realb*)rho, .I = load_lanes(I + b0, count)};
+  return l;
+}
+
 /* The media the lamps' light crosses: the image's (the water, delta-M scaled in that model) and, with
  * single_apart (SEASIM_LAYER_LAMPS_SPLIT, the delta-M model), the water as it is, whose single scattering
  * goes into lamps_single alone. The shadow rays are the same for both: only the band factors differ. */
@@ -182,7 +209,7 @@ static inline void lamp_glow_surface(__constant UwParams* p, __global const UwBa
   uw_ms_weight_index(ms_weights, length(P - c), &wj, &wf);
   for (int i = 0; i < nb; ++i) {
     float first, wn[UW_MS_MAX_ORDERS + 1];
-    uw_ms_weights_at(glow_rows, i, ms_orders + 1, wj, wf, wn);
+    uw_ms_weights_at(glow_rows, nb, i, ms_orders + 1, wj, wf, wn);
     const float E = uw_ms_glow_surface_weighted(P, v->n, c, up, radius, p->g, ms_orders, wn, &first);
     if (!(E > 0.0f)) continue;
     const float alb = I[i] * v->alb[i * v->alb_stride];
@@ -191,7 +218,8 @@ static inline void lamp_glow_surface(__constant UwParams* p, __global const UwBa
   }
 }
 
-/* The same glow along the view ray: the geometry per step once and the bands innermost. */
+/* The same glow along the view ray: the steps' geometry once (distance, weight, the table's entry, each
+ * order's phase), then the bands in lanes, each run of lanes summed over the steps before it is added. */
 static inline void lamp_glow_ray(__constant UwParams* p, __global const UwBand* bands, __global const float* glow,
                                  __global const float* ms_weights, int ms_orders, int ms_steps, float c_min,
                                  __global const float* I, const LampRay* v, LampSums* o) {
@@ -205,43 +233,56 @@ static inline void lamp_glow_ray(__constant UwParams* p, __global const UwBand* 
   const int steps = uw_ms_glow_steps(ms_steps);
   uw_ms_ray(v->o, v->d, c, radius, v->t_end, uw_ms_ray_cap(c_min), steps, &q);
   if (!(q.dv > 0.0f)) return;
-  float geo[UW_MS_MAX_ORDERS + 1];
+  float st_t[UW_MS_MAX_STEPS], st_w[UW_MS_MAX_STEPS], st_f[UW_MS_MAX_STEPS];
+  int st_j[UW_MS_MAX_STEPS];
+  float st_geo[UW_MS_MAX_STEPS * (UW_MS_MAX_ORDERS + 1)];
+  int used = 0;
   for (int j = 0; j < steps; ++j) {
     const float t = uw_ms_ray_t(&q, j);
     float s, ca;
     uw_lamp_at(v->o, v->d, c, t, &s, &ca);
     const float cos_psi = s > 0.0f ? dot(v->o + t * v->d - c, up) / s : 0.0f;
     if (!(cos_psi > 0.0f)) continue;
-    const float w = cos_psi * uw_ms_glow_ray_weight(&q, t, s, radius);
-    int wj;
-    float wf;
-    uw_ms_weight_index(ms_weights, s, &wj, &wf);
+    st_t[used] = t;
+    st_w[used] = cos_psi * uw_ms_glow_ray_weight(&q, t, s, radius);
+    uw_ms_weight_index(ms_weights, s, &st_j[used], &st_f[used]);
+    float* geo = st_geo + used * (UW_MS_MAX_ORDERS + 1);
     float gk = p->g;
     geo[0] = uw_ms_glow_phase(ca, gk);
     for (int k = 1; k <= ms_orders; ++k) {
       gk *= p->g;
       geo[k] = uw_ms_glow_phase(ca, gk);
     }
-    for (int i = 0; i < nb; ++i) {
-      const float sa = bands[i].a, ss = bands[i].b;
-      if (!(ss > 0.0f)) continue;
-      float wn[UW_MS_MAX_ORDERS + 1];
-      uw_ms_weights_at(glow_rows, i, ms_orders + 1, wj, wf, wn);
-      const float first = wn[0] * geo[0];
-      float sum = first;
+    ++used;
+  }
+  for (int b0 = 0; b0 < nb && used > 0; b0 += SEASIM_BAND_LANES) {
+    const int count = min(SEASIM_BAND_LANES, nb - b0);
+    const LampBandLanes band = lamp_band_lanes(bands, I, b0, count);
+    const realb c_t = band.a + band.b;
+    realb all = SPLATB(0.0f), first = SPLATB(0.0f);
+    for (int u = 0; u < used; ++u) {
+      realb wn[UW_MS_MAX_ORDERS + 1];
+      uw_ms_weights_at_b(glow_rows, nb, b0, ms_orders + 1, st_j[u], st_f[u], wn);
+      const float* geo = st_geo + u * (UW_MS_MAX_ORDERS + 1);
+      const realb f = exp(-(c_t * st_t[u])) * st_w[u];
+      const realb order0 = wn[0] * geo[0];
+      realb sum = order0;
       for (int k = 1; k <= ms_orders; ++k) sum += wn[k] * geo[k];
-      const float f = I[i] * ss * exp(-(sa + ss) * t) * w;
-      lamp_add_to(o, bands, i, f * J[i] * sum, 1, 0);
-      lamp_add_to(o, bands, i, f * J[i] * first, 0, 1);
+      all += f * sum;
+      first += f * order0;
     }
+    const maskb scatters = band.b > 0.0f;
+    const realb scale = band.I * band.b * load_lanes(J + b0, count);
+    lamp_add_lanes(o, bands, b0, count, SELECTB(scatters, scale * all, SPLATB(0.0f)), 1, 0);
+    lamp_add_lanes(o, bands, b0, count, SELECTB(scatters, scale * first, SPLATB(0.0f)), 0, 1);
   }
 }
 
 /* The bottom's halo along the view ray (common/underwater_lamps_ms.h, uw_ms_halo_inscatter): the orders'
  * light on the bottom right below each step, sent back up as from a uniform Lambertian plane and
- * scattered towards the eye as the glow's light is (F from the weight table's halo rows). Per step the
- * foot's geometry once (uw_ms_surface_geometry) and F's height entry, then the bands with their weights
- * at the foot. */
+ * scattered towards the eye as the glow's light is (F from the weight table's halo rows). The steps'
+ * geometry once (the foot's, uw_ms_surface_geometry, and the table's entries), then the bands in lanes
+ * with their weights at the foot, as in lamp_glow_ray. */
 static inline void lamp_halo_ray(__constant UwParams* p, __global const UwBand* bands, __constant UwLampParams* lp,
                                  __global const UwLamp* L, __global const float* I, __global const float* ms_rows,
                                  __global const float* ms_weights, int ms_orders, int ms_steps, float c_min,
@@ -258,29 +299,40 @@ static inline void lamp_halo_ray(__constant UwParams* p, __global const UwBand* 
   int hm;
   float hf;
   uw_ms_halo_dir_index(-v->d.y, &hm, &hf);
-  float geo[UW_MS_MAX_ORDERS];
+  float st_t[UW_MS_MAX_STEPS], st_dt[UW_MS_MAX_STEPS], st_f[UW_MS_MAX_STEPS], st_zf[UW_MS_MAX_STEPS];
+  int st_j[UW_MS_MAX_STEPS], st_zj[UW_MS_MAX_STEPS];
+  float st_geo[UW_MS_MAX_STEPS * UW_MS_MAX_ORDERS];
+  int used = 0;
   for (int j = 0; j < steps; ++j) {
     const float t = uw_ms_ray_t(&q, j);
     const float3 x = v->o + t * v->d;
     const float z = x.y + depth;
     if (!(z >= 0.0f)) continue;
     const float s = uw_ms_surface_geometry((float3)(x.x, -depth, x.z), up, lamp, axis, lp->s_min, p->g, ms_rows,
-                                           ms_orders, geo);
+                                           ms_orders, st_geo + used * UW_MS_MAX_ORDERS);
     if (!(s > 0.0f)) continue;
-    const float dt = uw_ms_ray_dt(&q, t);
-    int wj, zj;
-    float wf, zf;
-    uw_ms_weight_index(ms_weights, s, &wj, &wf);
-    uw_ms_halo_z_index(ms_weights, z, &zj, &zf);
-    for (int i = 0; i < nb; ++i) {
-      const float sa = bands[i].a, ss = bands[i].b, rho = bands[i].bottom_albedo;
-      if (!(ss > 0.0f) || !(rho > 0.0f)) continue;
-      float wn[UW_MS_MAX_ORDERS];
-      uw_ms_weights_at(ms_weights + UW_MS_WEIGHT_HEADER, i, ms_orders, wj, wf, wn);
-      const float E = uw_ms_surface_sum(geo, wn, ms_orders);
-      const float F = uw_ms_halo_at(halo_rows, i, hm, hf, zj, zf);
-      lamp_add_to(o, bands, i, I[i] * rho * exp(-(sa + ss) * t) * dt * E * F, 1, 0);
+    st_t[used] = t;
+    st_dt[used] = uw_ms_ray_dt(&q, t);
+    uw_ms_weight_index(ms_weights, s, &st_j[used], &st_f[used]);
+    uw_ms_halo_z_index(ms_weights, z, &st_zj[used], &st_zf[used]);
+    ++used;
+  }
+  for (int b0 = 0; b0 < nb && used > 0; b0 += SEASIM_BAND_LANES) {
+    const int count = min(SEASIM_BAND_LANES, nb - b0);
+    const LampBandLanes band = lamp_band_lanes(bands, I, b0, count);
+    const realb c_t = band.a + band.b;
+    realb acc = SPLATB(0.0f);
+    for (int u = 0; u < used; ++u) {
+      realb wn[UW_MS_MAX_ORDERS];
+      uw_ms_weights_at_b(ms_weights + UW_MS_WEIGHT_HEADER, nb, b0, ms_orders, st_j[u], st_f[u], wn);
+      const float* geo = st_geo + u * UW_MS_MAX_ORDERS;
+      realb E = SPLATB(0.0f);
+      for (int n = 1; n <= ms_orders; ++n) E += wn[n - 1] * geo[n - 1]; /* uw_ms_surface_sum in lanes */
+      const realb F = uw_ms_halo_at_b(halo_rows, nb, b0, hm, hf, st_zj[u], st_zf[u]);
+      acc += exp(-(c_t * st_t[u])) * (st_dt[u] * E * F);
     }
+    const maskb lit = (band.b > 0.0f) & (band.rho > 0.0f);
+    lamp_add_lanes(o, bands, b0, count, SELECTB(lit, band.I * band.rho * acc, SPLATB(0.0f)), 1, 0);
   }
 }
 
@@ -350,7 +402,7 @@ static inline void lamp_orders_smooth(__constant UwParams* p, __global const UwB
                                            uw_ms_spread(p->g, k, UW_MS_VIEW_BETA));
     for (int i = 0; i < nb; ++i) {
       float wn[UW_MS_MAX_ORDERS];
-      uw_ms_weights_at(ms_weights + UW_MS_WEIGHT_HEADER, i, ms_orders, wj, wf, wn);
+      uw_ms_weights_at(ms_weights + UW_MS_WEIGHT_HEADER, nb, i, ms_orders, wj, wf, wn);
       const float ms = bands[i].b > 0.0f && s_P > 0.0f ? uw_ms_surface_sum(geo, wn, ms_orders) : 0.0f;
       float view[UW_MS_MAX_ORDERS + 1];
       const float T = uw_ms_view_terms(bands[i].a, bands[i].b, p->g, v->S, ms_orders, view);
@@ -367,19 +419,26 @@ static inline void lamp_orders_smooth(__constant UwParams* p, __global const UwB
   for (int i = 1; i < nb; ++i) c_min = fmin(c_min, bands[i].c);
   lamp_glow_ray(p, bands, glow, ms_weights, ms_orders, ms_steps, c_min, I, v, o);
   lamp_halo_ray(p, bands, lp, L, I, ms_rows, ms_weights, ms_orders, ms_steps, c_min, v, o);
-  float geo[UW_MS_MAX_ORDERS];
+  /* The orders' in-scatter along the view ray: the steps' geometry once (distance, weight, the tables'
+   * entries, each order's blurred profile times its phase towards the eye), then the bands in lanes. */
   UwMsRay q;
   uw_ms_ray(v->o, v->d, lamp, lp->s_min, v->t_end, uw_ms_ray_cap(c_min), ms_steps, &q);
-  for (int j = 0; j < ms_steps && q.dv > 0.0f; ++j) {
+  if (!(q.dv > 0.0f)) return;
+  float st_t[UW_MS_MAX_STEPS], st_w[UW_MS_MAX_STEPS], st_f[UW_MS_MAX_STEPS];
+  int st_j[UW_MS_MAX_STEPS];
+  float st_geo[UW_MS_MAX_STEPS * UW_MS_MAX_ORDERS];
+  for (int j = 0; j < ms_steps; ++j) {
     const float t = uw_ms_ray_t(&q, j);
     float s, c;
     uw_lamp_at(v->o, v->d, lamp, t, &s, &c);
     const float cos_psi = s > 0.0f ? dot(v->o + t * v->d - lamp, axis) / s : 1.0f;
-    const float w = uw_ms_ray_weight(&q, t, s, lp->s_min);
-    int ti, wj;
-    float tf, wf;
+    st_t[j] = t;
+    st_w[j] = uw_ms_ray_weight(&q, t, s, lp->s_min);
+    int ti;
+    float tf;
     uw_ms_table_index(cos_psi, &ti, &tf);
-    uw_ms_weight_index(ms_weights, s, &wj, &wf);
+    uw_ms_weight_index(ms_weights, s, &st_j[j], &st_f[j]);
+    float* geo = st_geo + j * UW_MS_MAX_ORDERS;
     float gk = p->g;
     for (int k = 1; k <= ms_orders; ++k) {
       gk *= p->g;
@@ -387,16 +446,22 @@ static inline void lamp_orders_smooth(__constant UwParams* p, __global const UwB
           k == 1 ? uw_ms_order1_phase(v->o + t * v->d, lamp, axis, L->cos_cone, p->g, c_min, -v->d) : hg_phase(c, gk);
       geo[k - 1] = uw_ms_table_lerp(ms_rows + (k - 1) * UW_MS_TABLE, ti, tf) * phase;
     }
-    for (int i = 0; i < nb; ++i) {
-      const float sa = bands[i].a, ss = bands[i].b;
-      if (!(ss > 0.0f)) continue;
-      float wn[UW_MS_MAX_ORDERS], sum = 0.0f;
-      uw_ms_weights_at(ms_weights + UW_MS_WEIGHT_HEADER, i, ms_orders, wj, wf, wn);
+  }
+  for (int b0 = 0; b0 < nb; b0 += SEASIM_BAND_LANES) {
+    const int count = min(SEASIM_BAND_LANES, nb - b0);
+    const LampBandLanes band = lamp_band_lanes(bands, I, b0, count);
+    const realb c_t = band.a + band.b;
+    realb acc = SPLATB(0.0f);
+    for (int u = 0; u < ms_steps; ++u) {
+      realb wn[UW_MS_MAX_ORDERS];
+      uw_ms_weights_at_b(ms_weights + UW_MS_WEIGHT_HEADER, nb, b0, ms_orders, st_j[u], st_f[u], wn);
+      const float* geo = st_geo + u * UW_MS_MAX_ORDERS;
+      realb sum = SPLATB(0.0f);
       for (int k = 1; k <= ms_orders; ++k)
         if (geo[k - 1] > 0.0f) sum += wn[k - 1] * geo[k - 1];
-      const float Lm = I[i] * ss * exp(-(sa + ss) * t) * sum * w;
-      lamp_add_to(o, bands, i, Lm, 1, 0);
+      acc += exp(-(c_t * st_t[u])) * (sum * st_w[u]);
     }
+    lamp_add_lanes(o, bands, b0, count, SELECTB(band.b > 0.0f, band.I * band.b * acc, SPLATB(0.0f)), 1, 0);
   }
 }
 #else

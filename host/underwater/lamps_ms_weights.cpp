@@ -18,6 +18,7 @@ void addHaloPlane(const std::vector<UwBand>& bands, double g, int orders, double
   constexpr int kMu = UW_MS_HALO_QUAD_MU, kDirs = UW_MS_HALO_DIRS, kZ = UW_MS_HALO_Z;
   static_assert(kMu % 4 == 0, "the sums below run four chains over μ");
   const int per_mu = orders + 1;
+  const size_t stride = static_cast<size_t>(kmath_d::uw_ms_band_stride(static_cast<int>(bands.size())));
   std::vector<double> az(static_cast<size_t>(kDirs) * kMu * per_mu);
   for (int m = 0; m < kDirs; ++m) kmath_d::uw_ms_halo_azimuths(-1.0 + 2.0 * m / (kDirs - 1), g, orders, az.data() + m * kMu * per_mu);
   // Bands on threads (each ~3 M multiply-adds: 33 directions x 256 heights x 64 μ x the orders).
@@ -25,7 +26,6 @@ void addHaloPlane(const std::vector<UwBand>& bands, double g, int orders, double
     std::vector<double> w(static_cast<size_t>(kZ) * kMu * per_mu);
     for (size_t i = range.begin(); i != range.end(); ++i) {
       const double sa = bands[i].a, ss = bands[i].b;
-      float* band = out + i * static_cast<size_t>(kDirs) * kZ;
       if (!(ss > 0.0)) continue;  // F = 0 (the table starts zeroed)
       for (int j = 0; j < kZ; ++j) {
         const double z = s0 * std::expm1(j * u_max / (kZ - 1));
@@ -39,7 +39,8 @@ void addHaloPlane(const std::vector<UwBand>& bands, double g, int orders, double
           double sum[4] = {0.0, 0.0, 0.0, 0.0};  // four chains, so that the adds overlap
           for (int e = 0; e < kMu * per_mu; e += 4)
             for (int c = 0; c < 4; ++c) sum[c] += wj[e + c] * am[e + c];
-          band[m * kZ + j] = static_cast<float>(ss * ((sum[0] + sum[1]) + (sum[2] + sum[3])) / kMu);
+          out[(static_cast<size_t>(m) * kZ + j) * stride + i] =
+              static_cast<float>(ss * ((sum[0] + sum[1]) + (sum[2] + sum[3])) / kMu);
         }
     }
   });
@@ -48,9 +49,11 @@ void addHaloPlane(const std::vector<UwBand>& bands, double g, int orders, double
 }  // namespace
 
 std::size_t lampMsWeightsSize(std::size_t bands, int orders) {
-  // The lamp's orders 1..orders and the glow's 0..orders per band, then the bottom halo's F per band.
-  return UW_MS_WEIGHT_HEADER + bands * (2 * orders + 1) * static_cast<std::size_t>(UW_MS_WEIGHT_STEPS) +
-         bands * static_cast<std::size_t>(UW_MS_HALO_DIRS) * UW_MS_HALO_Z;
+  // The lamp's orders 1..orders and the glow's 0..orders, then the bottom halo's F, each entry a padded
+  // run of bands (uw_ms_band_stride).
+  const std::size_t stride = static_cast<std::size_t>(kmath_d::uw_ms_band_stride(static_cast<int>(bands)));
+  return UW_MS_WEIGHT_HEADER + stride * (2 * orders + 1) * static_cast<std::size_t>(UW_MS_WEIGHT_STEPS) +
+         stride * static_cast<std::size_t>(UW_MS_HALO_DIRS) * UW_MS_HALO_Z;
 }
 
 std::vector<float> lampMsWeights(const std::vector<UwBand>& bands, double g, double kappa, int orders) {
@@ -64,22 +67,24 @@ std::vector<float> lampMsWeights(const std::vector<UwBand>& bands, double g, dou
   table[0] = static_cast<float>(1.0 / s0);
   table[1] = static_cast<float>((steps - 1) / u_max);
   const auto at = [&](int j) { return s0 * std::expm1(j * u_max / (steps - 1)); };
+  // Entry (order, step) holds its bands side by side, `stride` apart (the header's layout).
+  const size_t stride = static_cast<size_t>(kmath_d::uw_ms_band_stride(static_cast<int>(bands.size())));
+  float* lamp = table.data() + UW_MS_WEIGHT_HEADER;
   for (size_t i = 0; i < bands.size(); ++i)
     for (int n = 1; n <= orders; ++n) {
       const double stretch = kmath_d::uw_ms_stretch(g, n, kappa);
-      float* row = table.data() + UW_MS_WEIGHT_HEADER + (i * orders + n - 1) * static_cast<size_t>(steps);
       for (int j = 0; j < steps; ++j)
-        row[j] = static_cast<float>(kmath_d::uw_ms_weight(bands[i].a, bands[i].b, at(j), stretch, n, orders));
+        lamp[(static_cast<size_t>(n - 1) * steps + j) * stride + i] =
+            static_cast<float>(kmath_d::uw_ms_weight(bands[i].a, bands[i].b, at(j), stretch, n, orders));
     }
-  float* glow = table.data() + UW_MS_WEIGHT_HEADER + bands.size() * orders * static_cast<size_t>(steps);
+  float* glow = lamp + static_cast<size_t>(orders) * steps * stride;
   std::vector<double> w(orders + 1);
   for (size_t i = 0; i < bands.size(); ++i)
     for (int j = 0; j < steps; ++j) {
       kmath_d::uw_ms_glow_weights(bands[i].a, bands[i].b, at(j), orders, w.data());
-      for (int n = 0; n <= orders; ++n)
-        glow[(i * (orders + 1) + n) * static_cast<size_t>(steps) + j] = static_cast<float>(w[n]);
+      for (int n = 0; n <= orders; ++n) glow[(static_cast<size_t>(n) * steps + j) * stride + i] = static_cast<float>(w[n]);
     }
-  addHaloPlane(bands, g, orders, s0, u_max, glow + bands.size() * (orders + 1) * static_cast<size_t>(steps));
+  addHaloPlane(bands, g, orders, s0, u_max, glow + static_cast<size_t>(orders + 1) * steps * stride);
   return table;
 }
 

@@ -125,13 +125,20 @@ SEASIM_FN real uw_ms_weight(real sigma_a, real sigma_s, real s, real stretch, in
  * [0, ln(1 + S_MAX/s0)], s0 = 1/σ_t of the most extinguishing band: a step is about a hundredth of
  * that band's optical depth near the lamp and about 1 % of s far from it, so linear interpolation stays
  * within ~1e-4 of every weight's peak (tests/unit/underwater_lamps_weights_test.cpp). Layout: [0] = 1/s0,
- * [1] = entries per unit of u; from UW_MS_WEIGHT_HEADER the lamp's section, band i's order n (1..orders)
- * at (i orders + n - 1) UW_MS_WEIGHT_STEPS; after it (uw_ms_glow_weight_rows) the bottom glow's, band
- * i's order n (0..orders) at (i (orders + 1) + n) UW_MS_WEIGHT_STEPS. Beyond S_MAX (twice the view
- * ray's longest cap, uw_ms_ray_cap) the last entry holds. */
+ * [1] = entries per unit of u; from UW_MS_WEIGHT_HEADER the lamp's section, order n (1..orders), step j,
+ * band i at ((n - 1) UW_MS_WEIGHT_STEPS + j) P + i; after it (uw_ms_glow_weight_rows) the bottom glow's,
+ * order n (0..orders) at (n UW_MS_WEIGHT_STEPS + j) P + i. The bands run fastest, P = uw_ms_band_stride
+ * apart (padded with zeros), so that a kernel's band lanes read one step of one order as one vector load
+ * (uw_ms_weights_at_b). Beyond S_MAX (twice the view ray's longest cap, uw_ms_ray_cap) the last entry
+ * holds. */
 #define UW_MS_WEIGHT_STEPS 1024
 #define UW_MS_WEIGHT_HEADER 2
 #define UW_MS_WEIGHT_S_MAX 2e4
+/* The tables' bands padded to a multiple of the widest band lanes (band_lanes.h: at most 16). */
+#define UW_MS_BAND_PAD 16
+
+/* P: the distance between one entry's bands and the next entry's (nb bands, padded). */
+SEASIM_FN int uw_ms_band_stride(int nb) { return (nb + UW_MS_BAND_PAD - 1) / UW_MS_BAND_PAD * UW_MS_BAND_PAD; }
 
 /* Where s falls in the weight table: entry *j and weight *f of entry *j + 1 (once per point: every band
  * and order shares it). */
@@ -144,14 +151,22 @@ SEASIM_FN void uw_ms_weight_index(const SEASIM_GLOBAL float* table, real s, int*
 
 /* The glow's section of the table (bands nb, the lamp's orders). */
 SEASIM_FN const SEASIM_GLOBAL float* uw_ms_glow_weight_rows(const SEASIM_GLOBAL float* table, int nb, int orders) {
-  return table + UW_MS_WEIGHT_HEADER + nb * orders * UW_MS_WEIGHT_STEPS;
+  return table + UW_MS_WEIGHT_HEADER + orders * UW_MS_WEIGHT_STEPS * uw_ms_band_stride(nb);
 }
 
-/* `count` weights of one band at (j, f) into w[0 .. count - 1], from a section whose bands hold `count`
- * rows each (the lamp's: table + UW_MS_WEIGHT_HEADER, count = orders; the glow's: count = orders + 1). */
-SEASIM_FN void uw_ms_weights_at(const SEASIM_GLOBAL float* rows, int band, int count, int j, real f, real* w) {
-  const SEASIM_GLOBAL float* row = rows + band * count * UW_MS_WEIGHT_STEPS;
-  for (int n = 0; n < count; ++n, row += UW_MS_WEIGHT_STEPS) w[n] = (R(1.0) - f) * (real)row[j] + f * (real)row[j + 1];
+/* `count` weights of band `band` (of nb) at (j, f) into w[0 .. count - 1], from a section of `count`
+ * orders (the lamp's: table + UW_MS_WEIGHT_HEADER, count = orders; the glow's: count = orders + 1). */
+SEASIM_FN void uw_ms_weights_at(const SEASIM_GLOBAL float* rows, int nb, int band, int count, int j, real f, real* w) {
+  const int P = uw_ms_band_stride(nb);
+  const SEASIM_GLOBAL float* e = rows + j * P + band;
+  for (int n = 0; n < count; ++n, e += UW_MS_WEIGHT_STEPS * P) w[n] = (R(1.0) - f) * (real)e[0] + f * (real)e[P];
+}
+
+/* The same for bands b0 .. b0 + SEASIM_BAND_LANES - 1 in lanes (one band, b0, on the host). */
+SEASIM_FN void uw_ms_weights_at_b(const SEASIM_GLOBAL float* rows, int nb, int b0, int count, int j, real f, realb* w) {
+  const int P = uw_ms_band_stride(nb);
+  const SEASIM_GLOBAL float* e = rows + j * P;
+  for (int n = 0; n < count; ++n, e += UW_MS_WEIGHT_STEPS * P) w[n] = (R(1.0) - f) * LOADB(e, b0) + f * LOADB(e + P, b0);
 }
 
 /* The share of HG(G) in the hemisphere about its own axis: ∫_0^1 2π p_HG(μ) dμ
@@ -581,15 +596,16 @@ SEASIM_FN real uw_ms_halo_inscatter(real3 o, real3 d, real depth, real albedo, r
   return albedo * acc;
 }
 
-/* The kernel's table of F: after the glow's weights in the orders' weight table (UW_MS_WEIGHT_*), per
- * band UW_MS_HALO_DIRS rows over μ_e in [-1, 1] (uniform), each UW_MS_HALO_Z heights uniform in
- * u = ln(1 + z/s0) over the weights' own range (s0 and the range from the table's header). F is smooth in
- * both: a height step is ~2 % of z far up, ~s0/20 near the bottom. */
+/* The kernel's table of F: after the glow's weights in the orders' weight table (UW_MS_WEIGHT_*),
+ * UW_MS_HALO_DIRS rows over μ_e in [-1, 1] (uniform), each UW_MS_HALO_Z heights uniform in
+ * u = ln(1 + z/s0) over the weights' own range (s0 and the range from the table's header); row m, height
+ * j, band i at (m UW_MS_HALO_Z + j) P + i, the bands fastest as in the weights. F is smooth in both: a
+ * height step is ~2 % of z far up, ~s0/20 near the bottom. */
 #define UW_MS_HALO_DIRS 33
 #define UW_MS_HALO_Z 256
 
 SEASIM_FN const SEASIM_GLOBAL float* uw_ms_halo_rows(const SEASIM_GLOBAL float* table, int nb, int orders) {
-  return uw_ms_glow_weight_rows(table, nb, orders) + nb * (orders + 1) * UW_MS_WEIGHT_STEPS;
+  return uw_ms_glow_weight_rows(table, nb, orders) + (orders + 1) * UW_MS_WEIGHT_STEPS * uw_ms_band_stride(nb);
 }
 
 /* The row of direction μ_e: index *m and weight *f of row *m + 1 (once per view ray). */
@@ -607,12 +623,23 @@ SEASIM_FN void uw_ms_halo_z_index(const SEASIM_GLOBAL float* table, real z, int*
   *f = u - (real)*j;
 }
 
-/* F of band i from the table, bilinear. */
-SEASIM_FN real uw_ms_halo_at(const SEASIM_GLOBAL float* rows, int band, int m, real fm, int j, real fz) {
-  const SEASIM_GLOBAL float* r0 = rows + (band * UW_MS_HALO_DIRS + m) * UW_MS_HALO_Z;
-  const SEASIM_GLOBAL float* r1 = r0 + UW_MS_HALO_Z;
-  const real a = (R(1.0) - fz) * (real)r0[j] + fz * (real)r0[j + 1];
-  const real b = (R(1.0) - fz) * (real)r1[j] + fz * (real)r1[j + 1];
+/* F of band `band` (of nb) from the table, bilinear. */
+SEASIM_FN real uw_ms_halo_at(const SEASIM_GLOBAL float* rows, int nb, int band, int m, real fm, int j, real fz) {
+  const int P = uw_ms_band_stride(nb);
+  const SEASIM_GLOBAL float* r0 = rows + (m * UW_MS_HALO_Z + j) * P + band;
+  const SEASIM_GLOBAL float* r1 = r0 + UW_MS_HALO_Z * P;
+  const real a = (R(1.0) - fz) * (real)r0[0] + fz * (real)r0[P];
+  const real b = (R(1.0) - fz) * (real)r1[0] + fz * (real)r1[P];
+  return (R(1.0) - fm) * a + fm * b;
+}
+
+/* The same for bands b0 .. b0 + SEASIM_BAND_LANES - 1 in lanes (one band, b0, on the host). */
+SEASIM_FN realb uw_ms_halo_at_b(const SEASIM_GLOBAL float* rows, int nb, int b0, int m, real fm, int j, real fz) {
+  const int P = uw_ms_band_stride(nb);
+  const SEASIM_GLOBAL float* r0 = rows + (m * UW_MS_HALO_Z + j) * P;
+  const SEASIM_GLOBAL float* r1 = r0 + UW_MS_HALO_Z * P;
+  const realb a = (R(1.0) - fz) * LOADB(r0, b0) + fz * LOADB(r0 + P, b0);
+  const realb b = (R(1.0) - fz) * LOADB(r1, b0) + fz * LOADB(r1 + P, b0);
   return (R(1.0) - fm) * a + fm * b;
 }
 

@@ -212,6 +212,16 @@ TEST(UnderwaterLamps, OrdersKernelMatchesTheDoubleCpuEvaluation) {
   expectKernelMatchesCpu(scene, cpuDouble(scene, 30, 6, false, true), "orders kernel");
 }
 
+TEST(UnderwaterLamps, OrdersKernelWithBandsPastOneRunOfLanesMatchesTheDoubleCpuEvaluation) {
+  // 19 bands: the view ray's orders, glow and halo run the bands 16 lanes at a time (SEASIM_BAND_LANES), so a
+  // second run holds 3 bands and 13 lanes that must add nothing.
+  const Scene scene = lampScene({set("quality.shafts_planes", "30"), set("quality.shafts_subplanes", "6"),
+                                 set("quality.lamps_model", "\"orders\""), set("quality.lamps_ms_cell_deg", "0"),
+                                 set("spectral.count", "19")});
+  ASSERT_EQ(scene.spectral.count, 19);
+  expectKernelMatchesCpu(scene, cpuDouble(scene, 30, 6, false, true), "orders kernel, 19 bands");
+}
+
 // The orders model's smooth part on a lattice of every step-th pixel (quality.lamps_ms_cell_deg), against
 // every pixel evaluated (step 1), on the lamp scene with a sphere and a box in the beam: a lattice pixel
 // reads its own value; a pixel between reads its neighbours on the same surface and evaluates itself at

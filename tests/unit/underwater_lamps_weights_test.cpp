@@ -72,18 +72,18 @@ TEST(UnderwaterLampsWeights, TableMatchesTheWeightsEvaluatedDirectly) {
           double f;
           kd::uw_ms_weight_index(t.data(), s, &j, &f);
           double got[UW_MS_MAX_ORDERS + 1];
-          kd::uw_ms_weights_at(t.data() + UW_MS_WEIGHT_HEADER, i, orders, j, f, got);
+          kd::uw_ms_weights_at(t.data() + UW_MS_WEIGHT_HEADER, nb, i, orders, j, f, got);
           int jf;
           float ff, got_f[UW_MS_MAX_ORDERS + 1];
           kf::uw_ms_weight_index(t.data(), static_cast<float>(s), &jf, &ff);
-          kf::uw_ms_weights_at(t.data() + UW_MS_WEIGHT_HEADER, i, orders, jf, ff, got_f);
+          kf::uw_ms_weights_at(t.data() + UW_MS_WEIGHT_HEADER, nb, i, orders, jf, ff, got_f);
           for (int n = 1; n <= orders; ++n) {
             const double e = kd::uw_ms_weight(a, b, s, kd::uw_ms_stretch(w.g, n, kappa), n, orders);
             worst = std::max(worst, std::fabs(got[n - 1] - e) / peak[n]);
             worst = std::max(worst, std::fabs(got_f[n - 1] - e) / peak[n]);
           }
           kd::uw_ms_glow_weights(a, b, s, orders, glow.data());
-          kd::uw_ms_weights_at(kd::uw_ms_glow_weight_rows(t.data(), nb, orders), i, orders + 1, j, f, got);
+          kd::uw_ms_weights_at(kd::uw_ms_glow_weight_rows(t.data(), nb, orders), nb, i, orders + 1, j, f, got);
           for (int n = 0; n <= orders; ++n) worst_glow = std::max(worst_glow, std::fabs(got[n] - glow[n]) / peak_glow[n]);
         }
       }
@@ -92,6 +92,45 @@ TEST(UnderwaterLampsWeights, TableMatchesTheWeightsEvaluatedDirectly) {
       EXPECT_LT(worst, 1e-3) << w.name << " orders " << orders;
       EXPECT_LT(worst_glow, 1e-3) << w.name << " orders " << orders;
     }
+}
+
+TEST(UnderwaterLampsWeights, BandsRunFastestPaddedToTheWidestLanes) {
+  // 19 bands: a second run of lanes with 3 bands in it. The lanes' accessors (one band per lane on the
+  // host) read what the per-band ones read, and every padding entry is 0, which a kernel's lanes past
+  // the last band read.
+  std::vector<UwBand> bands;
+  for (int i = 0; i < 19; ++i) bands.push_back(band(0.02 + 0.03 * i, 0.3 - 0.01 * i));
+  const int nb = static_cast<int>(bands.size()), orders = 4;
+  ASSERT_EQ(kd::uw_ms_band_stride(nb), 32);
+  EXPECT_EQ(kd::uw_ms_band_stride(16), 16);
+  EXPECT_EQ(kd::uw_ms_band_stride(1), UW_MS_BAND_PAD);
+  const std::vector<float> t = seasim::lampMsWeights(bands, 0.9, 0.75, orders);
+  ASSERT_EQ(t.size(), seasim::lampMsWeightsSize(bands.size(), orders));
+  const float* lamp = t.data() + UW_MS_WEIGHT_HEADER;
+  const float* glow = kd::uw_ms_glow_weight_rows(t.data(), nb, orders);
+  const float* halo = kd::uw_ms_halo_rows(t.data(), nb, orders);
+  EXPECT_EQ(halo + 32 * UW_MS_HALO_DIRS * UW_MS_HALO_Z, t.data() + t.size());
+  for (double s : {0.3, 2.0, 11.0}) {
+    int j;
+    double f;
+    kd::uw_ms_weight_index(t.data(), s, &j, &f);
+    for (int i = 0; i < nb; ++i) {
+      double one[UW_MS_MAX_ORDERS + 1], lanes[UW_MS_MAX_ORDERS + 1];
+      kd::uw_ms_weights_at(lamp, nb, i, orders, j, f, one);
+      kd::uw_ms_weights_at_b(lamp, nb, i, orders, j, f, lanes);
+      for (int n = 0; n < orders; ++n) EXPECT_EQ(one[n], lanes[n]) << "band " << i << " order " << n + 1;
+      EXPECT_GT(one[0], 0.0) << "band " << i;
+      kd::uw_ms_weights_at(glow, nb, i, orders + 1, j, f, one);
+      kd::uw_ms_weights_at_b(glow, nb, i, orders + 1, j, f, lanes);
+      for (int n = 0; n <= orders; ++n) EXPECT_EQ(one[n], lanes[n]) << "band " << i << " glow order " << n;
+      EXPECT_EQ(kd::uw_ms_halo_at(halo, nb, i, 7, 0.3, j / 4, f), kd::uw_ms_halo_at_b(halo, nb, i, 7, 0.3, j / 4, f));
+    }
+  }
+  // The padding: bands 19..31 of every entry.
+  double padding = 0.0;
+  for (const float* e = lamp; e < t.data() + t.size(); e += 32)
+    for (int i = nb; i < 32; ++i) padding = std::max(padding, std::fabs(static_cast<double>(e[i])));
+  EXPECT_EQ(padding, 0.0);
 }
 
 TEST(UnderwaterLampsWeights, EndsOfTheTableAndABandThatDoesNotScatter) {
@@ -112,16 +151,16 @@ TEST(UnderwaterLampsWeights, EndsOfTheTableAndABandThatDoesNotScatter) {
   }
   // At s = 0 no light has scattered: every order 0, the glow's order 0 (unscattered) 1.
   double w[UW_MS_MAX_ORDERS + 1];
-  kd::uw_ms_weights_at(t.data() + UW_MS_WEIGHT_HEADER, 0, 4, 0, 0.0, w);
+  kd::uw_ms_weights_at(t.data() + UW_MS_WEIGHT_HEADER, 2, 0, 4, 0, 0.0, w);
   for (int n = 0; n < 4; ++n) EXPECT_EQ(w[n], 0.0);
-  kd::uw_ms_weights_at(kd::uw_ms_glow_weight_rows(t.data(), 2, 4), 0, 5, 0, 0.0, w);
+  kd::uw_ms_weights_at(kd::uw_ms_glow_weight_rows(t.data(), 2, 4), 2, 0, 5, 0, 0.0, w);
   EXPECT_DOUBLE_EQ(w[0], 1.0);
   // The band without scattering: no order anywhere; the glow's order 0 is its transmission.
   for (double s : {0.5, 5.0, 50.0}) {
     kd::uw_ms_weight_index(t.data(), s, &j, &f);
-    kd::uw_ms_weights_at(t.data() + UW_MS_WEIGHT_HEADER, 1, 4, j, f, w);
+    kd::uw_ms_weights_at(t.data() + UW_MS_WEIGHT_HEADER, 2, 1, 4, j, f, w);
     for (int n = 0; n < 4; ++n) EXPECT_EQ(w[n], 0.0) << s;
-    kd::uw_ms_weights_at(kd::uw_ms_glow_weight_rows(t.data(), 2, 4), 1, 5, j, f, w);
+    kd::uw_ms_weights_at(kd::uw_ms_glow_weight_rows(t.data(), 2, 4), 2, 1, 5, j, f, w);
     EXPECT_NEAR(w[0], std::exp(-0.2 * s), 1e-4 * std::exp(-0.2 * s) + 1e-7) << s;
     for (int n = 1; n <= 4; ++n) EXPECT_EQ(w[n], 0.0) << s;
   }  // The glow's last order where its Poisson tail is ~1e-38 (x = 0.004, 12 orders): summed where it is
