@@ -327,7 +327,8 @@ SEASIM_FN real uw_ms_order1_phase(real3 x, real3 lamp, real3 axis, real cos_cone
 /* L_ms per unit I(λ) for one band along a view ray (no shadows): `table` holds the lamp's P_1..P_orders
  * rows; orders <= UW_MS_MAX_ORDERS; t_cap the ray's cap (uw_ms_ray_cap of the least σ_t of the bands
  * that share the steps); order 1's phase from uw_ms_order1_phase with the cone cos_cone and the
- * extinction c_dir (the kernel's least σ_t too). The kernel runs the same steps with the bands innermost. */
+ * extinction c_dir (the kernel's least σ_t too). The kernel runs the same steps, their geometry first and
+ * then the bands in lanes. */
 SEASIM_FN real uw_ms_inscatter(real3 o, real3 d, real3 lamp, real3 axis, real cos_cone, real s_min, real t_end, real t_cap,
                                real sigma_a, real sigma_s, real g, real kappa, real c_dir, const SEASIM_GLOBAL float* table,
                                int orders, int steps) {

@@ -14,18 +14,8 @@
 B=${B:-build/seasim}
 OUT=${1:-results/underwater/widened}
 mkdir -p "$OUT"
-# name | depths | --set arguments
-AXES_ALL="
-sun_facing|3,10,0|sun.azimuth_deg=270
-sun_side|3,10,0|sun.azimuth_deg=150
-sun_low|3,10,0|sun.zenith_deg=75
-sky_bright|3,10,0|sky.radiance=0.2
-sky_dim|3,10,0|sky.radiance=0.01
-bottom_dark|3,10|bottom.albedo=0.1
-bottom_bright|3,10|bottom.albedo=0.8
-camera_shallow|3,10,0|camera.position=[0.0, -1.0, 0.0]
-camera_deep|10,0|camera.position=[0.0, -8.0, 0.0]
-"
+# The axes, one per line of tests/perf/underwater_regions_widened.axes: name | depths | --set arguments.
+AXES_ALL=$(grep -v '^#' "$(dirname "$0")/underwater_regions_widened.axes")
 echo "$AXES_ALL" | while IFS='|' read -r name depths sets; do
   [ -z "$name" ] && continue
   if [ -n "${AXES:-}" ] && ! echo " $AXES " | grep -q " $name "; then continue; fi
