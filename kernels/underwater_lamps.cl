@@ -256,8 +256,8 @@ static inline void lamp_glow_ray(__constant UwParams* p, __global const UwBand* 
     ++used;
   }
   for (int b0 = 0; b0 < nb && used > 0; b0 += SEASIM_BAND_LANES) {
-    const int count = min(SEASIM_BAND_LANES, nb - b0);
-    const LampBandLanes band = lamp_band_lanes(bands, I, b0, count);
+    const int in_run = min(SEASIM_BAND_LANES, nb - b0);
+    const LampBandLanes band = lamp_band_lanes(bands, I, b0, in_run);
     const realb c_t = band.a + band.b;
     realb all = SPLATB(0.0f), first = SPLATB(0.0f);
     for (int u = 0; u < used; ++u) {
@@ -272,9 +272,9 @@ static inline void lamp_glow_ray(__constant UwParams* p, __global const UwBand* 
       first += f * order0;
     }
     const maskb scatters = band.b > 0.0f;
-    const realb scale = band.I * band.b * load_lanes(J + b0, count);
-    lamp_add_lanes(o, bands, b0, count, SELECTB(scatters, scale * all, SPLATB(0.0f)), 1, 0);
-    lamp_add_lanes(o, bands, b0, count, SELECTB(scatters, scale * first, SPLATB(0.0f)), 0, 1);
+    const realb scale = band.I * band.b * load_lanes(J + b0, in_run);
+    lamp_add_lanes(o, bands, b0, in_run, SELECTB(scatters, scale * all, SPLATB(0.0f)), 1, 0);
+    lamp_add_lanes(o, bands, b0, in_run, SELECTB(scatters, scale * first, SPLATB(0.0f)), 0, 1);
   }
 }
 
@@ -318,8 +318,8 @@ static inline void lamp_halo_ray(__constant UwParams* p, __global const UwBand* 
     ++used;
   }
   for (int b0 = 0; b0 < nb && used > 0; b0 += SEASIM_BAND_LANES) {
-    const int count = min(SEASIM_BAND_LANES, nb - b0);
-    const LampBandLanes band = lamp_band_lanes(bands, I, b0, count);
+    const int in_run = min(SEASIM_BAND_LANES, nb - b0);
+    const LampBandLanes band = lamp_band_lanes(bands, I, b0, in_run);
     const realb c_t = band.a + band.b;
     realb acc = SPLATB(0.0f);
     for (int u = 0; u < used; ++u) {
@@ -332,7 +332,7 @@ static inline void lamp_halo_ray(__constant UwParams* p, __global const UwBand* 
       acc += exp(-(c_t * st_t[u])) * (st_dt[u] * E * F);
     }
     const maskb lit = (band.b > 0.0f) & (band.rho > 0.0f);
-    lamp_add_lanes(o, bands, b0, count, SELECTB(lit, band.I * band.rho * acc, SPLATB(0.0f)), 1, 0);
+    lamp_add_lanes(o, bands, b0, in_run, SELECTB(lit, band.I * band.rho * acc, SPLATB(0.0f)), 1, 0);
   }
 }
 
@@ -448,8 +448,8 @@ static inline void lamp_orders_smooth(__constant UwParams* p, __global const UwB
     }
   }
   for (int b0 = 0; b0 < nb; b0 += SEASIM_BAND_LANES) {
-    const int count = min(SEASIM_BAND_LANES, nb - b0);
-    const LampBandLanes band = lamp_band_lanes(bands, I, b0, count);
+    const int in_run = min(SEASIM_BAND_LANES, nb - b0);
+    const LampBandLanes band = lamp_band_lanes(bands, I, b0, in_run);
     const realb c_t = band.a + band.b;
     realb acc = SPLATB(0.0f);
     for (int u = 0; u < ms_steps; ++u) {
@@ -461,7 +461,7 @@ static inline void lamp_orders_smooth(__constant UwParams* p, __global const UwB
         if (geo[k - 1] > 0.0f) sum += wn[k - 1] * geo[k - 1];
       acc += exp(-(c_t * st_t[u])) * (sum * st_w[u]);
     }
-    lamp_add_lanes(o, bands, b0, count, SELECTB(band.b > 0.0f, band.I * band.b * acc, SPLATB(0.0f)), 1, 0);
+    lamp_add_lanes(o, bands, b0, in_run, SELECTB(band.b > 0.0f, band.I * band.b * acc, SPLATB(0.0f)), 1, 0);
   }
 }
 #else
