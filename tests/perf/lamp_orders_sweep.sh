@@ -16,7 +16,7 @@
 #   FRESH    eight cases off every earlier node, never looked at while choosing anything.
 # The references (16384 paths per pixel through the pixel centre) are cached in
 # $SEASIM_CACHE_DIR/lamp_regions; a second run only renders the fast models.
-# Usage: tests/perf/lamp_orders_sweep.sh   (about 10 min on 2 loaded cores the first time; nice it)
+# Usage: tests/perf/lamp_orders_sweep.sh   (about 50 min on 2 cores the first time, the MORE cases 27 of them; nice it)
 # Writes results/underwater/lamp_orders_{fit,heldout,near,fresh}.csv; prints a Markdown table per case, then
 # the count of regions within 5 % per model (tests/perf/lamp_orders_summary.py).
 # Env: MODELS (default single,delta_m,orders), ROUNDS (timing rounds, default 3), OUT (default results/underwater).
