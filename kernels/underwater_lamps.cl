@@ -195,8 +195,8 @@ typedef struct {
  * orders' light there is lamp_halo_ray's), on the surface the pixel sees (through T_view), orders
  * 0..ms_orders. Order 0 is light scattered once in the water (lamps_single); the rest is multiple. */
 static inline void lamp_glow_surface(__constant UwParams* p, __global const UwBand* bands, __global const float* glow,
-                                     __global const float* ms_weights, int ms_orders, __global const float* I,
-                                     const LampRay* v, LampSums* o) {
+                                     __global const float* ms_rows, __global const float* ms_weights, int ms_orders,
+                                     __global const float* I, const LampRay* v, LampSums* o) {
   const int nb = p->band_count;
   const float radius = glow[3];
   if (!(radius > 0.0f) || !v->lit_surface) return;
@@ -210,7 +210,7 @@ static inline void lamp_glow_surface(__constant UwParams* p, __global const UwBa
   for (int i = 0; i < nb; ++i) {
     float first, wn[UW_MS_MAX_ORDERS + 1];
     uw_ms_weights_at(glow_rows, nb, i, ms_orders + 1, wj, wf, wn);
-    const float E = uw_ms_glow_surface_weighted(P, v->n, c, up, radius, p->g, ms_orders, wn, &first);
+    const float E = uw_ms_glow_surface_weighted(P, v->n, c, up, radius, ms_rows, ms_orders, wn, &first);
     if (!(E > 0.0f)) continue;
     const float alb = I[i] * v->alb[i * v->alb_stride];
     lamp_add_to(o, bands, i, alb * J[i] * E * uw_ms_view_transmission(bands[i].a, bands[i].b, p->g, v->S, ms_orders), 1, 0);
@@ -412,7 +412,7 @@ static inline void lamp_orders_smooth(__constant UwParams* p, __global const UwB
         for (int k = 1; k <= ms_orders; ++k) blurred += view[k] * blur[k - 1].geometry * exp(-bands[i].c * blur[k - 1].s_mean);
       lamp_add_to(o, bands, i, I[i] * v->alb[i * v->alb_stride] * (ms * T + blurred), 1, 0);
     }
-    lamp_glow_surface(p, bands, glow, ms_weights, ms_orders, I, v, o);
+    lamp_glow_surface(p, bands, glow, ms_rows, ms_weights, ms_orders, I, v, o);
   }
   if (!(parts & LAMP_SMOOTH_RAY)) return;
   float c_min = bands[0].c;
@@ -444,7 +444,7 @@ static inline void lamp_orders_smooth(__constant UwParams* p, __global const UwB
       gk *= p->g;
       const float phase =
           k == 1 ? uw_ms_order1_phase(v->o + t * v->d, lamp, axis, L->cos_cone, p->g, c_min, -v->d) : hg_phase(c, gk);
-      geo[k - 1] = uw_ms_table_lerp(ms_rows + (k - 1) * UW_MS_TABLE, ti, tf) * phase;
+      geo[k - 1] = uw_ms_table_lerp(ms_rows + (k - 1) * UW_MS_ROW, ti, tf) * phase;
     }
   }
   for (int b0 = 0; b0 < nb; b0 += SEASIM_BAND_LANES) {
@@ -813,7 +813,7 @@ __kernel void underwater_lamps_lattice(__constant UwParams* p, __global const Uw
     o.band_sums = sums + part * LAMP_LATTICE_STRIDE(nb);
     for (int l = 0; l < lp->lamp_count; ++l)
       lamp_orders_smooth(p, bands, objects, count, lp, &lamps[l], lamp_spectra + l * nb,
-                         ms_table + l * ms_orders * UW_MS_TABLE, ms_glow + l * (4 + nb), ms_weights, ms_orders,
+                         ms_table + l * ms_orders * UW_MS_ROW, ms_glow + l * (4 + nb), ms_weights, ms_orders,
                          ms_steps, part == 0 ? LAMP_SMOOTH_SURFACE : LAMP_SMOOTH_RAY, &v, &o);
   }
 }
@@ -881,7 +881,7 @@ __kernel void underwater_lamps(__constant UwParams* p, __global const UwBand* ba
     __global const UwLamp* L = &lamps[l];
     __global const float* I = lamp_spectra + l * nb;
 #if SEASIM_LAMPS_ORDERS
-    __global const float* ms_rows = ms_table + l * ms_orders * UW_MS_TABLE;
+    __global const float* ms_rows = ms_table + l * ms_orders * UW_MS_ROW;
     __global const float* glow = ms_glow + l * (4 + nb);
     lamp_orders_surface(p, bands, objects, count, lp, L, I, ms_orders, &v, &o);
     if (smooth_left)

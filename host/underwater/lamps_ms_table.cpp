@@ -20,7 +20,7 @@ double hgInverseCdf(double h, double u) {
 
 std::vector<float> lampMsProfiles(double cos_cone, double cos_inner, double g, double beta, int orders, int u_steps,
                                   int phi_steps) {
-  std::vector<float> rows(static_cast<size_t>(orders) * UW_MS_TABLE, 0.0f);
+  std::vector<float> rows(static_cast<size_t>(orders) * UW_MS_ROW, 0.0f);
   // The azimuth about the direction ψ: symmetric, so half the circle, midpoints; their cosines once.
   std::vector<double> cos_phi(phi_steps);
   for (int k = 0; k < phi_steps; ++k) cos_phi[k] = std::cos((k + 0.5) * M_PI / phi_steps);
@@ -38,15 +38,21 @@ std::vector<float> lampMsProfiles(double cos_cone, double cos_inner, double g, d
           acc += kmath_d::shafts_cone_profile(c, cos_cone, cos_inner);
         }
       }
-      rows[static_cast<size_t>(n - 1) * UW_MS_TABLE + i] = static_cast<float>(acc / (double(u_steps) * phi_steps));
+      rows[static_cast<size_t>(n - 1) * UW_MS_ROW + i] = static_cast<float>(acc / (double(u_steps) * phi_steps));
     }
+    // The irradiance factor F(g^n, cos θ_i) after the profile (uw_ms_irradiance_exact; 4096 midpoints of
+    // HG's inverse CDF: the unit test holds it to the Legendre series).
+    const double gn = std::pow(std::fmax(g, 0.0), n);
+    for (int j = 0; j < UW_MS_IRRADIANCE; ++j)
+      rows[static_cast<size_t>(n - 1) * UW_MS_ROW + UW_MS_TABLE + j] =
+          static_cast<float>(kmath_d::uw_ms_irradiance_exact(gn, -1.0 + 2.0 * j / (UW_MS_IRRADIANCE - 1), 4096));
   }
   return rows;
 }
 
 std::vector<float> lampMsTable(const std::vector<UwLamp>& lamps, double g, double beta, int orders) {
   std::vector<float> table;
-  const size_t stride = static_cast<size_t>(orders) * UW_MS_TABLE;
+  const size_t stride = static_cast<size_t>(orders) * UW_MS_ROW;
   for (size_t l = 0; l < lamps.size(); ++l) {
     // Lamps of the same cone share their rows (an ROV's pair of lamps).
     size_t same = 0;

@@ -24,8 +24,9 @@
  * takes the phase function HG(g^{n+1}) at the scattering angle α from the lamp's ray — except order 1
  * outside the cone, whose light comes in from the beam: its phase is averaged over the light of the
  * cone's nearest edge line (uw_ms_order1_phase) — and a surface of
- * normal n_s receives E_n = φ_n (g^n max(cos θ_i, 0) + (1 - g^n)/4) (collimated light: φ cos θ_i;
- * isotropic: φ/4). Along a view ray o + t d up to S:
+ * normal n_s receives E_n = φ_n F(g^n, cos θ_i), F(G, cos θ_i) = ∫ p_HG(ω · r̂; G) max(-ω · n_s, 0) dω the
+ * irradiance of radiance spread as HG(G) about the lamp's ray r̂ (collimated light, G = 1: cos θ_i;
+ * isotropic, G = 0: 1/4; uw_ms_irradiance_exact). Along a view ray o + t d up to S:
  *   L_ms = I ∫_0^S σ_s e^{-σ_t t} Σ_n φ_n(x_t) p_HG(cos α; g^{n+1}) dt,
  * quadrature in v, t = a + r sinh v (uw_ms_ray), which spreads the steps over the scales of the
  * distance to the lamp.
@@ -59,6 +60,10 @@
  */
 
 #define UW_MS_TABLE 181    /* blurred profile entries over ψ in [0°, 180°], 1° apart */
+#define UW_MS_IRRADIANCE 129 /* irradiance factor entries over cos θ_i in [-1, 1], uniform */
+/* One order's row of a lamp's table: its blurred profile, then its surfaces' irradiance factor
+ * (host/underwater/lamps_ms_table.h). */
+#define UW_MS_ROW (UW_MS_TABLE + UW_MS_IRRADIANCE)
 #define UW_MS_MAX_ORDERS 12
 #define UW_MS_MAX_STEPS 64
 
@@ -229,8 +234,42 @@ SEASIM_FN real uw_ms_table_at(const SEASIM_GLOBAL float* row, real cos_psi) {
   return uw_ms_table_lerp(row, i, f);
 }
 
-/* The surface's irradiance factor of order n: g^n max(cos θ_i, 0) + (1 - g^n)/4. */
-SEASIM_FN real uw_ms_irradiance_factor(real gn, real cos_i) { return gn * fmax(cos_i, R(0.0)) + (R(1.0) - gn) * R(0.25); }
+/* F(G, cos θ_i): the irradiance, per unit fluence, that radiance spread as HG(G) about a direction r̂
+ * gives a surface whose normal is θ_i from -r̂ (the light's surfaces, header), exactly:
+ *   F = ∫ p_HG(μ; G) A(μ) dω,  A(μ) = (1/2π) ∫ max(μ x + √(1 - μ²) √(1 - x²) cos φ, 0) dφ,  x = cos θ_i,
+ * the azimuthal mean of the clamped cosine in closed form (A = μ x where the whole circle faces the
+ * surface, 0 where none does, else (a φ₀ + b sin φ₀)/π with a = μ x, b = √(1 - μ²) √(1 - x²), cos φ₀ = -a/b),
+ * and μ by n midpoints of HG's inverse CDF (path_tracer.h), so that a lobe as narrow as G -> 1 gives is
+ * sampled where its mass is. G = 0: 1/4; G = 1: max(x, 0). Its Legendre series, Σ_l G^l c_l P_l(x) with the
+ * clamped cosine's c_0 = 1/4, c_1 = 1/2, c_2 = 5/16, c_3 = 0, c_4 = -3/32, is what the unit test checks it
+ * against; the earlier mixture G max(x, 0) + (1 - G)/4 keeps the first two terms and was 9 % high at
+ * G = 0.5 on a surface facing the lamp. The host tabulates it per order (uw_ms_irradiance_factor reads the
+ * table); G < 0 is taken as 0 (the lamps' waters scatter forward). */
+SEASIM_FN real uw_ms_irradiance_exact(real G, real cos_i, int n) {
+  const real x = clamp(cos_i, R(-1.0), R(1.0)), sx = sqrt(fmax(R(1.0) - x * x, R(0.0)));
+  real sum = R(0.0);
+  for (int k = 0; k < n; ++k) {
+    const real mu = R(1.0) - pt_hg_one_minus_cos(fmax(G, R(0.0)), ((real)k + R(0.5)) / (real)n);
+    const real a = mu * x, b = sqrt(fmax(R(1.0) - mu * mu, R(0.0))) * sx;
+    if (a >= b) {
+      sum += a;
+    } else if (a > -b) {
+      const real phi0 = acos(clamp(-a / b, R(-1.0), R(1.0)));
+      sum += (a * phi0 + b * sin(phi0)) * (R(1.0) / SEASIM_PI);
+    }
+  }
+  return sum / (real)n;
+}
+
+/* The irradiance factor of one order from its row of the lamp's table (UW_MS_ROW floats: the
+ * UW_MS_IRRADIANCE entries after the profile, uniform in cos θ_i over [-1, 1]), linear between entries. */
+SEASIM_FN real uw_ms_irradiance_factor(const SEASIM_GLOBAL float* row, real cos_i) {
+  const SEASIM_GLOBAL float* f = row + UW_MS_TABLE;
+  const real u = (clamp(cos_i, R(-1.0), R(1.0)) + R(1.0)) * R(0.5) * (real)(UW_MS_IRRADIANCE - 1);
+  const int i = (int)u < UW_MS_IRRADIANCE - 2 ? (int)u : UW_MS_IRRADIANCE - 2;
+  const real t = u - (real)i;
+  return (R(1.0) - t) * (real)f[i] + t * (real)f[i + 1];
+}
 
 /* The quadrature of the view ray o + t d, t in [0, t_end], about the lamp: `steps` midpoints in v,
  * t = a + r sinh v (a, r the closest approach, r >= s_min). Order n's integrand grows as s^{n-2} from the
@@ -344,7 +383,7 @@ SEASIM_FN real uw_ms_inscatter(real3 o, real3 d, real3 lamp, real3 axis, real co
     real sum = R(0.0), gn1 = g;
     for (int n = 1; n <= orders; ++n) {
       gn1 *= g; /* g^{n+1} */
-      const real P = uw_ms_table_at(table + (n - 1) * UW_MS_TABLE, cos_psi);
+      const real P = uw_ms_table_at(table + (n - 1) * UW_MS_ROW, cos_psi);
       if (P <= R(0.0)) continue;
       const real phase = n == 1 ? uw_ms_order1_phase(o + t * d, lamp, axis, cos_cone, g, c_dir, -d) : hg_phase(cos_alpha, gn1);
       sum += uw_ms_weight(sigma_a, sigma_s, s, uw_ms_stretch(g, n, kappa), n, orders) * P * phase;
@@ -368,11 +407,10 @@ SEASIM_FN real uw_ms_surface_geometry(real3 p, real3 n_s, real3 lamp, real3 axis
   int i;
   real f;
   uw_ms_table_index(cos_psi, &i, &f);
-  real gn = R(1.0);
   for (int n = 1; n <= orders; ++n) {
-    gn *= g;
-    const real P = uw_ms_table_lerp(table + (n - 1) * UW_MS_TABLE, i, f);
-    geo[n - 1] = P > R(0.0) ? P * uw_ms_irradiance_factor(gn, cos_i) * k : R(0.0);
+    const SEASIM_GLOBAL float* row = table + (n - 1) * UW_MS_ROW;
+    const real P = uw_ms_table_lerp(row, i, f);
+    geo[n - 1] = P > R(0.0) ? P * uw_ms_irradiance_factor(row, cos_i) * k : R(0.0);
   }
   return s;
 }
@@ -470,9 +508,10 @@ SEASIM_FN real uw_ms_glow_inscatter(real3 o, real3 d, real3 c, real3 up, real ra
 
 /* The bottom's glow on a surface point p of normal n_s, per unit J, divided by π (times the surface's
  * albedo: its Lambertian radiance), given the glow's weights at s = |p - c|, wn[0..orders] (exact:
- * uw_ms_glow_surface; the kernel: its table); *order0 (may be 0) receives the unscattered part alone. */
-SEASIM_FN real uw_ms_glow_surface_weighted(real3 p, real3 n_s, real3 c, real3 up, real radius, real g, int orders,
-                                           const real* wn, real* order0) {
+ * uw_ms_glow_surface; the kernel: its table) and the lamp's table (its orders' irradiance factors,
+ * uw_ms_irradiance_factor); *order0 (may be 0) receives the unscattered part alone. */
+SEASIM_FN real uw_ms_glow_surface_weighted(real3 p, real3 n_s, real3 c, real3 up, real radius,
+                                           const SEASIM_GLOBAL float* table, int orders, const real* wn, real* order0) {
   const real3 w = p - c;
   const real s = length(w);
   real sum = R(0.0), first = R(0.0);
@@ -482,22 +521,18 @@ SEASIM_FN real uw_ms_glow_surface_weighted(real3 p, real3 n_s, real3 c, real3 up
     const real k = cos_psi / (SEASIM_PI * (s * s + radius * radius));
     first = k * wn[0] * fmax(cos_i, R(0.0));
     sum = first;
-    real gn = R(1.0);
-    for (int n = 1; n <= orders; ++n) {
-      gn *= g;
-      sum += k * wn[n] * uw_ms_irradiance_factor(gn, cos_i);
-    }
+    for (int n = 1; n <= orders; ++n) sum += k * wn[n] * uw_ms_irradiance_factor(table + (n - 1) * UW_MS_ROW, cos_i);
   }
   if (order0) *order0 = first;
   return sum;
 }
 
 /* The same with the weights from uw_ms_glow_weights. */
-SEASIM_FN real uw_ms_glow_surface(real3 p, real3 n_s, real3 c, real3 up, real radius, real sigma_a, real sigma_s, real g,
-                                  int orders, real* order0) {
+SEASIM_FN real uw_ms_glow_surface(real3 p, real3 n_s, real3 c, real3 up, real radius, real sigma_a, real sigma_s,
+                                  const SEASIM_GLOBAL float* table, int orders, real* order0) {
   real wn[UW_MS_MAX_ORDERS + 1];
   uw_ms_glow_weights(sigma_a, sigma_s, length(p - c), orders, wn);
-  return uw_ms_glow_surface_weighted(p, n_s, c, up, radius, g, orders, wn, order0);
+  return uw_ms_glow_surface_weighted(p, n_s, c, up, radius, table, orders, wn, order0);
 }
 
 /* E₂(x) = ∫_1^∞ e^{-x t}/t² dt = ∫_0^1 e^{-x/μ} dμ (A&S 5.1.4), x >= 0; E₂(0) = 1. From E₁ by

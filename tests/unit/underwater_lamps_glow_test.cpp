@@ -181,16 +181,17 @@ TEST(UnderwaterLampsGlow, OnASurfaceItsUnscatteredPartIsTheSoftenedLambertianSou
   const kd::real3 w = p - c;
   const double s = kd::length(w), R = 0.7;
   const double expect = (kd::dot(w, up) / s) * (-kd::dot(w, n) / s) * std::exp(-0.1 * s) / (M_PI * (s * s + R * R));
+  const std::vector<float> rows = seasim::lampMsProfiles(std::cos(20 * M_PI / 180), std::cos(20 * M_PI / 180), 0.9, 0.6, 8);
   double first;
-  EXPECT_NEAR(kd::uw_ms_glow_surface(p, n, c, up, R, 0.1, 0.0, 0.9, 8, &first), expect, 1e-12);
+  EXPECT_NEAR(kd::uw_ms_glow_surface(p, n, c, up, R, 0.1, 0.0, rows.data(), 8, &first), expect, 1e-12);
   EXPECT_NEAR(first, expect, 1e-12);
-  EXPECT_GT(kd::uw_ms_glow_surface(p, n, c, up, R, 0.1, 0.3, 0.9, 8, nullptr), 0.0);
-  EXPECT_EQ(kd::uw_ms_glow_surface(kd::real3{1.0, -5.0, 0.0}, up, c, up, R, 0.1, 0.3, 0.9, 8, nullptr), 0.0);
-  EXPECT_EQ(kd::uw_ms_glow_surface(c, up, c, up, R, 0.1, 0.3, 0.9, 8, nullptr), 0.0);
+  EXPECT_GT(kd::uw_ms_glow_surface(p, n, c, up, R, 0.1, 0.3, rows.data(), 8, nullptr), 0.0);
+  EXPECT_EQ(kd::uw_ms_glow_surface(kd::real3{1.0, -5.0, 0.0}, up, c, up, R, 0.1, 0.3, rows.data(), 8, nullptr), 0.0);
+  EXPECT_EQ(kd::uw_ms_glow_surface(c, up, c, up, R, 0.1, 0.3, rows.data(), 8, nullptr), 0.0);
   EXPECT_NEAR(kf::uw_ms_glow_surface(kf::real3{1.0f, -3.0f, 0.5f}, kf::real3{float(n.x), float(n.y), float(n.z)},
-                                     kf::real3{0.0f, -5.0f, 0.0f}, kf::real3{0.0f, 1.0f, 0.0f}, 0.7f, 0.1f, 0.3f, 0.9f, 8,
+                                     kf::real3{0.0f, -5.0f, 0.0f}, kf::real3{0.0f, 1.0f, 0.0f}, 0.7f, 0.1f, 0.3f, rows.data(), 8,
                                      nullptr),
-              kd::uw_ms_glow_surface(p, n, c, up, R, 0.1, 0.3, 0.9, 8, nullptr), 1e-5 * expect * 10);
+              kd::uw_ms_glow_surface(p, n, c, up, R, 0.1, 0.3, rows.data(), 8, nullptr), 1e-5 * expect * 10);
 }
 
 }  // namespace

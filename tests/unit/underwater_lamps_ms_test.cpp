@@ -5,7 +5,9 @@
 // float agrees with double; the stiff cases σ_s -> 0, g -> 1, a ray through the lamp, S -> ∞.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <vector>
 
 #include "math/kernel_math.h"
@@ -94,7 +96,7 @@ TEST(UnderwaterLampsMs, BlurredProfilesConserveTheLampsPower) {
       for (int n = 1; n <= 4; ++n) {
         double power = 0;  // trapezoid over ψ in 1° steps
         for (int i = 0; i + 1 < UW_MS_TABLE; ++i) {
-          const double p0 = rows[(n - 1) * UW_MS_TABLE + i], p1 = rows[(n - 1) * UW_MS_TABLE + i + 1];
+          const double p0 = rows[(n - 1) * UW_MS_ROW + i], p1 = rows[(n - 1) * UW_MS_ROW + i + 1];
           EXPECT_GE(p0, 0.0);
           EXPECT_LE(p0, 1.0 + 1e-6);
           power += 0.5 * (p0 * std::sin(i * M_PI / 180) + p1 * std::sin((i + 1) * M_PI / 180)) * 2 * M_PI * M_PI / 180;
@@ -115,6 +117,72 @@ struct Ray {
 };
 
 kf::real3 toF(kd::real3 x) { return kf::real3{float(x.x), float(x.y), float(x.z)}; }
+
+// F(G, x) against its Legendre series: the clamped cosine max(μ, 0) = Σ c_l P_l(μ), c_l = (2l + 1)/2 ∫_0^1 μ P_l dμ
+// (c_0 = 1/4, c_1 = 1/2, c_2 = 5/16, c_3 = 0, c_4 = -3/32), and an HG lobe's Legendre moments are G^l, so
+// F = Σ_l G^l c_l P_l(x) — a route that shares nothing with the inverse-CDF quadrature but the definition.
+TEST(UnderwaterLampsMs, IrradianceOfAnHgLobeMatchesItsLegendreSeries) {
+  constexpr int kL = 400, kMu = 40000;
+  std::vector<double> c(kL + 1, 0.0);
+  for (int k = 0; k < kMu; ++k) {  // midpoints in μ over [0, 1], P_l by the three-term recurrence
+    const double mu = (k + 0.5) / kMu;
+    double p0 = 1.0, p1 = mu;
+    c[0] += mu * p0;
+    c[1] += mu * p1;
+    for (int l = 2; l <= kL; ++l) {
+      const double p2 = ((2 * l - 1) * mu * p1 - (l - 1) * p0) / l;
+      c[l] += mu * p2;
+      p0 = p1;
+      p1 = p2;
+    }
+  }
+  for (int l = 0; l <= kL; ++l) c[l] *= (2 * l + 1) / 2.0 / kMu;
+  EXPECT_NEAR(c[0], 0.25, 1e-8);
+  EXPECT_NEAR(c[1], 0.5, 1e-8);
+  EXPECT_NEAR(c[2], 5.0 / 16.0, 1e-8);
+  EXPECT_NEAR(c[3], 0.0, 1e-8);
+  EXPECT_NEAR(c[4], -3.0 / 32.0, 1e-8);
+  const auto series = [&](double G, double x) {
+    double sum = c[0] + c[1] * G * x, p0 = 1.0, p1 = x, gl = G;
+    for (int l = 2; l <= kL; ++l) {
+      const double p2 = ((2 * l - 1) * x * p1 - (l - 1) * p0) / l;
+      gl *= G;
+      sum += c[l] * gl * p2;
+      p0 = p1;
+      p1 = p2;
+    }
+    return sum;
+  };
+  double worst = 0.0;
+  for (double G : {0.0, 0.25, 0.5, 0.7, 0.81, 0.9})
+    for (double x : {-1.0, -0.6, -0.2, 0.0, 0.3, 0.7, 0.95, 1.0}) {
+      const double exact = kd::uw_ms_irradiance_exact(G, x, 4096);
+      worst = std::max(worst, std::fabs(exact - series(G, x)));
+      EXPECT_NEAR(exact, series(G, x), 2e-4) << "G " << G << " x " << x;
+      EXPECT_NEAR(kf::uw_ms_irradiance_exact(float(G), float(x), 256), exact, 2e-3) << "G " << G << " x " << x;
+    }
+  std::printf("F(G, x): inverse-CDF quadrature against the Legendre series, max |difference| %.2e\n", worst);
+  // The limits: isotropic light gives a quarter of its fluence to any surface, collimated light its cosine.
+  for (double x : {-1.0, -0.3, 0.0, 0.5, 1.0}) {
+    EXPECT_NEAR(kd::uw_ms_irradiance_exact(0.0, x, 4096), 0.25, 1e-6) << x;
+    EXPECT_NEAR(kd::uw_ms_irradiance_exact(1.0, x, 64), std::fmax(x, 0.0), 1e-12) << x;
+  }
+  // Facing the lamp, the mixture G + (1 - G)/4 the model used before is 9 % high at G = 0.5.
+  EXPECT_NEAR(kd::uw_ms_irradiance_exact(0.5, 1.0, 4096), 0.5729, 5e-4);
+  // The lamp's table holds F(g^n, x) per order, read linearly between its cosines.
+  const double g = 0.85;
+  const std::vector<float> rows = seasim::lampMsProfiles(cosDeg(20), cosDeg(15), g, 0.6, 3, 64, 16);
+  ASSERT_EQ(rows.size(), size_t(3 * UW_MS_ROW));
+  double worst_table = 0.0;
+  for (int n = 1; n <= 3; ++n)
+    for (int k = 0; k <= 997; ++k) {
+      const double x = -1.0 + 2.0 * k / 997.0;
+      const double got = kd::uw_ms_irradiance_factor(rows.data() + (n - 1) * UW_MS_ROW, x);
+      worst_table = std::max(worst_table, std::fabs(got - kd::uw_ms_irradiance_exact(std::pow(g, n), x, 4096)));
+    }
+  std::printf("the table of F between its %d cosines: max |difference| %.2e\n", UW_MS_IRRADIANCE, worst_table);
+  EXPECT_LT(worst_table, 1e-3);
+}
 
 TEST(UnderwaterLampsMs, InscatterConvergesAndFloatAgreesWithDouble) {
   const std::vector<float> table = seasim::lampMsProfiles(cosDeg(20), cosDeg(20), 0.9, 0.6, 8);
