@@ -213,8 +213,8 @@ TEST(ExpectedError, LampsUnderWaterHaveTheirOwnEntryPerModel) {
   EXPECT_NEAR(lamps.nearest.cone_deg, 20.0, 1e-9);
   EXPECT_NEAR(lamps.nearest.lamp_bottom_m, 3.0 * std::sqrt(0.05 * 0.05 + 0.25 + 1.0) / 0.5, 1e-3);
   EXPECT_EQ(lamps.table, "results/underwater/lamp_orders_fit.csv");
-  // The orders model's worst region there is the lit bottom, 1.059 of all orders (a reference of 65536 paths).
-  EXPECT_NEAR(lamps.max_abs_error, 0.0588, 1e-4);
+  // The orders model's worst region there is outside the beam, 0.939 of all orders (a reference of 65536 paths).
+  EXPECT_NEAR(lamps.max_abs_error, 0.0614, 1e-4);
   // Delta-M sends no light outside the cone: that region is all missing (results/underwater/lamp_orders_fit.csv).
   const auto delta_m = seasim::expectedErrors(scene(lampGlowText(), {{"quality.lamps_model", "\"delta_m\""}}));
   EXPECT_EQ(delta_m[1].model, "delta_m");
@@ -241,7 +241,7 @@ TEST(ExpectedError, ALampsRegimeWithObjectsIsLookedUpAmongTheCasesWithObjects) {
   EXPECT_NEAR(rov[1].distance, 0.0, 1e-3);
   EXPECT_EQ(rov[1].nearest.objects, 1);
   EXPECT_EQ(rov[1].table, "results/underwater/rov_lights_lamps_tiles.csv (rov_lights)");
-  EXPECT_NEAR(rov[1].worst_ratio, 0.837, 1e-3);  // the far water above the beams (results/BENCHMARKS.md)
+  EXPECT_NEAR(rov[1].worst_ratio, 0.835, 1e-3);  // the far water above the beams (results/BENCHMARKS.md)
   // ...and lamp_glow's water with a rock is looked up there too, not among the cases without objects.
   const auto rocks = seasim::expectedErrors(scene(lampGlowText() + R"(
 [[objects]]
