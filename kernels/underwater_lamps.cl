@@ -308,8 +308,8 @@ static inline void lamp_halo_ray(__constant UwParams* p, __global const UwBand* 
     const float3 x = v->o + t * v->d;
     const float z = x.y + depth;
     if (!(z >= 0.0f)) continue;
-    const float s = uw_ms_surface_geometry((float3)(x.x, -depth, x.z), up, lamp, axis, lp->s_min, p->g, ms_rows,
-                                           ms_orders, st_geo + used * UW_MS_MAX_ORDERS);
+    const float s = uw_ms_surface_geometry((float3)(x.x, -depth, x.z), up, lamp, axis, lp->s_min, ms_rows, ms_orders,
+                                           st_geo + used * UW_MS_MAX_ORDERS);
     if (!(s > 0.0f)) continue;
     st_t[used] = t;
     st_dt[used] = uw_ms_ray_dt(&q, t);
@@ -323,11 +323,8 @@ static inline void lamp_halo_ray(__constant UwParams* p, __global const UwBand* 
     const realb c_t = band.a + band.b;
     realb acc = SPLATB(0.0f);
     for (int u = 0; u < used; ++u) {
-      realb wn[UW_MS_MAX_ORDERS];
-      uw_ms_weights_at_b(ms_weights + UW_MS_WEIGHT_HEADER, nb, b0, ms_orders, st_j[u], st_f[u], wn);
-      const float* geo = st_geo + u * UW_MS_MAX_ORDERS;
-      realb E = SPLATB(0.0f);
-      for (int n = 1; n <= ms_orders; ++n) E += wn[n - 1] * geo[n - 1]; /* uw_ms_surface_sum in lanes */
+      const realb E = uw_ms_orders_sum_b(ms_weights + UW_MS_WEIGHT_HEADER, nb, b0, ms_orders, st_j[u], st_f[u],
+                                         st_geo + u * UW_MS_MAX_ORDERS);
       const realb F = uw_ms_halo_at_b(halo_rows, nb, b0, hm, hf, st_zj[u], st_zf[u]);
       acc += exp(-(c_t * st_t[u])) * (st_dt[u] * E * F);
     }
@@ -392,7 +389,7 @@ static inline void lamp_orders_smooth(__constant UwParams* p, __global const UwB
     const float3 P = v->o + v->S * v->d;
     UwMsBlur blur[UW_MS_MAX_ORDERS];
     float geo[UW_MS_MAX_ORDERS];
-    const float s_P = uw_ms_surface_geometry(P, v->n, lamp, axis, lp->s_min, p->g, ms_rows, ms_orders, geo);
+    const float s_P = uw_ms_surface_geometry(P, v->n, lamp, axis, lp->s_min, ms_rows, ms_orders, geo);
     int wj;
     float wf;
     uw_ms_weight_index(ms_weights, s_P, &wj, &wf);
@@ -453,12 +450,8 @@ static inline void lamp_orders_smooth(__constant UwParams* p, __global const UwB
     const realb c_t = band.a + band.b;
     realb acc = SPLATB(0.0f);
     for (int u = 0; u < ms_steps; ++u) {
-      realb wn[UW_MS_MAX_ORDERS];
-      uw_ms_weights_at_b(ms_weights + UW_MS_WEIGHT_HEADER, nb, b0, ms_orders, st_j[u], st_f[u], wn);
-      const float* geo = st_geo + u * UW_MS_MAX_ORDERS;
-      realb sum = SPLATB(0.0f);
-      for (int k = 1; k <= ms_orders; ++k)
-        if (geo[k - 1] > 0.0f) sum += wn[k - 1] * geo[k - 1];
+      const realb sum = uw_ms_orders_sum_b(ms_weights + UW_MS_WEIGHT_HEADER, nb, b0, ms_orders, st_j[u], st_f[u],
+                                           st_geo + u * UW_MS_MAX_ORDERS);
       acc += exp(-(c_t * st_t[u])) * (sum * st_w[u]);
     }
     lamp_add_lanes(o, bands, b0, in_run, SELECTB(band.b > 0.0f, band.I * band.b * acc, SPLATB(0.0f)), 1, 0);

@@ -167,6 +167,20 @@ SEASIM_FN void uw_ms_weights_at(const SEASIM_GLOBAL float* rows, int nb, int ban
   for (int n = 0; n < count; ++n, e += UW_MS_WEIGHT_STEPS * P) w[n] = (R(1.0) - f) * (real)e[0] + f * (real)e[P];
 }
 
+/* Σ_n W_n geo[n - 1], n = 1..orders, for bands b0 .. b0 + SEASIM_BAND_LANES - 1 in lanes (one band, b0, on
+ * the host): the lamp's orders' weights at (j, f) (their section, table + UW_MS_WEIGHT_HEADER) against one
+ * point's band-free factors geo (a surface's, uw_ms_surface_geometry, or a view-ray step's); a factor <= 0
+ * carries no light and is skipped. uw_ms_surface_sum with uw_ms_weights_at, run in lanes. */
+SEASIM_FN realb uw_ms_orders_sum_b(const SEASIM_GLOBAL float* rows, int nb, int b0, int orders, int j, real f,
+                                   const real* geo) {
+  const int P = uw_ms_band_stride(nb);
+  const SEASIM_GLOBAL float* e = rows + j * P;
+  realb sum = SPLATB(R(0.0));
+  for (int n = 0; n < orders; ++n, e += UW_MS_WEIGHT_STEPS * P)
+    if (geo[n] > R(0.0)) sum += ((R(1.0) - f) * LOADB(e, b0) + f * LOADB(e + P, b0)) * geo[n];
+  return sum;
+}
+
 /* The same for bands b0 .. b0 + SEASIM_BAND_LANES - 1 in lanes (one band, b0, on the host). */
 SEASIM_FN void uw_ms_weights_at_b(const SEASIM_GLOBAL float* rows, int nb, int b0, int count, int j, real f, realb* w) {
   const int P = uw_ms_band_stride(nb);
@@ -396,7 +410,7 @@ SEASIM_FN real uw_ms_inscatter(real3 o, real3 d, real3 lamp, real3 axis, real co
 /* The band-independent part of the irradiance orders n >= 1 give a surface point p of normal n_s, per
  * unit I(λ), divided by π: geo[n - 1] = P_n(ψ) (g^n max(cos θ_i, 0) + (1 - g^n)/4) / (π max(s, s_min)²)
  * (0 where the profile is). Returns s = |p - lamp|; at the lamp (s = 0) nothing is written. */
-SEASIM_FN real uw_ms_surface_geometry(real3 p, real3 n_s, real3 lamp, real3 axis, real s_min, real g,
+SEASIM_FN real uw_ms_surface_geometry(real3 p, real3 n_s, real3 lamp, real3 axis, real s_min,
                                       const SEASIM_GLOBAL float* table, int orders, real* geo) {
   const real3 w = p - lamp;
   const real s = length(w);
@@ -425,10 +439,10 @@ SEASIM_FN real uw_ms_surface_sum(const real* geo, const real* wn, int orders) {
 /* The irradiance orders n >= 1 give a surface point p of normal n_s, per unit I(λ), divided by π (so
  * times the albedo it is the Lambertian radiance leaving p; T_view not applied), given the orders'
  * weights at s = |p - lamp|, wn[n - 1] = W_n(s) (exact: uw_ms_surface; the kernel: its table). */
-SEASIM_FN real uw_ms_surface_weighted(real3 p, real3 n_s, real3 lamp, real3 axis, real s_min, real g,
+SEASIM_FN real uw_ms_surface_weighted(real3 p, real3 n_s, real3 lamp, real3 axis, real s_min,
                                       const SEASIM_GLOBAL float* table, int orders, const real* wn) {
   real geo[UW_MS_MAX_ORDERS];
-  if (!(uw_ms_surface_geometry(p, n_s, lamp, axis, s_min, g, table, orders, geo) > R(0.0))) return R(0.0);
+  if (!(uw_ms_surface_geometry(p, n_s, lamp, axis, s_min, table, orders, geo) > R(0.0))) return R(0.0);
   return uw_ms_surface_sum(geo, wn, orders);
 }
 
@@ -439,7 +453,7 @@ SEASIM_FN real uw_ms_surface(real3 p, real3 n_s, real3 lamp, real3 axis, real s_
   if (!(s > R(0.0)) || !(sigma_s > R(0.0))) return R(0.0);
   real wn[UW_MS_MAX_ORDERS];
   for (int n = 1; n <= orders; ++n) wn[n - 1] = uw_ms_weight(sigma_a, sigma_s, s, uw_ms_stretch(g, n, kappa), n, orders);
-  return uw_ms_surface_weighted(p, n_s, lamp, axis, s_min, g, table, orders, wn);
+  return uw_ms_surface_weighted(p, n_s, lamp, axis, s_min, table, orders, wn);
 }
 
 /* The glow's phase function: HG(G) without its forward peak (delta-M: the share G² scatters straight
@@ -659,17 +673,8 @@ SEASIM_FN void uw_ms_halo_z_index(const SEASIM_GLOBAL float* table, real z, int*
   *f = u - (real)*j;
 }
 
-/* F of band `band` (of nb) from the table, bilinear. */
-SEASIM_FN real uw_ms_halo_at(const SEASIM_GLOBAL float* rows, int nb, int band, int m, real fm, int j, real fz) {
-  const int P = uw_ms_band_stride(nb);
-  const SEASIM_GLOBAL float* r0 = rows + (m * UW_MS_HALO_Z + j) * P + band;
-  const SEASIM_GLOBAL float* r1 = r0 + UW_MS_HALO_Z * P;
-  const real a = (R(1.0) - fz) * (real)r0[0] + fz * (real)r0[P];
-  const real b = (R(1.0) - fz) * (real)r1[0] + fz * (real)r1[P];
-  return (R(1.0) - fm) * a + fm * b;
-}
-
-/* The same for bands b0 .. b0 + SEASIM_BAND_LANES - 1 in lanes (one band, b0, on the host). */
+/* F of bands b0 .. b0 + SEASIM_BAND_LANES - 1 (of nb) from the table, bilinear, in lanes (one band, b0, on
+ * the host). */
 SEASIM_FN realb uw_ms_halo_at_b(const SEASIM_GLOBAL float* rows, int nb, int b0, int m, real fm, int j, real fz) {
   const int P = uw_ms_band_stride(nb);
   const SEASIM_GLOBAL float* r0 = rows + (m * UW_MS_HALO_Z + j) * P;

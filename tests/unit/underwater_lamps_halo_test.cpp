@@ -132,7 +132,7 @@ TEST(UnderwaterLampsHalo, KernelTableFollowsThePlaneBetweenItsNodes) {
         double fm, fz;
         kd::uw_ms_halo_dir_index(mu_e, &m, &fm);
         kd::uw_ms_halo_z_index(table.data(), z, &j, &fz);
-        const double got = kd::uw_ms_halo_at(rows, int(bands.size()), int(i), m, fm, j, fz);
+        const double got = kd::uw_ms_halo_at_b(rows, int(bands.size()), int(i), m, fm, j, fz);
         worst = std::max(worst, std::fabs(got - planeF(z, mu_e, bands[i].a, bands[i].b, g, orders)));
       }
     std::printf("band %zu: the table within %.3g of a peak %.4g\n", i, worst, peak);

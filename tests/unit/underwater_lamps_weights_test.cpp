@@ -123,7 +123,17 @@ TEST(UnderwaterLampsWeights, BandsRunFastestPaddedToTheWidestLanes) {
       kd::uw_ms_weights_at(glow, nb, i, orders + 1, j, f, one);
       kd::uw_ms_weights_at_b(glow, nb, i, orders + 1, j, f, lanes);
       for (int n = 0; n <= orders; ++n) EXPECT_EQ(one[n], lanes[n]) << "band " << i << " glow order " << n;
-      EXPECT_EQ(kd::uw_ms_halo_at(halo, nb, i, 7, 0.3, j / 4, f), kd::uw_ms_halo_at_b(halo, nb, i, 7, 0.3, j / 4, f));
+      // The halo's lanes read row 7 and 8, heights j/4 and the next, band i, 32 floats from one entry to the next.
+      const float* h0 = halo + (7 * UW_MS_HALO_Z + j / 4) * 32 + i;
+      const float* h1 = h0 + UW_MS_HALO_Z * 32;
+      const double want = 0.7 * ((1 - f) * h0[0] + f * h0[32]) + 0.3 * ((1 - f) * h1[0] + f * h1[32]);
+      EXPECT_NEAR(kd::uw_ms_halo_at_b(halo, nb, i, 7, 0.3, j / 4, f), want, 1e-12 * std::fabs(want) + 1e-30);
+      // The orders' sum in lanes is the per-band weights against the factors, the factors <= 0 left out.
+      const double geo[4] = {0.7, 0.0, -1.0, 0.2};
+      double w4[UW_MS_MAX_ORDERS];
+      kd::uw_ms_weights_at(lamp, nb, i, orders, j, f, w4);
+      EXPECT_NEAR(kd::uw_ms_orders_sum_b(lamp, nb, i, orders, j, f, geo), 0.7 * w4[0] + 0.2 * w4[3],
+                  1e-12 * (0.7 * w4[0] + 0.2 * w4[3]));
     }
   }
   // The padding: bands 19..31 of every entry.
