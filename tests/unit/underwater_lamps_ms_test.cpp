@@ -166,6 +166,9 @@ TEST(UnderwaterLampsMs, IrradianceOfAnHgLobeMatchesItsLegendreSeries) {
   for (double x : {-1.0, -0.3, 0.0, 0.5, 1.0}) {
     EXPECT_NEAR(kd::uw_ms_irradiance_exact(0.0, x, 4096), 0.25, 1e-6) << x;
     EXPECT_NEAR(kd::uw_ms_irradiance_exact(1.0, x, 64), std::fmax(x, 0.0), 1e-12) << x;
+    // A backward lobe (g < 0, which the lamps' waters do not have) is taken as isotropic, not extrapolated.
+    EXPECT_EQ(kd::uw_ms_irradiance_exact(-0.4, x, 4096), kd::uw_ms_irradiance_exact(0.0, x, 4096)) << x;
+    EXPECT_TRUE(std::isfinite(kf::uw_ms_irradiance_exact(0.999999f, float(x), 64))) << x;
   }
   // Facing the lamp, the mixture G + (1 - G)/4 the model used before is 9 % high at G = 0.5.
   EXPECT_NEAR(kd::uw_ms_irradiance_exact(0.5, 1.0, 4096), 0.5729, 5e-4);
