@@ -136,7 +136,8 @@ int cmdLampRegions(const LampRegionsCmd& cmd) {
     const UnderwaterLamps lamps = makeUnderwaterLamps(ref_scene, grid);
     const std::vector<int> regions = lampRegions(setup, lamps);
 
-    const std::string stem = cache + "/" + cacheKey(cmd.scene, base, cmd.spp);
+    std::string stem = cache + "/" + cacheKey(cmd.scene, base, cmd.spp);
+    if (cmd.max_bounces > 0) stem += ".bounces" + std::to_string(cmd.max_bounces);
     Image ref, se;
     if (fs::exists(stem + ".rgb.npy") && fs::exists(stem + ".se.npy")) {
       ref = readNpy(stem + ".rgb.npy");
@@ -146,6 +147,7 @@ int cmdLampRegions(const LampRegionsCmd& cmd) {
       settings.samples_per_pixel = cmd.spp;
       settings.jitter = false;
       settings.lamps = &lamps;
+      if (cmd.max_bounces > 0) settings.max_bounces = cmd.max_bounces;
       const UnderwaterReferenceResult r = renderUnderwaterReference(device, setup, settings);
       ref = r.rgb;
       se = r.std_error;
@@ -199,6 +201,13 @@ int cmdLampRegions(const LampRegionsCmd& cmd) {
         else std::printf(" %22s", "-");
       }
       std::printf("\n");
+      if (cmd.means) {
+        std::printf("%-45s", "  mean radiance per pixel, fast / reference");
+        for (const Stat& s : st)
+          if (s.pixels) std::printf(" %10.4g / %9.4g", s.fast / s.pixels, s.ref / s.pixels);
+          else std::printf(" %22s", "-");
+        std::printf("\n");
+      }
       std::fflush(stdout);
       table.addRow(row);
     }

@@ -6,6 +6,9 @@
 // references trace every path through the pixel centre (the ray the fast models shade) and are cached.
 // Prints and writes a CSV: per case and model the ratio fast / reference per region with the
 // reference's relative standard error, and the lamp pass's kernel time (median of interleaved rounds).
+// --max-bounces limits the reference to that many scattering vertices per path (cached apart) and --means
+// prints each region's mean radiance: with a fast model cut to the same orders, each order's share by
+// difference.
 #pragma once
 #include <string>
 #include <vector>
@@ -19,6 +22,8 @@ struct LampRegionsCmd {
   std::vector<std::string> cases = {"0.1:0.3:0.9:20:3"};
   std::vector<std::string> models = {"delta_m", "orders"};  // quality.lamps_model values
   int spp = 4096;
+  int max_bounces = 0;  // the reference's scattering vertices per path (0: all orders); orders by difference
+  bool means = false;   // also print each region's mean radiance, fast and reference (orders by difference)
   int rounds = 3;  // interleaved timing rounds per case
   std::string cache_dir;
   std::string csv;

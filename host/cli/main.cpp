@@ -213,6 +213,12 @@ int main(int argc, char** argv) {
   lamp_regions->add_option("--cases", lamp_regions_cmd.cases, "a:b:g:cone_deg:height_m per case")->delimiter(',');
   lamp_regions->add_option("--models", lamp_regions_cmd.models, "quality.lamps_model values")->delimiter(',');
   lamp_regions->add_option("--spp", lamp_regions_cmd.spp, "Path-tracer paths per pixel (through its centre)");
+  lamp_regions->add_option("--max-bounces", lamp_regions_cmd.max_bounces,
+                           "The reference with at most this many scattering vertices per path (medium and bottom; "
+                           "default all orders): each order's share by difference")
+      ->check(CLI::PositiveNumber);
+  lamp_regions->add_flag("--means", lamp_regions_cmd.means,
+                         "Also print each region's mean radiance per pixel, fast and reference");
   lamp_regions->add_option("--rounds", lamp_regions_cmd.rounds, "Interleaved timing rounds per case");
   lamp_regions->add_option("--cache", lamp_regions_cmd.cache_dir, "Folder of cached references");
   lamp_regions->add_option("--csv", lamp_regions_cmd.csv, "CSV output");

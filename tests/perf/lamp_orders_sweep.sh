@@ -19,7 +19,9 @@
 # Usage: tests/perf/lamp_orders_sweep.sh   (about 50 min on 2 cores the first time, the MORE cases 27 of them; nice it)
 # Writes results/underwater/lamp_orders_{fit,heldout,near,fresh}.csv; prints a Markdown table per case, then
 # the count of regions within 5 % per model (tests/perf/lamp_orders_summary.py).
-# Env: MODELS (default single,delta_m,orders), ROUNDS (timing rounds, default 3), OUT (default results/underwater).
+# Env: MODELS (default single,delta_m,orders), ROUNDS (timing rounds, default 3), OUT (default results/underwater),
+# MODEL_SETS (space-separated key=value overrides for the fast renders only, e.g. the knobs
+# "quality.lamps_ms_kappa=0.5 quality.lamps_ms_spread=0.6": how they were chosen).
 # With the references cached, MODELS=orders ROUNDS=1 OUT=build/lamps/variant re-renders all 37 cases in seconds:
 # the loop for a kernel copy (SEASIM_KERNEL_DIR) against today's tables, region by region.
 B=${B:-build/seasim}
@@ -55,7 +57,11 @@ run_set() {
     [ -n "$list" ] || continue
     n=$SPP
     [ $part = more ] && n=$SPP_MORE
-    $B lamp-regions --cases "$list" --models "$MODELS" --spp "$n" --rounds "$ROUNDS" --csv "$csv.$part" > /dev/null || exit 1
+    model_sets=""
+    for kv in $MODEL_SETS; do model_sets="$model_sets --model-set $kv"; done
+    # shellcheck disable=SC2086 # one word per override
+    $B lamp-regions --cases "$list" --models "$MODELS" --spp "$n" --rounds "$ROUNDS" --csv "$csv.$part" $model_sets \
+      > /dev/null || exit 1
     if [ -f "$csv" ]; then tail -n +2 "$csv.$part" >> "$csv"; else cat "$csv.$part" > "$csv"; fi
     rm -f "$csv.$part"
   done
