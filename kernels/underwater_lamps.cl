@@ -300,10 +300,8 @@ static inline void lamp_halo_ray(__constant UwParams* p, __global const UwBand* 
   float hf;
   uw_ms_halo_dir_index(-v->d.y, &hm, &hf);
   float st_t[UW_MS_MAX_STEPS], st_dt[UW_MS_MAX_STEPS], st_f[UW_MS_MAX_STEPS], st_zf[UW_MS_MAX_STEPS];
-  float st_s[UW_MS_MAX_STEPS], st_tf[UW_MS_MAX_STEPS];
-  int st_j[UW_MS_MAX_STEPS], st_zj[UW_MS_MAX_STEPS], st_ti[UW_MS_MAX_STEPS];
+  int st_j[UW_MS_MAX_STEPS], st_zj[UW_MS_MAX_STEPS];
   float st_geo[UW_MS_MAX_STEPS * UW_MS_MAX_ORDERS];
-  __global const float* q1 = uw_ms_order1_rows(ms_rows, ms_orders);
   int used = 0;
   for (int j = 0; j < steps; ++j) {
     const float t = uw_ms_ray_t(&q, j);
@@ -311,9 +309,8 @@ static inline void lamp_halo_ray(__constant UwParams* p, __global const UwBand* 
     const float z = x.y + depth;
     if (!(z >= 0.0f)) continue;
     const float s = uw_ms_surface_geometry((float3)(x.x, -depth, x.z), up, lamp, axis, lp->s_min, ms_rows, ms_orders,
-                                           st_geo + used * UW_MS_MAX_ORDERS, &st_ti[used], &st_tf[used]);
+                                           st_geo + used * UW_MS_MAX_ORDERS);
     if (!(s > 0.0f)) continue;
-    st_s[used] = s;
     st_t[used] = t;
     st_dt[used] = uw_ms_ray_dt(&q, t);
     uw_ms_weight_index(ms_weights, s, &st_j[used], &st_f[used]);
@@ -327,7 +324,6 @@ static inline void lamp_halo_ray(__constant UwParams* p, __global const UwBand* 
     realb acc = SPLATB(0.0f);
     for (int u = 0; u < used; ++u) {
       const realb E = uw_ms_orders_sum_b(ms_weights + UW_MS_WEIGHT_HEADER, nb, b0, ms_orders, st_j[u], st_f[u],
-                                         uw_ms_order1_b(q1, band.b, c_t, st_s[u], st_ti[u], st_tf[u]),
                                          st_geo + u * UW_MS_MAX_ORDERS);
       const realb F = uw_ms_halo_at_b(halo_rows, nb, b0, hm, hf, st_zj[u], st_zf[u]);
       acc += exp(-(c_t * st_t[u])) * (st_dt[u] * E * F);
@@ -393,9 +389,7 @@ static inline void lamp_orders_smooth(__constant UwParams* p, __global const UwB
     const float3 P = v->o + v->S * v->d;
     UwMsBlur blur[UW_MS_MAX_ORDERS];
     float geo[UW_MS_MAX_ORDERS];
-    int ti;
-    float tf;
-    const float s_P = uw_ms_surface_geometry(P, v->n, lamp, axis, lp->s_min, ms_rows, ms_orders, geo, &ti, &tf);
+    const float s_P = uw_ms_surface_geometry(P, v->n, lamp, axis, lp->s_min, ms_rows, ms_orders, geo);
     int wj;
     float wf;
     uw_ms_weight_index(ms_weights, s_P, &wj, &wf);
@@ -406,7 +400,6 @@ static inline void lamp_orders_smooth(__constant UwParams* p, __global const UwB
     for (int i = 0; i < nb; ++i) {
       float wn[UW_MS_MAX_ORDERS];
       uw_ms_weights_at(ms_weights + UW_MS_WEIGHT_HEADER, nb, i, ms_orders, wj, wf, wn);
-      wn[0] = uw_ms_order1(uw_ms_order1_rows(ms_rows, ms_orders), bands[i].b, bands[i].c, s_P, ti, tf);
       const float ms = bands[i].b > 0.0f && s_P > 0.0f ? uw_ms_surface_sum(geo, wn, ms_orders) : 0.0f;
       float view[UW_MS_MAX_ORDERS + 1];
       const float T = uw_ms_view_terms(bands[i].a, bands[i].b, p->g, v->S, ms_orders, view);
@@ -428,27 +421,27 @@ static inline void lamp_orders_smooth(__constant UwParams* p, __global const UwB
   UwMsRay q;
   uw_ms_ray(v->o, v->d, lamp, lp->s_min, v->t_end, uw_ms_ray_cap(c_min), ms_steps, &q);
   if (!(q.dv > 0.0f)) return;
-  float st_t[UW_MS_MAX_STEPS], st_w[UW_MS_MAX_STEPS], st_f[UW_MS_MAX_STEPS], st_s[UW_MS_MAX_STEPS], st_tf[UW_MS_MAX_STEPS];
-  int st_j[UW_MS_MAX_STEPS], st_ti[UW_MS_MAX_STEPS];
+  float st_t[UW_MS_MAX_STEPS], st_w[UW_MS_MAX_STEPS], st_f[UW_MS_MAX_STEPS];
+  int st_j[UW_MS_MAX_STEPS];
   float st_geo[UW_MS_MAX_STEPS * UW_MS_MAX_ORDERS];
-  __global const float* q1 = uw_ms_order1_rows(ms_rows, ms_orders);
   for (int j = 0; j < ms_steps; ++j) {
     const float t = uw_ms_ray_t(&q, j);
     float s, c;
     uw_lamp_at(v->o, v->d, lamp, t, &s, &c);
     const float cos_psi = s > 0.0f ? dot(v->o + t * v->d - lamp, axis) / s : 1.0f;
     st_t[j] = t;
-    st_s[j] = s;
     st_w[j] = uw_ms_ray_weight(&q, t, s, lp->s_min);
-    uw_ms_table_index(cos_psi, &st_ti[j], &st_tf[j]);
+    int ti;
+    float tf;
+    uw_ms_table_index(cos_psi, &ti, &tf);
     uw_ms_weight_index(ms_weights, s, &st_j[j], &st_f[j]);
     float* geo = st_geo + j * UW_MS_MAX_ORDERS;
-    /* Order 1: its phase alone (its fluence is exact, uw_ms_order1_b); the others: profile times phase. */
-    geo[0] = uw_ms_order1_phase_at(q1, st_ti[j], st_tf[j], v->o + t * v->d, lamp, axis, L->cos_cone, p->g, c_min, -v->d);
-    float gk = p->g * p->g;
-    for (int k = 2; k <= ms_orders; ++k) {
+    float gk = p->g;
+    for (int k = 1; k <= ms_orders; ++k) {
       gk *= p->g;
-      geo[k - 1] = uw_ms_table_lerp(ms_rows + (k - 1) * UW_MS_ROW, st_ti[j], st_tf[j]) * hg_phase(c, gk);
+      const float phase =
+          k == 1 ? uw_ms_order1_phase(v->o + t * v->d, lamp, axis, L->cos_cone, p->g, c_min, -v->d) : hg_phase(c, gk);
+      geo[k - 1] = uw_ms_table_lerp(ms_rows + (k - 1) * UW_MS_ROW, ti, tf) * phase;
     }
   }
   for (int b0 = 0; b0 < nb; b0 += SEASIM_BAND_LANES) {
@@ -458,7 +451,6 @@ static inline void lamp_orders_smooth(__constant UwParams* p, __global const UwB
     realb acc = SPLATB(0.0f);
     for (int u = 0; u < ms_steps; ++u) {
       const realb sum = uw_ms_orders_sum_b(ms_weights + UW_MS_WEIGHT_HEADER, nb, b0, ms_orders, st_j[u], st_f[u],
-                                           uw_ms_order1_b(q1, band.b, c_t, st_s[u], st_ti[u], st_tf[u]),
                                            st_geo + u * UW_MS_MAX_ORDERS);
       acc += exp(-(c_t * st_t[u])) * (sum * st_w[u]);
     }
@@ -814,7 +806,7 @@ __kernel void underwater_lamps_lattice(__constant UwParams* p, __global const Uw
     o.band_sums = sums + part * LAMP_LATTICE_STRIDE(nb);
     for (int l = 0; l < lp->lamp_count; ++l)
       lamp_orders_smooth(p, bands, objects, count, lp, &lamps[l], lamp_spectra + l * nb,
-                         ms_table + l * uw_ms_lamp_rows(ms_orders), ms_glow + l * (4 + nb), ms_weights, ms_orders,
+                         ms_table + l * ms_orders * UW_MS_ROW, ms_glow + l * (4 + nb), ms_weights, ms_orders,
                          ms_steps, part == 0 ? LAMP_SMOOTH_SURFACE : LAMP_SMOOTH_RAY, &v, &o);
   }
 }
@@ -882,7 +874,7 @@ __kernel void underwater_lamps(__constant UwParams* p, __global const UwBand* ba
     __global const UwLamp* L = &lamps[l];
     __global const float* I = lamp_spectra + l * nb;
 #if SEASIM_LAMPS_ORDERS
-    __global const float* ms_rows = ms_table + l * uw_ms_lamp_rows(ms_orders);
+    __global const float* ms_rows = ms_table + l * ms_orders * UW_MS_ROW;
     __global const float* glow = ms_glow + l * (4 + nb);
     lamp_orders_surface(p, bands, objects, count, lp, L, I, ms_orders, &v, &o);
     if (smooth_left)

@@ -16,20 +16,10 @@ namespace seasim {
 // uw_ms_spread(g, n, β); β the spread knob (quality.lamps_ms_spread). Quadrature over the HG kernel by its inverse CDF (u_steps midpoints in u, so a
 // kernel as narrow as g -> 1 gives is sampled where its mass is) and phi_steps in azimuth. Then the order's
 // irradiance factor F(g^n, cos θ_i) at UW_MS_IRRADIANCE cosines uniform over [-1, 1] (uw_ms_irradiance_exact).
-// After the orders' rows, order 1's exact light (uw_ms_order1_exact): UW_MS_ORDER1_PLANES planes (Q̃, then
-// its first moments along and across x's direction) of UW_MS_ORDER1_TAUS rows of UW_MS_TABLE, τ =
-// uw_ms_order1_tau(k); uw_ms_lamp_rows(orders) floats in all.
 std::vector<float> lampMsProfiles(double cos_cone, double cos_inner, double g, double beta, int orders, int u_steps = 256,
                                   int phi_steps = 64);
 
-// Order 1's planes for one lamp's profile (each UW_MS_ORDER1_TAUS × UW_MS_TABLE, ψ fastest): uw_ms_order1_exact's
-// integral with its inner integral over δ tabulated once per τ on a grid of γ fine near 0 (where the HG
-// peak makes it steep), n_gamma midpoints in γ over the profile's reach, n_phi in φ.
-std::vector<float> lampMsOrder1(double cos_cone, double cos_inner, double g, int n_gamma = 64, int n_delta = 96,
-                                int n_phi = 64);
-
-// The rows of every lamp, lamp after lamp (lamp l's at l * uw_ms_lamp_rows(orders), order n's row (n - 1) *
-// UW_MS_ROW into them).
+// The rows of every lamp, lamp after lamp (lamp l's order n at (l * orders + n - 1) * UW_MS_ROW).
 std::vector<float> lampMsTable(const std::vector<UwLamp>& lamps, double g, double beta, int orders);
 
 }  // namespace seasim

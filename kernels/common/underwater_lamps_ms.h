@@ -168,16 +168,15 @@ SEASIM_FN void uw_ms_weights_at(const SEASIM_GLOBAL float* rows, int nb, int ban
 }
 
 /* Σ_n W_n geo[n - 1], n = 1..orders, for bands b0 .. b0 + SEASIM_BAND_LANES - 1 in lanes (one band, b0, on
- * the host): order 1's exact W_1 P_1 (uw_ms_order1_b) given, the others' weights at (j, f) from their section
- * (table + UW_MS_WEIGHT_HEADER), against one point's band-free factors geo (a surface's,
- * uw_ms_surface_geometry, or a view-ray step's); a factor <= 0 carries no light and is skipped.
- * uw_ms_surface_sum with uw_ms_weights_at, run in lanes. */
+ * the host): the lamp's orders' weights at (j, f) (their section, table + UW_MS_WEIGHT_HEADER) against one
+ * point's band-free factors geo (a surface's, uw_ms_surface_geometry, or a view-ray step's); a factor <= 0
+ * carries no light and is skipped. uw_ms_surface_sum with uw_ms_weights_at, run in lanes. */
 SEASIM_FN realb uw_ms_orders_sum_b(const SEASIM_GLOBAL float* rows, int nb, int b0, int orders, int j, real f,
-                                   realb order1, const real* geo) {
+                                   const real* geo) {
   const int P = uw_ms_band_stride(nb);
-  const SEASIM_GLOBAL float* e = rows + j * P + UW_MS_WEIGHT_STEPS * P;
-  realb sum = geo[0] > R(0.0) ? order1 * geo[0] : SPLATB(R(0.0));
-  for (int n = 1; n < orders; ++n, e += UW_MS_WEIGHT_STEPS * P)
+  const SEASIM_GLOBAL float* e = rows + j * P;
+  realb sum = SPLATB(R(0.0));
+  for (int n = 0; n < orders; ++n, e += UW_MS_WEIGHT_STEPS * P)
     if (geo[n] > R(0.0)) sum += ((R(1.0) - f) * LOADB(e, b0) + f * LOADB(e + P, b0)) * geo[n];
   return sum;
 }
@@ -378,202 +377,10 @@ SEASIM_FN real uw_ms_order1_phase(real3 x, real3 lamp, real3 axis, real cos_cone
   return den_sum > R(0.0) ? num_sum / den_sum : hg_phase(cos_alpha, g * g);
 }
 
-/* Order 1 exactly. The orders' rule above spreads order n's light as HG(h_n) about the lamp's ray over a
- * path stretched by q_n^{-κ}: a small-angle picture. Against the exact once-scattered fluence it was
- * 0.5-0.9 of it inside the cone and 1.2-4 times it outside in deep or broad-phase water (g 0.5-0.9, cones
- * 20-60°, σ_t s 0.2-7; docs/journal/lamps_orders.md), and order 1 is most of the light outside the beam
- * (at a 0.1, b 0.3, g 0.5 the path tracer's second order, the model's order 1 towards the eye, came out
- * 1.26 of it there). So order 1 is taken exactly. Light from the lamp scattered once at y = lamp + u ω_y
- * reaches x, s from the lamp: per unit I,
- *   φ_1(x) = σ_s ∫ dΩ_y P(ω_y) ∫_0^∞ du p_HG(cos δ; g) e^{-σ_t (u + r)} / r²,
- * r = |x - y|, δ the deflection at y. In the triangle lamp, y, x with the angle γ at the lamp (between ω_y
- * and x's direction), u = s sin(δ - γ)/sin δ, r = s sin γ/sin δ and du/r² = dδ/(s sin γ); with dΩ_y =
- * sin γ dγ dφ about x's direction the sin γ cancels, so
- *   φ_1 = (σ_s/s) e^{-τ} Q̃(τ, ψ),   τ = σ_t s,
- *   Q̃(τ, ψ) = ∫_0^π dγ A(γ, ψ) ∫_γ^π p_HG(cos δ; g) e^{-τ (v + ρ - 1)} dδ,   v = sin(δ - γ)/sin δ, ρ = sin γ/sin δ,
- * A(γ, ψ) = ∫_0^{2π} P dφ the profile on the circle γ from x's direction (ψ from the axis). Nothing in it
- * depends on the band but τ: the host tabulates Q̃ once per lamp over τ and ψ (UW_MS_ORDER1_TAUS × UW_MS_TABLE
- * after the lamp's orders' rows), and order 1's W_1 P_1 of the rule is σ_s s e^{-τ} Q̃ in its place. The
- * δ integrand is smooth (v + ρ - 1 >= 0 grows to ∞ at δ -> π) and its HG peak sits at δ = γ: nodes
- * quadratic in δ from γ. Only the order-1 fluence is exact; its phase towards the eye stays
- * uw_ms_order1_phase's, and the orders n >= 2 keep the rule. */
-#define UW_MS_ORDER1_TAUS 96
-#define UW_MS_ORDER1_TAU_MAX 40.0f /* e^{-40}: nothing beyond */
-/* Q̃'s planes: Q̃ itself, then its light's first moments along x's direction and towards the axis. */
-#define UW_MS_ORDER1_PLANES 3
-#define UW_MS_ORDER1_PLANE (UW_MS_ORDER1_TAUS * UW_MS_TABLE)
-
-/* A lamp's rows in the profiles table: its orders' rows (UW_MS_ROW each), then order 1's planes. */
-SEASIM_FN int uw_ms_lamp_rows(int orders) { return orders * UW_MS_ROW + UW_MS_ORDER1_PLANES * UW_MS_ORDER1_PLANE; }
-
-SEASIM_FN const SEASIM_GLOBAL float* uw_ms_order1_rows(const SEASIM_GLOBAL float* table, int orders) {
-  return table + orders * UW_MS_ROW;
-}
-
-/* τ of Q̃'s row k: uniform in ln(1 + τ) over [0, ln(1 + τ_max)]. */
-SEASIM_FN real uw_ms_order1_tau(int k) {
-  return expm1((real)k * log1p((real)UW_MS_ORDER1_TAU_MAX) / (real)(UW_MS_ORDER1_TAUS - 1));
-}
-
-/* Order 1's light at x and where it travels: Q̃ and the first moments of its radiance, ∫ L ω dω in units of
- * Q̃'s, along x's direction from the lamp (par) and across it towards the axis (perp), per unit of the
- * same factor (σ_s/s) e^{-τ}. Light scattered at y after the deflection δ travels at δ - γ from x's
- * direction, away from y's side. */
-typedef struct {
-  real q, par, perp;
-} UwMsOrder1;
-
-/* The line integrals over δ at γ: ∫_γ^π p_HG(cos δ; g) e^{-τ (v + ρ - 1)} {1, cos(δ - γ), sin(δ - γ)} dδ, by n
- * midpoints quadratic in δ from γ (the host's table); .perp holds the sine's. */
-SEASIM_FN UwMsOrder1 uw_ms_order1_line(real tau, real gamma, real g, int n) {
-  const real sg = sin(gamma), span = SEASIM_PI - gamma;
-  UwMsOrder1 sum = {R(0.0), R(0.0), R(0.0)};
-  for (int k = 0; k < n; ++k) {
-    const real q = ((real)k + R(0.5)) / (real)n;
-    const real delta = gamma + span * q * q, sd = sin(delta);
-    if (!(sd > R(0.0))) continue;
-    const real sa = sin(delta - gamma);
-    const real excess = (sa + sg) / sd - R(1.0);
-    const real w = hg_phase(cos(delta), g) * exp(-tau * fmax(excess, R(0.0))) * (R(2.0) * span * q) / (real)n;
-    sum.q += w;
-    sum.par += w * cos(delta - gamma);
-    sum.perp += w * sa;
-  }
-  return sum;
-}
-
-/* The lamp's profile P (shafts_cone_profile) on the circle γ from x's direction (ψ from the axis):
- * ∫_0^{2π} P dφ into *ring and ∫_0^{2π} P cos φ dφ (φ from the side of the axis) into *toward. The circle
- * is inside the cone's edge where cos φ >= c₀ = (cos θc - cos ψ cos γ)/(sin ψ sin γ): over that arc alone,
- * in closed form where the edge is hard (P = 1: 2φ₀ and 2 sin φ₀), else by n midpoints of it (so that a
- * cone far narrower than the circle is not missed between nodes). */
-SEASIM_FN void uw_ms_order1_ring(real gamma, real cos_psi, real cos_cone, real cos_inner, int n, real* ring, real* toward) {
-  const real sp = sqrt(fmax(R(1.0) - cos_psi * cos_psi, R(0.0)));
-  const real cg = cos(gamma), sg = sin(gamma), ss = sp * sg;
-  *ring = R(0.0);
-  *toward = R(0.0);
-  real phi0;
-  if (ss > R(1e-12)) {
-    const real c0 = (cos_cone - cos_psi * cg) / ss;
-    if (c0 >= R(1.0)) return;
-    phi0 = acos(fmax(c0, R(-1.0)));
-  } else {
-    /* x's direction on the axis or the circle a point: all of it or none. */
-    if (cos_psi * cg < cos_cone) return;
-    phi0 = SEASIM_PI;
-  }
-  if (cos_inner <= cos_cone) {
-    *ring = R(2.0) * phi0;
-    *toward = R(2.0) * sin(phi0);
-    return;
-  }
-  real a = R(0.0), b = R(0.0);
-  for (int k = 0; k < n; ++k) {
-    const real cp = cos(((real)k + R(0.5)) * phi0 / (real)n);
-    const real P = shafts_cone_profile(cos_psi * cg + ss * cp, cos_cone, cos_inner);
-    a += P;
-    b += P * cp;
-  }
-  *ring = R(2.0) * phi0 * a / (real)n;
-  *toward = R(2.0) * phi0 * b / (real)n;
-}
-
-/* Q̃(τ, ψ) and its moments by n_gamma midpoints in γ over the angles the profile reaches from x's direction,
- * [|ψ - θc|, ψ + θc] (θc the cone's edge), n_delta in δ and n_phi in φ (the host, in double). The light
- * scattered on the axis's side of x travels away from it: perp = -∫ toward · (sine's line) dγ. */
-SEASIM_FN UwMsOrder1 uw_ms_order1_exact(real tau, real cos_psi, real cos_cone, real cos_inner, real g, int n_gamma,
-                                        int n_delta, int n_phi) {
-  const real psi = acos(clamp(cos_psi, R(-1.0), R(1.0))), cone = acos(clamp(cos_cone, R(-1.0), R(1.0)));
-  const real g0 = fmax(psi - cone, R(0.0)), g1 = fmin(psi + cone, SEASIM_PI);
-  const real dg = (g1 - g0) / (real)n_gamma;
-  UwMsOrder1 sum = {R(0.0), R(0.0), R(0.0)};
-  for (int k = 0; k < n_gamma; ++k) {
-    const real gamma = g0 + ((real)k + R(0.5)) * dg;
-    real ring, toward;
-    uw_ms_order1_ring(gamma, cos_psi, cos_cone, cos_inner, n_phi, &ring, &toward);
-    if (!(ring > R(0.0))) continue;
-    const UwMsOrder1 line = uw_ms_order1_line(tau, gamma, g, n_delta);
-    sum.q += ring * line.q * dg;
-    sum.par += ring * line.par * dg;
-    sum.perp -= toward * line.perp * dg;
-  }
-  return sum;
-}
-
-/* Q̃'s row coordinate of τ: u = ln(1 + τ) (UW_MS_ORDER1_TAUS - 1)/ln(1 + τ_max), clamped to the table. */
-SEASIM_FN realb uw_ms_order1_u_b(realb tau) {
-  const realb u = log1p(fmax(tau, SPLATB(R(0.0)))) * ((real)(UW_MS_ORDER1_TAUS - 1) / log1p((real)UW_MS_ORDER1_TAU_MAX));
-  return fmin(u, SPLATB((real)(UW_MS_ORDER1_TAUS - 1)));
-}
-
-/* Q̃ at row coordinate u and the profile's entry (i, f) of ψ (uw_ms_table_index), bilinear. */
-SEASIM_FN real uw_ms_order1_at(const SEASIM_GLOBAL float* q1, real u, int i, real f) {
-  const int k = (int)u < UW_MS_ORDER1_TAUS - 2 ? (int)u : UW_MS_ORDER1_TAUS - 2;
-  const real w = u - (real)k;
-  const SEASIM_GLOBAL float* r0 = q1 + k * UW_MS_TABLE;
-  return (R(1.0) - w) * uw_ms_table_lerp(r0, i, f) + w * uw_ms_table_lerp(r0 + UW_MS_TABLE, i, f);
-}
-
-/* Order 1's W_1 P_1, exactly: σ_s s e^{-τ} Q̃(τ, ψ) with τ = σ_t s, for bands in lanes (one on the host), from
- * the lamp's rows q1 (uw_ms_order1_rows). The bands' τ fall on different rows: each lane reads its own. */
-SEASIM_FN realb uw_ms_order1_b(const SEASIM_GLOBAL float* q1, realb sigma_s, realb sigma_t, real s, int i, real f) {
-  const realb tau = sigma_t * s;
-  real u[SEASIM_BAND_LANES] __attribute__((aligned(8 * SEASIM_BAND_LANES)));
-  real q[SEASIM_BAND_LANES] __attribute__((aligned(8 * SEASIM_BAND_LANES)));
-  *(realb*)u = uw_ms_order1_u_b(tau);
-  for (int l = 0; l < SEASIM_BAND_LANES; ++l) q[l] = uw_ms_order1_at(q1, u[l], i, f);
-  return sigma_s * s * exp(-tau) * *(realb*)q;
-}
-
-/* The same for one band. */
-SEASIM_FN real uw_ms_order1(const SEASIM_GLOBAL float* q1, real sigma_s, real sigma_t, real s, int i, real f) {
-  const real tau = sigma_t * s;
-  const real u = fmin(log1p(fmax(tau, R(0.0))) * ((real)(UW_MS_ORDER1_TAUS - 1) / log1p((real)UW_MS_ORDER1_TAU_MAX)),
-                      (real)(UW_MS_ORDER1_TAUS - 1));
-  return sigma_s * s * exp(-tau) * uw_ms_order1_at(q1, u, i, f);
-}
-
-/* Order 1's phase towards the eye inside the cone. There the light scattered once comes from the beam
- * around x, more collimated than HG(g) about the lamp's ray: a deflection far off x's direction has only
- * a short chord of the beam behind it. Its radiance is taken as an HG lobe of the exact light's mean
- * cosine ḡ about its mean direction m̂ (Q̃'s moments, read at τ = c s: one extinction for every band, the
- * kernel's least), so scattering towards the eye takes HG(ḡ g) about m̂ (HG lobes compose in their
- * Legendre moments). Against the exact phase integral over every eye direction, RMS of the log ratio
- * inside a 20° cone: 0.03-0.07 for g 0.5-0.95, where HG(g²) about the lamp's ray was 0.28-0.49
- * (docs/journal/lamps_orders.md). Outside the cone the edge line (uw_ms_order1_phase) stays: there it is the
- * better of the two from g = 0.7 up. */
-SEASIM_FN real uw_ms_order1_phase_lobe(const SEASIM_GLOBAL float* q1, real tau, int i, real f, real3 rad, real3 axis, real g,
-                                       real3 to_eye) {
-  const real u = fmin(log1p(fmax(tau, R(0.0))) * ((real)(UW_MS_ORDER1_TAUS - 1) / log1p((real)UW_MS_ORDER1_TAU_MAX)),
-                      (real)(UW_MS_ORDER1_TAUS - 1));
-  const real q = uw_ms_order1_at(q1, u, i, f);
-  const real par = uw_ms_order1_at(q1 + UW_MS_ORDER1_PLANE, u, i, f);
-  const real perp = uw_ms_order1_at(q1 + 2 * UW_MS_ORDER1_PLANE, u, i, f);
-  real3 across = axis - dot(axis, rad) * rad;
-  const real al = length(across);
-  across = al > R(1e-6) ? across * (R(1.0) / al) : MAKE_REAL3(0.0, 0.0, 0.0);
-  const real3 m = par * rad + perp * across;
-  const real ml = length(m);
-  if (!(q > R(0.0)) || !(ml > R(0.0))) return hg_phase(dot(rad, to_eye), g * g);
-  const real gbar = fmin(ml / q, R(1.0));
-  return hg_phase(dot(m, to_eye) / ml, gbar * g);
-}
-
-/* Order 1's phase towards the eye at x: inside the cone the exact light's lobe (uw_ms_order1_phase_lobe, τ =
- * c s), outside it the edge line's average (uw_ms_order1_phase). */
-SEASIM_FN real uw_ms_order1_phase_at(const SEASIM_GLOBAL float* q1, int i, real f, real3 x, real3 lamp, real3 axis,
-                                     real cos_cone, real g, real c, real3 to_eye) {
-  const real3 w = x - lamp;
-  const real s = length(w);
-  if (s > R(0.0) && dot(w, axis) >= cos_cone * s)
-    return uw_ms_order1_phase_lobe(q1, c * s, i, f, w * (R(1.0) / s), axis, g, to_eye);
-  return uw_ms_order1_phase(x, lamp, axis, cos_cone, g, c, to_eye);
-}
-
 /* L_ms per unit I(λ) for one band along a view ray (no shadows): `table` holds the lamp's P_1..P_orders
  * rows; orders <= UW_MS_MAX_ORDERS; t_cap the ray's cap (uw_ms_ray_cap of the least σ_t of the bands
- * that share the steps); order 1's fluence exact (uw_ms_order1, from the table's Q̃ after the rows), its
- * phase from uw_ms_order1_phase with the cone cos_cone and the extinction c_dir (the kernel's least σ_t too). The kernel runs the same steps, their geometry first and
+ * that share the steps); order 1's phase from uw_ms_order1_phase with the cone cos_cone and the
+ * extinction c_dir (the kernel's least σ_t too). The kernel runs the same steps, their geometry first and
  * then the bands in lanes. */
 SEASIM_FN real uw_ms_inscatter(real3 o, real3 d, real3 lamp, real3 axis, real cos_cone, real s_min, real t_end, real t_cap,
                                real sigma_a, real sigma_s, real g, real kappa, real c_dir, const SEASIM_GLOBAL float* table,
@@ -587,18 +394,13 @@ SEASIM_FN real uw_ms_inscatter(real3 o, real3 d, real3 lamp, real3 axis, real co
     real s, cos_alpha;
     uw_lamp_at(o, d, lamp, t, &s, &cos_alpha);
     const real cos_psi = s > R(0.0) ? dot(o + t * d - lamp, axis) / s : R(1.0);
-    int ti;
-    real tf;
-    uw_ms_table_index(cos_psi, &ti, &tf);
-    const SEASIM_GLOBAL float* q1 = uw_ms_order1_rows(table, orders);
-    real sum = uw_ms_order1(q1, sigma_s, sigma_a + sigma_s, s, ti, tf) *
-               uw_ms_order1_phase_at(q1, ti, tf, o + t * d, lamp, axis, cos_cone, g, c_dir, -d);
-    real gn1 = g * g;
-    for (int n = 2; n <= orders; ++n) {
+    real sum = R(0.0), gn1 = g;
+    for (int n = 1; n <= orders; ++n) {
       gn1 *= g; /* g^{n+1} */
-      const real P = uw_ms_table_lerp(table + (n - 1) * UW_MS_ROW, ti, tf);
+      const real P = uw_ms_table_at(table + (n - 1) * UW_MS_ROW, cos_psi);
       if (P <= R(0.0)) continue;
-      sum += uw_ms_weight(sigma_a, sigma_s, s, uw_ms_stretch(g, n, kappa), n, orders) * P * hg_phase(cos_alpha, gn1);
+      const real phase = n == 1 ? uw_ms_order1_phase(o + t * d, lamp, axis, cos_cone, g, c_dir, -d) : hg_phase(cos_alpha, gn1);
+      sum += uw_ms_weight(sigma_a, sigma_s, s, uw_ms_stretch(g, n, kappa), n, orders) * P * phase;
     }
     acc += sigma_s * exp(-(sigma_a + sigma_s) * t) * sum * uw_ms_ray_weight(&q, t, s, s_min);
   }
@@ -606,12 +408,10 @@ SEASIM_FN real uw_ms_inscatter(real3 o, real3 d, real3 lamp, real3 axis, real co
 }
 
 /* The band-independent part of the irradiance orders n >= 1 give a surface point p of normal n_s, per
- * unit I(λ), divided by π: geo[n - 1] = P_n(ψ) F(g^n, cos θ_i) / (π max(s, s_min)²) (0 where the profile
- * is), except order 1, whose exact fluence (uw_ms_order1) takes the place of W_1 P_1: geo[0] = F(g, cos θ_i)
- * / (π max(s, s_min)²). *ti, *tf: ψ's entry in the tables (for uw_ms_order1). Returns s = |p - lamp|; at
- * the lamp (s = 0) nothing is written. */
+ * unit I(λ), divided by π: geo[n - 1] = P_n(ψ) (g^n max(cos θ_i, 0) + (1 - g^n)/4) / (π max(s, s_min)²)
+ * (0 where the profile is). Returns s = |p - lamp|; at the lamp (s = 0) nothing is written. */
 SEASIM_FN real uw_ms_surface_geometry(real3 p, real3 n_s, real3 lamp, real3 axis, real s_min,
-                                      const SEASIM_GLOBAL float* table, int orders, real* geo, int* ti, real* tf) {
+                                      const SEASIM_GLOBAL float* table, int orders, real* geo) {
   const real3 w = p - lamp;
   const real s = length(w);
   if (!(s > R(0.0))) return R(0.0);
@@ -621,10 +421,7 @@ SEASIM_FN real uw_ms_surface_geometry(real3 p, real3 n_s, real3 lamp, real3 axis
   int i;
   real f;
   uw_ms_table_index(cos_psi, &i, &f);
-  *ti = i;
-  *tf = f;
-  geo[0] = uw_ms_irradiance_factor(table, cos_i) * k;
-  for (int n = 2; n <= orders; ++n) {
+  for (int n = 1; n <= orders; ++n) {
     const SEASIM_GLOBAL float* row = table + (n - 1) * UW_MS_ROW;
     const real P = uw_ms_table_lerp(row, i, f);
     geo[n - 1] = P > R(0.0) ? P * uw_ms_irradiance_factor(row, cos_i) * k : R(0.0);
@@ -632,8 +429,7 @@ SEASIM_FN real uw_ms_surface_geometry(real3 p, real3 n_s, real3 lamp, real3 axis
   return s;
 }
 
-/* One band's orders summed over that geometry with its weights at s, wn[n - 1] = W_n(s), wn[0] order 1's
- * exact W_1 P_1 (uw_ms_order1). */
+/* One band's orders summed over that geometry with its weights at s, wn[n - 1] = W_n(s). */
 SEASIM_FN real uw_ms_surface_sum(const real* geo, const real* wn, int orders) {
   real sum = R(0.0);
   for (int n = 1; n <= orders; ++n) sum += wn[n - 1] * geo[n - 1];
@@ -641,19 +437,23 @@ SEASIM_FN real uw_ms_surface_sum(const real* geo, const real* wn, int orders) {
 }
 
 /* The irradiance orders n >= 1 give a surface point p of normal n_s, per unit I(λ), divided by π (so
- * times the albedo it is the Lambertian radiance leaving p; T_view not applied), every weight from
- * uw_ms_weight and order 1 exact (uw_ms_order1): the double reference of the kernel's table reads. */
+ * times the albedo it is the Lambertian radiance leaving p; T_view not applied), given the orders'
+ * weights at s = |p - lamp|, wn[n - 1] = W_n(s) (exact: uw_ms_surface; the kernel: its table). */
+SEASIM_FN real uw_ms_surface_weighted(real3 p, real3 n_s, real3 lamp, real3 axis, real s_min,
+                                      const SEASIM_GLOBAL float* table, int orders, const real* wn) {
+  real geo[UW_MS_MAX_ORDERS];
+  if (!(uw_ms_surface_geometry(p, n_s, lamp, axis, s_min, table, orders, geo) > R(0.0))) return R(0.0);
+  return uw_ms_surface_sum(geo, wn, orders);
+}
+
+/* The same with every weight from uw_ms_weight. */
 SEASIM_FN real uw_ms_surface(real3 p, real3 n_s, real3 lamp, real3 axis, real s_min, real sigma_a, real sigma_s, real g,
                              real kappa, const SEASIM_GLOBAL float* table, int orders) {
   const real s = length(p - lamp);
   if (!(s > R(0.0)) || !(sigma_s > R(0.0))) return R(0.0);
-  real geo[UW_MS_MAX_ORDERS], wn[UW_MS_MAX_ORDERS];
-  int ti;
-  real tf;
-  if (!(uw_ms_surface_geometry(p, n_s, lamp, axis, s_min, table, orders, geo, &ti, &tf) > R(0.0))) return R(0.0);
-  wn[0] = uw_ms_order1(uw_ms_order1_rows(table, orders), sigma_s, sigma_a + sigma_s, s, ti, tf);
-  for (int n = 2; n <= orders; ++n) wn[n - 1] = uw_ms_weight(sigma_a, sigma_s, s, uw_ms_stretch(g, n, kappa), n, orders);
-  return uw_ms_surface_sum(geo, wn, orders);
+  real wn[UW_MS_MAX_ORDERS];
+  for (int n = 1; n <= orders; ++n) wn[n - 1] = uw_ms_weight(sigma_a, sigma_s, s, uw_ms_stretch(g, n, kappa), n, orders);
+  return uw_ms_surface_weighted(p, n_s, lamp, axis, s_min, table, orders, wn);
 }
 
 /* The glow's phase function: HG(G) without its forward peak (delta-M: the share G² scatters straight

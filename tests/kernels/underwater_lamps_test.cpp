@@ -115,7 +115,7 @@ seasim::Image cpuDouble(const Scene& scene, int planes, int subplanes, bool delt
         const UwLamp& L = lamps.lamps[l];
         const kd::real3 lamp{L.position[0], L.position[1], L.position[2]};
         const kd::real3 axis{L.direction[0], L.direction[1], L.direction[2]};
-        const float* rows = ms_table.data() + static_cast<size_t>(l) * kd::uw_ms_lamp_rows(cfg.orders);
+        const float* rows = ms_table.data() + static_cast<size_t>(l) * cfg.orders * UW_MS_ROW;
         for (size_t i = 0; i < setup.bands.size(); ++i) {
           const UwBand& b = setup.bands[i];
           double v = kd::uw_lamp_inscatter(o, d, lamp, axis, L.cos_cone, L.cos_inner, lamps.params.s_min, t_end, b.b,

@@ -128,13 +128,12 @@ TEST(UnderwaterLampsWeights, BandsRunFastestPaddedToTheWidestLanes) {
       const float* h1 = h0 + UW_MS_HALO_Z * 32;
       const double want = 0.7 * ((1 - f) * h0[0] + f * h0[32]) + 0.3 * ((1 - f) * h1[0] + f * h1[32]);
       EXPECT_NEAR(kd::uw_ms_halo_at_b(halo, nb, i, 7, 0.3, j / 4, f), want, 1e-12 * std::fabs(want) + 1e-30);
-      // The orders' sum in lanes is order 1's given value and the per-band weights of the others against the
-      // factors, the factors <= 0 left out.
-      const double geo[4] = {0.7, 0.5, -1.0, 0.2};
+      // The orders' sum in lanes is the per-band weights against the factors, the factors <= 0 left out.
+      const double geo[4] = {0.7, 0.0, -1.0, 0.2};
       double w4[UW_MS_MAX_ORDERS];
       kd::uw_ms_weights_at(lamp, nb, i, orders, j, f, w4);
-      const double want_sum = 0.7 * 0.125 + 0.5 * w4[1] + 0.2 * w4[3];
-      EXPECT_NEAR(kd::uw_ms_orders_sum_b(lamp, nb, i, orders, j, f, 0.125, geo), want_sum, 1e-12 * want_sum);
+      EXPECT_NEAR(kd::uw_ms_orders_sum_b(lamp, nb, i, orders, j, f, geo), 0.7 * w4[0] + 0.2 * w4[3],
+                  1e-12 * (0.7 * w4[0] + 0.2 * w4[3]));
     }
   }
   // The padding: bands 19..31 of every entry.
