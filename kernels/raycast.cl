@@ -9,12 +9,18 @@
  * (0 in shadow; caustics redistribute light, so > 1 occurs).
  * Defines (host/plan): SEASIM_HAS_OBJECTS, SEASIM_HAS_SUN (shadow rays are needed only with a sun),
  * SEASIM_CAUSTICS (UW_CAUSTICS_*).
+ * Each work-item casts UW_RAYCAST_PIXELS pixels of a row in lanes (common/underwater_hit_lanes.h): PoCL does
+ * not vectorise the scalar cast across work-items, and this is most of the frame's cost that does not
+ * depend on the band count. The host launches ceil(width / UW_RAYCAST_PIXELS) x height work-items.
  */
 #include "common/compat.h"
 #include "common/optics.h"
 #include "common/shafts.h"
 #include "common/underwater_params.h"
 #include "common/underwater.h"
+#define SEASIM_BAND_LANES UW_RAYCAST_PIXELS /* pixel lanes, not bands: the lanes' types and macros */
+#include "common/band_lanes.h"
+#include "common/underwater_hit_lanes.h"
 #if SEASIM_CAUSTICS == 1
 #include "common/caustic_texture.h"
 #endif
@@ -24,46 +30,78 @@
 
 __kernel void raycast(__constant UwParams* p, __global const UwObject* objects, __global const float* caustic_maps,
                       __global float4* geom, __global int* material, __global float* sun_vis) {
-  const int x = get_global_id(0);
+  const int x0 = get_global_id(0) * UW_RAYCAST_PIXELS;
   const int y = get_global_id(1);
-  if (x >= p->width || y >= p->height) return;
-  const int pixel = y * p->width + x;
+  if (x0 >= p->width || y >= p->height) return;
 
+  /* The view directions of the row's pixels x0 .. x0 + UW_RAYCAST_PIXELS - 1 (uw_screen_dir per lane). */
   const float3 o = (float3)(p->cam_pos[0], p->cam_pos[1], p->cam_pos[2]);
-  const float3 d = uw_screen_dir(p, (x + 0.5f) / p->width, (y + 0.5f) / p->height);
+  const float3 right = (float3)(p->cam_right[0], p->cam_right[1], p->cam_right[2]);
+  const float3 up = (float3)(p->cam_up[0], p->cam_up[1], p->cam_up[2]);
+  const float3 fwd = (float3)(p->cam_forward[0], p->cam_forward[1], p->cam_forward[2]);
+  const realb u = (2.0f * (lane_offsets() + (float)x0 + 0.5f) / (float)p->width - 1.0f) * (p->tan_half_fov_y * p->aspect);
+  const float v = (1.0f - 2.0f * (y + 0.5f) / p->height) * p->tan_half_fov_y;
+  const real3b d = uw_normalize3b(uw_r3b(fwd.x + u * right.x + v * up.x, fwd.y + u * right.y + v * up.y,
+                                         fwd.z + u * right.z + v * up.z));
+  const real3b o_b = uw_splat3b(o);
 
 #if SEASIM_HAS_OBJECTS
   const int count = p->object_count;
 #else
   const int count = 0;
 #endif
-  float3 n;
-  int mat;
-  const float S = uw_scene_hit(objects, count, p->bottom_depth, o, d, 0.0f, &n, &mat);
+  real3b n;
+  realb mat;
+  const realb S = uw_scene_hit_b(objects, count, p->bottom_depth, o_b, d, SPLATB(0.0f), &n, &mat);
 
-  float vis = 0.0f;
+  realb vis = SPLATB(0.0f);
 #if SEASIM_HAS_SUN
-  if (mat >= 0 || mat == UW_MAT_BOTTOM) {
-    const float3 s_w = (float3)(p->sun_dir_water[0], p->sun_dir_water[1], p->sun_dir_water[2]);
-    const float3 hit = o + S * d;
-    vis = 1.0f;
+  const float3 s_w = (float3)(p->sun_dir_water[0], p->sun_dir_water[1], p->sun_dir_water[2]);
+  const real3b hit = uw_along3b(o_b, S, d);
+  const maskb lit = (mat >= 0.0f) | (mat == (float)UW_MAT_BOTTOM);
 #if SEASIM_HAS_OBJECTS
-    vis = uw_sun_visibility(objects, count, hit, n, s_w);
+  vis = SELECTB(lit, uw_sun_visibility_b(objects, count, hit, n, s_w), vis);
+#else
+  vis = SELECTB(lit, SPLATB(1.0f), vis);
 #endif
+#endif
+
+  /* The lanes out to the row, the pixels past its end left alone. */
+  float S_l[UW_RAYCAST_PIXELS] __attribute__((aligned(4 * UW_RAYCAST_PIXELS)));
+  float nx[UW_RAYCAST_PIXELS] __attribute__((aligned(4 * UW_RAYCAST_PIXELS)));
+  float ny[UW_RAYCAST_PIXELS] __attribute__((aligned(4 * UW_RAYCAST_PIXELS)));
+  float nz[UW_RAYCAST_PIXELS] __attribute__((aligned(4 * UW_RAYCAST_PIXELS)));
+  float m_l[UW_RAYCAST_PIXELS] __attribute__((aligned(4 * UW_RAYCAST_PIXELS)));
+  float v_l[UW_RAYCAST_PIXELS] __attribute__((aligned(4 * UW_RAYCAST_PIXELS)));
+  *(realb*)S_l = S;
+  *(realb*)nx = n.x;
+  *(realb*)ny = n.y;
+  *(realb*)nz = n.z;
+  *(realb*)m_l = mat;
+  *(realb*)v_l = vis;
+  const int count_x = min(UW_RAYCAST_PIXELS, p->width - x0);
+  for (int q = 0; q < count_x; ++q) {
+    const int pixel = y * p->width + x0 + q;
+    float vq = v_l[q];
+#if SEASIM_HAS_SUN && SEASIM_CAUSTICS != 0
+    if (vq > 0.0f) {
+      /* The caustics where the lane's hit is (per pixel: a texture or map read). */
+      const float3 dq = (float3)(((const float*)&d.x)[q], ((const float*)&d.y)[q], ((const float*)&d.z)[q]);
+      const float3 hq = o + S_l[q] * dq;
 #if SEASIM_CAUSTICS == 1
-    /* Where the refracted sun ray through this point crossed the surface. */
-    const float t_up = -hit.y / s_w.y;
-    vis *= caustic_modulation(hit.x + t_up * s_w.x, hit.z + t_up * s_w.z, p->time, p->caustic_period,
-                              p->caustic_speed);
+      /* Where the refracted sun ray through this point crossed the surface. */
+      const float t_up = -hq.y / s_w.y;
+      vq *= caustic_modulation(hq.x + t_up * s_w.x, hq.z + t_up * s_w.z, p->time, p->caustic_period, p->caustic_speed);
 #endif
 #if SEASIM_CAUSTICS == 2
-    /* The maps were splatted along the refracted rays already: read them where the point is. */
-    vis *= caustic_map_sample(caustic_maps, p->caustic_map_size, p->caustic_layers, p->caustic_extent,
-                              p->caustic_depth_max, hit.x, -hit.y, hit.z);
+      /* The maps were splatted along the refracted rays already: read them where the point is. */
+      vq *= caustic_map_sample(caustic_maps, p->caustic_map_size, p->caustic_layers, p->caustic_extent,
+                               p->caustic_depth_max, hq.x, -hq.y, hq.z);
 #endif
+    }
+#endif
+    geom[pixel] = (float4)(S_l[q], nx[q], ny[q], nz[q]);
+    material[pixel] = (int)m_l[q];
+    sun_vis[pixel] = vq;
   }
-#endif
-  geom[pixel] = (float4)(S, n.x, n.y, n.z);
-  material[pixel] = mat;
-  sun_vis[pixel] = vis;
 }

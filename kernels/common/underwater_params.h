@@ -12,6 +12,9 @@
 #ifndef SEASIM_UNDERWATER_PARAMS_H /* also included by host/math/kernel_math.h */
 #define SEASIM_UNDERWATER_PARAMS_H
 
+/* Pixels of a row that one work-item of raycast.cl casts in lanes: its launch is ceil(width / this) wide. */
+#define UW_RAYCAST_PIXELS 16
+
 /* Object types (UwObject.type). */
 #define UW_SPHERE 0
 #define UW_BOX 1

@@ -126,7 +126,7 @@ TEST(UnderwaterCausticMap, RaycastReadsTheMapsAsTheCpuDoes) {
   for (const cl::Buffer* b : std::initializer_list<const cl::Buffer*>{&setup.params, &setup.objects, &stack.maps(),
                                                                       &geom_buffer, &material_buffer, &vis_buffer})
     kernel.setArg(arg++, *b);
-  seasim::runKernel2d(device, "raycast", kernel, w, h);
+  seasim::runKernel2d(device, "raycast", kernel, (w + UW_RAYCAST_PIXELS - 1) / UW_RAYCAST_PIXELS, h);
   device.queue().enqueueReadBuffer(geom_buffer, CL_TRUE, 0, sizeof(cl_float4) * geom.size(), geom.data());
   device.queue().enqueueReadBuffer(vis_buffer, CL_TRUE, 0, sizeof(float) * vis.size(), vis.data());
 

@@ -14,6 +14,10 @@
 #include "render/pass.h"
 #include "util/error.h"
 
+extern "C" {
+#include "common/underwater_params.h"
+}
+
 namespace seasim {
 
 namespace {
@@ -46,8 +50,9 @@ class RaycastNode : public Pass {
   void execute(FrameContext& ctx, PassResources& res) override {
     const cl::Buffer* caustic_maps = underwaterCausticMaps(res);
     onDevice("raycast arguments", [&] { kernel_.setArg(2, caustic_maps ? *caustic_maps : no_caustics_); });
-    ctx.timings.push_back(
-        {"raycast", runKernel2d(ctx.device(), "raycast", kernel_, ctx.scene().camera.width, ctx.scene().camera.height)});
+    // A work-item casts UW_RAYCAST_PIXELS pixels of its row.
+    const size_t across = (size_t(ctx.scene().camera.width) + UW_RAYCAST_PIXELS - 1) / UW_RAYCAST_PIXELS;
+    ctx.timings.push_back({"raycast", runKernel2d(ctx.device(), "raycast", kernel_, across, ctx.scene().camera.height)});
   }
 
  private:
