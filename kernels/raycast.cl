@@ -34,16 +34,9 @@ __kernel void raycast(__constant UwParams* p, __global const UwObject* objects, 
   const int y = get_global_id(1);
   if (x0 >= p->width || y >= p->height) return;
 
-  /* The view directions of the row's pixels x0 .. x0 + UW_RAYCAST_PIXELS - 1 (uw_screen_dir per lane). */
-  const float3 o = (float3)(p->cam_pos[0], p->cam_pos[1], p->cam_pos[2]);
-  const float3 right = (float3)(p->cam_right[0], p->cam_right[1], p->cam_right[2]);
-  const float3 up = (float3)(p->cam_up[0], p->cam_up[1], p->cam_up[2]);
-  const float3 fwd = (float3)(p->cam_forward[0], p->cam_forward[1], p->cam_forward[2]);
-  const realb u = (2.0f * (lane_offsets() + (float)x0 + 0.5f) / (float)p->width - 1.0f) * (p->tan_half_fov_y * p->aspect);
-  const float v = (1.0f - 2.0f * (y + 0.5f) / p->height) * p->tan_half_fov_y;
-  const real3b d = uw_normalize3b(uw_r3b(fwd.x + u * right.x + v * up.x, fwd.y + u * right.y + v * up.y,
-                                         fwd.z + u * right.z + v * up.z));
-  const real3b o_b = uw_splat3b(o);
+  /* The view directions of the row's pixels x0 .. x0 + UW_RAYCAST_PIXELS - 1. */
+  const real3b d = uw_screen_dir_b(p, (lane_offsets() + ((float)x0 + 0.5f)) / (float)p->width, (y + 0.5f) / p->height);
+  const real3b o_b = uw_splat3b((float3)(p->cam_pos[0], p->cam_pos[1], p->cam_pos[2]));
 
 #if SEASIM_HAS_OBJECTS
   const int count = p->object_count;
@@ -86,8 +79,7 @@ __kernel void raycast(__constant UwParams* p, __global const UwObject* objects, 
 #if SEASIM_HAS_SUN && SEASIM_CAUSTICS != 0
     if (vq > 0.0f) {
       /* The caustics where the lane's hit is (per pixel: a texture or map read). */
-      const float3 dq = (float3)(((const float*)&d.x)[q], ((const float*)&d.y)[q], ((const float*)&d.z)[q]);
-      const float3 hq = o + S_l[q] * dq;
+      const float3 hq = (float3)(((const float*)&hit.x)[q], ((const float*)&hit.y)[q], ((const float*)&hit.z)[q]);
 #if SEASIM_CAUSTICS == 1
       /* Where the refracted sun ray through this point crossed the surface. */
       const float t_up = -hq.y / s_w.y;

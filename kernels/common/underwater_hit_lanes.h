@@ -37,6 +37,17 @@ SEASIM_FN real3b uw_select3b(maskb m, real3b a, real3b b) {
   return uw_r3b(SELECTB(m, a.x, b.x), SELECTB(m, a.y, b.y), SELECTB(m, a.z, b.z));
 }
 
+/* uw_screen_dir per lane: the view directions through the screen points (sx, sy), sx per lane (a row's pixels). */
+SEASIM_FN real3b uw_screen_dir_b(const SEASIM_CONSTANT UwParams* p, realb sx, real sy) {
+  const realb u = (R(2.0) * sx - R(1.0)) * p->tan_half_fov_y * p->aspect;
+  const real v = (R(1.0) - R(2.0) * sy) * p->tan_half_fov_y;
+  const real3 right = MAKE_REAL3(p->cam_right[0], p->cam_right[1], p->cam_right[2]);
+  const real3 up = MAKE_REAL3(p->cam_up[0], p->cam_up[1], p->cam_up[2]);
+  const real3 fwd = MAKE_REAL3(p->cam_forward[0], p->cam_forward[1], p->cam_forward[2]);
+  return uw_normalize3b(uw_r3b(fwd.x + u * right.x + v * up.x, fwd.y + u * right.y + v * up.y,
+                               fwd.z + u * right.z + v * up.z));
+}
+
 /* ray_sphere per lane: the nearer root in (t_min, t_max), else the farther, else -1 (the same stable roots). */
 SEASIM_FN realb uw_ray_sphere_b(real3b o, real3b d, real3 c, real r, realb t_min, realb t_max) {
   const real3b oc = uw_r3b(o.x - c.x, o.y - c.y, o.z - c.z);

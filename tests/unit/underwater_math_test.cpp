@@ -367,3 +367,26 @@ TEST(UnderwaterMath, SceneHitInPixelLanesMatchesTheScalarCast) {
   for (int k = 0; k < 4; ++k) EXPECT_GT(hits[k], 500) << k;
   EXPECT_LE(float_material_differs, 2);
 }
+
+// The view directions of a row's pixels in lanes (uw_screen_dir_b) are uw_screen_dir's, corners included.
+TEST(UnderwaterMath, ScreenDirectionsInPixelLanesMatchTheScalarOnes) {
+  UwParams p{};
+  const kd::real3 fwd = kd::normalize(kd::real3{0.2, -0.4, -1.0});
+  const kd::real3 right = kd::normalize(kd::cross(fwd, kd::real3{0, 1, 0}));
+  const kd::real3 up = kd::cross(right, fwd);
+  for (int k = 0; k < 3; ++k) {
+    p.cam_forward[k] = float((&fwd.x)[k]);
+    p.cam_right[k] = float((&right.x)[k]);
+    p.cam_up[k] = float((&up.x)[k]);
+  }
+  p.tan_half_fov_y = float(std::tan(0.5));
+  p.aspect = 16.0f / 9.0f;
+  for (double sx : {0.0, 0.013, 0.5, 0.77, 1.0})
+    for (double sy : {0.0, 0.31, 1.0}) {
+      const kd::real3 want = kd::uw_screen_dir(&p, sx, sy);
+      const kd::real3b got = kd::uw_screen_dir_b(&p, sx, sy);
+      EXPECT_NEAR(got.x, want.x, 1e-15) << sx << " " << sy;
+      EXPECT_NEAR(got.y, want.y, 1e-15) << sx << " " << sy;
+      EXPECT_NEAR(got.z, want.z, 1e-15) << sx << " " << sy;
+    }
+}
