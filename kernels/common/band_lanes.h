@@ -11,6 +11,7 @@
  *   LOADB(p, i)            bands i..i+N-1 of a float row p (p padded to a multiple of N)
  *   SPLATB(x)              x in every lane
  *   SELECTB(m, a, b)       per lane: m ? a : b (m from a comparison of realb values, combined with &)
+ *   ANYB(m)                whether any lane of m is set (a case no lane needs is skipped)
  *   SUMB(v)                the sum of the lanes
  *   load_lanes, store_lanes the first count lanes of a row that is not padded (the others read as 0)
  *   lane_offsets()         0, 1, …, N - 1 (a node loop run in lanes: node k0 + lane)
@@ -47,6 +48,7 @@ typedef int16 maskb;
 #endif
 #define SPLATB(x) ((realb)(x))
 #define SELECTB(m, a, b) select((b), (a), (m))
+#define ANYB(m) any(m)
 
 /* Writes the first count (>= 1) lanes of v to dst (the last step of a band count that is not a
  * multiple of the lanes). */
@@ -77,6 +79,7 @@ SEASIM_FN realb load_lanes(const __global float* src, int count) {
 #define LOADB(p, i) (static_cast<real>((p)[i]))
 #define SPLATB(x) (static_cast<real>(x))
 #define SELECTB(m, a, b) ((m) ? (a) : (b))
+#define ANYB(m) ((m) != 0)
 #define SUMB(v) (v)
 #endif
 typedef real realb;

@@ -14,6 +14,8 @@
 
 /* Pixels of a row that one work-item of raycast.cl casts in lanes: its launch is ceil(width / this) wide. */
 #define UW_RAYCAST_PIXELS 16
+/* Lattice pixels of a row that one work-item of sand_share.cl evaluates in lanes: its launch is ceil(map_w / this). */
+#define UW_SAND_SHARE_PIXELS 16
 
 /* Object types (UwObject.type). */
 #define UW_SPHERE 0

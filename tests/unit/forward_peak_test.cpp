@@ -7,7 +7,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <numbers>
+#include <random>
+#include <algorithm>
 
 #include "math/kernel_math.h"
 #include "underwater/forward_peak.h"
@@ -219,6 +222,7 @@ namespace {
 // of the sunlit and of the diffusely lit sand's light a water point gets, against objects whose answer is
 // known, in float and double.
 using seasim::testing::uwTestBox;
+using seasim::testing::uwTestSphere;
 
 TEST(SandShare, KnownAnswersInFloatAndDouble) {
   const double H = 5.0;
@@ -337,5 +341,63 @@ TEST(AboveShare, KnownAnswersInFloatAndDouble) {
   }
 }
 
+
+// The shares in pixel lanes (common/underwater_ordinates_lanes.h, one lane on the host; sand_share.cl runs 16)
+// against the scalar uwi_sand_shares and uwi_above_share: the same values over random view rays among a sphere,
+// two boxes (one a bright rock, one a black slab) over a bottom, with hits at the ray's own scene hit, short of
+// it, inside a rock and in deep water; a sun high, low and below the horizon. Double to 1e-12; float, the
+// kernel's, to 1e-5 but for rays that graze an edge and round to its other side (a step of a quarter at most).
+TEST(SandShare, PixelLanesMatchTheScalarShares) {
+  const UwObject objects[3] = {uwTestSphere(0.5f, -6.0f, -3.0f, 1.0f), uwTestBox(-2.5f, -8.0f, -5.0f, -1.0f, -6.5f, -3.5f),
+                               uwTestBox(1.0f, -7.2f, -1.0f, 3.0f, -7.0f, 1.0f)};
+  const float albedo[3] = {0.4f, 0.2f, 0.0f};
+  const double H = 8.0;
+  std::mt19937 rng(97531u);
+  auto uniform = [&](double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); };
+  int float_off = 0, partial = 0;
+  const int rays = 3000;
+  for (int i = 0; i < rays; ++i) {
+    const kd::real3 o{uniform(-3, 3), uniform(-7.5, -1), uniform(-4, 3)};
+    const kd::real3 d = kd::normalize(kd::real3{uniform(-1, 1), uniform(-1, 0.4), uniform(-1, 1)});
+    const kd::real3 sun = kd::normalize(kd::real3{uniform(-1, 1), i % 5 == 0 ? -0.2 : uniform(0.05, 1), uniform(-1, 1)});
+    kd::real3 n{};
+    int mat = 0;
+    double S = kd::uw_scene_hit(objects, 3, H, o, d, 0.0, &n, &mat);
+    if (i % 7 == 0) S *= 0.5;  // a hit short of the scene's
+    if (i % 11 == 0) S = 1e30;  // deep water
+    const int count = i % 13 == 0 ? 0 : 3;
+    const double c_dm = uniform(0.02, 0.5), k = uniform(0.01, 0.2), sand = i % 17 == 0 ? 0.0 : 0.3;
+    double open = 0, open_b = 0;
+    const double v = kd::uwi_sand_shares(objects, count, H, o, d, S, c_dm, k, sun, albedo, 1, sand, &open);
+    const double v_b = kd::uwi_sand_shares_b(objects, count, H, o, kd::uw_splat3b(d), S, c_dm, k, sun, albedo, 1, sand,
+                                             &open_b);
+    EXPECT_NEAR(v_b, v, 1e-12) << i;
+    EXPECT_NEAR(open_b, open, 1e-12) << i;
+    const double a = kd::uwi_above_share(objects, count, H, o, d, S, c_dm, k);
+    EXPECT_NEAR(kd::uwi_above_share_b(objects, count, H, o, kd::uw_splat3b(d), S, c_dm, k), a, 1e-12) << i;
+    partial += (v > 0 && v < 1) || (a > 0 && a < 1);
+    // Float.
+    const kf::real3 of{float(o.x), float(o.y), float(o.z)}, df{float(d.x), float(d.y), float(d.z)};
+    const kf::real3 sf{float(sun.x), float(sun.y), float(sun.z)};
+    float open_f = 0, open_fb = 0;
+    const float vf = kf::uwi_sand_shares(objects, count, float(H), of, df, float(S), float(c_dm), float(k), sf, albedo, 1,
+                                         float(sand), &open_f);
+    const float vf_b = kf::uwi_sand_shares_b(objects, count, float(H), of, kf::uw_splat3b(df), float(S), float(c_dm),
+                                             float(k), sf, albedo, 1, float(sand), &open_fb);
+    const float af = kf::uwi_above_share(objects, count, float(H), of, df, float(S), float(c_dm), float(k));
+    const float af_b = kf::uwi_above_share_b(objects, count, float(H), of, kf::uw_splat3b(df), float(S), float(c_dm),
+                                             float(k));
+    const double worst = std::max({std::fabs(vf_b - vf), std::fabs(open_fb - open_f), std::fabs(af_b - af)});
+    if (worst > 1e-5) {
+      ++float_off;
+      EXPECT_LE(worst, 0.25 + 1e-5) << i;
+    }
+  }
+  std::printf("[ numbers  ] rays with a share strictly between 0 and 1: %d of %d; float lanes off by > 1e-5: %d\n",
+              partial, rays, float_off);
+  // The objects were in the way of a good part of the rays, so the comparison saw every branch.
+  EXPECT_GT(partial, rays / 5);
+  EXPECT_LE(float_off, rays / 500);
+}
 
 }  // namespace

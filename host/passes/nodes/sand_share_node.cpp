@@ -55,8 +55,9 @@ class SandShareNode : public Pass {
       kernel_.setArg(arg++, static_cast<cl_int>(share_->height));
       kernel_.setArg(arg++, share_->map);
     });
-    ctx.timings.push_back(
-        {"sand_share", runKernel2d(ctx.device(), "sand_share", kernel_, share_->width, share_->height)});
+    // A work-item evaluates UW_SAND_SHARE_PIXELS lattice pixels of its row.
+    const size_t across = (static_cast<size_t>(share_->width) + UW_SAND_SHARE_PIXELS - 1) / UW_SAND_SHARE_PIXELS;
+    ctx.timings.push_back({"sand_share", runKernel2d(ctx.device(), "sand_share", kernel_, across, share_->height)});
   }
 
  private:
