@@ -52,6 +52,7 @@
 #include "common/shafts.h"
 #include "common/underwater_params.h"
 #include "common/underwater.h"
+#include "common/underwater_hit_lanes.h"
 #include "common/underwater_lamps_params.h"
 #include "common/underwater_lamps.h"
 #if SEASIM_LAMPS_ORDERS
@@ -74,6 +75,23 @@ static inline float lamp_visible(__global const UwObject* objects, int count, un
   return uw_objects_block(objects, count, candidates, p, w / s, 0.0f, s) ? 0.0f : 1.0f;
 #else
   return 1.0f;
+#endif
+}
+
+/* lamp_visible per lane, as a mask: whether a candidate object lies between the point o + t d (t per lane) and
+ * the lamp. */
+static inline maskb lamp_blocked_b(__global const UwObject* objects, int count, unsigned int candidates, float3 o,
+                                   float3 d, realb t, float3 lamp) {
+  const real3b p = uw_along3b(uw_splat3b(o), t, uw_splat3b(d));
+  const real3b w = uw_r3b(lamp.x - p.x, lamp.y - p.y, lamp.z - p.z);
+  const realb s = sqrt(uw_dot3b(w, w));
+  const maskb apart = s > 0.0f;
+#if SEASIM_HAS_OBJECTS
+  const realb inv = 1.0f / SELECTB(apart, s, SPLATB(1.0f));
+  return apart & uw_objects_block_b(objects, count, candidates, p, uw_r3b(w.x * inv, w.y * inv, w.z * inv),
+                                    SPLATB(0.0f), s);
+#else
+  return apart & !apart;
 #endif
 }
 
@@ -569,18 +587,12 @@ static inline void lamp_beam(const LampMedia* md, __global const UwObject* objec
         const realb t = t0 + (j + 0.5f) * sub;
         const realb prof = SELECTB(inner, SPLATB(1.0f),
                                    lamp_profile_lanes(t - sp.a, h2, D, E, d_axis, offset_axis, L));
-        if (!shadowed) {
-          J += prof;
+        /* Shadow rays in the lanes: exact tests against the fan's objects, where the profile is lit. */
+        if (shadowed && ANYB(prof > 0.0f)) {
+          J += SELECTB(lamp_blocked_b(objects, count, fan_objects, v->o, v->d, t, lamp), SPLATB(0.0f), prof);
           continue;
         }
-        /* Shadow rays, lane by lane: exact tests against the fan's objects. */
-        float prof_lanes[SEASIM_BAND_LANES] __attribute__((aligned(4 * SEASIM_BAND_LANES)));
-        float t_lanes[SEASIM_BAND_LANES] __attribute__((aligned(4 * SEASIM_BAND_LANES)));
-        *(realb*)prof_lanes = prof;
-        *(realb*)t_lanes = t;
-        for (int q = 0; q < min(SEASIM_BAND_LANES, n_planes - l0); ++q)
-          if (prof_lanes[q] > 0.0f) prof_lanes[q] *= lamp_visible(objects, count, fan_objects, v->o + t_lanes[q] * v->d, lamp);
-        J += *(realb*)prof_lanes;
+        J += prof;
       }
       const realb u = t0 + 0.5f * sp.dt - sp.a;
       const realb s = sqrt(h2 + u * u);
@@ -612,25 +624,54 @@ static inline void lamp_beam(const LampMedia* md, __global const UwObject* objec
 #endif
   }
   if (!sp.tail) return;
-  /* The far field's samples (uw_lamp_tail_weight) as one more block: their shadow rays may leave the fan. */
+  /* The far field's samples (uw_lamp_tail_weight) as one more block, SEASIM_BAND_LANES samples at a time in the
+   * lanes: the rule's angles, the samples' geometry and profile (lamp_profile_lanes, as the planes'), and their
+   * shadow rays, which may leave the fan. */
   float w[UW_LAMP_TAIL_SAMPLES], x[UW_LAMP_TAIL_SAMPLES];
 #if SEASIM_LAYER_LAMPS_SPLIT
   float w_plain[UW_LAMP_TAIL_SAMPLES];
 #endif
   int used = 0;
-  for (int j = 0; j < UW_LAMP_TAIL_SAMPLES; ++j) {
-    float t;
-    const float weight = uw_lamp_tail_weight(&sp, j, md->g, v->o, v->d, lamp, &t, &x[used]);
-    const float3 P = v->o + t * v->d;
-    float H = uw_lamp_profile(P, lamp, axis, L->cos_cone, L->cos_inner);
-    if (H > 0.0f && count > 0) H *= lamp_visible(objects, count, UW_ALL_OBJECTS, P, lamp);
-    if (!(H > 0.0f)) continue;
-    w[used] = H * weight;
+  const float half_range = 0.5f * (sp.phi_b - sp.phi_p);
+  for (int j0 = 0; j0 < UW_LAMP_TAIL_SAMPLES; j0 += SEASIM_BAND_LANES) {
+    float node_l[SEASIM_BAND_LANES] __attribute__((aligned(4 * SEASIM_BAND_LANES)));
+    float weight_l[SEASIM_BAND_LANES] __attribute__((aligned(4 * SEASIM_BAND_LANES)));
+    for (int q = 0; q < SEASIM_BAND_LANES; ++q) {
+      float gw;
+      node_l[q] = gauss_legendre8_node(min(j0 + q, UW_LAMP_TAIL_SAMPLES - 1), &gw);
+      weight_l[q] = gw;
+    }
+    const realb tan_phi = tan(sp.phi_p + half_range * (1.0f + *(realb*)node_l));
+    const realb t = sp.a + sp.r * tan_phi;
+    const realb u = t - sp.a;
+    /* uw_lamp_at in the lanes: the lamp's distance s and the scattering angle's cosine. */
+    const real3b q3 = uw_r3b(offset.x + u * v->d.x, offset.y + u * v->d.y, offset.z + u * v->d.z);
+    const realb s = sqrt(uw_dot3b(q3, q3));
+    const maskb apart = s > 0.0f;
+    const realb cos_alpha =
+        SELECTB(apart, -(q3.x * v->d.x + q3.y * v->d.y + q3.z * v->d.z) / SELECTB(apart, s, SPLATB(1.0f)), SPLATB(1.0f));
+    const realb jacobian = sp.r * (1.0f + tan_phi * tan_phi) * half_range * *(realb*)weight_l / fmax(s * s, 1e-30f);
+    realb H = lamp_profile_lanes(u, h2, D, E, d_axis, offset_axis, L);
+    if (count > 0 && ANYB(H > 0.0f))
+      H = SELECTB(lamp_blocked_b(objects, count, UW_ALL_OBJECTS, v->o, v->d, t, lamp), SPLATB(0.0f), H);
+    float H_l[SEASIM_BAND_LANES] __attribute__((aligned(4 * SEASIM_BAND_LANES)));
+    float w_l[SEASIM_BAND_LANES] __attribute__((aligned(4 * SEASIM_BAND_LANES)));
+    float x_l[SEASIM_BAND_LANES] __attribute__((aligned(4 * SEASIM_BAND_LANES)));
+    *(realb*)H_l = H;
+    *(realb*)w_l = H * jacobian * hg_phase_b(cos_alpha, md->g);
+    *(realb*)x_l = s + t;
 #if SEASIM_LAYER_LAMPS_SPLIT
-    float t_plain, x_plain;
-    w_plain[used] = H * uw_lamp_tail_weight(&sp, j, md->plain_g, v->o, v->d, lamp, &t_plain, &x_plain);
+    float w_plain_l[SEASIM_BAND_LANES] __attribute__((aligned(4 * SEASIM_BAND_LANES)));
+    *(realb*)w_plain_l = H * jacobian * hg_phase_b(cos_alpha, md->plain_g);
 #endif
-    ++used;
+    for (int q = 0; q < min(SEASIM_BAND_LANES, UW_LAMP_TAIL_SAMPLES - j0); ++q) {
+      if (!(H_l[q] > 0.0f)) continue;
+      w[used] = w_l[q];
+#if SEASIM_LAYER_LAMPS_SPLIT
+      w_plain[used] = w_plain_l[q];
+#endif
+      x[used++] = x_l[q];
+    }
   }
   if (used == 0) return;
   lamp_beam_block(o, bands, bands, I, nb, w, x, used, 1, o->to_single);

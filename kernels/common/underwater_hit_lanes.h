@@ -163,27 +163,34 @@ SEASIM_FN realb uw_scene_hit_b(const SEASIM_GLOBAL UwObject* objects, int count,
   return best;
 }
 
+/* uw_objects_block per lane: whether a candidate object (bit k of candidates for object k < 32, every object
+ * from 32 on) lies on the ray o + t d (d unit, per lane) for t in (t_min, t_max) (per lane). */
+SEASIM_FN maskb uw_objects_block_b(const SEASIM_GLOBAL UwObject* objects, int count, unsigned int candidates, real3b o,
+                                   real3b d, realb t_min, realb t_max) {
+  maskb blocked = SPLATB(R(1.0)) < R(0.0); /* none yet */
+  for (int k = 0; k < count; ++k) {
+    if (k < 32 && !((candidates >> k) & 1u)) continue;
+    const SEASIM_GLOBAL UwObject* ob = &objects[k];
+    const real3 a = MAKE_REAL3(ob->a[0], ob->a[1], ob->a[2]);
+    const real3 b = MAKE_REAL3(ob->b[0], ob->b[1], ob->b[2]);
+    realb t, axis;
+    if (ob->type == UW_SPHERE) t = uw_ray_sphere_b(o, d, a, (real)ob->a[3], t_min, t_max);
+    else if (ob->type == UW_BOX) t = uw_ray_box_b(o, d, a, b, t_min, t_max, &axis);
+    else t = uw_ray_plane_b(o, d, a, b, t_min, t_max);
+    blocked = blocked | (t > R(0.0));
+  }
+  return blocked;
+}
+
 /* uw_sun_visibility per lane: 0 where an object lies on the shadow ray from hit (offset 1e-3 along n) towards
  * the sun s_w before it leaves the water, else 1. */
 SEASIM_FN realb uw_sun_visibility_b(const SEASIM_GLOBAL UwObject* objects, int count, real3b hit, real3b n, real3 s_w) {
   const real3b o = uw_r3b(hit.x + R(1e-3) * n.x, hit.y + R(1e-3) * n.y, hit.z + R(1e-3) * n.z);
-  const real3b d = uw_splat3b(s_w);
   realb t_surface = SPLATB(UW_INFINITE);
   if (s_w.y > R(0.0)) {
     const realb t = -o.y / s_w.y;
     t_surface = SELECTB(t > R(0.0), t, t_surface);
   }
-  const realb t_min = SPLATB(R(0.0));
-  maskb blocked = t_min > t_surface; /* none yet */
-  for (int k = 0; k < count; ++k) {
-    const SEASIM_GLOBAL UwObject* ob = &objects[k];
-    const real3 a = MAKE_REAL3(ob->a[0], ob->a[1], ob->a[2]);
-    const real3 b = MAKE_REAL3(ob->b[0], ob->b[1], ob->b[2]);
-    realb t, axis;
-    if (ob->type == UW_SPHERE) t = uw_ray_sphere_b(o, d, a, (real)ob->a[3], t_min, t_surface);
-    else if (ob->type == UW_BOX) t = uw_ray_box_b(o, d, a, b, t_min, t_surface, &axis);
-    else t = uw_ray_plane_b(o, d, a, b, t_min, t_surface);
-    blocked = blocked | (t > R(0.0));
-  }
+  const maskb blocked = uw_objects_block_b(objects, count, UW_ALL_OBJECTS, o, uw_splat3b(s_w), SPLATB(R(0.0)), t_surface);
   return SELECTB(blocked, SPLATB(R(0.0)), SPLATB(R(1.0)));
 }
