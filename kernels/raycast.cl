@@ -11,7 +11,8 @@
  * SEASIM_CAUSTICS (UW_CAUSTICS_*).
  * Each work-item casts UW_RAYCAST_PIXELS pixels of a row in lanes (common/underwater_hit_lanes.h): PoCL does
  * not vectorise the scalar cast across work-items, and this is most of the frame's cost that does not
- * depend on the band count. The host launches ceil(width / UW_RAYCAST_PIXELS) x height work-items.
+ * depend on the band count. The host launches ceil(width / UW_RAYCAST_PIXELS) x height work-items. The caustic
+ * texture is read in the same lanes (common/caustic_texture_lanes.h); the caustic maps' reads stay per lane.
  */
 #include "common/compat.h"
 #include "common/optics.h"
@@ -23,6 +24,7 @@
 #include "common/underwater_hit_lanes.h"
 #if SEASIM_CAUSTICS == 1
 #include "common/caustic_texture.h"
+#include "common/caustic_texture_lanes.h"
 #endif
 #if SEASIM_CAUSTICS == 2
 #include "common/caustic_map.h"
@@ -57,6 +59,16 @@ __kernel void raycast(__constant UwParams* p, __global const UwObject* objects, 
 #else
   vis = SELECTB(lit, SPLATB(1.0f), vis);
 #endif
+#if SEASIM_CAUSTICS == 1
+  /* The caustic texture where the refracted sun ray through each lit hit crossed the surface, in the lanes. */
+  const maskb sunlit = vis > 0.0f;
+  if (ANYB(sunlit)) {
+    const realb t_up = -hit.y / s_w.y;
+    const realb m = caustic_modulation_b(hit.x + t_up * s_w.x, hit.z + t_up * s_w.z, p->time, p->caustic_period,
+                                         p->caustic_speed);
+    vis = SELECTB(sunlit, vis * m, vis);
+  }
+#endif
 #endif
 
   /* The lanes out to the row, the pixels past its end left alone. */
@@ -76,20 +88,12 @@ __kernel void raycast(__constant UwParams* p, __global const UwObject* objects, 
   for (int q = 0; q < count_x; ++q) {
     const int pixel = y * p->width + x0 + q;
     float vq = v_l[q];
-#if SEASIM_HAS_SUN && SEASIM_CAUSTICS != 0
+#if SEASIM_HAS_SUN && SEASIM_CAUSTICS == 2
     if (vq > 0.0f) {
-      /* The caustics where the lane's hit is (per pixel: a texture or map read). */
+      /* The maps were splatted along the refracted rays already: read them where the lane's hit is. */
       const float3 hq = (float3)(((const float*)&hit.x)[q], ((const float*)&hit.y)[q], ((const float*)&hit.z)[q]);
-#if SEASIM_CAUSTICS == 1
-      /* Where the refracted sun ray through this point crossed the surface. */
-      const float t_up = -hq.y / s_w.y;
-      vq *= caustic_modulation(hq.x + t_up * s_w.x, hq.z + t_up * s_w.z, p->time, p->caustic_period, p->caustic_speed);
-#endif
-#if SEASIM_CAUSTICS == 2
-      /* The maps were splatted along the refracted rays already: read them where the point is. */
       vq *= caustic_map_sample(caustic_maps, p->caustic_map_size, p->caustic_layers, p->caustic_extent,
                                p->caustic_depth_max, hq.x, -hq.y, hq.z);
-#endif
     }
 #endif
     geom[pixel] = (float4)(S_l[q], nx[q], ny[q], nz[q]);

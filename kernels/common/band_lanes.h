@@ -12,6 +12,7 @@
  *   SPLATB(x)              x in every lane
  *   SELECTB(m, a, b)       per lane: m ? a : b (m from a comparison of realb values, combined with &)
  *   ANYB(m)                whether any lane of m is set (a case no lane needs is skipped)
+ *   uintb, UINTB_OF(x), REALB_OF_UINT(u)  unsigned integer lanes (hashes) and the conversions from and to realb
  *   SUMB(v)                the sum of the lanes
  *   load_lanes, store_lanes the first count lanes of a row that is not padded (the others read as 0)
  *   lane_offsets()         0, 1, …, N - 1 (a node loop run in lanes: node k0 + lane)
@@ -29,16 +30,25 @@
 #if SEASIM_BAND_LANES == 4
 typedef float4 realb;
 typedef int4 maskb;
+typedef uint4 uintb;
+#define UINTB_OF(x) convert_uint4(x)
+#define REALB_OF_UINT(x) convert_float4(x)
 #define LOADB(p, i) vload4(0, (p) + (i))
 #define SUMB(v) (((v).s0 + (v).s1) + ((v).s2 + (v).s3))
 #elif SEASIM_BAND_LANES == 8
 typedef float8 realb;
 typedef int8 maskb;
+typedef uint8 uintb;
+#define UINTB_OF(x) convert_uint8(x)
+#define REALB_OF_UINT(x) convert_float8(x)
 #define LOADB(p, i) vload8(0, (p) + (i))
 #define SUMB(v) ((((v).s0 + (v).s1) + ((v).s2 + (v).s3)) + (((v).s4 + (v).s5) + ((v).s6 + (v).s7)))
 #elif SEASIM_BAND_LANES == 16
 typedef float16 realb;
 typedef int16 maskb;
+typedef uint16 uintb;
+#define UINTB_OF(x) convert_uint16(x)
+#define REALB_OF_UINT(x) convert_float16(x)
 #define LOADB(p, i) vload16(0, (p) + (i))
 #define SUMB(v)                                                                                          \
   (((((v).s0 + (v).s1) + ((v).s2 + (v).s3)) + (((v).s4 + (v).s5) + ((v).s6 + (v).s7))) +              \
@@ -80,10 +90,13 @@ SEASIM_FN realb load_lanes(const __global float* src, int count) {
 #define SPLATB(x) (static_cast<real>(x))
 #define SELECTB(m, a, b) ((m) ? (a) : (b))
 #define ANYB(m) ((m) != 0)
+#define UINTB_OF(x) (static_cast<unsigned int>(x))
+#define REALB_OF_UINT(x) (static_cast<realb>(x))
 #define SUMB(v) (v)
 #endif
 typedef real realb;
 typedef int maskb;
+typedef unsigned int uintb;
 SEASIM_FN void store_lanes(realb v, float* dst, int count) {
   if (count > 0) dst[0] = static_cast<float>(v);
 }

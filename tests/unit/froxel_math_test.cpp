@@ -194,6 +194,33 @@ TEST(CausticTexture, TableGivesTheHashedTexture) {
   EXPECT_EQ(kd::caustic_modulation_table(1.0, 2.0, 3.0, -1.0, 0.5, td.data()), 1.0);
 }
 
+TEST(CausticTexture, LanesGiveTheScalarTexture) {
+  // raycast.cl reads the texture for its 16 hits in lanes (caustic_texture_lanes.h, one lane here): the same
+  // cells, hashes and arithmetic as caustic_modulation, so the same value in double and in float, across the
+  // tiles' seams, at large coordinates and times, and without a period.
+  double worst_d = 0, worst_f = 0;
+  for (int k = 0; k < 200000; ++k) {
+    const double x = -31 + 0.000619 * k, z = 11 - 0.000233 * k + 0.05 * std::sin(0.01 * k), t = 0.00037 * k;
+    worst_d = std::max(worst_d, std::fabs(kd::caustic_modulation_b(x, z, t, 4.0, 0.5) -
+                                          kd::caustic_modulation(x, z, t, 4.0, 0.5)));
+    worst_f = std::max(worst_f, double(std::fabs(kf::caustic_modulation_b(float(x), float(z), float(t), 4.0f, 0.5f) -
+                                                 kf::caustic_modulation(float(x), float(z), float(t), 4.0f, 0.5f))));
+  }
+  std::printf("caustic lanes vs scalar: double %.2e, float %.2e\n", worst_d, worst_f);
+  EXPECT_LT(worst_d, 1e-12);
+  EXPECT_LT(worst_f, 1e-5);
+  for (const double x : {0.0, 4.0 - 1e-9, 4.0, -1e-9, 3e4, -7e4, 1e12})
+    for (const double z : {0.1, 2.9, -1e12}) {
+      EXPECT_NEAR(kd::caustic_modulation_b(x, z, 1e3, 4.0, 0.5), kd::caustic_modulation(x, z, 1e3, 4.0, 0.5), 1e-12)
+          << x << " " << z;
+      const float vf = kf::caustic_modulation_b(float(x), float(z), 1e3f, 4.0f, 0.5f);
+      EXPECT_TRUE(std::isfinite(vf) && vf > 0.0f) << x << " " << z;
+      EXPECT_NEAR(vf, kf::caustic_modulation(float(x), float(z), 1e3f, 4.0f, 0.5f), 1e-5) << x << " " << z;
+    }
+  EXPECT_EQ(kd::caustic_modulation_b(1.0, 2.0, 3.0, 0.0, 0.5), 1.0);
+  EXPECT_EQ(kf::caustic_modulation_b(1.0f, 2.0f, 3.0f, -1.0f, 0.5f), 1.0f);
+}
+
 // ---- which froxels a read needs ----
 
 template <typename K, typename Real>
