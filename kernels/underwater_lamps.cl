@@ -370,15 +370,25 @@ static inline void lamp_orders_surface(__constant UwParams* p, __global const Uw
   float s;
   const float geometry = uw_lamp_surface_geometry(P, v->n, lamp, axis, L->cos_cone, L->cos_inner, lp->s_min, vis, &s);
   if (!(geometry > 0.0f)) return;
-  for (int i = 0; i < nb; ++i) {
-    const float E = I[i] * v->alb[i * v->alb_stride] * geometry * exp(-bands[i].c * s); /* uw_lamp_surface, S = 0 */
+  /* The bands in lanes: the lamp's light at the surface (uw_lamp_surface, S = 0) and through the view. */
+  for (int b0 = 0; b0 < nb; b0 += SEASIM_BAND_LANES) {
+    const int in_run = min(SEASIM_BAND_LANES, nb - b0);
+    const LampBandLanes band = lamp_band_lanes(bands, I, b0, in_run);
+    float alb[SEASIM_BAND_LANES] __attribute__((aligned(4 * SEASIM_BAND_LANES)));
+    float c[SEASIM_BAND_LANES] __attribute__((aligned(4 * SEASIM_BAND_LANES)));
+    for (int q = 0; q < SEASIM_BAND_LANES; ++q) {
+      alb[q] = q < in_run ? v->alb[(b0 + q) * v->alb_stride] : 0.0f;
+      c[q] = q < in_run ? bands[b0 + q].c : 0.0f;
+    }
+    const realb E = band.I * *(realb*)alb * geometry * exp(-*(realb*)c * s);
     if (v->bottom) {
-      lamp_add_to(o, bands, i, E * exp(-bands[i].c * v->S), 1, 1);
+      lamp_add_lanes(o, bands, b0, in_run, E * exp(-*(realb*)c * v->S), 1, 1);
       continue;
     }
-    float view[UW_MS_MAX_ORDERS + 1];
-    lamp_add_to(o, bands, i, E * uw_ms_view_terms(bands[i].a, bands[i].b, p->g, v->S, ms_orders, view), 1, 0);
-    lamp_add_to(o, bands, i, E * view[0], 0, 1);
+    realb unscattered;
+    lamp_add_lanes(o, bands, b0, in_run, E * uw_ms_view_transmission_b(band.a, band.b, p->g, v->S, ms_orders, &unscattered),
+                   1, 0);
+    lamp_add_lanes(o, bands, b0, in_run, E * unscattered, 0, 1);
   }
 }
 

@@ -227,6 +227,49 @@ SEASIM_FN real uw_ms_view_transmission(real sigma_a, real sigma_s, real g, real 
   return uw_ms_view_terms(sigma_a, sigma_s, g, S, last, terms);
 }
 
+/* uw_ms_poisson_at_least for lanes of x (one band per lane): both of its sums, each lane taking its own; the
+ * upward series runs until every lane that sums it has stopped (each stops as the scalar one does). */
+SEASIM_FN realb uw_ms_poisson_at_least_b(int n, realb x) {
+  const realb zero = SPLATB(R(0.0));
+  const realb e = exp(-x);
+  const maskb upward = (x > R(0.0)) & (x < (real)(n + 1));
+  realb sum = zero;
+  if (ANYB(upward)) {
+    realb term = e;
+    for (int k = 1; k <= n; ++k) term *= x / (real)k;
+    maskb active = upward & (term > R(1e-9) * sum);
+    for (int k = n; k < n + 60 && ANYB(active); ++k) { /* terms fall at least as x/(n+1) < 1 */
+      sum = SELECTB(active, sum + term, sum);
+      term *= x / (real)(k + 1);
+      active = active & (term > R(1e-9) * sum);
+    }
+  }
+  realb term = e, lower = zero;
+  for (int k = 0; k < n; ++k) {
+    lower += term;
+    term *= x / (real)(k + 1);
+  }
+  return SELECTB(x > R(0.0), SELECTB(upward, fmin(sum, SPLATB(R(1.0))), fmax(R(1.0) - lower, zero)), zero);
+}
+
+/* uw_ms_view_terms' sum T_view(S) for lanes of bands (σ_a, σ_s per lane), its unscattered term e^{-σ_t S} into
+ * *unscattered: the same terms added in the same order. */
+SEASIM_FN realb uw_ms_view_transmission_b(realb sigma_a, realb sigma_s, real g, real S, int last, realb* unscattered) {
+  const realb x = sigma_s * S;
+  realb term = exp(-(sigma_a + sigma_s) * S); /* k = 0: unscattered */
+  *unscattered = term;
+  realb T = term;
+  if (!ANYB(x > R(0.0))) return T; /* every other term 0 */
+  real Gk = R(1.0);
+  for (int k = 1; k < last; ++k) {
+    term *= x / (real)k;
+    Gk *= g;
+    T += term * uw_ms_forward_share(Gk);
+  }
+  Gk *= g;
+  return T + exp(-sigma_a * S) * uw_ms_poisson_at_least_b(last, x) * uw_ms_forward_share(Gk);
+}
+
 /* Where cos ψ falls in the table (UW_MS_TABLE entries over ψ, 1° apart): entry *i and weight *f of
  * entry *i + 1. Once per point: every order's row shares it. */
 SEASIM_FN void uw_ms_table_index(real cos_psi, int* i, real* f) {

@@ -224,6 +224,28 @@ TEST(UnderwaterLampsBlur, ViewTermsAreThePoissonOrdersSeenForward) {
       }
 }
 
+TEST(UnderwaterLampsBlur, ViewTransmissionInBandLanesIsTheScalarOne) {
+  // underwater_lamps.cl sums T_view for its bands in lanes (uw_ms_view_transmission_b, one lane here): the same
+  // terms in the same order as uw_ms_view_terms, on both branches of the Poisson tail (x = σ_s S below and above
+  // last + 1, and at it), without scattering (x = 0), and in float and double.
+  for (double S : {0.0, 0.5, 3.0, 4.999, 5.0, 20.0, 200.0})
+    for (double g : {0.0, 0.5, 0.9, 1.0})
+      for (int last : {1, 4, 8})
+        for (double b : {0.0, 1.0, 0.4}) {
+          const double a = 0.1;
+          double terms[UW_MS_MAX_ORDERS + 1], unscattered = -1;
+          const double T = kd::uw_ms_view_terms(a, b, g, S, last, terms);
+          EXPECT_EQ(kd::uw_ms_view_transmission_b(a, b, g, S, last, &unscattered), T)
+              << "S " << S << " g " << g << " last " << last << " b " << b;
+          EXPECT_EQ(unscattered, terms[0]);
+          EXPECT_EQ(kd::uw_ms_poisson_at_least_b(last, b * S), kd::uw_ms_poisson_at_least(last, b * S));
+          float terms_f[UW_MS_MAX_ORDERS + 1], unscattered_f = -1;
+          const float Tf = kf::uw_ms_view_terms(float(a), float(b), float(g), float(S), last, terms_f);
+          EXPECT_EQ(kf::uw_ms_view_transmission_b(float(a), float(b), float(g), float(S), last, &unscattered_f), Tf);
+          EXPECT_EQ(unscattered_f, terms_f[0]);
+        }
+}
+
 TEST(UnderwaterLampsBlur, BlurredBottomBetweenItsLimits) {
   // A narrow spread (h -> 1) gives the light at the ray's end; under a lamp lighting the whole bottom
   // evenly near the ray's end a narrow spread keeps it within 5 %; a ray aimed up misses the bottom with
