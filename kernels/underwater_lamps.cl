@@ -385,10 +385,9 @@ static inline void lamp_orders_surface(__constant UwParams* p, __global const Uw
       lamp_add_lanes(o, bands, b0, in_run, E * exp(-*(realb*)c * v->S), 1, 1);
       continue;
     }
-    realb unscattered;
-    lamp_add_lanes(o, bands, b0, in_run, E * uw_ms_view_transmission_b(band.a, band.b, p->g, v->S, ms_orders, &unscattered),
-                   1, 0);
-    lamp_add_lanes(o, bands, b0, in_run, E * unscattered, 0, 1);
+    realb view[UW_MS_MAX_ORDERS + 1];
+    lamp_add_lanes(o, bands, b0, in_run, E * uw_ms_view_terms_b(band.a, band.b, p->g, v->S, ms_orders, view), 1, 0);
+    lamp_add_lanes(o, bands, b0, in_run, E * view[0], 0, 1);
   }
 }
 
@@ -425,17 +424,30 @@ static inline void lamp_orders_smooth(__constant UwParams* p, __global const UwB
       for (int k = 1; k <= ms_orders; ++k)
         blur[k - 1] = uw_ms_blurred_bottom(v->o, v->d, p->bottom_depth, lamp, axis, L->cos_cone, L->cos_inner, lp->s_min,
                                            uw_ms_spread(p->g, k, UW_MS_VIEW_BETA));
-    for (int i = 0; i < nb; ++i) {
-      float wn[UW_MS_MAX_ORDERS];
-      uw_ms_weights_at(ms_weights + UW_MS_WEIGHT_HEADER, nb, i, ms_orders, wj, wf, wn);
-      const float ms = bands[i].b > 0.0f && s_P > 0.0f ? uw_ms_surface_sum(geo, wn, ms_orders) : 0.0f;
-      float view[UW_MS_MAX_ORDERS + 1];
-      const float T = uw_ms_view_terms(bands[i].a, bands[i].b, p->g, v->S, ms_orders, view);
-      /* The bottom's direct light blurred on its way to the eye: T_view's terms k >= 1 see the spread. */
-      float blurred = 0.0f;
+    /* The bands in lanes: the orders' irradiance (uw_ms_orders_sum_b, as uw_ms_surface_sum) seen through
+     * T_view, and on the bottom its direct light blurred on the way to the eye (T_view's terms k >= 1 see the
+     * spread). */
+    for (int b0 = 0; b0 < nb; b0 += SEASIM_BAND_LANES) {
+      const int in_run = min(SEASIM_BAND_LANES, nb - b0);
+      const LampBandLanes band = lamp_band_lanes(bands, I, b0, in_run);
+      float alb[SEASIM_BAND_LANES] __attribute__((aligned(4 * SEASIM_BAND_LANES)));
+      float c[SEASIM_BAND_LANES] __attribute__((aligned(4 * SEASIM_BAND_LANES)));
+      for (int q = 0; q < SEASIM_BAND_LANES; ++q) {
+        alb[q] = q < in_run ? v->alb[(b0 + q) * v->alb_stride] : 0.0f;
+        c[q] = q < in_run ? bands[b0 + q].c : 0.0f;
+      }
+      const realb ms = s_P > 0.0f ? SELECTB(band.b > 0.0f,
+                                             uw_ms_orders_sum_b(ms_weights + UW_MS_WEIGHT_HEADER, nb, b0, ms_orders, wj,
+                                                                wf, geo),
+                                             SPLATB(0.0f))
+                                  : SPLATB(0.0f);
+      realb view[UW_MS_MAX_ORDERS + 1];
+      const realb T = uw_ms_view_terms_b(band.a, band.b, p->g, v->S, ms_orders, view);
+      realb blurred = SPLATB(0.0f);
       if (v->bottom)
-        for (int k = 1; k <= ms_orders; ++k) blurred += view[k] * blur[k - 1].geometry * exp(-bands[i].c * blur[k - 1].s_mean);
-      lamp_add_to(o, bands, i, I[i] * v->alb[i * v->alb_stride] * (ms * T + blurred), 1, 0);
+        for (int k = 1; k <= ms_orders; ++k)
+          blurred += view[k] * blur[k - 1].geometry * exp(-*(realb*)c * blur[k - 1].s_mean);
+      lamp_add_lanes(o, bands, b0, in_run, band.I * *(realb*)alb * (ms * T + blurred), 1, 0);
     }
     lamp_glow_surface(p, bands, glow, ms_rows, ms_weights, ms_orders, I, v, o);
   }

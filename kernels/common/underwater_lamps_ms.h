@@ -252,22 +252,27 @@ SEASIM_FN realb uw_ms_poisson_at_least_b(int n, realb x) {
   return SELECTB(x > R(0.0), SELECTB(upward, fmin(sum, SPLATB(R(1.0))), fmax(R(1.0) - lower, zero)), zero);
 }
 
-/* uw_ms_view_terms' sum T_view(S) for lanes of bands (σ_a, σ_s per lane), its unscattered term e^{-σ_t S} into
- * *unscattered: the same terms added in the same order. */
-SEASIM_FN realb uw_ms_view_transmission_b(realb sigma_a, realb sigma_s, real g, real S, int last, realb* unscattered) {
+/* uw_ms_view_terms for lanes of bands (σ_a, σ_s per lane): terms[k], k = 0..last, per lane, and their sum
+ * T_view(S), the same terms added in the same order. */
+SEASIM_FN realb uw_ms_view_terms_b(realb sigma_a, realb sigma_s, real g, real S, int last, realb* terms) {
   const realb x = sigma_s * S;
   realb term = exp(-(sigma_a + sigma_s) * S); /* k = 0: unscattered */
-  *unscattered = term;
+  terms[0] = term;
   realb T = term;
-  if (!ANYB(x > R(0.0))) return T; /* every other term 0 */
+  if (!ANYB(x > R(0.0))) { /* every other term 0 */
+    for (int k = 1; k <= last; ++k) terms[k] = SPLATB(R(0.0));
+    return T;
+  }
   real Gk = R(1.0);
   for (int k = 1; k < last; ++k) {
     term *= x / (real)k;
     Gk *= g;
-    T += term * uw_ms_forward_share(Gk);
+    terms[k] = term * uw_ms_forward_share(Gk);
+    T += terms[k];
   }
   Gk *= g;
-  return T + exp(-sigma_a * S) * uw_ms_poisson_at_least_b(last, x) * uw_ms_forward_share(Gk);
+  terms[last] = exp(-sigma_a * S) * uw_ms_poisson_at_least_b(last, x) * uw_ms_forward_share(Gk);
+  return T + terms[last];
 }
 
 /* Where cos ψ falls in the table (UW_MS_TABLE entries over ψ, 1° apart): entry *i and weight *f of

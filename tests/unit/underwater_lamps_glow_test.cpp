@@ -224,8 +224,8 @@ TEST(UnderwaterLampsBlur, ViewTermsAreThePoissonOrdersSeenForward) {
       }
 }
 
-TEST(UnderwaterLampsBlur, ViewTransmissionInBandLanesIsTheScalarOne) {
-  // underwater_lamps.cl sums T_view for its bands in lanes (uw_ms_view_transmission_b, one lane here): the same
+TEST(UnderwaterLampsBlur, ViewTermsInBandLanesAreTheScalarOnes) {
+  // underwater_lamps.cl takes T_view's terms for its bands in lanes (uw_ms_view_terms_b, one lane here): the same
   // terms in the same order as uw_ms_view_terms, on both branches of the Poisson tail (x = σ_s S below and above
   // last + 1, and at it), without scattering (x = 0), and in float and double.
   for (double S : {0.0, 0.5, 3.0, 4.999, 5.0, 20.0, 200.0})
@@ -233,16 +233,16 @@ TEST(UnderwaterLampsBlur, ViewTransmissionInBandLanesIsTheScalarOne) {
       for (int last : {1, 4, 8})
         for (double b : {0.0, 1.0, 0.4}) {
           const double a = 0.1;
-          double terms[UW_MS_MAX_ORDERS + 1], unscattered = -1;
+          double terms[UW_MS_MAX_ORDERS + 1], terms_b[UW_MS_MAX_ORDERS + 1];
           const double T = kd::uw_ms_view_terms(a, b, g, S, last, terms);
-          EXPECT_EQ(kd::uw_ms_view_transmission_b(a, b, g, S, last, &unscattered), T)
+          EXPECT_EQ(kd::uw_ms_view_terms_b(a, b, g, S, last, terms_b), T)
               << "S " << S << " g " << g << " last " << last << " b " << b;
-          EXPECT_EQ(unscattered, terms[0]);
+          for (int k = 0; k <= last; ++k) EXPECT_EQ(terms_b[k], terms[k]) << k;
           EXPECT_EQ(kd::uw_ms_poisson_at_least_b(last, b * S), kd::uw_ms_poisson_at_least(last, b * S));
-          float terms_f[UW_MS_MAX_ORDERS + 1], unscattered_f = -1;
+          float terms_f[UW_MS_MAX_ORDERS + 1], terms_fb[UW_MS_MAX_ORDERS + 1];
           const float Tf = kf::uw_ms_view_terms(float(a), float(b), float(g), float(S), last, terms_f);
-          EXPECT_EQ(kf::uw_ms_view_transmission_b(float(a), float(b), float(g), float(S), last, &unscattered_f), Tf);
-          EXPECT_EQ(unscattered_f, terms_f[0]);
+          EXPECT_EQ(kf::uw_ms_view_terms_b(float(a), float(b), float(g), float(S), last, terms_fb), Tf);
+          for (int k = 0; k <= last; ++k) EXPECT_EQ(terms_fb[k], terms_f[k]) << k;
         }
 }
 
