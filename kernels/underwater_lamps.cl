@@ -82,16 +82,16 @@ static inline float lamp_visible(__global const UwObject* objects, int count, un
  * the lamp. */
 static inline maskb lamp_blocked_b(__global const UwObject* objects, int count, unsigned int candidates, float3 o,
                                    float3 d, realb t, float3 lamp) {
+#if SEASIM_HAS_OBJECTS
   const real3b p = uw_along3b(uw_splat3b(o), t, uw_splat3b(d));
   const real3b w = uw_r3b(lamp.x - p.x, lamp.y - p.y, lamp.z - p.z);
   const realb s = sqrt(uw_dot3b(w, w));
   const maskb apart = s > 0.0f;
-#if SEASIM_HAS_OBJECTS
   const realb inv = 1.0f / SELECTB(apart, s, SPLATB(1.0f));
   return apart & uw_objects_block_b(objects, count, candidates, p, uw_r3b(w.x * inv, w.y * inv, w.z * inv),
                                     SPLATB(0.0f), s);
 #else
-  return apart & !apart;
+  return SPLATB(1.0f) < 0.0f; /* no objects: nothing in the way */
 #endif
 }
 

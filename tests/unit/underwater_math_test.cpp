@@ -368,6 +368,38 @@ TEST(UnderwaterMath, SceneHitInPixelLanesMatchesTheScalarCast) {
   EXPECT_LE(float_material_differs, 2);
 }
 
+// The shadow test in lanes (uw_objects_block_b, one lane on the host; underwater_lamps.cl's beam tests 16 planes'
+// shadow rays with it) against the scalar uw_objects_block: the same answer over random segments among a sphere,
+// a box and a tilted plane, for every candidates mask (an object left out is never in the way), in double and
+// in float but for a grazing segment or two.
+TEST(UnderwaterMath, ObjectsBlockInPixelLanesMatchesTheScalarTest) {
+  const std::array<UwObject, 3> all = shadowTestObjects(-7.5f, kd::normalize(kd::real3{0.2, 1.0, 0.1}));
+  auto uniform = uniformFrom(97531u);
+  int blocked = 0, float_differs = 0;
+  const int segments = 20000;
+  for (int i = 0; i < segments; ++i) {
+    const kd::real3 o{uniform(-2.5, 2.5), uniform(-8.0, -0.5), uniform(-3.5, 1.5)};
+    const kd::real3 d = kd::normalize(kd::real3{uniform(-1, 1), uniform(-1, 1), uniform(-1, 1)});
+    const double t_max = uniform(0.0, 8.0);
+    const unsigned int candidates = static_cast<unsigned int>(i % 8);  // every subset of the three objects
+    const int want = kd::uw_objects_block(all.data(), 3, candidates, o, d, 0.0, t_max);
+    ASSERT_EQ(kd::uw_objects_block_b(all.data(), 3, candidates, kd::uw_splat3b(o), kd::uw_splat3b(d), 0.0, t_max) != 0,
+              want != 0)
+        << i;
+    blocked += want != 0;
+    const kf::real3 of{float(o.x), float(o.y), float(o.z)}, df{float(d.x), float(d.y), float(d.z)};
+    float_differs += (kf::uw_objects_block_b(all.data(), 3, candidates, kf::uw_splat3b(of), kf::uw_splat3b(df), 0.0f,
+                                             float(t_max)) != 0) !=
+                     (kf::uw_objects_block(all.data(), 3, candidates, of, df, 0.0f, float(t_max)) != 0);
+  }
+  // A good share of the segments were blocked, and none by an object left out of the mask (mask 0 never blocks).
+  EXPECT_GT(blocked, segments / 10);
+  EXPECT_EQ(kd::uw_objects_block_b(all.data(), 3, 0u, kd::uw_splat3b(kd::real3{0, -5, 0}),
+                                   kd::uw_splat3b(kd::real3{0, -1, 0}), 0.0, 100.0),
+            0);
+  EXPECT_LE(float_differs, 2);
+}
+
 // The view directions of a row's pixels in lanes (uw_screen_dir_b) are uw_screen_dir's, corners included.
 TEST(UnderwaterMath, ScreenDirectionsInPixelLanesMatchTheScalarOnes) {
   UwParams p{};
